@@ -1,0 +1,12 @@
+// Subcommand registration of the `epicycle` program: one function per command family, each in
+// its own file, called from main.cpp.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace epicycle::app {
+
+void RegisterGeometryCommands(CLI::App& app);  // geometry, contacts      (geometry_commands.cpp)
+void RegisterContactCommands(CLI::App& app);   // contact solve|compare   (contact_commands.cpp)
+
+}  // namespace epicycle::app

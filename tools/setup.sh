@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs what is missing (Debian 12 packages only), configures and builds epicycle in ./build.
+# Used by tools/stage.sh and tools/test.sh; safe to run again (it only installs what is missing).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(build-essential cmake pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-dev
+          libsundials-dev catch2 libbenchmark-dev libtomlplusplus-dev libcli11-dev
+          nlohmann-json3-dev libfmt-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "epicycle: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+build_type="${EPICYCLE_BUILD_TYPE:-Release}"
+werror=OFF
+[ "${CI:-}" = "true" ] && werror=ON
+mkdir -p build
+cmake -S . -B build -DCMAKE_BUILD_TYPE="$build_type" -DEPICYCLE_WERROR="$werror" "$@" > build/configure.log \
+  || { cat build/configure.log; exit 1; }
+cmake --build build -j "$(nproc)"
