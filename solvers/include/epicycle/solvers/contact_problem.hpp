@@ -31,3 +31,48 @@ struct ContactProblemData {
   std::vector<std::string> contact_labels;  ///< empty or N labels (e.g. "sun-planet1 tooth 3 drive")
   std::vector<std::string> multiplier_labels;  ///< empty or m labels (e.g. "sun rotation [rad]")
 };
+
+/// A validated contact problem. Construction checks (each failure throws std::invalid_argument
+/// whose message names the field, the offending value and the rule):
+///  - sizes: C N×N with N ≥ 1, δ0 N, local empty or N, G m×N, W m, S empty or m×m, labels empty or
+///    of the matching size;
+///  - every entry finite;
+///  - C symmetric to |C_ij − C_ji| ≤ kSymmetryTolerance·max|C| and positive definite (Cholesky of
+///    its symmetric part);
+///  - S symmetric (same rule) and positive semidefinite (eigenvalues ≥ −kSymmetryTolerance·max|S|);
+///  - local-term parameters: face width, R_eq, E, h > 0, 0 ≤ ν < 0.5 (see ValidateLocalTerm).
+/// The stored C and S are the symmetric parts of the input.
+class ContactProblem {
+ public:
+  static constexpr double kSymmetryTolerance = 1e-10;  ///< relative [-]
+
+  /// @throws std::invalid_argument naming the field, its value and the rule.
+  explicit ContactProblem(ContactProblemData data);
+
+  const ContactProblemData& data() const { return data_; }
+  const std::string& name() const { return data_.name; }
+  int num_contacts() const { return static_cast<int>(data_.overlap.size()); }
+  int num_equalities() const { return static_cast<int>(data_.equality_rhs.size()); }
+  bool has_local() const;      ///< any local term enabled
+  bool has_support() const;    ///< S has a non-zero entry
+  const Eigen::MatrixXd& compliance() const { return data_.compliance; }
+  const Eigen::VectorXd& overlap() const { return data_.overlap; }
+  const Eigen::MatrixXd& equality_matrix() const { return data_.equality_matrix; }
+  const Eigen::VectorXd& equality_rhs() const { return data_.equality_rhs; }
+  const Eigen::MatrixXd& support_compliance() const { return support_; }  ///< m×m (zeros if empty)
+
+  /// u_local(F) [m] for every contact (0 where there is no local term), F ≥ 0.
+  Eigen::VectorXd LocalApproach(const Eigen::VectorXd& force) const;
+  /// Gap g = C F + u_local(F) − δ0 − Gᵀλ [m].
+  Eigen::VectorXd Gap(const Eigen::VectorXd& force, const Eigen::VectorXd& multiplier) const;
+  /// Φ(F) [J] (without the support term), F ≥ 0.
+  double Potential(const Eigen::VectorXd& force) const;
+  /// Force [N] at which contact j's Hertz half-width reaches its depth h (+∞ without local term).
+  double ValidityLimitForce(int contact) const;
+
+ private:
+  ContactProblemData data_;
+  Eigen::MatrixXd support_;
+};
+
+}  // namespace epicycle::solvers

@@ -2,6 +2,8 @@
 // eq. 2 with its printed second term corrected.
 #pragma once
 
+#include <string>
+
 namespace epicycle::solvers {
 
 /// How the 2D elastic bodies are idealised (the same assumption must be used in FE and here).
@@ -26,5 +28,35 @@ struct LocalTermParameters {
   PlaneAssumption plane = PlaneAssumption::kPlaneStrain;
   LocalBody body[2];
 };
+
+// Closed forms used below (per body B, s = h_B/L, w = √(1 + (L/h_B)²), a_B = 2k_B/(πb)):
+//   value       u_B  = a_B F [asinh(s) − c_B/(1+w)]            (since s(√(1+s²) − s) = 1/(1+w))
+//   derivative  u_B' = a_B [asinh(s) − (1+c_B)/(2w)]
+//   integral    U_B  = ∫₀^F u_B = 2a_B F² [asinh(s)/4 + (w+2)/(12(1+w)²) − c_B(2w+1)/(6(1+w)²)]
+// (the integral by the substitution s = h/L, F = h²/(l s²) with L² = lF, see docs/solvers.md).
+// Since asinh(s)·√(1+s²)/s ≥ 1 for every s > 0, u_B' > 0 for every F > 0 whenever c_B < 1, i.e.
+// ν < 0.5: the corrected term never loses monotonicity (the misprinted one does). What remains is
+// u'(0⁺) = +∞ (logarithmically) and u' → 0 as F → ∞, and the physical validity limit L = h.
+
+/// Throws std::invalid_argument naming `field` (e.g. "local[3]"), the value and the rule unless
+/// face width, radius, moduli, depths > 0 and finite, 0 ≤ ν < 0.5. Disabled terms are not checked.
+void ValidateLocalTerm(const LocalTermParameters& p, const std::string& field);
+
+/// E* [Pa]: 1/E* = k_1 + k_2 (plane-strain or plane-stress k_B).
+double EffectiveModulus(const LocalTermParameters& p);
+/// Hertz half-width L [m] at force F [N] ≥ 0.
+double HertzHalfWidth(const LocalTermParameters& p, double force);
+/// u_local(F) [m], F [N] ≥ 0 (0 at F = 0 and when disabled).
+double LocalApproach(const LocalTermParameters& p, double force);
+/// du_local/dF [m/N]; +∞ at F = 0 (enabled term).
+double LocalApproachDerivative(const LocalTermParameters& p, double force);
+/// ∫₀^F u_local [J] (closed form, accurate to round-off).
+double LocalApproachIntegral(const LocalTermParameters& p, double force);
+/// The force [N] at which L reaches the smaller depth h_B: beyond it the half-plane idealisation
+/// behind the local term is no longer valid (the result is still defined and monotone).
+double ValidityLimitForce(const LocalTermParameters& p);
+/// The smallest force [N] at which u_local' ≤ 0, +∞ if none (always +∞ for ν < 0.5, see above;
+/// computed from the closed-form derivative, not assumed).
+double NonMonotoneForce(const LocalTermParameters& p);
 
 }  // namespace epicycle::solvers
