@@ -3,13 +3,27 @@
 #pragma once
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
+#include <string>
 #include <numbers>
 #include <utility>
 
 #include "epicycle/compliance/mesher.hpp"
 
 namespace epicycle::compliance::testing {
+
+/// Prints a measured figure (for docs/compliance.md) when EPICYCLE_FIGURES is set in the
+/// environment; silent otherwise.
+inline void Figure(const std::string& text) {
+  if (std::getenv("EPICYCLE_FIGURES") != nullptr) std::printf("FIGURE %s\n", text.c_str());
+}
+inline std::string Sci(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3e", x);
+  return buf;
+}
 
 /// The distorted five-element patch of MacNeal and Harder (1985) on [0, 0.24] × [0, 0.12] m, as
 /// Q8: the mid-side nodes of the four inner sides are pushed off their chords by `bulge` × length
