@@ -13,7 +13,7 @@ std::string ToString(PlaneAssumption plane) {
 void ElasticMaterial::Validate() const {
   auto fail = [](const char* field, double value, const char* rule) {
     std::ostringstream msg;
-    msg.precision(17);
+    msg.precision(12);
     msg << "ElasticMaterial." << field << " = " << value << ": " << rule;
     throw std::invalid_argument(msg.str());
   };

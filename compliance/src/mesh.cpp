@@ -104,6 +104,7 @@ void Mesh::Validate() const {
       }
     }
   }
+  for (int e = 0; e < num_elements(); ++e) CheckQ8Jacobian(ElementCoordinates(e), e);
   for (const auto& [name, list] : edge_sets) {
     for (std::size_t k = 0; k < list.size(); ++k) {
       const BoundaryEdge& edge = list[k];
@@ -126,7 +127,6 @@ void Mesh::Validate() const {
       }
     }
   }
-  for (int e = 0; e < num_elements(); ++e) CheckQ8Jacobian(ElementCoordinates(e), e);
 }
 
 Eigen::Vector2d Mesh::EdgePosition(const std::string& set, const EdgePoint& p) const {
