@@ -1,0 +1,141 @@
+// FE core at the size of one gear body: mapped mesh, assembly, one sparse LDLᵀ factorisation and
+// many right-hand sides. A full ring a ≤ r ≤ b (four 90° patches, graded toward the outer
+// surface, like a flank band) fixed at its bore, loaded by an outer pressure (checked against the
+// closed form after the timing loop) and by point forces along the outer edge (the influence-table
+// pattern: many load cases, one factorisation). Counters: DOFs, non-zeros of K and of the factor,
+// time of each stage, peak resident memory (VmHWM, reset per benchmark where the kernel allows).
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "epicycle/compliance/elastic_model.hpp"
+#include "epicycle/compliance/mesher.hpp"
+
+namespace {
+
+using namespace epicycle::compliance;
+
+constexpr double kA = 0.02, kB = 0.06, kPressure = 50e6;
+
+Region Ring(int nr, int nt) {
+  Region region;
+  for (int q = 0; q < 4; ++q) {
+    const double t0 = q * std::numbers::pi / 2, t1 = (q + 1) * std::numbers::pi / 2;
+    Patch p;
+    p.sides = {StraightLine({kA * std::cos(t0), kA * std::sin(t0)}, {kB * std::cos(t0), kB * std::sin(t0)}),
+               CircularArc({0.0, 0.0}, kB, t0, t1),
+               StraightLine({kA * std::cos(t1), kA * std::sin(t1)}, {kB * std::cos(t1), kB * std::sin(t1)}),
+               CircularArc({0.0, 0.0}, kA, t0, t1)};
+    p.side_names = {"", "outer", "", "bore"};
+    p.u = Distribution::Graded(nr, 0.2);  // elements 5× smaller at the outer surface
+    p.v = Distribution::Uniform(nt);
+    region.patches.push_back(p);
+  }
+  return region;
+}
+
+// u_r(b) for u(a) = 0 and σ_rr(b) = −p, u = A r + B/r with B = −A a², plane-stress-equivalent
+// E', ν':  A = −p (1−ν'²) / (E' [(1+ν') + (1−ν') a²/b²]).
+double ExactOuterRadialDisplacement(const ElasticMaterial& m) {
+  const double e = m.EffectiveModulus(), nu = m.EffectivePoissonRatio();
+  const double a = -kPressure * (1 - nu * nu) / (e * ((1 + nu) + (1 - nu) * kA * kA / (kB * kB)));
+  return a * (kB - kA * kA / kB);
+}
+
+double PeakResidentKiB() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6));
+  }
+  return -1.0;
+}
+
+void ResetPeakResident() {
+  std::ofstream clear("/proc/self/clear_refs");
+  if (clear) clear << "5";  // Linux ≥ 4.0: reset VmHWM to the current RSS
+}
+
+double Seconds(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void BM_GearSizedModel(benchmark::State& state) {
+  const int nr = static_cast<int>(state.range(0));
+  const int nt = static_cast<int>(state.range(1));
+  const int num_rhs = static_cast<int>(state.range(2));
+  const ElasticMaterial steel{206e9, 0.3, 0.025, PlaneAssumption::kPlaneStrain};
+  ResetPeakResident();
+  double t_mesh = 0, t_assemble = 0, t_factor = 0, t_solve = 0, error = 0;
+  long dofs = 0, nnz_k = 0, nnz_l = 0;
+  for (auto _ : state) {
+    auto t0 = std::chrono::steady_clock::now();
+    Mesh mesh = MappedMesher().BuildMesh(Ring(nr, nt));
+    t_mesh += Seconds(t0);
+    t0 = std::chrono::steady_clock::now();
+    LinearElasticModel model(std::move(mesh), steel);
+    t_assemble += Seconds(t0);
+    model.FixNodeSet("bore");
+    t0 = std::chrono::steady_clock::now();
+    model.Factorize();
+    t_factor += Seconds(t0);
+    // Load cases: outer pressure, then point forces (radial) spread along the outer edge.
+    Eigen::MatrixXd f = Eigen::MatrixXd::Zero(model.num_dofs(), num_rhs);
+    Eigen::VectorXd pressure = model.ZeroLoads();
+    model.AddEdgeTraction(
+        "outer",
+        [](const Eigen::Vector2d&, const Eigen::Vector2d& n) { return (-kPressure * n).eval(); },
+        &pressure);
+    f.col(0) = pressure;
+    const int edges = static_cast<int>(model.mesh().EdgeSet("outer").size());
+    for (int j = 1; j < num_rhs; ++j) {
+      Eigen::VectorXd fj = model.ZeroLoads();
+      const EdgePoint at{(j * 7919) % edges, -0.3};
+      model.AddEdgePointForce("outer", at, -1000.0 * model.mesh().EdgeNormal("outer", at), &fj);
+      f.col(j) = fj;
+    }
+    t0 = std::chrono::steady_clock::now();
+    const Eigen::MatrixXd u = model.SolveMany(f);
+    t_solve += Seconds(t0);
+    benchmark::DoNotOptimize(u.data());
+    // Check: the outer surface's radial displacement under the pressure.
+    const double exact = ExactOuterRadialDisplacement(steel);
+    error = 0.0;
+    for (int v : model.mesh().NodeSet("outer")) {
+      const Eigen::Vector2d x = model.mesh().nodes[v];
+      error = std::max(error, std::abs(model.NodeDisplacement(u.col(0), v).dot(x.normalized()) /
+                                           exact - 1.0));
+    }
+    dofs = model.num_dofs();
+    nnz_k = static_cast<long>(model.stiffness().nonZeros());
+    nnz_l = model.factor_nonzeros();
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["dofs"] = static_cast<double>(dofs);
+  state.counters["rhs"] = num_rhs;
+  state.counters["nnz_K"] = static_cast<double>(nnz_k);
+  state.counters["nnz_L"] = static_cast<double>(nnz_l);
+  state.counters["mesh_ms"] = 1e3 * t_mesh / n;
+  state.counters["assemble_ms"] = 1e3 * t_assemble / n;
+  state.counters["factor_ms"] = 1e3 * t_factor / n;
+  state.counters["solve_all_ms"] = 1e3 * t_solve / n;
+  state.counters["solve_per_rhs_ms"] = 1e3 * t_solve / n / num_rhs;
+  state.counters["peak_rss_MiB"] = PeakResidentKiB() / 1024.0;
+  state.counters["rel_error_lame"] = error;
+}
+
+BENCHMARK(BM_GearSizedModel)
+    ->Args({12, 30, 60})
+    ->Args({24, 60, 60})
+    ->Args({32, 80, 60})
+    ->Args({32, 80, 120})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
+
+}  // namespace
+
+BENCHMARK_MAIN();
