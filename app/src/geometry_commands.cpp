@@ -1,0 +1,240 @@
+// `epicycle geometry SCENE` (report, --json, --svg) and `epicycle contacts SCENE --carrier-deg A`.
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "epicycle/geometry/iso.hpp"
+#include "epicycle/geometry/stage.hpp"
+#include "epicycle/transmission/scene.hpp"
+#include "stage_svg.hpp"
+
+namespace epicycle::app {
+
+using geometry::Deg;
+using geometry::Gear;
+using geometry::Stage;
+using nlohmann::json;
+
+namespace {
+
+constexpr double kToMm = 1e3;
+
+json GearJson(const Gear& g) {
+  const geometry::GearSpec& s = g.spec();
+  json j;
+  j["teeth"] = g.teeth();
+  j["module_mm"] = g.module() * kToMm;
+  j["face_width_mm"] = s.face_width * kToMm;
+  j["profile_shift"] = s.profile_shift;
+  j["pressure_angle_deg"] = Deg(s.pressure_angle);
+  j["reference_radius_mm"] = g.reference_radius() * kToMm;
+  j["base_radius_mm"] = g.base_radius() * kToMm;
+  j["tip_radius_mm"] = g.tip_radius() * kToMm;
+  j["root_radius_mm"] = g.root_radius() * kToMm;
+  j["form_radius_mm"] = g.form_radius() * kToMm;
+  j["tip_form_radius_mm"] = g.tip_form_radius() * kToMm;
+  j["thickness_reference_mm"] = g.ThicknessAt(g.reference_radius()) * kToMm;
+  j["thickness_tip_mm"] = g.tip_thickness() * kToMm;
+  j["tip_round_radius_mm"] = s.tip_round_radius * kToMm;
+  j["thickness_error_um"] = s.thickness_error * 1e6;
+  if (g.internal()) {
+    j["rim_radius_mm"] = s.hub_radius * kToMm;
+    j["generation"] = s.shaper ? fmt::format("shaper z_c = {}, x_c = {}", s.shaper->teeth,
+                                              s.shaper->profile_shift)
+                               : std::string("direct (involute, base rounding, tip rounding)");
+  } else {
+    j["hub_radius_mm"] = s.hub_radius * kToMm;
+    j["min_shift_without_undercut"] = g.MinimumShiftWithoutUndercut();
+    j["generation"] = fmt::format("rack: addendum {} m, dedendum {} m, tip round {} m",
+                                  s.rack->addendum / g.module(), s.rack->dedendum / g.module(),
+                                  s.rack->tip_radius / g.module());
+  }
+  return j;
+}
+
+json StageJson(const transmission::Scene& scene, const Stage& st) {
+  json j;
+  j["scene"] = scene.name;
+  j["source"] = scene.source;
+  j["gears"]["sun"] = GearJson(st.sun());
+  j["gears"]["planet"] = GearJson(st.planet(0));
+  j["gears"]["ring"] = GearJson(st.ring());
+  json meshes = json::array();
+  for (const geometry::MeshSummary& m : st.meshes()) {
+    meshes.push_back({{"name", m.name},
+                      {"centre_distance_mm", m.centre_distance * kToMm},
+                      {"operating_pressure_angle_deg", Deg(m.pressure_angle)},
+                      {"zero_backlash_pressure_angle_deg", Deg(m.zero_backlash_pressure_angle)},
+                      {"normal_backlash_mm", m.normal_backlash * kToMm},
+                      {"transverse_backlash_mm", m.transverse_backlash * kToMm},
+                      {"contact_ratio_iso", m.contact_ratio_iso},
+                      {"contact_ratio_involute", m.contact_ratio},
+                      {"sap_a_mm", m.sap_a * kToMm},
+                      {"sap_b_mm", m.sap_b * kToMm},
+                      {"phase_cycles", m.phase}});
+  }
+  j["meshes"] = meshes;
+  const int zsum = st.sun().teeth() + st.ring().teeth();
+  json planets = json::array();
+  for (int i = 0; i < st.planets(); ++i) {
+    planets.push_back({{"planet", i + 1},
+                       {"angle_deg", Deg(st.planet_angle(i))},
+                       {"assembly_teeth", zsum * st.planet_angle(i) / (2 * geometry::kPi)},
+                       {"mesh_phase_cycles", st.meshes()[2 * i].phase}});
+  }
+  j["assembly"] = {{"carrier_radius_mm", st.carrier_radius() * kToMm},
+                   {"planets", planets},
+                   {"z_sun_plus_z_ring", zsum},
+                   {"equally_spaced", st.spec().planet_angles.empty()},
+                   {"mesh_cycle_carrier_deg", Deg(st.mesh_cycle())}};
+  json fits = json::array();
+  for (const transmission::ShiftFit& f : scene.fits) {
+    fits.push_back({{"gear", f.gear},
+                    {"mesh", f.mesh},
+                    {"normal_backlash_um", f.normal_backlash * 1e6},
+                    {"profile_shift", f.profile_shift}});
+  }
+  j["fits"] = fits;
+  return j;
+}
+
+void PrintReport(const json& j) {
+  std::printf("epicycle geometry: %s  (%s)\n\n", j["scene"].get<std::string>().c_str(),
+              j["source"].get<std::string>().c_str());
+  const json& g = j["gears"];
+  auto row = [&](const char* label, const char* key, const char* f) {
+    std::printf("  %-34s", label);
+    for (const char* n : {"sun", "planet", "ring"}) {
+      if (g[n].contains(key)) {
+        std::printf(f, g[n][key].get<double>());
+      } else {
+        std::printf("%12s", "-");
+      }
+    }
+    std::printf("\n");
+  };
+  std::printf("Gears %33s %11s %11s\n", "sun", "planet", "ring");
+  row("teeth z", "teeth", "%12.0f");
+  row("module m [mm]", "module_mm", "%12.3f");
+  row("face width b [mm]", "face_width_mm", "%12.2f");
+  row("profile shift x", "profile_shift", "%12.4f");
+  row("tool pressure angle [deg]", "pressure_angle_deg", "%12.2f");
+  row("reference radius r [mm]", "reference_radius_mm", "%12.4f");
+  row("base radius r_b [mm]", "base_radius_mm", "%12.4f");
+  row("tip radius r_a [mm]", "tip_radius_mm", "%12.4f");
+  row("root radius r_f [mm]", "root_radius_mm", "%12.4f");
+  row("form radius r_F (involute start) [mm]", "form_radius_mm", "%12.4f");
+  row("tip-form radius (round tangency) [mm]", "tip_form_radius_mm", "%12.4f");
+  row("tip round r_t [mm]", "tip_round_radius_mm", "%12.4f");
+  row("thickness at r [mm]", "thickness_reference_mm", "%12.4f");
+  row("thickness at r_a [mm]", "thickness_tip_mm", "%12.4f");
+  row("least shift without undercut", "min_shift_without_undercut", "%12.4f");
+  row("hub (axis) radius [mm]", "hub_radius_mm", "%12.2f");
+  row("rim radius [mm]", "rim_radius_mm", "%12.2f");
+  for (const char* n : {"sun", "planet", "ring"}) {
+    std::printf("  %-7s %s\n", n, g[n]["generation"].get<std::string>().c_str());
+  }
+  std::printf("\nMeshes          a [mm]  alpha_w [deg]  j_n [mm]  j_t [mm]  eps_a ISO  eps_a inv  "
+              "SAP a/b [mm]      phase\n");
+  for (const json& m : j["meshes"]) {
+    std::printf("  %-12s %8.3f %10.4f %11.4f %9.4f %10.4f %10.4f  %7.3f/%-8.3f %6.4f\n",
+                m["name"].get<std::string>().c_str(), m["centre_distance_mm"].get<double>(),
+                m["operating_pressure_angle_deg"].get<double>(),
+                m["normal_backlash_mm"].get<double>(), m["transverse_backlash_mm"].get<double>(),
+                m["contact_ratio_iso"].get<double>(), m["contact_ratio_involute"].get<double>(),
+                m["sap_a_mm"].get<double>(), m["sap_b_mm"].get<double>(),
+                m["phase_cycles"].get<double>());
+  }
+  const json& a = j["assembly"];
+  std::printf("\nAssembly: carrier radius %.4f mm, z_sun + z_ring = %d, %s\n",
+              a["carrier_radius_mm"].get<double>(), a["z_sun_plus_z_ring"].get<int>(),
+              a["equally_spaced"].get<bool>() ? "planets equally spaced" : "planets at given angles");
+  for (const json& p : a["planets"]) {
+    std::printf("  planet %d at %8.3f deg: (z_s + z_r) psi/360 = %.4f (whole: assemblable); "
+                "mesh phase %.4f cycle (%.1f deg) behind planet 1\n",
+                p["planet"].get<int>(), p["angle_deg"].get<double>(),
+                p["assembly_teeth"].get<double>(), p["mesh_phase_cycles"].get<double>(),
+                360.0 * p["mesh_phase_cycles"].get<double>());
+  }
+  std::printf("  one mesh cycle = %.4f deg of carrier rotation\n",
+              a["mesh_cycle_carrier_deg"].get<double>());
+  for (const json& f : j["fits"]) {
+    std::printf("Fit: %s profile shift x = %.6f gives j_n = %.1f um on the %s mesh\n",
+                f["gear"].get<std::string>().c_str(), f["profile_shift"].get<double>(),
+                f["normal_backlash_um"].get<double>(), f["mesh"].get<std::string>().c_str());
+  }
+}
+
+void WriteFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  if (!out) throw std::invalid_argument(path + ": cannot write");
+  out << text;
+}
+
+void PrintContacts(const Stage& st, double carrier_deg, double window) {
+  const geometry::StagePoses p = st.Poses(geometry::Rad(carrier_deg));
+  geometry::ContactSearchOptions opt;
+  opt.gap_window = window;
+  std::printf("Potential contacts at carrier angle %.4f deg (gap window %.1f um)\n", carrier_deg,
+              window * 1e6);
+  std::printf("  %-13s %-12s %-6s %6s %6s %11s %11s %12s %9s %9s %9s %9s\n", "mesh", "kind",
+              "flank", "tooth", "mate", "x [mm]", "y [mm]", "overlap[um]", "arm_a[mm]",
+              "arm_b[mm]", "rho_a[mm]", "rho_b[mm]");
+  for (int i = 0; i < st.planets(); ++i) {
+    for (geometry::MeshKind kind : {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
+      const int loaded = kind == geometry::MeshKind::kSunPlanet ? st.sun_mesh_side()
+                                                                : st.ring_mesh_planet_side();
+      const std::string name = st.meshes()[2 * i + (kind == geometry::MeshKind::kPlanetRing)].name;
+      for (const geometry::PotentialContact& c : st.Contacts(p, i, kind, opt)) {
+        std::printf("  %-13s %-12s %-6s %6d %6d %11.4f %11.4f %12.3f %9.3f %9.3f %9.3f %9.3f\n",
+                    name.c_str(), geometry::KindName(c.kind).c_str(),
+                    c.side_a == loaded ? "drive" : "coast", c.tooth_a, c.tooth_b,
+                    c.point.x() * kToMm, c.point.y() * kToMm, c.overlap * 1e6, c.lever_a * kToMm,
+                    c.lever_b * kToMm, c.curvature_radius_a * kToMm, c.curvature_radius_b * kToMm);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void RegisterGeometryCommands(CLI::App& app) {
+  auto* geo = app.add_subcommand("geometry", "Print the stage's gear and mesh geometry report");
+  static std::string scene_path, json_path, svg_path;
+  static double carrier_deg = 0.0;
+  geo->add_option("scene", scene_path, "Scene file (TOML)")->required()->check(CLI::ExistingFile);
+  geo->add_option("--json", json_path, "Also write the report as JSON (keys: docs/geometry.md)");
+  geo->add_option("--svg", svg_path, "Draw the stage as SVG");
+  geo->add_option("--carrier-deg", carrier_deg, "Carrier angle of the drawing [deg]");
+  geo->callback([] {
+    const transmission::Scene scene = transmission::ReadScene(scene_path);
+    const Stage stage(scene.stage);
+    const json report = StageJson(scene, stage);
+    PrintReport(report);
+    if (!json_path.empty()) {
+      WriteFile(json_path, report.dump(2) + "\n");
+      std::printf("\nwrote %s\n", json_path.c_str());
+    }
+    if (!svg_path.empty()) {
+      WriteFile(svg_path, DrawStage(stage, geometry::Rad(carrier_deg), scene.gap_window));
+      std::printf("wrote %s (carrier at %.3f deg)\n", svg_path.c_str(), carrier_deg);
+    }
+  });
+
+  auto* con = app.add_subcommand("contacts", "List the potential contacts at one carrier position");
+  static std::string contacts_scene;
+  static double contacts_deg = 0.0;
+  con->add_option("scene", contacts_scene, "Scene file (TOML)")->required()->check(CLI::ExistingFile);
+  con->add_option("--carrier-deg", contacts_deg, "Carrier angle [deg]")->required();
+  con->callback([] {
+    const transmission::Scene scene = transmission::ReadScene(contacts_scene);
+    const Stage stage(scene.stage);
+    PrintContacts(stage, contacts_deg, scene.gap_window);
+  });
+}
+
+}  // namespace epicycle::app

@@ -1,0 +1,83 @@
+#include "stage_svg.hpp"
+
+#include <fmt/format.h>
+
+namespace epicycle::app {
+
+using geometry::Vec2;
+
+namespace {
+
+// SVG's y axis points down: flip y so that the drawing is counter-clockwise positive.
+std::string Path(const std::vector<Vec2>& pts, const geometry::GearPose& pose) {
+  std::string d;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const Vec2 p = pose.geometric_centre + geometry::Rotate(pts[i], pose.rotation);
+    d += fmt::format("{}{:.4f},{:.4f} ", i == 0 ? "M" : "L", p.x() * 1e3, -p.y() * 1e3);
+  }
+  return d + "Z";
+}
+
+std::string Circle(const Vec2& c, double r, const std::string& style) {
+  return fmt::format("<circle cx=\"{:.4f}\" cy=\"{:.4f}\" r=\"{:.4f}\" {}/>\n", c.x() * 1e3,
+                     -c.y() * 1e3, r * 1e3, style);
+}
+
+std::string Line(const Vec2& a, const Vec2& b, const std::string& style) {
+  return fmt::format("<line x1=\"{:.4f}\" y1=\"{:.4f}\" x2=\"{:.4f}\" y2=\"{:.4f}\" {}/>\n",
+                     a.x() * 1e3, -a.y() * 1e3, b.x() * 1e3, -b.y() * 1e3, style);
+}
+
+}  // namespace
+
+std::string DrawStage(const geometry::Stage& stage, double carrier_angle, double gap_window) {
+  const geometry::StagePoses poses = stage.Poses(carrier_angle);
+  const double half = stage.ring().spec().hub_radius * 1e3 * 1.05;
+  std::string s = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"{0} {0} {1} {1}\" width=\"900\" "
+      "height=\"900\">\n<rect x=\"{0}\" y=\"{0}\" width=\"{1}\" height=\"{1}\" fill=\"white\"/>\n",
+      -half, 2 * half);
+  s += fmt::format("<title>epicycle stage at carrier angle {:.3f} deg</title>\n",
+                   geometry::Deg(carrier_angle));
+  const std::string gear_style = "fill=\"#dde6f0\" stroke=\"#234\" stroke-width=\"0.08\"";
+  s += Circle(poses.ring.geometric_centre, stage.ring().spec().hub_radius,
+              "fill=\"#e8e8e8\" stroke=\"#234\" stroke-width=\"0.1\"");
+  s += "<path fill=\"white\" stroke=\"#234\" stroke-width=\"0.08\" d=\"" +
+       Path(stage.ring().Outline(8), poses.ring) + "\"/>\n";
+  s += "<path " + gear_style + " d=\"" + Path(stage.sun().Outline(8), poses.sun) + "\"/>\n";
+  for (int i = 0; i < stage.planets(); ++i) {
+    s += "<path " + gear_style + " d=\"" + Path(stage.planet(i).Outline(8), poses.planets[i]) + "\"/>\n";
+    s += Circle(poses.planets[i].rotation_centre, stage.planet(i).spec().hub_radius,
+                "fill=\"white\" stroke=\"#234\" stroke-width=\"0.08\"");
+  }
+  s += Circle(Vec2::Zero(), stage.sun().spec().hub_radius, "fill=\"white\" stroke=\"#234\" stroke-width=\"0.08\"");
+  const std::string base_style = "fill=\"none\" stroke=\"#888\" stroke-width=\"0.05\" stroke-dasharray=\"0.6,0.4\"";
+  s += Circle(poses.sun.geometric_centre, stage.sun().base_radius(), base_style);
+  s += Circle(poses.ring.geometric_centre, stage.ring().base_radius(), base_style);
+  geometry::ContactSearchOptions opt;
+  opt.gap_window = gap_window;
+  for (int i = 0; i < stage.planets(); ++i) {
+    s += Circle(poses.planets[i].geometric_centre, stage.planet(i).base_radius(), base_style);
+    const geometry::LineOfAction ls = geometry::MakeLineOfAction(
+        stage.Sun(poses), stage.Planet(poses, i), false, stage.sun_mesh_side());
+    s += Line(ls.tangent_a, ls.tangent_b, "stroke=\"#c33\" stroke-width=\"0.12\"");
+    const geometry::LineOfAction lr = geometry::MakeLineOfAction(
+        stage.Planet(poses, i), stage.Ring(poses), true, stage.ring_mesh_planet_side());
+    s += Line(lr.tangent_a, lr.tangent_b, "stroke=\"#c33\" stroke-width=\"0.12\"");
+    for (geometry::MeshKind kind : {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
+      for (const geometry::PotentialContact& c : stage.Contacts(poses, i, kind, opt)) {
+        const char* colour = c.kind == geometry::ContactKind::kInvolute ? "#0a0" : "#f80";
+        s += Circle(c.point, 0.45e-3,
+                    fmt::format("fill=\"{}\" fill-opacity=\"{}\"", colour, c.overlap >= -1e-6 ? 1.0 : 0.35));
+      }
+    }
+  }
+  s += fmt::format(
+      "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"5\" font-family=\"sans-serif\">carrier {:.2f} deg; "
+      "red: loaded lines of action; dots: potential contacts (green on the LOA, orange tip round; "
+      "faint: open)</text>\n",
+      -half * 0.97, half * 0.97, geometry::Deg(carrier_angle));
+  return s + "</svg>\n";
+}
+
+}  // namespace epicycle::app

@@ -1,0 +1,94 @@
+// Contact search between two meshing gears (MODEL.md §3): every potential contact of every tooth
+// pair within a gap window, on both flanks, on the line of action (involute against involute,
+// closed form) and off it (tip round against flank: closest points between an arc and an involute).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "epicycle/geometry/gear.hpp"
+
+namespace epicycle::geometry {
+
+/// Where a gear is: its rotation centre (bearing / pin), its geometric centre (differs by the
+/// run-out vector, which turns with the gear) and the rotation of its body frame.
+struct GearPose {
+  Vec2 rotation_centre = Vec2::Zero();   ///< [m]
+  Vec2 geometric_centre = Vec2::Zero();  ///< [m] centre of the tooth geometry
+  double rotation = 0;                   ///< θ [rad], counter-clockwise
+};
+
+struct PosedGear {
+  const Gear* gear = nullptr;
+  GearPose pose;
+};
+
+/// The involute flank of tooth k on side σ in the inertial frame:
+///   p(u) = c + r_b [e(S + H u) − H u e⊥(S + H u)],  S = θ + 2πk/z + σθ0,  H = σ h,
+///   outward normal σ e⊥(S + H u).
+struct WorldInvolute {
+  Vec2 centre = Vec2::Zero();
+  double base_radius = 0;
+  double start = 0;  ///< S [rad]
+  int hand = 1;      ///< H
+  int side = 1;      ///< σ
+  double u_min = 0, u_max = 0;
+  Vec2 Point(double u) const;
+  Vec2 Normal(double u) const;  ///< outward unit normal
+};
+WorldInvolute FlankInWorld(const PosedGear& g, int tooth, int side);
+
+/// A line of action of the pair (A external; B external, or B the internal gear with A inside):
+/// the common tangent of the two base circles along which A's flank of side σ_A meets B's flank.
+struct LineOfAction {
+  int side_a = 1, side_b = 1;  ///< σ_A, σ_B (σ_B = σ_A external, −σ_A internal)
+  Vec2 tangent_a = Vec2::Zero();              ///< N_A, tangency point on A's base circle [m]
+  Vec2 tangent_b = Vec2::Zero();              ///< N_B [m]
+  Vec2 direction = Vec2::Zero();              ///< d, unit: A's outward flank normal (from A into B)
+  double base_angle_a = 0;     ///< β_A [rad], angle of N_A about A's centre
+  double base_angle_b = 0;     ///< β_B [rad]
+  double length = 0;           ///< (N_B − N_A)·d [m]
+  double pressure_angle = 0;   ///< α_w [rad] at the actual centre distance
+  double centre_distance = 0;  ///< a [m] between geometric centres
+};
+/// @throws std::invalid_argument if the base circles do not admit the tangent (gears too close).
+LineOfAction MakeLineOfAction(const PosedGear& a, const PosedGear& b, bool internal, int side_a);
+
+/// Overlap along the line of action of the tooth pair nearest to contact, ignoring where the
+/// involutes end: δ ∈ (−p_b/2, p_b/2] [m]. d δ/d θ_A = σ_A r_bA, d δ/d θ_B = −σ_B ... (see .cpp).
+double NearestLoaOverlap(const PosedGear& a, const PosedGear& b, bool internal, int side_a);
+
+enum class ContactKind {
+  kInvolute,   ///< involute against involute, on the line of action
+  kTipRoundA,  ///< A's tip round against B's flank, off the line of action
+  kTipRoundB,  ///< B's tip round against A's flank, off the line of action
+};
+std::string KindName(ContactKind kind);
+
+/// One potential contact. Force F ≥ 0 acts on B along +normal and on A along −normal.
+struct PotentialContact {
+  ContactKind kind = ContactKind::kInvolute;
+  int side_a = 1, side_b = 1;   ///< flank sides σ
+  int tooth_a = 0, tooth_b = 0; ///< tooth indices in each body frame
+  Vec2 point = Vec2::Zero();                   ///< location (midpoint of the two closest points) [m]
+  Vec2 point_a = Vec2::Zero(), point_b = Vec2::Zero();        ///< closest points on A and on B [m]
+  Vec2 normal = Vec2::Zero();                  ///< unit, A's outward normal (from A into B)
+  double overlap = 0;           ///< δ [m]: > 0 interpenetration, < 0 gap
+  double lever_a = 0;           ///< moment about A's rotation centre of the unit force on A [m]
+  double lever_b = 0;           ///< moment about B's rotation centre of the unit force on B [m]
+  double curvature_radius_a = 0;  ///< [m], > 0 convex, < 0 concave
+  double curvature_radius_b = 0;  ///< [m]
+  double roll_a = 0, roll_b = 0;  ///< involute roll angles of the contact (or of the flank point) [rad]
+};
+
+struct ContactSearchOptions {
+  double gap_window = 100e-6;  ///< keep contacts with δ ≥ −window [m]
+  bool both_sides = true;      ///< search both flanks (drive and coast)
+  int side_a = 1;              ///< with both_sides false: the one side σ_A to search
+};
+
+/// Every potential contact between A and B (internal: B is the ring, A a planet inside it).
+std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& b, bool internal,
+                                           const ContactSearchOptions& options);
+
+}  // namespace epicycle::geometry

@@ -1,0 +1,32 @@
+// Closed-form spur-gear relations (ISO 21771 notation). Pair (1, 2): external, or internal with 2
+// the internal gear (ring) and x2 its shift in this project's convention (x2 > 0 widens the space).
+#pragma once
+
+#include "epicycle/geometry/gear.hpp"
+
+namespace epicycle::geometry::iso {
+
+/// Operating pressure angle of a zero-backlash pair:
+///   inv α_w = inv α + 2 tan α (x1 ± x2)/(z2 ± z1)   (+ external, − internal)
+double ZeroBacklashPressureAngle(int z1, int z2, double x1, double x2, double alpha, bool internal);
+/// Centre distance of a zero-backlash pair: a_w = m (z2 ± z1)/2 · cos α / cos α_w [m].
+double ZeroBacklashCentreDistance(double module, int z1, int z2, double x1, double x2, double alpha,
+                                  bool internal);
+/// Operating pressure angle at centre distance a: cos α_w = m (z2 ± z1) cos α / (2a).
+double PressureAngleAt(double module, int z1, int z2, double alpha, double a, bool internal);
+/// Normal backlash j_n [m] at centre distance a: j_wt = p_w − s_w1 − s_w2 (external) or
+/// e_w2 − s_w1 (internal), s_w = 2 r_w (s/(2r) + inv α − inv α_w), j_n = j_wt cos α_w − Δs1 − Δs2
+/// (Δs the normal tooth-thickness errors).
+double NormalBacklash(double module, int z1, int z2, double x1, double x2, double alpha, double a,
+                      bool internal, double ds1 = 0, double ds2 = 0);
+/// Transverse contact ratio from the radii where the involutes end (r_a: tip circles for ISO;
+/// tip-form radii for the involute actually present):
+///   ε_α = [√(r_a1² − r_b1²) ± √(r_a2² − r_b2²) ∓ a sin α_w]/p_b.
+double ContactRatio(double rb1, double ra1, double rb2, double ra2, double a, double alpha_w,
+                    double base_pitch, bool internal);
+/// The profile shift of gear `unknown` (1 or 2) that gives normal backlash j_n at centre distance
+/// a, the other gear's shift as in its spec. j_n is linear in either shift.
+double FitProfileShift(const GearSpec& g1, const GearSpec& g2, bool internal, int unknown,
+                       double centre_distance, double normal_backlash);
+
+}  // namespace epicycle::geometry::iso

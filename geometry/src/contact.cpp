@@ -1,0 +1,272 @@
+#include "epicycle/geometry/contact.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "messages.hpp"
+
+namespace epicycle::geometry {
+
+namespace {
+
+int Mod(long a, int z) {
+  const long r = a % z;
+  return static_cast<int>(r < 0 ? r + z : r);
+}
+
+// All roll angles u = u0 + j·p inside [lo, hi) (a flank's roll repeats every tooth pitch p).
+template <typename F>
+void ForEachRoll(double u0, double p, double lo, double hi, F&& f) {
+  const long j0 = static_cast<long>(std::ceil((lo - u0) / p));
+  const long j1 = static_cast<long>(std::floor((hi - u0) / p));
+  for (long j = j0; j <= j1; ++j) {
+    const double u = u0 + static_cast<double>(j) * p;
+    if (u >= lo && u < hi) f(u, j);
+  }
+}
+
+// Is direction φ inside the arc of normals from `from` sweeping to `to` (exclusive at `from`,
+// where the round joins the flank and the involute contact takes over)?
+bool InSpan(double phi, double from, double to) {
+  const double sweep = to - from;
+  const double rel = WrapAngle(phi - from);
+  return sweep >= 0 ? (rel > 0 && rel <= sweep) : (rel < 0 && rel >= sweep);
+}
+
+struct ArcHit {
+  Vec2 flank_point;
+  Vec2 flank_normal;  // the flank's outward normal
+  double distance;    // from the arc centre to the flank, along its normal
+  double roll;
+  int tooth;
+};
+
+// Closest points between a circular arc (centre c, radius ρ, outward normals spanning
+// [from, to]) and the involute flanks of side σ of a posed gear: the flank point whose normal
+// passes through c lies on a tangent from c to the base circle.
+std::vector<ArcHit> ArcAgainstFlanks(const Vec2& c, double rho, double from, double to,
+                                     const PosedGear& g, int side, double window) {
+  std::vector<ArcHit> hits;
+  const WorldInvolute f0 = FlankInWorld(g, 0, side);
+  const Vec2 rel = c - f0.centre;
+  const double dist_c = rel.norm();
+  if (dist_c <= f0.base_radius) return hits;
+  const double phi = Angle(rel);
+  const double open = std::acos(f0.base_radius / dist_c);
+  const double p = g.gear->pitch_angle();
+  for (int s : {-1, 1}) {
+    const double beta = phi + s * open;
+    const double u0 = f0.hand * WrapAngle(beta - f0.start);
+    ForEachRoll(u0, p, f0.u_min, f0.u_max, [&](double u, long j) {
+      const Vec2 point = f0.centre + f0.base_radius * (Dir(beta) - f0.hand * u * DirPerp(beta));
+      const Vec2 normal = side * DirPerp(beta);
+      const double d = (c - point).dot(normal);
+      if (d <= 0 || d > rho + window) return;
+      if (!InSpan(Angle(-normal), from, to)) return;
+      hits.push_back({point, normal, d, u, Mod(-f0.hand * j, g.gear->teeth())});
+    });
+  }
+  return hits;
+}
+
+// The tip round of tooth k, side σ, in the inertial frame: centre and normal span.
+struct WorldArc {
+  Vec2 centre;
+  double from, to;
+};
+WorldArc TipRoundInWorld(const PosedGear& g, int tooth, int side) {
+  const TipRound& t = g.gear->tip_round();
+  const double turn = g.pose.rotation + tooth * g.gear->pitch_angle();
+  const Vec2 body(t.centre.x(), side * t.centre.y());
+  return {g.pose.geometric_centre + Rotate(body, turn), side * t.normal_from + turn,
+          side * t.normal_to + turn};
+}
+
+double Lever(const Vec2& point, const Vec2& centre, const Vec2& force_direction) {
+  return Cross(point - centre, force_direction);
+}
+
+}  // namespace
+
+Vec2 WorldInvolute::Point(double u) const {
+  const double b = start + hand * u;
+  return centre + base_radius * (Dir(b) - static_cast<double>(hand) * u * DirPerp(b));
+}
+
+Vec2 WorldInvolute::Normal(double u) const { return side * DirPerp(start + hand * u); }
+
+WorldInvolute FlankInWorld(const PosedGear& g, int tooth, int side) {
+  const InvoluteFlank& f = g.gear->involute();
+  WorldInvolute w;
+  w.centre = g.pose.geometric_centre;
+  w.base_radius = f.base_radius;
+  w.start = g.pose.rotation + tooth * g.gear->pitch_angle() + side * f.start;
+  w.hand = side * f.hand;
+  w.side = side;
+  w.u_min = f.u_min;
+  w.u_max = f.u_max;
+  return w;
+}
+
+LineOfAction MakeLineOfAction(const PosedGear& a, const PosedGear& b, bool internal, int side_a) {
+  const Vec2 dv = b.pose.geometric_centre - a.pose.geometric_centre;
+  const double dist = dv.norm();
+  const double rba = a.gear->base_radius(), rbb = b.gear->base_radius();
+  const double k = internal ? rbb - rba : rba + rbb;
+  if (!(dist > 0) || k / dist >= 1.0) {
+    throw std::invalid_argument("mesh " + a.gear->name() + "-" + b.gear->name() +
+                                ": centre distance " + Mm(dist) +
+                                " mm admits no line of action (base circles " +
+                                (internal ? "too far apart" : "overlap") + ")");
+  }
+  LineOfAction l;
+  l.side_a = side_a;
+  l.side_b = internal ? -side_a : side_a;
+  l.centre_distance = dist;
+  l.pressure_angle = std::acos(k / dist);
+  const double pitch_dir = Angle(dv) + (internal ? kPi : 0.0);
+  l.base_angle_a = pitch_dir - side_a * l.pressure_angle;
+  l.base_angle_b = l.base_angle_a + (internal ? 0.0 : kPi);
+  l.direction = side_a * DirPerp(l.base_angle_a);
+  l.tangent_a = a.pose.geometric_centre + rba * Dir(l.base_angle_a);
+  l.tangent_b = b.pose.geometric_centre + rbb * Dir(l.base_angle_b);
+  l.length = (l.tangent_b - l.tangent_a).dot(l.direction);
+  return l;
+}
+
+namespace {
+
+// A's flank at roll u_a on the line of action, and B's flank nearest to it there.
+struct LoaPair {
+  Vec2 xa, xb;
+  double ua, ub;
+  int ka, kb;
+  double overlap;
+};
+
+LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l, double ua, int ka) {
+  LoaPair r;
+  r.ua = ua;
+  r.ka = ka;
+  r.xa = FlankInWorld(a, ka, l.side_a).Point(ua);
+  const double sa = (r.xa - l.tangent_a).dot(l.direction);
+  const WorldInvolute b0 = FlankInWorld(b, 0, l.side_b);
+  // Along d, B's flank point sits at s_B = L + H_B σ_B r_bB u_B from N_A.
+  const double target = (sa - l.length) / (b0.hand * l.side_b * b0.base_radius);
+  const double u0 = b0.hand * WrapAngle(l.base_angle_b - b0.start);
+  const double p = b.gear->pitch_angle();
+  const long j = std::lround((target - u0) / p);
+  r.ub = u0 + static_cast<double>(j) * p;
+  r.kb = Mod(-b0.hand * j, b.gear->teeth());
+  r.xb = FlankInWorld(b, r.kb, l.side_b).Point(r.ub);
+  r.overlap = (r.xa - r.xb).dot(l.direction);
+  return r;
+}
+
+}  // namespace
+
+double NearestLoaOverlap(const PosedGear& a, const PosedGear& b, bool internal, int side_a) {
+  const LineOfAction l = MakeLineOfAction(a, b, internal, side_a);
+  const WorldInvolute a0 = FlankInWorld(a, 0, side_a);
+  const double ua = a0.hand * WrapAngle(l.base_angle_a - a0.start);
+  return PairOnLoa(a, b, l, ua, 0).overlap;
+}
+
+std::string KindName(ContactKind kind) {
+  switch (kind) {
+    case ContactKind::kInvolute: return "involute";
+    case ContactKind::kTipRoundA: return "tip-round-a";
+    case ContactKind::kTipRoundB: return "tip-round-b";
+  }
+  return "?";
+}
+
+std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& b, bool internal,
+                                           const ContactSearchOptions& options) {
+  std::vector<PotentialContact> out;
+  const double window = options.gap_window;
+  const Vec2 oa = a.pose.rotation_centre, ob = b.pose.rotation_centre;
+  const double ring_sign = internal ? -1.0 : 1.0;  // B's curvature: a ring's flank is concave
+  std::vector<int> sides = options.both_sides ? std::vector<int>{1, -1} : std::vector<int>{options.side_a};
+  for (int side_a : sides) {
+    const LineOfAction l = MakeLineOfAction(a, b, internal, side_a);
+    // Involute against involute, on the line of action.
+    const WorldInvolute a0 = FlankInWorld(a, 0, side_a);
+    const double ua0 = a0.hand * WrapAngle(l.base_angle_a - a0.start);
+    ForEachRoll(ua0, a.gear->pitch_angle(), a0.u_min, a0.u_max, [&](double ua, long j) {
+      const LoaPair pr = PairOnLoa(a, b, l, ua, Mod(-a0.hand * j, a.gear->teeth()));
+      const InvoluteFlank& fb = b.gear->involute();
+      if (pr.ub < fb.u_min || pr.ub >= fb.u_max || pr.overlap < -window) return;
+      PotentialContact c;
+      c.kind = ContactKind::kInvolute;
+      c.side_a = l.side_a;
+      c.side_b = l.side_b;
+      c.tooth_a = pr.ka;
+      c.tooth_b = pr.kb;
+      c.point_a = pr.xa;
+      c.point_b = pr.xb;
+      c.point = 0.5 * (pr.xa + pr.xb);
+      c.normal = l.direction;
+      c.overlap = pr.overlap;
+      c.lever_a = Lever(c.point, oa, -c.normal);
+      c.lever_b = Lever(c.point, ob, c.normal);
+      c.curvature_radius_a = a.gear->base_radius() * pr.ua;
+      c.curvature_radius_b = ring_sign * b.gear->base_radius() * pr.ub;
+      c.roll_a = pr.ua;
+      c.roll_b = pr.ub;
+      out.push_back(c);
+    });
+    // Tip rounds against flanks, off the line of action: the teeth near the mesh only.
+    const double pitch_dir = Angle(b.pose.geometric_centre - a.pose.geometric_centre) +
+                             (internal ? kPi : 0.0);
+    auto tips = [&](const PosedGear& owner, const PosedGear& other, int owner_side, int other_side,
+                    double owner_dir, bool owner_is_a) {
+      if (!owner.gear->has_tip_round()) return;
+      const double p = owner.gear->pitch_angle();
+      const long k0 = std::lround(WrapAngle(owner_dir - owner.pose.rotation) / p);
+      const double rho = owner.gear->tip_round().radius;
+      for (long k = k0 - 3; k <= k0 + 3; ++k) {
+        const int tooth = Mod(k, owner.gear->teeth());
+        const WorldArc arc = TipRoundInWorld(owner, tooth, owner_side);
+        for (const ArcHit& h : ArcAgainstFlanks(arc.centre, rho, arc.from, arc.to, other,
+                                                other_side, window)) {
+          PotentialContact c;
+          c.kind = owner_is_a ? ContactKind::kTipRoundA : ContactKind::kTipRoundB;
+          c.side_a = l.side_a;
+          c.side_b = l.side_b;
+          const Vec2 on_arc = arc.centre - rho * h.flank_normal;
+          c.overlap = rho - h.distance;
+          const double other_radius = other.gear->base_radius() * h.roll;
+          if (owner_is_a) {
+            c.tooth_a = tooth;
+            c.tooth_b = h.tooth;
+            c.point_a = on_arc;
+            c.point_b = h.flank_point;
+            c.normal = -h.flank_normal;
+            c.curvature_radius_a = rho;
+            c.curvature_radius_b = ring_sign * other_radius;
+            c.roll_b = h.roll;
+          } else {
+            c.tooth_a = h.tooth;
+            c.tooth_b = tooth;
+            c.point_a = h.flank_point;
+            c.point_b = on_arc;
+            c.normal = h.flank_normal;
+            c.curvature_radius_a = other_radius;
+            c.curvature_radius_b = rho;
+            c.roll_a = h.roll;
+          }
+          c.point = 0.5 * (c.point_a + c.point_b);
+          c.lever_a = Lever(c.point, oa, -c.normal);
+          c.lever_b = Lever(c.point, ob, c.normal);
+          out.push_back(c);
+        }
+      }
+    };
+    tips(a, b, l.side_a, l.side_b, pitch_dir, true);
+    tips(b, a, l.side_b, l.side_a, pitch_dir + (internal ? 0.0 : kPi), false);
+  }
+  return out;
+}
+
+}  // namespace epicycle::geometry

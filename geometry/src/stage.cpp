@@ -1,0 +1,252 @@
+#include "epicycle/geometry/stage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "epicycle/geometry/iso.hpp"
+#include "messages.hpp"
+
+namespace epicycle::geometry {
+
+namespace {
+
+GearSpec PlanetSpec(const StageSpec& s, int i) {
+  GearSpec g = s.planet;
+  if (!s.planet_thickness_errors.empty()) g.thickness_error += s.planet_thickness_errors.at(i);
+  return g;
+}
+
+std::vector<Gear> MakePlanets(const StageSpec& s) {
+  if (s.planets < 1 || s.planets > 12) {
+    Fail("stage", "planets", std::to_string(s.planets), "must be in [1, 12]");
+  }
+  auto check_size = [&](std::size_t size, const char* key) {
+    if (size != 0 && size != static_cast<std::size_t>(s.planets)) {
+      Fail("errors", key, std::to_string(size) + " entries",
+           "needs one entry per planet (" + std::to_string(s.planets) + ") or none");
+    }
+  };
+  check_size(s.pin_errors.size(), "pin");
+  check_size(s.planet_runouts.size(), "planet_runout");
+  check_size(s.planet_thickness_errors.size(), "planet_thickness_um");
+  if (!s.planet_angles.empty() && s.planet_angles.size() != static_cast<std::size_t>(s.planets)) {
+    Fail("stage", "planet_angles_deg", std::to_string(s.planet_angles.size()) + " entries",
+         "needs one angle per planet (" + std::to_string(s.planets) + ") or none");
+  }
+  std::vector<Gear> out;
+  for (int i = 0; i < s.planets; ++i) out.emplace_back(PlanetSpec(s, i));
+  return out;
+}
+
+double Sap(double rb, double roll) { return std::sqrt(rb * rb + roll * roll); }
+
+}  // namespace
+
+Stage::Stage(StageSpec spec)
+    : spec_(std::move(spec)), sun_(spec_.sun), ring_(spec_.ring), planets_(MakePlanets(spec_)) {
+  if (sun_.internal() || planets_[0].internal() || !ring_.internal()) {
+    throw std::invalid_argument("stage: the sun and planets must be external gears, the ring internal");
+  }
+  if (std::abs(sun_.module() - ring_.module()) > 1e-12 ||
+      std::abs(sun_.module() - planets_[0].module()) > 1e-12) {
+    Fail("ring", "module_mm", Mm(ring_.module()), "every gear of the stage must have the same module");
+  }
+  if (spec_.load_sign != 1 && spec_.load_sign != -1) {
+    Fail("stage", "load_sign", std::to_string(spec_.load_sign), "must be +1 or -1");
+  }
+  RequirePositive("stage", "carrier_radius_mm", spec_.carrier_radius);
+  for (const Runout* r : {&spec_.sun_runout, &spec_.ring_runout}) {
+    if (!(r->amplitude >= 0)) Fail("errors", "runout_um", Num(r->amplitude * 1e6), "must be >= 0");
+  }
+  for (const Runout& r : spec_.planet_runouts) {
+    if (!(r.amplitude >= 0)) Fail("errors", "planet_runout_um", Num(r.amplitude * 1e6), "must be >= 0");
+  }
+  CheckAssembly();
+  CheckClearances();
+  Align();
+  Summarise();
+}
+
+void Stage::CheckAssembly() {
+  const int zsum = sun_.teeth() + ring_.teeth();
+  const int n = planets();
+  angles_.clear();
+  if (spec_.planet_angles.empty()) {
+    if (zsum % n != 0) {
+      Fail("stage", "planets", std::to_string(n),
+           "cannot be equally spaced: (z_sun + z_ring)/n = " + std::to_string(zsum) + "/" +
+               std::to_string(n) +
+               " is not whole (change a tooth count or give planet_angles_deg)");
+    }
+    for (int i = 0; i < n; ++i) angles_.push_back(2.0 * kPi * i / n);
+    return;
+  }
+  for (int i = 0; i < n; ++i) {
+    const double psi = spec_.planet_angles[i];
+    const double teeth = zsum * psi / (2.0 * kPi);
+    if (std::abs(teeth - std::round(teeth)) > 1e-9) {
+      Fail("stage", "planet_angles_deg[" + std::to_string(i) + "]", Num(Deg(psi)),
+           "the planet cannot be assembled: (z_sun + z_ring)·ψ/360° = " + Num(teeth) +
+               " is not whole; the nearest angle that is: " +
+               Num(std::round(teeth) * 360.0 / zsum) + "°");
+    }
+    angles_.push_back(psi);
+  }
+}
+
+void Stage::CheckClearances() const {
+  const double a = spec_.carrier_radius;
+  const Gear& p = planets_[0];
+  // Neighbouring planets.
+  std::vector<double> sorted = angles_;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 0; i < sorted.size() && sorted.size() > 1; ++i) {
+    const double next = i + 1 < sorted.size() ? sorted[i + 1] : sorted[0] + 2.0 * kPi;
+    const double gap = 2.0 * a * std::sin((next - sorted[i]) / 2.0) - 2.0 * p.tip_radius();
+    if (gap < spec_.min_planet_gap) {
+      Fail("stage", "planets", std::to_string(planets()),
+           "neighbouring planets clash: their tip circles are " + Mm(gap) +
+               " mm apart, less than min_planet_gap_mm = " + Mm(spec_.min_planet_gap));
+    }
+  }
+  // Tips against roots.
+  auto need = [](double clearance, const std::string& what) {
+    if (clearance <= 0) {
+      throw std::invalid_argument("stage: " + what + " (radial clearance " + Mm(clearance) + " mm)");
+    }
+  };
+  need(a - sun_.tip_radius() - p.root_radius(), "the sun's tip hits the planet's root");
+  need(a - p.tip_radius() - sun_.root_radius(), "the planet's tip hits the sun's root");
+  need(ring_.root_radius() - a - p.tip_radius(), "the planet's tip hits the ring's root");
+  need(ring_.tip_radius() - a - p.root_radius(), "the ring's tip hits the planet's root");
+  // Tips against fillets: the mate's tip circle must start the contact on the involute.
+  const double aw_s = iso::PressureAngleAt(sun_.module(), sun_.teeth(), p.teeth(),
+                                           sun_.spec().pressure_angle, a, false);
+  const double aw_r = iso::PressureAngleAt(p.module(), p.teeth(), ring_.teeth(),
+                                           p.spec().pressure_angle, a, true);
+  const double ls = a * std::sin(aw_s), lr = a * std::sin(aw_r);
+  auto roll_len = [](const Gear& g, double r) {
+    return std::sqrt(r * r - g.base_radius() * g.base_radius());
+  };
+  auto fillet = [](const Gear& g, const std::string& mate, double sap) {
+    const bool bad = g.internal() ? sap > g.form_radius() : sap < g.form_radius();
+    if (bad) {
+      throw std::invalid_argument("stage: tip-fillet interference: the " + mate +
+                                  "'s tip reaches the " + g.name() + "'s flank at radius " +
+                                  Mm(sap) + " mm, past its form radius " + Mm(g.form_radius()) +
+                                  " mm");
+    }
+  };
+  const double sap_sun_roll = ls - roll_len(p, p.tip_radius());
+  const double sap_planet_roll_s = ls - roll_len(sun_, sun_.tip_radius());
+  if (sap_sun_roll <= 0 || sap_planet_roll_s <= 0) {
+    throw std::invalid_argument("stage: a tip of the sun-planet mesh passes the interference point");
+  }
+  fillet(sun_, "planet", Sap(sun_.base_radius(), sap_sun_roll));
+  fillet(p, "sun", Sap(p.base_radius(), sap_planet_roll_s));
+  const double sap_planet_roll_r = roll_len(ring_, ring_.tip_radius()) - lr;
+  if (sap_planet_roll_r <= 0) {
+    throw std::invalid_argument("stage: the ring's tip passes the planet's interference point");
+  }
+  fillet(p, "ring", Sap(p.base_radius(), sap_planet_roll_r));
+  fillet(ring_, "planet", Sap(ring_.base_radius(), roll_len(p, p.tip_radius()) + lr));
+}
+
+void Stage::Align() {
+  // Turn each planet until its loaded flank touches the ring, then the sun until its loaded
+  // flank touches planet 1 (d δ/d θ_A = σ_A r_bA for the gear A of a pair).
+  sun_turn0_ = 0;
+  planet_turn0_.assign(planets(), 0.0);
+  const StagePoses p = Poses(0.0, false);
+  for (int i = 0; i < planets(); ++i) {
+    const int side = ring_mesh_planet_side();
+    const double d = NearestLoaOverlap(Planet(p, i), Ring(p), true, side);
+    planet_turn0_[i] = -d / (side * planets_[i].base_radius());
+  }
+  const StagePoses q = Poses(0.0, false);
+  const double d = NearestLoaOverlap(Sun(q), Planet(q, 0), false, sun_mesh_side());
+  sun_turn0_ = -d / (sun_mesh_side() * sun_.base_radius());
+}
+
+StagePoses Stage::Poses(double carrier_angle, bool with_errors) const {
+  StagePoses p;
+  p.carrier_angle = carrier_angle;
+  auto place = [&](const Vec2& centre, double rotation, const Runout& r) {
+    GearPose g;
+    g.rotation_centre = centre;
+    g.rotation = rotation;
+    g.geometric_centre = centre;
+    if (with_errors) g.geometric_centre += r.amplitude * Dir(rotation + r.phase);
+    return g;
+  };
+  p.sun = place(Vec2::Zero(), sun_turn0_ + sun_ratio() * carrier_angle, spec_.sun_runout);
+  p.ring = place(Vec2::Zero(), 0.0, spec_.ring_runout);
+  for (int i = 0; i < planets(); ++i) {
+    const double dir = carrier_angle + angles_[i];
+    Vec2 c = spec_.carrier_radius * Dir(dir);
+    if (with_errors && !spec_.pin_errors.empty()) {
+      const PinError& e = spec_.pin_errors[i];
+      c += e.radial * Dir(dir) + e.tangential * DirPerp(dir);
+    }
+    const Runout r = spec_.planet_runouts.empty() ? Runout{} : spec_.planet_runouts[i];
+    p.planets.push_back(place(c, planet_turn0_[i] + planet_ratio() * carrier_angle, r));
+  }
+  return p;
+}
+
+std::vector<PotentialContact> Stage::Contacts(const StagePoses& p, int planet, MeshKind kind,
+                                              const ContactSearchOptions& options) const {
+  if (kind == MeshKind::kSunPlanet) return FindContacts(Sun(p), Planet(p, planet), false, options);
+  return FindContacts(Planet(p, planet), Ring(p), true, options);
+}
+
+void Stage::Summarise() {
+  meshes_.clear();
+  const double a = spec_.carrier_radius;
+  const double alpha = sun_.spec().pressure_angle;
+  for (int i = 0; i < planets(); ++i) {
+    const Gear& p = planets_[i];
+    const double phase = std::fmod(sun_.teeth() * angles_[i] / (2.0 * kPi), 1.0);
+    for (MeshKind kind : {MeshKind::kSunPlanet, MeshKind::kPlanetRing}) {
+      const bool internal = kind == MeshKind::kPlanetRing;
+      const Gear& g1 = internal ? p : sun_;
+      const Gear& g2 = internal ? ring_ : p;
+      MeshSummary m;
+      m.kind = kind;
+      m.planet = i;
+      m.name = internal ? "planet" + std::to_string(i + 1) + "-ring"
+                        : "sun-planet" + std::to_string(i + 1);
+      m.centre_distance = a;
+      m.pressure_angle = iso::PressureAngleAt(g1.module(), g1.teeth(), g2.teeth(), alpha, a, internal);
+      m.zero_backlash_pressure_angle = iso::ZeroBacklashPressureAngle(
+          g1.teeth(), g2.teeth(), g1.spec().profile_shift, g2.spec().profile_shift, alpha, internal);
+      m.normal_backlash = iso::NormalBacklash(g1.module(), g1.teeth(), g2.teeth(),
+                                              g1.spec().profile_shift, g2.spec().profile_shift,
+                                              alpha, a, internal, g1.spec().thickness_error,
+                                              g2.spec().thickness_error);
+      m.transverse_backlash = m.normal_backlash / std::cos(m.pressure_angle);
+      m.contact_ratio_iso = iso::ContactRatio(g1.base_radius(), g1.tip_radius(), g2.base_radius(),
+                                              g2.tip_radius(), a, m.pressure_angle,
+                                              g1.base_pitch(), internal);
+      m.contact_ratio = iso::ContactRatio(g1.base_radius(), g1.tip_form_radius(), g2.base_radius(),
+                                          g2.tip_form_radius(), a, m.pressure_angle,
+                                          g1.base_pitch(), internal);
+      const double la = a * std::sin(m.pressure_angle);
+      auto roll_len = [](const Gear& g, double r) {
+        return std::sqrt(r * r - g.base_radius() * g.base_radius());
+      };
+      if (internal) {
+        m.sap_a = Sap(p.base_radius(), roll_len(ring_, ring_.tip_radius()) - la);
+        m.sap_b = Sap(ring_.base_radius(), roll_len(p, p.tip_radius()) + la);
+      } else {
+        m.sap_a = Sap(sun_.base_radius(), la - roll_len(p, p.tip_radius()));
+        m.sap_b = Sap(p.base_radius(), la - roll_len(sun_, sun_.tip_radius()));
+      }
+      m.phase = phase < 0 ? phase + 1.0 : phase;
+      meshes_.push_back(m);
+    }
+  }
+}
+
+}  // namespace epicycle::geometry

@@ -1,0 +1,49 @@
+// A scene: one planetary stage with its gears, cutters, errors, material and load, read from a
+// TOML file whose keys name their units (module_mm, torque_Nm, runout_um, pressure_angle_deg).
+// The keys are documented in docs/scenes.md.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "epicycle/geometry/stage.hpp"
+
+namespace epicycle::transmission {
+
+struct Material {
+  double youngs_modulus = 207e9;  ///< E [Pa]
+  double poisson_ratio = 0.3;     ///< ν [-]
+};
+
+struct Inertia {
+  double mass = 0;     ///< [kg]
+  double inertia = 0;  ///< polar moment of inertia [kg·m²]
+};
+
+/// A profile shift solved from a backlash (one of the scene's [[fit]] tables).
+struct ShiftFit {
+  std::string gear;              ///< "sun", "planet" or "ring"
+  std::string mesh;              ///< "sun-planet" or "planet-ring"
+  double normal_backlash = 0;    ///< j_n [m]
+  double profile_shift = 0;      ///< the solved x [-]
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::string source;                  ///< file name (for messages)
+  geometry::StageSpec stage;
+  Material material;
+  Inertia sun, planet, ring, carrier;
+  double sun_torque = 0;               ///< input torque on the sun [N·m] (counter-clockwise +)
+  double gap_window = 100e-6;          ///< contact-search gap window [m]
+  std::vector<ShiftFit> fits;          ///< in the order they were applied
+};
+
+/// @throws std::invalid_argument naming the file, line, key, value and rule.
+Scene ReadScene(const std::string& path);
+/// Same, from text (source names it in messages).
+Scene ParseScene(const std::string& text, const std::string& source);
+
+}  // namespace epicycle::transmission

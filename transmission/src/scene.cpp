@@ -1,0 +1,289 @@
+#include "epicycle/transmission/scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "epicycle/geometry/iso.hpp"
+#include "toml_reader.hpp"
+
+namespace epicycle::transmission {
+
+using geometry::GearKind;
+using geometry::GearSpec;
+using internal::Rule;
+using internal::TableReader;
+
+namespace {
+
+constexpr double kMm = 1e-3, kUm = 1e-6;
+
+double Deg(double d) { return d * geometry::kPi / 180.0; }
+
+Inertia ReadInertia(TableReader& t) {
+  Inertia i;
+  i.mass = t.RealOr("mass_kg", 0.0, Rule::NonNegative());
+  i.inertia = t.RealOr("inertia_kgm2", 0.0, Rule::NonNegative());
+  return i;
+}
+
+// The fields common to every gear table; `fit_target` gears may omit profile_shift.
+GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool fit_target,
+                  Inertia* inertia) {
+  GearSpec g;
+  g.name = name;
+  g.kind = kind;
+  g.teeth = static_cast<int>(t.Integer("teeth", Rule::Closed(3, 10000)));
+  g.module = t.Real("module_mm", Rule::Positive()) * kMm;
+  g.face_width = t.Real("face_width_mm", Rule::Positive()) * kMm;
+  g.pressure_angle = Deg(t.Real("pressure_angle_deg", Rule::Open(0, 45)));
+  if (fit_target) {
+    if (t.Has("profile_shift")) {
+      t.Fail("profile_shift", "given", "this gear's shift is solved by [fit]; remove one of the two");
+    }
+  } else {
+    g.profile_shift = t.Real("profile_shift", Rule::Closed(-2, 2));
+  }
+  g.tip_round_radius = t.RealOr("tip_round_radius_mm", 0.0, Rule::NonNegative()) * kMm;
+  g.min_tip_thickness = t.RealOr("min_tip_thickness_mm", -1e3, Rule::Any()) * kMm;
+  if (g.min_tip_thickness < 0) g.min_tip_thickness = -1;
+  *inertia = ReadInertia(t);
+  TableReader cutter = t.Table("cutter");
+  // The tip (and a directly defined ring's root) is given as a radius, or as an addendum
+  // (dedendum) coefficient from the shifted reference line: r_a = r + (x ± h_a*) m, which needs
+  // the final shift and is therefore resolved after any [[fit]] (see ResolveRadii).
+  auto radius_or_coefficient = [&](const std::string& radius_key, const std::string& coef_key,
+                                   bool required) -> double {
+    if (t.Has(radius_key) && t.Has(coef_key)) {
+      t.Fail(coef_key, "given", "give either " + radius_key + " or " + coef_key + ", not both");
+    }
+    if (t.Has(coef_key)) return -t.Real(coef_key, Rule::Positive());  // < 0 marks a coefficient
+    if (required && !t.Has(radius_key)) {
+      t.Fail(radius_key, "missing", "give " + radius_key + " or " + coef_key);
+    }
+    return t.RealOr(radius_key, 0.0, Rule::Positive()) * kMm;
+  };
+  if (kind == GearKind::kExternal) {
+    g.tip_radius = radius_or_coefficient("tip_radius_mm", "addendum_per_module", false);
+    g.hub_radius = t.Real("hub_radius_mm", Rule::Positive()) * kMm;
+    cutter.String("type", {"rack"});
+    geometry::RackCutter rack;
+    rack.addendum = cutter.Real("addendum_per_module", Rule::Positive()) * g.module;
+    rack.dedendum = cutter.Real("dedendum_per_module", Rule::Positive()) * g.module;
+    rack.tip_radius = cutter.Real("tip_radius_per_module", Rule::NonNegative()) * g.module;
+    g.rack = rack;
+  } else {
+    g.tip_radius = radius_or_coefficient("tip_radius_mm", "addendum_per_module", true);
+    g.hub_radius = t.Real("rim_radius_mm", Rule::Positive()) * kMm;
+    const std::string type = cutter.String("type", {"shaper", "direct"});
+    if (type == "shaper") {
+      geometry::ShaperCutter s;
+      s.teeth = static_cast<int>(cutter.Integer("teeth", Rule::Closed(3, 10000)));
+      s.profile_shift = cutter.Real("profile_shift", Rule::Closed(-2, 2));
+      s.tip_radius = cutter.Real("tip_radius_mm", Rule::Positive()) * kMm;
+      s.tip_round_radius = cutter.Real("tip_round_radius_mm", Rule::Positive()) * kMm;
+      g.shaper = s;
+    } else {
+      if (cutter.Has("root_radius_mm") == cutter.Has("dedendum_per_module")) {
+        cutter.Fail("root_radius_mm", cutter.Has("root_radius_mm") ? "given" : "missing",
+                    "give exactly one of root_radius_mm or dedendum_per_module");
+      }
+      g.root_radius = cutter.Has("root_radius_mm")
+                          ? cutter.Real("root_radius_mm", Rule::Positive()) * kMm
+                          : -cutter.Real("dedendum_per_module", Rule::Positive());
+      g.root_round_radius = cutter.Real("root_round_radius_mm", Rule::Positive()) * kMm;
+    }
+  }
+  cutter.Done();
+  return g;
+}
+
+// "sun", "ring", "planet1".."planetN" → -1 (sun), -2 (ring), or the 0-based planet index.
+int GearIndex(TableReader& t, const std::string& key, int planets) {
+  const std::string v = t.String(key);
+  if (v == "sun") return -1;
+  if (v == "ring") return -2;
+  if (v.rfind("planet", 0) == 0 && v.size() > 6) {
+    try {
+      const int i = std::stoi(v.substr(6));
+      if (i >= 1 && i <= planets) return i - 1;
+    } catch (const std::exception&) {
+    }
+  }
+  t.Fail(key, "\"" + v + "\"", "must be \"sun\", \"ring\" or \"planet1\"..\"planet" +
+                                   std::to_string(planets) + "\"");
+}
+
+void ReadErrors(TableReader& e, Scene& s) {
+  geometry::StageSpec& st = s.stage;
+  const int n = st.planets;
+  for (TableReader& p : e.TableArray("pin")) {
+    const int i = GearIndex(p, "gear", n);
+    if (i < 0) p.Fail("gear", i == -1 ? "\"sun\"" : "\"ring\"", "pin errors belong to planets");
+    if (st.pin_errors.empty()) st.pin_errors.assign(n, {});
+    st.pin_errors[i].radial = p.RealOr("radial_um", 0.0, Rule::Any()) * kUm;
+    st.pin_errors[i].tangential = p.RealOr("tangential_um", 0.0, Rule::Any()) * kUm;
+    p.Done();
+  }
+  for (TableReader& r : e.TableArray("runout")) {
+    const int i = GearIndex(r, "gear", n);
+    geometry::Runout ro;
+    ro.amplitude = r.Real("amplitude_um", Rule::NonNegative()) * kUm;
+    ro.phase = Deg(r.RealOr("phase_deg", 0.0, Rule::Any()));
+    if (i == -1) {
+      st.sun_runout = ro;
+    } else if (i == -2) {
+      st.ring_runout = ro;
+    } else {
+      if (st.planet_runouts.empty()) st.planet_runouts.assign(n, {});
+      st.planet_runouts[i] = ro;
+    }
+    r.Done();
+  }
+  for (TableReader& th : e.TableArray("thickness")) {
+    const int i = GearIndex(th, "gear", n);
+    const double ds = th.Real("error_um", Rule::Any()) * kUm;
+    if (i == -1) {
+      st.sun.thickness_error = ds;
+    } else if (i == -2) {
+      st.ring.thickness_error = ds;
+    } else {
+      if (st.planet_thickness_errors.empty()) st.planet_thickness_errors.assign(n, 0.0);
+      st.planet_thickness_errors[i] = ds;
+    }
+    th.Done();
+  }
+}
+
+// Addendum/dedendum coefficients (stored negative by ReadGear) become radii once x is final.
+void ResolveRadii(GearSpec& g) {
+  const double r = g.module * g.teeth / 2.0, xm = g.profile_shift * g.module;
+  const double sign = g.kind == GearKind::kInternal ? -1.0 : 1.0;  // a ring's tip is inside
+  if (g.tip_radius < 0) g.tip_radius = r + xm + sign * (-g.tip_radius) * g.module;
+  if (g.root_radius < 0) g.root_radius = r + xm + (-g.root_radius) * g.module;
+}
+
+}  // namespace
+
+Scene ParseScene(const std::string& text, const std::string& source) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream o;
+    o << source << ":" << e.source().begin.line << ": TOML syntax error: " << e.description();
+    throw std::invalid_argument(o.str());
+  }
+  Scene s;
+  s.source = source;
+  TableReader top(root, "", source);
+  {
+    TableReader t = top.Table("scene");
+    s.name = t.String("name");
+    s.description = t.StringOr("description", "");
+    t.Done();
+  }
+  if (auto t = top.OptionalTable("material")) {
+    s.material.youngs_modulus = t->Real("youngs_modulus_GPa", Rule::Positive()) * 1e9;
+    s.material.poisson_ratio = t->Real("poisson_ratio", Rule::HalfOpen(0, 0.5));
+    t->Done();
+  }
+  // [[fit]] tables name gears whose profile shift is solved for a backlash, in order.
+  std::vector<TableReader> fits = top.TableArray("fit");
+  std::vector<std::string> fit_gears;
+  for (TableReader& f : fits) {
+    const std::string g = f.String("gear", {"sun", "planet", "ring"});
+    for (const std::string& h : fit_gears) {
+      if (h == g) f.Fail("gear", "\"" + g + "\"", "each gear can be fitted once");
+    }
+    fit_gears.push_back(g);
+  }
+  auto fitted = [&](const std::string& g) {
+    for (const std::string& h : fit_gears) {
+      if (h == g) return true;
+    }
+    return false;
+  };
+
+  geometry::StageSpec& st = s.stage;
+  {
+    TableReader t = top.Table("sun");
+    st.sun = ReadGear(t, "sun", GearKind::kExternal, fitted("sun"), &s.sun);
+    t.Done();
+  }
+  {
+    TableReader t = top.Table("planet");
+    st.planet = ReadGear(t, "planet", GearKind::kExternal, fitted("planet"), &s.planet);
+    t.Done();
+  }
+  {
+    TableReader t = top.Table("ring");
+    st.ring = ReadGear(t, "ring", GearKind::kInternal, fitted("ring"), &s.ring);
+    t.Done();
+  }
+  {
+    TableReader t = top.Table("carrier");
+    st.carrier_radius = t.Real("radius_mm", Rule::Positive()) * kMm;
+    st.planets = static_cast<int>(t.Integer("planets", Rule::Closed(1, 12)));
+    if (t.Has("planet_angles_deg")) {
+      for (double a : t.RealArray("planet_angles_deg", Rule::HalfOpen(0, 360))) {
+        st.planet_angles.push_back(Deg(a));
+      }
+    }
+    st.min_planet_gap = t.RealOr("min_planet_gap_mm", 1.0, Rule::NonNegative()) * kMm;
+    s.carrier = ReadInertia(t);
+    t.Done();
+  }
+  {
+    TableReader t = top.Table("load");
+    s.sun_torque = t.Real("sun_torque_Nm", Rule::Any());
+    if (s.sun_torque == 0) t.Fail("sun_torque_Nm", "0", "must be non-zero (its sign selects the loaded flanks)");
+    st.load_sign = s.sun_torque > 0 ? 1 : -1;
+    t.Done();
+  }
+  if (auto t = top.OptionalTable("contact")) {
+    s.gap_window = t->RealOr("gap_window_um", 100.0, Rule::Positive()) * kUm;
+    t->Done();
+  }
+  if (auto t = top.OptionalTable("errors")) {
+    ReadErrors(*t, s);
+    t->Done();
+  }
+  for (std::size_t k = 0; k < fits.size(); ++k) {
+    TableReader& fit = fits[k];
+    ShiftFit f;
+    f.gear = fit_gears[k];
+    const std::string default_mesh = f.gear == "ring" ? "planet-ring" : "sun-planet";
+    f.mesh = fit.StringOr("mesh", default_mesh, {"sun-planet", "planet-ring"});
+    if ((f.gear == "sun" && f.mesh != "sun-planet") || (f.gear == "ring" && f.mesh != "planet-ring")) {
+      fit.Fail("mesh", "\"" + f.mesh + "\"", "the " + f.gear + " is not in that mesh");
+    }
+    f.normal_backlash = fit.Real("normal_backlash_um", Rule::Any()) * kUm;
+    fit.Done();
+    const bool internal = f.mesh == "planet-ring";
+    // The fit is made on the nominal teeth: thickness errors must not be compensated by it.
+    GearSpec g1 = internal ? st.planet : st.sun;
+    GearSpec g2 = internal ? st.ring : st.planet;
+    g1.thickness_error = g2.thickness_error = 0;
+    const int unknown = (f.gear == "sun" || (f.gear == "planet" && internal)) ? 1 : 2;
+    f.profile_shift =
+        geometry::iso::FitProfileShift(g1, g2, internal, unknown, st.carrier_radius, f.normal_backlash);
+    GearSpec& target = f.gear == "sun" ? st.sun : f.gear == "ring" ? st.ring : st.planet;
+    target.profile_shift = f.profile_shift;
+    s.fits.push_back(f);
+  }
+  for (GearSpec* g : {&st.sun, &st.planet, &st.ring}) ResolveRadii(*g);
+  top.Done();
+  return s;
+}
+
+Scene ReadScene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(path + ": cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseScene(text.str(), path);
+}
+
+}  // namespace epicycle::transmission

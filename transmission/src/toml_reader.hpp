@@ -1,0 +1,66 @@
+// Strict reading of scene tables: every key is consumed by name, with its unit in the key;
+// unknown keys, missing keys, wrong types and out-of-range values are errors that name the key,
+// the value and the rule.
+#pragma once
+
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+namespace epicycle::transmission::internal {
+
+/// A range rule for numbers: lo/hi bounds, open or closed.
+struct Rule {
+  double lo = -1e300, hi = 1e300;
+  bool lo_open = false, hi_open = false;
+  static Rule Any() { return {}; }
+  static Rule Positive() { return {0, 1e300, true, false}; }
+  static Rule NonNegative() { return {0, 1e300, false, false}; }
+  static Rule Closed(double a, double b) { return {a, b, false, false}; }
+  static Rule HalfOpen(double a, double b) { return {a, b, false, true}; }  ///< [a, b)
+  static Rule Open(double a, double b) { return {a, b, true, true}; }
+  bool Holds(double v) const;
+  std::string Describe() const;
+};
+
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string path, std::string source);
+
+  bool Has(const std::string& key) const;
+  double Real(const std::string& key, Rule rule);
+  double RealOr(const std::string& key, double fallback, Rule rule);
+  long Integer(const std::string& key, Rule rule);
+  long IntegerOr(const std::string& key, long fallback, Rule rule);
+  std::string String(const std::string& key, const std::vector<std::string>& allowed = {});
+  std::string StringOr(const std::string& key, const std::string& fallback,
+                       const std::vector<std::string>& allowed = {});
+  bool BoolOr(const std::string& key, bool fallback);
+  std::vector<double> RealArray(const std::string& key, Rule rule);
+  TableReader Table(const std::string& key);
+  std::optional<TableReader> OptionalTable(const std::string& key);
+  std::vector<TableReader> TableArray(const std::string& key);
+  /// Throws if any key of the table was not read.
+  void Done() const;
+
+  const std::string& path() const { return path_; }
+  /// "file:line: path.key" for messages about a key.
+  std::string Where(const std::string& key) const;
+  [[noreturn]] void Fail(const std::string& key, const std::string& value,
+                         const std::string& rule) const;
+
+ private:
+  const toml::node* Node(const std::string& key) const;
+  const toml::node& Required(const std::string& key);
+  double CheckedReal(const std::string& key, const toml::node& n, Rule rule) const;
+
+  const toml::table& table_;
+  std::string path_, source_;
+  std::set<std::string> used_;
+  mutable std::set<std::string> known_;  // every key this reader asked about
+};
+
+}  // namespace epicycle::transmission::internal
