@@ -117,6 +117,7 @@ class LinearElasticModel {
 
  private:
   void RequireFactorized() const;
+  Eigen::MatrixXd BlockSolve(const Eigen::MatrixXd& rhs) const;
 
   Mesh mesh_;
   ElasticMaterial material_;
