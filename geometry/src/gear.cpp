@@ -228,6 +228,15 @@ void Gear::BuildInternalDirect() {
       Arc(SegmentRole::kRootLand, Vec2::Zero(), rf_, kPi / spec_.teeth, Angle(cf)));
   half_.segments.push_back(Arc(SegmentRole::kFillet, cf, rho, Angle(cf), Angle(f - cf)));
   AddTip();
+  Segment flank;
+  flank.role = SegmentRole::kInvolute;
+  flank.kind = SegmentKind::kInvolute;
+  flank.base_radius = rb_;
+  flank.involute_start = involute_.start;
+  flank.hand = +1;
+  flank.t0 = u_form;
+  flank.t1 = involute_.u_min;  // set by AddTip: the tip-round tangency
+  half_.segments.insert(half_.segments.begin() + 2, flank);
 }
 
 void Gear::BuildInternalShaper() {

@@ -1,0 +1,91 @@
+// Off-line-of-action contacts: a tip round against a flank. The contact normal must pass through
+// the round's centre, and the overlap must equal the distance found by brute force on a dense
+// polyline of the mating flank.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "epicycle/geometry/stage.hpp"
+#include "stage_fixtures.hpp"
+
+using namespace epicycle::geometry;
+
+namespace {
+
+// The involute segment of tooth k, side σ, of a posed gear, as a dense polyline in the inertial frame.
+std::vector<Vec2> DenseFlank(const PosedGear& g, int tooth, int side, int n) {
+  const Segment* s = g.gear->half_profile().Find(SegmentRole::kInvolute);
+  std::vector<Vec2> out;
+  const double turn = g.pose.rotation + tooth * g.gear->pitch_angle();
+  for (int i = 0; i <= n; ++i) {
+    Vec2 p = s->Point(s->t0 + (s->t1 - s->t0) * i / n);
+    p.y() *= side;
+    out.push_back(g.pose.geometric_centre + Rotate(p, turn));
+  }
+  return out;
+}
+
+double DistanceToPolyline(const Vec2& c, const std::vector<Vec2>& line) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const Vec2 ab = line[i + 1] - line[i];
+    const double t = std::clamp((c - line[i]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (line[i] + t * ab - c).norm());
+  }
+  return best;
+}
+
+Vec2 TipRoundCentre(const PosedGear& g, int tooth, int side) {
+  Vec2 c = g.gear->tip_round().centre;
+  c.y() *= side;
+  return g.pose.geometric_centre + Rotate(c, g.pose.rotation + tooth * g.gear->pitch_angle());
+}
+
+}  // namespace
+
+TEST_CASE("tip round against flank: normal through the round's centre, brute-force overlap",
+          "[reference][geometry]") {
+  const auto scene = epicycle::test::PaperScene();
+  const Stage st(scene.stage);
+  ContactSearchOptions opt;
+  opt.gap_window = 100e-6;
+  int tested_a = 0, tested_b = 0;
+  double worst = 0;
+  for (int k = 0; k < 40 && (tested_a < 6 || tested_b < 6); ++k) {
+    const StagePoses p = st.Poses(st.mesh_cycle() * k / 40.0);
+    for (int i = 0; i < st.planets(); ++i) {
+      for (MeshKind kind : {MeshKind::kSunPlanet, MeshKind::kPlanetRing}) {
+        const PosedGear a = kind == MeshKind::kSunPlanet ? st.Sun(p) : st.Planet(p, i);
+        const PosedGear b = kind == MeshKind::kSunPlanet ? st.Planet(p, i) : st.Ring(p);
+        for (const PotentialContact& c : st.Contacts(p, i, kind, opt)) {
+          if (c.kind == ContactKind::kInvolute) continue;
+          const bool on_a = c.kind == ContactKind::kTipRoundA;
+          const PosedGear& round_owner = on_a ? a : b;
+          const PosedGear& flank_owner = on_a ? b : a;
+          const double rho = round_owner.gear->tip_round().radius;
+          const Vec2 centre = TipRoundCentre(round_owner, on_a ? c.tooth_a : c.tooth_b,
+                                             on_a ? c.side_a : c.side_b);
+          const Vec2 on_flank = on_a ? c.point_b : c.point_a;
+          const Vec2 on_round = on_a ? c.point_a : c.point_b;
+          // The common normal passes through the centre of the round.
+          CHECK(std::abs(Cross(centre - on_flank, c.normal)) <= 1e-12);
+          CHECK((on_round - centre).norm() == Approx(rho).epsilon(1e-12));
+          // Brute force: distance from the centre to the mate's flank as a dense polyline.
+          const auto flank = DenseFlank(flank_owner, on_a ? c.tooth_b : c.tooth_a,
+                                        on_a ? c.side_b : c.side_a, 20000);
+          const double overlap = rho - DistanceToPolyline(centre, flank);
+          worst = std::max(worst, std::abs(overlap - c.overlap));
+          CHECK(c.overlap == Approx(overlap).margin(1e-8));
+          // Off the line of action: the normal is not the pair's line-of-action direction.
+          const LineOfAction l = MakeLineOfAction(a, b, kind == MeshKind::kPlanetRing, c.side_a);
+          CHECK(std::abs(Cross(c.normal, l.direction)) > 1e-6);
+          (on_a ? tested_a : tested_b)++;
+        }
+      }
+    }
+  }
+  CHECK(tested_a >= 6);
+  CHECK(tested_b >= 6);
+  CHECK(worst <= 1e-8);
+}
