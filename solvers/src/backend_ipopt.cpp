@@ -19,11 +19,14 @@
 // iterates then stay strictly positive and an open contact ends at F ≈ μ_final / g, far below any
 // tolerance we accept. The user can override it ("ipopt.bound_relax_factor").
 //
-// Tolerances. ContactOptions::tolerance sets tol, constr_viol_tol, dual_inf_tol and
-// compl_inf_tol; the "acceptable" set is 100× that (the driver's kConvergedInaccurate band) and
-// mu_min is lowered to tolerance/10 when the tolerance is below Ipopt's default mu_min, otherwise
-// Ipopt could not drive x·z below the tolerance. The driver still judges the answer by its own
+// Tolerances. kToleranceFactor·ContactOptions::tolerance sets tol, constr_viol_tol, dual_inf_tol
+// and compl_inf_tol (see kToleranceFactor for why a tenth); the "acceptable" set is 100× that
+// (the driver's kConvergedInaccurate band); mu_min is set to a tenth of it when that is below
+// Ipopt's default (1e-11), otherwise Ipopt could not drive x·z below the tolerance. The default
+// mu_strategy stays "monotone": "adaptive" saves iterations but on the stage-sized problems
+// stalls a factor 4 above a 1e-10 residual. The driver still judges the answer by its own
 // residual.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
@@ -55,6 +58,12 @@ using Ipopt::Index;
 using Ipopt::Number;
 
 constexpr char kNamespace[] = "ipopt.";
+
+// Ipopt measures complementarity as x_j·z_j ≈ μ, the driver as min(x_j, g_j): an open contact
+// with a small gap g_j ends at x_j ≈ μ/g_j, a factor 1/g_j above Ipopt's measure (about 4 on the
+// stage-sized problems). Ipopt is therefore asked for a tenth of the driver's tolerance, which
+// costs one or two iterations.
+constexpr double kToleranceFactor = 0.1;
 
 enum class OptionType { kString, kInteger, kNumber };
 
@@ -126,8 +135,8 @@ Index ParseInteger(const std::string& full_key, const std::string& value) {
   const char* begin = value.c_str();
   char* end = nullptr;
   const long parsed = std::strtol(begin, &end, 10);
-  if (value.empty() || end != begin + value.size() ||
-      parsed < std::numeric_limits<Index>::min() || parsed > std::numeric_limits<Index>::max()) {
+  if (value.empty() || end != begin + value.size() || parsed < std::numeric_limits<Index>::min() ||
+      parsed > std::numeric_limits<Index>::max()) {
     ThrowBadOption(full_key, value, "must be an integer");
   }
   return static_cast<Index>(parsed);
@@ -135,25 +144,44 @@ Index ParseInteger(const std::string& full_key, const std::string& value) {
 
 std::string StatusName(Ipopt::ApplicationReturnStatus status) {
   switch (status) {
-    case Ipopt::Solve_Succeeded: return "Solve_Succeeded";
-    case Ipopt::Solved_To_Acceptable_Level: return "Solved_To_Acceptable_Level";
-    case Ipopt::Infeasible_Problem_Detected: return "Infeasible_Problem_Detected";
-    case Ipopt::Search_Direction_Becomes_Too_Small: return "Search_Direction_Becomes_Too_Small";
-    case Ipopt::Diverging_Iterates: return "Diverging_Iterates";
-    case Ipopt::User_Requested_Stop: return "User_Requested_Stop";
-    case Ipopt::Feasible_Point_Found: return "Feasible_Point_Found";
-    case Ipopt::Maximum_Iterations_Exceeded: return "Maximum_Iterations_Exceeded";
-    case Ipopt::Restoration_Failed: return "Restoration_Failed";
-    case Ipopt::Error_In_Step_Computation: return "Error_In_Step_Computation";
-    case Ipopt::Maximum_CpuTime_Exceeded: return "Maximum_CpuTime_Exceeded";
-    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "Not_Enough_Degrees_Of_Freedom";
-    case Ipopt::Invalid_Problem_Definition: return "Invalid_Problem_Definition";
-    case Ipopt::Invalid_Option: return "Invalid_Option";
-    case Ipopt::Invalid_Number_Detected: return "Invalid_Number_Detected";
-    case Ipopt::Unrecoverable_Exception: return "Unrecoverable_Exception";
-    case Ipopt::NonIpopt_Exception_Thrown: return "NonIpopt_Exception_Thrown";
-    case Ipopt::Insufficient_Memory: return "Insufficient_Memory";
-    case Ipopt::Internal_Error: return "Internal_Error";
+    case Ipopt::Solve_Succeeded:
+      return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level:
+      return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected:
+      return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+      return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates:
+      return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop:
+      return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found:
+      return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded:
+      return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed:
+      return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation:
+      return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom:
+      return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition:
+      return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option:
+      return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected:
+      return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception:
+      return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown:
+      return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory:
+      return "Insufficient_Memory";
+    case Ipopt::Internal_Error:
+      return "Internal_Error";
   }
   return "Ipopt status " + std::to_string(static_cast<int>(status));
 }
@@ -459,7 +487,7 @@ class IpoptBackend final : public BackendImpl {
 
     Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
     Ipopt::OptionsList& list = *app->Options();
-    const double tol = options.tolerance;
+    const double tol = kToleranceFactor * options.tolerance;
     list.SetStringValue("sb", "yes");  // no banner
     list.SetIntegerValue("print_level", 0);
     list.SetNumericValue("tol", tol);
@@ -470,7 +498,7 @@ class IpoptBackend final : public BackendImpl {
     list.SetNumericValue("acceptable_constr_viol_tol", 100.0 * tol);
     list.SetNumericValue("acceptable_dual_inf_tol", 100.0 * tol);
     list.SetNumericValue("acceptable_compl_inf_tol", 100.0 * tol);
-    if (tol < 1e-10) list.SetNumericValue("mu_min", 0.1 * tol);
+    list.SetNumericValue("mu_min", std::min(1e-11, 0.1 * tol));  // Ipopt default 1e-11
     list.SetIntegerValue("max_iter", options.max_iterations);
     list.SetNumericValue("max_cpu_time", options.time_limit);
     list.SetNumericValue("bound_relax_factor", 0.0);
@@ -535,16 +563,14 @@ class IpoptBackend final : public BackendImpl {
     result.message = StatusName(status);
     result.iterations = tnlp->iterations();
     if (Ipopt::IsValid(app->Statistics())) result.iterations = app->Statistics()->IterationCount();
-    result.limit_reached = status == Ipopt::Maximum_Iterations_Exceeded ||
-                           status == Ipopt::Maximum_CpuTime_Exceeded;
-    const bool hard_error = status == Ipopt::Not_Enough_Degrees_Of_Freedom ||
-                            status == Ipopt::Invalid_Problem_Definition ||
-                            status == Ipopt::Invalid_Option ||
-                            status == Ipopt::Invalid_Number_Detected ||
-                            status == Ipopt::Unrecoverable_Exception ||
-                            status == Ipopt::NonIpopt_Exception_Thrown ||
-                            status == Ipopt::Insufficient_Memory ||
-                            status == Ipopt::Internal_Error;
+    result.limit_reached =
+        status == Ipopt::Maximum_Iterations_Exceeded || status == Ipopt::Maximum_CpuTime_Exceeded;
+    const bool hard_error =
+        status == Ipopt::Not_Enough_Degrees_Of_Freedom ||
+        status == Ipopt::Invalid_Problem_Definition || status == Ipopt::Invalid_Option ||
+        status == Ipopt::Invalid_Number_Detected || status == Ipopt::Unrecoverable_Exception ||
+        status == Ipopt::NonIpopt_Exception_Thrown || status == Ipopt::Insufficient_Memory ||
+        status == Ipopt::Internal_Error;
     if (tnlp->have_point() && tnlp->force().allFinite() && tnlp->multiplier().allFinite()) {
       result.force = tnlp->force();
       result.multiplier = tnlp->multiplier();

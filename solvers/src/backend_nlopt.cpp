@@ -42,12 +42,12 @@ constexpr char kNamespace[] = "nlopt.";
 
 // Keys accepted as "nlopt.<key>"; all take numbers.
 constexpr const char* kKnownOptions[] = {
-    "xtol_rel",        // relative step tolerance (default: ContactOptions::tolerance)
-    "xtol_abs",        // absolute step tolerance on every variable (default 0)
-    "ftol_rel",        // relative objective-change tolerance (default 0: off)
-    "ftol_abs",        // absolute objective-change tolerance (default 0: off)
-    "maxeval",         // objective-evaluation budget (default kEvaluationsPerIteration·max_iterations)
-    "maxtime",         // [s] (default ContactOptions::time_limit)
+    "xtol_rel",  // relative step tolerance (default: ContactOptions::tolerance)
+    "xtol_abs",  // absolute step tolerance on every variable (default 0)
+    "ftol_rel",  // relative objective-change tolerance (default 0: off)
+    "ftol_abs",  // absolute objective-change tolerance (default 0: off)
+    "maxeval",   // objective-evaluation budget (default kEvaluationsPerIteration·max_iterations)
+    "maxtime",   // [s] (default ContactOptions::time_limit)
     "constraint_tol",  // equality tolerance NLopt uses to call a point feasible (default tolerance)
     "vector_storage",  // L-BFGS memory (default: NLopt's)
     "local_xtol_rel",  // AUGLAG's CCSAQ: relative step tolerance (default: xtol_rel)
@@ -101,8 +101,7 @@ Settings ReadSettings(const ContactOptions& options) {
     }
     const bool is_count = key == "maxeval" || key == "vector_storage" || key == "local_maxeval";
     if (is_count) {
-      if (number != std::floor(number) || number < 1 ||
-          number > std::numeric_limits<int>::max()) {
+      if (number != std::floor(number) || number < 1 || number > std::numeric_limits<int>::max()) {
         ThrowBadOption(full_key, value, "must be an integer ≥ 1");
       }
     } else if (key == "maxtime" ? number <= 0 : number < 0) {
@@ -125,18 +124,30 @@ Settings ReadSettings(const ContactOptions& options) {
 
 std::string ResultName(int code) {
   switch (code) {
-    case nlopt::FAILURE: return "FAILURE";
-    case nlopt::INVALID_ARGS: return "INVALID_ARGS";
-    case nlopt::OUT_OF_MEMORY: return "OUT_OF_MEMORY";
-    case nlopt::ROUNDOFF_LIMITED: return "ROUNDOFF_LIMITED";
-    case nlopt::FORCED_STOP: return "FORCED_STOP";
-    case nlopt::SUCCESS: return "SUCCESS";
-    case nlopt::STOPVAL_REACHED: return "STOPVAL_REACHED";
-    case nlopt::FTOL_REACHED: return "FTOL_REACHED";
-    case nlopt::XTOL_REACHED: return "XTOL_REACHED";
-    case nlopt::MAXEVAL_REACHED: return "MAXEVAL_REACHED";
-    case nlopt::MAXTIME_REACHED: return "MAXTIME_REACHED";
-    default: return "NLopt result " + std::to_string(code);
+    case nlopt::FAILURE:
+      return "FAILURE";
+    case nlopt::INVALID_ARGS:
+      return "INVALID_ARGS";
+    case nlopt::OUT_OF_MEMORY:
+      return "OUT_OF_MEMORY";
+    case nlopt::ROUNDOFF_LIMITED:
+      return "ROUNDOFF_LIMITED";
+    case nlopt::FORCED_STOP:
+      return "FORCED_STOP";
+    case nlopt::SUCCESS:
+      return "SUCCESS";
+    case nlopt::STOPVAL_REACHED:
+      return "STOPVAL_REACHED";
+    case nlopt::FTOL_REACHED:
+      return "FTOL_REACHED";
+    case nlopt::XTOL_REACHED:
+      return "XTOL_REACHED";
+    case nlopt::MAXEVAL_REACHED:
+      return "MAXEVAL_REACHED";
+    case nlopt::MAXTIME_REACHED:
+      return "MAXTIME_REACHED";
+    default:
+      return "NLopt result " + std::to_string(code);
   }
 }
 
@@ -310,9 +321,10 @@ class NloptBackend final : public BackendImpl {
     }
     if (which_ == Backend::kNloptAuglag) {
       nlopt::opt local(nlopt::LD_CCSAQ, n);
-      ApplyStopping(local, settings.local_xtol_rel >= 0 ? settings.local_xtol_rel : settings.xtol_rel,
-                    settings.local_ftol_rel >= 0 ? settings.local_ftol_rel : settings.ftol_rel,
-                    settings, settings.local_maxeval > 0 ? settings.local_maxeval : settings.maxeval);
+      ApplyStopping(
+          local, settings.local_xtol_rel >= 0 ? settings.local_xtol_rel : settings.xtol_rel,
+          settings.local_ftol_rel >= 0 ? settings.local_ftol_rel : settings.ftol_rel, settings,
+          settings.local_maxeval > 0 ? settings.local_maxeval : settings.maxeval);
       opt.set_local_optimizer(local);
     }
 
@@ -361,9 +373,9 @@ class NloptBackend final : public BackendImpl {
 std::unique_ptr<BackendImpl> MakeNloptBackend(Backend which) {
   if (which != Backend::kNloptSlsqp && which != Backend::kNloptLbfgs &&
       which != Backend::kNloptAuglag) {
-    throw std::invalid_argument("MakeNloptBackend: backend = " +
-                                std::to_string(static_cast<int>(which)) +
-                                " is not an NLopt back end (nlopt-slsqp, nlopt-lbfgs, nlopt-auglag)");
+    throw std::invalid_argument(
+        "MakeNloptBackend: backend = " + std::to_string(static_cast<int>(which)) +
+        " is not an NLopt back end (nlopt-slsqp, nlopt-lbfgs, nlopt-auglag)");
   }
   return std::make_unique<NloptBackend>(which);
 }

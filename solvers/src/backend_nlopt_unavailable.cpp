@@ -26,9 +26,9 @@ class NloptUnavailable final : public BackendImpl {
 std::unique_ptr<BackendImpl> MakeNloptBackend(Backend which) {
   if (which != Backend::kNloptSlsqp && which != Backend::kNloptLbfgs &&
       which != Backend::kNloptAuglag) {
-    throw std::invalid_argument("MakeNloptBackend: backend = " +
-                                std::to_string(static_cast<int>(which)) +
-                                " is not an NLopt back end (nlopt-slsqp, nlopt-lbfgs, nlopt-auglag)");
+    throw std::invalid_argument(
+        "MakeNloptBackend: backend = " + std::to_string(static_cast<int>(which)) +
+        " is not an NLopt back end (nlopt-slsqp, nlopt-lbfgs, nlopt-auglag)");
   }
   return std::make_unique<NloptUnavailable>();
 }
