@@ -1,0 +1,83 @@
+// Scene files: units in every key; unknown, missing, mistyped and out-of-range keys are errors
+// naming the file, line, key, value and rule.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+
+#include "epicycle/transmission/scene.hpp"
+#include "stage_fixtures.hpp"
+
+using epicycle::test::Replace;
+using epicycle::test::SceneText;
+using epicycle::transmission::ParseScene;
+using Catch::Matchers::Contains;
+
+namespace {
+
+auto Parse(const std::string& text) { return ParseScene(text, "s.toml"); }
+
+}  // namespace
+
+TEST_CASE("the paper's scenes load with SI values", "[unit][transmission]") {
+  const auto s = Parse(SceneText("paper_stage.toml"));
+  CHECK(s.stage.sun.module == Approx(4.23e-3));
+  CHECK(s.stage.sun.pressure_angle == Approx(25.0 * 3.14159265358979 / 180));
+  CHECK(s.stage.ring.hub_radius == Approx(156.4e-3));
+  CHECK(s.material.youngs_modulus == Approx(207e9));
+  CHECK(s.sun_torque == -600.0);
+  CHECK(s.stage.load_sign == -1);
+  CHECK(s.stage.carrier_radius == Approx(86.715e-3));
+  // Tip radius from the addendum coefficient: r + (x + 1) m.
+  CHECK(s.stage.sun.tip_radius == Approx((8 + 0.3 + 1.0) * 4.23e-3));
+  REQUIRE(s.fits.size() == 2);
+  CHECK(s.stage.planet.profile_shift == s.fits[0].profile_shift);
+  CHECK(s.stage.ring.profile_shift == s.fits[1].profile_shift);
+  const auto s4 = Parse(SceneText("paper_stage_4planets.toml"));
+  CHECK(s4.stage.planets == 4);
+  CHECK(s4.stage.ring.shaper.has_value());
+  CHECK_NOTHROW(epicycle::geometry::Stage(s4.stage));
+}
+
+TEST_CASE("unknown, missing, mistyped and out-of-range keys", "[unit][transmission]") {
+  const std::string base = SceneText("paper_stage.toml");
+  CHECK_THROWS_WITH(Parse(Replace(base, "module_mm = 4.23\nface_width_mm = 25.0\npressure_angle_deg = 25.0\nprofile_shift = 0.30",
+                                  "modul_mm = 4.23\nface_width_mm = 25.0\npressure_angle_deg = 25.0\nprofile_shift = 0.30")),
+                    Contains("sun.module_mm is missing"));
+  CHECK_THROWS_WITH(Parse(Replace(base, "radius_mm = 86.715", "radius_mm = 86.715\nradius_in = 3.4")),
+                    Contains("carrier.radius_in: unknown key") && Contains("known keys here:") &&
+                        Contains("radius_mm"));
+  // The message carries the line of the offending key.
+  const auto line = 1 + std::count(base.begin(), base.begin() + base.find("teeth = 16"), '\n');
+  CHECK_THROWS_WITH(Parse(Replace(base, "teeth = 16", "teeth = \"16\"")),
+                    Contains("s.toml:" + std::to_string(line) +
+                             ": sun.teeth = \"16\": must be an integer, not a string"));
+  CHECK_THROWS_WITH(Parse(Replace(base, "face_width_mm = 25.0", "face_width_mm = -25.0")),
+                    Contains("sun.face_width_mm = -25: must be > 0"));
+  CHECK_THROWS_WITH(Parse(Replace(base, "poisson_ratio = 0.3", "poisson_ratio = 0.5")),
+                    Contains("material.poisson_ratio = 0.5: must be in [0, 0.5)"));
+  CHECK_THROWS_WITH(Parse(Replace(base, "sun_torque_Nm = -600.0", "sun_torque_Nm = 0.0")),
+                    Contains("load.sun_torque_Nm = 0: must be non-zero"));
+  CHECK_THROWS_WITH(Parse(Replace(base, "type = \"direct\"", "type = \"hob\"")),
+                    Contains("ring.cutter.type = \"hob\": must be one of \"shaper\", \"direct\""));
+  CHECK_THROWS_WITH(Parse(Replace(base, "[scene]", "[scene\n")), Contains("s.toml:") && Contains("TOML syntax error"));
+  CHECK_THROWS_WITH(Parse(Replace(base, "gear = \"ring\"", "gear = \"planet\"")),
+                    Contains("fit[1].gear = \"planet\": each gear can be fitted once"));
+}
+
+TEST_CASE("errors section", "[unit][transmission]") {
+  const std::string base = SceneText("paper_stage.toml") +
+                           "\n[[errors.pin]]\ngear = \"planet1\"\ntangential_um = 20.0\n"
+                           "\n[[errors.runout]]\ngear = \"planet1\"\namplitude_um = 20.0\nphase_deg = 90.0\n"
+                           "\n[[errors.thickness]]\ngear = \"sun\"\nerror_um = -10.0\n";
+  const auto s = Parse(base);
+  REQUIRE(s.stage.pin_errors.size() == 3);
+  CHECK(s.stage.pin_errors[0].tangential == Approx(20e-6));
+  CHECK(s.stage.pin_errors[1].tangential == 0.0);
+  CHECK(s.stage.planet_runouts[0].amplitude == Approx(20e-6));
+  CHECK(s.stage.planet_runouts[0].phase == Approx(3.14159265358979 / 2));
+  CHECK(s.stage.sun.thickness_error == Approx(-10e-6));
+  CHECK_THROWS_WITH(Parse(Replace(base, "gear = \"planet1\"\ntangential_um", "gear = \"planet7\"\ntangential_um")),
+                    Contains("errors.pin[0].gear = \"planet7\": must be \"sun\", \"ring\" or \"planet1\"..\"planet3\""));
+  CHECK_THROWS_WITH(Parse(Replace(base, "amplitude_um = 20.0", "amplitude_um = -2.0")),
+                    Contains("errors.runout[0].amplitude_um = -2: must be >= 0"));
+}
