@@ -1,5 +1,6 @@
 #include "epicycle/geometry/contact.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -44,13 +45,13 @@ struct ArcHit {
 // Closest points between a circular arc (centre c, radius ρ, outward normals spanning
 // [from, to]) and the involute flanks of side σ of a posed gear: the flank point whose normal
 // passes through c lies on a tangent from c to the base circle.
-std::vector<ArcHit> ArcAgainstFlanks(const Vec2& c, double rho, double from, double to,
-                                     const PosedGear& g, int side, double window) {
-  std::vector<ArcHit> hits;
+template <typename F>
+void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const PosedGear& g,
+                      int side, double window, F&& hit) {
   const WorldInvolute f0 = FlankInWorld(g, 0, side);
   const Vec2 rel = c - f0.centre;
   const double dist_c = rel.norm();
-  if (dist_c <= f0.base_radius) return hits;
+  if (dist_c <= f0.base_radius) return;
   const double phi = Angle(rel);
   const double open = std::acos(f0.base_radius / dist_c);
   const double p = g.gear->pitch_angle();
@@ -58,15 +59,15 @@ std::vector<ArcHit> ArcAgainstFlanks(const Vec2& c, double rho, double from, dou
     const double beta = phi + s * open;
     const double u0 = f0.hand * WrapAngle(beta - f0.start);
     ForEachRoll(u0, p, f0.u_min, f0.u_max, [&](double u, long j) {
-      const Vec2 point = f0.centre + f0.base_radius * (Dir(beta) - f0.hand * u * DirPerp(beta));
-      const Vec2 normal = side * DirPerp(beta);
+      const Vec2 radial = Dir(beta), perp(-radial.y(), radial.x());
+      const Vec2 point = f0.centre + f0.base_radius * (radial - f0.hand * u * perp);
+      const Vec2 normal = side * perp;
       const double d = (c - point).dot(normal);
       if (d <= 0 || d > rho + window) return;
       if (!InSpan(Angle(-normal), from, to)) return;
-      hits.push_back({point, normal, d, u, Mod(-f0.hand * j, g.gear->teeth())});
+      hit(ArcHit{point, normal, d, u, Mod(-f0.hand * j, g.gear->teeth())});
     });
   }
-  return hits;
 }
 
 // The tip round of tooth k, side σ, in the inertial frame: centre and normal span.
@@ -89,8 +90,8 @@ double Lever(const Vec2& point, const Vec2& centre, const Vec2& force_direction)
 }  // namespace
 
 Vec2 WorldInvolute::Point(double u) const {
-  const double b = start + hand * u;
-  return centre + base_radius * (Dir(b) - static_cast<double>(hand) * u * DirPerp(b));
+  const Vec2 radial = Dir(start + hand * u), perp(-radial.y(), radial.x());
+  return centre + base_radius * (radial - static_cast<double>(hand) * u * perp);
 }
 
 Vec2 WorldInvolute::Normal(double u) const { return side * DirPerp(start + hand * u); }
@@ -184,6 +185,7 @@ std::string KindName(ContactKind kind) {
 std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& b, bool internal,
                                            const ContactSearchOptions& options) {
   std::vector<PotentialContact> out;
+  out.reserve(16);
   const double window = options.gap_window;
   const Vec2 oa = a.pose.rotation_centre, ob = b.pose.rotation_centre;
   const double ring_sign = internal ? -1.0 : 1.0;  // B's curvature: a ring's flank is concave
@@ -225,11 +227,26 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
       const double p = owner.gear->pitch_angle();
       const long k0 = std::lround(WrapAngle(owner_dir - owner.pose.rotation) / p);
       const double rho = owner.gear->tip_round().radius;
-      for (long k = k0 - 3; k <= k0 + 3; ++k) {
+      // A round can reach the mate's flank only where the owner's tip lies inside the mate's tip
+      // circle (outside it, for a ring). In angle about the owner's centre, from the direction of
+      // the pitch point, that is |θ| ≤ θ_max with cos θ_max from the triangle of the two centres;
+      // the round's centre sits ψ_c off the tooth's centre line.
+      const Vec2 mate = other.pose.geometric_centre;
+      const double ro = owner.gear->tip_radius(), dist = (mate - owner.pose.geometric_centre).norm();
+      const double margin = rho + window;
+      const double reach = other.gear->tip_radius() + (other.gear->internal() ? -margin : margin);
+      const double cos_max = other.gear->internal()
+                                 ? (reach * reach - dist * dist - ro * ro) / (2 * dist * ro)
+                                 : (ro * ro + dist * dist - reach * reach) / (2 * dist * ro);
+      const double window_angle = std::acos(std::clamp(cos_max, -1.0, 1.0)) +
+                                  std::abs(Angle(owner.gear->tip_round().centre)) + 1e-3;
+      for (long k = k0 - 2; k <= k0 + 2; ++k) {
         const int tooth = Mod(k, owner.gear->teeth());
+        const double off = WrapAngle(owner.pose.rotation + tooth * p - owner_dir);
+        if (std::abs(off) > window_angle) continue;
         const WorldArc arc = TipRoundInWorld(owner, tooth, owner_side);
-        for (const ArcHit& h : ArcAgainstFlanks(arc.centre, rho, arc.from, arc.to, other,
-                                                other_side, window)) {
+        ArcAgainstFlanks(arc.centre, rho, arc.from, arc.to, other, other_side, window,
+                         [&](const ArcHit& h) {
           PotentialContact c;
           c.kind = owner_is_a ? ContactKind::kTipRoundA : ContactKind::kTipRoundB;
           c.side_a = l.side_a;
@@ -260,7 +277,7 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
           c.lever_a = Lever(c.point, oa, -c.normal);
           c.lever_b = Lever(c.point, ob, c.normal);
           out.push_back(c);
-        }
+        });
       }
     };
     tips(a, b, l.side_a, l.side_b, pitch_dir, true);
