@@ -26,9 +26,11 @@ Region Ring(int nr, int nt) {
   for (int q = 0; q < 4; ++q) {
     const double t0 = q * std::numbers::pi / 2, t1 = (q + 1) * std::numbers::pi / 2;
     Patch p;
-    p.sides = {StraightLine({kA * std::cos(t0), kA * std::sin(t0)}, {kB * std::cos(t0), kB * std::sin(t0)}),
+    p.sides = {StraightLine({kA * std::cos(t0), kA * std::sin(t0)},
+                            {kB * std::cos(t0), kB * std::sin(t0)}),
                CircularArc({0.0, 0.0}, kB, t0, t1),
-               StraightLine({kA * std::cos(t1), kA * std::sin(t1)}, {kB * std::cos(t1), kB * std::sin(t1)}),
+               StraightLine({kA * std::cos(t1), kA * std::sin(t1)},
+                            {kB * std::cos(t1), kB * std::sin(t1)}),
                CircularArc({0.0, 0.0}, kA, t0, t1)};
     p.side_names = {"", "outer", "", "bore"};
     p.u = Distribution::Graded(nr, 0.2);  // elements 5× smaller at the outer surface
@@ -107,8 +109,8 @@ void BM_GearSizedModel(benchmark::State& state) {
     error = 0.0;
     for (int v : model.mesh().NodeSet("outer")) {
       const Eigen::Vector2d x = model.mesh().nodes[v];
-      error = std::max(error, std::abs(model.NodeDisplacement(u.col(0), v).dot(x.normalized()) /
-                                           exact - 1.0));
+      error = std::max(
+          error, std::abs(model.NodeDisplacement(u.col(0), v).dot(x.normalized()) / exact - 1.0));
     }
     dofs = model.num_dofs();
     nnz_k = static_cast<long>(model.stiffness().nonZeros());

@@ -64,8 +64,8 @@ void LinearElasticModel::PrescribeDof(int node, int component, double value) {
 }
 
 void LinearElasticModel::FixNodeSet(const std::string& set, Components which) {
-  PrescribeNodeSet(set, [](const Eigen::Vector2d&) { return Eigen::Vector2d::Zero().eval(); },
-                   which);
+  PrescribeNodeSet(
+      set, [](const Eigen::Vector2d&) { return Eigen::Vector2d::Zero().eval(); }, which);
 }
 
 void LinearElasticModel::PrescribeNodeSet(
@@ -99,7 +99,8 @@ void LinearElasticModel::Factorize() {
     }
   }
   if (free_dofs_.empty()) {
-    throw std::invalid_argument("LinearElasticModel::Factorize: every DOF is constrained; nothing to solve");
+    throw std::invalid_argument(
+        "LinearElasticModel::Factorize: every DOF is constrained; nothing to solve");
   }
   const int nf = static_cast<int>(free_dofs_.size());
   const int nc = static_cast<int>(constrained_dofs_.size());
@@ -201,8 +202,8 @@ Eigen::MatrixXd LinearElasticModel::SolveMany(const Eigen::MatrixXd& f) const {
   RequireFactorized();
   if (f.rows() != num_dofs()) {
     throw std::invalid_argument("LinearElasticModel::Solve: load vectors have " +
-                                std::to_string(f.rows()) + " rows; the rule is num_dofs() = " +
-                                std::to_string(num_dofs()));
+                                std::to_string(f.rows()) +
+                                " rows; the rule is num_dofs() = " + std::to_string(num_dofs()));
   }
   const int nf = num_free_dofs();
   const int nc = static_cast<int>(constrained_dofs_.size());
@@ -239,7 +240,7 @@ Eigen::MatrixXd LinearElasticModel::BlockSolve(const Eigen::MatrixXd& rhs) const
     for (auto k = outer[j]; k < outer[j + 1]; ++k) y.row(inner[k]) -= value[k] * y.row(j);
   }
   for (Eigen::Index j = 0; j < n; ++j) y.row(j) /= d(j);  // D w = z
-  for (Eigen::Index j = n - 1; j >= 0; --j) {  // Lᵀ v = w
+  for (Eigen::Index j = n - 1; j >= 0; --j) {             // Lᵀ v = w
     for (auto k = outer[j]; k < outer[j + 1]; ++k) y.row(j) -= value[k] * y.row(inner[k]);
   }
   Eigen::MatrixXd x(n, rhs.cols());

@@ -33,9 +33,7 @@ Distribution Distribution::Graded(int n, double last_over_first) {
 }
 
 std::vector<double> Distribution::Parameters(const std::string& field) const {
-  auto fail = [&](const std::string& text) {
-    throw std::invalid_argument(field + ": " + text);
-  };
+  auto fail = [&](const std::string& text) { throw std::invalid_argument(field + ": " + text); };
   if (!breaks.empty()) {
     if (breaks.size() < 2 || breaks.front() != 0.0 || breaks.back() != 1.0) {
       fail("breaks must start at exactly 0 and end at exactly 1 (got " +
@@ -95,9 +93,7 @@ void MappedMesherOptions::Validate() const {
   check("corner_tolerance", corner_tolerance);
 }
 
-MappedMesher::MappedMesher(MappedMesherOptions options) : options_(options) {
-  options_.Validate();
-}
+MappedMesher::MappedMesher(MappedMesherOptions options) : options_(options) { options_.Validate(); }
 
 namespace {
 
@@ -123,21 +119,23 @@ struct CellKey {
 };
 struct CellHash {
   std::size_t operator()(const CellKey& k) const {
-    return std::hash<std::int64_t>()(k.i * 73856093LL) ^ std::hash<std::int64_t>()(k.j * 19349663LL);
+    return std::hash<std::int64_t>()(k.i * 73856093LL) ^
+           std::hash<std::int64_t>()(k.j * 19349663LL);
   }
 };
 
 struct PatchGrid {
-  int nu = 0, nv = 0;                 // elements per direction
-  std::vector<int> node;              // (2nu+1)×(2nv+1) raw → global node, −1 for element centres
+  int nu = 0, nv = 0;     // elements per direction
+  std::vector<int> node;  // (2nu+1)×(2nv+1) raw → global node, −1 for element centres
   int At(int i, int j) const { return node[static_cast<std::size_t>(j) * (2 * nu + 1) + i]; }
-  bool positive = true;               // counter-clockwise in (u, v)
+  bool positive = true;  // counter-clockwise in (u, v)
 };
 
 }  // namespace
 
 Mesh MappedMesher::BuildMesh(const Region& region) const {
-  if (region.patches.empty()) throw std::invalid_argument("mapped mesher: the region has no patches");
+  if (region.patches.empty())
+    throw std::invalid_argument("mapped mesher: the region has no patches");
   const int num_patches = static_cast<int>(region.patches.size());
 
   // Sides present, corners consistent, scale of the region.
@@ -153,9 +151,9 @@ Mesh MappedMesher::BuildMesh(const Region& region) const {
       for (int k = 0; k <= 16; ++k) {
         const Eigen::Vector2d x = patch.sides[s](k / 16.0);
         if (!x.allFinite()) {
-          throw std::invalid_argument("mapped mesher: " + PatchLabel(region, p) + ": the " +
-                                      kSideNames[s] + " side curve gives a non-finite point at t = " +
-                                      std::to_string(k / 16.0));
+          throw std::invalid_argument(
+              "mapped mesher: " + PatchLabel(region, p) + ": the " + kSideNames[s] +
+              " side curve gives a non-finite point at t = " + std::to_string(k / 16.0));
         }
         lo = lo.cwiseMin(x);
         hi = hi.cwiseMax(x);
@@ -224,8 +222,10 @@ Mesh MappedMesher::BuildMesh(const Region& region) const {
   std::vector<PatchGrid> grids(num_patches);
   for (int p = 0; p < num_patches; ++p) {
     const Patch& patch = region.patches[p];
-    const std::vector<double> tu = patch.u.Parameters("mapped mesher: " + PatchLabel(region, p) + " u");
-    const std::vector<double> tv = patch.v.Parameters("mapped mesher: " + PatchLabel(region, p) + " v");
+    const std::vector<double> tu =
+        patch.u.Parameters("mapped mesher: " + PatchLabel(region, p) + " u");
+    const std::vector<double> tv =
+        patch.v.Parameters("mapped mesher: " + PatchLabel(region, p) + " v");
     PatchGrid& g = grids[p];
     g.nu = static_cast<int>(tu.size()) - 1;
     g.nv = static_cast<int>(tv.size()) - 1;
@@ -346,11 +346,10 @@ Mesh MappedMesher::BuildMesh(const Region& region) const {
           element = patch_elements[static_cast<std::size_t>(k) * g.nu + (s == 3 ? 0 : g.nu - 1)];
         }
         if (!forward_is_ccw) std::swap(tri[0], tri[2]);
-        const bool duplicate =
-            std::any_of(edges.begin(), edges.end(), [&](const BoundaryEdge& e) {
-              return e.nodes[1] == tri[1] && std::min(e.nodes[0], e.nodes[2]) ==
-                                                 std::min(tri[0], tri[2]);
-            });
+        const bool duplicate = std::any_of(edges.begin(), edges.end(), [&](const BoundaryEdge& e) {
+          return e.nodes[1] == tri[1] &&
+                 std::min(e.nodes[0], e.nodes[2]) == std::min(tri[0], tri[2]);
+        });
         if (!duplicate) edges.push_back(BoundaryEdge{tri, element});
       }
     }
@@ -407,8 +406,8 @@ Mesh MappedMesher::BuildMesh(const Region& region) const {
         if (q.y() < blo.y() || q.y() > bhi.y()) continue;
         // Closest point of the quadratic side (Newton from the chord projection).
         const Eigen::Vector2d chord = x.col(2) - x.col(0);
-        double xi = std::clamp(2.0 * (q - x.col(0)).dot(chord) / chord.squaredNorm() - 1.0,
-                               -1.0, 1.0);
+        double xi =
+            std::clamp(2.0 * (q - x.col(0)).dot(chord) / chord.squaredNorm() - 1.0, -1.0, 1.0);
         for (int it2 = 0; it2 < 20; ++it2) {
           const Eigen::Vector2d r = x * EdgeShapeFunctions(xi) - q;
           const Eigen::Vector2d t = x * EdgeShapeDerivatives(xi);
@@ -420,9 +419,8 @@ Mesh MappedMesher::BuildMesh(const Region& region) const {
         if (d <= tol && std::abs(xi) < 1.0 - 1e-9) {
           std::ostringstream msg;
           msg << "mapped mesher: non-conforming join: node " << v << " at " << Point(q)
-              << " lies inside the free side (nodes " << tri[0] << ", " << tri[1] << ", "
-              << tri[2] << ") of element " << element << " of "
-              << PatchLabel(region, element_patch[element])
+              << " lies inside the free side (nodes " << tri[0] << ", " << tri[1] << ", " << tri[2]
+              << ") of element " << element << " of " << PatchLabel(region, element_patch[element])
               << " without being one of its nodes; patches that share a side must place the "
                  "same nodes on it (same divisions and grading, possibly reversed)";
           throw std::invalid_argument(msg.str());

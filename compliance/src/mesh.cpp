@@ -134,7 +134,8 @@ Eigen::Vector2d Mesh::EdgePosition(const std::string& set, const EdgePoint& p) c
 }
 
 Eigen::Vector2d Mesh::EdgeNormal(const std::string& set, const EdgePoint& p) const {
-  const Eigen::Vector2d t = EdgeCoordinates(*this, EdgeAt(*this, set, p)) * EdgeShapeDerivatives(p.xi);
+  const Eigen::Vector2d t =
+      EdgeCoordinates(*this, EdgeAt(*this, set, p)) * EdgeShapeDerivatives(p.xi);
   return Eigen::Vector2d(t.y(), -t.x()).normalized();
 }
 
@@ -151,8 +152,8 @@ EdgePoint Mesh::LocateOnEdgeSet(const std::string& set, const Eigen::Vector2d& p
     // Start from the chord projection, then Newton on f(ξ) = (x(ξ) − p)·x'(ξ) = 0 clamped to
     // [−1, 1]; the end points are candidates too (the minimum may sit at a corner).
     const Eigen::Vector2d chord = x.col(2) - x.col(0);
-    double xi = std::clamp(2.0 * (point - x.col(0)).dot(chord) / chord.squaredNorm() - 1.0, -1.0,
-                           1.0);
+    double xi =
+        std::clamp(2.0 * (point - x.col(0)).dot(chord) / chord.squaredNorm() - 1.0, -1.0, 1.0);
     for (int it = 0; it < 30; ++it) {
       const Eigen::Vector2d r = x * EdgeShapeFunctions(xi) - point;
       const Eigen::Vector2d t = x * EdgeShapeDerivatives(xi);

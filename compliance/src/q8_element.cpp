@@ -111,9 +111,9 @@ void CheckQ8Jacobian(const Q8Coordinates& x, int element_index) {
     const Eigen::Vector2d p = Q8Position(x, xi, eta);
     std::ostringstream msg;
     msg.precision(6);
-    msg << "element " << element_index << ": Jacobian determinant det J = " << det
-        << " m^2 at " << where << " (xi, eta) = (" << xi << ", " << eta << "), position (" << p.x()
-        << ", " << p.y() << ") m; the rule is det J > " << tolerance << " m^2 ("
+    msg << "element " << element_index << ": Jacobian determinant det J = " << det << " m^2 at "
+        << where << " (xi, eta) = (" << xi << ", " << eta << "), position (" << p.x() << ", "
+        << p.y() << ") m; the rule is det J > " << tolerance << " m^2 ("
         << kRelativeJacobianTolerance << " x element size^2) everywhere: the element is "
         << (det < 0.0 ? "inverted (nodes clockwise, or a mid-side node pulled past the middle half "
                         "of its side)"
@@ -122,8 +122,8 @@ void CheckQ8Jacobian(const Q8Coordinates& x, int element_index) {
   };
   if (!(size > 0.0) || !std::isfinite(size)) {
     std::ostringstream msg;
-    msg << "element " << element_index << ": corner nodes coincide or are not finite (size "
-        << size << " m); the element is degenerate";
+    msg << "element " << element_index << ": corner nodes coincide or are not finite (size " << size
+        << " m); the element is degenerate";
     throw std::invalid_argument(msg.str());
   }
   for (int a = 0; a < 4; ++a) check(kQ8NodeXiEta[a][0], kQ8NodeXiEta[a][1], "corner");
@@ -149,8 +149,7 @@ Eigen::Matrix<double, 3, 2 * kQ8Nodes> Q8StrainDisplacement(const Q8Coordinates&
   return b;
 }
 
-Q8Stiffness Q8ElementStiffness(const Q8Coordinates& x, const Eigen::Matrix3d& d,
-                               double thickness) {
+Q8Stiffness Q8ElementStiffness(const Q8Coordinates& x, const Eigen::Matrix3d& d, double thickness) {
   const GaussRule g = GaussLegendre(kQ8GaussPointsPerDirection);
   Q8Stiffness k = Q8Stiffness::Zero();
   for (int i = 0; i < g.size; ++i) {

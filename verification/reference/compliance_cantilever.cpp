@@ -102,8 +102,7 @@ TEST_CASE("Cantilever tip deflection within 1% of Timoshenko's solution; converg
   const auto plane = GENERATE(PlaneAssumption::kPlaneStress, PlaneAssumption::kPlaneStrain);
   const double slenderness = GENERATE(10.0, 4.0);
   const double height = 0.02;
-  const Beam beam{slenderness * height, height, 1000.0,
-                  ElasticMaterial{210e9, 0.3, 0.025, plane}};
+  const Beam beam{slenderness * height, height, 1000.0, ElasticMaterial{210e9, 0.3, 0.025, plane}};
   INFO(ToString(plane) << ", L/D = " << slenderness);
   // Mesh sequence: ny = 1, 2, 4, 8 elements through the height, aspect ratio L/D·ny/nx = 1.
   const int base = static_cast<int>(slenderness);

@@ -1,7 +1,8 @@
 // Flamant: a point force F normal to the surface of an elastic half-plane. On the load axis
 // σ_rr = −2F/(π b r), σ_θθ = 0, so ε_rr = σ_rr (1−ν²)/E (plane strain) or σ_rr/E (plane stress)
 // and the approach between depths h1 < h2 on the axis is
-//   Δ = 2F(1−ν²)/(π E b) · ln(h2/h1)   (plane strain),   Δ = 2F/(π E b) · ln(h2/h1)   (plane stress).
+//   Δ = 2F(1−ν²)/(π E b) · ln(h2/h1)   (plane strain),   Δ = 2F/(π E b) · ln(h2/h1)   (plane
+//   stress).
 // This is exactly the quantity the join of the FE structural term with the local contact term
 // relies on (MODEL.md §4).
 #include <catch2/catch.hpp>
@@ -30,8 +31,8 @@ enum class Far { kFixedArc, kFlamantTraction };
 double FeApproach(const ElasticMaterial& m, double force, double radius, int n, double h1,
                   double h2, Far far) {
   const double s = radius / 10.0;
-  LinearElasticModel model(
-      MappedMesher().BuildMesh(testing::HalfDiscRegion(radius, s, n, 200.0)), m);
+  LinearElasticModel model(MappedMesher().BuildMesh(testing::HalfDiscRegion(radius, s, n, 200.0)),
+                           m);
   Eigen::VectorXd f = model.ZeroLoads();
   // The load point is the corner shared by the two square patches: first node of "surface" of
   // the right square is not guaranteed, so locate it on the surface edge set.

@@ -18,7 +18,8 @@ namespace {
 //   plane stress: u_r = p a² / (E (b²−a²)) · [ (1−ν) r + (1+ν) b²/r ]
 double LameRadialDisplacement(const ElasticMaterial& m, double p, double a, double b, double r) {
   const double e = m.youngs_modulus, nu = m.poisson_ratio, c = p * a * a / (e * (b * b - a * a));
-  if (m.plane == PlaneAssumption::kPlaneStrain) return c * (1 + nu) * ((1 - 2 * nu) * r + b * b / r);
+  if (m.plane == PlaneAssumption::kPlaneStrain)
+    return c * (1 + nu) * ((1 - 2 * nu) * r + b * b / r);
   return c * ((1 - nu) * r + (1 + nu) * b * b / r);
 }
 
@@ -66,8 +67,8 @@ TEST_CASE("Thick cylinder: radial displacement within 0.5% of Lame; convergence 
   for (int nr : {1, 2, 4, 8}) results.push_back(Solve(m, p, a, b, nr, 2 * nr));
   for (std::size_t k = 0; k < results.size(); ++k) {
     testing::Figure("lame " + ToString(plane) + " nr " + std::to_string(1 << k) +
-                    ": radial error " + testing::Sci(results[k].radial_error) +
-                    " tangential " + testing::Sci(results[k].tangential_error));
+                    ": radial error " + testing::Sci(results[k].radial_error) + " tangential " +
+                    testing::Sci(results[k].tangential_error));
   }
   const Result& refined = results[2];  // the suite's refined mesh: 4 × 8 elements
   CHECK(refined.radial_error < 0.005);

@@ -33,9 +33,9 @@ TEST_CASE("Model: bad input and misuse give clear messages", "[unit]") {
   std::swap(inverted.elements[3][1], inverted.elements[3][3]);
   std::swap(inverted.elements[3][4], inverted.elements[3][7]);
   std::swap(inverted.elements[3][5], inverted.elements[3][6]);
-  CHECK_THROWS_WITH(LinearElasticModel(inverted, kSteel),
-                    Contains("element 3") && Contains("Jacobian determinant") &&
-                        Contains("inverted"));
+  CHECK_THROWS_WITH(LinearElasticModel(inverted, kSteel), Contains("element 3") &&
+                                                              Contains("Jacobian determinant") &&
+                                                              Contains("inverted"));
   Mesh dangling = mesh;
   dangling.nodes.push_back({1.0, 1.0});
   CHECK_THROWS_WITH(LinearElasticModel(dangling, kSteel), Contains("belongs to no element"));

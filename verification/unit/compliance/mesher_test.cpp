@@ -133,8 +133,7 @@ TEST_CASE("Mapped mesher: patches sharing a side join conformingly, in either di
   CHECK(MeshArea(m) == Approx(1.0 + 0.5 * (1.0 + 0.9)).epsilon(1e-13));
 }
 
-TEST_CASE("Mapped mesher: the half-disc O-grid, including mirrored (clockwise) patches",
-          "[unit]") {
+TEST_CASE("Mapped mesher: the half-disc O-grid, including mirrored (clockwise) patches", "[unit]") {
   const double radius = 0.2;
   const Mesh m = MappedMesher().BuildMesh(testing::HalfDiscRegion(radius, 0.02, 6, 20.0));
   CHECK(m.num_elements() == 6 * 36);
@@ -187,9 +186,9 @@ TEST_CASE("Mapped mesher: clear messages for bad regions", "[unit]") {
     Patch bad = a;  // a bow-tie: the top side runs backwards
     bad.sides = {StraightLine({0, 0}, {1, 0}), StraightLine({1, 0}, {0.2, 1}),
                  StraightLine({0.8, 1}, {0.2, 1}), StraightLine({0, 0}, {0.8, 1})};
-    CHECK_THROWS_WITH(MappedMesher().BuildMesh(Region{{bad}}),
-                      Contains("patch 0 ('flank')") && Contains("element") &&
-                          Contains("Jacobian determinant"));
+    CHECK_THROWS_WITH(
+        MappedMesher().BuildMesh(Region{{bad}}),
+        Contains("patch 0 ('flank')") && Contains("element") && Contains("Jacobian determinant"));
   }
   SECTION("bad distribution and options") {
     Patch bad = a;
@@ -206,8 +205,8 @@ TEST_CASE("Mapped mesher: clear messages for bad regions", "[unit]") {
   SECTION("a node set that does not exist") {
     a.side_names = {"hub", "", "", ""};
     const Mesh m = MappedMesher().BuildMesh(Region{{a}});
-    CHECK_THROWS_WITH(m.NodeSet("rim"), Contains("node set 'rim' does not exist") &&
-                                            Contains("'hub'"));
+    CHECK_THROWS_WITH(m.NodeSet("rim"),
+                      Contains("node set 'rim' does not exist") && Contains("'hub'"));
     CHECK_THROWS_WITH(m.EdgeSet("flank"), Contains("edge set 'flank' does not exist"));
   }
 }

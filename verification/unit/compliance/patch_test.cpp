@@ -79,8 +79,8 @@ TEST_CASE("Patch test, distorted Q8 patch: displacement and traction forms", "[u
     sigma << s(0), s(2), s(2), s(1);
     Eigen::VectorXd f = model.ZeroLoads();
     model.AddEdgeTraction(
-        "outer", [&](const Eigen::Vector2d&, const Eigen::Vector2d& n) { return (sigma * n).eval(); },
-        &f);
+        "outer",
+        [&](const Eigen::Vector2d&, const Eigen::Vector2d& n) { return (sigma * n).eval(); }, &f);
     // Node 0 at (0, 0) fully, node 1 at (0.24, 0) in y: rigid motion fixed at the exact values.
     model.PrescribeDof(0, 0, Exact(model.mesh().nodes[0]).x());
     model.PrescribeDof(0, 1, Exact(model.mesh().nodes[0]).y());

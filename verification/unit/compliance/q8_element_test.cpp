@@ -22,8 +22,10 @@ TEST_CASE("Q8 shape functions: Kronecker property and partition of unity", "[uni
       // Derivatives against central differences: truncation h² × (third derivative ≤ 1.5).
       const double h = 1e-5;
       const auto dn = Q8ShapeDerivatives(xi, eta);
-      const Eigen::Matrix<double, 8, 1> fx = (Q8ShapeFunctions(xi + h, eta) - Q8ShapeFunctions(xi - h, eta)) / (2 * h);
-      const Eigen::Matrix<double, 8, 1> fy = (Q8ShapeFunctions(xi, eta + h) - Q8ShapeFunctions(xi, eta - h)) / (2 * h);
+      const Eigen::Matrix<double, 8, 1> fx =
+          (Q8ShapeFunctions(xi + h, eta) - Q8ShapeFunctions(xi - h, eta)) / (2 * h);
+      const Eigen::Matrix<double, 8, 1> fy =
+          (Q8ShapeFunctions(xi, eta + h) - Q8ShapeFunctions(xi, eta - h)) / (2 * h);
       CHECK((dn.row(0).transpose() - fx).cwiseAbs().maxCoeff() < 1e-9);
       CHECK((dn.row(1).transpose() - fy).cwiseAbs().maxCoeff() < 1e-9);
       CHECK(dn.rowwise().sum().cwiseAbs().maxCoeff() < 1e-15);
@@ -114,7 +116,8 @@ TEST_CASE("Elastic material: matrices and clear messages for bad input", "[unit]
 
   ElasticMaterial bad = m;
   bad.youngs_modulus = -1.0;
-  CHECK_THROWS_WITH(bad.Validate(), Contains("youngs_modulus") && Contains("-1") && Contains("> 0"));
+  CHECK_THROWS_WITH(bad.Validate(),
+                    Contains("youngs_modulus") && Contains("-1") && Contains("> 0"));
   bad = m;
   bad.youngs_modulus = 0.0;
   CHECK_THROWS_AS(bad.Validate(), std::invalid_argument);

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <string>
 #include <numbers>
+#include <string>
 #include <utility>
 
 #include "epicycle/compliance/mesher.hpp"
@@ -62,10 +62,9 @@ inline Mesh DistortedPatch(double bulge) {
   }
   // Outer sides: element 0 side 0 (0→1), element 1 side 0 (1→2), element 2 side 2 (2→3),
   // element 3 side 3 (3→0).
-  m.edge_sets["outer"] = {BoundaryEdge{{0, m.elements[0][4], 1}, 0},
-                          BoundaryEdge{{1, m.elements[1][4], 2}, 1},
-                          BoundaryEdge{{2, m.elements[2][6], 3}, 2},
-                          BoundaryEdge{{3, m.elements[3][7], 0}, 3}};
+  m.edge_sets["outer"] = {
+      BoundaryEdge{{0, m.elements[0][4], 1}, 0}, BoundaryEdge{{1, m.elements[1][4], 2}, 1},
+      BoundaryEdge{{2, m.elements[2][6], 3}, 2}, BoundaryEdge{{3, m.elements[3][7], 0}, 3}};
   std::vector<int> boundary, interior;
   for (const auto& e : m.edge_sets["outer"]) {
     for (int v : e.nodes) {
@@ -100,10 +99,9 @@ inline Region CantileverRegion(double length, double height, int nx, int ny) {
 inline Region QuarterRingRegion(double a, double b, int nr, int nt) {
   Patch p;
   p.name = "ring";
-  p.sides = {StraightLine({a, 0.0}, {b, 0.0}),
-             CircularArc({0.0, 0.0}, b, 0.0, std::numbers::pi / 2),
-             StraightLine({0.0, a}, {0.0, b}),
-             CircularArc({0.0, 0.0}, a, 0.0, std::numbers::pi / 2)};
+  p.sides = {
+      StraightLine({a, 0.0}, {b, 0.0}), CircularArc({0.0, 0.0}, b, 0.0, std::numbers::pi / 2),
+      StraightLine({0.0, a}, {0.0, b}), CircularArc({0.0, 0.0}, a, 0.0, std::numbers::pi / 2)};
   p.side_names = {"x_axis", "outer", "y_axis", "inner"};
   p.u = Distribution::Uniform(nr);
   p.v = Distribution::Uniform(nt);
@@ -150,9 +148,10 @@ inline Region HalfDiscRegion(double radius, double s, int n, double grading) {
   side_ring.v = toward1;
   Patch bottom_ring;  // from the arc between −90° and −45° (v = 0) to the square's bottom (v = 1)
   bottom_ring.name = "bottom_ring";
-  bottom_ring.sides = {CircularArc({0.0, 0.0}, radius, -std::numbers::pi / 2, -std::numbers::pi / 4),
-                       StraightLine({d, -d}, {s, -s}), StraightLine({0.0, -s}, {s, -s}),
-                       StraightLine({0.0, -radius}, {0.0, -s})};
+  bottom_ring.sides = {
+      CircularArc({0.0, 0.0}, radius, -std::numbers::pi / 2, -std::numbers::pi / 4),
+      StraightLine({d, -d}, {s, -s}), StraightLine({0.0, -s}, {s, -s}),
+      StraightLine({0.0, -radius}, {0.0, -s})};
   bottom_ring.side_names = {"arc", "", "", "axis_deep"};
   bottom_ring.u = toward0;
   bottom_ring.v = toward1;

@@ -40,7 +40,8 @@ struct ElasticMaterial {
 
   /// The plane-stress-equivalent modulus E' [Pa]: E for plane stress, E/(1−ν²) for plane strain.
   double EffectiveModulus() const;
-  /// The plane-stress-equivalent Poisson ratio ν' [-]: ν for plane stress, ν/(1−ν) for plane strain.
+  /// The plane-stress-equivalent Poisson ratio ν' [-]: ν for plane stress, ν/(1−ν) for plane
+  /// strain.
   double EffectivePoissonRatio() const;
 };
 

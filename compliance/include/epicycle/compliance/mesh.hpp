@@ -32,11 +32,11 @@ struct EdgePoint {
 
 /// Nodes, Q8 elements (local order of q8_element.hpp) and named sets.
 struct Mesh {
-  std::vector<Eigen::Vector2d> nodes;                     ///< node positions [m]
-  std::vector<std::array<int, kQ8Nodes>> elements;        ///< Q8 connectivity, counter-clockwise
-  std::map<std::string, std::vector<int>> node_sets;      ///< named node lists (e.g. "hub")
+  std::vector<Eigen::Vector2d> nodes;                 ///< node positions [m]
+  std::vector<std::array<int, kQ8Nodes>> elements;    ///< Q8 connectivity, counter-clockwise
+  std::map<std::string, std::vector<int>> node_sets;  ///< named node lists (e.g. "hub")
   std::map<std::string, std::vector<BoundaryEdge>> edge_sets;  ///< named element sides
-  std::map<std::string, std::vector<int>> element_sets;   ///< named element lists (e.g. patches)
+  std::map<std::string, std::vector<int>> element_sets;  ///< named element lists (e.g. patches)
 
   int num_nodes() const { return static_cast<int>(nodes.size()); }
   int num_elements() const { return static_cast<int>(elements.size()); }

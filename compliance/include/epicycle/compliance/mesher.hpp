@@ -31,9 +31,9 @@ Curve Reversed(Curve curve);
 /// ratio < 1 refines toward t = 1, ratio > 1 toward t = 0 (the last interval over the first is
 /// ratio^(n−1)). Mid-side nodes sit at the mid-parameter of each interval.
 struct Distribution {
-  int divisions = 1;            ///< n [-], ≥ 1 (ignored when breaks are given)
-  double ratio = 1.0;           ///< size ratio of consecutive intervals [-], > 0
-  std::vector<double> breaks;   ///< explicit parameters t_k [-], or empty
+  int divisions = 1;           ///< n [-], ≥ 1 (ignored when breaks are given)
+  double ratio = 1.0;          ///< size ratio of consecutive intervals [-], > 0
+  std::vector<double> breaks;  ///< explicit parameters t_k [-], or empty
 
   static Distribution Uniform(int n) { return Distribution{n, 1.0, {}}; }
   /// n intervals whose sizes grow (ratio > 1) or shrink (ratio < 1) from t = 0 to t = 1.
@@ -56,11 +56,11 @@ struct Distribution {
 /// which reproduces the four sides exactly: every boundary node, corner and mid-side, lies ON its
 /// side curve. Either orientation is accepted (elements are numbered counter-clockwise).
 struct Patch {
-  std::string name;                  ///< element-set name of this patch's elements ("" = none)
-  std::array<Curve, 4> sides;        ///< bottom, right, top, left (see above)
+  std::string name;                       ///< element-set name of this patch's elements ("" = none)
+  std::array<Curve, 4> sides;             ///< bottom, right, top, left (see above)
   std::array<std::string, 4> side_names;  ///< node- and edge-set name of each side ("" = none)
-  Distribution u;                    ///< element boundaries along u (bottom and top sides)
-  Distribution v;                    ///< element boundaries along v (left and right sides)
+  Distribution u;                         ///< element boundaries along u (bottom and top sides)
+  Distribution v;                         ///< element boundaries along v (left and right sides)
 };
 
 /// A region made of patches. Patches that share a side must see the same curve with the same

@@ -25,9 +25,14 @@ using Q8Stiffness = Eigen::Matrix<double, 2 * kQ8Nodes, 2 * kQ8Nodes>;
 ///     7           5
 ///     |           |
 ///     0 --- 4 --- 1
-inline constexpr std::array<std::array<double, 2>, kQ8Nodes> kQ8NodeXiEta = {
-    {{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0},
-     {0.0, -1.0}, {1.0, 0.0}, {0.0, 1.0}, {-1.0, 0.0}}};
+inline constexpr std::array<std::array<double, 2>, kQ8Nodes> kQ8NodeXiEta = {{{-1.0, -1.0},
+                                                                              {1.0, -1.0},
+                                                                              {1.0, 1.0},
+                                                                              {-1.0, 1.0},
+                                                                              {0.0, -1.0},
+                                                                              {1.0, 0.0},
+                                                                              {0.0, 1.0},
+                                                                              {-1.0, 0.0}}};
 
 /// Local node triples (first corner, mid-side, second corner) of the four sides, counter-clockwise.
 inline constexpr std::array<std::array<int, 3>, 4> kQ8Sides = {
@@ -42,7 +47,8 @@ Eigen::Matrix<double, kQ8Nodes, 1> Q8ShapeFunctions(double xi, double eta);
 /// ∂N_a/∂ξ (row 0) and ∂N_a/∂η (row 1).
 Eigen::Matrix<double, 2, kQ8Nodes> Q8ShapeDerivatives(double xi, double eta);
 
-/// Shape functions of a quadratic 3-node edge (first corner, mid-side, second corner) at ξ ∈ [−1, 1]:
+/// Shape functions of a quadratic 3-node edge (first corner, mid-side, second corner) at ξ ∈ [−1,
+/// 1]:
 ///   N = (ξ(ξ−1)/2, 1−ξ², ξ(ξ+1)/2).
 /// A Q8's shape functions restricted to one of its sides are exactly these (the other five vanish).
 Eigen::Vector3d EdgeShapeFunctions(double xi);
@@ -80,8 +86,7 @@ Eigen::Matrix<double, 3, 2 * kQ8Nodes> Q8StrainDisplacement(const Q8Coordinates&
                                                             double eta, double* det_j);
 
 /// K_e = b ∫∫ Bᵀ D B det J dξ dη with 3×3 Gauss quadrature [N/m].
-Q8Stiffness Q8ElementStiffness(const Q8Coordinates& x, const Eigen::Matrix3d& d,
-                               double thickness);
+Q8Stiffness Q8ElementStiffness(const Q8Coordinates& x, const Eigen::Matrix3d& d, double thickness);
 
 /// Position x(ξ, η) [m].
 Eigen::Vector2d Q8Position(const Q8Coordinates& x, double xi, double eta);
