@@ -1,10 +1,403 @@
-// `epicycle contact solve|compare`: the contact core on problem files.
+// `epicycle contact solve|compare|generate|stability`: the contact core on problem files.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
 #include "commands.hpp"
+#include "epicycle/config.h"
+#include "epicycle/solvers/contact_collection.hpp"
+#include "epicycle/solvers/contact_io.hpp"
+#include "epicycle/solvers/contact_solver.hpp"
 
 namespace epicycle::app {
+namespace {
 
-void RegisterContactCommands(CLI::App& /*app*/) {
-  // Registered once the contact core lands (issue: contact problem with interchangeable back ends).
+namespace fs = std::filesystem;
+using solvers::Backend;
+using solvers::ContactOptions;
+using solvers::ContactProblem;
+using solvers::ContactProblemFile;
+using solvers::ContactReport;
+using solvers::ContactSolution;
+using solvers::ContactStatus;
+
+constexpr double kReferenceTolerance = 1e-12;
+
+std::vector<std::string> ExpandProblemFiles(const std::vector<std::string>& inputs) {
+  std::vector<std::string> files;
+  for (const std::string& in : inputs) {
+    if (fs::is_directory(in)) {
+      std::vector<std::string> here;
+      for (const auto& e : fs::directory_iterator(in))
+        if (e.path().extension() == ".json" && e.path().filename() != "expected_failures.json")
+          here.push_back(e.path().string());
+      std::sort(here.begin(), here.end());
+      files.insert(files.end(), here.begin(), here.end());
+    } else {
+      files.push_back(in);
+    }
+  }
+  if (files.empty()) throw std::invalid_argument("no problem files found in the given paths");
+  return files;
+}
+
+struct Run {
+  ContactReport report;
+  ContactSolution solution;
+  double median_seconds = 0.0;
+};
+
+Run SolveRepeated(Backend backend, const ContactProblem& problem, const ContactOptions& options,
+                  int repeats) {
+  auto solver = solvers::MakeContactSolver(backend);
+  Run run;
+  std::vector<double> times;
+  for (int r = 0; r < std::max(1, repeats); ++r) {
+    ContactSolution s;
+    run.report = solver->Solve(problem, options, &s);
+    run.solution = s;
+    times.push_back(run.report.total_seconds);
+  }
+  std::sort(times.begin(), times.end());
+  run.median_seconds = times[times.size() / 2];
+  return run;
+}
+
+// The reference: the active-set Newton at a tight tolerance (best effort where round-off stops it).
+Run Reference(const ContactProblem& problem) {
+  ContactOptions o;
+  o.tolerance = kReferenceTolerance;
+  o.max_iterations = 500;
+  return SolveRepeated(Backend::kActiveSetNewton, problem, o, 1);
+}
+
+void SolveCommand(const std::string& path, const std::string& backend_name, double tol, bool polish,
+                  const std::vector<std::string>& kv) {
+  const ContactProblemFile file = solvers::ReadContactProblemFile(path);
+  const ContactProblem problem(file.data);
+  ContactOptions options;
+  options.tolerance = tol;
+  options.polish = polish;
+  for (const std::string& item : kv) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos)
+      throw std::invalid_argument("--option '" + item + "': must be KEY=VALUE");
+    options.backend_options[item.substr(0, eq)] = item.substr(eq + 1);
+  }
+  const Backend backend = solvers::BackendFromName(backend_name);
+  auto solver = solvers::MakeContactSolver(backend);
+  ContactSolution sol;
+  const ContactReport r = solver->Solve(problem, options, &sol);
+  fmt::print("problem      {} (N = {}, m = {}, {})\n", problem.name(), problem.num_contacts(),
+             problem.num_equalities(), file.category);
+  fmt::print("back end     {}\n", solvers::BackendName(backend));
+  fmt::print("status       {}\n", solvers::StatusName(r.status));
+  fmt::print("message      {}\n", r.message);
+  fmt::print("iterations   {} (back-end code {})\n", r.iterations, r.backend_code);
+  fmt::print("time         {:.3e} s in the back end, {:.3e} s in total\n", r.solve_seconds,
+             r.total_seconds);
+  fmt::print("residual     complementarity {:.3e}, equilibrium {:.3e}, total {:.3e} (tolerance {:.1e})\n",
+             r.residual.complementarity, r.residual.equilibrium, r.residual.total, tol);
+  fmt::print("active       {} of {} contacts{}\n", r.active_contacts, problem.num_contacts(),
+             r.polished ? " (POLISHED)" : "");
+  const auto& labels = problem.data().contact_labels;
+  fmt::print("forces [N]:\n");
+  for (int j = 0; j < problem.num_contacts(); ++j)
+    fmt::print("  {:4d} {:>16.9e}  {}\n", j, sol.force(j), labels.empty() ? "" : labels[j]);
+  if (problem.num_equalities() > 0) {
+    const auto& ml = problem.data().multiplier_labels;
+    fmt::print("multipliers (rigid displacements):\n");
+    for (int i = 0; i < problem.num_equalities(); ++i)
+      fmt::print("  {:4d} {:>16.9e}  {}\n", i, sol.multiplier(i), ml.empty() ? "" : ml[i]);
+  }
+  if (file.expected) {
+    const auto d = solvers::CompareSolutions(problem, sol, *file.expected);
+    fmt::print("against the file's expected solution ({}): force {:.2e}, multiplier {:.2e}\n",
+               file.expected_note, d.force, d.multiplier);
+  }
+}
+
+struct Row {
+  std::string backend, problem, category, status;
+  double residual = 0, force_err = 0, mult_err = 0, seconds = 0;
+  int iterations = 0;
+  bool solved = false;
+};
+
+std::string Svg(double w, double h) {
+  return fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
+      "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" fill=\"white\"/>\n",
+      w, h);
+}
+
+const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf"};
+
+void WriteSvgProfile(const std::string& path, const std::vector<std::string>& backends,
+                     const std::vector<Row>& rows, const std::vector<std::string>& problems) {
+  // Dolan–Moré performance profile: fraction of problems a back end solves within τ× the best time.
+  std::map<std::string, double> best;
+  for (const Row& r : rows)
+    if (r.solved) best[r.problem] = best.count(r.problem) ? std::min(best[r.problem], r.seconds) : r.seconds;
+  const double w = 640, h = 420, x0 = 60, y0 = 20, pw = 540, ph = 340, tau_max = 1e4;
+  std::string s = Svg(w, h);
+  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", x0, y0, pw, ph);
+  for (int k = 0; k <= 4; ++k) {
+    const double x = x0 + pw * k / 4.0;
+    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">1e{}</text>\n", x, y0 + ph + 16, k);
+    const double y = y0 + ph - ph * k / 4.0;
+    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.2f}</text>\n", x0 - 4, y + 4, k / 4.0);
+  }
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">time / best time (tau)</text>\n", x0 + pw / 2, h - 8);
+  s += fmt::format("<text x=\"14\" y=\"{}\" transform=\"rotate(-90 14 {})\" text-anchor=\"middle\">fraction of problems solved</text>\n", y0 + ph / 2, y0 + ph / 2);
+  for (std::size_t b = 0; b < backends.size(); ++b) {
+    std::vector<double> ratios;
+    for (const Row& r : rows)
+      if (r.backend == backends[b] && r.solved) ratios.push_back(r.seconds / best[r.problem]);
+    std::sort(ratios.begin(), ratios.end());
+    std::string pts = fmt::format("{},{} ", x0, y0 + ph);
+    double frac = 0;
+    for (std::size_t i = 0; i < ratios.size(); ++i) {
+      const double x = x0 + pw * std::min(std::log10(ratios[i]), std::log10(tau_max)) / 4.0;
+      pts += fmt::format("{:.1f},{:.1f} ", x, y0 + ph - ph * frac);
+      frac = static_cast<double>(i + 1) / static_cast<double>(problems.size());
+      pts += fmt::format("{:.1f},{:.1f} ", x, y0 + ph - ph * frac);
+    }
+    pts += fmt::format("{},{:.1f}", x0 + pw, y0 + ph - ph * frac);
+    const char* col = kColours[b % 7];
+    s += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"2\" points=\"{}\"/>\n", col, pts);
+    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", x0 + pw - 120, y0 + ph - 20 - 16 * static_cast<double>(b), col, backends[b]);
+  }
+  s += "</svg>\n";
+  std::ofstream(path) << s;
+}
+
+void WriteSvgScatter(const std::string& path, const std::vector<std::string>& backends,
+                     const std::vector<Row>& rows) {
+  // Error against the reference versus run time, log-log; failures plotted at the top edge.
+  const double w = 640, h = 420, x0 = 70, y0 = 20, pw = 530, ph = 340;
+  const double tmin = -6, tmax = 0, emin = -16, emax = 0;
+  std::string s = Svg(w, h);
+  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", x0, y0, pw, ph);
+  for (int k = static_cast<int>(tmin); k <= static_cast<int>(tmax); ++k)
+    s += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">1e{}</text>\n",
+                     x0 + pw * (k - tmin) / (tmax - tmin), y0 + ph + 16, k);
+  for (int k = static_cast<int>(emin); k <= static_cast<int>(emax); k += 2)
+    s += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">1e{}</text>\n", x0 - 4,
+                     y0 + ph - ph * (k - emin) / (emax - emin) + 4, k);
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">run time per solve [s]</text>\n", x0 + pw / 2, h - 8);
+  s += fmt::format("<text x=\"14\" y=\"{}\" transform=\"rotate(-90 14 {})\" text-anchor=\"middle\">error against the reference [-]</text>\n", y0 + ph / 2, y0 + ph / 2);
+  for (std::size_t b = 0; b < backends.size(); ++b) {
+    const char* col = kColours[b % 7];
+    for (const Row& r : rows) {
+      if (r.backend != backends[b]) continue;
+      const double err = std::max(r.force_err, r.mult_err);
+      const double lx = std::clamp(std::log10(std::max(r.seconds, 1e-12)), tmin, tmax);
+      const double ly = std::clamp(std::log10(std::max(err, 1e-16)), emin, emax);
+      const double x = x0 + pw * (lx - tmin) / (tmax - tmin), y = y0 + ph - ph * (ly - emin) / (emax - emin);
+      if (r.solved)
+        s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3\" fill=\"{}\"/>\n", x, y, col);
+      else
+        s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" text-anchor=\"middle\">x</text>\n", x, y + 4, col);
+    }
+    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", x0 + 10, y0 + 16 + 16 * static_cast<double>(b), col, backends[b]);
+  }
+  s += "</svg>\n";
+  std::ofstream(path) << s;
+}
+
+void CompareCommand(const std::vector<std::string>& inputs, const std::string& csv,
+                    const std::string& svg_prefix, double tol, int repeats) {
+  const std::vector<std::string> files = ExpandProblemFiles(inputs);
+  const std::vector<Backend> backends = solvers::AvailableBackends();
+  std::vector<Row> rows;
+  std::vector<std::string> names, problem_names;
+  for (Backend b : backends) names.push_back(solvers::BackendName(b));
+  ContactOptions options;
+  options.tolerance = tol;
+  for (const std::string& path : files) {
+    const ContactProblemFile file = solvers::ReadContactProblemFile(path);
+    const ContactProblem problem(file.data);
+    problem_names.push_back(problem.name());
+    const Run ref = Reference(problem);
+    for (Backend b : backends) {
+      const Run run = SolveRepeated(b, problem, options, repeats);
+      Row row;
+      row.backend = solvers::BackendName(b);
+      row.problem = problem.name();
+      row.category = file.category;
+      row.status = solvers::StatusName(run.report.status);
+      row.residual = run.report.residual.total;
+      const auto d = solvers::CompareSolutions(problem, run.solution, ref.solution);
+      row.force_err = d.force;
+      row.mult_err = d.multiplier;
+      row.seconds = run.median_seconds;
+      row.iterations = run.report.iterations;
+      row.solved = run.report.status == ContactStatus::kConverged;
+      rows.push_back(row);
+    }
+  }
+  fmt::print("{} problems, tolerance {:.1e}, reference: newton at {:.0e}, {} repeat(s)\n\n",
+             files.size(), tol, kReferenceTolerance, repeats);
+  fmt::print("{:<14} {:>8} {:>14} {:>14} {:>16}  {}\n", "back end", "solved", "median time", "worst error",
+             "worst residual", "failures");
+  for (const std::string& b : names) {
+    std::vector<double> t;
+    double worst = 0, worst_res = 0;
+    int solved = 0, total = 0;
+    std::string failures;
+    for (const Row& r : rows) {
+      if (r.backend != b) continue;
+      ++total;
+      t.push_back(r.seconds);
+      if (r.solved) {
+        ++solved;
+        worst = std::max(worst, std::max(r.force_err, r.mult_err));
+        worst_res = std::max(worst_res, r.residual);
+      } else {
+        failures += (failures.empty() ? "" : ", ") + r.problem + " (" + r.status + ")";
+      }
+    }
+    std::sort(t.begin(), t.end());
+    fmt::print("{:<14} {:>4}/{:<3} {:>12.3e} s {:>14.2e} {:>16.2e}  {}\n", b, solved, total,
+               t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res, failures.empty() ? "-" : failures);
+  }
+  if (!csv.empty()) {
+    std::ofstream out(csv);
+    out << "backend,problem,category,status,residual,force_error,multiplier_error,median_seconds,iterations\n";
+    for (const Row& r : rows)
+      out << fmt::format("{},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{}\n", r.backend, r.problem, r.category,
+                         r.status, r.residual, r.force_err, r.mult_err, r.seconds, r.iterations);
+    fmt::print("\nCSV written to {}\n", csv);
+  }
+  if (!svg_prefix.empty()) {
+    WriteSvgProfile(svg_prefix + "_profile.svg", names, rows, problem_names);
+    WriteSvgScatter(svg_prefix + "_error_vs_time.svg", names, rows);
+    fmt::print("SVG written to {0}_profile.svg and {0}_error_vs_time.svg\n", svg_prefix);
+  }
+}
+
+void GenerateCommand(const std::string& dir, std::uint64_t seed) {
+  fs::create_directories(dir);
+  const auto cases = solvers::GenerateContactCollection(seed);
+  for (const ContactProblemFile& f : cases) {
+    const std::string path = (fs::path(dir) / (f.data.name + ".json")).string();
+    solvers::WriteContactProblemFile(f, path);
+  }
+  fmt::print("wrote {} problem files to {} (seed {})\n", cases.size(), dir, seed);
+}
+
+void StabilityCommand(const std::string& dir, const std::string& doc, double tol) {
+  std::vector<std::string> files;
+  for (const std::string& f : ExpandProblemFiles({dir}))
+    if (solvers::ReadContactProblemFile(f).category == "stiff") files.push_back(f);
+  const std::vector<Backend> backends = solvers::AllBackends();
+  std::string table = "| case | N | m |";
+  std::string rule = "|---|---|---|";
+  for (Backend b : backends) {
+    table += " " + solvers::BackendName(b) + " |";
+    rule += "---|";
+  }
+  table += "\n" + rule + "\n";
+  ContactOptions options;
+  options.tolerance = tol;
+  for (const std::string& path : files) {
+    const ContactProblemFile file = solvers::ReadContactProblemFile(path);
+    const ContactProblem problem(file.data);
+    const Run ref = Reference(problem);
+    table += fmt::format("| {} | {} | {} |", problem.name(), problem.num_contacts(), problem.num_equalities());
+    for (Backend b : backends) {
+      const Run run = SolveRepeated(b, problem, options, 1);
+      const ContactReport& r = run.report;
+      std::string cell;
+      if (r.status == ContactStatus::kBackendUnavailable) {
+        cell = "n/a";
+      } else {
+        const auto d = solvers::CompareSolutions(problem, run.solution, ref.solution);
+        const bool finite = run.solution.force.allFinite() && run.solution.multiplier.allFinite();
+        cell = fmt::format("{}, res {:.0e}, err {:.0e}", solvers::StatusName(r.status), r.residual.total,
+                           std::max(d.force, d.multiplier));
+        if (!finite) cell += ", NaN!";
+        if (r.status == ContactStatus::kConverged && r.residual.total > tol) cell += ", BAD";
+      }
+      table += " " + cell + " |";
+    }
+    table += "\n";
+  }
+  table += fmt::format("\nTolerance {:.0e}; err = max relative force/multiplier difference from the "
+                       "active-set Newton at {:.0e} (see CompareSolutions). Written by `epicycle contact "
+                       "stability` ({}).\n", tol, kReferenceTolerance, EPICYCLE_VERSION);
+  fmt::print("{}", table);
+  if (doc.empty()) return;
+  const std::string begin = "<!-- stability-table:begin -->", end = "<!-- stability-table:end -->";
+  std::ifstream in(doc);
+  if (!in) throw std::invalid_argument("--doc " + doc + ": cannot be read");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const auto a = text.find(begin), e = text.find(end);
+  if (a == std::string::npos || e == std::string::npos || e < a)
+    throw std::invalid_argument("--doc " + doc + ": markers " + begin + " ... " + end + " not found");
+  text = text.substr(0, a + begin.size()) + "\n" + table + text.substr(e);
+  std::ofstream(doc) << text;
+  fmt::print("table written into {}\n", doc);
+}
+
+}  // namespace
+
+void RegisterContactCommands(CLI::App& app) {
+  CLI::App* contact = app.add_subcommand("contact", "the contact problem and its back ends");
+  contact->require_subcommand(1);
+  const std::string default_dir = std::string(EPICYCLE_SOURCE_DIR) + "/verification/data/contact";
+
+  auto* solve = contact->add_subcommand("solve", "solve one problem file, print solution and residuals");
+  static std::string s_file, s_backend = "newton";
+  static double s_tol = 1e-10;
+  static bool s_polish = false;
+  static std::vector<std::string> s_kv;
+  solve->add_option("file", s_file, "problem file (JSON)")->required();
+  solve->add_option("--backend", s_backend, "newton, ipopt, nlopt-slsqp, nlopt-lbfgs, nlopt-auglag");
+  solve->add_option("--tol", s_tol, "tolerance on the nondimensional residual");
+  solve->add_flag("--polish", s_polish, "labelled active-set polish step after the raw solve");
+  solve->add_option("--option", s_kv, "back-end option KEY=VALUE (e.g. newton.ls_beta=0.5)");
+  solve->callback([] { SolveCommand(s_file, s_backend, s_tol, s_polish, s_kv); });
+
+  auto* compare = contact->add_subcommand("compare", "every available back end on every problem");
+  static std::vector<std::string> c_inputs;
+  static std::string c_csv, c_svg;
+  static double c_tol = 1e-10;
+  static int c_repeat = 5;
+  compare->add_option("inputs", c_inputs, "problem files or directories")->required();
+  compare->add_option("--csv", c_csv, "write one row per (back end, problem)");
+  compare->add_option("--svg-prefix", c_svg, "write PREFIX_profile.svg and PREFIX_error_vs_time.svg");
+  compare->add_option("--tol", c_tol, "tolerance on the nondimensional residual");
+  compare->add_option("--repeat", c_repeat, "solves per (back end, problem); the median time is reported");
+  compare->callback([] { CompareCommand(c_inputs, c_csv, c_svg, c_tol, c_repeat); });
+
+  auto* generate = contact->add_subcommand("generate", "write the problem collection");
+  static std::string g_dir;
+  static std::uint64_t g_seed = 1;
+  generate->add_option("dir", g_dir, "output directory")->required();
+  generate->add_option("--seed", g_seed, "generator seed");
+  generate->callback([] { GenerateCommand(g_dir, g_seed); });
+
+  auto* stability = contact->add_subcommand("stability", "the stiff/extreme (back end x case) table");
+  static std::string st_dir = default_dir, st_doc;
+  static double st_tol = 1e-10;
+  stability->add_option("--dir", st_dir, "collection directory");
+  stability->add_option("--doc", st_doc, "markdown file to update between the stability-table markers");
+  stability->add_option("--tol", st_tol, "tolerance on the nondimensional residual");
+  stability->callback([] { StabilityCommand(st_dir, st_doc, st_tol); });
 }
 
 }  // namespace epicycle::app

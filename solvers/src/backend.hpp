@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -32,11 +33,14 @@ struct ScaledProblem {
   int num_contacts() const { return static_cast<int>(C.rows()); }
   int num_equalities() const { return static_cast<int>(G.rows()); }
 
-  // Implemented by the driver (scaled_problem.cpp) for every back end to use.
+  // Implemented by the driver (scaled_problem.cpp) for every back end to use. For x_j < 0 the
+  // local term is extended oddly (u(−x) = −u(x), U even, u' even), which keeps Φ convex and the
+  // Newton iteration defined; every back end's answer is judged at max(x, 0) anyway.
   double Objective(const Eigen::VectorXd& x) const;                      ///< Φ(x), x ≥ 0
   void Gradient(const Eigen::VectorXd& x, Eigen::VectorXd* grad) const;  ///< ∇Φ(x)
   void LocalValue(const Eigen::VectorXd& x, Eigen::VectorXd* u) const;   ///< u_local(x)
   void LocalDerivative(const Eigen::VectorXd& x, Eigen::VectorXd* du) const;  ///< u'(x), +inf at 0
+  double LocalDerivativeAt(int j, double x) const;  ///< u_j'(x) of one contact, +inf at 0
 
   // Scaled local-term parameters, one per contact (filled by the driver).
   struct Local {
@@ -47,7 +51,35 @@ struct ScaledProblem {
     double l2 = 0;         ///< L² = l2 · F (scaled)
   };
   std::vector<Local> local;
+
+  // The driver's scales (informative for back ends; the scaled problem is self-contained).
+  double force_scale = 1.0;      ///< [N]
+  double length_scale = 1.0;     ///< [m]
+  Eigen::VectorXd row_scale;     ///< m: G_i [SI] = row_scale_i · G_i [scaled] ([-] or [m])
+
+  /// Natural-map and equilibrium residuals at (x, λ), evaluated at max(x, 0).
+  ContactResiduals Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda) const;
 };
+
+/// The driver's nondimensionalisation (scaled_problem.cpp):
+///   row scale r_i = max_j |G_ij| (a lever arm for moment rows, 1 for unit-normal force rows),
+///   force scale F* = max(max_i |W_i|/r_i, max_j δ0_j⁺ / max diag C), or 1 N if both vanish,
+///   length scale ℓ* = F*·max diag C (a deflection scale),
+///   C̃ = C F*/ℓ*, δ̃0 = δ0/ℓ*, G̃_i = G_i/r_i, W̃_i = W_i/(r_i F*), S̃_ik = S_ik ℓ*/(F* r_i r_k),
+///   x = F/F*, λ̃_i = r_i λ_i/ℓ*.
+ScaledProblem MakeScaledProblem(const ContactProblem& problem);
+/// Back to SI: F = F*·x, λ_i = ℓ*·λ̃_i/r_i, and the inverse of those.
+void Unscale(const ScaledProblem& sp, const Eigen::VectorXd& x, const Eigen::VectorXd& lambda,
+             ContactSolution* out);
+void Scale(const ScaledProblem& sp, const ContactSolution& in, Eigen::VectorXd* x,
+           Eigen::VectorXd* lambda);
+
+/// min ‖G x − W‖ over x ≥ 0 (Lawson–Hanson); returns ‖G x − W‖∞ and x if x_out is not null.
+double NonNegativeLeastSquares(const Eigen::MatrixXd& G, const Eigen::VectorXd& W,
+                               Eigen::VectorXd* x_out);
+/// True when no x ≥ 0 satisfies G̃x = W̃: the non-negative least-squares residual exceeds
+/// 1e-6·max(1, ‖W̃‖∞) (scaled_problem.cpp).
+bool EqualitiesInfeasible(const ScaledProblem& sp);
 
 /// What a back end returns: raw, unjudged.
 struct BackendResult {

@@ -1,6 +1,7 @@
 // One interface, interchangeable back ends (ARCHITECTURE.md "One problem, many back ends").
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -86,6 +87,27 @@ class ContactSolver {
 };
 
 std::unique_ptr<ContactSolver> MakeContactSolver(Backend backend);  ///< never null
+
+/// The driver's nondimensionalisation (see solvers/src/backend.hpp and docs/solvers.md).
+struct ContactScales {
+  double force = 1.0;       ///< F* [N]
+  double length = 1.0;      ///< ℓ* [m]
+  Eigen::VectorXd row;      ///< r_i, m: [-] for force rows, [m] for moment rows
+};
+ContactScales ComputeContactScales(const ContactProblem& problem);
+
+/// Differences of a solution from a reference, each relative and unit-consistent:
+///   force        ‖F − F_ref‖∞ / max(‖F_ref‖∞, F*)
+///   multiplier   ‖r∘(λ − λ_ref)‖∞ / max(‖r∘λ_ref‖∞, ℓ*)   (r∘λ: rigid displacements [m])
+///   displacement ‖Gᵀ(λ − λ_ref)‖∞ / max(‖Gᵀλ_ref‖∞, ℓ*)   (well defined even if λ is not unique)
+struct SolutionDifference {
+  double force = 0.0;
+  double multiplier = 0.0;
+  double displacement = 0.0;
+  double max() const { return std::max(force, multiplier); }
+};
+SolutionDifference CompareSolutions(const ContactProblem& problem, const ContactSolution& solution,
+                                    const ContactSolution& reference);
 std::vector<Backend> AllBackends();
 std::vector<Backend> AvailableBackends();
 

@@ -1,0 +1,497 @@
+// Our own back end, in two phases on the nondimensional problem:
+//
+// 1. Semismooth (primal-dual active-set) Newton on the natural map of the KKT system,
+//      R(x, λ) = ( min(x, g(x, λ)) ; G x + S λ − W ),   g = C x + u(x) − δ0 − Gᵀλ,
+//    globalised by a non-monotone backtracking line search on ½‖R‖². Each iteration takes
+//    A = {j : x_j > g_j}, sets x_j = 0 off A and solves the linearised g_A = 0, G x + S λ = W.
+//    Fast (a handful of iterations from a cold start, one from a good warm start) but, like any
+//    natural-map Newton, not globally convergent.
+// 2. If phase 1 stalls (line search failures, iteration budget): a primal feasible active-set
+//    Newton that decreases the potential Φ: start from a point with x ≥ 0, G x = W
+//    (non-negative least squares), Newton steps on the current face with a ratio test and an
+//    Armijo search on Φ, drop blocking contacts, add the contact with the most negative gap.
+//    Φ decreases monotonically over finitely many faces: globally convergent (S = 0 rows only;
+//    with elastic supports phase 1 is the only phase).
+//
+// Both phases solve the same linear systems
+//      [ H_AA  −G_Aᵀ ] [dx_A]   [r1]        H_AA = C_AA + diag(u'(x_A)),
+//      [ G_A     S   ] [ dλ ] = [r2],
+// by the Cholesky factorisation of H_AA and of the m×m Schur complement G_A H_AA⁻¹ G_Aᵀ + S
+// (a pseudo-inverse if it is singular or nearly so), with one step of iterative refinement. u'(0⁺) = +∞
+// (logarithmically): u' is evaluated at max(|x_j|, kDerivativeFloor), which only matters for
+// contacts entering the active set from zero force. Without local terms H_AA does not depend on x
+// and the factorisation is reused while the active set does not change.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include "backend.hpp"
+
+namespace epicycle::solvers::internal {
+namespace {
+
+constexpr double kDerivativeFloor = 1e-12;  // scaled force
+
+double ParseOption(const ContactOptions& options, const std::string& key, double fallback) {
+  const auto it = options.backend_options.find("newton." + key);
+  if (it == options.backend_options.end()) return fallback;
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(it->second, &used);
+    if (used != it->second.size()) throw std::invalid_argument("trailing characters");
+    return v;
+  } catch (const std::exception&) {
+    throw std::invalid_argument("backend_options[newton." + key + "] = '" + it->second +
+                                "': must be a number");
+  }
+}
+
+// Factorises and solves the face system above.
+class FaceSolver {
+ public:
+  explicit FaceSolver(const ScaledProblem& p) : p_(p), m_(p.num_equalities()) {}
+
+  // Returns false if H_AA is not positive definite.
+  bool Factor(const std::vector<int>& active, const Eigen::VectorXd& x) {
+    if (have_ && !p_.has_local && active == active_) return true;  // reuse
+    active_ = active;
+    const int na = static_cast<int>(active.size());
+    h_ = p_.C(active, active);
+    if (p_.has_local)
+      for (int a = 0; a < na; ++a)
+        if (p_.local[active[a]].enabled)
+          h_(a, a) += p_.LocalDerivativeAt(active[a], std::max(std::abs(x(active[a])), kDerivativeFloor));
+    h_llt_.compute(h_);
+    have_ = false;
+    if (h_llt_.info() != Eigen::Success) return false;
+    if (m_ > 0) {
+      ga_ = p_.G(Eigen::all, active);
+      y_ = h_llt_.matrixL().solve(ga_.transpose());
+      schur_ = y_.transpose() * y_;
+      if (p_.has_support) schur_ += p_.S;
+      s_llt_.compute(schur_);
+      // A singular or nearly singular Schur complement would make the Cholesky factor garbage.
+      // Then the eigen-decomposition (m is small) and, for each eigenvalue below 1e-13·max:
+      //  - if its eigenvector v has Gᵀv ≈ 0 (redundant equalities: λ not unique) the component
+      //    is dropped (minimum-norm step; it would change no gap anyway);
+      //  - otherwise (G_A rank deficient because too few contacts of a member are active: the
+      //    member is unsupported) the eigenvalue gets a ridge of 1e-12·max, a large rigid motion
+      //    that closes the member's gaps, so that the next active set carries it.
+      pinv_ = false;
+      if (s_llt_.info() == Eigen::Success) {
+        const auto d = s_llt_.matrixLLT().diagonal();
+        const double ratio = d.minCoeff() / d.maxCoeff();
+        pinv_ = !(ratio * ratio > 1e-14);
+      } else {
+        pinv_ = true;
+      }
+      if (pinv_) {
+        s_eig_.compute(schur_);
+        const Eigen::VectorXd& ev = s_eig_.eigenvalues();
+        const double top = std::max(ev.cwiseAbs().maxCoeff(), 1e-300);
+        const double g_norm = std::max(p_.G.cwiseAbs().maxCoeff(), 1e-300);
+        inv_ev_.resize(m_);
+        for (int k = 0; k < m_; ++k) {
+          if (ev(k) > 1e-13 * top) {
+            inv_ev_(k) = 1.0 / ev(k);
+          } else {
+            const double moves = (p_.G.transpose() * s_eig_.eigenvectors().col(k)).cwiseAbs().maxCoeff();
+            inv_ev_(k) = moves <= 1e-10 * g_norm ? 0.0 : 1.0 / (std::max(ev(k), 0.0) + 1e-12 * top);
+          }
+        }
+      }
+    }
+    have_ = true;
+    return true;
+  }
+
+  void Solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd* dxa,
+             Eigen::VectorXd* dl) const {
+    SolveOnce(r1, r2, dxa, dl);
+    if (m_ == 0 || active_.empty()) return;
+    // One step of iterative refinement on the full face system.
+    const Eigen::VectorXd e1 = r1 - (h_ * *dxa - ga_.transpose() * *dl);
+    Eigen::VectorXd e2 = r2 - ga_ * *dxa;
+    if (p_.has_support) e2 -= p_.S * *dl;
+    Eigen::VectorXd cx, cl;
+    SolveOnce(e1, e2, &cx, &cl);
+    *dxa += cx;
+    *dl += cl;
+  }
+
+  bool ridged() const { return pinv_; }
+  void Invalidate() { have_ = false; }
+
+ private:
+  void SolveOnce(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd* dxa,
+                 Eigen::VectorXd* dl) const {
+    if (m_ == 0) {
+      *dxa = h_llt_.solve(r1);
+      dl->resize(0);
+      return;
+    }
+    if (active_.empty()) {
+      *dxa = Eigen::VectorXd();
+      if (p_.has_support) {
+        *dl = Eigen::LDLT<Eigen::MatrixXd>(p_.S).solve(r2);
+        if (!dl->allFinite()) dl->setZero(m_);
+      } else {
+        dl->setZero(m_);
+      }
+      return;
+    }
+    const Eigen::VectorXd h_r1 = h_llt_.solve(r1);
+    const Eigen::VectorXd rs = r2 - ga_ * h_r1;
+    if (pinv_)
+      *dl = s_eig_.eigenvectors() * inv_ev_.cwiseProduct(s_eig_.eigenvectors().transpose() * rs);
+    else
+      *dl = s_llt_.solve(rs);
+    *dxa = h_llt_.solve(r1 + ga_.transpose() * *dl);
+  }
+
+  const ScaledProblem& p_;
+  int m_;
+  std::vector<int> active_;
+  bool have_ = false, pinv_ = false;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> s_eig_;
+  Eigen::VectorXd inv_ev_;
+  Eigen::MatrixXd h_, ga_, y_, schur_;
+  Eigen::LLT<Eigen::MatrixXd> h_llt_, s_llt_;
+};
+
+class ActiveSetNewton final : public BackendImpl {
+ public:
+  bool available() const override { return true; }
+  std::vector<std::string> option_keys() const override {
+    return {"ls_beta", "ls_sigma", "ls_max_halvings", "ls_memory", "phase1_only", "phase2_only"};
+  }
+
+  BackendResult Run(const ScaledProblem& p, const ContactOptions& options,
+                    const Eigen::VectorXd* x0, const Eigen::VectorXd* lambda0) override {
+    start_ = std::chrono::steady_clock::now();
+    beta_ = ParseOption(options, "ls_beta", 0.5);
+    sigma_ = ParseOption(options, "ls_sigma", 1e-4);
+    max_halvings_ = static_cast<int>(ParseOption(options, "ls_max_halvings", 40));
+    memory_ = static_cast<int>(ParseOption(options, "ls_memory", 5));
+    const bool phase1_only = ParseOption(options, "phase1_only", 0) != 0;
+    const bool phase2_only = ParseOption(options, "phase2_only", 0) != 0;
+    if (!(beta_ > 0 && beta_ < 1) || !(sigma_ > 0 && sigma_ < 0.5) || max_halvings_ < 1 || memory_ < 1)
+      throw std::invalid_argument(
+          "backend_options newton.*: need 0 < ls_beta < 1, 0 < ls_sigma < 0.5, "
+          "ls_max_halvings >= 1, ls_memory >= 1");
+    options_ = &options;
+    // Stop a little below the driver's tolerance so that its own evaluation agrees.
+    target_ = 0.1 * options.tolerance;
+
+    BackendResult out;
+    if (!phase2_only) {
+      out = Phase1(p, x0, lambda0);
+      if (!out.failed && !out.limit_reached) return out;
+    }
+    const bool can_phase2 = !p.has_support;
+    if (phase1_only) return out;
+    if (!can_phase2) {
+      if (phase2_only) {
+        out.failed = true;
+        out.message = "phase 2 needs hard equalities (S = 0)";
+      }
+      return out;
+    }
+    BackendResult second = Phase2(p);
+    second.iterations += out.iterations;
+    second.message = (phase2_only ? std::string() : "phase 1 (" + out.message + ") -> ") +
+                     "phase 2 (primal, Phi descent): " + second.message;
+    return second;
+  }
+
+ private:
+  bool OutOfTime() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() >
+           options_->time_limit;
+  }
+
+  void Evaluate(const ScaledProblem& p, const Eigen::VectorXd& x, const Eigen::VectorXd& l,
+                Eigen::VectorXd* g, Eigen::VectorXd* e) {
+    p.LocalValue(x, &u_);
+    *g = p.C * x + u_ - p.delta0;
+    if (p.num_equalities() > 0) {
+      g->noalias() -= p.G.transpose() * l;
+      *e = p.G * x - p.W;
+      if (p.has_support) e->noalias() += p.S * l;
+    } else {
+      e->resize(0);
+    }
+  }
+
+  static double Merit(const Eigen::VectorXd& x, const Eigen::VectorXd& g, const Eigen::VectorXd& e,
+                      double* inf_norm) {
+    double sq = 0.0, mx = 0.0;
+    for (Eigen::Index j = 0; j < x.size(); ++j) {
+      const double v = std::min(x(j), g(j));
+      sq += v * v;
+      mx = std::max(mx, std::abs(v));
+    }
+    for (Eigen::Index i = 0; i < e.size(); ++i) {
+      sq += e(i) * e(i);
+      mx = std::max(mx, std::abs(e(i)));
+    }
+    *inf_norm = mx;
+    return 0.5 * sq;
+  }
+
+  BackendResult Phase1(const ScaledProblem& p, const Eigen::VectorXd* x0,
+                       const Eigen::VectorXd* lambda0) {
+    const int n = p.num_contacts(), m = p.num_equalities();
+    BackendResult out;
+    Eigen::VectorXd x = x0 ? *x0 : Eigen::VectorXd::Zero(n);
+    Eigen::VectorXd lambda = lambda0 && lambda0->size() == m ? *lambda0 : Eigen::VectorXd::Zero(m);
+    bool all_active = (x0 == nullptr);  // cold start: first step with every contact active
+    Eigen::VectorXd g, e, x_new, l_new, g_new, e_new, dx(n), dl, dxa;
+    Evaluate(p, x, lambda, &g, &e);
+    double res = 0.0;
+    double psi = Merit(x, g, e, &res);
+    std::deque<double> history{psi};
+    FaceSolver face(p);
+    std::vector<int> active, inactive;
+    int rescues = 0;
+    // The best point seen: returned at a round-off floor or when a limit stops the iteration.
+    Eigen::VectorXd best_x = x, best_l = lambda;
+    double best_res = res;
+    int since_best = 0;
+    for (int it = 0;; ++it) {
+      out.iterations = it;
+      if (res < best_res) {
+        best_res = res;
+        best_x = x;
+        best_l = lambda;
+        since_best = 0;
+      } else if (it > 0) {
+        ++since_best;
+      }
+      if (best_res <= options_->tolerance && since_best >= 3) {
+        out.message = "round-off floor: residual " + std::to_string(best_res) + " after " +
+                      std::to_string(it) + " iterations";
+        break;
+      }
+      if (!std::isfinite(psi)) {
+        out.failed = true;
+        out.message = "non-finite residual";
+        break;
+      }
+      if (res <= target_) {
+        out.message = "residual " + std::to_string(res) + " after " + std::to_string(it) + " iterations";
+        break;
+      }
+      if (it >= options_->max_iterations || OutOfTime()) {
+        out.limit_reached = true;
+        out.message = it >= options_->max_iterations ? "iteration limit" : "time limit";
+        break;
+      }
+      active.clear();
+      inactive.clear();
+      for (int j = 0; j < n; ++j) (all_active || x(j) > g(j) ? active : inactive).push_back(j);
+      all_active = false;
+      const int na = static_cast<int>(active.size());
+      // dx_I = −x_I; its effect on g_A and on the equalities goes to the right-hand sides.
+      dx.setZero();
+      for (int j : inactive) dx(j) = -x(j);
+      Eigen::VectorXd r1(na), r2 = -e;
+      for (int a = 0; a < na; ++a) {
+        double s = -g(active[a]);
+        for (int j : inactive) s -= p.C(active[a], j) * dx(j);
+        r1(a) = s;
+      }
+      if (m > 0)
+        for (int j : inactive) r2 -= p.G.col(j) * dx(j);
+      if (!face.Factor(active, x)) {
+        out.failed = true;
+        out.message = "Cholesky of C_AA + diag(u') failed";
+        break;
+      }
+      face.Solve(r1, r2, &dxa, &dl);
+      for (int a = 0; a < na; ++a) dx(active[a]) = dxa(a);
+      if (std::getenv("NEWTON_TRACE"))
+        std::fprintf(stderr, "p1 it %d res %.3e na %d ridged %d |dx| %.3e |dl| %.3e\n", it, res, na,
+                     face.ridged() ? 1 : 0, dx.cwiseAbs().maxCoeff(), m ? dl.cwiseAbs().maxCoeff() : 0.0);
+      // Non-monotone backtracking on ½‖R‖².
+      const double psi_ref = *std::max_element(history.begin(), history.end());
+      double t = 1.0, psi_new = 0.0, res_new = 0.0;
+      bool accepted = false;
+      for (int k = 0; k <= max_halvings_; ++k) {
+        x_new = x + t * dx;
+        l_new = m > 0 ? Eigen::VectorXd(lambda + t * dl) : lambda;
+        Evaluate(p, x_new, l_new, &g_new, &e_new);
+        psi_new = Merit(x_new, g_new, e_new, &res_new);
+        if (std::isfinite(psi_new) && psi_new <= (1.0 - 2.0 * sigma_ * t) * psi_ref) {
+          accepted = true;
+          break;
+        }
+        t *= beta_;
+      }
+      if (!accepted) {
+        if (++rescues > 3) {
+          out.failed = true;
+          out.message = "line search failed repeatedly";
+          break;
+        }
+        // Rescue: the full step (the active-set change it brings may be what is needed).
+        x_new = x + dx;
+        l_new = m > 0 ? Eigen::VectorXd(lambda + dl) : lambda;
+        Evaluate(p, x_new, l_new, &g_new, &e_new);
+        psi_new = Merit(x_new, g_new, e_new, &res_new);
+      } else {
+        rescues = 0;
+      }
+      x.swap(x_new);
+      lambda.swap(l_new);
+      g.swap(g_new);
+      e.swap(e_new);
+      psi = psi_new;
+      res = res_new;
+      history.push_back(psi);
+      if (static_cast<int>(history.size()) > memory_) history.pop_front();
+    }
+    if (std::isfinite(res) && res <= best_res) {
+      best_x = x;
+      best_l = lambda;
+    }
+    out.force = best_x;
+    out.multiplier = best_l;
+    out.code = out.failed ? 2 : (out.limit_reached ? 1 : 0);
+    return out;
+  }
+
+  BackendResult Phase2(const ScaledProblem& p) {
+    const int n = p.num_contacts(), m = p.num_equalities();
+    BackendResult out;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n), lambda = Eigen::VectorXd::Zero(m);
+    if (m > 0) {
+      const double infeas = NonNegativeLeastSquares(p.G, p.W, &x);
+      if (infeas > 1e-6 * std::max(1.0, p.W.cwiseAbs().maxCoeff())) {
+        out.failed = true;
+        out.code = 3;
+        out.force = x;
+        out.message = "no x >= 0 with G x = W (least-squares residual " + std::to_string(infeas) + ")";
+        return out;
+      }
+    }
+    std::vector<bool> free(n, false);
+    for (int j = 0; j < n; ++j) free[j] = x(j) > 0.0;
+    FaceSolver face(p);
+    const int budget = std::max(options_->max_iterations, 10 * n);
+    Eigen::VectorXd grad, g, dxa, lnew, e;
+    std::vector<int> fset;
+    for (int it = 0;; ++it) {
+      out.iterations = it;
+      if (it >= budget || OutOfTime()) {
+        out.limit_reached = true;
+        out.message = it >= budget ? "iteration limit" : "time limit";
+        break;
+      }
+      fset.clear();
+      for (int j = 0; j < n; ++j)
+        if (free[j]) fset.push_back(j);
+      p.Gradient(x, &grad);
+      if (std::getenv("NEWTON_TRACE")) {
+        std::string f;
+        for (int j : fset) f += std::to_string(j) + ":" + std::to_string(x(j)) + " ";
+        std::fprintf(stderr, "it %d phi %.17g free %s\n", it, p.Objective(x), f.c_str());
+      }
+      const int nf = static_cast<int>(fset.size());
+      bool face_done = true;
+      if (nf > 0) {
+        if (!face.Factor(fset, x)) {
+          out.failed = true;
+          out.message = "Cholesky of C_FF + diag(u') failed";
+          break;
+        }
+        Eigen::VectorXd r1(nf);
+        for (int a = 0; a < nf; ++a) r1(a) = -grad(fset[a]);
+        // Keep G x = W: the step satisfies G_F dx = W − G x (zero up to round-off).
+        const Eigen::VectorXd r2 = m > 0 ? Eigen::VectorXd(p.W - p.G * x) : Eigen::VectorXd();
+        face.Solve(r1, r2, &dxa, &lnew);
+        if (m > 0) lambda = lnew;  // H dx − G_Fᵀλ = −∇Φ_F: λ itself, not an increment
+        // Face optimality: g_F = ∇Φ_F − G_Fᵀλ ≈ 0 (the Newton step is then tiny).
+        Eigen::VectorXd gf(nf);
+        for (int a = 0; a < nf; ++a)
+          gf(a) = grad(fset[a]) - (m > 0 ? p.G.col(fset[a]).dot(lambda) : 0.0);
+        // (or the Newton step is negligible: then g_F is as small as round-off in the terms of
+        // the gradient allows, e.g. with large gaps δ0 on the face)
+        face_done = gf.cwiseAbs().maxCoeff() <= target_ ||
+                    dxa.cwiseAbs().maxCoeff() <= 1e-13 * std::max(1.0, x.cwiseAbs().maxCoeff());
+        if (!face_done) {
+          double amax = 1.0;
+          int block = -1;
+          for (int a = 0; a < nf; ++a)
+            if (dxa(a) < 0.0) {
+              const double r = -x(fset[a]) / dxa(a);
+              if (r < amax) {
+                amax = r;
+                block = fset[a];
+              }
+            }
+          // Armijo on Φ along the feasible segment.
+          const double phi0 = p.Objective(x);
+          double slope = 0.0;
+          for (int a = 0; a < nf; ++a) slope += grad(fset[a]) * dxa(a);
+          double t = amax;
+          Eigen::VectorXd xt = x;
+          for (int k = 0; k < 60; ++k) {
+            xt = x;
+            for (int a = 0; a < nf; ++a) xt(fset[a]) = std::max(0.0, x(fset[a]) + t * dxa(a));
+            if (p.Objective(xt) <= phi0 + 1e-4 * t * std::min(slope, 0.0)) break;
+            t *= 0.5;
+          }
+          x = xt;
+          if (block >= 0 && t == amax) {
+            x(block) = 0.0;
+            free[block] = false;
+          }
+          for (int j : fset)
+            if (x(j) <= 0.0) {
+              x(j) = 0.0;
+              free[j] = false;
+            }
+          continue;
+        }
+      }
+      // Pricing: the fixed contact with the most negative gap enters.
+      g = grad;
+      if (m > 0) g.noalias() -= p.G.transpose() * lambda;
+      int enter = -1;
+      for (int j = 0; j < n; ++j)
+        if (!free[j] && g(j) < -target_ && (enter < 0 || g(j) < g(enter))) enter = j;
+      if (enter < 0) {
+        out.message = "optimal after " + std::to_string(it) + " iterations";
+        break;
+      }
+      free[enter] = true;
+    }
+    out.force = x;
+    out.multiplier = lambda;
+    out.code = out.failed ? 2 : (out.limit_reached ? 1 : 0);
+    return out;
+  }
+
+  std::chrono::steady_clock::time_point start_;
+  const ContactOptions* options_ = nullptr;
+  double beta_ = 0.5, sigma_ = 1e-4, target_ = 1e-11;
+  int max_halvings_ = 40, memory_ = 5;
+  Eigen::VectorXd u_;
+};
+
+}  // namespace
+
+std::unique_ptr<BackendImpl> MakeActiveSetNewtonBackend() {
+  return std::make_unique<ActiveSetNewton>();
+}
+
+}  // namespace epicycle::solvers::internal

@@ -1,0 +1,330 @@
+// The driver: nondimensionalise, run the back end, recover multipliers, judge by one residual.
+#include "epicycle/solvers/contact_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/QR>
+
+#include "backend.hpp"
+
+namespace epicycle::solvers {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::unique_ptr<internal::BackendImpl> MakeImpl(Backend backend) {
+  switch (backend) {
+    case Backend::kActiveSetNewton:
+      return internal::MakeActiveSetNewtonBackend();
+    case Backend::kIpopt:
+      return internal::MakeIpoptBackend();
+    case Backend::kNloptSlsqp:
+    case Backend::kNloptLbfgs:
+    case Backend::kNloptAuglag:
+      return internal::MakeNloptBackend(backend);
+  }
+  throw std::invalid_argument("backend = " + std::to_string(static_cast<int>(backend)) +
+                              ": not a known back end");
+}
+
+std::string Sci(double v) {
+  std::ostringstream os;
+  os.precision(3);
+  os << std::scientific << v;
+  return os.str();
+}
+
+// λ from the active set when the back end does not return it: the least-squares solution of
+//   G̃_Aᵀ λ = ∇Φ(x)_A  (g_A = 0 on A = {x_j > 1e-6·max(1, ‖x‖∞)})  and, with supports,
+//   S̃ λ = W̃ − G̃x,
+// minimum-norm if rank deficient (complete orthogonal decomposition).
+Eigen::VectorXd RecoverMultipliers(const internal::ScaledProblem& sp, const Eigen::VectorXd& x) {
+  const int m = sp.num_equalities();
+  if (m == 0) return Eigen::VectorXd();
+  Eigen::VectorXd grad;
+  sp.Gradient(x, &grad);
+  const double thresh = 1e-6 * std::max(1.0, x.cwiseAbs().maxCoeff());
+  std::vector<int> active;
+  for (int j = 0; j < sp.num_contacts(); ++j)
+    if (x(j) > thresh) active.push_back(j);
+  const int na = static_cast<int>(active.size());
+  const int rows = na + (sp.has_support ? m : 0);
+  Eigen::MatrixXd a(rows, m);
+  Eigen::VectorXd b(rows);
+  for (int k = 0; k < na; ++k) {
+    a.row(k) = sp.G.col(active[k]).transpose();
+    b(k) = grad(active[k]);
+  }
+  if (sp.has_support) {
+    a.bottomRows(m) = sp.S;
+    b.tail(m) = sp.W - sp.G * x;
+  }
+  if (rows == 0) return Eigen::VectorXd::Zero(m);
+  return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(a).solve(b);
+}
+
+class DriverSolver final : public ContactSolver {
+ public:
+  explicit DriverSolver(Backend backend) : backend_(backend), impl_(MakeImpl(backend)) {}
+  Backend backend() const override { return backend_; }
+  bool available() const override { return impl_->available(); }
+
+  ContactReport Solve(const ContactProblem& problem, const ContactOptions& options,
+                      ContactSolution* in_out) override {
+    const auto t0 = Clock::now();
+    if (in_out == nullptr) throw std::invalid_argument("in_out = null: must point to a solution");
+    options.Validate();
+    const int n = problem.num_contacts();
+    const int m = problem.num_equalities();
+    if (options.warm_start && (in_out->force.size() != n || in_out->multiplier.size() != m))
+      throw std::invalid_argument(
+          "warm start solution has " + std::to_string(in_out->force.size()) + " forces and " +
+          std::to_string(in_out->multiplier.size()) + " multipliers: must have N = " +
+          std::to_string(n) + " and m = " + std::to_string(m));
+    if (options.warm_start && (!in_out->force.allFinite() || !in_out->multiplier.allFinite()))
+      throw std::invalid_argument("warm start solution: every entry must be finite");
+
+    ContactReport report;
+    report.backend = backend_;
+    if (!impl_->available()) {
+      report.status = ContactStatus::kBackendUnavailable;
+      report.message = BackendName(backend_) + " is not compiled into this build";
+      in_out->force = Eigen::VectorXd::Zero(n);
+      in_out->multiplier = Eigen::VectorXd::Zero(m);
+      report.residual.total = report.residual.complementarity = report.residual.equilibrium =
+          std::numeric_limits<double>::infinity();
+      return report;
+    }
+
+    const internal::ScaledProblem sp = internal::MakeScaledProblem(problem);
+    Eigen::VectorXd x0, l0;
+    if (options.warm_start) internal::Scale(sp, *in_out, &x0, &l0);
+
+    internal::BackendResult raw;
+    std::string exception_text;
+    const auto t1 = Clock::now();
+    try {
+      raw = impl_->Run(sp, options, options.warm_start ? &x0 : nullptr,
+                       options.warm_start ? &l0 : nullptr);
+    } catch (const std::invalid_argument&) {
+      throw;  // misuse (bad back-end option): the caller's error
+    } catch (const std::exception& ex) {
+      raw = internal::BackendResult();
+      raw.failed = true;
+      exception_text = ex.what();
+    }
+    report.solve_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+    report.iterations = raw.iterations;
+    report.backend_code = raw.code;
+
+    std::string msg = raw.message.empty() ? exception_text : raw.message;
+    if (!exception_text.empty() && !raw.message.empty()) msg += "; " + exception_text;
+    bool usable = raw.force.size() == n && raw.force.allFinite();
+    bool recovered = false;
+    if (usable && (raw.multiplier.size() != m || !raw.multiplier.allFinite())) {
+      raw.multiplier = RecoverMultipliers(sp, raw.force.cwiseMax(0.0));
+      recovered = m > 0;
+    }
+    if (usable && !raw.multiplier.allFinite()) usable = false;
+
+    Eigen::VectorXd x, lambda;
+    if (usable) {
+      x = raw.force;
+      lambda = raw.multiplier;
+      report.residual = sp.Residuals(x, lambda);
+      if (!std::isfinite(report.residual.total)) usable = false;
+    }
+    if (!usable) {
+      const bool had_nan = raw.force.size() == n && !raw.force.allFinite();
+      report.status = ContactStatus::kNumericalFailure;
+      report.message = "back end returned no usable point" +
+                       std::string(had_nan ? " (NaN/Inf in its answer; solution set to zeros)"
+                                           : " (solution set to zeros)") +
+                       (msg.empty() ? "" : ": " + msg);
+      in_out->force = Eigen::VectorXd::Zero(n);
+      in_out->multiplier = Eigen::VectorXd::Zero(m);
+      report.residual = sp.Residuals(Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(m));
+      report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      return report;
+    }
+
+    report.status = Judge(report.residual.total, options.tolerance, raw);
+    std::string text = BackendName(backend_) + ": residual " + Sci(report.residual.total) +
+                       " (complementarity " + Sci(report.residual.complementarity) +
+                       ", equilibrium " + Sci(report.residual.equilibrium) + ")";
+    if (recovered) text += "; multipliers recovered by least squares on the active set";
+    if (!msg.empty()) text += "; back end says: " + msg;
+
+    if (options.polish && report.status != ContactStatus::kConverged) {
+      // Separate, labelled step: active-set Newton warm-started from the raw answer.
+      auto newton = internal::MakeActiveSetNewtonBackend();
+      ContactOptions po = options;
+      po.backend_options.clear();
+      Eigen::VectorXd xc = x.cwiseMax(0.0);
+      internal::BackendResult pol = newton->Run(sp, po, &xc, &lambda);
+      if (pol.force.size() == n && pol.force.allFinite() && pol.multiplier.allFinite()) {
+        const ContactResiduals pr = sp.Residuals(pol.force, pol.multiplier);
+        if (pr.total < report.residual.total) {
+          text += "; POLISHED by active-set Newton: residual " + Sci(report.residual.total) +
+                  " -> " + Sci(pr.total);
+          x = pol.force;
+          lambda = pol.multiplier;
+          report.residual = pr;
+          report.polished = true;
+          raw.failed = pol.failed;
+          raw.limit_reached = pol.limit_reached;
+          report.status = Judge(pr.total, options.tolerance, raw);
+        }
+      }
+    }
+
+    if (report.status != ContactStatus::kConverged && m > 0 && !sp.has_support &&
+        internal::EqualitiesInfeasible(sp)) {
+      report.status = ContactStatus::kInfeasible;
+      text += "; no F >= 0 satisfies G F = W (non-negative least squares residual > 0)";
+    }
+
+    internal::Unscale(sp, x.cwiseMax(0.0), lambda, in_out);
+    report.active_contacts = static_cast<int>((in_out->force.array() > 0.0).count());
+    if (problem.has_local()) {
+      int beyond = 0;
+      for (int j = 0; j < n; ++j)
+        if (in_out->force(j) > problem.ValidityLimitForce(j)) ++beyond;
+      if (beyond > 0)
+        text += "; WARNING: " + std::to_string(beyond) +
+                " contact(s) beyond the local term's validity (Hertz half-width L > depth h)";
+    }
+    report.message = StatusName(report.status) + ": " + text;
+    report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return report;
+  }
+
+ private:
+  static ContactStatus Judge(double residual, double tol, const internal::BackendResult& raw) {
+    if (residual <= tol) return ContactStatus::kConverged;
+    if (residual <= 100.0 * tol && !raw.failed) return ContactStatus::kConvergedInaccurate;
+    if (raw.limit_reached) return ContactStatus::kIterationLimit;
+    return ContactStatus::kNumericalFailure;
+  }
+
+  Backend backend_;
+  std::unique_ptr<internal::BackendImpl> impl_;
+};
+
+}  // namespace
+
+std::string BackendName(Backend backend) {
+  switch (backend) {
+    case Backend::kActiveSetNewton: return "newton";
+    case Backend::kIpopt: return "ipopt";
+    case Backend::kNloptSlsqp: return "nlopt-slsqp";
+    case Backend::kNloptLbfgs: return "nlopt-lbfgs";
+    case Backend::kNloptAuglag: return "nlopt-auglag";
+  }
+  return "unknown(" + std::to_string(static_cast<int>(backend)) + ")";
+}
+
+Backend BackendFromName(const std::string& name) {
+  for (Backend b : AllBackends())
+    if (BackendName(b) == name) return b;
+  std::string known;
+  for (Backend b : AllBackends()) known += (known.empty() ? "" : ", ") + BackendName(b);
+  throw std::invalid_argument("backend = '" + name + "': must be one of " + known);
+}
+
+std::string StatusName(ContactStatus status) {
+  switch (status) {
+    case ContactStatus::kConverged: return "converged";
+    case ContactStatus::kConvergedInaccurate: return "converged-inaccurate";
+    case ContactStatus::kIterationLimit: return "iteration-limit";
+    case ContactStatus::kNumericalFailure: return "numerical-failure";
+    case ContactStatus::kInfeasible: return "infeasible";
+    case ContactStatus::kBackendUnavailable: return "backend-unavailable";
+  }
+  return "unknown";
+}
+
+void ContactOptions::Validate() const {
+  auto fail = [](const std::string& field, const std::string& value, const std::string& rule) {
+    throw std::invalid_argument("ContactOptions." + field + " = " + value + ": " + rule);
+  };
+  if (!std::isfinite(tolerance) || !(tolerance > 0.0))
+    fail("tolerance", Sci(tolerance), "must be finite and > 0");
+  if (max_iterations < 1) fail("max_iterations", std::to_string(max_iterations), "must be >= 1");
+  if (!(time_limit > 0.0)) fail("time_limit", Sci(time_limit), "must be > 0");
+  if (backend_options.empty()) return;
+  std::map<std::string, std::set<std::string>> known;
+  for (Backend b : AllBackends()) {
+    const std::string ns = b == Backend::kActiveSetNewton ? "newton"
+                           : b == Backend::kIpopt         ? "ipopt"
+                                                          : "nlopt";
+    for (const std::string& k : MakeImpl(b)->option_keys()) known[ns].insert(k);
+  }
+  for (const auto& [key, value] : backend_options) {
+    const auto dot = key.find('.');
+    const std::string ns = dot == std::string::npos ? "" : key.substr(0, dot);
+    const std::string rest = dot == std::string::npos ? key : key.substr(dot + 1);
+    if (!known.count(ns) || !known[ns].count(rest)) {
+      std::string list;
+      for (const auto& [n2, keys] : known)
+        for (const auto& k : keys) list += (list.empty() ? "" : ", ") + n2 + "." + k;
+      fail("backend_options[" + key + "]", "'" + value + "'",
+           "unknown key; known keys: " + (list.empty() ? std::string("none") : list));
+    }
+  }
+}
+
+std::unique_ptr<ContactSolver> MakeContactSolver(Backend backend) {
+  return std::make_unique<DriverSolver>(backend);
+}
+
+ContactScales ComputeContactScales(const ContactProblem& problem) {
+  const internal::ScaledProblem sp = internal::MakeScaledProblem(problem);
+  return {sp.force_scale, sp.length_scale, sp.row_scale};
+}
+
+SolutionDifference CompareSolutions(const ContactProblem& problem, const ContactSolution& a,
+                                    const ContactSolution& ref) {
+  const ContactScales sc = ComputeContactScales(problem);
+  const int n = problem.num_contacts(), m = problem.num_equalities();
+  if (a.force.size() != n || ref.force.size() != n || a.multiplier.size() != m ||
+      ref.multiplier.size() != m)
+    throw std::invalid_argument("CompareSolutions: solution sizes must be N = " +
+                                std::to_string(n) + " forces and m = " + std::to_string(m) +
+                                " multipliers");
+  SolutionDifference d;
+  d.force = (a.force - ref.force).cwiseAbs().maxCoeff() /
+            std::max(ref.force.cwiseAbs().maxCoeff(), sc.force);
+  if (m > 0) {
+    const Eigen::VectorXd da = (a.multiplier - ref.multiplier).cwiseProduct(sc.row);
+    d.multiplier = da.cwiseAbs().maxCoeff() /
+                   std::max(ref.multiplier.cwiseProduct(sc.row).cwiseAbs().maxCoeff(), sc.length);
+    const Eigen::MatrixXd& g = problem.equality_matrix();
+    d.displacement = (g.transpose() * (a.multiplier - ref.multiplier)).cwiseAbs().maxCoeff() /
+                     std::max((g.transpose() * ref.multiplier).cwiseAbs().maxCoeff(), sc.length);
+  }
+  if (!std::isfinite(d.force)) d.force = std::numeric_limits<double>::infinity();
+  if (!std::isfinite(d.multiplier)) d.multiplier = std::numeric_limits<double>::infinity();
+  if (!std::isfinite(d.displacement)) d.displacement = std::numeric_limits<double>::infinity();
+  return d;
+}
+
+std::vector<Backend> AllBackends() {
+  return {Backend::kActiveSetNewton, Backend::kIpopt, Backend::kNloptSlsqp, Backend::kNloptLbfgs,
+          Backend::kNloptAuglag};
+}
+
+std::vector<Backend> AvailableBackends() {
+  std::vector<Backend> out;
+  for (Backend b : AllBackends())
+    if (MakeImpl(b)->available()) out.push_back(b);
+  return out;
+}
+
+}  // namespace epicycle::solvers

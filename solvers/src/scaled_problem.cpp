@@ -1,0 +1,228 @@
+// The nondimensional problem every back end sees, its evaluation and the one residual.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "backend.hpp"
+
+namespace epicycle::solvers::internal {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Eval {
+  double u = 0, du = 0, big_u = 0;
+};
+
+// Value, derivative and integral of one scaled local term at x > 0 (closed forms of
+// local_term.hpp in scaled units).
+Eval EvalLocal(const ScaledProblem::Local& l, double x, bool want_u, bool want_du, bool want_int) {
+  Eval e;
+  const double len = std::sqrt(l.l2 * x);
+  for (int b = 0; b < 2; ++b) {
+    if (l.a[b] == 0.0) continue;
+    const double s = l.h[b] / len;
+    const double w = std::hypot(1.0, len / l.h[b]);
+    const double as = std::asinh(s);
+    if (want_u) e.u += l.a[b] * x * (as - l.c[b] / (1.0 + w));
+    if (want_du) e.du += l.a[b] * (as - (1.0 + l.c[b]) / (2.0 * w));
+    if (want_int) {
+      const double w1 = (1.0 + w) * (1.0 + w);
+      e.big_u += 2.0 * l.a[b] * x * x *
+                 (as / 4.0 + (w + 2.0) / (12.0 * w1) - l.c[b] * (2.0 * w + 1.0) / (6.0 * w1));
+    }
+  }
+  return e;
+}
+
+}  // namespace
+
+double ScaledProblem::Objective(const Eigen::VectorXd& x) const {
+  double phi = 0.5 * x.dot(C * x) - delta0.dot(x);
+  if (has_local)
+    for (int j = 0; j < num_contacts(); ++j)
+      if (local[j].enabled && x(j) != 0.0)
+        phi += EvalLocal(local[j], std::abs(x(j)), false, false, true).big_u;
+  return phi;
+}
+
+void ScaledProblem::LocalValue(const Eigen::VectorXd& x, Eigen::VectorXd* u) const {
+  u->setZero(num_contacts());
+  if (!has_local) return;
+  for (int j = 0; j < num_contacts(); ++j)
+    if (local[j].enabled && x(j) != 0.0) {
+      const double v = EvalLocal(local[j], std::abs(x(j)), true, false, false).u;
+      (*u)(j) = x(j) > 0 ? v : -v;
+    }
+}
+
+void ScaledProblem::LocalDerivative(const Eigen::VectorXd& x, Eigen::VectorXd* du) const {
+  du->setZero(num_contacts());
+  if (!has_local) return;
+  for (int j = 0; j < num_contacts(); ++j)
+    if (local[j].enabled)
+      (*du)(j) = x(j) == 0.0 ? std::numeric_limits<double>::infinity()
+                             : EvalLocal(local[j], std::abs(x(j)), false, true, false).du;
+}
+
+double ScaledProblem::LocalDerivativeAt(int j, double x) const {
+  if (!has_local || !local[j].enabled) return 0.0;
+  if (x == 0.0) return std::numeric_limits<double>::infinity();
+  return EvalLocal(local[j], std::abs(x), false, true, false).du;
+}
+
+void ScaledProblem::Gradient(const Eigen::VectorXd& x, Eigen::VectorXd* grad) const {
+  Eigen::VectorXd u;
+  LocalValue(x, &u);
+  *grad = C * x + u - delta0;
+}
+
+ContactResiduals ScaledProblem::Residuals(const Eigen::VectorXd& x_in,
+                                          const Eigen::VectorXd& lambda) const {
+  ContactResiduals r;
+  const Eigen::VectorXd x = x_in.cwiseMax(0.0);
+  Eigen::VectorXd g;
+  Gradient(x, &g);
+  if (num_equalities() > 0) {
+    g -= G.transpose() * lambda;
+    Eigen::VectorXd e = G * x - W;
+    if (has_support) e += S * lambda;
+    r.equilibrium = e.size() ? e.cwiseAbs().maxCoeff() : 0.0;
+  }
+  // ‖x − max(0, x − g)‖∞ = ‖min(x, g)‖∞ for x ≥ 0.
+  r.complementarity = x.cwiseMin(g).cwiseAbs().maxCoeff();
+  // A negative component of the raw answer counts as an error too.
+  r.complementarity = std::max(r.complementarity, (x_in - x).cwiseAbs().maxCoeff());
+  r.total = std::max(r.complementarity, r.equilibrium);
+  if (!std::isfinite(r.total)) r.total = std::numeric_limits<double>::infinity();
+  return r;
+}
+
+ScaledProblem MakeScaledProblem(const ContactProblem& problem) {
+  ScaledProblem sp;
+  const int n = problem.num_contacts();
+  const int m = problem.num_equalities();
+  const Eigen::MatrixXd& c = problem.compliance();
+  const double c_diag = c.diagonal().maxCoeff();
+
+  sp.row_scale = Eigen::VectorXd::Ones(m);
+  for (int i = 0; i < m; ++i) {
+    const double r = problem.equality_matrix().row(i).cwiseAbs().maxCoeff();
+    if (r > 0.0) sp.row_scale(i) = r;
+  }
+  // The larger of the two drivers of the forces: the loads and the overlaps.
+  double f_scale = 0.0;
+  for (int i = 0; i < m; ++i)
+    f_scale = std::max(f_scale, std::abs(problem.equality_rhs()(i)) / sp.row_scale(i));
+  const double d_max = problem.overlap().maxCoeff();
+  if (d_max > 0.0) f_scale = std::max(f_scale, d_max / c_diag);
+  if (!(f_scale > 0.0) || !std::isfinite(f_scale)) f_scale = 1.0;
+  const double l_scale = f_scale * c_diag;
+  sp.force_scale = f_scale;
+  sp.length_scale = l_scale;
+
+  sp.C = c * (f_scale / l_scale);
+  sp.delta0 = problem.overlap() / l_scale;
+  sp.G = sp.row_scale.cwiseInverse().asDiagonal() * problem.equality_matrix();
+  sp.W = problem.equality_rhs().cwiseQuotient(sp.row_scale) / f_scale;
+  sp.S = Eigen::MatrixXd::Zero(m, m);
+  sp.has_support = problem.has_support();
+  if (sp.has_support) {
+    const Eigen::VectorXd inv_r = sp.row_scale.cwiseInverse();
+    sp.S = inv_r.asDiagonal() * problem.support_compliance() * inv_r.asDiagonal();
+    sp.S *= l_scale / f_scale;
+  }
+
+  sp.has_local = problem.has_local();
+  sp.local.assign(n, {});
+  if (sp.has_local) {
+    for (int j = 0; j < n; ++j) {
+      const LocalTermParameters& p = problem.data().local[j];
+      if (!p.enabled) continue;
+      ScaledProblem::Local& l = sp.local[j];
+      l.enabled = true;
+      const double e_star = EffectiveModulus(p);
+      for (int b = 0; b < 2; ++b) {
+        const double nu = p.body[b].poisson_ratio;
+        const double k = p.plane == PlaneAssumption::kPlaneStrain
+                             ? (1.0 - nu * nu) / p.body[b].youngs_modulus
+                             : 1.0 / p.body[b].youngs_modulus;
+        l.a[b] = 2.0 * k / (kPi * p.face_width) * f_scale / l_scale;
+        l.c[b] = p.plane == PlaneAssumption::kPlaneStrain ? nu / (1.0 - nu) : nu;
+        l.h[b] = p.body[b].depth / l_scale;
+      }
+      // L² = 4 R F/(π b E*) with F = F*·x and L in units of ℓ*.
+      l.l2 = 4.0 * p.reduced_radius / (kPi * p.face_width * e_star) * f_scale / (l_scale * l_scale);
+    }
+  }
+  return sp;
+}
+
+double NonNegativeLeastSquares(const Eigen::MatrixXd& g, const Eigen::VectorXd& w,
+                               Eigen::VectorXd* x_out) {
+  // Lawson–Hanson active-set method.
+  const int n = static_cast<int>(g.cols());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  std::vector<bool> in_p(n, false);
+  const double tol = 1e-12 * std::max(1.0, w.cwiseAbs().maxCoeff()) *
+                     std::max(1.0, g.cwiseAbs().maxCoeff());
+  auto solve_passive = [&](Eigen::VectorXd* z) {
+    std::vector<int> idx;
+    for (int j = 0; j < n; ++j)
+      if (in_p[j]) idx.push_back(j);
+    z->setZero(n);
+    if (idx.empty()) return;
+    const Eigen::MatrixXd gp = g(Eigen::all, idx);
+    const Eigen::VectorXd zp = gp.completeOrthogonalDecomposition().solve(w);
+    for (std::size_t k = 0; k < idx.size(); ++k) (*z)(idx[k]) = zp(k);
+  };
+  for (int outer = 0; outer < 3 * n + 10; ++outer) {
+    const Eigen::VectorXd grad = g.transpose() * (w - g * x);
+    int best = -1;
+    for (int j = 0; j < n; ++j)
+      if (!in_p[j] && grad(j) > tol && (best < 0 || grad(j) > grad(best))) best = j;
+    if (best < 0) break;
+    in_p[best] = true;
+    Eigen::VectorXd z;
+    for (int inner = 0; inner < 3 * n + 10; ++inner) {
+      solve_passive(&z);
+      double alpha = 1.0;
+      bool all_positive = true;
+      for (int j = 0; j < n; ++j)
+        if (in_p[j] && z(j) <= 0.0) {
+          all_positive = false;
+          alpha = std::min(alpha, x(j) / (x(j) - z(j)));
+        }
+      if (all_positive) break;
+      x += alpha * (z - x);
+      for (int j = 0; j < n; ++j)
+        if (in_p[j] && x(j) <= 1e-14) {
+          in_p[j] = false;
+          x(j) = 0.0;
+        }
+    }
+    x = z.cwiseMax(0.0);
+  }
+  if (x_out) *x_out = x;
+  return (g * x - w).cwiseAbs().maxCoeff();
+}
+
+bool EqualitiesInfeasible(const ScaledProblem& sp) {
+  if (sp.num_equalities() == 0) return false;
+  const double res = NonNegativeLeastSquares(sp.G, sp.W, nullptr);
+  return res > 1e-6 * std::max(1.0, sp.W.cwiseAbs().maxCoeff());
+}
+
+void Unscale(const ScaledProblem& sp, const Eigen::VectorXd& x, const Eigen::VectorXd& lambda,
+             ContactSolution* out) {
+  out->force = x * sp.force_scale;
+  out->multiplier = lambda.cwiseQuotient(sp.row_scale) * sp.length_scale;
+}
+
+void Scale(const ScaledProblem& sp, const ContactSolution& in, Eigen::VectorXd* x,
+           Eigen::VectorXd* lambda) {
+  *x = in.force / sp.force_scale;
+  *lambda = in.multiplier.cwiseProduct(sp.row_scale) / sp.length_scale;
+}
+
+}  // namespace epicycle::solvers::internal
