@@ -27,6 +27,18 @@ Curve Reversed(Curve curve) {
   return [c = std::move(curve)](double t) -> Eigen::Vector2d { return c(1.0 - t); };
 }
 
+Patch Rotated(const Patch& patch, double angle) {
+  Patch q = patch;
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (int k = 0; k < 4; ++k) {
+    q.sides[k] = [curve = patch.sides[k], c, s](double t) -> Eigen::Vector2d {
+      const Eigen::Vector2d x = curve(t);
+      return {c * x.x() - s * x.y(), s * x.x() + c * x.y()};
+    };
+  }
+  return q;
+}
+
 Distribution Distribution::Graded(int n, double last_over_first) {
   const double ratio = n > 1 ? std::pow(last_over_first, 1.0 / (n - 1)) : 1.0;
   return Distribution{n, ratio, {}};
