@@ -44,7 +44,7 @@ json GearJson(const Gear& g) {
   if (g.internal()) {
     j["rim_radius_mm"] = s.hub_radius * kToMm;
     j["generation"] = s.shaper ? fmt::format("shaper z_c = {}, x_c = {}", s.shaper->teeth,
-                                              s.shaper->profile_shift)
+                                             s.shaper->profile_shift)
                                : std::string("direct (involute, base rounding, tip rounding)");
   } else {
     j["hub_radius_mm"] = s.hub_radius * kToMm;
@@ -138,8 +138,9 @@ void PrintReport(const json& j) {
   for (const char* n : {"sun", "planet", "ring"}) {
     std::printf("  %-7s %s\n", n, g[n]["generation"].get<std::string>().c_str());
   }
-  std::printf("\nMeshes          a [mm]  alpha_w [deg]  j_n [mm]  j_t [mm]  eps_a ISO  eps_a inv  "
-              "SAP a/b [mm]      phase\n");
+  std::printf(
+      "\nMeshes          a [mm]  alpha_w [deg]  j_n [mm]  j_t [mm]  eps_a ISO  eps_a inv  "
+      "SAP a/b [mm]      phase\n");
   for (const json& m : j["meshes"]) {
     std::printf("  %-12s %8.3f %10.4f %11.4f %9.4f %10.4f %10.4f  %7.3f/%-8.3f %6.4f\n",
                 m["name"].get<std::string>().c_str(), m["centre_distance_mm"].get<double>(),
@@ -150,15 +151,16 @@ void PrintReport(const json& j) {
                 m["phase_cycles"].get<double>());
   }
   const json& a = j["assembly"];
-  std::printf("\nAssembly: carrier radius %.4f mm, z_sun + z_ring = %d, %s\n",
-              a["carrier_radius_mm"].get<double>(), a["z_sun_plus_z_ring"].get<int>(),
-              a["equally_spaced"].get<bool>() ? "planets equally spaced" : "planets at given angles");
+  std::printf(
+      "\nAssembly: carrier radius %.4f mm, z_sun + z_ring = %d, %s\n",
+      a["carrier_radius_mm"].get<double>(), a["z_sun_plus_z_ring"].get<int>(),
+      a["equally_spaced"].get<bool>() ? "planets equally spaced" : "planets at given angles");
   for (const json& p : a["planets"]) {
-    std::printf("  planet %d at %8.3f deg: (z_s + z_r) psi/360 = %.4f (whole: assemblable); "
-                "mesh phase %.4f cycle (%.1f deg) behind planet 1\n",
-                p["planet"].get<int>(), p["angle_deg"].get<double>(),
-                p["assembly_teeth"].get<double>(), p["mesh_phase_cycles"].get<double>(),
-                360.0 * p["mesh_phase_cycles"].get<double>());
+    std::printf(
+        "  planet %d at %8.3f deg: (z_s + z_r) psi/360 = %.4f (whole: assemblable); "
+        "mesh phase %.4f cycle (%.1f deg) behind planet 1\n",
+        p["planet"].get<int>(), p["angle_deg"].get<double>(), p["assembly_teeth"].get<double>(),
+        p["mesh_phase_cycles"].get<double>(), 360.0 * p["mesh_phase_cycles"].get<double>());
   }
   std::printf("  one mesh cycle = %.4f deg of carrier rotation\n",
               a["mesh_cycle_carrier_deg"].get<double>());
@@ -182,12 +184,13 @@ void PrintContacts(const Stage& st, double carrier_deg, double window) {
   std::printf("Potential contacts at carrier angle %.4f deg (gap window %.1f um)\n", carrier_deg,
               window * 1e6);
   std::printf("  %-13s %-12s %-6s %6s %6s %11s %11s %12s %9s %9s %9s %9s\n", "mesh", "kind",
-              "flank", "tooth", "mate", "x [mm]", "y [mm]", "overlap[um]", "arm_a[mm]",
-              "arm_b[mm]", "rho_a[mm]", "rho_b[mm]");
+              "flank", "tooth", "mate", "x [mm]", "y [mm]", "overlap[um]", "arm_a[mm]", "arm_b[mm]",
+              "rho_a[mm]", "rho_b[mm]");
   for (int i = 0; i < st.planets(); ++i) {
-    for (geometry::MeshKind kind : {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
-      const int loaded = kind == geometry::MeshKind::kSunPlanet ? st.sun_mesh_side()
-                                                                : st.ring_mesh_planet_side();
+    for (geometry::MeshKind kind :
+         {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
+      const int loaded =
+          kind == geometry::MeshKind::kSunPlanet ? st.sun_mesh_side() : st.ring_mesh_planet_side();
       const std::string name = st.meshes()[2 * i + (kind == geometry::MeshKind::kPlanetRing)].name;
       for (const geometry::PotentialContact& c : st.Contacts(p, i, kind, opt)) {
         std::printf("  %-13s %-12s %-6s %6d %6d %11.4f %11.4f %12.3f %9.3f %9.3f %9.3f %9.3f\n",
@@ -228,7 +231,9 @@ void RegisterGeometryCommands(CLI::App& app) {
   auto* con = app.add_subcommand("contacts", "List the potential contacts at one carrier position");
   static std::string contacts_scene;
   static double contacts_deg = 0.0;
-  con->add_option("scene", contacts_scene, "Scene file (TOML)")->required()->check(CLI::ExistingFile);
+  con->add_option("scene", contacts_scene, "Scene file (TOML)")
+      ->required()
+      ->check(CLI::ExistingFile);
   con->add_option("--carrier-deg", contacts_deg, "Carrier angle [deg]")->required();
   con->callback([] {
     const transmission::Scene scene = transmission::ReadScene(contacts_scene);

@@ -46,12 +46,15 @@ std::string DrawStage(const geometry::Stage& stage, double carrier_angle, double
        Path(stage.ring().Outline(8), poses.ring) + "\"/>\n";
   s += "<path " + gear_style + " d=\"" + Path(stage.sun().Outline(8), poses.sun) + "\"/>\n";
   for (int i = 0; i < stage.planets(); ++i) {
-    s += "<path " + gear_style + " d=\"" + Path(stage.planet(i).Outline(8), poses.planets[i]) + "\"/>\n";
+    s += "<path " + gear_style + " d=\"" + Path(stage.planet(i).Outline(8), poses.planets[i]) +
+         "\"/>\n";
     s += Circle(poses.planets[i].rotation_centre, stage.planet(i).spec().hub_radius,
                 "fill=\"white\" stroke=\"#234\" stroke-width=\"0.08\"");
   }
-  s += Circle(Vec2::Zero(), stage.sun().spec().hub_radius, "fill=\"white\" stroke=\"#234\" stroke-width=\"0.08\"");
-  const std::string base_style = "fill=\"none\" stroke=\"#888\" stroke-width=\"0.05\" stroke-dasharray=\"0.6,0.4\"";
+  s += Circle(Vec2::Zero(), stage.sun().spec().hub_radius,
+              "fill=\"white\" stroke=\"#234\" stroke-width=\"0.08\"");
+  const std::string base_style =
+      "fill=\"none\" stroke=\"#888\" stroke-width=\"0.05\" stroke-dasharray=\"0.6,0.4\"";
   s += Circle(poses.sun.geometric_centre, stage.sun().base_radius(), base_style);
   s += Circle(poses.ring.geometric_centre, stage.ring().base_radius(), base_style);
   geometry::ContactSearchOptions opt;
@@ -64,16 +67,19 @@ std::string DrawStage(const geometry::Stage& stage, double carrier_angle, double
     const geometry::LineOfAction lr = geometry::MakeLineOfAction(
         stage.Planet(poses, i), stage.Ring(poses), true, stage.ring_mesh_planet_side());
     s += Line(lr.tangent_a, lr.tangent_b, "stroke=\"#c33\" stroke-width=\"0.12\"");
-    for (geometry::MeshKind kind : {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
+    for (geometry::MeshKind kind :
+         {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
       for (const geometry::PotentialContact& c : stage.Contacts(poses, i, kind, opt)) {
         const char* colour = c.kind == geometry::ContactKind::kInvolute ? "#0a0" : "#f80";
         s += Circle(c.point, 0.45e-3,
-                    fmt::format("fill=\"{}\" fill-opacity=\"{}\"", colour, c.overlap >= -1e-6 ? 1.0 : 0.35));
+                    fmt::format("fill=\"{}\" fill-opacity=\"{}\"", colour,
+                                c.overlap >= -1e-6 ? 1.0 : 0.35));
       }
     }
   }
   s += fmt::format(
-      "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"5\" font-family=\"sans-serif\">carrier {:.2f} deg; "
+      "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"5\" font-family=\"sans-serif\">carrier {:.2f} "
+      "deg; "
       "red: loaded lines of action; dots: potential contacts (green on the LOA, orange tip round; "
       "faint: open)</text>\n",
       -half * 0.97, half * 0.97, geometry::Deg(carrier_angle));

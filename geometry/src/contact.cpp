@@ -145,7 +145,8 @@ struct LoaPair {
   double overlap;
 };
 
-LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l, double ua, int ka) {
+LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l, double ua,
+                  int ka) {
   LoaPair r;
   r.ua = ua;
   r.ka = ka;
@@ -175,9 +176,12 @@ double NearestLoaOverlap(const PosedGear& a, const PosedGear& b, bool internal, 
 
 std::string KindName(ContactKind kind) {
   switch (kind) {
-    case ContactKind::kInvolute: return "involute";
-    case ContactKind::kTipRoundA: return "tip-round-a";
-    case ContactKind::kTipRoundB: return "tip-round-b";
+    case ContactKind::kInvolute:
+      return "involute";
+    case ContactKind::kTipRoundA:
+      return "tip-round-a";
+    case ContactKind::kTipRoundB:
+      return "tip-round-b";
   }
   return "?";
 }
@@ -189,7 +193,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
   const double window = options.gap_window;
   const Vec2 oa = a.pose.rotation_centre, ob = b.pose.rotation_centre;
   const double ring_sign = internal ? -1.0 : 1.0;  // B's curvature: a ring's flank is concave
-  std::vector<int> sides = options.both_sides ? std::vector<int>{1, -1} : std::vector<int>{options.side_a};
+  std::vector<int> sides =
+      options.both_sides ? std::vector<int>{1, -1} : std::vector<int>{options.side_a};
   for (int side_a : sides) {
     const LineOfAction l = MakeLineOfAction(a, b, internal, side_a);
     // Involute against involute, on the line of action.
@@ -219,8 +224,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
       out.push_back(c);
     });
     // Tip rounds against flanks, off the line of action: the teeth near the mesh only.
-    const double pitch_dir = Angle(b.pose.geometric_centre - a.pose.geometric_centre) +
-                             (internal ? kPi : 0.0);
+    const double pitch_dir =
+        Angle(b.pose.geometric_centre - a.pose.geometric_centre) + (internal ? kPi : 0.0);
     auto tips = [&](const PosedGear& owner, const PosedGear& other, int owner_side, int other_side,
                     double owner_dir, bool owner_is_a) {
       if (!owner.gear->has_tip_round()) return;
@@ -232,7 +237,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
       // the pitch point, that is |θ| ≤ θ_max with cos θ_max from the triangle of the two centres;
       // the round's centre sits ψ_c off the tooth's centre line.
       const Vec2 mate = other.pose.geometric_centre;
-      const double ro = owner.gear->tip_radius(), dist = (mate - owner.pose.geometric_centre).norm();
+      const double ro = owner.gear->tip_radius(),
+                   dist = (mate - owner.pose.geometric_centre).norm();
       const double margin = rho + window;
       const double reach = other.gear->tip_radius() + (other.gear->internal() ? -margin : margin);
       const double cos_max = other.gear->internal()
@@ -247,37 +253,37 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
         const WorldArc arc = TipRoundInWorld(owner, tooth, owner_side);
         ArcAgainstFlanks(arc.centre, rho, arc.from, arc.to, other, other_side, window,
                          [&](const ArcHit& h) {
-          PotentialContact c;
-          c.kind = owner_is_a ? ContactKind::kTipRoundA : ContactKind::kTipRoundB;
-          c.side_a = l.side_a;
-          c.side_b = l.side_b;
-          const Vec2 on_arc = arc.centre - rho * h.flank_normal;
-          c.overlap = rho - h.distance;
-          const double other_radius = other.gear->base_radius() * h.roll;
-          if (owner_is_a) {
-            c.tooth_a = tooth;
-            c.tooth_b = h.tooth;
-            c.point_a = on_arc;
-            c.point_b = h.flank_point;
-            c.normal = -h.flank_normal;
-            c.curvature_radius_a = rho;
-            c.curvature_radius_b = ring_sign * other_radius;
-            c.roll_b = h.roll;
-          } else {
-            c.tooth_a = h.tooth;
-            c.tooth_b = tooth;
-            c.point_a = h.flank_point;
-            c.point_b = on_arc;
-            c.normal = h.flank_normal;
-            c.curvature_radius_a = other_radius;
-            c.curvature_radius_b = rho;
-            c.roll_a = h.roll;
-          }
-          c.point = 0.5 * (c.point_a + c.point_b);
-          c.lever_a = Lever(c.point, oa, -c.normal);
-          c.lever_b = Lever(c.point, ob, c.normal);
-          out.push_back(c);
-        });
+                           PotentialContact c;
+                           c.kind = owner_is_a ? ContactKind::kTipRoundA : ContactKind::kTipRoundB;
+                           c.side_a = l.side_a;
+                           c.side_b = l.side_b;
+                           const Vec2 on_arc = arc.centre - rho * h.flank_normal;
+                           c.overlap = rho - h.distance;
+                           const double other_radius = other.gear->base_radius() * h.roll;
+                           if (owner_is_a) {
+                             c.tooth_a = tooth;
+                             c.tooth_b = h.tooth;
+                             c.point_a = on_arc;
+                             c.point_b = h.flank_point;
+                             c.normal = -h.flank_normal;
+                             c.curvature_radius_a = rho;
+                             c.curvature_radius_b = ring_sign * other_radius;
+                             c.roll_b = h.roll;
+                           } else {
+                             c.tooth_a = h.tooth;
+                             c.tooth_b = tooth;
+                             c.point_a = h.flank_point;
+                             c.point_b = on_arc;
+                             c.normal = h.flank_normal;
+                             c.curvature_radius_a = other_radius;
+                             c.curvature_radius_b = rho;
+                             c.roll_a = h.roll;
+                           }
+                           c.point = 0.5 * (c.point_a + c.point_b);
+                           c.lever_a = Lever(c.point, oa, -c.normal);
+                           c.lever_b = Lever(c.point, ob, c.normal);
+                           out.push_back(c);
+                         });
       }
     };
     tips(a, b, l.side_a, l.side_b, pitch_dir, true);

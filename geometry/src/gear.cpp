@@ -71,13 +71,15 @@ void Gear::Validate() const {
   if (!(spec_.tip_round_radius >= 0) || !std::isfinite(spec_.tip_round_radius)) {
     Fail(n, "tip_round_radius_mm", Mm(spec_.tip_round_radius), "must be >= 0");
   }
-  if (!std::isfinite(spec_.thickness_error) || std::abs(spec_.thickness_error) > 0.5 * spec_.module) {
+  if (!std::isfinite(spec_.thickness_error) ||
+      std::abs(spec_.thickness_error) > 0.5 * spec_.module) {
     Fail(n, "thickness_error_um", Num(spec_.thickness_error * 1e6), "must be finite and below m/2");
   }
   if (internal()) {
     RequirePositive(n, "tip_radius_mm", spec_.tip_radius);
     RequirePositive(n, "rim_radius_mm", spec_.hub_radius);
-    if (spec_.rack) Fail(n, "cutter", "rack", "an internal gear is cut by a shaper or defined directly");
+    if (spec_.rack)
+      Fail(n, "cutter", "rack", "an internal gear is cut by a shaper or defined directly");
     if (spec_.shaper) {
       const ShaperCutter& c = *spec_.shaper;
       if (c.teeth < 3) Fail(n, "shaper.teeth", std::to_string(c.teeth), "must be >= 3");
@@ -128,7 +130,8 @@ void Gear::BuildExternal() {
   ra_ = spec_.tip_radius > 0 ? spec_.tip_radius : reach;
   if (ra_ > reach * (1 + 1e-12)) {
     Fail(spec_.name, "tip_radius_mm", Mm(ra_),
-         "exceeds the tool's reach r + x m + h_f0 = " + Mm(reach) + " mm (the cutter would cut the tip)");
+         "exceeds the tool's reach r + x m + h_f0 = " + Mm(reach) +
+             " mm (the cutter would cut the tip)");
   }
   if (rf_ <= 0) Fail(spec_.name, "profile_shift", Num(x), "gives a non-positive root radius");
 
@@ -155,7 +158,8 @@ void Gear::BuildExternal() {
   if (xi_limit < r_ * ca * ca - 1e-12 * r_) {
     Fail(spec_.name, "profile_shift", Num(x),
          "the tooth is undercut (the rack's flank limit lies below the base circle's interference "
-         "point); profile_shift must be >= " + Num(MinimumShiftWithoutUndercut()));
+         "point); profile_shift must be >= " +
+             Num(MinimumShiftWithoutUndercut()));
   }
   flank_turn_ = spec_.thickness_error / (2.0 * rb_);
   const double phi_fillet_top = ((xi_c - r_) / ta - eta_c) / r_;
@@ -354,7 +358,8 @@ void Gear::AddTip() {
   // normal has roll u = u_c + ρ/r_b (external, h = −1) or u_c − ρ/r_b (internal, h = +1).
   const double u_t = internal() ? uc - rho / rb_ : uc + rho / rb_;
   if (u_t <= 0) {
-    Fail(spec_.name, "tip_round_radius_mm", Mm(rho), "too large: the round reaches the base circle");
+    Fail(spec_.name, "tip_round_radius_mm", Mm(rho),
+         "too large: the round reaches the base circle");
   }
   const Vec2 t = involute_.Point(u_t);
   r_tip_form_ = t.norm();

@@ -7,7 +7,8 @@
 
 namespace epicycle::geometry::iso {
 
-double ZeroBacklashPressureAngle(int z1, int z2, double x1, double x2, double alpha, bool internal) {
+double ZeroBacklashPressureAngle(int z1, int z2, double x1, double x2, double alpha,
+                                 bool internal) {
   const double zs = internal ? z2 - z1 : z2 + z1;
   const double xs = internal ? x2 - x1 : x2 + x1;
   return InvInverse(Inv(alpha) + 2.0 * std::tan(alpha) * xs / zs);
@@ -67,8 +68,8 @@ double FitProfileShift(const GearSpec& g1, const GearSpec& g2, bool internal, in
   auto jn = [&](double x) {
     const double x1 = unknown == 1 ? x : g1.profile_shift;
     const double x2 = unknown == 2 ? x : g2.profile_shift;
-    return NormalBacklash(g1.module, g1.teeth, g2.teeth, x1, x2, g1.pressure_angle,
-                          centre_distance, internal, g1.thickness_error, g2.thickness_error);
+    return NormalBacklash(g1.module, g1.teeth, g2.teeth, x1, x2, g1.pressure_angle, centre_distance,
+                          internal, g1.thickness_error, g2.thickness_error);
   };
   const double j0 = jn(0.0), j1 = jn(1.0);
   return (normal_backlash - j0) / (j1 - j0);

@@ -30,11 +30,16 @@ double InvInverse(double v) {
 
 std::string RoleName(SegmentRole role) {
   switch (role) {
-    case SegmentRole::kRootLand: return "root land";
-    case SegmentRole::kFillet: return "fillet";
-    case SegmentRole::kInvolute: return "involute";
-    case SegmentRole::kTipRound: return "tip round";
-    case SegmentRole::kTipLand: return "tip land";
+    case SegmentRole::kRootLand:
+      return "root land";
+    case SegmentRole::kFillet:
+      return "fillet";
+    case SegmentRole::kInvolute:
+      return "involute";
+    case SegmentRole::kTipRound:
+      return "tip round";
+    case SegmentRole::kTipLand:
+      return "tip land";
   }
   return "?";
 }
@@ -90,7 +95,8 @@ JetVec ShaperFlank(const ShaperGeneration& g, double phi) {
 
 JetVec ShaperRound(const ShaperGeneration& g, double phi) {
   const Jet ph = Jet::Variable(phi);
-  const JetVec c = Const(Vec2(g.centre_distance, 0.0)) + internal::RotateJet(Const(g.round_centre), ph);
+  const JetVec c =
+      Const(Vec2(g.centre_distance, 0.0)) + internal::RotateJet(Const(g.round_centre), ph);
   const JetVec d = c - Const(Vec2(g.pitch_point, 0.0));
   const JetVec q = c + (g.round_radius / internal::Norm(d)) * d;
   return ToRing(g, q, ph);
@@ -117,10 +123,18 @@ CurvePoint Segment::Evaluate(double t) const {
       c.d2 = base_radius * (Dir(b) + h * t * DirPerp(b));
       break;
     }
-    case SegmentKind::kRackFlank: c = FromJet(RackFlank(rack, t)); break;
-    case SegmentKind::kRackRound: c = FromJet(RackRound(rack, t)); break;
-    case SegmentKind::kShaperFlank: c = FromJet(ShaperFlank(shaper, t)); break;
-    case SegmentKind::kShaperRound: c = FromJet(ShaperRound(shaper, t)); break;
+    case SegmentKind::kRackFlank:
+      c = FromJet(RackFlank(rack, t));
+      break;
+    case SegmentKind::kRackRound:
+      c = FromJet(RackRound(rack, t));
+      break;
+    case SegmentKind::kShaperFlank:
+      c = FromJet(ShaperFlank(shaper, t));
+      break;
+    case SegmentKind::kShaperRound:
+      c = FromJet(ShaperRound(shaper, t));
+      break;
   }
   return Rotated(c, rotation);
 }

@@ -46,11 +46,13 @@ double Sap(double rb, double roll) { return std::sqrt(rb * rb + roll * roll); }
 Stage::Stage(StageSpec spec)
     : spec_(std::move(spec)), sun_(spec_.sun), ring_(spec_.ring), planets_(MakePlanets(spec_)) {
   if (sun_.internal() || planets_[0].internal() || !ring_.internal()) {
-    throw std::invalid_argument("stage: the sun and planets must be external gears, the ring internal");
+    throw std::invalid_argument(
+        "stage: the sun and planets must be external gears, the ring internal");
   }
   if (std::abs(sun_.module() - ring_.module()) > 1e-12 ||
       std::abs(sun_.module() - planets_[0].module()) > 1e-12) {
-    Fail("ring", "module_mm", Mm(ring_.module()), "every gear of the stage must have the same module");
+    Fail("ring", "module_mm", Mm(ring_.module()),
+         "every gear of the stage must have the same module");
   }
   if (spec_.load_sign != 1 && spec_.load_sign != -1) {
     Fail("stage", "load_sign", std::to_string(spec_.load_sign), "must be +1 or -1");
@@ -60,7 +62,8 @@ Stage::Stage(StageSpec spec)
     if (!(r->amplitude >= 0)) Fail("errors", "runout_um", Num(r->amplitude * 1e6), "must be >= 0");
   }
   for (const Runout& r : spec_.planet_runouts) {
-    if (!(r.amplitude >= 0)) Fail("errors", "planet_runout_um", Num(r.amplitude * 1e6), "must be >= 0");
+    if (!(r.amplitude >= 0))
+      Fail("errors", "planet_runout_um", Num(r.amplitude * 1e6), "must be >= 0");
   }
   CheckAssembly();
   CheckClearances();
@@ -113,7 +116,8 @@ void Stage::CheckClearances() const {
   // Tips against roots.
   auto need = [](double clearance, const std::string& what) {
     if (clearance <= 0) {
-      throw std::invalid_argument("stage: " + what + " (radial clearance " + Mm(clearance) + " mm)");
+      throw std::invalid_argument("stage: " + what + " (radial clearance " + Mm(clearance) +
+                                  " mm)");
     }
   };
   need(a - sun_.tip_radius() - p.root_radius(), "the sun's tip hits the planet's root");
@@ -123,8 +127,8 @@ void Stage::CheckClearances() const {
   // Tips against fillets: the mate's tip circle must start the contact on the involute.
   const double aw_s = iso::PressureAngleAt(sun_.module(), sun_.teeth(), p.teeth(),
                                            sun_.spec().pressure_angle, a, false);
-  const double aw_r = iso::PressureAngleAt(p.module(), p.teeth(), ring_.teeth(),
-                                           p.spec().pressure_angle, a, true);
+  const double aw_r =
+      iso::PressureAngleAt(p.module(), p.teeth(), ring_.teeth(), p.spec().pressure_angle, a, true);
   const double ls = a * std::sin(aw_s), lr = a * std::sin(aw_r);
   auto roll_len = [](const Gear& g, double r) {
     return std::sqrt(r * r - g.base_radius() * g.base_radius());
@@ -141,7 +145,8 @@ void Stage::CheckClearances() const {
   const double sap_sun_roll = ls - roll_len(p, p.tip_radius());
   const double sap_planet_roll_s = ls - roll_len(sun_, sun_.tip_radius());
   if (sap_sun_roll <= 0 || sap_planet_roll_s <= 0) {
-    throw std::invalid_argument("stage: a tip of the sun-planet mesh passes the interference point");
+    throw std::invalid_argument(
+        "stage: a tip of the sun-planet mesh passes the interference point");
   }
   fillet(sun_, "planet", Sap(sun_.base_radius(), sap_sun_roll));
   fillet(p, "sun", Sap(p.base_radius(), sap_planet_roll_s));
@@ -218,20 +223,21 @@ void Stage::Summarise() {
       m.name = internal ? "planet" + std::to_string(i + 1) + "-ring"
                         : "sun-planet" + std::to_string(i + 1);
       m.centre_distance = a;
-      m.pressure_angle = iso::PressureAngleAt(g1.module(), g1.teeth(), g2.teeth(), alpha, a, internal);
-      m.zero_backlash_pressure_angle = iso::ZeroBacklashPressureAngle(
-          g1.teeth(), g2.teeth(), g1.spec().profile_shift, g2.spec().profile_shift, alpha, internal);
-      m.normal_backlash = iso::NormalBacklash(g1.module(), g1.teeth(), g2.teeth(),
-                                              g1.spec().profile_shift, g2.spec().profile_shift,
-                                              alpha, a, internal, g1.spec().thickness_error,
-                                              g2.spec().thickness_error);
+      m.pressure_angle =
+          iso::PressureAngleAt(g1.module(), g1.teeth(), g2.teeth(), alpha, a, internal);
+      m.zero_backlash_pressure_angle =
+          iso::ZeroBacklashPressureAngle(g1.teeth(), g2.teeth(), g1.spec().profile_shift,
+                                         g2.spec().profile_shift, alpha, internal);
+      m.normal_backlash = iso::NormalBacklash(
+          g1.module(), g1.teeth(), g2.teeth(), g1.spec().profile_shift, g2.spec().profile_shift,
+          alpha, a, internal, g1.spec().thickness_error, g2.spec().thickness_error);
       m.transverse_backlash = m.normal_backlash / std::cos(m.pressure_angle);
-      m.contact_ratio_iso = iso::ContactRatio(g1.base_radius(), g1.tip_radius(), g2.base_radius(),
-                                              g2.tip_radius(), a, m.pressure_angle,
-                                              g1.base_pitch(), internal);
-      m.contact_ratio = iso::ContactRatio(g1.base_radius(), g1.tip_form_radius(), g2.base_radius(),
-                                          g2.tip_form_radius(), a, m.pressure_angle,
-                                          g1.base_pitch(), internal);
+      m.contact_ratio_iso =
+          iso::ContactRatio(g1.base_radius(), g1.tip_radius(), g2.base_radius(), g2.tip_radius(), a,
+                            m.pressure_angle, g1.base_pitch(), internal);
+      m.contact_ratio =
+          iso::ContactRatio(g1.base_radius(), g1.tip_form_radius(), g2.base_radius(),
+                            g2.tip_form_radius(), a, m.pressure_angle, g1.base_pitch(), internal);
       const double la = a * std::sin(m.pressure_angle);
       auto roll_len = [](const Gear& g, double r) {
         return std::sqrt(r * r - g.base_radius() * g.base_radius());

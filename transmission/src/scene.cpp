@@ -40,7 +40,8 @@ GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool f
   g.pressure_angle = Deg(t.Real("pressure_angle_deg", Rule::Open(0, 45)));
   if (fit_target) {
     if (t.Has("profile_shift")) {
-      t.Fail("profile_shift", "given", "this gear's shift is solved by [fit]; remove one of the two");
+      t.Fail("profile_shift", "given",
+             "this gear's shift is solved by [fit]; remove one of the two");
     }
   } else {
     g.profile_shift = t.Real("profile_shift", Rule::Closed(-2, 2));
@@ -111,8 +112,8 @@ int GearIndex(TableReader& t, const std::string& key, int planets) {
     } catch (const std::exception&) {
     }
   }
-  t.Fail(key, "\"" + v + "\"", "must be \"sun\", \"ring\" or \"planet1\"..\"planet" +
-                                   std::to_string(planets) + "\"");
+  t.Fail(key, "\"" + v + "\"",
+         "must be \"sun\", \"ring\" or \"planet1\"..\"planet" + std::to_string(planets) + "\"");
 }
 
 void ReadErrors(TableReader& e, Scene& s) {
@@ -238,7 +239,8 @@ Scene ParseScene(const std::string& text, const std::string& source) {
   {
     TableReader t = top.Table("load");
     s.sun_torque = t.Real("sun_torque_Nm", Rule::Any());
-    if (s.sun_torque == 0) t.Fail("sun_torque_Nm", "0", "must be non-zero (its sign selects the loaded flanks)");
+    if (s.sun_torque == 0)
+      t.Fail("sun_torque_Nm", "0", "must be non-zero (its sign selects the loaded flanks)");
     st.load_sign = s.sun_torque > 0 ? 1 : -1;
     t.Done();
   }
@@ -256,7 +258,8 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     f.gear = fit_gears[k];
     const std::string default_mesh = f.gear == "ring" ? "planet-ring" : "sun-planet";
     f.mesh = fit.StringOr("mesh", default_mesh, {"sun-planet", "planet-ring"});
-    if ((f.gear == "sun" && f.mesh != "sun-planet") || (f.gear == "ring" && f.mesh != "planet-ring")) {
+    if ((f.gear == "sun" && f.mesh != "sun-planet") ||
+        (f.gear == "ring" && f.mesh != "planet-ring")) {
       fit.Fail("mesh", "\"" + f.mesh + "\"", "the " + f.gear + " is not in that mesh");
     }
     f.normal_backlash = fit.Real("normal_backlash_um", Rule::Any()) * kUm;
@@ -267,8 +270,8 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     GearSpec g2 = internal ? st.ring : st.planet;
     g1.thickness_error = g2.thickness_error = 0;
     const int unknown = (f.gear == "sun" || (f.gear == "planet" && internal)) ? 1 : 2;
-    f.profile_shift =
-        geometry::iso::FitProfileShift(g1, g2, internal, unknown, st.carrier_radius, f.normal_backlash);
+    f.profile_shift = geometry::iso::FitProfileShift(g1, g2, internal, unknown, st.carrier_radius,
+                                                     f.normal_backlash);
     GearSpec& target = f.gear == "sun" ? st.sun : f.gear == "ring" ? st.ring : st.planet;
     target.profile_shift = f.profile_shift;
     s.fits.push_back(f);

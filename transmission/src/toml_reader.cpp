@@ -17,13 +17,20 @@ std::string Num(double v) {
 
 std::string TypeName(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::table: return "a table";
-    default: return "a date/time";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::table:
+      return "a table";
+    default:
+      return "a date/time";
   }
 }
 
@@ -197,7 +204,8 @@ std::vector<TableReader> TableReader::TableArray(const std::string& key) {
   const toml::node& n = Required(key);
   const auto* a = n.as_array();
   if (!a || !a->is_array_of_tables()) {
-    Fail(key, Show(n), "must be an array of tables ([[" + (path_.empty() ? key : path_ + "." + key) + "]])");
+    Fail(key, Show(n),
+         "must be an array of tables ([[" + (path_.empty() ? key : path_ + "." + key) + "]])");
   }
   for (std::size_t i = 0; i < a->size(); ++i) {
     out.emplace_back(*a->get(i)->as_table(),

@@ -96,7 +96,8 @@ TEST_CASE("generated involute curvature is 1/(r_b u)", "[reference][geometry]") 
   }
 }
 
-TEST_CASE("tooth thickness at the reference circle is m(pi/2 + 2x tan a)", "[reference][geometry]") {
+TEST_CASE("tooth thickness at the reference circle is m(pi/2 + 2x tan a)",
+          "[reference][geometry]") {
   const auto scene = epicycle::test::PaperScene();
   for (const GearSpec& s : {scene.stage.sun, scene.stage.planet, scene.stage.ring}) {
     const Gear g(s);
@@ -112,7 +113,8 @@ TEST_CASE("tooth thickness at the reference circle is m(pi/2 + 2x tan a)", "[ref
     const Vec2 p = inv->Point(0.5 * (lo + hi));
     const double measured = 2 * r * std::atan2(p.y(), p.x());
     const double sign = g.internal() ? -1.0 : 1.0;
-    const double expected = s.module * (kPi / 2 + sign * 2 * s.profile_shift * std::tan(s.pressure_angle));
+    const double expected =
+        s.module * (kPi / 2 + sign * 2 * s.profile_shift * std::tan(s.pressure_angle));
     INFO(g.name());
     CHECK(measured == Approx(expected).epsilon(1e-9));
   }
@@ -130,11 +132,13 @@ TEST_CASE("half profiles are continuous with tangent continuity at every join",
       const CurvePoint b = segs[i + 1].Evaluate(segs[i + 1].t0);
       INFO(g.name() << ": " << RoleName(segs[i].role) << " -> " << RoleName(segs[i + 1].role));
       CHECK((a.p - b.p).norm() <= 1e-9);
-      // Tangent directions agree up to orientation (1e-6 rad: the joins are computed in closed form).
+      // Tangent directions agree up to orientation (1e-6 rad: the joins are computed in closed
+      // form).
       CHECK(std::abs(Cross(a.Tangent(), b.Tangent())) <= 1e-6);
     }
     // The half profile runs from the space centre line to the tooth centre line.
-    CHECK(std::atan2(segs.front().Point(segs.front().t0).y(), segs.front().Point(segs.front().t0).x()) ==
+    CHECK(std::atan2(segs.front().Point(segs.front().t0).y(),
+                     segs.front().Point(segs.front().t0).x()) ==
           Approx(kPi / g.teeth()).epsilon(1e-12));
     CHECK(segs.back().Point(segs.back().t1).y() == Approx(0).margin(1e-12));
   }
@@ -163,14 +167,15 @@ TEST_CASE("operating pressure angle and contact ratio from the layout equal ISO 
   const StagePoses p = st.Poses(0.0);
   // Geometry: the line of action built from the actual centres; ISO: the closed forms.
   const LineOfAction ls = MakeLineOfAction(st.Sun(p), st.Planet(p, 0), false, st.sun_mesh_side());
-  const LineOfAction lr = MakeLineOfAction(st.Planet(p, 0), st.Ring(p), true, st.ring_mesh_planet_side());
+  const LineOfAction lr =
+      MakeLineOfAction(st.Planet(p, 0), st.Ring(p), true, st.ring_mesh_planet_side());
   const GearSpec& S = scene.stage.sun;
   const Gear& P = st.planet(0);
   const Gear& R = st.ring();
-  const double aw_s = iso::ZeroBacklashPressureAngle(S.teeth, P.teeth(), S.profile_shift,
-                                                     P.spec().profile_shift, S.pressure_angle, false);
-  const double aw_r = iso::ZeroBacklashPressureAngle(P.teeth(), R.teeth(), P.spec().profile_shift,
-                                                     R.spec().profile_shift, S.pressure_angle, true);
+  const double aw_s = iso::ZeroBacklashPressureAngle(
+      S.teeth, P.teeth(), S.profile_shift, P.spec().profile_shift, S.pressure_angle, false);
+  const double aw_r = iso::ZeroBacklashPressureAngle(
+      P.teeth(), R.teeth(), P.spec().profile_shift, R.spec().profile_shift, S.pressure_angle, true);
   CHECK(ls.pressure_angle == Approx(aw_s).epsilon(1e-9));
   CHECK(lr.pressure_angle == Approx(aw_r).epsilon(1e-9));
   // Contact ratio: where the tip-form circles cut the line of action, measured along it.
@@ -187,7 +192,8 @@ TEST_CASE("operating pressure angle and contact ratio from the layout equal ISO 
     const double eps = (s_end - s_start) / sun.base_pitch();
     CHECK(eps == Approx(iso::ContactRatio(sun.base_radius(), sun.tip_form_radius(), P.base_radius(),
                                           P.tip_form_radius(), ls.centre_distance, aw_s,
-                                          sun.base_pitch(), false)).epsilon(1e-9));
+                                          sun.base_pitch(), false))
+                     .epsilon(1e-9));
   }
   {
     const double s_end = cut(lr, p.planets[0].geometric_centre, P.tip_form_radius())[1];
@@ -195,6 +201,7 @@ TEST_CASE("operating pressure angle and contact ratio from the layout equal ISO 
     const double eps = (s_end - s_start) / P.base_pitch();
     CHECK(eps == Approx(iso::ContactRatio(P.base_radius(), P.tip_form_radius(), R.base_radius(),
                                           R.tip_form_radius(), lr.centre_distance, aw_r,
-                                          P.base_pitch(), true)).epsilon(1e-9));
+                                          P.base_pitch(), true))
+                     .epsilon(1e-9));
   }
 }

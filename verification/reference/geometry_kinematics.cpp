@@ -59,8 +59,10 @@ TEST_CASE("the coast-side gap equals the fitted normal backlash", "[reference][g
   for (int k = 0; k < 25; ++k) {
     const StagePoses p = st.Poses(st.mesh_cycle() * k / 25.0);
     for (int i = 0; i < st.planets(); ++i) {
-      const double loaded_s = NearestLoaOverlap(st.Sun(p), st.Planet(p, i), false, st.sun_mesh_side());
-      const double coast_s = NearestLoaOverlap(st.Sun(p), st.Planet(p, i), false, -st.sun_mesh_side());
+      const double loaded_s =
+          NearestLoaOverlap(st.Sun(p), st.Planet(p, i), false, st.sun_mesh_side());
+      const double coast_s =
+          NearestLoaOverlap(st.Sun(p), st.Planet(p, i), false, -st.sun_mesh_side());
       const double loaded_r =
           NearestLoaOverlap(st.Planet(p, i), st.Ring(p), true, st.ring_mesh_planet_side());
       const double coast_r =
@@ -124,17 +126,19 @@ TEST_CASE("run-out of planet 1 changes its overlaps by the offset projected on e
     const Vec2 offset = with.planets[0].geometric_centre - with.planets[0].rotation_centre;
     REQUIRE(offset.norm() == Approx(e).epsilon(1e-12));
     // Sun mesh: the planet is gear B; moving it along +d opens the mesh.
-    const LineOfAction ls = MakeLineOfAction(st.Sun(without), st.Planet(without, 0), false,
-                                             st.sun_mesh_side());
-    const double ds = NearestLoaOverlap(st.Sun(with), st.Planet(with, 0), false, st.sun_mesh_side()) -
-                      NearestLoaOverlap(st.Sun(without), st.Planet(without, 0), false, st.sun_mesh_side());
+    const LineOfAction ls =
+        MakeLineOfAction(st.Sun(without), st.Planet(without, 0), false, st.sun_mesh_side());
+    const double ds =
+        NearestLoaOverlap(st.Sun(with), st.Planet(with, 0), false, st.sun_mesh_side()) -
+        NearestLoaOverlap(st.Sun(without), st.Planet(without, 0), false, st.sun_mesh_side());
     worst = std::max(worst, std::abs(ds - (-offset.dot(ls.direction))));
     // Ring mesh: the planet is gear A; moving it along +d closes the mesh.
-    const LineOfAction lr = MakeLineOfAction(st.Planet(without, 0), st.Ring(without), true,
-                                             st.ring_mesh_planet_side());
+    const LineOfAction lr =
+        MakeLineOfAction(st.Planet(without, 0), st.Ring(without), true, st.ring_mesh_planet_side());
     const double dr =
         NearestLoaOverlap(st.Planet(with, 0), st.Ring(with), true, st.ring_mesh_planet_side()) -
-        NearestLoaOverlap(st.Planet(without, 0), st.Ring(without), true, st.ring_mesh_planet_side());
+        NearestLoaOverlap(st.Planet(without, 0), st.Ring(without), true,
+                          st.ring_mesh_planet_side());
     worst = std::max(worst, std::abs(dr - offset.dot(lr.direction)));
   }
   CHECK(worst <= 0.01 * e);

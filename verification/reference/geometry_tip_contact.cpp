@@ -13,7 +13,8 @@ using namespace epicycle::geometry;
 
 namespace {
 
-// The involute segment of tooth k, side σ, of a posed gear, as a dense polyline in the inertial frame.
+// The involute segment of tooth k, side σ, of a posed gear, as a dense polyline in the inertial
+// frame.
 std::vector<Vec2> DenseFlank(const PosedGear& g, int tooth, int side, int n) {
   const Segment* s = g.gear->half_profile().Find(SegmentRole::kInvolute);
   std::vector<Vec2> out;
@@ -64,8 +65,8 @@ TEST_CASE("tip round against flank: normal through the round's centre, brute-for
           const PosedGear& round_owner = on_a ? a : b;
           const PosedGear& flank_owner = on_a ? b : a;
           const double rho = round_owner.gear->tip_round().radius;
-          const Vec2 centre = TipRoundCentre(round_owner, on_a ? c.tooth_a : c.tooth_b,
-                                             on_a ? c.side_a : c.side_b);
+          const Vec2 centre =
+              TipRoundCentre(round_owner, on_a ? c.tooth_a : c.tooth_b, on_a ? c.side_a : c.side_b);
           const Vec2 on_flank = on_a ? c.point_b : c.point_a;
           const Vec2 on_round = on_a ? c.point_a : c.point_b;
           // The common normal passes through the centre of the round.

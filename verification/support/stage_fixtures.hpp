@@ -19,7 +19,8 @@ inline std::string SceneText(const std::string& file) {
 
 /// Replace every occurrence of `from` by `to` (the test's edit of a scene).
 inline std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  for (std::size_t p = text.find(from); p != std::string::npos; p = text.find(from, p + to.size())) {
+  for (std::size_t p = text.find(from); p != std::string::npos;
+       p = text.find(from, p + to.size())) {
     text.replace(p, from.size(), to);
   }
   return text;
@@ -31,9 +32,9 @@ inline transmission::Scene PaperScene() {
 
 /// The paper's stage with both meshes fitted to zero backlash.
 inline transmission::Scene ZeroBacklashPaperScene() {
-  return transmission::ParseScene(
-      Replace(SceneText("paper_stage.toml"), "normal_backlash_um = 150.0", "normal_backlash_um = 0.0"),
-      "paper_stage.toml (zero backlash)");
+  return transmission::ParseScene(Replace(SceneText("paper_stage.toml"),
+                                          "normal_backlash_um = 150.0", "normal_backlash_um = 0.0"),
+                                  "paper_stage.toml (zero backlash)");
 }
 
 }  // namespace epicycle::test

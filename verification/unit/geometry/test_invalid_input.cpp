@@ -43,21 +43,25 @@ TEST_CASE("undercut", "[unit][geometry]") {
   // The closed-form limit: x_min = h_a0/m − ρ(1 − sin α)/m − z sin²α/2.
   const Gear ok(Sun());
   const double a = Rad(25.0);
-  CHECK(ok.MinimumShiftWithoutUndercut() ==
-        Approx(1.35 - 0.05 * (1 - std::sin(a)) - 16 * std::sin(a) * std::sin(a) / 2).epsilon(1e-12));
+  CHECK(
+      ok.MinimumShiftWithoutUndercut() ==
+      Approx(1.35 - 0.05 * (1 - std::sin(a)) - 16 * std::sin(a) * std::sin(a) / 2).epsilon(1e-12));
 }
 
 TEST_CASE("tip-fillet interference and tip-root clearance", "[unit][geometry]") {
   StageSpec s = Paper();
   // A deep ring tooth reaches the planet's flank below its form circle.
   s.ring.tip_radius = 132.9e-3;
-  CHECK_THROWS_WITH(Stage(s), Contains("tip-fillet interference: the ring's tip reaches the planet's flank"));
+  CHECK_THROWS_WITH(Stage(s),
+                    Contains("tip-fillet interference: the ring's tip reaches the planet's flank"));
   s = Paper();
   s.carrier_radius = 85.0e-3;  // planets pulled in: the sun's tip meets the planet's root circle
-  CHECK_THROWS_WITH(Stage(s), Contains("the sun's tip hits the planet's root (radial clearance -0.1"));
+  CHECK_THROWS_WITH(Stage(s),
+                    Contains("the sun's tip hits the planet's root (radial clearance -0.1"));
 }
 
-TEST_CASE("planets that clash and planet counts that cannot be equally spaced", "[unit][geometry]") {
+TEST_CASE("planets that clash and planet counts that cannot be equally spaced",
+          "[unit][geometry]") {
   StageSpec s = Paper();
   s.planets = 9;
   s.ring.teeth = 65;
@@ -69,7 +73,8 @@ TEST_CASE("planets that clash and planet counts that cannot be equally spaced", 
   s = Paper();
   s.planet_angles = {0.0, Rad(120.0), Rad(250.0)};
   CHECK_THROWS_WITH(Stage(s), Contains("stage.planet_angles_deg[2] = 250: the planet cannot be "
-                                       "assembled") && Contains("nearest angle that is: 248.889"));
+                                       "assembled") &&
+                                  Contains("nearest angle that is: 248.889"));
   s = Paper();
   s.pin_errors.resize(2);
   CHECK_THROWS_WITH(Stage(s), Contains("errors.pin = 2 entries: needs one entry per planet (3)"));

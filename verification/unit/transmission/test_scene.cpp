@@ -7,10 +7,10 @@
 #include "epicycle/transmission/scene.hpp"
 #include "stage_fixtures.hpp"
 
+using Catch::Matchers::Contains;
 using epicycle::test::Replace;
 using epicycle::test::SceneText;
 using epicycle::transmission::ParseScene;
-using Catch::Matchers::Contains;
 
 namespace {
 
@@ -40,12 +40,17 @@ TEST_CASE("the paper's scenes load with SI values", "[unit][transmission]") {
 
 TEST_CASE("unknown, missing, mistyped and out-of-range keys", "[unit][transmission]") {
   const std::string base = SceneText("paper_stage.toml");
-  CHECK_THROWS_WITH(Parse(Replace(base, "module_mm = 4.23\nface_width_mm = 25.0\npressure_angle_deg = 25.0\nprofile_shift = 0.30",
-                                  "modul_mm = 4.23\nface_width_mm = 25.0\npressure_angle_deg = 25.0\nprofile_shift = 0.30")),
-                    Contains("sun.module_mm is missing"));
-  CHECK_THROWS_WITH(Parse(Replace(base, "radius_mm = 86.715", "radius_mm = 86.715\nradius_in = 3.4")),
-                    Contains("carrier.radius_in: unknown key") && Contains("known keys here:") &&
-                        Contains("radius_mm"));
+  CHECK_THROWS_WITH(
+      Parse(Replace(
+          base,
+          "module_mm = 4.23\nface_width_mm = 25.0\npressure_angle_deg = 25.0\nprofile_shift = 0.30",
+          "modul_mm = 4.23\nface_width_mm = 25.0\npressure_angle_deg = 25.0\nprofile_shift = "
+          "0.30")),
+      Contains("sun.module_mm is missing"));
+  CHECK_THROWS_WITH(
+      Parse(Replace(base, "radius_mm = 86.715", "radius_mm = 86.715\nradius_in = 3.4")),
+      Contains("carrier.radius_in: unknown key") && Contains("known keys here:") &&
+          Contains("radius_mm"));
   // The message carries the line of the offending key.
   const auto line = 1 + std::count(base.begin(), base.begin() + base.find("teeth = 16"), '\n');
   CHECK_THROWS_WITH(Parse(Replace(base, "teeth = 16", "teeth = \"16\"")),
@@ -59,16 +64,18 @@ TEST_CASE("unknown, missing, mistyped and out-of-range keys", "[unit][transmissi
                     Contains("load.sun_torque_Nm = 0: must be non-zero"));
   CHECK_THROWS_WITH(Parse(Replace(base, "type = \"direct\"", "type = \"hob\"")),
                     Contains("ring.cutter.type = \"hob\": must be one of \"shaper\", \"direct\""));
-  CHECK_THROWS_WITH(Parse(Replace(base, "[scene]", "[scene\n")), Contains("s.toml:") && Contains("TOML syntax error"));
+  CHECK_THROWS_WITH(Parse(Replace(base, "[scene]", "[scene\n")),
+                    Contains("s.toml:") && Contains("TOML syntax error"));
   CHECK_THROWS_WITH(Parse(Replace(base, "gear = \"ring\"", "gear = \"planet\"")),
                     Contains("fit[1].gear = \"planet\": each gear can be fitted once"));
 }
 
 TEST_CASE("errors section", "[unit][transmission]") {
-  const std::string base = SceneText("paper_stage.toml") +
-                           "\n[[errors.pin]]\ngear = \"planet1\"\ntangential_um = 20.0\n"
-                           "\n[[errors.runout]]\ngear = \"planet1\"\namplitude_um = 20.0\nphase_deg = 90.0\n"
-                           "\n[[errors.thickness]]\ngear = \"sun\"\nerror_um = -10.0\n";
+  const std::string base =
+      SceneText("paper_stage.toml") +
+      "\n[[errors.pin]]\ngear = \"planet1\"\ntangential_um = 20.0\n"
+      "\n[[errors.runout]]\ngear = \"planet1\"\namplitude_um = 20.0\nphase_deg = 90.0\n"
+      "\n[[errors.thickness]]\ngear = \"sun\"\nerror_um = -10.0\n";
   const auto s = Parse(base);
   REQUIRE(s.stage.pin_errors.size() == 3);
   CHECK(s.stage.pin_errors[0].tangential == Approx(20e-6));
@@ -76,8 +83,10 @@ TEST_CASE("errors section", "[unit][transmission]") {
   CHECK(s.stage.planet_runouts[0].amplitude == Approx(20e-6));
   CHECK(s.stage.planet_runouts[0].phase == Approx(3.14159265358979 / 2));
   CHECK(s.stage.sun.thickness_error == Approx(-10e-6));
-  CHECK_THROWS_WITH(Parse(Replace(base, "gear = \"planet1\"\ntangential_um", "gear = \"planet7\"\ntangential_um")),
-                    Contains("errors.pin[0].gear = \"planet7\": must be \"sun\", \"ring\" or \"planet1\"..\"planet3\""));
+  CHECK_THROWS_WITH(Parse(Replace(base, "gear = \"planet1\"\ntangential_um",
+                                  "gear = \"planet7\"\ntangential_um")),
+                    Contains("errors.pin[0].gear = \"planet7\": must be \"sun\", \"ring\" or "
+                             "\"planet1\"..\"planet3\""));
   CHECK_THROWS_WITH(Parse(Replace(base, "amplitude_um = 20.0", "amplitude_um = -2.0")),
                     Contains("errors.runout[0].amplitude_um = -2: must be >= 0"));
 }

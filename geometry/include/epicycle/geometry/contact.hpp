@@ -41,15 +41,15 @@ WorldInvolute FlankInWorld(const PosedGear& g, int tooth, int side);
 /// A line of action of the pair (A external; B external, or B the internal gear with A inside):
 /// the common tangent of the two base circles along which A's flank of side σ_A meets B's flank.
 struct LineOfAction {
-  int side_a = 1, side_b = 1;  ///< σ_A, σ_B (σ_B = σ_A external, −σ_A internal)
-  Vec2 tangent_a = Vec2::Zero();              ///< N_A, tangency point on A's base circle [m]
-  Vec2 tangent_b = Vec2::Zero();              ///< N_B [m]
-  Vec2 direction = Vec2::Zero();              ///< d, unit: A's outward flank normal (from A into B)
-  double base_angle_a = 0;     ///< β_A [rad], angle of N_A about A's centre
-  double base_angle_b = 0;     ///< β_B [rad]
-  double length = 0;           ///< (N_B − N_A)·d [m]
-  double pressure_angle = 0;   ///< α_w [rad] at the actual centre distance
-  double centre_distance = 0;  ///< a [m] between geometric centres
+  int side_a = 1, side_b = 1;     ///< σ_A, σ_B (σ_B = σ_A external, −σ_A internal)
+  Vec2 tangent_a = Vec2::Zero();  ///< N_A, tangency point on A's base circle [m]
+  Vec2 tangent_b = Vec2::Zero();  ///< N_B [m]
+  Vec2 direction = Vec2::Zero();  ///< d, unit: A's outward flank normal (from A into B)
+  double base_angle_a = 0;        ///< β_A [rad], angle of N_A about A's centre
+  double base_angle_b = 0;        ///< β_B [rad]
+  double length = 0;              ///< (N_B − N_A)·d [m]
+  double pressure_angle = 0;      ///< α_w [rad] at the actual centre distance
+  double centre_distance = 0;     ///< a [m] between geometric centres
 };
 /// @throws std::invalid_argument if the base circles do not admit the tangent (gears too close).
 LineOfAction MakeLineOfAction(const PosedGear& a, const PosedGear& b, bool internal, int side_a);
@@ -68,17 +68,18 @@ std::string KindName(ContactKind kind);
 /// One potential contact. Force F ≥ 0 acts on B along +normal and on A along −normal.
 struct PotentialContact {
   ContactKind kind = ContactKind::kInvolute;
-  int side_a = 1, side_b = 1;   ///< flank sides σ
-  int tooth_a = 0, tooth_b = 0; ///< tooth indices in each body frame
-  Vec2 point = Vec2::Zero();                   ///< location (midpoint of the two closest points) [m]
-  Vec2 point_a = Vec2::Zero(), point_b = Vec2::Zero();        ///< closest points on A and on B [m]
-  Vec2 normal = Vec2::Zero();                  ///< unit, A's outward normal (from A into B)
-  double overlap = 0;           ///< δ [m]: > 0 interpenetration, < 0 gap
-  double lever_a = 0;           ///< moment about A's rotation centre of the unit force on A [m]
-  double lever_b = 0;           ///< moment about B's rotation centre of the unit force on B [m]
+  int side_a = 1, side_b = 1;    ///< flank sides σ
+  int tooth_a = 0, tooth_b = 0;  ///< tooth indices in each body frame
+  Vec2 point = Vec2::Zero();     ///< location (midpoint of the two closest points) [m]
+  Vec2 point_a = Vec2::Zero(), point_b = Vec2::Zero();  ///< closest points on A and on B [m]
+  Vec2 normal = Vec2::Zero();     ///< unit, A's outward normal (from A into B)
+  double overlap = 0;             ///< δ [m]: > 0 interpenetration, < 0 gap
+  double lever_a = 0;             ///< moment about A's rotation centre of the unit force on A [m]
+  double lever_b = 0;             ///< moment about B's rotation centre of the unit force on B [m]
   double curvature_radius_a = 0;  ///< [m], > 0 convex, < 0 concave
   double curvature_radius_b = 0;  ///< [m]
-  double roll_a = 0, roll_b = 0;  ///< involute roll angles of the contact (or of the flank point) [rad]
+  double roll_a = 0,
+         roll_b = 0;  ///< involute roll angles of the contact (or of the flank point) [rad]
 };
 
 struct ContactSearchOptions {

@@ -16,9 +16,9 @@ enum class GearKind { kExternal, kInternal };
 /// Rack cutter (basic rack of the tool) for external gears. The tool's addendum cuts the gear's
 /// root; its dedendum is the deepest the gear's tip could reach.
 struct RackCutter {
-  double addendum = 0;     ///< h_a0 [m] (paper: 1.35 m)
-  double dedendum = 0;     ///< h_f0 [m] (paper: 1.15 m sun, 1.25 m planet)
-  double tip_radius = 0;   ///< ρ_a0 [m], the tool's tip round (paper: 0.05 m)
+  double addendum = 0;    ///< h_a0 [m] (paper: 1.35 m)
+  double dedendum = 0;    ///< h_f0 [m] (paper: 1.15 m sun, 1.25 m planet)
+  double tip_radius = 0;  ///< ρ_a0 [m], the tool's tip round (paper: 0.05 m)
 };
 
 /// Pinion-type shaper cutter for internal gears (same module and pressure angle as the gear).
@@ -30,27 +30,27 @@ struct ShaperCutter {
 };
 
 struct GearSpec {
-  std::string name;                 ///< used in messages ("sun", "planet", "ring")
+  std::string name;  ///< used in messages ("sun", "planet", "ring")
   GearKind kind = GearKind::kExternal;
-  int teeth = 0;                    ///< z [-], ≥ 3
-  double module = 0;                ///< m [m], > 0
-  double face_width = 0;            ///< b [m], > 0
-  double pressure_angle = 0;        ///< α of the tool [rad], in (0, 45°)
+  int teeth = 0;              ///< z [-], ≥ 3
+  double module = 0;          ///< m [m], > 0
+  double face_width = 0;      ///< b [m], > 0
+  double pressure_angle = 0;  ///< α of the tool [rad], in (0, 45°)
   /// x [-]. External: the rack's reference line moved x·m outward. Internal: the space behaves like
   /// an external tooth of shift x (x > 0 widens the space: s = m(π/2 − 2x tan α)).
   double profile_shift = 0;
   /// External: tip (blank) radius r_a [m]; 0 means the tool's dedendum limit r + x m + h_f0.
   /// Internal: the inner tip radius r_a [m], required.
   double tip_radius = 0;
-  double tip_round_radius = 0;      ///< Vedmar tip rounding r_t [m], ≥ 0 (0: sharp tip corner)
-  double root_radius = 0;           ///< internal, direct definition: root radius r_f [m]
-  double root_round_radius = 0;     ///< internal, direct definition: base rounding ρ_f [m], > 0
+  double tip_round_radius = 0;   ///< Vedmar tip rounding r_t [m], ≥ 0 (0: sharp tip corner)
+  double root_radius = 0;        ///< internal, direct definition: root radius r_f [m]
+  double root_round_radius = 0;  ///< internal, direct definition: base rounding ρ_f [m], > 0
   /// External: hub (axis) radius where the body is held [m]. Internal: outer rim radius [m].
   double hub_radius = 0;
-  std::optional<RackCutter> rack;       ///< external gears: required
-  std::optional<ShaperCutter> shaper;   ///< internal gears: absent means direct definition
-  double thickness_error = 0;       ///< Δs [m], normal to the flank, both flanks together (+ thicker)
-  double min_tip_thickness = -1;    ///< pointed-tooth limit s_a,min [m]; < 0 means 0.2·m
+  std::optional<RackCutter> rack;      ///< external gears: required
+  std::optional<ShaperCutter> shaper;  ///< internal gears: absent means direct definition
+  double thickness_error = 0;  ///< Δs [m], normal to the flank, both flanks together (+ thicker)
+  double min_tip_thickness = -1;  ///< pointed-tooth limit s_a,min [m]; < 0 means 0.2·m
 };
 
 /// A generated gear: its half profile, the analytic involute of its flank, its tip round and the
@@ -69,15 +69,17 @@ class Gear {
   double module() const { return spec_.module; }
   double pitch_angle() const { return 2.0 * kPi / spec_.teeth; }  ///< 2π/z [rad]
 
-  double reference_radius() const { return r_; }   ///< r = m z / 2 [m]
-  double base_radius() const { return rb_; }       ///< r_b = r cos α [m]
-  double tip_radius() const { return ra_; }        ///< r_a [m] (internal: inner)
-  double root_radius() const { return rf_; }       ///< r_f [m] (internal: outer)
+  double reference_radius() const { return r_; }  ///< r = m z / 2 [m]
+  double base_radius() const { return rb_; }      ///< r_b = r cos α [m]
+  double tip_radius() const { return ra_; }       ///< r_a [m] (internal: inner)
+  double root_radius() const { return rf_; }      ///< r_f [m] (internal: outer)
   /// Radius where the involute begins on the root side (form circle) [m].
   double form_radius() const { return r_form_; }
   /// Radius where the involute ends at the tip-round tangency [m].
   double tip_form_radius() const { return r_tip_form_; }
-  double base_pitch() const { return kPi * spec_.module * std::cos(spec_.pressure_angle); }  ///< p_b [m]
+  double base_pitch() const {
+    return kPi * spec_.module * std::cos(spec_.pressure_angle);
+  }  ///< p_b [m]
 
   /// Transverse tooth thickness (arc) at radius R on the involute [m] (ring: its tooth).
   double ThicknessAt(double radius) const;

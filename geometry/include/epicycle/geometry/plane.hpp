@@ -30,7 +30,8 @@ inline double WrapAngle(double a) { return std::remainder(a, 2.0 * kPi); }
 
 /// Involute function inv α = tan α − α.
 inline double Inv(double alpha) { return std::tan(alpha) - alpha; }
-/// Inverse of the involute function on [0, π/2): α with tan α − α = v (v ≥ 0). Newton, to round-off.
+/// Inverse of the involute function on [0, π/2): α with tan α − α = v (v ≥ 0). Newton, to
+/// round-off.
 double InvInverse(double v);
 
 inline double Deg(double rad) { return rad * 180.0 / kPi; }

@@ -19,10 +19,10 @@ std::string RoleName(SegmentRole role);
 
 /// How a segment's points are computed.
 enum class SegmentKind {
-  kArc,          ///< circular arc; parameter = polar angle about its centre [rad]
-  kInvolute,     ///< analytic involute; parameter = roll angle u [rad]
-  kRackFlank,    ///< envelope of a rack cutter's straight edge; parameter = generating roll φ [rad]
-  kRackRound,    ///< envelope of a rack cutter's tip round; parameter = generating roll φ [rad]
+  kArc,        ///< circular arc; parameter = polar angle about its centre [rad]
+  kInvolute,   ///< analytic involute; parameter = roll angle u [rad]
+  kRackFlank,  ///< envelope of a rack cutter's straight edge; parameter = generating roll φ [rad]
+  kRackRound,  ///< envelope of a rack cutter's tip round; parameter = generating roll φ [rad]
   kShaperFlank,  ///< envelope of a shaper cutter's involute; parameter = shaper rotation [rad]
   kShaperRound,  ///< envelope of a shaper cutter's tip round; parameter = shaper rotation [rad]
 };
@@ -45,22 +45,22 @@ struct RackGeneration {
   double pressure_angle = 0;  ///< α [rad]
   double flank_offset = 0;    ///< πm/4 + x m tan α [m]: the straight edge's position at φ = 0
   Vec2 round_centre = Vec2::Zero();  ///< cutter tip-round centre at φ = 0, fixed frame [m]
-  double round_radius = 0;    ///< ρ [m]
+  double round_radius = 0;           ///< ρ [m]
 };
 
 /// Data of a pinion-type shaper envelope generating an internal gear (fixed frame: ring centre at
 /// the origin, shaper centre at (a0, 0), pitch point I = (r_w,ring, 0); the ring turns
 /// (z_c/z_r)·φ while the shaper turns φ).
 struct ShaperGeneration {
-  double centre_distance = 0;     ///< a0 [m]
-  double pitch_point = 0;         ///< r_w of the ring in the generating mesh [m]
-  double ratio = 0;               ///< z_c/z_r [-]
-  double ring_pitch_angle = 0;    ///< 2π/z_r [rad]
-  double base_radius = 0;         ///< r_bc of the shaper [m]
-  double pressure_angle = 0;      ///< α0 of the generating mesh [rad]
-  double involute_start = 0;      ///< θ0 of the shaper's σ = +1 involute (body) [rad]
+  double centre_distance = 0;        ///< a0 [m]
+  double pitch_point = 0;            ///< r_w of the ring in the generating mesh [m]
+  double ratio = 0;                  ///< z_c/z_r [-]
+  double ring_pitch_angle = 0;       ///< 2π/z_r [rad]
+  double base_radius = 0;            ///< r_bc of the shaper [m]
+  double pressure_angle = 0;         ///< α0 of the generating mesh [rad]
+  double involute_start = 0;         ///< θ0 of the shaper's σ = +1 involute (body) [rad]
   Vec2 round_centre = Vec2::Zero();  ///< shaper tip-round centre (σ = +1, shaper body) [m]
-  double round_radius = 0;        ///< ρ_c [m]
+  double round_radius = 0;           ///< ρ_c [m]
 };
 
 /// One piece of a half profile. Points are rotated by `rotation` after evaluation (used for the
@@ -74,9 +74,9 @@ struct Segment {
   Vec2 centre = Vec2::Zero();  ///< [m]
   double radius = 0;           ///< [m]
   // kInvolute: p(u) = r_b [e(θ0 + h u) − h u e⊥(θ0 + h u)]
-  double base_radius = 0;      ///< r_b [m]
-  double involute_start = 0;   ///< θ0 [rad]
-  int hand = 1;                ///< h = ±1
+  double base_radius = 0;     ///< r_b [m]
+  double involute_start = 0;  ///< θ0 [rad]
+  int hand = 1;               ///< h = ±1
   RackGeneration rack;
   ShaperGeneration shaper;
 

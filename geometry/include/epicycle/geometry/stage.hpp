@@ -25,16 +25,16 @@ struct Runout {
 };
 
 struct StageSpec {
-  GearSpec sun, planet, ring;            ///< planet: the spec shared by every planet
-  int planets = 3;                       ///< n [-]
-  double carrier_radius = 0;             ///< a_c [m]
-  std::vector<double> planet_angles;     ///< ψ_i [rad]; empty: equally spaced 2π(i−1)/n
-  std::vector<PinError> pin_errors;      ///< n entries or empty
-  std::vector<Runout> planet_runouts;    ///< n entries or empty
+  GearSpec sun, planet, ring;                   ///< planet: the spec shared by every planet
+  int planets = 3;                              ///< n [-]
+  double carrier_radius = 0;                    ///< a_c [m]
+  std::vector<double> planet_angles;            ///< ψ_i [rad]; empty: equally spaced 2π(i−1)/n
+  std::vector<PinError> pin_errors;             ///< n entries or empty
+  std::vector<Runout> planet_runouts;           ///< n entries or empty
   std::vector<double> planet_thickness_errors;  ///< Δs_i [m], n entries or empty
   Runout sun_runout, ring_runout;
-  int load_sign = -1;                    ///< sign of the sun torque: which flanks carry the load
-  double min_planet_gap = 1e-3;          ///< least gap between neighbouring planets' tip circles [m]
+  int load_sign = -1;            ///< sign of the sun torque: which flanks carry the load
+  double min_planet_gap = 1e-3;  ///< least gap between neighbouring planets' tip circles [m]
 };
 
 enum class MeshKind { kSunPlanet, kPlanetRing };
@@ -42,17 +42,17 @@ enum class MeshKind { kSunPlanet, kPlanetRing };
 /// Operating data of one mesh at the nominal (error-free) carrier radius.
 struct MeshSummary {
   MeshKind kind = MeshKind::kSunPlanet;
-  int planet = 0;                         ///< 0-based planet index
-  std::string name;                       ///< "sun-planet1", "planet1-ring"
-  double centre_distance = 0;             ///< a [m]
-  double pressure_angle = 0;              ///< α_w at a [rad]
+  int planet = 0;                           ///< 0-based planet index
+  std::string name;                         ///< "sun-planet1", "planet1-ring"
+  double centre_distance = 0;               ///< a [m]
+  double pressure_angle = 0;                ///< α_w at a [rad]
   double zero_backlash_pressure_angle = 0;  ///< α_w of the same shifts at zero backlash [rad]
-  double normal_backlash = 0;             ///< j_n [m] (closed form)
-  double transverse_backlash = 0;         ///< j_wt = j_n / cos α_w [m]
-  double contact_ratio_iso = 0;           ///< ε_α from the tip circles [-]
-  double contact_ratio = 0;               ///< ε_α of the involutes present (tip-form radii) [-]
-  double sap_a = 0, sap_b = 0;            ///< radii where the mate's tip starts the contact [m]
-  double phase = 0;                       ///< mesh phase relative to planet 1, in [0, 1) cycles
+  double normal_backlash = 0;               ///< j_n [m] (closed form)
+  double transverse_backlash = 0;           ///< j_wt = j_n / cos α_w [m]
+  double contact_ratio_iso = 0;             ///< ε_α from the tip circles [-]
+  double contact_ratio = 0;                 ///< ε_α of the involutes present (tip-form radii) [-]
+  double sap_a = 0, sap_b = 0;              ///< radii where the mate's tip starts the contact [m]
+  double phase = 0;                         ///< mesh phase relative to planet 1, in [0, 1) cycles
 };
 
 /// Rigid poses of every member at one carrier angle.
@@ -84,7 +84,9 @@ class Stage {
   double mesh_cycle() const { return 2.0 * kPi / ring_.teeth(); }
   /// Sun and planet speeds per unit carrier speed (ring fixed).
   double sun_ratio() const { return 1.0 + static_cast<double>(ring_.teeth()) / sun_.teeth(); }
-  double planet_ratio() const { return 1.0 - static_cast<double>(ring_.teeth()) / planets_[0].teeth(); }
+  double planet_ratio() const {
+    return 1.0 - static_cast<double>(ring_.teeth()) / planets_[0].teeth();
+  }
 
   /// Rigid kinematic poses at carrier angle φ_c: nominal positions and rotations, with the
   /// scene's errors applied to the geometry when `with_errors`.
@@ -108,8 +110,8 @@ class Stage {
   Gear sun_, ring_;
   std::vector<Gear> planets_;
   std::vector<double> angles_;
-  double sun_turn0_ = 0;                // θ_S at φ_c = 0
-  std::vector<double> planet_turn0_;    // θ_Pi at φ_c = 0
+  double sun_turn0_ = 0;              // θ_S at φ_c = 0
+  std::vector<double> planet_turn0_;  // θ_Pi at φ_c = 0
   std::vector<MeshSummary> meshes_;
 };
 

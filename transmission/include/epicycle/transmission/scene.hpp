@@ -23,22 +23,22 @@ struct Inertia {
 
 /// A profile shift solved from a backlash (one of the scene's [[fit]] tables).
 struct ShiftFit {
-  std::string gear;              ///< "sun", "planet" or "ring"
-  std::string mesh;              ///< "sun-planet" or "planet-ring"
-  double normal_backlash = 0;    ///< j_n [m]
-  double profile_shift = 0;      ///< the solved x [-]
+  std::string gear;            ///< "sun", "planet" or "ring"
+  std::string mesh;            ///< "sun-planet" or "planet-ring"
+  double normal_backlash = 0;  ///< j_n [m]
+  double profile_shift = 0;    ///< the solved x [-]
 };
 
 struct Scene {
   std::string name;
   std::string description;
-  std::string source;                  ///< file name (for messages)
+  std::string source;  ///< file name (for messages)
   geometry::StageSpec stage;
   Material material;
   Inertia sun, planet, ring, carrier;
-  double sun_torque = 0;               ///< input torque on the sun [N·m] (counter-clockwise +)
-  double gap_window = 100e-6;          ///< contact-search gap window [m]
-  std::vector<ShiftFit> fits;          ///< in the order they were applied
+  double sun_torque = 0;       ///< input torque on the sun [N·m] (counter-clockwise +)
+  double gap_window = 100e-6;  ///< contact-search gap window [m]
+  std::vector<ShiftFit> fits;  ///< in the order they were applied
 };
 
 /// @throws std::invalid_argument naming the file, line, key, value and rule.
