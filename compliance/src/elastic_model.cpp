@@ -211,41 +211,39 @@ Eigen::MatrixXd LinearElasticModel::SolveMany(const Eigen::MatrixXd& f) const {
   Eigen::VectorXd uc(nc);
   for (int i = 0; i < nc; ++i) uc(i) = prescribed_[constrained_dofs_[i]];
   const Eigen::VectorXd kuc = k_fc_ * uc;
-  Eigen::MatrixXd rhs(nf, m);
-  for (int i = 0; i < nf; ++i) rhs.row(i) = f.row(free_dofs_[i]);
-  rhs.colwise() -= kuc;
-  const Eigen::MatrixXd uf = m == 1 ? Eigen::MatrixXd(ldlt_.solve(rhs)) : BlockSolve(rhs);
   Eigen::MatrixXd u(num_dofs(), m);
-  for (int i = 0; i < nf; ++i) u.row(free_dofs_[i]) = uf.row(i);
   for (int i = 0; i < nc; ++i) u.row(constrained_dofs_[i]).setConstant(uc(i));
-  return u;
-}
-
-Eigen::MatrixXd LinearElasticModel::BlockSolve(const Eigen::MatrixXd& rhs) const {
+  if (m == 1) {
+    Eigen::VectorXd rhs(nf);
+    for (int i = 0; i < nf; ++i) rhs(i) = f(free_dofs_[i], 0) - kuc(i);
+    const Eigen::VectorXd uf = ldlt_.solve(rhs);
+    for (int i = 0; i < nf; ++i) u(free_dofs_[i], 0) = uf(i);
+    return u;
+  }
   // Eigen's solve runs the two sparse triangular sweeps once per column, streaming the whole
   // factor from memory each time. Here each sweep reads L once for all columns: the right-hand
   // sides are held row-major so that every update L(i,j)·y_j is one contiguous row operation.
-  // P K_ff Pᵀ = L D Lᵀ, L unit lower triangular stored by columns without its diagonal.
+  // P K_ff Pᵀ = L D Lᵀ, L unit lower triangular stored by columns without its diagonal; the
+  // permuted right-hand side is gathered straight from f and scattered straight into u (one
+  // working copy).
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const auto& l = ldlt_.matrixL().nestedExpression();
   const auto& p = ldlt_.permutationP().indices();
   const Eigen::VectorXd& d = ldlt_.vectorD();
-  const Eigen::Index n = rhs.rows();
-  RowMajor y(n, rhs.cols());
-  for (Eigen::Index i = 0; i < n; ++i) y.row(p(i)) = rhs.row(i);
+  RowMajor y(nf, m);
+  for (int i = 0; i < nf; ++i) y.row(p(i)) = f.row(free_dofs_[i]).array() - kuc(i);
   const auto* outer = l.outerIndexPtr();
   const auto* inner = l.innerIndexPtr();
   const double* value = l.valuePtr();
-  for (Eigen::Index j = 0; j < n; ++j) {  // L z = P b
+  for (Eigen::Index j = 0; j < nf; ++j) {  // L z = P b
     for (auto k = outer[j]; k < outer[j + 1]; ++k) y.row(inner[k]) -= value[k] * y.row(j);
   }
-  for (Eigen::Index j = 0; j < n; ++j) y.row(j) /= d(j);  // D w = z
-  for (Eigen::Index j = n - 1; j >= 0; --j) {             // Lᵀ v = w
+  for (Eigen::Index j = 0; j < nf; ++j) y.row(j) /= d(j);  // D w = z
+  for (Eigen::Index j = nf - 1; j >= 0; --j) {             // Lᵀ v = w
     for (auto k = outer[j]; k < outer[j + 1]; ++k) y.row(j) -= value[k] * y.row(inner[k]);
   }
-  Eigen::MatrixXd x(n, rhs.cols());
-  for (Eigen::Index i = 0; i < n; ++i) x.row(i) = y.row(p(i));  // x = Pᵀ v
-  return x;
+  for (int i = 0; i < nf; ++i) u.row(free_dofs_[i]) = y.row(p(i));  // u_f = Pᵀ v
+  return u;
 }
 
 Eigen::VectorXd LinearElasticModel::Solve(const Eigen::VectorXd& f) const {

@@ -117,7 +117,6 @@ class LinearElasticModel {
 
  private:
   void RequireFactorized() const;
-  Eigen::MatrixXd BlockSolve(const Eigen::MatrixXd& rhs) const;
 
   Mesh mesh_;
   ElasticMaterial material_;
