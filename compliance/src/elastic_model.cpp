@@ -305,6 +305,20 @@ Eigen::Vector2d LinearElasticModel::Displacement(const Eigen::VectorXd& u,
   return r;
 }
 
+Eigen::Vector2d LinearElasticModel::DisplacementAtDepth(const Eigen::VectorXd& u,
+                                                        const std::string& set, const EdgePoint& at,
+                                                        double depth) const {
+  if (!std::isfinite(depth) || depth < 0.0) {
+    std::ostringstream msg;
+    msg << "DisplacementAtDepth: depth = " << depth << " m on edge set '" << set
+        << "': the rule is a finite depth >= 0";
+    throw std::invalid_argument(msg.str());
+  }
+  if (depth == 0.0) return EdgeDisplacement(u, set, at);
+  const Eigen::Vector2d x = mesh_.EdgePosition(set, at) - depth * mesh_.EdgeNormal(set, at);
+  return Displacement(u, LocatePoint(x));
+}
+
 Eigen::Vector3d LinearElasticModel::Stress(const Eigen::VectorXd& u, const ElementPoint& at) const {
   const auto b = Q8StrainDisplacement(mesh_.ElementCoordinates(at.element), at.xi, at.eta, nullptr);
   Eigen::Matrix<double, 2 * kQ8Nodes, 1> ue;

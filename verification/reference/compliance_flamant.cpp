@@ -56,8 +56,10 @@ double FeApproach(const ElasticMaterial& m, double force, double radius, int n, 
   }
   model.Factorize();
   const Eigen::VectorXd u = model.Solve(f);
-  const double u1 = model.Displacement(u, model.LocatePoint({0.0, -h1})).y();
-  const double u2 = model.Displacement(u, model.LocatePoint({0.0, -h2})).y();
+  // Read on the load axis through the join's read-out: depth below the load point along −n.
+  const EdgePoint load_point = model.mesh().LocateOnEdgeSet("surface", {0.0, 0.0});
+  const double u1 = model.DisplacementAtDepth(u, "surface", load_point, h1).y();
+  const double u2 = model.DisplacementAtDepth(u, "surface", load_point, h2).y();
   return u2 - u1;  // the shallower point moves further down
 }
 

@@ -55,6 +55,8 @@ TEST_CASE("Model: bad input and misuse give clear messages", "[unit]") {
   CHECK_THROWS_WITH(model.EdgeDisplacement(model.ZeroLoads(), "tip", {99, 0.0}),
                     Contains("edge 99") && Contains("'tip'"));
   CHECK_THROWS_WITH(model.LocatePoint({1.0, 1.0}), Contains("lies in no element"));
+  CHECK_THROWS_WITH(model.DisplacementAtDepth(model.ZeroLoads(), "tip", {0, 0.0}, -1e-3),
+                    Contains("depth = -0.001") && Contains(">= 0"));
 }
 
 TEST_CASE("Model: consistent point loads on edges and evaluation on edges", "[unit]") {
@@ -106,6 +108,13 @@ TEST_CASE("Model: consistent point loads on edges and evaluation on edges", "[un
   const ElementPoint inside = model.LocatePoint(mesh.EdgePosition("outer", q));
   CHECK((model.Displacement(u.col(0), inside) - model.EdgeDisplacement(u.col(0), "outer", q))
             .norm() <= 1e-9 * u.col(0).norm());
+  // At depth: the point x − d·n inside the body, here on the radius through the edge point.
+  const double depth = 0.004;
+  const Eigen::Vector2d below = mesh.EdgePosition("outer", q) - depth * mesh.EdgeNormal("outer", q);
+  CHECK((model.DisplacementAtDepth(u.col(0), "outer", q, depth) -
+         model.Displacement(u.col(0), model.LocatePoint(below)))
+            .norm() == 0.0);
+  CHECK(below.norm() == Approx(mesh.EdgePosition("outer", q).norm() - depth).epsilon(1e-3));
   // Reactions balance the applied load: Σ reactions = −Σ loads.
   const Eigen::VectorXd r = model.Reactions(u.col(0), f);
   Eigen::Vector2d sum_r = Eigen::Vector2d::Zero();

@@ -111,6 +111,12 @@ class LinearElasticModel {
   ElementPoint LocatePoint(const Eigen::Vector2d& x) const;
   /// Displacement [m] at any point of an element, u = Σ N_a(ξ, η) u_a.
   Eigen::Vector2d Displacement(const Eigen::VectorXd& u, const ElementPoint& at) const;
+  /// Displacement [m] at depth `depth` [m] ≥ 0 below a point of an edge set, i.e. at
+  /// x(ξ) − depth · n(ξ) with n the outward normal: the read-out of the join between the FE
+  /// structural term and the local contact term (MODEL.md §4).
+  /// @throws std::invalid_argument for a negative or non-finite depth, or a point outside the body.
+  Eigen::Vector2d DisplacementAtDepth(const Eigen::VectorXd& u, const std::string& set,
+                                      const EdgePoint& at, double depth) const;
   /// In-plane stress (σxx, σyy, τxy) [Pa] = D B(ξ, η) u_e at a point of an element. (Plane strain
   /// also carries σzz = ν(σxx + σyy).)
   Eigen::Vector3d Stress(const Eigen::VectorXd& u, const ElementPoint& at) const;
