@@ -87,6 +87,24 @@ double Lever(const Vec2& point, const Vec2& centre, const Vec2& force_direction)
   return Cross(point - centre, force_direction);
 }
 
+// A tip round can reach the mate's flank only where the owner's tip lies inside the mate's tip
+// circle (outside it, for a ring). In angle about the owner's centre, from the direction of the
+// pitch point, that is |θ| ≤ θ_max with cos θ_max from the triangle of the two centres, widened by
+// the angle ψ_c at which the round's centre sits off the tooth's centre line.
+double TipWindow(const PosedGear& owner, const PosedGear& other, double window) {
+  if (!owner.gear->has_tip_round()) return 0;
+  const double rho = owner.gear->tip_round().radius;
+  const double ro = owner.gear->tip_radius();
+  const double dist = (other.pose.geometric_centre - owner.pose.geometric_centre).norm();
+  const double margin = rho + window;
+  const double reach = other.gear->tip_radius() + (other.gear->internal() ? -margin : margin);
+  const double cos_max = other.gear->internal()
+                             ? (reach * reach - dist * dist - ro * ro) / (2 * dist * ro)
+                             : (ro * ro + dist * dist - reach * reach) / (2 * dist * ro);
+  return std::acos(std::clamp(cos_max, -1.0, 1.0)) +
+         std::abs(Angle(owner.gear->tip_round().centre)) + 1e-3;
+}
+
 }  // namespace
 
 Vec2 WorldInvolute::Point(double u) const {
@@ -193,6 +211,7 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
   const double window = options.gap_window;
   const Vec2 oa = a.pose.rotation_centre, ob = b.pose.rotation_centre;
   const double ring_sign = internal ? -1.0 : 1.0;  // B's curvature: a ring's flank is concave
+  const double window_a = TipWindow(a, b, window), window_b = TipWindow(b, a, window);
   std::vector<int> sides =
       options.both_sides ? std::vector<int>{1, -1} : std::vector<int>{options.side_a};
   for (int side_a : sides) {
@@ -227,25 +246,11 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
     const double pitch_dir =
         Angle(b.pose.geometric_centre - a.pose.geometric_centre) + (internal ? kPi : 0.0);
     auto tips = [&](const PosedGear& owner, const PosedGear& other, int owner_side, int other_side,
-                    double owner_dir, bool owner_is_a) {
+                    double owner_dir, double window_angle, bool owner_is_a) {
       if (!owner.gear->has_tip_round()) return;
       const double p = owner.gear->pitch_angle();
       const long k0 = std::lround(WrapAngle(owner_dir - owner.pose.rotation) / p);
       const double rho = owner.gear->tip_round().radius;
-      // A round can reach the mate's flank only where the owner's tip lies inside the mate's tip
-      // circle (outside it, for a ring). In angle about the owner's centre, from the direction of
-      // the pitch point, that is |θ| ≤ θ_max with cos θ_max from the triangle of the two centres;
-      // the round's centre sits ψ_c off the tooth's centre line.
-      const Vec2 mate = other.pose.geometric_centre;
-      const double ro = owner.gear->tip_radius(),
-                   dist = (mate - owner.pose.geometric_centre).norm();
-      const double margin = rho + window;
-      const double reach = other.gear->tip_radius() + (other.gear->internal() ? -margin : margin);
-      const double cos_max = other.gear->internal()
-                                 ? (reach * reach - dist * dist - ro * ro) / (2 * dist * ro)
-                                 : (ro * ro + dist * dist - reach * reach) / (2 * dist * ro);
-      const double window_angle = std::acos(std::clamp(cos_max, -1.0, 1.0)) +
-                                  std::abs(Angle(owner.gear->tip_round().centre)) + 1e-3;
       for (long k = k0 - 2; k <= k0 + 2; ++k) {
         const int tooth = Mod(k, owner.gear->teeth());
         const double off = WrapAngle(owner.pose.rotation + tooth * p - owner_dir);
@@ -286,8 +291,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                          });
       }
     };
-    tips(a, b, l.side_a, l.side_b, pitch_dir, true);
-    tips(b, a, l.side_b, l.side_a, pitch_dir + (internal ? 0.0 : kPi), false);
+    tips(a, b, l.side_a, l.side_b, pitch_dir, window_a, true);
+    tips(b, a, l.side_b, l.side_a, pitch_dir + (internal ? 0.0 : kPi), window_b, false);
   }
   return out;
 }

@@ -26,7 +26,12 @@ inline Vec2 Rotate(const Vec2& v, double a) {
 /// Polar angle of v in (−π, π].
 inline double Angle(const Vec2& v) { return std::atan2(v.y(), v.x()); }
 /// a wrapped into (−π, π].
-inline double WrapAngle(double a) { return std::remainder(a, 2.0 * kPi); }
+inline double WrapAngle(double a) {
+  // a − 2π·round(a/2π) with an inlined truncation (std::remainder is a library call and this
+  // sits on the contact search's hot path); exact enough for |a| < 1e9.
+  const double turns = a * (0.5 / kPi);
+  return a - 2.0 * kPi * static_cast<double>(static_cast<long>(turns + (turns >= 0 ? 0.5 : -0.5)));
+}
 
 /// Involute function inv α = tan α − α.
 inline double Inv(double alpha) { return std::tan(alpha) - alpha; }
