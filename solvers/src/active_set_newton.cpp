@@ -209,6 +209,18 @@ class ActiveSetNewton final : public BackendImpl {
     second.iterations += out.iterations;
     second.message = (phase2_only ? std::string() : "phase 1 (" + out.message + ") -> ") +
                      "phase 2 (primal, Phi descent): " + second.message;
+    // Return the better of the two answers (by the residual the driver will compute).
+    if (!phase2_only && out.force.size() == p.num_contacts() && out.force.allFinite() &&
+        out.multiplier.allFinite() && second.force.size() == p.num_contacts() &&
+        second.multiplier.size() == p.num_equalities()) {
+      const double r1 = p.Residuals(out.force, out.multiplier).total;
+      const double r2 = p.Residuals(second.force, second.multiplier).total;
+      if (r1 < r2) {
+        out.iterations = second.iterations;
+        out.message = second.message + "; phase 1 answer kept (residual " + std::to_string(r1) + ")";
+        return out;
+      }
+    }
     return second;
   }
 
@@ -276,9 +288,13 @@ class ActiveSetNewton final : public BackendImpl {
       } else if (it > 0) {
         ++since_best;
       }
-      if (best_res <= options_->tolerance && since_best >= 3) {
-        out.message = "round-off floor: residual " + std::to_string(best_res) + " after " +
-                      std::to_string(it) + " iterations";
+      // Stagnation: no new best for 5 iterations. Near the tolerance that is the round-off
+      // floor (return the best point, the driver judges it); far from it, phase 1 has failed.
+      if (since_best >= 5 && best_res <= 1e4 * options_->tolerance) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "stagnation at residual %.3e after %d iterations", best_res, it);
+        out.message = buf;
+        if (best_res > options_->tolerance) out.failed = true;
         break;
       }
       if (!std::isfinite(psi)) {
@@ -287,7 +303,9 @@ class ActiveSetNewton final : public BackendImpl {
         break;
       }
       if (res <= target_) {
-        out.message = "residual " + std::to_string(res) + " after " + std::to_string(it) + " iterations";
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "residual %.3e after %d iterations", res, it);
+        out.message = buf;
         break;
       }
       if (it >= options_->max_iterations || OutOfTime()) {
@@ -330,7 +348,8 @@ class ActiveSetNewton final : public BackendImpl {
         l_new = m > 0 ? Eigen::VectorXd(lambda + t * dl) : lambda;
         Evaluate(p, x_new, l_new, &g_new, &e_new);
         psi_new = Merit(x_new, g_new, e_new, &res_new);
-        if (std::isfinite(psi_new) && psi_new <= (1.0 - 2.0 * sigma_ * t) * psi_ref) {
+        if (std::isfinite(psi_new) &&
+            psi_new <= (1.0 - 2.0 * sigma_ * t) * psi_ref) {
           accepted = true;
           break;
         }
@@ -389,6 +408,7 @@ class ActiveSetNewton final : public BackendImpl {
     const int budget = std::max(options_->max_iterations, 10 * n);
     Eigen::VectorXd grad, g, dxa, lnew, e;
     std::vector<int> fset;
+    int small_steps = 0;
     for (int it = 0;; ++it) {
       out.iterations = it;
       if (it >= budget || OutOfTime()) {
@@ -425,8 +445,11 @@ class ActiveSetNewton final : public BackendImpl {
           gf(a) = grad(fset[a]) - (m > 0 ? p.G.col(fset[a]).dot(lambda) : 0.0);
         // (or the Newton step is negligible: then g_F is as small as round-off in the terms of
         // the gradient allows, e.g. with large gaps δ0 on the face)
-        face_done = gf.cwiseAbs().maxCoeff() <= target_ ||
-                    dxa.cwiseAbs().maxCoeff() <= 1e-13 * std::max(1.0, x.cwiseAbs().maxCoeff());
+        // Two small steps in a row also end the face: Newton has reached round-off.
+        const double step = dxa.cwiseAbs().maxCoeff(), size = std::max(1.0, x.cwiseAbs().maxCoeff());
+        small_steps = step <= 1e-9 * size ? small_steps + 1 : 0;
+        face_done = gf.cwiseAbs().maxCoeff() <= target_ || step <= 1e-13 * size || small_steps >= 2;
+        if (face_done) small_steps = 0;
         if (!face_done) {
           double amax = 1.0;
           int block = -1;
@@ -444,11 +467,18 @@ class ActiveSetNewton final : public BackendImpl {
           for (int a = 0; a < nf; ++a) slope += grad(fset[a]) * dxa(a);
           double t = amax;
           Eigen::VectorXd xt = x;
-          for (int k = 0; k < 60; ++k) {
+          bool armijo = false;
+          for (int k = 0; k < 60 && !armijo; ++k) {
             xt = x;
             for (int a = 0; a < nf; ++a) xt(fset[a]) = std::max(0.0, x(fset[a]) + t * dxa(a));
-            if (p.Objective(xt) <= phi0 + 1e-4 * t * std::min(slope, 0.0)) break;
-            t *= 0.5;
+            armijo = p.Objective(xt) <= phi0 + 1e-4 * t * std::min(slope, 0.0);
+            if (!armijo) t *= 0.5;
+          }
+          if (!armijo) {
+            // Near the face optimum the decrease of Φ drowns in its round-off: the full
+            // Newton step is then the right one.
+            t = amax;
+            for (int a = 0; a < nf; ++a) xt(fset[a]) = std::max(0.0, x(fset[a]) + t * dxa(a));
           }
           x = xt;
           if (block >= 0 && t == amax) {

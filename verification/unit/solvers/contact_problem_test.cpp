@@ -1,0 +1,136 @@
+// Bad input → std::invalid_argument naming the field, the value and the rule (must-show 5);
+// options validation; names of back ends and statuses.
+#include <catch2/catch.hpp>
+
+#include <limits>
+
+#include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/solvers/contact_solver.hpp"
+
+namespace epicycle::solvers {
+namespace {
+
+ContactProblemData Good() {
+  ContactProblemData d;
+  d.name = "good";
+  d.compliance.resize(2, 2);
+  d.compliance << 4e-9, 1e-9, 1e-9, 3e-9;
+  d.overlap = Eigen::Vector2d(1e-6, -2e-6);
+  d.equality_matrix = Eigen::MatrixXd::Ones(1, 2);
+  d.equality_rhs = Eigen::VectorXd::Constant(1, 1000.0);
+  LocalTermParameters p;
+  p.face_width = 0.025;
+  p.reduced_radius = 0.01;
+  p.body[0] = p.body[1] = {207e9, 0.3, 2e-3};
+  d.local = {p, p};
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("a valid problem is accepted and stored symmetric", "[unit][solvers]") {
+  const ContactProblem p(Good());
+  CHECK(p.num_contacts() == 2);
+  CHECK(p.num_equalities() == 1);
+  CHECK(p.has_local());
+  CHECK_FALSE(p.has_support());
+}
+
+TEST_CASE("bad contact problems are rejected with named fields", "[unit][solvers]") {
+  {
+    auto d = Good();
+    d.compliance(0, 1) = 2e-9;  // non-symmetric
+    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("compliance is not symmetric") &&
+                                             Catch::Contains("compliance(0,1) = 2e-09") &&
+                                             Catch::Contains("|A_ij - A_ji| <="));
+  }
+  {
+    auto d = Good();
+    d.compliance << 1e-9, 2e-9, 2e-9, 1e-9;  // indefinite (eigenvalues 3e-9, −1e-9)
+    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("compliance is not positive definite") &&
+                                             Catch::Contains("-1e-09") && Catch::Contains("SPD"));
+  }
+  {
+    auto d = Good();
+    d.overlap = Eigen::Vector3d(0, 0, 0);  // size mismatch
+    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("compliance is 2x2: must be 3x3"));
+  }
+  {
+    auto d = Good();
+    d.equality_matrix = Eigen::MatrixXd::Ones(1, 3);
+    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("equality_matrix is 1x3: must be 1x2"));
+  }
+  {
+    auto d = Good();
+    d.overlap(1) = std::numeric_limits<double>::quiet_NaN();
+    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("overlap[1] = nan") &&
+                                             Catch::Contains("must be finite"));
+  }
+  {
+    auto d = Good();
+    d.compliance(1, 1) = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("compliance(1,1) = inf"));
+  }
+  {
+    auto d = Good();
+    d.local[1].face_width = -0.025;
+    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("local[1].face_width = -0.025") &&
+                                             Catch::Contains("must be finite and > 0"));
+  }
+  {
+    auto d = Good();
+    d.local.pop_back();
+    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("local has 1 entries: must be empty or N = 2"));
+  }
+  {
+    auto d = Good();
+    d.support_compliance = Eigen::MatrixXd::Constant(1, 1, -1e-9);
+    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("support_compliance is not positive semidefinite"));
+  }
+}
+
+TEST_CASE("options and names are validated", "[unit][solvers]") {
+  ContactOptions o;
+  o.tolerance = -1;
+  CHECK_THROWS_WITH(o.Validate(), Catch::Contains("ContactOptions.tolerance = -1") &&
+                                      Catch::Contains("> 0"));
+  o = ContactOptions();
+  o.backend_options.emplace("newton.no_such_knob", std::string(1, '1'));
+  CHECK_THROWS_WITH(o.Validate(), Catch::Contains("backend_options[newton.no_such_knob]") &&
+                                      Catch::Contains("unknown key"));
+  o = ContactOptions();
+  o.backend_options.emplace("newton.ls_beta", std::string("0.3"));
+  CHECK_NOTHROW(o.Validate());
+  for (Backend b : AllBackends()) CHECK(BackendFromName(BackendName(b)) == b);
+  CHECK_THROWS_WITH(BackendFromName("simplex"), Catch::Contains("backend = 'simplex'") &&
+                                                    Catch::Contains("newton"));
+  CHECK(StatusName(ContactStatus::kConverged) == "converged");
+  CHECK(!AvailableBackends().empty());
+  CHECK(AvailableBackends().front() == Backend::kActiveSetNewton);
+}
+
+TEST_CASE("the driver judges by its own residual and scales back", "[unit][solvers]") {
+  const ContactProblem p(Good());
+  auto solver = MakeContactSolver(Backend::kActiveSetNewton);
+  ContactOptions o;
+  ContactSolution s;
+  const ContactReport r = solver->Solve(p, o, &s);
+  REQUIRE(r.status == ContactStatus::kConverged);
+  // Recompute the residual here, in SI, and compare with the report's nondimensional one.
+  const ContactScales sc = ComputeContactScales(p);
+  const Eigen::VectorXd g = p.Gap(s.force, s.multiplier) / sc.length;
+  const Eigen::VectorXd x = s.force / sc.force;
+  const double comp = x.cwiseMin(g).cwiseAbs().maxCoeff();
+  const double equi = std::abs((p.equality_matrix() * s.force - p.equality_rhs())(0)) / sc.force;
+  CHECK(comp <= o.tolerance);
+  CHECK(equi <= o.tolerance);
+  CHECK(std::abs(s.force.sum() - 1000.0) <= 1e-9 * 1000.0);
+  // A warm start of the wrong size is misuse.
+  o.warm_start = true;
+  ContactSolution bad;
+  bad.force = Eigen::VectorXd::Zero(3);
+  CHECK_THROWS_WITH(solver->Solve(p, o, &bad), Catch::Contains("must have N = 2"));
+  CHECK_THROWS_WITH(solver->Solve(p, o, nullptr), Catch::Contains("in_out = null"));
+}
+
+}  // namespace epicycle::solvers
