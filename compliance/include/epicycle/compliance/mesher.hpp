@@ -25,12 +25,6 @@ Curve CircularArc(const Eigen::Vector2d& c, double r, double theta0, double thet
 /// The same curve run backwards, x(1 − t).
 Curve Reversed(Curve curve);
 
-/// The patch rotated by `angle` [rad] about the origin, x ↦ R(angle) x (names kept; rename the
-/// copies' sets as needed). Rotated copies of one sector patch set give an exactly cyclic mesh:
-/// node k of copy j is R(2πj/z) times node k of copy 0 to round-off.
-struct Patch;
-Patch Rotated(const Patch& patch, double angle);
-
 /// How the element boundaries are placed along one parametric direction of a patch: either the
 /// explicit parameters `breaks` (0 = t_0 < t_1 < … < t_n = 1), or, when `breaks` is empty, n =
 /// `divisions` intervals in geometric progression: Δt_{k+1} = ratio · Δt_k. ratio = 1 is uniform;
@@ -68,6 +62,11 @@ struct Patch {
   Distribution u;                         ///< element boundaries along u (bottom and top sides)
   Distribution v;                         ///< element boundaries along v (left and right sides)
 };
+
+/// The patch rotated by `angle` [rad] about the origin, x ↦ R(angle) x (names kept; rename the
+/// copies' sets as needed). Rotated copies of one sector patch set give an exactly cyclic mesh:
+/// node k of copy j is R(2πj/z) times node k of copy 0 to round-off.
+Patch Rotated(const Patch& patch, double angle);
 
 /// A region made of patches. Patches that share a side must see the same curve with the same
 /// node parameters there (same distribution, possibly reversed); the mesh then joins them
