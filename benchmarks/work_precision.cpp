@@ -1,0 +1,271 @@
+// Work-precision study of the contact back ends (issue 3, "must show" 4): every available back end
+// over its tolerance settings on the stage-sized problems of bench_contact, each answer compared
+// with a tight active-set Newton reference (tolerance 1e-12). Writes
+//   docs/figures/contact_work_precision.csv   one row per (problem, back end, tolerance)
+//   docs/figures/contact_work_precision.svg   error against CPU time per solve, log-log
+// (or into the directory given as the first argument).
+//
+//   build-backends/benchmarks/work_precision [output-dir]
+//
+// The tolerance is ContactOptions::tolerance, the driver's residual tolerance, which each back end
+// maps onto its own stopping rule (Newton: the residual itself; Ipopt: tol and friends at a tenth;
+// NLopt: xtol_rel and the equality tolerance). Time is CPU time per solve (the machine may be
+// shared), the mean over enough repetitions to fill ≥ 0.2 s.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "epicycle/config.h"
+#include "epicycle/solvers/contact_collection.hpp"
+#include "epicycle/solvers/contact_io.hpp"
+#include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/solvers/contact_solver.hpp"
+
+namespace {
+
+using epicycle::solvers::Backend;
+using epicycle::solvers::BackendName;
+using epicycle::solvers::ContactOptions;
+using epicycle::solvers::ContactProblem;
+using epicycle::solvers::ContactReport;
+using epicycle::solvers::ContactSolution;
+using epicycle::solvers::ContactStatus;
+using epicycle::solvers::MakeContactSolver;
+
+constexpr double kReferenceTolerance = 1e-12;
+constexpr double kMinSeconds = 0.2;
+constexpr double kErrorFloor = 1e-16;  // plotted in place of an exact zero
+
+struct Point {
+  std::string problem;
+  Backend backend;
+  double tolerance = 0;
+  ContactStatus status = ContactStatus::kNumericalFailure;
+  double residual = 0, error_force = 0, error_multiplier = 0, seconds = 0;
+  int iterations = 0, repetitions = 0;
+  double error() const { return std::max(error_force, error_multiplier); }
+};
+
+double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+Point Measure(const ContactProblem& problem, const std::string& name, Backend backend,
+              double tolerance, const ContactSolution& reference) {
+  auto solver = MakeContactSolver(backend);
+  ContactOptions options;
+  options.tolerance = tolerance;
+  ContactSolution solution;
+  ContactReport report;
+  int repetitions = 0;
+  const double start = CpuSeconds();
+  double elapsed = 0;
+  do {
+    report = solver->Solve(problem, options, &solution);
+    ++repetitions;
+    elapsed = CpuSeconds() - start;
+  } while (elapsed < kMinSeconds && repetitions < 2000);
+  Point p;
+  p.problem = name;
+  p.backend = backend;
+  p.tolerance = tolerance;
+  p.status = report.status;
+  p.residual = report.residual.total;
+  const auto diff = epicycle::solvers::CompareSolutions(problem, solution, reference);
+  p.error_force = diff.force;
+  p.error_multiplier = diff.multiplier;
+  p.iterations = report.iterations;
+  p.repetitions = repetitions;
+  p.seconds = elapsed / repetitions;
+  return p;
+}
+
+// ---- SVG, written by hand -----------------------------------------------------------------------
+
+struct Axis {
+  double lo, hi;  // log10 range
+  double px0, px1;
+  double Map(double v) const { return px0 + (std::log10(v) - lo) / (hi - lo) * (px1 - px0); }
+};
+
+const char* Colour(Backend b) {
+  switch (b) {
+    case Backend::kActiveSetNewton:
+      return "#1b9e77";
+    case Backend::kIpopt:
+      return "#d95f02";
+    case Backend::kNloptSlsqp:
+      return "#7570b3";
+    case Backend::kNloptLbfgs:
+      return "#e7298a";
+    case Backend::kNloptAuglag:
+      return "#66a61e";
+  }
+  return "#000000";
+}
+
+void DrawPanel(std::ostringstream& svg, const std::vector<Point>& points, const std::string& title,
+               double left, double top, double width, double height) {
+  double tmin = 1e300, tmax = 0, emin = 1e300, emax = 0;
+  for (const Point& p : points) {
+    tmin = std::min(tmin, p.seconds);
+    tmax = std::max(tmax, p.seconds);
+    emin = std::min(emin, std::max(p.error(), kErrorFloor));
+    emax = std::max(emax, std::max(p.error(), kErrorFloor));
+  }
+  const Axis x{std::floor(std::log10(tmin)), std::ceil(std::log10(tmax)), left, left + width};
+  const Axis y{std::floor(std::log10(emin)), std::ceil(std::log10(emax)), top + height, top};
+  svg << "<rect x='" << left << "' y='" << top << "' width='" << width << "' height='" << height
+      << "' fill='none' stroke='#333'/>\n";
+  svg << "<text x='" << left + width / 2 << "' y='" << top - 8
+      << "' text-anchor='middle' font-size='13'>" << title << "</text>\n";
+  for (double d = x.lo; d <= x.hi + 1e-9; d += 1) {
+    const double px = x.Map(std::pow(10.0, d));
+    svg << "<line x1='" << px << "' y1='" << top << "' x2='" << px << "' y2='" << top + height
+        << "' stroke='#ddd'/>\n";
+    svg << "<text x='" << px << "' y='" << top + height + 16
+        << "' text-anchor='middle' font-size='11'>1e" << d << "</text>\n";
+  }
+  const double ystep = y.hi - y.lo > 8 ? 2 : 1;
+  for (double d = y.lo; d <= y.hi + 1e-9; d += ystep) {
+    const double py = y.Map(std::pow(10.0, d));
+    svg << "<line x1='" << left << "' y1='" << py << "' x2='" << left + width << "' y2='" << py
+        << "' stroke='#ddd'/>\n";
+    svg << "<text x='" << left - 6 << "' y='" << py + 4 << "' text-anchor='end' font-size='11'>1e"
+        << d << "</text>\n";
+  }
+  svg << "<text x='" << left + width / 2 << "' y='" << top + height + 34
+      << "' text-anchor='middle' font-size='12'>CPU time per solve [s]</text>\n";
+  svg << "<text transform='translate(" << left - 46 << "," << top + height / 2
+      << ") rotate(-90)' text-anchor='middle' font-size='12'>error vs reference (max rel. F, "
+         "&#955;)</text>\n";
+  std::map<Backend, std::vector<const Point*>> series;
+  for (const Point& p : points) series[p.backend].push_back(&p);
+  for (auto& [backend, list] : series) {
+    std::sort(list.begin(), list.end(),
+              [](const Point* a, const Point* b) { return a->tolerance > b->tolerance; });
+    svg << "<polyline fill='none' stroke='" << Colour(backend) << "' stroke-width='1.5' points='";
+    for (const Point* p : list) {
+      svg << x.Map(p->seconds) << "," << y.Map(std::max(p->error(), kErrorFloor)) << " ";
+    }
+    svg << "'/>\n";
+    for (const Point* p : list) {
+      const bool converged = p->status == ContactStatus::kConverged;
+      svg << "<circle cx='" << x.Map(p->seconds) << "' cy='"
+          << y.Map(std::max(p->error(), kErrorFloor)) << "' r='3.5' stroke='" << Colour(backend)
+          << "' fill='" << (converged ? Colour(backend) : "white") << "'><title>"
+          << BackendName(backend) << " tol " << p->tolerance << ": "
+          << epicycle::solvers::StatusName(p->status) << "</title></circle>\n";
+    }
+  }
+}
+
+std::string Svg(const std::vector<Point>& points, const std::vector<std::string>& problems) {
+  const double panel_w = 380, panel_h = 300, margin_l = 70, gap = 90, top = 40;
+  const double panels = static_cast<double>(problems.size());
+  const double width = margin_l + panels * (panel_w + gap) + 140;
+  const double height = top + panel_h + 60;
+  std::ostringstream svg;
+  svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
+      << "' font-family='sans-serif'>\n<rect width='100%' height='100%' fill='white'/>\n";
+  std::vector<Backend> backends;
+  for (std::size_t k = 0; k < problems.size(); ++k) {
+    std::vector<Point> mine;
+    for (const Point& p : points) {
+      if (p.problem == problems[k]) mine.push_back(p);
+      if (std::find(backends.begin(), backends.end(), p.backend) == backends.end()) {
+        backends.push_back(p.backend);
+      }
+    }
+    DrawPanel(svg, mine, problems[k], margin_l + static_cast<double>(k) * (panel_w + gap), top,
+              panel_w, panel_h);
+  }
+  double ly = top + 10;
+  const double lx = margin_l + panels * (panel_w + gap) - gap + 20;
+  for (Backend b : backends) {
+    svg << "<circle cx='" << lx << "' cy='" << ly << "' r='4' fill='" << Colour(b) << "'/>"
+        << "<text x='" << lx + 10 << "' y='" << ly + 4 << "' font-size='12'>" << BackendName(b)
+        << "</text>\n";
+    ly += 18;
+  }
+  svg << "<text x='" << lx << "' y='" << ly + 10
+      << "' font-size='11'>filled: converged</text>\n<text x='" << lx << "' y='" << ly + 24
+      << "' font-size='11'>hollow: not converged</text>\n</svg>\n";
+  return svg.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::filesystem::path out_dir =
+      argc > 1 ? std::filesystem::path(argv[1])
+               : std::filesystem::path(EPICYCLE_SOURCE_DIR) / "docs" / "figures";
+  std::filesystem::create_directories(out_dir);
+
+  // The problems of bench_contact (same generator, same seeds).
+  epicycle::solvers::GearLikeSpec three;
+  three.planets = 3;
+  three.drive_pairs = 3;
+  three.coast_pairs = 2;
+  three.seed = 11;
+  epicycle::solvers::GearLikeSpec four;
+  four.planets = 4;
+  four.drive_pairs = 4;
+  four.coast_pairs = 3;
+  four.seed = 12;
+  const std::vector<epicycle::solvers::ContactProblemFile> files = {
+      epicycle::solvers::MakeGearLikeProblem(three, "bench-stage-3p-30c"),
+      epicycle::solvers::MakeGearLikeProblem(four, "bench-stage-4p-56c")};
+  const std::vector<double> tolerances = {1e-3, 1e-4, 1e-5,  1e-6,  1e-7,
+                                          1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
+
+  std::vector<Point> points;
+  std::vector<std::string> names;
+  for (const auto& file : files) {
+    const ContactProblem problem(file.data);
+    names.push_back(file.data.name);
+    // Reference: the active-set Newton at 1e-12, or Ipopt at 1e-12 should Newton not converge.
+    ContactSolution reference;
+    ContactOptions ref_options;
+    ref_options.tolerance = kReferenceTolerance;
+    for (Backend backend : {Backend::kActiveSetNewton, Backend::kIpopt}) {
+      const ContactReport ref = MakeContactSolver(backend)->Solve(problem, ref_options, &reference);
+      std::printf("%s: N = %d, m = %d, reference %s: %s (residual %.2e)\n", file.data.name.c_str(),
+                  problem.num_contacts(), problem.num_equalities(), BackendName(backend).c_str(),
+                  epicycle::solvers::StatusName(ref.status).c_str(), ref.residual.total);
+      if (ref.status == ContactStatus::kConverged) break;
+    }
+    for (Backend backend : epicycle::solvers::AvailableBackends()) {
+      if (backend == Backend::kNloptLbfgs && problem.num_equalities() > 0) continue;
+      for (double tol : tolerances) {
+        const Point p = Measure(problem, file.data.name, backend, tol, reference);
+        std::printf("  %-13s tol %7.0e  %-20s residual %9.2e  error %9.2e  %9.3e s  (%d it)\n",
+                    BackendName(backend).c_str(), tol,
+                    epicycle::solvers::StatusName(p.status).c_str(), p.residual, p.error(),
+                    p.seconds, p.iterations);
+        points.push_back(p);
+      }
+    }
+  }
+
+  std::ofstream csv(out_dir / "contact_work_precision.csv");
+  csv << "problem,backend,tolerance,status,residual,error_force,error_multiplier,iterations,"
+         "cpu_seconds_per_solve,repetitions\n";
+  for (const Point& p : points) {
+    char line[512];
+    std::snprintf(line, sizeof(line), "%s,%s,%.0e,%s,%.3e,%.3e,%.3e,%d,%.4e,%d\n",
+                  p.problem.c_str(), BackendName(p.backend).c_str(), p.tolerance,
+                  epicycle::solvers::StatusName(p.status).c_str(), p.residual, p.error_force,
+                  p.error_multiplier, p.iterations, p.seconds, p.repetitions);
+    csv << line;
+  }
+  std::ofstream(out_dir / "contact_work_precision.svg") << Svg(points, names);
+  std::printf("wrote %s and %s\n", (out_dir / "contact_work_precision.csv").c_str(),
+              (out_dir / "contact_work_precision.svg").c_str());
+  return 0;
+}
