@@ -127,9 +127,25 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
   }
 }
 
+// Replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> in a markdown file.
+void ReplaceBetweenMarkers(const std::string& doc, const std::string& name, const std::string& text) {
+  const std::string begin = "<!-- " + name + ":begin -->", end = "<!-- " + name + ":end -->";
+  std::ifstream in(doc);
+  if (!in) throw std::invalid_argument("--doc " + doc + ": cannot be read");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string all = ss.str();
+  const auto a = all.find(begin), e = all.find(end);
+  if (a == std::string::npos || e == std::string::npos || e < a)
+    throw std::invalid_argument("--doc " + doc + ": markers " + begin + " ... " + end + " not found");
+  all = all.substr(0, a + begin.size()) + "\n" + text + all.substr(e);
+  std::ofstream(doc) << all;
+  fmt::print("table written into {}\n", doc);
+}
+
 struct Row {
   std::string backend, problem, category, status;
-  double residual = 0, force_err = 0, mult_err = 0, seconds = 0;
+  double residual = 0, force_err = 0, mult_err = 0, disp_err = 0, seconds = 0;
   int iterations = 0;
   bool solved = false;
 };
@@ -201,7 +217,7 @@ void WriteSvgScatter(const std::string& path, const std::vector<std::string>& ba
     const char* col = kColours[b % 7];
     for (const Row& r : rows) {
       if (r.backend != backends[b]) continue;
-      const double err = std::max(r.force_err, r.mult_err);
+      const double err = std::max(r.force_err, r.disp_err);
       const double lx = std::clamp(std::log10(std::max(r.seconds, 1e-12)), tmin, tmax);
       const double ly = std::clamp(std::log10(std::max(err, 1e-16)), emin, emax);
       const double x = x0 + pw * (lx - tmin) / (tmax - tmin), y = y0 + ph - ph * (ly - emin) / (emax - emin);
@@ -217,7 +233,7 @@ void WriteSvgScatter(const std::string& path, const std::vector<std::string>& ba
 }
 
 void CompareCommand(const std::vector<std::string>& inputs, const std::string& csv,
-                    const std::string& svg_prefix, double tol, int repeats) {
+                    const std::string& svg_prefix, double tol, int repeats, const std::string& doc) {
   const std::vector<std::string> files = ExpandProblemFiles(inputs);
   const std::vector<Backend> backends = solvers::AvailableBackends();
   std::vector<Row> rows;
@@ -241,16 +257,21 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
       const auto d = solvers::CompareSolutions(problem, run.solution, ref.solution);
       row.force_err = d.force;
       row.mult_err = d.multiplier;
+      row.disp_err = d.displacement;
       row.seconds = run.median_seconds;
       row.iterations = run.report.iterations;
       row.solved = run.report.status == ContactStatus::kConverged;
       rows.push_back(row);
     }
   }
-  fmt::print("{} problems, tolerance {:.1e}, reference: newton at {:.0e}, {} repeat(s)\n\n",
+  fmt::print("{} problems, tolerance {:.1e}, reference: newton at {:.0e}, {} repeat(s); error = max of the "
+             "relative force and rigid-displacement (G^T lambda) differences, over converged runs\n\n",
              files.size(), tol, kReferenceTolerance, repeats);
   fmt::print("{:<14} {:>8} {:>14} {:>14} {:>16}  {}\n", "back end", "solved", "median time", "worst error",
              "worst residual", "failures");
+  std::string md = fmt::format("{} problems, tolerance {:.0e}, median of {} solve(s) per problem.\n\n"
+                               "| back end | solved | median time [s] | worst error | worst residual | not converged |\n"
+                               "|---|---|---|---|---|---|\n", files.size(), tol, repeats);
   for (const std::string& b : names) {
     std::vector<double> t;
     double worst = 0, worst_res = 0;
@@ -262,7 +283,7 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
       t.push_back(r.seconds);
       if (r.solved) {
         ++solved;
-        worst = std::max(worst, std::max(r.force_err, r.mult_err));
+        worst = std::max(worst, std::max(r.force_err, r.disp_err));
         worst_res = std::max(worst_res, r.residual);
       } else {
         failures += (failures.empty() ? "" : ", ") + r.problem + " (" + r.status + ")";
@@ -271,15 +292,20 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
     std::sort(t.begin(), t.end());
     fmt::print("{:<14} {:>4}/{:<3} {:>12.3e} s {:>14.2e} {:>16.2e}  {}\n", b, solved, total,
                t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res, failures.empty() ? "-" : failures);
+    md += fmt::format("| {} | {}/{} | {:.2e} | {:.1e} | {:.1e} | {} |\n", b, solved, total,
+                      t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res, total - solved);
   }
   if (!csv.empty()) {
     std::ofstream out(csv);
-    out << "backend,problem,category,status,residual,force_error,multiplier_error,median_seconds,iterations\n";
+    out << "backend,problem,category,status,residual,force_error,multiplier_error,displacement_error,"
+           "median_seconds,iterations\n";
     for (const Row& r : rows)
-      out << fmt::format("{},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{}\n", r.backend, r.problem, r.category,
-                         r.status, r.residual, r.force_err, r.mult_err, r.seconds, r.iterations);
+      out << fmt::format("{},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{}\n", r.backend, r.problem,
+                         r.category, r.status, r.residual, r.force_err, r.mult_err, r.disp_err,
+                         r.seconds, r.iterations);
     fmt::print("\nCSV written to {}\n", csv);
   }
+  if (!doc.empty()) ReplaceBetweenMarkers(doc, "compare-table", md);
   if (!svg_prefix.empty()) {
     WriteSvgProfile(svg_prefix + "_profile.svg", names, rows, problem_names);
     WriteSvgScatter(svg_prefix + "_error_vs_time.svg", names, rows);
@@ -326,7 +352,7 @@ void StabilityCommand(const std::string& dir, const std::string& doc, double tol
         const auto d = solvers::CompareSolutions(problem, run.solution, ref.solution);
         const bool finite = run.solution.force.allFinite() && run.solution.multiplier.allFinite();
         cell = fmt::format("{}, res {:.0e}, err {:.0e}", solvers::StatusName(r.status), r.residual.total,
-                           std::max(d.force, d.multiplier));
+                           std::max(d.force, d.displacement));
         if (!finite) cell += ", NaN!";
         if (r.status == ContactStatus::kConverged && r.residual.total > tol) cell += ", BAD";
       }
@@ -334,23 +360,11 @@ void StabilityCommand(const std::string& dir, const std::string& doc, double tol
     }
     table += "\n";
   }
-  table += fmt::format("\nTolerance {:.0e}; err = max relative force/multiplier difference from the "
+  table += fmt::format("\nTolerance {:.0e}; err = max relative force / rigid-displacement difference from the "
                        "active-set Newton at {:.0e} (see CompareSolutions). Written by `epicycle contact "
                        "stability` ({}).\n", tol, kReferenceTolerance, EPICYCLE_VERSION);
   fmt::print("{}", table);
-  if (doc.empty()) return;
-  const std::string begin = "<!-- stability-table:begin -->", end = "<!-- stability-table:end -->";
-  std::ifstream in(doc);
-  if (!in) throw std::invalid_argument("--doc " + doc + ": cannot be read");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
-  const auto a = text.find(begin), e = text.find(end);
-  if (a == std::string::npos || e == std::string::npos || e < a)
-    throw std::invalid_argument("--doc " + doc + ": markers " + begin + " ... " + end + " not found");
-  text = text.substr(0, a + begin.size()) + "\n" + table + text.substr(e);
-  std::ofstream(doc) << text;
-  fmt::print("table written into {}\n", doc);
+  if (!doc.empty()) ReplaceBetweenMarkers(doc, "stability-table", table);
 }
 
 }  // namespace
@@ -377,12 +391,14 @@ void RegisterContactCommands(CLI::App& app) {
   static std::string c_csv, c_svg;
   static double c_tol = 1e-10;
   static int c_repeat = 5;
+  static std::string c_doc;
   compare->add_option("inputs", c_inputs, "problem files or directories")->required();
   compare->add_option("--csv", c_csv, "write one row per (back end, problem)");
   compare->add_option("--svg-prefix", c_svg, "write PREFIX_profile.svg and PREFIX_error_vs_time.svg");
   compare->add_option("--tol", c_tol, "tolerance on the nondimensional residual");
   compare->add_option("--repeat", c_repeat, "solves per (back end, problem); the median time is reported");
-  compare->callback([] { CompareCommand(c_inputs, c_csv, c_svg, c_tol, c_repeat); });
+  compare->add_option("--doc", c_doc, "markdown file to update between the compare-table markers");
+  compare->callback([] { CompareCommand(c_inputs, c_csv, c_svg, c_tol, c_repeat, c_doc); });
 
   auto* generate = contact->add_subcommand("generate", "write the problem collection");
   static std::string g_dir;

@@ -25,7 +25,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <deque>
 #include <stdexcept>
 #include <string>
@@ -336,9 +335,6 @@ class ActiveSetNewton final : public BackendImpl {
       }
       face.Solve(r1, r2, &dxa, &dl);
       for (int a = 0; a < na; ++a) dx(active[a]) = dxa(a);
-      if (std::getenv("NEWTON_TRACE"))
-        std::fprintf(stderr, "p1 it %d res %.3e na %d ridged %d |dx| %.3e |dl| %.3e\n", it, res, na,
-                     face.ridged() ? 1 : 0, dx.cwiseAbs().maxCoeff(), m ? dl.cwiseAbs().maxCoeff() : 0.0);
       // Non-monotone backtracking on ½‖R‖².
       const double psi_ref = *std::max_element(history.begin(), history.end());
       double t = 1.0, psi_new = 0.0, res_new = 0.0;
@@ -420,11 +416,6 @@ class ActiveSetNewton final : public BackendImpl {
       for (int j = 0; j < n; ++j)
         if (free[j]) fset.push_back(j);
       p.Gradient(x, &grad);
-      if (std::getenv("NEWTON_TRACE")) {
-        std::string f;
-        for (int j : fset) f += std::to_string(j) + ":" + std::to_string(x(j)) + " ";
-        std::fprintf(stderr, "it %d phi %.17g free %s\n", it, p.Objective(x), f.c_str());
-      }
       const int nf = static_cast<int>(fset.size());
       bool face_done = true;
       if (nf > 0) {
