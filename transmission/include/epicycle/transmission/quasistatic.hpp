@@ -1,0 +1,43 @@
+// Quasi-static solution of the stage at one carrier position (MODEL.md §5–6): contact search →
+// compliance → contact problem with equilibrium equalities → back end → forces and rigid
+// displacements; the members are moved by the displacements and the search repeated until the
+// displacements stop changing (the geometry is nonlinear in the positions).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/stage_problem.hpp"
+
+namespace epicycle::transmission {
+
+struct QuasiStaticOptions {
+  QuasiStaticSetup setup;
+  solvers::Backend backend = solvers::Backend::kActiveSetNewton;
+  solvers::ContactOptions contact;
+  int max_geometric_iterations = 30;   ///< [-]
+  double geometric_tolerance = 1e-11;  ///< largest rigid-displacement increment at convergence [m]
+};
+
+struct PositionResult {
+  double carrier_angle = 0;  ///< φ_c [rad]
+  bool converged = false;    ///< contact solves and geometric iterations converged
+  std::string message;       ///< why not, when not converged
+  int geometric_iterations = 0;
+  std::vector<double> load_sharing;  ///< LSR_i = T_mesh(P_i–S)/T_input [-], per planet
+  double transmission_error = 0;     ///< loaded static TE: sun rotation from kinematic [rad]
+  geometry::Vec2 sun_displacement = geometry::Vec2::Zero();  ///< [m] (floating sun)
+  std::vector<double> planet_rotations;                      ///< from kinematic [rad]
+  StageProblem problem;                                      ///< the last contact problem
+  solvers::ContactSolution solution;                         ///< its forces [N] and multipliers
+  solvers::ContactReport report;                             ///< its back-end report and residuals
+  geometry::StagePoses poses;                                ///< the loaded poses
+};
+
+/// @throws std::invalid_argument for bad input; numerical trouble is reported in the result.
+PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
+                             const StageCompliance& compliance, double carrier_angle,
+                             const QuasiStaticOptions& options);
+
+}  // namespace epicycle::transmission

@@ -1,0 +1,96 @@
+#include "epicycle/transmission/quasistatic.hpp"
+
+#include <cmath>
+
+#include "epicycle/solvers/contact_problem.hpp"
+
+namespace epicycle::transmission {
+
+namespace {
+
+// Largest rigid displacement of an increment, rotations measured at the base circles.
+double DisplacementSize(const geometry::Stage& stage, const std::vector<StageDof>& dofs,
+                        const Eigen::VectorXd& lambda) {
+  double worst = 0;
+  for (std::size_t k = 0; k < dofs.size(); ++k) {
+    double scale = 1.0;
+    if (dofs[k].kind == StageDof::kSunRotation) scale = stage.sun().base_radius();
+    if (dofs[k].kind == StageDof::kPlanetRotation)
+      scale = stage.planet(dofs[k].planet).base_radius();
+    worst = std::max(worst, std::abs(lambda(static_cast<Eigen::Index>(k))) * scale);
+  }
+  return worst;
+}
+
+}  // namespace
+
+PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
+                             const StageCompliance& compliance, double carrier_angle,
+                             const QuasiStaticOptions& options) {
+  PositionResult r;
+  r.carrier_angle = carrier_angle;
+  const geometry::StagePoses kinematic = stage.Poses(carrier_angle);
+  std::vector<StageDof> dofs;
+  Eigen::VectorXd total;  // accumulated rigid displacements, per DOF
+  geometry::StagePoses poses = kinematic;
+  auto solver = solvers::MakeContactSolver(options.backend);
+  for (int it = 1; it <= options.max_geometric_iterations; ++it) {
+    r.geometric_iterations = it;
+    r.problem = BuildStageProblem(scene, stage, poses, compliance, options.setup);
+    if (dofs.empty()) {
+      dofs = r.problem.dofs;
+      total = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs.size()));
+    }
+    const solvers::ContactProblem problem(r.problem.data);
+    r.solution = {};
+    r.report = solver->Solve(problem, options.contact, &r.solution);
+    if (r.report.status != solvers::ContactStatus::kConverged) {
+      r.message = "contact solve at geometric iteration " + std::to_string(it) + ": " +
+                  solvers::StatusName(r.report.status) + " (" + r.report.message + ")";
+      break;
+    }
+    total += r.solution.multiplier;
+    const double step = DisplacementSize(stage, dofs, r.solution.multiplier);
+    poses = Displace(poses, dofs, r.solution.multiplier);
+    if (step <= options.geometric_tolerance) {
+      r.converged = true;
+      break;
+    }
+    if (it == options.max_geometric_iterations) {
+      r.message = "geometric iterations did not settle: last displacement increment " +
+                  std::to_string(step) + " m";
+    }
+  }
+  r.poses = poses;
+  // Outputs from the last contact problem (solved at the poses before its own small increment).
+  const int n = stage.planets();
+  r.load_sharing.assign(n, 0.0);
+  for (std::size_t j = 0; j < r.problem.contacts.size() && r.solution.force.size() > 0; ++j) {
+    const StageContact& s = r.problem.contacts[j];
+    if (s.body_a != kSunBody) continue;
+    // Moment of the contact on the sun over the input torque it balances.
+    r.load_sharing[s.planet] +=
+        s.contact.lever_a * r.solution.force(static_cast<Eigen::Index>(j)) / -scene.sun_torque;
+  }
+  r.planet_rotations.assign(n, 0.0);
+  for (std::size_t k = 0; k < dofs.size(); ++k) {
+    const double v = total(static_cast<Eigen::Index>(k));
+    switch (dofs[k].kind) {
+      case StageDof::kSunRotation:
+        r.transmission_error = v;
+        break;
+      case StageDof::kSunX:
+        r.sun_displacement.x() = v;
+        break;
+      case StageDof::kSunY:
+        r.sun_displacement.y() = v;
+        break;
+      case StageDof::kPlanetRotation:
+        r.planet_rotations[dofs[k].planet] = v;
+        break;
+    }
+  }
+  return r;
+}
+
+}  // namespace epicycle::transmission
