@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -69,7 +70,12 @@ std::vector<ContactProblemFile> StageSizedProblems() {
     }
     std::sort(paths.begin(), paths.end());
     for (const auto& path : paths) {
-      ContactProblemFile file = epicycle::solvers::ReadContactProblemFile(path.string());
+      ContactProblemFile file;
+      try {
+        file = epicycle::solvers::ReadContactProblemFile(path.string());
+      } catch (const std::invalid_argument&) {
+        continue;  // not a problem file (e.g. expected_failures.json)
+      }
       const auto n = file.data.overlap.size();
       if (file.category == "gear-like" && n >= 30 && n <= 60) files.push_back(std::move(file));
     }

@@ -1,5 +1,6 @@
 // Work-precision study of the contact back ends (issue 3, "must show" 4): every available back end
-// over its tolerance settings on the stage-sized problems of bench_contact, each answer compared
+// over its tolerance settings on two stage-sized problems (the smallest and the largest gear-like
+// problem with local terms of verification/data/contact/), each answer compared
 // with a tight active-set Newton reference (tolerance 1e-12). Writes
 //   docs/figures/contact_work_precision.csv   one row per (problem, back end, tolerance)
 //   docs/figures/contact_work_precision.svg   error against CPU time per solve, log-log
@@ -19,6 +20,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -207,20 +209,52 @@ int main(int argc, char** argv) {
                : std::filesystem::path(EPICYCLE_SOURCE_DIR) / "docs" / "figures";
   std::filesystem::create_directories(out_dir);
 
-  // The problems of bench_contact (same generator, same seeds).
-  epicycle::solvers::GearLikeSpec three;
-  three.planets = 3;
-  three.drive_pairs = 3;
-  three.coast_pairs = 2;
-  three.seed = 11;
-  epicycle::solvers::GearLikeSpec four;
-  four.planets = 4;
-  four.drive_pairs = 4;
-  four.coast_pairs = 3;
-  four.seed = 12;
-  const std::vector<epicycle::solvers::ContactProblemFile> files = {
-      epicycle::solvers::MakeGearLikeProblem(three, "bench-stage-3p-30c"),
-      epicycle::solvers::MakeGearLikeProblem(four, "bench-stage-4p-56c")};
+  // The smallest and the largest stage-sized gear-like problem of the collection
+  // (verification/data/contact/), or, without the collection, bench_contact's generated pair.
+  std::vector<epicycle::solvers::ContactProblemFile> files;
+  const std::filesystem::path dir =
+      std::filesystem::path(EPICYCLE_SOURCE_DIR) / "verification" / "data" / "contact";
+  if (std::filesystem::is_directory(dir)) {
+    std::vector<std::filesystem::path> paths;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+      if (entry.path().extension() == ".json") paths.push_back(entry.path());
+    }
+    std::sort(paths.begin(), paths.end());
+    std::vector<epicycle::solvers::ContactProblemFile> gear;
+    for (const auto& path : paths) {
+      epicycle::solvers::ContactProblemFile file;
+      try {
+        file = epicycle::solvers::ReadContactProblemFile(path.string());
+      } catch (const std::invalid_argument&) {
+        continue;  // not a problem file (e.g. expected_failures.json)
+      }
+      const auto n = file.data.overlap.size();
+      if (file.category == "gear-like" && n >= 30 && n <= 60 && !file.data.local.empty()) {
+        gear.push_back(std::move(file));
+      }
+    }
+    if (!gear.empty()) {
+      const auto by_size = [](const auto& a, const auto& b) {
+        return a.data.overlap.size() < b.data.overlap.size();
+      };
+      files.push_back(*std::min_element(gear.begin(), gear.end(), by_size));
+      files.push_back(*std::max_element(gear.begin(), gear.end(), by_size));
+    }
+  }
+  if (files.empty()) {
+    epicycle::solvers::GearLikeSpec three;
+    three.planets = 3;
+    three.drive_pairs = 3;
+    three.coast_pairs = 2;
+    three.seed = 11;
+    epicycle::solvers::GearLikeSpec four;
+    four.planets = 4;
+    four.drive_pairs = 4;
+    four.coast_pairs = 3;
+    four.seed = 12;
+    files.push_back(epicycle::solvers::MakeGearLikeProblem(three, "bench-stage-3p-30c"));
+    files.push_back(epicycle::solvers::MakeGearLikeProblem(four, "bench-stage-4p-56c"));
+  }
   const std::vector<double> tolerances = {1e-3, 1e-4, 1e-5,  1e-6,  1e-7,
                                           1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
 
