@@ -488,8 +488,12 @@ class IpoptBackend final : public BackendImpl {
                                   std::to_string(m) + " equalities");
     }
 
-    Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+    // One IpoptApplication per back-end object, reused by every Run (creating one registers all of
+    // Ipopt's options and dominated the cost of small solves); its options are reset each time.
+    if (Ipopt::IsNull(app_)) app_ = IpoptApplicationFactory();
+    Ipopt::IpoptApplication* app = Ipopt::GetRawPtr(app_);
     Ipopt::OptionsList& list = *app->Options();
+    list.clear();
     const double tol = kToleranceFactor * options.tolerance;
     const double compl_tol = kComplementarityFactor * options.tolerance;
     list.SetStringValue("sb", "yes");  // no banner
@@ -549,16 +553,25 @@ class IpoptBackend final : public BackendImpl {
 
     BackendResult result;
     result.force = Eigen::VectorXd::Zero(n);
-    const Ipopt::ApplicationReturnStatus init = app->Initialize("");  // no ipopt.opt file
-    if (init != Ipopt::Solve_Succeeded) {
-      result.failed = true;
-      result.code = static_cast<int>(init);
-      result.message = "Ipopt initialisation failed: " + StatusName(init);
-      return result;
+    if (warm_start_multipliers && (x0 == nullptr || lambda0 == nullptr)) {
+      // Nothing to warm-start the multipliers from (no warm start given): Ipopt's own start.
+      list.SetStringValue("warm_start_init_point", "no");
+      warm_start_multipliers = false;
+    }
+    if (!initialised_) {
+      // Sets up the console journal from print_level (0); later runs keep it.
+      const Ipopt::ApplicationReturnStatus init = app->Initialize("");  // no ipopt.opt file
+      if (init != Ipopt::Solve_Succeeded) {
+        result.failed = true;
+        result.code = static_cast<int>(init);
+        result.message = "Ipopt initialisation failed: " + StatusName(init);
+        return result;
+      }
+      initialised_ = true;
     }
 
     Ipopt::SmartPtr<ContactTnlp> tnlp =
-        new ContactTnlp(problem, x0, lambda0, warm_start_multipliers && x0 && lambda0);
+        new ContactTnlp(problem, x0, lambda0, warm_start_multipliers);
     const Ipopt::ApplicationReturnStatus status =
         app->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(tnlp)));
     if (tnlp->error() != nullptr) std::rethrow_exception(tnlp->error());
@@ -585,6 +598,10 @@ class IpoptBackend final : public BackendImpl {
     }
     return result;
   }
+
+ private:
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app_;
+  bool initialised_ = false;
 };
 
 }  // namespace

@@ -451,7 +451,8 @@ TEST_CASE("Ipopt and NLopt back ends: documented options are accepted",
   ContactOptions ipopt;
   ipopt.backend_options = {{"ipopt.mu_strategy", "adaptive"},
                            {"ipopt.bound_relax_factor", "0"},
-                           {"ipopt.linear_solver", "mumps"}};
+                           {"ipopt.linear_solver", "mumps"},
+                           {"ipopt.warm_start_init_point", "yes"}};  // no warm start: ignored
   ContactOptions nlopt;
   nlopt.backend_options = {{"nlopt.xtol_rel", "1e-12"}, {"nlopt.maxeval", "500"}};
   for (const auto& [backend, options] :
@@ -464,5 +465,46 @@ TEST_CASE("Ipopt and NLopt back ends: documented options are accepted",
     INFO("status " << StatusName(report.status) << ": " << report.message);
     CHECK(report.status == ContactStatus::kConverged);
     CHECK(RelativeError(solution.force, force) <= kAccept);
+  }
+}
+
+TEST_CASE("Ipopt and NLopt back ends: one solver object reused across problems and options",
+          "[crosscheck][solvers][backends]") {
+  // The Ipopt back end keeps its IpoptApplication between solves and resets its options each
+  // time: a 1-contact problem with a loose Ipopt tolerance, then a 2-contact problem with one
+  // equality and default options, then the first again. Each answer must be that of a fresh solve.
+  ContactProblemData one;
+  one.name = "reuse-one";
+  one.compliance = Eigen::MatrixXd::Constant(1, 1, 2.5e-9);
+  one.overlap = Eigen::VectorXd::Constant(1, 4e-5);
+  const double c = 1e-9, p = 3000.0;
+  ContactProblemData two;
+  two.name = "reuse-two";
+  two.compliance.resize(2, 2);
+  two.compliance << 2 * c, c, c, 3 * c;
+  two.overlap = Eigen::Vector2d(0.0, 0.0);
+  two.equality_matrix = Eigen::MatrixXd::Ones(1, 2);
+  two.equality_rhs = Eigen::VectorXd::Constant(1, p);
+  const ContactProblem problem_one(one), problem_two(two);
+  for (Backend backend : {Backend::kIpopt, Backend::kNloptSlsqp}) {
+    auto solver = MakeContactSolver(backend);
+    if (!solver->available()) continue;
+    INFO("back end " << BackendName(backend));
+    ContactOptions loose;
+    loose.tolerance = kTol;
+    loose.backend_options[backend == Backend::kIpopt ? "ipopt.max_iter" : "nlopt.maxeval"] = "1";
+    ContactOptions tight;
+    tight.tolerance = kTol;
+    ContactSolution a, b, c_again;
+    const ContactReport ra = solver->Solve(problem_one, loose, &a);
+    CHECK(ra.status != ContactStatus::kConverged);  // one iteration/evaluation is not enough
+    const ContactReport rb = solver->Solve(problem_two, tight, &b);
+    INFO("second solve: " << rb.message);
+    CHECK(rb.status == ContactStatus::kConverged);
+    CHECK(RelativeError(b.force, Eigen::Vector2d(2 * p / 3, p / 3)) <= kAccept);
+    const ContactReport rc = solver->Solve(problem_one, tight, &c_again);
+    INFO("third solve: " << rc.message);
+    CHECK(rc.status == ContactStatus::kConverged);
+    CHECK(RelativeError(c_again.force, Eigen::VectorXd::Constant(1, 16000.0)) <= kAccept);
   }
 }
