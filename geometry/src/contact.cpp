@@ -87,24 +87,6 @@ double Lever(const Vec2& point, const Vec2& centre, const Vec2& force_direction)
   return Cross(point - centre, force_direction);
 }
 
-// A tip round can reach the mate's flank only where the owner's tip lies inside the mate's tip
-// circle (outside it, for a ring). In angle about the owner's centre, from the direction of the
-// pitch point, that is |θ| ≤ θ_max with cos θ_max from the triangle of the two centres, widened by
-// the angle ψ_c at which the round's centre sits off the tooth's centre line.
-double TipWindow(const PosedGear& owner, const PosedGear& other, double window) {
-  if (!owner.gear->has_tip_round()) return 0;
-  const double rho = owner.gear->tip_round().radius;
-  const double ro = owner.gear->tip_radius();
-  const double dist = (other.pose.geometric_centre - owner.pose.geometric_centre).norm();
-  const double margin = rho + window;
-  const double reach = other.gear->tip_radius() + (other.gear->internal() ? -margin : margin);
-  const double cos_max = other.gear->internal()
-                             ? (reach * reach - dist * dist - ro * ro) / (2 * dist * ro)
-                             : (ro * ro + dist * dist - reach * reach) / (2 * dist * ro);
-  return std::acos(std::clamp(cos_max, -1.0, 1.0)) +
-         std::abs(Angle(owner.gear->tip_round().centre)) + 1e-3;
-}
-
 }  // namespace
 
 Vec2 WorldInvolute::Point(double u) const {
@@ -211,7 +193,6 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
   const double window = options.gap_window;
   const Vec2 oa = a.pose.rotation_centre, ob = b.pose.rotation_centre;
   const double ring_sign = internal ? -1.0 : 1.0;  // B's curvature: a ring's flank is concave
-  const double window_a = TipWindow(a, b, window), window_b = TipWindow(b, a, window);
   std::vector<int> sides =
       options.both_sides ? std::vector<int>{1, -1} : std::vector<int>{options.side_a};
   for (int side_a : sides) {
@@ -242,19 +223,28 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
       c.roll_b = pr.ub;
       out.push_back(c);
     });
-    // Tip rounds against flanks, off the line of action: the teeth near the mesh only.
-    const double pitch_dir =
-        Angle(b.pose.geometric_centre - a.pose.geometric_centre) + (internal ? kPi : 0.0);
+    // Tip rounds against flanks, off the line of action. A tip round reaches the mate only around
+    // the ends of the path of contact, where the owner's flank crosses the line of action near its
+    // tip-end roll: the teeth whose roll there is within one pitch of it (all teeth with
+    // options.exhaustive_tips). One pitch, not less: internal meshes are nearly conformal, and a
+    // ring's round stays within a 150 µm window more than half a base pitch past the path's end.
     auto tips = [&](const PosedGear& owner, const PosedGear& other, int owner_side, int other_side,
-                    double owner_dir, double window_angle, bool owner_is_a) {
+                    double base_angle, bool owner_is_a) {
       if (!owner.gear->has_tip_round()) return;
       const double p = owner.gear->pitch_angle();
-      const long k0 = std::lround(WrapAngle(owner_dir - owner.pose.rotation) / p);
       const double rho = owner.gear->tip_round().radius;
-      for (long k = k0 - 2; k <= k0 + 2; ++k) {
-        const int tooth = Mod(k, owner.gear->teeth());
-        const double off = WrapAngle(owner.pose.rotation + tooth * p - owner_dir);
-        if (std::abs(off) > window_angle) continue;
+      const WorldInvolute f0 = FlankInWorld(owner, 0, owner_side);
+      const double u0 = f0.hand * WrapAngle(base_angle - f0.start);
+      const double u_tip = owner.gear->internal() ? f0.u_min : f0.u_max;
+      std::vector<int> teeth;
+      if (options.exhaustive_tips) {
+        for (int k = 0; k < owner.gear->teeth(); ++k) teeth.push_back(k);
+      } else {
+        ForEachRoll(u0, p, u_tip - p, u_tip + p, [&](double, long j) {
+          teeth.push_back(Mod(-f0.hand * j, owner.gear->teeth()));
+        });
+      }
+      for (const int tooth : teeth) {
         const WorldArc arc = TipRoundInWorld(owner, tooth, owner_side);
         ArcAgainstFlanks(arc.centre, rho, arc.from, arc.to, other, other_side, window,
                          [&](const ArcHit& h) {
@@ -291,8 +281,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                          });
       }
     };
-    tips(a, b, l.side_a, l.side_b, pitch_dir, window_a, true);
-    tips(b, a, l.side_b, l.side_a, pitch_dir + (internal ? 0.0 : kPi), window_b, false);
+    tips(a, b, l.side_a, l.side_b, l.base_angle_a, true);
+    tips(b, a, l.side_b, l.side_a, l.base_angle_b, false);
   }
   return out;
 }

@@ -83,9 +83,10 @@ struct PotentialContact {
 };
 
 struct ContactSearchOptions {
-  double gap_window = 100e-6;  ///< keep contacts with δ ≥ −window [m]
-  bool both_sides = true;      ///< search both flanks (drive and coast)
-  int side_a = 1;              ///< with both_sides false: the one side σ_A to search
+  double gap_window = 100e-6;    ///< keep contacts with δ ≥ −window [m]
+  bool both_sides = true;        ///< search both flanks (drive and coast)
+  int side_a = 1;                ///< with both_sides false: the one side σ_A to search
+  bool exhaustive_tips = false;  ///< try every tooth's tip round (a check of the tooth selection)
 };
 
 /// Every potential contact between A and B (internal: B is the ring, A a planet inside it).
