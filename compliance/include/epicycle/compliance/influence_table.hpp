@@ -1,0 +1,136 @@
+// The structural influence table of one gear body (MODEL.md §4): unit loads at the flank grid of
+// tooth 0, displacements at the flank grids of all teeth, joined to the local contact term at
+// depth h, symmetrised (Maxwell–Betti) and interpolated over load position, response position and
+// tooth-index difference.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "epicycle/compliance/gear_mesh.hpp"
+#include "epicycle/compliance/material.hpp"
+#include "epicycle/geometry/gear.hpp"
+
+namespace epicycle::compliance {
+
+/// Options of an influence-table build.
+struct InfluenceTableOptions {
+  GearMeshOptions mesh;  ///< mesh density (the flank grid follows it)
+  /// Join depth h [m] below the surface, along the inward normal, where the FE structural term
+  /// of the loaded point is read (MODEL.md §4). 0 selects the default
+  ///   h = kDefaultDepthFraction · min_i d_i,   d_i = y_i / n_y,i,
+  /// d_i the distance from grid point i along its inward normal to the tooth centre line (the
+  /// largest h that keeps the read-out on the loaded tooth's side), so that h ± 50 % stays valid.
+  double join_depth = 0.0;
+  /// Right-hand sides solved per sweep of the factor [-], ≥ 1 (bounds the memory of the solve).
+  int batch = 32;
+  /// @throws std::invalid_argument naming the field, its value and the rule.
+  void Validate() const;
+};
+
+/// A position on a flank: tooth k (any integer, taken modulo z), flank σ = +1 (counter-clockwise
+/// side of the tooth) or −1, and arc length s [m] from the form point along the flank grid
+/// (0 ≤ s ≤ s_max, the tip-round end).
+struct FlankPosition {
+  int tooth = 0;            ///< k [-]
+  int flank = 1;            ///< σ = ±1
+  double arc_length = 0.0;  ///< s [m]
+};
+
+/// The influence table Λ of one body in its body frame: Λ(p_load, p_response) is the 2×2 matrix
+/// whose column c is the displacement [m] at p_response due to a unit force [N] along axis c at
+/// p_load, with the hub (external gears) or the outer rim (ring) fixed. For the loaded point
+/// itself (same tooth, flank and position) the displacement is read at depth h below the surface,
+/// at x − h n (the join with the local term u_local of solvers/local_term.hpp, which carries the
+/// approach between the surface and depth h); elsewhere it is the surface displacement.
+///
+/// Cyclic symmetry: with R_k the rotation by k·2π/z,
+///   Λ(tooth k1 → tooth k2) = R_k1 Λ(tooth 0 → tooth k2 − k1) R_k1ᵀ,
+/// so only loads on tooth 0 are stored: 2 flanks × N points × 2 directions, each with the
+/// displacements of z teeth × 2 flanks × N points (N the flank-grid size).
+///
+/// Interpolation: over the load position and the response position, each by the C1 piecewise
+/// cubic Hermite interpolant in arc length whose nodal slopes are those of the parabola through
+/// three neighbouring grid points (exact for quadratics, error O(Δs³)); the table is the tensor
+/// product of the two. The self term (load and response at the same position) interpolates the
+/// depth-h blocks alone. Maxwell–Betti symmetry Λ(a → b) = Λ(b → a)ᵀ is measured on the raw table
+/// and then enforced by averaging each pair, so the interpolated operator is symmetric too.
+class InfluenceTable {
+ public:
+  /// Meshes `gear`, assembles with `material` (E, ν, b, plane assumption), fixes the hub, factorises
+  /// once and solves all unit loads.
+  /// @throws std::invalid_argument for bad options or material, a mesher failure, or a join depth
+  ///         past the tooth centre line (the message names the grid point and the limit).
+  static InfluenceTable Build(const geometry::Gear& gear, const ElasticMaterial& material,
+                              const InfluenceTableOptions& options = {});
+
+  /// Default h as a fraction of the smallest distance to the tooth centre line (see options).
+  static constexpr double kDefaultDepthFraction = 0.6;
+  /// The join needs h ≥ kMinDepthOverHalfWidth · L (L the Hertz half-width) so that the FE point
+  /// load and the Hertzian pressure give the same displacement at depth h (Saint-Venant).
+  static constexpr double kMinDepthOverHalfWidth = 3.0;
+
+  int teeth() const { return teeth_; }
+  const FlankGrid& grid() const { return grid_; }
+  double join_depth() const { return depth_; }  ///< h [m]
+  /// The largest admissible h [m]: min_i d_i (see InfluenceTableOptions::join_depth).
+  double max_join_depth() const { return max_depth_; }
+  double arc_length_max() const { return grid_.arc_length.back(); }  ///< s_max [m]
+  int num_dofs() const { return num_dofs_; }
+  int num_elements() const { return num_elements_; }
+  /// max over reciprocal pairs |Λ(a→b) − Λ(b→a)ᵀ| / √(|D_a| |D_b|) on the raw table, D the depth-h
+  /// self blocks (max-abs norms) [-]; and the same for the self blocks' own skew part.
+  double raw_asymmetry() const { return raw_asymmetry_; }
+  double raw_self_asymmetry() const { return raw_self_asymmetry_; }
+  /// Timings of the build [s] (CPU): mesh, assembly + factorisation, solves + extraction.
+  std::array<double, 3> build_seconds() const { return seconds_; }
+
+  /// @throws std::invalid_argument unless h ≥ kMinDepthOverHalfWidth · L, naming both values.
+  void CheckHalfWidth(double half_width) const;
+
+  /// Λ(load, response) [m/N], body frame (see the class comment).
+  /// @throws std::invalid_argument for a flank other than ±1 or an arc length outside [0, s_max].
+  Eigen::Matrix2d Influence(const FlankPosition& load, const FlankPosition& response) const;
+
+  /// The flank position of a body-frame point on tooth k's flank σ (projection on the generated
+  /// profile). @throws std::invalid_argument if the point lies farther than 1e-3·m from the
+  /// flank between the form point and the tip-round end.
+  FlankPosition Locate(const Eigen::Vector2d& point, int tooth, int flank) const;
+
+  /// n_rᵀ Λ(p_load, p_response) n_l [m/N]: the structural compliance between a load along the
+  /// unit vector n_l at p_load (tooth k1, flank σ1) and the displacement along n_r at p_response
+  /// (tooth k2, flank σ2), all in the body frame.
+  double Compliance(const Eigen::Vector2d& load_point, const Eigen::Vector2d& load_normal,
+                    int load_tooth, int load_flank, const Eigen::Vector2d& response_point,
+                    const Eigen::Vector2d& response_normal, int response_tooth,
+                    int response_flank) const;
+
+  /// The raw (unsymmetrised, unjoined) surface value, and the (symmetrised) depth-h self block,
+  /// at grid nodes, for tests: column c = displacement of response (tooth k, flank f, point j) under a unit force
+  /// along c at (tooth 0, flank fl, point i). f, fl: 0 for σ = +1, 1 for σ = −1.
+  Eigen::Matrix2d GridValue(int fl, int i, int k, int f, int j) const;
+  Eigen::Matrix2d SelfBlock(int fl, int i) const;
+
+ private:
+  std::size_t Index(int fl, int i, int c, int k, int f, int j) const;
+  void Weights(double s, int* first, std::array<double, 4>* w) const;
+
+  int teeth_ = 0;
+  int n_ = 0;  // grid points per flank
+  int num_dofs_ = 0, num_elements_ = 0;
+  double depth_ = 0.0, max_depth_ = 0.0, module_ = 0.0;
+  double raw_asymmetry_ = 0.0, raw_self_asymmetry_ = 0.0;
+  std::array<double, 3> seconds_{};
+  FlankGrid grid_;
+  std::vector<double> surface_;             // symmetrised, joined (self entries = depth blocks)
+  std::vector<double> raw_;                 // as solved (surface values everywhere)
+  std::vector<Eigen::Matrix2d> self_;       // [fl][i], symmetrised
+  std::shared_ptr<const geometry::Gear> gear_;
+  std::shared_ptr<const ProfilePath> path_;
+};
+
+}  // namespace epicycle::compliance

@@ -1,0 +1,355 @@
+#include "epicycle/compliance/influence_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+
+#include "epicycle/compliance/elastic_model.hpp"
+
+namespace epicycle::compliance {
+namespace {
+
+double Cpu() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+Eigen::Matrix2d Rot(double angle) { return Eigen::Rotation2Dd(angle).toRotationMatrix(); }
+
+std::string Num(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+int FlankIndex(int flank, const char* what) {
+  if (flank != 1 && flank != -1) {
+    throw std::invalid_argument(std::string("InfluenceTable: ") + what + ".flank = " +
+                                std::to_string(flank) + ": must be +1 or -1");
+  }
+  return flank == 1 ? 0 : 1;
+}
+
+}  // namespace
+
+void InfluenceTableOptions::Validate() const {
+  mesh.Validate();
+  if (!std::isfinite(join_depth) || join_depth < 0.0) {
+    throw std::invalid_argument("InfluenceTableOptions.join_depth = " + Num(join_depth) +
+                                " m: must be finite and >= 0 (0 selects the default)");
+  }
+  if (batch < 1 || batch > 4096) {
+    throw std::invalid_argument("InfluenceTableOptions.batch = " + std::to_string(batch) +
+                                ": must be in [1, 4096]");
+  }
+}
+
+std::size_t InfluenceTable::Index(int fl, int i, int c, int k, int f, int j) const {
+  const std::size_t per_load = static_cast<std::size_t>(teeth_) * 2 * n_ * 2;
+  return ((static_cast<std::size_t>(fl) * n_ + i) * 2 + c) * per_load +
+         ((static_cast<std::size_t>(k) * 2 + f) * n_ + j) * 2;
+}
+
+InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMaterial& material,
+                                     const InfluenceTableOptions& options) {
+  options.Validate();
+  material.Validate();
+  const std::string who = "influence table of '" + gear.name() + "': ";
+  InfluenceTable t;
+  t.gear_ = std::make_shared<const geometry::Gear>(gear);
+  t.path_ = std::make_shared<const ProfilePath>(*t.gear_);
+  t.module_ = gear.module();
+
+  double t0 = Cpu();
+  GearBodyMesh body = BuildGearMesh(gear, options.mesh);
+  t.teeth_ = body.teeth;
+  t.grid_ = body.grid;
+  t.n_ = body.grid.num_points();
+  const int n = t.n_, z = t.teeth_;
+
+  // Join depth: admissible below the distance to the tooth centre line along the normal.
+  t.max_depth_ = std::numeric_limits<double>::infinity();
+  int limiting = 0;
+  for (int i = 0; i < n; ++i) {
+    const double ny = t.grid_.normal[i].y();
+    const double d = ny > 0.0 ? t.grid_.position[i].y() / ny : std::numeric_limits<double>::infinity();
+    if (d < t.max_depth_) {
+      t.max_depth_ = d;
+      limiting = i;
+    }
+  }
+  t.depth_ = options.join_depth > 0.0 ? options.join_depth : kDefaultDepthFraction * t.max_depth_;
+  if (!(t.depth_ < t.max_depth_)) {
+    std::ostringstream msg;
+    msg << who << "join_depth h = " << t.depth_ * 1e3 << " mm reaches past the tooth centre line: "
+        << "from flank-grid point " << limiting << " (s = " << t.grid_.arc_length[limiting] * 1e3
+        << " mm) the centre line is " << t.max_depth_ * 1e3
+        << " mm away along the normal; the rule is h < that distance (default h = "
+        << kDefaultDepthFraction << " of it)";
+    throw std::invalid_argument(msg.str());
+  }
+  const double t_mesh = Cpu() - t0;
+
+  t0 = Cpu();
+  LinearElasticModel model(std::move(body.mesh), material);
+  t.num_dofs_ = model.num_dofs();
+  t.num_elements_ = model.mesh().num_elements();
+  model.FixNodeSet("hub");
+  model.Factorize();
+  const double t_factor = Cpu() - t0;
+
+  t0 = Cpu();
+  // Depth read-out points of tooth 0's grid (DisplacementAtDepth's construction: the edge point
+  // at the node, minus h times the edge's outward normal), located once.
+  std::array<std::vector<ElementPoint>, 2> depth_at;
+  for (int fl = 0; fl < 2; ++fl) {
+    const std::string set = std::string("flank0") + (fl == 0 ? "+" : "-");
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector2d x = model.mesh().nodes[body.grid_nodes[0][fl][i]];
+      const EdgePoint ep = model.mesh().LocateOnEdgeSet(set, x);
+      const Eigen::Vector2d xd =
+          model.mesh().EdgePosition(set, ep) - t.depth_ * model.mesh().EdgeNormal(set, ep);
+      try {
+        depth_at[fl].push_back(model.LocatePoint(xd));
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(who + "the depth read-out of grid point " + std::to_string(i) +
+                                    " at h = " + Num(t.depth_ * 1e3) + " mm is outside the body (" +
+                                    e.what() + ")");
+      }
+    }
+  }
+  const std::size_t total = static_cast<std::size_t>(2) * n * 2 * z * 2 * n * 2;
+  std::vector<double> raw(total, 0.0);
+  std::vector<Eigen::Matrix2d> self(static_cast<std::size_t>(2) * n, Eigen::Matrix2d::Zero());
+  const int cases = 2 * n * 2;
+  for (int first = 0; first < cases; first += options.batch) {
+    const int count = std::min(options.batch, cases - first);
+    Eigen::MatrixXd f = Eigen::MatrixXd::Zero(model.num_dofs(), count);
+    for (int q = 0; q < count; ++q) {
+      const int id = first + q, c = id % 2, i = (id / 2) % n, fl = id / (2 * n);
+      f(LinearElasticModel::Dof(body.grid_nodes[0][fl][i], c), q) = 1.0;
+    }
+    const Eigen::MatrixXd u = model.SolveMany(f);
+    for (int q = 0; q < count; ++q) {
+      const int id = first + q, c = id % 2, i = (id / 2) % n, fl = id / (2 * n);
+      for (int k = 0; k < z; ++k) {
+        for (int fr = 0; fr < 2; ++fr) {
+          for (int j = 0; j < n; ++j) {
+            const int node = body.grid_nodes[k][fr][j];
+            const std::size_t at = t.Index(fl, i, c, k, fr, j);
+            raw[at] = u(2 * node, q);
+            raw[at + 1] = u(2 * node + 1, q);
+          }
+        }
+      }
+      self[static_cast<std::size_t>(fl) * n + i].col(c) =
+          model.Displacement(u.col(q), depth_at[fl][i]);
+    }
+  }
+
+  // Maxwell–Betti: Λ(a→b) = Λ(b→a)ᵀ. For a = (tooth 0, fl, i), b = (tooth k, fr, j), the
+  // reciprocal load sits on tooth k: Λ(b→a) = R_k M R_kᵀ with M = Λ((0, fr, j) → (−k, fl, i)).
+  std::vector<double> sym(total, 0.0);
+  auto block = [&](const std::vector<double>& v, int fl, int i, int k, int fr, int j) {
+    Eigen::Matrix2d m;
+    for (int c = 0; c < 2; ++c) {
+      const std::size_t at = t.Index(fl, i, c, k, fr, j);
+      m(0, c) = v[at];
+      m(1, c) = v[at + 1];
+    }
+    return m;
+  };
+  auto norm = [](const Eigen::Matrix2d& m) { return m.cwiseAbs().maxCoeff(); };
+  double asym = 0.0, self_asym = 0.0;
+  for (int fl = 0; fl < 2; ++fl) {
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Matrix2d& s = self[static_cast<std::size_t>(fl) * n + i];
+      self_asym = std::max(self_asym, std::abs(s(0, 1) - s(1, 0)) / norm(s));
+    }
+  }
+  for (int fl = 0; fl < 2; ++fl) {
+    for (int i = 0; i < n; ++i) {
+      const double da = norm(self[static_cast<std::size_t>(fl) * n + i]);
+      for (int k = 0; k < z; ++k) {
+        const Eigen::Matrix2d r = Rot(k * gear.pitch_angle());
+        const int back = (z - k) % z;
+        for (int fr = 0; fr < 2; ++fr) {
+          for (int j = 0; j < n; ++j) {
+            const Eigen::Matrix2d ab = block(raw, fl, i, k, fr, j);
+            const Eigen::Matrix2d ba_t = r * block(raw, fr, j, back, fl, i).transpose() * r.transpose();
+            const double db = norm(self[static_cast<std::size_t>(fr) * n + j]);
+            asym = std::max(asym, norm(ab - ba_t) / std::sqrt(da * db));
+            const Eigen::Matrix2d avg = 0.5 * (ab + ba_t);
+            for (int c = 0; c < 2; ++c) {
+              const std::size_t at = t.Index(fl, i, c, k, fr, j);
+              sym[at] = avg(0, c);
+              sym[at + 1] = avg(1, c);
+            }
+          }
+        }
+      }
+    }
+  }
+  for (auto& s : self) s = 0.5 * (s + s.transpose()).eval();
+  // The join: the loaded point's own entry is the depth-h read-out.
+  for (int fl = 0; fl < 2; ++fl) {
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Matrix2d& s = self[static_cast<std::size_t>(fl) * n + i];
+      for (int c = 0; c < 2; ++c) {
+        const std::size_t at = t.Index(fl, i, c, 0, fl, i);
+        sym[at] = s(0, c);
+        sym[at + 1] = s(1, c);
+      }
+    }
+  }
+  t.raw_asymmetry_ = asym;
+  t.raw_self_asymmetry_ = self_asym;
+  t.surface_ = std::move(sym);
+  t.self_ = std::move(self);
+  t.raw_ = std::move(raw);
+  t.seconds_ = {t_mesh, t_factor, Cpu() - t0};
+  return t;
+}
+
+void InfluenceTable::CheckHalfWidth(double half_width) const {
+  if (!(std::isfinite(half_width) && half_width >= 0.0) ||
+      !(depth_ >= kMinDepthOverHalfWidth * half_width)) {
+    std::ostringstream msg;
+    msg << "influence table of '" << gear_->name() << "': join depth h = " << depth_ * 1e3
+        << " mm against the Hertz half-width L = " << half_width * 1e3
+        << " mm: the rule is h >= " << kMinDepthOverHalfWidth
+        << " L (h well above L); lower the load or raise join_depth (at most "
+        << max_depth_ * 1e3 << " mm here)";
+    throw std::invalid_argument(msg.str());
+  }
+}
+
+// Piecewise cubic Hermite in arc length, nodal slopes from the parabola through three points.
+void InfluenceTable::Weights(double s, int* first, std::array<double, 4>* w) const {
+  const std::vector<double>& g = grid_.arc_length;
+  const int n = n_;
+  const double tol = 1e-9 * g.back();
+  if (!(s >= -tol && s <= g.back() + tol)) {
+    std::ostringstream msg;
+    msg << "InfluenceTable: arc length s = " << s * 1e3 << " mm is outside the flank grid [0, "
+        << g.back() * 1e3 << "] mm (form point to tip-round end)";
+    throw std::invalid_argument(msg.str());
+  }
+  s = std::clamp(s, 0.0, g.back());
+  int i = static_cast<int>(std::upper_bound(g.begin(), g.end(), s) - g.begin()) - 1;
+  i = std::clamp(i, 0, n - 2);
+  const int lo = std::clamp(i - 1, 0, n - 4);
+  *first = lo;
+  w->fill(0.0);
+  // Slope weights at node m over f_{m-1}, f_m, f_{m+1} (one-sided at the ends).
+  auto slope = [&](int m, double coef) {
+    if (m == 0) {
+      const double h0 = g[1] - g[0], h1 = g[2] - g[1];
+      (*w)[0 - lo] += coef * (-(2 * h0 + h1) / (h0 * (h0 + h1)));
+      (*w)[1 - lo] += coef * ((h0 + h1) / (h0 * h1));
+      (*w)[2 - lo] += coef * (-h0 / (h1 * (h0 + h1)));
+    } else if (m == n - 1) {
+      const double h0 = g[m - 1] - g[m - 2], h1 = g[m] - g[m - 1];
+      (*w)[m - 2 - lo] += coef * (h1 / (h0 * (h0 + h1)));
+      (*w)[m - 1 - lo] += coef * (-(h0 + h1) / (h0 * h1));
+      (*w)[m - lo] += coef * ((2 * h1 + h0) / (h1 * (h0 + h1)));
+    } else {
+      const double h0 = g[m] - g[m - 1], h1 = g[m + 1] - g[m];
+      (*w)[m - 1 - lo] += coef * (-h1 / (h0 * (h0 + h1)));
+      (*w)[m - lo] += coef * ((h1 - h0) / (h0 * h1));
+      (*w)[m + 1 - lo] += coef * (h0 / (h1 * (h0 + h1)));
+    }
+  };
+  const double d = g[i + 1] - g[i];
+  const double x = (s - g[i]) / d;
+  const double h00 = (1 + 2 * x) * (1 - x) * (1 - x), h10 = x * (1 - x) * (1 - x);
+  const double h01 = x * x * (3 - 2 * x), h11 = x * x * (x - 1);
+  (*w)[i - lo] += h00;
+  (*w)[i + 1 - lo] += h01;
+  slope(i, d * h10);
+  slope(i + 1, d * h11);
+}
+
+Eigen::Matrix2d InfluenceTable::Influence(const FlankPosition& load,
+                                          const FlankPosition& response) const {
+  const int fl = FlankIndex(load.flank, "load");
+  const int fr = FlankIndex(response.flank, "response");
+  const int z = teeth_;
+  const int k1 = ((load.tooth % z) + z) % z, k2 = ((response.tooth % z) + z) % z;
+  const int dk = ((k2 - k1) % z + z) % z;
+  const Eigen::Matrix2d r = Rot(k1 * gear_->pitch_angle());
+  int a0, b0;
+  std::array<double, 4> wa, wb;
+  Weights(load.arc_length, &a0, &wa);
+  Weights(response.arc_length, &b0, &wb);
+  Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
+  const bool self = dk == 0 && fl == fr &&
+                    std::abs(load.arc_length - response.arc_length) <= 1e-12 * arc_length_max();
+  if (self) {
+    for (int p = 0; p < 4; ++p) m += wa[p] * self_[static_cast<std::size_t>(fl) * n_ + a0 + p];
+  } else {
+    for (int p = 0; p < 4; ++p) {
+      if (wa[p] == 0.0) continue;
+      for (int q = 0; q < 4; ++q) {
+        if (wb[q] == 0.0) continue;
+        for (int c = 0; c < 2; ++c) {
+          const std::size_t at = Index(fl, a0 + p, c, dk, fr, b0 + q);
+          m(0, c) += wa[p] * wb[q] * surface_[at];
+          m(1, c) += wa[p] * wb[q] * surface_[at + 1];
+        }
+      }
+    }
+  }
+  return r * m * r.transpose();
+}
+
+FlankPosition InfluenceTable::Locate(const Eigen::Vector2d& point, int tooth, int flank) const {
+  FlankIndex(flank, "Locate");
+  const int z = teeth_;
+  const int k = ((tooth % z) + z) % z;
+  Eigen::Vector2d q = Rot(-k * gear_->pitch_angle()) * point;
+  if (flank == -1) q.y() = -q.y();
+  double distance = 0.0;
+  const double s0 = grid_.form_arc;
+  const double s = path_->Project(q, s0, s0 + arc_length_max(), &distance);
+  if (!(distance <= 1e-3 * module_)) {
+    std::ostringstream msg;
+    msg.precision(9);
+    msg << "InfluenceTable::Locate: the point (" << point.x() * 1e3 << ", " << point.y() * 1e3
+        << ") mm is " << distance * 1e3 << " mm from flank " << (flank > 0 ? "+" : "-")
+        << " of tooth " << tooth << " of '" << gear_->name()
+        << "' (form point to tip-round end); the rule is at most 1e-3 m = " << 1e-3 * module_ * 1e3
+        << " mm";
+    throw std::invalid_argument(msg.str());
+  }
+  return FlankPosition{tooth, flank, std::clamp(s - s0, 0.0, arc_length_max())};
+}
+
+double InfluenceTable::Compliance(const Eigen::Vector2d& load_point,
+                                  const Eigen::Vector2d& load_normal, int load_tooth,
+                                  int load_flank, const Eigen::Vector2d& response_point,
+                                  const Eigen::Vector2d& response_normal, int response_tooth,
+                                  int response_flank) const {
+  const FlankPosition a = Locate(load_point, load_tooth, load_flank);
+  const FlankPosition b = Locate(response_point, response_tooth, response_flank);
+  return response_normal.dot(Influence(a, b) * load_normal);
+}
+
+Eigen::Matrix2d InfluenceTable::GridValue(int fl, int i, int k, int f, int j) const {
+  Eigen::Matrix2d m;
+  for (int c = 0; c < 2; ++c) {
+    const std::size_t at = Index(fl, i, c, k, f, j);
+    m(0, c) = raw_[at];
+    m(1, c) = raw_[at + 1];
+  }
+  return m;
+}
+
+Eigen::Matrix2d InfluenceTable::SelfBlock(int fl, int i) const {
+  return self_[static_cast<std::size_t>(fl) * n_ + i];
+}
+
+}  // namespace epicycle::compliance
