@@ -7,6 +7,7 @@
 // allows).
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
 #include <ctime>
 #include <fstream>
@@ -14,10 +15,13 @@
 #include <string>
 
 #include "epicycle/compliance/elastic_model.hpp"
+#include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/compliance/mesher.hpp"
+#include "epicycle/transmission/scene.hpp"
 
 namespace {
 
+using namespace epicycle;
 using namespace epicycle::compliance;
 
 constexpr double kA = 0.02, kB = 0.06, kPressure = 50e6;
@@ -143,6 +147,48 @@ BENCHMARK(BM_GearSizedModel)
     ->Args({32, 80, 120})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
+
+// Influence tables of the paper's stage (scenes/paper_stage.toml) at the default density: sun,
+// planet, ring. Counters: DOFs, CPU time of mesh, assembly + factorisation, solves + extraction,
+// peak resident memory of the build; the check after the loop is the Maxwell–Betti asymmetry of
+// the raw table (round-off when the build is right).
+void BM_GearInfluenceTable(benchmark::State& state) {
+  const transmission::Scene scene =
+      transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage.toml");
+  const int which = static_cast<int>(state.range(0));
+  const geometry::GearSpec& spec =
+      which == 0 ? scene.stage.sun : (which == 1 ? scene.stage.planet : scene.stage.ring);
+  const geometry::Gear gear(spec);
+  const ElasticMaterial steel{scene.material.youngs_modulus, scene.material.poisson_ratio,
+                              spec.face_width, PlaneAssumption::kPlaneStrain};
+  ResetPeakResident();
+  double total = 0, asym = 0;
+  std::array<double, 3> stages{};
+  long dofs = 0;
+  int points = 0;
+  for (auto _ : state) {
+    const double t0 = CpuSeconds();
+    const InfluenceTable table = InfluenceTable::Build(gear, steel);
+    total += Seconds(t0);
+    for (int k = 0; k < 3; ++k) stages[k] += table.build_seconds()[k];
+    asym = table.raw_asymmetry();
+    dofs = table.num_dofs();
+    points = table.grid().num_points();
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.SetLabel(spec.name);
+  state.counters["dofs"] = static_cast<double>(dofs);
+  state.counters["grid_points"] = points;
+  state.counters["rhs"] = 4.0 * points;
+  state.counters["mesh_s"] = stages[0] / n;
+  state.counters["factor_s"] = stages[1] / n;
+  state.counters["solve_s"] = stages[2] / n;
+  state.counters["build_cpu_s"] = total / n;
+  state.counters["peak_rss_MiB"] = PeakResidentKiB() / 1024.0;
+  state.counters["betti_asymmetry"] = asym;
+}
+
+BENCHMARK(BM_GearInfluenceTable)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 
