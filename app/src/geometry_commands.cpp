@@ -2,12 +2,14 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "epicycle/geometry/iso.hpp"
+#include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "stage_svg.hpp"
@@ -56,6 +58,43 @@ json GearJson(const Gear& g) {
   return j;
 }
 
+json MeshJson(const geometry::MeshSummary& m) {
+  return {{"name", m.name},
+          {"centre_distance_mm", m.centre_distance * kToMm},
+          {"operating_pressure_angle_deg", Deg(m.pressure_angle)},
+          {"zero_backlash_pressure_angle_deg", Deg(m.zero_backlash_pressure_angle)},
+          {"normal_backlash_mm", m.normal_backlash * kToMm},
+          {"transverse_backlash_mm", m.transverse_backlash * kToMm},
+          {"contact_ratio_iso", m.contact_ratio_iso},
+          {"contact_ratio_involute", m.contact_ratio},
+          {"sap_a_mm", m.sap_a * kToMm},
+          {"sap_b_mm", m.sap_b * kToMm},
+          {"phase_cycles", m.phase}};
+}
+
+json FitsJson(const transmission::Scene& scene) {
+  json fits = json::array();
+  for (const transmission::ShiftFit& f : scene.fits) {
+    fits.push_back({{"gear", f.gear},
+                    {"mesh", f.mesh},
+                    {"normal_backlash_um", f.normal_backlash * 1e6},
+                    {"profile_shift", f.profile_shift}});
+  }
+  return fits;
+}
+
+json PairJson(const transmission::Scene& scene, const geometry::GearPair& pair) {
+  json j;
+  j["scene"] = scene.name;
+  j["source"] = scene.source;
+  j["gears"]["gear1"] = GearJson(pair.gear1());
+  j["gears"]["gear2"] = GearJson(pair.gear2());
+  j["gear_order"] = {"gear1", "gear2"};
+  j["meshes"] = json::array({MeshJson(pair.summary())});
+  j["fits"] = FitsJson(scene);
+  return j;
+}
+
 json StageJson(const transmission::Scene& scene, const Stage& st) {
   json j;
   j["scene"] = scene.name;
@@ -63,20 +102,9 @@ json StageJson(const transmission::Scene& scene, const Stage& st) {
   j["gears"]["sun"] = GearJson(st.sun());
   j["gears"]["planet"] = GearJson(st.planet(0));
   j["gears"]["ring"] = GearJson(st.ring());
+  j["gear_order"] = {"sun", "planet", "ring"};
   json meshes = json::array();
-  for (const geometry::MeshSummary& m : st.meshes()) {
-    meshes.push_back({{"name", m.name},
-                      {"centre_distance_mm", m.centre_distance * kToMm},
-                      {"operating_pressure_angle_deg", Deg(m.pressure_angle)},
-                      {"zero_backlash_pressure_angle_deg", Deg(m.zero_backlash_pressure_angle)},
-                      {"normal_backlash_mm", m.normal_backlash * kToMm},
-                      {"transverse_backlash_mm", m.transverse_backlash * kToMm},
-                      {"contact_ratio_iso", m.contact_ratio_iso},
-                      {"contact_ratio_involute", m.contact_ratio},
-                      {"sap_a_mm", m.sap_a * kToMm},
-                      {"sap_b_mm", m.sap_b * kToMm},
-                      {"phase_cycles", m.phase}});
-  }
+  for (const geometry::MeshSummary& m : st.meshes()) meshes.push_back(MeshJson(m));
   j["meshes"] = meshes;
   const int zsum = st.sun().teeth() + st.ring().teeth();
   json planets = json::array();
@@ -91,14 +119,7 @@ json StageJson(const transmission::Scene& scene, const Stage& st) {
                    {"z_sun_plus_z_ring", zsum},
                    {"equally_spaced", st.spec().planet_angles.empty()},
                    {"mesh_cycle_carrier_deg", Deg(st.mesh_cycle())}};
-  json fits = json::array();
-  for (const transmission::ShiftFit& f : scene.fits) {
-    fits.push_back({{"gear", f.gear},
-                    {"mesh", f.mesh},
-                    {"normal_backlash_um", f.normal_backlash * 1e6},
-                    {"profile_shift", f.profile_shift}});
-  }
-  j["fits"] = fits;
+  j["fits"] = FitsJson(scene);
   return j;
 }
 
@@ -106,9 +127,10 @@ void PrintReport(const json& j) {
   std::printf("epicycle geometry: %s  (%s)\n\n", j["scene"].get<std::string>().c_str(),
               j["source"].get<std::string>().c_str());
   const json& g = j["gears"];
+  std::vector<std::string> names = j["gear_order"].get<std::vector<std::string>>();
   auto row = [&](const char* label, const char* key, const char* f) {
-    std::printf("  %-34s", label);
-    for (const char* n : {"sun", "planet", "ring"}) {
+    std::printf("  %-38s", label);
+    for (const std::string& n : names) {
       if (g[n].contains(key)) {
         std::printf(f, g[n][key].get<double>());
       } else {
@@ -117,7 +139,9 @@ void PrintReport(const json& j) {
     }
     std::printf("\n");
   };
-  std::printf("Gears %33s %11s %11s\n", "sun", "planet", "ring");
+  std::printf("Gears %33s", "");
+  for (const std::string& n : names) std::printf("%12s", n.c_str());
+  std::printf("\n");
   row("teeth z", "teeth", "%12.0f");
   row("module m [mm]", "module_mm", "%12.3f");
   row("face width b [mm]", "face_width_mm", "%12.2f");
@@ -135,8 +159,8 @@ void PrintReport(const json& j) {
   row("least shift without undercut", "min_shift_without_undercut", "%12.4f");
   row("hub (axis) radius [mm]", "hub_radius_mm", "%12.2f");
   row("rim radius [mm]", "rim_radius_mm", "%12.2f");
-  for (const char* n : {"sun", "planet", "ring"}) {
-    std::printf("  %-7s %s\n", n, g[n]["generation"].get<std::string>().c_str());
+  for (const std::string& n : names) {
+    std::printf("  %-7s %s\n", n.c_str(), g[n]["generation"].get<std::string>().c_str());
   }
   std::printf(
       "\nMeshes          a [mm]  alpha_w [deg]  j_n [mm]  j_t [mm]  eps_a ISO  eps_a inv  "
@@ -150,6 +174,12 @@ void PrintReport(const json& j) {
                 m["sap_a_mm"].get<double>(), m["sap_b_mm"].get<double>(),
                 m["phase_cycles"].get<double>());
   }
+  for (const json& f : j["fits"]) {
+    std::printf("Fit: %s profile shift x = %.6f gives j_n = %.1f um on the %s mesh\n",
+                f["gear"].get<std::string>().c_str(), f["profile_shift"].get<double>(),
+                f["normal_backlash_um"].get<double>(), f["mesh"].get<std::string>().c_str());
+  }
+  if (!j.contains("assembly")) return;
   const json& a = j["assembly"];
   std::printf(
       "\nAssembly: carrier radius %.4f mm, z_sun + z_ring = %d, %s\n",
@@ -164,11 +194,6 @@ void PrintReport(const json& j) {
   }
   std::printf("  one mesh cycle = %.4f deg of carrier rotation\n",
               a["mesh_cycle_carrier_deg"].get<double>());
-  for (const json& f : j["fits"]) {
-    std::printf("Fit: %s profile shift x = %.6f gives j_n = %.1f um on the %s mesh\n",
-                f["gear"].get<std::string>().c_str(), f["profile_shift"].get<double>(),
-                f["normal_backlash_um"].get<double>(), f["mesh"].get<std::string>().c_str());
-  }
 }
 
 void WriteFile(const std::string& path, const std::string& text) {
@@ -177,15 +202,27 @@ void WriteFile(const std::string& path, const std::string& text) {
   out << text;
 }
 
+void PrintContactHeader() {
+  std::printf("  %-13s %-12s %-6s %6s %6s %11s %11s %12s %9s %9s %9s %9s\n", "mesh", "kind",
+              "flank", "tooth", "mate", "x [mm]", "y [mm]", "overlap[um]", "arm_a[mm]", "arm_b[mm]",
+              "rho_a[mm]", "rho_b[mm]");
+}
+
+void PrintContactRow(const std::string& mesh, const geometry::PotentialContact& c, int loaded) {
+  std::printf("  %-13s %-12s %-6s %6d %6d %11.4f %11.4f %12.3f %9.3f %9.3f %9.3f %9.3f\n",
+              mesh.c_str(), geometry::KindName(c.kind).c_str(),
+              c.side_a == loaded ? "drive" : "coast", c.tooth_a, c.tooth_b, c.point.x() * kToMm,
+              c.point.y() * kToMm, c.overlap * 1e6, c.lever_a * kToMm, c.lever_b * kToMm,
+              c.curvature_radius_a * kToMm, c.curvature_radius_b * kToMm);
+}
+
 void PrintContacts(const Stage& st, double carrier_deg, double window) {
   const geometry::StagePoses p = st.Poses(geometry::Rad(carrier_deg));
   geometry::ContactSearchOptions opt;
   opt.gap_window = window;
   std::printf("Potential contacts at carrier angle %.4f deg (gap window %.1f um)\n", carrier_deg,
               window * 1e6);
-  std::printf("  %-13s %-12s %-6s %6s %6s %11s %11s %12s %9s %9s %9s %9s\n", "mesh", "kind",
-              "flank", "tooth", "mate", "x [mm]", "y [mm]", "overlap[um]", "arm_a[mm]", "arm_b[mm]",
-              "rho_a[mm]", "rho_b[mm]");
+  PrintContactHeader();
   for (int i = 0; i < st.planets(); ++i) {
     for (geometry::MeshKind kind :
          {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
@@ -193,13 +230,21 @@ void PrintContacts(const Stage& st, double carrier_deg, double window) {
           kind == geometry::MeshKind::kSunPlanet ? st.sun_mesh_side() : st.ring_mesh_planet_side();
       const std::string name = st.meshes()[2 * i + (kind == geometry::MeshKind::kPlanetRing)].name;
       for (const geometry::PotentialContact& c : st.Contacts(p, i, kind, opt)) {
-        std::printf("  %-13s %-12s %-6s %6d %6d %11.4f %11.4f %12.3f %9.3f %9.3f %9.3f %9.3f\n",
-                    name.c_str(), geometry::KindName(c.kind).c_str(),
-                    c.side_a == loaded ? "drive" : "coast", c.tooth_a, c.tooth_b,
-                    c.point.x() * kToMm, c.point.y() * kToMm, c.overlap * 1e6, c.lever_a * kToMm,
-                    c.lever_b * kToMm, c.curvature_radius_a * kToMm, c.curvature_radius_b * kToMm);
+        PrintContactRow(name, c, loaded);
       }
     }
+  }
+}
+
+void PrintPairContacts(const geometry::GearPair& pair, double angle_deg, double window) {
+  geometry::ContactSearchOptions opt;
+  opt.gap_window = window;
+  std::printf("Potential contacts with gear 1 turned %.4f deg (gap window %.1f um)\n", angle_deg,
+              window * 1e6);
+  PrintContactHeader();
+  for (const geometry::PotentialContact& c :
+       pair.Contacts(pair.Poses(geometry::Rad(angle_deg)), opt)) {
+    PrintContactRow(pair.summary().name, c, pair.loaded_side());
   }
 }
 
@@ -215,6 +260,15 @@ void RegisterGeometryCommands(CLI::App& app) {
   geo->add_option("--carrier-deg", carrier_deg, "Carrier angle of the drawing [deg]");
   geo->callback([] {
     const transmission::Scene scene = transmission::ReadScene(scene_path);
+    if (scene.kind == transmission::SceneKind::kPair) {
+      const geometry::GearPair pair(scene.pair);
+      const json report = PairJson(scene, pair);
+      PrintReport(report);
+      if (!json_path.empty()) WriteFile(json_path, report.dump(2) + "\n");
+      if (!svg_path.empty())
+        throw std::invalid_argument("--svg draws stages only (this scene is a gear pair)");
+      return;
+    }
     const Stage stage(scene.stage);
     const json report = StageJson(scene, stage);
     PrintReport(report);
@@ -234,9 +288,14 @@ void RegisterGeometryCommands(CLI::App& app) {
   con->add_option("scene", contacts_scene, "Scene file (TOML)")
       ->required()
       ->check(CLI::ExistingFile);
-  con->add_option("--carrier-deg", contacts_deg, "Carrier angle [deg]")->required();
+  con->add_option("--carrier-deg", contacts_deg, "Carrier angle [deg] (gear pairs: gear 1's turn)")
+      ->required();
   con->callback([] {
     const transmission::Scene scene = transmission::ReadScene(contacts_scene);
+    if (scene.kind == transmission::SceneKind::kPair) {
+      PrintPairContacts(geometry::GearPair(scene.pair), contacts_deg, scene.gap_window);
+      return;
+    }
     const Stage stage(scene.stage);
     PrintContacts(stage, contacts_deg, scene.gap_window);
   });

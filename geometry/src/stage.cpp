@@ -43,6 +43,89 @@ double Sap(double rb, double roll) { return std::sqrt(rb * rb + roll * roll); }
 
 }  // namespace
 
+void CheckMesh(const Gear& g1, const Gear& g2, bool internal, double a, const std::string& owner) {
+  // Tips against roots.
+  auto need = [&](double clearance, const std::string& what) {
+    if (clearance <= 0) {
+      throw std::invalid_argument(owner + ": " + what + " (radial clearance " + Mm(clearance) +
+                                  " mm)");
+    }
+  };
+  const std::string n1 = g1.name(), n2 = g2.name();
+  if (internal) {
+    need(g2.root_radius() - a - g1.tip_radius(), "the " + n1 + "'s tip hits the " + n2 + "'s root");
+    need(g2.tip_radius() - a - g1.root_radius(), "the " + n2 + "'s tip hits the " + n1 + "'s root");
+  } else {
+    need(a - g1.tip_radius() - g2.root_radius(), "the " + n1 + "'s tip hits the " + n2 + "'s root");
+    need(a - g2.tip_radius() - g1.root_radius(), "the " + n2 + "'s tip hits the " + n1 + "'s root");
+  }
+  // Tips against fillets: the mate's tip circle must start the contact on the involute.
+  const double aw = iso::PressureAngleAt(g1.module(), g1.teeth(), g2.teeth(),
+                                         g1.spec().pressure_angle, a, internal);
+  const double la = a * std::sin(aw);
+  auto roll_len = [](const Gear& g, double r) {
+    return std::sqrt(r * r - g.base_radius() * g.base_radius());
+  };
+  auto fillet = [&](const Gear& g, const std::string& mate, double sap) {
+    const bool bad = g.internal() ? sap > g.form_radius() : sap < g.form_radius();
+    if (bad) {
+      throw std::invalid_argument(owner + ": tip-fillet interference: the " + mate +
+                                  "'s tip reaches the " + g.name() + "'s flank at radius " +
+                                  Mm(sap) + " mm, past its form radius " + Mm(g.form_radius()) +
+                                  " mm");
+    }
+  };
+  if (internal) {
+    const double roll1 = roll_len(g2, g2.tip_radius()) - la;
+    if (roll1 <= 0) {
+      throw std::invalid_argument(owner + ": the " + n2 + "'s tip passes the " + n1 +
+                                  "'s interference point");
+    }
+    fillet(g1, n2, Sap(g1.base_radius(), roll1));
+    fillet(g2, n1, Sap(g2.base_radius(), roll_len(g1, g1.tip_radius()) + la));
+  } else {
+    const double roll1 = la - roll_len(g2, g2.tip_radius());
+    const double roll2 = la - roll_len(g1, g1.tip_radius());
+    if (roll1 <= 0 || roll2 <= 0) {
+      throw std::invalid_argument(owner + ": a tip of the " + n1 + "-" + n2 +
+                                  " mesh passes the interference point");
+    }
+    fillet(g1, n2, Sap(g1.base_radius(), roll1));
+    fillet(g2, n1, Sap(g2.base_radius(), roll2));
+  }
+}
+
+MeshSummary SummariseMesh(const Gear& g1, const Gear& g2, bool internal, double a) {
+  const double alpha = g1.spec().pressure_angle;
+  MeshSummary m;
+  m.centre_distance = a;
+  m.pressure_angle = iso::PressureAngleAt(g1.module(), g1.teeth(), g2.teeth(), alpha, a, internal);
+  m.zero_backlash_pressure_angle = iso::ZeroBacklashPressureAngle(
+      g1.teeth(), g2.teeth(), g1.spec().profile_shift, g2.spec().profile_shift, alpha, internal);
+  m.normal_backlash = iso::NormalBacklash(
+      g1.module(), g1.teeth(), g2.teeth(), g1.spec().profile_shift, g2.spec().profile_shift, alpha,
+      a, internal, g1.spec().thickness_error, g2.spec().thickness_error);
+  m.transverse_backlash = m.normal_backlash / std::cos(m.pressure_angle);
+  m.contact_ratio_iso =
+      iso::ContactRatio(g1.base_radius(), g1.tip_radius(), g2.base_radius(), g2.tip_radius(), a,
+                        m.pressure_angle, g1.base_pitch(), internal);
+  m.contact_ratio =
+      iso::ContactRatio(g1.base_radius(), g1.tip_form_radius(), g2.base_radius(),
+                        g2.tip_form_radius(), a, m.pressure_angle, g1.base_pitch(), internal);
+  const double la = a * std::sin(m.pressure_angle);
+  auto roll_len = [](const Gear& g, double r) {
+    return std::sqrt(r * r - g.base_radius() * g.base_radius());
+  };
+  if (internal) {
+    m.sap_a = Sap(g1.base_radius(), roll_len(g2, g2.tip_radius()) - la);
+    m.sap_b = Sap(g2.base_radius(), roll_len(g1, g1.tip_radius()) + la);
+  } else {
+    m.sap_a = Sap(g1.base_radius(), la - roll_len(g2, g2.tip_radius()));
+    m.sap_b = Sap(g2.base_radius(), la - roll_len(g1, g1.tip_radius()));
+  }
+  return m;
+}
+
 Stage::Stage(StageSpec spec)
     : spec_(std::move(spec)), sun_(spec_.sun), ring_(spec_.ring), planets_(MakePlanets(spec_)) {
   if (sun_.internal() || planets_[0].internal() || !ring_.internal()) {
@@ -113,49 +196,8 @@ void Stage::CheckClearances() const {
                " mm apart, less than min_planet_gap_mm = " + Mm(spec_.min_planet_gap));
     }
   }
-  // Tips against roots.
-  auto need = [](double clearance, const std::string& what) {
-    if (clearance <= 0) {
-      throw std::invalid_argument("stage: " + what + " (radial clearance " + Mm(clearance) +
-                                  " mm)");
-    }
-  };
-  need(a - sun_.tip_radius() - p.root_radius(), "the sun's tip hits the planet's root");
-  need(a - p.tip_radius() - sun_.root_radius(), "the planet's tip hits the sun's root");
-  need(ring_.root_radius() - a - p.tip_radius(), "the planet's tip hits the ring's root");
-  need(ring_.tip_radius() - a - p.root_radius(), "the ring's tip hits the planet's root");
-  // Tips against fillets: the mate's tip circle must start the contact on the involute.
-  const double aw_s = iso::PressureAngleAt(sun_.module(), sun_.teeth(), p.teeth(),
-                                           sun_.spec().pressure_angle, a, false);
-  const double aw_r =
-      iso::PressureAngleAt(p.module(), p.teeth(), ring_.teeth(), p.spec().pressure_angle, a, true);
-  const double ls = a * std::sin(aw_s), lr = a * std::sin(aw_r);
-  auto roll_len = [](const Gear& g, double r) {
-    return std::sqrt(r * r - g.base_radius() * g.base_radius());
-  };
-  auto fillet = [](const Gear& g, const std::string& mate, double sap) {
-    const bool bad = g.internal() ? sap > g.form_radius() : sap < g.form_radius();
-    if (bad) {
-      throw std::invalid_argument("stage: tip-fillet interference: the " + mate +
-                                  "'s tip reaches the " + g.name() + "'s flank at radius " +
-                                  Mm(sap) + " mm, past its form radius " + Mm(g.form_radius()) +
-                                  " mm");
-    }
-  };
-  const double sap_sun_roll = ls - roll_len(p, p.tip_radius());
-  const double sap_planet_roll_s = ls - roll_len(sun_, sun_.tip_radius());
-  if (sap_sun_roll <= 0 || sap_planet_roll_s <= 0) {
-    throw std::invalid_argument(
-        "stage: a tip of the sun-planet mesh passes the interference point");
-  }
-  fillet(sun_, "planet", Sap(sun_.base_radius(), sap_sun_roll));
-  fillet(p, "sun", Sap(p.base_radius(), sap_planet_roll_s));
-  const double sap_planet_roll_r = roll_len(ring_, ring_.tip_radius()) - lr;
-  if (sap_planet_roll_r <= 0) {
-    throw std::invalid_argument("stage: the ring's tip passes the planet's interference point");
-  }
-  fillet(p, "ring", Sap(p.base_radius(), sap_planet_roll_r));
-  fillet(ring_, "planet", Sap(ring_.base_radius(), roll_len(p, p.tip_radius()) + lr));
+  CheckMesh(sun_, p, false, a, "stage");
+  CheckMesh(p, ring_, true, a, "stage");
 }
 
 void Stage::Align() {
@@ -208,47 +250,17 @@ std::vector<PotentialContact> Stage::Contacts(const StagePoses& p, int planet, M
 
 void Stage::Summarise() {
   meshes_.clear();
-  const double a = spec_.carrier_radius;
-  const double alpha = sun_.spec().pressure_angle;
   for (int i = 0; i < planets(); ++i) {
     const Gear& p = planets_[i];
     const double phase = std::fmod(sun_.teeth() * angles_[i] / (2.0 * kPi), 1.0);
     for (MeshKind kind : {MeshKind::kSunPlanet, MeshKind::kPlanetRing}) {
       const bool internal = kind == MeshKind::kPlanetRing;
-      const Gear& g1 = internal ? p : sun_;
-      const Gear& g2 = internal ? ring_ : p;
-      MeshSummary m;
+      MeshSummary m = internal ? SummariseMesh(p, ring_, true, spec_.carrier_radius)
+                               : SummariseMesh(sun_, p, false, spec_.carrier_radius);
       m.kind = kind;
       m.planet = i;
       m.name = internal ? "planet" + std::to_string(i + 1) + "-ring"
                         : "sun-planet" + std::to_string(i + 1);
-      m.centre_distance = a;
-      m.pressure_angle =
-          iso::PressureAngleAt(g1.module(), g1.teeth(), g2.teeth(), alpha, a, internal);
-      m.zero_backlash_pressure_angle =
-          iso::ZeroBacklashPressureAngle(g1.teeth(), g2.teeth(), g1.spec().profile_shift,
-                                         g2.spec().profile_shift, alpha, internal);
-      m.normal_backlash = iso::NormalBacklash(
-          g1.module(), g1.teeth(), g2.teeth(), g1.spec().profile_shift, g2.spec().profile_shift,
-          alpha, a, internal, g1.spec().thickness_error, g2.spec().thickness_error);
-      m.transverse_backlash = m.normal_backlash / std::cos(m.pressure_angle);
-      m.contact_ratio_iso =
-          iso::ContactRatio(g1.base_radius(), g1.tip_radius(), g2.base_radius(), g2.tip_radius(), a,
-                            m.pressure_angle, g1.base_pitch(), internal);
-      m.contact_ratio =
-          iso::ContactRatio(g1.base_radius(), g1.tip_form_radius(), g2.base_radius(),
-                            g2.tip_form_radius(), a, m.pressure_angle, g1.base_pitch(), internal);
-      const double la = a * std::sin(m.pressure_angle);
-      auto roll_len = [](const Gear& g, double r) {
-        return std::sqrt(r * r - g.base_radius() * g.base_radius());
-      };
-      if (internal) {
-        m.sap_a = Sap(p.base_radius(), roll_len(ring_, ring_.tip_radius()) - la);
-        m.sap_b = Sap(ring_.base_radius(), roll_len(p, p.tip_radius()) + la);
-      } else {
-        m.sap_a = Sap(sun_.base_radius(), la - roll_len(p, p.tip_radius()));
-        m.sap_b = Sap(p.base_radius(), la - roll_len(sun_, sun_.tip_radius()));
-      }
       m.phase = phase < 0 ? phase + 1.0 : phase;
       meshes_.push_back(m);
     }

@@ -165,6 +165,58 @@ void ResolveRadii(GearSpec& g) {
   if (g.root_radius < 0) g.root_radius = r + xm + (-g.root_radius) * g.module;
 }
 
+template <typename Fitted>
+void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
+              const std::vector<std::string>& fit_gears, Fitted&& fitted) {
+  geometry::PairSpec& p = s.pair;
+  bool internal = false;
+  {
+    TableReader t = top.Table("pair");
+    p.centre_distance = t.Real("centre_distance_mm", Rule::Positive()) * kMm;
+    internal = t.BoolOr("internal", false);
+    t.Done();
+  }
+  Inertia unused;
+  {
+    TableReader t = top.Table("gear1");
+    p.gear1 = ReadGear(t, "gear1", GearKind::kExternal, fitted("gear1"), &unused);
+    t.Done();
+  }
+  {
+    TableReader t = top.Table("gear2");
+    p.gear2 = ReadGear(t, "gear2", internal ? GearKind::kInternal : GearKind::kExternal,
+                       fitted("gear2"), &unused);
+    t.Done();
+  }
+  {
+    TableReader t = top.Table("load");
+    s.pair_torque = t.Real("gear1_torque_Nm", Rule::Any());
+    if (s.pair_torque == 0) {
+      t.Fail("gear1_torque_Nm", "0", "must be non-zero (its sign selects the loaded flanks)");
+    }
+    p.load_sign = s.pair_torque > 0 ? 1 : -1;
+    t.Done();
+  }
+  if (auto t = top.OptionalTable("contact")) {
+    s.gap_window = t->RealOr("gap_window_um", 100.0, Rule::Positive()) * kUm;
+    t->Done();
+  }
+  for (std::size_t k = 0; k < fits.size(); ++k) {
+    ShiftFit f;
+    f.gear = fit_gears[k];
+    f.mesh = "gear1-gear2";
+    f.normal_backlash = fits[k].Real("normal_backlash_um", Rule::Any()) * kUm;
+    fits[k].Done();
+    f.profile_shift =
+        geometry::iso::FitProfileShift(p.gear1, p.gear2, internal, f.gear == "gear1" ? 1 : 2,
+                                       p.centre_distance, f.normal_backlash);
+    (f.gear == "gear1" ? p.gear1 : p.gear2).profile_shift = f.profile_shift;
+    s.fits.push_back(f);
+  }
+  ResolveRadii(p.gear1);
+  ResolveRadii(p.gear2);
+}
+
 }  // namespace
 
 Scene ParseScene(const std::string& text, const std::string& source) {
@@ -190,11 +242,15 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     s.material.poisson_ratio = t->Real("poisson_ratio", Rule::HalfOpen(0, 0.5));
     t->Done();
   }
+  // A scene is a planetary stage, or a single gear pair when it has a [pair] table.
+  const bool is_pair = top.Has("pair");
+  s.kind = is_pair ? SceneKind::kPair : SceneKind::kStage;
   // [[fit]] tables name gears whose profile shift is solved for a backlash, in order.
   std::vector<TableReader> fits = top.TableArray("fit");
   std::vector<std::string> fit_gears;
   for (TableReader& f : fits) {
-    const std::string g = f.String("gear", {"sun", "planet", "ring"});
+    const std::string g = is_pair ? f.String("gear", {"gear1", "gear2"})
+                                  : f.String("gear", {"sun", "planet", "ring"});
     for (const std::string& h : fit_gears) {
       if (h == g) f.Fail("gear", "\"" + g + "\"", "each gear can be fitted once");
     }
@@ -207,6 +263,11 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     return false;
   };
 
+  if (is_pair) {
+    ReadPair(top, s, fits, fit_gears, fitted);
+    top.Done();
+    return s;
+  }
   geometry::StageSpec& st = s.stage;
   {
     TableReader t = top.Table("sun");

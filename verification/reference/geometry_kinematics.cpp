@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "stage_fixtures.hpp"
 
@@ -142,4 +143,30 @@ TEST_CASE("run-out of planet 1 changes its overlaps by the offset projected on e
     worst = std::max(worst, std::abs(dr - offset.dot(lr.direction)));
   }
   CHECK(worst <= 0.01 * e);
+}
+
+TEST_CASE("gear pairs: conjugate action of the loaded flanks and the fitted backlash",
+          "[reference][geometry]") {
+  for (const char* file : {"iso_pair_20_40.toml", "iso_pair_30_30.toml", "paper_sun_planet.toml",
+                           "paper_planet_ring.toml"}) {
+    const auto scene = epicycle::transmission::ParseScene(epicycle::test::SceneText(file), file);
+    REQUIRE(scene.kind == epicycle::transmission::SceneKind::kPair);
+    const GearPair pair(scene.pair);
+    INFO(file);
+    const double backlash = scene.fits.empty() ? 0.0 : scene.fits[0].normal_backlash;
+    double worst_loaded = 0, worst_coast = 0;
+    for (int k = 0; k < 200; ++k) {
+      const PairPoses p = pair.Poses(pair.mesh_cycle() * k / 200.0);
+      worst_loaded = std::max(
+          worst_loaded,
+          std::abs(NearestLoaOverlap(pair.A(p), pair.B(p), pair.internal(), pair.loaded_side())));
+      worst_coast = std::max(
+          worst_coast,
+          std::abs(-NearestLoaOverlap(pair.A(p), pair.B(p), pair.internal(), -pair.loaded_side()) -
+                   backlash));
+    }
+    CHECK(worst_loaded <= 1e-10);
+    CHECK(worst_coast <= 1e-10);
+    CHECK(pair.summary().normal_backlash == Approx(backlash).margin(1e-12));
+  }
 }

@@ -55,6 +55,11 @@ struct MeshSummary {
   double phase = 0;                         ///< mesh phase relative to planet 1, in [0, 1) cycles
 };
 
+/// Operating data of the mesh of g1 with g2 at centre distance a (internal: g2 the ring).
+MeshSummary SummariseMesh(const Gear& g1, const Gear& g2, bool internal, double a);
+/// Tips against roots and fillets of one mesh. @throws std::invalid_argument naming `owner`.
+void CheckMesh(const Gear& g1, const Gear& g2, bool internal, double a, const std::string& owner);
+
 /// Rigid poses of every member at one carrier angle.
 struct StagePoses {
   double carrier_angle = 0;  ///< [rad]

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 
 namespace epicycle::transmission {
@@ -29,11 +30,17 @@ struct ShiftFit {
   double profile_shift = 0;    ///< the solved x [-]
 };
 
+/// A scene holds a planetary stage, or a single gear pair (for mesh-stiffness studies).
+enum class SceneKind { kStage, kPair };
+
 struct Scene {
+  SceneKind kind = SceneKind::kStage;
   std::string name;
   std::string description;
-  std::string source;  ///< file name (for messages)
-  geometry::StageSpec stage;
+  std::string source;         ///< file name (for messages)
+  geometry::StageSpec stage;  ///< kind == kStage
+  geometry::PairSpec pair;    ///< kind == kPair
+  double pair_torque = 0;     ///< torque on gear 1 of a pair [N·m] (ccw +)
   Material material;
   Inertia sun, planet, ring, carrier;
   double sun_torque = 0;       ///< input torque on the sun [N·m] (counter-clockwise +)
