@@ -353,3 +353,102 @@ Eigen::Matrix2d InfluenceTable::SelfBlock(int fl, int i) const {
 }
 
 }  // namespace epicycle::compliance
+
+namespace epicycle::compliance {
+namespace {
+
+template <typename T>
+void Put(std::ostream& out, const T& v) {
+  out.write(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+template <typename T>
+T Get(std::istream& in) {
+  T v{};
+  in.read(reinterpret_cast<char*>(&v), sizeof(T));
+  if (!in) throw std::runtime_error("influence table payload truncated");
+  return v;
+}
+
+void PutVector(std::ostream& out, const std::vector<double>& v) {
+  Put<std::uint64_t>(out, v.size());
+  out.write(reinterpret_cast<const char*>(v.data()),
+            static_cast<std::streamsize>(v.size() * sizeof(double)));
+}
+
+std::vector<double> GetVector(std::istream& in, std::size_t expected) {
+  const auto size = Get<std::uint64_t>(in);
+  if (size != expected) {
+    throw std::runtime_error("influence table payload: array of " + std::to_string(size) +
+                             " values where " + std::to_string(expected) + " were expected");
+  }
+  std::vector<double> v(expected);
+  in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(expected * sizeof(double)));
+  if (!in) throw std::runtime_error("influence table payload truncated");
+  return v;
+}
+
+}  // namespace
+
+void InfluenceTable::WritePayload(std::ostream& out) const {
+  Put<std::int32_t>(out, teeth_);
+  Put<std::int32_t>(out, n_);
+  Put<std::int32_t>(out, num_dofs_);
+  Put<std::int32_t>(out, num_elements_);
+  for (double v : {depth_, max_depth_, module_, raw_asymmetry_, raw_self_asymmetry_, seconds_[0],
+                   seconds_[1], seconds_[2], grid_.form_arc}) {
+    Put(out, v);
+  }
+  std::vector<double> g;
+  for (int i = 0; i < n_; ++i) {
+    g.insert(g.end(), {grid_.arc_length[i], grid_.position[i].x(), grid_.position[i].y(),
+                       grid_.normal[i].x(), grid_.normal[i].y()});
+  }
+  PutVector(out, g);
+  PutVector(out, surface_);
+  PutVector(out, raw_);
+  std::vector<double> s;
+  for (const auto& m : self_) s.insert(s.end(), {m(0, 0), m(1, 0), m(0, 1), m(1, 1)});
+  PutVector(out, s);
+}
+
+InfluenceTable InfluenceTable::ReadPayload(std::istream& in, const geometry::Gear& gear) {
+  InfluenceTable t;
+  t.teeth_ = Get<std::int32_t>(in);
+  t.n_ = Get<std::int32_t>(in);
+  t.num_dofs_ = Get<std::int32_t>(in);
+  t.num_elements_ = Get<std::int32_t>(in);
+  if (t.teeth_ != gear.teeth() || t.n_ < 4 || t.n_ > 100000) {
+    throw std::runtime_error("influence table payload: " + std::to_string(t.teeth_) +
+                             " teeth and " + std::to_string(t.n_) +
+                             " grid points do not fit gear '" + gear.name() + "'");
+  }
+  t.depth_ = Get<double>(in);
+  t.max_depth_ = Get<double>(in);
+  t.module_ = Get<double>(in);
+  t.raw_asymmetry_ = Get<double>(in);
+  t.raw_self_asymmetry_ = Get<double>(in);
+  for (auto& s : t.seconds_) s = Get<double>(in);
+  t.grid_.form_arc = Get<double>(in);
+  const int n = t.n_, z = t.teeth_;
+  const std::vector<double> g = GetVector(in, static_cast<std::size_t>(5) * n);
+  for (int i = 0; i < n; ++i) {
+    t.grid_.arc_length.push_back(g[5 * i]);
+    t.grid_.position.emplace_back(g[5 * i + 1], g[5 * i + 2]);
+    t.grid_.normal.emplace_back(g[5 * i + 3], g[5 * i + 4]);
+  }
+  const std::size_t total = static_cast<std::size_t>(2) * n * 2 * z * 2 * n * 2;
+  t.surface_ = GetVector(in, total);
+  t.raw_ = GetVector(in, total);
+  const std::vector<double> s = GetVector(in, static_cast<std::size_t>(8) * n);
+  for (int k = 0; k < 2 * n; ++k) {
+    Eigen::Matrix2d m;
+    m << s[4 * k], s[4 * k + 2], s[4 * k + 1], s[4 * k + 3];
+    t.self_.push_back(m);
+  }
+  t.gear_ = std::make_shared<const geometry::Gear>(gear);
+  t.path_ = std::make_shared<const ProfilePath>(*t.gear_);
+  return t;
+}
+
+}  // namespace epicycle::compliance

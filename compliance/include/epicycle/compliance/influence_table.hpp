@@ -5,6 +5,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
@@ -114,6 +116,13 @@ class InfluenceTable {
   /// along c at (tooth 0, flank fl, point i). f, fl: 0 for σ = +1, 1 for σ = −1.
   Eigen::Matrix2d GridValue(int fl, int i, int k, int f, int j) const;
   Eigen::Matrix2d SelfBlock(int fl, int i) const;
+
+ /// Binary serialisation (see influence_cache.hpp for the file format and its checks): the
+  /// payload only, without header or checksum.
+  void WritePayload(std::ostream& out) const;
+  /// Reads a payload written by WritePayload for `gear` (the caller has checked the key).
+  /// @throws std::runtime_error if the payload is truncated or inconsistent.
+  static InfluenceTable ReadPayload(std::istream& in, const geometry::Gear& gear);
 
  private:
   std::size_t Index(int fl, int i, int c, int k, int f, int j) const;

@@ -1,0 +1,54 @@
+// A disk cache of gear influence tables, keyed by a hash of everything that defines a table.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "epicycle/compliance/influence_table.hpp"
+
+namespace epicycle::compliance {
+
+/// Version of the table file format and of the table's construction; part of the key, so a
+/// change of either makes every older file stale.
+inline constexpr std::uint32_t kInfluenceTableFormat = 1;
+
+/// 64-bit FNV-1a hash of everything that defines a table: kInfluenceTableFormat, every field of
+/// the gear spec that shapes the body (kind, z, m, b, α, x, tip and root radii and roundings, hub
+/// or rim radius, cutter data, thickness error, tip-thickness limit; not the name), the material
+/// (E, ν, b, plane) and the table options that change its values (mesh options, join depth; not
+/// the solve batch). Doubles enter bit-exactly.
+std::uint64_t InfluenceTableKey(const geometry::GearSpec& spec, const ElasticMaterial& material,
+                                const InfluenceTableOptions& options);
+
+/// What the cache did.
+enum class CacheOutcome {
+  kLoaded,    ///< a valid file was read
+  kBuilt,     ///< no file: built and written
+  kRebuilt,   ///< a damaged or stale file was found, reported, rebuilt and replaced
+};
+
+/// The outcome and a message for the user (names the file and, for kRebuilt, what was wrong).
+struct CacheReport {
+  CacheOutcome outcome = CacheOutcome::kBuilt;
+  std::string file;
+  std::string message;
+};
+
+/// The file of a table in `directory`: "<directory>/influence-<key as 16 hex digits>.ilt".
+std::string InfluenceTableFile(const std::string& directory, std::uint64_t key);
+
+/// File layout (little-endian as written by this machine):
+///   magic "EPICYCLE-ILT\0\0\0\0" (16 bytes) | format u32 | key u64 | payload size u64 |
+///   payload (InfluenceTable::WritePayload) | FNV-1a 64 of the payload u64.
+/// Loads the table of (gear, material, options) from `directory` if its file is present and
+/// valid (magic, format, key and checksum all match, payload consistent); otherwise builds it
+/// and writes the file (atomically: a temporary file renamed). A damaged or stale file is never
+/// used: it is reported in `report` and replaced.
+/// @throws std::invalid_argument for bad input (as InfluenceTable::Build) or an empty
+///         directory name; std::runtime_error if the file cannot be written.
+InfluenceTable LoadOrBuildInfluenceTable(const geometry::Gear& gear,
+                                         const ElasticMaterial& material,
+                                         const InfluenceTableOptions& options,
+                                         const std::string& directory, CacheReport* report);
+
+}  // namespace epicycle::compliance

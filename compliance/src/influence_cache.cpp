@@ -1,0 +1,211 @@
+#include "epicycle/compliance/influence_cache.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace epicycle::compliance {
+namespace {
+
+constexpr char kMagic[16] = {'E', 'P', 'I', 'C', 'Y', 'C', 'L', 'E', '-', 'I', 'L', 'T', 0, 0, 0, 0};
+
+class Fnv1a {
+ public:
+  void Bytes(const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < size; ++k) {
+      hash_ ^= p[k];
+      hash_ *= 0x100000001b3ULL;
+    }
+  }
+  template <typename T>
+  void Value(const T& v) {
+    Bytes(&v, sizeof(T));
+  }
+  std::uint64_t hash() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 0xcbf29ce484222325ULL;
+};
+
+std::string Hex(std::uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+}  // namespace
+
+std::uint64_t InfluenceTableKey(const geometry::GearSpec& s, const ElasticMaterial& m,
+                                const InfluenceTableOptions& o) {
+  Fnv1a h;
+  h.Value(kInfluenceTableFormat);
+  h.Value(static_cast<int>(s.kind));
+  h.Value(s.teeth);
+  for (double v : {s.module, s.face_width, s.pressure_angle, s.profile_shift, s.tip_radius,
+                   s.tip_round_radius, s.root_radius, s.root_round_radius, s.hub_radius,
+                   s.thickness_error, s.min_tip_thickness}) {
+    h.Value(v);
+  }
+  h.Value(s.rack.has_value());
+  if (s.rack) {
+    for (double v : {s.rack->addendum, s.rack->dedendum, s.rack->tip_radius}) h.Value(v);
+  }
+  h.Value(s.shaper.has_value());
+  if (s.shaper) {
+    h.Value(s.shaper->teeth);
+    for (double v : {s.shaper->profile_shift, s.shaper->tip_radius, s.shaper->tip_round_radius}) {
+      h.Value(v);
+    }
+  }
+  for (double v : {m.youngs_modulus, m.poisson_ratio, m.thickness}) h.Value(v);
+  h.Value(static_cast<int>(m.plane));
+  const GearMeshOptions& g = o.mesh;
+  for (int v : {g.involute_elements, g.tip_round_elements, g.tip_land_elements, g.fillet_elements,
+                g.band_layers, g.rim_layers, g.refinement}) {
+    h.Value(v);
+  }
+  for (double v : {g.band_grading, g.band_depth_fraction, g.rim_grading, g.root_block_depth,
+                   o.join_depth}) {
+    h.Value(v);
+  }
+  return h.hash();
+}
+
+std::string InfluenceTableFile(const std::string& directory, std::uint64_t key) {
+  return (std::filesystem::path(directory) / ("influence-" + Hex(key) + ".ilt")).string();
+}
+
+namespace {
+
+// Reads and checks a file; returns false with `problem` set when it must not be used.
+bool TryLoad(const std::string& file, std::uint64_t key, const geometry::Gear& gear,
+             InfluenceTable* table, std::string* problem) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return false;
+  char magic[16];
+  in.read(magic, sizeof magic);
+  if (!in || std::memcmp(magic, kMagic, sizeof magic) != 0) {
+    *problem = "damaged: not an influence-table file (bad magic)";
+    return false;
+  }
+  std::uint32_t format = 0;
+  std::uint64_t stored_key = 0, size = 0;
+  in.read(reinterpret_cast<char*>(&format), sizeof format);
+  in.read(reinterpret_cast<char*>(&stored_key), sizeof stored_key);
+  in.read(reinterpret_cast<char*>(&size), sizeof size);
+  if (!in) {
+    *problem = "damaged: truncated header";
+    return false;
+  }
+  if (format != kInfluenceTableFormat) {
+    *problem = "stale: format " + std::to_string(format) + ", this build reads format " +
+               std::to_string(kInfluenceTableFormat);
+    return false;
+  }
+  if (stored_key != key) {
+    *problem = "stale: built for key " + Hex(stored_key) + ", this table has key " + Hex(key);
+    return false;
+  }
+  if (size > (std::uint64_t{1} << 34)) {
+    *problem = "damaged: implausible payload size " + std::to_string(size) + " bytes";
+    return false;
+  }
+  std::string payload(size, '\0');
+  in.read(payload.data(), static_cast<std::streamsize>(size));
+  std::uint64_t checksum = 0;
+  in.read(reinterpret_cast<char*>(&checksum), sizeof checksum);
+  if (!in) {
+    *problem = "damaged: truncated (payload of " + std::to_string(size) + " bytes announced)";
+    return false;
+  }
+  if (in.peek() != std::char_traits<char>::eof()) {
+    *problem = "damaged: trailing bytes after the checksum";
+    return false;
+  }
+  Fnv1a h;
+  h.Bytes(payload.data(), payload.size());
+  if (h.hash() != checksum) {
+    *problem = "damaged: checksum " + Hex(h.hash()) + " of the payload, " + Hex(checksum) +
+               " stored";
+    return false;
+  }
+  try {
+    std::istringstream body(payload);
+    *table = InfluenceTable::ReadPayload(body, gear);
+  } catch (const std::runtime_error& e) {
+    *problem = std::string("damaged: ") + e.what();
+    return false;
+  }
+  return true;
+}
+
+void Write(const std::string& file, std::uint64_t key, const InfluenceTable& table) {
+  std::ostringstream body;
+  table.WritePayload(body);
+  const std::string payload = body.str();
+  Fnv1a h;
+  h.Bytes(payload.data(), payload.size());
+  const std::string tmp = file + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    const std::uint32_t format = kInfluenceTableFormat;
+    const std::uint64_t size = payload.size(), checksum = h.hash();
+    out.write(kMagic, sizeof kMagic);
+    out.write(reinterpret_cast<const char*>(&format), sizeof format);
+    out.write(reinterpret_cast<const char*>(&key), sizeof key);
+    out.write(reinterpret_cast<const char*>(&size), sizeof size);
+    out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
+    out.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
+    out.close();
+    if (!out) throw std::runtime_error("influence-table cache: cannot write '" + tmp + "'");
+  }
+  std::error_code error;
+  std::filesystem::rename(tmp, file, error);
+  if (error) {
+    throw std::runtime_error("influence-table cache: cannot rename '" + tmp + "' to '" + file +
+                             "': " + error.message());
+  }
+}
+
+}  // namespace
+
+InfluenceTable LoadOrBuildInfluenceTable(const geometry::Gear& gear,
+                                         const ElasticMaterial& material,
+                                         const InfluenceTableOptions& options,
+                                         const std::string& directory, CacheReport* report) {
+  if (directory.empty()) {
+    throw std::invalid_argument("influence-table cache: directory = '': must name a directory");
+  }
+  options.Validate();
+  material.Validate();
+  const std::uint64_t key = InfluenceTableKey(gear.spec(), material, options);
+  const std::string file = InfluenceTableFile(directory, key);
+  CacheReport local;
+  CacheReport& r = report != nullptr ? *report : local;
+  r.file = file;
+  InfluenceTable table;
+  std::string problem;
+  if (TryLoad(file, key, gear, &table, &problem)) {
+    r.outcome = CacheOutcome::kLoaded;
+    r.message = "influence table of '" + gear.name() + "' loaded from '" + file + "'";
+    return table;
+  }
+  table = InfluenceTable::Build(gear, material, options);
+  std::filesystem::create_directories(directory);
+  Write(file, key, table);
+  if (problem.empty()) {
+    r.outcome = CacheOutcome::kBuilt;
+    r.message = "influence table of '" + gear.name() + "' built and written to '" + file + "'";
+  } else {
+    r.outcome = CacheOutcome::kRebuilt;
+    r.message = "influence-table cache file '" + file + "' is " + problem +
+                "; not used: the table of '" + gear.name() + "' was rebuilt and the file replaced";
+  }
+  return table;
+}
+
+}  // namespace epicycle::compliance
