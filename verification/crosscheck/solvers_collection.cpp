@@ -100,3 +100,62 @@ TEST_CASE("each Newton phase alone solves the hard-equality gear problems", "[cr
 }
 
 }  // namespace epicycle::solvers
+
+namespace epicycle::solvers {
+
+TEST_CASE("polish is a separate, labelled step that only lowers the residual", "[crosscheck][solvers]") {
+  // Find a (back end, problem) pair whose raw answer is not converged; polish it.
+  int polished = 0;
+  for (const char* name : {"gear_p3_n30_m6_s1", "rand_n20_m2_s1", "stiff_cond1e10_s1"}) {
+    const ContactProblemFile file = ReadContactProblemFile(test::CaseFile(name));
+    const ContactProblem problem(file.data);
+    for (Backend b : AvailableBackends()) {
+      if (b == Backend::kActiveSetNewton) continue;
+      ContactOptions options;
+      ContactSolution raw;
+      const ContactReport r = MakeContactSolver(b)->Solve(problem, options, &raw);
+      if (r.status == ContactStatus::kConverged) {
+        options.polish = true;  // a converged answer is never touched
+        ContactSolution again;
+        const ContactReport rp = MakeContactSolver(b)->Solve(problem, options, &again);
+        CHECK_FALSE(rp.polished);
+        continue;
+      }
+      options.polish = true;
+      ContactSolution sol;
+      const ContactReport rp = MakeContactSolver(b)->Solve(problem, options, &sol);
+      INFO(BackendName(b) << " on " << name << ": " << rp.message);
+      CHECK(sol.force.allFinite());
+      CHECK(rp.residual.total <= r.residual.total);
+      if (rp.polished) {
+        ++polished;
+        CHECK_THAT(rp.message, Catch::Contains("POLISHED by active-set Newton"));
+      }
+    }
+  }
+  if (polished == 0) WARN("no available back end left an unconverged answer to polish");
+}
+
+}  // namespace epicycle::solvers
+
+namespace epicycle::solvers {
+
+TEST_CASE("no usable answer: numerical failure, zeros, and the message says so", "[crosscheck][solvers]") {
+  // Phase 2 of the Newton needs S = 0: asked to run alone on a problem with a support it returns
+  // no point, which the driver must turn into a failure with a finite (zero) solution.
+  const ContactProblemFile file = ReadContactProblemFile(test::CaseFile("cf_elastic_support"));
+  const ContactProblem problem(file.data);
+  ContactOptions options;
+  options.backend_options.emplace("newton.phase2_only", std::string(1, '1'));
+  ContactSolution sol;
+  const ContactReport r = MakeContactSolver(Backend::kActiveSetNewton)->Solve(problem, options, &sol);
+  CHECK(r.status == ContactStatus::kNumericalFailure);
+  CHECK_THAT(r.message, Catch::Contains("solution set to zeros"));
+  REQUIRE(sol.force.size() == 1);
+  REQUIRE(sol.multiplier.size() == 1);
+  CHECK(sol.force(0) == 0.0);
+  CHECK(sol.multiplier(0) == 0.0);
+  CHECK(std::isfinite(r.residual.total));
+}
+
+}  // namespace epicycle::solvers
