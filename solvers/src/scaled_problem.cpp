@@ -22,8 +22,11 @@ Eval EvalLocal(const ScaledProblem::Local& l, double x, bool want_u, bool want_d
   for (int b = 0; b < 2; ++b) {
     if (l.a[b] == 0.0) continue;
     const double s = l.h[b] / len;
-    const double w = std::hypot(1.0, len / l.h[b]);
-    const double as = std::asinh(s);
+    const double r = len / l.h[b];
+    const double w = std::sqrt(1.0 + r * r);  // L/h is moderate: no overflow, hypot not needed
+    // asinh(s) = ln(s + √(1+s²)) = ln(s(1+w)): one log instead of asinh's; for s < 0.5 (L > 2h,
+    // far beyond the term's validity) asinh itself keeps full relative accuracy.
+    const double as = s < 0.5 ? std::asinh(s) : std::log(s * (1.0 + w));
     if (want_u) e.u += l.a[b] * x * (as - l.c[b] / (1.0 + w));
     if (want_du) e.du += l.a[b] * (as - (1.0 + l.c[b]) / (2.0 * w));
     if (want_int) {
