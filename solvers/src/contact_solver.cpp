@@ -191,7 +191,15 @@ class DriverSolver final : public ContactSolver {
     }
 
     internal::Unscale(sp, x.cwiseMax(0.0), lambda, in_out);
-    report.active_contacts = static_cast<int>((in_out->force.array() > 0.0).count());
+    {
+      // Active in the sense of the natural map (x_j > g_j): a force an interior-point method
+      // leaves at 1e-12 instead of 0 does not count.
+      Eigen::VectorXd g;
+      const Eigen::VectorXd xc = x.cwiseMax(0.0);
+      sp.Gradient(xc, &g);
+      if (m > 0) g -= sp.G.transpose() * lambda;
+      report.active_contacts = static_cast<int>((xc.array() > g.array()).count());
+    }
     if (problem.has_local()) {
       int beyond = 0;
       for (int j = 0; j < n; ++j)

@@ -69,7 +69,7 @@ struct ContactReport {
   double solve_seconds = 0;  ///< [s] inside the back end
   double total_seconds = 0;  ///< [s] including scaling and residual
   ContactResiduals residual;
-  int active_contacts = 0;   ///< F_j > 0
+  int active_contacts = 0;   ///< contacts with F_j > g_j (nondimensional), the natural-map active set
   bool polished = false;     ///< the polish option changed the answer
 };
 
