@@ -10,11 +10,13 @@
 #include <array>
 #include <cmath>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
 
 #include "epicycle/compliance/elastic_model.hpp"
+#include "epicycle/compliance/influence_cache.hpp"
 #include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/compliance/mesher.hpp"
 #include "epicycle/transmission/scene.hpp"
@@ -189,6 +191,70 @@ void BM_GearInfluenceTable(benchmark::State& state) {
 }
 
 BENCHMARK(BM_GearInfluenceTable)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
+
+// Loading a cached table (the ring, the largest): the file is written once before the loop (in a
+// temporary directory), then each iteration reads and checks it. The check after the loop: the
+// loaded table's compliance equals the built one's.
+void BM_GearTableCachedLoad(benchmark::State& state) {
+  const transmission::Scene scene =
+      transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage.toml");
+  const geometry::Gear gear(scene.stage.ring);
+  const ElasticMaterial steel{scene.material.youngs_modulus, scene.material.poisson_ratio,
+                              scene.stage.ring.face_width, PlaneAssumption::kPlaneStrain};
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / "epicycle-bench-ilt").string();
+  CacheReport report;
+  const InfluenceTable built = LoadOrBuildInfluenceTable(gear, steel, {}, dir, &report);
+  double error = 0.0;
+  for (auto _ : state) {
+    const InfluenceTable loaded = LoadOrBuildInfluenceTable(gear, steel, {}, dir, &report);
+    if (report.outcome != CacheOutcome::kLoaded) state.SkipWithError(report.message.c_str());
+    const FlankPosition a{0, 1, 0.4 * built.arc_length_max()}, b{3, -1, 0.6 * built.arc_length_max()};
+    error = (loaded.Influence(a, b) - built.Influence(a, b)).norm();
+  }
+  state.counters["file_MiB"] =
+      static_cast<double>(std::filesystem::file_size(report.file)) / (1024.0 * 1024.0);
+  state.counters["error"] = error;
+  std::error_code e;
+  std::filesystem::remove_all(dir, e);
+}
+
+BENCHMARK(BM_GearTableCachedLoad)->Unit(benchmark::kMillisecond)->Iterations(5);
+
+// One structural compliance n_rᵀ Λ n_l between two body-frame points (locating both on the
+// profile, then the bicubic interpolation), and the interpolation alone.
+void BM_GearTableCompliance(benchmark::State& state) {
+  const transmission::Scene scene =
+      transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage.toml");
+  const geometry::Gear gear(scene.stage.planet);
+  InfluenceTableOptions coarse;
+  coarse.mesh.band_layers = 1;
+  coarse.mesh.rim_layers = 1;
+  const InfluenceTable table = InfluenceTable::Build(
+      gear,
+      ElasticMaterial{scene.material.youngs_modulus, scene.material.poisson_ratio,
+                      scene.stage.planet.face_width, PlaneAssumption::kPlaneStrain},
+      coarse);
+  const int i = 9, j = 23;
+  const Eigen::Vector2d x1 = table.grid().position[i], n1 = table.grid().normal[i];
+  const Eigen::Vector2d x2 = table.grid().position[j], n2 = table.grid().normal[j];
+  const bool locate = state.range(0) == 1;
+  double c = 0.0;
+  for (auto _ : state) {
+    if (locate) {
+      c = table.Compliance(x1, n1, 0, 1, x2, n2, 0, 1);
+    } else {
+      const FlankPosition a{0, 1, 0.31 * table.arc_length_max()}, b{4, -1, 0.62 * table.arc_length_max()};
+      c = n2.dot(table.Influence(a, b) * n1);
+    }
+    benchmark::DoNotOptimize(c);
+  }
+  // Check: at grid nodes the compliance is the table's value.
+  const FlankPosition a{0, 1, table.grid().arc_length[i]}, b{0, 1, table.grid().arc_length[j]};
+  state.counters["error"] = locate ? std::abs(c - n2.dot(table.Influence(a, b) * n1)) : 0.0;
+}
+
+BENCHMARK(BM_GearTableCompliance)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

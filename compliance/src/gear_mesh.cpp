@@ -141,10 +141,10 @@ Eigen::Vector2d ProfilePath::Normal(double s) const {
   return sign_ * Eigen::Vector2d(-t.y(), t.x());
 }
 
-double ProfilePath::Project(const Eigen::Vector2d& q, double s_lo, double s_hi,
-                            double* distance) const {
+double ProfilePath::Project(const Eigen::Vector2d& q, double s_lo, double s_hi, double* distance,
+                            int scan) const {
   // Coarse scan, then Gauss–Newton along the arc (the curve is G1 and its pieces are smooth).
-  const int n = 64;
+  const int n = std::max(1, scan);
   double best = s_lo, best_d = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= n; ++k) {
     const double s = s_lo + (s_hi - s_lo) * k / n;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace epicycle::compliance {
 namespace {
@@ -134,7 +135,7 @@ bool TryLoad(const std::string& file, std::uint64_t key, const geometry::Gear& g
     return false;
   }
   try {
-    std::istringstream body(payload);
+    std::istringstream body(std::move(payload));  // C++20: takes the buffer, no copy
     *table = InfluenceTable::ReadPayload(body, gear);
   } catch (const std::runtime_error& e) {
     *problem = std::string("damaged: ") + e.what();

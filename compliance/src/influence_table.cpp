@@ -312,9 +312,21 @@ FlankPosition InfluenceTable::Locate(const Eigen::Vector2d& point, int tooth, in
   const int k = ((tooth % z) + z) % z;
   Eigen::Vector2d q = Rot(-k * gear_->pitch_angle()) * point;
   if (flank == -1) q.y() = -q.y();
+  // Start from the nearest grid point, then project on the profile between its neighbours.
+  int nearest = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n_; ++i) {
+    const double d = (grid_.position[i] - q).squaredNorm();
+    if (d < best) {
+      best = d;
+      nearest = i;
+    }
+  }
   double distance = 0.0;
   const double s0 = grid_.form_arc;
-  const double s = path_->Project(q, s0, s0 + arc_length_max(), &distance);
+  const double lo = grid_.arc_length[std::max(0, nearest - 1)];
+  const double hi = grid_.arc_length[std::min(n_ - 1, nearest + 1)];
+  const double s = path_->Project(q, s0 + lo, s0 + hi, &distance, 4);
   if (!(distance <= 1e-3 * module_)) {
     std::ostringstream msg;
     msg.precision(9);
@@ -339,6 +351,11 @@ double InfluenceTable::Compliance(const Eigen::Vector2d& load_point,
 }
 
 Eigen::Matrix2d InfluenceTable::GridValue(int fl, int i, int k, int f, int j) const {
+  if (raw_.empty()) {
+    throw std::invalid_argument(
+        "InfluenceTable::GridValue: the raw table is kept only by a table built in this process "
+        "(a table loaded from the cache holds the symmetrised, joined values)");
+  }
   Eigen::Matrix2d m;
   for (int c = 0; c < 2; ++c) {
     const std::size_t at = Index(fl, i, c, k, f, j);
@@ -406,7 +423,6 @@ void InfluenceTable::WritePayload(std::ostream& out) const {
   }
   PutVector(out, g);
   PutVector(out, surface_);
-  PutVector(out, raw_);
   std::vector<double> s;
   for (const auto& m : self_) s.insert(s.end(), {m(0, 0), m(1, 0), m(0, 1), m(1, 1)});
   PutVector(out, s);
@@ -439,7 +455,6 @@ InfluenceTable InfluenceTable::ReadPayload(std::istream& in, const geometry::Gea
   }
   const std::size_t total = static_cast<std::size_t>(2) * n * 2 * z * 2 * n * 2;
   t.surface_ = GetVector(in, total);
-  t.raw_ = GetVector(in, total);
   const std::vector<double> s = GetVector(in, static_cast<std::size_t>(8) * n);
   for (int k = 0; k < 2 * n; ++k) {
     Eigen::Matrix2d m;

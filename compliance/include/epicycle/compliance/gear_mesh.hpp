@@ -39,9 +39,10 @@ class ProfilePath {
   Eigen::Vector2d Point(double s) const;   ///< x(s) [m]
   Eigen::Vector2d Tangent(double s) const;  ///< unit dx/ds
   Eigen::Vector2d Normal(double s) const;   ///< outward unit normal
-  /// Arc length of the point of [s_lo, s_hi] closest to q [m]; `distance` [m] if given.
-  double Project(const Eigen::Vector2d& q, double s_lo, double s_hi,
-                 double* distance = nullptr) const;
+  /// Arc length of the point of [s_lo, s_hi] closest to q [m]; `distance` [m] if given. A scan
+  /// of `scan` + 1 equally spaced points picks the start of a Gauss–Newton iteration along s.
+  double Project(const Eigen::Vector2d& q, double s_lo, double s_hi, double* distance = nullptr,
+                 int scan = 64) const;
 
  private:
   struct Piece {

@@ -111,8 +111,9 @@ class InfluenceTable {
                     const Eigen::Vector2d& response_normal, int response_tooth,
                     int response_flank) const;
 
-  /// The raw (unsymmetrised, unjoined) surface value, and the (symmetrised) depth-h self block,
-  /// at grid nodes, for tests: column c = displacement of response (tooth k, flank f, point j) under a unit force
+  /// The raw (unsymmetrised, unjoined) surface value — only on a table built in this process, not
+  /// one loaded from the cache (@throws std::invalid_argument then) — and the (symmetrised)
+  /// depth-h self block, at grid nodes, for tests: column c = displacement of response (tooth k, flank f, point j) under a unit force
   /// along c at (tooth 0, flank fl, point i). f, fl: 0 for σ = +1, 1 for σ = −1.
   Eigen::Matrix2d GridValue(int fl, int i, int k, int f, int j) const;
   Eigen::Matrix2d SelfBlock(int fl, int i) const;
