@@ -201,15 +201,15 @@ void BM_GearTableCachedLoad(benchmark::State& state) {
   const geometry::Gear gear(scene.stage.ring);
   const ElasticMaterial steel{scene.material.youngs_modulus, scene.material.poisson_ratio,
                               scene.stage.ring.face_width, PlaneAssumption::kPlaneStrain};
-  const std::string dir =
-      (std::filesystem::temp_directory_path() / "epicycle-bench-ilt").string();
+  const std::string dir = (std::filesystem::temp_directory_path() / "epicycle-bench-ilt").string();
   CacheReport report;
   const InfluenceTable built = LoadOrBuildInfluenceTable(gear, steel, {}, dir, &report);
   double error = 0.0;
   for (auto _ : state) {
     const InfluenceTable loaded = LoadOrBuildInfluenceTable(gear, steel, {}, dir, &report);
     if (report.outcome != CacheOutcome::kLoaded) state.SkipWithError(report.message.c_str());
-    const FlankPosition a{0, 1, 0.4 * built.arc_length_max()}, b{3, -1, 0.6 * built.arc_length_max()};
+    const FlankPosition a{0, 1, 0.4 * built.arc_length_max()},
+        b{3, -1, 0.6 * built.arc_length_max()};
     error = (loaded.Influence(a, b) - built.Influence(a, b)).norm();
   }
   state.counters["file_MiB"] =
@@ -244,7 +244,8 @@ void BM_GearTableCompliance(benchmark::State& state) {
     if (locate) {
       c = table.Compliance(x1, n1, 0, 1, x2, n2, 0, 1);
     } else {
-      const FlankPosition a{0, 1, 0.31 * table.arc_length_max()}, b{4, -1, 0.62 * table.arc_length_max()};
+      const FlankPosition a{0, 1, 0.31 * table.arc_length_max()},
+          b{4, -1, 0.62 * table.arc_length_max()};
       c = n2.dot(table.Influence(a, b) * n1);
     }
     benchmark::DoNotOptimize(c);

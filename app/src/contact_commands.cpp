@@ -106,8 +106,9 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
   fmt::print("iterations   {} (back-end code {})\n", r.iterations, r.backend_code);
   fmt::print("time         {:.3e} s in the back end, {:.3e} s in total\n", r.solve_seconds,
              r.total_seconds);
-  fmt::print("residual     complementarity {:.3e}, equilibrium {:.3e}, total {:.3e} (tolerance {:.1e})\n",
-             r.residual.complementarity, r.residual.equilibrium, r.residual.total, tol);
+  fmt::print(
+      "residual     complementarity {:.3e}, equilibrium {:.3e}, total {:.3e} (tolerance {:.1e})\n",
+      r.residual.complementarity, r.residual.equilibrium, r.residual.total, tol);
   fmt::print("active       {} of {} contacts{}\n", r.active_contacts, problem.num_contacts(),
              r.polished ? " (POLISHED)" : "");
   const auto& labels = problem.data().contact_labels;
@@ -128,7 +129,8 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
 }
 
 // Replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> in a markdown file.
-void ReplaceBetweenMarkers(const std::string& doc, const std::string& name, const std::string& text) {
+void ReplaceBetweenMarkers(const std::string& doc, const std::string& name,
+                           const std::string& text) {
   const std::string begin = "<!-- " + name + ":begin -->", end = "<!-- " + name + ":end -->";
   std::ifstream in(doc);
   if (!in) throw std::invalid_argument("--doc " + doc + ": cannot be read");
@@ -137,7 +139,8 @@ void ReplaceBetweenMarkers(const std::string& doc, const std::string& name, cons
   std::string all = ss.str();
   const auto a = all.find(begin), e = all.find(end);
   if (a == std::string::npos || e == std::string::npos || e < a)
-    throw std::invalid_argument("--doc " + doc + ": markers " + begin + " ... " + end + " not found");
+    throw std::invalid_argument("--doc " + doc + ": markers " + begin + " ... " + end +
+                                " not found");
   all = all.substr(0, a + begin.size()) + "\n" + text + all.substr(e);
   std::ofstream(doc) << all;
   fmt::print("table written into {}\n", doc);
@@ -152,30 +155,42 @@ struct Row {
 
 std::string Svg(double w, double h) {
   return fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
-      "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" fill=\"white\"/>\n",
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} "
+      "{1}\" "
+      "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
+      "fill=\"white\"/>\n",
       w, h);
 }
 
-const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf"};
+const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
+                          "#ff7f0e", "#8c564b", "#17becf"};
 
 void WriteSvgProfile(const std::string& path, const std::vector<std::string>& backends,
                      const std::vector<Row>& rows, const std::vector<std::string>& problems) {
   // Dolan–Moré performance profile: fraction of problems a back end solves within τ× the best time.
   std::map<std::string, double> best;
   for (const Row& r : rows)
-    if (r.solved) best[r.problem] = best.count(r.problem) ? std::min(best[r.problem], r.seconds) : r.seconds;
+    if (r.solved)
+      best[r.problem] = best.count(r.problem) ? std::min(best[r.problem], r.seconds) : r.seconds;
   const double w = 640, h = 420, x0 = 60, y0 = 20, pw = 540, ph = 340, tau_max = 1e4;
   std::string s = Svg(w, h);
-  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", x0, y0, pw, ph);
+  s += fmt::format(
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", x0,
+      y0, pw, ph);
   for (int k = 0; k <= 4; ++k) {
     const double x = x0 + pw * k / 4.0;
-    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">1e{}</text>\n", x, y0 + ph + 16, k);
+    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">1e{}</text>\n", x,
+                     y0 + ph + 16, k);
     const double y = y0 + ph - ph * k / 4.0;
-    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.2f}</text>\n", x0 - 4, y + 4, k / 4.0);
+    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.2f}</text>\n", x0 - 4, y + 4,
+                     k / 4.0);
   }
-  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">time / best time (tau)</text>\n", x0 + pw / 2, h - 8);
-  s += fmt::format("<text x=\"14\" y=\"{}\" transform=\"rotate(-90 14 {})\" text-anchor=\"middle\">fraction of problems solved</text>\n", y0 + ph / 2, y0 + ph / 2);
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">time / best time (tau)</text>\n",
+                   x0 + pw / 2, h - 8);
+  s += fmt::format(
+      "<text x=\"14\" y=\"{}\" transform=\"rotate(-90 14 {})\" text-anchor=\"middle\">fraction of "
+      "problems solved</text>\n",
+      y0 + ph / 2, y0 + ph / 2);
   for (std::size_t b = 0; b < backends.size(); ++b) {
     std::vector<double> ratios;
     for (const Row& r : rows)
@@ -191,8 +206,10 @@ void WriteSvgProfile(const std::string& path, const std::vector<std::string>& ba
     }
     pts += fmt::format("{},{:.1f}", x0 + pw, y0 + ph - ph * frac);
     const char* col = kColours[b % 7];
-    s += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"2\" points=\"{}\"/>\n", col, pts);
-    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", x0 + pw - 120, y0 + ph - 20 - 16 * static_cast<double>(b), col, backends[b]);
+    s += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"2\" points=\"{}\"/>\n",
+                     col, pts);
+    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", x0 + pw - 120,
+                     y0 + ph - 20 - 16 * static_cast<double>(b), col, backends[b]);
   }
   s += "</svg>\n";
   std::ofstream(path) << s;
@@ -204,15 +221,21 @@ void WriteSvgScatter(const std::string& path, const std::vector<std::string>& ba
   const double w = 640, h = 420, x0 = 70, y0 = 20, pw = 530, ph = 340;
   const double tmin = -6, tmax = 0, emin = -16, emax = 0;
   std::string s = Svg(w, h);
-  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", x0, y0, pw, ph);
+  s += fmt::format(
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", x0,
+      y0, pw, ph);
   for (int k = static_cast<int>(tmin); k <= static_cast<int>(tmax); ++k)
     s += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">1e{}</text>\n",
                      x0 + pw * (k - tmin) / (tmax - tmin), y0 + ph + 16, k);
   for (int k = static_cast<int>(emin); k <= static_cast<int>(emax); k += 2)
     s += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">1e{}</text>\n", x0 - 4,
                      y0 + ph - ph * (k - emin) / (emax - emin) + 4, k);
-  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">run time per solve [s]</text>\n", x0 + pw / 2, h - 8);
-  s += fmt::format("<text x=\"14\" y=\"{}\" transform=\"rotate(-90 14 {})\" text-anchor=\"middle\">error against the reference [-]</text>\n", y0 + ph / 2, y0 + ph / 2);
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">run time per solve [s]</text>\n",
+                   x0 + pw / 2, h - 8);
+  s += fmt::format(
+      "<text x=\"14\" y=\"{}\" transform=\"rotate(-90 14 {})\" text-anchor=\"middle\">error "
+      "against the reference [-]</text>\n",
+      y0 + ph / 2, y0 + ph / 2);
   for (std::size_t b = 0; b < backends.size(); ++b) {
     const char* col = kColours[b % 7];
     for (const Row& r : rows) {
@@ -220,20 +243,25 @@ void WriteSvgScatter(const std::string& path, const std::vector<std::string>& ba
       const double err = std::max(r.force_err, r.disp_err);
       const double lx = std::clamp(std::log10(std::max(r.seconds, 1e-12)), tmin, tmax);
       const double ly = std::clamp(std::log10(std::max(err, 1e-16)), emin, emax);
-      const double x = x0 + pw * (lx - tmin) / (tmax - tmin), y = y0 + ph - ph * (ly - emin) / (emax - emin);
+      const double x = x0 + pw * (lx - tmin) / (tmax - tmin),
+                   y = y0 + ph - ph * (ly - emin) / (emax - emin);
       if (r.solved)
         s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3\" fill=\"{}\"/>\n", x, y, col);
       else
-        s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" text-anchor=\"middle\">x</text>\n", x, y + 4, col);
+        s += fmt::format(
+            "<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" text-anchor=\"middle\">x</text>\n", x,
+            y + 4, col);
     }
-    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", x0 + 10, y0 + 16 + 16 * static_cast<double>(b), col, backends[b]);
+    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", x0 + 10,
+                     y0 + 16 + 16 * static_cast<double>(b), col, backends[b]);
   }
   s += "</svg>\n";
   std::ofstream(path) << s;
 }
 
 void CompareCommand(const std::vector<std::string>& inputs, const std::string& csv,
-                    const std::string& svg_prefix, double tol, int repeats, const std::string& doc) {
+                    const std::string& svg_prefix, double tol, int repeats,
+                    const std::string& doc) {
   const std::vector<std::string> files = ExpandProblemFiles(inputs);
   const std::vector<Backend> backends = solvers::AvailableBackends();
   std::vector<Row> rows;
@@ -264,14 +292,18 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
       rows.push_back(row);
     }
   }
-  fmt::print("{} problems, tolerance {:.1e}, reference: newton at {:.0e}, {} repeat(s); error = max of the "
-             "relative force and rigid-displacement (G^T lambda) differences, over converged runs\n\n",
-             files.size(), tol, kReferenceTolerance, repeats);
-  fmt::print("{:<14} {:>8} {:>14} {:>14} {:>16}  {}\n", "back end", "solved", "median time", "worst error",
-             "worst residual", "failures");
-  std::string md = fmt::format("{} problems, tolerance {:.0e}, median of {} solve(s) per problem.\n\n"
-                               "| back end | solved | median time [s] | worst error | worst residual | not converged |\n"
-                               "|---|---|---|---|---|---|\n", files.size(), tol, repeats);
+  fmt::print(
+      "{} problems, tolerance {:.1e}, reference: newton at {:.0e}, {} repeat(s); error = max of "
+      "the "
+      "relative force and rigid-displacement (G^T lambda) differences, over converged runs\n\n",
+      files.size(), tol, kReferenceTolerance, repeats);
+  fmt::print("{:<14} {:>8} {:>14} {:>14} {:>16}  {}\n", "back end", "solved", "median time",
+             "worst error", "worst residual", "failures");
+  std::string md = fmt::format(
+      "{} problems, tolerance {:.0e}, median of {} solve(s) per problem.\n\n"
+      "| back end | solved | median time [s] | worst error | worst residual | not converged |\n"
+      "|---|---|---|---|---|---|\n",
+      files.size(), tol, repeats);
   for (const std::string& b : names) {
     std::vector<double> t;
     double worst = 0, worst_res = 0;
@@ -291,18 +323,20 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
     }
     std::sort(t.begin(), t.end());
     fmt::print("{:<14} {:>4}/{:<3} {:>12.3e} s {:>14.2e} {:>16.2e}  {}\n", b, solved, total,
-               t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res, failures.empty() ? "-" : failures);
+               t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res,
+               failures.empty() ? "-" : failures);
     md += fmt::format("| {} | {}/{} | {:.2e} | {:.1e} | {:.1e} | {} |\n", b, solved, total,
                       t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res, total - solved);
   }
   if (!csv.empty()) {
     std::ofstream out(csv);
-    out << "backend,problem,category,status,residual,force_error,multiplier_error,displacement_error,"
+    out << "backend,problem,category,status,residual,force_error,multiplier_error,displacement_"
+           "error,"
            "median_seconds,iterations\n";
     for (const Row& r : rows)
-      out << fmt::format("{},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{}\n", r.backend, r.problem,
-                         r.category, r.status, r.residual, r.force_err, r.mult_err, r.disp_err,
-                         r.seconds, r.iterations);
+      out << fmt::format("{},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{}\n", r.backend,
+                         r.problem, r.category, r.status, r.residual, r.force_err, r.mult_err,
+                         r.disp_err, r.seconds, r.iterations);
     fmt::print("\nCSV written to {}\n", csv);
   }
   if (!doc.empty()) ReplaceBetweenMarkers(doc, "compare-table", md);
@@ -341,7 +375,8 @@ void StabilityCommand(const std::string& dir, const std::string& doc, double tol
     const ContactProblemFile file = solvers::ReadContactProblemFile(path);
     const ContactProblem problem(file.data);
     const Run ref = Reference(problem);
-    table += fmt::format("| {} | {} | {} |", problem.name(), problem.num_contacts(), problem.num_equalities());
+    table += fmt::format("| {} | {} | {} |", problem.name(), problem.num_contacts(),
+                         problem.num_equalities());
     for (Backend b : backends) {
       const Run run = SolveRepeated(b, problem, options, 1);
       const ContactReport& r = run.report;
@@ -351,8 +386,8 @@ void StabilityCommand(const std::string& dir, const std::string& doc, double tol
       } else {
         const auto d = solvers::CompareSolutions(problem, run.solution, ref.solution);
         const bool finite = run.solution.force.allFinite() && run.solution.multiplier.allFinite();
-        cell = fmt::format("{}, res {:.0e}, err {:.0e}", solvers::StatusName(r.status), r.residual.total,
-                           std::max(d.force, d.displacement));
+        cell = fmt::format("{}, res {:.0e}, err {:.0e}", solvers::StatusName(r.status),
+                           r.residual.total, std::max(d.force, d.displacement));
         if (!finite) cell += ", NaN!";
         if (r.status == ContactStatus::kConverged && r.residual.total > tol) cell += ", BAD";
       }
@@ -360,9 +395,11 @@ void StabilityCommand(const std::string& dir, const std::string& doc, double tol
     }
     table += "\n";
   }
-  table += fmt::format("\nTolerance {:.0e}; err = max relative force / rigid-displacement difference from the "
-                       "active-set Newton at {:.0e} (see CompareSolutions). Written by `epicycle contact "
-                       "stability` ({}).\n", tol, kReferenceTolerance, EPICYCLE_VERSION);
+  table += fmt::format(
+      "\nTolerance {:.0e}; err = max relative force / rigid-displacement difference from the "
+      "active-set Newton at {:.0e} (see CompareSolutions). Written by `epicycle contact "
+      "stability` ({}).\n",
+      tol, kReferenceTolerance, EPICYCLE_VERSION);
   fmt::print("{}", table);
   if (!doc.empty()) ReplaceBetweenMarkers(doc, "stability-table", table);
 }
@@ -374,13 +411,15 @@ void RegisterContactCommands(CLI::App& app) {
   contact->require_subcommand(1);
   const std::string default_dir = std::string(EPICYCLE_SOURCE_DIR) + "/verification/data/contact";
 
-  auto* solve = contact->add_subcommand("solve", "solve one problem file, print solution and residuals");
+  auto* solve =
+      contact->add_subcommand("solve", "solve one problem file, print solution and residuals");
   static std::string s_file, s_backend = "newton";
   static double s_tol = 1e-10;
   static bool s_polish = false;
   static std::vector<std::string> s_kv;
   solve->add_option("file", s_file, "problem file (JSON)")->required();
-  solve->add_option("--backend", s_backend, "newton, ipopt, nlopt-slsqp, nlopt-lbfgs, nlopt-auglag");
+  solve->add_option("--backend", s_backend,
+                    "newton, ipopt, nlopt-slsqp, nlopt-lbfgs, nlopt-auglag");
   solve->add_option("--tol", s_tol, "tolerance on the nondimensional residual");
   solve->add_flag("--polish", s_polish, "labelled active-set polish step after the raw solve");
   solve->add_option("--option", s_kv, "back-end option KEY=VALUE (e.g. newton.ls_beta=0.5)");
@@ -394,9 +433,11 @@ void RegisterContactCommands(CLI::App& app) {
   static std::string c_doc;
   compare->add_option("inputs", c_inputs, "problem files or directories")->required();
   compare->add_option("--csv", c_csv, "write one row per (back end, problem)");
-  compare->add_option("--svg-prefix", c_svg, "write PREFIX_profile.svg and PREFIX_error_vs_time.svg");
+  compare->add_option("--svg-prefix", c_svg,
+                      "write PREFIX_profile.svg and PREFIX_error_vs_time.svg");
   compare->add_option("--tol", c_tol, "tolerance on the nondimensional residual");
-  compare->add_option("--repeat", c_repeat, "solves per (back end, problem); the median time is reported");
+  compare->add_option("--repeat", c_repeat,
+                      "solves per (back end, problem); the median time is reported");
   compare->add_option("--doc", c_doc, "markdown file to update between the compare-table markers");
   compare->callback([] { CompareCommand(c_inputs, c_csv, c_svg, c_tol, c_repeat, c_doc); });
 
@@ -407,11 +448,13 @@ void RegisterContactCommands(CLI::App& app) {
   generate->add_option("--seed", g_seed, "generator seed");
   generate->callback([] { GenerateCommand(g_dir, g_seed); });
 
-  auto* stability = contact->add_subcommand("stability", "the stiff/extreme (back end x case) table");
+  auto* stability =
+      contact->add_subcommand("stability", "the stiff/extreme (back end x case) table");
   static std::string st_dir = default_dir, st_doc;
   static double st_tol = 1e-10;
   stability->add_option("--dir", st_dir, "collection directory");
-  stability->add_option("--doc", st_doc, "markdown file to update between the stability-table markers");
+  stability->add_option("--doc", st_doc,
+                        "markdown file to update between the stability-table markers");
   stability->add_option("--tol", st_tol, "tolerance on the nondimensional residual");
   stability->callback([] { StabilityCommand(st_dir, st_doc, st_tol); });
 }

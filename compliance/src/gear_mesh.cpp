@@ -172,7 +172,8 @@ void GearMeshOptions::Validate() const {
     throw std::invalid_argument("GearMeshOptions." + field + " = " + value + ": " + rule);
   };
   auto count = [&](const char* field, int v, int lo) {
-    if (v < lo || v > 1000) fail(field, std::to_string(v), "must be in [" + std::to_string(lo) + ", 1000]");
+    if (v < lo || v > 1000)
+      fail(field, std::to_string(v), "must be in [" + std::to_string(lo) + ", 1000]");
   };
   count("involute_elements", involute_elements, 1);
   count("tip_round_elements", tip_round_elements, 1);
@@ -195,7 +196,8 @@ namespace {
 
 // Everything that defines the upper half sector of tooth 0.
 struct SectorPlan {
-  double s_root = 0, s_j = 0, s_form = 0, s_t1 = 0, s_t2 = 0, s_tip = 0;  // arc lengths along the path
+  double s_root = 0, s_j = 0, s_form = 0, s_t1 = 0, s_t2 = 0,
+         s_tip = 0;  // arc lengths along the path
   int n_inv = 0, n_tr = 0, n_tl = 0, n_fil = 0, n_band = 0, n_rim = 0;
   std::vector<double> grid_s;  // path arc lengths of the flank grid points
   Eigen::Vector2d r0, f, t1, c, g, k, d, b, s_pt;
@@ -207,8 +209,8 @@ SectorPlan Plan(const geometry::Gear& gear, const ProfilePath& path, const GearM
   SectorPlan p;
   const int m = o.refinement;
   p.n_inv = o.involute_elements * m;
-  p.n_tr = gear.has_tip_round() && path.HasRole(SegmentRole::kTipRound) ? o.tip_round_elements * m
-                                                                         : 0;
+  p.n_tr =
+      gear.has_tip_round() && path.HasRole(SegmentRole::kTipRound) ? o.tip_round_elements * m : 0;
   p.n_tl = o.tip_land_elements * m;
   p.n_fil = o.fillet_elements * m;
   p.n_band = o.band_layers * m;
@@ -221,8 +223,9 @@ SectorPlan Plan(const geometry::Gear& gear, const ProfilePath& path, const GearM
   p.s_t2 = p.n_tr > 0 ? path.RoleEnd(SegmentRole::kTipRound) : p.s_t1;
   p.s_tip = path.length();
   if (!(p.s_form > 0.0)) {
-    throw std::invalid_argument(who + "the involute starts at the space centre line (no root "
-                                      "land or fillet): the mapped mesh needs a fillet block");
+    throw std::invalid_argument(who +
+                                "the involute starts at the space centre line (no root "
+                                "land or fillet): the mapped mesh needs a fillet block");
   }
   if (!(p.s_tip > p.s_t2)) {
     throw std::invalid_argument(who + "the profile has no tip land: the mapped mesh needs one");
@@ -248,9 +251,9 @@ SectorPlan Plan(const geometry::Gear& gear, const ProfilePath& path, const GearM
         " mm (room for the rim below the fillet block)");
   }
   if (gear.internal() && !(p.r_hub > p.r_m + 0.5 * gear.module())) {
-    throw std::invalid_argument(
-        who + "rim radius (hub_radius) = " + Str(p.r_hub * 1e3) + " mm: the rule is rim radius > r_f + (" +
-        Str(o.root_block_depth) + " + 0.5)·m = " + Str((p.r_m + 0.5 * gear.module()) * 1e3) + " mm");
+    throw std::invalid_argument(who + "rim radius (hub_radius) = " + Str(p.r_hub * 1e3) +
+                                " mm: the rule is rim radius > r_f + (" + Str(o.root_block_depth) +
+                                " + 0.5)·m = " + Str((p.r_m + 0.5 * gear.module()) * 1e3) + " mm");
   }
   p.b = Eigen::Vector2d(p.r_m, 0.0);
   p.s_pt = p.r_m * Eigen::Vector2d(std::cos(p.half_pitch), std::sin(p.half_pitch));
@@ -267,9 +270,10 @@ SectorPlan Plan(const geometry::Gear& gear, const ProfilePath& path, const GearM
   const double along_bd = kappa * (p.d.x() - p.b.x());
   const double along_dc = kappa * (p.c.x() - p.d.x());
   if (!(along_bd > 0.0 && along_dc > 0.0 && p.k.y() > 0.0 && p.g.y() > 0.0)) {
-    throw std::invalid_argument(who + "cannot place the tooth core: B = " + Pt(p.b) + ", D = " +
-                                Pt(p.d) + ", C = " + Pt(p.c) + ", G = " + Pt(p.g) + ", K = " +
-                                Pt(p.k) + " (the rule: B, D, C in this order along the axis, G "
+    throw std::invalid_argument(who + "cannot place the tooth core: B = " + Pt(p.b) +
+                                ", D = " + Pt(p.d) + ", C = " + Pt(p.c) + ", G = " + Pt(p.g) +
+                                ", K = " + Pt(p.k) +
+                                " (the rule: B, D, C in this order along the axis, G "
                                 "and K above it); try another band_depth_fraction");
   }
   return p;
@@ -304,7 +308,8 @@ std::vector<double> Reverse(const std::vector<double>& t) {
 // element straddles the curvature jump), equal arc lengths on either side.
 std::vector<double> FilletBreaks(const SectorPlan& p) {
   std::vector<double> s;
-  const int n_land = p.s_j > 0.0 ? std::max(1, static_cast<int>(std::lround(p.n_fil * p.s_j / p.s_form))) : 0;
+  const int n_land =
+      p.s_j > 0.0 ? std::max(1, static_cast<int>(std::lround(p.n_fil * p.s_j / p.s_form))) : 0;
   const int n_rest = std::max(1, p.n_fil - n_land);
   for (int e = 0; e <= n_land; ++e) s.push_back(p.s_j * e / std::max(1, n_land));
   if (n_land == 0) s.assign(1, 0.0);
@@ -352,8 +357,7 @@ std::vector<Patch> UpperHalf(const SectorPlan& p, const ProfilePath* path) {
   Patch fillet;
   fillet.name = "fillet";
   fillet.sides = {PathCurve(path, 0.0, p.s_form), StraightLine(p.f, p.b),
-                  CircularArc({0.0, 0.0}, p.r_m, p.half_pitch, 0.0),
-                  StraightLine(p.r0, p.s_pt)};
+                  CircularArc({0.0, 0.0}, p.r_m, p.half_pitch, 0.0), StraightLine(p.r0, p.s_pt)};
   fillet.u.breaks = FilletBreaks(p);
   out.push_back(fillet);
 

@@ -11,7 +11,8 @@
 namespace epicycle::compliance {
 namespace {
 
-constexpr char kMagic[16] = {'E', 'P', 'I', 'C', 'Y', 'C', 'L', 'E', '-', 'I', 'L', 'T', 0, 0, 0, 0};
+constexpr char kMagic[16] = {'E', 'P', 'I', 'C', 'Y', 'C', 'L', 'E',
+                             '-', 'I', 'L', 'T', 0,   0,   0,   0};
 
 class Fnv1a {
  public:
@@ -46,9 +47,9 @@ std::uint64_t InfluenceTableKey(const geometry::GearSpec& s, const ElasticMateri
   h.Value(kInfluenceTableFormat);
   h.Value(static_cast<int>(s.kind));
   h.Value(s.teeth);
-  for (double v : {s.module, s.face_width, s.pressure_angle, s.profile_shift, s.tip_radius,
-                   s.tip_round_radius, s.root_radius, s.root_round_radius, s.hub_radius,
-                   s.thickness_error, s.min_tip_thickness}) {
+  for (double v :
+       {s.module, s.face_width, s.pressure_angle, s.profile_shift, s.tip_radius, s.tip_round_radius,
+        s.root_radius, s.root_round_radius, s.hub_radius, s.thickness_error, s.min_tip_thickness}) {
     h.Value(v);
   }
   h.Value(s.rack.has_value());
@@ -69,8 +70,8 @@ std::uint64_t InfluenceTableKey(const geometry::GearSpec& s, const ElasticMateri
                 g.band_layers, g.rim_layers, g.refinement}) {
     h.Value(v);
   }
-  for (double v : {g.band_grading, g.band_depth_fraction, g.rim_grading, g.root_block_depth,
-                   o.join_depth}) {
+  for (double v :
+       {g.band_grading, g.band_depth_fraction, g.rim_grading, g.root_block_depth, o.join_depth}) {
     h.Value(v);
   }
   return h.hash();
@@ -130,8 +131,8 @@ bool TryLoad(const std::string& file, std::uint64_t key, const geometry::Gear& g
   Fnv1a h;
   h.Bytes(payload.data(), payload.size());
   if (h.hash() != checksum) {
-    *problem = "damaged: checksum " + Hex(h.hash()) + " of the payload, " + Hex(checksum) +
-               " stored";
+    *problem =
+        "damaged: checksum " + Hex(h.hash()) + " of the payload, " + Hex(checksum) + " stored";
     return false;
   }
   try {

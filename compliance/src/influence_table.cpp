@@ -27,8 +27,8 @@ std::string Num(double x) {
 
 int FlankIndex(int flank, const char* what) {
   if (flank != 1 && flank != -1) {
-    throw std::invalid_argument(std::string("InfluenceTable: ") + what + ".flank = " +
-                                std::to_string(flank) + ": must be +1 or -1");
+    throw std::invalid_argument(std::string("InfluenceTable: ") + what +
+                                ".flank = " + std::to_string(flank) + ": must be +1 or -1");
   }
   return flank == 1 ? 0 : 1;
 }
@@ -75,7 +75,8 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
   int limiting = 0;
   for (int i = 0; i < n; ++i) {
     const double ny = t.grid_.normal[i].y();
-    const double d = ny > 0.0 ? t.grid_.position[i].y() / ny : std::numeric_limits<double>::infinity();
+    const double d =
+        ny > 0.0 ? t.grid_.position[i].y() / ny : std::numeric_limits<double>::infinity();
     if (d < t.max_depth_) {
       t.max_depth_ = d;
       limiting = i;
@@ -179,7 +180,8 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
         for (int fr = 0; fr < 2; ++fr) {
           for (int j = 0; j < n; ++j) {
             const Eigen::Matrix2d ab = block(raw, fl, i, k, fr, j);
-            const Eigen::Matrix2d ba_t = r * block(raw, fr, j, back, fl, i).transpose() * r.transpose();
+            const Eigen::Matrix2d ba_t =
+                r * block(raw, fr, j, back, fl, i).transpose() * r.transpose();
             const double db = norm(self[static_cast<std::size_t>(fr) * n + j]);
             asym = std::max(asym, norm(ab - ba_t) / std::sqrt(da * db));
             const Eigen::Matrix2d avg = 0.5 * (ab + ba_t);
@@ -221,8 +223,8 @@ void InfluenceTable::CheckHalfWidth(double half_width) const {
     msg << "influence table of '" << gear_->name() << "': join depth h = " << depth_ * 1e3
         << " mm against the Hertz half-width L = " << half_width * 1e3
         << " mm: the rule is h >= " << kMinDepthOverHalfWidth
-        << " L (h well above L); lower the load or raise join_depth (at most "
-        << max_depth_ * 1e3 << " mm here)";
+        << " L (h well above L); lower the load or raise join_depth (at most " << max_depth_ * 1e3
+        << " mm here)";
     throw std::invalid_argument(msg.str());
   }
 }
@@ -400,7 +402,8 @@ std::vector<double> GetVector(std::istream& in, std::size_t expected) {
                              " values where " + std::to_string(expected) + " were expected");
   }
   std::vector<double> v(expected);
-  in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(expected * sizeof(double)));
+  in.read(reinterpret_cast<char*>(v.data()),
+          static_cast<std::streamsize>(expected * sizeof(double)));
   if (!in) throw std::runtime_error("influence table payload truncated");
   return v;
 }

@@ -17,8 +17,8 @@
 //      [ H_AA  −G_Aᵀ ] [dx_A]   [r1]        H_AA = C_AA + diag(u'(x_A)),
 //      [ G_A     S   ] [ dλ ] = [r2],
 // by the Cholesky factorisation of H_AA and of the m×m Schur complement G_A H_AA⁻¹ G_Aᵀ + S
-// (a pseudo-inverse if it is singular or nearly so), with one step of iterative refinement. u'(0⁺) = +∞
-// (logarithmically): u' is evaluated at max(|x_j|, kDerivativeFloor), which only matters for
+// (a pseudo-inverse if it is singular or nearly so), with one step of iterative refinement. u'(0⁺)
+// = +∞ (logarithmically): u' is evaluated at max(|x_j|, kDerivativeFloor), which only matters for
 // contacts entering the active set from zero force. Without local terms H_AA does not depend on x
 // and the factorisation is reused while the active set does not change.
 #include <algorithm>
@@ -67,7 +67,8 @@ class FaceSolver {
     if (p_.has_local)
       for (int a = 0; a < na; ++a)
         if (p_.local[active[a]].enabled)
-          h_(a, a) += p_.LocalDerivativeAt(active[a], std::max(std::abs(x(active[a])), kDerivativeFloor));
+          h_(a, a) +=
+              p_.LocalDerivativeAt(active[a], std::max(std::abs(x(active[a])), kDerivativeFloor));
     h_llt_.compute(h_);
     have_ = false;
     if (h_llt_.info() != Eigen::Success) return false;
@@ -102,7 +103,8 @@ class FaceSolver {
           if (ev(k) > 1e-13 * top) {
             inv_ev_(k) = 1.0 / ev(k);
           } else {
-            const double moves = (p_.G.transpose() * s_eig_.eigenvectors().col(k)).cwiseAbs().maxCoeff();
+            const double moves =
+                (p_.G.transpose() * s_eig_.eigenvectors().col(k)).cwiseAbs().maxCoeff();
             inv_ev_(k) = moves <= 1e-10 * g_norm ? 0.0 : 1.0 / (std::max(ev(k), 0.0) + 1e-12 * top);
           }
         }
@@ -182,7 +184,8 @@ class ActiveSetNewton final : public BackendImpl {
     memory_ = static_cast<int>(ParseOption(options, "ls_memory", 5));
     const bool phase1_only = ParseOption(options, "phase1_only", 0) != 0;
     const bool phase2_only = ParseOption(options, "phase2_only", 0) != 0;
-    if (!(beta_ > 0 && beta_ < 1) || !(sigma_ > 0 && sigma_ < 0.5) || max_halvings_ < 1 || memory_ < 1)
+    if (!(beta_ > 0 && beta_ < 1) || !(sigma_ > 0 && sigma_ < 0.5) || max_halvings_ < 1 ||
+        memory_ < 1)
       throw std::invalid_argument(
           "backend_options newton.*: need 0 < ls_beta < 1, 0 < ls_sigma < 0.5, "
           "ls_max_halvings >= 1, ls_memory >= 1");
@@ -216,7 +219,8 @@ class ActiveSetNewton final : public BackendImpl {
       const double r2 = p.Residuals(second.force, second.multiplier).total;
       if (r1 < r2) {
         out.iterations = second.iterations;
-        out.message = second.message + "; phase 1 answer kept (residual " + std::to_string(r1) + ")";
+        out.message =
+            second.message + "; phase 1 answer kept (residual " + std::to_string(r1) + ")";
         return out;
       }
     }
@@ -291,7 +295,8 @@ class ActiveSetNewton final : public BackendImpl {
       // floor (return the best point, the driver judges it); far from it, phase 1 has failed.
       if (since_best >= 5 && best_res <= 1e4 * options_->tolerance) {
         char buf[96];
-        std::snprintf(buf, sizeof buf, "stagnation at residual %.3e after %d iterations", best_res, it);
+        std::snprintf(buf, sizeof buf, "stagnation at residual %.3e after %d iterations", best_res,
+                      it);
         out.message = buf;
         if (best_res > options_->tolerance) out.failed = true;
         break;
@@ -344,8 +349,7 @@ class ActiveSetNewton final : public BackendImpl {
         l_new = m > 0 ? Eigen::VectorXd(lambda + t * dl) : lambda;
         Evaluate(p, x_new, l_new, &g_new, &e_new);
         psi_new = Merit(x_new, g_new, e_new, &res_new);
-        if (std::isfinite(psi_new) &&
-            psi_new <= (1.0 - 2.0 * sigma_ * t) * psi_ref) {
+        if (std::isfinite(psi_new) && psi_new <= (1.0 - 2.0 * sigma_ * t) * psi_ref) {
           accepted = true;
           break;
         }
@@ -394,7 +398,8 @@ class ActiveSetNewton final : public BackendImpl {
         out.failed = true;
         out.code = 3;
         out.force = x;
-        out.message = "no x >= 0 with G x = W (least-squares residual " + std::to_string(infeas) + ")";
+        out.message =
+            "no x >= 0 with G x = W (least-squares residual " + std::to_string(infeas) + ")";
         return out;
       }
     }
@@ -437,7 +442,8 @@ class ActiveSetNewton final : public BackendImpl {
         // (or the Newton step is negligible: then g_F is as small as round-off in the terms of
         // the gradient allows, e.g. with large gaps δ0 on the face)
         // Two small steps in a row also end the face: Newton has reached round-off.
-        const double step = dxa.cwiseAbs().maxCoeff(), size = std::max(1.0, x.cwiseAbs().maxCoeff());
+        const double step = dxa.cwiseAbs().maxCoeff(),
+                     size = std::max(1.0, x.cwiseAbs().maxCoeff());
         small_steps = step <= 1e-9 * size ? small_steps + 1 : 0;
         face_done = gf.cwiseAbs().maxCoeff() <= target_ || step <= 1e-13 * size || small_steps >= 2;
         if (face_done) small_steps = 0;

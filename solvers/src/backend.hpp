@@ -22,13 +22,13 @@ namespace epicycle::solvers::internal {
 ///   ∇²Φ   = C + diag(u'(x))           (u'(0⁺) = +∞: the local term's hazard)
 ///   s.t. x ≥ 0,  G x + S λ = W  (S = 0: hard equalities)
 struct ScaledProblem {
-  Eigen::MatrixXd C;        ///< N×N, SPD
-  Eigen::VectorXd delta0;   ///< N
-  Eigen::MatrixXd G;        ///< m×N (m may be 0)
-  Eigen::VectorXd W;        ///< m
-  Eigen::MatrixXd S;        ///< m×m PSD (all zero when there are no elastic supports)
-  bool has_support = false; ///< S has a non-zero entry
-  bool has_local = false;   ///< any local term enabled
+  Eigen::MatrixXd C;         ///< N×N, SPD
+  Eigen::VectorXd delta0;    ///< N
+  Eigen::MatrixXd G;         ///< m×N (m may be 0)
+  Eigen::VectorXd W;         ///< m
+  Eigen::MatrixXd S;         ///< m×m PSD (all zero when there are no elastic supports)
+  bool has_support = false;  ///< S has a non-zero entry
+  bool has_local = false;    ///< any local term enabled
 
   int num_contacts() const { return static_cast<int>(C.rows()); }
   int num_equalities() const { return static_cast<int>(G.rows()); }
@@ -36,9 +36,9 @@ struct ScaledProblem {
   // Implemented by the driver (scaled_problem.cpp) for every back end to use. For x_j < 0 the
   // local term is extended oddly (u(−x) = −u(x), U even, u' even), which keeps Φ convex and the
   // Newton iteration defined; every back end's answer is judged at max(x, 0) anyway.
-  double Objective(const Eigen::VectorXd& x) const;                      ///< Φ(x), x ≥ 0
-  void Gradient(const Eigen::VectorXd& x, Eigen::VectorXd* grad) const;  ///< ∇Φ(x)
-  void LocalValue(const Eigen::VectorXd& x, Eigen::VectorXd* u) const;   ///< u_local(x)
+  double Objective(const Eigen::VectorXd& x) const;                           ///< Φ(x), x ≥ 0
+  void Gradient(const Eigen::VectorXd& x, Eigen::VectorXd* grad) const;       ///< ∇Φ(x)
+  void LocalValue(const Eigen::VectorXd& x, Eigen::VectorXd* u) const;        ///< u_local(x)
   void LocalDerivative(const Eigen::VectorXd& x, Eigen::VectorXd* du) const;  ///< u'(x), +inf at 0
   double LocalDerivativeAt(int j, double x) const;  ///< u_j'(x) of one contact, +inf at 0
 
@@ -53,9 +53,9 @@ struct ScaledProblem {
   std::vector<Local> local;
 
   // The driver's scales (informative for back ends; the scaled problem is self-contained).
-  double force_scale = 1.0;      ///< [N]
-  double length_scale = 1.0;     ///< [m]
-  Eigen::VectorXd row_scale;     ///< m: G_i [SI] = row_scale_i · G_i [scaled] ([-] or [m])
+  double force_scale = 1.0;   ///< [N]
+  double length_scale = 1.0;  ///< [m]
+  Eigen::VectorXd row_scale;  ///< m: G_i [SI] = row_scale_i · G_i [scaled] ([-] or [m])
 
   /// Natural-map and equilibrium residuals at (x, λ), evaluated at max(x, 0).
   ContactResiduals Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda) const;
@@ -83,13 +83,13 @@ bool EqualitiesInfeasible(const ScaledProblem& sp);
 
 /// What a back end returns: raw, unjudged.
 struct BackendResult {
-  Eigen::VectorXd force;        ///< x (scaled), N
-  Eigen::VectorXd multiplier;   ///< λ (scaled), m; empty if the back end does not return it
+  Eigen::VectorXd force;       ///< x (scaled), N
+  Eigen::VectorXd multiplier;  ///< λ (scaled), m; empty if the back end does not return it
   int iterations = 0;
-  int code = 0;                 ///< the back end's own return code
-  std::string message;          ///< the back end's own words
-  bool failed = false;          ///< the back end reports a hard failure (no usable point)
-  bool limit_reached = false;   ///< iteration or time limit
+  int code = 0;                ///< the back end's own return code
+  std::string message;         ///< the back end's own words
+  bool failed = false;         ///< the back end reports a hard failure (no usable point)
+  bool limit_reached = false;  ///< iteration or time limit
 };
 
 class BackendImpl {
@@ -105,8 +105,8 @@ class BackendImpl {
 
 // Factories, one per source file. The Ipopt / NLopt ones are compiled from either the real file
 // or its *_unavailable.cpp, whose available() is false.
-std::unique_ptr<BackendImpl> MakeActiveSetNewtonBackend();  // active_set_newton.cpp
-std::unique_ptr<BackendImpl> MakeIpoptBackend();            // backend_ipopt[_unavailable].cpp
+std::unique_ptr<BackendImpl> MakeActiveSetNewtonBackend();     // active_set_newton.cpp
+std::unique_ptr<BackendImpl> MakeIpoptBackend();               // backend_ipopt[_unavailable].cpp
 std::unique_ptr<BackendImpl> MakeNloptBackend(Backend which);  // backend_nlopt[_unavailable].cpp
 
 }  // namespace epicycle::solvers::internal

@@ -56,7 +56,9 @@ std::string SeedName(const std::string& base, std::uint64_t seed) {
   return base + "_s" + std::to_string(seed);
 }
 
-double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 // Solve c F + u(F) = d for F ≥ 0 by bisection (u increasing): the closed-form cases' reference.
 double SolveScalar(double c, const LocalTermParameters& p, double d) {
@@ -92,7 +94,8 @@ std::vector<ContactProblemFile> ClosedFormCases() {
     ContactProblemFile f;
     f.category = "closed-form";
     f.data.name = "cf_one_contact_load";
-    f.description = "one contact with a local term carrying a given load: F = W, lambda = cW + u(W) - delta0";
+    f.description =
+        "one contact with a local term carrying a given load: F = W, lambda = cW + u(W) - delta0";
     f.data.compliance = Eigen::MatrixXd::Constant(1, 1, 4e-9);
     f.data.overlap = Eigen::VectorXd::Constant(1, -5e-6);
     f.data.local = {loc};
@@ -141,7 +144,8 @@ std::vector<ContactProblemFile> ClosedFormCases() {
     ContactProblemFile f;
     f.category = "closed-form";
     f.data.name = "cf_two_symmetric_overlap";
-    f.description = "two symmetric coupled contacts with local terms pressed by an overlap, no equality";
+    f.description =
+        "two symmetric coupled contacts with local terms pressed by an overlap, no equality";
     f.data.compliance.resize(2, 2);
     f.data.compliance << 4e-9, 1e-9, 1e-9, 4e-9;
     f.data.overlap = Eigen::VectorXd::Constant(2, 25e-6);
@@ -174,7 +178,8 @@ std::vector<ContactProblemFile> ClosedFormCases() {
     s.force = Eigen::Vector3d(f1, f2, 0.0);
     s.multiplier = Eigen::Vector2d(l1, l2);
     f.expected = s;
-    f.expected_note = "statics F1 = (M - r2 P)/(r1 - r2), F2 = P - F1, F3 = 0; lambda from the two closed gaps";
+    f.expected_note =
+        "statics F1 = (M - r2 P)/(r1 - r2), F2 = P - F1, F3 = 0; lambda from the two closed gaps";
     out.push_back(f);
   }
   {
@@ -214,13 +219,14 @@ ContactProblemFile RandomCase(std::uint64_t seed, int n, int m, bool local, bool
   for (int j = 0; j < n; ++j) f.data.overlap(j) = rng.Uniform(-20e-6, 20e-6);
   if (local)
     for (int j = 0; j < n; ++j)
-      f.data.local.push_back(SteelLocal(rng.Uniform(6e-3, 14e-3), rng.Uniform(1e-3, 3e-3),
-                                        rng.Uniform(1e-3, 3e-3)));
+      f.data.local.push_back(
+          SteelLocal(rng.Uniform(6e-3, 14e-3), rng.Uniform(1e-3, 3e-3), rng.Uniform(1e-3, 3e-3)));
   if (m > 0) {
     f.data.equality_matrix.resize(m, n);
     for (int j = 0; j < n; ++j) {
       f.data.equality_matrix(0, j) = 1.0;  // a force row
-      for (int i = 1; i < m; ++i) f.data.equality_matrix(i, j) = rng.Uniform(-0.06, 0.06);  // moments
+      for (int i = 1; i < m; ++i)
+        f.data.equality_matrix(i, j) = rng.Uniform(-0.06, 0.06);  // moments
     }
     Eigen::VectorXd nominal(n);
     for (int j = 0; j < n; ++j) nominal(j) = rng.Uniform(0.0, 2000.0);
@@ -237,7 +243,8 @@ ContactProblemFile RandomCase(std::uint64_t seed, int n, int m, bool local, bool
 
 ContactProblemFile MakeGearLikeProblem(const GearLikeSpec& spec, const std::string& name) {
   if (spec.planets < 1 || spec.drive_pairs < 1 || spec.coast_pairs < 0)
-    throw std::invalid_argument("GearLikeSpec: planets and drive_pairs must be >= 1, coast_pairs >= 0");
+    throw std::invalid_argument(
+        "GearLikeSpec: planets and drive_pairs must be >= 1, coast_pairs >= 0");
   Rng rng(spec.seed);
   const double alpha = 25.0 * kPi / 180.0, module = 4.23e-3;
   const double r_s = module * 16 / 2, r_p = module * 24 / 2, r_c = r_s + r_p;
@@ -250,12 +257,11 @@ ContactProblemFile MakeGearLikeProblem(const GearLikeSpec& spec, const std::stri
   f.category = "gear-like";
   f.seed = spec.seed;
   f.data.name = name;
-  f.description = "gear-like stage: " + std::to_string(spec.planets) + " planets, " +
-                  std::to_string(per_mesh) + " candidate pairs per mesh (" +
-                  std::to_string(spec.drive_pairs) + " drive), sun torque " +
-                  std::to_string(spec.sun_torque) + " N m, run-out " +
-                  std::to_string(spec.runout * 1e6) + " um on planet 1" +
-                  (spec.local ? ", local terms" : "");
+  f.description =
+      "gear-like stage: " + std::to_string(spec.planets) + " planets, " + std::to_string(per_mesh) +
+      " candidate pairs per mesh (" + std::to_string(spec.drive_pairs) + " drive), sun torque " +
+      std::to_string(spec.sun_torque) + " N m, run-out " + std::to_string(spec.runout * 1e6) +
+      " um on planet 1" + (spec.local ? ", local terms" : "");
   ContactProblemData& d = f.data;
   d.equality_matrix = Eigen::MatrixXd::Zero(m, n);
   d.overlap.resize(n);
@@ -302,10 +308,11 @@ ContactProblemFile MakeGearLikeProblem(const GearLikeSpec& spec, const std::stri
                           : -100e-6 - rng.Uniform(0.0, 20e-6);
         if (i == 0 && drive) d0 += 0.5 * spec.runout;
         d.overlap(j) = d0;
-        if (drive) nominal(j) = spec.sun_torque / (spec.planets * r_s * std::cos(alpha) * spec.drive_pairs);
-        d.contact_labels.push_back("planet" + std::to_string(i + 1) + (member == 0 ? " sun" : " ring") +
-                                   " mesh " + (drive ? "drive" : "coast") + " pair " +
-                                   std::to_string(kk + 1));
+        if (drive)
+          nominal(j) = spec.sun_torque / (spec.planets * r_s * std::cos(alpha) * spec.drive_pairs);
+        d.contact_labels.push_back("planet" + std::to_string(i + 1) +
+                                   (member == 0 ? " sun" : " ring") + " mesh " +
+                                   (drive ? "drive" : "coast") + " pair " + std::to_string(kk + 1));
         if (spec.local)
           d.local.push_back(SteelLocal(rng.Uniform(8e-3, 12e-3), rng.Uniform(1e-3, 3e-3),
                                        rng.Uniform(1e-3, 3e-3)));
@@ -320,14 +327,16 @@ ContactProblemFile MakeGearLikeProblem(const GearLikeSpec& spec, const std::stri
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b) {
       double v = 0.0;
-      if (mesh_of[a] == mesh_of[b]) v += c_pair * std::exp(-std::abs(position[a] - position[b]) / ell);
+      if (mesh_of[a] == mesh_of[b])
+        v += c_pair * std::exp(-std::abs(position[a] - position[b]) / ell);
       if (body_planet[a] == body_planet[b]) v += c_planet;
       if (is_sun[a] && is_sun[b]) v += c_sun;
       d.compliance(a, b) = v;
     }
   d.equality_rhs = d.equality_matrix * nominal;
   for (int i = 1; i < m; ++i)  // sums that vanish by symmetry: exact zeros, not round-off
-    if (std::abs(d.equality_rhs(i)) < 1e-9 * std::abs(spec.sun_torque) / r_s) d.equality_rhs(i) = 0.0;
+    if (std::abs(d.equality_rhs(i)) < 1e-9 * std::abs(spec.sun_torque) / r_s)
+      d.equality_rhs(i) = 0.0;
   if (spec.support_compliance > 0.0) {
     d.support_compliance = Eigen::MatrixXd::Zero(m, m);
     d.support_compliance(1, 1) = d.support_compliance(2, 2) = spec.support_compliance;
@@ -343,9 +352,14 @@ std::vector<ContactProblemFile> GenerateContactCollection(std::uint64_t seed) {
     out.push_back(RandomCase(s, 40, 0, true, false, 1e-2, "rand_n40_local"));
     out.push_back(RandomCase(s, 30, 3, true, true, 1e-2, "rand_n30_m3_local_support"));
   }
-  struct G { int planets, drive, coast; double support; const char* name; };
-  for (const G& g : {G{3, 3, 2, 0.0, "gear_p3_n30_m6"}, G{4, 3, 2, 0.0, "gear_p4_n40_m7"},
-                     G{5, 3, 3, 0.0, "gear_p5_n60_m8"}, G{3, 4, 3, 2e-9, "gear_p3_n42_m6_bearing"}}) {
+  struct G {
+    int planets, drive, coast;
+    double support;
+    const char* name;
+  };
+  for (const G& g :
+       {G{3, 3, 2, 0.0, "gear_p3_n30_m6"}, G{4, 3, 2, 0.0, "gear_p4_n40_m7"},
+        G{5, 3, 3, 0.0, "gear_p5_n60_m8"}, G{3, 4, 3, 2e-9, "gear_p3_n42_m6_bearing"}}) {
     GearLikeSpec spec;
     spec.planets = g.planets;
     spec.drive_pairs = g.drive;
@@ -396,7 +410,8 @@ std::vector<ContactProblemFile> GenerateContactCollection(std::uint64_t seed) {
     f.data.equality_rhs.setConstant(1, 500.0);
     f.data.overlap.setConstant(-50e-6);
     f.data.overlap(11) = 0.0;
-    stiff(f, SeedName("stiff_one_active_load", seed), "a load carried by one contact, the others open");
+    stiff(f, SeedName("stiff_one_active_load", seed),
+          "a load carried by one contact, the others open");
   }
   {
     ContactProblemFile f = RandomCase(seed, 20, 0, false, false, 1e-10, "x");

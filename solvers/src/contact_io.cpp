@@ -62,7 +62,8 @@ class Reader {
     return out;
   }
 
-  void OnlyKeys(const json& j, const std::string& where, const std::set<std::string>& allowed) const {
+  void OnlyKeys(const json& j, const std::string& where,
+                const std::set<std::string>& allowed) const {
     if (!j.is_object()) Fail(where, "must be an object");
     for (const auto& [k, v] : j.items())
       if (!allowed.count(k)) {
@@ -142,7 +143,8 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
                           : Eigen::MatrixXd(0, n);
   if (j.contains("support_compliance"))
     d.support_compliance = rd.Matrix(j["support_compliance"], "support_compliance", 0);
-  if (j.contains("contact_labels")) d.contact_labels = rd.Strings(j["contact_labels"], "contact_labels");
+  if (j.contains("contact_labels"))
+    d.contact_labels = rd.Strings(j["contact_labels"], "contact_labels");
   if (j.contains("multiplier_labels"))
     d.multiplier_labels = rd.Strings(j["multiplier_labels"], "multiplier_labels");
   if (j.contains("local")) {
@@ -161,18 +163,24 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
       p.reduced_radius = rd.Number(rd.Required(e, "reduced_radius_m"), key + ".reduced_radius_m");
       if (e.contains("plane")) {
         const std::string plane = e["plane"].is_string() ? e["plane"].get<std::string>() : "";
-        if (plane == "strain") p.plane = PlaneAssumption::kPlaneStrain;
-        else if (plane == "stress") p.plane = PlaneAssumption::kPlaneStress;
-        else rd.Fail(key + ".plane", "must be \"strain\" or \"stress\", found " + e["plane"].dump());
+        if (plane == "strain")
+          p.plane = PlaneAssumption::kPlaneStrain;
+        else if (plane == "stress")
+          p.plane = PlaneAssumption::kPlaneStress;
+        else
+          rd.Fail(key + ".plane", "must be \"strain\" or \"stress\", found " + e["plane"].dump());
       }
       const json& bodies = rd.Required(e, "bodies");
-      if (!bodies.is_array() || bodies.size() != 2) rd.Fail(key + ".bodies", "must be an array of 2 bodies");
+      if (!bodies.is_array() || bodies.size() != 2)
+        rd.Fail(key + ".bodies", "must be an array of 2 bodies");
       for (int b = 0; b < 2; ++b) {
         const std::string bk = key + ".bodies[" + std::to_string(b) + "]";
         const json& bj = bodies[static_cast<std::size_t>(b)];
         rd.OnlyKeys(bj, bk, {"youngs_modulus_Pa", "poisson_ratio", "depth_m"});
-        p.body[b].youngs_modulus = rd.Number(rd.Required(bj, "youngs_modulus_Pa"), bk + ".youngs_modulus_Pa");
-        p.body[b].poisson_ratio = rd.Number(rd.Required(bj, "poisson_ratio"), bk + ".poisson_ratio");
+        p.body[b].youngs_modulus =
+            rd.Number(rd.Required(bj, "youngs_modulus_Pa"), bk + ".youngs_modulus_Pa");
+        p.body[b].poisson_ratio =
+            rd.Number(rd.Required(bj, "poisson_ratio"), bk + ".poisson_ratio");
         p.body[b].depth = rd.Number(rd.Required(bj, "depth_m"), bk + ".depth_m");
       }
       d.local.push_back(p);
@@ -186,9 +194,11 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
     s.multiplier = e.contains("multiplier") ? rd.Vector(e["multiplier"], "expected.multiplier")
                                             : Eigen::VectorXd();
     if (e.contains("note") && e["note"].is_string()) f.expected_note = e["note"].get<std::string>();
-    if (s.force.size() != n) rd.Fail("expected.force_N", "must have N = " + std::to_string(n) + " entries");
+    if (s.force.size() != n)
+      rd.Fail("expected.force_N", "must have N = " + std::to_string(n) + " entries");
     if (s.multiplier.size() != d.equality_rhs.size())
-      rd.Fail("expected.multiplier", "must have m = " + std::to_string(d.equality_rhs.size()) + " entries");
+      rd.Fail("expected.multiplier",
+              "must have m = " + std::to_string(d.equality_rhs.size()) + " entries");
     f.expected = s;
   }
   try {

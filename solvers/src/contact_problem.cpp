@@ -51,9 +51,9 @@ void CheckSymmetric(const Eigen::MatrixXd& m, const std::string& field) {
         throw std::invalid_argument(
             field + " is not symmetric: " + field + "(" + std::to_string(i) + "," +
             std::to_string(j) + ") = " + Num(m(i, j)) + " but " + field + "(" + std::to_string(j) +
-            "," + std::to_string(i) + ") = " + Num(m(j, i)) + "; rule: |A_ij - A_ji| <= " +
-            Num(ContactProblem::kSymmetryTolerance) + " * max|A| = " +
-            Num(ContactProblem::kSymmetryTolerance * scale));
+            "," + std::to_string(i) + ") = " + Num(m(j, i)) +
+            "; rule: |A_ij - A_ji| <= " + Num(ContactProblem::kSymmetryTolerance) +
+            " * max|A| = " + Num(ContactProblem::kSymmetryTolerance * scale));
     }
 }
 
@@ -62,7 +62,8 @@ void CheckSymmetric(const Eigen::MatrixXd& m, const std::string& field) {
 ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data)) {
   auto& d = data_;
   const Eigen::Index n = d.overlap.size();
-  if (n < 1) throw std::invalid_argument("overlap has size 0: a problem needs at least one contact");
+  if (n < 1)
+    throw std::invalid_argument("overlap has size 0: a problem needs at least one contact");
   CheckSize(d.compliance.rows(), d.compliance.cols(), n, n, "compliance",
             "N x N with N = size of overlap = " + std::to_string(n));
   const Eigen::Index m = d.equality_rhs.size();
@@ -95,10 +96,10 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
   d.compliance = 0.5 * (d.compliance + d.compliance.transpose()).eval();
   Eigen::LLT<Eigen::MatrixXd> llt(d.compliance);
   if (llt.info() != Eigen::Success) {
-    const double min_eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(
-                               d.compliance, Eigen::EigenvaluesOnly)
-                               .eigenvalues()
-                               .minCoeff();
+    const double min_eig =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(d.compliance, Eigen::EigenvaluesOnly)
+            .eigenvalues()
+            .minCoeff();
     throw std::invalid_argument("compliance is not positive definite: smallest eigenvalue " +
                                 Num(min_eig) + " (Cholesky failed); rule: C must be SPD");
   }
@@ -115,8 +116,10 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
               .eigenvalues()
               .minCoeff();
       if (min_eig < -kSymmetryTolerance * scale)
-        throw std::invalid_argument("support_compliance is not positive semidefinite: smallest "
-                                    "eigenvalue " + Num(min_eig) + "; rule: S must be PSD");
+        throw std::invalid_argument(
+            "support_compliance is not positive semidefinite: smallest "
+            "eigenvalue " +
+            Num(min_eig) + "; rule: S must be PSD");
     }
   }
 }
@@ -127,7 +130,9 @@ bool ContactProblem::has_local() const {
   return false;
 }
 
-bool ContactProblem::has_support() const { return support_.size() > 0 && support_.cwiseAbs().maxCoeff() > 0.0; }
+bool ContactProblem::has_support() const {
+  return support_.size() > 0 && support_.cwiseAbs().maxCoeff() > 0.0;
+}
 
 Eigen::VectorXd ContactProblem::LocalApproach(const Eigen::VectorXd& force) const {
   Eigen::VectorXd u = Eigen::VectorXd::Zero(num_contacts());

@@ -85,8 +85,8 @@ class DriverSolver final : public ContactSolver {
     if (options.warm_start && (in_out->force.size() != n || in_out->multiplier.size() != m))
       throw std::invalid_argument(
           "warm start solution has " + std::to_string(in_out->force.size()) + " forces and " +
-          std::to_string(in_out->multiplier.size()) + " multipliers: must have N = " +
-          std::to_string(n) + " and m = " + std::to_string(m));
+          std::to_string(in_out->multiplier.size()) +
+          " multipliers: must have N = " + std::to_string(n) + " and m = " + std::to_string(m));
     if (options.warm_start && (!in_out->force.allFinite() || !in_out->multiplier.allFinite()))
       throw std::invalid_argument("warm start solution: every entry must be finite");
 
@@ -229,11 +229,16 @@ class DriverSolver final : public ContactSolver {
 
 std::string BackendName(Backend backend) {
   switch (backend) {
-    case Backend::kActiveSetNewton: return "newton";
-    case Backend::kIpopt: return "ipopt";
-    case Backend::kNloptSlsqp: return "nlopt-slsqp";
-    case Backend::kNloptLbfgs: return "nlopt-lbfgs";
-    case Backend::kNloptAuglag: return "nlopt-auglag";
+    case Backend::kActiveSetNewton:
+      return "newton";
+    case Backend::kIpopt:
+      return "ipopt";
+    case Backend::kNloptSlsqp:
+      return "nlopt-slsqp";
+    case Backend::kNloptLbfgs:
+      return "nlopt-lbfgs";
+    case Backend::kNloptAuglag:
+      return "nlopt-auglag";
   }
   return "unknown(" + std::to_string(static_cast<int>(backend)) + ")";
 }
@@ -248,12 +253,18 @@ Backend BackendFromName(const std::string& name) {
 
 std::string StatusName(ContactStatus status) {
   switch (status) {
-    case ContactStatus::kConverged: return "converged";
-    case ContactStatus::kConvergedInaccurate: return "converged-inaccurate";
-    case ContactStatus::kIterationLimit: return "iteration-limit";
-    case ContactStatus::kNumericalFailure: return "numerical-failure";
-    case ContactStatus::kInfeasible: return "infeasible";
-    case ContactStatus::kBackendUnavailable: return "backend-unavailable";
+    case ContactStatus::kConverged:
+      return "converged";
+    case ContactStatus::kConvergedInaccurate:
+      return "converged-inaccurate";
+    case ContactStatus::kIterationLimit:
+      return "iteration-limit";
+    case ContactStatus::kNumericalFailure:
+      return "numerical-failure";
+    case ContactStatus::kInfeasible:
+      return "infeasible";
+    case ContactStatus::kBackendUnavailable:
+      return "backend-unavailable";
   }
   return "unknown";
 }
@@ -303,9 +314,9 @@ SolutionDifference CompareSolutions(const ContactProblem& problem, const Contact
   const int n = problem.num_contacts(), m = problem.num_equalities();
   if (a.force.size() != n || ref.force.size() != n || a.multiplier.size() != m ||
       ref.multiplier.size() != m)
-    throw std::invalid_argument("CompareSolutions: solution sizes must be N = " +
-                                std::to_string(n) + " forces and m = " + std::to_string(m) +
-                                " multipliers");
+    throw std::invalid_argument(
+        "CompareSolutions: solution sizes must be N = " + std::to_string(n) +
+        " forces and m = " + std::to_string(m) + " multipliers");
   SolutionDifference d;
   d.force = (a.force - ref.force).cwiseAbs().maxCoeff() /
             std::max(ref.force.cwiseAbs().maxCoeff(), sc.force);

@@ -167,8 +167,8 @@ double NonNegativeLeastSquares(const Eigen::MatrixXd& g, const Eigen::VectorXd& 
   const int n = static_cast<int>(g.cols());
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
   std::vector<bool> in_p(n, false);
-  const double tol = 1e-12 * std::max(1.0, w.cwiseAbs().maxCoeff()) *
-                     std::max(1.0, g.cwiseAbs().maxCoeff());
+  const double tol =
+      1e-12 * std::max(1.0, w.cwiseAbs().maxCoeff()) * std::max(1.0, g.cwiseAbs().maxCoeff());
   auto solve_passive = [&](Eigen::VectorXd* z) {
     std::vector<int> idx;
     for (int j = 0; j < n; ++j)

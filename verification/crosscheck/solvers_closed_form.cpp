@@ -38,8 +38,8 @@ ContactSolution Reference(const ContactProblemData& d) {
   } else if (name == "cf_two_symmetric") {
     const double p = d.equality_rhs(0) / 2.0;
     s.force = Eigen::VectorXd::Constant(2, p);
-    s.multiplier(0) = (d.compliance(0, 0) + d.compliance(0, 1)) * p + LocalApproach(d.local[0], p) -
-                      d.overlap(0);
+    s.multiplier(0) =
+        (d.compliance(0, 0) + d.compliance(0, 1)) * p + LocalApproach(d.local[0], p) - d.overlap(0);
   } else if (name == "cf_two_symmetric_overlap") {
     s.force = Eigen::VectorXd::Constant(
         2, Bisect(d.compliance(0, 0) + d.compliance(0, 1), d.local[0], d.overlap(0)));
@@ -48,7 +48,8 @@ ContactSolution Reference(const ContactProblemData& d) {
     const double p = d.equality_rhs(0), m = d.equality_rhs(1);
     const double r1 = d.equality_matrix(1, 0), r2 = d.equality_matrix(1, 1);
     const double f1 = (m - r2 * p) / (r1 - r2), f2 = p - f1;
-    const double a1 = d.compliance(0, 0) * f1 - d.overlap(0), a2 = d.compliance(1, 1) * f2 - d.overlap(1);
+    const double a1 = d.compliance(0, 0) * f1 - d.overlap(0),
+                 a2 = d.compliance(1, 1) * f2 - d.overlap(1);
     s.force = Eigen::Vector3d(f1, f2, 0.0);
     s.multiplier(1) = (a1 - a2) / (r1 - r2);
     s.multiplier(0) = a1 - r1 * s.multiplier(1);
@@ -65,7 +66,8 @@ ContactSolution Reference(const ContactProblemData& d) {
 
 }  // namespace
 
-TEST_CASE("every available back end matches the closed-form cases to 1e-8", "[crosscheck][solvers]") {
+TEST_CASE("every available back end matches the closed-form cases to 1e-8",
+          "[crosscheck][solvers]") {
   const auto table = test::ReadExpectedFailures();
   int cases = 0;
   for (const std::string& path : test::CollectionFiles()) {

@@ -15,7 +15,8 @@
 
 namespace epicycle::solvers {
 
-TEST_CASE("collection: Newton residual <= 1e-9 and every converged back end agrees", "[crosscheck][solvers]") {
+TEST_CASE("collection: Newton residual <= 1e-9 and every converged back end agrees",
+          "[crosscheck][solvers]") {
   const auto table = test::ReadExpectedFailures();
   const auto files = test::CollectionFiles();
   REQUIRE(files.size() >= 30);
@@ -25,7 +26,8 @@ TEST_CASE("collection: Newton residual <= 1e-9 and every converged back end agre
     ContactOptions tight;
     tight.tolerance = 1e-12;
     ContactSolution ref;
-    const ContactReport rr = MakeContactSolver(Backend::kActiveSetNewton)->Solve(problem, tight, &ref);
+    const ContactReport rr =
+        MakeContactSolver(Backend::kActiveSetNewton)->Solve(problem, tight, &ref);
     INFO(problem.name() << ": reference " << rr.message);
     CHECK(rr.residual.total <= 1e-9);
     const bool unique = !test::IsExpected(table, Backend::kActiveSetNewton, problem.name(),
@@ -51,8 +53,10 @@ TEST_CASE("collection: Newton residual <= 1e-9 and every converged back end agre
   }
 }
 
-TEST_CASE("warm start: from the answer no iteration, from a nearby problem a few", "[crosscheck][solvers]") {
-  for (const char* name : {"gear_p3_n30_m6_s1", "gear_p5_n60_m8_s1", "rand_n30_m3_local_support_s1"}) {
+TEST_CASE("warm start: from the answer no iteration, from a nearby problem a few",
+          "[crosscheck][solvers]") {
+  for (const char* name :
+       {"gear_p3_n30_m6_s1", "gear_p5_n60_m8_s1", "rand_n30_m3_local_support_s1"}) {
     const ContactProblemFile file = ReadContactProblemFile(test::CaseFile(name));
     const ContactProblem problem(file.data);
     auto solver = MakeContactSolver(Backend::kActiveSetNewton);
@@ -81,7 +85,8 @@ TEST_CASE("warm start: from the answer no iteration, from a nearby problem a few
   }
 }
 
-TEST_CASE("each Newton phase alone solves the hard-equality gear problems", "[crosscheck][solvers]") {
+TEST_CASE("each Newton phase alone solves the hard-equality gear problems",
+          "[crosscheck][solvers]") {
   for (const char* name : {"gear_p3_n30_m6_s1", "gear_p4_n40_m7_s1", "stiff_near_zero_load_s1"}) {
     const ContactProblemFile file = ReadContactProblemFile(test::CaseFile(name));
     const ContactProblem problem(file.data);
@@ -92,7 +97,8 @@ TEST_CASE("each Newton phase alone solves the hard-equality gear problems", "[cr
     ContactOptions options;
     options.backend_options.emplace("newton.phase2_only", std::string(1, '1'));
     ContactSolution sol;
-    const ContactReport r = MakeContactSolver(Backend::kActiveSetNewton)->Solve(problem, options, &sol);
+    const ContactReport r =
+        MakeContactSolver(Backend::kActiveSetNewton)->Solve(problem, options, &sol);
     INFO(name << ": " << r.message);
     CHECK(r.status == ContactStatus::kConverged);
     CHECK(CompareSolutions(problem, sol, ref).max() <= 1e-6);
@@ -103,7 +109,8 @@ TEST_CASE("each Newton phase alone solves the hard-equality gear problems", "[cr
 
 namespace epicycle::solvers {
 
-TEST_CASE("polish is a separate, labelled step that only lowers the residual", "[crosscheck][solvers]") {
+TEST_CASE("polish is a separate, labelled step that only lowers the residual",
+          "[crosscheck][solvers]") {
   // Find a (back end, problem) pair whose raw answer is not converged; polish it.
   int polished = 0;
   for (const char* name : {"gear_p3_n30_m6_s1", "rand_n20_m2_s1", "stiff_cond1e10_s1"}) {
@@ -140,7 +147,8 @@ TEST_CASE("polish is a separate, labelled step that only lowers the residual", "
 
 namespace epicycle::solvers {
 
-TEST_CASE("no usable answer: numerical failure, zeros, and the message says so", "[crosscheck][solvers]") {
+TEST_CASE("no usable answer: numerical failure, zeros, and the message says so",
+          "[crosscheck][solvers]") {
   // Phase 2 of the Newton needs S = 0: asked to run alone on a problem with a support it returns
   // no point, which the driver must turn into a failure with a finite (zero) solution.
   const ContactProblemFile file = ReadContactProblemFile(test::CaseFile("cf_elastic_support"));
@@ -148,7 +156,8 @@ TEST_CASE("no usable answer: numerical failure, zeros, and the message says so",
   ContactOptions options;
   options.backend_options.emplace("newton.phase2_only", std::string(1, '1'));
   ContactSolution sol;
-  const ContactReport r = MakeContactSolver(Backend::kActiveSetNewton)->Solve(problem, options, &sol);
+  const ContactReport r =
+      MakeContactSolver(Backend::kActiveSetNewton)->Solve(problem, options, &sol);
   CHECK(r.status == ContactStatus::kNumericalFailure);
   CHECK_THAT(r.message, Catch::Contains("solution set to zeros"));
   REQUIRE(sol.force.size() == 1);

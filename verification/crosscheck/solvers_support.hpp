@@ -65,8 +65,8 @@ inline bool Matches(const std::string& pattern, const std::string& s) {
   return pattern == s;
 }
 
-inline bool IsExpected(const std::vector<ExpectedFailure>& table, Backend b, const std::string& name,
-                       const std::string& kind) {
+inline bool IsExpected(const std::vector<ExpectedFailure>& table, Backend b,
+                       const std::string& name, const std::string& kind) {
   for (const auto& e : table)
     if (e.kind == kind && Matches(e.backend, BackendName(b)) && Matches(e.name, name)) return true;
   return false;

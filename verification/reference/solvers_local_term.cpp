@@ -48,8 +48,10 @@ double HalfPlaneApproach(double force, double b, double a, double e, double nu, 
     };
     const double tol = 1e-15 * p0;
     // Both integrands are even in θ.
-    *sz = -(4.0 / kPi) * (test::Integrate(fz, 0.0, th, tol) + test::Integrate(fz, th, kPi / 2, tol));
-    *sx = -(4.0 / kPi) * (test::Integrate(fx, 0.0, th, tol) + test::Integrate(fx, th, kPi / 2, tol));
+    *sz =
+        -(4.0 / kPi) * (test::Integrate(fz, 0.0, th, tol) + test::Integrate(fz, th, kPi / 2, tol));
+    *sx =
+        -(4.0 / kPi) * (test::Integrate(fx, 0.0, th, tol) + test::Integrate(fx, th, kPi / 2, tol));
   };
   auto minus_strain = [&](double z) {
     if (z <= 0.0) z = 1e-300;
@@ -87,15 +89,17 @@ TEST_CASE("local term equals the half-plane (Flamant) integration", "[reference]
   }
 }
 
-TEST_CASE("local term tends to Weber's ln(2h/L) - nu/(2(1-nu)) for h >> L", "[reference][solvers]") {
+TEST_CASE("local term tends to Weber's ln(2h/L) - nu/(2(1-nu)) for h >> L",
+          "[reference][solvers]") {
   LocalTermParameters p = Steel(PlaneAssumption::kPlaneStrain, 2e-3, 2e-3);
   for (double ratio : {1e2, 1e3, 1e4}) {
     // Choose F so that h/L = ratio.
     const double l = 2e-3 / ratio;
-    const double force = l * l / (4.0 * p.reduced_radius / (kPi * p.face_width * EffectiveModulus(p)));
+    const double force =
+        l * l / (4.0 * p.reduced_radius / (kPi * p.face_width * EffectiveModulus(p)));
     const double k = (1.0 - 0.09) / 207e9;
-    const double weber = 2.0 * 2.0 * k * force / (kPi * p.face_width) *
-                         (std::log(2.0 * ratio) - 0.3 / (2.0 * 0.7));
+    const double weber =
+        2.0 * 2.0 * k * force / (kPi * p.face_width) * (std::log(2.0 * ratio) - 0.3 / (2.0 * 0.7));
     // Next term of the expansion: asinh(s) = ln 2s + 1/(4s²) + …, c/(1+w) = c/2 − c/(8s²) + …
     // so the relative difference is O(1/s²)/ln(2s).
     const double bound = 1.0 / (ratio * ratio);
@@ -104,7 +108,8 @@ TEST_CASE("local term tends to Weber's ln(2h/L) - nu/(2(1-nu)) for h >> L", "[re
   }
 }
 
-TEST_CASE("local term derivative and integral against differences and quadrature", "[unit][solvers]") {
+TEST_CASE("local term derivative and integral against differences and quadrature",
+          "[unit][solvers]") {
   for (PlaneAssumption plane : {PlaneAssumption::kPlaneStrain, PlaneAssumption::kPlaneStress}) {
     const LocalTermParameters p = Steel(plane, 1e-3, 3e-3);
     for (double force : {1e-3, 1.0, 1e3, 1e5, 1e7}) {
@@ -116,8 +121,8 @@ TEST_CASE("local term derivative and integral against differences and quadrature
       const double du = LocalApproachDerivative(p, force);
       INFO("F = " << force);
       CHECK(std::abs(fd - du) <= 1e-9 * std::abs(du));
-      const double quad = test::Integrate([&](double f) { return LocalApproach(p, f); }, 0.0,
-                                          force, 1e-15 * force * LocalApproach(p, force));
+      const double quad = test::Integrate([&](double f) { return LocalApproach(p, f); }, 0.0, force,
+                                          1e-15 * force * LocalApproach(p, force));
       const double big_u = LocalApproachIntegral(p, force);
       CHECK(std::abs(quad - big_u) <= 1e-12 * std::abs(big_u));
     }
@@ -149,9 +154,9 @@ TEST_CASE("local term parameters are validated with named fields", "[unit][solve
                     Catch::Contains("local[2].face_width = -0.025") && Catch::Contains("> 0"));
   p = Steel(PlaneAssumption::kPlaneStrain, 1e-3, 1e-3);
   p.body[1].poisson_ratio = 0.5;
-  CHECK_THROWS_WITH(ValidateLocalTerm(p, "local[0]"),
-                    Catch::Contains("local[0].body[1].poisson_ratio = 0.5") &&
-                        Catch::Contains("0 <= nu < 0.5"));
+  CHECK_THROWS_WITH(
+      ValidateLocalTerm(p, "local[0]"),
+      Catch::Contains("local[0].body[1].poisson_ratio = 0.5") && Catch::Contains("0 <= nu < 0.5"));
   p = Steel(PlaneAssumption::kPlaneStrain, 1e-3, 1e-3);
   p.body[0].depth = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_WITH(ValidateLocalTerm(p, "local[1]"), Catch::Contains("local[1].body[0].depth"));

@@ -77,8 +77,9 @@ TEST_CASE("Influence-table cache: build, load, damaged and stale files", "[unit]
                   std::to_string(std::filesystem::file_size(file)) + " bytes)");
   // The loaded table is the built one, bit for bit, at and between grid points.
   const double smax = built.arc_length_max();
-  for (const auto& [a, b] : {std::pair<FlankPosition, FlankPosition>{{0, 1, 0.3 * smax}, {2, -1, 0.7 * smax}},
-                             {{1, -1, 0.5 * smax}, {1, -1, 0.5 * smax}}}) {
+  for (const auto& [a, b] :
+       {std::pair<FlankPosition, FlankPosition>{{0, 1, 0.3 * smax}, {2, -1, 0.7 * smax}},
+        {{1, -1, 0.5 * smax}, {1, -1, 0.5 * smax}}}) {
     CHECK(loaded.Influence(a, b) == built.Influence(a, b));
   }
   CHECK(loaded.join_depth() == built.join_depth());
@@ -112,8 +113,8 @@ TEST_CASE("Influence-table cache: build, load, damaged and stale files", "[unit]
   SECTION("a file of another table under this table's name is stale") {
     InfluenceTableOptions other = options;
     other.join_depth = 0.5 * built.join_depth();
-    const std::string other_file = InfluenceTableFile(
-        dir.path.string(), InfluenceTableKey(gear.spec(), steel, other));
+    const std::string other_file =
+        InfluenceTableFile(dir.path.string(), InfluenceTableKey(gear.spec(), steel, other));
     std::filesystem::copy_file(file, other_file);
     const InfluenceTable t =
         LoadOrBuildInfluenceTable(gear, steel, other, dir.path.string(), &report);

@@ -96,7 +96,8 @@ TEST_CASE("Gear influence table: Maxwell-Betti asymmetry, symmetry of the interp
   // At grid nodes the interpolant returns the table (Kronecker property of the Hermite weights).
   const int j = 7;
   const FlankPosition g{0, 1, table.grid().arc_length[j]};
-  CHECK((table.Influence(g, g) - table.SelfBlock(0, j)).norm() <= 1e-12 * table.SelfBlock(0, j).norm());
+  CHECK((table.Influence(g, g) - table.SelfBlock(0, j)).norm() <=
+        1e-12 * table.SelfBlock(0, j).norm());
   // Cyclic use: tooth k1 → k2 equals the rotated tooth 0 → k2 − k1.
   const FlankPosition a5{5, 1, a.arc_length}, b8{8, -1, b.arc_length};
   const Eigen::Matrix2d r5 = Rot(5 * 2 * geometry::kPi / table.teeth());
@@ -149,8 +150,7 @@ TEST_CASE("Gear influence table: join depth rules", "[unit][gear]") {
   CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("join_depth = -1"));
 }
 
-TEST_CASE("Gear influence table: total approach barely depends on the join depth",
-          "[unit][gear]") {
+TEST_CASE("Gear influence table: total approach barely depends on the join depth", "[unit][gear]") {
   // Total approach of the sun at one mid-flank contact with a planet tooth: structural (the
   // table's depth-h read-out, F nᵀ D(h) n) plus this body's local term between the surface and h
   // (solvers::LocalApproach, half of the symmetric two-body value, both bodies steel and joined
@@ -172,28 +172,30 @@ TEST_CASE("Gear influence table: total approach barely depends on the join depth
   for (double factor : {1.0, 0.5, 1.5}) {
     InfluenceTableOptions o;
     o.join_depth = factor * h0;
-    const InfluenceTable t = factor == 1.0 ? SunTable()
-                                            : InfluenceTable::Build(sun, Steel(scene, scene.stage.sun), o);
+    const InfluenceTable t =
+        factor == 1.0 ? SunTable() : InfluenceTable::Build(sun, Steel(scene, scene.stage.sun), o);
     solvers::LocalTermParameters p;
     p.face_width = scene.stage.sun.face_width;
     p.reduced_radius = rho1 * rho2 / (rho1 + rho2);
     for (auto& b : p.body) {
-      b = solvers::LocalBody{scene.material.youngs_modulus, scene.material.poisson_ratio, o.join_depth};
+      b = solvers::LocalBody{scene.material.youngs_modulus, scene.material.poisson_ratio,
+                             o.join_depth};
     }
     const double half_width = solvers::HertzHalfWidth(p, force);
     t.CheckHalfWidth(half_width);
     const double structural = force * n.dot(t.SelfBlock(0, j) * n);
     const double local = 0.5 * solvers::LocalApproach(p, force);
     total[at++] = structural + local;
-    testing::Figure("sun h-sensitivity: h = " + testing::Sci(o.join_depth) + " m (L = " +
-                    testing::Sci(half_width) + " m): structural " + testing::Sci(structural) +
-                    " local " + testing::Sci(local) + " total " + testing::Sci(structural + local) +
-                    " m");
+    testing::Figure("sun h-sensitivity: h = " + testing::Sci(o.join_depth) +
+                    " m (L = " + testing::Sci(half_width) + " m): structural " +
+                    testing::Sci(structural) + " local " + testing::Sci(local) + " total " +
+                    testing::Sci(structural + local) + " m");
   }
-  const double change = std::max(std::abs(total[1] - total[0]), std::abs(total[2] - total[0])) /
-                        total[0];
+  const double change =
+      std::max(std::abs(total[1] - total[0]), std::abs(total[2] - total[0])) / total[0];
   CHECK(change <= 0.02);
-  testing::Figure("sun h-sensitivity: largest change of the total approach " + testing::Sci(change));
+  testing::Figure("sun h-sensitivity: largest change of the total approach " +
+                  testing::Sci(change));
 }
 
 TEST_CASE("Gear tooth compliance converges under mesh refinement", "[unit][gear]") {

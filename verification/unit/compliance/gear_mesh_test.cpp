@@ -45,8 +45,8 @@ TEST_CASE("Gear body mesh: valid elements, grid nodes on the profile, outline ar
   CHECK(body.min_jacobian_ratio > 0.0);
   testing::Figure(which + " mesh: " + std::to_string(body.mesh.num_nodes()) + " nodes, " +
                   std::to_string(body.mesh.num_elements()) + " elements, " +
-                  std::to_string(body.grid.num_points()) + " grid points per flank, min/max det J " +
-                  testing::Sci(body.min_jacobian_ratio));
+                  std::to_string(body.grid.num_points()) +
+                  " grid points per flank, min/max det J " + testing::Sci(body.min_jacobian_ratio));
   REQUIRE(body.grid.num_points() >= 30);
   REQUIRE(body.grid.num_points() <= 60);
 

@@ -36,23 +36,33 @@ TEST_CASE("bad problem files give clear errors", "[unit][solvers]") {
   const std::string head = R"({"format": "epicycle-contact-problem", "version": 1, )";
   auto parse = [](const std::string& t) { return ParseContactProblemFile(t, "t.json"); };
   CHECK_THROWS_WITH(parse("{"), Catch::Contains("t.json: not valid JSON"));
-  CHECK_THROWS_WITH(parse(R"({"format": "x", "version": 1, "overlap_m": [0], "compliance_m_per_N": [[1]]})"),
-                    Catch::Contains("key 'format'"));
-  CHECK_THROWS_WITH(parse(R"({"format": "epicycle-contact-problem", "version": 2, "overlap_m": [0], "compliance_m_per_N": [[1]]})"),
-                    Catch::Contains("key 'version'") && Catch::Contains("reads version 1"));
-  CHECK_THROWS_WITH(parse(head + R"("overlap_m": [0], "compliance_m_per_N": [[1]], "complience": 1})"),
-                    Catch::Contains("key 'complience': unknown key"));
+  CHECK_THROWS_WITH(
+      parse(R"({"format": "x", "version": 1, "overlap_m": [0], "compliance_m_per_N": [[1]]})"),
+      Catch::Contains("key 'format'"));
+  CHECK_THROWS_WITH(
+      parse(
+          R"({"format": "epicycle-contact-problem", "version": 2, "overlap_m": [0], "compliance_m_per_N": [[1]]})"),
+      Catch::Contains("key 'version'") && Catch::Contains("reads version 1"));
+  CHECK_THROWS_WITH(
+      parse(head + R"("overlap_m": [0], "compliance_m_per_N": [[1]], "complience": 1})"),
+      Catch::Contains("key 'complience': unknown key"));
   CHECK_THROWS_WITH(parse(head + R"("compliance_m_per_N": [[1]]})"),
                     Catch::Contains("key 'overlap_m': missing"));
   CHECK_THROWS_WITH(parse(head + R"("overlap_m": [null], "compliance_m_per_N": [[1e-9]]})"),
                     Catch::Contains("key 'overlap_m[0]': must be a number, found null"));
-  CHECK_THROWS_WITH(parse(head + R"("overlap_m": [0, 0], "compliance_m_per_N": [[1e-9, 0], [0]]})"),
-                    Catch::Contains("compliance_m_per_N[1]") && Catch::Contains("rows must have equal length"));
-  CHECK_THROWS_WITH(parse(head + R"("overlap_m": [0, 0], "compliance_m_per_N": [[1e-9, 0], [1e-9, 1e-9]]})"),
-                    Catch::Contains("t.json: compliance is not symmetric"));
-  CHECK_THROWS_WITH(parse(head + R"("overlap_m": [0], "compliance_m_per_N": [[1e-9]], "local": [{"face_width_m": -0.025, "reduced_radius_m": 0.01, "bodies": [{"youngs_modulus_Pa": 2e11, "poisson_ratio": 0.3, "depth_m": 0.002}, {"youngs_modulus_Pa": 2e11, "poisson_ratio": 0.3, "depth_m": 0.002}]}]})"),
-                    Catch::Contains("local[0].face_width = -0.025"));
-  CHECK_THROWS_WITH(ReadContactProblemFile("/nonexistent/p.json"), Catch::Contains("cannot be opened"));
+  CHECK_THROWS_WITH(
+      parse(head + R"("overlap_m": [0, 0], "compliance_m_per_N": [[1e-9, 0], [0]]})"),
+      Catch::Contains("compliance_m_per_N[1]") && Catch::Contains("rows must have equal length"));
+  CHECK_THROWS_WITH(
+      parse(head + R"("overlap_m": [0, 0], "compliance_m_per_N": [[1e-9, 0], [1e-9, 1e-9]]})"),
+      Catch::Contains("t.json: compliance is not symmetric"));
+  CHECK_THROWS_WITH(
+      parse(
+          head +
+          R"("overlap_m": [0], "compliance_m_per_N": [[1e-9]], "local": [{"face_width_m": -0.025, "reduced_radius_m": 0.01, "bodies": [{"youngs_modulus_Pa": 2e11, "poisson_ratio": 0.3, "depth_m": 0.002}, {"youngs_modulus_Pa": 2e11, "poisson_ratio": 0.3, "depth_m": 0.002}]}]})"),
+      Catch::Contains("local[0].face_width = -0.025"));
+  CHECK_THROWS_WITH(ReadContactProblemFile("/nonexistent/p.json"),
+                    Catch::Contains("cannot be opened"));
 }
 
 }  // namespace epicycle::solvers

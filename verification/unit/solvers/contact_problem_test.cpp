@@ -63,8 +63,8 @@ TEST_CASE("bad contact problems are rejected with named fields", "[unit][solvers
   {
     auto d = Good();
     d.overlap(1) = std::numeric_limits<double>::quiet_NaN();
-    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("overlap[1] = nan") &&
-                                             Catch::Contains("must be finite"));
+    CHECK_THROWS_WITH(ContactProblem(d),
+                      Catch::Contains("overlap[1] = nan") && Catch::Contains("must be finite"));
   }
   {
     auto d = Good();
@@ -80,20 +80,22 @@ TEST_CASE("bad contact problems are rejected with named fields", "[unit][solvers
   {
     auto d = Good();
     d.local.pop_back();
-    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("local has 1 entries: must be empty or N = 2"));
+    CHECK_THROWS_WITH(ContactProblem(d),
+                      Catch::Contains("local has 1 entries: must be empty or N = 2"));
   }
   {
     auto d = Good();
     d.support_compliance = Eigen::MatrixXd::Constant(1, 1, -1e-9);
-    CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("support_compliance is not positive semidefinite"));
+    CHECK_THROWS_WITH(ContactProblem(d),
+                      Catch::Contains("support_compliance is not positive semidefinite"));
   }
 }
 
 TEST_CASE("options and names are validated", "[unit][solvers]") {
   ContactOptions o;
   o.tolerance = -1;
-  CHECK_THROWS_WITH(o.Validate(), Catch::Contains("ContactOptions.tolerance = -1") &&
-                                      Catch::Contains("> 0"));
+  CHECK_THROWS_WITH(o.Validate(),
+                    Catch::Contains("ContactOptions.tolerance = -1") && Catch::Contains("> 0"));
   o = ContactOptions();
   o.backend_options.emplace("newton.no_such_knob", std::string(1, '1'));
   CHECK_THROWS_WITH(o.Validate(), Catch::Contains("backend_options[newton.no_such_knob]") &&
@@ -102,8 +104,8 @@ TEST_CASE("options and names are validated", "[unit][solvers]") {
   o.backend_options.emplace("newton.ls_beta", std::string("0.3"));
   CHECK_NOTHROW(o.Validate());
   for (Backend b : AllBackends()) CHECK(BackendFromName(BackendName(b)) == b);
-  CHECK_THROWS_WITH(BackendFromName("simplex"), Catch::Contains("backend = 'simplex'") &&
-                                                    Catch::Contains("newton"));
+  CHECK_THROWS_WITH(BackendFromName("simplex"),
+                    Catch::Contains("backend = 'simplex'") && Catch::Contains("newton"));
   CHECK(StatusName(ContactStatus::kConverged) == "converged");
   CHECK(!AvailableBackends().empty());
   CHECK(AvailableBackends().front() == Backend::kActiveSetNewton);

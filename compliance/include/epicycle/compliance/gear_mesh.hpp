@@ -36,7 +36,7 @@ class ProfilePath {
   double RoleEnd(geometry::SegmentRole role) const;
   bool HasRole(geometry::SegmentRole role) const;
 
-  Eigen::Vector2d Point(double s) const;   ///< x(s) [m]
+  Eigen::Vector2d Point(double s) const;    ///< x(s) [m]
   Eigen::Vector2d Tangent(double s) const;  ///< unit dx/ds
   Eigen::Vector2d Normal(double s) const;   ///< outward unit normal
   /// Arc length of the point of [s_lo, s_hi] closest to q [m]; `distance` [m] if given. A scan
@@ -101,7 +101,7 @@ struct FlankGrid {
   std::vector<double> arc_length;         ///< s_i [m], from the form point, increasing
   std::vector<Eigen::Vector2d> position;  ///< x_i [m], σ = +1 flank of tooth 0
   std::vector<Eigen::Vector2d> normal;    ///< outward unit normal at x_i
-  double form_arc = 0.0;  ///< arc length of the form point along ProfilePath [m]
+  double form_arc = 0.0;                  ///< arc length of the form point along ProfilePath [m]
   int num_points() const { return static_cast<int>(arc_length.size()); }
 };
 

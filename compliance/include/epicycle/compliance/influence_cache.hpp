@@ -22,9 +22,9 @@ std::uint64_t InfluenceTableKey(const geometry::GearSpec& spec, const ElasticMat
 
 /// What the cache did.
 enum class CacheOutcome {
-  kLoaded,    ///< a valid file was read
-  kBuilt,     ///< no file: built and written
-  kRebuilt,   ///< a damaged or stale file was found, reported, rebuilt and replaced
+  kLoaded,   ///< a valid file was read
+  kBuilt,    ///< no file: built and written
+  kRebuilt,  ///< a damaged or stale file was found, reported, rebuilt and replaced
 };
 
 /// The outcome and a message for the user (names the file and, for kRebuilt, what was wrong).

@@ -63,8 +63,8 @@ struct FlankPosition {
 /// and then enforced by averaging each pair, so the interpolated operator is symmetric too.
 class InfluenceTable {
  public:
-  /// Meshes `gear`, assembles with `material` (E, ν, b, plane assumption), fixes the hub, factorises
-  /// once and solves all unit loads.
+  /// Meshes `gear`, assembles with `material` (E, ν, b, plane assumption), fixes the hub,
+  /// factorises once and solves all unit loads.
   /// @throws std::invalid_argument for bad options or material, a mesher failure, or a join depth
   ///         past the tooth centre line (the message names the grid point and the limit).
   static InfluenceTable Build(const geometry::Gear& gear, const ElasticMaterial& material,
@@ -113,12 +113,13 @@ class InfluenceTable {
 
   /// The raw (unsymmetrised, unjoined) surface value — only on a table built in this process, not
   /// one loaded from the cache (@throws std::invalid_argument then) — and the (symmetrised)
-  /// depth-h self block, at grid nodes, for tests: column c = displacement of response (tooth k, flank f, point j) under a unit force
-  /// along c at (tooth 0, flank fl, point i). f, fl: 0 for σ = +1, 1 for σ = −1.
+  /// depth-h self block, at grid nodes, for tests: column c = displacement of response (tooth k,
+  /// flank f, point j) under a unit force along c at (tooth 0, flank fl, point i). f, fl: 0 for σ =
+  /// +1, 1 for σ = −1.
   Eigen::Matrix2d GridValue(int fl, int i, int k, int f, int j) const;
   Eigen::Matrix2d SelfBlock(int fl, int i) const;
 
- /// Binary serialisation (see influence_cache.hpp for the file format and its checks): the
+  /// Binary serialisation (see influence_cache.hpp for the file format and its checks): the
   /// payload only, without header or checksum.
   void WritePayload(std::ostream& out) const;
   /// Reads a payload written by WritePayload for `gear` (the caller has checked the key).
@@ -136,9 +137,9 @@ class InfluenceTable {
   double raw_asymmetry_ = 0.0, raw_self_asymmetry_ = 0.0;
   std::array<double, 3> seconds_{};
   FlankGrid grid_;
-  std::vector<double> surface_;             // symmetrised, joined (self entries = depth blocks)
-  std::vector<double> raw_;                 // as solved (surface values everywhere)
-  std::vector<Eigen::Matrix2d> self_;       // [fl][i], symmetrised
+  std::vector<double> surface_;        // symmetrised, joined (self entries = depth blocks)
+  std::vector<double> raw_;            // as solved (surface values everywhere)
+  std::vector<Eigen::Matrix2d> self_;  // [fl][i], symmetrised
   std::shared_ptr<const geometry::Gear> gear_;
   std::shared_ptr<const ProfilePath> path_;
 };

@@ -22,11 +22,11 @@ struct GearLikeSpec {
   int planets = 3;
   int drive_pairs = 3;
   int coast_pairs = 2;
-  double sun_torque = 600.0;       ///< [N·m]
-  double runout = 20e-6;           ///< [m], on planet 1, projected on its lines of action
-  double scatter = 3e-6;           ///< [m], uniform scatter of the drive-flank overlaps
-  bool local = true;               ///< Hertzian local terms on every contact
-  double support_compliance = 0;   ///< [m/N] elastic sun bearing (0: sun translation free)
+  double sun_torque = 600.0;      ///< [N·m]
+  double runout = 20e-6;          ///< [m], on planet 1, projected on its lines of action
+  double scatter = 3e-6;          ///< [m], uniform scatter of the drive-flank overlaps
+  bool local = true;              ///< Hertzian local terms on every contact
+  double support_compliance = 0;  ///< [m/N] elastic sun bearing (0: sun translation free)
   std::uint64_t seed = 1;
 };
 ContactProblemFile MakeGearLikeProblem(const GearLikeSpec& spec, const std::string& name);

@@ -17,11 +17,11 @@ inline constexpr int kContactFileVersion = 1;
 /// A problem file: the problem plus metadata of the collection it belongs to.
 struct ContactProblemFile {
   ContactProblemData data;
-  std::string category;         ///< "closed-form", "random", "gear-like", "stiff" or free text
-  std::string description;      ///< how the case was made, what it tests
-  std::optional<std::uint64_t> seed;           ///< generator seed, if generated
-  std::optional<ContactSolution> expected;     ///< an independent solution (closed form), if any
-  std::string expected_note;    ///< where `expected` comes from
+  std::string category;     ///< "closed-form", "random", "gear-like", "stiff" or free text
+  std::string description;  ///< how the case was made, what it tests
+  std::optional<std::uint64_t> seed;        ///< generator seed, if generated
+  std::optional<ContactSolution> expected;  ///< an independent solution (closed form), if any
+  std::string expected_note;                ///< where `expected` comes from
 };
 
 /// @throws std::invalid_argument naming the file, the key and the rule (bad JSON, wrong format

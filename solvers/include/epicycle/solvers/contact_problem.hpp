@@ -21,14 +21,15 @@ namespace epicycle::solvers {
 /// of elastic supports (rows with S = 0 stay hard). This is the KKT system of the convex program
 ///   min Φ(F) = ½FᵀCF + Σ_j ∫₀^{F_j} u_local,j − δ0ᵀF (+ ½(GF−W)ᵀS⁻¹(GF−W))  s.t. F ≥ 0, (GF = W).
 struct ContactProblemData {
-  std::string name;                         ///< free text, used in reports and file names
-  Eigen::MatrixXd compliance;               ///< C [m/N], N×N, symmetric positive definite
-  Eigen::VectorXd overlap;                  ///< δ0 [m], N; > 0 interpenetration, < 0 gap
-  std::vector<LocalTermParameters> local;   ///< empty (no local terms) or N entries
-  Eigen::MatrixXd equality_matrix;          ///< G, m×N [-] (force rows) or [m] (moment rows); m may be 0
-  Eigen::VectorXd equality_rhs;             ///< W, m [N] or [N·m]
-  Eigen::MatrixXd support_compliance;       ///< S, m×m [m/N] or [rad/(N·m)]; empty means 0
-  std::vector<std::string> contact_labels;  ///< empty or N labels (e.g. "sun-planet1 tooth 3 drive")
+  std::string name;                        ///< free text, used in reports and file names
+  Eigen::MatrixXd compliance;              ///< C [m/N], N×N, symmetric positive definite
+  Eigen::VectorXd overlap;                 ///< δ0 [m], N; > 0 interpenetration, < 0 gap
+  std::vector<LocalTermParameters> local;  ///< empty (no local terms) or N entries
+  Eigen::MatrixXd equality_matrix;  ///< G, m×N [-] (force rows) or [m] (moment rows); m may be 0
+  Eigen::VectorXd equality_rhs;     ///< W, m [N] or [N·m]
+  Eigen::MatrixXd support_compliance;  ///< S, m×m [m/N] or [rad/(N·m)]; empty means 0
+  std::vector<std::string>
+      contact_labels;  ///< empty or N labels (e.g. "sun-planet1 tooth 3 drive")
   std::vector<std::string> multiplier_labels;  ///< empty or m labels (e.g. "sun rotation [rad]")
 };
 
@@ -53,8 +54,8 @@ class ContactProblem {
   const std::string& name() const { return data_.name; }
   int num_contacts() const { return static_cast<int>(data_.overlap.size()); }
   int num_equalities() const { return static_cast<int>(data_.equality_rhs.size()); }
-  bool has_local() const;      ///< any local term enabled
-  bool has_support() const;    ///< S has a non-zero entry
+  bool has_local() const;    ///< any local term enabled
+  bool has_support() const;  ///< S has a non-zero entry
   const Eigen::MatrixXd& compliance() const { return data_.compliance; }
   const Eigen::VectorXd& overlap() const { return data_.overlap; }
   const Eigen::MatrixXd& equality_matrix() const { return data_.equality_matrix; }

@@ -15,12 +15,12 @@ namespace epicycle::solvers {
 
 /// Outcome of a solve, decided by the driver from its own residual, never by the back end.
 enum class ContactStatus {  // append only: values are written to files
-  kConverged,             ///< residual ≤ tolerance
-  kConvergedInaccurate,   ///< back end stopped with a usable point, residual ≤ 100·tolerance
-  kIterationLimit,        ///< iteration or time limit reached
-  kNumericalFailure,      ///< the back end failed (singular system, NaN, line search)
-  kInfeasible,            ///< no F ≥ 0 satisfies G F = W
-  kBackendUnavailable,    ///< compiled out
+  kConverged,               ///< residual ≤ tolerance
+  kConvergedInaccurate,     ///< back end stopped with a usable point, residual ≤ 100·tolerance
+  kIterationLimit,          ///< iteration or time limit reached
+  kNumericalFailure,        ///< the back end failed (singular system, NaN, line search)
+  kInfeasible,              ///< no F ≥ 0 satisfies G F = W
+  kBackendUnavailable,      ///< compiled out
 };
 
 /// The back ends. Registration is this enum plus the switch in MakeContactSolver.
@@ -32,20 +32,21 @@ enum class Backend {  // append only
   kNloptAuglag,       ///< "nlopt-auglag": AUGLAG (equalities) around CCSAQ (bounds)
 };
 
-std::string BackendName(Backend backend);          ///< "newton", "ipopt", ...
-Backend BackendFromName(const std::string& name);  ///< @throws std::invalid_argument naming the value
-std::string StatusName(ContactStatus status);      ///< "converged", ...
+std::string BackendName(Backend backend);  ///< "newton", "ipopt", ...
+Backend BackendFromName(
+    const std::string& name);                  ///< @throws std::invalid_argument naming the value
+std::string StatusName(ContactStatus status);  ///< "converged", ...
 
 struct ContactOptions {
-  double tolerance = 1e-10;   ///< on the nondimensional residual (see ContactResiduals) [-]
-  int max_iterations = 200;   ///< back-end iterations [-]
-  double time_limit = 60.0;   ///< [s]
-  bool warm_start = false;    ///< use the solution passed in as the starting point
-  bool polish = false;        ///< after the raw solve, a labelled active-set polish step
+  double tolerance = 1e-10;  ///< on the nondimensional residual (see ContactResiduals) [-]
+  int max_iterations = 200;  ///< back-end iterations [-]
+  double time_limit = 60.0;  ///< [s]
+  bool warm_start = false;   ///< use the solution passed in as the starting point
+  bool polish = false;       ///< after the raw solve, a labelled active-set polish step
   /// Back-end specific knobs, namespaced: "ipopt.mu_strategy", "nlopt.xtol_rel", "newton.ls_beta".
   /// Unknown keys are rejected by Validate().
   std::map<std::string, std::string> backend_options;
-  void Validate() const;      ///< @throws std::invalid_argument naming the field, value and rule
+  void Validate() const;  ///< @throws std::invalid_argument naming the field, value and rule
 };
 
 struct ContactSolution {
@@ -69,8 +70,9 @@ struct ContactReport {
   double solve_seconds = 0;  ///< [s] inside the back end
   double total_seconds = 0;  ///< [s] including scaling and residual
   ContactResiduals residual;
-  int active_contacts = 0;   ///< contacts with F_j > g_j (nondimensional), the natural-map active set
-  bool polished = false;     ///< the polish option changed the answer
+  int active_contacts =
+      0;                  ///< contacts with F_j > g_j (nondimensional), the natural-map active set
+  bool polished = false;  ///< the polish option changed the answer
 };
 
 /// A stateful, reusable solver. Solve() nondimensionalises, runs the back end, recovers the
@@ -90,9 +92,9 @@ std::unique_ptr<ContactSolver> MakeContactSolver(Backend backend);  ///< never n
 
 /// The driver's nondimensionalisation (see solvers/src/backend.hpp and docs/solvers.md).
 struct ContactScales {
-  double force = 1.0;       ///< F* [N]
-  double length = 1.0;      ///< ℓ* [m]
-  Eigen::VectorXd row;      ///< r_i, m: [-] for force rows, [m] for moment rows
+  double force = 1.0;   ///< F* [N]
+  double length = 1.0;  ///< ℓ* [m]
+  Eigen::VectorXd row;  ///< r_i, m: [-] for force rows, [m] for moment rows
 };
 ContactScales ComputeContactScales(const ContactProblem& problem);
 

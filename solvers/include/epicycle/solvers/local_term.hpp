@@ -22,9 +22,9 @@ struct LocalBody {
 ///   L = √(4 F R_eq / (π b E*)),   1/E* = k_1 + k_2,
 ///   plane strain: k_B = (1−ν_B²)/E_B, c_B = ν_B/(1−ν_B);  plane stress: k_B = 1/E_B, c_B = ν_B.
 struct LocalTermParameters {
-  bool enabled = true;              ///< false: no local term (a purely linear problem)
-  double face_width = 0.0;          ///< b [m], > 0
-  double reduced_radius = 0.0;      ///< R_eq [m], > 0: ρ1ρ2/(ρ1+ρ2) external, ρ1ρ2/(ρ2−ρ1) internal
+  bool enabled = true;      ///< false: no local term (a purely linear problem)
+  double face_width = 0.0;  ///< b [m], > 0
+  double reduced_radius = 0.0;  ///< R_eq [m], > 0: ρ1ρ2/(ρ1+ρ2) external, ρ1ρ2/(ρ2−ρ1) internal
   PlaneAssumption plane = PlaneAssumption::kPlaneStrain;
   LocalBody body[2];
 };
