@@ -98,8 +98,9 @@ class InfluenceTable {
   /// @throws std::invalid_argument for a flank other than ±1 or an arc length outside [0, s_max].
   Eigen::Matrix2d Influence(const FlankPosition& load, const FlankPosition& response) const;
 
-  /// The flank position of a body-frame point on tooth k's flank σ (projection on the generated
-  /// profile). @throws std::invalid_argument if the point lies farther than 1e-3·m from the
+  /// The flank position of a body-frame point on tooth k's flank σ: the foot of the point on a
+  /// polyline of the generated profile with 32 points per grid interval (chord error κΔ²/8 below
+  /// 1e-8 m here; grid nodes are located exactly), about 0.2 µs. @throws std::invalid_argument if the point lies farther than 1e-3·m from the
   /// flank between the form point and the tip-round end.
   FlankPosition Locate(const Eigen::Vector2d& point, int tooth, int flank) const;
 
@@ -128,6 +129,7 @@ class InfluenceTable {
 
  private:
   std::size_t Index(int fl, int i, int c, int k, int f, int j) const;
+  void BuildDenseProfile();  // dense_ from grid_ and path_
   void Weights(double s, int* first, std::array<double, 4>* w) const;
 
   int teeth_ = 0;
@@ -142,6 +144,13 @@ class InfluenceTable {
   std::vector<Eigen::Matrix2d> self_;  // [fl][i], symmetrised
   std::shared_ptr<const geometry::Gear> gear_;
   std::shared_ptr<const ProfilePath> path_;
+  // The σ = +1 flank of tooth 0 as a dense polyline (Locate): kDense points per grid interval.
+  static constexpr int kDense = 32;
+  struct DensePoint {
+    Eigen::Vector2d point;
+    double arc_length;  // from the form point [m]
+  };
+  std::vector<DensePoint> dense_;
 };
 
 }  // namespace epicycle::compliance
