@@ -19,7 +19,9 @@
 #include "epicycle/compliance/influence_cache.hpp"
 #include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/compliance/mesher.hpp"
+#include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/scene.hpp"
+#include "epicycle/transmission/stage_problem.hpp"
 
 namespace {
 
@@ -256,6 +258,33 @@ void BM_GearTableCompliance(benchmark::State& state) {
 }
 
 BENCHMARK(BM_GearTableCompliance)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The compliance matrix of the whole paper stage's potential contacts at one carrier position
+// (both flanks, every mesh, the gap window of the scene): every contact side located on its body
+// once, then the coupled N×N operator (sun and ring couple all planets, each planet its two
+// meshes). The tables come from a cache written before the loop. Check after the loop: the
+// largest asymmetry of C relative to its largest entry, and the number of contacts.
+void BM_StageComplianceMatrix(benchmark::State& state) {
+  const transmission::Scene scene =
+      transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage.toml");
+  const geometry::Stage stage(scene.stage);
+  transmission::FeComplianceOptions fe;
+  fe.cache_directory = (std::filesystem::temp_directory_path() / "epicycle-bench-ilt").string();
+  const transmission::FeStageCompliance compliance(scene, stage, fe);
+  const geometry::StagePoses poses =
+      stage.Poses(geometry::Rad(static_cast<double>(state.range(0))));
+  const std::vector<transmission::StageContact> contacts =
+      transmission::SearchStage(stage, poses, scene.gap_window);
+  Eigen::MatrixXd c;
+  for (auto _ : state) {
+    c = compliance.Matrix(stage, poses, contacts);
+    benchmark::DoNotOptimize(c.data());
+  }
+  state.counters["contacts"] = static_cast<double>(contacts.size());
+  state.counters["asymmetry"] = (c - c.transpose()).cwiseAbs().maxCoeff() / c.cwiseAbs().maxCoeff();
+}
+
+BENCHMARK(BM_StageComplianceMatrix)->Arg(0)->Arg(3)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

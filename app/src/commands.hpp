@@ -8,5 +8,6 @@ namespace epicycle::app {
 
 void RegisterGeometryCommands(CLI::App& app);  // geometry, contacts      (geometry_commands.cpp)
 void RegisterContactCommands(CLI::App& app);   // contact solve|compare   (contact_commands.cpp)
+void RegisterStiffnessCommands(CLI::App& app);  // stiffness               (stiffness_commands.cpp)
 
 }  // namespace epicycle::app

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", EPICYCLE_VERSION);
   epicycle::app::RegisterGeometryCommands(app);
   epicycle::app::RegisterContactCommands(app);
+  epicycle::app::RegisterStiffnessCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -242,6 +242,15 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     s.material.poisson_ratio = t->Real("poisson_ratio", Rule::HalfOpen(0, 0.5));
     t->Done();
   }
+  if (auto t = top.OptionalTable("model")) {
+    const std::string plane = t->StringOr("plane", "strain", {"strain", "stress"});
+    s.model.plane = plane == "strain" ? solvers::PlaneAssumption::kPlaneStrain
+                                      : solvers::PlaneAssumption::kPlaneStress;
+    s.model.join_depth = t->RealOr("join_depth_mm", 0.0, Rule::NonNegative()) * kMm;
+    s.model.mesh_refinement =
+        static_cast<int>(t->IntegerOr("mesh_refinement", 1, Rule::Closed(1, 4)));
+    t->Done();
+  }
   // A scene is a planetary stage, or a single gear pair when it has a [pair] table.
   const bool is_pair = top.Has("pair");
   s.kind = is_pair ? SceneKind::kPair : SceneKind::kStage;

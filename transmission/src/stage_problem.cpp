@@ -87,6 +87,27 @@ double Sensitivity(const StageContact& s, const StageDof& d) {
 
 }  // namespace
 
+solvers::LocalTermParameters ContactLocalTerm(const geometry::PotentialContact& contact,
+                                              const geometry::Gear& a, const geometry::Gear& b,
+                                              const Material& material,
+                                              solvers::PlaneAssumption plane, double depth_a,
+                                              double depth_b, const std::string& label) {
+  solvers::LocalTermParameters l;
+  l.face_width = std::min(a.spec().face_width, b.spec().face_width);
+  l.plane = plane;
+  const double curvature = 1.0 / contact.curvature_radius_a + 1.0 / contact.curvature_radius_b;
+  if (!(curvature > 0) || !std::isfinite(curvature)) {
+    throw std::invalid_argument("contact " + label + ": curvature radii " +
+                                std::to_string(contact.curvature_radius_a) + " m and " +
+                                std::to_string(contact.curvature_radius_b) +
+                                " m give no positive reduced radius");
+  }
+  l.reduced_radius = 1.0 / curvature;
+  l.body[0] = {material.youngs_modulus, material.poisson_ratio, depth_a};
+  l.body[1] = {material.youngs_modulus, material.poisson_ratio, depth_b};
+  return l;
+}
+
 StageProblem BuildStageProblem(const Scene& scene, const geometry::Stage& stage,
                                const geometry::StagePoses& poses, const StageCompliance& compliance,
                                const QuasiStaticSetup& setup) {
@@ -117,26 +138,10 @@ StageProblem BuildStageProblem(const Scene& scene, const geometry::Stage& stage,
     for (int k = 0; k < m; ++k) d.equality_matrix(k, j) = Sensitivity(s, p.dofs[k]);
     d.contact_labels.push_back(s.Label());
     if (!setup.local_terms) continue;
-    const geometry::Gear& ga = BodyGear(stage, s.body_a);
-    const geometry::Gear& gb = BodyGear(stage, s.body_b);
-    solvers::LocalTermParameters l;
-    l.face_width = std::min(ga.spec().face_width, gb.spec().face_width);
-    l.plane = setup.plane;
-    // Signed curvature radii (ring flanks concave, negative): 1/R = 1/ρ_a + 1/ρ_b.
-    const double curvature =
-        1.0 / s.contact.curvature_radius_a + 1.0 / s.contact.curvature_radius_b;
-    if (!(curvature > 0) || !std::isfinite(curvature)) {
-      throw std::invalid_argument("contact " + s.Label() + ": curvature radii " +
-                                  std::to_string(s.contact.curvature_radius_a) + " m and " +
-                                  std::to_string(s.contact.curvature_radius_b) +
-                                  " m give no positive reduced radius");
-    }
-    l.reduced_radius = 1.0 / curvature;
-    l.body[0] = {scene.material.youngs_modulus, scene.material.poisson_ratio,
-                 compliance.JoiningDepth(s.body_a)};
-    l.body[1] = {scene.material.youngs_modulus, scene.material.poisson_ratio,
-                 compliance.JoiningDepth(s.body_b)};
-    d.local.push_back(l);
+    d.local.push_back(ContactLocalTerm(s.contact, BodyGear(stage, s.body_a),
+                                       BodyGear(stage, s.body_b), scene.material, setup.plane,
+                                       compliance.JoiningDepth(s.body_a),
+                                       compliance.JoiningDepth(s.body_b), s.Label()));
   }
   for (const StageDof& dof : p.dofs) d.multiplier_labels.push_back(dof.Label());
   return p;

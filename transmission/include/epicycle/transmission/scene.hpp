@@ -9,6 +9,7 @@
 
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
+#include "epicycle/solvers/local_term.hpp"
 
 namespace epicycle::transmission {
 
@@ -30,6 +31,15 @@ struct ShiftFit {
   double profile_shift = 0;    ///< the solved x [-]
 };
 
+/// How the bodies are modelled (the scene's optional [model] table).
+struct ModelSettings {
+  /// Plane strain (default, wide steel gears: docs/compliance.md) or plane stress, the same in the
+  /// FE structural term and the local contact term.
+  solvers::PlaneAssumption plane = solvers::PlaneAssumption::kPlaneStrain;
+  double join_depth = 0;    ///< h [m]; 0: each table's default (compliance::InfluenceTableOptions)
+  int mesh_refinement = 1;  ///< density factor of the gear-body meshes [-], 1..4
+};
+
 /// A scene holds a planetary stage, or a single gear pair (for mesh-stiffness studies).
 enum class SceneKind { kStage, kPair };
 
@@ -42,6 +52,7 @@ struct Scene {
   geometry::PairSpec pair;    ///< kind == kPair
   double pair_torque = 0;     ///< torque on gear 1 of a pair [N·m] (ccw +)
   Material material;
+  ModelSettings model;
   Inertia sun, planet, ring, carrier;
   double sun_torque = 0;       ///< input torque on the sun [N·m] (counter-clockwise +)
   double gap_window = 100e-6;  ///< contact-search gap window [m]

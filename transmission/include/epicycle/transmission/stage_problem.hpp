@@ -66,6 +66,16 @@ struct StageProblem {
   solvers::ContactProblemData data;  ///< ready for solvers::ContactProblem
 };
 
+/// The local contact term of a potential contact between gears a and b (MODEL.md §4): face width
+/// the narrower one, R_eq from the two signed curvature radii (1/R = 1/ρ_a + 1/ρ_b; a concave ring
+/// flank has ρ < 0), both bodies of `material`, joined at depths h_a and h_b [m].
+/// @throws std::invalid_argument naming `label` if the radii give no positive reduced radius.
+solvers::LocalTermParameters ContactLocalTerm(const geometry::PotentialContact& contact,
+                                              const geometry::Gear& a, const geometry::Gear& b,
+                                              const Material& material,
+                                              solvers::PlaneAssumption plane, double depth_a,
+                                              double depth_b, const std::string& label);
+
 /// G_kj = ∂δ_j/∂q_k (rigid sensitivity of overlap j to DOF k), W_k the external load on DOF k
 /// (the sun torque on the sun's rotation, zero elsewhere), so that G F = W is equilibrium and the
 /// multipliers λ are the DOFs' rigid displacements [rad] or [m].

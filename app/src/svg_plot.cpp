@@ -1,0 +1,147 @@
+#include "svg_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace epicycle::app {
+
+namespace {
+
+const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
+                          "#ff7f0e", "#8c564b", "#17becf", "#7f7f7f"};
+
+// A "nice" tick step for a range (1, 2 or 5 times a power of ten, about 6 ticks).
+double TickStep(double span) {
+  if (!(span > 0)) return 1.0;
+  const double raw = span / 6.0, p = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (raw <= m * p) return m * p;
+  return 10.0 * p;
+}
+
+std::string Escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string RenderSvg(const LinePlot& plot) {
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  for (const PlotSeries& s : plot.series) {
+    for (std::size_t k = 0; k < std::min(s.x.size(), s.y.size()); ++k) {
+      if (!std::isfinite(s.x[k]) || !std::isfinite(s.y[k])) continue;
+      x0 = std::min(x0, s.x[k]);
+      x1 = std::max(x1, s.x[k]);
+      y0 = std::min(y0, s.y[k]);
+      y1 = std::max(y1, s.y[k]);
+    }
+  }
+  for (double r : plot.y_references) {
+    y0 = std::min(y0, r);
+    y1 = std::max(y1, r);
+  }
+  if (!std::isfinite(x0)) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  if (x1 - x0 <= 0) x0 -= 0.5, x1 += 0.5;
+  if (y1 - y0 <= 1e-12 * std::max(1.0, std::abs(y0))) {
+    const double d = std::max(std::abs(y0) * 1e-3, 1e-12);
+    y0 -= d;
+    y1 += d;
+  }
+  const double pad = 0.05 * (y1 - y0);
+  y0 -= pad;
+  y1 += pad;
+  const double w = 760, h = 480, left = 90, top = 40, pw = 520, ph = 380;
+  double sx = pw / (x1 - x0), sy = ph / (y1 - y0);
+  if (plot.equal_axes) {
+    const double s = std::min(sx, sy);
+    const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+    sx = sy = s;
+    x0 = cx - 0.5 * pw / s;
+    x1 = cx + 0.5 * pw / s;
+    y0 = cy - 0.5 * ph / s;
+    y1 = cy + 0.5 * ph / s;
+  }
+  auto px = [&](double x) { return left + (x - x0) * sx; };
+  auto py = [&](double y) { return top + ph - (y - y0) * sy; };
+  std::string s = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} "
+      "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
+      "fill=\"white\"/>\n",
+      w, h);
+  s += fmt::format("<text x=\"{}\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n",
+                   left + pw / 2, Escape(plot.title));
+  s += fmt::format(
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", left,
+      top, pw, ph);
+  const double xs = TickStep(x1 - x0), ys = TickStep(y1 - y0);
+  for (double t = std::ceil(x0 / xs) * xs; t <= x1 + 1e-9 * xs; t += xs) {
+    s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>",
+                     px(t), top, top + ph);
+    s += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{:g}</text>\n", px(t),
+                     top + ph + 16, std::abs(t) < 1e-12 * xs ? 0.0 : t);
+  }
+  for (double t = std::ceil(y0 / ys) * ys; t <= y1 + 1e-9 * ys; t += ys) {
+    s += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>",
+                     left, py(t), left + pw);
+    s += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{:.6g}</text>\n", left - 4,
+                     py(t) + 4, std::abs(t) < 1e-12 * ys ? 0.0 : t);
+  }
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", left + pw / 2,
+                   h - 14, Escape(plot.x_label));
+  s += fmt::format(
+      "<text x=\"16\" y=\"{0}\" transform=\"rotate(-90 16 {0})\" "
+      "text-anchor=\"middle\">{1}</text>\n",
+      top + ph / 2, Escape(plot.y_label));
+  for (double r : plot.y_references) {
+    s += fmt::format(
+        "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"black\" "
+        "stroke-dasharray=\"4 3\"/>\n",
+        left, py(r), left + pw);
+  }
+  for (std::size_t b = 0; b < plot.series.size(); ++b) {
+    const PlotSeries& ser = plot.series[b];
+    const char* col = kColours[b % 8];
+    std::string pts;
+    for (std::size_t k = 0; k < std::min(ser.x.size(), ser.y.size()); ++k) {
+      if (!std::isfinite(ser.x[k]) || !std::isfinite(ser.y[k])) continue;
+      if (ser.points) {
+        s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"{}\"/>\n",
+                         px(ser.x[k]), py(ser.y[k]), col);
+      } else {
+        pts += fmt::format("{:.1f},{:.1f} ", px(ser.x[k]), py(ser.y[k]));
+      }
+    }
+    if (!pts.empty()) {
+      s += fmt::format(
+          "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"{}\"/>\n", col, pts);
+    }
+    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", left + pw + 12,
+                     top + 14 + 16 * static_cast<double>(b), col, Escape(ser.name));
+  }
+  s += "</svg>\n";
+  return s;
+}
+
+void WriteTextFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw std::runtime_error(path + ": cannot be written");
+}
+
+}  // namespace epicycle::app

@@ -1,0 +1,30 @@
+// A small SVG line-plot writer for the command-line program's figures (stiffness curves, load
+// sharing, transmission error, orbits): axes with ticks, one polyline per series, a legend.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace epicycle::app {
+
+struct PlotSeries {
+  std::string name;
+  std::vector<double> x, y;
+  bool points = false;  ///< markers instead of a line
+};
+
+struct LinePlot {
+  std::string title, x_label, y_label;
+  std::vector<PlotSeries> series;
+  bool equal_axes = false;  ///< same scale on both axes (orbits)
+  /// Horizontal reference lines (e.g. the ideal load-sharing ratio), drawn dashed.
+  std::vector<double> y_references;
+};
+
+/// The plot as a complete SVG document. Non-finite values are skipped.
+std::string RenderSvg(const LinePlot& plot);
+
+/// Writes `text` to `path`. @throws std::runtime_error naming the file if it cannot be written.
+void WriteTextFile(const std::string& path, const std::string& text);
+
+}  // namespace epicycle::app

@@ -1,0 +1,63 @@
+// The compliance operator of a set of potential contacts (MODEL.md §4, paper Fig. 2): the
+// structural compliance of every body that carries two contacts couples them, whichever meshes
+// they belong to (a planet couples its sun-side and ring-side meshes; the sun and the ring couple
+// all planets), and elastic supports fold in as the compliance of the body's centre.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "epicycle/compliance/influence_table.hpp"
+
+namespace epicycle::compliance {
+
+/// One body as the operator sees it: its influence table (body frame, fixed at the hub or rim)
+/// and its pose, plus an optional translational support compliance of its centre.
+struct OperatorBody {
+  const InfluenceTable* table = nullptr;             ///< not owned; several bodies may share one
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  ///< geometric centre, inertial [m]
+  double rotation = 0.0;                             ///< θ of the body frame [rad]
+  /// S_B [m/N], inertial frame: displacement of the body's centre per unit force on the body
+  /// (an elastic bearing); zero for a held body. Symmetric positive semidefinite.
+  Eigen::Matrix2d support = Eigen::Matrix2d::Zero();
+  std::string name;  ///< for messages
+};
+
+/// Where a contact touches one body: the point on that body's profile and the unit direction of
+/// the contact force acting on that body (for a contact with normal n from A into B: −n on A,
+/// +n on B), both inertial.
+struct ContactSide {
+  int body = 0;                                         ///< index into the bodies
+  int tooth = 0;                                        ///< tooth index in the body frame
+  int flank = 1;                                        ///< σ = ±1 in the body frame
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();      ///< [m], inertial
+  Eigen::Vector2d direction = Eigen::Vector2d::Zero();  ///< unit, inertial
+};
+
+/// A potential contact between two bodies.
+struct OperatorContact {
+  std::array<ContactSide, 2> side;
+  std::string label;  ///< for messages
+};
+
+/// The contact compliance of the structural term and the supports,
+///
+///   C_jk = Σ_B [ d_Bjᵀ Λ_B(p_Bk → p_Bj) d_Bk + d_Bjᵀ S_B d_Bk ]   [m/N]
+///
+/// summed over the bodies B that carry both contacts j and k, with d_Bj the direction of contact
+/// j's force on B and Λ_B the body's influence table (body frame, rotated to the inertial frame):
+/// the recession of the two surfaces at j under unit forces at k. For j = k and the same body the
+/// table's self term is its depth-h read-out, to which the local term of each body is added by the
+/// contact problem (solvers::LocalTermParameters). Each contact side is located on its body's
+/// flank once; the table is then interpolated for every pair. The result is symmetric (the tables
+/// are symmetrised) and positive definite for distinct contacts on held bodies.
+/// @throws std::invalid_argument for a body index out of range, a body without table, a
+///         non-unit direction, or a point that is not on the named flank (the message names the
+///         contact's label and the body).
+Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
+                                   const std::vector<OperatorContact>& contacts);
+
+}  // namespace epicycle::compliance

@@ -1,0 +1,77 @@
+// The hybrid compliance of a scene's bodies (MODEL.md §4): one FE influence table per distinct
+// gear body (built, or loaded from the disk cache), assembled into the contact compliance of a
+// stage or of a gear pair by compliance::AssembleCompliance.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "epicycle/compliance/influence_table.hpp"
+#include "epicycle/geometry/pair.hpp"
+#include "epicycle/transmission/scene.hpp"
+#include "epicycle/transmission/stage_problem.hpp"
+
+namespace epicycle::transmission {
+
+struct FeComplianceOptions {
+  /// Table options; the scene's [model] settings (join depth, refinement) are applied on top.
+  compliance::InfluenceTableOptions table;
+  /// Disk cache of the tables; empty: build in memory, write nothing.
+  std::string cache_directory;
+};
+
+/// The default cache directory: $EPICYCLE_CACHE_DIR, else $XDG_CACHE_HOME/epicycle, else
+/// $HOME/.cache/epicycle, else ".epicycle-cache".
+std::string DefaultCacheDirectory();
+
+/// The influence tables of a set of gears: one per distinct body (gears with identical specs, such
+/// as error-free planets, share one table).
+class GearTables {
+ public:
+  GearTables(const Scene& scene, const std::vector<const geometry::Gear*>& gears,
+             const FeComplianceOptions& options);
+  const compliance::InfluenceTable& Table(int gear) const { return *tables_.at(gear); }
+  /// What the cache did, one line per distinct table.
+  const std::vector<std::string>& messages() const { return messages_; }
+  compliance::PlaneAssumption plane() const { return plane_; }
+
+ private:
+  std::vector<std::shared_ptr<const compliance::InfluenceTable>> tables_;
+  std::vector<std::string> messages_;
+  compliance::PlaneAssumption plane_ = compliance::PlaneAssumption::kPlaneStrain;
+};
+
+/// The stage's contact compliance from the FE tables of the sun, every planet and the ring.
+class FeStageCompliance final : public StageCompliance {
+ public:
+  /// @throws std::invalid_argument for a table that cannot be built (message from the mesher or
+  ///         the table's rules).
+  FeStageCompliance(const Scene& scene, const geometry::Stage& stage,
+                    const FeComplianceOptions& options);
+  Eigen::MatrixXd Matrix(const geometry::Stage& stage, const geometry::StagePoses& poses,
+                         const std::vector<StageContact>& contacts) const override;
+  double JoiningDepth(int body) const override;
+  const GearTables& tables() const { return tables_; }
+
+ private:
+  GearTables tables_;  // gear index = body index (0 sun, 1 ring, 2 + i planet i)
+};
+
+/// The contact compliance of a single gear pair (gear 1 body 0, gear 2 body 1).
+class FePairCompliance {
+ public:
+  FePairCompliance(const Scene& scene, const geometry::GearPair& pair,
+                   const FeComplianceOptions& options);
+  Eigen::MatrixXd Matrix(const geometry::GearPair& pair, const geometry::PairPoses& poses,
+                         const std::vector<geometry::PotentialContact>& contacts) const;
+  double JoiningDepth(int gear) const { return tables_.Table(gear).join_depth(); }
+  const GearTables& tables() const { return tables_; }
+
+ private:
+  GearTables tables_;
+};
+
+}  // namespace epicycle::transmission

@@ -1,0 +1,93 @@
+// Mesh stiffness of one gear pair over a mesh cycle at a given load (the hybrid model: FE
+// structural term + local contact term, MODEL.md §4), with each tooth pair's stiffness and load
+// share: the quantity ISO 6336-1 (c′, c_γα) and the potential-energy method are compared with.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "epicycle/compliance/iso6336.hpp"
+#include "epicycle/geometry/pair.hpp"
+#include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/scene.hpp"
+
+namespace epicycle::transmission {
+
+/// A scene's gear pair for a stiffness study: a pair scene itself, or one mesh of a stage scene.
+struct MeshPairSetup {
+  std::string mesh;  ///< "gear1-gear2", "sun-planet<i>" or "planet<i>-ring"
+  geometry::PairSpec spec;
+  double torque = 0;  ///< on gear 1 [N·m] (ccw +): the pair's, or the stage's per-planet share
+};
+
+/// For a pair scene, `mesh` may be empty or "gear1-gear2". For a stage scene it names a mesh of
+/// the stage ("sun-planet1", "planet2-ring"): the pair is that mesh at the carrier radius, without
+/// errors, loaded by the sun torque's share T/n (sun–planet) or the same tooth force on the planet
+/// (planet–ring: T_p = T/n · r_bp/r_bs).
+/// @throws std::invalid_argument naming the mesh and the names allowed.
+MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
+                           const std::string& mesh);
+
+struct MeshStiffnessOptions {
+  int positions = 60;  ///< samples over one mesh cycle [-], ≥ 2
+  solvers::Backend backend = solvers::Backend::kActiveSetNewton;
+  solvers::ContactOptions contact;
+  bool local_terms = true;             ///< add the nonlinear local term (false: structural only)
+  int max_geometric_iterations = 20;   ///< [-]
+  double geometric_tolerance = 1e-11;  ///< largest rotation increment × base radius [m]
+  void Validate() const;               ///< @throws std::invalid_argument naming the field
+};
+
+/// One tooth pair in contact at one position.
+struct ToothPairLoad {
+  int tooth1 = 0, tooth2 = 0;  ///< tooth indices (body frames)
+  geometry::ContactKind kind = geometry::ContactKind::kInvolute;
+  double force = 0;      ///< F [N], normal
+  double stiffness = 0;  ///< F / δ_LOA [N/m]: the pair's share of the mesh stiffness
+  double share = 0;      ///< F / ΣF [-]
+};
+
+struct MeshSample {
+  double angle = 0;  ///< gear-1 rotation from the cycle start [rad]
+  bool converged = false;
+  std::string message;        ///< why not, when not converged
+  double rotation = 0;        ///< loaded static transmission error: gear-1 rotation [rad]
+  double approach = 0;        ///< δ_LOA = |rotation| r_b1, the mesh deflection along the LOA [m]
+  double total_force = 0;     ///< Σ F [N]
+  double mesh_stiffness = 0;  ///< k = (|T|/r_b1)/δ_LOA [N/m]
+  std::vector<ToothPairLoad> pairs;  ///< pairs carrying load (F > 0)
+  solvers::ContactReport report;
+};
+
+struct MeshStiffnessResult {
+  std::string mesh;
+  double torque = 0;      ///< on gear 1 [N·m]
+  double face_width = 0;  ///< b [m] (the narrower gear)
+  std::vector<MeshSample> samples;
+  int failed = 0;                  ///< samples that did not converge
+  double mean_stiffness = 0;       ///< mean of k over the converged samples [N/m]
+  double peak_pair_stiffness = 0;  ///< max over samples and pairs of a single pair's k [N/m]
+  double min_stiffness = 0, max_stiffness = 0;  ///< [N/m]
+  /// Per unit face width in N/(mm·µm) (= 1e9 N/m²): mean (c_γα-like) and peak single pair (c′).
+  double mean_per_width() const { return mean_stiffness / face_width / 1e9; }
+  double peak_pair_per_width() const { return peak_pair_stiffness / face_width / 1e9; }
+};
+
+/// Sweeps one mesh cycle of gear 1: at every position, contact search → FE compliance → contact
+/// problem with the moment equilibrium of gear 1 (gear 2 held) → back end, repeated at the moved
+/// position until the rotation settles. A position that fails is reported in its sample and the
+/// sweep goes on. `on_sample` (if given) sees each sample as it is computed.
+MeshStiffnessResult ComputeMeshStiffness(
+    const Scene& scene, const MeshPairSetup& setup, const geometry::GearPair& pair,
+    const FePairCompliance& compliance, const MeshStiffnessOptions& options,
+    const std::function<void(const MeshSample&)>& on_sample = {});
+
+/// The pair's data for ISO 6336-1 method B (c′, c_γα): tooth counts, shifts, the basic-rack
+/// dedendum h_fP/m of each gear (the rack's addendum, or for a directly defined ring its root
+/// depth below the shifted reference circle), tool pressure angle, C_R = 1 (solid bodies) and
+/// ε_α from the tip circles.
+compliance::iso6336::PairData IsoPairData(const geometry::GearPair& pair);
+
+}  // namespace epicycle::transmission

@@ -1,0 +1,129 @@
+#include "epicycle/transmission/fe_compliance.hpp"
+
+#include <cstdlib>
+#include <map>
+
+#include "epicycle/compliance/compliance_operator.hpp"
+#include "epicycle/compliance/influence_cache.hpp"
+
+namespace epicycle::transmission {
+
+namespace {
+
+compliance::PlaneAssumption ToCompliance(solvers::PlaneAssumption p) {
+  return p == solvers::PlaneAssumption::kPlaneStrain ? compliance::PlaneAssumption::kPlaneStrain
+                                                     : compliance::PlaneAssumption::kPlaneStress;
+}
+
+compliance::OperatorBody Body(const compliance::InfluenceTable& table,
+                              const geometry::GearPose& pose, const std::string& name) {
+  compliance::OperatorBody b;
+  b.table = &table;
+  b.centre = pose.geometric_centre;
+  b.rotation = pose.rotation;
+  b.name = name;
+  return b;
+}
+
+// The two sides of a potential contact: A pushed along −n at its own closest point, B along +n.
+compliance::OperatorContact Sides(const geometry::PotentialContact& c, int body_a, int body_b,
+                                  std::string label) {
+  compliance::OperatorContact o;
+  o.side[0] = {body_a, c.tooth_a, c.side_a, c.point_a, -c.normal};
+  o.side[1] = {body_b, c.tooth_b, c.side_b, c.point_b, c.normal};
+  o.label = std::move(label);
+  return o;
+}
+
+}  // namespace
+
+std::string DefaultCacheDirectory() {
+  if (const char* d = std::getenv("EPICYCLE_CACHE_DIR"); d != nullptr && *d != '\0') return d;
+  if (const char* d = std::getenv("XDG_CACHE_HOME"); d != nullptr && *d != '\0')
+    return std::string(d) + "/epicycle";
+  if (const char* d = std::getenv("HOME"); d != nullptr && *d != '\0')
+    return std::string(d) + "/.cache/epicycle";
+  return ".epicycle-cache";
+}
+
+GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gear*>& gears,
+                       const FeComplianceOptions& options)
+    : plane_(ToCompliance(scene.model.plane)) {
+  compliance::InfluenceTableOptions o = options.table;
+  if (scene.model.join_depth > 0) o.join_depth = scene.model.join_depth;
+  o.mesh.refinement = scene.model.mesh_refinement;
+  std::map<std::uint64_t, std::shared_ptr<const compliance::InfluenceTable>> built;
+  for (const geometry::Gear* g : gears) {
+    const compliance::ElasticMaterial material{
+        scene.material.youngs_modulus, scene.material.poisson_ratio, g->spec().face_width, plane_};
+    const std::uint64_t key = compliance::InfluenceTableKey(g->spec(), material, o);
+    auto it = built.find(key);
+    if (it == built.end()) {
+      std::shared_ptr<const compliance::InfluenceTable> t;
+      if (options.cache_directory.empty()) {
+        t = std::make_shared<const compliance::InfluenceTable>(
+            compliance::InfluenceTable::Build(*g, material, o));
+        messages_.push_back("influence table of '" + g->name() + "' built (no disk cache)");
+      } else {
+        compliance::CacheReport report;
+        t = std::make_shared<const compliance::InfluenceTable>(
+            compliance::LoadOrBuildInfluenceTable(*g, material, o, options.cache_directory,
+                                                  &report));
+        messages_.push_back(report.message);
+      }
+      it = built.emplace(key, std::move(t)).first;
+    }
+    tables_.push_back(it->second);
+  }
+}
+
+namespace {
+
+std::vector<const geometry::Gear*> StageGears(const geometry::Stage& stage) {
+  std::vector<const geometry::Gear*> g{&stage.sun(), &stage.ring()};
+  for (int i = 0; i < stage.planets(); ++i) g.push_back(&stage.planet(i));
+  return g;
+}
+
+}  // namespace
+
+FeStageCompliance::FeStageCompliance(const Scene& scene, const geometry::Stage& stage,
+                                     const FeComplianceOptions& options)
+    : tables_(scene, StageGears(stage), options) {}
+
+Eigen::MatrixXd FeStageCompliance::Matrix(const geometry::Stage& stage,
+                                          const geometry::StagePoses& poses,
+                                          const std::vector<StageContact>& contacts) const {
+  std::vector<compliance::OperatorBody> bodies;
+  bodies.push_back(Body(tables_.Table(kSunBody), poses.sun, "sun"));
+  bodies.push_back(Body(tables_.Table(kRingBody), poses.ring, "ring"));
+  for (int i = 0; i < stage.planets(); ++i) {
+    bodies.push_back(
+        Body(tables_.Table(PlanetBody(i)), poses.planets.at(i), "planet" + std::to_string(i + 1)));
+  }
+  std::vector<compliance::OperatorContact> oc;
+  oc.reserve(contacts.size());
+  for (const StageContact& s : contacts)
+    oc.push_back(Sides(s.contact, s.body_a, s.body_b, s.Label()));
+  return compliance::AssembleCompliance(bodies, oc);
+}
+
+double FeStageCompliance::JoiningDepth(int body) const { return tables_.Table(body).join_depth(); }
+
+FePairCompliance::FePairCompliance(const Scene& scene, const geometry::GearPair& pair,
+                                   const FeComplianceOptions& options)
+    : tables_(scene, {&pair.gear1(), &pair.gear2()}, options) {}
+
+Eigen::MatrixXd FePairCompliance::Matrix(
+    const geometry::GearPair& /*pair*/, const geometry::PairPoses& poses,
+    const std::vector<geometry::PotentialContact>& contacts) const {
+  const std::vector<compliance::OperatorBody> bodies{Body(tables_.Table(0), poses.gear1, "gear1"),
+                                                     Body(tables_.Table(1), poses.gear2, "gear2")};
+  std::vector<compliance::OperatorContact> oc;
+  oc.reserve(contacts.size());
+  for (std::size_t j = 0; j < contacts.size(); ++j)
+    oc.push_back(Sides(contacts[j], 0, 1, "contact " + std::to_string(j)));
+  return compliance::AssembleCompliance(bodies, oc);
+}
+
+}  // namespace epicycle::transmission

@@ -1,0 +1,224 @@
+#include "epicycle/transmission/mesh_stiffness.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/transmission/stage_problem.hpp"
+
+namespace epicycle::transmission {
+
+MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
+                           const std::string& mesh) {
+  MeshPairSetup s;
+  if (scene.kind == SceneKind::kPair) {
+    if (!mesh.empty() && mesh != "gear1-gear2") {
+      throw std::invalid_argument("--mesh = '" + mesh +
+                                  "': a pair scene has one mesh, 'gear1-gear2'");
+    }
+    s.mesh = "gear1-gear2";
+    s.spec = scene.pair;
+    s.torque = scene.pair_torque;
+    return s;
+  }
+  if (stage == nullptr) throw std::invalid_argument("MakeMeshPair: a stage scene needs its stage");
+  std::string names;
+  for (const geometry::MeshSummary& m : stage->meshes()) {
+    names += (names.empty() ? "" : ", ") + m.name;
+    if (m.name != mesh) continue;
+    const int i = m.planet;
+    const double per_planet = scene.sun_torque / stage->planets();
+    s.mesh = mesh;
+    if (m.kind == geometry::MeshKind::kSunPlanet) {
+      s.spec.gear1 = stage->sun().spec();
+      s.spec.gear2 = stage->planet(i).spec();
+      s.spec.load_sign = stage->sun_mesh_side();
+      s.torque = per_planet;
+    } else {
+      s.spec.gear1 = stage->planet(i).spec();
+      s.spec.gear2 = stage->ring().spec();
+      s.spec.load_sign = stage->ring_mesh_planet_side();
+      // The same tooth force as the sun mesh: T_p = |T|/n · r_bp / r_bs, on the loaded side.
+      s.torque = s.spec.load_sign * std::abs(per_planet) * stage->planet(i).base_radius() /
+                 stage->sun().base_radius();
+    }
+    s.spec.centre_distance = stage->carrier_radius();
+    return s;
+  }
+  throw std::invalid_argument("--mesh = '" + mesh + "': the stage's meshes are " + names);
+}
+
+void MeshStiffnessOptions::Validate() const {
+  if (positions < 2) {
+    throw std::invalid_argument("mesh stiffness: positions = " + std::to_string(positions) +
+                                ": must be at least 2");
+  }
+  if (max_geometric_iterations < 1) {
+    throw std::invalid_argument("mesh stiffness: max_geometric_iterations = " +
+                                std::to_string(max_geometric_iterations) + ": must be at least 1");
+  }
+  if (!(geometric_tolerance > 0)) {
+    throw std::invalid_argument("mesh stiffness: geometric_tolerance = " +
+                                std::to_string(geometric_tolerance) + ": must be > 0");
+  }
+  contact.Validate();
+}
+
+namespace {
+
+// One position: the contact problem of the pair with gear 1's moment equilibrium (gear 2 held),
+// solved again at the moved pose until the rotation settles.
+MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
+                       const geometry::GearPair& pair, const FePairCompliance& compliance,
+                       const MeshStiffnessOptions& options, solvers::ContactSolver& solver,
+                       double angle) {
+  MeshSample out;
+  out.angle = angle;
+  geometry::PairPoses poses = pair.Poses(angle);
+  geometry::ContactSearchOptions search;
+  search.gap_window = scene.gap_window;
+  const double rb1 = pair.gear1().base_radius();
+  double total = 0.0;
+  std::vector<geometry::PotentialContact> contacts;
+  solvers::ContactSolution solution;
+  for (int it = 1; it <= options.max_geometric_iterations; ++it) {
+    contacts = pair.Contacts(poses, search);
+    if (contacts.empty()) {
+      out.message = "no potential contact within the gap window";
+      return out;
+    }
+    const int n = static_cast<int>(contacts.size());
+    solvers::ContactProblemData d;
+    d.name = setup.mesh + " @ " + std::to_string(geometry::Deg(angle)) + " deg";
+    d.compliance = compliance.Matrix(pair, poses, contacts);
+    d.overlap.resize(n);
+    d.equality_matrix.resize(1, n);
+    d.equality_rhs = Eigen::VectorXd::Constant(1, setup.torque);
+    for (int j = 0; j < n; ++j) {
+      d.overlap(j) = contacts[j].overlap;
+      d.equality_matrix(0, j) = -contacts[j].lever_a;  // ∂δ_j/∂θ_1; G F = T is gear 1's balance
+      if (options.local_terms) {
+        d.local.push_back(ContactLocalTerm(contacts[j], pair.gear1(), pair.gear2(), scene.material,
+                                           scene.model.plane, compliance.JoiningDepth(0),
+                                           compliance.JoiningDepth(1),
+                                           d.name + " contact " + std::to_string(j)));
+      }
+    }
+    d.multiplier_labels = {"gear1 rotation [rad]"};
+    const solvers::ContactProblem problem(d);
+    solution = {};
+    out.report = solver.Solve(problem, options.contact, &solution);
+    if (out.report.status != solvers::ContactStatus::kConverged) {
+      out.message = "contact solve at geometric iteration " + std::to_string(it) + ": " +
+                    solvers::StatusName(out.report.status) + " (" + out.report.message + ")";
+      return out;
+    }
+    const double step = solution.multiplier(0);
+    total += step;
+    poses.gear1.rotation += step;
+    poses.gear1.geometric_centre =
+        poses.gear1.rotation_centre +
+        geometry::Rotate(poses.gear1.geometric_centre - poses.gear1.rotation_centre, step);
+    if (std::abs(step) * rb1 <= options.geometric_tolerance) {
+      out.converged = true;
+      break;
+    }
+    if (it == options.max_geometric_iterations) {
+      out.message = "geometric iterations did not settle: last rotation increment " +
+                    std::to_string(step) + " rad";
+      return out;
+    }
+  }
+  out.rotation = total;
+  out.approach = std::abs(total) * rb1;
+  // Tooth pairs: the loaded contacts of the last problem, merged per (teeth, flank).
+  std::map<std::array<int, 3>, ToothPairLoad> merged;
+  for (std::size_t j = 0; j < contacts.size(); ++j) {
+    const double f = solution.force(static_cast<Eigen::Index>(j));
+    out.total_force += f;
+    if (!(f > 0)) continue;
+    const geometry::PotentialContact& c = contacts[j];
+    ToothPairLoad& p = merged[{c.tooth_a, c.tooth_b, c.side_a}];
+    if (f > p.force) p.kind = c.kind;
+    p.tooth1 = c.tooth_a;
+    p.tooth2 = c.tooth_b;
+    p.force += f;
+  }
+  out.mesh_stiffness = out.approach > 0 ? std::abs(setup.torque) / rb1 / out.approach : 0.0;
+  for (auto& [key, p] : merged) {
+    p.stiffness = out.approach > 0 ? p.force / out.approach : 0.0;
+    p.share = out.total_force > 0 ? p.force / out.total_force : 0.0;
+    out.pairs.push_back(p);
+  }
+  return out;
+}
+
+}  // namespace
+
+MeshStiffnessResult ComputeMeshStiffness(const Scene& scene, const MeshPairSetup& setup,
+                                         const geometry::GearPair& pair,
+                                         const FePairCompliance& compliance,
+                                         const MeshStiffnessOptions& options,
+                                         const std::function<void(const MeshSample&)>& on_sample) {
+  options.Validate();
+  if (setup.torque == 0)
+    throw std::invalid_argument("mesh stiffness: torque = 0: must be non-zero");
+  MeshStiffnessResult r;
+  r.mesh = setup.mesh;
+  r.torque = setup.torque;
+  r.face_width = std::min(pair.gear1().spec().face_width, pair.gear2().spec().face_width);
+  auto solver = solvers::MakeContactSolver(options.backend);
+  double sum = 0.0;
+  int good = 0;
+  r.min_stiffness = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < options.positions; ++k) {
+    const double angle = pair.mesh_cycle() * k / options.positions;
+    MeshSample s;
+    try {
+      s = SolveSample(scene, setup, pair, compliance, options, *solver, angle);
+    } catch (const std::invalid_argument& e) {
+      s = MeshSample{};
+      s.angle = angle;
+      s.message = e.what();
+    }
+    if (s.converged) {
+      ++good;
+      sum += s.mesh_stiffness;
+      r.min_stiffness = std::min(r.min_stiffness, s.mesh_stiffness);
+      r.max_stiffness = std::max(r.max_stiffness, s.mesh_stiffness);
+      for (const ToothPairLoad& p : s.pairs)
+        r.peak_pair_stiffness = std::max(r.peak_pair_stiffness, p.stiffness);
+    } else {
+      ++r.failed;
+    }
+    if (on_sample) on_sample(s);
+    r.samples.push_back(std::move(s));
+  }
+  r.mean_stiffness = good > 0 ? sum / good : 0.0;
+  if (good == 0) r.min_stiffness = 0.0;
+  return r;
+}
+
+compliance::iso6336::PairData IsoPairData(const geometry::GearPair& pair) {
+  auto dedendum = [](const geometry::Gear& g) {
+    const geometry::GearSpec& s = g.spec();
+    if (s.rack) return s.rack->addendum / s.module;
+    // Internal gear: its root lies (x + h_f) m outside the reference circle.
+    return (g.root_radius() - g.reference_radius()) / s.module - s.profile_shift;
+  };
+  compliance::iso6336::PairData d;
+  d.z1 = pair.gear1().teeth();
+  d.z2 = pair.gear2().teeth();
+  d.x1 = pair.gear1().spec().profile_shift;
+  d.x2 = pair.gear2().spec().profile_shift;
+  d.internal = pair.internal();
+  d.dedendum1 = dedendum(pair.gear1());
+  d.dedendum2 = dedendum(pair.gear2());
+  d.pressure_angle = pair.gear1().spec().pressure_angle;
+  d.contact_ratio = pair.summary().contact_ratio_iso;
+  return d;
+}
+
+}  // namespace epicycle::transmission
