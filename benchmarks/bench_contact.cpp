@@ -217,7 +217,7 @@ ActiveSetKkt BuildActiveSetKkt(const Case& c) {
     kkt.h(k, k) += slope(active[k]);
     for (int i = 0; i < m; ++i) kkt.g(i, k) = p.equality_matrix()(i, active[k]);
   }
-  kkt.s = p.support_compliance();
+  kkt.s = p.support_stiffness();
   if (kkt.s.size() == 0) kkt.s = Eigen::MatrixXd::Zero(m, m);
   return kkt;
 }

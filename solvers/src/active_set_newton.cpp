@@ -10,8 +10,8 @@
 //    Newton that decreases the potential Φ: start from a point with x ≥ 0, G x = W
 //    (non-negative least squares), Newton steps on the current face with a ratio test and an
 //    Armijo search on Φ, drop blocking contacts, add the contact with the most negative gap.
-//    Φ decreases monotonically over finitely many faces: globally convergent (S = 0 rows only;
-//    with elastic supports phase 1 is the only phase).
+//    Φ decreases monotonically over finitely many faces: globally convergent. Elastic supports
+//    are folded into the potential for this phase (see Run), so that it has hard equalities only.
 //
 // Both phases solve the same linear systems
 //      [ H_AA  −G_Aᵀ ] [dx_A]   [r1]        H_AA = C_AA + diag(u'(x_A)),
@@ -198,16 +198,48 @@ class ActiveSetNewton final : public BackendImpl {
       out = Phase1(p, x0, lambda0);
       if (!out.failed && !out.limit_reached) return out;
     }
-    const bool can_phase2 = !p.has_support;
     if (phase1_only) return out;
-    if (!can_phase2) {
-      if (phase2_only) {
-        out.failed = true;
-        out.message = "phase 2 needs hard equalities (S = 0)";
+    BackendResult second;
+    if (p.has_support) {
+      // Phase 2 needs hard equalities: the supported rows P are folded into the potential,
+      // ½(G_P x − W_P)ᵀ S_PP⁻¹ (G_P x − W_P), i.e. C + G_Pᵀ S_PP⁻¹ G_P and δ0 + G_Pᵀ S_PP⁻¹ W_P
+      // (MODEL.md §5), and λ_P = S_PP⁻¹ (W_P − G_P x) afterwards.
+      std::vector<int> supported, hard;
+      for (int i = 0; i < p.num_equalities(); ++i)
+        (p.S.row(i).cwiseAbs().maxCoeff() > 0.0 ? supported : hard).push_back(i);
+      const Eigen::MatrixXd spp = p.S(supported, supported);
+      const Eigen::LLT<Eigen::MatrixXd> spp_llt(spp);
+      if (spp_llt.info() != Eigen::Success || !(spp_llt.rcond() > 1e-12)) {
+        if (phase2_only) {
+          out.failed = true;
+          out.message = "phase 2: the support block S_PP is singular";
+        }
+        return out;
       }
-      return out;
+      ScaledProblem q = p;
+      const Eigen::MatrixXd gp = p.G(supported, Eigen::all);
+      const Eigen::MatrixXd s_inv_gp = spp_llt.solve(gp);
+      q.C = p.C + gp.transpose() * s_inv_gp;
+      const Eigen::VectorXd wp = p.W(supported);
+      q.delta0 = p.delta0 + s_inv_gp.transpose() * wp;
+      q.G = p.G(hard, Eigen::all);
+      q.W = p.W(hard);
+      q.S = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(hard.size()),
+                                  static_cast<Eigen::Index>(hard.size()));
+      q.has_support = false;
+      second = Phase2(q);
+      if (second.force.size() == p.num_contacts() && second.force.allFinite()) {
+        Eigen::VectorXd lambda = Eigen::VectorXd::Zero(p.num_equalities());
+        if (second.multiplier.size() == static_cast<Eigen::Index>(hard.size()))
+          lambda(hard) = second.multiplier;
+        const Eigen::VectorXd rest = wp - gp * second.force;
+        const Eigen::VectorXd lp = spp_llt.solve(rest);
+        lambda(supported) = lp;
+        second.multiplier = lambda;
+      }
+    } else {
+      second = Phase2(p);
     }
-    BackendResult second = Phase2(p);
     second.iterations += out.iterations;
     second.message = (phase2_only ? std::string() : "phase 1 (" + out.message + ") -> ") +
                      "phase 2 (primal, Phi descent): " + second.message;
@@ -401,6 +433,38 @@ class ActiveSetNewton final : public BackendImpl {
         out.message =
             "no x >= 0 with G x = W (least-squares residual " + std::to_string(infeas) + ")";
         return out;
+      }
+    }
+    if (m > 0) {
+      // The NNLS point is a vertex: often only a few contacts carry load (one planet path, say),
+      // G_F is then rank deficient and the faces degenerate (zero steps that cycle). A better
+      // start: the minimiser of ½xᵀCx − δ0⁺ᵀx on G x = W over a set of contacts (gaps ignored:
+      // an elastic distribution of the load), the set shrunk to the positive entries until none
+      // is negative (a few passes); used when it is feasible.
+      std::vector<int> set(static_cast<std::size_t>(n));
+      for (int j = 0; j < n; ++j) set[j] = j;
+      const double w_scale = std::max(1.0, p.W.cwiseAbs().maxCoeff());
+      for (int pass = 0; pass < 10 && !set.empty(); ++pass) {
+        const int k = static_cast<int>(set.size());
+        Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(k + m, k + m);
+        kkt.topLeftCorner(k, k) = p.C(set, set);
+        kkt.topRightCorner(k, m) = p.G(Eigen::all, set).transpose();
+        kkt.bottomLeftCorner(m, k) = p.G(Eigen::all, set);
+        Eigen::VectorXd rhs(k + m);
+        rhs << p.delta0(set).cwiseMax(0.0), p.W;
+        const Eigen::VectorXd xs = kkt.completeOrthogonalDecomposition().solve(rhs).head(k);
+        if (!xs.allFinite() ||
+            (p.G(Eigen::all, set) * xs - p.W).cwiseAbs().maxCoeff() > 1e-9 * w_scale)
+          break;  // G restricted to the set cannot carry the load: keep the NNLS point
+        if (xs.minCoeff() >= 0.0) {
+          x.setZero();
+          for (int a = 0; a < k; ++a) x(set[a]) = xs(a);
+          break;
+        }
+        std::vector<int> next;
+        for (int a = 0; a < k; ++a)
+          if (xs(a) > 0.0) next.push_back(set[a]);
+        set = std::move(next);
       }
     }
     std::vector<bool> free(n, false);

@@ -186,13 +186,15 @@ std::vector<ContactProblemFile> ClosedFormCases() {
     ContactProblemFile f;
     f.category = "closed-form";
     f.data.name = "cf_elastic_support";
-    f.description = "one linear contact on an elastic support: F = (W + s delta0)/(1 + s c)";
-    const double c = 4e-9, s = 2e-9, d0 = 10e-6, w = 3000.0;
+    f.description =
+        "one linear contact on an elastic support of stiffness K: F + K lambda = W, lambda = c F - "
+        "delta0, so F = (W + K delta0)/(1 + K c)";
+    const double c = 4e-9, s = 5e8, d0 = 10e-6, w = 3000.0;
     f.data.compliance = Eigen::MatrixXd::Constant(1, 1, c);
     f.data.overlap = Eigen::VectorXd::Constant(1, d0);
     f.data.equality_matrix = Eigen::MatrixXd::Constant(1, 1, 1.0);
     f.data.equality_rhs = Eigen::VectorXd::Constant(1, w);
-    f.data.support_compliance = Eigen::MatrixXd::Constant(1, 1, s);
+    f.data.support_stiffness = Eigen::MatrixXd::Constant(1, 1, s);
     const double force = (w + s * d0) / (1.0 + s * c);
     ContactSolution sol;
     sol.force = Eigen::VectorXd::Constant(1, force);
@@ -232,8 +234,8 @@ ContactProblemFile RandomCase(std::uint64_t seed, int n, int m, bool local, bool
     for (int j = 0; j < n; ++j) nominal(j) = rng.Uniform(0.0, 2000.0);
     f.data.equality_rhs = f.data.equality_matrix * nominal;
     if (support) {
-      f.data.support_compliance = Eigen::MatrixXd::Zero(m, m);
-      f.data.support_compliance(0, 0) = 1e-9;  // row 0 on a bearing, the others hard
+      f.data.support_stiffness = Eigen::MatrixXd::Zero(m, m);
+      f.data.support_stiffness(0, 0) = 1e-9;  // row 0 on a bearing, the others hard
     }
   }
   return f;
@@ -337,9 +339,9 @@ ContactProblemFile MakeGearLikeProblem(const GearLikeSpec& spec, const std::stri
   for (int i = 1; i < m; ++i)  // sums that vanish by symmetry: exact zeros, not round-off
     if (std::abs(d.equality_rhs(i)) < 1e-9 * std::abs(spec.sun_torque) / r_s)
       d.equality_rhs(i) = 0.0;
-  if (spec.support_compliance > 0.0) {
-    d.support_compliance = Eigen::MatrixXd::Zero(m, m);
-    d.support_compliance(1, 1) = d.support_compliance(2, 2) = spec.support_compliance;
+  if (spec.support_stiffness > 0.0) {
+    d.support_stiffness = Eigen::MatrixXd::Zero(m, m);
+    d.support_stiffness(1, 1) = d.support_stiffness(2, 2) = spec.support_stiffness;
   }
   return f;
 }
@@ -359,12 +361,12 @@ std::vector<ContactProblemFile> GenerateContactCollection(std::uint64_t seed) {
   };
   for (const G& g :
        {G{3, 3, 2, 0.0, "gear_p3_n30_m6"}, G{4, 3, 2, 0.0, "gear_p4_n40_m7"},
-        G{5, 3, 3, 0.0, "gear_p5_n60_m8"}, G{3, 4, 3, 2e-9, "gear_p3_n42_m6_bearing"}}) {
+        G{5, 3, 3, 0.0, "gear_p5_n60_m8"}, G{3, 4, 3, 5e8, "gear_p3_n42_m6_bearing"}}) {
     GearLikeSpec spec;
     spec.planets = g.planets;
     spec.drive_pairs = g.drive;
     spec.coast_pairs = g.coast;
-    spec.support_compliance = g.support;
+    spec.support_stiffness = g.support;
     spec.seed = seed;
     out.push_back(MakeGearLikeProblem(spec, SeedName(g.name, seed)));
   }

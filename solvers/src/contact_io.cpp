@@ -106,8 +106,8 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
   }
   rd.OnlyKeys(j, "",
               {"format", "version", "name", "category", "description", "seed", "compliance_m_per_N",
-               "overlap_m", "equality_matrix", "equality_rhs", "support_compliance", "local",
-               "contact_labels", "multiplier_labels", "expected"});
+               "overlap_m", "equality_matrix", "equality_rhs", "support_stiffness_N_per_m",
+               "support_compliance", "local", "contact_labels", "multiplier_labels", "expected"});
   const json& fmt = rd.Required(j, "format");
   if (!fmt.is_string() || fmt.get<std::string>() != kContactFileFormat)
     rd.Fail("format", "must be \"" + std::string(kContactFileFormat) + "\", found " + fmt.dump());
@@ -141,8 +141,15 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
   d.equality_matrix = j.contains("equality_matrix")
                           ? rd.Matrix(j["equality_matrix"], "equality_matrix", n)
                           : Eigen::MatrixXd(0, n);
-  if (j.contains("support_compliance"))
-    d.support_compliance = rd.Matrix(j["support_compliance"], "support_compliance", 0);
+  // "support_compliance" is the first name of this key: its values always entered the equations
+  // as the stiffness K of G F + K λ = W, so a file that has it reads the same numbers.
+  if (j.contains("support_stiffness_N_per_m") && j.contains("support_compliance"))
+    rd.Fail("support_compliance",
+            "give support_stiffness_N_per_m only (support_compliance is its old name)");
+  if (j.contains("support_stiffness_N_per_m"))
+    d.support_stiffness = rd.Matrix(j["support_stiffness_N_per_m"], "support_stiffness_N_per_m", 0);
+  else if (j.contains("support_compliance"))
+    d.support_stiffness = rd.Matrix(j["support_compliance"], "support_compliance", 0);
   if (j.contains("contact_labels"))
     d.contact_labels = rd.Strings(j["contact_labels"], "contact_labels");
   if (j.contains("multiplier_labels"))
@@ -233,7 +240,8 @@ std::string FormatContactProblemFile(const ContactProblemFile& f) {
     j["equality_matrix"] = MatrixJson(d.equality_matrix);
     j["equality_rhs"] = VectorJson(d.equality_rhs);
   }
-  if (d.support_compliance.size() > 0) j["support_compliance"] = MatrixJson(d.support_compliance);
+  if (d.support_stiffness.size() > 0)
+    j["support_stiffness_N_per_m"] = MatrixJson(d.support_stiffness);
   if (!d.local.empty()) {
     json loc = json::array();
     for (const LocalTermParameters& p : d.local) {

@@ -70,8 +70,8 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
   if (m == 0 && d.equality_matrix.size() == 0) d.equality_matrix.resize(0, n);
   CheckSize(d.equality_matrix.rows(), d.equality_matrix.cols(), m, n, "equality_matrix",
             "m x N with m = size of equality_rhs = " + std::to_string(m));
-  if (d.support_compliance.size() != 0)
-    CheckSize(d.support_compliance.rows(), d.support_compliance.cols(), m, m, "support_compliance",
+  if (d.support_stiffness.size() != 0)
+    CheckSize(d.support_stiffness.rows(), d.support_stiffness.cols(), m, m, "support_stiffness",
               "empty or m x m");
   if (!d.local.empty() && static_cast<Eigen::Index>(d.local.size()) != n)
     throw std::invalid_argument("local has " + std::to_string(d.local.size()) +
@@ -88,7 +88,7 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
   CheckFinite(d.overlap, "overlap");
   CheckFinite(d.equality_matrix, "equality_matrix");
   CheckFinite(d.equality_rhs, "equality_rhs");
-  CheckFinite(d.support_compliance, "support_compliance");
+  CheckFinite(d.support_stiffness, "support_stiffness");
   for (std::size_t j = 0; j < d.local.size(); ++j)
     ValidateLocalTerm(d.local[j], "local[" + std::to_string(j) + "]");
 
@@ -105,10 +105,10 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
   }
 
   support_ = Eigen::MatrixXd::Zero(m, m);
-  if (d.support_compliance.size() != 0) {
-    CheckSymmetric(d.support_compliance, "support_compliance");
-    support_ = 0.5 * (d.support_compliance + d.support_compliance.transpose());
-    d.support_compliance = support_;
+  if (d.support_stiffness.size() != 0) {
+    CheckSymmetric(d.support_stiffness, "support_stiffness");
+    support_ = 0.5 * (d.support_stiffness + d.support_stiffness.transpose());
+    d.support_stiffness = support_;
     const double scale = support_.cwiseAbs().maxCoeff();
     if (scale > 0.0) {
       const double min_eig =
@@ -117,9 +117,9 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
               .minCoeff();
       if (min_eig < -kSymmetryTolerance * scale)
         throw std::invalid_argument(
-            "support_compliance is not positive semidefinite: smallest "
+            "support_stiffness is not positive semidefinite: smallest "
             "eigenvalue " +
-            Num(min_eig) + "; rule: S must be PSD");
+            Num(min_eig) + "; rule: K must be PSD");
     }
   }
 }

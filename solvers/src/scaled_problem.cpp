@@ -132,7 +132,7 @@ ScaledProblem MakeScaledProblem(const ContactProblem& problem) {
   sp.has_support = problem.has_support();
   if (sp.has_support) {
     const Eigen::VectorXd inv_r = sp.row_scale.cwiseInverse();
-    sp.S = inv_r.asDiagonal() * problem.support_compliance() * inv_r.asDiagonal();
+    sp.S = inv_r.asDiagonal() * problem.support_stiffness() * inv_r.asDiagonal();
     sp.S *= l_scale / f_scale;
   }
 

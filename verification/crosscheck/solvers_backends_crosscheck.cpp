@@ -87,10 +87,10 @@ ErrorBound ScaledErrorBound(const ContactProblemData& d, const Eigen::VectorXd& 
       k(a + i, p) = d.equality_matrix(i, active[p]) / r(i);
     }
   }
-  if (d.support_compliance.size() > 0) {
+  if (d.support_stiffness.size() > 0) {
     for (int i = 0; i < m; ++i) {
       for (int l = 0; l < m; ++l) {
-        k(a + i, a + l) = d.support_compliance(i, l) * l_scale / (f_scale * r(i) * r(l));
+        k(a + i, a + l) = d.support_stiffness(i, l) * l_scale / (f_scale * r(i) * r(l));
       }
     }
   }
@@ -309,7 +309,7 @@ TEST_CASE("Ipopt and NLopt back ends: elastic support (G F + S λ = W)",
   d.overlap = Eigen::VectorXd::Constant(1, delta0);
   d.equality_matrix = Eigen::MatrixXd::Ones(1, 1);
   d.equality_rhs = Eigen::VectorXd::Constant(1, p);
-  d.support_compliance = Eigen::MatrixXd::Constant(1, 1, s);
+  d.support_stiffness = Eigen::MatrixXd::Constant(1, 1, s);
   const double force = (p + s * delta0) / (1 + s * c);
   CheckAgainst(d, Eigen::VectorXd::Constant(1, force),
                Eigen::VectorXd::Constant(1, c * force - delta0));

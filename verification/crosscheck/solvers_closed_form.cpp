@@ -54,7 +54,7 @@ ContactSolution Reference(const ContactProblemData& d) {
     s.multiplier(1) = (a1 - a2) / (r1 - r2);
     s.multiplier(0) = a1 - r1 * s.multiplier(1);
   } else if (name == "cf_elastic_support") {
-    const double c = d.compliance(0, 0), sc = d.support_compliance(0, 0);
+    const double c = d.compliance(0, 0), sc = d.support_stiffness(0, 0);
     const double f = (d.equality_rhs(0) + sc * d.overlap(0)) / (1.0 + sc * c);
     s.force = Eigen::VectorXd::Constant(1, f);
     s.multiplier(0) = c * f - d.overlap(0);

@@ -11,7 +11,7 @@ namespace epicycle::solvers {
 
 TEST_CASE("problem files round-trip exactly", "[unit][solvers]") {
   GearLikeSpec spec;
-  spec.support_compliance = 1e-9;
+  spec.support_stiffness = 1e-9;
   ContactProblemFile f = MakeGearLikeProblem(spec, "roundtrip");
   const std::string path = "contact_io_roundtrip.json";
   WriteContactProblemFile(f, path);
@@ -25,7 +25,7 @@ TEST_CASE("problem files round-trip exactly", "[unit][solvers]") {
   CHECK(g.data.overlap == f.data.overlap);
   CHECK(g.data.equality_matrix == f.data.equality_matrix);
   CHECK(g.data.equality_rhs == f.data.equality_rhs);
-  CHECK(g.data.support_compliance == f.data.support_compliance);
+  CHECK(g.data.support_stiffness == f.data.support_stiffness);
   REQUIRE(g.data.local.size() == f.data.local.size());
   CHECK(g.data.local[5].body[1].depth == f.data.local[5].body[1].depth);
   CHECK(g.data.contact_labels == f.data.contact_labels);

@@ -85,9 +85,9 @@ TEST_CASE("bad contact problems are rejected with named fields", "[unit][solvers
   }
   {
     auto d = Good();
-    d.support_compliance = Eigen::MatrixXd::Constant(1, 1, -1e-9);
+    d.support_stiffness = Eigen::MatrixXd::Constant(1, 1, -1e-9);
     CHECK_THROWS_WITH(ContactProblem(d),
-                      Catch::Contains("support_compliance is not positive semidefinite"));
+                      Catch::Contains("support_stiffness is not positive semidefinite"));
   }
 }
 

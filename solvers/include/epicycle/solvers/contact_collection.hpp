@@ -26,7 +26,7 @@ struct GearLikeSpec {
   double runout = 20e-6;          ///< [m], on planet 1, projected on its lines of action
   double scatter = 3e-6;          ///< [m], uniform scatter of the drive-flank overlaps
   bool local = true;              ///< Hertzian local terms on every contact
-  double support_compliance = 0;  ///< [m/N] elastic sun bearing (0: sun translation free)
+  double support_stiffness = 0;  ///< [N/m] elastic sun bearing (0: sun translation free)
   std::uint64_t seed = 1;
 };
 ContactProblemFile MakeGearLikeProblem(const GearLikeSpec& spec, const std::string& name);

@@ -15,11 +15,12 @@ namespace epicycle::solvers {
 /// whose position is set by equilibrium). With u(F) = C F + u_local(F):
 ///
 ///   gap:          g = C F + u_local(F) − δ0 − Gᵀλ ≥ 0,   F ≥ 0,   Fᵀg = 0
-///   equilibrium:  G F + S λ = W
+///   equilibrium:  G F + K λ = W
 ///
-/// S = 0 (the default) makes G F = W hard equalities; a positive semidefinite S is the compliance
-/// of elastic supports (rows with S = 0 stay hard). This is the KKT system of the convex program
-///   min Φ(F) = ½FᵀCF + Σ_j ∫₀^{F_j} u_local,j − δ0ᵀF (+ ½(GF−W)ᵀS⁻¹(GF−W))  s.t. F ≥ 0, (GF = W).
+/// K = 0 (the default) makes G F = W hard equalities; a positive semidefinite K is the stiffness
+/// of elastic supports (rows with K = 0 stay hard): the member's equilibrium is G F + K λ = W with
+/// λ its support deflection. This is the KKT system of the convex program
+///   min Φ(F) = ½FᵀCF + Σ_j ∫₀^{F_j} u_local,j − δ0ᵀF (+ ½(GF−W)ᵀK⁻¹(GF−W))  s.t. F ≥ 0, (GF = W).
 struct ContactProblemData {
   std::string name;                        ///< free text, used in reports and file names
   Eigen::MatrixXd compliance;              ///< C [m/N], N×N, symmetric positive definite
@@ -27,7 +28,7 @@ struct ContactProblemData {
   std::vector<LocalTermParameters> local;  ///< empty (no local terms) or N entries
   Eigen::MatrixXd equality_matrix;  ///< G, m×N [-] (force rows) or [m] (moment rows); m may be 0
   Eigen::VectorXd equality_rhs;     ///< W, m [N] or [N·m]
-  Eigen::MatrixXd support_compliance;  ///< S, m×m [m/N] or [rad/(N·m)]; empty means 0
+  Eigen::MatrixXd support_stiffness;  ///< K, m×m [N/m] or [N·m/rad]; empty means 0
   std::vector<std::string>
       contact_labels;  ///< empty or N labels (e.g. "sun-planet1 tooth 3 drive")
   std::vector<std::string> multiplier_labels;  ///< empty or m labels (e.g. "sun rotation [rad]")
@@ -55,12 +56,12 @@ class ContactProblem {
   int num_contacts() const { return static_cast<int>(data_.overlap.size()); }
   int num_equalities() const { return static_cast<int>(data_.equality_rhs.size()); }
   bool has_local() const;    ///< any local term enabled
-  bool has_support() const;  ///< S has a non-zero entry
+  bool has_support() const;  ///< K has a non-zero entry
   const Eigen::MatrixXd& compliance() const { return data_.compliance; }
   const Eigen::VectorXd& overlap() const { return data_.overlap; }
   const Eigen::MatrixXd& equality_matrix() const { return data_.equality_matrix; }
   const Eigen::VectorXd& equality_rhs() const { return data_.equality_rhs; }
-  const Eigen::MatrixXd& support_compliance() const { return support_; }  ///< m×m (zeros if empty)
+  const Eigen::MatrixXd& support_stiffness() const { return support_; }  ///< m×m (zeros if empty)
 
   /// u_local(F) [m] for every contact (0 where there is no local term), F ≥ 0.
   Eigen::VectorXd LocalApproach(const Eigen::VectorXd& force) const;
