@@ -93,6 +93,8 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
     solvers::ContactProblemData d;
     d.name = setup.mesh + " @ " + std::to_string(geometry::Deg(angle)) + " deg";
     d.compliance = compliance.Matrix(pair, poses, contacts);
+    if (!options.tooth_coupling)
+      d.compliance = Eigen::MatrixXd(d.compliance.diagonal().asDiagonal());
     d.overlap.resize(n);
     d.equality_matrix.resize(1, n);
     d.equality_rhs = Eigen::VectorXd::Constant(1, setup.torque);
@@ -141,7 +143,10 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
     if (!(f > 0)) continue;
     const geometry::PotentialContact& c = contacts[j];
     ToothPairLoad& p = merged[{c.tooth_a, c.tooth_b, c.side_a}];
-    if (f > p.force) p.kind = c.kind;
+    if (f > p.force) {
+      p.kind = c.kind;
+      p.roll1 = c.roll_a;
+    }
     p.tooth1 = c.tooth_a;
     p.tooth2 = c.tooth_b;
     p.force += f;

@@ -73,6 +73,7 @@ PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
         s.contact.lever_a * r.solution.force(static_cast<Eigen::Index>(j)) / -scene.sun_torque;
   }
   r.planet_rotations.assign(n, 0.0);
+  r.planet_displacements.assign(n, geometry::Vec2::Zero());
   for (std::size_t k = 0; k < dofs.size(); ++k) {
     const double v = total(static_cast<Eigen::Index>(k));
     switch (dofs[k].kind) {
@@ -87,6 +88,12 @@ PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
         break;
       case StageDof::kPlanetRotation:
         r.planet_rotations[dofs[k].planet] = v;
+        break;
+      case StageDof::kPlanetX:
+        r.planet_displacements[dofs[k].planet].x() = v;
+        break;
+      case StageDof::kPlanetY:
+        r.planet_displacements[dofs[k].planet].y() = v;
         break;
     }
   }

@@ -318,6 +318,18 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     s.gap_window = t->RealOr("gap_window_um", 100.0, Rule::Positive()) * kUm;
     t->Done();
   }
+  if (auto t = top.OptionalTable("supports")) {
+    const std::string sun = t->StringOr("sun", "fixed", {"fixed", "floating", "elastic"});
+    s.supports.sun = sun == "fixed"      ? SunSupport::kFixed
+                     : sun == "floating" ? SunSupport::kFloating
+                                         : SunSupport::kElastic;
+    if (s.supports.sun == SunSupport::kElastic) {
+      s.supports.sun_stiffness = t->Real("sun_stiffness_N_per_um", Rule::Positive()) * 1e6;
+    }
+    s.supports.planet_stiffness =
+        t->RealOr("planet_stiffness_N_per_um", 0.0, Rule::NonNegative()) * 1e6;
+    t->Done();
+  }
   if (auto t = top.OptionalTable("errors")) {
     ReadErrors(*t, s);
     t->Done();

@@ -1,5 +1,6 @@
 #include "epicycle/transmission/stage_problem.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -27,6 +28,10 @@ std::string StageDof::Label() const {
       return "sun y [m]";
     case kPlanetRotation:
       return "planet" + std::to_string(planet + 1) + " rotation [rad]";
+    case kPlanetX:
+      return "planet" + std::to_string(planet + 1) + " x [m]";
+    case kPlanetY:
+      return "planet" + std::to_string(planet + 1) + " y [m]";
   }
   return "?";
 }
@@ -81,6 +86,14 @@ double Sensitivity(const StageContact& s, const StageDof& d) {
       if (s.body_b == body) return -c.lever_b;
       return 0.0;
     }
+    case StageDof::kPlanetX:
+    case StageDof::kPlanetY: {
+      const int body = PlanetBody(d.planet);
+      const double nc = d.kind == StageDof::kPlanetX ? c.normal.x() : c.normal.y();
+      if (s.body_a == body) return nc;
+      if (s.body_b == body) return -nc;
+      return 0.0;
+    }
   }
   return 0.0;
 }
@@ -117,12 +130,25 @@ StageProblem BuildStageProblem(const Scene& scene, const geometry::Stage& stage,
     throw std::invalid_argument("stage: no potential contact within the gap window of " +
                                 std::to_string(scene.gap_window * 1e6) + " um");
   }
+  // DOFs and their support compliance (0: an equality; 1/k: an elastic bearing).
+  std::vector<double> support;
   p.dofs.push_back({StageDof::kSunRotation, 0});
-  if (setup.sun == SunSupport::kFloating) {
+  support.push_back(0.0);
+  if (setup.sun != SunSupport::kFixed) {
+    const double s_sun = setup.sun == SunSupport::kElastic ? 1.0 / setup.sun_stiffness : 0.0;
     p.dofs.push_back({StageDof::kSunX, 0});
     p.dofs.push_back({StageDof::kSunY, 0});
+    support.insert(support.end(), {s_sun, s_sun});
   }
-  for (int i = 0; i < stage.planets(); ++i) p.dofs.push_back({StageDof::kPlanetRotation, i});
+  for (int i = 0; i < stage.planets(); ++i) {
+    p.dofs.push_back({StageDof::kPlanetRotation, i});
+    support.push_back(0.0);
+    if (setup.planet_stiffness > 0) {
+      p.dofs.push_back({StageDof::kPlanetX, i});
+      p.dofs.push_back({StageDof::kPlanetY, i});
+      support.insert(support.end(), {1.0 / setup.planet_stiffness, 1.0 / setup.planet_stiffness});
+    }
+  }
 
   const int n = static_cast<int>(p.contacts.size()), m = static_cast<int>(p.dofs.size());
   solvers::ContactProblemData& d = p.data;
@@ -144,7 +170,19 @@ StageProblem BuildStageProblem(const Scene& scene, const geometry::Stage& stage,
                                        compliance.JoiningDepth(s.body_b), s.Label()));
   }
   for (const StageDof& dof : p.dofs) d.multiplier_labels.push_back(dof.Label());
+  if (std::any_of(support.begin(), support.end(), [](double v) { return v > 0; })) {
+    d.support_stiffness = Eigen::VectorXd::Map(support.data(), m).asDiagonal();
+  }
   return p;
+}
+
+QuasiStaticSetup SetupFromScene(const Scene& scene) {
+  QuasiStaticSetup s;
+  s.sun = scene.supports.sun;
+  s.sun_stiffness = scene.supports.sun_stiffness;
+  s.planet_stiffness = scene.supports.planet_stiffness;
+  s.plane = scene.model.plane;
+  return s;
 }
 
 geometry::StagePoses Displace(const geometry::StagePoses& poses, const std::vector<StageDof>& dofs,
@@ -172,6 +210,14 @@ geometry::StagePoses Displace(const geometry::StagePoses& poses, const std::vect
       case StageDof::kPlanetRotation:
         turn(out.planets.at(dofs[k].planet), v);
         break;
+      case StageDof::kPlanetX:
+      case StageDof::kPlanetY: {
+        geometry::GearPose& g = out.planets.at(dofs[k].planet);
+        const Vec2 e = dofs[k].kind == StageDof::kPlanetX ? Vec2(v, 0.0) : Vec2(0.0, v);
+        g.rotation_centre += e;
+        g.geometric_centre += e;
+        break;
+      }
     }
   }
   return out;

@@ -34,7 +34,11 @@ struct MeshStiffnessOptions {
   int positions = 60;  ///< samples over one mesh cycle [-], ≥ 2
   solvers::Backend backend = solvers::Backend::kActiveSetNewton;
   solvers::ContactOptions contact;
-  bool local_terms = true;             ///< add the nonlinear local term (false: structural only)
+  bool local_terms = true;  ///< add the nonlinear local term (false: structural only)
+  /// false: every contact's compliance alone (the off-diagonal C_jk dropped), so that the pairs in
+  /// contact act as independent springs, the assumption of the potential-energy method; true (the
+  /// model): the bodies couple the teeth.
+  bool tooth_coupling = true;
   int max_geometric_iterations = 20;   ///< [-]
   double geometric_tolerance = 1e-11;  ///< largest rotation increment × base radius [m]
   void Validate() const;               ///< @throws std::invalid_argument naming the field
@@ -47,6 +51,8 @@ struct ToothPairLoad {
   double force = 0;      ///< F [N], normal
   double stiffness = 0;  ///< F / δ_LOA [N/m]: the pair's share of the mesh stiffness
   double share = 0;      ///< F / ΣF [-]
+  double roll1 = 0;      ///< involute roll angle of gear 1 at the contact [rad] (r_b1·roll1 is
+                         ///< the distance along the line of action from gear 1's base circle)
 };
 
 struct MeshSample {

@@ -29,10 +29,11 @@ struct PositionResult {
   double transmission_error = 0;     ///< loaded static TE: sun rotation from kinematic [rad]
   geometry::Vec2 sun_displacement = geometry::Vec2::Zero();  ///< [m] (floating sun)
   std::vector<double> planet_rotations;                      ///< from kinematic [rad]
-  StageProblem problem;                                      ///< the last contact problem
-  solvers::ContactSolution solution;                         ///< its forces [N] and multipliers
-  solvers::ContactReport report;                             ///< its back-end report and residuals
-  geometry::StagePoses poses;                                ///< the loaded poses
+  std::vector<geometry::Vec2> planet_displacements;  ///< bearing deflections [m] (elastic pins)
+  StageProblem problem;                              ///< the last contact problem
+  solvers::ContactSolution solution;                 ///< its forces [N] and multipliers
+  solvers::ContactReport report;                     ///< its back-end report and residuals
+  geometry::StagePoses poses;                        ///< the loaded poses
 };
 
 /// @throws std::invalid_argument for bad input; numerical trouble is reported in the result.

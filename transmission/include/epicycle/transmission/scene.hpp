@@ -40,6 +40,20 @@ struct ModelSettings {
   int mesh_refinement = 1;  ///< density factor of the gear-body meshes [-], 1..4
 };
 
+/// How the sun is held in translation (its rotation is always set by the input torque).
+enum class SunSupport {
+  kFixed,     ///< constrained: the paper's first case
+  kFloating,  ///< free: the paper's second case
+  kElastic,   ///< on a bearing of stiffness Supports::sun_stiffness
+};
+
+/// The scene's optional [supports] table. The ring is fixed and the carrier held.
+struct Supports {
+  SunSupport sun = SunSupport::kFixed;
+  double sun_stiffness = 0;     ///< [N/m], kElastic only
+  double planet_stiffness = 0;  ///< planet bearings [N/m]; 0: rigid pins
+};
+
 /// A scene holds a planetary stage, or a single gear pair (for mesh-stiffness studies).
 enum class SceneKind { kStage, kPair };
 
@@ -53,6 +67,7 @@ struct Scene {
   double pair_torque = 0;     ///< torque on gear 1 of a pair [N·m] (ccw +)
   Material material;
   ModelSettings model;
+  Supports supports;
   Inertia sun, planet, ring, carrier;
   double sun_torque = 0;       ///< input torque on the sun [N·m] (counter-clockwise +)
   double gap_window = 100e-6;  ///< contact-search gap window [m]
