@@ -130,12 +130,12 @@ StageProblem BuildStageProblem(const Scene& scene, const geometry::Stage& stage,
     throw std::invalid_argument("stage: no potential contact within the gap window of " +
                                 std::to_string(scene.gap_window * 1e6) + " um");
   }
-  // DOFs and their support compliance (0: an equality; 1/k: an elastic bearing).
+  // DOFs and their support stiffness (0: an equality; k: an elastic bearing, G F + k λ = W).
   std::vector<double> support;
   p.dofs.push_back({StageDof::kSunRotation, 0});
   support.push_back(0.0);
   if (setup.sun != SunSupport::kFixed) {
-    const double s_sun = setup.sun == SunSupport::kElastic ? 1.0 / setup.sun_stiffness : 0.0;
+    const double s_sun = setup.sun == SunSupport::kElastic ? setup.sun_stiffness : 0.0;
     p.dofs.push_back({StageDof::kSunX, 0});
     p.dofs.push_back({StageDof::kSunY, 0});
     support.insert(support.end(), {s_sun, s_sun});
@@ -146,7 +146,7 @@ StageProblem BuildStageProblem(const Scene& scene, const geometry::Stage& stage,
     if (setup.planet_stiffness > 0) {
       p.dofs.push_back({StageDof::kPlanetX, i});
       p.dofs.push_back({StageDof::kPlanetY, i});
-      support.insert(support.end(), {1.0 / setup.planet_stiffness, 1.0 / setup.planet_stiffness});
+      support.insert(support.end(), {setup.planet_stiffness, setup.planet_stiffness});
     }
   }
 

@@ -82,8 +82,8 @@ solvers::LocalTermParameters ContactLocalTerm(const geometry::PotentialContact& 
 /// G_kj = ∂δ_j/∂q_k (rigid sensitivity of overlap j to DOF k), W_k the external load on DOF k
 /// (the sun torque on the sun's rotation, zero elsewhere), so that G F = W is equilibrium and the
 /// multipliers λ are the DOFs' rigid displacements [rad] or [m]. Elastic supports (sun or planet
-/// bearings) give their translation rows a support compliance 1/k: ½(GF − W)ᵀS(GF − W) replaces
-/// the equality, and λ = −S(GF − W) is the bearing's deflection.
+/// bearings) give their translation rows the bearing stiffness k: G F + k λ = W replaces the
+/// equality (the potential gains ½(GF − W)ᵀk⁻¹(GF − W)), and λ is the bearing's deflection.
 /// @throws std::invalid_argument if a contact has no valid local-term geometry.
 StageProblem BuildStageProblem(const Scene& scene, const geometry::Stage& stage,
                                const geometry::StagePoses& poses, const StageCompliance& compliance,
