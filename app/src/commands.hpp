@@ -6,8 +6,9 @@
 
 namespace epicycle::app {
 
-void RegisterGeometryCommands(CLI::App& app);  // geometry, contacts      (geometry_commands.cpp)
-void RegisterContactCommands(CLI::App& app);   // contact solve|compare   (contact_commands.cpp)
+void RegisterGeometryCommands(CLI::App& app);   // geometry, contacts      (geometry_commands.cpp)
+void RegisterContactCommands(CLI::App& app);    // contact solve|compare   (contact_commands.cpp)
 void RegisterStiffnessCommands(CLI::App& app);  // stiffness               (stiffness_commands.cpp)
+void RegisterQuasiStaticCommands(CLI::App& app);  // quasistatic (quasistatic_commands.cpp)
 
 }  // namespace epicycle::app

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   epicycle::app::RegisterGeometryCommands(app);
   epicycle::app::RegisterContactCommands(app);
   epicycle::app::RegisterStiffnessCommands(app);
+  epicycle::app::RegisterQuasiStaticCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

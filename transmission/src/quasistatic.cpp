@@ -1,6 +1,7 @@
 #include "epicycle/transmission/quasistatic.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "epicycle/solvers/contact_problem.hpp"
 
@@ -34,6 +35,7 @@ PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
   Eigen::VectorXd total;  // accumulated rigid displacements, per DOF
   geometry::StagePoses poses = kinematic;
   auto solver = solvers::MakeContactSolver(options.backend);
+  std::vector<std::string> previous_labels;
   for (int it = 1; it <= options.max_geometric_iterations; ++it) {
     r.geometric_iterations = it;
     r.problem = BuildStageProblem(scene, stage, poses, compliance, options.setup);
@@ -42,8 +44,18 @@ PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
       total = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs.size()));
     }
     const solvers::ContactProblem problem(r.problem.data);
-    r.solution = {};
-    r.report = solver->Solve(problem, options.contact, &r.solution);
+    // The same potential contacts as the previous geometric iteration: start from its forces
+    // (the members have moved by its displacements, so the new multipliers start at zero).
+    solvers::ContactOptions contact = options.contact;
+    if (it > 1 && r.problem.data.contact_labels == previous_labels &&
+        r.solution.force.size() == problem.num_contacts()) {
+      contact.warm_start = true;
+      r.solution.multiplier.setZero(problem.num_equalities());
+    } else {
+      r.solution = {};
+    }
+    previous_labels = r.problem.data.contact_labels;
+    r.report = solver->Solve(problem, contact, &r.solution);
     if (r.report.status != solvers::ContactStatus::kConverged) {
       r.message = "contact solve at geometric iteration " + std::to_string(it) + ": " +
                   solvers::StatusName(r.report.status) + " (" + r.report.message + ")";
@@ -98,6 +110,53 @@ PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
     }
   }
   return r;
+}
+
+std::vector<double> LoadSharingFactors(const PositionResult& r) {
+  std::vector<double> l;
+  const double n = static_cast<double>(r.load_sharing.size());
+  for (double v : r.load_sharing) l.push_back(n * v);
+  return l;
+}
+
+double MeshLoadFactor(const PositionResult& r) {
+  double k = 0.0;
+  for (double v : LoadSharingFactors(r)) k = std::max(k, v);
+  return k;
+}
+
+std::vector<double> SweepAngles(double start, double span, int count) {
+  if (count < 1)
+    throw std::invalid_argument("sweep: positions = " + std::to_string(count) +
+                                ": must be at least 1");
+  std::vector<double> a;
+  for (int k = 0; k < count; ++k) a.push_back(start + span * k / count);
+  return a;
+}
+
+std::vector<PositionResult> Sweep(
+    const Scene& scene, const geometry::Stage& stage, const StageCompliance& compliance,
+    const std::vector<double>& carrier_angles, const QuasiStaticOptions& options,
+    const std::function<void(const PositionResult&, int)>& on_result) {
+  std::vector<PositionResult> out;
+  out.reserve(carrier_angles.size());
+  for (std::size_t k = 0; k < carrier_angles.size(); ++k) {
+    PositionResult r;
+    try {
+      r = SolvePosition(scene, stage, compliance, carrier_angles[k], options);
+    } catch (const std::invalid_argument& e) {
+      r = PositionResult{};
+      r.carrier_angle = carrier_angles[k];
+      r.converged = false;
+      r.message = e.what();
+      r.load_sharing.assign(stage.planets(), 0.0);
+      r.planet_rotations.assign(stage.planets(), 0.0);
+      r.planet_displacements.assign(stage.planets(), geometry::Vec2::Zero());
+    }
+    if (on_result) on_result(r, static_cast<int>(k));
+    out.push_back(std::move(r));
+  }
+  return out;
 }
 
 }  // namespace epicycle::transmission

@@ -4,6 +4,7 @@
 // displacements stop changing (the geometry is nonlinear in the positions).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,5 +41,21 @@ struct PositionResult {
 PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
                              const StageCompliance& compliance, double carrier_angle,
                              const QuasiStaticOptions& options);
+
+/// L_i = n·LSR_i [-], the load-sharing factors (ideal 1).
+std::vector<double> LoadSharingFactors(const PositionResult& r);
+/// K_γ = max_i L_i [-].
+double MeshLoadFactor(const PositionResult& r);
+
+/// Carrier angles of a sweep: `count` positions over [start, start + span) [rad].
+std::vector<double> SweepAngles(double start, double span, int count);
+
+/// Solves every position in turn; a position that throws or does not converge is reported in its
+/// result (converged = false, message) and the sweep goes on. `on_result` (if given) sees each
+/// result as soon as it is computed (for files written incrementally and progress).
+std::vector<PositionResult> Sweep(
+    const Scene& scene, const geometry::Stage& stage, const StageCompliance& compliance,
+    const std::vector<double>& carrier_angles, const QuasiStaticOptions& options,
+    const std::function<void(const PositionResult&, int)>& on_result = {});
 
 }  // namespace epicycle::transmission
