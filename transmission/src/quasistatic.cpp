@@ -56,7 +56,11 @@ PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
     }
     previous_labels = r.problem.data.contact_labels;
     r.report = solver->Solve(problem, contact, &r.solution);
-    if (r.report.status != solvers::ContactStatus::kConverged) {
+    const bool inaccurate = r.report.status == solvers::ContactStatus::kConvergedInaccurate;
+    if (inaccurate && options.accept_inaccurate) {
+      r.message = "accepted converged-inaccurate contact solves (residual " +
+                  std::to_string(r.report.residual.total) + ")";
+    } else if (r.report.status != solvers::ContactStatus::kConverged) {
       r.message = "contact solve at geometric iteration " + std::to_string(it) + ": " +
                   solvers::StatusName(r.report.status) + " (" + r.report.message + ")";
       break;

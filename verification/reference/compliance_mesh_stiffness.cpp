@@ -37,7 +37,9 @@ const PairRun& Run(const std::string& file) {
   r.scene = transmission::ParseScene(test::SceneText(file), file);
   const transmission::MeshPairSetup setup = transmission::MakeMeshPair(r.scene, nullptr, "");
   const geometry::GearPair pair(setup.spec);
-  const transmission::FePairCompliance fe(r.scene, pair, {});
+  transmission::FeComplianceOptions tables;
+  tables.cache_directory = EPICYCLE_TEST_CACHE_DIR;  // shared by the suite's processes
+  const transmission::FePairCompliance fe(r.scene, pair, tables);
   transmission::MeshStiffnessOptions o;
   o.positions = 40;
   r.result = transmission::ComputeMeshStiffness(r.scene, setup, pair, fe, o);

@@ -19,6 +19,10 @@ struct QuasiStaticOptions {
   solvers::ContactOptions contact;
   int max_geometric_iterations = 30;   ///< [-]
   double geometric_tolerance = 1e-11;  ///< largest rigid-displacement increment at convergence [m]
+  /// Accept a contact solve whose status is converged-inaccurate (residual ≤ 100× tolerance), for
+  /// back ends whose own stopping rule ends just above the tolerance; such positions keep the
+  /// status in their report and a note in their message. Default: only converged.
+  bool accept_inaccurate = false;
 };
 
 struct PositionResult {
