@@ -60,8 +60,13 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   if (!a.angles_deg.empty()) {
     for (double d : a.angles_deg) angles.push_back(geometry::Rad(d));
   } else {
+    // One mesh cycle; one planet revolution relative to the carrier (what a planet's run-out
+    // sees: 2π z_p/z_r of carrier angle with the ring fixed); one carrier revolution.
     const bool cycle = a.range == "cycle";
-    const double span = cycle ? stage.mesh_cycle() : 2.0 * std::numbers::pi;
+    const double span = cycle                 ? stage.mesh_cycle()
+                        : a.range == "planet" ? 2.0 * std::numbers::pi * stage.planet(0).teeth() /
+                                                    stage.ring().teeth()
+                                              : 2.0 * std::numbers::pi;
     const int count = a.positions > 0 ? a.positions : (cycle ? 36 : 360);
     angles = transmission::SweepAngles(geometry::Rad(a.start_deg), span, count);
   }
@@ -263,10 +268,12 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--positions", a.positions,
-                  "Positions of the sweep (default 36 over a mesh cycle, 360 over a revolution)")
+                  "Positions of the sweep (default 36 over a mesh cycle, 360 otherwise)")
       ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--range", a.range, "Sweep one mesh cycle or one carrier revolution")
-      ->check(CLI::IsMember({"cycle", "revolution"}));
+  cmd->add_option("--range", a.range,
+                  "Sweep one mesh cycle, one planet revolution relative to the carrier (the "
+                  "period of a planet's run-out), or one carrier revolution")
+      ->check(CLI::IsMember({"cycle", "planet", "revolution"}));
   cmd->add_option("--start-deg", a.start_deg, "Carrier angle of the first position [deg]");
   cmd->add_option("--angles-deg", a.angles_deg, "A given list of carrier angles [deg]");
   cmd->add_option("--sun", a.sun, "Override the scene's sun support")

@@ -12,6 +12,7 @@
 #include "../unit/compliance/test_meshes.hpp"
 #include "epicycle/compliance/iso6336.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
+#include "figures.hpp"
 #include "pem_reference.hpp"
 #include "stage_fixtures.hpp"
 
@@ -72,6 +73,14 @@ TEST_CASE("Mesh stiffness within 20 % of ISO 6336-1 (c_gamma_alpha and c')",
     CHECK(mean / c_gamma <= 1.2);
     CHECK(peak / c_prime >= 0.8);
     CHECK(peak / c_prime <= 1.2);
+    test::VerifyRow("mesh stiffness " + file + ": mean over a mesh cycle [N/(mm um)]",
+                    "ISO 6336-1 c_gamma_alpha = " + test::Sci(c_gamma), test::Sci(mean),
+                    test::Sci(mean / c_gamma - 1.0) + " relative", "20 %",
+                    std::abs(mean / c_gamma - 1.0) <= 0.2);
+    test::VerifyRow("mesh stiffness " + file + ": peak single pair [N/(mm um)]",
+                    "ISO 6336-1 c' = " + test::Sci(c_prime), test::Sci(peak),
+                    test::Sci(peak / c_prime - 1.0) + " relative", "20 %",
+                    std::abs(peak / c_prime - 1.0) <= 0.2);
   }
 }
 
@@ -135,6 +144,14 @@ TEST_CASE("Mesh stiffness curve: loaded pairs against the rigid geometry and the
            compliance::testing::Sci(r.result.mean_per_width()) + " N/(mm um)");
     CHECK(measured >= r.contact_ratio - 1.0 - 1.0 / n);
     CHECK(two <= rigid_two);
+    if (file == "paper_planet_ring.toml") {
+      const double c_gamma = compliance::iso6336::MeshStiffness(r.iso);
+      test::ReportRow("mesh stiffness paper_planet_ring.toml (internal): mean [N/(mm um)]",
+                      "ISO 6336-1 c_gamma_alpha = " + test::Sci(c_gamma),
+                      test::Sci(r.result.mean_per_width()),
+                      test::Sci(r.result.mean_per_width() / c_gamma - 1.0) + " relative",
+                      "reported beside the external meshes");
+    }
   }
 }
 
@@ -204,6 +221,18 @@ TEST_CASE("Mesh stiffness against the potential-energy method", "[reference][sti
            compliance::testing::Sci(coupled / pem_mean) + ")");
     CHECK(uncoupled / pem_mean >= 0.85);
     CHECK(uncoupled / pem_mean <= 1.15);
+    test::VerifyRow("mesh stiffness " + file + ": single pair along the single-contact zone",
+                    "potential-energy method at the same point of the LOA",
+                    std::to_string(single) + " positions", test::Sci(worst) + " largest relative",
+                    "15 %", worst <= 0.15);
+    test::VerifyRow("mesh stiffness " + file + ": mean, teeth uncoupled [N/(mm um)]",
+                    "potential-energy method " + test::Sci(pem_mean), test::Sci(uncoupled),
+                    test::Sci(uncoupled / pem_mean - 1.0) + " relative", "15 %",
+                    std::abs(uncoupled / pem_mean - 1.0) <= 0.15);
+    test::ReportRow("mesh stiffness " + file + ": mean, the model (teeth coupled by the bodies)",
+                    "potential-energy method " + test::Sci(pem_mean) + " (no coupling)",
+                    test::Sci(coupled), test::Sci(coupled / pem_mean - 1.0) + " relative",
+                    "issue: 15 %; the coupling PEM omits, see docs/verification.md");
     // Coupling through the bodies can only soften the double-contact zone.
     CHECK(coupled <= uncoupled * (1.0 + 1e-9));
   }

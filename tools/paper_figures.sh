@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Regenerates the figures of docs/ from the built program: mesh-stiffness curves of the pair
+# scenes, and the quasi-static load sharing of the paper's stage without errors (one mesh cycle)
+# and with planet 1's 20 um run-out (one planet revolution), constrained and floating.
+# Usage: bash tools/paper_figures.sh [build-dir]   (default ./build; tables cached as usual)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+exe="${1:-build}/app/epicycle"
+out=docs/figures
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+mkdir -p "$out"
+for pair in iso_pair_20_40 iso_pair_30_30 paper_sun_planet paper_planet_ring; do
+  "$exe" stiffness "scenes/$pair.toml" --positions 60 --out "$tmp/$pair" > "$tmp/$pair.log"
+  cp "$tmp/$pair/stiffness_gear1-gear2.svg" "$out/stiffness_$pair.svg"
+  cp "$tmp/$pair/stiffness_gear1-gear2.json" "$out/stiffness_$pair.json"
+done
+run() {  # name scene sun range positions
+  "$exe" quasistatic "scenes/$2.toml" --sun "$3" --range "$4" --positions "$5" --quiet \
+    --out "$tmp/$1" > "$tmp/$1.log"
+  for f in lsr te sun_path; do cp "$tmp/$1/quasistatic_$f.svg" "$out/$1_$f.svg"; done
+  cp "$tmp/$1/quasistatic_summary.json" "$out/$1_summary.json"
+}
+run noerrors_fixed paper_stage fixed cycle 72
+run noerrors_floating paper_stage floating cycle 72
+run runout_fixed paper_stage_runout fixed planet 2880
+run runout_floating paper_stage_runout floating planet 2880
+echo "figures written to $out"
