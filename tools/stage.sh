@@ -1,6 +1,12 @@
 #!/usr/bin/env bash
-# Quick start 1: install what is missing, build, and run the main job on the paper's stage.
+# Quick start 1: install what is missing, build, and run the main job on the paper's stage: the
+# quasi-static load sharing with planet 1's 20 um run-out over one planet revolution, constrained
+# (sun fixed) and floating, as in the paper's Figs. 4-6. Results (CSV, JSON, SVG) in ./results.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh
-./build/app/epicycle geometry scenes/paper_stage.toml
+for sun in fixed floating; do
+  echo
+  ./build/app/epicycle quasistatic scenes/paper_stage_runout.toml --range planet --positions 360 \
+    --sun "$sun" --out "results/paper_stage_runout_$sun"
+done
