@@ -43,6 +43,9 @@ PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
       dofs = r.problem.dofs;
       total = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs.size()));
     }
+    // Elastic supports carry the deflection of the earlier iterations: G F + K (λ + λ_prev) = W.
+    if (r.problem.data.support_stiffness.size() > 0)
+      r.problem.data.equality_rhs -= r.problem.data.support_stiffness * total;
     const solvers::ContactProblem problem(r.problem.data);
     // The same potential contacts as the previous geometric iteration: start from its forces
     // (the members have moved by its displacements, so the new multipliers start at zero).

@@ -163,3 +163,44 @@ TEST_CASE(
   }
   CHECK(tested >= 6);
 }
+
+TEST_CASE(
+    "elastic sun bearing, springs: the bearing carries the net mesh force; stiff and soft limits",
+    "[crosscheck][transmission]") {
+  // The sun on a bearing of stiffness k_s: its deflection s satisfies k_s s = net contact force
+  // on the sun (Σ −n_j F_j over the sun's contacts), computed here from the solved forces and the
+  // geometry's normals. A very stiff bearing gives the fixed sun's shares, a very soft one the
+  // floating sun's: a bearing force k_s s against mesh forces F changes the shares by about
+  // k_s s/F (soft: 1e3 N/m × 5 µm / 6.5 kN ≈ 1e-6), a bearing deflection s = net/k_s changes the
+  // overlaps by s against the mesh deflection (stiff: 1e-11 m / 25 µm ≈ 1e-6); margin 1e-4.
+  auto scene = test::PaperScene();
+  scene.stage.pin_errors.assign(3, {});
+  scene.stage.pin_errors[1].tangential = 5e-6;
+  const geometry::Stage stage(scene.stage);
+  const SpringCompliance springs;
+  const double phi = stage.mesh_cycle() * 0.3;
+  auto solve = [&](transmission::SunSupport sun, double k) {
+    auto o = Options(sun);
+    o.setup.sun_stiffness = k;
+    const auto r = transmission::SolvePosition(scene, stage, springs, phi, o);
+    REQUIRE(r.converged);
+    return r;
+  };
+  const auto fixed = solve(transmission::SunSupport::kFixed, 0.0);
+  const auto floating = solve(transmission::SunSupport::kFloating, 0.0);
+  for (double k : {1e3, 3e8, 1e14}) {
+    const auto r = solve(transmission::SunSupport::kElastic, k);
+    geometry::Vec2 net = geometry::Vec2::Zero();
+    for (std::size_t j = 0; j < r.problem.contacts.size(); ++j) {
+      const auto& c = r.problem.contacts[j];
+      if (c.body_a == transmission::kSunBody)
+        net -= c.contact.normal * r.solution.force(static_cast<Eigen::Index>(j));
+    }
+    INFO("k_s = " << k << " N/m");
+    // The last geometric iteration solves at the poses before its own (≤ 1e-11 m) increment.
+    CHECK((k * r.sun_displacement - net).norm() <= 1e-6 * net.norm() + k * 1e-10);
+    const auto& limit = k > 1e12 ? fixed : (k < 1e4 ? floating : r);
+    for (int i = 0; i < 3; ++i)
+      CHECK(r.load_sharing[i] == Approx(limit.load_sharing[i]).margin(1e-4));
+  }
+}
