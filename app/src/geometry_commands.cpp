@@ -203,17 +203,21 @@ void WriteFile(const std::string& path, const std::string& text) {
 }
 
 void PrintContactHeader() {
-  std::printf("  %-13s %-12s %-6s %6s %6s %11s %11s %12s %9s %9s %9s %9s\n", "mesh", "kind",
-              "flank", "tooth", "mate", "x [mm]", "y [mm]", "overlap[um]", "arm_a[mm]", "arm_b[mm]",
-              "rho_a[mm]", "rho_b[mm]");
+  std::printf("  %-13s %-12s %-6s %6s %6s %11s %11s %9s %9s %12s %9s %9s %9s %9s\n", "mesh", "kind",
+              "flank", "tooth", "mate", "x [mm]", "y [mm]", "n_x", "n_y", "overlap[um]",
+              "arm_a[mm]", "arm_b[mm]", "rho_a[mm]", "rho_b[mm]");
+  std::printf(
+      "  (n_x, n_y: unit contact normal out of the mesh's first gear into its second; a "
+      "contact force pushes the second gear along +n)\n");
 }
 
 void PrintContactRow(const std::string& mesh, const geometry::PotentialContact& c, int loaded) {
-  std::printf("  %-13s %-12s %-6s %6d %6d %11.4f %11.4f %12.3f %9.3f %9.3f %9.3f %9.3f\n",
-              mesh.c_str(), geometry::KindName(c.kind).c_str(),
-              c.side_a == loaded ? "drive" : "coast", c.tooth_a, c.tooth_b, c.point.x() * kToMm,
-              c.point.y() * kToMm, c.overlap * 1e6, c.lever_a * kToMm, c.lever_b * kToMm,
-              c.curvature_radius_a * kToMm, c.curvature_radius_b * kToMm);
+  std::printf(
+      "  %-13s %-12s %-6s %6d %6d %11.4f %11.4f %9.6f %9.6f %12.3f %9.3f %9.3f %9.3f %9.3f\n",
+      mesh.c_str(), geometry::KindName(c.kind).c_str(), c.side_a == loaded ? "drive" : "coast",
+      c.tooth_a, c.tooth_b, c.point.x() * kToMm, c.point.y() * kToMm, c.normal.x(), c.normal.y(),
+      c.overlap * 1e6, c.lever_a * kToMm, c.lever_b * kToMm, c.curvature_radius_a * kToMm,
+      c.curvature_radius_b * kToMm);
 }
 
 void PrintContacts(const Stage& st, double carrier_deg, double window) {

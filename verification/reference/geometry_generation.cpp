@@ -3,13 +3,17 @@
 // m(π/2 + 2x tan α); its curvature is 1/(r_b u).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "epicycle/geometry/gear.hpp"
 #include "epicycle/geometry/iso.hpp"
+#include "figures.hpp"
 #include "stage_fixtures.hpp"
 
 using namespace epicycle::geometry;
+using epicycle::test::FigureValue;
 
 namespace {
 
@@ -72,18 +76,25 @@ TEST_CASE("rack-generated flanks are the analytic involute", "[reference][geomet
     if (&spec == &scene.stage.planet) s.profile_shift = scene.fits[0].profile_shift;
     const Gear g(s);
     INFO(g.name());
-    CHECK(MaxNormalDeviation(g, 400) <= 1e-9);
+    const double deviation = MaxNormalDeviation(g, 400);
+    CHECK(deviation <= 1e-9);
+    FigureValue("generated vs analytic involute, worst normal deviation, " + g.name(), deviation,
+                "m");
   }
 }
 
 TEST_CASE("shaper-generated ring flank is the internal involute", "[reference][geometry]") {
   const Gear ring(ShaperRing());
   CHECK(ring.half_profile().Find(SegmentRole::kInvolute)->kind == SegmentKind::kShaperFlank);
-  CHECK(MaxNormalDeviation(ring, 400) <= 1e-9);
+  const double deviation = MaxNormalDeviation(ring, 400);
+  CHECK(deviation <= 1e-9);
+  FigureValue("shaper-generated vs internal involute, worst normal deviation, ring", deviation,
+              "m");
 }
 
 TEST_CASE("generated involute curvature is 1/(r_b u)", "[reference][geometry]") {
   const auto scene = epicycle::test::PaperScene();
+  double worst = 0;
   for (const Gear& g : {Gear(scene.stage.sun), Gear(ShaperRing())}) {
     const Segment* inv = g.half_profile().Find(SegmentRole::kInvolute);
     for (int i = 1; i < 20; ++i) {
@@ -92,8 +103,10 @@ TEST_CASE("generated involute curvature is 1/(r_b u)", "[reference][geometry]") 
       const double u = InvoluteFlank::RollAtRadius(g.base_radius(), c.p.norm());
       INFO(g.name() << " t = " << t);
       CHECK(std::abs(c.Curvature()) == Approx(1.0 / (g.base_radius() * u)).epsilon(1e-9));
+      worst = std::max(worst, std::abs(std::abs(c.Curvature()) * g.base_radius() * u - 1));
     }
   }
+  FigureValue("involute curvature vs 1/(r_b u), worst relative error", worst, "");
 }
 
 TEST_CASE("tooth thickness at the reference circle is m(pi/2 + 2x tan a)",
@@ -117,6 +130,8 @@ TEST_CASE("tooth thickness at the reference circle is m(pi/2 + 2x tan a)",
         s.module * (kPi / 2 + sign * 2 * s.profile_shift * std::tan(s.pressure_angle));
     INFO(g.name());
     CHECK(measured == Approx(expected).epsilon(1e-9));
+    FigureValue("thickness at the reference circle, relative error, " + g.name(),
+                std::abs(measured / expected - 1), "");
   }
 }
 
@@ -146,6 +161,7 @@ TEST_CASE("half profiles are continuous with tangent continuity at every join",
 
 TEST_CASE("envelope derivatives are exact (against central differences)", "[unit][geometry]") {
   const auto scene = epicycle::test::PaperScene();
+  double worst1 = 0, worst2 = 0;
   for (const Gear& g : {Gear(scene.stage.sun), Gear(ShaperRing())}) {
     for (const Segment& s : g.half_profile().segments) {
       if (s.kind == SegmentKind::kArc) continue;
@@ -156,8 +172,14 @@ TEST_CASE("envelope derivatives are exact (against central differences)", "[unit
       INFO(g.name() << " " << RoleName(s.role));
       CHECK((c.d1 - d1).norm() <= 1e-7 * c.d1.norm());
       CHECK((c.d2 - d2).norm() <= 1e-3 * c.d2.norm());
+      worst1 = std::max(worst1, (c.d1 - d1).norm() / c.d1.norm());
+      worst2 = std::max(worst2, (c.d2 - d2).norm() / c.d2.norm());
     }
   }
+  FigureValue("envelope first derivative vs central difference, worst relative difference", worst1,
+              "");
+  FigureValue("envelope second derivative vs central difference, worst relative difference", worst2,
+              "");
 }
 
 TEST_CASE("operating pressure angle and contact ratio from the layout equal ISO 21771",
@@ -178,6 +200,10 @@ TEST_CASE("operating pressure angle and contact ratio from the layout equal ISO 
       P.teeth(), R.teeth(), P.spec().profile_shift, R.spec().profile_shift, S.pressure_angle, true);
   CHECK(ls.pressure_angle == Approx(aw_s).epsilon(1e-9));
   CHECK(lr.pressure_angle == Approx(aw_r).epsilon(1e-9));
+  FigureValue("zero backlash: alpha_w from the line of action vs ISO, relative error, sun mesh",
+              std::abs(ls.pressure_angle / aw_s - 1), "");
+  FigureValue("zero backlash: alpha_w from the line of action vs ISO, relative error, ring mesh",
+              std::abs(lr.pressure_angle / aw_r - 1), "");
   // Contact ratio: where the tip-form circles cut the line of action, measured along it.
   auto cut = [](const LineOfAction& l, const Vec2& c, double radius) {
     // |N_A + s d − c| = radius: the root with the contact side.
@@ -190,18 +216,122 @@ TEST_CASE("operating pressure angle and contact ratio from the layout equal ISO 
     const double s_end = cut(ls, p.sun.geometric_centre, sun.tip_form_radius())[1];
     const double s_start = cut(ls, p.planets[0].geometric_centre, P.tip_form_radius())[0];
     const double eps = (s_end - s_start) / sun.base_pitch();
-    CHECK(eps == Approx(iso::ContactRatio(sun.base_radius(), sun.tip_form_radius(), P.base_radius(),
-                                          P.tip_form_radius(), ls.centre_distance, aw_s,
-                                          sun.base_pitch(), false))
-                     .epsilon(1e-9));
+    const double iso_eps =
+        iso::ContactRatio(sun.base_radius(), sun.tip_form_radius(), P.base_radius(),
+                          P.tip_form_radius(), ls.centre_distance, aw_s, sun.base_pitch(), false);
+    CHECK(eps == Approx(iso_eps).epsilon(1e-9));
+    FigureValue(
+        "zero backlash: eps_alpha along the line of action vs ISO, relative error, "
+        "sun mesh",
+        std::abs(eps / iso_eps - 1), "");
   }
   {
     const double s_end = cut(lr, p.planets[0].geometric_centre, P.tip_form_radius())[1];
     const double s_start = cut(lr, p.ring.geometric_centre, R.tip_form_radius())[1];
     const double eps = (s_end - s_start) / P.base_pitch();
-    CHECK(eps == Approx(iso::ContactRatio(P.base_radius(), P.tip_form_radius(), R.base_radius(),
-                                          R.tip_form_radius(), lr.centre_distance, aw_r,
-                                          P.base_pitch(), true))
-                     .epsilon(1e-9));
+    const double iso_eps =
+        iso::ContactRatio(P.base_radius(), P.tip_form_radius(), R.base_radius(),
+                          R.tip_form_radius(), lr.centre_distance, aw_r, P.base_pitch(), true);
+    CHECK(eps == Approx(iso_eps).epsilon(1e-9));
+    FigureValue(
+        "zero backlash: eps_alpha along the line of action vs ISO, relative error, "
+        "ring mesh",
+        std::abs(eps / iso_eps - 1), "");
   }
+}
+
+TEST_CASE("operating pressure angle and contact ratio of the real stage (0.15 mm backlash)",
+          "[reference][geometry]") {
+  // The scene as shipped: the planet and ring shifts fitted to 0.15 mm normal backlash at the
+  // carrier radius a = m(z_r − z_p)/2, so α_w follows from the actual centre distance,
+  // cos α_w = (r_b1 ± r_b2)/a, not from the zero-backlash involute function. ISO 21771, written
+  // out here with r_b = m z cos α/2, p_b = π m cos α and the tip circles of the scene's blanks
+  // (r + (x + 1) m; the ring's inner tip r + (x − 1) m):
+  //   external ε_α = [√(r_a1² − r_b1²) + √(r_a2² − r_b2²) − a sin α_w]/p_b,
+  //   internal ε_α = [√(r_a1² − r_b1²) − √(r_a2² − r_b2²) + a sin α_w]/p_b.
+  const auto scene = epicycle::test::PaperScene();
+  const Stage st(scene.stage);
+  const StageSpec& s = scene.stage;
+  const double m = s.sun.module, alpha = s.sun.pressure_angle, a = s.carrier_radius;
+  REQUIRE(a == Approx(86.715e-3).epsilon(1e-12));
+  REQUIRE(scene.fits.size() == 2);
+  REQUIRE(scene.fits[0].normal_backlash == Approx(150e-6).epsilon(1e-12));
+  const double zs = s.sun.teeth, zp = s.planet.teeth, zr = s.ring.teeth;
+  const double xs = s.sun.profile_shift, xp = scene.fits[0].profile_shift,
+               xr = scene.fits[1].profile_shift;
+  const double rbs = m * zs * std::cos(alpha) / 2, rbp = m * zp * std::cos(alpha) / 2,
+               rbr = m * zr * std::cos(alpha) / 2;
+  const double ras = m * zs / 2 + (xs + 1) * m, rap = m * zp / 2 + (xp + 1) * m,
+               rar = m * zr / 2 + (xr - 1) * m;
+  const double pb = kPi * m * std::cos(alpha);
+  const double aw_s = std::acos((rbs + rbp) / a), aw_r = std::acos((rbr - rbp) / a);
+  const double eps_s =
+      (std::sqrt(ras * ras - rbs * rbs) + std::sqrt(rap * rap - rbp * rbp) - a * std::sin(aw_s)) /
+      pb;
+  const double eps_r =
+      (std::sqrt(rap * rap - rbp * rbp) - std::sqrt(rar * rar - rbr * rbr) + a * std::sin(aw_r)) /
+      pb;
+  // The scene's own statement: the ring mesh at the tool pressure angle, the sun mesh at 27.85°.
+  CHECK(aw_r == Approx(alpha).epsilon(1e-12));
+  CHECK(aw_s * 180 / kPi == Approx(27.85).margin(0.005));
+  // The blanks the stage made are the ones assumed above.
+  CHECK(st.sun().tip_radius() == Approx(ras).epsilon(1e-12));
+  CHECK(st.planet(0).tip_radius() == Approx(rap).epsilon(1e-12));
+  CHECK(st.ring().tip_radius() == Approx(rar).epsilon(1e-12));
+  double worst_aw = 0, worst_eps = 0, worst_loa_aw = 0, worst_loa_eps = 0;
+  for (int i = 0; i < st.planets(); ++i) {
+    for (int k = 0; k < 2; ++k) {
+      const MeshSummary& mesh = st.meshes()[2 * i + k];
+      const double aw = k == 0 ? aw_s : aw_r, eps = k == 0 ? eps_s : eps_r;
+      INFO(mesh.name);
+      CHECK(mesh.kind == (k == 0 ? MeshKind::kSunPlanet : MeshKind::kPlanetRing));
+      CHECK(mesh.centre_distance == Approx(a).epsilon(1e-15));
+      CHECK(mesh.pressure_angle == Approx(aw).epsilon(1e-9));
+      CHECK(mesh.contact_ratio_iso == Approx(eps).epsilon(1e-9));
+      worst_aw = std::max(worst_aw, std::abs(mesh.pressure_angle / aw - 1));
+      worst_eps = std::max(worst_eps, std::abs(mesh.contact_ratio_iso / eps - 1));
+    }
+  }
+  // The same from the geometry: the line of action built from the posed gears at several carrier
+  // angles, and the length of it between the two tip circles.
+  auto cut = [](const LineOfAction& l, const Vec2& c, double radius) {
+    const Vec2 q = l.tangent_a - c;
+    const double b = q.dot(l.direction), cc = q.squaredNorm() - radius * radius;
+    return std::array<double, 2>{-b - std::sqrt(b * b - cc), -b + std::sqrt(b * b - cc)};
+  };
+  for (int k = 0; k < 5; ++k) {
+    const StagePoses p = st.Poses(0.37 * k);
+    for (int i = 0; i < st.planets(); ++i) {
+      const LineOfAction ls =
+          MakeLineOfAction(st.Sun(p), st.Planet(p, i), false, st.sun_mesh_side());
+      const LineOfAction lr =
+          MakeLineOfAction(st.Planet(p, i), st.Ring(p), true, st.ring_mesh_planet_side());
+      CHECK(ls.pressure_angle == Approx(aw_s).epsilon(1e-9));
+      CHECK(lr.pressure_angle == Approx(aw_r).epsilon(1e-9));
+      const double es = (cut(ls, p.sun.geometric_centre, ras)[1] -
+                         cut(ls, p.planets[i].geometric_centre, rap)[0]) /
+                        pb;
+      const double er = (cut(lr, p.planets[i].geometric_centre, rap)[1] -
+                         cut(lr, p.ring.geometric_centre, rar)[1]) /
+                        pb;
+      CHECK(es == Approx(eps_s).epsilon(1e-9));
+      CHECK(er == Approx(eps_r).epsilon(1e-9));
+      worst_loa_aw = std::max({worst_loa_aw, std::abs(ls.pressure_angle / aw_s - 1),
+                               std::abs(lr.pressure_angle / aw_r - 1)});
+      worst_loa_eps = std::max({worst_loa_eps, std::abs(es / eps_s - 1), std::abs(er / eps_r - 1)});
+    }
+  }
+  FigureValue("0.15 mm backlash: alpha_w (Stage::meshes) vs closed form, worst relative error",
+              worst_aw, "");
+  FigureValue(
+      "0.15 mm backlash: eps_alpha ISO (Stage::meshes) vs closed form, worst relative "
+      "error",
+      worst_eps, "");
+  FigureValue("0.15 mm backlash: alpha_w from the line of action, worst relative error",
+              worst_loa_aw, "");
+  FigureValue("0.15 mm backlash: eps_alpha along the line of action, worst relative error",
+              worst_loa_eps, "");
+  FigureValue("0.15 mm backlash: alpha_w sun mesh", aw_s * 180 / kPi, "deg");
+  FigureValue("0.15 mm backlash: eps_alpha ISO sun mesh", eps_s, "");
+  FigureValue("0.15 mm backlash: eps_alpha ISO ring mesh", eps_r, "");
 }

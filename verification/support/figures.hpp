@@ -35,6 +35,11 @@ inline void Figure(const std::string& text) {
   if (FiguresWanted()) std::printf("FIGURE %s\n", text.c_str());
 }
 
+/// A measured value with full precision: "FIGURE name: value unit".
+inline void FigureValue(const std::string& name, double value, const char* unit) {
+  if (FiguresWanted()) std::printf("FIGURE %s: %.17g %s\n", name.c_str(), value, unit);
+}
+
 /// One row of the verification table: the check, its reference value (or description), the
 /// model's value, the error measure, the tolerance, and whether it passed. The caller asserts the
 /// same condition with CHECK; `pass` is what it found.
