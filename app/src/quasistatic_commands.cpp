@@ -149,7 +149,8 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
           solvers::ContactProblemFile file;
           file.data = r.problem.data;
           file.data.name =
-              fmt::format("stage_{}_{}_{:03d}", sun_name, a.no_local ? "linear" : "local", k);
+              fmt::format("{}_{}_{}_{:03d}", std::filesystem::path(a.scene).stem().string(),
+                          sun_name, a.no_local ? "linear" : "local", k);
           file.category = "stage";
           file.description =
               fmt::format("{} at carrier {:.4f} deg, sun {}, back end {}: {}", scene.name, deg,
