@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "epicycle/compliance/gmsh_mesher.hpp"
 #include "epicycle/compliance/q8_element.hpp"
 
 namespace epicycle::compliance {
@@ -190,6 +191,13 @@ void GearMeshOptions::Validate() const {
     fail("band_depth_fraction", Str(band_depth_fraction), "must be in [0.1, 0.6]");
   if (!(root_block_depth > 0.0 && root_block_depth < 2.0))
     fail("root_block_depth", Str(root_block_depth), "must be in (0, 2) modules");
+  if (mesher != "mapped" && mesher != "gmsh")
+    fail("mesher", "'" + mesher + "'", "must be \"mapped\" or \"gmsh\"");
+  if (mesher == "gmsh" && !GmshMesher::Available()) {
+    fail("mesher", "'gmsh'",
+         "this build has no gmsh mesher (it was configured with EPICYCLE_WITH_GMSH=OFF; "
+         "reconfigure with -DEPICYCLE_WITH_GMSH=ON, or use \"mapped\")");
+  }
 }
 
 namespace {
@@ -449,9 +457,10 @@ GearBodyMesh BuildGearMesh(const geometry::Gear& gear, const GearMeshOptions& op
   }
   GearBodyMesh out;
   try {
-    out.mesh = MappedMesher().BuildMesh(region);
+    out.mesh = options.mesher == "gmsh" ? GmshMesher().BuildMesh(region)
+                                        : MappedMesher().BuildMesh(region);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(who + "the mapped mesher failed: " + e.what());
+    throw std::invalid_argument(who + "the " + options.mesher + " mesher failed: " + e.what());
   }
   out.teeth = z;
   out.grid = MakeFlankGrid(gear, options);

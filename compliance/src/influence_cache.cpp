@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "epicycle/compliance/gmsh_mesher.hpp"
+
 namespace epicycle::compliance {
 namespace {
 
@@ -73,6 +75,15 @@ std::uint64_t InfluenceTableKey(const geometry::GearSpec& s, const ElasticMateri
   for (double v :
        {g.band_grading, g.band_depth_fraction, g.rim_grading, g.root_block_depth, o.join_depth}) {
     h.Value(v);
+  }
+  // The mesher enters only when it is not the mapped one, so that the keys of mapped-mesh tables
+  // are those of the format before the choice existed; a gmsh mesh also depends on gmsh's version.
+  if (g.mesher != "mapped") {
+    const std::string version = g.mesher == "gmsh" ? GmshMesher::LibraryVersion() : "";
+    for (const std::string* text : {&g.mesher, &version}) {
+      h.Value(text->size());
+      h.Bytes(text->data(), text->size());
+    }
   }
   return h.hash();
 }

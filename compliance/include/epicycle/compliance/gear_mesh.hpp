@@ -88,6 +88,10 @@ struct GearMeshOptions {
   /// Whole-sector density factor [-], ≥ 1: multiplies every element count (for refinement
   /// studies); the flank grid refines with it.
   int refinement = 1;
+  /// The mesher of the body region [-]: "mapped" (MappedMesher, structured) or "gmsh"
+  /// (GmshMesher, unstructured quadrilaterals inside the same patches, same boundary nodes; needs
+  /// a build with EPICYCLE_WITH_GMSH=ON). Both place the flank grid as nodes on the profile.
+  std::string mesher = "mapped";
 
   /// @throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
@@ -118,7 +122,7 @@ struct GearBodyMesh {
   double min_jacobian_ratio = 0.0;  ///< min over elements of det J / max det J (Gauss points) [-]
 };
 
-/// Builds the mapped mesh of the whole body of `gear` (both gear kinds).
+/// Builds the mesh of the whole body of `gear` (both gear kinds) with options.mesher.
 /// The sector of tooth 0, upper half (0 ≤ θ ≤ π/z), is five Coons patches:
 ///   band  — between the flank (form point F → tip-round tangency T1) and the straight inner side
 ///           G→K, `band_layers` graded toward the surface, nodes at the flank grid;

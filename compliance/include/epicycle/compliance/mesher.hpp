@@ -1,5 +1,6 @@
 // Meshers: the interface ("build the Q8 mesh of a region"), and our own mapped (structured)
-// mesher of regions made of four-sided patches, by transfinite (Coons) interpolation.
+// mesher of regions made of four-sided patches, by transfinite (Coons) interpolation. The optional
+// gmsh mesher behind the same interface is in gmsh_mesher.hpp.
 #pragma once
 
 #include <array>
@@ -75,8 +76,8 @@ struct Region {
   std::vector<Patch> patches;
 };
 
-/// Builds a Q8 mesh of a region. Implementations: MappedMesher (ours); a gmsh mesher is planned
-/// behind EPICYCLE_WITH_GMSH.
+/// Builds a Q8 mesh of a region. Implementations: MappedMesher (ours, structured) and GmshMesher
+/// (gmsh_mesher.hpp: unstructured, built with EPICYCLE_WITH_GMSH).
 class Mesher {
  public:
   virtual ~Mesher() = default;

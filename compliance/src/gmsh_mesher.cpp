@@ -1,0 +1,853 @@
+// The gmsh mesher (EPICYCLE_WITH_GMSH=ON); the design is documented in gmsh_mesher.hpp.
+#include "epicycle/compliance/gmsh_mesher.hpp"
+
+#include "quad_repair.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace epicycle::compliance {
+
+void GmshMesherOptions::Validate() const {
+  if (algorithm != 5 && algorithm != 6) {
+    throw std::invalid_argument(
+        "GmshMesherOptions.algorithm = " + std::to_string(algorithm) +
+        ": must be 6 (Frontal-Delaunay) or 5 (Delaunay), gmsh's 2D triangle algorithms that are "
+        "recombined into quadrilaterals");
+  }
+  auto check = [](const char* field, double value) {
+    if (!std::isfinite(value) || value <= 0.0 || value >= 1e-3) {
+      std::ostringstream msg;
+      msg << "GmshMesherOptions." << field << " = " << value
+          << ": must be finite, > 0 and < 1e-3 (relative to the region size)";
+      throw std::invalid_argument(msg.str());
+    }
+  };
+  check("merge_tolerance", merge_tolerance);
+  check("corner_tolerance", corner_tolerance);
+}
+
+GmshMesher::GmshMesher(GmshMesherOptions options) : options_(options) { options_.Validate(); }
+
+bool GmshMesher::Available() { return true; }
+
+std::string GmshMesher::LibraryVersion() { return GMSH_API_VERSION; }
+
+namespace {
+
+using namespace internal;  // quad_repair.hpp
+
+constexpr std::array<const char*, 4> kSideNames = {"bottom", "right", "top", "left"};
+// gmsh's MSH element types of a linear 2D mesh.
+constexpr int kGmshTriangle3 = 2;
+constexpr int kGmshQuad4 = 3;
+// Growth rate g of the element size away from the boundary vertices [-] (see MeshPatch).
+constexpr double kSizeGrowth = 0.3;
+
+[[noreturn]] void Fail(const std::string& text) {
+  throw std::invalid_argument("gmsh mesher: " + text);
+}
+
+std::string PatchLabel(const Region& region, int p) {
+  std::string s = "patch " + std::to_string(p);
+  if (!region.patches[p].name.empty()) s += " ('" + region.patches[p].name + "')";
+  return s;
+}
+
+std::string Point(const Eigen::Vector2d& x) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "(" << x.x() << ", " << x.y() << ") m";
+  return s.str();
+}
+
+
+// Empties gmsh's log: stop + start (the caller holds the mutex). One flag for the process,
+// hence not inside the CallGmsh template (one static per instantiation).
+void RestartGmshLog() {
+  static bool logging = false;
+  if (logging) gmsh::logger::stop();
+  gmsh::logger::start();
+  logging = true;
+}
+
+// Runs a block of gmsh calls (the caller holds the mutex) and turns every failure into the
+// mesher's std::invalid_argument naming `what` (the patch). gmsh runs with General.AbortOnError
+// = 0: it meshes inside an OpenMP parallel region, from which an exception (its default reaction
+// to an error) cannot escape and would terminate the process; so errors are collected by gmsh's
+// logger and reported here; gmsh 4.8's API throws std::string. The block throws PatchFailure for
+// the mesher's own checks.
+template <typename F>
+void CallGmsh(const std::string& what, F&& f) {
+  std::string error;
+  try {
+    RestartGmshLog();
+    f();
+    std::vector<std::string> log;
+    gmsh::logger::get(log);
+    for (const std::string& line : log) {
+      if (line.rfind("Error", 0) == 0) error += (error.empty() ? "" : "; ") + line;
+    }
+    if (error.empty()) return;
+    error = "gmsh: " + error;
+  } catch (const PatchFailure& e) {
+    error = e.what;
+  } catch (const std::string& e) {
+    error = "gmsh: " + e;
+  } catch (const char* e) {
+    error = std::string("gmsh: ") + e;
+  } catch (const std::exception& e) {
+    error = std::string("gmsh: ") + e.what();
+  } catch (...) {
+    error = "gmsh: unknown exception";
+  }
+  Fail(what + ": " + error);
+}
+
+// The boundary nodes of one patch: for each side its node parameters and points in curve order
+// (element corners at even indices, mid-sides at odd ones), and the loop bottom → right → top
+// reversed → left reversed, whose even entries are element corners and odd entries mid-sides.
+struct PatchSamples {
+  std::array<std::vector<double>, 4> param;
+  std::array<std::vector<Eigen::Vector2d>, 4> side;
+  std::vector<Eigen::Vector2d> loop;
+  int loop_size() const { return static_cast<int>(loop.size()); }
+  int count(int s) const { return static_cast<int>(side[s].size()); }
+  // Loop index of node k of side s.
+  int LoopIndex(int s, int k) const {
+    const int c0 = count(0) - 1, c1 = count(1) - 1, c2 = count(2) - 1, c3 = count(3) - 1;
+    switch (s) {
+      case 0:
+        return k;
+      case 1:
+        return c0 + k;
+      case 2:
+        return c0 + c1 + (c2 - k);
+      default:
+        return (c0 + c1 + c2 + (c3 - k)) % (c0 + c1 + c2 + c3);
+    }
+  }
+  void BuildLoop() {
+    loop.assign(static_cast<std::size_t>(count(0) + count(1) + count(2) + count(3) - 4), {});
+    for (int s = 0; s < 4; ++s) {
+      for (int k = 0; k < count(s); ++k) loop[LoopIndex(s, k)] = side[s][k];
+    }
+  }
+};
+
+std::vector<double> NodeParameters(const std::vector<double>& t) {
+  const int n = static_cast<int>(t.size()) - 1;
+  std::vector<double> out(2 * n + 1);
+  for (int k = 0; k < n; ++k) {
+    out[2 * k] = t[k];
+    out[2 * k + 1] = 0.5 * (t[k] + t[k + 1]);
+  }
+  out[2 * n] = 1.0;
+  return out;
+}
+
+// The gmsh mesh of one patch in patch-local numbering: indices below the loop size are the loop
+// samples, the others `interior` nodes; elements counter-clockwise.
+struct LocalMesh {
+  std::vector<Eigen::Vector2d> interior;
+  std::vector<std::array<int, kQ8Nodes>> elements;
+};
+
+// Where a patch's mesh comes from: its own gmsh mesh (master == itself, identity rotation) or
+// the mesh of an earlier patch rotated by (cos θ, sin θ).
+struct Source {
+  int master = -1;
+  double c = 1.0, s = 0.0;
+};
+
+std::mutex& GmshMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+// Initialises gmsh once per process and sets every option the meshes depend on (the caller holds
+// the mutex). gmsh is never finalised: it lives until the process exits.
+void PrepareGmsh() {
+  static bool initialized = false;
+  if (!initialized) {
+    try {
+      gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
+    } catch (...) {
+      Fail("gmsh::initialize failed");
+    }
+    initialized = true;
+  }
+  CallGmsh("options", [&] {
+    const std::pair<const char*, double> options[] = {
+        {"General.Terminal", 0.0},
+        {"General.Verbosity", 2.0},     // errors and warnings reach the logger
+        {"General.AbortOnError", 0.0},  // see CallGmsh
+        {"General.NumThreads", 1.0},
+        {"Geometry.AutoCoherence", 0.0},
+        {"Mesh.RecombineAll", 0.0},
+        {"Mesh.RecombinationAlgorithm", 1.0},  // Blossom
+        {"Mesh.SubdivisionAlgorithm", 0.0},
+        {"Mesh.Smoothing", 1.0},
+        {"Mesh.MeshSizeFromPoints", 0.0},  // the background field alone sets the size
+        {"Mesh.MeshSizeExtendFromBoundary", 0.0},
+        {"Mesh.MeshSizeFromCurvature", 0.0},
+        {"Mesh.MeshSizeMin", 0.0},
+        {"Mesh.MeshSizeMax", 1e22},
+        {"Mesh.ElementOrder", 1.0},
+    };
+    for (const auto& [name, value] : options) gmsh::option::setNumber(name, value);
+  });
+}
+
+// Removes the current gmsh model on scope exit.
+class ModelScope {
+ public:
+  explicit ModelScope(const std::string& name) { gmsh::model::add(name); }
+  ~ModelScope() {
+    try {
+      gmsh::model::remove();
+    } catch (...) {  // nothing to do: the next call adds a fresh model
+    }
+  }
+  ModelScope(const ModelScope&) = delete;
+  ModelScope& operator=(const ModelScope&) = delete;
+};
+
+// gmsh settings of one attempt at a patch (see BuildMesh).
+struct Attempt {
+  int algorithm = 6;         // Mesh.Algorithm
+  double size_factor = 1.0;  // Mesh.MeshSizeFactor
+};
+
+// Meshes one patch with gmsh (the caller holds the mutex).
+LocalMesh MeshPatch(const PatchSamples& smp, const std::string& label, const Attempt& attempt) {
+  const int n_loop = smp.loop_size();
+  const int n_corners = n_loop / 2;
+  LocalMesh out;
+  CallGmsh(label, [&] {
+    gmsh::option::setNumber("Mesh.Algorithm", attempt.algorithm);
+    gmsh::option::setNumber("Mesh.MeshSizeFactor", attempt.size_factor);
+    ModelScope model("epicycle_gmsh_mesher");
+    // Boundary: the corner samples, one straight line with a single element per interval.
+    std::vector<double> size(n_corners);
+    double size_max = 0.0;
+    for (int k = 0; k < n_corners; ++k) {
+      const Eigen::Vector2d& x = smp.loop[2 * k];
+      const Eigen::Vector2d& prev = smp.loop[(2 * k + n_loop - 2) % n_loop];
+      const Eigen::Vector2d& next = smp.loop[(2 * k + 2) % n_loop];
+      size[k] = 0.5 * ((x - prev).norm() + (next - x).norm());
+      size_max = std::max(size_max, size[k]);
+    }
+    std::vector<int> points(n_corners), lines(n_corners);
+    for (int k = 0; k < n_corners; ++k) {
+      const Eigen::Vector2d& x = smp.loop[2 * k];
+      points[k] = gmsh::model::geo::addPoint(x.x(), x.y(), 0.0, size[k]);
+    }
+    for (int k = 0; k < n_corners; ++k) {
+      lines[k] = gmsh::model::geo::addLine(points[k], points[(k + 1) % n_corners]);
+      gmsh::model::geo::mesh::setTransfiniteCurve(lines[k], 2);
+    }
+    const int loop = gmsh::model::geo::addCurveLoop(lines);
+    const int surface = gmsh::model::geo::addPlaneSurface({loop});
+    gmsh::model::geo::mesh::setRecombine(2, surface);
+    gmsh::model::geo::synchronize();
+    // Interior size: h(x) = min_k (h_k + g |x − x_k|), h_k the size at boundary vertex k, so
+    // that the elements grow at rate g away from short boundary intervals.
+    std::vector<double> thresholds;
+    for (int k = 0; k < n_corners; ++k) {
+      const int distance = gmsh::model::mesh::field::add("Distance");
+      gmsh::model::mesh::field::setNumbers(distance, "PointsList",
+                                           {static_cast<double>(points[k])});
+      const int threshold = gmsh::model::mesh::field::add("Threshold");
+      gmsh::model::mesh::field::setNumber(threshold, "InField", distance);
+      gmsh::model::mesh::field::setNumber(threshold, "SizeMin", size[k]);
+      gmsh::model::mesh::field::setNumber(threshold, "SizeMax", size_max);
+      gmsh::model::mesh::field::setNumber(threshold, "DistMin", 0.0);
+      gmsh::model::mesh::field::setNumber(
+          threshold, "DistMax", std::max((size_max - size[k]) / kSizeGrowth, 1e-6 * size_max));
+      thresholds.push_back(threshold);
+    }
+    const int smallest = gmsh::model::mesh::field::add("Min");
+    gmsh::model::mesh::field::setNumbers(smallest, "FieldsList", thresholds);
+    gmsh::model::mesh::field::setAsBackgroundMesh(smallest);
+    gmsh::model::mesh::generate(2);
+
+    // Patch-local numbering: loop sample index for boundary vertices, n_loop + k for interior.
+    std::unordered_map<std::size_t, int> local;
+    std::vector<std::size_t> tags;
+    std::vector<double> coord, param;
+    for (int k = 0; k < n_corners; ++k) {
+      gmsh::model::mesh::getNodes(tags, coord, param, 0, points[k], false, false);
+      if (tags.size() != 1) {
+        throw PatchFailure{"boundary vertex " + std::to_string(k) + " has no mesh node"};
+      }
+      local[tags[0]] = 2 * k;
+      gmsh::model::mesh::getNodes(tags, coord, param, 1, lines[k], false, false);
+      if (!tags.empty()) {
+        throw PatchFailure{"boundary interval " + std::to_string(k) +
+                           " was split by gmsh (the rule: one element per interval; is the patch "
+                           "boundary self-intersecting?)"};
+      }
+    }
+    gmsh::model::mesh::getNodes(tags, coord, param, 2, surface, false, false);
+    for (std::size_t a = 0; a < tags.size(); ++a) {
+      local[tags[a]] = n_loop + static_cast<int>(out.interior.size());
+      out.interior.emplace_back(coord[3 * a], coord[3 * a + 1]);
+    }
+    auto position = [&](int id) -> const Eigen::Vector2d& {
+      return id < n_loop ? smp.loop[id] : out.interior[id - n_loop];
+    };
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> element_tags, node_tags;
+    gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, surface);
+    std::vector<Cell> cells;
+    for (std::size_t t = 0; t < types.size(); ++t) {
+      const int per = types[t] == kGmshQuad4 ? 4 : types[t] == kGmshTriangle3 ? 3 : 0;
+      if (per == 0) throw PatchFailure{"unexpected element type " + std::to_string(types[t])};
+      for (std::size_t e = 0; e < element_tags[t].size(); ++e) {
+        Cell cell{{}, per};
+        for (int a = 0; a < per; ++a) {
+          const auto it = local.find(node_tags[t][e * static_cast<std::size_t>(per) + a]);
+          if (it == local.end()) throw PatchFailure{"an element uses a node of no entity"};
+          cell.v[a] = it->second;
+        }
+        cells.push_back(cell);
+      }
+    }
+    if (cells.empty()) throw PatchFailure{"gmsh generated no elements"};
+    // gmsh orients all elements of a surface alike; turn them counter-clockwise together, so
+    // that an element its smoothing has tangled keeps a negative area (and gets untangled).
+    double area2 = 0.0;
+    for (const Cell& cell : cells) {
+      for (int a = 0; a < cell.n; ++a) {
+        const Eigen::Vector2d& p = position(cell.v[a]);
+        const Eigen::Vector2d& q = position(cell.v[(a + 1) % cell.n]);
+        area2 += p.x() * q.y() - p.y() * q.x();
+      }
+    }
+    if (area2 < 0.0) {
+      for (Cell& cell : cells) std::reverse(cell.v.begin() + 1, cell.v.begin() + cell.n);
+    }
+    SmoothInterior(cells, n_loop, position, &out.interior);
+    RepairTriangles(&cells, position, [&](const Eigen::Vector2d& x) {
+      out.interior.push_back(x);
+      return n_loop + static_cast<int>(out.interior.size()) - 1;
+    });
+    SmoothInterior(cells, n_loop, position, &out.interior);
+
+    // Second order: the mid-side node of a boundary interval is its mid-side sample (on the
+    // side curve); inside, the straight midpoint, shared by the two elements of the side.
+    std::map<std::pair<int, int>, int> mid;
+    auto mid_node = [&](int a, int b) {
+      if (a < n_loop && b < n_loop) {
+        if ((a + 2) % n_loop == b) return (a + 1) % n_loop;
+        if ((b + 2) % n_loop == a) return (b + 1) % n_loop;
+      }
+      const auto k = std::make_pair(std::min(a, b), std::max(a, b));
+      const auto it = mid.find(k);
+      if (it != mid.end()) return it->second;
+      const int id = n_loop + static_cast<int>(out.interior.size());
+      out.interior.push_back(0.5 * (position(a) + position(b)));
+      mid[k] = id;
+      return id;
+    };
+    for (const Cell& cell : cells) {
+      std::array<int, kQ8Nodes> el{};
+      for (int a = 0; a < 4; ++a) el[a] = cell.v[a];
+      for (int a = 0; a < 4; ++a) el[4 + a] = mid_node(cell.v[a], cell.v[(a + 1) % 4]);
+      out.elements.push_back(el);
+    }
+    // Every element valid, with its boundary mid-side nodes on the (curved) sides.
+    for (std::size_t e = 0; e < out.elements.size(); ++e) {
+      Q8Coordinates x;
+      for (int a = 0; a < kQ8Nodes; ++a) x.col(a) = position(out.elements[e][a]);
+      try {
+        CheckQ8Jacobian(x, static_cast<int>(e));
+      } catch (const std::invalid_argument& error) {
+        throw PatchFailure{std::string(error.what()) + " (element of the patch's own numbering)"};
+      }
+    }
+  });
+  return out;
+}
+
+// Points merged within a tolerance (spatial hash on cells of twice the tolerance).
+class PointIndex {
+ public:
+  explicit PointIndex(double tolerance) : tolerance_(tolerance), cell_(2.0 * tolerance) {}
+  // The index of the point within the tolerance of x, or of x added.
+  int Add(const Eigen::Vector2d& x) {
+    const Key k = KeyOf(x);
+    for (std::int64_t di = -1; di <= 1; ++di) {
+      for (std::int64_t dj = -1; dj <= 1; ++dj) {
+        const auto it = cells_.find(Key{k.i + di, k.j + dj});
+        if (it == cells_.end()) continue;
+        for (int v : it->second) {
+          if ((points_[v] - x).norm() <= tolerance_) return v;
+        }
+      }
+    }
+    cells_[k].push_back(static_cast<int>(points_.size()));
+    points_.push_back(x);
+    return static_cast<int>(points_.size()) - 1;
+  }
+  // x added without merging (a node inside a patch).
+  int AddUnmerged(const Eigen::Vector2d& x) {
+    points_.push_back(x);
+    return static_cast<int>(points_.size()) - 1;
+  }
+  std::vector<Eigen::Vector2d>& points() { return points_; }
+
+ private:
+  struct Key {
+    std::int64_t i, j;
+    bool operator==(const Key& o) const { return i == o.i && j == o.j; }
+  };
+  struct Hash {
+    std::size_t operator()(const Key& k) const {
+      return std::hash<std::int64_t>()(k.i * 73856093LL) ^
+             std::hash<std::int64_t>()(k.j * 19349663LL);
+    }
+  };
+  Key KeyOf(const Eigen::Vector2d& x) const {
+    return Key{static_cast<std::int64_t>(std::floor(x.x() / cell_)),
+               static_cast<std::int64_t>(std::floor(x.y() / cell_))};
+  }
+  double tolerance_, cell_;
+  std::vector<Eigen::Vector2d> points_;
+  std::unordered_map<Key, std::vector<int>, Hash> cells_;
+};
+
+// Subdivision of an unnamed boundary interval of chord length L whose end vertices carry the
+// element sizes h_a and h_b: the size along it is σ(x) = min(h_a + g x, h_b + g (L − x)), and it
+// is cut into N pieces of equal ∫ dx/σ, N the odd number nearest to ∫_0^L dx/σ (odd, so that the
+// number of intervals around a patch stays even, as an all-quadrilateral mesh needs). The cuts
+// in the half next to each end are computed from that end, so that a patch that runs the side
+// the other way cuts it at the same points. Returns the cut fractions 0 < f < 1 of the interval,
+// or nothing when the interval is at most kSplitThreshold sizes long.
+constexpr double kSplitThreshold = 2.0;
+
+std::vector<double> SplitFractions(double length, double h_a, double h_b) {
+  if (!(h_a > 0.0 && h_b > 0.0 && length > 0.0)) return {};
+  const double g = kSizeGrowth;
+  // ∫_0^s dx/σ from the end with size h (h_other at the far end), 0 ≤ s ≤ L.
+  auto integral = [&](double h, double h_other, double s) {
+    const double cross = std::clamp((h_other - h + g * length) / (2.0 * g), 0.0, length);
+    if (s <= cross) return std::log1p(g * s / h) / g;
+    return std::log1p(g * cross / h) / g +
+           std::log((h_other + g * (length - cross)) / (h_other + g * (length - s))) / g;
+  };
+  const double total_a = integral(h_a, h_b, length), total_b = integral(h_b, h_a, length);
+  const double total = 0.5 * (total_a + total_b);  // symmetric in (a, b) to the last bit
+  if (total <= kSplitThreshold) return {};
+  const int n = std::max(3, 2 * static_cast<int>(std::floor(0.5 * total)) + 1);
+  std::vector<double> out;
+  for (int j = 1; j < n; ++j) {
+    const bool from_a = 2 * j < n;
+    const double h = from_a ? h_a : h_b, h_other = from_a ? h_b : h_a;
+    const double target = from_a ? total_a * j / n : total_b * (n - j) / n;
+    double lo = 0.0, hi = length;
+    for (int it = 0; it < 200 && hi - lo > 1e-15 * length; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (integral(h, h_other, mid) < target ? lo : hi) = mid;
+    }
+    const double f = 0.5 * (lo + hi) / length;
+    out.push_back(from_a ? f : 1.0 - f);
+  }
+  return out;
+}
+
+// Free sides (used by one element) must not carry another node inside them: that would be a
+// hanging node of a non-conforming join between patches.
+void CheckConformity(const Mesh& mesh, const Region& region, const std::vector<int>& patch_of) {
+  std::map<std::tuple<int, int, int>, std::pair<int, int>> sides;  // key → (count, element)
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    for (const auto& s : kQ8Sides) {
+      const int a = mesh.elements[e][s[0]], m = mesh.elements[e][s[1]], b = mesh.elements[e][s[2]];
+      auto& entry = sides[{std::min(a, b), m, std::max(a, b)}];
+      entry.first += 1;
+      entry.second = e;
+    }
+  }
+  std::vector<int> free_nodes;
+  std::vector<std::pair<std::array<int, 3>, int>> free_sides;
+  for (const auto& [key, entry] : sides) {
+    if (entry.first != 1) continue;
+    const std::array<int, 3> tri = {std::get<0>(key), std::get<1>(key), std::get<2>(key)};
+    free_sides.push_back({tri, entry.second});
+    for (int v : tri) free_nodes.push_back(v);
+  }
+  std::sort(free_nodes.begin(), free_nodes.end());
+  free_nodes.erase(std::unique(free_nodes.begin(), free_nodes.end()), free_nodes.end());
+  std::sort(free_nodes.begin(), free_nodes.end(),
+            [&](int a, int b) { return mesh.nodes[a].x() < mesh.nodes[b].x(); });
+  for (const auto& [tri, element] : free_sides) {
+    Eigen::Matrix<double, 2, 3> x;
+    for (int a = 0; a < 3; ++a) x.col(a) = mesh.nodes[tri[a]];
+    const double tol = 1e-6 * (x.col(2) - x.col(0)).norm();
+    const Eigen::Vector2d lo = x.rowwise().minCoeff().array() - tol;
+    const Eigen::Vector2d hi = x.rowwise().maxCoeff().array() + tol;
+    auto first = std::lower_bound(free_nodes.begin(), free_nodes.end(), lo.x(),
+                                  [&](int v, double value) { return mesh.nodes[v].x() < value; });
+    for (auto it = first; it != free_nodes.end() && mesh.nodes[*it].x() <= hi.x(); ++it) {
+      const int v = *it;
+      if (v == tri[0] || v == tri[1] || v == tri[2]) continue;
+      const Eigen::Vector2d& q = mesh.nodes[v];
+      if (q.y() < lo.y() || q.y() > hi.y()) continue;
+      // Closest point of the quadratic side: Newton from the chord projection.
+      const Eigen::Vector2d chord = x.col(2) - x.col(0);
+      double xi =
+          std::clamp(2.0 * (q - x.col(0)).dot(chord) / chord.squaredNorm() - 1.0, -1.0, 1.0);
+      for (int iteration = 0; iteration < 20; ++iteration) {
+        const Eigen::Vector2d r = x * EdgeShapeFunctions(xi) - q;
+        const Eigen::Vector2d t = x * EdgeShapeDerivatives(xi);
+        const double df = t.squaredNorm() + r.dot(x.col(0) - 2.0 * x.col(1) + x.col(2));
+        if (!(df > 0.0)) break;
+        xi = std::clamp(xi - r.dot(t) / df, -1.0, 1.0);
+      }
+      if ((x * EdgeShapeFunctions(xi) - q).norm() <= tol && std::abs(xi) < 1.0 - 1e-9) {
+        std::ostringstream msg;
+        msg << "non-conforming join: node " << v << " at " << Point(q)
+            << " lies inside the free side (nodes " << tri[0] << ", " << tri[1] << ", " << tri[2]
+            << ") of element " << element << " of " << PatchLabel(region, patch_of[element])
+            << " without being one of its nodes; patches that share a side must place the same "
+               "nodes on it (same divisions and grading, possibly reversed)";
+        Fail(msg.str());
+      }
+    }
+  }
+}
+
+}  // namespace
+
+Mesh GmshMesher::BuildMesh(const Region& region) const {
+  if (region.patches.empty()) Fail("the region has no patches");
+  const int num_patches = static_cast<int>(region.patches.size());
+
+  // Side curves present and finite; scale of the region.
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+  for (int p = 0; p < num_patches; ++p) {
+    for (int s = 0; s < 4; ++s) {
+      const Curve& curve = region.patches[p].sides[s];
+      if (!curve) {
+        Fail(PatchLabel(region, p) + ": the " + kSideNames[s] + " side curve is empty");
+      }
+      for (int k = 0; k <= 16; ++k) {
+        const Eigen::Vector2d x = curve(k / 16.0);
+        if (!x.allFinite()) {
+          Fail(PatchLabel(region, p) + ": the " + kSideNames[s] +
+               " side curve gives a non-finite point at t = " + std::to_string(k / 16.0));
+        }
+        lo = lo.cwiseMin(x);
+        hi = hi.cwiseMax(x);
+      }
+    }
+  }
+  const double scale = (hi - lo).norm();
+  if (!(scale > 0.0)) Fail("the region has zero size");
+  const double merge_tol = options_.merge_tolerance * scale;
+  const double corner_tol = options_.corner_tolerance * scale;
+
+  // Boundary nodes of every patch at the distributions' parameters, with the corner checks of
+  // MappedMesher.
+  std::vector<PatchSamples> samples(num_patches);
+  for (int p = 0; p < num_patches; ++p) {
+    const Patch& patch = region.patches[p];
+    const auto& sides = patch.sides;
+    struct CornerPair {
+      int a;
+      double ta;
+      int b;
+      double tb;
+      const char* name;
+    };
+    const CornerPair pairs[4] = {{0, 0.0, 3, 0.0, "(u, v) = (0, 0)"},
+                                 {0, 1.0, 1, 0.0, "(u, v) = (1, 0)"},
+                                 {2, 0.0, 3, 1.0, "(u, v) = (0, 1)"},
+                                 {2, 1.0, 1, 1.0, "(u, v) = (1, 1)"}};
+    for (const auto& c : pairs) {
+      const Eigen::Vector2d xa = sides[c.a](c.ta);
+      const Eigen::Vector2d xb = sides[c.b](c.tb);
+      if ((xa - xb).norm() > corner_tol) {
+        std::ostringstream msg;
+        msg << PatchLabel(region, p) << ": corner " << c.name << ": the " << kSideNames[c.a]
+            << " side gives " << Point(xa) << " but the " << kSideNames[c.b] << " side gives "
+            << Point(xb) << "; the rule is that the four sides meet at the corners (bottom(0) = "
+            << "left(0), bottom(1) = right(0), top(0) = left(1), top(1) = right(1)) within "
+            << corner_tol << " m";
+        Fail(msg.str());
+      }
+    }
+    const std::string label = "gmsh mesher: " + PatchLabel(region, p);
+    const std::vector<double> u = NodeParameters(patch.u.Parameters(label + " u"));
+    const std::vector<double> v = NodeParameters(patch.v.Parameters(label + " v"));
+    for (int s = 0; s < 4; ++s) {
+      samples[p].param[s] = (s == 0 || s == 2) ? u : v;
+      for (double t : samples[p].param[s]) samples[p].side[s].push_back(sides[s](t));
+    }
+  }
+
+  // Unnamed sides: intervals much longer than the element size at their ends are subdivided
+  // (SplitFractions), the same way by every patch that has the side, so that the unstructured
+  // interior can grade from short to long intervals. The size at a vertex is its shortest
+  // interval over all sides of all patches; named sides (flanks, hub) are never subdivided.
+  {
+    PointIndex vertices(merge_tol);
+    std::vector<double> vertex_size;
+    std::vector<std::array<std::vector<int>, 4>> vertex_of(num_patches);
+    for (int p = 0; p < num_patches; ++p) {
+      for (int s = 0; s < 4; ++s) {
+        const auto& x = samples[p].side[s];
+        const int n = static_cast<int>(x.size()) / 2;  // intervals
+        for (int i = 0; i <= n; ++i) {
+          const int id = vertices.Add(x[2 * i]);
+          vertex_of[p][s].push_back(id);
+          if (id >= static_cast<int>(vertex_size.size())) {
+            vertex_size.push_back(std::numeric_limits<double>::infinity());
+          }
+          if (i > 0) vertex_size[id] = std::min(vertex_size[id], (x[2 * i] - x[2 * i - 2]).norm());
+          if (i < n) vertex_size[id] = std::min(vertex_size[id], (x[2 * i + 2] - x[2 * i]).norm());
+        }
+      }
+    }
+    std::set<std::pair<int, int>> named;
+    for (int p = 0; p < num_patches; ++p) {
+      for (int s = 0; s < 4; ++s) {
+        if (region.patches[p].side_names[s].empty()) continue;
+        const auto& ids = vertex_of[p][s];
+        for (std::size_t i = 0; i + 1 < ids.size(); ++i) {
+          named.insert({std::min(ids[i], ids[i + 1]), std::max(ids[i], ids[i + 1])});
+        }
+      }
+    }
+    for (int p = 0; p < num_patches; ++p) {
+      for (int s = 0; s < 4; ++s) {
+        const std::vector<double> t = samples[p].param[s];
+        const auto& x = samples[p].side[s];
+        const auto& ids = vertex_of[p][s];
+        std::vector<double> refined;
+        for (std::size_t i = 0; i + 1 < ids.size(); ++i) {
+          const double ta = t[2 * i], tb = t[2 * i + 2];
+          std::vector<double> cut;
+          if (named.count({std::min(ids[i], ids[i + 1]), std::max(ids[i], ids[i + 1])}) == 0) {
+            cut = SplitFractions((x[2 * i + 2] - x[2 * i]).norm(), vertex_size[ids[i]],
+                                 vertex_size[ids[i + 1]]);
+          }
+          if (cut.empty()) {
+            refined.push_back(ta);
+            refined.push_back(t[2 * i + 1]);
+            continue;
+          }
+          double previous = ta;
+          for (std::size_t j = 0; j <= cut.size(); ++j) {
+            const double next = j < cut.size() ? ta + cut[j] * (tb - ta) : tb;
+            refined.push_back(previous);
+            refined.push_back(0.5 * (previous + next));
+            previous = next;
+          }
+        }
+        refined.push_back(t.back());
+        if (refined.size() == t.size()) continue;
+        samples[p].param[s] = refined;
+        samples[p].side[s].clear();
+        for (double ti : refined) samples[p].side[s].push_back(region.patches[p].sides[s](ti));
+      }
+    }
+  }
+
+  for (int p = 0; p < num_patches; ++p) {
+    PatchSamples& smp = samples[p];
+    smp.BuildLoop();
+    double area2 = 0.0;
+    for (int k = 0; k < smp.loop_size(); ++k) {
+      const Eigen::Vector2d& a = smp.loop[k];
+      const Eigen::Vector2d& b = smp.loop[(k + 1) % smp.loop_size()];
+      area2 += a.x() * b.y() - a.y() * b.x();
+    }
+    if (!(std::abs(area2) > 0.0)) {
+      Fail(PatchLabel(region, p) + ": the patch encloses zero area (degenerate patch)");
+    }
+  }
+
+  // Rotated copies: the loop of patch p equals R(θ) × the loop of an earlier master.
+  std::vector<Source> source(num_patches);
+  std::vector<int> masters;
+  for (int p = 0; p < num_patches; ++p) {
+    const PatchSamples& sp = samples[p];
+    source[p] = Source{p, 1.0, 0.0};
+    if (!options_.reuse_rotated_copies) continue;
+    for (int m : masters) {
+      const PatchSamples& sm = samples[m];
+      if (sm.loop_size() != sp.loop_size()) continue;
+      int ref = 0;
+      for (int k = 1; k < sm.loop_size(); ++k) {
+        if (sm.loop[k].norm() > sm.loop[ref].norm()) ref = k;
+      }
+      const Eigen::Vector2d a = sm.loop[ref], b = sp.loop[ref];
+      if (std::abs(a.norm() - b.norm()) > merge_tol || !(a.norm() > merge_tol)) continue;
+      const double theta = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+      const double c = std::cos(theta), s = std::sin(theta);
+      bool same = true;
+      for (int k = 0; k < sm.loop_size() && same; ++k) {
+        const Eigen::Vector2d& x = sm.loop[k];
+        same =
+            (Eigen::Vector2d(c * x.x() - s * x.y(), s * x.x() + c * x.y()) - sp.loop[k]).norm() <=
+            merge_tol;
+      }
+      if (same) {
+        source[p] = Source{m, c, s};
+        break;
+      }
+    }
+    if (source[p].master == p) masters.push_back(p);
+  }
+
+  // gmsh meshes the masters, one model each.
+  std::vector<LocalMesh> local(num_patches);
+  {
+    const std::lock_guard<std::mutex> lock(GmshMutex());
+    PrepareGmsh();
+    // The unstructured mesh of a patch can fail (gmsh leaves a tangle, or a quadrilateral that
+    // the curved side makes invalid at a corner): then the patch is meshed again with the other
+    // triangle algorithm and with 20 % smaller elements; the first failure is reported if all do.
+    const int other = options_.algorithm == 6 ? 5 : 6;
+    const Attempt attempts[] = {
+        {options_.algorithm, 1.0}, {other, 1.0}, {options_.algorithm, 0.8}, {other, 0.8}};
+    for (int m : masters) {
+      std::string first_error;
+      bool done = false;
+      for (const Attempt& attempt : attempts) {
+        try {
+          local[m] = MeshPatch(samples[m], PatchLabel(region, m), attempt);
+          done = true;
+          break;
+        } catch (const std::invalid_argument& error) {
+          if (first_error.empty()) first_error = error.what();
+        }
+      }
+      if (!done) {
+        throw std::invalid_argument(first_error + " (and with " +
+                                    std::to_string(std::size(attempts) - 1) +
+                                    " other gmsh settings)");
+      }
+    }
+  }
+
+  // Assembly: boundary nodes are the patch's own samples (merged across patches), interior nodes
+  // the master's, rotated.
+  PointIndex merged(merge_tol);
+  Mesh mesh;
+  std::vector<int> patch_of;
+  for (int p = 0; p < num_patches; ++p) {
+    const Patch& patch = region.patches[p];
+    const PatchSamples& smp = samples[p];
+    const LocalMesh& lm = local[source[p].master];
+    const double c = source[p].c, s = source[p].s;
+    const int n_loop = smp.loop_size();
+    std::vector<int> global(n_loop + lm.interior.size());
+    for (int k = 0; k < n_loop; ++k) global[k] = merged.Add(smp.loop[k]);
+    for (std::size_t k = 0; k < lm.interior.size(); ++k) {
+      const Eigen::Vector2d& x = lm.interior[k];
+      global[n_loop + k] = merged.AddUnmerged({c * x.x() - s * x.y(), s * x.x() + c * x.y()});
+    }
+    const int first_element = mesh.num_elements();
+    for (const auto& el : lm.elements) {
+      std::array<int, kQ8Nodes> g{};
+      for (int a = 0; a < kQ8Nodes; ++a) g[a] = global[el[a]];
+      mesh.elements.push_back(g);
+      patch_of.push_back(p);
+    }
+    const int last_element = mesh.num_elements();
+    if (!patch.name.empty()) {
+      auto& set = mesh.element_sets[patch.name];
+      for (int e = first_element; e < last_element; ++e) set.push_back(e);
+    }
+
+    // Named sides: node sets along the curve; edge sets with the element's own (counter-
+    // clockwise) node order.
+    std::map<std::pair<int, int>, std::pair<int, int>> edge_owner;  // corners → (element, side)
+    bool have_owners = false;
+    for (int side = 0; side < 4; ++side) {
+      const std::string& name = patch.side_names[side];
+      if (name.empty()) continue;
+      if (!have_owners) {
+        for (int e = first_element; e < last_element; ++e) {
+          for (int q = 0; q < 4; ++q) {
+            const int a = mesh.elements[e][kQ8Sides[q][0]], b = mesh.elements[e][kQ8Sides[q][2]];
+            edge_owner[{std::min(a, b), std::max(a, b)}] = {e, q};
+          }
+        }
+        have_owners = true;
+      }
+      const int count = static_cast<int>(smp.side[side].size());
+      auto& nodes = mesh.node_sets[name];
+      for (int k = 0; k < count; ++k) {
+        const int id = global[smp.LoopIndex(side, k)];
+        if (std::find(nodes.begin(), nodes.end(), id) == nodes.end()) nodes.push_back(id);
+      }
+      auto& edges = mesh.edge_sets[name];
+      for (int k = 0; k + 2 < count; k += 2) {
+        const int a = global[smp.LoopIndex(side, k)];
+        const int m = global[smp.LoopIndex(side, k + 1)];
+        const int b = global[smp.LoopIndex(side, k + 2)];
+        const auto it = edge_owner.find({std::min(a, b), std::max(a, b)});
+        if (it == edge_owner.end() ||
+            mesh.elements[it->second.first][kQ8Sides[it->second.second][1]] != m) {
+          std::ostringstream msg;
+          msg << PatchLabel(region, p) << ": " << kSideNames[side] << " side '" << name
+              << "', interval " << k / 2 << ": no element of the patch has the side (nodes " << a
+              << ", " << m << ", " << b << ")";
+          Fail(msg.str());
+        }
+        const int element = it->second.first;
+        const auto& local_side = kQ8Sides[it->second.second];
+        const std::array<int, 3> tri = {mesh.elements[element][local_side[0]],
+                                        mesh.elements[element][local_side[1]],
+                                        mesh.elements[element][local_side[2]]};
+        const bool duplicate =
+            std::any_of(edges.begin(), edges.end(), [&](const BoundaryEdge& edge) {
+              return edge.nodes[1] == tri[1] &&
+                     std::min(edge.nodes[0], edge.nodes[2]) == std::min(tri[0], tri[2]);
+            });
+        if (!duplicate) edges.push_back(BoundaryEdge{tri, element});
+      }
+    }
+  }
+
+  mesh.nodes = std::move(merged.points());
+
+  // Element geometry (the mid-side nodes moved onto curved sides included), the patch named.
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    try {
+      CheckQ8Jacobian(mesh.ElementCoordinates(e), e);
+    } catch (const std::invalid_argument& error) {
+      Fail(PatchLabel(region, patch_of[e]) + ": " + error.what());
+    }
+  }
+  if (options_.check_conformity) CheckConformity(mesh, region, patch_of);
+  try {
+    mesh.Validate();
+  } catch (const std::invalid_argument& error) {
+    Fail(error.what());
+  }
+  return mesh;
+}
+
+}  // namespace epicycle::compliance
