@@ -378,66 +378,15 @@ Mesh MappedMesher::BuildMesh(const Region& region) const {
   }
 
   if (options_.check_conformity) {
-    // Free sides (used by one element) must not carry another node inside them: that would be a
-    // hanging node of a non-conforming join between patches.
-    std::map<std::tuple<int, int, int>, std::pair<int, int>> sides;  // key → (count, element)
-    for (int e = 0; e < mesh.num_elements(); ++e) {
-      for (const auto& s : kQ8Sides) {
-        const int a = mesh.elements[e][s[0]], m = mesh.elements[e][s[1]],
-                  b = mesh.elements[e][s[2]];
-        auto& entry = sides[{std::min(a, b), m, std::max(a, b)}];
-        entry.first += 1;
-        entry.second = e;
-      }
-    }
-    std::vector<int> free_nodes;
-    std::vector<std::pair<std::array<int, 3>, int>> free_sides;
-    for (const auto& [key, entry] : sides) {
-      if (entry.first != 1) continue;
-      const std::array<int, 3> tri = {std::get<0>(key), std::get<1>(key), std::get<2>(key)};
-      free_sides.push_back({tri, entry.second});
-      for (int v : tri) free_nodes.push_back(v);
-    }
-    std::sort(free_nodes.begin(), free_nodes.end());
-    free_nodes.erase(std::unique(free_nodes.begin(), free_nodes.end()), free_nodes.end());
-    std::sort(free_nodes.begin(), free_nodes.end(),
-              [&](int a, int b) { return mesh.nodes[a].x() < mesh.nodes[b].x(); });
-    for (const auto& [tri, element] : free_sides) {
-      Eigen::Matrix<double, 2, 3> x;
-      for (int a = 0; a < 3; ++a) x.col(a) = mesh.nodes[tri[a]];
-      const double length = (x.col(2) - x.col(0)).norm();
-      const double tol = 1e-6 * length;
-      const Eigen::Vector2d blo = x.rowwise().minCoeff().array() - tol;
-      const Eigen::Vector2d bhi = x.rowwise().maxCoeff().array() + tol;
-      auto first = std::lower_bound(free_nodes.begin(), free_nodes.end(), blo.x(),
-                                    [&](int v, double value) { return mesh.nodes[v].x() < value; });
-      for (auto it = first; it != free_nodes.end() && mesh.nodes[*it].x() <= bhi.x(); ++it) {
-        const int v = *it;
-        if (v == tri[0] || v == tri[1] || v == tri[2]) continue;
-        const Eigen::Vector2d& q = mesh.nodes[v];
-        if (q.y() < blo.y() || q.y() > bhi.y()) continue;
-        // Closest point of the quadratic side (Newton from the chord projection).
-        const Eigen::Vector2d chord = x.col(2) - x.col(0);
-        double xi =
-            std::clamp(2.0 * (q - x.col(0)).dot(chord) / chord.squaredNorm() - 1.0, -1.0, 1.0);
-        for (int it2 = 0; it2 < 20; ++it2) {
-          const Eigen::Vector2d r = x * EdgeShapeFunctions(xi) - q;
-          const Eigen::Vector2d t = x * EdgeShapeDerivatives(xi);
-          const double df = t.squaredNorm() + r.dot(x.col(0) - 2.0 * x.col(1) + x.col(2));
-          if (!(df > 0.0)) break;
-          xi = std::clamp(xi - r.dot(t) / df, -1.0, 1.0);
-        }
-        const double d = (x * EdgeShapeFunctions(xi) - q).norm();
-        if (d <= tol && std::abs(xi) < 1.0 - 1e-9) {
-          std::ostringstream msg;
-          msg << "mapped mesher: non-conforming join: node " << v << " at " << Point(q)
-              << " lies inside the free side (nodes " << tri[0] << ", " << tri[1] << ", " << tri[2]
-              << ") of element " << element << " of " << PatchLabel(region, element_patch[element])
-              << " without being one of its nodes; patches that share a side must place the "
-                 "same nodes on it (same divisions and grading, possibly reversed)";
-          throw std::invalid_argument(msg.str());
-        }
-      }
+    if (const auto h = FindHangingNode(mesh)) {
+      std::ostringstream msg;
+      msg << "mapped mesher: non-conforming join: node " << h->node << " at "
+          << Point(mesh.nodes[h->node]) << " lies inside the free side (nodes " << h->side[0]
+          << ", " << h->side[1] << ", " << h->side[2] << ") of element " << h->element << " of "
+          << PatchLabel(region, element_patch[h->element])
+          << " without being one of its nodes; patches that share a side must place the same "
+             "nodes on it (same divisions and grading, possibly reversed)";
+      throw std::invalid_argument(msg.str());
     }
   }
 

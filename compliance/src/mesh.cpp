@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 namespace epicycle::compliance {
 namespace {
@@ -176,6 +180,61 @@ EdgePoint Mesh::LocateOnEdgeSet(const std::string& set, const Eigen::Vector2d& p
   }
   if (distance != nullptr) *distance = std::sqrt(best_d2);
   return best;
+}
+
+std::optional<HangingNode> FindHangingNode(const Mesh& mesh) {
+  // Sides by (lower corner, mid node, upper corner): count and the last element using it.
+  std::map<std::tuple<int, int, int>, std::pair<int, int>> sides;
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    for (const auto& s : kQ8Sides) {
+      const int a = mesh.elements[e][s[0]], m = mesh.elements[e][s[1]], b = mesh.elements[e][s[2]];
+      auto& entry = sides[{std::min(a, b), m, std::max(a, b)}];
+      entry.first += 1;
+      entry.second = e;
+    }
+  }
+  std::vector<int> free_nodes;
+  std::vector<std::pair<std::array<int, 3>, int>> free_sides;
+  for (const auto& [key, entry] : sides) {
+    if (entry.first != 1) continue;
+    const std::array<int, 3> tri = {std::get<0>(key), std::get<1>(key), std::get<2>(key)};
+    free_sides.push_back({tri, entry.second});
+    for (int v : tri) free_nodes.push_back(v);
+  }
+  // Sweep in x: only free nodes within a side's bounding box are tried.
+  std::sort(free_nodes.begin(), free_nodes.end());
+  free_nodes.erase(std::unique(free_nodes.begin(), free_nodes.end()), free_nodes.end());
+  std::sort(free_nodes.begin(), free_nodes.end(),
+            [&](int a, int b) { return mesh.nodes[a].x() < mesh.nodes[b].x(); });
+  for (const auto& [tri, element] : free_sides) {
+    Eigen::Matrix<double, 2, 3> x;
+    for (int a = 0; a < 3; ++a) x.col(a) = mesh.nodes[tri[a]];
+    const double tol = 1e-6 * (x.col(2) - x.col(0)).norm();
+    const Eigen::Vector2d lo = x.rowwise().minCoeff().array() - tol;
+    const Eigen::Vector2d hi = x.rowwise().maxCoeff().array() + tol;
+    auto first = std::lower_bound(free_nodes.begin(), free_nodes.end(), lo.x(),
+                                  [&](int v, double value) { return mesh.nodes[v].x() < value; });
+    for (auto it = first; it != free_nodes.end() && mesh.nodes[*it].x() <= hi.x(); ++it) {
+      const int v = *it;
+      if (v == tri[0] || v == tri[1] || v == tri[2]) continue;
+      const Eigen::Vector2d& q = mesh.nodes[v];
+      if (q.y() < lo.y() || q.y() > hi.y()) continue;
+      // Closest point of the quadratic side: Newton from the chord projection.
+      const Eigen::Vector2d chord = x.col(2) - x.col(0);
+      double xi =
+          std::clamp(2.0 * (q - x.col(0)).dot(chord) / chord.squaredNorm() - 1.0, -1.0, 1.0);
+      for (int iteration = 0; iteration < 20; ++iteration) {
+        const Eigen::Vector2d r = x * EdgeShapeFunctions(xi) - q;
+        const Eigen::Vector2d t = x * EdgeShapeDerivatives(xi);
+        const double df = t.squaredNorm() + r.dot(x.col(0) - 2.0 * x.col(1) + x.col(2));
+        if (!(df > 0.0)) break;
+        xi = std::clamp(xi - r.dot(t) / df, -1.0, 1.0);
+      }
+      if ((x * EdgeShapeFunctions(xi) - q).norm() <= tol && std::abs(xi) < 1.0 - 1e-9)
+        return HangingNode{v, tri, element};
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace epicycle::compliance

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,5 +68,18 @@ struct Mesh {
   EdgePoint LocateOnEdgeSet(const std::string& set, const Eigen::Vector2d& point,
                             double* distance = nullptr) const;
 };
+
+/// A node that lies inside a free side (a side used by one element only) without being one of its
+/// three nodes: the hanging node of a non-conforming join between patches.
+struct HangingNode {
+  int node = -1;
+  std::array<int, 3> side{};  ///< corner, mid-side, corner
+  int element = -1;           ///< the element whose free side it is
+};
+
+/// The first hanging node of a mesh, if any (closest point on each quadratic free side by Newton
+/// from the chord projection; "inside" means within 1e-6 of the side's chord length and not at
+/// its ends).
+std::optional<HangingNode> FindHangingNode(const Mesh& mesh);
 
 }  // namespace epicycle::compliance
