@@ -59,6 +59,10 @@ struct ScaledProblem {
 
   /// Natural-map and equilibrium residuals at (x, λ), evaluated at max(x, 0).
   ContactResiduals Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda) const;
+  /// The same, also returning the gap g = ∇Φ(max(x, 0)) − Gᵀλ it was computed from (the driver
+  /// counts the active contacts from it instead of evaluating the local terms a second time).
+  ContactResiduals Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda,
+                             Eigen::VectorXd* gap) const;
 };
 
 /// The driver's nondimensionalisation (scaled_problem.cpp):
@@ -68,6 +72,9 @@ struct ScaledProblem {
 ///   C̃ = C F*/ℓ*, δ̃0 = δ0/ℓ*, G̃_i = G_i/r_i, W̃_i = W_i/(r_i F*), S̃_ik = S_ik ℓ*/(F* r_i r_k),
 ///   x = F/F*, λ̃_i = r_i λ_i/ℓ*.
 ScaledProblem MakeScaledProblem(const ContactProblem& problem);
+/// The same, written into *sp, whose storage is reused when the sizes have not changed (a solver
+/// object called again and again on problems of one size allocates nothing here).
+void MakeScaledProblem(const ContactProblem& problem, ScaledProblem* sp);
 /// Back to SI: F = F*·x, λ_i = ℓ*·λ̃_i/r_i, and the inverse of those.
 void Unscale(const ScaledProblem& sp, const Eigen::VectorXd& x, const Eigen::VectorXd& lambda,
              ContactSolution* out);

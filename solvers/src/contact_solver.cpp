@@ -2,11 +2,11 @@
 #include "epicycle/solvers/contact_solver.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include <Eigen/QR>
@@ -33,11 +33,12 @@ std::unique_ptr<internal::BackendImpl> MakeImpl(Backend backend) {
                               ": not a known back end");
 }
 
+// "%.3e", the text std::ostringstream with precision 3 and std::scientific prints (also for inf
+// and nan), by std::to_chars: no stream construction or locale look-up, a few times per solve.
 std::string Sci(double v) {
-  std::ostringstream os;
-  os.precision(3);
-  os << std::scientific << v;
-  return os.str();
+  char buf[32];
+  const auto end = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific, 3).ptr;
+  return std::string(buf, end);
 }
 
 // λ from the active set when the back end does not return it: the least-squares solution of
@@ -102,8 +103,11 @@ class DriverSolver final : public ContactSolver {
       return report;
     }
 
-    const internal::ScaledProblem sp = internal::MakeScaledProblem(problem);
-    Eigen::VectorXd x0, l0;
+    // Kept between calls (storage reused); rebuilt from this problem on every call.
+    internal::MakeScaledProblem(problem, &sp_);
+    const internal::ScaledProblem& sp = sp_;
+    Eigen::VectorXd& x0 = x0_;
+    Eigen::VectorXd& l0 = l0_;
     if (options.warm_start) internal::Scale(sp, *in_out, &x0, &l0);
 
     internal::BackendResult raw;
@@ -137,7 +141,7 @@ class DriverSolver final : public ContactSolver {
     if (usable) {
       x = raw.force;
       lambda = raw.multiplier;
-      report.residual = sp.Residuals(x, lambda);
+      report.residual = sp.Residuals(x, lambda, &gap_);
       if (!std::isfinite(report.residual.total)) usable = false;
     }
     if (!usable) {
@@ -169,13 +173,15 @@ class DriverSolver final : public ContactSolver {
       Eigen::VectorXd xc = x.cwiseMax(0.0);
       internal::BackendResult pol = newton->Run(sp, po, &xc, &lambda);
       if (pol.force.size() == n && pol.force.allFinite() && pol.multiplier.allFinite()) {
-        const ContactResiduals pr = sp.Residuals(pol.force, pol.multiplier);
+        Eigen::VectorXd pol_gap;
+        const ContactResiduals pr = sp.Residuals(pol.force, pol.multiplier, &pol_gap);
         if (pr.total < report.residual.total) {
           text += "; POLISHED by active-set Newton: residual " + Sci(report.residual.total) +
                   " -> " + Sci(pr.total);
           x = pol.force;
           lambda = pol.multiplier;
           report.residual = pr;
+          gap_.swap(pol_gap);
           report.polished = true;
           raw.failed = pol.failed;
           raw.limit_reached = pol.limit_reached;
@@ -191,19 +197,14 @@ class DriverSolver final : public ContactSolver {
     }
 
     internal::Unscale(sp, x.cwiseMax(0.0), lambda, in_out);
-    {
-      // Active in the sense of the natural map (x_j > g_j): a force an interior-point method
-      // leaves at 1e-12 instead of 0 does not count.
-      Eigen::VectorXd g;
-      const Eigen::VectorXd xc = x.cwiseMax(0.0);
-      sp.Gradient(xc, &g);
-      if (m > 0) g -= sp.G.transpose() * lambda;
-      report.active_contacts = static_cast<int>((xc.array() > g.array()).count());
-    }
-    if (problem.has_local()) {
+    // Active in the sense of the natural map (x_j > g_j): a force an interior-point method
+    // leaves at 1e-12 instead of 0 does not count. g is the gap of the residual just computed
+    // at the same (max(x, 0), λ).
+    report.active_contacts = static_cast<int>((x.array().max(0.0) > gap_.array()).count());
+    if (sp.has_local) {
       int beyond = 0;
-      for (int j = 0; j < n; ++j)
-        if (in_out->force(j) > problem.ValidityLimitForce(j)) ++beyond;
+      for (int j = 0; j < n; ++j)  // the limit is > 0: a zero force never passes it
+        if (in_out->force(j) > 0.0 && in_out->force(j) > problem.ValidityLimitForce(j)) ++beyond;
       if (beyond > 0)
         text += "; WARNING: " + std::to_string(beyond) +
                 " contact(s) beyond the local term's validity (Hertz half-width L > depth h)";
@@ -223,6 +224,10 @@ class DriverSolver final : public ContactSolver {
 
   Backend backend_;
   std::unique_ptr<internal::BackendImpl> impl_;
+  // Work storage reused from call to call (the solver is stateful and not shared between
+  // threads): the scaled problem, the scaled warm start, the gap of the final residual.
+  internal::ScaledProblem sp_;
+  Eigen::VectorXd x0_, l0_, gap_;
 };
 
 }  // namespace
@@ -278,18 +283,23 @@ void ContactOptions::Validate() const {
   if (max_iterations < 1) fail("max_iterations", std::to_string(max_iterations), "must be >= 1");
   if (!(time_limit > 0.0)) fail("time_limit", Sci(time_limit), "must be > 0");
   if (backend_options.empty()) return;
-  std::map<std::string, std::set<std::string>> known;
-  for (Backend b : AllBackends()) {
-    const std::string ns = b == Backend::kActiveSetNewton ? "newton"
-                           : b == Backend::kIpopt         ? "ipopt"
-                                                          : "nlopt";
-    for (const std::string& k : MakeImpl(b)->option_keys()) known[ns].insert(k);
-  }
+  // The keys are fixed at compile time: collected once, not by building every back end per call.
+  static const std::map<std::string, std::set<std::string>> known = [] {
+    std::map<std::string, std::set<std::string>> keys;
+    for (Backend b : AllBackends()) {
+      const std::string ns = b == Backend::kActiveSetNewton ? "newton"
+                             : b == Backend::kIpopt         ? "ipopt"
+                                                            : "nlopt";
+      for (const std::string& k : MakeImpl(b)->option_keys()) keys[ns].insert(k);
+    }
+    return keys;
+  }();
   for (const auto& [key, value] : backend_options) {
     const auto dot = key.find('.');
     const std::string ns = dot == std::string::npos ? "" : key.substr(0, dot);
     const std::string rest = dot == std::string::npos ? key : key.substr(dot + 1);
-    if (!known.count(ns) || !known[ns].count(rest)) {
+    const auto it = known.find(ns);
+    if (it == known.end() || !it->second.count(rest)) {
       std::string list;
       for (const auto& [n2, keys] : known)
         for (const auto& k : keys) list += (list.empty() ? "" : ", ") + n2 + "." + k;

@@ -82,9 +82,16 @@ void ScaledProblem::Gradient(const Eigen::VectorXd& x, Eigen::VectorXd* grad) co
 
 ContactResiduals ScaledProblem::Residuals(const Eigen::VectorXd& x_in,
                                           const Eigen::VectorXd& lambda) const {
+  Eigen::VectorXd g;
+  return Residuals(x_in, lambda, &g);
+}
+
+ContactResiduals ScaledProblem::Residuals(const Eigen::VectorXd& x_in,
+                                          const Eigen::VectorXd& lambda,
+                                          Eigen::VectorXd* gap) const {
   ContactResiduals r;
   const Eigen::VectorXd x = x_in.cwiseMax(0.0);
-  Eigen::VectorXd g;
+  Eigen::VectorXd& g = *gap;
   Gradient(x, &g);
   if (num_equalities() > 0) {
     g -= G.transpose() * lambda;
@@ -103,12 +110,20 @@ ContactResiduals ScaledProblem::Residuals(const Eigen::VectorXd& x_in,
 
 ScaledProblem MakeScaledProblem(const ContactProblem& problem) {
   ScaledProblem sp;
+  MakeScaledProblem(problem, &sp);
+  return sp;
+}
+
+void MakeScaledProblem(const ContactProblem& problem, ScaledProblem* out) {
+  // Every field is overwritten; Eigen and std::vector keep their storage when the size is the
+  // same, so a solver reused on problems of one size does not allocate here.
+  ScaledProblem& sp = *out;
   const int n = problem.num_contacts();
   const int m = problem.num_equalities();
   const Eigen::MatrixXd& c = problem.compliance();
   const double c_diag = c.diagonal().maxCoeff();
 
-  sp.row_scale = Eigen::VectorXd::Ones(m);
+  sp.row_scale.setOnes(m);
   for (int i = 0; i < m; ++i) {
     const double r = problem.equality_matrix().row(i).cwiseAbs().maxCoeff();
     if (r > 0.0) sp.row_scale(i) = r;
@@ -128,12 +143,13 @@ ScaledProblem MakeScaledProblem(const ContactProblem& problem) {
   sp.delta0 = problem.overlap() / l_scale;
   sp.G = sp.row_scale.cwiseInverse().asDiagonal() * problem.equality_matrix();
   sp.W = problem.equality_rhs().cwiseQuotient(sp.row_scale) / f_scale;
-  sp.S = Eigen::MatrixXd::Zero(m, m);
   sp.has_support = problem.has_support();
   if (sp.has_support) {
     const Eigen::VectorXd inv_r = sp.row_scale.cwiseInverse();
     sp.S = inv_r.asDiagonal() * problem.support_stiffness() * inv_r.asDiagonal();
     sp.S *= l_scale / f_scale;
+  } else {
+    sp.S.setZero(m, m);
   }
 
   sp.has_local = problem.has_local();
@@ -144,13 +160,18 @@ ScaledProblem MakeScaledProblem(const ContactProblem& problem) {
       if (!p.enabled) continue;
       ScaledProblem::Local& l = sp.local[j];
       l.enabled = true;
-      const double e_star = EffectiveModulus(p);
+      double k[2];
       for (int b = 0; b < 2; ++b) {
         const double nu = p.body[b].poisson_ratio;
-        const double k = p.plane == PlaneAssumption::kPlaneStrain
-                             ? (1.0 - nu * nu) / p.body[b].youngs_modulus
-                             : 1.0 / p.body[b].youngs_modulus;
-        l.a[b] = 2.0 * k / (kPi * p.face_width) * f_scale / l_scale;
+        k[b] = p.plane == PlaneAssumption::kPlaneStrain ? (1.0 - nu * nu) / p.body[b].youngs_modulus
+                                                        : 1.0 / p.body[b].youngs_modulus;
+      }
+      // E* from the same k_B, with the operations of EffectiveModulus() (local_term.cpp), so the
+      // value is the same to the bit without dividing again for each body.
+      const double e_star = 1.0 / (k[0] + k[1]);
+      for (int b = 0; b < 2; ++b) {
+        const double nu = p.body[b].poisson_ratio;
+        l.a[b] = 2.0 * k[b] / (kPi * p.face_width) * f_scale / l_scale;
         l.c[b] = p.plane == PlaneAssumption::kPlaneStrain ? nu / (1.0 - nu) : nu;
         l.h[b] = p.body[b].depth / l_scale;
       }
@@ -158,7 +179,6 @@ ScaledProblem MakeScaledProblem(const ContactProblem& problem) {
       l.l2 = 4.0 * p.reduced_radius / (kPi * p.face_width * e_star) * f_scale / (l_scale * l_scale);
     }
   }
-  return sp;
 }
 
 double NonNegativeLeastSquares(const Eigen::MatrixXd& g, const Eigen::VectorXd& w,
