@@ -3,11 +3,14 @@
 // the scalar equation, statics by hand), independently of the generator's `expected` block.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/solvers/local_term.hpp"
+#include "figures.hpp"
 #include "solvers_support.hpp"
 
 namespace epicycle::solvers {
@@ -70,6 +73,7 @@ TEST_CASE("every available back end matches the closed-form cases to 1e-8",
           "[crosscheck][solvers]") {
   const auto table = test::ReadExpectedFailures();
   int cases = 0;
+  std::map<Backend, std::pair<int, double>> per_backend;  // converged cases, worst difference
   for (const std::string& path : test::CollectionFiles()) {
     const ContactProblemFile file = ReadContactProblemFile(path);
     if (file.category != "closed-form") continue;
@@ -91,9 +95,19 @@ TEST_CASE("every available back end matches the closed-form cases to 1e-8",
       const SolutionDifference diff = CompareSolutions(problem, sol, ref);
       CHECK(diff.force <= 1e-8);
       CHECK(diff.multiplier <= 1e-8);
+      auto& [n, worst] = per_backend[b];
+      ++n;
+      worst = std::max({worst, diff.force, diff.multiplier});
     }
   }
   CHECK(cases == 7);
+  for (const auto& [b, figures] : per_backend) {
+    epicycle::test::VerifyRow("closed-form contact problems: " + BackendName(b) + " (" +
+                                  std::to_string(figures.first) + " of 7 converged)",
+                              "statics and bisection written in the test",
+                              "worst relative difference " + epicycle::test::Sci(figures.second),
+                              epicycle::test::Sci(figures.second), "1e-8", figures.second <= 1e-8);
+  }
 }
 
 }  // namespace epicycle::solvers

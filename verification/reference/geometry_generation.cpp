@@ -80,6 +80,9 @@ TEST_CASE("rack-generated flanks are the analytic involute", "[reference][geomet
     CHECK(deviation <= 1e-9);
     FigureValue("generated vs analytic involute, worst normal deviation, " + g.name(), deviation,
                 "m");
+    epicycle::test::VerifyRow("rack-generated flank of the " + g.name(), "analytic involute",
+                              "worst normal deviation " + epicycle::test::Sci(deviation) + " m",
+                              epicycle::test::Sci(deviation) + " m", "1e-9 m", deviation <= 1e-9);
   }
 }
 
@@ -90,6 +93,9 @@ TEST_CASE("shaper-generated ring flank is the internal involute", "[reference][g
   CHECK(deviation <= 1e-9);
   FigureValue("shaper-generated vs internal involute, worst normal deviation, ring", deviation,
               "m");
+  epicycle::test::VerifyRow("shaper-generated flank of the ring", "internal involute",
+                            "worst normal deviation " + epicycle::test::Sci(deviation) + " m",
+                            epicycle::test::Sci(deviation) + " m", "1e-9 m", deviation <= 1e-9);
 }
 
 TEST_CASE("generated involute curvature is 1/(r_b u)", "[reference][geometry]") {
@@ -132,6 +138,10 @@ TEST_CASE("tooth thickness at the reference circle is m(pi/2 + 2x tan a)",
     CHECK(measured == Approx(expected).epsilon(1e-9));
     FigureValue("thickness at the reference circle, relative error, " + g.name(),
                 std::abs(measured / expected - 1), "");
+    epicycle::test::VerifyRow("tooth thickness at the reference circle, " + g.name(),
+                              "m(pi/2 + 2x tan a)", epicycle::test::Sci(measured) + " m",
+                              epicycle::test::Sci(std::abs(measured / expected - 1)) + " relative",
+                              "1e-9", std::abs(measured / expected - 1) <= 1e-9);
   }
 }
 
@@ -334,4 +344,13 @@ TEST_CASE("operating pressure angle and contact ratio of the real stage (0.15 mm
   FigureValue("0.15 mm backlash: alpha_w sun mesh", aw_s * 180 / kPi, "deg");
   FigureValue("0.15 mm backlash: eps_alpha ISO sun mesh", eps_s, "");
   FigureValue("0.15 mm backlash: eps_alpha ISO ring mesh", eps_r, "");
+  epicycle::test::VerifyRow(
+      "paper stage (0.15 mm backlash): operating pressure angles of all meshes",
+      "cos a_w = (r_b1 +- r_b2)/a", "27.846 / 25.000 deg",
+      epicycle::test::Sci(worst_aw) + " relative", "1e-9", worst_aw <= 1e-9);
+  epicycle::test::VerifyRow("paper stage (0.15 mm backlash): contact ratios of all meshes",
+                            "ISO 21771 from the tip circles",
+                            epicycle::test::Sci(eps_s) + " / " + epicycle::test::Sci(eps_r),
+                            epicycle::test::Sci(worst_eps) + " relative", "1e-9",
+                            worst_eps <= 1e-9);
 }

@@ -62,6 +62,12 @@ TEST_CASE("rigid perfect gears at zero backlash: no interpenetration, loaded fla
       "conjugate action, zero backlash, 240 positions: worst |overlap| of the touching "
       "flank pairs",
       worst_touch, "m");
+  epicycle::test::VerifyRow("rigid perfect gears, zero backlash, 240 positions x 6 meshes",
+                            "no overlap; loaded flanks touch",
+                            "worst overlap " + epicycle::test::Sci(worst_overlap) +
+                                " m, worst touch " + epicycle::test::Sci(worst_touch) + " m",
+                            epicycle::test::Sci(std::max(worst_overlap, worst_touch)) + " m",
+                            "1e-9 m", worst_overlap <= 1e-9 && worst_touch <= 1e-9);
 }
 
 TEST_CASE("the coast-side gap equals the fitted normal backlash", "[reference][geometry]") {
@@ -169,6 +175,11 @@ TEST_CASE("run-out of planet 1 changes its overlaps by the offset projected on e
   CHECK(worst <= 0.01 * e);
   FigureValue("run-out 20 um, planet 1, 360 positions: worst |overlap change - projection|", worst,
               "m");
+  epicycle::test::VerifyRow(
+      "run-out 20 um on planet 1, 360 positions: overlap change of its meshes",
+      "projection of the offset on each line of action",
+      "worst difference " + epicycle::test::Sci(worst) + " m",
+      epicycle::test::Sci(worst / e) + " of e", "1 % of e", worst <= 0.01 * e);
 }
 
 TEST_CASE(

@@ -97,6 +97,11 @@ TEST_CASE("tip round against flank: normal through the round's centre, brute-for
               worst_normal, "m");
   FigureValue("tip round vs flank: worst |overlap - brute force (20 000-point polyline)|", worst,
               "m");
+  epicycle::test::VerifyRow("tip round against flank, off the line of action (" +
+                                std::to_string(tested_a + tested_b) + " contacts)",
+                            "dense-polyline distance (20 000 points)",
+                            "worst difference " + epicycle::test::Sci(worst) + " m",
+                            epicycle::test::Sci(worst) + " m", "1e-8 m", worst <= 1e-8);
 }
 
 TEST_CASE("the tip rounds tried are all that can touch (against trying every tooth)",
