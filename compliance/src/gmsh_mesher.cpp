@@ -1,6 +1,7 @@
 // The gmsh mesher (EPICYCLE_WITH_GMSH=ON); the design is documented in gmsh_mesher.hpp.
 #include "epicycle/compliance/gmsh_mesher.hpp"
 
+#include "mesher_common.hpp"
 #include "quad_repair.hpp"
 
 #include <gmsh.h>
@@ -30,9 +31,8 @@ std::string GmshMesher::LibraryVersion() { return GMSH_API_VERSION; }
 
 namespace {
 
-using namespace internal;  // quad_repair.hpp
+using namespace internal;  // mesher_common.hpp, quad_repair.hpp
 
-constexpr std::array<const char*, 4> kSideNames = {"bottom", "right", "top", "left"};
 // gmsh's MSH element types of a linear 2D mesh.
 constexpr int kGmshTriangle3 = 2;
 constexpr int kGmshQuad4 = 3;
@@ -41,19 +41,6 @@ constexpr double kSizeGrowth = 0.3;
 
 [[noreturn]] void Fail(const std::string& text) {
   throw std::invalid_argument("gmsh mesher: " + text);
-}
-
-std::string PatchLabel(const Region& region, int p) {
-  std::string s = "patch " + std::to_string(p);
-  if (!region.patches[p].name.empty()) s += " ('" + region.patches[p].name + "')";
-  return s;
-}
-
-std::string Point(const Eigen::Vector2d& x) {
-  std::ostringstream s;
-  s.precision(9);
-  s << "(" << x.x() << ", " << x.y() << ") m";
-  return s.str();
 }
 
 // Empties gmsh's log: stop + start (the caller holds the mutex). One flag for the process,
@@ -503,30 +490,8 @@ Mesh GmshMesher::BuildMesh(const Region& region) const {
   for (int p = 0; p < num_patches; ++p) {
     const Patch& patch = region.patches[p];
     const auto& sides = patch.sides;
-    struct CornerPair {
-      int a;
-      double ta;
-      int b;
-      double tb;
-      const char* name;
-    };
-    const CornerPair pairs[4] = {{0, 0.0, 3, 0.0, "(u, v) = (0, 0)"},
-                                 {0, 1.0, 1, 0.0, "(u, v) = (1, 0)"},
-                                 {2, 0.0, 3, 1.0, "(u, v) = (0, 1)"},
-                                 {2, 1.0, 1, 1.0, "(u, v) = (1, 1)"}};
-    for (const auto& c : pairs) {
-      const Eigen::Vector2d xa = sides[c.a](c.ta);
-      const Eigen::Vector2d xb = sides[c.b](c.tb);
-      if ((xa - xb).norm() > corner_tol) {
-        std::ostringstream msg;
-        msg << PatchLabel(region, p) << ": corner " << c.name << ": the " << kSideNames[c.a]
-            << " side gives " << Point(xa) << " but the " << kSideNames[c.b] << " side gives "
-            << Point(xb) << "; the rule is that the four sides meet at the corners (bottom(0) = "
-            << "left(0), bottom(1) = right(0), top(0) = left(1), top(1) = right(1)) within "
-            << corner_tol << " m";
-        Fail(msg.str());
-      }
-    }
+    const std::string mismatch = PatchCornerMismatch(region, p, corner_tol);
+    if (!mismatch.empty()) Fail(mismatch);
     const std::string label = "gmsh mesher: " + PatchLabel(region, p);
     const std::vector<double> u = NodeParameters(patch.u.Parameters(label + " u"));
     const std::vector<double> v = NodeParameters(patch.v.Parameters(label + " v"));

@@ -10,6 +10,8 @@
 
 #include "epicycle/compliance/mesher.hpp"
 
+#include "mesher_common.hpp"
+
 namespace epicycle::compliance {
 
 Curve StraightLine(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -109,20 +111,9 @@ MappedMesher::MappedMesher(MappedMesherOptions options) : options_(options) { op
 
 namespace {
 
-std::string PatchLabel(const Region& region, int p) {
-  std::string s = "patch " + std::to_string(p);
-  if (!region.patches[p].name.empty()) s += " ('" + region.patches[p].name + "')";
-  return s;
-}
-
-constexpr std::array<const char*, 4> kSideNames = {"bottom", "right", "top", "left"};
-
-std::string Point(const Eigen::Vector2d& x) {
-  std::ostringstream s;
-  s.precision(9);
-  s << "(" << x.x() << ", " << x.y() << ") m";
-  return s.str();
-}
+using internal::kSideNames;
+using internal::PatchLabel;
+using internal::Point;
 
 // Spatial hash on cells of size `cell` for merging coincident nodes.
 struct CellKey {
@@ -178,32 +169,8 @@ Mesh MappedMesher::BuildMesh(const Region& region) const {
   const double corner_tol = options_.corner_tolerance * scale;
 
   for (int p = 0; p < num_patches; ++p) {
-    const auto& s = region.patches[p].sides;
-    struct CornerPair {
-      int a;
-      double ta;
-      int b;
-      double tb;
-      const char* name;
-    };
-    const CornerPair pairs[4] = {{0, 0.0, 3, 0.0, "(u, v) = (0, 0)"},
-                                 {0, 1.0, 1, 0.0, "(u, v) = (1, 0)"},
-                                 {2, 0.0, 3, 1.0, "(u, v) = (0, 1)"},
-                                 {2, 1.0, 1, 1.0, "(u, v) = (1, 1)"}};
-    for (const auto& c : pairs) {
-      const Eigen::Vector2d xa = s[c.a](c.ta);
-      const Eigen::Vector2d xb = s[c.b](c.tb);
-      if ((xa - xb).norm() > corner_tol) {
-        std::ostringstream msg;
-        msg << "mapped mesher: " << PatchLabel(region, p) << ": corner " << c.name << ": the "
-            << kSideNames[c.a] << " side gives " << Point(xa) << " but the " << kSideNames[c.b]
-            << " side gives " << Point(xb) << "; the rule is that the four sides meet at the "
-            << "corners (bottom(0) = left(0), bottom(1) = right(0), top(0) = left(1), "
-               "top(1) = right(1)) within "
-            << corner_tol << " m";
-        throw std::invalid_argument(msg.str());
-      }
-    }
+    const std::string mismatch = internal::PatchCornerMismatch(region, p, corner_tol);
+    if (!mismatch.empty()) throw std::invalid_argument("mapped mesher: " + mismatch);
   }
 
   Mesh mesh;

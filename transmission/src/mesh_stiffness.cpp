@@ -1,7 +1,9 @@
 #include "epicycle/transmission/mesh_stiffness.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
