@@ -90,3 +90,41 @@ TEST_CASE("errors section", "[unit][transmission]") {
   CHECK_THROWS_WITH(Parse(Replace(base, "amplitude_um = 20.0", "amplitude_um = -2.0")),
                     Contains("errors.runout[0].amplitude_um = -2: must be >= 0"));
 }
+
+TEST_CASE("model and supports tables: values in SI, errors name key, value and rule",
+          "[unit][transmission]") {
+  const std::string base = SceneText("paper_stage.toml");
+  const auto defaults = Parse(base);
+  CHECK(defaults.model.plane == epicycle::solvers::PlaneAssumption::kPlaneStrain);
+  CHECK(defaults.model.join_depth == 0.0);
+  CHECK(defaults.supports.sun == epicycle::transmission::SunSupport::kFixed);
+  CHECK(defaults.supports.planet_stiffness == 0.0);
+  const auto s = Parse(base +
+                       "\n[model]\nplane = \"stress\"\njoin_depth_mm = 0.5\nmesh_refinement = 2\n"
+                       "\n[supports]\nsun = \"elastic\"\nsun_stiffness_N_per_um = 300.0\n"
+                       "planet_stiffness_N_per_um = 500.0\n");
+  CHECK(s.model.plane == epicycle::solvers::PlaneAssumption::kPlaneStress);
+  CHECK(s.model.join_depth == Approx(0.5e-3));
+  CHECK(s.model.mesh_refinement == 2);
+  CHECK(s.supports.sun == epicycle::transmission::SunSupport::kElastic);
+  CHECK(s.supports.sun_stiffness == Approx(3e8));  // 300 N/µm
+  CHECK(s.supports.planet_stiffness == Approx(5e8));
+  CHECK(Parse(base + "\n[supports]\nsun = \"floating\"\n").supports.sun ==
+        epicycle::transmission::SunSupport::kFloating);
+  CHECK_THROWS_WITH(Parse(base + "\n[model]\nplane = \"shell\"\n"),
+                    Contains("model.plane = \"shell\"") && Contains("strain"));
+  CHECK_THROWS_WITH(Parse(base + "\n[model]\nmesh_refinement = 9\n"),
+                    Contains("model.mesh_refinement = 9"));
+  CHECK_THROWS_WITH(Parse(base + "\n[model]\njoin_depth_mm = -1.0\n"),
+                    Contains("model.join_depth_mm = -1"));
+  CHECK_THROWS_WITH(Parse(base + "\n[supports]\nsun = \"elastic\"\n"),
+                    Contains("supports.sun_stiffness_N_per_um is missing"));
+  CHECK_THROWS_WITH(Parse(base + "\n[supports]\nsun = \"elastic\"\nsun_stiffness_N_per_um = 0.0\n"),
+                    Contains("supports.sun_stiffness_N_per_um = 0: must be > 0"));
+  CHECK_THROWS_WITH(Parse(base + "\n[supports]\nplanet_stiffness_N_per_um = -2.0\n"),
+                    Contains("supports.planet_stiffness_N_per_um = -2"));
+  // A stiffness given to a sun that is not elastic is an unknown key there, not silently ignored.
+  CHECK_THROWS_WITH(
+      Parse(base + "\n[supports]\nsun = \"floating\"\nsun_stiffness_N_per_um = 300.0\n"),
+      Contains("supports.sun_stiffness_N_per_um"));
+}
