@@ -186,26 +186,7 @@ TEST_CASE("gmsh mesher: the patch test on an unstructured mesh of curved patches
   // displacement field prescribed on the boundary is reproduced to round-off inside.
   const auto plane = GENERATE(PlaneAssumption::kPlaneStress, PlaneAssumption::kPlaneStrain);
   const ElasticMaterial mat{70e9, 0.33, 0.01, plane};
-  auto wave = [](double amp) {
-    return [amp](double t) -> Eigen::Vector2d {
-      return {0.05 + amp * std::sin(std::numbers::pi * t), 0.04 * t};
-    };
-  };
-  Patch left;
-  left.sides = {StraightLine({0.0, 0.0}, {0.05, 0.0}), wave(0.006),
-                Reversed(CircularArc({0.025, -0.06}, std::hypot(0.025, 0.1), std::atan2(0.1, 0.025),
-                                     std::atan2(0.1, -0.025))),
-                StraightLine({0.0, 0.0}, {0.0, 0.04})};
-  left.side_names = {"outer", "", "outer", "outer"};
-  left.u = Distribution::Geometric(4, 1.5);
-  left.v = Distribution::Geometric(3, 0.6);
-  Patch right;
-  right.sides = {StraightLine({0.05, 0.0}, {0.09, 0.0}), StraightLine({0.09, 0.0}, {0.09, 0.04}),
-                 StraightLine({0.05, 0.04}, {0.09, 0.04}), wave(0.006)};
-  right.side_names = {"outer", "outer", "outer", ""};
-  right.u = Distribution::Uniform(3);
-  right.v = Distribution::Geometric(3, 0.6);
-  const Mesh mesh = GmshMesher().BuildMesh(Region{{left, right}});
+  const Mesh mesh = GmshMesher().BuildMesh(testing::TwoCurvedPatches());
   const Eigen::Vector2d a0(1.0e-4, 2.0e-4);
   Eigen::Matrix2d grad;
   grad << 2.0e-3, 1.0e-3, -1.0e-3, 3.0e-3;

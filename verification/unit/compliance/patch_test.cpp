@@ -101,28 +101,7 @@ TEST_CASE("Patch test on a mapped mesh with curved, graded patches", "[unit]") {
   const auto plane = GENERATE(PlaneAssumption::kPlaneStress, PlaneAssumption::kPlaneStrain);
   const ElasticMaterial mat{70e9, 0.33, 0.01, plane};
   // Two patches sharing a wavy side; the outer sides are curved too.
-  auto wave = [](double amp) {
-    return [amp](double t) -> Eigen::Vector2d {
-      return {0.05 + amp * std::sin(std::numbers::pi * t), 0.04 * t};
-    };
-  };
-  Patch left;
-  left.sides = {StraightLine({0.0, 0.0}, {0.05, 0.0}), wave(0.006),
-                CircularArc({0.025, -0.06}, std::hypot(0.025, 0.1), std::atan2(0.1, 0.025),
-                            std::atan2(0.1, -0.025)),
-                StraightLine({0.0, 0.0}, {0.0, 0.04})};
-  // The top arc runs from (0.05, 0.04) to (0, 0.04); the patch needs it from left to right.
-  left.sides[2] = Reversed(left.sides[2]);
-  left.side_names = {"outer", "", "outer", "outer"};
-  left.u = Distribution::Geometric(4, 1.5);
-  left.v = Distribution::Geometric(3, 0.6);
-  Patch right;
-  right.sides = {StraightLine({0.05, 0.0}, {0.09, 0.0}), StraightLine({0.09, 0.0}, {0.09, 0.04}),
-                 StraightLine({0.05, 0.04}, {0.09, 0.04}), wave(0.006)};
-  right.side_names = {"outer", "outer", "outer", ""};
-  right.u = Distribution::Uniform(3);
-  right.v = Distribution::Geometric(3, 0.6);
-  const Mesh mesh = MappedMesher().BuildMesh(Region{{left, right}});
+  const Mesh mesh = MappedMesher().BuildMesh(testing::TwoCurvedPatches());
   LinearElasticModel model(mesh, mat);
   model.PrescribeNodeSet("outer", Exact);
   model.Factorize();

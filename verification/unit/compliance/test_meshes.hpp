@@ -159,4 +159,29 @@ inline Region HalfDiscRegion(double radius, double s, int n, double grading) {
                  Mirrored(bottom_ring)}};
 }
 
+/// Two curved, graded patches sharing a wavy side (outer sides curved too): node set "outer" holds
+/// the region's boundary. Used by the patch tests of both meshers.
+inline Region TwoCurvedPatches() {
+  auto wave = [](double amp) {
+    return [amp](double t) -> Eigen::Vector2d {
+      return {0.05 + amp * std::sin(std::numbers::pi * t), 0.04 * t};
+    };
+  };
+  Patch left;
+  left.sides = {StraightLine({0.0, 0.0}, {0.05, 0.0}), wave(0.006),
+                Reversed(CircularArc({0.025, -0.06}, std::hypot(0.025, 0.1), std::atan2(0.1, 0.025),
+                                     std::atan2(0.1, -0.025))),
+                StraightLine({0.0, 0.0}, {0.0, 0.04})};
+  left.side_names = {"outer", "", "outer", "outer"};
+  left.u = Distribution::Geometric(4, 1.5);
+  left.v = Distribution::Geometric(3, 0.6);
+  Patch right;
+  right.sides = {StraightLine({0.05, 0.0}, {0.09, 0.0}), StraightLine({0.09, 0.0}, {0.09, 0.04}),
+                 StraightLine({0.05, 0.04}, {0.09, 0.04}), wave(0.006)};
+  right.side_names = {"outer", "outer", "outer", ""};
+  right.u = Distribution::Uniform(3);
+  right.v = Distribution::Geometric(3, 0.6);
+  return Region{{left, right}};
+}
+
 }  // namespace epicycle::compliance::testing
