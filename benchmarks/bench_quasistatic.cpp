@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -27,15 +28,25 @@ transmission::FeComplianceOptions Cache() {
   return o;
 }
 
+// A scene's stage with its cached FE compliance and the quasi-static options of its supports,
+// the sun fixed (arg 0) or floating (arg 1).
+struct StageCase {
+  transmission::Scene scene;
+  geometry::Stage stage;
+  transmission::FeStageCompliance compliance;
+  transmission::QuasiStaticOptions options;
+  StageCase(const std::string& file, std::int64_t floating)
+      : scene(Scene(file)), stage(scene.stage), compliance(scene, stage, Cache()) {
+    options.setup = transmission::SetupFromScene(scene);
+    options.setup.sun =
+        floating == 0 ? transmission::SunSupport::kFixed : transmission::SunSupport::kFloating;
+  }
+};
+
 // Arg 0: fixed sun; 1: floating sun.
 void BM_StagePosition(benchmark::State& state) {
-  const transmission::Scene scene = Scene("paper_stage.toml");
-  const geometry::Stage stage(scene.stage);
-  const transmission::FeStageCompliance compliance(scene, stage, Cache());
-  transmission::QuasiStaticOptions o;
-  o.setup = transmission::SetupFromScene(scene);
-  o.setup.sun =
-      state.range(0) == 0 ? transmission::SunSupport::kFixed : transmission::SunSupport::kFloating;
+  const StageCase c("paper_stage.toml", state.range(0));
+  const auto& [scene, stage, compliance, o] = c;
   const double angle = 0.3 * stage.mesh_cycle();
   transmission::PositionResult r;
   for (auto _ : state) {
@@ -53,13 +64,8 @@ BENCHMARK(BM_StagePosition)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // Arg 0: fixed sun; 1: floating sun.
 void BM_StageSweep360(benchmark::State& state) {
-  const transmission::Scene scene = Scene("paper_stage_runout.toml");
-  const geometry::Stage stage(scene.stage);
-  const transmission::FeStageCompliance compliance(scene, stage, Cache());
-  transmission::QuasiStaticOptions o;
-  o.setup = transmission::SetupFromScene(scene);
-  o.setup.sun =
-      state.range(0) == 0 ? transmission::SunSupport::kFixed : transmission::SunSupport::kFloating;
+  const StageCase c("paper_stage_runout.toml", state.range(0));
+  const auto& [scene, stage, compliance, o] = c;
   const double period = 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth();
   const auto angles = transmission::SweepAngles(0.0, period, 360);
   std::vector<transmission::PositionResult> results;

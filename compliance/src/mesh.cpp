@@ -13,6 +13,25 @@
 namespace epicycle::compliance {
 namespace {
 
+// The parameter ξ ∈ [−1, 1] of the point of a quadratic edge (nodes x) closest to p: the chord
+// projection, then Newton on f(ξ) = (x(ξ) − p)·x'(ξ) = 0, clamped to [−1, 1].
+double ProjectOnQuadraticEdge(const Eigen::Matrix<double, 2, 3>& x, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d chord = x.col(2) - x.col(0);
+  double xi = std::clamp(2.0 * (p - x.col(0)).dot(chord) / chord.squaredNorm() - 1.0, -1.0, 1.0);
+  const Eigen::Vector2d tt = x.col(0) - 2.0 * x.col(1) + x.col(2);  // x''(ξ)
+  for (int it = 0; it < 30; ++it) {
+    const Eigen::Vector2d r = x * EdgeShapeFunctions(xi) - p;
+    const Eigen::Vector2d t = x * EdgeShapeDerivatives(xi);
+    const double df = t.squaredNorm() + r.dot(tt);
+    if (!(df > 0.0)) break;
+    const double next = std::clamp(xi - r.dot(t) / df, -1.0, 1.0);
+    const bool done = std::abs(next - xi) < 1e-15;
+    xi = next;
+    if (done) break;
+  }
+  return xi;
+}
+
 template <typename T>
 const T& FindSet(const std::map<std::string, T>& sets, const std::string& name, const char* kind) {
   const auto it = sets.find(name);
@@ -155,21 +174,7 @@ EdgePoint Mesh::LocateOnEdgeSet(const std::string& set, const Eigen::Vector2d& p
     const Eigen::Matrix<double, 2, 3> x = EdgeCoordinates(*this, edges[k]);
     // Start from the chord projection, then Newton on f(ξ) = (x(ξ) − p)·x'(ξ) = 0 clamped to
     // [−1, 1]; the end points are candidates too (the minimum may sit at a corner).
-    const Eigen::Vector2d chord = x.col(2) - x.col(0);
-    double xi =
-        std::clamp(2.0 * (point - x.col(0)).dot(chord) / chord.squaredNorm() - 1.0, -1.0, 1.0);
-    for (int it = 0; it < 30; ++it) {
-      const Eigen::Vector2d r = x * EdgeShapeFunctions(xi) - point;
-      const Eigen::Vector2d t = x * EdgeShapeDerivatives(xi);
-      const Eigen::Vector2d tt = x.col(0) - 2.0 * x.col(1) + x.col(2);  // x''(ξ)
-      const double f = r.dot(t);
-      const double df = t.squaredNorm() + r.dot(tt);
-      if (!(df > 0.0)) break;
-      const double next = std::clamp(xi - f / df, -1.0, 1.0);
-      const bool done = std::abs(next - xi) < 1e-15;
-      xi = next;
-      if (done) break;
-    }
+    const double xi = ProjectOnQuadraticEdge(x, point);
     for (double candidate : {xi, -1.0, 1.0}) {
       const double d2 = (x * EdgeShapeFunctions(candidate) - point).squaredNorm();
       if (d2 < best_d2) {
@@ -219,17 +224,7 @@ std::optional<HangingNode> FindHangingNode(const Mesh& mesh) {
       if (v == tri[0] || v == tri[1] || v == tri[2]) continue;
       const Eigen::Vector2d& q = mesh.nodes[v];
       if (q.y() < lo.y() || q.y() > hi.y()) continue;
-      // Closest point of the quadratic side: Newton from the chord projection.
-      const Eigen::Vector2d chord = x.col(2) - x.col(0);
-      double xi =
-          std::clamp(2.0 * (q - x.col(0)).dot(chord) / chord.squaredNorm() - 1.0, -1.0, 1.0);
-      for (int iteration = 0; iteration < 20; ++iteration) {
-        const Eigen::Vector2d r = x * EdgeShapeFunctions(xi) - q;
-        const Eigen::Vector2d t = x * EdgeShapeDerivatives(xi);
-        const double df = t.squaredNorm() + r.dot(x.col(0) - 2.0 * x.col(1) + x.col(2));
-        if (!(df > 0.0)) break;
-        xi = std::clamp(xi - r.dot(t) / df, -1.0, 1.0);
-      }
+      const double xi = ProjectOnQuadraticEdge(x, q);
       if ((x * EdgeShapeFunctions(xi) - q).norm() <= tol && std::abs(xi) < 1.0 - 1e-9)
         return HangingNode{v, tri, element};
     }
