@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/transmission/geometric_iteration.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 
 namespace epicycle::transmission {
@@ -82,59 +83,55 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
   geometry::ContactSearchOptions search;
   search.gap_window = scene.gap_window;
   const double rb1 = pair.gear1().base_radius();
-  double total = 0.0;
   std::vector<geometry::PotentialContact> contacts;
-  solvers::ContactSolution solution;
-  for (int it = 1; it <= options.max_geometric_iterations; ++it) {
-    contacts = pair.Contacts(poses, search);
-    if (contacts.empty()) {
-      out.message = "no potential contact within the gap window";
-      return out;
-    }
-    const int n = static_cast<int>(contacts.size());
-    solvers::ContactProblemData d;
-    d.name = setup.mesh + " @ " + std::to_string(geometry::Deg(angle)) + " deg";
-    d.compliance = compliance.Matrix(pair, poses, contacts);
-    if (!options.tooth_coupling)
-      d.compliance = Eigen::MatrixXd(d.compliance.diagonal().asDiagonal());
-    d.overlap.resize(n);
-    d.equality_matrix.resize(1, n);
-    d.equality_rhs = Eigen::VectorXd::Constant(1, setup.torque);
-    for (int j = 0; j < n; ++j) {
-      d.overlap(j) = contacts[j].overlap;
-      d.equality_matrix(0, j) = -contacts[j].lever_a;  // ∂δ_j/∂θ_1; G F = T is gear 1's balance
-      if (options.local_terms) {
-        d.local.push_back(ContactLocalTerm(contacts[j], pair.gear1(), pair.gear2(), scene.material,
-                                           scene.model.plane, compliance.JoiningDepth(0),
-                                           compliance.JoiningDepth(1),
-                                           d.name + " contact " + std::to_string(j)));
-      }
-    }
-    d.multiplier_labels = {"gear1 rotation [rad]"};
-    const solvers::ContactProblem problem(d);
-    solution = {};
-    out.report = solver.Solve(problem, options.contact, &solution);
-    if (out.report.status != solvers::ContactStatus::kConverged) {
-      out.message = "contact solve at geometric iteration " + std::to_string(it) + ": " +
-                    solvers::StatusName(out.report.status) + " (" + out.report.message + ")";
-      return out;
-    }
-    const double step = solution.multiplier(0);
-    total += step;
-    poses.gear1.rotation += step;
-    poses.gear1.geometric_centre =
-        poses.gear1.rotation_centre +
-        geometry::Rotate(poses.gear1.geometric_centre - poses.gear1.rotation_centre, step);
-    if (std::abs(step) * rb1 <= options.geometric_tolerance) {
-      out.converged = true;
-      break;
-    }
-    if (it == options.max_geometric_iterations) {
-      out.message = "geometric iterations did not settle: last rotation increment " +
-                    std::to_string(step) + " rad";
-      return out;
-    }
+  GeometricIterationOptions iteration;
+  iteration.max_iterations = options.max_geometric_iterations;
+  iteration.tolerance = options.geometric_tolerance;
+  iteration.warm_start = false;
+  const GeometricIterationResult g = IterateGeometry(
+      [&] {
+        contacts = pair.Contacts(poses, search);
+        if (contacts.empty())
+          throw std::invalid_argument("no potential contact within the gap window");
+        const int n = static_cast<int>(contacts.size());
+        solvers::ContactProblemData d;
+        d.name = setup.mesh + " @ " + std::to_string(geometry::Deg(angle)) + " deg";
+        d.compliance = compliance.Matrix(pair, poses, contacts);
+        if (!options.tooth_coupling)
+          d.compliance = Eigen::MatrixXd(d.compliance.diagonal().asDiagonal());
+        d.overlap.resize(n);
+        d.equality_matrix.resize(1, n);
+        d.equality_rhs = Eigen::VectorXd::Constant(1, setup.torque);
+        for (int j = 0; j < n; ++j) {
+          d.overlap(j) = contacts[j].overlap;
+          d.equality_matrix(0, j) = -contacts[j].lever_a;  // ∂δ_j/∂θ_1; G F = T: gear 1's balance
+          if (options.local_terms) {
+            d.local.push_back(ContactLocalTerm(
+                contacts[j], pair.gear1(), pair.gear2(), scene.material, scene.model.plane,
+                compliance.JoiningDepth(0), compliance.JoiningDepth(1),
+                d.name + " contact " + std::to_string(j)));
+          }
+        }
+        d.multiplier_labels = {"gear1 rotation [rad]"};
+        return d;
+      },
+      [&](const Eigen::VectorXd& lambda) {
+        const double step = lambda(0);
+        poses.gear1.rotation += step;
+        poses.gear1.geometric_centre =
+            poses.gear1.rotation_centre +
+            geometry::Rotate(poses.gear1.geometric_centre - poses.gear1.rotation_centre, step);
+        return std::abs(step) * rb1;
+      },
+      solver, options.contact, iteration);
+  out.report = g.report;
+  if (!g.converged) {
+    out.message = g.message;
+    return out;
   }
+  out.converged = true;
+  const double total = g.total(0);
+  const solvers::ContactSolution& solution = g.solution;
   out.rotation = total;
   out.approach = std::abs(total) * rb1;
   // Tooth pairs: the loaded contacts of the last problem, merged per (teeth, flank).

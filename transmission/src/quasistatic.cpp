@@ -4,97 +4,46 @@
 #include <stdexcept>
 
 #include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/transmission/geometric_iteration.hpp"
 
 namespace epicycle::transmission {
 
-namespace {
-
-// Largest rigid displacement of an increment, rotations measured at the base circles.
-double DisplacementSize(const geometry::Stage& stage, const std::vector<StageDof>& dofs,
-                        const Eigen::VectorXd& lambda) {
-  double worst = 0;
-  for (std::size_t k = 0; k < dofs.size(); ++k) {
-    double scale = 1.0;
-    if (dofs[k].kind == StageDof::kSunRotation) scale = stage.sun().base_radius();
-    if (dofs[k].kind == StageDof::kPlanetRotation)
-      scale = stage.planet(dofs[k].planet).base_radius();
-    worst = std::max(worst, std::abs(lambda(static_cast<Eigen::Index>(k))) * scale);
-  }
-  return worst;
-}
-
-}  // namespace
-
-PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
-                             const StageCompliance& compliance, double carrier_angle,
+PositionResult SolvePosition(const StageModel& model, double carrier_angle, const StageLoads& loads,
                              const QuasiStaticOptions& options) {
   PositionResult r;
   r.carrier_angle = carrier_angle;
-  const geometry::StagePoses kinematic = stage.Poses(carrier_angle);
-  std::vector<StageDof> dofs;
-  Eigen::VectorXd total;  // accumulated rigid displacements, per DOF
-  geometry::StagePoses poses = kinematic;
+  const std::vector<StageDof>& dofs = model.dofs();
+  geometry::StagePoses poses = model.KinematicPoses(carrier_angle);
   auto solver = solvers::MakeContactSolver(options.backend);
-  std::vector<std::string> previous_labels;
-  for (int it = 1; it <= options.max_geometric_iterations; ++it) {
-    r.geometric_iterations = it;
-    r.problem = BuildStageProblem(scene, stage, poses, compliance, options.setup);
-    if (dofs.empty()) {
-      dofs = r.problem.dofs;
-      total = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs.size()));
-    }
-    // Elastic supports carry the deflection of the earlier iterations: G F + K (λ + λ_prev) = W.
-    if (r.problem.data.support_stiffness.size() > 0)
-      r.problem.data.equality_rhs -= r.problem.data.support_stiffness * total;
-    const solvers::ContactProblem problem(r.problem.data);
-    // The same potential contacts as the previous geometric iteration: start from its forces
-    // (the members have moved by its displacements, so the new multipliers start at zero).
-    solvers::ContactOptions contact = options.contact;
-    if (it > 1 && r.problem.data.contact_labels == previous_labels &&
-        r.solution.force.size() == problem.num_contacts()) {
-      contact.warm_start = true;
-      r.solution.multiplier.setZero(problem.num_equalities());
-    } else {
-      r.solution = {};
-    }
-    previous_labels = r.problem.data.contact_labels;
-    r.report = solver->Solve(problem, contact, &r.solution);
-    const bool inaccurate = r.report.status == solvers::ContactStatus::kConvergedInaccurate;
-    if (inaccurate && options.accept_inaccurate) {
-      r.message = "accepted converged-inaccurate contact solves (residual " +
-                  std::to_string(r.report.residual.total) + ")";
-    } else if (r.report.status != solvers::ContactStatus::kConverged) {
-      r.message = "contact solve at geometric iteration " + std::to_string(it) + ": " +
-                  solvers::StatusName(r.report.status) + " (" + r.report.message + ")";
-      break;
-    }
-    total += r.solution.multiplier;
-    const double step = DisplacementSize(stage, dofs, r.solution.multiplier);
-    poses = Displace(poses, dofs, r.solution.multiplier);
-    if (step <= options.geometric_tolerance) {
-      r.converged = true;
-      break;
-    }
-    if (it == options.max_geometric_iterations) {
-      r.message = "geometric iterations did not settle: last displacement increment " +
-                  std::to_string(step) + " m";
-    }
-  }
+  GeometricIterationOptions iteration;
+  iteration.max_iterations = options.max_geometric_iterations;
+  iteration.tolerance = options.geometric_tolerance;
+  iteration.accept_inaccurate = options.accept_inaccurate;
+  GeometricIterationResult g = IterateGeometry(
+      [&] {
+        r.problem = model.Problem(poses, loads);
+        return r.problem.data;
+      },
+      [&](const Eigen::VectorXd& lambda) {
+        poses = StageModel::Displace(poses, dofs, lambda);
+        return model.DisplacementSize(dofs, lambda);
+      },
+      *solver, options.contact, iteration);
+  r.converged = g.converged;
+  r.message = std::move(g.message);
+  r.geometric_iterations = g.iterations;
+  r.solution = std::move(g.solution);
+  r.report = g.report;
   r.poses = poses;
+  // The problem as solved: with elastic supports, W less the earlier iterations' deflections.
+  if (g.rhs.size() > 0) r.problem.data.equality_rhs = g.rhs;
   // Outputs from the last contact problem (solved at the poses before its own small increment).
-  const int n = stage.planets();
-  r.load_sharing.assign(n, 0.0);
-  for (std::size_t j = 0; j < r.problem.contacts.size() && r.solution.force.size() > 0; ++j) {
-    const StageContact& s = r.problem.contacts[j];
-    if (s.body_a != kSunBody) continue;
-    // Moment of the contact on the sun over the input torque it balances.
-    r.load_sharing[s.planet] +=
-        s.contact.lever_a * r.solution.force(static_cast<Eigen::Index>(j)) / -scene.sun_torque;
-  }
+  const int n = model.planets();
+  r.load_sharing = model.LoadSharing(r.problem.contacts, r.solution.force, loads.sun_torque);
   r.planet_rotations.assign(n, 0.0);
   r.planet_displacements.assign(n, geometry::Vec2::Zero());
-  for (std::size_t k = 0; k < dofs.size(); ++k) {
-    const double v = total(static_cast<Eigen::Index>(k));
+  for (std::size_t k = 0; k < dofs.size() && g.total.size() > 0; ++k) {
+    const double v = g.total(static_cast<Eigen::Index>(k));
     switch (dofs[k].kind) {
       case StageDof::kSunRotation:
         r.transmission_error = v;
@@ -114,9 +63,18 @@ PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
       case StageDof::kPlanetY:
         r.planet_displacements[dofs[k].planet].y() = v;
         break;
+      default:
+        break;
     }
   }
   return r;
+}
+
+PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
+                             const StageCompliance& compliance, double carrier_angle,
+                             const QuasiStaticOptions& options) {
+  const StageModel model(scene, stage, compliance, options.setup);
+  return SolvePosition(model, carrier_angle, StageLoads{scene.sun_torque}, options);
 }
 
 std::vector<double> LoadSharingFactors(const PositionResult& r) {
@@ -142,28 +100,37 @@ std::vector<double> SweepAngles(double start, double span, int count) {
 }
 
 std::vector<PositionResult> Sweep(
-    const Scene& scene, const geometry::Stage& stage, const StageCompliance& compliance,
-    const std::vector<double>& carrier_angles, const QuasiStaticOptions& options,
+    const StageModel& model, const StageLoads& loads, const std::vector<double>& carrier_angles,
+    const QuasiStaticOptions& options,
     const std::function<void(const PositionResult&, int)>& on_result) {
   std::vector<PositionResult> out;
   out.reserve(carrier_angles.size());
+  const int n = model.planets();
   for (std::size_t k = 0; k < carrier_angles.size(); ++k) {
     PositionResult r;
     try {
-      r = SolvePosition(scene, stage, compliance, carrier_angles[k], options);
+      r = SolvePosition(model, carrier_angles[k], loads, options);
     } catch (const std::invalid_argument& e) {
       r = PositionResult{};
       r.carrier_angle = carrier_angles[k];
       r.converged = false;
       r.message = e.what();
-      r.load_sharing.assign(stage.planets(), 0.0);
-      r.planet_rotations.assign(stage.planets(), 0.0);
-      r.planet_displacements.assign(stage.planets(), geometry::Vec2::Zero());
+      r.load_sharing.assign(n, 0.0);
+      r.planet_rotations.assign(n, 0.0);
+      r.planet_displacements.assign(n, geometry::Vec2::Zero());
     }
     if (on_result) on_result(r, static_cast<int>(k));
     out.push_back(std::move(r));
   }
   return out;
+}
+
+std::vector<PositionResult> Sweep(
+    const Scene& scene, const geometry::Stage& stage, const StageCompliance& compliance,
+    const std::vector<double>& carrier_angles, const QuasiStaticOptions& options,
+    const std::function<void(const PositionResult&, int)>& on_result) {
+  const StageModel model(scene, stage, compliance, options.setup);
+  return Sweep(model, StageLoads{scene.sun_torque}, carrier_angles, options, on_result);
 }
 
 }  // namespace epicycle::transmission

@@ -9,11 +9,13 @@
 #include <vector>
 
 #include "epicycle/solvers/contact_solver.hpp"
-#include "epicycle/transmission/stage_problem.hpp"
+#include "epicycle/transmission/stage_model.hpp"
 
 namespace epicycle::transmission {
 
 struct QuasiStaticOptions {
+  /// The setup of the stage model that the scene-based overloads below build (the model-based
+  /// ones use the model's own setup and ignore this).
   QuasiStaticSetup setup;
   solvers::Backend backend = solvers::Backend::kActiveSetNewton;
   solvers::ContactOptions contact;
@@ -41,7 +43,12 @@ struct PositionResult {
   geometry::StagePoses poses;                        ///< the loaded poses
 };
 
+/// The stage model's quasi-static equilibrium at one carrier position under `loads`.
 /// @throws std::invalid_argument for bad input; numerical trouble is reported in the result.
+PositionResult SolvePosition(const StageModel& model, double carrier_angle, const StageLoads& loads,
+                             const QuasiStaticOptions& options);
+/// The same with the model built from (scene, stage, compliance, options.setup) and the scene's
+/// sun torque.
 PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
                              const StageCompliance& compliance, double carrier_angle,
                              const QuasiStaticOptions& options);
@@ -57,6 +64,12 @@ std::vector<double> SweepAngles(double start, double span, int count);
 /// Solves every position in turn; a position that throws or does not converge is reported in its
 /// result (converged = false, message) and the sweep goes on. `on_result` (if given) sees each
 /// result as soon as it is computed (for files written incrementally and progress).
+std::vector<PositionResult> Sweep(
+    const StageModel& model, const StageLoads& loads, const std::vector<double>& carrier_angles,
+    const QuasiStaticOptions& options,
+    const std::function<void(const PositionResult&, int)>& on_result = {});
+/// The same with the model built from (scene, stage, compliance, options.setup) and the scene's
+/// sun torque.
 std::vector<PositionResult> Sweep(
     const Scene& scene, const geometry::Stage& stage, const StageCompliance& compliance,
     const std::vector<double>& carrier_angles, const QuasiStaticOptions& options,

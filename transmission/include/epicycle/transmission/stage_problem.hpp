@@ -45,20 +45,20 @@ class StageCompliance {
   virtual double JoiningDepth(int body) const = 0;
 };
 
-struct QuasiStaticSetup {
-  SunSupport sun = SunSupport::kFixed;  ///< constrained (paper), floating or elastic sun
-  double sun_stiffness = 0;     ///< k_s [N/m], SunSupport::kElastic: isotropic bearing stiffness
-  double planet_stiffness = 0;  ///< k_p [N/m]: > 0 elastic planet bearings, 0 rigid pins
-  solvers::PlaneAssumption plane = solvers::PlaneAssumption::kPlaneStrain;
-  bool local_terms = true;  ///< false: structural compliance only (linear studies)
-};
-
-/// The scene's supports and model settings as a setup.
-QuasiStaticSetup SetupFromScene(const Scene& scene);
-
-/// A rigid degree of freedom set by equilibrium (a multiplier of the contact problem).
+/// A rigid degree of freedom of a gear body: in a quasi-static problem one set by equilibrium (a
+/// multiplier of the contact problem), in the dynamic model a coordinate of the motion.
 struct StageDof {
-  enum Kind { kSunRotation, kSunX, kSunY, kPlanetRotation, kPlanetX, kPlanetY } kind = kSunRotation;
+  enum Kind {
+    kSunRotation,
+    kSunX,
+    kSunY,
+    kPlanetRotation,
+    kPlanetX,
+    kPlanetY,
+    kRingRotation,
+    kRingX,
+    kRingY
+  } kind = kSunRotation;
   int planet = 0;
   std::string Label() const;  ///< with its unit: "sun rotation [rad]"
 };
@@ -78,20 +78,5 @@ solvers::LocalTermParameters ContactLocalTerm(const geometry::PotentialContact& 
                                               const Material& material,
                                               solvers::PlaneAssumption plane, double depth_a,
                                               double depth_b, const std::string& label);
-
-/// G_kj = ∂δ_j/∂q_k (rigid sensitivity of overlap j to DOF k), W_k the external load on DOF k
-/// (the sun torque on the sun's rotation, zero elsewhere), so that G F = W is equilibrium and the
-/// multipliers λ are the DOFs' rigid displacements [rad] or [m]. Elastic supports (sun or planet
-/// bearings) give their translation rows the bearing stiffness k: G F + k λ = W replaces the
-/// equality (the potential gains ½(GF − W)ᵀk⁻¹(GF − W)), and λ is the bearing's deflection.
-/// @throws std::invalid_argument if a contact has no valid local-term geometry.
-StageProblem BuildStageProblem(const Scene& scene, const geometry::Stage& stage,
-                               const geometry::StagePoses& poses, const StageCompliance& compliance,
-                               const QuasiStaticSetup& setup);
-
-/// The poses moved by rigid displacements λ of the DOFs (rotations about rotation centres; the
-/// geometric centre turns with the gear).
-geometry::StagePoses Displace(const geometry::StagePoses& poses, const std::vector<StageDof>& dofs,
-                              const Eigen::VectorXd& lambda);
 
 }  // namespace epicycle::transmission

@@ -1,0 +1,122 @@
+// One stage model for every driver (quasi-static, mesh stiffness of a stage's mesh, dynamics):
+// built once from (stage, compliance, setup), it owns the list of rigid degrees of freedom and
+// offers, at any poses of the members, the contact terms of docs/model.md §4–5 (potential
+// contacts, compliance C, overlaps δ0, local terms), the rigid sensitivities G = ∂δ/∂q, the
+// displacement of poses by q, and named read-outs (load-sharing ratios, sun-mesh torques). Loads
+// are passed in; nothing is read from the scene after construction.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "epicycle/geometry/stage.hpp"
+#include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/transmission/scene.hpp"
+#include "epicycle/transmission/stage_problem.hpp"
+
+namespace epicycle::transmission {
+
+/// How the members are held (from the scene's [supports], or set by a study).
+struct StageSetup {
+  SunSupport sun = SunSupport::kFixed;  ///< constrained (paper), floating or elastic sun
+  double sun_stiffness = 0;     ///< k_s [N/m], SunSupport::kElastic: isotropic bearing stiffness
+  double planet_stiffness = 0;  ///< k_p [N/m]: > 0 elastic planet bearings, 0 rigid pins
+  solvers::PlaneAssumption plane = solvers::PlaneAssumption::kPlaneStrain;
+  bool local_terms = true;  ///< false: structural compliance only (linear studies)
+  /// @throws std::invalid_argument naming the field (negative or non-finite stiffness, an
+  ///         elastic sun without stiffness).
+  void Validate() const;
+};
+using QuasiStaticSetup = StageSetup;  ///< the name the quasi-static driver's options use
+
+/// The scene's supports and model settings as a setup.
+StageSetup SetupFromScene(const Scene& scene);
+
+/// External loads on the stage [N·m] (counter-clockwise +).
+struct StageLoads {
+  double sun_torque = 0;  ///< input torque on the sun [N·m]
+};
+
+/// The contact terms at given poses: everything the contact problem needs except the DOFs.
+/// An empty contact set (gears separated beyond the gap window) is a valid state.
+struct ContactTerms {
+  std::vector<StageContact> contacts;
+  Eigen::MatrixXd compliance;                       ///< C [m/N], N×N
+  Eigen::VectorXd overlap;                          ///< δ0 [m], N
+  std::vector<solvers::LocalTermParameters> local;  ///< N entries, or empty without local terms
+  int size() const { return static_cast<int>(contacts.size()); }
+};
+
+class StageModel {
+ public:
+  /// Keeps references to `stage` and `compliance` (they must outlive the model); copies what it
+  /// needs of the scene (name, material, gap window).
+  /// @throws std::invalid_argument for a setup that fails Validate().
+  StageModel(const Scene& scene, const geometry::Stage& stage, const StageCompliance& compliance,
+             const StageSetup& setup);
+
+  const geometry::Stage& stage() const { return stage_; }
+  const StageSetup& setup() const { return setup_; }
+  const Material& material() const { return material_; }
+  const std::string& name() const { return name_; }
+  int planets() const { return stage_.planets(); }
+
+  /// The DOFs set by quasi-static equilibrium: sun rotation, sun x and y (floating or elastic),
+  /// every planet's rotation, planet x and y (elastic pins).
+  const std::vector<StageDof>& dofs() const { return dofs_; }
+  /// Support stiffness of each DOF of dofs() [N/m] (0: held only by the contacts).
+  const std::vector<double>& support_stiffness() const { return support_; }
+
+  /// Rigid kinematic poses at carrier angle φ_c [rad], with the scene's errors.
+  geometry::StagePoses KinematicPoses(double carrier_angle) const {
+    return stage_.Poses(carrier_angle);
+  }
+
+  /// The contact terms at `poses`. @throws std::invalid_argument if a contact has no valid
+  /// local-term geometry.
+  ContactTerms Terms(const geometry::StagePoses& poses) const;
+
+  /// G_kj = ∂δ_j/∂q_k [-] or [m] for the given DOFs (any StageDof, not only dofs()).
+  Eigen::MatrixXd Sensitivity(const ContactTerms& terms, const std::vector<StageDof>& dofs) const;
+
+  /// The quasi-static contact problem at `poses` (docs/model.md §5): G F + K λ = W over dofs(),
+  /// with W the loads on the DOFs. @throws std::invalid_argument if no potential contact lies
+  /// within the gap window (equilibrium under load is then impossible).
+  StageProblem Problem(const geometry::StagePoses& poses, const StageLoads& loads) const;
+
+  /// W: the loads on the DOFs (the sun torque on the sun's rotation) [N·m] or [N].
+  Eigen::VectorXd LoadVector(const std::vector<StageDof>& dofs, const StageLoads& loads) const;
+
+  /// The poses moved by rigid displacements q of the DOFs (rotations about rotation centres; the
+  /// geometric centre turns with the gear).
+  static geometry::StagePoses Displace(const geometry::StagePoses& poses,
+                                       const std::vector<StageDof>& dofs, const Eigen::VectorXd& q);
+
+  /// Largest rigid displacement in q [m], rotations measured at the base circles.
+  double DisplacementSize(const std::vector<StageDof>& dofs, const Eigen::VectorXd& q) const;
+
+  /// Moment on the sun of each planet's sun-mesh normal forces F [N·m], per planet.
+  std::vector<double> SunMeshTorques(const std::vector<StageContact>& contacts,
+                                     const Eigen::VectorXd& force) const;
+  /// LSR_i = T_mesh(P_i–S) / T_input (paper eq. 4) [-], per planet; T_mesh the moment on the sun
+  /// of planet i's mesh, which balances the input torque (hence the sign).
+  std::vector<double> LoadSharing(const std::vector<StageContact>& contacts,
+                                  const Eigen::VectorXd& force, double sun_torque) const;
+
+  /// The gear of a body index (kSunBody, kRingBody, PlanetBody(i)).
+  const geometry::Gear& BodyGear(int body) const;
+
+ private:
+  const geometry::Stage& stage_;
+  const StageCompliance& compliance_;
+  StageSetup setup_;
+  Material material_;
+  std::string name_;
+  double gap_window_ = 0;
+  std::vector<StageDof> dofs_;
+  std::vector<double> support_;
+};
+
+}  // namespace epicycle::transmission

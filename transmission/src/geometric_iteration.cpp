@@ -1,0 +1,57 @@
+#include "epicycle/transmission/geometric_iteration.hpp"
+
+#include <vector>
+
+#include "epicycle/solvers/contact_problem.hpp"
+
+namespace epicycle::transmission {
+
+GeometricIterationResult IterateGeometry(const std::function<solvers::ContactProblemData()>& build,
+                                         const std::function<double(const Eigen::VectorXd&)>& move,
+                                         solvers::ContactSolver& solver,
+                                         const solvers::ContactOptions& contact,
+                                         const GeometricIterationOptions& options) {
+  GeometricIterationResult r;
+  std::vector<std::string> previous_labels;
+  for (int it = 1; it <= options.max_iterations; ++it) {
+    r.iterations = it;
+    solvers::ContactProblemData data = build();
+    if (it == 1) r.total = Eigen::VectorXd::Zero(data.equality_rhs.size());
+    // Elastic supports carry the deflection of the earlier iterations: G F + K (λ + λ_prev) = W.
+    if (data.support_stiffness.size() > 0) data.equality_rhs -= data.support_stiffness * r.total;
+    r.rhs = data.equality_rhs;
+    const solvers::ContactProblem problem(std::move(data));
+    solvers::ContactOptions opt = contact;
+    if (options.warm_start && it > 1 && problem.data().contact_labels == previous_labels &&
+        r.solution.force.size() == problem.num_contacts()) {
+      opt.warm_start = true;
+      r.solution.multiplier.setZero(problem.num_equalities());
+    } else {
+      r.solution = {};
+    }
+    previous_labels = problem.data().contact_labels;
+    r.report = solver.Solve(problem, opt, &r.solution);
+    const bool inaccurate = r.report.status == solvers::ContactStatus::kConvergedInaccurate;
+    if (inaccurate && options.accept_inaccurate) {
+      r.message = "accepted converged-inaccurate contact solves (residual " +
+                  std::to_string(r.report.residual.total) + ")";
+    } else if (r.report.status != solvers::ContactStatus::kConverged) {
+      r.message = "contact solve at geometric iteration " + std::to_string(it) + ": " +
+                  solvers::StatusName(r.report.status) + " (" + r.report.message + ")";
+      return r;
+    }
+    r.total += r.solution.multiplier;
+    const double step = move(r.solution.multiplier);
+    if (step <= options.tolerance) {
+      r.converged = true;
+      return r;
+    }
+    if (it == options.max_iterations) {
+      r.message = "geometric iterations did not settle: last displacement increment " +
+                  std::to_string(step) + " m";
+    }
+  }
+  return r;
+}
+
+}  // namespace epicycle::transmission

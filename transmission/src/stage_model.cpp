@@ -1,0 +1,259 @@
+#include "epicycle/transmission/stage_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace epicycle::transmission {
+
+using geometry::PotentialContact;
+using geometry::Vec2;
+
+void StageSetup::Validate() const {
+  auto check = [](const char* field, double v) {
+    if (!std::isfinite(v) || v < 0)
+      throw std::invalid_argument(std::string("supports: ") + field + " = " + std::to_string(v) +
+                                  " N/m: must be finite and >= 0");
+  };
+  check("sun_stiffness", sun_stiffness);
+  check("planet_stiffness", planet_stiffness);
+  if (sun == SunSupport::kElastic && !(sun_stiffness > 0))
+    throw std::invalid_argument("supports: an elastic sun needs sun_stiffness > 0 N/m");
+}
+
+StageSetup SetupFromScene(const Scene& scene) {
+  StageSetup s;
+  s.sun = scene.supports.sun;
+  s.sun_stiffness = scene.supports.sun_stiffness;
+  s.planet_stiffness = scene.supports.planet_stiffness;
+  s.plane = scene.model.plane;
+  return s;
+}
+
+StageModel::StageModel(const Scene& scene, const geometry::Stage& stage,
+                       const StageCompliance& compliance, const StageSetup& setup)
+    : stage_(stage),
+      compliance_(compliance),
+      setup_(setup),
+      material_(scene.material),
+      name_(scene.name),
+      gap_window_(scene.gap_window) {
+  setup_.Validate();
+  // DOFs and their support stiffness (0: an equality; k: an elastic bearing, G F + k λ = W).
+  dofs_.push_back({StageDof::kSunRotation, 0});
+  support_.push_back(0.0);
+  if (setup_.sun != SunSupport::kFixed) {
+    const double s_sun = setup_.sun == SunSupport::kElastic ? setup_.sun_stiffness : 0.0;
+    dofs_.push_back({StageDof::kSunX, 0});
+    dofs_.push_back({StageDof::kSunY, 0});
+    support_.insert(support_.end(), {s_sun, s_sun});
+  }
+  for (int i = 0; i < stage_.planets(); ++i) {
+    dofs_.push_back({StageDof::kPlanetRotation, i});
+    support_.push_back(0.0);
+    if (setup_.planet_stiffness > 0) {
+      dofs_.push_back({StageDof::kPlanetX, i});
+      dofs_.push_back({StageDof::kPlanetY, i});
+      support_.insert(support_.end(), {setup_.planet_stiffness, setup_.planet_stiffness});
+    }
+  }
+}
+
+const geometry::Gear& StageModel::BodyGear(int body) const {
+  if (body == kSunBody) return stage_.sun();
+  if (body == kRingBody) return stage_.ring();
+  return stage_.planet(body - 2);
+}
+
+ContactTerms StageModel::Terms(const geometry::StagePoses& poses) const {
+  ContactTerms t;
+  t.contacts = SearchStage(stage_, poses, gap_window_);
+  const int n = t.size();
+  t.overlap.resize(n);
+  for (int j = 0; j < n; ++j) t.overlap(j) = t.contacts[j].contact.overlap;
+  if (n == 0) {
+    t.compliance.resize(0, 0);
+    return t;
+  }
+  t.compliance = compliance_.Matrix(stage_, poses, t.contacts);
+  if (setup_.local_terms) {
+    t.local.reserve(n);
+    for (const StageContact& s : t.contacts) {
+      t.local.push_back(ContactLocalTerm(
+          s.contact, BodyGear(s.body_a), BodyGear(s.body_b), material_, setup_.plane,
+          compliance_.JoiningDepth(s.body_a), compliance_.JoiningDepth(s.body_b), s.Label()));
+    }
+  }
+  return t;
+}
+
+namespace {
+
+// ∂δ/∂q for one contact and one DOF: translating A along e changes the overlap by n·e, B by
+// −n·e; turning a body about its rotation centre by dθ changes it by −(moment of the unit force
+// on that body)·dθ.
+double Sensitivity(const StageContact& s, const StageDof& d) {
+  const PotentialContact& c = s.contact;
+  auto on_body = [&](int body, double on_a, double on_b) {
+    if (s.body_a == body) return on_a;
+    if (s.body_b == body) return on_b;
+    return 0.0;
+  };
+  switch (d.kind) {
+    case StageDof::kSunRotation:
+      return on_body(kSunBody, -c.lever_a, -c.lever_b);
+    case StageDof::kSunX:
+      return on_body(kSunBody, c.normal.x(), -c.normal.x());
+    case StageDof::kSunY:
+      return on_body(kSunBody, c.normal.y(), -c.normal.y());
+    case StageDof::kPlanetRotation:
+      return on_body(PlanetBody(d.planet), -c.lever_a, -c.lever_b);
+    case StageDof::kPlanetX:
+      return on_body(PlanetBody(d.planet), c.normal.x(), -c.normal.x());
+    case StageDof::kPlanetY:
+      return on_body(PlanetBody(d.planet), c.normal.y(), -c.normal.y());
+    case StageDof::kRingRotation:
+      return on_body(kRingBody, -c.lever_a, -c.lever_b);
+    case StageDof::kRingX:
+      return on_body(kRingBody, c.normal.x(), -c.normal.x());
+    case StageDof::kRingY:
+      return on_body(kRingBody, c.normal.y(), -c.normal.y());
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+Eigen::MatrixXd StageModel::Sensitivity(const ContactTerms& terms,
+                                        const std::vector<StageDof>& dofs) const {
+  const int n = terms.size(), m = static_cast<int>(dofs.size());
+  Eigen::MatrixXd g(m, n);
+  for (int j = 0; j < n; ++j)
+    for (int k = 0; k < m; ++k) g(k, j) = transmission::Sensitivity(terms.contacts[j], dofs[k]);
+  return g;
+}
+
+Eigen::VectorXd StageModel::LoadVector(const std::vector<StageDof>& dofs,
+                                       const StageLoads& loads) const {
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs.size()));
+  for (std::size_t k = 0; k < dofs.size(); ++k)
+    if (dofs[k].kind == StageDof::kSunRotation) w(static_cast<Eigen::Index>(k)) = loads.sun_torque;
+  return w;
+}
+
+StageProblem StageModel::Problem(const geometry::StagePoses& poses, const StageLoads& loads) const {
+  ContactTerms t = Terms(poses);
+  if (t.contacts.empty()) {
+    throw std::invalid_argument("stage: no potential contact within the gap window of " +
+                                std::to_string(gap_window_ * 1e6) + " um");
+  }
+  StageProblem p;
+  p.dofs = dofs_;
+  solvers::ContactProblemData& d = p.data;
+  d.name = name_ + " @ carrier " + std::to_string(geometry::Deg(poses.carrier_angle)) + " deg";
+  d.equality_matrix = Sensitivity(t, dofs_);  // G F = W: Σ −lever_sun F = T_sun
+  d.equality_rhs = LoadVector(dofs_, loads);
+  d.compliance = std::move(t.compliance);
+  d.overlap = std::move(t.overlap);
+  d.local = std::move(t.local);
+  for (const StageContact& s : t.contacts) d.contact_labels.push_back(s.Label());
+  for (const StageDof& dof : dofs_) d.multiplier_labels.push_back(dof.Label());
+  if (std::any_of(support_.begin(), support_.end(), [](double v) { return v > 0; })) {
+    d.support_stiffness =
+        Eigen::VectorXd::Map(support_.data(), static_cast<Eigen::Index>(support_.size()))
+            .asDiagonal();
+  }
+  p.contacts = std::move(t.contacts);
+  return p;
+}
+
+geometry::StagePoses StageModel::Displace(const geometry::StagePoses& poses,
+                                          const std::vector<StageDof>& dofs,
+                                          const Eigen::VectorXd& q) {
+  geometry::StagePoses out = poses;
+  auto turn = [](geometry::GearPose& g, double angle) {
+    g.rotation += angle;
+    g.geometric_centre =
+        g.rotation_centre + geometry::Rotate(g.geometric_centre - g.rotation_centre, angle);
+  };
+  auto move = [](geometry::GearPose& g, const Vec2& e) {
+    g.rotation_centre += e;
+    g.geometric_centre += e;
+  };
+  for (std::size_t k = 0; k < dofs.size(); ++k) {
+    const double v = q(static_cast<Eigen::Index>(k));
+    switch (dofs[k].kind) {
+      case StageDof::kSunRotation:
+        turn(out.sun, v);
+        break;
+      case StageDof::kSunX:
+        move(out.sun, Vec2(v, 0.0));
+        break;
+      case StageDof::kSunY:
+        move(out.sun, Vec2(0.0, v));
+        break;
+      case StageDof::kPlanetRotation:
+        turn(out.planets.at(dofs[k].planet), v);
+        break;
+      case StageDof::kPlanetX:
+        move(out.planets.at(dofs[k].planet), Vec2(v, 0.0));
+        break;
+      case StageDof::kPlanetY:
+        move(out.planets.at(dofs[k].planet), Vec2(0.0, v));
+        break;
+      case StageDof::kRingRotation:
+        turn(out.ring, v);
+        break;
+      case StageDof::kRingX:
+        move(out.ring, Vec2(v, 0.0));
+        break;
+      case StageDof::kRingY:
+        move(out.ring, Vec2(0.0, v));
+        break;
+    }
+  }
+  return out;
+}
+
+double StageModel::DisplacementSize(const std::vector<StageDof>& dofs,
+                                    const Eigen::VectorXd& q) const {
+  double worst = 0;
+  for (std::size_t k = 0; k < dofs.size(); ++k) {
+    double scale = 1.0;
+    if (dofs[k].kind == StageDof::kSunRotation) scale = stage_.sun().base_radius();
+    if (dofs[k].kind == StageDof::kPlanetRotation)
+      scale = stage_.planet(dofs[k].planet).base_radius();
+    if (dofs[k].kind == StageDof::kRingRotation) scale = stage_.ring().base_radius();
+    worst = std::max(worst, std::abs(q(static_cast<Eigen::Index>(k))) * scale);
+  }
+  return worst;
+}
+
+namespace {
+
+// Σ over planet i's sun-mesh contacts of (moment of the contact on the sun) / divisor.
+std::vector<double> SunMoments(int planets, const std::vector<StageContact>& contacts,
+                               const Eigen::VectorXd& force, double divisor) {
+  std::vector<double> out(planets, 0.0);
+  for (std::size_t j = 0; j < contacts.size() && force.size() > 0; ++j) {
+    const StageContact& s = contacts[j];
+    if (s.body_a != kSunBody) continue;
+    out[s.planet] += s.contact.lever_a * force(static_cast<Eigen::Index>(j)) / divisor;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> StageModel::SunMeshTorques(const std::vector<StageContact>& contacts,
+                                               const Eigen::VectorXd& force) const {
+  return SunMoments(stage_.planets(), contacts, force, 1.0);
+}
+
+std::vector<double> StageModel::LoadSharing(const std::vector<StageContact>& contacts,
+                                            const Eigen::VectorXd& force, double sun_torque) const {
+  // Moment of the contacts on the sun over the input torque they balance.
+  return SunMoments(stage_.planets(), contacts, force, -sun_torque);
+}
+
+}  // namespace epicycle::transmission
