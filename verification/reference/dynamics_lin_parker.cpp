@@ -152,6 +152,27 @@ TEST_CASE("Lin & Parker structure: rotational single, translational double, plan
   }
 }
 
+TEST_CASE("the other flank pair (negative pressure angles) is the mirror image: same modes",
+          "[reference][dynamics][modes]") {
+  // Reflecting the stage in the x axis maps ψ_i → −ψ_i (the same set for equal spacing) and the
+  // lines of action at ψ ∓ α onto ψ ± α: the frequencies and classes must not change.
+  for (int n : {3, 5}) {
+    lp::Parameters p = lp::Table1Example(n);
+    const lp::Model a = lp::Build(p);
+    p.alpha_s = -p.alpha_s, p.alpha_r = -p.alpha_r;
+    const lp::Model b = lp::Build(p);
+    const std::vector<Mode> ma = SolveModes(a.M, a.K, lp::Layout(n));
+    const std::vector<Mode> mb = SolveModes(b.M, b.K, lp::Layout(n));
+    REQUIRE(ma.size() == mb.size());
+    for (size_t k = 0; k < ma.size(); ++k) {
+      CHECK(mb[k].type == ma[k].type);
+      CHECK(mb[k].multiplicity == ma[k].multiplicity);
+      // Tolerance: two eigen-solves of matrices equal up to a permutation-like congruence.
+      CHECK(mb[k].frequency == Approx(ma[k].frequency).epsilon(1e-10).margin(1e-6));
+    }
+  }
+}
+
 TEST_CASE("planet modes are the modes of one planet with the central members held",
           "[reference][dynamics][modes]") {
   // Lin & Parker: in a planet mode the central members do not move, so each planet vibrates on

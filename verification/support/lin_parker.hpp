@@ -45,7 +45,10 @@ struct Parameters {
   double k_sp = 0, k_rp = 0;                  ///< mesh stiffnesses [N/m]
   double k_s = 0, k_r = 0, k_c = 0, k_p = 0;  ///< bearing stiffnesses [N/m]
   double k_su = 0, k_ru = 0, k_cu = 0;        ///< torsional stiffnesses of u [N/m] (k_θ/r²)
-  double alpha_s = 0, alpha_r = 0;            ///< mesh pressure angles [rad]
+  /// Mesh pressure angles [rad]. Positive: the flanks loaded when the sun drives in the
+  /// positive (counter-clockwise) sense, as in the deflections above; negative values give the
+  /// other flank pair (the mirror image: the stage driven clockwise, as the paper's −600 N·m).
+  double alpha_s = 0, alpha_r = 0;
 };
 
 /// Equally spaced planets: ψ_i = 2π(i−1)/N.

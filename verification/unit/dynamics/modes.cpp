@@ -118,6 +118,34 @@ TEST_CASE("an isotropic planar oscillator: one double translational group, energ
   CHECK(rotational == 1);
 }
 
+TEST_CASE("a degenerate group mixing rotation and translation is 'other', not misread",
+          "[unit][dynamics][modes]") {
+  // The isotropic oscillator above with the torsional frequency tuned onto the lower chain
+  // frequency: the three modes at that frequency form one group whose subspace contains both
+  // central translation and rotation. Whatever basis the solver returns, the group's summed
+  // energy shows both, so the group is kOther with multiplicity 3.
+  const Chain ch;
+  const double j = 0.01, lambda = ch.Lambda(-1);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(5, 5), K = Eigen::MatrixXd::Zero(5, 5);
+  M.diagonal() << ch.m1, ch.m1, j, ch.m2, ch.m2;
+  for (int axis = 0; axis < 2; ++axis) {
+    const int c = axis, p = 3 + axis;
+    K(c, c) = ch.k1 + ch.k2, K(p, p) = ch.k2, K(c, p) = K(p, c) = -ch.k2;
+  }
+  K(2, 2) = lambda * j;
+  const std::vector<Mode> modes = SolveModes(M, K, {{"c", true, 0, 1, 2}, {"p", false, 3, 4, -1}});
+  REQUIRE(modes.size() == 2);
+  CHECK(modes[0].multiplicity == 3);
+  CHECK(modes[0].type == ModeType::kOther);
+  // Averaged over the 3 modes: the rotation carries 1/3 of the group's energy, the translation
+  // 2/3 of the chain's central share.
+  const double r = (ch.k1 + ch.k2 - ch.m1 * lambda) / ch.k2;
+  CHECK(modes[0].central_rotation == Approx(1.0 / 3).epsilon(1e-9));
+  CHECK(modes[0].central_translation ==
+        Approx(2.0 / 3 * ch.m1 / (ch.m1 + ch.m2 * r * r)).epsilon(1e-9));
+  CHECK(modes[1].type == ModeType::kTranslational);
+}
+
 TEST_CASE("bad inputs of SolveModes are named", "[unit][dynamics][modes]") {
   const Chain ch;
   const std::vector<MemberDofs> layout = {{"a", true, 0, -1, -1}, {"b", false, 1, -1, -1}};
