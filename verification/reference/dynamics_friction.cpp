@@ -181,4 +181,10 @@ TEST_CASE("μ along the path of contact of the paper's sun–planet mesh at 1500
   CHECK(sign_changes == 1);
   // Xu–Kahraman stays below the cap along the whole path: the values are the formula's own.
   CHECK(mu_max < xk.max_coefficient);
+  VerifyRow(
+      "friction along the paper's sun-planet path, 1500 rpm, 25 points (xu-kahraman, "
+      "benedict-kelley)",
+      "sign of v_s: one reversal, at the pitch point",
+      std::to_string(sign_changes) + " reversal(s), max |mu_xk| " + Sci(mu_max, 3),
+      "sign per point", "exact", sign_changes == 1 && mu_max < xk.max_coefficient);
 }

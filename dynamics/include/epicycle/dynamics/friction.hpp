@@ -33,8 +33,8 @@ struct FrictionOptions {
   double coefficient = 0.05;         ///< μ [-] of kConstant, 0 ≤ μ ≤ max_coefficient
   double smoothing_velocity = 1e-3;  ///< v_ε [m/s] > 0: sign(v_s) ≈ tanh(v_s/v_ε) (constant, B&K)
   /// μ_max [-] > 0: cap of |μ_s| for every law. Benedict & Kelley diverges at the pitch point
-  /// (v_s → 0) and at standstill; Xu & Kahraman stays near 0.02–0.06 in its range and meets the
-  /// cap only far outside it.
+  /// (v_s → 0) and at standstill; Xu & Kahraman stays at a few hundredths (≤ 0.08 along the
+  /// paper's sun–planet path, docs/dynamic.md) and meets the cap only far outside its range.
   double max_coefficient = 0.15;
   Lubricant lubricant;
 
