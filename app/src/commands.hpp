@@ -10,5 +10,6 @@ void RegisterGeometryCommands(CLI::App& app);   // geometry, contacts      (geom
 void RegisterContactCommands(CLI::App& app);    // contact solve|compare   (contact_commands.cpp)
 void RegisterStiffnessCommands(CLI::App& app);  // stiffness               (stiffness_commands.cpp)
 void RegisterQuasiStaticCommands(CLI::App& app);  // quasistatic (quasistatic_commands.cpp)
+void RegisterDynamicCommands(CLI::App& app);      // dynamic, modes (dynamic_commands.cpp)
 
 }  // namespace epicycle::app

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   epicycle::app::RegisterContactCommands(app);
   epicycle::app::RegisterStiffnessCommands(app);
   epicycle::app::RegisterQuasiStaticCommands(app);
+  epicycle::app::RegisterDynamicCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

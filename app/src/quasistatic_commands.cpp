@@ -18,6 +18,7 @@
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "progress.hpp"
 #include "svg_plot.hpp"
 
 namespace epicycle::app {
@@ -33,19 +34,6 @@ struct QuasiStaticArgs {
   double start_deg = 0.0;
   bool no_cache = false, no_local = false, quiet = false;
 };
-
-std::string Num(double v, const char* format = "{:.9g}") {
-  return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : "";
-}
-
-void Progress(int done, int total, int failed, double seconds) {
-  const int width = 30, filled = total > 0 ? width * done / total : width;
-  std::fprintf(stderr, "\r  [%s%s] %d/%d positions, %d failed, %.1f s",
-               std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(), done,
-               total, failed, seconds);
-  if (done == total) std::fprintf(stderr, "\n");
-  std::fflush(stderr);
-}
 
 void RunQuasiStatic(const QuasiStaticArgs& a) {
   transmission::Scene scene = transmission::ReadScene(a.scene);
@@ -159,7 +147,8 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
         }
         if (tty)
           Progress(k + 1, static_cast<int>(angles.size()), failed,
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count());
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(),
+                   "positions");
       });
   const double sweep_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -26,6 +27,37 @@ Inertia ReadInertia(TableReader& t) {
   i.mass = t.RealOr("mass_kg", 0.0, Rule::NonNegative());
   i.inertia = t.RealOr("inertia_kgm2", 0.0, Rule::NonNegative());
   return i;
+}
+
+// The optional [dynamics] and [lubricant] tables (docs/scenes.md).
+void ReadDynamics(TableReader& top, DynamicsScene& d) {
+  if (auto t = top.OptionalTable("dynamics")) {
+    d.sun_speed = t->RealOr("sun_speed_rpm", 1500.0, Rule::Positive()) * std::numbers::pi / 30.0;
+    d.carrier = t->StringOr("carrier", "speed", {"speed", "torque"});
+    d.carrier_load_inertia = t->RealOr("carrier_load_inertia_kgm2", 0.0, Rule::NonNegative());
+    d.mesh_damping_ratio = t->RealOr("mesh_damping_ratio", 0.05, Rule::Closed(0, 1));
+    d.mesh_damping = t->RealOr("mesh_damping_Ns_per_m", 0.0, Rule::NonNegative());
+    d.sun_bearing_damping = t->RealOr("sun_bearing_damping_Ns_per_m", 0.0, Rule::NonNegative());
+    d.planet_bearing_damping =
+        t->RealOr("planet_bearing_damping_Ns_per_m", 0.0, Rule::NonNegative());
+    d.ring = t->StringOr("ring", "fixed", {"fixed", "elastic"});
+    if (d.ring == "elastic") {
+      d.ring_stiffness = t->Real("ring_stiffness_N_per_um", Rule::Positive()) * 1e6;
+      d.ring_torsional_stiffness = t->Real("ring_torsional_stiffness_Nm_per_rad", Rule::Positive());
+      d.ring_damping = t->RealOr("ring_damping_Ns_per_m", 0.0, Rule::NonNegative());
+      d.ring_torsional_damping =
+          t->RealOr("ring_torsional_damping_Nms_per_rad", 0.0, Rule::NonNegative());
+    }
+    d.friction = t->StringOr("friction", "xu-kahraman",
+                             {"off", "constant", "xu-kahraman", "benedict-kelley"});
+    d.friction_coefficient = t->RealOr("friction_coefficient", 0.05, Rule::Closed(0, 1));
+    t->Done();
+  }
+  if (auto t = top.OptionalTable("lubricant")) {
+    d.lubricant_viscosity = t->RealOr("viscosity_mPas", 50.0, Rule::Positive()) * 1e-3;
+    d.roughness = t->RealOr("roughness_um", 0.8, Rule::Positive()) * kUm;
+    t->Done();
+  }
 }
 
 // The fields common to every gear table; `fit_target` gears may omit profile_shift.
@@ -334,6 +366,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     ReadErrors(*t, s);
     t->Done();
   }
+  ReadDynamics(top, s.dynamics);
   for (std::size_t k = 0; k < fits.size(); ++k) {
     TableReader& fit = fits[k];
     ShiftFit f;

@@ -1,0 +1,330 @@
+// `epicycle dynamic SCENE`: the dynamic model of the stage (docs/dynamic.md) integrated in time at
+// a sun speed, from the quasi-static solution at t = 0. Results are written as they are computed
+// (CSV per output step, per tooth pair and per bearing; a JSON summary at the end; SVG plots of
+// LSR(t), TE(t) and the sun's orbit). A run that fails midway keeps every step already written
+// and says where and why (non-zero exit).
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/transmission/fe_compliance.hpp"
+#include "progress.hpp"
+#include "svg_plot.hpp"
+
+namespace epicycle::app {
+
+namespace {
+
+using json = nlohmann::json;
+
+struct DynamicArgs {
+  std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out",
+                     range = "planet", sun, friction, cache;
+  double speed_rpm = 0, time = 0, rtol = 1e-6, start_deg = 0;
+  int outputs_per_cycle = 20, max_order = 5;
+  bool no_cache = false, quiet = false, fd_jacobian = false;
+};
+
+const char* SunName(transmission::SunSupport s) {
+  return s == transmission::SunSupport::kFixed      ? "fixed"
+         : s == transmission::SunSupport::kFloating ? "floating"
+                                                    : "elastic";
+}
+
+std::string MeshName(const transmission::StageContact& c) {
+  return c.mesh == geometry::MeshKind::kSunPlanet ? fmt::format("sun-planet{}", c.planet + 1)
+                                                  : fmt::format("planet{}-ring", c.planet + 1);
+}
+
+void RunDynamic(const DynamicArgs& a) {
+  transmission::Scene scene = transmission::ReadScene(a.scene);
+  if (scene.kind != transmission::SceneKind::kStage)
+    throw std::invalid_argument(a.scene + ": a gear-pair scene; dynamic needs a stage");
+  if (a.sun == "fixed") scene.supports.sun = transmission::SunSupport::kFixed;
+  if (a.sun == "floating") scene.supports.sun = transmission::SunSupport::kFloating;
+  if (a.speed_rpm != 0) {
+    if (!(a.speed_rpm > 0) || !std::isfinite(a.speed_rpm))
+      throw std::invalid_argument(fmt::format("--speed-rpm = {}: must be > 0", a.speed_rpm));
+    scene.dynamics.sun_speed = a.speed_rpm * std::numbers::pi / 30.0;
+  }
+  if (!a.friction.empty()) scene.dynamics.friction = a.friction;
+  const geometry::Stage stage(scene.stage);
+  const int n = stage.planets();
+
+  transmission::FeComplianceOptions fe;
+  if (!a.no_cache)
+    fe.cache_directory = a.cache.empty() ? transmission::DefaultCacheDirectory() : a.cache;
+  const auto t0 = std::chrono::steady_clock::now();
+  const transmission::FeStageCompliance compliance(scene, stage, fe);
+  const transmission::StageModel stage_model(scene, stage, compliance,
+                                             transmission::SetupFromScene(scene));
+  dynamics::DynamicModel model(stage_model, scene, dynamics::SettingsFromScene(scene));
+  const auto k = dynamics::MeanMeshStiffness(scene, stage, fe);
+  model.SetMeshStiffness(k[0], k[1]);
+  model.SetStartAngle(geometry::Rad(a.start_deg));
+  const double setup_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  // Duration: one mesh cycle, one planet revolution relative to the carrier, one carrier
+  // revolution, or a given time.
+  const double wc = std::abs(model.carrier_speed());
+  const double cycle_time = stage.mesh_cycle() / wc;
+  const double duration = a.time > 0            ? a.time
+                          : a.range == "cycle"  ? cycle_time
+                          : a.range == "planet" ? 2.0 * std::numbers::pi * stage.planet(0).teeth() /
+                                                      stage.ring().teeth() / wc
+                                                : 2.0 * std::numbers::pi / wc;
+  const int outputs =
+      std::max(1, static_cast<int>(std::ceil(duration / cycle_time * a.outputs_per_cycle)));
+  std::vector<double> times;
+  for (int i = 1; i <= outputs; ++i) times.push_back(duration * i / outputs);
+
+  dynamics::SimulationOptions opt;
+  opt.integrator = dynamics::IntegratorFromName(a.integrator);
+  opt.backend = solvers::BackendFromName(a.backend);
+  opt.rtol = a.rtol;
+  opt.analytic_jacobian = !a.fd_jacobian;
+  opt.max_order = a.max_order;
+  const char* sun_name = SunName(stage_model.setup().sun);
+  const double mesh_hz = stage.ring().teeth() * wc / (2.0 * std::numbers::pi);
+  std::printf(
+      "%s: %d planets, sun %s, input torque %.1f N m, sun speed %.1f rpm (mesh frequency "
+      "%.1f Hz)\n",
+      scene.name.c_str(), n, sun_name, scene.sun_torque,
+      std::abs(model.sun_speed()) * 30.0 / std::numbers::pi, mesh_hz);
+  for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
+  std::printf(
+      "  mean mesh stiffness: sun-planet %.4g N/m, planet-ring %.4g N/m; mesh damping %.4g and "
+      "%.4g N s/m\n",
+      model.sun_mesh_stiffness(), model.ring_mesh_stiffness(), model.sun_mesh_damping(),
+      model.ring_mesh_damping());
+  std::printf("  friction %s, integrator %s (rtol %.1e), back end %s, %d DOFs\n",
+              scene.dynamics.friction.c_str(), a.integrator.c_str(), a.rtol, a.backend.c_str(),
+              model.size());
+  const Eigen::VectorXd d0 = model.QuasiStaticStart(opt.contact, opt.backend);
+  std::printf(
+      "  t = 0: the quasi-static solution at carrier %.4f deg (no start-up transient), "
+      "%.4f s simulated in %d outputs (%.2f s of set-up)\n",
+      geometry::Deg(model.CarrierAngle(0)), duration, outputs, setup_seconds);
+
+  std::filesystem::create_directories(a.out);
+  const std::string base = a.out + "/dynamic";
+  std::ofstream steps(base + "_steps.csv"), pairs(base + "_pairs.csv"),
+      bearings(base + "_bearings.csv");
+  if (!steps || !pairs || !bearings)
+    throw std::runtime_error(a.out + ": cannot write the result files");
+  steps << "time_s,carrier_deg";
+  for (int i = 1; i <= n; ++i) steps << ",LSR_" << i;
+  for (int i = 1; i <= n; ++i) steps << ",L_" << i;
+  steps << ",K_gamma,transmission_error_urad,sun_x_um,sun_y_um,sun_torque_balance_Nm,"
+           "external_work_J,dissipated_work_J,kinetic_energy_J,elastic_energy_J,contacts,"
+           "active_contacts,friction_power_W\n";
+  pairs << "time_s,mesh,kind,flank,teeth,normal_force_N,elastic_force_N,friction_force_N,"
+           "overlap_rate_mm_per_s\n";
+  bearings << "time_s,sun_Fx_N,sun_Fy_N";
+  for (int i = 1; i <= n; ++i) bearings << ",planet" << i << "_Fx_N,planet" << i << "_Fy_N";
+  bearings << "\n";
+
+  const bool tty = !a.quiet && isatty(fileno(stderr));
+  const int ksun = model.Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kRotation);
+  const auto t1 = std::chrono::steady_clock::now();
+  int done = 0;
+  const dynamics::SimulationResult result = dynamics::Simulate(
+      model, opt, d0, Eigen::VectorXd::Zero(model.size()), times,
+      [&](const dynamics::DynamicSample& s) {
+        const dynamics::Evaluation& e = s.evaluation;
+        double k_gamma = 0;
+        steps << fmt::format("{:.9g},{:.6f}", s.time, geometry::Deg(s.carrier_angle));
+        for (double v : s.load_sharing) steps << "," << Num(v);
+        for (double v : s.load_sharing) {
+          steps << "," << Num(n * v);
+          k_gamma = std::max(k_gamma, n * v);
+        }
+        int active = 0;
+        for (int j = 0; j < e.total_force.size(); ++j) active += e.total_force(j) > 0;
+        // Sun balance: Σ sun-mesh torques + T_in − J_s θ̈_s (θ̈_s from the interpolant).
+        double mesh_torque = 0;
+        for (double t : e.sun_mesh_torque) mesh_torque += t;
+        const double balance =
+            mesh_torque + scene.sun_torque - model.mass()(ksun) * s.sun_acceleration;
+        steps << "," << Num(k_gamma) << "," << Num(s.transmission_error * 1e6) << ","
+              << Num(s.sun_centre.x() * 1e6) << "," << Num(s.sun_centre.y() * 1e6) << ","
+              << Num(balance) << "," << Num(s.external_work) << "," << Num(s.dissipated_work) << ","
+              << Num(e.kinetic_energy) << "," << Num(e.elastic_energy) << "," << e.terms.size()
+              << "," << active << "," << Num(e.friction_power) << "\n";
+        steps.flush();
+        for (int j = 0; j < e.terms.size(); ++j) {
+          if (!(e.total_force(j) > 0)) continue;
+          const transmission::StageContact& c = e.terms.contacts[j];
+          pairs << fmt::format("{:.9g},{},{},{},{}/{},{},{},{},{}\n", s.time, MeshName(c),
+                               geometry::KindName(c.contact.kind), c.loaded ? "drive" : "coast",
+                               c.contact.tooth_a, c.contact.tooth_b, Num(e.total_force(j)),
+                               Num(e.force(j)), Num(e.friction(j)), Num(e.overlap_rate(j) * 1e3));
+        }
+        pairs.flush();
+        bearings << fmt::format("{:.9g},{},{}", s.time, Num(e.sun_bearing_force.x()),
+                                Num(e.sun_bearing_force.y()));
+        for (const auto& f : e.planet_bearing_force)
+          bearings << "," << Num(f.x()) << "," << Num(f.y());
+        bearings << "\n";
+        bearings.flush();
+        ++done;
+        if (tty)
+          Progress(done, outputs, 0,
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(),
+                   "steps");
+      });
+  if (tty && !result.completed) std::fprintf(stderr, "\n");
+
+  const dynamics::DynamicSummary sum = dynamics::Summarise(result.samples);
+  const dynamics::SimulationStats& st = result.stats;
+  std::printf("\n  planet   LSR mean     LSR min      LSR max      (ideal 1/n = %.6f)\n", 1.0 / n);
+  json planets = json::array();
+  for (int i = 0; i < n && sum.samples > 0; ++i) {
+    std::printf("  %-8d %-12.6f %-12.6f %-12.6f\n", i + 1, sum.lsr_mean[i], sum.lsr_min[i],
+                sum.lsr_max[i]);
+    planets.push_back({{"planet", i + 1},
+                       {"lsr_mean", sum.lsr_mean[i]},
+                       {"lsr_min", sum.lsr_min[i]},
+                       {"lsr_max", sum.lsr_max[i]}});
+  }
+  std::printf("  K_gamma (max L_i)            %.6f\n", sum.k_gamma);
+  std::printf("  dynamic transmission error   %.3f .. %.3f urad (peak to peak %.3f urad)\n",
+              sum.te_min * 1e6, sum.te_max * 1e6, sum.te_peak_to_peak() * 1e6);
+  std::printf("  sun orbit radius             %.3f um largest, %.3f um mean\n",
+              sum.orbit_radius * 1e6, sum.orbit_mean_radius * 1e6);
+  std::printf(
+      "  integration                  %ld steps, %ld evaluations (%ld for FD Jacobians), %ld "
+      "Jacobians, %ld failed contact solves, %ld error-test failures, %ld nonlinear failures, %.3f "
+      "s "
+      "wall (%.3f s in evaluations)\n",
+      st.steps, st.rhs_evaluations, st.fd_rhs_evaluations, st.jacobian_evaluations,
+      st.failed_solves, st.error_test_failures, st.nonlinear_failures, st.wall_seconds,
+      st.rhs_seconds);
+
+  json j;
+  j["scene"] = scene.name;
+  j["sun_support"] = sun_name;
+  j["sun_torque_Nm"] = scene.sun_torque;
+  j["sun_speed_rpm"] = std::abs(model.sun_speed()) * 30.0 / std::numbers::pi;
+  j["mesh_frequency_Hz"] = mesh_hz;
+  j["friction"] = scene.dynamics.friction;
+  j["integrator"] = a.integrator;
+  j["rtol"] = a.rtol;
+  j["backend"] = a.backend;
+  j["start"] = "quasi-static solution at t = 0 (no start-up transient)";
+  j["duration_s"] = duration;
+  j["outputs"] = outputs;
+  j["outputs_written"] = sum.samples;
+  j["completed"] = result.completed;
+  j["failure"] = result.message;
+  j["planets"] = planets;
+  j["K_gamma_max"] = sum.k_gamma;
+  j["transmission_error_min_urad"] = sum.te_min * 1e6;
+  j["transmission_error_max_urad"] = sum.te_max * 1e6;
+  j["transmission_error_peak_to_peak_urad"] = sum.te_peak_to_peak() * 1e6;
+  j["sun_orbit_radius_max_um"] = sum.orbit_radius * 1e6;
+  j["sun_orbit_radius_mean_um"] = sum.orbit_mean_radius * 1e6;
+  j["mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
+  j["mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
+  j["steps"] = st.steps;
+  j["evaluations"] = st.rhs_evaluations;
+  j["fd_jacobian_evaluations"] = st.fd_rhs_evaluations;
+  j["jacobians"] = st.jacobian_evaluations;
+  j["failed_contact_solves"] = st.failed_solves;
+  j["error_test_failures"] = st.error_test_failures;
+  j["wall_seconds"] = st.wall_seconds;
+  j["evaluation_seconds"] = st.rhs_seconds;
+  j["setup_seconds"] = setup_seconds;
+  WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
+
+  LinePlot lsr{scene.name + ": dynamic load-sharing ratio (sun " + sun_name + ")",
+               "time [ms]",
+               "LSR_i [-]",
+               {},
+               false,
+               {1.0 / n}};
+  LinePlot te{scene.name + ": dynamic transmission error at the sun",
+              "time [ms]",
+              "sun rotation from kinematic [urad]",
+              {},
+              false,
+              {}};
+  LinePlot orbit{scene.name + ": sun centre orbit", "x [um]", "y [um]", {}, true, {}};
+  PlotSeries te_s{"TE", {}, {}}, orbit_s{"sun centre", {}, {}};
+  for (int i = 0; i < n; ++i) lsr.series.push_back({fmt::format("planet {}", i + 1), {}, {}});
+  for (const auto& s : result.samples) {
+    for (int i = 0; i < n; ++i) {
+      lsr.series[i].x.push_back(s.time * 1e3);
+      lsr.series[i].y.push_back(s.load_sharing[i]);
+    }
+    te_s.x.push_back(s.time * 1e3);
+    te_s.y.push_back(s.transmission_error * 1e6);
+    orbit_s.x.push_back(s.sun_centre.x() * 1e6);
+    orbit_s.y.push_back(s.sun_centre.y() * 1e6);
+  }
+  te.series.push_back(te_s);
+  orbit.series.push_back(orbit_s);
+  WriteTextFile(base + "_lsr.svg", RenderSvg(lsr));
+  WriteTextFile(base + "_te.svg", RenderSvg(te));
+  WriteTextFile(base + "_orbit.svg", RenderSvg(orbit));
+  std::printf(
+      "\nwrote %s_steps.csv, _pairs.csv, _bearings.csv, _summary.json, _lsr.svg, _te.svg, "
+      "_orbit.svg\n",
+      base.c_str());
+  if (!result.completed)
+    throw std::runtime_error(fmt::format("the run stopped after {} of {} outputs: {}", sum.samples,
+                                         outputs, result.message));
+}
+
+}  // namespace
+
+void RegisterDynamicCommands(CLI::App& app) {
+  static DynamicArgs a;
+  auto* cmd = app.add_subcommand(
+      "dynamic", "Dynamic load sharing of a stage in time at a sun speed (docs/dynamic.md)");
+  cmd->add_option("scene", a.scene, "Scene file (TOML) of a stage")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--speed-rpm", a.speed_rpm,
+                  "Sun speed [rpm] (default: the scene's [dynamics] sun_speed_rpm, else 1500)");
+  cmd->add_option("--range", a.range,
+                  "Simulate one mesh cycle, one planet revolution relative to the carrier, or "
+                  "one carrier revolution")
+      ->check(CLI::IsMember({"cycle", "planet", "revolution"}));
+  cmd->add_option("--time", a.time, "Simulate this long instead [s]")->check(CLI::PositiveNumber);
+  cmd->add_option("--start-deg", a.start_deg, "Carrier angle at t = 0 [deg]");
+  cmd->add_option("--sun", a.sun, "Override the scene's sun support")
+      ->check(CLI::IsMember({"fixed", "floating"}));
+  cmd->add_option("--friction", a.friction, "Override the scene's friction law")
+      ->check(CLI::IsMember({"off", "constant", "xu-kahraman", "benedict-kelley"}));
+  cmd->add_option("--backend", a.backend, "Contact back end (newton, ipopt, nlopt-lbfgs, ...)");
+  cmd->add_option("--integrator", a.integrator, "cvode-bdf (default) or arkode-erk")
+      ->check(CLI::IsMember({"cvode-bdf", "arkode-erk"}));
+  cmd->add_option("--rtol", a.rtol, "Relative tolerance of the integrator")
+      ->check(CLI::Range(1e-12, 0.1));
+  cmd->add_option("--outputs-per-cycle", a.outputs_per_cycle, "Output steps per mesh cycle")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--max-order", a.max_order, "Largest BDF order of CVODE (1..5)")
+      ->check(CLI::Range(1, 5));
+  cmd->add_flag("--fd-jacobian", a.fd_jacobian,
+                "CVODE's finite-difference Jacobian instead of the contact sensitivity");
+  cmd->add_option("--out", a.out, "Output folder (CSV, JSON, SVG)");
+  cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");
+  cmd->add_flag("--no-cache", a.no_cache, "Build the influence tables in memory only");
+  cmd->add_flag("--quiet", a.quiet, "No progress bar");
+  cmd->callback([] { RunDynamic(a); });
+}
+
+}  // namespace epicycle::app

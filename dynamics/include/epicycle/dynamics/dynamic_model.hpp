@@ -1,0 +1,210 @@
+// The dynamic model of the stage (docs/model.md §7, the paper's eq. 3): planar lumped masses in
+// the inertial frame,
+//
+//   M q̈ = f_ext(t) − f_bearings(q, q̇) − f_mesh(q, q̇),
+//
+// every member (sun, ring, carrier, each planet) with x [m], y [m], θ [rad] where it is not held.
+// The model integrates deviations d from the rigid kinematics, q = q_ref(t) + d, so that absolute
+// tolerances (1e-10 m, 1e-9 rad) mean something: with the carrier turned at ω_c, the sun's
+// reference turns at ω_s = (1 + z_r/z_s) ω_c, each planet's at (1 − z_r/z_p) ω_c, and a planet's
+// reference centre is its pin, carrier centre + R(φ_c)(r_c e(ψ_i) + pin error).
+//
+// Mesh forces, at every evaluation: the contact search at the current poses, the FE compliance and
+// local terms of the stage model, and the contact problem with the positions given (F ≥ 0, no
+// equalities), warm-started from the last accepted step. Force j acts on body B along +n_j and on
+// A along −n_j at the contact point, with the lever arms of the search (tip-round contacts off the
+// line of action included). In generalised coordinates f_mesh = G F with G_kj = ∂δ_j/∂q_k.
+//
+// Mesh damping (per active contact, along its normal):
+//   F_j,total = max(0, F_j + c_j δ̇_j),  δ̇_j = n_j·(v_A(p_j) − v_B(p_j)),
+//   c_j = c_m F_j / Σ_{k∈mesh} F_k  (the mesh's coefficient shared in proportion to the load, so a
+//   pair entering contact enters with zero damping),
+//   c_m = 2 ζ √(k_m m_eq),  m_eq = J_A J_B / (J_A r_bB² + J_B r_bA²)  (or c_m given),
+// with k_m the mesh's mean stiffness. No Rayleigh damping of the whole system.
+//
+// Friction (Coulomb along the tooth surface, friction.hpp): the force on B is μ_s F_j,total t_j
+// and on A −μ_s F_j,total t_j, t_j ⊥ n_j oriented so that the entrainment velocity is ≥ 0; its
+// moments about each gear's rotation centre are the exact cross products (for involute contacts
+// the lever is the profile's curvature radius). Friction off evaluates no friction code.
+//
+// Bearings (linear, per axis, isotropic in the plane):
+//   sun (fixed, floating, elastic k_s, c_s), ring (fixed, or elastic k_r, c_r and torsional
+//   k_rt, c_rt), planet pins (rigid: the planet's centre is its pin; elastic: k_p, c_p between
+//   centre and pin), carrier (turned at a prescribed speed, or free in rotation carrying the output
+//   torque T_c = −T_s (z_s + z_r)/z_s with its inertia plus a load inertia; translation held).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "epicycle/dynamics/friction.hpp"
+#include "epicycle/dynamics/modes.hpp"
+#include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/scene.hpp"
+#include "epicycle/transmission/stage_model.hpp"
+
+namespace epicycle::dynamics {
+
+/// A coordinate of the motion (a deviation from the rigid kinematics).
+struct MotionDof {
+  enum Member { kSun, kRing, kCarrier, kPlanet } member = kSun;
+  enum Axis { kX, kY, kRotation } axis = kRotation;
+  int planet = 0;
+  std::string Label() const;  ///< with its unit: "planet2 x [m]"
+};
+
+/// Settings of the dynamic model with their units (from the scene's [supports], [dynamics] and
+/// [lubricant] tables: SettingsFromScene; a command line may override them).
+struct DynamicSettings {
+  double sun_speed = 0;  ///< |ω_s| [rad/s], > 0; the sun turns the way its input torque drives it
+  bool carrier_free = false;          ///< false: carrier turned at ω_s z_s/(z_s + z_r)
+  double carrier_load_inertia = 0;    ///< added to the carrier's inertia when free [kg·m²]
+  double mesh_damping_ratio = 0.05;   ///< ζ [-], in [0, 1]
+  double mesh_damping = 0;            ///< c_m [N·s/m]; > 0 replaces ζ
+  double sun_bearing_damping = 0;     ///< c_s [N·s/m] (elastic sun)
+  double planet_bearing_damping = 0;  ///< c_p [N·s/m] (elastic pins)
+  bool ring_elastic = false;
+  double ring_stiffness = 0;            ///< k_r [N/m]
+  double ring_damping = 0;              ///< c_r [N·s/m]
+  double ring_torsional_stiffness = 0;  ///< k_rt [N·m/rad]
+  double ring_torsional_damping = 0;    ///< c_rt [N·m·s/rad]
+  FrictionOptions friction;
+  /// @throws std::invalid_argument naming the field, its value and the rule.
+  void Validate() const;
+};
+
+/// The scene's dynamic settings. @throws std::invalid_argument for an unknown friction law.
+DynamicSettings SettingsFromScene(const transmission::Scene& scene);
+
+/// What one evaluation of the right-hand side computed (also the outputs of a step).
+struct Evaluation {
+  bool ok = false;                      ///< the contact solve converged
+  std::string message;                  ///< why not
+  transmission::ContactTerms terms;     ///< potential contacts, C, δ0, local terms at the poses
+  Eigen::VectorXd force;                ///< elastic contact forces F [N] (the contact problem's)
+  Eigen::VectorXd total_force;          ///< F + damping, clipped at 0 [N]
+  Eigen::VectorXd friction;             ///< friction force magnitude with sign μ_s F_total [N]
+  Eigen::VectorXd overlap_rate;         ///< δ̇ [m/s]
+  Eigen::VectorXd acceleration;         ///< d̈ per DOF [m/s²] or [rad/s²]
+  Eigen::VectorXd generalised_force;    ///< Q per DOF (mesh + bearings + external) [N] or [N·m]
+  std::vector<double> sun_mesh_torque;  ///< moment on the sun of each planet's mesh [N·m]
+  Eigen::Vector2d sun_mesh_force = Eigen::Vector2d::Zero();  ///< net mesh force on the sun [N]
+  std::vector<Eigen::Vector2d> planet_bearing_force;         ///< force of the pin on planet i [N]
+  Eigen::Vector2d sun_bearing_force = Eigen::Vector2d::Zero();  ///< on the sun [N]
+  geometry::StagePoses poses;
+  double external_power = 0;    ///< power of the input torque and of the driven carrier [W]
+  double dissipated_power = 0;  ///< friction + mesh damping + bearing damping [W], ≥ 0
+  double friction_power = 0;    ///< friction alone [W], ≥ 0
+  double kinetic_energy = 0;    ///< [J]
+  double elastic_energy = 0;    ///< contacts ½FᵀCF + Σ[F u(F) − ∫u] plus bearings [J]
+  solvers::ContactReport report;
+};
+
+class DynamicModel {
+ public:
+  /// Keeps a reference to `model` (it must outlive this). The scene gives masses, inertias and
+  /// the input torque.
+  /// @throws std::invalid_argument naming the key for a free member without mass or inertia, a
+  ///         bad setting, or a support the model cannot represent.
+  DynamicModel(const transmission::StageModel& model, const transmission::Scene& scene,
+               const DynamicSettings& settings);
+
+  const std::vector<MotionDof>& dofs() const { return dofs_; }
+  int size() const { return static_cast<int>(dofs_.size()); }
+  const Eigen::VectorXd& mass() const { return mass_; }  ///< per DOF [kg] or [kg·m²]
+  const transmission::StageModel& stage_model() const { return model_; }
+  const DynamicSettings& settings() const { return settings_; }
+  double sun_torque() const { return sun_torque_; }        ///< T_s [N·m]
+  double carrier_speed() const { return carrier_speed_; }  ///< ω_c [rad/s] (signed)
+  double sun_speed() const { return carrier_speed_ * model_.stage().sun_ratio(); }  ///< ω_s
+  double carrier_torque() const { return carrier_torque_; }  ///< output load T_c [N·m] if free
+  /// The mesh damping coefficient c_m of the sun meshes and of the ring meshes [N·s/m].
+  double sun_mesh_damping() const { return damping_sun_; }
+  double ring_mesh_damping() const { return damping_ring_; }
+  /// Mean mesh stiffness used for c_m and for the modes [N/m]; set by SetMeshStiffness.
+  double sun_mesh_stiffness() const { return k_sun_; }
+  double ring_mesh_stiffness() const { return k_ring_; }
+  /// Sets the mean mesh stiffnesses (e.g. from transmission::ComputeMeshStiffness) and so c_m.
+  void SetMeshStiffness(double sun_mesh, double ring_mesh);
+
+  /// Carrier angle of the reference motion at time t [rad]: φ_0 + ω_c t.
+  double CarrierAngle(double t) const { return start_angle_ + carrier_speed_ * t; }
+  void SetStartAngle(double carrier_angle) { start_angle_ = carrier_angle; }
+
+  /// The poses at time t with deviations d.
+  geometry::StagePoses Poses(double t, const Eigen::VectorXd& d) const;
+
+  /// One evaluation: contact search, compliance, contact solve (warm-started from `warm`, forces
+  /// matched by contact label), damping, friction, bearings → accelerations. A failed contact
+  /// solve gives ok = false (recoverable: the integrator retries with a smaller step).
+  void Evaluate(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                solvers::ContactSolver& solver, const solvers::ContactOptions& contact,
+                const Evaluation* warm, Evaluation* out) const;
+
+  /// ∂d̈/∂d and ∂d̈/∂ḋ at an evaluation: the contact part from the contact solution's sensitivity,
+  /// −M⁻¹ G_A (C_AA + diag u'_local(F_A))⁻¹ G_Aᵀ and −M⁻¹ G diag(c) Gᵀ (frozen contact geometry),
+  /// the bearing part by finite differences of the (cheap) bearing forces.
+  void Jacobian(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v, const Evaluation& at,
+                Eigen::MatrixXd* dd, Eigen::MatrixXd* dv) const;
+
+  /// The initial deviations: the quasi-static solution of the stage model at carrier angle
+  /// CarrierAngle(0) (its rotations and translations), zero deviation velocities.
+  /// @throws std::runtime_error if that quasi-static solve fails.
+  Eigen::VectorXd QuasiStaticStart(const solvers::ContactOptions& contact,
+                                   solvers::Backend backend) const;
+
+  /// Linearised mass and stiffness about the reference configuration at carrier angle φ: mean
+  /// mesh stiffness along each mesh's line of action (k_m g gᵀ, g the involute contact's
+  /// sensitivity), bearings; M diagonal.
+  void Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::MatrixXd* k) const;
+
+  /// The members and their DOF indices, for SolveModes (sun, ring, carrier central; planets).
+  std::vector<MemberDofs> ModeLayout() const;
+
+  /// Index of a DOF in dofs(), or −1.
+  int Find(MotionDof::Member member, MotionDof::Axis axis, int planet = 0) const;
+
+ private:
+  struct BodyMotion {  // velocity state of a gear body
+    Eigen::Vector2d centre_velocity = Eigen::Vector2d::Zero();
+    double angular_velocity = 0;
+  };
+  void BearingForces(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                     Eigen::VectorXd* q, Evaluation* out) const;
+  Eigen::Vector2d PinReference(int planet, double t) const;  // pin position, nominal carrier
+  Eigen::Vector2d Pin(int planet, double t, const Eigen::VectorXd& d) const;
+  Eigen::Vector2d PinVelocity(int planet, double t, const Eigen::VectorXd& d,
+                              const Eigen::VectorXd& v) const;
+  std::vector<BodyMotion> BodyVelocities(double t, const Eigen::VectorXd& d,
+                                         const Eigen::VectorXd& v) const;
+  double ReferenceVelocity(int k, double t) const;
+
+  const transmission::StageModel& model_;
+  DynamicSettings settings_;
+  std::vector<MotionDof> dofs_;
+  std::vector<int> stage_dof_;  // per DOF: index into stage_dofs_, or −1 (carrier)
+  std::vector<transmission::StageDof> stage_dofs_;
+  Eigen::VectorXd mass_;
+  transmission::Inertia sun_, planet_, ring_, carrier_;
+  double sun_torque_ = 0, carrier_speed_ = 0, carrier_torque_ = 0, start_angle_ = 0;
+  double k_sun_ = 0, k_ring_ = 0, damping_sun_ = 0, damping_ring_ = 0;
+  double contact_modulus_ = 0;
+  std::vector<Eigen::Vector2d> pin0_;  // pin positions at carrier angle 0 [m]
+};
+
+/// The mean mesh stiffness [N/m] of the stage's sun–planet and planet–ring meshes (planet 1) at
+/// the scene's load, from the mesh-stiffness driver (transmission::ComputeMeshStiffness) over
+/// `positions` samples of a mesh cycle: {sun mesh, ring mesh}.
+/// @throws std::runtime_error if every sample of a mesh fails.
+std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
+                                        const geometry::Stage& stage,
+                                        const transmission::FeComplianceOptions& fe,
+                                        int positions = 24);
+
+}  // namespace epicycle::dynamics

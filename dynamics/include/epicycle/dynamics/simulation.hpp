@@ -1,0 +1,101 @@
+// Time integration of the dynamic model (docs/model.md §7) behind one options struct: CVODE BDF
+// with a dense linear solver and the Jacobian from the contact solution's sensitivity (the
+// workhorse: the low-speed limit is stiff), or ARKODE's explicit Dormand–Prince 5(4) method as the
+// second opinion. The state is y = [d, ḋ, W_ext, W_diss]: the deviations from the rigid kinematics,
+// their rates, and the accumulated external work and dissipated energy [J] (for the energy
+// balance E(t) − E(0) = W_ext − W_diss, E kinetic plus stored elastic energy).
+//
+// A contact solve that fails inside the right-hand side is recoverable: CVODE retries with a
+// smaller step (return > 0); ERKStep treats any non-zero return as fatal, so the explicit driver
+// restarts from the last output with a ten times smaller first step, at most 8 times in a row.
+// Every failure is counted. Outputs are produced at given times from the integrator's solution
+// there (CVODE's and ERKStep's NORMAL mode), each handed to the caller as soon as it is computed.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "epicycle/dynamics/dynamic_model.hpp"
+
+namespace epicycle::dynamics {
+
+enum class Integrator {
+  kCvodeBdf,   ///< "cvode-bdf": variable-order BDF, dense linear solver
+  kArkodeErk,  ///< "arkode-erk": explicit Dormand–Prince 5(4), adaptive
+};
+std::string IntegratorName(Integrator integrator);
+/// @throws std::invalid_argument naming the value and the names allowed.
+Integrator IntegratorFromName(const std::string& name);
+
+struct SimulationOptions {
+  Integrator integrator = Integrator::kCvodeBdf;
+  double rtol = 1e-6;          ///< relative tolerance [-], in (0, 0.1]
+  double atol_length = 1e-10;  ///< absolute tolerance on translations [m]
+  double atol_angle = 1e-9;    ///< absolute tolerance on rotations [rad]
+  /// Absolute tolerances of the rates: the position tolerance times this [1/s] (≈ the highest
+  /// frequency of interest, rad/s).
+  double rate_scale = 1e4;
+  double atol_energy = 1e-6;  ///< absolute tolerance of the accumulated works [J]
+  /// CVODE: the Jacobian from the contact sensitivity (true) or CVODE's difference quotients.
+  bool analytic_jacobian = true;
+  /// CVODE: largest BDF order (1..5). Orders above 2 are not A-stable: lightly damped stiff modes
+  /// (mesh modes of kHz at a mesh frequency of Hz) then cap the step unless the order drops.
+  int max_order = 5;
+  /// CVODE's BDF stability-limit detection (drops the order when the step nears the stability
+  /// boundary of an oscillatory mode).
+  bool stability_limit_detection = true;
+  long max_steps = 2000000;  ///< per output interval [-]
+  double max_step = 0;       ///< largest step [s]; 0: no limit
+  solvers::Backend backend = solvers::Backend::kActiveSetNewton;
+  solvers::ContactOptions contact;  ///< the contact solve inside every evaluation
+  void Validate() const;            ///< @throws std::invalid_argument naming the field
+};
+
+/// One output step.
+struct DynamicSample {
+  double time = 0;                   ///< t [s]
+  double carrier_angle = 0;          ///< φ_c of the reference motion [rad]
+  Eigen::VectorXd d, v;              ///< deviations [m, rad] and their rates [m/s, rad/s], per DOF
+  std::vector<double> load_sharing;  ///< LSR_i = T_mesh(P_i–S)/T_input (eq. 4) [-], per planet
+  double transmission_error = 0;     ///< dynamic TE at the sun: θ_s − θ_s,kinematic [rad]
+  Eigen::Vector2d sun_centre = Eigen::Vector2d::Zero();  ///< from nominal [m] (orbit)
+  double sun_acceleration = 0;  ///< θ̈_s from the integrator's interpolant [rad/s²]
+  double external_work = 0;     ///< W_ext since t = 0 [J]
+  double dissipated_work = 0;   ///< W_diss since t = 0 [J]
+  Evaluation evaluation;        ///< forces, energies, contacts at this step
+};
+
+struct SimulationStats {
+  long steps = 0;                 ///< accepted steps
+  long rhs_evaluations = 0;       ///< right-hand sides (each with a contact solve)
+  long jacobian_evaluations = 0;  ///< analytic Jacobians (CVODE)
+  long fd_rhs_evaluations = 0;    ///< right-hand sides spent on finite-difference Jacobians
+  long failed_solves = 0;         ///< contact solves that failed (recoverable retries)
+  long error_test_failures = 0;
+  long nonlinear_failures = 0;  ///< CVODE Newton convergence failures
+  long restarts = 0;            ///< explicit method: restarts after a failed evaluation
+  double rhs_seconds = 0;       ///< CPU in evaluations [s]
+  double jacobian_seconds = 0;  ///< in the analytic Jacobian [s]
+  double wall_seconds = 0;      ///< the whole run [s]
+};
+
+struct SimulationResult {
+  bool completed = false;  ///< every output time reached
+  std::string message;     ///< where and why a run stopped early
+  std::vector<DynamicSample> samples;
+  SimulationStats stats;
+};
+
+/// Integrates from t = 0 (state d0, ḋ0) through the increasing output times (> 0). Each output
+/// goes to `on_sample` as soon as it is computed; a run that fails midway returns what it has,
+/// with completed = false and the time and reason in `message`.
+/// @throws std::invalid_argument for bad options or sizes.
+SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& options,
+                          const Eigen::VectorXd& d0, const Eigen::VectorXd& v0,
+                          const std::vector<double>& output_times,
+                          const std::function<void(const DynamicSample&)>& on_sample = {});
+
+}  // namespace epicycle::dynamics

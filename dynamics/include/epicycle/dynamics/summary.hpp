@@ -1,0 +1,25 @@
+// Domain results of a dynamic run, computed here (not in app/) so that studies and tests share
+// them: load-sharing extremes and K_γ, transmission-error peak to peak, the sun's orbit.
+#pragma once
+
+#include <vector>
+
+#include "epicycle/dynamics/simulation.hpp"
+
+namespace epicycle::dynamics {
+
+struct DynamicSummary {
+  int samples = 0;                                 ///< output steps summarised
+  std::vector<double> lsr_min, lsr_max, lsr_mean;  ///< per planet [-]
+  double k_gamma = 0;                              ///< max over steps of max_i n·LSR_i [-]
+  double te_min = 0, te_max = 0;                   ///< dynamic transmission error [rad]
+  double te_peak_to_peak() const { return te_max - te_min; }
+  double orbit_radius = 0;       ///< largest |sun centre − nominal| [m]
+  double orbit_mean_radius = 0;  ///< mean |sun centre − nominal| [m]
+  double max_pair_force = 0;     ///< largest tooth-pair normal force (with damping) [N]
+};
+
+/// Summary of the samples (an empty list gives zeros, never ±∞).
+DynamicSummary Summarise(const std::vector<DynamicSample>& samples);
+
+}  // namespace epicycle::dynamics

@@ -1,0 +1,691 @@
+#include "epicycle/dynamics/dynamic_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/solvers/local_term.hpp"
+#include "epicycle/transmission/mesh_stiffness.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
+
+namespace epicycle::dynamics {
+
+using transmission::kRingBody;
+using transmission::kSunBody;
+using transmission::StageContact;
+using transmission::StageDof;
+using Vec2 = Eigen::Vector2d;
+
+namespace {
+
+double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+Vec2 Perp(const Vec2& a) { return {-a.y(), a.x()}; }  // ẑ × a
+
+std::string Num(double v) { return std::to_string(v); }
+
+}  // namespace
+
+std::string MotionDof::Label() const {
+  const std::string name = member == kSun       ? "sun"
+                           : member == kRing    ? "ring"
+                           : member == kCarrier ? "carrier"
+                                                : "planet" + std::to_string(planet + 1);
+  return name + (axis == kX ? " x [m]" : axis == kY ? " y [m]" : " rotation [rad]");
+}
+
+void DynamicSettings::Validate() const {
+  auto fail = [](const std::string& field, double v, const std::string& rule) {
+    throw std::invalid_argument("dynamics: " + field + " = " + Num(v) + ": " + rule);
+  };
+  if (!std::isfinite(sun_speed) || !(sun_speed > 0))
+    fail("sun_speed_rpm", sun_speed * 30.0 / 3.14159265358979323846,
+         "must be > 0 (the sun and the carrier are driven at a speed)");
+  auto non_negative = [&](const std::string& field, double v) {
+    if (!std::isfinite(v) || v < 0) fail(field, v, "must be finite and >= 0");
+  };
+  non_negative("carrier_load_inertia_kgm2", carrier_load_inertia);
+  non_negative("mesh_damping_Ns_per_m", mesh_damping);
+  non_negative("sun_bearing_damping_Ns_per_m", sun_bearing_damping);
+  non_negative("planet_bearing_damping_Ns_per_m", planet_bearing_damping);
+  non_negative("ring_damping_Ns_per_m", ring_damping);
+  non_negative("ring_torsional_damping_Nms_per_rad", ring_torsional_damping);
+  if (!(mesh_damping_ratio >= 0 && mesh_damping_ratio <= 1))
+    fail("mesh_damping_ratio", mesh_damping_ratio, "must lie in [0, 1]");
+  if (ring_elastic) {
+    if (!(ring_stiffness > 0) || !std::isfinite(ring_stiffness))
+      fail("ring_stiffness_N_per_um", ring_stiffness * 1e-6, "an elastic ring needs it > 0");
+    if (!(ring_torsional_stiffness > 0) || !std::isfinite(ring_torsional_stiffness))
+      fail("ring_torsional_stiffness_Nm_per_rad", ring_torsional_stiffness,
+           "an elastic ring needs it > 0");
+  }
+  friction.Validate();
+}
+
+DynamicSettings SettingsFromScene(const transmission::Scene& scene) {
+  const transmission::DynamicsScene& d = scene.dynamics;
+  DynamicSettings s;
+  s.sun_speed = d.sun_speed;
+  s.carrier_free = d.carrier == "torque";
+  s.carrier_load_inertia = d.carrier_load_inertia;
+  s.mesh_damping_ratio = d.mesh_damping_ratio;
+  s.mesh_damping = d.mesh_damping;
+  s.sun_bearing_damping = d.sun_bearing_damping;
+  s.planet_bearing_damping = d.planet_bearing_damping;
+  s.ring_elastic = d.ring == "elastic";
+  s.ring_stiffness = d.ring_stiffness;
+  s.ring_damping = d.ring_damping;
+  s.ring_torsional_stiffness = d.ring_torsional_stiffness;
+  s.ring_torsional_damping = d.ring_torsional_damping;
+  s.friction.law = FrictionLawFromName(d.friction);
+  s.friction.coefficient = d.friction_coefficient;
+  s.friction.lubricant.dynamic_viscosity = d.lubricant_viscosity;
+  s.friction.lubricant.composite_roughness = d.roughness;
+  return s;
+}
+
+DynamicModel::DynamicModel(const transmission::StageModel& model, const transmission::Scene& scene,
+                           const DynamicSettings& settings)
+    : model_(model),
+      settings_(settings),
+      sun_(scene.sun),
+      planet_(scene.planet),
+      ring_(scene.ring),
+      carrier_(scene.carrier),
+      sun_torque_(scene.sun_torque) {
+  settings_.Validate();
+  const geometry::Stage& stage = model_.stage();
+  const transmission::StageSetup& setup = model_.setup();
+  auto need = [&](const std::string& key, double value, const std::string& why) {
+    if (!(value > 0) || !std::isfinite(value))
+      throw std::invalid_argument(scene.source + ": " + key + " = " + Num(value) + ": " + why +
+                                  " needs it > 0 in the dynamic model");
+  };
+  if (sun_torque_ == 0) throw std::invalid_argument("[load] sun_torque_Nm = 0: must be non-zero");
+  // The sun turns the way its input torque drives it; ω_c = ω_s z_s/(z_s + z_r).
+  carrier_speed_ = (sun_torque_ > 0 ? 1.0 : -1.0) * settings_.sun_speed / stage.sun_ratio();
+  carrier_torque_ = -sun_torque_ * stage.sun_ratio();
+  auto add = [&](MotionDof::Member member, MotionDof::Axis axis, int planet, double mass,
+                 StageDof::Kind kind, bool gear) {
+    dofs_.push_back({member, axis, planet});
+    mass_.conservativeResize(mass_.size() + 1);
+    mass_(mass_.size() - 1) = mass;
+    if (gear) {
+      stage_dof_.push_back(static_cast<int>(stage_dofs_.size()));
+      stage_dofs_.push_back({kind, planet});
+    } else {
+      stage_dof_.push_back(-1);
+    }
+  };
+  need("[sun] inertia_kgm2", sun_.inertia, "the sun's rotation (driven by its torque)");
+  add(MotionDof::kSun, MotionDof::kRotation, 0, sun_.inertia, StageDof::kSunRotation, true);
+  if (setup.sun != transmission::SunSupport::kFixed) {
+    need("[sun] mass_kg", sun_.mass, "a floating or elastic sun");
+    add(MotionDof::kSun, MotionDof::kX, 0, sun_.mass, StageDof::kSunX, true);
+    add(MotionDof::kSun, MotionDof::kY, 0, sun_.mass, StageDof::kSunY, true);
+  }
+  if (settings_.ring_elastic) {
+    need("[ring] mass_kg", ring_.mass, "an elastic ring");
+    need("[ring] inertia_kgm2", ring_.inertia, "an elastic ring");
+    add(MotionDof::kRing, MotionDof::kRotation, 0, ring_.inertia, StageDof::kRingRotation, true);
+    add(MotionDof::kRing, MotionDof::kX, 0, ring_.mass, StageDof::kRingX, true);
+    add(MotionDof::kRing, MotionDof::kY, 0, ring_.mass, StageDof::kRingY, true);
+  }
+  if (settings_.carrier_free) {
+    need("[carrier] inertia_kgm2", carrier_.inertia + settings_.carrier_load_inertia,
+         "a carrier free in rotation");
+    if (!(setup.planet_stiffness > 0))
+      throw std::invalid_argument(
+          "[dynamics] carrier = \"torque\": a free carrier needs elastic planet pins ([supports] "
+          "planet_stiffness_N_per_um > 0); rigid pins tie the planets' centres to the carrier");
+    add(MotionDof::kCarrier, MotionDof::kRotation, 0,
+        carrier_.inertia + settings_.carrier_load_inertia, StageDof::kSunRotation, false);
+  }
+  need("[planet] inertia_kgm2", planet_.inertia, "each planet's rotation");
+  for (int i = 0; i < stage.planets(); ++i) {
+    add(MotionDof::kPlanet, MotionDof::kRotation, i, planet_.inertia, StageDof::kPlanetRotation,
+        true);
+    if (setup.planet_stiffness > 0) {
+      need("[planet] mass_kg", planet_.mass, "elastic planet pins");
+      add(MotionDof::kPlanet, MotionDof::kX, i, planet_.mass, StageDof::kPlanetX, true);
+      add(MotionDof::kPlanet, MotionDof::kY, i, planet_.mass, StageDof::kPlanetY, true);
+    }
+  }
+  const transmission::Material& mat = model_.material();
+  const double k = (1 - mat.poisson_ratio * mat.poisson_ratio) / mat.youngs_modulus;
+  contact_modulus_ = 1.0 / (2 * k);
+  const geometry::StagePoses p0 = stage.Poses(0.0);
+  for (int i = 0; i < stage.planets(); ++i) pin0_.push_back(p0.planets[i].rotation_centre);
+}
+
+int DynamicModel::Find(MotionDof::Member member, MotionDof::Axis axis, int planet) const {
+  for (int k = 0; k < size(); ++k)
+    if (dofs_[k].member == member && dofs_[k].axis == axis &&
+        (member != MotionDof::kPlanet || dofs_[k].planet == planet))
+      return k;
+  return -1;
+}
+
+std::vector<MemberDofs> DynamicModel::ModeLayout() const {
+  std::vector<MemberDofs> layout;
+  auto member = [&](const std::string& name, bool central, MotionDof::Member m, int planet) {
+    layout.push_back({name, central, Find(m, MotionDof::kX, planet), Find(m, MotionDof::kY, planet),
+                      Find(m, MotionDof::kRotation, planet)});
+  };
+  member("sun", true, MotionDof::kSun, 0);
+  member("ring", true, MotionDof::kRing, 0);
+  member("carrier", true, MotionDof::kCarrier, 0);
+  for (int i = 0; i < model_.planets(); ++i)
+    member("planet " + std::to_string(i + 1), false, MotionDof::kPlanet, i);
+  return layout;
+}
+
+void DynamicModel::SetMeshStiffness(double sun_mesh, double ring_mesh) {
+  k_sun_ = sun_mesh;
+  k_ring_ = ring_mesh;
+  const geometry::Stage& st = model_.stage();
+  auto coefficient = [&](double k, double ja, double rba, double jb, double rbb) {
+    if (settings_.mesh_damping > 0) return settings_.mesh_damping;
+    // m_eq = J_A J_B/(J_A r_bB² + J_B r_bA²); a held member (ring) counts as infinite inertia.
+    const double m_eq =
+        std::isinf(jb) ? ja / (rba * rba) : ja * jb / (ja * rbb * rbb + jb * rba * rba);
+    return 2.0 * settings_.mesh_damping_ratio * std::sqrt(std::max(k, 0.0) * m_eq);
+  };
+  const double j_ring = settings_.ring_elastic ? ring_.inertia : INFINITY;
+  damping_sun_ = coefficient(k_sun_, sun_.inertia, st.sun().base_radius(), planet_.inertia,
+                             st.planet(0).base_radius());
+  damping_ring_ = coefficient(k_ring_, planet_.inertia, st.planet(0).base_radius(), j_ring,
+                              st.ring().base_radius());
+}
+
+Vec2 DynamicModel::PinReference(int planet, double t) const {
+  return geometry::Rotate(pin0_[planet], CarrierAngle(t));
+}
+
+Vec2 DynamicModel::Pin(int planet, double t, const Eigen::VectorXd& d) const {
+  const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
+  const double turn = kc >= 0 ? d(kc) : 0.0;
+  return geometry::Rotate(pin0_[planet], CarrierAngle(t) + turn);
+}
+
+Vec2 DynamicModel::PinVelocity(int planet, double t, const Eigen::VectorXd& d,
+                               const Eigen::VectorXd& v) const {
+  const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
+  const double omega = carrier_speed_ + (kc >= 0 ? v(kc) : 0.0);
+  return omega * Perp(Pin(planet, t, d));
+}
+
+double DynamicModel::ReferenceVelocity(int k, double t) const {
+  const MotionDof& f = dofs_[k];
+  const geometry::Stage& st = model_.stage();
+  switch (f.member) {
+    case MotionDof::kSun:
+      return f.axis == MotionDof::kRotation ? carrier_speed_ * st.sun_ratio() : 0.0;
+    case MotionDof::kRing:
+      return 0.0;
+    case MotionDof::kCarrier:
+      return carrier_speed_;
+    case MotionDof::kPlanet: {
+      if (f.axis == MotionDof::kRotation) return carrier_speed_ * st.planet_ratio();
+      const Vec2 vp = carrier_speed_ * Perp(PinReference(f.planet, t));
+      return f.axis == MotionDof::kX ? vp.x() : vp.y();
+    }
+  }
+  return 0.0;
+}
+
+geometry::StagePoses DynamicModel::Poses(double t, const Eigen::VectorXd& d) const {
+  const geometry::StagePoses ref = model_.KinematicPoses(CarrierAngle(t));
+  Eigen::VectorXd q(static_cast<Eigen::Index>(stage_dofs_.size()));
+  for (int k = 0; k < size(); ++k)
+    if (stage_dof_[k] >= 0) q(stage_dof_[k]) = d(k);
+  return transmission::StageModel::Displace(ref, stage_dofs_, q);
+}
+
+std::vector<DynamicModel::BodyMotion> DynamicModel::BodyVelocities(double t,
+                                                                   const Eigen::VectorXd& d,
+                                                                   const Eigen::VectorXd& v) const {
+  const int n = model_.planets();
+  std::vector<BodyMotion> b(2 + n);
+  const geometry::Stage& st = model_.stage();
+  b[kSunBody].angular_velocity = carrier_speed_ * st.sun_ratio();
+  for (int i = 0; i < n; ++i) {
+    b[transmission::PlanetBody(i)].angular_velocity = carrier_speed_ * st.planet_ratio();
+    b[transmission::PlanetBody(i)].centre_velocity = PinVelocity(i, t, d, v);
+  }
+  for (int k = 0; k < size(); ++k) {
+    const MotionDof& f = dofs_[k];
+    const int body = f.member == MotionDof::kSun      ? kSunBody
+                     : f.member == MotionDof::kRing   ? kRingBody
+                     : f.member == MotionDof::kPlanet ? transmission::PlanetBody(f.planet)
+                                                      : -1;
+    if (body < 0) continue;
+    BodyMotion& m = b[body];
+    if (f.axis == MotionDof::kRotation) m.angular_velocity += v(k);
+    // An elastic pin: the centre's velocity is the reference pin's plus the deviation's.
+    if (f.axis != MotionDof::kRotation && f.member == MotionDof::kPlanet && f.axis == MotionDof::kX)
+      m.centre_velocity = carrier_speed_ * Perp(PinReference(f.planet, t));
+    if (f.axis == MotionDof::kX) m.centre_velocity.x() += v(k);
+    if (f.axis == MotionDof::kY) m.centre_velocity.y() += v(k);
+  }
+  return b;
+}
+
+void DynamicModel::BearingForces(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                                 Eigen::VectorXd* q, Evaluation* out) const {
+  const transmission::StageSetup& setup = model_.setup();
+  const int ks = Find(MotionDof::kSun, MotionDof::kX);
+  if (ks >= 0 && setup.sun == transmission::SunSupport::kElastic) {
+    for (int a = 0; a < 2; ++a) {
+      const double f = -setup.sun_stiffness * d(ks + a) - settings_.sun_bearing_damping * v(ks + a);
+      (*q)(ks + a) += f;
+      if (out) out->sun_bearing_force(a) = f;
+    }
+  }
+  const int kr = Find(MotionDof::kRing, MotionDof::kRotation);
+  if (kr >= 0) {
+    (*q)(kr) -=
+        settings_.ring_torsional_stiffness * d(kr) + settings_.ring_torsional_damping * v(kr);
+    for (int a = 1; a <= 2; ++a)
+      (*q)(kr + a) -= settings_.ring_stiffness * d(kr + a) + settings_.ring_damping * v(kr + a);
+  }
+  const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
+  for (int i = 0; i < model_.planets(); ++i) {
+    const int kx = Find(MotionDof::kPlanet, MotionDof::kX, i);
+    if (kx < 0) continue;
+    // Elastic pin: spring and damper between the planet's centre and its pin.
+    const Vec2 centre = PinReference(i, t) + Vec2(d(kx), d(kx + 1));
+    const Vec2 centre_velocity = carrier_speed_ * Perp(PinReference(i, t)) + Vec2(v(kx), v(kx + 1));
+    const Vec2 pin = Pin(i, t, d);
+    const Vec2 f = -setup.planet_stiffness * (centre - pin) -
+                   settings_.planet_bearing_damping * (centre_velocity - PinVelocity(i, t, d, v));
+    (*q)(kx) += f.x();
+    (*q)(kx + 1) += f.y();
+    if (kc >= 0) (*q)(kc) += Cross(pin, -f);  // the reaction on the carrier, about its centre
+    if (out) out->planet_bearing_force[i] = f;
+  }
+  // External loads: the input torque on the sun, the output torque on a free carrier.
+  (*q)(Find(MotionDof::kSun, MotionDof::kRotation)) += sun_torque_;
+  if (kc >= 0) (*q)(kc) += carrier_torque_;
+}
+
+void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                            solvers::ContactSolver& solver, const solvers::ContactOptions& contact,
+                            const Evaluation* warm, Evaluation* out) const {
+  Evaluation& e = *out;
+  const int nd = size();
+  const int np = model_.planets();
+  e.ok = false;
+  e.message.clear();
+  e.poses = Poses(t, d);
+  e.terms = model_.Terms(e.poses);
+  const transmission::ContactTerms& terms = e.terms;
+  const int n = terms.size();
+  e.force = Eigen::VectorXd::Zero(n);
+  e.report = {};
+  if (n > 0) {
+    solvers::ContactProblemData data;
+    data.compliance = terms.compliance;
+    data.overlap = terms.overlap;
+    data.local = terms.local;
+    data.equality_matrix.resize(0, n);
+    data.equality_rhs.resize(0);
+    const solvers::ContactProblem problem(std::move(data));
+    solvers::ContactOptions opt = contact;
+    solvers::ContactSolution solution;
+    if (warm != nullptr && warm->ok && warm->terms.size() > 0) {
+      // Forces of the same potential contacts (by label) from the last accepted step.
+      solution.force = Eigen::VectorXd::Zero(n);
+      int matched = 0;
+      for (int j = 0; j < n; ++j) {
+        const std::string label = terms.contacts[j].Label();
+        for (int i = 0; i < warm->terms.size(); ++i)
+          if (warm->terms.contacts[i].Label() == label) {
+            solution.force(j) = warm->force(i);
+            ++matched;
+            break;
+          }
+      }
+      opt.warm_start = matched > 0;
+      solution.multiplier.resize(0);
+    }
+    e.report = solver.Solve(problem, opt, &solution);
+    if (e.report.status != solvers::ContactStatus::kConverged) {
+      e.message =
+          "contact solve: " + solvers::StatusName(e.report.status) + " (" + e.report.message + ")";
+      return;
+    }
+    e.force = solution.force.cwiseMax(0.0);
+  }
+  e.ok = true;
+
+  // Velocities of the gear bodies, the overlap rates and the mesh damping.
+  const std::vector<BodyMotion> body = BodyVelocities(t, d, v);
+  auto body_pose = [&](int b) -> const geometry::GearPose& {
+    return b == kSunBody ? e.poses.sun : b == kRingBody ? e.poses.ring : e.poses.planets[b - 2];
+  };
+  auto material_velocity = [&](int b, const Vec2& p) {
+    return Vec2(body[b].centre_velocity +
+                body[b].angular_velocity * Perp(p - body_pose(b).rotation_centre));
+  };
+  e.overlap_rate.resize(n);
+  e.total_force = e.force;
+  e.friction = Eigen::VectorXd::Zero(n);
+  std::vector<double> mesh_load(2 * np, 0.0);
+  auto mesh_index = [](const StageContact& s) {
+    return 2 * s.planet + (s.mesh == geometry::MeshKind::kSunPlanet ? 0 : 1);
+  };
+  for (int j = 0; j < n; ++j) mesh_load[mesh_index(terms.contacts[j])] += e.force(j);
+  e.dissipated_power = 0;
+  e.friction_power = 0;
+  const bool friction = settings_.friction.law != FrictionLaw::kOff;
+  Eigen::VectorXd qf = Eigen::VectorXd::Zero(nd);  // generalised forces
+  std::vector<Vec2> body_force(2 + np, Vec2::Zero());
+  std::vector<double> body_moment(2 + np, 0.0);
+  e.sun_mesh_torque.assign(np, 0.0);
+  for (int j = 0; j < n; ++j) {
+    const StageContact& s = terms.contacts[j];
+    const geometry::PotentialContact& c = s.contact;
+    const Vec2 p = c.point;
+    const Vec2 va = material_velocity(s.body_a, p), vb = material_velocity(s.body_b, p);
+    e.overlap_rate(j) = c.normal.dot(va - vb);
+    if (!(e.force(j) > 0)) continue;
+    const double cm = s.mesh == geometry::MeshKind::kSunPlanet ? damping_sun_ : damping_ring_;
+    const double cj = cm * e.force(j) / mesh_load[mesh_index(s)];
+    e.total_force(j) = std::max(0.0, e.force(j) + cj * e.overlap_rate(j));
+    // Power of the non-elastic part of the normal force (damping, and the clip).
+    e.dissipated_power += (e.total_force(j) - e.force(j)) * e.overlap_rate(j);
+    Vec2 f = e.total_force(j) * c.normal;  // on B
+    if (friction && e.total_force(j) > 0) {
+      Vec2 tangent = Perp(c.normal);
+      // The contact point's own velocity along the surface: 0 on the line of action; a tip
+      // round's contact point stays at the round, moving with its centre.
+      Vec2 v_contact = Vec2::Zero();
+      if (c.kind == geometry::ContactKind::kTipRoundA) {
+        const double rt = model_.BodyGear(s.body_a).spec().tip_round_radius;
+        v_contact = material_velocity(s.body_a, c.point_a - rt * c.normal);
+      } else if (c.kind == geometry::ContactKind::kTipRoundB) {
+        const double rt = model_.BodyGear(s.body_b).spec().tip_round_radius;
+        v_contact = material_velocity(s.body_b, c.point_b + rt * c.normal);
+      } else {
+        v_contact = c.normal.dot(0.5 * (va + vb)) * c.normal;
+      }
+      double ua = (va - v_contact).dot(tangent), ub = (vb - v_contact).dot(tangent);
+      if (ua + ub < 0) {  // orient t so that the entrainment velocity is ≥ 0
+        tangent = -tangent;
+        ua = -ua;
+        ub = -ub;
+      }
+      FrictionContact fc;
+      fc.normal_force = e.total_force(j);
+      fc.velocity_a = ua;
+      fc.velocity_b = ub;
+      fc.face_width = std::min(model_.BodyGear(s.body_a).spec().face_width,
+                               model_.BodyGear(s.body_b).spec().face_width);
+      fc.reduced_radius = terms.local.empty()
+                              ? 1.0 / (1.0 / c.curvature_radius_a + 1.0 / c.curvature_radius_b)
+                              : terms.local[j].reduced_radius;
+      fc.contact_modulus = contact_modulus_;
+      const double mu = SignedFrictionCoefficient(settings_.friction, fc);
+      e.friction(j) = mu * e.total_force(j);
+      f += e.friction(j) * tangent;
+      const double p_friction = e.friction(j) * (ua - ub);  // μ_s F v_s ≥ 0
+      e.friction_power += p_friction;
+      e.dissipated_power += p_friction;
+    }
+    body_force[s.body_b] += f;
+    body_force[s.body_a] -= f;
+    body_moment[s.body_b] += Cross(p - body_pose(s.body_b).rotation_centre, f);
+    const double moment_a = Cross(p - body_pose(s.body_a).rotation_centre, -f);
+    body_moment[s.body_a] += moment_a;
+    if (s.body_a == kSunBody) e.sun_mesh_torque[s.planet] += moment_a;
+  }
+  for (int k = 0; k < nd; ++k) {
+    const MotionDof& f = dofs_[k];
+    const int b = f.member == MotionDof::kSun      ? kSunBody
+                  : f.member == MotionDof::kRing   ? kRingBody
+                  : f.member == MotionDof::kPlanet ? transmission::PlanetBody(f.planet)
+                                                   : -1;
+    if (b < 0) continue;
+    qf(k) += f.axis == MotionDof::kX   ? body_force[b].x()
+             : f.axis == MotionDof::kY ? body_force[b].y()
+                                       : body_moment[b];
+  }
+  e.sun_mesh_force = body_force[kSunBody];
+  e.planet_bearing_force.assign(np, Vec2::Zero());
+  e.sun_bearing_force.setZero();
+  BearingForces(t, d, v, &qf, &e);
+  e.generalised_force = qf;
+  e.acceleration = qf.cwiseQuotient(mass_);
+  // Elastic planet pins follow a reference that accelerates (the pin's circle).
+  const double w2 = carrier_speed_ * carrier_speed_;
+  for (int k = 0; k < nd; ++k) {
+    const MotionDof& f = dofs_[k];
+    if (f.member != MotionDof::kPlanet || f.axis == MotionDof::kRotation) continue;
+    const Vec2 a = -w2 * PinReference(f.planet, t);
+    e.acceleration(k) -= f.axis == MotionDof::kX ? a.x() : a.y();
+  }
+
+  // Powers and energies (the energy balance of docs/dynamic.md).
+  const geometry::Stage& st = model_.stage();
+  const int ksun = Find(MotionDof::kSun, MotionDof::kRotation);
+  const double omega_s = carrier_speed_ * st.sun_ratio() + v(ksun);
+  e.external_power = sun_torque_ * omega_s;
+  const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
+  double kinetic = 0.5 * sun_.inertia * omega_s * omega_s;
+  kinetic += 0.5 * carrier_.inertia * std::pow(carrier_speed_ + (kc >= 0 ? v(kc) : 0.0), 2);
+  if (kc >= 0) {
+    kinetic += 0.5 * settings_.carrier_load_inertia * std::pow(carrier_speed_ + v(kc), 2);
+    e.external_power += carrier_torque_ * (carrier_speed_ + v(kc));
+  }
+  kinetic += 0.5 * sun_.mass * body[kSunBody].centre_velocity.squaredNorm();
+  if (settings_.ring_elastic) {
+    kinetic += 0.5 * ring_.mass * body[kRingBody].centre_velocity.squaredNorm() +
+               0.5 * ring_.inertia * std::pow(body[kRingBody].angular_velocity, 2);
+  }
+  for (int i = 0; i < np; ++i) {
+    const BodyMotion& m = body[transmission::PlanetBody(i)];
+    kinetic += 0.5 * planet_.mass * m.centre_velocity.squaredNorm() +
+               0.5 * planet_.inertia * m.angular_velocity * m.angular_velocity;
+    const Vec2 vpin = PinVelocity(i, t, d, v);
+    if (Find(MotionDof::kPlanet, MotionDof::kX, i) < 0) {
+      // Rigid pin: the pin's force on the planet is what moves its centre around the circle.
+      e.planet_bearing_force[i] =
+          planet_.mass * (-w2 * PinReference(i, t)) - body_force[transmission::PlanetBody(i)];
+    }
+    // A carrier driven at its speed does work on the planets through their pins.
+    if (kc < 0) e.external_power += e.planet_bearing_force[i].dot(vpin);
+  }
+  e.kinetic_energy = kinetic;
+  double elastic = 0;
+  if (n > 0) {
+    elastic = 0.5 * e.force.dot(terms.compliance * e.force);
+    for (int j = 0; j < n && !terms.local.empty(); ++j) {
+      const double fj = e.force(j);
+      elastic += fj * solvers::LocalApproach(terms.local[j], fj) -
+                 solvers::LocalApproachIntegral(terms.local[j], fj);
+    }
+  }
+  const transmission::StageSetup& setup = model_.setup();
+  const int ks = Find(MotionDof::kSun, MotionDof::kX);
+  if (ks >= 0 && setup.sun == transmission::SunSupport::kElastic) {
+    elastic += 0.5 * setup.sun_stiffness * (d(ks) * d(ks) + d(ks + 1) * d(ks + 1));
+    e.dissipated_power += settings_.sun_bearing_damping * (v(ks) * v(ks) + v(ks + 1) * v(ks + 1));
+  }
+  const int kr = Find(MotionDof::kRing, MotionDof::kRotation);
+  if (kr >= 0) {
+    elastic += 0.5 * settings_.ring_torsional_stiffness * d(kr) * d(kr) +
+               0.5 * settings_.ring_stiffness * (d(kr + 1) * d(kr + 1) + d(kr + 2) * d(kr + 2));
+    e.dissipated_power += settings_.ring_torsional_damping * v(kr) * v(kr) +
+                          settings_.ring_damping * (v(kr + 1) * v(kr + 1) + v(kr + 2) * v(kr + 2));
+  }
+  for (int i = 0; i < np; ++i) {
+    const int kx = Find(MotionDof::kPlanet, MotionDof::kX, i);
+    if (kx < 0) continue;
+    const Vec2 defl = PinReference(i, t) + Vec2(d(kx), d(kx + 1)) - Pin(i, t, d);
+    const Vec2 rate = carrier_speed_ * Perp(PinReference(i, t)) + Vec2(v(kx), v(kx + 1)) -
+                      PinVelocity(i, t, d, v);
+    elastic += 0.5 * setup.planet_stiffness * defl.squaredNorm();
+    e.dissipated_power += settings_.planet_bearing_damping * rate.squaredNorm();
+  }
+  e.elastic_energy = elastic;
+}
+
+void DynamicModel::Jacobian(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                            const Evaluation& at, Eigen::MatrixXd* dd, Eigen::MatrixXd* dv) const {
+  const int nd = size();
+  dd->setZero(nd, nd);
+  dv->setZero(nd, nd);
+  const transmission::ContactTerms& terms = at.terms;
+  const int n = terms.size();
+  if (n > 0 && at.ok) {
+    const Eigen::MatrixXd gs = model_.Sensitivity(terms, stage_dofs_);
+    Eigen::MatrixXd g = Eigen::MatrixXd::Zero(nd, n);
+    for (int k = 0; k < nd; ++k)
+      if (stage_dof_[k] >= 0) g.row(k) = gs.row(stage_dof_[k]);
+    std::vector<int> active;
+    for (int j = 0; j < n; ++j)
+      if (at.force(j) > 0) active.push_back(j);
+    const int na = static_cast<int>(active.size());
+    if (na > 0) {
+      // ∂F_A/∂δ0_A = (C_AA + diag u'(F_A))⁻¹, δ0 changes by Gᵀ dq.
+      Eigen::MatrixXd caa(na, na);
+      Eigen::MatrixXd ga(nd, na);
+      Eigen::VectorXd c_damp(na);
+      std::vector<double> mesh_load(2 * model_.planets(), 0.0);
+      for (int j = 0; j < n; ++j) {
+        const StageContact& s = terms.contacts[j];
+        mesh_load[2 * s.planet + (s.mesh == geometry::MeshKind::kSunPlanet ? 0 : 1)] += at.force(j);
+      }
+      for (int a = 0; a < na; ++a) {
+        const int j = active[a];
+        ga.col(a) = g.col(j);
+        for (int b = 0; b < na; ++b) caa(a, b) = terms.compliance(j, active[b]);
+        if (!terms.local.empty())
+          caa(a, a) += solvers::LocalApproachDerivative(terms.local[j], at.force(j));
+        const StageContact& s = terms.contacts[j];
+        const double cm = s.mesh == geometry::MeshKind::kSunPlanet ? damping_sun_ : damping_ring_;
+        const int mi = 2 * s.planet + (s.mesh == geometry::MeshKind::kSunPlanet ? 0 : 1);
+        c_damp(a) = at.total_force(j) > 0 ? cm * at.force(j) / mesh_load[mi] : 0.0;
+      }
+      const Eigen::MatrixXd s_aa = caa.ldlt().solve(Eigen::MatrixXd::Identity(na, na));
+      *dd -= ga * s_aa * ga.transpose();
+      *dv -= ga * c_damp.asDiagonal() * ga.transpose();
+    }
+  }
+  // Bearings and external loads: central differences of the cheap part.
+  Eigen::VectorXd q0 = Eigen::VectorXd::Zero(nd);
+  for (int k = 0; k < nd; ++k) {
+    const double hd = 1e-9 * (dofs_[k].axis == MotionDof::kRotation ? 1.0 : 0.1);
+    const double hv = 1e-6;
+    Eigen::VectorXd dp = d, dm = d, vp = v, vm = v;
+    dp(k) += hd;
+    dm(k) -= hd;
+    vp(k) += hv;
+    vm(k) -= hv;
+    Eigen::VectorXd qp = Eigen::VectorXd::Zero(nd), qm = Eigen::VectorXd::Zero(nd);
+    BearingForces(t, dp, v, &qp, nullptr);
+    BearingForces(t, dm, v, &qm, nullptr);
+    dd->col(k) += (qp - qm) / (2 * hd);
+    qp.setZero();
+    qm.setZero();
+    BearingForces(t, d, vp, &qp, nullptr);
+    BearingForces(t, d, vm, &qm, nullptr);
+    dv->col(k) += (qp - qm) / (2 * hv);
+  }
+  for (int k = 0; k < nd; ++k) {
+    dd->row(k) /= mass_(k);
+    dv->row(k) /= mass_(k);
+  }
+}
+
+Eigen::VectorXd DynamicModel::QuasiStaticStart(const solvers::ContactOptions& contact,
+                                               solvers::Backend backend) const {
+  transmission::QuasiStaticOptions opt;
+  opt.backend = backend;
+  opt.contact = contact;
+  const transmission::PositionResult r = transmission::SolvePosition(
+      model_, CarrierAngle(0.0), transmission::StageLoads{sun_torque_}, opt);
+  if (!r.converged)
+    throw std::runtime_error("the quasi-static start at carrier " +
+                             Num(geometry::Deg(CarrierAngle(0.0))) + " deg failed: " + r.message);
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(size());
+  for (int k = 0; k < size(); ++k) {
+    const MotionDof& f = dofs_[k];
+    if (f.member == MotionDof::kSun)
+      d(k) = f.axis == MotionDof::kRotation ? r.transmission_error
+             : f.axis == MotionDof::kX      ? r.sun_displacement.x()
+                                            : r.sun_displacement.y();
+    if (f.member == MotionDof::kPlanet)
+      d(k) = f.axis == MotionDof::kRotation ? r.planet_rotations[f.planet]
+             : f.axis == MotionDof::kX      ? r.planet_displacements[f.planet].x()
+                                            : r.planet_displacements[f.planet].y();
+  }
+  return d;
+}
+
+void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::MatrixXd* k) const {
+  const int nd = size();
+  *m = mass_.asDiagonal();
+  k->setZero(nd, nd);
+  // One involute contact on the loaded flanks of each mesh gives the mesh's line of action.
+  const transmission::ContactTerms terms = model_.Terms(model_.KinematicPoses(carrier_angle));
+  const Eigen::MatrixXd gs = model_.Sensitivity(terms, stage_dofs_);
+  std::vector<int> chosen(2 * model_.planets(), -1);
+  for (int j = 0; j < terms.size(); ++j) {
+    const StageContact& s = terms.contacts[j];
+    if (!s.loaded || s.contact.kind != geometry::ContactKind::kInvolute) continue;
+    int& c = chosen[2 * s.planet + (s.mesh == geometry::MeshKind::kSunPlanet ? 0 : 1)];
+    if (c < 0 || s.contact.overlap > terms.contacts[c].contact.overlap) c = j;
+  }
+  for (std::size_t mi = 0; mi < chosen.size(); ++mi) {
+    if (chosen[mi] < 0)
+      throw std::runtime_error("linearisation: no involute contact on the loaded flanks of mesh " +
+                               std::to_string(mi) + " at carrier " +
+                               Num(geometry::Deg(carrier_angle)) + " deg");
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(nd);
+    for (int q = 0; q < nd; ++q)
+      if (stage_dof_[q] >= 0) g(q) = gs(stage_dof_[q], chosen[mi]);
+    const double km = mi % 2 == 0 ? k_sun_ : k_ring_;
+    *k += km * g * g.transpose();
+  }
+  // Bearings: −∂Q/∂d by central differences (linear springs: exact to round-off), with the pins
+  // where the carrier is at `carrier_angle`.
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
+  const double t = (carrier_angle - start_angle_) / carrier_speed_;
+  for (int q = 0; q < nd; ++q) {
+    const double h = 1e-9;
+    Eigen::VectorXd dp = zero, dm = zero;
+    dp(q) += h;
+    dm(q) -= h;
+    Eigen::VectorXd qp = Eigen::VectorXd::Zero(nd), qm = Eigen::VectorXd::Zero(nd);
+    BearingForces(t, dp, zero, &qp, nullptr);
+    BearingForces(t, dm, zero, &qm, nullptr);
+    k->col(q) -= (qp - qm) / (2 * h);
+  }
+  *k = 0.5 * (*k + k->transpose());
+}
+
+std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
+                                        const geometry::Stage& stage,
+                                        const transmission::FeComplianceOptions& fe,
+                                        int positions) {
+  std::array<double, 2> k{};
+  const char* meshes[2] = {"sun-planet1", "planet1-ring"};
+  for (int m = 0; m < 2; ++m) {
+    const transmission::MeshPairSetup setup = transmission::MakeMeshPair(scene, &stage, meshes[m]);
+    const geometry::GearPair pair(setup.spec);
+    const transmission::FePairCompliance compliance(scene, pair, fe);
+    transmission::MeshStiffnessOptions opt;
+    opt.positions = positions;
+    const transmission::MeshStiffnessResult r =
+        transmission::ComputeMeshStiffness(scene, setup, pair, compliance, opt);
+    if (r.failed == positions)
+      throw std::runtime_error(std::string("mean mesh stiffness of ") + meshes[m] +
+                               ": every position failed");
+    k[m] = r.mean_stiffness;
+  }
+  return k;
+}
+
+}  // namespace epicycle::dynamics

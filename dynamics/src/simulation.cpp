@@ -1,0 +1,333 @@
+#include "epicycle/dynamics/simulation.hpp"
+
+#include <arkode/arkode_erkstep.h>
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <stdexcept>
+
+namespace epicycle::dynamics {
+
+std::string IntegratorName(Integrator integrator) {
+  return integrator == Integrator::kCvodeBdf ? "cvode-bdf" : "arkode-erk";
+}
+
+Integrator IntegratorFromName(const std::string& name) {
+  if (name == "cvode-bdf") return Integrator::kCvodeBdf;
+  if (name == "arkode-erk") return Integrator::kArkodeErk;
+  throw std::invalid_argument("integrator = '" + name + "': not one of cvode-bdf, arkode-erk");
+}
+
+void SimulationOptions::Validate() const {
+  auto fail = [](const std::string& field, double v, const std::string& rule) {
+    throw std::invalid_argument("simulation: " + field + " = " + std::to_string(v) + ": " + rule);
+  };
+  if (!(rtol > 0 && rtol <= 0.1)) fail("rtol", rtol, "must lie in (0, 0.1]");
+  if (!(atol_length > 0) || !std::isfinite(atol_length))
+    fail("atol_length", atol_length, "must be > 0");
+  if (!(atol_angle > 0) || !std::isfinite(atol_angle))
+    fail("atol_angle", atol_angle, "must be > 0");
+  if (!(rate_scale > 0) || !std::isfinite(rate_scale))
+    fail("rate_scale", rate_scale, "must be > 0");
+  if (!(atol_energy > 0) || !std::isfinite(atol_energy))
+    fail("atol_energy", atol_energy, "must be > 0");
+  if (max_steps < 1) fail("max_steps", static_cast<double>(max_steps), "must be >= 1");
+  if (!(max_step >= 0)) fail("max_step", max_step, "must be >= 0");
+  if (max_order < 1 || max_order > 5) fail("max_order", max_order, "must lie in 1..5");
+  contact.Validate();
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point a) {
+  return std::chrono::duration<double>(Clock::now() - a).count();
+}
+
+// Everything the C callbacks need; exceptions are caught, stored and rethrown after the
+// integrator returns (docs: ARCHITECTURE "Errors").
+struct Context {
+  const DynamicModel* model = nullptr;
+  std::unique_ptr<solvers::ContactSolver> solver;
+  solvers::ContactOptions contact;
+  Evaluation warm, scratch;  // last successful evaluation (the warm start), work space
+  SimulationStats* stats = nullptr;
+  std::exception_ptr error;
+  std::string last_failure;
+  int n = 0;  // DOFs
+};
+
+void Split(const Context& c, const double* y, Eigen::VectorXd* d, Eigen::VectorXd* v) {
+  *d = Eigen::Map<const Eigen::VectorXd>(y, c.n);
+  *v = Eigen::Map<const Eigen::VectorXd>(y + c.n, c.n);
+}
+
+// One evaluation at (t, y) into c.scratch; false (counted, remembered) if the contact solve
+// failed.
+bool EvaluateAt(Context& c, double t, N_Vector y, Eigen::VectorXd* d, Eigen::VectorXd* v,
+                const char* what) {
+  Split(c, N_VGetArrayPointer(y), d, v);
+  c.model->Evaluate(t, *d, *v, *c.solver, c.contact, &c.warm, &c.scratch);
+  ++c.stats->rhs_evaluations;
+  if (c.scratch.ok) return true;
+  ++c.stats->failed_solves;
+  c.last_failure = "t = " + std::to_string(t) + " s" + what + ": " + c.scratch.message;
+  return false;
+}
+
+int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
+  auto& c = *static_cast<Context*>(user);
+  try {
+    const auto t0 = Clock::now();
+    Eigen::VectorXd d, v;
+    const bool ok = EvaluateAt(c, t, y, &d, &v, "");
+    c.stats->rhs_seconds += Seconds(t0);
+    if (!ok) return 1;  // recoverable: a smaller step
+    double* out = N_VGetArrayPointer(ydot);
+    for (int k = 0; k < c.n; ++k) {
+      out[k] = v(k);
+      out[c.n + k] = c.scratch.acceleration(k);
+    }
+    out[2 * c.n] = c.scratch.external_power;
+    out[2 * c.n + 1] = c.scratch.dissipated_power;
+    std::swap(c.warm, c.scratch);
+    return 0;
+  } catch (...) {
+    c.error = std::current_exception();
+    return -1;
+  }
+}
+
+int Jac(sunrealtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void* user, N_Vector, N_Vector,
+        N_Vector) {
+  auto& c = *static_cast<Context*>(user);
+  try {
+    const auto t0 = Clock::now();
+    Eigen::VectorXd d, v;
+    // The contact solution at this state (CVODE has just evaluated it: the warm start is there).
+    if (!EvaluateAt(c, t, y, &d, &v, " (Jacobian)")) return 1;
+    Eigen::MatrixXd dd, dv;
+    c.model->Jacobian(t, d, v, c.scratch, &dd, &dv);
+    SUNMatZero(jac);
+    const int n = c.n;
+    for (int k = 0; k < n; ++k) SM_ELEMENT_D(jac, k, n + k) = 1.0;
+    for (int i = 0; i < n; ++i)
+      for (int k = 0; k < n; ++k) {
+        SM_ELEMENT_D(jac, n + i, k) = dd(i, k);
+        SM_ELEMENT_D(jac, n + i, n + k) = dv(i, k);
+      }
+    ++c.stats->jacobian_evaluations;
+    c.stats->jacobian_seconds += Seconds(t0);
+    return 0;
+  } catch (...) {
+    c.error = std::current_exception();
+    return -1;
+  }
+}
+
+// RAII owners of the SUNDIALS objects.
+struct Sundials {
+  SUNContext ctx = nullptr;
+  N_Vector y = nullptr, atol = nullptr, dky = nullptr;
+  SUNMatrix a = nullptr;
+  SUNLinearSolver ls = nullptr;
+  void* cvode = nullptr;
+  void* erk = nullptr;
+  ~Sundials() {
+    if (cvode) CVodeFree(&cvode);
+    if (erk) ERKStepFree(&erk);
+    if (ls) SUNLinSolFree(ls);
+    if (a) SUNMatDestroy(a);
+    if (y) N_VDestroy(y);
+    if (atol) N_VDestroy(atol);
+    if (dky) N_VDestroy(dky);
+    if (ctx) SUNContext_Free(&ctx);
+  }
+};
+
+void Check(int flag, const char* what) {
+  if (flag < 0)
+    throw std::runtime_error(std::string("SUNDIALS: ") + what + " returned " +
+                             std::to_string(flag));
+}
+
+}  // namespace
+
+SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& options,
+                          const Eigen::VectorXd& d0, const Eigen::VectorXd& v0,
+                          const std::vector<double>& output_times,
+                          const std::function<void(const DynamicSample&)>& on_sample) {
+  options.Validate();
+  const int n = model.size();
+  if (d0.size() != n || v0.size() != n)
+    throw std::invalid_argument("simulation: the initial state has " + std::to_string(d0.size()) +
+                                " and " + std::to_string(v0.size()) + " entries, the model " +
+                                std::to_string(n) + " DOFs");
+  for (std::size_t k = 0; k < output_times.size(); ++k)
+    if (!(output_times[k] > (k == 0 ? 0.0 : output_times[k - 1])))
+      throw std::invalid_argument("simulation: output times must be > 0 and increasing (entry " +
+                                  std::to_string(k) + ")");
+  const auto start = Clock::now();
+  SimulationResult result;
+  Context c;
+  c.model = &model;
+  c.solver = solvers::MakeContactSolver(options.backend);
+  c.contact = options.contact;
+  c.stats = &result.stats;
+  c.n = n;
+
+  Sundials s;
+  Check(SUNContext_Create(nullptr, &s.ctx), "SUNContext_Create");
+  const int size = 2 * n + 2;
+  s.y = N_VNew_Serial(size, s.ctx);
+  s.atol = N_VNew_Serial(size, s.ctx);
+  s.dky = N_VNew_Serial(size, s.ctx);
+  if (!s.y || !s.atol || !s.dky) throw std::runtime_error("SUNDIALS: cannot allocate vectors");
+  double* y = N_VGetArrayPointer(s.y);
+  double* atol = N_VGetArrayPointer(s.atol);
+  for (int k = 0; k < n; ++k) {
+    const double a =
+        model.dofs()[k].axis == MotionDof::kRotation ? options.atol_angle : options.atol_length;
+    y[k] = d0(k);
+    y[n + k] = v0(k);
+    atol[k] = a;
+    atol[n + k] = a * options.rate_scale;
+  }
+  y[2 * n] = y[2 * n + 1] = 0.0;
+  atol[2 * n] = atol[2 * n + 1] = options.atol_energy;
+
+  // The warm start of the first evaluation: the state itself, solved cold.
+  model.Evaluate(0.0, d0, v0, *c.solver, c.contact, nullptr, &c.warm);
+
+  const bool cvode = options.integrator == Integrator::kCvodeBdf;
+  if (cvode) {
+    s.cvode = CVodeCreate(CV_BDF, s.ctx);
+    if (!s.cvode) throw std::runtime_error("SUNDIALS: CVodeCreate failed");
+    Check(CVodeInit(s.cvode, Rhs, 0.0, s.y), "CVodeInit");
+    Check(CVodeSVtolerances(s.cvode, options.rtol, s.atol), "CVodeSVtolerances");
+    Check(CVodeSetUserData(s.cvode, &c), "CVodeSetUserData");
+    Check(CVodeSetMaxNumSteps(s.cvode, options.max_steps), "CVodeSetMaxNumSteps");
+    if (options.max_step > 0) Check(CVodeSetMaxStep(s.cvode, options.max_step), "CVodeSetMaxStep");
+    // A contact set that changes is a C0 kink: allow CVODE more retries at such a step than its
+    // default 10 error-test failures before it gives up.
+    Check(CVodeSetMaxErrTestFails(s.cvode, 20), "CVodeSetMaxErrTestFails");
+    Check(CVodeSetMaxOrd(s.cvode, options.max_order), "CVodeSetMaxOrd");
+    Check(CVodeSetStabLimDet(s.cvode, options.stability_limit_detection ? SUNTRUE : SUNFALSE),
+          "CVodeSetStabLimDet");
+    Check(CVodeSetMaxConvFails(s.cvode, 50), "CVodeSetMaxConvFails");
+    s.a = SUNDenseMatrix(size, size, s.ctx);
+    s.ls = SUNLinSol_Dense(s.y, s.a, s.ctx);
+    if (!s.a || !s.ls) throw std::runtime_error("SUNDIALS: cannot create the dense solver");
+    Check(CVodeSetLinearSolver(s.cvode, s.ls, s.a), "CVodeSetLinearSolver");
+    if (options.analytic_jacobian) Check(CVodeSetJacFn(s.cvode, Jac), "CVodeSetJacFn");
+  } else {
+    s.erk = ERKStepCreate(Rhs, 0.0, s.y, s.ctx);
+    if (!s.erk) throw std::runtime_error("SUNDIALS: ERKStepCreate failed");
+    Check(ERKStepSVtolerances(s.erk, options.rtol, s.atol), "ERKStepSVtolerances");
+    Check(ERKStepSetUserData(s.erk, &c), "ERKStepSetUserData");
+    Check(ERKStepSetTableNum(s.erk, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum");
+    Check(ERKStepSetMaxNumSteps(s.erk, options.max_steps), "ERKStepSetMaxNumSteps");
+    if (options.max_step > 0)
+      Check(ERKStepSetMaxStep(s.erk, options.max_step), "ERKStepSetMaxStep");
+  }
+
+  const int sun = model.Find(MotionDof::kSun, MotionDof::kRotation);
+  const int sx = model.Find(MotionDof::kSun, MotionDof::kX);
+  Eigen::VectorXd last_y = Eigen::Map<Eigen::VectorXd>(y, size);
+  double last_t = 0.0;
+  int restarts_in_a_row = 0;
+  try {
+    for (std::size_t k = 0; k < output_times.size(); ++k) {
+      const double tout = output_times[k];
+      double t = last_t;
+      int flag = 0;
+      if (cvode) {
+        flag = CVode(s.cvode, tout, s.y, &t, CV_NORMAL);
+      } else {
+        flag = ERKStepEvolve(s.erk, tout, s.y, &t, ARK_NORMAL);
+        // ERKStep cannot retry a failed evaluation: restart from the last output with a smaller
+        // first step.
+        while (flag == ARK_RHSFUNC_FAIL || flag == ARK_UNREC_RHSFUNC_ERR) {
+          if (c.error) break;
+          if (++restarts_in_a_row > 8) break;
+          ++result.stats.restarts;
+          double h_last = 0;
+          ERKStepGetLastStep(s.erk, &h_last);
+          Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(s.y), size) = last_y;
+          Check(ERKStepReInit(s.erk, Rhs, last_t, s.y), "ERKStepReInit");
+          const double h0 = std::max(std::abs(h_last) * 0.1, 1e-12);
+          Check(ERKStepSetInitStep(s.erk, h0), "ERKStepSetInitStep");
+          flag = ERKStepEvolve(s.erk, tout, s.y, &t, ARK_NORMAL);
+        }
+        if (flag >= 0) restarts_in_a_row = 0;
+      }
+      if (c.error) std::rethrow_exception(c.error);
+      if (flag < 0) {
+        result.message =
+            "stopped at t = " + std::to_string(t) + " s before the output at " +
+            std::to_string(tout) +
+            " s: " + (cvode ? CVodeGetReturnFlagName(flag) : ERKStepGetReturnFlagName(flag)) +
+            (c.last_failure.empty() ? "" : "; last failed evaluation " + c.last_failure);
+        break;
+      }
+      // The output: the state at tout and one evaluation there.
+      DynamicSample sample;
+      sample.time = tout;
+      sample.carrier_angle = model.CarrierAngle(tout);
+      Split(c, y, &sample.d, &sample.v);
+      model.Evaluate(tout, sample.d, sample.v, *c.solver, c.contact, &c.warm, &sample.evaluation);
+      if (!sample.evaluation.ok) {
+        result.message = "the output evaluation at t = " + std::to_string(tout) +
+                         " s failed: " + sample.evaluation.message;
+        break;
+      }
+      const Evaluation& e = sample.evaluation;
+      sample.load_sharing.resize(e.sun_mesh_torque.size());
+      for (std::size_t i = 0; i < e.sun_mesh_torque.size(); ++i)
+        sample.load_sharing[i] = e.sun_mesh_torque[i] / -model.sun_torque();
+      sample.transmission_error = sample.d(sun);
+      if (sx >= 0) sample.sun_centre = Eigen::Vector2d(sample.d(sx), sample.d(sx + 1));
+      Check(cvode ? CVodeGetDky(s.cvode, tout, 1, s.dky) : ERKStepGetDky(s.erk, tout, 1, s.dky),
+            "GetDky");
+      sample.sun_acceleration = N_VGetArrayPointer(s.dky)[n + sun];
+      sample.external_work = y[2 * n];
+      sample.dissipated_work = y[2 * n + 1];
+      if (on_sample) on_sample(sample);
+      result.samples.push_back(std::move(sample));
+      last_y = Eigen::Map<Eigen::VectorXd>(y, size);
+      last_t = tout;
+    }
+    result.completed = result.samples.size() == output_times.size();
+  } catch (const std::exception& ex) {
+    result.completed = false;
+    result.message = "stopped after t = " + std::to_string(last_t) + " s: " + ex.what();
+  }
+  long v = 0;
+  if (cvode) {
+    CVodeGetNumSteps(s.cvode, &v);
+    result.stats.steps = v;
+    CVodeGetNumErrTestFails(s.cvode, &v);
+    result.stats.error_test_failures = v;
+    CVodeGetNumNonlinSolvConvFails(s.cvode, &v);
+    result.stats.nonlinear_failures = v;
+    CVodeGetNumLinRhsEvals(s.cvode, &v);
+    result.stats.fd_rhs_evaluations = v;
+  } else {
+    ERKStepGetNumSteps(s.erk, &v);
+    result.stats.steps += v;
+    ERKStepGetNumErrTestFails(s.erk, &v);
+    result.stats.error_test_failures = v;
+  }
+  result.stats.wall_seconds = Seconds(start);
+  return result;
+}
+
+}  // namespace epicycle::dynamics

@@ -1,0 +1,311 @@
+// The dynamic model (docs/model.md §7, docs/dynamic.md) against references that do not come from
+// it: the quasi-static solver at low speed, energy conservation with constant compliance, the
+// sun's torque balance from the integrator's own interpolant, the planet-phasing rules of Parker
+// (2000) on the spectrum of a perfect stage, the paper's run-out case against the quasi-static
+// study and linear theory, self-consistency of the integrators, and bad input.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+
+#include "dynamics_fixtures.hpp"
+#include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
+#include "figures.hpp"
+
+using namespace epicycle;
+using dynamics::DynamicSample;
+using test::Figure;
+using test::RigOptions;
+using test::Sci;
+using test::VerifyRow;
+using transmission::SunSupport;
+
+namespace {
+
+constexpr double kRpm = std::numbers::pi / 30.0;
+
+// Output times: `per_cycle` per mesh cycle over `cycles` mesh cycles.
+std::vector<double> Times(const dynamics::DynamicModel& m, const geometry::Stage& st, double cycles,
+                          int per_cycle, double skip = 0.0) {
+  const double tc = st.mesh_cycle() / std::abs(m.carrier_speed());
+  std::vector<double> t;
+  const int n = static_cast<int>(std::lround(cycles * per_cycle));
+  for (int i = 1; i <= n; ++i) t.push_back(skip * tc + tc * cycles * i / n);
+  return t;
+}
+
+dynamics::SimulationResult Run(const test::DynamicRig& rig, const std::vector<double>& times,
+                               dynamics::SimulationOptions o = {}) {
+  const Eigen::VectorXd d0 = rig.model->QuasiStaticStart(o.contact, o.backend);
+  return dynamics::Simulate(*rig.model, o, d0, Eigen::VectorXd::Zero(rig.model->size()), times);
+}
+
+std::string WithRunout(const std::string& text) {
+  return text + "\n[[errors.runout]]\ngear = \"planet1\"\namplitude_um = 20.0\nphase_deg = 0.0\n";
+}
+
+// Largest |LSR_dyn − LSR_qs| over the samples, the quasi-static solver at each sample's carrier
+// angle on the same stage model.
+double QuasiStaticGap(const test::DynamicRig& rig, const std::vector<DynamicSample>& samples) {
+  double worst = 0;
+  transmission::QuasiStaticOptions qo;
+  for (const DynamicSample& s : samples) {
+    const auto q =
+        transmission::SolvePosition(*rig.stage_model, s.carrier_angle, {rig.scene.sun_torque}, qo);
+    REQUIRE(q.converged);
+    for (std::size_t i = 0; i < q.load_sharing.size(); ++i)
+      worst = std::max(worst, std::abs(s.load_sharing[i] - q.load_sharing[i]));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("quasi-static limit: the dynamic LSR tends to the quasi-static sweep with the speed",
+          "[crosscheck][dynamics]") {
+  // FE structural compliance without the local term (its curvature jumps where an involute meets
+  // a tip round: docs/dynamic.md), friction off, planet 1 with 20 um run-out, sun fixed, 3 mesh
+  // cycles. What separates the dynamic from the quasi-static solution at low speed are the
+  // velocity terms: mesh damping on contacts whose overlap changes under the rigid motion (the
+  // off-line-of-action tip contacts, and the run-out), proportional to the speed, and the
+  // inertial terms, proportional to its square. Halving the speed must therefore at least halve
+  // the gap (ratio ≥ 2, tested ≥ 2/1.25 for the mix of the two and the output sampling), down to
+  // the floor of the tolerances (integrator rtol 1e-8 on deflections of ~1e-3 rad, contact
+  // solver 1e-10: LSR floor below 1e-6).
+  double gap[2];
+  const double speeds[2] = {120.0, 60.0};
+  for (int k = 0; k < 2; ++k) {
+    RigOptions o;
+    o.local_terms = false;
+    o.edit = [&](dynamics::DynamicSettings& s) {
+      s.sun_speed = speeds[k] * kRpm;
+      s.friction.law = dynamics::FrictionLaw::kOff;
+    };
+    const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
+    dynamics::SimulationOptions so;
+    so.rtol = 1e-8;
+    const auto r = Run(rig, Times(*rig.model, *rig.stage, 3, 8), so);
+    REQUIRE(r.completed);
+    gap[k] = QuasiStaticGap(rig, r.samples);
+    Figure("quasi-static limit at " + std::to_string(speeds[k]) + " rpm: largest |LSR - LSR_qs| " +
+           Sci(gap[k]) + ", " + std::to_string(r.stats.steps) + " steps");
+  }
+  const double floor = 1e-6;
+  const bool pass = gap[1] <= gap[0] / 2 * 1.25 + floor;
+  VerifyRow("dynamic LSR -> quasi-static linearly in speed (120, 60 rpm; 3 mesh cycles; run-out)",
+            "quasi-static solver at the same carrier angles",
+            "largest gap " + Sci(gap[0]) + " at 120 rpm, " + Sci(gap[1]) + " at 60 rpm",
+            "ratio " + Sci(gap[0] / gap[1], 2), "ratio >= 2/1.25 (gap <= 1e-6 floor)", pass);
+  CHECK(pass);
+}
+
+TEST_CASE(
+    "energy: with constant compliance, input work = kinetic + elastic energy; with damping "
+    "and friction, the loss equals their integrated power",
+    "[crosscheck][dynamics]") {
+  // Independent linear springs (c = 1e-9 m/N, no local term, no coupling) make the contact
+  // forces the gradient of the stored energy ½FᵀCF of the overlaps δ0(q): the model is then
+  // conservative (the FE compliance varies with the contact's place on the flank, and the forces
+  // omit ½Fᵀ(∂C/∂q)F; docs/dynamic.md). The balance E(t) − E(0) = W_ext − W_diss is exact for
+  // the ODE; what remains is the integrator's error. Tolerance: the local error control keeps each
+  // component within rtol relative, so the energy balance drifts by at most a few rtol times the
+  // energy that flows through the stage, ∫|T_s ω_s| dt (tested with 10 rtol of it).
+  for (const bool dissipative : {false, true}) {
+    RigOptions o;
+    o.spring = 1e-9;
+    o.spring_mesh_stiffness = 1.5e9;
+    o.edit = [&](dynamics::DynamicSettings& s) {
+      s.sun_speed = 1500 * kRpm;
+      s.mesh_damping_ratio = dissipative ? 0.05 : 0.0;
+      s.friction.law = dissipative ? dynamics::FrictionLaw::kConstant : dynamics::FrictionLaw::kOff;
+      s.friction.coefficient = 0.05;
+    };
+    const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
+    dynamics::SimulationOptions so;
+    so.rtol = 1e-8;
+    const auto r = Run(rig, Times(*rig.model, *rig.stage, 2, 20), so);
+    REQUIRE(r.completed);
+    const auto& e0 = r.samples.front().evaluation;
+    const Eigen::VectorXd d0 = rig.model->QuasiStaticStart({}, so.backend);
+    auto solver = solvers::MakeContactSolver(so.backend);
+    dynamics::Evaluation start;
+    rig.model->Evaluate(0.0, d0, Eigen::VectorXd::Zero(rig.model->size()), *solver, {}, nullptr,
+                        &start);
+    const double energy0 = start.kinetic_energy + start.elastic_energy;
+    double worst = 0;
+    const double throughput =
+        std::abs(rig.scene.sun_torque * rig.model->sun_speed()) * r.samples.back().time;
+    for (const DynamicSample& s : r.samples) {
+      const double e = s.evaluation.kinetic_energy + s.evaluation.elastic_energy;
+      worst = std::max(worst, std::abs(e - energy0 - s.external_work + s.dissipated_work));
+    }
+    const double tol = 10 * so.rtol * throughput;
+    const double lost = r.samples.back().dissipated_work;
+    const bool pass = worst <= tol && (dissipative ? lost > 100 * tol : lost == 0.0);
+    (void)e0;
+    VerifyRow(std::string("energy balance, spring contacts, 2 mesh cycles at 1500 rpm, ") +
+                  (dissipative ? "damping 5 % and friction 0.05" : "no damping, no friction"),
+              "E(t) - E(0) = W_ext - W_diss",
+              "largest imbalance " + Sci(worst) + " J; dissipated " + Sci(lost) + " J",
+              Sci(worst / throughput) + " of the energy through the stage",
+              "10 rtol = " + Sci(10 * so.rtol), pass);
+    CHECK(worst <= tol);
+    if (dissipative) CHECK(lost > 100 * tol);
+    if (!dissipative) CHECK(lost == 0.0);
+  }
+}
+
+TEST_CASE(
+    "sun balance: the sun-mesh torques equal the input torque less J_s times the sun's "
+    "acceleration from the integrator's interpolant",
+    "[crosscheck][dynamics]") {
+  // θ̈_s is the derivative of CVODE's interpolating polynomial of θ̇_s at the output, not the
+  // right-hand side's value; its error is about the local error of θ̇_s over a step,
+  // (rtol|θ̇_s| + atol_v)/h. The tolerance is 10 times that, with h the mean step.
+  RigOptions o;
+  o.edit = [](dynamics::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
+  const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
+  dynamics::SimulationOptions so;
+  const auto times = Times(*rig.model, *rig.stage, 2, 20);
+  const auto r = Run(rig, times, so);
+  REQUIRE(r.completed);
+  const double h = times.back() / static_cast<double>(r.stats.steps);
+  const int ks = rig.model->Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kRotation);
+  const double js = rig.model->mass()(ks);
+  double worst = 0, vmax = 0;
+  for (const DynamicSample& s : r.samples) {
+    double mesh = 0;
+    for (double t : s.evaluation.sun_mesh_torque) mesh += t;
+    worst = std::max(worst, std::abs(mesh + rig.scene.sun_torque - js * s.sun_acceleration));
+    vmax = std::max(vmax, std::abs(s.v(ks)));
+  }
+  const double tol = 10 * js * (so.rtol * vmax + so.atol_angle * so.rate_scale) / h;
+  const bool pass = worst <= tol;
+  VerifyRow("sun balance at every output (run-out, friction, 1500 rpm, 40 outputs)",
+            "sum of sun-mesh torques = T_in - J_s d2theta_s/dt2 (interpolant)",
+            "largest residual " + Sci(worst) + " N m", Sci(worst / 600.0) + " of |T_in|",
+            Sci(tol) + " N m (10 x interpolant error)", pass);
+  CHECK(pass);
+}
+
+namespace {
+
+// |Σ x_k e^{−i 2π l k/N}|·2/N: amplitude of harmonic l of N samples over one period.
+double Harmonic(const std::vector<std::complex<double>>& x, int l) {
+  std::complex<double> s = 0;
+  const int n = static_cast<int>(x.size());
+  for (int k = 0; k < n; ++k) s += x[k] * std::polar(1.0, -2 * std::numbers::pi * l * k / n);
+  return 2.0 * std::abs(s) / n;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "perfect gears: the sun's rotation carries only mesh harmonics 3, 6 and its net mesh "
+    "force (carrier frame) only 1, 2, 4, 5 (Parker 2000, 16/65, 3 planets)",
+    "[crosscheck][dynamics]") {
+  // Planet phasing: harmonic l of the mesh frequency acts on rotation if l z_s/n is whole and on
+  // translation if (l z_s ± 1)/n is. Exactly: turning the whole stage by 22 ring pitches (121.8°)
+  // and advancing time by a third of a mesh cycle maps the stage onto itself with the planets
+  // renumbered, so TE has period T_m/3 and the sun's force turns by 120° in the carrier frame.
+  // Steady state after 6 mesh cycles (the slowest mode, ζ ≥ 0.04 at ≥ 3 kHz, has decayed by
+  // e^-14), then 3 cycles of 128 samples each: the response rings at the mesh modes (3–7 kHz,
+  // harmonics 10–22) and fewer samples alias allowed high harmonics into the forbidden bins
+  // (with 32 per cycle, harmonic 27 lands on bin 5). Forbidden harmonics must stay below 1 % of
+  // the largest allowed one (what remains: the transient, the integrator's error at rtol 1e-6).
+  RigOptions o;
+  o.edit = [](dynamics::DynamicSettings& s) {
+    s.sun_speed = 1500 * kRpm;
+    s.friction.law = dynamics::FrictionLaw::kOff;
+  };
+  const auto rig = test::MakeRig(test::SceneText("paper_stage.toml"), "perfect", o);
+  auto times = Times(*rig.model, *rig.stage, 6, 4);
+  for (double t : Times(*rig.model, *rig.stage, 3, 128, 6.0)) times.push_back(t);
+  const auto r = Run(rig, times);
+  REQUIRE(r.completed);
+  std::vector<std::complex<double>> te, force;
+  for (std::size_t k = 6 * 4; k < r.samples.size(); ++k) {
+    const DynamicSample& s = r.samples[k];
+    te.emplace_back(s.transmission_error, 0.0);
+    const Eigen::Vector2d f = geometry::Rotate(s.evaluation.sun_mesh_force, -s.carrier_angle);
+    force.emplace_back(f.x(), f.y());
+  }
+  // Over 3 cycles harmonic l of the mesh frequency is DFT bin 3l.
+  auto at = [](const std::vector<std::complex<double>>& x, int l) {
+    return std::max(Harmonic(x, 3 * l), Harmonic(x, -3 * l));
+  };
+  const double rot_allowed = std::max(at(te, 3), at(te, 6));
+  double rot_forbidden = 0, tr_forbidden = 0, tr_allowed = 0;
+  for (int l : {1, 2, 4, 5}) {
+    rot_forbidden = std::max(rot_forbidden, at(te, l));
+    tr_allowed = std::max(tr_allowed, at(force, l));
+  }
+  for (int l : {3, 6}) tr_forbidden = std::max(tr_forbidden, at(force, l));
+  Figure("TE harmonics 1..6 [urad]: " + Sci(at(te, 1) * 1e6) + " " + Sci(at(te, 2) * 1e6) + " " +
+         Sci(at(te, 3) * 1e6) + " " + Sci(at(te, 4) * 1e6) + " " + Sci(at(te, 5) * 1e6) + " " +
+         Sci(at(te, 6) * 1e6));
+  Figure("sun net mesh force harmonics 1..6 [N] (carrier frame): " + Sci(at(force, 1)) + " " +
+         Sci(at(force, 2)) + " " + Sci(at(force, 3)) + " " + Sci(at(force, 4)) + " " +
+         Sci(at(force, 5)) + " " + Sci(at(force, 6)));
+  const bool rot = rot_forbidden <= 0.01 * rot_allowed;
+  const bool tr = tr_forbidden <= 0.01 * tr_allowed;
+  VerifyRow("perfect stage, sun rotation (TE): harmonics 1, 2, 4, 5 against 3, 6",
+            "Parker (2000) phasing: only l z_s/n whole",
+            "largest forbidden " + Sci(rot_forbidden * 1e6) + " urad, allowed " +
+                Sci(rot_allowed * 1e6) + " urad",
+            Sci(rot_forbidden / rot_allowed), "0.01", rot);
+  VerifyRow("perfect stage, sun net mesh force (carrier frame): harmonics 3, 6 against 1, 2, 4, 5",
+            "Parker (2000) phasing: only (l z_s +- 1)/n whole",
+            "largest forbidden " + Sci(tr_forbidden) + " N, allowed " + Sci(tr_allowed) + " N",
+            Sci(tr_forbidden / tr_allowed), "0.01", tr);
+  CHECK(rot);
+  CHECK(tr);
+}
+
+TEST_CASE(
+    "integrators: halving the tolerances moves the LSR trace by less than the stated bound, "
+    "and the explicit method agrees within it",
+    "[crosscheck][dynamics]") {
+  // Bound: the global error of a stable integration stays within a modest multiple of rtol
+  // times the size of what is integrated; LSR is a ratio of forces that follow the deflections
+  // with the mesh stiffness, so its error is about κ·rtol with κ = (k δ)/F ~ 1 ... stated as
+  // 100 rtol (absolute, on LSR ~ 1/3): 1e-4 at rtol 1e-6.
+  RigOptions o;
+  o.edit = [](dynamics::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
+  const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
+  const auto times = Times(*rig.model, *rig.stage, 2, 20);
+  dynamics::SimulationOptions a, b, c;
+  b.rtol = a.rtol / 2;
+  b.atol_angle = a.atol_angle / 2;
+  b.atol_length = a.atol_length / 2;
+  c.integrator = dynamics::Integrator::kArkodeErk;
+  const auto ra = Run(rig, times, a), rb = Run(rig, times, b), rc = Run(rig, times, c);
+  REQUIRE(ra.completed);
+  REQUIRE(rb.completed);
+  REQUIRE(rc.completed);
+  auto diff = [](const dynamics::SimulationResult& x, const dynamics::SimulationResult& y) {
+    double w = 0;
+    for (std::size_t k = 0; k < x.samples.size(); ++k)
+      for (std::size_t i = 0; i < x.samples[k].load_sharing.size(); ++i)
+        w = std::max(w, std::abs(x.samples[k].load_sharing[i] - y.samples[k].load_sharing[i]));
+    return w;
+  };
+  const double bound = 100 * a.rtol;
+  const double half = diff(ra, rb), erk = diff(ra, rc);
+  Figure("CVODE steps " + std::to_string(ra.stats.steps) + ", evaluations " +
+         std::to_string(ra.stats.rhs_evaluations) + "; ERK steps " +
+         std::to_string(rc.stats.steps) + ", evaluations " +
+         std::to_string(rc.stats.rhs_evaluations));
+  VerifyRow("halving rtol and atol (CVODE BDF, 2 mesh cycles, run-out, friction, 1500 rpm)",
+            "the same run at half the tolerances", "largest LSR change " + Sci(half), Sci(half),
+            Sci(bound) + " (100 rtol)", half <= bound);
+  VerifyRow("explicit Dormand-Prince (ARKODE ERK) against CVODE BDF, rtol 1e-6", "CVODE BDF",
+            "largest LSR difference " + Sci(erk), Sci(erk), Sci(bound) + " (100 rtol)",
+            erk <= bound);
+  CHECK(half <= bound);
+  CHECK(erk <= bound);
+}
