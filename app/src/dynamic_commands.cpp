@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
@@ -288,9 +289,90 @@ void RunDynamic(const DynamicArgs& a) {
                                          outputs, result.message));
 }
 
+struct ModesArgs {
+  std::string scene, sun, cache, json;
+  bool no_cache = false;
+};
+
+void RunModes(const ModesArgs& a) {
+  transmission::Scene scene = transmission::ReadScene(a.scene);
+  if (scene.kind != transmission::SceneKind::kStage)
+    throw std::invalid_argument(a.scene + ": a gear-pair scene; modes needs a stage");
+  if (a.sun == "fixed") scene.supports.sun = transmission::SunSupport::kFixed;
+  if (a.sun == "floating") scene.supports.sun = transmission::SunSupport::kFloating;
+  const geometry::Stage stage(scene.stage);
+  transmission::FeComplianceOptions fe;
+  if (!a.no_cache)
+    fe.cache_directory = a.cache.empty() ? transmission::DefaultCacheDirectory() : a.cache;
+  const transmission::FeStageCompliance compliance(scene, stage, fe);
+  const transmission::StageModel stage_model(scene, stage, compliance,
+                                             transmission::SetupFromScene(scene));
+  dynamics::DynamicModel model(stage_model, scene, dynamics::SettingsFromScene(scene));
+  const auto k = dynamics::MeanMeshStiffness(scene, stage, fe);
+  model.SetMeshStiffness(k[0], k[1]);
+  Eigen::MatrixXd m, kk;
+  model.Linearise(0.0, &m, &kk);
+  const auto modes = dynamics::SolveModes(m, kk, model.ModeLayout());
+  // Mesh frequency per sun rpm: f_m = z_r ω_c/2π with ω_c = ω_s z_s/(z_s + z_r).
+  const double hz_per_rpm = stage.ring().teeth() / stage.sun_ratio() / 60.0;
+  std::printf("%s: %d planets, sun %s, %d DOFs (%s)\n", scene.name.c_str(), stage.planets(),
+              SunName(stage_model.setup().sun), model.size(),
+              model.settings().ring_elastic ? "ring elastic" : "ring fixed");
+  std::printf(
+      "  mean mesh stiffness (the mesh-stiffness driver at the scene's load): sun-planet "
+      "%.4g N/m, planet-ring %.4g N/m\n",
+      model.sun_mesh_stiffness(), model.ring_mesh_stiffness());
+  std::printf("  mesh frequency %.4f Hz per sun rpm\n\n", hz_per_rpm);
+  std::printf("  %-12s %-5s %-14s %-28s %s\n", "f [Hz]", "mult", "type",
+              "energy: central tr/rot, planets", "sun rpm where mesh harmonic 1, 2, 3 meets it");
+  nlohmann::json jm = nlohmann::json::array();
+  for (const auto& x : modes) {
+    const std::string type = x.rigid ? "rigid" : dynamics::ModeTypeName(x.type);
+    std::printf("  %-12.2f %-5d %-14s %.3f / %.3f, %.3f%*s", x.frequency, x.multiplicity,
+                type.c_str(), x.central_translation, x.central_rotation, x.planets, 8, "");
+    nlohmann::json speeds = nlohmann::json::array();
+    for (int l = 1; l <= 3 && x.frequency > 0; ++l) {
+      const double rpm = x.frequency / (l * hz_per_rpm);
+      std::printf(" %10.0f", rpm);
+      speeds.push_back(rpm);
+    }
+    std::printf("\n");
+    jm.push_back({{"frequency_Hz", x.frequency},
+                  {"multiplicity", x.multiplicity},
+                  {"type", type},
+                  {"central_translation_energy", x.central_translation},
+                  {"central_rotation_energy", x.central_rotation},
+                  {"planet_energy", x.planets},
+                  {"sun_rpm_at_mesh_harmonics_1_2_3", speeds}});
+  }
+  if (!a.json.empty()) {
+    nlohmann::json j;
+    j["scene"] = scene.name;
+    j["mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
+    j["mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
+    j["mesh_frequency_Hz_per_sun_rpm"] = hz_per_rpm;
+    j["modes"] = jm;
+    WriteTextFile(a.json, j.dump(2) + "\n");
+    std::printf("\nwrote %s\n", a.json.c_str());
+  }
+}
+
 }  // namespace
 
 void RegisterDynamicCommands(CLI::App& app) {
+  static ModesArgs m;
+  auto* modes = app.add_subcommand(
+      "modes", "Natural modes of the stage linearised about its operating point (docs/dynamic.md)");
+  modes->add_option("scene", m.scene, "Scene file (TOML) of a stage")
+      ->required()
+      ->check(CLI::ExistingFile);
+  modes->add_option("--sun", m.sun, "Override the scene's sun support")
+      ->check(CLI::IsMember({"fixed", "floating"}));
+  modes->add_option("--json", m.json, "Also write the modes as JSON");
+  modes->add_option("--cache", m.cache, "Influence-table cache folder");
+  modes->add_flag("--no-cache", m.no_cache, "Build the influence tables in memory only");
+  modes->callback([] { RunModes(m); });
+
   static DynamicArgs a;
   auto* cmd = app.add_subcommand(
       "dynamic", "Dynamic load sharing of a stage in time at a sun speed (docs/dynamic.md)");

@@ -15,6 +15,7 @@
 #include "epicycle/dynamics/summary.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "figures.hpp"
+#include "lin_parker.hpp"
 
 using namespace epicycle;
 using dynamics::DynamicSample;
@@ -308,4 +309,116 @@ TEST_CASE(
             erk <= bound);
   CHECK(half <= bound);
   CHECK(erk <= bound);
+}
+
+namespace {
+
+// The stage with every member on bearings, as in Lin & Parker's model: sun, planets and ring
+// elastic (the carrier turned at its speed: held in the linearisation).
+constexpr double kBearing = 1e8;      // [N/m]
+constexpr double kRingTorsion = 1e9;  // of u = r θ [N/m]: k_θ = 1e9 r_r² N·m/rad
+
+std::string AllElastic(const std::string& text) {
+  return test::Replace(text, "[contact]",
+                       "[supports]\nsun = \"elastic\"\nsun_stiffness_N_per_um = 100.0\n"
+                       "planet_stiffness_N_per_um = 100.0\n\n[contact]");
+}
+
+}  // namespace
+
+TEST_CASE(
+    "natural modes: the linearised model has Lin & Parker's structure and their model's "
+    "frequencies, for 3 and 4 planets",
+    "[crosscheck][dynamics][modes]") {
+  for (const char* file : {"paper_stage.toml", "paper_stage_4planets.toml"}) {
+    RigOptions o;
+    o.sun = SunSupport::kElastic;
+    o.edit = [&](dynamics::DynamicSettings& s) {
+      s.ring_elastic = true;
+      s.ring_stiffness = kBearing;
+      s.ring_torsional_stiffness = 0;  // set below from r_r
+    };
+    transmission::Scene probe = transmission::ParseScene(test::SceneText(file), file);
+    const double r_r = geometry::Stage(probe.stage).ring().base_radius();
+    o.edit = [&](dynamics::DynamicSettings& s) {
+      s.ring_elastic = true;
+      s.ring_stiffness = kBearing;
+      s.ring_torsional_stiffness = kRingTorsion * r_r * r_r;
+    };
+    const auto rig = test::MakeRig(AllElastic(test::SceneText(file)), file, o);
+    const dynamics::DynamicModel& m = *rig.model;
+    Eigen::MatrixXd mm, kk;
+    m.Linearise(0.0, &mm, &kk);
+    const auto modes = dynamics::SolveModes(mm, kk, m.ModeLayout());
+
+    // Lin & Parker's model fed with the same stiffnesses, inertias and operating geometry.
+    const geometry::Stage& st = *rig.stage;
+    const int n = st.planets();
+    test::lin_parker::Parameters p;
+    p.planets = n;
+    for (int i = 0; i < n; ++i) p.psi.push_back(st.planet_angle(i));
+    p.r_s = st.sun().base_radius();
+    p.r_r = st.ring().base_radius();
+    p.r_p = st.planet(0).base_radius();
+    p.r_c = st.carrier_radius();
+    p.m_s = rig.scene.sun.mass, p.m_r = rig.scene.ring.mass, p.m_p = rig.scene.planet.mass;
+    p.m_c = rig.scene.carrier.mass;
+    p.j_s = rig.scene.sun.inertia / (p.r_s * p.r_s);
+    p.j_r = rig.scene.ring.inertia / (p.r_r * p.r_r);
+    p.j_p = rig.scene.planet.inertia / (p.r_p * p.r_p);
+    p.j_c = rig.scene.carrier.inertia / (p.r_c * p.r_c);
+    p.k_sp = m.sun_mesh_stiffness();
+    p.k_rp = m.ring_mesh_stiffness();
+    p.k_s = p.k_r = p.k_p = kBearing;
+    p.k_ru = kRingTorsion;
+    // The loaded flanks of the paper's −600 N·m: the mirror image of Lin & Parker's (α < 0).
+    p.alpha_s = -st.meshes()[0].pressure_angle;
+    p.alpha_r = -st.meshes()[1].pressure_angle;
+    namespace lp = test::lin_parker;
+    const auto ref = lp::Hold(lp::ToInertial(p, lp::Build(p)),
+                              {lp::kCarrier, lp::kCarrier + 1, lp::kCarrier + 2});
+    const auto ref_modes = dynamics::SolveModes(ref.M, ref.K, ref.layout);
+
+    std::vector<double> f, fr;
+    int rot = 0, tra = 0, pla = 0, other = 0;
+    bool multiplicities = true;
+    for (const auto& x : modes) {
+      for (int k = 0; k < x.multiplicity; ++k) f.push_back(x.frequency);
+      rot += x.type == dynamics::ModeType::kRotational;
+      tra += x.type == dynamics::ModeType::kTranslational;
+      pla += x.type == dynamics::ModeType::kPlanet;
+      other += x.type == dynamics::ModeType::kOther;
+      if (x.type == dynamics::ModeType::kRotational && x.multiplicity != 1) multiplicities = false;
+      if (x.type == dynamics::ModeType::kTranslational && x.multiplicity != 2)
+        multiplicities = false;
+      if (x.type == dynamics::ModeType::kPlanet && x.multiplicity != n - 3) multiplicities = false;
+    }
+    for (const auto& x : ref_modes)
+      for (int k = 0; k < x.multiplicity; ++k) fr.push_back(x.frequency);
+    REQUIRE(f.size() == fr.size());
+    double worst = 0;
+    for (std::size_t k = 0; k < f.size(); ++k)
+      worst = std::max(worst, std::abs(f[k] - fr[k]) / fr[k]);
+    // Lin & Parker's counts for 3(n + 3) DOFs are 6 rotational, 6 translational (double) and 3
+    // planet modes of multiplicity n − 3; holding the carrier removes one of each central class.
+    const bool structure =
+        multiplicities && other == 0 && rot == 5 && tra == 5 && (n == 3 ? pla == 0 : pla == 3);
+    Figure(std::string(file) + ": " + std::to_string(rot) + " rotational, " + std::to_string(tra) +
+           " translational, " + std::to_string(pla) + " planet modes; lowest " + Sci(f.front(), 4) +
+           " Hz, highest " + Sci(f.back(), 4) + " Hz");
+    // Same M and K up to round-off of the geometry (the levers are base radii to 1e-12): 1e-9.
+    VerifyRow(std::string("natural frequencies, ") + file + " (all members on bearings)",
+              "Lin & Parker (1999) lumped model, same stiffnesses and inertias",
+              std::to_string(f.size()) + " frequencies, " + Sci(f.front(), 4) + " .. " +
+                  Sci(f.back(), 4) + " Hz",
+              "largest relative " + Sci(worst), "1e-9", worst <= 1e-9);
+    VerifyRow(std::string("modal structure, ") + file,
+              "Lin & Parker: rotational single, translational double, planet n - 3",
+              std::to_string(rot) + " rotational, " + std::to_string(tra) + " translational, " +
+                  std::to_string(pla) + " planet",
+              other == 0 ? "none unclassified" : std::to_string(other) + " unclassified", "exact",
+              structure);
+    CHECK(worst <= 1e-9);
+    CHECK(structure);
+  }
 }
