@@ -62,8 +62,16 @@ struct Context {
   SimulationStats* stats = nullptr;
   std::exception_ptr error;
   std::string last_failure;
-  int n = 0;  // DOFs
+  std::string integrator_message;  // SUNDIALS' own error message (instead of stderr)
+  int n = 0;                       // DOFs
 };
+
+// SUNDIALS prints its errors to stderr by default; they belong in the run's message.
+void ErrorHandler(int code, const char* module, const char* function, char* message, void* user) {
+  auto& c = *static_cast<Context*>(user);
+  c.integrator_message =
+      std::string(module) + " " + function + " (" + std::to_string(code) + "): " + message;
+}
 
 void Split(const Context& c, const double* y, Eigen::VectorXd* d, Eigen::VectorXd* v) {
   *d = Eigen::Map<const Eigen::VectorXd>(y, c.n);
@@ -214,6 +222,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     Check(CVodeInit(s.cvode, Rhs, 0.0, s.y), "CVodeInit");
     Check(CVodeSVtolerances(s.cvode, options.rtol, s.atol), "CVodeSVtolerances");
     Check(CVodeSetUserData(s.cvode, &c), "CVodeSetUserData");
+    Check(CVodeSetErrHandlerFn(s.cvode, ErrorHandler, &c), "CVodeSetErrHandlerFn");
     Check(CVodeSetMaxNumSteps(s.cvode, options.max_steps), "CVodeSetMaxNumSteps");
     if (options.max_step > 0) Check(CVodeSetMaxStep(s.cvode, options.max_step), "CVodeSetMaxStep");
     // A contact set that changes is a C0 kink: allow CVODE more retries at such a step than its
@@ -233,6 +242,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     if (!s.erk) throw std::runtime_error("SUNDIALS: ERKStepCreate failed");
     Check(ERKStepSVtolerances(s.erk, options.rtol, s.atol), "ERKStepSVtolerances");
     Check(ERKStepSetUserData(s.erk, &c), "ERKStepSetUserData");
+    Check(ERKStepSetErrHandlerFn(s.erk, ErrorHandler, &c), "ERKStepSetErrHandlerFn");
     Check(ERKStepSetTableNum(s.erk, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum");
     Check(ERKStepSetMaxNumSteps(s.erk, options.max_steps), "ERKStepSetMaxNumSteps");
     if (options.max_step > 0)

@@ -422,3 +422,307 @@ TEST_CASE(
     CHECK(structure);
   }
 }
+
+namespace {
+
+// Mean of L_1 − 1 over the samples (the load-sharing factor of planet 1, ideal 0 deviation).
+double MeanDeviation(const std::vector<double>& lsr1) {
+  double s = 0;
+  for (double v : lsr1) s += 3 * v - 1;
+  return s / static_cast<double>(lsr1.size());
+}
+
+std::string WithPin(const std::string& text, double radial_um, double tangential_um) {
+  return text + "\n[[errors.pin]]\ngear = \"planet1\"\nradial_um = " + std::to_string(radial_um) +
+         "\ntangential_um = " + std::to_string(tangential_um) + "\n";
+}
+
+}  // namespace
+
+TEST_CASE(
+    "the paper's run-out case in motion (20 um on planet 1, -600 N m, 1500 rpm): fixed sun "
+    "harmonic and tangential, floating sun near ideal with a lobular orbit",
+    "[crosscheck][dynamics][paper]") {
+  const std::string text = WithRunout(test::SceneText("paper_stage.toml"));
+  RigOptions o;
+  o.edit = [](dynamics::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
+  const double cycles = 24;  // a planet revolution relative to the carrier: z_p mesh cycles
+
+  SECTION("fixed sun") {
+    const auto rig = test::MakeRig(text, "runout", o);
+    const auto r = Run(rig, Times(*rig.model, *rig.stage, cycles, 4));
+    REQUIRE(r.completed);
+    // LSR_1 against the run-out offset's tangential component in the carrier frame.
+    std::vector<double> lsr, tangential;
+    for (const DynamicSample& s : r.samples) {
+      const auto& g = s.evaluation.poses.planets[0];
+      const Eigen::Vector2d e = g.geometric_centre - g.rotation_centre;
+      const double dir = s.carrier_angle + rig.stage->planet_angle(0);
+      tangential.push_back(e.dot(Eigen::Vector2d(-std::sin(dir), std::cos(dir))));
+      lsr.push_back(s.load_sharing[0]);
+    }
+    const int n = static_cast<int>(lsr.size());
+    double ml = 0, mt = 0;
+    for (int k = 0; k < n; ++k) ml += lsr[k] / n, mt += tangential[k] / n;
+    double sll = 0, stt = 0, slt = 0;
+    for (int k = 0; k < n; ++k) {
+      sll += (lsr[k] - ml) * (lsr[k] - ml);
+      stt += (tangential[k] - mt) * (tangential[k] - mt);
+      slt += (lsr[k] - ml) * (tangential[k] - mt);
+    }
+    const double correlation = slt / std::sqrt(sll * stt);
+    // First harmonic of the window (one revolution of the offset) against the whole variance.
+    std::vector<std::complex<double>> x;
+    for (double v : lsr) x.emplace_back(v - ml, 0.0);
+    const double a1 = Harmonic(x, 1);
+    const double first = 0.5 * a1 * a1 / (sll / n);
+    Figure("dynamic run-out, fixed sun: LSR_1 " + Sci(*std::min_element(lsr.begin(), lsr.end())) +
+           " .. " + Sci(*std::max_element(lsr.begin(), lsr.end())) + ", first harmonic " + Sci(a1) +
+           " (" + Sci(first) +
+           " of the variance), correlation with the tangential "
+           "offset " +
+           Sci(correlation));
+    // The quasi-static study has 99.5 % in the first harmonic and correlation 0.997; in motion the
+    // mesh-frequency ripple and the ringing after tip-contact force jumps add variance at higher
+    // frequencies: required here, ≥ 0.9 and |correlation| ≥ 0.95.
+    VerifyRow("run-out 20 um, fixed sun, 1500 rpm, a planet revolution: LSR_1 harmonic",
+              "quasi-static study: first harmonic 0.995 of the variance",
+              "first harmonic " + Sci(first, 3) + " of the variance, amplitude " + Sci(a1),
+              "|correlation with the tangential offset| " + Sci(std::abs(correlation), 4),
+              ">= 0.9 and >= 0.95", first >= 0.9 && std::abs(correlation) >= 0.95);
+    CHECK(first >= 0.9);
+    CHECK(std::abs(correlation) >= 0.95);
+  }
+
+  SECTION("tangential against radial error") {
+    // Mean L_1 deviation over 3 mesh cycles (after 6 cycles of settling: the start's transient
+    // decays by e^-ζωt = e^-15 at ζω ≥ 805 1/s) for a 5 um tangential and a 5 um radial pin error,
+    // against the quasi-static solver at the same angles (the linear theory gives 40.2,
+    // docs/model.md §8). Friction off: the quasi-static model has none. At 150 rpm the dynamic
+    // ratio must be within 25 % of the quasi-static one (the limit the quasi-static test uses
+    // against the theory); at the paper's 1500 rpm it is reported: the radial error's effect
+    // grows in motion (docs/dynamic.md).
+    for (const double rpm : {150.0, 1500.0}) {
+      RigOptions op = o;
+      op.edit = [rpm](dynamics::DynamicSettings& s) {
+        s.sun_speed = rpm * kRpm;
+        s.friction.law = dynamics::FrictionLaw::kOff;
+      };
+      double ratio[2];
+      for (int quasi = 0; quasi < 2; ++quasi) {
+        double dev[2];
+        for (int k = 0; k < 2; ++k) {
+          const auto rig = test::MakeRig(
+              WithPin(test::SceneText("paper_stage.toml"), k == 0 ? 0.0 : 5.0, k == 0 ? 5.0 : 0.0),
+              "pin", op);
+          const auto times = Times(*rig.model, *rig.stage, 3, 24, 6.0);
+          std::vector<double> l1;
+          if (quasi == 0) {
+            std::vector<double> run_times = Times(*rig.model, *rig.stage, 6, 1);
+            run_times.insert(run_times.end(), times.begin(), times.end());
+            const auto r = Run(rig, run_times);
+            REQUIRE(r.completed);
+            for (std::size_t j = 6; j < r.samples.size(); ++j)
+              l1.push_back(r.samples[j].load_sharing[0]);
+          } else {
+            for (double t : times) {
+              const auto q = transmission::SolvePosition(
+                  *rig.stage_model, rig.model->CarrierAngle(t), {rig.scene.sun_torque}, {});
+              REQUIRE(q.converged);
+              l1.push_back(q.load_sharing[0]);
+            }
+          }
+          dev[k] = MeanDeviation(l1);
+        }
+        ratio[quasi] = std::abs(dev[0] / dev[1]);
+      }
+      const double rel = std::abs(ratio[0] / ratio[1] - 1);
+      const std::string speed = std::to_string(static_cast<int>(rpm)) + " rpm";
+      Figure("tangential/radial at " + speed + ": dynamic " + Sci(ratio[0], 4) + ", quasi-static " +
+             Sci(ratio[1], 4));
+      if (rpm < 1000) {
+        VerifyRow("tangential/radial pin-error ratio in motion (5 um, fixed sun, " + speed + ")",
+                  "quasi-static model at the same angles (" + Sci(ratio[1], 3) + "; theory 40.2)",
+                  Sci(ratio[0], 3), Sci(rel) + " relative", "25 %", rel <= 0.25);
+        CHECK(rel <= 0.25);
+      } else {
+        test::ReportRow("tangential/radial pin-error ratio at the paper's speed (" + speed + ")",
+                        "quasi-static " + Sci(ratio[1], 3), Sci(ratio[0], 3),
+                        Sci(rel) + " relative",
+                        "reported: the radial error's effect grows in motion");
+        CHECK(ratio[0] > 1);
+      }
+    }
+  }
+
+  SECTION("floating sun") {
+    // Friction off: friction forces act across the lines of action and are not in the bound (with
+    // friction the deviation is larger: docs/dynamic.md).
+    RigOptions of = o;
+    of.sun = SunSupport::kFloating;
+    of.edit = [](dynamics::DynamicSettings& s) {
+      s.sun_speed = 1500 * kRpm;
+      s.friction.law = dynamics::FrictionLaw::kOff;
+    };
+    const auto rig = test::MakeRig(text, "runout floating", of);
+    const auto r = Run(rig, Times(*rig.model, *rig.stage, cycles, 4));
+    REQUIRE(r.completed);
+    // In motion the floating sun is balanced by its inertia as well: the mesh harmonics move its
+    // quasi-static equilibrium by about a micrometre (the net mesh force of a fixed sun at
+    // harmonics 1, 2, 4, 5 over its translational stiffness), and at 1500 rpm following that
+    // path takes m_s·a of tens to hundreds of newtons, near the translational mode (2445 Hz)
+    // amplified; and its rotation takes J_s θ̈_s of the input torque (the run-out breaks the
+    // phasing symmetry, so the sun's rotation now sees all mesh harmonics). With the forces on the
+    // lines of action, three planets 120° apart and the sun's balance
+    //   Σ F_i n_i = m_s a_s,   Σ F_i r_bs = |T| − J_s|θ̈_s|·sign,
+    // each planet's force differs from the equal share by (2/3) m_s a_s·n_i plus a third of
+    // J_s θ̈_s/r_bs, so
+    //   |LSR_i − LSR_i,qs| ≤ [(2/3) m_s |a_s| r_bs + J_s |θ̈_s| / 3] / |T|   (+ the QS ripple).
+    // Required at every output with a margin of 1.25 for the lines of action's tilt.
+    const int sx = rig.model->Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kX);
+    const int ks = rig.model->Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kRotation);
+    const double ms = rig.scene.sun.mass, js = rig.scene.sun.inertia;
+    const double rbs = rig.stage->sun().base_radius();
+    double worst = 0, worst_qs = 0, worst_ratio = 0, rmax = 0, rmin = 1;
+    for (const DynamicSample& s : r.samples) {
+      const auto q = transmission::SolvePosition(*rig.stage_model, s.carrier_angle,
+                                                 {rig.scene.sun_torque}, {});
+      REQUIRE(q.converged);
+      const Eigen::Vector2d a(s.evaluation.acceleration(sx), s.evaluation.acceleration(sx + 1));
+      const double bound =
+          (2.0 / 3.0 * ms * a.norm() * rbs + js * std::abs(s.evaluation.acceleration(ks)) / 3.0) /
+          std::abs(rig.scene.sun_torque);
+      for (std::size_t i = 0; i < q.load_sharing.size(); ++i) {
+        worst = std::max(worst, std::abs(s.load_sharing[i] - 1.0 / 3));
+        worst_qs = std::max(worst_qs, std::abs(q.load_sharing[i] - 1.0 / 3));
+        const double dev = std::abs(s.load_sharing[i] - q.load_sharing[i]);
+        worst_ratio = std::max(worst_ratio, dev / (bound + 1e-4));
+      }
+      rmax = std::max(rmax, s.sun_centre.norm());
+      rmin = std::min(rmin, s.sun_centre.norm());
+    }
+    Figure("dynamic run-out, floating sun: largest |LSR - 1/3| " + Sci(worst) +
+           " (quasi-static at the same angles " + Sci(worst_qs) +
+           "), largest deviation over the "
+           "inertial bound " +
+           Sci(worst_ratio) + ", orbit radius " + Sci(rmin * 1e6) + " .. " + Sci(rmax * 1e6) +
+           " um");
+    const bool inertial = worst_ratio <= 1.25;
+    const bool orbit = rmax >= 10e-6 && rmax <= 40e-6 && rmax >= 1.2 * rmin;
+    VerifyRow("run-out 20 um, floating sun, 1500 rpm, a planet revolution: LSR",
+              "quasi-static band " + Sci(worst_qs) +
+                  " plus the sun's inertia ((2/3) m_s \\|a\\| r_bs + J_s \\|theta''\\|/3)/\\|T\\|",
+              "largest \\|LSR - 1/3\\| " + Sci(worst),
+              "largest deviation / bound " + Sci(worst_ratio), "1.25", inertial);
+    VerifyRow("run-out 20 um, floating sun: the sun's orbit",
+              "of the order of the run-out, lobular",
+              "radius " + Sci(rmin * 1e6, 3) + " .. " + Sci(rmax * 1e6, 3) + " um",
+              "max/min " + Sci(rmax / rmin, 3), "10..40 um, max/min >= 1.2", orbit);
+    CHECK(inertial);
+    CHECK(orbit);
+  }
+}
+
+namespace {
+
+std::string Thrown(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A compliance that works for `calls` matrices, then throws: a run that fails midway.
+class FailingCompliance : public transmission::StageCompliance {
+ public:
+  explicit FailingCompliance(int calls) : calls_(calls) {}
+  Eigen::MatrixXd Matrix(const geometry::Stage&, const geometry::StagePoses&,
+                         const std::vector<transmission::StageContact>& contacts) const override {
+    if (--calls_ < 0) throw std::runtime_error("injected compliance failure");
+    const auto n = static_cast<Eigen::Index>(contacts.size());
+    return 1e-9 * Eigen::MatrixXd::Identity(n, n);
+  }
+  double JoiningDepth(int) const override { return 1e-3; }
+
+ private:
+  mutable int calls_;
+};
+
+}  // namespace
+
+TEST_CASE(
+    "dynamic model, bad input: each named with its key, value and rule; a run that fails "
+    "midway keeps its outputs and says where and why",
+    "[unit][dynamics][input]") {
+  const std::string paper = test::SceneText("paper_stage.toml");
+  SECTION("a free member without mass") {
+    // The sun's mass removed, the sun floating: its translation needs the mass.
+    const std::string text = test::Replace(paper, "mass_kg = 1.19\n", "");
+    RigOptions o;
+    o.sun = SunSupport::kFloating;
+    o.spring = 1e-9;
+    o.spring_mesh_stiffness = 1e9;
+    const std::string m = Thrown([&] { test::MakeRig(text, "no sun mass", o); });
+    CHECK(m.find("[sun] mass_kg = 0") != std::string::npos);
+    CHECK(m.find("floating or elastic sun") != std::string::npos);
+  }
+  SECTION("negative damping, zero speed: the scene reader names the key") {
+    auto with = [&](const std::string& table) {
+      return Thrown([&] {
+        transmission::ParseScene(test::Replace(paper, "[contact]", table + "\n[contact]"), "s");
+      });
+    };
+    const std::string damping = with("[dynamics]\nmesh_damping_ratio = -0.1\n");
+    CHECK(damping.find("mesh_damping_ratio") != std::string::npos);
+    CHECK(damping.find("-0.1") != std::string::npos);
+    const std::string bearing = with("[dynamics]\nsun_bearing_damping_Ns_per_m = -5.0\n");
+    CHECK(bearing.find("sun_bearing_damping_Ns_per_m") != std::string::npos);
+    const std::string speed = with("[dynamics]\nsun_speed_rpm = 0.0\n");
+    CHECK(speed.find("sun_speed_rpm") != std::string::npos);
+    CHECK(speed.find("> 0") != std::string::npos);
+    // The same rule where settings are made in code.
+    dynamics::DynamicSettings s;
+    s.sun_speed = 0;
+    const std::string code = Thrown([&] { s.Validate(); });
+    CHECK(code.find("sun_speed_rpm = 0") != std::string::npos);
+  }
+  SECTION("a scene that separates the gears") {
+    // Planet 2's teeth 0.5 mm thinner (both meshes have 0.15 mm backlash): its flanks are more
+    // than the 100 um gap window from the sun's and the ring's, nothing holds its rotation.
+    const std::string text =
+        paper + "\n[[errors.thickness]]\ngear = \"planet2\"\nerror_um = -500.0\n";
+    RigOptions o;
+    o.spring = 1e-9;
+    o.spring_mesh_stiffness = 1e9;
+    const std::string m = Thrown([&] {
+      const auto rig = test::MakeRig(text, "separated", o);
+      rig.model->QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+    });
+    INFO(m);
+    CHECK(m.find("quasi-static start") != std::string::npos);
+  }
+  SECTION("a run that fails midway") {
+    transmission::Scene scene = transmission::ParseScene(paper, "paper");
+    const geometry::Stage stage(scene.stage);
+    transmission::StageSetup setup = transmission::SetupFromScene(scene);
+    setup.local_terms = false;
+    const FailingCompliance failing(400);
+    const transmission::StageModel sm(scene, stage, failing, setup);
+    dynamics::DynamicSettings settings = dynamics::SettingsFromScene(scene);
+    settings.friction.law = dynamics::FrictionLaw::kOff;
+    dynamics::DynamicModel m(sm, scene, settings);
+    m.SetMeshStiffness(1e9, 1e9);
+    const auto times = Times(m, stage, 4, 10);
+    std::vector<double> seen;
+    const Eigen::VectorXd d0 = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+    const auto r = dynamics::Simulate(m, {}, d0, Eigen::VectorXd::Zero(m.size()), times,
+                                      [&](const DynamicSample& s) { seen.push_back(s.time); });
+    CHECK_FALSE(r.completed);
+    CHECK(r.message.find("injected compliance failure") != std::string::npos);
+    CHECK(r.message.find("stopped after t =") != std::string::npos);
+    CHECK(seen.size() == r.samples.size());
+    CHECK(r.samples.size() < times.size());
+  }
+}
