@@ -29,6 +29,13 @@ WorldInvolute NominalFlank(const PosedGear& g, int tooth, int side) {
   return w;
 }
 
+// A point of tooth k (turned by its pitch deviation) carried back onto the nominal tooth.
+Vec2 NominalTooth(const PosedGear& g, int tooth, const Vec2& p) {
+  const double off = g.gear->tooth_offset(tooth);
+  if (off == 0.0) return p;
+  return g.pose.geometric_centre + Rotate(p - g.pose.geometric_centre, -off);
+}
+
 // All roll angles u = u0 + j·p inside [lo, hi) (a flank's roll repeats every tooth pitch p).
 template <typename F>
 void ForEachRoll(double u0, double p, double lo, double hi, F&& f) {
@@ -50,8 +57,9 @@ bool InSpan(double phi, double from, double to) {
 
 struct ArcHit {
   Vec2 flank_point;
-  Vec2 flank_normal;  // the flank's outward normal
-  double distance;    // from the arc centre to the flank, along its normal
+  Vec2 flank_surface;  // the same roll on the nominal tooth's involute (FE table lookup)
+  Vec2 flank_normal;   // the flank's outward normal
+  double distance;     // from the arc centre to the flank, along its normal
   double roll;
   int tooth;
 };
@@ -121,7 +129,8 @@ void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const P
       const double d = (c - point).dot(normal);
       if (d <= 0 || d > rho + window) return;
       if (!InSpan(Angle(-normal), from, to)) return;
-      hit(ArcHit{point, normal, d, u, tooth});
+      hit(ArcHit{point, NominalTooth(g, tooth, FlankInWorld(g, tooth, side).Point(u)), normal, d, u,
+                 tooth});
     });
   }
 }
@@ -130,13 +139,17 @@ void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const P
 struct WorldArc {
   Vec2 centre;
   double from, to;
+  Vec2 nominal_centre;  // the unrelieved round of the nominal tooth
 };
 WorldArc TipRoundInWorld(const PosedGear& g, int tooth, int side) {
   const TipRound& t = g.gear->tip_round();
   const double turn = g.pose.rotation + tooth * g.gear->pitch_angle() + g.gear->tooth_offset(tooth);
   const Vec2 body(t.centre.x(), side * t.centre.y());
+  const TipRound& n = g.gear->nominal_tip_round();
+  const double nominal_turn = g.pose.rotation + tooth * g.gear->pitch_angle();
   return {g.pose.geometric_centre + Rotate(body, turn), side * t.normal_from + turn,
-          side * t.normal_to + turn};
+          side * t.normal_to + turn,
+          g.pose.geometric_centre + Rotate(Vec2(n.centre.x(), side * n.centre.y()), nominal_turn)};
 }
 
 double Lever(const Vec2& point, const Vec2& centre, const Vec2& force_direction) {
@@ -189,6 +202,7 @@ namespace {
 // A's flank at roll u_a on the line of action, and B's flank nearest to it there.
 struct LoaPair {
   Vec2 xa, xb;
+  Vec2 sa, sb;  // on the nominal teeth's involutes
   double ua, ub;
   int ka, kb;
   double overlap;
@@ -217,6 +231,8 @@ LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l,
   if (modified) r.ub -= b0.hand * b.gear->tooth_offset(r.kb);
   r.xb = (modified ? FlankInWorld(b, r.kb, l.side_b) : NominalFlank(b, r.kb, l.side_b)).Point(r.ub);
   r.overlap = (r.xa - r.xb).dot(l.direction);
+  r.sa = NominalTooth(a, ka, r.xa);
+  r.sb = NominalTooth(b, r.kb, r.xb);
   if (modified && (a.gear->has_relief() || b.gear->has_relief())) {
     const double ca = a.gear->ReliefAt(r.ua).c, cb = b.gear->ReliefAt(r.ub).c;
     r.xa -= ca * l.direction;
@@ -280,6 +296,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                   c.tooth_b = pr.kb;
                   c.point_a = pr.xa;
                   c.point_b = pr.xb;
+                  c.surface_a = pr.sa;
+                  c.surface_b = pr.sb;
                   c.point = 0.5 * (pr.xa + pr.xb);
                   c.normal = l.direction;
                   c.overlap = pr.overlap;
@@ -328,6 +346,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                              c.tooth_b = h.tooth;
                              c.point_a = on_arc;
                              c.point_b = h.flank_point;
+                             c.surface_a = arc.nominal_centre - rho * h.flank_normal;
+                             c.surface_b = h.flank_surface;
                              c.normal = -h.flank_normal;
                              c.curvature_radius_a = rho;
                              c.curvature_radius_b = ring_sign * other_radius;
@@ -337,6 +357,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                              c.tooth_b = tooth;
                              c.point_a = h.flank_point;
                              c.point_b = on_arc;
+                             c.surface_a = h.flank_surface;
+                             c.surface_b = arc.nominal_centre - rho * h.flank_normal;
                              c.normal = h.flank_normal;
                              c.curvature_radius_a = other_radius;
                              c.curvature_radius_b = rho;

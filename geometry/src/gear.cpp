@@ -55,6 +55,7 @@ Gear::Gear(GearSpec spec) : spec_(std::move(spec)) {
          "pointed tooth: the tip thickness s_a = " + Mm(sa) + " mm is below the limit " +
              Mm(spec_.min_tip_thickness) + " mm (shorten the tip or reduce the profile shift)");
   }
+  nominal_tip_round_ = tip_round_;
   BuildModifications();
 }
 

@@ -75,6 +75,10 @@ struct PotentialContact {
   int tooth_a = 0, tooth_b = 0;  ///< tooth indices in each body frame
   Vec2 point = Vec2::Zero();     ///< location (midpoint of the two closest points) [m]
   Vec2 point_a = Vec2::Zero(), point_b = Vec2::Zero();  ///< closest points on A and on B [m]
+  /// The same material points on the nominal profiles of the nominal teeth (without relief, tooth
+  /// turned back by its pitch deviation) [m]: where the FE influence tables, built on the nominal
+  /// generated profile, are read. Equal to point_a, point_b for unmodified gears.
+  Vec2 surface_a = Vec2::Zero(), surface_b = Vec2::Zero();
   Vec2 normal = Vec2::Zero();     ///< unit, A's outward normal (from A into B)
   double overlap = 0;             ///< δ [m]: > 0 interpenetration, < 0 gap
   double lever_a = 0;             ///< moment about A's rotation centre of the unit force on A [m]

@@ -131,7 +131,11 @@ class Gear {
 
   const HalfProfile& half_profile() const { return half_; }
   const InvoluteFlank& involute() const { return involute_; }
+  /// The tip round of the flank as the contact search sees it: tangent to the relieved flank when
+  /// the gear has tip relief.
   const TipRound& tip_round() const { return tip_round_; }
+  /// The tip round of the generated (unrelieved) profile, the FE body's.
+  const TipRound& nominal_tip_round() const { return nominal_tip_round_; }
   bool has_tip_round() const { return spec_.tip_round_radius > 0; }
 
   /// The relief at roll angle u of the involute (sum of tip and root relief).
@@ -178,7 +182,7 @@ class Gear {
   bool undercut_ = false;
   HalfProfile half_;
   InvoluteFlank involute_;
-  TipRound tip_round_;
+  TipRound tip_round_, nominal_tip_round_;
 };
 
 }  // namespace epicycle::geometry
