@@ -18,6 +18,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "fe_fixtures.hpp"
 #include "figures.hpp"
 #include "stage_fixtures.hpp"
 
@@ -28,11 +29,7 @@ using test::VerifyRow;
 
 namespace {
 
-transmission::FeComplianceOptions CachedTables() {
-  transmission::FeComplianceOptions o;
-  o.cache_directory = EPICYCLE_TEST_CACHE_DIR;
-  return o;
-}
+using test::CachedTables;
 
 // Long tip relief: the zone covers the double-contact stretch at the tip, (ε_α − 1) p_b along the
 // line of action from the tip circle (outward for an internal gear, whose tip is its inner circle).
@@ -294,17 +291,6 @@ struct StageRun {
   std::vector<transmission::PositionResult> results;
 };
 
-// The FE compliance of the paper's stage; relief and pitch deviations do not change its bodies.
-const transmission::FeStageCompliance& PaperCompliance() {
-  static std::unique_ptr<transmission::FeStageCompliance> c;
-  if (!c) {
-    const auto scene = test::PaperScene();
-    c = std::make_unique<transmission::FeStageCompliance>(scene, geometry::Stage(scene.stage),
-                                                          CachedTables());
-  }
-  return *c;
-}
-
 StageRun SweepStage(const transmission::Scene& scene, transmission::SunSupport sun,
                     const std::vector<double>& angles, bool require_converged = true) {
   StageRun r;
@@ -313,7 +299,7 @@ StageRun SweepStage(const transmission::Scene& scene, transmission::SunSupport s
   transmission::QuasiStaticOptions o;
   o.setup = transmission::SetupFromScene(scene);
   o.setup.sun = sun;
-  r.results = transmission::Sweep(scene, *r.stage, PaperCompliance(), angles, o);
+  r.results = transmission::Sweep(scene, *r.stage, test::Compliance("paper_stage.toml"), angles, o);
   for (const auto& p : r.results) {
     INFO(geometry::Deg(p.carrier_angle) << " deg: " << p.message);
     if (require_converged) REQUIRE(p.converged);
