@@ -119,18 +119,20 @@ void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const P
       const Vec2 radial = Dir(beta), perp(-radial.y(), radial.x());
       Vec2 point = f0.centre + f0.base_radius * (radial - f0.hand * u * perp);
       Vec2 normal = side * perp;
+      Vec2 involute = point;  // the unrelieved flank's point at the contact's roll
       if (g.gear->has_relief()) {
-        const FlankFoot foot = RelievedFoot(FlankInWorld(g, tooth, side), *g.gear, c, u);
+        const WorldInvolute w = FlankInWorld(g, tooth, side);
+        const FlankFoot foot = RelievedFoot(w, *g.gear, c, u);
         if (foot.u < f0.u_min || foot.u >= f0.u_max) return;
         point = foot.point;
         normal = foot.normal;
         u = foot.u;
+        involute = w.Point(u);
       }
       const double d = (c - point).dot(normal);
       if (d <= 0 || d > rho + window) return;
       if (!InSpan(Angle(-normal), from, to)) return;
-      hit(ArcHit{point, NominalTooth(g, tooth, FlankInWorld(g, tooth, side).Point(u)), normal, d, u,
-                 tooth});
+      hit(ArcHit{point, NominalTooth(g, tooth, involute), normal, d, u, tooth});
     });
   }
 }

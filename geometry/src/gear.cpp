@@ -314,10 +314,14 @@ void Gear::BuildExternal() {
   // undercut they cross at a corner, and the flank's roll follows from the crossing's radius R:
   // the rack's contact point I + t n has |I + t n|² = R², t = −r sin α + √(R² − r_b²) on the
   // involute's outer branch.
-  r_form_ = fillet.Point(phi_fillet_top).norm();
-  flank.t0 = undercut_ ? (-r_ * sa + std::sqrt(r_form_ * r_form_ - rb_ * rb_)) / (r_ * ca) -
-                             g.flank_offset / r_
-                       : phi_fillet_top;
+  if (undercut_) {
+    r_form_ = fillet.Point(phi_fillet_top).norm();
+    flank.t0 = (-r_ * sa + std::sqrt(r_form_ * r_form_ - rb_ * rb_)) / (r_ * ca) -
+               g.flank_offset / r_;
+  } else {
+    flank.t0 = phi_fillet_top;
+    r_form_ = flank.Point(phi_fillet_top).norm();
+  }
   involute_.u_min = InvoluteFlank::RollAtRadius(rb_, r_form_);
   AddTip();
   // The involute ends where the tip round begins: invert radius(φ) of the rack's contact point,
