@@ -316,8 +316,8 @@ void Gear::BuildExternal() {
   // involute's outer branch.
   if (undercut_) {
     r_form_ = fillet.Point(phi_fillet_top).norm();
-    flank.t0 = (-r_ * sa + std::sqrt(r_form_ * r_form_ - rb_ * rb_)) / (r_ * ca) -
-               g.flank_offset / r_;
+    flank.t0 =
+        (-r_ * sa + std::sqrt(r_form_ * r_form_ - rb_ * rb_)) / (r_ * ca) - g.flank_offset / r_;
   } else {
     flank.t0 = phi_fillet_top;
     r_form_ = flank.Point(phi_fillet_top).norm();
