@@ -1,7 +1,10 @@
 // `epicycle geometry SCENE` (report, --json, --svg) and `epicycle contacts SCENE --carrier-deg A`.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
@@ -43,6 +46,34 @@ json GearJson(const Gear& g) {
   j["thickness_tip_mm"] = g.tip_thickness() * kToMm;
   j["tip_round_radius_mm"] = s.tip_round_radius * kToMm;
   j["thickness_error_um"] = s.thickness_error * 1e6;
+  j["undercut"] = g.undercut();
+  if (g.undercut()) j["undercut_radius_mm"] = g.undercut_radius() * kToMm;
+  json mods = json::object();
+  for (const auto& [which, relief, start_roll] :
+       {std::tuple{"tip", s.modification.tip, g.tip_relief_start_roll()},
+        std::tuple{"root", s.modification.root, g.root_relief_start_roll()}}) {
+    if (relief.amount == 0) continue;
+    mods[which] = {
+        {"amount_um", relief.amount * 1e6},
+        {"start_radius_mm", relief.start_radius * kToMm},
+        {"start_roll_deg", Deg(start_roll)},
+        {"shape", relief.shape == geometry::ReliefShape::kLinear ? "linear" : "parabolic"}};
+  }
+  if (!mods.empty()) j["modification"] = mods;
+  if (!s.pitch_deviations.empty()) {
+    const std::vector<double>& fp = s.pitch_deviations;
+    double single = 0, lo = fp[0], hi = fp[0];
+    for (std::size_t k = 0; k < fp.size(); ++k) {
+      single = std::max(single, std::abs(fp[(k + 1) % fp.size()] - fp[k]));
+      lo = std::min(lo, fp[k]);
+      hi = std::max(hi, fp[k]);
+    }
+    json list = json::array();
+    for (double v : fp) list.push_back(v * 1e6);
+    j["pitch"] = {{"cumulative_um", list},
+                  {"largest_single_um", single * 1e6},
+                  {"total_cumulative_um", (hi - lo) * 1e6}};
+  }
   if (g.internal()) {
     j["rim_radius_mm"] = s.hub_radius * kToMm;
     j["generation"] = s.shaper ? fmt::format("shaper z_c = {}, x_c = {}", s.shaper->teeth,
@@ -162,6 +193,32 @@ void PrintReport(const json& j) {
   for (const std::string& n : names) {
     std::printf("  %-7s %s\n", n.c_str(), g[n]["generation"].get<std::string>().c_str());
   }
+  for (const std::string& n : names) {
+    const json& gn = g[n];
+    if (gn.value("undercut", false)) {
+      std::printf(
+          "  warning: %s is undercut (x = %.4f below %.4f): generated as cut, the involute starts "
+          "where the fillet trochoid crosses it, r = %.4f mm\n",
+          n.c_str(), gn["profile_shift"].get<double>(),
+          gn["min_shift_without_undercut"].get<double>(), gn["undercut_radius_mm"].get<double>());
+    }
+    if (gn.contains("modification")) {
+      for (const auto& [which, m] : gn["modification"].items()) {
+        std::printf("  %-7s %s relief %.2f um, %s, from r = %.4f mm (roll %.3f deg) to the %s\n",
+                    n.c_str(), which.c_str(), m["amount_um"].get<double>(),
+                    m["shape"].get<std::string>().c_str(), m["start_radius_mm"].get<double>(),
+                    m["start_roll_deg"].get<double>(),
+                    which == "tip" ? "tip circle" : "form circle");
+      }
+    }
+    if (gn.contains("pitch")) {
+      std::printf(
+          "  %-7s pitch deviations: largest single f_pt %.3f um, total cumulative F_p "
+          "%.3f um\n",
+          n.c_str(), gn["pitch"]["largest_single_um"].get<double>(),
+          gn["pitch"]["total_cumulative_um"].get<double>());
+    }
+  }
   std::printf(
       "\nMeshes          a [mm]  alpha_w [deg]  j_n [mm]  j_t [mm]  eps_a ISO  eps_a inv  "
       "SAP a/b [mm]      phase\n");
@@ -256,12 +313,18 @@ void PrintPairContacts(const geometry::GearPair& pair, double angle_deg, double 
 
 void RegisterGeometryCommands(CLI::App& app) {
   auto* geo = app.add_subcommand("geometry", "Print the stage's gear and mesh geometry report");
-  static std::string scene_path, json_path, svg_path;
-  static double carrier_deg = 0.0;
+  static std::string scene_path, json_path, svg_path, zoom_mesh;
+  static double carrier_deg = 0.0, relief_scale = 200.0;
   geo->add_option("scene", scene_path, "Scene file (TOML)")->required()->check(CLI::ExistingFile);
   geo->add_option("--json", json_path, "Also write the report as JSON (keys: docs/geometry.md)");
   geo->add_option("--svg", svg_path, "Draw the stage as SVG");
-  geo->add_option("--carrier-deg", carrier_deg, "Carrier angle of the drawing [deg]");
+  geo->add_option("--carrier-deg", carrier_deg,
+                  "Carrier angle of the drawing [deg] (gear pairs: gear 1's turn)");
+  geo->add_option("--zoom", zoom_mesh,
+                  "Draw one tooth pair of this mesh instead (sun-planet<i>, planet<i>-ring; a "
+                  "pair scene: gear1-gear2, its default): undercut, form circles, relief");
+  geo->add_option("--relief-scale", relief_scale,
+                  "Magnification of the relief in the zoom drawing [-] (default 200)");
   geo->callback([] {
     const transmission::Scene scene = transmission::ReadScene(scene_path);
     if (scene.kind == transmission::SceneKind::kPair) {
@@ -269,8 +332,16 @@ void RegisterGeometryCommands(CLI::App& app) {
       const json report = PairJson(scene, pair);
       PrintReport(report);
       if (!json_path.empty()) WriteFile(json_path, report.dump(2) + "\n");
-      if (!svg_path.empty())
-        throw std::invalid_argument("--svg draws stages only (this scene is a gear pair)");
+      if (!svg_path.empty()) {
+        if (!zoom_mesh.empty() && zoom_mesh != "gear1-gear2") {
+          throw std::invalid_argument("--zoom = " + zoom_mesh +
+                                      ": a gear pair has one mesh, gear1-gear2");
+        }
+        const geometry::PairPoses p = pair.Poses(geometry::Rad(carrier_deg));
+        WriteFile(svg_path, DrawMeshZoom(pair.A(p), pair.B(p), pair.internal(), pair.loaded_side(),
+                                         scene.gap_window, relief_scale));
+        std::printf("wrote %s (tooth pair of gear1-gear2)\n", svg_path.c_str());
+      }
       return;
     }
     const Stage stage(scene.stage);
@@ -280,7 +351,28 @@ void RegisterGeometryCommands(CLI::App& app) {
       WriteFile(json_path, report.dump(2) + "\n");
       std::printf("\nwrote %s\n", json_path.c_str());
     }
-    if (!svg_path.empty()) {
+    if (!svg_path.empty() && !zoom_mesh.empty()) {
+      // "sun-planet<i>" or "planet<i>-ring": the mesh names of the report.
+      const geometry::StagePoses p = stage.Poses(geometry::Rad(carrier_deg));
+      int found = -1;
+      for (int m = 0; m < static_cast<int>(stage.meshes().size()); ++m) {
+        if (stage.meshes()[m].name == zoom_mesh) found = m;
+      }
+      if (found < 0) {
+        throw std::invalid_argument("--zoom = " + zoom_mesh +
+                                    ": not a mesh of the stage (sun-planet<i>, planet<i>-ring)");
+      }
+      const int i = found / 2;
+      const bool ring = found % 2 == 1;
+      const std::string svg =
+          ring ? DrawMeshZoom(stage.Planet(p, i), stage.Ring(p), true,
+                              stage.ring_mesh_planet_side(), scene.gap_window, relief_scale)
+               : DrawMeshZoom(stage.Sun(p), stage.Planet(p, i), false, stage.sun_mesh_side(),
+                              scene.gap_window, relief_scale);
+      WriteFile(svg_path, svg);
+      std::printf("wrote %s (tooth pair of %s, carrier at %.3f deg)\n", svg_path.c_str(),
+                  zoom_mesh.c_str(), carrier_deg);
+    } else if (!svg_path.empty()) {
       WriteFile(svg_path, DrawStage(stage, geometry::Rad(carrier_deg), scene.gap_window));
       std::printf("wrote %s (carrier at %.3f deg)\n", svg_path.c_str(), carrier_deg);
     }

@@ -86,4 +86,85 @@ std::string DrawStage(const geometry::Stage& stage, double carrier_angle, double
   return s + "</svg>\n";
 }
 
+namespace {
+
+// The relieved flanks of the teeth of g inside the window (centre c, half-width w), offset into
+// the tooth by relief × scale, as polylines.
+std::string ReliefPaths(const geometry::PosedGear& g, const Vec2& c, double w, double scale) {
+  if (!g.gear->has_relief()) return "";
+  std::string s;
+  const geometry::InvoluteFlank& f = g.gear->involute();
+  for (int k = 0; k < g.gear->teeth(); ++k) {
+    for (int side : {1, -1}) {
+      const geometry::WorldInvolute wi = geometry::FlankInWorld(g, k, side);
+      std::string d;
+      bool inside = false;
+      for (int i = 0; i <= 80; ++i) {
+        const double u = f.u_min + (f.u_max - f.u_min) * i / 80.0;
+        const double relief = g.gear->ReliefAt(u).c;
+        const Vec2 p = wi.Point(u) - scale * relief * wi.Normal(u);
+        if ((p - c).cwiseAbs().maxCoeff() > w) continue;
+        d += fmt::format("{}{:.4f},{:.4f} ", inside ? "L" : "M", p.x() * 1e3, -p.y() * 1e3);
+        inside = true;
+      }
+      if (!d.empty()) {
+        s += "<path fill=\"none\" stroke=\"#c0c\" stroke-width=\"0.02\" d=\"" + d + "\"/>\n";
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+std::string DrawMeshZoom(const geometry::PosedGear& a, const geometry::PosedGear& b, bool internal,
+                         int loaded_side, double gap_window, double relief_scale) {
+  const geometry::LineOfAction l = geometry::MakeLineOfAction(a, b, internal, loaded_side);
+  // The window: centred on the pitch point, 2.5 modules each way.
+  const Vec2 ca = a.pose.geometric_centre, cb = b.pose.geometric_centre;
+  const double ra = a.gear->base_radius() / std::cos(l.pressure_angle);
+  const Vec2 pitch = ca + ra * (internal ? (ca - cb) : (cb - ca)).normalized();
+  const double w = 2.5 * a.gear->module();
+  std::string s = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"{:.4f} {:.4f} {:.4f} {:.4f}\" "
+      "width=\"900\" height=\"900\">\n",
+      (pitch.x() - w) * 1e3, (-pitch.y() - w) * 1e3, 2 * w * 1e3, 2 * w * 1e3);
+  s += fmt::format(
+      "<title>epicycle mesh {}-{}: one tooth pair; magenta: relieved flanks, relief x {:.0f}; "
+      "dashed: form circles (start of the active involute); red: line of action</title>\n",
+      a.gear->name(), b.gear->name(), relief_scale);
+  s += fmt::format(
+      "<rect x=\"{:.4f}\" y=\"{:.4f}\" width=\"{:.4f}\" height=\"{:.4f}\" "
+      "fill=\"white\"/>\n",
+      (pitch.x() - w) * 1e3, (-pitch.y() - w) * 1e3, 2 * w * 1e3, 2 * w * 1e3);
+  const std::string gear_style = "fill=\"#dde6f0\" stroke=\"#234\" stroke-width=\"0.015\"";
+  for (const geometry::PosedGear* g : {&a, &b}) {
+    // The ring's outline is its inner boundary: drawn without fill.
+    s += "<path " +
+         (g->gear->internal() ? std::string("fill=\"none\" stroke=\"#234\" stroke-width=\"0.015\"")
+                              : gear_style) +
+         " d=\"" + Path(g->gear->Outline(64), g->pose) + "\"/>\n";
+    const std::string dash =
+        "fill=\"none\" stroke=\"#555\" stroke-width=\"0.01\" stroke-dasharray=\"0.08,0.05\"";
+    s += Circle(g->pose.geometric_centre, g->gear->form_radius(), dash);
+    s += Circle(g->pose.geometric_centre, g->gear->base_radius(),
+                "fill=\"none\" stroke=\"#999\" stroke-width=\"0.01\"");
+    if (g->gear->undercut()) {
+      s += Circle(g->pose.geometric_centre, g->gear->undercut_radius(),
+                  "fill=\"none\" stroke=\"#d60\" stroke-width=\"0.015\"");
+    }
+    s += ReliefPaths(*g, pitch, w, relief_scale);
+  }
+  s += Line(l.tangent_a, l.tangent_b, "stroke=\"#c33\" stroke-width=\"0.015\"");
+  geometry::ContactSearchOptions opt;
+  opt.gap_window = gap_window;
+  for (const geometry::PotentialContact& c : geometry::FindContacts(a, b, internal, opt)) {
+    const char* colour = c.kind == geometry::ContactKind::kInvolute ? "#0a0" : "#f80";
+    s += Circle(
+        c.point, 0.04e-3,
+        fmt::format("fill=\"{}\" fill-opacity=\"{}\"", colour, c.overlap >= -1e-6 ? 1.0 : 0.35));
+  }
+  return s + "</svg>\n";
+}
+
 }  // namespace epicycle::app

@@ -12,4 +12,11 @@ namespace epicycle::app {
 /// kind) at carrier angle φ_c; the drawing is in millimetres.
 std::string DrawStage(const geometry::Stage& stage, double carrier_angle, double gap_window);
 
+/// A zoom on one tooth pair of a mesh (gear A external, B external or the internal gear): the
+/// generated outlines (undercut fillets as cut), the form circles (start of the active involute;
+/// undercut crossings marked), the line of action, the potential contacts, and each relieved
+/// flank drawn offset by its relief × `relief_scale` (the relief is a few µm). Millimetres.
+std::string DrawMeshZoom(const geometry::PosedGear& a, const geometry::PosedGear& b, bool internal,
+                         int loaded_side, double gap_window, double relief_scale);
+
 }  // namespace epicycle::app

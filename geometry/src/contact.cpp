@@ -15,6 +15,27 @@ int Mod(long a, int z) {
   return static_cast<int>(r < 0 ? r + z : r);
 }
 
+// Tooth k's involute as if the gear had no pitch deviations.
+WorldInvolute NominalFlank(const PosedGear& g, int tooth, int side) {
+  const InvoluteFlank& f = g.gear->involute();
+  WorldInvolute w;
+  w.centre = g.pose.geometric_centre;
+  w.base_radius = f.base_radius;
+  w.start = g.pose.rotation + tooth * g.gear->pitch_angle() + side * f.start;
+  w.hand = side * f.hand;
+  w.side = side;
+  w.u_min = f.u_min;
+  w.u_max = f.u_max;
+  return w;
+}
+
+// A point of tooth k (turned by its pitch deviation) carried back onto the nominal tooth.
+Vec2 NominalTooth(const PosedGear& g, int tooth, const Vec2& p) {
+  const double off = g.gear->tooth_offset(tooth);
+  if (off == 0.0) return p;
+  return g.pose.geometric_centre + Rotate(p - g.pose.geometric_centre, -off);
+}
+
 // All roll angles u = u0 + j·p inside [lo, hi) (a flank's roll repeats every tooth pitch p).
 template <typename F>
 void ForEachRoll(double u0, double p, double lo, double hi, F&& f) {
@@ -36,36 +57,82 @@ bool InSpan(double phi, double from, double to) {
 
 struct ArcHit {
   Vec2 flank_point;
-  Vec2 flank_normal;  // the flank's outward normal
-  double distance;    // from the arc centre to the flank, along its normal
+  Vec2 flank_surface;  // the same roll on the nominal tooth's involute (FE table lookup)
+  Vec2 flank_normal;   // the flank's outward normal
+  double distance;     // from the arc centre to the flank, along its normal
   double roll;
   int tooth;
 };
 
+// The foot of the normal from c on a relieved flank x(u) − C(u) n(u) (MODEL.md §3; the relief is
+// a few µm, so Newton from the involute's foot u converges in a few steps). With e = e(S + H u),
+// e⊥ its left normal and n = σ e⊥:
+//   x′ = (r_b u + σH C) e − σ C′ e⊥,
+//   x″ = (r_b + 2σH C′) e + (H r_b u + σ C − σ C″) e⊥,
+// and f(u) = (x − c)·x′ = 0, f′ = |x′|² + (x − c)·x″.
+struct FlankFoot {
+  Vec2 point, normal;
+  double u;
+};
+FlankFoot RelievedFoot(const WorldInvolute& w, const Gear& gear, const Vec2& c, double u) {
+  const double sh = w.side * w.hand, rb = w.base_radius;
+  FlankFoot out{};
+  for (int it = 0; it < 30; ++it) {
+    const ReliefValue r = gear.ReliefAt(u);
+    const double b = w.start + w.hand * u;
+    const Vec2 e = Dir(b), ep = DirPerp(b);
+    const Vec2 x = w.Point(u) - r.c * w.side * ep;
+    const Vec2 d1 = (rb * u + sh * r.c) * e - w.side * r.d1 * ep;
+    const Vec2 d2 = (rb + 2.0 * sh * r.d1) * e + (w.hand * rb * u + w.side * (r.c - r.d2)) * ep;
+    const Vec2 t = d1.normalized();
+    out = {x, w.side * Vec2(-t.y(), t.x()), u};
+    const double f = (x - c).dot(d1), df = d1.squaredNorm() + (x - c).dot(d2);
+    const double step = f / df;
+    u -= step;
+    if (std::abs(step) < 1e-14 * std::max(1.0, std::abs(u))) break;
+  }
+  return out;
+}
+
 // Closest points between a circular arc (centre c, radius ρ, outward normals spanning
-// [from, to]) and the involute flanks of side σ of a posed gear: the flank point whose normal
-// passes through c lies on a tangent from c to the base circle.
+// [from, to]) and the flanks of side σ of a posed gear: the involute's point whose normal passes
+// through c lies on a tangent from c to the base circle; a relieved flank's is refined from it.
+// Tooth k's flank is turned by its pitch-deviation offset, which moves its roll by −H·offset.
 template <typename F>
 void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const PosedGear& g,
                       int side, double window, F&& hit) {
-  const WorldInvolute f0 = FlankInWorld(g, 0, side);
+  const WorldInvolute f0 = NominalFlank(g, 0, side);
   const Vec2 rel = c - f0.centre;
   const double dist_c = rel.norm();
   if (dist_c <= f0.base_radius) return;
   const double phi = Angle(rel);
   const double open = std::acos(f0.base_radius / dist_c);
   const double p = g.gear->pitch_angle();
+  const double margin = g.gear->max_tooth_offset();
   for (int s : {-1, 1}) {
     const double beta = phi + s * open;
     const double u0 = f0.hand * WrapAngle(beta - f0.start);
-    ForEachRoll(u0, p, f0.u_min, f0.u_max, [&](double u, long j) {
+    ForEachRoll(u0, p, f0.u_min - margin, f0.u_max + margin, [&](double un, long j) {
+      const int tooth = Mod(-f0.hand * j, g.gear->teeth());
+      double u = un - f0.hand * g.gear->tooth_offset(tooth);
+      if (u < f0.u_min || u >= f0.u_max) return;
       const Vec2 radial = Dir(beta), perp(-radial.y(), radial.x());
-      const Vec2 point = f0.centre + f0.base_radius * (radial - f0.hand * u * perp);
-      const Vec2 normal = side * perp;
+      Vec2 point = f0.centre + f0.base_radius * (radial - f0.hand * u * perp);
+      Vec2 normal = side * perp;
+      Vec2 involute = point;  // the unrelieved flank's point at the contact's roll
+      if (g.gear->has_relief()) {
+        const WorldInvolute w = FlankInWorld(g, tooth, side);
+        const FlankFoot foot = RelievedFoot(w, *g.gear, c, u);
+        if (foot.u < f0.u_min || foot.u >= f0.u_max) return;
+        point = foot.point;
+        normal = foot.normal;
+        u = foot.u;
+        involute = w.Point(u);
+      }
       const double d = (c - point).dot(normal);
       if (d <= 0 || d > rho + window) return;
       if (!InSpan(Angle(-normal), from, to)) return;
-      hit(ArcHit{point, normal, d, u, Mod(-f0.hand * j, g.gear->teeth())});
+      hit(ArcHit{point, NominalTooth(g, tooth, involute), normal, d, u, tooth});
     });
   }
 }
@@ -74,13 +141,17 @@ void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const P
 struct WorldArc {
   Vec2 centre;
   double from, to;
+  Vec2 nominal_centre;  // the unrelieved round of the nominal tooth
 };
 WorldArc TipRoundInWorld(const PosedGear& g, int tooth, int side) {
   const TipRound& t = g.gear->tip_round();
-  const double turn = g.pose.rotation + tooth * g.gear->pitch_angle();
+  const double turn = g.pose.rotation + tooth * g.gear->pitch_angle() + g.gear->tooth_offset(tooth);
   const Vec2 body(t.centre.x(), side * t.centre.y());
+  const TipRound& n = g.gear->nominal_tip_round();
+  const double nominal_turn = g.pose.rotation + tooth * g.gear->pitch_angle();
   return {g.pose.geometric_centre + Rotate(body, turn), side * t.normal_from + turn,
-          side * t.normal_to + turn};
+          side * t.normal_to + turn,
+          g.pose.geometric_centre + Rotate(Vec2(n.centre.x(), side * n.centre.y()), nominal_turn)};
 }
 
 double Lever(const Vec2& point, const Vec2& centre, const Vec2& force_direction) {
@@ -97,15 +168,8 @@ Vec2 WorldInvolute::Point(double u) const {
 Vec2 WorldInvolute::Normal(double u) const { return side * DirPerp(start + hand * u); }
 
 WorldInvolute FlankInWorld(const PosedGear& g, int tooth, int side) {
-  const InvoluteFlank& f = g.gear->involute();
-  WorldInvolute w;
-  w.centre = g.pose.geometric_centre;
-  w.base_radius = f.base_radius;
-  w.start = g.pose.rotation + tooth * g.gear->pitch_angle() + side * f.start;
-  w.hand = side * f.hand;
-  w.side = side;
-  w.u_min = f.u_min;
-  w.u_max = f.u_max;
+  WorldInvolute w = NominalFlank(g, tooth, side);
+  w.start += g.gear->tooth_offset(tooth);
   return w;
 }
 
@@ -140,28 +204,43 @@ namespace {
 // A's flank at roll u_a on the line of action, and B's flank nearest to it there.
 struct LoaPair {
   Vec2 xa, xb;
+  Vec2 sa, sb;  // on the nominal teeth's involutes
   double ua, ub;
   int ka, kb;
   double overlap;
 };
 
-LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l, double ua,
-                  int ka) {
+// With `modified`, tooth k of either gear is turned by its pitch-deviation offset (its roll on
+// the line of action moves by −H·offset) and each flank's relief is taken off along the line of
+// action. An involute's normal where it crosses the line of action is the line's direction, so
+// the relieved flank x − C n crosses the line at x − C d: along the line the gap of two relieved
+// flanks is exactly the involutes' gap plus C_A(u_A) + C_B(u_B).
+LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l, double ua, int ka,
+                  bool modified) {
   LoaPair r;
   r.ua = ua;
   r.ka = ka;
-  r.xa = FlankInWorld(a, ka, l.side_a).Point(ua);
+  r.xa = (modified ? FlankInWorld(a, ka, l.side_a) : NominalFlank(a, ka, l.side_a)).Point(ua);
   const double sa = (r.xa - l.tangent_a).dot(l.direction);
-  const WorldInvolute b0 = FlankInWorld(b, 0, l.side_b);
+  const WorldInvolute b0 = NominalFlank(b, 0, l.side_b);
   // Along d, B's flank point sits at s_B = L + H_B σ_B r_bB u_B from N_A.
   const double target = (sa - l.length) / (b0.hand * l.side_b * b0.base_radius);
   const double u0 = b0.hand * WrapAngle(l.base_angle_b - b0.start);
   const double p = b.gear->pitch_angle();
   const long j = std::lround((target - u0) / p);
-  r.ub = u0 + static_cast<double>(j) * p;
   r.kb = Mod(-b0.hand * j, b.gear->teeth());
-  r.xb = FlankInWorld(b, r.kb, l.side_b).Point(r.ub);
+  r.ub = u0 + static_cast<double>(j) * p;
+  if (modified) r.ub -= b0.hand * b.gear->tooth_offset(r.kb);
+  r.xb = (modified ? FlankInWorld(b, r.kb, l.side_b) : NominalFlank(b, r.kb, l.side_b)).Point(r.ub);
   r.overlap = (r.xa - r.xb).dot(l.direction);
+  r.sa = NominalTooth(a, ka, r.xa);
+  r.sb = NominalTooth(b, r.kb, r.xb);
+  if (modified && (a.gear->has_relief() || b.gear->has_relief())) {
+    const double ca = a.gear->ReliefAt(r.ua).c, cb = b.gear->ReliefAt(r.ub).c;
+    r.xa -= ca * l.direction;
+    r.xb += cb * l.direction;
+    r.overlap -= ca + cb;
+  }
   return r;
 }
 
@@ -169,9 +248,11 @@ LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l,
 
 double NearestLoaOverlap(const PosedGear& a, const PosedGear& b, bool internal, int side_a) {
   const LineOfAction l = MakeLineOfAction(a, b, internal, side_a);
-  const WorldInvolute a0 = FlankInWorld(a, 0, side_a);
+  const WorldInvolute a0 = NominalFlank(a, 0, side_a);
   const double ua = a0.hand * WrapAngle(l.base_angle_a - a0.start);
-  return PairOnLoa(a, b, l, ua, 0).overlap;
+  // Nominal teeth (no relief, no pitch deviations): the reference of the layout (alignment,
+  // error projections).
+  return PairOnLoa(a, b, l, ua, 0, false).overlap;
 }
 
 std::string KindName(ContactKind kind) {
@@ -198,31 +279,38 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
   for (int side_a : sides) {
     const LineOfAction l = MakeLineOfAction(a, b, internal, side_a);
     // Involute against involute, on the line of action.
-    const WorldInvolute a0 = FlankInWorld(a, 0, side_a);
+    const WorldInvolute a0 = NominalFlank(a, 0, side_a);
     const double ua0 = a0.hand * WrapAngle(l.base_angle_a - a0.start);
-    ForEachRoll(ua0, a.gear->pitch_angle(), a0.u_min, a0.u_max, [&](double ua, long j) {
-      const LoaPair pr = PairOnLoa(a, b, l, ua, Mod(-a0.hand * j, a.gear->teeth()));
-      const InvoluteFlank& fb = b.gear->involute();
-      if (pr.ub < fb.u_min || pr.ub >= fb.u_max || pr.overlap < -window) return;
-      PotentialContact c;
-      c.kind = ContactKind::kInvolute;
-      c.side_a = l.side_a;
-      c.side_b = l.side_b;
-      c.tooth_a = pr.ka;
-      c.tooth_b = pr.kb;
-      c.point_a = pr.xa;
-      c.point_b = pr.xb;
-      c.point = 0.5 * (pr.xa + pr.xb);
-      c.normal = l.direction;
-      c.overlap = pr.overlap;
-      c.lever_a = Lever(c.point, oa, -c.normal);
-      c.lever_b = Lever(c.point, ob, c.normal);
-      c.curvature_radius_a = a.gear->base_radius() * pr.ua;
-      c.curvature_radius_b = ring_sign * b.gear->base_radius() * pr.ub;
-      c.roll_a = pr.ua;
-      c.roll_b = pr.ub;
-      out.push_back(c);
-    });
+    const double margin = a.gear->max_tooth_offset();
+    ForEachRoll(ua0, a.gear->pitch_angle(), a0.u_min - margin, a0.u_max + margin,
+                [&](double un, long j) {
+                  const int ka = Mod(-a0.hand * j, a.gear->teeth());
+                  const double ua = un - a0.hand * a.gear->tooth_offset(ka);
+                  if (ua < a0.u_min || ua >= a0.u_max) return;
+                  const LoaPair pr = PairOnLoa(a, b, l, ua, ka, true);
+                  const InvoluteFlank& fb = b.gear->involute();
+                  if (pr.ub < fb.u_min || pr.ub >= fb.u_max || pr.overlap < -window) return;
+                  PotentialContact c;
+                  c.kind = ContactKind::kInvolute;
+                  c.side_a = l.side_a;
+                  c.side_b = l.side_b;
+                  c.tooth_a = pr.ka;
+                  c.tooth_b = pr.kb;
+                  c.point_a = pr.xa;
+                  c.point_b = pr.xb;
+                  c.surface_a = pr.sa;
+                  c.surface_b = pr.sb;
+                  c.point = 0.5 * (pr.xa + pr.xb);
+                  c.normal = l.direction;
+                  c.overlap = pr.overlap;
+                  c.lever_a = Lever(c.point, oa, -c.normal);
+                  c.lever_b = Lever(c.point, ob, c.normal);
+                  c.curvature_radius_a = a.gear->base_radius() * pr.ua;
+                  c.curvature_radius_b = ring_sign * b.gear->base_radius() * pr.ub;
+                  c.roll_a = pr.ua;
+                  c.roll_b = pr.ub;
+                  out.push_back(c);
+                });
     // Tip rounds against flanks, off the line of action. A tip round reaches the mate only around
     // the ends of the path of contact, where the owner's flank crosses the line of action near its
     // tip-end roll: the teeth whose roll there is within one pitch of it (all teeth with
@@ -233,7 +321,7 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
       if (!owner.gear->has_tip_round()) return;
       const double p = owner.gear->pitch_angle();
       const double rho = owner.gear->tip_round().radius;
-      const WorldInvolute f0 = FlankInWorld(owner, 0, owner_side);
+      const WorldInvolute f0 = NominalFlank(owner, 0, owner_side);
       const double u0 = f0.hand * WrapAngle(base_angle - f0.start);
       const double u_tip = owner.gear->internal() ? f0.u_min : f0.u_max;
       std::vector<int> teeth;
@@ -260,6 +348,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                              c.tooth_b = h.tooth;
                              c.point_a = on_arc;
                              c.point_b = h.flank_point;
+                             c.surface_a = arc.nominal_centre - rho * h.flank_normal;
+                             c.surface_b = h.flank_surface;
                              c.normal = -h.flank_normal;
                              c.curvature_radius_a = rho;
                              c.curvature_radius_b = ring_sign * other_radius;
@@ -269,6 +359,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                              c.tooth_b = tooth;
                              c.point_a = h.flank_point;
                              c.point_b = on_arc;
+                             c.surface_a = h.flank_surface;
+                             c.surface_b = arc.nominal_centre - rho * h.flank_normal;
                              c.normal = h.flank_normal;
                              c.curvature_radius_a = other_radius;
                              c.curvature_radius_b = rho;

@@ -55,6 +55,135 @@ Gear::Gear(GearSpec spec) : spec_(std::move(spec)) {
          "pointed tooth: the tip thickness s_a = " + Mm(sa) + " mm is below the limit " +
              Mm(spec_.min_tip_thickness) + " mm (shorten the tip or reduce the profile shift)");
   }
+  nominal_tip_round_ = tip_round_;
+  BuildModifications();
+}
+
+ReliefValue Gear::ReliefZone::At(double u) const {
+  if (!(amount > 0)) return {};
+  const double span = u_end - u_start;
+  const double xi = (u - u_start) / span;
+  if (xi <= 0.0) return {};
+  if (power == 1) return {amount * xi, amount / span, 0.0};
+  return {amount * xi * xi, 2.0 * amount * xi / span, 2.0 * amount / (span * span)};
+}
+
+ReliefValue Gear::ReliefAt(double u) const {
+  const ReliefValue t = tip_relief_.At(u), r = root_relief_.At(u);
+  return {t.c + r.c, t.d1 + r.d1, t.d2 + r.d2};
+}
+
+void Gear::BuildModifications() {
+  const std::string& n = spec_.name;
+  // Pitch deviations: one cumulative deviation per tooth, an arc on the reference circle.
+  const std::vector<double>& fp = spec_.pitch_deviations;
+  if (!fp.empty()) {
+    if (static_cast<int>(fp.size()) != spec_.teeth) {
+      Fail(n, "pitch.deviations", std::to_string(fp.size()) + " entries",
+           "needs one entry per tooth (" + std::to_string(spec_.teeth) + ")");
+    }
+    offsets_.resize(fp.size());
+    for (std::size_t k = 0; k < fp.size(); ++k) {
+      if (!std::isfinite(fp[k]) || std::abs(fp[k]) > 0.1 * spec_.module) {
+        Fail(n, "pitch.deviations[" + std::to_string(k) + "]", Num(fp[k] * 1e6) + " um",
+             "must be finite and below m/10 in magnitude");
+      }
+      offsets_[k] = fp[k] / r_;
+      max_offset_ = std::max(max_offset_, std::abs(offsets_[k]));
+    }
+  }
+  // Reliefs: the zone must lie on the active involute, between the form circle and the tip-round
+  // tangency, and leave the tooth a tip (the two flanks' reliefs together keep s_a ≥ s_a,min).
+  const ProfileModification& mod = spec_.modification;
+  const double r_lo = std::min(r_form_, r_tip_form_), r_hi = std::max(r_form_, r_tip_form_);
+  const double u_tip = InvoluteFlank::RollAtRadius(rb_, ra_);
+  const double u_form = internal() ? involute_.u_max : involute_.u_min;
+  auto zone = [&](const Relief& r, const std::string& key, double u_end, ReliefZone* out) {
+    if (!std::isfinite(r.amount) || r.amount < 0) {
+      Fail(n, "modification." + key + "_relief_um", Num(r.amount * 1e6), "must be >= 0");
+    }
+    if (r.amount == 0) return;
+    if (!(r.start_radius > r_lo && r.start_radius < r_hi)) {
+      Fail(n, "modification." + key + "_relief_start_mm", Mm(r.start_radius),
+           "must lie on the active involute, between " + Mm(r_lo) + " and " + Mm(r_hi) + " mm");
+    }
+    out->amount = r.amount;
+    out->u_start = InvoluteFlank::RollAtRadius(rb_, r.start_radius);
+    out->u_end = u_end;
+    out->power = r.shape == ReliefShape::kLinear ? 1 : 2;
+    // The relief tilts the flank by dC/ds (s the arc length, ds = r_b u du); above 0.05 rad it is
+    // no longer a modification of the involute but another profile, outside what the contact
+    // search's along-the-line-of-action normal assumes.
+    const double slope =
+        r.amount / (rb_ * std::abs(out->u_end - out->u_start) * std::min(out->u_start, out->u_end));
+    if (slope > 0.05) {
+      Fail(n, "modification." + key + "_relief_um", Num(r.amount * 1e6),
+           "too large for its zone: the relieved flank's slope C/(arc length) = " + Num(slope) +
+               " exceeds 0.05 rad (start the relief further from the " + key + " or reduce it)");
+    }
+  };
+  zone(mod.tip, "tip", u_tip, &tip_relief_);
+  zone(mod.root, "root", u_form, &root_relief_);
+  if (tip_relief_.amount > 0 && root_relief_.amount > 0 &&
+      (tip_relief_.u_start - root_relief_.u_start) * (u_tip - u_form) <= 0) {
+    Fail(n, "modification.root_relief_start_mm", Mm(mod.root.start_radius),
+         "the root relief must start nearer the root than the tip relief (" +
+             Mm(mod.tip.start_radius) + " mm)");
+  }
+  if (tip_relief_.amount > 0) {
+    const double margin = 0.5 * (tip_thickness() - spec_.min_tip_thickness);
+    if (tip_relief_.amount > margin) {
+      Fail(
+          n, "modification.tip_relief_um", Num(tip_relief_.amount * 1e6),
+          "larger than the tooth can take: the two flanks' relief would thin the tip below s_a,min "
+          "(at most " +
+              Num(margin * 1e6) + " um)");
+    }
+    RelieveTipRound();
+  }
+}
+
+void Gear::RelieveTipRound() {
+  const double rho = spec_.tip_round_radius;
+  if (!(rho > 0)) return;
+  // The relieved flank x(u) − C(u) n(u) and its outward normal (σ = +1, body frame):
+  //   x′ = (r_b u + h C) e − C′ e⊥,  n = e⊥ rotated with the tangent.
+  // The round of radius ρ tangent to it has its centre x − ρ n on the circle r_a ∓ ρ, as in
+  // AddTip; found by bisection between the relief's start and the tip circle.
+  const int h = involute_.hand;
+  auto normal = [&](double u) -> Vec2 {
+    const ReliefValue c = ReliefAt(u);
+    const double b = involute_.start + h * u;
+    const Vec2 t = (rb_ * u + h * c.c) * Dir(b) - c.d1 * DirPerp(b);
+    return Vec2(-t.y(), t.x()).normalized();
+  };
+  auto point = [&](double u) -> Vec2 {
+    return involute_.Point(u) - ReliefAt(u).c * DirPerp(involute_.start + h * u);
+  };
+  auto centre = [&](double u) -> Vec2 { return point(u) - rho * normal(u); };
+  const double rc = internal() ? ra_ + rho : ra_ - rho;
+  double lo = tip_relief_.u_start, hi = tip_relief_.u_end;  // relief start → tip circle
+  const double f_lo = centre(lo).norm() - rc, f_hi = centre(hi).norm() - rc;
+  if (f_lo * f_hi > 0) {
+    Fail(spec_.name, "modification.tip_relief_um", Num(tip_relief_.amount * 1e6),
+         "the relieved flank leaves no room for the tip round");
+  }
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    ((centre(mid).norm() - rc) * f_lo > 0 ? lo : hi) = mid;
+  }
+  const double u_t = 0.5 * (lo + hi);
+  const Vec2 c = centre(u_t);
+  if (Angle(c) <= 0) {
+    Fail(spec_.name, "modification.tip_relief_um", Num(tip_relief_.amount * 1e6),
+         "pointed tooth: the relieved tip rounds of the two flanks meet at the tooth centre line");
+  }
+  (internal() ? involute_.u_min : involute_.u_max) = u_t;
+  r_tip_form_ = involute_.Point(u_t).norm();
+  const double tip_dir = internal() ? Angle(c) + kPi : Angle(c);
+  tip_round_.centre = c;
+  tip_round_.normal_from = Angle(normal(u_t));
+  tip_round_.normal_to = tip_round_.normal_from + WrapAngle(tip_dir - tip_round_.normal_from);
 }
 
 void Gear::Validate() const {
@@ -152,22 +281,20 @@ void Gear::BuildExternal() {
     Fail(spec_.name, "cutter.tip_radius_per_module", Num(rho / m),
          "too large: the tool's two tip rounds overlap");
   }
-  // Undercut: the straight edge's lowest point (tangency with the tip round) must not reach
-  // below the interference point, where the line of action touches the base circle.
+  // Undercut: the straight edge's lowest point (tangency with the tip round) reaches below the
+  // interference point, where the line of action touches the base circle. The tooth is then
+  // generated as cut (MODEL.md §3): the tip round's trochoid cuts into the involute, and the
+  // profile is the involute down to where the trochoid crosses it, the trochoid below.
   const double xi_limit = xi_c - rho * sa;
-  if (xi_limit < r_ * ca * ca - 1e-12 * r_) {
-    Fail(spec_.name, "profile_shift", Num(x),
-         "the tooth is undercut (the rack's flank limit lies below the base circle's interference "
-         "point); profile_shift must be >= " +
-             Num(MinimumShiftWithoutUndercut()));
-  }
+  undercut_ = xi_limit < r_ * ca * ca - 1e-12 * r_;
   flank_turn_ = spec_.thickness_error / (2.0 * rb_);
-  const double phi_fillet_top = ((xi_c - r_) / ta - eta_c) / r_;
   const double phi_root = -eta_c / r_;
 
   involute_.base_radius = rb_;
   involute_.start = g.flank_offset / r_ + Inv(a) + flank_turn_;
   involute_.hand = -1;
+  double phi_fillet_top = ((xi_c - r_) / ta - eta_c) / r_;
+  if (undercut_) phi_fillet_top = UndercutCrossing(g, phi_root, phi_fillet_top);
 
   half_.segments.clear();
   half_.segments.push_back(
@@ -183,8 +310,18 @@ void Gear::BuildExternal() {
   Segment flank = fillet;
   flank.role = SegmentRole::kInvolute;
   flank.kind = SegmentKind::kRackFlank;
-  flank.t0 = phi_fillet_top;
-  r_form_ = flank.Point(phi_fillet_top).norm();
+  // Without undercut the fillet meets the flank tangentially at the same generating roll; with
+  // undercut they cross at a corner, and the flank's roll follows from the crossing's radius R:
+  // the rack's contact point I + t n has |I + t n|² = R², t = −r sin α + √(R² − r_b²) on the
+  // involute's outer branch.
+  if (undercut_) {
+    r_form_ = fillet.Point(phi_fillet_top).norm();
+    flank.t0 =
+        (-r_ * sa + std::sqrt(r_form_ * r_form_ - rb_ * rb_)) / (r_ * ca) - g.flank_offset / r_;
+  } else {
+    flank.t0 = phi_fillet_top;
+    r_form_ = flank.Point(phi_fillet_top).norm();
+  }
   involute_.u_min = InvoluteFlank::RollAtRadius(rb_, r_form_);
   AddTip();
   // The involute ends where the tip round begins: invert radius(φ) of the rack's contact point,
@@ -192,6 +329,72 @@ void Gear::BuildExternal() {
   const double t_end = -r_ * sa + std::sqrt(r_tip_form_ * r_tip_form_ - rb_ * rb_);
   flank.t1 = t_end / (r_ * ca) - g.flank_offset / r_;
   half_.segments.insert(half_.segments.begin() + 2, flank);
+}
+
+double Gear::UndercutCrossing(const RackGeneration& g, double phi_root, double phi_top) const {
+  // Which side of the involute a fillet point at radius R > r_b lies on: its polar angle minus the
+  // involute's at the same radius, θ0 − inv α_R for the σ = +1 flank (negative: inside the tooth).
+  // From the root the trochoid of the tool's tip round climbs through the base circle inside the
+  // tooth (the undercut pocket), then leaves the tooth across the involute: that crossing is where
+  // the involute ends and the undercut fillet begins. Past the straight edge's end (φ_top) the
+  // round keeps cutting: its envelope continues there (the whole round lies inside the tool), so
+  // the scan runs on up to three times the fillet's nominal range. A scan brackets the crossing,
+  // bisection finds it to round-off.
+  Segment fillet;
+  fillet.kind = SegmentKind::kRackRound;
+  fillet.rack = g;
+  const double theta0 = involute_.start - flank_turn_;
+  auto side = [&](double phi, double* radius) {
+    const Vec2 p = fillet.Point(phi);
+    *radius = p.norm();
+    const double u = InvoluteFlank::RollAtRadius(rb_, *radius);  // 0 inside the base circle
+    return Angle(p) - (theta0 - (u - std::atan(u)));
+  };
+  // 1. Where the trochoid passes the base circle (its radius grows along this range).
+  constexpr int kScan = 6000;
+  const double span = 3.0 * (phi_top - phi_root);
+  double radius = 0, lo = phi_root, hi = phi_root;
+  bool passed = false;
+  for (int i = 1; i <= kScan && !passed; ++i) {
+    hi = phi_root + span * i / kScan;
+    side(hi, &radius);
+    if (radius > rb_) {
+      passed = true;
+    } else {
+      lo = hi;
+    }
+  }
+  auto bisect = [&](auto&& below) {  // below(lo) true, below(hi) false
+    for (int it = 0; it < 200; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid == lo || mid == hi) break;
+      (below(mid) ? lo : hi) = mid;
+    }
+  };
+  if (passed) {
+    bisect([&](double phi) {
+      side(phi, &radius);
+      return radius <= rb_;
+    });
+  }
+  // 2. From there, the trochoid is inside the tooth (side < 0) until it crosses the involute.
+  const double phi_base = lo;
+  bool found = passed && side(phi_base, &radius) < 0.0;
+  if (found) {
+    found = false;
+    for (int i = 1; i <= kScan && !found; ++i) {
+      hi = phi_base + span * i / kScan;
+      if (side(hi, &radius) >= 0.0) found = true;
+      if (radius >= ra_) break;
+    }
+  }
+  if (!found) {
+    Fail(spec_.name, "profile_shift", Num(spec_.profile_shift),
+         "undercut generation found no crossing of the fillet trochoid and the involute");
+  }
+  lo = phi_base;
+  bisect([&](double phi) { return side(phi, &radius) < 0.0; });
+  return hi;
 }
 
 void Gear::BuildInternalDirect() {

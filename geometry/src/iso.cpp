@@ -1,6 +1,9 @@
 #include "epicycle/geometry/iso.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <random>
 #include <stdexcept>
 
 #include "messages.hpp"
@@ -73,6 +76,73 @@ double FitProfileShift(const GearSpec& g1, const GearSpec& g2, bool internal, in
   };
   const double j0 = jn(0.0), j1 = jn(1.0);
   return (normal_backlash - j0) / (j1 - j0);
+}
+
+namespace {
+
+double GradeFactor(int grade, const std::string& key) {
+  if (grade < 1 || grade > 11) {
+    throw std::invalid_argument(key + " = " + std::to_string(grade) +
+                                ": must be an ISO 1328-1:2013 flank tolerance class, 1 to 11");
+  }
+  return std::pow(std::sqrt(2.0), grade - 5);
+}
+
+}  // namespace
+
+double SinglePitchTolerance(double module, double reference_diameter, int grade,
+                            const std::string& key) {
+  const double d = reference_diameter * 1e3, m = module * 1e3;
+  return (0.001 * d + 0.4 * m + 5.0) * GradeFactor(grade, key) * 1e-6;
+}
+
+double CumulativePitchTolerance(double module, double reference_diameter, int grade,
+                                const std::string& key) {
+  const double d = reference_diameter * 1e3, m = module * 1e3;
+  return (0.002 * d + 0.55 * std::sqrt(d) + 0.7 * m + 12.0) * GradeFactor(grade, key) * 1e-6;
+}
+
+std::vector<double> CumulativeFromSingle(const std::vector<double>& single,
+                                         const std::string& key) {
+  double sum = 0;
+  for (double f : single) sum += f;
+  if (std::abs(sum) > 1e-12) {
+    throw std::invalid_argument(
+        key + " = [" + std::to_string(single.size()) +
+        " entries]: single pitch deviations must sum to zero (the pitches close the circle); "
+        "their sum is " +
+        Num(sum * 1e6) + " um");
+  }
+  std::vector<double> cumulative(single.size(), 0.0);
+  for (std::size_t k = 1; k < single.size(); ++k) cumulative[k] = cumulative[k - 1] + single[k];
+  return cumulative;
+}
+
+std::vector<double> RandomPitchDeviations(int teeth, double module, int grade, std::uint64_t seed,
+                                          const std::string& key) {
+  const double d = module * teeth;
+  const double fpt = SinglePitchTolerance(module, d, grade, key);
+  const double Fp = CumulativePitchTolerance(module, d, grade, key);
+  std::mt19937_64 rng(seed);
+  std::vector<double> single(teeth);
+  double mean = 0;
+  for (double& f : single) {
+    // 53 random bits → [0, 1): the same sequence on every platform.
+    const double unit = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+    f = fpt * (2.0 * unit - 1.0);
+    mean += f / teeth;
+  }
+  double largest = 0;
+  for (double& f : single) {
+    f -= mean;
+    largest = std::max(largest, std::abs(f));
+  }
+  single[0] -= std::accumulate(single.begin(), single.end(), 0.0);  // round-off of the closure
+  std::vector<double> cumulative = CumulativeFromSingle(single, key);
+  const auto [lo, hi] = std::minmax_element(cumulative.begin(), cumulative.end());
+  const double scale = std::min({1.0, fpt / largest, Fp / (*hi - *lo)});
+  for (double& c : cumulative) c *= scale;
+  return cumulative;
 }
 
 }  // namespace epicycle::geometry::iso

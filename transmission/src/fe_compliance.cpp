@@ -25,12 +25,14 @@ compliance::OperatorBody Body(const compliance::InfluenceTable& table,
   return b;
 }
 
-// The two sides of a potential contact: A pushed along −n at its own closest point, B along +n.
+// The two sides of a potential contact: A pushed along −n at its own closest point, B along +n,
+// read on the nominal profiles the tables are built on (relief and pitch deviations are µm
+// surface modifications that do not change the bodies, docs/geometry.md).
 compliance::OperatorContact Sides(const geometry::PotentialContact& c, int body_a, int body_b,
                                   std::string label) {
   compliance::OperatorContact o;
-  o.side[0] = {body_a, c.tooth_a, c.side_a, c.point_a, -c.normal};
-  o.side[1] = {body_b, c.tooth_b, c.side_b, c.point_b, c.normal};
+  o.side[0] = {body_a, c.tooth_a, c.side_a, c.surface_a, -c.normal};
+  o.side[1] = {body_b, c.tooth_b, c.side_b, c.surface_b, c.normal};
   o.label = std::move(label);
   return o;
 }

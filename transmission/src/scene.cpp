@@ -60,6 +60,60 @@ void ReadDynamics(TableReader& top, DynamicsScene& d) {
   }
 }
 
+// Tip/root relief and pitch deviations of one gear: [<gear>.modification], [<gear>.pitch].
+void ReadFlankModifications(TableReader& t, GearSpec& g) {
+  if (auto m = t.OptionalTable("modification")) {
+    auto relief = [&](const std::string& which, geometry::Relief* r) {
+      const std::string radius = which + "_relief_start_mm",
+                        roll = which + "_relief_start_roll_deg";
+      if (!m->Has(which + "_relief_um")) return;  // Done() refuses the zone's other keys
+      r->amount = m->Real(which + "_relief_um", Rule::NonNegative()) * kUm;
+      if (m->Has(radius) == m->Has(roll)) {
+        m->Fail(radius, m->Has(radius) ? "given" : "missing",
+                "give exactly one of " + radius + " or " + roll);
+      }
+      if (m->Has(radius)) {
+        r->start_radius = m->Real(radius, Rule::Positive()) * kMm;
+      } else {  // roll angle u: r = r_b √(1 + u²)
+        const double u = Deg(m->Real(roll, Rule::Positive()));
+        r->start_radius =
+            0.5 * g.module * g.teeth * std::cos(g.pressure_angle) * std::hypot(1.0, u);
+      }
+      r->shape = m->StringOr(which + "_relief_shape", "linear", {"linear", "parabolic"}) == "linear"
+                     ? geometry::ReliefShape::kLinear
+                     : geometry::ReliefShape::kParabolic;
+    };
+    relief("tip", &g.modification.tip);
+    relief("root", &g.modification.root);
+    m->Done();
+  }
+  if (auto p = t.OptionalTable("pitch")) {
+    const int given = p->Has("single_um") + p->Has("cumulative_um") + p->Has("iso1328_grade");
+    if (given != 1) {
+      p->Fail("single_um", given == 0 ? "missing" : "given with another",
+              "give exactly one of single_um, cumulative_um or iso1328_grade");
+    }
+    const std::string where = p->path() + ".";
+    if (p->Has("iso1328_grade")) {
+      const int grade = static_cast<int>(p->Integer("iso1328_grade", Rule::Closed(1, 11)));
+      const auto seed = static_cast<std::uint64_t>(p->IntegerOr("seed", 1, Rule::NonNegative()));
+      g.pitch_deviations = geometry::iso::RandomPitchDeviations(g.teeth, g.module, grade, seed,
+                                                                where + "iso1328_grade");
+    } else {
+      const std::string key = p->Has("single_um") ? "single_um" : "cumulative_um";
+      std::vector<double> v = p->RealArray(key, Rule::Any());
+      if (static_cast<int>(v.size()) != g.teeth) {
+        p->Fail(key, std::to_string(v.size()) + " entries",
+                "needs one entry per tooth (" + std::to_string(g.teeth) + ")");
+      }
+      for (double& x : v) x *= kUm;
+      g.pitch_deviations =
+          key == "single_um" ? geometry::iso::CumulativeFromSingle(v, where + key) : v;
+    }
+    p->Done();
+  }
+}
+
 // The fields common to every gear table; `fit_target` gears may omit profile_shift.
 GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool fit_target,
                   Inertia* inertia) {
@@ -129,6 +183,7 @@ GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool f
     }
   }
   cutter.Done();
+  ReadFlankModifications(t, g);
   return g;
 }
 

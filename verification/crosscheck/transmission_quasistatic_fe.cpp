@@ -15,6 +15,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "fe_fixtures.hpp"
 #include "figures.hpp"
 #include "stage_fixtures.hpp"
 
@@ -27,24 +28,8 @@ using transmission::SunSupport;
 
 namespace {
 
-transmission::FeComplianceOptions CachedTables() {
-  transmission::FeComplianceOptions o;
-  o.cache_directory = EPICYCLE_TEST_CACHE_DIR;
-  return o;
-}
-
-// The FE compliance of a scene file's bodies; scenes that only add errors share it (the errors
-// move the bodies, they do not change them).
-const transmission::FeStageCompliance& Compliance(const std::string& file) {
-  static std::map<std::string, std::unique_ptr<transmission::FeStageCompliance>> cache;
-  auto& slot = cache[file];
-  if (!slot) {
-    const auto scene = transmission::ParseScene(test::SceneText(file), file);
-    slot = std::make_unique<transmission::FeStageCompliance>(scene, geometry::Stage(scene.stage),
-                                                             CachedTables());
-  }
-  return *slot;
-}
+using test::CachedTables;
+using test::Compliance;
 
 std::string WithPin(std::string text, double radial_um, double tangential_um) {
   return text + "\n[[errors.pin]]\ngear = \"planet1\"\nradial_um = " + std::to_string(radial_um) +

@@ -57,12 +57,10 @@ TEST_CASE("tip round against flank: normal through the round's centre, brute-for
   double worst = 0, worst_normal = 0;
   for (int k = 0; k < 40 && (tested_a < 6 || tested_b < 6); ++k) {
     const StagePoses p = st.Poses(st.mesh_cycle() * k / 40.0);
-    for (int i = 0; i < st.planets(); ++i) {
-      for (MeshKind kind : {MeshKind::kSunPlanet, MeshKind::kPlanetRing}) {
-        const PosedGear a = kind == MeshKind::kSunPlanet ? st.Sun(p) : st.Planet(p, i);
-        const PosedGear b = kind == MeshKind::kSunPlanet ? st.Planet(p, i) : st.Ring(p);
-        for (const PotentialContact& c : st.Contacts(p, i, kind, opt)) {
-          if (c.kind == ContactKind::kInvolute) continue;
+    epicycle::test::ForEachStageContact(
+        st, p, opt,
+        [&](const PosedGear& a, const PosedGear& b, MeshKind kind, const PotentialContact& c) {
+          if (c.kind == ContactKind::kInvolute) return;
           const bool on_a = c.kind == ContactKind::kTipRoundA;
           const PosedGear& round_owner = on_a ? a : b;
           const PosedGear& flank_owner = on_a ? b : a;
@@ -85,9 +83,7 @@ TEST_CASE("tip round against flank: normal through the round's centre, brute-for
           const LineOfAction l = MakeLineOfAction(a, b, kind == MeshKind::kPlanetRing, c.side_a);
           CHECK(std::abs(Cross(c.normal, l.direction)) > 1e-6);
           (on_a ? tested_a : tested_b)++;
-        }
-      }
-    }
+        });
   }
   CHECK(tested_a >= 6);
   CHECK(tested_b >= 6);

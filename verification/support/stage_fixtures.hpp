@@ -37,4 +37,21 @@ inline transmission::Scene ZeroBacklashPaperScene() {
                                   "paper_stage.toml (zero backlash)");
 }
 
+/// Every potential contact of every mesh of the stage at poses p: f(a, b, kind, contact), with a
+/// and b the mesh's first and second gear (sun–planet i, or planet i–ring).
+template <typename F>
+void ForEachStageContact(const geometry::Stage& st, const geometry::StagePoses& p,
+                         const geometry::ContactSearchOptions& opt, F&& f) {
+  for (int i = 0; i < st.planets(); ++i) {
+    for (geometry::MeshKind kind :
+         {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
+      const geometry::PosedGear a =
+          kind == geometry::MeshKind::kSunPlanet ? st.Sun(p) : st.Planet(p, i);
+      const geometry::PosedGear b =
+          kind == geometry::MeshKind::kSunPlanet ? st.Planet(p, i) : st.Ring(p);
+      for (const geometry::PotentialContact& c : st.Contacts(p, i, kind, opt)) f(a, b, kind, c);
+    }
+  }
+}
+
 }  // namespace epicycle::test

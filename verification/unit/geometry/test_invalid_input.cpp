@@ -34,12 +34,17 @@ TEST_CASE("pointed tooth", "[unit][geometry]") {
                                  Contains("below the limit 0.846 mm"));
 }
 
-TEST_CASE("undercut", "[unit][geometry]") {
+TEST_CASE("undercut is generated and reported, not refused", "[unit][geometry]") {
   GearSpec g = Sun();
   g.profile_shift = -0.2;
   g.tip_radius = 36.0e-3;
-  CHECK_THROWS_WITH(Gear(g), Contains("sun.profile_shift = -0.2: the tooth is undercut") &&
-                                 Contains("must be >= -0.107"));
+  const Gear cut(g);  // below x_min = -0.107: undercut
+  CHECK(cut.undercut());
+  CHECK(cut.MinimumShiftWithoutUndercut() == Approx(-0.1077).margin(1e-4));
+  // The involute starts where the trochoid crosses it, above the base circle.
+  CHECK(cut.undercut_radius() > cut.base_radius());
+  CHECK(cut.form_radius() == cut.undercut_radius());
+  CHECK_FALSE(Gear(Sun()).undercut());
   // The closed-form limit: x_min = h_a0/m − ρ(1 − sin α)/m − z sin²α/2.
   const Gear ok(Sun());
   const double a = Rad(25.0);

@@ -24,8 +24,10 @@ struct PosedGear {
 };
 
 /// The involute flank of tooth k on side σ in the inertial frame:
-///   p(u) = c + r_b [e(S + H u) − H u e⊥(S + H u)],  S = θ + 2πk/z + σθ0,  H = σ h,
-///   outward normal σ e⊥(S + H u).
+///   p(u) = c + r_b [e(S + H u) − H u e⊥(S + H u)],  S = θ + 2πk/z + σθ0 + F_p,k/r,  H = σ h,
+///   outward normal σ e⊥(S + H u)
+/// (F_p,k the tooth's cumulative pitch deviation). A relieved flank is p(u) − C(u)·(outward
+/// normal), C = Gear::ReliefAt(u): the contact search accounts for it; this struct does not.
 struct WorldInvolute {
   Vec2 centre = Vec2::Zero();
   double base_radius = 0;
@@ -55,7 +57,8 @@ struct LineOfAction {
 LineOfAction MakeLineOfAction(const PosedGear& a, const PosedGear& b, bool internal, int side_a);
 
 /// Overlap along the line of action of the tooth pair nearest to contact, ignoring where the
-/// involutes end: δ ∈ (−p_b/2, p_b/2] [m]. d δ/d θ_A = σ_A r_bA, d δ/d θ_B = −σ_B ... (see .cpp).
+/// involutes end, relief and pitch deviations (the nominal teeth): δ ∈ (−p_b/2, p_b/2] [m]. d δ/d
+/// θ_A = σ_A r_bA, d δ/d θ_B = −σ_B ... (see .cpp).
 double NearestLoaOverlap(const PosedGear& a, const PosedGear& b, bool internal, int side_a);
 
 enum class ContactKind {
@@ -72,6 +75,10 @@ struct PotentialContact {
   int tooth_a = 0, tooth_b = 0;  ///< tooth indices in each body frame
   Vec2 point = Vec2::Zero();     ///< location (midpoint of the two closest points) [m]
   Vec2 point_a = Vec2::Zero(), point_b = Vec2::Zero();  ///< closest points on A and on B [m]
+  /// The same material points on the nominal profiles of the nominal teeth (without relief, tooth
+  /// turned back by its pitch deviation) [m]: where the FE influence tables, built on the nominal
+  /// generated profile, are read. Equal to point_a, point_b for unmodified gears.
+  Vec2 surface_a = Vec2::Zero(), surface_b = Vec2::Zero();
   Vec2 normal = Vec2::Zero();     ///< unit, A's outward normal (from A into B)
   double overlap = 0;             ///< δ [m]: > 0 interpenetration, < 0 gap
   double lever_a = 0;             ///< moment about A's rotation centre of the unit force on A [m]
@@ -90,6 +97,11 @@ struct ContactSearchOptions {
 };
 
 /// Every potential contact between A and B (internal: B is the ring, A a planet inside it).
+/// Relief and pitch deviations enter the geometry: on the line of action the overlap is the
+/// involutes' minus C_A(u_A) + C_B(u_B) (exact along the line, whose direction stays the contact
+/// normal: the relieved flank's own normal is tilted by dC/ds ≤ 0.05 rad, see docs/geometry.md);
+/// a tip round against a relieved flank takes the exact closest point (Newton on the relieved
+/// curve); tooth k of either gear is turned by F_p,k/r.
 std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& b, bool internal,
                                            const ContactSearchOptions& options);
 

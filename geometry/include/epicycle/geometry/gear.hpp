@@ -4,8 +4,10 @@
 // rounding. All lengths in metres, angles in radians.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "epicycle/geometry/profile.hpp"
 
@@ -27,6 +29,25 @@ struct ShaperCutter {
   double profile_shift = 0;     ///< x_c [-]
   double tip_radius = 0;        ///< r_a,c [m], the shaper's tip circle (cuts the ring's root)
   double tip_round_radius = 0;  ///< ρ_c [m], the shaper's tooth tip round (cuts the ring's fillet)
+};
+
+enum class ReliefShape { kLinear, kParabolic };
+
+/// A profile relief (ISO 21771 profile modification): material removed normal to the involute,
+/// growing from zero at the start radius to C at the end of the flank. With ξ the fraction of the
+/// relief zone's length along the line of action, ξ = (u − u_s)/(u_e − u_s) (u the roll angle),
+///   C(u) = C ξ (linear) or C ξ² (parabolic),  0 outside the zone.
+/// Tip relief ends at the tip circle r_a (the unrounded tip: C is the amount at the tip); root
+/// relief ends at the form circle (start of the active involute).
+struct Relief {
+  double amount = 0;        ///< C_a (tip) or C_f (root) [m], ≥ 0; 0: no relief
+  double start_radius = 0;  ///< r_s [m], where the relief begins
+  ReliefShape shape = ReliefShape::kLinear;
+};
+
+/// Profile modifications of a gear's flanks (both flanks of every tooth alike).
+struct ProfileModification {
+  Relief tip, root;
 };
 
 struct GearSpec {
@@ -51,6 +72,18 @@ struct GearSpec {
   std::optional<ShaperCutter> shaper;  ///< internal gears: absent means direct definition
   double thickness_error = 0;  ///< Δs [m], normal to the flank, both flanks together (+ thicker)
   double min_tip_thickness = -1;  ///< pointed-tooth limit s_a,min [m]; < 0 means 0.2·m
+  /// Tip and root relief. A few µm normal to the flank: they change the contact geometry, not the
+  /// FE body (the half profile stays the nominal generated one).
+  ProfileModification modification;
+  /// Cumulative pitch deviations F_p,k [m] of teeth k = 0..z−1 on the reference circle: tooth k
+  /// sits F_p,k further counter-clockwise than nominal (both flanks). Empty: none; else z entries.
+  /// Single pitch deviations are f_pt,k = F_p,k − F_p,k−1 (ISO 1328-1).
+  std::vector<double> pitch_deviations;
+};
+
+/// Value and roll-angle derivatives of a flank's relief at roll u: C [m], dC/du [m], d²C/du² [m].
+struct ReliefValue {
+  double c = 0, d1 = 0, d2 = 0;
 };
 
 /// A generated gear: its half profile, the analytic involute of its flank, its tip round and the
@@ -58,7 +91,8 @@ struct GearSpec {
 class Gear {
  public:
   /// @throws std::invalid_argument naming the field, its value and the rule that is broken
-  ///         (non-positive module or width, z < 3, undercut, pointed tooth, ...).
+  ///         (non-positive module or width, z < 3, pointed tooth, ...). An undercut tooth is
+  ///         generated, not refused (see undercut()).
   explicit Gear(GearSpec spec);
 
   const GearSpec& spec() const { return spec_; }
@@ -87,11 +121,36 @@ class Gear {
   double tip_thickness() const { return ThicknessAt(ra_); }
   /// Smallest profile shift without undercut for this rack (external gears) [-].
   double MinimumShiftWithoutUndercut() const;
+  /// True when the rack cut below the interference point (x < MinimumShiftWithoutUndercut()):
+  /// the tooth is generated as cut, the tip round's trochoid crossing the involute at a corner.
+  /// A warning, not an error (MODEL.md §3).
+  bool undercut() const { return undercut_; }
+  /// Radius where the involute and the undercut fillet meet [m] (= form_radius() when
+  /// undercut(); 0 otherwise).
+  double undercut_radius() const { return undercut_ ? r_form_ : 0.0; }
 
   const HalfProfile& half_profile() const { return half_; }
   const InvoluteFlank& involute() const { return involute_; }
+  /// The tip round of the flank as the contact search sees it: tangent to the relieved flank when
+  /// the gear has tip relief.
   const TipRound& tip_round() const { return tip_round_; }
+  /// The tip round of the generated (unrelieved) profile, the FE body's.
+  const TipRound& nominal_tip_round() const { return nominal_tip_round_; }
   bool has_tip_round() const { return spec_.tip_round_radius > 0; }
+
+  /// The relief at roll angle u of the involute (sum of tip and root relief).
+  ReliefValue ReliefAt(double u) const;
+  bool has_relief() const {
+    return spec_.modification.tip.amount > 0 || spec_.modification.root.amount > 0;
+  }
+  /// Roll angles [rad] where the tip and root reliefs start (NaN when absent).
+  double tip_relief_start_roll() const { return tip_relief_.u_start; }
+  double root_relief_start_roll() const { return root_relief_.u_start; }
+  /// Angular offset of tooth k from its nominal position, F_p,k / r [rad] (0 without pitch
+  /// deviations).
+  double tooth_offset(int k) const { return offsets_.empty() ? 0.0 : offsets_[k]; }
+  bool has_pitch_deviations() const { return !offsets_.empty(); }
+  double max_tooth_offset() const { return max_offset_; }  ///< max_k |F_p,k| / r [rad]
 
   /// The closed outline of the whole gear in its body frame: every tooth, both flanks, with
   /// `per_segment` points per profile segment.
@@ -103,12 +162,27 @@ class Gear {
   void BuildInternalDirect();
   void BuildInternalShaper();
   void AddTip();  // tip round + tip land; needs involute_ and r_form_ set
+  // The generating roll φ where the rack tip round's trochoid crosses the involute (undercut).
+  double UndercutCrossing(const RackGeneration& g, double phi_root, double phi_top) const;
+
+  // One relief zone in roll angles: C(u) = amount · ξ^power, ξ = (u − u_start)/(u_end − u_start).
+  struct ReliefZone {
+    double amount = 0, u_start = std::numeric_limits<double>::quiet_NaN(), u_end = 0;
+    int power = 1;
+    ReliefValue At(double u) const;
+  };
+  void BuildModifications();  // relief zones, relieved tip round, tooth offsets
+  void RelieveTipRound();     // the tip round tangent to the relieved flank and the tip circle
 
   GearSpec spec_;
+  ReliefZone tip_relief_, root_relief_;
+  std::vector<double> offsets_;
+  double max_offset_ = 0;
   double r_ = 0, rb_ = 0, ra_ = 0, rf_ = 0, r_form_ = 0, r_tip_form_ = 0, flank_turn_ = 0;
+  bool undercut_ = false;
   HalfProfile half_;
   InvoluteFlank involute_;
-  TipRound tip_round_;
+  TipRound tip_round_, nominal_tip_round_;
 };
 
 }  // namespace epicycle::geometry

@@ -2,6 +2,10 @@
 // the internal gear (ring) and x2 its shift in this project's convention (x2 > 0 widens the space).
 #pragma once
 
+#include <cstdint>
+#include <string>
+#include <vector>
+
 #include "epicycle/geometry/gear.hpp"
 
 namespace epicycle::geometry::iso {
@@ -28,5 +32,28 @@ double ContactRatio(double rb1, double ra1, double rb2, double ra2, double a, do
 /// a, the other gear's shift as in its spec. j_n is linear in either shift.
 double FitProfileShift(const GearSpec& g1, const GearSpec& g2, bool internal, int unknown,
                        double centre_distance, double normal_backlash);
+
+/// ISO 1328-1:2013 (§5.3) tolerances of a flank tolerance class A = 1..11, with d the reference
+/// diameter and m the (normal) module in mm, values in µm, unrounded (the standard rounds them):
+///   single pitch       f_pT = (0.001 d + 0.4 m + 5) · √2^(A − 5)
+///   cumulative pitch   F_pT = (0.002 d + 0.55 √d + 0.7 m + 12) · √2^(A − 5)
+/// Arguments and results in SI [m].
+/// @throws std::invalid_argument (naming the scene key `key`) for a class outside 1..11.
+double SinglePitchTolerance(double module, double reference_diameter, int grade,
+                            const std::string& key = "iso1328_grade");
+double CumulativePitchTolerance(double module, double reference_diameter, int grade,
+                                const std::string& key = "iso1328_grade");
+
+/// A random set of cumulative pitch deviations F_p,k (k = 0..z−1, F_p,0 = 0) of a gear of class
+/// `grade`: single pitch deviations drawn uniformly in ±f_pT (a 64-bit Mersenne twister seeded
+/// with `seed`), their mean removed so that they close the circle, then the whole set scaled down
+/// if needed so that max |f_pt| ≤ f_pT and max F_p − min F_p ≤ F_pT. [m]
+std::vector<double> RandomPitchDeviations(int teeth, double module, int grade, std::uint64_t seed,
+                                          const std::string& key = "iso1328_grade");
+
+/// Cumulative deviations from z single pitch deviations: F_p,0 = 0, F_p,k = Σ_{j=1..k} f_pt,j
+/// (f_pt,k the pitch from tooth k−1 to tooth k; f_pt,0 closes the circle from tooth z−1).
+/// @throws std::invalid_argument (naming `key`) unless Σ f_pt = 0 within 1e-12 m.
+std::vector<double> CumulativeFromSingle(const std::vector<double>& single, const std::string& key);
 
 }  // namespace epicycle::geometry::iso
