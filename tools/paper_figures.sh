@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the figures of docs/ from the built program: mesh-stiffness curves of the pair
 # scenes, and the quasi-static load sharing of the paper's stage without errors (one mesh cycle)
-# and with planet 1's 20 um run-out (one planet revolution), constrained and floating.
+# and with planet 1's 20 um run-out (one planet revolution), constrained and floating; the same
+# run-out case with the dynamic model at 1500 rpm.
 # Usage: bash tools/paper_figures.sh [build-dir]   (default ./build; tables cached as usual)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,4 +26,13 @@ run noerrors_fixed paper_stage fixed cycle 72
 run noerrors_floating paper_stage floating cycle 72
 run runout_fixed paper_stage_runout fixed planet 2880
 run runout_floating paper_stage_runout floating planet 2880
+# The dynamic model: the paper's run-out case in motion at 1500 rpm over a planet revolution.
+dyn() {  # name scene sun
+  "$exe" dynamic "scenes/$2.toml" --sun "$3" --range planet --quiet --out "$tmp/$1" \
+    > "$tmp/$1.log"
+  for f in lsr te orbit; do cp "$tmp/$1/dynamic_$f.svg" "$out/$1_$f.svg"; done
+  cp "$tmp/$1/dynamic_summary.json" "$out/$1_summary.json"
+}
+dyn dynamic_runout_fixed paper_stage_runout fixed
+dyn dynamic_runout_floating paper_stage_runout floating
 echo "figures written to $out"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Quick start 1: install what is missing, build, and run the main job on the paper's stage: the
 # quasi-static load sharing with planet 1's 20 um run-out over one planet revolution, constrained
-# (sun fixed) and floating, as in the paper's Figs. 4-6. Results (CSV, JSON, SVG) in ./results.
+# (sun fixed) and floating, as in the paper's Figs. 4-6, first quasi-static, then in motion with the
+# dynamic model at a sun speed of 1500 rpm. Results (CSV, JSON, SVG) in ./results.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup.sh
@@ -9,4 +10,9 @@ for sun in fixed floating; do
   echo
   ./build/app/epicycle quasistatic scenes/paper_stage_runout.toml --range planet --positions 360 \
     --sun "$sun" --out "results/paper_stage_runout_$sun"
+done
+for sun in fixed floating; do
+  echo
+  ./build/app/epicycle dynamic scenes/paper_stage_runout.toml --range planet --speed-rpm 1500 \
+    --sun "$sun" --out "results/paper_stage_runout_dynamic_$sun"
 done

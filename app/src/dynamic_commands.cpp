@@ -48,31 +48,60 @@ std::string MeshName(const transmission::StageContact& c) {
                                                   : fmt::format("planet{}-ring", c.planet + 1);
 }
 
-void RunDynamic(const DynamicArgs& a) {
-  transmission::Scene scene = transmission::ReadScene(a.scene);
+// A stage scene's dynamic model: the scene (its sun support overridden by --sun), the stage, the
+// FE compliance through the table cache, the stage model and the dynamic model with the mean mesh
+// stiffnesses (for the damping and the modes). Members are built in this order.
+struct DynamicRig {
+  transmission::Scene scene;
+  geometry::Stage stage;
+  transmission::FeComplianceOptions fe;
+  transmission::FeStageCompliance compliance;
+  transmission::StageModel stage_model;
+  dynamics::DynamicModel model;
+  DynamicRig(transmission::Scene s, const std::string& cache, bool no_cache)
+      : scene(std::move(s)),
+        stage(scene.stage),
+        fe(Tables(cache, no_cache)),
+        compliance(scene, stage, fe),
+        stage_model(scene, stage, compliance, transmission::SetupFromScene(scene)),
+        model(stage_model, scene, dynamics::SettingsFromScene(scene)) {
+    const auto k = dynamics::MeanMeshStiffness(scene, stage, fe);
+    model.SetMeshStiffness(k[0], k[1]);
+  }
+  static transmission::FeComplianceOptions Tables(const std::string& cache, bool no_cache) {
+    transmission::FeComplianceOptions o;
+    if (!no_cache)
+      o.cache_directory = cache.empty() ? transmission::DefaultCacheDirectory() : cache;
+    return o;
+  }
+};
+
+transmission::Scene StageScene(const std::string& file, const std::string& sun,
+                               const char* command) {
+  transmission::Scene scene = transmission::ReadScene(file);
   if (scene.kind != transmission::SceneKind::kStage)
-    throw std::invalid_argument(a.scene + ": a gear-pair scene; dynamic needs a stage");
-  if (a.sun == "fixed") scene.supports.sun = transmission::SunSupport::kFixed;
-  if (a.sun == "floating") scene.supports.sun = transmission::SunSupport::kFloating;
+    throw std::invalid_argument(file + ": a gear-pair scene; " + command + " needs a stage");
+  if (sun == "fixed") scene.supports.sun = transmission::SunSupport::kFixed;
+  if (sun == "floating") scene.supports.sun = transmission::SunSupport::kFloating;
+  return scene;
+}
+
+void RunDynamic(const DynamicArgs& a) {
+  transmission::Scene input = StageScene(a.scene, a.sun, "dynamic");
   if (a.speed_rpm != 0) {
     if (!(a.speed_rpm > 0) || !std::isfinite(a.speed_rpm))
       throw std::invalid_argument(fmt::format("--speed-rpm = {}: must be > 0", a.speed_rpm));
-    scene.dynamics.sun_speed = a.speed_rpm * std::numbers::pi / 30.0;
+    input.dynamics.sun_speed = a.speed_rpm * std::numbers::pi / 30.0;
   }
-  if (!a.friction.empty()) scene.dynamics.friction = a.friction;
-  const geometry::Stage stage(scene.stage);
-  const int n = stage.planets();
-
-  transmission::FeComplianceOptions fe;
-  if (!a.no_cache)
-    fe.cache_directory = a.cache.empty() ? transmission::DefaultCacheDirectory() : a.cache;
+  if (!a.friction.empty()) input.dynamics.friction = a.friction;
   const auto t0 = std::chrono::steady_clock::now();
-  const transmission::FeStageCompliance compliance(scene, stage, fe);
-  const transmission::StageModel stage_model(scene, stage, compliance,
-                                             transmission::SetupFromScene(scene));
-  dynamics::DynamicModel model(stage_model, scene, dynamics::SettingsFromScene(scene));
-  const auto k = dynamics::MeanMeshStiffness(scene, stage, fe);
-  model.SetMeshStiffness(k[0], k[1]);
+  DynamicRig rig(std::move(input), a.cache, a.no_cache);
+  const transmission::Scene& scene = rig.scene;
+  const geometry::Stage& stage = rig.stage;
+  const transmission::FeStageCompliance& compliance = rig.compliance;
+  const transmission::StageModel& stage_model = rig.stage_model;
+  dynamics::DynamicModel& model = rig.model;
+  const int n = stage.planets();
   model.SetStartAngle(geometry::Rad(a.start_deg));
   const double setup_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -295,21 +324,11 @@ struct ModesArgs {
 };
 
 void RunModes(const ModesArgs& a) {
-  transmission::Scene scene = transmission::ReadScene(a.scene);
-  if (scene.kind != transmission::SceneKind::kStage)
-    throw std::invalid_argument(a.scene + ": a gear-pair scene; modes needs a stage");
-  if (a.sun == "fixed") scene.supports.sun = transmission::SunSupport::kFixed;
-  if (a.sun == "floating") scene.supports.sun = transmission::SunSupport::kFloating;
-  const geometry::Stage stage(scene.stage);
-  transmission::FeComplianceOptions fe;
-  if (!a.no_cache)
-    fe.cache_directory = a.cache.empty() ? transmission::DefaultCacheDirectory() : a.cache;
-  const transmission::FeStageCompliance compliance(scene, stage, fe);
-  const transmission::StageModel stage_model(scene, stage, compliance,
-                                             transmission::SetupFromScene(scene));
-  dynamics::DynamicModel model(stage_model, scene, dynamics::SettingsFromScene(scene));
-  const auto k = dynamics::MeanMeshStiffness(scene, stage, fe);
-  model.SetMeshStiffness(k[0], k[1]);
+  DynamicRig rig(StageScene(a.scene, a.sun, "modes"), a.cache, a.no_cache);
+  const transmission::Scene& scene = rig.scene;
+  const geometry::Stage& stage = rig.stage;
+  const transmission::StageModel& stage_model = rig.stage_model;
+  const dynamics::DynamicModel& model = rig.model;
   Eigen::MatrixXd m, kk;
   model.Linearise(0.0, &m, &kk);
   const auto modes = dynamics::SolveModes(m, kk, model.ModeLayout());

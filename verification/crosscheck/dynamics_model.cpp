@@ -669,17 +669,18 @@ TEST_CASE(
     CHECK(m.find("floating or elastic sun") != std::string::npos);
   }
   SECTION("negative damping, zero speed: the scene reader names the key") {
-    auto with = [&](const std::string& table) {
-      return Thrown([&] {
-        transmission::ParseScene(test::Replace(paper, "[contact]", table + "\n[contact]"), "s");
-      });
+    // The paper's scene has a [dynamics] table: edit its keys.
+    auto with = [&](const std::string& from, const std::string& to) {
+      return Thrown([&] { transmission::ParseScene(test::Replace(paper, from, to), "s"); });
     };
-    const std::string damping = with("[dynamics]\nmesh_damping_ratio = -0.1\n");
+    const std::string damping = with("mesh_damping_ratio = 0.05", "mesh_damping_ratio = -0.1");
     CHECK(damping.find("mesh_damping_ratio") != std::string::npos);
     CHECK(damping.find("-0.1") != std::string::npos);
-    const std::string bearing = with("[dynamics]\nsun_bearing_damping_Ns_per_m = -5.0\n");
+    const std::string bearing =
+        with("mesh_damping_ratio = 0.05",
+             "mesh_damping_ratio = 0.05\nsun_bearing_damping_Ns_per_m = -5.0");
     CHECK(bearing.find("sun_bearing_damping_Ns_per_m") != std::string::npos);
-    const std::string speed = with("[dynamics]\nsun_speed_rpm = 0.0\n");
+    const std::string speed = with("sun_speed_rpm = 1500.0", "sun_speed_rpm = 0.0");
     CHECK(speed.find("sun_speed_rpm") != std::string::npos);
     CHECK(speed.find("> 0") != std::string::npos);
     // The same rule where settings are made in code.

@@ -8,15 +8,11 @@
 
 #include "epicycle/dynamics/dynamic_model.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
-#include "stage_fixtures.hpp"
+#include "fe_fixtures.hpp"
 
 namespace epicycle::test {
 
-inline transmission::FeComplianceOptions SuiteTables() {
-  transmission::FeComplianceOptions o;
-  o.cache_directory = EPICYCLE_TEST_CACHE_DIR;
-  return o;
-}
+inline transmission::FeComplianceOptions SuiteTables() { return CachedTables(); }
 
 /// Every potential contact an independent linear spring of compliance c [m/N] (no coupling).
 class SpringCompliance : public transmission::StageCompliance {
