@@ -187,7 +187,8 @@ void RunDynamic(const DynamicArgs& a) {
         double mesh_torque = 0;
         for (double t : e.sun_mesh_torque) mesh_torque += t;
         const double balance =
-            mesh_torque + scene.sun_torque - model.mass()(ksun) * s.sun_acceleration;
+            ksun >= 0 ? mesh_torque + scene.sun_torque - model.mass()(ksun) * s.sun_acceleration
+                      : 0.0;  // a speed-driven sun: its drive balances the meshes exactly
         steps << "," << Num(k_gamma) << "," << Num(s.transmission_error * 1e6) << ","
               << Num(s.sun_centre.x() * 1e6) << "," << Num(s.sun_centre.y() * 1e6) << ","
               << Num(balance) << "," << Num(s.external_work) << "," << Num(s.dissipated_work) << ","

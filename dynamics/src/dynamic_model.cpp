@@ -50,11 +50,18 @@ void DynamicSettings::Validate() const {
   non_negative("planet_bearing_damping_Ns_per_m", planet_bearing_damping);
   non_negative("ring_damping_Ns_per_m", ring_damping);
   non_negative("ring_torsional_damping_Nms_per_rad", ring_torsional_damping);
+  non_negative("carrier_stiffness_N_per_um", carrier_stiffness * 1e-6);
+  non_negative("carrier_damping_Ns_per_m", carrier_damping);
+  if (sun_speed_driven && !carrier_free)
+    throw std::invalid_argument(
+        "dynamics: sun = \"speed\" needs carrier = \"torque\": with both the sun and the "
+        "carrier turned at prescribed speeds nothing carries the load");
   if (!(mesh_damping_ratio >= 0 && mesh_damping_ratio <= 1))
     fail("mesh_damping_ratio", mesh_damping_ratio, "must lie in [0, 1]");
   if (ring_elastic) {
-    if (!(ring_stiffness > 0) || !std::isfinite(ring_stiffness))
-      fail("ring_stiffness_N_per_um", ring_stiffness * 1e-6, "an elastic ring needs it > 0");
+    if (!(ring_stiffness >= 0) || !std::isfinite(ring_stiffness))
+      fail("ring_stiffness_N_per_um", ring_stiffness * 1e-6,
+           "must be >= 0 (0: the ring floats in translation)");
     if (!(ring_torsional_stiffness > 0) || !std::isfinite(ring_torsional_stiffness))
       fail("ring_torsional_stiffness_Nm_per_rad", ring_torsional_stiffness,
            "an elastic ring needs it > 0");
@@ -67,6 +74,9 @@ DynamicSettings SettingsFromScene(const transmission::Scene& scene) {
   DynamicSettings s;
   s.sun_speed = d.sun_speed;
   s.carrier_free = d.carrier == "torque";
+  s.sun_speed_driven = d.sun_drive == "speed";
+  s.carrier_stiffness = d.carrier_stiffness;
+  s.carrier_damping = d.carrier_damping;
   s.carrier_load_inertia = d.carrier_load_inertia;
   s.mesh_damping_ratio = d.mesh_damping_ratio;
   s.mesh_damping = d.mesh_damping;
@@ -117,8 +127,9 @@ DynamicModel::DynamicModel(const transmission::StageModel& model, const transmis
       stage_dof_.push_back(-1);
     }
   };
-  need("[sun] inertia_kgm2", sun_.inertia, "the sun's rotation (driven by its torque)");
-  add(MotionDof::kSun, MotionDof::kRotation, 0, sun_.inertia, StageDof::kSunRotation, true);
+  need("[sun] inertia_kgm2", sun_.inertia, "the sun's rotation");
+  if (!settings_.sun_speed_driven)
+    add(MotionDof::kSun, MotionDof::kRotation, 0, sun_.inertia, StageDof::kSunRotation, true);
   if (setup.sun != transmission::SunSupport::kFixed) {
     need("[sun] mass_kg", sun_.mass, "a floating or elastic sun");
     add(MotionDof::kSun, MotionDof::kX, 0, sun_.mass, StageDof::kSunX, true);
@@ -140,6 +151,15 @@ DynamicModel::DynamicModel(const transmission::StageModel& model, const transmis
           "planet_stiffness_N_per_um > 0); rigid pins tie the planets' centres to the carrier");
     add(MotionDof::kCarrier, MotionDof::kRotation, 0,
         carrier_.inertia + settings_.carrier_load_inertia, StageDof::kSunRotation, false);
+  }
+  if (settings_.carrier_stiffness > 0) {
+    need("[carrier] mass_kg", carrier_.mass, "a carrier on an elastic bearing");
+    if (!(setup.planet_stiffness > 0))
+      throw std::invalid_argument(
+          "[dynamics] carrier_stiffness_N_per_um > 0: an elastic carrier needs elastic planet pins "
+          "([supports] planet_stiffness_N_per_um > 0)");
+    add(MotionDof::kCarrier, MotionDof::kX, 0, carrier_.mass, StageDof::kSunRotation, false);
+    add(MotionDof::kCarrier, MotionDof::kY, 0, carrier_.mass, StageDof::kSunRotation, false);
   }
   need("[planet] inertia_kgm2", planet_.inertia, "each planet's rotation");
   for (int i = 0; i < stage.planets(); ++i) {
@@ -202,17 +222,22 @@ Vec2 DynamicModel::PinReference(int planet, double t) const {
   return geometry::Rotate(pin0_[planet], CarrierAngle(t));
 }
 
+Vec2 DynamicModel::CarrierCentre(const Eigen::VectorXd& d) const {
+  const int kx = Find(MotionDof::kCarrier, MotionDof::kX);
+  return kx >= 0 ? Vec2(d(kx), d(kx + 1)) : Vec2::Zero();
+}
+
 Vec2 DynamicModel::Pin(int planet, double t, const Eigen::VectorXd& d) const {
   const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
   const double turn = kc >= 0 ? d(kc) : 0.0;
-  return geometry::Rotate(pin0_[planet], CarrierAngle(t) + turn);
+  return CarrierCentre(d) + geometry::Rotate(pin0_[planet], CarrierAngle(t) + turn);
 }
 
 Vec2 DynamicModel::PinVelocity(int planet, double t, const Eigen::VectorXd& d,
                                const Eigen::VectorXd& v) const {
   const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
   const double omega = carrier_speed_ + (kc >= 0 ? v(kc) : 0.0);
-  return omega * Perp(Pin(planet, t, d));
+  return CarrierCentre(v) + omega * Perp(Pin(planet, t, d) - CarrierCentre(d));
 }
 
 double DynamicModel::ReferenceVelocity(int k, double t) const {
@@ -224,7 +249,7 @@ double DynamicModel::ReferenceVelocity(int k, double t) const {
     case MotionDof::kRing:
       return 0.0;
     case MotionDof::kCarrier:
-      return carrier_speed_;
+      return f.axis == MotionDof::kRotation ? carrier_speed_ : 0.0;
     case MotionDof::kPlanet: {
       if (f.axis == MotionDof::kRotation) return carrier_speed_ * st.planet_ratio();
       const Vec2 vp = carrier_speed_ * Perp(PinReference(f.planet, t));
@@ -301,11 +326,22 @@ void DynamicModel::BearingForces(double t, const Eigen::VectorXd& d, const Eigen
                    settings_.planet_bearing_damping * (centre_velocity - PinVelocity(i, t, d, v));
     (*q)(kx) += f.x();
     (*q)(kx + 1) += f.y();
-    if (kc >= 0) (*q)(kc) += Cross(pin, -f);  // the reaction on the carrier, about its centre
+    // The reaction on the carrier, about its centre.
+    if (kc >= 0) (*q)(kc) += Cross(pin - CarrierCentre(d), -f);
+    const int kcx = Find(MotionDof::kCarrier, MotionDof::kX);
+    if (kcx >= 0) {
+      (*q)(kcx) -= f.x();
+      (*q)(kcx + 1) -= f.y();
+    }
     if (out) out->planet_bearing_force[i] = f;
   }
-  // External loads: the input torque on the sun, the output torque on a free carrier.
-  (*q)(Find(MotionDof::kSun, MotionDof::kRotation)) += sun_torque_;
+  const int kcx = Find(MotionDof::kCarrier, MotionDof::kX);
+  for (int a = 0; a < 2 && kcx >= 0; ++a)
+    (*q)(kcx + a) -=
+        settings_.carrier_stiffness * d(kcx + a) + settings_.carrier_damping * v(kcx + a);
+  // External loads: the input torque on a torque-driven sun, the output torque on a free carrier.
+  const int ks_rot = Find(MotionDof::kSun, MotionDof::kRotation);
+  if (ks_rot >= 0) (*q)(ks_rot) += sun_torque_;
   if (kc >= 0) (*q)(kc) += carrier_torque_;
 }
 
@@ -469,8 +505,10 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   // Powers and energies (the energy balance of docs/dynamic.md).
   const geometry::Stage& st = model_.stage();
   const int ksun = Find(MotionDof::kSun, MotionDof::kRotation);
-  const double omega_s = carrier_speed_ * st.sun_ratio() + v(ksun);
-  e.external_power = sun_torque_ * omega_s;
+  const double omega_s = carrier_speed_ * st.sun_ratio() + (ksun >= 0 ? v(ksun) : 0.0);
+  // A speed-driven sun is held at its speed by the torque that balances the mesh moments.
+  e.input_torque = ksun >= 0 ? sun_torque_ : -body_moment[kSunBody];
+  e.external_power = e.input_torque * omega_s;
   const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
   double kinetic = 0.5 * sun_.inertia * omega_s * omega_s;
   kinetic += 0.5 * carrier_.inertia * std::pow(carrier_speed_ + (kc >= 0 ? v(kc) : 0.0), 2);
@@ -478,6 +516,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     kinetic += 0.5 * settings_.carrier_load_inertia * std::pow(carrier_speed_ + v(kc), 2);
     e.external_power += carrier_torque_ * (carrier_speed_ + v(kc));
   }
+  kinetic += 0.5 * carrier_.mass * CarrierCentre(v).squaredNorm();
   kinetic += 0.5 * sun_.mass * body[kSunBody].centre_velocity.squaredNorm();
   if (settings_.ring_elastic) {
     kinetic += 0.5 * ring_.mass * body[kRingBody].centre_velocity.squaredNorm() +
@@ -518,6 +557,11 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
                0.5 * settings_.ring_stiffness * (d(kr + 1) * d(kr + 1) + d(kr + 2) * d(kr + 2));
     e.dissipated_power += settings_.ring_torsional_damping * v(kr) * v(kr) +
                           settings_.ring_damping * (v(kr + 1) * v(kr + 1) + v(kr + 2) * v(kr + 2));
+  }
+  const int kcx = Find(MotionDof::kCarrier, MotionDof::kX);
+  if (kcx >= 0) {
+    elastic += 0.5 * settings_.carrier_stiffness * CarrierCentre(d).squaredNorm();
+    e.dissipated_power += settings_.carrier_damping * CarrierCentre(v).squaredNorm();
   }
   for (int i = 0; i < np; ++i) {
     const int kx = Find(MotionDof::kPlanet, MotionDof::kX, i);
@@ -627,16 +671,30 @@ Eigen::VectorXd DynamicModel::QuasiStaticStart(const solvers::ContactOptions& co
     throw std::runtime_error("the quasi-static start at carrier " +
                              Num(geometry::Deg(CarrierAngle(0.0))) + " deg failed: " + r.message);
   Eigen::VectorXd d = Eigen::VectorXd::Zero(size());
+  // A speed-driven sun cannot lag: the quasi-static lag λ_s goes to the carrier instead, by the
+  // rigid kinematic motion that turns the sun back by −λ_s (carrier −λ_s/(1 + z_r/z_s), planets
+  // with it), which leaves every mesh deflection as the quasi-static solution has it.
+  const geometry::Stage& st = model_.stage();
+  const bool shift = Find(MotionDof::kSun, MotionDof::kRotation) < 0;
+  const double carrier_shift = shift ? -r.transmission_error / st.sun_ratio() : 0.0;
   for (int k = 0; k < size(); ++k) {
     const MotionDof& f = dofs_[k];
     if (f.member == MotionDof::kSun)
       d(k) = f.axis == MotionDof::kRotation ? r.transmission_error
              : f.axis == MotionDof::kX      ? r.sun_displacement.x()
                                             : r.sun_displacement.y();
-    if (f.member == MotionDof::kPlanet)
-      d(k) = f.axis == MotionDof::kRotation ? r.planet_rotations[f.planet]
-             : f.axis == MotionDof::kX      ? r.planet_displacements[f.planet].x()
-                                            : r.planet_displacements[f.planet].y();
+    if (f.member == MotionDof::kCarrier && f.axis == MotionDof::kRotation) d(k) = carrier_shift;
+    if (f.member == MotionDof::kPlanet) {
+      if (f.axis == MotionDof::kRotation) {
+        d(k) = r.planet_rotations[f.planet] + st.planet_ratio() * carrier_shift;
+      } else {
+        // The bearing deflection, turned with the carrier.
+        const Vec2 defl = geometry::Rotate(r.planet_displacements[f.planet], carrier_shift);
+        const Vec2 move = geometry::Rotate(pin0_[f.planet], CarrierAngle(0.0) + carrier_shift) -
+                          geometry::Rotate(pin0_[f.planet], CarrierAngle(0.0));
+        d(k) = f.axis == MotionDof::kX ? defl.x() + move.x() : defl.y() + move.y();
+      }
+    }
   }
   return d;
 }

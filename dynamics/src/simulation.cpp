@@ -300,14 +300,20 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
         break;
       }
       const Evaluation& e = sample.evaluation;
+      // LSR_i = T_mesh(P_i–S)/T_input: the input torque is the sun's (or its drive's reaction).
       sample.load_sharing.resize(e.sun_mesh_torque.size());
       for (std::size_t i = 0; i < e.sun_mesh_torque.size(); ++i)
-        sample.load_sharing[i] = e.sun_mesh_torque[i] / -model.sun_torque();
-      sample.transmission_error = sample.d(sun);
+        sample.load_sharing[i] = e.sun_mesh_torque[i] / -e.input_torque;
+      // TE at the sun; a speed-driven sun keeps its speed, and the lag shows at the carrier.
+      const int carrier = model.Find(MotionDof::kCarrier, MotionDof::kRotation);
+      sample.transmission_error =
+          sun >= 0
+              ? sample.d(sun)
+              : (carrier >= 0 ? -model.stage_model().stage().sun_ratio() * sample.d(carrier) : 0.0);
       if (sx >= 0) sample.sun_centre = Eigen::Vector2d(sample.d(sx), sample.d(sx + 1));
       Check(cvode ? CVodeGetDky(s.cvode, tout, 1, s.dky) : ERKStepGetDky(s.erk, tout, 1, s.dky),
             "GetDky");
-      sample.sun_acceleration = N_VGetArrayPointer(s.dky)[n + sun];
+      sample.sun_acceleration = sun >= 0 ? N_VGetArrayPointer(s.dky)[n + sun] : 0.0;
       sample.external_work = y[2 * n];
       sample.dissipated_work = y[2 * n + 1];
       if (on_sample) on_sample(sample);

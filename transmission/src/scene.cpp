@@ -35,6 +35,9 @@ void ReadDynamics(TableReader& top, DynamicsScene& d) {
     d.sun_speed = t->RealOr("sun_speed_rpm", 1500.0, Rule::Positive()) * std::numbers::pi / 30.0;
     d.carrier = t->StringOr("carrier", "speed", {"speed", "torque"});
     d.carrier_load_inertia = t->RealOr("carrier_load_inertia_kgm2", 0.0, Rule::NonNegative());
+    d.sun_drive = t->StringOr("sun", "torque", {"torque", "speed"});
+    d.carrier_stiffness = t->RealOr("carrier_stiffness_N_per_um", 0.0, Rule::NonNegative()) * 1e6;
+    d.carrier_damping = t->RealOr("carrier_damping_Ns_per_m", 0.0, Rule::NonNegative());
     d.mesh_damping_ratio = t->RealOr("mesh_damping_ratio", 0.05, Rule::Closed(0, 1));
     d.mesh_damping = t->RealOr("mesh_damping_Ns_per_m", 0.0, Rule::NonNegative());
     d.sun_bearing_damping = t->RealOr("sun_bearing_damping_Ns_per_m", 0.0, Rule::NonNegative());
@@ -42,7 +45,7 @@ void ReadDynamics(TableReader& top, DynamicsScene& d) {
         t->RealOr("planet_bearing_damping_Ns_per_m", 0.0, Rule::NonNegative());
     d.ring = t->StringOr("ring", "fixed", {"fixed", "elastic"});
     if (d.ring == "elastic") {
-      d.ring_stiffness = t->Real("ring_stiffness_N_per_um", Rule::Positive()) * 1e6;
+      d.ring_stiffness = t->Real("ring_stiffness_N_per_um", Rule::NonNegative()) * 1e6;
       d.ring_torsional_stiffness = t->Real("ring_torsional_stiffness_Nm_per_rad", Rule::Positive());
       d.ring_damping = t->RealOr("ring_damping_Ns_per_m", 0.0, Rule::NonNegative());
       d.ring_torsional_damping =

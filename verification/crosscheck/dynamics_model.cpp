@@ -777,3 +777,97 @@ TEST_CASE(
   CHECK(w_f > 0);
   CHECK(residual <= tol);
 }
+
+TEST_CASE(
+    "drives and bearings: a speed-driven sun with the carrier carrying the output torque, "
+    "elastic pins, carrier and ring bearings conserve energy, and the drive's mean torque "
+    "balances the load",
+    "[crosscheck][dynamics]") {
+  // Spring contacts (conservative), no damping or friction: every new term (the drive's reaction
+  // torque and power, the free carrier's torque, the carrier's and the floating ring's
+  // translations, elastic pins) enters E(t) − E(0) = W_ext. What remains is the integrator's
+  // error, which must shrink with its tolerances: ten times tighter tolerances must cut the
+  // largest imbalance at least three times (a term missing from the balance would not shrink).
+  // Over the last 3 of 5 mesh cycles the drive's mean torque (trapezoid over the outputs) must
+  // carry the load's work and the change of energy: the load's counterpart −T_c/(1 + z_r/z_s)
+  // corrected by the carrier's swing and ΔE.
+  const std::string text = AllElastic(test::SceneText("paper_stage.toml"));
+  RigOptions o;
+  o.sun = SunSupport::kElastic;
+  o.spring = 1e-9;
+  o.spring_mesh_stiffness = 1.5e9;
+  o.edit = [](dynamics::DynamicSettings& s) {
+    s.sun_speed = 1500 * kRpm;
+    s.sun_speed_driven = true;
+    s.carrier_free = true;
+    s.carrier_load_inertia = 0.05;
+    s.carrier_stiffness = 1e8;
+    s.ring_elastic = true;
+    s.ring_stiffness = 0;  // floating in translation
+    s.ring_torsional_stiffness = 1e7;
+    s.mesh_damping_ratio = 0;
+    s.friction.law = dynamics::FrictionLaw::kOff;
+  };
+  const auto rig = test::MakeRig(text, "drives", o);
+  const auto& m = *rig.model;
+  REQUIRE(m.Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kRotation) < 0);
+  REQUIRE(m.Find(dynamics::MotionDof::kCarrier, dynamics::MotionDof::kX) >= 0);
+  const auto times = Times(m, *rig.stage, 5, 20);
+  const Eigen::VectorXd d0 = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  auto solver = solvers::MakeContactSolver(solvers::Backend::kActiveSetNewton);
+  dynamics::Evaluation start;
+  m.Evaluate(0.0, d0, Eigen::VectorXd::Zero(m.size()), *solver, {}, nullptr, &start);
+  const double e0 = start.kinetic_energy + start.elastic_energy;
+  double imbalance[2];
+  dynamics::SimulationResult r;
+  for (int k = 0; k < 2; ++k) {
+    dynamics::SimulationOptions so;
+    so.rtol = k == 0 ? 1e-7 : 1e-8;
+    so.atol_length = k == 0 ? 1e-10 : 1e-11;
+    so.atol_angle = k == 0 ? 1e-9 : 1e-10;
+    r = dynamics::Simulate(m, so, d0, Eigen::VectorXd::Zero(m.size()), times);
+    REQUIRE(r.completed);
+    imbalance[k] = 0;
+    for (const DynamicSample& s : r.samples)
+      imbalance[k] =
+          std::max(imbalance[k], std::abs(s.evaluation.kinetic_energy +
+                                          s.evaluation.elastic_energy - e0 - s.external_work));
+  }
+  const double throughput = std::abs(rig.scene.sun_torque * m.sun_speed()) * times.back();
+  double mean = 0;
+  const std::size_t first = 2 * 20;
+  for (std::size_t k = first; k < r.samples.size(); ++k) {
+    const double w = (k == first || k + 1 == r.samples.size()) ? 0.5 : 1.0;
+    mean += w * r.samples[k].evaluation.input_torque;
+  }
+  mean /= static_cast<double>(r.samples.size() - first - 1);
+  // Work over the window: T̄ ω_s t + T_c (ω_c t + Δθ_c,dev) = ΔE, with the carrier's own
+  // deviation Δθ_c,dev (undamped, it still swings from the start).
+  const auto& a = r.samples[first].evaluation;
+  const auto& b = r.samples.back().evaluation;
+  const int kc = m.Find(dynamics::MotionDof::kCarrier, dynamics::MotionDof::kRotation);
+  const double window = r.samples.back().time - r.samples[first].time;
+  const double de = b.kinetic_energy + b.elastic_energy - a.kinetic_energy - a.elastic_energy;
+  const double turn = m.carrier_speed() * window + r.samples.back().d(kc) - r.samples[first].d(kc);
+  const double expected = (de - m.carrier_torque() * turn) / (m.sun_speed() * window);
+  // Tolerance: the energy imbalance over the window, and the trapezoid over 20 outputs per
+  // mesh cycle of a torque rippling at the mesh harmonics (1e-3 of it).
+  const double torque_tol =
+      imbalance[1] / std::abs(m.sun_speed() * window) + 1e-3 * std::abs(expected);
+  Figure("speed-driven sun: mean drive torque " + Sci(mean) + " N m, expected " + Sci(expected) +
+         "; energy imbalance " + Sci(imbalance[0]) + " J (rtol 1e-7), " + Sci(imbalance[1]) +
+         " J (1e-8) of " + Sci(throughput) + " J");
+  const bool converges = imbalance[1] <= imbalance[0] / 3;
+  VerifyRow(
+      "energy, speed-driven sun, free carrier with load, elastic pins, carrier and ring "
+      "bearings (5 mesh cycles)",
+      "E(t) - E(0) = W_ext, error shrinking with the tolerances",
+      Sci(imbalance[0]) + " J at rtol 1e-7, " + Sci(imbalance[1]) + " J at 1e-8",
+      Sci(imbalance[1] / throughput) + " of the throughput", "ratio >= 3", converges);
+  VerifyRow("speed-driven sun: mean drive torque over 3 mesh cycles",
+            "the load's work and dE over the window: " + Sci(expected, 4) + " N m",
+            Sci(mean, 4) + " N m", Sci(std::abs(mean - expected)), Sci(torque_tol) + " N m",
+            std::abs(mean - expected) <= torque_tol);
+  CHECK(converges);
+  CHECK(std::abs(mean - expected) <= torque_tol);
+}

@@ -31,7 +31,9 @@
 //   sun (fixed, floating, elastic k_s, c_s), ring (fixed, or elastic k_r, c_r and torsional
 //   k_rt, c_rt), planet pins (rigid: the planet's centre is its pin; elastic: k_p, c_p between
 //   centre and pin), carrier (turned at a prescribed speed, or free in rotation carrying the output
-//   torque T_c = −T_s (z_s + z_r)/z_s with its inertia plus a load inertia; translation held).
+//   torque T_c = −T_s (z_s + z_r)/z_s with its inertia plus a load inertia; translation held or
+//   elastic k_c, c_c). The sun carries the input torque T_s, or turns at a prescribed speed with
+//   the carrier free (the input torque is then the reaction of the meshes).
 #pragma once
 
 #include <array>
@@ -63,7 +65,12 @@ struct MotionDof {
 /// [lubricant] tables: SettingsFromScene; a command line may override them).
 struct DynamicSettings {
   double sun_speed = 0;  ///< |ω_s| [rad/s], > 0; the sun turns the way its input torque drives it
+  /// false: the sun carries the input torque T_s (its speed follows); true: the sun turns at
+  /// exactly ω_s (speed-controlled, the input torque is the reaction; needs a free carrier).
+  bool sun_speed_driven = false;
   bool carrier_free = false;          ///< false: carrier turned at ω_s z_s/(z_s + z_r)
+  double carrier_stiffness = 0;       ///< k_c [N/m] of the carrier's bearing; 0: translation held
+  double carrier_damping = 0;         ///< c_c [N·s/m]
   double carrier_load_inertia = 0;    ///< added to the carrier's inertia when free [kg·m²]
   double mesh_damping_ratio = 0.05;   ///< ζ [-], in [0, 1]
   double mesh_damping = 0;            ///< c_m [N·s/m]; > 0 replaces ζ
@@ -98,6 +105,7 @@ struct Evaluation {
   std::vector<Eigen::Vector2d> planet_bearing_force;         ///< force of the pin on planet i [N]
   Eigen::Vector2d sun_bearing_force = Eigen::Vector2d::Zero();  ///< on the sun [N]
   geometry::StagePoses poses;
+  double input_torque = 0;      ///< torque on the sun: T_s, or the drive's reaction [N·m]
   double external_power = 0;    ///< power of the input torque and of the driven carrier [W]
   double dissipated_power = 0;  ///< friction + mesh damping + bearing damping [W], ≥ 0
   double friction_power = 0;    ///< friction alone [W], ≥ 0
@@ -179,6 +187,7 @@ class DynamicModel {
                      Eigen::VectorXd* q, Evaluation* out) const;
   Eigen::Vector2d PinReference(int planet, double t) const;  // pin position, nominal carrier
   Eigen::Vector2d Pin(int planet, double t, const Eigen::VectorXd& d) const;
+  Eigen::Vector2d CarrierCentre(const Eigen::VectorXd& d) const;  // or its velocity, from v
   Eigen::Vector2d PinVelocity(int planet, double t, const Eigen::VectorXd& d,
                               const Eigen::VectorXd& v) const;
   std::vector<BodyMotion> BodyVelocities(double t, const Eigen::VectorXd& d,
