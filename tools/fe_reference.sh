@@ -20,7 +20,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${EPICYCLE_BUILD_DIR:-$root/build}"
-tool="$build/verification/fe_reference/fe_reference"
+tool="${EPICYCLE_FE_TOOL:-$build/verification/fe_reference/fe_reference}"
 app="$build/app/epicycle"
 
 if [ "${1:-}" = "_one" ]; then  # internal: one position (called through xargs)
@@ -40,10 +40,14 @@ if [ "${1:-}" = "_one" ]; then  # internal: one position (called through xargs)
   mkdir -p "$dir"
   meshopt=()
   [ -n "$mesh" ] && meshopt=(--mesh "$mesh")
-  "$tool" deck "$scene" "${meshopt[@]}" --angle-deg "$angle" --rotations-urad "$rot" \
-    --refinement "$refinement" --penalty "$penalty" --out "$dir" > "$dir/deck.log"
-  (cd "$dir" && OMP_NUM_THREADS=1 /usr/bin/time -f "%e %U" -o time.txt nice -n 10 ccx -i deck \
-     > ccx.log 2>&1) || { echo "fe_reference: ccx failed at position $index (see $dir/ccx.log)" >&2; exit 1; }
+  if [ -f "$dir/time.txt" ] && [ -f "$dir/deck.dat" ] && [ -f "$dir/deck.info" ]; then
+    echo "position $index: reading the finished run in $dir"
+  else
+    "$tool" deck "$scene" "${meshopt[@]}" --angle-deg "$angle" --rotations-urad "$rot" \
+      --refinement "$refinement" --penalty "$penalty" --out "$dir" > "$dir/deck.log"
+    (cd "$dir" && OMP_NUM_THREADS=1 /usr/bin/time -f "%e %U" -o time.txt nice -n 10 ccx -i deck \
+       > ccx.log 2>&1) || { echo "fe_reference: ccx failed at position $index (see $dir/ccx.log)" >&2; exit 1; }
+  fi
   fe=$("$tool" read "$dir")
   read -r wall cpu < "$dir/time.txt"
   nodes=$(awk '$1 == "nodes" { print $2 }' "$dir/deck.info")

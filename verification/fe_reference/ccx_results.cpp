@@ -5,6 +5,7 @@
 // with its "normal force" line.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -94,10 +95,19 @@ std::vector<FeStepResult> ReadSteps(const std::string& directory, const FeDeckIn
         // The value line may follow a blank line.
         std::size_t v = k + 1;
         while (v < lines.size() && lines[v].find_first_not_of(' ') == std::string::npos) ++v;
+        // A pair out of contact has area 0 and a NaN normal force (ccx prints "NaN").
         std::istringstream values(v < lines.size() ? lines[v] : "");
-        if (!(values >> area >> normal))
+        std::string area_text, normal_text;
+        values >> area_text >> normal_text;
+        char* end = nullptr;
+        area = std::strtod(area_text.c_str(), &end);
+        if (area_text.empty() || *end != '\0')
           throw std::runtime_error(path + ":" + std::to_string(v + 1) +
-                                   ": cannot read the area and normal force of " + slave);
+                                   ": cannot read the contact area of " + slave);
+        normal = area > 0 ? std::strtod(normal_text.c_str(), &end) : 0.0;
+        if (area > 0 && (normal_text.empty() || *end != '\0' || !std::isfinite(normal)))
+          throw std::runtime_error(path + ":" + std::to_string(v + 1) +
+                                   ": cannot read the normal force of " + slave);
         const auto it = pair_of.find(slave);
         if (it == pair_of.end())
           throw std::runtime_error(path + ": contact statistics of an unknown slave set " + slave);

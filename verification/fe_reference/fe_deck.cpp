@@ -181,7 +181,7 @@ void FeDeckInfo::Write(const std::string& path) const {
   f << "thickness_m " << thickness << "\nface_width_m " << face_width << "\ntorque_Nm " << torque
     << "\nbase_radius1_m " << base_radius1 << "\nangle_rad " << angle << "\nnodes " << nodes
     << "\nelements " << elements << "\nnodes_2d " << nodes_2d << "\ntriangles " << triangles
-    << "\n";
+    << "\nstraightened " << straightened << "\n";
   for (double r : rotations) f << "rotation_rad " << r << "\n";
   for (const FeToothPair& p : pairs)
     f << "pair " << p.tooth1 << " " << p.tooth2 << " " << p.slave << " " << p.master << " "
@@ -220,6 +220,8 @@ FeDeckInfo FeDeckInfo::Read(const std::string& path) {
       ok = static_cast<bool>(s >> info.nodes_2d);
     else if (key == "triangles")
       ok = static_cast<bool>(s >> info.triangles);
+    else if (key == "straightened")
+      ok = static_cast<bool>(s >> info.straightened);
     else if (key == "rotation_rad") {
       double r = 0;
       ok = static_cast<bool>(s >> r);
@@ -367,6 +369,7 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
 
   // Triangles (6-node, gmsh type 9), counter-clockwise.
   std::vector<Tri> tris;
+  int straightened = 0;
   std::map<std::pair<int, int>, std::pair<int, int>> edge_of;  // sorted corners → (tri, edge)
   for (int body = 0; body < 2; ++body) {
     std::vector<std::size_t> elem_tags, elem_nodes;
@@ -387,6 +390,33 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
     }
   }
   if (tris.empty()) throw std::runtime_error("fe deck: gmsh produced no triangles");
+  // An element larger than a tip round (0.08–0.21 mm radius under m/4 or 2 m elements) can turn
+  // inside out when its mid-side node goes onto the arc. Such an element (det J below 2 % of the
+  // straight triangle's anywhere at its six nodes) gets straight sides: the tip corner it cuts
+  // carries no load (the contacts have 40 µm elements), its sagitta is below the round's radius
+  // (counted in `straightened`).
+  for (const Tri& t : tris) {
+    const Vec2 a = xy[t.n[0]], b = xy[t.n[1]], c = xy[t.n[2]];
+    const double area2 = geometry::Cross(b - a, c - a);
+    // det J of the quadratic map at the corners and mid-sides (ξ, η) ∈ {0, ½, 1}.
+    bool bad = false;
+    const double pts[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
+    for (const auto& q : pts) {
+      const double xi = q[0], eta = q[1], l0 = 1 - xi - eta;
+      // Shape-function derivatives of the 6-node triangle (corners 0..2, mid-sides 01, 12, 20).
+      const double dxi[6] = {-(4 * l0 - 1), 4 * xi - 1, 0, 4 * (l0 - xi), 4 * eta, -4 * eta};
+      const double deta[6] = {-(4 * l0 - 1), 0, 4 * eta - 1, -4 * xi, 4 * xi, 4 * (l0 - eta)};
+      Vec2 jx = Vec2::Zero(), je = Vec2::Zero();
+      for (int j = 0; j < 6; ++j) {
+        jx += dxi[j] * xy[t.n[j]];
+        je += deta[j] * xy[t.n[j]];
+      }
+      if (geometry::Cross(jx, je) < 0.02 * area2) bad = true;
+    }
+    if (!bad) continue;
+    for (int j = 0; j < 3; ++j) xy[t.n[3 + j]] = 0.5 * (xy[t.n[j]] + xy[t.n[(j + 1) % 3]]);
+    ++straightened;
+  }
 
   // Slab node ids: bottom i+1, top n2+i+1, mid-thickness 2·n2+i+1 (corner nodes only).
   std::vector<char> corner(n2, 0);
@@ -406,6 +436,7 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   info.rotations = rotations;
   info.nodes_2d = n2;
   info.triangles = static_cast<int>(tris.size());
+  info.straightened = straightened;
   for (auto& [key, p] : by_teeth) info.pairs.push_back(p);
 
   std::filesystem::create_directories(directory);

@@ -68,6 +68,7 @@ struct FeDeckInfo {
   std::vector<double> hub_x, hub_y;  ///< their coordinates relative to c_1 [mm]
   int nodes = 0, elements = 0;       ///< of the 3-D deck
   int nodes_2d = 0, triangles = 0;   ///< of the gmsh mesh
+  int straightened = 0;  ///< curved triangles given straight sides (inside out on a small round)
   void Write(const std::string& path) const;
   /// @throws std::runtime_error naming the file and line that cannot be read.
   static FeDeckInfo Read(const std::string& path);
