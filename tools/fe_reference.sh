@@ -27,7 +27,9 @@ if [ "${1:-}" = "_one" ]; then  # internal: one position (called through xargs)
   shift
   scene=$1 mesh=$2 out=$3 refinement=$4 penalty=$5 keep=$6 index=$7
   hybrid="$out/hybrid/$(ls "$out/hybrid" | grep '^stiffness_.*\.csv$' | head -1)"
-  row=$(awk -F, -v k="$index" 'NR > 1 { if ($1 != last) { i++; last = $1 }
+  # Grid positions are the distinct angles in file order (compared as strings: "0.000000" would
+  # equal an unset variable as a number).
+  row=$(awk -F, -v k="$index" 'NR > 1 { if ($1 "" != last "") { i++; last = $1 }
         if (i - 1 == k) { print; exit } }' "$hybrid")
   [ -n "$row" ] || { echo "fe_reference: no grid position $index in $hybrid" >&2; exit 1; }
   angle=$(echo "$row" | cut -d, -f1)
@@ -40,7 +42,7 @@ if [ "${1:-}" = "_one" ]; then  # internal: one position (called through xargs)
   mkdir -p "$dir"
   meshopt=()
   [ -n "$mesh" ] && meshopt=(--mesh "$mesh")
-  if [ -f "$dir/time.txt" ] && [ -f "$dir/deck.dat" ] && [ -f "$dir/deck.info" ]; then
+  if [ -f "$dir/time.txt" ] && [ -f "$dir/deck.info" ] && grep -q "Job finished" "$dir/ccx.log" 2>/dev/null; then
     echo "position $index: reading the finished run in $dir"
   else
     "$tool" deck "$scene" "${meshopt[@]}" --angle-deg "$angle" --rotations-urad "$rot" \
@@ -103,7 +105,7 @@ fi
 hybrid="$out/hybrid/$(ls "$out/hybrid" | grep '^stiffness_.*\.csv$' | head -1)"
 if [ -z "$positions" ]; then
   # Loaded pairs per grid position; take every 6th and both sides of each change.
-  positions=$(awk -F, -v g="$grid" 'NR > 1 && $1 != last { pairs[n++] = $8; last = $1 }
+  positions=$(awk -F, -v g="$grid" 'NR > 1 && $1 "" != last "" { pairs[n++] = $8; last = $1 }
     END { for (i = 0; i < n; i++) { j = (i + 1) % n
             if (i % 6 == 0) pick[i] = 1
             if (pairs[i] != pairs[j]) { pick[i] = 1; pick[j] = 1; pick[(i + 2) % n] = 1 } }
