@@ -26,7 +26,7 @@
 
 namespace epicycle::fe_reference {
 
-/// Mesh sizes of the reference model; `refinement` divides every size (1, 1.41, 2 in the
+/// Mesh sizes of the reference model; `refinement` divides every size (0.7, 1, 1.41, 2 in the
 /// convergence study of docs/compliance.md).
 struct FeMeshOptions {
   double contact_size = 40e-6;     ///< h_c [m], element size within contact_radius of a contact
