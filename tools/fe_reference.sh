@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# The FE contact reference of a gear pair (docs/compliance.md, "FE contact reference"): for chosen
+# positions of the hybrid model's mesh-stiffness grid, writes a CalculiX deck (gmsh mesh of the
+# exact profile, verification/fe_reference), runs ccx and reads the rotation, the mesh stiffness
+# and the tooth pairs' forces at the scene's torque back, beside the hybrid model's values.
+#
+# Usage: bash tools/fe_reference.sh SCENE [options]
+#   --mesh NAME         a stage scene's mesh (sun-planet1, planet1-ring)
+#   --out DIR           output directory (default fe-reference-out)
+#   --grid N            the hybrid model's positions per mesh cycle (default 48)
+#   --positions "i j"   grid indices to run (default: every 6th plus both sides of every change
+#                       in the number of loaded pairs, i.e. denser at the contact-ratio transitions)
+#   --refinement R      divides every FE mesh size (default 1)
+#   --penalty K         contact penalty [MPa/mm] (default 1e8)
+#   --jobs J            ccx runs at once (default 1; each single-threaded, nice 10)
+#   --keep              keep decks and ccx output (default: only the logs)
+# Writes DIR/fe_reference.csv (one row per position and tooth pair, appended as runs finish) and
+# the hybrid model's own CSV under DIR/hybrid. Needs a build with EPICYCLE_WITH_GMSH=ON (the test
+# build); installs Debian's calculix-ccx when ccx is missing.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${EPICYCLE_BUILD_DIR:-$root/build}"
+tool="${EPICYCLE_FE_TOOL:-$build/verification/fe_reference/fe_reference}"
+app="$build/app/epicycle"
+
+if [ "${1:-}" = "_one" ]; then  # internal: one position (called through xargs)
+  shift
+  scene=$1 mesh=$2 out=$3 refinement=$4 penalty=$5 keep=$6 index=$7
+  hybrid="$out/hybrid/$(ls "$out/hybrid" | grep '^stiffness_.*\.csv$' | head -1)"
+  # Grid positions are the distinct angles in file order (compared as strings: "0.000000" would
+  # equal an unset variable as a number).
+  row=$(awk -F, -v k="$index" 'NR > 1 { if ($1 "" != last "") { i++; last = $1 }
+        if (i - 1 == k) { print; exit } }' "$hybrid")
+  [ -n "$row" ] || { echo "fe_reference: no grid position $index in $hybrid" >&2; exit 1; }
+  angle=$(echo "$row" | cut -d, -f1)
+  te=$(echo "$row" | cut -d, -f5)
+  khyb=$(echo "$row" | cut -d, -f4)
+  # Two steps bracketing the hybrid model's rotation: the FE answer is interpolated between them
+  # (extrapolated, and flagged, if it lies outside).
+  rot=$(awk -v t="$te" 'BEGIN { printf "%.9g,%.9g", 0.9 * t, 1.04 * t }')
+  dir="$out/pos${index}_r${refinement}_k${penalty}"
+  mkdir -p "$dir"
+  meshopt=()
+  [ -n "$mesh" ] && meshopt=(--mesh "$mesh")
+  if [ -f "$dir/time.txt" ] && [ -f "$dir/deck.info" ] && grep -q "Job finished" "$dir/ccx.log" 2>/dev/null; then
+    echo "position $index: reading the finished run in $dir"
+  else
+    "$tool" deck "$scene" "${meshopt[@]}" --angle-deg "$angle" --rotations-urad "$rot" \
+      --refinement "$refinement" --penalty "$penalty" --out "$dir" > "$dir/deck.log"
+    (cd "$dir" && OMP_NUM_THREADS=1 /usr/bin/time -f "%e %U" -o time.txt nice -n 10 ccx -i deck \
+       > ccx.log 2>&1) || { echo "fe_reference: ccx failed at position $index (see $dir/ccx.log)" >&2; exit 1; }
+  fi
+  fe=$("$tool" read "$dir")
+  read -r wall cpu < "$dir/time.txt"
+  nodes=$(awk '$1 == "nodes" { print $2 }' "$dir/deck.info")
+  elements=$(awk '$1 == "elements" { print $2 }' "$dir/deck.info")
+  # One row per FE tooth pair, with the hybrid model's share of the same teeth (0 if unloaded).
+  echo "$fe" | awk -F, -v idx="$index" -v r="$refinement" -v K="$penalty" -v n="$nodes" \
+      -v e="$elements" -v w="$wall" -v c="$cpu" -v te="$te" -v kh="$khyb" -v hyb="$hybrid" \
+      -v angle="$angle" '
+    BEGIN { while ((getline line < hyb) > 0) { split(line, f, ",");
+              if (f[1] == angle) share[f[9]] = f[13] } }
+    { for (j = 8; j + 2 <= NF; j += 3)
+        printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", idx, $1, r, K, n, e, w,
+               c, $6, $7, $2, te, $4, kh, $j, $(j + 1), $(j + 2), ($j in share) ? share[$j] : 0 }
+  ' >> "$out/fe_reference.csv"
+  [ "$keep" = 1 ] || rm -f "$dir/deck.inp" "$dir/deck.frd" "$dir/deck.12d" "$dir/spooles.out"
+  echo "position $index (${angle} deg): done in ${wall} s (ccx CPU ${cpu} s)"
+  exit 0
+fi
+
+scene="" mesh="" out="fe-reference-out" grid=48 positions="" refinement=1 penalty=1e8 jobs=1 keep=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --mesh) mesh=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --grid) grid=$2; shift 2 ;;
+    --positions) positions=$2; shift 2 ;;
+    --refinement) refinement=$2; shift 2 ;;
+    --penalty) penalty=$2; shift 2 ;;
+    --jobs) jobs=$2; shift 2 ;;
+    --keep) keep=1; shift ;;
+    -*) echo "fe_reference: unknown option $1" >&2; exit 2 ;;
+    *) scene=$1; shift ;;
+  esac
+done
+[ -n "$scene" ] || { sed -n '2,20p' "$0"; exit 2; }
+if ! command -v ccx > /dev/null; then
+  echo "fe_reference: installing calculix-ccx"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends calculix-ccx
+fi
+[ -x "$tool" ] || cmake --build "$build" --target epicycle_fe_reference_tool -j2
+[ -x "$app" ] || cmake --build "$build" --target epicycle -j2
+mkdir -p "$out"
+out="$(cd "$out" && pwd)"
+meshopt=()
+[ -n "$mesh" ] && meshopt=(--mesh "$mesh")
+if [ ! -d "$out/hybrid" ]; then
+  "$app" stiffness "$scene" "${meshopt[@]}" --positions "$grid" --out "$out/hybrid" \
+    > "$out/hybrid.log"
+fi
+hybrid="$out/hybrid/$(ls "$out/hybrid" | grep '^stiffness_.*\.csv$' | head -1)"
+if [ -z "$positions" ]; then
+  # Loaded pairs per grid position; take every 6th and both sides of each change.
+  positions=$(awk -F, -v g="$grid" 'NR > 1 && $1 "" != last "" { pairs[n++] = $8; last = $1 }
+    END { for (i = 0; i < n; i++) { j = (i + 1) % n
+            if (i % 6 == 0) pick[i] = 1
+            if (pairs[i] != pairs[j]) { pick[i] = 1; pick[j] = 1; pick[(i + 2) % n] = 1 } }
+          for (i = 0; i < n; i++) if (pick[i]) printf "%d ", i }' "$hybrid")
+fi
+[ -f "$out/fe_reference.csv" ] || echo "index,angle_deg,refinement,penalty_MPa_per_mm,nodes,elements,ccx_wall_s,ccx_cpu_s,extrapolated,moment_balance,fe_te_urad,hybrid_te_urad,fe_k_N_per_mm_um,hybrid_k_N_per_mm_um,pair_teeth,fe_pair_force_N,fe_share,hybrid_share" > "$out/fe_reference.csv"
+echo "fe_reference: $scene, positions $positions(refinement $refinement, penalty $penalty)"
+for p in $positions; do echo "$p"; done |
+  xargs -P "$jobs" -I{} bash "$0" _one "$scene" "$mesh" "$out" "$refinement" "$penalty" "$keep" {}
+echo "fe_reference: wrote $out/fe_reference.csv"

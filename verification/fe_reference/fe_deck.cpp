@@ -1,0 +1,576 @@
+#include "fe_deck.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <gmsh.h>
+
+namespace epicycle::fe_reference {
+
+namespace {
+
+using geometry::Vec2;
+
+constexpr double kMm = 1e3;  // the deck is in mm, N, MPa
+
+// CalculiX reads at most 20 characters per field: 13 significant digits fit any sign and exponent.
+std::string Num(double v) {
+  std::ostringstream s;
+  s.precision(13);
+  s << v;
+  return s.str();
+}
+
+// gmsh state is global: one session per deck, finalized even when an exception leaves.
+struct GmshSession {
+  GmshSession() {
+    gmsh::initialize();
+    gmsh::option::setNumber("General.Terminal", 0);
+    gmsh::model::add("pair");
+  }
+  ~GmshSession() { gmsh::finalize(); }
+  GmshSession(const GmshSession&) = delete;
+  GmshSession& operator=(const GmshSession&) = delete;
+};
+
+// Which curves of a gear's outline carry which tooth flank.
+struct GearModel {
+  int surface = 0;
+  int hub_curve = 0;
+  // (tooth, side) → the curves of its involute and tip round (the loaded part of a flank).
+  std::map<std::pair<int, int>, std::vector<int>> flank_curves;
+  std::set<int> curves;
+};
+
+// The gear's outline as OCC splines through points of the exact profile (per segment, so each
+// spline is one analytic piece and the G1 joints are spline ends), closed by the hub circle
+// (external: the hole) or the rim circle (internal: the outside). Teeth in `fine_teeth` get
+// `fine_points` interpolation points per segment, the others a quarter (the spline error falls as
+// (segment length / points)^4, far below the deflections on either).
+GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
+                    const std::set<int>& fine_teeth, int fine_points) {
+  GearModel g;
+  const geometry::HalfProfile& half = gear.half_profile();
+  auto world = [&](const Vec2& body) {
+    const Vec2 w = pose.geometric_centre + geometry::Rotate(body, pose.rotation);
+    return Vec2(w.x() * kMm, w.y() * kMm);
+  };
+  // The closed outline as pieces (one per non-empty segment), counter-clockwise: per tooth the
+  // mirrored half (side −1) root → tip, then the half (side +1) tip → root.
+  struct Piece {
+    std::vector<Vec2> points;
+    int tooth = 0, side = 0;
+    bool flank = false;
+  };
+  std::vector<Piece> pieces;
+  const int z = gear.teeth();
+  const int count = static_cast<int>(half.segments.size());
+  for (int k = 0; k < z; ++k) {
+    const double turn = k * gear.pitch_angle();
+    const int n = fine_teeth.count(k) ? fine_points : std::max(4, fine_points / 4);
+    for (int side : {-1, 1}) {
+      for (int i = 0; i < count; ++i) {
+        const geometry::Segment& seg = half.segments[side < 0 ? i : count - 1 - i];
+        if ((seg.Point(seg.t0) - seg.Point(seg.t1)).norm() < 1e-12) continue;  // empty piece
+        Piece piece;
+        piece.tooth = k;
+        piece.side = side;
+        piece.flank = seg.role == geometry::SegmentRole::kInvolute ||
+                      seg.role == geometry::SegmentRole::kTipRound;
+        for (int j = 0; j <= n; ++j) {
+          const double t = seg.t0 + (seg.t1 - seg.t0) * (side < 0 ? j : n - j) / n;
+          Vec2 p = seg.Point(t);
+          if (side < 0) p.y() = -p.y();
+          piece.points.push_back(world(geometry::Rotate(p, turn)));
+        }
+        pieces.push_back(std::move(piece));
+      }
+    }
+  }
+  // Consecutive pieces share their end points (one gmsh point each); the last closes on the first.
+  std::vector<int> outline;
+  int first_point = -1, last_point = -1;
+  for (std::size_t q = 0; q < pieces.size(); ++q) {
+    const Piece& piece = pieces[q];
+    std::vector<int> pts;
+    for (std::size_t j = 0; j < piece.points.size(); ++j) {
+      if (j == 0 && last_point > 0) {
+        pts.push_back(last_point);
+      } else if (j + 1 == piece.points.size() && q + 1 == pieces.size()) {
+        pts.push_back(first_point);
+      } else {
+        pts.push_back(gmsh::model::occ::addPoint(piece.points[j].x(), piece.points[j].y(), 0.0));
+      }
+    }
+    if (first_point < 0) first_point = pts.front();
+    last_point = pts.back();
+    const int c = gmsh::model::occ::addSpline(pts);
+    outline.push_back(c);
+    g.curves.insert(c);
+    if (piece.flank) g.flank_curves[{piece.tooth, piece.side}].push_back(c);
+  }
+  const Vec2 c = world(Vec2::Zero());
+  const double r = gear.spec().hub_radius * kMm;
+  g.hub_curve = gmsh::model::occ::addCircle(c.x(), c.y(), 0.0, r);
+  g.curves.insert(g.hub_curve);
+  const int outline_loop = gmsh::model::occ::addCurveLoop(outline);
+  const int hub_loop = gmsh::model::occ::addCurveLoop({g.hub_curve});
+  g.surface = gear.internal() ? gmsh::model::occ::addPlaneSurface({hub_loop, outline_loop})
+                              : gmsh::model::occ::addPlaneSurface({outline_loop, hub_loop});
+  return g;
+}
+
+// The mesh-size rule of one gear near the mesh: h_tooth on the teeth within `zone` of a loaded
+// tooth (and the rim under them, to 2 modules below the root circle), growing with the distance
+// outside that zone.
+struct ToothZone {
+  Vec2 centre;  // [mm]
+  double rotation = 0, pitch = 0, half_width = 0, r_in = 0, r_out = 0;
+  std::vector<int> teeth;
+  double Distance(double x, double y) const {
+    const double dx = x - centre.x(), dy = y - centre.y();
+    const double r = std::hypot(dx, dy);
+    const double phi = std::atan2(dy, dx) - rotation;
+    double ang = 1e300;
+    for (int k : teeth)
+      ang = std::min(ang, std::abs(geometry::WrapAngle(phi - k * pitch)) - half_width);
+    const double radial = std::max({0.0, r_in - r, r - r_out});
+    return std::max(std::max(0.0, ang * r), radial);
+  }
+};
+
+struct Tri {
+  std::array<int, 6> n;  // corners a, b, c, mid-sides ab, bc, ca (compact 0-based indices)
+  int body = 0;
+};
+
+}  // namespace
+
+void FeMeshOptions::Validate() const {
+  auto positive = [](const char* key, double v) {
+    if (!(v > 0) || !std::isfinite(v))
+      throw std::invalid_argument(std::string("fe mesh: ") + key + " = " + Num(v) +
+                                  ": must be > 0");
+  };
+  positive("contact_size", contact_size);
+  positive("contact_radius", contact_radius);
+  positive("grading", grading);
+  positive("tooth_size_per_module", tooth_size_per_module);
+  positive("body_size_per_module", body_size_per_module);
+  positive("refinement", refinement);
+  if (points_per_segment < 4)
+    throw std::invalid_argument(
+        "fe mesh: points_per_segment = " + std::to_string(points_per_segment) + ": must be >= 4");
+  if (tooth_zone < 0)
+    throw std::invalid_argument("fe mesh: tooth_zone = " + std::to_string(tooth_zone) +
+                                ": must be >= 0");
+}
+
+void FeDeckInfo::Write(const std::string& path) const {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot be written");
+  f.precision(17);
+  f << "thickness_m " << thickness << "\nface_width_m " << face_width << "\ntorque_Nm " << torque
+    << "\nbase_radius1_m " << base_radius1 << "\nangle_rad " << angle << "\nnodes " << nodes
+    << "\nelements " << elements << "\nnodes_2d " << nodes_2d << "\ntriangles " << triangles
+    << "\nstraightened " << straightened << "\n";
+  for (double r : rotations) f << "rotation_rad " << r << "\n";
+  for (const FeToothPair& p : pairs)
+    f << "pair " << p.tooth1 << " " << p.tooth2 << " " << p.slave << " " << p.master << " "
+      << p.rigid_gap << "\n";
+  for (std::size_t i = 0; i < hub_nodes.size(); ++i)
+    f << "hub " << hub_nodes[i] << " " << hub_x[i] << " " << hub_y[i] << "\n";
+}
+
+FeDeckInfo FeDeckInfo::Read(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot be read");
+  FeDeckInfo info;
+  std::string line;
+  int number = 0;
+  while (std::getline(f, line)) {
+    ++number;
+    std::istringstream s(line);
+    std::string key;
+    s >> key;
+    bool ok = true;
+    if (key == "thickness_m")
+      ok = static_cast<bool>(s >> info.thickness);
+    else if (key == "face_width_m")
+      ok = static_cast<bool>(s >> info.face_width);
+    else if (key == "torque_Nm")
+      ok = static_cast<bool>(s >> info.torque);
+    else if (key == "base_radius1_m")
+      ok = static_cast<bool>(s >> info.base_radius1);
+    else if (key == "angle_rad")
+      ok = static_cast<bool>(s >> info.angle);
+    else if (key == "nodes")
+      ok = static_cast<bool>(s >> info.nodes);
+    else if (key == "elements")
+      ok = static_cast<bool>(s >> info.elements);
+    else if (key == "nodes_2d")
+      ok = static_cast<bool>(s >> info.nodes_2d);
+    else if (key == "triangles")
+      ok = static_cast<bool>(s >> info.triangles);
+    else if (key == "straightened")
+      ok = static_cast<bool>(s >> info.straightened);
+    else if (key == "rotation_rad") {
+      double r = 0;
+      ok = static_cast<bool>(s >> r);
+      info.rotations.push_back(r);
+    } else if (key == "pair") {
+      FeToothPair p;
+      ok = static_cast<bool>(s >> p.tooth1 >> p.tooth2 >> p.slave >> p.master >> p.rigid_gap);
+      info.pairs.push_back(p);
+    } else if (key == "hub") {
+      int id = 0;
+      double x = 0, y = 0;
+      ok = static_cast<bool>(s >> id >> x >> y);
+      info.hub_nodes.push_back(id);
+      info.hub_x.push_back(x);
+      info.hub_y.push_back(y);
+    } else if (!key.empty()) {
+      ok = false;
+    }
+    if (!ok)
+      throw std::runtime_error(path + ":" + std::to_string(number) + ": cannot read '" + line +
+                               "'");
+  }
+  return info;
+}
+
+FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair& pair,
+                     double torque, double angle, const std::vector<double>& rotations,
+                     const FeMeshOptions& mesh, const FeContactOptions& contact,
+                     const std::string& directory) {
+  mesh.Validate();
+  if (rotations.empty())
+    throw std::invalid_argument("fe deck: rotations: at least one step is needed");
+  for (double r : rotations) {
+    if (!(r * rotations.front() > 0) || !std::isfinite(r))
+      throw std::invalid_argument("fe deck: rotation = " + Num(r) +
+                                  ": every step's rotation must be non-zero and of one sign");
+  }
+  if (torque == 0) throw std::invalid_argument("fe deck: torque = 0: must be non-zero");
+  const geometry::Gear& g1 = pair.gear1();
+  const geometry::Gear& g2 = pair.gear2();
+  const geometry::PairPoses poses = pair.Poses(angle);
+
+  // The tooth pairs in or near contact on the loaded flanks.
+  geometry::ContactSearchOptions search;
+  search.gap_window = contact.gap_window;
+  search.both_sides = false;
+  search.side_a = pair.loaded_side();
+  const std::vector<geometry::PotentialContact> contacts = pair.Contacts(poses, search);
+  if (contacts.empty())
+    throw std::invalid_argument("fe deck: no tooth pair within the gap window at this position");
+  std::map<std::pair<int, int>, FeToothPair> by_teeth;
+  std::map<std::pair<int, int>, std::vector<Vec2>> points_of;  // each pair's contact points [mm]
+  std::vector<Vec2> contact_points;                            // [mm]
+  std::set<int> teeth1, teeth2;
+  int side1 = 0, side2 = 0;
+  for (const geometry::PotentialContact& c : contacts) {
+    auto [it, fresh] = by_teeth.try_emplace({c.tooth_a, c.tooth_b});
+    FeToothPair& p = it->second;
+    if (fresh) {
+      p.tooth1 = c.tooth_a;
+      p.tooth2 = c.tooth_b;
+      p.slave = "G1T" + std::to_string(c.tooth_a);
+      p.master = "G2T" + std::to_string(c.tooth_b);
+      p.rigid_gap = -c.overlap;
+    }
+    p.rigid_gap = std::min(p.rigid_gap, -c.overlap);
+    contact_points.emplace_back(c.point.x() * kMm, c.point.y() * kMm);
+    points_of[{c.tooth_a, c.tooth_b}].push_back(contact_points.back());
+    teeth1.insert(c.tooth_a);
+    teeth2.insert(c.tooth_b);
+    side1 = c.side_a;
+    side2 = c.side_b;
+  }
+
+  const double m = g1.module() * kMm;
+  const double h_c = mesh.contact_size * kMm / mesh.refinement;
+  const double r0 = mesh.contact_radius * kMm;
+  const double h_tooth = mesh.tooth_size_per_module * m / mesh.refinement;
+  const double h_body = mesh.body_size_per_module * m / mesh.refinement;
+  auto zone_of = [&](const geometry::Gear& g, const geometry::GearPose& pose,
+                     const std::set<int>& loaded) {
+    ToothZone zone;
+    zone.centre = pose.geometric_centre * kMm;
+    zone.rotation = pose.rotation;
+    zone.pitch = g.pitch_angle();
+    zone.half_width = (mesh.tooth_zone + 0.5) * g.pitch_angle();
+    zone.teeth.assign(loaded.begin(), loaded.end());
+    const double root = g.root_radius() * kMm, tip = g.tip_radius() * kMm;
+    zone.r_in = g.internal() ? tip : root - 2 * m;
+    zone.r_out = g.internal() ? root + 2 * m : tip;
+    return zone;
+  };
+  const ToothZone zone1 = zone_of(g1, poses.gear1, teeth1);
+  const ToothZone zone2 = zone_of(g2, poses.gear2, teeth2);
+  auto fine_of = [&](const geometry::Gear& g, const std::set<int>& loaded) {
+    std::set<int> fine;
+    for (int k : loaded)
+      for (int d = -mesh.tooth_zone - 1; d <= mesh.tooth_zone + 1; ++d)
+        fine.insert(((k + d) % g.teeth() + g.teeth()) % g.teeth());
+    return fine;
+  };
+
+  GmshSession session;
+  const GearModel m1 = BuildGear(g1, poses.gear1, fine_of(g1, teeth1), mesh.points_per_segment);
+  const GearModel m2 = BuildGear(g2, poses.gear2, fine_of(g2, teeth2), mesh.points_per_segment);
+  gmsh::model::occ::synchronize();
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.Algorithm", 6);
+  gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);
+  // Size: the smallest of the contact refinement, the tooth zone of the entity's gear and h_body.
+  gmsh::model::mesh::setSizeCallback([&](int dim, int tag, double x, double y, double) {
+    double s = h_body;
+    for (const Vec2& c : contact_points)
+      s = std::min(s, h_c + mesh.grading * std::max(0.0, std::hypot(x - c.x(), y - c.y()) - r0));
+    const bool on1 = (dim == 2 && tag == m1.surface) || (dim == 1 && m1.curves.count(tag));
+    const bool on2 = (dim == 2 && tag == m2.surface) || (dim == 1 && m2.curves.count(tag));
+    if (on1 || !on2) s = std::min(s, h_tooth + mesh.grading * zone1.Distance(x, y));
+    if (on2 || !on1) s = std::min(s, h_tooth + mesh.grading * zone2.Distance(x, y));
+    return s;
+  });
+  gmsh::model::mesh::generate(2);
+  gmsh::model::mesh::setOrder(2);
+
+  // Nodes of the triangles, compacted to 0-based indices (the spline interpolation points are
+  // model vertices of their own, meshed as free nodes: left out).
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords, param;
+  gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1, true, false);
+  std::map<std::size_t, Vec2> position;
+  for (std::size_t i = 0; i < node_tags.size(); ++i)
+    position[node_tags[i]] = Vec2(coords[3 * i], coords[3 * i + 1]);
+  std::map<std::size_t, int> index;
+  std::vector<Vec2> xy;
+  for (int surface : {m1.surface, m2.surface}) {
+    std::vector<std::size_t> elem_tags, elem_nodes;
+    gmsh::model::mesh::getElementsByType(9, elem_tags, elem_nodes, surface);
+    for (std::size_t tag : elem_nodes) {
+      if (index.try_emplace(tag, static_cast<int>(xy.size())).second)
+        xy.push_back(position.at(tag));
+    }
+  }
+  const int n2 = static_cast<int>(xy.size());
+
+  // Triangles (6-node, gmsh type 9), counter-clockwise.
+  std::vector<Tri> tris;
+  int straightened = 0;
+  std::map<std::pair<int, int>, std::pair<int, int>> edge_of;  // sorted corners → (tri, edge)
+  for (int body = 0; body < 2; ++body) {
+    std::vector<std::size_t> elem_tags, elem_nodes;
+    gmsh::model::mesh::getElementsByType(9, elem_tags, elem_nodes,
+                                         body == 0 ? m1.surface : m2.surface);
+    for (std::size_t e = 0; e < elem_tags.size(); ++e) {
+      Tri t;
+      t.body = body;
+      for (int j = 0; j < 6; ++j) t.n[j] = index.at(elem_nodes[6 * e + j]);
+      const double area = geometry::Cross(xy[t.n[1]] - xy[t.n[0]], xy[t.n[2]] - xy[t.n[0]]);
+      if (area < 0) t.n = {t.n[0], t.n[2], t.n[1], t.n[5], t.n[4], t.n[3]};
+      const int id = static_cast<int>(tris.size());
+      for (int j = 0; j < 3; ++j) {
+        const int a = t.n[j], b = t.n[(j + 1) % 3];
+        edge_of[{std::min(a, b), std::max(a, b)}] = {id, j};
+      }
+      tris.push_back(t);
+    }
+  }
+  if (tris.empty()) throw std::runtime_error("fe deck: gmsh produced no triangles");
+  // An element larger than a tip round (0.08–0.21 mm radius under m/4 or 2 m elements) can turn
+  // inside out when its mid-side node goes onto the arc. Such an element (det J below 2 % of the
+  // straight triangle's anywhere at its six nodes) gets straight sides: the tip corner it cuts
+  // carries no load (the contacts have 40 µm elements), its sagitta is below the round's radius
+  // (counted in `straightened`).
+  for (const Tri& t : tris) {
+    const Vec2 a = xy[t.n[0]], b = xy[t.n[1]], c = xy[t.n[2]];
+    const double area2 = geometry::Cross(b - a, c - a);
+    // det J of the quadratic map at the corners and mid-sides (ξ, η) ∈ {0, ½, 1}.
+    bool bad = false;
+    const double pts[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
+    for (const auto& q : pts) {
+      const double xi = q[0], eta = q[1], l0 = 1 - xi - eta;
+      // Shape-function derivatives of the 6-node triangle (corners 0..2, mid-sides 01, 12, 20).
+      const double dxi[6] = {-(4 * l0 - 1), 4 * xi - 1, 0, 4 * (l0 - xi), 4 * eta, -4 * eta};
+      const double deta[6] = {-(4 * l0 - 1), 0, 4 * eta - 1, -4 * xi, 4 * xi, 4 * (l0 - eta)};
+      Vec2 jx = Vec2::Zero(), je = Vec2::Zero();
+      for (int j = 0; j < 6; ++j) {
+        jx += dxi[j] * xy[t.n[j]];
+        je += deta[j] * xy[t.n[j]];
+      }
+      if (geometry::Cross(jx, je) < 0.02 * area2) bad = true;
+    }
+    if (!bad) continue;
+    for (int j = 0; j < 3; ++j) xy[t.n[3 + j]] = 0.5 * (xy[t.n[j]] + xy[t.n[(j + 1) % 3]]);
+    ++straightened;
+  }
+
+  // Slab node ids: bottom i+1, top n2+i+1, mid-thickness 2·n2+i+1 (corner nodes only).
+  std::vector<char> corner(n2, 0);
+  for (const Tri& t : tris)
+    for (int j = 0; j < 3; ++j) corner[t.n[j]] = 1;
+  const double t_mm = 1.0;  // slab thickness: 1 mm, forces per mm of face width
+  auto bottom = [](int i) { return i + 1; };
+  auto top = [n2](int i) { return n2 + i + 1; };
+  auto middle = [n2](int i) { return 2 * n2 + i + 1; };
+
+  FeDeckInfo info;
+  info.thickness = t_mm / kMm;
+  info.face_width = std::min(g1.spec().face_width, g2.spec().face_width);
+  info.torque = torque;
+  info.base_radius1 = g1.base_radius();
+  info.angle = angle;
+  info.rotations = rotations;
+  info.nodes_2d = n2;
+  info.triangles = static_cast<int>(tris.size());
+  info.straightened = straightened;
+  for (auto& [key, p] : by_teeth) info.pairs.push_back(p);
+
+  std::filesystem::create_directories(directory);
+  const std::string deck_path = directory + "/deck.inp";
+  std::ofstream f(deck_path);
+  if (!f) throw std::runtime_error(deck_path + ": cannot be written");
+  f.precision(13);
+  f << "** epicycle FE contact reference (verification/fe_reference): " << scene.name << "\n"
+    << "** gear-1 angle " << Num(geometry::Deg(angle)) << " deg, torque on gear 1 " << Num(torque)
+    << " N m over b = " << Num(info.face_width * kMm) << " mm; slab t = 1 mm; units mm, N, MPa\n"
+    << "*NODE, NSET=NALL\n";
+  int nodes = 0;
+  for (int i = 0; i < n2; ++i) {
+    f << bottom(i) << ", " << xy[i].x() << ", " << xy[i].y() << ", 0\n";
+    f << top(i) << ", " << xy[i].x() << ", " << xy[i].y() << ", " << t_mm << "\n";
+    nodes += 2;
+    if (corner[i]) {
+      f << middle(i) << ", " << xy[i].x() << ", " << xy[i].y() << ", " << 0.5 * t_mm << "\n";
+      ++nodes;
+    }
+  }
+  info.nodes = nodes;
+  for (int body = 0; body < 2; ++body) {
+    f << "*ELEMENT, TYPE=C3D15, ELSET=GEAR" << body + 1 << "\n";
+    for (std::size_t e = 0; e < tris.size(); ++e) {
+      const Tri& t = tris[e];
+      if (t.body != body) continue;
+      const auto& n = t.n;
+      f << e + 1 << ", " << bottom(n[0]) << ", " << bottom(n[1]) << ", " << bottom(n[2]) << ", "
+        << top(n[0]) << ", " << top(n[1]) << ", " << top(n[2]) << ", " << bottom(n[3]) << ", "
+        << bottom(n[4]) << ", " << bottom(n[5]) << ",\n"
+        << top(n[3]) << ", " << top(n[4]) << ", " << top(n[5]) << ", " << middle(n[0]) << ", "
+        << middle(n[1]) << ", " << middle(n[2]) << "\n";
+    }
+  }
+  info.elements = static_cast<int>(tris.size());
+
+  // Hub node sets: every slab node above a hub-curve node.
+  auto hub_nodes = [&](const GearModel& g) {
+    std::vector<std::size_t> tags;
+    std::vector<double> c, u;
+    gmsh::model::mesh::getNodes(tags, c, u, 1, g.hub_curve, true, false);
+    std::vector<int> out;
+    for (std::size_t tag : tags) out.push_back(index.at(tag));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  };
+  const Vec2 c1 = poses.gear1.rotation_centre * kMm;
+  auto slab = [&](int i, const std::function<void(int)>& emit) {
+    emit(bottom(i));
+    emit(top(i));
+    if (corner[i]) emit(middle(i));
+  };
+  const std::vector<int> hub1 = hub_nodes(m1), hub2 = hub_nodes(m2);
+  for (int i : hub1) {
+    slab(i, [&](int id) {
+      info.hub_nodes.push_back(id);
+      info.hub_x.push_back(xy[i].x() - c1.x());
+      info.hub_y.push_back(xy[i].y() - c1.y());
+    });
+  }
+  auto write_set = [&](const std::string& name, const std::vector<int>& ids) {
+    f << "*NSET, NSET=" << name << "\n";
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      f << ids[i] << (i + 1 == ids.size() || i % 10 == 9 ? "\n" : ", ");
+  };
+  write_set("HUB1", info.hub_nodes);
+  std::vector<int> hub2_ids;
+  for (int i : hub2) slab(i, [&](int id) { hub2_ids.push_back(id); });
+  write_set("HUB2", hub2_ids);
+
+  // Contact surfaces: the wedge faces over the flank curves' boundary edges within `reach` of
+  // the pair's rigid contact points (the Hertzian half-width is ~0.1 mm and the contact moves
+  // less than that under load; the whole flank as slave makes CalculiX's contact search drop
+  // far-off contact elements a few per iteration, tens of iterations per step).
+  auto write_surface = [&](const std::string& name, const std::vector<int>& curves,
+                           const std::vector<Vec2>& near, double reach) {
+    f << "*SURFACE, NAME=" << name << ", TYPE=ELEMENT\n";
+    int faces = 0;
+    for (int curve : curves) {
+      std::vector<std::size_t> tags, en;
+      gmsh::model::mesh::getElementsByType(8, tags, en, curve);
+      for (std::size_t e = 0; e < tags.size(); ++e) {
+        const int a = index.at(en[3 * e]), b = index.at(en[3 * e + 1]);
+        const Vec2 mid = 0.5 * (xy[a] + xy[b]);
+        double d = 1e300;
+        for (const Vec2& c : near) d = std::min(d, (mid - c).norm());
+        if (d > reach) continue;
+        const auto it = edge_of.find({std::min(a, b), std::max(a, b)});
+        if (it == edge_of.end())
+          throw std::runtime_error("fe deck: a flank edge of " + name + " has no triangle");
+        f << it->second.first + 1 << ", S" << it->second.second + 3 << "\n";
+        ++faces;
+      }
+    }
+    if (faces == 0) throw std::runtime_error("fe deck: surface " + name + " has no faces");
+  };
+  for (const FeToothPair& p : info.pairs) {
+    const std::vector<Vec2>& near = points_of.at({p.tooth1, p.tooth2});
+    write_surface(p.slave, m1.flank_curves.at({p.tooth1, side1}), near, contact.slave_reach * kMm);
+    write_surface(p.master, m2.flank_curves.at({p.tooth2, side2}), near,
+                  contact.master_reach * kMm);
+  }
+
+  const transmission::Material& mat = scene.material;
+  f << "*MATERIAL, NAME=STEEL\n*ELASTIC\n"
+    << Num(mat.youngs_modulus / 1e6) << ", " << Num(mat.poisson_ratio) << "\n"
+    << "*SOLID SECTION, ELSET=GEAR1, MATERIAL=STEEL\n"
+    << "*SOLID SECTION, ELSET=GEAR2, MATERIAL=STEEL\n"
+    << "*SURFACE INTERACTION, NAME=FLANKS\n"
+    << "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
+    << Num(contact.penalty) << ", " << Num(contact.tension) << "\n";
+  for (const FeToothPair& p : info.pairs)
+    f << "*CONTACT PAIR, INTERACTION=FLANKS, TYPE=SURFACE TO SURFACE\n"
+      << p.slave << ", " << p.master << "\n";
+  // Plane strain: u_z = 0 everywhere; gear 2 held at its hub (ring: rim).
+  f << "*BOUNDARY\nNALL, 3, 3\nHUB2, 1, 2\n";
+  for (double theta : rotations) {
+    // One fixed increment per step (each step starts from the last, near its answer); ccx's
+    // automatic stepping would add a spurious 1e-6 increment at the end of the step.
+    f << "*STEP, INC=1000\n*STATIC, DIRECT\n1., 1.\n*BOUNDARY\n";
+    for (std::size_t i = 0; i < info.hub_nodes.size(); ++i) {
+      f << info.hub_nodes[i] << ", 1, 1, " << Num(-theta * info.hub_y[i]) << "\n"
+        << info.hub_nodes[i] << ", 2, 2, " << Num(theta * info.hub_x[i]) << "\n";
+    }
+    f << "*NODE PRINT, NSET=HUB1\nRF\n";
+    for (const FeToothPair& p : info.pairs)  // CF needs the pair named (ccx 2.20)
+      f << "*CONTACT PRINT, SLAVE=" << p.slave << ", MASTER=" << p.master << "\nCF\n";
+    f << "*END STEP\n";
+  }
+  if (!f) throw std::runtime_error(deck_path + ": write failed");
+  info.Write(directory + "/deck.info");
+  return info;
+}
+
+}  // namespace epicycle::fe_reference

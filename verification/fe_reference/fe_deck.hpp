@@ -1,0 +1,115 @@
+// An independent full-FE contact reference for the hybrid mesh-stiffness model (docs/compliance.md,
+// "FE contact reference"): the two gears of a pair at one mesh position, meshed by gmsh from the
+// exact generated profile (never through compliance/'s mappers), second-order elements refined at
+// the contacts, written as a CalculiX input deck; and the reader of CalculiX's results.
+//
+// The deck (units mm, N, MPa): a one-element-thick slab of 15-node wedges (C3D15, the 6-node
+// triangles of the gmsh mesh extruded over the thickness t) with u_z = 0 at every node, which is
+// the plane-strain model (the displacement field is independent of z and ε_zz = 0). Gear 1's hub
+// circle (an external gear's axis circle) is given the rigid rotation θ about its centre,
+//     u = θ e_z × (x − c_1),
+// in a sequence of static steps θ_1 < θ_2 < ...; gear 2's hub (an internal gear's outer rim) is
+// held: the boundary conditions of the hybrid model's influence tables. The loaded flanks (involute
+// and tip round) of every tooth pair in or near contact form one frictionless surface-to-surface
+// contact pair each (linear pressure-overclosure penalty), so CalculiX reports each tooth pair's
+// normal force. The moment the hub carries, M = Σ (x − c_1) × R over the hub nodes' reactions R,
+// is the torque that holds gear 1 at θ; interpolating θ(M) at the scene's torque gives the loaded
+// transmission error, the mesh stiffness k = (|T|/r_b1)/(|θ| r_b1) and the tooth pairs' loads at
+// that torque, the quantities of transmission/mesh_stiffness.hpp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "epicycle/geometry/pair.hpp"
+#include "epicycle/transmission/scene.hpp"
+
+namespace epicycle::fe_reference {
+
+/// Mesh sizes of the reference model; `refinement` divides every size (0.7, 1, 1.41, 2 in the
+/// convergence study of docs/compliance.md).
+struct FeMeshOptions {
+  double contact_size = 40e-6;     ///< h_c [m], element size within contact_radius of a contact
+  double contact_radius = 0.3e-3;  ///< r_0 [m]
+  double grading = 0.25;           ///< growth of the size with distance beyond r_0 [-]
+  double tooth_size_per_module = 0.25;  ///< on the teeth next to the mesh, per module [-]
+  double body_size_per_module = 2.0;    ///< the largest size, away from the mesh, per module [-]
+  int tooth_zone = 2;                   ///< teeth either side of the loaded ones meshed finely [-]
+  double refinement = 1.0;              ///< divides every size [-], > 0
+  int points_per_segment = 40;          ///< interpolation points of each profile spline [-]
+  void Validate() const;                ///< @throws std::invalid_argument naming the field
+};
+
+struct FeContactOptions {
+  double penalty = 1e8;          ///< K [MPa/mm] of the linear pressure-overclosure law
+  double tension = 0.5;          ///< σ_∞ [MPa], CalculiX's tension at large clearance (small)
+  double gap_window = 200e-6;    ///< tooth pairs within this rigid gap get a contact pair [m]
+  double slave_reach = 1.0e-3;   ///< slave faces within this of the rigid contact points [m]
+  double master_reach = 1.5e-3;  ///< master faces likewise [m]
+};
+
+/// One tooth pair of the deck: its contact pair's slave (gear 1) and master (gear 2) surfaces.
+struct FeToothPair {
+  int tooth1 = 0, tooth2 = 0;  ///< tooth indices in the body frames (as ToothPairLoad)
+  std::string slave, master;   ///< CalculiX surface names (upper case)
+  double rigid_gap = 0;        ///< smallest rigid gap of the pair's contacts at the position [m]
+};
+
+/// What the reader needs besides the .dat file.
+struct FeDeckInfo {
+  double thickness = 1e-3;        ///< t [m] of the slab
+  double face_width = 0;          ///< b [m] of the pair (the narrower gear)
+  double torque = 0;              ///< T on gear 1 [N·m], for the whole face width
+  double base_radius1 = 0;        ///< r_b1 [m]
+  double angle = 0;               ///< position: gear-1 rotation from the cycle start [rad]
+  std::vector<double> rotations;  ///< θ of each step [rad]
+  std::vector<FeToothPair> pairs;
+  std::vector<int> hub_nodes;        ///< CalculiX ids of gear 1's hub nodes
+  std::vector<double> hub_x, hub_y;  ///< their coordinates relative to c_1 [mm]
+  int nodes = 0, elements = 0;       ///< of the 3-D deck
+  int nodes_2d = 0, triangles = 0;   ///< of the gmsh mesh
+  int straightened = 0;  ///< curved triangles given straight sides (inside out on a small round)
+  void Write(const std::string& path) const;
+  /// @throws std::runtime_error naming the file and line that cannot be read.
+  static FeDeckInfo Read(const std::string& path);
+};
+
+/// Meshes the pair at gear-1 angle `angle` [rad] (the rigid pose of GearPair::Poses) and writes
+/// `deck.inp` and `deck.info` into `directory`, one static step per entry of `rotations` [rad].
+/// @throws std::invalid_argument for bad options or rotations of mixed or zero sign;
+///         std::runtime_error when gmsh fails or a file cannot be written.
+FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair& pair,
+                     double torque, double angle, const std::vector<double>& rotations,
+                     const FeMeshOptions& mesh, const FeContactOptions& contact,
+                     const std::string& directory);
+
+/// One static step as CalculiX reports it.
+struct FeStepResult {
+  double time = 0;                 ///< CalculiX's total time at the end of the step [-]
+  double rotation = 0;             ///< θ prescribed [rad]
+  double moment = 0;               ///< M on gear 1 from its hub reactions, whole face width [N·m]
+  std::vector<double> pair_force;  ///< normal force of each tooth pair, whole face width [N]
+};
+
+/// The reference at the scene's torque: θ(M) and the pair forces interpolated between the two
+/// steps that bracket |T| (log-log in θ(M), linear in the forces; extrapolated from the last two
+/// when |T| lies outside, which `extrapolated` reports).
+struct FeSample {
+  double angle = 0;                ///< [rad]
+  double rotation = 0;             ///< θ at T [rad]: the loaded transmission error
+  double approach = 0;             ///< δ = |θ| r_b1 [m]
+  double mesh_stiffness = 0;       ///< k = (|T|/r_b1)/δ [N/m]
+  std::vector<double> pair_force;  ///< [N] at T
+  double force_sum = 0;            ///< Σ pair forces [N]
+  double moment_balance = 0;  ///< |Σ F_j r_b1 − |T|| / |T| at the last step (involute contacts) [-]
+  bool extrapolated = false;
+};
+
+/// Reads the steps of `<directory>/deck.dat` (CalculiX .dat: the hub reactions of every step's
+/// last increment and the contact statistics of every pair).
+/// @throws std::runtime_error when the file is missing or lacks a step's block.
+std::vector<FeStepResult> ReadSteps(const std::string& directory, const FeDeckInfo& info);
+/// @throws std::runtime_error with fewer than two steps or a non-monotonic M(θ).
+FeSample Interpolate(const FeDeckInfo& info, const std::vector<FeStepResult>& steps);
+
+}  // namespace epicycle::fe_reference

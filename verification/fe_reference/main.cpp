@@ -1,0 +1,183 @@
+// `fe_reference deck SCENE ...` writes the CalculiX deck of a pair at one position;
+// `fe_reference read DIR` reads CalculiX's results back and prints the reference at the scene's
+// torque as one CSV row (tools/fe_reference.sh drives both).
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "csv_rows.hpp"
+#include "epicycle/transmission/mesh_stiffness.hpp"
+#include "fe_deck.hpp"
+#include "svg_plot.hpp"
+
+namespace {
+
+using namespace epicycle;
+
+std::vector<double> ParseList(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ',')) out.push_back(std::stod(item));
+  return out;
+}
+
+int Deck(const std::string& scene_path, const std::string& mesh_name, double angle_deg,
+         const std::string& rotations_urad, const fe_reference::FeMeshOptions& mesh,
+         const fe_reference::FeContactOptions& contact, const std::string& out) {
+  const transmission::Scene scene = transmission::ReadScene(scene_path);
+  std::optional<geometry::Stage> stage;
+  if (scene.kind == transmission::SceneKind::kStage) stage.emplace(scene.stage);
+  const transmission::MeshPairSetup setup =
+      transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, mesh_name);
+  const geometry::GearPair pair(setup.spec);
+  std::vector<double> rotations;
+  for (double r : ParseList(rotations_urad)) rotations.push_back(r * 1e-6);
+  const fe_reference::FeDeckInfo info = fe_reference::WriteDeck(
+      scene, pair, setup.torque, angle_deg * geometry::kPi / 180.0, rotations, mesh, contact, out);
+  std::printf("%s/deck.inp: %d nodes, %d C3D15 (gmsh: %d nodes, %d triangles), %zu tooth pairs\n",
+              out.c_str(), info.nodes, info.elements, info.nodes_2d, info.triangles,
+              info.pairs.size());
+  return 0;
+}
+
+int Read(const std::string& dir) {
+  const fe_reference::FeDeckInfo info = fe_reference::FeDeckInfo::Read(dir + "/deck.info");
+  const std::vector<fe_reference::FeStepResult> steps = fe_reference::ReadSteps(dir, info);
+  const fe_reference::FeSample s = fe_reference::Interpolate(info, steps);
+  const double b_mm = info.face_width * 1e3;
+  // angle, rotation, approach, k, Σ F, extrapolated, moment balance, then per pair
+  // teeth, force, share.
+  std::printf("%.6f,%.9g,%.9g,%.9g,%.9g,%d,%.3e", geometry::Deg(s.angle), s.rotation * 1e6,
+              s.approach * 1e6, s.mesh_stiffness / b_mm / 1e6, s.force_sum, s.extrapolated ? 1 : 0,
+              s.moment_balance);
+  for (std::size_t j = 0; j < info.pairs.size(); ++j)
+    std::printf(",%d/%d,%.9g,%.9g", info.pairs[j].tooth1, info.pairs[j].tooth2, s.pair_force[j],
+                s.force_sum > 0 ? s.pair_force[j] / s.force_sum : 0.0);
+  std::printf("\n");
+  return 0;
+}
+
+// Figures of docs/compliance.md: the hybrid model over its grid (lines) and the FE reference
+// (markers, one series per refinement): mesh stiffness, transmission error, tooth-pair shares.
+int Plot(const std::string& hybrid_csv, const std::string& fe_csv, const std::string& prefix,
+         const std::string& title) {
+  using app::LinePlot;
+  using app::PlotSeries;
+  LinePlot k{title + ": mesh stiffness", "gear-1 angle [deg]", "k / b [N/(mm um)]", {}, false, {}};
+  LinePlot te{title + ": loaded transmission error",
+              "gear-1 angle [deg]",
+              "gear-1 rotation [urad]",
+              {},
+              false,
+              {}};
+  LinePlot share{title + ": load share of each tooth pair",
+                 "gear-1 angle [deg]",
+                 "F_j / sum F",
+                 {},
+                 false,
+                 {}};
+  PlotSeries hk{"hybrid model", {}, {}, false}, hte{"hybrid model", {}, {}, false};
+  std::map<std::string, PlotSeries> hshare, fshare;
+  std::string last;
+  for (const auto& r : test::ReadCsvRows(hybrid_csv)) {
+    if (r.size() < 13 || r[1] != "1") continue;
+    const double a = std::stod(r[0]);
+    if (r[0] != last) {
+      hk.x.push_back(a);
+      hk.y.push_back(std::stod(r[3]));
+      hte.x.push_back(a);
+      hte.y.push_back(std::abs(std::stod(r[4])));
+      last = r[0];
+    }
+    PlotSeries& p = hshare[r[8]];
+    p.name = "hybrid, pair " + r[8];
+    p.x.push_back(a);
+    p.y.push_back(std::stod(r[12]));
+  }
+  std::map<std::string, PlotSeries> fk, fte;
+  std::map<std::string, std::string> seen;
+  for (const auto& r : test::ReadCsvRows(fe_csv)) {
+    if (r.size() < 18) continue;
+    const std::string level = "FE, refinement " + r[2] + ", K " + r[3];
+    const double a = std::stod(r[1]);
+    if (seen[level] != r[0]) {
+      fk[level].x.push_back(a);
+      fk[level].y.push_back(std::stod(r[12]));
+      fte[level].x.push_back(a);
+      fte[level].y.push_back(std::abs(std::stod(r[10])));
+      seen[level] = r[0];
+    }
+    if (r[2] != "1" || std::stod(r[16]) <= 0) continue;
+    PlotSeries& p = fshare[r[14]];
+    p.name = "FE, pair " + r[14];
+    p.points = true;
+    p.x.push_back(a);
+    p.y.push_back(std::stod(r[16]));
+  }
+  k.series.push_back(hk);
+  te.series.push_back(hte);
+  for (auto& [name, s] : fk) {
+    s.name = name;
+    s.points = true;
+    k.series.push_back(s);
+  }
+  for (auto& [name, s] : fte) {
+    s.name = name;
+    s.points = true;
+    te.series.push_back(s);
+  }
+  for (auto& [teeth, s] : hshare) share.series.push_back(s);
+  for (auto& [teeth, s] : fshare) share.series.push_back(s);
+  app::WriteTextFile(prefix + "_stiffness.svg", app::RenderSvg(k));
+  app::WriteTextFile(prefix + "_te.svg", app::RenderSvg(te));
+  app::WriteTextFile(prefix + "_share.svg", app::RenderSvg(share));
+  std::printf("wrote %s_{stiffness,te,share}.svg\n", prefix.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"FE contact reference of a gear pair (CalculiX deck writer and result reader)"};
+  app.require_subcommand(1);
+  std::string scene, mesh_name, rotations, out = "fe-out", dir;
+  double angle_deg = 0;
+  fe_reference::FeMeshOptions mesh;
+  fe_reference::FeContactOptions contact;
+  double contact_size_um = mesh.contact_size * 1e6;
+  CLI::App* deck = app.add_subcommand("deck", "write deck.inp and deck.info");
+  deck->add_option("scene", scene, "scene file")->required();
+  deck->add_option("--mesh", mesh_name, "a stage scene's mesh (sun-planet1, planet1-ring)");
+  deck->add_option("--angle-deg", angle_deg, "gear-1 angle from the cycle start [deg]")->required();
+  deck->add_option("--rotations-urad", rotations, "gear-1 rotation of each step [urad], a,b,...")
+      ->required();
+  deck->add_option("--refinement", mesh.refinement, "divides every mesh size");
+  deck->add_option("--contact-size-um", contact_size_um, "element size at the contacts [um]");
+  deck->add_option("--penalty", contact.penalty, "contact penalty [MPa/mm]");
+  deck->add_option("--out", out, "output directory");
+  CLI::App* read = app.add_subcommand("read", "read DIR/deck.dat, print the reference CSV row");
+  read->add_option("dir", dir, "directory of deck.inp")->required();
+  std::string hybrid_csv, fe_csv, prefix, title;
+  CLI::App* plot = app.add_subcommand("plot", "figures: hybrid model against the FE reference");
+  plot->add_option("hybrid", hybrid_csv, "the hybrid model's stiffness CSV")->required();
+  plot->add_option("fe", fe_csv, "fe_reference.csv of tools/fe_reference.sh")->required();
+  plot->add_option("prefix", prefix, "output path prefix")->required();
+  plot->add_option("--title", title, "figure title");
+  try {
+    app.parse(argc, argv);
+    if (*plot) return Plot(hybrid_csv, fe_csv, prefix, title);
+    mesh.contact_size = contact_size_um * 1e-6;
+    if (*deck) return Deck(scene, mesh_name, angle_deg, rotations, mesh, contact, out);
+    return Read(dir);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "fe_reference: %s\n", e.what());
+    return 1;
+  }
+}
