@@ -12,6 +12,7 @@
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/transmission/scene.hpp"
+#include "provenance.hpp"
 #include "stage_svg.hpp"
 
 namespace epicycle::app {
@@ -266,16 +267,22 @@ void RegisterGeometryCommands(CLI::App& app) {
     const transmission::Scene scene = transmission::ReadScene(scene_path);
     if (scene.kind == transmission::SceneKind::kPair) {
       const geometry::GearPair pair(scene.pair);
-      const json report = PairJson(scene, pair);
+      json report = PairJson(scene, pair);
+      report["provenance"] = Provenance("none", &scene);
+      report["warnings"] = scene.warnings;
       PrintReport(report);
+      PrintWarnings(scene.warnings);
       if (!json_path.empty()) WriteFile(json_path, report.dump(2) + "\n");
       if (!svg_path.empty())
         throw std::invalid_argument("--svg draws stages only (this scene is a gear pair)");
       return;
     }
     const Stage stage(scene.stage);
-    const json report = StageJson(scene, stage);
+    json report = StageJson(scene, stage);
+    report["provenance"] = Provenance("none", &scene);
+    report["warnings"] = scene.warnings;
     PrintReport(report);
+    PrintWarnings(scene.warnings);
     if (!json_path.empty()) {
       WriteFile(json_path, report.dump(2) + "\n");
       std::printf("\nwrote %s\n", json_path.c_str());

@@ -1,6 +1,7 @@
 // JSON problem files (format "epicycle-contact-problem", version 1).
 #include "epicycle/solvers/contact_io.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -217,6 +218,9 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
 }
 
 ContactProblemFile ReadContactProblemFile(const std::string& path) {
+  if (std::filesystem::is_directory(path))
+    throw std::invalid_argument("contact problem file " + path +
+                                ": is a directory, not a problem file (JSON)");
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("contact problem file " + path + ": cannot be opened");
   std::stringstream ss;
