@@ -1,4 +1,4 @@
-// `epicycle contact solve|compare|generate|stability`: the contact core on problem files.
+// `epicycle contact solve|compare|stability`: the contact core on problem files.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,7 +15,6 @@
 
 #include "commands.hpp"
 #include "epicycle/config.h"
-#include "epicycle/solvers/contact_collection.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/transmission/scene.hpp"
@@ -368,16 +367,6 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
   }
 }
 
-void GenerateCommand(const std::string& dir, std::uint64_t seed) {
-  fs::create_directories(dir);
-  const auto cases = solvers::GenerateContactCollection(seed);
-  for (const ContactProblemFile& f : cases) {
-    const std::string path = (fs::path(dir) / (f.data.name + ".json")).string();
-    solvers::WriteContactProblemFile(f, path);
-  }
-  fmt::print("wrote {} problem files to {} (seed {})\n", cases.size(), dir, seed);
-}
-
 void StabilityCommand(const std::string& dir, const std::string& doc, double tol) {
   std::vector<std::string> files;
   for (const std::string& f : ExpandProblemFiles({dir}))
@@ -462,13 +451,6 @@ void RegisterContactCommands(CLI::App& app) {
                       "rewrite this markdown file's table between the compare-table markers "
                       "(docs/solvers.md); without it no file but --csv/--svg-prefix is written");
   compare->callback([] { CompareCommand(c_inputs, c_csv, c_svg, c_tol, c_repeat, c_doc); });
-
-  auto* generate = contact->add_subcommand("generate", "write the problem collection");
-  static std::string g_dir;
-  static std::uint64_t g_seed = 1;
-  generate->add_option("dir", g_dir, "output directory")->required();
-  generate->add_option("--seed", g_seed, "generator seed");
-  generate->callback([] { GenerateCommand(g_dir, g_seed); });
 
   auto* stability =
       contact->add_subcommand("stability", "the stiff/extreme (back end x case) table");

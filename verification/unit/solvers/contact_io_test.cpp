@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "epicycle/solvers/contact_collection.hpp"
+#include "contact_collection.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 
 namespace epicycle::solvers {

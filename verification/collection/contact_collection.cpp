@@ -1,6 +1,6 @@
 // The contact problem collection. Magnitudes of the gear-like cases follow the paper's stage
 // (module 4.23 mm, 25°, z 16/24, b = 25 mm, steel, −600 N·m on the sun).
-#include "epicycle/solvers/contact_collection.hpp"
+#include "contact_collection.hpp"
 
 #include <cmath>
 #include <random>

@@ -2,6 +2,8 @@
 // cases, seeded random SPD problems, gear-like problems sized like the paper's stage and
 // stiff/extreme cases. Deterministic for a given seed (own uniform generator on std::mt19937_64).
 // "Gear-like" means plausible magnitudes and structure only; no gear geometry is used.
+// A test fixture (library epicycle_contact_collection, verification/collection/): the production
+// libraries carry none. Written to files by generate_contact_collection.
 #pragma once
 
 #include <cstdint>
