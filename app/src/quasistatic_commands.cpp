@@ -155,6 +155,9 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
               fmt::format("{}_{}_{}_{:03d}", std::filesystem::path(a.scene).stem().string(),
                           sun_name, a.no_local ? "linear" : "local", k);
           file.category = "stage";
+          for (const auto& item : provenance.items())
+            if (item.value().is_string())
+              file.provenance[item.key()] = item.value().get<std::string>();
           file.description =
               fmt::format("{} at carrier {:.4f} deg, sun {}, back end {}: {}", scene.name, deg,
                           sun_name, a.backend, r.converged ? "converged" : r.message);

@@ -13,6 +13,7 @@ TEST_CASE("problem files round-trip exactly", "[unit][solvers]") {
   GearLikeSpec spec;
   spec.support_stiffness = 1e-9;
   ContactProblemFile f = MakeGearLikeProblem(spec, "roundtrip");
+  f.provenance = {{"version", "0.1.0"}, {"scene_hash", "fnv1a64:0123456789abcdef"}};
   const std::string path = "contact_io_roundtrip.json";
   WriteContactProblemFile(f, path);
   const ContactProblemFile g = ReadContactProblemFile(path);
@@ -30,6 +31,7 @@ TEST_CASE("problem files round-trip exactly", "[unit][solvers]") {
   CHECK(g.data.local[5].body[1].depth == f.data.local[5].body[1].depth);
   CHECK(g.data.contact_labels == f.data.contact_labels);
   CHECK(g.data.multiplier_labels == f.data.multiplier_labels);
+  CHECK(g.provenance == f.provenance);
 }
 
 TEST_CASE("bad problem files give clear errors", "[unit][solvers]") {
