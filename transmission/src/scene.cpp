@@ -116,13 +116,13 @@ GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool f
     g.tip_radius = radius_or_coefficient("tip_radius_mm", "addendum_per_module", false);
     // The upper bound (below the root circle) is checked where the gear is made.
     const double r_mm = m_mm * g.teeth / 2.0;
-    g.hub_radius =
-        t.Real("hub_radius_mm", Rule::Closed(kHubFractionOfReference * r_mm, r_mm)
-                                    .Because("a fifth of the reference radius m z/2 at least: a "
-                                             "smaller hub leaves a body of elements the FE mesher "
-                                             "cannot grade; that it lies inside the root circle is "
-                                             "checked with the gear")) *
-        kMm;
+    g.hub_radius = t.Real("hub_radius_mm",
+                          Rule::Closed(kHubFractionOfReference * r_mm, r_mm)
+                              .Because("at least a fifth of the reference radius m z/2: the FE "
+                                       "bodies are meshed and checked down to such hubs; that "
+                                       "it lies inside the root circle is checked with the "
+                                       "gear")) *
+                   kMm;
     cutter.String("type", {"rack"});
     geometry::RackCutter rack;
     const Rule depth = Rule::Closed(0.5, 2.0).Because("a generating rack of 0.5 to 2 modules");
