@@ -38,9 +38,10 @@ for t in "${targets[@]}"; do
   done
   echo "== $exe: ${seconds} s from $(ls "$corpus" | wc -l) inputs"
   ASAN_OPTIONS="detect_leaks=1" "build-fuzz/verification/fuzz/$exe" "$corpus" -max_total_time="$seconds" \
-    -timeout=30 -rss_limit_mb=4096 -print_final_stats=1 -jobs=1 -workers=1 \
+    -timeout=30 -rss_limit_mb=4096 -print_final_stats=1 \
     -artifact_prefix=build-fuzz/artifacts/"$t"- > "build-fuzz/$t.log" 2>&1 || status=$?
-  grep -E "^#[0-9]+.*(DONE|INITED)|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb|cov:" "build-fuzz/$t.log" | tail -4
+  grep -E "^#[0-9]+.*(INITED|DONE)" "build-fuzz/$t.log" | tail -2
+  grep -E "^stat::" "build-fuzz/$t.log" || true
   grep -E "ERROR|finding|deadly|timeout" "build-fuzz/$t.log" | head -5 || true
 done
 exit $status
