@@ -102,7 +102,8 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double (found by fuzzing: 1e8500).
     throw std::invalid_argument("contact problem file " + source + ": not valid JSON: " + e.what());
   }
   rd.OnlyKeys(j, "",

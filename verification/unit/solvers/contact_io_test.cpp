@@ -38,6 +38,9 @@ TEST_CASE("bad problem files give clear errors", "[unit][solvers]") {
   const std::string head = R"({"format": "epicycle-contact-problem", "version": 1, )";
   auto parse = [](const std::string& t) { return ParseContactProblemFile(t, "t.json"); };
   CHECK_THROWS_WITH(parse("{"), Catch::Contains("t.json: not valid JSON"));
+  // A number beyond double is bad JSON too (a fuzzing finding: it escaped as another exception).
+  CHECK_THROWS_WITH(parse(head + R"("overlap_m": [-1.1e8500], "compliance_m_per_N": [[1]]})"),
+                    Catch::Contains("t.json: not valid JSON") && Catch::Contains("overflow"));
   CHECK_THROWS_WITH(
       parse(R"({"format": "x", "version": 1, "overlap_m": [0], "compliance_m_per_N": [[1]]})"),
       Catch::Contains("key 'format'"));
