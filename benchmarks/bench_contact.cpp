@@ -30,7 +30,7 @@
 #include <benchmark/benchmark.h>
 #include <Eigen/Cholesky>
 
-#include "epicycle/solvers/contact_collection.hpp"
+#include "contact_collection.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/contact_solver.hpp"

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "epicycle/config.h"
-#include "epicycle/solvers/contact_collection.hpp"
+#include "contact_collection.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/contact_solver.hpp"

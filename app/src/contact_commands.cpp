@@ -1,4 +1,4 @@
-// `epicycle contact solve|compare|generate|stability`: the contact core on problem files.
+// `epicycle contact solve|compare|stability`: the contact core on problem files.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,9 +15,10 @@
 
 #include "commands.hpp"
 #include "epicycle/config.h"
-#include "epicycle/solvers/contact_collection.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/scene.hpp"
+#include "provenance.hpp"
 
 namespace epicycle::app {
 namespace {
@@ -98,34 +99,46 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
   auto solver = solvers::MakeContactSolver(backend);
   ContactSolution sol;
   const ContactReport r = solver->Solve(problem, options, &sol);
+  const bool converged = r.status == ContactStatus::kConverged;
   fmt::print("problem      {} (N = {}, m = {}, {})\n", problem.name(), problem.num_contacts(),
              problem.num_equalities(), file.category);
+  fmt::print("program      epicycle {}, input {}\n", EPICYCLE_VERSION, FileHash(path));
   fmt::print("back end     {}\n", solvers::BackendName(backend));
   fmt::print("status       {}\n", solvers::StatusName(r.status));
   fmt::print("message      {}\n", r.message);
   fmt::print("iterations   {} (back-end code {})\n", r.iterations, r.backend_code);
   fmt::print("time         {:.3e} s in the back end, {:.3e} s in total\n", r.solve_seconds,
              r.total_seconds);
-  fmt::print(
-      "residual     complementarity {:.3e}, equilibrium {:.3e}, total {:.3e} (tolerance {:.1e})\n",
-      r.residual.complementarity, r.residual.equilibrium, r.residual.total, tol);
+  fmt::print("residual     complementarity {}, equilibrium {}, total {} (tolerance {:.1e})\n",
+             Finite(r.residual.complementarity, "{:.3e}", "not finite"),
+             Finite(r.residual.equilibrium, "{:.3e}", "not finite"),
+             Finite(r.residual.total, "{:.3e}", "not finite"), tol);
   fmt::print("active       {} of {} contacts{}\n", r.active_contacts, problem.num_contacts(),
              r.polished ? " (POLISHED)" : "");
+  // A failed solve still shows its last iterate (what the back end stopped at), marked as such;
+  // components that are not finite are named, never printed as nan/inf.
+  const char* what = converged ? "" : " -- last iterate of a FAILED solve, not a solution";
   const auto& labels = problem.data().contact_labels;
-  fmt::print("forces [N]:\n");
-  for (int j = 0; j < problem.num_contacts(); ++j)
-    fmt::print("  {:4d} {:>16.9e}  {}\n", j, sol.force(j), labels.empty() ? "" : labels[j]);
+  fmt::print("forces [N]{}:\n", what);
+  for (int j = 0; j < sol.force.size() && j < problem.num_contacts(); ++j)
+    fmt::print("  {:4d} {:>16}  {}\n", j, Finite(sol.force(j), "{:.9e}", "not finite"),
+               labels.empty() ? "" : labels[j]);
   if (problem.num_equalities() > 0) {
     const auto& ml = problem.data().multiplier_labels;
-    fmt::print("multipliers (rigid displacements):\n");
-    for (int i = 0; i < problem.num_equalities(); ++i)
-      fmt::print("  {:4d} {:>16.9e}  {}\n", i, sol.multiplier(i), ml.empty() ? "" : ml[i]);
+    fmt::print("multipliers (rigid displacements){}:\n", what);
+    for (int i = 0; i < sol.multiplier.size() && i < problem.num_equalities(); ++i)
+      fmt::print("  {:4d} {:>16}  {}\n", i, Finite(sol.multiplier(i), "{:.9e}", "not finite"),
+                 ml.empty() ? "" : ml[i]);
   }
-  if (file.expected) {
+  if (file.expected && converged) {
     const auto d = solvers::CompareSolutions(problem, sol, *file.expected);
     fmt::print("against the file's expected solution ({}): force {:.2e}, multiplier {:.2e}\n",
                file.expected_note, d.force, d.multiplier);
   }
+  if (!converged)
+    throw ComputationFailed(fmt::format("{}: the {} back end did not converge: {} ({})", path,
+                                        solvers::BackendName(backend),
+                                        solvers::StatusName(r.status), r.message));
 }
 
 // Replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> in a markdown file.
@@ -133,13 +146,13 @@ void ReplaceBetweenMarkers(const std::string& doc, const std::string& name,
                            const std::string& text) {
   const std::string begin = "<!-- " + name + ":begin -->", end = "<!-- " + name + ":end -->";
   std::ifstream in(doc);
-  if (!in) throw std::invalid_argument("--doc " + doc + ": cannot be read");
+  if (!in) throw std::invalid_argument("--update-docs " + doc + ": cannot be read");
   std::stringstream ss;
   ss << in.rdbuf();
   std::string all = ss.str();
   const auto a = all.find(begin), e = all.find(end);
   if (a == std::string::npos || e == std::string::npos || e < a)
-    throw std::invalid_argument("--doc " + doc + ": markers " + begin + " ... " + end +
+    throw std::invalid_argument("--update-docs " + doc + ": markers " + begin + " ... " + end +
                                 " not found");
   all = all.substr(0, a + begin.size()) + "\n" + text + all.substr(e);
   std::ofstream(doc) << all;
@@ -330,6 +343,13 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
   }
   if (!csv.empty()) {
     std::ofstream out(csv);
+    std::string hashes;
+    for (const std::string& f : files) hashes += FileHash(f) + "\n";
+    std::string backends_used;
+    for (const std::string& b : names) backends_used += (backends_used.empty() ? "" : " ") + b;
+    out << ProvenanceCsvLine(FileProvenance(backends_used,
+                                            fmt::format("{} problem files", files.size()),
+                                            transmission::ContentHash(hashes)));
     out << "backend,problem,category,status,residual,force_error,multiplier_error,displacement_"
            "error,"
            "median_seconds,iterations\n";
@@ -345,16 +365,6 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
     WriteSvgScatter(svg_prefix + "_error_vs_time.svg", names, rows);
     fmt::print("SVG written to {0}_profile.svg and {0}_error_vs_time.svg\n", svg_prefix);
   }
-}
-
-void GenerateCommand(const std::string& dir, std::uint64_t seed) {
-  fs::create_directories(dir);
-  const auto cases = solvers::GenerateContactCollection(seed);
-  for (const ContactProblemFile& f : cases) {
-    const std::string path = (fs::path(dir) / (f.data.name + ".json")).string();
-    solvers::WriteContactProblemFile(f, path);
-  }
-  fmt::print("wrote {} problem files to {} (seed {})\n", cases.size(), dir, seed);
 }
 
 void StabilityCommand(const std::string& dir, const std::string& doc, double tol) {
@@ -409,7 +419,6 @@ void StabilityCommand(const std::string& dir, const std::string& doc, double tol
 void RegisterContactCommands(CLI::App& app) {
   CLI::App* contact = app.add_subcommand("contact", "the contact problem and its back ends");
   contact->require_subcommand(1);
-  const std::string default_dir = std::string(EPICYCLE_SOURCE_DIR) + "/verification/data/contact";
 
   auto* solve =
       contact->add_subcommand("solve", "solve one problem file, print solution and residuals");
@@ -438,23 +447,19 @@ void RegisterContactCommands(CLI::App& app) {
   compare->add_option("--tol", c_tol, "tolerance on the nondimensional residual");
   compare->add_option("--repeat", c_repeat,
                       "solves per (back end, problem); the median time is reported");
-  compare->add_option("--doc", c_doc, "markdown file to update between the compare-table markers");
+  compare->add_option("--update-docs", c_doc,
+                      "rewrite this markdown file's table between the compare-table markers "
+                      "(docs/solvers.md); without it no file but --csv/--svg-prefix is written");
   compare->callback([] { CompareCommand(c_inputs, c_csv, c_svg, c_tol, c_repeat, c_doc); });
-
-  auto* generate = contact->add_subcommand("generate", "write the problem collection");
-  static std::string g_dir;
-  static std::uint64_t g_seed = 1;
-  generate->add_option("dir", g_dir, "output directory")->required();
-  generate->add_option("--seed", g_seed, "generator seed");
-  generate->callback([] { GenerateCommand(g_dir, g_seed); });
 
   auto* stability =
       contact->add_subcommand("stability", "the stiff/extreme (back end x case) table");
-  static std::string st_dir = default_dir, st_doc;
+  static std::string st_dir, st_doc;
   static double st_tol = 1e-10;
-  stability->add_option("--dir", st_dir, "collection directory");
-  stability->add_option("--doc", st_doc,
-                        "markdown file to update between the stability-table markers");
+  stability->add_option("dir", st_dir, "collection directory (verification/data/contact)")
+      ->required();
+  stability->add_option("--update-docs", st_doc,
+                        "rewrite this markdown file's table between the stability-table markers");
   stability->add_option("--tol", st_tol, "tolerance on the nondimensional residual");
   stability->callback([] { StabilityCommand(st_dir, st_doc, st_tol); });
 }

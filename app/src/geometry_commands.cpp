@@ -15,6 +15,7 @@
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/transmission/scene.hpp"
+#include "provenance.hpp"
 #include "stage_svg.hpp"
 
 namespace epicycle::app {
@@ -329,8 +330,11 @@ void RegisterGeometryCommands(CLI::App& app) {
     const transmission::Scene scene = transmission::ReadScene(scene_path);
     if (scene.kind == transmission::SceneKind::kPair) {
       const geometry::GearPair pair(scene.pair);
-      const json report = PairJson(scene, pair);
+      json report = PairJson(scene, pair);
+      report["provenance"] = Provenance("none", &scene);
+      report["warnings"] = scene.warnings;
       PrintReport(report);
+      PrintWarnings(scene.warnings);
       if (!json_path.empty()) WriteFile(json_path, report.dump(2) + "\n");
       if (!svg_path.empty()) {
         if (!zoom_mesh.empty() && zoom_mesh != "gear1-gear2") {
@@ -345,8 +349,11 @@ void RegisterGeometryCommands(CLI::App& app) {
       return;
     }
     const Stage stage(scene.stage);
-    const json report = StageJson(scene, stage);
+    json report = StageJson(scene, stage);
+    report["provenance"] = Provenance("none", &scene);
+    report["warnings"] = scene.warnings;
     PrintReport(report);
+    PrintWarnings(scene.warnings);
     if (!json_path.empty()) {
       WriteFile(json_path, report.dump(2) + "\n");
       std::printf("\nwrote %s\n", json_path.c_str());

@@ -1,4 +1,5 @@
 // epicycle: load sharing in planetary spur-gear transmissions with manufacturing errors.
+// Exit status: 0 computed, 1 a computation failed (provenance.hpp), 2 bad input or usage.
 #include <cstdio>
 #include <exception>
 
@@ -6,6 +7,7 @@
 
 #include "commands.hpp"
 #include "epicycle/config.h"
+#include "provenance.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"epicycle " EPICYCLE_VERSION
@@ -21,6 +23,10 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const epicycle::app::ComputationFailed& e) {
+    // Results were written and the failures listed; the run did not compute what was asked.
+    std::fprintf(stderr, "epicycle: failed: %s\n", e.what());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "epicycle: error: %s\n", e.what());
     return 2;

@@ -18,7 +18,9 @@
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/validity.hpp"
 #include "progress.hpp"
+#include "provenance.hpp"
 #include "svg_plot.hpp"
 
 namespace epicycle::app {
@@ -85,6 +87,9 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   const std::string base = a.out + "/quasistatic";
   std::ofstream pos(base + "_positions.csv"), pairs(base + "_pairs.csv");
   if (!pos || !pairs) throw std::runtime_error(a.out + ": cannot write the result files");
+  const json provenance = Provenance(a.backend, &scene);
+  pos << ProvenanceCsvLine(provenance);
+  pairs << ProvenanceCsvLine(provenance);
   pos << "carrier_deg,converged";
   for (int i = 1; i <= n; ++i) pos << ",LSR_" << i;
   for (int i = 1; i <= n; ++i) pos << ",L_" << i;
@@ -140,6 +145,9 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
               fmt::format("{}_{}_{}_{:03d}", std::filesystem::path(a.scene).stem().string(),
                           sun_name, a.no_local ? "linear" : "local", k);
           file.category = "stage";
+          for (const auto& item : provenance.items())
+            if (item.value().is_string())
+              file.provenance[item.key()] = item.value().get<std::string>();
           file.description =
               fmt::format("{} at carrier {:.4f} deg, sun {}, back end {}: {}", scene.name, deg,
                           sun_name, a.backend, r.converged ? "converged" : r.message);
@@ -153,7 +161,11 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   const double sweep_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 
-  // Summary over the converged positions.
+  std::vector<std::string> warnings = scene.warnings;
+  for (const std::string& w : transmission::QuasiStaticWarnings(stage, results))
+    warnings.push_back(w);
+
+  // Summary over the converged positions (none converged: no statistics, "-" in the report).
   std::vector<double> mean(n, 0.0), lo(n, INFINITY), hi(n, -INFINITY);
   double te_lo = INFINITY, te_hi = -INFINITY, orbit = 0.0, k_gamma = 0.0;
   int good = 0;
@@ -174,22 +186,33 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   json planets = json::array();
   for (int i = 0; i < n; ++i) {
     if (good > 0) mean[i] /= good;
-    std::printf("  %-8d %-12.6f %-12.6f %-12.6f\n", i + 1, mean[i], lo[i], hi[i]);
-    planets.push_back({{"planet", i + 1},
-                       {"lsr_mean", good ? mean[i] : 0.0},
-                       {"lsr_min", good ? lo[i] : 0.0},
-                       {"lsr_max", good ? hi[i] : 0.0}});
+    const char* f = "{:<12.6f}";
+    std::printf("  %-8d %s %s %s\n", i + 1, Finite(good ? mean[i] : NAN, f, "-           ").c_str(),
+                Finite(lo[i], f, "-           ").c_str(), Finite(hi[i], f, "-").c_str());
+    json p = {{"planet", i + 1}};
+    // No converged position: null statistics (JSON has no NaN), never a made-up number.
+    p["lsr_mean"] = good ? json(mean[i]) : json(nullptr);
+    p["lsr_min"] = good ? json(lo[i]) : json(nullptr);
+    p["lsr_max"] = good ? json(hi[i]) : json(nullptr);
+    planets.push_back(p);
   }
-  std::printf("  K_gamma (max L_i)            %.6f\n", k_gamma);
-  std::printf("  transmission error           %.3f .. %.3f urad (peak to peak %.3f urad)\n",
-              te_lo * 1e6, te_hi * 1e6, (te_hi - te_lo) * 1e6);
-  std::printf("  sun displacement, largest    %.3f um\n", orbit * 1e6);
+  if (good > 0) {
+    std::printf("  K_gamma (max L_i)            %.6f\n", k_gamma);
+    std::printf("  transmission error           %.3f .. %.3f urad (peak to peak %.3f urad)\n",
+                te_lo * 1e6, te_hi * 1e6, (te_hi - te_lo) * 1e6);
+    std::printf("  sun displacement, largest    %.3f um\n", orbit * 1e6);
+  } else {
+    std::printf("  K_gamma, transmission error, sun displacement: - (no position converged)\n");
+  }
   std::printf("  positions converged          %d of %zu, %.3f s (%.3f ms per position)\n", good,
               angles.size(), sweep_seconds,
               1e3 * sweep_seconds / static_cast<double>(angles.size()));
   for (const std::string& f : failures) std::printf("  FAILED %s\n", f.c_str());
+  PrintWarnings(warnings);
 
   json j;
+  j["provenance"] = provenance;
+  j["warnings"] = warnings;
   j["scene"] = scene.name;
   j["sun_support"] = sun_name;
   j["sun_torque_Nm"] = scene.sun_torque;
@@ -199,10 +222,10 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   j["converged_positions"] = good;
   j["failures"] = failures;
   j["planets"] = planets;
-  j["K_gamma_max"] = good ? k_gamma : 0.0;
-  j["transmission_error_min_urad"] = good ? te_lo * 1e6 : 0.0;
-  j["transmission_error_max_urad"] = good ? te_hi * 1e6 : 0.0;
-  j["sun_displacement_max_um"] = orbit * 1e6;
+  j["K_gamma_max"] = good ? json(k_gamma) : json(nullptr);
+  j["transmission_error_min_urad"] = good ? json(te_lo * 1e6) : json(nullptr);
+  j["transmission_error_max_urad"] = good ? json(te_hi * 1e6) : json(nullptr);
+  j["sun_displacement_max_um"] = good ? json(orbit * 1e6) : json(nullptr);
   j["sweep_seconds"] = sweep_seconds;
   j["table_seconds"] = table_seconds;
   WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
@@ -244,7 +267,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
       base.c_str());
   if (!a.dump.empty()) std::printf("wrote the contact problems to %s\n", a.dump.c_str());
   if (failed > 0)
-    throw std::runtime_error(
+    throw ComputationFailed(
         fmt::format("{} of {} positions failed (listed above)", failed, angles.size()));
 }
 

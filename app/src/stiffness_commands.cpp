@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
+#include "provenance.hpp"
 #include "svg_plot.hpp"
 
 namespace epicycle::app {
@@ -27,7 +28,7 @@ struct StiffnessArgs {
   bool no_cache = false, no_local = false;
 };
 
-std::string CsvNumber(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : ""; }
+std::string CsvNumber(double v) { return Finite(v); }
 
 void RunStiffness(const StiffnessArgs& a) {
   const transmission::Scene scene = transmission::ReadScene(a.scene);
@@ -59,6 +60,8 @@ void RunStiffness(const StiffnessArgs& a) {
   const std::string base = a.out + "/stiffness_" + setup.mesh;
   std::ofstream csv(base + ".csv");
   if (!csv) throw std::runtime_error(base + ".csv: cannot be written");
+  const json provenance = Provenance(a.backend, &scene);
+  csv << ProvenanceCsvLine(provenance);
   csv << "angle_deg,converged,mesh_stiffness_N_per_m,mesh_stiffness_N_per_mm_um,"
          "transmission_error_urad,approach_um,total_force_N,pairs,"
          "pair_teeth,pair_kind,pair_force_N,pair_stiffness_N_per_m,pair_share,message\n";
@@ -89,17 +92,22 @@ void RunStiffness(const StiffnessArgs& a) {
   const compliance::iso6336::PairData iso = transmission::IsoPairData(pair);
   const double c_prime = compliance::iso6336::SinglePairStiffness(iso);
   const double c_gamma = compliance::iso6336::MeshStiffness(iso);
-  std::printf(
-      "\n  mean mesh stiffness      %10.4g N/m = %6.2f N/(mm um)   ISO 6336-1 c_gamma_alpha %6.2f "
-      "(ratio %.3f)\n",
-      result.mean_stiffness, result.mean_per_width(), c_gamma, result.mean_per_width() / c_gamma);
-  std::printf(
-      "  peak single-pair         %10.4g N/m = %6.2f N/(mm um)   ISO 6336-1 c'            %6.2f "
-      "(ratio %.3f)\n",
-      result.peak_pair_stiffness, result.peak_pair_per_width(), c_prime,
-      result.peak_pair_per_width() / c_prime);
-  std::printf("  mesh stiffness range     %10.4g .. %.4g N/m; contact ratio %.4f (tip circles)\n",
-              result.min_stiffness, result.max_stiffness, pair.summary().contact_ratio_iso);
+  if (result.failed >= a.positions) {
+    std::printf("\n  no position converged: no mesh stiffness\n");
+  } else {
+    std::printf(
+        "\n  mean mesh stiffness      %10.4g N/m = %6.2f N/(mm um)   ISO 6336-1 c_gamma_alpha "
+        "%6.2f "
+        "(ratio %.3f)\n",
+        result.mean_stiffness, result.mean_per_width(), c_gamma, result.mean_per_width() / c_gamma);
+    std::printf(
+        "  peak single-pair         %10.4g N/m = %6.2f N/(mm um)   ISO 6336-1 c'            %6.2f "
+        "(ratio %.3f)\n",
+        result.peak_pair_stiffness, result.peak_pair_per_width(), c_prime,
+        result.peak_pair_per_width() / c_prime);
+    std::printf("  mesh stiffness range     %10.4g .. %.4g N/m; contact ratio %.4f (tip circles)\n",
+                result.min_stiffness, result.max_stiffness, pair.summary().contact_ratio_iso);
+  }
   std::printf("  positions failed         %d of %d\n", result.failed, a.positions);
 
   // Plot: mesh stiffness and each tooth pair's stiffness over the cycle, per unit face width.
@@ -126,7 +134,10 @@ void RunStiffness(const StiffnessArgs& a) {
   plot.y_references = {c_gamma, c_prime};
   WriteTextFile(base + ".svg", RenderSvg(plot));
 
+  PrintWarnings(scene.warnings);
   json j;
+  j["provenance"] = provenance;
+  j["warnings"] = scene.warnings;
   j["scene"] = scene.name;
   j["mesh"] = setup.mesh;
   j["torque_gear1_Nm"] = setup.torque;
@@ -148,7 +159,7 @@ void RunStiffness(const StiffnessArgs& a) {
   WriteTextFile(base + ".json", j.dump(2) + "\n");
   std::printf("\nwrote %s.csv, %s.svg, %s.json\n", base.c_str(), base.c_str(), base.c_str());
   if (result.failed > 0)
-    throw std::runtime_error(fmt::format("{} position(s) failed (see above)", result.failed));
+    throw ComputationFailed(fmt::format("{} position(s) failed (see above)", result.failed));
 }
 
 }  // namespace

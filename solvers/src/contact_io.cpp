@@ -1,6 +1,7 @@
 // JSON problem files (format "epicycle-contact-problem", version 1).
 #include "epicycle/solvers/contact_io.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -101,13 +102,15 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond double (found by fuzzing: 1e8500).
     throw std::invalid_argument("contact problem file " + source + ": not valid JSON: " + e.what());
   }
   rd.OnlyKeys(j, "",
               {"format", "version", "name", "category", "description", "seed", "compliance_m_per_N",
                "overlap_m", "equality_matrix", "equality_rhs", "support_stiffness_N_per_m",
-               "support_compliance", "local", "contact_labels", "multiplier_labels", "expected"});
+               "support_compliance", "local", "contact_labels", "multiplier_labels", "expected",
+               "provenance"});
   const json& fmt = rd.Required(j, "format");
   if (!fmt.is_string() || fmt.get<std::string>() != kContactFileFormat)
     rd.Fail("format", "must be \"" + std::string(kContactFileFormat) + "\", found " + fmt.dump());
@@ -129,6 +132,14 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
   if (j.contains("description")) {
     if (!j["description"].is_string()) rd.Fail("description", "must be a string");
     f.description = j["description"].get<std::string>();
+  }
+  if (j.contains("provenance")) {
+    const json& p = j["provenance"];
+    if (!p.is_object()) rd.Fail("provenance", "must be an object of strings");
+    for (const auto& [k, v] : p.items()) {
+      if (!v.is_string()) rd.Fail("provenance." + k, "must be a string");
+      f.provenance[k] = v.get<std::string>();
+    }
   }
   if (j.contains("seed")) {
     if (!j["seed"].is_number_unsigned()) rd.Fail("seed", "must be a non-negative integer");
@@ -217,6 +228,9 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
 }
 
 ContactProblemFile ReadContactProblemFile(const std::string& path) {
+  if (std::filesystem::is_directory(path))
+    throw std::invalid_argument("contact problem file " + path +
+                                ": is a directory, not a problem file (JSON)");
   std::ifstream in(path);
   if (!in) throw std::invalid_argument("contact problem file " + path + ": cannot be opened");
   std::stringstream ss;
@@ -234,6 +248,7 @@ std::string FormatContactProblemFile(const ContactProblemFile& f) {
   j["category"] = f.category;
   j["description"] = f.description;
   if (f.seed) j["seed"] = *f.seed;
+  if (!f.provenance.empty()) j["provenance"] = f.provenance;
   j["compliance_m_per_N"] = MatrixJson(d.compliance);
   j["overlap_m"] = VectorJson(d.overlap);
   if (d.equality_rhs.size() > 0) {

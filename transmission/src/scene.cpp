@@ -1,6 +1,9 @@
 #include "epicycle/transmission/scene.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -21,6 +24,39 @@ namespace {
 constexpr double kMm = 1e-3, kUm = 1e-6;
 
 double Deg(double d) { return d * geometry::kPi / 180.0; }
+
+// Physical ranges of the scene's values (docs/scenes.md, "Ranges and validity"). Sizes are
+// relative to the module, errors to the module (errors) and to the backlash (warnings).
+constexpr double kModuleRangeMm[2] = {0.05, 100.0};
+constexpr double kFaceWidthModules[2] = {0.5, 100.0};
+constexpr double kHubFractionOfReference = 0.2;  // hub ≥ 0.2 r
+constexpr double kRimFractionOfReference = 2.0;  // rim ≤ 2 r
+constexpr double kErrorModules = 0.25;           // |error| ≤ m/4
+constexpr double kBacklashModules = 0.25;        // 0 ≤ j_n ≤ m/4
+constexpr double kYoungsRangeGPa[2] = {1.0, 1200.0};
+constexpr double kCarrierModules = 2.0;  // |a_c − m(z_s + z_p)/2| ≤ 2 m
+constexpr int kRingTeethSlack = 4;       // |z_r − z_s − 2 z_p| ≤ 4
+
+Rule ErrorRule(double module) {
+  const double e = kErrorModules * module / kUm;
+  return Rule::Closed(-e, e).Because(
+      "a quarter of the module in um: a larger error moves a tooth by a large part of its "
+      "thickness, outside the small-error geometry of the model");
+}
+
+Rule BacklashRule(double module) {
+  return Rule::Closed(0, kBacklashModules * module / kUm)
+      .Because(
+          "0 to a quarter of the module in um: a negative backlash is an interference fit, "
+          "which the model does not have");
+}
+
+// An error value with its key, kept to be compared with the backlash once the shifts are final.
+struct ErrorKey {
+  std::string where;  // "file:line: errors.runout[0].amplitude_um = 20"
+  double value = 0;   // |error| [m]
+  int gear = 0;       // -1 sun, -2 ring, else the planet index
+};
 
 Inertia ReadInertia(TableReader& t) {
   Inertia i;
@@ -124,8 +160,15 @@ GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool f
   g.name = name;
   g.kind = kind;
   g.teeth = static_cast<int>(t.Integer("teeth", Rule::Closed(3, 10000)));
-  g.module = t.Real("module_mm", Rule::Positive()) * kMm;
-  g.face_width = t.Real("face_width_mm", Rule::Positive()) * kMm;
+  const double m_mm =
+      t.Real("module_mm", Rule::Closed(kModuleRangeMm[0], kModuleRangeMm[1])
+                              .Because("fine-pitch to mill gears; ISO 54 lists 1 to 50 mm"));
+  g.module = m_mm * kMm;
+  g.face_width =
+      t.Real("face_width_mm", Rule::Closed(kFaceWidthModules[0] * m_mm, kFaceWidthModules[1] * m_mm)
+                                  .Because("0.5 to 100 modules; the 2D model idealises a spur gear "
+                                           "of moderate width")) *
+      kMm;
   g.pressure_angle = Deg(t.Real("pressure_angle_deg", Rule::Open(0, 45)));
   if (fit_target) {
     if (t.Has("profile_shift")) {
@@ -135,7 +178,11 @@ GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool f
   } else {
     g.profile_shift = t.Real("profile_shift", Rule::Closed(-2, 2));
   }
-  g.tip_round_radius = t.RealOr("tip_round_radius_mm", 0.0, Rule::NonNegative()) * kMm;
+  g.tip_round_radius = t.RealOr("tip_round_radius_mm", 0.0,
+                                Rule::Closed(0, 0.5 * m_mm)
+                                    .Because("at most half a module: a larger round "
+                                             "removes the top land")) *
+                       kMm;
   g.min_tip_thickness = t.RealOr("min_tip_thickness_mm", -1e3, Rule::Any()) * kMm;
   if (g.min_tip_thickness < 0) g.min_tip_thickness = -1;
   *inertia = ReadInertia(t);
@@ -156,16 +203,34 @@ GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool f
   };
   if (kind == GearKind::kExternal) {
     g.tip_radius = radius_or_coefficient("tip_radius_mm", "addendum_per_module", false);
-    g.hub_radius = t.Real("hub_radius_mm", Rule::Positive()) * kMm;
+    // The upper bound (below the root circle) is checked where the gear is made.
+    const double r_mm = m_mm * g.teeth / 2.0;
+    g.hub_radius = t.Real("hub_radius_mm",
+                          Rule::Closed(kHubFractionOfReference * r_mm, r_mm)
+                              .Because("at least a fifth of the reference radius m z/2: the FE "
+                                       "bodies are meshed and checked down to such hubs; that "
+                                       "it lies inside the root circle is checked with the "
+                                       "gear")) *
+                   kMm;
     cutter.String("type", {"rack"});
     geometry::RackCutter rack;
-    rack.addendum = cutter.Real("addendum_per_module", Rule::Positive()) * g.module;
-    rack.dedendum = cutter.Real("dedendum_per_module", Rule::Positive()) * g.module;
-    rack.tip_radius = cutter.Real("tip_radius_per_module", Rule::NonNegative()) * g.module;
+    const Rule depth = Rule::Closed(0.5, 2.0).Because("a generating rack of 0.5 to 2 modules");
+    rack.addendum = cutter.Real("addendum_per_module", depth) * g.module;
+    rack.dedendum = cutter.Real("dedendum_per_module", depth) * g.module;
+    rack.tip_radius =
+        cutter.Real(
+            "tip_radius_per_module",
+            Rule::Closed(0, 0.5).Because("at most half a module; ISO 53 profile A has 0.38")) *
+        g.module;
     g.rack = rack;
   } else {
     g.tip_radius = radius_or_coefficient("tip_radius_mm", "addendum_per_module", true);
-    g.hub_radius = t.Real("rim_radius_mm", Rule::Positive()) * kMm;
+    const double r_mm = m_mm * g.teeth / 2.0;
+    g.hub_radius = t.Real("rim_radius_mm",
+                          Rule::Open(0, kRimFractionOfReference * r_mm)
+                              .Because("at most twice the reference radius m z/2; that it lies "
+                                       "beyond the root circle is checked with the gear")) *
+                   kMm;
     const std::string type = cutter.String("type", {"shaper", "direct"});
     if (type == "shaper") {
       geometry::ShaperCutter s;
@@ -206,21 +271,55 @@ int GearIndex(TableReader& t, const std::string& key, int planets) {
          "must be \"sun\", \"ring\" or \"planet1\"..\"planet" + std::to_string(planets) + "\"");
 }
 
-void ReadErrors(TableReader& e, Scene& s) {
+std::string Num(double v) {
+  std::ostringstream o;
+  o.precision(10);
+  o << v;
+  return o.str();
+}
+
+// Meshing gears share module and pressure angle: a mismatch is blamed on the gear read second.
+void SameAsMate(TableReader& t, const GearSpec& g, const GearSpec& mate, const std::string& name) {
+  if (std::abs(g.module - mate.module) > 1e-12 * mate.module) {
+    t.Fail("module_mm", Num(g.module / kMm),
+           "must equal " + name + ".module_mm = " + Num(mate.module / kMm) +
+               " (gears that mesh share the module)");
+  }
+  if (std::abs(g.pressure_angle - mate.pressure_angle) > 1e-12) {
+    t.Fail("pressure_angle_deg", Num(g.pressure_angle * 180.0 / geometry::kPi),
+           "must equal " + name +
+               ".pressure_angle_deg = " + Num(mate.pressure_angle * 180.0 / geometry::kPi) +
+               " (gears that mesh share the pressure angle)");
+  }
+}
+
+const GearSpec& GearOf(const geometry::StageSpec& st, int i) {
+  return i == -1 ? st.sun : i == -2 ? st.ring : st.planet;
+}
+
+void ReadErrors(TableReader& e, Scene& s, std::vector<ErrorKey>* keys) {
   geometry::StageSpec& st = s.stage;
   const int n = st.planets;
+  auto keep = [&](TableReader& t, const std::string& key, double value, int gear) {
+    if (t.Has(key)) keys->push_back({t.Warning(key, ""), std::abs(value), gear});
+  };
   for (TableReader& p : e.TableArray("pin")) {
     const int i = GearIndex(p, "gear", n);
     if (i < 0) p.Fail("gear", i == -1 ? "\"sun\"" : "\"ring\"", "pin errors belong to planets");
     if (st.pin_errors.empty()) st.pin_errors.assign(n, {});
-    st.pin_errors[i].radial = p.RealOr("radial_um", 0.0, Rule::Any()) * kUm;
-    st.pin_errors[i].tangential = p.RealOr("tangential_um", 0.0, Rule::Any()) * kUm;
+    const Rule rule = ErrorRule(st.planet.module);
+    st.pin_errors[i].radial = p.RealOr("radial_um", 0.0, rule) * kUm;
+    st.pin_errors[i].tangential = p.RealOr("tangential_um", 0.0, rule) * kUm;
+    keep(p, "radial_um", st.pin_errors[i].radial, i);
+    keep(p, "tangential_um", st.pin_errors[i].tangential, i);
     p.Done();
   }
   for (TableReader& r : e.TableArray("runout")) {
     const int i = GearIndex(r, "gear", n);
     geometry::Runout ro;
-    ro.amplitude = r.Real("amplitude_um", Rule::NonNegative()) * kUm;
+    const Rule rule = ErrorRule(GearOf(st, i).module);
+    ro.amplitude = r.Real("amplitude_um", Rule::Closed(0, rule.hi).Because(rule.why)) * kUm;
+    keep(r, "amplitude_um", ro.amplitude, i);
     ro.phase = Deg(r.RealOr("phase_deg", 0.0, Rule::Any()));
     if (i == -1) {
       st.sun_runout = ro;
@@ -234,7 +333,8 @@ void ReadErrors(TableReader& e, Scene& s) {
   }
   for (TableReader& th : e.TableArray("thickness")) {
     const int i = GearIndex(th, "gear", n);
-    const double ds = th.Real("error_um", Rule::Any()) * kUm;
+    const double ds = th.Real("error_um", ErrorRule(GearOf(st, i).module)) * kUm;
+    keep(th, "error_um", ds, i);
     if (i == -1) {
       st.sun.thickness_error = ds;
     } else if (i == -2) {
@@ -295,7 +395,7 @@ void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
     ShiftFit f;
     f.gear = fit_gears[k];
     f.mesh = "gear1-gear2";
-    f.normal_backlash = fits[k].Real("normal_backlash_um", Rule::Any()) * kUm;
+    f.normal_backlash = fits[k].Real("normal_backlash_um", BacklashRule(p.gear1.module)) * kUm;
     fits[k].Done();
     f.profile_shift =
         geometry::iso::FitProfileShift(p.gear1, p.gear2, internal, f.gear == "gear1" ? 1 : 2,
@@ -307,7 +407,72 @@ void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
   ResolveRadii(p.gear2);
 }
 
+// Normal backlash of a mesh with the final shifts, without thickness errors (those are among the
+// errors compared with it).
+double NominalBacklash(const GearSpec& g1, const GearSpec& g2, bool internal, double a) {
+  return geometry::iso::NormalBacklash(g1.module, g1.teeth, g2.teeth, g1.profile_shift,
+                                       g2.profile_shift, g1.pressure_angle, a, internal);
+}
+
+// ε_α < 1: there are instants without a loaded tooth pair; the model computes them, but the pair
+// is not a working gear mesh.
+void ContactRatioWarning(const GearSpec& g1, const GearSpec& g2, bool internal, double a,
+                         const std::string& where, std::vector<std::string>* warnings) {
+  const double alpha = g1.pressure_angle;
+  const double rb1 = g1.module * g1.teeth / 2.0 * std::cos(alpha);
+  const double rb2 = g2.module * g2.teeth / 2.0 * std::cos(alpha);
+  double alpha_w = 0;
+  try {
+    alpha_w = geometry::iso::PressureAngleAt(g1.module, g1.teeth, g2.teeth, alpha, a, internal);
+  } catch (const std::invalid_argument&) {
+    return;  // no operating pressure angle: the stage check names the cause
+  }
+  const double pb = geometry::kPi * g1.module * std::cos(alpha);
+  const double eps =
+      geometry::iso::ContactRatio(rb1, g1.tip_radius, rb2, g2.tip_radius, a, alpha_w, pb, internal);
+  if (std::isfinite(eps) && eps < 1.0) {
+    warnings->push_back(where + ": transverse contact ratio epsilon_alpha = " + Num(eps) +
+                        " < 1 (tip radii, shifts and centre distance): there are instants "
+                        "without a loaded tooth pair; the results are outside the model's "
+                        "validity for a working mesh");
+  }
+}
+
+void StageWarnings(const std::vector<ErrorKey>& keys, Scene& s) {
+  const geometry::StageSpec& st = s.stage;
+  const double a = st.carrier_radius;
+  ContactRatioWarning(st.sun, st.planet, false, a, s.source + ": [sun]/[planet]", &s.warnings);
+  ContactRatioWarning(st.planet, st.ring, true, a, s.source + ": [planet]/[ring]", &s.warnings);
+  const double j_sp = NominalBacklash(st.sun, st.planet, false, a);
+  const double j_pr = NominalBacklash(st.planet, st.ring, true, a);
+  for (const ErrorKey& k : keys) {
+    const double j = k.gear == -1 ? j_sp : k.gear == -2 ? j_pr : std::min(j_sp, j_pr);
+    const char* mesh = k.gear == -1   ? "sun-planet"
+                       : k.gear == -2 ? "planet-ring"
+                       : j_sp <= j_pr ? "sun-planet"
+                                      : "planet-ring";
+    if (k.value > j) {
+      s.warnings.push_back(k.where + "larger than the normal backlash j_n = " + Num(j / kUm) +
+                           " um of the " + mesh +
+                           " meshes: the gear can close the backlash and load the coast flanks "
+                           "(a planet jams and its load-sharing ratio can turn negative); the "
+                           "model is meant for errors below the backlash");
+    }
+  }
+}
+
 }  // namespace
+
+std::string ContentHash(const std::string& text) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64-bit offset basis and prime
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
 
 Scene ParseScene(const std::string& text, const std::string& source) {
   toml::table root;
@@ -328,7 +493,11 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     t.Done();
   }
   if (auto t = top.OptionalTable("material")) {
-    s.material.youngs_modulus = t->Real("youngs_modulus_GPa", Rule::Positive()) * 1e9;
+    s.material.youngs_modulus =
+        t->Real("youngs_modulus_GPa",
+                Rule::Closed(kYoungsRangeGPa[0], kYoungsRangeGPa[1])
+                    .Because("engineering polymers to carbides; steel is about 207")) *
+        1e9;
     s.material.poisson_ratio = t->Real("poisson_ratio", Rule::HalfOpen(0, 0.5));
     t->Done();
   }
@@ -365,9 +534,14 @@ Scene ParseScene(const std::string& text, const std::string& source) {
   if (is_pair) {
     ReadPair(top, s, fits, fit_gears, fitted);
     top.Done();
+    const bool internal = s.pair.gear2.kind == GearKind::kInternal;
+    ContactRatioWarning(s.pair.gear1, s.pair.gear2, internal, s.pair.centre_distance,
+                        s.source + ": [gear1]/[gear2]", &s.warnings);
+    s.hash = ContentHash(text);
     return s;
   }
   geometry::StageSpec& st = s.stage;
+  std::vector<ErrorKey> error_keys;
   {
     TableReader t = top.Table("sun");
     st.sun = ReadGear(t, "sun", GearKind::kExternal, fitted("sun"), &s.sun);
@@ -376,16 +550,34 @@ Scene ParseScene(const std::string& text, const std::string& source) {
   {
     TableReader t = top.Table("planet");
     st.planet = ReadGear(t, "planet", GearKind::kExternal, fitted("planet"), &s.planet);
+    SameAsMate(t, st.planet, st.sun, "sun");
     t.Done();
   }
   {
     TableReader t = top.Table("ring");
+    // The planets sit between sun and ring: z_r = z_s + 2 z_p for gears without shift; shifts of
+    // a few tenths move the centre distances by less than a module each. Checked first: a ring
+    // too small for the stage would otherwise fail on its rim or its fitted shift.
+    const int expect = st.sun.teeth + 2 * st.planet.teeth;
+    t.Check("teeth", static_cast<double>(t.Integer("teeth", Rule::Closed(3, 10000))),
+            Rule::Closed(expect - kRingTeethSlack, expect + kRingTeethSlack)
+                .Because("z_sun + 2 z_planet = " + std::to_string(expect) +
+                         " within 4 teeth: the planets must fit between sun and ring"));
     st.ring = ReadGear(t, "ring", GearKind::kInternal, fitted("ring"), &s.ring);
+    SameAsMate(t, st.ring, st.planet, "planet");
     t.Done();
   }
   {
     TableReader t = top.Table("carrier");
-    st.carrier_radius = t.Real("radius_mm", Rule::Positive()) * kMm;
+    // The sun-planet centre distance of gears without shift, m (z_s + z_p)/2, within 2 m.
+    const double a0 = st.sun.module * (st.sun.teeth + st.planet.teeth) / 2.0 / kMm;
+    const double m_mm = st.sun.module / kMm;
+    st.carrier_radius =
+        t.Real("radius_mm", Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
+                                .Because("m (z_sun + z_planet)/2 = " + Num(a0) +
+                                         " mm within 2 modules (profile shifts move it by "
+                                         "about x m)")) *
+        kMm;
     st.planets = static_cast<int>(t.Integer("planets", Rule::Closed(1, 12)));
     if (t.Has("planet_angles_deg")) {
       for (double a : t.RealArray("planet_angles_deg", Rule::HalfOpen(0, 360))) {
@@ -421,7 +613,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     t->Done();
   }
   if (auto t = top.OptionalTable("errors")) {
-    ReadErrors(*t, s);
+    ReadErrors(*t, s, &error_keys);
     t->Done();
   }
   ReadDynamics(top, s.dynamics);
@@ -435,7 +627,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
         (f.gear == "ring" && f.mesh != "planet-ring")) {
       fit.Fail("mesh", "\"" + f.mesh + "\"", "the " + f.gear + " is not in that mesh");
     }
-    f.normal_backlash = fit.Real("normal_backlash_um", Rule::Any()) * kUm;
+    f.normal_backlash = fit.Real("normal_backlash_um", BacklashRule(st.sun.module)) * kUm;
     fit.Done();
     const bool internal = f.mesh == "planet-ring";
     // The fit is made on the nominal teeth: thickness errors must not be compensated by it.
@@ -451,10 +643,15 @@ Scene ParseScene(const std::string& text, const std::string& source) {
   }
   for (GearSpec* g : {&st.sun, &st.planet, &st.ring}) ResolveRadii(*g);
   top.Done();
+  StageWarnings(error_keys, s);
+  s.hash = ContentHash(text);
   return s;
 }
 
 Scene ReadScene(const std::string& path) {
+  if (std::filesystem::is_directory(path)) {
+    throw std::invalid_argument(path + ": is a directory, not a scene file (TOML)");
+  }
   std::ifstream in(path);
   if (!in) throw std::invalid_argument(path + ": cannot open the scene file");
   std::ostringstream text;

@@ -65,13 +65,18 @@ bool Rule::Holds(double v) const {
 
 std::string Rule::Describe() const {
   const bool has_lo = lo > -1e299, has_hi = hi < 1e299;
+  std::string text;
   if (has_lo && has_hi) {
-    return std::string("must be in ") + (lo_open ? "(" : "[") + Num(lo) + ", " + Num(hi) +
+    text = std::string("must be in ") + (lo_open ? "(" : "[") + Num(lo) + ", " + Num(hi) +
            (hi_open ? ")" : "]");
+  } else if (has_lo) {
+    text = std::string("must be ") + (lo_open ? "> " : ">= ") + Num(lo);
+  } else if (has_hi) {
+    text = std::string("must be ") + (hi_open ? "< " : "<= ") + Num(hi);
+  } else {
+    text = "must be a finite number";
   }
-  if (has_lo) return std::string("must be ") + (lo_open ? "> " : ">= ") + Num(lo);
-  if (has_hi) return std::string("must be ") + (hi_open ? "< " : "<= ") + Num(hi);
-  return "must be a finite number";
+  return why.empty() ? text : text + " (" + why + ")";
 }
 
 TableReader::TableReader(const toml::table& table, std::string path, std::string source)
@@ -95,6 +100,18 @@ std::string TableReader::Where(const std::string& key) const {
 void TableReader::Fail(const std::string& key, const std::string& value,
                        const std::string& rule) const {
   throw std::invalid_argument(Where(key) + " = " + value + ": " + rule);
+}
+
+std::string TableReader::Warning(const std::string& key, const std::string& rule) const {
+  const toml::node* n = Node(key);
+  return Where(key) + " = " + (n ? Show(*n) : std::string("(default)")) + ": " + rule;
+}
+
+void TableReader::Check(const std::string& key, double value, const Rule& rule) const {
+  if (!rule.Holds(value)) {
+    const toml::node* n = Node(key);
+    Fail(key, n ? Show(*n) : Num(value), rule.Describe());
+  }
 }
 
 const toml::node* TableReader::Node(const std::string& key) const {

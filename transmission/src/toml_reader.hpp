@@ -12,16 +12,25 @@
 
 namespace epicycle::transmission::internal {
 
-/// A range rule for numbers: lo/hi bounds, open or closed.
+/// A range rule for numbers: lo/hi bounds, open or closed, in the key's unit, and why (the
+/// physical reason, quoted in the message: "must be in [0, 1057.5] (a quarter module: ...)").
+/// Bounds relative to the geometry are computed by the caller from values already read.
 struct Rule {
   double lo = -1e300, hi = 1e300;
   bool lo_open = false, hi_open = false;
+  std::string why;
   static Rule Any() { return {}; }
-  static Rule Positive() { return {0, 1e300, true, false}; }
-  static Rule NonNegative() { return {0, 1e300, false, false}; }
-  static Rule Closed(double a, double b) { return {a, b, false, false}; }
-  static Rule HalfOpen(double a, double b) { return {a, b, false, true}; }  ///< [a, b)
-  static Rule Open(double a, double b) { return {a, b, true, true}; }
+  static Rule Positive() { return {0, 1e300, true, false, ""}; }
+  static Rule NonNegative() { return {0, 1e300, false, false, ""}; }
+  static Rule Closed(double a, double b) { return {a, b, false, false, ""}; }
+  static Rule HalfOpen(double a, double b) { return {a, b, false, true, ""}; }  ///< [a, b)
+  static Rule Open(double a, double b) { return {a, b, true, true, ""}; }
+  /// The same bounds with the reason they have.
+  Rule Because(std::string reason) const {
+    Rule r = *this;
+    r.why = std::move(reason);
+    return r;
+  }
   bool Holds(double v) const;
   std::string Describe() const;
 };
@@ -51,6 +60,12 @@ class TableReader {
   std::string Where(const std::string& key) const;
   [[noreturn]] void Fail(const std::string& key, const std::string& value,
                          const std::string& rule) const;
+  /// "file:line: path.key = value: rule", the text of Fail, for a warning: a legal value outside
+  /// the model's validity (the caller keeps it in Scene::warnings).
+  std::string Warning(const std::string& key, const std::string& rule) const;
+  /// A real the reader already consumed, checked against a rule known only later (relative to the
+  /// geometry read since). @throws std::invalid_argument as Real() does.
+  void Check(const std::string& key, double value_in_key_unit, const Rule& rule) const;
 
  private:
   const toml::node* Node(const std::string& key) const;

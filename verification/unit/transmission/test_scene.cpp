@@ -57,7 +57,7 @@ TEST_CASE("unknown, missing, mistyped and out-of-range keys", "[unit][transmissi
                     Contains("s.toml:" + std::to_string(line) +
                              ": sun.teeth = \"16\": must be an integer, not a string"));
   CHECK_THROWS_WITH(Parse(Replace(base, "face_width_mm = 25.0", "face_width_mm = -25.0")),
-                    Contains("sun.face_width_mm = -25: must be > 0"));
+                    Contains("sun.face_width_mm = -25: must be in [2.115, 423]"));  // 0.5 m, 100 m
   CHECK_THROWS_WITH(Parse(Replace(base, "poisson_ratio = 0.3", "poisson_ratio = 0.5")),
                     Contains("material.poisson_ratio = 0.5: must be in [0, 0.5)"));
   CHECK_THROWS_WITH(Parse(Replace(base, "sun_torque_Nm = -600.0", "sun_torque_Nm = 0.0")),
@@ -87,8 +87,9 @@ TEST_CASE("errors section", "[unit][transmission]") {
                                   "gear = \"planet7\"\ntangential_um")),
                     Contains("errors.pin[0].gear = \"planet7\": must be \"sun\", \"ring\" or "
                              "\"planet1\"..\"planet3\""));
-  CHECK_THROWS_WITH(Parse(Replace(base, "amplitude_um = 20.0", "amplitude_um = -2.0")),
-                    Contains("errors.runout[0].amplitude_um = -2: must be >= 0"));
+  CHECK_THROWS_WITH(
+      Parse(Replace(base, "amplitude_um = 20.0", "amplitude_um = -2.0")),
+      Contains("errors.runout[0].amplitude_um = -2: must be in [0, 1057.5]"));  // m/4 [um]
 }
 
 TEST_CASE("model and supports tables: values in SI, errors name key, value and rule",

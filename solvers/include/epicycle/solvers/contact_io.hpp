@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -22,6 +23,9 @@ struct ContactProblemFile {
   std::optional<std::uint64_t> seed;        ///< generator seed, if generated
   std::optional<ContactSolution> expected;  ///< an independent solution (closed form), if any
   std::string expected_note;                ///< where `expected` comes from
+  /// What wrote the file (optional "provenance" object of strings: program, version, backend,
+  /// scene, scene_hash for problems dumped by `epicycle quasistatic --dump-problems`).
+  std::map<std::string, std::string> provenance;
 };
 
 /// @throws std::invalid_argument naming the file, the key and the rule (bad JSON, wrong format

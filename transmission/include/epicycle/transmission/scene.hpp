@@ -97,8 +97,16 @@ struct Scene {
   double sun_torque = 0;       ///< input torque on the sun [N·m] (counter-clockwise +)
   double gap_window = 100e-6;  ///< contact-search gap window [m]
   std::vector<ShiftFit> fits;  ///< in the order they were applied
+  std::string hash;            ///< ContentHash of the scene text (provenance of results)
+  /// Legal values outside the model's validity (docs/scenes.md, "Ranges and validity"), one
+  /// message each naming the key, its value and the limit; reported with every result.
+  std::vector<std::string> warnings;
   DynamicsScene dynamics;
 };
+
+/// "fnv1a64:<16 hex digits>", the 64-bit FNV-1a hash of `text`: identifies an input file in the
+/// results made from it (not a cryptographic hash).
+std::string ContentHash(const std::string& text);
 
 /// @throws std::invalid_argument naming the file, line, key, value and rule.
 Scene ReadScene(const std::string& path);

@@ -1,0 +1,20 @@
+// The fuzz harnesses of the readers, shared by the libFuzzer targets (fuzz_scene.cpp,
+// fuzz_contact_problem.cpp; EPICYCLE_BUILD_FUZZERS, tools/fuzz.sh) and by the deterministic replay
+// of the committed corpus in the suite (replay.cpp). Bad input must end in std::invalid_argument;
+// any other exception, a crash, a sanitizer report or a converged answer with non-finite or
+// negative forces is a finding (std::abort).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace epicycle::fuzz {
+
+/// Reads `data` as a scene (TOML) and, if it loads, makes its stage or gear pair.
+void FuzzScene(const std::uint8_t* data, std::size_t size);
+
+/// Reads `data` as a contact problem file (JSON) and, if it loads and is small, solves it with
+/// the active-set Newton back end.
+void FuzzContactProblem(const std::uint8_t* data, std::size_t size);
+
+}  // namespace epicycle::fuzz

@@ -1,0 +1,66 @@
+// Warnings from results (transmission::QuasiStaticWarnings) on results made up here, whose values
+// are known: a negative share, a transmission error past the small-rotation bound, a contact force
+// twice the local term's validity limit (closed form L = h: F = h² π b E* / (4 R_eq)).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "epicycle/transmission/validity.hpp"
+#include "stage_fixtures.hpp"
+
+using Catch::Matchers::Contains;
+using namespace epicycle;
+
+namespace {
+
+transmission::PositionResult Converged(const std::vector<double>& lsr) {
+  transmission::PositionResult r;
+  r.converged = true;
+  r.load_sharing = lsr;
+  r.solution.force = Eigen::VectorXd::Zero(0);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("result warnings: jammed planet, large rotation, load past the local term",
+          "[unit][transmission]") {
+  const auto scene = test::PaperScene();
+  const geometry::Stage stage(scene.stage);
+  // Within validity: no warning.
+  CHECK(transmission::QuasiStaticWarnings(stage, {Converged({0.3, 0.3, 0.4})}).empty());
+
+  // Planet 2 jammed at one position; the failed position is not looked at.
+  auto jammed = Converged({0.7, -0.2, 0.5});
+  auto failed = Converged({0.0, -5.0, 0.0});
+  failed.converged = false;
+  auto w = transmission::QuasiStaticWarnings(stage, {jammed, failed});
+  REQUIRE(w.size() == 1);
+  CHECK_THAT(w[0], Contains("planet 2: load-sharing ratio LSR = -0.2 < 0") &&
+                       Contains("(1 position(s))") && Contains("jammed"));
+
+  // The bound: 0.1 m / r_b,sun = 0.1 · 4.23 mm / (4.23·16/2 · cos 25° mm) = 0.1/(8 cos 25°) rad.
+  const double bound = 0.1 / (8.0 * std::cos(25.0 * geometry::kPi / 180.0));
+  auto small = Converged({0.3, 0.3, 0.4}), large = small;
+  small.transmission_error = 0.99 * bound;
+  large.transmission_error = -1.01 * bound;
+  CHECK(transmission::QuasiStaticWarnings(stage, {small}).empty());
+  w = transmission::QuasiStaticWarnings(stage, {large});
+  REQUIRE(w.size() == 1);
+  CHECK_THAT(w[0], Contains("transmission error") && Contains("a tenth of the module"));
+
+  // One contact at twice its validity limit, plane strain, equal steel bodies.
+  solvers::LocalTermParameters p;
+  p.face_width = 25e-3;
+  p.reduced_radius = 10e-3;
+  for (auto& b : p.body) b = {207e9, 0.3, 1e-3};
+  const double e_star = 207e9 / (2.0 * (1.0 - 0.09));  // 1/E* = 2 (1 − ν²)/E
+  const double limit = 1e-6 * geometry::kPi * 25e-3 * e_star / (4.0 * 10e-3);  // h² π b E*/(4R)
+  auto loaded = Converged({0.3, 0.3, 0.4});
+  loaded.problem.data.local = {p, p};
+  loaded.solution.force = Eigen::Vector2d(0.5 * limit, 2.0 * limit);
+  w = transmission::QuasiStaticWarnings(stage, {loaded});
+  REQUIRE(w.size() == 1);
+  CHECK_THAT(
+      w[0], Contains(" is 2 times the local term's validity limit") && Contains("on 1 contact(s)"));
+}
