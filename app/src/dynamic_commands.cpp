@@ -21,6 +21,7 @@
 #include "epicycle/dynamics/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "progress.hpp"
+#include "provenance.hpp"
 #include "svg_plot.hpp"
 
 namespace epicycle::app {
@@ -154,6 +155,10 @@ void RunDynamic(const DynamicArgs& a) {
       bearings(base + "_bearings.csv");
   if (!steps || !pairs || !bearings)
     throw std::runtime_error(a.out + ": cannot write the result files");
+  const json provenance = Provenance(a.backend, &scene);
+  steps << ProvenanceCsvLine(provenance);
+  pairs << ProvenanceCsvLine(provenance);
+  bearings << ProvenanceCsvLine(provenance);
   steps << "time_s,carrier_deg";
   for (int i = 1; i <= n; ++i) steps << ",LSR_" << i;
   for (int i = 1; i <= n; ++i) steps << ",L_" << i;
@@ -244,7 +249,10 @@ void RunDynamic(const DynamicArgs& a) {
       st.failed_solves, st.error_test_failures, st.nonlinear_failures, st.wall_seconds,
       st.rhs_seconds);
 
+  PrintWarnings(scene.warnings);
   json j;
+  j["provenance"] = provenance;
+  j["warnings"] = scene.warnings;
   j["scene"] = scene.name;
   j["sun_support"] = sun_name;
   j["sun_torque_Nm"] = scene.sun_torque;
@@ -315,8 +323,8 @@ void RunDynamic(const DynamicArgs& a) {
       "_orbit.svg\n",
       base.c_str());
   if (!result.completed)
-    throw std::runtime_error(fmt::format("the run stopped after {} of {} outputs: {}", sum.samples,
-                                         outputs, result.message));
+    throw ComputationFailed(fmt::format("the run stopped after {} of {} outputs: {}", sum.samples,
+                                        outputs, result.message));
 }
 
 struct ModesArgs {
@@ -365,8 +373,11 @@ void RunModes(const ModesArgs& a) {
                   {"planet_energy", x.planets},
                   {"sun_rpm_at_mesh_harmonics_1_2_3", speeds}});
   }
+  PrintWarnings(scene.warnings);
   if (!a.json.empty()) {
     nlohmann::json j;
+    j["provenance"] = Provenance("none", &scene);
+    j["warnings"] = scene.warnings;
     j["scene"] = scene.name;
     j["mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
     j["mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
