@@ -613,8 +613,8 @@ TEST_CASE(
     const bool orbit = rmax >= 10e-6 && rmax <= 40e-6 && rmax >= 1.2 * rmin;
     VerifyRow("run-out 20 um, floating sun, 1500 rpm, a planet revolution: LSR",
               "quasi-static band " + Sci(worst_qs) +
-                  " plus the sun's inertia ((2/3) m_s \\|a\\| r_bs + J_s \\|theta''\\|/3)/\\|T\\|",
-              "largest \\|LSR - 1/3\\| " + Sci(worst),
+                  " plus the sun's inertia ((2/3) m_s |a| r_bs + J_s |theta''|/3)/|T|",
+              "largest |LSR - 1/3| " + Sci(worst),
               "largest deviation / bound " + Sci(worst_ratio), "1.25", inertial);
     VerifyRow("run-out 20 um, floating sun: the sun's orbit",
               "of the order of the run-out, lobular",
