@@ -614,8 +614,8 @@ TEST_CASE(
     VerifyRow("run-out 20 um, floating sun, 1500 rpm, a planet revolution: LSR",
               "quasi-static band " + Sci(worst_qs) +
                   " plus the sun's inertia ((2/3) m_s |a| r_bs + J_s |theta''|/3)/|T|",
-              "largest |LSR - 1/3| " + Sci(worst),
-              "largest deviation / bound " + Sci(worst_ratio), "1.25", inertial);
+              "largest |LSR - 1/3| " + Sci(worst), "largest deviation / bound " + Sci(worst_ratio),
+              "1.25", inertial);
     VerifyRow("run-out 20 um, floating sun: the sun's orbit",
               "of the order of the run-out, lobular",
               "radius " + Sci(rmin * 1e6, 3) + " .. " + Sci(rmax * 1e6, 3) + " um",
