@@ -20,29 +20,16 @@ namespace {
 
 using namespace epicycle;
 
-struct Case {
-  transmission::Scene scene;
-  geometry::Stage stage;
-  transmission::FeComplianceOptions fe;
-  transmission::FeStageCompliance compliance;
-  transmission::StageModel stage_model;
-  dynamics::DynamicModel model;
-  explicit Case(transmission::SunSupport sun)
-      : scene(Read(sun)),
-        stage(scene.stage),
-        fe(Cache()),
-        compliance(scene, stage, fe),
-        stage_model(scene, stage, compliance, transmission::SetupFromScene(scene)),
-        model(stage_model, scene, dynamics::SettingsFromScene(scene)) {
-    const auto k = dynamics::MeanMeshStiffness(scene, stage, fe);
-    model.SetMeshStiffness(k[0], k[1]);
-  }
-  static transmission::Scene Read(transmission::SunSupport sun) {
-    auto s = transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_runout.toml");
-    s.supports.sun = sun;
-    s.dynamics.sun_speed = 1500 * std::numbers::pi / 30;
-    return s;
-  }
+transmission::Scene RunoutScene(transmission::SunSupport sun) {
+  auto s = transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_runout.toml");
+  s.supports.sun = sun;
+  s.dynamics.sun_speed = 1500 * std::numbers::pi / 30;
+  return s;
+}
+
+// The stage's dynamic model with the benchmarks' table cache.
+struct Case : dynamics::StageDynamics {
+  explicit Case(transmission::SunSupport sun) : StageDynamics(RunoutScene(sun), Cache()) {}
   static transmission::FeComplianceOptions Cache() {
     transmission::FeComplianceOptions o;
     o.cache_directory = (std::filesystem::temp_directory_path() / "epicycle-bench-ilt").string();

@@ -49,33 +49,11 @@ std::string MeshName(const transmission::StageContact& c) {
                                                   : fmt::format("planet{}-ring", c.planet + 1);
 }
 
-// A stage scene's dynamic model: the scene (its sun support overridden by --sun), the stage, the
-// FE compliance through the table cache, the stage model and the dynamic model with the mean mesh
-// stiffnesses (for the damping and the modes). Members are built in this order.
-struct DynamicRig {
-  transmission::Scene scene;
-  geometry::Stage stage;
-  transmission::FeComplianceOptions fe;
-  transmission::FeStageCompliance compliance;
-  transmission::StageModel stage_model;
-  dynamics::DynamicModel model;
-  DynamicRig(transmission::Scene s, const std::string& cache, bool no_cache)
-      : scene(std::move(s)),
-        stage(scene.stage),
-        fe(Tables(cache, no_cache)),
-        compliance(scene, stage, fe),
-        stage_model(scene, stage, compliance, transmission::SetupFromScene(scene)),
-        model(stage_model, scene, dynamics::SettingsFromScene(scene)) {
-    const auto k = dynamics::MeanMeshStiffness(scene, stage, fe);
-    model.SetMeshStiffness(k[0], k[1]);
-  }
-  static transmission::FeComplianceOptions Tables(const std::string& cache, bool no_cache) {
-    transmission::FeComplianceOptions o;
-    if (!no_cache)
-      o.cache_directory = cache.empty() ? transmission::DefaultCacheDirectory() : cache;
-    return o;
-  }
-};
+transmission::FeComplianceOptions Tables(const std::string& cache, bool no_cache) {
+  transmission::FeComplianceOptions o;
+  if (!no_cache) o.cache_directory = cache.empty() ? transmission::DefaultCacheDirectory() : cache;
+  return o;
+}
 
 transmission::Scene StageScene(const std::string& file, const std::string& sun,
                                const char* command) {
@@ -96,7 +74,7 @@ void RunDynamic(const DynamicArgs& a) {
   }
   if (!a.friction.empty()) input.dynamics.friction = a.friction;
   const auto t0 = std::chrono::steady_clock::now();
-  DynamicRig rig(std::move(input), a.cache, a.no_cache);
+  dynamics::StageDynamics rig(std::move(input), Tables(a.cache, a.no_cache));
   const transmission::Scene& scene = rig.scene;
   const geometry::Stage& stage = rig.stage;
   const transmission::FeStageCompliance& compliance = rig.compliance;
@@ -333,7 +311,7 @@ struct ModesArgs {
 };
 
 void RunModes(const ModesArgs& a) {
-  DynamicRig rig(StageScene(a.scene, a.sun, "modes"), a.cache, a.no_cache);
+  dynamics::StageDynamics rig(StageScene(a.scene, a.sun, "modes"), Tables(a.cache, a.no_cache));
   const transmission::Scene& scene = rig.scene;
   const geometry::Stage& stage = rig.stage;
   const transmission::StageModel& stage_model = rig.stage_model;

@@ -741,6 +741,17 @@ void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::Ma
   *k = 0.5 * (*k + k->transpose());
 }
 
+StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeComplianceOptions& f)
+    : scene(std::move(s)),
+      stage(scene.stage),
+      fe(f),
+      compliance(scene, stage, fe),
+      stage_model(scene, stage, compliance, transmission::SetupFromScene(scene)),
+      model(stage_model, scene, SettingsFromScene(scene)) {
+  const auto k = MeanMeshStiffness(scene, stage, fe);
+  model.SetMeshStiffness(k[0], k[1]);
+}
+
 std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
                                         const geometry::Stage& stage,
                                         const transmission::FeComplianceOptions& fe,

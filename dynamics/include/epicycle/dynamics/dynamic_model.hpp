@@ -207,6 +207,23 @@ class DynamicModel {
   std::vector<Eigen::Vector2d> pin0_;  // pin positions at carrier angle 0 [m]
 };
 
+/// A stage scene's dynamic model with everything it refers to, built in order: the scene, its
+/// stage, the FE compliance (tables through `fe`'s cache), the stage model of the scene's
+/// supports, and the dynamic model of its settings with the mean mesh stiffnesses set (for the
+/// damping and the modes). Not copyable or movable (the members refer to each other).
+struct StageDynamics {
+  transmission::Scene scene;
+  geometry::Stage stage;
+  transmission::FeComplianceOptions fe;
+  transmission::FeStageCompliance compliance;
+  transmission::StageModel stage_model;
+  DynamicModel model;
+  /// @throws std::invalid_argument as the members' constructors.
+  StageDynamics(transmission::Scene scene, const transmission::FeComplianceOptions& fe);
+  StageDynamics(const StageDynamics&) = delete;
+  StageDynamics& operator=(const StageDynamics&) = delete;
+};
+
 /// The mean mesh stiffness [N/m] of the stage's sun–planet and planet–ring meshes (planet 1) at
 /// the scene's load, from the mesh-stiffness driver (transmission::ComputeMeshStiffness) over
 /// `positions` samples of a mesh cycle: {sun mesh, ring mesh}.
