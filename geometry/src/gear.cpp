@@ -283,7 +283,7 @@ void Gear::BuildExternal() {
   }
   // Undercut: the straight edge's lowest point (tangency with the tip round) reaches below the
   // interference point, where the line of action touches the base circle. The tooth is then
-  // generated as cut (MODEL.md §3): the tip round's trochoid cuts into the involute, and the
+  // generated as cut (docs/model.md §1): the tip round's trochoid cuts into the involute, and the
   // profile is the involute down to where the trochoid crosses it, the trochoid below.
   const double xi_limit = xi_c - rho * sa;
   undercut_ = xi_limit < r_ * ca * ca - 1e-12 * r_;

@@ -2,12 +2,16 @@
 // cache or independent linear springs, the stage model and the dynamic model, built in one place.
 #pragma once
 
+#include <complex>
 #include <functional>
 #include <memory>
+#include <numbers>
 #include <string>
 
 #include "epicycle/dynamics/dynamic_model.hpp"
+#include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
 #include "fe_fixtures.hpp"
 
 namespace epicycle::test {
@@ -76,6 +80,77 @@ inline DynamicRig MakeRig(const std::string& text, const std::string& name, cons
     r.model->SetMeshStiffness(k[0], k[1]);
   }
   return r;
+}
+
+// Helpers of the dynamics cross-checks.
+
+inline constexpr double kRpm = std::numbers::pi / 30.0;
+
+// Output times: `per_cycle` per mesh cycle over `cycles` mesh cycles.
+inline std::vector<double> Times(const dynamics::DynamicModel& m, const geometry::Stage& st,
+                                 double cycles, int per_cycle, double skip = 0.0) {
+  const double tc = st.mesh_cycle() / std::abs(m.carrier_speed());
+  std::vector<double> t;
+  const int n = static_cast<int>(std::lround(cycles * per_cycle));
+  for (int i = 1; i <= n; ++i) t.push_back(skip * tc + tc * cycles * i / n);
+  return t;
+}
+
+inline dynamics::SimulationResult Run(const DynamicRig& rig, const std::vector<double>& times,
+                                      dynamics::SimulationOptions o = {}) {
+  const Eigen::VectorXd d0 = rig.model->QuasiStaticStart(o.contact, o.backend);
+  return dynamics::Simulate(*rig.model, o, d0, Eigen::VectorXd::Zero(rig.model->size()), times);
+}
+
+inline std::string WithRunout(const std::string& text) {
+  return text + "\n[[errors.runout]]\ngear = \"planet1\"\namplitude_um = 20.0\nphase_deg = 0.0\n";
+}
+
+// Largest |LSR_dyn − LSR_qs| over the samples, the quasi-static solver at each sample's carrier
+// angle on the same stage model.
+inline double QuasiStaticGap(const DynamicRig& rig,
+                             const std::vector<dynamics::DynamicSample>& samples) {
+  double worst = 0;
+  transmission::QuasiStaticOptions qo;
+  for (const dynamics::DynamicSample& s : samples) {
+    const auto q =
+        transmission::SolvePosition(*rig.stage_model, s.carrier_angle, {rig.scene.sun_torque}, qo);
+    REQUIRE(q.converged);
+    for (std::size_t i = 0; i < q.load_sharing.size(); ++i)
+      worst = std::max(worst, std::abs(s.load_sharing[i] - q.load_sharing[i]));
+  }
+  return worst;
+}
+
+// |Σ x_k e^{−i 2π l k/N}|·2/N: amplitude of harmonic l of N samples over one period.
+inline double Harmonic(const std::vector<std::complex<double>>& x, int l) {
+  std::complex<double> s = 0;
+  const int n = static_cast<int>(x.size());
+  for (int k = 0; k < n; ++k) s += x[k] * std::polar(1.0, -2 * std::numbers::pi * l * k / n);
+  return 2.0 * std::abs(s) / n;
+}
+
+// The stage with every member on bearings, as in Lin & Parker's model: sun, planets and ring
+// elastic (the carrier turned at its speed: held in the linearisation).
+inline constexpr double kBearing = 1e8;      // [N/m]
+inline constexpr double kRingTorsion = 1e9;  // of u = r θ [N/m]: k_θ = 1e9 r_r² N·m/rad
+
+inline std::string AllElastic(const std::string& text) {
+  return Replace(text, "[contact]",
+                 "[supports]\nsun = \"elastic\"\nsun_stiffness_N_per_um = 100.0\n"
+                 "planet_stiffness_N_per_um = 100.0\n\n[contact]");
+}
+
+// Mean of L_1 − 1 over the samples (the load-sharing factor of planet 1, ideal 0 deviation).
+inline double MeanDeviation(const std::vector<double>& lsr1) {
+  double s = 0;
+  for (double v : lsr1) s += 3 * v - 1;
+  return s / static_cast<double>(lsr1.size());
+}
+
+inline std::string WithPin(const std::string& text, double radial_um, double tangential_um) {
+  return text + "\n[[errors.pin]]\ngear = \"planet1\"\nradial_um = " + std::to_string(radial_um) +
+         "\ntangential_um = " + std::to_string(tangential_um) + "\n";
 }
 
 }  // namespace epicycle::test

@@ -154,7 +154,7 @@ TEST_CASE("Gear influence table: total approach barely depends on the join depth
   // Total approach of the sun at one mid-flank contact with a planet tooth: structural (the
   // table's depth-h read-out, F nᵀ D(h) n) plus this body's local term between the surface and h
   // (solvers::LocalApproach, half of the symmetric two-body value, both bodies steel and joined
-  // at the same h). MODEL.md §4: within 2 % for h ± 50 %.
+  // at the same h). docs/model.md §2: within 2 % for h ± 50 %.
   const transmission::Scene scene = test::PaperScene();
   const geometry::Stage stage(scene.stage);
   const geometry::Gear& sun = stage.sun();

@@ -1,4 +1,4 @@
-// The nonlinear constrained contact problem (MODEL.md section 5): data only, validated on
+// The nonlinear constrained contact problem (docs/model.md §3): data only, validated on
 // construction. It knows nothing of gears: plain Eigen data in SI units.
 #pragma once
 
