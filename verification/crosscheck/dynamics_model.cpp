@@ -19,22 +19,16 @@
 
 using namespace epicycle;
 using dynamics::DynamicSample;
-using test::AllElastic;
 using test::Figure;
 using test::Harmonic;
-using test::kBearing;
-using test::kRingTorsion;
 using test::kRpm;
-using test::MeanDeviation;
 using test::QuasiStaticGap;
 using test::RigOptions;
 using test::Run;
 using test::Sci;
 using test::Times;
 using test::VerifyRow;
-using test::WithPin;
 using test::WithRunout;
-using transmission::SunSupport;
 
 TEST_CASE("quasi-static limit: the dynamic LSR tends to the quasi-static sweep with the speed",
           "[crosscheck][dynamics]") {

@@ -25,7 +25,6 @@ using test::kBearing;
 using test::kRingTorsion;
 using test::kRpm;
 using test::MeanDeviation;
-using test::QuasiStaticGap;
 using test::RigOptions;
 using test::Run;
 using test::Sci;
