@@ -62,6 +62,77 @@ void BM_DynamicEvaluation(benchmark::State& state) {
 }
 BENCHMARK(BM_DynamicEvaluation)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
+// The parts of one evaluation at the same state (fixed sun), for the time split:
+//   0 poses of the members;  1 contact search of the stage;  2 the contact terms (search, FE
+//   compliance matrix, local terms);  3 the contact problem's construction (its validation);
+//   4 the warm contact solve (from the neighbouring state's forces);  5 the cold solve;
+//   6 one factorisation of the final active set, Cholesky of C_AA + diag(u'_A), as the Newton does.
+void BM_EvaluationPart(benchmark::State& state) {
+  Case c(transmission::SunSupport::kFixed);
+  const Eigen::VectorXd d = c.model.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  const Eigen::VectorXd v = Eigen::VectorXd::Zero(c.model.size());
+  auto solver = solvers::MakeContactSolver(solvers::Backend::kActiveSetNewton);
+  dynamics::Evaluation warm;
+  c.model.Evaluate(0.0, d, v, *solver, {}, nullptr, &warm);
+  const double t = 3e-6;
+  const geometry::StagePoses poses = c.model.Poses(t, d);
+  const transmission::ContactTerms terms = c.stage_model.Terms(poses);
+  solvers::ContactProblemData data;
+  data.compliance = terms.compliance;
+  data.overlap = terms.overlap;
+  data.local = terms.local;
+  data.equality_matrix.resize(0, terms.size());
+  data.equality_rhs.resize(0);
+  const solvers::ContactProblem problem(data);
+  solvers::ContactSolution answer;
+  solver->Solve(problem, {}, &answer);
+  std::vector<int> active;
+  for (int j = 0; j < terms.size(); ++j)
+    if (answer.force(j) > 0) active.push_back(j);
+  Eigen::MatrixXd h(active.size(), active.size());
+  for (std::size_t a = 0; a < active.size(); ++a)
+    for (std::size_t b = 0; b < active.size(); ++b)
+      h(a, b) = problem.compliance()(active[a], active[b]);
+  for (std::size_t a = 0; a < active.size(); ++a)
+    h(a, a) += solvers::LocalApproachDerivative(terms.local[active[a]], answer.force(active[a]));
+  const int part = static_cast<int>(state.range(0));
+  solvers::ContactOptions warm_options;
+  warm_options.warm_start = true;
+  for (auto _ : state) {
+    switch (part) {
+      case 0:
+        benchmark::DoNotOptimize(c.model.Poses(t, d));
+        break;
+      case 1:
+        benchmark::DoNotOptimize(transmission::SearchStage(c.stage, poses, c.scene.gap_window));
+        break;
+      case 2:
+        benchmark::DoNotOptimize(c.stage_model.Terms(poses));
+        break;
+      case 3:
+        benchmark::DoNotOptimize(solvers::ContactProblem(data));
+        break;
+      case 4: {
+        solvers::ContactSolution s;
+        s.force = warm.force;
+        benchmark::DoNotOptimize(solver->Solve(problem, warm_options, &s));
+        break;
+      }
+      case 5: {
+        solvers::ContactSolution s;
+        benchmark::DoNotOptimize(solver->Solve(problem, {}, &s));
+        break;
+      }
+      case 6:
+        benchmark::DoNotOptimize(h.llt().matrixL().rows());
+        break;
+    }
+  }
+  state.counters["contacts"] = terms.size();
+  state.counters["active"] = static_cast<double>(active.size());
+}
+BENCHMARK(BM_EvaluationPart)->DenseRange(0, 6)->Unit(benchmark::kMicrosecond);
+
 // One carrier revolution (65 mesh cycles, 0.2025 s) at 1500 rpm, 20 outputs per mesh cycle.
 void BM_CarrierRevolution(benchmark::State& state) {
   Case c(transmission::SunSupport::kFixed);

@@ -13,7 +13,7 @@ namespace {
 // frame, so the N² loop only interpolates.
 struct Located {
   int body = -1;
-  FlankPosition position;
+  InfluenceTable::Node node;  // flank position and interpolation stencil
   Eigen::Vector2d direction;  // body frame
 };
 
@@ -33,14 +33,19 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
   for (int j = 0; j < n; ++j) {
     for (int s = 0; s < 2; ++s) {
       const ContactSide& side = contacts[j].side[s];
-      const std::string where = "AssembleCompliance: contact " + std::to_string(j) + " ('" +
-                                contacts[j].label + "') side " + std::to_string(s);
+      // The message's context, built only when something is wrong (this loop is on the dynamic
+      // model's hot path).
+      auto where = [&] {
+        return "AssembleCompliance: contact " + std::to_string(j) +
+               (contacts[j].label.empty() ? "" : " ('" + contacts[j].label + "')") + " side " +
+               std::to_string(s);
+      };
       if (side.body < 0 || side.body >= nb) {
-        throw std::invalid_argument(where + ": body = " + std::to_string(side.body) +
+        throw std::invalid_argument(where() + ": body = " + std::to_string(side.body) +
                                     "; the rule is 0 <= body < " + std::to_string(nb));
       }
       if (!(std::abs(side.direction.norm() - 1.0) <= 1e-9)) {
-        throw std::invalid_argument(where + ": the direction must be a unit vector (norm " +
+        throw std::invalid_argument(where() + ": the direction must be a unit vector (norm " +
                                     std::to_string(side.direction.norm()) + ")");
       }
       const OperatorBody& body = bodies[side.body];
@@ -48,12 +53,17 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
       Located& l = loc[j][s];
       l.body = side.body;
       l.direction = to_body * side.direction;
-      try {
-        l.position =
-            body.table->Locate(to_body * (side.point - body.centre), side.tooth, side.flank);
-      } catch (const std::invalid_argument& e) {
-        throw std::invalid_argument(where + " on body '" + body.name + "': " + e.what());
+      FlankPosition position;
+      double distance = 0;
+      const Eigen::Vector2d point = to_body * (side.point - body.centre);
+      if (!body.table->TryLocate(point, side.tooth, side.flank, &position, &distance)) {
+        try {
+          body.table->Locate(point, side.tooth, side.flank);  // throws the table's message
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(where() + " on body '" + body.name + "': " + e.what());
+        }
       }
+      l.node = body.table->Prepare(position);
     }
   }
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
@@ -64,7 +74,7 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
         for (const Located& b : loc[k]) {
           if (a.body != b.body) continue;
           const OperatorBody& body = bodies[a.body];
-          sum += a.direction.dot(body.table->Influence(b.position, a.position) * b.direction);
+          sum += a.direction.dot(body.table->PreparedInfluence(b.node, a.node) * b.direction);
           if (!body.support.isZero(0.0)) {
             // The support acts on the centre in the inertial frame: rotate the directions back.
             const Eigen::Rotation2Dd to_world(body.rotation);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -276,70 +277,101 @@ void InfluenceTable::Weights(double s, int* first, std::array<double, 4>* w) con
   slope(i + 1, d * h11);
 }
 
+InfluenceTable::Node InfluenceTable::Prepare(const FlankPosition& position) const {
+  FlankIndex(position.flank, "position");
+  Node node;
+  node.position = position;
+  Weights(position.arc_length, &node.first, &node.weight);
+  return node;
+}
+
 Eigen::Matrix2d InfluenceTable::Influence(const FlankPosition& load,
                                           const FlankPosition& response) const {
-  const int fl = FlankIndex(load.flank, "load");
-  const int fr = FlankIndex(response.flank, "response");
+  FlankIndex(load.flank, "load");
+  FlankIndex(response.flank, "response");
+  return PreparedInfluence(Prepare(load), Prepare(response));
+}
+
+Eigen::Matrix2d InfluenceTable::PreparedInfluence(const Node& load_node,
+                                                  const Node& response_node) const {
+  const FlankPosition& load = load_node.position;
+  const FlankPosition& response = response_node.position;
+  const int fl = load.flank > 0 ? 0 : 1;
+  const int fr = response.flank > 0 ? 0 : 1;
   const int z = teeth_;
   const int k1 = ((load.tooth % z) + z) % z, k2 = ((response.tooth % z) + z) % z;
   const int dk = ((k2 - k1) % z + z) % z;
-  const Eigen::Matrix2d r = Rot(k1 * gear_->pitch_angle());
-  int a0, b0;
-  std::array<double, 4> wa, wb;
-  Weights(load.arc_length, &a0, &wa);
-  Weights(response.arc_length, &b0, &wb);
+  const Eigen::Matrix2d& r = tooth_rotation_[static_cast<std::size_t>(k1)];
+  const int a0 = load_node.first, b0 = response_node.first;
+  const std::array<double, 4>& wa = load_node.weight;
+  const std::array<double, 4>& wb = response_node.weight;
   Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
   const bool self = dk == 0 && fl == fr &&
                     std::abs(load.arc_length - response.arc_length) <= 1e-12 * arc_length_max();
   if (self) {
     for (int p = 0; p < 4; ++p) m += wa[p] * self_[static_cast<std::size_t>(fl) * n_ + a0 + p];
   } else {
+    // Index(fl, i, c, dk, fr, j) steps by 2 in j: the response stencil is one contiguous run.
+    const std::size_t run = Index(0, 0, 0, dk, fr, b0);
     for (int p = 0; p < 4; ++p) {
       if (wa[p] == 0.0) continue;
-      for (int q = 0; q < 4; ++q) {
-        if (wb[q] == 0.0) continue;
-        for (int c = 0; c < 2; ++c) {
-          const std::size_t at = Index(fl, a0 + p, c, dk, fr, b0 + q);
-          m(0, c) += wa[p] * wb[q] * surface_[at];
-          m(1, c) += wa[p] * wb[q] * surface_[at + 1];
+      for (int c = 0; c < 2; ++c) {
+        const double* row = surface_.data() + Index(fl, a0 + p, c, 0, 0, 0) + run;
+        double x = 0.0, y = 0.0;
+        for (int q = 0; q < 4; ++q) {
+          x += wb[q] * row[2 * q];
+          y += wb[q] * row[2 * q + 1];
         }
+        m(0, c) += wa[p] * x;
+        m(1, c) += wa[p] * y;
       }
     }
   }
   return r * m * r.transpose();
 }
 
-FlankPosition InfluenceTable::Locate(const Eigen::Vector2d& point, int tooth, int flank) const {
-  FlankIndex(flank, "Locate");
+bool InfluenceTable::TryLocate(const Eigen::Vector2d& point, int tooth, int flank,
+                               FlankPosition* out, double* distance_out) const {
   const int z = teeth_;
   const int k = ((tooth % z) + z) % z;
-  Eigen::Vector2d q = Rot(-k * gear_->pitch_angle()) * point;
+  Eigen::Vector2d q = tooth_rotation_[static_cast<std::size_t>(k)].transpose() * point;
   if (flank == -1) q.y() = -q.y();
-  // The nearest grid point, then the nearest point of the dense polyline (kDense points per grid
-  // interval on the exact profile) within its two intervals, then the foot on the adjacent chords:
-  // the chord error is κΔ²/8 (Δ the dense spacing), below 1e-8 m for these profiles, and the cost
-  // a few dozen distances instead of projections on the exact curve.
-  int nearest = 0;
-  double best = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < n_; ++i) {
-    const double d = (grid_.position[i] - q).squaredNorm();
-    if (d < best) {
-      best = d;
-      nearest = i;
+  const int last = static_cast<int>(dense_.size()) - 1;
+  auto dist2 = [&](int p) { return (dense_[p].point - q).squaredNorm(); };
+  // The nearest point of the dense polyline (kDense points per grid interval on the exact
+  // profile). The profile's radius is monotonic from the form point to the tip-round end (rising
+  // on an external tooth, falling on an internal one), so bisection on |q| starts next to it and
+  // a descent along the polyline finds it; a point near the flat end of the tip round, where the
+  // radius no longer tells positions apart, may start a few points off and the descent walks
+  // there. A descent that ends more than a grid interval from its start falls back to the scan of
+  // every point (never taken for points on the profile, kept so that the answer never depends on
+  // the shortcut).
+  const double r = q.norm();
+  const bool rising = dense_radius_.back() > dense_radius_.front();
+  const auto it =
+      rising ? std::lower_bound(dense_radius_.begin(), dense_radius_.end(), r)
+             : std::lower_bound(dense_radius_.begin(), dense_radius_.end(), r, std::greater<>());
+  int m = std::clamp(static_cast<int>(it - dense_radius_.begin()), 0, last);
+  const int start = m;
+  double best = dist2(m);
+  for (int step : {-1, 1}) {
+    while (m + step >= 0 && m + step <= last && dist2(m + step) < best) {
+      m += step;
+      best = dist2(m);
     }
   }
-  const int last = static_cast<int>(dense_.size()) - 1;
-  const int lo = std::max(0, (nearest - 1) * kDense), hi = std::min(last, (nearest + 1) * kDense);
-  int m = lo;
-  best = std::numeric_limits<double>::infinity();
-  for (int p = lo; p <= hi; ++p) {
-    const double d = (dense_[p].point - q).squaredNorm();
-    if (d < best) {
-      best = d;
-      m = p;
+  if (std::abs(m - start) > kDense) {
+    for (int p = 0; p <= last; ++p) {
+      const double d = dist2(p);
+      if (d < best) {
+        best = d;
+        m = p;
+      }
     }
   }
   double s = dense_[m].arc_length, distance = std::sqrt(best);
+  // The foot on the adjacent chords: the chord error is κΔ²/8 (Δ the dense spacing), below
+  // 1e-8 m for these profiles.
   for (int p : {m - 1, m}) {
     if (p < 0 || p >= last) continue;
     const Eigen::Vector2d a = dense_[p].point, e = dense_[p + 1].point - a;
@@ -351,7 +383,16 @@ FlankPosition InfluenceTable::Locate(const Eigen::Vector2d& point, int tooth, in
       s = dense_[p].arc_length + t * (dense_[p + 1].arc_length - dense_[p].arc_length);
     }
   }
-  if (!(distance <= 1e-3 * module_)) {
+  *distance_out = distance;
+  *out = FlankPosition{tooth, flank, std::clamp(s, 0.0, arc_length_max())};
+  return distance <= 1e-3 * module_;
+}
+
+FlankPosition InfluenceTable::Locate(const Eigen::Vector2d& point, int tooth, int flank) const {
+  FlankIndex(flank, "Locate");
+  FlankPosition at;
+  double distance = 0;
+  if (!TryLocate(point, tooth, flank, &at, &distance)) {
     std::ostringstream msg;
     msg.precision(9);
     msg << "InfluenceTable::Locate: the point (" << point.x() * 1e3 << ", " << point.y() * 1e3
@@ -361,7 +402,7 @@ FlankPosition InfluenceTable::Locate(const Eigen::Vector2d& point, int tooth, in
         << " mm";
     throw std::invalid_argument(msg.str());
   }
-  return FlankPosition{tooth, flank, std::clamp(s, 0.0, arc_length_max())};
+  return at;
 }
 
 double InfluenceTable::Compliance(const Eigen::Vector2d& load_point,
@@ -504,6 +545,10 @@ void InfluenceTable::BuildDenseProfile() {
     }
   }
   dense_.push_back({grid_.position[n_ - 1], grid_.arc_length[n_ - 1]});
+  dense_radius_.clear();
+  for (const DensePoint& d : dense_) dense_radius_.push_back(d.point.norm());
+  tooth_rotation_.clear();
+  for (int k = 0; k < teeth_; ++k) tooth_rotation_.push_back(Rot(k * gear_->pitch_angle()));
 }
 
 }  // namespace epicycle::compliance

@@ -370,13 +370,13 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     solvers::ContactOptions opt = contact;
     solvers::ContactSolution solution;
     if (warm != nullptr && warm->ok && warm->terms.size() > 0) {
-      // Forces of the same potential contacts (by label) from the last accepted step.
+      // Forces of the same potential contacts (those Label() names alike) from the last accepted
+      // step.
       solution.force = Eigen::VectorXd::Zero(n);
       int matched = 0;
       for (int j = 0; j < n; ++j) {
-        const std::string label = terms.contacts[j].Label();
         for (int i = 0; i < warm->terms.size(); ++i)
-          if (warm->terms.contacts[i].Label() == label) {
+          if (warm->terms.contacts[i].SameAs(terms.contacts[j])) {
             solution.force(j) = warm->force(i);
             ++matched;
             break;

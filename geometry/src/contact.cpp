@@ -64,8 +64,8 @@ struct ArcHit {
   int tooth;
 };
 
-// The foot of the normal from c on a relieved flank x(u) − C(u) n(u) (docs/model.md §1; the relief is
-// a few µm, so Newton from the involute's foot u converges in a few steps). With e = e(S + H u),
+// The foot of the normal from c on a relieved flank x(u) − C(u) n(u) (docs/model.md §1; the relief
+// is a few µm, so Newton from the involute's foot u converges in a few steps). With e = e(S + H u),
 // e⊥ its left normal and n = σ e⊥:
 //   x′ = (r_b u + σH C) e − σ C′ e⊥,
 //   x″ = (r_b + 2σH C′) e + (H r_b u + σ C − σ C″) e⊥,
@@ -106,17 +106,22 @@ void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const P
   const double dist_c = rel.norm();
   if (dist_c <= f0.base_radius) return;
   const double phi = Angle(rel);
-  const double open = std::acos(f0.base_radius / dist_c);
+  const double cos_open = f0.base_radius / dist_c;
+  const double open = std::acos(cos_open), sin_open = std::sqrt(1.0 - cos_open * cos_open);
+  const Vec2 unit = rel / dist_c;
   const double p = g.gear->pitch_angle();
   const double margin = g.gear->max_tooth_offset();
   for (int s : {-1, 1}) {
     const double beta = phi + s * open;
     const double u0 = f0.hand * WrapAngle(beta - f0.start);
+    // Dir(β), the unit vector turned by ±open, without a sine and cosine.
+    const Vec2 radial(cos_open * unit.x() - s * sin_open * unit.y(),
+                      s * sin_open * unit.x() + cos_open * unit.y());
+    const Vec2 perp(-radial.y(), radial.x());
     ForEachRoll(u0, p, f0.u_min - margin, f0.u_max + margin, [&](double un, long j) {
       const int tooth = Mod(-f0.hand * j, g.gear->teeth());
       double u = un - f0.hand * g.gear->tooth_offset(tooth);
       if (u < f0.u_min || u >= f0.u_max) return;
-      const Vec2 radial = Dir(beta), perp(-radial.y(), radial.x());
       Vec2 point = f0.centre + f0.base_radius * (radial - f0.hand * u * perp);
       Vec2 normal = side * perp;
       Vec2 involute = point;  // the unrelieved flank's point at the contact's roll
@@ -141,17 +146,19 @@ void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const P
 struct WorldArc {
   Vec2 centre;
   double from, to;
-  Vec2 nominal_centre;  // the unrelieved round of the nominal tooth
 };
 WorldArc TipRoundInWorld(const PosedGear& g, int tooth, int side) {
   const TipRound& t = g.gear->tip_round();
   const double turn = g.pose.rotation + tooth * g.gear->pitch_angle() + g.gear->tooth_offset(tooth);
   const Vec2 body(t.centre.x(), side * t.centre.y());
+  return {g.pose.geometric_centre + Rotate(body, turn), side * t.normal_from + turn,
+          side * t.normal_to + turn};
+}
+// The unrelieved round of the nominal tooth (where the FE table reads the contact), only for hits.
+Vec2 NominalTipRoundCentre(const PosedGear& g, int tooth, int side) {
   const TipRound& n = g.gear->nominal_tip_round();
   const double nominal_turn = g.pose.rotation + tooth * g.gear->pitch_angle();
-  return {g.pose.geometric_centre + Rotate(body, turn), side * t.normal_from + turn,
-          side * t.normal_to + turn,
-          g.pose.geometric_centre + Rotate(Vec2(n.centre.x(), side * n.centre.y()), nominal_turn)};
+  return g.pose.geometric_centre + Rotate(Vec2(n.centre.x(), side * n.centre.y()), nominal_turn);
 }
 
 double Lever(const Vec2& point, const Vec2& centre, const Vec2& force_direction) {
@@ -332,45 +339,54 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
           teeth.push_back(Mod(-f0.hand * j, owner.gear->teeth()));
         });
       }
+      // The mate's active involute lies between its form and tip-form circles: a round whose
+      // centre is farther than ρ + window outside that annulus touches none of its flanks.
+      const double r_lo = std::min(other.gear->form_radius(), other.gear->tip_form_radius());
+      const double r_hi = std::max(other.gear->form_radius(), other.gear->tip_form_radius());
+      const double reach_lo = std::max(0.0, r_lo - rho - window), reach_hi = r_hi + rho + window;
       for (const int tooth : teeth) {
         const WorldArc arc = TipRoundInWorld(owner, tooth, owner_side);
-        ArcAgainstFlanks(arc.centre, rho, arc.from, arc.to, other, other_side, window,
-                         [&](const ArcHit& h) {
-                           PotentialContact c;
-                           c.kind = owner_is_a ? ContactKind::kTipRoundA : ContactKind::kTipRoundB;
-                           c.side_a = l.side_a;
-                           c.side_b = l.side_b;
-                           const Vec2 on_arc = arc.centre - rho * h.flank_normal;
-                           c.overlap = rho - h.distance;
-                           const double other_radius = other.gear->base_radius() * h.roll;
-                           if (owner_is_a) {
-                             c.tooth_a = tooth;
-                             c.tooth_b = h.tooth;
-                             c.point_a = on_arc;
-                             c.point_b = h.flank_point;
-                             c.surface_a = arc.nominal_centre - rho * h.flank_normal;
-                             c.surface_b = h.flank_surface;
-                             c.normal = -h.flank_normal;
-                             c.curvature_radius_a = rho;
-                             c.curvature_radius_b = ring_sign * other_radius;
-                             c.roll_b = h.roll;
-                           } else {
-                             c.tooth_a = h.tooth;
-                             c.tooth_b = tooth;
-                             c.point_a = h.flank_point;
-                             c.point_b = on_arc;
-                             c.surface_a = h.flank_surface;
-                             c.surface_b = arc.nominal_centre - rho * h.flank_normal;
-                             c.normal = h.flank_normal;
-                             c.curvature_radius_a = other_radius;
-                             c.curvature_radius_b = rho;
-                             c.roll_a = h.roll;
-                           }
-                           c.point = 0.5 * (c.point_a + c.point_b);
-                           c.lever_a = Lever(c.point, oa, -c.normal);
-                           c.lever_b = Lever(c.point, ob, c.normal);
-                           out.push_back(c);
-                         });
+        const double dist2 = (arc.centre - other.pose.geometric_centre).squaredNorm();
+        if (dist2 < reach_lo * reach_lo || dist2 > reach_hi * reach_hi) continue;
+        ArcAgainstFlanks(
+            arc.centre, rho, arc.from, arc.to, other, other_side, window, [&](const ArcHit& h) {
+              PotentialContact c;
+              c.kind = owner_is_a ? ContactKind::kTipRoundA : ContactKind::kTipRoundB;
+              c.side_a = l.side_a;
+              c.side_b = l.side_b;
+              const Vec2 on_arc = arc.centre - rho * h.flank_normal;
+              c.overlap = rho - h.distance;
+              const double other_radius = other.gear->base_radius() * h.roll;
+              if (owner_is_a) {
+                c.tooth_a = tooth;
+                c.tooth_b = h.tooth;
+                c.point_a = on_arc;
+                c.point_b = h.flank_point;
+                c.surface_a =
+                    NominalTipRoundCentre(owner, tooth, owner_side) - rho * h.flank_normal;
+                c.surface_b = h.flank_surface;
+                c.normal = -h.flank_normal;
+                c.curvature_radius_a = rho;
+                c.curvature_radius_b = ring_sign * other_radius;
+                c.roll_b = h.roll;
+              } else {
+                c.tooth_a = h.tooth;
+                c.tooth_b = tooth;
+                c.point_a = h.flank_point;
+                c.point_b = on_arc;
+                c.surface_a = h.flank_surface;
+                c.surface_b =
+                    NominalTipRoundCentre(owner, tooth, owner_side) - rho * h.flank_normal;
+                c.normal = h.flank_normal;
+                c.curvature_radius_a = other_radius;
+                c.curvature_radius_b = rho;
+                c.roll_a = h.roll;
+              }
+              c.point = 0.5 * (c.point_a + c.point_b);
+              c.lever_a = Lever(c.point, oa, -c.normal);
+              c.lever_b = Lever(c.point, ob, c.normal);
+              out.push_back(c);
+            });
       }
     };
     tips(a, b, l.side_a, l.side_b, l.base_angle_a, true);

@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <map>
+#include <stdexcept>
 
 #include "epicycle/compliance/compliance_operator.hpp"
 #include "epicycle/compliance/influence_cache.hpp"
@@ -105,9 +106,16 @@ Eigen::MatrixXd FeStageCompliance::Matrix(const geometry::Stage& stage,
   }
   std::vector<compliance::OperatorContact> oc;
   oc.reserve(contacts.size());
-  for (const StageContact& s : contacts)
-    oc.push_back(Sides(s.contact, s.body_a, s.body_b, s.Label()));
-  return compliance::AssembleCompliance(bodies, oc);
+  for (const StageContact& s : contacts) oc.push_back(Sides(s.contact, s.body_a, s.body_b, {}));
+  try {
+    return compliance::AssembleCompliance(bodies, oc);
+  } catch (const std::invalid_argument& e) {
+    // The labels only when something is wrong: this is on the dynamic model's hot path.
+    std::string text = e.what();
+    for (std::size_t j = 0; j < contacts.size(); ++j)
+      text += (j == 0 ? "; contacts: " : ", ") + std::to_string(j) + " = " + contacts[j].Label();
+    throw std::invalid_argument(text);
+  }
 }
 
 double FeStageCompliance::JoiningDepth(int body) const { return tables_.Table(body).join_depth(); }

@@ -79,9 +79,9 @@ ContactTerms StageModel::Terms(const geometry::StagePoses& poses) const {
   if (setup_.local_terms) {
     t.local.reserve(n);
     for (const StageContact& s : t.contacts) {
-      t.local.push_back(ContactLocalTerm(
-          s.contact, BodyGear(s.body_a), BodyGear(s.body_b), material_, setup_.plane,
-          compliance_.JoiningDepth(s.body_a), compliance_.JoiningDepth(s.body_b), s.Label()));
+      t.local.push_back(ContactLocalTerm(s, BodyGear(s.body_a), BodyGear(s.body_b), material_,
+                                         setup_.plane, compliance_.JoiningDepth(s.body_a),
+                                         compliance_.JoiningDepth(s.body_b)));
     }
   }
   return t;

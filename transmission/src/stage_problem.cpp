@@ -66,24 +66,50 @@ std::vector<StageContact> SearchStage(const geometry::Stage& stage,
   return out;
 }
 
+namespace {
+
+// False if the radii give no positive reduced radius (the caller names the contact).
+bool LocalTermOf(const PotentialContact& contact, const geometry::Gear& a, const geometry::Gear& b,
+                 const Material& material, solvers::PlaneAssumption plane, double depth_a,
+                 double depth_b, solvers::LocalTermParameters* out) {
+  solvers::LocalTermParameters& l = *out;
+  l.face_width = std::min(a.spec().face_width, b.spec().face_width);
+  l.plane = plane;
+  l.body[0] = {material.youngs_modulus, material.poisson_ratio, depth_a};
+  l.body[1] = {material.youngs_modulus, material.poisson_ratio, depth_b};
+  const double curvature = 1.0 / contact.curvature_radius_a + 1.0 / contact.curvature_radius_b;
+  if (!(curvature > 0) || !std::isfinite(curvature)) return false;
+  l.reduced_radius = 1.0 / curvature;
+  return true;
+}
+
+std::invalid_argument NoReducedRadius(const PotentialContact& contact, const std::string& label) {
+  return std::invalid_argument("contact " + label + ": curvature radii " +
+                               std::to_string(contact.curvature_radius_a) + " m and " +
+                               std::to_string(contact.curvature_radius_b) +
+                               " m give no positive reduced radius");
+}
+
+}  // namespace
+
 solvers::LocalTermParameters ContactLocalTerm(const geometry::PotentialContact& contact,
                                               const geometry::Gear& a, const geometry::Gear& b,
                                               const Material& material,
                                               solvers::PlaneAssumption plane, double depth_a,
                                               double depth_b, const std::string& label) {
   solvers::LocalTermParameters l;
-  l.face_width = std::min(a.spec().face_width, b.spec().face_width);
-  l.plane = plane;
-  const double curvature = 1.0 / contact.curvature_radius_a + 1.0 / contact.curvature_radius_b;
-  if (!(curvature > 0) || !std::isfinite(curvature)) {
-    throw std::invalid_argument("contact " + label + ": curvature radii " +
-                                std::to_string(contact.curvature_radius_a) + " m and " +
-                                std::to_string(contact.curvature_radius_b) +
-                                " m give no positive reduced radius");
-  }
-  l.reduced_radius = 1.0 / curvature;
-  l.body[0] = {material.youngs_modulus, material.poisson_ratio, depth_a};
-  l.body[1] = {material.youngs_modulus, material.poisson_ratio, depth_b};
+  if (!LocalTermOf(contact, a, b, material, plane, depth_a, depth_b, &l))
+    throw NoReducedRadius(contact, label);
+  return l;
+}
+
+solvers::LocalTermParameters ContactLocalTerm(const StageContact& contact, const geometry::Gear& a,
+                                              const geometry::Gear& b, const Material& material,
+                                              solvers::PlaneAssumption plane, double depth_a,
+                                              double depth_b) {
+  solvers::LocalTermParameters l;
+  if (!LocalTermOf(contact.contact, a, b, material, plane, depth_a, depth_b, &l))
+    throw NoReducedRadius(contact.contact, contact.Label());
   return l;
 }
 

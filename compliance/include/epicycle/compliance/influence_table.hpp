@@ -1,5 +1,5 @@
-// The structural influence table of one gear body (docs/model.md §2): unit loads at the flank grid of
-// tooth 0, displacements at the flank grids of all teeth, joined to the local contact term at
+// The structural influence table of one gear body (docs/model.md §2): unit loads at the flank grid
+// of tooth 0, displacements at the flank grids of all teeth, joined to the local contact term at
 // depth h, symmetrised (Maxwell–Betti) and interpolated over load position, response position and
 // tooth-index difference.
 #pragma once
@@ -98,11 +98,30 @@ class InfluenceTable {
   /// @throws std::invalid_argument for a flank other than ±1 or an arc length outside [0, s_max].
   Eigen::Matrix2d Influence(const FlankPosition& load, const FlankPosition& response) const;
 
+  /// A flank position with its interpolation stencil, prepared once when one position meets many
+  /// others (a compliance matrix interpolates every pair of its contacts): Λ along the flank is
+  /// the cubic Hermite interpolant of the grid values with finite-difference slopes, a weighted
+  /// sum over 4 consecutive grid points.
+  struct Node {
+    FlankPosition position;
+    int first = 0;                   ///< first grid point of the stencil
+    std::array<double, 4> weight{};  ///< weights of grid points first … first + 3 [-]
+  };
+  /// @throws std::invalid_argument for a flank other than ±1 or an arc length outside [0, s_max].
+  Node Prepare(const FlankPosition& position) const;
+  /// Λ(load, response) [m/N] of prepared positions (the same value as from the positions).
+  Eigen::Matrix2d PreparedInfluence(const Node& load, const Node& response) const;
+
   /// The flank position of a body-frame point on tooth k's flank σ: the foot of the point on a
   /// polyline of the generated profile with 32 points per grid interval (chord error κΔ²/8 below
-  /// 1e-8 m here; grid nodes are located exactly), about 0.2 µs. @throws std::invalid_argument if the point lies farther than 1e-3·m from the
-  /// flank between the form point and the tip-round end.
+  /// 1e-8 m here; grid nodes are located exactly), about 0.2 µs. @throws std::invalid_argument if
+  /// the point lies farther than 1e-3·m from the flank between the form point and the tip-round
+  /// end.
   FlankPosition Locate(const Eigen::Vector2d& point, int tooth, int flank) const;
+  /// The same, returning false instead of throwing when the point is off the flank (hot paths
+  /// that add their own context to the message).
+  bool TryLocate(const Eigen::Vector2d& point, int tooth, int flank, FlankPosition* out,
+                 double* distance) const;
 
   /// n_rᵀ Λ(p_load, p_response) n_l [m/N]: the structural compliance between a load along the
   /// unit vector n_l at p_load (tooth k1, flank σ1) and the displacement along n_r at p_response
@@ -129,7 +148,7 @@ class InfluenceTable {
 
  private:
   std::size_t Index(int fl, int i, int c, int k, int f, int j) const;
-  void BuildDenseProfile();  // dense_ from grid_ and path_
+  void BuildDenseProfile();  // dense_ and tooth_rotation_ from grid_ and path_
   void Weights(double s, int* first, std::array<double, 4>* w) const;
 
   int teeth_ = 0;
@@ -151,6 +170,8 @@ class InfluenceTable {
     double arc_length;  // from the form point [m]
   };
   std::vector<DensePoint> dense_;
+  std::vector<double> dense_radius_;  // |point|: monotonic along the profile (Locate's bisection)
+  std::vector<Eigen::Matrix2d> tooth_rotation_;  // R(k·2π/z), k = 0 … z − 1
 };
 
 }  // namespace epicycle::compliance

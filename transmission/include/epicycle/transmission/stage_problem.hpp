@@ -1,5 +1,5 @@
-// From a posed stage to the contact problem of docs/model.md §3: the potential contacts of every mesh,
-// their compliance (from the compliance layer, through StageCompliance), the local terms, the
+// From a posed stage to the contact problem of docs/model.md §3: the potential contacts of every
+// mesh, their compliance (from the compliance layer, through StageCompliance), the local terms, the
 // overlaps, and the equilibrium equalities of the members whose position is set by equilibrium.
 #pragma once
 
@@ -27,6 +27,13 @@ struct StageContact {
   int body_a = kSunBody, body_b = kRingBody;
   bool loaded = true;  ///< on the flanks that carry the scene's torque (drive side)
   std::string Label() const;
+  /// The same potential contact as `other` (what Label() names: mesh, planet, kind, flank side,
+  /// teeth), compared without building the labels.
+  bool SameAs(const StageContact& other) const {
+    return planet == other.planet && mesh == other.mesh && loaded == other.loaded &&
+           contact.kind == other.contact.kind && contact.tooth_a == other.contact.tooth_a &&
+           contact.tooth_b == other.contact.tooth_b;
+  }
 };
 
 /// Every potential contact of every mesh at the given poses (both flanks, within the window).
@@ -69,14 +76,19 @@ struct StageProblem {
   solvers::ContactProblemData data;  ///< ready for solvers::ContactProblem
 };
 
-/// The local contact term of a potential contact between gears a and b (docs/model.md §2): face width
-/// the narrower one, R_eq from the two signed curvature radii (1/R = 1/ρ_a + 1/ρ_b; a concave ring
-/// flank has ρ < 0), both bodies of `material`, joined at depths h_a and h_b [m].
+/// The local contact term of a potential contact between gears a and b (docs/model.md §2): face
+/// width the narrower one, R_eq from the two signed curvature radii (1/R = 1/ρ_a + 1/ρ_b; a concave
+/// ring flank has ρ < 0), both bodies of `material`, joined at depths h_a and h_b [m].
 /// @throws std::invalid_argument naming `label` if the radii give no positive reduced radius.
 solvers::LocalTermParameters ContactLocalTerm(const geometry::PotentialContact& contact,
                                               const geometry::Gear& a, const geometry::Gear& b,
                                               const Material& material,
                                               solvers::PlaneAssumption plane, double depth_a,
                                               double depth_b, const std::string& label);
+/// The same for a stage contact, named by its label (built only for the message).
+solvers::LocalTermParameters ContactLocalTerm(const StageContact& contact, const geometry::Gear& a,
+                                              const geometry::Gear& b, const Material& material,
+                                              solvers::PlaneAssumption plane, double depth_a,
+                                              double depth_b);
 
 }  // namespace epicycle::transmission
