@@ -28,6 +28,15 @@ struct InfluenceTableOptions {
   /// d_i the distance from grid point i along its inward normal to the tooth centre line (the
   /// largest h that keeps the read-out on the loaded tooth's side), so that h ± 50 % stays valid.
   double join_depth = 0.0;
+  /// Add the layer term to the depth-h self entries (docs/compliance.md, "The join"): the
+  /// structural strain between the surface and h that the half-plane local term does not carry,
+  ///   c_i = h · [ (D_i(r1) − D_i(r2)) − a ln(r2/r1) ] / (r2 − r1),   a = 2k/(π b),
+  /// D_i(r) = mᵀ U_i(r) m the FE's normal approach at depth r below grid point i under a unit
+  /// normal load there (m the outward normal), r1 = kDefaultDepthFraction · min_i d_i,
+  /// r2 = kLayerDepthRatio · r1, k = (1−ν²)/E plane strain, 1/E plane stress (a ln(r2/r1) is
+  /// Flamant's half-plane approach between r1 and r2). false: the join of the paper (FE at depth
+  /// h plus the local term, nothing in between), kept for the comparison.
+  bool layer_term = true;
   /// Right-hand sides solved per sweep of the factor [-], ≥ 1 (bounds the memory of the solve).
   int batch = 32;
   /// @throws std::invalid_argument naming the field, its value and the rule.
@@ -75,6 +84,9 @@ class InfluenceTable {
   /// The join needs h ≥ kMinDepthOverHalfWidth · L (L the Hertz half-width) so that the FE point
   /// load and the Hertzian pressure give the same displacement at depth h (Saint-Venant).
   static constexpr double kMinDepthOverHalfWidth = 3.0;
+  /// r2/r1 of the depths where the layer term's strain is measured (see
+  /// InfluenceTableOptions::layer_term): r2 = 0.9 min_i d_i stays on the loaded side of the tooth.
+  static constexpr double kLayerDepthRatio = 1.5;
 
   int teeth() const { return teeth_; }
   const FlankGrid& grid() const { return grid_; }
@@ -119,6 +131,9 @@ class InfluenceTable {
   /// +1, 1 for σ = −1.
   Eigen::Matrix2d GridValue(int fl, int i, int k, int f, int j) const;
   Eigen::Matrix2d SelfBlock(int fl, int i) const;
+  /// The layer term c_i [m/N] of grid point i of flank fl (0 when layer_term is off), already
+  /// contained in SelfBlock along the normal: SelfBlock = FE block at h (symmetrised) + c_i m mᵀ.
+  double LayerCompliance(int fl, int i) const;
 
   /// Binary serialisation (see influence_cache.hpp for the file format and its checks): the
   /// payload only, without header or checksum.
@@ -141,7 +156,8 @@ class InfluenceTable {
   FlankGrid grid_;
   std::vector<double> surface_;        // symmetrised, joined (self entries = depth blocks)
   std::vector<double> raw_;            // as solved (surface values everywhere)
-  std::vector<Eigen::Matrix2d> self_;  // [fl][i], symmetrised
+  std::vector<Eigen::Matrix2d> self_;  // [fl][i], symmetrised, with the layer term
+  std::vector<double> layer_;          // [fl][i], the layer term [m/N]
   std::shared_ptr<const geometry::Gear> gear_;
   std::shared_ptr<const ProfilePath> path_;
   // The σ = +1 flank of tooth 0 as a dense polyline (Locate): kDense points per grid interval.
