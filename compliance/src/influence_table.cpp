@@ -119,8 +119,8 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
       const EdgePoint ep = model.mesh().LocateOnEdgeSet(set, x);
       const Eigen::Vector2d m = model.mesh().EdgeNormal(set, ep);
       edge_normal[fl].push_back(m);
-      for (auto [depth, at] : {std::pair{t.depth_, &depth_at}, std::pair{r1, &r1_at},
-                               std::pair{r2, &r2_at}}) {
+      for (auto [depth, at] :
+           {std::pair{t.depth_, &depth_at}, std::pair{r1, &r1_at}, std::pair{r2, &r2_at}}) {
         try {
           (*at)[fl].push_back(model.LocatePoint(model.mesh().EdgePosition(set, ep) - depth * m));
         } catch (const std::invalid_argument& e) {
@@ -134,12 +134,11 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
   // Flamant's coefficient a = 2k/(π b) (k = (1−ν²)/E plane strain, 1/E plane stress): the
   // half-plane's normal approach between depths r1 and r2 under a unit point load is a ln(r2/r1).
   const ElasticMaterial& mat = model.material();
-  const double flamant =
-      2.0 *
-      (mat.plane == PlaneAssumption::kPlaneStrain
-           ? (1.0 - mat.poisson_ratio * mat.poisson_ratio) / mat.youngs_modulus
-           : 1.0 / mat.youngs_modulus) /
-      (kPi * mat.thickness);
+  const double flamant = 2.0 *
+                         (mat.plane == PlaneAssumption::kPlaneStrain
+                              ? (1.0 - mat.poisson_ratio * mat.poisson_ratio) / mat.youngs_modulus
+                              : 1.0 / mat.youngs_modulus) /
+                         (kPi * mat.thickness);
   const std::size_t total = static_cast<std::size_t>(2) * n * 2 * z * 2 * n * 2;
   std::vector<double> raw(total, 0.0);
   std::vector<Eigen::Matrix2d> self(static_cast<std::size_t>(2) * n, Eigen::Matrix2d::Zero());

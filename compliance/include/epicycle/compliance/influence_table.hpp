@@ -1,5 +1,5 @@
-// The structural influence table of one gear body (docs/model.md §2): unit loads at the flank grid of
-// tooth 0, displacements at the flank grids of all teeth, joined to the local contact term at
+// The structural influence table of one gear body (docs/model.md §2): unit loads at the flank grid
+// of tooth 0, displacements at the flank grids of all teeth, joined to the local contact term at
 // depth h, symmetrised (Maxwell–Betti) and interpolated over load position, response position and
 // tooth-index difference.
 #pragma once
@@ -112,8 +112,9 @@ class InfluenceTable {
 
   /// The flank position of a body-frame point on tooth k's flank σ: the foot of the point on a
   /// polyline of the generated profile with 32 points per grid interval (chord error κΔ²/8 below
-  /// 1e-8 m here; grid nodes are located exactly), about 0.2 µs. @throws std::invalid_argument if the point lies farther than 1e-3·m from the
-  /// flank between the form point and the tip-round end.
+  /// 1e-8 m here; grid nodes are located exactly), about 0.2 µs. @throws std::invalid_argument if
+  /// the point lies farther than 1e-3·m from the flank between the form point and the tip-round
+  /// end.
   FlankPosition Locate(const Eigen::Vector2d& point, int tooth, int flank) const;
 
   /// n_rᵀ Λ(p_load, p_response) n_l [m/N]: the structural compliance between a load along the
