@@ -108,9 +108,12 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
   t0 = Cpu();
   // Depth read-out points of tooth 0's grid (DisplacementAtDepth's construction: the edge point
   // at the node, minus the depth times the edge's outward normal m), located once: at h (the
-  // join) and at the two depths r1 < r2 where the layer strain is measured.
+  // join) and at kLayerSamples depths r_k evenly over [r1, r2], where the layer strain is measured.
   const double r1 = kDefaultDepthFraction * t.max_depth_, r2 = kLayerDepthRatio * r1;
-  std::array<std::vector<ElementPoint>, 2> depth_at, r1_at, r2_at;
+  std::array<double, kLayerSamples> r_k;
+  for (int k = 0; k < kLayerSamples; ++k) r_k[k] = r1 + (r2 - r1) * k / (kLayerSamples - 1);
+  std::array<std::vector<ElementPoint>, 2> depth_at;
+  std::array<std::array<std::vector<ElementPoint>, kLayerSamples>, 2> layer_at;
   std::array<std::vector<Eigen::Vector2d>, 2> edge_normal;
   for (int fl = 0; fl < 2; ++fl) {
     const std::string set = std::string("flank0") + (fl == 0 ? "+" : "-");
@@ -119,10 +122,11 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
       const EdgePoint ep = model.mesh().LocateOnEdgeSet(set, x);
       const Eigen::Vector2d m = model.mesh().EdgeNormal(set, ep);
       edge_normal[fl].push_back(m);
-      for (auto [depth, at] :
-           {std::pair{t.depth_, &depth_at}, std::pair{r1, &r1_at}, std::pair{r2, &r2_at}}) {
+      for (int k = -1; k < kLayerSamples; ++k) {
+        const double depth = k < 0 ? t.depth_ : r_k[k];
+        std::vector<ElementPoint>& at = k < 0 ? depth_at[fl] : layer_at[fl][k];
         try {
-          (*at)[fl].push_back(model.LocatePoint(model.mesh().EdgePosition(set, ep) - depth * m));
+          at.push_back(model.LocatePoint(model.mesh().EdgePosition(set, ep) - depth * m));
         } catch (const std::invalid_argument& e) {
           throw std::invalid_argument(who + "the depth read-out of grid point " +
                                       std::to_string(i) + " at " + Num(depth * 1e3) +
@@ -142,7 +146,9 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
   const std::size_t total = static_cast<std::size_t>(2) * n * 2 * z * 2 * n * 2;
   std::vector<double> raw(total, 0.0);
   std::vector<Eigen::Matrix2d> self(static_cast<std::size_t>(2) * n, Eigen::Matrix2d::Zero());
-  std::vector<Eigen::Matrix2d> at_r1(self), at_r2(self);
+  // Normal approach mᵀ U m at the layer depths per grid point (the sum over the two load cases).
+  std::vector<std::array<double, kLayerSamples>> normal_at(static_cast<std::size_t>(2) * n);
+  for (auto& v : normal_at) v.fill(0.0);
   const int cases = 2 * n * 2;
   for (int first = 0; first < cases; first += options.batch) {
     const int count = std::min(options.batch, cases - first);
@@ -166,24 +172,41 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
       }
       const std::size_t g = static_cast<std::size_t>(fl) * n + i;
       self[g].col(c) = model.Displacement(u.col(q), depth_at[fl][i]);
-      at_r1[g].col(c) = model.Displacement(u.col(q), r1_at[fl][i]);
-      at_r2[g].col(c) = model.Displacement(u.col(q), r2_at[fl][i]);
+      const Eigen::Vector2d& m = edge_normal[fl][i];
+      for (int k = 0; k < kLayerSamples; ++k)
+        normal_at[g][k] += m(c) * m.dot(model.Displacement(u.col(q), layer_at[fl][k][i]));
     }
   }
-  // The layer term (docs/compliance.md, "The join"): the FE's normal approach between r1 and r2
-  // less Flamant's is the strain of the structural (non-singular) field, which the half-plane
-  // local term does not contain; carried linearly from there to the surface it adds h·ε_reg
-  // between the surface and h, so that the sum of the two terms no longer depends on h.
+  // The layer term (docs/compliance.md, "The layer term"): the FE's normal approach less
+  // Flamant's, R(r) = D(r) + a ln r, is the structural (non-singular) field, which the half-plane
+  // local term does not contain. Its slope over [r1, r2] (least squares over the samples: the
+  // read-out inside an element carries an interpolation error that varies with the depth, which
+  // the fit averages), carried linearly to the surface, adds −h R' between the surface and h,
+  // so that the sum of the two terms no longer depends on h.
   std::vector<double> layer(static_cast<std::size_t>(2) * n, 0.0);
   if (options.layer_term) {
-    for (int fl = 0; fl < 2; ++fl) {
-      for (int i = 0; i < n; ++i) {
-        const std::size_t g = static_cast<std::size_t>(fl) * n + i;
-        const Eigen::Vector2d& m = edge_normal[fl][i];
-        const double regular =
-            m.dot((at_r1[g] - at_r2[g]) * m) - flamant * std::log(r2 / r1);  // [m/N]
-        layer[g] = t.depth_ * regular / (r2 - r1);
+    double mean_r = 0.0;
+    for (double r : r_k) mean_r += r / kLayerSamples;
+    for (std::size_t g = 0; g < layer.size(); ++g) {
+      double mean_v = 0.0;
+      for (int k = 0; k < kLayerSamples; ++k)
+        mean_v += (normal_at[g][k] + flamant * std::log(r_k[k])) / kLayerSamples;
+      double sxy = 0.0, sxx = 0.0;
+      for (int k = 0; k < kLayerSamples; ++k) {
+        const double dr = r_k[k] - mean_r;
+        sxy += dr * (normal_at[g][k] + flamant * std::log(r_k[k]) - mean_v);
+        sxx += dr * dr;
       }
+      layer[g] = -t.depth_ * sxy / sxx;  // [m/N]
+    }
+    // Grid points alternate between corner and mid-side nodes of the Q8 edges, whose point loads
+    // leave different errors one element deep: a (1, 2, 1)/4 filter along the flank removes that
+    // alternation exactly and keeps linear trends (the structural field varies over the tooth's
+    // thickness, many grid spacings).
+    for (int fl = 0; fl < 2; ++fl) {
+      const std::vector<double> c(layer.begin() + fl * n, layer.begin() + (fl + 1) * n);
+      for (int i = 1; i + 1 < n; ++i)
+        layer[static_cast<std::size_t>(fl) * n + i] = 0.25 * (c[i - 1] + 2.0 * c[i] + c[i + 1]);
     }
   }
 

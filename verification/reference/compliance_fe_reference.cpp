@@ -157,13 +157,13 @@ TEST_CASE("Mesh stiffness, transmission error and load shares against the FE con
   //    ×10/9 for the rest of the way to K → ∞;
   //  - the hybrid model's own discretisation: kTables, twice (a Richardson bound, as for the
   //    reference) the largest change of a zone's mean or peak k when every table is refined ×2
-  //    (the [.fe_reference_study] case below, layer term on): ISO 0.13 % (peak), sun–planet
-  //    0.12 % (double), planet–ring 0.41 % (single: the ring's and planet's read-outs at depth).
+  //    (the [.fe_reference_study] case below, layer term on): ISO 0.18 % (peak), sun–planet
+  //    0.20 % (single), planet–ring 0.45 % (single: the ring's and planet's read-outs at depth).
   // θ(M) interpolation between the reference's load steps 14 % apart: below 1e-4.
   constexpr double kFeMesh = 2 * 0.00061;
   constexpr double kFePenalty = 0.00034;
   const std::map<std::string, double> tables_change = {
-      {"iso_pair_20_40", 0.0013}, {"paper_sun_planet", 0.0012}, {"paper_planet_ring", 0.0041}};
+      {"iso_pair_20_40", 0.0018}, {"paper_sun_planet", 0.0020}, {"paper_planet_ring", 0.0045}};
   transmission::FeComplianceOptions tables;
   tables.cache_directory = EPICYCLE_TEST_CACHE_DIR;
   transmission::FeComplianceOptions paper_join = tables;  // the join without the layer term

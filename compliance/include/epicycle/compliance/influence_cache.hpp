@@ -10,7 +10,7 @@ namespace epicycle::compliance {
 
 /// Version of the table file format and of the table's construction; part of the key, so a
 /// change of either makes every older file stale.
-inline constexpr std::uint32_t kInfluenceTableFormat = 2;
+inline constexpr std::uint32_t kInfluenceTableFormat = 3;
 
 /// 64-bit FNV-1a hash of everything that defines a table: kInfluenceTableFormat, every field of
 /// the gear spec that shapes the body (kind, z, m, b, α, x, tip and root radii and roundings, hub

@@ -28,14 +28,16 @@ struct InfluenceTableOptions {
   /// d_i the distance from grid point i along its inward normal to the tooth centre line (the
   /// largest h that keeps the read-out on the loaded tooth's side), so that h ± 50 % stays valid.
   double join_depth = 0.0;
-  /// Add the layer term to the depth-h self entries (docs/compliance.md, "The join"): the
+  /// Add the layer term to the depth-h self entries (docs/compliance.md, "The layer term"): the
   /// structural strain between the surface and h that the half-plane local term does not carry,
-  ///   c_i = h · [ (D_i(r1) − D_i(r2)) − a ln(r2/r1) ] / (r2 − r1),   a = 2k/(π b),
+  ///   c_i = −h · dR_i/dr,   R_i(r) = D_i(r) + a ln r,   a = 2k/(π b),
   /// D_i(r) = mᵀ U_i(r) m the FE's normal approach at depth r below grid point i under a unit
-  /// normal load there (m the outward normal), r1 = kDefaultDepthFraction · min_i d_i,
-  /// r2 = kLayerDepthRatio · r1, k = (1−ν²)/E plane strain, 1/E plane stress (a ln(r2/r1) is
-  /// Flamant's half-plane approach between r1 and r2). false: the join of the paper (FE at depth
-  /// h plus the local term, nothing in between), kept for the comparison.
+  /// normal load there (m the outward normal; −a ln r is Flamant's half-plane part, so R is the
+  /// structural rest), dR/dr the least-squares slope over kLayerSamples depths evenly in
+  /// [r1, r2], r1 = kDefaultDepthFraction · min_i d_i, r2 = kLayerDepthRatio · r1,
+  /// k = (1−ν²)/E plane strain, 1/E plane stress; then filtered along the flank by (1, 2, 1)/4
+  /// (removes the alternation between grid points on corner and mid-side nodes). false: the join of
+  /// the paper (FE at depth h plus the local term, nothing in between), kept for the comparison.
   bool layer_term = true;
   /// Right-hand sides solved per sweep of the factor [-], ≥ 1 (bounds the memory of the solve).
   int batch = 32;
@@ -87,6 +89,8 @@ class InfluenceTable {
   /// r2/r1 of the depths where the layer term's strain is measured (see
   /// InfluenceTableOptions::layer_term): r2 = 0.9 min_i d_i stays on the loaded side of the tooth.
   static constexpr double kLayerDepthRatio = 1.5;
+  /// Depths sampled evenly over [r1, r2] for the layer term's least-squares slope.
+  static constexpr int kLayerSamples = 7;
 
   int teeth() const { return teeth_; }
   const FlankGrid& grid() const { return grid_; }
