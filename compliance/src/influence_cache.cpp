@@ -85,6 +85,8 @@ std::uint64_t InfluenceTableKey(const geometry::GearSpec& s, const ElasticMateri
       h.Bytes(text->data(), text->size());
     }
   }
+  // The layer term enters only when switched off (a comparison run), like the mesher above.
+  if (!o.layer_term) h.Value(o.layer_term);
   return h.hash();
 }
 

@@ -15,6 +15,8 @@
 namespace epicycle::compliance {
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+
 double Cpu() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 Eigen::Matrix2d Rot(double angle) { return Eigen::Rotation2Dd(angle).toRotationMatrix(); }
@@ -106,27 +108,48 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
 
   t0 = Cpu();
   // Depth read-out points of tooth 0's grid (DisplacementAtDepth's construction: the edge point
-  // at the node, minus h times the edge's outward normal), located once.
+  // at the node, minus the depth times the edge's outward normal m), located once: at h (the
+  // join) and at kLayerSamples depths r_k evenly over [r1, r2], where the layer strain is measured.
+  const double r1 = kDefaultDepthFraction * t.max_depth_, r2 = kLayerDepthRatio * r1;
+  std::array<double, kLayerSamples> r_k;
+  for (int k = 0; k < kLayerSamples; ++k) r_k[k] = r1 + (r2 - r1) * k / (kLayerSamples - 1);
   std::array<std::vector<ElementPoint>, 2> depth_at;
+  std::array<std::array<std::vector<ElementPoint>, kLayerSamples>, 2> layer_at;
+  std::array<std::vector<Eigen::Vector2d>, 2> edge_normal;
   for (int fl = 0; fl < 2; ++fl) {
     const std::string set = std::string("flank0") + (fl == 0 ? "+" : "-");
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector2d x = model.mesh().nodes[body.grid_nodes[0][fl][i]];
       const EdgePoint ep = model.mesh().LocateOnEdgeSet(set, x);
-      const Eigen::Vector2d xd =
-          model.mesh().EdgePosition(set, ep) - t.depth_ * model.mesh().EdgeNormal(set, ep);
-      try {
-        depth_at[fl].push_back(model.LocatePoint(xd));
-      } catch (const std::invalid_argument& e) {
-        throw std::invalid_argument(who + "the depth read-out of grid point " + std::to_string(i) +
-                                    " at h = " + Num(t.depth_ * 1e3) + " mm is outside the body (" +
-                                    e.what() + ")");
+      const Eigen::Vector2d m = model.mesh().EdgeNormal(set, ep);
+      edge_normal[fl].push_back(m);
+      for (int k = -1; k < kLayerSamples; ++k) {
+        const double depth = k < 0 ? t.depth_ : r_k[k];
+        std::vector<ElementPoint>& at = k < 0 ? depth_at[fl] : layer_at[fl][k];
+        try {
+          at.push_back(model.LocatePoint(model.mesh().EdgePosition(set, ep) - depth * m));
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(who + "the depth read-out of grid point " +
+                                      std::to_string(i) + " at " + Num(depth * 1e3) +
+                                      " mm is outside the body (" + e.what() + ")");
+        }
       }
     }
   }
+  // Flamant's coefficient a = 2k/(π b) (k = (1−ν²)/E plane strain, 1/E plane stress): the
+  // half-plane's normal approach between depths r1 and r2 under a unit point load is a ln(r2/r1).
+  const ElasticMaterial& mat = model.material();
+  const double flamant = 2.0 *
+                         (mat.plane == PlaneAssumption::kPlaneStrain
+                              ? (1.0 - mat.poisson_ratio * mat.poisson_ratio) / mat.youngs_modulus
+                              : 1.0 / mat.youngs_modulus) /
+                         (kPi * mat.thickness);
   const std::size_t total = static_cast<std::size_t>(2) * n * 2 * z * 2 * n * 2;
   std::vector<double> raw(total, 0.0);
   std::vector<Eigen::Matrix2d> self(static_cast<std::size_t>(2) * n, Eigen::Matrix2d::Zero());
+  // Normal approach mᵀ U m at the layer depths per grid point (the sum over the two load cases).
+  std::vector<std::array<double, kLayerSamples>> normal_at(static_cast<std::size_t>(2) * n);
+  for (auto& v : normal_at) v.fill(0.0);
   const int cases = 2 * n * 2;
   for (int first = 0; first < cases; first += options.batch) {
     const int count = std::min(options.batch, cases - first);
@@ -148,8 +171,43 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
           }
         }
       }
-      self[static_cast<std::size_t>(fl) * n + i].col(c) =
-          model.Displacement(u.col(q), depth_at[fl][i]);
+      const std::size_t g = static_cast<std::size_t>(fl) * n + i;
+      self[g].col(c) = model.Displacement(u.col(q), depth_at[fl][i]);
+      const Eigen::Vector2d& m = edge_normal[fl][i];
+      for (int k = 0; k < kLayerSamples; ++k)
+        normal_at[g][k] += m(c) * m.dot(model.Displacement(u.col(q), layer_at[fl][k][i]));
+    }
+  }
+  // The layer term (docs/compliance.md, "The layer term"): the FE's normal approach less
+  // Flamant's, R(r) = D(r) + a ln r, is the structural (non-singular) field, which the half-plane
+  // local term does not contain. Its slope over [r1, r2] (least squares over the samples: the
+  // read-out inside an element carries an interpolation error that varies with the depth, which
+  // the fit averages), carried linearly to the surface, adds −h R' between the surface and h,
+  // so that the sum of the two terms no longer depends on h.
+  std::vector<double> layer(static_cast<std::size_t>(2) * n, 0.0);
+  if (options.layer_term) {
+    double mean_r = 0.0;
+    for (double r : r_k) mean_r += r / kLayerSamples;
+    for (std::size_t g = 0; g < layer.size(); ++g) {
+      double mean_v = 0.0;
+      for (int k = 0; k < kLayerSamples; ++k)
+        mean_v += (normal_at[g][k] + flamant * std::log(r_k[k])) / kLayerSamples;
+      double sxy = 0.0, sxx = 0.0;
+      for (int k = 0; k < kLayerSamples; ++k) {
+        const double dr = r_k[k] - mean_r;
+        sxy += dr * (normal_at[g][k] + flamant * std::log(r_k[k]) - mean_v);
+        sxx += dr * dr;
+      }
+      layer[g] = -t.depth_ * sxy / sxx;  // [m/N]
+    }
+    // Grid points alternate between corner and mid-side nodes of the Q8 edges, whose point loads
+    // leave different errors one element deep: a (1, 2, 1)/4 filter along the flank removes that
+    // alternation exactly and keeps linear trends (the structural field varies over the tooth's
+    // thickness, many grid spacings).
+    for (int fl = 0; fl < 2; ++fl) {
+      const std::vector<double> c(layer.begin() + fl * n, layer.begin() + (fl + 1) * n);
+      for (int i = 1; i + 1 < n; ++i)
+        layer[static_cast<std::size_t>(fl) * n + i] = 0.25 * (c[i - 1] + 2.0 * c[i] + c[i + 1]);
     }
   }
 
@@ -198,6 +256,12 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
     }
   }
   for (auto& s : self) s = 0.5 * (s + s.transpose()).eval();
+  for (int fl = 0; fl < 2; ++fl) {
+    for (int i = 0; i < n; ++i) {
+      const std::size_t g = static_cast<std::size_t>(fl) * n + i;
+      self[g] += layer[g] * edge_normal[fl][i] * edge_normal[fl][i].transpose();
+    }
+  }
   // The join: the loaded point's own entry is the depth-h read-out.
   for (int fl = 0; fl < 2; ++fl) {
     for (int i = 0; i < n; ++i) {
@@ -213,6 +277,7 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
   t.raw_self_asymmetry_ = self_asym;
   t.surface_ = std::move(sym);
   t.self_ = std::move(self);
+  t.layer_ = std::move(layer);
   t.raw_ = std::move(raw);
   t.seconds_ = {t_mesh, t_factor, Cpu() - t0};
   return t;
@@ -434,6 +499,10 @@ Eigen::Matrix2d InfluenceTable::SelfBlock(int fl, int i) const {
   return self_[static_cast<std::size_t>(fl) * n_ + i];
 }
 
+double InfluenceTable::LayerCompliance(int fl, int i) const {
+  return layer_[static_cast<std::size_t>(fl) * n_ + i];
+}
+
 }  // namespace epicycle::compliance
 
 namespace epicycle::compliance {
@@ -492,6 +561,7 @@ void InfluenceTable::WritePayload(std::ostream& out) const {
   std::vector<double> s;
   for (const auto& m : self_) s.insert(s.end(), {m(0, 0), m(1, 0), m(0, 1), m(1, 1)});
   PutVector(out, s);
+  PutVector(out, layer_);
 }
 
 InfluenceTable InfluenceTable::ReadPayload(std::istream& in, const geometry::Gear& gear) {
@@ -527,6 +597,7 @@ InfluenceTable InfluenceTable::ReadPayload(std::istream& in, const geometry::Gea
     m << s[4 * k], s[4 * k + 2], s[4 * k + 1], s[4 * k + 3];
     t.self_.push_back(m);
   }
+  t.layer_ = GetVector(in, static_cast<std::size_t>(2) * n);
   t.gear_ = std::make_shared<const geometry::Gear>(gear);
   t.path_ = std::make_shared<const ProfilePath>(*t.gear_);
   t.BuildDenseProfile();

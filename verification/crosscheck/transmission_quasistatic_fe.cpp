@@ -375,9 +375,12 @@ TEST_CASE("quasi-static FE: a tangential error past the threshold unloads planet
   VerifyRow("tangential pin error -40 um (twice the loss-of-contact threshold)",
             "LSR_1 = 0, LSR_2 + LSR_3 = 1",
             "max LSR_1 = " + Sci(worst) + ", max |LSR_2 + LSR_3 - 1| = " + Sci(worst_sum),
-            Sci(std::max(worst, worst_sum)), "0 and 1e-9", worst == 0.0 && worst_sum <= 1e-9);
+            Sci(std::max(worst, worst_sum)), "1e-9 (solver)", worst <= 1e-9 && worst_sum <= 1e-9);
+  // LSR_1 is zero to the solves' tolerance, 1e-9 as for the sum: an inactive contact has F = 0
+  // exactly, but one sitting on the loss-of-contact boundary may keep a round-off force (measured
+  // 3.7e-40 of the torque at one position since the layer term, docs/compliance.md).
   for (const auto& p : r.results) {
-    CHECK(p.load_sharing[0] == 0.0);
+    CHECK(std::abs(p.load_sharing[0]) <= 1e-9);
     CHECK(p.load_sharing[1] + p.load_sharing[2] == Approx(1.0).epsilon(1e-9));
     CHECK(p.load_sharing[1] > 0.4);
     CHECK(p.load_sharing[2] > 0.4);

@@ -10,13 +10,13 @@ namespace epicycle::compliance {
 
 /// Version of the table file format and of the table's construction; part of the key, so a
 /// change of either makes every older file stale.
-inline constexpr std::uint32_t kInfluenceTableFormat = 1;
+inline constexpr std::uint32_t kInfluenceTableFormat = 3;
 
 /// 64-bit FNV-1a hash of everything that defines a table: kInfluenceTableFormat, every field of
 /// the gear spec that shapes the body (kind, z, m, b, α, x, tip and root radii and roundings, hub
 /// or rim radius, cutter data, thickness error, tip-thickness limit; not the name), the material
-/// (E, ν, b, plane) and the table options that change its values (mesh options, join depth; not
-/// the solve batch). Doubles enter bit-exactly.
+/// (E, ν, b, plane) and the table options that change its values (mesh options, join depth, layer
+/// term; not the solve batch). Doubles enter bit-exactly.
 std::uint64_t InfluenceTableKey(const geometry::GearSpec& spec, const ElasticMaterial& material,
                                 const InfluenceTableOptions& options);
 

@@ -28,6 +28,17 @@ struct InfluenceTableOptions {
   /// d_i the distance from grid point i along its inward normal to the tooth centre line (the
   /// largest h that keeps the read-out on the loaded tooth's side), so that h ± 50 % stays valid.
   double join_depth = 0.0;
+  /// Add the layer term to the depth-h self entries (docs/compliance.md, "The layer term"): the
+  /// structural strain between the surface and h that the half-plane local term does not carry,
+  ///   c_i = −h · dR_i/dr,   R_i(r) = D_i(r) + a ln r,   a = 2k/(π b),
+  /// D_i(r) = mᵀ U_i(r) m the FE's normal approach at depth r below grid point i under a unit
+  /// normal load there (m the outward normal; −a ln r is Flamant's half-plane part, so R is the
+  /// structural rest), dR/dr the least-squares slope over kLayerSamples depths evenly in
+  /// [r1, r2], r1 = kDefaultDepthFraction · min_i d_i, r2 = kLayerDepthRatio · r1,
+  /// k = (1−ν²)/E plane strain, 1/E plane stress; then filtered along the flank by (1, 2, 1)/4
+  /// (removes the alternation between grid points on corner and mid-side nodes). false: the join of
+  /// the paper (FE at depth h plus the local term, nothing in between), kept for the comparison.
+  bool layer_term = true;
   /// Right-hand sides solved per sweep of the factor [-], ≥ 1 (bounds the memory of the solve).
   int batch = 32;
   /// @throws std::invalid_argument naming the field, its value and the rule.
@@ -75,6 +86,11 @@ class InfluenceTable {
   /// The join needs h ≥ kMinDepthOverHalfWidth · L (L the Hertz half-width) so that the FE point
   /// load and the Hertzian pressure give the same displacement at depth h (Saint-Venant).
   static constexpr double kMinDepthOverHalfWidth = 3.0;
+  /// r2/r1 of the depths where the layer term's strain is measured (see
+  /// InfluenceTableOptions::layer_term): r2 = 0.9 min_i d_i stays on the loaded side of the tooth.
+  static constexpr double kLayerDepthRatio = 1.5;
+  /// Depths sampled evenly over [r1, r2] for the layer term's least-squares slope.
+  static constexpr int kLayerSamples = 7;
 
   int teeth() const { return teeth_; }
   const FlankGrid& grid() const { return grid_; }
@@ -138,6 +154,9 @@ class InfluenceTable {
   /// +1, 1 for σ = −1.
   Eigen::Matrix2d GridValue(int fl, int i, int k, int f, int j) const;
   Eigen::Matrix2d SelfBlock(int fl, int i) const;
+  /// The layer term c_i [m/N] of grid point i of flank fl (0 when layer_term is off), already
+  /// contained in SelfBlock along the normal: SelfBlock = FE block at h (symmetrised) + c_i m mᵀ.
+  double LayerCompliance(int fl, int i) const;
 
   /// Binary serialisation (see influence_cache.hpp for the file format and its checks): the
   /// payload only, without header or checksum.
@@ -160,7 +179,8 @@ class InfluenceTable {
   FlankGrid grid_;
   std::vector<double> surface_;        // symmetrised, joined (self entries = depth blocks)
   std::vector<double> raw_;            // as solved (surface values everywhere)
-  std::vector<Eigen::Matrix2d> self_;  // [fl][i], symmetrised
+  std::vector<Eigen::Matrix2d> self_;  // [fl][i], symmetrised, with the layer term
+  std::vector<double> layer_;          // [fl][i], the layer term [m/N]
   std::shared_ptr<const geometry::Gear> gear_;
   std::shared_ptr<const ProfilePath> path_;
   // The σ = +1 flank of tooth 0 as a dense polyline (Locate): kDense points per grid interval.
