@@ -279,6 +279,12 @@ void WriteSvgScatter(const std::string& path, const std::vector<std::string>& ba
   std::ofstream(path) << s;
 }
 
+// "status: message", without repeating the status where the back end's message starts with it.
+std::string WithStatus(const std::string& status, const std::string& message) {
+  if (message.empty()) return status;
+  return message.rfind(status, 0) == 0 ? message : status + ": " + message;
+}
+
 // One (back end, problem) solve of `contact compare`; a back end that throws (it should not)
 // is a failed run with the exception's text, so the other runs still go on.
 Run CompareRun(Backend b, const ContactProblem& problem, const ContactOptions& options, int repeats,
@@ -336,10 +342,10 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
     const Run ref = Reference(problem);
     if (ref.report.status != ContactStatus::kConverged)
       fail(
-          fmt::format("reference (newton at {:.0e}) on {} ({}): {}: {}; errors of this problem "
+          fmt::format("reference (newton at {:.0e}) on {} ({}): {}; errors of this problem "
                       "are against its last iterate",
                       kReferenceTolerance, problem.name(), path,
-                      solvers::StatusName(ref.report.status), ref.report.message));
+                      WithStatus(solvers::StatusName(ref.report.status), ref.report.message)));
     for (Backend b : backends) {
       std::string error;
       const Run run = CompareRun(b, problem, options, repeats, &error);
@@ -360,8 +366,8 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
       row.iterations = run.report.iterations;
       row.solved = error.empty() && run.report.status == ContactStatus::kConverged;
       if (!row.solved)
-        fail(fmt::format("{} on {} ({}): {}: {}", row.backend, row.problem, path, row.status,
-                         row.message));
+        fail(fmt::format("{} on {} ({}): {}", row.backend, row.problem, path,
+                         WithStatus(row.status, row.message)));
       if (out.is_open()) {
         std::string msg = row.message;
         for (char& c : msg)
