@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -160,8 +161,11 @@ void ReplaceBetweenMarkers(const std::string& doc, const std::string& name,
 }
 
 struct Row {
-  std::string backend, problem, category, status;
-  double residual = 0, force_err = 0, mult_err = 0, disp_err = 0, seconds = 0;
+  std::string backend, problem, category, status, message;
+  double residual = 0, seconds = 0;
+  double force_err = std::numeric_limits<double>::quiet_NaN();  // NaN: not computed
+  double mult_err = std::numeric_limits<double>::quiet_NaN();
+  double disp_err = std::numeric_limits<double>::quiet_NaN();
   int iterations = 0;
   bool solved = false;
 };
@@ -253,7 +257,10 @@ void WriteSvgScatter(const std::string& path, const std::vector<std::string>& ba
     const char* col = kColours[b % 7];
     for (const Row& r : rows) {
       if (r.backend != backends[b]) continue;
-      const double err = std::max(r.force_err, r.disp_err);
+      // A run without a finite error (failed, or thrown) is drawn at the top edge.
+      const double err = std::isfinite(r.force_err) && std::isfinite(r.disp_err)
+                             ? std::max(r.force_err, r.disp_err)
+                             : std::pow(10.0, emax);
       const double lx = std::clamp(std::log10(std::max(r.seconds, 1e-12)), tmin, tmax);
       const double ly = std::clamp(std::log10(std::max(err, 1e-16)), emin, emax);
       const double x = x0 + pw * (lx - tmin) / (tmax - tmin),
@@ -272,6 +279,27 @@ void WriteSvgScatter(const std::string& path, const std::vector<std::string>& ba
   std::ofstream(path) << s;
 }
 
+// "status: message", without repeating the status where the back end's message starts with it.
+std::string WithStatus(const std::string& status, const std::string& message) {
+  if (message.empty()) return status;
+  return message.rfind(status, 0) == 0 ? message : status + ": " + message;
+}
+
+// One (back end, problem) solve of `contact compare`; a back end that throws (it should not)
+// is a failed run with the exception's text, so the other runs still go on.
+Run CompareRun(Backend b, const ContactProblem& problem, const ContactOptions& options, int repeats,
+               std::string* error) {
+  try {
+    return SolveRepeated(b, problem, options, repeats);
+  } catch (const std::exception& e) {
+    *error = e.what();
+    Run run;
+    run.report.status = ContactStatus::kNumericalFailure;
+    run.report.message = e.what();
+    return run;
+  }
+}
+
 void CompareCommand(const std::vector<std::string>& inputs, const std::string& csv,
                     const std::string& svg_prefix, double tol, int repeats,
                     const std::string& doc) {
@@ -282,26 +310,75 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
   for (Backend b : backends) names.push_back(solvers::BackendName(b));
   ContactOptions options;
   options.tolerance = tol;
+  // The CSV is written as the runs are computed (one flushed row per run), so that a later bad
+  // file or an interrupted run keeps every row computed before it.
+  std::ofstream out;
+  if (!csv.empty()) {
+    const fs::path parent = fs::path(csv).parent_path();
+    if (!parent.empty()) fs::create_directories(parent);
+    out.open(csv);
+    if (!out) throw std::invalid_argument("--csv " + csv + ": cannot be written");
+    std::string hashes;
+    for (const std::string& f : files) hashes += FileHash(f) + "\n";
+    std::string backends_used;
+    for (const std::string& b : names) backends_used += (backends_used.empty() ? "" : " ") + b;
+    out << ProvenanceCsvLine(FileProvenance(backends_used,
+                                            fmt::format("{} problem files", files.size()),
+                                            transmission::ContentHash(hashes)));
+    out << "backend,problem,category,status,residual,force_error,multiplier_error,"
+           "displacement_error,median_seconds,iterations,message\n";
+    out.flush();
+  }
+  // Failed runs: reported on stderr as they happen, and the command exits 1 at the end.
+  std::vector<std::string> failures;
+  auto fail = [&](const std::string& what) {
+    std::fprintf(stderr, "contact compare: FAILED %s\n", what.c_str());
+    failures.push_back(what);
+  };
   for (const std::string& path : files) {
     const ContactProblemFile file = solvers::ReadContactProblemFile(path);
     const ContactProblem problem(file.data);
     problem_names.push_back(problem.name());
     const Run ref = Reference(problem);
+    if (ref.report.status != ContactStatus::kConverged)
+      fail(
+          fmt::format("reference (newton at {:.0e}) on {} ({}): {}; errors of this problem "
+                      "are against its last iterate",
+                      kReferenceTolerance, problem.name(), path,
+                      WithStatus(solvers::StatusName(ref.report.status), ref.report.message)));
     for (Backend b : backends) {
-      const Run run = SolveRepeated(b, problem, options, repeats);
+      std::string error;
+      const Run run = CompareRun(b, problem, options, repeats, &error);
       Row row;
       row.backend = solvers::BackendName(b);
       row.problem = problem.name();
       row.category = file.category;
-      row.status = solvers::StatusName(run.report.status);
+      row.status = error.empty() ? solvers::StatusName(run.report.status) : "exception";
+      row.message = run.report.message;
       row.residual = run.report.residual.total;
-      const auto d = solvers::CompareSolutions(problem, run.solution, ref.solution);
-      row.force_err = d.force;
-      row.mult_err = d.multiplier;
-      row.disp_err = d.displacement;
+      if (error.empty()) {  // a run that threw has no solution to compare (its errors stay NaN)
+        const auto d = solvers::CompareSolutions(problem, run.solution, ref.solution);
+        row.force_err = d.force;
+        row.mult_err = d.multiplier;
+        row.disp_err = d.displacement;
+      }
       row.seconds = run.median_seconds;
       row.iterations = run.report.iterations;
-      row.solved = run.report.status == ContactStatus::kConverged;
+      row.solved = error.empty() && run.report.status == ContactStatus::kConverged;
+      if (!row.solved)
+        fail(fmt::format("{} on {} ({}): {}", row.backend, row.problem, path,
+                         WithStatus(row.status, row.message)));
+      if (out.is_open()) {
+        std::string msg = row.message;
+        for (char& c : msg)
+          if (c == ',' || c == '\n') c = ';';
+        out << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", row.backend, row.problem,
+                           row.category, row.status, Finite(row.residual, "{:.6e}"),
+                           Finite(row.force_err, "{:.6e}"), Finite(row.mult_err, "{:.6e}"),
+                           Finite(row.disp_err, "{:.6e}"), Finite(row.seconds, "{:.6e}"),
+                           row.iterations, msg);
+        out.flush();
+      }
       rows.push_back(row);
     }
   }
@@ -321,7 +398,7 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
     std::vector<double> t;
     double worst = 0, worst_res = 0;
     int solved = 0, total = 0;
-    std::string failures;
+    std::string not_converged;
     for (const Row& r : rows) {
       if (r.backend != b) continue;
       ++total;
@@ -331,40 +408,28 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
         worst = std::max(worst, std::max(r.force_err, r.disp_err));
         worst_res = std::max(worst_res, r.residual);
       } else {
-        failures += (failures.empty() ? "" : ", ") + r.problem + " (" + r.status + ")";
+        not_converged += (not_converged.empty() ? "" : ", ") + r.problem + " (" + r.status + ")";
       }
     }
     std::sort(t.begin(), t.end());
     fmt::print("{:<14} {:>4}/{:<3} {:>12.3e} s {:>14.2e} {:>16.2e}  {}\n", b, solved, total,
                t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res,
-               failures.empty() ? "-" : failures);
+               not_converged.empty() ? "-" : not_converged);
     md += fmt::format("| {} | {}/{} | {:.2e} | {:.1e} | {:.1e} | {} |\n", b, solved, total,
                       t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res, total - solved);
   }
-  if (!csv.empty()) {
-    std::ofstream out(csv);
-    std::string hashes;
-    for (const std::string& f : files) hashes += FileHash(f) + "\n";
-    std::string backends_used;
-    for (const std::string& b : names) backends_used += (backends_used.empty() ? "" : " ") + b;
-    out << ProvenanceCsvLine(FileProvenance(backends_used,
-                                            fmt::format("{} problem files", files.size()),
-                                            transmission::ContentHash(hashes)));
-    out << "backend,problem,category,status,residual,force_error,multiplier_error,displacement_"
-           "error,"
-           "median_seconds,iterations\n";
-    for (const Row& r : rows)
-      out << fmt::format("{},{},{},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{}\n", r.backend,
-                         r.problem, r.category, r.status, r.residual, r.force_err, r.mult_err,
-                         r.disp_err, r.seconds, r.iterations);
-    fmt::print("\nCSV written to {}\n", csv);
-  }
+  if (!csv.empty()) fmt::print("\nCSV written to {}\n", csv);
   if (!doc.empty()) ReplaceBetweenMarkers(doc, "compare-table", md);
   if (!svg_prefix.empty()) {
     WriteSvgProfile(svg_prefix + "_profile.svg", names, rows, problem_names);
     WriteSvgScatter(svg_prefix + "_error_vs_time.svg", names, rows);
     fmt::print("SVG written to {0}_profile.svg and {0}_error_vs_time.svg\n", svg_prefix);
   }
+  if (!failures.empty())
+    throw ComputationFailed(fmt::format(
+        "{} of {} runs (the reference and every back end on every problem) did not converge: "
+        "listed above as FAILED; every run's row is in the table{}",
+        failures.size(), files.size() * (backends.size() + 1), csv.empty() ? "" : " and the CSV"));
 }
 
 void StabilityCommand(const std::string& dir, const std::string& doc, double tol) {

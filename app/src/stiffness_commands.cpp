@@ -7,12 +7,15 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
+#include "epicycle/transmission/validity.hpp"
 #include "provenance.hpp"
 #include "svg_plot.hpp"
 
@@ -134,10 +137,14 @@ void RunStiffness(const StiffnessArgs& a) {
   plot.y_references = {c_gamma, c_prime};
   WriteTextFile(base + ".svg", RenderSvg(plot));
 
-  PrintWarnings(scene.warnings);
+  // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
+  std::vector<std::string> warnings = scene.warnings;
+  for (const std::string& w : transmission::MeshStiffnessWarnings(pair, result))
+    warnings.push_back(w);
+  PrintWarnings(warnings);
   json j;
   j["provenance"] = provenance;
-  j["warnings"] = scene.warnings;
+  j["warnings"] = warnings;
   j["scene"] = scene.name;
   j["mesh"] = setup.mesh;
   j["torque_gear1_Nm"] = setup.torque;

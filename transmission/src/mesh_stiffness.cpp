@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/geometric_iteration.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 
@@ -84,6 +85,7 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
   search.gap_window = scene.gap_window;
   const double rb1 = pair.gear1().base_radius();
   std::vector<geometry::PotentialContact> contacts;
+  std::vector<solvers::LocalTermParameters> local;  // of the last problem built
   GeometricIterationOptions iteration;
   iteration.max_iterations = options.max_geometric_iterations;
   iteration.tolerance = options.geometric_tolerance;
@@ -113,6 +115,7 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
           }
         }
         d.multiplier_labels = {"gear1 rotation [rad]"};
+        local = d.local;
         return d;
       },
       [&](const Eigen::VectorXd& lambda) {
@@ -140,6 +143,10 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
     const double f = solution.force(static_cast<Eigen::Index>(j));
     out.total_force += f;
     if (!(f > 0)) continue;
+    if (j < local.size() && local[j].enabled) {
+      const double limit = solvers::ValidityLimitForce(local[j]);
+      if (limit > 0) out.local_validity_ratio = std::max(out.local_validity_ratio, f / limit);
+    }
     const geometry::PotentialContact& c = contacts[j];
     ToothPairLoad& p = merged[{c.tooth_a, c.tooth_b, c.side_a}];
     if (f > p.force) {

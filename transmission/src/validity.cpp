@@ -18,6 +18,27 @@ std::string Num(double v) {
 
 std::string Deg(double rad) { return Num(rad * 180.0 / geometry::kPi); }
 
+// The transmission-error warning: `worst` and `limit` are rotations [rad] of the gear named in
+// `along` (a tenth of its module along its line of action).
+std::string TransmissionErrorWarning(int count, double worst, double limit, const char* along) {
+  return "transmission error |TE| = " + Num(worst * 1e6) + " urad (" + Deg(worst) + " deg) at " +
+         std::to_string(count) + " position(s) exceeds a tenth of the module along " + along +
+         " line of action (" + Num(limit * 1e6) +
+         " urad): rotations that large break the small-displacement assumption";
+}
+
+// The local-term warning: the worst force and its ratio to ValidityLimitForce, over `count`
+// contacts (or positions) past the limit.
+std::string LocalTermWarning(int count, double worst_force, double worst_ratio,
+                             const char* counted) {
+  return "contact force " +
+         (worst_force > 0 ? Num(worst_force) + " N is " : std::string("up to ")) +
+         Num(worst_ratio) +
+         " times the local term's validity limit (Hertz half-width beyond the joining depth) on " +
+         std::to_string(count) + " " + counted +
+         ": loads past the local term's validity (reduce the torque or widen the face)";
+}
+
 }  // namespace
 
 std::vector<std::string> QuasiStaticWarnings(const geometry::Stage& stage,
@@ -57,13 +78,7 @@ std::vector<std::string> QuasiStaticWarnings(const geometry::Stage& stage,
         worst = std::max(worst, std::abs(r.transmission_error));
       }
     }
-    if (count > 0) {
-      out.push_back("transmission error |TE| = " + Num(worst * 1e6) + " urad (" + Deg(worst) +
-                    " deg) at " + std::to_string(count) +
-                    " position(s) exceeds a tenth of the module along the sun's line of action (" +
-                    Num(limit * 1e6) +
-                    " urad): rotations that large break the small-displacement assumption");
-    }
+    if (count > 0) out.push_back(TransmissionErrorWarning(count, worst, limit, "the sun's"));
   }
   // Contact forces against the local term's validity limit.
   {
@@ -85,15 +100,31 @@ std::vector<std::string> QuasiStaticWarnings(const geometry::Stage& stage,
         }
       }
     }
-    if (count > 0) {
-      out.push_back("contact force " + Num(worst_force) + " N is " + Num(worst_ratio) +
-                    " times the local term's validity limit (Hertz half-width beyond the "
-                    "joining depth) on " +
-                    std::to_string(count) +
-                    " contact(s): loads past the local term's validity (reduce the torque or "
-                    "widen the face)");
+    if (count > 0) out.push_back(LocalTermWarning(count, worst_force, worst_ratio, "contact(s)"));
+  }
+  return out;
+}
+
+std::vector<std::string> MeshStiffnessWarnings(const geometry::GearPair& pair,
+                                               const MeshStiffnessResult& result) {
+  std::vector<std::string> out;
+  const double limit = 0.1 * pair.gear1().spec().module / pair.gear1().base_radius();
+  int te_count = 0, local_count = 0;
+  double te_worst = 0, ratio_worst = 0;
+  for (const MeshSample& s : result.samples) {
+    if (!s.converged) continue;
+    if (std::isfinite(s.rotation) && std::abs(s.rotation) > limit) {
+      ++te_count;
+      te_worst = std::max(te_worst, std::abs(s.rotation));
+    }
+    if (s.local_validity_ratio > 1) {
+      ++local_count;
+      ratio_worst = std::max(ratio_worst, s.local_validity_ratio);
     }
   }
+  if (te_count > 0) out.push_back(TransmissionErrorWarning(te_count, te_worst, limit, "gear 1's"));
+  if (local_count > 0)
+    out.push_back(LocalTermWarning(local_count, 0.0, ratio_worst, "position(s)"));
   return out;
 }
 

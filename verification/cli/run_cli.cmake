@@ -1,6 +1,7 @@
 # One command-line check (CTest, cmake -P): runs EXE with ARGS (a ;-list), then requires
 #   - the exit status EXPECT_RC (0 computed, 1 a computation failed, 2 bad input),
 #   - every string of CONTAIN (a ;-list) in stdout + stderr,
+#   - every string of FILE_CONTAIN (a ;-list) in the files of OUT_DIR (JSON, CSV),
 #   - no nan/inf anywhere in the output nor in the files of OUT_DIR (if given): failures are
 #     reported, never printed as non-finite numbers.
 execute_process(COMMAND ${EXE} ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -23,12 +24,19 @@ if(OUT_DIR)
   foreach(f IN LISTS files)
     file(READ "${f}" text)
     string(APPEND texts "${text}")
+    string(APPEND file_texts "${text}")
     string(FIND "${text}" "epicycle" p)
     if(p EQUAL -1)
       message(FATAL_ERROR "${f} carries no provenance (program, version, back end, scene hash)")
     endif()
   endforeach()
 endif()
+foreach(piece IN LISTS FILE_CONTAIN)
+  string(FIND "${file_texts}" "${piece}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "the files of ${OUT_DIR} lack \"${piece}\"")
+  endif()
+endforeach()
 string(TOLOWER "${texts}" lower)
 if(lower MATCHES "(^|[^a-z_])-?(nan|inf|infinity)([^a-z_]|$)")
   message(FATAL_ERROR "a non-finite number (${CMAKE_MATCH_0}) in the output or the files:\n${all}")

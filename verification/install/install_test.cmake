@@ -30,11 +30,15 @@ find_program(ccache ccache)
 if(ccache)
   set(launcher -DCMAKE_CXX_COMPILER_LAUNCHER=${ccache})
 endif()
-# A sanitizer build installs instrumented static libraries: the consumer links the same runtime.
+# A sanitizer build installs instrumented static libraries: the consumer links the same runtime,
+# so it is built by the same compiler (clang's and gcc's sanitizer runtimes differ).
 set(flags)
+if(CXX)
+  list(APPEND flags "-DCMAKE_CXX_COMPILER=${CXX}")
+endif()
 if(SANITIZE)
-  set(flags "-DCMAKE_CXX_FLAGS=-fsanitize=${SANITIZE}"
-            "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=${SANITIZE}")
+  list(APPEND flags "-DCMAKE_CXX_FLAGS=-fsanitize=${SANITIZE}"
+                    "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=${SANITIZE}")
 endif()
 run(${CMAKE_COMMAND} -S "${SOURCE}/verification/install" -B "${WORK}/build"
     -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}" ${launcher} ${flags})

@@ -1,6 +1,7 @@
-// Warnings from results (transmission::QuasiStaticWarnings) on results made up here, whose values
-// are known: a negative share, a transmission error past the small-rotation bound, a contact force
-// twice the local term's validity limit (closed form L = h: F = h² π b E* / (4 R_eq)).
+// Warnings from results (transmission::QuasiStaticWarnings, MeshStiffnessWarnings) on results made
+// up here, whose values are known: a negative share, a transmission error past the small-rotation
+// bound, a contact force twice the local term's validity limit (closed form L = h: F = h² π b E* /
+// (4 R_eq)).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -63,4 +64,35 @@ TEST_CASE("result warnings: jammed planet, large rotation, load past the local t
   REQUIRE(w.size() == 1);
   CHECK_THAT(
       w[0], Contains(" is 2 times the local term's validity limit") && Contains("on 1 contact(s)"));
+}
+
+TEST_CASE("mesh-stiffness result warnings: large rotation, load past the local term",
+          "[unit][transmission]") {
+  const auto scene =
+      transmission::ParseScene(test::SceneText("iso_pair_20_40.toml"), "iso_pair_20_40.toml");
+  const auto setup = transmission::MakeMeshPair(scene, nullptr, "");
+  const geometry::GearPair pair(setup.spec);
+  // The bound: 0.1 m / r_b1 = 0.1 · 4 mm / (4·20/2 · cos 20° mm) = 0.1/(10 cos 20°) rad.
+  const double bound = 0.1 / (10.0 * std::cos(20.0 * geometry::kPi / 180.0));
+  auto sample = [](double rotation, double ratio, bool converged) {
+    transmission::MeshSample s;
+    s.converged = converged;
+    s.rotation = rotation;
+    s.local_validity_ratio = ratio;
+    return s;
+  };
+  transmission::MeshStiffnessResult r;
+  // Within validity (and a failed sample far outside, which is not looked at): no warning.
+  r.samples = {sample(0.99 * bound, 0.99, true), sample(-5.0 * bound, 7.0, false)};
+  CHECK(transmission::MeshStiffnessWarnings(pair, r).empty());
+
+  r.samples.push_back(sample(-1.01 * bound, 0.5, true));
+  r.samples.push_back(sample(0.5 * bound, 3.0, true));
+  r.samples.push_back(sample(0.5 * bound, 1.5, true));
+  const auto w = transmission::MeshStiffnessWarnings(pair, r);
+  REQUIRE(w.size() == 2);
+  CHECK_THAT(w[0], Contains("transmission error") && Contains("at 1 position(s)") &&
+                       Contains("a tenth of the module along gear 1's line of action"));
+  CHECK_THAT(w[1], Contains("contact force up to 3 times the local term's validity limit") &&
+                       Contains("on 2 position(s)"));
 }

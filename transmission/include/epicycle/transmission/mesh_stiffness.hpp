@@ -64,6 +64,10 @@ struct MeshSample {
   double total_force = 0;     ///< Σ F [N]
   double mesh_stiffness = 0;  ///< k = (|T|/r_b1)/δ_LOA [N/m]
   std::vector<ToothPairLoad> pairs;  ///< pairs carrying load (F > 0)
+  /// max over the loaded contacts of F / ValidityLimitForce (solvers/local_term.hpp) [-]: above 1
+  /// the Hertz half-width exceeds the joining depth, outside the local term's validity; 0 without
+  /// local terms.
+  double local_validity_ratio = 0;
   solvers::ContactReport report;
 };
 

@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
+#include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 
 namespace epicycle::transmission {
@@ -21,5 +23,12 @@ namespace epicycle::transmission {
 ///    half-width L exceeds the joining depth h, solvers/local_term.hpp).
 std::vector<std::string> QuasiStaticWarnings(const geometry::Stage& stage,
                                              const std::vector<PositionResult>& results);
+
+/// The same over the converged samples of a mesh-stiffness sweep (`epicycle stiffness`):
+///  - a transmission error |θ₁| r_b1 (the mesh deflection δ_LOA) larger than a tenth of gear 1's
+///    module m₁ (the small-displacement assumption, docs/model.md §5);
+///  - a contact force past the local term's validity (MeshSample::local_validity_ratio > 1).
+std::vector<std::string> MeshStiffnessWarnings(const geometry::GearPair& pair,
+                                               const MeshStiffnessResult& result);
 
 }  // namespace epicycle::transmission
