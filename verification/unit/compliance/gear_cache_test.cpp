@@ -154,9 +154,11 @@ TEST_CASE("Influence-table cache: the key follows what defines a table", "[unit]
   p = o;
   p.join_depth = 1e-3;
   CHECK(differs(spec, steel, p));
-  // Neither the name nor the solve batch changes the table.
+  // Neither the name, the thickness error (the table is the nominal body's, NominalBody) nor the
+  // solve batch changes the table.
   s = spec;
   s.name = "another name";
+  s.thickness_error = -20e-6;
   p = o;
   p.batch = 7;
   CHECK_FALSE(differs(s, steel, p));
