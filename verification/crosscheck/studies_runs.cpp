@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <set>
 #include <sstream>
@@ -123,6 +124,7 @@ TEST_CASE("study: killed while running and restarted, the rows of an uninterrupt
                                     "--threads",  "2"};
   };
   auto spawn = [](const std::vector<std::string>& args) {
+    std::fflush(nullptr);  // the child must not write the parent's buffered output again
     const pid_t pid = fork();
     if (pid == 0) {
       std::vector<char*> argv;

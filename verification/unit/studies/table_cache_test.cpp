@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "epicycle/compliance/compliance_operator.hpp"
@@ -50,6 +51,7 @@ TEST_CASE("influence-table cache: two processes building one table at once",
   int go[2];
   REQUIRE(pipe(go) == 0);
   std::vector<pid_t> children;
+  std::fflush(nullptr);  // the children must not write the parent's buffered output again
   for (int c = 0; c < 2; ++c) {
     const pid_t pid = fork();
     if (pid == 0) {
