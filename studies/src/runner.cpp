@@ -21,6 +21,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
+#include "epicycle/transmission/validity.hpp"
 #include "runner_internal.hpp"
 
 namespace epicycle::studies {
@@ -240,7 +241,11 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
     row.positions = s.positions;
     row.converged = s.converged;
     row.ok = s.converged == s.positions;
-    if (!row.ok) {
+    if (row.ok) {
+      // Legal values outside the model's validity: the case stands, its message says so.
+      for (const std::string& w : transmission::QuasiStaticWarnings(stage, results))
+        row.message += (row.message.empty() ? "warning: " : " / warning: ") + w;
+    } else {
       for (const auto& r : results) {
         if (r.converged) continue;
         row.message = std::to_string(s.positions - s.converged) + " of " +
