@@ -57,6 +57,22 @@ std::vector<double> MeanLoadFactors(const std::vector<double>& eta, double torqu
   return l;
 }
 
+// The study of tangential pin-hole errors σ = 5 µm on every planet, kPositions per mesh cycle.
+studies::RunReport PinStudy(int seed, int samples, const std::string& sun) {
+  test::TempDir dir("study-pins");
+  const studies::StudySpec s = studies::ParseStudy(
+      test::StudyText("seed = " + std::to_string(seed) + "\nsamples = " + std::to_string(samples) +
+                          "\npositions = " + std::to_string(kPositions) + "\nsun = \"" + sun + "\"",
+                      "[[variable]]\nquantity = \"pin_tangential\"\ngear = \"planets\"\n"
+                      "distribution = \"normal\"\nsigma_um = 5.0\n"),
+      "pins.toml", "");
+  studies::RunOptions o;
+  o.rows_file = dir.File("rows.csv");
+  o.cache_directory = EPICYCLE_TEST_CACHE_DIR;
+  o.threads = 2;
+  return studies::RunStudy(s, o);
+}
+
 }  // namespace
 
 TEST_CASE("study against the linear load-sharing theory: tangential pin errors, sigma 5 um",
@@ -100,18 +116,7 @@ TEST_CASE("study against the linear load-sharing theory: tangential pin errors, 
                std::to_string(theory1[0]) + ")");
 
   // The study: 200 cases, σ = 5 µm on every planet.
-  test::TempDir dir("study-linear");
-  const studies::StudySpec s = studies::ParseStudy(
-      test::StudyText("seed = 5\nsamples = 200\npositions = " + std::to_string(kPositions) +
-                          "\nsun = \"fixed\"",
-                      "[[variable]]\nquantity = \"pin_tangential\"\ngear = \"planets\"\n"
-                      "distribution = \"normal\"\nsigma_um = 5.0\n"),
-      "linear.toml", "");
-  studies::RunOptions o;
-  o.rows_file = dir.File("rows.csv");
-  o.cache_directory = EPICYCLE_TEST_CACHE_DIR;
-  o.threads = 2;
-  const auto report = studies::RunStudy(s, o);
+  const auto report = PinStudy(5, 200, "fixed");
   REQUIRE(report.rows.size() == 200);
   std::vector<double> study, paired;
   double worst_case = 0, sum_l1 = 0, max_l1 = 0;
@@ -179,18 +184,7 @@ TEST_CASE(
   // the errors) up to where a tip round carries part of a sun-mesh force off its line of action,
   // |LSR_i − 1/3| ≤ 3.2e-3 (the largest deviation measured, 20 µm run-out); pin errors of σ = 5 µm
   // move the contacts less than that run-out.
-  test::TempDir dir("study-floating");
-  const studies::StudySpec s = studies::ParseStudy(
-      test::StudyText("seed = 6\nsamples = 60\npositions = " + std::to_string(kPositions) +
-                          "\nsun = \"floating\"",
-                      "[[variable]]\nquantity = \"pin_tangential\"\ngear = \"planets\"\n"
-                      "distribution = \"normal\"\nsigma_um = 5.0\n"),
-      "floating.toml", "");
-  studies::RunOptions o;
-  o.rows_file = dir.File("rows.csv");
-  o.cache_directory = EPICYCLE_TEST_CACHE_DIR;
-  o.threads = 2;
-  const auto report = studies::RunStudy(s, o);
+  const auto report = PinStudy(6, 60, "floating");
   double worst = 0, kmax = 0;
   for (const auto& r : report.rows) {
     INFO("case " << r.id << ": " << r.message);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "epicycle/compliance/influence_cache.hpp"
+#include "fe_fixtures.hpp"
 #include "stage_fixtures.hpp"
 #include "test_meshes.hpp"
 
@@ -31,16 +32,7 @@ struct TempDir {
   }
 };
 
-InfluenceTableOptions Coarse() {
-  InfluenceTableOptions o;
-  o.mesh.involute_elements = 4;
-  o.mesh.tip_round_elements = 1;
-  o.mesh.tip_land_elements = 1;
-  o.mesh.fillet_elements = 2;
-  o.mesh.band_layers = 2;
-  o.mesh.rim_layers = 2;
-  return o;
-}
+InfluenceTableOptions Coarse() { return test::CoarseTableOptions(); }
 
 void FlipByte(const std::string& file, std::streamoff at) {
   std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);

@@ -26,16 +26,7 @@ using test::VerifyRow;
 
 namespace {
 
-compliance::InfluenceTableOptions Coarse() {
-  compliance::InfluenceTableOptions o;  // the coarse mesh of the cache's unit tests
-  o.mesh.involute_elements = 4;
-  o.mesh.tip_round_elements = 1;
-  o.mesh.tip_land_elements = 1;
-  o.mesh.fillet_elements = 2;
-  o.mesh.band_layers = 2;
-  o.mesh.rim_layers = 2;
-  return o;
-}
+compliance::InfluenceTableOptions Coarse() { return test::CoarseTableOptions(); }
 
 }  // namespace
 
