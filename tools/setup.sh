@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-dev
           libsundials-dev catch2 libbenchmark-dev libtomlplusplus-dev libcli11-dev
-          nlohmann-json3-dev libfmt-dev libgmsh-dev)
+          nlohmann-json3-dev libfmt-dev libgmsh-dev libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -21,12 +21,14 @@ fi
 
 build_type="${EPICYCLE_BUILD_TYPE:-Release}"
 werror=OFF
-[ "${CI:-}" = "true" ] && werror=ON
+mpi=OFF
+# CI builds the optional MPI runner of the studies too, so that its test (mpirun -np 2) runs.
+[ "${CI:-}" = "true" ] && werror=ON && mpi=ON
 mkdir -p build
 # The test build includes the optional gmsh mesher (the suite compares it with the mapped one).
 # gmsh is GPL and Ipopt EPL: a binary to distribute is configured with EPICYCLE_WITH_GMSH=OFF (the
 # default of CMakeLists.txt); this build is not distributed. Pass -DEPICYCLE_WITH_GMSH=OFF to drop it.
-cmake -S . -B build -DCMAKE_BUILD_TYPE="$build_type" -DEPICYCLE_WERROR="$werror" \
+cmake -S . -B build -DCMAKE_BUILD_TYPE="$build_type" -DEPICYCLE_WERROR="$werror" -DEPICYCLE_WITH_MPI="$mpi" \
   -DEPICYCLE_WITH_GMSH=ON "$@" > build/configure.log \
   || { cat build/configure.log; exit 1; }
 cmake --build build -j "$(nproc)"

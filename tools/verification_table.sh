@@ -9,7 +9,7 @@ build="${1:-build}"
 doc=docs/verification.md
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-for layer in geometry compliance solvers transmission dynamics; do
+for layer in geometry compliance solvers transmission dynamics studies; do
   # A layer without tests yet has no executable.
   [ "$layer" = dynamics ] && [ ! -x "$build/verification/epicycle_tests_$layer" ] && continue
   exe="$build/verification/epicycle_tests_$layer"

@@ -11,5 +11,6 @@ void RegisterContactCommands(CLI::App& app);    // contact solve|compare   (cont
 void RegisterStiffnessCommands(CLI::App& app);  // stiffness               (stiffness_commands.cpp)
 void RegisterQuasiStaticCommands(CLI::App& app);  // quasistatic (quasistatic_commands.cpp)
 void RegisterDynamicCommands(CLI::App& app);      // dynamic, modes (dynamic_commands.cpp)
+void RegisterStudyCommands(CLI::App& app);        // study (study_commands.cpp)
 
 }  // namespace epicycle::app

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   epicycle::app::RegisterStiffnessCommands(app);
   epicycle::app::RegisterQuasiStaticCommands(app);
   epicycle::app::RegisterDynamicCommands(app);
+  epicycle::app::RegisterStudyCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

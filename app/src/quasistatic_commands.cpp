@@ -18,6 +18,7 @@
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
 #include "progress.hpp"
 #include "provenance.hpp"
@@ -166,41 +167,28 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
     warnings.push_back(w);
 
   // Summary over the converged positions (none converged: no statistics, "-" in the report).
-  std::vector<double> mean(n, 0.0), lo(n, INFINITY), hi(n, -INFINITY);
-  double te_lo = INFINITY, te_hi = -INFINITY, orbit = 0.0, k_gamma = 0.0;
-  int good = 0;
-  for (const auto& r : results) {
-    if (!r.converged) continue;
-    ++good;
-    for (int i = 0; i < n; ++i) {
-      mean[i] += r.load_sharing[i];
-      lo[i] = std::min(lo[i], r.load_sharing[i]);
-      hi[i] = std::max(hi[i], r.load_sharing[i]);
-    }
-    te_lo = std::min(te_lo, r.transmission_error);
-    te_hi = std::max(te_hi, r.transmission_error);
-    orbit = std::max(orbit, r.sun_displacement.norm());
-    k_gamma = std::max(k_gamma, transmission::MeshLoadFactor(r));
-  }
+  const transmission::SweepSummary summary = transmission::SummariseSweep(results, n);
+  const int good = summary.converged;
   std::printf("\n  planet   LSR mean     LSR min      LSR max      (ideal 1/n = %.6f)\n", 1.0 / n);
   json planets = json::array();
   for (int i = 0; i < n; ++i) {
-    if (good > 0) mean[i] /= good;
     const char* f = "{:<12.6f}";
-    std::printf("  %-8d %s %s %s\n", i + 1, Finite(good ? mean[i] : NAN, f, "-           ").c_str(),
-                Finite(lo[i], f, "-           ").c_str(), Finite(hi[i], f, "-").c_str());
+    std::printf("  %-8d %s %s %s\n", i + 1, Finite(summary.lsr_mean[i], f, "-           ").c_str(),
+                Finite(summary.lsr_min[i], f, "-           ").c_str(),
+                Finite(summary.lsr_max[i], f, "-").c_str());
     json p = {{"planet", i + 1}};
     // No converged position: null statistics (JSON has no NaN), never a made-up number.
-    p["lsr_mean"] = good ? json(mean[i]) : json(nullptr);
-    p["lsr_min"] = good ? json(lo[i]) : json(nullptr);
-    p["lsr_max"] = good ? json(hi[i]) : json(nullptr);
+    p["lsr_mean"] = good ? json(summary.lsr_mean[i]) : json(nullptr);
+    p["lsr_min"] = good ? json(summary.lsr_min[i]) : json(nullptr);
+    p["lsr_max"] = good ? json(summary.lsr_max[i]) : json(nullptr);
     planets.push_back(p);
   }
   if (good > 0) {
-    std::printf("  K_gamma (max L_i)            %.6f\n", k_gamma);
+    std::printf("  K_gamma (max L_i)            %.6f\n", summary.k_gamma);
     std::printf("  transmission error           %.3f .. %.3f urad (peak to peak %.3f urad)\n",
-                te_lo * 1e6, te_hi * 1e6, (te_hi - te_lo) * 1e6);
-    std::printf("  sun displacement, largest    %.3f um\n", orbit * 1e6);
+                summary.transmission_error_min * 1e6, summary.transmission_error_max * 1e6,
+                summary.TransmissionErrorPeakToPeak() * 1e6);
+    std::printf("  sun displacement, largest    %.3f um\n", summary.sun_displacement_max * 1e6);
   } else {
     std::printf("  K_gamma, transmission error, sun displacement: - (no position converged)\n");
   }
@@ -222,10 +210,12 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   j["converged_positions"] = good;
   j["failures"] = failures;
   j["planets"] = planets;
-  j["K_gamma_max"] = good ? json(k_gamma) : json(nullptr);
-  j["transmission_error_min_urad"] = good ? json(te_lo * 1e6) : json(nullptr);
-  j["transmission_error_max_urad"] = good ? json(te_hi * 1e6) : json(nullptr);
-  j["sun_displacement_max_um"] = good ? json(orbit * 1e6) : json(nullptr);
+  j["K_gamma_max"] = good ? json(summary.k_gamma) : json(nullptr);
+  j["transmission_error_min_urad"] =
+      good ? json(summary.transmission_error_min * 1e6) : json(nullptr);
+  j["transmission_error_max_urad"] =
+      good ? json(summary.transmission_error_max * 1e6) : json(nullptr);
+  j["sun_displacement_max_um"] = good ? json(summary.sun_displacement_max * 1e6) : json(nullptr);
   j["sweep_seconds"] = sweep_seconds;
   j["table_seconds"] = table_seconds;
   WriteTextFile(base + "_summary.json", j.dump(2) + "\n");

@@ -1,5 +1,8 @@
 #include "epicycle/compliance/influence_cache.hpp"
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -45,13 +48,15 @@ std::string Hex(std::uint64_t v) {
 
 std::uint64_t InfluenceTableKey(const geometry::GearSpec& s, const ElasticMaterial& m,
                                 const InfluenceTableOptions& o) {
+  // Not the thickness error: the table is that of the nominal body (NominalBody), so that sampled
+  // thickness errors share one table; the error acts through the geometry (the flanks' overlap).
   Fnv1a h;
   h.Value(kInfluenceTableFormat);
   h.Value(static_cast<int>(s.kind));
   h.Value(s.teeth);
   for (double v :
        {s.module, s.face_width, s.pressure_angle, s.profile_shift, s.tip_radius, s.tip_round_radius,
-        s.root_radius, s.root_round_radius, s.hub_radius, s.thickness_error, s.min_tip_thickness}) {
+        s.root_radius, s.root_round_radius, s.hub_radius, s.min_tip_thickness}) {
     h.Value(v);
   }
   h.Value(s.rack.has_value());
@@ -88,6 +93,12 @@ std::uint64_t InfluenceTableKey(const geometry::GearSpec& s, const ElasticMateri
   // The layer term enters only when switched off (a comparison run), like the mesher above.
   if (!o.layer_term) h.Value(o.layer_term);
   return h.hash();
+}
+
+geometry::Gear NominalBody(const geometry::Gear& gear) {
+  geometry::GearSpec spec = gear.spec();
+  spec.thickness_error = 0.0;
+  return geometry::Gear(spec);
 }
 
 std::string InfluenceTableFile(const std::string& directory, std::uint64_t key) {
@@ -164,7 +175,12 @@ void Write(const std::string& file, std::uint64_t key, const InfluenceTable& tab
   const std::string payload = body.str();
   Fnv1a h;
   h.Bytes(payload.data(), payload.size());
-  const std::string tmp = file + ".tmp";
+  // A name of this process and call alone, so that processes (or threads) building the same table
+  // at once never write into each other's file; the rename is atomic, the last one wins and every
+  // reader sees a complete file.
+  static std::atomic<unsigned> counter{0};
+  const std::string tmp =
+      file + "." + std::to_string(::getpid()) + "." + std::to_string(counter.fetch_add(1)) + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     const std::uint32_t format = kInfluenceTableFormat;
@@ -181,6 +197,7 @@ void Write(const std::string& file, std::uint64_t key, const InfluenceTable& tab
   std::error_code error;
   std::filesystem::rename(tmp, file, error);
   if (error) {
+    std::filesystem::remove(tmp, error);
     throw std::runtime_error("influence-table cache: cannot rename '" + tmp + "' to '" + file +
                              "': " + error.message());
   }
@@ -199,17 +216,18 @@ InfluenceTable LoadOrBuildInfluenceTable(const geometry::Gear& gear,
   material.Validate();
   const std::uint64_t key = InfluenceTableKey(gear.spec(), material, options);
   const std::string file = InfluenceTableFile(directory, key);
+  const geometry::Gear nominal = NominalBody(gear);
   CacheReport local;
   CacheReport& r = report != nullptr ? *report : local;
   r.file = file;
   InfluenceTable table;
   std::string problem;
-  if (TryLoad(file, key, gear, &table, &problem)) {
+  if (TryLoad(file, key, nominal, &table, &problem)) {
     r.outcome = CacheOutcome::kLoaded;
     r.message = "influence table of '" + gear.name() + "' loaded from '" + file + "'";
     return table;
   }
-  table = InfluenceTable::Build(gear, material, options);
+  table = InfluenceTable::Build(nominal, material, options);
   std::filesystem::create_directories(directory);
   Write(file, key, table);
   if (problem.empty()) {

@@ -1,5 +1,6 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <stdexcept>
@@ -26,14 +27,31 @@ compliance::OperatorBody Body(const compliance::InfluenceTable& table,
   return b;
 }
 
+// A point of flank σ of a gear with thickness error Δs carried onto the nominal body the table is
+// built on (compliance::NominalBody): the error turns flank σ by σ·Δs/(2 r_b) about the geometric
+// centre (geometry::Gear), so the point is turned back by the opposite angle.
+Eigen::Vector2d OnNominalBody(const Eigen::Vector2d& p, const geometry::Gear& gear, int side,
+                              const Eigen::Vector2d& centre) {
+  const double turn = gear.spec().thickness_error / (2.0 * gear.base_radius());
+  if (turn == 0.0) return p;
+  const double a = -side * turn, c = std::cos(a), s = std::sin(a);
+  const Eigen::Vector2d d = p - centre;
+  return centre + Eigen::Vector2d(c * d.x() - s * d.y(), s * d.x() + c * d.y());
+}
+
 // The two sides of a potential contact: A pushed along −n at its own closest point, B along +n,
-// read on the nominal profiles the tables are built on (relief and pitch deviations are µm
-// surface modifications that do not change the bodies, docs/geometry.md).
+// read on the nominal profiles of the nominal bodies the tables are built on (relief, pitch
+// deviations and thickness errors are µm surface modifications that do not change the bodies,
+// docs/geometry.md).
 compliance::OperatorContact Sides(const geometry::PotentialContact& c, int body_a, int body_b,
+                                  const geometry::Gear& gear_a, const geometry::Gear& gear_b,
+                                  const Eigen::Vector2d& centre_a, const Eigen::Vector2d& centre_b,
                                   std::string label) {
   compliance::OperatorContact o;
-  o.side[0] = {body_a, c.tooth_a, c.side_a, c.surface_a, -c.normal};
-  o.side[1] = {body_b, c.tooth_b, c.side_b, c.surface_b, c.normal};
+  o.side[0] = {body_a, c.tooth_a, c.side_a, OnNominalBody(c.surface_a, gear_a, c.side_a, centre_a),
+               -c.normal};
+  o.side[1] = {body_b, c.tooth_b, c.side_b, OnNominalBody(c.surface_b, gear_b, c.side_b, centre_b),
+               c.normal};
   o.label = std::move(label);
   return o;
 }
@@ -65,7 +83,7 @@ GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gea
       std::shared_ptr<const compliance::InfluenceTable> t;
       if (options.cache_directory.empty()) {
         t = std::make_shared<const compliance::InfluenceTable>(
-            compliance::InfluenceTable::Build(*g, material, o));
+            compliance::InfluenceTable::Build(compliance::NominalBody(*g), material, o));
         messages_.push_back("influence table of '" + g->name() + "' built (no disk cache)");
       } else {
         compliance::CacheReport report;
@@ -106,7 +124,15 @@ Eigen::MatrixXd FeStageCompliance::Matrix(const geometry::Stage& stage,
   }
   std::vector<compliance::OperatorContact> oc;
   oc.reserve(contacts.size());
-  for (const StageContact& s : contacts) oc.push_back(Sides(s.contact, s.body_a, s.body_b, {}));
+  auto gear = [&](int body) -> const geometry::Gear& {
+    return body == kSunBody    ? stage.sun()
+           : body == kRingBody ? stage.ring()
+                               : stage.planet(body - PlanetBody(0));
+  };
+  for (const StageContact& s : contacts) {
+    oc.push_back(Sides(s.contact, s.body_a, s.body_b, gear(s.body_a), gear(s.body_b),
+                       bodies.at(s.body_a).centre, bodies.at(s.body_b).centre, {}));
+  }
   try {
     return compliance::AssembleCompliance(bodies, oc);
   } catch (const std::invalid_argument& e) {
@@ -125,14 +151,15 @@ FePairCompliance::FePairCompliance(const Scene& scene, const geometry::GearPair&
     : tables_(scene, {&pair.gear1(), &pair.gear2()}, options) {}
 
 Eigen::MatrixXd FePairCompliance::Matrix(
-    const geometry::GearPair& /*pair*/, const geometry::PairPoses& poses,
+    const geometry::GearPair& pair, const geometry::PairPoses& poses,
     const std::vector<geometry::PotentialContact>& contacts) const {
   const std::vector<compliance::OperatorBody> bodies{Body(tables_.Table(0), poses.gear1, "gear1"),
                                                      Body(tables_.Table(1), poses.gear2, "gear2")};
   std::vector<compliance::OperatorContact> oc;
   oc.reserve(contacts.size());
   for (std::size_t j = 0; j < contacts.size(); ++j)
-    oc.push_back(Sides(contacts[j], 0, 1, "contact " + std::to_string(j)));
+    oc.push_back(Sides(contacts[j], 0, 1, pair.gear1(), pair.gear2(), bodies[0].centre,
+                       bodies[1].centre, "contact " + std::to_string(j)));
   return compliance::AssembleCompliance(bodies, oc);
 }
 

@@ -16,6 +16,7 @@ namespace epicycle::transmission {
 
 using geometry::GearKind;
 using geometry::GearSpec;
+using internal::ParseDocument;
 using internal::Rule;
 using internal::TableReader;
 
@@ -475,14 +476,7 @@ std::string ContentHash(const std::string& text) {
 }
 
 Scene ParseScene(const std::string& text, const std::string& source) {
-  toml::table root;
-  try {
-    root = toml::parse(text, source);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream o;
-    o << source << ":" << e.source().begin.line << ": TOML syntax error: " << e.description();
-    throw std::invalid_argument(o.str());
-  }
+  const toml::table root = ParseDocument(text, source);
   Scene s;
   s.source = source;
   TableReader top(root, "", source);

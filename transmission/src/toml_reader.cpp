@@ -79,6 +79,16 @@ std::string Rule::Describe() const {
   return why.empty() ? text : text + " (" + why + ")";
 }
 
+toml::table ParseDocument(const std::string& text, const std::string& source) {
+  try {
+    return toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream o;
+    o << source << ":" << e.source().begin.line << ": TOML syntax error: " << e.description();
+    throw std::invalid_argument(o.str());
+  }
+}
+
 TableReader::TableReader(const toml::table& table, std::string path, std::string source)
     : table_(table), path_(std::move(path)), source_(std::move(source)) {}
 

@@ -35,6 +35,9 @@ struct Rule {
   std::string Describe() const;
 };
 
+/// The TOML document `text`. @throws std::invalid_argument "source:line: TOML syntax error: ...".
+toml::table ParseDocument(const std::string& text, const std::string& source);
+
 class TableReader {
  public:
   TableReader(const toml::table& table, std::string path, std::string source);

@@ -18,6 +18,19 @@ inline transmission::FeComplianceOptions CachedTables() {
   return o;
 }
 
+/// A coarse gear-body mesh for tests of the table machinery (cache, concurrency), not of its
+/// accuracy: a table in about a second.
+inline compliance::InfluenceTableOptions CoarseTableOptions() {
+  compliance::InfluenceTableOptions o;
+  o.mesh.involute_elements = 4;
+  o.mesh.tip_round_elements = 1;
+  o.mesh.tip_land_elements = 1;
+  o.mesh.fillet_elements = 2;
+  o.mesh.band_layers = 2;
+  o.mesh.rim_layers = 2;
+  return o;
+}
+
 /// The FE compliance of a scene file's bodies; scenes that only add errors, relief or pitch
 /// deviations share it (those move or modify the surfaces, they do not change the bodies).
 inline const transmission::FeStageCompliance& Compliance(const std::string& file) {

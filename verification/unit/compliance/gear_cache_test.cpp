@@ -9,6 +9,7 @@
 #include <string>
 
 #include "epicycle/compliance/influence_cache.hpp"
+#include "fe_fixtures.hpp"
 #include "stage_fixtures.hpp"
 #include "test_meshes.hpp"
 
@@ -31,16 +32,7 @@ struct TempDir {
   }
 };
 
-InfluenceTableOptions Coarse() {
-  InfluenceTableOptions o;
-  o.mesh.involute_elements = 4;
-  o.mesh.tip_round_elements = 1;
-  o.mesh.tip_land_elements = 1;
-  o.mesh.fillet_elements = 2;
-  o.mesh.band_layers = 2;
-  o.mesh.rim_layers = 2;
-  return o;
-}
+InfluenceTableOptions Coarse() { return test::CoarseTableOptions(); }
 
 void FlipByte(const std::string& file, std::streamoff at) {
   std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
@@ -154,9 +146,11 @@ TEST_CASE("Influence-table cache: the key follows what defines a table", "[unit]
   p = o;
   p.join_depth = 1e-3;
   CHECK(differs(spec, steel, p));
-  // Neither the name nor the solve batch changes the table.
+  // Neither the name, the thickness error (the table is the nominal body's, NominalBody) nor the
+  // solve batch changes the table.
   s = spec;
   s.name = "another name";
+  s.thickness_error = -20e-6;
   p = o;
   p.batch = 7;
   CHECK_FALSE(differs(s, steel, p));

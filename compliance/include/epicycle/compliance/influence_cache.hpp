@@ -14,11 +14,19 @@ inline constexpr std::uint32_t kInfluenceTableFormat = 3;
 
 /// 64-bit FNV-1a hash of everything that defines a table: kInfluenceTableFormat, every field of
 /// the gear spec that shapes the body (kind, z, m, b, α, x, tip and root radii and roundings, hub
-/// or rim radius, cutter data, thickness error, tip-thickness limit; not the name), the material
-/// (E, ν, b, plane) and the table options that change its values (mesh options, join depth, layer
-/// term; not the solve batch). Doubles enter bit-exactly.
+/// or rim radius, cutter data, tip-thickness limit; not the name, not the thickness error: the
+/// table is that of the nominal body, NominalBody), the material (E, ν, b, plane) and the table
+/// options that change its values (mesh options, join depth, layer term; not the solve batch).
+/// Doubles enter bit-exactly.
 std::uint64_t InfluenceTableKey(const geometry::GearSpec& spec, const ElasticMaterial& material,
                                 const InfluenceTableOptions& options);
+
+/// The gear without its tooth-thickness error: the body the influence table of `gear` is built on.
+/// A thickness error Δs turns each flank σ by σ·Δs/(2 r_b) about the centre (a rigid µm offset of
+/// the surface, like relief); it enters the model through the flanks' overlap (the initial
+/// separation of the contact problem), while the body's compliance is that of the nominal tooth,
+/// changed by the error only to relative order 3|Δs|/s (s the tooth thickness, bending ∝ 1/s³).
+geometry::Gear NominalBody(const geometry::Gear& gear);
 
 /// What the cache did.
 enum class CacheOutcome {
@@ -42,7 +50,9 @@ std::string InfluenceTableFile(const std::string& directory, std::uint64_t key);
 ///   payload (InfluenceTable::WritePayload) | FNV-1a 64 of the payload u64.
 /// Loads the table of (gear, material, options) from `directory` if its file is present and
 /// valid (magic, format, key and checksum all match, payload consistent); otherwise builds it
-/// and writes the file (atomically: a temporary file renamed). A damaged or stale file is never
+/// (on NominalBody(gear)) and writes the file atomically: a temporary file of a name unique to
+/// the process and call, renamed onto the file, so that processes building the same table at
+/// once all end with a valid file. A damaged or stale file is never
 /// used: it is reported in `report` and replaced.
 /// @throws std::invalid_argument for bad input (as InfluenceTable::Build) or an empty
 ///         directory name; std::runtime_error if the file cannot be written.

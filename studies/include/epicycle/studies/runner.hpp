@@ -1,0 +1,109 @@
+// Running a study: case k = the quasi-static sweep of the base scene with case k's sampled values
+// (studies/sampling.hpp), one row per case appended to the rows file as soon as it is computed
+// (written and flushed whole: a killed run leaves at most one truncated last line, which the next
+// run drops), a thread pool over the cases with one solver per thread, and a restart that reads
+// the rows already written and computes only the missing cases.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "epicycle/studies/study.hpp"
+#include "epicycle/transmission/stage_problem.hpp"
+
+namespace epicycle::studies {
+
+/// One case's result: the row of the rows file.
+struct CaseRow {
+  long id = 0;                       ///< case id k, 0-based [-]
+  std::vector<double> values;        ///< sampled values in file units (StudySpec::Columns())
+  bool ok = false;                   ///< every position converged
+  std::string message;               ///< why not (commas and newlines replaced by ';')
+  int positions = 0, converged = 0;  ///< [-]
+  double k_gamma = 0;                ///< K_γ = max over positions of max_i L_i [-]
+  double k_gamma_mean = 0;           ///< max_i of the sweep mean of L_i [-]
+  double lsr_min = 0, lsr_max = 0;   ///< extremes of LSR_i over planets and positions [-]
+  double te_peak_to_peak = 0;        ///< loaded static transmission error, peak to peak [µrad]
+  double sun_orbit = 0;              ///< largest sun-centre displacement [µm]
+  /// The CSV line, '\n'-terminated; numbers in their shortest exact (round-trip) form, so that
+  /// the same result gives the same bytes; a failed case has empty result fields.
+  std::string Format() const;
+};
+
+/// The column line of the rows file (without '\n').
+std::string RowHeader(const StudySpec& study);
+
+/// Case k of the study on the shared (read-only) compliance of the nominal bodies. Never throws
+/// for a failed computation or a case the geometry rejects: the row says why (ok = false).
+CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance& compliance,
+                    long case_id);
+
+/// What a rows file already holds.
+struct ExistingRows {
+  std::vector<CaseRow> rows;     ///< complete, valid rows, in file order
+  bool dropped_partial = false;  ///< a truncated last line (a killed run) was dropped
+  bool exists = false;           ///< the file existed with a header
+};
+/// Reads `path` (nothing if it does not exist). A last line without its '\n' is a row the writer
+/// was killed in: it is dropped and the file cut back to the last complete line.
+/// @throws std::invalid_argument if the file belongs to another study (its study line or column
+///         line differ), holds a malformed complete line or a case twice (the message names the
+///         file and line).
+ExistingRows ReadRows(const std::string& path, const StudySpec& study);
+
+struct RunOptions {
+  std::string rows_file;        ///< the CSV of rows (created or resumed)
+  std::string comment;          ///< a provenance comment line written first (without '#')
+  std::string cache_directory;  ///< FE influence-table cache; empty: in memory only
+  int threads = 1;              ///< worker threads, each with its own solver [-]
+  long max_new_cases = -1;      ///< stop after computing this many cases (< 0: all) [-]
+  /// Sees each new row as it is written (under the writer's lock), with the count of rows now in
+  /// the file and the study's total.
+  std::function<void(const CaseRow&, long rows, long total)> on_row;
+};
+
+struct RunReport {
+  long resumed = 0;   ///< rows found in the file [-]
+  long computed = 0;  ///< rows computed now [-]
+  bool dropped_partial = false;
+  std::vector<CaseRow> rows;                ///< every row of the file, sorted by case id
+  std::vector<std::string> table_messages;  ///< what the influence-table cache did
+  double seconds = 0;                       ///< of the computation of the new rows [s]
+  double table_seconds = 0;                 ///< of building or loading the tables [s]
+};
+
+/// Runs (or resumes) the study on this process with `threads` workers.
+/// @throws std::invalid_argument as ReadRows, or for a base scene that cannot be built;
+///         std::runtime_error if the rows file cannot be written.
+RunReport RunStudy(const StudySpec& study, const RunOptions& options);
+
+/// Whether this build has MPI (EPICYCLE_WITH_MPI).
+bool HaveMpi();
+
+/// MPI for the lifetime of the object: MPI_Init_thread (funneled: only the main thread calls MPI)
+/// when this build has MPI and the process was started by mpirun/srun (OMPI_COMM_WORLD_SIZE or
+/// PMI_SIZE set), MPI_Finalize at the end; otherwise inactive (rank 0 of 1).
+class MpiSession {
+ public:
+  MpiSession();
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  bool active() const { return active_; }
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+
+ private:
+  bool active_ = false;
+  int rank_ = 0, size_ = 1;
+};
+/// The same over MPI ranks (call between MPI_Init and MPI_Finalize on every rank): rank 0 reads
+/// the rows file and hands every rank its share of the missing cases (case i of the missing list
+/// to rank i mod size); each rank computes with `threads` workers and sends its rows to rank 0,
+/// which alone writes the file. The report is complete on rank 0; other ranks get their counts.
+/// Without MPI: RunStudy. @throws as RunStudy (on the rank that finds the problem; the others are
+/// aborted by MPI_Abort).
+RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options);
+
+}  // namespace epicycle::studies

@@ -1,0 +1,95 @@
+// A tolerance study (docs/studies.md): a base scene, random variables (manufacturing and assembly
+// errors, the input torque) with their distributions or grids, what each case computes, and a
+// seed. Read from a TOML file whose keys name their units (sigma_um, values_Nm); every bad value
+// is reported with the file, line, key, value and rule, like the scene reader.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/scene.hpp"
+
+namespace epicycle::studies {
+
+/// What a random variable sets in the case's scene (the sampled value replaces the scene's).
+enum class Quantity {
+  kPinRadial,      ///< planet pin-hole radial position error Δζ [m]
+  kPinTangential,  ///< planet pin-hole tangential position error Δη [m]
+  kRunout,         ///< run-out amplitude e [m], with a phase uniform in [0, 2π) [rad]
+  kThickness,      ///< tooth thickness error Δs [m]
+  kTorque,         ///< input torque on the sun T [N·m]
+};
+
+enum class Distribution {
+  kNormal,   ///< mean + σ·Z, Z standard normal
+  kUniform,  ///< uniform in [min, max)
+  kIso1328,  ///< run-out amplitude uniform in [0, F_rT/2], F_rT of an ISO 1328-1 flank class
+  kGrid,     ///< the listed values, one grid axis of a deterministic parameter sweep
+};
+
+/// The gear a variable belongs to: sun, ring or planet i (0-based).
+struct Target {
+  enum class Kind { kSun, kRing, kPlanet, kNone } kind = Kind::kNone;
+  int planet = 0;            ///< 0-based, Kind::kPlanet
+  std::string Name() const;  ///< "sun", "ring", "planet1", ... or "stage" (the torque)
+};
+
+struct Variable {
+  Quantity quantity = Quantity::kPinTangential;
+  Target target;
+  Distribution distribution = Distribution::kNormal;
+  double mean = 0;           ///< [m] or [N·m] (normal)
+  double sigma = 0;          ///< σ [m] or [N·m] (normal)
+  double min = 0, max = 0;   ///< [m] or [N·m] (uniform; iso1328: [0, F_rT/2])
+  std::vector<double> grid;  ///< [m] or [N·m] (grid)
+  int grade = 0;             ///< ISO 1328-1 flank tolerance class (iso1328) [-]
+  /// Column name(s) of the sampled values in the result rows, in their file units:
+  /// "planet1.pin_tangential_um"; a run-out has two, "..._amplitude_um" and "..._phase_deg".
+  std::vector<std::string> Columns() const;
+};
+
+/// What each case computes.
+enum class CaseKind {
+  kMeshCycle,         ///< a quasi-static sweep over one mesh cycle
+  kPlanetRevolution,  ///< over one planet revolution relative to the carrier (run-out period)
+};
+
+struct StudySpec {
+  std::string name;
+  std::string source;         ///< the study file (for messages)
+  std::string scene_file;     ///< the base scene's file, relative paths resolved against the study
+  transmission::Scene scene;  ///< the base scene
+  std::uint64_t seed = 0;     ///< of the counter-based random streams [-]
+  long samples = 1;           ///< Monte-Carlo cases per grid point [-]
+  CaseKind compute = CaseKind::kMeshCycle;
+  int positions = 0;       ///< carrier positions per case [-] (default 36 cycle, 360 revolution)
+  double start_angle = 0;  ///< carrier angle of the first position [rad]
+  std::optional<transmission::SunSupport> sun;  ///< overrides the scene's support
+  solvers::Backend backend = solvers::Backend::kActiveSetNewton;
+  std::string backend_name = "newton";
+  std::vector<Variable> variables;  ///< "planets" entries expanded, one per planet
+  std::string hash;                 ///< transmission::ContentHash of the study text
+  /// Legal values outside the model's validity (as transmission::Scene::warnings).
+  std::vector<std::string> warnings;
+
+  /// Points of the grid: the product of the grid variables' sizes (1 without grids) [-].
+  long GridPoints() const;
+  /// Cases of the study: GridPoints() · samples [-].
+  long Cases() const;
+  /// The sampled-value columns of every variable, in order.
+  std::vector<std::string> Columns() const;
+};
+
+/// @throws std::invalid_argument naming the file, line, key, value and rule (an unknown
+///         distribution or quantity, a negative σ, a grade outside ISO 1328-1, a gear the scene
+///         does not have, a scene that cannot be read).
+StudySpec ReadStudy(const std::string& path);
+/// The same from text; `source` names it in messages and relative scene paths are resolved
+/// against `directory`.
+StudySpec ParseStudy(const std::string& text, const std::string& source,
+                     const std::string& directory);
+
+}  // namespace epicycle::studies

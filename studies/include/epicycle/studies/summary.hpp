@@ -1,0 +1,34 @@
+// The summary of a study's rows (docs/studies.md): K_γ's distribution with confidence intervals,
+// the same for the sweep-mean load factor, and the rank correlation of K_γ with every sampled
+// variable (which tolerance matters).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "epicycle/studies/runner.hpp"
+#include "epicycle/studies/statistics.hpp"
+
+namespace epicycle::studies {
+
+struct StudySummary {
+  long cases = 0;                    ///< rows [-]
+  long failed = 0;                   ///< rows with status failed (left out of the statistics) [-]
+  SampleSummary k_gamma;             ///< K_γ over the ok rows
+  SampleSummary k_gamma_mean;        ///< max_i mean L_i over the ok rows
+  SampleSummary te_peak_to_peak;     ///< [µrad]
+  SampleSummary sun_orbit;           ///< [µm]
+  std::vector<std::string> columns;  ///< the sampled-value columns
+  std::vector<double> spearman;      ///< ρ_s(K_γ, column) per column (NaN: constant column)
+  Histogram k_gamma_histogram;
+  std::vector<double> k_gamma_sorted;  ///< the empirical CDF's steps: F(x_(i)) = i/n
+};
+
+/// Percentile levels of the summaries: 0.50, 0.95, 0.99, 0.999.
+inline const std::vector<double> kStudyPercentiles{0.5, 0.95, 0.99, 0.999};
+
+/// @param level confidence level of every interval [-]
+StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& rows,
+                            double level = 0.95);
+
+}  // namespace epicycle::studies

@@ -1,0 +1,356 @@
+#include "epicycle/studies/runner.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "epicycle/studies/sampling.hpp"
+#include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/sweep_summary.hpp"
+#include "epicycle/transmission/validity.hpp"
+#include "runner_internal.hpp"
+
+namespace epicycle::studies {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kResultFields = 10;  // ok .. message, after the sampled values
+
+// The shortest text that reads back to the same double (std::to_chars): the same result always
+// gives the same bytes, whatever thread or rank computed it. Non-finite: an empty field.
+std::string Exact(double v) {
+  if (!std::isfinite(v)) return "";
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+std::vector<std::string> Split(const std::string& line) {
+  std::vector<std::string> f;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t p = line.find(',', start);
+    f.push_back(line.substr(start, p == std::string::npos ? std::string::npos : p - start));
+    if (p == std::string::npos) return f;
+    start = p + 1;
+  }
+}
+
+bool ParseReal(const std::string& s, double* v) {
+  if (s.empty()) {
+    *v = kNaN;
+    return true;
+  }
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), *v);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+bool ParseLong(const std::string& s, long* v) {
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), *v);
+  return !s.empty() && r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+std::string Clean(std::string m) {
+  for (char& c : m)
+    if (c == ',' || c == '\n' || c == '\r') c = ';';
+  return m;
+}
+
+}  // namespace
+
+std::string CaseRow::Format() const {
+  // Appended piece by piece (GCC 12's -Wrestrict misfires on chained string additions).
+  std::string s = std::to_string(id);
+  auto field = [&s](const std::string& f) {
+    s.push_back(',');
+    s.append(f);
+  };
+  for (double v : values) field(Exact(v));
+  field(ok ? "ok" : "failed");
+  field(std::to_string(positions));
+  field(std::to_string(converged));
+  for (double v : {k_gamma, k_gamma_mean, lsr_min, lsr_max, te_peak_to_peak, sun_orbit})
+    field(ok ? Exact(v) : std::string());
+  field(Clean(message));
+  s.push_back('\n');
+  return s;
+}
+
+std::string RowHeader(const StudySpec& study) {
+  std::string h = "case";
+  for (const std::string& c : study.Columns()) {
+    h.push_back(',');
+    h.append(c);
+  }
+  h += ",status,positions,converged,K_gamma,K_gamma_mean,LSR_min,LSR_max,TE_pp_urad,"
+       "sun_orbit_um,message";
+  return h;
+}
+
+namespace internal {
+
+std::string StudyLine(const StudySpec& study) {
+  std::ostringstream o;
+  o << "# study " << Clean(study.name) << "; study_hash " << study.hash << "; seed " << study.seed
+    << "; cases " << study.Cases();
+  return o.str();
+}
+
+std::vector<double> CaseAngles(const StudySpec& study, const geometry::Stage& stage) {
+  const double span = study.compute == CaseKind::kMeshCycle
+                          ? stage.mesh_cycle()
+                          : 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth();
+  return transmission::SweepAngles(study.start_angle, span, study.positions);
+}
+
+CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::string& where) {
+  const std::vector<std::string> f = Split(line);
+  const std::size_t nv = study.Columns().size();
+  auto bad = [&](const std::string& why) {
+    throw std::invalid_argument(where + ": not a row of this study (" + why + "): '" + line + "'");
+  };
+  if (f.size() != 1 + nv + kResultFields)
+    bad(std::to_string(f.size()) + " fields, " + std::to_string(1 + nv + kResultFields) +
+        " expected");
+  CaseRow r;
+  if (!ParseLong(f[0], &r.id) || r.id < 0 || r.id >= study.Cases()) bad("case id");
+  r.values.resize(nv);
+  for (std::size_t j = 0; j < nv; ++j)
+    if (!ParseReal(f[1 + j], &r.values[j])) bad("value " + study.Columns()[j]);
+  std::size_t k = 1 + nv;
+  if (f[k] != "ok" && f[k] != "failed") bad("status");
+  r.ok = f[k++] == "ok";
+  long pos = 0, conv = 0;
+  if (!ParseLong(f[k++], &pos) || !ParseLong(f[k++], &conv)) bad("position counts");
+  r.positions = static_cast<int>(pos);
+  r.converged = static_cast<int>(conv);
+  for (double* v :
+       {&r.k_gamma, &r.k_gamma_mean, &r.lsr_min, &r.lsr_max, &r.te_peak_to_peak, &r.sun_orbit})
+    if (!ParseReal(f[k++], v)) bad("result value");
+  r.message = f[k];
+  return r;
+}
+
+std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows) {
+  std::vector<char> have(static_cast<std::size_t>(study.Cases()), 0);
+  for (const CaseRow& r : rows) have[static_cast<std::size_t>(r.id)] = 1;
+  std::vector<long> missing;
+  for (long k = 0; k < study.Cases(); ++k)
+    if (!have[static_cast<std::size_t>(k)]) missing.push_back(k);
+  return missing;
+}
+
+RowWriter::RowWriter(const std::string& path, const StudySpec& study, const std::string& comment,
+                     bool exists) {
+  file_ = std::fopen(path.c_str(), "ab");
+  if (file_ == nullptr) throw std::runtime_error(path + ": cannot write the study's rows");
+  path_ = path;
+  if (!exists) {
+    std::string head;
+    if (!comment.empty()) head += "# " + Clean(comment) + "\n";
+    head += StudyLine(study) + "\n" + RowHeader(study) + "\n";
+    Write(head);
+  }
+}
+
+RowWriter::~RowWriter() {
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+void RowWriter::Write(const std::string& text) {
+  // One fwrite of the whole line, then flushed to the kernel: a process killed now leaves the
+  // line whole or a prefix without its '\n' (dropped by ReadRows), never a valid-looking half.
+  if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || std::fflush(file_) != 0)
+    throw std::runtime_error(path_ + ": cannot write the study's rows");
+}
+
+// Runs `ids` on `threads` workers, each with its own solver; `sink` gets every row (called under
+// one lock, in completion order). Stops taking cases after `limit` (< 0: none).
+void ComputeCases(const StudySpec& study, const transmission::StageCompliance& compliance,
+                  const std::vector<long>& ids, int threads, long limit,
+                  const std::function<void(const CaseRow&)>& sink) {
+  std::atomic<std::size_t> next{0};
+  const std::size_t count =
+      limit < 0 ? ids.size() : std::min(ids.size(), static_cast<std::size_t>(limit));
+  std::mutex lock;
+  std::exception_ptr error;
+  auto work = [&] {
+    for (;;) {
+      const std::size_t i = next.fetch_add(1);
+      if (i >= count) return;
+      const CaseRow row = ComputeCase(study, compliance, ids[i]);
+      const std::lock_guard<std::mutex> guard(lock);
+      if (error) return;
+      try {
+        sink(row);
+      } catch (...) {
+        error = std::current_exception();
+        return;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(
+    const StudySpec& study, const std::string& cache_directory) {
+  // The bodies of the base scene: the tables depend on the nominal bodies only (a thickness
+  // error is a surface offset, compliance::NominalBody), so every case shares them.
+  transmission::FeComplianceOptions fe;
+  fe.cache_directory = cache_directory;
+  const geometry::Stage stage(study.scene.stage);
+  return std::make_unique<transmission::FeStageCompliance>(study.scene, stage, fe);
+}
+
+}  // namespace internal
+
+CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance& compliance,
+                    long case_id) {
+  CaseRow row;
+  row.id = case_id;
+  row.values = SampleCase(study, case_id);
+  try {
+    const transmission::Scene scene = CaseScene(study, row.values);
+    const geometry::Stage stage(scene.stage);
+    transmission::QuasiStaticOptions opt;
+    opt.setup = transmission::SetupFromScene(scene);
+    if (study.sun) opt.setup.sun = *study.sun;
+    opt.backend = study.backend;
+    const std::vector<double> angles = internal::CaseAngles(study, stage);
+    const auto results = transmission::Sweep(scene, stage, compliance, angles, opt);
+    const transmission::SweepSummary s = transmission::SummariseSweep(results, stage.planets());
+    row.positions = s.positions;
+    row.converged = s.converged;
+    row.ok = s.converged == s.positions;
+    if (row.ok) {
+      // Legal values outside the model's validity: the case stands, its message says so.
+      for (const std::string& w : transmission::QuasiStaticWarnings(stage, results))
+        row.message += (row.message.empty() ? "warning: " : " / warning: ") + w;
+    } else {
+      for (const auto& r : results) {
+        if (r.converged) continue;
+        row.message = std::to_string(s.positions - s.converged) + " of " +
+                      std::to_string(s.positions) + " positions failed; first at " +
+                      std::to_string(r.carrier_angle * 180.0 / std::numbers::pi) +
+                      " deg: " + r.message;
+        break;
+      }
+    }
+    row.k_gamma = s.k_gamma;
+    row.k_gamma_mean = s.k_gamma_mean;
+    row.lsr_min = s.LsrMin();
+    row.lsr_max = s.LsrMax();
+    row.te_peak_to_peak = s.TransmissionErrorPeakToPeak() * 1e6;
+    row.sun_orbit = s.sun_displacement_max * 1e6;
+  } catch (const std::exception& e) {
+    row.ok = false;
+    row.message = e.what();
+  }
+  return row;
+}
+
+ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
+  ExistingRows out;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return out;
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  const std::string text = buf.str();
+  in.close();
+  if (text.empty()) return out;
+  // A last line without '\n' is a row (or header) the writer was killed in: cut it off.
+  std::size_t complete = text.rfind('\n');
+  complete = complete == std::string::npos ? 0 : complete + 1;
+  if (complete < text.size()) {
+    out.dropped_partial = true;
+    std::filesystem::resize_file(path, complete);
+  }
+  std::istringstream lines(text.substr(0, complete));
+  std::string line;
+  int number = 0;
+  bool study_line = false, header = false;
+  std::set<long> seen;
+  while (std::getline(lines, line)) {
+    ++number;
+    const std::string where = path + ":" + std::to_string(number);
+    if (!header && line.rfind("# study ", 0) == 0) {
+      if (line != internal::StudyLine(study))
+        throw std::invalid_argument(where + ": the rows were written by another study ('" + line +
+                                    "', this one is '" + internal::StudyLine(study) +
+                                    "'): use another output folder or the same study file");
+      study_line = true;
+      continue;
+    }
+    if (!line.empty() && line[0] == '#') continue;
+    if (!header) {
+      if (!study_line || line != RowHeader(study))
+        throw std::invalid_argument(where + ": not the rows file of this study (column line '" +
+                                    line + "')");
+      header = true;
+      continue;
+    }
+    CaseRow r = internal::ParseRow(line, study, where);
+    if (!seen.insert(r.id).second)
+      throw std::invalid_argument(where + ": case " + std::to_string(r.id) +
+                                  " appears twice (two runs writing one file?)");
+    out.rows.push_back(std::move(r));
+  }
+  if (!header) {
+    // Killed before the column line was complete: nothing to keep, start the file anew.
+    std::filesystem::resize_file(path, 0);
+    return out;
+  }
+  out.exists = true;
+  return out;
+}
+
+RunReport RunStudy(const StudySpec& study, const RunOptions& options) {
+  RunReport report;
+  ExistingRows existing = ReadRows(options.rows_file, study);
+  report.resumed = static_cast<long>(existing.rows.size());
+  report.dropped_partial = existing.dropped_partial;
+  report.rows = std::move(existing.rows);
+  const std::vector<long> missing = internal::MissingCases(study, report.rows);
+  internal::RowWriter writer(options.rows_file, study, options.comment, existing.exists);
+  if (!missing.empty() && options.max_new_cases != 0) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto compliance = internal::NominalCompliance(study, options.cache_directory);
+    report.table_messages = compliance->tables().messages();
+    const auto t1 = std::chrono::steady_clock::now();
+    report.table_seconds = std::chrono::duration<double>(t1 - t0).count();
+    internal::ComputeCases(study, *compliance, missing, options.threads, options.max_new_cases,
+                           [&](const CaseRow& row) {
+                             writer.Write(row.Format());
+                             report.rows.push_back(row);
+                             ++report.computed;
+                             if (options.on_row)
+                               options.on_row(row, static_cast<long>(report.rows.size()),
+                                              study.Cases());
+                           });
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  }
+  std::sort(report.rows.begin(), report.rows.end(),
+            [](const CaseRow& a, const CaseRow& b) { return a.id < b.id; });
+  return report;
+}
+
+}  // namespace epicycle::studies

@@ -1,0 +1,50 @@
+// Pieces of the study runner shared by the threaded (runner.cpp) and MPI (mpi_runner.cpp) runs.
+#pragma once
+
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "epicycle/geometry/stage.hpp"
+#include "epicycle/studies/runner.hpp"
+#include "epicycle/transmission/fe_compliance.hpp"
+
+namespace epicycle::studies::internal {
+
+/// "# study <name>; study_hash ...; seed ...; cases ...": identifies the study in its rows file.
+std::string StudyLine(const StudySpec& study);
+/// The carrier angles of every case [rad].
+std::vector<double> CaseAngles(const StudySpec& study, const geometry::Stage& stage);
+/// A row from its CSV line. @throws std::invalid_argument naming `where`.
+CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::string& where);
+/// The case ids without a row, ascending.
+std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows);
+
+/// Appends whole lines to the rows file, each flushed at once (writes the comment, study and
+/// column lines first when the file is new).
+class RowWriter {
+ public:
+  RowWriter(const std::string& path, const StudySpec& study, const std::string& comment,
+            bool exists);
+  ~RowWriter();
+  RowWriter(const RowWriter&) = delete;
+  RowWriter& operator=(const RowWriter&) = delete;
+  void Write(const std::string& text);
+
+ private:
+  std::FILE* file_ = nullptr;
+  std::string path_;
+};
+
+/// The ids on a pool of `threads` workers; `sink` sees each row under one lock.
+void ComputeCases(const StudySpec& study, const transmission::StageCompliance& compliance,
+                  const std::vector<long>& ids, int threads, long limit,
+                  const std::function<void(const CaseRow&)>& sink);
+
+/// The FE compliance of the base scene's nominal bodies, shared by every case.
+std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(
+    const StudySpec& study, const std::string& cache_directory);
+
+}  // namespace epicycle::studies::internal

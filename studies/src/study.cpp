@@ -1,0 +1,281 @@
+#include "epicycle/studies/study.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "epicycle/geometry/gear.hpp"
+#include "epicycle/studies/sampling.hpp"
+#include "toml_reader.hpp"
+
+namespace epicycle::studies {
+
+namespace {
+
+using transmission::internal::ParseDocument;
+using transmission::internal::Rule;
+using transmission::internal::TableReader;
+
+constexpr double kUm = 1e-6;
+
+struct QuantityInfo {
+  Quantity quantity;
+  const char* key;   // the study file's name
+  const char* unit;  // the suffix of its value keys
+  double scale;      // file unit → SI
+};
+
+constexpr QuantityInfo kQuantities[] = {
+    {Quantity::kPinRadial, "pin_radial", "um", kUm},
+    {Quantity::kPinTangential, "pin_tangential", "um", kUm},
+    {Quantity::kRunout, "runout", "um", kUm},
+    {Quantity::kThickness, "thickness", "um", kUm},
+    {Quantity::kTorque, "torque", "Nm", 1.0},
+};
+
+const QuantityInfo& Info(Quantity q) {
+  for (const QuantityInfo& i : kQuantities)
+    if (i.quantity == q) return i;
+  throw std::logic_error("studies: unknown quantity");
+}
+
+std::string Num(double v) {
+  std::ostringstream o;
+  o.precision(12);
+  o << v;
+  return o.str();
+}
+
+const geometry::GearSpec& TargetSpec(const transmission::Scene& scene, const Target& t) {
+  return t.kind == Target::Kind::kSun    ? scene.stage.sun
+         : t.kind == Target::Kind::kRing ? scene.stage.ring
+                                         : scene.stage.planet;
+}
+
+// One [[variable]] table: one Variable, or one per planet for gear = "planets".
+std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& scene) {
+  std::vector<std::string> quantities;
+  for (const QuantityInfo& i : kQuantities) quantities.emplace_back(i.key);
+  const std::string qname = t.String("quantity", quantities);
+  Variable v;
+  for (const QuantityInfo& i : kQuantities)
+    if (qname == i.key) v.quantity = i.quantity;
+  const QuantityInfo& info = Info(v.quantity);
+  const std::string unit = info.unit;
+  const int n = scene.stage.planets;
+
+  // Which gear: planets only for pin errors, none for the torque.
+  bool each_planet = false;
+  if (v.quantity == Quantity::kTorque) {
+    v.target.kind = Target::Kind::kNone;
+  } else {
+    std::vector<std::string> allowed;
+    if (v.quantity != Quantity::kPinRadial && v.quantity != Quantity::kPinTangential)
+      allowed = {"sun", "ring"};
+    for (int i = 1; i <= n; ++i) allowed.push_back("planet" + std::to_string(i));
+    allowed.emplace_back("planets");
+    const std::string g = t.String("gear");
+    bool ok = false;
+    for (const std::string& a : allowed) ok = ok || a == g;
+    if (!ok) {
+      std::string list;
+      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+      t.Fail("gear", "\"" + g + "\"",
+             "must be one of " + list + " (the scene '" + scene.source + "' has " +
+                 std::to_string(n) + " planets" +
+                 (allowed.front() == "sun" ? "" : "; pin-hole errors exist for planets only") +
+                 ")");
+    }
+    if (g == "sun") v.target.kind = Target::Kind::kSun;
+    if (g == "ring") v.target.kind = Target::Kind::kRing;
+    if (g == "planets") each_planet = true;
+    if (g.rfind("planet", 0) == 0 && g != "planets") {
+      v.target.kind = Target::Kind::kPlanet;
+      v.target.planet = std::stoi(g.substr(6)) - 1;
+    }
+    if (each_planet) v.target.kind = Target::Kind::kPlanet;
+  }
+
+  const std::string dist = t.String("distribution", {"normal", "uniform", "iso1328", "grid"});
+  const bool length = info.scale == kUm;
+  // Values of the quantity: lengths within a module of the gear (the errors are µm-scale
+  // modifications of the geometry), a torque non-zero.
+  const double module_um = scene.stage.sun.module / kUm;
+  const Rule value_rule =
+      length ? Rule::Closed(-module_um, module_um).Because("within one module of the nominal")
+             : Rule::Any();
+  if (dist == "normal") {
+    if (v.quantity == Quantity::kRunout)
+      t.Fail("distribution", "\"normal\"",
+             "a run-out amplitude is >= 0: use \"uniform\" (min_um >= 0), \"iso1328\" or \"grid\"");
+    v.distribution = Distribution::kNormal;
+    v.mean = t.RealOr("mean_" + unit, 0.0, value_rule) * info.scale;
+    v.sigma = t.Real("sigma_" + unit, Rule::NonNegative().Because("a standard deviation is >= 0")) *
+              info.scale;
+  } else if (dist == "uniform") {
+    v.distribution = Distribution::kUniform;
+    const Rule r = v.quantity == Quantity::kRunout
+                       ? Rule::Closed(0, module_um).Because("a run-out amplitude is >= 0")
+                       : value_rule;
+    v.min = t.Real("min_" + unit, r) * info.scale;
+    v.max = t.Real("max_" + unit, r) * info.scale;
+    if (!(v.max > v.min))
+      t.Fail("max_" + unit, Num(v.max / info.scale),
+             "must be > min_" + unit + " = " + Num(v.min / info.scale));
+  } else if (dist == "iso1328") {
+    if (v.quantity != Quantity::kRunout)
+      t.Fail("distribution", "\"iso1328\"",
+             "ISO 1328-1 defines a tolerance for the run-out only (not for " + qname +
+                 "): use \"normal\" or \"uniform\"");
+    v.distribution = Distribution::kIso1328;
+    v.grade = static_cast<int>(t.Integer(
+        "grade", Rule::Closed(1, 11).Because("the flank tolerance classes of ISO 1328-1:2013")));
+    const geometry::GearSpec& g = TargetSpec(scene, v.target);
+    const double d = g.module * g.teeth;
+    if (!Iso1328Applies(v.grade, d, g.module))
+      t.Fail("grade", std::to_string(v.grade),
+             "ISO 1328-1:2013 covers 0.5 <= m_n <= 70 mm and 5 <= d <= 15000 mm; this gear has m_n "
+             "= " +
+                 Num(g.module * 1e3) + " mm, d = " + Num(d * 1e3) + " mm");
+    v.min = 0.0;
+    v.max = 0.5 * Iso1328RunoutTolerance(v.grade, d, g.module);
+  } else {
+    v.distribution = Distribution::kGrid;
+    const Rule r = v.quantity == Quantity::kRunout
+                       ? Rule::Closed(0, module_um).Because("a run-out amplitude is >= 0")
+                       : value_rule;
+    for (double x : t.RealArray("values_" + unit, r)) v.grid.push_back(x * info.scale);
+    if (v.grid.empty()) t.Fail("values_" + unit, "[]", "must list at least one value");
+  }
+  if (v.quantity == Quantity::kTorque) {
+    auto nonzero_same_sign = [&](double x, const std::string& key) {
+      if (!(x * scene.sun_torque > 0))
+        t.Fail(key, Num(x),
+               "must be non-zero with the sign of the scene's sun_torque_Nm = " +
+                   Num(scene.sun_torque) + " (the loaded flanks are the scene's)");
+    };
+    if (v.distribution == Distribution::kGrid)
+      for (double x : v.grid) nonzero_same_sign(x, "values_Nm");
+    if (v.distribution == Distribution::kUniform) {
+      nonzero_same_sign(v.min, "min_Nm");
+      nonzero_same_sign(v.max, "max_Nm");
+    }
+    if (v.distribution == Distribution::kNormal) nonzero_same_sign(v.mean, "mean_Nm");
+  }
+  t.Done();
+  if (!each_planet) return {v};
+  std::vector<Variable> out;
+  for (int i = 0; i < n; ++i) {
+    out.push_back(v);
+    out.back().target.planet = i;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string Target::Name() const {
+  switch (kind) {
+    case Kind::kSun:
+      return "sun";
+    case Kind::kRing:
+      return "ring";
+    case Kind::kPlanet:
+      return "planet" + std::to_string(planet + 1);
+    case Kind::kNone:
+      break;
+  }
+  return "stage";
+}
+
+std::vector<std::string> Variable::Columns() const {
+  const QuantityInfo& i = Info(quantity);
+  const std::string base = target.Name() + "." + i.key;
+  if (quantity == Quantity::kRunout) return {base + "_amplitude_um", base + "_phase_deg"};
+  return {base + "_" + i.unit};
+}
+
+long StudySpec::GridPoints() const {
+  long g = 1;
+  for (const Variable& v : variables)
+    if (v.distribution == Distribution::kGrid) g *= static_cast<long>(v.grid.size());
+  return g;
+}
+
+long StudySpec::Cases() const { return GridPoints() * samples; }
+
+std::vector<std::string> StudySpec::Columns() const {
+  std::vector<std::string> c;
+  for (const Variable& v : variables)
+    for (const std::string& s : v.Columns()) c.push_back(s);
+  return c;
+}
+
+StudySpec ParseStudy(const std::string& text, const std::string& source,
+                     const std::string& directory) {
+  const toml::table root = ParseDocument(text, source);
+  StudySpec s;
+  s.source = source;
+  s.hash = transmission::ContentHash(text);
+  TableReader top(root, "", source);
+  TableReader st = top.Table("study");
+  s.name = st.String("name");
+  s.scene_file = st.String("scene");
+  std::filesystem::path scene_path(s.scene_file);
+  if (scene_path.is_relative() && !directory.empty())
+    scene_path = std::filesystem::path(directory) / scene_path;
+  if (!std::filesystem::is_regular_file(scene_path))
+    st.Fail("scene", "\"" + s.scene_file + "\"",
+            "must name a scene file (TOML), relative to the study file; '" + scene_path.string() +
+                "' is not a file");
+  s.scene_file = scene_path.string();
+  s.scene = transmission::ReadScene(s.scene_file);
+  if (s.scene.kind != transmission::SceneKind::kStage)
+    st.Fail("scene", "\"" + s.scene_file + "\"", "must be a stage scene, not a gear pair");
+  s.seed = static_cast<std::uint64_t>(st.IntegerOr("seed", 0, Rule::NonNegative()));
+  s.samples = st.IntegerOr("samples", 1, Rule::Closed(1, 1e9).Because("cases per grid point"));
+  const std::string compute =
+      st.StringOr("compute", "mesh-cycle", {"mesh-cycle", "planet-revolution"});
+  s.compute = compute == "mesh-cycle" ? CaseKind::kMeshCycle : CaseKind::kPlanetRevolution;
+  s.positions = static_cast<int>(st.IntegerOr(
+      "positions", s.compute == CaseKind::kMeshCycle ? 36 : 360, Rule::Closed(1, 100000)));
+  s.start_angle = st.RealOr("start_deg", 0.0, Rule::Closed(-360, 360)) * std::numbers::pi / 180.0;
+  const std::string sun = st.StringOr("sun", "scene", {"scene", "fixed", "floating"});
+  if (sun == "fixed") s.sun = transmission::SunSupport::kFixed;
+  if (sun == "floating") s.sun = transmission::SunSupport::kFloating;
+  s.backend_name = st.StringOr("backend", "newton");
+  try {
+    s.backend = solvers::BackendFromName(s.backend_name);
+  } catch (const std::invalid_argument& e) {
+    st.Fail("backend", "\"" + s.backend_name + "\"", e.what());
+  }
+  st.Done();
+  for (TableReader& t : top.TableArray("variable"))
+    for (Variable& v : ReadVariable(t, s.scene)) s.variables.push_back(std::move(v));
+  top.Done();
+  // A gear's quantity sampled twice would give two columns writing one value.
+  for (std::size_t a = 0; a < s.variables.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b)
+      if (s.variables[a].Columns() == s.variables[b].Columns())
+        throw std::invalid_argument(source + ": variable " + s.variables[a].Columns().front() +
+                                    " is given twice: each gear's quantity can vary once");
+  if (s.variables.empty())
+    s.warnings.push_back(source + ": no [[variable]]: every case is the base scene");
+  for (const std::string& w : s.scene.warnings) s.warnings.push_back(w);
+  return s;
+}
+
+StudySpec ReadStudy(const std::string& path) {
+  if (std::filesystem::is_directory(path))
+    throw std::invalid_argument(path + ": is a directory, not a study file (TOML)");
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(path + ": cannot open the study file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseStudy(text.str(), path, std::filesystem::path(path).parent_path().string());
+}
+
+}  // namespace epicycle::studies

@@ -1,0 +1,37 @@
+#include "epicycle/studies/summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace epicycle::studies {
+
+StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& rows,
+                            double level) {
+  StudySummary s;
+  s.cases = static_cast<long>(rows.size());
+  s.columns = study.Columns();
+  std::vector<double> kg, kgm, te, orbit;
+  std::vector<std::vector<double>> values(s.columns.size());
+  for (const CaseRow& r : rows) {
+    if (!r.ok) {
+      ++s.failed;
+      continue;
+    }
+    kg.push_back(r.k_gamma);
+    kgm.push_back(r.k_gamma_mean);
+    te.push_back(r.te_peak_to_peak);
+    orbit.push_back(r.sun_orbit);
+    for (std::size_t j = 0; j < values.size(); ++j) values[j].push_back(r.values.at(j));
+  }
+  s.k_gamma = Summarise(kg, kStudyPercentiles, level);
+  s.k_gamma_mean = Summarise(kgm, kStudyPercentiles, level);
+  s.te_peak_to_peak = Summarise(te, kStudyPercentiles, level);
+  s.sun_orbit = Summarise(orbit, kStudyPercentiles, level);
+  for (const auto& v : values) s.spearman.push_back(SpearmanCorrelation(v, kg));
+  s.k_gamma_histogram = MakeHistogram(kg);
+  s.k_gamma_sorted = kg;
+  std::sort(s.k_gamma_sorted.begin(), s.k_gamma_sorted.end());
+  return s;
+}
+
+}  // namespace epicycle::studies

@@ -1,0 +1,42 @@
+// Statistics of a quasi-static sweep over carrier positions (docs/model.md §4): the load-sharing
+// ratios' mean and extremes per planet, the mesh load factor K_γ, the loaded static transmission
+// error's range and the sun's largest displacement. One function shared by the `quasistatic`
+// command and the tolerance studies (studies/), so both report the same numbers.
+#pragma once
+
+#include <vector>
+
+#include "epicycle/transmission/quasistatic.hpp"
+
+namespace epicycle::transmission {
+
+/// Statistics over the converged positions of a sweep. With no converged position every
+/// statistic is NaN (callers print "-" or null, never the NaN).
+struct SweepSummary {
+  int positions = 0;             ///< positions of the sweep [-]
+  int converged = 0;             ///< of which converged [-]
+  std::vector<double> lsr_mean;  ///< mean over positions of LSR_i [-], per planet
+  std::vector<double> lsr_min;   ///< min over positions of LSR_i [-], per planet
+  std::vector<double> lsr_max;   ///< max over positions of LSR_i [-], per planet
+  double k_gamma = 0;            ///< K_γ = max over positions and planets of L_i = n·LSR_i [-]
+  /// K̄_γ = max_i (mean over positions of L_i) [-]: the mesh-cycle-mean load factor, the quantity
+  /// the linear load-sharing theory predicts (docs/model.md §6).
+  double k_gamma_mean = 0;
+  double transmission_error_min = 0;  ///< [rad]
+  double transmission_error_max = 0;  ///< [rad]
+  double sun_displacement_max = 0;    ///< largest |sun centre displacement| [m] (sun orbit)
+  /// Peak-to-peak loaded static transmission error [rad].
+  double TransmissionErrorPeakToPeak() const {
+    return transmission_error_max - transmission_error_min;
+  }
+  /// Smallest and largest LSR_i over planets and positions [-].
+  double LsrMin() const;
+  double LsrMax() const;
+};
+
+/// The statistics of `results` (a sweep of a stage with `planets` planets); positions that did
+/// not converge are left out. @throws std::invalid_argument if planets < 1 or a converged result
+/// has not `planets` load-sharing ratios.
+SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int planets);
+
+}  // namespace epicycle::transmission

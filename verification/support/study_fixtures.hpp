@@ -1,0 +1,60 @@
+// Study files and folders shared by the studies suite's tests.
+#pragma once
+
+#include <unistd.h>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "epicycle/studies/study.hpp"
+
+namespace epicycle::test {
+
+/// A fresh folder under the system's temporary directory, removed at the end of the test.
+struct TempDir {
+  std::filesystem::path path;
+  explicit TempDir(const std::string& tag) {
+    path = std::filesystem::temp_directory_path() /
+           ("epicycle-" + tag + "-" + std::to_string(::getpid()) + "-" +
+            std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code e;
+    std::filesystem::remove_all(path, e);
+  }
+  std::string File(const std::string& name) const { return (path / name).string(); }
+};
+
+/// A [study] table on the paper's stage (absolute scene path) followed by `rest`.
+inline std::string StudyText(const std::string& study_keys, const std::string& rest) {
+  return "[study]\nname = \"test\"\nscene = \"" + std::string(EPICYCLE_SCENES_DIR) +
+         "/paper_stage.toml\"\n" + study_keys + "\n" + rest;
+}
+
+inline std::string WriteText(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path;
+}
+
+inline std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The message of the std::invalid_argument that ParseStudy throws for `text` ("" if none).
+inline std::string StudyError(const std::string& text) {
+  try {
+    studies::ParseStudy(text, "bad.toml", "");
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace epicycle::test

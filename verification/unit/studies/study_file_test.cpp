@@ -1,0 +1,148 @@
+// The study file (docs/studies.md): bad files give messages naming the key, the value and the
+// rule; counter-based sampling (case k's values depend on (seed, k) only); the distributions'
+// moments against their definitions; ISO 1328-1's run-out tolerance against a hand calculation.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "epicycle/studies/sampling.hpp"
+#include "epicycle/studies/study.hpp"
+#include "figures.hpp"
+#include "stage_fixtures.hpp"
+#include "study_fixtures.hpp"
+
+using namespace epicycle;
+using Catch::Contains;
+using test::StudyError;
+using test::StudyText;
+
+namespace {
+
+const std::string kPins =
+    "[[variable]]\nquantity = \"pin_tangential\"\ngear = \"planets\"\ndistribution = "
+    "\"normal\"\nsigma_um = 5.0\n";
+
+}  // namespace
+
+TEST_CASE("study file: bad input names the key, the value and the rule", "[unit][studies]") {
+  SECTION("unknown distribution") {
+    const std::string m = StudyError(
+        StudyText("",
+                  "[[variable]]\nquantity = \"pin_radial\"\ngear = \"planet1\"\ndistribution = "
+                  "\"gauss\"\nsigma_um = 5.0\n"));
+    CHECK_THAT(m, Contains("bad.toml:") && Contains("variable[0].distribution = \"gauss\"") &&
+                      Contains("must be one of \"normal\", \"uniform\", \"iso1328\", \"grid\""));
+  }
+  SECTION("negative sigma") {
+    const std::string m = StudyError(
+        StudyText("",
+                  "[[variable]]\nquantity = \"pin_radial\"\ngear = \"planet2\"\ndistribution = "
+                  "\"normal\"\nsigma_um = -2.0\n"));
+    CHECK_THAT(m, Contains("variable[0].sigma_um = -2") && Contains("must be >= 0") &&
+                      Contains("a standard deviation is >= 0"));
+  }
+  SECTION("grade outside the standard") {
+    const std::string m =
+        StudyError(StudyText("",
+                             "[[variable]]\nquantity = \"runout\"\ngear = \"sun\"\ndistribution = "
+                             "\"iso1328\"\ngrade = 12\n"));
+    CHECK_THAT(m, Contains("variable[0].grade = 12") && Contains("[1, 11]") &&
+                      Contains("ISO 1328-1:2013"));
+  }
+  SECTION("a planet the scene does not have") {
+    const std::string m =
+        StudyError(StudyText("", test::Replace(kPins, "\"planets\"", "\"planet4\"")));
+    CHECK_THAT(m, Contains("variable[0].gear = \"planet4\"") && Contains("\"planet3\"") &&
+                      Contains("has 3 planets") && Contains("pin-hole errors exist for planets"));
+  }
+  SECTION("a pin-hole error on the sun") {
+    const std::string m = StudyError(StudyText("", test::Replace(kPins, "\"planets\"", "\"sun\"")));
+    CHECK_THAT(m, Contains("variable[0].gear = \"sun\"") && Contains("planets only"));
+  }
+  SECTION("ISO 1328-1 for a quantity it does not cover") {
+    const std::string m = StudyError(
+        StudyText("",
+                  "[[variable]]\nquantity = \"thickness\"\ngear = \"ring\"\ndistribution = "
+                  "\"iso1328\"\ngrade = 6\n"));
+    CHECK_THAT(m, Contains("variable[0].distribution = \"iso1328\"") &&
+                      Contains("run-out only (not for thickness)"));
+  }
+  SECTION("an unknown key, a key without its unit") {
+    CHECK_THAT(StudyError(StudyText("", test::Replace(kPins, "sigma_um", "sigma"))),
+               Contains("sigma"));
+    CHECK_THAT(StudyError(StudyText("seeds = 3", "")), Contains("study.seeds"));
+  }
+  SECTION("a torque that changes the loaded flanks") {
+    const std::string m = StudyError(
+        StudyText("",
+                  "[[variable]]\nquantity = \"torque\"\ndistribution = \"grid\"\nvalues_Nm = "
+                  "[-600.0, 300.0]\n"));
+    CHECK_THAT(m, Contains("values_Nm = 300") && Contains("sign of the scene's sun_torque_Nm"));
+  }
+  SECTION("a missing scene file") {
+    const std::string m = StudyError("[study]\nname = \"x\"\nscene = \"no_such_scene.toml\"\n");
+    CHECK_THAT(m, Contains("study.scene = \"no_such_scene.toml\"") && Contains("is not a file"));
+  }
+}
+
+TEST_CASE("study file: counter-based sampling and grids", "[unit][studies]") {
+  const studies::StudySpec s = studies::ParseStudy(
+      StudyText("seed = 7\nsamples = 3",
+                kPins + "[[variable]]\nquantity = \"torque\"\ndistribution = \"grid\"\n"
+                        "values_Nm = [-300.0, -600.0]\n[[variable]]\nquantity = \"runout\"\n"
+                        "gear = \"planet1\"\ndistribution = \"uniform\"\nmin_um = 0.0\n"
+                        "max_um = 20.0\n"),
+      "s.toml", "");
+  REQUIRE(s.variables.size() == 5);  // three planets' pins, the torque, one run-out
+  CHECK(s.GridPoints() == 2);
+  CHECK(s.Cases() == 6);
+  CHECK(s.Columns().size() == 6);  // the run-out has amplitude and phase
+  // Case k's values depend on (seed, k) only: the same in any order, different between cases.
+  const auto v5 = studies::SampleCase(s, 5);
+  const auto v0 = studies::SampleCase(s, 0);
+  CHECK(studies::SampleCase(s, 5) == v5);
+  CHECK(v0 != v5);
+  // The grid's first variable varies fastest: even cases -300, odd -600.
+  for (long k = 0; k < 6; ++k) CHECK(studies::SampleCase(s, k)[3] == (k % 2 ? -600.0 : -300.0));
+  // Applied to the scene: pin errors in m, the torque, the run-out with its phase in rad.
+  const transmission::Scene c = studies::CaseScene(s, v5);
+  CHECK(c.stage.pin_errors.at(2).tangential == Approx(v5[2] * 1e-6).epsilon(1e-15));
+  CHECK(c.sun_torque == -600.0);
+  CHECK(c.stage.planet_runouts.at(0).amplitude == Approx(v5[4] * 1e-6).epsilon(1e-15));
+  CHECK(c.stage.planet_runouts.at(0).phase == Approx(v5[5] * std::numbers::pi / 180.0));
+  CHECK(v5[4] >= 0.0);
+  CHECK(v5[4] < 20.0);
+}
+
+TEST_CASE("study sampling: the distributions' moments", "[unit][studies]") {
+  // N draws: the sample mean of a standard normal has σ = 1/√N, its variance's σ ≈ √(2/N);
+  // uniform [0,1): mean 1/2 (σ = 1/√(12N)). Tolerances 5σ: a correct generator fails with
+  // probability below 1e-6.
+  const long n = 200000;
+  double sum = 0, sum2 = 0, usum = 0;
+  long below = 0;
+  for (long k = 0; k < n; ++k) {
+    studies::CaseStream r(99, k, 0);
+    const double z = r.Normal(), u = r.Uniform();
+    sum += z;
+    sum2 += z * z;
+    usum += u;
+    below += z < 1.6448536269514722 ? 1 : 0;  // Φ(1.645) = 0.95
+  }
+  const double nd = static_cast<double>(n);
+  CHECK(std::abs(sum / nd) <= 5.0 / std::sqrt(nd));
+  CHECK(std::abs(sum2 / nd - 1.0) <= 5.0 * std::sqrt(2.0 / nd));
+  CHECK(std::abs(usum / nd - 0.5) <= 5.0 / std::sqrt(12.0 * nd));
+  CHECK(std::abs(static_cast<double>(below) / nd - 0.95) <= 5.0 * std::sqrt(0.95 * 0.05 / nd));
+}
+
+TEST_CASE("ISO 1328-1:2013 run-out tolerance against a hand calculation", "[unit][studies]") {
+  // Class 5, d = 100 mm, m_n = 4 mm: F_pT = 0.2 + 0.55·10 + 2.8 + 12 = 20.5 µm, F_rT = 18.45 µm;
+  // one class coarser multiplies by √2.
+  CHECK(studies::Iso1328RunoutTolerance(5, 0.1, 0.004) == Approx(18.45e-6).epsilon(1e-12));
+  CHECK(studies::Iso1328RunoutTolerance(6, 0.1, 0.004) ==
+        Approx(18.45e-6 * std::numbers::sqrt2).epsilon(1e-12));
+  CHECK_THROWS_AS(studies::Iso1328RunoutTolerance(12, 0.1, 0.004), std::invalid_argument);
+  CHECK_THROWS_AS(studies::Iso1328RunoutTolerance(5, 0.1, 0.0004), std::invalid_argument);
+}
