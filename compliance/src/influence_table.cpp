@@ -408,9 +408,9 @@ bool InfluenceTable::TryLocate(const Eigen::Vector2d& point, int tooth, int flan
   // on an external tooth, falling on an internal one), so bisection on |q| starts next to it and
   // a descent along the polyline finds it; a point near the flat end of the tip round, where the
   // radius no longer tells positions apart, may start a few points off and the descent walks
-  // there. A descent that ends more than a grid interval from its start falls back to the scan of
-  // every point (never taken for points on the profile, kept so that the answer never depends on
-  // the shortcut).
+  // there. A descent that ends more than a grid interval from its start, or at a point out of
+  // tolerance, falls back to the scan of every point (never taken for points on the profile; kept
+  // so that neither the answer nor a rejection ever depends on the shortcut).
   const double r = q.norm();
   const bool rising = dense_radius_.back() > dense_radius_.front();
   const auto it =
@@ -425,7 +425,7 @@ bool InfluenceTable::TryLocate(const Eigen::Vector2d& point, int tooth, int flan
       best = dist2(m);
     }
   }
-  if (std::abs(m - start) > kDense) {
+  auto scan_all = [&] {
     for (int p = 0; p <= last; ++p) {
       const double d = dist2(p);
       if (d < best) {
@@ -433,24 +433,36 @@ bool InfluenceTable::TryLocate(const Eigen::Vector2d& point, int tooth, int flan
         m = p;
       }
     }
-  }
-  double s = dense_[m].arc_length, distance = std::sqrt(best);
-  // The foot on the adjacent chords: the chord error is κΔ²/8 (Δ the dense spacing), below
-  // 1e-8 m for these profiles.
-  for (int p : {m - 1, m}) {
-    if (p < 0 || p >= last) continue;
-    const Eigen::Vector2d a = dense_[p].point, e = dense_[p + 1].point - a;
-    const double t = (q - a).dot(e) / e.squaredNorm();
-    if (t < 0.0 || t > 1.0) continue;
-    const double d = (a + t * e - q).norm();
-    if (d < distance) {
-      distance = d;
-      s = dense_[p].arc_length + t * (dense_[p + 1].arc_length - dense_[p].arc_length);
+  };
+  // The foot on the chords next to dense point m: the chord error is κΔ²/8 (Δ the dense
+  // spacing), below 1e-8 m for these profiles.
+  auto foot = [&](double* s, double* distance) {
+    *s = dense_[m].arc_length;
+    *distance = std::sqrt(best);
+    for (int p : {m - 1, m}) {
+      if (p < 0 || p >= last) continue;
+      const Eigen::Vector2d a = dense_[p].point, e = dense_[p + 1].point - a;
+      const double t = (q - a).dot(e) / e.squaredNorm();
+      if (t < 0.0 || t > 1.0) continue;
+      const double d = (a + t * e - q).norm();
+      if (d < *distance) {
+        *distance = d;
+        *s = dense_[p].arc_length + t * (dense_[p + 1].arc_length - dense_[p].arc_length);
+      }
     }
+  };
+  bool scanned = std::abs(m - start) > kDense;
+  if (scanned) scan_all();
+  double s = 0, distance = 0;
+  foot(&s, &distance);
+  const double tolerance = 1e-3 * module_;
+  if (!(distance <= tolerance) && !scanned) {  // never trust the shortcut with a failure
+    scan_all();
+    foot(&s, &distance);
   }
   *distance_out = distance;
   *out = FlankPosition{tooth, flank, std::clamp(s, 0.0, arc_length_max())};
-  return distance <= 1e-3 * module_;
+  return distance <= tolerance;
 }
 
 FlankPosition InfluenceTable::Locate(const Eigen::Vector2d& point, int tooth, int flank) const {
