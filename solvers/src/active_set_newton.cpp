@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -580,6 +581,72 @@ class ActiveSetNewton final : public BackendImpl {
 };
 
 }  // namespace
+
+bool DirectNewton::Run(const ScaledProblem& p, double target, int max_iterations,
+                       Eigen::VectorXd* x_io, Eigen::VectorXd* g_out, int* iterations) {
+  const int n = p.num_contacts();
+  Eigen::VectorXd& x = *x_io;
+  Eigen::VectorXd& g = *g_out;
+  if (x.size() != n) x.setZero(n);
+  u_.resize(n);
+  du_.resize(n);
+  double best = std::numeric_limits<double>::infinity();
+  int since_best = 0;
+  for (int it = 0;; ++it) {
+    *iterations = it;
+    // A contact at zero force has u = 0; its derivative is needed only if it enters A (below).
+    for (int j = 0; j < n; ++j)
+      if (x(j) != 0.0)
+        p.LocalAt(j, x(j), kDerivativeFloor, &u_(j), &du_(j));
+      else
+        u_(j) = du_(j) = 0.0;
+    g.noalias() = p.C * x;  // ∇Φ(x) as ScaledProblem::Gradient forms it: C x + u − δ0
+    g = g + u_ - p.delta0;
+    double res = 0.0;
+    bool negative = false;
+    for (int j = 0; j < n; ++j) {
+      res = std::max(res, std::abs(std::min(x(j), g(j))));
+      negative = negative || x(j) < 0.0;
+    }
+    if (!std::isfinite(res)) return false;
+    if (res <= target && !negative) return true;
+    if (res < best) {
+      best = res;
+      since_best = 0;
+    } else if (++since_best >= 3) {
+      return false;  // no progress: cycling between active sets, or worse
+    }
+    if (it >= max_iterations) return false;
+    active_.clear();
+    for (int j = 0; j < n; ++j)
+      if (x(j) > g(j)) active_.push_back(j);
+    const int na = static_cast<int>(active_.size());
+    h_.resize(na, na);
+    r_.resize(na);
+    for (int a = 0; a < na; ++a) {
+      const int ja = active_[a];
+      for (int b = 0; b < na; ++b) h_(a, b) = p.C(ja, active_[b]);
+      if (x(ja) == 0.0) {  // entering from zero force: u' at the floor (u'(0⁺) = +∞)
+        double u0 = 0.0;
+        p.LocalAt(ja, 0.0, kDerivativeFloor, &u0, &du_(ja));
+      }
+      h_(a, a) += du_(ja);
+      // −g_A + C_AI x_I: the inactive contacts' forces go to zero in this step.
+      double s = -g(ja);
+      for (int j = 0; j < n; ++j)
+        if (!(x(j) > g(j))) s += p.C(ja, j) * x(j);
+      r_(a) = s;
+    }
+    for (int j = 0; j < n; ++j)
+      if (!(x(j) > g(j))) x(j) = 0.0;
+    if (na > 0) {
+      llt_.compute(h_);
+      if (llt_.info() != Eigen::Success) return false;
+      llt_.solveInPlace(r_);
+      for (int a = 0; a < na; ++a) x(active_[a]) += r_(a);
+    }
+  }
+}
 
 std::unique_ptr<BackendImpl> MakeActiveSetNewtonBackend() {
   return std::make_unique<ActiveSetNewton>();

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Dense>
 
 #include "epicycle/solvers/contact_solver.hpp"
@@ -57,8 +58,16 @@ struct ScaledProblem {
   double length_scale = 1.0;  ///< [m]
   Eigen::VectorXd row_scale;  ///< m: G_i [SI] = row_scale_i · G_i [scaled] ([-] or [m])
 
+  /// u_j(x) and u_j'(x) of one contact from one evaluation (the odd extension for x < 0; u' at
+  /// max(|x|, floor) so that a contact entering from zero force gets a finite, large derivative).
+  /// Both 0 without a local term.
+  void LocalAt(int j, double x, double floor, double* u, double* du) const;
+
   /// Natural-map and equilibrium residuals at (x, λ), evaluated at max(x, 0).
   ContactResiduals Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda) const;
+  /// The residuals of a problem without equalities at x ≥ 0 from its gap g = ∇Φ(x) = Cx + u − δ0
+  /// (the part of Residuals after the gradient, for a caller that has the gradient already).
+  static ContactResiduals ResidualsFromGap(const Eigen::VectorXd& x, const Eigen::VectorXd& g);
   /// The same, also returning the gap g = ∇Φ(max(x, 0)) − Gᵀλ it was computed from (the driver
   /// counts the active contacts from it instead of evaluating the local terms a second time).
   ContactResiduals Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda,
@@ -108,6 +117,29 @@ class BackendImpl {
                             const Eigen::VectorXd* x0, const Eigen::VectorXd* lambda0) = 0;
   /// Back-end option keys this back end accepts (without the namespace), for Validate().
   virtual std::vector<std::string> option_keys() const { return {}; }
+};
+
+/// The active-set Newton's direct path for problems without equalities (positions given, only
+/// F ≥ 0: the dynamic model's problem at every right-hand side): the semismooth Newton of phase 1
+/// without line search, equality blocks or option parsing, on storage kept between calls. With
+/// A = {j : x_j > g_j}, x_I = 0 and the Newton step on g_A = 0,
+///   (C_AA + diag u'(x_A)) dx_A = −g_A + C_AI x_I,
+/// until ‖min(x, g)‖∞ ≤ target at x ≥ 0. From a warm start of the previous time step it takes
+/// one or two steps. It gives up (returns false) when the residual has not decreased for three
+/// iterations, after `max_iterations`, or when C_AA + diag u' is not positive definite: the
+/// caller then runs the globalised back end, which is slower but converges.
+class DirectNewton {
+ public:
+  /// @param x in: the start (empty: cold, x = 0); out: the answer (x ≥ 0 when true).
+  /// @param g out: the gap ∇Φ(x) at the answer (exactly what ScaledProblem::Residuals computes).
+  bool Run(const ScaledProblem& p, double target, int max_iterations, Eigen::VectorXd* x,
+           Eigen::VectorXd* g, int* iterations);
+
+ private:
+  Eigen::VectorXd u_, du_, r_;
+  Eigen::MatrixXd h_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+  std::vector<int> active_;
 };
 
 // Factories, one per source file. The Ipopt / NLopt ones are compiled from either the real file

@@ -110,6 +110,36 @@ class DriverSolver final : public ContactSolver {
     Eigen::VectorXd& l0 = l0_;
     if (options.warm_start) internal::Scale(sp, *in_out, &x0, &l0);
 
+    // Positions given (no equalities) and no back-end knobs: the Newton's direct path first. Its
+    // answer is judged by the same residual as every other; if it gives up, the general path runs.
+    std::string direct_note;
+    if (backend_ == Backend::kActiveSetNewton && m == 0 && options.backend_options.empty()) {
+      const auto t1 = Clock::now();
+      if (!options.warm_start) x0.resize(0);
+      int iterations = 0;
+      const bool done = direct_.Run(sp, 0.1 * options.tolerance,
+                                    std::min(options.max_iterations, 50), &x0, &gap_, &iterations);
+      if (done) {
+        report.residual = internal::ScaledProblem::ResidualsFromGap(x0, gap_);
+        if (report.residual.total <= options.tolerance) {
+          report.solve_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+          report.iterations = iterations;
+          report.status = ContactStatus::kConverged;
+          report.active_contacts = static_cast<int>((x0.array() > gap_.array()).count());
+          internal::Unscale(sp, x0, Eigen::VectorXd(), in_out);
+          report.message = "converged: newton: residual " + Sci(report.residual.total) +
+                           " (direct path: no equalities, " + std::to_string(iterations) +
+                           " iterations)";
+          AppendValidityWarning(problem, sp, *in_out, &report.message);
+          report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+          return report;
+        }
+      }
+      direct_note = "; the direct path gave up after " + std::to_string(iterations) +
+                    " iterations, the globalised Newton ran";
+      if (options.warm_start) internal::Scale(sp, *in_out, &x0, &l0);
+    }
+
     internal::BackendResult raw;
     std::string exception_text;
     const auto t1 = Clock::now();
@@ -163,6 +193,7 @@ class DriverSolver final : public ContactSolver {
                        " (complementarity " + Sci(report.residual.complementarity) +
                        ", equilibrium " + Sci(report.residual.equilibrium) + ")";
     if (recovered) text += "; multipliers recovered by least squares on the active set";
+    text += direct_note;
     if (!msg.empty()) text += "; back end says: " + msg;
 
     if (options.polish && report.status != ContactStatus::kConverged) {
@@ -201,15 +232,8 @@ class DriverSolver final : public ContactSolver {
     // leaves at 1e-12 instead of 0 does not count. g is the gap of the residual just computed
     // at the same (max(x, 0), λ).
     report.active_contacts = static_cast<int>((x.array().max(0.0) > gap_.array()).count());
-    if (sp.has_local) {
-      int beyond = 0;
-      for (int j = 0; j < n; ++j)  // the limit is > 0: a zero force never passes it
-        if (in_out->force(j) > 0.0 && in_out->force(j) > problem.ValidityLimitForce(j)) ++beyond;
-      if (beyond > 0)
-        text += "; WARNING: " + std::to_string(beyond) +
-                " contact(s) beyond the local term's validity (Hertz half-width L > depth h)";
-    }
     report.message = StatusName(report.status) + ": " + text;
+    AppendValidityWarning(problem, sp, *in_out, &report.message);
     report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return report;
   }
@@ -222,8 +246,23 @@ class DriverSolver final : public ContactSolver {
     return ContactStatus::kNumericalFailure;
   }
 
+  // Contacts loaded beyond the local term's validity (Hertz half-width L > depth h) are named in
+  // the message as a warning.
+  static void AppendValidityWarning(const ContactProblem& problem,
+                                    const internal::ScaledProblem& sp,
+                                    const ContactSolution& answer, std::string* message) {
+    if (!sp.has_local) return;
+    int beyond = 0;
+    for (int j = 0; j < problem.num_contacts(); ++j)  // the limit is > 0: zero never passes it
+      if (answer.force(j) > 0.0 && answer.force(j) > problem.ValidityLimitForce(j)) ++beyond;
+    if (beyond > 0)
+      *message += "; WARNING: " + std::to_string(beyond) +
+                  " contact(s) beyond the local term's validity (Hertz half-width L > depth h)";
+  }
+
   Backend backend_;
   std::unique_ptr<internal::BackendImpl> impl_;
+  internal::DirectNewton direct_;
   // Work storage reused from call to call (the solver is stateful and not shared between
   // threads): the scaled problem, the scaled warm start, the gap of the final residual.
   internal::ScaledProblem sp_;

@@ -80,6 +80,29 @@ void ScaledProblem::Gradient(const Eigen::VectorXd& x, Eigen::VectorXd* grad) co
   *grad = C * x + u - delta0;
 }
 
+void ScaledProblem::LocalAt(int j, double x, double floor, double* u, double* du) const {
+  *u = *du = 0.0;
+  if (!has_local || !local[j].enabled) return;
+  const double ax = std::max(std::abs(x), floor);
+  const Eval e = EvalLocal(local[j], ax, true, true, false);
+  // The value of the odd extension at x itself (0 at x = 0, as LocalValue), the slope at ax.
+  if (x != 0.0)
+    *u = ax == std::abs(x)
+             ? (x > 0 ? e.u : -e.u)
+             : EvalLocal(local[j], std::abs(x), true, false, false).u * (x > 0 ? 1.0 : -1.0);
+  *du = e.du;
+}
+
+ContactResiduals ScaledProblem::ResidualsFromGap(const Eigen::VectorXd& x,
+                                                 const Eigen::VectorXd& g) {
+  ContactResiduals r;
+  // ‖x − max(0, x − g)‖∞ = ‖min(x, g)‖∞ for x ≥ 0.
+  r.complementarity = x.cwiseMin(g).cwiseAbs().maxCoeff();
+  r.total = r.complementarity;
+  if (!std::isfinite(r.total)) r.total = std::numeric_limits<double>::infinity();
+  return r;
+}
+
 ContactResiduals ScaledProblem::Residuals(const Eigen::VectorXd& x_in,
                                           const Eigen::VectorXd& lambda) const {
   Eigen::VectorXd g;
@@ -99,8 +122,7 @@ ContactResiduals ScaledProblem::Residuals(const Eigen::VectorXd& x_in,
     if (has_support) e += S * lambda;
     r.equilibrium = e.size() ? e.cwiseAbs().maxCoeff() : 0.0;
   }
-  // ‖x − max(0, x − g)‖∞ = ‖min(x, g)‖∞ for x ≥ 0.
-  r.complementarity = x.cwiseMin(g).cwiseAbs().maxCoeff();
+  r.complementarity = ResidualsFromGap(x, g).complementarity;
   // A negative component of the raw answer counts as an error too.
   r.complementarity = std::max(r.complementarity, (x_in - x).cwiseAbs().maxCoeff());
   r.total = std::max(r.complementarity, r.equilibrium);

@@ -1,0 +1,142 @@
+// The active-set Newton's direct path for problems without equalities (positions given: the
+// dynamic model's problem at every right-hand side). Every problem of the collection in
+// verification/data/contact with its equalities dropped is solved by the direct path and checked
+//  - against the definition of a solution, recomputed here from ContactProblem::Gap in SI units
+//    (the physical local-term closed forms, not the solver's scaled ones): F ≥ 0 and
+//    ‖min(F/F*, g/ℓ*)‖∞ ≤ tolerance, plus the round-off of that recomputation;
+//  - against the globalised Newton's phase 1 alone (line search, face solver with refinement: the
+//    general code, not the direct path) at 1e-12, within the suite's agreement criterion for back
+//    ends (1e-6 relative in forces);
+//  - warm from a nearby problem: the same answer as cold, in fewer iterations.
+// A direct path that gives up hands over to the general path, and the message says so.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "epicycle/solvers/contact_io.hpp"
+#include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/solvers/contact_solver.hpp"
+#include "figures.hpp"
+#include "solvers_support.hpp"
+
+namespace epicycle::solvers {
+namespace {
+
+ContactProblemData WithoutEqualities(ContactProblemData d) {
+  const Eigen::Index n = d.overlap.size();
+  d.equality_matrix.resize(0, n);
+  d.equality_rhs.resize(0);
+  d.support_stiffness.resize(0, 0);
+  d.multiplier_labels.clear();
+  return d;
+}
+
+// ‖min(F/F*, g/ℓ*)‖∞ and the most negative F/F*, from the problem's own gap in SI units.
+double NaturalResidual(const ContactProblem& p, const ContactSolution& s) {
+  const ContactScales sc = ComputeContactScales(p);
+  const Eigen::VectorXd g = p.Gap(s.force.cwiseMax(0.0), Eigen::VectorXd());
+  double r = 0.0;
+  for (int j = 0; j < p.num_contacts(); ++j) {
+    r = std::max(r, std::abs(std::min(s.force(j) / sc.force, g(j) / sc.length)));
+    r = std::max(r, std::max(0.0, -s.force(j) / sc.force));
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("direct path: the collection without equalities, against the definition and phase 2",
+          "[crosscheck][solvers]") {
+  const auto files = test::CollectionFiles();
+  REQUIRE(files.size() >= 30);
+  // The residual recomputed in SI and rescaled differs from the solver's scaled one by round-off:
+  // the gap's terms are O(1) in units of ℓ* (δ0 and C F of the overlapping contacts), so a few
+  // hundred ulps of 1 cover it.
+  constexpr double kRoundOff = 1e-13;
+  int direct = 0, loaded = 0;
+  double worst_residual = 0.0, worst_difference = 0.0, worst_warm = 0.0;
+  for (const std::string& path : files) {
+    const ContactProblemFile file = ReadContactProblemFile(path);
+    const ContactProblem problem(WithoutEqualities(file.data));
+    INFO(problem.name());
+    auto solver = MakeContactSolver(Backend::kActiveSetNewton);
+    ContactOptions options;  // tolerance 1e-10
+    ContactSolution sol;
+    const ContactReport r = solver->Solve(problem, options, &sol);
+    INFO(r.message);
+    REQUIRE(r.status == ContactStatus::kConverged);
+    if (r.message.find("direct path:") != std::string::npos) ++direct;
+    if (sol.force.maxCoeff() > 0) ++loaded;
+    const double res = NaturalResidual(problem, sol);
+    CHECK(res <= options.tolerance + kRoundOff);
+    worst_residual = std::max(worst_residual, res);
+
+    ContactOptions tight;
+    tight.tolerance = 1e-12;
+    tight.backend_options = {{"newton.phase1_only", "1"}};
+    ContactSolution ref;
+    const ContactReport rr =
+        MakeContactSolver(Backend::kActiveSetNewton)->Solve(problem, tight, &ref);
+    INFO("phase 1: " << rr.message);
+    // As in the collection test: 1e-12 is below the round-off floor of the stiffest problems,
+    // whose reference then stops at its stagnation point; it must still be within 1e-9.
+    REQUIRE(rr.residual.total <= 1e-9);
+    const double d = CompareSolutions(problem, sol, ref).force;
+    CHECK(d <= 1e-6);
+    worst_difference = std::max(worst_difference, d);
+
+    // A nearby problem (every second overlap moved by 0.2 µm), warm from this answer.
+    ContactProblemData moved = WithoutEqualities(file.data);
+    for (Eigen::Index j = 0; j < moved.overlap.size(); j += 2) moved.overlap(j) += 0.2e-6;
+    const ContactProblem nearby(moved);
+    ContactSolution w = sol, c;
+    ContactOptions warm = options;
+    warm.warm_start = true;
+    const ContactReport rw = solver->Solve(nearby, warm, &w);
+    const ContactReport rc = solver->Solve(nearby, options, &c);
+    INFO("warm: " << rw.message << " / cold: " << rc.message);
+    CHECK(rw.status == ContactStatus::kConverged);
+    CHECK(rc.status == ContactStatus::kConverged);
+    CHECK(rw.iterations <= rc.iterations);
+    const double dw = CompareSolutions(nearby, w, c).force;
+    CHECK(dw <= 1e-6);
+    worst_warm = std::max(worst_warm, dw);
+  }
+  // The collection must exercise the path: most problems go through it, and most are loaded.
+  CHECK(direct >= static_cast<int>(files.size()) * 3 / 4);
+  CHECK(loaded >= static_cast<int>(files.size()) / 2);
+  const std::string what = "contact direct path (no equalities), " + std::to_string(files.size()) +
+                           " collection problems, " + std::to_string(direct) + " solved by it";
+  epicycle::test::VerifyRow(
+      what, "KKT recomputed from the problem in SI; globalised Newton at 1e-12",
+      "residual " + epicycle::test::Sci(worst_residual) + ", forces " +
+          epicycle::test::Sci(worst_difference) + ", warm vs cold " +
+          epicycle::test::Sci(worst_warm),
+      epicycle::test::Sci(std::max(worst_difference, worst_warm)), "1e-6",
+      worst_residual <= 1e-10 + kRoundOff && worst_difference <= 1e-6 && worst_warm <= 1e-6);
+}
+
+TEST_CASE("direct path: when it gives up the general path runs and the message says so",
+          "[crosscheck][solvers]") {
+  const ContactProblemFile file = ReadContactProblemFile(test::CaseFile("gear_p5_n60_m8_s1"));
+  const ContactProblem problem(WithoutEqualities(file.data));
+  auto solver = MakeContactSolver(Backend::kActiveSetNewton);
+  ContactOptions options;
+  ContactSolution sol;
+  const ContactReport full = solver->Solve(problem, options, &sol);
+  REQUIRE(full.status == ContactStatus::kConverged);
+  REQUIRE(full.iterations >= 2);  // a cold start needs more than one step
+  options.max_iterations = 1;
+  ContactSolution one;
+  const ContactReport r = solver->Solve(problem, options, &one);
+  INFO(r.message);
+  CHECK(r.message.find("direct path gave up") != std::string::npos);
+  // The globalised Newton (its phase 2 has no use for the phase-1 budget) finishes the job.
+  CHECK(r.status == ContactStatus::kConverged);
+  CHECK(r.residual.total <= options.tolerance);
+  CHECK(CompareSolutions(problem, one, sol).force <= 1e-6);
+}
+
+}  // namespace epicycle::solvers
