@@ -147,12 +147,14 @@ struct WorldArc {
   Vec2 centre;
   double from, to;
 };
-WorldArc TipRoundInWorld(const PosedGear& g, int tooth, int side) {
+// `rotation` is Dir(g.pose.rotation), computed once per search.
+WorldArc TipRoundInWorld(const PosedGear& g, const Vec2& rotation, int tooth, int side) {
   const TipRound& t = g.gear->tip_round();
   const double turn = g.pose.rotation + tooth * g.gear->pitch_angle() + g.gear->tooth_offset(tooth);
   const Vec2 body(t.centre.x(), side * t.centre.y());
-  return {g.pose.geometric_centre + Rotate(body, turn), side * t.normal_from + turn,
-          side * t.normal_to + turn};
+  return {
+      g.pose.geometric_centre + RotateBy(RotateBy(body, g.gear->tooth_direction(tooth)), rotation),
+      side * t.normal_from + turn, side * t.normal_to + turn};
 }
 // The unrelieved round of the nominal tooth (where the FE table reads the contact), only for hits.
 Vec2 NominalTipRoundCentre(const PosedGear& g, int tooth, int side) {
@@ -195,13 +197,18 @@ LineOfAction MakeLineOfAction(const PosedGear& a, const PosedGear& b, bool inter
   l.side_a = side_a;
   l.side_b = internal ? -side_a : side_a;
   l.centre_distance = dist;
-  l.pressure_angle = std::acos(k / dist);
+  const double cos_alpha = k / dist;
+  l.pressure_angle = std::acos(cos_alpha);
   const double pitch_dir = Angle(dv) + (internal ? kPi : 0.0);
   l.base_angle_a = pitch_dir - side_a * l.pressure_angle;
   l.base_angle_b = l.base_angle_a + (internal ? 0.0 : kPi);
-  l.direction = side_a * DirPerp(l.base_angle_a);
-  l.tangent_a = a.pose.geometric_centre + rba * Dir(l.base_angle_a);
-  l.tangent_b = b.pose.geometric_centre + rbb * Dir(l.base_angle_b);
+  // Dir(base_a) = Dir(pitch_dir) turned by −σα, from the unit vectors themselves.
+  const Vec2 pitch_unit = (internal ? -1.0 : 1.0) * dv / dist;
+  const Vec2 e =
+      RotateBy(pitch_unit, Vec2(cos_alpha, -side_a * std::sqrt(1.0 - cos_alpha * cos_alpha)));
+  l.direction = side_a * Vec2(-e.y(), e.x());
+  l.tangent_a = a.pose.geometric_centre + rba * e;
+  l.tangent_b = b.pose.geometric_centre + (internal ? rbb : -rbb) * e;
   l.length = (l.tangent_b - l.tangent_a).dot(l.direction);
   return l;
 }
@@ -222,12 +229,23 @@ struct LoaPair {
 // action. An involute's normal where it crosses the line of action is the line's direction, so
 // the relieved flank x − C n crosses the line at x − C d: along the line the gap of two relieved
 // flanks is exactly the involutes' gap plus C_A(u_A) + C_B(u_B).
+// Every flank point this finds lies where its involute crosses the line of action, whose
+// generating angle is the line's base angle (mod 2π) for every tooth, offset or not: the point is
+// x = O + r_b (e − H u e⊥) with e the unit vector from the centre to the line's tangent point, so
+// no sine or cosine is needed per tooth.
+Vec2 OnLineOfAction(const PosedGear& g, const Vec2& tangent_point, int hand, double u) {
+  const double rb = g.gear->base_radius();
+  const Vec2 e = (tangent_point - g.pose.geometric_centre) / rb;
+  return g.pose.geometric_centre + rb * (e - static_cast<double>(hand) * u * Vec2(-e.y(), e.x()));
+}
+
 LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l, double ua, int ka,
                   bool modified) {
   LoaPair r;
   r.ua = ua;
   r.ka = ka;
-  r.xa = (modified ? FlankInWorld(a, ka, l.side_a) : NominalFlank(a, ka, l.side_a)).Point(ua);
+  const WorldInvolute a0 = NominalFlank(a, 0, l.side_a);
+  r.xa = OnLineOfAction(a, l.tangent_a, a0.hand, ua);
   const double sa = (r.xa - l.tangent_a).dot(l.direction);
   const WorldInvolute b0 = NominalFlank(b, 0, l.side_b);
   // Along d, B's flank point sits at s_B = L + H_B σ_B r_bB u_B from N_A.
@@ -238,7 +256,7 @@ LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l,
   r.kb = Mod(-b0.hand * j, b.gear->teeth());
   r.ub = u0 + static_cast<double>(j) * p;
   if (modified) r.ub -= b0.hand * b.gear->tooth_offset(r.kb);
-  r.xb = (modified ? FlankInWorld(b, r.kb, l.side_b) : NominalFlank(b, r.kb, l.side_b)).Point(r.ub);
+  r.xb = OnLineOfAction(b, l.tangent_b, b0.hand, r.ub);
   r.overlap = (r.xa - r.xb).dot(l.direction);
   r.sa = NominalTooth(a, ka, r.xa);
   r.sb = NominalTooth(b, r.kb, r.xb);
@@ -344,8 +362,9 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
       const double r_lo = std::min(other.gear->form_radius(), other.gear->tip_form_radius());
       const double r_hi = std::max(other.gear->form_radius(), other.gear->tip_form_radius());
       const double reach_lo = std::max(0.0, r_lo - rho - window), reach_hi = r_hi + rho + window;
+      const Vec2 rotation = Dir(owner.pose.rotation);
       for (const int tooth : teeth) {
-        const WorldArc arc = TipRoundInWorld(owner, tooth, owner_side);
+        const WorldArc arc = TipRoundInWorld(owner, rotation, tooth, owner_side);
         const double dist2 = (arc.centre - other.pose.geometric_centre).squaredNorm();
         if (dist2 < reach_lo * reach_lo || dist2 > reach_hi * reach_hi) continue;
         ArcAgainstFlanks(

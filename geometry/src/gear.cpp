@@ -92,6 +92,9 @@ void Gear::BuildModifications() {
       max_offset_ = std::max(max_offset_, std::abs(offsets_[k]));
     }
   }
+  tooth_directions_.resize(spec_.teeth);
+  for (int k = 0; k < spec_.teeth; ++k)
+    tooth_directions_[k] = Dir(k * pitch_angle() + tooth_offset(k));
   // Reliefs: the zone must lie on the active involute, between the form circle and the tip-round
   // tangency, and leave the tooth a tip (the two flanks' reliefs together keep s_a ≥ s_a,min).
   const ProfileModification& mod = spec_.modification;

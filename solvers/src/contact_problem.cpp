@@ -89,11 +89,14 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
   CheckFinite(d.equality_matrix, "equality_matrix");
   CheckFinite(d.equality_rhs, "equality_rhs");
   CheckFinite(d.support_stiffness, "support_stiffness");
-  for (std::size_t j = 0; j < d.local.size(); ++j)
-    ValidateLocalTerm(d.local[j], "local[" + std::to_string(j) + "]");
+  for (std::size_t j = 0; j < d.local.size(); ++j)  // names are built only for a message
+    if (!IsValidLocalTerm(d.local[j]))
+      ValidateLocalTerm(d.local[j], "local[" + std::to_string(j) + "]");
 
   CheckSymmetric(d.compliance, "compliance");
-  d.compliance = 0.5 * (d.compliance + d.compliance.transpose()).eval();
+  for (Eigen::Index j = 0; j < n; ++j)  // the symmetric part, in place
+    for (Eigen::Index i = 0; i < j; ++i)
+      d.compliance(i, j) = d.compliance(j, i) = 0.5 * (d.compliance(i, j) + d.compliance(j, i));
   Eigen::LLT<Eigen::MatrixXd> llt(d.compliance);
   if (llt.info() != Eigen::Success) {
     const double min_eig =

@@ -37,8 +37,17 @@ void Fail(const std::string& field, double value, const char* rule) {
 
 }  // namespace
 
+bool IsValidLocalTerm(const LocalTermParameters& p) {
+  if (!p.enabled) return true;
+  auto ok = [](double v) { return std::isfinite(v) && v > 0.0; };
+  auto ok_nu = [](double nu) { return std::isfinite(nu) && nu >= 0.0 && nu < 0.5; };
+  return ok(p.face_width) && ok(p.reduced_radius) && ok(p.body[0].youngs_modulus) &&
+         ok(p.body[0].depth) && ok_nu(p.body[0].poisson_ratio) && ok(p.body[1].youngs_modulus) &&
+         ok(p.body[1].depth) && ok_nu(p.body[1].poisson_ratio);
+}
+
 void ValidateLocalTerm(const LocalTermParameters& p, const std::string& field) {
-  if (!p.enabled) return;
+  if (IsValidLocalTerm(p)) return;
   auto positive = [&](double v, const std::string& name) {
     if (!std::isfinite(v) || !(v > 0.0)) Fail(field + "." + name, v, "must be finite and > 0");
   };

@@ -151,6 +151,8 @@ class Gear {
   double tooth_offset(int k) const { return offsets_.empty() ? 0.0 : offsets_[k]; }
   bool has_pitch_deviations() const { return !offsets_.empty(); }
   double max_tooth_offset() const { return max_offset_; }  ///< max_k |F_p,k| / r [rad]
+  /// Dir(2πk/z + F_p,k/r): tooth k's direction in the body frame, its offset included [-].
+  const Vec2& tooth_direction(int k) const { return tooth_directions_[k]; }
 
   /// The closed outline of the whole gear in its body frame: every tooth, both flanks, with
   /// `per_segment` points per profile segment.
@@ -177,6 +179,7 @@ class Gear {
   GearSpec spec_;
   ReliefZone tip_relief_, root_relief_;
   std::vector<double> offsets_;
+  std::vector<Vec2> tooth_directions_;
   double max_offset_ = 0;
   double r_ = 0, rb_ = 0, ra_ = 0, rf_ = 0, r_form_ = 0, r_tip_form_ = 0, flank_turn_ = 0;
   bool undercut_ = false;

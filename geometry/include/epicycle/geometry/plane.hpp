@@ -23,6 +23,10 @@ inline Vec2 Rotate(const Vec2& v, double a) {
   const double c = std::cos(a), s = std::sin(a);
   return {c * v.x() - s * v.y(), s * v.x() + c * v.y()};
 }
+/// v rotated counter-clockwise by the angle of the unit vector e = Dir(a) (no sine or cosine).
+inline Vec2 RotateBy(const Vec2& v, const Vec2& e) {
+  return {e.x() * v.x() - e.y() * v.y(), e.y() * v.x() + e.x() * v.y()};
+}
 /// Polar angle of v in (−π, π].
 inline double Angle(const Vec2& v) { return std::atan2(v.y(), v.x()); }
 /// a wrapped into (−π, π].

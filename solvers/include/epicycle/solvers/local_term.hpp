@@ -41,6 +41,8 @@ struct LocalTermParameters {
 /// Throws std::invalid_argument naming `field` (e.g. "local[3]"), the value and the rule unless
 /// face width, radius, moduli, depths > 0 and finite, 0 ≤ ν < 0.5. Disabled terms are not checked.
 void ValidateLocalTerm(const LocalTermParameters& p, const std::string& field);
+/// The same rules as a predicate, without building any message (true for a disabled term).
+bool IsValidLocalTerm(const LocalTermParameters& p);
 
 /// E* [Pa]: 1/E* = k_1 + k_2 (plane-strain or plane-stress k_B).
 double EffectiveModulus(const LocalTermParameters& p);
