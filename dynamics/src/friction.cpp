@@ -29,8 +29,10 @@ constexpr double kPoundPerInch = 4.4482216152605 / kInch;                       
 constexpr double kBkConstant = 3.17e8 * kInch * kInch * kInch / kPoundPerInch;  // ≈ 29.66
 constexpr double kMicroInch = kInch * 1e-6;                                     // [m]
 
-void Require(bool ok, const std::string& field, double value, const std::string& rule) {
-  if (!ok) throw std::invalid_argument(field + " = " + Num(value) + ": " + rule);
+// Literals, not strings: the message is built only when a rule fails (the contact checks run for
+// every loaded contact at every right-hand side).
+void Require(bool ok, const char* field, double value, const char* rule) {
+  if (!ok) throw std::invalid_argument(std::string(field) + " = " + Num(value) + ": " + rule);
 }
 
 double XuKahraman(const FrictionOptions& o, const FrictionContact& c) {
@@ -96,9 +98,10 @@ void FrictionOptions::Validate() const {
   FrictionLawName(law);  // throws for a value outside the enum
   Require(std::isfinite(max_coefficient) && max_coefficient > 0, "friction.max_coefficient",
           max_coefficient, "must be finite and > 0");
-  Require(std::isfinite(coefficient) && coefficient >= 0 && coefficient <= max_coefficient,
-          "friction.coefficient", coefficient,
-          "must be finite, >= 0 and <= friction.max_coefficient = " + Num(max_coefficient));
+  if (!(std::isfinite(coefficient) && coefficient >= 0 && coefficient <= max_coefficient))
+    throw std::invalid_argument(
+        "friction.coefficient = " + Num(coefficient) +
+        ": must be finite, >= 0 and <= friction.max_coefficient = " + Num(max_coefficient));
   Require(std::isfinite(smoothing_velocity) && smoothing_velocity > 0,
           "friction.smoothing_velocity", smoothing_velocity, "must be finite and > 0 [m/s]");
   Require(std::isfinite(lubricant.dynamic_viscosity) && lubricant.dynamic_viscosity > 0,

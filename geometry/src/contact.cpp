@@ -299,9 +299,9 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
   const double window = options.gap_window;
   const Vec2 oa = a.pose.rotation_centre, ob = b.pose.rotation_centre;
   const double ring_sign = internal ? -1.0 : 1.0;  // B's curvature: a ring's flank is concave
-  std::vector<int> sides =
-      options.both_sides ? std::vector<int>{1, -1} : std::vector<int>{options.side_a};
-  for (int side_a : sides) {
+  const int sides[2] = {options.both_sides ? 1 : options.side_a, -1};
+  for (int si = 0; si < (options.both_sides ? 2 : 1); ++si) {
+    const int side_a = sides[si];
     const LineOfAction l = MakeLineOfAction(a, b, internal, side_a);
     // Involute against involute, on the line of action.
     const WorldInvolute a0 = NominalFlank(a, 0, side_a);
@@ -349,14 +349,23 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
       const WorldInvolute f0 = NominalFlank(owner, 0, owner_side);
       const double u0 = f0.hand * WrapAngle(base_angle - f0.start);
       const double u_tip = owner.gear->internal() ? f0.u_min : f0.u_max;
-      std::vector<int> teeth;
+      // At most three rolls fall in a window two pitches wide: no allocation for them.
+      std::vector<int> all;
+      int near[3], count = 0;
       if (options.exhaustive_tips) {
-        for (int k = 0; k < owner.gear->teeth(); ++k) teeth.push_back(k);
+        for (int k = 0; k < owner.gear->teeth(); ++k) all.push_back(k);
       } else {
         ForEachRoll(u0, p, u_tip - p, u_tip + p, [&](double, long j) {
-          teeth.push_back(Mod(-f0.hand * j, owner.gear->teeth()));
+          if (count < 3) near[count++] = Mod(-f0.hand * j, owner.gear->teeth());
         });
       }
+      const int* teeth_begin = options.exhaustive_tips ? all.data() : near;
+      const int* teeth_end = options.exhaustive_tips ? all.data() + all.size() : near + count;
+      const struct {
+        const int *b, *e;
+        const int* begin() const { return b; }
+        const int* end() const { return e; }
+      } teeth{teeth_begin, teeth_end};
       // The mate's active involute lies between its form and tip-form circles: a round whose
       // centre is farther than ρ + window outside that annulus touches none of its flanks.
       const double r_lo = std::min(other.gear->form_radius(), other.gear->tip_form_radius());

@@ -45,6 +45,7 @@ std::string StageDof::Label() const {
 std::vector<StageContact> SearchStage(const geometry::Stage& stage,
                                       const geometry::StagePoses& poses, double gap_window) {
   std::vector<StageContact> out;
+  out.reserve(8 * stage.planets());  // a few per mesh and flank side: one allocation
   geometry::ContactSearchOptions opt;
   opt.gap_window = gap_window;
   for (int i = 0; i < stage.planets(); ++i) {
