@@ -347,7 +347,7 @@ void DynamicModel::BearingForces(double t, const Eigen::VectorXd& d, const Eigen
 
 void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
                             solvers::ContactSolver& solver, const solvers::ContactOptions& contact,
-                            const Evaluation* warm, Evaluation* out) const {
+                            const Evaluation* warm, Evaluation* out, bool energies) const {
   Evaluation& e = *out;
   const int nd = size();
   const int np = model_.planets();
@@ -535,9 +535,9 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     // A carrier driven at its speed does work on the planets through their pins.
     if (kc < 0) e.external_power += e.planet_bearing_force[i].dot(vpin);
   }
-  e.kinetic_energy = kinetic;
+  e.kinetic_energy = energies ? kinetic : 0.0;
   double elastic = 0;
-  if (n > 0) {
+  if (n > 0 && energies) {
     elastic = 0.5 * e.force.dot(terms.compliance * e.force);
     for (int j = 0; j < n && !terms.local.empty(); ++j) {
       const double fj = e.force(j);
@@ -572,7 +572,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     elastic += 0.5 * setup.planet_stiffness * defl.squaredNorm();
     e.dissipated_power += settings_.planet_bearing_damping * rate.squaredNorm();
   }
-  e.elastic_energy = elastic;
+  e.elastic_energy = energies ? elastic : 0.0;
 }
 
 void DynamicModel::Jacobian(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,

@@ -1,5 +1,7 @@
 #include "epicycle/dynamics/simulation.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -34,8 +36,8 @@ void SimulationOptions::Validate() const {
     fail("atol_length", atol_length, "must be > 0");
   if (!(atol_angle > 0) || !std::isfinite(atol_angle))
     fail("atol_angle", atol_angle, "must be > 0");
-  if (!(rate_scale > 0) || !std::isfinite(rate_scale))
-    fail("rate_scale", rate_scale, "must be > 0");
+  if (!(rate_scale >= 0) || !std::isfinite(rate_scale))
+    fail("rate_scale", rate_scale, "must be >= 0 (0: the highest natural frequency at t = 0)");
   if (!(atol_energy > 0) || !std::isfinite(atol_energy))
     fail("atol_energy", atol_energy, "must be > 0");
   if (max_steps < 1) fail("max_steps", static_cast<double>(max_steps), "must be >= 1");
@@ -83,7 +85,7 @@ void Split(const Context& c, const double* y, Eigen::VectorXd* d, Eigen::VectorX
 bool EvaluateAt(Context& c, double t, N_Vector y, Eigen::VectorXd* d, Eigen::VectorXd* v,
                 const char* what) {
   Split(c, N_VGetArrayPointer(y), d, v);
-  c.model->Evaluate(t, *d, *v, *c.solver, c.contact, &c.warm, &c.scratch);
+  c.model->Evaluate(t, *d, *v, *c.solver, c.contact, &c.warm, &c.scratch, /*energies=*/false);
   ++c.stats->rhs_evaluations;
   if (c.scratch.ok) return true;
   ++c.stats->failed_solves;
@@ -139,6 +141,21 @@ int Jac(sunrealtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void* user, N
     c.error = std::current_exception();
     return -1;
   }
+}
+
+// ω_max [rad/s]: the largest √|λ| of ∂d̈/∂d at the start (the linearised stage's highest natural
+// frequency, its mesh stiffnesses those of the starting contacts), so that a rate tolerance
+// atol·ω_max weighs a vibration's velocity as its amplitude is weighed. 1e4 rad/s if the start
+// has no stiffness (no contacts).
+double HighestFrequency(const DynamicModel& model, const Eigen::VectorXd& d,
+                        const Eigen::VectorXd& v, const Evaluation& at) {
+  if (!at.ok) return 1e4;
+  Eigen::MatrixXd dd, dv;
+  model.Jacobian(0.0, d, v, at, &dd, &dv);
+  if (dd.size() == 0 || !dd.allFinite()) return 1e4;
+  const double top =
+      Eigen::EigenSolver<Eigen::MatrixXd>(dd, false).eigenvalues().cwiseAbs().maxCoeff();
+  return top > 0 && std::isfinite(top) ? std::sqrt(top) : 1e4;
 }
 
 // RAII owners of the SUNDIALS objects.
@@ -199,6 +216,11 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
   s.atol = N_VNew_Serial(size, s.ctx);
   s.dky = N_VNew_Serial(size, s.ctx);
   if (!s.y || !s.atol || !s.dky) throw std::runtime_error("SUNDIALS: cannot allocate vectors");
+  // The warm start of the first evaluation: the state itself, solved cold.
+  model.Evaluate(0.0, d0, v0, *c.solver, c.contact, nullptr, &c.warm, /*energies=*/false);
+  result.stats.rate_scale =
+      options.rate_scale > 0 ? options.rate_scale : HighestFrequency(model, d0, v0, c.warm);
+
   double* y = N_VGetArrayPointer(s.y);
   double* atol = N_VGetArrayPointer(s.atol);
   for (int k = 0; k < n; ++k) {
@@ -207,13 +229,10 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     y[k] = d0(k);
     y[n + k] = v0(k);
     atol[k] = a;
-    atol[n + k] = a * options.rate_scale;
+    atol[n + k] = a * result.stats.rate_scale;
   }
   y[2 * n] = y[2 * n + 1] = 0.0;
   atol[2 * n] = atol[2 * n + 1] = options.atol_energy;
-
-  // The warm start of the first evaluation: the state itself, solved cold.
-  model.Evaluate(0.0, d0, v0, *c.solver, c.contact, nullptr, &c.warm);
 
   const bool cvode = options.integrator == Integrator::kCvodeBdf;
   if (cvode) {

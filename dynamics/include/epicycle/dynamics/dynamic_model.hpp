@@ -109,8 +109,8 @@ struct Evaluation {
   double external_power = 0;    ///< power of the input torque and of the driven carrier [W]
   double dissipated_power = 0;  ///< friction + mesh damping + bearing damping [W], ≥ 0
   double friction_power = 0;    ///< friction alone [W], ≥ 0
-  double kinetic_energy = 0;    ///< [J]
-  double elastic_energy = 0;    ///< contacts ½FᵀCF + Σ[F u(F) − ∫u] plus bearings [J]
+  double kinetic_energy = 0;    ///< [J] (0 unless asked for: Evaluate's `energies`)
+  double elastic_energy = 0;  ///< contacts ½FᵀCF + Σ[F u(F) − ∫u] plus bearings [J] (ditto)
   solvers::ContactReport report;
 };
 
@@ -151,9 +151,12 @@ class DynamicModel {
   /// One evaluation: contact search, compliance, contact solve (warm-started from `warm`, forces
   /// matched by contact label), damping, friction, bearings → accelerations. A failed contact
   /// solve gives ok = false (recoverable: the integrator retries with a smaller step).
+  /// `energies` = false leaves kinetic_energy and elastic_energy at 0: the right-hand side needs
+  /// only the powers, and the stored energy of the local terms costs a closed-form integral per
+  /// loaded contact (outputs and balances ask for them).
   void Evaluate(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
                 solvers::ContactSolver& solver, const solvers::ContactOptions& contact,
-                const Evaluation* warm, Evaluation* out) const;
+                const Evaluation* warm, Evaluation* out, bool energies = true) const;
 
   /// ∂d̈/∂d and ∂d̈/∂ḋ at an evaluation: the contact part from the contact solution's sensitivity,
   /// −M⁻¹ G_A (C_AA + diag u'_local(F_A))⁻¹ G_Aᵀ and −M⁻¹ G diag(c) Gᵀ (frozen contact geometry),

@@ -35,9 +35,11 @@ struct SimulationOptions {
   double rtol = 1e-6;          ///< relative tolerance [-], in (0, 0.1]
   double atol_length = 1e-10;  ///< absolute tolerance on translations [m]
   double atol_angle = 1e-9;    ///< absolute tolerance on rotations [rad]
-  /// Absolute tolerances of the rates: the position tolerance times this [1/s] (≈ the highest
-  /// frequency of interest, rad/s).
-  double rate_scale = 1e4;
+  /// Absolute tolerances of the rates: the position tolerance times this [1/s], the highest
+  /// angular frequency of interest [rad/s], so that a vibration's velocity is weighed as its
+  /// amplitude is. 0 (the default): the stage's highest linearised natural frequency at t = 0,
+  /// √max|λ(∂d̈/∂d)| (SimulationStats::rate_scale reports the value used).
+  double rate_scale = 0;
   double atol_energy = 1e-6;  ///< absolute tolerance of the accumulated works [J]
   /// CVODE: the Jacobian from the contact sensitivity (true) or CVODE's difference quotients.
   bool analytic_jacobian = true;
@@ -80,6 +82,7 @@ struct SimulationStats {
   double rhs_seconds = 0;       ///< CPU in evaluations [s]
   double jacobian_seconds = 0;  ///< in the analytic Jacobian [s]
   double wall_seconds = 0;      ///< the whole run [s]
+  double rate_scale = 0;        ///< the rates' tolerance factor used [rad/s] (see the options)
 };
 
 struct SimulationResult {
