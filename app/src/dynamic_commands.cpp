@@ -239,6 +239,9 @@ void RunDynamic(const DynamicArgs& a) {
   j["friction"] = scene.dynamics.friction;
   j["integrator"] = a.integrator;
   j["rtol"] = a.rtol;
+  j["atol_length_m"] = opt.atol_length;
+  j["atol_angle_rad"] = opt.atol_angle;
+  j["rate_tolerance_scale_rad_per_s"] = st.rate_scale;  // rate atol = position atol x this
   j["backend"] = a.backend;
   j["start"] = "quasi-static solution at t = 0 (no start-up transient)";
   j["duration_s"] = duration;
