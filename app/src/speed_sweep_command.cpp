@@ -101,6 +101,9 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   o.harmonics = a.harmonics;
   o.window_start = geometry::Rad(a.start_deg);
   o.simulation = simulation;
+  // The modes from the tangent mesh stiffness (dynamics/speed_sweep.hpp: the resonances sit at its
+  // coincidences, not at the secant's).
+  o.modal_mesh_stiffness = dynamics::MeanTangentMeshStiffness(scene, stage, rig.fe);
 
   std::printf("%s: speed sweep, %zu sun speeds %.1f .. %.1f rpm, sun %s, %d threads\n",
               scene.name.c_str(), o.sun_speeds_rpm.size(), o.sun_speeds_rpm.front(),
@@ -111,10 +114,12 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
               o.threads);
   for (const std::string& m : rig.compliance.tables().messages()) std::printf("  %s\n", m.c_str());
   std::printf(
-      "  mean mesh stiffness: sun-planet %.4g N/m, planet-ring %.4g N/m; mesh damping %.4g and "
-      "%.4g N s/m; friction %s, rtol %.1e\n",
+      "  mean mesh stiffness: sun-planet %.4g N/m, planet-ring %.4g N/m (secant F/delta: the "
+      "mesh damping %.4g and %.4g N s/m); tangent dF/ddelta %.4g and %.4g N/m (the modes); "
+      "friction %s, rtol %.1e\n",
       base.sun_mesh_stiffness(), base.ring_mesh_stiffness(), base.sun_mesh_damping(),
-      base.ring_mesh_damping(), scene.dynamics.friction.c_str(), simulation.rtol);
+      base.ring_mesh_damping(), o.modal_mesh_stiffness[0], o.modal_mesh_stiffness[1],
+      scene.dynamics.friction.c_str(), simulation.rtol);
 
   std::filesystem::create_directories(a.out);
   const std::string path = a.out + "/speed_sweep";
@@ -251,6 +256,8 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   j["mesh_frequency_Hz_per_sun_rpm"] = plan.mesh_hz_per_rpm;
   j["mesh_stiffness_sun_planet_N_per_m"] = base.sun_mesh_stiffness();
   j["mesh_stiffness_planet_ring_N_per_m"] = base.ring_mesh_stiffness();
+  j["tangent_mesh_stiffness_sun_planet_N_per_m"] = o.modal_mesh_stiffness[0];
+  j["tangent_mesh_stiffness_planet_ring_N_per_m"] = o.modal_mesh_stiffness[1];
   j["quasi_static_K_gamma"] = plan.qs_k_gamma;
   j["quasi_static_te_amplitude_urad"] = plan.qs_te_amplitude * 1e6;
   j["quasi_static_peak_mesh_force_N"] = qs_force;

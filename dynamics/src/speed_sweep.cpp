@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "number_format.hpp"
 
@@ -131,6 +133,10 @@ void SpeedSweepOptions::Validate() const {
   if (!(skip_time >= 0) || !std::isfinite(skip_time))
     bad("skip_time", skip_time, "must be >= 0 (0: from the modal damping)");
   if (harmonics < 1) bad("harmonics", harmonics, "must be >= 1");
+  for (int m = 0; m < 2; ++m)
+    if (!(modal_mesh_stiffness[m] >= 0) || !std::isfinite(modal_mesh_stiffness[m]))
+      bad("modal_mesh_stiffness[" + std::to_string(m) + "]", modal_mesh_stiffness[m],
+          "must be >= 0 (0: the base model's)");
   simulation.Validate();
 }
 
@@ -157,6 +163,43 @@ int SpeedSweepResult::failed() const {
       std::count_if(speeds.begin(), speeds.end(), [](const SpeedResult& r) { return !r.ok; }));
 }
 
+std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
+                                               const geometry::Stage& stage,
+                                               const transmission::FeComplianceOptions& fe,
+                                               int positions, double step) {
+  if (!(step > 0 && step < 0.5))
+    throw std::invalid_argument("tangent mesh stiffness: step = " + Num(step) +
+                                ": must lie in (0, 0.5)");
+  if (positions < 2)
+    throw std::invalid_argument("tangent mesh stiffness: positions = " + Num(positions) +
+                                ": must be >= 2");
+  std::array<double, 2> k{};
+  const char* meshes[2] = {"sun-planet1", "planet1-ring"};
+  for (int m = 0; m < 2; ++m) {
+    const transmission::MeshPairSetup setup = transmission::MakeMeshPair(scene, &stage, meshes[m]);
+    const geometry::GearPair pair(setup.spec);
+    const transmission::FePairCompliance compliance(scene, pair, fe);
+    transmission::MeshStiffnessOptions opt;
+    opt.positions = positions;
+    transmission::MeshPairSetup up = setup, down = setup;
+    up.torque *= 1 + step;
+    down.torque *= 1 - step;
+    const auto ru = transmission::ComputeMeshStiffness(scene, up, pair, compliance, opt);
+    const auto rd = transmission::ComputeMeshStiffness(scene, down, pair, compliance, opt);
+    for (std::size_t i = 0; i < ru.samples.size(); ++i) {
+      const transmission::MeshSample &a = ru.samples[i], &b = rd.samples[i];
+      if (!a.converged || !b.converged || !(a.approach > b.approach))
+        throw std::runtime_error(std::string("tangent mesh stiffness of ") + meshes[m] +
+                                 ": sample " + std::to_string(i) +
+                                 " failed: " + (a.converged ? b.message : a.message));
+      k[static_cast<std::size_t>(m)] += (a.total_force - b.total_force) /
+                                        (a.approach - b.approach) /
+                                        static_cast<double>(ru.samples.size());
+    }
+  }
+  return k;
+}
+
 DynamicModel ModelAtSpeed(const DynamicModel& base, const transmission::Scene& scene,
                           double sun_speed_rpm) {
   DynamicSettings s = base.settings();
@@ -181,9 +224,12 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const transmission::Scen
   // (mesh and bearing damping are linear in the velocities).
   DynamicModel model = ModelAtSpeed(base, scene, options.sun_speeds_rpm.front());
   model.SetStartAngle(options.window_start);
+  DynamicModel linear = model;  // the modes' stiffness (the damping stays the base's)
+  if (options.modal_mesh_stiffness[0] > 0 && options.modal_mesh_stiffness[1] > 0)
+    linear.SetMeshStiffness(options.modal_mesh_stiffness[0], options.modal_mesh_stiffness[1]);
   Eigen::MatrixXd m, k;
-  model.Linearise(options.window_start, &m, &k);
-  const std::vector<Mode> modes = SolveModes(m, k, model.ModeLayout());
+  linear.Linearise(options.window_start, &m, &k);
+  const std::vector<Mode> modes = SolveModes(m, k, linear.ModeLayout());
   const Eigen::VectorXd d0 = model.QuasiStaticStart(sim.contact, sim.backend);
   const Eigen::VectorXd v0 = Eigen::VectorXd::Zero(model.size());
   auto solver = solvers::MakeContactSolver(sim.backend);

@@ -47,6 +47,7 @@
 // read-only stage model, and its own contact solver (inside Simulate); nothing mutable is shared.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -66,7 +67,11 @@ struct SpeedSweepOptions {
   double transient_fraction = 1e-2;    ///< ε of t_skip [-], in (0, 1)
   double skip_time = 0;                ///< > 0: skip this long instead of t_skip [s]
   int harmonics = 6;                   ///< mesh harmonics h = 1..harmonics for coincidences [-]
-  SimulationOptions simulation;        ///< integrator, tolerances, contact back end
+  /// > 0: the mesh stiffnesses {sun–planet, planet–ring} [N/m] of the linearisation that gives the
+  /// modes and coincidences (e.g. MeanTangentMeshStiffness); 0: the base model's. The damping
+  /// matrix always uses the base model's (its c_m is what the runs use).
+  std::array<double, 2> modal_mesh_stiffness = {0.0, 0.0};
+  SimulationOptions simulation;  ///< integrator, tolerances, contact back end
   /// @throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
 };
@@ -161,6 +166,22 @@ SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene
 SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene& scene,
                              const SpeedSweepOptions& options,
                              const std::function<void(const SpeedResult&)>& on_result = {});
+
+/// The mean tangent mesh stiffness dF/dδ [N/m] of the sun–planet and planet–ring meshes (planet
+/// 1) at the scene's load, {sun mesh, ring mesh}: at each of `positions` samples of a mesh cycle,
+/// the mesh-stiffness driver (transmission::ComputeMeshStiffness) at the load × (1 ± step),
+///   k_t = (F₊ − F₋)/(δ₊ − δ₋)   (F the mesh's total force, δ its deflection along the line of
+///                                action), averaged over the samples.
+/// Why: MeanMeshStiffness is the secant F/δ; the local contact term's deflection grows less than
+/// linearly with the load (docs/model.md §2), so small vibrations about the operating point see
+/// the tangent, which is higher (about 6 % on the paper's stage). The resonances of the speed
+/// sweep sit at the tangent stiffness' coincidences (docs/dynamic.md, "Speed sweeps").
+/// @throws std::invalid_argument for step outside (0, 0.5) or positions < 2;
+///         std::runtime_error if a sample fails at either load.
+std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
+                                               const geometry::Stage& stage,
+                                               const transmission::FeComplianceOptions& fe,
+                                               int positions = 24, double step = 0.05);
 
 /// One sun speed's dynamic model: `base` with sun_speed = rpm·π/30, the same mesh stiffnesses.
 DynamicModel ModelAtSpeed(const DynamicModel& base, const transmission::Scene& scene,
