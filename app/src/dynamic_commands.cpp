@@ -74,6 +74,7 @@ void RunDynamic(const DynamicArgs& a) {
                                 "and --time");
   if (a.speed_sweep.empty() && (a.threads != 0 || a.window_cycles != 0))
     throw std::invalid_argument("--threads and --window-cycles belong to --speed-sweep");
+  if (!a.speed_sweep.empty()) ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
   if (a.speed_rpm != 0) {
     if (!(a.speed_rpm > 0) || !std::isfinite(a.speed_rpm))
       throw std::invalid_argument(fmt::format("--speed-rpm = {}: must be > 0", a.speed_rpm));

@@ -157,6 +157,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
       "quasi-static reference over the same positions: K_gamma %.6f (planned in %.2f s)\n",
       plan.skip_time * 1e3, o.transient_fraction, plan.slowest_decay_rate, o.window_cycles,
       a.start_deg, plan.window_angles.size(), plan.qs_k_gamma, plan.seconds);
+  std::fflush(stdout);  // the plan is on screen (or in a log) before the runs start
 
   const bool tty = !a.quiet && isatty(fileno(stderr));
   int done = 0, failed = 0;
@@ -275,9 +276,19 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   // Plots against speed, the coincidences marked (dashed: not reached by a symmetric stage's
   // mesh excitation, see dynamics/speed_sweep.hpp).
   std::vector<XMarker> markers;
-  for (const dynamics::Coincidence& c : plan.coincidences)
-    markers.push_back(
-        {c.sun_speed_rpm, fmt::format("m{} h{}", c.mode + 1, c.harmonic), !c.phasing_excited});
+  for (const dynamics::Coincidence& c : plan.coincidences) {
+    // A degenerate pair split by an error (e.g. 4941.95 and 4942.25 Hz): one marker "m2,3 h4".
+    const std::string tail = fmt::format(" h{}", c.harmonic);
+    if (!markers.empty() &&
+        std::abs(markers.back().x - c.sun_speed_rpm) <= 1e-3 * c.sun_speed_rpm &&
+        markers.back().label.ends_with(tail)) {
+      XMarker& m = markers.back();
+      m.label.insert(m.label.size() - tail.size(), fmt::format(",{}", c.mode + 1));
+      m.dashed = m.dashed && !c.phasing_excited;
+      continue;
+    }
+    markers.push_back({c.sun_speed_rpm, fmt::format("m{}", c.mode + 1) + tail, !c.phasing_excited});
+  }
   auto plot = [&](const std::string& what, const std::string& unit, const std::string& file,
                   double scale, auto field, std::vector<double> refs) {
     LinePlot p{scene.name + ": " + what + " against sun speed",
