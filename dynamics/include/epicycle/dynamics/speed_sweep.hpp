@@ -31,8 +31,10 @@
 // speed: φ_0 = window_start − ω_c t_skip.
 //
 // Coincidences: mesh harmonic h at the mesh frequency f_m = z_r |ω_c|/2π meets natural frequency
-// f_j of the linearisation (DynamicModel::Linearise at window_start, dynamics::SolveModes) at the
-// sun speed n_s = 60 f_j / (h z_r/(1 + z_r/z_s)) [rpm]. For equally spaced planets, Parker & Lin
+// f_j of the linearisation (DynamicModel::Linearise at window_start, dynamics::SolveModes; with
+// SpeedSweepOptions::modal_mesh_stiffness, e.g. the tangent stiffness of MeanTangentMeshStiffness,
+// which is where the resonances are found: docs/dynamic.md) at the sun speed
+// n_s = 60 f_j (1 + z_r/z_s) / (h z_r) [rpm]. For equally spaced planets, Parker & Lin
 // (2004, "Mesh phasing relationships in planetary and epicyclic gears", J. Mech. Des. 126(2)
 // 365–370) give which harmonics the (symmetric) mesh excitation reaches: the planets' loads at
 // harmonic h have phases e^{i h z_s ψ_i}, the cyclic family k ≡ ±h z_s (mod n), so rotational
