@@ -2,7 +2,7 @@
 # Regenerates the figures of docs/ from the built program: mesh-stiffness curves of the pair
 # scenes, and the quasi-static load sharing of the paper's stage without errors (one mesh cycle)
 # and with planet 1's 20 um run-out (one planet revolution), constrained and floating; the same
-# run-out case with the dynamic model at 1500 rpm.
+# run-out case with the dynamic model at 1500 rpm; speed sweeps of the stage with and without it.
 # Usage: bash tools/paper_figures.sh [build-dir]   (default ./build; tables cached as usual)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -35,4 +35,18 @@ dyn() {  # name scene sun
 }
 dyn dynamic_runout_fixed paper_stage_runout fixed
 dyn dynamic_runout_floating paper_stage_runout floating
+# Speed sweeps (docs/dynamic.md, "Speed sweeps"), sun fixed: the run-out case over a planet
+# revolution per speed, and the stage without errors over 3 mesh cycles per speed on a finer grid.
+sweep() {  # name scene speeds [options]
+  local name=$1 scene=$2 speeds=$3
+  shift 3
+  "$exe" dynamic "scenes/$scene.toml" --sun fixed --speed-sweep "$speeds" --quiet \
+    --out "$tmp/$name" "$@" > "$tmp/$name.log"
+  for f in k_gamma dynamic_factor te_amplitude; do
+    cp "$tmp/$name/speed_sweep_$f.svg" "$out/${name}_$f.svg"
+  done
+  cp "$tmp/$name/speed_sweep_summary.json" "$out/${name}_summary.json"
+}
+sweep speed_sweep_runout paper_stage_runout 500:12000:47
+sweep speed_sweep_noerrors paper_stage 500:12000:116 --window-cycles 3
 echo "figures written to $out"

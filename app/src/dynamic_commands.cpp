@@ -22,6 +22,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "progress.hpp"
 #include "provenance.hpp"
+#include "speed_sweep_command.hpp"
 #include "svg_plot.hpp"
 
 namespace epicycle::app {
@@ -32,9 +33,9 @@ using json = nlohmann::json;
 
 struct DynamicArgs {
   std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out",
-                     range = "planet", sun, friction, cache;
-  double speed_rpm = 0, time = 0, rtol = 1e-6, start_deg = 0;
-  int outputs_per_cycle = 20, max_order = 5;
+                     range = "planet", sun, friction, cache, speed_sweep;
+  double speed_rpm = 0, time = 0, rtol = 1e-6, start_deg = 0, window_cycles = 0;
+  int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 6;
   bool no_cache = false, quiet = false, fd_jacobian = false;
 };
 
@@ -67,6 +68,13 @@ transmission::Scene StageScene(const std::string& file, const std::string& sun,
 
 void RunDynamic(const DynamicArgs& a) {
   transmission::Scene input = StageScene(a.scene, a.sun, "dynamic");
+  if (!a.speed_sweep.empty() && (a.speed_rpm != 0 || a.time > 0))
+    throw std::invalid_argument("--speed-sweep = " + a.speed_sweep +
+                                ": runs its own speeds and windows; give it without --speed-rpm "
+                                "and --time");
+  if (a.speed_sweep.empty() && (a.threads != 0 || a.window_cycles != 0))
+    throw std::invalid_argument("--threads and --window-cycles belong to --speed-sweep");
+  if (!a.speed_sweep.empty()) ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
   if (a.speed_rpm != 0) {
     if (!(a.speed_rpm > 0) || !std::isfinite(a.speed_rpm))
       throw std::invalid_argument(fmt::format("--speed-rpm = {}: must be > 0", a.speed_rpm));
@@ -84,6 +92,29 @@ void RunDynamic(const DynamicArgs& a) {
   model.SetStartAngle(geometry::Rad(a.start_deg));
   const double setup_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  dynamics::SimulationOptions opt;
+  opt.integrator = dynamics::IntegratorFromName(a.integrator);
+  opt.backend = solvers::BackendFromName(a.backend);
+  opt.rtol = a.rtol;
+  opt.analytic_jacobian = !a.fd_jacobian;
+  opt.max_order = a.max_order;
+  if (!a.speed_sweep.empty()) {
+    SpeedSweepArgs s;
+    s.spec = a.speed_sweep;
+    s.out = a.out;
+    s.range = a.range;
+    s.backend = a.backend;
+    s.integrator = a.integrator;
+    s.window_cycles = a.window_cycles;
+    s.start_deg = a.start_deg;
+    if (a.outputs_per_cycle > 0) s.outputs_per_cycle = a.outputs_per_cycle;
+    s.threads = a.threads;
+    s.harmonics = a.harmonics;
+    s.quiet = a.quiet;
+    RunSpeedSweep(s, rig, opt);
+    return;
+  }
+  const int outputs_per_cycle = a.outputs_per_cycle > 0 ? a.outputs_per_cycle : 20;
 
   // Duration: one mesh cycle, one planet revolution relative to the carrier, one carrier
   // revolution, or a given time.
@@ -95,16 +126,10 @@ void RunDynamic(const DynamicArgs& a) {
                                                       stage.ring().teeth() / wc
                                                 : 2.0 * std::numbers::pi / wc;
   const int outputs =
-      std::max(1, static_cast<int>(std::ceil(duration / cycle_time * a.outputs_per_cycle)));
+      std::max(1, static_cast<int>(std::ceil(duration / cycle_time * outputs_per_cycle)));
   std::vector<double> times;
   for (int i = 1; i <= outputs; ++i) times.push_back(duration * i / outputs);
 
-  dynamics::SimulationOptions opt;
-  opt.integrator = dynamics::IntegratorFromName(a.integrator);
-  opt.backend = solvers::BackendFromName(a.backend);
-  opt.rtol = a.rtol;
-  opt.analytic_jacobian = !a.fd_jacobian;
-  opt.max_order = a.max_order;
   const char* sun_name = SunName(stage_model.setup().sun);
   const double mesh_hz = stage.ring().teeth() * wc / (2.0 * std::numbers::pi);
   std::printf(
@@ -408,8 +433,22 @@ void RegisterDynamicCommands(CLI::App& app) {
       ->check(CLI::IsMember({"cvode-bdf", "arkode-erk"}));
   cmd->add_option("--rtol", a.rtol, "Relative tolerance of the integrator")
       ->check(CLI::Range(1e-12, 0.1));
-  cmd->add_option("--outputs-per-cycle", a.outputs_per_cycle, "Output steps per mesh cycle")
+  cmd->add_option("--outputs-per-cycle", a.outputs_per_cycle,
+                  "Output steps per mesh cycle (default 20; 64 in a speed sweep's window)")
       ->check(CLI::Range(1, 100000));
+  cmd->add_option("--speed-sweep", a.speed_sweep,
+                  "FROM:TO:N: run N sun speeds [rpm] from FROM to TO (ends included) in parallel; "
+                  "per speed K_gamma, dynamic factor, TE amplitude, sun orbit, against speed with "
+                  "the mesh-harmonic coincidences of the natural frequencies (--range or "
+                  "--window-cycles: the measured window; --start-deg: where it begins)");
+  cmd->add_option("--window-cycles", a.window_cycles,
+                  "Speed sweep: mesh cycles measured per speed (replaces --range)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--harmonics", a.harmonics,
+                  "Speed sweep: mark coincidences of mesh harmonics 1..N (default 6)")
+      ->check(CLI::Range(1, 100));
+  cmd->add_option("--threads", a.threads, "Speed sweep: worker threads (default: every core)")
+      ->check(CLI::Range(1, 1024));
   cmd->add_option("--max-order", a.max_order, "Largest BDF order of CVODE (1..5)")
       ->check(CLI::Range(1, 5));
   cmd->add_flag("--fd-jacobian", a.fd_jacobian,

@@ -114,6 +114,18 @@ std::string RenderSvg(const LinePlot& plot) {
         "stroke-dasharray=\"4 3\"/>\n",
         left, py(r), left + pw);
   }
+  for (std::size_t k = 0; k < plot.x_markers.size(); ++k) {
+    const XMarker& m = plot.x_markers[k];
+    if (!std::isfinite(m.x) || m.x < x0 || m.x > x1) continue;
+    const bool right = px(m.x) > left + pw - 50;  // label left of the line, off the legend
+    // Labels staggered in three rows so that neighbouring markers stay readable.
+    s += fmt::format(
+        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#888\"{3}/>\n"
+        "<text x=\"{4:.1f}\" y=\"{5}\" fill=\"#555\" font-size=\"10\"{7}>{6}</text>\n",
+        px(m.x), top, top + ph, m.dashed ? " stroke-dasharray=\"2 3\"" : "",
+        right ? px(m.x) - 2 : px(m.x) + 2, top + 12 + 11 * static_cast<double>(k % 3),
+        Escape(m.label), right ? " text-anchor=\"end\"" : "");
+  }
   for (std::size_t b = 0; b < plot.series.size(); ++b) {
     const PlotSeries& ser = plot.series[b];
     const char* col = kColours[b % 8];

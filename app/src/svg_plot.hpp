@@ -13,12 +13,21 @@ struct PlotSeries {
   bool points = false;  ///< markers instead of a line
 };
 
+/// A vertical marker at x with a label (e.g. a resonance speed); dashed when `dashed`.
+struct XMarker {
+  double x = 0;
+  std::string label;
+  bool dashed = false;
+};
+
 struct LinePlot {
   std::string title, x_label, y_label;
   std::vector<PlotSeries> series;
   bool equal_axes = false;  ///< same scale on both axes (orbits)
   /// Horizontal reference lines (e.g. the ideal load-sharing ratio), drawn dashed.
   std::vector<double> y_references;
+  /// Vertical markers with labels, drawn in grey (outside the data's x range: left out).
+  std::vector<XMarker> x_markers = {};
 };
 
 /// The plot as a complete SVG document. Non-finite values are skipped.

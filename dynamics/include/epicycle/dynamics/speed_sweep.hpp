@@ -1,0 +1,192 @@
+// Speed sweeps of the dynamic model (docs/dynamic.md, "Speed sweeps"): the stage run at a list of
+// sun speeds, each from the quasi-static solution, and per speed the figures a gear engineer reads
+// off a run-up: the dynamic mesh load factor, the dynamic factor, the transmission-error amplitude
+// and the sun's orbit, with the speeds where a mesh harmonic meets a linearised natural frequency.
+//
+// Definitions (per speed; "window" = the measured part of the run, below):
+//   K_γ        = max over window samples t and planets i of n·LSR_i(t)          (eq. 4, n planets)
+//   F_m(t)     = Σ_{j ∈ mesh m} F_j,total(t): the total normal force of mesh m (sun–planet i or
+//                planet i–ring), the tooth pairs' elastic force plus damping, clipped at 0 [N]
+//   F_m,qs(φ)  = the same sum of the quasi-static solution at carrier angle φ [N]
+//   K_v        = max over meshes m of  max_t F_m(t) / max_φ F_m,qs(φ)
+//                (the dynamic factor: the largest peak of a mesh's total force in motion over
+//                the peak of that mesh's quasi-static force at the same carrier angles; meshes
+//                without quasi-static load are left out; the mesh that gives the max is kept)
+//   TE amp.    = ½ (max_t TE − min_t TE), half the peak-to-peak dynamic transmission error at
+//                the sun [rad]
+//   orbit      = max_t |sun centre − nominal| [m] (0 for a fixed sun)
+// The quasi-static reference uses the same stage model (compliance, local terms, supports, errors)
+// at exactly the carrier angles of the window's samples, which are the same for every speed.
+//
+// The window. The run starts at the quasi-static solution (DynamicModel::QuasiStaticStart) with
+// the rigid-kinematic velocities; the difference to the periodic response decays as e^{−σ_j t} in
+// mode j, σ_j = ζ_j ω_j its modal decay rate. With C the linearised damping matrix (the mesh
+// damping along the lines of action and the bearings' damping, from DynamicModel::Jacobian at the
+// quasi-static start, C = −M ∂d̈/∂ḋ) and φ_j the M-normalised modes of DynamicModel::Linearise,
+// σ_j = ½ φ_jᵀ C φ_j (first order in the damping; exact for proportional damping). The run skips
+//   t_skip = ln(1/ε) / min_j σ_j
+// (ε = transient_fraction, default 1e-2: the start transient is below 1 % of its initial size in
+// every mode), then measures `window_cycles` mesh cycles with `outputs_per_cycle` samples each.
+// The start angle is set so that the window begins at carrier angle `window_start` for every
+// speed: φ_0 = window_start − ω_c t_skip.
+//
+// Coincidences: mesh harmonic h at the mesh frequency f_m = z_r |ω_c|/2π meets natural frequency
+// f_j of the linearisation (DynamicModel::Linearise at window_start, dynamics::SolveModes; with
+// SpeedSweepOptions::modal_mesh_stiffness, e.g. the tangent stiffness of MeanTangentMeshStiffness,
+// which is where the resonances are found: docs/dynamic.md) at the sun speed
+// n_s = 60 f_j (1 + z_r/z_s) / (h z_r) [rpm]. For equally spaced planets, Parker & Lin
+// (2004, "Mesh phasing relationships in planetary and epicyclic gears", J. Mech. Des. 126(2)
+// 365–370) give which harmonics the (symmetric) mesh excitation reaches: the planets' loads at
+// harmonic h have phases e^{i h z_s ψ_i}, the cyclic family k ≡ ±h z_s (mod n), so rotational
+// modes (k = 0) when h z_s/n is whole, translational modes (k = ±1) when (h z_s ∓ 1)/n is whole,
+// planet modes otherwise. The family of a mode is read from its shape (the planets' motions'
+// discrete Fourier components over the planets, ≥ 1 % of their squared amplitude), since a held
+// sun turns the k = ±1 modes into "planet" modes by class. `phasing_excited` says so (errors such
+// as run-out break the symmetry and excite the others weakly; always true for unequally spaced
+// planets).
+//
+// Threads: every speed has its own DynamicModel (the settings carry the speed) over the shared,
+// read-only stage model, and its own contact solver (inside Simulate); nothing mutable is shared.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "epicycle/dynamics/dynamic_model.hpp"
+#include "epicycle/dynamics/modes.hpp"
+#include "epicycle/dynamics/simulation.hpp"
+
+namespace epicycle::dynamics {
+
+struct SpeedSweepOptions {
+  std::vector<double> sun_speeds_rpm;  ///< sun speeds [rpm], each > 0, strictly increasing
+  int threads = 1;                     ///< worker threads [-], ≥ 1
+  double window_cycles = 4;            ///< mesh cycles measured per speed [-], > 0
+  int outputs_per_cycle = 32;          ///< samples per mesh cycle in the window [-], ≥ 4
+  double window_start = 0;             ///< carrier angle where the window begins [rad]
+  double transient_fraction = 1e-2;    ///< ε of t_skip [-], in (0, 1)
+  double skip_time = 0;                ///< > 0: skip this long instead of t_skip [s]
+  int harmonics = 6;                   ///< mesh harmonics h = 1..harmonics for coincidences [-]
+  /// > 0: the mesh stiffnesses {sun–planet, planet–ring} [N/m] of the linearisation that gives the
+  /// modes and coincidences (e.g. MeanTangentMeshStiffness); 0: the base model's. The damping
+  /// matrix always uses the base model's (its c_m is what the runs use).
+  std::array<double, 2> modal_mesh_stiffness = {0.0, 0.0};
+  SimulationOptions simulation;  ///< integrator, tolerances, contact back end
+  /// @throws std::invalid_argument naming the field, its value and the rule.
+  void Validate() const;
+};
+
+/// `count` sun speeds from `from` to `to` [rpm], ends included, equally spaced (count = 1: from).
+/// @throws std::invalid_argument naming the value and the rule (from > 0, to ≥ from, count ≥ 1,
+///         count = 1 only with from = to, finite).
+std::vector<double> SpeedGrid(double from, double to, int count);
+
+/// One mode's modal damping of the linearisation.
+struct ModeDamping {
+  Mode mode;                 ///< from SolveModes (rigid modes are left out)
+  double decay_rate = 0;     ///< σ_j = ½ min over the group's shapes of φᵀ C φ [1/s]
+  double damping_ratio = 0;  ///< ζ_j = σ_j / ω_j [-]
+  /// The cyclic-symmetry families k (0 ≤ k ≤ n/2, k and n − k together) holding ≥ 1 % of the
+  /// planets' squared amplitude: 0 rotational, 1 translational, others planet modes.
+  std::vector<int> families;
+};
+
+/// Where mesh harmonic h meets natural frequency f_j.
+struct Coincidence {
+  double sun_speed_rpm = 0;     ///< n_s [rpm]
+  double frequency = 0;         ///< f_j [Hz]
+  int mode = 0;                 ///< index into SpeedSweepPlan::modes [-]
+  int harmonic = 1;             ///< h [-]
+  bool phasing_excited = true;  ///< Parker & Lin's rule for equally spaced planets (see above)
+};
+
+/// What is fixed before the speeds run.
+struct SpeedSweepPlan {
+  std::vector<ModeDamping> modes;          ///< non-rigid modes, by frequency
+  std::vector<Coincidence> coincidences;   ///< within [first, last speed], by speed
+  double mesh_hz_per_rpm = 0;              ///< f_m per sun rpm [Hz/rpm]
+  double skip_time = 0;                    ///< t_skip [s]
+  double slowest_decay_rate = 0;           ///< min_j σ_j [1/s]
+  std::vector<double> window_angles;       ///< carrier angles of the window's samples [rad]
+  std::vector<std::string> meshes;         ///< mesh names: "sun-planet1", ..., "planet1-ring", ...
+  std::vector<double> qs_peak_mesh_force;  ///< max_φ F_m,qs per mesh [N]
+  double qs_k_gamma = 0;                   ///< K_γ of the quasi-static window [-]
+  double qs_te_amplitude = 0;  ///< ½ peak-to-peak of the static TE over the window [rad]
+  double seconds = 0;          ///< wall time of the planning [s]
+};
+
+/// One speed's result.
+struct SpeedResult {
+  int index = 0;               ///< position in sun_speeds_rpm [-]
+  double sun_speed_rpm = 0;    ///< [rpm]
+  double mesh_frequency = 0;   ///< f_m [Hz]
+  bool ok = false;             ///< the run reached every output
+  std::string message;         ///< why not
+  double k_gamma = 0;          ///< K_γ over the window [-]
+  double dynamic_factor = 0;   ///< K_v [-]
+  int factor_mesh = -1;        ///< the mesh m that gives K_v (index into plan.meshes), −1: none
+  double peak_mesh_force = 0;  ///< max_t F_m(t) of that mesh [N]
+  double te_amplitude = 0;     ///< ½ peak-to-peak TE over the window [rad]
+  double orbit_radius = 0;     ///< largest sun-centre displacement over the window [m]
+  double lsr_min = 0, lsr_max = 0;  ///< extremes of LSR_i over planets and window [-]
+  SimulationStats stats;            ///< of the whole run (skip and window)
+  double cpu_seconds = 0;           ///< CPU of the thread that ran this speed [s]
+  double wall_seconds = 0;          ///< wall time of this speed [s]
+};
+
+struct SpeedSweepResult {
+  SpeedSweepPlan plan;
+  std::vector<SpeedResult> speeds;  ///< in the order of sun_speeds_rpm
+  double wall_seconds = 0;          ///< of the speeds' runs (the plan excluded) [s]
+  int failed() const;               ///< speeds with ok = false
+};
+
+/// The plan of a sweep of `base` (its settings and mesh stiffnesses; its speed is not used):
+/// modes, modal damping, t_skip, coincidences, and the quasi-static reference over the window.
+/// @throws std::invalid_argument for bad options, or when the slowest mode has no damping
+///         (σ ≤ 0) and no skip_time is given; std::runtime_error if a quasi-static position of
+///         the window or of the start fails.
+SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const transmission::Scene& scene,
+                              const SpeedSweepOptions& options);
+
+/// The figures of one speed from its window's samples (those at plan.window_angles).
+SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window,
+                           int planets);
+
+/// Runs every speed of `plan` (from PlanSpeedSweep with the same options) on `options.threads`
+/// workers (lowest speed first: the slowest to run), each result handed to `on_result` as soon as
+/// it is computed (under one lock, in completion order, the speed in the result). A speed that
+/// fails (its start, a step) is a result with ok = false and its message, never left out.
+/// @throws std::invalid_argument for bad options; what `on_result` throws (after the running
+///         speeds end).
+SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene& scene,
+                             const SpeedSweepOptions& options, const SpeedSweepPlan& plan,
+                             const std::function<void(const SpeedResult&)>& on_result = {});
+/// The same with the plan made first.
+SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene& scene,
+                             const SpeedSweepOptions& options,
+                             const std::function<void(const SpeedResult&)>& on_result = {});
+
+/// The mean tangent mesh stiffness dF/dδ [N/m] of the sun–planet and planet–ring meshes (planet
+/// 1) at the scene's load, {sun mesh, ring mesh}: at each of `positions` samples of a mesh cycle,
+/// the mesh-stiffness driver (transmission::ComputeMeshStiffness) at the load × (1 ± step),
+///   k_t = (F₊ − F₋)/(δ₊ − δ₋)   (F the mesh's total force, δ its deflection along the line of
+///                                action), averaged over the samples.
+/// Why: MeanMeshStiffness is the secant F/δ; the local contact term's deflection grows less than
+/// linearly with the load (docs/model.md §2), so small vibrations about the operating point see
+/// the tangent, which is higher (about 6 % on the paper's stage). The resonances of the speed
+/// sweep sit at the tangent stiffness' coincidences (docs/dynamic.md, "Speed sweeps").
+/// @throws std::invalid_argument for step outside (0, 0.5) or positions < 2;
+///         std::runtime_error if a sample fails at either load.
+std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
+                                               const geometry::Stage& stage,
+                                               const transmission::FeComplianceOptions& fe,
+                                               int positions = 24, double step = 0.05);
+
+/// One sun speed's dynamic model: `base` with sun_speed = rpm·π/30, the same mesh stiffnesses.
+DynamicModel ModelAtSpeed(const DynamicModel& base, const transmission::Scene& scene,
+                          double sun_speed_rpm);
+
+}  // namespace epicycle::dynamics

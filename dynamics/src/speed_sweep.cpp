@@ -1,0 +1,456 @@
+#include "epicycle/dynamics/speed_sweep.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <numbers>
+#include <stdexcept>
+#include <thread>
+
+#include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/mesh_stiffness.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
+#include "number_format.hpp"
+
+namespace epicycle::dynamics {
+
+using internal::Num;
+
+namespace {
+
+constexpr double kRpm = std::numbers::pi / 30.0;  // [rad/s] per rpm
+
+double ThreadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+int MeshIndex(const transmission::StageContact& c, int planets) {
+  return c.mesh == geometry::MeshKind::kSunPlanet ? c.planet : planets + c.planet;
+}
+
+// The cyclic-symmetry families k (0..n−1) present in a mode group of equally spaced planets: the
+// planets' motions (rotation; centre x, y turned into the carrier frame by −ψ_i) over the planets
+// have discrete Fourier components k; a family is present if it holds at least kFamilyShare of the
+// planets' squared amplitude. Rotational modes are k = 0, translational k = ±1, planet modes the
+// others (Lin & Parker 1999); a held sun makes the k = ±1 modes "planet" by class, so the family
+// is read from the shape, not from the class. Why a share of 1 % and not round-off: an error such
+// as run-out makes the linearisation slightly unsymmetric and mixes a few 1e-6 of the other
+// families into every mode; phasing is about the dominant family (the mixed-in share is what the
+// error's weak excitation of "forbidden" coincidences goes through).
+constexpr double kFamilyShare = 1e-2;
+
+std::vector<bool> Families(const Mode& mode, const DynamicModel& model, const geometry::Stage& st) {
+  const int n = st.planets();
+  // Per family k: [0] rotations [rad²], [1] translations [m²] (not added: each share is taken of
+  // its own total).
+  std::vector<std::array<double, 2>> energy(static_cast<std::size_t>(n), {0.0, 0.0});
+  std::array<double, 2> total{0.0, 0.0};
+  for (Eigen::Index col = 0; col < mode.shapes.cols(); ++col) {
+    std::vector<std::complex<double>> rot(n), rad(n), tan(n);
+    for (int i = 0; i < n; ++i) {
+      const int kr = model.Find(MotionDof::kPlanet, MotionDof::kRotation, i);
+      const int kx = model.Find(MotionDof::kPlanet, MotionDof::kX, i);
+      const int ky = model.Find(MotionDof::kPlanet, MotionDof::kY, i);
+      if (kr >= 0) rot[i] = mode.shapes(kr, col);
+      if (kx >= 0 && ky >= 0) {
+        const double c = std::cos(st.planet_angle(i)), s = std::sin(st.planet_angle(i));
+        rad[i] = c * mode.shapes(kx, col) + s * mode.shapes(ky, col);
+        tan[i] = -s * mode.shapes(kx, col) + c * mode.shapes(ky, col);
+      }
+    }
+    for (int k = 0; k < n; ++k) {
+      std::complex<double> a = 0, b = 0, c = 0;
+      for (int i = 0; i < n; ++i) {
+        const std::complex<double> w = std::polar(1.0, -2.0 * std::numbers::pi * k * i / n);
+        a += rot[i] * w;
+        b += rad[i] * w;
+        c += tan[i] * w;
+      }
+      energy[static_cast<std::size_t>(k)][0] += std::norm(a);
+      energy[static_cast<std::size_t>(k)][1] += std::norm(b) + std::norm(c);
+      total[0] += std::norm(a);
+      total[1] += std::norm(b) + std::norm(c);
+    }
+  }
+  std::vector<bool> present(static_cast<std::size_t>(n), !(total[0] > 0 || total[1] > 0));
+  for (int k = 0; k < n; ++k)
+    for (int q = 0; q < 2; ++q)
+      if (total[q] > 0 && energy[static_cast<std::size_t>(k)][q] >= kFamilyShare * total[q])
+        present[static_cast<std::size_t>(k)] = true;
+  return present;
+}
+
+// Parker & Lin (2004) for equally spaced planets: the symmetric mesh excitation at harmonic h
+// loads the planets with phases e^{i h z_s ψ_i}, family k ≡ ±h z_s (mod n).
+bool PhasingExcited(const std::vector<bool>& families, int h, int sun_teeth) {
+  const long n = static_cast<long>(families.size());
+  const long k = (static_cast<long>(h) * sun_teeth) % n;
+  return families[static_cast<std::size_t>(k)] || families[static_cast<std::size_t>((n - k) % n)];
+}
+
+bool EquallySpaced(const geometry::Stage& stage) {
+  const int n = stage.planets();
+  for (int i = 1; i < n; ++i) {
+    const double d = std::remainder(
+        stage.planet_angle(i) - stage.planet_angle(0) - 2.0 * std::numbers::pi * i / n,
+        2.0 * std::numbers::pi);
+    if (std::abs(d) > 1e-9) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void SpeedSweepOptions::Validate() const {
+  auto bad = [](const std::string& field, double value, const std::string& rule) {
+    throw std::invalid_argument("speed sweep: " + field + " = " + Num(value) + ": " + rule);
+  };
+  if (sun_speeds_rpm.empty())
+    throw std::invalid_argument("speed sweep: sun_speeds_rpm is empty: needs at least one speed");
+  for (std::size_t k = 0; k < sun_speeds_rpm.size(); ++k) {
+    const double s = sun_speeds_rpm[k];
+    if (!(s > 0) || !std::isfinite(s)) bad("sun_speeds_rpm[" + std::to_string(k) + "]", s, "> 0");
+    if (k > 0 && !(s > sun_speeds_rpm[k - 1]))
+      bad("sun_speeds_rpm[" + std::to_string(k) + "]", s, "must exceed the speed before it");
+  }
+  if (threads < 1) bad("threads", threads, "must be >= 1");
+  if (!(window_cycles > 0) || !std::isfinite(window_cycles))
+    bad("window_cycles", window_cycles, "must be > 0");
+  if (outputs_per_cycle < 4) bad("outputs_per_cycle", outputs_per_cycle, "must be >= 4");
+  if (!std::isfinite(window_start)) bad("window_start", window_start, "must be finite");
+  if (!(transient_fraction > 0 && transient_fraction < 1))
+    bad("transient_fraction", transient_fraction, "must lie in (0, 1)");
+  if (!(skip_time >= 0) || !std::isfinite(skip_time))
+    bad("skip_time", skip_time, "must be >= 0 (0: from the modal damping)");
+  if (harmonics < 1) bad("harmonics", harmonics, "must be >= 1");
+  for (int m = 0; m < 2; ++m)
+    if (!(modal_mesh_stiffness[m] >= 0) || !std::isfinite(modal_mesh_stiffness[m]))
+      bad("modal_mesh_stiffness[" + std::to_string(m) + "]", modal_mesh_stiffness[m],
+          "must be >= 0 (0: the base model's)");
+  simulation.Validate();
+}
+
+std::vector<double> SpeedGrid(double from, double to, int count) {
+  auto bad = [](const std::string& what, double value, const std::string& rule) {
+    throw std::invalid_argument(what + " = " + Num(value) + ": " + rule);
+  };
+  if (!(from > 0) || !std::isfinite(from)) bad("first sun speed [rpm]", from, "must be > 0");
+  if (!(to >= from) || !std::isfinite(to))
+    bad("last sun speed [rpm]", to, "must be finite and >= the first (" + Num(from) + ")");
+  if (count < 1) bad("number of speeds", count, "must be >= 1");
+  if (count == 1 && to != from)
+    bad("number of speeds", count, "must be >= 2 when the last speed differs from the first");
+  if (count > 1 && !(to > from))
+    bad("last sun speed [rpm]", to, "must exceed the first when there are several speeds");
+  std::vector<double> v(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k)
+    v[static_cast<std::size_t>(k)] = count == 1 ? from : from + (to - from) * k / (count - 1);
+  return v;
+}
+
+int SpeedSweepResult::failed() const {
+  return static_cast<int>(
+      std::count_if(speeds.begin(), speeds.end(), [](const SpeedResult& r) { return !r.ok; }));
+}
+
+std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
+                                               const geometry::Stage& stage,
+                                               const transmission::FeComplianceOptions& fe,
+                                               int positions, double step) {
+  if (!(step > 0 && step < 0.5))
+    throw std::invalid_argument("tangent mesh stiffness: step = " + Num(step) +
+                                ": must lie in (0, 0.5)");
+  if (positions < 2)
+    throw std::invalid_argument("tangent mesh stiffness: positions = " + Num(positions) +
+                                ": must be >= 2");
+  std::array<double, 2> k{};
+  const char* meshes[2] = {"sun-planet1", "planet1-ring"};
+  for (int m = 0; m < 2; ++m) {
+    const transmission::MeshPairSetup setup = transmission::MakeMeshPair(scene, &stage, meshes[m]);
+    const geometry::GearPair pair(setup.spec);
+    const transmission::FePairCompliance compliance(scene, pair, fe);
+    transmission::MeshStiffnessOptions opt;
+    opt.positions = positions;
+    transmission::MeshPairSetup up = setup, down = setup;
+    up.torque *= 1 + step;
+    down.torque *= 1 - step;
+    const auto ru = transmission::ComputeMeshStiffness(scene, up, pair, compliance, opt);
+    const auto rd = transmission::ComputeMeshStiffness(scene, down, pair, compliance, opt);
+    for (std::size_t i = 0; i < ru.samples.size(); ++i) {
+      const transmission::MeshSample &a = ru.samples[i], &b = rd.samples[i];
+      if (!a.converged || !b.converged || !(a.approach > b.approach))
+        throw std::runtime_error(std::string("tangent mesh stiffness of ") + meshes[m] +
+                                 ": sample " + std::to_string(i) +
+                                 " failed: " + (a.converged ? b.message : a.message));
+      k[static_cast<std::size_t>(m)] += (a.total_force - b.total_force) /
+                                        (a.approach - b.approach) /
+                                        static_cast<double>(ru.samples.size());
+    }
+  }
+  return k;
+}
+
+DynamicModel ModelAtSpeed(const DynamicModel& base, const transmission::Scene& scene,
+                          double sun_speed_rpm) {
+  DynamicSettings s = base.settings();
+  s.sun_speed = sun_speed_rpm * kRpm;
+  DynamicModel m(base.stage_model(), scene, s);
+  m.SetMeshStiffness(base.sun_mesh_stiffness(), base.ring_mesh_stiffness());
+  return m;
+}
+
+SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const transmission::Scene& scene,
+                              const SpeedSweepOptions& options) {
+  options.Validate();
+  const auto t0 = std::chrono::steady_clock::now();
+  SpeedSweepPlan plan;
+  const transmission::StageModel& stage_model = base.stage_model();
+  const geometry::Stage& stage = stage_model.stage();
+  const int n = stage.planets();
+  const SimulationOptions& sim = options.simulation;
+
+  // Modes and their damping at the window's start. The damping matrix comes from the Jacobian of
+  // the right-hand side at the quasi-static start (−M ∂d̈/∂ḋ); it does not depend on the speed
+  // (mesh and bearing damping are linear in the velocities).
+  DynamicModel model = ModelAtSpeed(base, scene, options.sun_speeds_rpm.front());
+  model.SetStartAngle(options.window_start);
+  DynamicModel linear = model;  // the modes' stiffness (the damping stays the base's)
+  if (options.modal_mesh_stiffness[0] > 0 && options.modal_mesh_stiffness[1] > 0)
+    linear.SetMeshStiffness(options.modal_mesh_stiffness[0], options.modal_mesh_stiffness[1]);
+  Eigen::MatrixXd m, k;
+  linear.Linearise(options.window_start, &m, &k);
+  const std::vector<Mode> modes = SolveModes(m, k, linear.ModeLayout());
+  const Eigen::VectorXd d0 = model.QuasiStaticStart(sim.contact, sim.backend);
+  const Eigen::VectorXd v0 = Eigen::VectorXd::Zero(model.size());
+  auto solver = solvers::MakeContactSolver(sim.backend);
+  Evaluation at;
+  model.Evaluate(0.0, d0, v0, *solver, sim.contact, nullptr, &at);
+  if (!at.ok)
+    throw std::runtime_error("speed sweep: the evaluation at the quasi-static start failed: " +
+                             at.message);
+  Eigen::MatrixXd dd, dv;
+  model.Jacobian(0.0, d0, v0, at, &dd, &dv);
+  const Eigen::MatrixXd c = -(model.mass().asDiagonal() * dv);
+  plan.slowest_decay_rate = std::numeric_limits<double>::infinity();
+  for (const Mode& x : modes) {
+    if (x.rigid) continue;
+    ModeDamping md;
+    md.mode = x;
+    md.decay_rate = std::numeric_limits<double>::infinity();
+    for (Eigen::Index col = 0; col < x.shapes.cols(); ++col) {
+      const Eigen::VectorXd phi = x.shapes.col(col);
+      md.decay_rate = std::min(md.decay_rate, 0.5 * phi.dot(c * phi));
+    }
+    md.damping_ratio = md.decay_rate / (2.0 * std::numbers::pi * x.frequency);
+    plan.slowest_decay_rate = std::min(plan.slowest_decay_rate, md.decay_rate);
+    plan.modes.push_back(md);
+  }
+  if (plan.modes.empty())
+    throw std::invalid_argument("speed sweep: the linearised stage has no vibration mode");
+  if (options.skip_time > 0) {
+    plan.skip_time = options.skip_time;
+  } else {
+    if (!(plan.slowest_decay_rate > 0))
+      throw std::invalid_argument(
+          "speed sweep: slowest modal decay rate = " + Num(plan.slowest_decay_rate) +
+          " 1/s: the start transient does not decay (no damping of that mode); give skip_time > 0");
+    plan.skip_time = std::log(1.0 / options.transient_fraction) / plan.slowest_decay_rate;
+  }
+
+  // Coincidences inside the speed range.
+  plan.mesh_hz_per_rpm = stage.ring().teeth() / stage.sun_ratio() / 60.0;
+  const bool symmetric = EquallySpaced(stage);
+  const double lo = options.sun_speeds_rpm.front(), hi = options.sun_speeds_rpm.back();
+  for (std::size_t j = 0; j < plan.modes.size(); ++j) {
+    const std::vector<bool> families = Families(plan.modes[j].mode, model, stage);
+    for (int f = 0; f < n; ++f)
+      if (families[static_cast<std::size_t>(f)] && f <= n - f) plan.modes[j].families.push_back(f);
+    for (int h = 1; h <= options.harmonics; ++h) {
+      Coincidence x;
+      x.frequency = plan.modes[j].mode.frequency;
+      x.sun_speed_rpm = x.frequency / (h * plan.mesh_hz_per_rpm);
+      x.mode = static_cast<int>(j);
+      x.harmonic = h;
+      x.phasing_excited = !symmetric || PhasingExcited(families, h, stage.sun().teeth());
+      if (x.sun_speed_rpm >= lo && x.sun_speed_rpm <= hi) plan.coincidences.push_back(x);
+    }
+  }
+  std::sort(
+      plan.coincidences.begin(), plan.coincidences.end(),
+      [](const Coincidence& a, const Coincidence& b) { return a.sun_speed_rpm < b.sun_speed_rpm; });
+
+  // The window's carrier angles (the carrier turns the way of base's carrier speed) and the
+  // quasi-static reference there.
+  const double sign = base.carrier_speed() < 0 ? -1.0 : 1.0;
+  const int samples =
+      std::max(1, static_cast<int>(std::lround(options.window_cycles * options.outputs_per_cycle)));
+  for (int s = 1; s <= samples; ++s)
+    plan.window_angles.push_back(options.window_start +
+                                 sign * stage.mesh_cycle() * s / options.outputs_per_cycle);
+  for (int i = 0; i < n; ++i) plan.meshes.push_back("sun-planet" + std::to_string(i + 1));
+  for (int i = 0; i < n; ++i) plan.meshes.push_back("planet" + std::to_string(i + 1) + "-ring");
+  plan.qs_peak_mesh_force.assign(2 * static_cast<std::size_t>(n), 0.0);
+  transmission::QuasiStaticOptions qo;
+  qo.backend = sim.backend;
+  qo.contact = sim.contact;
+  double te_min = INFINITY, te_max = -INFINITY;
+  const auto qs = transmission::Sweep(stage_model, {scene.sun_torque}, plan.window_angles, qo);
+  for (const transmission::PositionResult& r : qs) {
+    if (!r.converged)
+      throw std::runtime_error("speed sweep: the quasi-static reference at carrier " +
+                               Num(geometry::Deg(r.carrier_angle)) + " deg failed: " + r.message);
+    std::vector<double> mesh(plan.qs_peak_mesh_force.size(), 0.0);
+    for (std::size_t j = 0; j < r.problem.contacts.size(); ++j)
+      mesh[MeshIndex(r.problem.contacts[j], n)] += std::max(0.0, r.solution.force(j));
+    for (std::size_t q = 0; q < mesh.size(); ++q)
+      plan.qs_peak_mesh_force[q] = std::max(plan.qs_peak_mesh_force[q], mesh[q]);
+    plan.qs_k_gamma = std::max(plan.qs_k_gamma, transmission::MeshLoadFactor(r));
+    te_min = std::min(te_min, r.transmission_error);
+    te_max = std::max(te_max, r.transmission_error);
+  }
+  plan.qs_te_amplitude = 0.5 * (te_max - te_min);
+  plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return plan;
+}
+
+SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window,
+                           int planets) {
+  SpeedResult r;
+  if (window.empty()) return r;
+  std::vector<double> peak(plan.qs_peak_mesh_force.size(), 0.0);
+  double te_min = INFINITY, te_max = -INFINITY;
+  r.lsr_min = INFINITY;
+  r.lsr_max = -INFINITY;
+  for (const DynamicSample& s : window) {
+    for (double l : s.load_sharing) {
+      r.k_gamma = std::max(r.k_gamma, planets * l);
+      r.lsr_min = std::min(r.lsr_min, l);
+      r.lsr_max = std::max(r.lsr_max, l);
+    }
+    te_min = std::min(te_min, s.transmission_error);
+    te_max = std::max(te_max, s.transmission_error);
+    r.orbit_radius = std::max(r.orbit_radius, s.sun_centre.norm());
+    const Evaluation& e = s.evaluation;
+    std::vector<double> mesh(peak.size(), 0.0);
+    for (int j = 0; j < e.terms.size(); ++j)
+      mesh[MeshIndex(e.terms.contacts[j], planets)] += e.total_force(j);
+    for (std::size_t q = 0; q < mesh.size(); ++q) peak[q] = std::max(peak[q], mesh[q]);
+  }
+  r.te_amplitude = 0.5 * (te_max - te_min);
+  for (std::size_t q = 0; q < peak.size(); ++q) {
+    if (!(plan.qs_peak_mesh_force[q] > 0)) continue;
+    const double f = peak[q] / plan.qs_peak_mesh_force[q];
+    if (f > r.dynamic_factor) {
+      r.dynamic_factor = f;
+      r.factor_mesh = static_cast<int>(q);
+      r.peak_mesh_force = peak[q];
+    }
+  }
+  return r;
+}
+
+namespace {
+
+// One speed, start to end; never throws for a failed computation (the result says why).
+SpeedResult RunSpeed(const DynamicModel& base, const transmission::Scene& scene,
+                     const SpeedSweepOptions& options, const SpeedSweepPlan& plan, int index) {
+  const double rpm = options.sun_speeds_rpm[static_cast<std::size_t>(index)];
+  const auto t0 = std::chrono::steady_clock::now();
+  const double c0 = ThreadCpuSeconds();
+  SpeedResult r;
+  try {
+    DynamicModel model = ModelAtSpeed(base, scene, rpm);
+    const double wc = std::abs(model.carrier_speed());
+    model.SetStartAngle(options.window_start - model.carrier_speed() * plan.skip_time);
+    // Outputs: a few through the skipped part (CVODE's NORMAL mode needs no outputs there; one
+    // per mesh cycle keeps the progress of a run that fails visible in its message), then the
+    // window's samples, at exactly plan.window_angles.
+    const double cycle = model.stage_model().stage().mesh_cycle() / wc;
+    std::vector<double> times;
+    for (double t = cycle; t < plan.skip_time; t += cycle) times.push_back(t);
+    const std::size_t skipped = times.size();
+    for (std::size_t s = 1; s <= plan.window_angles.size(); ++s)
+      times.push_back(plan.skip_time + cycle * static_cast<double>(s) / options.outputs_per_cycle);
+    const Eigen::VectorXd d0 =
+        model.QuasiStaticStart(options.simulation.contact, options.simulation.backend);
+    SimulationResult run =
+        Simulate(model, options.simulation, d0, Eigen::VectorXd::Zero(model.size()), times);
+    const std::vector<DynamicSample> window(
+        run.samples.begin() + static_cast<std::ptrdiff_t>(std::min(skipped, run.samples.size())),
+        run.samples.end());
+    r = SummariseSpeed(plan, window, model.stage_model().stage().planets());
+    r.stats = run.stats;
+    r.ok = run.completed;
+    r.message = run.message;
+  } catch (const std::exception& e) {
+    r.ok = false;
+    r.message = e.what();
+  }
+  r.index = index;
+  r.sun_speed_rpm = rpm;
+  r.mesh_frequency = rpm * plan.mesh_hz_per_rpm;
+  r.cpu_seconds = ThreadCpuSeconds() - c0;
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace
+
+SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene& scene,
+                             const SpeedSweepOptions& options, const SpeedSweepPlan& plan,
+                             const std::function<void(const SpeedResult&)>& on_result) {
+  options.Validate();
+  SpeedSweepResult out;
+  out.plan = plan;
+  const auto t1 = std::chrono::steady_clock::now();
+  const std::size_t count = options.sun_speeds_rpm.size();
+  out.speeds.resize(count);
+  // Work queue in speed order: the lowest speeds simulate the longest time (the window is a
+  // number of mesh cycles), so they start first and the pool ends evenly.
+  std::atomic<std::size_t> next{0};
+  std::mutex lock;
+  std::exception_ptr error;
+  auto work = [&] {
+    for (;;) {
+      const std::size_t i = next.fetch_add(1);
+      if (i >= count) return;
+      SpeedResult r = RunSpeed(base, scene, options, out.plan, static_cast<int>(i));
+      const std::lock_guard<std::mutex> guard(lock);
+      out.speeds[i] = r;
+      if (error) return;
+      try {
+        if (on_result) on_result(r);
+      } catch (...) {
+        error = std::current_exception();
+        next = count;  // no new speeds; the running ones end
+        return;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const int threads = std::min(options.threads, static_cast<int>(count));
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  if (error) std::rethrow_exception(error);
+  return out;
+}
+
+SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene& scene,
+                             const SpeedSweepOptions& options,
+                             const std::function<void(const SpeedResult&)>& on_result) {
+  return SweepSpeeds(base, scene, options, PlanSpeedSweep(base, scene, options), on_result);
+}
+
+}  // namespace epicycle::dynamics
