@@ -10,7 +10,8 @@ namespace epicycle::app {
 struct PlotSeries {
   std::string name;
   std::vector<double> x, y;
-  bool points = false;  ///< markers instead of a line
+  bool points = false;   ///< markers instead of a line
+  bool markers = false;  ///< markers on the line's points as well (with points = false)
 };
 
 struct LinePlot {
@@ -19,6 +20,8 @@ struct LinePlot {
   bool equal_axes = false;  ///< same scale on both axes (orbits)
   /// Horizontal reference lines (e.g. the ideal load-sharing ratio), drawn dashed.
   std::vector<double> y_references;
+  /// Logarithmic axes (decade ticks); values ≤ 0 are skipped like non-finite ones.
+  bool log_x = false, log_y = false;
 };
 
 /// The plot as a complete SVG document. Non-finite values are skipped.
