@@ -24,6 +24,7 @@
 //                                         [--cache DIR]
 // (tools/discretisation_study.sh runs it into docs/figures/.)
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -295,6 +296,64 @@ void WriteFigure(const std::string& path, const std::vector<Knob>& knobs,
   epicycle::app::WriteTextFile(path, svg);
 }
 
+// Richardson analysis of a scalar X(r) on the three finest refinements r_a < r_b < r_c, element
+// size ∝ 1/r: X(r) = X∞ + C r^−p. The observed order p solves
+//   (X_a − X_b)/(X_b − X_c) = (r_a^−p − r_b^−p)/(r_b^−p − r_c^−p),
+// whose right side grows monotonically from ln(r_b/r_a)/ln(r_c/r_b) (p → 0); outside that range
+// (or with changes of opposite sign) X is not in its asymptotic range and no order is claimed.
+struct Richardson {
+  bool valid = false;
+  double order = 0, limit = 0;
+};
+
+Richardson Extrapolate(const std::array<double, 3>& r, const std::array<double, 3>& x) {
+  Richardson out;
+  const double d1 = x[0] - x[1], d2 = x[1] - x[2];
+  if (!(d1 * d2 > 0)) return out;
+  const double q = d1 / d2;
+  auto f = [&](double p) {
+    return (std::pow(r[0], -p) - std::pow(r[1], -p)) / (std::pow(r[1], -p) - std::pow(r[2], -p));
+  };
+  double lo = 1e-6, hi = 12;
+  if (!(q > f(lo) && q < f(hi))) return out;
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) < q ? lo : hi) = mid;
+  }
+  out.valid = true;
+  out.order = 0.5 * (lo + hi);
+  const double c = d2 / (std::pow(r[1], -out.order) - std::pow(r[2], -out.order));
+  out.limit = x[2] - c * std::pow(r[2], -out.order);
+  return out;
+}
+
+// Mesh-cycle or revolution means and extremes of a run: the scalars of the Richardson table.
+struct Scalars {
+  std::vector<std::pair<std::string, double>> values;
+};
+
+Scalars ScalarsOf(const Run& r) {
+  auto mean_of = [](const StiffnessData& d) {
+    double sum = 0;
+    int n = 0;
+    for (std::size_t p = 0; p < d.k.size(); ++p)
+      if (d.converged[p]) sum += d.k[p], ++n;
+    return sum / n;
+  };
+  double te_sum = 0, lsr1_max = 0;
+  int n = 0;
+  for (std::size_t p = 0; p < r.fixed.te.size(); ++p) {
+    if (!r.fixed.converged[p]) continue;
+    te_sum += r.fixed.te[p];
+    lsr1_max = std::max(lsr1_max, r.fixed.lsr[p][0]);
+    ++n;
+  }
+  return {{{"mean k sun-planet 1 [N/m]", mean_of(r.sun_planet)},
+           {"mean k planet 1-ring [N/m]", mean_of(r.planet_ring)},
+           {"mean TE, fixed sun [rad]", te_sum / n},
+           {"largest LSR_1, fixed sun [-]", lsr1_max}}};
+}
+
 std::string SettingLabel(const std::string& knob, const Setting& s) {
   if (knob == "refinement") return std::to_string(s.refinement);
   if (knob.starts_with("join_depth")) return fmt::format("{:g}", s.h_factor);
@@ -404,6 +463,46 @@ int main(int argc, char** argv) try {
   csv.close();
   if (!csv) throw std::runtime_error(csv_path + ": cannot be written");
   WriteFigure(out + "/discretisation_study.svg", knobs, runs);
+
+  // Richardson extrapolation over the three finest refinements: the observed order and the error
+  // of every level against the extrapolated limit (the change against the finest level
+  // understates it by the finest level's own error).
+  if (max_refinement < 3) {
+    std::printf("(no Richardson table: it needs three refinements)\n");
+    return 0;
+  }
+  const std::array<double, 3> levels = {static_cast<double>(max_refinement - 2),
+                                        static_cast<double>(max_refinement - 1),
+                                        static_cast<double>(max_refinement)};
+  std::vector<Scalars> by_level;
+  for (int r = 1; r <= max_refinement; ++r) by_level.push_back(ScalarsOf(runs.at({r, 1.0, 1.0})));
+  const std::string rich_path = out + "/discretisation_study_richardson.csv";
+  std::ofstream rich(rich_path);
+  rich << "quantity,refinement,value,order_observed,extrapolated,error_vs_extrapolated\n";
+  std::printf(
+      "\n| quantity | observed order (refinement %d, %d, %d) | error against the "
+      "extrapolation, refinement 1 … %d |\n|---|---|---|\n",
+      max_refinement - 2, max_refinement - 1, max_refinement, max_refinement);
+  for (std::size_t q = 0; q < by_level[0].values.size(); ++q) {
+    std::array<double, 3> x{};
+    for (int k = 0; k < 3; ++k) x[k] = by_level[max_refinement - 3 + k].values[q].second;
+    const Richardson rr = Extrapolate(levels, x);
+    std::string errors;
+    for (int r = 1; r <= max_refinement; ++r) {
+      const double v = by_level[r - 1].values[q].second;
+      const double e = rr.valid ? (v - rr.limit) / rr.limit : std::nan("");
+      rich << fmt::format("{},{},{:.10g},{},{},{}\n", by_level[0].values[q].first, r, v,
+                          rr.valid ? fmt::format("{:.3f}", rr.order) : "",
+                          rr.valid ? fmt::format("{:.10g}", rr.limit) : "",
+                          rr.valid ? fmt::format("{:.3e}", e) : "");
+      errors += (r > 1 ? ", " : "") + (rr.valid ? fmt::format("{:+.3f} %", 100 * e) : "-");
+    }
+    std::printf("| %s | %s | %s |\n", by_level[0].values[q].first.c_str(),
+                rr.valid ? fmt::format("{:.2f}", rr.order).c_str() : "not asymptotic",
+                errors.c_str());
+  }
+  rich.close();
+  if (!rich) throw std::runtime_error(rich_path + ": cannot be written");
   std::printf("wrote %s and %s/discretisation_study.svg (%d positions per sweep)\n",
               csv_path.c_str(), out.c_str(), positions);
   return 0;
