@@ -401,14 +401,14 @@ int main(int argc, char** argv) try {
       0.0, 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth(), positions);
 
   std::vector<Knob> knobs(3);
-  knobs[0] = {"refinement", "mesh refinement 1..R", {}, Setting{max_refinement, 1.0, 1.0}};
+  knobs[0] = {"refinement", "refinement 1..R", {}, Setting{max_refinement, 1.0, 1.0}};
   for (int r = 1; r <= max_refinement; ++r) knobs[0].settings.push_back({r, 1.0, 1.0});
-  knobs[1] = {"join_depth", "join depth h x0.5..1.5", {}, Setting{}};
+  knobs[1] = {"join_depth", "h x0.5..1.5 (r1)", {}, Setting{}};
   for (double f : {0.5, 0.75, 1.0, 1.25, 1.5}) knobs[1].settings.push_back({1, f, 1.0});
   knobs[2] = {"gap_window", "gap window x0.1..4", {}, Setting{1, 1.0, 4.0}};
   for (double f : {0.1, 0.25, 0.5, 1.0, 2.0, 4.0}) knobs[2].settings.push_back({1, 1.0, f});
   // h again on the refined mesh: what of h's change is the coarse mesh's shallow read-out.
-  knobs.push_back({"join_depth_r2", "join depth h, refinement 2", {}, Setting{2, 1.0, 1.0}});
+  knobs.push_back({"join_depth_r2", "h x0.5..1.5 (r2)", {}, Setting{2, 1.0, 1.0}});
   for (double f : {0.5, 0.75, 1.0, 1.25, 1.5}) knobs[3].settings.push_back({2, f, 1.0});
 
   std::map<std::tuple<int, double, double>, Run> runs;
