@@ -354,6 +354,11 @@ Scalars ScalarsOf(const Run& r) {
            {"largest LSR_1, fixed sun [-]", lsr1_max}}};
 }
 
+// A CSV cell: empty when nothing could be computed (no position converged), never "nan".
+std::string Cell(double v, const char* format = "{:.3e}") {
+  return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : "";
+}
+
 std::string SettingLabel(const std::string& knob, const Setting& s) {
   if (knob == "refinement") return std::to_string(s.refinement);
   if (knob.starts_with("join_depth")) return fmt::format("{:g}", s.h_factor);
@@ -443,13 +448,15 @@ int main(int argc, char** argv) try {
       const std::string label = SettingLabel(knob.name, s) + (is_ref ? " (ref)" : "");
       csv << fmt::format(
           "{},{},{},{},{},{:.4f},{:.4f},{:.4f},{},{:.3f},{:.2f},{:.3f},{:.1f},{:.1f},{},{},{},{},"
-          "{:.3e},{:.3e},{:.3e},{:.3e},{:.3e},{:.3e},{:.3e},{:.3e},{:.4f},{:.4f}\n",
+          "{},{},{},{},{},{},{},{},{},{}\n",
           knob.name, label, s.refinement, s.h_factor, s.window_factor, r.h[0] * 1e3, r.h[1] * 1e3,
           r.h[2] * 1e3, r.table_dofs, r.table_cpu, r.table_bytes / 1048576.0, r.table_load,
           r.fixed.cpu_per_position * 1e6, r.floating.cpu_per_position * 1e6, r.fixed.failed,
-          r.floating.failed, r.sun_planet.failed + r.planet_ring.failed, c.compared, c.lsr_fixed,
-          c.lsr_floating, c.te_fixed, c.te_floating, c.k_sp, c.k_pr, c.k_sp_pointwise,
-          c.k_pr_pointwise, r.sun_planet.mean / b / 1e9, r.planet_ring.mean / b / 1e9);
+          r.floating.failed, r.sun_planet.failed + r.planet_ring.failed, c.compared,
+          Cell(c.lsr_fixed), Cell(c.lsr_floating), Cell(c.te_fixed), Cell(c.te_floating),
+          Cell(c.k_sp), Cell(c.k_pr), Cell(c.k_sp_pointwise), Cell(c.k_pr_pointwise),
+          Cell(r.sun_planet.mean / b / 1e9, "{:.4f}"),
+          Cell(r.planet_ring.mean / b / 1e9, "{:.4f}"));
       std::printf("| %s | %s | %.1f | %.1f | %.0f | %.2e | %.2e | %.2e | %.2e | %.2e |\n",
                   knob.name.c_str(), label.c_str(), r.table_cpu, r.table_bytes / 1048576.0,
                   r.fixed.cpu_per_position * 1e6, c.lsr_fixed, c.lsr_floating, c.te_fixed, c.k_sp,
@@ -491,7 +498,7 @@ int main(int argc, char** argv) try {
     for (int r = 1; r <= max_refinement; ++r) {
       const double v = by_level[r - 1].values[q].second;
       const double e = rr.valid ? (v - rr.limit) / rr.limit : std::nan("");
-      rich << fmt::format("{},{},{:.10g},{},{},{}\n", by_level[0].values[q].first, r, v,
+      rich << fmt::format("{},{},{},{},{},{}\n", by_level[0].values[q].first, r, Cell(v, "{:.10g}"),
                           rr.valid ? fmt::format("{:.3f}", rr.order) : "",
                           rr.valid ? fmt::format("{:.10g}", rr.limit) : "",
                           rr.valid ? fmt::format("{:.3e}", e) : "");
