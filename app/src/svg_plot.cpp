@@ -39,9 +39,23 @@ std::string Escape(const std::string& s) {
   return out;
 }
 
+// A decade tick label, 10^k.
+std::string Decade(double k) { return fmt::format("1e{:.0f}", k); }
+
 }  // namespace
 
-std::string RenderSvg(const LinePlot& plot) {
+std::string RenderSvg(const LinePlot& input) {
+  // Logarithmic axes: the plot is drawn in log10 of its values, on whole decades.
+  LinePlot plot = input;
+  auto to_log = [](std::vector<double>& v) {
+    for (double& x : v) x = x > 0 ? std::log10(x) : std::numeric_limits<double>::quiet_NaN();
+  };
+  for (PlotSeries& ser : plot.series) {
+    if (plot.log_x) to_log(ser.x);
+    if (plot.log_y) to_log(ser.y);
+  }
+  if (plot.log_y) to_log(plot.y_references);
+  std::erase_if(plot.y_references, [](double r) { return !std::isfinite(r); });
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
   for (const PlotSeries& s : plot.series) {
     for (std::size_t k = 0; k < std::min(s.x.size(), s.y.size()); ++k) {
@@ -63,9 +77,11 @@ std::string RenderSvg(const LinePlot& plot) {
     y0 -= d;
     y1 += d;
   }
-  const double pad = 0.05 * (y1 - y0);
+  const double pad = plot.log_y ? 0.0 : 0.05 * (y1 - y0);
   y0 -= pad;
   y1 += pad;
+  if (plot.log_x) x0 = std::floor(x0), x1 = std::max(std::ceil(x1), x0 + 1);
+  if (plot.log_y) y0 = std::floor(y0), y1 = std::max(std::ceil(y1), y0 + 1);
   const double w = 760, h = 480, left = 90, top = 40, pw = 520, ph = 380;
   double sx = pw / (x1 - x0), sy = ph / (y1 - y0);
   if (plot.equal_axes) {
@@ -89,18 +105,21 @@ std::string RenderSvg(const LinePlot& plot) {
   s += fmt::format(
       "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", left,
       top, pw, ph);
-  const double xs = TickStep(x1 - x0), ys = TickStep(y1 - y0);
+  const double xs = plot.log_x ? std::ceil((x1 - x0) / 8) : TickStep(x1 - x0);
+  const double ys = plot.log_y ? std::ceil((y1 - y0) / 8) : TickStep(y1 - y0);
   for (double t = std::ceil(x0 / xs) * xs; t <= x1 + 1e-9 * xs; t += xs) {
     s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>",
                      px(t), top, top + ph);
-    s += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{:g}</text>\n", px(t),
-                     top + ph + 16, std::abs(t) < 1e-12 * xs ? 0.0 : t);
+    s += fmt::format(
+        "<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", px(t), top + ph + 16,
+        plot.log_x ? Decade(t) : fmt::format("{:g}", std::abs(t) < 1e-12 * xs ? 0.0 : t));
   }
   for (double t = std::ceil(y0 / ys) * ys; t <= y1 + 1e-9 * ys; t += ys) {
     s += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>",
                      left, py(t), left + pw);
-    s += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{:.6g}</text>\n", left - 4,
-                     py(t) + 4, std::abs(t) < 1e-12 * ys ? 0.0 : t);
+    s += fmt::format(
+        "<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n", left - 4, py(t) + 4,
+        plot.log_y ? Decade(t) : fmt::format("{:.6g}", std::abs(t) < 1e-12 * ys ? 0.0 : t));
   }
   s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", left + pw / 2,
                    h - 14, Escape(plot.x_label));
@@ -132,10 +151,11 @@ std::string RenderSvg(const LinePlot& plot) {
     std::string pts;
     for (std::size_t k = 0; k < std::min(ser.x.size(), ser.y.size()); ++k) {
       if (!std::isfinite(ser.x[k]) || !std::isfinite(ser.y[k])) continue;
-      if (ser.points) {
+      if (ser.points || ser.markers) {
         s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"{}\"/>\n",
                          px(ser.x[k]), py(ser.y[k]), col);
-      } else {
+      }
+      if (!ser.points) {
         pts += fmt::format("{:.1f},{:.1f} ", px(ser.x[k]), py(ser.y[k]));
       }
     }

@@ -10,7 +10,8 @@ namespace epicycle::app {
 struct PlotSeries {
   std::string name;
   std::vector<double> x, y;
-  bool points = false;  ///< markers instead of a line
+  bool points = false;   ///< markers instead of a line
+  bool markers = false;  ///< markers on the line's points as well (with points = false)
 };
 
 /// A vertical marker at x with a label (e.g. a resonance speed); dashed when `dashed`.
@@ -28,6 +29,8 @@ struct LinePlot {
   std::vector<double> y_references;
   /// Vertical markers with labels, drawn in grey (outside the data's x range: left out).
   std::vector<XMarker> x_markers = {};
+  /// Logarithmic axes (decade ticks); values ≤ 0 are skipped like non-finite ones.
+  bool log_x = false, log_y = false;
 };
 
 /// The plot as a complete SVG document. Non-finite values are skipped.

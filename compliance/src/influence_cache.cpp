@@ -90,8 +90,11 @@ std::uint64_t InfluenceTableKey(const geometry::GearSpec& s, const ElasticMateri
       h.Bytes(text->data(), text->size());
     }
   }
-  // The layer term enters only when switched off (a comparison run), like the mesher above.
+  // The layer term enters only when switched off (a comparison run), like the mesher above; the
+  // factor on the default h only when it is not 1 and selects h (join_depth 0), for the same
+  // reason: the keys of default tables stay those of the format before the factor existed.
   if (!o.layer_term) h.Value(o.layer_term);
+  if (o.join_depth == 0.0 && o.join_depth_factor != 1.0) h.Value(o.join_depth_factor);
   return h.hash();
 }
 

@@ -44,6 +44,10 @@ void InfluenceTableOptions::Validate() const {
     throw std::invalid_argument("InfluenceTableOptions.join_depth = " + Num(join_depth) +
                                 " m: must be finite and >= 0 (0 selects the default)");
   }
+  if (!std::isfinite(join_depth_factor) || join_depth_factor <= 0.0) {
+    throw std::invalid_argument("InfluenceTableOptions.join_depth_factor = " +
+                                Num(join_depth_factor) + ": must be finite and > 0");
+  }
   if (batch < 1 || batch > 4096) {
     throw std::invalid_argument("InfluenceTableOptions.batch = " + std::to_string(batch) +
                                 ": must be in [1, 4096]");
@@ -86,7 +90,9 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
       limiting = i;
     }
   }
-  t.depth_ = options.join_depth > 0.0 ? options.join_depth : kDefaultDepthFraction * t.max_depth_;
+  t.depth_ = options.join_depth > 0.0
+                 ? options.join_depth
+                 : options.join_depth_factor * kDefaultDepthFraction * t.max_depth_;
   if (!(t.depth_ < t.max_depth_)) {
     std::ostringstream msg;
     msg << who << "join_depth h = " << t.depth_ * 1e3 << " mm reaches past the tooth centre line: "

@@ -72,6 +72,7 @@ GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gea
     : plane_(ToCompliance(scene.model.plane)) {
   compliance::InfluenceTableOptions o = options.table;
   if (scene.model.join_depth > 0) o.join_depth = scene.model.join_depth;
+  o.join_depth_factor = scene.model.join_depth_factor;
   o.mesh.refinement = scene.model.mesh_refinement;
   std::map<std::uint64_t, std::shared_ptr<const compliance::InfluenceTable>> built;
   for (const geometry::Gear* g : gears) {

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "toml_reader.hpp"
 
@@ -500,6 +501,17 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     s.model.plane = plane == "strain" ? solvers::PlaneAssumption::kPlaneStrain
                                       : solvers::PlaneAssumption::kPlaneStress;
     s.model.join_depth = t->RealOr("join_depth_mm", 0.0, Rule::NonNegative()) * kMm;
+    if (t->Has("join_depth_factor") && s.model.join_depth > 0) {
+      t->Fail("join_depth_factor", "given",
+              "give either join_depth_mm or join_depth_factor, not both (the factor scales each "
+              "body's default h, join_depth_mm sets one h for all)");
+    }
+    const double max_factor = 1.0 / compliance::InfluenceTable::kDefaultDepthFraction;
+    s.model.join_depth_factor =
+        t->RealOr("join_depth_factor", 1.0,
+                  Rule::Open(0, max_factor)
+                      .Because("the default h is 0.6 of the distance from the flank to the tooth "
+                               "centre line, which h must stay below"));
     s.model.mesh_refinement =
         static_cast<int>(t->IntegerOr("mesh_refinement", 1, Rule::Closed(1, 4)));
     t->Done();

@@ -146,6 +146,15 @@ TEST_CASE("Influence-table cache: the key follows what defines a table", "[unit]
   p = o;
   p.join_depth = 1e-3;
   CHECK(differs(spec, steel, p));
+  p = o;
+  p.join_depth_factor = 1.0 + 1e-12;
+  CHECK(differs(spec, steel, p));
+  // With an explicit h the factor is not used, and does not change the table.
+  InfluenceTableOptions explicit_h = o, explicit_h_factor = o;
+  explicit_h.join_depth = explicit_h_factor.join_depth = 1e-3;
+  explicit_h_factor.join_depth_factor = 0.5;
+  CHECK(InfluenceTableKey(spec, steel, explicit_h) ==
+        InfluenceTableKey(spec, steel, explicit_h_factor));
   // Neither the name, the thickness error (the table is the nominal body's, NominalBody) nor the
   // solve batch changes the table.
   s = spec;

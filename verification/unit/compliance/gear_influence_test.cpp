@@ -148,6 +148,21 @@ TEST_CASE("Gear influence table: join depth rules", "[unit][gear]") {
   InfluenceTableOptions bad;
   bad.join_depth = -1.0;
   CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("join_depth = -1"));
+  // The factor on the default h: h = factor · 0.6 · min d (the table's own limit, measured on the
+  // coarse mesh), refused once it reaches min d.
+  InfluenceTableOptions half = past;
+  half.join_depth = 0.0;
+  half.join_depth_factor = 0.5;
+  const InfluenceTable scaled = InfluenceTable::Build(gear, Steel(scene, scene.stage.sun), half);
+  CHECK(
+      scaled.join_depth() ==
+      Approx(0.5 * InfluenceTable::kDefaultDepthFraction * scaled.max_join_depth()).epsilon(1e-15));
+  half.join_depth_factor = 1.7;  // h = 1.02 min d
+  CHECK_THROWS_WITH(InfluenceTable::Build(gear, Steel(scene, scene.stage.sun), half),
+                    Catch::Contains("past the tooth centre line"));
+  bad = InfluenceTableOptions{};
+  bad.join_depth_factor = 0.0;
+  CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("join_depth_factor = 0"));
 }
 
 TEST_CASE("Gear influence table: total approach barely depends on the join depth", "[unit][gear]") {

@@ -118,6 +118,15 @@ TEST_CASE("model and supports tables: values in SI, errors name key, value and r
                     Contains("model.mesh_refinement = 9"));
   CHECK_THROWS_WITH(Parse(base + "\n[model]\njoin_depth_mm = -1.0\n"),
                     Contains("model.join_depth_mm = -1"));
+  CHECK(defaults.model.join_depth_factor == 1.0);
+  CHECK(Parse(base + "\n[model]\njoin_depth_factor = 1.5\n").model.join_depth_factor == 1.5);
+  // The factor scales h = 0.6 min d; h must stay below min d, so the factor below 1/0.6.
+  CHECK_THROWS_WITH(Parse(base + "\n[model]\njoin_depth_factor = 1.7\n"),
+                    Contains("model.join_depth_factor = 1.7") && Contains("centre line"));
+  CHECK_THROWS_WITH(Parse(base + "\n[model]\njoin_depth_factor = 0.0\n"),
+                    Contains("model.join_depth_factor = 0"));
+  CHECK_THROWS_WITH(Parse(base + "\n[model]\njoin_depth_mm = 0.5\njoin_depth_factor = 1.2\n"),
+                    Contains("model.join_depth_factor = given") && Contains("not both"));
   CHECK_THROWS_WITH(Parse(base + "\n[supports]\nsun = \"elastic\"\n"),
                     Contains("supports.sun_stiffness_N_per_um is missing"));
   CHECK_THROWS_WITH(Parse(base + "\n[supports]\nsun = \"elastic\"\nsun_stiffness_N_per_um = 0.0\n"),

@@ -28,6 +28,11 @@ struct InfluenceTableOptions {
   /// d_i the distance from grid point i along its inward normal to the tooth centre line (the
   /// largest h that keeps the read-out on the loaded tooth's side), so that h ± 50 % stays valid.
   double join_depth = 0.0;
+  /// Factor on the default h [-], used when join_depth is 0: h = join_depth_factor ·
+  /// kDefaultDepthFraction · min_i d_i, so that one factor scales every body's own default (the
+  /// discretisation study, docs/quasistatic.md). Finite and > 0; h must still stay below min_i d_i,
+  /// i.e. the factor below 1/kDefaultDepthFraction ≈ 1.67.
+  double join_depth_factor = 1.0;
   /// Add the layer term to the depth-h self entries (docs/compliance.md, "The layer term"): the
   /// structural strain between the surface and h that the half-plane local term does not carry,
   ///   c_i = −h · dR_i/dr,   R_i(r) = D_i(r) + a ln r,   a = 2k/(π b),

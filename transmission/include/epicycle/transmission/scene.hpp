@@ -36,7 +36,10 @@ struct ModelSettings {
   /// Plane strain (default, wide steel gears: docs/compliance.md) or plane stress, the same in the
   /// FE structural term and the local contact term.
   solvers::PlaneAssumption plane = solvers::PlaneAssumption::kPlaneStrain;
-  double join_depth = 0;    ///< h [m]; 0: each table's default (compliance::InfluenceTableOptions)
+  double join_depth = 0;  ///< h [m]; 0: each table's default (compliance::InfluenceTableOptions)
+  /// Factor on each table's default h [-] when join_depth is 0 (InfluenceTableOptions::
+  /// join_depth_factor), in (0, 1/0.6): the default h is 0.6 of the distance to the centre line.
+  double join_depth_factor = 1;
   int mesh_refinement = 1;  ///< density factor of the gear-body meshes [-], 1..4
 };
 
