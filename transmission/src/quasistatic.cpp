@@ -1,15 +1,11 @@
 #include "epicycle/transmission/quasistatic.hpp"
 
-#include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/transmission/geometric_iteration.hpp"
+#include "ordered_chunks.hpp"
 
 namespace epicycle::transmission {
 
@@ -170,66 +166,23 @@ std::vector<PositionResult> Sweep(
     const QuasiStaticOptions& options,
     const std::function<void(const PositionResult&, int)>& on_result) {
   options.Validate();
-  const int count = static_cast<int>(carrier_angles.size());
   std::vector<PositionResult> out(carrier_angles.size());
-  if (count == 0) return out;
-  const int cores = static_cast<int>(std::thread::hardware_concurrency());
-  const int threads = std::min(count, options.threads > 0 ? options.threads : std::max(1, cores));
-
-  // Results are handed to on_result in the order of the angles: a worker that finishes position
-  // k marks it and, under the lock, passes on every finished position from the first one not yet
-  // passed on (a later chunk's results wait in `out` until the chunks before it are through).
-  std::mutex lock;
-  std::vector<char> done(carrier_angles.size(), 0);
-  int next = 0;
-  std::exception_ptr error;
-  std::atomic<bool> stop{false};
-  auto fail = [&](std::exception_ptr e) {
-    const std::lock_guard<std::mutex> guard(lock);
-    if (!error) error = e;
-    stop = true;
-  };
-  auto finished = [&](int k) {
-    const std::lock_guard<std::mutex> guard(lock);
-    done[static_cast<std::size_t>(k)] = 1;
-    if (error) return;
-    try {
-      for (; next < count && done[static_cast<std::size_t>(next)]; ++next)
-        if (on_result) on_result(out[static_cast<std::size_t>(next)], next);
-    } catch (...) {
-      error = std::current_exception();
-      stop = true;
-    }
-  };
-  // One chunk [begin, end): its first position cold, each next one from its neighbour; one
-  // solver per worker (the solvers keep storage between calls, so they are not shared).
-  auto chunk = [&](int begin, int end) {
-    try {
-      auto solver = solvers::MakeContactSolver(options.backend);
-      for (int k = begin; k < end && !stop; ++k) {
+  internal::RunOrderedChunks(
+      static_cast<int>(carrier_angles.size()), options.threads, options.backend,
+      [&](int k, bool chunk_first, solvers::ContactSolver& solver) {
+        // A chunk's first position cold, each next one from its neighbour.
         const std::size_t i = static_cast<std::size_t>(k);
-        const PositionResult* neighbour = options.warm_start && k > begin ? &out[i - 1] : nullptr;
+        const PositionResult* neighbour =
+            options.warm_start && !chunk_first ? &out[i - 1] : nullptr;
         try {
-          out[i] = Solve(model, carrier_angles[i], loads, options, neighbour, *solver);
+          out[i] = Solve(model, carrier_angles[i], loads, options, neighbour, solver);
         } catch (const std::invalid_argument& e) {
           out[i] = Failed(carrier_angles[i], model.planets(), e.what());
         }
-        finished(k);
-      }
-    } catch (...) {
-      fail(std::current_exception());
-    }
-  };
-  std::vector<std::thread> pool;
-  try {
-    for (int t = 1; t < threads; ++t)
-      pool.emplace_back(chunk, count * t / threads, count * (t + 1) / threads);
-  } catch (...) {
-    fail(std::current_exception());  // no thread: stop the ones started and report it
-  }
-  chunk(0, count / threads);
-  for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+      },
+      [&](int k) {
+        if (on_result) on_result(out[static_cast<std::size_t>(k)], k);
+      });
   return out;
 }
 

@@ -27,6 +27,7 @@
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/solvers/local_term.hpp"
+#include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "fe_fixtures.hpp"
 #include "figures.hpp"
@@ -274,4 +275,33 @@ TEST_CASE("quasistatic sweep: on_result sees every position in order, failed one
   o.threads = -1;
   CHECK_THROWS_WITH(transmission::Sweep(*rig.model, rig.loads(), rig.angles, o),
                     Catch::Contains("threads = -1"));
+}
+
+TEST_CASE("mesh stiffness: the same samples, in order, on 1 and 3 threads",
+          "[transmission][stiffness][sweep]") {
+  const transmission::Scene scene = test::PaperScene();
+  const geometry::Stage stage(scene.stage);
+  const auto setup = transmission::MakeMeshPair(scene, &stage, "sun-planet1");
+  const geometry::GearPair pair(setup.spec);
+  const transmission::FePairCompliance fe(scene, pair, test::CachedTables());
+  transmission::MeshStiffnessOptions o;
+  o.positions = 24;
+  o.threads = 1;
+  const auto one = transmission::ComputeMeshStiffness(scene, setup, pair, fe, o);
+  o.threads = 3;
+  std::vector<double> seen;  // angles in the order on_sample saw them
+  const auto three = transmission::ComputeMeshStiffness(
+      scene, setup, pair, fe, o,
+      [&](const transmission::MeshSample& s) { seen.push_back(s.angle); });
+  REQUIRE(one.failed == 0);
+  REQUIRE(three.samples.size() == one.samples.size());
+  REQUIRE(seen.size() == one.samples.size());
+  // Every position starts from the kinematic pose: the thread count changes nothing.
+  for (std::size_t k = 0; k < one.samples.size(); ++k) {
+    CHECK(seen[k] == one.samples[k].angle);
+    CHECK(three.samples[k].mesh_stiffness == one.samples[k].mesh_stiffness);
+    CHECK(three.samples[k].rotation == one.samples[k].rotation);
+  }
+  CHECK(three.mean_stiffness == one.mean_stiffness);
+  CHECK(three.peak_pair_stiffness == one.peak_pair_stiffness);
 }
