@@ -80,6 +80,7 @@ void BM_SingleSweepSameSize(benchmark::State& state) {
   transmission::QuasiStaticOptions o;
   o.setup = transmission::SetupFromScene(scene);
   o.setup.sun = transmission::SunSupport::kFixed;
+  o.threads = 1;  // as inside a study's case: the reference of its one-thread per-case cost
   const auto angles =
       transmission::SweepAngles(0.0, kCases * stage.mesh_cycle(), kCases * kPositions);
   long failed = 0;

@@ -33,9 +33,10 @@ using json = nlohmann::json;
 struct QuasiStaticArgs {
   std::string scene, backend = "newton", out = "quasistatic-out", range = "cycle", sun, cache, dump;
   int positions = 0;  // 0: 36 over a mesh cycle, 360 over a revolution
+  int threads = 0;    // 0: one per core
   std::vector<double> angles_deg;
   double start_deg = 0.0;
-  bool no_cache = false, no_local = false, quiet = false;
+  bool no_cache = false, no_local = false, quiet = false, cold = false;
 };
 
 void RunQuasiStatic(const QuasiStaticArgs& a) {
@@ -73,6 +74,8 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   opt.setup = transmission::SetupFromScene(scene);
   opt.setup.local_terms = !a.no_local;
   opt.backend = solvers::BackendFromName(a.backend);
+  opt.threads = a.threads;
+  opt.warm_start = !a.cold;
 
   const char* sun_name = opt.setup.sun == transmission::SunSupport::kFixed      ? "fixed"
                          : opt.setup.sun == transmission::SunSupport::kFloating ? "floating"
@@ -80,8 +83,12 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   std::printf("%s: %d planets, sun %s, input torque %.1f N m, back end %s\n", scene.name.c_str(), n,
               sun_name, scene.sun_torque, a.backend.c_str());
   for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
-  std::printf("  %zu positions from %.4f deg (%.2f s for the tables)\n", angles.size(),
-              geometry::Deg(angles.front()), table_seconds);
+  const std::string threads =
+      a.threads == 0 ? std::string("one thread per core") : fmt::format("{} thread(s)", a.threads);
+  std::printf("  %zu positions from %.4f deg (%.2f s for the tables), %s, %s\n", angles.size(),
+              geometry::Deg(angles.front()), table_seconds,
+              a.cold ? "every position cold" : "each warm-started from its neighbour",
+              threads.c_str());
 
   std::filesystem::create_directories(a.out);
   if (!a.dump.empty()) std::filesystem::create_directories(a.dump);
@@ -95,7 +102,8 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   for (int i = 1; i <= n; ++i) pos << ",LSR_" << i;
   for (int i = 1; i <= n; ++i) pos << ",L_" << i;
   pos << ",K_gamma,transmission_error_urad,sun_x_um,sun_y_um,geometric_iterations,"
-         "residual,status,active_contacts,contacts,solve_ms,message\n";
+         "contact_iterations,warm_started,residual,status,active_contacts,contacts,solve_ms,"
+         "message\n";
   pairs << "carrier_deg,mesh,kind,flank,teeth,force_N\n";
 
   const bool tty = !a.quiet && isatty(fileno(stderr));
@@ -122,7 +130,8 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
             << Num(r.converged ? r.transmission_error * 1e6 : NAN) << ","
             << Num(r.converged ? r.sun_displacement.x() * 1e6 : NAN) << ","
             << Num(r.converged ? r.sun_displacement.y() * 1e6 : NAN) << ","
-            << r.geometric_iterations << "," << Num(r.report.residual.total) << ","
+            << r.geometric_iterations << "," << r.contact_iterations << ","
+            << (r.warm_started ? 1 : 0) << "," << Num(r.report.residual.total) << ","
             << solvers::StatusName(r.report.status) << "," << r.report.active_contacts << ","
             << r.problem.contacts.size() << "," << Num(r.report.total_seconds * 1e3, "{:.4g}")
             << "," << msg << "\n";
@@ -206,6 +215,8 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   j["sun_torque_Nm"] = scene.sun_torque;
   j["backend"] = a.backend;
   j["local_terms"] = !a.no_local;
+  j["warm_start"] = !a.cold;
+  j["threads"] = a.threads;  // 0: one per core
   j["positions"] = angles.size();
   j["converged_positions"] = good;
   j["failures"] = failures;
@@ -281,6 +292,13 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
   cmd->add_option("--angles-deg", a.angles_deg, "A given list of carrier angles [deg]");
   cmd->add_option("--sun", a.sun, "Override the scene's sun support")
       ->check(CLI::IsMember({"fixed", "floating"}));
+  cmd->add_option("--threads", a.threads,
+                  "Worker threads: the positions in contiguous chunks, one per thread (0: one "
+                  "per core)")
+      ->check(CLI::Range(0, 4096));
+  cmd->add_flag("--cold", a.cold,
+                "Start every position from its kinematic poses and zero forces (no warm start "
+                "from the neighbour)");
   cmd->add_option("--backend", a.backend, "Contact back end (newton, ipopt, nlopt-slsqp, ...)");
   cmd->add_option("--out", a.out, "Output folder (CSV, JSON, SVG)");
   cmd->add_option("--dump-problems", a.dump, "Also write every position's contact problem here");

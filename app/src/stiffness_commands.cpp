@@ -28,6 +28,7 @@ using json = nlohmann::json;
 struct StiffnessArgs {
   std::string scene, mesh, backend = "newton", out = "stiffness-out", cache;
   int positions = 60;
+  int threads = 0;  // 0: one per core
   bool no_cache = false, no_local = false;
 };
 
@@ -57,6 +58,7 @@ void RunStiffness(const StiffnessArgs& a) {
 
   transmission::MeshStiffnessOptions opt;
   opt.positions = a.positions;
+  opt.threads = a.threads;
   opt.backend = solvers::BackendFromName(a.backend);
   opt.local_terms = !a.no_local;
   std::filesystem::create_directories(a.out);
@@ -181,6 +183,10 @@ void RegisterStiffnessCommands(CLI::App& app) {
   cmd->add_option("--mesh", a.mesh, "Mesh of a stage: sun-planet1, planet1-ring, ...");
   cmd->add_option("--positions", a.positions, "Positions over one mesh cycle")
       ->check(CLI::Range(2, 100000));
+  cmd->add_option("--threads", a.threads,
+                  "Worker threads: the positions in contiguous chunks, one per thread (0: one "
+                  "per core)")
+      ->check(CLI::Range(0, 4096));
   cmd->add_option("--backend", a.backend, "Contact back end (newton, ipopt, nlopt-slsqp, ...)");
   cmd->add_option("--out", a.out, "Output folder (CSV, SVG, JSON)");
   cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");

@@ -372,17 +372,8 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     if (warm != nullptr && warm->ok && warm->terms.size() > 0) {
       // Forces of the same potential contacts (those Label() names alike) from the last accepted
       // step.
-      solution.force = Eigen::VectorXd::Zero(n);
-      int matched = 0;
-      for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < warm->terms.size(); ++i)
-          if (warm->terms.contacts[i].SameAs(terms.contacts[j])) {
-            solution.force(j) = warm->force(i);
-            ++matched;
-            break;
-          }
-      }
-      opt.warm_start = matched > 0;
+      opt.warm_start = transmission::CarryForces(warm->terms.contacts, warm->force, terms.contacts,
+                                                 &solution.force) > 0;
       solution.multiplier.resize(0);
     }
     e.report = solver.Solve(problem, opt, &solution);

@@ -31,6 +31,7 @@
 #include <cstdlib>
 #include <exception>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -488,6 +489,11 @@ class IpoptBackend final : public BackendImpl {
                                   std::to_string(m) + " equalities");
     }
 
+    // Ipopt 3.11 (Debian 12) calls MUMPS, which is not thread-safe (global Fortran state; Ipopt
+    // guards it only from 3.14 on): back-end objects on different threads (a parallel sweep, a
+    // study's workers) take turns for the whole solve.
+    static std::mutex mumps;
+    const std::lock_guard<std::mutex> turn(mumps);
     // One IpoptApplication per back-end object, reused by every Run (creating one registers all of
     // Ipopt's options and dominated the cost of small solves); its options are reset each time.
     if (Ipopt::IsNull(app_)) app_ = IpoptApplicationFactory();

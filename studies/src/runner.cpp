@@ -235,6 +235,7 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
     opt.setup = transmission::SetupFromScene(scene);
     if (study.sun) opt.setup.sun = *study.sun;
     opt.backend = study.backend;
+    opt.threads = 1;  // the cases already run on every core (ComputeCases): no nested workers
     const std::vector<double> angles = internal::CaseAngles(study, stage);
     const auto results = transmission::Sweep(scene, stage, compliance, angles, opt);
     const transmission::SweepSummary s = transmission::SummariseSweep(results, stage.planets());

@@ -1,5 +1,7 @@
 #include "epicycle/transmission/geometric_iteration.hpp"
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "epicycle/solvers/contact_problem.hpp"
@@ -10,13 +12,23 @@ GeometricIterationResult IterateGeometry(const std::function<solvers::ContactPro
                                          const std::function<double(const Eigen::VectorXd&)>& move,
                                          solvers::ContactSolver& solver,
                                          const solvers::ContactOptions& contact,
-                                         const GeometricIterationOptions& options) {
+                                         const GeometricIterationOptions& options,
+                                         const GeometricIterationStart& start) {
   GeometricIterationResult r;
   std::vector<std::string> previous_labels;
   for (int it = 1; it <= options.max_iterations; ++it) {
     r.iterations = it;
     solvers::ContactProblemData data = build();
-    if (it == 1) r.total = Eigen::VectorXd::Zero(data.equality_rhs.size());
+    if (it == 1) {
+      r.total = Eigen::VectorXd::Zero(data.equality_rhs.size());
+      if (start.displacements.size() > 0) {
+        if (start.displacements.size() != r.total.size())
+          throw std::invalid_argument(
+              "geometric iteration: the start has " + std::to_string(start.displacements.size()) +
+              " displacements for " + std::to_string(r.total.size()) + " DOFs");
+        r.total = start.displacements;
+      }
+    }
     // Elastic supports carry the deflection of the earlier iterations: G F + K (λ + λ_prev) = W.
     if (data.support_stiffness.size() > 0) data.equality_rhs -= data.support_stiffness * r.total;
     r.rhs = data.equality_rhs;
@@ -26,11 +38,17 @@ GeometricIterationResult IterateGeometry(const std::function<solvers::ContactPro
         r.solution.force.size() == problem.num_contacts()) {
       opt.warm_start = true;
       r.solution.multiplier.setZero(problem.num_equalities());
+    } else if (it == 1 && start.forces && start.forces(problem.num_contacts(), &r.solution.force) &&
+               r.solution.force.size() == problem.num_contacts()) {
+      // A neighbour's forces: the members already carry its displacements, so λ starts from 0.
+      opt.warm_start = true;
+      r.solution.multiplier.setZero(problem.num_equalities());
     } else {
       r.solution = {};
     }
     previous_labels = problem.data().contact_labels;
     r.report = solver.Solve(problem, opt, &r.solution);
+    r.contact_iterations += r.report.iterations;
     const bool inaccurate = r.report.status == solvers::ContactStatus::kConvergedInaccurate;
     if (inaccurate && options.accept_inaccurate) {
       r.message = "accepted converged-inaccurate contact solves (residual " +

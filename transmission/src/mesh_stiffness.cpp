@@ -11,6 +11,7 @@
 #include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/geometric_iteration.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
+#include "ordered_chunks.hpp"
 
 namespace epicycle::transmission {
 
@@ -62,6 +63,10 @@ void MeshStiffnessOptions::Validate() const {
   if (max_geometric_iterations < 1) {
     throw std::invalid_argument("mesh stiffness: max_geometric_iterations = " +
                                 std::to_string(max_geometric_iterations) + ": must be at least 1");
+  }
+  if (threads < 0) {
+    throw std::invalid_argument("mesh stiffness: threads = " + std::to_string(threads) +
+                                ": must be >= 0 (0: one per core)");
   }
   if (!(geometric_tolerance > 0)) {
     throw std::invalid_argument("mesh stiffness: geometric_tolerance = " +
@@ -180,33 +185,38 @@ MeshStiffnessResult ComputeMeshStiffness(const Scene& scene, const MeshPairSetup
   r.mesh = setup.mesh;
   r.torque = setup.torque;
   r.face_width = std::min(pair.gear1().spec().face_width, pair.gear2().spec().face_width);
-  auto solver = solvers::MakeContactSolver(options.backend);
   double sum = 0.0;
   int good = 0;
   r.min_stiffness = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < options.positions; ++k) {
-    const double angle = pair.mesh_cycle() * k / options.positions;
-    MeshSample s;
-    try {
-      s = SolveSample(scene, setup, pair, compliance, options, *solver, angle);
-    } catch (const std::invalid_argument& e) {
-      s = MeshSample{};
-      s.angle = angle;
-      s.message = e.what();
-    }
-    if (s.converged) {
-      ++good;
-      sum += s.mesh_stiffness;
-      r.min_stiffness = std::min(r.min_stiffness, s.mesh_stiffness);
-      r.max_stiffness = std::max(r.max_stiffness, s.mesh_stiffness);
-      for (const ToothPairLoad& p : s.pairs)
-        r.peak_pair_stiffness = std::max(r.peak_pair_stiffness, p.stiffness);
-    } else {
-      ++r.failed;
-    }
-    if (on_sample) on_sample(s);
-    r.samples.push_back(std::move(s));
-  }
+  r.samples.resize(static_cast<std::size_t>(options.positions));
+  internal::RunOrderedChunks(
+      options.positions, options.threads, options.backend,
+      [&](int k, bool, solvers::ContactSolver& solver) {
+        const double angle = pair.mesh_cycle() * k / options.positions;
+        MeshSample& s = r.samples[static_cast<std::size_t>(k)];
+        try {
+          s = SolveSample(scene, setup, pair, compliance, options, solver, angle);
+        } catch (const std::invalid_argument& e) {
+          s = MeshSample{};
+          s.angle = angle;
+          s.message = e.what();
+        }
+      },
+      [&](int k) {
+        // In the order of the positions: the statistics do not depend on the thread count.
+        const MeshSample& s = r.samples[static_cast<std::size_t>(k)];
+        if (s.converged) {
+          ++good;
+          sum += s.mesh_stiffness;
+          r.min_stiffness = std::min(r.min_stiffness, s.mesh_stiffness);
+          r.max_stiffness = std::max(r.max_stiffness, s.mesh_stiffness);
+          for (const ToothPairLoad& p : s.pairs)
+            r.peak_pair_stiffness = std::max(r.peak_pair_stiffness, p.stiffness);
+        } else {
+          ++r.failed;
+        }
+        if (on_sample) on_sample(s);
+      });
   r.mean_stiffness = good > 0 ? sum / good : 0.0;
   if (good == 0) r.min_stiffness = 0.0;
   return r;

@@ -5,20 +5,53 @@
 
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/transmission/geometric_iteration.hpp"
+#include "ordered_chunks.hpp"
 
 namespace epicycle::transmission {
 
-PositionResult SolvePosition(const StageModel& model, double carrier_angle, const StageLoads& loads,
-                             const QuasiStaticOptions& options) {
+void QuasiStaticOptions::Validate() const {
+  if (max_geometric_iterations < 1)
+    throw std::invalid_argument("quasistatic: max_geometric_iterations = " +
+                                std::to_string(max_geometric_iterations) + ": must be at least 1");
+  if (!(geometric_tolerance > 0) || !std::isfinite(geometric_tolerance))
+    throw std::invalid_argument("quasistatic: geometric_tolerance = " +
+                                std::to_string(geometric_tolerance) + " m: must be finite and > 0");
+  if (threads < 0)
+    throw std::invalid_argument("quasistatic: threads = " + std::to_string(threads) +
+                                ": must be >= 0 (0: one per core)");
+  contact.Validate();
+}
+
+namespace {
+
+// One position with the caller's solver (a sweep's worker keeps one for its chunk).
+PositionResult Solve(const StageModel& model, double carrier_angle, const StageLoads& loads,
+                     const QuasiStaticOptions& options, const PositionResult* neighbour,
+                     solvers::ContactSolver& solver) {
   PositionResult r;
   r.carrier_angle = carrier_angle;
   const std::vector<StageDof>& dofs = model.dofs();
   geometry::StagePoses poses = model.KinematicPoses(carrier_angle);
-  auto solver = solvers::MakeContactSolver(options.backend);
   GeometricIterationOptions iteration;
   iteration.max_iterations = options.max_geometric_iterations;
   iteration.tolerance = options.geometric_tolerance;
   iteration.accept_inaccurate = options.accept_inaccurate;
+  GeometricIterationStart start;
+  if (neighbour != nullptr && neighbour->converged &&
+      neighbour->displacements.size() == static_cast<Eigen::Index>(dofs.size()) &&
+      neighbour->solution.force.size() ==
+          static_cast<Eigen::Index>(neighbour->problem.contacts.size())) {
+    // What carries over is the deviation from the kinematic motion (the loaded TE, the planets'
+    // rotations, the floating sun's and elastic pins' deflections); the kinematic poses are those
+    // of the new angle. The forces start the first contact solve where the contacts match.
+    r.warm_started = true;
+    start.displacements = neighbour->displacements;
+    poses = StageModel::Displace(poses, dofs, start.displacements);
+    start.forces = [&](int, Eigen::VectorXd* force) {
+      return CarryForces(neighbour->problem.contacts, neighbour->solution.force, r.problem.contacts,
+                         force) > 0;
+    };
+  }
   GeometricIterationResult g = IterateGeometry(
       [&] {
         r.problem = model.Problem(poses, loads);
@@ -28,13 +61,15 @@ PositionResult SolvePosition(const StageModel& model, double carrier_angle, cons
         poses = StageModel::Displace(poses, dofs, lambda);
         return model.DisplacementSize(dofs, lambda);
       },
-      *solver, options.contact, iteration);
+      solver, options.contact, iteration, start);
   r.converged = g.converged;
   r.message = std::move(g.message);
   r.geometric_iterations = g.iterations;
+  r.contact_iterations = g.contact_iterations;
   r.solution = std::move(g.solution);
   r.report = g.report;
   r.poses = poses;
+  r.displacements = g.total;
   // The problem as solved: with elastic supports, W less the earlier iterations' deflections.
   if (g.rhs.size() > 0) r.problem.data.equality_rhs = g.rhs;
   // Outputs from the last contact problem (solved at the poses before its own small increment).
@@ -70,6 +105,33 @@ PositionResult SolvePosition(const StageModel& model, double carrier_angle, cons
   return r;
 }
 
+// A position whose set-up threw (no contact within the gap window, a contact without local-term
+// geometry): reported with zero outputs, never skipped.
+PositionResult Failed(double carrier_angle, int planets, const std::string& message) {
+  PositionResult r;
+  r.carrier_angle = carrier_angle;
+  r.converged = false;
+  r.message = message;
+  r.load_sharing.assign(planets, 0.0);
+  r.planet_rotations.assign(planets, 0.0);
+  r.planet_displacements.assign(planets, geometry::Vec2::Zero());
+  return r;
+}
+
+}  // namespace
+
+PositionResult SolvePosition(const StageModel& model, double carrier_angle, const StageLoads& loads,
+                             const QuasiStaticOptions& options) {
+  return SolvePosition(model, carrier_angle, loads, options, nullptr);
+}
+
+PositionResult SolvePosition(const StageModel& model, double carrier_angle, const StageLoads& loads,
+                             const QuasiStaticOptions& options, const PositionResult* neighbour) {
+  options.Validate();
+  auto solver = solvers::MakeContactSolver(options.backend);
+  return Solve(model, carrier_angle, loads, options, neighbour, *solver);
+}
+
 PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
                              const StageCompliance& compliance, double carrier_angle,
                              const QuasiStaticOptions& options) {
@@ -103,25 +165,24 @@ std::vector<PositionResult> Sweep(
     const StageModel& model, const StageLoads& loads, const std::vector<double>& carrier_angles,
     const QuasiStaticOptions& options,
     const std::function<void(const PositionResult&, int)>& on_result) {
-  std::vector<PositionResult> out;
-  out.reserve(carrier_angles.size());
-  const int n = model.planets();
-  for (std::size_t k = 0; k < carrier_angles.size(); ++k) {
-    PositionResult r;
-    try {
-      r = SolvePosition(model, carrier_angles[k], loads, options);
-    } catch (const std::invalid_argument& e) {
-      r = PositionResult{};
-      r.carrier_angle = carrier_angles[k];
-      r.converged = false;
-      r.message = e.what();
-      r.load_sharing.assign(n, 0.0);
-      r.planet_rotations.assign(n, 0.0);
-      r.planet_displacements.assign(n, geometry::Vec2::Zero());
-    }
-    if (on_result) on_result(r, static_cast<int>(k));
-    out.push_back(std::move(r));
-  }
+  options.Validate();
+  std::vector<PositionResult> out(carrier_angles.size());
+  internal::RunOrderedChunks(
+      static_cast<int>(carrier_angles.size()), options.threads, options.backend,
+      [&](int k, bool chunk_first, solvers::ContactSolver& solver) {
+        // A chunk's first position cold, each next one from its neighbour.
+        const std::size_t i = static_cast<std::size_t>(k);
+        const PositionResult* neighbour =
+            options.warm_start && !chunk_first ? &out[i - 1] : nullptr;
+        try {
+          out[i] = Solve(model, carrier_angles[i], loads, options, neighbour, solver);
+        } catch (const std::invalid_argument& e) {
+          out[i] = Failed(carrier_angles[i], model.planets(), e.what());
+        }
+      },
+      [&](int k) {
+        if (on_result) on_result(out[static_cast<std::size_t>(k)], k);
+      });
   return out;
 }
 

@@ -67,6 +67,27 @@ std::vector<StageContact> SearchStage(const geometry::Stage& stage,
   return out;
 }
 
+int CarryForces(const std::vector<StageContact>& from, const Eigen::VectorXd& force,
+                const std::vector<StageContact>& to, Eigen::VectorXd* out) {
+  if (force.size() != static_cast<Eigen::Index>(from.size()))
+    throw std::invalid_argument("CarryForces: " + std::to_string(force.size()) + " forces for " +
+                                std::to_string(from.size()) + " contacts");
+  const int n = static_cast<int>(to.size());
+  *out = Eigen::VectorXd::Zero(n);
+  int matched = 0;
+  // Both lists are short (tens of contacts) and in search order; a plain scan beats an index.
+  for (int j = 0; j < n; ++j) {
+    for (std::size_t i = 0; i < from.size(); ++i) {
+      if (from[i].SameAs(to[static_cast<std::size_t>(j)])) {
+        (*out)(j) = force(static_cast<Eigen::Index>(i));
+        ++matched;
+        break;
+      }
+    }
+  }
+  return matched;
+}
+
 namespace {
 
 // False if the radii give no positive reduced radius (the caller names the contact).

@@ -23,10 +23,22 @@ struct GeometricIterationOptions {
   bool warm_start = true;
 };
 
+/// Where the iteration starts when it continues from a neighbouring state (a sweep's previous
+/// position) instead of from the kinematic poses and zero forces.
+struct GeometricIterationStart {
+  /// Rigid displacements already applied to the poses that `build()` starts from, per DOF [m] or
+  /// [rad]; they count in the accumulated λ (and in K·λ of elastic supports). Empty: none.
+  Eigen::VectorXd displacements;
+  /// Called once with the first problem's contact count; fills the forces to start its contact
+  /// solve from [N] and returns true, or returns false for a cold first solve.
+  std::function<bool(int contacts, Eigen::VectorXd* force)> forces;
+};
+
 struct GeometricIterationResult {
   bool converged = false;             ///< every contact solve converged and the increments settled
   std::string message;                ///< why not (or a note on accepted inaccurate solves)
   int iterations = 0;                 ///< [-]
+  int contact_iterations = 0;         ///< back-end iterations summed over the contact solves [-]
   Eigen::VectorXd total;              ///< accumulated rigid displacements λ, per DOF [m] or [rad]
   solvers::ContactSolution solution;  ///< of the last contact problem
   solvers::ContactReport report;      ///< of the last contact problem
@@ -36,11 +48,14 @@ struct GeometricIterationResult {
 /// `build()` returns the contact problem at the current poses (its equality rows are the DOFs;
 /// elastic supports' rows carry their stiffness K, and the loop subtracts K·λ_total of the earlier
 /// iterations from W so that G F + K(λ + λ_prev) = W); `move(λ)` moves the poses by the increment
-/// λ and returns its size [m]. Exceptions from either propagate.
+/// λ and returns its size [m]. `start` continues from a neighbouring state (its displacements
+/// already in the poses, its forces for the first solve). Exceptions from either propagate.
+/// @throws std::invalid_argument if start.displacements does not have one entry per DOF.
 GeometricIterationResult IterateGeometry(const std::function<solvers::ContactProblemData()>& build,
                                          const std::function<double(const Eigen::VectorXd&)>& move,
                                          solvers::ContactSolver& solver,
                                          const solvers::ContactOptions& contact,
-                                         const GeometricIterationOptions& options);
+                                         const GeometricIterationOptions& options,
+                                         const GeometricIterationStart& start = {});
 
 }  // namespace epicycle::transmission

@@ -41,7 +41,11 @@ struct MeshStiffnessOptions {
   bool tooth_coupling = true;
   int max_geometric_iterations = 20;   ///< [-]
   double geometric_tolerance = 1e-11;  ///< largest rotation increment × base radius [m]
-  void Validate() const;               ///< @throws std::invalid_argument naming the field
+  /// Worker threads [-]; 0: one per core. The positions are split into contiguous chunks, one per
+  /// thread (each position is solved from the kinematic pose, so the result does not depend on
+  /// the thread count).
+  int threads = 0;
+  void Validate() const;  ///< @throws std::invalid_argument naming the field
 };
 
 /// One tooth pair in contact at one position.
@@ -88,7 +92,9 @@ struct MeshStiffnessResult {
 /// Sweeps one mesh cycle of gear 1: at every position, contact search → FE compliance → contact
 /// problem with the moment equilibrium of gear 1 (gear 2 held) → back end, repeated at the moved
 /// position until the rotation settles. A position that fails is reported in its sample and the
-/// sweep goes on. `on_sample` (if given) sees each sample as it is computed.
+/// sweep goes on. The positions run on options.threads workers; `on_sample` (if given) sees each
+/// sample in the order of the positions as soon as it and every earlier one are computed (under a
+/// lock, from any worker).
 MeshStiffnessResult ComputeMeshStiffness(
     const Scene& scene, const MeshPairSetup& setup, const geometry::GearPair& pair,
     const FePairCompliance& compliance, const MeshStiffnessOptions& options,

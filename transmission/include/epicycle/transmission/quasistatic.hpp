@@ -1,7 +1,9 @@
 // Quasi-static solution of the stage at one carrier position (docs/model.md §3–4): contact search →
 // compliance → contact problem with equilibrium equalities → back end → forces and rigid
 // displacements; the members are moved by the displacements and the search repeated until the
-// displacements stop changing (the geometry is nonlinear in the positions).
+// displacements stop changing (the geometry is nonlinear in the positions). A sweep starts each
+// position from its neighbour's converged state and runs contiguous chunks of positions on
+// several threads (docs/quasistatic.md, "Sweep cost").
 #pragma once
 
 #include <functional>
@@ -25,6 +27,21 @@ struct QuasiStaticOptions {
   /// back ends whose own stopping rule ends just above the tolerance; such positions keep the
   /// status in their report and a note in their message. Default: only converged.
   bool accept_inaccurate = false;
+  /// Sweep: start each position from its neighbour's converged state: the members displaced from
+  /// their kinematic poses by the neighbour's rigid displacements (rotations, the floating sun's
+  /// and elastic planets' translations), and the contact solve from the neighbour's forces on the
+  /// same potential contacts (StageContact::SameAs). The converged result does not depend on it
+  /// beyond the contact and geometric tolerances (docs/quasistatic.md). false: every position
+  /// from its kinematic poses and zero forces, as SolvePosition.
+  bool warm_start = true;
+  /// Sweep: worker threads [-]; 0: std::thread::hardware_concurrency(). The angles are split into
+  /// contiguous chunks, one per thread, each chunk warm-started in sequence from its own first,
+  /// cold, position; so results depend on the thread count within the tolerances (bit-identical
+  /// across thread counts only with warm_start = false).
+  int threads = 0;
+  /// @throws std::invalid_argument naming the field (iterations < 1, tolerance not > 0, threads
+  ///         < 0, bad contact options).
+  void Validate() const;
 };
 
 struct PositionResult {
@@ -32,6 +49,8 @@ struct PositionResult {
   bool converged = false;    ///< contact solves and geometric iterations converged
   std::string message;       ///< why not, when not converged
   int geometric_iterations = 0;
+  int contact_iterations = 0;  ///< back-end iterations summed over the geometric iterations [-]
+  bool warm_started = false;   ///< started from a neighbour's state (Sweep with warm_start)
   std::vector<double> load_sharing;  ///< LSR_i = T_mesh(P_i–S)/T_input [-], per planet
   double transmission_error = 0;     ///< loaded static TE: sun rotation from kinematic [rad]
   geometry::Vec2 sun_displacement = geometry::Vec2::Zero();  ///< [m] (floating sun)
@@ -41,12 +60,19 @@ struct PositionResult {
   solvers::ContactSolution solution;                 ///< its forces [N] and multipliers
   solvers::ContactReport report;                     ///< its back-end report and residuals
   geometry::StagePoses poses;                        ///< the loaded poses
+  /// Rigid displacements from the kinematic poses, per DOF of the model's dofs() [rad] or [m]
+  /// (the values the named fields above read out; empty if no contact problem was solved).
+  Eigen::VectorXd displacements;
 };
 
 /// The stage model's quasi-static equilibrium at one carrier position under `loads`.
 /// @throws std::invalid_argument for bad input; numerical trouble is reported in the result.
 PositionResult SolvePosition(const StageModel& model, double carrier_angle, const StageLoads& loads,
                              const QuasiStaticOptions& options);
+/// The same started from a neighbouring position's converged result `neighbour` (a warm start:
+/// see QuasiStaticOptions::warm_start); null, or a neighbour that did not converge: cold.
+PositionResult SolvePosition(const StageModel& model, double carrier_angle, const StageLoads& loads,
+                             const QuasiStaticOptions& options, const PositionResult* neighbour);
 /// The same with the model built from (scene, stage, compliance, options.setup) and the scene's
 /// sun torque.
 PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
@@ -61,9 +87,14 @@ double MeshLoadFactor(const PositionResult& r);
 /// Carrier angles of a sweep: `count` positions over [start, start + span) [rad].
 std::vector<double> SweepAngles(double start, double span, int count);
 
-/// Solves every position in turn; a position that throws or does not converge is reported in its
-/// result (converged = false, message) and the sweep goes on. `on_result` (if given) sees each
-/// result as soon as it is computed (for files written incrementally and progress).
+/// Solves every position; a position that throws std::invalid_argument or does not converge is
+/// reported in its result (converged = false, message) and the sweep goes on. The positions run
+/// in options.threads contiguous chunks, each warm-started in sequence (options.warm_start).
+/// `on_result` (if given) sees every result with its index, in the order of the angles, as soon as
+/// it and every earlier one are computed (for files written incrementally and progress); it is
+/// called under a lock, from any of the workers. An exception from on_result or another exception
+/// from a position stops the workers and is rethrown.
+/// @throws std::invalid_argument for options that fail Validate().
 std::vector<PositionResult> Sweep(
     const StageModel& model, const StageLoads& loads, const std::vector<double>& carrier_angles,
     const QuasiStaticOptions& options,

@@ -36,6 +36,14 @@ struct StageContact {
   }
 };
 
+/// Warm start of a contact solve from an earlier state (the last accepted step of a motion, the
+/// neighbouring position of a sweep): `force` [N] of the contacts `from`, carried over to the same
+/// potential contacts (SameAs) in `to`; a contact of `to` that `from` does not have gets 0.
+/// @return how many contacts of `to` were matched.
+/// @throws std::invalid_argument if `force` does not have one entry per contact of `from`.
+int CarryForces(const std::vector<StageContact>& from, const Eigen::VectorXd& force,
+                const std::vector<StageContact>& to, Eigen::VectorXd* out);
+
 /// Every potential contact of every mesh at the given poses (both flanks, within the window).
 std::vector<StageContact> SearchStage(const geometry::Stage& stage,
                                       const geometry::StagePoses& poses, double gap_window);

@@ -1,0 +1,307 @@
+// The quasi-static sweep's warm start and threads (docs/quasistatic.md, "Sweep cost") against the
+// cold positions of SolvePosition: on the paper's stage with planet 1's 20 µm run-out, fixed and
+// floating sun, 360 positions over one planet revolution. The warm start may change a result
+// only within what the two stopping rules allow:
+//
+//  - rigid displacements (rotations at their base circles, translations): the geometric
+//    iteration stops when its last increment is ≤ τ = geometric_tolerance and reports the poses
+//    after it. The increments fall by three orders or more per iteration (from ~10 µm to below
+//    1e-11 m in 2–3 iterations), so the contraction ratio ρ ≤ 1/2 and the reported state lies
+//    within ρτ/(1 − ρ) ≤ τ of the fixed point; two runs differ by ≤ 2τ, plus each contact solve's
+//    own error, ε ℓ* (ε the contact tolerance on the nondimensional residual, ℓ* the driver's
+//    length scale): |Δq| ≤ 2(τ + ε ℓ*).
+//  - LSR_i = T_i/(−T): the forces of the last problem belong to the poses after its increment, so
+//    they differ between the runs by the first-order response to those poses' difference,
+//    dF = C_t⁻¹ Gᵀ dq on the active contacts (C_t = C + diag(u_local'(F)), the tangent
+//    compliance), plus each solve's force error ε F* per contact:
+//      |ΔT_i| ≤ Σ_k |(L_i C_t⁻¹ Gᵀ)_k| |Δq_k| + 2 ε F* Σ_{j∈i} |lever_j|,
+//    L_i the levers of planet i's loaded sun-mesh contacts (the sum over all of them), |Δq_k| ≤ 2(τ
+//    + ε ℓ*)/s_k (s_k the base radius of a rotation, 1 for a translation). The bound is evaluated
+//    per position from the cold position's own problem.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/solvers/local_term.hpp"
+#include "epicycle/transmission/mesh_stiffness.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
+#include "fe_fixtures.hpp"
+#include "figures.hpp"
+
+using namespace epicycle;
+using test::Sci;
+using test::VerifyRow;
+using transmission::PositionResult;
+using transmission::SunSupport;
+
+namespace {
+
+constexpr const char* kFile = "paper_stage_runout.toml";
+
+struct Rig {
+  transmission::Scene scene = transmission::ParseScene(test::SceneText(kFile), kFile);
+  geometry::Stage stage{scene.stage};
+  transmission::QuasiStaticOptions options;
+  std::unique_ptr<transmission::StageModel> model;
+  std::vector<double> angles;
+  explicit Rig(SunSupport sun, int positions = 360) {
+    options.setup = transmission::SetupFromScene(scene);
+    options.setup.sun = sun;
+    model = std::make_unique<transmission::StageModel>(scene, stage, test::Compliance(kFile),
+                                                       options.setup);
+    // One planet revolution relative to the carrier: the period of planet 1's run-out.
+    angles = transmission::SweepAngles(
+        0.0, 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth(), positions);
+  }
+  transmission::StageLoads loads() const { return {scene.sun_torque}; }
+  std::vector<PositionResult> Sweep(bool warm, int threads) const {
+    transmission::QuasiStaticOptions o = options;
+    o.warm_start = warm;
+    o.threads = threads;
+    return transmission::Sweep(*model, loads(), angles, o);
+  }
+};
+
+// The derived bounds of the file comment at the cold result r: on the rigid displacements
+// [m, at the base circles] and on each LSR_i.
+struct Bounds {
+  double displacement = 0;
+  std::vector<double> lsr;
+};
+
+Bounds DerivedBounds(const Rig& rig, const PositionResult& r) {
+  const transmission::StageModel& m = *rig.model;
+  const solvers::ContactProblem problem(r.problem.data);
+  const solvers::ContactScales scales = solvers::ComputeContactScales(problem);
+  const double eps = rig.options.contact.tolerance, tau = rig.options.geometric_tolerance;
+  Bounds b;
+  b.displacement = 2.0 * (tau + eps * scales.length);
+  std::vector<int> active;
+  for (int j = 0; j < r.solution.force.size(); ++j)
+    if (r.solution.force(j) > 0) active.push_back(j);
+  const int a = static_cast<int>(active.size()), nd = static_cast<int>(m.dofs().size());
+  Eigen::MatrixXd ct(a, a), ga(nd, a);
+  for (int p = 0; p < a; ++p) {
+    for (int q = 0; q < a; ++q) ct(p, q) = r.problem.data.compliance(active[p], active[q]);
+    if (!r.problem.data.local.empty())
+      ct(p, p) += solvers::LocalApproachDerivative(r.problem.data.local[active[p]],
+                                                   r.solution.force(active[p]));
+    ga.col(p) = r.problem.data.equality_matrix.col(active[p]);
+  }
+  // dF_A/dq = C_t⁻¹ G_Aᵀ, column k per DOF.
+  const Eigen::MatrixXd dfdq = ct.ldlt().solve(ga.transpose());
+  for (int i = 0; i < m.planets(); ++i) {
+    Eigen::RowVectorXd levers = Eigen::RowVectorXd::Zero(a);
+    for (int p = 0; p < a; ++p) {
+      const transmission::StageContact& c = r.problem.contacts[active[p]];
+      if (c.body_a == transmission::kSunBody && c.planet == i) levers(p) = c.contact.lever_a;
+    }
+    // The solver's force error may fall on any of the planet's sun-mesh contacts, loaded or not.
+    double lever_sum = 0;
+    for (const transmission::StageContact& c : r.problem.contacts)
+      if (c.body_a == transmission::kSunBody && c.planet == i)
+        lever_sum += std::abs(c.contact.lever_a);
+    const Eigen::RowVectorXd dt = levers * dfdq;  // dT_i/dq_k
+    double dtorque = 2.0 * eps * scales.force * lever_sum;
+    for (int k = 0; k < nd; ++k) {
+      const Eigen::VectorXd unit = Eigen::VectorXd::Unit(nd, k);
+      const double per_length = 1.0 / m.DisplacementSize(m.dofs(), unit);  // 1/s_k
+      dtorque += std::abs(dt(k)) * b.displacement * per_length;
+    }
+    b.lsr.push_back(dtorque / std::abs(rig.scene.sun_torque));
+  }
+  return b;
+}
+
+// Largest difference of a against the reference ref, each relative to its derived bound.
+struct Comparison {
+  double displacement = 0, lsr = 0;              // largest |Δ|
+  double displacement_ratio = 0, lsr_ratio = 0;  // largest |Δ|/bound
+  int free_dofs = 0;                             // DOFs left out: no loaded contact moves them
+};
+
+Comparison Compare(const Rig& rig, const std::vector<PositionResult>& a,
+                   const std::vector<PositionResult>& ref) {
+  Comparison c;
+  REQUIRE(a.size() == ref.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    INFO("position " << k << " at " << geometry::Deg(ref[k].carrier_angle)
+                     << " deg: " << a[k].message << " / " << ref[k].message);
+    REQUIRE(a[k].converged);
+    REQUIRE(ref[k].converged);
+    const Bounds b = DerivedBounds(rig, ref[k]);
+    // Only the DOFs that equilibrium sets: a DOF that no loaded contact moves (the rotation of a
+    // planet that has lost contact, free within its backlash) has no unique value.
+    Eigen::VectorXd diff = a[k].displacements - ref[k].displacements;
+    for (int d = 0; d < diff.size(); ++d) {
+      bool set = false;
+      for (int j = 0; j < ref[k].solution.force.size(); ++j)
+        set =
+            set || (ref[k].solution.force(j) > 0 && ref[k].problem.data.equality_matrix(d, j) != 0);
+      if (!set) {
+        // Only an unloaded planet's rotation may be free, and both runs must find it unloaded.
+        const transmission::StageDof& dof = rig.model->dofs()[static_cast<std::size_t>(d)];
+        CHECK(dof.kind == transmission::StageDof::kPlanetRotation);
+        CHECK(ref[k].load_sharing[dof.planet] == 0.0);
+        CHECK(std::abs(a[k].load_sharing[dof.planet]) <= b.lsr[dof.planet]);
+        diff(d) = 0;
+        ++c.free_dofs;
+      }
+    }
+    const double dq = rig.model->DisplacementSize(rig.model->dofs(), diff);
+    c.displacement = std::max(c.displacement, dq);
+    c.displacement_ratio = std::max(c.displacement_ratio, dq / b.displacement);
+    for (int i = 0; i < rig.model->planets(); ++i) {
+      const double dl = std::abs(a[k].load_sharing[i] - ref[k].load_sharing[i]);
+      c.lsr = std::max(c.lsr, dl);
+      c.lsr_ratio = std::max(c.lsr_ratio, dl / b.lsr[i]);
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "quasistatic sweep: warm start and threads agree with cold positions within the "
+    "tolerances",
+    "[transmission][quasistatic][sweep]") {
+  for (SunSupport sun : {SunSupport::kFixed, SunSupport::kFloating}) {
+    const Rig rig(sun);
+    const std::string name = sun == SunSupport::kFixed ? "fixed sun" : "floating sun";
+    std::vector<PositionResult> cold;
+    for (double angle : rig.angles)
+      cold.push_back(transmission::SolvePosition(*rig.model, angle, rig.loads(), rig.options));
+    const auto warm1 = rig.Sweep(true, 1);
+    const auto warm2 = rig.Sweep(true, 2);
+
+    // The warm start was used (every position but the first) and saved work.
+    int warm_started = 0, iterations_cold = 0, iterations_warm = 0;
+    for (std::size_t k = 0; k < cold.size(); ++k) {
+      warm_started += warm1[k].warm_started ? 1 : 0;
+      iterations_cold += cold[k].contact_iterations;
+      iterations_warm += warm1[k].contact_iterations;
+    }
+    CHECK(warm_started == static_cast<int>(rig.angles.size()) - 1);
+    CHECK(iterations_warm < iterations_cold);
+
+    const Comparison wc = Compare(rig, warm1, cold);
+    const Comparison threads = Compare(rig, warm2, warm1);
+    INFO(name << ": warm vs cold |dq| " << wc.displacement << " m (" << wc.displacement_ratio
+              << " of the bound), |dLSR| " << wc.lsr << " (" << wc.lsr_ratio << "), DOFs left out "
+              << wc.free_dofs << "; 2 vs 1 threads |dq| " << threads.displacement << ", |dLSR| "
+              << threads.lsr);
+    CHECK(wc.displacement_ratio <= 1.0);
+    CHECK(wc.lsr_ratio <= 1.0);
+    CHECK(threads.displacement_ratio <= 1.0);
+    CHECK(threads.lsr_ratio <= 1.0);
+    VerifyRow(
+        "run-out 20 um, " + name + ", 360 positions warm-started from the neighbour",
+        "cold positions (SolvePosition)",
+        "largest |dq| " + Sci(wc.displacement) + " m, |dLSR| " + Sci(wc.lsr) + " (" +
+            std::to_string(wc.free_dofs) + " unloaded planet rotations left out)",
+        "largest share of the derived bound " + Sci(std::max(wc.displacement_ratio, wc.lsr_ratio)),
+        "2(tau + eps l*); first-order force response + eps F*",
+        wc.displacement_ratio <= 1.0 && wc.lsr_ratio <= 1.0);
+    VerifyRow("run-out 20 um, " + name + ", warm sweep on 2 threads (2 chunks)",
+              "the same on 1 thread",
+              "largest |dq| " + Sci(threads.displacement) + " m, |dLSR| " + Sci(threads.lsr),
+              "largest share of the derived bound " +
+                  Sci(std::max(threads.displacement_ratio, threads.lsr_ratio)),
+              "2(tau + eps l*); first-order force response + eps F*",
+              threads.displacement_ratio <= 1.0 && threads.lsr_ratio <= 1.0);
+  }
+}
+
+TEST_CASE("quasistatic sweep: cold positions are bit-identical across thread counts",
+          "[transmission][quasistatic][sweep]") {
+  const Rig rig(SunSupport::kFloating, 60);
+  const auto one = rig.Sweep(false, 1);
+  const auto three = rig.Sweep(false, 3);
+  REQUIRE(one.size() == three.size());
+  for (std::size_t k = 0; k < one.size(); ++k) {
+    INFO("position " << k);
+    CHECK(one[k].converged);
+    CHECK(!three[k].warm_started);
+    CHECK(one[k].displacements == three[k].displacements);
+    CHECK(one[k].load_sharing == three[k].load_sharing);
+    CHECK(one[k].solution.force == three[k].solution.force);
+  }
+}
+
+TEST_CASE("quasistatic sweep: on_result sees every position in order, failed ones included",
+          "[transmission][quasistatic][sweep]") {
+  Rig rig(SunSupport::kFixed, 25);
+  // One geometric iteration cannot settle (the first increment is the whole deflection): every
+  // position fails, and each must still be reported, once, in the order of the angles.
+  rig.options.max_geometric_iterations = 1;
+  for (int threads : {1, 2, 4}) {
+    transmission::QuasiStaticOptions o = rig.options;
+    o.threads = threads;
+    // Recorded in the callback (it runs on the workers), checked here.
+    std::vector<int> seen;
+    std::vector<PositionResult> reported;
+    const auto results = transmission::Sweep(*rig.model, rig.loads(), rig.angles, o,
+                                             [&](const PositionResult& r, int k) {
+                                               seen.push_back(k);
+                                               reported.push_back(r);
+                                             });
+    INFO(threads << " threads");
+    REQUIRE(seen.size() == rig.angles.size());
+    CHECK(results.size() == rig.angles.size());
+    for (std::size_t k = 0; k < seen.size(); ++k) {
+      CHECK(seen[k] == static_cast<int>(k));
+      CHECK(reported[k].carrier_angle == rig.angles[k]);
+      CHECK(!reported[k].converged);
+      CHECK(reported[k].message.find("did not settle") != std::string::npos);
+    }
+  }
+  // An exception from on_result stops the workers and reaches the caller.
+  transmission::QuasiStaticOptions o = rig.options;
+  o.threads = 2;
+  int calls = 0;
+  CHECK_THROWS_WITH(transmission::Sweep(*rig.model, rig.loads(), rig.angles, o,
+                                        [&](const PositionResult&, int k) {
+                                          ++calls;
+                                          if (k == 3) throw std::runtime_error("disk full");
+                                        }),
+                    "disk full");
+  CHECK(calls == 4);
+  // Bad options name the field.
+  o.threads = -1;
+  CHECK_THROWS_WITH(transmission::Sweep(*rig.model, rig.loads(), rig.angles, o),
+                    Catch::Contains("threads = -1"));
+}
+
+TEST_CASE("mesh stiffness: the same samples, in order, on 1 and 3 threads",
+          "[transmission][stiffness][sweep]") {
+  const transmission::Scene scene = test::PaperScene();
+  const geometry::Stage stage(scene.stage);
+  const auto setup = transmission::MakeMeshPair(scene, &stage, "sun-planet1");
+  const geometry::GearPair pair(setup.spec);
+  const transmission::FePairCompliance fe(scene, pair, test::CachedTables());
+  transmission::MeshStiffnessOptions o;
+  o.positions = 24;
+  o.threads = 1;
+  const auto one = transmission::ComputeMeshStiffness(scene, setup, pair, fe, o);
+  o.threads = 3;
+  std::vector<double> seen;  // angles in the order on_sample saw them
+  const auto three = transmission::ComputeMeshStiffness(
+      scene, setup, pair, fe, o,
+      [&](const transmission::MeshSample& s) { seen.push_back(s.angle); });
+  REQUIRE(one.failed == 0);
+  REQUIRE(three.samples.size() == one.samples.size());
+  REQUIRE(seen.size() == one.samples.size());
+  // Every position starts from the kinematic pose: the thread count changes nothing.
+  for (std::size_t k = 0; k < one.samples.size(); ++k) {
+    CHECK(seen[k] == one.samples[k].angle);
+    CHECK(three.samples[k].mesh_stiffness == one.samples[k].mesh_stiffness);
+    CHECK(three.samples[k].rotation == one.samples[k].rotation);
+  }
+  CHECK(three.mean_stiffness == one.mean_stiffness);
+  CHECK(three.peak_pair_stiffness == one.peak_pair_stiffness);
+}
