@@ -189,24 +189,26 @@ TEST_CASE(
   SECTION("tangential against radial error") {
     // Mean L_1 deviation over 3 mesh cycles (after 6 cycles of settling: the start's transient
     // decays by e^-ζωt = e^-15 at ζω ≥ 805 1/s) for a 5 um tangential and a 5 um radial pin error,
-    // against the quasi-static solver at the same angles (the linear theory gives 40.2,
-    // docs/model.md §8). Friction off: the quasi-static model has none. At 150 rpm the dynamic
-    // ratio must be within 25 % of the quasi-static one (the limit the quasi-static test uses
-    // against the theory); at the paper's 1500 rpm it is reported: the radial error's effect
-    // grows in motion (docs/dynamic.md).
+    // each less the same run of the perfect stage (the effect of an error is the response with it
+    // less the response without it), against the quasi-static solver at the same angles (the
+    // linear theory gives 40.2, docs/model.md §8). Friction off: the quasi-static model has none.
+    // The baseline matters in motion: at 1500 rpm the perfect stage's sampled mean L_1 deviation
+    // is −9e-3, larger than the radial error's own effect (−6e-3), and without subtracting it the
+    // ratio reads 16. Required within 25 % of the quasi-static ratio at 150 and at 1500 rpm (the
+    // limit the quasi-static test uses against the theory).
     for (const double rpm : {150.0, 1500.0}) {
       RigOptions op = o;
       op.edit = [rpm](dynamics::DynamicSettings& s) {
         s.sun_speed = rpm * kRpm;
         s.friction.law = dynamics::FrictionLaw::kOff;
       };
-      double ratio[2];
+      double ratio[2], baseline[2];
       for (int quasi = 0; quasi < 2; ++quasi) {
-        double dev[2];
-        for (int k = 0; k < 2; ++k) {
+        double dev[3];  // tangential, radial, none
+        for (int k = 0; k < 3; ++k) {
+          const double radial = k == 1 ? 5.0 : 0.0, tangential = k == 0 ? 5.0 : 0.0;
           const auto rig = test::MakeRig(
-              WithPin(test::SceneText("paper_stage.toml"), k == 0 ? 0.0 : 5.0, k == 0 ? 5.0 : 0.0),
-              "pin", op);
+              WithPin(test::SceneText("paper_stage.toml"), radial, tangential), "pin", op);
           const auto times = Times(*rig.model, *rig.stage, 3, 24, 6.0);
           std::vector<double> l1;
           if (quasi == 0) {
@@ -226,24 +228,20 @@ TEST_CASE(
           }
           dev[k] = MeanDeviation(l1);
         }
-        ratio[quasi] = std::abs(dev[0] / dev[1]);
+        ratio[quasi] = std::abs((dev[0] - dev[2]) / (dev[1] - dev[2]));
+        baseline[quasi] = dev[2];
       }
       const double rel = std::abs(ratio[0] / ratio[1] - 1);
       const std::string speed = std::to_string(static_cast<int>(rpm)) + " rpm";
       Figure("tangential/radial at " + speed + ": dynamic " + Sci(ratio[0], 4) + ", quasi-static " +
-             Sci(ratio[1], 4));
-      if (rpm < 1000) {
-        VerifyRow("tangential/radial pin-error ratio in motion (5 um, fixed sun, " + speed + ")",
-                  "quasi-static model at the same angles (" + Sci(ratio[1], 3) + "; theory 40.2)",
-                  Sci(ratio[0], 3), Sci(rel) + " relative", "25 %", rel <= 0.25);
-        CHECK(rel <= 0.25);
-      } else {
-        test::ReportRow("tangential/radial pin-error ratio at the paper's speed (" + speed + ")",
-                        "quasi-static " + Sci(ratio[1], 3), Sci(ratio[0], 3),
-                        Sci(rel) + " relative",
-                        "reported: the radial error's effect grows in motion");
-        CHECK(ratio[0] > 1);
-      }
+             Sci(ratio[1], 4) + "; perfect stage's mean L_1 deviation " + Sci(baseline[0]) +
+             " (dynamic), " + Sci(baseline[1]) + " (quasi-static)");
+      VerifyRow("tangential/radial pin-error ratio in motion (5 um, fixed sun, " + speed +
+                    ", each less the perfect stage's run)",
+                "quasi-static model at the same angles (" + Sci(ratio[1], 3) + "; theory 40.2)",
+                Sci(ratio[0], 3) + " (perfect stage's mean L_1 deviation " + Sci(baseline[0]) + ")",
+                Sci(rel) + " relative", "25 %", rel <= 0.25);
+      CHECK(rel <= 0.25);
     }
   }
 
