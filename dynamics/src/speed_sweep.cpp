@@ -18,6 +18,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/work_queue.hpp"
 #include "number_format.hpp"
 
 namespace epicycle::dynamics {
@@ -416,34 +417,17 @@ SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene
   const std::size_t count = options.sun_speeds_rpm.size();
   out.speeds.resize(count);
   // Work queue in speed order: the lowest speeds simulate the longest time (the window is a
-  // number of mesh cycles), so they start first and the pool ends evenly.
-  std::atomic<std::size_t> next{0};
-  std::mutex lock;
-  std::exception_ptr error;
-  auto work = [&] {
-    for (;;) {
-      const std::size_t i = next.fetch_add(1);
-      if (i >= count) return;
-      SpeedResult r = RunSpeed(base, scene, options, out.plan, static_cast<int>(i));
-      const std::lock_guard<std::mutex> guard(lock);
-      out.speeds[i] = r;
-      if (error) return;
-      try {
-        if (on_result) on_result(r);
-      } catch (...) {
-        error = std::current_exception();
-        next = count;  // no new speeds; the running ones end
-        return;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  const int threads = std::min(options.threads, static_cast<int>(count));
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  // number of mesh cycles), so they start first and the pool ends evenly. Each speed writes its
+  // own slot; the hand-over is under the queue's lock.
+  transmission::RunWorkQueue(
+      count, options.threads,
+      [&](std::size_t i) {
+        out.speeds[i] = RunSpeed(base, scene, options, out.plan, static_cast<int>(i));
+      },
+      [&](std::size_t i) {
+        if (on_result) on_result(out.speeds[i]);
+      });
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  if (error) std::rethrow_exception(error);
   return out;
 }
 

@@ -22,6 +22,7 @@
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
+#include "epicycle/transmission/work_queue.hpp"
 #include "runner_internal.hpp"
 
 namespace epicycle::studies {
@@ -184,31 +185,15 @@ void RowWriter::Write(const std::string& text) {
 void ComputeCases(const StudySpec& study, const transmission::StageCompliance& compliance,
                   const std::vector<long>& ids, int threads, long limit,
                   const std::function<void(const CaseRow&)>& sink) {
-  std::atomic<std::size_t> next{0};
   const std::size_t count =
       limit < 0 ? ids.size() : std::min(ids.size(), static_cast<std::size_t>(limit));
-  std::mutex lock;
-  std::exception_ptr error;
-  auto work = [&] {
-    for (;;) {
-      const std::size_t i = next.fetch_add(1);
-      if (i >= count) return;
-      const CaseRow row = ComputeCase(study, compliance, ids[i]);
-      const std::lock_guard<std::mutex> guard(lock);
-      if (error) return;
-      try {
-        sink(row);
-      } catch (...) {
-        error = std::current_exception();
-        return;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  std::vector<CaseRow> rows(count);
+  transmission::RunWorkQueue(
+      count, threads, [&](std::size_t i) { rows[i] = ComputeCase(study, compliance, ids[i]); },
+      [&](std::size_t i) {
+        sink(rows[i]);
+        rows[i] = CaseRow{};  // written: its memory goes
+      });
 }
 
 std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(
