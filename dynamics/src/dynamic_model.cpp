@@ -743,25 +743,78 @@ StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeCompli
   model.SetMeshStiffness(k[0], k[1]);
 }
 
-std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
-                                        const geometry::Stage& stage,
-                                        const transmission::FeComplianceOptions& fe,
-                                        int positions) {
-  std::array<double, 2> k{};
+namespace {
+
+// Planet 1's sun and ring meshes, the pairs whose mean stiffness the modal model uses: f(m, name,
+// setup, pair, compliance) for m = 0 (sun–planet), 1 (planet–ring).
+template <typename F>
+void ForEachModalMesh(const transmission::Scene& scene, const geometry::Stage& stage,
+                      const transmission::FeComplianceOptions& fe, F&& f) {
   const char* meshes[2] = {"sun-planet1", "planet1-ring"};
   for (int m = 0; m < 2; ++m) {
     const transmission::MeshPairSetup setup = transmission::MakeMeshPair(scene, &stage, meshes[m]);
     const geometry::GearPair pair(setup.spec);
     const transmission::FePairCompliance compliance(scene, pair, fe);
-    transmission::MeshStiffnessOptions opt;
-    opt.positions = positions;
-    const transmission::MeshStiffnessResult r =
-        transmission::ComputeMeshStiffness(scene, setup, pair, compliance, opt);
-    if (r.failed == positions)
-      throw std::runtime_error(std::string("mean mesh stiffness of ") + meshes[m] +
-                               ": every position failed");
-    k[m] = r.mean_stiffness;
+    f(m, meshes[m], setup, pair, compliance);
   }
+}
+
+}  // namespace
+
+std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
+                                        const geometry::Stage& stage,
+                                        const transmission::FeComplianceOptions& fe,
+                                        int positions) {
+  std::array<double, 2> k{};
+  ForEachModalMesh(
+      scene, stage, fe,
+      [&](int m, const char* name, const transmission::MeshPairSetup& setup,
+          const geometry::GearPair& pair, const transmission::FePairCompliance& compliance) {
+        transmission::MeshStiffnessOptions opt;
+        opt.positions = positions;
+        const transmission::MeshStiffnessResult r =
+            transmission::ComputeMeshStiffness(scene, setup, pair, compliance, opt);
+        if (r.failed == positions)
+          throw std::runtime_error(std::string("mean mesh stiffness of ") + name +
+                                   ": every position failed");
+        k[static_cast<std::size_t>(m)] = r.mean_stiffness;
+      });
+  return k;
+}
+
+std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
+                                               const geometry::Stage& stage,
+                                               const transmission::FeComplianceOptions& fe,
+                                               int positions, double step) {
+  if (!(step > 0 && step < 0.5))
+    throw std::invalid_argument("tangent mesh stiffness: step = " + std::to_string(step) +
+                                ": must lie in (0, 0.5)");
+  if (positions < 2)
+    throw std::invalid_argument("tangent mesh stiffness: positions = " + std::to_string(positions) +
+                                ": must be >= 2");
+  std::array<double, 2> k{};
+  ForEachModalMesh(
+      scene, stage, fe,
+      [&](int m, const char* name, const transmission::MeshPairSetup& setup,
+          const geometry::GearPair& pair, const transmission::FePairCompliance& compliance) {
+        transmission::MeshStiffnessOptions opt;
+        opt.positions = positions;
+        transmission::MeshPairSetup up = setup, down = setup;
+        up.torque *= 1 + step;
+        down.torque *= 1 - step;
+        const auto ru = transmission::ComputeMeshStiffness(scene, up, pair, compliance, opt);
+        const auto rd = transmission::ComputeMeshStiffness(scene, down, pair, compliance, opt);
+        for (std::size_t i = 0; i < ru.samples.size(); ++i) {
+          const transmission::MeshSample &a = ru.samples[i], &b = rd.samples[i];
+          if (!a.converged || !b.converged || !(a.approach > b.approach))
+            throw std::runtime_error(std::string("tangent mesh stiffness of ") + name +
+                                     ": sample " + std::to_string(i) +
+                                     " failed: " + (a.converged ? b.message : a.message));
+          k[static_cast<std::size_t>(m)] += (a.total_force - b.total_force) /
+                                            (a.approach - b.approach) /
+                                            static_cast<double>(ru.samples.size());
+        }
+      });
   return k;
 }
 

@@ -164,43 +164,6 @@ int SpeedSweepResult::failed() const {
       std::count_if(speeds.begin(), speeds.end(), [](const SpeedResult& r) { return !r.ok; }));
 }
 
-std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
-                                               const geometry::Stage& stage,
-                                               const transmission::FeComplianceOptions& fe,
-                                               int positions, double step) {
-  if (!(step > 0 && step < 0.5))
-    throw std::invalid_argument("tangent mesh stiffness: step = " + Num(step) +
-                                ": must lie in (0, 0.5)");
-  if (positions < 2)
-    throw std::invalid_argument("tangent mesh stiffness: positions = " + Num(positions) +
-                                ": must be >= 2");
-  std::array<double, 2> k{};
-  const char* meshes[2] = {"sun-planet1", "planet1-ring"};
-  for (int m = 0; m < 2; ++m) {
-    const transmission::MeshPairSetup setup = transmission::MakeMeshPair(scene, &stage, meshes[m]);
-    const geometry::GearPair pair(setup.spec);
-    const transmission::FePairCompliance compliance(scene, pair, fe);
-    transmission::MeshStiffnessOptions opt;
-    opt.positions = positions;
-    transmission::MeshPairSetup up = setup, down = setup;
-    up.torque *= 1 + step;
-    down.torque *= 1 - step;
-    const auto ru = transmission::ComputeMeshStiffness(scene, up, pair, compliance, opt);
-    const auto rd = transmission::ComputeMeshStiffness(scene, down, pair, compliance, opt);
-    for (std::size_t i = 0; i < ru.samples.size(); ++i) {
-      const transmission::MeshSample &a = ru.samples[i], &b = rd.samples[i];
-      if (!a.converged || !b.converged || !(a.approach > b.approach))
-        throw std::runtime_error(std::string("tangent mesh stiffness of ") + meshes[m] +
-                                 ": sample " + std::to_string(i) +
-                                 " failed: " + (a.converged ? b.message : a.message));
-      k[static_cast<std::size_t>(m)] += (a.total_force - b.total_force) /
-                                        (a.approach - b.approach) /
-                                        static_cast<double>(ru.samples.size());
-    }
-  }
-  return k;
-}
-
 DynamicModel ModelAtSpeed(const DynamicModel& base, const transmission::Scene& scene,
                           double sun_speed_rpm) {
   DynamicSettings s = base.settings();

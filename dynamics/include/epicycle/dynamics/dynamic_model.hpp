@@ -235,5 +235,20 @@ std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
                                         const geometry::Stage& stage,
                                         const transmission::FeComplianceOptions& fe,
                                         int positions = 24);
+/// The mean tangent mesh stiffness dF/dδ [N/m] of the sun–planet and planet–ring meshes (planet
+/// 1) at the scene's load, {sun mesh, ring mesh}: at each of `positions` samples of a mesh cycle,
+/// the mesh-stiffness driver (transmission::ComputeMeshStiffness) at the load × (1 ± step),
+///   k_t = (F₊ − F₋)/(δ₊ − δ₋)   (F the mesh's total force, δ its deflection along the line of
+///                                action), averaged over the samples.
+/// Why: MeanMeshStiffness is the secant F/δ; the local contact term's deflection grows less than
+/// linearly with the load (docs/model.md §2), so small vibrations about the operating point see
+/// the tangent, which is higher (about 6 % on the paper's stage). The resonances of the speed
+/// sweep sit at the tangent stiffness' coincidences (docs/dynamic.md, "Speed sweeps").
+/// @throws std::invalid_argument for step outside (0, 0.5) or positions < 2;
+///         std::runtime_error if a sample fails at either load.
+std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
+                                               const geometry::Stage& stage,
+                                               const transmission::FeComplianceOptions& fe,
+                                               int positions = 24, double step = 0.05);
 
 }  // namespace epicycle::dynamics
