@@ -93,7 +93,9 @@ inline void DrawLogPanel(std::ostringstream& svg, const LogPanel& panel, double 
         << "' stroke='#777' stroke-dasharray='5,4'/>\n<text x='" << left + 4 << "' y='" << py - 4
         << "' font-size='10' fill='#555'>" << label << "</text>\n";
   }
-  for (const LogSeries& s : panel.series) {
+  for (std::size_t k = 0; k < panel.series.size(); ++k) {
+    const LogSeries& s = panel.series[k];
+    const double label_dy = k % 2 == 0 ? -5 : 12;  // neighbouring series label above / below
     svg << "<polyline fill='none' stroke='" << s.colour << "' stroke-width='1.5' points='";
     for (const LogPoint& p : s.points)
       svg << x.Map(p.x) << "," << y.Map(std::max(p.y, panel.floor)) << " ";
@@ -104,8 +106,8 @@ inline void DrawLogPanel(std::ostringstream& svg, const LogPanel& panel, double 
           << "' fill='" << (p.filled ? s.colour : "white") << "'><title>" << p.tooltip
           << "</title></circle>\n";
       if (!p.label.empty())
-        svg << "<text x='" << cx + 5 << "' y='" << cy - 5 << "' font-size='9' fill='" << s.colour
-            << "'>" << p.label << "</text>\n";
+        svg << "<text x='" << cx + 5 << "' y='" << cy + label_dy << "' font-size='9' fill='"
+            << s.colour << "'>" << p.label << "</text>\n";
     }
   }
 }
