@@ -238,7 +238,8 @@ std::vector<LogPanel> Panels(const std::vector<Run>& runs, const std::vector<std
   for (std::size_t k = 0; k < order.size(); ++k) {
     LogSeries a{order[k], colours[k % colours.size()], {}}, b = a;
     for (const Run& r : runs) {
-      if (r.series != order[k]) continue;
+      // A run that stopped before its first output has no error to draw (Unplotted lists it).
+      if (r.series != order[k] || r.samples == 0) continue;
       const std::string tip = r.series + " " + what + " " + Exponent(tolerance(r)) + ": " +
                               (r.completed ? "completed" : "FAILED: " + r.message);
       // Labels on the decades only (half decades would crowd the figure).
@@ -247,9 +248,8 @@ std::vector<LogPanel> Panels(const std::vector<Run>& runs, const std::vector<std
           (std::abs(decade - std::round(decade)) < 1e-9 ? Exponent(tolerance(r)) : "") +
           (r.stats.failed_solves > 0 ? " (" + std::to_string(r.stats.failed_solves) + " failed)"
                                      : "");
-      // A run that failed at once has no time worth plotting: 1 ms stands in for it.
-      a.points.push_back({std::max(r.cpu, 1e-3), r.lsr_error, r.completed, label, tip});
-      b.points.push_back({std::max(r.cpu, 1e-3), r.te_error, r.completed, label, tip});
+      a.points.push_back({r.cpu, r.lsr_error, r.completed, label, tip});
+      b.points.push_back({r.cpu, r.te_error, r.completed, label, tip});
     }
     if (!a.points.empty()) {
       lsr.series.push_back(a);
@@ -265,6 +265,27 @@ struct Window {
   double start_cycle = 0;
   std::vector<double> rtols;
 };
+
+// The figure's note for the runs that stopped before their first output (not drawn): one line
+// per series with the tolerances, e.g. "not drawn, stopped at once: nlopt-lbfgs 1e-10 1e-12".
+std::vector<std::string> Unplotted(const std::vector<Run>& runs, double (*tolerance)(const Run&)) {
+  std::vector<std::pair<std::string, std::string>> seen;  // series, tolerances
+  for (const Run& r : runs) {
+    if (r.samples > 0) continue;
+    const std::string t = Exponent(tolerance(r));
+    auto it =
+        std::find_if(seen.begin(), seen.end(), [&](const auto& e) { return e.first == r.series; });
+    if (it == seen.end()) {
+      seen.emplace_back(r.series, t);
+    } else if (it->second.find(t) == std::string::npos) {
+      it->second += " " + t;
+    }
+  }
+  std::vector<std::string> notes;
+  for (const auto& [series, tolerances] : seen)
+    notes.push_back("not drawn, stopped at once: " + series + " " + tolerances);
+  return notes;
+}
 
 struct Setup {
   std::filesystem::path out;
@@ -363,12 +384,19 @@ void Integrators(const Setup& setup) {
       {ref9.lsr_error, "BDF 1e-9 vs reference"}, {ref_erk.lsr_error, "ERK 1e-10 vs reference"}};
   const std::vector<std::pair<double, std::string>> te_lines = {
       {ref9.te_error, "BDF 1e-9 vs reference"}, {ref_erk.te_error, "ERK 1e-10 vs reference"}};
+  const auto Notes = [&](const std::vector<Run>& all) {
+    std::vector<std::string> n = {"labels: rtol (decades)", "atol scaled with rtol",
+                                  "hollow: run failed",
+                                  std::to_string(setup.cycles) + " mesh cycles, 1500 rpm"};
+    const auto missing = Unplotted(all, [](const Run& r) { return r.rtol; });
+    n.insert(n.end(), missing.begin(), missing.end());
+    return n;
+  };
   const std::string svg =
       bench::LogLogSvg(Panels(
                            runs, names, {"#1b9e77", "#d95f02", "#7570b3"},
                            [](const Run& r) { return r.rtol; }, "rtol", lsr_lines, te_lines, ""),
-                       {"labels: rtol (decades)", "atol scaled with rtol", "hollow: run failed",
-                        std::to_string(setup.cycles) + " mesh cycles, 1500 rpm"});
+                       Notes(runs));
   std::ofstream(setup.out / "dynamic_wp_integrators.svg") << svg;
   std::printf("wrote %s and %s\n", (setup.out / "dynamic_wp_integrators.csv").c_str(),
               (setup.out / "dynamic_wp_integrators.svg").c_str());
@@ -450,10 +478,16 @@ void Backends(const Setup& setup) {
                 "cvode-bdf analytic J; reference cvode-bdf rtol %.0e newton contact tolerance %.0e",
                 setup.cycles, kReferenceRtol, kReferenceContactTolerance);
   WriteCsv(setup.out / "dynamic_wp_backends.csv", runs, note);
-  const std::string svg =
-      bench::LogLogSvg(panels, {"labels: contact tolerance", "(k failed): failed contact solves",
-                                "hollow: run failed (stopped)", "cvode-bdf, analytic Jacobian",
-                                "LSR error against the tight reference", "1500 rpm"});
+  std::vector<std::string> notes = {"labels: contact tolerance",
+                                    "(k failed): failed contact solves",
+                                    "hollow: run stopped; its error covers",
+                                    "  only the samples it reached",
+                                    "cvode-bdf, analytic Jacobian",
+                                    "LSR error against the tight reference",
+                                    "1500 rpm"};
+  const auto missing = Unplotted(runs, [](const Run& r) { return r.contact_tolerance; });
+  notes.insert(notes.end(), missing.begin(), missing.end());
+  const std::string svg = bench::LogLogSvg(panels, notes);
   std::ofstream(setup.out / "dynamic_wp_backends.svg") << svg;
   std::printf("wrote %s and %s\n", (setup.out / "dynamic_wp_backends.csv").c_str(),
               (setup.out / "dynamic_wp_backends.svg").c_str());
