@@ -22,8 +22,9 @@
 //     contact tolerance 1e-12, on two windows of 2 mesh cycles (Ipopt costs ~3 ms per solve):
 //       cycles 0–2, all planets loaded, at rtol 1e-6 (the production default) and 1e-8 (where
 //         the integrator's own error no longer hides the contact solver's);
-//       cycles 17–19, at rtol 1e-6: planet 1 loses contact at 17.6 cycles (LSR_1 = 0 in the
-//         reference trace), its contact set empties: the hardest event for a warm-started solve.
+//       cycles 17–19, at rtol 1e-6: planet 1 loses contact once per mesh cycle (LSR_1 = 0 at
+//         cycles 17.6, 18.45, 18.55 in the reference trace), its contact set empties and refills:
+//         the hardest event for a warm-started solve.
 //     --start-cycle K runs one window from cycle K at rtol 1e-6 and 1e-8, --rtol R runs every
 //     window at R only. A run that keeps failing is stopped after S seconds of wall time
 //     (default: 400 times the Newton run's, at least 60 s) and counted as failed.
