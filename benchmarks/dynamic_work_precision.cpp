@@ -30,6 +30,9 @@
 //     (default: 400 times the Newton run's, at least 60 s) and counted as failed.
 //     Writes DIR/dynamic_wp_backends.csv and .svg (LSR panels; TE in the CSV).
 //
+//   Both take --rate-scale X [1/s]: SimulationOptions::rate_scale (the rates' absolute tolerance
+//   is the position tolerance times X) for every run instead of the library's default.
+//
 // Error measures (both against the reference's samples at the same output times):
 //   LSR: max over the samples and the planets of |LSR_i − LSR_i,ref| [-] (LSR is a fraction of
 //        the input torque, so this is an absolute error of the share);
@@ -94,8 +97,12 @@ struct Run {
 
 // Absolute tolerances scaled with rtol; at rtol 1e-6 they are SimulationOptions' defaults
 // (1e-10 m, 1e-9 rad, 1e-6 J), so that tightening rtol tightens the whole error test.
+// --rate-scale: SimulationOptions::rate_scale for every run (0: the library's default).
+double rate_scale_option = 0;
+
 dynamics::SimulationOptions Options(dynamics::Integrator integrator, double rtol) {
   dynamics::SimulationOptions o;
+  if (rate_scale_option > 0) o.rate_scale = rate_scale_option;
   o.integrator = integrator;
   o.rtol = rtol;
   o.atol_length = 1e-4 * rtol;
@@ -500,7 +507,7 @@ int main(int argc, char** argv) {
   const char* usage =
       "usage: dynamic_work_precision integrators|backends [--out DIR] [--cycles N] [--start-cycle "
       "K] "
-      "[--rtol R] [--time-limit S]\n";
+      "[--rtol R] [--time-limit S] [--rate-scale X]\n";
   if (argc < 2) {
     std::fputs(usage, stderr);
     return 2;
@@ -529,6 +536,10 @@ int main(int argc, char** argv) {
         if (!(rtol > 0 && rtol <= 0.1))
           throw std::invalid_argument("--rtol = " + value + ": must lie in (0, 0.1]");
         for (Window& w : setup.windows) w.rtols = {rtol};
+      } else if (key == "--rate-scale") {
+        rate_scale_option = std::stod(value);
+        if (!(rate_scale_option > 0))
+          throw std::invalid_argument("--rate-scale = " + value + ": must be > 0 [1/s]");
       } else if (key == "--time-limit") {
         setup.time_limit = std::stod(value);
         if (!(setup.time_limit > 0))
