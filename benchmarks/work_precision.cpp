@@ -24,11 +24,12 @@
 #include <string>
 #include <vector>
 
-#include "epicycle/config.h"
 #include "contact_collection.hpp"
+#include "epicycle/config.h"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
+#include "log_log_svg.hpp"
 
 namespace {
 
@@ -87,14 +88,6 @@ Point Measure(const ContactProblem& problem, const std::string& name, Backend ba
   return p;
 }
 
-// ---- SVG, written by hand -----------------------------------------------------------------------
-
-struct Axis {
-  double lo, hi;  // log10 range
-  double px0, px1;
-  double Map(double v) const { return px0 + (std::log10(v) - lo) / (hi - lo) * (px1 - px0); }
-};
-
 const char* Colour(Backend b) {
   switch (b) {
     case Backend::kActiveSetNewton:
@@ -111,94 +104,33 @@ const char* Colour(Backend b) {
   return "#000000";
 }
 
-void DrawPanel(std::ostringstream& svg, const std::vector<Point>& points, const std::string& title,
-               double left, double top, double width, double height) {
-  double tmin = 1e300, tmax = 0, emin = 1e300, emax = 0;
-  for (const Point& p : points) {
-    tmin = std::min(tmin, p.seconds);
-    tmax = std::max(tmax, p.seconds);
-    emin = std::min(emin, std::max(p.error(), kErrorFloor));
-    emax = std::max(emax, std::max(p.error(), kErrorFloor));
-  }
-  const Axis x{std::floor(std::log10(tmin)), std::ceil(std::log10(tmax)), left, left + width};
-  const Axis y{std::floor(std::log10(emin)), std::ceil(std::log10(emax)), top + height, top};
-  svg << "<rect x='" << left << "' y='" << top << "' width='" << width << "' height='" << height
-      << "' fill='none' stroke='#333'/>\n";
-  svg << "<text x='" << left + width / 2 << "' y='" << top - 8
-      << "' text-anchor='middle' font-size='13'>" << title << "</text>\n";
-  for (double d = x.lo; d <= x.hi + 1e-9; d += 1) {
-    const double px = x.Map(std::pow(10.0, d));
-    svg << "<line x1='" << px << "' y1='" << top << "' x2='" << px << "' y2='" << top + height
-        << "' stroke='#ddd'/>\n";
-    svg << "<text x='" << px << "' y='" << top + height + 16
-        << "' text-anchor='middle' font-size='11'>1e" << d << "</text>\n";
-  }
-  const double ystep = y.hi - y.lo > 8 ? 2 : 1;
-  for (double d = y.lo; d <= y.hi + 1e-9; d += ystep) {
-    const double py = y.Map(std::pow(10.0, d));
-    svg << "<line x1='" << left << "' y1='" << py << "' x2='" << left + width << "' y2='" << py
-        << "' stroke='#ddd'/>\n";
-    svg << "<text x='" << left - 6 << "' y='" << py + 4 << "' text-anchor='end' font-size='11'>1e"
-        << d << "</text>\n";
-  }
-  svg << "<text x='" << left + width / 2 << "' y='" << top + height + 34
-      << "' text-anchor='middle' font-size='12'>CPU time per solve [s]</text>\n";
-  svg << "<text transform='translate(" << left - 46 << "," << top + height / 2
-      << ") rotate(-90)' text-anchor='middle' font-size='12'>error vs reference (max rel. F, "
-         "&#955;)</text>\n";
-  std::map<Backend, std::vector<const Point*>> series;
-  for (const Point& p : points) series[p.backend].push_back(&p);
-  for (auto& [backend, list] : series) {
-    std::sort(list.begin(), list.end(),
-              [](const Point* a, const Point* b) { return a->tolerance > b->tolerance; });
-    svg << "<polyline fill='none' stroke='" << Colour(backend) << "' stroke-width='1.5' points='";
-    for (const Point* p : list) {
-      svg << x.Map(p->seconds) << "," << y.Map(std::max(p->error(), kErrorFloor)) << " ";
-    }
-    svg << "'/>\n";
-    for (const Point* p : list) {
-      const bool converged = p->status == ContactStatus::kConverged;
-      svg << "<circle cx='" << x.Map(p->seconds) << "' cy='"
-          << y.Map(std::max(p->error(), kErrorFloor)) << "' r='3.5' stroke='" << Colour(backend)
-          << "' fill='" << (converged ? Colour(backend) : "white") << "'><title>"
-          << BackendName(backend) << " tol " << p->tolerance << ": "
-          << epicycle::solvers::StatusName(p->status) << "</title></circle>\n";
-    }
-  }
-}
-
+// The figure: one log-log panel per problem (bench::LogLogSvg), one series per back end from
+// loose to tight tolerance, hollow markers where the back end did not converge.
 std::string Svg(const std::vector<Point>& points, const std::vector<std::string>& problems) {
-  const double panel_w = 380, panel_h = 300, margin_l = 70, gap = 90, top = 40;
-  const double panels = static_cast<double>(problems.size());
-  const double width = margin_l + panels * (panel_w + gap) + 140;
-  const double height = top + panel_h + 60;
-  std::ostringstream svg;
-  svg << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
-      << "' font-family='sans-serif'>\n<rect width='100%' height='100%' fill='white'/>\n";
-  std::vector<Backend> backends;
-  for (std::size_t k = 0; k < problems.size(); ++k) {
-    std::vector<Point> mine;
-    for (const Point& p : points) {
-      if (p.problem == problems[k]) mine.push_back(p);
-      if (std::find(backends.begin(), backends.end(), p.backend) == backends.end()) {
-        backends.push_back(p.backend);
+  std::vector<epicycle::bench::LogPanel> panels;
+  for (const std::string& problem : problems) {
+    epicycle::bench::LogPanel panel{
+        problem,    "CPU time per solve [s]", "error vs reference (max rel. F, &#955;)", {}, {},
+        kErrorFloor};
+    std::map<Backend, std::vector<const Point*>> series;
+    for (const Point& p : points)
+      if (p.problem == problem) series[p.backend].push_back(&p);
+    for (auto& [backend, list] : series) {
+      std::sort(list.begin(), list.end(),
+                [](const Point* a, const Point* b) { return a->tolerance > b->tolerance; });
+      epicycle::bench::LogSeries s{BackendName(backend), Colour(backend), {}};
+      for (const Point* p : list) {
+        std::ostringstream tip;
+        tip << BackendName(backend) << " tol " << p->tolerance << ": "
+            << epicycle::solvers::StatusName(p->status);
+        s.points.push_back(
+            {p->seconds, p->error(), p->status == ContactStatus::kConverged, "", tip.str()});
       }
+      panel.series.push_back(std::move(s));
     }
-    DrawPanel(svg, mine, problems[k], margin_l + static_cast<double>(k) * (panel_w + gap), top,
-              panel_w, panel_h);
+    panels.push_back(std::move(panel));
   }
-  double ly = top + 10;
-  const double lx = margin_l + panels * (panel_w + gap) - gap + 20;
-  for (Backend b : backends) {
-    svg << "<circle cx='" << lx << "' cy='" << ly << "' r='4' fill='" << Colour(b) << "'/>"
-        << "<text x='" << lx + 10 << "' y='" << ly + 4 << "' font-size='12'>" << BackendName(b)
-        << "</text>\n";
-    ly += 18;
-  }
-  svg << "<text x='" << lx << "' y='" << ly + 10
-      << "' font-size='11'>filled: converged</text>\n<text x='" << lx << "' y='" << ly + 24
-      << "' font-size='11'>hollow: not converged</text>\n</svg>\n";
-  return svg.str();
+  return epicycle::bench::LogLogSvg(panels, {"filled: converged", "hollow: not converged"});
 }
 
 }  // namespace

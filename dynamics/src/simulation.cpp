@@ -42,6 +42,8 @@ void SimulationOptions::Validate() const {
     fail("atol_energy", atol_energy, "must be > 0");
   if (max_steps < 1) fail("max_steps", static_cast<double>(max_steps), "must be >= 1");
   if (!(max_step >= 0)) fail("max_step", max_step, "must be >= 0");
+  if (!(time_limit >= 0) || !std::isfinite(time_limit))
+    fail("time_limit", time_limit, "must be >= 0 and finite");
   if (max_order < 1 || max_order > 5) fail("max_order", max_order, "must lie in 1..5");
   contact.Validate();
 }
@@ -66,6 +68,8 @@ struct Context {
   std::string last_failure;
   std::string integrator_message;  // SUNDIALS' own error message (instead of stderr)
   int n = 0;                       // DOFs
+  bool limited = false;            // SimulationOptions::time_limit > 0
+  Clock::time_point deadline;
 };
 
 // SUNDIALS prints its errors to stderr by default; they belong in the run's message.
@@ -97,6 +101,9 @@ int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto& c = *static_cast<Context*>(user);
   try {
     const auto t0 = Clock::now();
+    if (c.limited && t0 > c.deadline)
+      throw std::runtime_error(
+          "the time limit of the run is spent (SimulationOptions::time_limit)");
     Eigen::VectorXd d, v;
     const bool ok = EvaluateAt(c, t, y, &d, &v, "");
     c.stats->rhs_seconds += Seconds(t0);
@@ -208,6 +215,9 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
   c.contact = options.contact;
   c.stats = &result.stats;
   c.n = n;
+  c.limited = options.time_limit > 0;
+  c.deadline = start + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(options.time_limit));
 
   Sundials s;
   Check(SUNContext_Create(nullptr, &s.ctx), "SUNContext_Create");
@@ -343,7 +353,8 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     result.completed = result.samples.size() == output_times.size();
   } catch (const std::exception& ex) {
     result.completed = false;
-    result.message = "stopped after t = " + std::to_string(last_t) + " s: " + ex.what();
+    result.message = "stopped after t = " + std::to_string(last_t) + " s: " + ex.what() +
+                     (c.last_failure.empty() ? "" : "; last failed evaluation " + c.last_failure);
   }
   long v = 0;
   if (cvode) {

@@ -393,6 +393,23 @@ TEST_CASE(
     INFO(m);
     CHECK(m.find("quasi-static start") != std::string::npos);
   }
+  SECTION("a run over its time limit stops, keeps what it has and says why") {
+    // 1 ns of wall time: spent before CVODE's first right-hand side (Simulate evaluates the start
+    // state once before it, which alone takes microseconds), so the run must stop with no output.
+    RigOptions o;
+    o.spring = 1e-9;
+    o.spring_mesh_stiffness = 1e9;
+    const auto rig = test::MakeRig(paper, "time limit", o);
+    dynamics::SimulationOptions so;
+    so.time_limit = 1e-9;
+    const auto r = test::Run(rig, Times(*rig.model, *rig.stage, 1, 4), so);
+    CHECK_FALSE(r.completed);
+    CHECK(r.samples.empty());
+    CHECK(r.message.find("time limit") != std::string::npos);
+    so.time_limit = -1;
+    const std::string m = Thrown([&] { so.Validate(); });
+    CHECK(m.find("time_limit = -1") != std::string::npos);
+  }
   SECTION("a run that fails midway") {
     transmission::Scene scene = transmission::ParseScene(paper, "paper");
     const geometry::Stage stage(scene.stage);

@@ -51,6 +51,10 @@ struct SimulationOptions {
   bool stability_limit_detection = true;
   long max_steps = 2000000;  ///< per output interval [-]
   double max_step = 0;       ///< largest step [s]; 0: no limit
+  /// Wall-time budget of the whole run [s]; 0: none. When spent, the run stops at the next
+  /// right-hand side (completed = false, the message says so) and keeps the outputs it has: for
+  /// studies that must not hang on a back end that keeps failing.
+  double time_limit = 0;
   solvers::Backend backend = solvers::Backend::kActiveSetNewton;
   solvers::ContactOptions contact;  ///< the contact solve inside every evaluation
   void Validate() const;            ///< @throws std::invalid_argument naming the field
