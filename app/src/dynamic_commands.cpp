@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -36,6 +37,7 @@ struct DynamicArgs {
   std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out",
                      range = "planet", sun, friction, cache, speed_sweep;
   double speed_rpm = 0, time = 0, rtol = 1e-6, start_deg = 0, window_cycles = 0;
+  std::optional<double> rate_scale, contact_tol;  // not given: the library's defaults
   int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 6;
   bool no_cache = false, quiet = false, fd_jacobian = false;
 };
@@ -76,6 +78,15 @@ void RunDynamic(const DynamicArgs& a) {
   if (a.speed_sweep.empty() && (a.threads != 0 || a.window_cycles != 0))
     throw std::invalid_argument("--threads and --window-cycles belong to --speed-sweep");
   if (!a.speed_sweep.empty()) ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
+  if (a.rate_scale && !(*a.rate_scale >= 0 && std::isfinite(*a.rate_scale)))
+    throw std::invalid_argument(
+        fmt::format("--rate-scale = {}: must be finite and >= 0 [1/s] (0: the stage's highest "
+                    "linearised natural frequency)",
+                    *a.rate_scale));
+  if (a.contact_tol && !(*a.contact_tol >= 1e-14 && *a.contact_tol <= 1e-2))
+    throw std::invalid_argument(
+        fmt::format("--contact-tol = {}: must be in [1e-14, 1e-2] (a nondimensional residual)",
+                    *a.contact_tol));
   if (a.speed_rpm != 0) {
     if (!(a.speed_rpm > 0) || !std::isfinite(a.speed_rpm))
       throw std::invalid_argument(fmt::format("--speed-rpm = {}: must be > 0", a.speed_rpm));
@@ -97,6 +108,8 @@ void RunDynamic(const DynamicArgs& a) {
   opt.integrator = dynamics::IntegratorFromName(a.integrator);
   opt.backend = solvers::BackendFromName(a.backend);
   opt.rtol = a.rtol;
+  if (a.rate_scale) opt.rate_scale = *a.rate_scale;
+  if (a.contact_tol) opt.contact.tolerance = *a.contact_tol;
   opt.analytic_jacobian = !a.fd_jacobian;
   opt.max_order = a.max_order;
   if (!a.speed_sweep.empty()) {
@@ -268,6 +281,7 @@ void RunDynamic(const DynamicArgs& a) {
   j["atol_length_m"] = opt.atol_length;
   j["atol_angle_rad"] = opt.atol_angle;
   j["rate_tolerance_scale_rad_per_s"] = st.rate_scale;  // rate atol = position atol x this
+  j["contact_tolerance"] = opt.contact.tolerance;
   j["backend"] = a.backend;
   j["start"] = "quasi-static solution at t = 0 (no start-up transient)";
   j["duration_s"] = duration;
@@ -446,6 +460,13 @@ void RegisterDynamicCommands(CLI::App& app) {
       ->check(CLI::IsMember({"cvode-bdf", "arkode-erk"}));
   cmd->add_option("--rtol", a.rtol, "Relative tolerance of the integrator")
       ->check(CLI::Range(1e-12, 0.1));
+  cmd->add_option("--rate-scale", a.rate_scale,
+                  "Absolute tolerance of the rates = that of the positions times this [1/s] "
+                  "(default 1e4; 0: the stage's highest linearised natural frequency; "
+                  "docs/dynamic.md, Error against run time)");
+  cmd->add_option(
+      "--contact-tol", a.contact_tol,
+      "Tolerance of every contact solve on its nondimensional residual (default 1e-10)");
   cmd->add_option("--outputs-per-cycle", a.outputs_per_cycle,
                   "Output steps per mesh cycle (default 20; 64 in a speed sweep's window)")
       ->check(CLI::Range(1, 100000));

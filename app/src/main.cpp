@@ -23,7 +23,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 prints the message (or the help); its own codes (105 for a value out of range, ...)
+    // become the documented 2, help and version stay 0.
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const epicycle::app::ComputationFailed& e) {
     // Results were written and the failures listed; the run did not compute what was asked.
     std::fprintf(stderr, "epicycle: failed: %s\n", e.what());

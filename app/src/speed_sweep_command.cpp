@@ -236,6 +236,11 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   j["friction"] = scene.dynamics.friction;
   j["integrator"] = a.integrator;
   j["rtol"] = simulation.rtol;
+  j["atol_length_m"] = simulation.atol_length;
+  j["atol_angle_rad"] = simulation.atol_angle;
+  // 0: each speed's highest linearised natural frequency (its row's run reports it).
+  j["rate_tolerance_scale_rad_per_s"] = simulation.rate_scale;
+  j["contact_tolerance"] = simulation.contact.tolerance;
   j["backend"] = a.backend;
   j["definitions"] = {
       {"K_gamma", "max over window samples and planets of n LSR_i"},
