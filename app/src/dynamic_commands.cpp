@@ -266,10 +266,14 @@ void RunDynamic(const DynamicArgs& a) {
       st.failed_solves, st.error_test_failures, st.nonlinear_failures, st.wall_seconds,
       st.rhs_seconds);
 
-  PrintWarnings(scene.warnings);
+  // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
+  std::vector<std::string> warnings = scene.warnings;
+  for (const std::string& w : dynamics::DynamicWarnings(stage, result.samples))
+    warnings.push_back(w);
+  PrintWarnings(warnings);
   json j;
   j["provenance"] = provenance;
-  j["warnings"] = scene.warnings;
+  j["warnings"] = warnings;
   j["scene"] = scene.name;
   j["sun_support"] = sun_name;
   j["sun_torque_Nm"] = scene.sun_torque;

@@ -641,21 +641,23 @@ Eigen::VectorXd DynamicModel::QuasiStaticStart(const solvers::ContactOptions& co
   opt.contact = contact;
   const transmission::PositionResult r = transmission::SolvePosition(
       model_, CarrierAngle(0.0), transmission::StageLoads{sun_torque_}, opt);
-  // A planet whose flanks lie beyond the gap window in a mesh is separated from that member: its
-  // motion would not be held by the contacts the model sees.
+  // A planet whose flanks, drive and coast, all lie beyond the gap window in a mesh is separated
+  // from that member: its motion would not be held by the contacts the model sees. A planet held
+  // by its coast flanks only (errors beyond the backlash: jammed) is a state the model computes,
+  // outside its validity; the run's warnings say so (DynamicWarnings).
   for (int i = 0; i < model_.planets(); ++i) {
     for (const geometry::MeshKind kind :
          {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
-      const bool any = std::any_of(
-          r.problem.contacts.begin(), r.problem.contacts.end(),
-          [&](const StageContact& s) { return s.planet == i && s.mesh == kind && s.loaded; });
+      const bool any =
+          std::any_of(r.problem.contacts.begin(), r.problem.contacts.end(),
+                      [&](const StageContact& s) { return s.planet == i && s.mesh == kind; });
       if (!any)
         throw std::runtime_error(
             "the quasi-static start at carrier " + Num(geometry::Deg(CarrierAngle(0.0))) +
             " deg: planet" + std::to_string(i + 1) + " is separated from the " +
             (kind == geometry::MeshKind::kSunPlanet ? "sun" : "ring") +
-            " (no loaded flank within the gap window): the scene's errors or backlash "
-            "separate the gears");
+            " (no flank within the gap window): the scene's errors or backlash separate the "
+            "gears");
     }
   }
   if (!r.converged)

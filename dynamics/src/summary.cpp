@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "epicycle/transmission/validity.hpp"
+
 namespace epicycle::dynamics {
 
 DynamicSummary Summarise(const std::vector<DynamicSample>& samples) {
@@ -31,6 +33,16 @@ DynamicSummary Summarise(const std::vector<DynamicSample>& samples) {
       s.max_pair_force = std::max(s.max_pair_force, x.evaluation.total_force.maxCoeff());
   }
   return s;
+}
+
+std::vector<std::string> DynamicWarnings(const geometry::Stage& stage,
+                                         const std::vector<DynamicSample>& samples) {
+  transmission::ValidityTally tally(stage, "output step(s)");
+  for (const DynamicSample& x : samples)
+    if (x.evaluation.ok)
+      tally.Add(x.carrier_angle, x.load_sharing, x.transmission_error, x.evaluation.terms.local,
+                x.evaluation.force);
+  return tally.Messages();
 }
 
 }  // namespace epicycle::dynamics

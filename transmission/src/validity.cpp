@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "epicycle/solvers/local_term.hpp"
 
@@ -20,9 +21,10 @@ std::string Deg(double rad) { return Num(rad * 180.0 / geometry::kPi); }
 
 // The transmission-error warning: `worst` and `limit` are rotations [rad] of the gear named in
 // `along` (a tenth of its module along its line of action).
-std::string TransmissionErrorWarning(int count, double worst, double limit, const char* along) {
+std::string TransmissionErrorWarning(int count, double worst, double limit, const char* along,
+                                     const std::string& counted) {
   return "transmission error |TE| = " + Num(worst * 1e6) + " urad (" + Deg(worst) + " deg) at " +
-         std::to_string(count) + " position(s) exceeds a tenth of the module along " + along +
+         std::to_string(count) + " " + counted + " exceeds a tenth of the module along " + along +
          " line of action (" + Num(limit * 1e6) +
          " urad): rotations that large break the small-displacement assumption";
 }
@@ -41,68 +43,76 @@ std::string LocalTermWarning(int count, double worst_force, double worst_ratio,
 
 }  // namespace
 
-std::vector<std::string> QuasiStaticWarnings(const geometry::Stage& stage,
-                                             const std::vector<PositionResult>& results) {
-  std::vector<std::string> out;
-  const int n = stage.planets();
+ValidityTally::ValidityTally(const geometry::Stage& stage, std::string counted)
+    : planets_(stage.planets()),
+      te_limit_(0.1 * stage.sun().spec().module / stage.sun().base_radius()),
+      counted_(std::move(counted)),
+      lsr_count_(static_cast<std::size_t>(planets_), 0),
+      lsr_worst_(static_cast<std::size_t>(planets_), 0.0),
+      lsr_at_(static_cast<std::size_t>(planets_), 0.0) {}
+
+void ValidityTally::Add(double carrier_angle, const std::vector<double>& load_sharing,
+                        double transmission_error,
+                        const std::vector<solvers::LocalTermParameters>& local,
+                        const Eigen::VectorXd& force) {
   // Negative shares, per planet.
+  const int n = std::min(planets_, static_cast<int>(load_sharing.size()));
   for (int i = 0; i < n; ++i) {
-    int count = 0;
-    double worst = 0, at = 0;
-    for (const PositionResult& r : results) {
-      if (!r.converged || i >= static_cast<int>(r.load_sharing.size())) continue;
-      if (r.load_sharing[i] < 0) {
-        ++count;
-        if (r.load_sharing[i] < worst) {
-          worst = r.load_sharing[i];
-          at = r.carrier_angle;
-        }
-      }
-    }
-    if (count > 0) {
-      out.push_back("planet " + std::to_string(i + 1) + ": load-sharing ratio LSR = " + Num(worst) +
-                    " < 0 at carrier " + Deg(at) + " deg (" + std::to_string(count) +
-                    " position(s)): the planet is jammed, driven through its coast flanks (its "
-                    "errors exceed the backlash); outside the model's validity");
+    const auto k = static_cast<std::size_t>(i);
+    if (!(load_sharing[k] < 0)) continue;
+    ++lsr_count_[k];
+    if (load_sharing[k] < lsr_worst_[k]) {
+      lsr_worst_[k] = load_sharing[k];
+      lsr_at_[k] = carrier_angle;
     }
   }
   // Transmission error against a tenth of the module along the sun's line of action.
-  const double limit = 0.1 * stage.sun().spec().module / stage.sun().base_radius();
-  {
-    int count = 0;
-    double worst = 0;
-    for (const PositionResult& r : results) {
-      if (!r.converged || !std::isfinite(r.transmission_error)) continue;
-      if (std::abs(r.transmission_error) > limit) {
-        ++count;
-        worst = std::max(worst, std::abs(r.transmission_error));
-      }
-    }
-    if (count > 0) out.push_back(TransmissionErrorWarning(count, worst, limit, "the sun's"));
+  if (std::isfinite(transmission_error) && std::abs(transmission_error) > te_limit_) {
+    ++te_count_;
+    te_worst_ = std::max(te_worst_, std::abs(transmission_error));
   }
   // Contact forces against the local term's validity limit.
-  {
-    int count = 0;
-    double worst_ratio = 0, worst_force = 0;
-    for (const PositionResult& r : results) {
-      if (!r.converged) continue;
-      const auto& local = r.problem.data.local;
-      for (Eigen::Index j = 0; j < r.solution.force.size(); ++j) {
-        const auto k = static_cast<std::size_t>(j);
-        if (k >= local.size() || !local[k].enabled) continue;
-        const double f = r.solution.force(j), lim = solvers::ValidityLimitForce(local[k]);
-        if (f > lim && lim > 0) {
-          ++count;
-          if (f / lim > worst_ratio) {
-            worst_ratio = f / lim;
-            worst_force = f;
-          }
-        }
+  for (Eigen::Index j = 0; j < force.size(); ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    if (k >= local.size() || !local[k].enabled) continue;
+    const double f = force(j), lim = solvers::ValidityLimitForce(local[k]);
+    if (f > lim && lim > 0) {
+      ++local_count_;
+      if (f / lim > local_worst_ratio_) {
+        local_worst_ratio_ = f / lim;
+        local_worst_force_ = f;
       }
     }
-    if (count > 0) out.push_back(LocalTermWarning(count, worst_force, worst_ratio, "contact(s)"));
   }
+}
+
+std::vector<std::string> ValidityTally::Messages() const {
+  std::vector<std::string> out;
+  for (int i = 0; i < planets_; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (lsr_count_[k] == 0) continue;
+    out.push_back("planet " + std::to_string(i + 1) +
+                  ": load-sharing ratio LSR = " + Num(lsr_worst_[k]) + " < 0 at carrier " +
+                  Deg(lsr_at_[k]) + " deg (" + std::to_string(lsr_count_[k]) + " " + counted_ +
+                  "): the planet is jammed, driven through its coast flanks (its errors exceed "
+                  "the backlash); outside the model's validity");
+  }
+  if (te_count_ > 0)
+    out.push_back(TransmissionErrorWarning(te_count_, te_worst_, te_limit_, "the sun's", counted_));
+  if (local_count_ > 0)
+    out.push_back(
+        LocalTermWarning(local_count_, local_worst_force_, local_worst_ratio_, "contact(s)"));
   return out;
+}
+
+std::vector<std::string> QuasiStaticWarnings(const geometry::Stage& stage,
+                                             const std::vector<PositionResult>& results) {
+  ValidityTally tally(stage, "position(s)");
+  for (const PositionResult& r : results)
+    if (r.converged)
+      tally.Add(r.carrier_angle, r.load_sharing, r.transmission_error, r.problem.data.local,
+                r.solution.force);
+  return tally.Messages();
 }
 
 std::vector<std::string> MeshStiffnessWarnings(const geometry::GearPair& pair,
@@ -122,7 +132,8 @@ std::vector<std::string> MeshStiffnessWarnings(const geometry::GearPair& pair,
       ratio_worst = std::max(ratio_worst, s.local_validity_ratio);
     }
   }
-  if (te_count > 0) out.push_back(TransmissionErrorWarning(te_count, te_worst, limit, "gear 1's"));
+  if (te_count > 0)
+    out.push_back(TransmissionErrorWarning(te_count, te_worst, limit, "gear 1's", "position(s)"));
   if (local_count > 0)
     out.push_back(LocalTermWarning(local_count, 0.0, ratio_worst, "position(s)"));
   return out;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "epicycle/transmission/validity.hpp"
+#include "local_term_fixtures.hpp"
 #include "stage_fixtures.hpp"
 
 using Catch::Matchers::Contains;
@@ -50,16 +51,11 @@ TEST_CASE("result warnings: jammed planet, large rotation, load past the local t
   REQUIRE(w.size() == 1);
   CHECK_THAT(w[0], Contains("transmission error") && Contains("a tenth of the module"));
 
-  // One contact at twice its validity limit, plane strain, equal steel bodies.
-  solvers::LocalTermParameters p;
-  p.face_width = 25e-3;
-  p.reduced_radius = 10e-3;
-  for (auto& b : p.body) b = {207e9, 0.3, 1e-3};
-  const double e_star = 207e9 / (2.0 * (1.0 - 0.09));  // 1/E* = 2 (1 − ν²)/E
-  const double limit = 1e-6 * geometry::kPi * 25e-3 * e_star / (4.0 * 10e-3);  // h² π b E*/(4R)
+  // One contact at twice its validity limit (docs in local_term_fixtures.hpp).
+  const test::LocalTermWithLimit t = test::SteelLocalTerm();
   auto loaded = Converged({0.3, 0.3, 0.4});
-  loaded.problem.data.local = {p, p};
-  loaded.solution.force = Eigen::Vector2d(0.5 * limit, 2.0 * limit);
+  loaded.problem.data.local = {t.parameters, t.parameters};
+  loaded.solution.force = Eigen::Vector2d(0.5 * t.limit_force, 2.0 * t.limit_force);
   w = transmission::QuasiStaticWarnings(stage, {loaded});
   REQUIRE(w.size() == 1);
   CHECK_THAT(

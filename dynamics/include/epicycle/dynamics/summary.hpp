@@ -2,6 +2,7 @@
 // them: load-sharing extremes and K_γ, transmission-error peak to peak, the sun's orbit.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "epicycle/dynamics/simulation.hpp"
@@ -21,5 +22,12 @@ struct DynamicSummary {
 
 /// Summary of the samples (an empty list gives zeros, never ±∞).
 DynamicSummary Summarise(const std::vector<DynamicSample>& samples);
+
+/// The result warnings of the quasi-static driver (transmission::ValidityTally: a jammed planet,
+/// a rotation past a tenth of the module, a contact force past the local term's validity) over
+/// the output steps whose contact solve converged, counted in output steps; the forces checked
+/// are the elastic contact forces F of the contact problem.
+std::vector<std::string> DynamicWarnings(const geometry::Stage& stage,
+                                         const std::vector<DynamicSample>& samples);
 
 }  // namespace epicycle::dynamics

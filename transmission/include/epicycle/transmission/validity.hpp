@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
@@ -13,14 +15,39 @@
 
 namespace epicycle::transmission {
 
-/// One message per kind of violation over the converged positions of a quasi-static sweep, each
-/// with the number of positions and the worst value:
+/// The checks behind QuasiStaticWarnings, one computed state at a time, so that every driver (a
+/// sweep's converged positions, a dynamic run's output steps) applies the same rules and says them
+/// in the same words:
 ///  - a negative load-sharing ratio LSR_i < 0: planet i is jammed (its errors exceed the backlash
-///    and it is driven backwards);
+///    and it is driven through its coast flanks);
 ///  - a transmission error |TE| r_b,sun larger than a tenth of the module: rigid rotations of that
 ///    size break the small-displacement assumption of the compliance (docs/model.md §5);
 ///  - a contact force past the local term's validity, F > ValidityLimitForce (the Hertz
 ///    half-width L exceeds the joining depth h, solvers/local_term.hpp).
+class ValidityTally {
+ public:
+  /// `counted`: what a state is called in the messages ("position(s)", "output step(s)").
+  ValidityTally(const geometry::Stage& stage, std::string counted);
+  /// One state: the carrier angle [rad], LSR per planet [-], the transmission error at the sun
+  /// [rad] (not finite: not checked), the contact forces F [N] with their local-term parameters
+  /// (`local` empty: no local terms, forces not checked).
+  void Add(double carrier_angle, const std::vector<double>& load_sharing, double transmission_error,
+           const std::vector<solvers::LocalTermParameters>& local, const Eigen::VectorXd& force);
+  /// One message per kind of violation seen, with the number of states (contacts for the local
+  /// term) and the worst value; empty when everything was within validity.
+  std::vector<std::string> Messages() const;
+
+ private:
+  int planets_;
+  double te_limit_;  ///< a tenth of the module along the sun's line of action [rad]
+  std::string counted_;
+  std::vector<int> lsr_count_;
+  std::vector<double> lsr_worst_, lsr_at_;
+  int te_count_ = 0, local_count_ = 0;
+  double te_worst_ = 0, local_worst_ratio_ = 0, local_worst_force_ = 0;
+};
+
+/// ValidityTally's messages over the converged positions of a quasi-static sweep.
 std::vector<std::string> QuasiStaticWarnings(const geometry::Stage& stage,
                                              const std::vector<PositionResult>& results);
 
