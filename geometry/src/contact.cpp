@@ -112,6 +112,11 @@ void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const P
   const double p = g.gear->pitch_angle();
   const double margin = g.gear->max_tooth_offset();
   for (int s : {-1, 1}) {
+    // Only the tangent with s = H meets flanks of this hand on c's side of its tangent point. On
+    // the other, c − x lies along the tangent line with length L + r_b u ≥ L (L = √(|c|² − r_b²),
+    // u ≥ 0 on the active flank), so every flank point found there is at least L from c (a relief
+    // moves it by micrometres): that tangent is skipped when L is well beyond ρ + window.
+    if (s != f0.hand && dist_c * sin_open > 2.0 * (rho + window)) continue;
     const double beta = phi + s * open;
     const double u0 = f0.hand * WrapAngle(beta - f0.start);
     // Dir(β), the unit vector turned by ±open, without a sine and cosine.
