@@ -192,7 +192,8 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
               {"evaluations", r.stats.rhs_evaluations},
               {"failed_contact_solves", r.stats.failed_solves},
               {"cpu_s", r.cpu_seconds},
-              {"wall_s", r.wall_seconds}};
+              {"wall_s", r.wall_seconds},
+              {"warnings", r.warnings}};
     if (r.ok) {
       j["K_gamma"] = r.k_gamma;
       j["dynamic_factor"] = r.dynamic_factor;
@@ -230,7 +231,12 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
     qs_force[plan.meshes[q]] = plan.qs_peak_mesh_force[q];
   json j;
   j["provenance"] = provenance;
-  j["warnings"] = scene.warnings;
+  // The scene's warnings and each speed's results outside the model's validity.
+  std::vector<std::string> warnings = scene.warnings;
+  for (const dynamics::SpeedResult& r : res.speeds)
+    for (const std::string& w : r.warnings)
+      warnings.push_back(fmt::format("at {} rpm: {}", Num(r.sun_speed_rpm), w));
+  j["warnings"] = warnings;
   j["scene"] = scene.name;
   j["sun_torque_Nm"] = scene.sun_torque;
   j["friction"] = scene.dynamics.friction;
@@ -318,7 +324,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   plot("TE amplitude", "urad", "te_amplitude", 1e6, [](const auto& r) { return r.te_amplitude; },
        {plan.qs_te_amplitude * 1e6});
   plot("sun orbit radius", "um", "orbit", 1e6, [](const auto& r) { return r.orbit_radius; }, {});
-  PrintWarnings(scene.warnings);
+  PrintWarnings(warnings);
   std::printf(
       "\nwrote %s.csv, _summary.json, _k_gamma.svg, _dynamic_factor.svg, _te_amplitude.svg, "
       "_orbit.svg\n",

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "epicycle/dynamics/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
@@ -353,6 +354,7 @@ SpeedResult RunSpeed(const DynamicModel& base, const transmission::Scene& scene,
         run.samples.begin() + static_cast<std::ptrdiff_t>(std::min(skipped, run.samples.size())),
         run.samples.end());
     r = SummariseSpeed(plan, window, model.stage_model().stage().planets());
+    r.warnings = DynamicWarnings(model.stage_model().stage(), window);
     r.stats = run.stats;
     r.ok = run.completed;
     r.message = run.message;

@@ -131,9 +131,11 @@ struct SpeedResult {
   double te_amplitude = 0;     ///< ½ peak-to-peak TE over the window [rad]
   double orbit_radius = 0;     ///< largest sun-centre displacement over the window [m]
   double lsr_min = 0, lsr_max = 0;  ///< extremes of LSR_i over planets and window [-]
-  SimulationStats stats;            ///< of the whole run (skip and window)
-  double cpu_seconds = 0;           ///< CPU of the thread that ran this speed [s]
-  double wall_seconds = 0;          ///< wall time of this speed [s]
+  /// Results outside the model's validity over the window (DynamicWarnings); empty: none.
+  std::vector<std::string> warnings;
+  SimulationStats stats;    ///< of the whole run (skip and window)
+  double cpu_seconds = 0;   ///< CPU of the thread that ran this speed [s]
+  double wall_seconds = 0;  ///< wall time of this speed [s]
 };
 
 struct SpeedSweepResult {
