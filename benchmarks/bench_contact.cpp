@@ -4,7 +4,8 @@
 // "gear-like" files of verification/data/contact/ when present) this times
 //   solve/<back end>/<case>        one cold solve at a 1e-9 residual, per available back end;
 //   newton_warm_step/<case>        the active-set Newton warm-started from the answer of the same
-//                                  problem under 99 % of its load (a load-sweep step);
+//                                  problem under 99 % of its load and back, in turn (a load-sweep
+//                                  step each way, after the other step's solve);
 //   newton_warm_same/<case>        the same, started from its own answer (the floor: one check);
 //   factorise_kkt/<case>           one factorisation of the final active set as the Newton does it:
 //                                  Cholesky of H_AA = C_AA + diag(u'_A), the Schur complement
@@ -56,8 +57,9 @@ struct Case {
   std::string name;
   std::unique_ptr<ContactProblem> problem;
   ContactSolution reference;
-  ContactSolution previous_step;  // Newton answer at 99 % load
-  std::string reference_backend;  // which back end gave the reference
+  std::unique_ptr<ContactProblem> lighter;  // the same under 99 % of its load
+  ContactSolution previous_step;            // Newton answer at 99 % load
+  std::string reference_backend;            // which back end gave the reference
 };
 
 std::vector<ContactProblemFile> StageSizedProblems() {
@@ -134,8 +136,8 @@ std::vector<Case> BuildCases() {
     }
     c.problem = std::make_unique<ContactProblem>(file.data);
     c.reference_backend = TightReference(*c.problem, &c.reference);
-    const ContactProblem lighter_problem(lighter);
-    SolveOnce(Backend::kActiveSetNewton, lighter_problem, kReferenceTolerance, &c.previous_step);
+    c.lighter = std::make_unique<ContactProblem>(lighter);
+    SolveOnce(Backend::kActiveSetNewton, *c.lighter, kReferenceTolerance, &c.previous_step);
     cases.push_back(std::move(c));
   }
   return cases;
@@ -180,6 +182,31 @@ void BenchWarm(benchmark::State& state, const Case* c, const ContactSolution* st
     benchmark::DoNotOptimize(solution.force.data());
   }
   PublishAnswer(state, *c, report, solution);
+}
+
+// A load-sweep step in both directions in turn: the problem from the answer at 99 % load, then the
+// 99 % problem from the full answer, and so on. Each solve starts from the other problem's answer
+// and finds in the solver what the other solve left there (its factorisation), as in a sweep,
+// never its own; the time is the average of the two directions.
+void BenchWarmStep(benchmark::State& state, const Case* c) {
+  auto solver = MakeContactSolver(Backend::kActiveSetNewton);
+  ContactOptions options;
+  options.tolerance = kSolveTolerance;
+  options.warm_start = true;
+  const ContactProblem* problems[2] = {c->lighter.get(), c->problem.get()};
+  ContactSolution answers[2] = {c->previous_step, c->reference};
+  ContactSolution solution;
+  ContactReport report, full_report;
+  int turn = 1;
+  for (auto _ : state) {
+    solution = answers[1 - turn];
+    report = solver->Solve(*problems[turn], options, &solution);
+    benchmark::DoNotOptimize(solution.force.data());
+    if (turn == 1) full_report = report;
+    answers[turn] = solution;
+    turn = 1 - turn;
+  }
+  PublishAnswer(state, *c, full_report, answers[1]);
 }
 
 // The final active set's KKT data in SI units (the cost does not depend on the scaling).
@@ -289,8 +316,7 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(name.c_str(), BenchSolve, &c, backend)
           ->Unit(benchmark::kMicrosecond);
     }
-    benchmark::RegisterBenchmark(("newton_warm_step/" + c.name).c_str(), BenchWarm, &c,
-                                 &c.previous_step)
+    benchmark::RegisterBenchmark(("newton_warm_step/" + c.name).c_str(), BenchWarmStep, &c)
         ->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark(("newton_warm_same/" + c.name).c_str(), BenchWarm, &c,
                                  &c.reference)

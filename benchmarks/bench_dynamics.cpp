@@ -44,14 +44,20 @@ void BM_DynamicEvaluation(benchmark::State& state) {
   const Eigen::VectorXd d = c.model.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
   const Eigen::VectorXd v = Eigen::VectorXd::Zero(c.model.size());
   auto solver = solvers::MakeContactSolver(solvers::Backend::kActiveSetNewton);
-  dynamics::Evaluation warm, e;
-  c.model.Evaluate(0.0, d, v, *solver, {}, nullptr, &warm);
-  // A neighbouring time (one step of ~3 µs) so that the warm start is a warm start.
-  const double t = 3e-6;
+  // Two neighbouring times (one step of ~3 µs apart), evaluated in turn, each warm-started from
+  // the other: every evaluation starts from a neighbour's forces and finds in the solver what the
+  // neighbour's solve left there (as in an integration), never its own answer.
+  dynamics::Evaluation pair[2];
+  const double times[2] = {0.0, 3e-6};
+  c.model.Evaluate(times[0], d, v, *solver, {}, nullptr, &pair[0]);
+  c.model.Evaluate(times[1], d, v, *solver, {}, &pair[0], &pair[1]);
+  int k = 0;
   for (auto _ : state) {  // as the integrator calls it: without the energies
-    c.model.Evaluate(t, d, v, *solver, {}, &warm, &e, /*energies=*/false);
-    benchmark::DoNotOptimize(e.acceleration.data());
+    c.model.Evaluate(times[k], d, v, *solver, {}, &pair[1 - k], &pair[k], /*energies=*/false);
+    benchmark::DoNotOptimize(pair[k].acceleration.data());
+    k = 1 - k;
   }
+  const dynamics::Evaluation& e = pair[1];
   const int ks = c.model.Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kRotation);
   double mesh = 0;
   for (double m : e.sun_mesh_torque) mesh += m;
@@ -65,7 +71,9 @@ BENCHMARK(BM_DynamicEvaluation)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 // The parts of one evaluation at the same state (fixed sun), for the time split:
 //   0 poses of the members;  1 contact search of the stage;  2 the contact terms (search, FE
 //   compliance matrix, local terms);  3 the contact problem's construction (its validation);
-//   4 the warm contact solve (from the neighbouring state's forces);  5 the cold solve;
+//   4 the warm contact solve: this state's and the neighbouring state's problems in turn, each
+//     from the other's forces and after the other's solve (the average of the two);
+//   5 the cold solve;
 //   6 one factorisation of the final active set, Cholesky of C_AA + diag(u'_A), as the Newton does.
 void BM_EvaluationPart(benchmark::State& state) {
   Case c(transmission::SunSupport::kFixed);
@@ -77,15 +85,26 @@ void BM_EvaluationPart(benchmark::State& state) {
   const double t = 3e-6;
   const geometry::StagePoses poses = c.model.Poses(t, d);
   const transmission::ContactTerms terms = c.stage_model.Terms(poses);
-  solvers::ContactProblemData data;
-  data.compliance = terms.compliance;
-  data.overlap = terms.overlap;
-  data.local = terms.local;
-  data.equality_matrix.resize(0, terms.size());
-  data.equality_rhs.resize(0);
+  const auto problem_of = [](const transmission::ContactTerms& tm) {
+    solvers::ContactProblemData pd;
+    pd.compliance = tm.compliance;
+    pd.overlap = tm.overlap;
+    pd.local = tm.local;
+    pd.equality_matrix.resize(0, tm.size());
+    pd.equality_rhs.resize(0);
+    return pd;
+  };
+  const solvers::ContactProblemData data = problem_of(terms);
   const solvers::ContactProblem problem(data);
   solvers::ContactSolution answer;
   solver->Solve(problem, {}, &answer);
+  // The neighbouring state's problem (t = 0, the forces `warm` came from), for part 4.
+  const solvers::ContactProblem neighbour(problem_of(warm.terms));
+  solvers::ContactSolution answers[2];
+  answers[0].force = warm.force;
+  answers[1] = answer;
+  const solvers::ContactProblem* problems[2] = {&neighbour, &problem};
+  int turn = 1;
   std::vector<int> active;
   for (int j = 0; j < terms.size(); ++j)
     if (answer.force(j) > 0) active.push_back(j);
@@ -114,10 +133,11 @@ void BM_EvaluationPart(benchmark::State& state) {
         benchmark::DoNotOptimize(solvers::ContactProblem(data));
         break;
       case 4: {
-        solvers::ContactSolution s;
-        s.force = warm.force;
-        last = solver->Solve(problem, warm_options, &s);
+        solvers::ContactSolution& s = answers[turn];
+        s.force = answers[1 - turn].force;
+        last = solver->Solve(*problems[turn], warm_options, &s);
         benchmark::DoNotOptimize(s.force.data());
+        turn = 1 - turn;
         break;
       }
       case 5: {

@@ -19,8 +19,9 @@
 // by the Cholesky factorisation of H_AA and of the m×m Schur complement G_A H_AA⁻¹ G_Aᵀ + S
 // (a pseudo-inverse if it is singular or nearly so), with one step of iterative refinement. u'(0⁺)
 // = +∞ (logarithmically): u' is evaluated at max(|x_j|, kDerivativeFloor), which only matters for
-// contacts entering the active set from zero force. Without local terms H_AA does not depend on x
-// and the factorisation is reused while the active set does not change.
+// contacts entering the active set from zero force (the direct path below uses a secant there).
+// Without local terms H_AA does not depend on x and the factorisation is reused while the active
+// set does not change.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -582,7 +583,7 @@ class ActiveSetNewton final : public BackendImpl {
 
 }  // namespace
 
-bool DirectNewton::Run(const ScaledProblem& p, double target, int max_iterations,
+bool DirectNewton::Run(const ScaledProblem& p, double target, int max_iterations, bool reuse,
                        Eigen::VectorXd* x_io, Eigen::VectorXd* g_out, int* iterations) {
   const int n = p.num_contacts();
   Eigen::VectorXd& x = *x_io;
@@ -592,6 +593,14 @@ bool DirectNewton::Run(const ScaledProblem& p, double target, int max_iterations
   du_.resize(n);
   double best = std::numeric_limits<double>::infinity();
   int since_best = 0;
+  // The first step may be a chord step on the previous call's factorisation. A chord step that
+  // contracted the residual by ρ may be followed by another if ρ ≤ 1e-3 or if one more step at
+  // that rate reaches the target; otherwise (a chord converges only linearly) the next step
+  // factorises, as every other step does.
+  constexpr double kChordContraction = 1e-3;
+  bool chord_allowed = reuse;
+  bool chord = false;
+  double res_before = std::numeric_limits<double>::infinity();
   for (int it = 0;; ++it) {
     *iterations = it;
     // A contact at zero force has u = 0; its derivative is needed only if it enters A (below).
@@ -610,6 +619,9 @@ bool DirectNewton::Run(const ScaledProblem& p, double target, int max_iterations
     }
     if (!std::isfinite(res)) return false;
     if (res <= target && !negative) return true;
+    if (it > 0)
+      chord_allowed =
+          chord && (res <= kChordContraction * res_before || res * (res / res_before) <= target);
     if (res < best) {
       best = res;
       since_best = 0;
@@ -618,33 +630,63 @@ bool DirectNewton::Run(const ScaledProblem& p, double target, int max_iterations
     }
     if (it >= max_iterations) return false;
     active_.clear();
+    released_.clear();  // inactive contacts whose force is not yet zero
     for (int j = 0; j < n; ++j)
-      if (x(j) > g(j)) active_.push_back(j);
+      if (x(j) > g(j))
+        active_.push_back(j);
+      else if (x(j) != 0.0)
+        released_.push_back(j);
     const int na = static_cast<int>(active_.size());
-    h_.resize(na, na);
+    chord = chord_allowed && factor_n_ == n && active_ == factor_active_;
+    if (!chord) h_.resize(na, na);
     r_.resize(na);
     for (int a = 0; a < na; ++a) {
       const int ja = active_[a];
-      for (int b = 0; b < na; ++b) h_(a, b) = p.C(ja, active_[b]);
-      if (x(ja) == 0.0) {  // entering from zero force: u' at the floor (u'(0⁺) = +∞)
-        double u0 = 0.0;
-        p.LocalAt(ja, 0.0, kDerivativeFloor, &u0, &du_(ja));
+      if (!chord) {
+        for (int b = 0; b < na; ++b) h_(a, b) = p.C(ja, active_[b]);
+        if (x(ja) == 0.0) {
+          // Entering from zero force, where u'(0⁺) = +∞: the secant u(x̂)/x̂ to the force x̂ =
+          // −g_j/C_jj that would close its gap through the linear part alone (the floor keeps
+          // it finite). The step then sees the local term's compliance at the scale of the
+          // force it is heading for; the tangent at the floor (u' ~ ln(1/x), large) made the
+          // first step of a cold start on the stage go only half way (4 iterations, now 3).
+          const double guess = std::max(-g(ja) / p.C(ja, ja), kDerivativeFloor);
+          double u_guess = 0.0, du_guess = 0.0;
+          p.LocalAt(ja, guess, kDerivativeFloor, &u_guess, &du_guess);
+          du_(ja) = u_guess / guess;
+        }
+        h_(a, a) += du_(ja);
       }
-      h_(a, a) += du_(ja);
       // −g_A + C_AI x_I: the inactive contacts' forces go to zero in this step.
       double s = -g(ja);
-      for (int j = 0; j < n; ++j)
-        if (!(x(j) > g(j))) s += p.C(ja, j) * x(j);
+      for (int j : released_) s += p.C(ja, j) * x(j);
       r_(a) = s;
     }
-    for (int j = 0; j < n; ++j)
-      if (!(x(j) > g(j))) x(j) = 0.0;
+    for (int j : released_) x(j) = 0.0;
     if (na > 0) {
-      llt_.compute(h_);
-      if (llt_.info() != Eigen::Success) return false;
-      llt_.solveInPlace(r_);
+      if (!chord) {
+        factor_n_ = -1;  // until the factorisation below has succeeded
+        llt_.compute(h_);
+        if (llt_.info() != Eigen::Success) return false;
+        factor_n_ = n;
+        factor_active_ = active_;
+      }
+      // L Lᵀ dx = r by forward and back substitution (for the few contacts of a stage, loops
+      // cost less than the general triangular solvers).
+      const Eigen::MatrixXd& l = llt_.matrixLLT();
+      for (int i = 0; i < na; ++i) {
+        double v = r_(i);
+        for (int k = 0; k < i; ++k) v -= l(i, k) * r_(k);
+        r_(i) = v / l(i, i);
+      }
+      for (int i = na - 1; i >= 0; --i) {
+        double v = r_(i);
+        for (int k = i + 1; k < na; ++k) v -= l(k, i) * r_(k);
+        r_(i) = v / l(i, i);
+      }
       for (int a = 0; a < na; ++a) x(active_[a]) += r_(a);
     }
+    res_before = res;
   }
 }
 

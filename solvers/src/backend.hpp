@@ -50,6 +50,11 @@ struct ScaledProblem {
     double c[2] = {0, 0};  ///< c_B
     double h[2] = {0, 0};  ///< h_B in scaled length
     double l2 = 0;         ///< L² = l2 · F (scaled)
+    // Derived once per problem for the evaluation (scaled_problem.cpp):
+    double inv_h[2] = {0, 0};  ///< 1/h_B
+    double ac[2] = {0, 0};     ///< a_B c_B
+    double a1c[2] = {0, 0};    ///< a_B (1 + c_B)/2
+    bool same_a = false;       ///< a_1 = a_2: Σ_B a_B asinh(s_B) with one logarithm
   };
   std::vector<Local> local;
 
@@ -128,18 +133,31 @@ class BackendImpl {
 /// one or two steps. It gives up (returns false) when the residual has not decreased for three
 /// iterations, after `max_iterations`, or when C_AA + diag u' is not positive definite: the
 /// caller then runs the globalised back end, which is slower but converges.
+///
+/// With `reuse`, the first step, if its active set is the one of the factorisation kept from the
+/// previous call (a warm start's neighbour), is a chord step on that factorisation instead of a
+/// new one; a chord step that cut the residual a thousandfold, or whose rate would reach the target
+/// in one more step, may be followed by another (from the previous time step the compliance and u'
+/// have changed by little, and it cuts by ~1e4). Every other step factorises, so the reuse costs
+/// at most one step against the plain Newton, and the answer is judged by the same residual
+/// either way.
 class DirectNewton {
  public:
+  /// @param reuse may start with the factorisation kept from the previous call (a warm start).
   /// @param x in: the start (empty: cold, x = 0); out: the answer (x ≥ 0 when true).
   /// @param g out: the gap ∇Φ(x) at the answer (exactly what ScaledProblem::Residuals computes).
-  bool Run(const ScaledProblem& p, double target, int max_iterations, Eigen::VectorXd* x,
-           Eigen::VectorXd* g, int* iterations);
+  bool Run(const ScaledProblem& p, double target, int max_iterations, bool reuse,
+           Eigen::VectorXd* x, Eigen::VectorXd* g, int* iterations);
 
  private:
   Eigen::VectorXd u_, du_, r_;
   Eigen::MatrixXd h_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
-  std::vector<int> active_;
+  std::vector<int> active_, released_;
+  // What llt_ factorises: C_AA + diag u'_A for the active set factor_active_ of a problem with
+  // factor_n_ contacts (−1: nothing usable).
+  std::vector<int> factor_active_;
+  int factor_n_ = -1;
 };
 
 // Factories, one per source file. The Ipopt / NLopt ones are compiled from either the real file

@@ -117,8 +117,9 @@ class DriverSolver final : public ContactSolver {
       const auto t1 = Clock::now();
       if (!options.warm_start) x0.resize(0);
       int iterations = 0;
-      const bool done = direct_.Run(sp, 0.1 * options.tolerance,
-                                    std::min(options.max_iterations, 50), &x0, &gap_, &iterations);
+      const bool done =
+          direct_.Run(sp, 0.1 * options.tolerance, std::min(options.max_iterations, 50),
+                      options.warm_start, &x0, &gap_, &iterations);
       if (done) {
         report.residual = internal::ScaledProblem::ResidualsFromGap(x0, gap_);
         if (report.residual.total <= options.tolerance) {

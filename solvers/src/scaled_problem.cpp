@@ -15,25 +15,44 @@ struct Eval {
 };
 
 // Value, derivative and integral of one scaled local term at x > 0 (closed forms of
-// local_term.hpp in scaled units).
+// local_term.hpp in scaled units). Per body, with r = L/h = 1/s and w = √(1 + r²):
+//   asinh(s) = ln(s + √(1+s²)) = ln((1 + w)/r),
+// one logarithm instead of asinh's; for r > 2 (s < 0.5, L > 2h, far beyond the term's validity)
+// asinh itself keeps full relative accuracy. All three forms need only Σ_B a_B asinh(s_B); when
+// the two bodies have the same a_B (same material, the usual case) it is a·ln(Π_B (1 + w_B)/r_B):
+// one logarithm per contact instead of two.
 Eval EvalLocal(const ScaledProblem::Local& l, double x, bool want_u, bool want_du, bool want_int) {
   Eval e;
   const double len = std::sqrt(l.l2 * x);
+  double r[2] = {0, 0}, w[2] = {1, 1};
+  bool far = false;  // some body with r > 2
   for (int b = 0; b < 2; ++b) {
     if (l.a[b] == 0.0) continue;
-    const double s = l.h[b] / len;
-    const double r = len / l.h[b];
-    const double w = std::sqrt(1.0 + r * r);  // L/h is moderate: no overflow, hypot not needed
-    // asinh(s) = ln(s + √(1+s²)) = ln(s(1+w)): one log instead of asinh's; for s < 0.5 (L > 2h,
-    // far beyond the term's validity) asinh itself keeps full relative accuracy.
-    const double as = s < 0.5 ? std::asinh(s) : std::log(s * (1.0 + w));
-    if (want_u) e.u += l.a[b] * x * (as - l.c[b] / (1.0 + w));
-    if (want_du) e.du += l.a[b] * (as - (1.0 + l.c[b]) / (2.0 * w));
-    if (want_int) {
-      const double w1 = (1.0 + w) * (1.0 + w);
-      e.big_u += 2.0 * l.a[b] * x * x *
-                 (as / 4.0 + (w + 2.0) / (12.0 * w1) - l.c[b] * (2.0 * w + 1.0) / (6.0 * w1));
+    r[b] = len * l.inv_h[b];
+    w[b] = std::sqrt(1.0 + r[b] * r[b]);  // L/h is moderate: no overflow, hypot not needed
+    far = far || r[b] > 2.0;
+  }
+  double a_asinh = 0.0;  // Σ_B a_B asinh(s_B)
+  if (l.same_a && !far) {
+    a_asinh = l.a[0] * std::log((1.0 + w[0]) * (1.0 + w[1]) / (r[0] * r[1]));
+  } else {
+    for (int b = 0; b < 2; ++b)
+      if (l.a[b] != 0.0)
+        a_asinh += l.a[b] * (r[b] > 2.0 ? std::asinh(1.0 / r[b]) : std::log((1.0 + w[b]) / r[b]));
+  }
+  // Σ_B a_B c_B/(1 + w_B) and Σ_B a_B (1 + c_B)/(2 w_B), each over one common denominator.
+  if (want_u)
+    e.u = x * (a_asinh -
+               (l.ac[0] * (1.0 + w[1]) + l.ac[1] * (1.0 + w[0])) / ((1.0 + w[0]) * (1.0 + w[1])));
+  if (want_du) e.du = a_asinh - (l.a1c[0] * w[1] + l.a1c[1] * w[0]) / (w[0] * w[1]);
+  if (want_int) {
+    double rest = 0.0;
+    for (int b = 0; b < 2; ++b) {
+      if (l.a[b] == 0.0) continue;
+      const double w1 = (1.0 + w[b]) * (1.0 + w[b]);
+      rest += l.a[b] * ((w[b] + 2.0) / (12.0 * w1) - l.c[b] * (2.0 * w[b] + 1.0) / (6.0 * w1));
     }
+    e.big_u = 2.0 * x * x * (a_asinh / 4.0 + rest);
   }
   return e;
 }
@@ -199,6 +218,12 @@ void MakeScaledProblem(const ContactProblem& problem, ScaledProblem* out) {
       }
       // L² = 4 R F/(π b E*) with F = F*·x and L in units of ℓ*.
       l.l2 = 4.0 * p.reduced_radius / (kPi * p.face_width * e_star) * f_scale / (l_scale * l_scale);
+      for (int b = 0; b < 2; ++b) {
+        l.inv_h[b] = 1.0 / l.h[b];
+        l.ac[b] = l.a[b] * l.c[b];
+        l.a1c[b] = 0.5 * l.a[b] * (1.0 + l.c[b]);
+      }
+      l.same_a = l.a[0] == l.a[1];
     }
   }
 }
