@@ -128,10 +128,14 @@ class DriverSolver final : public ContactSolver {
           report.status = ContactStatus::kConverged;
           report.active_contacts = static_cast<int>((x0.array() > gap_.array()).count());
           internal::Unscale(sp, x0, Eigen::VectorXd(), in_out);
-          report.message = "converged: newton: residual " + Sci(report.residual.total) +
-                           " (direct path: no equalities, " + std::to_string(iterations) +
-                           " iterations)";
-          AppendValidityWarning(problem, sp, *in_out, &report.message);
+          std::string& msg = report.message;  // one allocation
+          msg.reserve(160);
+          msg.append("converged: newton: residual ")
+              .append(Sci(report.residual.total))
+              .append(" (direct path: no equalities, ")
+              .append(std::to_string(iterations))
+              .append(" iterations)");
+          AppendValidityWarning(sp, x0, &report.message);
           report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
           return report;
         }
@@ -234,7 +238,7 @@ class DriverSolver final : public ContactSolver {
     // at the same (max(x, 0), λ).
     report.active_contacts = static_cast<int>((x.array().max(0.0) > gap_.array()).count());
     report.message = StatusName(report.status) + ": " + text;
-    AppendValidityWarning(problem, sp, *in_out, &report.message);
+    AppendValidityWarning(sp, x.cwiseMax(0.0), &report.message);
     report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return report;
   }
@@ -248,14 +252,17 @@ class DriverSolver final : public ContactSolver {
   }
 
   // Contacts loaded beyond the local term's validity (Hertz half-width L > depth h) are named in
-  // the message as a warning.
-  static void AppendValidityWarning(const ContactProblem& problem,
-                                    const internal::ScaledProblem& sp,
-                                    const ContactSolution& answer, std::string* message) {
+  // the message as a warning. In scaled units L² = l2·x, so the limit is x = min_B h_B²/l2, the
+  // force ValidityLimitForce() gives for the unscaled problem (to round-off).
+  static void AppendValidityWarning(const internal::ScaledProblem& sp, const Eigen::VectorXd& x,
+                                    std::string* message) {
     if (!sp.has_local) return;
     int beyond = 0;
-    for (int j = 0; j < problem.num_contacts(); ++j)  // the limit is > 0: zero never passes it
-      if (answer.force(j) > 0.0 && answer.force(j) > problem.ValidityLimitForce(j)) ++beyond;
+    for (int j = 0; j < sp.num_contacts(); ++j) {
+      const internal::ScaledProblem::Local& l = sp.local[j];
+      const double h = std::min(l.h[0], l.h[1]);
+      if (l.enabled && x(j) > 0.0 && x(j) * l.l2 > h * h) ++beyond;
+    }
     if (beyond > 0)
       *message += "; WARNING: " + std::to_string(beyond) +
                   " contact(s) beyond the local term's validity (Hertz half-width L > depth h)";

@@ -6,6 +6,7 @@
 
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/solvers/local_term.hpp"
 
 namespace epicycle::solvers {
 namespace {
@@ -133,6 +134,46 @@ TEST_CASE("the driver judges by its own residual and scales back", "[unit][solve
   bad.force = Eigen::VectorXd::Zero(3);
   CHECK_THROWS_WITH(solver->Solve(p, o, &bad), Catch::Contains("must have N = 2"));
   CHECK_THROWS_WITH(solver->Solve(p, o, nullptr), Catch::Contains("in_out = null"));
+}
+
+// The warning for contacts loaded beyond the local term's validity, L > h, i.e. F > F_lim =
+// π b E* h²/(4 R) (E* of plane strain), on the direct path (no equalities) and the general one.
+TEST_CASE("contacts loaded past the local term's validity are counted in a warning",
+          "[unit][solvers]") {
+  ContactProblemData d = Good();
+  const LocalTermParameters& p = d.local[0];
+  const double k = (1 - 0.3 * 0.3) / 207e9;
+  const double e_star = 1 / (2 * k);
+  const double f_lim = 3.14159265358979323846 * p.face_width * e_star * 2e-3 * 2e-3 /
+                       (4 * p.reduced_radius);  // ≈ 2.3e6 N for these numbers
+  // Positions given: contact 0 at 1.5 F_lim, contact 1 at 0.5 F_lim (uncoupled compliance, so
+  // δ0_j = C_jj F_j + u(F_j) puts each force where wanted).
+  d.compliance(0, 1) = d.compliance(1, 0) = 0.0;
+  const double f[2] = {1.5 * f_lim, 0.5 * f_lim};
+  for (int j = 0; j < 2; ++j)
+    d.overlap(j) = d.compliance(j, j) * f[j] + LocalApproach(d.local[j], f[j]);
+  d.equality_matrix.resize(0, 2);
+  d.equality_rhs.resize(0);
+  auto solver = MakeContactSolver(Backend::kActiveSetNewton);
+  ContactSolution s;
+  ContactReport r = solver->Solve(ContactProblem(d), {}, &s);
+  REQUIRE(r.status == ContactStatus::kConverged);
+  CHECK(std::abs(s.force(0) - f[0]) <= 1e-6 * f[0]);
+  CHECK_THAT(r.message, Catch::Contains("WARNING: 1 contact(s) beyond the local term's validity"));
+  // Both below: no warning.
+  d.overlap(0) = d.compliance(0, 0) * f[1] + LocalApproach(d.local[0], f[1]);
+  r = solver->Solve(ContactProblem(d), {}, &s);
+  REQUIRE(r.status == ContactStatus::kConverged);
+  CHECK_THAT(r.message, !Catch::Contains("WARNING"));
+  // The general path (one equality): a load of 3 F_lim shared by two equal contacts.
+  ContactProblemData g = Good();
+  g.compliance(0, 1) = g.compliance(1, 0) = 0.0;
+  g.compliance(1, 1) = g.compliance(0, 0);
+  g.overlap.setZero();
+  g.equality_rhs(0) = 3 * f_lim;
+  r = solver->Solve(ContactProblem(g), {}, &s);
+  REQUIRE(r.status == ContactStatus::kConverged);
+  CHECK_THAT(r.message, Catch::Contains("WARNING: 2 contact(s)"));
 }
 
 }  // namespace epicycle::solvers
