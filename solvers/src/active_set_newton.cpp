@@ -670,19 +670,22 @@ bool DirectNewton::Run(const ScaledProblem& p, double target, int max_iterations
         if (llt_.info() != Eigen::Success) return false;
         factor_n_ = n;
         factor_active_ = active_;
+        inv_diag_ = llt_.matrixLLT().diagonal().cwiseInverse();
       }
       // L Lᵀ dx = r by forward and back substitution (for the few contacts of a stage, loops
       // cost less than the general triangular solvers).
+      // The diagonal's reciprocals are kept with the factorisation: the substitutions are a
+      // chain of dependent operations, and a division's latency is several multiplications'.
       const Eigen::MatrixXd& l = llt_.matrixLLT();
       for (int i = 0; i < na; ++i) {
         double v = r_(i);
         for (int k = 0; k < i; ++k) v -= l(i, k) * r_(k);
-        r_(i) = v / l(i, i);
+        r_(i) = v * inv_diag_(i);
       }
       for (int i = na - 1; i >= 0; --i) {
         double v = r_(i);
         for (int k = i + 1; k < na; ++k) v -= l(k, i) * r_(k);
-        r_(i) = v / l(i, i);
+        r_(i) = v * inv_diag_(i);
       }
       for (int a = 0; a < na; ++a) x(active_[a]) += r_(a);
     }

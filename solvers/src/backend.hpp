@@ -151,6 +151,7 @@ class DirectNewton {
 
  private:
   Eigen::VectorXd u_, du_, r_;
+  Eigen::VectorXd inv_diag_;  ///< 1/L_ii of llt_
   Eigen::MatrixXd h_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
   std::vector<int> active_, released_;

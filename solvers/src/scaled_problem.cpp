@@ -196,10 +196,30 @@ void MakeScaledProblem(const ContactProblem& problem, ScaledProblem* out) {
   sp.has_local = problem.has_local();
   sp.local.assign(n, {});
   if (sp.has_local) {
+    // Everything but L²'s radius depends on the materials, depths and face width, which the
+    // contacts of a stage share: a contact with the same ones as the last computed copies its
+    // terms (bit for bit what computing them again gives) and divides only for l2.
+    const LocalTermParameters* same = nullptr;
+    const ScaledProblem::Local* same_l = nullptr;
+    double same_d = 0.0;  // π b E* of `same`
+    auto shares = [](const LocalTermParameters& p, const LocalTermParameters& q) {
+      auto body = [](const LocalBody& u, const LocalBody& v) {
+        return u.youngs_modulus == v.youngs_modulus && u.poisson_ratio == v.poisson_ratio &&
+               u.depth == v.depth;
+      };
+      return p.plane == q.plane && p.face_width == q.face_width && body(p.body[0], q.body[0]) &&
+             body(p.body[1], q.body[1]);
+    };
     for (int j = 0; j < n; ++j) {
       const LocalTermParameters& p = problem.data().local[j];
       if (!p.enabled) continue;
       ScaledProblem::Local& l = sp.local[j];
+      // L² = 4 R F/(π b E*) with F = F*·x and L in units of ℓ*.
+      if (same != nullptr && shares(p, *same)) {
+        l = *same_l;
+        l.l2 = 4.0 * p.reduced_radius / same_d * f_scale / (l_scale * l_scale);
+        continue;
+      }
       l.enabled = true;
       double k[2];
       for (int b = 0; b < 2; ++b) {
@@ -216,14 +236,16 @@ void MakeScaledProblem(const ContactProblem& problem, ScaledProblem* out) {
         l.c[b] = p.plane == PlaneAssumption::kPlaneStrain ? nu / (1.0 - nu) : nu;
         l.h[b] = p.body[b].depth / l_scale;
       }
-      // L² = 4 R F/(π b E*) with F = F*·x and L in units of ℓ*.
-      l.l2 = 4.0 * p.reduced_radius / (kPi * p.face_width * e_star) * f_scale / (l_scale * l_scale);
+      same_d = kPi * p.face_width * e_star;
+      l.l2 = 4.0 * p.reduced_radius / same_d * f_scale / (l_scale * l_scale);
       for (int b = 0; b < 2; ++b) {
         l.inv_h[b] = 1.0 / l.h[b];
         l.ac[b] = l.a[b] * l.c[b];
         l.a1c[b] = 0.5 * l.a[b] * (1.0 + l.c[b]);
       }
       l.same_a = l.a[0] == l.a[1];
+      same = &p;
+      same_l = &l;
     }
   }
 }

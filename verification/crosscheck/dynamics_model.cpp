@@ -345,8 +345,13 @@ TEST_CASE(
   // motion; output −W_carrier = W_in − W_ext, the work of the driven carrier through the pins.
   // The friction work W_f = ∫ Σ μ_s F v_s dt comes from the contacts. Over whole cycles in steady
   // state (after 6 settling cycles) the stored energy nearly returns to its value; exactly,
-  //   1 − η = W_f / W_in + ΔE / W_in   to the integrator's 10 rtol of the throughput,
-  // a balance between work measured at the ports and friction measured at the contacts.
+  //   1 − η = W_f / W_in + ΔE / W_in   to the integrator's global error, relative to W_in,
+  // a balance between work measured at the ports and friction measured at the contacts. The
+  // bound on that error is √N rtol for the N steps of the run: N local errors, each within rtol
+  // by CVODE's error test, of random sign (a random walk). A fixed 10 rtol, used before, sat
+  // inside the scatter of the error itself: changes of the contact solve at round-off level
+  // (its stopping point inside the tolerance) moved the residual between 1.2e-8 and 1.7e-7 at
+  // rtol 1e-8, with about 1e4 steps.
   RigOptions o;
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
@@ -371,7 +376,8 @@ TEST_CASE(
   const double d_e = (b.evaluation.kinetic_energy + b.evaluation.elastic_energy) -
                      (a.evaluation.kinetic_energy + a.evaluation.elastic_energy);
   const double loss = w_ext / w_in, friction = w_f / w_in;
-  const double residual = std::abs(loss - friction - d_e / w_in), tol = 10 * so.rtol;
+  const double steps = static_cast<double>(r.stats.steps);
+  const double residual = std::abs(loss - friction - d_e / w_in), tol = std::sqrt(steps) * so.rtol;
   Figure("efficiency over 3 mesh cycles (spring contacts, Xu & Kahraman): eta = " +
          Sci(1 - loss, 6) + ", friction work / input " + Sci(friction));
   const bool pass = residual <= tol && w_f > 0;
@@ -379,7 +385,8 @@ TEST_CASE(
             "1 - eta from the port works (sun torque, carrier pins)",
             "1 - eta = " + Sci(loss, 4) + ", friction work / input = " + Sci(friction, 4) +
                 ", dE / input = " + Sci(d_e / w_in, 2),
-            "residual " + Sci(residual), Sci(tol) + " (10 rtol)", pass);
+            "residual " + Sci(residual),
+            Sci(tol) + " (sqrt(N) rtol, N = " + std::to_string(r.stats.steps) + " steps)", pass);
   CHECK(w_f > 0);
   CHECK(residual <= tol);
 }

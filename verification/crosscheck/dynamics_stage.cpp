@@ -442,8 +442,10 @@ TEST_CASE(
   // Spring contacts (conservative), no damping or friction: every new term (the drive's reaction
   // torque and power, the free carrier's torque, the carrier's and the floating ring's
   // translations, elastic pins) enters E(t) − E(0) = W_ext. What remains is the integrator's
-  // error, which must shrink with its tolerances: ten times tighter tolerances must cut the
+  // error, which must shrink with its tolerances: a hundred times tighter tolerances must cut the
   // largest imbalance at least three times (a term missing from the balance would not shrink).
+  // Ten times tighter, used before, was within the scatter of the error: changes of the contact
+  // solve at round-off level gave ratios between 1.75 and 7.5 for rtol 1e-7 against 1e-8.
   // Over the last 3 of 5 mesh cycles the drive's mean torque (trapezoid over the outputs) must
   // carry the load's work and the change of energy: the load's counterpart −T_c/(1 + z_r/z_s)
   // corrected by the carrier's swing and ΔE.
@@ -478,9 +480,9 @@ TEST_CASE(
   dynamics::SimulationResult r;
   for (int k = 0; k < 2; ++k) {
     dynamics::SimulationOptions so;
-    so.rtol = k == 0 ? 1e-7 : 1e-8;
-    so.atol_length = k == 0 ? 1e-10 : 1e-11;
-    so.atol_angle = k == 0 ? 1e-9 : 1e-10;
+    so.rtol = k == 0 ? 1e-6 : 1e-8;
+    so.atol_length = k == 0 ? 1e-9 : 1e-11;
+    so.atol_angle = k == 0 ? 1e-8 : 1e-10;
     r = dynamics::Simulate(m, so, d0, Eigen::VectorXd::Zero(m.size()), times);
     REQUIRE(r.completed);
     imbalance[k] = 0;
@@ -511,14 +513,14 @@ TEST_CASE(
   const double torque_tol =
       imbalance[1] / std::abs(m.sun_speed() * window) + 1e-3 * std::abs(expected);
   Figure("speed-driven sun: mean drive torque " + Sci(mean) + " N m, expected " + Sci(expected) +
-         "; energy imbalance " + Sci(imbalance[0]) + " J (rtol 1e-7), " + Sci(imbalance[1]) +
+         "; energy imbalance " + Sci(imbalance[0]) + " J (rtol 1e-6), " + Sci(imbalance[1]) +
          " J (1e-8) of " + Sci(throughput) + " J");
   const bool converges = imbalance[1] <= imbalance[0] / 3;
   VerifyRow(
       "energy, speed-driven sun, free carrier with load, elastic pins, carrier and ring "
       "bearings (5 mesh cycles)",
       "E(t) - E(0) = W_ext, error shrinking with the tolerances",
-      Sci(imbalance[0]) + " J at rtol 1e-7, " + Sci(imbalance[1]) + " J at 1e-8",
+      Sci(imbalance[0]) + " J at rtol 1e-6, " + Sci(imbalance[1]) + " J at 1e-8",
       Sci(imbalance[1] / throughput) + " of the throughput", "ratio >= 3", converges);
   VerifyRow("speed-driven sun: mean drive torque over 3 mesh cycles",
             "the load's work and dE over the window: " + Sci(expected, 4) + " N m",
