@@ -147,6 +147,94 @@ void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const P
   }
 }
 
+// What the search knows of the mate's flanks of one side before it tries tip rounds against them,
+// so that a round that cannot touch any of them is dropped without an arccosine or arctangent.
+//
+// ArcAgainstFlanks looks for flank points on the tangent from the round's centre c to the mate's
+// base circle with tangent point T = O + r_b Dir(β) (the one with s = H): c − T = −H L e⊥(β),
+// L = √(|c − O|² − r_b²), and tooth k's involute crosses that tangent at roll u with
+//   u ≡ H (β − S_0) (mod the pitch p, up to the tooth's offset),  d = h (r_b u − L),
+// d the distance from c to that flank point along its normal and h = σH the involute's hand
+// (−1 external, +1 internal). A hit needs u in [u_min, u_max) and 0 < d ≤ ρ + window. The
+// angle β − S_0 is known at one tangent point, the line of action's (its roll, already found
+// there); for another tangent, β differs by the angle Δ between the two tangent points' unit
+// vectors, Δ = atan(t) with t = (e_ref × e)/(e_ref · e). For |t| ≤ 1 the alternating series
+// brackets it, t − t³/3 + t⁵/5 − t⁷/7 ≤ atan t ≤ t − t³/3 + t⁵/5 (t ≥ 0, odd in t): the rolls
+// u ≡ u_ref + HΔ then lie in an interval at most |t|⁷/7 wide, and the round is dropped when no
+// roll of the lattice u + j p falls in the window of rolls a hit needs. That window is widened by
+// the largest tooth offset, by 1e-9 rad (the two ways of computing u agree to round-off, ~1e-15
+// rad), and for a relieved mate by its relief (below). Anything outside the test's reach (c within
+// 2(ρ + window) of the base circle along the tangent, where the second tangent is tried too, or Δ
+// beyond 45°) goes to the full search: the filter drops only rounds that the full search would
+// have dropped, so the contacts found are the same.
+struct FlankReach {
+  Vec2 centre = Vec2::Zero();     // O, the mate's geometric centre
+  Vec2 reference = Vec2::Zero();  // Dir(β_ref), the line of action's tangent point on the mate
+  double roll = 0;                // H (β_ref − S_0) [rad]
+  double base_radius = 0, pitch = 0;
+  double u_min = 0, u_max = 0;
+  double widen = 0;           // the largest tooth offset and 1e-9 rad
+  double near_base = 0;       // (2(ρ + window))²: L² below it goes to the full search
+  double d_lo = 0, d_hi = 0;  // the distances d that can still give a hit
+  int hand = 1;               // H
+  int flank_hand = -1;        // h
+};
+
+FlankReach ReachOf(const PosedGear& g, int side, const Vec2& reference, double reference_angle,
+                   double rho, double window) {
+  const WorldInvolute f0 = NominalFlank(g, 0, side);
+  constexpr double kRollSlack = 1e-9;  // [rad]
+  FlankReach r;
+  r.centre = f0.centre;
+  r.reference = reference;
+  r.roll = f0.hand * WrapAngle(reference_angle - f0.start);
+  r.base_radius = f0.base_radius;
+  r.pitch = g.gear->pitch_angle();
+  r.u_min = f0.u_min;
+  r.u_max = f0.u_max;
+  r.widen = g.gear->max_tooth_offset() + kRollSlack;
+  r.near_base = 4.0 * (rho + window) * (rho + window);
+  r.hand = f0.hand;
+  r.flank_hand = side * f0.hand;
+  r.d_lo = 0;
+  r.d_hi = rho + window;
+  if (g.gear->has_relief()) {
+    // The full search takes the foot y(u*) of the normal from c on the relieved flank
+    // y = x − C n and keeps it for 0 < d ≤ ρ + window, d = |c − y(u*)|. In the involute's frame at
+    // u*, c − x(u*) = (d cos γ − C) n + d sin γ t (γ the relieved normal's tilt), and the involute
+    // distance above is 1-Lipschitz in c (the involutes of one base circle are parallel curves), so
+    // it lies within d of d cos γ − C: in [−C_max − (ρ + window), 2(ρ + window)], whatever γ.
+    const ProfileModification& m = g.gear->spec().modification;
+    r.d_lo -= m.tip.amount + m.root.amount + rho + window;
+    r.d_hi += rho + window;
+  }
+  return r;
+}
+
+// False only if no flank of the mate can come within ρ + window of a round centred at c (above).
+bool MayReach(const FlankReach& f, const Vec2& c) {
+  const Vec2 rel = c - f.centre;
+  const double rb = f.base_radius, l2 = rel.squaredNorm() - rb * rb;
+  if (!(l2 > f.near_base)) return true;
+  const double l = std::sqrt(l2);
+  // Dir(β) ∝ r_b (c − O) + H L (c − O)⊥: c − O turned by ±acos(r_b/|c − O|).
+  const Vec2 e = rb * rel + (f.hand * l) * Vec2(-rel.y(), rel.x());
+  const double sn = Cross(f.reference, e), cs = f.reference.dot(e);
+  if (!(cs > 0) || std::abs(sn) > cs) return true;
+  const double t = sn / cs, a = std::abs(t), a2 = a * a;
+  const double atan_hi = a * (1.0 - a2 * (1.0 / 3.0 - a2 / 5.0)),
+               atan_lo = atan_hi - a * a2 * a2 * a2 / 7.0;
+  const double turn_lo = t < 0 ? -atan_hi : atan_lo, turn_hi = t < 0 ? -atan_lo : atan_hi;
+  const double u0_lo = f.roll + (f.hand > 0 ? turn_lo : -turn_hi);
+  const double u0_hi = f.roll + (f.hand > 0 ? turn_hi : -turn_lo);
+  // Rolls of a hit, r_b u = L + h d with d in [d_lo, d_hi] and u in [u_min, u_max], and where the
+  // lattice point u + H·offset of a tooth turned by its offset sits.
+  const double w_lo = std::max((l + (f.flank_hand > 0 ? f.d_lo : -f.d_hi)) / rb, f.u_min) - f.widen;
+  const double w_hi = std::min((l + (f.flank_hand > 0 ? f.d_hi : -f.d_lo)) / rb, f.u_max) + f.widen;
+  // Some j with u0 + j p in [w_lo, w_hi] for some u0 in [u0_lo, u0_hi].
+  return std::floor((w_hi - u0_lo) / f.pitch) >= std::ceil((w_lo - u0_hi) / f.pitch);
+}
+
 // The tip round of tooth k, side σ, in the inertial frame: centre and normal span.
 struct WorldArc {
   Vec2 centre;
@@ -346,8 +434,12 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
     // tip-end roll: the teeth whose roll there is within one pitch of it (all teeth with
     // options.exhaustive_tips). One pitch, not less: internal meshes are nearly conformal, and a
     // ring's round stays within a 150 µm window more than half a base pitch past the path's end.
+    // The mates' reference tangent points (FlankReach): the line of action's, N_A and N_B.
+    const Vec2 ref_a = (l.tangent_a - a.pose.geometric_centre) / a.gear->base_radius();
+    const Vec2 ref_b = internal ? ref_a : Vec2(-ref_a);
     auto tips = [&](const PosedGear& owner, const PosedGear& other, int owner_side, int other_side,
-                    double base_angle, bool owner_is_a) {
+                    double base_angle, double other_base_angle, const Vec2& other_reference,
+                    bool owner_is_a) {
       if (!owner.gear->has_tip_round()) return;
       const double p = owner.gear->pitch_angle();
       const double rho = owner.gear->tip_round().radius;
@@ -371,16 +463,12 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
         const int* begin() const { return b; }
         const int* end() const { return e; }
       } teeth{teeth_begin, teeth_end};
-      // The mate's active involute lies between its form and tip-form circles: a round whose
-      // centre is farther than ρ + window outside that annulus touches none of its flanks.
-      const double r_lo = std::min(other.gear->form_radius(), other.gear->tip_form_radius());
-      const double r_hi = std::max(other.gear->form_radius(), other.gear->tip_form_radius());
-      const double reach_lo = std::max(0.0, r_lo - rho - window), reach_hi = r_hi + rho + window;
+      const FlankReach reach =
+          ReachOf(other, other_side, other_reference, other_base_angle, rho, window);
       const Vec2 rotation = Dir(owner.pose.rotation);
       for (const int tooth : teeth) {
         const WorldArc arc = TipRoundInWorld(owner, rotation, tooth, owner_side);
-        const double dist2 = (arc.centre - other.pose.geometric_centre).squaredNorm();
-        if (dist2 < reach_lo * reach_lo || dist2 > reach_hi * reach_hi) continue;
+        if (!options.exhaustive_tips && !MayReach(reach, arc.centre)) continue;
         ArcAgainstFlanks(
             arc.centre, rho, arc.from, arc.to, other, other_side, window, [&](const ArcHit& h) {
               PotentialContact c;
@@ -422,8 +510,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
             });
       }
     };
-    tips(a, b, l.side_a, l.side_b, l.base_angle_a, true);
-    tips(b, a, l.side_b, l.side_a, l.base_angle_b, false);
+    tips(a, b, l.side_a, l.side_b, l.base_angle_a, l.base_angle_b, ref_b, true);
+    tips(b, a, l.side_b, l.side_a, l.base_angle_b, l.base_angle_a, ref_a, false);
   }
   return out;
 }
