@@ -240,7 +240,7 @@ struct WorldArc {
   Vec2 centre;
   double from, to;
 };
-// `rotation` is Dir(g.pose.rotation), computed once per search.
+// `rotation` is Dir(g.pose.rotation), computed once per search of a mesh.
 WorldArc TipRoundInWorld(const PosedGear& g, const Vec2& rotation, int tooth, int side) {
   const TipRound& t = g.gear->tip_round();
   const double turn = g.pose.rotation + tooth * g.gear->pitch_angle() + g.gear->tooth_offset(tooth);
@@ -275,35 +275,58 @@ WorldInvolute FlankInWorld(const PosedGear& g, int tooth, int side) {
   return w;
 }
 
-LineOfAction MakeLineOfAction(const PosedGear& a, const PosedGear& b, bool internal, int side_a) {
-  const Vec2 dv = b.pose.geometric_centre - a.pose.geometric_centre;
-  const double dist = dv.norm();
+namespace {
+
+// What the lines of action on the two flank sides share: the centre line and the pressure angle,
+// with its arccosine and the centre line's arctangent (a search makes both lines from one).
+struct CentreLine {
+  Vec2 dv = Vec2::Zero();  // from A's geometric centre to B's
+  double dist = 0, cos_alpha = 0, sin_alpha = 0, alpha = 0, pitch_dir = 0;
+};
+
+CentreLine MakeCentreLine(const PosedGear& a, const PosedGear& b, bool internal) {
+  CentreLine c;
+  c.dv = b.pose.geometric_centre - a.pose.geometric_centre;
+  c.dist = c.dv.norm();
   const double rba = a.gear->base_radius(), rbb = b.gear->base_radius();
   const double k = internal ? rbb - rba : rba + rbb;
-  if (!(dist > 0) || k / dist >= 1.0) {
+  if (!(c.dist > 0) || k / c.dist >= 1.0) {
     throw std::invalid_argument("mesh " + a.gear->name() + "-" + b.gear->name() +
-                                ": centre distance " + Mm(dist) +
+                                ": centre distance " + Mm(c.dist) +
                                 " mm admits no line of action (base circles " +
                                 (internal ? "too far apart" : "overlap") + ")");
   }
+  c.cos_alpha = k / c.dist;
+  c.alpha = std::acos(c.cos_alpha);
+  c.sin_alpha = std::sqrt(1.0 - c.cos_alpha * c.cos_alpha);
+  c.pitch_dir = Angle(c.dv) + (internal ? kPi : 0.0);
+  return c;
+}
+
+LineOfAction LineOnSide(const PosedGear& a, const PosedGear& b, bool internal, const CentreLine& c,
+                        int side_a) {
+  const double rba = a.gear->base_radius(), rbb = b.gear->base_radius();
   LineOfAction l;
   l.side_a = side_a;
   l.side_b = internal ? -side_a : side_a;
-  l.centre_distance = dist;
-  const double cos_alpha = k / dist;
-  l.pressure_angle = std::acos(cos_alpha);
-  const double pitch_dir = Angle(dv) + (internal ? kPi : 0.0);
-  l.base_angle_a = pitch_dir - side_a * l.pressure_angle;
+  l.centre_distance = c.dist;
+  l.pressure_angle = c.alpha;
+  l.base_angle_a = c.pitch_dir - side_a * c.alpha;
   l.base_angle_b = l.base_angle_a + (internal ? 0.0 : kPi);
   // Dir(base_a) = Dir(pitch_dir) turned by −σα, from the unit vectors themselves.
-  const Vec2 pitch_unit = (internal ? -1.0 : 1.0) * dv / dist;
-  const Vec2 e =
-      RotateBy(pitch_unit, Vec2(cos_alpha, -side_a * std::sqrt(1.0 - cos_alpha * cos_alpha)));
+  const Vec2 pitch_unit = (internal ? -1.0 : 1.0) * c.dv / c.dist;
+  const Vec2 e = RotateBy(pitch_unit, Vec2(c.cos_alpha, -side_a * c.sin_alpha));
   l.direction = side_a * Vec2(-e.y(), e.x());
   l.tangent_a = a.pose.geometric_centre + rba * e;
   l.tangent_b = b.pose.geometric_centre + (internal ? rbb : -rbb) * e;
   l.length = (l.tangent_b - l.tangent_a).dot(l.direction);
   return l;
+}
+
+}  // namespace
+
+LineOfAction MakeLineOfAction(const PosedGear& a, const PosedGear& b, bool internal, int side_a) {
+  return LineOnSide(a, b, internal, MakeCentreLine(a, b, internal), side_a);
 }
 
 namespace {
@@ -393,9 +416,11 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
   const Vec2 oa = a.pose.rotation_centre, ob = b.pose.rotation_centre;
   const double ring_sign = internal ? -1.0 : 1.0;  // B's curvature: a ring's flank is concave
   const int sides[2] = {options.both_sides ? 1 : options.side_a, -1};
+  const CentreLine centre_line = MakeCentreLine(a, b, internal);
+  const Vec2 rotation_a = Dir(a.pose.rotation), rotation_b = Dir(b.pose.rotation);
   for (int si = 0; si < (options.both_sides ? 2 : 1); ++si) {
     const int side_a = sides[si];
-    const LineOfAction l = MakeLineOfAction(a, b, internal, side_a);
+    const LineOfAction l = LineOnSide(a, b, internal, centre_line, side_a);
     // Involute against involute, on the line of action.
     const WorldInvolute a0 = NominalFlank(a, 0, side_a);
     const double ua0 = a0.hand * WrapAngle(l.base_angle_a - a0.start);
@@ -437,9 +462,9 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
     // The mates' reference tangent points (FlankReach): the line of action's, N_A and N_B.
     const Vec2 ref_a = (l.tangent_a - a.pose.geometric_centre) / a.gear->base_radius();
     const Vec2 ref_b = internal ? ref_a : Vec2(-ref_a);
-    auto tips = [&](const PosedGear& owner, const PosedGear& other, int owner_side, int other_side,
-                    double base_angle, double other_base_angle, const Vec2& other_reference,
-                    bool owner_is_a) {
+    auto tips = [&](const PosedGear& owner, const Vec2& rotation, const PosedGear& other,
+                    int owner_side, int other_side, double base_angle, double other_base_angle,
+                    const Vec2& other_reference, bool owner_is_a) {
       if (!owner.gear->has_tip_round()) return;
       const double p = owner.gear->pitch_angle();
       const double rho = owner.gear->tip_round().radius;
@@ -465,7 +490,6 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
       } teeth{teeth_begin, teeth_end};
       const FlankReach reach =
           ReachOf(other, other_side, other_reference, other_base_angle, rho, window);
-      const Vec2 rotation = Dir(owner.pose.rotation);
       for (const int tooth : teeth) {
         const WorldArc arc = TipRoundInWorld(owner, rotation, tooth, owner_side);
         if (!options.exhaustive_tips && !MayReach(reach, arc.centre)) continue;
@@ -510,8 +534,8 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
             });
       }
     };
-    tips(a, b, l.side_a, l.side_b, l.base_angle_a, l.base_angle_b, ref_b, true);
-    tips(b, a, l.side_b, l.side_a, l.base_angle_b, l.base_angle_a, ref_a, false);
+    tips(a, rotation_a, b, l.side_a, l.side_b, l.base_angle_a, l.base_angle_b, ref_b, true);
+    tips(b, rotation_b, a, l.side_b, l.side_a, l.base_angle_b, l.base_angle_a, ref_a, false);
   }
   return out;
 }
