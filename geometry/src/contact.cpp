@@ -412,6 +412,12 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                                            const ContactSearchOptions& options) {
   std::vector<PotentialContact> out;
   out.reserve(16);
+  AppendContacts(a, b, internal, options, &out);
+  return out;
+}
+
+void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
+                    const ContactSearchOptions& options, std::vector<PotentialContact>* out) {
   const double window = options.gap_window;
   const Vec2 oa = a.pose.rotation_centre, ob = b.pose.rotation_centre;
   const double ring_sign = internal ? -1.0 : 1.0;  // B's curvature: a ring's flank is concave
@@ -452,7 +458,7 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                   c.curvature_radius_b = ring_sign * b.gear->base_radius() * pr.ub;
                   c.roll_a = pr.ua;
                   c.roll_b = pr.ub;
-                  out.push_back(c);
+                  out->push_back(c);
                 });
     // Tip rounds against flanks, off the line of action. A tip round reaches the mate only around
     // the ends of the path of contact, where the owner's flank crosses the line of action near its
@@ -530,14 +536,13 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
               c.point = 0.5 * (c.point_a + c.point_b);
               c.lever_a = Lever(c.point, oa, -c.normal);
               c.lever_b = Lever(c.point, ob, c.normal);
-              out.push_back(c);
+              out->push_back(c);
             });
       }
     };
     tips(a, rotation_a, b, l.side_a, l.side_b, l.base_angle_a, l.base_angle_b, ref_b, true);
     tips(b, rotation_b, a, l.side_b, l.side_a, l.base_angle_b, l.base_angle_a, ref_a, false);
   }
-  return out;
 }
 
 }  // namespace epicycle::geometry

@@ -106,5 +106,8 @@ struct ContactSearchOptions {
 /// curve); tooth k of either gear is turned by F_p,k/r.
 std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& b, bool internal,
                                            const ContactSearchOptions& options);
+/// FindContacts appending to `out`: a caller that searches many meshes reuses one vector.
+void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
+                    const ContactSearchOptions& options, std::vector<PotentialContact>* out);
 
 }  // namespace epicycle::geometry
