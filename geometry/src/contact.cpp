@@ -349,30 +349,57 @@ struct LoaPair {
 // generating angle is the line's base angle (mod 2π) for every tooth, offset or not: the point is
 // x = O + r_b (e − H u e⊥) with e the unit vector from the centre to the line's tangent point, so
 // no sine or cosine is needed per tooth.
-Vec2 OnLineOfAction(const PosedGear& g, const Vec2& tangent_point, int hand, double u) {
+Vec2 OnLineOfAction(const PosedGear& g, const Vec2& e, int hand, double u) {
   const double rb = g.gear->base_radius();
-  const Vec2 e = (tangent_point - g.pose.geometric_centre) / rb;
   return g.pose.geometric_centre + rb * (e - static_cast<double>(hand) * u * Vec2(-e.y(), e.x()));
 }
 
-LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l, double ua, int ka,
-                  bool modified) {
+// What PairOnLoa needs of a line of action for every tooth pair on it, worked out once per line:
+// the unit vectors e from the centres to the tangent points, the flank hands, B's tooth-0 roll.
+struct LoaFrame {
+  Vec2 e_a = Vec2::Zero(), e_b = Vec2::Zero();
+  int hand_a = 1, hand_b = 1;
+  double base_radius_b = 0;
+  double roll_b = 0;  // u of B's nominal tooth-0 flank where it crosses the line (mod 2π)
+};
+
+LoaFrame MakeLoaFrame(const PosedGear& a, const PosedGear& b, const LineOfAction& l) {
+  const WorldInvolute a0 = NominalFlank(a, 0, l.side_a), b0 = NominalFlank(b, 0, l.side_b);
+  LoaFrame f;
+  f.e_a = (l.tangent_a - a.pose.geometric_centre) / a.gear->base_radius();
+  f.e_b = (l.tangent_b - b.pose.geometric_centre) / b.gear->base_radius();
+  f.hand_a = a0.hand;
+  f.hand_b = b0.hand;
+  f.base_radius_b = b0.base_radius;
+  f.roll_b = b0.hand * WrapAngle(l.base_angle_b - b0.start);
+  return f;
+}
+
+// std::lround without the library call: x − trunc(x) is exact (|x| < 2⁵²), so the comparison
+// with ½ is too, and halves go away from zero as there.
+long NearestInteger(double x) {
+  long j = static_cast<long>(x);
+  const double frac = x - static_cast<double>(j);
+  if (frac >= 0.5) ++j;
+  if (frac <= -0.5) --j;
+  return j;
+}
+
+LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l, const LoaFrame& f,
+                  double ua, int ka, bool modified) {
   LoaPair r;
   r.ua = ua;
   r.ka = ka;
-  const WorldInvolute a0 = NominalFlank(a, 0, l.side_a);
-  r.xa = OnLineOfAction(a, l.tangent_a, a0.hand, ua);
+  r.xa = OnLineOfAction(a, f.e_a, f.hand_a, ua);
   const double sa = (r.xa - l.tangent_a).dot(l.direction);
-  const WorldInvolute b0 = NominalFlank(b, 0, l.side_b);
   // Along d, B's flank point sits at s_B = L + H_B σ_B r_bB u_B from N_A.
-  const double target = (sa - l.length) / (b0.hand * l.side_b * b0.base_radius);
-  const double u0 = b0.hand * WrapAngle(l.base_angle_b - b0.start);
+  const double target = (sa - l.length) / (f.hand_b * l.side_b * f.base_radius_b);
   const double p = b.gear->pitch_angle();
-  const long j = std::lround((target - u0) / p);
-  r.kb = Mod(-b0.hand * j, b.gear->teeth());
-  r.ub = u0 + static_cast<double>(j) * p;
-  if (modified) r.ub -= b0.hand * b.gear->tooth_offset(r.kb);
-  r.xb = OnLineOfAction(b, l.tangent_b, b0.hand, r.ub);
+  const long j = NearestInteger((target - f.roll_b) / p);
+  r.kb = Mod(-f.hand_b * j, b.gear->teeth());
+  r.ub = f.roll_b + static_cast<double>(j) * p;
+  if (modified) r.ub -= f.hand_b * b.gear->tooth_offset(r.kb);
+  r.xb = OnLineOfAction(b, f.e_b, f.hand_b, r.ub);
   r.overlap = (r.xa - r.xb).dot(l.direction);
   r.sa = NominalTooth(a, ka, r.xa);
   r.sb = NominalTooth(b, r.kb, r.xb);
@@ -393,7 +420,7 @@ double NearestLoaOverlap(const PosedGear& a, const PosedGear& b, bool internal, 
   const double ua = a0.hand * WrapAngle(l.base_angle_a - a0.start);
   // Nominal teeth (no relief, no pitch deviations): the reference of the layout (alignment,
   // error projections).
-  return PairOnLoa(a, b, l, ua, 0, false).overlap;
+  return PairOnLoa(a, b, l, MakeLoaFrame(a, b, l), ua, 0, false).overlap;
 }
 
 std::string KindName(ContactKind kind) {
@@ -431,12 +458,13 @@ void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
     const WorldInvolute a0 = NominalFlank(a, 0, side_a);
     const double ua0 = a0.hand * WrapAngle(l.base_angle_a - a0.start);
     const double margin = a.gear->max_tooth_offset();
+    const LoaFrame frame = MakeLoaFrame(a, b, l);
     ForEachRoll(ua0, a.gear->pitch_angle(), a0.u_min - margin, a0.u_max + margin,
                 [&](double un, long j) {
                   const int ka = Mod(-a0.hand * j, a.gear->teeth());
                   const double ua = un - a0.hand * a.gear->tooth_offset(ka);
                   if (ua < a0.u_min || ua >= a0.u_max) return;
-                  const LoaPair pr = PairOnLoa(a, b, l, ua, ka, true);
+                  const LoaPair pr = PairOnLoa(a, b, l, frame, ua, ka, true);
                   const InvoluteFlank& fb = b.gear->involute();
                   if (pr.ub < fb.u_min || pr.ub >= fb.u_max || pr.overlap < -window) return;
                   PotentialContact c;
@@ -466,7 +494,7 @@ void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
     // options.exhaustive_tips). One pitch, not less: internal meshes are nearly conformal, and a
     // ring's round stays within a 150 µm window more than half a base pitch past the path's end.
     // The mates' reference tangent points (FlankReach): the line of action's, N_A and N_B.
-    const Vec2 ref_a = (l.tangent_a - a.pose.geometric_centre) / a.gear->base_radius();
+    const Vec2& ref_a = frame.e_a;
     const Vec2 ref_b = internal ? ref_a : Vec2(-ref_a);
     auto tips = [&](const PosedGear& owner, const Vec2& rotation, const PosedGear& other,
                     int owner_side, int other_side, double base_angle, double other_base_angle,
