@@ -147,12 +147,100 @@ void ArcAgainstFlanks(const Vec2& c, double rho, double from, double to, const P
   }
 }
 
+// What the search knows of the mate's flanks of one side before it tries tip rounds against them,
+// so that a round that cannot touch any of them is dropped without an arccosine or arctangent.
+//
+// ArcAgainstFlanks looks for flank points on the tangent from the round's centre c to the mate's
+// base circle with tangent point T = O + r_b Dir(β) (the one with s = H): c − T = −H L e⊥(β),
+// L = √(|c − O|² − r_b²), and tooth k's involute crosses that tangent at roll u with
+//   u ≡ H (β − S_0) (mod the pitch p, up to the tooth's offset),  d = h (r_b u − L),
+// d the distance from c to that flank point along its normal and h = σH the involute's hand
+// (−1 external, +1 internal). A hit needs u in [u_min, u_max) and 0 < d ≤ ρ + window. The
+// angle β − S_0 is known at one tangent point, the line of action's (its roll, already found
+// there); for another tangent, β differs by the angle Δ between the two tangent points' unit
+// vectors, Δ = atan(t) with t = (e_ref × e)/(e_ref · e). For |t| ≤ 1 the alternating series
+// brackets it, t − t³/3 + t⁵/5 − t⁷/7 ≤ atan t ≤ t − t³/3 + t⁵/5 (t ≥ 0, odd in t): the rolls
+// u ≡ u_ref + HΔ then lie in an interval at most |t|⁷/7 wide, and the round is dropped when no
+// roll of the lattice u + j p falls in the window of rolls a hit needs. That window is widened by
+// the largest tooth offset, by 1e-9 rad (the two ways of computing u agree to round-off, ~1e-15
+// rad), and for a relieved mate by its relief (below). Anything outside the test's reach (c within
+// 2(ρ + window) of the base circle along the tangent, where the second tangent is tried too, or Δ
+// beyond 45°) goes to the full search: the filter drops only rounds that the full search would
+// have dropped, so the contacts found are the same.
+struct FlankReach {
+  Vec2 centre = Vec2::Zero();     // O, the mate's geometric centre
+  Vec2 reference = Vec2::Zero();  // Dir(β_ref), the line of action's tangent point on the mate
+  double roll = 0;                // H (β_ref − S_0) [rad]
+  double base_radius = 0, pitch = 0;
+  double u_min = 0, u_max = 0;
+  double widen = 0;           // the largest tooth offset and 1e-9 rad
+  double near_base = 0;       // (2(ρ + window))²: L² below it goes to the full search
+  double d_lo = 0, d_hi = 0;  // the distances d that can still give a hit
+  int hand = 1;               // H
+  int flank_hand = -1;        // h
+};
+
+FlankReach ReachOf(const PosedGear& g, int side, const Vec2& reference, double reference_angle,
+                   double rho, double window) {
+  const WorldInvolute f0 = NominalFlank(g, 0, side);
+  constexpr double kRollSlack = 1e-9;  // [rad]
+  FlankReach r;
+  r.centre = f0.centre;
+  r.reference = reference;
+  r.roll = f0.hand * WrapAngle(reference_angle - f0.start);
+  r.base_radius = f0.base_radius;
+  r.pitch = g.gear->pitch_angle();
+  r.u_min = f0.u_min;
+  r.u_max = f0.u_max;
+  r.widen = g.gear->max_tooth_offset() + kRollSlack;
+  r.near_base = 4.0 * (rho + window) * (rho + window);
+  r.hand = f0.hand;
+  r.flank_hand = side * f0.hand;
+  r.d_lo = 0;
+  r.d_hi = rho + window;
+  if (g.gear->has_relief()) {
+    // The full search takes the foot y(u*) of the normal from c on the relieved flank
+    // y = x − C n and keeps it for 0 < d ≤ ρ + window, d = |c − y(u*)|. In the involute's frame at
+    // u*, c − x(u*) = (d cos γ − C) n + d sin γ t (γ the relieved normal's tilt), and the involute
+    // distance above is 1-Lipschitz in c (the involutes of one base circle are parallel curves), so
+    // it lies within d of d cos γ − C: in [−C_max − (ρ + window), 2(ρ + window)], whatever γ.
+    const ProfileModification& m = g.gear->spec().modification;
+    r.d_lo -= m.tip.amount + m.root.amount + rho + window;
+    r.d_hi += rho + window;
+  }
+  return r;
+}
+
+// False only if no flank of the mate can come within ρ + window of a round centred at c (above).
+bool MayReach(const FlankReach& f, const Vec2& c) {
+  const Vec2 rel = c - f.centre;
+  const double rb = f.base_radius, l2 = rel.squaredNorm() - rb * rb;
+  if (!(l2 > f.near_base)) return true;
+  const double l = std::sqrt(l2);
+  // Dir(β) ∝ r_b (c − O) + H L (c − O)⊥: c − O turned by ±acos(r_b/|c − O|).
+  const Vec2 e = rb * rel + (f.hand * l) * Vec2(-rel.y(), rel.x());
+  const double sn = Cross(f.reference, e), cs = f.reference.dot(e);
+  if (!(cs > 0) || std::abs(sn) > cs) return true;
+  const double t = sn / cs, a = std::abs(t), a2 = a * a;
+  const double atan_hi = a * (1.0 - a2 * (1.0 / 3.0 - a2 / 5.0)),
+               atan_lo = atan_hi - a * a2 * a2 * a2 / 7.0;
+  const double turn_lo = t < 0 ? -atan_hi : atan_lo, turn_hi = t < 0 ? -atan_lo : atan_hi;
+  const double u0_lo = f.roll + (f.hand > 0 ? turn_lo : -turn_hi);
+  const double u0_hi = f.roll + (f.hand > 0 ? turn_hi : -turn_lo);
+  // Rolls of a hit, r_b u = L + h d with d in [d_lo, d_hi] and u in [u_min, u_max], and where the
+  // lattice point u + H·offset of a tooth turned by its offset sits.
+  const double w_lo = std::max((l + (f.flank_hand > 0 ? f.d_lo : -f.d_hi)) / rb, f.u_min) - f.widen;
+  const double w_hi = std::min((l + (f.flank_hand > 0 ? f.d_hi : -f.d_lo)) / rb, f.u_max) + f.widen;
+  // Some j with u0 + j p in [w_lo, w_hi] for some u0 in [u0_lo, u0_hi].
+  return std::floor((w_hi - u0_lo) / f.pitch) >= std::ceil((w_lo - u0_hi) / f.pitch);
+}
+
 // The tip round of tooth k, side σ, in the inertial frame: centre and normal span.
 struct WorldArc {
   Vec2 centre;
   double from, to;
 };
-// `rotation` is Dir(g.pose.rotation), computed once per search.
+// `rotation` is Dir(g.pose.rotation), computed once per search of a mesh.
 WorldArc TipRoundInWorld(const PosedGear& g, const Vec2& rotation, int tooth, int side) {
   const TipRound& t = g.gear->tip_round();
   const double turn = g.pose.rotation + tooth * g.gear->pitch_angle() + g.gear->tooth_offset(tooth);
@@ -187,35 +275,58 @@ WorldInvolute FlankInWorld(const PosedGear& g, int tooth, int side) {
   return w;
 }
 
-LineOfAction MakeLineOfAction(const PosedGear& a, const PosedGear& b, bool internal, int side_a) {
-  const Vec2 dv = b.pose.geometric_centre - a.pose.geometric_centre;
-  const double dist = dv.norm();
+namespace {
+
+// What the lines of action on the two flank sides share: the centre line and the pressure angle,
+// with its arccosine and the centre line's arctangent (a search makes both lines from one).
+struct CentreLine {
+  Vec2 dv = Vec2::Zero();  // from A's geometric centre to B's
+  double dist = 0, cos_alpha = 0, sin_alpha = 0, alpha = 0, pitch_dir = 0;
+};
+
+CentreLine MakeCentreLine(const PosedGear& a, const PosedGear& b, bool internal) {
+  CentreLine c;
+  c.dv = b.pose.geometric_centre - a.pose.geometric_centre;
+  c.dist = c.dv.norm();
   const double rba = a.gear->base_radius(), rbb = b.gear->base_radius();
   const double k = internal ? rbb - rba : rba + rbb;
-  if (!(dist > 0) || k / dist >= 1.0) {
+  if (!(c.dist > 0) || k / c.dist >= 1.0) {
     throw std::invalid_argument("mesh " + a.gear->name() + "-" + b.gear->name() +
-                                ": centre distance " + Mm(dist) +
+                                ": centre distance " + Mm(c.dist) +
                                 " mm admits no line of action (base circles " +
                                 (internal ? "too far apart" : "overlap") + ")");
   }
+  c.cos_alpha = k / c.dist;
+  c.alpha = std::acos(c.cos_alpha);
+  c.sin_alpha = std::sqrt(1.0 - c.cos_alpha * c.cos_alpha);
+  c.pitch_dir = Angle(c.dv) + (internal ? kPi : 0.0);
+  return c;
+}
+
+LineOfAction LineOnSide(const PosedGear& a, const PosedGear& b, bool internal, const CentreLine& c,
+                        int side_a) {
+  const double rba = a.gear->base_radius(), rbb = b.gear->base_radius();
   LineOfAction l;
   l.side_a = side_a;
   l.side_b = internal ? -side_a : side_a;
-  l.centre_distance = dist;
-  const double cos_alpha = k / dist;
-  l.pressure_angle = std::acos(cos_alpha);
-  const double pitch_dir = Angle(dv) + (internal ? kPi : 0.0);
-  l.base_angle_a = pitch_dir - side_a * l.pressure_angle;
+  l.centre_distance = c.dist;
+  l.pressure_angle = c.alpha;
+  l.base_angle_a = c.pitch_dir - side_a * c.alpha;
   l.base_angle_b = l.base_angle_a + (internal ? 0.0 : kPi);
   // Dir(base_a) = Dir(pitch_dir) turned by −σα, from the unit vectors themselves.
-  const Vec2 pitch_unit = (internal ? -1.0 : 1.0) * dv / dist;
-  const Vec2 e =
-      RotateBy(pitch_unit, Vec2(cos_alpha, -side_a * std::sqrt(1.0 - cos_alpha * cos_alpha)));
+  const Vec2 pitch_unit = (internal ? -1.0 : 1.0) * c.dv / c.dist;
+  const Vec2 e = RotateBy(pitch_unit, Vec2(c.cos_alpha, -side_a * c.sin_alpha));
   l.direction = side_a * Vec2(-e.y(), e.x());
   l.tangent_a = a.pose.geometric_centre + rba * e;
   l.tangent_b = b.pose.geometric_centre + (internal ? rbb : -rbb) * e;
   l.length = (l.tangent_b - l.tangent_a).dot(l.direction);
   return l;
+}
+
+}  // namespace
+
+LineOfAction MakeLineOfAction(const PosedGear& a, const PosedGear& b, bool internal, int side_a) {
+  return LineOnSide(a, b, internal, MakeCentreLine(a, b, internal), side_a);
 }
 
 namespace {
@@ -238,30 +349,57 @@ struct LoaPair {
 // generating angle is the line's base angle (mod 2π) for every tooth, offset or not: the point is
 // x = O + r_b (e − H u e⊥) with e the unit vector from the centre to the line's tangent point, so
 // no sine or cosine is needed per tooth.
-Vec2 OnLineOfAction(const PosedGear& g, const Vec2& tangent_point, int hand, double u) {
+Vec2 OnLineOfAction(const PosedGear& g, const Vec2& e, int hand, double u) {
   const double rb = g.gear->base_radius();
-  const Vec2 e = (tangent_point - g.pose.geometric_centre) / rb;
   return g.pose.geometric_centre + rb * (e - static_cast<double>(hand) * u * Vec2(-e.y(), e.x()));
 }
 
-LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l, double ua, int ka,
-                  bool modified) {
+// What PairOnLoa needs of a line of action for every tooth pair on it, worked out once per line:
+// the unit vectors e from the centres to the tangent points, the flank hands, B's tooth-0 roll.
+struct LoaFrame {
+  Vec2 e_a = Vec2::Zero(), e_b = Vec2::Zero();
+  int hand_a = 1, hand_b = 1;
+  double base_radius_b = 0;
+  double roll_b = 0;  // u of B's nominal tooth-0 flank where it crosses the line (mod 2π)
+};
+
+LoaFrame MakeLoaFrame(const PosedGear& a, const PosedGear& b, const LineOfAction& l) {
+  const WorldInvolute a0 = NominalFlank(a, 0, l.side_a), b0 = NominalFlank(b, 0, l.side_b);
+  LoaFrame f;
+  f.e_a = (l.tangent_a - a.pose.geometric_centre) / a.gear->base_radius();
+  f.e_b = (l.tangent_b - b.pose.geometric_centre) / b.gear->base_radius();
+  f.hand_a = a0.hand;
+  f.hand_b = b0.hand;
+  f.base_radius_b = b0.base_radius;
+  f.roll_b = b0.hand * WrapAngle(l.base_angle_b - b0.start);
+  return f;
+}
+
+// std::lround without the library call: x − trunc(x) is exact (|x| < 2⁵²), so the comparison
+// with ½ is too, and halves go away from zero as there.
+long NearestInteger(double x) {
+  long j = static_cast<long>(x);
+  const double frac = x - static_cast<double>(j);
+  if (frac >= 0.5) ++j;
+  if (frac <= -0.5) --j;
+  return j;
+}
+
+LoaPair PairOnLoa(const PosedGear& a, const PosedGear& b, const LineOfAction& l, const LoaFrame& f,
+                  double ua, int ka, bool modified) {
   LoaPair r;
   r.ua = ua;
   r.ka = ka;
-  const WorldInvolute a0 = NominalFlank(a, 0, l.side_a);
-  r.xa = OnLineOfAction(a, l.tangent_a, a0.hand, ua);
+  r.xa = OnLineOfAction(a, f.e_a, f.hand_a, ua);
   const double sa = (r.xa - l.tangent_a).dot(l.direction);
-  const WorldInvolute b0 = NominalFlank(b, 0, l.side_b);
   // Along d, B's flank point sits at s_B = L + H_B σ_B r_bB u_B from N_A.
-  const double target = (sa - l.length) / (b0.hand * l.side_b * b0.base_radius);
-  const double u0 = b0.hand * WrapAngle(l.base_angle_b - b0.start);
+  const double target = (sa - l.length) / (f.hand_b * l.side_b * f.base_radius_b);
   const double p = b.gear->pitch_angle();
-  const long j = std::lround((target - u0) / p);
-  r.kb = Mod(-b0.hand * j, b.gear->teeth());
-  r.ub = u0 + static_cast<double>(j) * p;
-  if (modified) r.ub -= b0.hand * b.gear->tooth_offset(r.kb);
-  r.xb = OnLineOfAction(b, l.tangent_b, b0.hand, r.ub);
+  const long j = NearestInteger((target - f.roll_b) / p);
+  r.kb = Mod(-f.hand_b * j, b.gear->teeth());
+  r.ub = f.roll_b + static_cast<double>(j) * p;
+  if (modified) r.ub -= f.hand_b * b.gear->tooth_offset(r.kb);
+  r.xb = OnLineOfAction(b, f.e_b, f.hand_b, r.ub);
   r.overlap = (r.xa - r.xb).dot(l.direction);
   r.sa = NominalTooth(a, ka, r.xa);
   r.sb = NominalTooth(b, r.kb, r.xb);
@@ -282,7 +420,7 @@ double NearestLoaOverlap(const PosedGear& a, const PosedGear& b, bool internal, 
   const double ua = a0.hand * WrapAngle(l.base_angle_a - a0.start);
   // Nominal teeth (no relief, no pitch deviations): the reference of the layout (alignment,
   // error projections).
-  return PairOnLoa(a, b, l, ua, 0, false).overlap;
+  return PairOnLoa(a, b, l, MakeLoaFrame(a, b, l), ua, 0, false).overlap;
 }
 
 std::string KindName(ContactKind kind) {
@@ -301,23 +439,32 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                                            const ContactSearchOptions& options) {
   std::vector<PotentialContact> out;
   out.reserve(16);
+  AppendContacts(a, b, internal, options, &out);
+  return out;
+}
+
+void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
+                    const ContactSearchOptions& options, std::vector<PotentialContact>* out) {
   const double window = options.gap_window;
   const Vec2 oa = a.pose.rotation_centre, ob = b.pose.rotation_centre;
   const double ring_sign = internal ? -1.0 : 1.0;  // B's curvature: a ring's flank is concave
   const int sides[2] = {options.both_sides ? 1 : options.side_a, -1};
+  const CentreLine centre_line = MakeCentreLine(a, b, internal);
+  const Vec2 rotation_a = Dir(a.pose.rotation), rotation_b = Dir(b.pose.rotation);
   for (int si = 0; si < (options.both_sides ? 2 : 1); ++si) {
     const int side_a = sides[si];
-    const LineOfAction l = MakeLineOfAction(a, b, internal, side_a);
+    const LineOfAction l = LineOnSide(a, b, internal, centre_line, side_a);
     // Involute against involute, on the line of action.
     const WorldInvolute a0 = NominalFlank(a, 0, side_a);
     const double ua0 = a0.hand * WrapAngle(l.base_angle_a - a0.start);
     const double margin = a.gear->max_tooth_offset();
+    const LoaFrame frame = MakeLoaFrame(a, b, l);
     ForEachRoll(ua0, a.gear->pitch_angle(), a0.u_min - margin, a0.u_max + margin,
                 [&](double un, long j) {
                   const int ka = Mod(-a0.hand * j, a.gear->teeth());
                   const double ua = un - a0.hand * a.gear->tooth_offset(ka);
                   if (ua < a0.u_min || ua >= a0.u_max) return;
-                  const LoaPair pr = PairOnLoa(a, b, l, ua, ka, true);
+                  const LoaPair pr = PairOnLoa(a, b, l, frame, ua, ka, true);
                   const InvoluteFlank& fb = b.gear->involute();
                   if (pr.ub < fb.u_min || pr.ub >= fb.u_max || pr.overlap < -window) return;
                   PotentialContact c;
@@ -339,15 +486,19 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
                   c.curvature_radius_b = ring_sign * b.gear->base_radius() * pr.ub;
                   c.roll_a = pr.ua;
                   c.roll_b = pr.ub;
-                  out.push_back(c);
+                  out->push_back(c);
                 });
     // Tip rounds against flanks, off the line of action. A tip round reaches the mate only around
     // the ends of the path of contact, where the owner's flank crosses the line of action near its
     // tip-end roll: the teeth whose roll there is within one pitch of it (all teeth with
     // options.exhaustive_tips). One pitch, not less: internal meshes are nearly conformal, and a
     // ring's round stays within a 150 µm window more than half a base pitch past the path's end.
-    auto tips = [&](const PosedGear& owner, const PosedGear& other, int owner_side, int other_side,
-                    double base_angle, bool owner_is_a) {
+    // The mates' reference tangent points (FlankReach): the line of action's, N_A and N_B.
+    const Vec2& ref_a = frame.e_a;
+    const Vec2 ref_b = internal ? ref_a : Vec2(-ref_a);
+    auto tips = [&](const PosedGear& owner, const Vec2& rotation, const PosedGear& other,
+                    int owner_side, int other_side, double base_angle, double other_base_angle,
+                    const Vec2& other_reference, bool owner_is_a) {
       if (!owner.gear->has_tip_round()) return;
       const double p = owner.gear->pitch_angle();
       const double rho = owner.gear->tip_round().radius;
@@ -371,16 +522,11 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
         const int* begin() const { return b; }
         const int* end() const { return e; }
       } teeth{teeth_begin, teeth_end};
-      // The mate's active involute lies between its form and tip-form circles: a round whose
-      // centre is farther than ρ + window outside that annulus touches none of its flanks.
-      const double r_lo = std::min(other.gear->form_radius(), other.gear->tip_form_radius());
-      const double r_hi = std::max(other.gear->form_radius(), other.gear->tip_form_radius());
-      const double reach_lo = std::max(0.0, r_lo - rho - window), reach_hi = r_hi + rho + window;
-      const Vec2 rotation = Dir(owner.pose.rotation);
+      const FlankReach reach =
+          ReachOf(other, other_side, other_reference, other_base_angle, rho, window);
       for (const int tooth : teeth) {
         const WorldArc arc = TipRoundInWorld(owner, rotation, tooth, owner_side);
-        const double dist2 = (arc.centre - other.pose.geometric_centre).squaredNorm();
-        if (dist2 < reach_lo * reach_lo || dist2 > reach_hi * reach_hi) continue;
+        if (!options.exhaustive_tips && !MayReach(reach, arc.centre)) continue;
         ArcAgainstFlanks(
             arc.centre, rho, arc.from, arc.to, other, other_side, window, [&](const ArcHit& h) {
               PotentialContact c;
@@ -418,14 +564,13 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
               c.point = 0.5 * (c.point_a + c.point_b);
               c.lever_a = Lever(c.point, oa, -c.normal);
               c.lever_b = Lever(c.point, ob, c.normal);
-              out.push_back(c);
+              out->push_back(c);
             });
       }
     };
-    tips(a, b, l.side_a, l.side_b, l.base_angle_a, true);
-    tips(b, a, l.side_b, l.side_a, l.base_angle_b, false);
+    tips(a, rotation_a, b, l.side_a, l.side_b, l.base_angle_a, l.base_angle_b, ref_b, true);
+    tips(b, rotation_b, a, l.side_b, l.side_a, l.base_angle_b, l.base_angle_a, ref_a, false);
   }
-  return out;
 }
 
 }  // namespace epicycle::geometry

@@ -248,6 +248,16 @@ std::vector<PotentialContact> Stage::Contacts(const StagePoses& p, int planet, M
   return FindContacts(Planet(p, planet), Ring(p), true, options);
 }
 
+void Stage::AppendContacts(const StagePoses& p, int planet, MeshKind kind,
+                           const ContactSearchOptions& options,
+                           std::vector<PotentialContact>* out) const {
+  if (kind == MeshKind::kSunPlanet) {
+    geometry::AppendContacts(Sun(p), Planet(p, planet), false, options, out);
+  } else {
+    geometry::AppendContacts(Planet(p, planet), Ring(p), true, options, out);
+  }
+}
+
 void Stage::Summarise() {
   meshes_.clear();
   for (int i = 0; i < planets(); ++i) {

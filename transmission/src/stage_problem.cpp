@@ -48,11 +48,15 @@ std::vector<StageContact> SearchStage(const geometry::Stage& stage,
   out.reserve(8 * stage.planets());  // a few per mesh and flank side: one allocation
   geometry::ContactSearchOptions opt;
   opt.gap_window = gap_window;
+  std::vector<PotentialContact> found;  // one mesh's at a time: one allocation for the search
+  found.reserve(16);
   for (int i = 0; i < stage.planets(); ++i) {
     for (MeshKind kind : {MeshKind::kSunPlanet, MeshKind::kPlanetRing}) {
       const int loaded_side =
           kind == MeshKind::kSunPlanet ? stage.sun_mesh_side() : stage.ring_mesh_planet_side();
-      for (const PotentialContact& c : stage.Contacts(poses, i, kind, opt)) {
+      found.clear();
+      stage.AppendContacts(poses, i, kind, opt, &found);
+      for (const PotentialContact& c : found) {
         StageContact s;
         s.contact = c;
         s.planet = i;

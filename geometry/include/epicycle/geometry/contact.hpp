@@ -1,5 +1,5 @@
-// Contact search between two meshing gears (docs/model.md §1): every potential contact of every tooth
-// pair within a gap window, on both flanks, on the line of action (involute against involute,
+// Contact search between two meshing gears (docs/model.md §1): every potential contact of every
+// tooth pair within a gap window, on both flanks, on the line of action (involute against involute,
 // closed form) and off it (tip round against flank: closest points between an arc and an involute).
 #pragma once
 
@@ -90,10 +90,12 @@ struct PotentialContact {
 };
 
 struct ContactSearchOptions {
-  double gap_window = 100e-6;    ///< keep contacts with δ ≥ −window [m]
-  bool both_sides = true;        ///< search both flanks (drive and coast)
-  int side_a = 1;                ///< with both_sides false: the one side σ_A to search
-  bool exhaustive_tips = false;  ///< try every tooth's tip round (a check of the tooth selection)
+  double gap_window = 100e-6;  ///< keep contacts with δ ≥ −window [m]
+  bool both_sides = true;      ///< search both flanks (drive and coast)
+  int side_a = 1;              ///< with both_sides false: the one side σ_A to search
+  /// Try every tooth's tip round, without the pre-filter of the rounds that cannot reach the mate
+  /// (a check of the tooth selection and of that filter).
+  bool exhaustive_tips = false;
 };
 
 /// Every potential contact between A and B (internal: B is the ring, A a planet inside it).
@@ -104,5 +106,8 @@ struct ContactSearchOptions {
 /// curve); tooth k of either gear is turned by F_p,k/r.
 std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& b, bool internal,
                                            const ContactSearchOptions& options);
+/// FindContacts appending to `out`: a caller that searches many meshes reuses one vector.
+void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
+                    const ContactSearchOptions& options, std::vector<PotentialContact>* out);
 
 }  // namespace epicycle::geometry

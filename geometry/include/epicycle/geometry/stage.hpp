@@ -104,6 +104,10 @@ class Stage {
   /// The potential contacts of one mesh (planet i; sun mesh or ring mesh).
   std::vector<PotentialContact> Contacts(const StagePoses& p, int planet, MeshKind kind,
                                          const ContactSearchOptions& options) const;
+  /// The same, appended to `out`.
+  void AppendContacts(const StagePoses& p, int planet, MeshKind kind,
+                      const ContactSearchOptions& options,
+                      std::vector<PotentialContact>* out) const;
 
  private:
   void CheckAssembly();
