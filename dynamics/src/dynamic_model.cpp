@@ -102,7 +102,8 @@ DynamicModel::DynamicModel(const transmission::StageModel& model, const transmis
       planet_(scene.planet),
       ring_(scene.ring),
       carrier_(scene.carrier),
-      sun_torque_(scene.sun_torque) {
+      sun_torque_(scene.sun_torque),
+      friction_(settings_.friction) {
   settings_.Validate();
   const geometry::Stage& stage = model_.stage();
   const transmission::StageSetup& setup = model_.setup();
@@ -453,7 +454,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
                               ? 1.0 / (1.0 / c.curvature_radius_a + 1.0 / c.curvature_radius_b)
                               : terms.local[j].reduced_radius;
       fc.contact_modulus = contact_modulus_;
-      const double mu = SignedFrictionCoefficient(settings_.friction, fc);
+      const double mu = friction_.SignedCoefficient(fc);
       e.friction(j) = mu * e.total_force(j);
       f += e.friction(j) * tangent;
       const double p_friction = e.friction(j) * (ua - ub);  // μ_s F v_s ≥ 0

@@ -207,6 +207,7 @@ class DynamicModel {
   double sun_torque_ = 0, carrier_speed_ = 0, carrier_torque_ = 0, start_angle_ = 0;
   double k_sun_ = 0, k_ring_ = 0, damping_sun_ = 0, damping_ring_ = 0;
   double contact_modulus_ = 0;
+  FrictionModel friction_;  // settings_.friction with its constant factors evaluated once
   std::vector<Eigen::Vector2d> pin0_;  // pin positions at carrier angle 0 [m]
 };
 
