@@ -102,7 +102,8 @@ DynamicModel::DynamicModel(const transmission::StageModel& model, const transmis
       planet_(scene.planet),
       ring_(scene.ring),
       carrier_(scene.carrier),
-      sun_torque_(scene.sun_torque) {
+      sun_torque_(scene.sun_torque),
+      friction_(settings_.friction) {
   settings_.Validate();
   const geometry::Stage& stage = model_.stage();
   const transmission::StageSetup& setup = model_.setup();
@@ -260,18 +261,26 @@ double DynamicModel::ReferenceVelocity(int k, double t) const {
 }
 
 geometry::StagePoses DynamicModel::Poses(double t, const Eigen::VectorXd& d) const {
-  const geometry::StagePoses ref = model_.KinematicPoses(CarrierAngle(t));
-  Eigen::VectorXd q(static_cast<Eigen::Index>(stage_dofs_.size()));
-  for (int k = 0; k < size(); ++k)
-    if (stage_dof_[k] >= 0) q(stage_dof_[k]) = d(k);
-  return transmission::StageModel::Displace(ref, stage_dofs_, q);
+  geometry::StagePoses poses;
+  Eigen::VectorXd q;
+  Poses(t, d, &q, &poses);
+  return poses;
 }
 
-std::vector<DynamicModel::BodyMotion> DynamicModel::BodyVelocities(double t,
-                                                                   const Eigen::VectorXd& d,
-                                                                   const Eigen::VectorXd& v) const {
+void DynamicModel::Poses(double t, const Eigen::VectorXd& d, Eigen::VectorXd* q,
+                         geometry::StagePoses* poses) const {
+  *poses = model_.KinematicPoses(CarrierAngle(t));
+  q->resize(static_cast<Eigen::Index>(stage_dofs_.size()));
+  for (int k = 0; k < size(); ++k)
+    if (stage_dof_[k] >= 0) (*q)(stage_dof_[k]) = d(k);
+  transmission::StageModel::Displace(stage_dofs_, *q, poses);
+}
+
+void DynamicModel::BodyVelocities(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                                  std::vector<BodyMotion>* out) const {
   const int n = model_.planets();
-  std::vector<BodyMotion> b(2 + n);
+  std::vector<BodyMotion>& b = *out;
+  b.assign(2 + n, BodyMotion{});
   const geometry::Stage& st = model_.stage();
   b[kSunBody].angular_velocity = carrier_speed_ * st.sun_ratio();
   for (int i = 0; i < n; ++i) {
@@ -293,7 +302,6 @@ std::vector<DynamicModel::BodyMotion> DynamicModel::BodyVelocities(double t,
     if (f.axis == MotionDof::kX) m.centre_velocity.x() += v(k);
     if (f.axis == MotionDof::kY) m.centre_velocity.y() += v(k);
   }
-  return b;
 }
 
 void DynamicModel::BearingForces(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
@@ -349,34 +357,40 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
                             solvers::ContactSolver& solver, const solvers::ContactOptions& contact,
                             const Evaluation* warm, Evaluation* out, bool energies) const {
   Evaluation& e = *out;
+  EvaluationWorkspace& w = e.work;
   const int nd = size();
   const int np = model_.planets();
   e.ok = false;
   e.message.clear();
-  e.poses = Poses(t, d);
-  e.terms = model_.Terms(e.poses);
+  Poses(t, d, &w.stage_displacement, &e.poses);
+  model_.Terms(e.poses, &e.terms);
   const transmission::ContactTerms& terms = e.terms;
   const int n = terms.size();
-  e.force = Eigen::VectorXd::Zero(n);
+  e.force.setZero(n);
   e.report = {};
   if (n > 0) {
-    solvers::ContactProblemData data;
+    // The problem's buffers are the work space's: copied into (same sizes, no allocation), moved
+    // into the problem, released after the solve. The terms keep C as the compliance gave it.
+    solvers::ContactProblemData& data = w.problem;
     data.compliance = terms.compliance;
     data.overlap = terms.overlap;
     data.local = terms.local;
     data.equality_matrix.resize(0, n);
     data.equality_rhs.resize(0);
-    const solvers::ContactProblem problem(std::move(data));
+    solvers::ContactProblem problem(std::move(data));
     solvers::ContactOptions opt = contact;
-    solvers::ContactSolution solution;
+    solvers::ContactSolution& solution = w.solution;
     if (warm != nullptr && warm->ok && warm->terms.size() > 0) {
       // Forces of the same potential contacts (those Label() names alike) from the last accepted
       // step.
       opt.warm_start = transmission::CarryForces(warm->terms.contacts, warm->force, terms.contacts,
                                                  &solution.force) > 0;
-      solution.multiplier.resize(0);
+    } else {
+      solution.force.resize(0);
     }
+    solution.multiplier.resize(0);
     e.report = solver.Solve(problem, opt, &solution);
+    data = std::move(problem).Release();
     if (e.report.status != solvers::ContactStatus::kConverged) {
       e.message =
           "contact solve: " + solvers::StatusName(e.report.status) + " (" + e.report.message + ")";
@@ -387,7 +401,8 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   e.ok = true;
 
   // Velocities of the gear bodies, the overlap rates and the mesh damping.
-  const std::vector<BodyMotion> body = BodyVelocities(t, d, v);
+  BodyVelocities(t, d, v, &w.body);
+  const std::vector<BodyMotion>& body = w.body;
   auto body_pose = [&](int b) -> const geometry::GearPose& {
     return b == kSunBody ? e.poses.sun : b == kRingBody ? e.poses.ring : e.poses.planets[b - 2];
   };
@@ -397,8 +412,9 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   };
   e.overlap_rate.resize(n);
   e.total_force = e.force;
-  e.friction = Eigen::VectorXd::Zero(n);
-  std::vector<double> mesh_load(2 * np, 0.0);
+  e.friction.setZero(n);
+  std::vector<double>& mesh_load = w.mesh_load;
+  mesh_load.assign(2 * np, 0.0);
   auto mesh_index = [](const StageContact& s) {
     return 2 * s.planet + (s.mesh == geometry::MeshKind::kSunPlanet ? 0 : 1);
   };
@@ -406,9 +422,12 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   e.dissipated_power = 0;
   e.friction_power = 0;
   const bool friction = settings_.friction.law != FrictionLaw::kOff;
-  Eigen::VectorXd qf = Eigen::VectorXd::Zero(nd);  // generalised forces
-  std::vector<Vec2> body_force(2 + np, Vec2::Zero());
-  std::vector<double> body_moment(2 + np, 0.0);
+  Eigen::VectorXd& qf = e.generalised_force;
+  qf.setZero(nd);
+  std::vector<Vec2>& body_force = w.body_force;
+  body_force.assign(2 + np, Vec2::Zero());
+  std::vector<double>& body_moment = w.body_moment;
+  body_moment.assign(2 + np, 0.0);
   e.sun_mesh_torque.assign(np, 0.0);
   for (int j = 0; j < n; ++j) {
     const StageContact& s = terms.contacts[j];
@@ -453,7 +472,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
                               ? 1.0 / (1.0 / c.curvature_radius_a + 1.0 / c.curvature_radius_b)
                               : terms.local[j].reduced_radius;
       fc.contact_modulus = contact_modulus_;
-      const double mu = SignedFrictionCoefficient(settings_.friction, fc);
+      const double mu = friction_.SignedCoefficient(fc);
       e.friction(j) = mu * e.total_force(j);
       f += e.friction(j) * tangent;
       const double p_friction = e.friction(j) * (ua - ub);  // μ_s F v_s ≥ 0
@@ -482,7 +501,6 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   e.planet_bearing_force.assign(np, Vec2::Zero());
   e.sun_bearing_force.setZero();
   BearingForces(t, d, v, &qf, &e);
-  e.generalised_force = qf;
   e.acceleration = qf.cwiseQuotient(mass_);
   // Elastic planet pins follow a reference that accelerates (the pin's circle).
   const double w2 = carrier_speed_ * carrier_speed_;

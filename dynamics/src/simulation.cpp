@@ -63,6 +63,7 @@ struct Context {
   std::unique_ptr<solvers::ContactSolver> solver;
   solvers::ContactOptions contact;
   Evaluation warm, scratch;  // last successful evaluation (the warm start), work space
+  Eigen::VectorXd d, v;      // the state of the evaluation (reused)
   SimulationStats* stats = nullptr;
   std::exception_ptr error;
   std::string last_failure;
@@ -104,13 +105,12 @@ int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     if (c.limited && t0 > c.deadline)
       throw std::runtime_error(
           "the time limit of the run is spent (SimulationOptions::time_limit)");
-    Eigen::VectorXd d, v;
-    const bool ok = EvaluateAt(c, t, y, &d, &v, "");
+    const bool ok = EvaluateAt(c, t, y, &c.d, &c.v, "");
     c.stats->rhs_seconds += Seconds(t0);
     if (!ok) return 1;  // recoverable: a smaller step
     double* out = N_VGetArrayPointer(ydot);
     for (int k = 0; k < c.n; ++k) {
-      out[k] = v(k);
+      out[k] = c.v(k);
       out[c.n + k] = c.scratch.acceleration(k);
     }
     out[2 * c.n] = c.scratch.external_power;
@@ -128,11 +128,10 @@ int Jac(sunrealtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void* user, N
   auto& c = *static_cast<Context*>(user);
   try {
     const auto t0 = Clock::now();
-    Eigen::VectorXd d, v;
     // The contact solution at this state (CVODE has just evaluated it: the warm start is there).
-    if (!EvaluateAt(c, t, y, &d, &v, " (Jacobian)")) return 1;
+    if (!EvaluateAt(c, t, y, &c.d, &c.v, " (Jacobian)")) return 1;
     Eigen::MatrixXd dd, dv;
-    c.model->Jacobian(t, d, v, c.scratch, &dd, &dv);
+    c.model->Jacobian(t, c.d, c.v, c.scratch, &dd, &dv);
     SUNMatZero(jac);
     const int n = c.n;
     for (int k = 0; k < n; ++k) SM_ELEMENT_D(jac, k, n + k) = 1.0;
@@ -323,6 +322,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
       sample.carrier_angle = model.CarrierAngle(tout);
       Split(c, y, &sample.d, &sample.v);
       model.Evaluate(tout, sample.d, sample.v, *c.solver, c.contact, &c.warm, &sample.evaluation);
+      sample.evaluation.work = {};  // a stored sample keeps the results, not the buffers
       if (!sample.evaluation.ok) {
         result.message = "the output evaluation at t = " + std::to_string(tout) +
                          " s failed: " + sample.evaluation.message;

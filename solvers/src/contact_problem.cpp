@@ -1,6 +1,7 @@
 // Validation of the contact problem: every rule names the field, the value and the rule.
 #include "epicycle/solvers/contact_problem.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -19,42 +20,81 @@ std::string Num(double v) {
   return os.str();
 }
 
-void CheckFinite(const Eigen::MatrixXd& m, const std::string& field) {
+// One vectorised test for the common case; the entries are searched for the message only when it
+// fails.
+void CheckFinite(const Eigen::MatrixXd& m, const char* field) {
+  if (std::isfinite((m.array() - m.array()).sum())) return;  // x − x = 0 unless x is ±∞ or NaN
   for (Eigen::Index j = 0; j < m.cols(); ++j)
     for (Eigen::Index i = 0; i < m.rows(); ++i)
       if (!std::isfinite(m(i, j)))
-        throw std::invalid_argument(field + "(" + std::to_string(i) + "," + std::to_string(j) +
-                                    ") = " + Num(m(i, j)) + ": every entry must be finite");
+        throw std::invalid_argument(std::string(field) + "(" + std::to_string(i) + "," +
+                                    std::to_string(j) + ") = " + Num(m(i, j)) +
+                                    ": every entry must be finite");
 }
 
-void CheckFinite(const Eigen::VectorXd& v, const std::string& field) {
+void CheckFinite(const Eigen::VectorXd& v, const char* field) {
+  if (std::isfinite((v.array() - v.array()).sum())) return;
   for (Eigen::Index i = 0; i < v.size(); ++i)
     if (!std::isfinite(v(i)))
-      throw std::invalid_argument(field + "[" + std::to_string(i) + "] = " + Num(v(i)) +
-                                  ": every entry must be finite");
+      throw std::invalid_argument(std::string(field) + "[" + std::to_string(i) +
+                                  "] = " + Num(v(i)) + ": every entry must be finite");
 }
 
+// `why()` builds the rule's explanation, only for the message.
+template <typename Why>
 void CheckSize(Eigen::Index rows, Eigen::Index cols, Eigen::Index want_rows, Eigen::Index want_cols,
-               const std::string& field, const std::string& why) {
+               const char* field, Why why) {
   if (rows != want_rows || cols != want_cols)
-    throw std::invalid_argument(field + " is " + std::to_string(rows) + "x" + std::to_string(cols) +
-                                ": must be " + std::to_string(want_rows) + "x" +
-                                std::to_string(want_cols) + " (" + why + ")");
+    throw std::invalid_argument(std::string(field) + " is " + std::to_string(rows) + "x" +
+                                std::to_string(cols) + ": must be " + std::to_string(want_rows) +
+                                "x" + std::to_string(want_cols) + " (" + why() + ")");
 }
 
-void CheckSymmetric(const Eigen::MatrixXd& m, const std::string& field) {
+void CheckSymmetric(const Eigen::MatrixXd& m, const char* field) {
   const double scale = m.cwiseAbs().maxCoeff();
   for (Eigen::Index j = 0; j < m.cols(); ++j)
     for (Eigen::Index i = 0; i < j; ++i) {
       const double d = std::abs(m(i, j) - m(j, i));
-      if (d > ContactProblem::kSymmetryTolerance * scale)
+      if (d > ContactProblem::kSymmetryTolerance * scale) {
+        const std::string f(field);
         throw std::invalid_argument(
-            field + " is not symmetric: " + field + "(" + std::to_string(i) + "," +
-            std::to_string(j) + ") = " + Num(m(i, j)) + " but " + field + "(" + std::to_string(j) +
-            "," + std::to_string(i) + ") = " + Num(m(j, i)) +
+            f + " is not symmetric: " + f + "(" + std::to_string(i) + "," + std::to_string(j) +
+            ") = " + Num(m(i, j)) + " but " + f + "(" + std::to_string(j) + "," +
+            std::to_string(i) + ") = " + Num(m(j, i)) +
             "; rule: |A_ij - A_ji| <= " + Num(ContactProblem::kSymmetryTolerance) +
             " * max|A| = " + Num(ContactProblem::kSymmetryTolerance * scale));
+      }
     }
+}
+
+// Whether the Cholesky factorisation C = L Lᵀ of the symmetric `c` succeeds (c positive definite):
+// column by column,
+//
+//   L_jj = √(C_jj − Σ_{k<j} L_jk²),   L_ij = (C_ij − Σ_{k<j} L_ik L_jk) / L_jj   (i > j),
+//
+// failing at the first pivot C_jj − Σ L_jk² ≤ 0 (Eigen's LLT rule). Up to kSmall contacts on the
+// stack with L by rows (no allocation per problem: the dynamic model builds one per right-hand
+// side), beyond with Eigen's blocked LLT.
+bool CholeskySucceeds(const Eigen::MatrixXd& c) {
+  constexpr Eigen::Index kSmall = 32;
+  const Eigen::Index n = c.rows();
+  if (n > kSmall) return Eigen::LLT<Eigen::MatrixXd>(c).info() == Eigen::Success;
+  std::array<double, kSmall * kSmall> l;  // L_ik at l[i·n + k], k ≤ i
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double* lj = &l[static_cast<std::size_t>(j * n)];
+    double pivot = c(j, j);
+    for (Eigen::Index k = 0; k < j; ++k) pivot -= lj[k] * lj[k];
+    if (!(pivot > 0)) return false;
+    const double ljj = std::sqrt(pivot);
+    l[static_cast<std::size_t>(j * n + j)] = ljj;
+    for (Eigen::Index i = j + 1; i < n; ++i) {
+      double* li = &l[static_cast<std::size_t>(i * n)];
+      double v = c(i, j);
+      for (Eigen::Index k = 0; k < j; ++k) v -= li[k] * lj[k];
+      li[j] = v / ljj;
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -65,14 +105,14 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
   if (n < 1)
     throw std::invalid_argument("overlap has size 0: a problem needs at least one contact");
   CheckSize(d.compliance.rows(), d.compliance.cols(), n, n, "compliance",
-            "N x N with N = size of overlap = " + std::to_string(n));
+            [&] { return "N x N with N = size of overlap = " + std::to_string(n); });
   const Eigen::Index m = d.equality_rhs.size();
   if (m == 0 && d.equality_matrix.size() == 0) d.equality_matrix.resize(0, n);
   CheckSize(d.equality_matrix.rows(), d.equality_matrix.cols(), m, n, "equality_matrix",
-            "m x N with m = size of equality_rhs = " + std::to_string(m));
+            [&] { return "m x N with m = size of equality_rhs = " + std::to_string(m); });
   if (d.support_stiffness.size() != 0)
     CheckSize(d.support_stiffness.rows(), d.support_stiffness.cols(), m, m, "support_stiffness",
-              "empty or m x m");
+              [] { return std::string("empty or m x m"); });
   if (!d.local.empty() && static_cast<Eigen::Index>(d.local.size()) != n)
     throw std::invalid_argument("local has " + std::to_string(d.local.size()) +
                                 " entries: must be empty or N = " + std::to_string(n));
@@ -97,8 +137,7 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
   for (Eigen::Index j = 0; j < n; ++j)  // the symmetric part, in place
     for (Eigen::Index i = 0; i < j; ++i)
       d.compliance(i, j) = d.compliance(j, i) = 0.5 * (d.compliance(i, j) + d.compliance(j, i));
-  Eigen::LLT<Eigen::MatrixXd> llt(d.compliance);
-  if (llt.info() != Eigen::Success) {
+  if (!CholeskySucceeds(d.compliance)) {
     const double min_eig =
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(d.compliance, Eigen::EigenvaluesOnly)
             .eigenvalues()
@@ -156,6 +195,11 @@ double ContactProblem::Potential(const Eigen::VectorXd& force) const {
   for (std::size_t j = 0; j < data_.local.size(); ++j)
     phi += LocalApproachIntegral(data_.local[j], force(j));
   return phi;
+}
+
+ContactProblemData ContactProblem::Release() && {
+  support_.resize(0, 0);
+  return std::move(data_);
 }
 
 double ContactProblem::ValidityLimitForce(int contact) const {

@@ -67,13 +67,20 @@ const geometry::Gear& StageModel::BodyGear(int body) const {
 
 ContactTerms StageModel::Terms(const geometry::StagePoses& poses) const {
   ContactTerms t;
-  t.contacts = SearchStage(stage_, poses, gap_window_);
+  Terms(poses, &t);
+  return t;
+}
+
+void StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* terms) const {
+  ContactTerms& t = *terms;
+  SearchStage(stage_, poses, gap_window_, &t.contacts);
   const int n = t.size();
   t.overlap.resize(n);
   for (int j = 0; j < n; ++j) t.overlap(j) = t.contacts[j].contact.overlap;
+  t.local.clear();
   if (n == 0) {
     t.compliance.resize(0, 0);
-    return t;
+    return;
   }
   t.compliance = compliance_.Matrix(stage_, poses, t.contacts);
   if (setup_.local_terms) {
@@ -84,7 +91,6 @@ ContactTerms StageModel::Terms(const geometry::StagePoses& poses) const {
                                          compliance_.JoiningDepth(s.body_b)));
     }
   }
-  return t;
 }
 
 namespace {
@@ -171,6 +177,13 @@ geometry::StagePoses StageModel::Displace(const geometry::StagePoses& poses,
                                           const std::vector<StageDof>& dofs,
                                           const Eigen::VectorXd& q) {
   geometry::StagePoses out = poses;
+  Displace(dofs, q, &out);
+  return out;
+}
+
+void StageModel::Displace(const std::vector<StageDof>& dofs, const Eigen::VectorXd& q,
+                          geometry::StagePoses* poses) {
+  geometry::StagePoses& out = *poses;
   auto turn = [](geometry::GearPose& g, double angle) {
     g.rotation += angle;
     g.geometric_centre =
@@ -212,7 +225,6 @@ geometry::StagePoses StageModel::Displace(const geometry::StagePoses& poses,
         break;
     }
   }
-  return out;
 }
 
 double StageModel::DisplacementSize(const std::vector<StageDof>& dofs,

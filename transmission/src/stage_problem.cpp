@@ -45,6 +45,14 @@ std::string StageDof::Label() const {
 std::vector<StageContact> SearchStage(const geometry::Stage& stage,
                                       const geometry::StagePoses& poses, double gap_window) {
   std::vector<StageContact> out;
+  SearchStage(stage, poses, gap_window, &out);
+  return out;
+}
+
+void SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses, double gap_window,
+                 std::vector<StageContact>* contacts) {
+  std::vector<StageContact>& out = *contacts;
+  out.clear();
   out.reserve(8 * stage.planets());  // a few per mesh and flank side: one allocation
   geometry::ContactSearchOptions opt;
   opt.gap_window = gap_window;
@@ -68,7 +76,6 @@ std::vector<StageContact> SearchStage(const geometry::Stage& stage,
       }
     }
   }
-  return out;
 }
 
 int CarryForces(const std::vector<StageContact>& from, const Eigen::VectorXd& force,

@@ -1,15 +1,17 @@
 // Friction laws against independent evaluations: Xu–Kahraman from docs/model.md's printed
-// constants in log space, Benedict–Kelley in its original US units, and μ along the path of
-// contact of the paper's sun–planet mesh at 1500 rpm (docs/dynamic.md "Friction").
+// constants in log space and as the printed product in long double, Benedict–Kelley in its original
+// US units, and μ along the path of contact of the paper's sun–planet mesh at 1500 rpm
+// (docs/dynamic.md "Friction").
 //
 // No published numeric check point of the Xu et al. (2007) formula (a μ value with all of its
-// inputs stated) was found, so the Xu–Kahraman rows check the implementation against a second,
-// differently arranged evaluation of the same printed formula. That catches transcription, unit
-// and arrangement errors, not an error in the formula as printed.
+// inputs stated) was found, so the Xu–Kahraman rows check the implementation against other
+// evaluations of the same printed formula (constants typed anew, a different arrangement). That
+// catches transcription, unit and arrangement errors, not an error in the formula as printed.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -88,6 +90,70 @@ TEST_CASE("Xu–Kahraman μ equals a log-space evaluation of the printed formula
   VerifyRow("Xu-Kahraman mu, 4 check points (paper's lubricant, thin oil, high slip)",
             "same printed formula evaluated in log space (no published check point found)",
             "friction.cpp", Sci(worst, 2) + " relative", "1e-12", worst <= 1e-12);
+}
+
+TEST_CASE("Xu–Kahraman's log form matches the printed product to a few ulp",
+          "[reference][dynamics][friction]") {
+  // The implementation sums logarithms (friction.cpp); the reference here is the printed product
+  // e^f·P_h^b2·SR^b3·V_e^b6·ν0^b7·R^b8 factor by factor, in long double (64-bit significand, 2^11
+  // times finer than double) from the contact's own double inputs, so that what is measured is
+  // the rounding of the double evaluation. 6^6 points over the regression's range and beyond.
+  const long double b1 = -8.916465L, b2 = 1.03303L, b3 = 1.036077L, b4 = -0.354068L, b5 = 2.812084L,
+                    b6 = -0.100601L, b7 = 0.752755L, b8 = -0.390958L, b9 = 0.620305L;
+  const double p_gpa[] = {0.2, 0.5, 0.9, 1.3, 1.8, 2.5};
+  const double srs[] = {1e-3, 0.02, 0.2, 0.7, 1.4, 2.0};
+  const double v_es[] = {0.1, 0.8, 3.0, 7.5, 15.0, 30.0};
+  const double nu0s[] = {5, 20, 50, 80, 120, 200};  // [mPa·s]
+  const double rs[] = {1e-3, 4e-3, 9.5e-3, 0.015, 0.03, 0.05};
+  const double s_ums[] = {0.1, 0.3, 0.5, 0.8, 1.1, 1.5};
+  double worst = 0;
+  int points = 0;
+  for (double nu0 : nu0s)
+    for (double s_um : s_ums) {
+      FrictionOptions o;
+      o.law = FrictionLaw::kXuKahraman;
+      o.max_coefficient = 1e3;  // no cap in play
+      o.lubricant.dynamic_viscosity = nu0 * 1e-3;
+      o.lubricant.composite_roughness = s_um * 1e-6;
+      const FrictionModel law(o);
+      for (double p : p_gpa)
+        for (double sr : srs)
+          for (double v_e : v_es)
+            for (double r : rs) {
+              const FrictionContact c = FromRegressionVariables(p, sr, v_e, r, 0.025);
+              const double mu = law.SignedCoefficient(c);
+              const long double nu = static_cast<long double>(o.lubricant.dynamic_viscosity) * 1e3L;
+              const long double s =
+                  static_cast<long double>(o.lubricant.composite_roughness) * 1e6L;
+              const long double ph =
+                  std::sqrt(
+                      static_cast<long double>(c.normal_force) * c.contact_modulus /
+                      (3.14159265358979323846264338327950288L * c.face_width * c.reduced_radius)) *
+                  1e-9L;
+              const long double ua = c.velocity_a, ub = c.velocity_b;
+              const long double ve = std::abs((ua + ub) / 2), slip = std::abs(ua - ub) / ve;
+              const long double x = slip * ph * std::log10(nu);
+              const long double f = b1 + b4 * x + b5 * std::exp(-x) + b9 * std::exp(s);
+              const long double expected = std::exp(f) * std::pow(ph, b2) * std::pow(slip, b3) *
+                                           std::pow(ve, b6) * std::pow(nu, b7) *
+                                           std::pow(static_cast<long double>(c.reduced_radius), b8);
+              const double error = static_cast<double>(std::abs(mu / expected - 1));
+              worst = std::max(worst, error);
+              ++points;
+            }
+    }
+  const double ulps = worst / std::numeric_limits<double>::epsilon();
+  INFO("worst relative error " << worst << " = " << ulps << " ulp over " << points << " points");
+  // Tolerance: the exponent has 6 terms of size ≲ 7 (b3·ln SR at SR = 1e-3), each with an
+  // absolute error of about ε·|term|, plus the rounding of K and of e^(·): the observed worst is
+  // 10.6 ulp (mean 1.6; the product of powers in double: 16, mean 3). 12 ulp bounds it and would
+  // catch any change in the formula (a constant's last digit moves μ by more than 1e-7).
+  CHECK(ulps <= 12);
+  VerifyRow(
+      "Xu-Kahraman mu in log space, 46656 points (P_h 0.2-2.5 GPa, SR 1e-3-2, V_e 0.1-30 m/s, "
+      "nu0 5-200 mPa s, R 1-50 mm, S 0.1-1.5 um)",
+      "the printed product, factor by factor in long double", "friction.cpp", Sci(ulps, 2) + " ulp",
+      "12 ulp", ulps <= 12);
 }
 
 TEST_CASE("Benedict–Kelley μ equals the original formula in US units",

@@ -92,6 +92,45 @@ TEST_CASE("bad contact problems are rejected with named fields", "[unit][solvers
   }
 }
 
+TEST_CASE("positive definiteness is judged alike for small and large problems", "[unit][solvers]") {
+  // C = Q diag(λ) Qᵀ with Q orthogonal and the smallest eigenvalue λ_min: accepted for λ_min > 0
+  // (ill-conditioned, 1e-6), rejected for λ_min < 0, with N = 12 (the factor on the stack) and
+  // N = 40 (Eigen's LLT).
+  for (const int n : {12, 40}) {
+    const Eigen::MatrixXd q =
+        Eigen::HouseholderQR<Eigen::MatrixXd>(Eigen::MatrixXd::Random(n, n)).householderQ();
+    for (const double lambda_min : {1e-6, -1e-3}) {
+      Eigen::VectorXd lambda = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+      lambda(n / 2) = lambda_min;
+      Eigen::MatrixXd c = 1e-9 * q * lambda.asDiagonal() * q.transpose();
+      c = (0.5 * (c + c.transpose())).eval();
+      ContactProblemData d;
+      d.compliance = c;
+      d.overlap = Eigen::VectorXd::Zero(n);
+      INFO("N = " << n << ", smallest eigenvalue " << lambda_min << "e-9");
+      if (lambda_min > 0) {
+        CHECK_NOTHROW(ContactProblem(d));
+      } else {
+        CHECK_THROWS_WITH(ContactProblem(d),
+                          Catch::Contains("compliance is not positive definite"));
+      }
+    }
+  }
+}
+
+TEST_CASE("Release gives the validated data back without a copy", "[unit][solvers]") {
+  ContactProblemData d = Good();
+  const double* c = d.compliance.data();
+  const double* o = d.overlap.data();
+  ContactProblem p(std::move(d));
+  const ContactProblemData back = std::move(p).Release();
+  CHECK(back.compliance.data() == c);
+  CHECK(back.overlap.data() == o);
+  CHECK(back.compliance == Good().compliance);  // symmetric already: unchanged
+  CHECK(back.local.size() == 2);
+  CHECK(back.name == "good");
+}
+
 TEST_CASE("options and names are validated", "[unit][solvers]") {
   ContactOptions o;
   o.tolerance = -1;

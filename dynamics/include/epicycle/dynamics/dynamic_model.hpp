@@ -89,6 +89,28 @@ struct DynamicSettings {
 /// The scene's dynamic settings. @throws std::invalid_argument for an unknown friction law.
 DynamicSettings SettingsFromScene(const transmission::Scene& scene);
 
+/// Velocity state of a gear body in the inertial frame.
+struct BodyMotion {
+  Eigen::Vector2d centre_velocity = Eigen::Vector2d::Zero();  ///< of its rotation centre [m/s]
+  double angular_velocity = 0;                                ///< [rad/s]
+};
+
+/// Buffers that DynamicModel::Evaluate reuses from one call to the next (Evaluation::work): with
+/// the same Evaluation passed again, an evaluation allocates only what the stage's kinematic
+/// poses, the contact search, the compliance and the solver allocate inside. Nothing here is a
+/// result.
+struct EvaluationWorkspace {
+  Eigen::VectorXd stage_displacement;  ///< the deviations on the stage model's DOFs
+  /// The contact problem's data: the terms' C, δ0 and local terms copied in (same sizes, no
+  /// allocation), moved into the problem, released after the solve.
+  solvers::ContactProblemData problem;
+  solvers::ContactSolution solution;        ///< warm start in, forces out
+  std::vector<BodyMotion> body;             ///< per body (kSunBody, kRingBody, PlanetBody(i))
+  std::vector<Eigen::Vector2d> body_force;  ///< mesh force per body [N]
+  std::vector<double> body_moment;          ///< mesh moment per body about its centre [N·m]
+  std::vector<double> mesh_load;            ///< Σ F per mesh (2 per planet) [N]
+};
+
 /// What one evaluation of the right-hand side computed (also the outputs of a step).
 struct Evaluation {
   bool ok = false;                      ///< the contact solve converged
@@ -112,6 +134,7 @@ struct Evaluation {
   double kinetic_energy = 0;    ///< [J] (0 unless asked for: Evaluate's `energies`)
   double elastic_energy = 0;  ///< contacts ½FᵀCF + Σ[F u(F) − ∫u] plus bearings [J] (ditto)
   solvers::ContactReport report;
+  EvaluationWorkspace work;  ///< Evaluate's buffers (no result)
 };
 
 class DynamicModel {
@@ -153,7 +176,8 @@ class DynamicModel {
   /// solve gives ok = false (recoverable: the integrator retries with a smaller step).
   /// `energies` = false leaves kinetic_energy and elastic_energy at 0: the right-hand side needs
   /// only the powers, and the stored energy of the local terms costs a closed-form integral per
-  /// loaded contact (outputs and balances ask for them).
+  /// loaded contact (outputs and balances ask for them). `out` (its results and its work space)
+  /// is reused: passing the same Evaluation again saves the allocations; `warm` must be another.
   void Evaluate(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
                 solvers::ContactSolver& solver, const solvers::ContactOptions& contact,
                 const Evaluation* warm, Evaluation* out, bool energies = true) const;
@@ -182,10 +206,6 @@ class DynamicModel {
   int Find(MotionDof::Member member, MotionDof::Axis axis, int planet = 0) const;
 
  private:
-  struct BodyMotion {  // velocity state of a gear body
-    Eigen::Vector2d centre_velocity = Eigen::Vector2d::Zero();
-    double angular_velocity = 0;
-  };
   void BearingForces(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
                      Eigen::VectorXd* q, Evaluation* out) const;
   Eigen::Vector2d PinReference(int planet, double t) const;  // pin position, nominal carrier
@@ -193,8 +213,11 @@ class DynamicModel {
   Eigen::Vector2d CarrierCentre(const Eigen::VectorXd& d) const;  // or its velocity, from v
   Eigen::Vector2d PinVelocity(int planet, double t, const Eigen::VectorXd& d,
                               const Eigen::VectorXd& v) const;
-  std::vector<BodyMotion> BodyVelocities(double t, const Eigen::VectorXd& d,
-                                         const Eigen::VectorXd& v) const;
+  void BodyVelocities(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                      std::vector<BodyMotion>* out) const;
+  // Poses(t, d) into `poses`, with `q` the work space for the stage DOFs' deviations.
+  void Poses(double t, const Eigen::VectorXd& d, Eigen::VectorXd* q,
+             geometry::StagePoses* poses) const;
   double ReferenceVelocity(int k, double t) const;
 
   const transmission::StageModel& model_;
@@ -207,6 +230,7 @@ class DynamicModel {
   double sun_torque_ = 0, carrier_speed_ = 0, carrier_torque_ = 0, start_angle_ = 0;
   double k_sun_ = 0, k_ring_ = 0, damping_sun_ = 0, damping_ring_ = 0;
   double contact_modulus_ = 0;
+  FrictionModel friction_;  // settings_.friction with its constant factors evaluated once
   std::vector<Eigen::Vector2d> pin0_;  // pin positions at carrier angle 0 [m]
 };
 

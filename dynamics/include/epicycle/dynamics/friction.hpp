@@ -102,8 +102,36 @@ double MaxHertzPressure(const FrictionContact& contact);
 ///   W' [N/m], η0 [mPa·s], v_s, V_r [m/s], S [µin]. μ → ∞ as v_s → 0 or V_r → 0 (then μ_max),
 ///   and a negative logarithm (light load, high speed) gives 0.
 ///
+/// Evaluated as FrictionModel(options).SignedCoefficient(contact); a caller with many contacts
+/// keeps one FrictionModel.
 /// @throws std::invalid_argument as ValidateFrictionContact (options are validated by the
 ///   caller once, with FrictionOptions::Validate; they are not re-checked per call).
 double SignedFrictionCoefficient(const FrictionOptions& options, const FrictionContact& contact);
+
+/// The friction law of `options` ready for many contacts: the factors that depend only on the
+/// options (Xu & Kahraman's e^(b1 + b9·e^S)·ν0^b7 and log10 ν0, Benedict & Kelley's 0.0127·C_R)
+/// are evaluated once here. SignedCoefficient(c) is SignedFrictionCoefficient(options, c) (the
+/// same laws and guards); Xu & Kahraman's product is evaluated as K times one exponential of a sum
+/// of logarithms, which rounds differently from a product of powers (within 11 ulp of the exact
+/// product over the regression's range). The options
+/// must be valid (FrictionOptions::Validate; not re-checked). Copyable, immutable: one instance
+/// may serve several threads.
+class FrictionModel {
+ public:
+  explicit FrictionModel(const FrictionOptions& options);
+  const FrictionOptions& options() const { return options_; }
+  /// μ_s [-] as SignedFrictionCoefficient. @throws std::invalid_argument as
+  /// ValidateFrictionContact.
+  double SignedCoefficient(const FrictionContact& contact) const;
+
+ private:
+  double XuKahraman(const FrictionContact& c) const;
+  double BenedictKelley(const FrictionContact& c) const;
+  FrictionOptions options_;
+  double nu0_ = 0;           // ν0 [mPa·s]
+  double xk_constant_ = 0;   // K = e^(b1 + b9·e^S)·ν0^b7 [-] (S [µm], ν0 [mPa·s])
+  double xk_log10_nu0_ = 0;  // log10 ν0 [-]
+  double bk_factor_ = 0;     // 0.0127·C_R [-]
+};
 
 }  // namespace epicycle::dynamics

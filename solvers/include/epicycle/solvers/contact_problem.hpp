@@ -26,8 +26,8 @@ struct ContactProblemData {
   Eigen::MatrixXd compliance;              ///< C [m/N], N×N, symmetric positive definite
   Eigen::VectorXd overlap;                 ///< δ0 [m], N; > 0 interpenetration, < 0 gap
   std::vector<LocalTermParameters> local;  ///< empty (no local terms) or N entries
-  Eigen::MatrixXd equality_matrix;  ///< G, m×N [-] (force rows) or [m] (moment rows); m may be 0
-  Eigen::VectorXd equality_rhs;     ///< W, m [N] or [N·m]
+  Eigen::MatrixXd equality_matrix;    ///< G, m×N [-] (force rows) or [m] (moment rows); m may be 0
+  Eigen::VectorXd equality_rhs;       ///< W, m [N] or [N·m]
   Eigen::MatrixXd support_stiffness;  ///< K, m×m [N/m] or [N·m/rad]; empty means 0
   std::vector<std::string>
       contact_labels;  ///< empty or N labels (e.g. "sun-planet1 tooth 3 drive")
@@ -71,6 +71,11 @@ class ContactProblem {
   double Potential(const Eigen::VectorXd& force) const;
   /// Force [N] at which contact j's Hertz half-width reaches its depth h (+∞ without local term).
   double ValidityLimitForce(int contact) const;
+
+  /// Moves the data out (as validated: C and S their symmetric parts), for a caller that builds a
+  /// problem from buffers it reuses (the dynamic model, once per right-hand side): no copy either
+  /// way. The problem is left empty and must not be used again.
+  ContactProblemData Release() &&;
 
  private:
   ContactProblemData data_;

@@ -77,6 +77,8 @@ class StageModel {
   /// The contact terms at `poses`. @throws std::invalid_argument if a contact has no valid
   /// local-term geometry.
   ContactTerms Terms(const geometry::StagePoses& poses) const;
+  /// The same into `terms`, reusing its buffers (but C, which the compliance returns anew).
+  void Terms(const geometry::StagePoses& poses, ContactTerms* terms) const;
 
   /// G_kj = ∂δ_j/∂q_k [-] or [m] for the given DOFs (any StageDof, not only dofs()).
   Eigen::MatrixXd Sensitivity(const ContactTerms& terms, const std::vector<StageDof>& dofs) const;
@@ -93,6 +95,9 @@ class StageModel {
   /// geometric centre turns with the gear).
   static geometry::StagePoses Displace(const geometry::StagePoses& poses,
                                        const std::vector<StageDof>& dofs, const Eigen::VectorXd& q);
+  /// The same in place.
+  static void Displace(const std::vector<StageDof>& dofs, const Eigen::VectorXd& q,
+                       geometry::StagePoses* poses);
 
   /// Largest rigid displacement in q [m], rotations measured at the base circles.
   double DisplacementSize(const std::vector<StageDof>& dofs, const Eigen::VectorXd& q) const;

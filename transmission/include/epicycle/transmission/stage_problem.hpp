@@ -47,6 +47,9 @@ int CarryForces(const std::vector<StageContact>& from, const Eigen::VectorXd& fo
 /// Every potential contact of every mesh at the given poses (both flanks, within the window).
 std::vector<StageContact> SearchStage(const geometry::Stage& stage,
                                       const geometry::StagePoses& poses, double gap_window);
+/// The same into `out` (cleared first; its capacity is reused).
+void SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses, double gap_window,
+                 std::vector<StageContact>* out);
 
 /// The structural compliance of the stage's bodies (built by the compliance layer):
 /// C_jk [m/N] of contacts j, k, coupling every pair of contacts that share a body.
