@@ -9,12 +9,12 @@ namespace epicycle::compliance {
 
 namespace {
 
-// A contact side resolved once: its flank position on the body and its direction in the body
-// frame, so the N² loop only interpolates.
+// A contact side resolved once: its contact, its body, and its flank position with the direction
+// of its force in the body frame, so the pair loop only interpolates.
 struct Located {
+  int contact = 0;
   int body = -1;
-  InfluenceTable::Node node;  // flank position and interpolation stencil
-  Eigen::Vector2d direction;  // body frame
+  InfluenceTable::DirectedNode node;
 };
 
 }  // namespace
@@ -28,8 +28,13 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                   bodies[b].name + "') has no influence table");
     }
   }
+  // R(−θ_B), inertial to body frame, once per body.
+  std::vector<Eigen::Matrix2d> to_body(static_cast<std::size_t>(nb));
+  for (int b = 0; b < nb; ++b)
+    to_body[b] = Eigen::Rotation2Dd(-bodies[b].rotation).toRotationMatrix();
   const int n = static_cast<int>(contacts.size());
-  std::vector<std::array<Located, 2>> loc(static_cast<std::size_t>(n));
+  std::vector<Located> loc(static_cast<std::size_t>(2 * n));    // side s of contact j at 2j + s
+  std::vector<int> first(static_cast<std::size_t>(nb) + 1, 0);  // sides per body, then offsets
   for (int j = 0; j < n; ++j) {
     for (int s = 0; s < 2; ++s) {
       const ContactSide& side = contacts[j].side[s];
@@ -49,13 +54,10 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                     std::to_string(side.direction.norm()) + ")");
       }
       const OperatorBody& body = bodies[side.body];
-      const Eigen::Rotation2Dd to_body(-body.rotation);
-      Located& l = loc[j][s];
-      l.body = side.body;
-      l.direction = to_body * side.direction;
+      const Eigen::Matrix2d& r = to_body[side.body];
       FlankPosition position;
       double distance = 0;
-      const Eigen::Vector2d point = to_body * (side.point - body.centre);
+      const Eigen::Vector2d point = r * (side.point - body.centre);
       if (!body.table->TryLocate(point, side.tooth, side.flank, &position, &distance)) {
         try {
           body.table->Locate(point, side.tooth, side.flank);  // throws the table's message
@@ -63,27 +65,49 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
           throw std::invalid_argument(where() + " on body '" + body.name + "': " + e.what());
         }
       }
-      l.node = body.table->Prepare(position);
+      Located& l = loc[2 * j + s];
+      l.contact = j;
+      l.body = side.body;
+      l.node = body.table->PrepareDirected(position, r * side.direction);
+      ++first[side.body + 1];
     }
   }
+  // The sides grouped by body, in contact order within a body (a counting sort): each body's
+  // pairs are then one triangle of its sides.
+  for (int b = 0; b < nb; ++b) first[b + 1] += first[b];
+  std::vector<int> order(loc.size());
+  {
+    std::vector<int> next(first.begin(), first.end() - 1);
+    for (int i = 0; i < 2 * n; ++i) order[next[loc[i].body]++] = i;
+  }
+  // C_jk = Σ_B d_Bjᵀ Λ_B(p_Bk → p_Bj) d_Bk (+ support): every pair of sides x ≤ y of a body adds
+  // its term to C_jk and C_kj, j ≤ k their contacts (the response at j, the load at k).
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
-  for (int j = 0; j < n; ++j) {
-    for (int k = j; k < n; ++k) {
-      double sum = 0.0;
-      for (const Located& a : loc[j]) {
-        for (const Located& b : loc[k]) {
-          if (a.body != b.body) continue;
-          const OperatorBody& body = bodies[a.body];
-          sum += a.direction.dot(body.table->PreparedInfluence(b.node, a.node) * b.direction);
-          if (!body.support.isZero(0.0)) {
-            // The support acts on the centre in the inertial frame: rotate the directions back.
-            const Eigen::Rotation2Dd to_world(body.rotation);
-            sum += (to_world * a.direction).dot(body.support * (to_world * b.direction));
-          }
-        }
+  for (int b = 0; b < nb; ++b) {
+    const OperatorBody& body = bodies[b];
+    const InfluenceTable& table = *body.table;
+    const bool support = !body.support.isZero(0.0);
+    // The support acts on the centre in the inertial frame: rotate the directions back.
+    const Eigen::Matrix2d to_world =
+        support ? Eigen::Rotation2Dd(body.rotation).toRotationMatrix() : Eigen::Matrix2d::Zero();
+    auto term = [&](const Located& response, const Located& load) {
+      double v = table.DirectedCompliance(load.node, response.node);
+      if (support) {
+        v += (to_world * response.node.direction)
+                 .dot(body.support * (to_world * load.node.direction));
       }
-      c(j, k) = sum;
-      c(k, j) = sum;
+      return v;
+    };
+    for (int x = first[b]; x < first[b + 1]; ++x) {
+      const Located& a = loc[order[x]];
+      for (int y = x; y < first[b + 1]; ++y) {
+        const Located& l = loc[order[y]];
+        const int j = a.contact, k = l.contact;
+        double v = term(a, l);
+        if (j == k && x != y) v += term(l, a);  // both sides of one contact on this body
+        c(j, k) += v;
+        if (j != k) c(k, j) += v;
+      }
     }
   }
   return c;

@@ -401,6 +401,69 @@ Eigen::Matrix2d InfluenceTable::PreparedInfluence(const Node& load_node,
   return r * m * r.transpose();
 }
 
+InfluenceTable::DirectedNode InfluenceTable::PrepareDirected(
+    const FlankPosition& position, const Eigen::Vector2d& direction) const {
+  DirectedNode d;
+  d.node = Prepare(position);
+  d.direction = direction;
+  const int z = teeth_;
+  d.tooth = ((position.tooth % z) + z) % z;
+  d.flank_index = position.flank > 0 ? 0 : 1;
+  const Eigen::Vector2d v =
+      tooth_rotation_[static_cast<std::size_t>(d.tooth)].transpose() * direction;
+  for (int p = 0; p < 4; ++p) {
+    d.load_weight[2 * p] = d.node.weight[p] * v.x();
+    d.load_weight[2 * p + 1] = d.node.weight[p] * v.y();
+  }
+  return d;
+}
+
+// With the load on tooth k1 and the response on tooth k2 = k1 + Δk (mod z), the class comment's
+// cyclic symmetry gives Λ = R_k1 Λ0 R_k1ᵀ, where Λ0 (load on tooth 0, response on tooth Δk) is the
+// tensor-product interpolant Λ0 = Σ_p Σ_q w_p w'_q T(a0 + p → b0 + q), w and w' the load's and the
+// response's stencil weights and T(i → j) the 2×2 table block (column c: load along axis c,
+// row e: displacement component e). So
+//   d_rᵀ Λ d_l = uᵀ Λ0 v = Σ_{p,c} (w_p v_c) Σ_{q,e} (w'_q u_e) T_ec(a0 + p → b0 + q),
+// u = R_k1ᵀ d_r and v = R_k1ᵀ d_l (the load's load_weight holds w_p v_c). T_ec(i → j) is stored at
+// Index(fl, i, c, Δk, fr, j) + e: for fixed (fl, Δk, fr) the eight rows ρ = 2p + c start at
+// Index(fl, a0, 0, Δk, fr, b0) + ρ P (P = 4 z n values per unit load: Index steps by P in c and
+// by 2P in i) and each row holds the response stencil's values [x_q, y_q], q = 0 … 3, in a run.
+// The sum is taken as a_i = Σ_ρ (w_p v_c)_ρ row_ρ[i] (i = 2q + e), then Σ_q w'_q (u_x a_2q +
+// u_y a_2q+1): 64 multiply-adds and no 2×2 products. The self term (the same position) reads the
+// depth-h blocks S_p instead: uᵀ Λ0 v = Σ_{p,c} (w_p v_c) (uᵀ S_p)_c.
+double InfluenceTable::DirectedCompliance(const DirectedNode& load,
+                                          const DirectedNode& response) const {
+  const int fl = load.flank_index, fr = response.flank_index;
+  int dk = response.tooth - load.tooth;
+  if (dk < 0) dk += teeth_;
+  const Eigen::Vector2d u =
+      tooth_rotation_[static_cast<std::size_t>(load.tooth)].transpose() * response.direction;
+  const std::array<double, 8>& alpha = load.load_weight;
+  const bool self = dk == 0 && fl == fr &&
+                    std::abs(load.node.position.arc_length - response.node.position.arc_length) <=
+                        1e-12 * arc_length_max();
+  if (self) {
+    const Eigen::Matrix2d* s = self_.data() + static_cast<std::size_t>(fl) * n_ + load.node.first;
+    double sum = 0.0;
+    for (int p = 0; p < 4; ++p) {
+      sum += alpha[2 * p] * (u.x() * s[p](0, 0) + u.y() * s[p](1, 0)) +
+             alpha[2 * p + 1] * (u.x() * s[p](0, 1) + u.y() * s[p](1, 1));
+    }
+    return sum;
+  }
+  const std::size_t stride = static_cast<std::size_t>(teeth_) * 4 * n_;  // P
+  const double* base = surface_.data() + Index(fl, load.node.first, 0, dk, fr, response.node.first);
+  // Eight-element rows: Eigen's packets vectorise the update along a row (the order of each a_i's
+  // sum is kept).
+  using Row = Eigen::Matrix<double, 8, 1>;
+  Row a = alpha[0] * Eigen::Map<const Row>(base);
+  for (int r = 1; r < 8; ++r) a.noalias() += alpha[r] * Eigen::Map<const Row>(base + r * stride);
+  const std::array<double, 4>& w = response.node.weight;
+  double sum = 0.0;
+  for (int q = 0; q < 4; ++q) sum += w[q] * (u.x() * a[2 * q] + u.y() * a[2 * q + 1]);
+  return sum;
+}
+
 bool InfluenceTable::TryLocate(const Eigen::Vector2d& point, int tooth, int flank,
                                FlankPosition* out, double* distance_out) const {
   const int z = teeth_;

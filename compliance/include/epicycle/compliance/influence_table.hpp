@@ -133,6 +133,27 @@ class InfluenceTable {
   /// Λ(load, response) [m/N] of prepared positions (the same value as from the positions).
   Eigen::Matrix2d PreparedInfluence(const Node& load, const Node& response) const;
 
+  /// A prepared position with a unit direction d in the body frame (of a contact force, or of the
+  /// displacement read there), for the scalar compliance between many pairs (AssembleCompliance).
+  /// With R_k the rotation of the node's tooth k, v = R_kᵀ d is the direction in the frame where
+  /// the tooth is tooth 0, and the products w_p v_c of the stencil's weights with it are what the
+  /// node contributes as a load (see DirectedCompliance).
+  struct DirectedNode {
+    Node node;
+    Eigen::Vector2d direction = Eigen::Vector2d::Zero();  ///< d [-], unit, body frame
+    int tooth = 0;                                        ///< k mod z, in [0, z)
+    int flank_index = 0;                                  ///< 0 for σ = +1, 1 for σ = −1
+    std::array<double, 8> load_weight{};                  ///< w_p (R_kᵀ d)_c at index 2p + c
+  };
+  /// @throws std::invalid_argument as Prepare.
+  DirectedNode PrepareDirected(const FlankPosition& position,
+                               const Eigen::Vector2d& direction) const;
+  /// d_rᵀ Λ(load, response) d_l [m/N], d_l and d_r the nodes' directions: the same value as
+  /// `response.direction.dot(PreparedInfluence(load.node, response.node) * load.direction)` to
+  /// round-off, with the directions contracted into the interpolation instead of forming the 2×2
+  /// block (see the implementation for the sum).
+  double DirectedCompliance(const DirectedNode& load, const DirectedNode& response) const;
+
   /// The flank position of a body-frame point on tooth k's flank σ: the foot of the point on a
   /// polyline of the generated profile with 32 points per grid interval (chord error κΔ²/8 below
   /// 1e-8 m here; grid nodes are located exactly), about 0.2 µs. @throws std::invalid_argument if
