@@ -75,7 +75,7 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
   t.teeth_ = body.teeth;
   t.grid_ = body.grid;
   t.n_ = body.grid.num_points();
-  t.BuildDenseProfile();
+  t.BuildDerived();
   const int n = t.n_, z = t.teeth_;
 
   // Join depth: admissible below the distance to the tooth centre line along the normal.
@@ -302,7 +302,9 @@ void InfluenceTable::CheckHalfWidth(double half_width) const {
   }
 }
 
-// Piecewise cubic Hermite in arc length, nodal slopes from the parabola through three points.
+// Piecewise cubic Hermite in arc length, nodal slopes from the parabola through three points:
+// f'_m ≈ Σ_t K_m,t f_(m0+t), m0 = clamp(m − 1, 0, n − 3) (one-sided at the ends), K from the grid
+// alone (slope_, formed once by BuildDerived).
 void InfluenceTable::Weights(double s, int* first, std::array<double, 4>* w) const {
   const std::vector<double>& g = grid_.arc_length;
   const int n = n_;
@@ -319,24 +321,11 @@ void InfluenceTable::Weights(double s, int* first, std::array<double, 4>* w) con
   const int lo = std::clamp(i - 1, 0, n - 4);
   *first = lo;
   w->fill(0.0);
-  // Slope weights at node m over f_{m-1}, f_m, f_{m+1} (one-sided at the ends).
+  // Adds coef · f'_m's weights.
   auto slope = [&](int m, double coef) {
-    if (m == 0) {
-      const double h0 = g[1] - g[0], h1 = g[2] - g[1];
-      (*w)[0 - lo] += coef * (-(2 * h0 + h1) / (h0 * (h0 + h1)));
-      (*w)[1 - lo] += coef * ((h0 + h1) / (h0 * h1));
-      (*w)[2 - lo] += coef * (-h0 / (h1 * (h0 + h1)));
-    } else if (m == n - 1) {
-      const double h0 = g[m - 1] - g[m - 2], h1 = g[m] - g[m - 1];
-      (*w)[m - 2 - lo] += coef * (h1 / (h0 * (h0 + h1)));
-      (*w)[m - 1 - lo] += coef * (-(h0 + h1) / (h0 * h1));
-      (*w)[m - lo] += coef * ((2 * h1 + h0) / (h1 * (h0 + h1)));
-    } else {
-      const double h0 = g[m] - g[m - 1], h1 = g[m + 1] - g[m];
-      (*w)[m - 1 - lo] += coef * (-h1 / (h0 * (h0 + h1)));
-      (*w)[m - lo] += coef * ((h1 - h0) / (h0 * h1));
-      (*w)[m + 1 - lo] += coef * (h0 / (h1 * (h0 + h1)));
-    }
+    const int m0 = std::clamp(m - 1, 0, n - 3);
+    const std::array<double, 3>& k = slope_[static_cast<std::size_t>(m)];
+    for (int t = 0; t < 3; ++t) (*w)[m0 + t - lo] += coef * k[t];
   };
   const double d = g[i + 1] - g[i];
   const double x = (s - g[i]) / d;
@@ -681,11 +670,28 @@ InfluenceTable InfluenceTable::ReadPayload(std::istream& in, const geometry::Gea
   t.layer_ = GetVector(in, static_cast<std::size_t>(2) * n);
   t.gear_ = std::make_shared<const geometry::Gear>(gear);
   t.path_ = std::make_shared<const ProfilePath>(*t.gear_);
-  t.BuildDenseProfile();
+  t.BuildDerived();
   return t;
 }
 
-void InfluenceTable::BuildDenseProfile() {
+void InfluenceTable::BuildDerived() {
+  // The slope weights of the interpolant (Weights): the derivative at node m of the parabola
+  // through grid points m0, m0 + 1, m0 + 2, m0 = clamp(m − 1, 0, n − 3), with spacings h0, h1.
+  slope_.assign(static_cast<std::size_t>(n_), {});
+  const std::vector<double>& g = grid_.arc_length;
+  for (int m = 0; m < n_; ++m) {
+    std::array<double, 3>& k = slope_[static_cast<std::size_t>(m)];
+    if (m == 0) {
+      const double h0 = g[1] - g[0], h1 = g[2] - g[1];
+      k = {-(2 * h0 + h1) / (h0 * (h0 + h1)), (h0 + h1) / (h0 * h1), -h0 / (h1 * (h0 + h1))};
+    } else if (m == n_ - 1) {
+      const double h0 = g[m - 1] - g[m - 2], h1 = g[m] - g[m - 1];
+      k = {h1 / (h0 * (h0 + h1)), -(h0 + h1) / (h0 * h1), (2 * h1 + h0) / (h1 * (h0 + h1))};
+    } else {
+      const double h0 = g[m] - g[m - 1], h1 = g[m + 1] - g[m];
+      k = {-h1 / (h0 * (h0 + h1)), (h1 - h0) / (h0 * h1), h0 / (h1 * (h0 + h1))};
+    }
+  }
   // kDense points per grid interval, the grid nodes among them, taken from the exact profile.
   dense_.clear();
   dense_.reserve(static_cast<std::size_t>(n_ - 1) * kDense + 1);

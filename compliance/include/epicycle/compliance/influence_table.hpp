@@ -193,7 +193,7 @@ class InfluenceTable {
 
  private:
   std::size_t Index(int fl, int i, int c, int k, int f, int j) const;
-  void BuildDenseProfile();  // dense_ and tooth_rotation_ from grid_ and path_
+  void BuildDerived();  // slope_, dense_, dense_radius_, tooth_rotation_ from grid_ and path_
   void Weights(double s, int* first, std::array<double, 4>* w) const;
 
   int teeth_ = 0;
@@ -203,10 +203,11 @@ class InfluenceTable {
   double raw_asymmetry_ = 0.0, raw_self_asymmetry_ = 0.0;
   std::array<double, 3> seconds_{};
   FlankGrid grid_;
-  std::vector<double> surface_;        // symmetrised, joined (self entries = depth blocks)
-  std::vector<double> raw_;            // as solved (surface values everywhere)
-  std::vector<Eigen::Matrix2d> self_;  // [fl][i], symmetrised, with the layer term
-  std::vector<double> layer_;          // [fl][i], the layer term [m/N]
+  std::vector<double> surface_;               // symmetrised, joined (self entries = depth blocks)
+  std::vector<double> raw_;                   // as solved (surface values everywhere)
+  std::vector<Eigen::Matrix2d> self_;         // [fl][i], symmetrised, with the layer term
+  std::vector<double> layer_;                 // [fl][i], the layer term [m/N]
+  std::vector<std::array<double, 3>> slope_;  // [m]: nodal slope weights (Weights)
   std::shared_ptr<const geometry::Gear> gear_;
   std::shared_ptr<const ProfilePath> path_;
   // The σ = +1 flank of tooth 0 as a dense polyline (Locate): kDense points per grid interval.
