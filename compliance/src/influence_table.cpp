@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
-#include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -469,12 +468,26 @@ bool InfluenceTable::TryLocate(const Eigen::Vector2d& point, int tooth, int flan
   // there. A descent that ends more than a grid interval from its start, or at a point out of
   // tolerance, falls back to the scan of every point (never taken for points on the profile; kept
   // so that neither the answer nor a rejection ever depends on the shortcut).
-  const double r = q.norm();
-  const bool rising = dense_radius_.back() > dense_radius_.front();
-  const auto it =
-      rising ? std::lower_bound(dense_radius_.begin(), dense_radius_.end(), r)
-             : std::lower_bound(dense_radius_.begin(), dense_radius_.end(), r, std::greater<>());
-  int m = std::clamp(static_cast<int>(it - dense_radius_.begin()), 0, last);
+  //
+  // The bisection runs on the key ±|q| (the sign of the profile's direction, dense_key_ rising
+  // along it): its first point with key ≥ ±|q|. A bucket of equal key width narrows its range to
+  // the points between the bucket's edges; the range is used only if the point before it is below
+  // the key and the point after it is not, which on the sorted keys makes the narrowed bisection
+  // return exactly the whole one (BuildDerived leaves the buckets out if the keys are not sorted).
+  const double key = key_sign_ * q.norm();
+  int lo = 0, hi = last + 1;
+  if (!bucket_.empty()) {
+    const double x = (key - bucket_origin_) * bucket_scale_;
+    const int buckets = static_cast<int>(bucket_.size()) - 1;
+    const int b = x > 0.0 ? static_cast<int>(std::min(x, buckets - 1.0)) : 0;
+    const int b_lo = bucket_[b], b_hi = bucket_[b + 1];
+    if ((b_lo == 0 || dense_key_[b_lo - 1] < key) && (b_hi > last || !(dense_key_[b_hi] < key))) {
+      lo = b_lo;
+      hi = b_hi;
+    }
+  }
+  const auto it = std::lower_bound(dense_key_.begin() + lo, dense_key_.begin() + hi, key);
+  int m = std::clamp(static_cast<int>(it - dense_key_.begin()), 0, last);
   const int start = m;
   double best = dist2(m);
   for (int step : {-1, 1}) {
@@ -703,8 +716,26 @@ void InfluenceTable::BuildDerived() {
     }
   }
   dense_.push_back({grid_.position[n_ - 1], grid_.arc_length[n_ - 1]});
-  dense_radius_.clear();
-  for (const DensePoint& d : dense_) dense_radius_.push_back(d.point.norm());
+  // The bisection's keys (TryLocate): ±|x| along the profile, + if the radius rises from the form
+  // point to the tip-round end (external teeth), − if it falls (internal), so that they rise.
+  key_sign_ = dense_.back().point.norm() > dense_.front().point.norm() ? 1.0 : -1.0;
+  dense_key_.clear();
+  for (const DensePoint& d : dense_) dense_key_.push_back(key_sign_ * d.point.norm());
+  // As many buckets as points, of equal width between the first and the last key; bucket b holds
+  // the bisection's answers for keys between its edges e_b = origin + b / scale and e_b+1:
+  // [first point ≥ e_b, first point ≥ e_b+1].
+  bucket_.clear();
+  const int buckets = static_cast<int>(dense_key_.size());
+  bucket_origin_ = dense_key_.front();
+  bucket_scale_ = buckets / (dense_key_.back() - dense_key_.front());
+  if (std::is_sorted(dense_key_.begin(), dense_key_.end()) && std::isfinite(bucket_scale_) &&
+      bucket_scale_ > 0.0) {
+    for (int b = 0; b <= buckets; ++b) {
+      const double edge = bucket_origin_ + b / bucket_scale_;
+      bucket_.push_back(static_cast<int>(
+          std::lower_bound(dense_key_.begin(), dense_key_.end(), edge) - dense_key_.begin()));
+    }
+  }
   tooth_rotation_.clear();
   for (int k = 0; k < teeth_; ++k) tooth_rotation_.push_back(Rot(k * gear_->pitch_angle()));
 }

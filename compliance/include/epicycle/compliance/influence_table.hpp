@@ -193,7 +193,7 @@ class InfluenceTable {
 
  private:
   std::size_t Index(int fl, int i, int c, int k, int f, int j) const;
-  void BuildDerived();  // slope_, dense_, dense_radius_, tooth_rotation_ from grid_ and path_
+  void BuildDerived();  // slope_, dense_, dense_key_, bucket_, tooth_rotation_ (grid_, path_)
   void Weights(double s, int* first, std::array<double, 4>* w) const;
 
   int teeth_ = 0;
@@ -217,8 +217,13 @@ class InfluenceTable {
     double arc_length;  // from the form point [m]
   };
   std::vector<DensePoint> dense_;
-  std::vector<double> dense_radius_;  // |point|: monotonic along the profile (Locate's bisection)
-  std::vector<Eigen::Matrix2d> tooth_rotation_;  // R(k·2π/z), k = 0 … z − 1
+  // ±|point|, rising along the profile (Locate's bisection), and buckets of equal key width over
+  // it: bucket b's answers lie in [bucket_[b], bucket_[b + 1]] (empty if the keys are not sorted).
+  double key_sign_ = 1.0;
+  std::vector<double> dense_key_;
+  std::vector<int> bucket_;
+  double bucket_origin_ = 0.0, bucket_scale_ = 0.0;  // key of bucket 0's lower edge, buckets/key
+  std::vector<Eigen::Matrix2d> tooth_rotation_;      // R(k·2π/z), k = 0 … z − 1
 };
 
 }  // namespace epicycle::compliance
