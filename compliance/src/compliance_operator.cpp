@@ -28,13 +28,18 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                   bodies[b].name + "') has no influence table");
     }
   }
-  // R(−θ_B), inertial to body frame, once per body.
-  std::vector<Eigen::Matrix2d> to_body(static_cast<std::size_t>(nb));
+  // Per body: R(−θ_B), inertial to body frame; and where its sides start in the sides grouped by
+  // body (a count first, then the offsets; one entry past the last body ends the last group).
+  struct Frame {
+    Eigen::Matrix2d to_body = Eigen::Matrix2d::Identity();
+    int first = 0;
+  };
+  std::vector<Frame> frame(static_cast<std::size_t>(nb) + 1);
   for (int b = 0; b < nb; ++b)
-    to_body[b] = Eigen::Rotation2Dd(-bodies[b].rotation).toRotationMatrix();
+    frame[b].to_body = Eigen::Rotation2Dd(-bodies[b].rotation).toRotationMatrix();
   const int n = static_cast<int>(contacts.size());
-  std::vector<Located> loc(static_cast<std::size_t>(2 * n));    // side s of contact j at 2j + s
-  std::vector<int> first(static_cast<std::size_t>(nb) + 1, 0);  // sides per body, then offsets
+  std::vector<Located> loc;  // side s of contact j at 2j + s
+  loc.reserve(static_cast<std::size_t>(2 * n));
   for (int j = 0; j < n; ++j) {
     for (int s = 0; s < 2; ++s) {
       const ContactSide& side = contacts[j].side[s];
@@ -54,7 +59,7 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                     std::to_string(side.direction.norm()) + ")");
       }
       const OperatorBody& body = bodies[side.body];
-      const Eigen::Matrix2d& r = to_body[side.body];
+      const Eigen::Matrix2d& r = frame[side.body].to_body;
       FlankPosition position;
       double distance = 0;
       const Eigen::Vector2d point = r * (side.point - body.centre);
@@ -65,21 +70,17 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
           throw std::invalid_argument(where() + " on body '" + body.name + "': " + e.what());
         }
       }
-      Located& l = loc[2 * j + s];
-      l.contact = j;
-      l.body = side.body;
-      l.node = body.table->PrepareDirected(position, r * side.direction);
-      ++first[side.body + 1];
+      loc.push_back({j, side.body, body.table->PrepareDirected(position, r * side.direction)});
+      ++frame[side.body + 1].first;
     }
   }
   // The sides grouped by body, in contact order within a body (a counting sort): each body's
   // pairs are then one triangle of its sides.
-  for (int b = 0; b < nb; ++b) first[b + 1] += first[b];
+  for (int b = 0; b < nb; ++b) frame[b + 1].first += frame[b].first;
   std::vector<int> order(loc.size());
-  {
-    std::vector<int> next(first.begin(), first.end() - 1);
-    for (int i = 0; i < 2 * n; ++i) order[next[loc[i].body]++] = i;
-  }
+  for (int i = 0; i < 2 * n; ++i) order[frame[loc[i].body].first++] = i;
+  for (int b = nb; b > 0; --b) frame[b].first = frame[b - 1].first;  // back to the starts
+  frame[0].first = 0;
   // C_jk = Σ_B d_Bjᵀ Λ_B(p_Bk → p_Bj) d_Bk (+ support): every pair of sides x ≤ y of a body adds
   // its term to C_jk and C_kj, j ≤ k their contacts (the response at j, the load at k).
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
@@ -98,9 +99,10 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
       }
       return v;
     };
-    for (int x = first[b]; x < first[b + 1]; ++x) {
+    const int end = frame[b + 1].first;
+    for (int x = frame[b].first; x < end; ++x) {
       const Located& a = loc[order[x]];
-      for (int y = x; y < first[b + 1]; ++y) {
+      for (int y = x; y < end; ++y) {
         const Located& l = loc[order[y]];
         const int j = a.contact, k = l.contact;
         double v = term(a, l);
