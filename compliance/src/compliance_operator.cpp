@@ -9,12 +9,12 @@ namespace epicycle::compliance {
 
 namespace {
 
-// A contact side resolved once: its flank position on the body and its direction in the body
-// frame, so the N² loop only interpolates.
+// A contact side resolved once: its contact, its body, and its flank position with the direction
+// of its force in the body frame, so the pair loop only interpolates.
 struct Located {
+  int contact = 0;
   int body = -1;
-  InfluenceTable::Node node;  // flank position and interpolation stencil
-  Eigen::Vector2d direction;  // body frame
+  InfluenceTable::DirectedNode node;
 };
 
 }  // namespace
@@ -28,8 +28,18 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                   bodies[b].name + "') has no influence table");
     }
   }
+  // Per body: R(−θ_B), inertial to body frame; and where its sides start in the sides grouped by
+  // body (a count first, then the offsets; one entry past the last body ends the last group).
+  struct Frame {
+    Eigen::Matrix2d to_body = Eigen::Matrix2d::Identity();
+    int first = 0;
+  };
+  std::vector<Frame> frame(static_cast<std::size_t>(nb) + 1);
+  for (int b = 0; b < nb; ++b)
+    frame[b].to_body = Eigen::Rotation2Dd(-bodies[b].rotation).toRotationMatrix();
   const int n = static_cast<int>(contacts.size());
-  std::vector<std::array<Located, 2>> loc(static_cast<std::size_t>(n));
+  std::vector<Located> loc;  // side s of contact j at 2j + s
+  loc.reserve(static_cast<std::size_t>(2 * n));
   for (int j = 0; j < n; ++j) {
     for (int s = 0; s < 2; ++s) {
       const ContactSide& side = contacts[j].side[s];
@@ -49,13 +59,10 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                     std::to_string(side.direction.norm()) + ")");
       }
       const OperatorBody& body = bodies[side.body];
-      const Eigen::Rotation2Dd to_body(-body.rotation);
-      Located& l = loc[j][s];
-      l.body = side.body;
-      l.direction = to_body * side.direction;
+      const Eigen::Matrix2d& r = frame[side.body].to_body;
       FlankPosition position;
       double distance = 0;
-      const Eigen::Vector2d point = to_body * (side.point - body.centre);
+      const Eigen::Vector2d point = r * (side.point - body.centre);
       if (!body.table->TryLocate(point, side.tooth, side.flank, &position, &distance)) {
         try {
           body.table->Locate(point, side.tooth, side.flank);  // throws the table's message
@@ -63,27 +70,46 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
           throw std::invalid_argument(where() + " on body '" + body.name + "': " + e.what());
         }
       }
-      l.node = body.table->Prepare(position);
+      loc.push_back({j, side.body, body.table->PrepareDirected(position, r * side.direction)});
+      ++frame[side.body + 1].first;
     }
   }
+  // The sides grouped by body, in contact order within a body (a counting sort): each body's
+  // pairs are then one triangle of its sides.
+  for (int b = 0; b < nb; ++b) frame[b + 1].first += frame[b].first;
+  std::vector<int> order(loc.size());
+  for (int i = 0; i < 2 * n; ++i) order[frame[loc[i].body].first++] = i;
+  for (int b = nb; b > 0; --b) frame[b].first = frame[b - 1].first;  // back to the starts
+  frame[0].first = 0;
+  // C_jk = Σ_B d_Bjᵀ Λ_B(p_Bk → p_Bj) d_Bk (+ support): every pair of sides x ≤ y of a body adds
+  // its term to C_jk and C_kj, j ≤ k their contacts (the response at j, the load at k).
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
-  for (int j = 0; j < n; ++j) {
-    for (int k = j; k < n; ++k) {
-      double sum = 0.0;
-      for (const Located& a : loc[j]) {
-        for (const Located& b : loc[k]) {
-          if (a.body != b.body) continue;
-          const OperatorBody& body = bodies[a.body];
-          sum += a.direction.dot(body.table->PreparedInfluence(b.node, a.node) * b.direction);
-          if (!body.support.isZero(0.0)) {
-            // The support acts on the centre in the inertial frame: rotate the directions back.
-            const Eigen::Rotation2Dd to_world(body.rotation);
-            sum += (to_world * a.direction).dot(body.support * (to_world * b.direction));
-          }
-        }
+  for (int b = 0; b < nb; ++b) {
+    const OperatorBody& body = bodies[b];
+    const InfluenceTable& table = *body.table;
+    const bool support = !body.support.isZero(0.0);
+    // The support acts on the centre in the inertial frame: rotate the directions back.
+    const Eigen::Matrix2d to_world =
+        support ? Eigen::Rotation2Dd(body.rotation).toRotationMatrix() : Eigen::Matrix2d::Zero();
+    auto term = [&](const Located& response, const Located& load) {
+      double v = table.DirectedCompliance(load.node, response.node);
+      if (support) {
+        v += (to_world * response.node.direction)
+                 .dot(body.support * (to_world * load.node.direction));
       }
-      c(j, k) = sum;
-      c(k, j) = sum;
+      return v;
+    };
+    const int end = frame[b + 1].first;
+    for (int x = frame[b].first; x < end; ++x) {
+      const Located& a = loc[order[x]];
+      for (int y = x; y < end; ++y) {
+        const Located& l = loc[order[y]];
+        const int j = a.contact, k = l.contact;
+        double v = term(a, l);
+        if (j == k && x != y) v += term(l, a);  // both sides of one contact on this body
+        c(j, k) += v;
+        if (j != k) c(k, j) += v;
+      }
     }
   }
   return c;

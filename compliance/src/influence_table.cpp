@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
-#include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -75,7 +74,7 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
   t.teeth_ = body.teeth;
   t.grid_ = body.grid;
   t.n_ = body.grid.num_points();
-  t.BuildDenseProfile();
+  t.BuildDerived();
   const int n = t.n_, z = t.teeth_;
 
   // Join depth: admissible below the distance to the tooth centre line along the normal.
@@ -302,7 +301,9 @@ void InfluenceTable::CheckHalfWidth(double half_width) const {
   }
 }
 
-// Piecewise cubic Hermite in arc length, nodal slopes from the parabola through three points.
+// Piecewise cubic Hermite in arc length, nodal slopes from the parabola through three points:
+// f'_m ≈ Σ_t K_m,t f_(m0+t), m0 = clamp(m − 1, 0, n − 3) (one-sided at the ends), K from the grid
+// alone (slope_, formed once by BuildDerived).
 void InfluenceTable::Weights(double s, int* first, std::array<double, 4>* w) const {
   const std::vector<double>& g = grid_.arc_length;
   const int n = n_;
@@ -319,24 +320,11 @@ void InfluenceTable::Weights(double s, int* first, std::array<double, 4>* w) con
   const int lo = std::clamp(i - 1, 0, n - 4);
   *first = lo;
   w->fill(0.0);
-  // Slope weights at node m over f_{m-1}, f_m, f_{m+1} (one-sided at the ends).
+  // Adds coef · f'_m's weights.
   auto slope = [&](int m, double coef) {
-    if (m == 0) {
-      const double h0 = g[1] - g[0], h1 = g[2] - g[1];
-      (*w)[0 - lo] += coef * (-(2 * h0 + h1) / (h0 * (h0 + h1)));
-      (*w)[1 - lo] += coef * ((h0 + h1) / (h0 * h1));
-      (*w)[2 - lo] += coef * (-h0 / (h1 * (h0 + h1)));
-    } else if (m == n - 1) {
-      const double h0 = g[m - 1] - g[m - 2], h1 = g[m] - g[m - 1];
-      (*w)[m - 2 - lo] += coef * (h1 / (h0 * (h0 + h1)));
-      (*w)[m - 1 - lo] += coef * (-(h0 + h1) / (h0 * h1));
-      (*w)[m - lo] += coef * ((2 * h1 + h0) / (h1 * (h0 + h1)));
-    } else {
-      const double h0 = g[m] - g[m - 1], h1 = g[m + 1] - g[m];
-      (*w)[m - 1 - lo] += coef * (-h1 / (h0 * (h0 + h1)));
-      (*w)[m - lo] += coef * ((h1 - h0) / (h0 * h1));
-      (*w)[m + 1 - lo] += coef * (h0 / (h1 * (h0 + h1)));
-    }
+    const int m0 = std::clamp(m - 1, 0, n - 3);
+    const std::array<double, 3>& k = slope_[static_cast<std::size_t>(m)];
+    for (int t = 0; t < 3; ++t) (*w)[m0 + t - lo] += coef * k[t];
   };
   const double d = g[i + 1] - g[i];
   const double x = (s - g[i]) / d;
@@ -401,6 +389,69 @@ Eigen::Matrix2d InfluenceTable::PreparedInfluence(const Node& load_node,
   return r * m * r.transpose();
 }
 
+InfluenceTable::DirectedNode InfluenceTable::PrepareDirected(
+    const FlankPosition& position, const Eigen::Vector2d& direction) const {
+  DirectedNode d;
+  d.node = Prepare(position);
+  d.direction = direction;
+  const int z = teeth_;
+  d.tooth = ((position.tooth % z) + z) % z;
+  d.flank_index = position.flank > 0 ? 0 : 1;
+  const Eigen::Vector2d v =
+      tooth_rotation_[static_cast<std::size_t>(d.tooth)].transpose() * direction;
+  for (int p = 0; p < 4; ++p) {
+    d.load_weight[2 * p] = d.node.weight[p] * v.x();
+    d.load_weight[2 * p + 1] = d.node.weight[p] * v.y();
+  }
+  return d;
+}
+
+// With the load on tooth k1 and the response on tooth k2 = k1 + Δk (mod z), the class comment's
+// cyclic symmetry gives Λ = R_k1 Λ0 R_k1ᵀ, where Λ0 (load on tooth 0, response on tooth Δk) is the
+// tensor-product interpolant Λ0 = Σ_p Σ_q w_p w'_q T(a0 + p → b0 + q), w and w' the load's and the
+// response's stencil weights and T(i → j) the 2×2 table block (column c: load along axis c,
+// row e: displacement component e). So
+//   d_rᵀ Λ d_l = uᵀ Λ0 v = Σ_{p,c} (w_p v_c) Σ_{q,e} (w'_q u_e) T_ec(a0 + p → b0 + q),
+// u = R_k1ᵀ d_r and v = R_k1ᵀ d_l (the load's load_weight holds w_p v_c). T_ec(i → j) is stored at
+// Index(fl, i, c, Δk, fr, j) + e: for fixed (fl, Δk, fr) the eight rows ρ = 2p + c start at
+// Index(fl, a0, 0, Δk, fr, b0) + ρ P (P = 4 z n values per unit load: Index steps by P in c and
+// by 2P in i) and each row holds the response stencil's values [x_q, y_q], q = 0 … 3, in a run.
+// The sum is taken as a_i = Σ_ρ (w_p v_c)_ρ row_ρ[i] (i = 2q + e), then Σ_q w'_q (u_x a_2q +
+// u_y a_2q+1): 64 multiply-adds and no 2×2 products. The self term (the same position) reads the
+// depth-h blocks S_p instead: uᵀ Λ0 v = Σ_{p,c} (w_p v_c) (uᵀ S_p)_c.
+double InfluenceTable::DirectedCompliance(const DirectedNode& load,
+                                          const DirectedNode& response) const {
+  const int fl = load.flank_index, fr = response.flank_index;
+  int dk = response.tooth - load.tooth;
+  if (dk < 0) dk += teeth_;
+  const Eigen::Vector2d u =
+      tooth_rotation_[static_cast<std::size_t>(load.tooth)].transpose() * response.direction;
+  const std::array<double, 8>& alpha = load.load_weight;
+  const bool self = dk == 0 && fl == fr &&
+                    std::abs(load.node.position.arc_length - response.node.position.arc_length) <=
+                        1e-12 * arc_length_max();
+  if (self) {
+    const Eigen::Matrix2d* s = self_.data() + static_cast<std::size_t>(fl) * n_ + load.node.first;
+    double sum = 0.0;
+    for (int p = 0; p < 4; ++p) {
+      sum += alpha[2 * p] * (u.x() * s[p](0, 0) + u.y() * s[p](1, 0)) +
+             alpha[2 * p + 1] * (u.x() * s[p](0, 1) + u.y() * s[p](1, 1));
+    }
+    return sum;
+  }
+  const std::size_t stride = static_cast<std::size_t>(teeth_) * 4 * n_;  // P
+  const double* base = surface_.data() + Index(fl, load.node.first, 0, dk, fr, response.node.first);
+  // Eight-element rows: Eigen's packets vectorise the update along a row (the order of each a_i's
+  // sum is kept).
+  using Row = Eigen::Matrix<double, 8, 1>;
+  Row a = alpha[0] * Eigen::Map<const Row>(base);
+  for (int r = 1; r < 8; ++r) a.noalias() += alpha[r] * Eigen::Map<const Row>(base + r * stride);
+  const std::array<double, 4>& w = response.node.weight;
+  double sum = 0.0;
+  for (int q = 0; q < 4; ++q) sum += w[q] * (u.x() * a[2 * q] + u.y() * a[2 * q + 1]);
+  return sum;
+}
+
 bool InfluenceTable::TryLocate(const Eigen::Vector2d& point, int tooth, int flank,
                                FlankPosition* out, double* distance_out) const {
   const int z = teeth_;
@@ -417,12 +468,26 @@ bool InfluenceTable::TryLocate(const Eigen::Vector2d& point, int tooth, int flan
   // there. A descent that ends more than a grid interval from its start, or at a point out of
   // tolerance, falls back to the scan of every point (never taken for points on the profile; kept
   // so that neither the answer nor a rejection ever depends on the shortcut).
-  const double r = q.norm();
-  const bool rising = dense_radius_.back() > dense_radius_.front();
-  const auto it =
-      rising ? std::lower_bound(dense_radius_.begin(), dense_radius_.end(), r)
-             : std::lower_bound(dense_radius_.begin(), dense_radius_.end(), r, std::greater<>());
-  int m = std::clamp(static_cast<int>(it - dense_radius_.begin()), 0, last);
+  //
+  // The bisection runs on the key ±|q| (the sign of the profile's direction, dense_key_ rising
+  // along it): its first point with key ≥ ±|q|. A bucket of equal key width narrows its range to
+  // the points between the bucket's edges; the range is used only if the point before it is below
+  // the key and the point after it is not, which on the sorted keys makes the narrowed bisection
+  // return exactly the whole one (BuildDerived leaves the buckets out if the keys are not sorted).
+  const double key = key_sign_ * q.norm();
+  int lo = 0, hi = last + 1;
+  if (!bucket_.empty()) {
+    const double x = (key - bucket_origin_) * bucket_scale_;
+    const int buckets = static_cast<int>(bucket_.size()) - 1;
+    const int b = x > 0.0 ? static_cast<int>(std::min(x, buckets - 1.0)) : 0;
+    const int b_lo = bucket_[b], b_hi = bucket_[b + 1];
+    if ((b_lo == 0 || dense_key_[b_lo - 1] < key) && (b_hi > last || !(dense_key_[b_hi] < key))) {
+      lo = b_lo;
+      hi = b_hi;
+    }
+  }
+  const auto it = std::lower_bound(dense_key_.begin() + lo, dense_key_.begin() + hi, key);
+  int m = std::clamp(static_cast<int>(it - dense_key_.begin()), 0, last);
   const int start = m;
   double best = dist2(m);
   for (int step : {-1, 1}) {
@@ -618,11 +683,28 @@ InfluenceTable InfluenceTable::ReadPayload(std::istream& in, const geometry::Gea
   t.layer_ = GetVector(in, static_cast<std::size_t>(2) * n);
   t.gear_ = std::make_shared<const geometry::Gear>(gear);
   t.path_ = std::make_shared<const ProfilePath>(*t.gear_);
-  t.BuildDenseProfile();
+  t.BuildDerived();
   return t;
 }
 
-void InfluenceTable::BuildDenseProfile() {
+void InfluenceTable::BuildDerived() {
+  // The slope weights of the interpolant (Weights): the derivative at node m of the parabola
+  // through grid points m0, m0 + 1, m0 + 2, m0 = clamp(m − 1, 0, n − 3), with spacings h0, h1.
+  slope_.assign(static_cast<std::size_t>(n_), {});
+  const std::vector<double>& g = grid_.arc_length;
+  for (int m = 0; m < n_; ++m) {
+    std::array<double, 3>& k = slope_[static_cast<std::size_t>(m)];
+    if (m == 0) {
+      const double h0 = g[1] - g[0], h1 = g[2] - g[1];
+      k = {-(2 * h0 + h1) / (h0 * (h0 + h1)), (h0 + h1) / (h0 * h1), -h0 / (h1 * (h0 + h1))};
+    } else if (m == n_ - 1) {
+      const double h0 = g[m - 1] - g[m - 2], h1 = g[m] - g[m - 1];
+      k = {h1 / (h0 * (h0 + h1)), -(h0 + h1) / (h0 * h1), (2 * h1 + h0) / (h1 * (h0 + h1))};
+    } else {
+      const double h0 = g[m] - g[m - 1], h1 = g[m + 1] - g[m];
+      k = {-h1 / (h0 * (h0 + h1)), (h1 - h0) / (h0 * h1), h0 / (h1 * (h0 + h1))};
+    }
+  }
   // kDense points per grid interval, the grid nodes among them, taken from the exact profile.
   dense_.clear();
   dense_.reserve(static_cast<std::size_t>(n_ - 1) * kDense + 1);
@@ -634,8 +716,26 @@ void InfluenceTable::BuildDenseProfile() {
     }
   }
   dense_.push_back({grid_.position[n_ - 1], grid_.arc_length[n_ - 1]});
-  dense_radius_.clear();
-  for (const DensePoint& d : dense_) dense_radius_.push_back(d.point.norm());
+  // The bisection's keys (TryLocate): ±|x| along the profile, + if the radius rises from the form
+  // point to the tip-round end (external teeth), − if it falls (internal), so that they rise.
+  key_sign_ = dense_.back().point.norm() > dense_.front().point.norm() ? 1.0 : -1.0;
+  dense_key_.clear();
+  for (const DensePoint& d : dense_) dense_key_.push_back(key_sign_ * d.point.norm());
+  // As many buckets as points, of equal width between the first and the last key; bucket b holds
+  // the bisection's answers for keys between its edges e_b = origin + b / scale and e_b+1:
+  // [first point ≥ e_b, first point ≥ e_b+1].
+  bucket_.clear();
+  const int buckets = static_cast<int>(dense_key_.size());
+  bucket_origin_ = dense_key_.front();
+  bucket_scale_ = buckets / (dense_key_.back() - dense_key_.front());
+  if (std::is_sorted(dense_key_.begin(), dense_key_.end()) && std::isfinite(bucket_scale_) &&
+      bucket_scale_ > 0.0) {
+    for (int b = 0; b <= buckets; ++b) {
+      const double edge = bucket_origin_ + b / bucket_scale_;
+      bucket_.push_back(static_cast<int>(
+          std::lower_bound(dense_key_.begin(), dense_key_.end(), edge) - dense_key_.begin()));
+    }
+  }
   tooth_rotation_.clear();
   for (int k = 0; k < teeth_; ++k) tooth_rotation_.push_back(Rot(k * gear_->pitch_angle()));
 }

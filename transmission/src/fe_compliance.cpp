@@ -111,17 +111,21 @@ std::vector<const geometry::Gear*> StageGears(const geometry::Stage& stage) {
 
 FeStageCompliance::FeStageCompliance(const Scene& scene, const geometry::Stage& stage,
                                      const FeComplianceOptions& options)
-    : tables_(scene, StageGears(stage), options) {}
+    : tables_(scene, StageGears(stage), options) {
+  names_ = {"sun", "ring"};
+  for (int i = 0; i < stage.planets(); ++i) names_.push_back("planet" + std::to_string(i + 1));
+}
 
 Eigen::MatrixXd FeStageCompliance::Matrix(const geometry::Stage& stage,
                                           const geometry::StagePoses& poses,
                                           const std::vector<StageContact>& contacts) const {
   std::vector<compliance::OperatorBody> bodies;
-  bodies.push_back(Body(tables_.Table(kSunBody), poses.sun, "sun"));
-  bodies.push_back(Body(tables_.Table(kRingBody), poses.ring, "ring"));
+  bodies.reserve(static_cast<std::size_t>(PlanetBody(stage.planets())));
+  bodies.push_back(Body(tables_.Table(kSunBody), poses.sun, names_[kSunBody]));
+  bodies.push_back(Body(tables_.Table(kRingBody), poses.ring, names_[kRingBody]));
   for (int i = 0; i < stage.planets(); ++i) {
     bodies.push_back(
-        Body(tables_.Table(PlanetBody(i)), poses.planets.at(i), "planet" + std::to_string(i + 1)));
+        Body(tables_.Table(PlanetBody(i)), poses.planets.at(i), names_.at(PlanetBody(i))));
   }
   std::vector<compliance::OperatorContact> oc;
   oc.reserve(contacts.size());

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -102,6 +103,35 @@ TEST_CASE("Gear influence table: Maxwell-Betti asymmetry, symmetry of the interp
   const FlankPosition a5{5, 1, a.arc_length}, b8{8, -1, b.arc_length};
   const Eigen::Matrix2d r5 = Rot(5 * 2 * geometry::kPi / table.teeth());
   CHECK((table.Influence(a5, b8) - r5 * ab * r5.transpose()).norm() <= 1e-12 * ab.norm());
+}
+
+TEST_CASE("Gear influence table: the directed compliance is the projected 2x2 block",
+          "[unit][gear]") {
+  // DirectedCompliance contracts both directions into the interpolation; the reference forms the
+  // rotated 2×2 block (PreparedInfluence) and projects it. Same sum in another order: equal to
+  // round-off relative to the block, over teeth (negative and past z), flanks, positions (grid
+  // nodes, the ends, in between) and directions, and at the self term.
+  const InfluenceTable& table = SunTable();
+  const double smax = table.arc_length_max();
+  const int z = table.teeth();
+  const std::vector<double> s{
+      0.0, table.grid().arc_length[5], 0.137 * smax, 0.5 * smax, 0.861 * smax, smax};
+  const std::vector<int> teeth{0, 1, 3, z - 1, z + 2, -2};
+  for (int i = 0; i < 60; ++i) {
+    const FlankPosition load{teeth[i % 6], i % 2 == 0 ? 1 : -1, s[i % 6]};
+    const FlankPosition response{teeth[(i / 3) % 6], (i / 2) % 2 == 0 ? 1 : -1, s[(i / 6) % 6]};
+    const Eigen::Vector2d dl(std::cos(0.3 + i), std::sin(0.3 + i));
+    const Eigen::Vector2d dr(std::cos(1.7 - 2.0 * i), std::sin(1.7 - 2.0 * i));
+    for (const FlankPosition& r : {response, load}) {  // the pair, then the self term
+      const InfluenceTable::DirectedNode a = table.PrepareDirected(load, dl);
+      const InfluenceTable::DirectedNode b = table.PrepareDirected(r, dr);
+      const Eigen::Matrix2d block = table.PreparedInfluence(a.node, b.node);
+      CHECK(std::abs(table.DirectedCompliance(a, b) - dr.dot(block * dl)) <=
+            1e-13 * block.cwiseAbs().maxCoeff());
+    }
+  }
+  CHECK_THROWS_WITH(table.PrepareDirected({0, 2, 0.0}, Eigen::Vector2d(1, 0)),
+                    Catch::Contains("position.flank = 2"));
 }
 
 TEST_CASE("Gear influence table: locating points and compliance along normals", "[unit][gear]") {

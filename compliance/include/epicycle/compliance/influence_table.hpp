@@ -133,6 +133,27 @@ class InfluenceTable {
   /// Λ(load, response) [m/N] of prepared positions (the same value as from the positions).
   Eigen::Matrix2d PreparedInfluence(const Node& load, const Node& response) const;
 
+  /// A prepared position with a unit direction d in the body frame (of a contact force, or of the
+  /// displacement read there), for the scalar compliance between many pairs (AssembleCompliance).
+  /// With R_k the rotation of the node's tooth k, v = R_kᵀ d is the direction in the frame where
+  /// the tooth is tooth 0, and the products w_p v_c of the stencil's weights with it are what the
+  /// node contributes as a load (see DirectedCompliance).
+  struct DirectedNode {
+    Node node;
+    Eigen::Vector2d direction = Eigen::Vector2d::Zero();  ///< d [-], unit, body frame
+    int tooth = 0;                                        ///< k mod z, in [0, z)
+    int flank_index = 0;                                  ///< 0 for σ = +1, 1 for σ = −1
+    std::array<double, 8> load_weight{};                  ///< w_p (R_kᵀ d)_c at index 2p + c
+  };
+  /// @throws std::invalid_argument as Prepare.
+  DirectedNode PrepareDirected(const FlankPosition& position,
+                               const Eigen::Vector2d& direction) const;
+  /// d_rᵀ Λ(load, response) d_l [m/N], d_l and d_r the nodes' directions: the same value as
+  /// `response.direction.dot(PreparedInfluence(load.node, response.node) * load.direction)` to
+  /// round-off, with the directions contracted into the interpolation instead of forming the 2×2
+  /// block (see the implementation for the sum).
+  double DirectedCompliance(const DirectedNode& load, const DirectedNode& response) const;
+
   /// The flank position of a body-frame point on tooth k's flank σ: the foot of the point on a
   /// polyline of the generated profile with 32 points per grid interval (chord error κΔ²/8 below
   /// 1e-8 m here; grid nodes are located exactly), about 0.2 µs. @throws std::invalid_argument if
@@ -172,7 +193,7 @@ class InfluenceTable {
 
  private:
   std::size_t Index(int fl, int i, int c, int k, int f, int j) const;
-  void BuildDenseProfile();  // dense_ and tooth_rotation_ from grid_ and path_
+  void BuildDerived();  // slope_, dense_, dense_key_, bucket_, tooth_rotation_ (grid_, path_)
   void Weights(double s, int* first, std::array<double, 4>* w) const;
 
   int teeth_ = 0;
@@ -182,10 +203,11 @@ class InfluenceTable {
   double raw_asymmetry_ = 0.0, raw_self_asymmetry_ = 0.0;
   std::array<double, 3> seconds_{};
   FlankGrid grid_;
-  std::vector<double> surface_;        // symmetrised, joined (self entries = depth blocks)
-  std::vector<double> raw_;            // as solved (surface values everywhere)
-  std::vector<Eigen::Matrix2d> self_;  // [fl][i], symmetrised, with the layer term
-  std::vector<double> layer_;          // [fl][i], the layer term [m/N]
+  std::vector<double> surface_;               // symmetrised, joined (self entries = depth blocks)
+  std::vector<double> raw_;                   // as solved (surface values everywhere)
+  std::vector<Eigen::Matrix2d> self_;         // [fl][i], symmetrised, with the layer term
+  std::vector<double> layer_;                 // [fl][i], the layer term [m/N]
+  std::vector<std::array<double, 3>> slope_;  // [m]: nodal slope weights (Weights)
   std::shared_ptr<const geometry::Gear> gear_;
   std::shared_ptr<const ProfilePath> path_;
   // The σ = +1 flank of tooth 0 as a dense polyline (Locate): kDense points per grid interval.
@@ -195,8 +217,13 @@ class InfluenceTable {
     double arc_length;  // from the form point [m]
   };
   std::vector<DensePoint> dense_;
-  std::vector<double> dense_radius_;  // |point|: monotonic along the profile (Locate's bisection)
-  std::vector<Eigen::Matrix2d> tooth_rotation_;  // R(k·2π/z), k = 0 … z − 1
+  // ±|point|, rising along the profile (Locate's bisection), and buckets of equal key width over
+  // it: bucket b's answers lie in [bucket_[b], bucket_[b + 1]] (empty if the keys are not sorted).
+  double key_sign_ = 1.0;
+  std::vector<double> dense_key_;
+  std::vector<int> bucket_;
+  double bucket_origin_ = 0.0, bucket_scale_ = 0.0;  // key of bucket 0's lower edge, buckets/key
+  std::vector<Eigen::Matrix2d> tooth_rotation_;      // R(k·2π/z), k = 0 … z − 1
 };
 
 }  // namespace epicycle::compliance

@@ -57,7 +57,8 @@ class FeStageCompliance final : public StageCompliance {
   const GearTables& tables() const { return tables_; }
 
  private:
-  GearTables tables_;  // gear index = body index (0 sun, 1 ring, 2 + i planet i)
+  GearTables tables_;               // gear index = body index (0 sun, 1 ring, 2 + i planet i)
+  std::vector<std::string> names_;  // per body, for messages
 };
 
 /// The contact compliance of a single gear pair (gear 1 body 0, gear 2 body 1).
