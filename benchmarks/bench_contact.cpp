@@ -35,6 +35,7 @@
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
+#include "recording_reporter.hpp"
 
 namespace {
 
@@ -274,34 +275,6 @@ void BenchFactoriseLlt(benchmark::State& state, const Case* c) {
   state.counters["active"] = static_cast<double>(kkt.h.rows());
 }
 
-// Console output plus a record of seconds per iteration by benchmark name, for the ratios.
-class RecordingReporter : public benchmark::ConsoleReporter {
- public:
-  void ReportRuns(const std::vector<Run>& runs) override {
-    ConsoleReporter::ReportRuns(runs);
-    for (const Run& run : runs) {
-      if (run.run_type != Run::RT_Iteration || run.error_occurred || run.iterations == 0) continue;
-      // CPU time: the machine is shared, and wall time counts the other processes.
-      seconds_[run.benchmark_name()] =
-          run.cpu_accumulated_time / static_cast<double>(run.iterations);
-      const auto it = run.counters.find("converged");
-      if (it != run.counters.end()) converged_[run.benchmark_name()] = it->second.value > 0.5;
-    }
-  }
-  double seconds(const std::string& name) const {
-    const auto it = seconds_.find(name);
-    return it == seconds_.end() ? NAN : it->second;
-  }
-  bool converged(const std::string& name) const {
-    const auto it = converged_.find(name);
-    return it != converged_.end() && it->second;
-  }
-
- private:
-  std::map<std::string, double> seconds_;
-  std::map<std::string, bool> converged_;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -326,7 +299,7 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("factorise_llt/" + c.name).c_str(), BenchFactoriseLlt, &c)
         ->Unit(benchmark::kMicrosecond);
   }
-  RecordingReporter reporter;
+  epicycle::bench::RecordingReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
 
   std::printf("\nRatios of CPU time per solve (issue 3 targets; measured, not asserted)\n");
