@@ -672,10 +672,9 @@ bool DirectNewton::Run(const ScaledProblem& p, double target, int max_iterations
         factor_active_ = active_;
         inv_diag_ = llt_.matrixLLT().diagonal().cwiseInverse();
       }
-      // L Lᵀ dx = r by forward and back substitution (for the few contacts of a stage, loops
-      // cost less than the general triangular solvers).
-      // The diagonal's reciprocals are kept with the factorisation: the substitutions are a
-      // chain of dependent operations, and a division's latency is several multiplications'.
+      // L Lᵀ dx = r by forward and back substitution: for the few contacts of a stage, loops
+      // cost less than the general triangular solvers, and with the diagonal's reciprocals kept
+      // with the factorisation the chain of dependent operations multiplies instead of dividing.
       const Eigen::MatrixXd& l = llt_.matrixLLT();
       for (int i = 0; i < na; ++i) {
         double v = r_(i);
