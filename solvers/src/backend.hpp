@@ -67,6 +67,9 @@ struct ScaledProblem {
   /// max(|x|, floor) so that a contact entering from zero force gets a finite, large derivative).
   /// Both 0 without a local term.
   void LocalAt(int j, double x, double floor, double* u, double* du) const;
+  /// u_j''(x) for x > 0 (< 0: u' falls with the force; no logarithm needed); 0 without a local
+  /// term or for x ≤ 0.
+  double LocalSecondDerivativeAt(int j, double x) const;
 
   /// Natural-map and equilibrium residuals at (x, λ), evaluated at max(x, 0).
   ContactResiduals Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda) const;
@@ -135,12 +138,15 @@ class BackendImpl {
 /// caller then runs the globalised back end, which is slower but converges.
 ///
 /// With `reuse`, the first step, if its active set is the one of the factorisation kept from the
-/// previous call (a warm start's neighbour), is a chord step on that factorisation instead of a
-/// new one; a chord step that cut the residual a thousandfold, or whose rate would reach the target
-/// in one more step, may be followed by another (from the previous time step the compliance and u'
-/// have changed by little, and it cuts by ~1e4). Every other step factorises, so the reuse costs
-/// at most one step against the plain Newton, and the answer is judged by the same residual
-/// either way.
+/// previous call (a warm start's neighbour) and u'_A has moved by less than 1 % since, solves on
+/// that factorisation the model of g_A at x + dx to second order in the local terms,
+///   (C_AA + diag u'_A) dx + ½ u''_A ∘ dx² = r,
+/// by fixed-point sweeps (each one substitution and one product with C_AA; ModelStep): a
+/// Chebyshev step, of third order, that from the previous time step reaches the target at once
+/// without a factorisation, where Newton's step (second order) left ~1e-7 and needed a second
+/// step on a new factorisation. Sweeps that do not contract 100× each give up and the step is
+/// Newton's on a new factorisation, as every later step is; the answer is judged by the same
+/// residual either way.
 class DirectNewton {
  public:
   /// @param reuse may start with the factorisation kept from the previous call (a warm start).
@@ -150,14 +156,21 @@ class DirectNewton {
            Eigen::VectorXd* x, Eigen::VectorXd* g, int* iterations);
 
  private:
-  Eigen::VectorXd u_, du_, r_;
-  Eigen::VectorXd inv_diag_;  ///< 1/L_ii of llt_
+  /// The step on the local model (see Run), on llt_; false if its sweeps do not converge.
+  bool ModelStep(const ScaledProblem& p, const Eigen::VectorXd& x, double target);
+  void Substitute(Eigen::VectorXd* v) const;  ///< v ← (L Lᵀ)⁻¹ v with llt_
+
+  Eigen::VectorXd u_, du_;                 ///< per contact
+  Eigen::VectorXd r_, du_a_, q_, dx_, e_;  ///< per active contact
+  Eigen::MatrixXd c_aa_;                   ///< C_AA of the step
+  Eigen::VectorXd inv_diag_;               ///< 1/L_ii of llt_
   Eigen::MatrixXd h_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
   std::vector<int> active_, released_;
   // What llt_ factorises: C_AA + diag u'_A for the active set factor_active_ of a problem with
   // factor_n_ contacts (−1: nothing usable).
   std::vector<int> factor_active_;
+  Eigen::VectorXd factor_du_;  ///< the u'_A in it
   int factor_n_ = -1;
 };
 

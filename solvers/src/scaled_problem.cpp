@@ -11,7 +11,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 struct Eval {
-  double u = 0, du = 0, big_u = 0;
+  double u = 0, du = 0, d2u = 0, big_u = 0;
 };
 
 // Value, derivative and integral of one scaled local term at x > 0 (closed forms of
@@ -21,7 +21,11 @@ struct Eval {
 // asinh itself keeps full relative accuracy. All three forms need only Σ_B a_B asinh(s_B); when
 // the two bodies have the same a_B (same material, the usual case) it is a·ln(Π_B (1 + w_B)/r_B):
 // one logarithm per contact instead of two.
-Eval EvalLocal(const ScaledProblem::Local& l, double x, bool want_u, bool want_du, bool want_int) {
+// The second derivative needs no logarithm: with d asinh(s)/dx = −1/(2xw) and
+// d(1/w)/dx = −r²/(2xw³),
+//   u''(x) = −(1/(2x)) Σ_B a_B [1/w_B − (1 + c_B) r_B²/(2 w_B³)]   (< 0: u' falls with the force).
+Eval EvalLocal(const ScaledProblem::Local& l, double x, bool want_u, bool want_du, bool want_int,
+               bool want_d2u = false) {
   Eval e;
   const double len = std::sqrt(l.l2 * x);
   double r[2] = {0, 0}, w[2] = {1, 1};
@@ -33,18 +37,27 @@ Eval EvalLocal(const ScaledProblem::Local& l, double x, bool want_u, bool want_d
     far = far || r[b] > 2.0;
   }
   double a_asinh = 0.0;  // Σ_B a_B asinh(s_B)
-  if (l.same_a && !far) {
-    a_asinh = l.a[0] * std::log((1.0 + w[0]) * (1.0 + w[1]) / (r[0] * r[1]));
-  } else {
-    for (int b = 0; b < 2; ++b)
-      if (l.a[b] != 0.0)
-        a_asinh += l.a[b] * (r[b] > 2.0 ? std::asinh(1.0 / r[b]) : std::log((1.0 + w[b]) / r[b]));
+  if (want_u || want_du || want_int) {
+    if (l.same_a && !far) {
+      a_asinh = l.a[0] * std::log((1.0 + w[0]) * (1.0 + w[1]) / (r[0] * r[1]));
+    } else {
+      for (int b = 0; b < 2; ++b)
+        if (l.a[b] != 0.0)
+          a_asinh += l.a[b] * (r[b] > 2.0 ? std::asinh(1.0 / r[b]) : std::log((1.0 + w[b]) / r[b]));
+    }
   }
   // Σ_B a_B c_B/(1 + w_B) and Σ_B a_B (1 + c_B)/(2 w_B), each over one common denominator.
   if (want_u)
     e.u = x * (a_asinh -
                (l.ac[0] * (1.0 + w[1]) + l.ac[1] * (1.0 + w[0])) / ((1.0 + w[0]) * (1.0 + w[1])));
   if (want_du) e.du = a_asinh - (l.a1c[0] * w[1] + l.a1c[1] * w[0]) / (w[0] * w[1]);
+  if (want_d2u) {
+    const double inv_ww = 1.0 / (w[0] * w[1]);
+    const double iw[2] = {w[1] * inv_ww, w[0] * inv_ww};  // 1/w_B
+    double sum = 0.0;
+    for (int b = 0; b < 2; ++b) sum += (l.a[b] - l.a1c[b] * r[b] * r[b] * iw[b] * iw[b]) * iw[b];
+    e.d2u = -0.5 * sum / x;
+  }
   if (want_int) {
     double rest = 0.0;
     for (int b = 0; b < 2; ++b) {
@@ -110,6 +123,11 @@ void ScaledProblem::LocalAt(int j, double x, double floor, double* u, double* du
              ? (x > 0 ? e.u : -e.u)
              : EvalLocal(local[j], std::abs(x), true, false, false).u * (x > 0 ? 1.0 : -1.0);
   *du = e.du;
+}
+
+double ScaledProblem::LocalSecondDerivativeAt(int j, double x) const {
+  if (!has_local || !local[j].enabled || !(x > 0.0)) return 0.0;
+  return EvalLocal(local[j], x, false, false, false, true).d2u;
 }
 
 ContactResiduals ScaledProblem::ResidualsFromGap(const Eigen::VectorXd& x,
