@@ -25,8 +25,6 @@ namespace {
 
 constexpr double kMm = 1e-3, kUm = 1e-6;
 
-double Deg(double d) { return d * geometry::kPi / 180.0; }
-
 // Physical ranges of the scene's values (docs/scenes.md, "Ranges and validity"). Sizes are
 // relative to the module, errors to the module (errors) and to the backlash (warnings).
 constexpr double kModuleRangeMm[2] = {0.05, 100.0};
@@ -116,7 +114,7 @@ void ReadFlankModifications(TableReader& t, GearSpec& g) {
       if (m->Has(radius)) {
         r->start_radius = m->Real(radius, Rule::Positive()) * kMm;
       } else {  // roll angle u: r = r_b √(1 + u²)
-        const double u = Deg(m->Real(roll, Rule::Positive()));
+        const double u = geometry::Rad(m->Real(roll, Rule::Positive()));
         r->start_radius =
             0.5 * g.module * g.teeth * std::cos(g.pressure_angle) * std::hypot(1.0, u);
       }
@@ -171,7 +169,7 @@ GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool f
                                   .Because("0.5 to 100 modules; the 2D model idealises a spur gear "
                                            "of moderate width")) *
       kMm;
-  g.pressure_angle = Deg(t.Real("pressure_angle_deg", Rule::Open(0, 45)));
+  g.pressure_angle = geometry::Rad(t.Real("pressure_angle_deg", Rule::Open(0, 45)));
   if (fit_target) {
     if (t.Has("profile_shift")) {
       t.Fail("profile_shift", "given",
@@ -322,7 +320,7 @@ void ReadErrors(TableReader& e, Scene& s, std::vector<ErrorKey>* keys) {
     const Rule rule = ErrorRule(GearOf(st, i).module);
     ro.amplitude = r.Real("amplitude_um", Rule::Closed(0, rule.hi).Because(rule.why)) * kUm;
     keep(r, "amplitude_um", ro.amplitude, i);
-    ro.phase = Deg(r.RealOr("phase_deg", 0.0, Rule::Any()));
+    ro.phase = geometry::Rad(r.RealOr("phase_deg", 0.0, Rule::Any()));
     if (i == -1) {
       st.sun_runout = ro;
     } else if (i == -2) {
@@ -587,7 +585,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     st.planets = static_cast<int>(t.Integer("planets", Rule::Closed(1, 12)));
     if (t.Has("planet_angles_deg")) {
       for (double a : t.RealArray("planet_angles_deg", Rule::HalfOpen(0, 360))) {
-        st.planet_angles.push_back(Deg(a));
+        st.planet_angles.push_back(geometry::Rad(a));
       }
     }
     st.min_planet_gap = t.RealOr("min_planet_gap_mm", 1.0, Rule::NonNegative()) * kMm;

@@ -17,15 +17,13 @@ std::string Num(double v) {
   return buf;
 }
 
-std::string Deg(double rad) { return Num(rad * 180.0 / geometry::kPi); }
-
 // The transmission-error warning: `worst` and `limit` are rotations [rad] of the gear named in
 // `along` (a tenth of its module along its line of action).
 std::string TransmissionErrorWarning(int count, double worst, double limit, const char* along,
                                      const std::string& counted) {
-  return "transmission error |TE| = " + Num(worst * 1e6) + " urad (" + Deg(worst) + " deg) at " +
-         std::to_string(count) + " " + counted + " exceeds a tenth of the module along " + along +
-         " line of action (" + Num(limit * 1e6) +
+  return "transmission error |TE| = " + Num(worst * 1e6) + " urad (" + Num(geometry::Deg(worst)) +
+         " deg) at " + std::to_string(count) + " " + counted +
+         " exceeds a tenth of the module along " + along + " line of action (" + Num(limit * 1e6) +
          " urad): rotations that large break the small-displacement assumption";
 }
 
@@ -91,9 +89,9 @@ std::vector<std::string> ValidityTally::Messages() const {
   for (int i = 0; i < planets_; ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (lsr_count_[k] == 0) continue;
-    out.push_back("planet " + std::to_string(i + 1) +
-                  ": load-sharing ratio LSR = " + Num(lsr_worst_[k]) + " < 0 at carrier " +
-                  Deg(lsr_at_[k]) + " deg (" + std::to_string(lsr_count_[k]) + " " + counted_ +
+    out.push_back("planet " + std::to_string(i + 1) + ": load-sharing ratio LSR = " +
+                  Num(lsr_worst_[k]) + " < 0 at carrier " + Num(geometry::Deg(lsr_at_[k])) +
+                  " deg (" + std::to_string(lsr_count_[k]) + " " + counted_ +
                   "): the planet is jammed, driven through its coast flanks (its errors exceed "
                   "the backlash); outside the model's validity");
   }

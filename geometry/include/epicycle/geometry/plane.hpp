@@ -43,7 +43,9 @@ inline double Inv(double alpha) { return std::tan(alpha) - alpha; }
 /// round-off.
 double InvInverse(double v);
 
+/// Radians → degrees. The one name for this direction in the project (its inverse is Rad).
 inline double Deg(double rad) { return rad * 180.0 / kPi; }
+/// Degrees → radians. The one name for this direction in the project (its inverse is Deg).
 inline double Rad(double deg) { return deg * kPi / 180.0; }
 
 }  // namespace epicycle::geometry
