@@ -57,7 +57,7 @@ double Seconds(Clock::time_point a) {
 }
 
 // Everything the C callbacks need; exceptions are caught, stored and rethrown after the
-// integrator returns (docs: ARCHITECTURE "Errors").
+// integrator returns (docs/dynamic.md, "Integration").
 struct Context {
   const DynamicModel* model = nullptr;
   std::unique_ptr<solvers::ContactSolver> solver;

@@ -64,7 +64,7 @@ struct ArcHit {
   int tooth;
 };
 
-// The foot of the normal from c on a relieved flank x(u) − C(u) n(u) (docs/model.md §1; the relief
+// The foot of the normal from c on a relieved flank x(u) − C(u) n(u) (docs/model.md §3; the relief
 // is a few µm, so Newton from the involute's foot u converges in a few steps). With e = e(S + H u),
 // e⊥ its left normal and n = σ e⊥:
 //   x′ = (r_b u + σH C) e − σ C′ e⊥,

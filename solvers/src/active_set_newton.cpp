@@ -208,7 +208,7 @@ class ActiveSetNewton final : public BackendImpl {
     if (p.has_support) {
       // Phase 2 needs hard equalities: the supported rows P are folded into the potential,
       // ½(G_P x − W_P)ᵀ S_PP⁻¹ (G_P x − W_P), i.e. C + G_Pᵀ S_PP⁻¹ G_P and δ0 + G_Pᵀ S_PP⁻¹ W_P
-      // (docs/model.md §3), and λ_P = S_PP⁻¹ (W_P − G_P x) afterwards.
+      // (docs/model.md §5), and λ_P = S_PP⁻¹ (W_P − G_P x) afterwards.
       std::vector<int> supported, hard;
       for (int i = 0; i < p.num_equalities(); ++i)
         (p.S.row(i).cwiseAbs().maxCoeff() > 0.0 ? supported : hard).push_back(i);

@@ -8,7 +8,7 @@
 //
 // Stationarity in y gives S_PP (y_P − λ_P) = 0, so λ = y on range(S); the multipliers of the
 // equality rows are λ themselves and are what this back end returns. Rows outside P are hard
-// equalities. The program is convex while the local terms are increasing (docs/model.md §3).
+// equalities. The program is convex while the local terms are increasing (docs/model.md §5).
 //
 // Sign convention. Ipopt's Lagrangian is f + cᵀλ_ipopt − z_Lᵀ(x − x_L); the problem's stationarity
 // is ∇Φ − Gᵀλ − μ = 0, so λ = −λ_ipopt.

@@ -1,4 +1,4 @@
-// The local (Hertzian) approach of docs/model.md §2 in closed form.
+// The local (Hertzian) approach of docs/model.md §4 in closed form.
 #include "epicycle/solvers/local_term.hpp"
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The dynamic model (docs/model.md §5, docs/dynamic.md) against references that do not come from
+// The dynamic model (docs/model.md §7, docs/dynamic.md) against references that do not come from
 // it: the quasi-static solver at low speed, energy conservation with constant compliance, the
 // sun's torque balance from the integrator's own interpolant, the planet-phasing rules of Parker
 // (2000) on the spectrum of a perfect stage, self-consistency of the integrators, friction work

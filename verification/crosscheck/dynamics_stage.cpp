@@ -1,4 +1,4 @@
-// The dynamic model of the paper's stage (docs/model.md §5, docs/dynamic.md): its natural modes
+// The dynamic model of the paper's stage (docs/model.md §7, docs/dynamic.md): its natural modes
 // against Lin & Parker's lumped model, the paper's run-out case in motion against the
 // quasi-static study, linear theory and the sun's inertia, drives and bearings against the energy
 // balance, and bad input.

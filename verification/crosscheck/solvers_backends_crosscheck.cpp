@@ -2,7 +2,7 @@
 // MakeContactSolver(...)->Solve(...).
 //
 // Every case here has an independent answer written out by hand (a linear spring, a 2×2 or 3×3
-// KKT system on a known active set, a symmetric pair, the local term evaluated from docs/model.md §2 at
+// KKT system on a known active set, a symmetric pair, the local term evaluated from docs/model.md §4 at
 // a chosen force). The solves run at the driver tolerance kTol = 1e-10 on the nondimensional
 // residual. For a linear problem on a fixed active set the error is bounded by ‖K̃⁻¹‖∞ · residual,
 // with K̃ the active-set KKT matrix in the driver's units (C divided by its largest diagonal entry,
@@ -110,7 +110,7 @@ ErrorBound ScaledErrorBound(const ContactProblemData& d, const Eigen::VectorXd& 
   return bound;
 }
 
-// u_local(F) of one contact from docs/model.md §2 (plane strain), written out independently of the
+// u_local(F) of one contact from docs/model.md §4 (plane strain), written out independently of the
 // library: Σ_B 2k_B F/(πb) [asinh(h_B/L) − c_B (h_B/L)(√(1+(h_B/L)²) − h_B/L)].
 double LocalApproachByHand(const LocalTermParameters& p, double force) {
   double k[2], c[2];
@@ -317,7 +317,7 @@ TEST_CASE("Ipopt and NLopt back ends: elastic support (G F + S λ = W)",
 
 TEST_CASE("Ipopt and NLopt back ends: one contact with the local term",
           "[crosscheck][solvers][backends]") {
-  // Choose F = 5 kN and set δ0 = c F + u_local(F) with u_local evaluated by hand (docs/model.md §2);
+  // Choose F = 5 kN and set δ0 = c F + u_local(F) with u_local evaluated by hand (docs/model.md §4);
   // h/L ≈ 30, well inside the term's validity. u' > 0 only stiffens K̃, so the linear bound holds.
   const double c = 2e-9, force = 5000.0;
   ContactProblemData d;

@@ -1,4 +1,4 @@
-// A Monte-Carlo study against the linear load-sharing theory (docs/model.md §6): small tangential
+// A Monte-Carlo study against the linear load-sharing theory (docs/model.md §8): small tangential
 // pin-hole errors Δη_i ~ N(0, σ = 5 µm) on every planet of the paper's stage, fixed sun. The
 // theory gives the mesh-cycle-mean load factors L_i = 1 + n k (ē − e_i)/F with
 // e_i = −Δη_i (cos α_sp + cos α_pr) (both meshes of planet i), F = |T|/r_bs and k the path

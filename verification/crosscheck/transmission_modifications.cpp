@@ -1,9 +1,9 @@
 // Undercut, tip relief and pitch deviations through the FE model (mesh-stiffness driver and
 // quasi-static stage), against references outside the code under test:
-//  - ISO 6336-1 stiffness of the undercut 17/43 pair (±20 %, docs/model.md §6);
+//  - ISO 6336-1 stiffness of the undercut 17/43 pair (±20 %, docs/model.md §8);
 //  - Harris's map: loaded transmission error peak-to-peak against relief amount at three loads;
 //  - the two-spring theory of the double-contact zone for a tooth with a pitch deviation;
-//  - the linear load-sharing theory (docs/model.md §6) for a grade-6 set of sun pitch deviations;
+//  - the linear load-sharing theory (docs/model.md §8) for a grade-6 set of sun pitch deviations;
 //  - the paper's floating-sun stage: the largest |LSR − 1/3| (off-LOA tip contacts) against
 //    tip relief (docs/geometry.md has the study's table).
 #include <catch2/catch.hpp>
@@ -348,7 +348,7 @@ TEST_CASE("paper stage, floating sun: tip relief against the off-LOA load-sharin
           "[crosscheck][transmission][fe]") {
   // The fast version of the study in docs/geometry.md: no relief and 10 µm of long tip relief on
   // every gear, one mesh cycle. The off-LOA tip contacts are what disturbs the floating sun's
-  // equalisation (docs/model.md §6); relief takes the load off the tips, so the largest deviation must
+  // equalisation (docs/model.md §8); relief takes the load off the tips, so the largest deviation must
   // fall. The floor of the comparison is the LOA-only deviation (2.6e-5 today,
   // docs/quasistatic.md).
   const auto base = test::PaperScene();
@@ -370,7 +370,7 @@ TEST_CASE("paper stage, floating sun: tip relief against the off-LOA load-sharin
 
 TEST_CASE("grade-6 sun pitch deviations: mesh-cycle load sharing follows the linear theory",
           "[crosscheck][transmission][fe]") {
-  // Fixed sun. docs/model.md §6: F_i = F/n + k (ē − e_i), so the mesh-cycle mean of 1 − L_i is
+  // Fixed sun. docs/model.md §8: F_i = F/n + k (ē − e_i), so the mesh-cycle mean of 1 − L_i is
   // n k (e_i − ē)/F, with e_i planet i's projected error: a sun tooth turned ccw by F_p,j moves
   // its loaded flank (σ_s) into the planet by σ_s F_p,j cos α, i.e. e = −σ_s F_p,j cos α; within a
   // cycle e_i is the force-weighted mean over planet i's loaded sun-mesh pairs of the nominal run,

@@ -1,4 +1,4 @@
-// The quasi-static planetary solver with the hybrid FE compliance (docs/model.md §4, §8) against
+// The quasi-static planetary solver with the hybrid FE compliance (docs/model.md §6, §8) against
 // references that do not come from it: symmetry (mesh-cycle averages), the single-mesh stiffness
 // curves of the mesh-stiffness driver (path stiffnesses at each planet's own mesh phase), the
 // linear load-sharing theory with the path stiffness measured by the model, the radial/tangential
@@ -151,7 +151,7 @@ TEST_CASE("quasi-static FE, no errors: mesh-cycle averages are 1/n; floating sun
         }
         involute_only += on_loa ? 1 : 0;
         if (sun == SunSupport::kFloating && n == 3 && on_loa) {
-          // docs/model.md §6: with every force on its line of action, 3 planets equalise exactly.
+          // docs/model.md §8: with every force on its line of action, 3 planets equalise exactly.
           for (int i = 0; i < n; ++i) CHECK(std::abs(p.load_sharing[i] - 1.0 / 3.0) <= 1e-3);
         }
       }
@@ -273,7 +273,7 @@ TEST_CASE("quasi-static FE, fixed sun: load shares follow the single-mesh stiffn
 
 TEST_CASE("quasi-static FE: linear load-sharing theory for a tangential pin error",
           "[crosscheck][transmission][fe]") {
-  // docs/model.md §6 with e_1 = −Δη (cos α_sp + cos α_pr) (both meshes of planet 1), ε = k e_1/F,
+  // docs/model.md §8 with e_1 = −Δη (cos α_sp + cos α_pr) (both meshes of planet 1), ε = k e_1/F,
   // F = |T|/r_bs, k the path stiffness measured by the model (MeasuredPathStiffness). Fixed sun:
   // 1 − L_1 = (n − 1)ε, 1 − L_j = −ε. Floating sun, n = 4: 1 − L = (ε, −ε, ε, −ε); n = 3: 0.
   const double eta = 5.0;  // [µm], small: no contact is lost

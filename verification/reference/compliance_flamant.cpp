@@ -4,7 +4,7 @@
 //   Δ = 2F(1−ν²)/(π E b) · ln(h2/h1)   (plane strain),   Δ = 2F/(π E b) · ln(h2/h1)   (plane
 //   stress).
 // This is exactly the quantity the join of the FE structural term with the local contact term
-// relies on (docs/model.md §2).
+// relies on (docs/model.md §4).
 #include <catch2/catch.hpp>
 
 #include <cmath>

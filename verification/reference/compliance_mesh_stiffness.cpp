@@ -182,7 +182,7 @@ TEST_CASE("Mesh stiffness against the potential-energy method", "[reference][sti
   //    point of the line of action (s = r_b1 · roll of gear 1), position by position;
   //  - mean mesh stiffness of the model with the teeth uncoupled (off-diagonal C_jk dropped)
   //    against PEM's mean.
-  // Both within ±15 % (docs/model.md §6). The model's coupled mean is reported beside them: the bodies
+  // Both within ±15 % (docs/model.md §8). The model's coupled mean is reported beside them: the bodies
   // couple the two loaded pairs of the double-contact zone, which PEM omits.
   for (const std::string file :
        {"iso_pair_20_40.toml", "iso_pair_30_30.toml", "paper_sun_planet.toml"}) {

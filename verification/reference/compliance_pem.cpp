@@ -43,7 +43,7 @@ pem::GearPair IsoPair(int z1, int z2, double module_m) {
   return p;
 }
 
-/// ISO 6336-1:2006 method B, spur, solid discs, written out here from the standard (docs/model.md §6):
+/// ISO 6336-1:2006 method B, spur, solid discs, written out here from the standard (docs/model.md §8):
 /// q′ = C1 + C2/z1 + C3/z2 + C4 x1 + C5 x1/z1 + C6 x2 + C7 x2/z2 + C8 x1² + C9 x2² [mm·µm/N],
 /// c′ = (1/q′) C_M C_R C_B [N/(mm·µm)], C_M = 0.8, C_R = 1,
 /// C_B = [1 + 0.5 (1.2 − h_fP/m)] [1 − 0.02 (20° − α)], c_γα = c′ (0.75 ε_α + 0.25).
@@ -318,7 +318,7 @@ TEST_CASE("PEM: a shifted 25 deg pair at its operating centre distance", "[refer
   // The paper's sun-planet mesh (scenes/paper_stage.toml): m = 4.23 mm, α = 25°, z = 16/24,
   // x = 0.30/0.227, tips r + (x + 1.0) m, roots r + (x − 1.35) m (rack tip radius 0.05 m), hub
   // radius 20 mm, b = 25 mm, E = 207 GPa. The centre distance comes from the involute-function
-  // relation inv α_w = inv α + 2 tan α (x1 + x2)/(z1 + z2) (docs/model.md §6), solved here by Newton;
+  // relation inv α_w = inv α + 2 tan α (x1 + x2)/(z1 + z2) (docs/model.md §8), solved here by Newton;
   // pem:: must recover α_w from a and the base radii.
   const double m = 4.23e-3, alpha = 25.0 * kDeg;
   const auto make = [&](int z, double x) {

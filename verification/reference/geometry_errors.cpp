@@ -11,7 +11,7 @@
 //     the sun mesh by   −Δζ sin α_w,s − σ_s Δη cos α_w,s,
 //     the ring mesh by  +Δζ sin α_w,r + σ_r Δη cos α_w,r      (σ_r = −σ_s):
 // with the paper's sun torque (σ_s = −1) a tangential error enters both meshes as +Δη cos α_w, a
-// radial one with opposite signs (docs/model.md §6). These are first-order in v; the tolerance is twice
+// radial one with opposite signs (docs/model.md §8). These are first-order in v; the tolerance is twice
 // the bound of the second-order remainder, (2 + 1/sin α_w)|v|²/a: 1.2e-9 m for 5 µm on the sun
 // mesh (2.4e-4 of the error).
 #include <catch2/catch.hpp>

@@ -1,4 +1,4 @@
-// Undercut teeth are generated as the rack cuts them (docs/model.md §1). References written here,
+// Undercut teeth are generated as the rack cuts them (docs/model.md §3). References written here,
 // independently of the library's envelope formulas:
 //  - the cut flank is the lower envelope of the area swept by the rack's outline (straight edge,
 //    tip round, tip line), placed at thousands of rolling positions and intersected with circles

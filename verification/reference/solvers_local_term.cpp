@@ -1,4 +1,4 @@
-// The closed-form local term (docs/model.md §2) against the elastic half-plane it stands for:
+// The closed-form local term (docs/model.md §4) against the elastic half-plane it stands for:
 // the approach between the surface and depth h on the load axis under a Hertzian pressure,
 // obtained here by superposing Flamant line loads (double numerical quadrature), and against
 // Weber's asymptote, finite differences and quadrature of its own value.

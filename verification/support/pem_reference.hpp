@@ -1,5 +1,5 @@
 // Potential-energy-method (PEM) mesh stiffness of an external spur-gear pair: the suite's own,
-// independent reference for the FE + local-contact mesh stiffness (docs/model.md §6). Plain C++ and the
+// independent reference for the FE + local-contact mesh stiffness (docs/model.md §8). Plain C++ and the
 // standard library only; nothing here uses the project's geometry or compliance code.
 //
 // Model (all SI; compliances in m/N, stiffnesses in N/m):

@@ -199,7 +199,7 @@ TEST_CASE("Gear influence table: total approach barely depends on the join depth
   // Total approach of the sun at one mid-flank contact with a planet tooth: structural (the
   // table's depth-h read-out with its layer term, F nᵀ S(h) n) plus this body's local term between
   // the surface and h (solvers::LocalApproach, half of the symmetric two-body value, both bodies
-  // steel and joined at the same h). docs/model.md §2: within 2 % for h ± 50 %. The same without
+  // steel and joined at the same h). docs/model.md §4: within 2 % for h ± 50 %. The same without
   // the layer term (the paper's join) is reported: its total drifts with h by the structural
   // strain of the layer it leaves out (docs/compliance.md, "The join").
   const transmission::Scene scene = test::PaperScene();

@@ -95,7 +95,7 @@ TEST_CASE("influence tables: a thickness error leaves the table's key nominal an
   // A planet thinner by |Δs| opens a gap of |Δs|/2 normal to each loaded flank, one in the sun
   // mesh and one in the ring mesh, in series along the planet's load path: to first order the
   // path error e_1 = |Δs|, the same as a tangential pin-hole error Δη with
-  // e_1 = −Δη (cos α_sp + cos α_pr) (docs/model.md §6). Both are run through the quasi-static
+  // e_1 = −Δη (cos α_sp + cos α_pr) (docs/model.md §8). Both are run through the quasi-static
   // driver on the same (nominal) tables; their mesh-cycle means of 1 − L_i must agree to the
   // second-order difference of the two errors: the pin error also turns the two meshes' lines of
   // action by Δη/a (a the centre distances), a relative change of the path below

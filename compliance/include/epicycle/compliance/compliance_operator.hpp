@@ -1,4 +1,4 @@
-// The compliance operator of a set of potential contacts (docs/model.md §2, paper Fig. 2): the
+// The compliance operator of a set of potential contacts (docs/model.md §4, paper Fig. 2): the
 // structural compliance of every body that carries two contacts couples them, whichever meshes
 // they belong to (a planet couples its sun-side and ring-side meshes; the sun and the ring couple
 // all planets), and elastic supports fold in as the compliance of the body's centre.

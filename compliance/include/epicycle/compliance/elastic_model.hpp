@@ -113,7 +113,7 @@ class LinearElasticModel {
   Eigen::Vector2d Displacement(const Eigen::VectorXd& u, const ElementPoint& at) const;
   /// Displacement [m] at depth `depth` [m] ≥ 0 below a point of an edge set, i.e. at
   /// x(ξ) − depth · n(ξ) with n the outward normal: the read-out of the join between the FE
-  /// structural term and the local contact term (docs/model.md §2).
+  /// structural term and the local contact term (docs/model.md §4).
   /// @throws std::invalid_argument for a negative or non-finite depth, or a point outside the body.
   Eigen::Vector2d DisplacementAtDepth(const Eigen::VectorXd& u, const std::string& set,
                                       const EdgePoint& at, double depth) const;

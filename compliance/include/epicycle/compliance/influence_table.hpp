@@ -1,4 +1,4 @@
-// The structural influence table of one gear body (docs/model.md §2): unit loads at the flank grid
+// The structural influence table of one gear body (docs/model.md §4): unit loads at the flank grid
 // of tooth 0, displacements at the flank grids of all teeth, joined to the local contact term at
 // depth h, symmetrised (Maxwell–Betti) and interpolated over load position, response position and
 // tooth-index difference.
@@ -23,7 +23,7 @@ namespace epicycle::compliance {
 struct InfluenceTableOptions {
   GearMeshOptions mesh;  ///< mesh density (the flank grid follows it)
   /// Join depth h [m] below the surface, along the inward normal, where the FE structural term
-  /// of the loaded point is read (docs/model.md §2). 0 selects the default
+  /// of the loaded point is read (docs/model.md §4). 0 selects the default
   ///   h = kDefaultDepthFraction · min_i d_i,   d_i = y_i / n_y,i,
   /// d_i the distance from grid point i along its inward normal to the tooth centre line (the
   /// largest h that keeps the read-out on the loaded tooth's side), so that h ± 50 % stays valid.

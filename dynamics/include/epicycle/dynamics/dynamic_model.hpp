@@ -265,7 +265,7 @@ std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
 ///   k_t = (F₊ − F₋)/(δ₊ − δ₋)   (F the mesh's total force, δ its deflection along the line of
 ///                                action), averaged over the samples.
 /// Why: MeanMeshStiffness is the secant F/δ; the local contact term's deflection grows less than
-/// linearly with the load (docs/model.md §2), so small vibrations about the operating point see
+/// linearly with the load (docs/model.md §4), so small vibrations about the operating point see
 /// the tangent, which is higher (about 6 % on the paper's stage). The resonances of the speed
 /// sweep sit at the tangent stiffness' coincidences (docs/dynamic.md, "Speed sweeps").
 /// @throws std::invalid_argument for step outside (0, 0.5) or positions < 2;

@@ -1,4 +1,4 @@
-// Contact search between two meshing gears (docs/model.md §1): every potential contact of every
+// Contact search between two meshing gears (docs/model.md §3): every potential contact of every
 // tooth pair within a gap window, on both flanks, on the line of action (involute against involute,
 // closed form) and off it (tip round against flank: closest points between an arc and an involute).
 #pragma once

@@ -123,7 +123,7 @@ class Gear {
   double MinimumShiftWithoutUndercut() const;
   /// True when the rack cut below the interference point (x < MinimumShiftWithoutUndercut()):
   /// the tooth is generated as cut, the tip round's trochoid crossing the involute at a corner.
-  /// A warning, not an error (docs/model.md §1).
+  /// A warning, not an error (docs/model.md §3).
   bool undercut() const { return undercut_; }
   /// Radius where the involute and the undercut fillet meet [m] (= form_radius() when
   /// undercut(); 0 otherwise).

@@ -1,4 +1,4 @@
-// One interface, interchangeable back ends (ARCHITECTURE.md "One problem, many back ends").
+// One interface, interchangeable back ends (docs/solvers.md §2–3).
 #pragma once
 
 #include <algorithm>

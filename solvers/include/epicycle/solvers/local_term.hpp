@@ -1,4 +1,4 @@
-// Local (Hertzian) contact approach of one potential contact: docs/model.md §2, the paper's
+// Local (Hertzian) contact approach of one potential contact: docs/model.md §4, the paper's
 // eq. 2 with its printed second term corrected.
 #pragma once
 

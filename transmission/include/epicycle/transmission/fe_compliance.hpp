@@ -1,4 +1,4 @@
-// The hybrid compliance of a scene's bodies (docs/model.md §2): one FE influence table per distinct
+// The hybrid compliance of a scene's bodies (docs/model.md §4): one FE influence table per distinct
 // gear body (built, or loaded from the disk cache), assembled into the contact compliance of a
 // stage or of a gear pair by compliance::AssembleCompliance.
 #pragma once

@@ -1,4 +1,4 @@
-// The geometric iteration of docs/model.md §5, shared by every quasi-static driver (the stage's
+// The geometric iteration of docs/model.md §6, shared by every quasi-static driver (the stage's
 // load sharing, a gear pair's mesh stiffness): the geometry is nonlinear in the positions (tip
 // contacts, translations), so the contact problem is solved at the current poses, the members are
 // moved by its rigid displacements λ, and the search is repeated until λ stops changing.

@@ -1,5 +1,5 @@
 // Mesh stiffness of one gear pair over a mesh cycle at a given load (the hybrid model: FE
-// structural term + local contact term, docs/model.md §2), with each tooth pair's stiffness and load
+// structural term + local contact term, docs/model.md §4), with each tooth pair's stiffness and load
 // share: the quantity ISO 6336-1 (c′, c_γα) and the potential-energy method are compared with.
 #pragma once
 

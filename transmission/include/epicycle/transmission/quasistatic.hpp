@@ -1,4 +1,4 @@
-// Quasi-static solution of the stage at one carrier position (docs/model.md §3–4): contact search →
+// Quasi-static solution of the stage at one carrier position (docs/model.md §5–6): contact search →
 // compliance → contact problem with equilibrium equalities → back end → forces and rigid
 // displacements; the members are moved by the displacements and the search repeated until the
 // displacements stop changing (the geometry is nonlinear in the positions). A sweep starts each

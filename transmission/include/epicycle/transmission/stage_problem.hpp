@@ -1,4 +1,4 @@
-// From a posed stage to the contact problem of docs/model.md §3: the potential contacts of every
+// From a posed stage to the contact problem of docs/model.md §5: the potential contacts of every
 // mesh, their compliance (from the compliance layer, through StageCompliance), the local terms, the
 // overlaps, and the equilibrium equalities of the members whose position is set by equilibrium.
 #pragma once
@@ -87,7 +87,7 @@ struct StageProblem {
   solvers::ContactProblemData data;  ///< ready for solvers::ContactProblem
 };
 
-/// The local contact term of a potential contact between gears a and b (docs/model.md §2): face
+/// The local contact term of a potential contact between gears a and b (docs/model.md §4): face
 /// width the narrower one, R_eq from the two signed curvature radii (1/R = 1/ρ_a + 1/ρ_b; a concave
 /// ring flank has ρ < 0), both bodies of `material`, joined at depths h_a and h_b [m].
 /// @throws std::invalid_argument naming `label` if the radii give no positive reduced radius.

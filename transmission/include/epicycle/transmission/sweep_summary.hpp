@@ -1,4 +1,4 @@
-// Statistics of a quasi-static sweep over carrier positions (docs/model.md §4): the load-sharing
+// Statistics of a quasi-static sweep over carrier positions (docs/model.md §6): the load-sharing
 // ratios' mean and extremes per planet, the mesh load factor K_γ, the loaded static transmission
 // error's range and the sun's largest displacement. One function shared by the `quasistatic`
 // command and the tolerance studies (studies/), so both report the same numbers.
@@ -20,7 +20,7 @@ struct SweepSummary {
   std::vector<double> lsr_max;   ///< max over positions of LSR_i [-], per planet
   double k_gamma = 0;            ///< K_γ = max over positions and planets of L_i = n·LSR_i [-]
   /// K̄_γ = max_i (mean over positions of L_i) [-]: the mesh-cycle-mean load factor, the quantity
-  /// the linear load-sharing theory predicts (docs/model.md §6).
+  /// the linear load-sharing theory predicts (docs/model.md §8).
   double k_gamma_mean = 0;
   double transmission_error_min = 0;  ///< [rad]
   double transmission_error_max = 0;  ///< [rad]

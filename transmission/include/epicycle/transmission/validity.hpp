@@ -21,7 +21,7 @@ namespace epicycle::transmission {
 ///  - a negative load-sharing ratio LSR_i < 0: planet i is jammed (its errors exceed the backlash
 ///    and it is driven through its coast flanks);
 ///  - a transmission error |TE| r_b,sun larger than a tenth of the module: rigid rotations of that
-///    size break the small-displacement assumption of the compliance (docs/model.md §5);
+///    size break the small-displacement assumption of the compliance (docs/model.md §4);
 ///  - a contact force past the local term's validity, F > ValidityLimitForce (the Hertz
 ///    half-width L exceeds the joining depth h, solvers/local_term.hpp).
 class ValidityTally {
@@ -53,7 +53,7 @@ std::vector<std::string> QuasiStaticWarnings(const geometry::Stage& stage,
 
 /// The same over the converged samples of a mesh-stiffness sweep (`epicycle stiffness`):
 ///  - a transmission error |θ₁| r_b1 (the mesh deflection δ_LOA) larger than a tenth of gear 1's
-///    module m₁ (the small-displacement assumption, docs/model.md §5);
+///    module m₁ (the small-displacement assumption, docs/model.md §4);
 ///  - a contact force past the local term's validity (MeshSample::local_validity_ratio > 1).
 std::vector<std::string> MeshStiffnessWarnings(const geometry::GearPair& pair,
                                                const MeshStiffnessResult& result);
