@@ -11,7 +11,7 @@
 
 #include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/geometry/iso.hpp"
-#include "toml_reader.hpp"
+#include "epicycle/transmission/internal/toml_reader.hpp"
 
 namespace epicycle::transmission {
 

@@ -17,7 +17,8 @@ function(run)
 endfunction()
 run(${CMAKE_COMMAND} --install "${BUILD}" --prefix "${prefix}")
 foreach(f bin/epicycle include/epicycle/config.h include/epicycle/transmission/scene.hpp
-          include/epicycle/solvers/contact_problem.hpp lib/cmake/epicycle/epicycleConfig.cmake
+          include/epicycle/solvers/contact_problem.hpp include/epicycle/studies/study.hpp
+          lib/cmake/epicycle/epicycleConfig.cmake
           lib/cmake/epicycle/epicycleTargets.cmake)
   if(NOT EXISTS "${prefix}/${f}")
     message(FATAL_ERROR "not installed: ${f}")

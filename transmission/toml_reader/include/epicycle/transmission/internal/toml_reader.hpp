@@ -1,6 +1,10 @@
 // Strict reading of scene tables: every key is consumed by name, with its unit in the key;
 // unknown keys, missing keys, wrong types and out-of-range values are errors that name the key,
 // the value and the rule.
+//
+// The library epicycle_toml_reader, linked privately by the scene reader (transmission) and the
+// study-file reader (studies) so that every input file has the same rules and messages. Its
+// interface holds toml++ types, so it is not one of the installed public headers.
 #pragma once
 
 #include <optional>
