@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the bad-input tests with EPICYCLE_FIGURES=1 and writes the BADINPUT rows they print
-# (verification/unit/transmission/bad_input_test.cpp: input, expected message, the message the
+# (verification/unit/transmission/bad_input.cpp: input, expected message, the message the
 # program gave, verdict) as the table between the markers
 #   <!-- bad-input-table:begin --> ... <!-- bad-input-table:end -->
 # of docs/bad_inputs.md. Usage: bash tools/bad_input_table.sh [build-dir]   (default ./build)

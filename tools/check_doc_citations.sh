@@ -8,29 +8,14 @@
 # docs/NAME.md has a heading line `## N.` (docs/model.md: `## 7. Dynamic model`). A citation of a
 # page that does not exist fails too. Prints every failure as FILE:LINE and exits 1 if there is
 # one (CTest "docs: every cited section exists").
-set -euo pipefail
-export LC_ALL=C  # the patterns match § and – as bytes
-
-root=$(cd "${1:-$(dirname "$0")/..}" && pwd)
-cd "$root"
-
-# The files to read: what git tracks (and untracked files it does not ignore), or everything below
-# the source folder outside build trees when this is not a git checkout.
-list_files() {
-  if git -C "$root" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
-    git -C "$root" ls-files -z --cached --others --exclude-standard
-  else
-    find . -path './build*' -prune -o -path './.git' -prune -o -type f -print0 | sed -z 's|^\./||'
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/check_common.sh" "$@"
 
 cite='[A-Za-z0-9_]+\.md\)? §[0-9]+((–|-)[0-9]+)?(, §[0-9]+((–|-)[0-9]+)?)*'
 failures=0
 checked=0
 # The files to search: code, build and test scripts, docs.
 sources() {
-  list_files | grep -zE '\.(cpp|hpp|h|cc|in|txt|cmake|sh|py|md|toml|json)$' |
-    while IFS= read -r -d '' f; do [[ -f "$f" ]] && printf '%s\0' "$f"; done
+  list_files | grep -zE '\.(cpp|hpp|h|cc|in|txt|cmake|sh|py|md|toml|json)$'
 }
 
 while IFS= read -r hit; do
@@ -62,12 +47,4 @@ while IFS= read -r hit; do
   done
 done < <(sources | xargs -0 grep -HnoE "$cite" || true)
 
-if ((failures > 0)); then
-  echo "check_doc_citations: $failures of $checked cited sections do not exist"
-  exit 1
-fi
-if ((checked == 0)); then
-  echo "check_doc_citations: no citation found below $root (wrong folder?)"
-  exit 1
-fi
-echo "check_doc_citations: all $checked cited sections exist"
+finish check_doc_citations "$failures" "$checked" "cited sections"

@@ -169,7 +169,7 @@ Comparison Compare(const Rig& rig, const std::vector<PositionResult>& a,
 TEST_CASE(
     "quasistatic sweep: warm start and threads agree with cold positions within the "
     "tolerances",
-    "[transmission][quasistatic][sweep]") {
+    "[crosscheck][transmission][quasistatic][sweep]") {
   for (SunSupport sun : {SunSupport::kFixed, SunSupport::kFloating}) {
     const Rig rig(sun);
     const std::string name = sun == SunSupport::kFixed ? "fixed sun" : "floating sun";
@@ -218,7 +218,7 @@ TEST_CASE(
 }
 
 TEST_CASE("quasistatic sweep: cold positions are bit-identical across thread counts",
-          "[transmission][quasistatic][sweep]") {
+          "[crosscheck][transmission][quasistatic][sweep]") {
   const Rig rig(SunSupport::kFloating, 60);
   const auto one = rig.Sweep(false, 1);
   const auto three = rig.Sweep(false, 3);
@@ -234,7 +234,7 @@ TEST_CASE("quasistatic sweep: cold positions are bit-identical across thread cou
 }
 
 TEST_CASE("quasistatic sweep: on_result sees every position in order, failed ones included",
-          "[transmission][quasistatic][sweep]") {
+          "[crosscheck][transmission][quasistatic][sweep]") {
   Rig rig(SunSupport::kFixed, 25);
   // One geometric iteration cannot settle (the first increment is the whole deflection): every
   // position fails, and each must still be reported, once, in the order of the angles.
@@ -278,7 +278,7 @@ TEST_CASE("quasistatic sweep: on_result sees every position in order, failed one
 }
 
 TEST_CASE("mesh stiffness: the same samples, in order, on 1 and 3 threads",
-          "[transmission][stiffness][sweep]") {
+          "[crosscheck][transmission][stiffness][sweep]") {
   const transmission::Scene scene = test::PaperScene();
   const geometry::Stage stage(scene.stage);
   const auto setup = transmission::MakeMeshPair(scene, &stage, "sun-planet1");

@@ -45,7 +45,7 @@ Row Committed(int index, double refinement) {
 }  // namespace
 
 TEST_CASE("FE contact reference: CalculiX run of one position, equilibrium and convergence band",
-          "[slow][fe_reference]") {
+          "[reference][slow][fe_reference]") {
   constexpr int kIndex = 36;  // 13.5 deg of the 48-position grid: single contact
   const Row coarse = Committed(kIndex, 0.7), base = Committed(kIndex, 1.0);
   const std::string dir =

@@ -11,9 +11,9 @@
 //     the sun mesh by   −Δζ sin α_w,s − σ_s Δη cos α_w,s,
 //     the ring mesh by  +Δζ sin α_w,r + σ_r Δη cos α_w,r      (σ_r = −σ_s):
 // with the paper's sun torque (σ_s = −1) a tangential error enters both meshes as +Δη cos α_w, a
-// radial one with opposite signs (docs/model.md §8). These are first-order in v; the tolerance is twice
-// the bound of the second-order remainder, (2 + 1/sin α_w)|v|²/a: 1.2e-9 m for 5 µm on the sun
-// mesh (2.4e-4 of the error).
+// radial one with opposite signs (docs/model.md §8). These are first-order in v; the tolerance is
+// twice the bound of the second-order remainder, (2 + 1/sin α_w)|v|²/a: 1.2e-9 m for 5 µm on the
+// sun mesh (2.4e-4 of the error).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -26,7 +26,7 @@
 #include "../unit/geometry/stage_closed_forms.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "figures.hpp"
-#include "stage_fixtures.hpp"
+#include "geometry_fixtures.hpp"
 
 using namespace epicycle::geometry;
 using epicycle::test::ClosedFormLoaDirection;
@@ -38,11 +38,28 @@ namespace {
 
 const MeshKind kKinds[] = {MeshKind::kSunPlanet, MeshKind::kPlanetRing};
 
-// The paper's stage with TOML text appended (the [[errors.*]] tables of docs/scenes.md).
-Stage PaperStageWith(const std::string& errors) {
-  const auto scene = epicycle::transmission::ParseScene(
-      epicycle::test::SceneText("paper_stage.toml") + "\n" + errors, "paper_stage.toml + errors");
-  return Stage(scene.stage);
+// The paper's stage with a pin-hole error on one planet (as an [[errors.pin]] table of
+// docs/scenes.md sets it: the other planets' entries zero).
+Stage PaperStageWithPinError(int planet, PinError error) {
+  StageSpec s = epicycle::test::PaperStage().stage;
+  s.pin_errors.assign(static_cast<std::size_t>(s.planets), PinError{});
+  s.pin_errors[static_cast<std::size_t>(planet)] = error;
+  return Stage(s);
+}
+
+// The paper's stage with a tooth-thickness error on one gear, "sun", "ring" or "planet<i>" (as an
+// [[errors.thickness]] table sets it).
+Stage PaperStageWithThicknessError(const std::string& gear, double ds) {
+  StageSpec s = epicycle::test::PaperStage().stage;
+  if (gear == "sun") {
+    s.sun.thickness_error = ds;
+  } else if (gear == "ring") {
+    s.ring.thickness_error = ds;
+  } else {
+    s.planet_thickness_errors.assign(static_cast<std::size_t>(s.planets), 0.0);
+    s.planet_thickness_errors[static_cast<std::size_t>(std::stoi(gear.substr(6)) - 1)] = ds;
+  }
+  return Stage(s);
 }
 
 // Involute (on the line of action) contacts of one mesh keyed by (σ_A, tooth of A, tooth of B).
@@ -62,7 +79,7 @@ std::map<Key, double> InvoluteOverlaps(const Stage& st, const StagePoses& p, int
 
 TEST_CASE("a planet pin-hole error moves its meshes by its projection on each line of action",
           "[reference][geometry]") {
-  const Stage nominal(epicycle::test::PaperScene().stage);
+  const Stage nominal(epicycle::test::PaperStage().stage);
   REQUIRE(nominal.sun_mesh_side() == -1);  // the explicit signs below: sun torque −600 N·m
   struct Case {
     int planet;
@@ -72,11 +89,7 @@ TEST_CASE("a planet pin-hole error moves its meshes by its projection on each li
   double worst = 0, worst_relative = 0, worst_other = 0, worst_over_bound = 0;
   int matched = 0;
   for (const Case& e : cases) {
-    char toml[160];
-    std::snprintf(toml, sizeof toml,
-                  "[[errors.pin]]\ngear = \"planet%d\"\nradial_um = %.6f\ntangential_um = %.6f\n",
-                  e.planet + 1, e.radial * 1e6, e.tangential * 1e6);
-    const Stage with(PaperStageWith(toml));
+    const Stage with(PaperStageWithPinError(e.planet, PinError{e.radial, e.tangential}));
     const double v2 = e.radial * e.radial + e.tangential * e.tangential;
     for (int k = 0; k < 7; ++k) {
       const double phi = nominal.mesh_cycle() * (0.05 + k / 7.0);
@@ -130,7 +143,7 @@ TEST_CASE("a planet pin-hole error moves its meshes by its projection on each li
 
 TEST_CASE("a tooth-thickness error moves every flank of its gear by ds/2",
           "[reference][geometry]") {
-  const Stage nominal(epicycle::test::PaperScene().stage);
+  const Stage nominal(epicycle::test::PaperStage().stage);
   struct Case {
     const char* gear;
     double ds;  // [m]
@@ -139,10 +152,7 @@ TEST_CASE("a tooth-thickness error moves every flank of its gear by ds/2",
   double worst = 0, worst_sum = 0;
   int matched = 0;
   for (const Case& e : cases) {
-    char toml[120];
-    std::snprintf(toml, sizeof toml, "[[errors.thickness]]\ngear = \"%s\"\nerror_um = %.6f\n",
-                  e.gear, e.ds * 1e6);
-    const Stage with(PaperStageWith(toml));
+    const Stage with(PaperStageWithThicknessError(e.gear, e.ds));
     const std::string gear = e.gear;
     // Does the thickened gear take part in planet i's mesh of this kind?
     auto involved = [&](int i, MeshKind kind) {

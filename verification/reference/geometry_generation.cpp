@@ -10,7 +10,7 @@
 #include "epicycle/geometry/gear.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "figures.hpp"
-#include "stage_fixtures.hpp"
+#include "geometry_fixtures.hpp"
 
 using namespace epicycle::geometry;
 using epicycle::test::FigureValue;
@@ -60,7 +60,7 @@ double MaxNormalDeviation(const Gear& g, int samples) {
 }
 
 GearSpec ShaperRing() {
-  GearSpec g = epicycle::test::PaperScene().stage.ring;
+  GearSpec g = epicycle::test::PaperStage().stage.ring;
   g.shaper = ShaperCutter{22, 0.1, 0, 0.05 * g.module};
   // The shaper's tip: addendum 1.25 m over its shifted reference line.
   g.shaper->tip_radius = g.module * (22 / 2.0 + 0.1 + 1.25);
@@ -70,7 +70,7 @@ GearSpec ShaperRing() {
 }  // namespace
 
 TEST_CASE("rack-generated flanks are the analytic involute", "[reference][geometry]") {
-  const auto scene = epicycle::test::PaperScene();
+  const auto scene = epicycle::test::PaperStage();
   for (const GearSpec& spec : {scene.stage.sun, scene.stage.planet}) {
     GearSpec s = spec;
     if (&spec == &scene.stage.planet) s.profile_shift = scene.fits[0].profile_shift;
@@ -99,7 +99,7 @@ TEST_CASE("shaper-generated ring flank is the internal involute", "[reference][g
 }
 
 TEST_CASE("generated involute curvature is 1/(r_b u)", "[reference][geometry]") {
-  const auto scene = epicycle::test::PaperScene();
+  const auto scene = epicycle::test::PaperStage();
   double worst = 0;
   for (const Gear& g : {Gear(scene.stage.sun), Gear(ShaperRing())}) {
     const Segment* inv = g.half_profile().Find(SegmentRole::kInvolute);
@@ -117,7 +117,7 @@ TEST_CASE("generated involute curvature is 1/(r_b u)", "[reference][geometry]") 
 
 TEST_CASE("tooth thickness at the reference circle is m(pi/2 + 2x tan a)",
           "[reference][geometry]") {
-  const auto scene = epicycle::test::PaperScene();
+  const auto scene = epicycle::test::PaperStage();
   for (const GearSpec& s : {scene.stage.sun, scene.stage.planet, scene.stage.ring}) {
     const Gear g(s);
     // Find the generated involute's point at the reference radius by bisection on its parameter.
@@ -147,7 +147,7 @@ TEST_CASE("tooth thickness at the reference circle is m(pi/2 + 2x tan a)",
 
 TEST_CASE("half profiles are continuous with tangent continuity at every join",
           "[unit][geometry]") {
-  const auto scene = epicycle::test::PaperScene();
+  const auto scene = epicycle::test::PaperStage();
   for (const Gear& g : {Gear(scene.stage.sun), Gear(scene.stage.planet), Gear(scene.stage.ring),
                         Gear(ShaperRing())}) {
     const auto& segs = g.half_profile().segments;
@@ -170,7 +170,7 @@ TEST_CASE("half profiles are continuous with tangent continuity at every join",
 }
 
 TEST_CASE("envelope derivatives are exact (against central differences)", "[unit][geometry]") {
-  const auto scene = epicycle::test::PaperScene();
+  const auto scene = epicycle::test::PaperStage();
   double worst1 = 0, worst2 = 0;
   for (const Gear& g : {Gear(scene.stage.sun), Gear(ShaperRing())}) {
     for (const Segment& s : g.half_profile().segments) {
@@ -194,7 +194,7 @@ TEST_CASE("envelope derivatives are exact (against central differences)", "[unit
 
 TEST_CASE("operating pressure angle and contact ratio from the layout equal ISO 21771",
           "[reference][geometry]") {
-  const auto scene = epicycle::test::ZeroBacklashPaperScene();
+  const auto scene = epicycle::test::PaperStage(0.0);
   const Stage st(scene.stage);
   const StagePoses p = st.Poses(0.0);
   // Geometry: the line of action built from the actual centres; ISO: the closed forms.
@@ -259,7 +259,7 @@ TEST_CASE("operating pressure angle and contact ratio of the real stage (0.15 mm
   // (r + (x + 1) m; the ring's inner tip r + (x − 1) m):
   //   external ε_α = [√(r_a1² − r_b1²) + √(r_a2² − r_b2²) − a sin α_w]/p_b,
   //   internal ε_α = [√(r_a1² − r_b1²) − √(r_a2² − r_b2²) + a sin α_w]/p_b.
-  const auto scene = epicycle::test::PaperScene();
+  const auto scene = epicycle::test::PaperStage();
   const Stage st(scene.stage);
   const StageSpec& s = scene.stage;
   const double m = s.sun.module, alpha = s.sun.pressure_angle, a = s.carrier_radius;

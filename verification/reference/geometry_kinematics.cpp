@@ -11,7 +11,7 @@
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "figures.hpp"
-#include "stage_fixtures.hpp"
+#include "geometry_fixtures.hpp"
 
 using namespace epicycle::geometry;
 using epicycle::test::FigureValue;
@@ -28,7 +28,7 @@ int LoadedSide(const Stage& st, MeshKind k) {
 
 TEST_CASE("rigid perfect gears at zero backlash: no interpenetration, loaded flanks touch",
           "[reference][geometry]") {
-  const auto scene = epicycle::test::ZeroBacklashPaperScene();
+  const auto scene = epicycle::test::PaperStage(0.0);
   const Stage st(scene.stage);
   ContactSearchOptions opt;
   opt.gap_window = 100e-6;
@@ -71,7 +71,7 @@ TEST_CASE("rigid perfect gears at zero backlash: no interpenetration, loaded fla
 }
 
 TEST_CASE("the coast-side gap equals the fitted normal backlash", "[reference][geometry]") {
-  const auto scene = epicycle::test::PaperScene();
+  const auto scene = epicycle::test::PaperStage();
   const Stage st(scene.stage);
   REQUIRE(scene.fits.size() == 2);
   double worst_loaded = 0, worst_backlash = 0;
@@ -104,7 +104,7 @@ TEST_CASE("the coast-side gap equals the fitted normal backlash", "[reference][g
 }
 
 TEST_CASE("mesh phase between consecutive planets is 2pi/3", "[reference][geometry]") {
-  const auto scene = epicycle::test::PaperScene();
+  const auto scene = epicycle::test::PaperStage();
   const Stage st(scene.stage);
   ContactSearchOptions opt;
   opt.both_sides = false;
@@ -143,7 +143,7 @@ TEST_CASE("mesh phase between consecutive planets is 2pi/3", "[reference][geomet
 
 TEST_CASE("run-out of planet 1 changes its overlaps by the offset projected on each line of action",
           "[reference][geometry]") {
-  auto scene = epicycle::test::PaperScene();
+  auto scene = epicycle::test::PaperStage();
   const double e = 20e-6;
   scene.stage.planet_runouts.assign(3, Runout{});
   scene.stage.planet_runouts[0] = Runout{e, 0.7};
@@ -191,7 +191,7 @@ TEST_CASE(
   // ω_s = ω_c − (z_p/z_s)(ω_p − ω_c) = (1 + z_r/z_s) ω_c. The rotations at φ_c = 0 are the
   // stage's aligned start (a choice of origin) and are read from the poses once; the ring does not
   // turn. The geometric centre is then the rotation centre + e (cos(θ + φ), sin(θ + φ)).
-  auto scene = epicycle::test::PaperScene();
+  auto scene = epicycle::test::PaperStage();
   const Runout planet_runout{20e-6, 0.7}, sun_runout{15e-6, -1.2}, ring_runout{10e-6, 2.5};
   scene.stage.planet_runouts.assign(3, Runout{});
   scene.stage.planet_runouts[0] = planet_runout;
@@ -261,33 +261,4 @@ TEST_CASE(
       "run-out (sun 15, planet 1 20, ring 10 um): worst |overlap change - closed-form "
       "projection|",
       worst_projection, "m");
-}
-
-TEST_CASE("gear pairs: conjugate action of the loaded flanks and the fitted backlash",
-          "[reference][geometry]") {
-  for (const char* file : {"iso_pair_20_40.toml", "iso_pair_30_30.toml", "paper_sun_planet.toml",
-                           "paper_planet_ring.toml"}) {
-    const auto scene = epicycle::transmission::ParseScene(epicycle::test::SceneText(file), file);
-    REQUIRE(scene.kind == epicycle::transmission::SceneKind::kPair);
-    const GearPair pair(scene.pair);
-    INFO(file);
-    const double backlash = scene.fits.empty() ? 0.0 : scene.fits[0].normal_backlash;
-    double worst_loaded = 0, worst_coast = 0;
-    for (int k = 0; k < 200; ++k) {
-      const PairPoses p = pair.Poses(pair.mesh_cycle() * k / 200.0);
-      worst_loaded = std::max(
-          worst_loaded,
-          std::abs(NearestLoaOverlap(pair.A(p), pair.B(p), pair.internal(), pair.loaded_side())));
-      worst_coast = std::max(
-          worst_coast,
-          std::abs(-NearestLoaOverlap(pair.A(p), pair.B(p), pair.internal(), -pair.loaded_side()) -
-                   backlash));
-    }
-    CHECK(worst_loaded <= 1e-10);
-    CHECK(worst_coast <= 1e-10);
-    FigureValue(std::string("gear pair ") + file + ": worst loaded |overlap|", worst_loaded, "m");
-    FigureValue(std::string("gear pair ") + file + ": worst |coast gap - backlash|", worst_coast,
-                "m");
-    CHECK(pair.summary().normal_backlash == Approx(backlash).margin(1e-12));
-  }
 }

@@ -14,9 +14,8 @@
 
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/geometry/pair.hpp"
-#include "epicycle/transmission/scene.hpp"
 #include "figures.hpp"
-#include "stage_fixtures.hpp"
+#include "geometry_fixtures.hpp"
 
 using namespace epicycle::geometry;
 using epicycle::test::Sci;
@@ -24,11 +23,7 @@ using epicycle::test::VerifyRow;
 
 namespace {
 
-PairSpec IsoPair() {
-  return epicycle::transmission::ParseScene(epicycle::test::SceneText("iso_pair_20_40.toml"),
-                                            "iso_pair_20_40.toml")
-      .pair;
-}
+PairSpec IsoPair() { return epicycle::test::IsoPair2040(); }
 
 // The relief law of the spec, from the scene's numbers: C (u − u_s)^p / (u_a − u_s)^p, u_a at the
 // tip circle (the scene's pairs give none: the tool's reach r + x m + h_f0).
@@ -250,7 +245,7 @@ TEST_CASE("tip round against a relieved flank of a tooth with a pitch deviation:
   // The paper's stage with 10 µm parabolic long-ish tip relief on every gear and a pitch
   // deviation on every sun tooth: each tip-round contact's overlap against ρ − the distance from
   // the (relieved, turned) round's centre to a 20 000-point polyline of the relieved flank.
-  auto scene = epicycle::test::PaperScene();
+  auto scene = epicycle::test::PaperStage();
   const Stage nominal(scene.stage);
   scene.stage.sun.modification.tip = {10e-6, 37.0e-3, ReliefShape::kParabolic};
   scene.stage.planet.modification.tip = {10e-6, 52.5e-3, ReliefShape::kParabolic};

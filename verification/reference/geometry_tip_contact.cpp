@@ -9,7 +9,7 @@
 
 #include "epicycle/geometry/stage.hpp"
 #include "figures.hpp"
-#include "stage_fixtures.hpp"
+#include "geometry_fixtures.hpp"
 
 using namespace epicycle::geometry;
 using epicycle::test::FigureValue;
@@ -50,7 +50,7 @@ Vec2 TipRoundCentre(const PosedGear& g, int tooth, int side) {
 
 TEST_CASE("tip round against flank: normal through the round's centre, brute-force overlap",
           "[reference][geometry]") {
-  const auto scene = epicycle::test::PaperScene();
+  const auto scene = epicycle::test::PaperStage();
   const Stage st(scene.stage);
   ContactSearchOptions opt;
   opt.gap_window = 100e-6;
@@ -106,19 +106,19 @@ TEST_CASE("the tip rounds tried are all that can touch (against trying every too
   // With errors that move the centres and turn the gears off their kinematic phase; the exhaustive
   // search also skips the pre-filter of the rounds tried (contact.cpp, FlankReach), whose window
   // is wider for a relieved mate and for teeth turned by pitch deviations: once more with those.
-  const std::string modified = epicycle::test::Replace(
-      epicycle::test::Replace(
-          epicycle::test::SceneText("paper_stage.toml"), "[sun.cutter]",
-          "[sun.modification]\ntip_relief_um = 8.0\ntip_relief_start_roll_deg = 30.0\n"
-          "root_relief_um = 5.0\nroot_relief_start_roll_deg = 20.0\n"
-          "[sun.pitch]\niso1328_grade = 6\nseed = 3\n[sun.cutter]"),
-      "[planet.cutter]",
-      "[planet.modification]\ntip_relief_um = 10.0\ntip_relief_start_roll_deg = 30.0\n"
-      "tip_relief_shape = \"parabolic\"\n[planet.pitch]\niso1328_grade = 7\nseed = 5\n"
-      "[planet.cutter]");
+  // Relief given by roll angle and ISO 1328-1 pitch deviations of a grade, as a scene's
+  // [<gear>.modification] and [<gear>.pitch] tables set them.
+  const auto modify = [](StageSpec& s) {
+    using epicycle::test::ReliefStartRadius;
+    s.sun.modification.tip = {8e-6, ReliefStartRadius(s.sun, 30.0), ReliefShape::kLinear};
+    s.sun.modification.root = {5e-6, ReliefStartRadius(s.sun, 20.0), ReliefShape::kLinear};
+    s.sun.pitch_deviations = iso::RandomPitchDeviations(s.sun.teeth, s.sun.module, 6, 3);
+    s.planet.modification.tip = {10e-6, ReliefStartRadius(s.planet, 30.0), ReliefShape::kParabolic};
+    s.planet.pitch_deviations = iso::RandomPitchDeviations(s.planet.teeth, s.planet.module, 7, 5);
+  };
   for (const bool relieved : {false, true}) {
-    auto scene = relieved ? epicycle::transmission::ParseScene(modified, "modified.toml")
-                          : epicycle::test::PaperScene();
+    auto scene = epicycle::test::PaperStage();
+    if (relieved) modify(scene.stage);
     REQUIRE((scene.stage.planet.modification.tip.amount > 0) == relieved);
     scene.stage.planet_runouts.assign(3, Runout{});
     scene.stage.planet_runouts[0] = Runout{40e-6, 1.0};

@@ -1,4 +1,5 @@
-// Scenes and gears shared by the geometry and transmission tests.
+// Scenes shared by the tests of the layers above geometry (they read scene files through
+// transmission/); geometry_fixtures.hpp builds the same stages without the scene reader.
 #pragma once
 
 #include <fstream>
@@ -7,6 +8,7 @@
 
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/transmission/scene.hpp"
+#include "geometry_fixtures.hpp"
 
 namespace epicycle::test {
 
@@ -35,23 +37,6 @@ inline transmission::Scene ZeroBacklashPaperScene() {
   return transmission::ParseScene(Replace(SceneText("paper_stage.toml"),
                                           "normal_backlash_um = 150.0", "normal_backlash_um = 0.0"),
                                   "paper_stage.toml (zero backlash)");
-}
-
-/// Every potential contact of every mesh of the stage at poses p: f(a, b, kind, contact), with a
-/// and b the mesh's first and second gear (sun–planet i, or planet i–ring).
-template <typename F>
-void ForEachStageContact(const geometry::Stage& st, const geometry::StagePoses& p,
-                         const geometry::ContactSearchOptions& opt, F&& f) {
-  for (int i = 0; i < st.planets(); ++i) {
-    for (geometry::MeshKind kind :
-         {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
-      const geometry::PosedGear a =
-          kind == geometry::MeshKind::kSunPlanet ? st.Sun(p) : st.Planet(p, i);
-      const geometry::PosedGear b =
-          kind == geometry::MeshKind::kSunPlanet ? st.Planet(p, i) : st.Ring(p);
-      for (const geometry::PotentialContact& c : st.Contacts(p, i, kind, opt)) f(a, b, kind, c);
-    }
-  }
 }
 
 }  // namespace epicycle::test

@@ -29,7 +29,7 @@ using Catch::Matchers::Contains;
 namespace {
 
 // Area between the origin and the quadratic (mid-angle node) interpolant of a circular arc of
-// radius r and angle 2h (see mesher_test.cpp): A = r² sin h (4 − cos h)/3.
+// radius r and angle 2h (see mesher.cpp): A = r² sin h (4 − cos h)/3.
 double QuadraticArcSectorArea(double r, double h) {
   return r * r * std::sin(h) * (4.0 - std::cos(h)) / 3.0;
 }
@@ -182,7 +182,7 @@ TEST_CASE("gmsh mesher: square and annulus sector, exact areas, named sides as m
 
 TEST_CASE("gmsh mesher: the patch test on an unstructured mesh of curved patches", "[unit][gmsh]") {
   if (!GmshMesher::Available()) return;
-  // The two curved, graded patches of patch_test.cpp ("Patch test on a mapped mesh"); a linear
+  // The two curved, graded patches of patch.cpp ("Patch test on a mapped mesh"); a linear
   // displacement field prescribed on the boundary is reproduced to round-off inside.
   const auto plane = GENERATE(PlaneAssumption::kPlaneStress, PlaneAssumption::kPlaneStrain);
   const ElasticMaterial mat{70e9, 0.33, 0.01, plane};
@@ -212,7 +212,7 @@ TEST_CASE("gmsh mesher: the patch test on an unstructured mesh of curved patches
       }
     }
   }
-  // Round-off bound as in patch_test.cpp: ε_machine × a condition-number allowance of ~10⁴.
+  // Round-off bound as in patch.cpp: ε_machine × a condition-number allowance of ~10⁴.
   CHECK(err / scale < 1e-12);
   CHECK(stress_err / s.norm() < 1e-12);
   CHECK(IrregularInteriorNodes(mesh) > 0);
@@ -295,7 +295,7 @@ TEST_CASE("gmsh mesher: gear bodies, flank grid and hub exactly as with the mapp
     REQUIRE(body.mesh.NodeSet(set).size() == mapped.mesh.NodeSet(set).size());
     CHECK(body.mesh.EdgeSet(set).size() == mapped.mesh.EdgeSet(set).size());
   }
-  // Area: as the mapped mesh's check in gear_mesh_test.cpp (quadratic edges on the outline).
+  // Area: as the mapped mesh's check in gear_mesh.cpp (quadratic edges on the outline).
   const double rel = std::abs(MeshArea(body.mesh) - OutlineArea(gear, 4000)) / MeshArea(body.mesh);
   CHECK(rel < 1e-5);
   CHECK(IrregularInteriorNodes(body.mesh) > 0);
@@ -324,7 +324,7 @@ TEST_CASE("gmsh mesher: the tooth compliance does not depend on the mesher", "[u
   REQUIRE(gmsh.grid().num_points() == n);
   REQUIRE(gmsh.join_depth() == mapped.join_depth());
   // The gmsh mesh is exactly cyclic too (rotated copies of the sector's mesh): reciprocity of the
-  // raw table holds to round-off, as for the mapped mesh (gear_influence_test.cpp).
+  // raw table holds to round-off, as for the mapped mesh (gear_influence.cpp).
   CHECK(gmsh.raw_asymmetry() < 1e-9);
 
   const std::vector<int> points = {n / 10, n / 4, n / 2, 3 * n / 4, 9 * n / 10};

@@ -2,15 +2,15 @@
 #include <catch2/catch.hpp>
 
 #include "epicycle/geometry/stage.hpp"
-#include "stage_fixtures.hpp"
+#include "geometry_fixtures.hpp"
 
 using namespace epicycle::geometry;
 using Catch::Matchers::Contains;
 
 namespace {
 
-GearSpec Sun() { return epicycle::test::PaperScene().stage.sun; }
-StageSpec Paper() { return epicycle::test::PaperScene().stage; }
+GearSpec Sun() { return epicycle::test::PaperStage().stage.sun; }
+StageSpec Paper() { return epicycle::test::PaperStage().stage; }
 
 }  // namespace
 
