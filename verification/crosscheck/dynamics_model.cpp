@@ -31,7 +31,7 @@ using test::VerifyRow;
 using test::WithRunout;
 
 TEST_CASE("quasi-static limit: the dynamic LSR tends to the quasi-static sweep with the speed",
-          "[crosscheck][dynamics]") {
+          "[crosscheck][slow][dynamics]") {
   // FE structural compliance without the local term (its curvature jumps where an involute meets
   // a tip round: docs/dynamic.md), friction off, planet 1 with 20 um run-out, sun fixed, one
   // planet revolution relative to the carrier (24 mesh cycles, 2 outputs each). What separates the

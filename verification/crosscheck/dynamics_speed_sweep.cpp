@@ -57,7 +57,7 @@ std::vector<double> Frequencies(const test::DynamicRig& rig, const std::array<do
 TEST_CASE(
     "speed sweep: the TE amplitude and K_gamma peak where a mesh harmonic meets a linearised "
     "natural frequency, within the sweep's resolution",
-    "[crosscheck][dynamics][sweep]") {
+    "[crosscheck][slow][dynamics][sweep]") {
   // The paper's stage (FE compliance with the local terms, as the mean mesh stiffness of the
   // modes), sun fixed, no errors: its modes are a rotational one (family k = 0, 3.03 kHz), a
   // double one whose planets move out of phase (k = ±1, 4.80 kHz: the translational family with

@@ -134,7 +134,7 @@ TEST_CASE(
 TEST_CASE(
     "the paper's run-out case in motion (20 um on planet 1, -600 N m, 1500 rpm): fixed sun "
     "harmonic and tangential, floating sun near ideal with a lobular orbit",
-    "[crosscheck][dynamics][paper]") {
+    "[crosscheck][slow][dynamics][paper]") {
   const std::string text = WithRunout(test::SceneText("paper_stage.toml"));
   RigOptions o;
   o.edit = [](dynamics::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };

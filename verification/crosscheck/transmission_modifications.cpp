@@ -104,7 +104,7 @@ double TePeakToPeak(const transmission::MeshStiffnessResult& r, double rb1) {
 }  // namespace
 
 TEST_CASE("undercut 17/43 ISO pair: mesh stiffness within 20 % of ISO 6336-1",
-          "[crosscheck][transmission][fe]") {
+          "[crosscheck][slow][transmission][fe]") {
   const PairCase c = LoadPair("iso_pair_17_43.toml");
   const geometry::GearPair pair(c.setup.spec);
   REQUIRE(pair.gear1().undercut());
@@ -348,8 +348,8 @@ TEST_CASE("paper stage, floating sun: tip relief against the off-LOA load-sharin
           "[crosscheck][transmission][fe]") {
   // The fast version of the study in docs/geometry.md: no relief and 10 µm of long tip relief on
   // every gear, one mesh cycle. The off-LOA tip contacts are what disturbs the floating sun's
-  // equalisation (docs/model.md §8); relief takes the load off the tips, so the largest deviation must
-  // fall. The floor of the comparison is the LOA-only deviation (2.6e-5 today,
+  // equalisation (docs/model.md §8); relief takes the load off the tips, so the largest deviation
+  // must fall. The floor of the comparison is the LOA-only deviation (2.6e-5 today,
   // docs/quasistatic.md).
   const auto base = test::PaperScene();
   const std::vector<double> angles =

@@ -272,7 +272,7 @@ TEST_CASE("quasi-static FE, fixed sun: load shares follow the single-mesh stiffn
 }
 
 TEST_CASE("quasi-static FE: linear load-sharing theory for a tangential pin error",
-          "[crosscheck][transmission][fe]") {
+          "[crosscheck][slow][transmission][fe]") {
   // docs/model.md §8 with e_1 = −Δη (cos α_sp + cos α_pr) (both meshes of planet 1), ε = k e_1/F,
   // F = |T|/r_bs, k the path stiffness measured by the model (MeasuredPathStiffness). Fixed sun:
   // 1 − L_1 = (n − 1)ε, 1 − L_j = −ε. Floating sun, n = 4: 1 − L = (ε, −ε, ε, −ε); n = 3: 0.

@@ -148,7 +148,7 @@ const char* const kScenes[] = {"iso_pair_20_40", "paper_sun_planet", "paper_plan
 }  // namespace
 
 TEST_CASE("Mesh stiffness, transmission error and load shares against the FE contact reference",
-          "[reference][stiffness][fe_reference]") {
+          "[reference][slow][stiffness][fe_reference]") {
   // Relative tolerance on k and θ (docs/compliance.md, "FE contact reference"), the sum of
   //  - the reference's discretisation error: kFeMesh, twice the largest change of k from its
   //    mesh to the 2× refined one (−0.061 % at 2.25°, −0.044 % at 13.5°: a Richardson bound for

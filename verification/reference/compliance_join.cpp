@@ -32,7 +32,7 @@ using namespace epicycle::compliance;
 TEST_CASE(
     "Join of FE and local term against a direct FE solution of a tooth under a Hertzian "
     "pressure",
-    "[reference][gear]") {
+    "[reference][slow][gear]") {
   const std::string name = "iso_pair_20_40";
   const transmission::Scene sc =
       transmission::ParseScene(test::SceneText(name + ".toml"), name + ".toml");

@@ -195,7 +195,8 @@ TEST_CASE("Gear influence table: join depth rules", "[unit][gear]") {
   CHECK_THROWS_WITH(bad.Validate(), Catch::Contains("join_depth_factor = 0"));
 }
 
-TEST_CASE("Gear influence table: total approach barely depends on the join depth", "[unit][gear]") {
+TEST_CASE("Gear influence table: total approach barely depends on the join depth",
+          "[unit][slow][gear]") {
   // Total approach of the sun at one mid-flank contact with a planet tooth: structural (the
   // table's depth-h read-out with its layer term, F nᵀ S(h) n) plus this body's local term between
   // the surface and h (solvers::LocalApproach, half of the symmetric two-body value, both bodies

@@ -305,7 +305,8 @@ TEST_CASE("gmsh mesher: gear bodies, flank grid and hub exactly as with the mapp
                   testing::Sci(rel) + ", min/max det J " + testing::Sci(body.min_jacobian_ratio));
 }
 
-TEST_CASE("gmsh mesher: the tooth compliance does not depend on the mesher", "[unit][gmsh][gear]") {
+TEST_CASE("gmsh mesher: the tooth compliance does not depend on the mesher",
+          "[unit][slow][gmsh][gear]") {
   if (!GmshMesher::Available()) return;
   // The sun of the paper's stage, meshed by both meshers at the same flank grid (default
   // density): n·Λ·n for unit loads at five grid points of the σ = +1 flank of tooth 0 — the self
