@@ -64,7 +64,7 @@ void BM_DynamicEvaluation(benchmark::State& state) {
   double mesh = 0;
   for (double m : e.sun_mesh_torque) mesh += m;
   state.counters["sun_balance_error_Nm"] =
-      std::abs(mesh + c.scene.sun_torque - c.model.mass()(ks) * e.acceleration(ks));
+      std::abs(mesh + c.scene.loads.sun_torque - c.model.mass()(ks) * e.acceleration(ks));
   state.counters["contacts"] = e.terms.size();
   state.counters["ok"] = e.ok ? 1 : 0;
 }

@@ -38,23 +38,27 @@ struct StageCase {
   transmission::Scene scene;
   geometry::Stage stage;
   transmission::FeStageCompliance compliance;
-  transmission::QuasiStaticOptions options;
+  transmission::StageModel model;
   StageCase(const std::string& file, std::int64_t floating)
-      : scene(Scene(file)), stage(scene.stage), compliance(scene, stage, Cache()) {
-    options.setup = transmission::SetupFromScene(scene);
-    options.setup.sun =
+      : scene(Scene(file)),
+        stage(scene.stage),
+        compliance(scene, stage, Cache()),
+        model(stage, compliance, Setup(scene, floating)) {}
+  static transmission::StageSetup Setup(const transmission::Scene& scene, std::int64_t floating) {
+    transmission::StageSetup setup = transmission::SetupFromScene(scene);
+    setup.sun =
         floating == 0 ? transmission::SunSupport::kFixed : transmission::SunSupport::kFloating;
+    return setup;
   }
 };
 
 // Arg 0: fixed sun; 1: floating sun.
 void BM_StagePosition(benchmark::State& state) {
   const StageCase c("paper_stage.toml", state.range(0));
-  const auto& [scene, stage, compliance, o] = c;
-  const double angle = 0.3 * stage.mesh_cycle();
+  const double angle = 0.3 * c.stage.mesh_cycle();
   transmission::PositionResult r;
   for (auto _ : state) {
-    r = transmission::SolvePosition(scene, stage, compliance, angle, o);
+    r = transmission::SolvePosition(c.model, angle, c.scene.loads, {});
     benchmark::DoNotOptimize(r.load_sharing.data());
   }
   double sum = 0.0;
@@ -74,15 +78,15 @@ BENCHMARK(BM_StagePosition)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 // longest chunk's CPU time alone (counter longest_chunk_cpu_ms), the wall time on two free cores.
 void BM_StageSweep360(benchmark::State& state) {
   const StageCase c("paper_stage_runout.toml", state.range(0));
-  const auto& [scene, stage, compliance, o0] = c;
-  transmission::QuasiStaticOptions o = o0;
+  const geometry::Stage& stage = c.stage;
+  transmission::QuasiStaticOptions o;
   o.warm_start = state.range(1) > 0;
   o.threads = state.range(1) == 2 ? 2 : 1;
   const double period = 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth();
   const auto angles = transmission::SweepAngles(0.0, period, 360);
   std::vector<transmission::PositionResult> results;
   for (auto _ : state) {
-    results = transmission::Sweep(scene, stage, compliance, angles, o);
+    results = transmission::Sweep(c.model, c.scene.loads, angles, o);
     benchmark::DoNotOptimize(results.data());
   }
   int failed = 0;
@@ -106,7 +110,7 @@ void BM_StageSweep360(benchmark::State& state) {
       transmission::QuasiStaticOptions one = o;
       one.threads = 1;
       const std::clock_t c0 = std::clock();
-      benchmark::DoNotOptimize(transmission::Sweep(scene, stage, compliance, chunk, one).data());
+      benchmark::DoNotOptimize(transmission::Sweep(c.model, c.scene.loads, chunk, one).data());
       longest = std::max(longest, static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
     }
     state.counters["longest_chunk_cpu_ms"] = 1e3 * longest;

@@ -78,8 +78,8 @@ void BM_SingleSweepSameSize(benchmark::State& state) {
   fe.cache_directory = CacheDir();
   const transmission::FeStageCompliance compliance(scene, stage, fe);
   transmission::QuasiStaticOptions o;
-  o.setup = transmission::SetupFromScene(scene);
-  o.setup.sun = transmission::SunSupport::kFixed;
+  transmission::StageSetup setup = transmission::SetupFromScene(scene);
+  setup.sun = transmission::SunSupport::kFixed;
   o.threads = 1;  // as inside a study's case: the reference of its one-thread per-case cost
   const auto angles =
       transmission::SweepAngles(0.0, kCases * stage.mesh_cycle(), kCases * kPositions);
@@ -87,7 +87,8 @@ void BM_SingleSweepSameSize(benchmark::State& state) {
   double seconds = 0;
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
-    const auto r = transmission::Sweep(scene, stage, compliance, angles, o);
+    const auto r = transmission::Sweep(transmission::StageModel(stage, compliance, setup),
+                                       scene.loads, angles, o);
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     for (const auto& p : r) failed += p.converged ? 0 : 1;
   }

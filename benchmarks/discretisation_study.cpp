@@ -106,10 +106,11 @@ SweepData RunSweep(const tr::Scene& scene, const geo::Stage& stage,
                    const tr::FeStageCompliance& compliance, const std::vector<double>& angles,
                    tr::SunSupport sun) {
   tr::QuasiStaticOptions opt;
-  opt.setup = tr::SetupFromScene(scene);
-  opt.setup.sun = sun;
+  tr::StageSetup setup = tr::SetupFromScene(scene);
+  setup.sun = sun;
   const double c0 = CpuSeconds();
-  const std::vector<tr::PositionResult> results = tr::Sweep(scene, stage, compliance, angles, opt);
+  const std::vector<tr::PositionResult> results =
+      tr::Sweep(tr::StageModel(stage, compliance, setup), scene.loads, angles, opt);
   SweepData d;
   d.cpu_per_position = (CpuSeconds() - c0) / static_cast<double>(angles.size());
   for (const tr::PositionResult& r : results) {

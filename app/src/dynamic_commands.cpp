@@ -149,7 +149,7 @@ void RunDynamic(const DynamicArgs& a) {
   std::printf(
       "%s: %d planets, sun %s, input torque %.1f N m, sun speed %.1f rpm (mesh frequency "
       "%.1f Hz)\n",
-      scene.name.c_str(), n, sun_name, scene.sun_torque,
+      scene.name.c_str(), n, sun_name, scene.loads.sun_torque,
       std::abs(model.sun_speed()) * 30.0 / std::numbers::pi, mesh_hz);
   for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
   std::printf(
@@ -209,7 +209,7 @@ void RunDynamic(const DynamicArgs& a) {
         double mesh_torque = 0;
         for (double t : e.sun_mesh_torque) mesh_torque += t;
         const double balance =
-            ksun >= 0 ? mesh_torque + scene.sun_torque - model.mass()(ksun) * s.sun_acceleration
+            ksun >= 0 ? mesh_torque + scene.loads.sun_torque - model.mass()(ksun) * s.sun_acceleration
                       : 0.0;  // a speed-driven sun: its drive balances the meshes exactly
         steps << "," << Num(k_gamma) << "," << Num(s.transmission_error * 1e6) << ","
               << Num(s.sun_centre.x() * 1e6) << "," << Num(s.sun_centre.y() * 1e6) << ","
@@ -276,7 +276,7 @@ void RunDynamic(const DynamicArgs& a) {
   j["warnings"] = warnings;
   j["scene"] = scene.name;
   j["sun_support"] = sun_name;
-  j["sun_torque_Nm"] = scene.sun_torque;
+  j["sun_torque_Nm"] = scene.loads.sun_torque;
   j["sun_speed_rpm"] = std::abs(model.sun_speed()) * 30.0 / std::numbers::pi;
   j["mesh_frequency_Hz"] = mesh_hz;
   j["friction"] = scene.dynamics.friction;

@@ -70,18 +70,19 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   const transmission::FeStageCompliance compliance(scene, stage, fe);
   const double table_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  transmission::StageSetup setup = transmission::SetupFromScene(scene);
+  setup.local_terms = !a.no_local;
+  const transmission::StageModel model(stage, compliance, setup);
   transmission::QuasiStaticOptions opt;
-  opt.setup = transmission::SetupFromScene(scene);
-  opt.setup.local_terms = !a.no_local;
   opt.backend = solvers::BackendFromName(a.backend);
   opt.threads = a.threads;
   opt.warm_start = !a.cold;
 
-  const char* sun_name = opt.setup.sun == transmission::SunSupport::kFixed      ? "fixed"
-                         : opt.setup.sun == transmission::SunSupport::kFloating ? "floating"
+  const char* sun_name = setup.sun == transmission::SunSupport::kFixed      ? "fixed"
+                         : setup.sun == transmission::SunSupport::kFloating ? "floating"
                                                                                 : "elastic";
   std::printf("%s: %d planets, sun %s, input torque %.1f N m, back end %s\n", scene.name.c_str(), n,
-              sun_name, scene.sun_torque, a.backend.c_str());
+              sun_name, scene.loads.sun_torque, a.backend.c_str());
   for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
   const std::string threads =
       a.threads == 0 ? std::string("one thread per core") : fmt::format("{} thread(s)", a.threads);
@@ -111,7 +112,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   std::vector<std::string> failures;
   const auto t1 = std::chrono::steady_clock::now();
   const auto results = transmission::Sweep(
-      scene, stage, compliance, angles, opt, [&](const transmission::PositionResult& r, int k) {
+      model, scene.loads, angles, opt, [&](const transmission::PositionResult& r, int k) {
         const double deg = geometry::Deg(r.carrier_angle);
         if (!r.converged) {
           ++failed;
@@ -212,7 +213,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   j["warnings"] = warnings;
   j["scene"] = scene.name;
   j["sun_support"] = sun_name;
-  j["sun_torque_Nm"] = scene.sun_torque;
+  j["sun_torque_Nm"] = scene.loads.sun_torque;
   j["backend"] = a.backend;
   j["local_terms"] = !a.no_local;
   j["warm_start"] = !a.cold;

@@ -132,7 +132,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
          "lsr_max,steps,evaluations,failed_contact_solves,cpu_s,wall_s,message\n";
   csv.flush();
 
-  const dynamics::SpeedSweepPlan plan = dynamics::PlanSpeedSweep(base, scene, o);
+  const dynamics::SpeedSweepPlan plan = dynamics::PlanSpeedSweep(base, o);
   std::printf("  modes of the linearised stage (f, type, modal damping ratio, decay rate):\n");
   for (std::size_t j = 0; j < plan.modes.size(); ++j) {
     const dynamics::ModeDamping& m = plan.modes[j];
@@ -163,7 +163,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   int done = 0, failed = 0;
   const auto t0 = std::chrono::steady_clock::now();
   const dynamics::SpeedSweepResult res =
-      dynamics::SweepSpeeds(base, scene, o, plan, [&](const dynamics::SpeedResult& r) {
+      dynamics::SweepSpeeds(base, o, plan, [&](const dynamics::SpeedResult& r) {
         csv << Row(r, plan);
         csv.flush();
         ++done;
@@ -238,7 +238,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
       warnings.push_back(fmt::format("at {} rpm: {}", Num(r.sun_speed_rpm), w));
   j["warnings"] = warnings;
   j["scene"] = scene.name;
-  j["sun_torque_Nm"] = scene.sun_torque;
+  j["sun_torque_Nm"] = scene.loads.sun_torque;
   j["friction"] = scene.dynamics.friction;
   j["integrator"] = a.integrator;
   j["rtol"] = simulation.rtol;

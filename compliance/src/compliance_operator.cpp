@@ -20,7 +20,8 @@ struct Located {
 }  // namespace
 
 Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
-                                   const std::vector<OperatorContact>& contacts) {
+                                   const std::vector<OperatorContact>& contacts,
+                                   std::string* off_flank) {
   const int nb = static_cast<int>(bodies.size());
   for (int b = 0; b < nb; ++b) {
     if (bodies[b].table == nullptr) {
@@ -67,7 +68,10 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
         try {
           body.table->Locate(point, side.tooth, side.flank);  // throws the table's message
         } catch (const std::invalid_argument& e) {
-          throw std::invalid_argument(where() + " on body '" + body.name + "': " + e.what());
+          const std::string text = where() + " on body '" + body.name + "': " + e.what();
+          if (off_flank == nullptr) throw std::invalid_argument(text);
+          *off_flank = text;
+          return Eigen::MatrixXd();
         }
       }
       loc.push_back({j, side.body, body.table->PrepareDirected(position, r * side.direction)});

@@ -94,28 +94,29 @@ DynamicSettings SettingsFromScene(const transmission::Scene& scene) {
   return s;
 }
 
-DynamicModel::DynamicModel(const transmission::StageModel& model, const transmission::Scene& scene,
-                           const DynamicSettings& settings)
+DynamicModel::DynamicModel(const transmission::StageModel& model, const DynamicSettings& settings,
+                           const transmission::StageInertias& inertias,
+                           const transmission::StageLoads& loads)
     : model_(model),
       settings_(settings),
-      sun_(scene.sun),
-      planet_(scene.planet),
-      ring_(scene.ring),
-      carrier_(scene.carrier),
-      sun_torque_(scene.sun_torque),
+      sun_(inertias.sun),
+      planet_(inertias.planet),
+      ring_(inertias.ring),
+      carrier_(inertias.carrier),
+      loads_(loads),
       friction_(settings_.friction) {
   settings_.Validate();
+  model_.CheckLoads(loads);
   const geometry::Stage& stage = model_.stage();
   const transmission::StageSetup& setup = model_.setup();
   auto need = [&](const std::string& key, double value, const std::string& why) {
     if (!(value > 0) || !std::isfinite(value))
-      throw std::invalid_argument(scene.source + ": " + key + " = " + Num(value) + ": " + why +
+      throw std::invalid_argument(model_.name() + ": " + key + " = " + Num(value) + ": " + why +
                                   " needs it > 0 in the dynamic model");
   };
-  if (sun_torque_ == 0) throw std::invalid_argument("[load] sun_torque_Nm = 0: must be non-zero");
   // The sun turns the way its input torque drives it; ω_c = ω_s z_s/(z_s + z_r).
-  carrier_speed_ = (sun_torque_ > 0 ? 1.0 : -1.0) * settings_.sun_speed / stage.sun_ratio();
-  carrier_torque_ = -sun_torque_ * stage.sun_ratio();
+  carrier_speed_ = (loads_.sun_torque > 0 ? 1.0 : -1.0) * settings_.sun_speed / stage.sun_ratio();
+  carrier_torque_ = -loads_.sun_torque * stage.sun_ratio();
   auto add = [&](MotionDof::Member member, MotionDof::Axis axis, int planet, double mass,
                  StageDof::Kind kind, bool gear) {
     dofs_.push_back({member, axis, planet});
@@ -349,7 +350,7 @@ void DynamicModel::BearingForces(double t, const Eigen::VectorXd& d, const Eigen
         settings_.carrier_stiffness * d(kcx + a) + settings_.carrier_damping * v(kcx + a);
   // External loads: the input torque on a torque-driven sun, the output torque on a free carrier.
   const int ks_rot = Find(MotionDof::kSun, MotionDof::kRotation);
-  if (ks_rot >= 0) (*q)(ks_rot) += sun_torque_;
+  if (ks_rot >= 0) (*q)(ks_rot) += loads_.sun_torque;
   if (kc >= 0) (*q)(kc) += carrier_torque_;
 }
 
@@ -363,11 +364,19 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   e.ok = false;
   e.message.clear();
   Poses(t, d, &w.stage_displacement, &e.poses);
-  model_.Terms(e.poses, &e.terms);
+  e.report = {};
+  e.geometry = model_.Terms(e.poses, &e.terms);
+  if (!e.geometry.ok()) {
+    // A pose the stage cannot be evaluated at (a trial step that swung a member past where its
+    // meshes have a line of action or its contacts lie on the tables' flank grids): recoverable,
+    // as a failed contact solve is; the integrator retries with a smaller step.
+    e.message = "geometry: " + transmission::StatusName(e.geometry.status) + " (" +
+                e.geometry.message + ")";
+    return;
+  }
   const transmission::ContactTerms& terms = e.terms;
   const int n = terms.size();
   e.force.setZero(n);
-  e.report = {};
   if (n > 0) {
     // The problem's buffers are the work space's: copied into (same sizes, no allocation), moved
     // into the problem, released after the solve. The terms keep C as the compliance gave it.
@@ -516,7 +525,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   const int ksun = Find(MotionDof::kSun, MotionDof::kRotation);
   const double omega_s = carrier_speed_ * st.sun_ratio() + (ksun >= 0 ? v(ksun) : 0.0);
   // A speed-driven sun is held at its speed by the torque that balances the mesh moments.
-  e.input_torque = ksun >= 0 ? sun_torque_ : -body_moment[kSunBody];
+  e.input_torque = ksun >= 0 ? loads_.sun_torque : -body_moment[kSunBody];
   e.external_power = e.input_torque * omega_s;
   const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
   double kinetic = 0.5 * sun_.inertia * omega_s * omega_s;
@@ -658,7 +667,7 @@ Eigen::VectorXd DynamicModel::QuasiStaticStart(const solvers::ContactOptions& co
   opt.backend = backend;
   opt.contact = contact;
   const transmission::PositionResult r = transmission::SolvePosition(
-      model_, CarrierAngle(0.0), transmission::StageLoads{sun_torque_}, opt);
+      model_, CarrierAngle(0.0), loads_, opt);
   // A planet whose flanks, drive and coast, all lie beyond the gap window in a mesh is separated
   // from that member: its motion would not be held by the contacts the model sees. A planet held
   // by its coast flanks only (errors beyond the backlash: jammed) is a state the model computes,
@@ -757,8 +766,8 @@ StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeCompli
       stage(scene.stage),
       fe(f),
       compliance(scene, stage, fe),
-      stage_model(scene, stage, compliance, transmission::SetupFromScene(scene)),
-      model(stage_model, scene, SettingsFromScene(scene)) {
+      stage_model(stage, compliance, transmission::SetupFromScene(scene)),
+      model(stage_model, SettingsFromScene(scene), scene.inertia, scene.loads) {
   const auto k = MeanMeshStiffness(scene, stage, fe);
   model.SetMeshStiffness(k[0], k[1]);
 }

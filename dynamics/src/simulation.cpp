@@ -41,7 +41,9 @@ void SimulationOptions::Validate() const {
   if (!(atol_energy > 0) || !std::isfinite(atol_energy))
     fail("atol_energy", atol_energy, "must be > 0");
   if (max_steps < 1) fail("max_steps", static_cast<double>(max_steps), "must be >= 1");
-  if (!(max_step >= 0)) fail("max_step", max_step, "must be >= 0");
+  if (!(max_step >= 0) || !std::isfinite(max_step)) fail("max_step", max_step, "must be >= 0");
+  if (!(initial_step >= 0) || !std::isfinite(initial_step))
+    fail("initial_step", initial_step, "must be >= 0 (0: the integrator's own estimate)");
   if (!(time_limit >= 0) || !std::isfinite(time_limit))
     fail("time_limit", time_limit, "must be >= 0 and finite");
   if (max_order < 1 || max_order > 5) fail("max_order", max_order, "must lie in 1..5");
@@ -85,15 +87,15 @@ void Split(const Context& c, const double* y, Eigen::VectorXd* d, Eigen::VectorX
   *v = Eigen::Map<const Eigen::VectorXd>(y + c.n, c.n);
 }
 
-// One evaluation at (t, y) into c.scratch; false (counted, remembered) if the contact solve
-// failed.
+// One evaluation at (t, y) into c.scratch; false (counted, remembered) if the stage model could
+// not evaluate the poses or the contact solve failed.
 bool EvaluateAt(Context& c, double t, N_Vector y, Eigen::VectorXd* d, Eigen::VectorXd* v,
                 const char* what) {
   Split(c, N_VGetArrayPointer(y), d, v);
   c.model->Evaluate(t, *d, *v, *c.solver, c.contact, &c.warm, &c.scratch, /*energies=*/false);
   ++c.stats->rhs_evaluations;
   if (c.scratch.ok) return true;
-  ++c.stats->failed_solves;
+  ++(c.scratch.geometry.ok() ? c.stats->failed_solves : c.stats->failed_geometry);
   c.last_failure = "t = " + std::to_string(t) + " s" + what + ": " + c.scratch.message;
   return false;
 }
@@ -253,6 +255,8 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     Check(CVodeSetErrHandlerFn(s.cvode, ErrorHandler, &c), "CVodeSetErrHandlerFn");
     Check(CVodeSetMaxNumSteps(s.cvode, options.max_steps), "CVodeSetMaxNumSteps");
     if (options.max_step > 0) Check(CVodeSetMaxStep(s.cvode, options.max_step), "CVodeSetMaxStep");
+    if (options.initial_step > 0)
+      Check(CVodeSetInitStep(s.cvode, options.initial_step), "CVodeSetInitStep");
     // A contact set that changes is a C0 kink: allow CVODE more retries at such a step than its
     // default 10 error-test failures before it gives up.
     Check(CVodeSetMaxErrTestFails(s.cvode, 20), "CVodeSetMaxErrTestFails");
@@ -275,6 +279,8 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     Check(ERKStepSetMaxNumSteps(s.erk, options.max_steps), "ERKStepSetMaxNumSteps");
     if (options.max_step > 0)
       Check(ERKStepSetMaxStep(s.erk, options.max_step), "ERKStepSetMaxStep");
+    if (options.initial_step > 0)
+      Check(ERKStepSetInitStep(s.erk, options.initial_step), "ERKStepSetInitStep");
   }
 
   const int sun = model.Find(MotionDof::kSun, MotionDof::kRotation);

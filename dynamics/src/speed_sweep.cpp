@@ -165,17 +165,15 @@ int SpeedSweepResult::failed() const {
       std::count_if(speeds.begin(), speeds.end(), [](const SpeedResult& r) { return !r.ok; }));
 }
 
-DynamicModel ModelAtSpeed(const DynamicModel& base, const transmission::Scene& scene,
-                          double sun_speed_rpm) {
+DynamicModel ModelAtSpeed(const DynamicModel& base, double sun_speed_rpm) {
   DynamicSettings s = base.settings();
   s.sun_speed = sun_speed_rpm * kRpm;
-  DynamicModel m(base.stage_model(), scene, s);
+  DynamicModel m(base.stage_model(), s, base.inertias(), base.loads());
   m.SetMeshStiffness(base.sun_mesh_stiffness(), base.ring_mesh_stiffness());
   return m;
 }
 
-SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const transmission::Scene& scene,
-                              const SpeedSweepOptions& options) {
+SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions& options) {
   options.Validate();
   const auto t0 = std::chrono::steady_clock::now();
   SpeedSweepPlan plan;
@@ -187,7 +185,7 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const transmission::Scen
   // Modes and their damping at the window's start. The damping matrix comes from the Jacobian of
   // the right-hand side at the quasi-static start (−M ∂d̈/∂ḋ); it does not depend on the speed
   // (mesh and bearing damping are linear in the velocities).
-  DynamicModel model = ModelAtSpeed(base, scene, options.sun_speeds_rpm.front());
+  DynamicModel model = ModelAtSpeed(base, options.sun_speeds_rpm.front());
   model.SetStartAngle(options.window_start);
   DynamicModel linear = model;  // the modes' stiffness (the damping stays the base's)
   if (options.modal_mesh_stiffness[0] > 0 && options.modal_mesh_stiffness[1] > 0)
@@ -269,7 +267,7 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const transmission::Scen
   qo.backend = sim.backend;
   qo.contact = sim.contact;
   double te_min = INFINITY, te_max = -INFINITY;
-  const auto qs = transmission::Sweep(stage_model, {scene.sun_torque}, plan.window_angles, qo);
+  const auto qs = transmission::Sweep(stage_model, base.loads(), plan.window_angles, qo);
   for (const transmission::PositionResult& r : qs) {
     if (!r.converged)
       throw std::runtime_error("speed sweep: the quasi-static reference at carrier " +
@@ -327,14 +325,13 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
 namespace {
 
 // One speed, start to end; never throws for a failed computation (the result says why).
-SpeedResult RunSpeed(const DynamicModel& base, const transmission::Scene& scene,
-                     const SpeedSweepOptions& options, const SpeedSweepPlan& plan, int index) {
+SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options, const SpeedSweepPlan& plan, int index) {
   const double rpm = options.sun_speeds_rpm[static_cast<std::size_t>(index)];
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = ThreadCpuSeconds();
   SpeedResult r;
   try {
-    DynamicModel model = ModelAtSpeed(base, scene, rpm);
+    DynamicModel model = ModelAtSpeed(base, rpm);
     const double wc = std::abs(model.carrier_speed());
     model.SetStartAngle(options.window_start - model.carrier_speed() * plan.skip_time);
     // Outputs: a few through the skipped part (CVODE's NORMAL mode needs no outputs there; one
@@ -372,8 +369,7 @@ SpeedResult RunSpeed(const DynamicModel& base, const transmission::Scene& scene,
 
 }  // namespace
 
-SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene& scene,
-                             const SpeedSweepOptions& options, const SpeedSweepPlan& plan,
+SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options, const SpeedSweepPlan& plan,
                              const std::function<void(const SpeedResult&)>& on_result) {
   options.Validate();
   SpeedSweepResult out;
@@ -387,7 +383,7 @@ SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene
   transmission::RunWorkQueue(
       count, options.threads,
       [&](std::size_t i) {
-        out.speeds[i] = RunSpeed(base, scene, options, out.plan, static_cast<int>(i));
+        out.speeds[i] = RunSpeed(base, options, out.plan, static_cast<int>(i));
       },
       [&](std::size_t i) {
         if (on_result) on_result(out.speeds[i]);
@@ -396,10 +392,9 @@ SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene
   return out;
 }
 
-SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene& scene,
-                             const SpeedSweepOptions& options,
+SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options,
                              const std::function<void(const SpeedResult&)>& on_result) {
-  return SweepSpeeds(base, scene, options, PlanSpeedSweep(base, scene, options), on_result);
+  return SweepSpeeds(base, options, PlanSpeedSweep(base, options), on_result);
 }
 
 }  // namespace epicycle::dynamics

@@ -277,6 +277,10 @@ WorldInvolute FlankInWorld(const PosedGear& g, int tooth, int side) {
 
 namespace {
 
+// The base circles' common tangents exist for centres `dist` apart whose base radii sum (external)
+// or differ (internal) by k: k/dist < 1.
+bool LineOfActionExists(double dist, double k) { return dist > 0 && k / dist < 1.0; }
+
 // What the lines of action on the two flank sides share: the centre line and the pressure angle,
 // with its arccosine and the centre line's arctangent (a search makes both lines from one).
 struct CentreLine {
@@ -290,7 +294,7 @@ CentreLine MakeCentreLine(const PosedGear& a, const PosedGear& b, bool internal)
   c.dist = c.dv.norm();
   const double rba = a.gear->base_radius(), rbb = b.gear->base_radius();
   const double k = internal ? rbb - rba : rba + rbb;
-  if (!(c.dist > 0) || k / c.dist >= 1.0) {
+  if (!LineOfActionExists(c.dist, k)) {
     throw std::invalid_argument("mesh " + a.gear->name() + "-" + b.gear->name() +
                                 ": centre distance " + Mm(c.dist) +
                                 " mm admits no line of action (base circles " +
@@ -433,6 +437,12 @@ std::string KindName(ContactKind kind) {
       return "tip-round-b";
   }
   return "?";
+}
+
+bool HasLineOfAction(const PosedGear& a, const PosedGear& b, bool internal) {
+  const double rba = a.gear->base_radius(), rbb = b.gear->base_radius();
+  return LineOfActionExists((b.pose.geometric_centre - a.pose.geometric_centre).norm(),
+                            internal ? rbb - rba : rba + rbb);
 }
 
 std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& b, bool internal,

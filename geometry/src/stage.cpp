@@ -258,6 +258,12 @@ void Stage::AppendContacts(const StagePoses& p, int planet, MeshKind kind,
   }
 }
 
+bool Stage::HasLineOfAction(const StagePoses& p, int planet, MeshKind kind) const {
+  if (kind == MeshKind::kSunPlanet)
+    return geometry::HasLineOfAction(Sun(p), Planet(p, planet), false);
+  return geometry::HasLineOfAction(Planet(p, planet), Ring(p), true);
+}
+
 void Stage::Summarise() {
   meshes_.clear();
   for (int i = 0; i < planets(); ++i) {

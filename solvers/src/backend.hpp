@@ -80,6 +80,9 @@ struct ScaledProblem {
   /// counts the active contacts from it instead of evaluating the local terms a second time).
   ContactResiduals Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda,
                              Eigen::VectorXd* gap) const;
+  /// Residuals(x, {}, gap) of a problem without equalities, computed in `gap`'s storage without
+  /// temporaries (the driver's judgement of every dynamic step's answer).
+  ContactResiduals ResidualsWithoutEqualities(const Eigen::VectorXd& x, Eigen::VectorXd* gap) const;
 };
 
 /// The driver's nondimensionalisation (scaled_problem.cpp):
@@ -137,42 +140,10 @@ class BackendImpl {
 /// iterations, after `max_iterations`, or when C_AA + diag u' is not positive definite: the
 /// caller then runs the globalised back end, which is slower but converges.
 ///
-/// With `reuse`, the first step, if its active set is the one of the factorisation kept from the
-/// previous call (a warm start's neighbour) and u'_A has moved by less than 1 % since, solves on
-/// that factorisation the model of g_A at x + dx to second order in the local terms,
-///   (C_AA + diag u'_A) dx + ½ u''_A ∘ dx² = r,
-/// by fixed-point sweeps (each one substitution and one product with C_AA; ModelStep): a
-/// Chebyshev step, of third order, that from the previous time step reaches the target at once
-/// without a factorisation, where Newton's step (second order) left ~1e-7 and needed a second
-/// step on a new factorisation. Sweeps that do not contract 100× each give up and the step is
-/// Newton's on a new factorisation, as every later step is; the answer is judged by the same
-/// residual either way.
-class DirectNewton {
- public:
-  /// @param reuse may start with the factorisation kept from the previous call (a warm start).
-  /// @param x in: the start (empty: cold, x = 0); out: the answer (x ≥ 0 when true).
-  /// @param g out: the gap ∇Φ(x) at the answer (exactly what ScaledProblem::Residuals computes).
-  bool Run(const ScaledProblem& p, double target, int max_iterations, bool reuse,
-           Eigen::VectorXd* x, Eigen::VectorXd* g, int* iterations);
-
- private:
-  /// The step on the local model (see Run), on llt_; false if its sweeps do not converge.
-  bool ModelStep(const ScaledProblem& p, const Eigen::VectorXd& x, double target);
-  void Substitute(Eigen::VectorXd* v) const;  ///< v ← (L Lᵀ)⁻¹ v with llt_
-
-  Eigen::VectorXd u_, du_;                 ///< per contact
-  Eigen::VectorXd r_, du_a_, q_, dx_, e_;  ///< per active contact
-  Eigen::MatrixXd c_aa_;                   ///< C_AA of the step
-  Eigen::VectorXd inv_diag_;               ///< 1/L_ii of llt_
-  Eigen::MatrixXd h_;
-  Eigen::LLT<Eigen::MatrixXd> llt_;
-  std::vector<int> active_, released_;
-  // What llt_ factorises: C_AA + diag u'_A for the active set factor_active_ of a problem with
-  // factor_n_ contacts (−1: nothing usable).
-  std::vector<int> factor_active_;
-  Eigen::VectorXd factor_du_;  ///< the u'_A in it
-  int factor_n_ = -1;
-};
+/// The smallest scaled force at which a local term's derivative u' is evaluated: u'(0⁺) = +∞
+/// (logarithmically), so a contact entering the active set from zero force sees u' at this floor
+/// (or, on the direct path, a secant).
+inline constexpr double kDerivativeFloor = 1e-12;
 
 // Factories, one per source file. The Ipopt / NLopt ones are compiled from either the real file
 // or its *_unavailable.cpp, whose available() is false.

@@ -12,6 +12,7 @@
 #include <Eigen/QR>
 
 #include "backend.hpp"
+#include "direct_newton.hpp"
 
 namespace epicycle::solvers {
 namespace {
@@ -72,7 +73,8 @@ Eigen::VectorXd RecoverMultipliers(const internal::ScaledProblem& sp, const Eige
 
 class DriverSolver final : public ContactSolver {
  public:
-  explicit DriverSolver(Backend backend) : backend_(backend), impl_(MakeImpl(backend)) {}
+  DriverSolver(Backend backend, std::unique_ptr<internal::DirectPath> direct)
+      : backend_(backend), impl_(MakeImpl(backend)), direct_(std::move(direct)) {}
   Backend backend() const override { return backend_; }
   bool available() const override { return impl_->available(); }
 
@@ -111,17 +113,20 @@ class DriverSolver final : public ContactSolver {
     if (options.warm_start) internal::Scale(sp, *in_out, &x0, &l0);
 
     // Positions given (no equalities) and no back-end knobs: the Newton's direct path first. Its
-    // answer is judged by the same residual as every other; if it gives up, the general path runs.
+    // answer is a proposal judged by the driver's own residual, computed here from the forces
+    // alone (never from the path's own gap); if it misses the tolerance or the path gives up, the
+    // general path runs.
     std::string direct_note;
-    if (backend_ == Backend::kActiveSetNewton && m == 0 && options.backend_options.empty()) {
+    if (backend_ == Backend::kActiveSetNewton && m == 0 && options.backend_options.empty() &&
+        direct_ != nullptr) {
       const auto t1 = Clock::now();
       if (!options.warm_start) x0.resize(0);
       int iterations = 0;
       const bool done =
-          direct_.Run(sp, 0.1 * options.tolerance, std::min(options.max_iterations, 50),
-                      options.warm_start, &x0, &gap_, &iterations);
-      if (done) {
-        report.residual = internal::ScaledProblem::ResidualsFromGap(x0, gap_);
+          direct_->Run(sp, 0.1 * options.tolerance, std::min(options.max_iterations, 50),
+                       options.warm_start, &x0, &iterations);
+      if (done && x0.size() == n) {
+        report.residual = sp.ResidualsWithoutEqualities(x0, &gap_);
         if (report.residual.total <= options.tolerance) {
           report.solve_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
           report.iterations = iterations;
@@ -139,9 +144,13 @@ class DriverSolver final : public ContactSolver {
           report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
           return report;
         }
+        direct_note = "; the direct path's answer missed the tolerance by the driver's residual (" +
+                      Sci(report.residual.total) + " after " + std::to_string(iterations) +
+                      " iterations), the globalised Newton ran";
+      } else {
+        direct_note = "; the direct path gave up after " + std::to_string(iterations) +
+                      " iterations, the globalised Newton ran";
       }
-      direct_note = "; the direct path gave up after " + std::to_string(iterations) +
-                    " iterations, the globalised Newton ran";
       if (options.warm_start) internal::Scale(sp, *in_out, &x0, &l0);
     }
 
@@ -270,7 +279,7 @@ class DriverSolver final : public ContactSolver {
 
   Backend backend_;
   std::unique_ptr<internal::BackendImpl> impl_;
-  internal::DirectNewton direct_;
+  std::unique_ptr<internal::DirectPath> direct_;  // null: no direct path
   // Work storage reused from call to call (the solver is stateful and not shared between
   // threads): the scaled problem, the scaled warm start, the gap of the final residual.
   internal::ScaledProblem sp_;
@@ -357,7 +366,12 @@ void ContactOptions::Validate() const {
 }
 
 std::unique_ptr<ContactSolver> MakeContactSolver(Backend backend) {
-  return std::make_unique<DriverSolver>(backend);
+  return std::make_unique<DriverSolver>(backend, std::make_unique<internal::DirectNewton>());
+}
+
+std::unique_ptr<ContactSolver> internal::MakeDriverSolver(Backend backend,
+                                                          std::unique_ptr<DirectPath> direct) {
+  return std::make_unique<DriverSolver>(backend, std::move(direct));
 }
 
 ContactScales ComputeContactScales(const ContactProblem& problem) {

@@ -217,12 +217,13 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
     const transmission::Scene scene = CaseScene(study, row.values);
     const geometry::Stage stage(scene.stage);
     transmission::QuasiStaticOptions opt;
-    opt.setup = transmission::SetupFromScene(scene);
-    if (study.sun) opt.setup.sun = *study.sun;
+    transmission::StageSetup setup = transmission::SetupFromScene(scene);
+    if (study.sun) setup.sun = *study.sun;
     opt.backend = study.backend;
     opt.threads = 1;  // the cases already run on every core (ComputeCases): no nested workers
     const std::vector<double> angles = internal::CaseAngles(study, stage);
-    const auto results = transmission::Sweep(scene, stage, compliance, angles, opt);
+    const auto results = transmission::Sweep(transmission::StageModel(stage, compliance, setup),
+                                             scene.loads, angles, opt);
     const transmission::SweepSummary s = transmission::SummariseSweep(results, stage.planets());
     row.positions = s.positions;
     row.converged = s.converged;

@@ -120,12 +120,12 @@ transmission::Scene CaseScene(const StudySpec& study, const std::vector<double>&
         }
         break;
       case Quantity::kTorque:
-        if (!(si * study.scene.sun_torque > 0))
+        if (!(si * study.scene.loads.sun_torque > 0))
           throw std::invalid_argument(
               "sampled torque " + std::to_string(si) +
               " N m: must be non-zero with the sign of the scene's sun_torque_Nm = " +
-              std::to_string(study.scene.sun_torque) + " (the loaded flanks are the scene's)");
-        scene.sun_torque = si;
+              std::to_string(study.scene.loads.sun_torque) + " (the loaded flanks are the scene's)");
+        scene.loads.sun_torque = si;
         break;
     }
   }

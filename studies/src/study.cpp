@@ -152,10 +152,10 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
   }
   if (v.quantity == Quantity::kTorque) {
     auto nonzero_same_sign = [&](double x, const std::string& key) {
-      if (!(x * scene.sun_torque > 0))
+      if (!(x * scene.loads.sun_torque > 0))
         t.Fail(key, Num(x),
                "must be non-zero with the sign of the scene's sun_torque_Nm = " +
-                   Num(scene.sun_torque) + " (the loaded flanks are the scene's)");
+                   Num(scene.loads.sun_torque) + " (the loaded flanks are the scene's)");
     };
     if (v.distribution == Distribution::kGrid)
       for (double x : v.grid) nonzero_same_sign(x, "values_Nm");

@@ -111,14 +111,16 @@ std::vector<const geometry::Gear*> StageGears(const geometry::Stage& stage) {
 
 FeStageCompliance::FeStageCompliance(const Scene& scene, const geometry::Stage& stage,
                                      const FeComplianceOptions& options)
-    : tables_(scene, StageGears(stage), options) {
+    : tables_(scene, StageGears(stage), options),
+      material_(scene.material),
+      plane_(scene.model.plane) {
   names_ = {"sun", "ring"};
   for (int i = 0; i < stage.planets(); ++i) names_.push_back("planet" + std::to_string(i + 1));
 }
 
-Eigen::MatrixXd FeStageCompliance::Matrix(const geometry::Stage& stage,
-                                          const geometry::StagePoses& poses,
-                                          const std::vector<StageContact>& contacts) const {
+void FeStageCompliance::Assemble(const geometry::Stage& stage, const geometry::StagePoses& poses,
+                                 const std::vector<StageContact>& contacts, Eigen::MatrixXd* out,
+                                 std::string* off_flank) const {
   std::vector<compliance::OperatorBody> bodies;
   bodies.reserve(static_cast<std::size_t>(PlanetBody(stage.planets())));
   bodies.push_back(Body(tables_.Table(kSunBody), poses.sun, names_[kSunBody]));
@@ -138,15 +140,36 @@ Eigen::MatrixXd FeStageCompliance::Matrix(const geometry::Stage& stage,
     oc.push_back(Sides(s.contact, s.body_a, s.body_b, gear(s.body_a), gear(s.body_b),
                        bodies.at(s.body_a).centre, bodies.at(s.body_b).centre, {}));
   }
-  try {
-    return compliance::AssembleCompliance(bodies, oc);
-  } catch (const std::invalid_argument& e) {
-    // The labels only when something is wrong: this is on the dynamic model's hot path.
-    std::string text = e.what();
+  // The labels only when something is wrong: this is on the dynamic model's hot path.
+  auto labelled = [&](std::string text) {
     for (std::size_t j = 0; j < contacts.size(); ++j)
       text += (j == 0 ? "; contacts: " : ", ") + std::to_string(j) + " = " + contacts[j].Label();
-    throw std::invalid_argument(text);
+    return text;
+  };
+  try {
+    *out = compliance::AssembleCompliance(bodies, oc, off_flank);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(labelled(e.what()));
   }
+  if (off_flank != nullptr && !off_flank->empty()) *off_flank = labelled(*off_flank);
+}
+
+Eigen::MatrixXd FeStageCompliance::Matrix(const geometry::Stage& stage,
+                                          const geometry::StagePoses& poses,
+                                          const std::vector<StageContact>& contacts) const {
+  Eigen::MatrixXd c;
+  Assemble(stage, poses, contacts, &c, nullptr);
+  return c;
+}
+
+StageOutcome FeStageCompliance::TryMatrix(const geometry::Stage& stage,
+                                          const geometry::StagePoses& poses,
+                                          const std::vector<StageContact>& contacts,
+                                          Eigen::MatrixXd* out) const {
+  std::string off_flank;
+  Assemble(stage, poses, contacts, out, &off_flank);
+  if (off_flank.empty()) return {};
+  return {StageStatus::kOffFlankGrid, off_flank};
 }
 
 double FeStageCompliance::JoiningDepth(int body) const { return tables_.Table(body).join_depth(); }

@@ -8,17 +8,21 @@
 
 namespace epicycle::transmission {
 
-GeometricIterationResult IterateGeometry(const std::function<solvers::ContactProblemData()>& build,
-                                         const std::function<double(const Eigen::VectorXd&)>& move,
-                                         solvers::ContactSolver& solver,
-                                         const solvers::ContactOptions& contact,
-                                         const GeometricIterationOptions& options,
-                                         const GeometricIterationStart& start) {
+GeometricIterationResult IterateGeometry(
+    const std::function<StageOutcome(solvers::ContactProblemData*)>& build,
+    const std::function<double(const Eigen::VectorXd&)>& move, solvers::ContactSolver& solver,
+    const solvers::ContactOptions& contact, const GeometricIterationOptions& options,
+    const GeometricIterationStart& start) {
   GeometricIterationResult r;
   std::vector<std::string> previous_labels;
   for (int it = 1; it <= options.max_iterations; ++it) {
     r.iterations = it;
-    solvers::ContactProblemData data = build();
+    solvers::ContactProblemData data;
+    if (StageOutcome o = build(&data); !o.ok()) {
+      r.status = o.status;
+      r.message = "geometric iteration " + std::to_string(it) + ": " + o.message;
+      return r;
+    }
     if (it == 1) {
       r.total = Eigen::VectorXd::Zero(data.equality_rhs.size());
       if (start.displacements.size() > 0) {
@@ -54,6 +58,7 @@ GeometricIterationResult IterateGeometry(const std::function<solvers::ContactPro
       r.message = "accepted converged-inaccurate contact solves (residual " +
                   std::to_string(r.report.residual.total) + ")";
     } else if (r.report.status != solvers::ContactStatus::kConverged) {
+      r.status = StageStatus::kContactSolveFailed;
       r.message = "contact solve at geometric iteration " + std::to_string(it) + ": " +
                   solvers::StatusName(r.report.status) + " (" + r.report.message + ")";
       return r;
@@ -65,6 +70,7 @@ GeometricIterationResult IterateGeometry(const std::function<solvers::ContactPro
       return r;
     }
     if (it == options.max_iterations) {
+      r.status = StageStatus::kNotSettled;
       r.message = "geometric iterations did not settle: last displacement increment " +
                   std::to_string(step) + " m";
     }

@@ -34,7 +34,7 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
     names += (names.empty() ? "" : ", ") + m.name;
     if (m.name != mesh) continue;
     const int i = m.planet;
-    const double per_planet = scene.sun_torque / stage->planets();
+    const double per_planet = scene.loads.sun_torque / stage->planets();
     s.mesh = mesh;
     if (m.kind == geometry::MeshKind::kSunPlanet) {
       s.spec.gear1 = stage->sun().spec();
@@ -96,12 +96,12 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
   iteration.tolerance = options.geometric_tolerance;
   iteration.warm_start = false;
   const GeometricIterationResult g = IterateGeometry(
-      [&] {
+      [&](solvers::ContactProblemData* data) -> StageOutcome {
         contacts = pair.Contacts(poses, search);
         if (contacts.empty())
-          throw std::invalid_argument("no potential contact within the gap window");
+          return {StageStatus::kNoContact, "no potential contact within the gap window"};
         const int n = static_cast<int>(contacts.size());
-        solvers::ContactProblemData d;
+        solvers::ContactProblemData& d = *data;
         d.name = setup.mesh + " @ " + std::to_string(geometry::Deg(angle)) + " deg";
         d.compliance = compliance.Matrix(pair, poses, contacts);
         if (!options.tooth_coupling)
@@ -113,15 +113,17 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
           d.overlap(j) = contacts[j].overlap;
           d.equality_matrix(0, j) = -contacts[j].lever_a;  // ∂δ_j/∂θ_1; G F = T: gear 1's balance
           if (options.local_terms) {
-            d.local.push_back(ContactLocalTerm(
+            d.local.emplace_back();
+            StageOutcome o = ContactLocalTerm(
                 contacts[j], pair.gear1(), pair.gear2(), scene.material, scene.model.plane,
                 compliance.JoiningDepth(0), compliance.JoiningDepth(1),
-                d.name + " contact " + std::to_string(j)));
+                d.name + " contact " + std::to_string(j), &d.local.back());
+            if (!o.ok()) return o;
           }
         }
         d.multiplier_labels = {"gear1 rotation [rad]"};
         local = d.local;
-        return d;
+        return {};
       },
       [&](const Eigen::VectorXd& lambda) {
         const double step = lambda(0);
@@ -193,14 +195,8 @@ MeshStiffnessResult ComputeMeshStiffness(const Scene& scene, const MeshPairSetup
       options.positions, options.threads, options.backend,
       [&](int k, bool, solvers::ContactSolver& solver) {
         const double angle = pair.mesh_cycle() * k / options.positions;
-        MeshSample& s = r.samples[static_cast<std::size_t>(k)];
-        try {
-          s = SolveSample(scene, setup, pair, compliance, options, solver, angle);
-        } catch (const std::invalid_argument& e) {
-          s = MeshSample{};
-          s.angle = angle;
-          s.message = e.what();
-        }
+        r.samples[static_cast<std::size_t>(k)] =
+            SolveSample(scene, setup, pair, compliance, options, solver, angle);
       },
       [&](int k) {
         // In the order of the positions: the statistics do not depend on the thread count.

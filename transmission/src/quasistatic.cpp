@@ -53,9 +53,10 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
     };
   }
   GeometricIterationResult g = IterateGeometry(
-      [&] {
-        r.problem = model.Problem(poses, loads);
-        return r.problem.data;
+      [&](solvers::ContactProblemData* data) {
+        StageOutcome o = model.Problem(poses, loads, &r.problem);
+        if (o.ok()) *data = r.problem.data;
+        return o;
       },
       [&](const Eigen::VectorXd& lambda) {
         poses = StageModel::Displace(poses, dofs, lambda);
@@ -63,6 +64,7 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
       },
       solver, options.contact, iteration, start);
   r.converged = g.converged;
+  r.status = g.status;
   r.message = std::move(g.message);
   r.geometric_iterations = g.iterations;
   r.contact_iterations = g.contact_iterations;
@@ -105,19 +107,6 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
   return r;
 }
 
-// A position whose set-up threw (no contact within the gap window, a contact without local-term
-// geometry): reported with zero outputs, never skipped.
-PositionResult Failed(double carrier_angle, int planets, const std::string& message) {
-  PositionResult r;
-  r.carrier_angle = carrier_angle;
-  r.converged = false;
-  r.message = message;
-  r.load_sharing.assign(planets, 0.0);
-  r.planet_rotations.assign(planets, 0.0);
-  r.planet_displacements.assign(planets, geometry::Vec2::Zero());
-  return r;
-}
-
 }  // namespace
 
 PositionResult SolvePosition(const StageModel& model, double carrier_angle, const StageLoads& loads,
@@ -130,13 +119,6 @@ PositionResult SolvePosition(const StageModel& model, double carrier_angle, cons
   options.Validate();
   auto solver = solvers::MakeContactSolver(options.backend);
   return Solve(model, carrier_angle, loads, options, neighbour, *solver);
-}
-
-PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
-                             const StageCompliance& compliance, double carrier_angle,
-                             const QuasiStaticOptions& options) {
-  const StageModel model(scene, stage, compliance, options.setup);
-  return SolvePosition(model, carrier_angle, StageLoads{scene.sun_torque}, options);
 }
 
 std::vector<double> LoadSharingFactors(const PositionResult& r) {
@@ -174,24 +156,12 @@ std::vector<PositionResult> Sweep(
         const std::size_t i = static_cast<std::size_t>(k);
         const PositionResult* neighbour =
             options.warm_start && !chunk_first ? &out[i - 1] : nullptr;
-        try {
-          out[i] = Solve(model, carrier_angles[i], loads, options, neighbour, solver);
-        } catch (const std::invalid_argument& e) {
-          out[i] = Failed(carrier_angles[i], model.planets(), e.what());
-        }
+        out[i] = Solve(model, carrier_angles[i], loads, options, neighbour, solver);
       },
       [&](int k) {
         if (on_result) on_result(out[static_cast<std::size_t>(k)], k);
       });
   return out;
-}
-
-std::vector<PositionResult> Sweep(
-    const Scene& scene, const geometry::Stage& stage, const StageCompliance& compliance,
-    const std::vector<double>& carrier_angles, const QuasiStaticOptions& options,
-    const std::function<void(const PositionResult&, int)>& on_result) {
-  const StageModel model(scene, stage, compliance, options.setup);
-  return Sweep(model, StageLoads{scene.sun_torque}, carrier_angles, options, on_result);
 }
 
 }  // namespace epicycle::transmission

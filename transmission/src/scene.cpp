@@ -548,12 +548,12 @@ Scene ParseScene(const std::string& text, const std::string& source) {
   std::vector<ErrorKey> error_keys;
   {
     TableReader t = top.Table("sun");
-    st.sun = ReadGear(t, "sun", GearKind::kExternal, fitted("sun"), &s.sun);
+    st.sun = ReadGear(t, "sun", GearKind::kExternal, fitted("sun"), &s.inertia.sun);
     t.Done();
   }
   {
     TableReader t = top.Table("planet");
-    st.planet = ReadGear(t, "planet", GearKind::kExternal, fitted("planet"), &s.planet);
+    st.planet = ReadGear(t, "planet", GearKind::kExternal, fitted("planet"), &s.inertia.planet);
     SameAsMate(t, st.planet, st.sun, "sun");
     t.Done();
   }
@@ -567,7 +567,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
             Rule::Closed(expect - kRingTeethSlack, expect + kRingTeethSlack)
                 .Because("z_sun + 2 z_planet = " + std::to_string(expect) +
                          " within 4 teeth: the planets must fit between sun and ring"));
-    st.ring = ReadGear(t, "ring", GearKind::kInternal, fitted("ring"), &s.ring);
+    st.ring = ReadGear(t, "ring", GearKind::kInternal, fitted("ring"), &s.inertia.ring);
     SameAsMate(t, st.ring, st.planet, "planet");
     t.Done();
   }
@@ -589,15 +589,15 @@ Scene ParseScene(const std::string& text, const std::string& source) {
       }
     }
     st.min_planet_gap = t.RealOr("min_planet_gap_mm", 1.0, Rule::NonNegative()) * kMm;
-    s.carrier = ReadInertia(t);
+    s.inertia.carrier = ReadInertia(t);
     t.Done();
   }
   {
     TableReader t = top.Table("load");
-    s.sun_torque = t.Real("sun_torque_Nm", Rule::Any());
-    if (s.sun_torque == 0)
+    s.loads.sun_torque = t.Real("sun_torque_Nm", Rule::Any());
+    if (s.loads.sun_torque == 0)
       t.Fail("sun_torque_Nm", "0", "must be non-zero (its sign selects the loaded flanks)");
-    st.load_sign = s.sun_torque > 0 ? 1 : -1;
+    st.load_sign = s.loads.sun_torque > 0 ? 1 : -1;
     t.Done();
   }
   if (auto t = top.OptionalTable("contact")) {

@@ -19,25 +19,24 @@ void StageSetup::Validate() const {
   check("planet_stiffness", planet_stiffness);
   if (sun == SunSupport::kElastic && !(sun_stiffness > 0))
     throw std::invalid_argument("supports: an elastic sun needs sun_stiffness > 0 N/m");
+  if (!(gap_window > 0) || !std::isfinite(gap_window))
+    throw std::invalid_argument("contact: gap_window_um = " + std::to_string(gap_window * 1e6) +
+                                ": must be finite and > 0");
 }
 
 StageSetup SetupFromScene(const Scene& scene) {
   StageSetup s;
+  s.name = scene.name;
   s.sun = scene.supports.sun;
   s.sun_stiffness = scene.supports.sun_stiffness;
   s.planet_stiffness = scene.supports.planet_stiffness;
-  s.plane = scene.model.plane;
+  s.gap_window = scene.gap_window;
   return s;
 }
 
-StageModel::StageModel(const Scene& scene, const geometry::Stage& stage,
-                       const StageCompliance& compliance, const StageSetup& setup)
-    : stage_(stage),
-      compliance_(compliance),
-      setup_(setup),
-      material_(scene.material),
-      name_(scene.name),
-      gap_window_(scene.gap_window) {
+StageModel::StageModel(const geometry::Stage& stage, const StageCompliance& compliance,
+                       const StageSetup& setup)
+    : stage_(stage), compliance_(compliance), setup_(setup) {
   setup_.Validate();
   // DOFs and their support stiffness (0: an equality; k: an elastic bearing, G F + k λ = W).
   dofs_.push_back({StageDof::kSunRotation, 0});
@@ -67,30 +66,36 @@ const geometry::Gear& StageModel::BodyGear(int body) const {
 
 ContactTerms StageModel::Terms(const geometry::StagePoses& poses) const {
   ContactTerms t;
-  Terms(poses, &t);
+  const StageOutcome o = Terms(poses, &t);
+  if (!o.ok()) throw std::runtime_error(setup_.name + ": " + o.message);
   return t;
 }
 
-void StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* terms) const {
+StageOutcome StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* terms) const {
   ContactTerms& t = *terms;
-  SearchStage(stage_, poses, gap_window_, &t.contacts);
+  if (StageOutcome o = SearchStage(stage_, poses, setup_.gap_window, &t.contacts); !o.ok()) return o;
   const int n = t.size();
   t.overlap.resize(n);
   for (int j = 0; j < n; ++j) t.overlap(j) = t.contacts[j].contact.overlap;
   t.local.clear();
   if (n == 0) {
     t.compliance.resize(0, 0);
-    return;
+    return {};
   }
-  t.compliance = compliance_.Matrix(stage_, poses, t.contacts);
+  if (StageOutcome o = compliance_.TryMatrix(stage_, poses, t.contacts, &t.compliance); !o.ok())
+    return o;
   if (setup_.local_terms) {
-    t.local.reserve(n);
-    for (const StageContact& s : t.contacts) {
-      t.local.push_back(ContactLocalTerm(s, BodyGear(s.body_a), BodyGear(s.body_b), material_,
-                                         setup_.plane, compliance_.JoiningDepth(s.body_a),
-                                         compliance_.JoiningDepth(s.body_b)));
+    t.local.resize(static_cast<std::size_t>(n));
+    for (int j = 0; j < n; ++j) {
+      const StageContact& s = t.contacts[j];
+      StageOutcome o = ContactLocalTerm(s, BodyGear(s.body_a), BodyGear(s.body_b),
+                                        compliance_.material(), compliance_.plane(),
+                                        compliance_.JoiningDepth(s.body_a),
+                                        compliance_.JoiningDepth(s.body_b), &t.local[j]);
+      if (!o.ok()) return o;
     }
   }
+  return {};
 }
 
 namespace {
@@ -139,24 +144,41 @@ Eigen::MatrixXd StageModel::Sensitivity(const ContactTerms& terms,
   return g;
 }
 
+void StageModel::CheckLoads(const StageLoads& loads) const {
+  const double t = loads.sun_torque;
+  if (!(t != 0) || !std::isfinite(t))
+    throw std::invalid_argument("load: sun_torque_Nm = " + std::to_string(t) +
+                                ": must be finite and non-zero (its sign selects the loaded "
+                                "flanks)");
+  if ((t > 0 ? 1 : -1) != stage_.sun_mesh_side())
+    throw std::invalid_argument(
+        "load: sun_torque_Nm = " + std::to_string(t) +
+        ": the stage's loaded flanks were built for a torque of the other sign (the scene's "
+        "sun_torque_Nm selects them; a changed torque must keep its sign)");
+}
+
 Eigen::VectorXd StageModel::LoadVector(const std::vector<StageDof>& dofs,
                                        const StageLoads& loads) const {
+  CheckLoads(loads);
   Eigen::VectorXd w = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs.size()));
   for (std::size_t k = 0; k < dofs.size(); ++k)
     if (dofs[k].kind == StageDof::kSunRotation) w(static_cast<Eigen::Index>(k)) = loads.sun_torque;
   return w;
 }
 
-StageProblem StageModel::Problem(const geometry::StagePoses& poses, const StageLoads& loads) const {
-  ContactTerms t = Terms(poses);
+StageOutcome StageModel::Problem(const geometry::StagePoses& poses, const StageLoads& loads,
+                                 StageProblem* problem) const {
+  ContactTerms t;
+  if (StageOutcome o = Terms(poses, &t); !o.ok()) return o;
   if (t.contacts.empty()) {
-    throw std::invalid_argument("stage: no potential contact within the gap window of " +
-                                std::to_string(gap_window_ * 1e6) + " um");
+    return {StageStatus::kNoContact, "no potential contact within the gap window of " +
+                                         std::to_string(setup_.gap_window * 1e6) + " um"};
   }
-  StageProblem p;
+  StageProblem& p = *problem;
+  p = {};
   p.dofs = dofs_;
   solvers::ContactProblemData& d = p.data;
-  d.name = name_ + " @ carrier " + std::to_string(geometry::Deg(poses.carrier_angle)) + " deg";
+  d.name = setup_.name + " @ carrier " + std::to_string(geometry::Deg(poses.carrier_angle)) + " deg";
   d.equality_matrix = Sensitivity(t, dofs_);  // G F = W: Σ −lever_sun F = T_sun
   d.equality_rhs = LoadVector(dofs_, loads);
   d.compliance = std::move(t.compliance);
@@ -170,7 +192,7 @@ StageProblem StageModel::Problem(const geometry::StagePoses& poses, const StageL
             .asDiagonal();
   }
   p.contacts = std::move(t.contacts);
-  return p;
+  return {};
 }
 
 geometry::StagePoses StageModel::Displace(const geometry::StagePoses& poses,

@@ -42,15 +42,36 @@ std::string StageDof::Label() const {
   return "?";
 }
 
+std::string StatusName(StageStatus status) {
+  switch (status) {
+    case StageStatus::kOk:
+      return "ok";
+    case StageStatus::kNoLineOfAction:
+      return "no line of action";
+    case StageStatus::kOffFlankGrid:
+      return "off the flank grid";
+    case StageStatus::kNoReducedRadius:
+      return "no reduced radius";
+    case StageStatus::kNoContact:
+      return "no contact";
+    case StageStatus::kContactSolveFailed:
+      return "contact solve failed";
+    case StageStatus::kNotSettled:
+      return "not settled";
+  }
+  return "unknown";
+}
+
 std::vector<StageContact> SearchStage(const geometry::Stage& stage,
                                       const geometry::StagePoses& poses, double gap_window) {
   std::vector<StageContact> out;
-  SearchStage(stage, poses, gap_window, &out);
+  const StageOutcome o = SearchStage(stage, poses, gap_window, &out);
+  if (!o.ok()) throw std::runtime_error(o.message);
   return out;
 }
 
-void SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses, double gap_window,
-                 std::vector<StageContact>* contacts) {
+StageOutcome SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses,
+                         double gap_window, std::vector<StageContact>* contacts) {
   std::vector<StageContact>& out = *contacts;
   out.clear();
   out.reserve(8 * stage.planets());  // a few per mesh and flank side: one allocation
@@ -62,6 +83,14 @@ void SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses
     for (MeshKind kind : {MeshKind::kSunPlanet, MeshKind::kPlanetRing}) {
       const int loaded_side =
           kind == MeshKind::kSunPlanet ? stage.sun_mesh_side() : stage.ring_mesh_planet_side();
+      if (!stage.HasLineOfAction(poses, i, kind)) {
+        const std::string planet = std::to_string(i + 1);
+        return {StageStatus::kNoLineOfAction,
+                (kind == MeshKind::kSunPlanet ? "mesh sun-planet" + planet
+                                              : "mesh planet" + planet + "-ring") +
+                    ": the centres are placed so that the base circles admit no line of action "
+                    "(a planet or the sun moved far from its place)"};
+      }
       found.clear();
       stage.AppendContacts(poses, i, kind, opt, &found);
       for (const PotentialContact& c : found) {
@@ -76,6 +105,7 @@ void SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses
       }
     }
   }
+  return {};
 }
 
 int CarryForces(const std::vector<StageContact>& from, const Eigen::VectorXd& force,
@@ -144,6 +174,22 @@ solvers::LocalTermParameters ContactLocalTerm(const StageContact& contact, const
   if (!LocalTermOf(contact.contact, a, b, material, plane, depth_a, depth_b, &l))
     throw NoReducedRadius(contact.contact, contact.Label());
   return l;
+}
+
+StageOutcome ContactLocalTerm(const geometry::PotentialContact& contact, const geometry::Gear& a,
+                              const geometry::Gear& b, const Material& material,
+                              solvers::PlaneAssumption plane, double depth_a, double depth_b,
+                              const std::string& label, solvers::LocalTermParameters* out) {
+  if (LocalTermOf(contact, a, b, material, plane, depth_a, depth_b, out)) return {};
+  return {StageStatus::kNoReducedRadius, NoReducedRadius(contact, label).what()};
+}
+
+StageOutcome ContactLocalTerm(const StageContact& contact, const geometry::Gear& a,
+                              const geometry::Gear& b, const Material& material,
+                              solvers::PlaneAssumption plane, double depth_a, double depth_b,
+                              solvers::LocalTermParameters* out) {
+  if (LocalTermOf(contact.contact, a, b, material, plane, depth_a, depth_b, out)) return {};
+  return {StageStatus::kNoReducedRadius, NoReducedRadius(contact.contact, contact.Label()).what()};
 }
 
 }  // namespace epicycle::transmission

@@ -168,7 +168,7 @@ TEST_CASE(
         bound = static_cast<double>(steps) * per_step;
         lost = r.samples.back().dissipated_work;
         throughput =
-            std::abs(rig.scene.sun_torque * rig.model->sun_speed()) * r.samples.back().time;
+            std::abs(rig.scene.loads.sun_torque * rig.model->sun_speed()) * r.samples.back().time;
       }
     }
     const bool converges = worst[1] <= worst[0] / 10;
@@ -212,7 +212,7 @@ TEST_CASE(
   for (const DynamicSample& s : r.samples) {
     double mesh = 0;
     for (double t : s.evaluation.sun_mesh_torque) mesh += t;
-    worst = std::max(worst, std::abs(mesh + rig.scene.sun_torque - js * s.sun_acceleration));
+    worst = std::max(worst, std::abs(mesh + rig.scene.loads.sun_torque - js * s.sun_acceleration));
     vmax = std::max(vmax, std::abs(s.v(ks)));
   }
   const double tol = 10 * js * (so.rtol * vmax + so.atol_angle * r.stats.rate_scale) / h;
@@ -369,7 +369,7 @@ TEST_CASE(
   const DynamicSample& a = r.samples[6 * 4 - 1];
   const DynamicSample& b = r.samples.back();
   const int ks = rig.model->Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kRotation);
-  const double t_s = rig.scene.sun_torque, ws = rig.model->sun_speed();
+  const double t_s = rig.scene.loads.sun_torque, ws = rig.model->sun_speed();
   const double w_in = t_s * (ws * (b.time - a.time) + b.d(ks) - a.d(ks));
   const double w_ext = b.external_work - a.external_work;
   const double w_f = b.dissipated_work - a.dissipated_work;  // friction only: no damping
@@ -416,7 +416,7 @@ TEST_CASE(
   REQUIRE(a.ok);
   REQUIRE(b.ok);
   REQUIRE(a.force.size() == b.force.size());
-  const double load = std::abs(rig.scene.sun_torque) / rig.stage->sun().base_radius();
+  const double load = std::abs(rig.scene.loads.sun_torque) / rig.stage->sun().base_radius();
   const double df = (a.force - b.force).cwiseAbs().maxCoeff() / load;
   const double da = (a.acceleration - b.acceleration).cwiseAbs().maxCoeff() /
                     b.acceleration.cwiseAbs().maxCoeff();

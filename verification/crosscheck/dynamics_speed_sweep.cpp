@@ -123,7 +123,7 @@ TEST_CASE(
   // The library's tangent stiffness against the one above (same driver, own arrangement).
   CHECK(std::abs(so.modal_mesh_stiffness[0] / ktan[0] - 1) < 1e-12);
   CHECK(std::abs(so.modal_mesh_stiffness[1] / ktan[1] - 1) < 1e-12);
-  const dynamics::SpeedSweepPlan plan = dynamics::PlanSpeedSweep(*rig.model, rig.scene, so);
+  const dynamics::SpeedSweepPlan plan = dynamics::PlanSpeedSweep(*rig.model, so);
   REQUIRE(plan.modes.size() == 3);
   REQUIRE(f_lo.size() == 3);
   REQUIRE(f_hi.size() == 3);
@@ -134,7 +134,7 @@ TEST_CASE(
 
   std::vector<dynamics::SpeedResult> rows;
   const auto result = dynamics::SweepSpeeds(
-      *rig.model, rig.scene, so, plan, [&](const dynamics::SpeedResult& r) { rows.push_back(r); });
+      *rig.model, so, plan, [&](const dynamics::SpeedResult& r) { rows.push_back(r); });
   REQUIRE(rows.size() == so.sun_speeds_rpm.size());  // every speed handed back
   REQUIRE(result.failed() == 0);
   const auto& sp = result.speeds;
@@ -211,7 +211,7 @@ TEST_CASE("speed sweep: far below the coincidences the dynamic factor tends to 1
   so.threads = 2;
   so.window_cycles = 3;
   so.outputs_per_cycle = 64;
-  const auto result = dynamics::SweepSpeeds(*rig.model, rig.scene, so);
+  const auto result = dynamics::SweepSpeeds(*rig.model, so);
   REQUIRE(result.failed() == 0);
   const double first = result.plan.modes.front().mode.frequency / (6 * result.plan.mesh_hz_per_rpm);
   double dev[3];
@@ -247,7 +247,7 @@ TEST_CASE("speed sweep: a failed speed is a result with its message, never left 
   so.window_cycles = 1;
   so.simulation.max_steps = 20;
   int seen = 0;
-  const auto result = dynamics::SweepSpeeds(*rig.model, rig.scene, so,
+  const auto result = dynamics::SweepSpeeds(*rig.model, so,
                                             [&](const dynamics::SpeedResult&) { ++seen; });
   CHECK(seen == 3);
   REQUIRE(result.speeds.size() == 3);

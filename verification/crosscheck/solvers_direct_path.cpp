@@ -14,7 +14,9 @@
 //    target 1e-11), where Newton's step leaves ½|u''| dx² ~ 1e-10 and needs a second: with the
 //    quadratic term left out, 20 of the 22 problems tested took two steps. (At a move of 1e-4,
 //    two problems whose steps reach 4 % of a contact's force need a second step either way.)
-// A direct path that gives up hands over to the general path, and the message says so.
+// A direct path that gives up hands over to the general path, and the message says so; one whose
+// answer misses the tolerance by the driver's own residual (whatever its own stopping test said)
+// is rejected and the general path runs.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -23,6 +25,7 @@
 
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
+#include "direct_newton.hpp"  // the driver with a direct path of the test's own
 #include "epicycle/solvers/contact_solver.hpp"
 #include "figures.hpp"
 #include "solvers_support.hpp"
@@ -191,6 +194,76 @@ TEST_CASE("direct path: when it gives up the general path runs and the message s
   CHECK(r.status == ContactStatus::kConverged);
   CHECK(r.residual.total <= options.tolerance);
   CHECK(CompareSolutions(problem, one, sol).force <= 1e-6);
+}
+
+namespace {
+
+// A direct path whose own stopping test is wrong: it solves each contact alone, C_jj x_j = δ0_j,
+// and declares its answer converged. By its own gap (g_j = C_jj x_j − δ0_j = 0) the answer is
+// exact; by the problem's (g = C x − δ0, the coupling included) it is not unless C is diagonal.
+class UncoupledPath final : public internal::DirectPath {
+ public:
+  bool Run(const internal::ScaledProblem& p, double, int, bool, Eigen::VectorXd* x,
+           int* iterations) override {
+    *x = p.delta0.cwiseQuotient(p.C.diagonal()).cwiseMax(0.0);
+    *iterations = 1;
+    ++calls;
+    return true;
+  }
+  int calls = 0;
+};
+
+}  // namespace
+
+TEST_CASE("direct path: the driver judges its answer by the driver's own residual",
+          "[unit][solvers]") {
+  // Two contacts, both closed, no local terms: F = C⁻¹ δ0 in closed form (2×2 inverse).
+  const double c11 = 2e-9, c22 = 1e-9, c12 = 0.5e-9, d1 = 1e-6, d2 = 1.5e-6;
+  const double det = c11 * c22 - c12 * c12;
+  const Eigen::Vector2d exact((c22 * d1 - c12 * d2) / det, (c11 * d2 - c12 * d1) / det);
+  REQUIRE(exact.minCoeff() > 0);
+  auto problem = [&](double coupling) {
+    ContactProblemData d;
+    d.name = "two coupled contacts";
+    d.compliance.resize(2, 2);
+    d.compliance << c11, coupling, coupling, c22;
+    d.overlap = Eigen::Vector2d(d1, d2);
+    d.equality_matrix.resize(0, 2);
+    return ContactProblem(d);
+  };
+  ContactOptions options;
+  options.tolerance = 1e-10;
+  auto path = std::make_unique<UncoupledPath>();
+  UncoupledPath* seen = path.get();
+  auto solver = internal::MakeDriverSolver(Backend::kActiveSetNewton, std::move(path));
+
+  SECTION("coupled: the path's converged-looking answer is rejected, the general path solves") {
+    const ContactProblem p = problem(c12);
+    ContactSolution s;
+    const ContactReport r = solver->Solve(p, options, &s);
+    CHECK(seen->calls == 1);
+    INFO(r.message);
+    CHECK(r.message.find("missed the tolerance by the driver's residual") != std::string::npos);
+    CHECK(r.message.find("direct path: no equalities") == std::string::npos);
+    REQUIRE(r.status == ContactStatus::kConverged);
+    // The answer is the closed form to the tolerance's relative size (residual 1e-10 of the
+    // force scale, which is of the order of the largest force).
+    CHECK((s.force - exact).cwiseAbs().maxCoeff() <= 1e-9 * exact.maxCoeff());
+    // The uncoupled answer the path proposed is far from it (so the check above could fail).
+    const Eigen::Vector2d uncoupled(d1 / c11, d2 / c22);
+    CHECK((uncoupled - exact).cwiseAbs().maxCoeff() > 0.1 * exact.maxCoeff());
+  }
+  SECTION("uncoupled: the same path is right, and its answer is accepted as it is") {
+    const ContactProblem p = problem(0.0);
+    ContactSolution s;
+    const ContactReport r = solver->Solve(p, options, &s);
+    CHECK(seen->calls == 1);
+    INFO(r.message);
+    CHECK(r.status == ContactStatus::kConverged);
+    CHECK(r.message.find("direct path: no equalities, 1 iterations") != std::string::npos);
+    CHECK(std::abs(s.force(0) - d1 / c11) <= 1e-12 * d1 / c11);
+    CHECK(std::abs(s.force(1) - d2 / c22) <= 1e-12 * d2 / c22);
+  }
 }
 
 }  // namespace epicycle::solvers

@@ -36,15 +36,16 @@ constexpr int kPositions = 24;   // per mesh cycle, as the quasi-static linear-t
 std::vector<double> MeanLoadFactors(const std::vector<double>& eta, double torque,
                                     std::vector<double>* te = nullptr) {
   transmission::Scene scene = test::PaperScene();
-  scene.sun_torque = torque;
+  scene.loads.sun_torque = torque;
   scene.stage.pin_errors.assign(3, {});
   for (std::size_t i = 0; i < eta.size(); ++i) scene.stage.pin_errors[i].tangential = eta[i];
   const geometry::Stage stage(scene.stage);
   transmission::QuasiStaticOptions o;
-  o.setup = transmission::SetupFromScene(scene);
-  o.setup.sun = transmission::SunSupport::kFixed;
+  transmission::StageSetup setup = transmission::SetupFromScene(scene);
+  setup.sun = transmission::SunSupport::kFixed;
   const auto results =
-      transmission::Sweep(scene, stage, test::Compliance("paper_stage.toml"),
+      transmission::Sweep(transmission::StageModel(stage, test::Compliance("paper_stage.toml"), setup),
+                          scene.loads,
                           transmission::SweepAngles(0.0, stage.mesh_cycle(), kPositions), o);
   if (te) {
     te->clear();
@@ -80,7 +81,7 @@ TEST_CASE("study against the linear load-sharing theory: tangential pin errors, 
   const transmission::Scene scene = test::PaperScene();
   const geometry::Stage stage(scene.stage);
   const int n = stage.planets();
-  const double rbs = stage.sun().base_radius(), torque = scene.sun_torque;
+  const double rbs = stage.sun().base_radius(), torque = scene.loads.sun_torque;
   const double force = std::abs(torque) / rbs;
   double a_sp = 0, a_pr = 0;
   for (const auto& m : stage.meshes())

@@ -297,9 +297,11 @@ StageRun SweepStage(const transmission::Scene& scene, transmission::SunSupport s
   r.scene = scene;
   r.stage = std::make_unique<geometry::Stage>(scene.stage);
   transmission::QuasiStaticOptions o;
-  o.setup = transmission::SetupFromScene(scene);
-  o.setup.sun = sun;
-  r.results = transmission::Sweep(scene, *r.stage, test::Compliance("paper_stage.toml"), angles, o);
+  transmission::StageSetup setup = transmission::SetupFromScene(scene);
+  setup.sun = sun;
+  r.results = transmission::Sweep(
+      transmission::StageModel(*r.stage, test::Compliance("paper_stage.toml"), setup), scene.loads,
+      angles, o);
   for (const auto& p : r.results) {
     INFO(geometry::Deg(p.carrier_angle) << " deg: " << p.message);
     if (require_converged) REQUIRE(p.converged);
@@ -389,7 +391,7 @@ TEST_CASE("grade-6 sun pitch deviations: mesh-cycle load sharing follows the lin
       geometry::iso::RandomPitchDeviations(zs, scene.stage.sun.module, 6, 11);
   const StageRun dev = SweepStage(with, transmission::SunSupport::kFixed, angles);
   const int n = nominal_stage.planets();
-  const double force = std::abs(scene.sun_torque) / nominal_stage.sun().base_radius();
+  const double force = std::abs(scene.loads.sun_torque) / nominal_stage.sun().base_radius();
   const double rbs = nominal_stage.sun().base_radius();
   const int sigma = nominal_stage.sun_mesh_side();
   const double ca = std::cos(scene.stage.sun.pressure_angle);

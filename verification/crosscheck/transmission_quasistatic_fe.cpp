@@ -59,12 +59,13 @@ Run Sweep(const std::string& file, const std::string& text, SunSupport sun, doub
   r.scene = transmission::ParseScene(text, file);
   r.stage = std::make_unique<geometry::Stage>(r.scene.stage);
   transmission::QuasiStaticOptions o;
-  o.setup = transmission::SetupFromScene(r.scene);
-  o.setup.sun = sun;
+  transmission::StageSetup setup = transmission::SetupFromScene(r.scene);
+  setup.sun = sun;
   o.backend = backend;
   o.contact.tolerance = tolerance;
   o.accept_inaccurate = accept_inaccurate;
-  r.results = transmission::Sweep(r.scene, *r.stage, Compliance(file),
+  r.results = transmission::Sweep(transmission::StageModel(*r.stage, Compliance(file), setup),
+                                  r.scene.loads,
                                   transmission::SweepAngles(0.0, span, positions), o);
   for (const auto& p : r.results) {
     INFO(file << " at " << geometry::Deg(p.carrier_angle) << " deg: " << p.message);
@@ -90,7 +91,7 @@ double MeasuredPathStiffness(const std::string& file) {
   const std::string text = test::SceneText(file);
   const Run a = Sweep(file, text, SunSupport::kFixed, 1.0, 1);  // for the stage data only
   const double cycle = a.stage->mesh_cycle(), rbs = a.stage->sun().base_radius();
-  const double torque = a.scene.sun_torque;
+  const double torque = a.scene.loads.sun_torque;
   const Run lo = Sweep(file, text, SunSupport::kFixed, cycle, 24);
   const Run hi = Sweep(file, WithTorque(text, 1.01 * torque), SunSupport::kFixed, cycle, 24);
   double sum = 0.0;
@@ -286,7 +287,7 @@ TEST_CASE("quasi-static FE: linear load-sharing theory for a tangential pin erro
       const Run full = Sweep(file, WithPin(text, 0.0, eta), sun, r.stage->mesh_cycle(), 24);
       const auto [a_sp, a_pr] = PressureAngles(*r.stage);
       const double e1 = -eta * 1e-6 * (std::cos(a_sp) + std::cos(a_pr));
-      const double force = std::abs(r.scene.sun_torque) / r.stage->sun().base_radius();
+      const double force = std::abs(r.scene.loads.sun_torque) / r.stage->sun().base_radius();
       const double eps = k * e1 / force;
       std::vector<double> theory(n, 0.0);
       if (sun == SunSupport::kFixed) {
@@ -561,9 +562,10 @@ TEST_CASE("quasi-static FE: the gap window only selects candidates",
       test::Replace(text, "gap_window_um = 100.0", "gap_window_um = 10.0");
   const auto tn_scene = transmission::ParseScene(too_narrow, file);
   transmission::QuasiStaticOptions o;
-  o.setup = transmission::SetupFromScene(tn_scene);
-  o.setup.sun = SunSupport::kFloating;
-  const auto results = transmission::Sweep(tn_scene, stage, Compliance(file),
+  transmission::StageSetup setup = transmission::SetupFromScene(tn_scene);
+  setup.sun = SunSupport::kFloating;
+  const auto results = transmission::Sweep(transmission::StageModel(stage, Compliance(file), setup),
+                                           tn_scene.loads,
                                            transmission::SweepAngles(0.0, period, positions), o);
   int failed = 0;
   for (const PositionResult& p : results) {

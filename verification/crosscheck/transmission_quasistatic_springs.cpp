@@ -25,6 +25,14 @@ class SpringCompliance : public transmission::StageCompliance {
     return kSpring * Eigen::MatrixXd::Identity(n, n);
   }
   double JoiningDepth(int) const override { return 1e-3; }
+  // Springs need no material; the local terms, when a test adds them, see steel.
+  const transmission::Material& material() const override { return steel_; }
+  solvers::PlaneAssumption plane() const override {
+    return solvers::PlaneAssumption::kPlaneStrain;
+  }
+
+ private:
+  transmission::Material steel_;
 };
 
 struct PathCounts {
@@ -44,11 +52,19 @@ PathCounts Active(const transmission::PositionResult& r, int planets) {
   return p;
 }
 
-transmission::QuasiStaticOptions Options(transmission::SunSupport sun) {
-  transmission::QuasiStaticOptions o;
-  o.setup.sun = sun;
-  o.setup.local_terms = false;
-  return o;
+transmission::StageSetup Setup(const transmission::Scene& scene, transmission::SunSupport sun) {
+  transmission::StageSetup s = transmission::SetupFromScene(scene);
+  s.sun = sun;
+  s.local_terms = false;
+  return s;
+}
+
+// The quasi-static solution at carrier angle φ of the stage model (stage, springs, setup).
+transmission::PositionResult Solve(const transmission::Scene& scene, const geometry::Stage& stage,
+                                   const transmission::StageCompliance& springs, double phi,
+                                   const transmission::StageSetup& setup) {
+  const transmission::StageModel model(stage, springs, setup);
+  return transmission::SolvePosition(model, phi, scene.loads, {});
 }
 
 }  // namespace
@@ -62,8 +78,7 @@ TEST_CASE("fixed sun, springs: load shares follow the path stiffnesses",
   int tested = 0;
   for (int k = 0; k < 16; ++k) {
     const double phi = stage.mesh_cycle() * (k + 0.5) / 16;
-    const auto r = transmission::SolvePosition(scene, stage, springs, phi,
-                                               Options(transmission::SunSupport::kFixed));
+    const auto r = Solve(scene, stage, springs, phi, Setup(scene, transmission::SunSupport::kFixed));
     REQUIRE(r.converged);
     const PathCounts c = Active(r, 3);
     if (!c.only_involute) continue;  // a tip round carries load here: not a series-spring stage
@@ -81,7 +96,7 @@ TEST_CASE("fixed sun, springs: load shares follow the path stiffnesses",
     }
     CHECK(lsr_sum == Approx(1.0).epsilon(1e-10));
     // The sun turns with the torque by |T|/(r_bs² Σk).
-    CHECK(r.transmission_error == Approx(scene.sun_torque / (rbs * rbs * ksum)).epsilon(1e-8));
+    CHECK(r.transmission_error == Approx(scene.loads.sun_torque / (rbs * rbs * ksum)).epsilon(1e-8));
     ++tested;
   }
   CHECK(tested >= 6);
@@ -94,12 +109,11 @@ TEST_CASE("fixed sun, springs, tangential pin error: the closed form with the er
   scene.stage.pin_errors[0].tangential = 3e-6;
   const geometry::Stage stage(scene.stage);
   const SpringCompliance springs;
-  const double rbs = stage.sun().base_radius(), torque = std::abs(scene.sun_torque);
+  const double rbs = stage.sun().base_radius(), torque = std::abs(scene.loads.sun_torque);
   int tested = 0;
   for (int k = 0; k < 16; ++k) {
     const double phi = stage.mesh_cycle() * (k + 0.5) / 16;
-    const auto r = transmission::SolvePosition(scene, stage, springs, phi,
-                                               Options(transmission::SunSupport::kFixed));
+    const auto r = Solve(scene, stage, springs, phi, Setup(scene, transmission::SunSupport::kFixed));
     REQUIRE(r.converged);
     const PathCounts c = Active(r, 3);
     if (!c.only_involute) continue;
@@ -146,10 +160,8 @@ TEST_CASE(
   int tested = 0;
   for (int k = 0; k < 16; ++k) {
     const double phi = stage.mesh_cycle() * (k + 0.5) / 16;
-    const auto r = transmission::SolvePosition(scene, stage, springs, phi,
-                                               Options(transmission::SunSupport::kFloating));
-    const auto fixed = transmission::SolvePosition(scene, stage, springs, phi,
-                                                   Options(transmission::SunSupport::kFixed));
+    const auto r = Solve(scene, stage, springs, phi, Setup(scene, transmission::SunSupport::kFloating));
+    const auto fixed = Solve(scene, stage, springs, phi, Setup(scene, transmission::SunSupport::kFixed));
     REQUIRE(r.converged);
     REQUIRE(fixed.converged);
     if (!Active(r, 3).only_involute) continue;
@@ -180,9 +192,9 @@ TEST_CASE(
   const SpringCompliance springs;
   const double phi = stage.mesh_cycle() * 0.3;
   auto solve = [&](transmission::SunSupport sun, double k) {
-    auto o = Options(sun);
-    o.setup.sun_stiffness = k;
-    const auto r = transmission::SolvePosition(scene, stage, springs, phi, o);
+    auto setup = Setup(scene, sun);
+    setup.sun_stiffness = k;
+    const auto r = Solve(scene, stage, springs, phi, setup);
     REQUIRE(r.converged);
     return r;
   };

@@ -49,15 +49,14 @@ struct Rig {
   std::unique_ptr<transmission::StageModel> model;
   std::vector<double> angles;
   explicit Rig(SunSupport sun, int positions = 360) {
-    options.setup = transmission::SetupFromScene(scene);
-    options.setup.sun = sun;
-    model = std::make_unique<transmission::StageModel>(scene, stage, test::Compliance(kFile),
-                                                       options.setup);
+    transmission::StageSetup setup = transmission::SetupFromScene(scene);
+    setup.sun = sun;
+    model = std::make_unique<transmission::StageModel>(stage, test::Compliance(kFile), setup);
     // One planet revolution relative to the carrier: the period of planet 1's run-out.
     angles = transmission::SweepAngles(
         0.0, 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth(), positions);
   }
-  transmission::StageLoads loads() const { return {scene.sun_torque}; }
+  transmission::StageLoads loads() const { return scene.loads; }
   std::vector<PositionResult> Sweep(bool warm, int threads) const {
     transmission::QuasiStaticOptions o = options;
     o.warm_start = warm;
@@ -112,7 +111,7 @@ Bounds DerivedBounds(const Rig& rig, const PositionResult& r) {
       const double per_length = 1.0 / m.DisplacementSize(m.dofs(), unit);  // 1/s_k
       dtorque += std::abs(dt(k)) * b.displacement * per_length;
     }
-    b.lsr.push_back(dtorque / std::abs(rig.scene.sun_torque));
+    b.lsr.push_back(dtorque / std::abs(rig.scene.loads.sun_torque));
   }
   return b;
 }

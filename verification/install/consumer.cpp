@@ -75,9 +75,8 @@ int main(int argc, char** argv) {
     tr::FeComplianceOptions fe;
     fe.cache_directory = argv[2];
     const tr::FeStageCompliance compliance(scene, stage, fe);
-    tr::QuasiStaticOptions options;
-    options.setup = tr::SetupFromScene(scene);
-    const tr::PositionResult r = tr::SolvePosition(scene, stage, compliance, 0.0, options);
+    const tr::StageModel model(stage, compliance, tr::SetupFromScene(scene));
+    const tr::PositionResult r = tr::SolvePosition(model, 0.0, scene.loads, {});
     if (!r.converged) {
       std::fprintf(stderr, "consumer: the position did not converge: %s\n", r.message.c_str());
       return 1;

@@ -28,8 +28,14 @@ class SpringCompliance : public transmission::StageCompliance {
     return c_ * Eigen::MatrixXd::Identity(n, n);
   }
   double JoiningDepth(int) const override { return 1e-3; }
+  // Springs need no material; the local terms, when a test adds them, see steel.
+  const transmission::Material& material() const override { return steel_; }
+  solvers::PlaneAssumption plane() const override {
+    return solvers::PlaneAssumption::kPlaneStrain;
+  }
 
  private:
+  transmission::Material steel_;
   double c_;
 };
 
@@ -68,11 +74,11 @@ inline DynamicRig MakeRig(const std::string& text, const std::string& name, cons
         std::make_unique<transmission::FeStageCompliance>(r.scene, *r.stage, SuiteTables());
     setup.local_terms = o.local_terms;
   }
-  r.stage_model =
-      std::make_unique<transmission::StageModel>(r.scene, *r.stage, *r.compliance, setup);
+  r.stage_model = std::make_unique<transmission::StageModel>(*r.stage, *r.compliance, setup);
   dynamics::DynamicSettings settings = dynamics::SettingsFromScene(r.scene);
   if (edit) edit(settings);
-  r.model = std::make_unique<dynamics::DynamicModel>(*r.stage_model, r.scene, settings);
+  r.model = std::make_unique<dynamics::DynamicModel>(*r.stage_model, settings, r.scene.inertia,
+                                                     r.scene.loads);
   if (spring > 0) {
     r.model->SetMeshStiffness(spring_mesh_stiffness, spring_mesh_stiffness);
   } else {
@@ -114,7 +120,7 @@ inline double QuasiStaticGap(const DynamicRig& rig,
   transmission::QuasiStaticOptions qo;
   for (const dynamics::DynamicSample& s : samples) {
     const auto q =
-        transmission::SolvePosition(*rig.stage_model, s.carrier_angle, {rig.scene.sun_torque}, qo);
+        transmission::SolvePosition(*rig.stage_model, s.carrier_angle, rig.scene.loads, qo);
     REQUIRE(q.converged);
     for (std::size_t i = 0; i < q.load_sharing.size(); ++i)
       worst = std::max(worst, std::abs(s.load_sharing[i] - q.load_sharing[i]));

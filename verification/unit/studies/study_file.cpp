@@ -108,7 +108,7 @@ TEST_CASE("study file: counter-based sampling and grids", "[unit][studies]") {
   // Applied to the scene: pin errors in m, the torque, the run-out with its phase in rad.
   const transmission::Scene c = studies::CaseScene(s, v5);
   CHECK(c.stage.pin_errors.at(2).tangential == Approx(v5[2] * 1e-6).epsilon(1e-15));
-  CHECK(c.sun_torque == -600.0);
+  CHECK(c.loads.sun_torque == -600.0);
   CHECK(c.stage.planet_runouts.at(0).amplitude == Approx(v5[4] * 1e-6).epsilon(1e-15));
   CHECK(c.stage.planet_runouts.at(0).phase == Approx(v5[5] * std::numbers::pi / 180.0));
   CHECK(v5[4] >= 0.0);

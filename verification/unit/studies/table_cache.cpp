@@ -120,10 +120,10 @@ TEST_CASE("influence tables: a thickness error leaves the table's key nominal an
   const double eta = ds / (std::cos(a_sp) + std::cos(a_pr));
   auto mean_l = [&](transmission::Scene sc) {
     const geometry::Stage stage(sc.stage);
-    transmission::QuasiStaticOptions o;
-    o.setup = transmission::SetupFromScene(sc);
-    const auto r = transmission::Sweep(sc, stage, test::Compliance("paper_stage.toml"),
-                                       transmission::SweepAngles(0.0, stage.mesh_cycle(), 24), o);
+    const transmission::StageModel model(stage, test::Compliance("paper_stage.toml"),
+                                         transmission::SetupFromScene(sc));
+    const auto r = transmission::Sweep(model, sc.loads,
+                                       transmission::SweepAngles(0.0, stage.mesh_cycle(), 24), {});
     const auto s = transmission::SummariseSweep(r, 3);
     REQUIRE(s.converged == 24);
     return s.lsr_mean;

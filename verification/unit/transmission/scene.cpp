@@ -24,7 +24,7 @@ TEST_CASE("the paper's scenes load with SI values", "[unit][transmission]") {
   CHECK(s.stage.sun.pressure_angle == Approx(25.0 * 3.14159265358979 / 180));
   CHECK(s.stage.ring.hub_radius == Approx(156.4e-3));
   CHECK(s.material.youngs_modulus == Approx(207e9));
-  CHECK(s.sun_torque == -600.0);
+  CHECK(s.loads.sun_torque == -600.0);
   CHECK(s.stage.load_sign == -1);
   CHECK(s.stage.carrier_radius == Approx(86.715e-3));
   // Tip radius from the addendum coefficient: r + (x + 1) m.

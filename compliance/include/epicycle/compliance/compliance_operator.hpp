@@ -54,10 +54,14 @@ struct OperatorContact {
 /// contact problem (solvers::LocalTermParameters). Each contact side is located on its body's
 /// flank once; the table is then interpolated for every pair. The result is symmetric (the tables
 /// are symmetrised) and positive definite for distinct contacts on held bodies.
+/// @param off_flank null: a point that is not on its named flank throws; otherwise such a point
+///        (a pose past the tables' flank grids: a geometric outcome, not bad input) returns an
+///        empty matrix with the reason here.
 /// @throws std::invalid_argument for a body index out of range, a body without table, a
-///         non-unit direction, or a point that is not on the named flank (the message names the
-///         contact's label and the body).
+///         non-unit direction, or (off_flank null) a point that is not on the named flank (the
+///         message names the contact's label and the body).
 Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
-                                   const std::vector<OperatorContact>& contacts);
+                                   const std::vector<OperatorContact>& contacts,
+                                   std::string* off_flank = nullptr);
 
 }  // namespace epicycle::compliance

@@ -113,8 +113,12 @@ struct EvaluationWorkspace {
 
 /// What one evaluation of the right-hand side computed (also the outputs of a step).
 struct Evaluation {
-  bool ok = false;                      ///< the contact solve converged
-  std::string message;                  ///< why not
+  bool ok = false;  ///< the poses were evaluated and the contact solve converged
+  std::string message;  ///< why not
+  /// The stage model's outcome at these poses: not ok for a pose it cannot evaluate (a trial
+  /// step past where the meshes have a line of action or the contacts lie on the flank grids);
+  /// ok with ok == false: the contact solve failed.
+  transmission::StageOutcome geometry;
   transmission::ContactTerms terms;     ///< potential contacts, C, δ0, local terms at the poses
   Eigen::VectorXd force;                ///< elastic contact forces F [N] (the contact problem's)
   Eigen::VectorXd total_force;          ///< F + damping, clipped at 0 [N]
@@ -139,19 +143,23 @@ struct Evaluation {
 
 class DynamicModel {
  public:
-  /// Keeps a reference to `model` (it must outlive this). The scene gives masses, inertias and
-  /// the input torque.
+  /// Keeps a reference to `model` (it must outlive this): the stage model with its supports, the
+  /// dynamic settings, the members' masses and inertias, and the input torque.
   /// @throws std::invalid_argument naming the key for a free member without mass or inertia, a
-  ///         bad setting, or a support the model cannot represent.
-  DynamicModel(const transmission::StageModel& model, const transmission::Scene& scene,
-               const DynamicSettings& settings);
+  ///         bad setting, loads that StageModel::CheckLoads refuses, or a support the model
+  ///         cannot represent.
+  DynamicModel(const transmission::StageModel& model, const DynamicSettings& settings,
+               const transmission::StageInertias& inertias, const transmission::StageLoads& loads);
 
   const std::vector<MotionDof>& dofs() const { return dofs_; }
   int size() const { return static_cast<int>(dofs_.size()); }
   const Eigen::VectorXd& mass() const { return mass_; }  ///< per DOF [kg] or [kg·m²]
   const transmission::StageModel& stage_model() const { return model_; }
   const DynamicSettings& settings() const { return settings_; }
-  double sun_torque() const { return sun_torque_; }        ///< T_s [N·m]
+  const transmission::StageLoads& loads() const { return loads_; }
+  /// The members' masses and inertias the model was built with.
+  transmission::StageInertias inertias() const { return {sun_, planet_, ring_, carrier_}; }
+  double sun_torque() const { return loads_.sun_torque; }  ///< T_s [N·m]
   double carrier_speed() const { return carrier_speed_; }  ///< ω_c [rad/s] (signed)
   double sun_speed() const { return carrier_speed_ * model_.stage().sun_ratio(); }  ///< ω_s
   double carrier_torque() const { return carrier_torque_; }  ///< output load T_c [N·m] if free
@@ -172,8 +180,9 @@ class DynamicModel {
   geometry::StagePoses Poses(double t, const Eigen::VectorXd& d) const;
 
   /// One evaluation: contact search, compliance, contact solve (warm-started from `warm`, forces
-  /// matched by contact label), damping, friction, bearings → accelerations. A failed contact
-  /// solve gives ok = false (recoverable: the integrator retries with a smaller step).
+  /// matched by contact label), damping, friction, bearings → accelerations. A pose the stage
+  /// model cannot evaluate (Evaluation::geometry) or a failed contact solve gives ok = false
+  /// (recoverable: the integrator retries with a smaller step).
   /// `energies` = false leaves kinetic_energy and elastic_energy at 0: the right-hand side needs
   /// only the powers, and the stored energy of the local terms costs a closed-form integral per
   /// loaded contact (outputs and balances ask for them). `out` (its results and its work space)
@@ -227,7 +236,8 @@ class DynamicModel {
   std::vector<transmission::StageDof> stage_dofs_;
   Eigen::VectorXd mass_;
   transmission::Inertia sun_, planet_, ring_, carrier_;
-  double sun_torque_ = 0, carrier_speed_ = 0, carrier_torque_ = 0, start_angle_ = 0;
+  transmission::StageLoads loads_;
+  double carrier_speed_ = 0, carrier_torque_ = 0, start_angle_ = 0;
   double k_sun_ = 0, k_ring_ = 0, damping_sun_ = 0, damping_ring_ = 0;
   double contact_modulus_ = 0;
   FrictionModel friction_;  // settings_.friction with its constant factors evaluated once

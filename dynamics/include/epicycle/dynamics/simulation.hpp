@@ -5,8 +5,9 @@
 // their rates, and the accumulated external work and dissipated energy [J] (for the energy
 // balance E(t) − E(0) = W_ext − W_diss, E kinetic plus stored elastic energy).
 //
-// A contact solve that fails inside the right-hand side is recoverable: CVODE retries with a
-// smaller step (return > 0); ERKStep treats any non-zero return as fatal, so the explicit driver
+// A contact solve that fails inside the right-hand side, or a pose the stage model cannot evaluate
+// (a trial step that swung a member past where its meshes have a line of action), is recoverable:
+// CVODE retries with a smaller step (return > 0); ERKStep treats any non-zero return as fatal, so the explicit driver
 // restarts from the last output with a ten times smaller first step, at most 8 times in a row.
 // Every failure is counted. Outputs are produced at given times from the integrator's solution
 // there (CVODE's and ERKStep's NORMAL mode), each handed to the caller as soon as it is computed.
@@ -54,6 +55,7 @@ struct SimulationOptions {
   bool stability_limit_detection = true;
   long max_steps = 2000000;  ///< per output interval [-]
   double max_step = 0;       ///< largest step [s]; 0: no limit
+  double initial_step = 0;   ///< first step tried [s]; 0: the integrator's own estimate
   /// Wall-time budget of the whole run [s]; 0: none. When spent, the run stops at the next
   /// right-hand side (completed = false, the message says so) and keeps the outputs it has: for
   /// studies that must not hang on a back end that keeps failing.
@@ -83,6 +85,9 @@ struct SimulationStats {
   long jacobian_evaluations = 0;  ///< analytic Jacobians (CVODE)
   long fd_rhs_evaluations = 0;    ///< right-hand sides spent on finite-difference Jacobians
   long failed_solves = 0;         ///< contact solves that failed (recoverable retries)
+  /// Evaluations at poses the stage model could not evaluate (Evaluation::geometry; recoverable
+  /// retries: a trial step that swung a member past where its meshes work).
+  long failed_geometry = 0;
   long error_test_failures = 0;
   long nonlinear_failures = 0;  ///< CVODE Newton convergence failures
   long restarts = 0;            ///< explicit method: restarts after a failed evaluation

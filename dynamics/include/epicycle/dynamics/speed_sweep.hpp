@@ -150,8 +150,7 @@ struct SpeedSweepResult {
 /// @throws std::invalid_argument for bad options, or when the slowest mode has no damping
 ///         (σ ≤ 0) and no skip_time is given; std::runtime_error if a quasi-static position of
 ///         the window or of the start fails.
-SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const transmission::Scene& scene,
-                              const SpeedSweepOptions& options);
+SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions& options);
 
 /// The figures of one speed from its window's samples (those at plan.window_angles).
 SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window,
@@ -163,16 +162,13 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
 /// fails (its start, a step) is a result with ok = false and its message, never left out.
 /// @throws std::invalid_argument for bad options; what `on_result` throws (after the running
 ///         speeds end).
-SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene& scene,
-                             const SpeedSweepOptions& options, const SpeedSweepPlan& plan,
+SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options, const SpeedSweepPlan& plan,
                              const std::function<void(const SpeedResult&)>& on_result = {});
 /// The same with the plan made first.
-SpeedSweepResult SweepSpeeds(const DynamicModel& base, const transmission::Scene& scene,
-                             const SpeedSweepOptions& options,
+SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options,
                              const std::function<void(const SpeedResult&)>& on_result = {});
 
 /// One sun speed's dynamic model: `base` with sun_speed = rpm·π/30, the same mesh stiffnesses.
-DynamicModel ModelAtSpeed(const DynamicModel& base, const transmission::Scene& scene,
-                          double sun_speed_rpm);
+DynamicModel ModelAtSpeed(const DynamicModel& base, double sun_speed_rpm);
 
 }  // namespace epicycle::dynamics

@@ -98,6 +98,12 @@ struct ContactSearchOptions {
   bool exhaustive_tips = false;
 };
 
+/// Whether the posed gears admit a line of action: their geometric centres apart by more than the
+/// sum (external) or the difference (internal) of the base radii. FindContacts and AppendContacts
+/// throw std::invalid_argument for gears that do not; a caller whose poses come from a motion
+/// (an integrator's trial step) asks first.
+bool HasLineOfAction(const PosedGear& a, const PosedGear& b, bool internal);
+
 /// Every potential contact between A and B (internal: B is the ring, A a planet inside it).
 /// Relief and pitch deviations enter the geometry: on the line of action the overlap is the
 /// involutes' minus C_A(u_A) + C_B(u_B) (exact along the line, whose direction stays the contact

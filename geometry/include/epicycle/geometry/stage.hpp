@@ -108,6 +108,9 @@ class Stage {
   void AppendContacts(const StagePoses& p, int planet, MeshKind kind,
                       const ContactSearchOptions& options,
                       std::vector<PotentialContact>* out) const;
+  /// Whether the mesh's gears admit a line of action at these poses (geometry::HasLineOfAction):
+  /// Contacts and AppendContacts throw std::invalid_argument for a mesh that does not.
+  bool HasLineOfAction(const StagePoses& p, int planet, MeshKind kind) const;
 
  private:
   void CheckAssembly();

@@ -51,14 +51,26 @@ class FeStageCompliance final : public StageCompliance {
   ///         the table's rules).
   FeStageCompliance(const Scene& scene, const geometry::Stage& stage,
                     const FeComplianceOptions& options);
+  /// @throws std::invalid_argument naming the contacts for a point off its flank grid.
   Eigen::MatrixXd Matrix(const geometry::Stage& stage, const geometry::StagePoses& poses,
                          const std::vector<StageContact>& contacts) const override;
+  StageOutcome TryMatrix(const geometry::Stage& stage, const geometry::StagePoses& poses,
+                         const std::vector<StageContact>& contacts,
+                         Eigen::MatrixXd* out) const override;
   double JoiningDepth(int body) const override;
+  const Material& material() const override { return material_; }
+  solvers::PlaneAssumption plane() const override { return plane_; }
   const GearTables& tables() const { return tables_; }
 
  private:
+  // C into *out; a point off its flank grid: the message in *off_flank (non-null) or thrown.
+  void Assemble(const geometry::Stage& stage, const geometry::StagePoses& poses,
+                const std::vector<StageContact>& contacts, Eigen::MatrixXd* out,
+                std::string* off_flank) const;
   GearTables tables_;               // gear index = body index (0 sun, 1 ring, 2 + i planet i)
   std::vector<std::string> names_;  // per body, for messages
+  Material material_;               // the scene's, as the tables were built with it
+  solvers::PlaneAssumption plane_;  // the scene's [model] plane
 };
 
 /// The contact compliance of a single gear pair (gear 1 body 0, gear 2 body 1).

@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/stage_problem.hpp"
 
 namespace epicycle::transmission {
 
@@ -36,6 +37,8 @@ struct GeometricIterationStart {
 
 struct GeometricIterationResult {
   bool converged = false;             ///< every contact solve converged and the increments settled
+  /// kOk when converged; kContactSolveFailed, kNotSettled, or the outcome `build` returned.
+  StageStatus status = StageStatus::kOk;
   std::string message;                ///< why not (or a note on accepted inaccurate solves)
   int iterations = 0;                 ///< [-]
   int contact_iterations = 0;         ///< back-end iterations summed over the contact solves [-]
@@ -45,17 +48,18 @@ struct GeometricIterationResult {
   Eigen::VectorXd rhs;  ///< W of the last contact problem as solved (less K·λ_prev) [N] or [N·m]
 };
 
-/// `build()` returns the contact problem at the current poses (its equality rows are the DOFs;
+/// `build(data)` writes the contact problem at the current poses (its equality rows are the DOFs;
 /// elastic supports' rows carry their stiffness K, and the loop subtracts K·λ_total of the earlier
-/// iterations from W so that G F + K(λ + λ_prev) = W); `move(λ)` moves the poses by the increment
-/// λ and returns its size [m]. `start` continues from a neighbouring state (its displacements
-/// already in the poses, its forces for the first solve). Exceptions from either propagate.
+/// iterations from W so that G F + K(λ + λ_prev) = W) or returns the geometric outcome that
+/// prevents it, which ends the iteration with that status; `move(λ)` moves the poses by the
+/// increment λ and returns its size [m]. `start` continues from a neighbouring state (its
+/// displacements already in the poses, its forces for the first solve). Exceptions from either
+/// propagate.
 /// @throws std::invalid_argument if start.displacements does not have one entry per DOF.
-GeometricIterationResult IterateGeometry(const std::function<solvers::ContactProblemData()>& build,
-                                         const std::function<double(const Eigen::VectorXd&)>& move,
-                                         solvers::ContactSolver& solver,
-                                         const solvers::ContactOptions& contact,
-                                         const GeometricIterationOptions& options,
-                                         const GeometricIterationStart& start = {});
+GeometricIterationResult IterateGeometry(
+    const std::function<StageOutcome(solvers::ContactProblemData*)>& build,
+    const std::function<double(const Eigen::VectorXd&)>& move, solvers::ContactSolver& solver,
+    const solvers::ContactOptions& contact, const GeometricIterationOptions& options,
+    const GeometricIterationStart& start = {});
 
 }  // namespace epicycle::transmission

@@ -16,9 +16,6 @@
 namespace epicycle::transmission {
 
 struct QuasiStaticOptions {
-  /// The setup of the stage model that the scene-based overloads below build (the model-based
-  /// ones use the model's own setup and ignore this).
-  QuasiStaticSetup setup;
   solvers::Backend backend = solvers::Backend::kActiveSetNewton;
   solvers::ContactOptions contact;
   int max_geometric_iterations = 30;   ///< [-]
@@ -47,6 +44,7 @@ struct QuasiStaticOptions {
 struct PositionResult {
   double carrier_angle = 0;  ///< φ_c [rad]
   bool converged = false;    ///< contact solves and geometric iterations converged
+  StageStatus status = StageStatus::kOk;  ///< what stopped it when not converged
   std::string message;       ///< why not, when not converged
   int geometric_iterations = 0;
   int contact_iterations = 0;  ///< back-end iterations summed over the geometric iterations [-]
@@ -73,11 +71,6 @@ PositionResult SolvePosition(const StageModel& model, double carrier_angle, cons
 /// see QuasiStaticOptions::warm_start); null, or a neighbour that did not converge: cold.
 PositionResult SolvePosition(const StageModel& model, double carrier_angle, const StageLoads& loads,
                              const QuasiStaticOptions& options, const PositionResult* neighbour);
-/// The same with the model built from (scene, stage, compliance, options.setup) and the scene's
-/// sun torque.
-PositionResult SolvePosition(const Scene& scene, const geometry::Stage& stage,
-                             const StageCompliance& compliance, double carrier_angle,
-                             const QuasiStaticOptions& options);
 
 /// L_i = n·LSR_i [-], the load-sharing factors (ideal 1).
 std::vector<double> LoadSharingFactors(const PositionResult& r);
@@ -87,8 +80,9 @@ double MeshLoadFactor(const PositionResult& r);
 /// Carrier angles of a sweep: `count` positions over [start, start + span) [rad].
 std::vector<double> SweepAngles(double start, double span, int count);
 
-/// Solves every position; a position that throws std::invalid_argument or does not converge is
-/// reported in its result (converged = false, message) and the sweep goes on. The positions run
+/// Solves every position; a position that does not converge (a geometric outcome or a failed
+/// solve: its status) is reported in its result (converged = false, status, message) and the
+/// sweep goes on. The positions run
 /// in options.threads contiguous chunks, each warm-started in sequence (options.warm_start).
 /// `on_result` (if given) sees every result with its index, in the order of the angles, as soon as
 /// it and every earlier one are computed (for files written incrementally and progress); it is
@@ -98,12 +92,6 @@ std::vector<double> SweepAngles(double start, double span, int count);
 std::vector<PositionResult> Sweep(
     const StageModel& model, const StageLoads& loads, const std::vector<double>& carrier_angles,
     const QuasiStaticOptions& options,
-    const std::function<void(const PositionResult&, int)>& on_result = {});
-/// The same with the model built from (scene, stage, compliance, options.setup) and the scene's
-/// sun torque.
-std::vector<PositionResult> Sweep(
-    const Scene& scene, const geometry::Stage& stage, const StageCompliance& compliance,
-    const std::vector<double>& carrier_angles, const QuasiStaticOptions& options,
     const std::function<void(const PositionResult&, int)>& on_result = {});
 
 }  // namespace epicycle::transmission

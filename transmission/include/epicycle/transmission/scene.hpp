@@ -23,6 +23,20 @@ struct Inertia {
   double inertia = 0;  ///< polar moment of inertia [kg·m²]
 };
 
+/// The members' masses and inertias (the scene's [sun], [planet], [ring], [carrier] tables);
+/// every planet has the planet's.
+struct StageInertias {
+  Inertia sun, planet, ring, carrier;
+};
+
+/// External loads on the stage [N·m] (counter-clockwise +): the one home of the input torque.
+/// Its sign selects the loaded flanks, which the stage's geometry is built with
+/// (geometry::StageSpec::load_sign, set from it by the scene reader); a study or a command that
+/// changes the torque changes it here and keeps the sign (StageModel checks it).
+struct StageLoads {
+  double sun_torque = 0;  ///< input torque on the sun [N·m], non-zero
+};
+
 /// A profile shift solved from a backlash (one of the scene's [[fit]] tables).
 struct ShiftFit {
   std::string gear;            ///< "sun", "planet" or "ring"
@@ -96,8 +110,8 @@ struct Scene {
   Material material;
   ModelSettings model;
   Supports supports;
-  Inertia sun, planet, ring, carrier;
-  double sun_torque = 0;       ///< input torque on the sun [N·m] (counter-clockwise +)
+  StageInertias inertia;
+  StageLoads loads;            ///< kind == kStage: the input torque
   double gap_window = 100e-6;  ///< contact-search gap window [m]
   std::vector<ShiftFit> fits;  ///< in the order they were applied
   std::string hash;            ///< ContentHash of the scene text (provenance of results)

@@ -18,26 +18,25 @@
 
 namespace epicycle::transmission {
 
-/// How the members are held (from the scene's [supports], or set by a study).
+/// The model choices of a stage model besides its geometry and compliance, read once from the
+/// scene (SetupFromScene) or set by a study or a command: how the members are held, the contact
+/// search's gap window, whether the local contact terms are added. The material and the plane
+/// assumption are the compliance's (StageCompliance::material, plane); the loads are passed to
+/// each computation (StageLoads).
 struct StageSetup {
+  std::string name;                     ///< the scene's, for problem names and messages
   SunSupport sun = SunSupport::kFixed;  ///< constrained (paper), floating or elastic sun
   double sun_stiffness = 0;     ///< k_s [N/m], SunSupport::kElastic: isotropic bearing stiffness
   double planet_stiffness = 0;  ///< k_p [N/m]: > 0 elastic planet bearings, 0 rigid pins
-  solvers::PlaneAssumption plane = solvers::PlaneAssumption::kPlaneStrain;
-  bool local_terms = true;  ///< false: structural compliance only (linear studies)
+  double gap_window = 100e-6;   ///< contact-search gap window [m], > 0
+  bool local_terms = true;      ///< false: structural compliance only (linear studies)
   /// @throws std::invalid_argument naming the field (negative or non-finite stiffness, an
-  ///         elastic sun without stiffness).
+  ///         elastic sun without stiffness, a gap window not > 0).
   void Validate() const;
 };
-using QuasiStaticSetup = StageSetup;  ///< the name the quasi-static driver's options use
 
-/// The scene's supports and model settings as a setup.
+/// The scene's supports, gap window and name as a setup.
 StageSetup SetupFromScene(const Scene& scene);
-
-/// External loads on the stage [N·m] (counter-clockwise +).
-struct StageLoads {
-  double sun_torque = 0;  ///< input torque on the sun [N·m]
-};
 
 /// The contact terms at given poses: everything the contact problem needs except the DOFs.
 /// An empty contact set (gears separated beyond the gap window) is a valid state.
@@ -51,17 +50,22 @@ struct ContactTerms {
 
 class StageModel {
  public:
-  /// Keeps references to `stage` and `compliance` (they must outlive the model); copies what it
-  /// needs of the scene (name, material, gap window).
+  /// Keeps references to `stage` and `compliance` (they must outlive the model).
   /// @throws std::invalid_argument for a setup that fails Validate().
-  StageModel(const Scene& scene, const geometry::Stage& stage, const StageCompliance& compliance,
+  StageModel(const geometry::Stage& stage, const StageCompliance& compliance,
              const StageSetup& setup);
 
   const geometry::Stage& stage() const { return stage_; }
+  const StageCompliance& compliance() const { return compliance_; }
   const StageSetup& setup() const { return setup_; }
-  const Material& material() const { return material_; }
-  const std::string& name() const { return name_; }
+  const Material& material() const { return compliance_.material(); }
+  const std::string& name() const { return setup_.name; }
   int planets() const { return stage_.planets(); }
+
+  /// @throws std::invalid_argument naming sun_torque_Nm if the torque is zero or not finite, or
+  ///         if its sign is not the one the stage's loaded flanks were built for
+  ///         (geometry::StageSpec::load_sign).
+  void CheckLoads(const StageLoads& loads) const;
 
   /// The DOFs set by quasi-static equilibrium: sun rotation, sun x and y (floating or elastic),
   /// every planet's rotation, planet x and y (elastic pins).
@@ -74,21 +78,26 @@ class StageModel {
     return stage_.Poses(carrier_angle);
   }
 
-  /// The contact terms at `poses`. @throws std::invalid_argument if a contact has no valid
-  /// local-term geometry.
+  /// The contact terms at `poses` into `terms`, reusing its buffers (but C, which the compliance
+  /// returns anew), or the geometric outcome that prevents them (kNoLineOfAction, kOffFlankGrid,
+  /// kNoReducedRadius, naming the mesh or contact; `terms` is then incomplete).
+  [[nodiscard]] StageOutcome Terms(const geometry::StagePoses& poses, ContactTerms* terms) const;
+  /// The same as a value, for poses that must work (the reference configuration).
+  /// @throws std::runtime_error with the outcome's message if they do not.
   ContactTerms Terms(const geometry::StagePoses& poses) const;
-  /// The same into `terms`, reusing its buffers (but C, which the compliance returns anew).
-  void Terms(const geometry::StagePoses& poses, ContactTerms* terms) const;
 
   /// G_kj = ∂δ_j/∂q_k [-] or [m] for the given DOFs (any StageDof, not only dofs()).
   Eigen::MatrixXd Sensitivity(const ContactTerms& terms, const std::vector<StageDof>& dofs) const;
 
   /// The quasi-static contact problem at `poses` (docs/model.md §5): G F + K λ = W over dofs(),
-  /// with W the loads on the DOFs. @throws std::invalid_argument if no potential contact lies
-  /// within the gap window (equilibrium under load is then impossible).
-  StageProblem Problem(const geometry::StagePoses& poses, const StageLoads& loads) const;
+  /// with W the loads on the DOFs; or the outcome that prevents it: those of Terms, and
+  /// kNoContact if no potential contact lies within the gap window (equilibrium under load is
+  /// then impossible).
+  [[nodiscard]] StageOutcome Problem(const geometry::StagePoses& poses, const StageLoads& loads,
+                                     StageProblem* problem) const;
 
   /// W: the loads on the DOFs (the sun torque on the sun's rotation) [N·m] or [N].
+  /// @throws std::invalid_argument as CheckLoads.
   Eigen::VectorXd LoadVector(const std::vector<StageDof>& dofs, const StageLoads& loads) const;
 
   /// The poses moved by rigid displacements q of the DOFs (rotations about rotation centres; the
@@ -117,9 +126,6 @@ class StageModel {
   const geometry::Stage& stage_;
   const StageCompliance& compliance_;
   StageSetup setup_;
-  Material material_;
-  std::string name_;
-  double gap_window_ = 0;
   std::vector<StageDof> dofs_;
   std::vector<double> support_;
 };

@@ -14,6 +14,30 @@
 
 namespace epicycle::transmission {
 
+/// What became of a stage computation at given poses. Bad input throws std::invalid_argument;
+/// these are the expected outcomes of a legal scene at an extreme pose (a trial step of an
+/// integrator, a large error, a large load), reported as statuses so that a driver can react: the
+/// dynamic right-hand side asks the integrator for a smaller step, a quasi-static position is
+/// reported failed and the sweep goes on.
+enum class StageStatus {
+  kOk,
+  kNoLineOfAction,    ///< a mesh's centres so placed that its base circles admit no line of action
+  kOffFlankGrid,      ///< a contact point outside its body's influence-table flank grid
+  kNoReducedRadius,   ///< a contact's curvature radii give no positive reduced radius
+  kNoContact,         ///< quasi-static: no potential contact within the gap window
+  kContactSolveFailed,  ///< the contact problem's solve did not converge
+  kNotSettled,        ///< quasi-static: the geometric iterations did not settle
+};
+/// "ok", "no line of action", "off the flank grid", ... (for messages and files).
+std::string StatusName(StageStatus status);
+
+/// A status with the reason (empty when ok), naming the mesh or contact.
+struct StageOutcome {
+  StageStatus status = StageStatus::kOk;
+  std::string message;
+  bool ok() const { return status == StageStatus::kOk; }
+};
+
 /// Bodies of a stage: 0 the sun, 1 the ring, 2 + i planet i.
 inline constexpr int kSunBody = 0;
 inline constexpr int kRingBody = 1;
@@ -45,11 +69,13 @@ int CarryForces(const std::vector<StageContact>& from, const Eigen::VectorXd& fo
                 const std::vector<StageContact>& to, Eigen::VectorXd* out);
 
 /// Every potential contact of every mesh at the given poses (both flanks, within the window).
+/// @throws std::runtime_error with the outcome's message if a mesh has no line of action.
 std::vector<StageContact> SearchStage(const geometry::Stage& stage,
                                       const geometry::StagePoses& poses, double gap_window);
-/// The same into `out` (cleared first; its capacity is reused).
-void SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses, double gap_window,
-                 std::vector<StageContact>* out);
+/// The same into `out` (cleared first; its capacity is reused); kNoLineOfAction (naming the mesh)
+/// if the poses place a mesh's base circles so that it has no line of action.
+StageOutcome SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses,
+                         double gap_window, std::vector<StageContact>* out);
 
 /// The structural compliance of the stage's bodies (built by the compliance layer):
 /// C_jk [m/N] of contacts j, k, coupling every pair of contacts that share a body.
@@ -59,8 +85,21 @@ class StageCompliance {
   /// @return N×N symmetric positive definite [m/N].
   virtual Eigen::MatrixXd Matrix(const geometry::Stage& stage, const geometry::StagePoses& poses,
                                  const std::vector<StageContact>& contacts) const = 0;
+  /// The same into `out`, or kOffFlankGrid (naming the contact) for a contact point that the
+  /// compliance cannot represent at these poses. The default calls Matrix.
+  virtual StageOutcome TryMatrix(const geometry::Stage& stage, const geometry::StagePoses& poses,
+                                 const std::vector<StageContact>& contacts,
+                                 Eigen::MatrixXd* out) const {
+    *out = Matrix(stage, poses, contacts);
+    return {};
+  }
   /// Depth h [m] at which the body's structural and local terms are joined.
   virtual double JoiningDepth(int body) const = 0;
+  /// The bodies' material and plane assumption, the same in the structural term and in the
+  /// local contact terms that the stage model adds (one home: what the compliance was built
+  /// with).
+  virtual const Material& material() const = 0;
+  virtual solvers::PlaneAssumption plane() const = 0;
 };
 
 /// A rigid degree of freedom of a gear body: in a quasi-static problem one set by equilibrium (a
@@ -96,10 +135,20 @@ solvers::LocalTermParameters ContactLocalTerm(const geometry::PotentialContact& 
                                               const Material& material,
                                               solvers::PlaneAssumption plane, double depth_a,
                                               double depth_b, const std::string& label);
+/// The same into `out`, or kNoReducedRadius naming `label` instead of throwing.
+StageOutcome ContactLocalTerm(const geometry::PotentialContact& contact, const geometry::Gear& a,
+                              const geometry::Gear& b, const Material& material,
+                              solvers::PlaneAssumption plane, double depth_a, double depth_b,
+                              const std::string& label, solvers::LocalTermParameters* out);
 /// The same for a stage contact, named by its label (built only for the message).
 solvers::LocalTermParameters ContactLocalTerm(const StageContact& contact, const geometry::Gear& a,
                                               const geometry::Gear& b, const Material& material,
                                               solvers::PlaneAssumption plane, double depth_a,
                                               double depth_b);
+/// The same into `out`, or kNoReducedRadius naming the contact instead of throwing.
+StageOutcome ContactLocalTerm(const StageContact& contact, const geometry::Gear& a,
+                              const geometry::Gear& b, const Material& material,
+                              solvers::PlaneAssumption plane, double depth_a, double depth_b,
+                              solvers::LocalTermParameters* out);
 
 }  // namespace epicycle::transmission

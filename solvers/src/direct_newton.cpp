@@ -1,0 +1,198 @@
+// The Newton's direct path (direct_newton.hpp).
+#include "direct_newton.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace epicycle::solvers::internal {
+namespace {
+
+// The direct path's sweeps on a factorisation must contract at least this much each
+// (DirectNewton::ModelStep); it also bounds how far u' may have moved from a kept factorisation.
+constexpr double kMinContraction = 1e-2;
+
+}  // namespace
+
+bool DirectNewton::Run(const ScaledProblem& p, double target, int max_iterations, bool reuse,
+                       Eigen::VectorXd* x_io, int* iterations) {
+  const int n = p.num_contacts();
+  Eigen::VectorXd& x = *x_io;
+  Eigen::VectorXd& g = g_;
+  if (x.size() != n) x.setZero(n);
+  u_.resize(n);
+  du_.resize(n);
+  if (!reuse) factor_n_ = -1;  // a cold start does not use the previous call's factorisation
+  double best = std::numeric_limits<double>::infinity();
+  int since_best = 0;
+  for (int it = 0;; ++it) {
+    *iterations = it;
+    // A contact at zero force has u = 0; its derivative is needed only if it enters A (below).
+    for (int j = 0; j < n; ++j)
+      if (x(j) != 0.0)
+        p.LocalAt(j, x(j), kDerivativeFloor, &u_(j), &du_(j));
+      else
+        u_(j) = du_(j) = 0.0;
+    // ∇Φ(x) = C x + u − δ0, by the columns of C with a force (contiguous; a contact at zero
+    // force adds nothing). The sums' order differs from ScaledProblem::Gradient's only in
+    // round-off.
+    g = u_ - p.delta0;
+    for (int j = 0; j < n; ++j) {
+      const double xj = x(j);
+      if (xj == 0.0) continue;
+      const double* col = p.C.data() + static_cast<std::ptrdiff_t>(j) * n;
+      for (int i = 0; i < n; ++i) g(i) += col[i] * xj;
+    }
+    double res = 0.0;
+    bool negative = false;
+    for (int j = 0; j < n; ++j) {
+      res = std::max(res, std::abs(std::min(x(j), g(j))));
+      negative = negative || x(j) < 0.0;
+    }
+    if (!std::isfinite(res)) return false;
+    if (res <= target && !negative) return true;
+    if (res < best) {
+      best = res;
+      since_best = 0;
+    } else if (++since_best >= 3) {
+      return false;  // no progress: cycling between active sets, or worse
+    }
+    if (it >= max_iterations) return false;
+    active_.clear();
+    released_.clear();  // inactive contacts whose force is not yet zero
+    for (int j = 0; j < n; ++j)
+      if (x(j) > g(j))
+        active_.push_back(j);
+      else if (x(j) != 0.0)
+        released_.push_back(j);
+    const int na = static_cast<int>(active_.size());
+    r_.resize(na);
+    du_a_.resize(na);
+    c_aa_ = p.C(active_, active_);
+    for (int a = 0; a < na; ++a) {
+      const int ja = active_[a];
+      du_a_(a) = du_(ja);
+      if (x(ja) == 0.0) {
+        // Entering from zero force, where u'(0⁺) = +∞: the secant u(x̂)/x̂ to the force x̂ =
+        // −g_j/C_jj that would close its gap through the linear part alone (the floor keeps
+        // it finite). The step then sees the local term's compliance at the scale of the
+        // force it is heading for; the tangent at the floor (u' ~ ln(1/x), large) made the
+        // first step of a cold start on the stage go only half way (4 iterations, now 3).
+        const double guess = std::max(-g(ja) / p.C(ja, ja), kDerivativeFloor);
+        double u_guess = 0.0, du_guess = 0.0;
+        p.LocalAt(ja, guess, kDerivativeFloor, &u_guess, &du_guess);
+        du_a_(a) = u_guess / guess;
+      }
+      // −g_A + C_AI x_I: the inactive contacts' forces go to zero in this step.
+      double s = -g(ja);
+      for (int j : released_) s += p.C(ja, j) * x(j);
+      r_(a) = s;
+    }
+    for (int j : released_) x(j) = 0.0;
+    if (na > 0) {
+      // The first step of a warm start may solve, on the factorisation kept from the previous
+      // call, the model of g_A at x + dx to second order in the local terms (ModelStep): when
+      // that factorisation's active set is this one and its diagonal u' within kMinContraction
+      // of this step's (C has moved by one time step, which the sweeps measure). Every other
+      // step is Newton's on a new factorisation of C_AA + diag u'_A.
+      bool kept = it == 0 && factor_n_ == n && active_ == factor_active_;
+      for (int a = 0; kept && a < na; ++a)
+        kept = std::abs(du_a_(a) - factor_du_(a)) <= kMinContraction * h_(a, a);
+      if (!kept || !ModelStep(p, x, target)) {
+        factor_n_ = -1;  // until the factorisation below has succeeded
+        h_ = c_aa_;
+        h_.diagonal() += du_a_;
+        llt_.compute(h_);
+        if (llt_.info() != Eigen::Success) return false;
+        factor_n_ = n;
+        factor_active_ = active_;
+        factor_du_ = du_a_;
+        inv_diag_ = llt_.matrixLLT().diagonal().cwiseInverse();
+        dx_ = r_;
+        Substitute(&dx_);
+      }
+      for (int a = 0; a < na; ++a) x(active_[a]) += dx_(a);
+    }
+  }
+}
+
+void DirectNewton::Substitute(Eigen::VectorXd* v) const {
+  // L Lᵀ y = v by forward and back substitution, both along the columns of L (contiguous in
+  // memory): for the few contacts of a stage, plain loops cost less than the general triangular
+  // solvers, and with the diagonal's reciprocals kept with the factorisation the chain of
+  // dependent operations multiplies instead of dividing.
+  double* r = v->data();
+  const double* l = llt_.matrixLLT().data();
+  const double* inv_d = inv_diag_.data();
+  const int na = static_cast<int>(v->size());
+  for (int k = 0; k < na; ++k) {  // L z = v, column by column
+    const double zk = r[k] * inv_d[k];
+    r[k] = zk;
+    const double* col = l + static_cast<std::ptrdiff_t>(k) * na;
+    for (int i = k + 1; i < na; ++i) r[i] -= col[i] * zk;
+  }
+  for (int i = na - 1; i >= 0; --i) {  // Lᵀ y = z: row i of Lᵀ is column i of L
+    const double* col = l + static_cast<std::ptrdiff_t>(i) * na;
+    double s = r[i];
+    for (int k = i + 1; k < na; ++k) s -= col[k] * r[k];
+    r[i] = s * inv_d[i];
+  }
+}
+
+bool DirectNewton::ModelStep(const ScaledProblem& p, const Eigen::VectorXd& x, double target) {
+  // The model of the active gaps at x + dx, to second order in the local terms,
+  //   (C_AA + diag u'_A) dx + q ∘ dx² = r,   q = ½ u''_A,
+  // solved by fixed-point sweeps on the kept factorisation H_f, from dx = H_f⁻¹ r:
+  //   dx ← dx + H_f⁻¹ (r − (C_AA + diag u'_A) dx − q ∘ dx²).
+  // They contract by ρ ≈ ‖H_f⁻¹ (H − H_f + 2 diag(q∘dx))‖, ~1e-3 from the previous time step.
+  //  - The quadratic term enters for contacts with x_a > 0 and |dx_a| ≤ x_a/2 (the first
+  //    solve's step), where the Taylor series of u (a logarithm in x) converges fast; elsewhere
+  //    (a contact entering from zero force) it is left out.
+  //  - The sweeps stop when the estimated distance to the model's solution, ‖δ‖ρ/(1 − ρ), is
+  //    below what the model itself neglects: 1 % of the target, or the third-order term
+  //    |q_a dx_a³|/x_a (u''' ~ u''/x) when that is larger. The step is then Chebyshev's, of
+  //    third order: from a warm start its error is below the target and one step reaches it,
+  //    where Newton's (second order) needed a second step and a factorisation.
+  //  - Sweeps that contract by less than kMinContraction each, or that need more than six, give
+  //    up (false): the caller factorises and takes Newton's step.
+  const int na = static_cast<int>(active_.size());
+  dx_ = r_;
+  Substitute(&dx_);
+  q_.resize(na);
+  for (int a = 0; a < na; ++a) {
+    const int ja = active_[a];
+    const double xa = x(ja);
+    q_(a) =
+        xa > 0.0 && std::abs(dx_(a)) <= 0.5 * xa ? 0.5 * p.LocalSecondDerivativeAt(ja, xa) : 0.0;
+  }
+  e_.resize(na);
+  constexpr int kMaxSweeps = 6;
+  double previous = dx_.cwiseAbs().maxCoeff();
+  for (int k = 0; k < kMaxSweeps; ++k) {
+    // e = r − C_AA dx − (u'_A + q∘dx)∘dx, C_AA dx by columns (contiguous; the general product
+    // costs more at this size).
+    e_ = r_;
+    for (int b = 0; b < na; ++b) {
+      const double* col = c_aa_.data() + static_cast<std::ptrdiff_t>(b) * na;
+      const double d = dx_(b);
+      for (int a = 0; a < na; ++a) e_(a) -= col[a] * d;
+    }
+    double neglected = 0.01 * target;
+    for (int a = 0; a < na; ++a) {
+      const double qd = q_(a) * dx_(a);
+      e_(a) -= (du_a_(a) + qd) * dx_(a);
+      if (qd != 0.0)
+        neglected = std::max(neglected, std::abs(qd * dx_(a) * dx_(a)) / x(active_[a]));
+    }
+    Substitute(&e_);
+    dx_ += e_;
+    const double size = e_.cwiseAbs().maxCoeff();
+    const double rho = previous > 0.0 ? size / previous : 0.0;
+    if (!(rho <= kMinContraction)) return false;
+    if (size * rho <= (1.0 - rho) * neglected) return true;
+    previous = size;
+  }
+  return false;
+}
+
+}  // namespace epicycle::solvers::internal
