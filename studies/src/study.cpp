@@ -9,7 +9,7 @@
 
 #include "epicycle/geometry/gear.hpp"
 #include "epicycle/studies/sampling.hpp"
-#include "toml_reader.hpp"
+#include "epicycle/transmission/internal/toml_reader.hpp"
 
 namespace epicycle::studies {
 

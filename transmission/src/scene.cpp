@@ -11,7 +11,7 @@
 
 #include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/geometry/iso.hpp"
-#include "toml_reader.hpp"
+#include "epicycle/transmission/internal/toml_reader.hpp"
 
 namespace epicycle::transmission {
 
@@ -663,6 +663,12 @@ Scene ReadScene(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return ParseScene(text.str(), path);
+}
+
+const char* SunSupportName(SunSupport support) {
+  return support == SunSupport::kFixed      ? "fixed"
+         : support == SunSupport::kFloating ? "floating"
+                                            : "elastic";
 }
 
 }  // namespace epicycle::transmission

@@ -1,4 +1,4 @@
-#include "toml_reader.hpp"
+#include "epicycle/transmission/internal/toml_reader.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,6 +1,7 @@
 // Strict reading of scene tables: every key is consumed by name, with its unit in the key;
 // unknown keys, missing keys, wrong types and out-of-range values are errors that name the key,
-// the value and the rule.
+// the value and the rule. Internal: shared by the scene reader and the study-file reader of
+// studies/ (one reader for every input file's rules and messages); not an API for users.
 #pragma once
 
 #include <optional>
