@@ -33,10 +33,10 @@ TEST_CASE("run span: duration, mesh frequency and output times", "[unit][dynamic
   CHECK(planet.outputs == 480);
   CHECK(dynamics::MakeRunSpan(stage, wc, RunRange::kCarrierRevolution, 0.0, 1).duration ==
         Approx(0.65).epsilon(1e-14));
-  // A given time replaces the range: 0.0125 s = 1.25 cycles, ⌈1.25 · 4⌉ = 5 outputs.
-  const auto timed = dynamics::MakeRunSpan(stage, wc, RunRange::kCarrierRevolution, 0.0125, 4);
-  CHECK(timed.duration == 0.0125);
-  CHECK(timed.outputs == 5);
+  // A given time replaces the range: 0.013 s = 1.3 cycles, ⌈1.3 · 4⌉ = ⌈5.2⌉ = 6 outputs.
+  const auto timed = dynamics::MakeRunSpan(stage, wc, RunRange::kCarrierRevolution, 0.013, 4);
+  CHECK(timed.duration == 0.013);
+  CHECK(timed.outputs == 6);
   CHECK_THROWS_AS(dynamics::MakeRunSpan(stage, 0.0, RunRange::kMeshCycle, 0.0, 20),
                   std::invalid_argument);
   CHECK_THROWS_AS(dynamics::MakeRunSpan(stage, wc, RunRange::kMeshCycle, -1.0, 20),
