@@ -287,8 +287,7 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const transmission::Scen
   return plan;
 }
 
-SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window,
-                           int planets) {
+SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window) {
   SpeedResult r;
   if (window.empty()) return r;
   std::vector<double> peak(plan.qs_peak_mesh_force.size(), 0.0);
@@ -296,8 +295,8 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
   r.lsr_min = INFINITY;
   r.lsr_max = -INFINITY;
   for (const DynamicSample& s : window) {
+    r.k_gamma = std::max(r.k_gamma, s.k_gamma);
     for (double l : s.load_sharing) {
-      r.k_gamma = std::max(r.k_gamma, planets * l);
       r.lsr_min = std::min(r.lsr_min, l);
       r.lsr_max = std::max(r.lsr_max, l);
     }
@@ -352,7 +351,7 @@ SpeedResult RunSpeed(const DynamicModel& base, const transmission::Scene& scene,
     const std::vector<DynamicSample> window(
         run.samples.begin() + static_cast<std::ptrdiff_t>(std::min(skipped, run.samples.size())),
         run.samples.end());
-    r = SummariseSpeed(plan, window, model.stage_model().stage().planets());
+    r = SummariseSpeed(plan, window);
     r.warnings = DynamicWarnings(model.stage_model().stage(), window);
     r.stats = run.stats;
     r.ok = run.completed;

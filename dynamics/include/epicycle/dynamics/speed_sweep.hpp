@@ -154,9 +154,9 @@ struct SpeedSweepResult {
 SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const transmission::Scene& scene,
                               const SpeedSweepOptions& options);
 
-/// The figures of one speed from its window's samples (those at plan.window_angles).
-SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window,
-                           int planets);
+/// The figures of one speed from its window's samples (those at plan.window_angles); K_γ is the
+/// largest DynamicSample::k_gamma of the window.
+SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window);
 
 /// Runs every speed of `plan` (from PlanSpeedSweep with the same options) on `options.threads`
 /// workers (lowest speed first: the slowest to run), each result handed to `on_result` as soon as
