@@ -17,6 +17,7 @@
 
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/run_range.hpp"
 
 namespace {
 
@@ -82,7 +83,7 @@ void BM_StageSweep360(benchmark::State& state) {
   transmission::QuasiStaticOptions o;
   o.warm_start = state.range(1) > 0;
   o.threads = state.range(1) == 2 ? 2 : 1;
-  const double period = 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth();
+  const double period = transmission::CarrierSpan(stage, transmission::RunRange::kPlanetRevolution);
   const auto angles = transmission::SweepAngles(0.0, period, 360);
   std::vector<transmission::PositionResult> results;
   for (auto _ : state) {

@@ -42,11 +42,13 @@
 #include <fmt/format.h>
 
 #include "epicycle/compliance/influence_cache.hpp"
+#include "epicycle/report/files.hpp"
+#include "epicycle/report/svg_plot.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/scene.hpp"
-#include "svg_plot.hpp"
 
 namespace {
 
@@ -263,7 +265,7 @@ void WriteFigure(const std::string& path, const std::vector<Knob>& knobs,
       2 * pw, ph * static_cast<double>(quantities.size()));
   for (std::size_t q = 0; q < quantities.size(); ++q) {
     for (int col = 0; col < 2; ++col) {
-      epicycle::app::LinePlot plot;
+      epicycle::report::LinePlot plot;
       plot.log_x = plot.log_y = true;
       plot.title = quantities[q].title + (col == 0 ? " vs table build" : " vs one position");
       plot.x_label = col == 0 ? "CPU to build the three influence tables [s]"
@@ -273,7 +275,7 @@ void WriteFigure(const std::string& path, const std::vector<Knob>& knobs,
       for (const Knob& knob : knobs) {
         // A line in setting order where the knob moves this cost (refinement: both; the window:
         // the position's), points where it does not (h; the window's tables).
-        epicycle::app::PlotSeries ser;
+        epicycle::report::PlotSeries ser;
         ser.name = knob.label;
         ser.markers = true;
         ser.points = knob.name.starts_with("join_depth") || (knob.name == "gap_window" && col == 0);
@@ -288,13 +290,13 @@ void WriteFigure(const std::string& path, const std::vector<Knob>& knobs,
       }
       svg += fmt::format("<svg x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\">\n", col * pw,
                          static_cast<double>(q) * ph, pw, ph);
-      std::string panel = epicycle::app::RenderSvg(plot);
+      std::string panel = epicycle::report::RenderSvg(plot);
       // Drop the panel's own XML root attributes: nested as an <svg> element it keeps its body.
       svg += panel.substr(panel.find('\n') + 1);
     }
   }
   svg += "</svg>\n";
-  epicycle::app::WriteTextFile(path, svg);
+  epicycle::report::WriteTextFile(path, svg);
 }
 
 // Richardson analysis of a scalar X(r) on the three finest refinements r_a < r_b < r_c, element
@@ -403,8 +405,8 @@ int main(int argc, char** argv) try {
       tr::ReadScene(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_runout.toml");
   const geo::Stage stage(base.stage);
   // One planet revolution relative to the carrier (the period of planet 1's run-out).
-  const std::vector<double> angles = tr::SweepAngles(
-      0.0, 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth(), positions);
+  const std::vector<double> angles =
+      tr::SweepAngles(0.0, tr::CarrierSpan(stage, tr::RunRange::kPlanetRevolution), positions);
 
   std::vector<Knob> knobs(3);
   knobs[0] = {"refinement", "refinement 1..R", {}, Setting{max_refinement, 1.0, 1.0}};

@@ -4,10 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <map>
-#include <sstream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,11 +13,13 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "console.hpp"
 #include "epicycle/config.h"
+#include "epicycle/report/contact_plots.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/solvers/performance_profile.hpp"
 #include "epicycle/transmission/scene.hpp"
-#include "provenance.hpp"
 
 namespace epicycle::app {
 namespace {
@@ -111,9 +111,9 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
   fmt::print("time         {:.3e} s in the back end, {:.3e} s in total\n", r.solve_seconds,
              r.total_seconds);
   fmt::print("residual     complementarity {}, equilibrium {}, total {} (tolerance {:.1e})\n",
-             Finite(r.residual.complementarity, "{:.3e}", "not finite"),
-             Finite(r.residual.equilibrium, "{:.3e}", "not finite"),
-             Finite(r.residual.total, "{:.3e}", "not finite"), tol);
+             Num(r.residual.complementarity, "{:.3e}", "not finite"),
+             Num(r.residual.equilibrium, "{:.3e}", "not finite"),
+             Num(r.residual.total, "{:.3e}", "not finite"), tol);
   fmt::print("active       {} of {} contacts{}\n", r.active_contacts, problem.num_contacts(),
              r.polished ? " (POLISHED)" : "");
   // A failed solve still shows its last iterate (what the back end stopped at), marked as such;
@@ -122,13 +122,13 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
   const auto& labels = problem.data().contact_labels;
   fmt::print("forces [N]{}:\n", what);
   for (int j = 0; j < sol.force.size() && j < problem.num_contacts(); ++j)
-    fmt::print("  {:4d} {:>16}  {}\n", j, Finite(sol.force(j), "{:.9e}", "not finite"),
+    fmt::print("  {:4d} {:>16}  {}\n", j, Num(sol.force(j), "{:.9e}", "not finite"),
                labels.empty() ? "" : labels[j]);
   if (problem.num_equalities() > 0) {
     const auto& ml = problem.data().multiplier_labels;
     fmt::print("multipliers (rigid displacements){}:\n", what);
     for (int i = 0; i < sol.multiplier.size() && i < problem.num_equalities(); ++i)
-      fmt::print("  {:4d} {:>16}  {}\n", i, Finite(sol.multiplier(i), "{:.9e}", "not finite"),
+      fmt::print("  {:4d} {:>16}  {}\n", i, Num(sol.multiplier(i), "{:.9e}", "not finite"),
                  ml.empty() ? "" : ml[i]);
   }
   if (file.expected && converged) {
@@ -142,24 +142,6 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
                                         solvers::StatusName(r.status), r.message));
 }
 
-// Replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> in a markdown file.
-void ReplaceBetweenMarkers(const std::string& doc, const std::string& name,
-                           const std::string& text) {
-  const std::string begin = "<!-- " + name + ":begin -->", end = "<!-- " + name + ":end -->";
-  std::ifstream in(doc);
-  if (!in) throw std::invalid_argument("--update-docs " + doc + ": cannot be read");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string all = ss.str();
-  const auto a = all.find(begin), e = all.find(end);
-  if (a == std::string::npos || e == std::string::npos || e < a)
-    throw std::invalid_argument("--update-docs " + doc + ": markers " + begin + " ... " + end +
-                                " not found");
-  all = all.substr(0, a + begin.size()) + "\n" + text + all.substr(e);
-  std::ofstream(doc) << all;
-  fmt::print("table written into {}\n", doc);
-}
-
 struct Row {
   std::string backend, problem, category, status, message;
   double residual = 0, seconds = 0;
@@ -169,115 +151,6 @@ struct Row {
   int iterations = 0;
   bool solved = false;
 };
-
-std::string Svg(double w, double h) {
-  return fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} "
-      "{1}\" "
-      "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
-      "fill=\"white\"/>\n",
-      w, h);
-}
-
-const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
-                          "#ff7f0e", "#8c564b", "#17becf"};
-
-void WriteSvgProfile(const std::string& path, const std::vector<std::string>& backends,
-                     const std::vector<Row>& rows, const std::vector<std::string>& problems) {
-  // Dolan–Moré performance profile: fraction of problems a back end solves within τ× the best time.
-  std::map<std::string, double> best;
-  for (const Row& r : rows)
-    if (r.solved)
-      best[r.problem] = best.count(r.problem) ? std::min(best[r.problem], r.seconds) : r.seconds;
-  const double w = 640, h = 420, x0 = 60, y0 = 20, pw = 540, ph = 340, tau_max = 1e4;
-  std::string s = Svg(w, h);
-  s += fmt::format(
-      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", x0,
-      y0, pw, ph);
-  for (int k = 0; k <= 4; ++k) {
-    const double x = x0 + pw * k / 4.0;
-    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">1e{}</text>\n", x,
-                     y0 + ph + 16, k);
-    const double y = y0 + ph - ph * k / 4.0;
-    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:.2f}</text>\n", x0 - 4, y + 4,
-                     k / 4.0);
-  }
-  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">time / best time (tau)</text>\n",
-                   x0 + pw / 2, h - 8);
-  s += fmt::format(
-      "<text x=\"14\" y=\"{}\" transform=\"rotate(-90 14 {})\" text-anchor=\"middle\">fraction of "
-      "problems solved</text>\n",
-      y0 + ph / 2, y0 + ph / 2);
-  for (std::size_t b = 0; b < backends.size(); ++b) {
-    std::vector<double> ratios;
-    for (const Row& r : rows)
-      if (r.backend == backends[b] && r.solved) ratios.push_back(r.seconds / best[r.problem]);
-    std::sort(ratios.begin(), ratios.end());
-    std::string pts = fmt::format("{},{} ", x0, y0 + ph);
-    double frac = 0;
-    for (std::size_t i = 0; i < ratios.size(); ++i) {
-      const double x = x0 + pw * std::min(std::log10(ratios[i]), std::log10(tau_max)) / 4.0;
-      pts += fmt::format("{:.1f},{:.1f} ", x, y0 + ph - ph * frac);
-      frac = static_cast<double>(i + 1) / static_cast<double>(problems.size());
-      pts += fmt::format("{:.1f},{:.1f} ", x, y0 + ph - ph * frac);
-    }
-    pts += fmt::format("{},{:.1f}", x0 + pw, y0 + ph - ph * frac);
-    const char* col = kColours[b % 7];
-    s += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"2\" points=\"{}\"/>\n",
-                     col, pts);
-    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", x0 + pw - 120,
-                     y0 + ph - 20 - 16 * static_cast<double>(b), col, backends[b]);
-  }
-  s += "</svg>\n";
-  std::ofstream(path) << s;
-}
-
-void WriteSvgScatter(const std::string& path, const std::vector<std::string>& backends,
-                     const std::vector<Row>& rows) {
-  // Error against the reference versus run time, log-log; failures plotted at the top edge.
-  const double w = 640, h = 420, x0 = 70, y0 = 20, pw = 530, ph = 340;
-  const double tmin = -6, tmax = 0, emin = -16, emax = 0;
-  std::string s = Svg(w, h);
-  s += fmt::format(
-      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", x0,
-      y0, pw, ph);
-  for (int k = static_cast<int>(tmin); k <= static_cast<int>(tmax); ++k)
-    s += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">1e{}</text>\n",
-                     x0 + pw * (k - tmin) / (tmax - tmin), y0 + ph + 16, k);
-  for (int k = static_cast<int>(emin); k <= static_cast<int>(emax); k += 2)
-    s += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">1e{}</text>\n", x0 - 4,
-                     y0 + ph - ph * (k - emin) / (emax - emin) + 4, k);
-  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">run time per solve [s]</text>\n",
-                   x0 + pw / 2, h - 8);
-  s += fmt::format(
-      "<text x=\"14\" y=\"{}\" transform=\"rotate(-90 14 {})\" text-anchor=\"middle\">error "
-      "against the reference [-]</text>\n",
-      y0 + ph / 2, y0 + ph / 2);
-  for (std::size_t b = 0; b < backends.size(); ++b) {
-    const char* col = kColours[b % 7];
-    for (const Row& r : rows) {
-      if (r.backend != backends[b]) continue;
-      // A run without a finite error (failed, or thrown) is drawn at the top edge.
-      const double err = std::isfinite(r.force_err) && std::isfinite(r.disp_err)
-                             ? std::max(r.force_err, r.disp_err)
-                             : std::pow(10.0, emax);
-      const double lx = std::clamp(std::log10(std::max(r.seconds, 1e-12)), tmin, tmax);
-      const double ly = std::clamp(std::log10(std::max(err, 1e-16)), emin, emax);
-      const double x = x0 + pw * (lx - tmin) / (tmax - tmin),
-                   y = y0 + ph - ph * (ly - emin) / (emax - emin);
-      if (r.solved)
-        s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3\" fill=\"{}\"/>\n", x, y, col);
-      else
-        s += fmt::format(
-            "<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"{}\" text-anchor=\"middle\">x</text>\n", x,
-            y + 4, col);
-    }
-    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", x0 + 10,
-                     y0 + 16 + 16 * static_cast<double>(b), col, backends[b]);
-  }
-  s += "</svg>\n";
-  std::ofstream(path) << s;
-}
 
 // "status: message", without repeating the status where the back end's message starts with it.
 std::string WithStatus(const std::string& status, const std::string& message) {
@@ -302,7 +175,7 @@ Run CompareRun(Backend b, const ContactProblem& problem, const ContactOptions& o
 
 void CompareCommand(const std::vector<std::string>& inputs, const std::string& csv,
                     const std::string& svg_prefix, double tol, int repeats,
-                    const std::string& doc) {
+                    const std::string& markdown) {
   const std::vector<std::string> files = ExpandProblemFiles(inputs);
   const std::vector<Backend> backends = solvers::AvailableBackends();
   std::vector<Row> rows;
@@ -312,22 +185,21 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
   options.tolerance = tol;
   // The CSV is written as the runs are computed (one flushed row per run), so that a later bad
   // file or an interrupted run keeps every row computed before it.
-  std::ofstream out;
+  std::optional<CsvFile> out;
   if (!csv.empty()) {
     const fs::path parent = fs::path(csv).parent_path();
     if (!parent.empty()) fs::create_directories(parent);
-    out.open(csv);
-    if (!out) throw std::invalid_argument("--csv " + csv + ": cannot be written");
+    out.emplace(csv);
     std::string hashes;
     for (const std::string& f : files) hashes += FileHash(f) + "\n";
     std::string backends_used;
     for (const std::string& b : names) backends_used += (backends_used.empty() ? "" : " ") + b;
-    out << ProvenanceCsvLine(FileProvenance(backends_used,
-                                            fmt::format("{} problem files", files.size()),
-                                            transmission::ContentHash(hashes)));
-    out << "backend,problem,category,status,residual,force_error,multiplier_error,"
-           "displacement_error,median_seconds,iterations,message\n";
-    out.flush();
+    out->Write(ProvenanceCsvLine(FileProvenance(backends_used,
+                                                fmt::format("{} problem files", files.size()),
+                                                transmission::ContentHash(hashes))));
+    out->WriteLine(
+        "backend,problem,category,status,residual,force_error,multiplier_error,"
+        "displacement_error,median_seconds,iterations,message");
   }
   // Failed runs: reported on stderr as they happen, and the command exits 1 at the end.
   std::vector<std::string> failures;
@@ -368,17 +240,12 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
       if (!row.solved)
         fail(fmt::format("{} on {} ({}): {}", row.backend, row.problem, path,
                          WithStatus(row.status, row.message)));
-      if (out.is_open()) {
-        std::string msg = row.message;
-        for (char& c : msg)
-          if (c == ',' || c == '\n') c = ';';
-        out << fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", row.backend, row.problem,
-                           row.category, row.status, Finite(row.residual, "{:.6e}"),
-                           Finite(row.force_err, "{:.6e}"), Finite(row.mult_err, "{:.6e}"),
-                           Finite(row.disp_err, "{:.6e}"), Finite(row.seconds, "{:.6e}"),
-                           row.iterations, msg);
-        out.flush();
-      }
+      if (out)
+        out->WriteLine(fmt::format("{},{},{},{},{},{},{},{},{},{},{}", row.backend, row.problem,
+                                   row.category, row.status, Num(row.residual, "{:.6e}"),
+                                   Num(row.force_err, "{:.6e}"), Num(row.mult_err, "{:.6e}"),
+                                   Num(row.disp_err, "{:.6e}"), Num(row.seconds, "{:.6e}"),
+                                   row.iterations, CsvText(row.message)));
       rows.push_back(row);
     }
   }
@@ -418,11 +285,24 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
     md += fmt::format("| {} | {}/{} | {:.2e} | {:.1e} | {:.1e} | {} |\n", b, solved, total,
                       t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res, total - solved);
   }
+  if (out) out->Close();
   if (!csv.empty()) fmt::print("\nCSV written to {}\n", csv);
-  if (!doc.empty()) ReplaceBetweenMarkers(doc, "compare-table", md);
+  if (!markdown.empty()) WriteTextFile(markdown, md);
   if (!svg_prefix.empty()) {
-    WriteSvgProfile(svg_prefix + "_profile.svg", names, rows, problem_names);
-    WriteSvgScatter(svg_prefix + "_error_vs_time.svg", names, rows);
+    std::vector<solvers::ProfileRun> runs;
+    std::vector<report::ErrorTimePoint> points;
+    for (const Row& r : rows) {
+      runs.push_back({r.problem, r.backend, r.seconds, r.solved});
+      const bool finite = std::isfinite(r.force_err) && std::isfinite(r.disp_err);
+      points.push_back(
+          {r.backend, r.seconds,
+           finite ? std::max(r.force_err, r.disp_err) : std::numeric_limits<double>::quiet_NaN(),
+           r.solved});
+    }
+    WriteTextFile(svg_prefix + "_profile.svg",
+                  report::PerformanceProfileSvg(solvers::DolanMoreProfile(runs, names),
+                                                problem_names.size()));
+    WriteTextFile(svg_prefix + "_error_vs_time.svg", report::ErrorVersusTimeSvg(names, points));
     fmt::print("SVG written to {0}_profile.svg and {0}_error_vs_time.svg\n", svg_prefix);
   }
   if (!failures.empty())
@@ -432,7 +312,7 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
         failures.size(), files.size() * (backends.size() + 1), csv.empty() ? "" : " and the CSV"));
 }
 
-void StabilityCommand(const std::string& dir, const std::string& doc, double tol) {
+void StabilityCommand(const std::string& dir, double tol) {
   std::vector<std::string> files;
   for (const std::string& f : ExpandProblemFiles({dir}))
     if (solvers::ReadContactProblemFile(f).category == "stiff") files.push_back(f);
@@ -476,7 +356,6 @@ void StabilityCommand(const std::string& dir, const std::string& doc, double tol
       "stability` ({}).\n",
       tol, kReferenceTolerance, EPICYCLE_VERSION);
   fmt::print("{}", table);
-  if (!doc.empty()) ReplaceBetweenMarkers(doc, "stability-table", table);
 }
 
 }  // namespace
@@ -504,7 +383,7 @@ void RegisterContactCommands(CLI::App& app) {
   static std::string c_csv, c_svg;
   static double c_tol = 1e-10;
   static int c_repeat = 5;
-  static std::string c_doc;
+  static std::string c_markdown;
   compare->add_option("inputs", c_inputs, "problem files or directories")->required();
   compare->add_option("--csv", c_csv, "write one row per (back end, problem)");
   compare->add_option("--svg-prefix", c_svg,
@@ -512,21 +391,19 @@ void RegisterContactCommands(CLI::App& app) {
   compare->add_option("--tol", c_tol, "tolerance on the nondimensional residual");
   compare->add_option("--repeat", c_repeat,
                       "solves per (back end, problem); the median time is reported");
-  compare->add_option("--update-docs", c_doc,
-                      "rewrite this markdown file's table between the compare-table markers "
-                      "(docs/solvers.md); without it no file but --csv/--svg-prefix is written");
-  compare->callback([] { CompareCommand(c_inputs, c_csv, c_svg, c_tol, c_repeat, c_doc); });
+  compare->add_option("--markdown", c_markdown,
+                      "write the summary table as markdown (tools/update_solver_docs.sh puts it "
+                      "into docs/solvers.md)");
+  compare->callback([] { CompareCommand(c_inputs, c_csv, c_svg, c_tol, c_repeat, c_markdown); });
 
   auto* stability =
       contact->add_subcommand("stability", "the stiff/extreme (back end x case) table");
-  static std::string st_dir, st_doc;
+  static std::string st_dir;
   static double st_tol = 1e-10;
   stability->add_option("dir", st_dir, "collection directory (verification/data/contact)")
       ->required();
-  stability->add_option("--update-docs", st_doc,
-                        "rewrite this markdown file's table between the stability-table markers");
   stability->add_option("--tol", st_tol, "tolerance on the nondimensional residual");
-  stability->callback([] { StabilityCommand(st_dir, st_doc, st_tol); });
+  stability->callback([] { StabilityCommand(st_dir, st_tol); });
 }
 
 }  // namespace epicycle::app

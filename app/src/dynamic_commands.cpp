@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <optional>
 
@@ -17,15 +16,15 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "console.hpp"
 #include "epicycle/dynamics/modes.hpp"
+#include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/summary.hpp"
+#include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
-#include "progress.hpp"
-#include "provenance.hpp"
 #include "speed_sweep_command.hpp"
-#include "svg_plot.hpp"
 
 namespace epicycle::app {
 
@@ -41,33 +40,6 @@ struct DynamicArgs {
   int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 6;
   bool no_cache = false, quiet = false, fd_jacobian = false;
 };
-
-const char* SunName(transmission::SunSupport s) {
-  return s == transmission::SunSupport::kFixed      ? "fixed"
-         : s == transmission::SunSupport::kFloating ? "floating"
-                                                    : "elastic";
-}
-
-std::string MeshName(const transmission::StageContact& c) {
-  return c.mesh == geometry::MeshKind::kSunPlanet ? fmt::format("sun-planet{}", c.planet + 1)
-                                                  : fmt::format("planet{}-ring", c.planet + 1);
-}
-
-transmission::FeComplianceOptions Tables(const std::string& cache, bool no_cache) {
-  transmission::FeComplianceOptions o;
-  if (!no_cache) o.cache_directory = cache.empty() ? transmission::DefaultCacheDirectory() : cache;
-  return o;
-}
-
-transmission::Scene StageScene(const std::string& file, const std::string& sun,
-                               const char* command) {
-  transmission::Scene scene = transmission::ReadScene(file);
-  if (scene.kind != transmission::SceneKind::kStage)
-    throw std::invalid_argument(file + ": a gear-pair scene; " + command + " needs a stage");
-  if (sun == "fixed") scene.supports.sun = transmission::SunSupport::kFixed;
-  if (sun == "floating") scene.supports.sun = transmission::SunSupport::kFloating;
-  return scene;
-}
 
 void RunDynamic(const DynamicArgs& a) {
   transmission::Scene input = StageScene(a.scene, a.sun, "dynamic");
@@ -94,7 +66,7 @@ void RunDynamic(const DynamicArgs& a) {
   }
   if (!a.friction.empty()) input.dynamics.friction = a.friction;
   const auto t0 = std::chrono::steady_clock::now();
-  dynamics::StageDynamics rig(std::move(input), Tables(a.cache, a.no_cache));
+  dynamics::StageDynamics rig(std::move(input), TableOptions(a.cache, a.no_cache));
   const transmission::Scene& scene = rig.scene;
   const geometry::Stage& stage = rig.stage;
   const transmission::FeStageCompliance& compliance = rig.compliance;
@@ -128,24 +100,12 @@ void RunDynamic(const DynamicArgs& a) {
     RunSpeedSweep(s, rig, opt);
     return;
   }
-  const int outputs_per_cycle = a.outputs_per_cycle > 0 ? a.outputs_per_cycle : 20;
-
-  // Duration: one mesh cycle, one planet revolution relative to the carrier, one carrier
-  // revolution, or a given time.
-  const double wc = std::abs(model.carrier_speed());
-  const double cycle_time = stage.mesh_cycle() / wc;
-  const double duration = a.time > 0            ? a.time
-                          : a.range == "cycle"  ? cycle_time
-                          : a.range == "planet" ? 2.0 * std::numbers::pi * stage.planet(0).teeth() /
-                                                      stage.ring().teeth() / wc
-                                                : 2.0 * std::numbers::pi / wc;
-  const int outputs =
-      std::max(1, static_cast<int>(std::ceil(duration / cycle_time * outputs_per_cycle)));
-  std::vector<double> times;
-  for (int i = 1; i <= outputs; ++i) times.push_back(duration * i / outputs);
-
-  const char* sun_name = SunName(stage_model.setup().sun);
-  const double mesh_hz = stage.ring().teeth() * wc / (2.0 * std::numbers::pi);
+  const dynamics::RunSpan span =
+      dynamics::MakeRunSpan(stage, model.carrier_speed(), transmission::RunRangeFromName(a.range),
+                            a.time, a.outputs_per_cycle > 0 ? a.outputs_per_cycle : 20);
+  const double duration = span.duration, mesh_hz = span.mesh_frequency;
+  const int outputs = span.outputs;
+  const char* sun_name = transmission::SunSupportName(stage_model.setup().sun);
   std::printf(
       "%s: %d planets, sun %s, input torque %.1f N m, sun speed %.1f rpm (mesh frequency "
       "%.1f Hz)\n",
@@ -168,95 +128,39 @@ void RunDynamic(const DynamicArgs& a) {
 
   std::filesystem::create_directories(a.out);
   const std::string base = a.out + "/dynamic";
-  std::ofstream steps(base + "_steps.csv"), pairs(base + "_pairs.csv"),
-      bearings(base + "_bearings.csv");
-  if (!steps || !pairs || !bearings)
-    throw std::runtime_error(a.out + ": cannot write the result files");
   const json provenance = Provenance(a.backend, &scene);
-  steps << ProvenanceCsvLine(provenance);
-  pairs << ProvenanceCsvLine(provenance);
-  bearings << ProvenanceCsvLine(provenance);
-  steps << "time_s,carrier_deg";
-  for (int i = 1; i <= n; ++i) steps << ",LSR_" << i;
-  for (int i = 1; i <= n; ++i) steps << ",L_" << i;
-  steps << ",K_gamma,transmission_error_urad,sun_x_um,sun_y_um,sun_torque_balance_Nm,"
-           "external_work_J,dissipated_work_J,kinetic_energy_J,elastic_energy_J,contacts,"
-           "active_contacts,friction_power_W\n";
-  pairs << "time_s,mesh,kind,flank,teeth,normal_force_N,elastic_force_N,friction_force_N,"
-           "overlap_rate_mm_per_s\n";
-  bearings << "time_s,sun_Fx_N,sun_Fy_N";
-  for (int i = 1; i <= n; ++i) bearings << ",planet" << i << "_Fx_N,planet" << i << "_Fy_N";
-  bearings << "\n";
-
+  report::DynamicRunFiles files(base, provenance, n);
   const bool tty = !a.quiet && isatty(fileno(stderr));
-  const int ksun = model.Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kRotation);
   const auto t1 = std::chrono::steady_clock::now();
   int done = 0;
   const dynamics::SimulationResult result = dynamics::Simulate(
-      model, opt, d0, Eigen::VectorXd::Zero(model.size()), times,
+      model, opt, d0, Eigen::VectorXd::Zero(model.size()), span.OutputTimes(),
       [&](const dynamics::DynamicSample& s) {
-        const dynamics::Evaluation& e = s.evaluation;
-        double k_gamma = 0;
-        steps << fmt::format("{:.9g},{:.6f}", s.time, geometry::Deg(s.carrier_angle));
-        for (double v : s.load_sharing) steps << "," << Num(v);
-        for (double v : s.load_sharing) {
-          steps << "," << Num(n * v);
-          k_gamma = std::max(k_gamma, n * v);
-        }
-        int active = 0;
-        for (int j = 0; j < e.total_force.size(); ++j) active += e.total_force(j) > 0;
-        // Sun balance: Σ sun-mesh torques + T_in − J_s θ̈_s (θ̈_s from the interpolant).
-        double mesh_torque = 0;
-        for (double t : e.sun_mesh_torque) mesh_torque += t;
-        const double balance =
-            ksun >= 0 ? mesh_torque + scene.loads.sun_torque - model.mass()(ksun) * s.sun_acceleration
-                      : 0.0;  // a speed-driven sun: its drive balances the meshes exactly
-        steps << "," << Num(k_gamma) << "," << Num(s.transmission_error * 1e6) << ","
-              << Num(s.sun_centre.x() * 1e6) << "," << Num(s.sun_centre.y() * 1e6) << ","
-              << Num(balance) << "," << Num(s.external_work) << "," << Num(s.dissipated_work) << ","
-              << Num(e.kinetic_energy) << "," << Num(e.elastic_energy) << "," << e.terms.size()
-              << "," << active << "," << Num(e.friction_power) << "\n";
-        steps.flush();
-        for (int j = 0; j < e.terms.size(); ++j) {
-          if (!(e.total_force(j) > 0)) continue;
-          const transmission::StageContact& c = e.terms.contacts[j];
-          pairs << fmt::format("{:.9g},{},{},{},{}/{},{},{},{},{}\n", s.time, MeshName(c),
-                               geometry::KindName(c.contact.kind), c.loaded ? "drive" : "coast",
-                               c.contact.tooth_a, c.contact.tooth_b, Num(e.total_force(j)),
-                               Num(e.force(j)), Num(e.friction(j)), Num(e.overlap_rate(j) * 1e3));
-        }
-        pairs.flush();
-        bearings << fmt::format("{:.9g},{},{}", s.time, Num(e.sun_bearing_force.x()),
-                                Num(e.sun_bearing_force.y()));
-        for (const auto& f : e.planet_bearing_force)
-          bearings << "," << Num(f.x()) << "," << Num(f.y());
-        bearings << "\n";
-        bearings.flush();
+        files.Write(s);
         ++done;
         if (tty)
           Progress(done, outputs, 0,
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(),
                    "steps");
       });
+  files.Close();
   if (tty && !result.completed) std::fprintf(stderr, "\n");
 
   const dynamics::DynamicSummary sum = dynamics::Summarise(result.samples);
   const dynamics::SimulationStats& st = result.stats;
   std::printf("\n  planet   LSR mean     LSR min      LSR max      (ideal 1/n = %.6f)\n", 1.0 / n);
-  json planets = json::array();
-  for (int i = 0; i < n && sum.samples > 0; ++i) {
+  for (int i = 0; i < n && sum.samples > 0; ++i)
     std::printf("  %-8d %-12.6f %-12.6f %-12.6f\n", i + 1, sum.lsr_mean[i], sum.lsr_min[i],
                 sum.lsr_max[i]);
-    planets.push_back({{"planet", i + 1},
-                       {"lsr_mean", sum.lsr_mean[i]},
-                       {"lsr_min", sum.lsr_min[i]},
-                       {"lsr_max", sum.lsr_max[i]}});
-  }
-  std::printf("  K_gamma (max L_i)            %.6f\n", sum.k_gamma);
-  std::printf("  dynamic transmission error   %.3f .. %.3f urad (peak to peak %.3f urad)\n",
-              sum.te_min * 1e6, sum.te_max * 1e6, sum.te_peak_to_peak() * 1e6);
-  std::printf("  sun orbit radius             %.3f um largest, %.3f um mean\n",
-              sum.orbit_radius * 1e6, sum.orbit_mean_radius * 1e6);
+  // No output step: "-" (the summary's statistics are NaN, never printed).
+  const char* f3 = "{:.3f}";
+  std::printf("  K_gamma (max L_i)            %s\n", Num(sum.k_gamma, "{:.6f}", "-").c_str());
+  std::printf("  dynamic transmission error   %s .. %s urad (peak to peak %s urad)\n",
+              Num(sum.te_min * 1e6, f3, "-").c_str(), Num(sum.te_max * 1e6, f3, "-").c_str(),
+              Num(sum.te_peak_to_peak() * 1e6, f3, "-").c_str());
+  std::printf("  sun orbit radius             %s um largest, %s um mean\n",
+              Num(sum.orbit_radius * 1e6, f3, "-").c_str(),
+              Num(sum.orbit_mean_radius * 1e6, f3, "-").c_str());
   std::printf(
       "  integration                  %ld steps, %ld evaluations (%ld for FD Jacobians), %ld "
       "Jacobians, %ld failed contact solves, %ld error-test failures, %ld nonlinear failures, %.3f "
@@ -271,7 +175,7 @@ void RunDynamic(const DynamicArgs& a) {
   for (const std::string& w : dynamics::DynamicWarnings(stage, result.samples))
     warnings.push_back(w);
   PrintWarnings(warnings);
-  json j;
+  json j = report::DynamicRunJson(sum, st);  // the results and the integrator's counts
   j["provenance"] = provenance;
   j["warnings"] = warnings;
   j["scene"] = scene.name;
@@ -284,65 +188,19 @@ void RunDynamic(const DynamicArgs& a) {
   j["rtol"] = a.rtol;
   j["atol_length_m"] = opt.atol_length;
   j["atol_angle_rad"] = opt.atol_angle;
-  j["rate_tolerance_scale_rad_per_s"] = st.rate_scale;  // rate atol = position atol x this
   j["contact_tolerance"] = opt.contact.tolerance;
   j["backend"] = a.backend;
   j["start"] = "quasi-static solution at t = 0 (no start-up transient)";
   j["duration_s"] = duration;
   j["outputs"] = outputs;
-  j["outputs_written"] = sum.samples;
   j["completed"] = result.completed;
   j["failure"] = result.message;
-  j["planets"] = planets;
-  j["K_gamma_max"] = sum.k_gamma;
-  j["transmission_error_min_urad"] = sum.te_min * 1e6;
-  j["transmission_error_max_urad"] = sum.te_max * 1e6;
-  j["transmission_error_peak_to_peak_urad"] = sum.te_peak_to_peak() * 1e6;
-  j["sun_orbit_radius_max_um"] = sum.orbit_radius * 1e6;
-  j["sun_orbit_radius_mean_um"] = sum.orbit_mean_radius * 1e6;
   j["mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
   j["mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
-  j["steps"] = st.steps;
-  j["evaluations"] = st.rhs_evaluations;
-  j["fd_jacobian_evaluations"] = st.fd_rhs_evaluations;
-  j["jacobians"] = st.jacobian_evaluations;
-  j["failed_contact_solves"] = st.failed_solves;
-  j["error_test_failures"] = st.error_test_failures;
-  j["wall_seconds"] = st.wall_seconds;
-  j["evaluation_seconds"] = st.rhs_seconds;
   j["setup_seconds"] = setup_seconds;
   WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
 
-  LinePlot lsr{scene.name + ": dynamic load-sharing ratio (sun " + sun_name + ")",
-               "time [ms]",
-               "LSR_i [-]",
-               {},
-               false,
-               {1.0 / n}};
-  LinePlot te{scene.name + ": dynamic transmission error at the sun",
-              "time [ms]",
-              "sun rotation from kinematic [urad]",
-              {},
-              false,
-              {}};
-  LinePlot orbit{scene.name + ": sun centre orbit", "x [um]", "y [um]", {}, true, {}};
-  PlotSeries te_s{"TE", {}, {}}, orbit_s{"sun centre", {}, {}};
-  for (int i = 0; i < n; ++i) lsr.series.push_back({fmt::format("planet {}", i + 1), {}, {}});
-  for (const auto& s : result.samples) {
-    for (int i = 0; i < n; ++i) {
-      lsr.series[i].x.push_back(s.time * 1e3);
-      lsr.series[i].y.push_back(s.load_sharing[i]);
-    }
-    te_s.x.push_back(s.time * 1e3);
-    te_s.y.push_back(s.transmission_error * 1e6);
-    orbit_s.x.push_back(s.sun_centre.x() * 1e6);
-    orbit_s.y.push_back(s.sun_centre.y() * 1e6);
-  }
-  te.series.push_back(te_s);
-  orbit.series.push_back(orbit_s);
-  WriteTextFile(base + "_lsr.svg", RenderSvg(lsr));
-  WriteTextFile(base + "_te.svg", RenderSvg(te));
-  WriteTextFile(base + "_orbit.svg", RenderSvg(orbit));
+  report::WriteDynamicPlots(base, scene.name, sun_name, n, result.samples);
   std::printf(
       "\nwrote %s_steps.csv, _pairs.csv, _bearings.csv, _summary.json, _lsr.svg, _te.svg, "
       "_orbit.svg\n",
@@ -358,7 +216,8 @@ struct ModesArgs {
 };
 
 void RunModes(const ModesArgs& a) {
-  dynamics::StageDynamics rig(StageScene(a.scene, a.sun, "modes"), Tables(a.cache, a.no_cache));
+  dynamics::StageDynamics rig(StageScene(a.scene, a.sun, "modes"),
+                              TableOptions(a.cache, a.no_cache));
   const transmission::Scene& scene = rig.scene;
   const geometry::Stage& stage = rig.stage;
   const transmission::StageModel& stage_model = rig.stage_model;
@@ -372,9 +231,9 @@ void RunModes(const ModesArgs& a) {
   model.Linearise(0.0, &m, &kk);
   const auto modes = dynamics::SolveModes(m, kk, model.ModeLayout());
   // Mesh frequency per sun rpm: f_m = z_r ω_c/2π with ω_c = ω_s z_s/(z_s + z_r).
-  const double hz_per_rpm = stage.ring().teeth() / stage.sun_ratio() / 60.0;
+  const double hz_per_rpm = dynamics::MeshHzPerSunRpm(stage);
   std::printf("%s: %d planets, sun %s, %d DOFs (%s)\n", scene.name.c_str(), stage.planets(),
-              SunName(stage_model.setup().sun), model.size(),
+              transmission::SunSupportName(stage_model.setup().sun), model.size(),
               model.settings().ring_elastic ? "ring elastic" : "ring fixed");
   std::printf(
       "  mean mesh stiffness (the mesh-stiffness driver at the scene's load), tangent dF/ddelta "
@@ -387,25 +246,13 @@ void RunModes(const ModesArgs& a) {
   std::printf("  mesh frequency %.4f Hz per sun rpm\n\n", hz_per_rpm);
   std::printf("  %-12s %-5s %-14s %-28s %s\n", "f [Hz]", "mult", "type",
               "energy: central tr/rot, planets", "sun rpm where mesh harmonic 1, 2, 3 meets it");
-  nlohmann::json jm = nlohmann::json::array();
   for (const auto& x : modes) {
     const std::string type = x.rigid ? "rigid" : dynamics::ModeTypeName(x.type);
     std::printf("  %-12.2f %-5d %-14s %.3f / %.3f, %.3f%*s", x.frequency, x.multiplicity,
                 type.c_str(), x.central_translation, x.central_rotation, x.planets, 8, "");
-    nlohmann::json speeds = nlohmann::json::array();
-    for (int l = 1; l <= 3 && x.frequency > 0; ++l) {
-      const double rpm = x.frequency / (l * hz_per_rpm);
+    for (double rpm : dynamics::HarmonicSunSpeeds(x.frequency, hz_per_rpm, 3))
       std::printf(" %10.0f", rpm);
-      speeds.push_back(rpm);
-    }
     std::printf("\n");
-    jm.push_back({{"frequency_Hz", x.frequency},
-                  {"multiplicity", x.multiplicity},
-                  {"type", type},
-                  {"central_translation_energy", x.central_translation},
-                  {"central_rotation_energy", x.central_rotation},
-                  {"planet_energy", x.planets},
-                  {"sun_rpm_at_mesh_harmonics_1_2_3", speeds}});
   }
   PrintWarnings(scene.warnings);
   if (!a.json.empty()) {
@@ -419,7 +266,7 @@ void RunModes(const ModesArgs& a) {
     j["secant_mesh_stiffness_sun_planet_N_per_m"] = rig.model.sun_mesh_stiffness();
     j["secant_mesh_stiffness_planet_ring_N_per_m"] = rig.model.ring_mesh_stiffness();
     j["mesh_frequency_Hz_per_sun_rpm"] = hz_per_rpm;
-    j["modes"] = jm;
+    j["modes"] = report::ModesJson(modes, hz_per_rpm);
     WriteTextFile(a.json, j.dump(2) + "\n");
     std::printf("\nwrote %s\n", a.json.c_str());
   }

@@ -1,159 +1,27 @@
 // `epicycle geometry SCENE` (report, --json, --svg) and `epicycle contacts SCENE --carrier-deg A`.
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "epicycle/geometry/iso.hpp"
+#include "console.hpp"
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
+#include "epicycle/report/geometry_json.hpp"
+#include "epicycle/report/stage_svg.hpp"
 #include "epicycle/transmission/scene.hpp"
-#include "provenance.hpp"
-#include "stage_svg.hpp"
 
 namespace epicycle::app {
 
-using geometry::Deg;
-using geometry::Gear;
 using geometry::Stage;
 using nlohmann::json;
 
 namespace {
 
 constexpr double kToMm = 1e3;
-
-json GearJson(const Gear& g) {
-  const geometry::GearSpec& s = g.spec();
-  json j;
-  j["teeth"] = g.teeth();
-  j["module_mm"] = g.module() * kToMm;
-  j["face_width_mm"] = s.face_width * kToMm;
-  j["profile_shift"] = s.profile_shift;
-  j["pressure_angle_deg"] = Deg(s.pressure_angle);
-  j["reference_radius_mm"] = g.reference_radius() * kToMm;
-  j["base_radius_mm"] = g.base_radius() * kToMm;
-  j["tip_radius_mm"] = g.tip_radius() * kToMm;
-  j["root_radius_mm"] = g.root_radius() * kToMm;
-  j["form_radius_mm"] = g.form_radius() * kToMm;
-  j["tip_form_radius_mm"] = g.tip_form_radius() * kToMm;
-  j["thickness_reference_mm"] = g.ThicknessAt(g.reference_radius()) * kToMm;
-  j["thickness_tip_mm"] = g.tip_thickness() * kToMm;
-  j["tip_round_radius_mm"] = s.tip_round_radius * kToMm;
-  j["thickness_error_um"] = s.thickness_error * 1e6;
-  j["undercut"] = g.undercut();
-  if (g.undercut()) j["undercut_radius_mm"] = g.undercut_radius() * kToMm;
-  json mods = json::object();
-  for (const auto& [which, relief, start_roll] :
-       {std::tuple{"tip", s.modification.tip, g.tip_relief_start_roll()},
-        std::tuple{"root", s.modification.root, g.root_relief_start_roll()}}) {
-    if (relief.amount == 0) continue;
-    mods[which] = {
-        {"amount_um", relief.amount * 1e6},
-        {"start_radius_mm", relief.start_radius * kToMm},
-        {"start_roll_deg", Deg(start_roll)},
-        {"shape", relief.shape == geometry::ReliefShape::kLinear ? "linear" : "parabolic"}};
-  }
-  if (!mods.empty()) j["modification"] = mods;
-  if (!s.pitch_deviations.empty()) {
-    const std::vector<double>& fp = s.pitch_deviations;
-    double single = 0, lo = fp[0], hi = fp[0];
-    for (std::size_t k = 0; k < fp.size(); ++k) {
-      single = std::max(single, std::abs(fp[(k + 1) % fp.size()] - fp[k]));
-      lo = std::min(lo, fp[k]);
-      hi = std::max(hi, fp[k]);
-    }
-    json list = json::array();
-    for (double v : fp) list.push_back(v * 1e6);
-    j["pitch"] = {{"cumulative_um", list},
-                  {"largest_single_um", single * 1e6},
-                  {"total_cumulative_um", (hi - lo) * 1e6}};
-  }
-  if (g.internal()) {
-    j["rim_radius_mm"] = s.hub_radius * kToMm;
-    j["generation"] = s.shaper ? fmt::format("shaper z_c = {}, x_c = {}", s.shaper->teeth,
-                                             s.shaper->profile_shift)
-                               : std::string("direct (involute, base rounding, tip rounding)");
-  } else {
-    j["hub_radius_mm"] = s.hub_radius * kToMm;
-    j["min_shift_without_undercut"] = g.MinimumShiftWithoutUndercut();
-    j["generation"] = fmt::format("rack: addendum {} m, dedendum {} m, tip round {} m",
-                                  s.rack->addendum / g.module(), s.rack->dedendum / g.module(),
-                                  s.rack->tip_radius / g.module());
-  }
-  return j;
-}
-
-json MeshJson(const geometry::MeshSummary& m) {
-  return {{"name", m.name},
-          {"centre_distance_mm", m.centre_distance * kToMm},
-          {"operating_pressure_angle_deg", Deg(m.pressure_angle)},
-          {"zero_backlash_pressure_angle_deg", Deg(m.zero_backlash_pressure_angle)},
-          {"normal_backlash_mm", m.normal_backlash * kToMm},
-          {"transverse_backlash_mm", m.transverse_backlash * kToMm},
-          {"contact_ratio_iso", m.contact_ratio_iso},
-          {"contact_ratio_involute", m.contact_ratio},
-          {"sap_a_mm", m.sap_a * kToMm},
-          {"sap_b_mm", m.sap_b * kToMm},
-          {"phase_cycles", m.phase}};
-}
-
-json FitsJson(const transmission::Scene& scene) {
-  json fits = json::array();
-  for (const transmission::ShiftFit& f : scene.fits) {
-    fits.push_back({{"gear", f.gear},
-                    {"mesh", f.mesh},
-                    {"normal_backlash_um", f.normal_backlash * 1e6},
-                    {"profile_shift", f.profile_shift}});
-  }
-  return fits;
-}
-
-json PairJson(const transmission::Scene& scene, const geometry::GearPair& pair) {
-  json j;
-  j["scene"] = scene.name;
-  j["source"] = scene.source;
-  j["gears"]["gear1"] = GearJson(pair.gear1());
-  j["gears"]["gear2"] = GearJson(pair.gear2());
-  j["gear_order"] = {"gear1", "gear2"};
-  j["meshes"] = json::array({MeshJson(pair.summary())});
-  j["fits"] = FitsJson(scene);
-  return j;
-}
-
-json StageJson(const transmission::Scene& scene, const Stage& st) {
-  json j;
-  j["scene"] = scene.name;
-  j["source"] = scene.source;
-  j["gears"]["sun"] = GearJson(st.sun());
-  j["gears"]["planet"] = GearJson(st.planet(0));
-  j["gears"]["ring"] = GearJson(st.ring());
-  j["gear_order"] = {"sun", "planet", "ring"};
-  json meshes = json::array();
-  for (const geometry::MeshSummary& m : st.meshes()) meshes.push_back(MeshJson(m));
-  j["meshes"] = meshes;
-  const int zsum = st.sun().teeth() + st.ring().teeth();
-  json planets = json::array();
-  for (int i = 0; i < st.planets(); ++i) {
-    planets.push_back({{"planet", i + 1},
-                       {"angle_deg", Deg(st.planet_angle(i))},
-                       {"assembly_teeth", zsum * st.planet_angle(i) / (2 * geometry::kPi)},
-                       {"mesh_phase_cycles", st.meshes()[2 * i].phase}});
-  }
-  j["assembly"] = {{"carrier_radius_mm", st.carrier_radius() * kToMm},
-                   {"planets", planets},
-                   {"z_sun_plus_z_ring", zsum},
-                   {"equally_spaced", st.spec().planet_angles.empty()},
-                   {"mesh_cycle_carrier_deg", Deg(st.mesh_cycle())}};
-  j["fits"] = FitsJson(scene);
-  return j;
-}
 
 void PrintReport(const json& j) {
   std::printf("epicycle geometry: %s  (%s)\n\n", j["scene"].get<std::string>().c_str(),
@@ -254,12 +122,6 @@ void PrintReport(const json& j) {
               a["mesh_cycle_carrier_deg"].get<double>());
 }
 
-void WriteFile(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!out) throw std::invalid_argument(path + ": cannot write");
-  out << text;
-}
-
 void PrintContactHeader() {
   std::printf("  %-13s %-12s %-6s %6s %6s %11s %11s %9s %9s %12s %9s %9s %9s %9s\n", "mesh", "kind",
               "flank", "tooth", "mate", "x [mm]", "y [mm]", "n_x", "n_y", "overlap[um]",
@@ -330,32 +192,33 @@ void RegisterGeometryCommands(CLI::App& app) {
     const transmission::Scene scene = transmission::ReadScene(scene_path);
     if (scene.kind == transmission::SceneKind::kPair) {
       const geometry::GearPair pair(scene.pair);
-      json report = PairJson(scene, pair);
+      json report = report::PairJson(scene, pair);
       report["provenance"] = Provenance("none", &scene);
       report["warnings"] = scene.warnings;
       PrintReport(report);
       PrintWarnings(scene.warnings);
-      if (!json_path.empty()) WriteFile(json_path, report.dump(2) + "\n");
+      if (!json_path.empty()) WriteTextFile(json_path, report.dump(2) + "\n");
       if (!svg_path.empty()) {
         if (!zoom_mesh.empty() && zoom_mesh != "gear1-gear2") {
           throw std::invalid_argument("--zoom = " + zoom_mesh +
                                       ": a gear pair has one mesh, gear1-gear2");
         }
         const geometry::PairPoses p = pair.Poses(geometry::Rad(carrier_deg));
-        WriteFile(svg_path, DrawMeshZoom(pair.A(p), pair.B(p), pair.internal(), pair.loaded_side(),
-                                         scene.gap_window, relief_scale));
+        WriteTextFile(svg_path,
+                      report::DrawMeshZoom(pair.A(p), pair.B(p), pair.internal(),
+                                           pair.loaded_side(), scene.gap_window, relief_scale));
         std::printf("wrote %s (tooth pair of gear1-gear2)\n", svg_path.c_str());
       }
       return;
     }
     const Stage stage(scene.stage);
-    json report = StageJson(scene, stage);
+    json report = report::StageJson(scene, stage);
     report["provenance"] = Provenance("none", &scene);
     report["warnings"] = scene.warnings;
     PrintReport(report);
     PrintWarnings(scene.warnings);
     if (!json_path.empty()) {
-      WriteFile(json_path, report.dump(2) + "\n");
+      WriteTextFile(json_path, report.dump(2) + "\n");
       std::printf("\nwrote %s\n", json_path.c_str());
     }
     if (!svg_path.empty() && !zoom_mesh.empty()) {
@@ -372,15 +235,16 @@ void RegisterGeometryCommands(CLI::App& app) {
       const int i = found / 2;
       const bool ring = found % 2 == 1;
       const std::string svg =
-          ring ? DrawMeshZoom(stage.Planet(p, i), stage.Ring(p), true,
-                              stage.ring_mesh_planet_side(), scene.gap_window, relief_scale)
-               : DrawMeshZoom(stage.Sun(p), stage.Planet(p, i), false, stage.sun_mesh_side(),
-                              scene.gap_window, relief_scale);
-      WriteFile(svg_path, svg);
+          ring ? report::DrawMeshZoom(stage.Planet(p, i), stage.Ring(p), true,
+                                      stage.ring_mesh_planet_side(), scene.gap_window, relief_scale)
+               : report::DrawMeshZoom(stage.Sun(p), stage.Planet(p, i), false,
+                                      stage.sun_mesh_side(), scene.gap_window, relief_scale);
+      WriteTextFile(svg_path, svg);
       std::printf("wrote %s (tooth pair of %s, carrier at %.3f deg)\n", svg_path.c_str(),
                   zoom_mesh.c_str(), carrier_deg);
     } else if (!svg_path.empty()) {
-      WriteFile(svg_path, DrawStage(stage, geometry::Rad(carrier_deg), scene.gap_window));
+      WriteTextFile(svg_path,
+                    report::DrawStage(stage, geometry::Rad(carrier_deg), scene.gap_window));
       std::printf("wrote %s (carrier at %.3f deg)\n", svg_path.c_str(), carrier_deg);
     }
   });

@@ -1,13 +1,18 @@
 // epicycle: load sharing in planetary spur-gear transmissions with manufacturing errors.
-// Exit status: 0 computed, 1 a computation failed (provenance.hpp), 2 bad input or usage.
+// Exit status (README): 0 computed; 1 a computation failed (a solve that did not converge, a
+// library's runtime_error, a result that could not be written); 2 bad input or usage (a command
+// line CLI11 rejects, a missing or unreadable input file, std::invalid_argument from a library).
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
+#include "console.hpp"
 #include "epicycle/config.h"
-#include "provenance.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"epicycle " EPICYCLE_VERSION
@@ -30,9 +35,21 @@ int main(int argc, char** argv) {
     // Results were written and the failures listed; the run did not compute what was asked.
     std::fprintf(stderr, "epicycle: failed: %s\n", e.what());
     return 1;
-  } catch (const std::exception& e) {
+  } catch (const std::invalid_argument& e) {
+    // The libraries' contract: invalid_argument means the input (a file, a value) breaks a rule.
     std::fprintf(stderr, "epicycle: error: %s\n", e.what());
     return 2;
+  } catch (const std::exception& e) {
+    // Anything else stopped a computation (or the writing of its results) on legal input.
+    std::fprintf(stderr, "epicycle: failed: %s\n", e.what());
+    return 1;
+  }
+  // The printed report is a result too: one that could not be written is a failure.
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::fprintf(stderr, "epicycle: failed: standard output: cannot be written: %s\n",
+                 std::strerror(errno));
+    return 1;
   }
   return 0;
 }

@@ -7,43 +7,22 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <numbers>
 #include <stdexcept>
 #include <thread>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "console.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
-#include "progress.hpp"
-#include "provenance.hpp"
-#include "svg_plot.hpp"
+#include "epicycle/report/run_files.hpp"
+#include "epicycle/transmission/run_range.hpp"
 
 namespace epicycle::app {
 
 namespace {
 
 using json = nlohmann::json;
-
-std::string Csv(const std::string& text) {  // a free-text cell: no commas or line breaks
-  std::string s = text;
-  std::replace(s.begin(), s.end(), ',', ';');
-  std::replace(s.begin(), s.end(), '\n', ' ');
-  return s;
-}
-
-std::string Row(const dynamics::SpeedResult& r, const dynamics::SpeedSweepPlan& plan) {
-  // A failed speed keeps its speed, status and message; its figures are empty (not zeros).
-  auto v = [&](double x) { return r.ok ? Num(x) : std::string(); };
-  return fmt::format(
-      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.index, Num(r.sun_speed_rpm),
-      Num(r.mesh_frequency), r.ok ? "ok" : "failed", v(r.k_gamma), v(r.dynamic_factor),
-      r.ok && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "", v(r.peak_mesh_force),
-      v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min), v(r.lsr_max), r.stats.steps,
-      r.stats.rhs_evaluations, r.stats.failed_solves, Num(r.cpu_seconds), Num(r.wall_seconds),
-      Csv(r.message));
-}
 
 std::string ModeName(const dynamics::SpeedSweepPlan& plan, int mode) {
   const dynamics::Mode& m = plan.modes[static_cast<std::size_t>(mode)].mode;
@@ -93,10 +72,9 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   o.sun_speeds_rpm = ParseSpeedSweep(a.spec);
   o.threads = a.threads > 0 ? a.threads
                             : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  o.window_cycles = a.window_cycles > 0       ? a.window_cycles
-                    : a.range == "cycle"      ? 1.0
-                    : a.range == "revolution" ? static_cast<double>(stage.ring().teeth())
-                                              : static_cast<double>(stage.planet(0).teeth());
+  o.window_cycles = a.window_cycles > 0
+                        ? a.window_cycles
+                        : transmission::MeshCycles(stage, transmission::RunRangeFromName(a.range));
   o.outputs_per_cycle = a.outputs_per_cycle;
   o.harmonics = a.harmonics;
   o.window_start = geometry::Rad(a.start_deg);
@@ -107,10 +85,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
 
   std::printf("%s: speed sweep, %zu sun speeds %.1f .. %.1f rpm, sun %s, %d threads\n",
               scene.name.c_str(), o.sun_speeds_rpm.size(), o.sun_speeds_rpm.front(),
-              o.sun_speeds_rpm.back(),
-              rig.stage_model.setup().sun == transmission::SunSupport::kFixed      ? "fixed"
-              : rig.stage_model.setup().sun == transmission::SunSupport::kFloating ? "floating"
-                                                                                   : "elastic",
+              o.sun_speeds_rpm.back(), transmission::SunSupportName(rig.stage_model.setup().sun),
               o.threads);
   for (const std::string& m : rig.compliance.tables().messages()) std::printf("  %s\n", m.c_str());
   std::printf(
@@ -123,14 +98,8 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
 
   std::filesystem::create_directories(a.out);
   const std::string path = a.out + "/speed_sweep";
-  std::ofstream csv(path + ".csv");
-  if (!csv) throw std::runtime_error(path + ".csv: cannot be written");
   const json provenance = Provenance(a.backend, &scene);
-  csv << ProvenanceCsvLine(provenance);
-  csv << "index,sun_speed_rpm,mesh_frequency_Hz,status,K_gamma,dynamic_factor,"
-         "dynamic_factor_mesh,peak_mesh_force_N,te_amplitude_urad,sun_orbit_radius_um,lsr_min,"
-         "lsr_max,steps,evaluations,failed_contact_solves,cpu_s,wall_s,message\n";
-  csv.flush();
+  report::SpeedSweepFile csv(path + ".csv", provenance);
 
   const dynamics::SpeedSweepPlan plan = dynamics::PlanSpeedSweep(base, o);
   std::printf("  modes of the linearised stage (f, type, modal damping ratio, decay rate):\n");
@@ -164,8 +133,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   const auto t0 = std::chrono::steady_clock::now();
   const dynamics::SpeedSweepResult res =
       dynamics::SweepSpeeds(base, o, plan, [&](const dynamics::SpeedResult& r) {
-        csv << Row(r, plan);
-        csv.flush();
+        csv.Write(r, plan);
         ++done;
         failed += !r.ok;
         if (tty)
@@ -173,38 +141,17 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
                    "speeds");
       });
+  csv.Close();
 
   std::printf("\n  %-10s %-9s %-9s %-9s %-13s %-11s %-10s %s\n", "sun rpm", "K_gamma", "K_v",
               "mesh", "TE amp urad", "orbit um", "CPU s", "status");
   double cpu = 0;
-  json speeds = json::array();
   for (const dynamics::SpeedResult& r : res.speeds) {
     cpu += r.cpu_seconds;
     const std::string mesh = r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "";
     std::printf("  %-10.1f %-9.5f %-9.5f %-9s %-13.3f %-11.4f %-10.2f %s\n", r.sun_speed_rpm,
                 r.k_gamma, r.dynamic_factor, mesh.c_str(), r.te_amplitude * 1e6,
                 r.orbit_radius * 1e6, r.cpu_seconds, r.ok ? "ok" : r.message.c_str());
-    json j = {{"sun_speed_rpm", r.sun_speed_rpm},
-              {"mesh_frequency_Hz", r.mesh_frequency},
-              {"ok", r.ok},
-              {"message", r.message},
-              {"steps", r.stats.steps},
-              {"evaluations", r.stats.rhs_evaluations},
-              {"failed_contact_solves", r.stats.failed_solves},
-              {"cpu_s", r.cpu_seconds},
-              {"wall_s", r.wall_seconds},
-              {"warnings", r.warnings}};
-    if (r.ok) {
-      j["K_gamma"] = r.k_gamma;
-      j["dynamic_factor"] = r.dynamic_factor;
-      j["dynamic_factor_mesh"] = mesh;
-      j["peak_mesh_force_N"] = r.peak_mesh_force;
-      j["te_amplitude_urad"] = r.te_amplitude * 1e6;
-      j["sun_orbit_radius_um"] = r.orbit_radius * 1e6;
-      j["lsr_min"] = r.lsr_min;
-      j["lsr_max"] = r.lsr_max;
-    }
-    speeds.push_back(j);
   }
   std::printf(
       "  %.1f s wall for %zu speeds on %d threads, %.1f s CPU in the speeds (%.2f s per speed; "
@@ -212,24 +159,8 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
       res.wall_seconds, res.speeds.size(), o.threads, cpu,
       cpu / static_cast<double>(res.speeds.size()), cpu / std::max(res.wall_seconds, 1e-9));
 
-  json modes = json::array(), coincidences = json::array();
-  for (const dynamics::ModeDamping& m : plan.modes)
-    modes.push_back({{"frequency_Hz", m.mode.frequency},
-                     {"type", dynamics::ModeTypeName(m.mode.type)},
-                     {"multiplicity", m.mode.multiplicity},
-                     {"cyclic_families_k", m.families},
-                     {"damping_ratio", m.damping_ratio},
-                     {"decay_rate_per_s", m.decay_rate}});
-  for (const dynamics::Coincidence& c : plan.coincidences)
-    coincidences.push_back({{"sun_speed_rpm", c.sun_speed_rpm},
-                            {"frequency_Hz", c.frequency},
-                            {"mode", c.mode + 1},
-                            {"harmonic", c.harmonic},
-                            {"phasing_excited", c.phasing_excited}});
-  json qs_force = json::object();
-  for (std::size_t q = 0; q < plan.meshes.size(); ++q)
-    qs_force[plan.meshes[q]] = plan.qs_peak_mesh_force[q];
-  json j;
+  // The per-speed results, the modes, the coincidences and the definitions (report library).
+  json j = report::SpeedSweepResultsJson(plan, res.speeds);
   j["provenance"] = provenance;
   // The scene's warnings and each speed's results outside the model's validity.
   std::vector<std::string> warnings = scene.warnings;
@@ -248,17 +179,6 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   j["rate_tolerance_scale_rad_per_s"] = simulation.rate_scale;
   j["contact_tolerance"] = simulation.contact.tolerance;
   j["backend"] = a.backend;
-  j["definitions"] = {
-      {"K_gamma", "max over window samples and planets of n LSR_i"},
-      {"dynamic_factor",
-       "max over meshes of (peak total normal force of the mesh in motion, damping included) / "
-       "(peak quasi-static total normal force of that mesh at the same carrier angles)"},
-      {"te_amplitude", "half the peak-to-peak dynamic transmission error at the sun"},
-      {"sun_orbit_radius", "largest sun-centre displacement over the window"},
-      {"window",
-       "each speed starts at the quasi-static solution, skips skip_time_s (start transient below "
-       "transient_fraction in every mode) and measures window_mesh_cycles from "
-       "window_start_carrier_deg"}};
   j["skip_time_s"] = plan.skip_time;
   j["transient_fraction"] = o.transient_fraction;
   j["slowest_modal_decay_rate_per_s"] = plan.slowest_decay_rate;
@@ -272,10 +192,6 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   j["tangent_mesh_stiffness_planet_ring_N_per_m"] = o.modal_mesh_stiffness[1];
   j["quasi_static_K_gamma"] = plan.qs_k_gamma;
   j["quasi_static_te_amplitude_urad"] = plan.qs_te_amplitude * 1e6;
-  j["quasi_static_peak_mesh_force_N"] = qs_force;
-  j["modes"] = modes;
-  j["coincidences"] = coincidences;
-  j["speeds"] = speeds;
   j["failed_speeds"] = res.failed();
   j["threads"] = o.threads;
   j["plan_seconds"] = plan.seconds;
@@ -284,46 +200,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   j["cpu_over_wall"] = cpu / std::max(res.wall_seconds, 1e-9);
   WriteTextFile(path + "_summary.json", j.dump(2) + "\n");
 
-  // Plots against speed, the coincidences marked (dashed: not reached by a symmetric stage's
-  // mesh excitation, see dynamics/speed_sweep.hpp).
-  std::vector<XMarker> markers;
-  for (const dynamics::Coincidence& c : plan.coincidences) {
-    // A degenerate pair split by an error (e.g. 4941.95 and 4942.25 Hz): one marker "m2,3 h4".
-    const std::string tail = fmt::format(" h{}", c.harmonic);
-    if (!markers.empty() &&
-        std::abs(markers.back().x - c.sun_speed_rpm) <= 1e-3 * c.sun_speed_rpm &&
-        markers.back().label.ends_with(tail)) {
-      XMarker& m = markers.back();
-      m.label.insert(m.label.size() - tail.size(), fmt::format(",{}", c.mode + 1));
-      m.dashed = m.dashed && !c.phasing_excited;
-      continue;
-    }
-    markers.push_back({c.sun_speed_rpm, fmt::format("m{}", c.mode + 1) + tail, !c.phasing_excited});
-  }
-  auto plot = [&](const std::string& what, const std::string& unit, const std::string& file,
-                  double scale, auto field, std::vector<double> refs) {
-    LinePlot p{scene.name + ": " + what + " against sun speed",
-               "sun speed [rpm]",
-               what + " [" + unit + "]",
-               {},
-               false,
-               std::move(refs)};
-    PlotSeries s{what, {}, {}, false};
-    for (const dynamics::SpeedResult& r : res.speeds) {
-      if (!r.ok) continue;
-      s.x.push_back(r.sun_speed_rpm);
-      s.y.push_back(field(r) * scale);
-    }
-    p.series.push_back(s);
-    p.x_markers = markers;
-    WriteTextFile(path + "_" + file + ".svg", RenderSvg(p));
-  };
-  plot("K_gamma", "-", "k_gamma", 1.0, [](const auto& r) { return r.k_gamma; }, {plan.qs_k_gamma});
-  plot("dynamic factor", "-", "dynamic_factor", 1.0, [](const auto& r) { return r.dynamic_factor; },
-       {1.0});
-  plot("TE amplitude", "urad", "te_amplitude", 1e6, [](const auto& r) { return r.te_amplitude; },
-       {plan.qs_te_amplitude * 1e6});
-  plot("sun orbit radius", "um", "orbit", 1e6, [](const auto& r) { return r.orbit_radius; }, {});
+  report::WriteSpeedSweepPlots(path, scene.name, plan, res.speeds);
   PrintWarnings(warnings);
   std::printf(
       "\nwrote %s.csv, _summary.json, _k_gamma.svg, _dynamic_factor.svg, _te_amplitude.svg, "

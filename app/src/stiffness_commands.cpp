@@ -4,8 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,10 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "console.hpp"
+#include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/validity.hpp"
-#include "provenance.hpp"
-#include "svg_plot.hpp"
 
 namespace epicycle::app {
 
@@ -31,8 +29,6 @@ struct StiffnessArgs {
   int threads = 0;  // 0: one per core
   bool no_cache = false, no_local = false;
 };
-
-std::string CsvNumber(double v) { return Finite(v); }
 
 void RunStiffness(const StiffnessArgs& a) {
   const transmission::Scene scene = transmission::ReadScene(a.scene);
@@ -48,9 +44,7 @@ void RunStiffness(const StiffnessArgs& a) {
   const transmission::MeshPairSetup setup =
       transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, a.mesh);
   const geometry::GearPair pair(setup.spec);
-  transmission::FeComplianceOptions fe;
-  if (!a.no_cache)
-    fe.cache_directory = a.cache.empty() ? transmission::DefaultCacheDirectory() : a.cache;
+  const transmission::FeComplianceOptions fe = TableOptions(a.cache, a.no_cache);
   std::printf("%s: mesh %s, torque on gear 1 %.3f N m, %d positions over one mesh cycle\n",
               scene.name.c_str(), setup.mesh.c_str(), setup.torque, a.positions);
   const transmission::FePairCompliance compliance(scene, pair, fe);
@@ -63,37 +57,33 @@ void RunStiffness(const StiffnessArgs& a) {
   opt.local_terms = !a.no_local;
   std::filesystem::create_directories(a.out);
   const std::string base = a.out + "/stiffness_" + setup.mesh;
-  std::ofstream csv(base + ".csv");
-  if (!csv) throw std::runtime_error(base + ".csv: cannot be written");
+  CsvFile csv(base + ".csv");
   const json provenance = Provenance(a.backend, &scene);
-  csv << ProvenanceCsvLine(provenance);
-  csv << "angle_deg,converged,mesh_stiffness_N_per_m,mesh_stiffness_N_per_mm_um,"
-         "transmission_error_urad,approach_um,total_force_N,pairs,"
-         "pair_teeth,pair_kind,pair_force_N,pair_stiffness_N_per_m,pair_share,message\n";
+  csv.Write(ProvenanceCsvLine(provenance) +
+            "angle_deg,converged,mesh_stiffness_N_per_m,mesh_stiffness_N_per_mm_um,"
+            "transmission_error_urad,approach_um,total_force_N,pairs,"
+            "pair_teeth,pair_kind,pair_force_N,pair_stiffness_N_per_m,pair_share,message\n");
   const double b = std::min(pair.gear1().spec().face_width, pair.gear2().spec().face_width);
   const auto result = transmission::ComputeMeshStiffness(
       scene, setup, pair, compliance, opt, [&](const transmission::MeshSample& s) {
         // One row per loaded tooth pair (the mesh columns repeat), written as computed.
-        const std::string head =
-            fmt::format("{:.6f},{},{},{},{},{},{},{}", geometry::Deg(s.angle), s.converged ? 1 : 0,
-                        CsvNumber(s.mesh_stiffness), CsvNumber(s.mesh_stiffness / b / 1e9),
-                        CsvNumber(s.rotation * 1e6), CsvNumber(s.approach * 1e6),
-                        CsvNumber(s.total_force), s.pairs.size());
-        std::string msg = s.message;
-        for (char& c : msg)
-          if (c == ',' || c == '\n') c = ';';
-        if (s.pairs.empty()) csv << head << ",,,,,," << msg << "\n";
-        for (const auto& p : s.pairs) {
-          csv << head << "," << p.tooth1 << "/" << p.tooth2 << "," << geometry::KindName(p.kind)
-              << "," << CsvNumber(p.force) << "," << CsvNumber(p.stiffness) << ","
-              << CsvNumber(p.share) << "," << msg << "\n";
-        }
-        csv.flush();
+        const std::string head = fmt::format(
+            "{:.6f},{},{},{},{},{},{},{}", geometry::Deg(s.angle), s.converged ? 1 : 0,
+            Num(s.mesh_stiffness), Num(s.mesh_stiffness / b / 1e9), Num(s.rotation * 1e6),
+            Num(s.approach * 1e6), Num(s.total_force), s.pairs.size());
+        const std::string msg = CsvText(s.message);
+        std::string lines = s.pairs.empty() ? head + ",,,,,," + msg + "\n" : "";
+        for (const auto& p : s.pairs)
+          lines += fmt::format("{},{}/{},{},{},{},{},{}\n", head, p.tooth1, p.tooth2,
+                               geometry::KindName(p.kind), Num(p.force), Num(p.stiffness),
+                               Num(p.share), msg);
+        csv.Write(lines);
         if (!s.converged)
           std::fprintf(stderr, "  position %.4f deg FAILED: %s\n", geometry::Deg(s.angle),
                        s.message.c_str());
       });
 
+  csv.Close();
   const compliance::iso6336::PairData iso = transmission::IsoPairData(pair);
   const double c_prime = compliance::iso6336::SinglePairStiffness(iso);
   const double c_gamma = compliance::iso6336::MeshStiffness(iso);
@@ -115,29 +105,8 @@ void RunStiffness(const StiffnessArgs& a) {
   }
   std::printf("  positions failed         %d of %d\n", result.failed, a.positions);
 
-  // Plot: mesh stiffness and each tooth pair's stiffness over the cycle, per unit face width.
-  LinePlot plot;
-  plot.title = scene.name + ": " + setup.mesh + " mesh stiffness";
-  plot.x_label = "gear 1 rotation in the mesh cycle [deg]";
-  plot.y_label = "stiffness per face width [N/(mm um)]";
-  PlotSeries mesh{"mesh", {}, {}};
-  std::map<std::string, PlotSeries> pairs;
-  for (const auto& s : result.samples) {
-    if (!s.converged) continue;
-    mesh.x.push_back(geometry::Deg(s.angle));
-    mesh.y.push_back(s.mesh_stiffness / b / 1e9);
-    for (const auto& p : s.pairs) {
-      PlotSeries& ser = pairs[fmt::format("pair {}/{}", p.tooth1, p.tooth2)];
-      ser.name = fmt::format("pair {}/{}", p.tooth1, p.tooth2);
-      ser.points = true;
-      ser.x.push_back(geometry::Deg(s.angle));
-      ser.y.push_back(p.stiffness / b / 1e9);
-    }
-  }
-  plot.series.push_back(mesh);
-  for (auto& [k, s] : pairs) plot.series.push_back(s);
-  plot.y_references = {c_gamma, c_prime};
-  WriteTextFile(base + ".svg", RenderSvg(plot));
+  report::WriteMeshStiffnessPlot(base + ".svg", scene.name + ": " + setup.mesh + " mesh stiffness",
+                                 result, b, {c_gamma, c_prime});
 
   // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
   std::vector<std::string> warnings = scene.warnings;

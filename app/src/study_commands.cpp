@@ -14,12 +14,10 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "console.hpp"
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
-#include "progress.hpp"
-#include "provenance.hpp"
-#include "svg_plot.hpp"
 
 namespace epicycle::app {
 
@@ -53,12 +51,12 @@ json SummaryJson(const studies::SampleSummary& s) {
 
 void PrintStat(const char* name, const studies::SampleSummary& s, const char* unit) {
   const char* f = "{:.6g}";
-  std::printf("  %-22s mean %s [%s, %s], std %s, max %s%s\n", name, Finite(s.mean, f, "-").c_str(),
-              Finite(s.mean_lower, f, "-").c_str(), Finite(s.mean_upper, f, "-").c_str(),
-              Finite(s.standard_deviation, f, "-").c_str(), Finite(s.max, f, "-").c_str(), unit);
+  std::printf("  %-22s mean %s [%s, %s], std %s, max %s%s\n", name, Num(s.mean, f, "-").c_str(),
+              Num(s.mean_lower, f, "-").c_str(), Num(s.mean_upper, f, "-").c_str(),
+              Num(s.standard_deviation, f, "-").c_str(), Num(s.max, f, "-").c_str(), unit);
   for (const auto& q : s.percentiles)
-    std::printf("  %-22s P%-5g %s [%s, %s]\n", "", 100.0 * q.p, Finite(q.value, f, "-").c_str(),
-                Finite(q.lower, f, "-").c_str(), Finite(q.upper, f, "-").c_str());
+    std::printf("  %-22s P%-5g %s [%s, %s]\n", "", 100.0 * q.p, Num(q.value, f, "-").c_str(),
+                Num(q.lower, f, "-").c_str(), Num(q.upper, f, "-").c_str());
 }
 
 void RunStudyCommand(const StudyArgs& a) {
@@ -120,7 +118,7 @@ void RunStudyCommand(const StudyArgs& a) {
   std::printf("  Spearman rank correlation of K_gamma with\n");
   for (std::size_t j = 0; j < s.columns.size(); ++j)
     std::printf("    %-36s %s\n", s.columns[j].c_str(),
-                Finite(s.spearman[j], "{:+.3f}", "- (constant)").c_str());
+                Num(s.spearman[j], "{:+.3f}", "- (constant)").c_str());
   PrintWarnings(study.warnings);
 
   json j;
@@ -146,29 +144,12 @@ void RunStudyCommand(const StudyArgs& a) {
   WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
 
   // Histogram as a step outline; the empirical CDF F(x_(i)) = i/n as steps.
-  LinePlot hist{study.name + ": K_gamma histogram", "K_gamma [-]", "cases [-]", {}, false, {}};
-  PlotSeries hs{"K_gamma", {}, {}};
   const auto& h = s.k_gamma_histogram;
-  for (std::size_t b = 0; b < h.counts.size(); ++b) {
-    const double x0 = h.lo + h.width * static_cast<double>(b), x1 = x0 + h.width;
-    const auto c = static_cast<double>(h.counts[b]);
-    for (auto [x, y] : {std::pair{x0, 0.0}, {x0, c}, {x1, c}, {x1, 0.0}}) {
-      hs.x.push_back(x);
-      hs.y.push_back(y);
-    }
-  }
-  hist.series.push_back(hs);
+  LinePlot hist{study.name + ": K_gamma histogram", "K_gamma [-]", "cases [-]", {}, false, {}};
+  hist.series.push_back(report::HistogramOutline("K_gamma", h.lo, h.width, h.counts));
   LinePlot cdf{
       study.name + ": K_gamma empirical CDF", "K_gamma [-]", "F [-]", {}, false, {0.95, 0.99}};
-  PlotSeries cs{"empirical CDF", {}, {}};
-  const double n = static_cast<double>(s.k_gamma_sorted.size());
-  for (std::size_t i = 0; i < s.k_gamma_sorted.size(); ++i) {
-    cs.x.push_back(s.k_gamma_sorted[i]);
-    cs.y.push_back(static_cast<double>(i) / n);
-    cs.x.push_back(s.k_gamma_sorted[i]);
-    cs.y.push_back(static_cast<double>(i + 1) / n);
-  }
-  cdf.series.push_back(cs);
+  cdf.series.push_back(report::EmpiricalCdfSteps("empirical CDF", s.k_gamma_sorted));
   WriteTextFile(base + "_kgamma_hist.svg", RenderSvg(hist));
   WriteTextFile(base + "_kgamma_cdf.svg", RenderSvg(cdf));
   std::printf("\nwrote %s_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg\n",

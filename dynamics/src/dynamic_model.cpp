@@ -424,9 +424,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   e.friction.setZero(n);
   std::vector<double>& mesh_load = w.mesh_load;
   mesh_load.assign(2 * np, 0.0);
-  auto mesh_index = [](const StageContact& s) {
-    return 2 * s.planet + (s.mesh == geometry::MeshKind::kSunPlanet ? 0 : 1);
-  };
+  auto mesh_index = [](const StageContact& s) { return geometry::MeshIndex(s.planet, s.mesh); };
   for (int j = 0; j < n; ++j) mesh_load[mesh_index(terms.contacts[j])] += e.force(j);
   e.dissipated_power = 0;
   e.friction_power = 0;

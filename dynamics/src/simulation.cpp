@@ -9,11 +9,14 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
 #include <memory>
 #include <stdexcept>
+
+#include "epicycle/transmission/load_sharing.hpp"
 
 namespace epicycle::dynamics {
 
@@ -336,9 +339,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
       }
       const Evaluation& e = sample.evaluation;
       // LSR_i = T_mesh(P_i–S)/T_input: the input torque is the sun's (or its drive's reaction).
-      sample.load_sharing.resize(e.sun_mesh_torque.size());
-      for (std::size_t i = 0; i < e.sun_mesh_torque.size(); ++i)
-        sample.load_sharing[i] = e.sun_mesh_torque[i] / -e.input_torque;
+      sample.load_sharing = transmission::LoadSharingRatios(e.sun_mesh_torque, e.input_torque);
       // TE at the sun; a speed-driven sun keeps its speed, and the lag shows at the carrier.
       const int carrier = model.Find(MotionDof::kCarrier, MotionDof::kRotation);
       sample.transmission_error =
@@ -349,6 +350,15 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
       Check(cvode ? CVodeGetDky(s.cvode, tout, 1, s.dky) : ERKStepGetDky(s.erk, tout, 1, s.dky),
             "GetDky");
       sample.sun_acceleration = sun >= 0 ? N_VGetArrayPointer(s.dky)[n + sun] : 0.0;
+      const double planets = static_cast<double>(sample.load_sharing.size());
+      for (double lsr : sample.load_sharing)
+        sample.k_gamma = std::max(sample.k_gamma, planets * lsr);
+      if (sun >= 0) {
+        double mesh_torque = 0;
+        for (double torque : e.sun_mesh_torque) mesh_torque += torque;
+        sample.sun_torque_balance =
+            mesh_torque + e.input_torque - model.mass()(sun) * sample.sun_acceleration;
+      }
       sample.external_work = y[2 * n];
       sample.dissipated_work = y[2 * n + 1];
       if (on_sample) on_sample(sample);

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
@@ -36,9 +37,7 @@ double ThreadCpuSeconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-int MeshIndex(const transmission::StageContact& c, int planets) {
-  return c.mesh == geometry::MeshKind::kSunPlanet ? c.planet : planets + c.planet;
-}
+int MeshIndex(const transmission::StageContact& c) { return geometry::MeshIndex(c.planet, c.mesh); }
 
 // The cyclic-symmetry families k (0..n−1) present in a mode group of equally spaced planets: the
 // planets' motions (rotation; centre x, y turned into the carrier frame by −ψ_i) over the planets
@@ -231,7 +230,7 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions&
   }
 
   // Coincidences inside the speed range.
-  plan.mesh_hz_per_rpm = stage.ring().teeth() / stage.sun_ratio() / 60.0;
+  plan.mesh_hz_per_rpm = MeshHzPerSunRpm(stage);
   const bool symmetric = EquallySpaced(stage);
   const double lo = options.sun_speeds_rpm.front(), hi = options.sun_speeds_rpm.back();
   for (std::size_t j = 0; j < plan.modes.size(); ++j) {
@@ -260,8 +259,8 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions&
   for (int s = 1; s <= samples; ++s)
     plan.window_angles.push_back(options.window_start +
                                  sign * stage.mesh_cycle() * s / options.outputs_per_cycle);
-  for (int i = 0; i < n; ++i) plan.meshes.push_back("sun-planet" + std::to_string(i + 1));
-  for (int i = 0; i < n; ++i) plan.meshes.push_back("planet" + std::to_string(i + 1) + "-ring");
+  // The meshes in the order of geometry::Stage::meshes() (geometry::MeshIndex).
+  for (const geometry::MeshSummary& mesh : stage.meshes()) plan.meshes.push_back(mesh.name);
   plan.qs_peak_mesh_force.assign(2 * static_cast<std::size_t>(n), 0.0);
   transmission::QuasiStaticOptions qo;
   qo.backend = sim.backend;
@@ -274,7 +273,7 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions&
                                Num(geometry::Deg(r.carrier_angle)) + " deg failed: " + r.message);
     std::vector<double> mesh(plan.qs_peak_mesh_force.size(), 0.0);
     for (std::size_t j = 0; j < r.problem.contacts.size(); ++j)
-      mesh[MeshIndex(r.problem.contacts[j], n)] += std::max(0.0, r.solution.force(j));
+      mesh[MeshIndex(r.problem.contacts[j])] += std::max(0.0, r.solution.force(j));
     for (std::size_t q = 0; q < mesh.size(); ++q)
       plan.qs_peak_mesh_force[q] = std::max(plan.qs_peak_mesh_force[q], mesh[q]);
     plan.qs_k_gamma = std::max(plan.qs_k_gamma, transmission::MeshLoadFactor(r));
@@ -286,8 +285,7 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions&
   return plan;
 }
 
-SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window,
-                           int planets) {
+SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window) {
   SpeedResult r;
   if (window.empty()) return r;
   std::vector<double> peak(plan.qs_peak_mesh_force.size(), 0.0);
@@ -295,8 +293,8 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
   r.lsr_min = INFINITY;
   r.lsr_max = -INFINITY;
   for (const DynamicSample& s : window) {
+    r.k_gamma = std::max(r.k_gamma, s.k_gamma);
     for (double l : s.load_sharing) {
-      r.k_gamma = std::max(r.k_gamma, planets * l);
       r.lsr_min = std::min(r.lsr_min, l);
       r.lsr_max = std::max(r.lsr_max, l);
     }
@@ -306,7 +304,7 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
     const Evaluation& e = s.evaluation;
     std::vector<double> mesh(peak.size(), 0.0);
     for (int j = 0; j < e.terms.size(); ++j)
-      mesh[MeshIndex(e.terms.contacts[j], planets)] += e.total_force(j);
+      mesh[MeshIndex(e.terms.contacts[j])] += e.total_force(j);
     for (std::size_t q = 0; q < mesh.size(); ++q) peak[q] = std::max(peak[q], mesh[q]);
   }
   r.te_amplitude = 0.5 * (te_max - te_min);
@@ -350,7 +348,7 @@ SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
     const std::vector<DynamicSample> window(
         run.samples.begin() + static_cast<std::ptrdiff_t>(std::min(skipped, run.samples.size())),
         run.samples.end());
-    r = SummariseSpeed(plan, window, model.stage_model().stage().planets());
+    r = SummariseSpeed(plan, window);
     r.warnings = DynamicWarnings(model.stage_model().stage(), window);
     r.stats = run.stats;
     r.ok = run.completed;

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "epicycle/transmission/statistics.hpp"
 #include "epicycle/transmission/validity.hpp"
 
 namespace epicycle::dynamics {
@@ -10,28 +12,30 @@ namespace epicycle::dynamics {
 DynamicSummary Summarise(const std::vector<DynamicSample>& samples) {
   DynamicSummary s;
   s.samples = static_cast<int>(samples.size());
-  if (samples.empty()) return s;
-  const std::size_t n = samples.front().load_sharing.size();
-  s.lsr_min.assign(n, INFINITY);
-  s.lsr_max.assign(n, -INFINITY);
-  s.lsr_mean.assign(n, 0.0);
-  s.te_min = INFINITY;
-  s.te_max = -INFINITY;
+  const std::size_t n = samples.empty() ? 0 : samples.front().load_sharing.size();
+  std::vector<transmission::Accumulator> lsr(n);
+  transmission::Accumulator te, orbit, k_gamma, pair_force;
   for (const DynamicSample& x : samples) {
-    for (std::size_t i = 0; i < n; ++i) {
-      s.lsr_min[i] = std::min(s.lsr_min[i], x.load_sharing[i]);
-      s.lsr_max[i] = std::max(s.lsr_max[i], x.load_sharing[i]);
-      s.lsr_mean[i] += x.load_sharing[i] / static_cast<double>(samples.size());
-      s.k_gamma = std::max(s.k_gamma, static_cast<double>(n) * x.load_sharing[i]);
-    }
-    s.te_min = std::min(s.te_min, x.transmission_error);
-    s.te_max = std::max(s.te_max, x.transmission_error);
-    const double r = x.sun_centre.norm();
-    s.orbit_radius = std::max(s.orbit_radius, r);
-    s.orbit_mean_radius += r / static_cast<double>(samples.size());
-    if (x.evaluation.total_force.size() > 0)
-      s.max_pair_force = std::max(s.max_pair_force, x.evaluation.total_force.maxCoeff());
+    for (std::size_t i = 0; i < n; ++i) lsr[i].Add(x.load_sharing[i]);
+    k_gamma.Add(x.k_gamma);
+    te.Add(x.transmission_error);
+    orbit.Add(x.sun_centre.norm());
+    if (x.evaluation.total_force.size() > 0) pair_force.Add(x.evaluation.total_force.maxCoeff());
   }
+  for (std::size_t i = 0; i < n; ++i) {
+    s.lsr_min.push_back(lsr[i].min());
+    s.lsr_max.push_back(lsr[i].max());
+    s.lsr_mean.push_back(lsr[i].mean());
+  }
+  s.k_gamma = k_gamma.max();
+  s.te_min = te.min();
+  s.te_max = te.max();
+  s.orbit_radius = orbit.max();
+  s.orbit_mean_radius = orbit.mean();
+  // No step: NaN; steps without a contact force: 0.
+  s.max_pair_force = samples.empty()      ? std::numeric_limits<double>::quiet_NaN()
+                     : pair_force.empty() ? 0.0
+                                          : std::max(0.0, pair_force.max());
   return s;
 }
 

@@ -118,6 +118,19 @@ std::vector<double> CumulativeFromSingle(const std::vector<double>& single,
   return cumulative;
 }
 
+PitchStatistics PitchDeviationStatistics(const std::vector<double>& fp) {
+  PitchStatistics s;
+  if (fp.empty()) return s;
+  double lo = fp[0], hi = fp[0];
+  for (std::size_t k = 0; k < fp.size(); ++k) {
+    s.largest_single = std::max(s.largest_single, std::abs(fp[(k + 1) % fp.size()] - fp[k]));
+    lo = std::min(lo, fp[k]);
+    hi = std::max(hi, fp[k]);
+  }
+  s.total_cumulative = hi - lo;
+  return s;
+}
+
 std::vector<double> RandomPitchDeviations(int teeth, double module, int grade, std::uint64_t seed,
                                           const std::string& key) {
   const double d = module * teeth;

@@ -275,12 +275,16 @@ void Stage::Summarise() {
                                : SummariseMesh(sun_, p, false, spec_.carrier_radius);
       m.kind = kind;
       m.planet = i;
-      m.name = internal ? "planet" + std::to_string(i + 1) + "-ring"
-                        : "sun-planet" + std::to_string(i + 1);
+      m.name = MeshName(i, kind);
       m.phase = phase < 0 ? phase + 1.0 : phase;
       meshes_.push_back(m);
     }
   }
+}
+
+std::string MeshName(int planet, MeshKind kind) {
+  return kind == MeshKind::kPlanetRing ? "planet" + std::to_string(planet + 1) + "-ring"
+                                       : "sun-planet" + std::to_string(planet + 1);
 }
 
 }  // namespace epicycle::geometry

@@ -20,6 +20,7 @@
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
 #include "epicycle/transmission/work_queue.hpp"
@@ -113,9 +114,9 @@ std::string StudyLine(const StudySpec& study) {
 }
 
 std::vector<double> CaseAngles(const StudySpec& study, const geometry::Stage& stage) {
-  const double span = study.compute == CaseKind::kMeshCycle
-                          ? stage.mesh_cycle()
-                          : 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth();
+  const double span = transmission::CarrierSpan(
+      stage, study.compute == CaseKind::kMeshCycle ? transmission::RunRange::kMeshCycle
+                                                   : transmission::RunRange::kPlanetRevolution);
   return transmission::SweepAngles(study.start_angle, span, study.positions);
 }
 

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <numeric>
 
+#include "epicycle/transmission/statistics.hpp"
+
 namespace epicycle::studies {
 
 namespace {
@@ -75,23 +77,27 @@ SampleSummary Summarise(std::vector<double> x, const std::vector<double>& levels
   std::sort(x.begin(), x.end());
   SampleSummary s;
   s.level = level;
-  s.count = static_cast<long>(x.size());
+  // Mean, min and max by the project's one accumulator (the values in ascending order), with its
+  // rule for empty input: NaN.
+  transmission::Accumulator acc;
+  for (double v : x) acc.Add(v);
+  s.count = acc.count();
+  s.mean = acc.mean();
+  s.min = acc.min();
+  s.max = acc.max();
   const long n = s.count;
   if (n == 0) {
-    s.mean = s.standard_deviation = s.mean_lower = s.mean_upper = s.min = s.max = kNaN;
+    s.standard_deviation = s.mean_lower = s.mean_upper = kNaN;
     for (double p : levels) s.percentiles.push_back({p, kNaN, kNaN, kNaN});
     return s;
   }
   const double nd = static_cast<double>(n);
-  s.mean = std::accumulate(x.begin(), x.end(), 0.0) / nd;
   double ss = 0.0;
   for (double v : x) ss += (v - s.mean) * (v - s.mean);
   s.standard_deviation = n > 1 ? std::sqrt(ss / (nd - 1.0)) : kNaN;
   const double half = n > 1 ? NormalQuantile(level) * s.standard_deviation / std::sqrt(nd) : kNaN;
   s.mean_lower = s.mean - half;
   s.mean_upper = s.mean + half;
-  s.min = x.front();
-  s.max = x.back();
   for (double p : levels) {
     Percentile q;
     q.p = p;

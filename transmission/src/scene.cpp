@@ -663,4 +663,10 @@ Scene ReadScene(const std::string& path) {
   return ParseScene(text.str(), path);
 }
 
+const char* SunSupportName(SunSupport support) {
+  return support == SunSupport::kFixed      ? "fixed"
+         : support == SunSupport::kFloating ? "floating"
+                                            : "elastic";
+}
+
 }  // namespace epicycle::transmission

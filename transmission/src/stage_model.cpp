@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "epicycle/transmission/load_sharing.hpp"
+
 namespace epicycle::transmission {
 
 using geometry::PotentialContact;
@@ -265,14 +267,14 @@ double StageModel::DisplacementSize(const std::vector<StageDof>& dofs,
 
 namespace {
 
-// Σ over planet i's sun-mesh contacts of (moment of the contact on the sun) / divisor.
+// Σ over planet i's sun-mesh contacts of the moment of the contact on the sun.
 std::vector<double> SunMoments(int planets, const std::vector<StageContact>& contacts,
-                               const Eigen::VectorXd& force, double divisor) {
+                               const Eigen::VectorXd& force) {
   std::vector<double> out(planets, 0.0);
   for (std::size_t j = 0; j < contacts.size() && force.size() > 0; ++j) {
     const StageContact& s = contacts[j];
     if (s.body_a != kSunBody) continue;
-    out[s.planet] += s.contact.lever_a * force(static_cast<Eigen::Index>(j)) / divisor;
+    out[s.planet] += s.contact.lever_a * force(static_cast<Eigen::Index>(j));
   }
   return out;
 }
@@ -281,13 +283,12 @@ std::vector<double> SunMoments(int planets, const std::vector<StageContact>& con
 
 std::vector<double> StageModel::SunMeshTorques(const std::vector<StageContact>& contacts,
                                                const Eigen::VectorXd& force) const {
-  return SunMoments(stage_.planets(), contacts, force, 1.0);
+  return SunMoments(stage_.planets(), contacts, force);
 }
 
 std::vector<double> StageModel::LoadSharing(const std::vector<StageContact>& contacts,
                                             const Eigen::VectorXd& force, double sun_torque) const {
-  // Moment of the contacts on the sun over the input torque they balance.
-  return SunMoments(stage_.planets(), contacts, force, -sun_torque);
+  return LoadSharingRatios(SunMeshTorques(contacts, force), sun_torque);
 }
 
 }  // namespace epicycle::transmission

@@ -11,11 +11,9 @@ using geometry::PotentialContact;
 using geometry::Vec2;
 
 std::string StageContact::Label() const {
-  const std::string mesh_name = mesh == MeshKind::kSunPlanet
-                                    ? "sun-planet" + std::to_string(planet + 1)
-                                    : "planet" + std::to_string(planet + 1) + "-ring";
-  return mesh_name + " " + geometry::KindName(contact.kind) + " " + (loaded ? "drive" : "coast") +
-         " teeth " + std::to_string(contact.tooth_a) + "/" + std::to_string(contact.tooth_b);
+  return geometry::MeshName(planet, mesh) + " " + geometry::KindName(contact.kind) + " " +
+         (loaded ? "drive" : "coast") + " teeth " + std::to_string(contact.tooth_a) + "/" +
+         std::to_string(contact.tooth_b);
 }
 
 std::string StageDof::Label() const {

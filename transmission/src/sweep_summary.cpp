@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "epicycle/transmission/statistics.hpp"
+
 namespace epicycle::transmission {
 
 namespace {
@@ -29,41 +31,37 @@ SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int plan
     throw std::invalid_argument("SummariseSweep: planets = " + std::to_string(planets) +
                                 ": must be >= 1");
   const auto n = static_cast<std::size_t>(planets);
-  SweepSummary s;
-  s.positions = static_cast<int>(results.size());
-  s.lsr_mean.assign(n, 0.0);
-  s.lsr_min.assign(n, std::numeric_limits<double>::infinity());
-  s.lsr_max.assign(n, -std::numeric_limits<double>::infinity());
-  s.transmission_error_min = std::numeric_limits<double>::infinity();
-  s.transmission_error_max = -std::numeric_limits<double>::infinity();
+  std::vector<Accumulator> lsr(n);
+  Accumulator te, displacement, k_gamma;
   for (const PositionResult& r : results) {
     if (!r.converged) continue;
     if (r.load_sharing.size() != n)
       throw std::invalid_argument(
           "SummariseSweep: a converged position has " + std::to_string(r.load_sharing.size()) +
           " load-sharing ratios for " + std::to_string(planets) + " planets");
-    ++s.converged;
-    for (std::size_t i = 0; i < n; ++i) {
-      s.lsr_mean[i] += r.load_sharing[i];
-      s.lsr_min[i] = std::min(s.lsr_min[i], r.load_sharing[i]);
-      s.lsr_max[i] = std::max(s.lsr_max[i], r.load_sharing[i]);
-    }
-    s.transmission_error_min = std::min(s.transmission_error_min, r.transmission_error);
-    s.transmission_error_max = std::max(s.transmission_error_max, r.transmission_error);
-    s.sun_displacement_max = std::max(s.sun_displacement_max, r.sun_displacement.norm());
-    s.k_gamma = std::max(s.k_gamma, MeshLoadFactor(r));
+    for (std::size_t i = 0; i < n; ++i) lsr[i].Add(r.load_sharing[i]);
+    te.Add(r.transmission_error);
+    displacement.Add(r.sun_displacement.norm());
+    k_gamma.Add(MeshLoadFactor(r));
   }
-  if (s.converged == 0) {
-    // Nothing to summarise: NaN everywhere, so that no made-up number is reported.
-    for (auto* v : {&s.lsr_mean, &s.lsr_min, &s.lsr_max}) v->assign(n, kNaN);
-    s.k_gamma = s.k_gamma_mean = s.transmission_error_min = s.transmission_error_max =
-        s.sun_displacement_max = kNaN;
-    return s;
+  SweepSummary s;
+  s.positions = static_cast<int>(results.size());
+  s.converged = static_cast<int>(te.count());
+  // No converged position: NaN everywhere (the accumulators' empty rule).
+  for (std::size_t i = 0; i < n; ++i) {
+    s.lsr_mean.push_back(lsr[i].mean());
+    s.lsr_min.push_back(lsr[i].min());
+    s.lsr_max.push_back(lsr[i].max());
   }
-  s.k_gamma_mean = 0.0;
-  for (double& m : s.lsr_mean) {
-    m /= s.converged;
-    s.k_gamma_mean = std::max(s.k_gamma_mean, static_cast<double>(planets) * m);
+  s.transmission_error_min = te.min();
+  s.transmission_error_max = te.max();
+  s.sun_displacement_max = displacement.max();
+  s.k_gamma = k_gamma.empty() ? kNaN : std::max(0.0, k_gamma.max());
+  s.k_gamma_mean = kNaN;
+  if (s.converged > 0) {
+    s.k_gamma_mean = 0.0;
+    for (double m : s.lsr_mean)
+      s.k_gamma_mean = std::max(s.k_gamma_mean, static_cast<double>(planets) * m);
   }
   return s;
 }

@@ -4,7 +4,14 @@
 #   - every string of FILE_CONTAIN (a ;-list) in the files of OUT_DIR (JSON, CSV),
 #   - no nan/inf anywhere in the output nor in the files of OUT_DIR (if given): failures are
 #     reported, never printed as non-finite numbers.
-execute_process(COMMAND ${EXE} ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+# STDOUT (optional) sends the standard output to that file instead (/dev/full: a result that
+# cannot be written); CONTAIN then looks at stderr only.
+if(STDOUT)
+  execute_process(COMMAND ${EXE} ${ARGS} RESULT_VARIABLE rc OUTPUT_FILE ${STDOUT}
+                  ERROR_VARIABLE err)
+else()
+  execute_process(COMMAND ${EXE} ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+endif()
 set(all "${out}${err}")
 if(NOT "${rc}" STREQUAL "${EXPECT_RC}")
   message(FATAL_ERROR "exit status ${rc}, expected ${EXPECT_RC}; output:\n${all}")

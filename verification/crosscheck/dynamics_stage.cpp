@@ -144,6 +144,17 @@ TEST_CASE(
     const auto rig = test::MakeRig(text, "runout", o);
     const auto r = Run(rig, Times(*rig.model, *rig.stage, cycles, 4));
     REQUIRE(r.completed);
+    // Each sample's K_γ is max(0, max_i 3·LSR_i), and its sun balance Σ T_mesh + T_in − J_s θ̈_s
+    // is the residual of the sun's equation of motion the integrator solves: small against the
+    // 600 N·m it balances (1e-3 of it; a wrong sign of any torque gives 2·600 N·m).
+    double worst_balance = 0;
+    for (const DynamicSample& s : r.samples) {
+      double k_gamma = 0;
+      for (double l : s.load_sharing) k_gamma = std::max(k_gamma, 3.0 * l);
+      CHECK(s.k_gamma == k_gamma);
+      worst_balance = std::max(worst_balance, std::abs(s.sun_torque_balance));
+    }
+    CHECK(worst_balance <= 1e-3 * 600.0);
     // LSR_1 against the run-out offset's tangential component in the carrier frame.
     std::vector<double> lsr, tangential;
     for (const DynamicSample& s : r.samples) {

@@ -15,6 +15,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/run_range.hpp"
 #include "fe_fixtures.hpp"
 #include "figures.hpp"
 #include "stage_fixtures.hpp"
@@ -433,7 +434,7 @@ TEST_CASE("quasi-static FE: run-out of planet 1 over a revolution",
   const std::string file = "paper_stage.toml", text = WithRunout(test::SceneText(file), 20.0);
   const auto scene = transmission::ParseScene(text, file);
   const geometry::Stage stage(scene.stage);
-  const double period = 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth();
+  const double period = transmission::CarrierSpan(stage, transmission::RunRange::kPlanetRevolution);
   const int positions = 180;
   const Run fixed = Sweep(file, text, SunSupport::kFixed, period, positions);
   const Run floating = Sweep(file, text, SunSupport::kFloating, period, positions);
@@ -525,7 +526,7 @@ TEST_CASE("quasi-static FE: the gap window only selects candidates",
   const std::string file = "paper_stage.toml", text = WithRunout(test::SceneText(file), 20.0);
   const auto scene = transmission::ParseScene(text, file);
   const geometry::Stage stage(scene.stage);
-  const double period = 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth();
+  const double period = transmission::CarrierSpan(stage, transmission::RunRange::kPlanetRevolution);
   const int positions = 48;
   const std::string narrow = test::Replace(text, "gap_window_um = 100.0", "gap_window_um = 25.0");
   REQUIRE(narrow != text);
@@ -588,7 +589,7 @@ TEST_CASE("quasi-static FE: reversing the torque mirrors the stage",
   const std::string file = "paper_stage.toml", text = WithRunout(test::SceneText(file), 20.0);
   const auto scene = transmission::ParseScene(text, file);
   const geometry::Stage stage(scene.stage);
-  const double period = 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth();
+  const double period = transmission::CarrierSpan(stage, transmission::RunRange::kPlanetRevolution);
   double worst = 0.0;
   for (SunSupport sun : {SunSupport::kFixed, SunSupport::kFloating}) {
     const Run minus = Sweep(file, text, sun, period, 12);

@@ -29,6 +29,7 @@
 #include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/run_range.hpp"
 #include "fe_fixtures.hpp"
 #include "figures.hpp"
 
@@ -54,7 +55,8 @@ struct Rig {
     model = std::make_unique<transmission::StageModel>(stage, test::Compliance(kFile), setup);
     // One planet revolution relative to the carrier: the period of planet 1's run-out.
     angles = transmission::SweepAngles(
-        0.0, 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth(), positions);
+        0.0, transmission::CarrierSpan(stage, transmission::RunRange::kPlanetRevolution),
+        positions);
   }
   transmission::StageLoads loads() const { return scene.loads; }
   std::vector<PositionResult> Sweep(bool warm, int threads) const {

@@ -10,9 +10,10 @@
 #include <CLI/CLI.hpp>
 
 #include "csv_rows.hpp"
+#include "epicycle/report/files.hpp"
+#include "epicycle/report/svg_plot.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "fe_deck.hpp"
-#include "svg_plot.hpp"
 
 namespace {
 
@@ -66,8 +67,8 @@ int Read(const std::string& dir) {
 // (markers, one series per refinement): mesh stiffness, transmission error, tooth-pair shares.
 int Plot(const std::string& hybrid_csv, const std::string& fe_csv, const std::string& prefix,
          const std::string& title) {
-  using app::LinePlot;
-  using app::PlotSeries;
+  using report::LinePlot;
+  using report::PlotSeries;
   LinePlot k{title + ": mesh stiffness", "gear-1 angle [deg]", "k / b [N/(mm um)]", {}, false, {}};
   LinePlot te{title + ": loaded transmission error",
               "gear-1 angle [deg]",
@@ -133,9 +134,9 @@ int Plot(const std::string& hybrid_csv, const std::string& fe_csv, const std::st
   }
   for (auto& [teeth, s] : hshare) share.series.push_back(s);
   for (auto& [teeth, s] : fshare) share.series.push_back(s);
-  app::WriteTextFile(prefix + "_stiffness.svg", app::RenderSvg(k));
-  app::WriteTextFile(prefix + "_te.svg", app::RenderSvg(te));
-  app::WriteTextFile(prefix + "_share.svg", app::RenderSvg(share));
+  report::WriteTextFile(prefix + "_stiffness.svg", report::RenderSvg(k));
+  report::WriteTextFile(prefix + "_te.svg", report::RenderSvg(te));
+  report::WriteTextFile(prefix + "_share.svg", report::RenderSvg(share));
   std::printf("wrote %s_{stiffness,te,share}.svg\n", prefix.c_str());
   return 0;
 }

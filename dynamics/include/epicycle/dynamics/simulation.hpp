@@ -74,9 +74,16 @@ struct DynamicSample {
   double transmission_error = 0;     ///< dynamic TE at the sun: θ_s − θ_s,kinematic [rad]
   Eigen::Vector2d sun_centre = Eigen::Vector2d::Zero();  ///< from nominal [m] (orbit)
   double sun_acceleration = 0;  ///< θ̈_s from the integrator's interpolant [rad/s²]
-  double external_work = 0;     ///< W_ext since t = 0 [J]
-  double dissipated_work = 0;   ///< W_diss since t = 0 [J]
-  Evaluation evaluation;        ///< forces, energies, contacts at this step
+  /// K_γ at this step: max(0, max_i n·LSR_i) with n planets [-].
+  double k_gamma = 0;
+  /// The sun's rotational balance Σ_i T_mesh,i + T_in − J_s θ̈_s [N·m]: the moments of the
+  /// sun-planet meshes (Evaluation::sun_mesh_torque), the input torque and the inertia torque
+  /// with θ̈_s from the interpolant; 0 for a speed-driven sun, whose drive balances the meshes
+  /// exactly. Its size against T_in measures the interpolant's and the solver's error.
+  double sun_torque_balance = 0;
+  double external_work = 0;    ///< W_ext since t = 0 [J]
+  double dissipated_work = 0;  ///< W_diss since t = 0 [J]
+  Evaluation evaluation;       ///< forces, energies, contacts at this step
 };
 
 struct SimulationStats {

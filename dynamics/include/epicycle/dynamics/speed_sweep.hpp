@@ -104,13 +104,14 @@ struct Coincidence {
 
 /// What is fixed before the speeds run.
 struct SpeedSweepPlan {
-  std::vector<ModeDamping> modes;          ///< non-rigid modes, by frequency
-  std::vector<Coincidence> coincidences;   ///< within [first, last speed], by speed
-  double mesh_hz_per_rpm = 0;              ///< f_m per sun rpm [Hz/rpm]
-  double skip_time = 0;                    ///< t_skip [s]
-  double slowest_decay_rate = 0;           ///< min_j σ_j [1/s]
-  std::vector<double> window_angles;       ///< carrier angles of the window's samples [rad]
-  std::vector<std::string> meshes;         ///< mesh names: "sun-planet1", ..., "planet1-ring", ...
+  std::vector<ModeDamping> modes;         ///< non-rigid modes, by frequency
+  std::vector<Coincidence> coincidences;  ///< within [first, last speed], by speed
+  double mesh_hz_per_rpm = 0;             ///< f_m per sun rpm [Hz/rpm]
+  double skip_time = 0;                   ///< t_skip [s]
+  double slowest_decay_rate = 0;          ///< min_j σ_j [1/s]
+  std::vector<double> window_angles;      ///< carrier angles of the window's samples [rad]
+  /// Mesh names in the order of geometry::Stage::meshes(): "sun-planet1", "planet1-ring", ...
+  std::vector<std::string> meshes;
   std::vector<double> qs_peak_mesh_force;  ///< max_φ F_m,qs per mesh [N]
   double qs_k_gamma = 0;                   ///< K_γ of the quasi-static window [-]
   double qs_te_amplitude = 0;  ///< ½ peak-to-peak of the static TE over the window [rad]
@@ -152,9 +153,9 @@ struct SpeedSweepResult {
 ///         the window or of the start fails.
 SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions& options);
 
-/// The figures of one speed from its window's samples (those at plan.window_angles).
-SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window,
-                           int planets);
+/// The figures of one speed from its window's samples (those at plan.window_angles); K_γ is the
+/// largest DynamicSample::k_gamma of the window.
+SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window);
 
 /// Runs every speed of `plan` (from PlanSpeedSweep with the same options) on `options.threads`
 /// workers (lowest speed first: the slowest to run), each result handed to `on_result` as soon as

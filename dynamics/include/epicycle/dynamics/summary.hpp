@@ -9,18 +9,20 @@
 
 namespace epicycle::dynamics {
 
+/// Statistics over the output steps of a run (transmission::Accumulator: with no step every
+/// statistic is NaN and the per-planet lists are empty).
 struct DynamicSummary {
-  int samples = 0;                                 ///< output steps summarised
+  int samples = 0;                                 ///< output steps summarised [-]
   std::vector<double> lsr_min, lsr_max, lsr_mean;  ///< per planet [-]
-  double k_gamma = 0;                              ///< max over steps of max_i n·LSR_i [-]
+  double k_gamma = 0;                              ///< max over steps of max(0, max_i n·LSR_i) [-]
   double te_min = 0, te_max = 0;                   ///< dynamic transmission error [rad]
-  double te_peak_to_peak() const { return te_max - te_min; }
+  double te_peak_to_peak() const { return te_max - te_min; }  ///< [rad]
   double orbit_radius = 0;       ///< largest |sun centre − nominal| [m]
   double orbit_mean_radius = 0;  ///< mean |sun centre − nominal| [m]
-  double max_pair_force = 0;     ///< largest tooth-pair normal force (with damping) [N]
+  double max_pair_force = 0;     ///< largest tooth-pair normal force (with damping), ≥ 0 [N]
 };
 
-/// Summary of the samples (an empty list gives zeros, never ±∞).
+/// Summary of the samples.
 DynamicSummary Summarise(const std::vector<DynamicSample>& samples);
 
 /// The result warnings of the quasi-static driver (transmission::ValidityTally: a jammed planet,

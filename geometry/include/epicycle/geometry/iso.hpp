@@ -56,4 +56,15 @@ std::vector<double> RandomPitchDeviations(int teeth, double module, int grade, s
 /// @throws std::invalid_argument (naming `key`) unless Σ f_pt = 0 within 1e-12 m.
 std::vector<double> CumulativeFromSingle(const std::vector<double>& single, const std::string& key);
 
+/// The ISO 1328-1 figures of a gear's cumulative pitch deviations F_p,k (k = 0..z−1) [m].
+struct PitchStatistics {
+  /// Largest single pitch deviation max_k |f_pt,k| = max_k |F_p,k+1 − F_p,k|, the circle closed
+  /// (k + 1 taken mod z) [m].
+  double largest_single = 0;
+  /// Total cumulative pitch deviation F_p = max_k F_p,k − min_k F_p,k [m].
+  double total_cumulative = 0;
+};
+/// The statistics of `cumulative` (GearSpec::pitch_deviations); empty: no deviation, zeros.
+PitchStatistics PitchDeviationStatistics(const std::vector<double>& cumulative);
+
 }  // namespace epicycle::geometry::iso

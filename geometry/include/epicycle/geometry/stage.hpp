@@ -39,6 +39,14 @@ struct StageSpec {
 
 enum class MeshKind { kSunPlanet, kPlanetRing };
 
+/// Index of planet i's mesh of `kind` in Stage::meshes(): 2i for the sun-planet mesh, 2i + 1 for
+/// the planet-ring mesh (i 0-based) [-].
+inline int MeshIndex(int planet, MeshKind kind) {
+  return 2 * planet + (kind == MeshKind::kPlanetRing ? 1 : 0);
+}
+/// Name of planet i's mesh of `kind` (i 0-based): "sun-planet<i+1>" or "planet<i+1>-ring".
+std::string MeshName(int planet, MeshKind kind);
+
 /// Operating data of one mesh at the nominal (error-free) carrier radius.
 struct MeshSummary {
   MeshKind kind = MeshKind::kSunPlanet;

@@ -64,6 +64,9 @@ enum class SunSupport {
   kElastic,   ///< on a bearing of stiffness Supports::sun_stiffness
 };
 
+/// "fixed", "floating" or "elastic": the scene file's word for the support.
+const char* SunSupportName(SunSupport support);
+
 /// The scene's optional [supports] table. The ring is fixed and the carrier held.
 struct Supports {
   SunSupport sun = SunSupport::kFixed;

@@ -1,8 +1,8 @@
-#include "stage_svg.hpp"
+#include "epicycle/report/stage_svg.hpp"
 
 #include <fmt/format.h>
 
-namespace epicycle::app {
+namespace epicycle::report {
 
 using geometry::Vec2;
 
@@ -167,4 +167,4 @@ std::string DrawMeshZoom(const geometry::PosedGear& a, const geometry::PosedGear
   return s + "</svg>\n";
 }
 
-}  // namespace epicycle::app
+}  // namespace epicycle::report

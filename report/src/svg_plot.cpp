@@ -1,14 +1,13 @@
-#include "svg_plot.hpp"
+#include "epicycle/report/svg_plot.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
-namespace epicycle::app {
+namespace epicycle::report {
 
 namespace {
 
@@ -170,10 +169,30 @@ std::string RenderSvg(const LinePlot& input) {
   return s;
 }
 
-void WriteTextFile(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw std::runtime_error(path + ": cannot be written");
+PlotSeries HistogramOutline(const std::string& name, double lo, double width,
+                            const std::vector<long>& counts) {
+  PlotSeries hs{name, {}, {}};
+  for (std::size_t b = 0; b < counts.size(); ++b) {
+    const double x0 = lo + width * static_cast<double>(b), x1 = x0 + width;
+    const auto c = static_cast<double>(counts[b]);
+    for (auto [x, y] : {std::pair{x0, 0.0}, {x0, c}, {x1, c}, {x1, 0.0}}) {
+      hs.x.push_back(x);
+      hs.y.push_back(y);
+    }
+  }
+  return hs;
 }
 
-}  // namespace epicycle::app
+PlotSeries EmpiricalCdfSteps(const std::string& name, const std::vector<double>& sorted) {
+  PlotSeries cs{name, {}, {}};
+  const double n = static_cast<double>(sorted.size());
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    cs.x.push_back(sorted[i]);
+    cs.y.push_back(static_cast<double>(i) / n);
+    cs.x.push_back(sorted[i]);
+    cs.y.push_back(static_cast<double>(i + 1) / n);
+  }
+  return cs;
+}
+
+}  // namespace epicycle::report

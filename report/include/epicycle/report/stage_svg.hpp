@@ -6,7 +6,7 @@
 
 #include "epicycle/geometry/stage.hpp"
 
-namespace epicycle::app {
+namespace epicycle::report {
 
 /// Tooth outlines, base circles, the loaded lines of action and the potential contacts (colour by
 /// kind) at carrier angle φ_c; the drawing is in millimetres.
@@ -19,4 +19,4 @@ std::string DrawStage(const geometry::Stage& stage, double carrier_angle, double
 std::string DrawMeshZoom(const geometry::PosedGear& a, const geometry::PosedGear& b, bool internal,
                          int loaded_side, double gap_window, double relief_scale);
 
-}  // namespace epicycle::app
+}  // namespace epicycle::report

@@ -1,11 +1,12 @@
-// A small SVG line-plot writer for the command-line program's figures (stiffness curves, load
-// sharing, transmission error, orbits): axes with ticks, one polyline per series, a legend.
+// A small SVG line-plot writer for the project's figures (stiffness curves, load sharing,
+// transmission error, orbits; the command-line program, the benchmarks' studies and the FE
+// reference tool): axes with ticks, one polyline per series, a legend.
 #pragma once
 
 #include <string>
 #include <vector>
 
-namespace epicycle::app {
+namespace epicycle::report {
 
 struct PlotSeries {
   std::string name;
@@ -36,7 +37,12 @@ struct LinePlot {
 /// The plot as a complete SVG document. Non-finite values are skipped.
 std::string RenderSvg(const LinePlot& plot);
 
-/// Writes `text` to `path`. @throws std::runtime_error naming the file if it cannot be written.
-void WriteTextFile(const std::string& path, const std::string& text);
+/// A histogram as a step outline: bins [lo + k w, lo + (k + 1) w) of width w = `width` with
+/// `counts[k]` values, each bin drawn (x0, 0), (x0, c), (x1, c), (x1, 0).
+PlotSeries HistogramOutline(const std::string& name, double lo, double width,
+                            const std::vector<long>& counts);
 
-}  // namespace epicycle::app
+/// The empirical CDF of `sorted` (ascending) as steps: at x_(i) from (i − 1)/n up to i/n.
+PlotSeries EmpiricalCdfSteps(const std::string& name, const std::vector<double>& sorted);
+
+}  // namespace epicycle::report

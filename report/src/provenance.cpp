@@ -1,16 +1,12 @@
-#include "provenance.hpp"
+#include "epicycle/report/provenance.hpp"
 
-#include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "epicycle/config.h"
 #include "epicycle/transmission/scene.hpp"
 
-namespace epicycle::app {
+namespace epicycle::report {
 
 nlohmann::json Provenance(const std::string& backend, const transmission::Scene* scene) {
   nlohmann::json j;
@@ -44,15 +40,6 @@ std::string ProvenanceCsvLine(const nlohmann::json& p) {
   return line + "\n";
 }
 
-void PrintWarnings(const std::vector<std::string>& warnings) {
-  if (warnings.empty()) return;
-  std::printf(
-      "\nWARNING: %zu value(s) outside the model's validity (results computed, read with "
-      "care):\n",
-      warnings.size());
-  for (const std::string& w : warnings) std::printf("  warning: %s\n", w.c_str());
-}
-
 std::string FileHash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return "";
@@ -61,8 +48,4 @@ std::string FileHash(const std::string& path) {
   return transmission::ContentHash(text.str());
 }
 
-std::string Finite(double v, const char* format, const char* missing) {
-  return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : std::string(missing);
-}
-
-}  // namespace epicycle::app
+}  // namespace epicycle::report

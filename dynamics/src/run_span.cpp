@@ -1,0 +1,52 @@
+#include "epicycle/dynamics/run_span.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace epicycle::dynamics {
+
+std::vector<double> RunSpan::OutputTimes() const {
+  std::vector<double> times;
+  times.reserve(static_cast<std::size_t>(std::max(outputs, 0)));
+  for (int i = 1; i <= outputs; ++i) times.push_back(duration * i / outputs);
+  return times;
+}
+
+RunSpan MakeRunSpan(const geometry::Stage& stage, double carrier_speed,
+                    transmission::RunRange range, double time, int outputs_per_cycle) {
+  if (!(carrier_speed != 0) || !std::isfinite(carrier_speed))
+    throw std::invalid_argument("run span: carrier speed = " + std::to_string(carrier_speed) +
+                                " rad/s: must be finite and non-zero");
+  if (!(time >= 0) || !std::isfinite(time))
+    throw std::invalid_argument("run span: time = " + std::to_string(time) +
+                                " s: must be finite and >= 0 (0: the range)");
+  if (outputs_per_cycle < 1)
+    throw std::invalid_argument(
+        "run span: outputs per cycle = " + std::to_string(outputs_per_cycle) + ": must be >= 1");
+  const double wc = std::abs(carrier_speed);
+  RunSpan s;
+  s.cycle_time = stage.mesh_cycle() / wc;
+  s.duration = time > 0 ? time
+               : range == transmission::RunRange::kMeshCycle
+                   ? s.cycle_time
+                   : transmission::CarrierSpan(stage, range) / wc;
+  s.mesh_frequency = stage.ring().teeth() * wc / (2.0 * std::numbers::pi);
+  s.outputs =
+      std::max(1, static_cast<int>(std::ceil(s.duration / s.cycle_time * outputs_per_cycle)));
+  return s;
+}
+
+double MeshHzPerSunRpm(const geometry::Stage& stage) {
+  return stage.ring().teeth() / stage.sun_ratio() / 60.0;
+}
+
+std::vector<double> HarmonicSunSpeeds(double frequency, double hz_per_rpm, int harmonics) {
+  std::vector<double> rpm;
+  for (int h = 1; h <= harmonics && frequency > 0; ++h) rpm.push_back(frequency / (h * hz_per_rpm));
+  return rpm;
+}
+
+}  // namespace epicycle::dynamics

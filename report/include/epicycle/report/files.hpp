@@ -1,0 +1,47 @@
+// Writing result files: numbers for cells (never nan or inf), CSV files written in whole lines
+// and checked at every write, and whole text files (JSON, SVG). Every failed open, write, flush
+// or close throws std::runtime_error naming the file and the system's reason (strerror(errno)),
+// so that no result is lost without a message.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace epicycle::report {
+
+/// A number for a report or a file cell: `v` formatted with `format` (fmt syntax) if finite,
+/// otherwise `missing` (default empty: an empty CSV cell). Never prints nan or inf.
+std::string Num(double v, const char* format = "{:.9g}", const char* missing = "");
+
+/// A free-text CSV cell: every ',' and line break replaced by ';' (one cell, one line).
+std::string CsvText(std::string text);
+
+/// Writes `text` to `path` (created or truncated) and closes it.
+/// @throws std::runtime_error "PATH: cannot be written: REASON" on any failure.
+void WriteTextFile(const std::string& path, std::string_view text);
+
+/// A CSV (or any line-oriented) result file, written as results are computed: each call writes
+/// whole lines and flushes them, so that a run that stops midway keeps every line before it.
+class CsvFile {
+ public:
+  /// Creates or truncates `path`. @throws std::runtime_error naming it if it cannot be opened.
+  explicit CsvFile(std::string path);
+  ~CsvFile();  ///< closes the file if Close() was not called (errors there are not reported)
+  CsvFile(const CsvFile&) = delete;
+  CsvFile& operator=(const CsvFile&) = delete;
+
+  /// Writes `line` and "\n", then flushes. @throws std::runtime_error naming the file.
+  void WriteLine(std::string_view line);
+  /// Writes `lines` (each ending in "\n"), then flushes. @throws std::runtime_error.
+  void Write(std::string_view lines);
+  /// Closes the file, checking the close. @throws std::runtime_error naming the file.
+  void Close();
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::FILE* file_ = nullptr;
+};
+
+}  // namespace epicycle::report

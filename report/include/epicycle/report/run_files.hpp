@@ -1,0 +1,118 @@
+// The result files of the stage drivers, written as results are computed (CSV, one whole checked
+// line at a time, the provenance line first) and at the end (SVG plots): a quasi-static sweep, a
+// dynamic run and a speed sweep. Column names carry their units; a value that is not finite is an
+// empty cell (docs: README "Exit status").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "epicycle/dynamics/modes.hpp"
+#include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/dynamics/speed_sweep.hpp"
+#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/report/files.hpp"
+#include "epicycle/transmission/mesh_stiffness.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/sweep_summary.hpp"
+
+namespace epicycle::report {
+
+/// BASE_positions.csv (one line per carrier position: LSR_i, L_i, K_γ, TE, sun displacement,
+/// the solve's counts and status) and BASE_pairs.csv (one line per loaded tooth pair).
+class QuasiStaticFiles {
+ public:
+  /// @throws std::runtime_error naming a file that cannot be written.
+  QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance, int planets);
+  /// The lines of one position (a failed one: its status and message, empty results).
+  void Write(const transmission::PositionResult& r);
+  void Close();
+
+ private:
+  CsvFile positions_, pairs_;
+};
+
+/// DIR/NAME.json: a position's contact problem as a problem file (category "stage", the run's
+/// provenance, `description`), for `epicycle contact solve|compare` and the collection.
+void WriteStageProblemFile(const std::string& dir, const std::string& name,
+                           const solvers::ContactProblemData& data,
+                           const nlohmann::json& provenance, const std::string& description);
+
+/// The statistics of a quasi-static sweep for its JSON summary: "planets" (LSR mean, min, max
+/// per planet), "K_gamma_max", "transmission_error_{min,max}_urad", "sun_displacement_max_um";
+/// null where no position converged (JSON has no NaN). The caller adds the run's settings.
+nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary);
+
+/// BASE_lsr.svg, BASE_te.svg and BASE_sun_path.svg of the converged positions.
+void WriteQuasiStaticPlots(const std::string& base, const std::string& scene_name,
+                           const std::string& sun_name, int planets,
+                           const std::vector<transmission::PositionResult>& results);
+
+/// BASE_steps.csv (one line per output step: LSR_i, L_i, K_γ, TE, sun centre, the sun's torque
+/// balance, work and energies, contacts, friction power), BASE_pairs.csv (one line per loaded
+/// tooth pair per step) and BASE_bearings.csv (bearing forces per step).
+class DynamicRunFiles {
+ public:
+  /// @throws std::runtime_error naming a file that cannot be written.
+  DynamicRunFiles(const std::string& base, const nlohmann::json& provenance, int planets);
+  void Write(const dynamics::DynamicSample& s);
+  void Close();
+
+ private:
+  CsvFile steps_, pairs_, bearings_;
+};
+
+/// BASE_lsr.svg, BASE_te.svg and BASE_orbit.svg of a run's samples.
+void WriteDynamicPlots(const std::string& base, const std::string& scene_name,
+                       const std::string& sun_name, int planets,
+                       const std::vector<dynamics::DynamicSample>& samples);
+
+/// The results of a dynamic run for its JSON summary: "planets" (LSR mean, min, max per planet),
+/// "outputs_written", "K_gamma_max", "transmission_error_{min,max,peak_to_peak}_urad",
+/// "sun_orbit_radius_{max,mean}_um" and the integrator's counts and times ("steps",
+/// "evaluations", ..., "rate_tolerance_scale_rad_per_s"). The caller adds the run's settings.
+nlohmann::json DynamicRunJson(const dynamics::DynamicSummary& summary,
+                              const dynamics::SimulationStats& stats);
+
+/// The natural modes for `epicycle modes --json`: per mode its frequency, multiplicity, type
+/// ("rigid" for a rigid-body group), energy fractions and the sun speeds [rpm] where mesh
+/// harmonics 1, 2, 3 meet it (`hz_per_rpm`: dynamics::MeshHzPerSunRpm).
+nlohmann::json ModesJson(const std::vector<dynamics::Mode>& modes, double hz_per_rpm);
+
+/// PATH.csv of a speed sweep: one line per speed as it completes (a failed speed: its speed,
+/// status and message, empty figures).
+class SpeedSweepFile {
+ public:
+  /// @throws std::runtime_error naming the file if it cannot be written.
+  SpeedSweepFile(const std::string& path, const nlohmann::json& provenance);
+  void Write(const dynamics::SpeedResult& r, const dynamics::SpeedSweepPlan& plan);
+  void Close();
+
+ private:
+  CsvFile csv_;
+};
+
+/// PATH_k_gamma.svg, _dynamic_factor.svg, _te_amplitude.svg and _orbit.svg against sun speed,
+/// the coincidences of mesh harmonics and natural frequencies marked (dashed: not excited by a
+/// symmetric stage's planet phasing), the quasi-static references drawn.
+void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name,
+                          const dynamics::SpeedSweepPlan& plan,
+                          const std::vector<dynamics::SpeedResult>& speeds);
+
+/// The mesh stiffness and each tooth pair's stiffness over the cycle per unit face width
+/// `face_width` [m] (N/(mm µm) against gear 1's rotation in degrees), the converged positions
+/// only, with horizontal references `references` [N/(mm µm)] (ISO 6336's c_γα and c′), as SVG.
+void WriteMeshStiffnessPlot(const std::string& path, const std::string& title,
+                            const transmission::MeshStiffnessResult& result, double face_width,
+                            std::vector<double> references);
+
+/// The summary of a speed sweep's results for its JSON file: "speeds" (per speed: status,
+/// figures where ok, counts, times, warnings), "modes" (frequency, type, multiplicity, cyclic
+/// families, modal damping), "coincidences", "quasi_static_peak_mesh_force_N" per mesh and the
+/// "definitions" of the figures. The caller adds the run's settings.
+nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
+                                     const std::vector<dynamics::SpeedResult>& speeds);
+
+}  // namespace epicycle::report

@@ -1,0 +1,435 @@
+#include "epicycle/report/run_files.hpp"
+
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "epicycle/dynamics/run_span.hpp"
+#include "epicycle/report/provenance.hpp"
+#include "epicycle/report/svg_plot.hpp"
+#include "epicycle/solvers/contact_io.hpp"
+
+namespace epicycle::report {
+
+namespace {
+
+// Appends ",<v>" (Num: an empty cell where v is not finite).
+void Cell(std::string& line, double v) {
+  line += ',';
+  line += Num(v);
+}
+
+// "a,b,c" of the values formatted by Num (empty cells where not finite), each led by a comma.
+template <typename Range>
+std::string Cells(const Range& values) {
+  std::string s;
+  for (double v : values) Cell(s, v);
+  return s;
+}
+
+// A statistic for a JSON file: null where it has no value (JSON has no NaN), never a made-up
+// number.
+nlohmann::json JsonValue(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
+
+// The three figures of a run of a stage against x (carrier angle or time): LSR_i, the
+// transmission error at the sun [µrad], and the sun centre's path [µm] (equal axes).
+// Per planet its LSR mean, min and max [-] (null where there is none).
+nlohmann::json PlanetsJson(const std::vector<double>& mean, const std::vector<double>& min,
+                           const std::vector<double>& max) {
+  nlohmann::json planets = nlohmann::json::array();
+  for (std::size_t i = 0; i < mean.size(); ++i)
+    planets.push_back({{"planet", i + 1},
+                       {"lsr_mean", JsonValue(mean[i])},
+                       {"lsr_min", JsonValue(min[i])},
+                       {"lsr_max", JsonValue(max[i])}});
+  return planets;
+}
+
+class RunFigures {
+ public:
+  RunFigures(std::string base, int planets, std::string x_label)
+      : base_(std::move(base)), planets_(planets), x_label_(std::move(x_label)) {
+    for (int i = 0; i < planets_; ++i) lsr_.push_back({fmt::format("planet {}", i + 1), {}, {}});
+  }
+  void Add(double x, const std::vector<double>& load_sharing, double te_rad, double sun_x,
+           double sun_y) {
+    for (int i = 0; i < planets_; ++i) {
+      lsr_[i].x.push_back(x);
+      lsr_[i].y.push_back(load_sharing[i]);
+    }
+    te_.x.push_back(x);
+    te_.y.push_back(te_rad * 1e6);
+    path_.x.push_back(sun_x * 1e6);
+    path_.y.push_back(sun_y * 1e6);
+  }
+  void Write(const std::string& lsr_title, const std::string& te_title,
+             const std::string& path_title, const std::string& path_file) {
+    LinePlot l{lsr_title, x_label_, "LSR_i [-]", lsr_, false, {1.0 / planets_}};
+    LinePlot t{te_title, x_label_, "sun rotation from kinematic [urad]", {te_}, false, {}};
+    LinePlot p{path_title, "x [um]", "y [um]", {path_}, true, {}};
+    WriteTextFile(base_ + "_lsr.svg", RenderSvg(l));
+    WriteTextFile(base_ + "_te.svg", RenderSvg(t));
+    WriteTextFile(base_ + path_file, RenderSvg(p));
+  }
+
+ private:
+  std::string base_;
+  int planets_ = 0;
+  std::string x_label_;
+  std::vector<PlotSeries> lsr_;
+  PlotSeries te_{"TE", {}, {}}, path_{"sun centre", {}, {}};
+};
+
+}  // namespace
+
+QuasiStaticFiles::QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance,
+                                   int planets)
+    : positions_(base + "_positions.csv"), pairs_(base + "_pairs.csv") {
+  std::string head = ProvenanceCsvLine(provenance) + "carrier_deg,converged";
+  for (int i = 1; i <= planets; ++i) head += ",LSR_" + std::to_string(i);
+  for (int i = 1; i <= planets; ++i) head += ",L_" + std::to_string(i);
+  head +=
+      ",K_gamma,transmission_error_urad,sun_x_um,sun_y_um,geometric_iterations,"
+      "contact_iterations,warm_started,residual,status,active_contacts,contacts,solve_ms,"
+      "message\n";
+  positions_.Write(head);
+  pairs_.Write(ProvenanceCsvLine(provenance) + "carrier_deg,mesh,kind,flank,teeth,force_N\n");
+}
+
+void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
+  const double deg = geometry::Deg(r.carrier_angle);
+  const bool ok = r.converged;
+  std::string line = fmt::format("{:.6f},{}", deg, ok ? 1 : 0);
+  const std::vector<double> l = transmission::LoadSharingFactors(r);
+  for (double v : r.load_sharing) Cell(line, ok ? v : NAN);
+  for (double v : l) Cell(line, ok ? v : NAN);
+  line += fmt::format(
+      ",{},{},{},{},{},{},{},{},{},{},{},{},{}", Num(ok ? transmission::MeshLoadFactor(r) : NAN),
+      Num(ok ? r.transmission_error * 1e6 : NAN), Num(ok ? r.sun_displacement.x() * 1e6 : NAN),
+      Num(ok ? r.sun_displacement.y() * 1e6 : NAN), r.geometric_iterations, r.contact_iterations,
+      r.warm_started ? 1 : 0, Num(r.report.residual.total), solvers::StatusName(r.report.status),
+      r.report.active_contacts, r.problem.contacts.size(),
+      Num(r.report.total_seconds * 1e3, "{:.4g}"), CsvText(r.message));
+  positions_.WriteLine(line);
+  std::string pairs;
+  for (std::size_t j = 0; j < r.problem.contacts.size() && ok; ++j) {
+    const double f = r.solution.force(static_cast<Eigen::Index>(j));
+    if (!(f > 0)) continue;
+    const transmission::StageContact& c = r.problem.contacts[j];
+    pairs += fmt::format("{:.6f},{},{},{},{}/{},{}\n", deg, geometry::MeshName(c.planet, c.mesh),
+                         geometry::KindName(c.contact.kind), c.loaded ? "drive" : "coast",
+                         c.contact.tooth_a, c.contact.tooth_b, Num(f));
+  }
+  pairs_.Write(pairs);
+}
+
+void QuasiStaticFiles::Close() {
+  positions_.Close();
+  pairs_.Close();
+}
+
+void WriteStageProblemFile(const std::string& dir, const std::string& name,
+                           const solvers::ContactProblemData& data,
+                           const nlohmann::json& provenance, const std::string& description) {
+  solvers::ContactProblemFile file;
+  file.data = data;
+  file.data.name = name;
+  file.category = "stage";
+  for (const auto& item : provenance.items())
+    if (item.value().is_string()) file.provenance[item.key()] = item.value().get<std::string>();
+  file.description = description;
+  solvers::WriteContactProblemFile(file, dir + "/" + name + ".json");
+}
+
+nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
+  nlohmann::json j;
+  j["planets"] = PlanetsJson(summary.lsr_mean, summary.lsr_min, summary.lsr_max);
+  j["K_gamma_max"] = JsonValue(summary.k_gamma);
+  j["transmission_error_min_urad"] = JsonValue(summary.transmission_error_min * 1e6);
+  j["transmission_error_max_urad"] = JsonValue(summary.transmission_error_max * 1e6);
+  j["sun_displacement_max_um"] = JsonValue(summary.sun_displacement_max * 1e6);
+  return j;
+}
+
+void WriteQuasiStaticPlots(const std::string& base, const std::string& scene_name,
+                           const std::string& sun_name, int planets,
+                           const std::vector<transmission::PositionResult>& results) {
+  RunFigures f{base, planets, "carrier angle [deg]"};
+  for (const auto& r : results)
+    if (r.converged)
+      f.Add(geometry::Deg(r.carrier_angle), r.load_sharing, r.transmission_error,
+            r.sun_displacement.x(), r.sun_displacement.y());
+  f.Write(scene_name + ": load-sharing ratio (sun " + sun_name + ")",
+          scene_name + ": loaded static transmission error at the sun",
+          scene_name + ": sun centre path", "_sun_path.svg");
+}
+
+DynamicRunFiles::DynamicRunFiles(const std::string& base, const nlohmann::json& provenance,
+                                 int planets)
+    : steps_(base + "_steps.csv"), pairs_(base + "_pairs.csv"), bearings_(base + "_bearings.csv") {
+  const std::string p = ProvenanceCsvLine(provenance);
+  std::string steps = p + "time_s,carrier_deg";
+  for (int i = 1; i <= planets; ++i) steps += ",LSR_" + std::to_string(i);
+  for (int i = 1; i <= planets; ++i) steps += ",L_" + std::to_string(i);
+  steps +=
+      ",K_gamma,transmission_error_urad,sun_x_um,sun_y_um,sun_torque_balance_Nm,"
+      "external_work_J,dissipated_work_J,kinetic_energy_J,elastic_energy_J,contacts,"
+      "active_contacts,friction_power_W\n";
+  steps_.Write(steps);
+  pairs_.Write(p +
+               "time_s,mesh,kind,flank,teeth,normal_force_N,elastic_force_N,friction_force_N,"
+               "overlap_rate_mm_per_s\n");
+  std::string bearings = p + "time_s,sun_Fx_N,sun_Fy_N";
+  for (int i = 1; i <= planets; ++i) bearings += fmt::format(",planet{0}_Fx_N,planet{0}_Fy_N", i);
+  bearings_.Write(bearings + "\n");
+}
+
+void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
+  const dynamics::Evaluation& e = s.evaluation;
+  const auto n = static_cast<double>(s.load_sharing.size());
+  std::string steps = fmt::format("{:.9g},{:.6f}", s.time, geometry::Deg(s.carrier_angle));
+  steps += Cells(s.load_sharing);
+  for (double v : s.load_sharing) Cell(steps, n * v);
+  int active = 0;
+  for (int j = 0; j < e.total_force.size(); ++j) active += e.total_force(j) > 0;
+  steps += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}", Num(s.k_gamma),
+                       Num(s.transmission_error * 1e6), Num(s.sun_centre.x() * 1e6),
+                       Num(s.sun_centre.y() * 1e6), Num(s.sun_torque_balance), Num(s.external_work),
+                       Num(s.dissipated_work), Num(e.kinetic_energy), Num(e.elastic_energy),
+                       e.terms.size(), active, Num(e.friction_power));
+  steps_.WriteLine(steps);
+  std::string pairs;
+  for (int j = 0; j < e.terms.size(); ++j) {
+    if (!(e.total_force(j) > 0)) continue;
+    const transmission::StageContact& c = e.terms.contacts[j];
+    pairs += fmt::format("{:.9g},{},{},{},{}/{},{},{},{},{}\n", s.time,
+                         geometry::MeshName(c.planet, c.mesh), geometry::KindName(c.contact.kind),
+                         c.loaded ? "drive" : "coast", c.contact.tooth_a, c.contact.tooth_b,
+                         Num(e.total_force(j)), Num(e.force(j)), Num(e.friction(j)),
+                         Num(e.overlap_rate(j) * 1e3));
+  }
+  pairs_.Write(pairs);
+  std::string bearings = fmt::format("{:.9g},{},{}", s.time, Num(e.sun_bearing_force.x()),
+                                     Num(e.sun_bearing_force.y()));
+  for (const auto& f : e.planet_bearing_force) {
+    Cell(bearings, f.x());
+    Cell(bearings, f.y());
+  }
+  bearings_.WriteLine(bearings);
+}
+
+void DynamicRunFiles::Close() {
+  steps_.Close();
+  pairs_.Close();
+  bearings_.Close();
+}
+
+void WriteDynamicPlots(const std::string& base, const std::string& scene_name,
+                       const std::string& sun_name, int planets,
+                       const std::vector<dynamics::DynamicSample>& samples) {
+  RunFigures f{base, planets, "time [ms]"};
+  for (const auto& s : samples)
+    f.Add(s.time * 1e3, s.load_sharing, s.transmission_error, s.sun_centre.x(), s.sun_centre.y());
+  f.Write(scene_name + ": dynamic load-sharing ratio (sun " + sun_name + ")",
+          scene_name + ": dynamic transmission error at the sun", scene_name + ": sun centre orbit",
+          "_orbit.svg");
+}
+
+nlohmann::json DynamicRunJson(const dynamics::DynamicSummary& sum,
+                              const dynamics::SimulationStats& st) {
+  nlohmann::json j;
+  j["planets"] = PlanetsJson(sum.lsr_mean, sum.lsr_min, sum.lsr_max);
+  j["outputs_written"] = sum.samples;
+  j["K_gamma_max"] = JsonValue(sum.k_gamma);
+  j["transmission_error_min_urad"] = JsonValue(sum.te_min * 1e6);
+  j["transmission_error_max_urad"] = JsonValue(sum.te_max * 1e6);
+  j["transmission_error_peak_to_peak_urad"] = JsonValue(sum.te_peak_to_peak() * 1e6);
+  j["sun_orbit_radius_max_um"] = JsonValue(sum.orbit_radius * 1e6);
+  j["sun_orbit_radius_mean_um"] = JsonValue(sum.orbit_mean_radius * 1e6);
+  j["steps"] = st.steps;
+  j["evaluations"] = st.rhs_evaluations;
+  j["fd_jacobian_evaluations"] = st.fd_rhs_evaluations;
+  j["jacobians"] = st.jacobian_evaluations;
+  j["failed_contact_solves"] = st.failed_solves;
+  j["error_test_failures"] = st.error_test_failures;
+  j["wall_seconds"] = st.wall_seconds;
+  j["evaluation_seconds"] = st.rhs_seconds;
+  j["rate_tolerance_scale_rad_per_s"] = st.rate_scale;  // rate atol = position atol x this
+  return j;
+}
+
+nlohmann::json ModesJson(const std::vector<dynamics::Mode>& modes, double hz_per_rpm) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const dynamics::Mode& x : modes)
+    list.push_back({{"frequency_Hz", x.frequency},
+                    {"multiplicity", x.multiplicity},
+                    {"type", x.rigid ? std::string("rigid") : dynamics::ModeTypeName(x.type)},
+                    {"central_translation_energy", x.central_translation},
+                    {"central_rotation_energy", x.central_rotation},
+                    {"planet_energy", x.planets},
+                    {"sun_rpm_at_mesh_harmonics_1_2_3",
+                     dynamics::HarmonicSunSpeeds(x.frequency, hz_per_rpm, 3)}});
+  return list;
+}
+
+SpeedSweepFile::SpeedSweepFile(const std::string& path, const nlohmann::json& provenance)
+    : csv_(path) {
+  csv_.Write(ProvenanceCsvLine(provenance) +
+             "index,sun_speed_rpm,mesh_frequency_Hz,status,K_gamma,dynamic_factor,"
+             "dynamic_factor_mesh,peak_mesh_force_N,te_amplitude_urad,sun_orbit_radius_um,lsr_min,"
+             "lsr_max,steps,evaluations,failed_contact_solves,cpu_s,wall_s,message\n");
+}
+
+void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::SpeedSweepPlan& plan) {
+  // A failed speed keeps its speed, status and message; its figures are empty (not zeros).
+  auto v = [&](double x) { return r.ok ? Num(x) : std::string(); };
+  csv_.WriteLine(fmt::format(
+      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Num(r.sun_speed_rpm),
+      Num(r.mesh_frequency), r.ok ? "ok" : "failed", v(r.k_gamma), v(r.dynamic_factor),
+      r.ok && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "", v(r.peak_mesh_force),
+      v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min), v(r.lsr_max), r.stats.steps,
+      r.stats.rhs_evaluations, r.stats.failed_solves, Num(r.cpu_seconds), Num(r.wall_seconds),
+      CsvText(r.message)));
+}
+
+void SpeedSweepFile::Close() { csv_.Close(); }
+
+void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name,
+                          const dynamics::SpeedSweepPlan& plan,
+                          const std::vector<dynamics::SpeedResult>& speeds) {
+  std::vector<XMarker> markers;
+  for (const dynamics::Coincidence& c : plan.coincidences) {
+    // A degenerate pair split by an error (e.g. 4941.95 and 4942.25 Hz): one marker "m2,3 h4".
+    const std::string tail = fmt::format(" h{}", c.harmonic);
+    if (!markers.empty() &&
+        std::abs(markers.back().x - c.sun_speed_rpm) <= 1e-3 * c.sun_speed_rpm &&
+        markers.back().label.ends_with(tail)) {
+      XMarker& m = markers.back();
+      m.label.insert(m.label.size() - tail.size(), fmt::format(",{}", c.mode + 1));
+      m.dashed = m.dashed && !c.phasing_excited;
+      continue;
+    }
+    markers.push_back({c.sun_speed_rpm, fmt::format("m{}", c.mode + 1) + tail, !c.phasing_excited});
+  }
+  auto plot = [&](const std::string& what, const std::string& unit, const std::string& file,
+                  double scale, auto field, std::vector<double> refs) {
+    LinePlot p{scene_name + ": " + what + " against sun speed",
+               "sun speed [rpm]",
+               what + " [" + unit + "]",
+               {},
+               false,
+               std::move(refs)};
+    PlotSeries s{what, {}, {}, false};
+    for (const dynamics::SpeedResult& r : speeds) {
+      if (!r.ok) continue;
+      s.x.push_back(r.sun_speed_rpm);
+      s.y.push_back(field(r) * scale);
+    }
+    p.series.push_back(s);
+    p.x_markers = markers;
+    WriteTextFile(path + "_" + file + ".svg", RenderSvg(p));
+  };
+  plot("K_gamma", "-", "k_gamma", 1.0, [](const auto& r) { return r.k_gamma; }, {plan.qs_k_gamma});
+  plot("dynamic factor", "-", "dynamic_factor", 1.0, [](const auto& r) { return r.dynamic_factor; },
+       {1.0});
+  plot("TE amplitude", "urad", "te_amplitude", 1e6, [](const auto& r) { return r.te_amplitude; },
+       {plan.qs_te_amplitude * 1e6});
+  plot("sun orbit radius", "um", "orbit", 1e6, [](const auto& r) { return r.orbit_radius; }, {});
+}
+
+void WriteMeshStiffnessPlot(const std::string& path, const std::string& title,
+                            const transmission::MeshStiffnessResult& result, double face_width,
+                            std::vector<double> references) {
+  const double b = face_width;
+  LinePlot plot;
+  plot.title = title;
+  plot.x_label = "gear 1 rotation in the mesh cycle [deg]";
+  plot.y_label = "stiffness per face width [N/(mm um)]";
+  PlotSeries mesh{"mesh", {}, {}};
+  std::map<std::string, PlotSeries> pairs;
+  for (const auto& s : result.samples) {
+    if (!s.converged) continue;
+    mesh.x.push_back(geometry::Deg(s.angle));
+    mesh.y.push_back(s.mesh_stiffness / b / 1e9);
+    for (const auto& p : s.pairs) {
+      PlotSeries& ser = pairs[fmt::format("pair {}/{}", p.tooth1, p.tooth2)];
+      ser.name = fmt::format("pair {}/{}", p.tooth1, p.tooth2);
+      ser.points = true;
+      ser.x.push_back(geometry::Deg(s.angle));
+      ser.y.push_back(p.stiffness / b / 1e9);
+    }
+  }
+  plot.series.push_back(mesh);
+  for (auto& [k, s] : pairs) plot.series.push_back(s);
+  plot.y_references = std::move(references);
+  WriteTextFile(path, RenderSvg(plot));
+}
+
+nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
+                                     const std::vector<dynamics::SpeedResult>& speeds) {
+  using json = nlohmann::json;
+  json list = json::array();
+  for (const dynamics::SpeedResult& r : speeds) {
+    json j = {{"sun_speed_rpm", r.sun_speed_rpm},
+              {"mesh_frequency_Hz", r.mesh_frequency},
+              {"ok", r.ok},
+              {"message", r.message},
+              {"steps", r.stats.steps},
+              {"evaluations", r.stats.rhs_evaluations},
+              {"failed_contact_solves", r.stats.failed_solves},
+              {"cpu_s", r.cpu_seconds},
+              {"wall_s", r.wall_seconds},
+              {"warnings", r.warnings}};
+    if (r.ok) {
+      j["K_gamma"] = r.k_gamma;
+      j["dynamic_factor"] = r.dynamic_factor;
+      j["dynamic_factor_mesh"] = r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "";
+      j["peak_mesh_force_N"] = r.peak_mesh_force;
+      j["te_amplitude_urad"] = r.te_amplitude * 1e6;
+      j["sun_orbit_radius_um"] = r.orbit_radius * 1e6;
+      j["lsr_min"] = r.lsr_min;
+      j["lsr_max"] = r.lsr_max;
+    }
+    list.push_back(j);
+  }
+  json modes = json::array(), coincidences = json::array();
+  for (const dynamics::ModeDamping& m : plan.modes)
+    modes.push_back({{"frequency_Hz", m.mode.frequency},
+                     {"type", dynamics::ModeTypeName(m.mode.type)},
+                     {"multiplicity", m.mode.multiplicity},
+                     {"cyclic_families_k", m.families},
+                     {"damping_ratio", m.damping_ratio},
+                     {"decay_rate_per_s", m.decay_rate}});
+  for (const dynamics::Coincidence& c : plan.coincidences)
+    coincidences.push_back({{"sun_speed_rpm", c.sun_speed_rpm},
+                            {"frequency_Hz", c.frequency},
+                            {"mode", c.mode + 1},
+                            {"harmonic", c.harmonic},
+                            {"phasing_excited", c.phasing_excited}});
+  json qs_force = json::object();
+  for (std::size_t q = 0; q < plan.meshes.size(); ++q)
+    qs_force[plan.meshes[q]] = plan.qs_peak_mesh_force[q];
+  json j;
+  j["definitions"] = {
+      {"K_gamma", "max over window samples and planets of n LSR_i"},
+      {"dynamic_factor",
+       "max over meshes of (peak total normal force of the mesh in motion, damping included) / "
+       "(peak quasi-static total normal force of that mesh at the same carrier angles)"},
+      {"te_amplitude", "half the peak-to-peak dynamic transmission error at the sun"},
+      {"sun_orbit_radius", "largest sun-centre displacement over the window"},
+      {"window",
+       "each speed starts at the quasi-static solution, skips skip_time_s (start transient below "
+       "transient_fraction in every mode) and measures window_mesh_cycles from "
+       "window_start_carrier_deg"}};
+  j["quasi_static_peak_mesh_force_N"] = qs_force;
+  j["modes"] = modes;
+  j["coincidences"] = coincidences;
+  j["speeds"] = list;
+  return j;
+}
+
+}  // namespace epicycle::report

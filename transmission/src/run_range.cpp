@@ -1,0 +1,41 @@
+#include "epicycle/transmission/run_range.hpp"
+
+#include <numbers>
+#include <stdexcept>
+
+namespace epicycle::transmission {
+
+RunRange RunRangeFromName(const std::string& name) {
+  if (name == "cycle") return RunRange::kMeshCycle;
+  if (name == "planet") return RunRange::kPlanetRevolution;
+  if (name == "revolution") return RunRange::kCarrierRevolution;
+  throw std::invalid_argument("range = '" + name + "': must be cycle, planet or revolution");
+}
+
+double CarrierSpan(const geometry::Stage& stage, RunRange range) {
+  switch (range) {
+    case RunRange::kMeshCycle:
+      return stage.mesh_cycle();
+    case RunRange::kPlanetRevolution:
+      // With the ring fixed a planet turns once relative to the carrier while the carrier turns
+      // z_p/z_r of a revolution (z_p ring teeth pass it).
+      return 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth();
+    case RunRange::kCarrierRevolution:
+      return 2.0 * std::numbers::pi;
+  }
+  throw std::invalid_argument("CarrierSpan: unknown range");
+}
+
+double MeshCycles(const geometry::Stage& stage, RunRange range) {
+  switch (range) {
+    case RunRange::kMeshCycle:
+      return 1.0;
+    case RunRange::kPlanetRevolution:
+      return static_cast<double>(stage.planet(0).teeth());
+    case RunRange::kCarrierRevolution:
+      return static_cast<double>(stage.ring().teeth());
+  }
+  throw std::invalid_argument("MeshCycles: unknown range");
+}
+
+}  // namespace epicycle::transmission
