@@ -80,9 +80,14 @@ struct ScaledProblem {
   /// counts the active contacts from it instead of evaluating the local terms a second time).
   ContactResiduals Residuals(const Eigen::VectorXd& x, const Eigen::VectorXd& lambda,
                              Eigen::VectorXd* gap) const;
-  /// Residuals(x, {}, gap) of a problem without equalities, computed in `gap`'s storage without
-  /// temporaries (the driver's judgement of every dynamic step's answer).
-  ContactResiduals ResidualsWithoutEqualities(const Eigen::VectorXd& x, Eigen::VectorXd* gap) const;
+  /// The driver's residual of a problem without equalities at x, in the callers' storage (no
+  /// temporaries): u_j and u'_j = u'(max(|x_j|, floor)) of the contacts with a force (both 0 at
+  /// x_j = 0), the gap g = u − δ0 + C x by the columns of C with a force, and
+  /// ‖min(x, g)‖∞ (the natural map; not finite if g is not). `negative`: some x_j < 0. The
+  /// Newton's direct path steps from the same g and u' (the driver computes them once per
+  /// iterate and judges by them; the path has no stopping test of its own).
+  double NaturalResidual(const Eigen::VectorXd& x, double floor, Eigen::VectorXd* u,
+                         Eigen::VectorXd* du, Eigen::VectorXd* g, bool* negative) const;
 };
 
 /// The driver's nondimensionalisation (scaled_problem.cpp):

@@ -113,44 +113,64 @@ class DriverSolver final : public ContactSolver {
     if (options.warm_start) internal::Scale(sp, *in_out, &x0, &l0);
 
     // Positions given (no equalities) and no back-end knobs: the Newton's direct path first. Its
-    // answer is a proposal judged by the driver's own residual, computed here from the forces
-    // alone (never from the path's own gap); if it misses the tolerance or the path gives up, the
-    // general path runs.
+    // iterates are proposals judged by the driver's own residual, computed here from the forces
+    // alone (the path has no stopping test of its own); if none meets the tolerance, the general
+    // path runs.
     std::string direct_note;
     if (backend_ == Backend::kActiveSetNewton && m == 0 && options.backend_options.empty() &&
         direct_ != nullptr) {
       const auto t1 = Clock::now();
-      if (!options.warm_start) x0.resize(0);
-      int iterations = 0;
-      const bool done =
-          direct_->Run(sp, 0.1 * options.tolerance, std::min(options.max_iterations, 50),
-                       options.warm_start, &x0, &iterations);
-      if (done && x0.size() == n) {
-        report.residual = sp.ResidualsWithoutEqualities(x0, &gap_);
-        if (report.residual.total <= options.tolerance) {
-          report.solve_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
-          report.iterations = iterations;
-          report.status = ContactStatus::kConverged;
-          report.active_contacts = static_cast<int>((x0.array() > gap_.array()).count());
-          internal::Unscale(sp, x0, Eigen::VectorXd(), in_out);
-          std::string& msg = report.message;  // one allocation
-          msg.reserve(160);
-          msg.append("converged: newton: residual ")
-              .append(Sci(report.residual.total))
-              .append(" (direct path: no equalities, ")
-              .append(std::to_string(iterations))
-              .append(" iterations)");
-          AppendValidityWarning(sp, x0, &report.message);
-          report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-          return report;
+      if (!options.warm_start || x0.size() != n) x0.setZero(n);
+      direct_->Begin(n, options.warm_start);
+      // The driver runs the path's iterations and judges every iterate by its own residual (the
+      // gap and slopes it computes here are what the path steps from): stop at a tenth of the
+      // tolerance at x ≥ 0; give up after three iterates without a new best residual (cycling
+      // between active sets, or worse), at the iteration limit, or when the path cannot step.
+      const double target = 0.1 * options.tolerance;
+      const int max_iterations = std::min(options.max_iterations, 50);
+      double best = std::numeric_limits<double>::infinity();
+      int since_best = 0, iterations = 0;
+      bool accepted = false;
+      for (;; ++iterations) {
+        bool negative = false;
+        const double res = sp.NaturalResidual(x0, internal::kDerivativeFloor, &u_, &du_, &gap_,
+                                              &negative);
+        if (!std::isfinite(res)) break;
+        if (res <= target && !negative) {
+          accepted = true;
+          report.residual.complementarity = report.residual.total = res;
+          break;
         }
-        direct_note = "; the direct path's answer missed the tolerance by the driver's residual (" +
-                      Sci(report.residual.total) + " after " + std::to_string(iterations) +
-                      " iterations), the globalised Newton ran";
-      } else {
-        direct_note = "; the direct path gave up after " + std::to_string(iterations) +
-                      " iterations, the globalised Newton ran";
+        if (res < best) {
+          best = res;
+          since_best = 0;
+        } else if (++since_best >= 3) {
+          break;
+        }
+        if (iterations >= max_iterations ||
+            !direct_->Step(sp, gap_, du_, iterations, target, &x0))
+          break;
       }
+      if (accepted) {
+        report.solve_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+        report.iterations = iterations;
+        report.status = ContactStatus::kConverged;
+        report.active_contacts = static_cast<int>((x0.array() > gap_.array()).count());
+        internal::Unscale(sp, x0, Eigen::VectorXd(), in_out);
+        std::string& msg = report.message;  // one allocation
+        msg.reserve(160);
+        msg.append("converged: newton: residual ")
+            .append(Sci(report.residual.total))
+            .append(" (direct path: no equalities, ")
+            .append(std::to_string(iterations))
+            .append(" iterations)");
+        AppendValidityWarning(sp, x0, &report.message);
+        report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+        return report;
+      }
+      direct_note = "; the direct path gave up after " + std::to_string(iterations) +
+                    " iterations: its iterates missed the tolerance by the driver's residual (best " +
+                    Sci(best) + "), the globalised Newton ran";
       if (options.warm_start) internal::Scale(sp, *in_out, &x0, &l0);
     }
 
@@ -284,6 +304,7 @@ class DriverSolver final : public ContactSolver {
   // threads): the scaled problem, the scaled warm start, the gap of the final residual.
   internal::ScaledProblem sp_;
   Eigen::VectorXd x0_, l0_, gap_;
+  Eigen::VectorXd u_, du_;  // the direct path's iterate: local terms and their slopes
 };
 
 }  // namespace

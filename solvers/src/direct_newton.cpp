@@ -14,106 +14,70 @@ constexpr double kMinContraction = 1e-2;
 
 }  // namespace
 
-bool DirectNewton::Run(const ScaledProblem& p, double target, int max_iterations, bool reuse,
-                       Eigen::VectorXd* x_io, int* iterations) {
+void DirectNewton::Begin(int, bool reuse) {
+  if (!reuse) factor_n_ = -1;  // a cold start does not use the previous call's factorisation
+}
+
+bool DirectNewton::Step(const ScaledProblem& p, const Eigen::VectorXd& g,
+                        const Eigen::VectorXd& du, int it, double target, Eigen::VectorXd* x_io) {
   const int n = p.num_contacts();
   Eigen::VectorXd& x = *x_io;
-  Eigen::VectorXd& g = g_;
-  if (x.size() != n) x.setZero(n);
-  u_.resize(n);
-  du_.resize(n);
-  if (!reuse) factor_n_ = -1;  // a cold start does not use the previous call's factorisation
-  double best = std::numeric_limits<double>::infinity();
-  int since_best = 0;
-  for (int it = 0;; ++it) {
-    *iterations = it;
-    // A contact at zero force has u = 0; its derivative is needed only if it enters A (below).
-    for (int j = 0; j < n; ++j)
-      if (x(j) != 0.0)
-        p.LocalAt(j, x(j), kDerivativeFloor, &u_(j), &du_(j));
-      else
-        u_(j) = du_(j) = 0.0;
-    // ∇Φ(x) = C x + u − δ0, by the columns of C with a force (contiguous; a contact at zero
-    // force adds nothing). The sums' order differs from ScaledProblem::Gradient's only in
-    // round-off.
-    g = u_ - p.delta0;
-    for (int j = 0; j < n; ++j) {
-      const double xj = x(j);
-      if (xj == 0.0) continue;
-      const double* col = p.C.data() + static_cast<std::ptrdiff_t>(j) * n;
-      for (int i = 0; i < n; ++i) g(i) += col[i] * xj;
+  active_.clear();
+  released_.clear();  // inactive contacts whose force is not yet zero
+  for (int j = 0; j < n; ++j)
+    if (x(j) > g(j))
+      active_.push_back(j);
+    else if (x(j) != 0.0)
+      released_.push_back(j);
+  const int na = static_cast<int>(active_.size());
+  r_.resize(na);
+  du_a_.resize(na);
+  c_aa_ = p.C(active_, active_);
+  for (int a = 0; a < na; ++a) {
+    const int ja = active_[a];
+    du_a_(a) = du(ja);
+    if (x(ja) == 0.0) {
+      // Entering from zero force, where u'(0⁺) = +∞: the secant u(x̂)/x̂ to the force x̂ =
+      // −g_j/C_jj that would close its gap through the linear part alone (the floor keeps
+      // it finite). The step then sees the local term's compliance at the scale of the
+      // force it is heading for; the tangent at the floor (u' ~ ln(1/x), large) made the
+      // first step of a cold start on the stage go only half way (4 iterations, now 3).
+      const double guess = std::max(-g(ja) / p.C(ja, ja), kDerivativeFloor);
+      double u_guess = 0.0, du_guess = 0.0;
+      p.LocalAt(ja, guess, kDerivativeFloor, &u_guess, &du_guess);
+      du_a_(a) = u_guess / guess;
     }
-    double res = 0.0;
-    bool negative = false;
-    for (int j = 0; j < n; ++j) {
-      res = std::max(res, std::abs(std::min(x(j), g(j))));
-      negative = negative || x(j) < 0.0;
-    }
-    if (!std::isfinite(res)) return false;
-    if (res <= target && !negative) return true;
-    if (res < best) {
-      best = res;
-      since_best = 0;
-    } else if (++since_best >= 3) {
-      return false;  // no progress: cycling between active sets, or worse
-    }
-    if (it >= max_iterations) return false;
-    active_.clear();
-    released_.clear();  // inactive contacts whose force is not yet zero
-    for (int j = 0; j < n; ++j)
-      if (x(j) > g(j))
-        active_.push_back(j);
-      else if (x(j) != 0.0)
-        released_.push_back(j);
-    const int na = static_cast<int>(active_.size());
-    r_.resize(na);
-    du_a_.resize(na);
-    c_aa_ = p.C(active_, active_);
-    for (int a = 0; a < na; ++a) {
-      const int ja = active_[a];
-      du_a_(a) = du_(ja);
-      if (x(ja) == 0.0) {
-        // Entering from zero force, where u'(0⁺) = +∞: the secant u(x̂)/x̂ to the force x̂ =
-        // −g_j/C_jj that would close its gap through the linear part alone (the floor keeps
-        // it finite). The step then sees the local term's compliance at the scale of the
-        // force it is heading for; the tangent at the floor (u' ~ ln(1/x), large) made the
-        // first step of a cold start on the stage go only half way (4 iterations, now 3).
-        const double guess = std::max(-g(ja) / p.C(ja, ja), kDerivativeFloor);
-        double u_guess = 0.0, du_guess = 0.0;
-        p.LocalAt(ja, guess, kDerivativeFloor, &u_guess, &du_guess);
-        du_a_(a) = u_guess / guess;
-      }
-      // −g_A + C_AI x_I: the inactive contacts' forces go to zero in this step.
-      double s = -g(ja);
-      for (int j : released_) s += p.C(ja, j) * x(j);
-      r_(a) = s;
-    }
-    for (int j : released_) x(j) = 0.0;
-    if (na > 0) {
-      // The first step of a warm start may solve, on the factorisation kept from the previous
-      // call, the model of g_A at x + dx to second order in the local terms (ModelStep): when
-      // that factorisation's active set is this one and its diagonal u' within kMinContraction
-      // of this step's (C has moved by one time step, which the sweeps measure). Every other
-      // step is Newton's on a new factorisation of C_AA + diag u'_A.
-      bool kept = it == 0 && factor_n_ == n && active_ == factor_active_;
-      for (int a = 0; kept && a < na; ++a)
-        kept = std::abs(du_a_(a) - factor_du_(a)) <= kMinContraction * h_(a, a);
-      if (!kept || !ModelStep(p, x, target)) {
-        factor_n_ = -1;  // until the factorisation below has succeeded
-        h_ = c_aa_;
-        h_.diagonal() += du_a_;
-        llt_.compute(h_);
-        if (llt_.info() != Eigen::Success) return false;
-        factor_n_ = n;
-        factor_active_ = active_;
-        factor_du_ = du_a_;
-        inv_diag_ = llt_.matrixLLT().diagonal().cwiseInverse();
-        dx_ = r_;
-        Substitute(&dx_);
-      }
-      for (int a = 0; a < na; ++a) x(active_[a]) += dx_(a);
-    }
+    // −g_A + C_AI x_I: the inactive contacts' forces go to zero in this step.
+    double s = -g(ja);
+    for (int j : released_) s += p.C(ja, j) * x(j);
+    r_(a) = s;
   }
+  for (int j : released_) x(j) = 0.0;
+  if (na > 0) {
+    // The first step of a warm start may solve, on the factorisation kept from the previous
+    // call, the model of g_A at x + dx to second order in the local terms (ModelStep): when
+    // that factorisation's active set is this one and its diagonal u' within kMinContraction
+    // of this step's (C has moved by one time step, which the sweeps measure). Every other
+    // step is Newton's on a new factorisation of C_AA + diag u'_A.
+    bool kept = it == 0 && factor_n_ == n && active_ == factor_active_;
+    for (int a = 0; kept && a < na; ++a)
+      kept = std::abs(du_a_(a) - factor_du_(a)) <= kMinContraction * h_(a, a);
+    if (!kept || !ModelStep(p, x, target)) {
+      factor_n_ = -1;  // until the factorisation below has succeeded
+      h_ = c_aa_;
+      h_.diagonal() += du_a_;
+      llt_.compute(h_);
+      if (llt_.info() != Eigen::Success) return false;
+      factor_n_ = n;
+      factor_active_ = active_;
+      factor_du_ = du_a_;
+      inv_diag_ = llt_.matrixLLT().diagonal().cwiseInverse();
+      dx_ = r_;
+      Substitute(&dx_);
+    }
+    for (int a = 0; a < na; ++a) x(active_[a]) += dx_(a);
+  }
+  return true;
 }
 
 void DirectNewton::Substitute(Eigen::VectorXd* v) const {

@@ -2,9 +2,8 @@
 // Newton on the natural map min(x, g(x)) = 0, g = C x + u(x) − δ0, with the active set
 // A = {j : x_j > g_j} re-chosen at every step, and on a warm start a third-order first step on the
 // factorisation kept from the previous call (docs/solvers.md §3, "Direct path for problems without
-// equalities"). Its answer is a proposal: the driver (contact_solver.cpp) recomputes the residual
-// from the forces alone and runs the general path when that residual misses the tolerance,
-// whatever the path's own stopping test said.
+// equalities"). The driver (contact_solver.cpp) runs the iterations and judges every iterate by
+// its own residual; the path only proposes the next iterate.
 #pragma once
 
 #include <memory>
@@ -19,15 +18,22 @@
 namespace epicycle::solvers::internal {
 
 /// A fast path the driver tries before a back end's general path on problems without equalities.
+/// The driver runs its iterations: at every iterate it computes the gap g, the local terms'
+/// slopes u' and the residual itself (ScaledProblem::NaturalResidual), stops when its residual
+/// meets the target, gives up after three iterates without a new best residual or at the
+/// iteration limit, and otherwise asks the path for the next iterate. The path has no stopping
+/// test of its own: what it proposes is judged by the driver's residual alone.
 class DirectPath {
  public:
   virtual ~DirectPath() = default;
-  /// @param target the path's own stopping threshold on ‖min(x, g)‖∞ (scaled).
-  /// @param reuse may start with state kept from the previous call (a warm start).
-  /// @param x in: the start (empty: cold, x = 0); out: the proposed answer.
-  /// @return false if the path gave up (the general path then runs from the caller's start).
-  virtual bool Run(const ScaledProblem& p, double target, int max_iterations, bool reuse,
-                   Eigen::VectorXd* x, int* iterations) = 0;
+  /// Before the first step of a solve of `contacts` contacts; `reuse`: a warm start, which may
+  /// use state kept from the previous call.
+  virtual void Begin(int contacts, bool reuse) = 0;
+  /// The next iterate from x, given the driver's g = ∇Φ(x) and u'(x) at it; `iteration` counts
+  /// from 0, `target` is the driver's stopping threshold on ‖min(x, g)‖∞ (scaled).
+  /// @return false if the path cannot step (the general path then runs).
+  virtual bool Step(const ScaledProblem& p, const Eigen::VectorXd& g, const Eigen::VectorXd& du,
+                    int iteration, double target, Eigen::VectorXd* x) = 0;
 };
 
 /// With `reuse`, the first step, if its active set is the one of the factorisation kept from the
@@ -42,15 +48,16 @@ class DirectPath {
 /// residual either way.
 class DirectNewton final : public DirectPath {
  public:
-  bool Run(const ScaledProblem& p, double target, int max_iterations, bool reuse,
-           Eigen::VectorXd* x, int* iterations) override;
+  void Begin(int contacts, bool reuse) override;
+  bool Step(const ScaledProblem& p, const Eigen::VectorXd& g, const Eigen::VectorXd& du,
+            int iteration, double target, Eigen::VectorXd* x) override;
 
  private:
-  /// The step on the local model (see Run), on llt_; false if its sweeps do not converge.
+  /// The step on the local model (see the class comment), on llt_; false if its sweeps do not
+  /// converge.
   bool ModelStep(const ScaledProblem& p, const Eigen::VectorXd& x, double target);
   void Substitute(Eigen::VectorXd* v) const;  ///< v ← (L Lᵀ)⁻¹ v with llt_
 
-  Eigen::VectorXd u_, du_, g_;             ///< per contact (g_ its own gap, for its steps)
   Eigen::VectorXd r_, du_a_, q_, dx_, e_;  ///< per active contact
   Eigen::MatrixXd c_aa_;                   ///< C_AA of the step
   Eigen::VectorXd inv_diag_;               ///< 1/L_ii of llt_

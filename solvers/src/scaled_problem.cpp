@@ -167,33 +167,35 @@ ContactResiduals ScaledProblem::Residuals(const Eigen::VectorXd& x_in,
   return r;
 }
 
-ContactResiduals ScaledProblem::ResidualsWithoutEqualities(const Eigen::VectorXd& x,
-                                                           Eigen::VectorXd* gap) const {
-  // Residuals(x, {}, gap) without temporaries: g = C x⁺ + u(x⁺) − δ0 by the columns of C with a
-  // force (x⁺ = max(x, 0); a column at zero force adds nothing), then ‖min(x⁺, g)‖∞ and the
-  // negative part of x. The sums' order differs from Gradient's only in round-off.
-  constexpr double kInf = std::numeric_limits<double>::infinity();
+double ScaledProblem::NaturalResidual(const Eigen::VectorXd& x, double floor, Eigen::VectorXd* u_out,
+                                      Eigen::VectorXd* du_out, Eigen::VectorXd* g_out,
+                                      bool* negative) const {
   const int n = num_contacts();
-  Eigen::VectorXd& g = *gap;
-  g = -delta0;
-  double negative = 0.0;
+  Eigen::VectorXd &u = *u_out, &du = *du_out, &g = *g_out;
+  u.resize(n);
+  du.resize(n);
+  // A contact at zero force has u = 0; its slope is needed only if it enters the active set.
+  for (int j = 0; j < n; ++j)
+    if (x(j) != 0.0)
+      LocalAt(j, x(j), floor, &u(j), &du(j));
+    else
+      u(j) = du(j) = 0.0;
+  // ∇Φ(x) = C x + u − δ0, by the columns of C with a force (contiguous; a contact at zero force
+  // adds nothing). The sums' order differs from Gradient's only in round-off.
+  g = u - delta0;
   for (int j = 0; j < n; ++j) {
-    if (!std::isfinite(x(j))) return {kInf, 0.0, kInf};
-    const double xj = x(j) > 0.0 ? x(j) : 0.0;
-    negative = std::max(negative, xj - x(j));
+    const double xj = x(j);
     if (xj == 0.0) continue;
     const double* col = C.data() + static_cast<std::ptrdiff_t>(j) * n;
     for (int i = 0; i < n; ++i) g(i) += col[i] * xj;
-    if (has_local && local[j].enabled) g(j) += EvalLocal(local[j], xj, true, false, false).u;
   }
-  double worst = negative;
+  double res = 0.0;
+  *negative = false;
   for (int j = 0; j < n; ++j) {
-    if (!std::isfinite(g(j))) return {kInf, 0.0, kInf};
-    worst = std::max(worst, std::abs(std::min(std::max(x(j), 0.0), g(j))));
+    res = std::max(res, std::abs(std::min(x(j), g(j))));
+    *negative = *negative || x(j) < 0.0;
   }
-  ContactResiduals r;
-  r.complementarity = r.total = worst;
-  return r;
+  return g.allFinite() ? res : std::numeric_limits<double>::infinity();
 }
 
 ScaledProblem MakeScaledProblem(const ContactProblem& problem) {
