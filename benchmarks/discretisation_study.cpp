@@ -132,7 +132,7 @@ StiffnessData RunStiffness(const tr::Scene& scene, const geo::Stage& stage, cons
   tr::MeshStiffnessOptions opt;
   opt.positions = kStiffnessPositions;
   const tr::MeshStiffnessResult result =
-      tr::ComputeMeshStiffness(scene, setup, pair, compliance, opt);
+      tr::ComputeMeshStiffness(setup, pair, compliance, opt);
   StiffnessData d;
   for (const tr::MeshSample& s : result.samples) {
     d.converged.push_back(s.converged);

@@ -64,8 +64,7 @@ void RunStiffness(const StiffnessArgs& a) {
             "transmission_error_urad,approach_um,total_force_N,pairs,"
             "pair_teeth,pair_kind,pair_force_N,pair_stiffness_N_per_m,pair_share,message\n");
   const double b = std::min(pair.gear1().spec().face_width, pair.gear2().spec().face_width);
-  const auto result = transmission::ComputeMeshStiffness(
-      scene, setup, pair, compliance, opt, [&](const transmission::MeshSample& s) {
+  const auto result = transmission::ComputeMeshStiffness(setup, pair, compliance, opt, [&](const transmission::MeshSample& s) {
         // One row per loaded tooth pair (the mesh columns repeat), written as computed.
         const std::string head = fmt::format(
             "{:.6f},{},{},{},{},{},{},{}", geometry::Deg(s.angle), s.converged ? 1 : 0,

@@ -800,7 +800,7 @@ std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
         transmission::MeshStiffnessOptions opt;
         opt.positions = positions;
         const transmission::MeshStiffnessResult r =
-            transmission::ComputeMeshStiffness(scene, setup, pair, compliance, opt);
+            transmission::ComputeMeshStiffness(setup, pair, compliance, opt);
         if (r.failed == positions)
           throw std::runtime_error(std::string("mean mesh stiffness of ") + name +
                                    ": every position failed");
@@ -829,8 +829,8 @@ std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
         transmission::MeshPairSetup up = setup, down = setup;
         up.torque *= 1 + step;
         down.torque *= 1 - step;
-        const auto ru = transmission::ComputeMeshStiffness(scene, up, pair, compliance, opt);
-        const auto rd = transmission::ComputeMeshStiffness(scene, down, pair, compliance, opt);
+        const auto ru = transmission::ComputeMeshStiffness(up, pair, compliance, opt);
+        const auto rd = transmission::ComputeMeshStiffness(down, pair, compliance, opt);
         for (std::size_t i = 0; i < ru.samples.size(); ++i) {
           const transmission::MeshSample &a = ru.samples[i], &b = rd.samples[i];
           if (!a.converged || !b.converged || !(a.approach > b.approach))

@@ -176,7 +176,9 @@ double FeStageCompliance::JoiningDepth(int body) const { return tables_.Table(bo
 
 FePairCompliance::FePairCompliance(const Scene& scene, const geometry::GearPair& pair,
                                    const FeComplianceOptions& options)
-    : tables_(scene, {&pair.gear1(), &pair.gear2()}, options) {}
+    : tables_(scene, {&pair.gear1(), &pair.gear2()}, options),
+      material_(scene.material),
+      plane_(scene.model.plane) {}
 
 Eigen::MatrixXd FePairCompliance::Matrix(
     const geometry::GearPair& pair, const geometry::PairPoses& poses,

@@ -26,6 +26,7 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
     s.mesh = "gear1-gear2";
     s.spec = scene.pair;
     s.torque = scene.pair_torque;
+    s.gap_window = scene.gap_window;
     return s;
   }
   if (stage == nullptr) throw std::invalid_argument("MakeMeshPair: a stage scene needs its stage");
@@ -50,6 +51,7 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
                  stage->sun().base_radius();
     }
     s.spec.centre_distance = stage->carrier_radius();
+    s.gap_window = scene.gap_window;
     return s;
   }
   throw std::invalid_argument("--mesh = '" + mesh + "': the stage's meshes are " + names);
@@ -79,7 +81,7 @@ namespace {
 
 // One position: the contact problem of the pair with gear 1's moment equilibrium (gear 2 held),
 // solved again at the moved pose until the rotation settles.
-MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
+MeshSample SolveSample(const MeshPairSetup& setup,
                        const geometry::GearPair& pair, const FePairCompliance& compliance,
                        const MeshStiffnessOptions& options, solvers::ContactSolver& solver,
                        double angle) {
@@ -87,7 +89,7 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
   out.angle = angle;
   geometry::PairPoses poses = pair.Poses(angle);
   geometry::ContactSearchOptions search;
-  search.gap_window = scene.gap_window;
+  search.gap_window = setup.gap_window;
   const double rb1 = pair.gear1().base_radius();
   std::vector<geometry::PotentialContact> contacts;
   std::vector<solvers::LocalTermParameters> local;  // of the last problem built
@@ -115,7 +117,7 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
           if (options.local_terms) {
             d.local.emplace_back();
             StageOutcome o = ContactLocalTerm(
-                contacts[j], pair.gear1(), pair.gear2(), scene.material, scene.model.plane,
+                contacts[j], pair.gear1(), pair.gear2(), compliance.material(), compliance.plane(),
                 compliance.JoiningDepth(0), compliance.JoiningDepth(1),
                 d.name + " contact " + std::to_string(j), &d.local.back());
             if (!o.ok()) return o;
@@ -175,7 +177,7 @@ MeshSample SolveSample(const Scene& scene, const MeshPairSetup& setup,
 
 }  // namespace
 
-MeshStiffnessResult ComputeMeshStiffness(const Scene& scene, const MeshPairSetup& setup,
+MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup,
                                          const geometry::GearPair& pair,
                                          const FePairCompliance& compliance,
                                          const MeshStiffnessOptions& options,
@@ -196,7 +198,7 @@ MeshStiffnessResult ComputeMeshStiffness(const Scene& scene, const MeshPairSetup
       [&](int k, bool, solvers::ContactSolver& solver) {
         const double angle = pair.mesh_cycle() * k / options.positions;
         r.samples[static_cast<std::size_t>(k)] =
-            SolveSample(scene, setup, pair, compliance, options, solver, angle);
+            SolveSample(setup, pair, compliance, options, solver, angle);
       },
       [&](int k) {
         // In the order of the positions: the statistics do not depend on the thread count.

@@ -73,7 +73,7 @@ transmission::MeshStiffnessResult SweepPair(const PairCase& c, const geometry::P
   o.tooth_coupling = mode == 0;
   o.local_terms = mode != 2;
   transmission::MeshStiffnessResult r =
-      transmission::ComputeMeshStiffness(c.scene, setup, pair, fe, o);
+      transmission::ComputeMeshStiffness(setup, pair, fe, o);
   if (r.failed > 0) {
     // Where the active-set Newton stalls (seen once in a relieved sweep at 1.5× load: its line
     // search fails and the residual stops at 1.3e-9), the sweep is redone with Ipopt, and the
@@ -81,7 +81,7 @@ transmission::MeshStiffnessResult SweepPair(const PairCase& c, const geometry::P
     Figure("relief sweep: " + std::to_string(r.failed) +
            " position(s) not converged with the Newton back end, redone with Ipopt");
     o.backend = solvers::Backend::kIpopt;
-    r = transmission::ComputeMeshStiffness(c.scene, setup, pair, fe, o);
+    r = transmission::ComputeMeshStiffness(setup, pair, fe, o);
   }
   for (const auto& smp : r.samples) {
     INFO("at " << smp.angle << " rad: " << smp.message);

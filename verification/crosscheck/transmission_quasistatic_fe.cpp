@@ -227,7 +227,7 @@ TEST_CASE("quasi-static FE, fixed sun: load shares follow the single-mesh stiffn
     const transmission::FePairCompliance fe(scene, pair, CachedTables());
     transmission::MeshStiffnessOptions o;
     o.positions = 48;
-    const auto result = transmission::ComputeMeshStiffness(scene, setup, pair, fe, o);
+    const auto result = transmission::ComputeMeshStiffness(setup, pair, fe, o);
     REQUIRE(result.failed == 0);
     Curve c;
     c.pb = pair.gear1().base_pitch();

@@ -288,11 +288,10 @@ TEST_CASE("mesh stiffness: the same samples, in order, on 1 and 3 threads",
   transmission::MeshStiffnessOptions o;
   o.positions = 24;
   o.threads = 1;
-  const auto one = transmission::ComputeMeshStiffness(scene, setup, pair, fe, o);
+  const auto one = transmission::ComputeMeshStiffness(setup, pair, fe, o);
   o.threads = 3;
   std::vector<double> seen;  // angles in the order on_sample saw them
-  const auto three = transmission::ComputeMeshStiffness(
-      scene, setup, pair, fe, o,
+  const auto three = transmission::ComputeMeshStiffness(setup, pair, fe, o,
       [&](const transmission::MeshSample& s) { seen.push_back(s.angle); });
   REQUIRE(one.failed == 0);
   REQUIRE(three.samples.size() == one.samples.size());

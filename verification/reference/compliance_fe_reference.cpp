@@ -84,7 +84,7 @@ Comparison Compare(const std::string& scene, const std::vector<FeRow>& reference
   transmission::MeshStiffnessOptions o;
   o.positions = kGrid;
   const transmission::MeshStiffnessResult r =
-      transmission::ComputeMeshStiffness(sc, setup, pair, fe, o);
+      transmission::ComputeMeshStiffness(setup, pair, fe, o);
   REQUIRE(r.failed == 0);
   auto tip_at = [&](int i) {
     for (const auto& p : r.samples.at((i + kGrid) % kGrid).pairs)

@@ -43,9 +43,9 @@ const PairRun& Run(const std::string& file) {
   const transmission::FePairCompliance fe(r.scene, pair, tables);
   transmission::MeshStiffnessOptions o;
   o.positions = 40;
-  r.result = transmission::ComputeMeshStiffness(r.scene, setup, pair, fe, o);
+  r.result = transmission::ComputeMeshStiffness(setup, pair, fe, o);
   o.tooth_coupling = false;
-  r.uncoupled = transmission::ComputeMeshStiffness(r.scene, setup, pair, fe, o);
+  r.uncoupled = transmission::ComputeMeshStiffness(setup, pair, fe, o);
   r.iso = transmission::IsoPairData(pair);
   r.contact_ratio = pair.summary().contact_ratio_iso;
   return runs.emplace(file, std::move(r)).first->second;

@@ -81,10 +81,15 @@ class FePairCompliance {
   Eigen::MatrixXd Matrix(const geometry::GearPair& pair, const geometry::PairPoses& poses,
                          const std::vector<geometry::PotentialContact>& contacts) const;
   double JoiningDepth(int gear) const { return tables_.Table(gear).join_depth(); }
+  /// The material and plane assumption the tables were built with (the local terms use them).
+  const Material& material() const { return material_; }
+  solvers::PlaneAssumption plane() const { return plane_; }
   const GearTables& tables() const { return tables_; }
 
  private:
   GearTables tables_;
+  Material material_;
+  solvers::PlaneAssumption plane_;
 };
 
 }  // namespace epicycle::transmission

@@ -20,6 +20,7 @@ struct MeshPairSetup {
   std::string mesh;  ///< "gear1-gear2", "sun-planet<i>" or "planet<i>-ring"
   geometry::PairSpec spec;
   double torque = 0;  ///< on gear 1 [N·m] (ccw +): the pair's, or the stage's per-planet share
+  double gap_window = 100e-6;  ///< contact-search gap window [m] (the scene's)
 };
 
 /// For a pair scene, `mesh` may be empty or "gear1-gear2". For a stage scene it names a mesh of
@@ -96,7 +97,7 @@ struct MeshStiffnessResult {
 /// sample in the order of the positions as soon as it and every earlier one are computed (under a
 /// lock, from any worker).
 MeshStiffnessResult ComputeMeshStiffness(
-    const Scene& scene, const MeshPairSetup& setup, const geometry::GearPair& pair,
+    const MeshPairSetup& setup, const geometry::GearPair& pair,
     const FePairCompliance& compliance, const MeshStiffnessOptions& options,
     const std::function<void(const MeshSample&)>& on_sample = {});
 
