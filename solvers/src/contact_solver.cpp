@@ -121,7 +121,7 @@ class DriverSolver final : public ContactSolver {
         direct_ != nullptr) {
       const auto t1 = Clock::now();
       if (!options.warm_start || x0.size() != n) x0.setZero(n);
-      direct_->Begin(n, options.warm_start);
+      direct_->Begin(options.warm_start);
       // The driver runs the path's iterations and judges every iterate by its own residual (the
       // gap and slopes it computes here are what the path steps from): stop at a tenth of the
       // tolerance at x ≥ 0; give up after three iterates without a new best residual (cycling

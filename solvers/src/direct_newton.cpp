@@ -14,7 +14,7 @@ constexpr double kMinContraction = 1e-2;
 
 }  // namespace
 
-void DirectNewton::Begin(int, bool reuse) {
+void DirectNewton::Begin(bool reuse) {
   if (!reuse) factor_n_ = -1;  // a cold start does not use the previous call's factorisation
 }
 

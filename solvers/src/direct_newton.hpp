@@ -26,9 +26,9 @@ namespace epicycle::solvers::internal {
 class DirectPath {
  public:
   virtual ~DirectPath() = default;
-  /// Before the first step of a solve of `contacts` contacts; `reuse`: a warm start, which may
-  /// use state kept from the previous call.
-  virtual void Begin(int contacts, bool reuse) = 0;
+  /// Before the first step of a solve; `reuse`: a warm start, which may use state kept from the
+  /// previous call.
+  virtual void Begin(bool reuse) = 0;
   /// The next iterate from x, given the driver's g = ∇Φ(x) and u'(x) at it; `iteration` counts
   /// from 0, `target` is the driver's stopping threshold on ‖min(x, g)‖∞ (scaled).
   /// @return false if the path cannot step (the general path then runs).
@@ -48,7 +48,7 @@ class DirectPath {
 /// residual either way.
 class DirectNewton final : public DirectPath {
  public:
-  void Begin(int contacts, bool reuse) override;
+  void Begin(bool reuse) override;
   bool Step(const ScaledProblem& p, const Eigen::VectorXd& g, const Eigen::VectorXd& du,
             int iteration, double target, Eigen::VectorXd* x) override;
 

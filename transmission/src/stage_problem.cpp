@@ -144,42 +144,21 @@ bool LocalTermOf(const PotentialContact& contact, const geometry::Gear& a, const
   return true;
 }
 
-std::invalid_argument NoReducedRadius(const PotentialContact& contact, const std::string& label) {
-  return std::invalid_argument("contact " + label + ": curvature radii " +
-                               std::to_string(contact.curvature_radius_a) + " m and " +
-                               std::to_string(contact.curvature_radius_b) +
-                               " m give no positive reduced radius");
+StageOutcome NoReducedRadius(const PotentialContact& contact, const std::string& label) {
+  return {StageStatus::kNoReducedRadius,
+          "contact " + label + ": curvature radii " + std::to_string(contact.curvature_radius_a) +
+              " m and " + std::to_string(contact.curvature_radius_b) +
+              " m give no positive reduced radius"};
 }
 
 }  // namespace
-
-solvers::LocalTermParameters ContactLocalTerm(const geometry::PotentialContact& contact,
-                                              const geometry::Gear& a, const geometry::Gear& b,
-                                              const Material& material,
-                                              solvers::PlaneAssumption plane, double depth_a,
-                                              double depth_b, const std::string& label) {
-  solvers::LocalTermParameters l;
-  if (!LocalTermOf(contact, a, b, material, plane, depth_a, depth_b, &l))
-    throw NoReducedRadius(contact, label);
-  return l;
-}
-
-solvers::LocalTermParameters ContactLocalTerm(const StageContact& contact, const geometry::Gear& a,
-                                              const geometry::Gear& b, const Material& material,
-                                              solvers::PlaneAssumption plane, double depth_a,
-                                              double depth_b) {
-  solvers::LocalTermParameters l;
-  if (!LocalTermOf(contact.contact, a, b, material, plane, depth_a, depth_b, &l))
-    throw NoReducedRadius(contact.contact, contact.Label());
-  return l;
-}
 
 StageOutcome ContactLocalTerm(const geometry::PotentialContact& contact, const geometry::Gear& a,
                               const geometry::Gear& b, const Material& material,
                               solvers::PlaneAssumption plane, double depth_a, double depth_b,
                               const std::string& label, solvers::LocalTermParameters* out) {
   if (LocalTermOf(contact, a, b, material, plane, depth_a, depth_b, out)) return {};
-  return {StageStatus::kNoReducedRadius, NoReducedRadius(contact, label).what()};
+  return NoReducedRadius(contact, label);
 }
 
 StageOutcome ContactLocalTerm(const StageContact& contact, const geometry::Gear& a,
@@ -187,7 +166,7 @@ StageOutcome ContactLocalTerm(const StageContact& contact, const geometry::Gear&
                               solvers::PlaneAssumption plane, double depth_a, double depth_b,
                               solvers::LocalTermParameters* out) {
   if (LocalTermOf(contact.contact, a, b, material, plane, depth_a, depth_b, out)) return {};
-  return {StageStatus::kNoReducedRadius, NoReducedRadius(contact.contact, contact.Label()).what()};
+  return NoReducedRadius(contact.contact, contact.Label());
 }
 
 }  // namespace epicycle::transmission

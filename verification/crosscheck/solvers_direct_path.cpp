@@ -205,7 +205,7 @@ namespace {
 // accept it.
 class UncoupledPath final : public internal::DirectPath {
  public:
-  void Begin(int, bool) override {}
+  void Begin(bool) override {}
   bool Step(const internal::ScaledProblem& p, const Eigen::VectorXd&, const Eigen::VectorXd&, int,
             double, Eigen::VectorXd* x) override {
     *x = p.delta0.cwiseQuotient(p.C.diagonal()).cwiseMax(0.0);

@@ -126,26 +126,15 @@ struct StageProblem {
   solvers::ContactProblemData data;  ///< ready for solvers::ContactProblem
 };
 
-/// The local contact term of a potential contact between gears a and b (docs/model.md §4): face
-/// width the narrower one, R_eq from the two signed curvature radii (1/R = 1/ρ_a + 1/ρ_b; a concave
-/// ring flank has ρ < 0), both bodies of `material`, joined at depths h_a and h_b [m].
-/// @throws std::invalid_argument naming `label` if the radii give no positive reduced radius.
-solvers::LocalTermParameters ContactLocalTerm(const geometry::PotentialContact& contact,
-                                              const geometry::Gear& a, const geometry::Gear& b,
-                                              const Material& material,
-                                              solvers::PlaneAssumption plane, double depth_a,
-                                              double depth_b, const std::string& label);
-/// The same into `out`, or kNoReducedRadius naming `label` instead of throwing.
+/// The local contact term of a potential contact between gears a and b (docs/model.md §4) into
+/// `out`: face width the narrower one, R_eq from the two signed curvature radii (1/R = 1/ρ_a +
+/// 1/ρ_b; a concave ring flank has ρ < 0), both bodies of `material`, joined at depths h_a and
+/// h_b [m]; or kNoReducedRadius naming `label` if the radii give no positive reduced radius.
 StageOutcome ContactLocalTerm(const geometry::PotentialContact& contact, const geometry::Gear& a,
                               const geometry::Gear& b, const Material& material,
                               solvers::PlaneAssumption plane, double depth_a, double depth_b,
                               const std::string& label, solvers::LocalTermParameters* out);
 /// The same for a stage contact, named by its label (built only for the message).
-solvers::LocalTermParameters ContactLocalTerm(const StageContact& contact, const geometry::Gear& a,
-                                              const geometry::Gear& b, const Material& material,
-                                              solvers::PlaneAssumption plane, double depth_a,
-                                              double depth_b);
-/// The same into `out`, or kNoReducedRadius naming the contact instead of throwing.
 StageOutcome ContactLocalTerm(const StageContact& contact, const geometry::Gear& a,
                               const geometry::Gear& b, const Material& material,
                               solvers::PlaneAssumption plane, double depth_a, double depth_b,
