@@ -64,7 +64,8 @@ void RunDynamic(const DynamicArgs& a) {
       throw std::invalid_argument(fmt::format("--speed-rpm = {}: must be > 0", a.speed_rpm));
     input.dynamics.sun_speed = a.speed_rpm * std::numbers::pi / 30.0;
   }
-  if (!a.friction.empty()) input.dynamics.friction = a.friction;
+  if (!a.friction.empty())
+    input.dynamics.friction.law = transmission::FrictionLawFromName(a.friction);
   const auto t0 = std::chrono::steady_clock::now();
   dynamics::StageDynamics rig(std::move(input), TableOptions(a.cache, a.no_cache));
   const transmission::Scene& scene = rig.scene;
@@ -118,8 +119,8 @@ void RunDynamic(const DynamicArgs& a) {
       model.sun_mesh_stiffness(), model.ring_mesh_stiffness(), model.sun_mesh_damping(),
       model.ring_mesh_damping());
   std::printf("  friction %s, integrator %s (rtol %.1e), back end %s, %d DOFs\n",
-              scene.dynamics.friction.c_str(), a.integrator.c_str(), a.rtol, a.backend.c_str(),
-              model.size());
+              transmission::FrictionLawName(scene.dynamics.friction.law).c_str(),
+              a.integrator.c_str(), a.rtol, a.backend.c_str(), model.size());
   const Eigen::VectorXd d0 = model.QuasiStaticStart(opt.contact, opt.backend);
   std::printf(
       "  t = 0: the quasi-static solution at carrier %.4f deg (no start-up transient), "
@@ -183,7 +184,7 @@ void RunDynamic(const DynamicArgs& a) {
   j["sun_torque_Nm"] = scene.loads.sun_torque;
   j["sun_speed_rpm"] = std::abs(model.sun_speed()) * 30.0 / std::numbers::pi;
   j["mesh_frequency_Hz"] = mesh_hz;
-  j["friction"] = scene.dynamics.friction;
+  j["friction"] = transmission::FrictionLawName(scene.dynamics.friction.law);
   j["integrator"] = a.integrator;
   j["rtol"] = a.rtol;
   j["atol_length_m"] = opt.atol_length;

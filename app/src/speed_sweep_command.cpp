@@ -94,7 +94,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
       "friction %s, rtol %.1e\n",
       base.sun_mesh_stiffness(), base.ring_mesh_stiffness(), base.sun_mesh_damping(),
       base.ring_mesh_damping(), o.modal_mesh_stiffness[0], o.modal_mesh_stiffness[1],
-      scene.dynamics.friction.c_str(), simulation.rtol);
+      transmission::FrictionLawName(scene.dynamics.friction.law).c_str(), simulation.rtol);
 
   std::filesystem::create_directories(a.out);
   const std::string path = a.out + "/speed_sweep";
@@ -170,7 +170,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   j["warnings"] = warnings;
   j["scene"] = scene.name;
   j["sun_torque_Nm"] = scene.loads.sun_torque;
-  j["friction"] = scene.dynamics.friction;
+  j["friction"] = transmission::FrictionLawName(scene.dynamics.friction.law);
   j["integrator"] = a.integrator;
   j["rtol"] = simulation.rtol;
   j["atol_length_m"] = simulation.atol_length;

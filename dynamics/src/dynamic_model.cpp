@@ -20,6 +20,22 @@ using Vec2 = Eigen::Vector2d;
 namespace {
 
 double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// The gear body a coordinate moves (kSunBody, kRingBody, PlanetBody(i)), or −1 (the carrier).
+int GearBody(const MotionDof& f) {
+  switch (f.member) {
+    case MotionDof::kSun:
+      return kSunBody;
+    case MotionDof::kRing:
+      return kRingBody;
+    case MotionDof::kPlanet:
+      return transmission::PlanetBody(f.planet);
+    case MotionDof::kCarrier:
+      break;
+  }
+  return -1;
+}
+
 Vec2 Perp(const Vec2& a) { return {-a.y(), a.x()}; }  // ẑ × a
 
 std::string Num(double v) { return std::to_string(v); }
@@ -34,67 +50,8 @@ std::string MotionDof::Label() const {
   return name + (axis == kX ? " x [m]" : axis == kY ? " y [m]" : " rotation [rad]");
 }
 
-void DynamicSettings::Validate() const {
-  auto fail = [](const std::string& field, double v, const std::string& rule) {
-    throw std::invalid_argument("dynamics: " + field + " = " + Num(v) + ": " + rule);
-  };
-  if (!std::isfinite(sun_speed) || !(sun_speed > 0))
-    fail("sun_speed_rpm", sun_speed * 30.0 / 3.14159265358979323846,
-         "must be > 0 (the sun and the carrier are driven at a speed)");
-  auto non_negative = [&](const std::string& field, double v) {
-    if (!std::isfinite(v) || v < 0) fail(field, v, "must be finite and >= 0");
-  };
-  non_negative("carrier_load_inertia_kgm2", carrier_load_inertia);
-  non_negative("mesh_damping_Ns_per_m", mesh_damping);
-  non_negative("sun_bearing_damping_Ns_per_m", sun_bearing_damping);
-  non_negative("planet_bearing_damping_Ns_per_m", planet_bearing_damping);
-  non_negative("ring_damping_Ns_per_m", ring_damping);
-  non_negative("ring_torsional_damping_Nms_per_rad", ring_torsional_damping);
-  non_negative("carrier_stiffness_N_per_um", carrier_stiffness * 1e-6);
-  non_negative("carrier_damping_Ns_per_m", carrier_damping);
-  if (sun_speed_driven && !carrier_free)
-    throw std::invalid_argument(
-        "dynamics: sun = \"speed\" needs carrier = \"torque\": with both the sun and the "
-        "carrier turned at prescribed speeds nothing carries the load");
-  if (!(mesh_damping_ratio >= 0 && mesh_damping_ratio <= 1))
-    fail("mesh_damping_ratio", mesh_damping_ratio, "must lie in [0, 1]");
-  if (ring_elastic) {
-    if (!(ring_stiffness >= 0) || !std::isfinite(ring_stiffness))
-      fail("ring_stiffness_N_per_um", ring_stiffness * 1e-6,
-           "must be >= 0 (0: the ring floats in translation)");
-    if (!(ring_torsional_stiffness > 0) || !std::isfinite(ring_torsional_stiffness))
-      fail("ring_torsional_stiffness_Nm_per_rad", ring_torsional_stiffness,
-           "an elastic ring needs it > 0");
-  }
-  friction.Validate();
-}
-
-DynamicSettings SettingsFromScene(const transmission::Scene& scene) {
-  const transmission::DynamicsScene& d = scene.dynamics;
-  DynamicSettings s;
-  s.sun_speed = d.sun_speed;
-  s.carrier_free = d.carrier == "torque";
-  s.sun_speed_driven = d.sun_drive == "speed";
-  s.carrier_stiffness = d.carrier_stiffness;
-  s.carrier_damping = d.carrier_damping;
-  s.carrier_load_inertia = d.carrier_load_inertia;
-  s.mesh_damping_ratio = d.mesh_damping_ratio;
-  s.mesh_damping = d.mesh_damping;
-  s.sun_bearing_damping = d.sun_bearing_damping;
-  s.planet_bearing_damping = d.planet_bearing_damping;
-  s.ring_elastic = d.ring == "elastic";
-  s.ring_stiffness = d.ring_stiffness;
-  s.ring_damping = d.ring_damping;
-  s.ring_torsional_stiffness = d.ring_torsional_stiffness;
-  s.ring_torsional_damping = d.ring_torsional_damping;
-  s.friction.law = FrictionLawFromName(d.friction);
-  s.friction.coefficient = d.friction_coefficient;
-  s.friction.lubricant.dynamic_viscosity = d.lubricant_viscosity;
-  s.friction.lubricant.composite_roughness = d.roughness;
-  return s;
-}
-
-DynamicModel::DynamicModel(const transmission::StageModel& model, const DynamicSettings& settings,
+DynamicModel::DynamicModel(const transmission::StageModel& model,
+                           const transmission::DynamicSettings& settings,
                            const transmission::StageInertias& inertias,
                            const transmission::StageLoads& loads)
     : model_(model),
@@ -176,8 +133,6 @@ DynamicModel::DynamicModel(const transmission::StageModel& model, const DynamicS
   const transmission::Material& mat = model_.material();
   const double k = (1 - mat.poisson_ratio * mat.poisson_ratio) / mat.youngs_modulus;
   contact_modulus_ = 1.0 / (2 * k);
-  const geometry::StagePoses p0 = stage.Poses(0.0);
-  for (int i = 0; i < stage.planets(); ++i) pin0_.push_back(p0.planets[i].rotation_centre);
 }
 
 int DynamicModel::Find(MotionDof::Member member, MotionDof::Axis axis, int planet) const {
@@ -221,7 +176,7 @@ void DynamicModel::SetMeshStiffness(double sun_mesh, double ring_mesh) {
 }
 
 Vec2 DynamicModel::PinReference(int planet, double t) const {
-  return geometry::Rotate(pin0_[planet], CarrierAngle(t));
+  return model_.stage().Pin(planet, CarrierAngle(t));
 }
 
 Vec2 DynamicModel::CarrierCentre(const Eigen::VectorXd& d) const {
@@ -232,7 +187,7 @@ Vec2 DynamicModel::CarrierCentre(const Eigen::VectorXd& d) const {
 Vec2 DynamicModel::Pin(int planet, double t, const Eigen::VectorXd& d) const {
   const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
   const double turn = kc >= 0 ? d(kc) : 0.0;
-  return CarrierCentre(d) + geometry::Rotate(pin0_[planet], CarrierAngle(t) + turn);
+  return CarrierCentre(d) + model_.stage().Pin(planet, CarrierAngle(t) + turn);
 }
 
 Vec2 DynamicModel::PinVelocity(int planet, double t, const Eigen::VectorXd& d,
@@ -290,10 +245,7 @@ void DynamicModel::BodyVelocities(double t, const Eigen::VectorXd& d, const Eige
   }
   for (int k = 0; k < size(); ++k) {
     const MotionDof& f = dofs_[k];
-    const int body = f.member == MotionDof::kSun      ? kSunBody
-                     : f.member == MotionDof::kRing   ? kRingBody
-                     : f.member == MotionDof::kPlanet ? transmission::PlanetBody(f.planet)
-                                                      : -1;
+    const int body = GearBody(f);
     if (body < 0) continue;
     BodyMotion& m = b[body];
     if (f.axis == MotionDof::kRotation) m.angular_velocity += v(k);
@@ -302,6 +254,87 @@ void DynamicModel::BodyVelocities(double t, const Eigen::VectorXd& d, const Eige
       m.centre_velocity = carrier_speed_ * Perp(PinReference(f.planet, t));
     if (f.axis == MotionDof::kX) m.centre_velocity.x() += v(k);
     if (f.axis == MotionDof::kY) m.centre_velocity.y() += v(k);
+  }
+}
+
+Vec2 DynamicModel::MaterialVelocity(int b, const Vec2& p, const geometry::StagePoses& poses,
+                                    const std::vector<BodyMotion>& body) const {
+  const geometry::GearPose& pose = b == kSunBody    ? poses.sun
+                                   : b == kRingBody ? poses.ring
+                                                    : poses.planets[b - 2];
+  return body[b].centre_velocity + body[b].angular_velocity * Perp(p - pose.rotation_centre);
+}
+
+DynamicModel::SurfaceVelocity DynamicModel::Surface(const StageContact& s,
+                                                    const geometry::StagePoses& poses,
+                                                    const std::vector<BodyMotion>& body,
+                                                    const Vec2* tangent) const {
+  const geometry::PotentialContact& c = s.contact;
+  const Vec2 va = MaterialVelocity(s.body_a, c.point, poses, body),
+             vb = MaterialVelocity(s.body_b, c.point, poses, body);
+  // The contact point's own velocity along the surface: 0 on the line of action; a tip round's
+  // contact point stays at the round, moving with its centre.
+  Vec2 v_contact = Vec2::Zero();
+  if (c.kind == geometry::ContactKind::kTipRoundA) {
+    const double rt = model_.BodyGear(s.body_a).spec().tip_round_radius;
+    v_contact = MaterialVelocity(s.body_a, c.point_a - rt * c.normal, poses, body);
+  } else if (c.kind == geometry::ContactKind::kTipRoundB) {
+    const double rt = model_.BodyGear(s.body_b).spec().tip_round_radius;
+    v_contact = MaterialVelocity(s.body_b, c.point_b + rt * c.normal, poses, body);
+  } else {
+    v_contact = c.normal.dot(0.5 * (va + vb)) * c.normal;
+  }
+  SurfaceVelocity u;
+  u.tangent = tangent != nullptr ? *tangent : Vec2(Perp(c.normal));
+  u.ua = (va - v_contact).dot(u.tangent);
+  u.ub = (vb - v_contact).dot(u.tangent);
+  if (tangent == nullptr && u.ua + u.ub < 0) {  // orient t so that the entrainment is ≥ 0
+    u.tangent = -u.tangent;
+    u.ua = -u.ua;
+    u.ub = -u.ub;
+  }
+  return u;
+}
+
+transmission::FrictionContact DynamicModel::FrictionState(const transmission::ContactTerms& terms,
+                                                          int j) const {
+  const StageContact& s = terms.contacts[j];
+  const geometry::PotentialContact& c = s.contact;
+  transmission::FrictionContact fc;
+  fc.face_width = std::min(model_.BodyGear(s.body_a).spec().face_width,
+                           model_.BodyGear(s.body_b).spec().face_width);
+  fc.reduced_radius = terms.local.empty()
+                          ? 1.0 / (1.0 / c.curvature_radius_a + 1.0 / c.curvature_radius_b)
+                          : terms.local[j].reduced_radius;
+  fc.contact_modulus = contact_modulus_;
+  return fc;
+}
+
+double DynamicModel::FrictionForce(transmission::FrictionContact fc, double force, double ua,
+                                   double ub) const {
+  fc.normal_force = force;
+  fc.velocity_a = ua;
+  fc.velocity_b = ub;
+  return friction_.SignedCoefficient(fc) * force;
+}
+
+void DynamicModel::AddPairForce(const StageContact& s, const geometry::StagePoses& poses,
+                                const Vec2& f, Eigen::Ref<Eigen::VectorXd> q) const {
+  auto centre = [&](int b) -> const Vec2& {
+    return (b == kSunBody    ? poses.sun
+            : b == kRingBody ? poses.ring
+                             : poses.planets[b - 2])
+        .rotation_centre;
+  };
+  const Vec2& p = s.contact.point;
+  for (int k = 0; k < size(); ++k) {
+    const MotionDof& m = dofs_[k];
+    const int b = GearBody(m);
+    if (b < 0 || (b != s.body_a && b != s.body_b)) continue;
+    const double sign = b == s.body_b ? 1.0 : -1.0;
+    q(k) += sign * (m.axis == MotionDof::kX   ? f.x()
+                    : m.axis == MotionDof::kY ? f.y()
+                                              : Cross(p - centre(b), f));
   }
 }
 
@@ -415,10 +448,6 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   auto body_pose = [&](int b) -> const geometry::GearPose& {
     return b == kSunBody ? e.poses.sun : b == kRingBody ? e.poses.ring : e.poses.planets[b - 2];
   };
-  auto material_velocity = [&](int b, const Vec2& p) {
-    return Vec2(body[b].centre_velocity +
-                body[b].angular_velocity * Perp(p - body_pose(b).rotation_centre));
-  };
   e.overlap_rate.resize(n);
   e.total_force = e.force;
   e.friction.setZero(n);
@@ -428,7 +457,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   for (int j = 0; j < n; ++j) mesh_load[mesh_index(terms.contacts[j])] += e.force(j);
   e.dissipated_power = 0;
   e.friction_power = 0;
-  const bool friction = settings_.friction.law != FrictionLaw::kOff;
+  const bool friction = settings_.friction.law != transmission::FrictionLaw::kOff;
   Eigen::VectorXd& qf = e.generalised_force;
   qf.setZero(nd);
   std::vector<Vec2>& body_force = w.body_force;
@@ -440,7 +469,8 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     const StageContact& s = terms.contacts[j];
     const geometry::PotentialContact& c = s.contact;
     const Vec2 p = c.point;
-    const Vec2 va = material_velocity(s.body_a, p), vb = material_velocity(s.body_b, p);
+    const Vec2 va = MaterialVelocity(s.body_a, p, e.poses, body),
+               vb = MaterialVelocity(s.body_b, p, e.poses, body);
     e.overlap_rate(j) = c.normal.dot(va - vb);
     if (!(e.force(j) > 0)) continue;
     const double cm = s.mesh == geometry::MeshKind::kSunPlanet ? damping_sun_ : damping_ring_;
@@ -450,39 +480,10 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     e.dissipated_power += (e.total_force(j) - e.force(j)) * e.overlap_rate(j);
     Vec2 f = e.total_force(j) * c.normal;  // on B
     if (friction && e.total_force(j) > 0) {
-      Vec2 tangent = Perp(c.normal);
-      // The contact point's own velocity along the surface: 0 on the line of action; a tip
-      // round's contact point stays at the round, moving with its centre.
-      Vec2 v_contact = Vec2::Zero();
-      if (c.kind == geometry::ContactKind::kTipRoundA) {
-        const double rt = model_.BodyGear(s.body_a).spec().tip_round_radius;
-        v_contact = material_velocity(s.body_a, c.point_a - rt * c.normal);
-      } else if (c.kind == geometry::ContactKind::kTipRoundB) {
-        const double rt = model_.BodyGear(s.body_b).spec().tip_round_radius;
-        v_contact = material_velocity(s.body_b, c.point_b + rt * c.normal);
-      } else {
-        v_contact = c.normal.dot(0.5 * (va + vb)) * c.normal;
-      }
-      double ua = (va - v_contact).dot(tangent), ub = (vb - v_contact).dot(tangent);
-      if (ua + ub < 0) {  // orient t so that the entrainment velocity is ≥ 0
-        tangent = -tangent;
-        ua = -ua;
-        ub = -ub;
-      }
-      FrictionContact fc;
-      fc.normal_force = e.total_force(j);
-      fc.velocity_a = ua;
-      fc.velocity_b = ub;
-      fc.face_width = std::min(model_.BodyGear(s.body_a).spec().face_width,
-                               model_.BodyGear(s.body_b).spec().face_width);
-      fc.reduced_radius = terms.local.empty()
-                              ? 1.0 / (1.0 / c.curvature_radius_a + 1.0 / c.curvature_radius_b)
-                              : terms.local[j].reduced_radius;
-      fc.contact_modulus = contact_modulus_;
-      const double mu = friction_.SignedCoefficient(fc);
-      e.friction(j) = mu * e.total_force(j);
-      f += e.friction(j) * tangent;
-      const double p_friction = e.friction(j) * (ua - ub);  // μ_s F v_s ≥ 0
+      const SurfaceVelocity u = Surface(s, e.poses, body);
+      e.friction(j) = FrictionForce(FrictionState(terms, j), e.total_force(j), u.ua, u.ub);
+      f += e.friction(j) * u.tangent;
+      const double p_friction = e.friction(j) * (u.ua - u.ub);  // μ_s F v_s ≥ 0
       e.friction_power += p_friction;
       e.dissipated_power += p_friction;
     }
@@ -495,10 +496,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   }
   for (int k = 0; k < nd; ++k) {
     const MotionDof& f = dofs_[k];
-    const int b = f.member == MotionDof::kSun      ? kSunBody
-                  : f.member == MotionDof::kRing   ? kRingBody
-                  : f.member == MotionDof::kPlanet ? transmission::PlanetBody(f.planet)
-                                                   : -1;
+    const int b = GearBody(f);
     if (b < 0) continue;
     qf(k) += f.axis == MotionDof::kX   ? body_force[b].x()
              : f.axis == MotionDof::kY ? body_force[b].y()
@@ -631,6 +629,8 @@ void DynamicModel::Jacobian(double t, const Eigen::VectorXd& d, const Eigen::Vec
       const Eigen::MatrixXd s_aa = caa.ldlt().solve(Eigen::MatrixXd::Identity(na, na));
       *dd -= ga * s_aa * ga.transpose();
       *dv -= ga * c_damp.asDiagonal() * ga.transpose();
+      if (settings_.friction.law != transmission::FrictionLaw::kOff)
+        AddFrictionJacobian(t, d, v, at, active, s_aa * ga.transpose(), c_damp, dd, dv);
     }
   }
   // Bearings and external loads: central differences of the cheap part.
@@ -659,13 +659,74 @@ void DynamicModel::Jacobian(double t, const Eigen::VectorXd& d, const Eigen::Vec
   }
 }
 
+// Friction's part of the Jacobian (docs/model.md §7), with the contact geometry frozen as in the
+// normal part. Contact j pushes B by φ_j t_j and A by −φ_j t_j, φ_j = μ_s(F_j, u_A, u_B)·F_j
+// (F_j the normal force with its damping), so with h_j the generalised force of that unit pair:
+//
+//   ∂Q/∂d += Σ_j h_j ∂φ_j/∂F · ∂F_j/∂d,                     ∂F_A/∂d = (C_AA + diag u')⁻¹ G_Aᵀ,
+//   ∂Q/∂ḋ += Σ_j h_j (∂φ_j/∂F c_j ∂δ̇_j/∂ḋ + ∂φ_j/∂u_A ∂u_A/∂ḋ + ∂φ_j/∂u_B ∂u_B/∂ḋ).
+//
+// The surface and overlap velocities are linear in ḋ, so their derivatives are the exact
+// differences for unit changes of each velocity; the law's partial derivatives are central
+// differences of the law itself (any law, its guards included), with steps 1e-6·F and 1e-3·v_ε:
+// far below the scale on which any law bends (v_ε for the smoothed ones, V_e otherwise).
+void DynamicModel::AddFrictionJacobian(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                                       const Evaluation& at, const std::vector<int>& active,
+                                       const Eigen::MatrixXd& force_by_d,
+                                       const Eigen::VectorXd& damping, Eigen::MatrixXd* dd,
+                                       Eigen::MatrixXd* dv) const {
+  const int nd = size();
+  const transmission::ContactTerms& terms = at.terms;
+  std::vector<BodyMotion> body;
+  BodyVelocities(t, d, v, &body);
+  std::vector<std::vector<BodyMotion>> moved(nd);  // body velocities with ḋ_k + 1
+  for (int k = 0; k < nd; ++k) {
+    Eigen::VectorXd vk = v;
+    vk(k) += 1.0;
+    BodyVelocities(t, d, vk, &moved[k]);
+  }
+  const double hu = 1e-3 * settings_.friction.smoothing_velocity;
+  Eigen::VectorXd h(nd), rate_by_v(nd), ua_by_v(nd), ub_by_v(nd);
+  for (int a = 0; a < static_cast<int>(active.size()); ++a) {
+    const int j = active[a];
+    const double f = at.total_force(j);
+    if (!(f > 0)) continue;
+    const StageContact& s = terms.contacts[j];
+    const geometry::PotentialContact& c = s.contact;
+    const SurfaceVelocity u = Surface(s, at.poses, body);
+    auto overlap_rate = [&](const std::vector<BodyMotion>& b) {
+      return c.normal.dot(MaterialVelocity(s.body_a, c.point, at.poses, b) -
+                          MaterialVelocity(s.body_b, c.point, at.poses, b));
+    };
+    const double rate = overlap_rate(body);
+    for (int k = 0; k < nd; ++k) {
+      const SurfaceVelocity uk = Surface(s, at.poses, moved[k], &u.tangent);
+      ua_by_v(k) = uk.ua - u.ua;
+      ub_by_v(k) = uk.ub - u.ub;
+      rate_by_v(k) = overlap_rate(moved[k]) - rate;
+    }
+    const transmission::FrictionContact fc = FrictionState(terms, j);
+    const double hf = 1e-6 * f;
+    const double phi_f =
+        (FrictionForce(fc, f + hf, u.ua, u.ub) - FrictionForce(fc, f - hf, u.ua, u.ub)) / (2 * hf);
+    const double phi_ua =
+        (FrictionForce(fc, f, u.ua + hu, u.ub) - FrictionForce(fc, f, u.ua - hu, u.ub)) / (2 * hu);
+    const double phi_ub =
+        (FrictionForce(fc, f, u.ua, u.ub + hu) - FrictionForce(fc, f, u.ua, u.ub - hu)) / (2 * hu);
+    h.setZero();
+    AddPairForce(s, at.poses, u.tangent, h);
+    *dd += h * (phi_f * force_by_d.row(a));
+    *dv += h * (phi_f * damping(a) * rate_by_v + phi_ua * ua_by_v + phi_ub * ub_by_v).transpose();
+  }
+}
+
 Eigen::VectorXd DynamicModel::QuasiStaticStart(const solvers::ContactOptions& contact,
                                                solvers::Backend backend) const {
   transmission::QuasiStaticOptions opt;
   opt.backend = backend;
   opt.contact = contact;
-  const transmission::PositionResult r = transmission::SolvePosition(
-      model_, CarrierAngle(0.0), loads_, opt);
+  const transmission::PositionResult r =
+      transmission::SolvePosition(model_, CarrierAngle(0.0), loads_, opt);
   // A planet whose flanks, drive and coast, all lie beyond the gap window in a mesh is separated
   // from that member: its motion would not be held by the contacts the model sees. A planet held
   // by its coast flanks only (errors beyond the backlash: jammed) is a state the model computes,
@@ -708,8 +769,8 @@ Eigen::VectorXd DynamicModel::QuasiStaticStart(const solvers::ContactOptions& co
       } else {
         // The bearing deflection, turned with the carrier.
         const Vec2 defl = geometry::Rotate(r.planet_displacements[f.planet], carrier_shift);
-        const Vec2 move = geometry::Rotate(pin0_[f.planet], CarrierAngle(0.0) + carrier_shift) -
-                          geometry::Rotate(pin0_[f.planet], CarrierAngle(0.0));
+        const Vec2 move = model_.stage().Pin(f.planet, CarrierAngle(0.0) + carrier_shift) -
+                          model_.stage().Pin(f.planet, CarrierAngle(0.0));
         d(k) = f.axis == MotionDof::kX ? defl.x() + move.x() : defl.y() + move.y();
       }
     }
@@ -765,7 +826,7 @@ StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeCompli
       fe(f),
       compliance(scene, stage, fe),
       stage_model(stage, compliance, transmission::SetupFromScene(scene)),
-      model(stage_model, SettingsFromScene(scene), scene.inertia, scene.loads) {
+      model(stage_model, scene.dynamics, scene.inertia, scene.loads) {
   const auto k = MeanMeshStiffness(scene, stage, fe);
   model.SetMeshStiffness(k[0], k[1]);
 }

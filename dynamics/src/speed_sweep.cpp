@@ -165,7 +165,7 @@ int SpeedSweepResult::failed() const {
 }
 
 DynamicModel ModelAtSpeed(const DynamicModel& base, double sun_speed_rpm) {
-  DynamicSettings s = base.settings();
+  transmission::DynamicSettings s = base.settings();
   s.sun_speed = sun_speed_rpm * kRpm;
   DynamicModel m(base.stage_model(), s, base.inertias(), base.loads());
   m.SetMeshStiffness(base.sun_mesh_stiffness(), base.ring_mesh_stiffness());
@@ -182,9 +182,17 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions&
   const SimulationOptions& sim = options.simulation;
 
   // Modes and their damping at the window's start. The damping matrix comes from the Jacobian of
-  // the right-hand side at the quasi-static start (−M ∂d̈/∂ḋ); it does not depend on the speed
-  // (mesh and bearing damping are linear in the velocities).
-  DynamicModel model = ModelAtSpeed(base, options.sun_speeds_rpm.front());
+  // the right-hand side at the quasi-static start (−M ∂d̈/∂ḋ) of the model without friction: mesh
+  // and bearing damping are linear in the velocities and do not depend on the speed; friction's
+  // velocity terms do (∂μ/∂v ~ μ/V_e) and are no viscous damping of the modes (not symmetric).
+  DynamicModel model = [&] {
+    DynamicModel at_speed = ModelAtSpeed(base, options.sun_speeds_rpm.front());
+    transmission::DynamicSettings viscous = at_speed.settings();
+    viscous.friction.law = transmission::FrictionLaw::kOff;
+    DynamicModel m(base.stage_model(), viscous, base.inertias(), base.loads());
+    m.SetMeshStiffness(base.sun_mesh_stiffness(), base.ring_mesh_stiffness());
+    return m;
+  }();
   model.SetStartAngle(options.window_start);
   DynamicModel linear = model;  // the modes' stiffness (the damping stays the base's)
   if (options.modal_mesh_stiffness[0] > 0 && options.modal_mesh_stiffness[1] > 0)
@@ -323,7 +331,8 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
 namespace {
 
 // One speed, start to end; never throws for a failed computation (the result says why).
-SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options, const SpeedSweepPlan& plan, int index) {
+SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
+                     const SpeedSweepPlan& plan, int index) {
   const double rpm = options.sun_speeds_rpm[static_cast<std::size_t>(index)];
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = ThreadCpuSeconds();
@@ -367,7 +376,8 @@ SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
 
 }  // namespace
 
-SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options, const SpeedSweepPlan& plan,
+SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options,
+                             const SpeedSweepPlan& plan,
                              const std::function<void(const SpeedResult&)>& on_result) {
   options.Validate();
   SpeedSweepResult out;

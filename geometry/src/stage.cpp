@@ -230,16 +230,21 @@ StagePoses Stage::Poses(double carrier_angle, bool with_errors) const {
   p.sun = place(Vec2::Zero(), sun_turn0_ + sun_ratio() * carrier_angle, spec_.sun_runout);
   p.ring = place(Vec2::Zero(), 0.0, spec_.ring_runout);
   for (int i = 0; i < planets(); ++i) {
-    const double dir = carrier_angle + angles_[i];
-    Vec2 c = spec_.carrier_radius * Dir(dir);
-    if (with_errors && !spec_.pin_errors.empty()) {
-      const PinError& e = spec_.pin_errors[i];
-      c += e.radial * Dir(dir) + e.tangential * DirPerp(dir);
-    }
     const Runout r = spec_.planet_runouts.empty() ? Runout{} : spec_.planet_runouts[i];
-    p.planets.push_back(place(c, planet_turn0_[i] + planet_ratio() * carrier_angle, r));
+    p.planets.push_back(place(Pin(i, carrier_angle, with_errors),
+                              planet_turn0_[i] + planet_ratio() * carrier_angle, r));
   }
   return p;
+}
+
+Vec2 Stage::Pin(int planet, double carrier_angle, bool with_errors) const {
+  const double dir = carrier_angle + angles_.at(planet);
+  Vec2 c = spec_.carrier_radius * Dir(dir);
+  if (with_errors && !spec_.pin_errors.empty()) {
+    const PinError& e = spec_.pin_errors[planet];
+    c += e.radial * Dir(dir) + e.tangential * DirPerp(dir);
+  }
+  return c;
 }
 
 std::vector<PotentialContact> Stage::Contacts(const StagePoses& p, int planet, MeshKind kind,

@@ -256,6 +256,8 @@ nlohmann::json DynamicRunJson(const dynamics::DynamicSummary& sum,
   j["jacobians"] = st.jacobian_evaluations;
   j["failed_contact_solves"] = st.failed_solves;
   j["error_test_failures"] = st.error_test_failures;
+  j["nonlinear_failures"] = st.nonlinear_failures;
+  j["failed_geometry"] = st.failed_geometry;
   j["wall_seconds"] = st.wall_seconds;
   j["evaluation_seconds"] = st.rhs_seconds;
   j["rate_tolerance_scale_rad_per_s"] = st.rate_scale;  // rate atol = position atol x this

@@ -23,6 +23,13 @@ using internal::TableReader;
 
 namespace {
 
+std::string Num(double v) {
+  std::ostringstream o;
+  o.precision(10);
+  o << v;
+  return o.str();
+}
+
 constexpr double kMm = 1e-3, kUm = 1e-6;
 
 // Physical ranges of the scene's values (docs/scenes.md, "Ranges and validity"). Sizes are
@@ -65,13 +72,18 @@ Inertia ReadInertia(TableReader& t) {
   return i;
 }
 
-// The optional [dynamics] and [lubricant] tables (docs/scenes.md).
-void ReadDynamics(TableReader& top, DynamicsScene& d) {
+// The optional [dynamics] and [lubricant] tables (docs/scenes.md), with their cross-key rules
+// (DynamicSettings::Validate's) named at the key the user wrote.
+void ReadDynamics(TableReader& top, DynamicSettings& d) {
   if (auto t = top.OptionalTable("dynamics")) {
     d.sun_speed = t->RealOr("sun_speed_rpm", 1500.0, Rule::Positive()) * std::numbers::pi / 30.0;
-    d.carrier = t->StringOr("carrier", "speed", {"speed", "torque"});
+    d.carrier_free = t->StringOr("carrier", "speed", {"speed", "torque"}) == "torque";
     d.carrier_load_inertia = t->RealOr("carrier_load_inertia_kgm2", 0.0, Rule::NonNegative());
-    d.sun_drive = t->StringOr("sun", "torque", {"torque", "speed"});
+    d.sun_speed_driven = t->StringOr("sun", "torque", {"torque", "speed"}) == "speed";
+    if (d.sun_speed_driven && !d.carrier_free)
+      t->Fail("sun", "\"speed\"",
+              "needs carrier = \"torque\": with both the sun and the carrier turned at prescribed "
+              "speeds nothing carries the load");
     d.carrier_stiffness = t->RealOr("carrier_stiffness_N_per_um", 0.0, Rule::NonNegative()) * 1e6;
     d.carrier_damping = t->RealOr("carrier_damping_Ns_per_m", 0.0, Rule::NonNegative());
     d.mesh_damping_ratio = t->RealOr("mesh_damping_ratio", 0.05, Rule::Closed(0, 1));
@@ -79,22 +91,29 @@ void ReadDynamics(TableReader& top, DynamicsScene& d) {
     d.sun_bearing_damping = t->RealOr("sun_bearing_damping_Ns_per_m", 0.0, Rule::NonNegative());
     d.planet_bearing_damping =
         t->RealOr("planet_bearing_damping_Ns_per_m", 0.0, Rule::NonNegative());
-    d.ring = t->StringOr("ring", "fixed", {"fixed", "elastic"});
-    if (d.ring == "elastic") {
+    d.ring_elastic = t->StringOr("ring", "fixed", {"fixed", "elastic"}) == "elastic";
+    if (d.ring_elastic) {
       d.ring_stiffness = t->Real("ring_stiffness_N_per_um", Rule::NonNegative()) * 1e6;
       d.ring_torsional_stiffness = t->Real("ring_torsional_stiffness_Nm_per_rad", Rule::Positive());
       d.ring_damping = t->RealOr("ring_damping_Ns_per_m", 0.0, Rule::NonNegative());
       d.ring_torsional_damping =
           t->RealOr("ring_torsional_damping_Nms_per_rad", 0.0, Rule::NonNegative());
     }
-    d.friction = t->StringOr("friction", "xu-kahraman",
-                             {"off", "constant", "xu-kahraman", "benedict-kelley"});
-    d.friction_coefficient = t->RealOr("friction_coefficient", 0.05, Rule::Closed(0, 1));
+    d.friction.law = FrictionLawFromName(t->StringOr(
+        "friction", "xu-kahraman", {"off", "constant", "xu-kahraman", "benedict-kelley"}));
+    d.friction.coefficient = t->RealOr("friction_coefficient", 0.05, Rule::Closed(0, 1));
     t->Done();
   }
   if (auto t = top.OptionalTable("lubricant")) {
-    d.lubricant_viscosity = t->RealOr("viscosity_mPas", 50.0, Rule::Positive()) * 1e-3;
-    d.roughness = t->RealOr("roughness_um", 0.8, Rule::Positive()) * kUm;
+    d.friction.lubricant.dynamic_viscosity =
+        t->RealOr("viscosity_mPas", 50.0, Rule::Positive()) * 1e-3;
+    const double roughness_um = t->RealOr("roughness_um", 0.8, Rule::Positive());
+    // Benedict & Kelley's roughness factor 50/(50 − S) takes S in µin: S < 50 µin = 1.27 µm.
+    if (d.friction.law == FrictionLaw::kBenedictKelley && !(roughness_um < 1.27))
+      t->Fail("roughness_um", Num(roughness_um),
+              "must be < 1.27 (50 microinch) for friction = \"benedict-kelley\" (its roughness "
+              "factor 50/(50 - S))");
+    d.friction.lubricant.composite_roughness = roughness_um * kUm;
     t->Done();
   }
 }
@@ -269,13 +288,6 @@ int GearIndex(TableReader& t, const std::string& key, int planets) {
   }
   t.Fail(key, "\"" + v + "\"",
          "must be \"sun\", \"ring\" or \"planet1\"..\"planet" + std::to_string(planets) + "\"");
-}
-
-std::string Num(double v) {
-  std::ostringstream o;
-  o.precision(10);
-  o << v;
-  return o.str();
 }
 
 // Meshing gears share module and pressure angle: a mismatch is blamed on the gear read second.

@@ -6,16 +6,13 @@
 #include <utility>
 
 #include "epicycle/solvers/local_term.hpp"
+#include "number_format.hpp"
 
 namespace epicycle::transmission {
 
 namespace {
 
-std::string Num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+using internal::Num;
 
 // The transmission-error warning: `worst` and `limit` are rotations [rad] of the gear named in
 // `along` (a tenth of its module along its line of action).

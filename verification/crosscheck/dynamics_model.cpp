@@ -46,9 +46,9 @@ TEST_CASE("quasi-static limit: the dynamic LSR tends to the quasi-static sweep w
   for (int k = 0; k < 2; ++k) {
     RigOptions o;
     o.local_terms = false;
-    o.edit = [&](dynamics::DynamicSettings& s) {
+    o.edit = [&](transmission::DynamicSettings& s) {
       s.sun_speed = speeds[k] * kRpm;
-      s.friction.law = dynamics::FrictionLaw::kOff;
+      s.friction.law = transmission::FrictionLaw::kOff;
     };
     const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
     dynamics::SimulationOptions so;
@@ -129,10 +129,11 @@ TEST_CASE(
     RigOptions o;
     o.spring = 1e-9;
     o.spring_mesh_stiffness = 1.5e9;
-    o.edit = [&](dynamics::DynamicSettings& s) {
+    o.edit = [&](transmission::DynamicSettings& s) {
       s.sun_speed = 1500 * kRpm;
       s.mesh_damping_ratio = dissipative ? 0.05 : 0.0;
-      s.friction.law = dissipative ? dynamics::FrictionLaw::kConstant : dynamics::FrictionLaw::kOff;
+      s.friction.law =
+          dissipative ? transmission::FrictionLaw::kConstant : transmission::FrictionLaw::kOff;
       s.friction.coefficient = 0.05;
     };
     const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
@@ -199,7 +200,7 @@ TEST_CASE(
   // right-hand side's value; its error is about the local error of θ̇_s over a step,
   // (rtol|θ̇_s| + atol_v)/h. The tolerance is 10 times that, with h the mean step.
   RigOptions o;
-  o.edit = [](dynamics::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
+  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
   const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
   dynamics::SimulationOptions so;
   const auto times = Times(*rig.model, *rig.stage, 2, 20);
@@ -238,9 +239,9 @@ TEST_CASE(
   // (with 32 per cycle, harmonic 27 lands on bin 5). Forbidden harmonics must stay below 1 % of
   // the largest allowed one (what remains: the transient, the integrator's error at rtol 1e-6).
   RigOptions o;
-  o.edit = [](dynamics::DynamicSettings& s) {
+  o.edit = [](transmission::DynamicSettings& s) {
     s.sun_speed = 1500 * kRpm;
-    s.friction.law = dynamics::FrictionLaw::kOff;
+    s.friction.law = transmission::FrictionLaw::kOff;
   };
   const auto rig = test::MakeRig(test::SceneText("paper_stage.toml"), "perfect", o);
   auto times = Times(*rig.model, *rig.stage, 6, 4);
@@ -295,7 +296,7 @@ TEST_CASE(
   // with the mesh stiffness, so its error is about κ·rtol with κ = (k δ)/F ~ 1 ... stated as
   // 100 rtol (absolute, on LSR ~ 1/3): 1e-4 at rtol 1e-6.
   RigOptions o;
-  o.edit = [](dynamics::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
+  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
   const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
   const auto times = Times(*rig.model, *rig.stage, 2, 20);
   dynamics::SimulationOptions a, b, c;
@@ -355,10 +356,10 @@ TEST_CASE(
   RigOptions o;
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
-  o.edit = [](dynamics::DynamicSettings& s) {
+  o.edit = [](transmission::DynamicSettings& s) {
     s.sun_speed = 1500 * kRpm;
     s.mesh_damping_ratio = 0;
-    s.friction.law = dynamics::FrictionLaw::kXuKahraman;
+    s.friction.law = transmission::FrictionLaw::kXuKahraman;
   };
   const auto rig = test::MakeRig(test::SceneText("paper_stage.toml"), "friction", o);
   dynamics::SimulationOptions so;
@@ -426,4 +427,120 @@ TEST_CASE(
             Sci(std::max(df, da)), "1e-8", df <= 1e-8 && da <= 1e-8);
   CHECK(df <= 1e-8);
   CHECK(da <= 1e-8);
+}
+
+namespace {
+
+// ∂d̈/∂d (velocity = false) or ∂d̈/∂ḋ (true) by central differences of the whole right-hand side
+// with step h per coordinate (rotations h, translations h/10: about the same motion at the flank),
+// each evaluation solved cold to the contact solver's tightest tolerance.
+Eigen::MatrixXd RightHandSideDifferences(const dynamics::DynamicModel& m, const Eigen::VectorXd& d,
+                                         const Eigen::VectorXd& v, bool velocity, double h) {
+  auto solver = solvers::MakeContactSolver(solvers::Backend::kActiveSetNewton);
+  solvers::ContactOptions tight;
+  tight.tolerance = 1e-14;
+  Eigen::MatrixXd j(m.size(), m.size());
+  for (int k = 0; k < m.size(); ++k) {
+    const double hk = m.dofs()[k].axis == dynamics::MotionDof::kRotation ? h : h / 10;
+    Eigen::VectorXd dp = d, dm = d, vp = v, vm = v;
+    (velocity ? vp : dp)(k) += hk;
+    (velocity ? vm : dm)(k) -= hk;
+    dynamics::Evaluation ep, em;
+    m.Evaluate(0.0, dp, vp, *solver, tight, nullptr, &ep);
+    m.Evaluate(0.0, dm, vm, *solver, tight, nullptr, &em);
+    REQUIRE(ep.ok);
+    REQUIRE(em.ok);
+    j.col(k) = (ep.acceleration - em.acceleration) / (2 * hk);
+  }
+  return j;
+}
+
+// Largest column error of `j` against `reference`, relative to the reference's largest column.
+double ColumnError(const Eigen::MatrixXd& j, const Eigen::MatrixXd& reference) {
+  double worst = 0, scale = 0;
+  for (int k = 0; k < j.cols(); ++k) {
+    worst = std::max(worst, (j.col(k) - reference.col(k)).norm());
+    scale = std::max(scale, reference.col(k).norm());
+  }
+  return worst / scale;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "Jacobian with friction: the velocity Jacobian equals differences of the right-hand side; "
+    "friction adds no error to the position Jacobian beyond its frozen contact geometry",
+    "[crosscheck][dynamics][friction]") {
+  // The paper's stage with run-out at 30 rpm, floating sun, FE compliance and local terms, Xu &
+  // Kahraman friction: at low speed ∂μ/∂v_s ~ μ/V_e is large, the case where leaving friction out
+  // of the Jacobian costs the integrator most. At the quasi-static start (t = 0, ḋ = 0):
+  // - ∂d̈/∂ḋ: the contact forces do not depend on ḋ, so differences of the whole right-hand side
+  //   test friction's velocity terms and the damping directly. The differences' own error is
+  //   estimated by halving the step (Richardson: |D(h) − D(h/2)| bounds the truncation of D(h/2)
+  //   to within a factor 4/3); required: friction adds no more than 10 times that estimate to
+  //   the error the friction-free Jacobian has against the friction-free model's differences.
+  // - ∂d̈/∂d: the Jacobian freezes the contact geometry (points, normals, levers), so it differs
+  //   from the differences by the geometric terms whether friction is on or off; required: with
+  //   friction no more than 1.5 times the error of the friction-free Jacobian of the same state.
+  auto make = [](transmission::FrictionLaw law) {
+    RigOptions o;
+    o.sun = transmission::SunSupport::kFloating;  // translations too
+    o.edit = [law](transmission::DynamicSettings& s) {
+      s.sun_speed = 30 * kRpm;
+      s.friction.law = law;
+    };
+    return test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "jacobian", o);
+  };
+  const auto with = make(transmission::FrictionLaw::kXuKahraman);
+  const auto without = make(transmission::FrictionLaw::kOff);
+  const auto& m = *with.model;
+  const Eigen::VectorXd d = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  const Eigen::VectorXd v = Eigen::VectorXd::Zero(m.size());
+  auto jacobian = [&](const dynamics::DynamicModel& model, Eigen::MatrixXd* dd,
+                      Eigen::MatrixXd* dv) {
+    auto solver = solvers::MakeContactSolver(solvers::Backend::kActiveSetNewton);
+    solvers::ContactOptions tight;
+    tight.tolerance = 1e-14;
+    dynamics::Evaluation at;
+    model.Evaluate(0.0, d, v, *solver, tight, nullptr, &at);
+    REQUIRE(at.ok);
+    model.Jacobian(0.0, d, v, at, dd, dv);
+  };
+  Eigen::MatrixXd dd, dv, dd0, dv0;
+  jacobian(m, &dd, &dv);
+  jacobian(*without.model, &dd0, &dv0);
+
+  const double hv = 1e-6;
+  const Eigen::MatrixXd fd_v = RightHandSideDifferences(m, d, v, true, hv);
+  const Eigen::MatrixXd fd_v2 = RightHandSideDifferences(m, d, v, true, hv / 2);
+  const double v_error = ColumnError(dv, fd_v2);
+  const double v_estimate = ColumnError(fd_v, fd_v2);
+  const double v_without = ColumnError(dv0, fd_v2);  // the Jacobian as it was without friction
+  // The friction-free Jacobian of the friction-free model: the accuracy the model had before.
+  const double v_error0 =
+      ColumnError(dv0, RightHandSideDifferences(*without.model, d, v, true, hv / 2));
+  const double v_tol = v_error0 + 10 * v_estimate;
+
+  const Eigen::MatrixXd fd_d = RightHandSideDifferences(m, d, v, false, 1e-9);
+  const Eigen::MatrixXd fd_d0 = RightHandSideDifferences(*without.model, d, v, false, 1e-9);
+  const double d_error = ColumnError(dd, fd_d), d_error0 = ColumnError(dd0, fd_d0);
+
+  Figure("Jacobian at 30 rpm, Xu & Kahraman: velocity part " + Sci(v_error) +
+         " relative (friction off " + Sci(v_error0) + ", differences' own error " +
+         Sci(v_estimate) + "; without friction's terms " + Sci(v_without) + "), position part " +
+         Sci(d_error) + " (friction off: " + Sci(d_error0) + ")");
+  VerifyRow("Jacobian with friction, velocity part (30 rpm, run-out, Xu & Kahraman)",
+            "central differences of the right-hand side",
+            "relative column error " + Sci(v_error) +
+                " (friction's terms left out: " + Sci(v_without) + ")",
+            Sci(v_error),
+            Sci(v_tol) + " (friction off " + Sci(v_error0) + " + 10 x the differences' error)",
+            v_error <= v_tol);
+  VerifyRow("Jacobian with friction, position part (frozen contact geometry)",
+            "central differences of the right-hand side; the friction-free Jacobian's error",
+            "relative column error " + Sci(d_error) + " (friction off " + Sci(d_error0) + ")",
+            Sci(d_error), Sci(1.5 * d_error0) + " (1.5 x friction off)", d_error <= 1.5 * d_error0);
+  CHECK(v_error <= v_tol);
+  CHECK(v_without > 100 * v_tol);  // friction's terms matter here: the check can fail
+  CHECK(d_error <= 1.5 * d_error0);
 }

@@ -33,9 +33,9 @@ std::string Fixed(double x, int digits = 0) {
 test::DynamicRig PaperRig(bool local_terms) {
   RigOptions o;
   o.local_terms = local_terms;
-  o.edit = [](dynamics::DynamicSettings& s) {
+  o.edit = [](transmission::DynamicSettings& s) {
     s.sun_speed = 1000 * test::kRpm;
-    s.friction.law = dynamics::FrictionLaw::kOff;
+    s.friction.law = transmission::FrictionLaw::kOff;
   };
   return test::MakeRig(test::SceneText("paper_stage.toml"), "paper stage", o);
 }
@@ -239,7 +239,7 @@ TEST_CASE("speed sweep: a failed speed is a result with its message, never left 
   RigOptions o;
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
-  o.edit = [](dynamics::DynamicSettings& s) { s.sun_speed = 1000 * test::kRpm; };
+  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1000 * test::kRpm; };
   const auto rig = test::MakeRig(test::SceneText("paper_stage.toml"), "springs", o);
   dynamics::SpeedSweepOptions so;
   so.sun_speeds_rpm = {1000, 2000, 3000};
@@ -247,8 +247,8 @@ TEST_CASE("speed sweep: a failed speed is a result with its message, never left 
   so.window_cycles = 1;
   so.simulation.max_steps = 20;
   int seen = 0;
-  const auto result = dynamics::SweepSpeeds(*rig.model, so,
-                                            [&](const dynamics::SpeedResult&) { ++seen; });
+  const auto result =
+      dynamics::SweepSpeeds(*rig.model, so, [&](const dynamics::SpeedResult&) { ++seen; });
   CHECK(seen == 3);
   REQUIRE(result.speeds.size() == 3);
   CHECK(result.failed() == 3);

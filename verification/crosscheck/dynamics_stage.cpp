@@ -41,14 +41,14 @@ TEST_CASE(
   for (const char* file : {"paper_stage.toml", "paper_stage_4planets.toml"}) {
     RigOptions o;
     o.sun = SunSupport::kElastic;
-    o.edit = [&](dynamics::DynamicSettings& s) {
+    o.edit = [&](transmission::DynamicSettings& s) {
       s.ring_elastic = true;
       s.ring_stiffness = kBearing;
       s.ring_torsional_stiffness = 0;  // set below from r_r
     };
     transmission::Scene probe = transmission::ParseScene(test::SceneText(file), file);
     const double r_r = geometry::Stage(probe.stage).ring().base_radius();
-    o.edit = [&](dynamics::DynamicSettings& s) {
+    o.edit = [&](transmission::DynamicSettings& s) {
       s.ring_elastic = true;
       s.ring_stiffness = kBearing;
       s.ring_torsional_stiffness = kRingTorsion * r_r * r_r;
@@ -69,7 +69,8 @@ TEST_CASE(
     p.r_r = st.ring().base_radius();
     p.r_p = st.planet(0).base_radius();
     p.r_c = st.carrier_radius();
-    p.m_s = rig.scene.inertia.sun.mass, p.m_r = rig.scene.inertia.ring.mass, p.m_p = rig.scene.inertia.planet.mass;
+    p.m_s = rig.scene.inertia.sun.mass, p.m_r = rig.scene.inertia.ring.mass,
+    p.m_p = rig.scene.inertia.planet.mass;
     p.m_c = rig.scene.inertia.carrier.mass;
     p.j_s = rig.scene.inertia.sun.inertia / (p.r_s * p.r_s);
     p.j_r = rig.scene.inertia.ring.inertia / (p.r_r * p.r_r);
@@ -137,7 +138,7 @@ TEST_CASE(
     "[crosscheck][slow][dynamics][paper]") {
   const std::string text = WithRunout(test::SceneText("paper_stage.toml"));
   RigOptions o;
-  o.edit = [](dynamics::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
+  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
   const double cycles = 24;  // a planet revolution relative to the carrier: z_p mesh cycles
 
   SECTION("fixed sun") {
@@ -209,9 +210,9 @@ TEST_CASE(
     // limit the quasi-static test uses against the theory).
     for (const double rpm : {150.0, 1500.0}) {
       RigOptions op = o;
-      op.edit = [rpm](dynamics::DynamicSettings& s) {
+      op.edit = [rpm](transmission::DynamicSettings& s) {
         s.sun_speed = rpm * kRpm;
-        s.friction.law = dynamics::FrictionLaw::kOff;
+        s.friction.law = transmission::FrictionLaw::kOff;
       };
       double ratio[2], baseline[2];
       for (int quasi = 0; quasi < 2; ++quasi) {
@@ -261,9 +262,9 @@ TEST_CASE(
     // friction the deviation is larger: docs/dynamic.md).
     RigOptions of = o;
     of.sun = SunSupport::kFloating;
-    of.edit = [](dynamics::DynamicSettings& s) {
+    of.edit = [](transmission::DynamicSettings& s) {
       s.sun_speed = 1500 * kRpm;
-      s.friction.law = dynamics::FrictionLaw::kOff;
+      s.friction.law = transmission::FrictionLaw::kOff;
     };
     const auto rig = test::MakeRig(text, "runout floating", of);
     const auto r = Run(rig, Times(*rig.model, *rig.stage, cycles, 4));
@@ -286,8 +287,8 @@ TEST_CASE(
     const double rbs = rig.stage->sun().base_radius();
     double worst = 0, worst_qs = 0, worst_ratio = 0, rmax = 0, rmin = 1;
     for (const DynamicSample& s : r.samples) {
-      const auto q = transmission::SolvePosition(*rig.stage_model, s.carrier_angle,
-                                                 rig.scene.loads, {});
+      const auto q =
+          transmission::SolvePosition(*rig.stage_model, s.carrier_angle, rig.scene.loads, {});
       REQUIRE(q.converged);
       const Eigen::Vector2d a(s.evaluation.acceleration(sx), s.evaluation.acceleration(sx + 1));
       const double bound =
@@ -348,9 +349,7 @@ class FailingCompliance : public transmission::StageCompliance {
   double JoiningDepth(int) const override { return 1e-3; }
   // Springs need no material; the local terms, when a test adds them, see steel.
   const transmission::Material& material() const override { return steel_; }
-  solvers::PlaneAssumption plane() const override {
-    return solvers::PlaneAssumption::kPlaneStrain;
-  }
+  solvers::PlaneAssumption plane() const override { return solvers::PlaneAssumption::kPlaneStrain; }
 
  private:
   transmission::Material steel_;
@@ -390,7 +389,7 @@ TEST_CASE(
     CHECK(speed.find("sun_speed_rpm") != std::string::npos);
     CHECK(speed.find("> 0") != std::string::npos);
     // The same rule where settings are made in code.
-    dynamics::DynamicSettings s;
+    transmission::DynamicSettings s;
     s.sun_speed = 0;
     const std::string code = Thrown([&] { s.Validate(); });
     CHECK(code.find("sun_speed_rpm = 0") != std::string::npos);
@@ -434,8 +433,8 @@ TEST_CASE(
     setup.local_terms = false;
     const FailingCompliance failing(400);
     const transmission::StageModel sm(stage, failing, setup);
-    dynamics::DynamicSettings settings = dynamics::SettingsFromScene(scene);
-    settings.friction.law = dynamics::FrictionLaw::kOff;
+    transmission::DynamicSettings settings = scene.dynamics;
+    settings.friction.law = transmission::FrictionLaw::kOff;
     dynamics::DynamicModel m(sm, settings, scene.inertia, scene.loads);
     m.SetMeshStiffness(1e9, 1e9);
     const auto times = Times(m, stage, 4, 10);
@@ -471,7 +470,7 @@ TEST_CASE(
   o.sun = SunSupport::kElastic;
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
-  o.edit = [](dynamics::DynamicSettings& s) {
+  o.edit = [](transmission::DynamicSettings& s) {
     s.sun_speed = 1500 * kRpm;
     s.sun_speed_driven = true;
     s.carrier_free = true;
@@ -481,7 +480,7 @@ TEST_CASE(
     s.ring_stiffness = 0;  // floating in translation
     s.ring_torsional_stiffness = 1e7;
     s.mesh_damping_ratio = 0;
-    s.friction.law = dynamics::FrictionLaw::kOff;
+    s.friction.law = transmission::FrictionLaw::kOff;
   };
   const auto rig = test::MakeRig(text, "drives", o);
   const auto& m = *rig.model;
@@ -565,8 +564,7 @@ TEST_CASE(
   const auto rig = test::MakeRig(test::SceneText("paper_stage.toml"), "recovery", o);
   const dynamics::DynamicModel& m = *rig.model;
   const geometry::Stage& st = *rig.stage;
-  const double margin =
-      st.carrier_radius() - st.sun().base_radius() - st.planet(0).base_radius();
+  const double margin = st.carrier_radius() - st.sun().base_radius() - st.planet(0).base_radius();
   REQUIRE(margin > 0);
   // The first step h0 = 2·margin/v0 (4 s: the carrier turns on by then), v0 aimed at where
   // planet 1 is at t = h0, so that the predictor's sun lands on planet 1's side.

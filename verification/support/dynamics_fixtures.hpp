@@ -30,9 +30,7 @@ class SpringCompliance : public transmission::StageCompliance {
   double JoiningDepth(int) const override { return 1e-3; }
   // Springs need no material; the local terms, when a test adds them, see steel.
   const transmission::Material& material() const override { return steel_; }
-  solvers::PlaneAssumption plane() const override {
-    return solvers::PlaneAssumption::kPlaneStrain;
-  }
+  solvers::PlaneAssumption plane() const override { return solvers::PlaneAssumption::kPlaneStrain; }
 
  private:
   transmission::Material steel_;
@@ -52,7 +50,7 @@ struct RigOptions {
   double spring = 0;  ///< > 0: spring contacts of this compliance [m/N], no local terms
   double spring_mesh_stiffness = 0;  ///< mesh stiffness for the damping with springs [N/m]
   bool local_terms = true;           ///< FE compliance: with the local contact terms
-  std::function<void(dynamics::DynamicSettings&)> edit;  ///< changes to the scene's settings
+  std::function<void(transmission::DynamicSettings&)> edit;  ///< changes to the scene's settings
 };
 
 /// A rig of `text` (a scene file's text): spring contacts, or the FE compliance from the suite's
@@ -75,7 +73,7 @@ inline DynamicRig MakeRig(const std::string& text, const std::string& name, cons
     setup.local_terms = o.local_terms;
   }
   r.stage_model = std::make_unique<transmission::StageModel>(*r.stage, *r.compliance, setup);
-  dynamics::DynamicSettings settings = dynamics::SettingsFromScene(r.scene);
+  transmission::DynamicSettings settings = r.scene.dynamics;
   if (edit) edit(settings);
   r.model = std::make_unique<dynamics::DynamicModel>(*r.stage_model, settings, r.scene.inertia,
                                                      r.scene.loads);

@@ -138,3 +138,36 @@ TEST_CASE("model and supports tables: values in SI, errors name key, value and r
       Parse(base + "\n[supports]\nsun = \"floating\"\nsun_stiffness_N_per_um = 300.0\n"),
       Contains("supports.sun_stiffness_N_per_um"));
 }
+
+TEST_CASE("dynamics and lubricant tables: typed SI settings, cross-key rules named at the key",
+          "[unit][transmission]") {
+  using epicycle::transmission::FrictionLaw;
+  const std::string base = SceneText("paper_stage.toml");
+  const auto s = Parse(base);
+  CHECK(s.dynamics.sun_speed == Approx(1500 * 3.14159265358979 / 30));
+  CHECK(s.dynamics.friction.law == FrictionLaw::kXuKahraman);
+  CHECK(s.dynamics.friction.lubricant.dynamic_viscosity == Approx(0.05));
+  CHECK(s.dynamics.friction.lubricant.composite_roughness == Approx(0.8e-6));
+  CHECK_NOTHROW(s.dynamics.Validate());
+  // Dry flanks: the constant law takes any μ in [0, 1], the same range the reader documents.
+  const auto dry = Parse(Replace(base, "friction = \"xu-kahraman\"",
+                                 "friction = \"constant\"\nfriction_coefficient = 0.4"));
+  CHECK(dry.dynamics.friction.law == FrictionLaw::kConstant);
+  CHECK(dry.dynamics.friction.coefficient == 0.4);
+  CHECK_NOTHROW(dry.dynamics.Validate());
+  CHECK_THROWS_WITH(
+      Parse(Replace(base, "friction = \"xu-kahraman\"", "friction_coefficient = 1.5")),
+      Contains("dynamics.friction_coefficient = 1.5: must be in [0, 1]"));
+  // Cross-key rules carry the file and line of the key the user wrote.
+  const auto line = 1 + std::count(base.begin(), base.begin() + base.find("sun_speed_rpm"), '\n');
+  CHECK_THROWS_WITH(Parse(Replace(base, "sun_speed_rpm = 1500.0", "sun = \"speed\"")),
+                    Contains("s.toml:" + std::to_string(line) + ": dynamics.sun = \"speed\"") &&
+                        Contains("carrier = \"torque\""));
+  CHECK_NOTHROW(
+      Parse(Replace(base, "sun_speed_rpm = 1500.0", "sun = \"speed\"\ncarrier = \"torque\"")));
+  const std::string bk =
+      Replace(base, "friction = \"xu-kahraman\"", "friction = \"benedict-kelley\"");
+  CHECK_NOTHROW(Parse(bk));
+  CHECK_THROWS_WITH(Parse(Replace(bk, "roughness_um = 0.8", "roughness_um = 1.5")),
+                    Contains("lubricant.roughness_um = 1.5") && Contains("benedict-kelley"));
+}

@@ -44,7 +44,6 @@
 
 #include <Eigen/Dense>
 
-#include "epicycle/dynamics/friction.hpp"
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
@@ -60,34 +59,6 @@ struct MotionDof {
   int planet = 0;
   std::string Label() const;  ///< with its unit: "planet2 x [m]"
 };
-
-/// Settings of the dynamic model with their units (from the scene's [supports], [dynamics] and
-/// [lubricant] tables: SettingsFromScene; a command line may override them).
-struct DynamicSettings {
-  double sun_speed = 0;  ///< |ω_s| [rad/s], > 0; the sun turns the way its input torque drives it
-  /// false: the sun carries the input torque T_s (its speed follows); true: the sun turns at
-  /// exactly ω_s (speed-controlled, the input torque is the reaction; needs a free carrier).
-  bool sun_speed_driven = false;
-  bool carrier_free = false;          ///< false: carrier turned at ω_s z_s/(z_s + z_r)
-  double carrier_stiffness = 0;       ///< k_c [N/m] of the carrier's bearing; 0: translation held
-  double carrier_damping = 0;         ///< c_c [N·s/m]
-  double carrier_load_inertia = 0;    ///< added to the carrier's inertia when free [kg·m²]
-  double mesh_damping_ratio = 0.05;   ///< ζ [-], in [0, 1]
-  double mesh_damping = 0;            ///< c_m [N·s/m]; > 0 replaces ζ
-  double sun_bearing_damping = 0;     ///< c_s [N·s/m] (elastic sun)
-  double planet_bearing_damping = 0;  ///< c_p [N·s/m] (elastic pins)
-  bool ring_elastic = false;
-  double ring_stiffness = 0;            ///< k_r [N/m]
-  double ring_damping = 0;              ///< c_r [N·s/m]
-  double ring_torsional_stiffness = 0;  ///< k_rt [N·m/rad]
-  double ring_torsional_damping = 0;    ///< c_rt [N·m·s/rad]
-  FrictionOptions friction;
-  /// @throws std::invalid_argument naming the field, its value and the rule.
-  void Validate() const;
-};
-
-/// The scene's dynamic settings. @throws std::invalid_argument for an unknown friction law.
-DynamicSettings SettingsFromScene(const transmission::Scene& scene);
 
 /// Velocity state of a gear body in the inertial frame.
 struct BodyMotion {
@@ -113,7 +84,7 @@ struct EvaluationWorkspace {
 
 /// What one evaluation of the right-hand side computed (also the outputs of a step).
 struct Evaluation {
-  bool ok = false;  ///< the poses were evaluated and the contact solve converged
+  bool ok = false;      ///< the poses were evaluated and the contact solve converged
   std::string message;  ///< why not
   /// The stage model's outcome at these poses: not ok for a pose it cannot evaluate (a trial
   /// step past where the meshes have a line of action or the contacts lie on the flank grids);
@@ -148,14 +119,14 @@ class DynamicModel {
   /// @throws std::invalid_argument naming the key for a free member without mass or inertia, a
   ///         bad setting, loads that StageModel::CheckLoads refuses, or a support the model
   ///         cannot represent.
-  DynamicModel(const transmission::StageModel& model, const DynamicSettings& settings,
+  DynamicModel(const transmission::StageModel& model, const transmission::DynamicSettings& settings,
                const transmission::StageInertias& inertias, const transmission::StageLoads& loads);
 
   const std::vector<MotionDof>& dofs() const { return dofs_; }
   int size() const { return static_cast<int>(dofs_.size()); }
   const Eigen::VectorXd& mass() const { return mass_; }  ///< per DOF [kg] or [kg·m²]
   const transmission::StageModel& stage_model() const { return model_; }
-  const DynamicSettings& settings() const { return settings_; }
+  const transmission::DynamicSettings& settings() const { return settings_; }
   const transmission::StageLoads& loads() const { return loads_; }
   /// The members' masses and inertias the model was built with.
   transmission::StageInertias inertias() const { return {sun_, planet_, ring_, carrier_}; }
@@ -193,7 +164,9 @@ class DynamicModel {
 
   /// ∂d̈/∂d and ∂d̈/∂ḋ at an evaluation: the contact part from the contact solution's sensitivity,
   /// −M⁻¹ G_A (C_AA + diag u'_local(F_A))⁻¹ G_Aᵀ and −M⁻¹ G diag(c) Gᵀ (frozen contact geometry),
-  /// the bearing part by finite differences of the (cheap) bearing forces.
+  /// friction's part through the same forces and the surface velocities (its law's dependence on
+  /// the load and on the sliding and rolling speeds), the bearing part by finite differences of
+  /// the (cheap) bearing forces.
   void Jacobian(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v, const Evaluation& at,
                 Eigen::MatrixXd* dd, Eigen::MatrixXd* dv) const;
 
@@ -228,9 +201,36 @@ class DynamicModel {
   void Poses(double t, const Eigen::VectorXd& d, Eigen::VectorXd* q,
              geometry::StagePoses* poses) const;
   double ReferenceVelocity(int k, double t) const;
+  // Friction's kinematics of one contact (docs/model.md §7): the surface velocities u_A, u_B of
+  // the two flanks along `tangent` relative to the contact point's own motion.
+  struct SurfaceVelocity {
+    Eigen::Vector2d tangent;
+    double ua = 0, ub = 0;
+  };
+  // Along `*tangent`, or (nullptr) along n⊥ oriented so that the entrainment velocity is ≥ 0.
+  SurfaceVelocity Surface(const transmission::StageContact& s, const geometry::StagePoses& poses,
+                          const std::vector<BodyMotion>& body,
+                          const Eigen::Vector2d* tangent = nullptr) const;
+  // The material velocity of body b at point p [m/s].
+  Eigen::Vector2d MaterialVelocity(int b, const Eigen::Vector2d& p,
+                                   const geometry::StagePoses& poses,
+                                   const std::vector<BodyMotion>& body) const;
+  // Q_k += the generalised force of a force f on body B at p and −f on body A (per DOF).
+  void AddPairForce(const transmission::StageContact& s, const geometry::StagePoses& poses,
+                    const Eigen::Vector2d& f, Eigen::Ref<Eigen::VectorXd> q) const;
+  // Friction's terms of ∂d̈/∂d and ∂d̈/∂ḋ (before the division by the masses): `active` the
+  // loaded contacts, `force_by_d` their ∂F_A/∂d (one row each), `damping` their c_j.
+  void AddFrictionJacobian(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                           const Evaluation& at, const std::vector<int>& active,
+                           const Eigen::MatrixXd& force_by_d, const Eigen::VectorXd& damping,
+                           Eigen::MatrixXd* dd, Eigen::MatrixXd* dv) const;
+  // Contact j's face width, reduced radius and contact modulus (FrictionForce sets the rest).
+  transmission::FrictionContact FrictionState(const transmission::ContactTerms& terms, int j) const;
+  // The friction force μ_s(F, u_A, u_B)·F [N] of one contact with its state `fc`.
+  double FrictionForce(transmission::FrictionContact fc, double force, double ua, double ub) const;
 
   const transmission::StageModel& model_;
-  DynamicSettings settings_;
+  transmission::DynamicSettings settings_;
   std::vector<MotionDof> dofs_;
   std::vector<int> stage_dof_;  // per DOF: index into stage_dofs_, or −1 (carrier)
   std::vector<transmission::StageDof> stage_dofs_;
@@ -240,8 +240,8 @@ class DynamicModel {
   double carrier_speed_ = 0, carrier_torque_ = 0, start_angle_ = 0;
   double k_sun_ = 0, k_ring_ = 0, damping_sun_ = 0, damping_ring_ = 0;
   double contact_modulus_ = 0;
-  FrictionModel friction_;  // settings_.friction with its constant factors evaluated once
-  std::vector<Eigen::Vector2d> pin0_;  // pin positions at carrier angle 0 [m]
+  transmission::FrictionModel
+      friction_;  // settings_.friction with its constant factors evaluated once
 };
 
 /// A stage scene's dynamic model with everything it refers to, built in order: the scene, its

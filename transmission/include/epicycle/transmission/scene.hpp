@@ -10,6 +10,7 @@
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/solvers/local_term.hpp"
+#include "epicycle/transmission/dynamic_settings.hpp"
 
 namespace epicycle::transmission {
 
@@ -74,31 +75,6 @@ struct Supports {
   double planet_stiffness = 0;  ///< planet bearings [N/m]; 0: rigid pins
 };
 
-/// Settings of the dynamic model (the scene's optional [dynamics] and [lubricant] tables, read
-/// here as plain SI values; the dynamics layer interprets them, docs/model.md §7).
-struct DynamicsScene {
-  double sun_speed = 1500.0 * 3.14159265358979323846 / 30.0;  ///< |ω_s| [rad/s] (1500 rpm)
-  std::string carrier = "speed";      ///< "speed": turned at the kinematic speed; "torque": free,
-                                      ///< carrying the output torque with its inertia
-  double carrier_load_inertia = 0;    ///< added to the carrier's [kg·m²]
-  std::string sun_drive = "torque";   ///< "torque" ([load]'s torque) or "speed" (speed-controlled)
-  double carrier_stiffness = 0;       ///< carrier bearing [N/m]; 0: translation held
-  double carrier_damping = 0;         ///< [N·s/m]
-  double mesh_damping_ratio = 0.05;   ///< ζ of every mesh [-]
-  double mesh_damping = 0;            ///< c_m [N·s/m]; > 0 replaces the ratio
-  double sun_bearing_damping = 0;     ///< [N·s/m] (elastic sun)
-  double planet_bearing_damping = 0;  ///< [N·s/m] (elastic planet pins)
-  std::string ring = "fixed";         ///< "fixed" or "elastic"
-  double ring_stiffness = 0;          ///< translational [N/m] (elastic ring)
-  double ring_damping = 0;            ///< translational [N·s/m]
-  double ring_torsional_stiffness = 0;   ///< [N·m/rad] (elastic ring)
-  double ring_torsional_damping = 0;     ///< [N·m·s/rad]
-  std::string friction = "xu-kahraman";  ///< "off", "constant", "xu-kahraman", "benedict-kelley"
-  double friction_coefficient = 0.05;    ///< μ of the constant law [-]
-  double lubricant_viscosity = 0.05;     ///< dynamic viscosity η0 [Pa·s] ([lubricant])
-  double roughness = 0.8e-6;             ///< composite roughness S [m] ([lubricant])
-};
-
 /// A scene holds a planetary stage, or a single gear pair (for mesh-stiffness studies).
 enum class SceneKind { kStage, kPair };
 
@@ -121,7 +97,7 @@ struct Scene {
   /// Legal values outside the model's validity (docs/scenes.md, "Ranges and validity"), one
   /// message each naming the key, its value and the limit; reported with every result.
   std::vector<std::string> warnings;
-  DynamicsScene dynamics;
+  DynamicSettings dynamics;  ///< the [dynamics] and [lubricant] tables
 };
 
 /// "fnv1a64:<16 hex digits>", the 64-bit FNV-1a hash of `text`: identifies an input file in the

@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace epicycle::dynamics {
+namespace epicycle::transmission {
 
 /// Which friction law gives the coefficient of a tooth contact.
 enum class FrictionLaw { kOff, kConstant, kXuKahraman, kBenedictKelley };
@@ -30,16 +30,17 @@ struct Lubricant {
 /// Options of the friction law. Defaults: Xu & Kahraman with the paper's lubricant.
 struct FrictionOptions {
   FrictionLaw law = FrictionLaw::kXuKahraman;
-  double coefficient = 0.05;         ///< μ [-] of kConstant, 0 ≤ μ ≤ max_coefficient
+  double coefficient = 0.05;         ///< μ [-] of kConstant, in [0, 1]
   double smoothing_velocity = 1e-3;  ///< v_ε [m/s] > 0: sign(v_s) ≈ tanh(v_s/v_ε) (constant, B&K)
-  /// μ_max [-] > 0: cap of |μ_s| for every law. Benedict & Kelley diverges at the pitch point
-  /// (v_s → 0) and at standstill; Xu & Kahraman stays at a few hundredths (≤ 0.08 along the
-  /// paper's sun–planet path, docs/dynamic.md) and meets the cap only far outside its range.
+  /// μ_max [-] > 0: cap of |μ_s| for the lubricated laws (the constant law's μ is its own
+  /// bound). Benedict & Kelley diverges at the pitch point (v_s → 0) and at standstill; Xu &
+  /// Kahraman stays at a few hundredths (≤ 0.08 along the paper's sun–planet path, docs/dynamic.md)
+  /// and meets the cap only far outside its range.
   double max_coefficient = 0.15;
   Lubricant lubricant;
 
   /// Rules: the law is one of the enum; coefficient, smoothing velocity, cap, viscosity finite;
-  /// 0 ≤ coefficient ≤ max_coefficient; smoothing velocity, cap, viscosity > 0; roughness ≥ 0;
+  /// 0 ≤ coefficient ≤ 1; smoothing velocity, cap, viscosity > 0; roughness ≥ 0;
   /// Benedict & Kelley also needs S < 50 µin = 1.27 µm (its roughness factor 50/(50 − S)).
   /// @throws std::invalid_argument naming the field ("friction.coefficient", ...), value, rule.
   void Validate() const;
@@ -69,7 +70,7 @@ double MaxHertzPressure(const FrictionContact& contact);
 /// Signed friction coefficient μ_s [-] of one contact: the friction force on B is μ_s·F·t and on
 /// A it is −μ_s·F·t. μ_s has the sign of the sliding velocity v_s = u_A − u_B (kinetic friction
 /// drags the slower surface along), so it vanishes at the pitch point (u_A = u_B) and changes
-/// sign across it; |μ_s| ≤ max_coefficient. With
+/// sign across it; |μ_s| ≤ μ (kConstant) or max_coefficient (the lubricated laws). With
 ///
 ///   v_s = u_A − u_B,   V_e = (u_A + u_B)/2 (entrainment),   W' = F/b,   p_h as MaxHertzPressure,
 ///
@@ -134,4 +135,4 @@ class FrictionModel {
   double bk_factor_ = 0;     // 0.0127·C_R [-]
 };
 
-}  // namespace epicycle::dynamics
+}  // namespace epicycle::transmission

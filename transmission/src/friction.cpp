@@ -1,5 +1,5 @@
 // Friction laws of one tooth contact (equations in friction.hpp).
-#include "epicycle/dynamics/friction.hpp"
+#include "epicycle/transmission/friction.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "number_format.hpp"
 
-namespace epicycle::dynamics {
+namespace epicycle::transmission {
 namespace {
 
 using internal::Num;
@@ -109,7 +109,7 @@ double FrictionModel::SignedCoefficient(const FrictionContact& c) const {
     case FrictionLaw::kOff:
       return 0.0;
     case FrictionLaw::kConstant:
-      return std::min(options_.coefficient, options_.max_coefficient) *
+      return options_.coefficient *
              std::tanh((c.velocity_a - c.velocity_b) / options_.smoothing_velocity);
     case FrictionLaw::kXuKahraman:
       return XuKahraman(c);
@@ -147,10 +147,8 @@ void FrictionOptions::Validate() const {
   FrictionLawName(law);  // throws for a value outside the enum
   Require(std::isfinite(max_coefficient) && max_coefficient > 0, "friction.max_coefficient",
           max_coefficient, "must be finite and > 0");
-  if (!(std::isfinite(coefficient) && coefficient >= 0 && coefficient <= max_coefficient))
-    throw std::invalid_argument(
-        "friction.coefficient = " + Num(coefficient) +
-        ": must be finite, >= 0 and <= friction.max_coefficient = " + Num(max_coefficient));
+  Require(coefficient >= 0 && coefficient <= 1, "friction.coefficient", coefficient,
+          "must be in [0, 1]");
   Require(std::isfinite(smoothing_velocity) && smoothing_velocity > 0,
           "friction.smoothing_velocity", smoothing_velocity, "must be finite and > 0 [m/s]");
   Require(std::isfinite(lubricant.dynamic_viscosity) && lubricant.dynamic_viscosity > 0,
@@ -195,4 +193,4 @@ double SignedFrictionCoefficient(const FrictionOptions& options, const FrictionC
   return FrictionModel(options).SignedCoefficient(c);
 }
 
-}  // namespace epicycle::dynamics
+}  // namespace epicycle::transmission

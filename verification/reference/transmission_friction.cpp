@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "epicycle/dynamics/friction.hpp"
+#include "epicycle/transmission/friction.hpp"
 #include "figures.hpp"
 
-using namespace epicycle::dynamics;
+using namespace epicycle::transmission;
 using epicycle::test::Figure;
 using epicycle::test::Sci;
 using epicycle::test::VerifyRow;
@@ -55,7 +55,7 @@ double XuKahramanLog(double p_h_gpa, double sr, double v_e, double nu0_mpas, dou
 }  // namespace
 
 TEST_CASE("Xu–Kahraman μ equals a log-space evaluation of the printed formula",
-          "[reference][dynamics][friction]") {
+          "[reference][transmission][friction]") {
   struct Point {
     double p_h_gpa, sr, v_e, nu0_mpas, r, s_um;
   };
@@ -93,7 +93,7 @@ TEST_CASE("Xu–Kahraman μ equals a log-space evaluation of the printed formula
 }
 
 TEST_CASE("Xu–Kahraman's log form matches the printed product to a few ulp",
-          "[reference][dynamics][friction]") {
+          "[reference][transmission][friction]") {
   // The implementation sums logarithms (friction.cpp); the reference here is the printed product
   // e^f·P_h^b2·SR^b3·V_e^b6·ν0^b7·R^b8 factor by factor, in long double (64-bit significand, 2^11
   // times finer than double) from the contact's own double inputs, so that what is measured is
@@ -157,7 +157,7 @@ TEST_CASE("Xu–Kahraman's log form matches the printed product to a few ulp",
 }
 
 TEST_CASE("Benedict–Kelley μ equals the original formula in US units",
-          "[reference][dynamics][friction]") {
+          "[reference][transmission][friction]") {
   // Benedict & Kelley (1961): μ = 0.0127·50/(50 − S)·log10(3.17e8·W/(η·V_s·V_r²)), W [lb/in],
   // η [cP], V [in/s], S [µin]; inputs converted here with 1 lbf = 4.4482216152605 N,
   // 1 in = 0.0254 m.
@@ -191,7 +191,7 @@ TEST_CASE("Benedict–Kelley μ equals the original formula in US units",
 }
 
 TEST_CASE("μ along the path of contact of the paper's sun–planet mesh at 1500 rpm",
-          "[reference][dynamics][friction]") {
+          "[reference][transmission][friction]") {
   // The shipped stage (docs/geometry.md): m = 4.23 mm, z 16/24, α = 25°, x_s = 0.30,
   // x_p = 0.18512, centre distance a = 86.715 mm, tip radii r + (x + 1) m; E = 207 GPa, ν = 0.3,
   // b = 25 mm. Sun speed 1500 rpm, carrier at ω_s·16/81; rolling velocities relative to the

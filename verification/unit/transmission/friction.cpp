@@ -7,10 +7,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "epicycle/dynamics/friction.hpp"
+#include "epicycle/transmission/friction.hpp"
 #include "thrown_message.hpp"
 
-using namespace epicycle::dynamics;
+using namespace epicycle::transmission;
 using epicycle::test::ThrownMessage;
 
 namespace {
@@ -40,7 +40,7 @@ const FrictionLaw kOnLaws[] = {FrictionLaw::kConstant, FrictionLaw::kXuKahraman,
 }  // namespace
 
 TEST_CASE("friction law names round-trip; an unknown name lists the allowed ones",
-          "[unit][dynamics][friction]") {
+          "[unit][transmission][friction]") {
   for (FrictionLaw law : {FrictionLaw::kOff, FrictionLaw::kConstant, FrictionLaw::kXuKahraman,
                           FrictionLaw::kBenedictKelley})
     CHECK(FrictionLawFromName(FrictionLawName(law)) == law);
@@ -52,7 +52,7 @@ TEST_CASE("friction law names round-trip; an unknown name lists the allowed ones
 }
 
 TEST_CASE("bad friction options and contacts are named with value and rule",
-          "[unit][dynamics][friction]") {
+          "[unit][transmission][friction]") {
   CHECK_NOTHROW(FrictionOptions{}.Validate());
   struct Case {
     const char* field;
@@ -60,7 +60,7 @@ TEST_CASE("bad friction options and contacts are named with value and rule",
   };
   const Case cases[] = {
       {"friction.coefficient", [](FrictionOptions& o) { o.coefficient = -0.1; }},
-      {"friction.coefficient", [](FrictionOptions& o) { o.coefficient = 0.5; }},  // > cap
+      {"friction.coefficient", [](FrictionOptions& o) { o.coefficient = 1.5; }},  // > 1
       {"friction.smoothing_velocity", [](FrictionOptions& o) { o.smoothing_velocity = 0; }},
       {"friction.max_coefficient",
        [](FrictionOptions& o) { o.max_coefficient = std::numeric_limits<double>::infinity(); }},
@@ -91,7 +91,7 @@ TEST_CASE("bad friction options and contacts are named with value and rule",
 }
 
 TEST_CASE("Hertz pressure equals 2F/(π a b) with the half-width a = √(4FR/(π b E*))",
-          "[unit][dynamics][friction]") {
+          "[unit][transmission][friction]") {
   // Johnson, Contact Mechanics §4.2, written the other way round: through the half-width.
   const FrictionContact c = PaperContact(2, 1);
   const double a =
@@ -104,7 +104,7 @@ TEST_CASE("Hertz pressure equals 2F/(π a b) with the half-width a = √(4FR/(π
 }
 
 TEST_CASE("off returns 0; every law is 0 at the pitch point and changes sign across it",
-          "[unit][dynamics][friction]") {
+          "[unit][transmission][friction]") {
   CHECK(SignedFrictionCoefficient(Law(FrictionLaw::kOff), PaperContact(3, 1)) == 0.0);
   for (FrictionLaw law : kOnLaws) {
     INFO(FrictionLawName(law));
@@ -124,7 +124,7 @@ TEST_CASE("off returns 0; every law is 0 at the pitch point and changes sign acr
 }
 
 TEST_CASE("Xu–Kahraman is continuous through the pitch point: |μ| ∝ |v_s|^b3 as v_s → 0",
-          "[unit][dynamics][friction]") {
+          "[unit][transmission][friction]") {
   // Close to the pitch point SR·P_h·log10 ν0 → 0, so f → b1 + b5 + b9 e^S and μ ∝ SR^b3 with
   // b3 = 1.036077: halving v_s divides μ by 2^b3 up to the O(SR) change of f. At v_s = 1e-6 m/s
   // (SR ≈ 1e-6) that change is |b4 − b5|·ΔSR·P_h·log10 ν0 ≈ 3.2·5e-7·1.0·1.7 ≈ 3e-6 relative
@@ -140,13 +140,16 @@ TEST_CASE("Xu–Kahraman is continuous through the pitch point: |μ| ∝ |v_s|^b
 }
 
 TEST_CASE("constant and Benedict–Kelley laws are smoothed by tanh(v_s/v_ε) and capped",
-          "[unit][dynamics][friction]") {
+          "[unit][transmission][friction]") {
   FrictionOptions c = Law(FrictionLaw::kConstant);
   c.coefficient = 0.08;
   // Far from the pitch point the constant law is μ; at v_s = v_ε it is μ tanh 1.
   CHECK(SignedFrictionCoefficient(c, PaperContact(3, 1)) == Approx(0.08).epsilon(1e-12));
   CHECK(SignedFrictionCoefficient(c, PaperContact(2 + 0.5e-3, 2 - 0.5e-3)) ==
         Approx(0.08 * std::tanh(1.0)).epsilon(1e-12));
+  // The lubricated laws' cap does not bound the constant law: dry flanks (μ = 0.4) keep their μ.
+  c.coefficient = 0.4;
+  CHECK(SignedFrictionCoefficient(c, PaperContact(3, 1)) == Approx(0.4).epsilon(1e-12));
 
   FrictionOptions bk = Law(FrictionLaw::kBenedictKelley);
   // Near the pitch point B&K's logarithm diverges: the coefficient is the cap times the smoothed
@@ -171,7 +174,7 @@ TEST_CASE("constant and Benedict–Kelley laws are smoothed by tanh(v_s/v_ε) an
   CHECK(SignedFrictionCoefficient(xk, PaperContact(1, 3)) == -1e-3);
 }
 
-TEST_CASE("no NaN when rolling stops or the load vanishes", "[unit][dynamics][friction]") {
+TEST_CASE("no NaN when rolling stops or the load vanishes", "[unit][transmission][friction]") {
   const double velocities[][2] = {{0, 0}, {1e-12, -1e-12}, {1, -1}, {-2, -1}, {0.5, 0}};
   for (FrictionLaw law : kOnLaws) {
     const FrictionOptions o = Law(law);
