@@ -37,7 +37,7 @@ struct DynamicArgs {
                      range = "planet", sun, friction, cache, speed_sweep;
   double speed_rpm = 0, time = 0, rtol = 1e-6, start_deg = 0, window_cycles = 0;
   std::optional<double> rate_scale, contact_tol;  // not given: the library's defaults
-  int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 6;
+  int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0;
   bool no_cache = false, quiet = false, fd_jacobian = false;
 };
 
@@ -213,6 +213,7 @@ void RunDynamic(const DynamicArgs& a) {
 
 struct ModesArgs {
   std::string scene, sun, cache, json;
+  std::vector<double> speed_range_rpm;  // empty: the scene's speed / 2 .. x 2
   bool no_cache = false;
 };
 
@@ -245,16 +246,30 @@ void RunModes(const ModesArgs& a) {
       "N/m\n",
       rig.model.sun_mesh_stiffness(), rig.model.ring_mesh_stiffness());
   std::printf("  mesh frequency %.4f Hz per sun rpm\n\n", hz_per_rpm);
-  std::printf("  %-12s %-5s %-14s %-28s %s\n", "f [Hz]", "mult", "type",
-              "energy: central tr/rot, planets", "sun rpm where mesh harmonic 1, 2, 3 meets it");
-  for (const auto& x : modes) {
+  std::printf("  %-5s %-12s %-5s %-14s %s\n", "mode", "f [Hz]", "mult", "type",
+              "energy: central tr/rot, planets");
+  for (std::size_t j = 0; j < modes.size(); ++j) {
+    const auto& x = modes[j];
     const std::string type = x.rigid ? "rigid" : dynamics::ModeTypeName(x.type);
-    std::printf("  %-12.2f %-5d %-14s %.3f / %.3f, %.3f%*s", x.frequency, x.multiplicity,
-                type.c_str(), x.central_translation, x.central_rotation, x.planets, 8, "");
-    for (double rpm : dynamics::HarmonicSunSpeeds(x.frequency, hz_per_rpm, 3))
-      std::printf(" %10.0f", rpm);
-    std::printf("\n");
+    std::printf("  %-5zu %-12.2f %-5d %-14s %.3f / %.3f, %.3f\n", j + 1, x.frequency,
+                x.multiplicity, type.c_str(), x.central_translation, x.central_rotation, x.planets);
   }
+  // Every mesh harmonic that meets a mode within the speeds asked (default: the scene's speed
+  // / 2 .. x 2), marked by the planet-phasing rule.
+  const double rpm = model.settings().sun_speed * 30.0 / std::numbers::pi;
+  const double lo = a.speed_range_rpm.empty() ? rpm / 2 : a.speed_range_rpm[0];
+  const double hi = a.speed_range_rpm.empty() ? rpm * 2 : a.speed_range_rpm[1];
+  if (!(lo <= hi))
+    throw std::invalid_argument(
+        fmt::format("--speed-range-rpm = {} {}: the first must not exceed the second", lo, hi));
+  const auto coincidences = dynamics::FindCoincidences(model, modes, lo, hi);
+  std::printf("\n  coincidences h f_m = f_j from %.0f to %.0f rpm (%zu):\n", lo, hi,
+              coincidences.size());
+  for (const dynamics::Coincidence& c : coincidences)
+    std::printf("    %9.1f rpm  harmonic %-3d x mode %d (%.2f Hz, %s)%s\n", c.sun_speed_rpm,
+                c.harmonic, c.mode + 1, c.frequency,
+                dynamics::ModeTypeName(modes[static_cast<std::size_t>(c.mode)].type).c_str(),
+                c.phasing_excited ? "" : "  not excited by a symmetric stage (planet phasing)");
   PrintWarnings(scene.warnings);
   if (!a.json.empty()) {
     nlohmann::json j;
@@ -268,6 +283,8 @@ void RunModes(const ModesArgs& a) {
     j["secant_mesh_stiffness_planet_ring_N_per_m"] = rig.model.ring_mesh_stiffness();
     j["mesh_frequency_Hz_per_sun_rpm"] = hz_per_rpm;
     j["modes"] = report::ModesJson(modes, hz_per_rpm);
+    j["coincidence_range_rpm"] = {lo, hi};
+    j["coincidences"] = report::CoincidencesJson(coincidences);
     WriteTextFile(a.json, j.dump(2) + "\n");
     std::printf("\nwrote %s\n", a.json.c_str());
   }
@@ -285,6 +302,12 @@ void RegisterDynamicCommands(CLI::App& app) {
   modes->add_option("--sun", m.sun, "Override the scene's sun support")
       ->check(CLI::IsMember({"fixed", "floating"}));
   modes->add_option("--json", m.json, "Also write the modes as JSON");
+  modes
+      ->add_option("--speed-range-rpm", m.speed_range_rpm,
+                   "Sun speeds LO HI [rpm] for the mesh-harmonic coincidences (default: the "
+                   "scene's speed / 2 .. x 2)")
+      ->expected(2)
+      ->check(CLI::PositiveNumber);
   modes->add_option("--cache", m.cache, "Influence-table cache folder");
   modes->add_flag("--no-cache", m.no_cache, "Build the influence tables in memory only");
   modes->callback([] { RunModes(m); });
@@ -330,8 +353,9 @@ void RegisterDynamicCommands(CLI::App& app) {
   cmd->add_option("--window-cycles", a.window_cycles,
                   "Speed sweep: mesh cycles measured per speed (replaces --range)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--harmonics", a.harmonics,
-                  "Speed sweep: mark coincidences of mesh harmonics 1..N (default 6)")
+  cmd->add_option(
+         "--harmonics", a.harmonics,
+         "Speed sweep: mark coincidences of mesh harmonics 1..N (default 0: every one in range)")
       ->check(CLI::Range(1, 100));
   cmd->add_option("--threads", a.threads, "Speed sweep: worker threads (default: every core)")
       ->check(CLI::Range(1, 1024));

@@ -133,7 +133,7 @@ void SpeedSweepOptions::Validate() const {
     bad("transient_fraction", transient_fraction, "must lie in (0, 1)");
   if (!(skip_time >= 0) || !std::isfinite(skip_time))
     bad("skip_time", skip_time, "must be >= 0 (0: from the modal damping)");
-  if (harmonics < 1) bad("harmonics", harmonics, "must be >= 1");
+  if (harmonics < 0) bad("harmonics", harmonics, "must be >= 0 (0: every harmonic in range)");
   for (int m = 0; m < 2; ++m)
     if (!(modal_mesh_stiffness[m] >= 0) || !std::isfinite(modal_mesh_stiffness[m]))
       bad("modal_mesh_stiffness[" + std::to_string(m) + "]", modal_mesh_stiffness[m],
@@ -170,6 +170,39 @@ DynamicModel ModelAtSpeed(const DynamicModel& base, double sun_speed_rpm) {
   DynamicModel m(base.stage_model(), s, base.inertias(), base.loads());
   m.SetMeshStiffness(base.sun_mesh_stiffness(), base.ring_mesh_stiffness());
   return m;
+}
+
+std::vector<Coincidence> FindCoincidences(const DynamicModel& model, const std::vector<Mode>& modes,
+                                          double lo_rpm, double hi_rpm, int max_harmonic) {
+  if (!(lo_rpm > 0 && lo_rpm <= hi_rpm && std::isfinite(hi_rpm)))
+    throw std::invalid_argument("coincidences: sun speed range " + Num(lo_rpm) + " .. " +
+                                Num(hi_rpm) + " rpm: needs 0 < low <= high, both finite");
+  const geometry::Stage& stage = model.stage_model().stage();
+  const double hz_per_rpm = MeshHzPerSunRpm(stage);
+  const bool symmetric = EquallySpaced(stage);
+  std::vector<Coincidence> found;
+  for (std::size_t j = 0; j < modes.size(); ++j) {
+    if (modes[j].rigid) continue;
+    const std::vector<bool> families = Families(modes[j], model, stage);
+    const double f = modes[j].frequency;
+    // n_s = f/(h f_m per rpm) falls in [lo, hi] for h in [f/(hi f_m), f/(lo f_m)].
+    const auto first = std::max(1L, static_cast<long>(std::ceil(f / (hi_rpm * hz_per_rpm))));
+    auto last = static_cast<long>(std::floor(f / (lo_rpm * hz_per_rpm)));
+    if (max_harmonic > 0) last = std::min(last, static_cast<long>(max_harmonic));
+    for (long h = first; h <= last; ++h) {
+      Coincidence x;
+      x.frequency = f;
+      x.sun_speed_rpm = f / (static_cast<double>(h) * hz_per_rpm);
+      x.mode = static_cast<int>(j);
+      x.harmonic = static_cast<int>(h);
+      x.phasing_excited = !symmetric || PhasingExcited(families, x.harmonic, stage.sun().teeth());
+      if (x.sun_speed_rpm >= lo_rpm && x.sun_speed_rpm <= hi_rpm) found.push_back(x);
+    }
+  }
+  std::sort(found.begin(), found.end(), [](const Coincidence& a, const Coincidence& b) {
+    return a.sun_speed_rpm < b.sun_speed_rpm;
+  });
+  return found;
 }
 
 SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions& options) {
@@ -239,25 +272,15 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions&
 
   // Coincidences inside the speed range.
   plan.mesh_hz_per_rpm = MeshHzPerSunRpm(stage);
-  const bool symmetric = EquallySpaced(stage);
-  const double lo = options.sun_speeds_rpm.front(), hi = options.sun_speeds_rpm.back();
-  for (std::size_t j = 0; j < plan.modes.size(); ++j) {
-    const std::vector<bool> families = Families(plan.modes[j].mode, model, stage);
+  std::vector<Mode> shapes;
+  for (ModeDamping& md : plan.modes) {
+    const std::vector<bool> families = Families(md.mode, model, stage);
     for (int f = 0; f < n; ++f)
-      if (families[static_cast<std::size_t>(f)] && f <= n - f) plan.modes[j].families.push_back(f);
-    for (int h = 1; h <= options.harmonics; ++h) {
-      Coincidence x;
-      x.frequency = plan.modes[j].mode.frequency;
-      x.sun_speed_rpm = x.frequency / (h * plan.mesh_hz_per_rpm);
-      x.mode = static_cast<int>(j);
-      x.harmonic = h;
-      x.phasing_excited = !symmetric || PhasingExcited(families, h, stage.sun().teeth());
-      if (x.sun_speed_rpm >= lo && x.sun_speed_rpm <= hi) plan.coincidences.push_back(x);
-    }
+      if (families[static_cast<std::size_t>(f)] && f <= n - f) md.families.push_back(f);
+    shapes.push_back(md.mode);
   }
-  std::sort(
-      plan.coincidences.begin(), plan.coincidences.end(),
-      [](const Coincidence& a, const Coincidence& b) { return a.sun_speed_rpm < b.sun_speed_rpm; });
+  plan.coincidences = FindCoincidences(model, shapes, options.sun_speeds_rpm.front(),
+                                       options.sun_speeds_rpm.back(), options.harmonics);
 
   // The window's carrier angles (the carrier turns the way of base's carrier speed) and the
   // quasi-static reference there.

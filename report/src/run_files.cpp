@@ -264,6 +264,17 @@ nlohmann::json DynamicRunJson(const dynamics::DynamicSummary& sum,
   return j;
 }
 
+nlohmann::json CoincidencesJson(const std::vector<dynamics::Coincidence>& coincidences) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const dynamics::Coincidence& c : coincidences)
+    list.push_back({{"sun_speed_rpm", c.sun_speed_rpm},
+                    {"frequency_Hz", c.frequency},
+                    {"mode", c.mode + 1},
+                    {"harmonic", c.harmonic},
+                    {"phasing_excited", c.phasing_excited}});
+  return list;
+}
+
 nlohmann::json ModesJson(const std::vector<dynamics::Mode>& modes, double hz_per_rpm) {
   nlohmann::json list = nlohmann::json::array();
   for (const dynamics::Mode& x : modes)
@@ -406,12 +417,7 @@ nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
                      {"cyclic_families_k", m.families},
                      {"damping_ratio", m.damping_ratio},
                      {"decay_rate_per_s", m.decay_rate}});
-  for (const dynamics::Coincidence& c : plan.coincidences)
-    coincidences.push_back({{"sun_speed_rpm", c.sun_speed_rpm},
-                            {"frequency_Hz", c.frequency},
-                            {"mode", c.mode + 1},
-                            {"harmonic", c.harmonic},
-                            {"phasing_excited", c.phasing_excited}});
+  coincidences = CoincidencesJson(plan.coincidences);
   json qs_force = json::object();
   for (std::size_t q = 0; q < plan.meshes.size(); ++q)
     qs_force[plan.meshes[q]] = plan.qs_peak_mesh_force[q];

@@ -287,3 +287,60 @@ TEST_CASE("speed sweep: bad speed lists and options are named with value and rul
   CHECK(message([&] { o.Validate(); }) ==
         "speed sweep: transient_fraction = 1: must lie in (0, 1)");
 }
+
+TEST_CASE(
+    "coincidences: every mesh harmonic that meets a mode in the speed range, beyond harmonic 3, "
+    "at the kinematic speed and marked by the planet-phasing rule",
+    "[crosscheck][dynamics][sweep]") {
+  // The paper's stage with a floating sun (no errors: equally spaced, symmetric): its first
+  // translational mode near 2.5 kHz meets mesh harmonic 8 near 1470 rpm, just below the main
+  // job's 1500 rpm. References that do not come from the library: the sun speed where harmonic h
+  // meets f, n_s = 60 f (1 + z_r/z_s)/(h z_r) (the mesh frequency z_r ω_c/2π with
+  // ω_c = ω_s z_s/(z_s + z_r)), and Parker & Lin's rule for 3 planets and 16 sun teeth: a
+  // translational mode is excited at h when (16 h − 1)/3 or (16 h + 1)/3 is whole (h = 7, 8: yes;
+  // h = 9: 143/3, 145/3: no), a rotational one when 16 h/3 is whole (h = 9: yes).
+  RigOptions o;
+  o.sun = transmission::SunSupport::kFloating;
+  const auto rig = test::MakeRig(test::SceneText("paper_stage.toml"), "paper stage", o);
+  Eigen::MatrixXd m, k;
+  rig.model->Linearise(0.0, &m, &k);
+  const auto modes = dynamics::SolveModes(m, k, rig.model->ModeLayout());
+  const auto found = dynamics::FindCoincidences(*rig.model, modes, 750, 3000);
+  const double zs = rig.stage->sun().teeth(), zr = rig.stage->ring().teeth();
+  auto speed = [&](double f, int h) { return 60 * f * (1 + zr / zs) / (h * zr); };
+  int beyond_three = 0, checked = 0;
+  for (std::size_t j = 0; j < modes.size(); ++j) {
+    const dynamics::Mode& x = modes[j];
+    if (x.rigid) continue;
+    for (int h = 1; h <= 64; ++h) {
+      const double n = speed(x.frequency, h);
+      const auto it = std::find_if(found.begin(), found.end(), [&](const dynamics::Coincidence& c) {
+        return c.mode == static_cast<int>(j) && c.harmonic == h;
+      });
+      // Every coincidence in the range is listed, and none outside it.
+      CHECK((it != found.end()) == (n >= 750 && n <= 3000));
+      if (it == found.end()) continue;
+      ++checked;
+      if (h > 3) ++beyond_three;
+      CHECK(std::abs(it->sun_speed_rpm / n - 1) < 1e-12);
+      const long hz = 16L * h;
+      if (x.type == dynamics::ModeType::kTranslational)
+        CHECK(it->phasing_excited == ((hz - 1) % 3 == 0 || (hz + 1) % 3 == 0));
+      if (x.type == dynamics::ModeType::kRotational) CHECK(it->phasing_excited == (hz % 3 == 0));
+    }
+  }
+  // The harmonic-8 coincidence of the first translational mode, excited.
+  const auto h8 = std::find_if(found.begin(), found.end(), [&](const dynamics::Coincidence& c) {
+    return c.harmonic == 8 &&
+           modes[static_cast<std::size_t>(c.mode)].type == dynamics::ModeType::kTranslational;
+  });
+  REQUIRE(h8 != found.end());
+  CHECK(h8->phasing_excited);
+  CHECK(h8->sun_speed_rpm > 1400);
+  CHECK(h8->sun_speed_rpm < 1500);
+  Figure("coincidences 750-3000 rpm, floating sun: " + std::to_string(checked) + " (" +
+         std::to_string(beyond_three) + " beyond harmonic 3); harmonic 8 x " +
+         Fixed(h8->frequency, 1) + " Hz at " + Fixed(h8->sun_speed_rpm, 1) + " rpm");
+  CHECK(static_cast<int>(found.size()) == checked);
+  CHECK(beyond_three > 0);
+}

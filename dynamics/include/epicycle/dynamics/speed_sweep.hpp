@@ -68,7 +68,7 @@ struct SpeedSweepOptions {
   double window_start = 0;             ///< carrier angle where the window begins [rad]
   double transient_fraction = 1e-2;    ///< ε of t_skip [-], in (0, 1)
   double skip_time = 0;                ///< > 0: skip this long instead of t_skip [s]
-  int harmonics = 6;                   ///< mesh harmonics h = 1..harmonics for coincidences [-]
+  int harmonics = 0;  ///< coincidences of mesh harmonics h ≤ harmonics; 0: every one in range [-]
   /// > 0: the mesh stiffnesses {sun–planet, planet–ring} [N/m] of the linearisation that gives the
   /// modes and coincidences (e.g. MeanTangentMeshStiffness); 0: the base model's. The damping
   /// matrix always uses the base model's (its c_m is what the runs use).
@@ -101,6 +101,14 @@ struct Coincidence {
   int harmonic = 1;             ///< h [-]
   bool phasing_excited = true;  ///< Parker & Lin's rule for equally spaced planets (see above)
 };
+
+/// Every coincidence of a mesh harmonic with one of `modes` inside [lo_rpm, hi_rpm] of sun speed:
+/// for each non-rigid mode j every harmonic h ≥ 1 with n_s = f_j/(h f_m per rpm) in the range
+/// (h ≤ max_harmonic when max_harmonic > 0), marked by the phasing rule above; sorted by speed.
+/// Coincidence::mode indexes `modes`. The modes are `model`'s (their shapes give the families).
+/// @throws std::invalid_argument unless 0 < lo_rpm ≤ hi_rpm, both finite.
+std::vector<Coincidence> FindCoincidences(const DynamicModel& model, const std::vector<Mode>& modes,
+                                          double lo_rpm, double hi_rpm, int max_harmonic = 0);
 
 /// What is fixed before the speeds run.
 struct SpeedSweepPlan {
@@ -163,7 +171,8 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
 /// fails (its start, a step) is a result with ok = false and its message, never left out.
 /// @throws std::invalid_argument for bad options; what `on_result` throws (after the running
 ///         speeds end).
-SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options, const SpeedSweepPlan& plan,
+SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options,
+                             const SpeedSweepPlan& plan,
                              const std::function<void(const SpeedResult&)>& on_result = {});
 /// The same with the plan made first.
 SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options,

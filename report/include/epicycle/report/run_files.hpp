@@ -80,6 +80,9 @@ nlohmann::json DynamicRunJson(const dynamics::DynamicSummary& summary,
 /// ("rigid" for a rigid-body group), energy fractions and the sun speeds [rpm] where mesh
 /// harmonics 1, 2, 3 meet it (`hz_per_rpm`: dynamics::MeshHzPerSunRpm).
 nlohmann::json ModesJson(const std::vector<dynamics::Mode>& modes, double hz_per_rpm);
+/// The coincidences of mesh harmonics with natural modes (dynamics::FindCoincidences), mode
+/// numbers from 1.
+nlohmann::json CoincidencesJson(const std::vector<dynamics::Coincidence>& coincidences);
 
 /// PATH.csv of a speed sweep: one line per speed as it completes (a failed speed: its speed,
 /// status and message, empty figures).
