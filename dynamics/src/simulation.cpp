@@ -340,6 +340,16 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
       const Evaluation& e = sample.evaluation;
       // LSR_i = T_mesh(P_i–S)/T_input: the input torque is the sun's (or its drive's reaction).
       sample.load_sharing = transmission::LoadSharingRatios(e.sun_mesh_torque, e.input_torque);
+      sample.force_sharing.assign(sample.load_sharing.size(), 0.0);
+      double sun_mesh_force = 0;
+      for (int j = 0; j < e.terms.size(); ++j) {
+        const transmission::StageContact& c = e.terms.contacts[j];
+        if (c.mesh != geometry::MeshKind::kSunPlanet || !(e.total_force(j) > 0)) continue;
+        sample.force_sharing[static_cast<std::size_t>(c.planet)] += e.total_force(j);
+        sun_mesh_force += e.total_force(j);
+      }
+      for (double& share : sample.force_sharing)
+        share = sun_mesh_force > 0 ? share / sun_mesh_force : 0.0;
       // TE at the sun; a speed-driven sun keeps its speed, and the lag shows at the carrier.
       const int carrier = model.Find(MotionDof::kCarrier, MotionDof::kRotation);
       sample.transmission_error =

@@ -178,8 +178,9 @@ DynamicRunFiles::DynamicRunFiles(const std::string& base, const nlohmann::json& 
   steps +=
       ",K_gamma,transmission_error_urad,sun_x_um,sun_y_um,sun_torque_balance_Nm,"
       "external_work_J,dissipated_work_J,kinetic_energy_J,elastic_energy_J,contacts,"
-      "active_contacts,friction_power_W\n";
-  steps_.Write(steps);
+      "active_contacts,friction_power_W";
+  for (int i = 1; i <= planets; ++i) steps += ",LSR_force_" + std::to_string(i);
+  steps_.Write(steps + "\n");
   pairs_.Write(p +
                "time_s,mesh,kind,flank,teeth,normal_force_N,elastic_force_N,friction_force_N,"
                "overlap_rate_mm_per_s\n");
@@ -201,6 +202,7 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
                        Num(s.sun_centre.y() * 1e6), Num(s.sun_torque_balance), Num(s.external_work),
                        Num(s.dissipated_work), Num(e.kinetic_energy), Num(e.elastic_energy),
                        e.terms.size(), active, Num(e.friction_power));
+  steps += Cells(s.force_sharing);
   steps_.WriteLine(steps);
   std::string pairs;
   for (int j = 0; j < e.terms.size(); ++j) {

@@ -7,10 +7,11 @@
 //
 // A contact solve that fails inside the right-hand side, or a pose the stage model cannot evaluate
 // (a trial step that swung a member past where its meshes have a line of action), is recoverable:
-// CVODE retries with a smaller step (return > 0); ERKStep treats any non-zero return as fatal, so the explicit driver
-// restarts from the last output with a ten times smaller first step, at most 8 times in a row.
-// Every failure is counted. Outputs are produced at given times from the integrator's solution
-// there (CVODE's and ERKStep's NORMAL mode), each handed to the caller as soon as it is computed.
+// CVODE retries with a smaller step (return > 0); ERKStep treats any non-zero return as fatal, so
+// the explicit driver restarts from the last output with a ten times smaller first step, at most 8
+// times in a row. Every failure is counted. Outputs are produced at given times from the
+// integrator's solution there (CVODE's and ERKStep's NORMAL mode), each handed to the caller as
+// soon as it is computed.
 #pragma once
 
 #include <functional>
@@ -71,7 +72,12 @@ struct DynamicSample {
   double carrier_angle = 0;          ///< φ_c of the reference motion [rad]
   Eigen::VectorXd d, v;              ///< deviations [m, rad] and their rates [m/s, rad/s], per DOF
   std::vector<double> load_sharing;  ///< LSR_i = T_mesh(P_i–S)/T_input (eq. 4) [-], per planet
-  double transmission_error = 0;     ///< dynamic TE at the sun: θ_s − θ_s,kinematic [rad]
+  /// The share of the normal forces alone: Σ F of sun–planet i's contacts over Σ F of every
+  /// sun–planet contact (F with its damping, no friction, no lever arm) [-], per planet; papers
+  /// that define the load sharing by mesh forces mean this. Equal to LSR_i for a stage without
+  /// friction whose contacts lie on the line of action and without sun inertia.
+  std::vector<double> force_sharing;
+  double transmission_error = 0;  ///< dynamic TE at the sun: θ_s − θ_s,kinematic [rad]
   Eigen::Vector2d sun_centre = Eigen::Vector2d::Zero();  ///< from nominal [m] (orbit)
   double sun_acceleration = 0;  ///< θ̈_s from the integrator's interpolant [rad/s²]
   /// K_γ at this step: max(0, max_i n·LSR_i) with n planets [-].
