@@ -26,7 +26,7 @@ for _ in range(repeats):
     times.append(time.perf_counter() - t0)
 assert (r.lsr == first.lsr).all()
 cpp = subprocess.run([os.path.join(build, "benchmarks", "bench_quasistatic"),
-                      "--benchmark_filter=BM_StageSweep1000$", "--benchmark_format=json",
+                      "--benchmark_filter=BM_StageSweep1000/", "--benchmark_format=json",
                       f"--benchmark_repetitions={repeats}"],
                      capture_output=True, text=True, check=True)
 runs = [b for b in json.loads(cpp.stdout)["benchmarks"] if b.get("run_type") == "iteration"]

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -38,6 +39,19 @@ py::array_t<T> Array2(std::vector<T>&& values, py::ssize_t rows, py::ssize_t col
   py::capsule base(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
   return py::array_t<T>({rows, cols}, owned->data(), base);
 }
+
+/// Python strings of repeated C++ strings (mesh names, kinds, statuses), each made once.
+class Interned {
+ public:
+  const py::str& operator()(const std::string& s) {
+    auto it = made_.find(s);
+    if (it == made_.end()) it = made_.emplace(s, py::str(s)).first;
+    return it->second;
+  }
+
+ private:
+  std::unordered_map<std::string, py::str> made_;
+};
 
 /// A numpy bool array from flags.
 py::array_t<bool> BoolArray(const std::vector<char>& flags);

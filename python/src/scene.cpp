@@ -16,9 +16,9 @@ transmission::FeComplianceOptions TableOptions(const std::optional<std::string>&
 
 void PairColumns::Add(double at, const transmission::StageContact& c) {
   x.push_back(at);
-  mesh.append(geometry::MeshName(c.planet, c.mesh));
-  kind.append(geometry::KindName(c.contact.kind));
-  flank.append(c.loaded ? "drive" : "coast");
+  mesh.append(names(geometry::MeshName(c.planet, c.mesh)));
+  kind.append(names(geometry::KindName(c.contact.kind)));
+  flank.append(names(c.loaded ? "drive" : "coast"));
   tooth_a.push_back(c.contact.tooth_a);
   tooth_b.push_back(c.contact.tooth_b);
 }

@@ -12,6 +12,7 @@
 #include <pybind11/pybind11.h>
 #include <toml++/toml.h>
 
+#include "common.hpp"
 #include "epicycle/dynamics/dynamic_model.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
@@ -42,6 +43,7 @@ struct PairColumns {
   std::vector<double> x;
   std::vector<int> tooth_a, tooth_b;
   pybind11::list mesh, kind, flank;
+  Interned names;
   void Add(double at, const transmission::StageContact& c);
   /// Into `out` under their names, `x` as `x_name` (e.g. "carrier_deg", "time_s").
   void Fill(pybind11::dict& out, const char* x_name);

@@ -295,6 +295,7 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   const int n = out.rig->stage.planets();
   std::vector<double> deg, residual, solve_ms;
   RunColumns run;
+  Interned names;
   const std::vector<double> none(static_cast<std::size_t>(n), kNaN);
   std::vector<int> geo_it, contact_it, active, contacts;
   std::vector<char> ok, warm;
@@ -316,11 +317,11 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     contact_it.push_back(r.contact_iterations);
     warm.push_back(r.warm_started);
     residual.push_back(r.report.residual.total);
-    status.append(solvers::StatusName(r.report.status));
+    status.append(names(solvers::StatusName(r.report.status)));
     active.push_back(r.report.active_contacts);
     contacts.push_back(static_cast<int>(r.problem.contacts.size()));
     solve_ms.push_back(r.report.total_seconds * 1e3);
-    message.append(r.message);
+    message.append(names(r.message));
     for (std::size_t j = 0; j < r.problem.contacts.size() && good; ++j) {
       const double force = r.solution.force(static_cast<Eigen::Index>(j));
       if (!(force > 0)) continue;
