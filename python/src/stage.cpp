@@ -144,6 +144,7 @@ py::object MeshStiffness(const ScenePtr& s, const std::string& mesh, int positio
   struct Out {
     transmission::MeshStiffnessResult result;
     std::vector<std::string> warnings;
+    double c_prime = 0, c_gamma = 0, contact_ratio = 0;
   };
   const transmission::Scene scene = s->scene();
   const Out out = RunReleased(token, [&] {
@@ -158,6 +159,10 @@ py::object MeshStiffness(const ScenePtr& s, const std::string& mesh, int positio
     o.result = transmission::ComputeMeshStiffness(
         setup, pair, compliance, opt,
         [&](const transmission::MeshSample&) { report(++done, positions); });
+    const compliance::iso6336::PairData iso = transmission::IsoPairData(pair);
+    o.c_prime = compliance::iso6336::SinglePairStiffness(iso);
+    o.c_gamma = compliance::iso6336::MeshStiffness(iso);
+    o.contact_ratio = pair.summary().contact_ratio_iso;
     o.warnings = scene.warnings;
     for (const std::string& w : transmission::MeshStiffnessWarnings(pair, o.result))
       o.warnings.push_back(w);
@@ -219,6 +224,9 @@ py::object MeshStiffness(const ScenePtr& s, const std::string& mesh, int positio
   f["peak_pair_stiffness_N_per_m"] = r.peak_pair_stiffness;
   f["mean_stiffness_N_per_mm_um"] = r.mean_per_width();
   f["peak_pair_stiffness_N_per_mm_um"] = r.peak_pair_per_width();
+  f["iso6336_c_prime_N_per_mm_um"] = out.c_prime;
+  f["iso6336_c_gamma_alpha_N_per_mm_um"] = out.c_gamma;
+  f["contact_ratio"] = out.contact_ratio;
   f["warnings"] = out.warnings;
   py::object result = Result(f);
   if (r.failed > 0)
@@ -398,8 +406,9 @@ Returns Result with per sample angle_deg [deg] (gear 1 from the cycle start), co
 rotation_urad [µrad] (loaded static TE), approach_um [µm] (deflection along the line of action),
 total_force_N [N], stiffness_N_per_m [N/m], local_validity_ratio [-]; pairs (per loaded tooth pair:
 angle_deg, tooth1, tooth2, kind, force_N, stiffness_N_per_m, share, roll1_deg); mean, min, max and
-peak single-pair stiffness [N/m] and per face width [N/(mm·µm)]; torque_Nm, face_width_mm,
-warnings. Raises ComputationError (with .result) if a sample failed.)doc");
+peak single-pair stiffness [N/m] and per face width [N/(mm·µm)]; ISO 6336-1's
+iso6336_c_prime_N_per_mm_um and iso6336_c_gamma_alpha_N_per_mm_um [N/(mm·µm)] for comparison;
+contact_ratio [-] (tip circles); torque_Nm, face_width_mm, warnings. Raises ComputationError (with .result) if a sample failed.)doc");
   m.def("quasistatic", &QuasiStatic, py::arg("scene"), py::arg("range") = "cycle",
         py::arg("positions") = 0, py::arg("start_deg") = 0.0, py::arg("angles_deg") = py::none(),
         py::arg("threads") = 0, py::arg("warm_start") = true, py::arg("backend") = "newton",
