@@ -97,9 +97,9 @@ void Scene::Assign(const Scene& other) {
 
 std::shared_ptr<const StageRig> Scene::Rig(const std::optional<std::string>& cache_dir,
                                            const char* command) const {
-  RequireStage(*scene_, command);
   const transmission::FeComplianceOptions fe = TableOptions(cache_dir);
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<std::mutex> lock(mutex_);  // Assign may replace scene_ from another thread
+  RequireStage(*scene_, command);
   if (!rig_ || rig_cache_ != fe.cache_directory) {
     rig_ = std::make_shared<const StageRig>(*scene_, fe);
     rig_cache_ = fe.cache_directory;
@@ -109,9 +109,9 @@ std::shared_ptr<const StageRig> Scene::Rig(const std::optional<std::string>& cac
 
 std::shared_ptr<const dynamics::StageDynamics> Scene::Dynamics(
     const std::optional<std::string>& cache_dir, const char* command) const {
-  RequireStage(*scene_, command);
   const transmission::FeComplianceOptions fe = TableOptions(cache_dir);
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<std::mutex> lock(mutex_);  // Assign may replace scene_ from another thread
+  RequireStage(*scene_, command);
   if (!dynamics_ || dynamics_cache_ != fe.cache_directory) {
     dynamics_ = std::make_shared<const dynamics::StageDynamics>(*scene_, fe);
     dynamics_cache_ = fe.cache_directory;
