@@ -129,6 +129,14 @@ py::object Solve(const Problem& problem, const std::string& backend, double tole
   return Result(f);
 }
 
+solvers::ContactSolution SolutionOf(const Problem& problem, const Eigen::VectorXd& force_N,
+                                    std::optional<Eigen::VectorXd> multiplier) {
+  solvers::ContactSolution s;
+  s.force = force_N;
+  s.multiplier = multiplier ? *multiplier : Eigen::VectorXd::Zero(problem.num_equalities());
+  return s;
+}
+
 }  // namespace
 
 void BindContact(py::module_& m) {
@@ -187,6 +195,42 @@ Returns Result(force_N (N,) [N], multiplier (m,) [m] or [rad], status ("converge
 iterations, backend_code, residual, residual_complementarity, residual_equilibrium [-],
 active_contacts, solve_s, total_s [s], polished, backend). A status is a result, not an
 exception; bad input raises ValueError.)doc");
+  m.def(
+      "contact_residuals",
+      [](const Problem& problem, const Eigen::VectorXd& force_N,
+         std::optional<Eigen::VectorXd> multiplier) {
+        const solvers::ContactResiduals r =
+            solvers::EvaluateResiduals(problem, SolutionOf(problem, force_N, multiplier));
+        py::dict f;
+        f["residual"] = r.total;
+        f["residual_complementarity"] = r.complementarity;
+        f["residual_equilibrium"] = r.equilibrium;
+        return Result(f);
+      },
+      py::arg("problem"), py::arg("force_N"), py::arg("multiplier") = py::none(), R"doc(
+The residuals every back end is judged by, of any answer: forces force_N (N,) [N] and
+multipliers (m,) [m] or [rad] (None: zeros), e.g. from a solver of one's own.
+Returns Result(residual, residual_complementarity (the natural map), residual_equilibrium) [-],
+nondimensional as solve_contact's report (docs/solvers.md).)doc");
+  m.def(
+      "compare_solutions",
+      [](const Problem& problem, const Eigen::VectorXd& force_N,
+         std::optional<Eigen::VectorXd> multiplier, const Eigen::VectorXd& reference_force_N,
+         std::optional<Eigen::VectorXd> reference_multiplier) {
+        const solvers::SolutionDifference d =
+            solvers::CompareSolutions(problem, SolutionOf(problem, force_N, multiplier),
+                                      SolutionOf(problem, reference_force_N, reference_multiplier));
+        py::dict f;
+        f["force"] = d.force;
+        f["multiplier"] = d.multiplier;
+        f["displacement"] = d.displacement;
+        return Result(f);
+      },
+      py::arg("problem"), py::arg("force_N"), py::arg("multiplier"), py::arg("reference_force_N"),
+      py::arg("reference_multiplier"), R"doc(
+Relative differences [-] of a solution (force_N [N], multiplier) from a reference: force
+‖F − F_ref‖∞ / max(‖F_ref‖∞, F*), multiplier (as rigid displacements) and displacement
+‖Gᵀ(λ − λ_ref)‖∞ / max(‖Gᵀλ_ref‖∞, ℓ*) (docs/solvers.md).)doc");
   m.def(
       "contact_backends",
       [](bool available_only) {

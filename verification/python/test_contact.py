@@ -71,3 +71,29 @@ def test_every_available_backend_solves_an_open_contact():
         r = epicycle.solve_contact(f.problem, backend=backend)
         assert r.backend == backend
         assert r.status in ("converged", "converged-inaccurate"), (backend, r.message)
+
+
+def test_a_solver_of_ones_own_is_judged_by_the_same_residual():
+    # The diagonal problem of the first test: F* = max δ0⁺ / max C_jj = 500 N and
+    # ℓ* = F* max C_jj = 2 µm (docs/solvers.md). An answer with F_1 = 400 N instead of 500 N has
+    # x_1 = 0.8 and gap g_1 = (2e-9·400 − 1e-6)/2e-6 = −0.1, so its natural map
+    # |x_1 − max(0, x_1 − g_1)| = 0.1; the exact answer has none (to rounding).
+    c = np.diag([2e-9, 1e-9, 4e-9])
+    problem = epicycle.ContactProblem(c, np.array([1e-6, -1e-6, 2e-6]))
+    exact = epicycle.contact_residuals(problem, np.array([500.0, 0.0, 500.0]))
+    assert exact.residual <= 1e-15
+    off = epicycle.contact_residuals(problem, np.array([400.0, 0.0, 500.0]))
+    assert off.residual_complementarity == pytest.approx(0.1, rel=1e-12)
+    assert off.residual_equilibrium == 0.0 and off.residual == off.residual_complementarity
+    # A projected Gauss-Seidel of a few lines, judged as every back end is, against newton.
+    f = np.zeros(3)
+    for _ in range(50):
+        for j in range(3):
+            f[j] = max(0.0, f[j] + (problem.overlap_m[j] - c[j] @ f) / c[j, j])
+    mine = epicycle.contact_residuals(problem, f)
+    ours = epicycle.solve_contact(problem)
+    assert mine.residual <= 1e-10 and ours.residual <= 1e-10
+    # A natural-map residual r bounds a diagonal problem's force error by r / min_j C̃_jj = 4 r
+    # (C̃_jj = C_jj / max C: 0.5, 0.25, 1), so two answers within 1e-10 differ by at most 8e-10 F*.
+    d = epicycle.compare_solutions(problem, f, None, ours.force_N, None)
+    assert d.force <= 8e-10
