@@ -18,6 +18,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/run_range.hpp"
+#include "epicycle/transmission/sweep_summary.hpp"
 
 namespace {
 
@@ -127,6 +128,27 @@ BENCHMARK(BM_StageSweep360)
     ->MeasureProcessCPUTime()
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
+
+// The reference of the Python bindings' cost (benchmarks/python_quasistatic.py, docs/python.md):
+// 1000 positions over one planet revolution of the run-out case, sun fixed, warm-started on one
+// thread, as epicycle.quasistatic(scene, range="planet", positions=1000, threads=1) runs them.
+void BM_StageSweep1000(benchmark::State& state) {
+  const StageCase c("paper_stage_runout.toml", 0);
+  transmission::QuasiStaticOptions o;
+  o.threads = 1;
+  const auto angles = transmission::SweepAngles(
+      0.0, transmission::CarrierSpan(c.stage, transmission::RunRange::kPlanetRevolution), 1000);
+  std::vector<transmission::PositionResult> results;
+  for (auto _ : state) {
+    results = transmission::Sweep(c.model, c.scene.loads, angles, o);
+    benchmark::DoNotOptimize(results.data());
+  }
+  int failed = 0;
+  for (const auto& r : results) failed += r.converged ? 0 : 1;
+  state.counters["failed"] = failed;
+  state.counters["k_gamma"] = transmission::SummariseSweep(results, c.stage.planets()).k_gamma;
+}
+BENCHMARK(BM_StageSweep1000)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -6,7 +6,8 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libeigen3-dev libnlopt-cxx-dev coinor-libipopt-dev
           libsundials-dev catch2 libbenchmark-dev libtomlplusplus-dev libcli11-dev
-          nlohmann-json3-dev libfmt-dev libgmsh-dev libopenmpi-dev openmpi-bin)
+          nlohmann-json3-dev libfmt-dev libgmsh-dev libopenmpi-dev openmpi-bin
+          pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -28,7 +29,9 @@ mkdir -p build
 # The test build includes the optional gmsh mesher (the suite compares it with the mapped one).
 # gmsh is GPL and Ipopt EPL: a binary to distribute is configured with EPICYCLE_WITH_GMSH=OFF (the
 # default of CMakeLists.txt); this build is not distributed. Pass -DEPICYCLE_WITH_GMSH=OFF to drop it.
+# The Python module is built for Debian's interpreter (python3-numpy, python3-pytest are its
+# packages), not for whatever `python3` comes first on the PATH.
 cmake -S . -B build -DCMAKE_BUILD_TYPE="$build_type" -DEPICYCLE_WERROR="$werror" -DEPICYCLE_WITH_MPI="$mpi" \
-  -DEPICYCLE_WITH_GMSH=ON "$@" > build/configure.log \
+  -DEPICYCLE_WITH_GMSH=ON -DPython3_EXECUTABLE=/usr/bin/python3 "$@" > build/configure.log \
   || { cat build/configure.log; exit 1; }
 cmake --build build -j "$(nproc)"

@@ -226,12 +226,10 @@ void RunModes(const ModesArgs& a) {
   // The linearisation's mesh stiffness is the tangent dF/dδ about the operating point (the
   // speed sweep's peaks sit at its coincidences; the secant F/δ, which sets the mesh damping, is
   // softer by the local term's curvature and puts them ~3.5 % low on the paper stage).
-  const auto tangent = dynamics::MeanTangentMeshStiffness(scene, stage, rig.fe);
-  dynamics::DynamicModel model = rig.model;
-  model.SetMeshStiffness(tangent[0], tangent[1]);
-  Eigen::MatrixXd m, kk;
-  model.Linearise(0.0, &m, &kk);
-  const auto modes = dynamics::SolveModes(m, kk, model.ModeLayout());
+  const dynamics::OperatingPointModes operating = dynamics::StageModes(rig);
+  const std::vector<dynamics::Mode>& modes = operating.modes;
+  const dynamics::DynamicModel& model = rig.model;
+  const std::array<double, 2>& tangent = operating.mesh_stiffness;
   // Mesh frequency per sun rpm: f_m = z_r ω_c/2π with ω_c = ω_s z_s/(z_s + z_r).
   const double hz_per_rpm = dynamics::MeshHzPerSunRpm(stage);
   std::printf("%s: %d planets, sun %s, %d DOFs (%s)\n", scene.name.c_str(), stage.planets(),
@@ -240,7 +238,7 @@ void RunModes(const ModesArgs& a) {
   std::printf(
       "  mean mesh stiffness (the mesh-stiffness driver at the scene's load), tangent dF/ddelta "
       "(used here): sun-planet %.4g N/m, planet-ring %.4g N/m\n",
-      model.sun_mesh_stiffness(), model.ring_mesh_stiffness());
+      tangent[0], tangent[1]);
   std::printf(
       "  secant F/delta (sets the mesh damping of a run): sun-planet %.4g N/m, planet-ring %.4g "
       "N/m\n",
@@ -276,8 +274,8 @@ void RunModes(const ModesArgs& a) {
     j["provenance"] = Provenance("none", &scene);
     j["warnings"] = scene.warnings;
     j["scene"] = scene.name;
-    j["mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
-    j["mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
+    j["mesh_stiffness_sun_planet_N_per_m"] = tangent[0];
+    j["mesh_stiffness_planet_ring_N_per_m"] = tangent[1];
     j["mesh_stiffness_kind"] = "tangent dF/ddelta, mean over a mesh cycle";
     j["secant_mesh_stiffness_sun_planet_N_per_m"] = rig.model.sun_mesh_stiffness();
     j["secant_mesh_stiffness_planet_ring_N_per_m"] = rig.model.ring_mesh_stiffness();

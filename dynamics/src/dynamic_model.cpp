@@ -906,4 +906,15 @@ std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
   return k;
 }
 
+OperatingPointModes StageModes(const StageDynamics& rig) {
+  OperatingPointModes out;
+  out.mesh_stiffness = MeanTangentMeshStiffness(rig.scene, rig.stage, rig.fe);
+  DynamicModel model = rig.model;
+  model.SetMeshStiffness(out.mesh_stiffness[0], out.mesh_stiffness[1]);
+  Eigen::MatrixXd m, k;
+  model.Linearise(0.0, &m, &k);
+  out.modes = SolveModes(m, k, model.ModeLayout());
+  return out;
+}
+
 }  // namespace epicycle::dynamics

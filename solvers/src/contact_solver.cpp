@@ -426,6 +426,19 @@ SolutionDifference CompareSolutions(const ContactProblem& problem, const Contact
   return d;
 }
 
+ContactResiduals EvaluateResiduals(const ContactProblem& problem, const ContactSolution& solution) {
+  const int n = problem.num_contacts(), m = problem.num_equalities();
+  if (solution.force.size() != n || solution.multiplier.size() != m)
+    throw std::invalid_argument("EvaluateResiduals: a solution of N = " + std::to_string(n) +
+                                " forces and m = " + std::to_string(m) + " multipliers, not " +
+                                std::to_string(solution.force.size()) + " and " +
+                                std::to_string(solution.multiplier.size()));
+  const internal::ScaledProblem sp = internal::MakeScaledProblem(problem);
+  Eigen::VectorXd x, lambda;
+  internal::Scale(sp, solution, &x, &lambda);
+  return sp.Residuals(x, lambda);
+}
+
 std::vector<Backend> AllBackends() {
   return {Backend::kActiveSetNewton, Backend::kIpopt, Backend::kNloptSlsqp, Backend::kNloptLbfgs,
           Backend::kNloptAuglag};

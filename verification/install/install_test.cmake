@@ -24,6 +24,16 @@ foreach(f bin/epicycle include/epicycle/config.h include/epicycle/transmission/s
     message(FATAL_ERROR "not installed: ${f}")
   endif()
 endforeach()
+# The Python package (a build with EPICYCLE_WITH_PYTHON): imported from the prefix alone.
+if(PYTHON AND PYTHON_DIR)
+  set(site "${PYTHON_DIR}")
+  if(NOT IS_ABSOLUTE "${site}")
+    set(site "${prefix}/${site}")
+  endif()
+  run(${CMAKE_COMMAND} -E env "PYTHONPATH=${site}" PYTHONDONTWRITEBYTECODE=1 ${PYTHON}
+      "${SOURCE}/verification/install/python_import.py" "${prefix}")
+  message(STATUS "installed Python package: ${last_output}")
+endif()
 run("${prefix}/bin/epicycle" --version)
 message(STATUS "installed program: ${last_output}")
 set(launcher)

@@ -285,4 +285,15 @@ std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
                                                const transmission::FeComplianceOptions& fe,
                                                int positions = 24, double step = 0.05);
 
+/// The natural modes of a stage about its operating point (`epicycle modes`, docs/dynamic.md
+/// "Natural modes"): `rig`'s model with the tangent mesh stiffnesses (MeanTangentMeshStiffness:
+/// where the speed sweep's resonances sit; the secant, which sets the mesh damping of a run, is
+/// softer), linearised at carrier angle 0 (DynamicModel::Linearise) and solved by SolveModes.
+struct OperatingPointModes {
+  std::array<double, 2> mesh_stiffness{};  ///< tangent dF/dδ {sun–planet, planet–ring} [N/m]
+  std::vector<Mode> modes;                 ///< SolveModes of the linearisation
+};
+/// @throws as MeanTangentMeshStiffness and SolveModes.
+OperatingPointModes StageModes(const StageDynamics& rig);
+
 }  // namespace epicycle::dynamics

@@ -98,6 +98,12 @@ struct ContactScales {
 };
 ContactScales ComputeContactScales(const ContactProblem& problem);
 
+/// The residuals the driver judges every back end by (ContactResiduals: the natural map and the
+/// equilibrium, nondimensional) of any answer (F, λ) of `problem`, e.g. one of a solver of one's
+/// own, evaluated at max(F, 0). @throws std::invalid_argument unless the solution has N forces
+/// and m multipliers.
+ContactResiduals EvaluateResiduals(const ContactProblem& problem, const ContactSolution& solution);
+
 /// Differences of a solution from a reference, each relative and unit-consistent:
 ///   force        ‖F − F_ref‖∞ / max(‖F_ref‖∞, F*)
 ///   multiplier   ‖r∘(λ − λ_ref)‖∞ / max(‖r∘λ_ref‖∞, ℓ*)   (r∘λ: rigid displacements [m])

@@ -1,0 +1,85 @@
+"""epicycle: load sharing of planetary spur-gear stages with manufacturing errors.
+
+Python bindings of epicycle's C++ libraries (docs/python.md). Every name carries its unit
+(carrier_deg, te_urad, force_N); results are `Result` objects with numpy arrays.
+
+    import epicycle
+    scene = epicycle.Scene.load("scenes/paper_stage_runout.toml")
+    r = epicycle.quasistatic(scene, range="planet", positions=120)
+    r.lsr            # (positions, planets) load-sharing ratios [-]
+    r.summary.k_gamma
+
+Bad input raises ValueError with the command line's message; a computation that failed raises
+ComputationError, whose `.result` holds what was computed.
+"""
+
+import types as _types
+
+import numpy as _np
+
+
+class Result(_types.SimpleNamespace):
+    """A driver's results: attributes named with their units (numpy arrays, numbers, lists)."""
+
+    def __repr__(self):
+        def show(v):
+            if isinstance(v, _np.ndarray):
+                return f"array{v.shape}"
+            if isinstance(v, list) and len(v) > 4:
+                return f"list[{len(v)}]"
+            if isinstance(v, Result):
+                return "Result(...)"
+            return repr(v)
+
+        fields = ", ".join(f"{k}={show(v)}" for k, v in self.__dict__.items())
+        return f"Result({fields})"
+
+
+class ComputationError(RuntimeError):
+    """A computation that did not succeed (failed positions, a run that stopped early, a failed
+    solve). `result` holds what was computed (a Result), or None."""
+
+    def __init__(self, message, result=None):
+        super().__init__(message)
+        self.result = result
+
+
+from ._epicycle import (  # noqa: E402  (the classes above are used by the module)
+    ContactProblem,
+    Scene,
+    compare_solutions,
+    contact_backends,
+    contact_residuals,
+    contacts,
+    dynamic,
+    geometry,
+    mesh_stiffness,
+    modes,
+    quasistatic,
+    read_contact_problem,
+    solve_contact,
+    speed_grid,
+    speed_sweep,
+    study,
+)
+
+__all__ = [
+    "ComputationError",
+    "ContactProblem",
+    "Result",
+    "Scene",
+    "compare_solutions",
+    "contact_backends",
+    "contact_residuals",
+    "contacts",
+    "dynamic",
+    "geometry",
+    "mesh_stiffness",
+    "modes",
+    "quasistatic",
+    "read_contact_problem",
+    "solve_contact",
+    "speed_grid",
+    "speed_sweep",
+    "study",
+]

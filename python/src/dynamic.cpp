@@ -1,0 +1,556 @@
+// The drivers of dynamics/: a dynamic run in time, the natural modes, a speed sweep.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <thread>
+
+#include "common.hpp"
+#include "epicycle/dynamics/modes.hpp"
+#include "epicycle/dynamics/run_span.hpp"
+#include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/dynamics/speed_sweep.hpp"
+#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/transmission/run_range.hpp"
+#include "scene.hpp"
+
+namespace epicycle::python {
+
+namespace {
+
+using ScenePtr = std::shared_ptr<Scene>;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The integrator and contact settings of a run (SimulationOptions), checked by Validate.
+struct Integration {
+  std::string integrator = "cvode-bdf";
+  double rtol = 1e-6;
+  std::optional<double> rate_scale, contact_tol;
+  int max_order = 5;
+  bool analytic_jacobian = true;
+  std::string backend = "newton";
+  dynamics::SimulationOptions Options() const {
+    dynamics::SimulationOptions o;
+    o.integrator = dynamics::IntegratorFromName(integrator);
+    o.backend = BackendOf(backend);
+    o.rtol = rtol;
+    if (rate_scale) o.rate_scale = *rate_scale;
+    if (contact_tol) o.contact.tolerance = *contact_tol;
+    o.analytic_jacobian = analytic_jacobian;
+    o.max_order = max_order;
+    o.Validate();
+    return o;
+  }
+};
+
+// The scene of a dynamic command, its sun speed changed through its key when given (the scene
+// reader checks it: dynamics.sun_speed_rpm).
+ScenePtr AtSpeed(const ScenePtr& s, std::optional<double> sun_speed_rpm) {
+  if (!sun_speed_rpm) return s;
+  const double rpm = *sun_speed_rpm;
+  return s->Edited([rpm](toml::table& t) {
+    if (!t.contains("dynamics")) t.insert_or_assign("dynamics", toml::table{});
+    t.get_as<toml::table>("dynamics")->insert_or_assign("sun_speed_rpm", rpm);
+  });
+}
+
+// The dynamic settings a run used: the one place the bindings read them (from the model the
+// library built from the scene).
+const dynamics::DynamicSettings& SettingsOf(const dynamics::StageDynamics& rig) {
+  return rig.model.settings();
+}
+
+std::string FrictionName(const dynamics::DynamicSettings& s) {
+  return dynamics::FrictionLawName(s.friction.law);
+}
+
+py::object StatsObject(const dynamics::SimulationStats& st) {
+  py::dict f;
+  f["steps"] = st.steps;
+  f["rhs_evaluations"] = st.rhs_evaluations;
+  f["jacobian_evaluations"] = st.jacobian_evaluations;
+  f["fd_rhs_evaluations"] = st.fd_rhs_evaluations;
+  f["failed_solves"] = st.failed_solves;
+  f["failed_geometry"] = st.failed_geometry;
+  f["error_test_failures"] = st.error_test_failures;
+  f["nonlinear_failures"] = st.nonlinear_failures;
+  f["restarts"] = st.restarts;
+  f["rhs_s"] = st.rhs_seconds;
+  f["jacobian_s"] = st.jacobian_seconds;
+  f["wall_s"] = st.wall_seconds;
+  f["rate_scale_per_s"] = st.rate_scale;
+  return Result(f);
+}
+
+py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
+                   const std::string& range, double time_s, int outputs_per_cycle, double start_deg,
+                   const Integration& integration, std::optional<std::string> cache_dir,
+                   py::object progress, bool raise_on_failure) {
+  const dynamics::SimulationOptions opt = integration.Options();
+  const transmission::RunRange run_range = transmission::RunRangeFromName(range);
+  const ScenePtr s = AtSpeed(scene, sun_speed_rpm);
+  CancelToken token;
+  const Progress report(std::move(progress), &token);
+  struct Out {
+    std::shared_ptr<const dynamics::StageDynamics> rig;
+    dynamics::RunSpan span;
+    dynamics::SimulationResult result;
+    std::vector<std::string> warnings;
+    double sun_speed = 0;
+  };
+  const Out out = RunReleased(token, [&] {
+    Out o;
+    o.rig = s->Dynamics(cache_dir, "dynamic");
+    dynamics::DynamicModel model = o.rig->model;
+    model.SetStartAngle(geometry::Rad(start_deg));
+    o.sun_speed = model.sun_speed();
+    o.span = dynamics::MakeRunSpan(o.rig->stage, model.carrier_speed(), run_range, time_s,
+                                   outputs_per_cycle);
+    const Eigen::VectorXd d0 = model.QuasiStaticStart(opt.contact, opt.backend);
+    long done = 0;
+    const long total = o.span.outputs;
+    o.result = dynamics::Simulate(model, opt, d0, Eigen::VectorXd::Zero(model.size()),
+                                  o.span.OutputTimes(),
+                                  [&](const dynamics::DynamicSample&) { report(++done, total); });
+    o.warnings = o.rig->scene.warnings;
+    for (const std::string& w : dynamics::DynamicWarnings(o.rig->stage, o.result.samples))
+      o.warnings.push_back(w);
+    return o;
+  });
+
+  const int n = out.rig->stage.planets();
+  const auto& samples = out.result.samples;
+  const auto count = static_cast<py::ssize_t>(samples.size());
+  std::vector<double> time, deg, balance, w_ext, w_diss, kin, elastic, friction_power, sun_bearing,
+      planet_bearing;
+  std::vector<int> contacts, active;
+  RunColumns run;
+  PairColumns p;
+  std::vector<double> p_total, p_elastic, p_friction, p_rate;
+  for (const dynamics::DynamicSample& x : samples) {
+    const dynamics::Evaluation& e = x.evaluation;
+    time.push_back(x.time);
+    deg.push_back(geometry::Deg(x.carrier_angle));
+    std::vector<double> factors;
+    for (double v : x.load_sharing) factors.push_back(static_cast<double>(n) * v);
+    run.Add(x.load_sharing, factors, x.k_gamma, x.transmission_error, x.sun_centre.x(),
+            x.sun_centre.y());
+    balance.push_back(x.sun_torque_balance);
+    w_ext.push_back(x.external_work);
+    w_diss.push_back(x.dissipated_work);
+    kin.push_back(e.kinetic_energy);
+    elastic.push_back(e.elastic_energy);
+    friction_power.push_back(e.friction_power);
+    int a = 0;
+    for (int j = 0; j < e.total_force.size(); ++j) a += e.total_force(j) > 0;
+    contacts.push_back(e.terms.size());
+    active.push_back(a);
+    sun_bearing.push_back(e.sun_bearing_force.x());
+    sun_bearing.push_back(e.sun_bearing_force.y());
+    for (int i = 0; i < n; ++i) {
+      const bool has = static_cast<int>(e.planet_bearing_force.size()) > i;
+      planet_bearing.push_back(has ? e.planet_bearing_force[static_cast<std::size_t>(i)].x()
+                                   : kNaN);
+      planet_bearing.push_back(has ? e.planet_bearing_force[static_cast<std::size_t>(i)].y()
+                                   : kNaN);
+    }
+    for (int j = 0; j < e.terms.size(); ++j) {
+      if (!(e.total_force(j) > 0)) continue;
+      const transmission::StageContact& c = e.terms.contacts[static_cast<std::size_t>(j)];
+      p.Add(x.time, c);
+      p_total.push_back(e.total_force(j));
+      p_elastic.push_back(e.force(j));
+      p_friction.push_back(e.friction(j));
+      p_rate.push_back(e.overlap_rate(j) * 1e3);
+    }
+  }
+  py::dict pairs;
+  p.Fill(pairs, "time_s");
+  pairs["normal_force_N"] = Array(std::move(p_total));
+  pairs["elastic_force_N"] = Array(std::move(p_elastic));
+  pairs["friction_force_N"] = Array(std::move(p_friction));
+  pairs["overlap_rate_mm_per_s"] = Array(std::move(p_rate));
+
+  const dynamics::DynamicSummary sum = dynamics::Summarise(samples);
+  py::dict summary;
+  summary["samples"] = sum.samples;
+  summary["lsr_mean"] = Array(std::vector<double>(sum.lsr_mean));
+  summary["lsr_min"] = Array(std::vector<double>(sum.lsr_min));
+  summary["lsr_max"] = Array(std::vector<double>(sum.lsr_max));
+  summary["k_gamma"] = sum.k_gamma;
+  summary["te_min_urad"] = sum.te_min * 1e6;
+  summary["te_max_urad"] = sum.te_max * 1e6;
+  summary["te_peak_to_peak_urad"] = sum.te_peak_to_peak() * 1e6;
+  summary["orbit_radius_max_um"] = sum.orbit_radius * 1e6;
+  summary["orbit_radius_mean_um"] = sum.orbit_mean_radius * 1e6;
+  summary["max_pair_force_N"] = sum.max_pair_force;
+
+  const dynamics::StageDynamics& rig = *out.rig;
+  py::dict f;
+  f["scene"] = rig.scene.name;
+  f["sun_support"] = transmission::SunSupportName(rig.stage_model.setup().sun);
+  f["sun_torque_Nm"] = rig.scene.loads.sun_torque;
+  f["sun_speed_rpm"] = std::abs(out.sun_speed) * 30.0 / std::numbers::pi;
+  f["mesh_frequency_Hz"] = out.span.mesh_frequency;
+  f["duration_s"] = out.span.duration;
+  f["outputs"] = out.span.outputs;
+  f["friction"] = FrictionName(SettingsOf(rig));
+  f["mesh_stiffness_sun_planet_N_per_m"] = rig.model.sun_mesh_stiffness();
+  f["mesh_stiffness_planet_ring_N_per_m"] = rig.model.ring_mesh_stiffness();
+  f["mesh_damping_sun_planet_Ns_per_m"] = rig.model.sun_mesh_damping();
+  f["mesh_damping_planet_ring_Ns_per_m"] = rig.model.ring_mesh_damping();
+  f["planets"] = n;
+  f["time_s"] = Array(std::move(time));
+  f["carrier_deg"] = Array(std::move(deg));
+  run.Fill(f, n);
+  f["sun_torque_balance_Nm"] = Array(std::move(balance));
+  f["external_work_J"] = Array(std::move(w_ext));
+  f["dissipated_work_J"] = Array(std::move(w_diss));
+  f["kinetic_energy_J"] = Array(std::move(kin));
+  f["elastic_energy_J"] = Array(std::move(elastic));
+  f["contacts"] = Array(std::move(contacts));
+  f["active_contacts"] = Array(std::move(active));
+  f["friction_power_W"] = Array(std::move(friction_power));
+  f["sun_bearing_force_N"] = Array2(std::move(sun_bearing), count, 2);
+  f["planet_bearing_force_N"] = py::array_t<double>(
+      {count, static_cast<py::ssize_t>(n), py::ssize_t{2}}, planet_bearing.data());
+  f["pairs"] = Result(pairs);
+  f["summary"] = Result(summary);
+  f["stats"] = StatsObject(out.result.stats);
+  f["completed"] = out.result.completed;
+  f["message"] = out.result.message;
+  f["warnings"] = out.warnings;
+  py::object result = Result(f);
+  if (!out.result.completed && raise_on_failure)
+    RaiseComputationError("the run stopped after " + std::to_string(samples.size()) + " of " +
+                              std::to_string(out.span.outputs) + " outputs: " + out.result.message,
+                          result);
+  return result;
+}
+
+py::object Modes(const ScenePtr& s, std::optional<std::string> cache_dir) {
+  CancelToken token;
+  struct Out {
+    std::shared_ptr<const dynamics::StageDynamics> rig;
+    dynamics::OperatingPointModes modes;
+  };
+  const Out out = RunReleased(token, [&] {
+    Out o;
+    o.rig = s->Dynamics(cache_dir, "modes");
+    o.modes = dynamics::StageModes(*o.rig);
+    return o;
+  });
+  const dynamics::StageDynamics& rig = *out.rig;
+  const double hz_per_rpm = dynamics::MeshHzPerSunRpm(rig.stage);
+  const auto& modes = out.modes.modes;
+  const auto count = static_cast<py::ssize_t>(modes.size());
+  std::vector<double> freq, ct, cr, pl, rpm;
+  std::vector<int> mult;
+  std::vector<char> rigid;
+  py::list type, shapes, members;
+  for (const dynamics::MemberDofs& md : rig.model.ModeLayout()) members.append(md.name);
+  std::vector<double> member_energy;
+  for (const dynamics::Mode& x : modes) {
+    freq.push_back(x.frequency);
+    mult.push_back(x.multiplicity);
+    rigid.push_back(x.rigid);
+    type.append(x.rigid ? std::string("rigid") : dynamics::ModeTypeName(x.type));
+    ct.push_back(x.central_translation);
+    cr.push_back(x.central_rotation);
+    pl.push_back(x.planets);
+    for (double e : x.member_energy) member_energy.push_back(e);
+    std::vector<double> h = dynamics::HarmonicSunSpeeds(x.frequency, hz_per_rpm, 3);
+    h.resize(3, kNaN);
+    rpm.insert(rpm.end(), h.begin(), h.end());
+    shapes.append(py::array_t<double>(
+        {x.shapes.rows(), x.shapes.cols()},
+        {sizeof(double), sizeof(double) * static_cast<std::size_t>(x.shapes.rows())},
+        x.shapes.data()));
+  }
+  py::list dofs;
+  for (const dynamics::MotionDof& d : rig.model.dofs()) dofs.append(d.Label());
+  const auto members_count = static_cast<py::ssize_t>(members.size());
+  py::dict f;
+  f["scene"] = rig.scene.name;
+  f["sun_support"] = transmission::SunSupportName(rig.stage_model.setup().sun);
+  f["ring_elastic"] = SettingsOf(rig).ring_elastic;
+  f["dofs"] = dofs;
+  f["members"] = members;
+  f["frequency_Hz"] = Array(std::move(freq));
+  f["multiplicity"] = Array(std::move(mult));
+  f["type"] = type;
+  f["rigid"] = BoolArray(rigid);
+  f["central_translation_energy"] = Array(std::move(ct));
+  f["central_rotation_energy"] = Array(std::move(cr));
+  f["planet_energy"] = Array(std::move(pl));
+  f["member_energy"] = Array2(std::move(member_energy), count, members_count);
+  f["shapes"] = shapes;
+  f["sun_rpm_at_mesh_harmonics_1_2_3"] = Array2(std::move(rpm), count, 3);
+  f["mesh_hz_per_sun_rpm"] = hz_per_rpm;
+  f["mesh_stiffness_sun_planet_N_per_m"] = out.modes.mesh_stiffness[0];
+  f["mesh_stiffness_planet_ring_N_per_m"] = out.modes.mesh_stiffness[1];
+  f["secant_mesh_stiffness_sun_planet_N_per_m"] = rig.model.sun_mesh_stiffness();
+  f["secant_mesh_stiffness_planet_ring_N_per_m"] = rig.model.ring_mesh_stiffness();
+  f["warnings"] = rig.scene.warnings;
+  return Result(f);
+}
+
+py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_rpm,
+                      const std::string& range, double window_cycles, int outputs_per_cycle,
+                      double start_deg, int harmonics, int threads, const Integration& integration,
+                      std::optional<std::string> cache_dir, py::object progress,
+                      bool raise_on_failure) {
+  dynamics::SpeedSweepOptions o;
+  o.sun_speeds_rpm = sun_speeds_rpm;
+  o.threads =
+      threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.outputs_per_cycle = outputs_per_cycle;
+  o.harmonics = harmonics;
+  o.window_start = geometry::Rad(start_deg);
+  o.simulation = integration.Options();
+  const transmission::RunRange run_range = transmission::RunRangeFromName(range);
+  CancelToken token;
+  const Progress report(std::move(progress), &token);
+  struct Out {
+    std::shared_ptr<const dynamics::StageDynamics> rig;
+    dynamics::SpeedSweepResult result;
+  };
+  const Out out = RunReleased(token, [&] {
+    Out x;
+    x.rig = s->Dynamics(cache_dir, "speed sweep");
+    const dynamics::StageDynamics& rig = *x.rig;
+    o.window_cycles =
+        window_cycles > 0 ? window_cycles : transmission::MeshCycles(rig.stage, run_range);
+    o.Validate();
+    // The modes from the tangent mesh stiffness (dynamics/speed_sweep.hpp).
+    o.modal_mesh_stiffness = dynamics::MeanTangentMeshStiffness(rig.scene, rig.stage, rig.fe);
+    const dynamics::SpeedSweepPlan plan = dynamics::PlanSpeedSweep(rig.model, o);
+    long done = 0;
+    const long total = static_cast<long>(o.sun_speeds_rpm.size());
+    x.result = dynamics::SweepSpeeds(rig.model, o, plan,
+                                     [&](const dynamics::SpeedResult&) { report(++done, total); });
+    return x;
+  });
+  const dynamics::SpeedSweepResult& r = out.result;
+  const dynamics::SpeedSweepPlan& plan = r.plan;
+  std::vector<double> rpm, fm, kg, kv, peak, te, orbit, lmin, lmax, wall, cpu;
+  std::vector<char> ok;
+  py::list message, factor_mesh, warnings;
+  for (const dynamics::SpeedResult& x : r.speeds) {
+    const double v = x.ok ? 1.0 : kNaN;
+    rpm.push_back(x.sun_speed_rpm);
+    fm.push_back(x.mesh_frequency);
+    ok.push_back(x.ok);
+    message.append(x.message);
+    kg.push_back(v * x.k_gamma);
+    kv.push_back(v * x.dynamic_factor);
+    factor_mesh.append(x.ok && x.factor_mesh >= 0
+                           ? plan.meshes[static_cast<std::size_t>(x.factor_mesh)]
+                           : std::string());
+    peak.push_back(v * x.peak_mesh_force);
+    te.push_back(v * x.te_amplitude * 1e6);
+    orbit.push_back(v * x.orbit_radius * 1e6);
+    lmin.push_back(v * x.lsr_min);
+    lmax.push_back(v * x.lsr_max);
+    wall.push_back(x.wall_seconds);
+    cpu.push_back(x.cpu_seconds);
+    warnings.append(x.warnings);
+  }
+  std::vector<double> mode_f, zeta, sigma;
+  py::list mode_type, families;
+  for (const dynamics::ModeDamping& m : plan.modes) {
+    mode_f.push_back(m.mode.frequency);
+    zeta.push_back(m.damping_ratio);
+    sigma.push_back(m.decay_rate);
+    mode_type.append(dynamics::ModeTypeName(m.mode.type));
+    families.append(m.families);
+  }
+  std::vector<double> c_rpm, c_f;
+  std::vector<int> c_mode, c_h;
+  std::vector<char> c_excited;
+  for (const dynamics::Coincidence& c : plan.coincidences) {
+    c_rpm.push_back(c.sun_speed_rpm);
+    c_f.push_back(c.frequency);
+    c_mode.push_back(c.mode);
+    c_h.push_back(c.harmonic);
+    c_excited.push_back(c.phasing_excited);
+  }
+  py::dict pm;
+  pm["frequency_Hz"] = Array(std::move(mode_f));
+  pm["type"] = mode_type;
+  pm["damping_ratio"] = Array(std::move(zeta));
+  pm["decay_rate_per_s"] = Array(std::move(sigma));
+  pm["families"] = families;
+  py::dict pc;
+  pc["sun_speed_rpm"] = Array(std::move(c_rpm));
+  pc["frequency_Hz"] = Array(std::move(c_f));
+  pc["mode"] = Array(std::move(c_mode));
+  pc["harmonic"] = Array(std::move(c_h));
+  pc["phasing_excited"] = BoolArray(c_excited);
+  py::dict f;
+  f["scene"] = out.rig->scene.name;
+  f["sun_speed_rpm"] = Array(std::move(rpm));
+  f["mesh_frequency_Hz"] = Array(std::move(fm));
+  f["ok"] = BoolArray(ok);
+  f["message"] = message;
+  f["k_gamma"] = Array(std::move(kg));
+  f["dynamic_factor"] = Array(std::move(kv));
+  f["dynamic_factor_mesh"] = factor_mesh;
+  f["peak_mesh_force_N"] = Array(std::move(peak));
+  f["te_amplitude_urad"] = Array(std::move(te));
+  f["sun_orbit_radius_um"] = Array(std::move(orbit));
+  f["lsr_min"] = Array(std::move(lmin));
+  f["lsr_max"] = Array(std::move(lmax));
+  f["wall_s"] = Array(std::move(wall));
+  f["cpu_s"] = Array(std::move(cpu));
+  f["warnings"] = warnings;
+  f["modes"] = Result(pm);
+  f["coincidences"] = Result(pc);
+  f["meshes"] = plan.meshes;
+  f["mesh_hz_per_sun_rpm"] = plan.mesh_hz_per_rpm;
+  f["skip_time_s"] = plan.skip_time;
+  f["qs_k_gamma"] = plan.qs_k_gamma;
+  f["qs_te_amplitude_urad"] = plan.qs_te_amplitude * 1e6;
+  f["qs_peak_mesh_force_N"] = Array(std::vector<double>(plan.qs_peak_mesh_force));
+  f["window_carrier_deg"] = [&] {
+    std::vector<double> d;
+    for (double a : plan.window_angles) d.push_back(geometry::Deg(a));
+    return Array(std::move(d));
+  }();
+  py::object result = Result(f);
+  if (r.failed() > 0 && raise_on_failure)
+    RaiseComputationError(std::to_string(r.failed()) + " of " + std::to_string(r.speeds.size()) +
+                              " speeds failed (result.message lists why)",
+                          result);
+  return result;
+}
+
+const char* kIntegrationDoc = R"doc(
+Integration: integrator "cvode-bdf" (default) or "arkode-erk"; rtol [-]; rate_scale [1/s] (None:
+the library's default 1e4; 0: the stage's highest linearised natural frequency); contact_tol [-]
+(None: 1e-10, on the nondimensional residual); max_order: CVODE's largest BDF order;
+analytic_jacobian: the contact sensitivity (False: CVODE's difference quotients); backend: the
+contact back end.)doc";
+
+}  // namespace
+
+void BindDynamic(py::module_& m) {
+  auto integration = [](const std::string& integrator, double rtol,
+                        std::optional<double> rate_scale, std::optional<double> contact_tol,
+                        int max_order, bool analytic_jacobian, const std::string& backend) {
+    Integration i;
+    i.integrator = integrator;
+    i.rtol = rtol;
+    i.rate_scale = rate_scale;
+    i.contact_tol = contact_tol;
+    i.max_order = max_order;
+    i.analytic_jacobian = analytic_jacobian;
+    i.backend = backend;
+    return i;
+  };
+  m.def(
+      "dynamic",
+      [integration](
+          const ScenePtr& s, std::optional<double> sun_speed_rpm, const std::string& range,
+          double time_s, int outputs_per_cycle, double start_deg, const std::string& integrator,
+          double rtol, std::optional<double> rate_scale, std::optional<double> contact_tol,
+          int max_order, bool analytic_jacobian, const std::string& backend,
+          std::optional<std::string> cache_dir, py::object progress, bool raise_on_failure) {
+        return Dynamic(s, sun_speed_rpm, range, time_s, outputs_per_cycle, start_deg,
+                       integration(integrator, rtol, rate_scale, contact_tol, max_order,
+                                   analytic_jacobian, backend),
+                       cache_dir, std::move(progress), raise_on_failure);
+      },
+      py::arg("scene"), py::arg("sun_speed_rpm") = py::none(), py::arg("range") = "planet",
+      py::arg("time_s") = 0.0, py::arg("outputs_per_cycle") = 20, py::arg("start_deg") = 0.0,
+      py::arg("integrator") = "cvode-bdf", py::arg("rtol") = 1e-6,
+      py::arg("rate_scale") = py::none(), py::arg("contact_tol") = py::none(),
+      py::arg("max_order") = 5, py::arg("analytic_jacobian") = true, py::arg("backend") = "newton",
+      py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
+      py::arg("raise_on_failure") = true,
+      (std::string(R"doc(
+The dynamic model of a stage integrated in time (`epicycle dynamic`; docs/dynamic.md), from the
+quasi-static solution at t = 0. The dynamic settings are the scene's ([dynamics], [lubricant],
+[supports] keys).
+
+sun_speed_rpm: sun speed [rpm] (None: the scene's dynamics.sun_speed_rpm; given: that key is set,
+  with the scene reader's checks); range: "cycle", "planet" (default), "revolution" of carrier
+  rotation; time_s: simulate this long instead [s]; outputs_per_cycle: output steps per mesh cycle
+  [-]; start_deg: carrier angle at t = 0 [deg]; cache_dir, progress(done, total) as quasistatic.)doc") +
+       kIntegrationDoc + R"doc(
+Returns Result with per output step (T steps, n planets): time_s [s], carrier_deg [deg], lsr (T, n)
+[-], load_sharing_factor (T, n) [-], k_gamma [-], te_urad [µrad] (dynamic TE at the sun), sun_x_um,
+sun_y_um [µm] (sun centre from nominal), sun_torque_balance_Nm [N·m], external_work_J,
+dissipated_work_J, kinetic_energy_J, elastic_energy_J [J], contacts, active_contacts,
+friction_power_W [W], sun_bearing_force_N (T, 2) [N], planet_bearing_force_N (T, n, 2) [N]; pairs
+(per loaded tooth pair and step: time_s, mesh, kind, flank, tooth_a, tooth_b, normal_force_N,
+elastic_force_N, friction_force_N [N], overlap_rate_mm_per_s [mm/s]); summary (lsr_mean/min/max
+(n,) [-], k_gamma [-], te_min/max/peak_to_peak_urad [µrad], orbit_radius_max/mean_um [µm],
+max_pair_force_N [N]); stats (integrator counts, times [s]); sun_speed_rpm, mesh_frequency_Hz,
+duration_s, outputs, mesh stiffness [N/m] and damping [N·s/m] of the meshes, completed, message,
+warnings. Raises ComputationError (with .result, the steps computed) if the run stopped early and
+raise_on_failure.)doc")
+          .c_str());
+  m.def("modes", &Modes, py::arg("scene"), py::arg("cache_dir") = py::none(), R"doc(
+Natural modes of a stage linearised about its operating point (`epicycle modes`; docs/dynamic.md):
+the tangent mesh stiffness dF/dδ at the scene's load, carrier angle 0.
+
+Returns Result with per mode group (M groups): frequency_Hz [Hz], multiplicity [-], type
+("rigid", "rotational", "translational", "planet", "other"), rigid (bool),
+central_translation_energy, central_rotation_energy, planet_energy [-] (kinetic-energy fractions),
+member_energy (M, members) [-], shapes (list of (dofs, multiplicity) arrays, M-orthonormal; units
+of dofs: [m] or [rad]), sun_rpm_at_mesh_harmonics_1_2_3 (M, 3) [rpm] (NaN: none); dofs, members
+(names); mesh_hz_per_sun_rpm [Hz/rpm]; mesh_stiffness_*_N_per_m (tangent, used) and
+secant_mesh_stiffness_*_N_per_m [N/m]; ring_elastic, sun_support, warnings.)doc");
+  m.def(
+      "speed_sweep",
+      [integration](const ScenePtr& s, const std::vector<double>& sun_speeds_rpm,
+                    const std::string& range, double window_cycles, int outputs_per_cycle,
+                    double start_deg, int harmonics, int threads, const std::string& integrator,
+                    double rtol, std::optional<double> rate_scale,
+                    std::optional<double> contact_tol, int max_order, bool analytic_jacobian,
+                    const std::string& backend, std::optional<std::string> cache_dir,
+                    py::object progress, bool raise_on_failure) {
+        return SpeedSweep(s, sun_speeds_rpm, range, window_cycles, outputs_per_cycle, start_deg,
+                          harmonics, threads,
+                          integration(integrator, rtol, rate_scale, contact_tol, max_order,
+                                      analytic_jacobian, backend),
+                          cache_dir, std::move(progress), raise_on_failure);
+      },
+      py::arg("scene"), py::arg("sun_speeds_rpm"), py::arg("range") = "planet",
+      py::arg("window_cycles") = 0.0, py::arg("outputs_per_cycle") = 64, py::arg("start_deg") = 0.0,
+      py::arg("harmonics") = 6, py::arg("threads") = 0, py::arg("integrator") = "cvode-bdf",
+      py::arg("rtol") = 1e-6, py::arg("rate_scale") = py::none(),
+      py::arg("contact_tol") = py::none(), py::arg("max_order") = 5,
+      py::arg("analytic_jacobian") = true, py::arg("backend") = "newton",
+      py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
+      py::arg("raise_on_failure") = true,
+      (std::string(R"doc(
+A speed sweep of the dynamic model (`epicycle dynamic --speed-sweep`; docs/dynamic.md, "Speed
+sweeps"): each sun speed run from the quasi-static solution, its start transient skipped, then a
+window measured.
+
+sun_speeds_rpm: increasing sun speeds [rpm] (epicycle.speed_grid(from, to, n)); range: the window,
+  "cycle", "planet" (default), "revolution", or window_cycles > 0 mesh cycles [-];
+  outputs_per_cycle: samples per mesh cycle [-]; start_deg: carrier angle where the window begins
+  [deg]; harmonics: mesh harmonics 1..h for the coincidences; threads: workers (0: every core);
+  cache_dir, progress(done, total) as quasistatic.)doc") +
+       kIntegrationDoc + R"doc(
+Returns Result with per speed: sun_speed_rpm [rpm], mesh_frequency_Hz [Hz], ok, message, k_gamma
+[-], dynamic_factor [-] (K_v) and dynamic_factor_mesh, peak_mesh_force_N [N], te_amplitude_urad
+[µrad], sun_orbit_radius_um [µm], lsr_min, lsr_max [-] (NaN where failed), wall_s, cpu_s [s],
+warnings; modes (frequency_Hz, type, damping_ratio, decay_rate_per_s, families), coincidences
+(sun_speed_rpm, frequency_Hz, mode, harmonic, phasing_excited), meshes, mesh_hz_per_sun_rpm,
+skip_time_s [s], the quasi-static reference qs_k_gamma, qs_te_amplitude_urad, qs_peak_mesh_force_N
+per mesh, window_carrier_deg. Raises ComputationError (with .result) if a speed failed.)doc")
+          .c_str());
+  m.def(
+      "speed_grid",
+      [](double from_rpm, double to_rpm, int count) {
+        return Array(dynamics::SpeedGrid(from_rpm, to_rpm, count));
+      },
+      py::arg("from_rpm"), py::arg("to_rpm"), py::arg("count"),
+      "`count` sun speeds [rpm] from from_rpm to to_rpm, ends included, equally spaced.");
+}
+
+}  // namespace epicycle::python

@@ -1,0 +1,442 @@
+// The stage drivers of transmission/ and geometry/: the geometry report and profiles, the
+// potential contacts at a pose, a mesh's stiffness and the quasi-static sweep.
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "common.hpp"
+#include "epicycle/geometry/pair.hpp"
+#include "epicycle/report/geometry_json.hpp"
+#include "epicycle/transmission/mesh_stiffness.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/run_range.hpp"
+#include "epicycle/transmission/sweep_summary.hpp"
+#include "epicycle/transmission/validity.hpp"
+#include "scene.hpp"
+
+namespace epicycle::python {
+
+namespace {
+
+using ScenePtr = std::shared_ptr<Scene>;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double Deg(double rad) { return geometry::Deg(rad); }
+
+// A JSON document as Python objects (through the json module: the report's own keys and units).
+py::object JsonToPython(const nlohmann::json& j) {
+  return py::module_::import("json").attr("loads")(j.dump());
+}
+
+// A gear's outline and half profile [mm] with each profile point's role.
+py::object GearProfiles(const geometry::Gear& gear, int per_segment) {
+  const std::vector<geometry::Vec2> outline = gear.Outline(per_segment);
+  std::vector<double> xy;
+  xy.reserve(2 * outline.size());
+  for (const auto& p : outline) {
+    xy.push_back(p.x() * 1e3);
+    xy.push_back(p.y() * 1e3);
+  }
+  const geometry::Polyline half = gear.half_profile().Sample(per_segment);
+  std::vector<double> hxy;
+  py::list roles;
+  for (std::size_t i = 0; i < half.points.size(); ++i) {
+    hxy.push_back(half.points[i].x() * 1e3);
+    hxy.push_back(half.points[i].y() * 1e3);
+    roles.append(geometry::RoleName(half.roles[i]));
+  }
+  const auto n = static_cast<py::ssize_t>(outline.size());
+  const auto h = static_cast<py::ssize_t>(half.points.size());
+  py::dict f;
+  f["teeth"] = gear.teeth();
+  f["outline_mm"] = Array2(std::move(xy), n, 2);
+  f["half_profile_mm"] = Array2(std::move(hxy), h, 2);
+  f["half_profile_roles"] = roles;
+  return Result(f);
+}
+
+py::object Geometry(const ScenePtr& s, int per_segment) {
+  const transmission::Scene& scene = s->scene();
+  py::dict f;
+  py::dict gears;
+  if (scene.kind == transmission::SceneKind::kPair) {
+    const geometry::GearPair pair(scene.pair);
+    f["report"] = JsonToPython(report::PairJson(scene, pair));
+    gears["gear1"] = GearProfiles(pair.gear1(), per_segment);
+    gears["gear2"] = GearProfiles(pair.gear2(), per_segment);
+  } else {
+    const geometry::Stage stage(scene.stage);
+    f["report"] = JsonToPython(report::StageJson(scene, stage));
+    gears["sun"] = GearProfiles(stage.sun(), per_segment);
+    for (int i = 0; i < stage.planets(); ++i)
+      gears[py::str("planet" + std::to_string(i + 1))] = GearProfiles(stage.planet(i), per_segment);
+    gears["ring"] = GearProfiles(stage.ring(), per_segment);
+  }
+  f["gears"] = gears;
+  f["warnings"] = scene.warnings;
+  return Result(f);
+}
+
+py::object Contacts(const ScenePtr& s, double carrier_deg, std::optional<double> gap_window_um) {
+  const transmission::Scene& scene = s->scene();
+  RequireStage(scene, "contacts");
+  const geometry::Stage st(scene.stage);
+  const geometry::StagePoses p = st.Poses(geometry::Rad(carrier_deg));
+  geometry::ContactSearchOptions opt;
+  opt.gap_window = gap_window_um ? *gap_window_um * 1e-6 : scene.gap_window;
+  py::list mesh, kind, flank;
+  std::vector<int> tooth, mate;
+  std::vector<double> x, y, nx, ny, overlap, arm_a, arm_b, rho_a, rho_b;
+  for (int i = 0; i < st.planets(); ++i) {
+    for (geometry::MeshKind k : {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing}) {
+      const int loaded =
+          k == geometry::MeshKind::kSunPlanet ? st.sun_mesh_side() : st.ring_mesh_planet_side();
+      for (const geometry::PotentialContact& c : st.Contacts(p, i, k, opt)) {
+        mesh.append(geometry::MeshName(i, k));
+        kind.append(geometry::KindName(c.kind));
+        flank.append(c.side_a == loaded ? "drive" : "coast");
+        tooth.push_back(c.tooth_a);
+        mate.push_back(c.tooth_b);
+        x.push_back(c.point.x() * 1e3);
+        y.push_back(c.point.y() * 1e3);
+        nx.push_back(c.normal.x());
+        ny.push_back(c.normal.y());
+        overlap.push_back(c.overlap * 1e6);
+        arm_a.push_back(c.lever_a * 1e3);
+        arm_b.push_back(c.lever_b * 1e3);
+        rho_a.push_back(c.curvature_radius_a * 1e3);
+        rho_b.push_back(c.curvature_radius_b * 1e3);
+      }
+    }
+  }
+  py::dict f;
+  f["carrier_deg"] = carrier_deg;
+  f["mesh"] = mesh;
+  f["kind"] = kind;
+  f["flank"] = flank;
+  f["tooth"] = Array(std::move(tooth));
+  f["mate"] = Array(std::move(mate));
+  f["x_mm"] = Array(std::move(x));
+  f["y_mm"] = Array(std::move(y));
+  f["normal_x"] = Array(std::move(nx));
+  f["normal_y"] = Array(std::move(ny));
+  f["overlap_um"] = Array(std::move(overlap));
+  f["arm_a_mm"] = Array(std::move(arm_a));
+  f["arm_b_mm"] = Array(std::move(arm_b));
+  f["curvature_radius_a_mm"] = Array(std::move(rho_a));
+  f["curvature_radius_b_mm"] = Array(std::move(rho_b));
+  return Result(f);
+}
+
+py::object MeshStiffness(const ScenePtr& s, const std::string& mesh, int positions,
+                         const std::string& backend, bool local_terms, bool tooth_coupling,
+                         int threads, std::optional<std::string> cache_dir, py::object progress) {
+  transmission::MeshStiffnessOptions opt;
+  opt.positions = positions;
+  opt.threads = threads;
+  opt.backend = BackendOf(backend);
+  opt.local_terms = local_terms;
+  opt.tooth_coupling = tooth_coupling;
+  opt.Validate();
+  CancelToken token;
+  const Progress report(std::move(progress), &token);
+  struct Out {
+    transmission::MeshStiffnessResult result;
+    std::vector<std::string> warnings;
+    double c_prime = 0, c_gamma = 0, contact_ratio = 0;
+  };
+  const transmission::Scene scene = s->scene();
+  const Out out = RunReleased(token, [&] {
+    std::optional<geometry::Stage> stage;
+    if (scene.kind == transmission::SceneKind::kStage) stage.emplace(scene.stage);
+    const transmission::MeshPairSetup setup =
+        transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, mesh);
+    const geometry::GearPair pair(setup.spec);
+    const transmission::FePairCompliance compliance(scene, pair, TableOptions(cache_dir));
+    long done = 0;
+    Out o;
+    o.result = transmission::ComputeMeshStiffness(
+        setup, pair, compliance, opt,
+        [&](const transmission::MeshSample&) { report(++done, positions); });
+    const compliance::iso6336::PairData iso = transmission::IsoPairData(pair);
+    o.c_prime = compliance::iso6336::SinglePairStiffness(iso);
+    o.c_gamma = compliance::iso6336::MeshStiffness(iso);
+    o.contact_ratio = pair.summary().contact_ratio_iso;
+    o.warnings = scene.warnings;
+    for (const std::string& w : transmission::MeshStiffnessWarnings(pair, o.result))
+      o.warnings.push_back(w);
+    return o;
+  });
+  const transmission::MeshStiffnessResult& r = out.result;
+  std::vector<double> angle, rotation, approach, force, k, validity;
+  std::vector<char> ok;
+  py::list messages;
+  std::vector<double> p_angle, p_force, p_k, p_share, p_roll;
+  std::vector<int> p_t1, p_t2;
+  py::list p_kind;
+  for (const auto& x : r.samples) {
+    angle.push_back(Deg(x.angle));
+    ok.push_back(x.converged);
+    messages.append(x.message);
+    rotation.push_back(x.rotation * 1e6);
+    approach.push_back(x.approach * 1e6);
+    force.push_back(x.total_force);
+    k.push_back(x.mesh_stiffness);
+    validity.push_back(x.local_validity_ratio);
+    for (const auto& p : x.pairs) {
+      p_angle.push_back(Deg(x.angle));
+      p_t1.push_back(p.tooth1);
+      p_t2.push_back(p.tooth2);
+      p_kind.append(geometry::KindName(p.kind));
+      p_force.push_back(p.force);
+      p_k.push_back(p.stiffness);
+      p_share.push_back(p.share);
+      p_roll.push_back(Deg(p.roll1));
+    }
+  }
+  py::dict pairs;
+  pairs["angle_deg"] = Array(std::move(p_angle));
+  pairs["tooth1"] = Array(std::move(p_t1));
+  pairs["tooth2"] = Array(std::move(p_t2));
+  pairs["kind"] = p_kind;
+  pairs["force_N"] = Array(std::move(p_force));
+  pairs["stiffness_N_per_m"] = Array(std::move(p_k));
+  pairs["share"] = Array(std::move(p_share));
+  pairs["roll1_deg"] = Array(std::move(p_roll));
+  py::dict f;
+  f["mesh"] = r.mesh;
+  f["torque_Nm"] = r.torque;
+  f["face_width_mm"] = r.face_width * 1e3;
+  f["angle_deg"] = Array(std::move(angle));
+  f["converged"] = BoolArray(ok);
+  f["message"] = messages;
+  f["rotation_urad"] = Array(std::move(rotation));
+  f["approach_um"] = Array(std::move(approach));
+  f["total_force_N"] = Array(std::move(force));
+  f["stiffness_N_per_m"] = Array(std::move(k));
+  f["local_validity_ratio"] = Array(std::move(validity));
+  f["pairs"] = Result(pairs);
+  f["failed"] = r.failed;
+  f["mean_stiffness_N_per_m"] = r.mean_stiffness;
+  f["min_stiffness_N_per_m"] = r.min_stiffness;
+  f["max_stiffness_N_per_m"] = r.max_stiffness;
+  f["peak_pair_stiffness_N_per_m"] = r.peak_pair_stiffness;
+  f["mean_stiffness_N_per_mm_um"] = r.mean_per_width();
+  f["peak_pair_stiffness_N_per_mm_um"] = r.peak_pair_per_width();
+  f["iso6336_c_prime_N_per_mm_um"] = out.c_prime;
+  f["iso6336_c_gamma_alpha_N_per_mm_um"] = out.c_gamma;
+  f["contact_ratio"] = out.contact_ratio;
+  f["warnings"] = out.warnings;
+  py::object result = Result(f);
+  if (r.failed > 0)
+    RaiseComputationError(std::to_string(r.failed) + " of " + std::to_string(r.samples.size()) +
+                              " mesh-stiffness samples failed",
+                          result);
+  return result;
+}
+
+// The statistics of a sweep (SummariseSweep), NaN where no position converged.
+py::object SummaryObject(const transmission::SweepSummary& s) {
+  py::dict f;
+  f["positions"] = s.positions;
+  f["converged"] = s.converged;
+  f["lsr_mean"] = Array(std::vector<double>(s.lsr_mean));
+  f["lsr_min"] = Array(std::vector<double>(s.lsr_min));
+  f["lsr_max"] = Array(std::vector<double>(s.lsr_max));
+  f["k_gamma"] = s.k_gamma;
+  f["k_gamma_mean"] = s.k_gamma_mean;
+  f["te_min_urad"] = s.transmission_error_min * 1e6;
+  f["te_max_urad"] = s.transmission_error_max * 1e6;
+  f["te_peak_to_peak_urad"] = s.TransmissionErrorPeakToPeak() * 1e6;
+  f["sun_displacement_max_um"] = s.sun_displacement_max * 1e6;
+  return Result(f);
+}
+
+}  // namespace
+
+py::object QuasiStatic(const ScenePtr& s, const std::string& range, int positions, double start_deg,
+                       std::optional<std::vector<double>> angles_deg, int threads, bool warm_start,
+                       const std::string& backend, bool local_terms,
+                       std::optional<std::string> cache_dir, py::object progress,
+                       bool raise_on_failure) {
+  transmission::QuasiStaticOptions opt;
+  opt.backend = BackendOf(backend);
+  opt.threads = threads;
+  opt.warm_start = warm_start;
+  opt.Validate();
+  if (positions < 0)
+    throw std::invalid_argument("positions = " + std::to_string(positions) +
+                                ": must be >= 1 (0: 36 over a mesh cycle, 360 otherwise)");
+  const transmission::RunRange run_range = transmission::RunRangeFromName(range);
+  CancelToken token;
+  const Progress report(std::move(progress), &token);
+  struct Out {
+    std::shared_ptr<const StageRig> rig;
+    std::vector<transmission::PositionResult> results;
+    std::vector<std::string> warnings;
+  };
+  Out out = RunReleased(token, [&] {
+    Out o;
+    o.rig = s->Rig(cache_dir, "quasistatic");
+    const geometry::Stage& stage = o.rig->stage;
+    std::vector<double> angles;
+    if (angles_deg) {
+      for (double d : *angles_deg) angles.push_back(geometry::Rad(d));
+    } else {
+      const int count =
+          positions > 0 ? positions : (run_range == transmission::RunRange::kMeshCycle ? 36 : 360);
+      angles = transmission::SweepAngles(geometry::Rad(start_deg),
+                                         transmission::CarrierSpan(stage, run_range), count);
+    }
+    const transmission::StageModel model = o.rig->Model(local_terms);
+    const long total = static_cast<long>(angles.size());
+    o.results = transmission::Sweep(
+        model, o.rig->scene.loads, angles, opt,
+        [&](const transmission::PositionResult&, int k) { report(k + 1, total); });
+    o.warnings = o.rig->scene.warnings;
+    for (const std::string& w : transmission::QuasiStaticWarnings(stage, o.results))
+      o.warnings.push_back(w);
+    return o;
+  });
+
+  const int n = out.rig->stage.planets();
+  std::vector<double> deg, residual, solve_ms;
+  RunColumns run;
+  Interned names;
+  const std::vector<double> none(static_cast<std::size_t>(n), kNaN);
+  std::vector<int> geo_it, contact_it, active, contacts;
+  std::vector<char> ok, warm;
+  py::list status, message;
+  PairColumns p;
+  std::vector<double> p_force;
+  int failed = 0;
+  for (const transmission::PositionResult& r : out.results) {
+    const bool good = r.converged;
+    failed += !good;
+    deg.push_back(Deg(r.carrier_angle));
+    ok.push_back(good);
+    if (good)
+      run.Add(r.load_sharing, transmission::LoadSharingFactors(r), transmission::MeshLoadFactor(r),
+              r.transmission_error, r.sun_displacement.x(), r.sun_displacement.y());
+    else
+      run.Add(none, none, kNaN, kNaN, kNaN, kNaN);
+    geo_it.push_back(r.geometric_iterations);
+    contact_it.push_back(r.contact_iterations);
+    warm.push_back(r.warm_started);
+    residual.push_back(r.report.residual.total);
+    status.append(names(solvers::StatusName(r.report.status)));
+    active.push_back(r.report.active_contacts);
+    contacts.push_back(static_cast<int>(r.problem.contacts.size()));
+    solve_ms.push_back(r.report.total_seconds * 1e3);
+    message.append(names(r.message));
+    for (std::size_t j = 0; j < r.problem.contacts.size() && good; ++j) {
+      const double force = r.solution.force(static_cast<Eigen::Index>(j));
+      if (!(force > 0)) continue;
+      const transmission::StageContact& c = r.problem.contacts[j];
+      p.Add(Deg(r.carrier_angle), c);
+      p_force.push_back(force);
+    }
+  }
+  py::dict pairs;
+  p.Fill(pairs, "carrier_deg");
+  pairs["force_N"] = Array(std::move(p_force));
+
+  const transmission::Scene& scene = out.rig->scene;
+  py::dict f;
+  f["scene"] = scene.name;
+  f["sun_support"] = transmission::SunSupportName(transmission::SetupFromScene(scene).sun);
+  f["sun_torque_Nm"] = scene.loads.sun_torque;
+  f["backend"] = backend;
+  f["planets"] = n;
+  f["carrier_deg"] = Array(std::move(deg));
+  f["converged"] = BoolArray(ok);
+  run.Fill(f, n);
+  f["geometric_iterations"] = Array(std::move(geo_it));
+  f["contact_iterations"] = Array(std::move(contact_it));
+  f["warm_started"] = BoolArray(warm);
+  f["residual"] = Array(std::move(residual));
+  f["status"] = status;
+  f["active_contacts"] = Array(std::move(active));
+  f["contacts"] = Array(std::move(contacts));
+  f["solve_ms"] = Array(std::move(solve_ms));
+  f["message"] = message;
+  f["pairs"] = Result(pairs);
+  f["summary"] = SummaryObject(transmission::SummariseSweep(out.results, n));
+  f["warnings"] = out.warnings;
+  py::object result = Result(f);
+  if (failed > 0 && raise_on_failure)
+    RaiseComputationError(std::to_string(failed) + " of " + std::to_string(out.results.size()) +
+                              " positions failed (result.message lists why)",
+                          result);
+  return result;
+}
+
+void BindStage(py::module_& m) {
+  m.def("geometry", &Geometry, py::arg("scene"), py::arg("points_per_segment") = 20, R"doc(
+The generated geometry of a scene's gears.
+
+Returns Result with
+  report: dict, the geometry report (keys with units, docs/geometry.md; `epicycle geometry --json`)
+  gears: {name: Result(teeth, outline_mm (K, 2) [mm] the whole gear in its body frame,
+         half_profile_mm (H, 2) [mm] one flank root to tip, half_profile_roles: list of str)}
+  warnings: list of str
+points_per_segment: points per profile segment [-].)doc");
+  m.def("contacts", &Contacts, py::arg("scene"), py::arg("carrier_deg") = 0.0,
+        py::arg("gap_window_um") = py::none(), R"doc(
+The potential contacts of every mesh of a stage at carrier angle carrier_deg [deg] (rigid poses
+with the scene's errors), as `epicycle contacts` prints them.
+
+gap_window_um: contacts with overlap >= -window [µm] (None: the scene's [contact] gap_window_um).
+Returns Result with per contact: mesh, kind, flank ("drive"/"coast"), tooth, mate, x_mm, y_mm
+[mm], normal_x, normal_y [-] (out of the mesh's first gear), overlap_um [µm] (> 0
+interpenetration), arm_a_mm, arm_b_mm [mm] (moment arms), curvature_radius_a_mm,
+curvature_radius_b_mm [mm].)doc");
+  m.def("mesh_stiffness", &MeshStiffness, py::arg("scene"), py::arg("mesh") = "",
+        py::arg("positions") = 60, py::arg("backend") = "newton", py::arg("local_terms") = true,
+        py::arg("tooth_coupling") = true, py::arg("threads") = 0, py::arg("cache_dir") = py::none(),
+        py::arg("progress") = py::none(), R"doc(
+Mesh stiffness of a gear pair over one mesh cycle (`epicycle stiffness`): a pair scene, or one mesh
+of a stage ("sun-planet1", "planet2-ring") at the scene's load share.
+
+positions: samples over the cycle [-]; threads: workers (0: one per core); cache_dir: influence-
+table cache folder (None: $EPICYCLE_CACHE_DIR or ~/.cache/epicycle; "": in memory);
+progress(done, total): called as samples complete.
+Returns Result with per sample angle_deg [deg] (gear 1 from the cycle start), converged, message,
+rotation_urad [µrad] (loaded static TE), approach_um [µm] (deflection along the line of action),
+total_force_N [N], stiffness_N_per_m [N/m], local_validity_ratio [-]; pairs (per loaded tooth pair:
+angle_deg, tooth1, tooth2, kind, force_N, stiffness_N_per_m, share, roll1_deg); mean, min, max and
+peak single-pair stiffness [N/m] and per face width [N/(mm·µm)]; ISO 6336-1's
+iso6336_c_prime_N_per_mm_um and iso6336_c_gamma_alpha_N_per_mm_um [N/(mm·µm)] for comparison;
+contact_ratio [-] (tip circles); torque_Nm, face_width_mm, warnings. Raises ComputationError (with .result) if a sample failed.)doc");
+  m.def("quasistatic", &QuasiStatic, py::arg("scene"), py::arg("range") = "cycle",
+        py::arg("positions") = 0, py::arg("start_deg") = 0.0, py::arg("angles_deg") = py::none(),
+        py::arg("threads") = 0, py::arg("warm_start") = true, py::arg("backend") = "newton",
+        py::arg("local_terms") = true, py::arg("cache_dir") = py::none(),
+        py::arg("progress") = py::none(), py::arg("raise_on_failure") = true, R"doc(
+Quasi-static load sharing of a stage over carrier positions (`epicycle quasistatic`; docs/
+quasistatic.md). The sun support is the scene's (key supports.sun: "fixed", "floating").
+
+range: "cycle" (one mesh cycle), "planet" (one planet revolution relative to the carrier),
+  "revolution" (one carrier revolution); positions: over the range [-] (0: 36 for a cycle, 360
+  otherwise); start_deg: carrier angle of the first position [deg]; angles_deg: given carrier
+  angles [deg] instead; threads: workers (0: one per core; with warm_start the results depend on
+  the thread count within the solver tolerances); warm_start: each position from its neighbour;
+  backend: contact back end ("newton", "ipopt", "nlopt-slsqp", ...); local_terms: False for the
+  structural compliance only; cache_dir: influence-table cache (None: $EPICYCLE_CACHE_DIR or
+  ~/.cache/epicycle; "": in memory); progress(done, total): called in order as positions complete.
+Returns Result with, per position (P positions, n planets):
+  carrier_deg (P,) [deg], converged (P,) bool, lsr (P, n) [-] (LSR_i, paper eq. 4; NaN where not
+  converged), load_sharing_factor (P, n) [-] (L_i = n LSR_i), k_gamma (P,) [-] (max_i L_i),
+  te_urad (P,) [µrad] (loaded static transmission error at the sun), sun_x_um, sun_y_um (P,) [µm]
+  (sun centre displacement), geometric_iterations, contact_iterations, warm_started, residual [-],
+  status, active_contacts, contacts, solve_ms [ms], message;
+  pairs: per loaded tooth pair carrier_deg, mesh, kind, flank, tooth_a, tooth_b, force_N [N];
+  summary: positions, converged, lsr_mean/lsr_min/lsr_max (n,) [-], k_gamma [-], k_gamma_mean [-],
+  te_min_urad, te_max_urad, te_peak_to_peak_urad [µrad], sun_displacement_max_um [µm];
+  scene, sun_support, sun_torque_Nm [N·m], backend, planets, warnings.
+Raises ValueError for bad input; ComputationError (its .result the Result above) if positions
+failed and raise_on_failure.)doc");
+}
+
+}  // namespace epicycle::python

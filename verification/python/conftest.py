@@ -1,0 +1,61 @@
+"""Shared by the Python bindings' tests (run by CTest: "python: ..."; docs/python.md).
+
+The references are the `epicycle` program's own result files, run here on the same scene with the
+same settings: the bindings and the program share the libraries, not the code that prints.
+CTest sets EPICYCLE_EXE (the program), EPICYCLE_SOURCE_DIR and EPICYCLE_CACHE_DIR (the suite's
+influence-table cache), and PYTHONPATH to the build's package.
+"""
+
+import csv
+import json
+import os
+import subprocess
+
+import pytest
+
+SOURCE_DIR = os.environ.get(
+    "EPICYCLE_SOURCE_DIR", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+)
+SCENES = os.path.join(SOURCE_DIR, "scenes")
+EXE = os.environ.get("EPICYCLE_EXE", os.path.join(SOURCE_DIR, "build", "app", "epicycle"))
+
+
+def scene_path(name):
+    return os.path.join(SCENES, name)
+
+
+def run_cli(*args, check=True):
+    """Runs the program; returns the CompletedProcess (text)."""
+    p = subprocess.run([EXE, *map(str, args)], capture_output=True, text=True)
+    if check and p.returncode != 0:
+        raise AssertionError(f"epicycle {' '.join(map(str, args))}: exit {p.returncode}\n{p.stderr}")
+    return p
+
+
+def read_csv(path):
+    """Rows of a result CSV as dicts of strings (the provenance comment line skipped)."""
+    with open(path, newline="") as f:
+        lines = [line for line in f if not line.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+def read_json(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def num(v):
+    """A number as the result files print it ({:.9g}; empty where not finite)."""
+    return "" if v != v or v in (float("inf"), float("-inf")) else "%.9g" % v
+
+
+def deg(v):
+    """A carrier angle as the files print it ({:.6f})."""
+    return "%.6f" % v
+
+
+@pytest.fixture(scope="session")
+def epicycle_module():
+    import epicycle
+
+    return epicycle

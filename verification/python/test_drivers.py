@@ -1,0 +1,86 @@
+"""The other drivers through Python equal the program's outputs on the same scenes: the geometry
+report (`geometry --json`), the potential contacts at a pose (`contacts`, its printed columns),
+a mesh's stiffness (`stiffness`: CSV to the printed digits, JSON exactly) and a two-speed sweep
+(`dynamic --speed-sweep`: CSV to the printed digits)."""
+
+import epicycle
+from conftest import num, read_csv, read_json, run_cli, scene_path
+
+
+def test_geometry_report_equals_the_program_json(tmp_path):
+    path = tmp_path / "geometry.json"
+    run_cli("geometry", scene_path("paper_stage_runout.toml"), "--json", path)
+    j = read_json(path)
+    g = epicycle.geometry(epicycle.Scene.load(scene_path("paper_stage_runout.toml")))
+    for key in ("gears", "meshes", "assembly", "fits", "gear_order"):
+        assert g.report[key] == j[key], key
+    sun = g.gears["sun"]
+    assert sun.teeth == 16 and sun.outline_mm.shape[1] == 2
+    # the outline's radii lie between the root and tip circles of the report
+    r = (sun.outline_mm ** 2).sum(axis=1) ** 0.5
+    assert r.max() <= j["gears"]["sun"]["tip_radius_mm"] + 1e-9
+    assert r.min() >= j["gears"]["sun"]["root_radius_mm"] - 1e-9
+
+
+def test_contacts_equal_the_program_table():
+    p = run_cli("contacts", scene_path("paper_stage_runout.toml"), "--carrier-deg", 10)
+    rows = [line.split() for line in p.stdout.splitlines()
+            if line.startswith("  sun-planet") or line.startswith("  planet")]
+    c = epicycle.contacts(epicycle.Scene.load(scene_path("paper_stage_runout.toml")), 10.0)
+    assert len(rows) == len(c.mesh) > 6
+    for k, row in enumerate(rows):
+        assert row[:5] == [c.mesh[k], c.kind[k], c.flank[k], str(c.tooth[k]), str(c.mate[k])]
+        assert row[5:] == ["%.4f" % c.x_mm[k], "%.4f" % c.y_mm[k], "%.6f" % c.normal_x[k],
+                           "%.6f" % c.normal_y[k], "%.3f" % c.overlap_um[k],
+                           "%.3f" % c.arm_a_mm[k], "%.3f" % c.arm_b_mm[k],
+                           "%.3f" % c.curvature_radius_a_mm[k], "%.3f" % c.curvature_radius_b_mm[k]]
+
+
+def test_mesh_stiffness_equals_the_program_files(tmp_path):
+    out = tmp_path / "cli"
+    run_cli("stiffness", scene_path("iso_pair_20_40.toml"), "--positions", 12, "--out", out)
+    m = epicycle.mesh_stiffness(epicycle.Scene.load(scene_path("iso_pair_20_40.toml")),
+                                positions=12)
+    j = read_json(out / f"stiffness_{m.mesh}.json")
+    assert j["mean_mesh_stiffness_N_per_m"] == m.mean_stiffness_N_per_m
+    assert j["peak_single_pair_stiffness_N_per_mm_um"] == m.peak_pair_stiffness_N_per_mm_um
+    assert j["iso6336_c_gamma_alpha_N_per_mm_um"] == m.iso6336_c_gamma_alpha_N_per_mm_um
+    assert j["contact_ratio"] == m.contact_ratio
+    rows = read_csv(out / f"stiffness_{m.mesh}.csv")
+    p = m.pairs
+    assert len(rows) == len(p.force_N)
+    for k, row in enumerate(rows):
+        assert row["angle_deg"] == "%.6f" % p.angle_deg[k]
+        assert row["pair_teeth"] == f"{p.tooth1[k]}/{p.tooth2[k]}"
+        assert row["pair_force_N"] == num(p.force_N[k])
+        assert row["pair_stiffness_N_per_m"] == num(p.stiffness_N_per_m[k])
+        assert row["pair_share"] == num(p.share[k])
+    by_angle = {("%.6f" % a): (k, t) for a, k, t in
+                zip(m.angle_deg, m.stiffness_N_per_m, m.rotation_urad)}
+    for row in rows:
+        k, t = by_angle[row["angle_deg"]]
+        assert row["mesh_stiffness_N_per_m"] == num(k)
+        assert row["transmission_error_urad"] == num(t)
+
+
+def test_speed_sweep_equals_the_program_csv(tmp_path):
+    out = tmp_path / "cli"
+    run_cli("dynamic", scene_path("paper_stage.toml"), "--speed-sweep", "1000:3000:2",
+            "--window-cycles", 1, "--outputs-per-cycle", 8, "--threads", 2, "--quiet",
+            "--out", out)
+    rows = read_csv(out / "speed_sweep.csv")
+    s = epicycle.speed_sweep(epicycle.Scene.load(scene_path("paper_stage.toml")),
+                             epicycle.speed_grid(1000, 3000, 2), window_cycles=1,
+                             outputs_per_cycle=8, threads=2)
+    assert len(rows) == 2 and s.ok.all()
+    rows.sort(key=lambda row: int(row["index"]))
+    for k, row in enumerate(rows):
+        assert row["sun_speed_rpm"] == num(s.sun_speed_rpm[k])
+        assert row["mesh_frequency_Hz"] == num(s.mesh_frequency_Hz[k])
+        assert row["K_gamma"] == num(s.k_gamma[k])
+        assert row["dynamic_factor"] == num(s.dynamic_factor[k])
+        assert row["dynamic_factor_mesh"] == s.dynamic_factor_mesh[k]
+        assert row["peak_mesh_force_N"] == num(s.peak_mesh_force_N[k])
+        assert row["te_amplitude_urad"] == num(s.te_amplitude_urad[k])
+        assert row["sun_orbit_radius_um"] == num(s.sun_orbit_radius_um[k])
+        assert row["lsr_min"] == num(s.lsr_min[k]) and row["lsr_max"] == num(s.lsr_max[k])

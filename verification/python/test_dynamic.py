@@ -1,0 +1,80 @@
+"""The dynamic run, the natural modes and a speed sweep's plan through Python equal the program's
+files: `epicycle dynamic` over one mesh cycle of the paper's run-out case at 1500 rpm, to the
+printed digits of its CSV; `epicycle modes --json` exactly (JSON carries every digit)."""
+
+import epicycle
+from conftest import deg, num, read_csv, read_json, run_cli, scene_path
+
+
+def test_dynamic_run_equals_the_program_files(tmp_path):
+    out = tmp_path / "cli"
+    run_cli("dynamic", scene_path("paper_stage_runout.toml"), "--range", "cycle",
+            "--outputs-per-cycle", 12, "--quiet", "--out", out)
+    r = epicycle.dynamic(epicycle.Scene.load(scene_path("paper_stage_runout.toml")),
+                         range="cycle", outputs_per_cycle=12)
+    assert r.completed and r.outputs == 12 and r.sun_speed_rpm == 1500.0
+    steps = read_csv(out / "dynamic_steps.csv")
+    n = r.planets
+    assert len(steps) == len(r.time_s) == 12
+    for k, row in enumerate(steps):
+        assert row["time_s"] == num(r.time_s[k])
+        assert row["carrier_deg"] == deg(r.carrier_deg[k])
+        for i in range(n):
+            assert row[f"LSR_{i + 1}"] == num(r.lsr[k, i])
+            assert row[f"L_{i + 1}"] == num(r.load_sharing_factor[k, i])
+        for column, values in [("K_gamma", r.k_gamma), ("transmission_error_urad", r.te_urad),
+                               ("sun_x_um", r.sun_x_um), ("sun_y_um", r.sun_y_um),
+                               ("sun_torque_balance_Nm", r.sun_torque_balance_Nm),
+                               ("external_work_J", r.external_work_J),
+                               ("dissipated_work_J", r.dissipated_work_J),
+                               ("kinetic_energy_J", r.kinetic_energy_J),
+                               ("elastic_energy_J", r.elastic_energy_J),
+                               ("friction_power_W", r.friction_power_W)]:
+            assert row[column] == num(values[k]), column
+        assert row["contacts"] == str(r.contacts[k])
+        assert row["active_contacts"] == str(r.active_contacts[k])
+    pairs = read_csv(out / "dynamic_pairs.csv")
+    p = r.pairs
+    assert len(pairs) == len(p.time_s) > 12
+    for j, row in enumerate(pairs):
+        assert row["time_s"] == num(p.time_s[j])
+        assert (row["mesh"], row["kind"], row["flank"]) == (p.mesh[j], p.kind[j], p.flank[j])
+        assert row["teeth"] == f"{p.tooth_a[j]}/{p.tooth_b[j]}"
+        assert row["normal_force_N"] == num(p.normal_force_N[j])
+        assert row["elastic_force_N"] == num(p.elastic_force_N[j])
+        assert row["friction_force_N"] == num(p.friction_force_N[j])
+        assert row["overlap_rate_mm_per_s"] == num(p.overlap_rate_mm_per_s[j])
+    bearings = read_csv(out / "dynamic_bearings.csv")
+    for k, row in enumerate(bearings):
+        assert row["sun_Fx_N"] == num(r.sun_bearing_force_N[k, 0])
+        assert row["sun_Fy_N"] == num(r.sun_bearing_force_N[k, 1])
+    j = read_json(out / "dynamic_summary.json")
+    s = r.summary
+    assert j["K_gamma_max"] == s.k_gamma
+    assert j["transmission_error_peak_to_peak_urad"] == s.te_peak_to_peak_urad
+    assert j["sun_orbit_radius_max_um"] == s.orbit_radius_max_um
+    assert j["mesh_stiffness_sun_planet_N_per_m"] == r.mesh_stiffness_sun_planet_N_per_m
+    assert j["steps"] == r.stats.steps
+
+
+def test_modes_equal_the_program_json(tmp_path):
+    path = tmp_path / "modes.json"
+    run_cli("modes", scene_path("paper_stage.toml"), "--json", path)
+    j = read_json(path)
+    m = epicycle.modes(epicycle.Scene.load(scene_path("paper_stage.toml")))
+    assert len(j["modes"]) == len(m.frequency_Hz) >= 3
+    assert j["mesh_stiffness_sun_planet_N_per_m"] == m.mesh_stiffness_sun_planet_N_per_m
+    assert j["mesh_stiffness_planet_ring_N_per_m"] == m.mesh_stiffness_planet_ring_N_per_m
+    assert j["secant_mesh_stiffness_sun_planet_N_per_m"] == m.secant_mesh_stiffness_sun_planet_N_per_m
+    assert j["mesh_frequency_Hz_per_sun_rpm"] == m.mesh_hz_per_sun_rpm
+    for k, mode in enumerate(j["modes"]):
+        assert mode["frequency_Hz"] == m.frequency_Hz[k]
+        assert mode["multiplicity"] == m.multiplicity[k]
+        assert mode["type"] == m.type[k]
+        assert mode["central_translation_energy"] == m.central_translation_energy[k]
+        assert mode["central_rotation_energy"] == m.central_rotation_energy[k]
+        assert mode["planet_energy"] == m.planet_energy[k]
+        rpm = mode["sun_rpm_at_mesh_harmonics_1_2_3"]
+        assert rpm == [v for v in m.sun_rpm_at_mesh_harmonics_1_2_3[k] if v == v]
+        # a mode group's shapes: one column per mode of the group, one row per DOF
+        assert m.shapes[k].shape == (len(m.dofs), m.multiplicity[k])

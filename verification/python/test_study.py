@@ -1,0 +1,38 @@
+"""A tolerance study through Python gives the rows the program writes (`epicycle study
+--max-cases 4`: the first four cases of scenes/studies/pin_tolerance.toml), byte for byte."""
+
+import os
+
+import epicycle
+from conftest import SCENES, read_json, run_cli
+
+STUDY = os.path.join(SCENES, "studies", "pin_tolerance.toml")
+
+
+def test_study_rows_equal_the_program_rows(tmp_path):
+    out = tmp_path / "cli"
+    run_cli("study", STUDY, "--max-cases", 4, "--threads", 2, "--out", out)
+    with open(out / "study_rows.csv") as f:
+        lines = [line for line in f if not line.startswith("#")]
+    r = epicycle.study(STUDY, max_cases=4, threads=2)
+    assert lines[0] == r.header + "\n"
+    # the program appends rows as cases complete (threads): compared in case order
+    rows = sorted(lines[1:], key=lambda line: int(line.split(",")[0]))
+    assert rows == list(r.rows_csv) and len(r.rows_csv) == 4
+    assert list(r.case_id) == [0, 1, 2, 3] and r.ok.all()
+    assert r.values.shape == (4, len(r.columns))
+    # the row's numbers are the arrays' (the rows print them exactly)
+    k_gamma_column = r.header.split(",").index("K_gamma")
+    for k, line in enumerate(r.rows_csv):
+        assert float(line.split(",")[k_gamma_column]) == r.k_gamma[k]
+    j = read_json(out / "study_summary.json")
+    assert j["K_gamma"]["mean"] == r.summary.k_gamma.mean
+    assert j["K_gamma"]["max"] == r.summary.k_gamma.max
+    assert j["cases_in_file"] == r.summary.cases == 4
+
+
+def test_study_from_text_resolves_the_scene_beside_its_path():
+    with open(STUDY) as f:
+        text = f.read()
+    r = epicycle.study(STUDY, text=text.replace("samples = 200", "samples = 2"), threads=1)
+    assert r.cases == 2 and len(r.rows_csv) == 2
