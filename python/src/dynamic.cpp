@@ -56,12 +56,12 @@ ScenePtr AtSpeed(const ScenePtr& s, std::optional<double> sun_speed_rpm) {
 
 // The dynamic settings a run used: the one place the bindings read them (from the model the
 // library built from the scene).
-const dynamics::DynamicSettings& SettingsOf(const dynamics::StageDynamics& rig) {
+const transmission::DynamicSettings& SettingsOf(const dynamics::StageDynamics& rig) {
   return rig.model.settings();
 }
 
-std::string FrictionName(const dynamics::DynamicSettings& s) {
-  return dynamics::FrictionLawName(s.friction.law);
+std::string FrictionName(const transmission::DynamicSettings& s) {
+  return transmission::FrictionLawName(s.friction.law);
 }
 
 py::object StatsObject(const dynamics::SimulationStats& st) {
