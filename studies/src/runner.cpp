@@ -5,9 +5,9 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -19,6 +19,7 @@
 
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
@@ -258,12 +259,11 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
 
 ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
   ExistingRows out;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return out;
-  std::ostringstream buf;
-  buf << in.rdbuf();
-  const std::string text = buf.str();
-  in.close();
+  std::error_code none;
+  if (!std::filesystem::exists(path, none) && !std::filesystem::is_symlink(path, none)) return out;
+  // As every input: a regular file (a symlink to a device is refused, not read forever).
+  const std::string text = transmission::internal::ReadInputFile(
+      path, "study rows file (CSV)", std::numeric_limits<std::uintmax_t>::max());
   if (text.empty()) return out;
   // A last line without '\n' is a row (or header) the writer was killed in: cut it off.
   std::size_t complete = text.rfind('\n');

@@ -5,11 +5,11 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "epicycle/studies/study.hpp"
+#include "program_runs.hpp"
 
 namespace epicycle::test {
 
@@ -38,13 +38,6 @@ inline std::string StudyText(const std::string& study_keys, const std::string& r
 inline std::string WriteText(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
   return path;
-}
-
-inline std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 /// The message of the std::invalid_argument that ParseStudy throws for `text` ("" if none).
