@@ -65,6 +65,20 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   opt.backend = solvers::BackendFromName(a.backend);
   opt.threads = a.threads;
   opt.warm_start = !a.cold;
+  if (angles.size() > 10000) {
+    // Every result is kept until the summary: refuse a sweep the machine cannot hold now
+    // (estimated from the first position's result) before computing it.
+    try {
+      transmission::CheckSweepMemory(
+          transmission::SolvePosition(model, angles.front(), scene.loads, opt), angles.size(),
+          transmission::AvailableMemoryBytes());
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument((a.angles_deg.empty()
+                                       ? fmt::format("--positions = {}: ", a.positions)
+                                       : std::string("--angles-deg: ")) +
+                                  e.what());
+    }
+  }
 
   const char* sun_name = transmission::SunSupportName(setup.sun);
   std::printf("%s: %d planets, sun %s, input torque %.1f N m, back end %s\n", scene.name.c_str(), n,
