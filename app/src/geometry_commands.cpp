@@ -264,10 +264,10 @@ void RegisterGeometryCommands(CLI::App& app) {
     const transmission::Scene scene = transmission::ReadScene(contacts_scene);
     if (scene.kind == transmission::SceneKind::kPair) {
       PrintPairContacts(geometry::GearPair(scene.pair), contacts_deg, scene.gap_window);
-      return;
+    } else {
+      PrintContacts(Stage(scene.stage), contacts_deg, scene.gap_window);
     }
-    const Stage stage(scene.stage);
-    PrintContacts(stage, contacts_deg, scene.gap_window);
+    PrintWarnings(scene.warnings);
   });
 }
 
