@@ -65,10 +65,7 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
       report.resumed = static_cast<long>(existing.rows.size());
       report.dropped_partial = existing.dropped_partial;
       report.rows = std::move(existing.rows);
-      missing = internal::MissingCases(study, report.rows);
-      if (options.max_new_cases >= 0 &&
-          missing.size() > static_cast<std::size_t>(options.max_new_cases))
-        missing.resize(static_cast<std::size_t>(options.max_new_cases));
+      missing = internal::MissingCases(study, report.rows, options.max_new_cases);
       writer = std::make_unique<internal::RowWriter>(options.rows_file, study, options.comment,
                                                      existing.exists);
     } catch (...) {

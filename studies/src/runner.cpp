@@ -149,12 +149,19 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   return r;
 }
 
-std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows) {
-  std::vector<char> have(static_cast<std::size_t>(study.Cases()), 0);
-  for (const CaseRow& r : rows) have[static_cast<std::size_t>(r.id)] = 1;
+std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows,
+                               long limit) {
+  std::vector<long> have;
+  have.reserve(rows.size());
+  for (const CaseRow& r : rows) have.push_back(r.id);
+  std::sort(have.begin(), have.end());
   std::vector<long> missing;
-  for (long k = 0; k < study.Cases(); ++k)
-    if (!have[static_cast<std::size_t>(k)]) missing.push_back(k);
+  auto next = have.begin();
+  for (long k = 0; k < study.Cases(); ++k) {
+    if (limit >= 0 && static_cast<long>(missing.size()) >= limit) break;
+    while (next != have.end() && *next < k) ++next;
+    if (next == have.end() || *next != k) missing.push_back(k);
+  }
   return missing;
 }
 
@@ -317,7 +324,8 @@ RunReport RunStudy(const StudySpec& study, const RunOptions& options) {
   report.resumed = static_cast<long>(existing.rows.size());
   report.dropped_partial = existing.dropped_partial;
   report.rows = std::move(existing.rows);
-  const std::vector<long> missing = internal::MissingCases(study, report.rows);
+  const std::vector<long> missing =
+      internal::MissingCases(study, report.rows, options.max_new_cases);
   internal::RowWriter writer(options.rows_file, study, options.comment, existing.exists);
   if (!missing.empty() && options.max_new_cases != 0) {
     const auto t0 = std::chrono::steady_clock::now();
