@@ -287,6 +287,10 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
   while (std::getline(lines, line)) {
     ++number;
     const std::string where = path + ":" + std::to_string(number);
+    if (!line.empty() && line.back() == '\r')
+      throw std::invalid_argument(
+          where + ": the line ends in CR (carriage return): the file was converted to CRLF line "
+                  "ends after it was written; convert it back (dos2unix) to resume it");
     if (!header && line.rfind("# study ", 0) == 0) {
       if (line != internal::StudyLine(study))
         throw std::invalid_argument(where + ": the rows were written by another study ('" + line +

@@ -35,6 +35,15 @@ inline std::string StudyText(const std::string& study_keys, const std::string& r
          "/paper_stage.toml\"\n" + study_keys + "\n" + rest;
 }
 
+/// The study of tangential pin-hole errors σ = 5 µm on every planet of the paper's stage, with
+/// `keys` of its [study] table ("seed = 3\nsamples = 2\npositions = 4").
+inline studies::StudySpec PinStudy(const std::string& keys) {
+  return studies::ParseStudy(StudyText(keys,
+                                       "[[variable]]\nquantity = \"pin_tangential\"\ngear = "
+                                       "\"planets\"\ndistribution = \"normal\"\nsigma_um = 5.0\n"),
+                             "pins.toml", "");
+}
+
 inline std::string WriteText(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
   return path;

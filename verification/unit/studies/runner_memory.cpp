@@ -26,11 +26,7 @@ long PeakRssKb() {
 TEST_CASE("a partial run of a study of 1e9 samples computes and lists only its cases",
           "[unit][studies]") {
   test::TempDir dir("study-huge");
-  const studies::StudySpec study = studies::ParseStudy(
-      test::StudyText("seed = 3\nsamples = 1000000000\npositions = 4",
-                      "[[variable]]\nquantity = \"pin_tangential\"\ngear = \"planets\"\n"
-                      "distribution = \"normal\"\nsigma_um = 5.0\n"),
-      "huge.toml", "");
+  const studies::StudySpec study = test::PinStudy("seed = 3\nsamples = 1000000000\npositions = 4");
   REQUIRE(study.Cases() == 1000000000L);
   studies::RunOptions o;
   o.rows_file = dir.File("rows.csv");
