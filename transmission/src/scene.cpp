@@ -344,7 +344,9 @@ void ReadErrors(TableReader& e, Scene& s, std::vector<ErrorKey>* keys) {
     const Rule rule = ErrorRule(GearOf(st, i).module);
     ro.amplitude = r.Real("amplitude_um", Rule::Closed(0, rule.hi).Because(rule.why)) * kUm;
     keep(r, "amplitude_um", ro.amplitude, i);
-    ro.phase = geometry::Rad(r.RealOr("phase_deg", 0.0, Rule::Any()));
+    ro.phase = geometry::Rad(
+        r.RealOr("phase_deg", 0.0,
+                 Rule::Closed(-360, 360).Because("an angle of the gear: one turn either way")));
     if (i == -1) {
       st.sun_runout = ro;
     } else if (i == -2) {

@@ -55,6 +55,9 @@ const std::vector<Case> kCases = {
     {"ring_smaller_than_sun.toml",
      false,
      {"ring.teeth = 10", "must be in [60, 68]", "z_sun + 2 z_planet = 64"}},
+    {"runout_phase_1e300.toml",
+     false,
+     {"errors.runout[0].phase_deg = 1e+300", "must be in [-360, 360]", "one turn either way"}},
     // A second error table of a kind for the same gear: refused, naming both tables' lines.
     {"duplicate_runout.toml",
      false,
