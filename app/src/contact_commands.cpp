@@ -20,6 +20,7 @@
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/solvers/performance_profile.hpp"
 #include "epicycle/transmission/scene.hpp"
+#include "options.hpp"
 
 namespace epicycle::app {
 namespace {
@@ -373,7 +374,7 @@ void RegisterContactCommands(CLI::App& app) {
   solve->add_option("file", s_file, "problem file (JSON)")->required();
   solve->add_option("--backend", s_backend,
                     "newton, ipopt, nlopt-slsqp, nlopt-lbfgs, nlopt-auglag");
-  solve->add_option("--tol", s_tol, "tolerance on the nondimensional residual");
+  AddNumber(solve, "--tol", s_tol, "tolerance on the nondimensional residual", kContactTolerance);
   solve->add_flag("--polish", s_polish, "labelled active-set polish step after the raw solve");
   solve->add_option("--option", s_kv, "back-end option KEY=VALUE (e.g. newton.ls_beta=0.5)");
   solve->callback([] { SolveCommand(s_file, s_backend, s_tol, s_polish, s_kv); });
@@ -388,9 +389,10 @@ void RegisterContactCommands(CLI::App& app) {
   compare->add_option("--csv", c_csv, "write one row per (back end, problem)");
   compare->add_option("--svg-prefix", c_svg,
                       "write PREFIX_profile.svg and PREFIX_error_vs_time.svg");
-  compare->add_option("--tol", c_tol, "tolerance on the nondimensional residual");
-  compare->add_option("--repeat", c_repeat,
-                      "solves per (back end, problem); the median time is reported");
+  AddNumber(compare, "--tol", c_tol, "tolerance on the nondimensional residual", kContactTolerance);
+  AddNumber(compare, "--repeat", c_repeat,
+            "solves per (back end, problem); the median time is reported",
+            {1, 1000, false, true, "", ""});
   compare->add_option("--markdown", c_markdown,
                       "write the summary table as markdown (tools/update_solver_docs.sh puts it "
                       "into docs/solvers.md)");
@@ -402,7 +404,8 @@ void RegisterContactCommands(CLI::App& app) {
   static double st_tol = 1e-10;
   stability->add_option("dir", st_dir, "collection directory (verification/data/contact)")
       ->required();
-  stability->add_option("--tol", st_tol, "tolerance on the nondimensional residual");
+  AddNumber(stability, "--tol", st_tol, "tolerance on the nondimensional residual",
+            kContactTolerance);
   stability->callback([] { StabilityCommand(st_dir, st_tol); });
 }
 

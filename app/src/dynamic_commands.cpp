@@ -24,6 +24,7 @@
 #include "epicycle/dynamics/summary.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "options.hpp"
 #include "speed_sweep_command.hpp"
 
 namespace epicycle::app {
@@ -35,35 +36,23 @@ using json = nlohmann::json;
 struct DynamicArgs {
   std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out",
                      range = "planet", sun, friction, cache, speed_sweep;
-  double speed_rpm = 0, time = 0, rtol = 1e-6, start_deg = 0, window_cycles = 0;
-  std::optional<double> rate_scale, contact_tol;  // not given: the library's defaults
+  double rtol = 1e-6, start_deg = 0, window_cycles = 0;
+  // Not given: the scene's speed, the range's duration, the library's defaults.
+  std::optional<double> speed_rpm, time, rate_scale, contact_tol;
   int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0;
   bool no_cache = false, quiet = false, fd_jacobian = false;
 };
 
 void RunDynamic(const DynamicArgs& a) {
   transmission::Scene input = StageScene(a.scene, a.sun, "dynamic");
-  if (!a.speed_sweep.empty() && (a.speed_rpm != 0 || a.time > 0))
+  if (!a.speed_sweep.empty() && (a.speed_rpm || a.time))
     throw std::invalid_argument("--speed-sweep = " + a.speed_sweep +
                                 ": runs its own speeds and windows; give it without --speed-rpm "
                                 "and --time");
   if (a.speed_sweep.empty() && (a.threads != 0 || a.window_cycles != 0))
     throw std::invalid_argument("--threads and --window-cycles belong to --speed-sweep");
   if (!a.speed_sweep.empty()) ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
-  if (a.rate_scale && !(*a.rate_scale >= 0 && std::isfinite(*a.rate_scale)))
-    throw std::invalid_argument(
-        fmt::format("--rate-scale = {}: must be finite and >= 0 [1/s] (0: the stage's highest "
-                    "linearised natural frequency)",
-                    *a.rate_scale));
-  if (a.contact_tol && !(*a.contact_tol >= 1e-14 && *a.contact_tol <= 1e-2))
-    throw std::invalid_argument(
-        fmt::format("--contact-tol = {}: must be in [1e-14, 1e-2] (a nondimensional residual)",
-                    *a.contact_tol));
-  if (a.speed_rpm != 0) {
-    if (!(a.speed_rpm > 0) || !std::isfinite(a.speed_rpm))
-      throw std::invalid_argument(fmt::format("--speed-rpm = {}: must be > 0", a.speed_rpm));
-    input.dynamics.sun_speed = a.speed_rpm * std::numbers::pi / 30.0;
-  }
+  if (a.speed_rpm) input.dynamics.sun_speed = *a.speed_rpm * std::numbers::pi / 30.0;
   if (!a.friction.empty())
     input.dynamics.friction.law = transmission::FrictionLawFromName(a.friction);
   const auto t0 = std::chrono::steady_clock::now();
@@ -101,9 +90,9 @@ void RunDynamic(const DynamicArgs& a) {
     RunSpeedSweep(s, rig, opt);
     return;
   }
-  const dynamics::RunSpan span =
-      dynamics::MakeRunSpan(stage, model.carrier_speed(), transmission::RunRangeFromName(a.range),
-                            a.time, a.outputs_per_cycle > 0 ? a.outputs_per_cycle : 20);
+  const dynamics::RunSpan span = dynamics::MakeRunSpan(
+      stage, model.carrier_speed(), transmission::RunRangeFromName(a.range), a.time.value_or(0.0),
+      a.outputs_per_cycle > 0 ? a.outputs_per_cycle : 20);
   const double duration = span.duration, mesh_hz = span.mesh_frequency;
   const int outputs = span.outputs;
   const char* sun_name = transmission::SunSupportName(stage_model.setup().sun);
@@ -316,14 +305,16 @@ void RegisterDynamicCommands(CLI::App& app) {
   cmd->add_option("scene", a.scene, "Scene file (TOML) of a stage")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--speed-rpm", a.speed_rpm,
-                  "Sun speed [rpm] (default: the scene's [dynamics] sun_speed_rpm, else 1500)");
+  AddNumber(cmd, "--speed-rpm", a.speed_rpm,
+            "Sun speed [rpm] (default: the scene's [dynamics] sun_speed_rpm, else 1500)",
+            kSunSpeedRpm);
   cmd->add_option("--range", a.range,
                   "Simulate one mesh cycle, one planet revolution relative to the carrier, or "
                   "one carrier revolution")
       ->check(CLI::IsMember({"cycle", "planet", "revolution"}));
-  cmd->add_option("--time", a.time, "Simulate this long instead [s]")->check(CLI::PositiveNumber);
-  cmd->add_option("--start-deg", a.start_deg, "Carrier angle at t = 0 [deg]");
+  AddNumber(cmd, "--time", a.time, "Simulate this long instead [s]",
+            {0, 3600, true, false, "[s]", "an hour of motion"});
+  AddNumber(cmd, "--start-deg", a.start_deg, "Carrier angle at t = 0 [deg]", kAngleDeg);
   cmd->add_option("--sun", a.sun, "Override the scene's sun support")
       ->check(CLI::IsMember({"fixed", "floating"}));
   cmd->add_option("--friction", a.friction, "Override the scene's friction law")
@@ -331,34 +322,35 @@ void RegisterDynamicCommands(CLI::App& app) {
   cmd->add_option("--backend", a.backend, "Contact back end (newton, ipopt, nlopt-lbfgs, ...)");
   cmd->add_option("--integrator", a.integrator, "cvode-bdf (default) or arkode-erk")
       ->check(CLI::IsMember({"cvode-bdf", "arkode-erk"}));
-  cmd->add_option("--rtol", a.rtol, "Relative tolerance of the integrator")
-      ->check(CLI::Range(1e-12, 0.1));
-  cmd->add_option("--rate-scale", a.rate_scale,
-                  "Absolute tolerance of the rates = that of the positions times this [1/s] "
-                  "(default 1e4; 0: the stage's highest linearised natural frequency; "
-                  "docs/dynamic.md, Error against run time)");
-  cmd->add_option(
-      "--contact-tol", a.contact_tol,
-      "Tolerance of every contact solve on its nondimensional residual (default 1e-10)");
-  cmd->add_option("--outputs-per-cycle", a.outputs_per_cycle,
-                  "Output steps per mesh cycle (default 20; 64 in a speed sweep's window)")
-      ->check(CLI::Range(1, 100000));
+  AddNumber(cmd, "--rtol", a.rtol, "Relative tolerance of the integrator",
+            {1e-12, 0.1, false, false, "", ""});
+  AddNumber(
+      cmd, "--rate-scale", a.rate_scale,
+      "Absolute tolerance of the rates = that of the positions times this [1/s] "
+      "(default 1e4; 0: the stage's highest linearised natural frequency; "
+      "docs/dynamic.md, Error against run time)",
+      {0, 1e12, false, false, "[1/s]", "0: the stage's highest linearised natural frequency"});
+  AddNumber(cmd, "--contact-tol", a.contact_tol,
+            "Tolerance of every contact solve on its nondimensional residual (default 1e-10)",
+            {1e-14, 1e-2, false, false, "", "a nondimensional residual"});
+  AddNumber(cmd, "--outputs-per-cycle", a.outputs_per_cycle,
+            "Output steps per mesh cycle (default 20; 64 in a speed sweep's window)",
+            {1, 1e5, false, true, "", ""});
   cmd->add_option("--speed-sweep", a.speed_sweep,
                   "FROM:TO:N: run N sun speeds [rpm] from FROM to TO (ends included) in parallel; "
                   "per speed K_gamma, dynamic factor, TE amplitude, sun orbit, against speed with "
                   "the mesh-harmonic coincidences of the natural frequencies (--range or "
                   "--window-cycles: the measured window; --start-deg: where it begins)");
-  cmd->add_option("--window-cycles", a.window_cycles,
-                  "Speed sweep: mesh cycles measured per speed (replaces --range)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option(
-         "--harmonics", a.harmonics,
-         "Speed sweep: mark coincidences of mesh harmonics 1..N (default 0: every one in range)")
-      ->check(CLI::Range(1, 100));
-  cmd->add_option("--threads", a.threads, "Speed sweep: worker threads (default: every core)")
-      ->check(CLI::Range(1, 1024));
-  cmd->add_option("--max-order", a.max_order, "Largest BDF order of CVODE (1..5)")
-      ->check(CLI::Range(1, 5));
+  AddNumber(cmd, "--window-cycles", a.window_cycles,
+            "Speed sweep: mesh cycles measured per speed (replaces --range)",
+            {0, 1e5, true, false, "", ""});
+  AddNumber(cmd, "--harmonics", a.harmonics,
+            "Speed sweep: mark coincidences of mesh harmonics 1..N (default: every one in range)",
+            {1, 100, false, true, "", ""});
+  AddNumber(cmd, "--threads", a.threads, "Speed sweep: worker threads (default: every core)",
+            kThreads);
+  AddNumber(cmd, "--max-order", a.max_order, "Largest BDF order of CVODE (1..5)",
+            {1, 5, false, true, "", ""});
   cmd->add_flag("--fd-jacobian", a.fd_jacobian,
                 "CVODE's finite-difference Jacobian instead of the contact sensitivity");
   cmd->add_option("--out", a.out, "Output folder (CSV, JSON, SVG)");

@@ -13,6 +13,7 @@
 #include "epicycle/report/geometry_json.hpp"
 #include "epicycle/report/stage_svg.hpp"
 #include "epicycle/transmission/scene.hpp"
+#include "options.hpp"
 
 namespace epicycle::app {
 
@@ -181,13 +182,14 @@ void RegisterGeometryCommands(CLI::App& app) {
   geo->add_option("scene", scene_path, "Scene file (TOML)")->required()->check(CLI::ExistingFile);
   geo->add_option("--json", json_path, "Also write the report as JSON (keys: docs/geometry.md)");
   geo->add_option("--svg", svg_path, "Draw the stage as SVG");
-  geo->add_option("--carrier-deg", carrier_deg,
-                  "Carrier angle of the drawing [deg] (gear pairs: gear 1's turn)");
+  AddNumber(geo, "--carrier-deg", carrier_deg,
+            "Carrier angle of the drawing [deg] (gear pairs: gear 1's turn)", kAngleDeg);
   geo->add_option("--zoom", zoom_mesh,
                   "Draw one tooth pair of this mesh instead (sun-planet<i>, planet<i>-ring; a "
                   "pair scene: gear1-gear2, its default): undercut, form circles, relief");
-  geo->add_option("--relief-scale", relief_scale,
-                  "Magnification of the relief in the zoom drawing [-] (default 200)");
+  AddNumber(geo, "--relief-scale", relief_scale,
+            "Magnification of the relief in the zoom drawing [-] (default 200)",
+            {0, 1e4, true, false, "", ""});
   geo->callback([] {
     const transmission::Scene scene = transmission::ReadScene(scene_path);
     if (scene.kind == transmission::SceneKind::kPair) {
@@ -255,16 +257,17 @@ void RegisterGeometryCommands(CLI::App& app) {
   con->add_option("scene", contacts_scene, "Scene file (TOML)")
       ->required()
       ->check(CLI::ExistingFile);
-  con->add_option("--carrier-deg", contacts_deg, "Carrier angle [deg] (gear pairs: gear 1's turn)")
+  AddNumber(con, "--carrier-deg", contacts_deg, "Carrier angle [deg] (gear pairs: gear 1's turn)",
+            kAngleDeg)
       ->required();
   con->callback([] {
     const transmission::Scene scene = transmission::ReadScene(contacts_scene);
     if (scene.kind == transmission::SceneKind::kPair) {
       PrintPairContacts(geometry::GearPair(scene.pair), contacts_deg, scene.gap_window);
-      return;
+    } else {
+      PrintContacts(Stage(scene.stage), contacts_deg, scene.gap_window);
     }
-    const Stage stage(scene.stage);
-    PrintContacts(stage, contacts_deg, scene.gap_window);
+    PrintWarnings(scene.warnings);
   });
 }
 

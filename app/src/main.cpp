@@ -47,8 +47,9 @@ int main(int argc, char** argv) {
   // The printed report is a result too: one that could not be written is a failure.
   errno = 0;
   if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    // errno is the flush's; an earlier write that failed left only the stream's error flag.
     std::fprintf(stderr, "epicycle: failed: standard output: cannot be written: %s\n",
-                 std::strerror(errno));
+                 errno != 0 ? std::strerror(errno) : "an earlier write failed");
     return 1;
   }
   return 0;

@@ -20,6 +20,7 @@
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
+#include "options.hpp"
 
 namespace epicycle::app {
 
@@ -64,6 +65,20 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   opt.backend = solvers::BackendFromName(a.backend);
   opt.threads = a.threads;
   opt.warm_start = !a.cold;
+  if (angles.size() > 10000) {
+    // Every result is kept until the summary: refuse a sweep the machine cannot hold now
+    // (estimated from the first position's result) before computing it.
+    try {
+      transmission::CheckSweepMemory(
+          transmission::SolvePosition(model, angles.front(), scene.loads, opt), angles.size(),
+          transmission::AvailableMemoryBytes());
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument((a.angles_deg.empty()
+                                       ? fmt::format("--positions = {}: ", a.positions)
+                                       : std::string("--angles-deg: ")) +
+                                  e.what());
+    }
+  }
 
   const char* sun_name = transmission::SunSupportName(setup.sun);
   std::printf("%s: %d planets, sun %s, input torque %.1f N m, back end %s\n", scene.name.c_str(), n,
@@ -178,21 +193,21 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
   cmd->add_option("scene", a.scene, "Scene file (TOML) of a stage")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--positions", a.positions,
-                  "Positions of the sweep (default 36 over a mesh cycle, 360 otherwise)")
-      ->check(CLI::Range(1, 1000000));
+  AddNumber(cmd, "--positions", a.positions,
+            "Positions of the sweep (default 36 over a mesh cycle, 360 otherwise)",
+            {1, 1e6, false, true, "", ""});
   cmd->add_option("--range", a.range,
                   "Sweep one mesh cycle, one planet revolution relative to the carrier (the "
                   "period of a planet's run-out), or one carrier revolution")
       ->check(CLI::IsMember({"cycle", "planet", "revolution"}));
-  cmd->add_option("--start-deg", a.start_deg, "Carrier angle of the first position [deg]");
-  cmd->add_option("--angles-deg", a.angles_deg, "A given list of carrier angles [deg]");
+  AddNumber(cmd, "--start-deg", a.start_deg, "Carrier angle of the first position [deg]",
+            kAngleDeg);
+  AddNumber(cmd, "--angles-deg", a.angles_deg, "A given list of carrier angles [deg]", kAngleDeg);
   cmd->add_option("--sun", a.sun, "Override the scene's sun support")
       ->check(CLI::IsMember({"fixed", "floating"}));
-  cmd->add_option("--threads", a.threads,
-                  "Worker threads: the positions in contiguous chunks, one per thread (0: one "
-                  "per core)")
-      ->check(CLI::Range(0, 4096));
+  AddNumber(cmd, "--threads", a.threads,
+            "Worker threads: the positions in contiguous chunks, one per thread (0: one per core)",
+            kThreadsOrZero);
   cmd->add_flag("--cold", a.cold,
                 "Start every position from its kinematic poses and zero forces (no warm start "
                 "from the neighbour)");

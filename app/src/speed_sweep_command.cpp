@@ -17,6 +17,7 @@
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/run_range.hpp"
+#include "options.hpp"
 
 namespace epicycle::app {
 
@@ -40,10 +41,10 @@ std::vector<double> ParseSpeedSweep(const std::string& spec) {
     throw std::invalid_argument("--speed-sweep = " + spec + ": " + rule);
   double from = 0, to = 0;
   long n = 0;
+  const std::string f = spec.substr(0, a), t = spec.substr(a + 1, b - a - 1),
+                    c = spec.substr(b + 1);
   try {
     std::size_t used = 0;
-    const std::string f = spec.substr(0, a), t = spec.substr(a + 1, b - a - 1),
-                      c = spec.substr(b + 1);
     from = std::stod(f, &used);
     if (used != f.size()) throw std::invalid_argument(f);
     to = std::stod(t, &used);
@@ -53,6 +54,12 @@ std::vector<double> ParseSpeedSweep(const std::string& spec) {
   } catch (const std::logic_error&) {
     throw std::invalid_argument("--speed-sweep = " + spec + ": " + rule);
   }
+  if (!kSunSpeedRpm.Holds(from))
+    throw std::invalid_argument("--speed-sweep = " + spec + ": FROM = " + f + ": " +
+                                kSunSpeedRpm.Describe());
+  if (!kSunSpeedRpm.Holds(to))
+    throw std::invalid_argument("--speed-sweep = " + spec + ": TO = " + t + ": " +
+                                kSunSpeedRpm.Describe());
   if (n > 100000)
     throw std::invalid_argument("--speed-sweep = " + spec + ": N = " + std::to_string(n) +
                                 ": must be <= 100000");

@@ -16,6 +16,7 @@
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/validity.hpp"
+#include "options.hpp"
 
 namespace epicycle::app {
 
@@ -64,7 +65,8 @@ void RunStiffness(const StiffnessArgs& a) {
             "transmission_error_urad,approach_um,total_force_N,pairs,"
             "pair_teeth,pair_kind,pair_force_N,pair_stiffness_N_per_m,pair_share,message\n");
   const double b = std::min(pair.gear1().spec().face_width, pair.gear2().spec().face_width);
-  const auto result = transmission::ComputeMeshStiffness(setup, pair, compliance, opt, [&](const transmission::MeshSample& s) {
+  const auto result = transmission::ComputeMeshStiffness(
+      setup, pair, compliance, opt, [&](const transmission::MeshSample& s) {
         // One row per loaded tooth pair (the mesh columns repeat), written as computed.
         const std::string head = fmt::format(
             "{:.6f},{},{},{},{},{},{},{}", geometry::Deg(s.angle), s.converged ? 1 : 0,
@@ -149,12 +151,11 @@ void RegisterStiffnessCommands(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--mesh", a.mesh, "Mesh of a stage: sun-planet1, planet1-ring, ...");
-  cmd->add_option("--positions", a.positions, "Positions over one mesh cycle")
-      ->check(CLI::Range(2, 100000));
-  cmd->add_option("--threads", a.threads,
-                  "Worker threads: the positions in contiguous chunks, one per thread (0: one "
-                  "per core)")
-      ->check(CLI::Range(0, 4096));
+  AddNumber(cmd, "--positions", a.positions, "Positions over one mesh cycle",
+            {2, 1e5, false, true, "", ""});
+  AddNumber(cmd, "--threads", a.threads,
+            "Worker threads: the positions in contiguous chunks, one per thread (0: one per core)",
+            kThreadsOrZero);
   cmd->add_option("--backend", a.backend, "Contact back end (newton, ipopt, nlopt-slsqp, ...)");
   cmd->add_option("--out", a.out, "Output folder (CSV, SVG, JSON)");
   cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");

@@ -18,6 +18,7 @@
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "options.hpp"
 
 namespace epicycle::app {
 
@@ -170,11 +171,10 @@ void RegisterStudyCommands(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", a.out, "Output folder (rows CSV, summary JSON, SVG); a re-run resumes");
-  cmd->add_option("--threads", a.threads, "Worker threads (default: every core)")
-      ->check(CLI::Range(1, 4096));
-  cmd->add_option("--max-cases", a.max_cases,
-                  "Compute at most this many new cases, then summarise (a partial run)")
-      ->check(CLI::Range(0L, 1000000000L));
+  AddNumber(cmd, "--threads", a.threads, "Worker threads (default: every core)", kThreads);
+  AddNumber(cmd, "--max-cases", a.max_cases,
+            "Compute at most this many new cases, then summarise (a partial run)",
+            {0, 1e9, false, true, "", ""});
   cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");
   cmd->add_flag("--no-cache", a.no_cache, "Build the influence tables in memory only");
   cmd->add_flag("--quiet", a.quiet, "No progress bar");

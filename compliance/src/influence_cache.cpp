@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -185,6 +186,7 @@ void Write(const std::string& file, std::uint64_t key, const InfluenceTable& tab
   const std::string tmp =
       file + "." + std::to_string(::getpid()) + "." + std::to_string(counter.fetch_add(1)) + ".tmp";
   {
+    errno = 0;
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     const std::uint32_t format = kInfluenceTableFormat;
     const std::uint64_t size = payload.size(), checksum = h.hash();
@@ -195,12 +197,18 @@ void Write(const std::string& file, std::uint64_t key, const InfluenceTable& tab
     out.write(payload.data(), static_cast<std::streamsize>(payload.size()));
     out.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
     out.close();
-    if (!out) throw std::runtime_error("influence-table cache: cannot write '" + tmp + "'");
+    if (!out) {
+      const std::string reason = errno != 0 ? std::strerror(errno) : "the stream failed";
+      std::error_code ignored;
+      std::filesystem::remove(tmp, ignored);
+      throw std::runtime_error("influence-table cache: cannot write '" + tmp + "': " + reason);
+    }
   }
   std::error_code error;
   std::filesystem::rename(tmp, file, error);
   if (error) {
-    std::filesystem::remove(tmp, error);
+    std::error_code ignored;  // the rename's reason is the one to report
+    std::filesystem::remove(tmp, ignored);
     throw std::runtime_error("influence-table cache: cannot rename '" + tmp + "' to '" + file +
                              "': " + error.message());
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -34,8 +35,17 @@ RunSpan MakeRunSpan(const geometry::Stage& stage, double carrier_speed,
                    ? s.cycle_time
                    : transmission::CarrierSpan(stage, range) / wc;
   s.mesh_frequency = stage.ring().teeth() * wc / (2.0 * std::numbers::pi);
-  s.outputs =
-      std::max(1, static_cast<int>(std::ceil(s.duration / s.cycle_time * outputs_per_cycle)));
+  const double outputs = std::ceil(s.duration / s.cycle_time * outputs_per_cycle);
+  if (!(outputs <= kMaxRunOutputs)) {
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "run span: %.4g s of %.4g s mesh cycles at %d outputs per cycle is %.4g output "
+                  "steps: more than the %d a run may have (every step is kept for the summary "
+                  "and written); shorten the run or give fewer outputs per cycle",
+                  s.duration, s.cycle_time, outputs_per_cycle, outputs, kMaxRunOutputs);
+    throw std::invalid_argument(text);
+  }
+  s.outputs = std::max(1, static_cast<int>(outputs));
   return s;
 }
 

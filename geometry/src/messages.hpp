@@ -14,6 +14,13 @@ inline std::string Num(double v) {
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
 }
+/// A number printed with 10 significant digits: a value whose fault is a small departure (an
+/// angle 1e-4 deg off a whole assembly) shows it.
+inline std::string Precise(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
 /// A length [m] printed in millimetres.
 inline std::string Mm(double metres) { return Num(metres * 1e3); }
 
@@ -36,5 +43,6 @@ namespace epicycle::geometry {
 using internal::Fail;
 using internal::Mm;
 using internal::Num;
+using internal::Precise;
 using internal::RequirePositive;
 }  // namespace epicycle::geometry

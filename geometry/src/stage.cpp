@@ -172,8 +172,8 @@ void Stage::CheckAssembly() {
     const double psi = spec_.planet_angles[i];
     const double teeth = zsum * psi / (2.0 * kPi);
     if (std::abs(teeth - std::round(teeth)) > 1e-9) {
-      Fail("stage", "planet_angles_deg[" + std::to_string(i) + "]", Num(Deg(psi)),
-           "the planet cannot be assembled: (z_sun + z_ring)·ψ/360° = " + Num(teeth) +
+      Fail("stage", "planet_angles_deg[" + std::to_string(i) + "]", Precise(Deg(psi)),
+           "the planet cannot be assembled: (z_sun + z_ring)·ψ/360° = " + Precise(teeth) +
                " is not whole; the nearest angle that is: " +
                Num(std::round(teeth) * 360.0 / zsum) + "°");
     }

@@ -1,5 +1,8 @@
 #include "epicycle/report/files.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -48,14 +51,20 @@ void WriteTextFile(const std::string& path, std::string_view text) {
   if (std::fclose(f) != 0) Fail(path, "cannot be written");
 }
 
-CsvFile::CsvFile(std::string path) : path_(std::move(path)) {
+CsvFile::CsvFile(std::string path, std::string_view head) : path_(std::move(path)) {
   errno = 0;
-  file_ = std::fopen(path_.c_str(), "wb");
-  if (!file_) Fail(path_, "cannot be written");
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd_ < 0) Fail(path_, "cannot be written");
+  try {
+    Write(head);
+  } catch (...) {
+    ::close(fd_);
+    throw;
+  }
 }
 
 CsvFile::~CsvFile() {
-  if (file_) std::fclose(file_);
+  if (fd_ >= 0) ::close(fd_);
 }
 
 void CsvFile::WriteLine(std::string_view line) {
@@ -67,19 +76,30 @@ void CsvFile::WriteLine(std::string_view line) {
 }
 
 void CsvFile::Write(std::string_view lines) {
-  if (!file_) {
+  if (fd_ < 0) {
     errno = EBADF;
     Fail(path_, "written after it was closed");
   }
-  WriteAll(file_, path_, lines);
+  // One write(2) for all the lines (a regular file takes them whole); a short write (a full
+  // disk) is continued once more to get the system's reason.
+  while (!lines.empty()) {
+    errno = 0;
+    const ssize_t n = ::write(fd_, lines.data(), lines.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      if (n == 0) errno = EIO;
+      Fail(path_, "cannot be written");
+    }
+    lines.remove_prefix(static_cast<std::size_t>(n));
+  }
 }
 
 void CsvFile::Close() {
-  if (!file_) return;
-  std::FILE* f = file_;
-  file_ = nullptr;
+  if (fd_ < 0) return;
+  const int fd = fd_;
+  fd_ = -1;
   errno = 0;
-  if (std::fclose(f) != 0) Fail(path_, "cannot be closed");
+  if (::close(fd) != 0) Fail(path_, "cannot be closed");
 }
 
 }  // namespace epicycle::report

@@ -168,11 +168,11 @@ void WriteQuasiStaticPlots(const std::string& base, const std::string& scene_nam
           scene_name + ": sun centre path", "_sun_path.svg");
 }
 
-DynamicRunFiles::DynamicRunFiles(const std::string& base, const nlohmann::json& provenance,
-                                 int planets)
-    : steps_(base + "_steps.csv"), pairs_(base + "_pairs.csv"), bearings_(base + "_bearings.csv") {
-  const std::string p = ProvenanceCsvLine(provenance);
-  std::string steps = p + "time_s,carrier_deg";
+namespace {
+
+// The first lines (provenance, columns) of a dynamic run's files.
+std::string DynamicStepsHead(const std::string& provenance_line, int planets) {
+  std::string steps = provenance_line + "time_s,carrier_deg";
   for (int i = 1; i <= planets; ++i) steps += ",LSR_" + std::to_string(i);
   for (int i = 1; i <= planets; ++i) steps += ",L_" + std::to_string(i);
   steps +=
@@ -180,14 +180,28 @@ DynamicRunFiles::DynamicRunFiles(const std::string& base, const nlohmann::json& 
       "external_work_J,dissipated_work_J,kinetic_energy_J,elastic_energy_J,contacts,"
       "active_contacts,friction_power_W";
   for (int i = 1; i <= planets; ++i) steps += ",LSR_force_" + std::to_string(i);
-  steps_.Write(steps + "\n");
-  pairs_.Write(p +
-               "time_s,mesh,kind,flank,teeth,normal_force_N,elastic_force_N,friction_force_N,"
-               "overlap_rate_mm_per_s\n");
-  std::string bearings = p + "time_s,sun_Fx_N,sun_Fy_N";
-  for (int i = 1; i <= planets; ++i) bearings += fmt::format(",planet{0}_Fx_N,planet{0}_Fy_N", i);
-  bearings_.Write(bearings + "\n");
+  return steps + "\n";
 }
+
+std::string DynamicBearingsHead(const std::string& provenance_line, int planets) {
+  std::string bearings = provenance_line + "time_s,sun_Fx_N,sun_Fy_N";
+  for (int i = 1; i <= planets; ++i) bearings += fmt::format(",planet{0}_Fx_N,planet{0}_Fy_N", i);
+  return bearings + "\n";
+}
+
+}  // namespace
+
+// Created in the order of a step's writes (pairs, bearings, steps), each with its head at once:
+// once the steps file has its head, every file has.
+DynamicRunFiles::DynamicRunFiles(const std::string& base, const nlohmann::json& provenance,
+                                 int planets)
+    : pairs_(base + "_pairs.csv",
+             ProvenanceCsvLine(provenance) +
+                 "time_s,mesh,kind,flank,teeth,normal_force_N,elastic_force_N,friction_force_N,"
+                 "overlap_rate_mm_per_s\n"),
+      bearings_(base + "_bearings.csv",
+                DynamicBearingsHead(ProvenanceCsvLine(provenance), planets)),
+      steps_(base + "_steps.csv", DynamicStepsHead(ProvenanceCsvLine(provenance), planets)) {}
 
 void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
   const dynamics::Evaluation& e = s.evaluation;
@@ -203,7 +217,6 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
                        Num(s.dissipated_work), Num(e.kinetic_energy), Num(e.elastic_energy),
                        e.terms.size(), active, Num(e.friction_power));
   steps += Cells(s.force_sharing);
-  steps_.WriteLine(steps);
   std::string pairs;
   for (int j = 0; j < e.terms.size(); ++j) {
     if (!(e.total_force(j) > 0)) continue;
@@ -214,14 +227,17 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
                          Num(e.total_force(j)), Num(e.force(j)), Num(e.friction(j)),
                          Num(e.overlap_rate(j) * 1e3));
   }
-  pairs_.Write(pairs);
   std::string bearings = fmt::format("{:.9g},{},{}", s.time, Num(e.sun_bearing_force.x()),
                                      Num(e.sun_bearing_force.y()));
   for (const auto& f : e.planet_bearing_force) {
     Cell(bearings, f.x());
     Cell(bearings, f.y());
   }
+  // Each file gets the step's lines in one write; the steps line last: a step is complete when
+  // its line is in BASE_steps.csv.
+  pairs_.Write(pairs);
   bearings_.WriteLine(bearings);
+  steps_.WriteLine(steps);
 }
 
 void DynamicRunFiles::Close() {

@@ -1,13 +1,14 @@
 // JSON problem files (format "epicycle-contact-problem", version 1).
 #include "epicycle/solvers/contact_io.hpp"
 
-#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
+
+#include "epicycle/transmission/internal/input_file.hpp"
 
 namespace epicycle::solvers {
 namespace {
@@ -228,14 +229,14 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
 }
 
 ContactProblemFile ReadContactProblemFile(const std::string& path) {
-  if (std::filesystem::is_directory(path))
-    throw std::invalid_argument("contact problem file " + path +
-                                ": is a directory, not a problem file (JSON)");
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument("contact problem file " + path + ": cannot be opened");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ParseContactProblemFile(ss.str(), path);
+  // A problem holds its dense compliance matrix: 256 MiB is a problem of thousands of contacts.
+  std::string text;
+  try {
+    text = transmission::internal::ReadInputFile(path, "problem file (JSON)", 256u << 20);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("contact problem file ") + e.what());
+  }
+  return ParseContactProblemFile(text, path);
 }
 
 std::string FormatContactProblemFile(const ContactProblemFile& f) {

@@ -24,10 +24,6 @@ namespace {
 
 constexpr int kRowTag = 1, kDoneTag = 2;
 
-bool LaunchedByMpi() {
-  return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMI_SIZE") != nullptr;
-}
-
 // Rank 0's share and the others' rows meet here: worker threads push, the main thread writes.
 struct Outbox {
   std::mutex lock;
@@ -40,7 +36,7 @@ struct Outbox {
 bool HaveMpi() { return true; }
 
 MpiSession::MpiSession() {
-  if (!LaunchedByMpi()) return;
+  if (!DetectMpiLaunch().launched) return;
   int provided = 0;
   MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
@@ -69,10 +65,7 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
       report.resumed = static_cast<long>(existing.rows.size());
       report.dropped_partial = existing.dropped_partial;
       report.rows = std::move(existing.rows);
-      missing = internal::MissingCases(study, report.rows);
-      if (options.max_new_cases >= 0 &&
-          missing.size() > static_cast<std::size_t>(options.max_new_cases))
-        missing.resize(static_cast<std::size_t>(options.max_new_cases));
+      missing = internal::MissingCases(study, report.rows, options.max_new_cases);
       writer = std::make_unique<internal::RowWriter>(options.rows_file, study, options.comment,
                                                      existing.exists);
     } catch (...) {

@@ -5,9 +5,9 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -19,6 +19,7 @@
 
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
@@ -148,12 +149,19 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   return r;
 }
 
-std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows) {
-  std::vector<char> have(static_cast<std::size_t>(study.Cases()), 0);
-  for (const CaseRow& r : rows) have[static_cast<std::size_t>(r.id)] = 1;
+std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows,
+                               long limit) {
+  std::vector<long> have;
+  have.reserve(rows.size());
+  for (const CaseRow& r : rows) have.push_back(r.id);
+  std::sort(have.begin(), have.end());
   std::vector<long> missing;
-  for (long k = 0; k < study.Cases(); ++k)
-    if (!have[static_cast<std::size_t>(k)]) missing.push_back(k);
+  auto next = have.begin();
+  for (long k = 0; k < study.Cases(); ++k) {
+    if (limit >= 0 && static_cast<long>(missing.size()) >= limit) break;
+    while (next != have.end() && *next < k) ++next;
+    if (next == have.end() || *next != k) missing.push_back(k);
+  }
   return missing;
 }
 
@@ -258,12 +266,11 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
 
 ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
   ExistingRows out;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return out;
-  std::ostringstream buf;
-  buf << in.rdbuf();
-  const std::string text = buf.str();
-  in.close();
+  std::error_code none;
+  if (!std::filesystem::exists(path, none) && !std::filesystem::is_symlink(path, none)) return out;
+  // As every input: a regular file (a symlink to a device is refused, not read forever).
+  const std::string text = transmission::internal::ReadInputFile(
+      path, "study rows file (CSV)", std::numeric_limits<std::uintmax_t>::max());
   if (text.empty()) return out;
   // A last line without '\n' is a row (or header) the writer was killed in: cut it off.
   std::size_t complete = text.rfind('\n');
@@ -280,6 +287,10 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
   while (std::getline(lines, line)) {
     ++number;
     const std::string where = path + ":" + std::to_string(number);
+    if (!line.empty() && line.back() == '\r')
+      throw std::invalid_argument(
+          where + ": the line ends in CR (carriage return): the file was converted to CRLF line "
+                  "ends after it was written; convert it back (dos2unix) to resume it");
     if (!header && line.rfind("# study ", 0) == 0) {
       if (line != internal::StudyLine(study))
         throw std::invalid_argument(where + ": the rows were written by another study ('" + line +
@@ -317,7 +328,8 @@ RunReport RunStudy(const StudySpec& study, const RunOptions& options) {
   report.resumed = static_cast<long>(existing.rows.size());
   report.dropped_partial = existing.dropped_partial;
   report.rows = std::move(existing.rows);
-  const std::vector<long> missing = internal::MissingCases(study, report.rows);
+  const std::vector<long> missing =
+      internal::MissingCases(study, report.rows, options.max_new_cases);
   internal::RowWriter writer(options.rows_file, study, options.comment, existing.exists);
   if (!missing.empty() && options.max_new_cases != 0) {
     const auto t0 = std::chrono::steady_clock::now();

@@ -19,8 +19,10 @@ std::string StudyLine(const StudySpec& study);
 std::vector<double> CaseAngles(const StudySpec& study, const geometry::Stage& stage);
 /// A row from its CSV line. @throws std::invalid_argument naming `where`.
 CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::string& where);
-/// The case ids without a row, ascending.
-std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows);
+/// The first `limit` case ids without a row (< 0: all), ascending; memory for the rows' ids and
+/// those returned only (a study of 1e9 samples run with --max-cases 3 lists 3 ids).
+std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows,
+                               long limit);
 
 /// Appends whole lines to the rows file, each flushed at once (writes the comment, study and
 /// column lines first when the file is new).

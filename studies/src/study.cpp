@@ -2,13 +2,13 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 
 #include "epicycle/geometry/gear.hpp"
 #include "epicycle/studies/sampling.hpp"
+#include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/internal/toml_reader.hpp"
 
 namespace epicycle::studies {
@@ -269,13 +269,9 @@ StudySpec ParseStudy(const std::string& text, const std::string& source,
 }
 
 StudySpec ReadStudy(const std::string& path) {
-  if (std::filesystem::is_directory(path))
-    throw std::invalid_argument(path + ": is a directory, not a study file (TOML)");
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open the study file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseStudy(text.str(), path, std::filesystem::path(path).parent_path().string());
+  // A study file is a page of keys, as a scene is.
+  return ParseStudy(transmission::internal::ReadInputFile(path, "study file (TOML)", 1u << 20),
+                    path, std::filesystem::path(path).parent_path().string());
 }
 
 }  // namespace epicycle::studies

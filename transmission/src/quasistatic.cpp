@@ -1,6 +1,9 @@
 #include "epicycle/transmission/quasistatic.hpp"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "epicycle/solvers/contact_problem.hpp"
@@ -141,6 +144,57 @@ std::vector<double> SweepAngles(double start, double span, int count) {
   std::vector<double> a;
   for (int k = 0; k < count; ++k) a.push_back(start + span * k / count);
   return a;
+}
+
+std::size_t ResultBytes(const PositionResult& r) {
+  const solvers::ContactProblemData& d = r.problem.data;
+  auto strings = [](const std::vector<std::string>& v) {
+    std::size_t b = v.capacity() * sizeof(std::string);
+    for (const std::string& s : v) b += s.capacity() + 1;
+    return b;
+  };
+  auto matrix = [](const auto& m) { return static_cast<std::size_t>(m.size()) * sizeof(double); };
+  return sizeof(PositionResult) + r.message.capacity() +
+         (r.load_sharing.capacity() + r.planet_rotations.capacity()) * sizeof(double) +
+         r.planet_displacements.capacity() * sizeof(geometry::Vec2) +
+         r.problem.contacts.capacity() * sizeof(StageContact) +
+         r.problem.dofs.capacity() * sizeof(StageDof) + matrix(d.compliance) + matrix(d.overlap) +
+         d.local.capacity() * sizeof(solvers::LocalTermParameters) + matrix(d.equality_matrix) +
+         matrix(d.equality_rhs) + matrix(d.support_stiffness) + strings(d.contact_labels) +
+         strings(d.multiplier_labels) + d.name.capacity() + matrix(r.solution.force) +
+         matrix(r.solution.multiplier) + r.poses.planets.capacity() * sizeof(geometry::GearPose) +
+         matrix(r.displacements);
+}
+
+void CheckSweepMemory(const PositionResult& sample, std::size_t positions,
+                      std::size_t memory_bytes) {
+  const double each = static_cast<double>(ResultBytes(sample));
+  const double total = each * static_cast<double>(positions),
+               limit = 0.5 * static_cast<double>(memory_bytes);
+  if (memory_bytes == 0 || total <= limit) return;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "a sweep of %zu positions keeps about %.1f GB of results in memory (%.1f kB per "
+                "position: %zu potential contacts), more than half of the %.1f GB available: at "
+                "most %.0f positions",
+                positions, total / 1e9, each / 1e3, sample.problem.contacts.size(),
+                static_cast<double>(memory_bytes) / 1e9, std::floor(limit / each));
+  throw std::invalid_argument(text);
+}
+
+std::size_t AvailableMemoryBytes() {
+  if (std::FILE* f = std::fopen("/proc/meminfo", "r")) {
+    char line[256];
+    unsigned long long kb = 0;
+    bool found = false;
+    while (!found && std::fgets(line, sizeof line, f) != nullptr)
+      found = std::sscanf(line, "MemAvailable: %llu kB", &kb) == 1;
+    std::fclose(f);
+    if (found) return static_cast<std::size_t>(kb) * 1024;
+  }
+  const long pages = ::sysconf(_SC_PHYS_PAGES), size = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? static_cast<std::size_t>(pages) * static_cast<std::size_t>(size)
+                               : 0;
 }
 
 std::vector<PositionResult> Sweep(

@@ -3,14 +3,14 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 
 #include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/geometry/iso.hpp"
+#include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/internal/toml_reader.hpp"
 
 namespace epicycle::transmission {
@@ -309,15 +309,38 @@ const GearSpec& GearOf(const geometry::StageSpec& st, int i) {
   return i == -1 ? st.sun : i == -2 ? st.ring : st.planet;
 }
 
+// One table of a kind per gear: a second one for the same gear is refused, naming both (it would
+// otherwise replace the first without a word).
+class OneTablePerGear {
+ public:
+  explicit OneTablePerGear(std::string kind) : kind_(std::move(kind)) {}
+  void Add(const TableReader& t, int gear) {
+    const auto [first, fresh] = seen_.emplace(gear, t.Where("gear"));
+    if (fresh) return;
+    const std::string name = gear == -1   ? "sun"
+                             : gear == -2 ? "ring"
+                                          : "planet" + std::to_string(gear + 1);
+    t.Fail("gear", "\"" + name + "\"",
+           "a second [[errors." + kind_ + "]] for " + (gear < 0 ? "the " : "") + name +
+               " (the first: " + first->second + "); give one per gear");
+  }
+
+ private:
+  std::string kind_;
+  std::map<int, std::string> seen_;
+};
+
 void ReadErrors(TableReader& e, Scene& s, std::vector<ErrorKey>* keys) {
   geometry::StageSpec& st = s.stage;
   const int n = st.planets;
   auto keep = [&](TableReader& t, const std::string& key, double value, int gear) {
     if (t.Has(key)) keys->push_back({t.Warning(key, ""), std::abs(value), gear});
   };
+  OneTablePerGear pins("pin"), runouts("runout"), thicknesses("thickness");
   for (TableReader& p : e.TableArray("pin")) {
     const int i = GearIndex(p, "gear", n);
     if (i < 0) p.Fail("gear", i == -1 ? "\"sun\"" : "\"ring\"", "pin errors belong to planets");
+    pins.Add(p, i);
     if (st.pin_errors.empty()) st.pin_errors.assign(n, {});
     const Rule rule = ErrorRule(st.planet.module);
     st.pin_errors[i].radial = p.RealOr("radial_um", 0.0, rule) * kUm;
@@ -328,11 +351,14 @@ void ReadErrors(TableReader& e, Scene& s, std::vector<ErrorKey>* keys) {
   }
   for (TableReader& r : e.TableArray("runout")) {
     const int i = GearIndex(r, "gear", n);
+    runouts.Add(r, i);
     geometry::Runout ro;
     const Rule rule = ErrorRule(GearOf(st, i).module);
     ro.amplitude = r.Real("amplitude_um", Rule::Closed(0, rule.hi).Because(rule.why)) * kUm;
     keep(r, "amplitude_um", ro.amplitude, i);
-    ro.phase = geometry::Rad(r.RealOr("phase_deg", 0.0, Rule::Any()));
+    ro.phase = geometry::Rad(
+        r.RealOr("phase_deg", 0.0,
+                 Rule::Closed(-360, 360).Because("an angle of the gear: one turn either way")));
     if (i == -1) {
       st.sun_runout = ro;
     } else if (i == -2) {
@@ -345,6 +371,7 @@ void ReadErrors(TableReader& e, Scene& s, std::vector<ErrorKey>* keys) {
   }
   for (TableReader& th : e.TableArray("thickness")) {
     const int i = GearIndex(th, "gear", n);
+    thicknesses.Add(th, i);
     const double ds = th.Real("error_um", ErrorRule(GearOf(st, i).module)) * kUm;
     keep(th, "error_um", ds, i);
     if (i == -1) {
@@ -665,14 +692,8 @@ Scene ParseScene(const std::string& text, const std::string& source) {
 }
 
 Scene ReadScene(const std::string& path) {
-  if (std::filesystem::is_directory(path)) {
-    throw std::invalid_argument(path + ": is a directory, not a scene file (TOML)");
-  }
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open the scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseScene(text.str(), path);
+  // A scene is a page of keys (the paper's stage: 3 kB); 1 MiB leaves room for comments.
+  return ParseScene(internal::ReadInputFile(path, "scene file (TOML)", 1u << 20), path);
 }
 
 const char* SunSupportName(SunSupport support) {

@@ -43,10 +43,9 @@ std::vector<double> MeanLoadFactors(const std::vector<double>& eta, double torqu
   transmission::QuasiStaticOptions o;
   transmission::StageSetup setup = transmission::SetupFromScene(scene);
   setup.sun = transmission::SunSupport::kFixed;
-  const auto results =
-      transmission::Sweep(transmission::StageModel(stage, test::Compliance("paper_stage.toml"), setup),
-                          scene.loads,
-                          transmission::SweepAngles(0.0, stage.mesh_cycle(), kPositions), o);
+  const auto results = transmission::Sweep(
+      transmission::StageModel(stage, test::Compliance("paper_stage.toml"), setup), scene.loads,
+      transmission::SweepAngles(0.0, stage.mesh_cycle(), kPositions), o);
   if (te) {
     te->clear();
     for (const auto& r : results) te->push_back(r.transmission_error);
@@ -61,12 +60,9 @@ std::vector<double> MeanLoadFactors(const std::vector<double>& eta, double torqu
 // The study of tangential pin-hole errors σ = 5 µm on every planet, kPositions per mesh cycle.
 studies::RunReport PinStudy(int seed, int samples, const std::string& sun) {
   test::TempDir dir("study-pins");
-  const studies::StudySpec s = studies::ParseStudy(
-      test::StudyText("seed = " + std::to_string(seed) + "\nsamples = " + std::to_string(samples) +
-                          "\npositions = " + std::to_string(kPositions) + "\nsun = \"" + sun + "\"",
-                      "[[variable]]\nquantity = \"pin_tangential\"\ngear = \"planets\"\n"
-                      "distribution = \"normal\"\nsigma_um = 5.0\n"),
-      "pins.toml", "");
+  const studies::StudySpec s =
+      test::PinStudy("seed = " + std::to_string(seed) + "\nsamples = " + std::to_string(samples) +
+                     "\npositions = " + std::to_string(kPositions) + "\nsun = \"" + sun + "\"");
   studies::RunOptions o;
   o.rows_file = dir.File("rows.csv");
   o.cache_directory = EPICYCLE_TEST_CACHE_DIR;

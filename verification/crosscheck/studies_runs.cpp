@@ -20,6 +20,7 @@
 #include "epicycle/studies/runner.hpp"
 #include "fe_fixtures.hpp"
 #include "figures.hpp"
+#include "program_runs.hpp"
 #include "study_fixtures.hpp"
 
 using namespace epicycle;
@@ -40,7 +41,7 @@ std::string Study(long samples) {
 
 // The data lines of a rows file, sorted (rows are written in completion order).
 std::vector<std::string> SortedRows(const std::string& file) {
-  std::istringstream in(test::ReadText(file));
+  std::istringstream in(test::FileBytes(file));
   std::vector<std::string> rows;
   std::string line;
   while (std::getline(in, line))
@@ -124,19 +125,7 @@ TEST_CASE("study: killed while running and restarted, the rows of an uninterrupt
                                     folder,       "--quiet", "--cache", EPICYCLE_TEST_CACHE_DIR,
                                     "--threads",  "2"};
   };
-  auto spawn = [](const std::vector<std::string>& args) {
-    std::fflush(nullptr);  // the child must not write the parent's buffered output again
-    const pid_t pid = fork();
-    if (pid == 0) {
-      std::vector<char*> argv;
-      for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-      argv.push_back(nullptr);
-      if (std::freopen("/dev/null", "w", stdout) == nullptr) _exit(126);
-      execv(argv[0], argv.data());
-      _exit(127);
-    }
-    return pid;
-  };
+  const auto spawn = test::SpawnQuiet;
   test::Compliance("paper_stage.toml");  // the tables in the cache before the clock starts
   const pid_t pid = spawn(program(out));
   REQUIRE(pid > 0);
@@ -186,7 +175,7 @@ TEST_CASE("study: identical rows with 1 and 2 MPI ranks (mpirun)", "[crosscheck]
                           " --quiet --threads 1 --cache " + EPICYCLE_TEST_CACHE_DIR + " > " +
                           dir.File("mpi.log") + " 2>&1";
   const int rc = std::system(cmd.c_str());
-  INFO(test::ReadText(dir.File("mpi.log")));
+  INFO(test::FileBytes(dir.File("mpi.log")));
   REQUIRE(rc == 0);
   const auto a = SortedRows(dir.File("one.csv"));
   const auto b = SortedRows(dir.File("mpi") + "/study_rows.csv");

@@ -1,5 +1,6 @@
 #include "harness.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -9,6 +10,8 @@
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/studies/sampling.hpp"
+#include "epicycle/studies/study.hpp"
 #include "epicycle/transmission/scene.hpp"
 
 namespace epicycle::fuzz {
@@ -61,6 +64,23 @@ void FuzzContactProblem(const std::uint8_t* data, std::size_t size) {
       if (!solution.force.allFinite() || !solution.multiplier.allFinite())
         Finding("a converged solve with non-finite forces or multipliers");
       if ((solution.force.array() < 0).any()) Finding("a converged solve with a negative force");
+    }
+  } catch (const std::invalid_argument&) {
+  }
+}
+
+void FuzzStudy(const std::uint8_t* data, std::size_t size) {
+  if (size > kMaxBytes) return;
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    const studies::StudySpec study =
+        studies::ParseStudy(text, "fuzz.toml", EPICYCLE_SCENES_DIR "/studies");
+    if (study.Cases() < 1) Finding("a study without cases");
+    for (const long k : {0L, study.Cases() - 1}) {
+      const std::vector<double> values = studies::SampleCase(study, k);
+      if (values.size() != study.Columns().size()) Finding("a case without a value per column");
+      for (double v : values)
+        if (!std::isfinite(v)) Finding("a sampled value that is not finite");
     }
   } catch (const std::invalid_argument&) {
   }

@@ -1,8 +1,8 @@
 // The fuzz harnesses of the readers, shared by the libFuzzer targets (fuzz_scene.cpp,
-// fuzz_contact_problem.cpp; EPICYCLE_BUILD_FUZZERS, tools/fuzz.sh) and by the deterministic replay
-// of the committed corpus in the suite (replay.cpp). Bad input must end in std::invalid_argument;
-// any other exception, a crash, a sanitizer report or a converged answer with non-finite or
-// negative forces is a finding (std::abort).
+// fuzz_contact_problem.cpp, fuzz_study.cpp; EPICYCLE_BUILD_FUZZERS, tools/fuzz.sh) and by the
+// deterministic replay of the committed corpus in the suite (replay.cpp). Bad input must end in
+// std::invalid_argument; any other exception, a crash, a sanitizer report or a converged answer
+// with non-finite or negative forces is a finding (std::abort).
 #pragma once
 
 #include <cstddef>
@@ -16,5 +16,10 @@ void FuzzScene(const std::uint8_t* data, std::size_t size);
 /// Reads `data` as a contact problem file (JSON) and, if it loads and is small, solves it with
 /// the active-set Newton back end.
 void FuzzContactProblem(const std::uint8_t* data, std::size_t size);
+
+/// Reads `data` as a study file (TOML; a relative scene path is relative to scenes/studies/, so
+/// that the shipped studies load) and, if it loads, samples its first and last case: every
+/// sampled value must be finite.
+void FuzzStudy(const std::uint8_t* data, std::size_t size);
 
 }  // namespace epicycle::fuzz

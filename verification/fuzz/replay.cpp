@@ -1,7 +1,8 @@
 // Replays fuzz inputs through the harnesses without libFuzzer, deterministically: every file of
-// the given directories (recursively) or files; *.toml and files under a "scene" folder go to the
-// scene harness, *.json and files under a "contact" folder to the contact-problem harness. A
-// finding aborts (the test fails); otherwise prints how many inputs of each kind ran.
+// the given directories (recursively) or files; files under a "study" or "studies" folder and
+// files named study_*.toml go to the study-file harness, other *.toml and files under a "scene"
+// folder to the scene harness, *.json and files under a "contact" folder to the contact-problem
+// harness. A finding aborts (the test fails); otherwise prints how many inputs of each kind ran.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -29,16 +30,23 @@ int main(int argc, char** argv) {
     }
   }
   std::sort(files.begin(), files.end());
-  int scenes = 0, problems = 0;
+  int scenes = 0, problems = 0, studies = 0;
   for (const fs::path& f : files) {
     const std::string s = f.string();
-    const bool scene = f.extension() == ".toml" || s.find("/scene/") != std::string::npos;
+    const bool study = s.find("/study/") != std::string::npos ||
+                       s.find("/studies/") != std::string::npos ||
+                       (f.extension() == ".toml" && f.filename().string().rfind("study_", 0) == 0);
+    const bool scene =
+        !study && (f.extension() == ".toml" || s.find("/scene/") != std::string::npos);
     const bool contact = f.extension() == ".json" || s.find("/contact/") != std::string::npos;
-    if (!scene && !contact) continue;
+    if (!study && !scene && !contact) continue;
     std::ifstream in(f, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
-    if (scene) {
+    if (study) {
+      epicycle::fuzz::FuzzStudy(data, bytes.size());
+      ++studies;
+    } else if (scene) {
       epicycle::fuzz::FuzzScene(data, bytes.size());
       ++scenes;
     } else {
@@ -46,9 +54,11 @@ int main(int argc, char** argv) {
       ++problems;
     }
   }
-  std::printf("replayed %d scene inputs and %d contact-problem inputs without a finding\n", scenes,
-              problems);
-  if (scenes + problems == 0) {
+  std::printf(
+      "replayed %d scene inputs, %d contact-problem inputs and %d study-file inputs without a "
+      "finding\n",
+      scenes, problems, studies);
+  if (scenes + problems + studies == 0) {
     std::fprintf(stderr, "replay: no input found\n");
     return 2;
   }

@@ -5,11 +5,11 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "epicycle/studies/study.hpp"
+#include "program_runs.hpp"
 
 namespace epicycle::test {
 
@@ -35,16 +35,18 @@ inline std::string StudyText(const std::string& study_keys, const std::string& r
          "/paper_stage.toml\"\n" + study_keys + "\n" + rest;
 }
 
+/// The study of tangential pin-hole errors σ = 5 µm on every planet of the paper's stage, with
+/// `keys` of its [study] table ("seed = 3\nsamples = 2\npositions = 4").
+inline studies::StudySpec PinStudy(const std::string& keys) {
+  return studies::ParseStudy(StudyText(keys,
+                                       "[[variable]]\nquantity = \"pin_tangential\"\ngear = "
+                                       "\"planets\"\ndistribution = \"normal\"\nsigma_um = 5.0\n"),
+                             "pins.toml", "");
+}
+
 inline std::string WriteText(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
   return path;
-}
-
-inline std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 /// The message of the std::invalid_argument that ParseStudy throws for `text` ("" if none).

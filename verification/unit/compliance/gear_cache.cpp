@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include "epicycle/compliance/influence_cache.hpp"
@@ -101,6 +102,22 @@ TEST_CASE("Influence-table cache: build, load, damaged and stale files", "[unit]
     LoadOrBuildInfluenceTable(gear, steel, options, dir.path.string(), &report);
     CHECK(report.outcome == CacheOutcome::kRebuilt);
     CHECK_THAT(report.message, Catch::Contains("bad magic"));
+  }
+  SECTION("a cache file that cannot be replaced fails with the system's reason") {
+    // A directory (not empty) where the file goes: the rename of the written file onto it fails.
+    std::filesystem::remove(file);
+    std::filesystem::create_directories(file + "/taken");
+    try {
+      LoadOrBuildInfluenceTable(gear, steel, options, dir.path.string(), &report);
+      FAIL("no failure");
+    } catch (const std::runtime_error& e) {
+      CHECK_THAT(e.what(), Catch::Contains("cannot rename") && Catch::Contains(file) &&
+                               !Catch::Contains("Success"));
+      CHECK_THAT(e.what(),
+                 Catch::Contains("Is a directory") || Catch::Contains("Directory not empty"));
+    }
+    for (const auto& f : std::filesystem::directory_iterator(dir.path))
+      CHECK(f.path().extension() != ".tmp");  // the written file removed
   }
   SECTION("a file of another table under this table's name is stale") {
     InfluenceTableOptions other = options;

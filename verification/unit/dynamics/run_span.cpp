@@ -43,6 +43,11 @@ TEST_CASE("run span: duration, mesh frequency and output times", "[unit][dynamic
                   std::invalid_argument);
   CHECK_THROWS_AS(dynamics::MakeRunSpan(stage, wc, RunRange::kMeshCycle, 0.0, 0),
                   std::invalid_argument);
+  // 100 cycles a second at 20 outputs per cycle: 400 s are 8e5 steps, allowed; 600 s are 1.2e6,
+  // more than the 1e6 a run may have: refused, saying how many steps it would be.
+  CHECK(dynamics::MakeRunSpan(stage, wc, RunRange::kMeshCycle, 400.0, 20).outputs >= 800000);
+  CHECK_THROWS_WITH(dynamics::MakeRunSpan(stage, wc, RunRange::kMeshCycle, 600.0, 20),
+                    Catch::Contains("is 1.2e+06 output steps: more than the 1000000"));
 }
 
 TEST_CASE("mesh frequency per sun rpm and the harmonics' sun speeds", "[unit][dynamics]") {

@@ -80,6 +80,12 @@ TEST_CASE("planets that clash and planet counts that cannot be equally spaced",
   CHECK_THROWS_WITH(Stage(s), Contains("stage.planet_angles_deg[2] = 250: the planet cannot be "
                                        "assembled") &&
                                   Contains("nearest angle that is: 248.889"));
+  // A small departure is shown, not rounded away: 81 · 240.0001/360 = 54.0000225.
+  s.planet_angles = {0.0, Rad(120.0), Rad(240.0001)};
+  CHECK_THROWS_WITH(Stage(s), Contains("stage.planet_angles_deg[2] = 240.0001: the planet cannot "
+                                       "be assembled") &&
+                                  Contains("= 54.0000225 is not whole") &&
+                                  Contains("nearest angle that is: 240°"));
   s = Paper();
   s.pin_errors.resize(2);
   CHECK_THROWS_WITH(Stage(s), Contains("errors.pin = 2 entries: needs one entry per planet (3)"));

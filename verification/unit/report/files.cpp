@@ -15,18 +15,12 @@
 #include <string>
 
 #include "epicycle/report/files.hpp"
+#include "program_runs.hpp"
 
 using Catch::Matchers::Contains;
 using namespace epicycle;
 
 namespace {
-
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string Thrown(const std::function<void()>& f) {
   try {
@@ -51,13 +45,13 @@ TEST_CASE("CsvFile writes whole lines and a text file its bytes", "[unit][report
     csv.WriteLine("1,2");
     csv.WriteLine("");
     // Every call is flushed: the lines are in the file before it is closed.
-    CHECK(ReadAll(path) == "# provenance\na,b\n1,2\n\n");
+    CHECK(test::FileBytes(path) == "# provenance\na,b\n1,2\n\n");
     csv.Close();
     CHECK_THAT(Thrown([&] { csv.WriteLine("3,4"); }), Contains(path));
   }
   const std::string text = std::string("{\n  \"x\": 1\n}\n") + '\0' + "tail";
   report::WriteTextFile(path, text);
-  CHECK(ReadAll(path) == text);
+  CHECK(test::FileBytes(path) == text);
   std::filesystem::remove(path);
 }
 

@@ -3,9 +3,14 @@
 // moments against their definitions; ISO 1328-1's run-out tolerance against a hand calculation.
 #include <catch2/catch.hpp>
 
-#include <cmath>
-#include <numbers>
+#include <sys/stat.h>
 
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <stdexcept>
+
+#include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/studies/study.hpp"
 #include "figures.hpp"
@@ -83,6 +88,30 @@ TEST_CASE("study file: bad input names the key, the value and the rule", "[unit]
   SECTION("a missing scene file") {
     const std::string m = StudyError("[study]\nname = \"x\"\nscene = \"no_such_scene.toml\"\n");
     CHECK_THAT(m, Contains("study.scene = \"no_such_scene.toml\"") && Contains("is not a file"));
+  }
+}
+
+TEST_CASE("study and rows files that are not regular files are refused, not read",
+          "[unit][studies]") {
+  // A study file that is a FIFO (reading it would block) and a rows file that is a symlink to
+  // /dev/full (it reads as endless zeros).
+  test::TempDir dir("study-special");
+  const std::string fifo = dir.File("study.toml");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  try {
+    studies::ReadStudy(fifo);
+    FAIL("a FIFO read as a study file");
+  } catch (const std::invalid_argument& e) {
+    CHECK_THAT(e.what(), Contains("study.toml: is a FIFO (named pipe), not a study file (TOML)"));
+  }
+  const std::string rows = dir.File("rows.csv");
+  std::filesystem::create_symlink("/dev/full", rows);
+  const studies::StudySpec study = studies::ParseStudy(StudyText("", kPins), "s.toml", "");
+  try {
+    studies::ReadRows(rows, study);
+    FAIL("a device read as a rows file");
+  } catch (const std::invalid_argument& e) {
+    CHECK_THAT(e.what(), Contains("rows.csv: is a character device, not a study rows file (CSV)"));
   }
 }
 

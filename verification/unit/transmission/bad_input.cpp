@@ -7,8 +7,13 @@
 // docs/bad_inputs.md.
 #include <catch2/catch.hpp>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -50,6 +55,23 @@ const std::vector<Case> kCases = {
     {"ring_smaller_than_sun.toml",
      false,
      {"ring.teeth = 10", "must be in [60, 68]", "z_sun + 2 z_planet = 64"}},
+    {"runout_phase_1e300.toml",
+     false,
+     {"errors.runout[0].phase_deg = 1e+300", "must be in [-360, 360]", "one turn either way"}},
+    // A second error table of a kind for the same gear: refused, naming both tables' lines.
+    {"duplicate_runout.toml",
+     false,
+     {"duplicate_runout.toml:99: errors.runout[1].gear = \"planet1\"",
+      "a second [[errors.runout]] for planet1", "duplicate_runout.toml:94: errors.runout[0]"}},
+    {"duplicate_pin.toml",
+     false,
+     {"duplicate_pin.toml:102: errors.pin[1].gear = \"planet2\"",
+      "a second [[errors.pin]] for planet2", "duplicate_pin.toml:94: errors.pin[0]"}},
+    {"duplicate_thickness.toml",
+     false,
+     {"duplicate_thickness.toml:98: errors.thickness[1].gear = \"sun\"",
+      "a second [[errors.thickness]] for the sun",
+      "duplicate_thickness.toml:94: errors.thickness[0]"}},
     {"warn_runout_above_backlash.toml",
      true,
      {"errors.runout[0].amplitude_um = 200", "larger than the normal backlash j_n = 150 um"}},
@@ -77,6 +99,25 @@ std::string ErrorOf(const std::string& path, std::vector<std::string>* warnings)
   }
 }
 
+// Whether `text` (not empty) holds every piece (each one CHECKed); `joined`: "a ... b".
+bool HasPieces(const std::string& text, const std::vector<std::string>& pieces,
+               std::string* joined) {
+  bool pass = !text.empty();
+  for (const std::string& piece : pieces) {
+    CHECK_THAT(text, Catch::Matchers::Contains(piece));
+    pass = pass && text.find(piece) != std::string::npos;
+    *joined += (joined->empty() ? "" : " ... ") + piece;
+  }
+  return pass;
+}
+
+// `text` without every occurrence of `folder`.
+std::string Without(std::string text, const std::string& folder) {
+  for (auto p = text.find(folder); p != std::string::npos; p = text.find(folder))
+    text.erase(p, folder.size());
+  return text;
+}
+
 void Row(const std::string& input, const std::string& expected, const std::string& got, bool pass) {
   if (epicycle::test::FiguresWanted())
     std::printf("BADINPUT\x1f%s\x1f%s\x1f%s\x1f%s\n", epicycle::test::Cell(input).c_str(),
@@ -98,17 +139,10 @@ TEST_CASE("bad scene values are named with key, value and rule, or warned about"
       text.clear();
       for (const std::string& w : warnings) text += w + "\n";
     }
-    bool pass = !text.empty();
     std::string expected;
-    for (const std::string& piece : c.expected) {
-      CHECK_THAT(text, Catch::Matchers::Contains(piece));
-      pass = pass && text.find(piece) != std::string::npos;
-      expected += (expected.empty() ? "" : " ... ") + piece;
-    }
+    const bool pass = HasPieces(text, c.expected, &expected);
     // The message quoted without the file's directory (the table is read in docs/).
-    std::string shown = text;
-    for (auto p = shown.find(Dir()); p != std::string::npos; p = shown.find(Dir()))
-      shown.erase(p, Dir().size());
+    std::string shown = Without(text, Dir());
     while (!shown.empty() && shown.back() == '\n') shown.pop_back();
     for (char& ch : shown)
       if (ch == '\n') ch = ' ';
@@ -145,6 +179,65 @@ TEST_CASE("a directory given as an input file is named as a directory",
   Row("a directory as scene file, then as contact problem file",
       expect_scene + " ... " + expect_problem, shown(scene_error) + " / " + shown(problem_error),
       pass);
+}
+
+TEST_CASE("an input that is not a regular file, or too large, is refused before it is read",
+          "[unit][transmission][bad-input]") {
+  // A FIFO without a writer (reading it would block forever), /dev/zero (never ends), a symlink to
+  // it, and a scene past the 1 MiB a scene file may have (docs/scenes.md).
+  const auto tmp =
+      std::filesystem::temp_directory_path() / ("epicycle-special-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(tmp);
+  const std::string fifo = (tmp / "scene.fifo").string(), link = (tmp / "zero.toml").string(),
+                    big = (tmp / "big.toml").string();
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  std::filesystem::create_symlink("/dev/zero", link);
+  {
+    std::ofstream out(big);
+    out << "# " << std::string((1u << 20) + 10, 'x') << "\n";
+  }
+  struct Special {
+    std::string input, path;
+    std::vector<std::string> expected;
+    bool problem;  // read as a contact problem file, else as a scene
+  };
+  const std::vector<Special> cases = {
+      {"a FIFO as scene file",
+       fifo,
+       {"scene.fifo: is a FIFO (named pipe), not a scene file (TOML)"},
+       false},
+      {"/dev/zero as scene file",
+       "/dev/zero",
+       {"/dev/zero: is a character device, not a scene file"},
+       false},
+      {"a symlink to /dev/zero as contact problem file",
+       link,
+       {"contact problem file", "zero.toml: is a character device, not a problem file (JSON)"},
+       true},
+      {"a scene of 1 MiB + 13 bytes",
+       big,
+       {"big.toml: 1048589 bytes: larger than the 1 MiB a scene file (TOML) may have"},
+       false},
+  };
+  for (const Special& c : cases) {
+    INFO(c.input);
+    std::string error;
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      if (c.problem) {
+        epicycle::solvers::ReadContactProblemFile(c.path);
+      } else {
+        epicycle::transmission::ReadScene(c.path);
+      }
+    } catch (const std::invalid_argument& e) {
+      error = e.what();
+    }
+    CHECK(std::chrono::steady_clock::now() - t0 < std::chrono::seconds(5));  // refused, not read
+    std::string expected;
+    const bool pass = HasPieces(error, c.expected, &expected);
+    Row(c.input, expected, Without(error, tmp.string() + "/"), pass);
+  }
+  std::filesystem::remove_all(tmp);
 }
 
 TEST_CASE("every scene of scenes/ loads without warnings", "[unit][transmission]") {

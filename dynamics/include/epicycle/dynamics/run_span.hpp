@@ -21,8 +21,10 @@ struct RunSpan {
 
 /// The run over `range` at carrier speed ω_c = `carrier_speed` [rad/s] (its sign is ignored), or
 /// over `time` [s] instead when time > 0, with `outputs_per_cycle` outputs per mesh cycle.
-/// @throws std::invalid_argument if ω_c is 0 or not finite, time < 0 or not finite, or
-/// outputs_per_cycle < 1.
+/// @throws std::invalid_argument if ω_c is 0 or not finite, time < 0 or not finite,
+/// outputs_per_cycle < 1, or the run would have more than kMaxRunOutputs output steps.
+/// The most output steps a run may have (1e6: at ~10 kB a kept sample, 10 GB).
+inline constexpr int kMaxRunOutputs = 1000000;
 RunSpan MakeRunSpan(const geometry::Stage& stage, double carrier_speed,
                     transmission::RunRange range, double time, int outputs_per_cycle);
 

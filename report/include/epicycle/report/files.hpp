@@ -21,19 +21,23 @@ std::string CsvText(std::string text);
 /// @throws std::runtime_error "PATH: cannot be written: REASON" on any failure.
 void WriteTextFile(const std::string& path, std::string_view text);
 
-/// A CSV (or any line-oriented) result file, written as results are computed: each call writes
-/// whole lines and flushes them, so that a run that stops midway keeps every line before it.
+/// A CSV (or any line-oriented) result file, written as results are computed: each call hands
+/// its whole lines to the system in one write(2) (no buffer of this process holds a part of them),
+/// so that a run that stops midway keeps the lines of every earlier call whole. A run killed
+/// (SIGKILL) inside a call may leave that call's lines cut where the system stops a write of a
+/// killed process (at a page boundary of the file): a reader drops a last line without its end.
 class CsvFile {
  public:
-  /// Creates or truncates `path`. @throws std::runtime_error naming it if it cannot be opened.
-  explicit CsvFile(std::string path);
+  /// Creates or truncates `path` and writes `head` (its first lines: provenance, columns) at
+  /// once. @throws std::runtime_error naming it if it cannot be opened or written.
+  explicit CsvFile(std::string path, std::string_view head = {});
   ~CsvFile();  ///< closes the file if Close() was not called (errors there are not reported)
   CsvFile(const CsvFile&) = delete;
   CsvFile& operator=(const CsvFile&) = delete;
 
-  /// Writes `line` and "\n", then flushes. @throws std::runtime_error naming the file.
+  /// Writes `line` and "\n" at once. @throws std::runtime_error naming the file.
   void WriteLine(std::string_view line);
-  /// Writes `lines` (each ending in "\n"), then flushes. @throws std::runtime_error.
+  /// Writes `lines` (each ending in "\n") at once. @throws std::runtime_error naming the file.
   void Write(std::string_view lines);
   /// Closes the file, checking the close. @throws std::runtime_error naming the file.
   void Close();
@@ -41,7 +45,7 @@ class CsvFile {
 
  private:
   std::string path_;
-  std::FILE* file_ = nullptr;
+  int fd_ = -1;
 };
 
 }  // namespace epicycle::report

@@ -52,7 +52,11 @@ void WriteQuasiStaticPlots(const std::string& base, const std::string& scene_nam
 
 /// BASE_steps.csv (one line per output step: LSR_i, L_i, K_γ, TE, sun centre, the sun's torque
 /// balance, work and energies, contacts, friction power), BASE_pairs.csv (one line per loaded
-/// tooth pair per step) and BASE_bearings.csv (bearing forces per step).
+/// tooth pair per step) and BASE_bearings.csv (bearing forces per step). Each file's head is
+/// written as it is created; each step's lines go to each file in one write (CsvFile), pairs,
+/// bearings, then steps: a step is complete when its line is in BASE_steps.csv, and the other two
+/// files hold at most the next step more. A killed run leaves whole lines but for at most a last
+/// line without its end (see CsvFile), which a reader drops.
 class DynamicRunFiles {
  public:
   /// @throws std::runtime_error naming a file that cannot be written.
@@ -61,7 +65,7 @@ class DynamicRunFiles {
   void Close();
 
  private:
-  CsvFile steps_, pairs_, bearings_;
+  CsvFile pairs_, bearings_, steps_;  // created, and written per step, in this order
 };
 
 /// BASE_lsr.svg, BASE_te.svg and BASE_orbit.svg of a run's samples.

@@ -81,9 +81,28 @@ RunReport RunStudy(const StudySpec& study, const RunOptions& options);
 /// Whether this build has MPI (EPICYCLE_WITH_MPI).
 bool HaveMpi();
 
+/// What an MPI launcher told this process through its environment: OpenMPI's mpirun sets
+/// OMPI_COMM_WORLD_SIZE and OMPI_COMM_WORLD_RANK, PMI launchers (srun, MPICH's mpiexec) PMI_SIZE
+/// and PMI_RANK, PMIx launchers PMIX_RANK.
+struct MpiLaunch {
+  bool launched = false;  ///< one of the variables is set
+  long size = 1;          ///< the largest size given (1 if none) [-]
+  long rank = 0;          ///< the largest rank given (0 if none) [-]
+  std::string evidence;   ///< the variables found, "OMPI_COMM_WORLD_SIZE = 2, ..." (for messages)
+  /// Part of a launch of more than one process (size > 1 or a rank > 0).
+  bool Parallel() const { return size > 1 || rank > 0; }
+};
+/// The launch described by the environment; `lookup` is getenv (a test passes its own table).
+/// A value that is not a whole number counts as launched with size and rank unknown (1 and 0).
+MpiLaunch DetectMpiLaunch(const std::function<const char*(const char*)>& lookup);
+MpiLaunch DetectMpiLaunch();
+
 /// MPI for the lifetime of the object: MPI_Init_thread (funneled: only the main thread calls MPI)
-/// when this build has MPI and the process was started by mpirun/srun (OMPI_COMM_WORLD_SIZE or
-/// PMI_SIZE set), MPI_Finalize at the end; otherwise inactive (rank 0 of 1).
+/// when this build has MPI and the process was started by a launcher (DetectMpiLaunch),
+/// MPI_Finalize at the end; otherwise inactive (rank 0 of 1).
+/// @throws std::invalid_argument in a build without MPI started as one of several processes by a
+///         launcher (each would run the whole study into the same rows file): the message says to
+///         build with -DEPICYCLE_WITH_MPI=ON.
 class MpiSession {
  public:
   MpiSession();

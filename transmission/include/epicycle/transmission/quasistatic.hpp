@@ -42,10 +42,10 @@ struct QuasiStaticOptions {
 };
 
 struct PositionResult {
-  double carrier_angle = 0;  ///< φ_c [rad]
-  bool converged = false;    ///< contact solves and geometric iterations converged
+  double carrier_angle = 0;               ///< φ_c [rad]
+  bool converged = false;                 ///< contact solves and geometric iterations converged
   StageStatus status = StageStatus::kOk;  ///< what stopped it when not converged
-  std::string message;       ///< why not, when not converged
+  std::string message;                    ///< why not, when not converged
   int geometric_iterations = 0;
   int contact_iterations = 0;  ///< back-end iterations summed over the geometric iterations [-]
   bool warm_started = false;   ///< started from a neighbour's state (Sweep with warm_start)
@@ -76,6 +76,22 @@ PositionResult SolvePosition(const StageModel& model, double carrier_angle, cons
 std::vector<double> LoadSharingFactors(const PositionResult& r);
 /// K_γ = max_i L_i [-].
 double MeshLoadFactor(const PositionResult& r);
+
+/// The memory one result holds [bytes], approximately: its contact problem (the N×N compliance,
+/// the equalities, local terms, labels), the potential contacts, forces and poses.
+std::size_t ResultBytes(const PositionResult& r);
+
+/// Refuses a sweep of `positions` whose results (Sweep keeps them all, about `sample`'s
+/// ResultBytes each) would take more than half of the memory `memory_bytes` available.
+/// @throws std::invalid_argument "a sweep of N positions keeps about X GB of results in memory
+///         (Y kB per position: Z potential contacts), more than half of the M GB available: at
+///         most K positions".
+void CheckSweepMemory(const PositionResult& sample, std::size_t positions,
+                      std::size_t memory_bytes);
+
+/// The memory available to a new allocation on this machine now [bytes]: MemAvailable of
+/// /proc/meminfo, else the physical memory (0 if unknown).
+std::size_t AvailableMemoryBytes();
 
 /// Carrier angles of a sweep: `count` positions over [start, start + span) [rad].
 std::vector<double> SweepAngles(double start, double span, int count);

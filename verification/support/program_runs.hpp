@@ -1,0 +1,38 @@
+// Running the `epicycle` program from a test (to kill it midway) and reading what it wrote.
+#pragma once
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace epicycle::test {
+
+/// Starts args[0] with `args`, its standard output to /dev/null; the child's pid (wait for it or
+/// kill it).
+inline pid_t SpawnQuiet(const std::vector<std::string>& args) {
+  std::fflush(nullptr);  // the child must not write the parent's buffered output again
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    if (std::freopen("/dev/null", "w", stdout) == nullptr) _exit(126);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+/// The bytes of a file ("" if it cannot be read).
+inline std::string FileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace epicycle::test
