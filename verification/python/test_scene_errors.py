@@ -45,7 +45,7 @@ def test_a_bad_value_raises_the_program_message(tmp_path, edit, key, rule):
 def test_a_syntax_error_and_a_missing_file():
     with pytest.raises(ValueError, match=r"bad\.toml.*2"):
         epicycle.Scene.parse("[scene]\nname = \n", "bad.toml")
-    with pytest.raises(ValueError, match="cannot open the scene file"):
+    with pytest.raises(ValueError, match=r"/nonexistent/scene\.toml: cannot be opened"):
         epicycle.Scene.load("/nonexistent/scene.toml")
 
 
