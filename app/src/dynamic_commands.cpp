@@ -207,6 +207,9 @@ struct ModesArgs {
 };
 
 void RunModes(const ModesArgs& a) {
+  if (!a.speed_range_rpm.empty() && !(a.speed_range_rpm[0] <= a.speed_range_rpm[1]))
+    throw std::invalid_argument(fmt::format("--speed-range-rpm = {} {}: LO must not exceed HI",
+                                            a.speed_range_rpm[0], a.speed_range_rpm[1]));
   dynamics::StageDynamics rig(StageScene(a.scene, a.sun, "modes"),
                               TableOptions(a.cache, a.no_cache));
   const transmission::Scene& scene = rig.scene;
@@ -246,9 +249,6 @@ void RunModes(const ModesArgs& a) {
   const double rpm = model.settings().sun_speed * 30.0 / std::numbers::pi;
   const double lo = a.speed_range_rpm.empty() ? rpm / 2 : a.speed_range_rpm[0];
   const double hi = a.speed_range_rpm.empty() ? rpm * 2 : a.speed_range_rpm[1];
-  if (!(lo <= hi))
-    throw std::invalid_argument(
-        fmt::format("--speed-range-rpm = {} {}: the first must not exceed the second", lo, hi));
   const auto coincidences = dynamics::FindCoincidences(model, modes, lo, hi);
   std::printf("\n  coincidences h f_m = f_j from %.0f to %.0f rpm (%zu):\n", lo, hi,
               coincidences.size());
@@ -289,12 +289,11 @@ void RegisterDynamicCommands(CLI::App& app) {
   modes->add_option("--sun", m.sun, "Override the scene's sun support")
       ->check(CLI::IsMember({"fixed", "floating"}));
   modes->add_option("--json", m.json, "Also write the modes as JSON");
-  modes
-      ->add_option("--speed-range-rpm", m.speed_range_rpm,
-                   "Sun speeds LO HI [rpm] for the mesh-harmonic coincidences (default: the "
-                   "scene's speed / 2 .. x 2)")
-      ->expected(2)
-      ->check(CLI::PositiveNumber);
+  AddNumber(modes, "--speed-range-rpm", m.speed_range_rpm,
+            "Sun speeds LO HI [rpm] for the mesh-harmonic coincidences (default: the scene's "
+            "speed / 2 .. x 2)",
+            kSunSpeedRpm)
+      ->expected(2);
   modes->add_option("--cache", m.cache, "Influence-table cache folder");
   modes->add_flag("--no-cache", m.no_cache, "Build the influence tables in memory only");
   modes->callback([] { RunModes(m); });
