@@ -343,9 +343,9 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
       sample.force_sharing.assign(sample.load_sharing.size(), 0.0);
       double sun_mesh_force = 0;
       for (int j = 0; j < e.terms.size(); ++j) {
-        const transmission::StageContact& c = e.terms.contacts[j];
-        if (c.mesh != geometry::MeshKind::kSunPlanet || !(e.total_force(j) > 0)) continue;
-        sample.force_sharing[static_cast<std::size_t>(c.planet)] += e.total_force(j);
+        const transmission::StageContact& contact = e.terms.contacts[j];
+        if (contact.mesh != geometry::MeshKind::kSunPlanet || !(e.total_force(j) > 0)) continue;
+        sample.force_sharing[static_cast<std::size_t>(contact.planet)] += e.total_force(j);
         sun_mesh_force += e.total_force(j);
       }
       for (double& share : sample.force_sharing)

@@ -173,8 +173,29 @@ void ReadFlankModifications(TableReader& t, GearSpec& g) {
 }
 
 // The fields common to every gear table; `fit_target` gears may omit profile_shift.
+// A gear's mass and inertia against the solid steel disc of its pitch circle (ρ = 7850 kg/m³,
+// m_d = ρ π r² b, J_d = m_d r²/2): real gears (a bore, a web, a shaft, a rim) lie within a few
+// times that; outside [1/100, 100] times it the value is most likely in another unit or
+// mistyped, and the modes and the integrator's steps follow it (docs/scenes.md, "Ranges and
+// validity"). 0 (not given) is left to the dynamic model, which asks for what it needs.
+void InertiaWarnings(const TableReader& t, const GearSpec& g, const Inertia& i,
+                     std::vector<std::string>* warnings) {
+  constexpr double kSteelDensity = 7850;  // [kg/m³]
+  const double r = 0.5 * g.module * g.teeth;
+  const double disc_mass = kSteelDensity * std::numbers::pi * r * r * g.face_width;
+  const double disc_inertia = 0.5 * disc_mass * r * r;
+  auto check = [&](const char* key, double value, double disc, const char* unit) {
+    if (value > 0 && (value < 1e-2 * disc || value > 1e2 * disc))
+      warnings->push_back(
+          t.Warning(key, "outside [1/100, 100] times the solid steel disc of the pitch circle (" +
+                             Num(disc) + " " + unit + "): another unit, or a typing error?"));
+  };
+  check("mass_kg", i.mass, disc_mass, "kg");
+  check("inertia_kgm2", i.inertia, disc_inertia, "kg m2");
+}
+
 GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool fit_target,
-                  Inertia* inertia) {
+                  Inertia* inertia, std::vector<std::string>* warnings = nullptr) {
   GearSpec g;
   g.name = name;
   g.kind = kind;
@@ -205,6 +226,7 @@ GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool f
   g.min_tip_thickness = t.RealOr("min_tip_thickness_mm", -1e3, Rule::Any()) * kMm;
   if (g.min_tip_thickness < 0) g.min_tip_thickness = -1;
   *inertia = ReadInertia(t);
+  if (warnings != nullptr) InertiaWarnings(t, g, *inertia, warnings);
   TableReader cutter = t.Table("cutter");
   // The tip (and a directly defined ring's root) is given as a radius, or as an addendum
   // (dedendum) coefficient from the shifted reference line: r_a = r + (x ± h_a*) m, which needs
@@ -587,12 +609,13 @@ Scene ParseScene(const std::string& text, const std::string& source) {
   std::vector<ErrorKey> error_keys;
   {
     TableReader t = top.Table("sun");
-    st.sun = ReadGear(t, "sun", GearKind::kExternal, fitted("sun"), &s.inertia.sun);
+    st.sun = ReadGear(t, "sun", GearKind::kExternal, fitted("sun"), &s.inertia.sun, &s.warnings);
     t.Done();
   }
   {
     TableReader t = top.Table("planet");
-    st.planet = ReadGear(t, "planet", GearKind::kExternal, fitted("planet"), &s.inertia.planet);
+    st.planet = ReadGear(t, "planet", GearKind::kExternal, fitted("planet"), &s.inertia.planet,
+                         &s.warnings);
     SameAsMate(t, st.planet, st.sun, "sun");
     t.Done();
   }
@@ -606,7 +629,8 @@ Scene ParseScene(const std::string& text, const std::string& source) {
             Rule::Closed(expect - kRingTeethSlack, expect + kRingTeethSlack)
                 .Because("z_sun + 2 z_planet = " + std::to_string(expect) +
                          " within 4 teeth: the planets must fit between sun and ring"));
-    st.ring = ReadGear(t, "ring", GearKind::kInternal, fitted("ring"), &s.inertia.ring);
+    st.ring =
+        ReadGear(t, "ring", GearKind::kInternal, fitted("ring"), &s.inertia.ring, &s.warnings);
     SameAsMate(t, st.ring, st.planet, "planet");
     t.Done();
   }

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "epicycle/transmission/scene.hpp"
 #include "stage_fixtures.hpp"
@@ -170,4 +171,37 @@ TEST_CASE("dynamics and lubricant tables: typed SI settings, cross-key rules nam
   CHECK_NOTHROW(Parse(bk));
   CHECK_THROWS_WITH(Parse(Replace(bk, "roughness_um = 0.8", "roughness_um = 1.5")),
                     Contains("lubricant.roughness_um = 1.5") && Contains("benedict-kelley"));
+}
+
+TEST_CASE("a gear's mass or inertia far from its steel disc is a warning naming the key",
+          "[unit][transmission]") {
+  // The reference: the solid steel disc of the planet's pitch circle, computed here (z = 24,
+  // m = 4.23 mm, b = 25 mm: r = 50.76 mm, m_d = 7850 π r² b = 1.589 kg, J_d = m_d r²/2).
+  const std::string base = SceneText("paper_stage.toml");
+  const double r = 0.5 * 4.23e-3 * 24, md = 7850 * 3.14159265358979 * r * r * 0.025;
+  const double jd = 0.5 * md * r * r;
+  auto number = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return std::string(b);
+  };
+  for (const std::string& w : Parse(base).warnings)
+    CHECK(w.find("steel disc") == std::string::npos);  // the paper's gears: within 0.8-6.2
+  auto warned = [&](const std::string& text, const std::string& key) {
+    for (const std::string& w : Parse(text).warnings)
+      if (w.find(key) != std::string::npos && w.find("steel disc") != std::string::npos) return w;
+    return std::string();
+  };
+  const std::string tiny =
+      warned(Replace(base, "inertia_kgm2 = 24e-4", "inertia_kgm2 = 1e-30"), "planet.inertia_kgm2");
+  CHECK_THAT(tiny, Contains("planet.inertia_kgm2 = 1e-30"));
+  CHECK(warned(Replace(base, "inertia_kgm2 = 24e-4", "inertia_kgm2 = " + number(jd * 0.011)),
+               "planet.inertia_kgm2")
+            .empty());
+  CHECK_FALSE(warned(Replace(base, "inertia_kgm2 = 24e-4", "inertia_kgm2 = " + number(jd * 0.009)),
+                     "planet.inertia_kgm2")
+                  .empty());
+  CHECK_FALSE(
+      warned(Replace(base, "mass_kg = 1.23", "mass_kg = " + number(md * 101)), "planet.mass_kg")
+          .empty());
 }
