@@ -76,7 +76,12 @@ Inertia ReadInertia(TableReader& t) {
 // (DynamicSettings::Validate's) named at the key the user wrote.
 void ReadDynamics(TableReader& top, DynamicSettings& d) {
   if (auto t = top.OptionalTable("dynamics")) {
-    d.sun_speed = t->RealOr("sun_speed_rpm", 1500.0, Rule::Positive()) * std::numbers::pi / 30.0;
+    // The command line's range for --speed-rpm (app/src/options.hpp), the same words.
+    d.sun_speed = t->RealOr("sun_speed_rpm", 1500.0,
+                            Rule::Closed(1, 1e5).Because(
+                                "slower runs are quasi-static: epicycle quasistatic; faster ones "
+                                "are past any gear's pitch-line speed")) *
+                  std::numbers::pi / 30.0;
     d.carrier_free = t->StringOr("carrier", "speed", {"speed", "torque"}) == "torque";
     d.carrier_load_inertia = t->RealOr("carrier_load_inertia_kgm2", 0.0, Rule::NonNegative());
     d.sun_speed_driven = t->StringOr("sun", "torque", {"torque", "speed"}) == "speed";

@@ -159,6 +159,9 @@ TEST_CASE("dynamics and lubricant tables: typed SI settings, cross-key rules nam
   CHECK_THROWS_WITH(
       Parse(Replace(base, "friction = \"xu-kahraman\"", "friction_coefficient = 1.5")),
       Contains("dynamics.friction_coefficient = 1.5: must be in [0, 1]"));
+  // The scene's speed has the command line's range (--speed-rpm): 1e12 rpm used to run.
+  CHECK_THROWS_WITH(Parse(Replace(base, "sun_speed_rpm = 1500.0", "sun_speed_rpm = 1e12")),
+                    Contains("dynamics.sun_speed_rpm = 1e+12: must be in [1, 100000]"));
   // Cross-key rules carry the file and line of the key the user wrote.
   const auto line = 1 + std::count(base.begin(), base.begin() + base.find("sun_speed_rpm"), '\n');
   CHECK_THROWS_WITH(Parse(Replace(base, "sun_speed_rpm = 1500.0", "sun = \"speed\"")),
