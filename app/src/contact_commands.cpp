@@ -1,10 +1,7 @@
 // `epicycle contact solve|compare|stability`: the contact core on problem files.
 #include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -16,6 +13,7 @@
 #include "console.hpp"
 #include "epicycle/config.h"
 #include "epicycle/report/contact_plots.hpp"
+#include "epicycle/solvers/backend_comparison.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/solvers/performance_profile.hpp"
@@ -27,62 +25,13 @@ namespace {
 
 namespace fs = std::filesystem;
 using solvers::Backend;
+using solvers::ComparisonRun;
 using solvers::ContactOptions;
 using solvers::ContactProblem;
 using solvers::ContactProblemFile;
 using solvers::ContactReport;
 using solvers::ContactSolution;
 using solvers::ContactStatus;
-
-constexpr double kReferenceTolerance = 1e-12;
-
-std::vector<std::string> ExpandProblemFiles(const std::vector<std::string>& inputs) {
-  std::vector<std::string> files;
-  for (const std::string& in : inputs) {
-    if (fs::is_directory(in)) {
-      std::vector<std::string> here;
-      for (const auto& e : fs::directory_iterator(in))
-        if (e.path().extension() == ".json" && e.path().filename() != "expected_failures.json")
-          here.push_back(e.path().string());
-      std::sort(here.begin(), here.end());
-      files.insert(files.end(), here.begin(), here.end());
-    } else {
-      files.push_back(in);
-    }
-  }
-  if (files.empty()) throw std::invalid_argument("no problem files found in the given paths");
-  return files;
-}
-
-struct Run {
-  ContactReport report;
-  ContactSolution solution;
-  double median_seconds = 0.0;
-};
-
-Run SolveRepeated(Backend backend, const ContactProblem& problem, const ContactOptions& options,
-                  int repeats) {
-  auto solver = solvers::MakeContactSolver(backend);
-  Run run;
-  std::vector<double> times;
-  for (int r = 0; r < std::max(1, repeats); ++r) {
-    ContactSolution s;
-    run.report = solver->Solve(problem, options, &s);
-    run.solution = s;
-    times.push_back(run.report.total_seconds);
-  }
-  std::sort(times.begin(), times.end());
-  run.median_seconds = times[times.size() / 2];
-  return run;
-}
-
-// The reference: the active-set Newton at a tight tolerance (best effort where round-off stops it).
-Run Reference(const ContactProblem& problem) {
-  ContactOptions o;
-  o.tolerance = kReferenceTolerance;
-  o.max_iterations = 500;
-  return SolveRepeated(Backend::kActiveSetNewton, problem, o, 1);
-}
 
 void SolveCommand(const std::string& path, const std::string& backend_name, double tol, bool polish,
                   const std::vector<std::string>& kv) {
@@ -143,43 +92,12 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
                                         solvers::StatusName(r.status), r.message));
 }
 
-struct Row {
-  std::string backend, problem, category, status, message;
-  double residual = 0, seconds = 0;
-  double force_err = std::numeric_limits<double>::quiet_NaN();  // NaN: not computed
-  double mult_err = std::numeric_limits<double>::quiet_NaN();
-  double disp_err = std::numeric_limits<double>::quiet_NaN();
-  int iterations = 0;
-  bool solved = false;
-};
-
-// "status: message", without repeating the status where the back end's message starts with it.
-std::string WithStatus(const std::string& status, const std::string& message) {
-  if (message.empty()) return status;
-  return message.rfind(status, 0) == 0 ? message : status + ": " + message;
-}
-
-// One (back end, problem) solve of `contact compare`; a back end that throws (it should not)
-// is a failed run with the exception's text, so the other runs still go on.
-Run CompareRun(Backend b, const ContactProblem& problem, const ContactOptions& options, int repeats,
-               std::string* error) {
-  try {
-    return SolveRepeated(b, problem, options, repeats);
-  } catch (const std::exception& e) {
-    *error = e.what();
-    Run run;
-    run.report.status = ContactStatus::kNumericalFailure;
-    run.report.message = e.what();
-    return run;
-  }
-}
-
 void CompareCommand(const std::vector<std::string>& inputs, const std::string& csv,
                     const std::string& svg_prefix, double tol, int repeats,
                     const std::string& markdown) {
-  const std::vector<std::string> files = ExpandProblemFiles(inputs);
+  const std::vector<std::string> files = solvers::ListProblemFiles(inputs);
   const std::vector<Backend> backends = solvers::AvailableBackends();
-  std::vector<Row> rows;
+  std::vector<ComparisonRun> rows;
   std::vector<std::string> names, problem_names;
   for (Backend b : backends) names.push_back(solvers::BackendName(b));
   ContactOptions options;
@@ -212,41 +130,25 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
     const ContactProblemFile file = solvers::ReadContactProblemFile(path);
     const ContactProblem problem(file.data);
     problem_names.push_back(problem.name());
-    const Run ref = Reference(problem);
+    const solvers::TimedSolve ref = solvers::SolveReference(problem);
     if (ref.report.status != ContactStatus::kConverged)
-      fail(
-          fmt::format("reference (newton at {:.0e}) on {} ({}): {}; errors of this problem "
-                      "are against its last iterate",
-                      kReferenceTolerance, problem.name(), path,
-                      WithStatus(solvers::StatusName(ref.report.status), ref.report.message)));
+      fail(fmt::format(
+          "reference (newton at {:.0e}) on {} ({}): {}; errors of this problem "
+          "are against its last iterate",
+          solvers::kReferenceTolerance, problem.name(), path,
+          solvers::StatusWithMessage(solvers::StatusName(ref.report.status), ref.report.message)));
     for (Backend b : backends) {
-      std::string error;
-      const Run run = CompareRun(b, problem, options, repeats, &error);
-      Row row;
-      row.backend = solvers::BackendName(b);
-      row.problem = problem.name();
-      row.category = file.category;
-      row.status = error.empty() ? solvers::StatusName(run.report.status) : "exception";
-      row.message = run.report.message;
-      row.residual = run.report.residual.total;
-      if (error.empty()) {  // a run that threw has no solution to compare (its errors stay NaN)
-        const auto d = solvers::CompareSolutions(problem, run.solution, ref.solution);
-        row.force_err = d.force;
-        row.mult_err = d.multiplier;
-        row.disp_err = d.displacement;
-      }
-      row.seconds = run.median_seconds;
-      row.iterations = run.report.iterations;
-      row.solved = error.empty() && run.report.status == ContactStatus::kConverged;
+      const ComparisonRun row =
+          solvers::CompareBackend(b, problem, file.category, options, repeats, ref.solution);
       if (!row.solved)
         fail(fmt::format("{} on {} ({}): {}", row.backend, row.problem, path,
-                         WithStatus(row.status, row.message)));
+                         solvers::StatusWithMessage(row.status, row.message)));
       if (out)
-        out->WriteLine(fmt::format("{},{},{},{},{},{},{},{},{},{},{}", row.backend, row.problem,
-                                   row.category, row.status, Num(row.residual, "{:.6e}"),
-                                   Num(row.force_err, "{:.6e}"), Num(row.mult_err, "{:.6e}"),
-                                   Num(row.disp_err, "{:.6e}"), Num(row.seconds, "{:.6e}"),
-                                   row.iterations, CsvText(row.message)));
+        out->WriteLine(fmt::format(
+            "{},{},{},{},{},{},{},{},{},{},{}", row.backend, row.problem, row.category, row.status,
+            Num(row.residual, "{:.6e}"), Num(row.force_error, "{:.6e}"),
+            Num(row.multiplier_error, "{:.6e}"), Num(row.displacement_error, "{:.6e}"),
+            Num(row.median_seconds, "{:.6e}"), row.iterations, CsvText(row.message)));
       rows.push_back(row);
     }
   }
@@ -254,7 +156,7 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
       "{} problems, tolerance {:.1e}, reference: newton at {:.0e}, {} repeat(s); error = max of "
       "the "
       "relative force and rigid-displacement (G^T lambda) differences, over converged runs\n\n",
-      files.size(), tol, kReferenceTolerance, repeats);
+      files.size(), tol, solvers::kReferenceTolerance, repeats);
   fmt::print("{:<14} {:>8} {:>14} {:>14} {:>16}  {}\n", "back end", "solved", "median time",
              "worst error", "worst residual", "failures");
   std::string md = fmt::format(
@@ -262,29 +164,15 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
       "| back end | solved | median time [s] | worst error | worst residual | not converged |\n"
       "|---|---|---|---|---|---|\n",
       files.size(), tol, repeats);
-  for (const std::string& b : names) {
-    std::vector<double> t;
-    double worst = 0, worst_res = 0;
-    int solved = 0, total = 0;
-    std::string not_converged;
-    for (const Row& r : rows) {
-      if (r.backend != b) continue;
-      ++total;
-      t.push_back(r.seconds);
-      if (r.solved) {
-        ++solved;
-        worst = std::max(worst, std::max(r.force_err, r.disp_err));
-        worst_res = std::max(worst_res, r.residual);
-      } else {
-        not_converged += (not_converged.empty() ? "" : ", ") + r.problem + " (" + r.status + ")";
-      }
-    }
-    std::sort(t.begin(), t.end());
-    fmt::print("{:<14} {:>4}/{:<3} {:>12.3e} s {:>14.2e} {:>16.2e}  {}\n", b, solved, total,
-               t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res,
-               not_converged.empty() ? "-" : not_converged);
-    md += fmt::format("| {} | {}/{} | {:.2e} | {:.1e} | {:.1e} | {} |\n", b, solved, total,
-                      t.empty() ? 0.0 : t[t.size() / 2], worst, worst_res, total - solved);
+  for (const solvers::BackendSummary& b : solvers::SummarizeByBackend(rows, names)) {
+    std::string failed;
+    for (const std::string& f : b.failed) failed += (failed.empty() ? "" : ", ") + f;
+    fmt::print("{:<14} {:>4}/{:<3} {:>12.3e} s {:>14.2e} {:>16.2e}  {}\n", b.backend, b.solved,
+               b.runs, b.median_seconds, b.worst_error, b.worst_residual,
+               failed.empty() ? "-" : failed);
+    md += fmt::format("| {} | {}/{} | {:.2e} | {:.1e} | {:.1e} | {} |\n", b.backend, b.solved,
+                      b.runs, b.median_seconds, b.worst_error, b.worst_residual,
+                      b.runs - b.solved);
   }
   if (out) out->Close();
   if (!csv.empty()) fmt::print("\nCSV written to {}\n", csv);
@@ -292,13 +180,9 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
   if (!svg_prefix.empty()) {
     std::vector<solvers::ProfileRun> runs;
     std::vector<report::ErrorTimePoint> points;
-    for (const Row& r : rows) {
-      runs.push_back({r.problem, r.backend, r.seconds, r.solved});
-      const bool finite = std::isfinite(r.force_err) && std::isfinite(r.disp_err);
-      points.push_back(
-          {r.backend, r.seconds,
-           finite ? std::max(r.force_err, r.disp_err) : std::numeric_limits<double>::quiet_NaN(),
-           r.solved});
+    for (const ComparisonRun& r : rows) {
+      runs.push_back({r.problem, r.backend, r.median_seconds, r.solved});
+      points.push_back({r.backend, r.median_seconds, r.error(), r.solved});
     }
     WriteTextFile(svg_prefix + "_profile.svg",
                   report::PerformanceProfileSvg(solvers::DolanMoreProfile(runs, names),
@@ -315,7 +199,7 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
 
 void StabilityCommand(const std::string& dir, double tol) {
   std::vector<std::string> files;
-  for (const std::string& f : ExpandProblemFiles({dir}))
+  for (const std::string& f : solvers::ListProblemFiles({dir}))
     if (solvers::ReadContactProblemFile(f).category == "stiff") files.push_back(f);
   const std::vector<Backend> backends = solvers::AllBackends();
   std::string table = "| case | N | m |";
@@ -330,22 +214,18 @@ void StabilityCommand(const std::string& dir, double tol) {
   for (const std::string& path : files) {
     const ContactProblemFile file = solvers::ReadContactProblemFile(path);
     const ContactProblem problem(file.data);
-    const Run ref = Reference(problem);
+    const solvers::TimedSolve ref = solvers::SolveReference(problem);
     table += fmt::format("| {} | {} | {} |", problem.name(), problem.num_contacts(),
                          problem.num_equalities());
     for (Backend b : backends) {
-      const Run run = SolveRepeated(b, problem, options, 1);
-      const ContactReport& r = run.report;
-      std::string cell;
-      if (r.status == ContactStatus::kBackendUnavailable) {
-        cell = "n/a";
-      } else {
-        const auto d = solvers::CompareSolutions(problem, run.solution, ref.solution);
-        const bool finite = run.solution.force.allFinite() && run.solution.multiplier.allFinite();
-        cell = fmt::format("{}, res {:.0e}, err {:.0e}", solvers::StatusName(r.status),
-                           r.residual.total, std::max(d.force, d.displacement));
-        if (!finite) cell += ", NaN!";
-        if (r.status == ContactStatus::kConverged && r.residual.total > tol) cell += ", BAD";
+      const ComparisonRun run =
+          solvers::CompareBackend(b, problem, file.category, options, 1, ref.solution);
+      std::string cell = "n/a";
+      if (run.status != solvers::StatusName(ContactStatus::kBackendUnavailable)) {
+        cell = fmt::format("{}, res {:.0e}, err {:.0e}", run.status, run.residual,
+                           std::max(run.force_error, run.displacement_error));
+        if (!run.finite) cell += ", NaN!";
+        if (run.solved && run.residual > tol) cell += ", BAD";
       }
       table += " " + cell + " |";
     }
@@ -355,7 +235,7 @@ void StabilityCommand(const std::string& dir, double tol) {
       "\nTolerance {:.0e}; err = max relative force / rigid-displacement difference from the "
       "active-set Newton at {:.0e} (see CompareSolutions). Written by `epicycle contact "
       "stability` ({}).\n",
-      tol, kReferenceTolerance, EPICYCLE_VERSION);
+      tol, solvers::kReferenceTolerance, EPICYCLE_VERSION);
   fmt::print("{}", table);
 }
 

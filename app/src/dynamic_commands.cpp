@@ -165,28 +165,9 @@ void RunDynamic(const DynamicArgs& a) {
   for (const std::string& w : dynamics::DynamicWarnings(stage, result.samples))
     warnings.push_back(w);
   PrintWarnings(warnings);
-  json j = report::DynamicRunJson(sum, st);  // the results and the integrator's counts
+  json j = report::DynamicRunJson(model, opt, span, result, sum);
   j["provenance"] = provenance;
   j["warnings"] = warnings;
-  j["scene"] = scene.name;
-  j["sun_support"] = sun_name;
-  j["sun_torque_Nm"] = scene.loads.sun_torque;
-  j["sun_speed_rpm"] = std::abs(model.sun_speed()) * 30.0 / std::numbers::pi;
-  j["mesh_frequency_Hz"] = mesh_hz;
-  j["friction"] = transmission::FrictionLawName(scene.dynamics.friction.law);
-  j["integrator"] = a.integrator;
-  j["rtol"] = a.rtol;
-  j["atol_length_m"] = opt.atol_length;
-  j["atol_angle_rad"] = opt.atol_angle;
-  j["contact_tolerance"] = opt.contact.tolerance;
-  j["backend"] = a.backend;
-  j["start"] = "quasi-static solution at t = 0 (no start-up transient)";
-  j["duration_s"] = duration;
-  j["outputs"] = outputs;
-  j["completed"] = result.completed;
-  j["failure"] = result.message;
-  j["mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
-  j["mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
   j["setup_seconds"] = setup_seconds;
   WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
 
@@ -259,19 +240,9 @@ void RunModes(const ModesArgs& a) {
                 c.phasing_excited ? "" : "  not excited by a symmetric stage (planet phasing)");
   PrintWarnings(scene.warnings);
   if (!a.json.empty()) {
-    nlohmann::json j;
+    nlohmann::json j = report::ModesRunJson(model, operating, lo, hi, coincidences);
     j["provenance"] = Provenance("none", &scene);
     j["warnings"] = scene.warnings;
-    j["scene"] = scene.name;
-    j["mesh_stiffness_sun_planet_N_per_m"] = tangent[0];
-    j["mesh_stiffness_planet_ring_N_per_m"] = tangent[1];
-    j["mesh_stiffness_kind"] = "tangent dF/ddelta, mean over a mesh cycle";
-    j["secant_mesh_stiffness_sun_planet_N_per_m"] = rig.model.sun_mesh_stiffness();
-    j["secant_mesh_stiffness_planet_ring_N_per_m"] = rig.model.ring_mesh_stiffness();
-    j["mesh_frequency_Hz_per_sun_rpm"] = hz_per_rpm;
-    j["modes"] = report::ModesJson(modes, hz_per_rpm);
-    j["coincidence_range_rpm"] = {lo, hi};
-    j["coincidences"] = report::CoincidencesJson(coincidences);
     WriteTextFile(a.json, j.dump(2) + "\n");
     std::printf("\nwrote %s\n", a.json.c_str());
   }

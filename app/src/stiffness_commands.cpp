@@ -58,32 +58,16 @@ void RunStiffness(const StiffnessArgs& a) {
   opt.local_terms = !a.no_local;
   std::filesystem::create_directories(a.out);
   const std::string base = a.out + "/stiffness_" + setup.mesh;
-  CsvFile csv(base + ".csv");
   const json provenance = Provenance(a.backend, &scene);
-  csv.Write(ProvenanceCsvLine(provenance) +
-            "angle_deg,converged,mesh_stiffness_N_per_m,mesh_stiffness_N_per_mm_um,"
-            "transmission_error_urad,approach_um,total_force_N,pairs,"
-            "pair_teeth,pair_kind,pair_force_N,pair_stiffness_N_per_m,pair_share,message\n");
-  const double b = std::min(pair.gear1().spec().face_width, pair.gear2().spec().face_width);
+  const double b = geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
+  report::MeshStiffnessFile csv(base + ".csv", provenance, b);
   const auto result = transmission::ComputeMeshStiffness(
       setup, pair, compliance, opt, [&](const transmission::MeshSample& s) {
-        // One row per loaded tooth pair (the mesh columns repeat), written as computed.
-        const std::string head = fmt::format(
-            "{:.6f},{},{},{},{},{},{},{}", geometry::Deg(s.angle), s.converged ? 1 : 0,
-            Num(s.mesh_stiffness), Num(s.mesh_stiffness / b / 1e9), Num(s.rotation * 1e6),
-            Num(s.approach * 1e6), Num(s.total_force), s.pairs.size());
-        const std::string msg = CsvText(s.message);
-        std::string lines = s.pairs.empty() ? head + ",,,,,," + msg + "\n" : "";
-        for (const auto& p : s.pairs)
-          lines += fmt::format("{},{}/{},{},{},{},{},{}\n", head, p.tooth1, p.tooth2,
-                               geometry::KindName(p.kind), Num(p.force), Num(p.stiffness),
-                               Num(p.share), msg);
-        csv.Write(lines);
+        csv.Write(s);  // written as computed
         if (!s.converged)
           std::fprintf(stderr, "  position %.4f deg FAILED: %s\n", geometry::Deg(s.angle),
                        s.message.c_str());
       });
-
   csv.Close();
   const compliance::iso6336::PairData iso = transmission::IsoPairData(pair);
   const double c_prime = compliance::iso6336::SinglePairStiffness(iso);
@@ -114,24 +98,10 @@ void RunStiffness(const StiffnessArgs& a) {
   for (const std::string& w : transmission::MeshStiffnessWarnings(pair, result))
     warnings.push_back(w);
   PrintWarnings(warnings);
-  json j;
+  json j = report::MeshStiffnessJson(pair, result, c_prime, c_gamma);
   j["provenance"] = provenance;
   j["warnings"] = warnings;
   j["scene"] = scene.name;
-  j["mesh"] = setup.mesh;
-  j["torque_gear1_Nm"] = setup.torque;
-  j["face_width_mm"] = b * 1e3;
-  j["positions"] = a.positions;
-  j["failed_positions"] = result.failed;
-  j["mean_mesh_stiffness_N_per_m"] = result.mean_stiffness;
-  j["mean_mesh_stiffness_N_per_mm_um"] = result.mean_per_width();
-  j["peak_single_pair_stiffness_N_per_m"] = result.peak_pair_stiffness;
-  j["peak_single_pair_stiffness_N_per_mm_um"] = result.peak_pair_per_width();
-  j["min_mesh_stiffness_N_per_m"] = result.min_stiffness;
-  j["max_mesh_stiffness_N_per_m"] = result.max_stiffness;
-  j["contact_ratio"] = pair.summary().contact_ratio_iso;
-  j["iso6336_c_prime_N_per_mm_um"] = c_prime;
-  j["iso6336_c_gamma_alpha_N_per_mm_um"] = c_gamma;
   j["local_terms"] = !a.no_local;
   j["plane"] = scene.model.plane == solvers::PlaneAssumption::kPlaneStrain ? "strain" : "stress";
   j["join_depth_mm"] = {compliance.JoiningDepth(0) * 1e3, compliance.JoiningDepth(1) * 1e3};

@@ -301,8 +301,7 @@ transmission::FrictionContact DynamicModel::FrictionState(const transmission::Co
   const StageContact& s = terms.contacts[j];
   const geometry::PotentialContact& c = s.contact;
   transmission::FrictionContact fc;
-  fc.face_width = std::min(model_.BodyGear(s.body_a).spec().face_width,
-                           model_.BodyGear(s.body_b).spec().face_width);
+  fc.face_width = geometry::ContactFaceWidth(model_.BodyGear(s.body_a), model_.BodyGear(s.body_b));
   fc.reduced_radius = terms.local.empty()
                           ? 1.0 / (1.0 / c.curvature_radius_a + 1.0 / c.curvature_radius_b)
                           : terms.local[j].reduced_radius;

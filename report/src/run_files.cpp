@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <utility>
 
 #include <fmt/format.h>
@@ -257,9 +258,32 @@ void WriteDynamicPlots(const std::string& base, const std::string& scene_name,
           "_orbit.svg");
 }
 
-nlohmann::json DynamicRunJson(const dynamics::DynamicSummary& sum,
-                              const dynamics::SimulationStats& st) {
+nlohmann::json DynamicRunJson(const dynamics::DynamicModel& model,
+                              const dynamics::SimulationOptions& options,
+                              const dynamics::RunSpan& span,
+                              const dynamics::SimulationResult& result,
+                              const dynamics::DynamicSummary& sum) {
+  const dynamics::SimulationStats& st = result.stats;
   nlohmann::json j;
+  j["scene"] = model.stage_model().name();
+  j["sun_support"] = transmission::SunSupportName(model.stage_model().setup().sun);
+  j["sun_torque_Nm"] = model.sun_torque();
+  j["sun_speed_rpm"] = std::abs(model.sun_speed()) * 30.0 / std::numbers::pi;
+  j["mesh_frequency_Hz"] = span.mesh_frequency;
+  j["friction"] = transmission::FrictionLawName(model.settings().friction.law);
+  j["integrator"] = dynamics::IntegratorName(options.integrator);
+  j["rtol"] = options.rtol;
+  j["atol_length_m"] = options.atol_length;
+  j["atol_angle_rad"] = options.atol_angle;
+  j["contact_tolerance"] = options.contact.tolerance;
+  j["backend"] = solvers::BackendName(options.backend);
+  j["start"] = "quasi-static solution at t = 0 (no start-up transient)";
+  j["duration_s"] = span.duration;
+  j["outputs"] = span.outputs;
+  j["completed"] = result.completed;
+  j["failure"] = result.message;
+  j["mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
+  j["mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
   j["planets"] = PlanetsJson(sum.lsr_mean, sum.lsr_min, sum.lsr_max);
   j["outputs_written"] = sum.samples;
   j["K_gamma_max"] = JsonValue(sum.k_gamma);
@@ -279,6 +303,24 @@ nlohmann::json DynamicRunJson(const dynamics::DynamicSummary& sum,
   j["wall_seconds"] = st.wall_seconds;
   j["evaluation_seconds"] = st.rhs_seconds;
   j["rate_tolerance_scale_rad_per_s"] = st.rate_scale;  // rate atol = position atol x this
+  return j;
+}
+
+nlohmann::json ModesRunJson(const dynamics::DynamicModel& model,
+                            const dynamics::OperatingPointModes& operating, double lo_rpm,
+                            double hi_rpm, const std::vector<dynamics::Coincidence>& coincidences) {
+  const double hz_per_rpm = dynamics::MeshHzPerSunRpm(model.stage_model().stage());
+  nlohmann::json j;
+  j["scene"] = model.stage_model().name();
+  j["mesh_stiffness_sun_planet_N_per_m"] = operating.mesh_stiffness[0];
+  j["mesh_stiffness_planet_ring_N_per_m"] = operating.mesh_stiffness[1];
+  j["mesh_stiffness_kind"] = "tangent dF/ddelta, mean over a mesh cycle";
+  j["secant_mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
+  j["secant_mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
+  j["mesh_frequency_Hz_per_sun_rpm"] = hz_per_rpm;
+  j["modes"] = ModesJson(operating.modes, hz_per_rpm);
+  j["coincidence_range_rpm"] = {lo_rpm, hi_rpm};
+  j["coincidences"] = CoincidencesJson(coincidences);
   return j;
 }
 
@@ -370,6 +412,52 @@ void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name
   plot("TE amplitude", "urad", "te_amplitude", 1e6, [](const auto& r) { return r.te_amplitude; },
        {plan.qs_te_amplitude * 1e6});
   plot("sun orbit radius", "um", "orbit", 1e6, [](const auto& r) { return r.orbit_radius; }, {});
+}
+
+MeshStiffnessFile::MeshStiffnessFile(const std::string& path, const nlohmann::json& provenance,
+                                     double face_width)
+    : csv_(path), face_width_(face_width) {
+  csv_.Write(ProvenanceCsvLine(provenance) +
+             "angle_deg,converged,mesh_stiffness_N_per_m,mesh_stiffness_N_per_mm_um,"
+             "transmission_error_urad,approach_um,total_force_N,pairs,"
+             "pair_teeth,pair_kind,pair_force_N,pair_stiffness_N_per_m,pair_share,message\n");
+}
+
+void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
+  const std::string head = fmt::format(
+      "{:.6f},{},{},{},{},{},{},{}", geometry::Deg(s.angle), s.converged ? 1 : 0,
+      Num(s.mesh_stiffness), Num(s.mesh_stiffness / face_width_ / 1e9), Num(s.rotation * 1e6),
+      Num(s.approach * 1e6), Num(s.total_force), s.pairs.size());
+  const std::string msg = CsvText(s.message);
+  std::string lines = s.pairs.empty() ? head + ",,,,,," + msg + "\n" : "";
+  for (const auto& p : s.pairs)
+    lines += fmt::format("{},{}/{},{},{},{},{},{}\n", head, p.tooth1, p.tooth2,
+                         geometry::KindName(p.kind), Num(p.force), Num(p.stiffness),
+                         Num(p.share), msg);
+  csv_.Write(lines);
+}
+
+void MeshStiffnessFile::Close() { csv_.Close(); }
+
+nlohmann::json MeshStiffnessJson(const geometry::GearPair& pair,
+                                 const transmission::MeshStiffnessResult& result, double c_prime,
+                                 double c_gamma_alpha) {
+  nlohmann::json j;
+  j["mesh"] = result.mesh;
+  j["torque_gear1_Nm"] = result.torque;
+  j["face_width_mm"] = result.face_width * 1e3;
+  j["positions"] = result.samples.size();
+  j["failed_positions"] = result.failed;
+  j["mean_mesh_stiffness_N_per_m"] = result.mean_stiffness;
+  j["mean_mesh_stiffness_N_per_mm_um"] = result.mean_per_width();
+  j["peak_single_pair_stiffness_N_per_m"] = result.peak_pair_stiffness;
+  j["peak_single_pair_stiffness_N_per_mm_um"] = result.peak_pair_per_width();
+  j["min_mesh_stiffness_N_per_m"] = result.min_stiffness;
+  j["max_mesh_stiffness_N_per_m"] = result.max_stiffness;
+  j["contact_ratio"] = pair.summary().contact_ratio_iso;
+  j["iso6336_c_prime_N_per_mm_um"] = c_prime;
+  j["iso6336_c_gamma_alpha_N_per_mm_um"] = c_gamma_alpha;
+  return j;
 }
 
 void WriteMeshStiffnessPlot(const std::string& path, const std::string& title,

@@ -1,6 +1,8 @@
 // JSON problem files (format "epicycle-contact-problem", version 1).
 #include "epicycle/solvers/contact_io.hpp"
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -290,6 +292,25 @@ void WriteContactProblemFile(const ContactProblemFile& f, const std::string& pat
   if (!out) throw std::runtime_error("cannot write contact problem file " + path);
   out << text;
   if (!out) throw std::runtime_error("error while writing contact problem file " + path);
+}
+
+std::vector<std::string> ListProblemFiles(const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  for (const std::string& in : inputs) {
+    if (fs::is_directory(in)) {
+      std::vector<std::string> here;
+      for (const auto& e : fs::directory_iterator(in))
+        if (e.path().extension() == ".json" && e.path().filename() != "expected_failures.json")
+          here.push_back(e.path().string());
+      std::sort(here.begin(), here.end());
+      files.insert(files.end(), here.begin(), here.end());
+    } else {
+      files.push_back(in);
+    }
+  }
+  if (files.empty()) throw std::invalid_argument("no problem files found in the given paths");
+  return files;
 }
 
 }  // namespace epicycle::solvers

@@ -188,7 +188,7 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup,
   MeshStiffnessResult r;
   r.mesh = setup.mesh;
   r.torque = setup.torque;
-  r.face_width = std::min(pair.gear1().spec().face_width, pair.gear2().spec().face_width);
+  r.face_width = geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
   double sum = 0.0;
   int good = 0;
   r.min_stiffness = std::numeric_limits<double>::infinity();

@@ -134,7 +134,7 @@ bool LocalTermOf(const PotentialContact& contact, const geometry::Gear& a, const
                  const Material& material, solvers::PlaneAssumption plane, double depth_a,
                  double depth_b, solvers::LocalTermParameters* out) {
   solvers::LocalTermParameters& l = *out;
-  l.face_width = std::min(a.spec().face_width, b.spec().face_width);
+  l.face_width = geometry::ContactFaceWidth(a, b);
   l.plane = plane;
   l.body[0] = {material.youngs_modulus, material.poisson_ratio, depth_a};
   l.body[1] = {material.youngs_modulus, material.poisson_ratio, depth_b};

@@ -429,7 +429,7 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
 
   FeDeckInfo info;
   info.thickness = t_mm / kMm;
-  info.face_width = std::min(g1.spec().face_width, g2.spec().face_width);
+  info.face_width = geometry::ContactFaceWidth(g1, g2);
   info.torque = torque;
   info.base_radius1 = g1.base_radius();
   info.angle = angle;

@@ -4,6 +4,7 @@
 // rounding. All lengths in metres, angles in radians.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <string>
@@ -187,5 +188,11 @@ class Gear {
   InvoluteFlank involute_;
   TipRound tip_round_, nominal_tip_round_;
 };
+
+/// The width over which two spur gears touch: the narrower face width b [m] (faces aligned, no
+/// crowning).
+inline double ContactFaceWidth(const Gear& a, const Gear& b) {
+  return std::min(a.spec().face_width, b.spec().face_width);
+}
 
 }  // namespace epicycle::geometry

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "epicycle/dynamics/modes.hpp"
+#include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/summary.hpp"
@@ -73,17 +74,31 @@ void WriteDynamicPlots(const std::string& base, const std::string& scene_name,
                        const std::string& sun_name, int planets,
                        const std::vector<dynamics::DynamicSample>& samples);
 
-/// The results of a dynamic run for its JSON summary: "planets" (LSR mean, min, max per planet),
-/// "outputs_written", "K_gamma_max", "transmission_error_{min,max,peak_to_peak}_urad",
-/// "sun_orbit_radius_{max,mean}_um" and the integrator's counts and times ("steps",
-/// "evaluations", ..., "rate_tolerance_scale_rad_per_s"). The caller adds the run's settings.
-nlohmann::json DynamicRunJson(const dynamics::DynamicSummary& summary,
-                              const dynamics::SimulationStats& stats);
+/// The JSON summary of a dynamic run of `model` over `span` with `options`: its settings ("scene",
+/// "sun_support", "sun_torque_Nm", "sun_speed_rpm", "mesh_frequency_Hz", "friction",
+/// "integrator", "rtol", "atol_*", "contact_tolerance", "backend", "duration_s", "outputs",
+/// "completed", "failure", the secant mesh stiffnesses), its results ("planets": LSR mean, min,
+/// max per planet; "outputs_written", "K_gamma_max", "transmission_error_{min,max,
+/// peak_to_peak}_urad", "sun_orbit_radius_{max,mean}_um") and the integrator's counts and times
+/// ("steps", "evaluations", ..., "rate_tolerance_scale_rad_per_s"). The caller adds provenance,
+/// warnings and its own timings.
+nlohmann::json DynamicRunJson(const dynamics::DynamicModel& model,
+                              const dynamics::SimulationOptions& options,
+                              const dynamics::RunSpan& span,
+                              const dynamics::SimulationResult& result,
+                              const dynamics::DynamicSummary& summary);
 
 /// The natural modes for `epicycle modes --json`: per mode its frequency, multiplicity, type
 /// ("rigid" for a rigid-body group), energy fractions and the sun speeds [rpm] where mesh
 /// harmonics 1, 2, 3 meet it (`hz_per_rpm`: dynamics::MeshHzPerSunRpm).
 nlohmann::json ModesJson(const std::vector<dynamics::Mode>& modes, double hz_per_rpm);
+/// The JSON of `epicycle modes`: the scene, the tangent mesh stiffnesses the modes use and the
+/// secant ones of a run, the mesh frequency per sun rpm, ModesJson of `operating.modes`, and the
+/// coincidences found within [lo_rpm, hi_rpm] of sun speed. The caller adds provenance and
+/// warnings.
+nlohmann::json ModesRunJson(const dynamics::DynamicModel& model,
+                            const dynamics::OperatingPointModes& operating, double lo_rpm,
+                            double hi_rpm, const std::vector<dynamics::Coincidence>& coincidences);
 /// The coincidences of mesh harmonics with natural modes (dynamics::FindCoincidences), mode
 /// numbers from 1.
 nlohmann::json CoincidencesJson(const std::vector<dynamics::Coincidence>& coincidences);
@@ -107,6 +122,29 @@ class SpeedSweepFile {
 void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name,
                           const dynamics::SpeedSweepPlan& plan,
                           const std::vector<dynamics::SpeedResult>& speeds);
+
+/// BASE.csv of `epicycle stiffness`: one line per loaded tooth pair per position (the position's
+/// columns repeat on each), a position without a loaded pair on one line; per unit face width
+/// `face_width` [m] in N/(mm µm).
+class MeshStiffnessFile {
+ public:
+  /// @throws std::runtime_error naming the file if it cannot be written.
+  MeshStiffnessFile(const std::string& path, const nlohmann::json& provenance, double face_width);
+  void Write(const transmission::MeshSample& s);
+  void Close();
+
+ private:
+  CsvFile csv_;
+  double face_width_;
+};
+
+/// The results of `epicycle stiffness` for its JSON summary: the mesh, the torque, the face
+/// width, positions and failures, mean / peak single-pair / min / max stiffness (N/m and
+/// N/(mm µm)), the contact ratio, and ISO 6336-1's c′ and c_γα [N/(mm µm)] to compare with. The
+/// caller adds the run's settings.
+nlohmann::json MeshStiffnessJson(const geometry::GearPair& pair,
+                                 const transmission::MeshStiffnessResult& result, double c_prime,
+                                 double c_gamma_alpha);
 
 /// The mesh stiffness and each tooth pair's stiffness over the cycle per unit face width
 /// `face_width` [m] (N/(mm µm) against gear 1's rotation in degrees), the converged positions

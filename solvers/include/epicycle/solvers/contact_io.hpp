@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
@@ -32,6 +33,10 @@ struct ContactProblemFile {
 /// or version, unknown key, wrong type or size), or the ContactProblem validation message.
 ContactProblemFile ReadContactProblemFile(const std::string& path);
 ContactProblemFile ParseContactProblemFile(const std::string& json_text, const std::string& source);
+/// The problem files of `inputs`: a file as given, a directory's `*.json` files (sorted, without
+/// `expected_failures.json`). @throws std::invalid_argument when there are none.
+std::vector<std::string> ListProblemFiles(const std::vector<std::string>& inputs);
+
 /// Also validates (constructs a ContactProblem) before writing. @throws std::invalid_argument,
 /// std::runtime_error if the file cannot be written.
 void WriteContactProblemFile(const ContactProblemFile& file, const std::string& path);

@@ -1,0 +1,79 @@
+// Back ends judged against a reference on a collection of problem files: what `epicycle contact
+// compare` and `contact stability` print, and what a study of one's own solver can call.
+//
+// The reference of a problem is the active-set Newton at kReferenceTolerance (best effort where
+// round-off stops it: its status says so, and the errors are then against its last iterate).
+// Every run is judged by the driver's residual (ContactReport::residual) and by its difference
+// from the reference (CompareSolutions: relative force and rigid-displacement differences).
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/solvers/contact_solver.hpp"
+
+namespace epicycle::solvers {
+
+/// Tolerance of the reference solve on the nondimensional residual [-].
+inline constexpr double kReferenceTolerance = 1e-12;
+
+/// `repeats` solves (at least one) of one problem by one back end.
+struct TimedSolve {
+  ContactReport report;      ///< of the last solve
+  ContactSolution solution;  ///< of the last solve
+  double median_seconds = 0.0;  ///< median of the solves' total times [s]
+};
+TimedSolve SolveRepeated(Backend backend, const ContactProblem& problem,
+                         const ContactOptions& options, int repeats);
+
+/// The active-set Newton at kReferenceTolerance, at most 500 iterations.
+TimedSolve SolveReference(const ContactProblem& problem);
+
+/// One (back end, problem) run of a comparison. Errors are NaN where not computed (a back end
+/// that threw has no solution to compare).
+struct ComparisonRun {
+  std::string backend;   ///< BackendName
+  std::string problem;   ///< the problem's name
+  std::string category;  ///< the problem file's category
+  std::string status;    ///< StatusName, or "exception" when the back end threw
+  std::string message;   ///< the back end's message (the exception's text when it threw)
+  double residual = 0.0;        ///< driver residual, nondimensional [-]
+  double force_error = std::numeric_limits<double>::quiet_NaN();         ///< [-]
+  double multiplier_error = std::numeric_limits<double>::quiet_NaN();    ///< [-]
+  double displacement_error = std::numeric_limits<double>::quiet_NaN();  ///< [-]
+  double median_seconds = 0.0;  ///< [s]
+  int iterations = 0;
+  bool solved = false;  ///< converged and did not throw
+  bool finite = false;  ///< the answer's forces and multipliers are all finite
+  /// max(force_error, displacement_error), NaN unless both are finite [-].
+  double error() const;
+};
+
+/// Solves `problem` `repeats` times with `backend` and compares the last answer with
+/// `reference`. A back end that throws (it should not) gives a failed run carrying the
+/// exception's text, so a comparison of many runs goes on.
+ComparisonRun CompareBackend(Backend backend, const ContactProblem& problem,
+                             const std::string& category, const ContactOptions& options,
+                             int repeats, const ContactSolution& reference);
+
+/// "status: message", without repeating the status where the message starts with it.
+std::string StatusWithMessage(const std::string& status, const std::string& message);
+
+/// One back end over every problem of a comparison.
+struct BackendSummary {
+  std::string backend;
+  int solved = 0;                    ///< runs that converged
+  int runs = 0;                      ///< runs in all
+  double median_seconds = 0.0;       ///< median run time, 0 when there are no runs [s]
+  double worst_error = 0.0;          ///< largest error() over solved runs, 0 if none [-]
+  double worst_residual = 0.0;       ///< largest residual over solved runs, 0 if none [-]
+  std::vector<std::string> failed;   ///< "problem (status)" of each run not solved
+};
+
+/// The summary of each of `backends` (in that order) over `runs`.
+std::vector<BackendSummary> SummarizeByBackend(const std::vector<ComparisonRun>& runs,
+                                               const std::vector<std::string>& backends);
+
+}  // namespace epicycle::solvers
