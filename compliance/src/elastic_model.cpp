@@ -328,4 +328,50 @@ Eigen::Vector3d LinearElasticModel::Stress(const Eigen::VectorXd& u, const Eleme
   return material_.ElasticityMatrix() * (b * ue);
 }
 
+ElementPoint LinearElasticModel::EdgeElementPoint(const std::string& set,
+                                                  const EdgePoint& at) const {
+  const std::vector<BoundaryEdge>& edges = mesh_.EdgeSet(set);
+  if (at.edge < 0 || at.edge >= static_cast<int>(edges.size()))
+    throw std::invalid_argument("elastic model: edge " + std::to_string(at.edge) +
+                                " outside edge set '" + set + "'");
+  const BoundaryEdge& edge = edges[static_cast<std::size_t>(at.edge)];
+  const auto& element = mesh_.elements[static_cast<std::size_t>(edge.element)];
+  for (int side = 0; side < 4; ++side) {
+    const auto& local = kQ8Sides[static_cast<std::size_t>(side)];
+    if (element[local[0]] != edge.nodes[0] || element[local[1]] != edge.nodes[1] ||
+        element[local[2]] != edge.nodes[2])
+      continue;
+    // The side runs from local node local[0] to local[2]; ξ_edge = ±1 at its ends.
+    const auto& a = kQ8NodeXiEta[local[0]];
+    const auto& b = kQ8NodeXiEta[local[2]];
+    const double w = 0.5 * (1.0 + at.xi);
+    return ElementPoint{edge.element, a[0] + w * (b[0] - a[0]), a[1] + w * (b[1] - a[1])};
+  }
+  throw std::invalid_argument("elastic model: edge " + std::to_string(at.edge) + " of set '" + set +
+                              "' is not a side of its element " + std::to_string(edge.element));
+}
+
+std::vector<std::pair<int, double>> LinearElasticModel::SurfaceStressFunctional(
+    const std::string& set, const EdgePoint& at) const {
+  const ElementPoint p = EdgeElementPoint(set, at);
+  const auto b = Q8StrainDisplacement(mesh_.ElementCoordinates(p.element), p.xi, p.eta, nullptr);
+  const Eigen::Vector2d n = mesh_.EdgeNormal(set, at);
+  const Eigen::Vector2d t(-n.y(), n.x());
+  // σ_tt = tᵀσt = (t_x², t_y², 2 t_x t_y) · (σxx, σyy, τxy), σ = D B u_e.
+  const Eigen::RowVector3d project(t.x() * t.x(), t.y() * t.y(), 2.0 * t.x() * t.y());
+  const Eigen::Matrix<double, 1, 2 * kQ8Nodes> row = project * material_.ElasticityMatrix() * b;
+  std::vector<std::pair<int, double>> out;
+  for (int a = 0; a < kQ8Nodes; ++a)
+    for (int c = 0; c < 2; ++c)
+      out.emplace_back(Dof(mesh_.elements[p.element][a], c), row(2 * a + c));
+  return out;
+}
+
+double LinearElasticModel::SurfaceStress(const Eigen::VectorXd& u, const std::string& set,
+                                         const EdgePoint& at) const {
+  double sigma = 0.0;
+  for (const auto& [dof, coefficient] : SurfaceStressFunctional(set, at)) sigma += coefficient * u(dof);
+  return sigma;
+}
+
 }  // namespace epicycle::compliance

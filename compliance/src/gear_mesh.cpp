@@ -366,6 +366,7 @@ std::vector<Patch> UpperHalf(const SectorPlan& p, const ProfilePath* path) {
   fillet.name = "fillet";
   fillet.sides = {PathCurve(path, 0.0, p.s_form), StraightLine(p.f, p.b),
                   CircularArc({0.0, 0.0}, p.r_m, p.half_pitch, 0.0), StraightLine(p.r0, p.s_pt)};
+  fillet.side_names = {"fillet", "", "", ""};
   fillet.u.breaks = FilletBreaks(p);
   out.push_back(fillet);
 
@@ -433,13 +434,13 @@ GearBodyMesh BuildGearMesh(const geometry::Gear& gear, const GearMeshOptions& op
     Patch m = q;
     for (int s = 0; s < 4; ++s) m.sides[s] = MirroredCurve(q.sides[s]);
     for (auto& name : m.side_names) {
-      if (name == "flank") name = "flank-";
+      if (name == "flank" || name == "fillet") name += "-";
     }
     sector.push_back(m);
   }
   for (int s = 0; s < 5; ++s) {
     for (auto& name : sector[s].side_names) {
-      if (name == "flank") name = "flank+";
+      if (name == "flank" || name == "fillet") name += "+";
     }
   }
   Region region;
@@ -448,8 +449,8 @@ GearBodyMesh BuildGearMesh(const geometry::Gear& gear, const GearMeshOptions& op
     for (const Patch& q : sector) {
       Patch r = Rotated(q, k * gear.pitch_angle());
       for (auto& name : r.side_names) {
-        if (name == "flank+" || name == "flank-") {
-          name = "flank" + std::to_string(k) + name.substr(5);
+        if (name == "flank+" || name == "flank-" || name == "fillet+" || name == "fillet-") {
+          name = name.substr(0, name.size() - 1) + std::to_string(k) + name.back();
         }
       }
       region.patches.push_back(r);

@@ -96,6 +96,12 @@ std::uint64_t InfluenceTableKey(const geometry::GearSpec& s, const ElasticMateri
   // reason: the keys of default tables stay those of the format before the factor existed.
   if (!o.layer_term) h.Value(o.layer_term);
   if (o.join_depth == 0.0 && o.join_depth_factor != 1.0) h.Value(o.join_depth_factor);
+  // Fillet stresses only when tabulated (a table with them is a different payload).
+  if (o.fillet_stress) {
+    const std::string tag = "fillet-stress";
+    h.Value(tag.size());
+    h.Bytes(tag.data(), tag.size());
+  }
   return h.hash();
 }
 
@@ -113,7 +119,7 @@ namespace {
 
 // Reads and checks a file; returns false with `problem` set when it must not be used.
 bool TryLoad(const std::string& file, std::uint64_t key, const geometry::Gear& gear,
-             InfluenceTable* table, std::string* problem) {
+             bool fillet_stress, InfluenceTable* table, std::string* problem) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return false;
   char magic[16];
@@ -165,7 +171,7 @@ bool TryLoad(const std::string& file, std::uint64_t key, const geometry::Gear& g
   }
   try {
     std::istringstream body(std::move(payload));  // C++20: takes the buffer, no copy
-    *table = InfluenceTable::ReadPayload(body, gear);
+    *table = InfluenceTable::ReadPayload(body, gear, fillet_stress);
   } catch (const std::runtime_error& e) {
     *problem = std::string("damaged: ") + e.what();
     return false;
@@ -233,7 +239,7 @@ InfluenceTable LoadOrBuildInfluenceTable(const geometry::Gear& gear,
   r.file = file;
   InfluenceTable table;
   std::string problem;
-  if (TryLoad(file, key, nominal, &table, &problem)) {
+  if (TryLoad(file, key, nominal, options.fillet_stress, &table, &problem)) {
     r.outcome = CacheOutcome::kLoaded;
     r.message = "influence table of '" + gear.name() + "' loaded from '" + file + "'";
     return table;

@@ -20,6 +20,55 @@ double Cpu() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 Eigen::Matrix2d Rot(double angle) { return Eigen::Rotation2Dd(angle).toRotationMatrix(); }
 
+// The fillet read-out of one side of one tooth: its points ordered from the space centre line to
+// the form point (arc length s along the σ = +1 profile of tooth 0 after undoing the tooth's
+// rotation and, for σ = −1, the mirror), each the average of the surface-stress functionals of
+// the edges that share the node.
+struct FilletReadout {
+  std::vector<double> arc_length;                          // [m]
+  std::vector<int> node;
+  std::vector<std::vector<std::pair<int, double>>> functional;  // (dof, Pa/m)
+};
+
+FilletReadout ReadFillet(const LinearElasticModel& model, const ProfilePath& path, double s_form,
+                         double tooth_angle, bool mirrored, const std::string& set) {
+  const std::vector<BoundaryEdge>& edges = model.mesh().EdgeSet(set);
+  const Eigen::Matrix2d back = Eigen::Rotation2Dd(-tooth_angle).toRotationMatrix();
+  struct Entry {
+    double s = 0.0;
+    int node = -1;
+    std::vector<std::pair<int, double>> sum;
+    int count = 0;
+  };
+  std::vector<Entry> entries;
+  for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
+    for (int a = 0; a < 3; ++a) {
+      const int node = edges[static_cast<std::size_t>(e)].nodes[static_cast<std::size_t>(a)];
+      auto it = std::find_if(entries.begin(), entries.end(),
+                             [&](const Entry& x) { return x.node == node; });
+      if (it == entries.end()) {
+        Eigen::Vector2d q = back * model.mesh().nodes[static_cast<std::size_t>(node)];
+        if (mirrored) q.y() = -q.y();
+        entries.push_back({path.Project(q, 0.0, s_form), node, {}, 0});
+        it = entries.end() - 1;
+      }
+      for (const auto& term : model.SurfaceStressFunctional(set, EdgePoint{e, a - 1.0}))
+        it->sum.push_back(term);
+      ++it->count;
+    }
+  }
+  std::sort(entries.begin(), entries.end(),
+            [](const Entry& x, const Entry& y) { return x.s < y.s; });
+  FilletReadout out;
+  for (Entry& x : entries) {
+    for (auto& term : x.sum) term.second /= x.count;
+    out.arc_length.push_back(x.s);
+    out.node.push_back(x.node);
+    out.functional.push_back(std::move(x.sum));
+  }
+  return out;
+}
+
 std::string Num(double x) {
   std::ostringstream s;
   s.precision(6);
@@ -57,6 +106,40 @@ std::size_t InfluenceTable::Index(int fl, int i, int c, int k, int f, int j) con
   const std::size_t per_load = static_cast<std::size_t>(teeth_) * 2 * n_ * 2;
   return ((static_cast<std::size_t>(fl) * n_ + i) * 2 + c) * per_load +
          ((static_cast<std::size_t>(k) * 2 + f) * n_ + j) * 2;
+}
+
+std::size_t InfluenceTable::FilletIndex(int fl, int i, int c, int k, int f) const {
+  const std::size_t m = fillet_.size();
+  return ((((static_cast<std::size_t>(fl) * n_ + i) * 2 + c) * teeth_ + k) * 2 + f) * m;
+}
+
+void InfluenceTable::AddFilletStress(const DirectedNode& load, double force, int tooth, int side,
+                                     double* sigma) const {
+  if (!has_fillet_stress())
+    throw std::logic_error("InfluenceTable: built without fillet stress (fillet_stress = false)");
+  if (side != 0 && side != 1)
+    throw std::invalid_argument("InfluenceTable: fillet side " + std::to_string(side) +
+                                ": must be 0 (sigma = +1) or 1 (sigma = -1)");
+  const int z = teeth_;
+  const int k = ((tooth - load.tooth) % z + z) % z;  // the response tooth seen from the load's
+  const std::size_t m_count = fillet_.size();
+  for (int p = 0; p < 4; ++p) {
+    for (int c = 0; c < 2; ++c) {
+      const double w = force * load.load_weight[static_cast<std::size_t>(2 * p + c)];
+      if (w == 0.0) continue;
+      const double* s = &fillet_stress_[FilletIndex(load.flank_index, load.node.first + p, c, k, side)];
+      for (std::size_t m = 0; m < m_count; ++m) sigma[m] += w * s[m];
+    }
+  }
+}
+
+double InfluenceTable::FilletGridValue(int fl, int i, int c, int k, int f, int m) const {
+  if (!has_fillet_stress())
+    throw std::logic_error("InfluenceTable: built without fillet stress (fillet_stress = false)");
+  if (fl < 0 || fl > 1 || i < 0 || i >= n_ || c < 0 || c > 1 || k < 0 || k >= teeth_ || f < 0 ||
+      f > 1 || m < 0 || m >= static_cast<int>(fillet_.size()))
+    throw std::invalid_argument("InfluenceTable::FilletGridValue: index out of range");
+  return fillet_stress_[FilletIndex(fl, i, c, k, f) + static_cast<std::size_t>(m)];
 }
 
 InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMaterial& material,
@@ -155,6 +238,33 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
   // Normal approach mᵀ U m at the layer depths per grid point (the sum over the two load cases).
   std::vector<std::array<double, kLayerSamples>> normal_at(static_cast<std::size_t>(2) * n);
   for (auto& v : normal_at) v.fill(0.0);
+  // The fillet read-out of every side of every tooth (tooth 0's σ = +1 side defines the points;
+  // the cyclic, mirrored mesh gives every other side the same points, checked).
+  std::vector<FilletReadout> fillets;
+  if (options.fillet_stress) {
+    const double tol = 1e-9 * gear.tip_radius();
+    for (int k = 0; k < z; ++k) {
+      for (int f = 0; f < 2; ++f) {
+        const std::string set = "fillet" + std::to_string(k) + (f == 0 ? "+" : "-");
+        fillets.push_back(ReadFillet(model, *t.path_, t.grid_.form_arc, k * gear.pitch_angle(),
+                                     f == 1, set));
+        const FilletReadout& r = fillets.back();
+        const FilletReadout& r0 = fillets.front();
+        bool same = r.arc_length.size() == r0.arc_length.size();
+        for (std::size_t m = 0; same && m < r.arc_length.size(); ++m)
+          same = std::abs(r.arc_length[m] - r0.arc_length[m]) <= tol;
+        if (!same)
+          throw std::invalid_argument(who + "the fillet points of set '" + set +
+                                      "' are not those of tooth 0 (the mesh is not cyclic)");
+      }
+    }
+    for (std::size_t m = 0; m < fillets.front().arc_length.size(); ++m) {
+      const double sm = fillets.front().arc_length[m];
+      t.fillet_.push_back({sm, model.mesh().nodes[static_cast<std::size_t>(fillets.front().node[m])],
+                           t.path_->Tangent(sm)});
+    }
+    t.fillet_stress_.assign(static_cast<std::size_t>(2) * n * 2 * z * 2 * t.fillet_.size(), 0.0);
+  }
   const int cases = 2 * n * 2;
   for (int first = 0; first < cases; first += options.batch) {
     const int count = std::min(options.batch, cases - first);
@@ -173,6 +283,17 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
             const std::size_t at = t.Index(fl, i, c, k, fr, j);
             raw[at] = u(2 * node, q);
             raw[at + 1] = u(2 * node + 1, q);
+          }
+        }
+      }
+      for (int k = 0; k < z && options.fillet_stress; ++k) {
+        for (int side = 0; side < 2; ++side) {
+          const FilletReadout& r = fillets[static_cast<std::size_t>(2 * k + side)];
+          double* out = &t.fillet_stress_[t.FilletIndex(fl, i, c, k, side)];
+          for (std::size_t m = 0; m < r.functional.size(); ++m) {
+            double sigma = 0.0;
+            for (const auto& [dof, coefficient] : r.functional[m]) sigma += coefficient * u(dof, q);
+            out[m] = sigma;
           }
         }
       }
@@ -645,9 +766,18 @@ void InfluenceTable::WritePayload(std::ostream& out) const {
   for (const auto& m : self_) s.insert(s.end(), {m(0, 0), m(1, 0), m(0, 1), m(1, 1)});
   PutVector(out, s);
   PutVector(out, layer_);
+  if (has_fillet_stress()) {
+    Put<std::int32_t>(out, static_cast<std::int32_t>(fillet_.size()));
+    std::vector<double> f;
+    for (const FilletPoint& p : fillet_)
+      f.insert(f.end(), {p.arc_length, p.position.x(), p.position.y(), p.tangent.x(), p.tangent.y()});
+    PutVector(out, f);
+    PutVector(out, fillet_stress_);
+  }
 }
 
-InfluenceTable InfluenceTable::ReadPayload(std::istream& in, const geometry::Gear& gear) {
+InfluenceTable InfluenceTable::ReadPayload(std::istream& in, const geometry::Gear& gear,
+                                           bool fillet_stress) {
   InfluenceTable t;
   t.teeth_ = Get<std::int32_t>(in);
   t.n_ = Get<std::int32_t>(in);
@@ -681,6 +811,16 @@ InfluenceTable InfluenceTable::ReadPayload(std::istream& in, const geometry::Gea
     t.self_.push_back(m);
   }
   t.layer_ = GetVector(in, static_cast<std::size_t>(2) * n);
+  if (fillet_stress) {
+    const int m = Get<std::int32_t>(in);
+    if (m < 3 || m > 100000)
+      throw std::runtime_error("influence table payload: " + std::to_string(m) +
+                               " fillet points (3 to 100000 expected)");
+    const std::vector<double> f = GetVector(in, static_cast<std::size_t>(5) * m);
+    for (int j = 0; j < m; ++j)
+      t.fillet_.push_back({f[5 * j], {f[5 * j + 1], f[5 * j + 2]}, {f[5 * j + 3], f[5 * j + 4]}});
+    t.fillet_stress_ = GetVector(in, static_cast<std::size_t>(2) * n * 2 * z * 2 * m);
+  }
   t.gear_ = std::make_shared<const geometry::Gear>(gear);
   t.path_ = std::make_shared<const ProfilePath>(*t.gear_);
   t.BuildDerived();

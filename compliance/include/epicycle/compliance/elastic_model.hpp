@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -120,6 +121,19 @@ class LinearElasticModel {
   /// In-plane stress (σxx, σyy, τxy) [Pa] = D B(ξ, η) u_e at a point of an element. (Plane strain
   /// also carries σzz = ν(σxx + σyy).)
   Eigen::Vector3d Stress(const Eigen::VectorXd& u, const ElementPoint& at) const;
+  /// The point of the edge's own element at a point of an edge set (the side's local coordinate
+  /// mapped to (ξ, η) of that element). @throws std::invalid_argument if the edge is not a side of
+  /// its element.
+  ElementPoint EdgeElementPoint(const std::string& set, const EdgePoint& at) const;
+  /// Surface tangential stress σ_tt = tᵀ σ t [Pa] at a point of an edge set, t the unit tangent of
+  /// the edge there, σ from the edge's own element (Stress at EdgeElementPoint). On a free surface
+  /// (σ·n = 0) it is the in-plane principal stress that is not zero, the stress a root fillet is
+  /// rated by; in plane strain |σzz| = ν|σ_tt| is smaller.
+  double SurfaceStress(const Eigen::VectorXd& u, const std::string& set, const EdgePoint& at) const;
+  /// SurfaceStress as a linear functional of the displacements: σ_tt = Σ coefficient · u[dof]
+  /// over the pairs (dof, coefficient [Pa/m]) returned, for many displacement fields at once.
+  std::vector<std::pair<int, double>> SurfaceStressFunctional(const std::string& set,
+                                                              const EdgePoint& at) const;
 
  private:
   void RequireFactorized() const;

@@ -112,7 +112,8 @@ struct FlankGrid {
 /// A gear body ready for the elastic model: the mesh, its flank grid and the grid's node indices.
 /// Mesh sets: node set "hub" (external gears: the axis circle; ring: the outer rim) to fix; node
 /// and edge sets "flank<k>+" / "flank<k>-" (involute, tip round and tip land of tooth k's σ = ±1
-/// flank); element sets "band", "core", "fillet", "rim".
+/// flank) and "fillet<k>+" / "fillet<k>-" (root land and fillet of tooth k's σ = ±1 side, from the
+/// space centre line to the form point); element sets "band", "core", "fillet", "rim".
 struct GearBodyMesh {
   Mesh mesh;
   FlankGrid grid;

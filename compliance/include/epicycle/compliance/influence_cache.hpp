@@ -16,7 +16,8 @@ inline constexpr std::uint32_t kInfluenceTableFormat = 3;
 /// the gear spec that shapes the body (kind, z, m, b, α, x, tip and root radii and roundings, hub
 /// or rim radius, cutter data, tip-thickness limit; not the name, not the thickness error: the
 /// table is that of the nominal body, NominalBody), the material (E, ν, b, plane) and the table
-/// options that change its values (mesh options, join depth, layer term; not the solve batch).
+/// options that change its values (mesh options, join depth, layer term, fillet stress; not the
+/// solve batch).
 /// Doubles enter bit-exactly.
 std::uint64_t InfluenceTableKey(const geometry::GearSpec& spec, const ElasticMaterial& material,
                                 const InfluenceTableOptions& options);

@@ -44,6 +44,10 @@ struct InfluenceTableOptions {
   /// (removes the alternation between grid points on corner and mid-side nodes). false: the join of
   /// the paper (FE at depth h plus the local term, nothing in between), kept for the comparison.
   bool layer_term = true;
+  /// Also tabulate the root stress (docs/model.md §9): the surface tangential stress σ_tt along
+  /// both fillets of every tooth under each unit load, from the same solves (see
+  /// InfluenceTable::AddFilletStress). Off, the build and the table are those without stress.
+  bool fillet_stress = false;
   /// Right-hand sides solved per sweep of the factor [-], ≥ 1 (bounds the memory of the solve).
   int batch = 32;
   /// @throws std::invalid_argument naming the field, its value and the rule.
@@ -184,12 +188,47 @@ class InfluenceTable {
   /// contained in SelfBlock along the normal: SelfBlock = FE block at h (symmetrised) + c_i m mᵀ.
   double LayerCompliance(int fl, int i) const;
 
+  // ---- Root stress (built with InfluenceTableOptions::fillet_stress) ----
+  //
+  // The structural FE is linear, so the surface tangential stress at a fillet point is
+  //   σ_tt(p) = Σ_j S(p; load j) · F_j,
+  // S the stress under a unit force at the load's flank position (docs/model.md §9). S is
+  // tabulated like Λ: unit loads along x and y at the flank grid of tooth 0, σ_tt at the fillet
+  // points of both sides of every tooth, interpolated over the load position by the same
+  // Hermite weights (Prepare), carried to other teeth by the cyclic symmetry (a stress is
+  // invariant under the rotation R_k). σ_tt = tᵀσt at a free surface is the non-zero in-plane
+  // principal stress (LinearElasticModel::SurfaceStress), positive in tension; at a node shared by
+  // two fillet edges the two elements' values are averaged. The local (Hertz) term acts within
+  // the join depth and does not reach the fillet: it adds nothing here.
+
+  /// A point of the fillet of tooth 0's σ = +1 side (root land and fillet, from the space centre
+  /// line to the form point); the σ = −1 side is its mirror image, tooth k its rotation.
+  struct FilletPoint {
+    double arc_length = 0.0;                                 ///< along the profile from the space centre line [m]
+    Eigen::Vector2d position = Eigen::Vector2d::Zero();      ///< body frame [m]
+    Eigen::Vector2d tangent = Eigen::Vector2d::Zero();       ///< unit, toward the form point
+  };
+  bool has_fillet_stress() const { return !fillet_.empty(); }
+  /// The fillet points, ordered from the space centre line to the form point (empty without
+  /// stress).
+  const std::vector<FilletPoint>& fillet_points() const { return fillet_; }
+  /// σ += F · S at every fillet point of tooth `tooth`, side `side` (0: σ = +1, 1: σ = −1), for a
+  /// force F [N] along `load`'s direction at its position: `sigma` has fillet_points().size()
+  /// entries [Pa]. @throws std::logic_error on a table without stress.
+  void AddFilletStress(const DirectedNode& load, double force, int tooth, int side,
+                       double* sigma) const;
+  /// The tabulated σ_tt [Pa/N] at fillet point m of (tooth k, side f) under a unit force along
+  /// axis c at grid point i of tooth 0's flank fl (fl, f: 0 for σ = +1, 1 for σ = −1).
+  double FilletGridValue(int fl, int i, int c, int k, int f, int m) const;
+
   /// Binary serialisation (see influence_cache.hpp for the file format and its checks): the
   /// payload only, without header or checksum.
   void WritePayload(std::ostream& out) const;
-  /// Reads a payload written by WritePayload for `gear` (the caller has checked the key).
+  /// Reads a payload written by WritePayload for `gear` (the caller has checked the key, which
+  /// says whether the payload carries fillet stresses).
   /// @throws std::runtime_error if the payload is truncated or inconsistent.
-  static InfluenceTable ReadPayload(std::istream& in, const geometry::Gear& gear);
+  static InfluenceTable ReadPayload(std::istream& in, const geometry::Gear& gear,
+                                    bool fillet_stress = false);
 
  private:
   std::size_t Index(int fl, int i, int c, int k, int f, int j) const;
@@ -207,6 +246,9 @@ class InfluenceTable {
   std::vector<double> raw_;                   // as solved (surface values everywhere)
   std::vector<Eigen::Matrix2d> self_;         // [fl][i], symmetrised, with the layer term
   std::vector<double> layer_;                 // [fl][i], the layer term [m/N]
+  std::vector<FilletPoint> fillet_;           // M points of tooth 0's σ = +1 fillet
+  std::vector<double> fillet_stress_;         // [fl][i][c][k][f][m] [Pa/N]
+  std::size_t FilletIndex(int fl, int i, int c, int k, int f) const;
   std::vector<std::array<double, 3>> slope_;  // [m]: nodal slope weights (Weights)
   std::shared_ptr<const geometry::Gear> gear_;
   std::shared_ptr<const ProfilePath> path_;

@@ -1,0 +1,212 @@
+// Root stress from the influence table (docs/model.md §9) against the FE solved directly: two
+// off-grid loads at once against the table's superposition, the mirror symmetry of the body, and
+// the cache round trip of a table with stresses.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "epicycle/compliance/elastic_model.hpp"
+#include "epicycle/compliance/gear_mesh.hpp"
+#include "epicycle/compliance/influence_cache.hpp"
+#include "epicycle/compliance/influence_table.hpp"
+#include "stage_fixtures.hpp"
+
+using namespace epicycle;
+using namespace epicycle::compliance;
+
+namespace {
+
+ElasticMaterial SunMaterial() {
+  const transmission::Scene scene = test::PaperScene();
+  return ElasticMaterial{scene.material.youngs_modulus, scene.material.poisson_ratio,
+                         scene.stage.sun.face_width, PlaneAssumption::kPlaneStrain};
+}
+
+geometry::Gear Sun() { return geometry::Gear(test::PaperScene().stage.sun); }
+
+InfluenceTableOptions WithStress() {
+  InfluenceTableOptions o;
+  o.fillet_stress = true;
+  return o;
+}
+
+const InfluenceTable& SunStressTable() {
+  static const InfluenceTable table = InfluenceTable::Build(Sun(), SunMaterial(), WithStress());
+  return table;
+}
+
+Eigen::Vector2d OnTooth(const Eigen::Vector2d& x0, double angle, bool mirrored) {
+  const Eigen::Vector2d x = mirrored ? Eigen::Vector2d(x0.x(), -x0.y()) : x0;
+  return Eigen::Rotation2Dd(angle).toRotationMatrix() * x;
+}
+
+// σ_tt [Pa] at the node of `set` at x, averaged over the fillet edges that share it (the
+// definition of the table's read-out at a node), from a displacement field solved directly.
+double NodeStress(const LinearElasticModel& model, const Eigen::VectorXd& u,
+                  const std::string& set, const Eigen::Vector2d& x, double tol) {
+  const auto& edges = model.mesh().EdgeSet(set);
+  double sum = 0.0;
+  int count = 0;
+  for (int e = 0; e < static_cast<int>(edges.size()); ++e)
+    for (int a = 0; a < 3; ++a)
+      if ((model.mesh().nodes[edges[e].nodes[a]] - x).norm() <= tol) {
+        sum += model.SurfaceStress(u, set, EdgePoint{e, a - 1.0});
+        ++count;
+      }
+  REQUIRE(count > 0);
+  return sum / count;
+}
+
+struct Load {
+  FlankPosition at;
+  Eigen::Vector2d direction;  // unit, body frame
+  double force;               // [N]
+};
+
+}  // namespace
+
+TEST_CASE("fillet stress: two off-grid loads against the FE solved directly",
+          "[crosscheck][compliance][stress]") {
+  const geometry::Gear gear = Sun();
+  const InfluenceTable& table = SunStressTable();
+  REQUIRE(table.has_fillet_stress());
+  const auto& points = table.fillet_points();
+  const int z = gear.teeth(), n = table.grid().num_points(), m_count = int(points.size());
+  // The direct solve: the same body mesh, the loads applied as the FE applies a point force on
+  // an edge (consistent nodal forces), one solve with both loads at once.
+  const GearBodyMesh body = BuildGearMesh(gear);
+  LinearElasticModel model(body.mesh, SunMaterial());
+  model.FixNodeSet("hub");
+  model.Factorize();
+  const ProfilePath path(gear);
+  const double s_max = table.arc_length_max();
+  // Two loads between grid points on the involute: a mesh force into tooth 0's σ = +1 flank, and
+  // one on tooth 1's σ = −1 flank with a tangential (friction-like) part.
+  const std::vector<Load> loads = {
+      {{0, 1, 0.37 * s_max}, Eigen::Vector2d::Zero(), 3000.0},
+      {{1, -1, 0.61 * s_max}, Eigen::Vector2d::Zero(), 2000.0},
+  };
+  std::vector<Load> placed = loads;
+  Eigen::VectorXd f = model.ZeroLoads();
+  for (Load& l : placed) {
+    const bool mirrored = l.at.flank < 0;
+    const double angle = l.at.tooth * gear.pitch_angle();
+    const double s = table.grid().form_arc + l.at.arc_length;
+    const Eigen::Vector2d x = OnTooth(path.Point(s), angle, mirrored);
+    const Eigen::Vector2d normal = OnTooth(path.Normal(s), angle, mirrored);
+    const Eigen::Vector2d tangent(-normal.y(), normal.x());
+    l.direction = (l.at.flank > 0 ? -normal : (-normal + 0.1 * tangent).normalized());
+    const std::string set =
+        "flank" + std::to_string(l.at.tooth) + (l.at.flank > 0 ? "+" : "-");
+    double distance = 0.0;
+    const EdgePoint ep = model.mesh().LocateOnEdgeSet(set, x, &distance);
+    // Between its nodes the quadratic edge lies within nanometres of the generated profile.
+    REQUIRE(distance < 1e-5 * gear.module());
+    model.AddEdgePointForce(set, ep, l.force * l.direction, &f);
+  }
+  const Eigen::VectorXd u = model.Solve(f);
+
+  // The bound of the comparison: the FE answer to a consistent point force is the quadratic
+  // (3-node) interpolation of its nodes' answers, the table's the 4-point Hermite interpolant;
+  // both reproduce quadratics, so each differs from the smooth S(s) by a fraction of its third
+  // difference Δ³S on the grid: the quadratic by max_t |t(t−1)(t−2)|/6 = 0.064, the Hermite with
+  // parabola slopes by at most 0.05 (h10/h11 ≤ 4/27 times two slopes' error Δ³S/3, rounded up).
+  // The tolerance is (0.064 + 0.05) Σ_loads F max |Δ³S| over the loads' stencils, plus
+  // round-off of the two solves (1e-9 of the largest stress).
+  const double tol_node = 1e-9 * gear.tip_radius();
+  double worst = 0.0, bound = 0.0, largest = 0.0;
+  for (int k : {0, 1, 2, z - 1}) {
+    for (int side = 0; side < 2; ++side) {
+      std::vector<double> sigma(static_cast<std::size_t>(m_count), 0.0);
+      for (const Load& l : placed) {
+        const auto node = table.PrepareDirected(l.at, l.direction);
+        table.AddFilletStress(node, l.force, k, side, sigma.data());
+      }
+      for (int m = 0; m < m_count; ++m) {
+        const std::string set = "fillet" + std::to_string(k) + (side == 0 ? "+" : "-");
+        const double direct = NodeStress(
+            model, u, set, OnTooth(points[m].position, k * gear.pitch_angle(), side == 1),
+            tol_node);
+        worst = std::max(worst, std::abs(sigma[m] - direct));
+        largest = std::max(largest, std::abs(direct));
+        double b = 0.0;
+        for (const Load& l : placed) {
+          const auto node = table.Prepare(l.at);
+          const int fl = l.at.flank > 0 ? 0 : 1;
+          const int kr = ((k - l.at.tooth) % z + z) % z;
+          double d3 = 0.0;
+          for (int c = 0; c < 2; ++c)
+            for (int i = std::max(0, node.first - 1); i + 3 < n && i <= node.first + 1; ++i) {
+              const auto S = [&](int j) { return table.FilletGridValue(fl, j, c, kr, side, m); };
+              d3 = std::max(d3, std::abs(S(i + 3) - 3 * S(i + 2) + 3 * S(i + 1) - S(i)));
+            }
+          b += (0.064 + 0.05) * l.force * d3;
+        }
+        bound = std::max(bound, b);
+        INFO("tooth " << k << " side " << side << " point " << m << ": table " << sigma[m]
+                      << " Pa, direct " << direct << " Pa, bound " << b);
+        CHECK(std::abs(sigma[m] - direct) <= b + 1e-9 * std::max(largest, 1.0));
+      }
+    }
+  }
+  // The loaded teeth's fillets carry tens of MPa: the comparison is not between zeros.
+  CHECK(largest > 1e7);
+  WARN("largest |table - direct| " << worst / 1e6 << " MPa (bound up to " << bound / 1e6
+                                   << " MPa) at stresses up to " << largest / 1e6 << " MPa");
+}
+
+TEST_CASE("fillet stress: a mirrored load gives the mirrored stresses",
+          "[crosscheck][compliance][stress]") {
+  // The body is symmetric about each tooth's centre line: a load on tooth 0's σ = −1 flank that
+  // mirrors one on its σ = +1 flank gives at side 1 of tooth k what the original gives at side 0
+  // of tooth −k (exactly, up to the solves' round-off).
+  const InfluenceTable& table = SunStressTable();
+  const int z = table.teeth(), m_count = int(table.fillet_points().size());
+  const double s = 0.45 * table.arc_length_max();
+  const Eigen::Vector2d d = Eigen::Vector2d(-0.8, -0.6);
+  const auto plus = table.PrepareDirected({0, 1, s}, d);
+  const auto minus = table.PrepareDirected({0, -1, s}, Eigen::Vector2d(d.x(), -d.y()));
+  double largest = 0.0, worst = 0.0;
+  for (int k = 0; k < z; ++k) {
+    for (int side = 0; side < 2; ++side) {
+      std::vector<double> a(static_cast<std::size_t>(m_count), 0.0), b = a;
+      table.AddFilletStress(plus, 1.0, k, side, a.data());
+      table.AddFilletStress(minus, 1.0, (z - k) % z, 1 - side, b.data());
+      for (int m = 0; m < m_count; ++m) {
+        largest = std::max(largest, std::abs(a[m]));
+        worst = std::max(worst, std::abs(a[m] - b[m]));
+      }
+    }
+  }
+  CHECK(largest > 1e3);  // [Pa/N]
+  CHECK(worst <= 1e-8 * largest);
+}
+
+TEST_CASE("fillet stress: a table with stresses survives the cache, under its own key",
+          "[crosscheck][compliance][stress]") {
+  const geometry::Gear gear = Sun();
+  const ElasticMaterial material = SunMaterial();
+  CHECK(InfluenceTableKey(gear.spec(), material, WithStress()) !=
+        InfluenceTableKey(gear.spec(), material, InfluenceTableOptions{}));
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / "epicycle-fillet-stress-cache").string();
+  std::filesystem::remove_all(dir);
+  CacheReport built, loaded;
+  const InfluenceTable a = LoadOrBuildInfluenceTable(gear, material, WithStress(), dir, &built);
+  const InfluenceTable b = LoadOrBuildInfluenceTable(gear, material, WithStress(), dir, &loaded);
+  CHECK(built.outcome == CacheOutcome::kBuilt);
+  CHECK(loaded.outcome == CacheOutcome::kLoaded);
+  REQUIRE(b.has_fillet_stress());
+  REQUIRE(b.fillet_points().size() == a.fillet_points().size());
+  const int n = a.grid().num_points(), m_count = int(a.fillet_points().size());
+  for (int i : {0, n / 2, n - 1})
+    for (int m : {0, m_count / 2, m_count - 1})
+      CHECK(b.FilletGridValue(0, i, 1, 0, 0, m) == a.FilletGridValue(0, i, 1, 0, 0, m));
+  std::filesystem::remove_all(dir);
+}
