@@ -17,11 +17,12 @@ struct Located {
   InfluenceTable::DirectedNode node;
 };
 
-}  // namespace
-
-Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
-                                   const std::vector<OperatorContact>& contacts,
-                                   std::string* off_flank) {
+// Every side of every contact located on its body's flank once (side s of contact j at 2j + s),
+// with `first[b + 1]` counting body b's sides. False with the reason in *off_flank (non-null) for a
+// point off its flank; thrown when off_flank is null.
+bool LocateSides(const std::vector<OperatorBody>& bodies,
+                 const std::vector<OperatorContact>& contacts, std::string* off_flank,
+                 std::vector<Located>* out, std::vector<int>* first) {
   const int nb = static_cast<int>(bodies.size());
   for (int b = 0; b < nb; ++b) {
     if (bodies[b].table == nullptr) {
@@ -29,17 +30,13 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                   bodies[b].name + "') has no influence table");
     }
   }
-  // Per body: R(−θ_B), inertial to body frame; and where its sides start in the sides grouped by
-  // body (a count first, then the offsets; one entry past the last body ends the last group).
-  struct Frame {
-    Eigen::Matrix2d to_body = Eigen::Matrix2d::Identity();
-    int first = 0;
-  };
-  std::vector<Frame> frame(static_cast<std::size_t>(nb) + 1);
+  first->assign(static_cast<std::size_t>(nb) + 1, 0);
+  std::vector<Eigen::Matrix2d> to_body(static_cast<std::size_t>(nb));  // R(−θ_B)
   for (int b = 0; b < nb; ++b)
-    frame[b].to_body = Eigen::Rotation2Dd(-bodies[b].rotation).toRotationMatrix();
+    to_body[b] = Eigen::Rotation2Dd(-bodies[b].rotation).toRotationMatrix();
   const int n = static_cast<int>(contacts.size());
-  std::vector<Located> loc;  // side s of contact j at 2j + s
+  std::vector<Located>& loc = *out;
+  loc.clear();
   loc.reserve(static_cast<std::size_t>(2 * n));
   for (int j = 0; j < n; ++j) {
     for (int s = 0; s < 2; ++s) {
@@ -60,7 +57,7 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                     std::to_string(side.direction.norm()) + ")");
       }
       const OperatorBody& body = bodies[side.body];
-      const Eigen::Matrix2d& r = frame[side.body].to_body;
+      const Eigen::Matrix2d& r = to_body[side.body];
       FlankPosition position;
       double distance = 0;
       const Eigen::Vector2d point = r * (side.point - body.centre);
@@ -71,20 +68,33 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
           const std::string text = where() + " on body '" + body.name + "': " + e.what();
           if (off_flank == nullptr) throw std::invalid_argument(text);
           *off_flank = text;
-          return Eigen::MatrixXd();
+          return false;
         }
       }
       loc.push_back({j, side.body, body.table->PrepareDirected(position, r * side.direction)});
-      ++frame[side.body + 1].first;
+      ++(*first)[side.body + 1];
     }
   }
+  return true;
+}
+
+}  // namespace
+
+Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
+                                   const std::vector<OperatorContact>& contacts,
+                                   std::string* off_flank) {
+  const int nb = static_cast<int>(bodies.size());
+  const int n = static_cast<int>(contacts.size());
+  std::vector<Located> loc;
+  std::vector<int> first;
+  if (!LocateSides(bodies, contacts, off_flank, &loc, &first)) return Eigen::MatrixXd();
   // The sides grouped by body, in contact order within a body (a counting sort): each body's
   // pairs are then one triangle of its sides.
-  for (int b = 0; b < nb; ++b) frame[b + 1].first += frame[b].first;
+  for (int b = 0; b < nb; ++b) first[b + 1] += first[b];
   std::vector<int> order(loc.size());
-  for (int i = 0; i < 2 * n; ++i) order[frame[loc[i].body].first++] = i;
-  for (int b = nb; b > 0; --b) frame[b].first = frame[b - 1].first;  // back to the starts
-  frame[0].first = 0;
+  for (int i = 0; i < 2 * n; ++i) order[first[loc[i].body]++] = i;
+  for (int b = nb; b > 0; --b) first[b] = first[b - 1];  // back to the starts
+  first[0] = 0;
   // C_jk = Σ_B d_Bjᵀ Λ_B(p_Bk → p_Bj) d_Bk (+ support): every pair of sides x ≤ y of a body adds
   // its term to C_jk and C_kj, j ≤ k their contacts (the response at j, the load at k).
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
@@ -103,8 +113,8 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
       }
       return v;
     };
-    const int end = frame[b + 1].first;
-    for (int x = frame[b].first; x < end; ++x) {
+    const int end = first[b + 1];
+    for (int x = first[b]; x < end; ++x) {
       const Located& a = loc[order[x]];
       for (int y = x; y < end; ++y) {
         const Located& l = loc[order[y]];
@@ -117,6 +127,45 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
     }
   }
   return c;
+}
+
+std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies,
+                                         const std::vector<OperatorContact>& contacts,
+                                         const Eigen::VectorXd& force, int neighbours) {
+  if (force.size() != static_cast<Eigen::Index>(contacts.size()))
+    throw std::invalid_argument("FilletStresses: " + std::to_string(force.size()) + " forces for " +
+                                std::to_string(contacts.size()) + " contacts");
+  if (neighbours < 0)
+    throw std::invalid_argument("FilletStresses: neighbours = " + std::to_string(neighbours) +
+                                ": must be >= 0");
+  std::vector<Located> loc;
+  std::vector<int> first;
+  LocateSides(bodies, contacts, nullptr, &loc, &first);
+  std::vector<FilletStress> out;
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+    const InfluenceTable& table = *bodies[b].table;
+    if (!table.has_fillet_stress())
+      throw std::invalid_argument("FilletStresses: body " + std::to_string(b) + " ('" +
+                                  bodies[b].name + "') has a table without fillet stresses");
+    const int z = table.teeth();
+    // The teeth within `neighbours` of a tooth of this body that carries load, each once.
+    std::vector<char> wanted(static_cast<std::size_t>(z), 0);
+    for (const Located& l : loc)
+      if (l.body == b && force(l.contact) > 0.0)
+        for (int d = -neighbours; d <= neighbours; ++d)
+          wanted[static_cast<std::size_t>(((l.node.tooth + d) % z + z) % z)] = 1;
+    for (int k = 0; k < z; ++k) {
+      if (!wanted[static_cast<std::size_t>(k)]) continue;
+      for (int side = 0; side < 2; ++side) {
+        FilletStress f{b, k, side, std::vector<double>(table.fillet_points().size(), 0.0)};
+        for (const Located& l : loc)
+          if (l.body == b && force(l.contact) > 0.0)
+            table.AddFilletStress(l.node, force(l.contact), k, side, f.sigma.data());
+        out.push_back(std::move(f));
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace epicycle::compliance

@@ -370,7 +370,8 @@ std::vector<std::pair<int, double>> LinearElasticModel::SurfaceStressFunctional(
 double LinearElasticModel::SurfaceStress(const Eigen::VectorXd& u, const std::string& set,
                                          const EdgePoint& at) const {
   double sigma = 0.0;
-  for (const auto& [dof, coefficient] : SurfaceStressFunctional(set, at)) sigma += coefficient * u(dof);
+  for (const auto& [dof, coefficient] : SurfaceStressFunctional(set, at))
+    sigma += coefficient * u(dof);
   return sigma;
 }
 

@@ -25,7 +25,7 @@ Eigen::Matrix2d Rot(double angle) { return Eigen::Rotation2Dd(angle).toRotationM
 // rotation and, for σ = −1, the mirror), each the average of the surface-stress functionals of
 // the edges that share the node.
 struct FilletReadout {
-  std::vector<double> arc_length;                          // [m]
+  std::vector<double> arc_length;  // [m]
   std::vector<int> node;
   std::vector<std::vector<std::pair<int, double>>> functional;  // (dof, Pa/m)
 };
@@ -127,7 +127,8 @@ void InfluenceTable::AddFilletStress(const DirectedNode& load, double force, int
     for (int c = 0; c < 2; ++c) {
       const double w = force * load.load_weight[static_cast<std::size_t>(2 * p + c)];
       if (w == 0.0) continue;
-      const double* s = &fillet_stress_[FilletIndex(load.flank_index, load.node.first + p, c, k, side)];
+      const double* s =
+          &fillet_stress_[FilletIndex(load.flank_index, load.node.first + p, c, k, side)];
       for (std::size_t m = 0; m < m_count; ++m) sigma[m] += w * s[m];
     }
   }
@@ -246,8 +247,8 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
     for (int k = 0; k < z; ++k) {
       for (int f = 0; f < 2; ++f) {
         const std::string set = "fillet" + std::to_string(k) + (f == 0 ? "+" : "-");
-        fillets.push_back(ReadFillet(model, *t.path_, t.grid_.form_arc, k * gear.pitch_angle(),
-                                     f == 1, set));
+        fillets.push_back(
+            ReadFillet(model, *t.path_, t.grid_.form_arc, k * gear.pitch_angle(), f == 1, set));
         const FilletReadout& r = fillets.back();
         const FilletReadout& r0 = fillets.front();
         bool same = r.arc_length.size() == r0.arc_length.size();
@@ -260,7 +261,8 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
     }
     for (std::size_t m = 0; m < fillets.front().arc_length.size(); ++m) {
       const double sm = fillets.front().arc_length[m];
-      t.fillet_.push_back({sm, model.mesh().nodes[static_cast<std::size_t>(fillets.front().node[m])],
+      t.fillet_.push_back({sm,
+                           model.mesh().nodes[static_cast<std::size_t>(fillets.front().node[m])],
                            t.path_->Tangent(sm)});
     }
     t.fillet_stress_.assign(static_cast<std::size_t>(2) * n * 2 * z * 2 * t.fillet_.size(), 0.0);
@@ -770,7 +772,8 @@ void InfluenceTable::WritePayload(std::ostream& out) const {
     Put<std::int32_t>(out, static_cast<std::int32_t>(fillet_.size()));
     std::vector<double> f;
     for (const FilletPoint& p : fillet_)
-      f.insert(f.end(), {p.arc_length, p.position.x(), p.position.y(), p.tangent.x(), p.tangent.y()});
+      f.insert(f.end(),
+               {p.arc_length, p.position.x(), p.position.y(), p.tangent.x(), p.tangent.y()});
     PutVector(out, f);
     PutVector(out, fillet_stress_);
   }

@@ -64,4 +64,23 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                    const std::vector<OperatorContact>& contacts,
                                    std::string* off_flank = nullptr);
 
+/// The root stress of one fillet: side `side` of tooth `tooth` of body `body`.
+struct FilletStress {
+  int body = 0;
+  int tooth = 0;              ///< k in [0, z), body frame
+  int side = 0;               ///< 0: σ = +1, 1: σ = −1
+  std::vector<double> sigma;  ///< σ_tt [Pa] at the body table's fillet_points()
+};
+
+/// The root stresses of a state (docs/model.md §9): σ_tt(p) = Σ_j S_B(p; j) F_j on both fillets
+/// of every tooth within `neighbours` teeth of one that carries a contact with F_j > 0, per body,
+/// from each body's table (InfluenceTable::AddFilletStress) with the contact sides located as
+/// AssembleCompliance locates them. Contacts with F_j ≤ 0 carry nothing. Bodies are listed in
+/// order, teeth ascending, side 0 before 1.
+/// @throws std::invalid_argument as AssembleCompliance (a side off its flank throws), for a table
+///         built without fillet stresses, `force` not of one entry per contact, or neighbours < 0.
+std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies,
+                                         const std::vector<OperatorContact>& contacts,
+                                         const Eigen::VectorXd& force, int neighbours = 1);
+
 }  // namespace epicycle::compliance

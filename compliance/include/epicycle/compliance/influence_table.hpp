@@ -204,9 +204,9 @@ class InfluenceTable {
   /// A point of the fillet of tooth 0's σ = +1 side (root land and fillet, from the space centre
   /// line to the form point); the σ = −1 side is its mirror image, tooth k its rotation.
   struct FilletPoint {
-    double arc_length = 0.0;                                 ///< along the profile from the space centre line [m]
-    Eigen::Vector2d position = Eigen::Vector2d::Zero();      ///< body frame [m]
-    Eigen::Vector2d tangent = Eigen::Vector2d::Zero();       ///< unit, toward the form point
+    double arc_length = 0.0;  ///< along the profile from the space centre line [m]
+    Eigen::Vector2d position = Eigen::Vector2d::Zero();  ///< body frame [m]
+    Eigen::Vector2d tangent = Eigen::Vector2d::Zero();   ///< unit, toward the form point
   };
   bool has_fillet_stress() const { return !fillet_.empty(); }
   /// The fillet points, ordered from the space centre line to the form point (empty without
@@ -242,12 +242,12 @@ class InfluenceTable {
   double raw_asymmetry_ = 0.0, raw_self_asymmetry_ = 0.0;
   std::array<double, 3> seconds_{};
   FlankGrid grid_;
-  std::vector<double> surface_;               // symmetrised, joined (self entries = depth blocks)
-  std::vector<double> raw_;                   // as solved (surface values everywhere)
-  std::vector<Eigen::Matrix2d> self_;         // [fl][i], symmetrised, with the layer term
-  std::vector<double> layer_;                 // [fl][i], the layer term [m/N]
-  std::vector<FilletPoint> fillet_;           // M points of tooth 0's σ = +1 fillet
-  std::vector<double> fillet_stress_;         // [fl][i][c][k][f][m] [Pa/N]
+  std::vector<double> surface_;        // symmetrised, joined (self entries = depth blocks)
+  std::vector<double> raw_;            // as solved (surface values everywhere)
+  std::vector<Eigen::Matrix2d> self_;  // [fl][i], symmetrised, with the layer term
+  std::vector<double> layer_;          // [fl][i], the layer term [m/N]
+  std::vector<FilletPoint> fillet_;    // M points of tooth 0's σ = +1 fillet
+  std::vector<double> fillet_stress_;  // [fl][i][c][k][f][m] [Pa/N]
   std::size_t FilletIndex(int fl, int i, int c, int k, int f) const;
   std::vector<std::array<double, 3>> slope_;  // [m]: nodal slope weights (Weights)
   std::shared_ptr<const geometry::Gear> gear_;
