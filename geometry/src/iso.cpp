@@ -5,6 +5,7 @@
 #include <numeric>
 #include <random>
 #include <stdexcept>
+#include <utility>
 
 #include "messages.hpp"
 
@@ -156,6 +157,60 @@ std::vector<double> RandomPitchDeviations(int teeth, double module, int grade, s
   const double scale = std::min({1.0, fpt / largest, Fp / (*hi - *lo)});
   for (double& c : cumulative) c *= scale;
   return cumulative;
+}
+
+RootFormFactors RootFormFactorsB(int teeth, double module, double alpha, double profile_shift,
+                                 double rack_dedendum, double rack_tip_radius, double tip_diameter,
+                                 double contact_ratio) {
+  const auto fail = [](const std::string& what, double v, const std::string& rule) {
+    throw std::invalid_argument("ISO 6336-3 form factors: " + what + " = " + internal::Num(v) +
+                                ": " + rule);
+  };
+  if (teeth < 5) fail("teeth", teeth, "must be >= 5 (external gear)");
+  for (const auto& [name, v] : {std::pair{"module [m]", module},
+                                {"rack dedendum [m]", rack_dedendum},
+                                {"tip diameter [m]", tip_diameter},
+                                {"pressure angle [rad]", alpha}})
+    if (!(std::isfinite(v) && v > 0)) fail(name, v, "must be finite and > 0");
+  if (!(std::isfinite(rack_tip_radius) && rack_tip_radius >= 0))
+    fail("rack tip radius [m]", rack_tip_radius, "must be finite and >= 0");
+  if (!(contact_ratio > 1.0 && contact_ratio < 2.5))
+    fail("contact ratio", contact_ratio, "must lie in (1, 2.5) (a single pair contact exists)");
+  const double pi = 3.14159265358979323846, z = teeth, m = module;
+  const double e = pi * m / 4 - rack_dedendum * std::tan(alpha) -
+                   (1 - std::sin(alpha)) * rack_tip_radius / std::cos(alpha);
+  const double g = rack_tip_radius / m - rack_dedendum / m + profile_shift;
+  const double h = 2 / z * (pi / 2 - e / m) - pi / 3;
+  double theta = pi / 6;
+  bool settled = false;
+  for (int it = 0; it < 200 && !settled; ++it) {
+    const double next = 2 * g / z * std::tan(theta) - h;
+    settled = std::abs(next - theta) < 1e-14;
+    theta = next;
+  }
+  if (!settled)
+    fail("theta [rad]", theta, "the fixed point theta = 2G/z tan(theta) - H did not settle");
+  RootFormFactors r;
+  r.theta = theta;
+  r.s_fn = m * (z * std::sin(pi / 3 - theta) +
+                std::sqrt(3.0) * (g / std::cos(theta) - rack_tip_radius / m));
+  r.rho_f = m * (rack_tip_radius / m +
+                 2 * g * g / (std::cos(theta) * (z * std::cos(theta) * std::cos(theta) - 2 * g)));
+  const double d = m * z, db = d * std::cos(alpha);
+  const double along = std::sqrt(tip_diameter * tip_diameter / 4 - db * db / 4) -
+                       pi * m * std::cos(alpha) * (contact_ratio - 1);
+  r.d_en = 2 * std::sqrt(along * along + db * db / 4);
+  const double alpha_en = std::acos(db / r.d_en);
+  const double gamma_e =
+      (pi / 2 + 2 * profile_shift * std::tan(alpha)) / z + Inv(alpha) - Inv(alpha_en);
+  r.alpha_fen = alpha_en - gamma_e;
+  r.h_fe = m / 2 *
+           ((std::cos(gamma_e) - std::sin(gamma_e) * std::tan(r.alpha_fen)) * r.d_en / m -
+            z * std::cos(pi / 3 - theta) - g / std::cos(theta) + rack_tip_radius / m);
+  r.y_f = 6 * r.h_fe / m * std::cos(r.alpha_fen) / ((r.s_fn / m) * (r.s_fn / m) * std::cos(alpha));
+  const double l = r.s_fn / r.h_fe, qs = r.s_fn / (2 * r.rho_f);
+  r.y_s = (1.2 + 0.13 * l) * std::pow(qs, 1.0 / (1.21 + 2.3 / l));
+  return r;
 }
 
 }  // namespace epicycle::geometry::iso

@@ -67,4 +67,35 @@ struct PitchStatistics {
 /// The statistics of `cumulative` (GearSpec::pitch_deviations); empty: no deviation, zeros.
 PitchStatistics PitchDeviationStatistics(const std::vector<double>& cumulative);
 
+/// ISO 6336-3:2006 method B form factors of an external spur gear cut by a rack without
+/// protuberance, load at the outer point of single pair contact. With h_fP, ρ_fP the rack's
+/// dedendum and tip radius (the tool's, cutting the gear's root), x the profile shift:
+///   E = π m/4 − h_fP tan α − (1 − sin α) ρ_fP / cos α
+///   G = ρ_fP/m − h_fP/m + x,   H = 2/z (π/2 − E/m) − π/3
+///   θ = 2G/z tan θ − H   (fixed point from π/6: the 30° tangent of the fillet)
+///   s_Fn/m = z sin(π/3 − θ) + √3 (G/cos θ − ρ_fP/m)
+///   ρ_F/m = ρ_fP/m + 2G²/(cos θ (z cos²θ − 2G))
+///   d_en = 2 √{[√((d_a/2)² − (d_b/2)²) − π m cos α (ε_α − 1)]² + (d_b/2)²}
+///   α_en = acos(d_b/d_en),  γ_e = (π/2 + 2x tan α)/z + inv α − inv α_en,  α_Fen = α_en − γ_e
+///   h_Fe/m = ½[(cos γ_e − sin γ_e tan α_Fen) d_en/m − z cos(π/3 − θ) − G/cos θ + ρ_fP/m]
+///   Y_F = (6 h_Fe/m) cos α_Fen / ((s_Fn/m)² cos α)
+///   Y_S = (1.2 + 0.13 L) q_s^(1/(1.21 + 2.3/L)),  L = s_Fn/h_Fe,  q_s = s_Fn/(2ρ_F)
+/// so that the nominal root stress is σ_F0 = F_t/(b m) Y_F Y_S (spur, solid rim: Y_β = Y_B = 1,
+/// Y_DT = 1 for ε_α < 2.05).
+struct RootFormFactors {
+  double y_f = 0;        ///< Y_F [-]
+  double y_s = 0;        ///< Y_S [-]
+  double s_fn = 0;       ///< root chord at the 30° tangents [m]
+  double rho_f = 0;      ///< fillet radius there [m]
+  double h_fe = 0;       ///< bending arm [m]
+  double alpha_fen = 0;  ///< load angle α_Fen [rad]
+  double d_en = 0;       ///< diameter of the outer point of single pair contact [m]
+  double theta = 0;      ///< θ [rad]
+};
+/// @throws std::invalid_argument (naming the argument) for z < 5, non-positive or non-finite
+///         lengths, ε_α outside (1, 2.5), or a fixed point that does not settle.
+RootFormFactors RootFormFactorsB(int teeth, double module, double alpha, double profile_shift,
+                                 double rack_dedendum, double rack_tip_radius, double tip_diameter,
+                                 double contact_ratio);
+
 }  // namespace epicycle::geometry::iso
