@@ -34,11 +34,12 @@ struct QuasiStaticArgs {
   int threads = 0;    // 0: one per core
   std::vector<double> angles_deg;
   double start_deg = 0.0;
-  bool no_cache = false, no_local = false, quiet = false, cold = false;
+  bool no_cache = false, no_local = false, quiet = false, cold = false, root_stress = false;
 };
 
 void RunQuasiStatic(const QuasiStaticArgs& a) {
-  const transmission::Scene scene = StageScene(a.scene, a.sun, "quasistatic");
+  transmission::Scene scene = StageScene(a.scene, a.sun, "quasistatic");
+  scene.model.root_stress = scene.model.root_stress || a.root_stress;
   const geometry::Stage stage(scene.stage);
   const int n = stage.planets();
 
@@ -95,7 +96,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   if (!a.dump.empty()) std::filesystem::create_directories(a.dump);
   const std::string base = a.out + "/quasistatic";
   const json provenance = Provenance(a.backend, &scene);
-  report::QuasiStaticFiles files(base, provenance, n);
+  report::QuasiStaticFiles files(base, provenance, n, compliance.has_root_stress());
 
   const bool tty = !a.quiet && isatty(fileno(stderr));
   int failed = 0;
@@ -150,6 +151,18 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
     std::printf("  sun displacement, largest    %.3f um\n", summary.sun_displacement_max * 1e6);
   } else {
     std::printf("  K_gamma, transmission error, sun displacement: - (no position converged)\n");
+  }
+  if (!summary.root_stress.empty())
+    std::printf("  root stress [MPa]  tension (carrier deg, tooth/fillet)  compression  range\n");
+  for (const auto& g : summary.root_stress) {
+    const auto& e = g.extremes;
+    std::printf("    %-8s %9.2f (%8.3f, %d%s)  %9.2f (%8.3f, %d%s)  %9.2f (%d%s)\n",
+                transmission::BodyName(e.body).c_str(), e.tension / 1e6,
+                geometry::Deg(g.tension_carrier_angle), e.tension_at.tooth,
+                e.tension_at.side == 0 ? "+" : "-", e.compression / 1e6,
+                geometry::Deg(g.compression_carrier_angle), e.compression_at.tooth,
+                e.compression_at.side == 0 ? "+" : "-", g.range.range / 1e6, g.range.at.tooth,
+                g.range.at.side == 0 ? "+" : "-");
   }
   std::printf("  positions converged          %d of %zu, %.3f s (%.3f ms per position)\n", good,
               angles.size(), sweep_seconds,
@@ -217,6 +230,8 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
   cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");
   cmd->add_flag("--no-cache", a.no_cache, "Build the influence tables in memory only");
   cmd->add_flag("--no-local", a.no_local, "Structural compliance only (no local contact term)");
+  cmd->add_flag("--root-stress", a.root_stress,
+                "Also each gear's root stress per position (the scene's [model] root_stress)");
   cmd->add_flag("--quiet", a.quiet, "No progress bar");
   cmd->callback([] { RunQuasiStatic(a); });
 }

@@ -18,11 +18,13 @@ struct Located {
 };
 
 // Every side of every contact located on its body's flank once (side s of contact j at 2j + s),
-// with `first[b + 1]` counting body b's sides. False with the reason in *off_flank (non-null) for a
+// with `first[b + 1]` counting body b's sides; with `only_loaded`, only the contacts j with
+// (*only_loaded)(j) > 0. False with the reason in *off_flank (non-null) for a
 // point off its flank; thrown when off_flank is null.
 bool LocateSides(const std::vector<OperatorBody>& bodies,
                  const std::vector<OperatorContact>& contacts, std::string* off_flank,
-                 std::vector<Located>* out, std::vector<int>* first) {
+                 std::vector<Located>* out, std::vector<int>* first,
+                 const Eigen::VectorXd* only_loaded = nullptr) {
   const int nb = static_cast<int>(bodies.size());
   for (int b = 0; b < nb; ++b) {
     if (bodies[b].table == nullptr) {
@@ -39,6 +41,7 @@ bool LocateSides(const std::vector<OperatorBody>& bodies,
   loc.clear();
   loc.reserve(static_cast<std::size_t>(2 * n));
   for (int j = 0; j < n; ++j) {
+    if (only_loaded != nullptr && !((*only_loaded)(j) > 0.0)) continue;
     for (int s = 0; s < 2; ++s) {
       const ContactSide& side = contacts[j].side[s];
       // The message's context, built only when something is wrong (this loop is on the dynamic
@@ -138,9 +141,11 @@ std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies
   if (neighbours < 0)
     throw std::invalid_argument("FilletStresses: neighbours = " + std::to_string(neighbours) +
                                 ": must be >= 0");
+  // Only the contacts that carry load are located (a stage's potential contacts include the
+  // unloaded flanks and pairs inside the gap window).
   std::vector<Located> loc;
   std::vector<int> first;
-  LocateSides(bodies, contacts, nullptr, &loc, &first);
+  LocateSides(bodies, contacts, nullptr, &loc, &first, &force);
   std::vector<FilletStress> out;
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
     const InfluenceTable& table = *bodies[b].table;
@@ -157,7 +162,7 @@ std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies
     for (int k = 0; k < z; ++k) {
       if (!wanted[static_cast<std::size_t>(k)]) continue;
       for (int side = 0; side < 2; ++side) {
-        FilletStress f{b, k, side, std::vector<double>(table.fillet_points().size(), 0.0)};
+        FilletStress f{b, k, side, std::vector<double>(table.fillet_points().size(), 0.0), &table};
         for (const Located& l : loc)
           if (l.body == b && force(l.contact) > 0.0)
             table.AddFilletStress(l.node, force(l.contact), k, side, f.sigma.data());

@@ -88,15 +88,22 @@ class RunFigures {
 }  // namespace
 
 QuasiStaticFiles::QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance,
-                                   int planets)
-    : positions_(base + "_positions.csv"), pairs_(base + "_pairs.csv") {
+                                   int planets, bool root_stress)
+    : positions_(base + "_positions.csv"),
+      pairs_(base + "_pairs.csv"),
+      bodies_(root_stress ? transmission::PlanetBody(planets) : 0) {
   std::string head = ProvenanceCsvLine(provenance) + "carrier_deg,converged";
   for (int i = 1; i <= planets; ++i) head += ",LSR_" + std::to_string(i);
   for (int i = 1; i <= planets; ++i) head += ",L_" + std::to_string(i);
   head +=
       ",K_gamma,transmission_error_urad,sun_x_um,sun_y_um,geometric_iterations,"
       "contact_iterations,warm_started,residual,status,active_contacts,contacts,solve_ms,"
-      "message\n";
+      "message";
+  for (int b = 0; b < bodies_; ++b) {
+    const std::string gear = transmission::BodyName(b);
+    head += ",sigma_t_" + gear + "_MPa,sigma_c_" + gear + "_MPa";
+  }
+  head += "\n";
   positions_.Write(head);
   pairs_.Write(ProvenanceCsvLine(provenance) + "carrier_deg,mesh,kind,flank,teeth,force_N\n");
 }
@@ -115,6 +122,17 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
       r.warm_started ? 1 : 0, Num(r.report.residual.total), solvers::StatusName(r.report.status),
       r.report.active_contacts, r.problem.contacts.size(),
       Num(r.report.total_seconds * 1e3, "{:.4g}"), CsvText(r.message));
+  if (bodies_ > 0) {
+    // A failed position has no stresses (empty cells), a converged one its extremes per gear.
+    const bool stressed = ok && !r.fillet_stress.empty();
+    const std::vector<transmission::GearRootStress> g =
+        stressed ? transmission::SummariseRootStress(r.fillet_stress, bodies_)
+                 : std::vector<transmission::GearRootStress>();
+    for (int b = 0; b < bodies_; ++b) {
+      Cell(line, stressed ? g[static_cast<std::size_t>(b)].tension / 1e6 : NAN);
+      Cell(line, stressed ? g[static_cast<std::size_t>(b)].compression / 1e6 : NAN);
+    }
+  }
   positions_.WriteLine(line);
   std::string pairs;
   for (std::size_t j = 0; j < r.problem.contacts.size() && ok; ++j) {
@@ -153,6 +171,26 @@ nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
   j["transmission_error_min_urad"] = JsonValue(summary.transmission_error_min * 1e6);
   j["transmission_error_max_urad"] = JsonValue(summary.transmission_error_max * 1e6);
   j["sun_displacement_max_um"] = JsonValue(summary.sun_displacement_max * 1e6);
+  if (!summary.root_stress.empty()) {
+    auto spot = [](const transmission::FilletSpot& at) {
+      return nlohmann::json{{"tooth", at.tooth},
+                            {"fillet", at.side == 0 ? "+" : "-"},
+                            {"arc_from_space_centre_mm", at.arc_length * 1e3}};
+    };
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& g : summary.root_stress)
+      list.push_back({{"gear", transmission::BodyName(g.extremes.body)},
+                      {"tension_MPa", g.extremes.tension / 1e6},
+                      {"tension_carrier_deg", geometry::Deg(g.tension_carrier_angle)},
+                      {"tension_at", spot(g.extremes.tension_at)},
+                      {"compression_MPa", g.extremes.compression / 1e6},
+                      {"compression_carrier_deg", geometry::Deg(g.compression_carrier_angle)},
+                      {"compression_at", spot(g.extremes.compression_at)},
+                      {"largest_range_MPa", g.range.range / 1e6},
+                      {"largest_range_at", spot(g.range.at)},
+                      {"largest_range_max_min_MPa", {g.range.max / 1e6, g.range.min / 1e6}}});
+    j["root_stress"] = list;
+  }
   return j;
 }
 
@@ -424,16 +462,16 @@ MeshStiffnessFile::MeshStiffnessFile(const std::string& path, const nlohmann::js
 }
 
 void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
-  const std::string head = fmt::format(
-      "{:.6f},{},{},{},{},{},{},{}", geometry::Deg(s.angle), s.converged ? 1 : 0,
-      Num(s.mesh_stiffness), Num(s.mesh_stiffness / face_width_ / 1e9), Num(s.rotation * 1e6),
-      Num(s.approach * 1e6), Num(s.total_force), s.pairs.size());
+  const std::string head =
+      fmt::format("{:.6f},{},{},{},{},{},{},{}", geometry::Deg(s.angle), s.converged ? 1 : 0,
+                  Num(s.mesh_stiffness), Num(s.mesh_stiffness / face_width_ / 1e9),
+                  Num(s.rotation * 1e6), Num(s.approach * 1e6), Num(s.total_force), s.pairs.size());
   const std::string msg = CsvText(s.message);
   std::string lines = s.pairs.empty() ? head + ",,,,,," + msg + "\n" : "";
   for (const auto& p : s.pairs)
-    lines += fmt::format("{},{}/{},{},{},{},{},{}\n", head, p.tooth1, p.tooth2,
-                         geometry::KindName(p.kind), Num(p.force), Num(p.stiffness),
-                         Num(p.share), msg);
+    lines +=
+        fmt::format("{},{}/{},{},{},{},{},{}\n", head, p.tooth1, p.tooth2,
+                    geometry::KindName(p.kind), Num(p.force), Num(p.stiffness), Num(p.share), msg);
   csv_.Write(lines);
 }
 

@@ -74,6 +74,7 @@ GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gea
   if (scene.model.join_depth > 0) o.join_depth = scene.model.join_depth;
   o.join_depth_factor = scene.model.join_depth_factor;
   o.mesh.refinement = scene.model.mesh_refinement;
+  o.fillet_stress = o.fillet_stress || scene.model.root_stress;
   std::map<std::uint64_t, std::shared_ptr<const compliance::InfluenceTable>> built;
   for (const geometry::Gear* g : gears) {
     const compliance::ElasticMaterial material{
@@ -114,32 +115,55 @@ FeStageCompliance::FeStageCompliance(const Scene& scene, const geometry::Stage& 
     : tables_(scene, StageGears(stage), options),
       material_(scene.material),
       plane_(scene.model.plane) {
-  names_ = {"sun", "ring"};
-  for (int i = 0; i < stage.planets(); ++i) names_.push_back("planet" + std::to_string(i + 1));
+  for (int b = 0; b < PlanetBody(stage.planets()); ++b) names_.push_back(BodyName(b));
+}
+
+void FeStageCompliance::Operator(const geometry::Stage& stage, const geometry::StagePoses& poses,
+                                 const std::vector<StageContact>& contacts,
+                                 std::vector<compliance::OperatorBody>* bodies,
+                                 std::vector<compliance::OperatorContact>* oc) const {
+  bodies->clear();
+  bodies->reserve(static_cast<std::size_t>(PlanetBody(stage.planets())));
+  bodies->push_back(Body(tables_.Table(kSunBody), poses.sun, names_[kSunBody]));
+  bodies->push_back(Body(tables_.Table(kRingBody), poses.ring, names_[kRingBody]));
+  for (int i = 0; i < stage.planets(); ++i) {
+    bodies->push_back(
+        Body(tables_.Table(PlanetBody(i)), poses.planets.at(i), names_.at(PlanetBody(i))));
+  }
+  auto gear = [&](int body) -> const geometry::Gear& {
+    return body == kSunBody    ? stage.sun()
+           : body == kRingBody ? stage.ring()
+                               : stage.planet(body - PlanetBody(0));
+  };
+  oc->clear();
+  oc->reserve(contacts.size());
+  for (const StageContact& s : contacts) {
+    oc->push_back(Sides(s.contact, s.body_a, s.body_b, gear(s.body_a), gear(s.body_b),
+                        bodies->at(s.body_a).centre, bodies->at(s.body_b).centre, {}));
+  }
+}
+
+bool FeStageCompliance::has_root_stress() const {
+  for (int b = 0; b < tables_.size(); ++b)
+    if (!tables_.Table(b).has_fillet_stress()) return false;
+  return tables_.size() > 0;
+}
+
+std::vector<compliance::FilletStress> FeStageCompliance::FilletStresses(
+    const geometry::Stage& stage, const geometry::StagePoses& poses,
+    const std::vector<StageContact>& contacts, const Eigen::VectorXd& force) const {
+  std::vector<compliance::OperatorBody> bodies;
+  std::vector<compliance::OperatorContact> oc;
+  Operator(stage, poses, contacts, &bodies, &oc);
+  return compliance::FilletStresses(bodies, oc, force);
 }
 
 void FeStageCompliance::Assemble(const geometry::Stage& stage, const geometry::StagePoses& poses,
                                  const std::vector<StageContact>& contacts, Eigen::MatrixXd* out,
                                  std::string* off_flank) const {
   std::vector<compliance::OperatorBody> bodies;
-  bodies.reserve(static_cast<std::size_t>(PlanetBody(stage.planets())));
-  bodies.push_back(Body(tables_.Table(kSunBody), poses.sun, names_[kSunBody]));
-  bodies.push_back(Body(tables_.Table(kRingBody), poses.ring, names_[kRingBody]));
-  for (int i = 0; i < stage.planets(); ++i) {
-    bodies.push_back(
-        Body(tables_.Table(PlanetBody(i)), poses.planets.at(i), names_.at(PlanetBody(i))));
-  }
   std::vector<compliance::OperatorContact> oc;
-  oc.reserve(contacts.size());
-  auto gear = [&](int body) -> const geometry::Gear& {
-    return body == kSunBody    ? stage.sun()
-           : body == kRingBody ? stage.ring()
-                               : stage.planet(body - PlanetBody(0));
-  };
-  for (const StageContact& s : contacts) {
-    oc.push_back(Sides(s.contact, s.body_a, s.body_b, gear(s.body_a), gear(s.body_b),
-                       bodies.at(s.body_a).centre, bodies.at(s.body_b).centre, {}));
-  }
+  Operator(stage, poses, contacts, &bodies, &oc);
   // The labels only when something is wrong: this is on the dynamic model's hot path.
   auto labelled = [&](std::string text) {
     for (std::size_t j = 0; j < contacts.size(); ++j)

@@ -55,8 +55,11 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
                          force) > 0;
     };
   }
+  const bool root_stress = model.compliance().has_root_stress();
+  geometry::StagePoses problem_poses;  // where the last contact problem was built (root stress)
   GeometricIterationResult g = IterateGeometry(
       [&](solvers::ContactProblemData* data) {
+        if (root_stress) problem_poses = poses;
         StageOutcome o = model.Problem(poses, loads, &r.problem);
         if (o.ok()) *data = r.problem.data;
         return o;
@@ -107,6 +110,9 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
         break;
     }
   }
+  if (r.converged && root_stress)
+    r.fillet_stress = model.compliance().FilletStresses(model.stage(), problem_poses,
+                                                        r.problem.contacts, r.solution.force);
   return r;
 }
 

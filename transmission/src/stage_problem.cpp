@@ -6,6 +6,18 @@
 
 namespace epicycle::transmission {
 
+std::string BodyName(int body) {
+  return body == kSunBody    ? "sun"
+         : body == kRingBody ? "ring"
+                             : "planet" + std::to_string(body - PlanetBody(0) + 1);
+}
+
+std::vector<compliance::FilletStress> StageCompliance::FilletStresses(
+    const geometry::Stage&, const geometry::StagePoses&, const std::vector<StageContact>&,
+    const Eigen::VectorXd&) const {
+  throw std::logic_error("this stage compliance has no root-stress model");
+}
+
 using geometry::MeshKind;
 using geometry::PotentialContact;
 using geometry::Vec2;

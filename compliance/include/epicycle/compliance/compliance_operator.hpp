@@ -70,6 +70,7 @@ struct FilletStress {
   int tooth = 0;              ///< k in [0, z), body frame
   int side = 0;               ///< 0: σ = +1, 1: σ = −1
   std::vector<double> sigma;  ///< σ_tt [Pa] at the body table's fillet_points()
+  const InfluenceTable* table = nullptr;  ///< the body's table (its fillet_points()), not owned
 };
 
 /// The root stresses of a state (docs/model.md §9): σ_tt(p) = Σ_j S_B(p; j) F_j on both fillets

@@ -25,14 +25,18 @@ namespace epicycle::report {
 /// the solve's counts and status) and BASE_pairs.csv (one line per loaded tooth pair).
 class QuasiStaticFiles {
  public:
+  /// With `root_stress` each position's line ends with each gear's largest tensile and
+  /// compressive root stress, sigma_t_<gear>_MPa and sigma_c_<gear>_MPa (docs/stresses.md).
   /// @throws std::runtime_error naming a file that cannot be written.
-  QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance, int planets);
+  QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance, int planets,
+                   bool root_stress = false);
   /// The lines of one position (a failed one: its status and message, empty results).
   void Write(const transmission::PositionResult& r);
   void Close();
 
  private:
   CsvFile positions_, pairs_;
+  int bodies_ = 0;  // root-stress columns: one pair per body, 0 without
 };
 
 /// DIR/NAME.json: a position's contact problem as a problem file (category "stage", the run's
@@ -43,7 +47,10 @@ void WriteStageProblemFile(const std::string& dir, const std::string& name,
 
 /// The statistics of a quasi-static sweep for its JSON summary: "planets" (LSR mean, min, max
 /// per planet), "K_gamma_max", "transmission_error_{min,max}_urad", "sun_displacement_max_um";
-/// null where no position converged (JSON has no NaN). The caller adds the run's settings.
+/// null where no position converged (JSON has no NaN); with root stresses "root_stress" (per
+/// gear the largest tension and compression [MPa] with their carrier angle, tooth, fillet side
+/// and arc length along the fillet [mm], and the largest range at one fillet point). The caller
+/// adds the run's settings.
 nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary);
 
 /// BASE_lsr.svg, BASE_te.svg and BASE_sun_path.svg of the converged positions.

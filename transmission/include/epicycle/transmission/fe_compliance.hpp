@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "epicycle/compliance/compliance_operator.hpp"
 #include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/transmission/scene.hpp"
@@ -34,6 +35,7 @@ class GearTables {
   GearTables(const Scene& scene, const std::vector<const geometry::Gear*>& gears,
              const FeComplianceOptions& options);
   const compliance::InfluenceTable& Table(int gear) const { return *tables_.at(gear); }
+  int size() const { return static_cast<int>(tables_.size()); }  ///< gears (one table each)
   /// What the cache did, one line per distinct table.
   const std::vector<std::string>& messages() const { return messages_; }
   compliance::PlaneAssumption plane() const { return plane_; }
@@ -61,8 +63,17 @@ class FeStageCompliance final : public StageCompliance {
   const Material& material() const override { return material_; }
   solvers::PlaneAssumption plane() const override { return plane_; }
   const GearTables& tables() const { return tables_; }
+  bool has_root_stress() const override;
+  std::vector<compliance::FilletStress> FilletStresses(
+      const geometry::Stage& stage, const geometry::StagePoses& poses,
+      const std::vector<StageContact>& contacts, const Eigen::VectorXd& force) const override;
 
  private:
+  // The operator's bodies (sun, ring, planets at their poses) and contact sides.
+  void Operator(const geometry::Stage& stage, const geometry::StagePoses& poses,
+                const std::vector<StageContact>& contacts,
+                std::vector<compliance::OperatorBody>* bodies,
+                std::vector<compliance::OperatorContact>* oc) const;
   // C into *out; a point off its flank grid: the message in *off_flank (non-null) or thrown.
   void Assemble(const geometry::Stage& stage, const geometry::StagePoses& poses,
                 const std::vector<StageContact>& contacts, Eigen::MatrixXd* out,

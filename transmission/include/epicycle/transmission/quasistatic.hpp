@@ -61,6 +61,9 @@ struct PositionResult {
   /// Rigid displacements from the kinematic poses, per DOF of the model's dofs() [rad] or [m]
   /// (the values the named fields above read out; empty if no contact problem was solved).
   Eigen::VectorXd displacements;
+  /// The root stresses of the converged state (docs/model.md §9) when the compliance has them
+  /// (the scene's [model] root_stress), else empty.
+  std::vector<compliance::FilletStress> fillet_stress;
 };
 
 /// The stage model's quasi-static equilibrium at one carrier position under `loads`.

@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include "epicycle/compliance/compliance_operator.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/transmission/scene.hpp"
@@ -42,6 +43,8 @@ struct StageOutcome {
 inline constexpr int kSunBody = 0;
 inline constexpr int kRingBody = 1;
 inline int PlanetBody(int planet) { return 2 + planet; }
+/// "sun", "ring", "planet1", ...: a body's name in messages and output columns.
+std::string BodyName(int body);
 
 /// One potential contact of the stage with the bodies it joins (A and B of its mesh).
 struct StageContact {
@@ -100,6 +103,14 @@ class StageCompliance {
   /// with).
   virtual const Material& material() const = 0;
   virtual solvers::PlaneAssumption plane() const = 0;
+  /// True when FilletStresses can answer (FE tables built with their fillet stresses).
+  virtual bool has_root_stress() const { return false; }
+  /// The root stresses (docs/model.md §9) of the state with contact forces `force` [N] at these
+  /// poses: both fillets of the loaded teeth and their neighbours, per body (body index as in
+  /// StageContact). @throws std::logic_error unless has_root_stress().
+  virtual std::vector<compliance::FilletStress> FilletStresses(
+      const geometry::Stage& stage, const geometry::StagePoses& poses,
+      const std::vector<StageContact>& contacts, const Eigen::VectorXd& force) const;
 };
 
 /// A rigid degree of freedom of a gear body: in a quasi-static problem one set by equilibrium (a

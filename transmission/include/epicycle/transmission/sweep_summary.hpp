@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/root_stress.hpp"
 
 namespace epicycle::transmission {
 
@@ -32,6 +33,16 @@ struct SweepSummary {
   /// Smallest and largest LSR_i over planets and positions [-].
   double LsrMin() const;
   double LsrMax() const;
+  /// Per body (sun, ring, planets: body order), when the results carry root stresses (else
+  /// empty): the extremes over the converged positions, the carrier angles [rad] where they
+  /// occur, and the largest range at one fillet point.
+  struct RootStress {
+    GearRootStress extremes;
+    double tension_carrier_angle = 0;      ///< [rad]
+    double compression_carrier_angle = 0;  ///< [rad]
+    RootStressEnvelope::Range range;
+  };
+  std::vector<RootStress> root_stress;
 };
 
 /// The statistics of `results` (a sweep of a stage with `planets` planets); positions that did

@@ -1,0 +1,70 @@
+#include "epicycle/transmission/root_stress.hpp"
+
+#include <algorithm>
+
+namespace epicycle::transmission {
+
+namespace {
+
+FilletSpot Spot(const compliance::FilletStress& f, std::size_t m) {
+  return {f.tooth, f.side, f.table->fillet_points()[m].arc_length};
+}
+
+}  // namespace
+
+std::vector<GearRootStress> SummariseRootStress(
+    const std::vector<compliance::FilletStress>& fillets, int bodies) {
+  std::vector<GearRootStress> out(static_cast<std::size_t>(bodies));
+  for (int b = 0; b < bodies; ++b) out[b].body = b;
+  for (const compliance::FilletStress& f : fillets) {
+    GearRootStress& g = out.at(static_cast<std::size_t>(f.body));
+    for (std::size_t m = 0; m < f.sigma.size(); ++m) {
+      if (f.sigma[m] > g.tension) {
+        g.tension = f.sigma[m];
+        g.tension_at = Spot(f, m);
+      }
+      if (f.sigma[m] < g.compression) {
+        g.compression = f.sigma[m];
+        g.compression_at = Spot(f, m);
+      }
+    }
+  }
+  return out;
+}
+
+void RootStressEnvelope::Add(const std::vector<compliance::FilletStress>& fillets) {
+  ++states_;
+  for (const compliance::FilletStress& f : fillets) {
+    Point& p = points_[{f.body, f.tooth, f.side}];
+    if (p.table == nullptr) {
+      p.table = f.table;
+      p.max.assign(f.sigma.size(), 0.0);
+      p.min.assign(f.sigma.size(), 0.0);
+    }
+    for (std::size_t m = 0; m < f.sigma.size(); ++m) {
+      p.max[m] = std::max(p.max[m], f.sigma[m]);
+      p.min[m] = std::min(p.min[m], f.sigma[m]);
+    }
+  }
+}
+
+std::vector<RootStressEnvelope::Range> RootStressEnvelope::Ranges() const {
+  std::vector<Range> out(static_cast<std::size_t>(bodies_));
+  for (int b = 0; b < bodies_; ++b) out[b].body = b;
+  for (const auto& [key, p] : points_) {
+    const auto [body, tooth, side] = key;
+    Range& r = out.at(static_cast<std::size_t>(body));
+    for (std::size_t m = 0; m < p.max.size(); ++m) {
+      // max and min start at 0: a state that did not compute the point counts as unloaded.
+      if (p.max[m] - p.min[m] > r.range) {
+        r.range = p.max[m] - p.min[m];
+        r.at = {tooth, side, p.table->fillet_points()[m].arc_length};
+        r.max = p.max[m];
+        r.min = p.min[m];
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace epicycle::transmission
