@@ -34,12 +34,12 @@ struct QuasiStaticArgs {
   int threads = 0;    // 0: one per core
   std::vector<double> angles_deg;
   double start_deg = 0.0;
-  bool no_cache = false, no_local = false, quiet = false, cold = false, root_stress = false;
+  bool no_cache = false, no_local = false, quiet = false, cold = false, stresses = false;
 };
 
 void RunQuasiStatic(const QuasiStaticArgs& a) {
   transmission::Scene scene = StageScene(a.scene, a.sun, "quasistatic");
-  scene.model.root_stress = scene.model.root_stress || a.root_stress;
+  scene.model.stresses = scene.model.stresses || a.stresses;
   const geometry::Stage stage(scene.stage);
   const int n = stage.planets();
 
@@ -230,8 +230,9 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
   cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");
   cmd->add_flag("--no-cache", a.no_cache, "Build the influence tables in memory only");
   cmd->add_flag("--no-local", a.no_local, "Structural compliance only (no local contact term)");
-  cmd->add_flag("--root-stress", a.root_stress,
-                "Also each gear's root stress per position (the scene's [model] root_stress)");
+  cmd->add_flag("--stresses", a.stresses,
+                "Also root stresses and contact pressures per position (the scene's [model] "
+                "stresses)");
   cmd->add_flag("--quiet", a.quiet, "No progress bar");
   cmd->callback([] { RunQuasiStatic(a); });
 }

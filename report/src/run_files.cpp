@@ -11,6 +11,7 @@
 #include "epicycle/report/provenance.hpp"
 #include "epicycle/report/svg_plot.hpp"
 #include "epicycle/solvers/contact_io.hpp"
+#include "epicycle/solvers/local_term.hpp"
 
 namespace epicycle::report {
 
@@ -105,7 +106,8 @@ QuasiStaticFiles::QuasiStaticFiles(const std::string& base, const nlohmann::json
   }
   head += "\n";
   positions_.Write(head);
-  pairs_.Write(ProvenanceCsvLine(provenance) + "carrier_deg,mesh,kind,flank,teeth,force_N\n");
+  pairs_.Write(ProvenanceCsvLine(provenance) + "carrier_deg,mesh,kind,flank,teeth,force_N" +
+               (root_stress ? ",hertz_pressure_MPa,hertz_half_width_um\n" : "\n"));
 }
 
 void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
@@ -139,9 +141,16 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
     const double f = r.solution.force(static_cast<Eigen::Index>(j));
     if (!(f > 0)) continue;
     const transmission::StageContact& c = r.problem.contacts[j];
-    pairs += fmt::format("{:.6f},{},{},{},{}/{},{}\n", deg, geometry::MeshName(c.planet, c.mesh),
+    pairs += fmt::format("{:.6f},{},{},{},{}/{},{}", deg, geometry::MeshName(c.planet, c.mesh),
                          geometry::KindName(c.contact.kind), c.loaded ? "drive" : "coast",
                          c.contact.tooth_a, c.contact.tooth_b, Num(f));
+    if (bodies_ > 0) {  // stresses: Hertz's pressure and half-width of the contact
+      const auto& local = r.problem.data.local;
+      const bool known = j < local.size();
+      Cell(pairs, known ? solvers::HertzPressure(local[j], f) / 1e6 : NAN);
+      Cell(pairs, known ? solvers::HertzHalfWidth(local[j], f) * 1e6 : NAN);
+    }
+    pairs += '\n';
   }
   pairs_.Write(pairs);
 }

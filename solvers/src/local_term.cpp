@@ -71,6 +71,11 @@ double HertzHalfWidth(const LocalTermParameters& p, double force) {
   return std::sqrt(HalfWidthSquaredPerForce(p) * std::max(force, 0.0));
 }
 
+double HertzPressure(const LocalTermParameters& p, double force) {
+  if (!(force > 0.0)) return 0.0;
+  return std::sqrt(force * EffectiveModulus(p) / (kPi * p.face_width * p.reduced_radius));
+}
+
 double LocalApproach(const LocalTermParameters& p, double force) {
   if (!p.enabled || force <= 0.0) return 0.0;
   const double l = HertzHalfWidth(p, force);

@@ -74,7 +74,7 @@ GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gea
   if (scene.model.join_depth > 0) o.join_depth = scene.model.join_depth;
   o.join_depth_factor = scene.model.join_depth_factor;
   o.mesh.refinement = scene.model.mesh_refinement;
-  o.fillet_stress = o.fillet_stress || scene.model.root_stress;
+  o.fillet_stress = o.fillet_stress || scene.model.stresses;
   std::map<std::uint64_t, std::shared_ptr<const compliance::InfluenceTable>> built;
   for (const geometry::Gear* g : gears) {
     const compliance::ElasticMaterial material{

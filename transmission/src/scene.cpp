@@ -578,7 +578,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
                                "centre line, which h must stay below"));
     s.model.mesh_refinement =
         static_cast<int>(t->IntegerOr("mesh_refinement", 1, Rule::Closed(1, 4)));
-    s.model.root_stress = t->BoolOr("root_stress", false);
+    s.model.stresses = t->BoolOr("stresses", false);
     t->Done();
   }
   // A scene is a planetary stage, or a single gear pair when it has a [pair] table.

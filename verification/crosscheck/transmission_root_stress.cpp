@@ -30,7 +30,7 @@ struct Run {
 // planet tooth), `positions` positions, fixed sun, root stresses on or off.
 Run RunOut(bool root_stress, int positions) {
   Scene scene = ParseScene(test::SceneText("paper_stage_runout.toml"), "paper_stage_runout.toml");
-  scene.model.root_stress = root_stress;
+  scene.model.stresses = root_stress;
   const geometry::Stage stage(scene.stage);
   const FeStageCompliance compliance(scene, stage, test::CachedTables());
   const StageModel model(stage, compliance, SetupFromScene(scene));

@@ -25,8 +25,10 @@ namespace epicycle::report {
 /// the solve's counts and status) and BASE_pairs.csv (one line per loaded tooth pair).
 class QuasiStaticFiles {
  public:
-  /// With `root_stress` each position's line ends with each gear's largest tensile and
-  /// compressive root stress, sigma_t_<gear>_MPa and sigma_c_<gear>_MPa (docs/stresses.md).
+  /// With `root_stress` (the scene's stresses) each position's line ends with each gear's largest
+  /// tensile and compressive root stress, sigma_t_<gear>_MPa and sigma_c_<gear>_MPa, and each pair's
+  /// with its Hertz pressure and half-width, hertz_pressure_MPa and hertz_half_width_um
+  /// (docs/stresses.md).
   /// @throws std::runtime_error naming a file that cannot be written.
   QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance, int planets,
                    bool root_stress = false);

@@ -48,6 +48,12 @@ bool IsValidLocalTerm(const LocalTermParameters& p);
 double EffectiveModulus(const LocalTermParameters& p);
 /// Hertz half-width L [m] at force F [N] ≥ 0.
 double HertzHalfWidth(const LocalTermParameters& p, double force);
+/// Hertz's largest contact pressure p_H [Pa] at force F [N] ≥ 0 (docs/model.md §9): the line
+/// contact's elliptical pressure p(x) = p_H √(1 − x²/L²) carries w = F/b = π L p_H / 2, so
+///   p_H = 2F/(π b L) = √(F E*/(π b R_eq)),
+/// with E* as in EffectiveModulus (two steel bodies in plane strain: E* = E/(2(1 − ν²))). 0 at
+/// F ≤ 0. Defined for a disabled term too (its parameters still describe the contact).
+double HertzPressure(const LocalTermParameters& p, double force);
 /// u_local(F) [m], F [N] ≥ 0 (0 at F = 0 and when disabled).
 double LocalApproach(const LocalTermParameters& p, double force);
 /// du_local/dF [m/N]; +∞ at F = 0 (enabled term).

@@ -62,7 +62,7 @@ struct PositionResult {
   /// (the values the named fields above read out; empty if no contact problem was solved).
   Eigen::VectorXd displacements;
   /// The root stresses of the converged state (docs/model.md §9) when the compliance has them
-  /// (the scene's [model] root_stress), else empty.
+  /// (the scene's [model] stresses), else empty.
   std::vector<compliance::FilletStress> fillet_stress;
 };
 

@@ -56,9 +56,10 @@ struct ModelSettings {
   /// join_depth_factor), in (0, 1/0.6): the default h is 0.6 of the distance to the centre line.
   double join_depth_factor = 1;
   int mesh_refinement = 1;  ///< density factor of the gear-body meshes [-], 1..4
-  /// Root stresses (docs/model.md §9): the influence tables also tabulate the fillet stresses and
-  /// the drivers report them. Off, no stress is tabulated or computed.
-  bool root_stress = false;
+  /// Tooth stresses (docs/model.md §9): the influence tables also tabulate the fillet stresses,
+  /// and the drivers report root stresses and Hertz contact pressures. Off, no stress is
+  /// tabulated or computed.
+  bool stresses = false;
 };
 
 /// How the sun is held in translation (its rotation is always set by the input torque).
