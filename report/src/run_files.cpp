@@ -88,17 +88,19 @@ class RunFigures {
 }  // namespace
 
 QuasiStaticFiles::QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance,
-                                   int planets)
-    : positions_(base + "_positions.csv"), pairs_(base + "_pairs.csv") {
+                                   int planets, bool friction)
+    : positions_(base + "_positions.csv"), pairs_(base + "_pairs.csv"), friction_(friction) {
   std::string head = ProvenanceCsvLine(provenance) + "carrier_deg,converged";
   for (int i = 1; i <= planets; ++i) head += ",LSR_" + std::to_string(i);
   for (int i = 1; i <= planets; ++i) head += ",L_" + std::to_string(i);
   head +=
       ",K_gamma,transmission_error_urad,sun_x_um,sun_y_um,geometric_iterations,"
       "contact_iterations,warm_started,residual,status,active_contacts,contacts,solve_ms,"
-      "message\n";
-  positions_.Write(head);
-  pairs_.Write(ProvenanceCsvLine(provenance) + "carrier_deg,mesh,kind,flank,teeth,force_N\n");
+      "message";
+  if (friction_) head += ",friction_power_W,input_power_W,output_power_W,efficiency,force_change";
+  positions_.Write(head + "\n");
+  pairs_.Write(ProvenanceCsvLine(provenance) + "carrier_deg,mesh,kind,flank,teeth,force_N" +
+               (friction_ ? ",friction_N,sliding_m_per_s\n" : "\n"));
 }
 
 void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
@@ -115,6 +117,11 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
       r.warm_started ? 1 : 0, Num(r.report.residual.total), solvers::StatusName(r.report.status),
       r.report.active_contacts, r.problem.contacts.size(),
       Num(r.report.total_seconds * 1e3, "{:.4g}"), CsvText(r.message));
+  const bool friction = friction_ && ok && r.friction;
+  if (friction_)
+    line += fmt::format(",{},{},{},{},{}", Num(friction ? r.friction_power : NAN),
+                        Num(friction ? r.input_power : NAN), Num(friction ? r.output_power : NAN),
+                        Num(friction ? r.Efficiency() : NAN), Num(r.force_change));
   positions_.WriteLine(line);
   std::string pairs;
   for (std::size_t j = 0; j < r.problem.contacts.size() && ok; ++j) {
@@ -124,6 +131,11 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
     pairs += fmt::format("{:.6f},{},{},{},{}/{},{}\n", deg, geometry::MeshName(c.planet, c.mesh),
                          geometry::KindName(c.contact.kind), c.loaded ? "drive" : "coast",
                          c.contact.tooth_a, c.contact.tooth_b, Num(f));
+    if (friction_)
+      pairs.insert(pairs.size() - 1,
+                   friction ? fmt::format(",{},{}", Num(r.friction_force(static_cast<Eigen::Index>(j))),
+                                          Num(r.sliding_velocity(static_cast<Eigen::Index>(j))))
+                            : std::string(",,"));
   }
   pairs_.Write(pairs);
 }
@@ -153,6 +165,12 @@ nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
   j["transmission_error_min_urad"] = JsonValue(summary.transmission_error_min * 1e6);
   j["transmission_error_max_urad"] = JsonValue(summary.transmission_error_max * 1e6);
   j["sun_displacement_max_um"] = JsonValue(summary.sun_displacement_max * 1e6);
+  if (summary.friction) {
+    j["efficiency_mean"] = JsonValue(summary.efficiency_mean);
+    j["efficiency_min"] = JsonValue(summary.efficiency_min);
+    j["friction_power_mean_W"] = JsonValue(summary.friction_power_mean);
+    j["friction_iterations_mean"] = JsonValue(summary.friction_iterations_mean);
+  }
   return j;
 }
 

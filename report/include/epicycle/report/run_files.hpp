@@ -26,13 +26,18 @@ namespace epicycle::report {
 class QuasiStaticFiles {
  public:
   /// @throws std::runtime_error naming a file that cannot be written.
-  QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance, int planets);
+  /// `friction`: the run has friction at rest; the positions get the columns friction_power_W,
+  /// input_power_W, output_power_W, efficiency, force_change at the end, the pairs friction_N and
+  /// sliding_m_per_s (none without it: the files are those of the frictionless model).
+  QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance, int planets,
+                   bool friction = false);
   /// The lines of one position (a failed one: its status and message, empty results).
   void Write(const transmission::PositionResult& r);
   void Close();
 
  private:
   CsvFile positions_, pairs_;
+  bool friction_ = false;
 };
 
 /// DIR/NAME.json: a position's contact problem as a problem file (category "stage", the run's
@@ -43,6 +48,8 @@ void WriteStageProblemFile(const std::string& dir, const std::string& name,
 
 /// The statistics of a quasi-static sweep for its JSON summary: "planets" (LSR mean, min, max
 /// per planet), "K_gamma_max", "transmission_error_{min,max}_urad", "sun_displacement_max_um";
+/// with friction at rest also "efficiency_mean", "efficiency_min", "friction_power_mean_W",
+/// "friction_iterations_mean";
 /// null where no position converged (JSON has no NaN). The caller adds the run's settings.
 nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary);
 
