@@ -39,7 +39,7 @@ void QuasiStaticOptions::Validate() const {
 
 namespace {
 
-// Friction at rest (docs/model.md §7.1): the rigid kinematics of the scene's speed at one carrier
+// Friction at rest (docs/model.md §9): the rigid kinematics of the scene's speed at one carrier
 // position give each contact its surface velocities; the law gives φ_j = μ_s(F_j, u_A, u_B) F_j.
 class RestFriction {
  public:

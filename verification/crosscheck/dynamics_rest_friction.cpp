@@ -1,4 +1,4 @@
-// The quasi-static driver with friction at rest (docs/model.md §7.1, docs/quasistatic.md
+// The quasi-static driver with friction at rest (docs/model.md §9, docs/quasistatic.md
 // "Friction at rest") against the dynamic model with the same friction at low speed (issue 25,
 // must-show 2 and 3): the dynamic model is the reference, an independent computation (an
 // integrated motion with masses, damping and friction evaluated at the motion's own velocities).

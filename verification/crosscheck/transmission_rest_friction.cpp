@@ -1,4 +1,4 @@
-// The quasi-static driver with friction at rest (docs/model.md §7.1, docs/quasistatic.md
+// The quasi-static driver with friction at rest (docs/model.md §9, docs/quasistatic.md
 // "Friction at rest") against hand computations that use none of its friction code: the sliding
 // from the stage's kinematic ratios in the carrier frame, the constant law written out, the sun's
 // torque balance and the stage's efficiency from the ring's reaction and from the power balance.
@@ -82,7 +82,7 @@ TEST_CASE(
   // (tanh written out below, so the smoothing is part of the law, not an error), the sun at 1500
   // rpm; 12 positions over a mesh cycle. By hand, from each contact's point p, normal n (A into B),
   // force F_j of the driver's result and the members' centres, with the kinematics of the ring-fixed
-  // stage in the carrier frame (MODEL.md §7): ω_s' = ω_s − ω_c, ω_p' = −ω_s' z_s/z_p, ω_r' = −ω_c,
+  // stage in the carrier frame (docs/model.md §7): ω_s' = ω_s − ω_c, ω_p' = −ω_s' z_s/z_p, ω_r' = −ω_c,
   //   t = ẑ × n,   v_s = (ω_A' ẑ × (p − c_A) − ω_B' ẑ × (p − c_B))·t  (frame-free: the carrier's
   //   own velocity at p cancels),   φ = μ tanh(v_s/v_ε) F  (on B along t, on A opposite).
   // Checks, per position:

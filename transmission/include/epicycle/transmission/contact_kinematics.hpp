@@ -1,4 +1,4 @@
-// The kinematics of a tooth contact that friction needs (docs/model.md §7 and §7.1), shared by the
+// The kinematics of a tooth contact that friction needs (docs/model.md §7 and §9), shared by the
 // dynamic model (at its current velocities) and the quasi-static driver (at the rigid kinematics
 // of the scene's speed): the velocity of each gear body, the material velocity of a body at a
 // point, the surface velocities u_A, u_B of the two flanks along the contact's tangent, the

@@ -36,7 +36,7 @@ struct GeometricIterationStart {
 };
 
 /// A fixed point on the contact forces alongside the geometry's, for loads that depend on the
-/// forces (the quasi-static friction, docs/model.md §7.1): `build` adds the loads of the forces
+/// forces (the quasi-static friction, docs/model.md §9): `build` adds the loads of the forces
 /// it was last given (none before the first solve, or a neighbour's), `update` gives it the new
 /// ones. Empty `update`: no such loads, the iteration is the geometric one alone.
 struct ForceFixedPoint {

@@ -37,7 +37,7 @@ struct QuasiStaticOptions {
   /// cold, position; so results depend on the thread count within the tolerances (bit-identical
   /// across thread counts only with warm_start = false).
   int threads = 0;
-  /// Friction at rest (docs/model.md §7.1, docs/quasistatic.md "Friction at rest"): the law, its
+  /// Friction at rest (docs/model.md §9, docs/quasistatic.md "Friction at rest"): the law, its
   /// coefficient and lubricant, the dynamic model's (FrictionOptions). Default off: no friction
   /// code runs and the results are those of the frictionless model, bit for bit.
   FrictionOptions friction = NoFriction();

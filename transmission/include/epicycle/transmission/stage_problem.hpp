@@ -28,7 +28,7 @@ enum class StageStatus {
   kContactSolveFailed,  ///< the contact problem's solve did not converge
   kNotSettled,        ///< quasi-static: the geometric iterations did not settle
   /// quasi-static with friction: the fixed point on the contact forces (the friction loads of
-  /// the previous solve's forces) did not settle within the iterations (docs/model.md §7.1)
+  /// the previous solve's forces) did not settle within the iterations (docs/model.md §9)
   kFrictionNotSettled,
 };
 /// "ok", "no line of action", "off the flank grid", ... (for messages and files).
