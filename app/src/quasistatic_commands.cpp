@@ -67,11 +67,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   opt.backend = solvers::BackendFromName(a.backend);
   opt.threads = a.threads;
   opt.warm_start = !a.cold;
-  if (a.friction != "off") {  // the scene's law and lubricant, at its [dynamics] speed
-    opt.friction = scene.dynamics.friction;
-    if (a.friction != "scene") opt.friction.law = transmission::FrictionLawFromName(a.friction);
-    opt.sun_speed = scene.dynamics.sun_speed;
-  }
+  transmission::SetRestFriction(scene.dynamics, a.friction, &opt);
   const bool friction = opt.friction.law != transmission::FrictionLaw::kOff;
   if (angles.size() > 10000) {
     // Every result is kept until the summary: refuse a sweep the machine cannot hold now

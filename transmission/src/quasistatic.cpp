@@ -37,6 +37,24 @@ void QuasiStaticOptions::Validate() const {
   }
 }
 
+void SetRestFriction(const DynamicSettings& scene, const std::string& choice,
+                     QuasiStaticOptions* options) {
+  if (choice == "off") {
+    options->friction = NoFriction();
+    return;
+  }
+  options->friction = scene.friction;
+  options->sun_speed = scene.sun_speed;
+  if (choice == "scene") return;
+  try {
+    options->friction.law = FrictionLawFromName(choice);
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument("friction = \"" + choice +
+                                "\": must be one of off, scene, constant, xu-kahraman, "
+                                "benedict-kelley");
+  }
+}
+
 namespace {
 
 // Friction at rest (docs/model.md §9): the rigid kinematics of the scene's speed at one carrier

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/dynamic_settings.hpp"
 #include "epicycle/transmission/friction.hpp"
 #include "epicycle/transmission/stage_model.hpp"
 
@@ -82,6 +83,14 @@ struct PositionResult {
   double output_power = 0;
   double Efficiency() const { return output_power / input_power; }  ///< η = P_out/P_in [-]
 };
+
+/// Friction at rest as a command or a binding asks for it (docs/quasistatic.md, "Friction at
+/// rest"): "off" (none: options->friction off), "scene" (the scene's law), or a law's name
+/// (FrictionLawFromName) replacing it; the coefficient, the lubricant and the speed of the rigid
+/// kinematics are always the scene's (`scene`, its [dynamics] and [lubricant] settings).
+/// @throws std::invalid_argument naming the value and the allowed names.
+void SetRestFriction(const DynamicSettings& scene, const std::string& choice,
+                     QuasiStaticOptions* options);
 
 /// The stage model's quasi-static equilibrium at one carrier position under `loads`.
 /// @throws std::invalid_argument for bad input; numerical trouble is reported in the result.
