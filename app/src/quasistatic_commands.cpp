@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -29,7 +30,8 @@ namespace {
 using json = nlohmann::json;
 
 struct QuasiStaticArgs {
-  std::string scene, backend = "newton", out = "quasistatic-out", range = "cycle", sun, cache, dump;
+  std::string scene, backend = "newton", out = "quasistatic-out", range = "cycle", sun, cache, dump,
+                     friction = "off";
   int positions = 0;  // 0: 36 over a mesh cycle, 360 over a revolution
   int threads = 0;    // 0: one per core
   std::vector<double> angles_deg;
@@ -66,6 +68,8 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   opt.backend = solvers::BackendFromName(a.backend);
   opt.threads = a.threads;
   opt.warm_start = !a.cold;
+  transmission::SetRestFriction(scene.dynamics, a.friction, &opt);
+  const bool friction = opt.friction.law != transmission::FrictionLaw::kOff;
   if (angles.size() > 10000) {
     // Every result is kept until the summary: refuse a sweep the machine cannot hold now
     // (estimated from the first position's result) before computing it.
@@ -96,7 +100,11 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   if (!a.dump.empty()) std::filesystem::create_directories(a.dump);
   const std::string base = a.out + "/quasistatic";
   const json provenance = Provenance(a.backend, &scene);
-  report::QuasiStaticFiles files(base, provenance, n, compliance.has_root_stress());
+  report::QuasiStaticFiles files(base, provenance, n, friction, compliance.has_root_stress());
+  if (friction)
+    std::printf("  friction %s at rest, sun at %.1f rpm\n",
+                transmission::FrictionLawName(opt.friction.law).c_str(),
+                opt.sun_speed * 30 / std::numbers::pi);
 
   const bool tty = !a.quiet && isatty(fileno(stderr));
   int failed = 0;
@@ -149,6 +157,10 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
                 summary.transmission_error_min * 1e6, summary.transmission_error_max * 1e6,
                 summary.TransmissionErrorPeakToPeak() * 1e6);
     std::printf("  sun displacement, largest    %.3f um\n", summary.sun_displacement_max * 1e6);
+    if (friction)
+      std::printf("  efficiency mean %.6f (min %.6f), friction loss mean %.3f W, %.2f iterations\n",
+                  summary.efficiency_mean, summary.efficiency_min, summary.friction_power_mean,
+                  summary.friction_iterations_mean);
   } else {
     std::printf("  K_gamma, transmission error, sun displacement: - (no position converged)\n");
   }
@@ -179,6 +191,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   j["backend"] = a.backend;
   j["local_terms"] = !a.no_local;
   j["warm_start"] = !a.cold;
+  if (friction) j["friction"] = transmission::FrictionLawName(opt.friction.law);
   j["threads"] = a.threads;  // 0: one per core
   j["positions"] = angles.size();
   j["converged_positions"] = good;
@@ -224,6 +237,10 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
   cmd->add_flag("--cold", a.cold,
                 "Start every position from its kinematic poses and zero forces (no warm start "
                 "from the neighbour)");
+  cmd->add_option("--friction", a.friction,
+                  "Friction at rest: off (default), scene (the scene's [dynamics] friction), or a "
+                  "law; lubricant and sliding from the scene's [lubricant] and sun_speed_rpm")
+      ->check(CLI::IsMember({"off", "scene", "constant", "xu-kahraman", "benedict-kelley"}));
   cmd->add_option("--backend", a.backend, "Contact back end (newton, ipopt, nlopt-slsqp, ...)");
   cmd->add_option("--out", a.out, "Output folder (CSV, JSON, SVG)");
   cmd->add_option("--dump-problems", a.dump, "Also write every position's contact problem here");

@@ -15,6 +15,7 @@ using transmission::kRingBody;
 using transmission::kSunBody;
 using transmission::StageContact;
 using transmission::StageDof;
+using transmission::SurfaceVelocity;
 using Vec2 = Eigen::Vector2d;
 
 namespace {
@@ -72,7 +73,7 @@ DynamicModel::DynamicModel(const transmission::StageModel& model,
                                   " needs it > 0 in the dynamic model");
   };
   // The sun turns the way its input torque drives it; ω_c = ω_s z_s/(z_s + z_r).
-  carrier_speed_ = (loads_.sun_torque > 0 ? 1.0 : -1.0) * settings_.sun_speed / stage.sun_ratio();
+  carrier_speed_ = transmission::RigidCarrierSpeed(stage, settings_.sun_speed, loads_.sun_torque);
   carrier_torque_ = -loads_.sun_torque * stage.sun_ratio();
   auto add = [&](MotionDof::Member member, MotionDof::Axis axis, int planet, double mass,
                  StageDof::Kind kind, bool gear) {
@@ -130,9 +131,7 @@ DynamicModel::DynamicModel(const transmission::StageModel& model,
       add(MotionDof::kPlanet, MotionDof::kY, i, planet_.mass, StageDof::kPlanetY, true);
     }
   }
-  const transmission::Material& mat = model_.material();
-  const double k = (1 - mat.poisson_ratio * mat.poisson_ratio) / mat.youngs_modulus;
-  contact_modulus_ = 1.0 / (2 * k);
+  contact_modulus_ = transmission::ContactModulus(model_.material());
 }
 
 int DynamicModel::Find(MotionDof::Member member, MotionDof::Axis axis, int planet) const {
@@ -257,84 +256,19 @@ void DynamicModel::BodyVelocities(double t, const Eigen::VectorXd& d, const Eige
   }
 }
 
-Vec2 DynamicModel::MaterialVelocity(int b, const Vec2& p, const geometry::StagePoses& poses,
-                                    const std::vector<BodyMotion>& body) const {
-  const geometry::GearPose& pose = b == kSunBody    ? poses.sun
-                                   : b == kRingBody ? poses.ring
-                                                    : poses.planets[b - 2];
-  return body[b].centre_velocity + body[b].angular_velocity * Perp(p - pose.rotation_centre);
-}
-
-DynamicModel::SurfaceVelocity DynamicModel::Surface(const StageContact& s,
-                                                    const geometry::StagePoses& poses,
-                                                    const std::vector<BodyMotion>& body,
-                                                    const Vec2* tangent) const {
-  const geometry::PotentialContact& c = s.contact;
-  const Vec2 va = MaterialVelocity(s.body_a, c.point, poses, body),
-             vb = MaterialVelocity(s.body_b, c.point, poses, body);
-  // The contact point's own velocity along the surface: 0 on the line of action; a tip round's
-  // contact point stays at the round, moving with its centre.
-  Vec2 v_contact = Vec2::Zero();
-  if (c.kind == geometry::ContactKind::kTipRoundA) {
-    const double rt = model_.BodyGear(s.body_a).spec().tip_round_radius;
-    v_contact = MaterialVelocity(s.body_a, c.point_a - rt * c.normal, poses, body);
-  } else if (c.kind == geometry::ContactKind::kTipRoundB) {
-    const double rt = model_.BodyGear(s.body_b).spec().tip_round_radius;
-    v_contact = MaterialVelocity(s.body_b, c.point_b + rt * c.normal, poses, body);
-  } else {
-    v_contact = c.normal.dot(0.5 * (va + vb)) * c.normal;
-  }
-  SurfaceVelocity u;
-  u.tangent = tangent != nullptr ? *tangent : Vec2(Perp(c.normal));
-  u.ua = (va - v_contact).dot(u.tangent);
-  u.ub = (vb - v_contact).dot(u.tangent);
-  if (tangent == nullptr && u.ua + u.ub < 0) {  // orient t so that the entrainment is ≥ 0
-    u.tangent = -u.tangent;
-    u.ua = -u.ua;
-    u.ub = -u.ub;
-  }
-  return u;
-}
-
 transmission::FrictionContact DynamicModel::FrictionState(const transmission::ContactTerms& terms,
                                                           int j) const {
-  const StageContact& s = terms.contacts[j];
-  const geometry::PotentialContact& c = s.contact;
-  transmission::FrictionContact fc;
-  fc.face_width = geometry::ContactFaceWidth(model_.BodyGear(s.body_a), model_.BodyGear(s.body_b));
-  fc.reduced_radius = terms.local.empty()
-                          ? 1.0 / (1.0 / c.curvature_radius_a + 1.0 / c.curvature_radius_b)
-                          : terms.local[j].reduced_radius;
-  fc.contact_modulus = contact_modulus_;
-  return fc;
-}
-
-double DynamicModel::FrictionForce(transmission::FrictionContact fc, double force, double ua,
-                                   double ub) const {
-  fc.normal_force = force;
-  fc.velocity_a = ua;
-  fc.velocity_b = ub;
-  return friction_.SignedCoefficient(fc) * force;
+  return transmission::ContactFrictionState(model_, terms.contacts[j],
+                                            terms.local.empty() ? nullptr : &terms.local[j],
+                                            contact_modulus_);
 }
 
 void DynamicModel::AddPairForce(const StageContact& s, const geometry::StagePoses& poses,
                                 const Vec2& f, Eigen::Ref<Eigen::VectorXd> q) const {
-  auto centre = [&](int b) -> const Vec2& {
-    return (b == kSunBody    ? poses.sun
-            : b == kRingBody ? poses.ring
-                             : poses.planets[b - 2])
-        .rotation_centre;
-  };
-  const Vec2& p = s.contact.point;
-  for (int k = 0; k < size(); ++k) {
-    const MotionDof& m = dofs_[k];
-    const int b = GearBody(m);
-    if (b < 0 || (b != s.body_a && b != s.body_b)) continue;
-    const double sign = b == s.body_b ? 1.0 : -1.0;
-    q(k) += sign * (m.axis == MotionDof::kX   ? f.x()
-                    : m.axis == MotionDof::kY ? f.y()
-                                              : Cross(p - centre(b), f));
-  }
+  Eigen::VectorXd on_stage = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(stage_dofs_.size()));
+  transmission::AddPairLoad(s, poses, f, stage_dofs_, on_stage);
+  for (int k = 0; k < size(); ++k)
+    if (stage_dof_[k] >= 0) q(k) += on_stage(stage_dof_[k]);
 }
 
 void DynamicModel::BearingForces(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
@@ -445,7 +379,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   BodyVelocities(t, d, v, &w.body);
   const std::vector<BodyMotion>& body = w.body;
   auto body_pose = [&](int b) -> const geometry::GearPose& {
-    return b == kSunBody ? e.poses.sun : b == kRingBody ? e.poses.ring : e.poses.planets[b - 2];
+    return transmission::BodyPose(e.poses, b);
   };
   e.overlap_rate.resize(n);
   e.total_force = e.force;
@@ -468,8 +402,8 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     const StageContact& s = terms.contacts[j];
     const geometry::PotentialContact& c = s.contact;
     const Vec2 p = c.point;
-    const Vec2 va = MaterialVelocity(s.body_a, p, e.poses, body),
-               vb = MaterialVelocity(s.body_b, p, e.poses, body);
+    const Vec2 va = transmission::MaterialVelocity(s.body_a, p, e.poses, body),
+               vb = transmission::MaterialVelocity(s.body_b, p, e.poses, body);
     e.overlap_rate(j) = c.normal.dot(va - vb);
     if (!(e.force(j) > 0)) continue;
     const double cm = s.mesh == geometry::MeshKind::kSunPlanet ? damping_sun_ : damping_ring_;
@@ -479,8 +413,8 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     e.dissipated_power += (e.total_force(j) - e.force(j)) * e.overlap_rate(j);
     Vec2 f = e.total_force(j) * c.normal;  // on B
     if (friction && e.total_force(j) > 0) {
-      const SurfaceVelocity u = Surface(s, e.poses, body);
-      e.friction(j) = FrictionForce(FrictionState(terms, j), e.total_force(j), u.ua, u.ub);
+      const SurfaceVelocity u = transmission::ContactSurfaceVelocity(model_, s, e.poses, body);
+      e.friction(j) = transmission::FrictionForce(friction_, FrictionState(terms, j), e.total_force(j), u.ua, u.ub);
       f += e.friction(j) * u.tangent;
       const double p_friction = e.friction(j) * (u.ua - u.ub);  // μ_s F v_s ≥ 0
       e.friction_power += p_friction;
@@ -692,14 +626,14 @@ void DynamicModel::AddFrictionJacobian(double t, const Eigen::VectorXd& d, const
     if (!(f > 0)) continue;
     const StageContact& s = terms.contacts[j];
     const geometry::PotentialContact& c = s.contact;
-    const SurfaceVelocity u = Surface(s, at.poses, body);
+    const SurfaceVelocity u = transmission::ContactSurfaceVelocity(model_, s, at.poses, body);
     auto overlap_rate = [&](const std::vector<BodyMotion>& b) {
-      return c.normal.dot(MaterialVelocity(s.body_a, c.point, at.poses, b) -
-                          MaterialVelocity(s.body_b, c.point, at.poses, b));
+      return c.normal.dot(transmission::MaterialVelocity(s.body_a, c.point, at.poses, b) -
+                          transmission::MaterialVelocity(s.body_b, c.point, at.poses, b));
     };
     const double rate = overlap_rate(body);
     for (int k = 0; k < nd; ++k) {
-      const SurfaceVelocity uk = Surface(s, at.poses, moved[k], &u.tangent);
+      const SurfaceVelocity uk = transmission::ContactSurfaceVelocity(model_, s, at.poses, moved[k], &u.tangent);
       ua_by_v(k) = uk.ua - u.ua;
       ub_by_v(k) = uk.ub - u.ub;
       rate_by_v(k) = overlap_rate(moved[k]) - rate;
@@ -707,11 +641,11 @@ void DynamicModel::AddFrictionJacobian(double t, const Eigen::VectorXd& d, const
     const transmission::FrictionContact fc = FrictionState(terms, j);
     const double hf = 1e-6 * f;
     const double phi_f =
-        (FrictionForce(fc, f + hf, u.ua, u.ub) - FrictionForce(fc, f - hf, u.ua, u.ub)) / (2 * hf);
+        (transmission::FrictionForce(friction_, fc, f + hf, u.ua, u.ub) - transmission::FrictionForce(friction_, fc, f - hf, u.ua, u.ub)) / (2 * hf);
     const double phi_ua =
-        (FrictionForce(fc, f, u.ua + hu, u.ub) - FrictionForce(fc, f, u.ua - hu, u.ub)) / (2 * hu);
+        (transmission::FrictionForce(friction_, fc, f, u.ua + hu, u.ub) - transmission::FrictionForce(friction_, fc, f, u.ua - hu, u.ub)) / (2 * hu);
     const double phi_ub =
-        (FrictionForce(fc, f, u.ua, u.ub + hu) - FrictionForce(fc, f, u.ua, u.ub - hu)) / (2 * hu);
+        (transmission::FrictionForce(friction_, fc, f, u.ua, u.ub + hu) - transmission::FrictionForce(friction_, fc, f, u.ua, u.ub - hu)) / (2 * hu);
     h.setZero();
     AddPairForce(s, at.poses, u.tangent, h);
     *dd += h * (phi_f * force_by_d.row(a));

@@ -250,6 +250,12 @@ py::object SummaryObject(const transmission::SweepSummary& s) {
   f["te_max_urad"] = s.transmission_error_max * 1e6;
   f["te_peak_to_peak_urad"] = s.TransmissionErrorPeakToPeak() * 1e6;
   f["sun_displacement_max_um"] = s.sun_displacement_max * 1e6;
+  if (s.friction) {
+    f["efficiency_mean"] = s.efficiency_mean;
+    f["efficiency_min"] = s.efficiency_min;
+    f["friction_power_mean_W"] = s.friction_power_mean;
+    f["friction_iterations_mean"] = s.friction_iterations_mean;
+  }
   return Result(f);
 }
 
@@ -259,11 +265,12 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
                        std::optional<std::vector<double>> angles_deg, int threads, bool warm_start,
                        const std::string& backend, bool local_terms,
                        std::optional<std::string> cache_dir, py::object progress,
-                       bool raise_on_failure) {
+                       bool raise_on_failure, const std::string& friction) {
   transmission::QuasiStaticOptions opt;
   opt.backend = BackendOf(backend);
   opt.threads = threads;
   opt.warm_start = warm_start;
+  transmission::SetRestFriction(s->scene().dynamics, friction, &opt);
   opt.Validate();
   if (positions < 0)
     throw std::invalid_argument("positions = " + std::to_string(positions) +
@@ -309,7 +316,11 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   std::vector<char> ok, warm;
   py::list status, message;
   PairColumns p;
-  std::vector<double> p_force;
+  std::vector<double> p_force, p_friction, p_sliding;
+  // Friction at rest (docs/quasistatic.md): per position P_f, P_in, P_out, η, the fixed point's
+  // last change; NaN where not converged.
+  const bool with_friction = opt.friction.law != transmission::FrictionLaw::kOff;
+  std::vector<double> loss, p_in, p_out, efficiency, change;
   int failed = 0;
   for (const transmission::PositionResult& r : out.results) {
     const bool good = r.converged;
@@ -330,17 +341,33 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     contacts.push_back(static_cast<int>(r.problem.contacts.size()));
     solve_ms.push_back(r.report.total_seconds * 1e3);
     message.append(names(r.message));
+    if (with_friction) {
+      loss.push_back(good ? r.friction_power : kNaN);
+      p_in.push_back(good ? r.input_power : kNaN);
+      p_out.push_back(good ? r.output_power : kNaN);
+      efficiency.push_back(good ? r.Efficiency() : kNaN);
+      change.push_back(r.force_change);
+    }
     for (std::size_t j = 0; j < r.problem.contacts.size() && good; ++j) {
-      const double force = r.solution.force(static_cast<Eigen::Index>(j));
+      const auto k = static_cast<Eigen::Index>(j);
+      const double force = r.solution.force(k);
       if (!(force > 0)) continue;
       const transmission::StageContact& c = r.problem.contacts[j];
       p.Add(Deg(r.carrier_angle), c);
       p_force.push_back(force);
+      if (with_friction) {
+        p_friction.push_back(r.friction_force(k));
+        p_sliding.push_back(r.sliding_velocity(k));
+      }
     }
   }
   py::dict pairs;
   p.Fill(pairs, "carrier_deg");
   pairs["force_N"] = Array(std::move(p_force));
+  if (with_friction) {
+    pairs["friction_N"] = Array(std::move(p_friction));
+    pairs["sliding_m_per_s"] = Array(std::move(p_sliding));
+  }
 
   const transmission::Scene& scene = out.rig->scene;
   py::dict f;
@@ -361,6 +388,14 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   f["contacts"] = Array(std::move(contacts));
   f["solve_ms"] = Array(std::move(solve_ms));
   f["message"] = message;
+  f["friction"] = transmission::FrictionLawName(opt.friction.law);
+  if (with_friction) {
+    f["friction_power_W"] = Array(std::move(loss));
+    f["input_power_W"] = Array(std::move(p_in));
+    f["output_power_W"] = Array(std::move(p_out));
+    f["efficiency"] = Array(std::move(efficiency));
+    f["force_change"] = Array(std::move(change));
+  }
   f["pairs"] = Result(pairs);
   f["summary"] = SummaryObject(transmission::SummariseSweep(out.results, n));
   f["warnings"] = out.warnings;
@@ -413,7 +448,8 @@ contact_ratio [-] (tip circles); torque_Nm, face_width_mm, warnings. Raises Comp
         py::arg("positions") = 0, py::arg("start_deg") = 0.0, py::arg("angles_deg") = py::none(),
         py::arg("threads") = 0, py::arg("warm_start") = true, py::arg("backend") = "newton",
         py::arg("local_terms") = true, py::arg("cache_dir") = py::none(),
-        py::arg("progress") = py::none(), py::arg("raise_on_failure") = true, R"doc(
+        py::arg("progress") = py::none(), py::arg("raise_on_failure") = true,
+        py::arg("friction") = "off", R"doc(
 Quasi-static load sharing of a stage over carrier positions (`epicycle quasistatic`; docs/
 quasistatic.md). The sun support is the scene's (key supports.sun: "fixed", "floating").
 
@@ -434,7 +470,14 @@ Returns Result with, per position (P positions, n planets):
   pairs: per loaded tooth pair carrier_deg, mesh, kind, flank, tooth_a, tooth_b, force_N [N];
   summary: positions, converged, lsr_mean/lsr_min/lsr_max (n,) [-], k_gamma [-], k_gamma_mean [-],
   te_min_urad, te_max_urad, te_peak_to_peak_urad [µrad], sun_displacement_max_um [µm];
-  scene, sun_support, sun_torque_Nm [N·m], backend, planets, warnings.
+  scene, sun_support, sun_torque_Nm [N·m], backend, planets, warnings; friction (the law's name).
+friction: friction at rest (docs/quasistatic.md, "Friction at rest"): "off" (default), "scene"
+  (the scene's [dynamics] friction), or a law ("constant", "xu-kahraman", "benedict-kelley"), with
+  the scene's coefficient, lubricant and sun_speed_rpm; with it, per position friction_power_W,
+  input_power_W, output_power_W [W], efficiency [-] (P_out/P_in), force_change [-] (the fixed
+  point's last relative change), per pair friction_N [N] and sliding_m_per_s [m/s], and in the
+  summary efficiency_mean, efficiency_min [-], friction_power_mean_W [W],
+  friction_iterations_mean [-]; lsr is then the whole sun-mesh torque's share, friction included.
 Raises ValueError for bad input; ComputationError (its .result the Result above) if positions
 failed and raise_on_failure.)doc");
 }

@@ -89,9 +89,10 @@ class RunFigures {
 }  // namespace
 
 QuasiStaticFiles::QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance,
-                                   int planets, bool root_stress)
+                                   int planets, bool friction, bool root_stress)
     : positions_(base + "_positions.csv"),
       pairs_(base + "_pairs.csv"),
+      friction_(friction),
       bodies_(root_stress ? transmission::PlanetBody(planets) : 0) {
   std::string head = ProvenanceCsvLine(provenance) + "carrier_deg,converged";
   for (int i = 1; i <= planets; ++i) head += ",LSR_" + std::to_string(i);
@@ -100,14 +101,15 @@ QuasiStaticFiles::QuasiStaticFiles(const std::string& base, const nlohmann::json
       ",K_gamma,transmission_error_urad,sun_x_um,sun_y_um,geometric_iterations,"
       "contact_iterations,warm_started,residual,status,active_contacts,contacts,solve_ms,"
       "message";
+  if (friction_) head += ",friction_power_W,input_power_W,output_power_W,efficiency,force_change";
   for (int b = 0; b < bodies_; ++b) {
     const std::string gear = transmission::BodyName(b);
     head += ",sigma_t_" + gear + "_MPa,sigma_c_" + gear + "_MPa";
   }
-  head += "\n";
-  positions_.Write(head);
+  positions_.Write(head + "\n");
   pairs_.Write(ProvenanceCsvLine(provenance) + "carrier_deg,mesh,kind,flank,teeth,force_N" +
-               (root_stress ? ",hertz_pressure_MPa,hertz_half_width_um\n" : "\n"));
+               (friction_ ? ",friction_N,sliding_m_per_s" : "") +
+               (bodies_ > 0 ? ",hertz_pressure_MPa,hertz_half_width_um\n" : "\n"));
 }
 
 void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
@@ -124,6 +126,11 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
       r.warm_started ? 1 : 0, Num(r.report.residual.total), solvers::StatusName(r.report.status),
       r.report.active_contacts, r.problem.contacts.size(),
       Num(r.report.total_seconds * 1e3, "{:.4g}"), CsvText(r.message));
+  const bool friction = friction_ && ok && r.friction;
+  if (friction_)
+    line += fmt::format(",{},{},{},{},{}", Num(friction ? r.friction_power : NAN),
+                        Num(friction ? r.input_power : NAN), Num(friction ? r.output_power : NAN),
+                        Num(friction ? r.Efficiency() : NAN), Num(r.force_change));
   if (bodies_ > 0) {
     // A failed position has no stresses (empty cells), a converged one its extremes per gear.
     const bool stressed = ok && !r.fillet_stress.empty();
@@ -144,6 +151,10 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
     pairs += fmt::format("{:.6f},{},{},{},{}/{},{}", deg, geometry::MeshName(c.planet, c.mesh),
                          geometry::KindName(c.contact.kind), c.loaded ? "drive" : "coast",
                          c.contact.tooth_a, c.contact.tooth_b, Num(f));
+    if (friction_)
+      pairs += friction ? fmt::format(",{},{}", Num(r.friction_force(static_cast<Eigen::Index>(j))),
+                                      Num(r.sliding_velocity(static_cast<Eigen::Index>(j))))
+                        : std::string(",,");
     if (bodies_ > 0) {  // stresses: Hertz's pressure and half-width of the contact
       const auto& local = r.problem.data.local;
       const bool known = j < local.size();
@@ -199,6 +210,12 @@ nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
                       {"largest_range_at", spot(g.range.at)},
                       {"largest_range_max_min_MPa", {g.range.max / 1e6, g.range.min / 1e6}}});
     j["root_stress"] = list;
+  }
+  if (summary.friction) {
+    j["efficiency_mean"] = JsonValue(summary.efficiency_mean);
+    j["efficiency_min"] = JsonValue(summary.efficiency_min);
+    j["friction_power_mean_W"] = JsonValue(summary.friction_power_mean);
+    j["friction_iterations_mean"] = JsonValue(summary.friction_iterations_mean);
   }
   return j;
 }

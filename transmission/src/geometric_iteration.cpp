@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "epicycle/solvers/contact_problem.hpp"
+#include "number_format.hpp"
 
 namespace epicycle::transmission {
 
@@ -12,7 +13,7 @@ GeometricIterationResult IterateGeometry(
     const std::function<StageOutcome(solvers::ContactProblemData*)>& build,
     const std::function<double(const Eigen::VectorXd&)>& move, solvers::ContactSolver& solver,
     const solvers::ContactOptions& contact, const GeometricIterationOptions& options,
-    const GeometricIterationStart& start) {
+    const GeometricIterationStart& start, const ForceFixedPoint& forces) {
   GeometricIterationResult r;
   std::vector<std::string> previous_labels;
   for (int it = 1; it <= options.max_iterations; ++it) {
@@ -65,11 +66,18 @@ GeometricIterationResult IterateGeometry(
     }
     r.total += r.solution.multiplier;
     const double step = move(r.solution.multiplier);
-    if (step <= options.tolerance) {
+    if (forces.update) r.force_change = forces.update(r.solution.force);
+    if (step <= options.tolerance && r.force_change <= forces.tolerance) {
       r.converged = true;
       return r;
     }
-    if (it == options.max_iterations) {
+    if (it == options.max_iterations && r.force_change > forces.tolerance) {
+      r.status = StageStatus::kFrictionNotSettled;
+      r.message = "the friction fixed point did not settle in " + std::to_string(it) +
+                  " iterations: last relative force change " + internal::Num(r.force_change) +
+                  " (tolerance " + internal::Num(forces.tolerance) +
+                  "), last displacement increment " + internal::Num(step) + " m";
+    } else if (it == options.max_iterations) {
       r.status = StageStatus::kNotSettled;
       r.message = "geometric iterations did not settle: last displacement increment " +
                   std::to_string(step) + " m";

@@ -4,10 +4,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/transmission/contact_kinematics.hpp"
 #include "epicycle/transmission/geometric_iteration.hpp"
+#include "epicycle/transmission/load_sharing.hpp"
 #include "ordered_chunks.hpp"
 
 namespace epicycle::transmission {
@@ -23,9 +27,135 @@ void QuasiStaticOptions::Validate() const {
     throw std::invalid_argument("quasistatic: threads = " + std::to_string(threads) +
                                 ": must be >= 0 (0: one per core)");
   contact.Validate();
+  if (friction.law != FrictionLaw::kOff) {
+    friction.Validate();
+    if (!(sun_speed > 0) || !std::isfinite(sun_speed))
+      throw std::invalid_argument("quasistatic: sun_speed = " + std::to_string(sun_speed) +
+                                  " rad/s: friction " + FrictionLawName(friction.law) +
+                                  " needs the speed of the rigid kinematics finite and > 0 "
+                                  "([dynamics] sun_speed_rpm)");
+  }
+}
+
+void SetRestFriction(const DynamicSettings& scene, const std::string& choice,
+                     QuasiStaticOptions* options) {
+  if (choice == "off") {
+    options->friction = NoFriction();
+    return;
+  }
+  options->friction = scene.friction;
+  options->sun_speed = scene.sun_speed;
+  if (choice == "scene") return;
+  try {
+    options->friction.law = FrictionLawFromName(choice);
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument("friction = \"" + choice +
+                                "\": must be one of off, scene, constant, xu-kahraman, "
+                                "benedict-kelley");
+  }
 }
 
 namespace {
+
+// Friction at rest (docs/model.md §9): the rigid kinematics of the scene's speed at one carrier
+// position give each contact its surface velocities; the law gives φ_j = μ_s(F_j, u_A, u_B) F_j.
+class RestFriction {
+ public:
+  RestFriction(const StageModel& model, double carrier_angle, const QuasiStaticOptions& options,
+               const StageLoads& loads)
+      : model_(model),
+        law_(options.friction),
+        modulus_(ContactModulus(model.material())),
+        carrier_speed_(RigidCarrierSpeed(model.stage(), options.sun_speed, loads.sun_torque)),
+        carrier_angle_(carrier_angle) {
+    RigidBodyMotion(model.stage(), carrier_angle, carrier_speed_, &motion_);
+  }
+
+  // φ_j and v_s,j of the forces `force` on the problem's contacts at `poses`; with `load`, the
+  // generalised loads of the friction forces on the problem's DOFs added to it.
+  void Evaluate(const StageProblem& problem, const geometry::StagePoses& poses,
+                const Eigen::VectorXd& force, Eigen::VectorXd* phi, Eigen::VectorXd* sliding,
+                Eigen::VectorXd* load) const {
+    const int n = static_cast<int>(problem.contacts.size());
+    phi->setZero(n);
+    sliding->setZero(n);
+    for (int j = 0; j < n; ++j) {
+      const StageContact& s = problem.contacts[static_cast<std::size_t>(j)];
+      const SurfaceVelocity u = ContactSurfaceVelocity(model_, s, poses, motion_);
+      (*sliding)(j) = u.ua - u.ub;
+      const double f = std::max(force(j), 0.0);
+      if (!(f > 0)) continue;
+      const solvers::LocalTermParameters* local =
+          problem.data.local.empty() ? nullptr : &problem.data.local[static_cast<std::size_t>(j)];
+      (*phi)(j) =
+          FrictionForce(law_, ContactFrictionState(model_, s, local, modulus_), f, u.ua, u.ub);
+      if (load != nullptr) AddPairLoad(s, poses, (*phi)(j)*u.tangent, problem.dofs, *load);
+    }
+  }
+
+  // The friction outputs of a converged position: φ, v_s, P_f, P_in, P_out and the load-sharing
+  // ratios of the whole sun-mesh torques.
+  void Outputs(const geometry::StagePoses& poses, const StageLoads& loads,
+               PositionResult* r) const {
+    const StageProblem& p = r->problem;
+    const Eigen::VectorXd& force = r->solution.force;
+    Evaluate(p, poses, force, &r->friction_force, &r->sliding_velocity, nullptr);
+    r->friction_power = r->friction_force.dot(r->sliding_velocity);
+    const geometry::Stage& stage = model_.stage();
+    r->input_power = loads.sun_torque * carrier_speed_ * stage.sun_ratio();
+    std::vector<double> sun_torque = model_.SunMeshTorques(p.contacts, force);
+    std::vector<geometry::Vec2> planet_force(static_cast<std::size_t>(stage.planets()),
+                                             geometry::Vec2::Zero());
+    const std::vector<StageDof> sun_rotation = {{StageDof::kSunRotation, 0}};
+    for (std::size_t j = 0; j < p.contacts.size(); ++j) {
+      const StageContact& s = p.contacts[j];
+      const Eigen::Index k = static_cast<Eigen::Index>(j);
+      const SurfaceVelocity u = ContactSurfaceVelocity(model_, s, poses, motion_);
+      const geometry::Vec2 on_b =
+          std::max(force(k), 0.0) * s.contact.normal + r->friction_force(k) * u.tangent;
+      const double sign = s.body_b == PlanetBody(s.planet) ? 1.0 : -1.0;
+      planet_force[static_cast<std::size_t>(s.planet)] += sign * on_b;
+      if (s.body_a != kSunBody) continue;
+      Eigen::VectorXd moment = Eigen::VectorXd::Zero(1);
+      AddPairLoad(s, poses, r->friction_force(k) * u.tangent, sun_rotation, moment);
+      sun_torque[static_cast<std::size_t>(s.planet)] += moment(0);
+    }
+    double carrier_torque = 0;
+    for (int i = 0; i < stage.planets(); ++i) {
+      const geometry::Vec2 pin = stage.Pin(i, carrier_angle_);
+      const geometry::Vec2& f = planet_force[static_cast<std::size_t>(i)];
+      carrier_torque += pin.x() * f.y() - pin.y() * f.x();
+    }
+    r->output_power = carrier_torque * carrier_speed_;
+    r->load_sharing = LoadSharingRatios(sun_torque, loads.sun_torque);
+  }
+
+ private:
+  const StageModel& model_;
+  FrictionModel law_;
+  double modulus_ = 0, carrier_speed_ = 0, carrier_angle_ = 0;
+  std::vector<BodyMotion> motion_;
+};
+
+// The forces of `from` carried to the same tooth pairs of `to` (planet, mesh, flank side and
+// teeth; the kind may differ): where a contact moves between a flank and a tip round as the
+// members move by the iterations' increments, its friction load goes with it (CarryForces, which
+// tells the kinds apart, would drop it and the fixed point would cycle between the two states).
+void CarryPairForces(const std::vector<StageContact>& from, const Eigen::VectorXd& force,
+                     const std::vector<StageContact>& to, Eigen::VectorXd* out) {
+  out->setZero(static_cast<Eigen::Index>(to.size()));
+  for (std::size_t j = 0; j < to.size(); ++j) {
+    const StageContact& t = to[j];
+    for (std::size_t i = 0; i < from.size(); ++i) {
+      const StageContact& f = from[i];
+      if (f.planet == t.planet && f.mesh == t.mesh && f.loaded == t.loaded &&
+          f.contact.tooth_a == t.contact.tooth_a && f.contact.tooth_b == t.contact.tooth_b) {
+        (*out)(static_cast<Eigen::Index>(j)) = force(static_cast<Eigen::Index>(i));
+        if (f.contact.kind == t.contact.kind) break;  // else a later one of the same kind wins
+      }
+    }
+  }
+}
 
 // One position with the caller's solver (a sweep's worker keeps one for its chunk).
 PositionResult Solve(const StageModel& model, double carrier_angle, const StageLoads& loads,
@@ -56,11 +186,44 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
     };
   }
   const bool root_stress = model.compliance().has_root_stress();
-  geometry::StagePoses problem_poses;  // where the last contact problem was built (root stress)
+  // Friction at rest: a fixed point on the forces alongside the geometric iteration. Each
+  // problem's W carries the friction loads of the forces of the previous solve (carried over to
+  // the problem's contacts; a neighbour's for the first, else none); it has settled when the
+  // forces change by at most the contact tolerance, relative to the largest.
+  std::unique_ptr<RestFriction> friction;
+  ForceFixedPoint fixed_point;
+  std::vector<StageContact> last_contacts;  // the contacts and forces of the last solve
+  Eigen::VectorXd last_force, used_force, phi, sliding;
+  geometry::StagePoses built;  // the poses of the last problem (friction, root stress)
+  if (options.friction.law != FrictionLaw::kOff) {
+    friction = std::make_unique<RestFriction>(model, carrier_angle, options, loads);
+    if (r.warm_started) {
+      last_contacts = neighbour->problem.contacts;
+      last_force = neighbour->solution.force;
+    }
+    fixed_point.tolerance = options.contact.tolerance;
+    fixed_point.update = [&](const Eigen::VectorXd& force) {
+      double change = std::numeric_limits<double>::infinity();
+      if (used_force.size() == force.size()) {
+        const double diff = (force - used_force).cwiseAbs().maxCoeff();
+        change = diff == 0 ? 0.0 : diff / force.cwiseAbs().maxCoeff();
+      }
+      last_contacts = r.problem.contacts;
+      last_force = force;
+      return change;
+    };
+  }
   GeometricIterationResult g = IterateGeometry(
       [&](solvers::ContactProblemData* data) {
-        if (root_stress) problem_poses = poses;
+        if (root_stress || friction) built = poses;
         StageOutcome o = model.Problem(poses, loads, &r.problem);
+        if (o.ok() && friction) {
+          used_force.setZero(static_cast<Eigen::Index>(r.problem.contacts.size()));
+          if (last_force.size() > 0)
+            CarryPairForces(last_contacts, last_force, r.problem.contacts, &used_force);
+          friction->Evaluate(r.problem, poses, used_force, &phi, &sliding,
+                             &r.problem.data.equality_rhs);
+        }
         if (o.ok()) *data = r.problem.data;
         return o;
       },
@@ -68,7 +231,7 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
         poses = StageModel::Displace(poses, dofs, lambda);
         return model.DisplacementSize(dofs, lambda);
       },
-      solver, options.contact, iteration, start);
+      solver, options.contact, iteration, start, fixed_point);
   r.converged = g.converged;
   r.status = g.status;
   r.message = std::move(g.message);
@@ -83,6 +246,12 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
   // Outputs from the last contact problem (solved at the poses before its own small increment).
   const int n = model.planets();
   r.load_sharing = model.LoadSharing(r.problem.contacts, r.solution.force, loads.sun_torque);
+  if (friction) {
+    r.friction = true;
+    r.force_change = g.force_change;
+    if (r.solution.force.size() == static_cast<Eigen::Index>(r.problem.contacts.size()))
+      friction->Outputs(built, loads, &r);
+  }
   r.planet_rotations.assign(n, 0.0);
   r.planet_displacements.assign(n, geometry::Vec2::Zero());
   for (std::size_t k = 0; k < dofs.size() && g.total.size() > 0; ++k) {
@@ -111,8 +280,8 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
     }
   }
   if (r.converged && root_stress)
-    r.fillet_stress = model.compliance().FilletStresses(model.stage(), problem_poses,
-                                                        r.problem.contacts, r.solution.force);
+    r.fillet_stress = model.compliance().FilletStresses(model.stage(), built, r.problem.contacts,
+                                                        r.solution.force);
   return r;
 }
 
@@ -169,7 +338,7 @@ std::size_t ResultBytes(const PositionResult& r) {
          matrix(d.equality_rhs) + matrix(d.support_stiffness) + strings(d.contact_labels) +
          strings(d.multiplier_labels) + d.name.capacity() + matrix(r.solution.force) +
          matrix(r.solution.multiplier) + r.poses.planets.capacity() * sizeof(geometry::GearPose) +
-         matrix(r.displacements);
+         matrix(r.displacements) + matrix(r.friction_force) + matrix(r.sliding_velocity);
 }
 
 void CheckSweepMemory(const PositionResult& sample, std::size_t positions,

@@ -68,6 +68,8 @@ std::string StatusName(StageStatus status) {
       return "contact solve failed";
     case StageStatus::kNotSettled:
       return "not settled";
+    case StageStatus::kFrictionNotSettled:
+      return "friction not settled";
   }
   return "unknown";
 }

@@ -32,8 +32,10 @@ SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int plan
                                 ": must be >= 1");
   const auto n = static_cast<std::size_t>(planets);
   std::vector<Accumulator> lsr(n);
-  Accumulator te, displacement, k_gamma;
+  Accumulator te, displacement, k_gamma, efficiency, friction_power, iterations;
+  bool friction = false;
   for (const PositionResult& r : results) {
+    friction = friction || r.friction;
     if (!r.converged) continue;
     if (r.load_sharing.size() != n)
       throw std::invalid_argument(
@@ -43,6 +45,11 @@ SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int plan
     te.Add(r.transmission_error);
     displacement.Add(r.sun_displacement.norm());
     k_gamma.Add(MeshLoadFactor(r));
+    if (r.friction) {
+      efficiency.Add(r.Efficiency());
+      friction_power.Add(r.friction_power);
+      iterations.Add(r.geometric_iterations);
+    }
   }
   SweepSummary s;
   s.positions = static_cast<int>(results.size());
@@ -92,6 +99,11 @@ SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int plan
       s.root_stress[static_cast<std::size_t>(b)].range = ranges[static_cast<std::size_t>(b)];
     }
   }
+  s.friction = friction;
+  s.efficiency_mean = efficiency.mean();
+  s.efficiency_min = efficiency.min();
+  s.friction_power_mean = friction_power.mean();
+  s.friction_iterations_mean = iterations.mean();
   return s;
 }
 

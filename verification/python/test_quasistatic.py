@@ -127,3 +127,35 @@ def test_failed_positions_raise_computation_error_with_the_results():
     r = epicycle.quasistatic(scene, positions=3, threads=1, backend="nlopt-lbfgs",
                              raise_on_failure=False)
     assert r.summary.converged == 0
+
+
+@pytest.mark.parametrize("sun", ["fixed", "floating"])
+def test_quasistatic_friction_at_rest_equals_the_program_files(tmp_path, sun):
+    """Friction at rest (docs/quasistatic.md): the loss, powers and efficiency per position and the
+    summary's efficiency through Python equal the program's columns to their printed digits."""
+    out = tmp_path / "cli"
+    run_cli("quasistatic", scene_path("paper_stage_runout.toml"), "--range", "planet",
+            "--positions", POSITIONS, "--threads", 1, "--sun", sun, "--friction", "constant",
+            "--quiet", "--out", out)
+    rows = read_csv(out / "quasistatic_positions.csv")
+    r = python_sweep(sun, friction="constant")
+    assert r.friction == "constant"
+    assert len(rows) == POSITIONS == len(r.efficiency)
+    for k, row in enumerate(rows):
+        assert row["LSR_1"] == num(r.lsr[k, 0])
+        assert row["friction_power_W"] == num(r.friction_power_W[k])
+        assert row["input_power_W"] == num(r.input_power_W[k])
+        assert row["output_power_W"] == num(r.output_power_W[k])
+        assert row["efficiency"] == num(r.efficiency[k])
+        assert row["force_change"] == num(r.force_change[k])
+    pairs = read_csv(out / "quasistatic_pairs.csv")
+    assert len(pairs) == len(r.pairs.friction_N)
+    for j, row in enumerate(pairs):
+        assert row["friction_N"] == num(r.pairs.friction_N[j])
+        assert row["sliding_m_per_s"] == num(r.pairs.sliding_m_per_s[j])
+    j = read_json(out / "quasistatic_summary.json")
+    assert j["friction"] == "constant"
+    assert j["efficiency_mean"] == r.summary.efficiency_mean
+    assert j["friction_power_mean_W"] == r.summary.friction_power_mean_W
+    with pytest.raises(ValueError, match="friction = \"wet\": must be one of off, scene"):
+        python_sweep(sun, friction="wet")

@@ -46,6 +46,7 @@
 
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/contact_kinematics.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/stage_model.hpp"
@@ -60,11 +61,9 @@ struct MotionDof {
   std::string Label() const;  ///< with its unit: "planet2 x [m]"
 };
 
-/// Velocity state of a gear body in the inertial frame.
-struct BodyMotion {
-  Eigen::Vector2d centre_velocity = Eigen::Vector2d::Zero();  ///< of its rotation centre [m/s]
-  double angular_velocity = 0;                                ///< [rad/s]
-};
+/// Velocity state of a gear body in the inertial frame (the contact kinematics' own, shared with
+/// the quasi-static friction).
+using transmission::BodyMotion;
 
 /// Buffers that DynamicModel::Evaluate reuses from one call to the next (Evaluation::work): with
 /// the same Evaluation passed again, an evaluation allocates only what the stage's kinematic
@@ -201,20 +200,6 @@ class DynamicModel {
   void Poses(double t, const Eigen::VectorXd& d, Eigen::VectorXd* q,
              geometry::StagePoses* poses) const;
   double ReferenceVelocity(int k, double t) const;
-  // Friction's kinematics of one contact (docs/model.md §7): the surface velocities u_A, u_B of
-  // the two flanks along `tangent` relative to the contact point's own motion.
-  struct SurfaceVelocity {
-    Eigen::Vector2d tangent;
-    double ua = 0, ub = 0;
-  };
-  // Along `*tangent`, or (nullptr) along n⊥ oriented so that the entrainment velocity is ≥ 0.
-  SurfaceVelocity Surface(const transmission::StageContact& s, const geometry::StagePoses& poses,
-                          const std::vector<BodyMotion>& body,
-                          const Eigen::Vector2d* tangent = nullptr) const;
-  // The material velocity of body b at point p [m/s].
-  Eigen::Vector2d MaterialVelocity(int b, const Eigen::Vector2d& p,
-                                   const geometry::StagePoses& poses,
-                                   const std::vector<BodyMotion>& body) const;
   // Q_k += the generalised force of a force f on body B at p and −f on body A (per DOF).
   void AddPairForce(const transmission::StageContact& s, const geometry::StagePoses& poses,
                     const Eigen::Vector2d& f, Eigen::Ref<Eigen::VectorXd> q) const;
@@ -226,8 +211,6 @@ class DynamicModel {
                            Eigen::MatrixXd* dd, Eigen::MatrixXd* dv) const;
   // Contact j's face width, reduced radius and contact modulus (FrictionForce sets the rest).
   transmission::FrictionContact FrictionState(const transmission::ContactTerms& terms, int j) const;
-  // The friction force μ_s(F, u_A, u_B)·F [N] of one contact with its state `fc`.
-  double FrictionForce(transmission::FrictionContact fc, double force, double ua, double ub) const;
 
   const transmission::StageModel& model_;
   transmission::DynamicSettings settings_;

@@ -25,19 +25,23 @@ namespace epicycle::report {
 /// the solve's counts and status) and BASE_pairs.csv (one line per loaded tooth pair).
 class QuasiStaticFiles {
  public:
-  /// With `root_stress` (the scene's stresses) each position's line ends with each gear's largest
-  /// tensile and compressive root stress, sigma_t_<gear>_MPa and sigma_c_<gear>_MPa, and each pair's
-  /// with its Hertz pressure and half-width, hertz_pressure_MPa and hertz_half_width_um
+  /// `friction`: the run has friction at rest; the positions get the columns friction_power_W,
+  /// input_power_W, output_power_W, efficiency, force_change at the end, the pairs friction_N and
+  /// sliding_m_per_s (none without it: the files are those of the frictionless model).
+  /// `root_stress` (the scene's stresses): then each position's line ends with each gear's largest
+  /// tensile and compressive root stress, sigma_t_<gear>_MPa and sigma_c_<gear>_MPa, and each
+  /// pair's with its Hertz pressure and half-width, hertz_pressure_MPa and hertz_half_width_um
   /// (docs/stresses.md).
   /// @throws std::runtime_error naming a file that cannot be written.
   QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance, int planets,
-                   bool root_stress = false);
+                   bool friction = false, bool root_stress = false);
   /// The lines of one position (a failed one: its status and message, empty results).
   void Write(const transmission::PositionResult& r);
   void Close();
 
  private:
   CsvFile positions_, pairs_;
+  bool friction_ = false;
   int bodies_ = 0;  // root-stress columns: one pair per body, 0 without
 };
 
@@ -49,10 +53,11 @@ void WriteStageProblemFile(const std::string& dir, const std::string& name,
 
 /// The statistics of a quasi-static sweep for its JSON summary: "planets" (LSR mean, min, max
 /// per planet), "K_gamma_max", "transmission_error_{min,max}_urad", "sun_displacement_max_um";
-/// null where no position converged (JSON has no NaN); with root stresses "root_stress" (per
-/// gear the largest tension and compression [MPa] with their carrier angle, tooth, fillet side
-/// and arc length along the fillet [mm], and the largest range at one fillet point). The caller
-/// adds the run's settings.
+/// with friction at rest also "efficiency_mean", "efficiency_min", "friction_power_mean_W",
+/// "friction_iterations_mean"; with root stresses "root_stress" (per gear the largest tension and
+/// compression [MPa] with their carrier angle, tooth, fillet side and arc length along the fillet
+/// [mm], and the largest range at one fillet point);
+/// null where no position converged (JSON has no NaN). The caller adds the run's settings.
 nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary);
 
 /// BASE_lsr.svg, BASE_te.svg and BASE_sun_path.svg of the converged positions.

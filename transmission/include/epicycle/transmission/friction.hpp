@@ -46,6 +46,13 @@ struct FrictionOptions {
   void Validate() const;
 };
 
+/// The default options with the law off (no friction).
+inline FrictionOptions NoFriction() {
+  FrictionOptions o;
+  o.law = FrictionLaw::kOff;
+  return o;
+}
+
 /// The state of one tooth contact that friction depends on.
 struct FrictionContact {
   double normal_force = 0;  ///< F [N], ≥ 0

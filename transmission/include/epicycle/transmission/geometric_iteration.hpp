@@ -35,12 +35,25 @@ struct GeometricIterationStart {
   std::function<bool(int contacts, Eigen::VectorXd* force)> forces;
 };
 
+/// A fixed point on the contact forces alongside the geometry's, for loads that depend on the
+/// forces (the quasi-static friction, docs/model.md §9): `build` adds the loads of the forces
+/// it was last given (none before the first solve, or a neighbour's), `update` gives it the new
+/// ones. Empty `update`: no such loads, the iteration is the geometric one alone.
+struct ForceFixedPoint {
+  /// Called with the forces F [N] of every accepted contact solve (on the contacts of the problem
+  /// `build` last wrote); keeps them for the next `build` and returns their change from the
+  /// forces that problem's loads were computed with, ‖F − F_prev‖∞/‖F‖∞ [-].
+  std::function<double(const Eigen::VectorXd& force)> update;
+  double tolerance = 0;  ///< settled when the change is ≤ this [-]
+};
+
 struct GeometricIterationResult {
   bool converged = false;             ///< every contact solve converged and the increments settled
   /// kOk when converged; kContactSolveFailed, kNotSettled, or the outcome `build` returned.
   StageStatus status = StageStatus::kOk;
   std::string message;                ///< why not (or a note on accepted inaccurate solves)
   int iterations = 0;                 ///< [-]
+  double force_change = 0;  ///< ForceFixedPoint: the last relative change of the forces [-]
   int contact_iterations = 0;         ///< back-end iterations summed over the contact solves [-]
   Eigen::VectorXd total;              ///< accumulated rigid displacements λ, per DOF [m] or [rad]
   solvers::ContactSolution solution;  ///< of the last contact problem
@@ -54,12 +67,15 @@ struct GeometricIterationResult {
 /// prevents it, which ends the iteration with that status; `move(λ)` moves the poses by the
 /// increment λ and returns its size [m]. `start` continues from a neighbouring state (its
 /// displacements already in the poses, its forces for the first solve). Exceptions from either
-/// propagate.
+/// propagate. With `forces` (ForceFixedPoint), the iteration ends when the displacement increment
+/// and the relative force change have both settled; the bound on the iterations is the same
+/// (options.max_iterations), and when the forces have not settled the status is
+/// kFrictionNotSettled (the message gives the last force change and displacement increment).
 /// @throws std::invalid_argument if start.displacements does not have one entry per DOF.
 GeometricIterationResult IterateGeometry(
     const std::function<StageOutcome(solvers::ContactProblemData*)>& build,
     const std::function<double(const Eigen::VectorXd&)>& move, solvers::ContactSolver& solver,
     const solvers::ContactOptions& contact, const GeometricIterationOptions& options,
-    const GeometricIterationStart& start = {});
+    const GeometricIterationStart& start = {}, const ForceFixedPoint& forces = {});
 
 }  // namespace epicycle::transmission

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/dynamic_settings.hpp"
+#include "epicycle/transmission/friction.hpp"
 #include "epicycle/transmission/stage_model.hpp"
 
 namespace epicycle::transmission {
@@ -36,8 +38,15 @@ struct QuasiStaticOptions {
   /// cold, position; so results depend on the thread count within the tolerances (bit-identical
   /// across thread counts only with warm_start = false).
   int threads = 0;
+  /// Friction at rest (docs/model.md §9, docs/quasistatic.md "Friction at rest"): the law, its
+  /// coefficient and lubricant, the dynamic model's (FrictionOptions). Default off: no friction
+  /// code runs and the results are those of the frictionless model, bit for bit.
+  FrictionOptions friction = NoFriction();
+  /// |ω_s| [rad/s] of the rigid kinematics that give each contact its surface velocities when
+  /// friction is on (the scene's [dynamics] sun_speed_rpm): finite and > 0; unused when off.
+  double sun_speed = 0;
   /// @throws std::invalid_argument naming the field (iterations < 1, tolerance not > 0, threads
-  ///         < 0, bad contact options).
+  ///         < 0, bad contact options, bad friction options, friction on without a speed > 0).
   void Validate() const;
 };
 
@@ -64,7 +73,27 @@ struct PositionResult {
   /// The root stresses of the converged state (docs/model.md §9) when the compliance has them
   /// (the scene's [model] stresses), else empty.
   std::vector<compliance::FilletStress> fillet_stress;
+  /// Friction at rest (options.friction on; otherwise false, empty and 0). With it, load_sharing
+  /// is the whole sun-mesh torque's share, the friction moments included (paper eq. 4).
+  bool friction = false;
+  Eigen::VectorXd friction_force;  ///< φ_j = μ_s F_j [N] per contact of `problem` (friction.hpp)
+  Eigen::VectorXd sliding_velocity;  ///< v_s = u_A − u_B [m/s] per contact of `problem`
+  double force_change = 0;    ///< the fixed point's last relative force change [-]
+  double friction_power = 0;  ///< P_f = Σ_j φ_j v_s,j [W], ≥ 0: the power friction dissipates
+  double input_power = 0;     ///< P_in = T_s ω_s [W] (the sun's input torque at its speed)
+  /// P_out = ω_c Σ_i (pin_i × F_i) [W]: the power the planets deliver to the carrier through
+  /// their pins, F_i the net contact force (normal and friction) on planet i.
+  double output_power = 0;
+  double Efficiency() const { return output_power / input_power; }  ///< η = P_out/P_in [-]
 };
+
+/// Friction at rest as a command or a binding asks for it (docs/quasistatic.md, "Friction at
+/// rest"): "off" (none: options->friction off), "scene" (the scene's law), or a law's name
+/// (FrictionLawFromName) replacing it; the coefficient, the lubricant and the speed of the rigid
+/// kinematics are always the scene's (`scene`, its [dynamics] and [lubricant] settings).
+/// @throws std::invalid_argument naming the value and the allowed names.
+void SetRestFriction(const DynamicSettings& scene, const std::string& choice,
+                     QuasiStaticOptions* options);
 
 /// The stage model's quasi-static equilibrium at one carrier position under `loads`.
 /// @throws std::invalid_argument for bad input; numerical trouble is reported in the result.

@@ -28,6 +28,9 @@ enum class StageStatus {
   kNoContact,         ///< quasi-static: no potential contact within the gap window
   kContactSolveFailed,  ///< the contact problem's solve did not converge
   kNotSettled,        ///< quasi-static: the geometric iterations did not settle
+  /// quasi-static with friction: the fixed point on the contact forces (the friction loads of
+  /// the previous solve's forces) did not settle within the iterations (docs/model.md §9)
+  kFrictionNotSettled,
 };
 /// "ok", "no line of action", "off the flank grid", ... (for messages and files).
 std::string StatusName(StageStatus status);

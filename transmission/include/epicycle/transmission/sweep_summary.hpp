@@ -26,6 +26,13 @@ struct SweepSummary {
   double transmission_error_min = 0;  ///< [rad]
   double transmission_error_max = 0;  ///< [rad]
   double sun_displacement_max = 0;    ///< largest |sun centre displacement| [m] (sun orbit)
+  /// Friction at rest (the positions were solved with it, PositionResult::friction); the rest NaN
+  /// without it or without a converged position.
+  bool friction = false;
+  double efficiency_mean = 0;       ///< mean over positions of η = P_out/P_in [-]
+  double efficiency_min = 0;        ///< smallest η [-]
+  double friction_power_mean = 0;   ///< mean over positions of P_f [W]
+  double friction_iterations_mean = 0;  ///< mean geometric-and-friction iterations per position [-]
   /// Peak-to-peak loaded static transmission error [rad].
   double TransmissionErrorPeakToPeak() const {
     return transmission_error_max - transmission_error_min;

@@ -1,0 +1,149 @@
+// Contact kinematics for friction (equations in contact_kinematics.hpp).
+#include "epicycle/transmission/contact_kinematics.hpp"
+
+namespace epicycle::transmission {
+
+using Vec2 = Eigen::Vector2d;
+
+namespace {
+
+double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+Vec2 Perp(const Vec2& a) { return {-a.y(), a.x()}; }  // ẑ × a
+
+// The body a stage DOF moves and its axis (0 x, 1 y, 2 rotation).
+int DofBody(const StageDof& d) {
+  switch (d.kind) {
+    case StageDof::kSunRotation:
+    case StageDof::kSunX:
+    case StageDof::kSunY:
+      return kSunBody;
+    case StageDof::kPlanetRotation:
+    case StageDof::kPlanetX:
+    case StageDof::kPlanetY:
+      return PlanetBody(d.planet);
+    case StageDof::kRingRotation:
+    case StageDof::kRingX:
+    case StageDof::kRingY:
+      return kRingBody;
+  }
+  return -1;
+}
+
+int DofAxis(const StageDof& d) {
+  switch (d.kind) {
+    case StageDof::kSunX:
+    case StageDof::kPlanetX:
+    case StageDof::kRingX:
+      return 0;
+    case StageDof::kSunY:
+    case StageDof::kPlanetY:
+    case StageDof::kRingY:
+      return 1;
+    default:
+      return 2;
+  }
+}
+
+}  // namespace
+
+double RigidCarrierSpeed(const geometry::Stage& stage, double sun_speed, double sun_torque) {
+  return (sun_torque > 0 ? 1.0 : -1.0) * sun_speed / stage.sun_ratio();
+}
+
+void RigidBodyMotion(const geometry::Stage& stage, double carrier_angle, double carrier_speed,
+                     std::vector<BodyMotion>* out) {
+  const int n = stage.planets();
+  out->assign(static_cast<std::size_t>(2 + n), BodyMotion{});
+  (*out)[kSunBody].angular_velocity = carrier_speed * stage.sun_ratio();
+  for (int i = 0; i < n; ++i) {
+    BodyMotion& m = (*out)[static_cast<std::size_t>(PlanetBody(i))];
+    m.angular_velocity = carrier_speed * stage.planet_ratio();
+    m.centre_velocity = carrier_speed * Perp(stage.Pin(i, carrier_angle));
+  }
+}
+
+const geometry::GearPose& BodyPose(const geometry::StagePoses& poses, int body) {
+  return body == kSunBody    ? poses.sun
+         : body == kRingBody ? poses.ring
+                             : poses.planets[static_cast<std::size_t>(body - 2)];
+}
+
+Vec2 MaterialVelocity(int body, const Vec2& p, const geometry::StagePoses& poses,
+                      const std::vector<BodyMotion>& motion) {
+  const BodyMotion& m = motion[static_cast<std::size_t>(body)];
+  return m.centre_velocity + m.angular_velocity * Perp(p - BodyPose(poses, body).rotation_centre);
+}
+
+SurfaceVelocity ContactSurfaceVelocity(const StageModel& model, const StageContact& s,
+                                       const geometry::StagePoses& poses,
+                                       const std::vector<BodyMotion>& motion,
+                                       const Vec2* tangent) {
+  const geometry::PotentialContact& c = s.contact;
+  const Vec2 va = MaterialVelocity(s.body_a, c.point, poses, motion),
+             vb = MaterialVelocity(s.body_b, c.point, poses, motion);
+  // The contact point's own velocity along the surface: 0 on the line of action; a tip round's
+  // contact point stays at the round, moving with its centre.
+  Vec2 v_contact = Vec2::Zero();
+  if (c.kind == geometry::ContactKind::kTipRoundA) {
+    const double rt = model.BodyGear(s.body_a).spec().tip_round_radius;
+    v_contact = MaterialVelocity(s.body_a, c.point_a - rt * c.normal, poses, motion);
+  } else if (c.kind == geometry::ContactKind::kTipRoundB) {
+    const double rt = model.BodyGear(s.body_b).spec().tip_round_radius;
+    v_contact = MaterialVelocity(s.body_b, c.point_b + rt * c.normal, poses, motion);
+  } else {
+    v_contact = c.normal.dot(0.5 * (va + vb)) * c.normal;
+  }
+  SurfaceVelocity u;
+  u.tangent = tangent != nullptr ? *tangent : Vec2(Perp(c.normal));
+  u.ua = (va - v_contact).dot(u.tangent);
+  u.ub = (vb - v_contact).dot(u.tangent);
+  if (tangent == nullptr && u.ua + u.ub < 0) {  // orient t so that the entrainment is ≥ 0
+    u.tangent = -u.tangent;
+    u.ua = -u.ua;
+    u.ub = -u.ub;
+  }
+  return u;
+}
+
+double ContactModulus(const Material& material) {
+  const double k = (1 - material.poisson_ratio * material.poisson_ratio) / material.youngs_modulus;
+  return 1.0 / (2 * k);
+}
+
+FrictionContact ContactFrictionState(const StageModel& model, const StageContact& s,
+                                     const solvers::LocalTermParameters* local,
+                                     double contact_modulus) {
+  const geometry::PotentialContact& c = s.contact;
+  FrictionContact fc;
+  fc.face_width = geometry::ContactFaceWidth(model.BodyGear(s.body_a), model.BodyGear(s.body_b));
+  fc.reduced_radius = local == nullptr
+                          ? 1.0 / (1.0 / c.curvature_radius_a + 1.0 / c.curvature_radius_b)
+                          : local->reduced_radius;
+  fc.contact_modulus = contact_modulus;
+  return fc;
+}
+
+double FrictionForce(const FrictionModel& law, FrictionContact fc, double force, double ua,
+                     double ub) {
+  fc.normal_force = force;
+  fc.velocity_a = ua;
+  fc.velocity_b = ub;
+  return law.SignedCoefficient(fc) * force;
+}
+
+void AddPairLoad(const StageContact& s, const geometry::StagePoses& poses, const Vec2& f,
+                 const std::vector<StageDof>& dofs, Eigen::Ref<Eigen::VectorXd> q) {
+  const Vec2& p = s.contact.point;
+  for (std::size_t k = 0; k < dofs.size(); ++k) {
+    const int b = DofBody(dofs[k]);
+    if (b != s.body_a && b != s.body_b) continue;
+    const double sign = b == s.body_b ? 1.0 : -1.0;
+    const int axis = DofAxis(dofs[k]);
+    q(static_cast<Eigen::Index>(k)) +=
+        sign * (axis == 0   ? f.x()
+                : axis == 1 ? f.y()
+                            : Cross(p - BodyPose(poses, b).rotation_centre, f));
+  }
+}
+
+}  // namespace epicycle::transmission
