@@ -40,7 +40,7 @@ struct DynamicArgs {
   // Not given: the scene's speed, the range's duration, the library's defaults.
   std::optional<double> speed_rpm, time, rate_scale, contact_tol;
   int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0;
-  bool no_cache = false, quiet = false, fd_jacobian = false;
+  bool no_cache = false, quiet = false, fd_jacobian = false, stresses = false;
 };
 
 void RunDynamic(const DynamicArgs& a) {
@@ -55,6 +55,7 @@ void RunDynamic(const DynamicArgs& a) {
   if (a.speed_rpm) input.dynamics.sun_speed = *a.speed_rpm * std::numbers::pi / 30.0;
   if (!a.friction.empty())
     input.dynamics.friction.law = transmission::FrictionLawFromName(a.friction);
+  input.model.stresses = input.model.stresses || a.stresses;
   const auto t0 = std::chrono::steady_clock::now();
   dynamics::StageDynamics rig(std::move(input), TableOptions(a.cache, a.no_cache));
   const transmission::Scene& scene = rig.scene;
@@ -119,7 +120,7 @@ void RunDynamic(const DynamicArgs& a) {
   std::filesystem::create_directories(a.out);
   const std::string base = a.out + "/dynamic";
   const json provenance = Provenance(a.backend, &scene);
-  report::DynamicRunFiles files(base, provenance, n);
+  report::DynamicRunFiles files(base, provenance, n, compliance.has_root_stress());
   const bool tty = !a.quiet && isatty(fileno(stderr));
   const auto t1 = std::chrono::steady_clock::now();
   int done = 0;
@@ -159,6 +160,7 @@ void RunDynamic(const DynamicArgs& a) {
       st.steps, st.rhs_evaluations, st.fd_rhs_evaluations, st.jacobian_evaluations,
       st.failed_solves, st.error_test_failures, st.nonlinear_failures, st.wall_seconds,
       st.rhs_seconds);
+  std::printf("%s", report::RootStressText(sum.root_stress, "t s", 1.0).c_str());
 
   // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
   std::vector<std::string> warnings = scene.warnings;
@@ -321,6 +323,8 @@ void RegisterDynamicCommands(CLI::App& app) {
             kThreads);
   AddNumber(cmd, "--max-order", a.max_order, "Largest BDF order of CVODE (1..5)",
             {1, 5, false, true, "", ""});
+  cmd->add_flag("--stresses", a.stresses,
+                "Also each gear's root stress per output step (the scene's [model] stresses)");
   cmd->add_flag("--fd-jacobian", a.fd_jacobian,
                 "CVODE's finite-difference Jacobian instead of the contact sensitivity");
   cmd->add_option("--out", a.out, "Output folder (CSV, JSON, SVG)");

@@ -164,18 +164,9 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   } else {
     std::printf("  K_gamma, transmission error, sun displacement: - (no position converged)\n");
   }
-  if (!summary.root_stress.empty())
-    std::printf("  root stress [MPa]  tension (carrier deg, tooth/fillet)  compression  range\n");
-  for (const auto& g : summary.root_stress) {
-    const auto& e = g.extremes;
-    std::printf("    %-8s %9.2f (%8.3f, %d%s)  %9.2f (%8.3f, %d%s)  %9.2f (%d%s)\n",
-                transmission::BodyName(e.body).c_str(), e.tension / 1e6,
-                geometry::Deg(g.tension_carrier_angle), e.tension_at.tooth,
-                e.tension_at.side == 0 ? "+" : "-", e.compression / 1e6,
-                geometry::Deg(g.compression_carrier_angle), e.compression_at.tooth,
-                e.compression_at.side == 0 ? "+" : "-", g.range.range / 1e6, g.range.at.tooth,
-                g.range.at.side == 0 ? "+" : "-");
-  }
+  std::printf(
+      "%s",
+      report::RootStressText(summary.root_stress, "carrier deg", 180.0 / std::numbers::pi).c_str());
   std::printf("  positions converged          %d of %zu, %.3f s (%.3f ms per position)\n", good,
               angles.size(), sweep_seconds,
               1e3 * sweep_seconds / static_cast<double>(angles.size()));

@@ -15,7 +15,9 @@ DynamicSummary Summarise(const std::vector<DynamicSample>& samples) {
   const std::size_t n = samples.empty() ? 0 : samples.front().load_sharing.size();
   std::vector<transmission::Accumulator> lsr(n);
   transmission::Accumulator te, orbit, k_gamma, pair_force;
+  transmission::RootStressTracker root_stress(transmission::PlanetBody(static_cast<int>(n)));
   for (const DynamicSample& x : samples) {
+    root_stress.Add(x.fillet_stress, x.time);
     for (std::size_t i = 0; i < n; ++i) lsr[i].Add(x.load_sharing[i]);
     k_gamma.Add(x.k_gamma);
     te.Add(x.transmission_error);
@@ -36,6 +38,7 @@ DynamicSummary Summarise(const std::vector<DynamicSample>& samples) {
   s.max_pair_force = samples.empty()      ? std::numeric_limits<double>::quiet_NaN()
                      : pair_force.empty() ? 0.0
                                           : std::max(0.0, pair_force.max());
+  s.root_stress = root_stress.Result();
   return s;
 }
 

@@ -31,6 +31,29 @@ std::string Cells(const Range& values) {
   return s;
 }
 
+// ",sigma_t_<gear>_MPa,sigma_c_<gear>_MPa" for bodies 0 … bodies − 1.
+std::string RootStressHead(int bodies) {
+  std::string head;
+  for (int b = 0; b < bodies; ++b) {
+    const std::string gear = transmission::BodyName(b);
+    head += ",sigma_t_" + gear + "_MPa,sigma_c_" + gear + "_MPa";
+  }
+  return head;
+}
+
+// Each body's largest tension and compression [MPa] of a state's fillets; empty cells for a state
+// without them (a failed position).
+void RootStressCells(std::string& line, const std::vector<compliance::FilletStress>& fillets,
+                     int bodies) {
+  const std::vector<transmission::GearRootStress> g =
+      fillets.empty() ? std::vector<transmission::GearRootStress>()
+                      : transmission::SummariseRootStress(fillets, bodies);
+  for (int b = 0; b < bodies; ++b) {
+    Cell(line, g.empty() ? NAN : g[static_cast<std::size_t>(b)].tension / 1e6);
+    Cell(line, g.empty() ? NAN : g[static_cast<std::size_t>(b)].compression / 1e6);
+  }
+}
+
 // A statistic for a JSON file: null where it has no value (JSON has no NaN), never a made-up
 // number.
 nlohmann::json JsonValue(double v) {
@@ -102,10 +125,7 @@ QuasiStaticFiles::QuasiStaticFiles(const std::string& base, const nlohmann::json
       "contact_iterations,warm_started,residual,status,active_contacts,contacts,solve_ms,"
       "message";
   if (friction_) head += ",friction_power_W,input_power_W,output_power_W,efficiency,force_change";
-  for (int b = 0; b < bodies_; ++b) {
-    const std::string gear = transmission::BodyName(b);
-    head += ",sigma_t_" + gear + "_MPa,sigma_c_" + gear + "_MPa";
-  }
+  head += RootStressHead(bodies_);
   positions_.Write(head + "\n");
   pairs_.Write(ProvenanceCsvLine(provenance) + "carrier_deg,mesh,kind,flank,teeth,force_N" +
                (friction_ ? ",friction_N,sliding_m_per_s" : "") +
@@ -131,17 +151,9 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
     line += fmt::format(",{},{},{},{},{}", Num(friction ? r.friction_power : NAN),
                         Num(friction ? r.input_power : NAN), Num(friction ? r.output_power : NAN),
                         Num(friction ? r.Efficiency() : NAN), Num(r.force_change));
-  if (bodies_ > 0) {
-    // A failed position has no stresses (empty cells), a converged one its extremes per gear.
-    const bool stressed = ok && !r.fillet_stress.empty();
-    const std::vector<transmission::GearRootStress> g =
-        stressed ? transmission::SummariseRootStress(r.fillet_stress, bodies_)
-                 : std::vector<transmission::GearRootStress>();
-    for (int b = 0; b < bodies_; ++b) {
-      Cell(line, stressed ? g[static_cast<std::size_t>(b)].tension / 1e6 : NAN);
-      Cell(line, stressed ? g[static_cast<std::size_t>(b)].compression / 1e6 : NAN);
-    }
-  }
+  // A failed position has no stresses (empty cells), a converged one its extremes per gear.
+  if (bodies_ > 0)
+    RootStressCells(line, ok ? r.fillet_stress : decltype(r.fillet_stress)(), bodies_);
   positions_.WriteLine(line);
   std::string pairs;
   for (std::size_t j = 0; j < r.problem.contacts.size() && ok; ++j) {
@@ -184,6 +196,46 @@ void WriteStageProblemFile(const std::string& dir, const std::string& name,
   solvers::WriteContactProblemFile(file, dir + "/" + name + ".json");
 }
 
+nlohmann::json RootStressJson(const std::vector<transmission::RootStressSummary>& gears,
+                              const std::string& x_name, double x_scale) {
+  auto spot = [](const transmission::FilletSpot& at) {
+    return nlohmann::json{{"tooth", at.tooth},
+                          {"fillet", at.side == 0 ? "+" : "-"},
+                          {"arc_from_space_centre_mm", at.arc_length * 1e3}};
+  };
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& g : gears)
+    list.push_back({{"gear", transmission::BodyName(g.extremes.body)},
+                    {"tension_MPa", g.extremes.tension / 1e6},
+                    {"tension_" + x_name, g.tension_x * x_scale},
+                    {"tension_at", spot(g.extremes.tension_at)},
+                    {"compression_MPa", g.extremes.compression / 1e6},
+                    {"compression_" + x_name, g.compression_x * x_scale},
+                    {"compression_at", spot(g.extremes.compression_at)},
+                    {"largest_range_MPa", g.range.range / 1e6},
+                    {"largest_range_at", spot(g.range.at)},
+                    {"largest_range_max_min_MPa", {g.range.max / 1e6, g.range.min / 1e6}}});
+  return list;
+}
+
+std::string RootStressText(const std::vector<transmission::RootStressSummary>& gears,
+                           const std::string& x_name, double x_scale) {
+  if (gears.empty()) return "";
+  std::string out =
+      fmt::format("  root stress [MPa]  tension ({}, tooth/fillet)  compression  range\n", x_name);
+  auto side = [](int s) { return s == 0 ? "+" : "-"; };
+  for (const auto& g : gears) {
+    const auto& e = g.extremes;
+    out +=
+        fmt::format("    {:<8} {:9.2f} ({:8.4g}, {}{})  {:9.2f} ({:8.4g}, {}{})  {:9.2f} ({}{})\n",
+                    transmission::BodyName(e.body), e.tension / 1e6, g.tension_x * x_scale,
+                    e.tension_at.tooth, side(e.tension_at.side), e.compression / 1e6,
+                    g.compression_x * x_scale, e.compression_at.tooth, side(e.compression_at.side),
+                    g.range.range / 1e6, g.range.at.tooth, side(g.range.at.side));
+  }
+  return out;
+}
+
 nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
   nlohmann::json j;
   j["planets"] = PlanetsJson(summary.lsr_mean, summary.lsr_min, summary.lsr_max);
@@ -191,26 +243,8 @@ nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
   j["transmission_error_min_urad"] = JsonValue(summary.transmission_error_min * 1e6);
   j["transmission_error_max_urad"] = JsonValue(summary.transmission_error_max * 1e6);
   j["sun_displacement_max_um"] = JsonValue(summary.sun_displacement_max * 1e6);
-  if (!summary.root_stress.empty()) {
-    auto spot = [](const transmission::FilletSpot& at) {
-      return nlohmann::json{{"tooth", at.tooth},
-                            {"fillet", at.side == 0 ? "+" : "-"},
-                            {"arc_from_space_centre_mm", at.arc_length * 1e3}};
-    };
-    nlohmann::json list = nlohmann::json::array();
-    for (const auto& g : summary.root_stress)
-      list.push_back({{"gear", transmission::BodyName(g.extremes.body)},
-                      {"tension_MPa", g.extremes.tension / 1e6},
-                      {"tension_carrier_deg", geometry::Deg(g.tension_carrier_angle)},
-                      {"tension_at", spot(g.extremes.tension_at)},
-                      {"compression_MPa", g.extremes.compression / 1e6},
-                      {"compression_carrier_deg", geometry::Deg(g.compression_carrier_angle)},
-                      {"compression_at", spot(g.extremes.compression_at)},
-                      {"largest_range_MPa", g.range.range / 1e6},
-                      {"largest_range_at", spot(g.range.at)},
-                      {"largest_range_max_min_MPa", {g.range.max / 1e6, g.range.min / 1e6}}});
-    j["root_stress"] = list;
-  }
+  if (!summary.root_stress.empty())
+    j["root_stress"] = RootStressJson(summary.root_stress, "carrier_deg", geometry::Deg(1.0));
   if (summary.friction) {
     j["efficiency_mean"] = JsonValue(summary.efficiency_mean);
     j["efficiency_min"] = JsonValue(summary.efficiency_min);
@@ -236,7 +270,7 @@ void WriteQuasiStaticPlots(const std::string& base, const std::string& scene_nam
 namespace {
 
 // The first lines (provenance, columns) of a dynamic run's files.
-std::string DynamicStepsHead(const std::string& provenance_line, int planets) {
+std::string DynamicStepsHead(const std::string& provenance_line, int planets, int stress_bodies) {
   std::string steps = provenance_line + "time_s,carrier_deg";
   for (int i = 1; i <= planets; ++i) steps += ",LSR_" + std::to_string(i);
   for (int i = 1; i <= planets; ++i) steps += ",L_" + std::to_string(i);
@@ -245,7 +279,7 @@ std::string DynamicStepsHead(const std::string& provenance_line, int planets) {
       "external_work_J,dissipated_work_J,kinetic_energy_J,elastic_energy_J,contacts,"
       "active_contacts,friction_power_W";
   for (int i = 1; i <= planets; ++i) steps += ",LSR_force_" + std::to_string(i);
-  return steps + "\n";
+  return steps + RootStressHead(stress_bodies) + "\n";
 }
 
 std::string DynamicBearingsHead(const std::string& provenance_line, int planets) {
@@ -259,14 +293,17 @@ std::string DynamicBearingsHead(const std::string& provenance_line, int planets)
 // Created in the order of a step's writes (pairs, bearings, steps), each with its head at once:
 // once the steps file has its head, every file has.
 DynamicRunFiles::DynamicRunFiles(const std::string& base, const nlohmann::json& provenance,
-                                 int planets)
+                                 int planets, bool root_stress)
     : pairs_(base + "_pairs.csv",
              ProvenanceCsvLine(provenance) +
                  "time_s,mesh,kind,flank,teeth,normal_force_N,elastic_force_N,friction_force_N,"
                  "overlap_rate_mm_per_s\n"),
       bearings_(base + "_bearings.csv",
                 DynamicBearingsHead(ProvenanceCsvLine(provenance), planets)),
-      steps_(base + "_steps.csv", DynamicStepsHead(ProvenanceCsvLine(provenance), planets)) {}
+      steps_(base + "_steps.csv",
+             DynamicStepsHead(ProvenanceCsvLine(provenance), planets,
+                              root_stress ? transmission::PlanetBody(planets) : 0)),
+      bodies_(root_stress ? transmission::PlanetBody(planets) : 0) {}
 
 void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
   const dynamics::Evaluation& e = s.evaluation;
@@ -282,6 +319,7 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
                        Num(s.dissipated_work), Num(e.kinetic_energy), Num(e.elastic_energy),
                        e.terms.size(), active, Num(e.friction_power));
   steps += Cells(s.force_sharing);
+  if (bodies_ > 0) RootStressCells(steps, s.fillet_stress, bodies_);
   std::string pairs;
   for (int j = 0; j < e.terms.size(); ++j) {
     if (!(e.total_force(j) > 0)) continue;
@@ -348,6 +386,7 @@ nlohmann::json DynamicRunJson(const dynamics::DynamicModel& model,
   j["failure"] = result.message;
   j["mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
   j["mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
+  if (!sum.root_stress.empty()) j["root_stress"] = RootStressJson(sum.root_stress, "time_s", 1.0);
   j["planets"] = PlanetsJson(sum.lsr_mean, sum.lsr_min, sum.lsr_max);
   j["outputs_written"] = sum.samples;
   j["K_gamma_max"] = JsonValue(sum.k_gamma);

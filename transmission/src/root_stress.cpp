@@ -67,4 +67,35 @@ std::vector<RootStressEnvelope::Range> RootStressEnvelope::Ranges() const {
   return out;
 }
 
+void RootStressTracker::Add(const std::vector<compliance::FilletStress>& fillets, double x) {
+  if (fillets.empty()) return;
+  if (summary_.empty()) {
+    summary_.resize(static_cast<std::size_t>(bodies_));
+    for (int b = 0; b < bodies_; ++b) summary_[static_cast<std::size_t>(b)].extremes.body = b;
+  }
+  envelope_.Add(fillets);
+  const std::vector<GearRootStress> here = SummariseRootStress(fillets, bodies_);
+  for (std::size_t b = 0; b < here.size(); ++b) {
+    RootStressSummary& g = summary_[b];
+    if (here[b].tension > g.extremes.tension) {
+      g.extremes.tension = here[b].tension;
+      g.extremes.tension_at = here[b].tension_at;
+      g.tension_x = x;
+    }
+    if (here[b].compression < g.extremes.compression) {
+      g.extremes.compression = here[b].compression;
+      g.extremes.compression_at = here[b].compression_at;
+      g.compression_x = x;
+    }
+  }
+}
+
+std::vector<RootStressSummary> RootStressTracker::Result() const {
+  std::vector<RootStressSummary> out = summary_;
+  if (out.empty()) return out;
+  const std::vector<RootStressEnvelope::Range> ranges = envelope_.Ranges();
+  for (std::size_t b = 0; b < out.size(); ++b) out[b].range = ranges[b];
+  return out;
+}
+
 }  // namespace epicycle::transmission

@@ -71,34 +71,10 @@ SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int plan
       s.k_gamma_mean = std::max(s.k_gamma_mean, static_cast<double>(planets) * m);
   }
   // Root stresses, when the positions carry them.
-  const int bodies = PlanetBody(planets);
-  RootStressEnvelope envelope(bodies);
-  for (const PositionResult& r : results) {
-    if (!r.converged || r.fillet_stress.empty()) continue;
-    if (s.root_stress.empty()) s.root_stress.resize(static_cast<std::size_t>(bodies));
-    envelope.Add(r.fillet_stress);
-    const std::vector<GearRootStress> here = SummariseRootStress(r.fillet_stress, bodies);
-    for (int b = 0; b < bodies; ++b) {
-      SweepSummary::RootStress& g = s.root_stress[static_cast<std::size_t>(b)];
-      if (here[b].tension > g.extremes.tension) {
-        g.extremes.tension = here[b].tension;
-        g.extremes.tension_at = here[b].tension_at;
-        g.tension_carrier_angle = r.carrier_angle;
-      }
-      if (here[b].compression < g.extremes.compression) {
-        g.extremes.compression = here[b].compression;
-        g.extremes.compression_at = here[b].compression_at;
-        g.compression_carrier_angle = r.carrier_angle;
-      }
-    }
-  }
-  if (!s.root_stress.empty()) {
-    const std::vector<RootStressEnvelope::Range> ranges = envelope.Ranges();
-    for (int b = 0; b < bodies; ++b) {
-      s.root_stress[static_cast<std::size_t>(b)].extremes.body = b;
-      s.root_stress[static_cast<std::size_t>(b)].range = ranges[static_cast<std::size_t>(b)];
-    }
-  }
+  RootStressTracker root_stress(PlanetBody(planets));
+  for (const PositionResult& r : results)
+    if (r.converged) root_stress.Add(r.fillet_stress, r.carrier_angle);
+  s.root_stress = root_stress.Result();
   s.friction = friction;
   s.efficiency_mean = efficiency.mean();
   s.efficiency_min = efficiency.min();

@@ -90,6 +90,9 @@ struct DynamicSample {
   double external_work = 0;    ///< W_ext since t = 0 [J]
   double dissipated_work = 0;  ///< W_diss since t = 0 [J]
   Evaluation evaluation;       ///< forces, energies, contacts at this step
+  /// Root stresses of this step's state (docs/model.md §9) under the contact forces with their
+  /// damping, when the stage's tables carry them (the scene's [model] stresses), else empty.
+  std::vector<compliance::FilletStress> fillet_stress;
 };
 
 struct SimulationStats {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/transmission/root_stress.hpp"
 
 namespace epicycle::dynamics {
 
@@ -20,6 +21,9 @@ struct DynamicSummary {
   double orbit_radius = 0;       ///< largest |sun centre − nominal| [m]
   double orbit_mean_radius = 0;  ///< mean |sun centre − nominal| [m]
   double max_pair_force = 0;     ///< largest tooth-pair normal force (with damping), ≥ 0 [N]
+  /// Per body, when the samples carry root stresses (else empty): extremes with their time [s]
+  /// (RootStressSummary's x) and the largest range at one fillet point.
+  std::vector<transmission::RootStressSummary> root_stress;
 };
 
 /// Summary of the samples.

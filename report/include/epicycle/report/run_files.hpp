@@ -51,6 +51,15 @@ void WriteStageProblemFile(const std::string& dir, const std::string& name,
                            const solvers::ContactProblemData& data,
                            const nlohmann::json& provenance, const std::string& description);
 
+/// Root stresses over a run for its JSON summary: per gear the largest tension and compression
+/// [MPa] with where they occur ("tension_<x_name>": the state's x times `x_scale`, and the tooth,
+/// fillet side and arc length along the fillet [mm]) and the largest range at one fillet point.
+nlohmann::json RootStressJson(const std::vector<transmission::RootStressSummary>& gears,
+                              const std::string& x_name, double x_scale);
+/// The same as lines of text for a console report ("" without stresses).
+std::string RootStressText(const std::vector<transmission::RootStressSummary>& gears,
+                           const std::string& x_name, double x_scale);
+
 /// The statistics of a quasi-static sweep for its JSON summary: "planets" (LSR mean, min, max
 /// per planet), "K_gamma_max", "transmission_error_{min,max}_urad", "sun_displacement_max_um";
 /// with friction at rest also "efficiency_mean", "efficiency_min", "friction_power_mean_W",
@@ -75,12 +84,16 @@ void WriteQuasiStaticPlots(const std::string& base, const std::string& scene_nam
 class DynamicRunFiles {
  public:
   /// @throws std::runtime_error naming a file that cannot be written.
-  DynamicRunFiles(const std::string& base, const nlohmann::json& provenance, int planets);
+  /// `root_stress` (the scene's stresses): each step's line ends with each gear's largest
+  /// tensile and compressive root stress, sigma_t_<gear>_MPa and sigma_c_<gear>_MPa.
+  DynamicRunFiles(const std::string& base, const nlohmann::json& provenance, int planets,
+                  bool root_stress = false);
   void Write(const dynamics::DynamicSample& s);
   void Close();
 
  private:
   CsvFile pairs_, bearings_, steps_;  // created, and written per step, in this order
+  int bodies_ = 0;                     // root-stress columns: one pair per body, 0 without
 };
 
 /// BASE_lsr.svg, BASE_te.svg and BASE_orbit.svg of a run's samples.

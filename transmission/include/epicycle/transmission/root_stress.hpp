@@ -60,4 +60,28 @@ class RootStressEnvelope {
   std::map<std::tuple<int, int, int>, Point> points_;  // (body, tooth, side)
 };
 
+/// Per body over many states (a sweep's positions, a run's output steps): the extremes, where
+/// they occur (`x`: the carrier angle [rad] or the time [s] the caller gives with each state) and
+/// the largest range at one fillet point.
+struct RootStressSummary {
+  GearRootStress extremes;
+  double tension_x = 0;      ///< the state's x at the largest tension
+  double compression_x = 0;  ///< at the most negative compression
+  RootStressEnvelope::Range range;
+};
+
+/// Accumulates states into RootStressSummary per body; a state without fillets adds nothing.
+class RootStressTracker {
+ public:
+  explicit RootStressTracker(int bodies) : bodies_(bodies), envelope_(bodies) {}
+  void Add(const std::vector<compliance::FilletStress>& fillets, double x);
+  /// Empty when no state carried fillets.
+  std::vector<RootStressSummary> Result() const;
+
+ private:
+  int bodies_ = 0;
+  RootStressEnvelope envelope_;
+  std::vector<RootStressSummary> summary_;
+};
+
 }  // namespace epicycle::transmission

@@ -41,15 +41,9 @@ struct SweepSummary {
   double LsrMin() const;
   double LsrMax() const;
   /// Per body (sun, ring, planets: body order), when the results carry root stresses (else
-  /// empty): the extremes over the converged positions, the carrier angles [rad] where they
-  /// occur, and the largest range at one fillet point.
-  struct RootStress {
-    GearRootStress extremes;
-    double tension_carrier_angle = 0;      ///< [rad]
-    double compression_carrier_angle = 0;  ///< [rad]
-    RootStressEnvelope::Range range;
-  };
-  std::vector<RootStress> root_stress;
+  /// empty): the extremes over the converged positions, the carrier angles [rad] where they occur
+  /// (RootStressSummary's x), and the largest range at one fillet point.
+  std::vector<RootStressSummary> root_stress;
 };
 
 /// The statistics of `results` (a sweep of a stage with `planets` planets); positions that did
