@@ -152,8 +152,8 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
                         Num(friction ? r.input_power : NAN), Num(friction ? r.output_power : NAN),
                         Num(friction ? r.Efficiency() : NAN), Num(r.force_change));
   // A failed position has no stresses (empty cells), a converged one its extremes per gear.
-  if (bodies_ > 0)
-    RootStressCells(line, ok ? r.fillet_stress : decltype(r.fillet_stress)(), bodies_);
+  static const std::vector<compliance::FilletStress> kNone;
+  if (bodies_ > 0) RootStressCells(line, ok ? r.fillet_stress : kNone, bodies_);
   positions_.WriteLine(line);
   std::string pairs;
   for (std::size_t j = 0; j < r.problem.contacts.size() && ok; ++j) {
