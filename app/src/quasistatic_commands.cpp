@@ -9,12 +9,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "console.hpp"
+#include "epicycle/report/ratings.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
@@ -36,12 +38,14 @@ struct QuasiStaticArgs {
   int threads = 0;    // 0: one per core
   std::vector<double> angles_deg;
   double start_deg = 0.0;
-  bool no_cache = false, no_local = false, quiet = false, cold = false, stresses = false;
+  bool no_cache = false, no_local = false, quiet = false, cold = false, stresses = false,
+       rating = false;
 };
 
 void RunQuasiStatic(const QuasiStaticArgs& a) {
   transmission::Scene scene = StageScene(a.scene, a.sun, "quasistatic");
-  scene.model.stresses = scene.model.stresses || a.stresses;
+  scene.model.stresses = scene.model.stresses || a.stresses || a.rating;
+  if (a.rating) transmission::CheckRatingInputs(scene, "--rating");
   const geometry::Stage stage(scene.stage);
   const int n = stage.planets();
 
@@ -167,6 +171,12 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   std::printf(
       "%s",
       report::RootStressText(summary.root_stress, "carrier deg", 180.0 / std::numbers::pi).c_str());
+  std::printf("%s", report::ContactPressureText(summary.contact_pressure, "carrier deg",
+                                                180.0 / std::numbers::pi)
+                        .c_str());
+  std::optional<transmission::StageRating> rating;
+  if (a.rating && good > 0) rating = transmission::RateStage(scene, stage, summary);
+  if (rating) std::printf("%s", report::RatingText(*rating).c_str());
   std::printf("  positions converged          %d of %zu, %.3f s (%.3f ms per position)\n", good,
               angles.size(), sweep_seconds,
               1e3 * sweep_seconds / static_cast<double>(angles.size()));
@@ -183,6 +193,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   j["local_terms"] = !a.no_local;
   j["warm_start"] = !a.cold;
   if (friction) j["friction"] = transmission::FrictionLawName(opt.friction.law);
+  if (rating) j["rating"] = report::RatingJson(*rating);
   j["threads"] = a.threads;  // 0: one per core
   j["positions"] = angles.size();
   j["converged_positions"] = good;
@@ -241,6 +252,9 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
   cmd->add_flag("--stresses", a.stresses,
                 "Also root stresses and contact pressures per position (the scene's [model] "
                 "stresses)");
+  cmd->add_flag("--rating", a.rating,
+                "ISO 6336 ratings with the run's K_gamma and stresses (needs the scene's "
+                "[material] bending_limit_MPa and contact_limit_MPa; implies --stresses)");
   cmd->add_flag("--quiet", a.quiet, "No progress bar");
   cmd->callback([] { RunQuasiStatic(a); });
 }

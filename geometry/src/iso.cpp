@@ -213,4 +213,59 @@ RootFormFactors RootFormFactorsB(int teeth, double module, double alpha, double 
   return r;
 }
 
+ContactFactors ContactFactorsB(int pinion_teeth, double alpha, double alpha_w,
+                               double centre_distance, double rb1, double ra1, double rb2,
+                               double ra2, double contact_ratio, bool internal) {
+  const auto fail = [](const std::string& what, double v, const std::string& rule) {
+    throw std::invalid_argument("ISO 6336-2 contact factors: " + what + " = " + internal::Num(v) +
+                                ": " + rule);
+  };
+  if (pinion_teeth < 3) fail("pinion teeth", pinion_teeth, "must be >= 3");
+  for (const auto& [name, v] :
+       {std::pair{"pressure angle [rad]", alpha}, {"operating pressure angle [rad]", alpha_w},
+        {"centre distance [m]", centre_distance}, {"base radius 1 [m]", rb1},
+        {"tip radius 1 [m]", ra1}, {"base radius 2 [m]", rb2}, {"tip radius 2 [m]", ra2}})
+    if (!(std::isfinite(v) && v > 0)) fail(name, v, "must be finite and > 0");
+  if (!(contact_ratio > 1.0 && contact_ratio < 2.5))
+    fail("contact ratio", contact_ratio, "must lie in (1, 2.5) (a single pair contact exists)");
+  const double pi = 3.14159265358979323846;
+  ContactFactors f;
+  f.z_h = std::sqrt(2 * std::cos(alpha_w) / (std::cos(alpha) * std::cos(alpha) * std::sin(alpha_w)));
+  f.z_eps = std::sqrt((4 - contact_ratio) / 3);
+  const double line = centre_distance * std::sin(alpha_w);  // T_1 T_2 along the line of action
+  const double base_pitch = 2 * pi * rb1 / pinion_teeth;  // p_b, the same on both gears
+  const double rho1_tip = std::sqrt(ra1 * ra1 - rb1 * rb1);  // ρ_1 at the pinion's tip (E)
+  const double rho2_tip = std::sqrt(ra2 * ra2 - rb2 * rb2);  // ρ_2 at the wheel's tip (A)
+  const double rho1c = rb1 * std::tan(alpha_w), rho2c = rb2 * std::tan(alpha_w);
+  const double rho1b = rho1_tip - base_pitch;
+  const double rho2b = internal ? line + rho1b : line - rho1b;
+  if (!(rho1b > 0 && rho2b > 0))
+    fail("pinion's inner point of single pair contact, radius of curvature [m]",
+         std::min(rho1b, rho2b), "must be > 0 (inside both involutes)");
+  f.m1 = std::sqrt(rho1c * rho2c / (rho1b * rho2b));
+  f.z_b = std::max(1.0, f.m1);
+  if (!internal) {
+    const double rho2d = rho2_tip - base_pitch, rho1d = line - rho2d;
+    if (!(rho1d > 0 && rho2d > 0))
+      fail("wheel's inner point of single pair contact, radius of curvature [m]",
+           std::min(rho1d, rho2d), "must be > 0 (inside both involutes)");
+    f.m2 = std::sqrt(rho1c * rho2c / (rho1d * rho2d));
+    f.z_d = std::max(1.0, f.m2);
+  }
+  return f;
+}
+
+double ElasticityFactor(double e1, double nu1, double e2, double nu2) {
+  for (double e : {e1, e2})
+    if (!(std::isfinite(e) && e > 0))
+      throw std::invalid_argument("ISO 6336-2 elasticity factor: E = " + internal::Num(e) +
+                                  " Pa: must be finite and > 0");
+  for (double nu : {nu1, nu2})
+    if (!(nu >= 0 && nu < 0.5))
+      throw std::invalid_argument("ISO 6336-2 elasticity factor: nu = " + internal::Num(nu) +
+                                  ": must lie in [0, 0.5)");
+  const double pi = 3.14159265358979323846;
+  return std::sqrt(1 / (pi * ((1 - nu1 * nu1) / e1 + (1 - nu2 * nu2) / e2)));
+}
+
 }  // namespace epicycle::geometry::iso

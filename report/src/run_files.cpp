@@ -9,6 +9,7 @@
 
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/report/provenance.hpp"
+#include "epicycle/report/ratings.hpp"
 #include "epicycle/report/svg_plot.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/local_term.hpp"
@@ -52,12 +53,6 @@ void RootStressCells(std::string& line, const std::vector<compliance::FilletStre
     Cell(line, g.empty() ? NAN : g[static_cast<std::size_t>(b)].tension / 1e6);
     Cell(line, g.empty() ? NAN : g[static_cast<std::size_t>(b)].compression / 1e6);
   }
-}
-
-// A statistic for a JSON file: null where it has no value (JSON has no NaN), never a made-up
-// number.
-nlohmann::json JsonValue(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
 }
 
 // The three figures of a run of a stage against x (carrier angle or time): LSR_i, the
@@ -110,6 +105,10 @@ class RunFigures {
 };
 
 }  // namespace
+
+nlohmann::json JsonValue(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
 
 QuasiStaticFiles::QuasiStaticFiles(const std::string& base, const nlohmann::json& provenance,
                                    int planets, bool friction, bool root_stress)
@@ -245,6 +244,9 @@ nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
   j["sun_displacement_max_um"] = JsonValue(summary.sun_displacement_max * 1e6);
   if (!summary.root_stress.empty())
     j["root_stress"] = RootStressJson(summary.root_stress, "carrier_deg", geometry::Deg(1.0));
+  if (!summary.contact_pressure.empty())
+    j["contact_pressure"] =
+        ContactPressureJson(summary.contact_pressure, "carrier_deg", geometry::Deg(1.0));
   if (summary.friction) {
     j["efficiency_mean"] = JsonValue(summary.efficiency_mean);
     j["efficiency_min"] = JsonValue(summary.efficiency_min);

@@ -41,6 +41,8 @@ constexpr double kRimFractionOfReference = 2.0;  // rim ≤ 2 r
 constexpr double kErrorModules = 0.25;           // |error| ≤ m/4
 constexpr double kBacklashModules = 0.25;        // 0 ≤ j_n ≤ m/4
 constexpr double kYoungsRangeGPa[2] = {1.0, 1200.0};
+constexpr double kContactLimitMPa[2] = {100.0, 2500.0};  // σ_Hlim
+constexpr double kBendingLimitMPa[2] = {50.0, 1000.0};   // σ_Flim
 constexpr double kCarrierModules = 2.0;  // |a_c − m(z_s + z_p)/2| ≤ 2 m
 constexpr int kRingTeethSlack = 4;       // |z_r − z_s − 2 z_p| ≤ 4
 
@@ -558,6 +560,27 @@ Scene ParseScene(const std::string& text, const std::string& source) {
                     .Because("engineering polymers to carbides; steel is about 207")) *
         1e9;
     s.material.poisson_ratio = t->Real("poisson_ratio", Rule::HalfOpen(0, 0.5));
+    // ISO 6336-5's materials: σ_Hlim from about 300 MPa (grey cast iron) to 1650 MPa
+    // (case-hardened steel, quality ME); σ_Flim from about 100 to 525 MPa. The ranges leave room
+    // around them; outside, a value is a unit mistake.
+    s.material.contact_limit =
+        t->RealOr("contact_limit_MPa", 0.0,
+                  Rule::Closed(kContactLimitMPa[0], kContactLimitMPa[1])
+                      .Because("ISO 6336-5's sigma_Hlim of gear materials lie in 300..1650")) *
+        1e6;
+    s.material.bending_limit =
+        t->RealOr("bending_limit_MPa", 0.0,
+                  Rule::Closed(kBendingLimitMPa[0], kBendingLimitMPa[1])
+                      .Because("ISO 6336-5's sigma_Flim of gear materials lie in 100..525")) *
+        1e6;
+    t->Done();
+  }
+  if (auto t = top.OptionalTable("rating")) {
+    s.rating.application_factor = t->RealOr(
+        "application_factor", 1.0,
+        Rule::Closed(1, 4).Because(
+            "ISO 6336-6's application factors run from 1.0 (uniform) to 2.25 (heavy shocks on "
+            "both sides); a larger one calls for the load spectrum itself"));
     t->Done();
   }
   if (auto t = top.OptionalTable("model")) {

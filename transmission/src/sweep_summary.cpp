@@ -71,10 +71,16 @@ SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int plan
       s.k_gamma_mean = std::max(s.k_gamma_mean, static_cast<double>(planets) * m);
   }
   // Root stresses, when the positions carry them.
+  // Root stresses and contact pressures, when the positions carry stresses.
   RootStressTracker root_stress(PlanetBody(planets));
-  for (const PositionResult& r : results)
-    if (r.converged) root_stress.Add(r.fillet_stress, r.carrier_angle);
+  ContactPressureTracker pressure;
+  for (const PositionResult& r : results) {
+    if (!r.converged || r.fillet_stress.empty()) continue;
+    root_stress.Add(r.fillet_stress, r.carrier_angle);
+    pressure.Add(r.problem.contacts, r.problem.data.local, r.solution.force, r.carrier_angle);
+  }
   s.root_stress = root_stress.Result();
+  s.contact_pressure = pressure.Result();
   s.friction = friction;
   s.efficiency_mean = efficiency.mean();
   s.efficiency_min = efficiency.min();

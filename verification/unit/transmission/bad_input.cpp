@@ -72,6 +72,17 @@ const std::vector<Case> kCases = {
      {"duplicate_thickness.toml:98: errors.thickness[1].gear = \"sun\"",
       "a second [[errors.thickness]] for the sun",
       "duplicate_thickness.toml:94: errors.thickness[0]"}},
+    // ISO 6336-5's endurance limits (docs/scenes.md): sigma_Flim in [50, 1000] MPa, sigma_Hlim in
+    // [100, 2500] MPa; the application factor K_A in [1, 4].
+    {"bending_limit_5000.toml",
+     false,
+     {"material.bending_limit_MPa = 5000", "must be in [50, 1000]", "sigma_Flim"}},
+    {"contact_limit_0.toml",
+     false,
+     {"material.contact_limit_MPa = 0", "must be in [100, 2500]", "sigma_Hlim"}},
+    {"application_factor_0.5.toml",
+     false,
+     {"rating.application_factor = 0.5", "must be in [1, 4]", "application factors"}},
     {"warn_runout_above_backlash.toml",
      true,
      {"errors.runout[0].amplitude_um = 200", "larger than the normal backlash j_n = 150 um"}},

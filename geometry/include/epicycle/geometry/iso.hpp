@@ -98,4 +98,37 @@ RootFormFactors RootFormFactorsB(int teeth, double module, double alpha, double 
                                  double rack_dedendum, double rack_tip_radius, double tip_diameter,
                                  double contact_ratio);
 
+/// ISO 6336-2:2006 method B factors of a spur mesh, pinion 1 with wheel 2 (2 may be internal),
+/// at the operating pressure angle α_w and centre distance a, with the tip radii r_a and base
+/// radii r_b of both gears and the contact ratio ε_α:
+///   Z_H = √(2 cos α_w / (cos²α sin α_w))                        (zone factor, β = 0)
+///   Z_ε = √((4 − ε_α)/3)                                         (contact ratio factor, spur)
+///   M_1 = ρ-ratio at the pinion's inner point of single pair contact B:
+///         M_1² = ρ_1C ρ_2C / (ρ_1B ρ_2B),  ρ_1C = r_b1 tan α_w, ρ_2C = r_b2 tan α_w,
+///         ρ_1B = r_b1 tan α_a1 − p_b (p_b = 2π r_b1/z_1),  ρ_2B = a sin α_w ∓ ρ_1B  (− external, + internal)
+///   (the standard's M_1 = tan α_w / √{[√(d_a1²/d_b1² − 1) − 2π/z_1][√(d_a2²/d_b2² − 1) −
+///   (ε_α − 1) 2π/z_2]} written with the radii of curvature, which holds for internal meshes
+///   too); M_2 the same at the wheel's inner point D (ρ_2D = r_b2 tan α_a2 − p_b);
+///   Z_B = max(1, M_1), Z_D = max(1, M_2) for an external wheel, Z_D = 1 for an internal one.
+struct ContactFactors {
+  double z_h = 0;    ///< Z_H [-]
+  double z_eps = 0;  ///< Z_ε [-]
+  double m1 = 0;     ///< M_1 [-]
+  double m2 = 0;     ///< M_2 [-] (0 for an internal wheel: not defined)
+  double z_b = 1;    ///< Z_B [-] (pinion)
+  double z_d = 1;    ///< Z_D [-] (wheel)
+};
+/// z_1 the pinion's teeth; angles [rad], lengths [m]; ε_α as ContactRatio gives it from the tip
+/// circles.
+/// @throws std::invalid_argument (naming the argument) for non-finite or non-positive lengths or
+///         angles, ε_α outside (1, 2.5), or a single-pair point that falls below a base circle.
+ContactFactors ContactFactorsB(int pinion_teeth, double alpha, double alpha_w,
+                               double centre_distance, double rb1, double ra1, double rb2,
+                               double ra2, double contact_ratio, bool internal);
+
+/// ISO 6336-2's elasticity factor Z_E = √(1 / (π [(1 − ν_1²)/E_1 + (1 − ν_2²)/E_2])) [√Pa]
+/// (E [Pa]; steel on steel, E = 206 GPa, ν = 0.3: 189.8 √MPa).
+/// @throws std::invalid_argument for E ≤ 0 or ν outside [0, 0.5).
+double ElasticityFactor(double e1, double nu1, double e2, double nu2);
+
 }  // namespace epicycle::geometry::iso

@@ -51,6 +51,10 @@ void WriteStageProblemFile(const std::string& dir, const std::string& name,
                            const solvers::ContactProblemData& data,
                            const nlohmann::json& provenance, const std::string& description);
 
+/// A statistic for a JSON file: null where it has no value (JSON has no NaN), never a made-up
+/// number.
+nlohmann::json JsonValue(double v);
+
 /// Root stresses over a run for its JSON summary: per gear the largest tension and compression
 /// [MPa] with where they occur ("tension_<x_name>": the state's x times `x_scale`, and the tooth,
 /// fillet side and arc length along the fillet [mm]) and the largest range at one fillet point.

@@ -17,6 +17,14 @@ namespace epicycle::transmission {
 struct Material {
   double youngs_modulus = 207e9;  ///< E [Pa]
   double poisson_ratio = 0.3;     ///< ν [-]
+  /// ISO 6336-5 endurance limits for the ratings (docs/stresses.md, "Ratings"); 0: not given.
+  double bending_limit = 0;  ///< σ_Flim [Pa] (the scene's bending_limit_MPa)
+  double contact_limit = 0;  ///< σ_Hlim [Pa] (contact_limit_MPa)
+};
+
+/// The scene's optional [rating] table: what the ratings take from the application.
+struct RatingSettings {
+  double application_factor = 1.0;  ///< K_A [-] (ISO 6336-1), application_factor
 };
 
 struct Inertia {
@@ -91,6 +99,7 @@ struct Scene {
   geometry::PairSpec pair;    ///< kind == kPair
   double pair_torque = 0;     ///< torque on gear 1 of a pair [N·m] (ccw +)
   Material material;
+  RatingSettings rating;
   ModelSettings model;
   Supports supports;
   StageInertias inertia;

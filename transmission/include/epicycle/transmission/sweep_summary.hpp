@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "epicycle/transmission/contact_pressure.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/root_stress.hpp"
 
@@ -44,6 +45,9 @@ struct SweepSummary {
   /// empty): the extremes over the converged positions, the carrier angles [rad] where they occur
   /// (RootStressSummary's x), and the largest range at one fillet point.
   std::vector<RootStressSummary> root_stress;
+  /// With the root stresses (stresses on), the largest Hertz pressure per gear and flank side over
+  /// the converged positions (x: the carrier angle [rad]); else empty.
+  std::vector<FlankPressure> contact_pressure;
 };
 
 /// The statistics of `results` (a sweep of a stage with `planets` planets); positions that did

@@ -1,0 +1,96 @@
+// ISO 6336 ratings of a stage's gears (docs/model.md §9 "Ratings", docs/stresses.md "Ratings"):
+// the standard's nominal stresses and safety factors (ISO 6336-2 and -3, method B) with the mesh
+// load factor K_γ once from the standard's table and once from the model's run, beside the
+// safety factors of the model's own root stresses and contact pressures.
+//
+// Bending (ISO 6336-3), per gear and mesh, F_t = T_s/(n r_s) the nominal tangential force at the
+// reference circle of each planet's meshes (the same on both meshes of a planet):
+//   σ_F0 = F_t/(b m) Y_F Y_S               (Y_β = Y_B = Y_DT = 1: spur, solid rim, ε_α < 2.05)
+//   σ_F  = σ_F0 K_A K_v K_Fβ K_Fα K_γ
+//   S_F  = σ_Flim Y_ST Y_M Y_NT Y_δrelT Y_RrelT Y_X / σ_F,   Y_ST = 2,
+//          Y_M = 0.7 for a planet (an idler: fully reversed bending, ISO 6336-5), else 1.
+// Contact (ISO 6336-2), per mesh, pinion 1 (fewer teeth), u = z_2/z_1 (< 0 internal):
+//   σ_H0 = Z_H Z_E Z_ε √(F_t/(d_1 b) (u + 1)/u),   σ_H = Z_B|D σ_H0 √(K_A K_v K_Hβ K_Hα K_γ)
+//   S_H  = σ_Hlim Z_NT Z_L Z_v Z_R Z_W Z_X / σ_H.
+// Taken as 1, with the reason each: K_Hβ = K_Fβ (the plane model carries the load uniformly over
+// the face width), K_Hα = K_Fα (the model resolves the load sharing between tooth pairs itself;
+// the ISO columns are the standard's nominal case), the life factors Z_NT, Y_NT (endurance, beyond
+// 5·10⁷ cycles), the lubricant, roughness, size and work-hardening factors and Y_δrelT, Y_RrelT,
+// Y_X (reference test-gear conditions). K_v = 1 in a quasi-static run.
+// The model's own: S_F = σ_Flim Y_ST Y_M / (σ_root K_A K_v), σ_root the largest fillet tension of
+// the run; S_H = σ_Hlim / (p_H √(K_A K_v)), p_H the largest Hertz pressure of the run. These
+// already contain the load sharing between planets and between tooth pairs and the stress
+// concentration of the actual fillet.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "epicycle/geometry/stage.hpp"
+#include "epicycle/transmission/scene.hpp"
+#include "epicycle/transmission/sweep_summary.hpp"
+
+namespace epicycle::transmission {
+
+/// One factor with its value and where it came from.
+struct RatingFactor {
+  std::string symbol;  ///< "Z_H sun-planet", "Y_F sun", "K_gamma table", ...
+  double value = 0;    ///< [-] (Z_E: [√Pa])
+  std::string source;  ///< "ISO 6336-2 method B, alpha_w = 27.85 deg", "the run: max L_i", ...
+};
+
+/// K_γ of the standard's table for a planetary stage of `planets` planets (application level,
+/// AGMA 6123 / ISO 6336): 1.0 up to 3, 1.2 for 4, 1.3 for 5, 1.4 for 6 and more.
+double TableMeshLoadFactor(int planets);
+
+/// One gear's rating. NaN where a value does not exist (the reason in `note`): the ISO bending
+/// rating of a gear not cut by a rack (method B's form factors need the rack), the model's own
+/// values without stresses.
+struct GearRating {
+  int body = 0;       ///< kSunBody, kRingBody, PlanetBody(i)
+  std::string gear;   ///< BodyName(body)
+  double k_gamma_table = 0;  ///< K_γ, the standard's table [-]
+  double k_gamma_model = 0;  ///< K_γ from the run: max L_i of the planet paths this gear meets [-]
+  double reversed_bending = 1;  ///< Y_M [-]: 0.7 for a planet, else 1
+  std::string bending_mesh;     ///< the mesh whose σ_F0 is the larger (a planet has two)
+  double sigma_f0 = 0;          ///< σ_F0 [Pa]
+  double sigma_f_table = 0, sigma_f_model = 0;  ///< σ_F with the table's and the run's K_γ [Pa]
+  double s_f_table = 0, s_f_model = 0;          ///< S_F [-]
+  std::string contact_mesh;                     ///< the mesh whose σ_H is the larger
+  double sigma_h0 = 0;                          ///< σ_H0 [Pa] (without Z_B, Z_D)
+  double z_bd = 1;                              ///< Z_B (pinion) or Z_D (wheel) of that mesh [-]
+  double sigma_h_table = 0, sigma_h_model = 0;  ///< σ_H [Pa]
+  double s_h_table = 0, s_h_model = 0;          ///< S_H [-]
+  double root_stress = 0;       ///< the run's largest fillet tension [Pa]
+  double s_f_stress = 0;        ///< S_F from it [-]
+  /// The run's largest p_H on the drive flanks on the line of action [Pa] (a tip round's corner
+  /// contact is reported with the contact pressures, not rated: ISO 6336-2 rates the flank).
+  double contact_pressure = 0;
+  double s_h_pressure = 0;      ///< S_H from it [-]
+  std::string note;
+};
+
+struct StageRating {
+  double tangential_force = 0;  ///< F_t per planet mesh [N]
+  double application_factor = 1;  ///< K_A [-]
+  double dynamic_factor = 1;      ///< K_v [-]
+  std::string dynamic_source;
+  std::vector<RatingFactor> factors;  ///< every factor, in the order computed
+  std::vector<GearRating> gears;      ///< sun, planets, ring
+};
+
+/// Refuses a rating (asked for by `asked_by`, e.g. "--rating") of a scene without both endurance
+/// limits. @throws std::invalid_argument naming the missing [material] key.
+void CheckRatingInputs(const Scene& scene, const std::string& asked_by);
+
+/// The ratings of `stage` (the scene's material, limits and K_A) with the run's `summary` (K_γ from
+/// its LSR; root stresses and contact pressures when it has them) and the dynamic factor K_v
+/// (`dynamic_source` says where it came from).
+/// @throws std::invalid_argument naming the scene key if the scene gives no bending_limit_MPa or
+///         contact_limit_MPa in [material], or for K_v not finite and ≥ 1;
+///         std::runtime_error if the summary has no converged position (no K_γ from the run).
+StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
+                      const SweepSummary& summary, double dynamic_factor = 1.0,
+                      const std::string& dynamic_source = "quasi-static run");
+
+}  // namespace epicycle::transmission

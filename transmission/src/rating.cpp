@@ -1,0 +1,240 @@
+#include "epicycle/transmission/rating.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "epicycle/geometry/iso.hpp"
+
+namespace epicycle::transmission {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kStressCorrection = 2.0;  // Y_ST of the reference test gear (ISO 6336-3)
+constexpr double kReversedBending = 0.7;   // Y_M of an idler (ISO 6336-5)
+
+std::string Deg(double rad) { return fmt::format("{:.4g} deg", rad * 180 / geometry::kPi); }
+
+// One mesh's ISO 6336-2 data: pinion (fewer teeth; the planet in a ring mesh) and wheel.
+struct MeshContact {
+  std::string name;
+  int pinion = 0, wheel = 0;  // bodies
+  double sigma_h0 = 0;        // [Pa]
+  double z_b = 1, z_d = 1;
+};
+
+}  // namespace
+
+double TableMeshLoadFactor(int planets) {
+  if (planets < 1)
+    throw std::invalid_argument(fmt::format("TableMeshLoadFactor: planets = {}: must be >= 1",
+                                            planets));
+  return planets <= 3 ? 1.0 : planets == 4 ? 1.2 : planets == 5 ? 1.3 : 1.4;
+}
+
+void CheckRatingInputs(const Scene& scene, const std::string& asked_by) {
+  for (const auto& [key, symbol, value] :
+       {std::tuple{"bending_limit_MPa", "sigma_Flim", scene.material.bending_limit},
+        {"contact_limit_MPa", "sigma_Hlim", scene.material.contact_limit}})
+    if (!(value > 0))
+      throw std::invalid_argument(fmt::format(
+          "{} needs the scene's [material] {} (ISO 6336-5's {}): {} does not give it", asked_by,
+          key, symbol, scene.source));
+}
+
+StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
+                      const SweepSummary& summary, double dynamic_factor,
+                      const std::string& dynamic_source) {
+  CheckRatingInputs(scene, "a rating");
+  if (!(dynamic_factor >= 1 && std::isfinite(dynamic_factor)))
+    throw std::invalid_argument(fmt::format("RateStage: K_v = {}: must be finite and >= 1",
+                                            dynamic_factor));
+  if (!(summary.converged > 0))
+    throw std::runtime_error("rating: K_gamma from the run needs a converged position, none is");
+
+  const int n = stage.planets();
+  StageRating out;
+  out.application_factor = scene.rating.application_factor;
+  out.dynamic_factor = dynamic_factor;
+  out.dynamic_source = dynamic_source;
+  const geometry::Gear& sun = stage.sun();
+  const double torque = std::abs(scene.loads.sun_torque);
+  out.tangential_force = torque / (n * sun.reference_radius());
+  const double ft = out.tangential_force;
+  auto factor = [&](std::string symbol, double value, std::string source) {
+    out.factors.push_back({std::move(symbol), value, std::move(source)});
+  };
+  factor("K_A", out.application_factor,
+         "the scene's [rating] application_factor (default 1: uniform load)");
+  factor("K_v", dynamic_factor, dynamic_source);
+  factor("K_Hbeta = K_Fbeta", 1.0, "plane model: the load is uniform over the face width");
+  factor("K_Halpha = K_Falpha", 1.0,
+         "nominal case; the model resolves the sharing between tooth pairs in its own columns");
+  const double k_table = TableMeshLoadFactor(n);
+  factor("K_gamma table", k_table,
+         fmt::format("application-level table for {} planets (AGMA 6123 / ISO 6336)", n));
+  std::vector<double> k_model(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    k_model[i] = n * summary.lsr_max[i];
+    factor(fmt::format("K_gamma planet{}", i + 1), k_model[i],
+           fmt::format("the run: max over {} positions of L_{} = n LSR_{}", summary.converged,
+                       i + 1, i + 1));
+  }
+  const double z_e = geometry::iso::ElasticityFactor(
+      scene.material.youngs_modulus, scene.material.poisson_ratio, scene.material.youngs_modulus,
+      scene.material.poisson_ratio);
+  factor("Z_E [sqrt(MPa)]", z_e / 1e3, "ISO 6336-2, the scene's E and nu on both gears");
+  factor("Y_ST", kStressCorrection, "ISO 6336-3: the reference test gear's stress correction");
+  factor("Y_M planet", kReversedBending,
+         "ISO 6336-5: an idler's teeth bend both ways (fully reversed bending)");
+  factor("life, lubricant, roughness, size factors", 1.0,
+         "endurance beyond 5e7 cycles, reference test-gear conditions");
+
+  // The body's gear.
+  auto gear_of = [&](int body) -> const geometry::Gear& {
+    return body == kSunBody ? stage.sun() : body == kRingBody ? stage.ring()
+                                                              : stage.planet(body - 2);
+  };
+  // ISO 6336-2 per mesh (the planets' meshes are alike: planet 1's geometry).
+  std::vector<MeshContact> meshes;
+  for (const geometry::MeshSummary& m : {stage.meshes()[0], stage.meshes()[1]}) {
+    const bool internal = m.kind == geometry::MeshKind::kPlanetRing;
+    const int a = internal ? PlanetBody(0) : kSunBody, b = internal ? kRingBody : PlanetBody(0);
+    const bool a_pinion = internal || gear_of(a).teeth() <= gear_of(b).teeth();
+    MeshContact c;
+    c.name = m.name;
+    c.pinion = a_pinion ? a : b;
+    c.wheel = a_pinion ? b : a;
+    const geometry::Gear& g1 = gear_of(c.pinion);
+    const geometry::Gear& g2 = gear_of(c.wheel);
+    const auto f = geometry::iso::ContactFactorsB(
+        g1.teeth(), g1.spec().pressure_angle, m.pressure_angle, m.centre_distance,
+        g1.base_radius(), g1.tip_radius(), g2.base_radius(), g2.tip_radius(), m.contact_ratio_iso,
+        internal);
+    const double u = (internal ? -1.0 : 1.0) * g2.teeth() / g1.teeth();
+    const double b_width = geometry::ContactFaceWidth(g1, g2);
+    c.sigma_h0 = f.z_h * z_e * f.z_eps *
+                 std::sqrt(ft / (2 * g1.reference_radius() * b_width) * (u + 1) / u);
+    c.z_b = f.z_b;
+    c.z_d = f.z_d;
+    const std::string mesh = internal ? "ring mesh" : "sun mesh";
+    auto role = [](int body) { return body >= PlanetBody(0) ? "planet" : BodyName(body); };
+    const std::string at = fmt::format("ISO 6336-2, the {}: alpha_w = {}, eps_alpha = {:.4f}",
+                                       mesh, Deg(m.pressure_angle), m.contact_ratio_iso);
+    factor("Z_H " + mesh, f.z_h, at);
+    factor("Z_eps " + mesh, f.z_eps, at);
+    factor("Z_B " + mesh, f.z_b,
+           fmt::format("{} (pinion {}): M_1 = {:.4f}", at, role(c.pinion), f.m1));
+    factor("Z_D " + mesh, f.z_d,
+           internal ? at + " (internal wheel: 1)"
+                    : fmt::format("{} (wheel {}): M_2 = {:.4f}", at, role(c.wheel), f.m2));
+    factor("u " + mesh, u, "z_wheel/z_pinion (negative: internal)");
+    meshes.push_back(c);
+  }
+
+  // ISO 6336-3 σ_F0 of a gear in a mesh, once per member and mesh (the planets are alike); NaN
+  // (with the reason) where method B does not apply.
+  std::map<std::pair<int, int>, std::pair<double, std::string>> sigma_f0;
+  auto bending = [&](int body, std::size_t mesh) {
+    const int role = body == kSunBody ? 0 : body == kRingBody ? 2 : 1;
+    const auto key = std::pair{role, static_cast<int>(mesh)};
+    if (const auto it = sigma_f0.find(key); it != sigma_f0.end()) return it->second;
+    const geometry::MeshSummary& m = stage.meshes()[mesh];
+    const geometry::Gear& g = gear_of(role == 1 ? PlanetBody(0) : body);
+    const geometry::GearSpec& s = g.spec();
+    if (g.internal() || !s.rack)
+      return sigma_f0[key] = {kNaN,
+                              "ISO 6336-3 bending not rated: method B's form factors here are "
+                              "those of an external gear cut by a rack; the model's root stress "
+                              "rates it"};
+    const geometry::Gear& mate = role == 0 ? stage.planet(0)
+                                 : m.kind == geometry::MeshKind::kSunPlanet ? stage.sun()
+                                                                           : stage.ring();
+    const auto y = geometry::iso::RootFormFactorsB(g.teeth(), s.module, s.pressure_angle,
+                                                   s.profile_shift, s.rack->addendum,
+                                                   s.rack->tip_radius, 2 * g.tip_radius(),
+                                                   m.contact_ratio_iso);
+    const std::string who = role == 0 ? "sun" : "planets",
+                      mesh_name = m.kind == geometry::MeshKind::kSunPlanet ? "sun mesh"
+                                                                           : "ring mesh";
+    const std::string at = fmt::format(
+        "ISO 6336-3 method B, {} in the {}: s_Fn = {:.3f} mm, rho_F = {:.3f} mm, h_Fe = {:.3f} "
+        "mm, alpha_Fen = {}",
+        who, mesh_name, y.s_fn * 1e3, y.rho_f * 1e3, y.h_fe * 1e3, Deg(y.alpha_fen));
+    factor("Y_F " + who + " " + mesh_name, y.y_f, at);
+    factor("Y_S " + who + " " + mesh_name, y.y_s, at);
+    return sigma_f0[key] = {ft / (geometry::ContactFaceWidth(g, mate) * s.module) * y.y_f * y.y_s,
+                            std::string()};
+  };
+
+  // The name of mesh k (0: sun mesh, 1: ring mesh) as `body` sees it: a planet's own meshes.
+  auto MeshName = [&](int body, std::size_t k) {
+    return body >= PlanetBody(0) ? geometry::MeshName(body - 2, stage.meshes()[k].kind)
+                                 : stage.meshes()[k].name;
+  };
+  const double ka_kv = out.application_factor * dynamic_factor;
+  auto rate = [&](int body, const std::vector<std::size_t>& in_meshes, double k_model_gear) {
+    GearRating r;
+    r.body = body;
+    r.gear = BodyName(body);
+    r.k_gamma_table = k_table;
+    r.k_gamma_model = k_model_gear;
+    r.reversed_bending = body >= PlanetBody(0) ? kReversedBending : 1.0;
+    r.sigma_f0 = kNaN;
+    for (std::size_t k : in_meshes) {
+      const auto [s0, note] = bending(body, k);
+      if (!note.empty()) r.note = note;
+      if (!std::isnan(s0) && !(s0 <= r.sigma_f0)) {
+        r.sigma_f0 = s0;
+        r.bending_mesh = MeshName(body, k);
+      }
+      const MeshContact& c = meshes[k];
+      // Planet 1 stands for every planet in the mesh data.
+      const bool pinion = body == c.pinion || (body >= PlanetBody(0) && c.pinion >= PlanetBody(0));
+      const double zbd = pinion ? c.z_b : c.z_d;
+      if (!(zbd * c.sigma_h0 <= r.z_bd * r.sigma_h0)) {
+        r.sigma_h0 = c.sigma_h0;
+        r.z_bd = zbd;
+        r.contact_mesh = MeshName(body, k);
+      }
+    }
+    const double flim = scene.material.bending_limit * kStressCorrection * r.reversed_bending;
+    const double hlim = scene.material.contact_limit;
+    r.sigma_f_table = r.sigma_f0 * ka_kv * k_table;
+    r.sigma_f_model = r.sigma_f0 * ka_kv * k_model_gear;
+    r.s_f_table = flim / r.sigma_f_table;
+    r.s_f_model = flim / r.sigma_f_model;
+    r.sigma_h_table = r.z_bd * r.sigma_h0 * std::sqrt(ka_kv * k_table);
+    r.sigma_h_model = r.z_bd * r.sigma_h0 * std::sqrt(ka_kv * k_model_gear);
+    r.s_h_table = hlim / r.sigma_h_table;
+    r.s_h_model = hlim / r.sigma_h_model;
+    r.root_stress = r.contact_pressure = r.s_f_stress = r.s_h_pressure = kNaN;
+    for (const RootStressSummary& s : summary.root_stress)
+      if (s.extremes.body == body && s.extremes.tension > 0) {
+        r.root_stress = s.extremes.tension;
+        r.s_f_stress = flim / (r.root_stress * ka_kv);
+      }
+    for (const FlankPressure& p : summary.contact_pressure)
+      if (p.body == body && p.drive && !p.tip && p.pressure > 0) {
+        r.contact_pressure = p.pressure;
+        r.s_h_pressure = hlim / (p.pressure * std::sqrt(ka_kv));
+      }
+    if (summary.root_stress.empty())
+      r.note += std::string(r.note.empty() ? "" : "; ") +
+                "the model's own columns need the run's stresses ([model] stresses)";
+    return r;
+  };
+  const double k_all = *std::max_element(k_model.begin(), k_model.end());
+  out.gears.push_back(rate(kSunBody, {0}, k_all));
+  for (int i = 0; i < n; ++i) out.gears.push_back(rate(PlanetBody(i), {0, 1}, k_model[i]));
+  out.gears.push_back(rate(kRingBody, {1}, k_all));
+  return out;
+}
+
+}  // namespace epicycle::transmission
