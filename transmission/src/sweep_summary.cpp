@@ -71,7 +71,7 @@ SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int plan
       s.k_gamma_mean = std::max(s.k_gamma_mean, static_cast<double>(planets) * m);
   }
   // Root stresses, when the positions carry them.
-  RootStressTracker root_stress(PlanetBody(planets));
+  RootStressTracker root_stress(BodyNames(PlanetBody(planets)));
   for (const PositionResult& r : results)
     if (r.converged) root_stress.Add(r.fillet_stress, r.carrier_angle);
   s.root_stress = root_stress.Result();
