@@ -31,14 +31,15 @@ struct StudyArgs {
   std::string study, out = "study-out", cache;
   int threads = 0;  // 0: every core
   long max_cases = -1;
-  bool no_cache = false, quiet = false;
+  bool no_cache = false, quiet = false, stresses = false;
 };
 
 json Stat(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 void RunStudyCommand(const StudyArgs& a) {
   const studies::MpiSession mpi;
-  const studies::StudySpec study = studies::ReadStudy(a.study);
+  studies::StudySpec study = studies::ReadStudy(a.study);
+  study.scene.model.stresses = study.scene.model.stresses || a.stresses;
   const bool root = mpi.rank() == 0;
   std::filesystem::create_directories(a.out);
   const std::string base = a.out + "/study";
@@ -156,6 +157,8 @@ void RegisterStudyCommands(CLI::App& app) {
   cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");
   cmd->add_flag("--no-cache", a.no_cache, "Build the influence tables in memory only");
   cmd->add_flag("--quiet", a.quiet, "No progress bar");
+  cmd->add_flag("--stresses", a.stresses,
+                "Also each gear's root stress per case (the study's or scene's stresses)");
   cmd->callback([] { RunStudyCommand(a); });
 }
 

@@ -115,8 +115,8 @@ TEST_CASE("mesh stiffness root stress: each sample the direct superposition, for
       CHECK(direct[i].side == s.fillet_stress[i].side);
       REQUIRE(direct[i].sigma.size() == s.fillet_stress[i].sigma.size());
       for (std::size_t m = 0; m < direct[i].sigma.size(); ++m)
-        largest_difference =
-            std::max(largest_difference, std::abs(direct[i].sigma[m] - s.fillet_stress[i].sigma[m]));
+        largest_difference = std::max(largest_difference,
+                                      std::abs(direct[i].sigma[m] - s.fillet_stress[i].sigma[m]));
     }
 
     // Bending: each gear's largest tension of the sample is on the loaded flank's fillet of a
@@ -178,8 +178,8 @@ TEST_CASE("mesh stiffness root stress: each sample the direct superposition, for
     const geometry::iso::RootFormFactors iso = geometry::iso::RootFormFactorsB(
         spec.teeth, spec.module, spec.pressure_angle, spec.profile_shift, spec.rack->addendum,
         spec.rack->tip_radius, 2.0 * g.tip_radius(), on.pair->summary().contact_ratio_iso);
-    const double sigma_iso = f_n * std::cos(spec.pressure_angle) /
-                             (spec.face_width * spec.module) * iso.y_f * iso.y_s;
+    const double sigma_iso =
+        f_n * std::cos(spec.pressure_angle) / (spec.face_width * spec.module) * iso.y_f * iso.y_s;
     const double difference = tension[b] / sigma_iso - 1.0;
     test::Figure("stiffness root stress iso_pair_20_40 gear " + std::to_string(b + 1) +
                  ": cycle max tension " + test::Sci(tension[b] / 1e6) + " MPa at " +
