@@ -63,11 +63,11 @@ std::string StudyRootStressText(const std::vector<studies::GearStressStatistics>
                            Num(q.lower, f, "-"), Num(q.upper, f, "-"));
     return fmt::format("{:>7}", Num(s.mean, f, "-"));
   };
-  std::string out =
-      "  root stress [MPa], each case's largest: mean, P95 [CI]\n"
-      "    gear      tension                      |compression|                range\n";
+  std::string out = fmt::format(
+      "  root stress [MPa], each case's largest: mean, P95 [CI]\n    {:<8}  {:<30} {:<30} {}\n",
+      "gear", "tension", "|compression|", "range");
   for (const auto& g : gears)
-    out += fmt::format("    {:<8}  {:<28} {:<28} {}\n", g.gear, cell(g.tension),
+    out += fmt::format("    {:<8}  {:<30} {:<30} {}\n", g.gear, cell(g.tension),
                        cell(g.compression), cell(g.range));
   return out;
 }
