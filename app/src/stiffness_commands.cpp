@@ -28,11 +28,12 @@ struct StiffnessArgs {
   std::string scene, mesh, backend = "newton", out = "stiffness-out", cache;
   int positions = 60;
   int threads = 0;  // 0: one per core
-  bool no_cache = false, no_local = false;
+  bool no_cache = false, no_local = false, stresses = false;
 };
 
 void RunStiffness(const StiffnessArgs& a) {
-  const transmission::Scene scene = transmission::ReadScene(a.scene);
+  transmission::Scene scene = transmission::ReadScene(a.scene);
+  scene.model.stresses = scene.model.stresses || a.stresses;
   std::optional<geometry::Stage> stage;
   if (scene.kind == transmission::SceneKind::kStage) {
     stage.emplace(scene.stage);
@@ -60,7 +61,9 @@ void RunStiffness(const StiffnessArgs& a) {
   const std::string base = a.out + "/stiffness_" + setup.mesh;
   const json provenance = Provenance(a.backend, &scene);
   const double b = geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
-  report::MeshStiffnessFile csv(base + ".csv", provenance, b);
+  report::MeshStiffnessFile csv(
+      base + ".csv", provenance, b,
+      compliance.has_root_stress() ? setup.gears : std::vector<std::string>{});
   const auto result = transmission::ComputeMeshStiffness(
       setup, pair, compliance, opt, [&](const transmission::MeshSample& s) {
         csv.Write(s);  // written as computed
@@ -72,23 +75,7 @@ void RunStiffness(const StiffnessArgs& a) {
   const compliance::iso6336::PairData iso = transmission::IsoPairData(pair);
   const double c_prime = compliance::iso6336::SinglePairStiffness(iso);
   const double c_gamma = compliance::iso6336::MeshStiffness(iso);
-  if (result.failed >= a.positions) {
-    std::printf("\n  no position converged: no mesh stiffness\n");
-  } else {
-    std::printf(
-        "\n  mean mesh stiffness      %10.4g N/m = %6.2f N/(mm um)   ISO 6336-1 c_gamma_alpha "
-        "%6.2f "
-        "(ratio %.3f)\n",
-        result.mean_stiffness, result.mean_per_width(), c_gamma, result.mean_per_width() / c_gamma);
-    std::printf(
-        "  peak single-pair         %10.4g N/m = %6.2f N/(mm um)   ISO 6336-1 c'            %6.2f "
-        "(ratio %.3f)\n",
-        result.peak_pair_stiffness, result.peak_pair_per_width(), c_prime,
-        result.peak_pair_per_width() / c_prime);
-    std::printf("  mesh stiffness range     %10.4g .. %.4g N/m; contact ratio %.4f (tip circles)\n",
-                result.min_stiffness, result.max_stiffness, pair.summary().contact_ratio_iso);
-  }
-  std::printf("  positions failed         %d of %d\n", result.failed, a.positions);
+  std::printf("%s", report::MeshStiffnessText(pair, result, c_prime, c_gamma).c_str());
 
   report::WriteMeshStiffnessPlot(base + ".svg", scene.name + ": " + setup.mesh + " mesh stiffness",
                                  result, b, {c_gamma, c_prime});
@@ -131,6 +118,8 @@ void RegisterStiffnessCommands(CLI::App& app) {
   cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");
   cmd->add_flag("--no-cache", a.no_cache, "Build the influence tables in memory only");
   cmd->add_flag("--no-local", a.no_local, "Structural compliance only (no local contact term)");
+  cmd->add_flag("--stresses", a.stresses,
+                "Also each gear's root stress per position (the scene's [model] stresses)");
   cmd->callback([] { RunStiffness(a); });
 }
 

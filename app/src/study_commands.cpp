@@ -15,6 +15,7 @@
 
 #include "commands.hpp"
 #include "console.hpp"
+#include "epicycle/report/study_files.hpp"
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
@@ -30,39 +31,15 @@ struct StudyArgs {
   std::string study, out = "study-out", cache;
   int threads = 0;  // 0: every core
   long max_cases = -1;
-  bool no_cache = false, quiet = false;
+  bool no_cache = false, quiet = false, stresses = false;
 };
 
 json Stat(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-json SummaryJson(const studies::SampleSummary& s) {
-  json j = {{"count", s.count},
-            {"mean", Stat(s.mean)},
-            {"mean_ci", {Stat(s.mean_lower), Stat(s.mean_upper)}},
-            {"std", Stat(s.standard_deviation)},
-            {"min", Stat(s.min)},
-            {"max", Stat(s.max)},
-            {"confidence_level", s.level}};
-  json p = json::array();
-  for (const auto& q : s.percentiles)
-    p.push_back({{"p", q.p}, {"value", Stat(q.value)}, {"ci", {Stat(q.lower), Stat(q.upper)}}});
-  j["percentiles"] = p;
-  return j;
-}
-
-void PrintStat(const char* name, const studies::SampleSummary& s, const char* unit) {
-  const char* f = "{:.6g}";
-  std::printf("  %-22s mean %s [%s, %s], std %s, max %s%s\n", name, Num(s.mean, f, "-").c_str(),
-              Num(s.mean_lower, f, "-").c_str(), Num(s.mean_upper, f, "-").c_str(),
-              Num(s.standard_deviation, f, "-").c_str(), Num(s.max, f, "-").c_str(), unit);
-  for (const auto& q : s.percentiles)
-    std::printf("  %-22s P%-5g %s [%s, %s]\n", "", 100.0 * q.p, Num(q.value, f, "-").c_str(),
-                Num(q.lower, f, "-").c_str(), Num(q.upper, f, "-").c_str());
-}
-
 void RunStudyCommand(const StudyArgs& a) {
   const studies::MpiSession mpi;
-  const studies::StudySpec study = studies::ReadStudy(a.study);
+  studies::StudySpec study = studies::ReadStudy(a.study);
+  study.scene.model.stresses = study.scene.model.stresses || a.stresses;
   const bool root = mpi.rank() == 0;
   std::filesystem::create_directories(a.out);
   const std::string base = a.out + "/study";
@@ -112,10 +89,11 @@ void RunStudyCommand(const StudyArgs& a) {
   const studies::StudySummary s = studies::SummariseStudy(study, report.rows);
   std::printf("\n  %ld of %ld cases in the file, %ld failed (left out of the statistics)\n",
               s.cases, study.Cases(), s.failed);
-  PrintStat("K_gamma", s.k_gamma, "");
-  PrintStat("K_gamma (sweep mean)", s.k_gamma_mean, "");
-  PrintStat("TE peak-to-peak", s.te_peak_to_peak, " urad");
-  PrintStat("sun orbit", s.sun_orbit, " um");
+  std::printf("%s%s%s%s%s", report::SampleSummaryText("K_gamma", s.k_gamma, "").c_str(),
+              report::SampleSummaryText("K_gamma (sweep mean)", s.k_gamma_mean, "").c_str(),
+              report::SampleSummaryText("TE peak-to-peak", s.te_peak_to_peak, " urad").c_str(),
+              report::SampleSummaryText("sun orbit", s.sun_orbit, " um").c_str(),
+              report::StudyRootStressText(s.root_stress).c_str());
   std::printf("  Spearman rank correlation of K_gamma with\n");
   for (std::size_t j = 0; j < s.columns.size(); ++j)
     std::printf("    %-36s %s\n", s.columns[j].c_str(),
@@ -133,10 +111,11 @@ void RunStudyCommand(const StudyArgs& a) {
   j["statistics_note"] =
       "mean CI: normal approximation x +- z s/sqrt(n); percentile CIs: exact binomial order "
       "statistics (distribution-free), null where n is too small for the bound";
-  j["K_gamma"] = SummaryJson(s.k_gamma);
-  j["K_gamma_sweep_mean"] = SummaryJson(s.k_gamma_mean);
-  j["TE_peak_to_peak_urad"] = SummaryJson(s.te_peak_to_peak);
-  j["sun_orbit_um"] = SummaryJson(s.sun_orbit);
+  j["K_gamma"] = report::SampleSummaryJson(s.k_gamma);
+  j["K_gamma_sweep_mean"] = report::SampleSummaryJson(s.k_gamma_mean);
+  j["TE_peak_to_peak_urad"] = report::SampleSummaryJson(s.te_peak_to_peak);
+  j["sun_orbit_um"] = report::SampleSummaryJson(s.sun_orbit);
+  if (!s.root_stress.empty()) j["root_stress"] = report::StudyRootStressJson(s.root_stress);
   json rho = json::object();
   for (std::size_t k = 0; k < s.columns.size(); ++k) rho[s.columns[k]] = Stat(s.spearman[k]);
   j["spearman_K_gamma"] = rho;
@@ -178,6 +157,8 @@ void RegisterStudyCommands(CLI::App& app) {
   cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");
   cmd->add_flag("--no-cache", a.no_cache, "Build the influence tables in memory only");
   cmd->add_flag("--quiet", a.quiet, "No progress bar");
+  cmd->add_flag("--stresses", a.stresses,
+                "Also each gear's root stress per case (the study's or scene's stresses)");
   cmd->callback([] { RunStudyCommand(a); });
 }
 

@@ -15,7 +15,8 @@ DynamicSummary Summarise(const std::vector<DynamicSample>& samples) {
   const std::size_t n = samples.empty() ? 0 : samples.front().load_sharing.size();
   std::vector<transmission::Accumulator> lsr(n);
   transmission::Accumulator te, orbit, k_gamma, pair_force;
-  transmission::RootStressTracker root_stress(transmission::PlanetBody(static_cast<int>(n)));
+  transmission::RootStressTracker root_stress(
+      transmission::BodyNames(transmission::PlanetBody(static_cast<int>(n))));
   for (const DynamicSample& x : samples) {
     root_stress.Add(x.fillet_stress, x.time);
     for (std::size_t i = 0; i < n; ++i) lsr[i].Add(x.load_sharing[i]);

@@ -32,26 +32,41 @@ std::string Cells(const Range& values) {
   return s;
 }
 
-// ",sigma_t_<gear>_MPa,sigma_c_<gear>_MPa" for bodies 0 … bodies − 1.
-std::string RootStressHead(int bodies) {
+// ",sigma_t_<gear>_MPa,sigma_c_<gear>_MPa" for each gear of `gears` (body order); with `where`
+// each stress is followed by its place: ",..._tooth,..._fillet,..._arc_mm".
+std::string RootStressHead(const std::vector<std::string>& gears, bool where = false) {
   std::string head;
-  for (int b = 0; b < bodies; ++b) {
-    const std::string gear = transmission::BodyName(b);
-    head += ",sigma_t_" + gear + "_MPa,sigma_c_" + gear + "_MPa";
-  }
+  for (const std::string& gear : gears)
+    for (const char* kind : {"sigma_t_", "sigma_c_"}) {
+      const std::string name = kind + gear;
+      head += "," + name + "_MPa";
+      if (where) head += "," + name + "_tooth," + name + "_fillet," + name + "_arc_mm";
+    }
   return head;
 }
 
-// Each body's largest tension and compression [MPa] of a state's fillets; empty cells for a state
-// without them (a failed position).
+// Each body's largest tension and compression [MPa] of a state's fillets (with `where`, each
+// followed by its tooth, fillet side + or - and arc length from the space centre line [mm], empty
+// for a gear the state does not load); empty cells for a state without them (a failed position).
 void RootStressCells(std::string& line, const std::vector<compliance::FilletStress>& fillets,
-                     int bodies) {
+                     int bodies, bool where = false) {
   const std::vector<transmission::GearRootStress> g =
       fillets.empty() ? std::vector<transmission::GearRootStress>()
                       : transmission::SummariseRootStress(fillets, bodies);
+  auto cells = [&](double sigma, const transmission::FilletSpot& at) {
+    Cell(line, sigma / 1e6);
+    if (!where) return;
+    if (std::isfinite(sigma) && sigma != 0.0)
+      line +=
+          fmt::format(",{},{},{}", at.tooth, at.side == 0 ? "+" : "-", Num(at.arc_length * 1e3));
+    else
+      line += ",,,";
+  };
   for (int b = 0; b < bodies; ++b) {
-    Cell(line, g.empty() ? NAN : g[static_cast<std::size_t>(b)].tension / 1e6);
-    Cell(line, g.empty() ? NAN : g[static_cast<std::size_t>(b)].compression / 1e6);
+    const transmission::GearRootStress none{b, NAN, {}, NAN, {}};
+    const transmission::GearRootStress& e = g.empty() ? none : g[static_cast<std::size_t>(b)];
+    cells(e.tension, e.tension_at);
+    cells(e.compression, e.compression_at);
   }
 }
 
@@ -124,7 +139,7 @@ QuasiStaticFiles::QuasiStaticFiles(const std::string& base, const nlohmann::json
       "contact_iterations,warm_started,residual,status,active_contacts,contacts,solve_ms,"
       "message";
   if (friction_) head += ",friction_power_W,input_power_W,output_power_W,efficiency,force_change";
-  head += RootStressHead(bodies_);
+  head += RootStressHead(transmission::BodyNames(bodies_));
   positions_.Write(head + "\n");
   pairs_.Write(ProvenanceCsvLine(provenance) + "carrier_deg,mesh,kind,flank,teeth,force_N" +
                (friction_ ? ",friction_N,sliding_m_per_s" : "") +
@@ -204,7 +219,7 @@ nlohmann::json RootStressJson(const std::vector<transmission::RootStressSummary>
   };
   nlohmann::json list = nlohmann::json::array();
   for (const auto& g : gears)
-    list.push_back({{"gear", transmission::BodyName(g.extremes.body)},
+    list.push_back({{"gear", g.gear},
                     {"tension_MPa", g.extremes.tension / 1e6},
                     {"tension_" + x_name, g.tension_x * x_scale},
                     {"tension_at", spot(g.extremes.tension_at)},
@@ -225,12 +240,11 @@ std::string RootStressText(const std::vector<transmission::RootStressSummary>& g
   auto side = [](int s) { return s == 0 ? "+" : "-"; };
   for (const auto& g : gears) {
     const auto& e = g.extremes;
-    out +=
-        fmt::format("    {:<8} {:9.2f} ({:8.4g}, {}{})  {:9.2f} ({:8.4g}, {}{})  {:9.2f} ({}{})\n",
-                    transmission::BodyName(e.body), e.tension / 1e6, g.tension_x * x_scale,
-                    e.tension_at.tooth, side(e.tension_at.side), e.compression / 1e6,
-                    g.compression_x * x_scale, e.compression_at.tooth, side(e.compression_at.side),
-                    g.range.range / 1e6, g.range.at.tooth, side(g.range.at.side));
+    out += fmt::format(
+        "    {:<8} {:9.2f} ({:8.4g}, {}{})  {:9.2f} ({:8.4g}, {}{})  {:9.2f} ({}{})\n", g.gear,
+        e.tension / 1e6, g.tension_x * x_scale, e.tension_at.tooth, side(e.tension_at.side),
+        e.compression / 1e6, g.compression_x * x_scale, e.compression_at.tooth,
+        side(e.compression_at.side), g.range.range / 1e6, g.range.at.tooth, side(g.range.at.side));
   }
   return out;
 }
@@ -281,7 +295,7 @@ std::string DynamicStepsHead(const std::string& provenance_line, int planets, in
       "external_work_J,dissipated_work_J,kinetic_energy_J,elastic_energy_J,contacts,"
       "active_contacts,friction_power_W";
   for (int i = 1; i <= planets; ++i) steps += ",LSR_force_" + std::to_string(i);
-  return steps + RootStressHead(stress_bodies) + "\n";
+  return steps + RootStressHead(transmission::BodyNames(stress_bodies)) + "\n";
 }
 
 std::string DynamicBearingsHead(const std::string& provenance_line, int planets) {
@@ -520,12 +534,14 @@ void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name
 }
 
 MeshStiffnessFile::MeshStiffnessFile(const std::string& path, const nlohmann::json& provenance,
-                                     double face_width)
-    : csv_(path), face_width_(face_width) {
+                                     double face_width,
+                                     const std::vector<std::string>& stress_gears)
+    : csv_(path), face_width_(face_width), bodies_(static_cast<int>(stress_gears.size())) {
   csv_.Write(ProvenanceCsvLine(provenance) +
              "angle_deg,converged,mesh_stiffness_N_per_m,mesh_stiffness_N_per_mm_um,"
              "transmission_error_urad,approach_um,total_force_N,pairs,"
-             "pair_teeth,pair_kind,pair_force_N,pair_stiffness_N_per_m,pair_share,message\n");
+             "pair_teeth,pair_kind,pair_force_N,pair_stiffness_N_per_m,pair_share,message" +
+             RootStressHead(stress_gears, true) + "\n");
 }
 
 void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
@@ -533,12 +549,15 @@ void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
       fmt::format("{:.6f},{},{},{},{},{},{},{}", geometry::Deg(s.angle), s.converged ? 1 : 0,
                   Num(s.mesh_stiffness), Num(s.mesh_stiffness / face_width_ / 1e9),
                   Num(s.rotation * 1e6), Num(s.approach * 1e6), Num(s.total_force), s.pairs.size());
-  const std::string msg = CsvText(s.message);
-  std::string lines = s.pairs.empty() ? head + ",,,,,," + msg + "\n" : "";
+  std::string tail = CsvText(s.message);
+  // A failed position has no stresses (empty cells), a converged one its extremes per gear.
+  if (bodies_ > 0) RootStressCells(tail, s.fillet_stress, bodies_, true);
+  tail += '\n';
+  std::string lines = s.pairs.empty() ? head + ",,,,,," + tail : "";
   for (const auto& p : s.pairs)
     lines +=
-        fmt::format("{},{}/{},{},{},{},{},{}\n", head, p.tooth1, p.tooth2,
-                    geometry::KindName(p.kind), Num(p.force), Num(p.stiffness), Num(p.share), msg);
+        fmt::format("{},{}/{},{},{},{},{},{}", head, p.tooth1, p.tooth2, geometry::KindName(p.kind),
+                    Num(p.force), Num(p.stiffness), Num(p.share), tail);
   csv_.Write(lines);
 }
 
@@ -562,7 +581,34 @@ nlohmann::json MeshStiffnessJson(const geometry::GearPair& pair,
   j["contact_ratio"] = pair.summary().contact_ratio_iso;
   j["iso6336_c_prime_N_per_mm_um"] = c_prime;
   j["iso6336_c_gamma_alpha_N_per_mm_um"] = c_gamma_alpha;
+  if (!result.root_stress.empty())
+    j["root_stress"] = RootStressJson(result.root_stress, "angle_deg", geometry::Deg(1.0));
   return j;
+}
+
+std::string MeshStiffnessText(const geometry::GearPair& pair,
+                              const transmission::MeshStiffnessResult& result, double c_prime,
+                              double c_gamma_alpha) {
+  const auto positions = result.samples.size();
+  std::string out;
+  if (result.failed >= static_cast<int>(positions)) {
+    out += "\n  no position converged: no mesh stiffness\n";
+  } else {
+    const double mean = result.mean_per_width(), peak = result.peak_pair_per_width();
+    out += fmt::format(
+        "\n  mean mesh stiffness      {:10.4g} N/m = {:6.2f} N/(mm um)   ISO 6336-1 c_gamma_alpha "
+        "{:6.2f} (ratio {:.3f})\n",
+        result.mean_stiffness, mean, c_gamma_alpha, mean / c_gamma_alpha);
+    out += fmt::format(
+        "  peak single-pair         {:10.4g} N/m = {:6.2f} N/(mm um)   ISO 6336-1 c'            "
+        "{:6.2f} (ratio {:.3f})\n",
+        result.peak_pair_stiffness, peak, c_prime, peak / c_prime);
+    out += fmt::format(
+        "  mesh stiffness range     {:10.4g} .. {:.4g} N/m; contact ratio {:.4f} (tip circles)\n",
+        result.min_stiffness, result.max_stiffness, pair.summary().contact_ratio_iso);
+  }
+  out += fmt::format("  positions failed         {} of {}\n", result.failed, positions);
+  return out + RootStressText(result.root_stress, "angle deg", geometry::Deg(1.0));
 }
 
 void WriteMeshStiffnessPlot(const std::string& path, const std::string& title,

@@ -89,6 +89,7 @@ std::string CaseRow::Format() const {
   field(std::to_string(converged));
   for (double v : {k_gamma, k_gamma_mean, lsr_min, lsr_max, te_peak_to_peak, sun_orbit})
     field(ok ? Exact(v) : std::string());
+  for (double v : root_stress) field(ok ? Exact(v) : std::string());
   field(Clean(message));
   s.push_back('\n');
   return s;
@@ -100,8 +101,10 @@ std::string RowHeader(const StudySpec& study) {
     h.push_back(',');
     h.append(c);
   }
-  h += ",status,positions,converged,K_gamma,K_gamma_mean,LSR_min,LSR_max,TE_pp_urad,"
-       "sun_orbit_um,message";
+  h += ",status,positions,converged,K_gamma,K_gamma_mean,LSR_min,LSR_max,TE_pp_urad,sun_orbit_um";
+  for (const std::string& g : study.StressGears())
+    h += ",sigma_t_" + g + "_MPa,sigma_c_" + g + "_MPa,sigma_range_" + g + "_MPa";
+  h += ",message";
   return h;
 }
 
@@ -124,11 +127,12 @@ std::vector<double> CaseAngles(const StudySpec& study, const geometry::Stage& st
 CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::string& where) {
   const std::vector<std::string> f = Split(line);
   const std::size_t nv = study.Columns().size();
+  const std::size_t ns = 3 * study.StressGears().size();  // root-stress fields
   auto bad = [&](const std::string& why) {
     throw std::invalid_argument(where + ": not a row of this study (" + why + "): '" + line + "'");
   };
-  if (f.size() != 1 + nv + kResultFields)
-    bad(std::to_string(f.size()) + " fields, " + std::to_string(1 + nv + kResultFields) +
+  if (f.size() != 1 + nv + kResultFields + ns)
+    bad(std::to_string(f.size()) + " fields, " + std::to_string(1 + nv + kResultFields + ns) +
         " expected");
   CaseRow r;
   if (!ParseLong(f[0], &r.id) || r.id < 0 || r.id >= study.Cases()) bad("case id");
@@ -145,6 +149,9 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   for (double* v :
        {&r.k_gamma, &r.k_gamma_mean, &r.lsr_min, &r.lsr_max, &r.te_peak_to_peak, &r.sun_orbit})
     if (!ParseReal(f[k++], v)) bad("result value");
+  r.root_stress.resize(ns);
+  for (double& v : r.root_stress)
+    if (!ParseReal(f[k++], &v)) bad("root stress");
   r.message = f[k];
   return r;
 }
@@ -222,6 +229,8 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
   CaseRow row;
   row.id = case_id;
   row.values = SampleCase(study, case_id);
+  const std::vector<std::string> gears = study.StressGears();
+  row.root_stress.assign(3 * gears.size(), kNaN);
   try {
     const transmission::Scene scene = CaseScene(study, row.values);
     const geometry::Stage stage(scene.stage);
@@ -257,6 +266,12 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
     row.lsr_max = s.LsrMax();
     row.te_peak_to_peak = s.TransmissionErrorPeakToPeak() * 1e6;
     row.sun_orbit = s.sun_displacement_max * 1e6;
+    // With stresses the shared tables have them, and every converged position carries its own.
+    for (std::size_t g = 0; g < s.root_stress.size() && g < gears.size(); ++g) {
+      row.root_stress[3 * g] = s.root_stress[g].extremes.tension / 1e6;
+      row.root_stress[3 * g + 1] = s.root_stress[g].extremes.compression / 1e6;
+      row.root_stress[3 * g + 2] = s.root_stress[g].range.range / 1e6;
+    }
   } catch (const std::exception& e) {
     row.ok = false;
     row.message = e.what();
@@ -303,7 +318,7 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
     if (!header) {
       if (!study_line || line != RowHeader(study))
         throw std::invalid_argument(where + ": not the rows file of this study (column line '" +
-                                    line + "')");
+                                    line + "', this study's is '" + RowHeader(study) + "')");
       header = true;
       continue;
     }

@@ -10,6 +10,7 @@
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/transmission/stage_problem.hpp"
 
 namespace epicycle::studies {
 
@@ -214,6 +215,11 @@ std::vector<std::string> StudySpec::Columns() const {
   return c;
 }
 
+std::vector<std::string> StudySpec::StressGears() const {
+  if (!scene.model.stresses) return {};
+  return transmission::BodyNames(transmission::PlanetBody(scene.stage.planets));
+}
+
 StudySpec ParseStudy(const std::string& text, const std::string& source,
                      const std::string& directory) {
   const toml::table root = ParseDocument(text, source);
@@ -246,6 +252,7 @@ StudySpec ParseStudy(const std::string& text, const std::string& source,
   const std::string sun = st.StringOr("sun", "scene", {"scene", "fixed", "floating"});
   if (sun == "fixed") s.sun = transmission::SunSupport::kFixed;
   if (sun == "floating") s.sun = transmission::SunSupport::kFloating;
+  s.scene.model.stresses = st.BoolOr("stresses", s.scene.model.stresses);
   s.backend_name = st.StringOr("backend", "newton");
   try {
     s.backend = solvers::BackendFromName(s.backend_name);

@@ -31,6 +31,19 @@ StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& 
   s.k_gamma_histogram = MakeHistogram(kg);
   s.k_gamma_sorted = kg;
   std::sort(s.k_gamma_sorted.begin(), s.k_gamma_sorted.end());
+  const std::vector<std::string> gears = study.StressGears();
+  for (std::size_t g = 0; g < gears.size(); ++g) {
+    std::vector<double> tension, compression, range;
+    for (const CaseRow& r : rows) {
+      if (!r.ok || r.root_stress.size() != 3 * gears.size()) continue;
+      tension.push_back(r.root_stress[3 * g]);
+      compression.push_back(std::abs(r.root_stress[3 * g + 1]));
+      range.push_back(r.root_stress[3 * g + 2]);
+    }
+    s.root_stress.push_back({gears[g], Summarise(tension, kStudyPercentiles, level),
+                             Summarise(compression, kStudyPercentiles, level),
+                             Summarise(range, kStudyPercentiles, level)});
+  }
   return s;
 }
 

@@ -204,17 +204,39 @@ FePairCompliance::FePairCompliance(const Scene& scene, const geometry::GearPair&
       material_(scene.material),
       plane_(scene.model.plane) {}
 
+void FePairCompliance::Operator(const geometry::GearPair& pair, const geometry::PairPoses& poses,
+                                const std::vector<geometry::PotentialContact>& contacts,
+                                std::vector<compliance::OperatorBody>* bodies,
+                                std::vector<compliance::OperatorContact>* oc) const {
+  *bodies = {Body(tables_.Table(0), poses.gear1, "gear1"),
+             Body(tables_.Table(1), poses.gear2, "gear2")};
+  oc->clear();
+  oc->reserve(contacts.size());
+  for (std::size_t j = 0; j < contacts.size(); ++j)
+    oc->push_back(Sides(contacts[j], 0, 1, pair.gear1(), pair.gear2(), (*bodies)[0].centre,
+                        (*bodies)[1].centre, "contact " + std::to_string(j)));
+}
+
 Eigen::MatrixXd FePairCompliance::Matrix(
     const geometry::GearPair& pair, const geometry::PairPoses& poses,
     const std::vector<geometry::PotentialContact>& contacts) const {
-  const std::vector<compliance::OperatorBody> bodies{Body(tables_.Table(0), poses.gear1, "gear1"),
-                                                     Body(tables_.Table(1), poses.gear2, "gear2")};
+  std::vector<compliance::OperatorBody> bodies;
   std::vector<compliance::OperatorContact> oc;
-  oc.reserve(contacts.size());
-  for (std::size_t j = 0; j < contacts.size(); ++j)
-    oc.push_back(Sides(contacts[j], 0, 1, pair.gear1(), pair.gear2(), bodies[0].centre,
-                       bodies[1].centre, "contact " + std::to_string(j)));
+  Operator(pair, poses, contacts, &bodies, &oc);
   return compliance::AssembleCompliance(bodies, oc);
+}
+
+bool FePairCompliance::has_root_stress() const {
+  return tables_.Table(0).has_fillet_stress() && tables_.Table(1).has_fillet_stress();
+}
+
+std::vector<compliance::FilletStress> FePairCompliance::FilletStresses(
+    const geometry::GearPair& pair, const geometry::PairPoses& poses,
+    const std::vector<geometry::PotentialContact>& contacts, const Eigen::VectorXd& force) const {
+  std::vector<compliance::OperatorBody> bodies;
+  std::vector<compliance::OperatorContact> oc;
+  Operator(pair, poses, contacts, &bodies, &oc);
+  return compliance::FilletStresses(bodies, oc, force);
 }
 
 }  // namespace epicycle::transmission

@@ -42,10 +42,12 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
       s.spec.gear2 = stage->planet(i).spec();
       s.spec.load_sign = stage->sun_mesh_side();
       s.torque = per_planet;
+      s.gears = {BodyName(kSunBody), BodyName(PlanetBody(i))};
     } else {
       s.spec.gear1 = stage->planet(i).spec();
       s.spec.gear2 = stage->ring().spec();
       s.spec.load_sign = stage->ring_mesh_planet_side();
+      s.gears = {BodyName(PlanetBody(i)), BodyName(kRingBody)};
       // The same tooth force as the sun mesh: T_p = |T|/n · r_bp / r_bs, on the loaded side.
       s.torque = s.spec.load_sign * std::abs(per_planet) * stage->planet(i).base_radius() /
                  stage->sun().base_radius();
@@ -93,6 +95,7 @@ MeshSample SolveSample(const MeshPairSetup& setup,
   const double rb1 = pair.gear1().base_radius();
   std::vector<geometry::PotentialContact> contacts;
   std::vector<solvers::LocalTermParameters> local;  // of the last problem built
+  geometry::PairPoses built;                        // the poses of the last problem built
   GeometricIterationOptions iteration;
   iteration.max_iterations = options.max_geometric_iterations;
   iteration.tolerance = options.geometric_tolerance;
@@ -100,6 +103,7 @@ MeshSample SolveSample(const MeshPairSetup& setup,
   const GeometricIterationResult g = IterateGeometry(
       [&](solvers::ContactProblemData* data) -> StageOutcome {
         contacts = pair.Contacts(poses, search);
+        built = poses;
         if (contacts.empty())
           return {StageStatus::kNoContact, "no potential contact within the gap window"};
         const int n = static_cast<int>(contacts.size());
@@ -146,6 +150,11 @@ MeshSample SolveSample(const MeshPairSetup& setup,
   const solvers::ContactSolution& solution = g.solution;
   out.rotation = total;
   out.approach = std::abs(total) * rb1;
+  out.poses = built;
+  out.contacts = contacts;
+  out.force = solution.force;
+  if (compliance.has_root_stress())
+    out.fillet_stress = compliance.FilletStresses(pair, built, contacts, solution.force);
   // Tooth pairs: the loaded contacts of the last problem, merged per (teeth, flank).
   std::map<std::array<int, 3>, ToothPairLoad> merged;
   for (std::size_t j = 0; j < contacts.size(); ++j) {
@@ -185,6 +194,9 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup,
   options.Validate();
   if (setup.torque == 0)
     throw std::invalid_argument("mesh stiffness: torque = 0: must be non-zero");
+  if (setup.gears.size() != 2)
+    throw std::invalid_argument("mesh stiffness: gears = " + std::to_string(setup.gears.size()) +
+                                " names: must be 2 (gear 1's and gear 2's)");
   MeshStiffnessResult r;
   r.mesh = setup.mesh;
   r.torque = setup.torque;
@@ -193,6 +205,7 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup,
   int good = 0;
   r.min_stiffness = std::numeric_limits<double>::infinity();
   r.samples.resize(static_cast<std::size_t>(options.positions));
+  RootStressTracker root_stress(setup.gears);
   internal::RunOrderedChunks(
       options.positions, options.threads, options.backend,
       [&](int k, bool, solvers::ContactSolver& solver) {
@@ -210,12 +223,14 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup,
           r.max_stiffness = std::max(r.max_stiffness, s.mesh_stiffness);
           for (const ToothPairLoad& p : s.pairs)
             r.peak_pair_stiffness = std::max(r.peak_pair_stiffness, p.stiffness);
+          root_stress.Add(s.fillet_stress, s.angle);
         } else {
           ++r.failed;
         }
         if (on_sample) on_sample(s);
       });
   r.mean_stiffness = good > 0 ? sum / good : 0.0;
+  r.root_stress = root_stress.Result();
   if (good == 0) r.min_stiffness = 0.0;
   return r;
 }

@@ -71,7 +71,10 @@ void RootStressTracker::Add(const std::vector<compliance::FilletStress>& fillets
   if (fillets.empty()) return;
   if (summary_.empty()) {
     summary_.resize(static_cast<std::size_t>(bodies_));
-    for (int b = 0; b < bodies_; ++b) summary_[static_cast<std::size_t>(b)].extremes.body = b;
+    for (int b = 0; b < bodies_; ++b) {
+      summary_[static_cast<std::size_t>(b)].gear = gears_[static_cast<std::size_t>(b)];
+      summary_[static_cast<std::size_t>(b)].extremes.body = b;
+    }
   }
   envelope_.Add(fillets);
   const std::vector<GearRootStress> here = SummariseRootStress(fillets, bodies_);

@@ -12,6 +12,12 @@ std::string BodyName(int body) {
                              : "planet" + std::to_string(body - PlanetBody(0) + 1);
 }
 
+std::vector<std::string> BodyNames(int bodies) {
+  std::vector<std::string> names;
+  for (int b = 0; b < bodies; ++b) names.push_back(BodyName(b));
+  return names;
+}
+
 std::vector<compliance::FilletStress> StageCompliance::FilletStresses(
     const geometry::Stage&, const geometry::StagePoses&, const std::vector<StageContact>&,
     const Eigen::VectorXd&) const {

@@ -72,7 +72,7 @@ SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int plan
   }
   // Root stresses, when the positions carry them.
   // Root stresses and contact pressures, when the positions carry stresses.
-  RootStressTracker root_stress(PlanetBody(planets));
+  RootStressTracker root_stress(BodyNames(PlanetBody(planets)));
   ContactPressureTracker pressure;
   for (const PositionResult& r : results) {
     if (!r.converged || r.fillet_stress.empty()) continue;

@@ -77,6 +77,7 @@ TEST_CASE("study file: bad input names the key, the value and the rule", "[unit]
     CHECK_THAT(StudyError(StudyText("", test::Replace(kPins, "sigma_um", "sigma"))),
                Contains("sigma"));
     CHECK_THAT(StudyError(StudyText("seeds = 3", "")), Contains("study.seeds"));
+    CHECK_THAT(StudyError(StudyText("stresses = \"yes\"", "")), Contains("study.stresses"));
   }
   SECTION("a torque that changes the loaded flanks") {
     const std::string m = StudyError(

@@ -64,7 +64,7 @@ TEST_CASE("root stress read-outs of hand-made states", "[unit][transmission][str
   CHECK(sa[2].tension == 3e6);
   CHECK(sa[2].tension_at.arc_length == arc(2));
 
-  RootStressTracker tracker(3);
+  RootStressTracker tracker({"a", "b", "c"});
   CHECK(tracker.Result().empty());
   tracker.Add({}, 0.5);  // a state without fillets adds nothing
   CHECK(tracker.Result().empty());
@@ -72,6 +72,7 @@ TEST_CASE("root stress read-outs of hand-made states", "[unit][transmission][str
   tracker.Add(b, 2.0);
   const std::vector<RootStressSummary> r = tracker.Result();
   REQUIRE(r.size() == 3);
+  CHECK(r[1].gear == "b");  // each body named by the tracker's list
   // Body 0: the largest tension 7 MPa in state B on tooth 4, the compression −4 MPa in state A.
   CHECK(r[0].extremes.tension == 7e6);
   CHECK(r[0].tension_x == 2.0);

@@ -159,19 +159,35 @@ void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name
 /// `face_width` [m] in N/(mm µm).
 class MeshStiffnessFile {
  public:
+  /// `stress_gears` (the pair's MeshPairSetup::gears when the run has root stresses, else empty):
+  /// each line ends with each gear's largest tensile and compressive root stress of the position,
+  /// each followed by where it is: sigma_t_<gear>_MPa, sigma_t_<gear>_tooth, sigma_t_<gear>_fillet
+  /// (+ or -: the σ = ±1 side), sigma_t_<gear>_arc_mm (from the space centre line), the same for
+  /// sigma_c_<gear>.
   /// @throws std::runtime_error naming the file if it cannot be written.
-  MeshStiffnessFile(const std::string& path, const nlohmann::json& provenance, double face_width);
+  MeshStiffnessFile(const std::string& path, const nlohmann::json& provenance, double face_width,
+                    const std::vector<std::string>& stress_gears = {});
   void Write(const transmission::MeshSample& s);
   void Close();
 
  private:
   CsvFile csv_;
   double face_width_;
+  int bodies_ = 0;  // root-stress columns: one group per gear, 0 without
 };
+
+/// The console summary of `epicycle stiffness`: mean and peak single-pair stiffness beside ISO
+/// 6336-1's c_γα and c′ with their ratios, the range and contact ratio (or that no position
+/// converged), the failed positions, and with root stresses RootStressText against the gear-1
+/// rotation [deg].
+std::string MeshStiffnessText(const geometry::GearPair& pair,
+                              const transmission::MeshStiffnessResult& result, double c_prime,
+                              double c_gamma_alpha);
 
 /// The results of `epicycle stiffness` for its JSON summary: the mesh, the torque, the face
 /// width, positions and failures, mean / peak single-pair / min / max stiffness (N/m and
-/// N/(mm µm)), the contact ratio, and ISO 6336-1's c′ and c_γα [N/(mm µm)] to compare with. The
+/// N/(mm µm)), the contact ratio, and ISO 6336-1's c′ and c_γα [N/(mm µm)] to compare with; with
+/// root stresses "root_stress" (RootStressJson against the gear-1 rotation, "angle_deg"). The
 /// caller adds the run's settings.
 nlohmann::json MeshStiffnessJson(const geometry::GearPair& pair,
                                  const transmission::MeshStiffnessResult& result, double c_prime,

@@ -26,12 +26,17 @@ struct CaseRow {
   double lsr_min = 0, lsr_max = 0;   ///< extremes of LSR_i over planets and positions [-]
   double te_peak_to_peak = 0;        ///< loaded static transmission error, peak to peak [µrad]
   double sun_orbit = 0;              ///< largest sun-centre displacement [µm]
+  /// With stresses (StudySpec::StressGears, else empty): per gear in that order three values over
+  /// the case's sweep, its largest root tension (≥ 0), its most negative compression (≤ 0) and
+  /// its largest range max − min at one fillet point [MPa] (transmission::RootStressSummary).
+  std::vector<double> root_stress;
   /// The CSV line, '\n'-terminated; numbers in their shortest exact (round-trip) form, so that
   /// the same result gives the same bytes; a failed case has empty result fields.
   std::string Format() const;
 };
 
-/// The column line of the rows file (without '\n').
+/// The column line of the rows file (without '\n'); with stresses the results end with
+/// sigma_t_<gear>_MPa, sigma_c_<gear>_MPa, sigma_range_<gear>_MPa per gear before the message.
 std::string RowHeader(const StudySpec& study);
 
 /// Case k of the study on the shared (read-only) compliance of the nominal bodies. Never throws

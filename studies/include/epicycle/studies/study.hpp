@@ -81,6 +81,10 @@ struct StudySpec {
   long Cases() const;
   /// The sampled-value columns of every variable, in order.
   std::vector<std::string> Columns() const;
+  /// The gears whose root stress every case reports (sun, ring, planet1 …: transmission::BodyNames
+  /// of the stage) when the study has stresses (scene.model.stresses: the study's `stresses` key,
+  /// by default the scene's [model] stresses), else none.
+  std::vector<std::string> StressGears() const;
 };
 
 /// @throws std::invalid_argument naming the file, line, key, value and rule (an unknown

@@ -1,6 +1,6 @@
 // The summary of a study's rows (docs/studies.md): K_γ's distribution with confidence intervals,
-// the same for the sweep-mean load factor, and the rank correlation of K_γ with every sampled
-// variable (which tolerance matters).
+// the same for the sweep-mean load factor (and each gear's root stresses), and the rank correlation
+// of K_γ with every sampled variable (which tolerance matters).
 #pragma once
 
 #include <string>
@@ -10,6 +10,15 @@
 #include "epicycle/studies/statistics.hpp"
 
 namespace epicycle::studies {
+
+/// One gear's root stresses over a study's ok cases (each case's largest over its sweep, the
+/// rows' sigma_*_<gear>_MPa) [MPa].
+struct GearStressStatistics {
+  std::string gear;
+  SampleSummary tension;      ///< largest tension σ_t ≥ 0
+  SampleSummary compression;  ///< magnitude |σ_c| of the most negative compression
+  SampleSummary range;        ///< largest range max − min at one fillet point
+};
 
 struct StudySummary {
   long cases = 0;                    ///< rows [-]
@@ -22,6 +31,8 @@ struct StudySummary {
   std::vector<double> spearman;      ///< ρ_s(K_γ, column) per column (NaN: constant column)
   Histogram k_gamma_histogram;
   std::vector<double> k_gamma_sorted;  ///< the empirical CDF's steps: F(x_(i)) = i/n
+  /// Per gear of StudySpec::StressGears (none without stresses).
+  std::vector<GearStressStatistics> root_stress;
 };
 
 /// Percentile levels of the summaries: 0.50, 0.95, 0.99, 0.999.

@@ -91,6 +91,16 @@ class FePairCompliance {
                    const FeComplianceOptions& options);
   Eigen::MatrixXd Matrix(const geometry::GearPair& pair, const geometry::PairPoses& poses,
                          const std::vector<geometry::PotentialContact>& contacts) const;
+  /// True when FilletStresses can answer: both tables built with their fillet stresses (the
+  /// scene's [model] stresses or FeComplianceOptions::table.fillet_stress).
+  bool has_root_stress() const;
+  /// The root stresses (docs/model.md §9) of the state with contact forces `force` [N] at these
+  /// poses: both fillets of the loaded teeth and their neighbours, body 0 gear 1, body 1 gear 2
+  /// (compliance::FilletStresses on the bodies and contact sides Matrix assembles).
+  /// @throws std::invalid_argument unless has_root_stress(), or as compliance::FilletStresses.
+  std::vector<compliance::FilletStress> FilletStresses(
+      const geometry::GearPair& pair, const geometry::PairPoses& poses,
+      const std::vector<geometry::PotentialContact>& contacts, const Eigen::VectorXd& force) const;
   double JoiningDepth(int gear) const { return tables_.Table(gear).join_depth(); }
   /// The material and plane assumption the tables were built with (the local terms use them).
   const Material& material() const { return material_; }
@@ -98,6 +108,11 @@ class FePairCompliance {
   const GearTables& tables() const { return tables_; }
 
  private:
+  // The operator's bodies (gear 1, gear 2 at their poses) and contact sides.
+  void Operator(const geometry::GearPair& pair, const geometry::PairPoses& poses,
+                const std::vector<geometry::PotentialContact>& contacts,
+                std::vector<compliance::OperatorBody>* bodies,
+                std::vector<compliance::OperatorContact>* oc) const;
   GearTables tables_;
   Material material_;
   solvers::PlaneAssumption plane_;

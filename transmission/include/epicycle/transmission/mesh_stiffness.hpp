@@ -11,6 +11,7 @@
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/root_stress.hpp"
 #include "epicycle/transmission/scene.hpp"
 
 namespace epicycle::transmission {
@@ -18,6 +19,9 @@ namespace epicycle::transmission {
 /// A scene's gear pair for a stiffness study: a pair scene itself, or one mesh of a stage scene.
 struct MeshPairSetup {
   std::string mesh;  ///< "gear1-gear2", "sun-planet<i>" or "planet<i>-ring"
+  /// Gear 1's and gear 2's names, the parts of `mesh`: "gear1", "gear2" of a pair scene, a
+  /// stage's BodyName ("sun", "planet<i>", "ring").
+  std::vector<std::string> gears{"gear1", "gear2"};
   geometry::PairSpec spec;
   double torque = 0;  ///< on gear 1 [N·m] (ccw +): the pair's, or the stage's per-planet share
   double gap_window = 100e-6;  ///< contact-search gap window [m] (the scene's)
@@ -74,6 +78,15 @@ struct MeshSample {
   /// local terms.
   double local_validity_ratio = 0;
   solvers::ContactReport report;
+  /// The converged state: the poses and potential contacts of the last contact problem and
+  /// their forces F_j [N] (empty when not converged).
+  geometry::PairPoses poses;
+  std::vector<geometry::PotentialContact> contacts;
+  Eigen::VectorXd force;
+  /// The root stresses of the converged state (docs/model.md §9: both fillets of the loaded teeth
+  /// and their neighbours, body 0 gear 1, body 1 gear 2) when the compliance has them (the
+  /// scene's [model] stresses), else empty.
+  std::vector<compliance::FilletStress> fillet_stress;
 };
 
 struct MeshStiffnessResult {
@@ -85,6 +98,10 @@ struct MeshStiffnessResult {
   double mean_stiffness = 0;       ///< mean of k over the converged samples [N/m]
   double peak_pair_stiffness = 0;  ///< max over samples and pairs of a single pair's k [N/m]
   double min_stiffness = 0, max_stiffness = 0;  ///< [N/m]
+  /// Per gear (gear 1, gear 2, named by MeshPairSetup::gears) over the converged samples with root
+  /// stresses (else empty): the extremes with the gear-1 rotation where they occur
+  /// (RootStressSummary's x [rad]) and the largest range at one fillet point.
+  std::vector<RootStressSummary> root_stress;
   /// Per unit face width in N/(mm·µm) (= 1e9 N/m²): mean (c_γα-like) and peak single pair (c′).
   double mean_per_width() const { return mean_stiffness / face_width / 1e9; }
   double peak_pair_per_width() const { return peak_pair_stiffness / face_width / 1e9; }
@@ -93,9 +110,11 @@ struct MeshStiffnessResult {
 /// Sweeps one mesh cycle of gear 1: at every position, contact search → FE compliance → contact
 /// problem with the moment equilibrium of gear 1 (gear 2 held) → back end, repeated at the moved
 /// position until the rotation settles. A position that fails is reported in its sample and the
-/// sweep goes on. The positions run on options.threads workers; `on_sample` (if given) sees each
-/// sample in the order of the positions as soon as it and every earlier one are computed (under a
-/// lock, from any worker).
+/// sweep goes on. With a compliance that has root stresses (FePairCompliance::has_root_stress)
+/// every converged sample carries its fillet stresses and the result their summary; without, no
+/// stress is computed. The positions run on options.threads workers; `on_sample` (if given) sees
+/// each sample in the order of the positions as soon as it and every earlier one are computed
+/// (under a lock, from any worker).
 MeshStiffnessResult ComputeMeshStiffness(
     const MeshPairSetup& setup, const geometry::GearPair& pair,
     const FePairCompliance& compliance, const MeshStiffnessOptions& options,

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <map>
+#include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "epicycle/compliance/compliance_operator.hpp"
@@ -64,6 +66,7 @@ class RootStressEnvelope {
 /// they occur (`x`: the carrier angle [rad] or the time [s] the caller gives with each state) and
 /// the largest range at one fillet point.
 struct RootStressSummary {
+  std::string gear;  ///< the body's name ("sun", "planet1", "gear1": the tracker's `gears`)
   GearRootStress extremes;
   double tension_x = 0;      ///< the state's x at the largest tension
   double compression_x = 0;  ///< at the most negative compression
@@ -73,7 +76,10 @@ struct RootStressSummary {
 /// Accumulates states into RootStressSummary per body; a state without fillets adds nothing.
 class RootStressTracker {
  public:
-  explicit RootStressTracker(int bodies) : bodies_(bodies), envelope_(bodies) {}
+  /// `gears`: the name of each body index, the bodies 0 … gears.size() − 1 (a stage's
+  /// BodyNames(PlanetBody(planets)), a pair's MeshPairSetup::gears).
+  explicit RootStressTracker(std::vector<std::string> gears)
+      : bodies_(static_cast<int>(gears.size())), envelope_(bodies_), gears_(std::move(gears)) {}
   void Add(const std::vector<compliance::FilletStress>& fillets, double x);
   /// Empty when no state carried fillets.
   std::vector<RootStressSummary> Result() const;
@@ -81,6 +87,7 @@ class RootStressTracker {
  private:
   int bodies_ = 0;
   RootStressEnvelope envelope_;
+  std::vector<std::string> gears_;
   std::vector<RootStressSummary> summary_;
 };
 

@@ -48,6 +48,8 @@ inline constexpr int kRingBody = 1;
 inline int PlanetBody(int planet) { return 2 + planet; }
 /// "sun", "ring", "planet1", ...: a body's name in messages and output columns.
 std::string BodyName(int body);
+/// BodyName(b) of the bodies b = 0 … bodies − 1 (a stage's: bodies = PlanetBody(planets)).
+std::vector<std::string> BodyNames(int bodies);
 
 /// One potential contact of the stage with the bodies it joins (A and B of its mesh).
 struct StageContact {
