@@ -8,23 +8,24 @@
 // state, its stress tables: compliance::FilletStresses, transmission::SummariseRootStress) and
 // compares each gear's largest tension and compression per position.
 //
-// Tolerance (relative, per quantity), the sum of
+// Tolerance (relative, per quantity and scene), the sum of
 //  (a) the reference's discretisation error: twice the largest change of a gear's largest
 //      tension (compression) from refinement 1 to 2 (every FE size halved, the fillets' m/40 to
 //      m/80) at the positions run at both (a Richardson bound for an observed order >= 1),
-//      computed here from the committed rows;
-//  (b) the stress tables' discretisation error: the largest change of the default table mesh's
-//      peak from any refined one under a flank load near the outer point of single contact
-//      (build/benchmarks/fillet_stress_convergence SCENE GEAR: refinement 2 and 3, 10 and 20
-//      fillet elements), over both gears of the mesh: ISO 20/40 tension 2.2 % (gear 1: 44.40 MPa
-//      against 45.37 with 10 fillet elements; gear 2: 41.30 against 40.55 at refinement 2),
-//      compression 1.8 % (55.19 against 56.16; 50.50 against 49.64); paper sun–planet tension
-//      1.6 % (planet 34.21 against 34.74 with 20 fillet elements), compression 1.7 % (43.94
-//      against 44.70). The refined sequences agree within 0.2 %, so the change is the error
-//      itself, not doubled.
-// A tooth's stress is proportional to its force: the hybrid model's tooth-pair shares are held to
-// the stiffness test's tolerance (compliance_fe_reference.cpp); the FE force on the tooth with
-// the largest tension is reported beside the hybrid model's.
+//      computed here from the committed rows (ISO 20/40: 0.05 % at 2.25 and 13.5 deg; sun–planet:
+//      0.15 % at 5.6 and 16.9 deg);
+//  (b) the stress tables' discretisation error in the states compared: the largest change of a
+//      gear's largest tension (compression) at these positions from the default tables to
+//      refined ones (every table x2, 10 or 20 elements along each fillet), the [.fe_fillet_study]
+//      case below: ISO 20/40 tension 1.98 %, compression 2.45 %; sun–planet tension 4.69 %,
+//      compression 4.82 % (the default reads the sun's and planet's fillets 2–4 % low). Not
+//      doubled: the refined sequences are not monotonic (no observed order), so the largest
+//      change over three refined tables stands for the default's error; the refined models lie
+//      within 0.6 % (ISO) and 1.4 % (sun–planet) of the reference at refinement 2.
+// A single-load estimate (build/benchmarks/fillet_stress_convergence SCENE GEAR: 1.3–2.2 %)
+// understates (b) for the sun–planet pair: the contact states load the flank elsewhere.
+// Every position is asserted, tip positions too: their fillet stress depends on the force and
+// its place, not on the tip corner's local compliance.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -97,9 +98,9 @@ struct Case {
   double tables_tension, tables_compression;  // (b) of the header [-]
 };
 const Case kCases[] = {
-    {"ISO 20/40", "iso_pair_20_40.toml", "", "iso_pair_20_40_fillet.csv", 0.022, 0.018},
+    {"ISO 20/40", "iso_pair_20_40.toml", "", "iso_pair_20_40_fillet.csv", 0.0198, 0.0245},
     {"paper sun-planet", "paper_stage.toml", "sun-planet1", "paper_stage_sun_planet1_fillet.csv",
-     0.016, 0.017}};
+     0.0469, 0.0482}};
 
 // The hybrid model at grid positions: per position the peaks of both gears and whether a loaded
 // pair touches through a tip round there or one grid step away (as compliance_fe_reference.cpp).
@@ -108,9 +109,12 @@ struct HybridPosition {
   bool tip = false;
 };
 
-std::map<int, HybridPosition> Hybrid(const Case& c, const std::set<int>& indices) {
+// The tables' mesh: `refinement` ([model] mesh_refinement) and elements along each fillet.
+std::map<int, HybridPosition> Hybrid(const Case& c, const std::set<int>& indices,
+                                     int refinement = 1, int fillet_elements = 5) {
   transmission::Scene sc = transmission::ParseScene(test::SceneText(c.scene), c.scene);
   sc.model.stresses = true;
+  sc.model.mesh_refinement = refinement;
   std::optional<geometry::Stage> stage;
   if (sc.kind == transmission::SceneKind::kStage) stage.emplace(sc.stage);
   const transmission::MeshPairSetup setup =
@@ -123,6 +127,7 @@ std::map<int, HybridPosition> Hybrid(const Case& c, const std::set<int>& indices
   transmission::FeComplianceOptions options;
   options.cache_directory = EPICYCLE_TEST_CACHE_DIR;
   options.table.fillet_stress = true;
+  options.table.mesh.fillet_elements = fillet_elements;
   const transmission::FePairCompliance compliance(sc, pair, options);
   transmission::MeshStiffnessOptions o;
   o.positions = kGrid;
@@ -247,12 +252,13 @@ TEST_CASE("Root (fillet) stress over a mesh cycle against the FE contact referen
         const double dt = hy.tension / fe.tension - 1, dc = hy.compression / fe.compression - 1;
         std::printf(
             "%s %2d %8.4f deg%s gear %d: tension FE %7.2f MPa (tooth %2d, s %.3f mm, F %7.1f N) "
-            "hybrid %7.2f (tooth %2d, s %.3f mm, F %7.1f N) %s; compression FE %7.2f hybrid %7.2f "
-            "%s\n",
+            "hybrid %7.2f (tooth %2d, s %.3f mm, F %7.1f N) %s; compression FE %7.2f (tooth %2d, "
+            "s %.3f mm) hybrid %7.2f (tooth %2d, s %.3f mm) %s\n",
             c.label, index, angle_deg.at(index), h.tip ? " tip" : "    ", g + 1, fe.tension / 1e6,
             fe.tension_tooth, fe.tension_arc * 1e3, fe.force, hy.tension / 1e6, hy.tension_tooth,
             hy.tension_arc * 1e3, hy.force, Pct(dt).c_str(), fe.compression / 1e6,
-            hy.compression / 1e6, Pct(dc).c_str());
+            fe.compression_tooth, fe.compression_arc * 1e3, hy.compression / 1e6,
+            hy.compression_tooth, hy.compression_arc * 1e3, Pct(dc).c_str());
         peak_fe[g] = std::max(peak_fe[g], fe.tension);
         peak_h[g] = std::max(peak_h[g], hy.tension);
         low_fe[g] = std::min(low_fe[g], fe.compression);
@@ -260,7 +266,6 @@ TEST_CASE("Root (fillet) stress over a mesh cycle against the FE contact referen
         if (h.tip) {
           worst_tip_t = std::max(worst_tip_t, std::abs(dt));
           worst_tip_c = std::max(worst_tip_c, std::abs(dc));
-          continue;
         }
         CHECK(std::abs(dt) <= tol_t);
         CHECK(std::abs(dc) <= tol_c);
@@ -271,7 +276,8 @@ TEST_CASE("Root (fillet) stress over a mesh cycle against the FE contact referen
       }
     }
     std::fflush(stdout);
-    const std::string n = std::to_string(flank) + " flank positions";
+    const std::string n = std::to_string(flank + tips) + " positions (" + std::to_string(tips) +
+                          " tip)";
     const std::string why = " (FE 1->2 " + Pct(change_t) + " x2 + tables " +
                             Pct(c.tables_tension) + ")";
     test::VerifyRow(std::string("FE contact reference ") + c.label +
@@ -304,11 +310,52 @@ TEST_CASE("Root (fillet) stress over a mesh cycle against the FE contact referen
                         ": fillet stress at tip positions (" + std::to_string(tips) + ")",
                     "CalculiX", "hybrid model",
                     "tension " + test::Sci(worst_tip_t) + ", compression " +
-                        test::Sci(worst_tip_c) + " largest relative",
-                    "contact at a tip corner: local term's half-plane premise, docs/compliance.md");
+                        test::Sci(worst_tip_c) + " largest relative (asserted with the others)",
+                    "a tip round loaded here or one grid step away");
     test::ReportRow(std::string("FE contact reference ") + c.label +
                         ": place of the largest tension along the fillet",
                     "CalculiX", "hybrid model", test::Sci(worst_arc) + " m largest difference",
                     "the tables' fillet points are the default mesh's nodes");
+  }
+}
+
+TEST_CASE("Root (fillet) stress against the FE contact reference: the tables' refinement (study)",
+          "[.fe_fillet_study]") {
+  // Per position and gear the hybrid model's largest tension and compression with the default
+  // tables, every table refined x2, and 10 and 20 elements along each fillet, relative to the
+  // default: the tables' own discretisation error in the states the reference runs; and each
+  // refined model against the reference (refinement 1).
+  for (const Case& c : kCases) {
+    std::map<int, double> angle_deg;
+    const FePeaks reference = ReadReference(c.data, &angle_deg);
+    std::set<int> indices;
+    for (const auto& [key, peaks] : reference)
+      if (key.second == 1.0) indices.insert(key.first);
+    const std::map<int, HybridPosition> base = Hybrid(c, indices);
+    for (const auto& [refinement, fillet] :
+         {std::pair{2, 5}, std::pair{1, 10}, std::pair{1, 20}}) {
+      const std::map<int, HybridPosition> refined = Hybrid(c, indices, refinement, fillet);
+      double worst_t = 0, worst_c = 0, fe_t = 0, fe_c = 0;
+      for (int index : indices)
+        for (int g = 0; g < 2; ++g) {
+          const GearPeak& a = base.at(index).gear[static_cast<std::size_t>(g)];
+          const GearPeak& b = refined.at(index).gear[static_cast<std::size_t>(g)];
+          const double dt = a.tension / b.tension - 1, dc = a.compression / b.compression - 1;
+          worst_t = std::max(worst_t, std::abs(dt));
+          worst_c = std::max(worst_c, std::abs(dc));
+          const GearPeak& fe = reference.at({index, 1.0})[static_cast<std::size_t>(g)];
+          fe_t = std::max(fe_t, std::abs(b.tension / fe.tension - 1));
+          fe_c = std::max(fe_c, std::abs(b.compression / fe.compression - 1));
+          std::printf("%s refinement %d fillet %2d: %2d gear %d tension %7.2f -> %7.2f MPa (default "
+                      "%s), compression %7.2f -> %7.2f (default %s)\n",
+                      c.label, refinement, fillet, index, g + 1, a.tension / 1e6, b.tension / 1e6,
+                      Pct(dt).c_str(), a.compression / 1e6, b.compression / 1e6, Pct(dc).c_str());
+        }
+      std::printf("%s refinement %d fillet %2d: largest |default/refined - 1| tension %s, "
+                  "compression %s; largest |refined/FE - 1| tension %s, compression %s\n",
+                  c.label, refinement, fillet, Pct(worst_t).c_str(), Pct(worst_c).c_str(),
+                  Pct(fe_t).c_str(), Pct(fe_c).c_str());
+      std::fflush(stdout);
+    }
   }
 }
