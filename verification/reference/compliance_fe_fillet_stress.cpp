@@ -42,14 +42,13 @@
 #include "csv_rows.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/root_stress.hpp"
+#include "fe_reference_grid.hpp"
 #include "figures.hpp"
 #include "stage_fixtures.hpp"
 
 using namespace epicycle;
 
 namespace {
-
-constexpr int kGrid = 48;  // tools/fe_reference.sh's default grid
 
 // One gear's largest tension and compression at one position [Pa], where, and the normal force
 // on the tooth with the largest tension [N].
@@ -129,16 +128,8 @@ std::map<int, HybridPosition> Hybrid(const Case& c, const std::set<int>& indices
   options.table.fillet_stress = true;
   options.table.mesh.fillet_elements = fillet_elements;
   const transmission::FePairCompliance compliance(sc, pair, options);
-  transmission::MeshStiffnessOptions o;
-  o.positions = kGrid;
-  const transmission::MeshStiffnessResult r =
-      transmission::ComputeMeshStiffness(setup, pair, compliance, o);
+  const transmission::MeshStiffnessResult r = test::FeReferenceSweep(setup, pair, compliance);
   REQUIRE(r.failed == 0);
-  auto tip_at = [&](int i) {
-    for (const auto& p : r.samples.at((i + kGrid) % kGrid).pairs)
-      if (p.kind != geometry::ContactKind::kInvolute) return true;
-    return false;
-  };
   std::map<int, HybridPosition> out;
   for (int index : indices) {
     const transmission::MeshSample& s = r.samples.at(index);
@@ -197,7 +188,7 @@ std::map<int, HybridPosition> Hybrid(const Case& c, const std::set<int>& indices
       const auto it = tooth_force[g].find({g, x.tension_at.tooth});
       p.force = it == tooth_force[g].end() ? 0.0 : it->second;
     }
-    h.tip = tip_at(index - 1) || tip_at(index) || tip_at(index + 1);
+    h.tip = test::TipPosition(r, index);
   }
   return out;
 }
