@@ -5,7 +5,8 @@
 // quarters of the flank grid of tooth 0's σ = +1 flank (near the outer point of single contact).
 //
 //   build/benchmarks/fillet_stress_convergence SCENE [GEAR]
-// SCENE a pair or stage scene (default gear: the first, or the sun).
+// SCENE a pair or stage scene; GEAR gear1 or gear2 of a pair, sun, planet or ring of a stage
+// (default: gear1, or the sun).
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -26,8 +27,19 @@ int main(int argc, char** argv) {
     return 2;
   }
   const transmission::Scene scene = transmission::ReadScene(argv[1]);
-  const geometry::GearSpec spec =
-      scene.kind == transmission::SceneKind::kStage ? scene.stage.sun : scene.pair.gear1;
+  const bool stage = scene.kind == transmission::SceneKind::kStage;
+  const std::string which = argc > 2 ? argv[2] : (stage ? "sun" : "gear1");
+  geometry::GearSpec spec;
+  if (stage && (which == "sun" || which == "planet" || which == "ring")) {
+    spec = which == "sun" ? scene.stage.sun : which == "planet" ? scene.stage.planet
+                                                                : scene.stage.ring;
+  } else if (!stage && (which == "gear1" || which == "gear2")) {
+    spec = which == "gear1" ? scene.pair.gear1 : scene.pair.gear2;
+  } else {
+    std::fprintf(stderr, "fillet_stress_convergence: GEAR = '%s': must be %s\n", which.c_str(),
+                 stage ? "sun, planet or ring" : "gear1 or gear2");
+    return 2;
+  }
   const geometry::Gear gear(spec);
   std::printf("%s, gear '%s' (z = %d, m = %.3f mm), 1000 N normal load on tooth 0\n",
               scene.name.c_str(), gear.name().c_str(), gear.teeth(), gear.module() * 1e3);

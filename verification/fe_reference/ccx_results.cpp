@@ -4,6 +4,7 @@
 //   " statistics for slave set G1T3, master set G2T5 and time  0.1000000E+01" ...
 // with its "normal force" line.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -162,6 +163,8 @@ FeSample Interpolate(const FeDeckInfo& info, const std::vector<FeStepResult>& st
   s.approach = theta * info.base_radius1;
   s.mesh_stiffness = target / info.base_radius1 / s.approach;
   const double u = (theta - theta_a) / (theta_b - theta_a);
+  s.step = i;
+  s.weight = u;
   s.pair_force.resize(info.pairs.size());
   for (std::size_t j = 0; j < info.pairs.size(); ++j) {
     s.pair_force[j] = a.pair_force[j] + u * (b.pair_force[j] - a.pair_force[j]);
@@ -172,6 +175,105 @@ FeSample Interpolate(const FeDeckInfo& info, const std::vector<FeStepResult>& st
   s.moment_balance = std::abs(sum_last * info.base_radius1 - std::abs(steps.back().moment)) /
                      std::abs(steps.back().moment);
   return s;
+}
+
+std::vector<std::vector<double>> ReadFilletStresses(const std::string& directory,
+                                                    const FeDeckInfo& info) {
+  // CalculiX's ASCII .frd: per output increment a "100CL" header whose third field is the total
+  // time, then for "-4  STRESS" the rows " -1" + node (10 columns) + SXX SYY SZZ SXY SYZ SZX
+  // (12 columns each, which may touch), ended by " -3".
+  const std::string path = directory + "/deck.frd";
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot be read (did ccx run?)");
+  std::map<int, std::size_t> slot;
+  for (std::size_t j = 0; j < info.fillet_nodes.size(); ++j) slot[info.fillet_nodes[j].node] = j;
+  std::map<double, std::map<int, std::array<double, 3>>> at_time;  // time → node → xx, yy, xy
+  double time = -1;
+  bool stress = false;
+  std::string line;
+  std::size_t number = 0;
+  while (std::getline(f, line)) {
+    ++number;
+    if (StartsWith(line, "100CL")) {
+      std::istringstream h(line);
+      std::string tag, code;
+      h >> tag >> code >> time;
+      stress = false;
+    } else if (StartsWith(line, "-4")) {
+      stress = line.find("STRESS") != std::string::npos;
+    } else if (StartsWith(line, "-3")) {
+      stress = false;
+    } else if (stress && line.size() >= 13 + 6 * 12 && line.compare(0, 3, " -1") == 0) {
+      if (!IsStepEnd(time)) continue;
+      const int node = std::stoi(line.substr(3, 10));
+      if (!slot.count(node)) continue;
+      std::array<double, 6> v{};
+      for (int c = 0; c < 6; ++c) {
+        const std::string field = line.substr(13 + 12 * c, 12);
+        char* end = nullptr;
+        v[c] = std::strtod(field.c_str(), &end);
+        if (end == field.c_str() || !std::isfinite(v[c]))
+          throw std::runtime_error(path + ":" + std::to_string(number) +
+                                   ": cannot read the stress of node " + std::to_string(node));
+      }
+      at_time[time][node] = {v[0], v[1], v[3]};
+    }
+  }
+  if (at_time.size() != info.rotations.size())
+    throw std::runtime_error(path + ": stresses of " + std::to_string(at_time.size()) + " of " +
+                             std::to_string(info.rotations.size()) + " steps");
+  std::vector<std::vector<double>> out;
+  for (const auto& [t, nodes] : at_time) {
+    std::vector<double> sigma(info.fillet_nodes.size());
+    for (std::size_t j = 0; j < info.fillet_nodes.size(); ++j) {
+      const FeFilletNode& n = info.fillet_nodes[j];
+      const auto it = nodes.find(n.node);
+      if (it == nodes.end())
+        throw std::runtime_error(path + ": no stress of fillet node " + std::to_string(n.node) +
+                                 " at time " + std::to_string(t));
+      const auto& [xx, yy, xy] = it->second;
+      // tᵀσt [MPa → Pa]
+      sigma[j] = (n.tx * n.tx * xx + n.ty * n.ty * yy + 2 * n.tx * n.ty * xy) * 1e6;
+    }
+    out.push_back(std::move(sigma));
+  }
+  return out;
+}
+
+std::vector<FeToothFillet> FilletExtremes(const FeDeckInfo& info, const FeSample& sample,
+                                          const std::vector<std::vector<double>>& sigma) {
+  if (sample.step + 1 >= sigma.size())
+    throw std::invalid_argument("fe reference: fillet stresses of " +
+                                std::to_string(sigma.size()) + " steps, step " +
+                                std::to_string(sample.step + 2) + " needed");
+  const std::vector<double>& a = sigma[sample.step];
+  const std::vector<double>& b = sigma[sample.step + 1];
+  std::map<std::pair<int, int>, FeToothFillet> teeth;
+  for (std::size_t j = 0; j < info.fillet_nodes.size(); ++j) {
+    const FeFilletNode& n = info.fillet_nodes[j];
+    const double v = a[j] + sample.weight * (b[j] - a[j]);
+    auto [it, fresh] = teeth.try_emplace({n.gear, n.tooth});
+    FeToothFillet& t = it->second;
+    if (fresh) {
+      t.gear = n.gear;
+      t.tooth = n.tooth;
+      t.tension = -std::numeric_limits<double>::infinity();
+      t.compression = std::numeric_limits<double>::infinity();
+    }
+    if (v > t.tension) {
+      t.tension = v;
+      t.tension_side = n.side;
+      t.tension_arc = n.arc_length;
+    }
+    if (v < t.compression) {
+      t.compression = v;
+      t.compression_side = n.side;
+      t.compression_arc = n.arc_length;
+    }
+  }
+  std::vector<FeToothFillet> out;
+  for (auto& [key, t] : teeth) out.push_back(t);
+  return out;
 }
 
 }  // namespace epicycle::fe_reference

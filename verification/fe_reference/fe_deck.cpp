@@ -47,6 +47,8 @@ struct GearModel {
   int hub_curve = 0;
   // (tooth, side) → the curves of its involute and tip round (the loaded part of a flank).
   std::map<std::pair<int, int>, std::vector<int>> flank_curves;
+  // (tooth, side) → the curves of its root land and fillet.
+  std::map<std::pair<int, int>, std::vector<int>> fillet_curves;
   std::set<int> curves;
 };
 
@@ -68,7 +70,7 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
   struct Piece {
     std::vector<Vec2> points;
     int tooth = 0, side = 0;
-    bool flank = false;
+    bool flank = false, fillet = false;
   };
   std::vector<Piece> pieces;
   const int z = gear.teeth();
@@ -85,6 +87,8 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
         piece.side = side;
         piece.flank = seg.role == geometry::SegmentRole::kInvolute ||
                       seg.role == geometry::SegmentRole::kTipRound;
+        piece.fillet = seg.role == geometry::SegmentRole::kRootLand ||
+                       seg.role == geometry::SegmentRole::kFillet;
         for (int j = 0; j <= n; ++j) {
           const double t = seg.t0 + (seg.t1 - seg.t0) * (side < 0 ? j : n - j) / n;
           Vec2 p = seg.Point(t);
@@ -116,6 +120,7 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
     outline.push_back(c);
     g.curves.insert(c);
     if (piece.flank) g.flank_curves[{piece.tooth, piece.side}].push_back(c);
+    if (piece.fillet) g.fillet_curves[{piece.tooth, piece.side}].push_back(c);
   }
   const Vec2 c = world(Vec2::Zero());
   const double r = gear.spec().hub_radius * kMm;
@@ -147,6 +152,56 @@ struct ToothZone {
   }
 };
 
+// The fillet (root land and fillet) of one tooth side as a dense polyline in the deck's frame
+// [mm] with the arc length from the space centre line: where a mesh node on it lies along the
+// fillet and the surface tangent there (chords of 1/400 of a segment: the direction within
+// κ·chord/2 < 1e-3 rad of the tangent, the arc length within 1e-6 relative).
+struct FilletLine {
+  int gear = 1, tooth = 0, side = 1;
+  std::vector<Vec2> p;     // [mm]
+  std::vector<double> s;   // [mm]
+  // The nearest point of the polyline to x: arc length [mm], unit tangent, distance [mm].
+  void Project(const Vec2& x, double* arc, Vec2* tangent, double* distance) const {
+    *distance = 1e300;
+    for (std::size_t j = 0; j + 1 < p.size(); ++j) {
+      const Vec2 d = p[j + 1] - p[j];
+      const double len2 = d.squaredNorm();
+      if (!(len2 > 0)) continue;
+      const double u = std::clamp((x - p[j]).dot(d) / len2, 0.0, 1.0);
+      const double dist = (x - (p[j] + u * d)).norm();
+      if (dist < *distance) {
+        *distance = dist;
+        *arc = s[j] + u * (s[j + 1] - s[j]);
+        *tangent = d.normalized();
+      }
+    }
+  }
+};
+
+FilletLine MakeFilletLine(const geometry::Gear& gear, const geometry::GearPose& pose, int which,
+                          int tooth, int side) {
+  FilletLine line;
+  line.gear = which;
+  line.tooth = tooth;
+  line.side = side;
+  constexpr int kPoints = 400;
+  for (const geometry::Segment& seg : gear.half_profile().segments) {
+    if (seg.role != geometry::SegmentRole::kRootLand && seg.role != geometry::SegmentRole::kFillet)
+      break;  // the half profile starts at the space centre line: root land, fillet, involute ...
+    for (int j = line.p.empty() ? 0 : 1; j <= kPoints; ++j) {
+      Vec2 q = seg.Point(seg.t0 + (seg.t1 - seg.t0) * j / kPoints);
+      if (side < 0) q.y() = -q.y();
+      const Vec2 w = pose.geometric_centre +
+                     geometry::Rotate(geometry::Rotate(q, tooth * gear.pitch_angle()),
+                                      pose.rotation);
+      const Vec2 mm(w.x() * kMm, w.y() * kMm);
+      line.s.push_back(line.p.empty() ? 0.0 : line.s.back() + (mm - line.p.back()).norm());
+      line.p.push_back(mm);
+    }
+  }
+  return line;
+}
+
 struct Tri {
   std::array<int, 6> n;  // corners a, b, c, mid-sides ab, bc, ca (compact 0-based indices)
   int body = 0;
@@ -165,6 +220,7 @@ void FeMeshOptions::Validate() const {
   positive("grading", grading);
   positive("tooth_size_per_module", tooth_size_per_module);
   positive("body_size_per_module", body_size_per_module);
+  positive("fillet_size_per_module", fillet_size_per_module);
   positive("refinement", refinement);
   if (points_per_segment < 4)
     throw std::invalid_argument(
@@ -172,6 +228,9 @@ void FeMeshOptions::Validate() const {
   if (tooth_zone < 0)
     throw std::invalid_argument("fe mesh: tooth_zone = " + std::to_string(tooth_zone) +
                                 ": must be >= 0");
+  if (fillet_zone < 0 || fillet_zone > tooth_zone)
+    throw std::invalid_argument("fe mesh: fillet_zone = " + std::to_string(fillet_zone) +
+                                ": must be in [0, tooth_zone]");
 }
 
 void FeDeckInfo::Write(const std::string& path) const {
@@ -188,6 +247,9 @@ void FeDeckInfo::Write(const std::string& path) const {
       << p.rigid_gap << "\n";
   for (std::size_t i = 0; i < hub_nodes.size(); ++i)
     f << "hub " << hub_nodes[i] << " " << hub_x[i] << " " << hub_y[i] << "\n";
+  for (const FeFilletNode& n : fillet_nodes)
+    f << "fillet " << n.gear << " " << n.tooth << " " << n.side << " " << n.node << " "
+      << n.arc_length << " " << n.tx << " " << n.ty << "\n";
 }
 
 FeDeckInfo FeDeckInfo::Read(const std::string& path) {
@@ -237,6 +299,11 @@ FeDeckInfo FeDeckInfo::Read(const std::string& path) {
       info.hub_nodes.push_back(id);
       info.hub_x.push_back(x);
       info.hub_y.push_back(y);
+    } else if (key == "fillet") {
+      FeFilletNode n;
+      ok = static_cast<bool>(s >> n.gear >> n.tooth >> n.side >> n.node >> n.arc_length >> n.tx >>
+                             n.ty);
+      info.fillet_nodes.push_back(n);
     } else if (!key.empty()) {
       ok = false;
     }
@@ -324,6 +391,41 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
     return fine;
   };
 
+  // The fillets whose stress is read: both sides of the loaded teeth and their fillet_zone
+  // neighbours, meshed at h_f (the stress peaks there; the contact and tooth sizes do not reach it).
+  const double h_f = mesh.fillet_size_per_module * m / mesh.refinement;
+  std::vector<FilletLine> fillet_lines;
+  auto add_fillets = [&](const geometry::Gear& g, const geometry::GearPose& pose, int which,
+                         const std::set<int>& loaded) {
+    std::set<int> teeth;
+    for (int k : loaded)
+      for (int d = -mesh.fillet_zone; d <= mesh.fillet_zone; ++d)
+        teeth.insert(((k + d) % g.teeth() + g.teeth()) % g.teeth());
+    for (int k : teeth)
+      for (int side : {-1, 1}) fillet_lines.push_back(MakeFilletLine(g, pose, which, k, side));
+  };
+  add_fillets(g1, poses.gear1, 1, teeth1);
+  add_fillets(g2, poses.gear2, 2, teeth2);
+  // The size field's view of each fillet: every 10th polyline point and the bounding box.
+  struct FilletZone {
+    int gear = 1;
+    std::vector<Vec2> points;
+    Vec2 lo, hi;
+  };
+  std::vector<FilletZone> fillet_zones;
+  for (const FilletLine& line : fillet_lines) {
+    FilletZone z;
+    z.gear = line.gear;
+    z.lo = z.hi = line.p.front();
+    for (std::size_t j = 0; j < line.p.size(); ++j) {
+      if (j % 10 != 0 && j + 1 != line.p.size()) continue;
+      z.points.push_back(line.p[j]);
+      z.lo = z.lo.cwiseMin(line.p[j]);
+      z.hi = z.hi.cwiseMax(line.p[j]);
+    }
+    fillet_zones.push_back(std::move(z));
+  }
+
   GmshSession session;
   const GearModel m1 = BuildGear(g1, poses.gear1, fine_of(g1, teeth1), mesh.points_per_segment);
   const GearModel m2 = BuildGear(g2, poses.gear2, fine_of(g2, teeth2), mesh.points_per_segment);
@@ -342,6 +444,14 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
     const bool on2 = (dim == 2 && tag == m2.surface) || (dim == 1 && m2.curves.count(tag));
     if (on1 || !on2) s = std::min(s, h_tooth + mesh.grading * zone1.Distance(x, y));
     if (on2 || !on1) s = std::min(s, h_tooth + mesh.grading * zone2.Distance(x, y));
+    for (const FilletZone& z : fillet_zones) {
+      if ((z.gear == 1 && on2 && !on1) || (z.gear == 2 && on1 && !on2)) continue;
+      const double bx = std::max({0.0, z.lo.x() - x, x - z.hi.x()});
+      const double by = std::max({0.0, z.lo.y() - y, y - z.hi.y()});
+      if (h_f + mesh.grading * std::hypot(bx, by) >= s) continue;
+      for (const Vec2& q : z.points)
+        s = std::min(s, h_f + mesh.grading * std::hypot(x - q.x(), y - q.y()));
+    }
     return s;
   });
   gmsh::model::mesh::generate(2);
@@ -509,6 +619,44 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   for (int i : hub2) slab(i, [&](int id) { hub2_ids.push_back(id); });
   write_set("HUB2", hub2_ids);
 
+  // Fillet nodes (corner and mid-side nodes of the fillet curves, z = 0 layer): their place along
+  // the fillet and the surface tangent, from the exact profile (the nodes lie on the splines
+  // through it, within a micrometre).
+  std::vector<int> fillet_ids;
+  for (const FilletLine& line : fillet_lines) {
+    const GearModel& g = line.gear == 1 ? m1 : m2;
+    std::set<int> seen;
+    for (int curve : g.fillet_curves.at({line.tooth, line.side})) {
+      std::vector<std::size_t> tags;
+      std::vector<double> c, u;
+      gmsh::model::mesh::getNodes(tags, c, u, 1, curve, true, false);
+      for (std::size_t tag : tags) {
+        const int i = index.at(tag);
+        if (!seen.insert(i).second) continue;
+        FeFilletNode n;
+        n.gear = line.gear;
+        n.tooth = line.tooth;
+        n.side = line.side;
+        n.node = bottom(i);
+        double arc = 0, distance = 0;
+        Vec2 t = Vec2::Zero();
+        line.Project(xy[i], &arc, &t, &distance);
+        if (distance > 1e-3)
+          throw std::runtime_error("fe deck: fillet node " + std::to_string(n.node) + " lies " +
+                                   Num(distance) + " mm off its fillet");
+        n.arc_length = arc / kMm;
+        n.tx = t.x();
+        n.ty = t.y();
+        info.fillet_nodes.push_back(n);
+        fillet_ids.push_back(n.node);
+      }
+    }
+  }
+  std::sort(fillet_ids.begin(), fillet_ids.end());
+  fillet_ids.erase(std::unique(fillet_ids.begin(), fillet_ids.end()), fillet_ids.end());
+  if (fillet_ids.empty()) throw std::runtime_error("fe deck: no fillet node");
+  write_set("FILLETS", fillet_ids);
+
   // Contact surfaces: the wedge faces over the flank curves' boundary edges within `reach` of
   // the pair's rigid contact points (the Hertzian half-width is ~0.1 mm and the contact moves
   // less than that under load; the whole flank as slave makes CalculiX's contact search drop
@@ -563,7 +711,7 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
       f << info.hub_nodes[i] << ", 1, 1, " << Num(-theta * info.hub_y[i]) << "\n"
         << info.hub_nodes[i] << ", 2, 2, " << Num(theta * info.hub_x[i]) << "\n";
     }
-    f << "*NODE PRINT, NSET=HUB1\nRF\n";
+    f << "*NODE PRINT, NSET=HUB1\nRF\n*EL FILE, NSET=FILLETS\nS\n";
     for (const FeToothPair& p : info.pairs)  // CF needs the pair named (ccx 2.20)
       f << "*CONTACT PRINT, SLAVE=" << p.slave << ", MASTER=" << p.master << "\nCF\n";
     f << "*END STEP\n";

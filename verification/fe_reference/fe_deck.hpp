@@ -35,6 +35,10 @@ struct FeMeshOptions {
   double tooth_size_per_module = 0.25;  ///< on the teeth next to the mesh, per module [-]
   double body_size_per_module = 2.0;    ///< the largest size, away from the mesh, per module [-]
   int tooth_zone = 2;                   ///< teeth either side of the loaded ones meshed finely [-]
+  /// h_f on the fillets (root land and fillet, both sides) of the loaded teeth and of the
+  /// `fillet_zone` teeth either side, per module [-]: m/40 = ρ_F/15 on the ISO rack's fillet
+  double fillet_size_per_module = 0.025;
+  int fillet_zone = 1;  ///< teeth either side of the loaded ones whose fillet stress is read [-]
   double refinement = 1.0;              ///< divides every size [-], > 0
   int points_per_segment = 40;          ///< interpolation points of each profile spline [-]
   void Validate() const;                ///< @throws std::invalid_argument naming the field
@@ -55,6 +59,15 @@ struct FeToothPair {
   double rigid_gap = 0;        ///< smallest rigid gap of the pair's contacts at the position [m]
 };
 
+/// A node on a fillet curve (root land or fillet) whose surface tangential stress is read.
+struct FeFilletNode {
+  int gear = 1;             ///< 1 or 2
+  int tooth = 0, side = 1;  ///< body-frame tooth index and flank side σ = ±1
+  int node = 0;             ///< CalculiX id (the slab's z = 0 layer)
+  double arc_length = 0;    ///< along the profile from the space centre line [m]
+  double tx = 0, ty = 0;    ///< unit surface tangent in the deck's x-y plane [-]
+};
+
 /// What the reader needs besides the .dat file.
 struct FeDeckInfo {
   double thickness = 1e-3;        ///< t [m] of the slab
@@ -66,6 +79,7 @@ struct FeDeckInfo {
   std::vector<FeToothPair> pairs;
   std::vector<int> hub_nodes;        ///< CalculiX ids of gear 1's hub nodes
   std::vector<double> hub_x, hub_y;  ///< their coordinates relative to c_1 [mm]
+  std::vector<FeFilletNode> fillet_nodes;  ///< the nodes of the fillets whose stress is written
   int nodes = 0, elements = 0;       ///< of the 3-D deck
   int nodes_2d = 0, triangles = 0;   ///< of the gmsh mesh
   int straightened = 0;  ///< curved triangles given straight sides (inside out on a small round)
@@ -96,6 +110,8 @@ struct FeStepResult {
 /// when |T| lies outside, which `extrapolated` reports).
 struct FeSample {
   double angle = 0;                ///< [rad]
+  std::size_t step = 0;            ///< the first of the two steps interpolated between
+  double weight = 0;               ///< u: value = (1 − u) at `step` + u at `step` + 1 [-]
   double rotation = 0;             ///< θ at T [rad]: the loaded transmission error
   double approach = 0;             ///< δ = |θ| r_b1 [m]
   double mesh_stiffness = 0;       ///< k = (|T|/r_b1)/δ [N/m]
@@ -111,5 +127,28 @@ struct FeSample {
 std::vector<FeStepResult> ReadSteps(const std::string& directory, const FeDeckInfo& info);
 /// @throws std::runtime_error with fewer than two steps or a non-monotonic M(θ).
 FeSample Interpolate(const FeDeckInfo& info, const std::vector<FeStepResult>& steps);
+
+/// The fillet stress of one tooth at the scene's torque: the largest tension and the most
+/// negative compression of σ_tt over the nodes of both its fillets, and where.
+struct FeToothFillet {
+  int gear = 1, tooth = 0;
+  double tension = 0;  ///< max σ_tt [Pa] (may be < 0 on a tooth without tension)
+  int tension_side = 1;
+  double tension_arc = 0;  ///< [m] from the space centre line
+  double compression = 0;  ///< min σ_tt [Pa]
+  int compression_side = 1;
+  double compression_arc = 0;  ///< [m]
+};
+
+/// σ_tt = tᵀσt at every fillet node of deck.info at the end of every step, from CalculiX's
+/// `<directory>/deck.frd` (the nodal stresses of *EL FILE: each element's integration-point
+/// stresses extrapolated to its nodes, averaged over the elements sharing the node) [Pa], one
+/// vector per step in info.fillet_nodes order.
+/// @throws std::runtime_error when the file is missing or lacks a step's stresses or a node.
+std::vector<std::vector<double>> ReadFilletStresses(const std::string& directory,
+                                                    const FeDeckInfo& info);
+/// Per tooth the extremes of σ_tt interpolated linearly in θ between the sample's two steps.
+std::vector<FeToothFillet> FilletExtremes(const FeDeckInfo& info, const FeSample& sample,
+                                          const std::vector<std::vector<double>>& sigma);
 
 }  // namespace epicycle::fe_reference

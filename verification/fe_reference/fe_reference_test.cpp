@@ -59,6 +59,8 @@ TEST_CASE("FE contact reference: CalculiX run of one position, equilibrium and c
   const geometry::GearPair pair(setup.spec);
   fe_reference::FeMeshOptions mesh;
   mesh.refinement = 0.7;
+  // The committed rows predate the fillets' refinement: their mesh has the tooth size there.
+  mesh.fillet_size_per_module = mesh.tooth_size_per_module;
   const double te = coarse.hybrid_te_urad * 1e-6;
   const fe_reference::FeDeckInfo info =
       fe_reference::WriteDeck(scene, pair, setup.torque, coarse.angle_deg * geometry::kPi / 180.0,

@@ -63,6 +63,20 @@ int Read(const std::string& dir) {
   return 0;
 }
 
+// Per tooth of the fillet nodes of deck.info: gear, tooth, the largest tension [MPa], its side σ
+// and arc length from the space centre line [mm], the same of the most negative compression.
+int Fillets(const std::string& dir) {
+  const fe_reference::FeDeckInfo info = fe_reference::FeDeckInfo::Read(dir + "/deck.info");
+  const fe_reference::FeSample s =
+      fe_reference::Interpolate(info, fe_reference::ReadSteps(dir, info));
+  for (const fe_reference::FeToothFillet& t :
+       fe_reference::FilletExtremes(info, s, fe_reference::ReadFilletStresses(dir, info)))
+    std::printf("%d,%d,%.6g,%d,%.5f,%.6g,%d,%.5f\n", t.gear, t.tooth, t.tension / 1e6,
+                t.tension_side, t.tension_arc * 1e3, t.compression / 1e6, t.compression_side,
+                t.compression_arc * 1e3);
+  return 0;
+}
+
 // Figures of docs/compliance.md: the hybrid model over its grid (lines) and the FE reference
 // (markers, one series per refinement): mesh stiffness, transmission error, tooth-pair shares.
 int Plot(const std::string& hybrid_csv, const std::string& fe_csv, const std::string& prefix,
@@ -160,9 +174,14 @@ int main(int argc, char** argv) {
   deck->add_option("--refinement", mesh.refinement, "divides every mesh size");
   deck->add_option("--contact-size-um", contact_size_um, "element size at the contacts [um]");
   deck->add_option("--penalty", contact.penalty, "contact penalty [MPa/mm]");
+  deck->add_option("--fillet-size-per-module", mesh.fillet_size_per_module,
+                   "element size on the read fillets per module [-]");
   deck->add_option("--out", out, "output directory");
   CLI::App* read = app.add_subcommand("read", "read DIR/deck.dat, print the reference CSV row");
   read->add_option("dir", dir, "directory of deck.inp")->required();
+  CLI::App* fillets =
+      app.add_subcommand("fillets", "read DIR/deck.frd, print each read tooth's fillet stresses");
+  fillets->add_option("dir", dir, "directory of deck.inp")->required();
   std::string hybrid_csv, fe_csv, prefix, title;
   CLI::App* plot = app.add_subcommand("plot", "figures: hybrid model against the FE reference");
   plot->add_option("hybrid", hybrid_csv, "the hybrid model's stiffness CSV")->required();
@@ -174,6 +193,7 @@ int main(int argc, char** argv) {
     if (*plot) return Plot(hybrid_csv, fe_csv, prefix, title);
     mesh.contact_size = contact_size_um * 1e-6;
     if (*deck) return Deck(scene, mesh_name, angle_deg, rotations, mesh, contact, out);
+    if (*fillets) return Fillets(dir);
     return Read(dir);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);

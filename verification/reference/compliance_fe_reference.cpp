@@ -20,14 +20,13 @@
 
 #include "csv_rows.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
+#include "fe_reference_grid.hpp"
 #include "figures.hpp"
 #include "stage_fixtures.hpp"
 
 using namespace epicycle;
 
 namespace {
-
-constexpr int kGrid = 48;  // tools/fe_reference.sh's default grid
 
 struct FeRow {
   int index = 0;
@@ -81,23 +80,15 @@ Comparison Compare(const std::string& scene, const std::vector<FeRow>& reference
         join_depth_factor * std::min(defaults.JoiningDepth(0), defaults.JoiningDepth(1));
   }
   const transmission::FePairCompliance fe(sc, pair, tables);
-  transmission::MeshStiffnessOptions o;
-  o.positions = kGrid;
-  const transmission::MeshStiffnessResult r =
-      transmission::ComputeMeshStiffness(setup, pair, fe, o);
+  const transmission::MeshStiffnessResult r = test::FeReferenceSweep(setup, pair, fe);
   REQUIRE(r.failed == 0);
-  auto tip_at = [&](int i) {
-    for (const auto& p : r.samples.at((i + kGrid) % kGrid).pairs)
-      if (p.kind != geometry::ContactKind::kInvolute) return true;
-    return false;
-  };
   const double b_mm = r.face_width * 1e3;
   Comparison c;
   for (const FeRow& ref : reference) {
     const transmission::MeshSample& s = r.samples.at(ref.index);
     REQUIRE(geometry::Deg(s.angle) == Approx(ref.angle_deg).margin(1e-5));
     REQUIRE(s.converged);
-    const bool tip = tip_at(ref.index - 1) || tip_at(ref.index) || tip_at(ref.index + 1);
+    const bool tip = test::TipPosition(r, ref.index);
     const double k = s.mesh_stiffness / b_mm / 1e6;
     const double dk = k / ref.k - 1.0;
     const double dte = std::abs(s.rotation * 1e6) / std::abs(ref.te_urad) - 1.0;
