@@ -7,8 +7,11 @@
 #include "common.hpp"
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/report/geometry_json.hpp"
+#include "epicycle/report/ratings.hpp"
+#include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
@@ -256,6 +259,13 @@ py::object SummaryObject(const transmission::SweepSummary& s) {
     f["friction_power_mean_W"] = s.friction_power_mean;
     f["friction_iterations_mean"] = s.friction_iterations_mean;
   }
+  // Stresses on: the same read-outs as the program's summary JSON (report/), as Python objects.
+  if (!s.root_stress.empty())
+    f["root_stress"] =
+        JsonToPython(report::RootStressJson(s.root_stress, "carrier_deg", geometry::Deg(1.0)));
+  if (!s.contact_pressure.empty())
+    f["contact_pressure"] = JsonToPython(
+        report::ContactPressureJson(s.contact_pressure, "carrier_deg", geometry::Deg(1.0)));
   return Result(f);
 }
 
@@ -265,7 +275,16 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
                        std::optional<std::vector<double>> angles_deg, int threads, bool warm_start,
                        const std::string& backend, bool local_terms,
                        std::optional<std::string> cache_dir, py::object progress,
-                       bool raise_on_failure, const std::string& friction) {
+                       bool raise_on_failure, const std::string& friction, bool stresses,
+                       bool rating) {
+  // Stresses (or a rating, which needs them): the scene with [model] stresses = true.
+  ScenePtr run_scene = s;
+  if ((stresses || rating) && !s->scene().model.stresses)
+    run_scene = s->Edited([](toml::table& t) {
+      if (!t["model"].is_table()) t.insert_or_assign("model", toml::table{});
+      t["model"].as_table()->insert_or_assign("stresses", true);
+    });
+  if (rating) transmission::CheckRatingInputs(run_scene->scene(), "rating=True");
   transmission::QuasiStaticOptions opt;
   opt.backend = BackendOf(backend);
   opt.threads = threads;
@@ -285,7 +304,7 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   };
   Out out = RunReleased(token, [&] {
     Out o;
-    o.rig = s->Rig(cache_dir, "quasistatic");
+    o.rig = run_scene->Rig(cache_dir, "quasistatic");
     const geometry::Stage& stage = o.rig->stage;
     std::vector<double> angles;
     if (angles_deg) {
@@ -397,7 +416,11 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     f["force_change"] = Array(std::move(change));
   }
   f["pairs"] = Result(pairs);
-  f["summary"] = SummaryObject(transmission::SummariseSweep(out.results, n));
+  const transmission::SweepSummary summary = transmission::SummariseSweep(out.results, n);
+  f["summary"] = SummaryObject(summary);
+  if (rating && summary.converged > 0)
+    f["rating"] = JsonToPython(report::RatingJson(
+        transmission::RateStage(out.rig->scene, out.rig->stage, summary)));
   f["warnings"] = out.warnings;
   py::object result = Result(f);
   if (failed > 0 && raise_on_failure)
@@ -449,7 +472,8 @@ contact_ratio [-] (tip circles); torque_Nm, face_width_mm, warnings. Raises Comp
         py::arg("threads") = 0, py::arg("warm_start") = true, py::arg("backend") = "newton",
         py::arg("local_terms") = true, py::arg("cache_dir") = py::none(),
         py::arg("progress") = py::none(), py::arg("raise_on_failure") = true,
-        py::arg("friction") = "off", R"doc(
+        py::arg("friction") = "off", py::arg("stresses") = false, py::arg("rating") = false,
+        R"doc(
 Quasi-static load sharing of a stage over carrier positions (`epicycle quasistatic`; docs/
 quasistatic.md). The sun support is the scene's (key supports.sun: "fixed", "floating").
 
@@ -478,6 +502,14 @@ friction: friction at rest (docs/quasistatic.md, "Friction at rest"): "off" (def
   point's last relative change), per pair friction_N [N] and sliding_m_per_s [m/s], and in the
   summary efficiency_mean, efficiency_min [-], friction_power_mean_W [W],
   friction_iterations_mean [-]; lsr is then the whole sun-mesh torque's share, friction included.
+stresses: root stresses and contact pressures (docs/stresses.md; the scene's model.stresses): the
+  summary gets root_stress (per gear tension_MPa, compression_MPa [MPa] with carrier_deg, tooth,
+  fillet and arc_from_space_centre_mm [mm], largest_range_MPa) and contact_pressure (per gear and
+  flank hertz_pressure_MPa [MPa], half_width_um [µm], roll_deg [deg], contact, mesh, carrier_deg).
+rating: ISO 6336 ratings (implies stresses; needs the scene's material.bending_limit_MPa and
+  material.contact_limit_MPa): the Result gets rating, as `epicycle quasistatic --rating`'s JSON
+  (per gear sigma_F_*_MPa, S_F_*, sigma_H_*_MPa, S_H_* with the table's and the run's K_gamma and
+  the model's own; every factor with its value and source).
 Raises ValueError for bad input; ComputationError (its .result the Result above) if positions
 failed and raise_on_failure.)doc");
 }

@@ -159,3 +159,27 @@ def test_quasistatic_friction_at_rest_equals_the_program_files(tmp_path, sun):
     assert j["friction_power_mean_W"] == r.summary.friction_power_mean_W
     with pytest.raises(ValueError, match="friction = \"wet\": must be one of off, scene"):
         python_sweep(sun, friction="wet")
+
+
+def test_quasistatic_rating_equals_the_program(tmp_path):
+    """Stresses and ratings (docs/stresses.md): the summary's root stresses and contact pressures
+    and the rating through Python equal the program's summary JSON; a rating without the
+    material's limits raises ValueError naming the key."""
+    text = open(scene_path("paper_stage_runout.toml")).read().replace(
+        "poisson_ratio = 0.3\n", "poisson_ratio = 0.3\nbending_limit_MPa = 430\n"
+        "contact_limit_MPa = 1500\n", 1)
+    path = tmp_path / "rated.toml"
+    path.write_text(text)
+    out = tmp_path / "cli"
+    run_cli("quasistatic", path, "--positions", 6, "--threads", 1, "--rating", "--quiet",
+            "--out", out)
+    j = read_json(out / "quasistatic_summary.json")
+    r = epicycle.quasistatic(epicycle.Scene.load(str(path)), positions=6, threads=1, rating=True)
+    assert r.summary.root_stress == j["root_stress"]
+    assert r.summary.contact_pressure == j["contact_pressure"]
+    assert r.rating == j["rating"]
+    assert len(r.rating["gears"]) == 5
+    with pytest.raises(ValueError, match=r"rating=True needs the scene's \[material\] "
+                                         r"bending_limit_MPa"):
+        epicycle.quasistatic(epicycle.Scene.load(scene_path("paper_stage_runout.toml")),
+                             positions=2, rating=True)
