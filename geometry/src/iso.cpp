@@ -230,7 +230,8 @@ ContactFactors ContactFactorsB(int pinion_teeth, double alpha, double alpha_w,
     fail("contact ratio", contact_ratio, "must lie in (1, 2.5) (a single pair contact exists)");
   const double pi = 3.14159265358979323846;
   ContactFactors f;
-  f.z_h = std::sqrt(2 * std::cos(alpha_w) / (std::cos(alpha) * std::cos(alpha) * std::sin(alpha_w)));
+  f.z_h = std::sqrt(2 * std::cos(alpha_w) /
+                    (std::cos(alpha) * std::cos(alpha) * std::sin(alpha_w)));
   f.z_eps = std::sqrt((4 - contact_ratio) / 3);
   const double line = centre_distance * std::sin(alpha_w);  // T_1 T_2 along the line of action
   const double base_pitch = 2 * pi * rb1 / pinion_teeth;  // p_b, the same on both gears

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "epicycle/geometry/iso.hpp"
+#include "epicycle/geometry/plane.hpp"
 
 namespace epicycle::transmission {
 
@@ -19,7 +20,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kStressCorrection = 2.0;  // Y_ST of the reference test gear (ISO 6336-3)
 constexpr double kReversedBending = 0.7;   // Y_M of an idler (ISO 6336-5)
 
-std::string Deg(double rad) { return fmt::format("{:.4g} deg", rad * 180 / geometry::kPi); }
+std::string Deg(double rad) { return fmt::format("{:.4g} deg", geometry::Deg(rad)); }
 
 // One mesh's ISO 6336-2 data: pinion (fewer teeth; the planet in a ring mesh) and wheel.
 struct MeshContact {
