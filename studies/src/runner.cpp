@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <thread>
 
 #include "epicycle/studies/sampling.hpp"
@@ -32,7 +33,7 @@ namespace epicycle::studies {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kResultFields = 10;  // ok .. message, after the sampled values
+constexpr int kResultFields = 10;  // ok .. message, after the sampled values (then the check)
 
 // The shortest text that reads back to the same double (std::to_chars): the same result always
 // gives the same bytes, whatever thread or rank computed it. Non-finite: an empty field.
@@ -74,6 +75,20 @@ std::string Clean(std::string m) {
   return m;
 }
 
+// The row's check field: FNV-1a (64 bit) of every byte before ",<check>", as 16 hex digits. It
+// tells a row as written from one changed afterwards (an edited value would otherwise be resumed
+// and move the summary); it is a check of integrity against accidents, not a signature.
+std::string RowCheck(std::string_view text) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const char c : text) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 0x100000001b3ULL;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
 }  // namespace
 
 std::string CaseRow::Format() const {
@@ -91,6 +106,7 @@ std::string CaseRow::Format() const {
     field(ok ? Exact(v) : std::string());
   for (double v : root_stress) field(ok ? Exact(v) : std::string());
   field(Clean(message));
+  field(RowCheck(s));
   s.push_back('\n');
   return s;
 }
@@ -104,7 +120,7 @@ std::string RowHeader(const StudySpec& study) {
   h += ",status,positions,converged,K_gamma,K_gamma_mean,LSR_min,LSR_max,TE_pp_urad,sun_orbit_um";
   for (const std::string& g : study.StressGears())
     h += ",sigma_t_" + g + "_MPa,sigma_c_" + g + "_MPa,sigma_range_" + g + "_MPa";
-  h += ",message";
+  h += ",message,check";
   return h;
 }
 
@@ -131,14 +147,31 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   auto bad = [&](const std::string& why) {
     throw std::invalid_argument(where + ": not a row of this study (" + why + "): '" + line + "'");
   };
-  if (f.size() != 1 + nv + kResultFields + ns)
-    bad(std::to_string(f.size()) + " fields, " + std::to_string(1 + nv + kResultFields + ns) +
+  if (f.size() != 1 + nv + kResultFields + ns + 1)
+    bad(std::to_string(f.size()) + " fields, " + std::to_string(1 + nv + kResultFields + ns + 1) +
         " expected");
+  // Changed after it was written: the check covers every byte before its own field.
+  const std::string_view body(line.data(), line.size() - f.back().size() - 1);
+  if (f.back() != RowCheck(body))
+    throw std::invalid_argument(
+        where + ": the row was changed after it was written (its check field is '" + f.back() +
+        "', its text gives '" + RowCheck(body) +
+        "'): delete the line to compute the case again, or restore it");
   CaseRow r;
   if (!ParseLong(f[0], &r.id) || r.id < 0 || r.id >= study.Cases()) bad("case id");
   r.values.resize(nv);
   for (std::size_t j = 0; j < nv; ++j)
     if (!ParseReal(f[1 + j], &r.values[j])) bad("value " + study.Columns()[j]);
+  // The sampled values are a function of (seed, case): a row whose values differ was not
+  // computed by this study's sampling (written exactly, so they compare exactly).
+  const std::vector<double> sampled = SampleCase(study, r.id);
+  for (std::size_t j = 0; j < nv; ++j)
+    if (!(r.values[j] == sampled[j]))
+      throw std::invalid_argument(where + ": case " + std::to_string(r.id) + "'s " +
+                                  study.Columns()[j] + " is " + f[1 + j] +
+                                  ", but this study samples " + Exact(sampled[j]) +
+                                  " for it (seed " + std::to_string(study.seed) +
+                                  "): the row was not computed by this study");
   std::size_t k = 1 + nv;
   if (f[k] != "ok" && f[k] != "failed") bad("status");
   r.ok = f[k++] == "ok";

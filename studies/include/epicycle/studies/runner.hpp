@@ -31,12 +31,14 @@ struct CaseRow {
   /// its largest range max − min at one fillet point [MPa] (transmission::RootStressSummary).
   std::vector<double> root_stress;
   /// The CSV line, '\n'-terminated; numbers in their shortest exact (round-trip) form, so that
-  /// the same result gives the same bytes; a failed case has empty result fields.
+  /// the same result gives the same bytes; a failed case has empty result fields; the last field
+  /// is the row's check (FNV-1a 64 of the text before it, 16 hex digits).
   std::string Format() const;
 };
 
 /// The column line of the rows file (without '\n'); with stresses the results end with
-/// sigma_t_<gear>_MPa, sigma_c_<gear>_MPa, sigma_range_<gear>_MPa per gear before the message.
+/// sigma_t_<gear>_MPa, sigma_c_<gear>_MPa, sigma_range_<gear>_MPa per gear before the message;
+/// the check is last.
 std::string RowHeader(const StudySpec& study);
 
 /// Case k of the study on the shared (read-only) compliance of the nominal bodies. Never throws
@@ -53,8 +55,9 @@ struct ExistingRows {
 /// Reads `path` (nothing if it does not exist). A last line without its '\n' is a row the writer
 /// was killed in: it is dropped and the file cut back to the last complete line.
 /// @throws std::invalid_argument if the file belongs to another study (its study line or column
-///         line differ), holds a malformed complete line or a case twice (the message names the
-///         file and line).
+///         line differ), holds a malformed complete line, a case twice, a row whose check does
+///         not match its text or whose sampled values are not the study's for its case (the
+///         message names the file and line).
 ExistingRows ReadRows(const std::string& path, const StudySpec& study);
 
 struct RunOptions {
