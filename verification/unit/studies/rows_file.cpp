@@ -14,14 +14,24 @@
 
 using namespace epicycle;
 
-TEST_CASE("a rows file converted to CRLF line ends is named as such", "[unit][studies]") {
-  test::TempDir dir("study-crlf");
-  const studies::StudySpec study = test::PinStudy("seed = 3\nsamples = 2\npositions = 4");
+namespace {
+
+// A run that computes one case into DIR/rows.csv.
+studies::RunOptions OneNewCase(const test::TempDir& dir) {
   studies::RunOptions o;
   o.rows_file = dir.File("rows.csv");
   o.cache_directory = EPICYCLE_TEST_CACHE_DIR;
   o.threads = 1;
   o.max_new_cases = 1;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("a rows file converted to CRLF line ends is named as such", "[unit][studies]") {
+  test::TempDir dir("study-crlf");
+  const studies::StudySpec study = test::PinStudy("seed = 3\nsamples = 2\npositions = 4");
+  const studies::RunOptions o = OneNewCase(dir);
   studies::RunStudy(study, o);
   REQUIRE(studies::ReadRows(o.rows_file, study).rows.size() == 1);  // as written: resumable
   std::string crlf;
@@ -48,11 +58,7 @@ TEST_CASE("a rows file with an edited row or foreign sampled values is refused, 
           "[unit][studies]") {
   test::TempDir dir("study-edited");
   const studies::StudySpec study = test::PinStudy("seed = 3\nsamples = 2\npositions = 4");
-  studies::RunOptions o;
-  o.rows_file = dir.File("rows.csv");
-  o.cache_directory = EPICYCLE_TEST_CACHE_DIR;
-  o.threads = 1;
-  o.max_new_cases = 1;
+  const studies::RunOptions o = OneNewCase(dir);
   const studies::RunReport report = studies::RunStudy(study, o);
   REQUIRE(report.rows.size() == 1);
   const std::string written = test::FileBytes(o.rows_file);
