@@ -12,7 +12,9 @@
 #include <deque>
 #include <mutex>
 #include <stdexcept>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "epicycle/config.h"
 #include "epicycle/studies/runner.hpp"
@@ -22,7 +24,9 @@ namespace epicycle::studies {
 
 namespace {
 
-constexpr int kRowTag = 1, kDoneTag = 2;
+// A rank that cannot go on (its tables failed to build or load, a worker threw) sends kFailTag
+// with its message instead of kDoneTag, so that rank 0 never waits for rows that will not come.
+constexpr int kRowTag = 1, kDoneTag = 2, kFailTag = 3;
 
 // Rank 0's share and the others' rows meet here: worker threads push, the main thread writes.
 struct Outbox {
@@ -88,22 +92,35 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
   if (count == 0) return report;
 
   const auto t0 = std::chrono::steady_clock::now();
+  if (rank != 0) {
+    try {
+      const auto compliance = internal::NominalCompliance(study, options.cache_directory);
+      report.table_messages = compliance->tables().messages();
+      const auto t1 = std::chrono::steady_clock::now();
+      report.table_seconds = std::chrono::duration<double>(t1 - t0).count();
+      // Rows go to rank 0 as their CSV text: what rank 0 writes is byte for byte what was
+      // computed.
+      internal::ComputeCases(study, *compliance, mine, options.threads, -1,
+                             [&](const CaseRow& r) {
+                               const std::string line = r.Format();
+                               MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0,
+                                        kRowTag, MPI_COMM_WORLD);
+                               ++report.computed;
+                             });
+      report.seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    } catch (const std::exception& e) {
+      const std::string why = e.what();
+      MPI_Send(why.data(), static_cast<int>(why.size()), MPI_CHAR, 0, kFailTag, MPI_COMM_WORLD);
+      throw;
+    }
+    MPI_Send(nullptr, 0, MPI_CHAR, 0, kDoneTag, MPI_COMM_WORLD);
+    return report;
+  }
   const auto compliance = internal::NominalCompliance(study, options.cache_directory);
   report.table_messages = compliance->tables().messages();
   const auto t1 = std::chrono::steady_clock::now();
   report.table_seconds = std::chrono::duration<double>(t1 - t0).count();
-
-  if (rank != 0) {
-    // Rows go to rank 0 as their CSV text: what rank 0 writes is byte for byte what was computed.
-    internal::ComputeCases(study, *compliance, mine, options.threads, -1, [&](const CaseRow& r) {
-      const std::string line = r.Format();
-      MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kRowTag, MPI_COMM_WORLD);
-      ++report.computed;
-    });
-    MPI_Send(nullptr, 0, MPI_CHAR, 0, kDoneTag, MPI_COMM_WORLD);
-    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-    return report;
-  }
 
   Outbox box;
   std::exception_ptr error;
@@ -127,6 +144,7 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
   };
   int remote_done = 0;
   bool local_done = false;
+  std::vector<std::string> failures;
   while (remote_done < size - 1 || !local_done) {
     {
       std::deque<CaseRow> rows;
@@ -153,6 +171,14 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
       ++remote_done;
       continue;
     }
+    if (status.MPI_TAG == kFailTag) {
+      // The other ranks and this one finish their shares (bounded); the failed rank's cases stay
+      // missing, and a rerun computes them.
+      ++remote_done;
+      failures.push_back("rank " + std::to_string(status.MPI_SOURCE) + " stopped (" + line +
+                         "); its cases were not computed");
+      continue;
+    }
     const std::string text = line;
     if (!line.empty() && line.back() == '\n') line.pop_back();
     accept(internal::ParseRow(line, study, "row from rank " + std::to_string(status.MPI_SOURCE)),
@@ -164,6 +190,13 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
     for (const CaseRow& r : box.rows) accept(r, r.Format());
   }
   if (error) std::rethrow_exception(error);
+  if (!failures.empty()) {
+    std::string m;
+    for (const std::string& f : failures) m += (m.empty() ? "" : "; ") + f;
+    throw std::runtime_error(m + ". The rows file holds the " + std::to_string(report.computed) +
+                             " new rows of the other ranks; run the study again to compute the "
+                             "missing cases");
+  }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   std::sort(report.rows.begin(), report.rows.end(),
             [](const CaseRow& a, const CaseRow& b) { return a.id < b.id; });

@@ -185,4 +185,53 @@ TEST_CASE("study: identical rows with 1 and 2 MPI ranks (mpirun)", "[crosscheck]
             std::to_string(b.size()) + " rows", a == b ? "identical bytes" : "DIFFER", "identical",
             a == b);
 }
+
+// A rank that cannot build its tables (here its cache folder lies under a regular file: a node
+// whose shared folder is not mounted) must not leave rank 0 waiting for its rows: rank 0 finishes
+// its own share, names the rank and its reason, exits non-zero, and a rerun computes the rest.
+// `timeout` turns a hang into a failure; the reference is the 1-process run.
+TEST_CASE("study: a rank that fails stops the run with its message, and a rerun completes it",
+          "[crosscheck][studies][mpi]") {
+  test::TempDir dir("study-mpi-fail");
+  const std::string file = test::WriteText(dir.File("mpi.toml"), Study(20));
+  const studies::StudySpec s = studies::ReadStudy(file);
+  Run(s, dir.File("one.csv"), 1);
+  const std::string not_a_folder = test::WriteText(dir.File("plain"), "a file\n");
+  auto rank = [&](const std::string& cache) {
+    return std::string(" -np 1 ") + EPICYCLE_EXE + " study " + file + " --out " + dir.File("mpi") +
+           " --quiet --threads 1 --cache " + cache;
+  };
+  const std::string launch = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 " +
+                             std::string(EPICYCLE_MPIEXEC) + " --oversubscribe";
+  const int failed = std::system((launch + rank(EPICYCLE_TEST_CACHE_DIR) + " :" +
+                                  rank(not_a_folder + "/cache") + " > " + dir.File("fail.log") +
+                                  " 2>&1")
+                                     .c_str());
+  const std::string log = test::FileBytes(dir.File("fail.log"));
+  INFO(log);
+  REQUIRE(WIFEXITED(failed));
+  CHECK(WEXITSTATUS(failed) != 0);
+  CHECK(WEXITSTATUS(failed) != 124);  // not timed out: rank 0 did not wait for the failed rank
+  CHECK_THAT(log, Catch::Contains("rank 1 stopped") && Catch::Contains("Not a directory") &&
+                      Catch::Contains("run the study again"));
+  const auto reference = SortedRows(dir.File("one.csv"));
+  const auto partial = SortedRows(dir.File("mpi") + "/study_rows.csv");
+  // Rank 0's share: ids at even positions of the 40 missing ones; each row exactly as 1 process.
+  CHECK(partial.size() == reference.size() / 2);
+  for (const std::string& r : partial)
+    CHECK(std::binary_search(reference.begin(), reference.end(), r));
+  const int rerun = std::system((launch + " -np 2 " + EPICYCLE_EXE + " study " + file + " --out " +
+                                 dir.File("mpi") + " --quiet --threads 1 --cache " +
+                                 EPICYCLE_TEST_CACHE_DIR + " > " + dir.File("rerun.log") + " 2>&1")
+                                    .c_str());
+  INFO(test::FileBytes(dir.File("rerun.log")));
+  REQUIRE(rerun == 0);
+  const auto after = SortedRows(dir.File("mpi") + "/study_rows.csv");
+  CHECK(after == reference);
+  VerifyRow("study, 40 cases, 2 MPI ranks, rank 1's tables fail", "the 1-process rows",
+            std::to_string(partial.size()) + " rows, then " + std::to_string(after.size()) +
+                " after a rerun",
+            after == reference ? "identical bytes" : "DIFFER",
+            "rank 0's half, then identical", after == reference);
+}
 #endif
