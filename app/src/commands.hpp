@@ -1,5 +1,5 @@
 // Subcommand registration of the `epicycle` program: one function per command family, each in
-// its own file, called from main.cpp.
+// its own file, all called by RegisterCommands (main.cpp, and the options' fuzz harness).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -12,5 +12,7 @@ void RegisterStiffnessCommands(CLI::App& app);  // stiffness               (stif
 void RegisterQuasiStaticCommands(CLI::App& app);  // quasistatic (quasistatic_commands.cpp)
 void RegisterDynamicCommands(CLI::App& app);      // dynamic, modes (dynamic_commands.cpp)
 void RegisterStudyCommands(CLI::App& app);        // study (study_commands.cpp)
+/// Every command, one required, and --version (options.cpp).
+void RegisterCommands(CLI::App& app);
 
 }  // namespace epicycle::app

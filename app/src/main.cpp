@@ -17,14 +17,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"epicycle " EPICYCLE_VERSION
                ": load sharing in planetary spur-gear transmissions with manufacturing errors"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", EPICYCLE_VERSION);
-  epicycle::app::RegisterGeometryCommands(app);
-  epicycle::app::RegisterContactCommands(app);
-  epicycle::app::RegisterStiffnessCommands(app);
-  epicycle::app::RegisterQuasiStaticCommands(app);
-  epicycle::app::RegisterDynamicCommands(app);
-  epicycle::app::RegisterStudyCommands(app);
+  epicycle::app::RegisterCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -7,6 +7,9 @@
 
 #include <fmt/format.h>
 
+#include "commands.hpp"
+#include "epicycle/config.h"
+
 namespace epicycle::app {
 
 bool OptionRange::Holds(double v) const {
@@ -33,6 +36,17 @@ double CheckOption(const std::string& option, const std::string& text, const Opt
   if (text.empty() || end != begin + text.size() || !range.Holds(v))
     throw std::invalid_argument(option + " = " + text + ": " + range.Describe());
   return v;
+}
+
+void RegisterCommands(CLI::App& app) {
+  app.require_subcommand(1);
+  app.set_version_flag("--version", EPICYCLE_VERSION);
+  RegisterGeometryCommands(app);
+  RegisterContactCommands(app);
+  RegisterStiffnessCommands(app);
+  RegisterQuasiStaticCommands(app);
+  RegisterDynamicCommands(app);
+  RegisterStudyCommands(app);
 }
 
 }  // namespace epicycle::app

@@ -5,7 +5,11 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/solvers/contact_io.hpp"
@@ -84,6 +88,78 @@ void FuzzStudy(const std::uint8_t* data, std::size_t size) {
     }
   } catch (const std::invalid_argument&) {
   }
+}
+
+namespace {
+
+// Every subcommand of `app`, nested ones included.
+void AllSubcommands(CLI::App* app, std::vector<CLI::App*>* out) {
+  for (CLI::App* sub : app->get_subcommands([](CLI::App*) { return true; })) {
+    out->push_back(sub);
+    AllSubcommands(sub, out);
+  }
+}
+
+// The parsed subcommands of `app`, nested ones included.
+void ParsedSubcommands(const CLI::App* app, std::vector<const CLI::App*>* out) {
+  for (const CLI::App* sub : app->get_subcommands()) {
+    out->push_back(sub);
+    ParsedSubcommands(sub, out);
+  }
+}
+
+// The program's command line with no command behind it: each callback replaced by nothing.
+CLI::App& Program() {
+  static CLI::App* app = [] {
+    auto* a = new CLI::App("epicycle");
+    app::RegisterCommands(*a);
+    std::vector<CLI::App*> subs;
+    AllSubcommands(a, &subs);
+    for (CLI::App* sub : subs) sub->callback([] {});
+    return a;
+  }();
+  return *app;
+}
+
+}  // namespace
+
+void FuzzOptions(const std::uint8_t* data, std::size_t size) {
+  constexpr std::size_t kMaxArgs = 64, kMaxArg = 256;
+  std::vector<std::string> args{"epicycle"};
+  std::string arg;
+  for (std::size_t i = 0; i <= size; ++i) {
+    if (i == size || data[i] == '\n') {
+      if (arg.size() > kMaxArg || args.size() >= kMaxArgs) return;
+      args.push_back(arg);
+      arg.clear();
+    } else {
+      arg.push_back(static_cast<char>(data[i]));
+    }
+  }
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  CLI::App& app = Program();
+  try {
+    app.parse(static_cast<int>(argv.size()), argv.data());
+  } catch (const CLI::ParseError&) {  // usage errors, --help and --version
+    return;
+  } catch (const std::invalid_argument&) {  // an option outside its range (app/options.hpp)
+    return;
+  }
+  std::vector<const CLI::App*> parsed;
+  ParsedSubcommands(&app, &parsed);
+  for (const CLI::App* sub : parsed)
+    for (const CLI::Option* opt : sub->get_options()) {
+      const std::string type = opt->get_type_name();
+      if (type.find("FLOAT") == std::string::npos && type.find("INT") == std::string::npos)
+        continue;
+      for (const std::string& r : opt->results()) {
+        char* end = nullptr;
+        const double v = std::strtod(r.c_str(), &end);
+        if (!r.empty() && end == r.c_str() + r.size() && !std::isfinite(v))
+          Finding("a numeric option accepted a value that is not finite");
+      }
+    }
 }
 
 }  // namespace epicycle::fuzz

@@ -1,5 +1,6 @@
-// The fuzz harnesses of the readers, shared by the libFuzzer targets (fuzz_scene.cpp,
-// fuzz_contact_problem.cpp, fuzz_study.cpp; EPICYCLE_BUILD_FUZZERS, tools/fuzz.sh) and by the
+// The fuzz harnesses of the readers and of the command line, shared by the libFuzzer targets
+// (fuzz_scene.cpp, fuzz_contact_problem.cpp, fuzz_study.cpp, fuzz_options.cpp;
+// EPICYCLE_BUILD_FUZZERS, tools/fuzz.sh) and by the
 // deterministic replay of the committed corpus in the suite (replay.cpp). Bad input must end in
 // std::invalid_argument; any other exception, a crash, a sanitizer report or a converged answer
 // with non-finite or negative forces is a finding (std::abort).
@@ -21,5 +22,11 @@ void FuzzContactProblem(const std::uint8_t* data, std::size_t size);
 /// that the shipped studies load) and, if it loads, samples its first and last case: every
 /// sampled value must be finite.
 void FuzzStudy(const std::uint8_t* data, std::size_t size);
+
+/// Reads `data` as a command line, one argument per line (at most 64 of 256 bytes), and parses it
+/// with the program's commands (app/: RegisterCommands) without running any: a parse must end in
+/// success, CLI11's usage error or std::invalid_argument (an option's range), and every number a
+/// numeric option accepted must be finite.
+void FuzzOptions(const std::uint8_t* data, std::size_t size);
 
 }  // namespace epicycle::fuzz

@@ -1,8 +1,8 @@
 // Replays fuzz inputs through the harnesses without libFuzzer, deterministically: every file of
 // the given directories (recursively) or files; files under a "study" or "studies" folder and
-// files named study_*.toml go to the study-file harness, other *.toml and files under a "scene"
-// folder to the scene harness, *.json and files under a "contact" folder to the contact-problem
-// harness. A finding aborts (the test fails); otherwise prints how many inputs of each kind ran.
+// files named study_*.toml go to the study-file harness, files under an "options" folder to the
+// command-line harness, other *.toml and files under a "scene" folder to the scene harness,
+// *.json and files under a "contact" folder to the contact-problem harness. A finding aborts (the test fails); otherwise prints how many inputs of each kind ran.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -30,20 +30,25 @@ int main(int argc, char** argv) {
     }
   }
   std::sort(files.begin(), files.end());
-  int scenes = 0, problems = 0, studies = 0;
+  int scenes = 0, problems = 0, studies = 0, options = 0;
   for (const fs::path& f : files) {
     const std::string s = f.string();
-    const bool study = s.find("/study/") != std::string::npos ||
+    const bool option = s.find("/options/") != std::string::npos;
+    const bool study = !option && (s.find("/study/") != std::string::npos ||
                        s.find("/studies/") != std::string::npos ||
-                       (f.extension() == ".toml" && f.filename().string().rfind("study_", 0) == 0);
+                       (f.extension() == ".toml" && f.filename().string().rfind("study_", 0) == 0));
     const bool scene =
-        !study && (f.extension() == ".toml" || s.find("/scene/") != std::string::npos);
-    const bool contact = f.extension() == ".json" || s.find("/contact/") != std::string::npos;
-    if (!study && !scene && !contact) continue;
+        !option && !study && (f.extension() == ".toml" || s.find("/scene/") != std::string::npos);
+    const bool contact =
+        !option && (f.extension() == ".json" || s.find("/contact/") != std::string::npos);
+    if (!option && !study && !scene && !contact) continue;
     std::ifstream in(f, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
-    if (study) {
+    if (option) {
+      epicycle::fuzz::FuzzOptions(data, bytes.size());
+      ++options;
+    } else if (study) {
       epicycle::fuzz::FuzzStudy(data, bytes.size());
       ++studies;
     } else if (scene) {
@@ -55,10 +60,10 @@ int main(int argc, char** argv) {
     }
   }
   std::printf(
-      "replayed %d scene inputs, %d contact-problem inputs and %d study-file inputs without a "
-      "finding\n",
-      scenes, problems, studies);
-  if (scenes + problems + studies == 0) {
+      "replayed %d scene inputs, %d contact-problem inputs, %d study-file inputs and %d command "
+      "lines without a finding\n",
+      scenes, problems, studies, options);
+  if (scenes + problems + studies + options == 0) {
     std::fprintf(stderr, "replay: no input found\n");
     return 2;
   }
