@@ -23,6 +23,7 @@
 #include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/run_range.hpp"
+#include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
 #include "epicycle/transmission/work_queue.hpp"
@@ -75,18 +76,12 @@ std::string Clean(std::string m) {
   return m;
 }
 
-// The row's check field: FNV-1a (64 bit) of every byte before ",<check>", as 16 hex digits. It
-// tells a row as written from one changed afterwards (an edited value would otherwise be resumed
-// and move the summary); it is a check of integrity against accidents, not a signature.
+// The row's check field: the FNV-1a (64 bit) hash of every byte before ",<check>" as 16 hex
+// digits (transmission::ContentHash without its "fnv1a64:" prefix). It tells a row as written from
+// one changed afterwards (an edited value would otherwise be resumed and move the summary); it is
+// a check of integrity against accidents, not a signature.
 std::string RowCheck(std::string_view text) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (const char c : text) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 0x100000001b3ULL;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
+  return transmission::ContentHash(std::string(text)).substr(sizeof("fnv1a64:") - 1);
 }
 
 }  // namespace
