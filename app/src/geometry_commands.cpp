@@ -193,7 +193,7 @@ void RegisterGeometryCommands(CLI::App& app) {
   geo->callback([] {
     const transmission::Scene scene = transmission::ReadScene(scene_path);
     if (scene.kind == transmission::SceneKind::kPair) {
-      const geometry::GearPair pair(scene.pair);
+      const geometry::GearPair pair = transmission::MakePair(scene, scene.pair);
       json report = report::PairJson(scene, pair);
       report["provenance"] = Provenance("none", &scene);
       report["warnings"] = scene.warnings;
@@ -213,7 +213,7 @@ void RegisterGeometryCommands(CLI::App& app) {
       }
       return;
     }
-    const Stage stage(scene.stage);
+    const Stage stage = transmission::MakeStage(scene);
     json report = report::StageJson(scene, stage);
     report["provenance"] = Provenance("none", &scene);
     report["warnings"] = scene.warnings;
@@ -265,7 +265,7 @@ void RegisterGeometryCommands(CLI::App& app) {
     if (scene.kind == transmission::SceneKind::kPair) {
       PrintPairContacts(geometry::GearPair(scene.pair), contacts_deg, scene.gap_window);
     } else {
-      PrintContacts(Stage(scene.stage), contacts_deg, scene.gap_window);
+      PrintContacts(transmission::MakeStage(scene), contacts_deg, scene.gap_window);
     }
     PrintWarnings(scene.warnings);
   });

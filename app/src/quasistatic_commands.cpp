@@ -46,7 +46,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   transmission::Scene scene = StageScene(a.scene, a.sun, "quasistatic");
   scene.model.stresses = scene.model.stresses || a.stresses || a.rating;
   if (a.rating) transmission::CheckRatingInputs(scene, "--rating");
-  const geometry::Stage stage(scene.stage);
+  const geometry::Stage stage = transmission::MakeStage(scene);
   const int n = stage.planets();
 
   std::vector<double> angles;

@@ -36,7 +36,7 @@ void RunStiffness(const StiffnessArgs& a) {
   scene.model.stresses = scene.model.stresses || a.stresses;
   std::optional<geometry::Stage> stage;
   if (scene.kind == transmission::SceneKind::kStage) {
-    stage.emplace(scene.stage);
+    stage.emplace(transmission::MakeStage(scene));
     if (a.mesh.empty()) {
       std::string names;
       for (const auto& m : stage->meshes()) names += (names.empty() ? "" : ", ") + m.name;
@@ -45,7 +45,7 @@ void RunStiffness(const StiffnessArgs& a) {
   }
   const transmission::MeshPairSetup setup =
       transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, a.mesh);
-  const geometry::GearPair pair(setup.spec);
+  const geometry::GearPair pair = transmission::MakePair(scene, setup.spec);
   const transmission::FeComplianceOptions fe = TableOptions(a.cache, a.no_cache);
   std::printf("%s: mesh %s, torque on gear 1 %.3f N m, %d positions over one mesh cycle\n",
               scene.name.c_str(), setup.mesh.c_str(), setup.torque, a.positions);

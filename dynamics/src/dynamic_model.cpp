@@ -755,7 +755,7 @@ void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::Ma
 
 StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeComplianceOptions& f)
     : scene(std::move(s)),
-      stage(scene.stage),
+      stage(transmission::MakeStage(scene)),
       fe(f),
       compliance(scene, stage, fe),
       stage_model(stage, compliance, transmission::SetupFromScene(scene)),
@@ -774,7 +774,7 @@ void ForEachModalMesh(const transmission::Scene& scene, const geometry::Stage& s
   const char* meshes[2] = {"sun-planet1", "planet1-ring"};
   for (int m = 0; m < 2; ++m) {
     const transmission::MeshPairSetup setup = transmission::MakeMeshPair(scene, &stage, meshes[m]);
-    const geometry::GearPair pair(setup.spec);
+    const geometry::GearPair pair = transmission::MakePair(scene, setup.spec);
     const transmission::FePairCompliance compliance(scene, pair, fe);
     f(m, meshes[m], setup, pair, compliance);
   }

@@ -28,7 +28,7 @@ struct StageRig {
   geometry::Stage stage;
   transmission::FeStageCompliance compliance;
   StageRig(transmission::Scene s, const transmission::FeComplianceOptions& fe)
-      : scene(std::move(s)), stage(scene.stage), compliance(scene, stage, fe) {}
+      : scene(std::move(s)), stage(transmission::MakeStage(scene)), compliance(scene, stage, fe) {}
   /// The stage model of the scene's supports (cheap: the DOF list).
   transmission::StageModel Model(bool local_terms) const {
     transmission::StageSetup setup = transmission::SetupFromScene(scene);

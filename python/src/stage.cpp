@@ -64,12 +64,12 @@ py::object Geometry(const ScenePtr& s, int per_segment) {
   py::dict f;
   py::dict gears;
   if (scene.kind == transmission::SceneKind::kPair) {
-    const geometry::GearPair pair(scene.pair);
+    const geometry::GearPair pair = transmission::MakePair(scene, scene.pair);
     f["report"] = JsonToPython(report::PairJson(scene, pair));
     gears["gear1"] = GearProfiles(pair.gear1(), per_segment);
     gears["gear2"] = GearProfiles(pair.gear2(), per_segment);
   } else {
-    const geometry::Stage stage(scene.stage);
+    const geometry::Stage stage = transmission::MakeStage(scene);
     f["report"] = JsonToPython(report::StageJson(scene, stage));
     gears["sun"] = GearProfiles(stage.sun(), per_segment);
     for (int i = 0; i < stage.planets(); ++i)
@@ -84,7 +84,7 @@ py::object Geometry(const ScenePtr& s, int per_segment) {
 py::object Contacts(const ScenePtr& s, double carrier_deg, std::optional<double> gap_window_um) {
   const transmission::Scene& scene = s->scene();
   RequireStage(scene, "contacts");
-  const geometry::Stage st(scene.stage);
+  const geometry::Stage st = transmission::MakeStage(scene);
   const geometry::StagePoses p = st.Poses(geometry::Rad(carrier_deg));
   geometry::ContactSearchOptions opt;
   opt.gap_window = gap_window_um ? *gap_window_um * 1e-6 : scene.gap_window;
@@ -152,10 +152,10 @@ py::object MeshStiffness(const ScenePtr& s, const std::string& mesh, int positio
   const transmission::Scene scene = s->scene();
   const Out out = RunReleased(token, [&] {
     std::optional<geometry::Stage> stage;
-    if (scene.kind == transmission::SceneKind::kStage) stage.emplace(scene.stage);
+    if (scene.kind == transmission::SceneKind::kStage) stage.emplace(transmission::MakeStage(scene));
     const transmission::MeshPairSetup setup =
         transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, mesh);
-    const geometry::GearPair pair(setup.spec);
+    const geometry::GearPair pair = transmission::MakePair(scene, setup.spec);
     const transmission::FePairCompliance compliance(scene, pair, TableOptions(cache_dir));
     long done = 0;
     Out o;

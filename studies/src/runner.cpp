@@ -246,7 +246,7 @@ std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(
   // error is a surface offset, compliance::NominalBody), so every case shares them.
   transmission::FeComplianceOptions fe;
   fe.cache_directory = cache_directory;
-  const geometry::Stage stage(study.scene.stage);
+  const geometry::Stage stage = transmission::MakeStage(study.scene);
   return std::make_unique<transmission::FeStageCompliance>(study.scene, stage, fe);
 }
 
@@ -261,7 +261,7 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
   row.root_stress.assign(3 * gears.size(), kNaN);
   try {
     const transmission::Scene scene = CaseScene(study, row.values);
-    const geometry::Stage stage(scene.stage);
+    const geometry::Stage stage = transmission::MakeStage(scene);
     transmission::QuasiStaticOptions opt;
     transmission::StageSetup setup = transmission::SetupFromScene(scene);
     if (study.sun) setup.sun = *study.sun;

@@ -632,6 +632,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     ContactRatioWarning(s.pair.gear1, s.pair.gear2, internal, s.pair.centre_distance,
                         s.source + ": [gear1]/[gear2]", &s.warnings);
     s.hash = ContentHash(text);
+    s.text = text;
     return s;
   }
   geometry::StageSpec& st = s.stage;
@@ -741,6 +742,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
   top.Done();
   StageWarnings(error_keys, s);
   s.hash = ContentHash(text);
+  s.text = text;
   return s;
 }
 

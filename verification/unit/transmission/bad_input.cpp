@@ -83,6 +83,23 @@ const std::vector<Case> kCases = {
     {"application_factor_0.5.toml",
      false,
      {"rating.application_factor = 0.5", "must be in [1, 4]", "application factors"}},
+    // Values the geometry derives, named by the key the scene wrote and its line: the sun's tip
+    // radius r + (x + 3) m = 33.84 + 3.3 * 4.23 = 47.799 mm past the rack's reach r + x m + h_f0 =
+    // 33.84 + 1.269 + 1.15 * 4.23 = 39.9735 mm; a ring 1 mm thicker (inside m/4) whose root
+    // rounding no longer fits its narrower space, blamed on the error entry; a planet angle
+    // 1e-4 deg off the assembly angle 240 deg, named as the scene writes it.
+    {"addendum_3.toml",
+     false,
+     {"addendum_3.toml:24: sun.addendum_per_module = 3.0 gives sun.tip_radius_mm = 47.799",
+      "tool's reach", "39.9735"}},
+    {"ring_thickness_1000um.toml",
+     false,
+     {"ring_thickness_1000um.toml:105: errors.thickness[0] (gear = \"ring\")",
+      "builds without the scene's errors", "ring.root_round_radius_mm"}},
+    {"planet_angle_240.0001.toml",
+     false,
+     {"planet_angle_240.0001.toml:74: carrier.planet_angles_deg[2] = 240.0001: ", "not whole",
+      "240°"}},
     {"warn_runout_above_backlash.toml",
      true,
      {"errors.runout[0].amplitude_um = 200", "larger than the normal backlash j_n = 150 um"}},
@@ -101,7 +118,7 @@ std::string ErrorOf(const std::string& path, std::vector<std::string>* warnings)
   try {
     const auto scene = epicycle::transmission::ReadScene(path);
     if (scene.kind == epicycle::transmission::SceneKind::kStage) {
-      const epicycle::geometry::Stage stage(scene.stage);
+      const epicycle::geometry::Stage stage = epicycle::transmission::MakeStage(scene);
     }
     *warnings = scene.warnings;
     return "";

@@ -107,6 +107,9 @@ struct Scene {
   double gap_window = 100e-6;  ///< contact-search gap window [m]
   std::vector<ShiftFit> fits;  ///< in the order they were applied
   std::string hash;            ///< ContentHash of the scene text (provenance of results)
+  /// The scene's TOML text as read (MakeStage and MakePair find the lines of keys in it for
+  /// messages); empty for a scene made in code.
+  std::string text;
   /// Legal values outside the model's validity (docs/scenes.md, "Ranges and validity"), one
   /// message each naming the key, its value and the limit; reported with every result.
   std::vector<std::string> warnings;
@@ -119,6 +122,15 @@ std::string ContentHash(const std::string& text);
 
 /// @throws std::invalid_argument naming the file, line, key, value and rule.
 Scene ReadScene(const std::string& path);
+
+/// The scene's stage (scene.stage), with the geometry's complaints told in the scene's terms: a
+/// value the geometry derives (a tip radius from `addendum_per_module`, a root rounding that no
+/// longer fits a thicker tooth) is named with the key the scene wrote and its file:line, and when
+/// the error-free stage builds, the scene's [[errors.*]] entries of that gear are named as the
+/// cause. @throws std::invalid_argument so worded.
+geometry::Stage MakeStage(const Scene& scene);
+/// The same for a gear pair: `spec` the scene's pair, or a mesh of its stage (MakeMeshPair).
+geometry::GearPair MakePair(const Scene& scene, const geometry::PairSpec& spec);
 /// Same, from text (source names it in messages).
 Scene ParseScene(const std::string& text, const std::string& source);
 
