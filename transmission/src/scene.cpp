@@ -44,6 +44,22 @@ constexpr double kYoungsRangeGPa[2] = {1.0, 1200.0};
 constexpr double kContactLimitMPa[2] = {100.0, 2500.0};  // σ_Hlim
 constexpr double kBendingLimitMPa[2] = {50.0, 1000.0};   // σ_Flim
 constexpr double kCarrierModules = 2.0;  // |a_c − m(z_s + z_p)/2| ≤ 2 m
+
+// [contact] gap_window_um: from 1 µm up to a quarter module, the size of the largest error the
+// scene takes (the window must hold the gaps that deflections and errors can close, no more).
+double ReadGapWindow(TableReader& t, double module) {
+  const double hi = module / 4 / kUm;
+  return t.RealOr("gap_window_um", 100.0,
+                  Rule::Closed(1, hi).Because(
+                      "at least 1 um, up to a quarter module: the gaps that deflections and "
+                      "errors can close")) *
+         kUm;
+}
+
+// A bearing's stiffness [N/um]: rolling bearings of gears are 1e2 .. 1e4 N/um; below 1 the member
+// floats on it, above 1e6 it is rigid (a fixed support, or rigid pins).
+const Rule kBearingRule = Rule::Closed(1, 1e6).Because(
+    "rolling bearings are 1e2 .. 1e4 N/um; below 1 the member floats, above 1e6 it is rigid");
 constexpr int kRingTeethSlack = 4;       // |z_r − z_s − 2 z_p| ≤ 4
 
 Rule ErrorRule(double module) {
@@ -428,12 +444,10 @@ void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
               const std::vector<std::string>& fit_gears, Fitted&& fitted) {
   geometry::PairSpec& p = s.pair;
   bool internal = false;
-  {
-    TableReader t = top.Table("pair");
-    p.centre_distance = t.Real("centre_distance_mm", Rule::Positive()) * kMm;
-    internal = t.BoolOr("internal", false);
-    t.Done();
-  }
+  // centre_distance_mm is checked against the gears once they are read.
+  TableReader pair_table = top.Table("pair");
+  p.centre_distance = pair_table.Real("centre_distance_mm", Rule::Positive()) * kMm;
+  internal = pair_table.BoolOr("internal", false);
   Inertia unused;
   {
     TableReader t = top.Table("gear1");
@@ -447,6 +461,18 @@ void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
     t.Done();
   }
   {
+    // As the carrier radius: m (z2 ∓ z1)/2 without shift, within 2 modules.
+    const double m_mm = p.gear1.module / kMm;
+    const double a0 = m_mm * (internal ? p.gear2.teeth - p.gear1.teeth
+                                       : p.gear2.teeth + p.gear1.teeth) / 2.0;
+    pair_table.Check("centre_distance_mm", p.centre_distance / kMm,
+                     Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
+                         .Because(std::string(internal ? "m (z2 - z1)/2 = " : "m (z1 + z2)/2 = ") +
+                                  Num(a0) +
+                                  " mm within 2 modules (profile shifts move it by about x m)"));
+    pair_table.Done();
+  }
+  {
     TableReader t = top.Table("load");
     s.pair_torque = t.Real("gear1_torque_Nm", Rule::Any());
     if (s.pair_torque == 0) {
@@ -456,7 +482,7 @@ void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
     t.Done();
   }
   if (auto t = top.OptionalTable("contact")) {
-    s.gap_window = t->RealOr("gap_window_um", 100.0, Rule::Positive()) * kUm;
+    s.gap_window = ReadGapWindow(*t, p.gear1.module);
     t->Done();
   }
   for (std::size_t k = 0; k < fits.size(); ++k) {
@@ -694,7 +720,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     t.Done();
   }
   if (auto t = top.OptionalTable("contact")) {
-    s.gap_window = t->RealOr("gap_window_um", 100.0, Rule::Positive()) * kUm;
+    s.gap_window = ReadGapWindow(*t, st.sun.module);
     t->Done();
   }
   if (auto t = top.OptionalTable("supports")) {
@@ -703,10 +729,13 @@ Scene ParseScene(const std::string& text, const std::string& source) {
                      : sun == "floating" ? SunSupport::kFloating
                                          : SunSupport::kElastic;
     if (s.supports.sun == SunSupport::kElastic) {
-      s.supports.sun_stiffness = t->Real("sun_stiffness_N_per_um", Rule::Positive()) * 1e6;
+      s.supports.sun_stiffness = t->Real("sun_stiffness_N_per_um", kBearingRule) * 1e6;
     }
-    s.supports.planet_stiffness =
-        t->RealOr("planet_stiffness_N_per_um", 0.0, Rule::NonNegative()) * 1e6;
+    // 0: rigid pins (the default); a bearing otherwise.
+    if (t->Has("planet_stiffness_N_per_um") && t->RealOr("planet_stiffness_N_per_um", 0.0,
+                                                         Rule::NonNegative()) != 0) {
+      s.supports.planet_stiffness = t->Real("planet_stiffness_N_per_um", kBearingRule) * 1e6;
+    }
     t->Done();
   }
   if (auto t = top.OptionalTable("errors")) {

@@ -130,10 +130,29 @@ TEST_CASE("model and supports tables: values in SI, errors name key, value and r
                     Contains("model.join_depth_factor = given") && Contains("not both"));
   CHECK_THROWS_WITH(Parse(base + "\n[supports]\nsun = \"elastic\"\n"),
                     Contains("supports.sun_stiffness_N_per_um is missing"));
+  // Bearings (docs/scenes.md): 1 .. 1e6 N/um; a planet's 0 is a rigid pin.
   CHECK_THROWS_WITH(Parse(base + "\n[supports]\nsun = \"elastic\"\nsun_stiffness_N_per_um = 0.0\n"),
-                    Contains("supports.sun_stiffness_N_per_um = 0: must be > 0"));
+                    Contains("supports.sun_stiffness_N_per_um = 0: must be in [1, 1000000]"));
+  CHECK_THROWS_WITH(Parse(base + "\n[supports]\nsun = \"elastic\"\nsun_stiffness_N_per_um = 1e9\n"),
+                    Contains("supports.sun_stiffness_N_per_um = 1000000000: must be in [1, 1000000]"));
   CHECK_THROWS_WITH(Parse(base + "\n[supports]\nplanet_stiffness_N_per_um = -2.0\n"),
                     Contains("supports.planet_stiffness_N_per_um = -2"));
+  CHECK_THROWS_WITH(Parse(base + "\n[supports]\nplanet_stiffness_N_per_um = 1e-30\n"),
+                    Contains("supports.planet_stiffness_N_per_um = 1e-30: must be in [1, 1000000]") &&
+                        Contains("floats"));
+  CHECK(Parse(base + "\n[supports]\nplanet_stiffness_N_per_um = 0.0\n").supports.planet_stiffness ==
+        0.0);
+  // The gap window: 1 um .. m/4 = 1057.5 um on the paper's stage (m = 4.23 mm).
+  auto window = [&](const std::string& v) {
+    std::string text = base;
+    const std::string key = "gap_window_um = 100.0";
+    REQUIRE(text.find(key) != std::string::npos);
+    return Parse(text.replace(text.find(key), key.size(), "gap_window_um = " + v));
+  };
+  CHECK_THROWS_WITH(window("1e-300"),
+                    Contains("contact.gap_window_um = 1e-300: must be in [1, 1057.5]"));
+  CHECK_THROWS_WITH(window("2000.0"), Contains("contact.gap_window_um = 2000: must be in [1, 1057.5]"));
+  CHECK(window("1057.5").gap_window == Approx(1057.5e-6));
   // A stiffness given to a sun that is not elastic is an unknown key there, not silently ignored.
   CHECK_THROWS_WITH(
       Parse(base + "\n[supports]\nsun = \"floating\"\nsun_stiffness_N_per_um = 300.0\n"),
@@ -207,4 +226,21 @@ TEST_CASE("a gear's mass or inertia far from its steel disc is a warning naming 
   CHECK_FALSE(
       warned(Replace(base, "mass_kg = 1.23", "mass_kg = " + number(md * 101)), "planet.mass_kg")
           .empty());
+}
+
+// A pair's centre distance, as the stage's carrier radius: within 2 modules of m (z1 ± z2)/2,
+// the ISO 20/40 pair's 4 (20 + 40)/2 = 120 mm (docs/scenes.md); 1e9 mm used to give an empty
+// contact list and exit 0.
+TEST_CASE("a gear pair's centre distance is checked against its gears", "[unit][transmission]") {
+  const std::string base = SceneText("iso_pair_20_40.toml");
+  const std::string key = "centre_distance_mm = 120.0";
+  REQUIRE(base.find(key) != std::string::npos);
+  auto with = [&](const std::string& v) {
+    std::string text = base;
+    return Parse(text.replace(text.find(key), key.size(), "centre_distance_mm = " + v));
+  };
+  CHECK(with("121.0").pair.centre_distance == Approx(0.121));
+  CHECK_THROWS_WITH(with("1e9"), Contains("pair.centre_distance_mm = 1000000000: must be in [112, 128]") &&
+                                     Contains("m (z1 + z2)/2 = 120"));
+  CHECK_THROWS_WITH(with("111.9"), Contains("pair.centre_distance_mm = 111.9: must be in [112, 128]"));
 }
