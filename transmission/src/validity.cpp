@@ -61,6 +61,11 @@ void ValidityTally::Add(double carrier_angle, const std::vector<double>& load_sh
       lsr_at_[k] = carrier_angle;
     }
   }
+  // The sun out of contact with every planet: no share carries anything.
+  if (n > 0 && std::all_of(load_sharing.begin(), load_sharing.begin() + n,
+                           [](double l) { return l == 0; })) {
+    if (free_count_++ == 0) free_at_ = carrier_angle;
+  }
   // Transmission error against a tenth of the module along the sun's line of action.
   if (std::isfinite(transmission_error) && std::abs(transmission_error) > te_limit_) {
     ++te_count_;
@@ -92,6 +97,12 @@ std::vector<std::string> ValidityTally::Messages() const {
                   "): the planet is jammed, driven through its coast flanks (its errors exceed "
                   "the backlash); outside the model's validity");
   }
+  if (free_count_ > 0)
+    out.push_back("the sun touches no planet at " + std::to_string(free_count_) + " " + counted_ +
+                  " (the first at carrier " + Num(geometry::Deg(free_at_)) +
+                  " deg): the teeth separate and strike again (rattle), the input torque being "
+                  "small against the dynamic loads; the load-sharing ratios and K_gamma then "
+                  "say nothing about how the planets share the load");
   if (te_count_ > 0)
     out.push_back(TransmissionErrorWarning(te_count_, te_worst_, te_limit_, "the sun's", counted_));
   if (local_count_ > 0)

@@ -92,3 +92,19 @@ TEST_CASE("mesh-stiffness result warnings: large rotation, load past the local t
   CHECK_THAT(w[1], Contains("contact force up to 3 times the local term's validity limit") &&
                        Contains("on 2 position(s)"));
 }
+
+// The sun out of contact with every planet at once (LSR_i = 0 for all i: no sun-mesh torque) is
+// named with the count and the first carrier angle; one unloaded planet among loaded ones is a
+// legitimate state (a pin error larger than the deflections) and says nothing.
+TEST_CASE("result warnings: the sun touching no planet (rattle)", "[unit][transmission]") {
+  const auto scene = test::PaperScene();
+  const geometry::Stage stage(scene.stage);
+  CHECK(transmission::QuasiStaticWarnings(stage, {Converged({0.5, 0.0, 0.5})}).empty());
+  auto a = Converged({0.0, 0.0, 0.0}), b = a, c = Converged({0.3, 0.3, 0.4});
+  a.carrier_angle = 10.0 * geometry::kPi / 180.0;
+  b.carrier_angle = 20.0 * geometry::kPi / 180.0;
+  const auto w = transmission::QuasiStaticWarnings(stage, {c, a, b});
+  REQUIRE(w.size() == 1);
+  CHECK_THAT(w[0], Contains("the sun touches no planet at 2 position(s)") &&
+                       Contains("first at carrier 10 deg") && Contains("rattle"));
+}

@@ -20,6 +20,8 @@ namespace epicycle::transmission {
 /// in the same words:
 ///  - a negative load-sharing ratio LSR_i < 0: planet i is jammed (its errors exceed the backlash
 ///    and it is driven through its coast flanks);
+///  - every LSR_i = 0 at once: the sun has lost contact with every planet (in motion, the teeth
+///    separate and impact: rattle), so the shares and K_γ say nothing about load sharing;
 ///  - a transmission error |TE| r_b,sun larger than a tenth of the module: rigid rotations of that
 ///    size break the small-displacement assumption of the compliance (docs/model.md §4);
 ///  - a contact force past the local term's validity, F > ValidityLimitForce (the Hertz
@@ -43,7 +45,8 @@ class ValidityTally {
   std::string counted_;
   std::vector<int> lsr_count_;
   std::vector<double> lsr_worst_, lsr_at_;
-  int te_count_ = 0, local_count_ = 0;
+  int te_count_ = 0, local_count_ = 0, free_count_ = 0;
+  double free_at_ = 0;  ///< the first carrier angle where the sun touched no planet [rad]
   double te_worst_ = 0, local_worst_ratio_ = 0, local_worst_force_ = 0;
 };
 
