@@ -1,5 +1,6 @@
 #include "epicycle/dynamics/vibration.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -86,7 +87,7 @@ SpectrumOptions RunSpectrumOptions(const RunSpan& span, const StageFrequencies& 
   o.start_time = skip_cycles * span.cycle_time;
   // Samples from the first output at or after start_time to the end.
   const long first = std::max(1L, std::lround(std::ceil(o.start_time / o.sample_interval - 1e-9)));
-  const long rest = span.outputs - first + 1;
+  const long rest = std::max(0L, span.outputs - first + 1);
   long n = 0;
   if (resolution > 0) {
     n = std::lround(1.0 / (resolution * o.sample_interval));

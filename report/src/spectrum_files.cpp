@@ -121,10 +121,16 @@ std::string VibrationFiles::Close(const std::string& title) {
     const auto& all = ch.kind == dynamics::SignalKind::kTorsional ? torsional : housing;
     text += fmt::format("    {:<22}", ch.name);
     for (int j : Peaks(amp[c], 4)) {
-      // The nearest line a healthy stage shows, within one bin.
+      // The nearest characteristic line within one bin (the resolution), "-" if none.
       std::string near = "-";
-      for (const auto& x : all)
-        if (x.allowed && std::abs(x.frequency - sp.Frequency(j)) <= df) near = x.name;
+      double best = df * (1 + 1e-9);
+      for (const auto& x : all) {
+        const double d = std::abs(x.frequency - sp.Frequency(j));
+        if (d < best || (d == best && x.allowed)) {
+          best = d;
+          near = x.name;
+        }
+      }
       text += fmt::format(" {:.1f} Hz ({}) {:.3g} {};", sp.Frequency(j), near,
                           amp[c][static_cast<std::size_t>(j)], ch.unit);
     }

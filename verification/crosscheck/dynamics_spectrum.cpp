@@ -129,7 +129,10 @@ TEST_CASE(
         beside = beside || (m.allowed && std::abs(m.frequency - l.frequency) < 1.5 * f.carrier);
       if (beside) continue;
       const double v = a[static_cast<std::size_t>(std::lround(l.frequency / f.carrier))];
-      if (v > worst) worst = v, worst_name = l.name;
+      if (v > worst) {
+        worst = v;
+        worst_name = l.name;
+      }
     }
     std::printf("  largest allowed line %.4g, largest forbidden %.3g (%s, %.2e of it)\n", largest,
                 worst, worst_name.c_str(), worst / largest);
