@@ -112,7 +112,8 @@ std::string VibrationFiles::Close(const std::string& title) {
 
   std::string text = fmt::format(
       "  spectrum: {} segments of {} samples ({:.4g} s, Hann, half-overlapping) from t = {:.4g} "
-      "s, resolution {:.4g} Hz = {:.4g} carrier orders; f_c {:.4f} Hz, f_m {:.3f} Hz\n",
+      "s, resolution {:.4g} Hz = {:.4g} carrier orders; f_c {:.4f} Hz, f_m {:.3f} Hz; largest "
+      "peaks (the nearest characteristic line within one bin):\n",
       sp.segments(), sp.options().segment, sp.options().segment * sp.options().sample_interval,
       sp.first_time(), df, df / fc, fc, frequencies_.mesh);
   std::vector<std::string> written;
@@ -149,25 +150,24 @@ std::string VibrationFiles::Close(const std::string& title) {
         marked.push_back(x);
     }
     const std::string path = base_ + "_spectrum_" + ch.name + ".svg";
-    WriteTextFile(
-        path, RenderSvg(SpectrumPlot(
-                  fmt::format("{}: {} amplitude spectrum ({} segments, {:.3g} Hz)", title, ch.name,
-                              sp.segments(), df),
-                  fmt::format("{} amplitude [{}]", ch.name, ch.unit), amp[c], df, marked)));
+    WriteTextFile(path, RenderSvg(SpectrumPlot(
+                            fmt::format("{}: {}", title, ch.name),
+                            fmt::format("{} amplitude [{}]", ch.name, ch.unit), amp[c], df, marked,
+                            fmt::format("{} segments, {:.3g} Hz", sp.segments(), df))));
   }
   return text;
 }
 
 LinePlot SpectrumPlot(const std::string& title, const std::string& y_label,
                       const std::vector<double>& amplitude, double resolution,
-                      const std::vector<dynamics::SpectralLine>& lines) {
+                      const std::vector<dynamics::SpectralLine>& lines, const std::string& legend) {
   LinePlot p;
   p.title = title;
   p.x_label =
       "frequency [Hz] (solid: lines of a healthy stage; dashed: phasing-cancelled or fault)";
   p.y_label = y_label;
   p.log_y = true;
-  PlotSeries s{"amplitude", {}, {}};
+  PlotSeries s{legend, {}, {}};
   double top = 0;
   for (std::size_t j = 1; j < amplitude.size(); ++j) top = std::max(top, amplitude[j]);
   for (std::size_t j = 1; j < amplitude.size(); ++j) {

@@ -56,9 +56,10 @@ class VibrationFiles {
 };
 
 /// The amplitude spectrum `amplitude` (bin j at j·resolution [Hz], bin 0 left out) as a log plot,
-/// `lines` marked: those `allowed` solid, the others dashed.
+/// `lines` marked: those `allowed` solid, the others dashed; `legend` names the curve.
 LinePlot SpectrumPlot(const std::string& title, const std::string& y_label,
                       const std::vector<double>& amplitude, double resolution,
-                      const std::vector<dynamics::SpectralLine>& lines);
+                      const std::vector<dynamics::SpectralLine>& lines,
+                      const std::string& legend = "amplitude");
 
 }  // namespace epicycle::report
