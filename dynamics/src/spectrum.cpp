@@ -131,6 +131,17 @@ std::vector<double> WelchSpectrum::Amplitudes(int channel) const {
   return a;
 }
 
+double LineAmplitude(const std::vector<double>& amplitude, double resolution, double frequency) {
+  if (!(resolution > 0) || !std::isfinite(frequency)) return 0;
+  const double at = frequency / resolution;
+  double best = 0;
+  for (long j = std::max(0L, static_cast<long>(std::ceil(at - 1 - 1e-9)));
+       j <= static_cast<long>(std::floor(at + 1 + 1e-9)) && j < static_cast<long>(amplitude.size());
+       ++j)
+    best = std::max(best, amplitude[static_cast<std::size_t>(j)]);
+  return best;
+}
+
 StageFrequencies CharacteristicFrequencies(const geometry::Stage& stage, double sun_speed) {
   if (!(sun_speed != 0) || !std::isfinite(sun_speed))
     throw std::invalid_argument("characteristic frequencies: sun speed = " + Num(sun_speed) +

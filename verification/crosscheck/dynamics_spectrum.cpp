@@ -13,11 +13,18 @@
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/spectrum.hpp"
 #include "epicycle/dynamics/vibration.hpp"
+#include "figures.hpp"
 #include "stage_fixtures.hpp"
 
 using namespace epicycle;
 
 namespace {
+
+std::string Fixed(double x, int digits) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.*f", digits, x);
+  return b;
+}
 
 // Local maxima of a (from bin 2: bin 1 is where a segment's mean would sit), largest first.
 std::vector<int> LargestPeaks(const std::vector<double>& a, std::size_t count) {
@@ -91,8 +98,9 @@ TEST_CASE(
   REQUIRE(run.completed);
   REQUIRE(spectrum.segments() == 1);
   CHECK(spectrum.resolution() == Approx(f.carrier).epsilon(1e-9));
-  std::printf("healthy paper stage, 1500 rpm, %zu outputs: %.2f s wall, %ld steps\n", times.size(),
-              run.stats.wall_seconds, run.stats.steps);
+  test::Figure("spectrum, healthy paper stage, 1500 rpm, " + std::to_string(times.size()) +
+               " outputs: " + Fixed(run.stats.wall_seconds, 2) + " s wall, " +
+               std::to_string(run.stats.steps) + " steps");
 
   const double nyquist = spectrum.Frequency(spectrum.bins() - 1);
   for (std::size_t c = 0; c < channels.size(); ++c) {
@@ -105,19 +113,19 @@ TEST_CASE(
     double largest = 0;
     for (const auto& l : lines)
       if (l.allowed)
-        largest =
-            std::max(largest, a[static_cast<std::size_t>(std::lround(l.frequency / f.carrier))]);
-    std::printf("  %s [%s]:", ch.name.c_str(), ch.unit.c_str());
+        largest = std::max(largest, dynamics::LineAmplitude(a, spectrum.resolution(), l.frequency));
+    std::string peaks;
+    bool on_lines = true;
     for (int j : LargestPeaks(a, 4)) {
       const double hz = spectrum.Frequency(j);
       std::string near;
       for (const auto& l : lines)
         if (l.allowed && std::abs(l.frequency - hz) <= spectrum.resolution() * (1 + 1e-9))
           near = l.name;
-      std::printf(" %.2f Hz (order %d, %s) %.4g;", hz, j, near.empty() ? "?" : near.c_str(),
-                  a[static_cast<std::size_t>(j)]);
+      peaks += (peaks.empty() ? "" : ", ") + (near.empty() ? Fixed(hz, 1) + " Hz" : near);
       INFO(ch.name << ": peak at " << hz << " Hz, carrier order " << j);
       CHECK_FALSE(near.empty());
+      on_lines = on_lines && !near.empty();
     }
     double worst = 0;
     std::string worst_name;
@@ -134,8 +142,15 @@ TEST_CASE(
         worst_name = l.name;
       }
     }
-    std::printf("  largest allowed line %.4g, largest forbidden %.3g (%s, %.2e of it)\n", largest,
-                worst, worst_name.c_str(), worst / largest);
+    test::VerifyRow("spectrum, healthy paper stage (1500 rpm, one carrier revolution): " + ch.name +
+                        ", the four largest peaks",
+                    "lines the planet phasing allows, by hand from 16/65 teeth and 3 planets",
+                    peaks, "", "each within one bin (" + Fixed(f.carrier, 2) + " Hz)", on_lines);
+    test::VerifyRow("spectrum, healthy paper stage: " + ch.name + ", the lines the phasing forbids",
+                    "0 (a symmetric stage)",
+                    test::Sci(worst, 2) + " " + ch.unit + " (" + worst_name + ")",
+                    test::Sci(worst / largest, 2) + " of the largest allowed line",
+                    "1e-3 (integrator, start transient, contact solve)", worst < 1e-3 * largest);
     INFO(ch.name << ": forbidden line " << worst_name << " at " << worst / largest
                  << " of the largest allowed");
     CHECK(worst < 1e-3 * largest);

@@ -97,6 +97,8 @@ TEST_CASE("spectrum: a sinusoid between bins peaks on the nearest bin within the
     CHECK(read >= dynamics::kHannScallopLoss * (1 - 1e-4));
     CHECK(read <= 1 + 1e-12);
     CHECK(std::abs(read - HannResponse(std::abs(peak - 100 - delta))) < 1e-4);
+    // The reading of the line at its true frequency: the same peak.
+    CHECK(dynamics::LineAmplitude(a, df, f) == a[static_cast<std::size_t>(peak)]);
   }
   CHECK(dynamics::kHannScallopLoss == Approx(8 / (3 * kPi)).epsilon(1e-15));
 }

@@ -92,6 +92,12 @@ class WelchSpectrum {
   double t0_;
 };
 
+/// The reading of a line at `frequency` [Hz] in an amplitude spectrum (WelchSpectrum::Amplitudes,
+/// bin j at j·`resolution`): the largest amplitude of the bins within one bin of it,
+/// |j Δf − f| ≤ Δf. For a line of amplitude A with no other line within three bins it lies in
+/// [8/(3π) A, A] (kHannScallopLoss; the exact A on a bin). 0 for a frequency outside the bins.
+double LineAmplitude(const std::vector<double>& amplitude, double resolution, double frequency);
+
 /// Rotation frequencies of a stage with the ring fixed (docs/model.md §9 "Fault frequencies").
 struct StageFrequencies {
   int sun_teeth = 0, planet_teeth = 0, ring_teeth = 0, planets = 0;
