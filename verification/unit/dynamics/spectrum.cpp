@@ -15,6 +15,7 @@
 
 #include "epicycle/dynamics/spectrum.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
+#include "epicycle/dynamics/vibration.hpp"
 #include "stage_fixtures.hpp"
 
 using namespace epicycle;
@@ -269,4 +270,39 @@ TEST_CASE("stage frequencies: the paper stage's mesh, fault and sideband lines f
   CHECK_FALSE(find("n (f_s - f_c)").allowed);
   CHECK_THROWS_WITH(dynamics::CharacteristicFrequencies(stage, 0.0),
                     Catch::Contains("sun speed = 0 rad/s: must be finite and non-zero"));
+}
+
+TEST_CASE(
+    "spectrum of a run: the skip, the segment of one carrier revolution or of whole mesh "
+    "cycles, and a run too short",
+    "[unit][dynamics][spectrum]") {
+  // The paper stage at ω_c = 2π·100/65 rad/s: a mesh cycle lasts 10 ms, a carrier revolution
+  // 0.65 s = 65 cycles; 24 outputs per cycle, Δt = 10 ms/24.
+  const geometry::Stage stage(test::PaperScene().stage);
+  const double wc = 2 * kPi * 100.0 / 65.0;
+  const dynamics::StageFrequencies f = dynamics::CharacteristicFrequencies(stage, wc * 81 / 16);
+  REQUIRE(f.carrier == Approx(100.0 / 65).epsilon(1e-14));
+  const double dt = 0.01 / 24;
+  // 4 cycles of skip and two carrier revolutions: 134 cycles, 3216 outputs.
+  const auto run =
+      dynamics::MakeRunSpan(stage, wc, transmission::RunRange::kCarrierRevolution, 1.34, 24);
+  REQUIRE(run.outputs == 3216);
+  const SpectrumOptions o = dynamics::RunSpectrumOptions(run, f, 0, 4);
+  CHECK(o.sample_interval == Approx(dt).epsilon(1e-14));
+  CHECK(o.segment == 65 * 24);
+  CHECK(o.hop == 65 * 12);
+  CHECK(o.start_time == Approx(0.04).epsilon(1e-14));  // output 96 of 3216
+  CHECK(o.resolution() == Approx(f.carrier).epsilon(1e-12));
+  // Shorter than a revolution (one planet revolution, 24 cycles, 576 outputs): the rest after
+  // the skip, outputs 96..576 (481), in whole mesh cycles: 20 cycles, 480 samples.
+  const auto planet =
+      dynamics::MakeRunSpan(stage, wc, transmission::RunRange::kPlanetRevolution, 0, 24);
+  CHECK(dynamics::RunSpectrumOptions(planet, f, 0, 4).segment == 480);
+  // A resolution given: N = round(1/(Δf Δt)) = round(24/(10 ms · 20 Hz)) = 120.
+  CHECK(dynamics::RunSpectrumOptions(planet, f, 20, 4).segment == 120);
+  CHECK_THROWS_WITH(dynamics::RunSpectrumOptions(planet, f, 1, 4, "--res", "--skip"),
+                    Catch::Contains("--res = 1 Hz: a segment of 2400 samples (1 s) needs at least "
+                                    "8 and at most the 481 output steps after --skip = 4"));
+  CHECK_THROWS_WITH(dynamics::RunSpectrumOptions(planet, f, 0, -1, "--res", "--skip"),
+                    "--skip = -1: must be finite and >= 0 [mesh cycles]");
 }
