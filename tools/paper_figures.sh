@@ -2,7 +2,8 @@
 # Regenerates the figures of docs/ from the built program: mesh-stiffness curves of the pair
 # scenes, and the quasi-static load sharing of the paper's stage without errors (one mesh cycle)
 # and with planet 1's 20 um run-out (one planet revolution), constrained and floating; the same
-# run-out case with the dynamic model at 1500 rpm; speed sweeps of the stage with and without it.
+# run-out case with the dynamic model at 1500 rpm; the spectra of the stage with and without it;
+# speed sweeps of the stage with and without it.
 # Usage: bash tools/paper_figures.sh [build-dir]   (default ./build; tables cached as usual)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -35,6 +36,16 @@ dyn() {  # name scene sun
 }
 dyn dynamic_runout_fixed paper_stage_runout fixed
 dyn dynamic_runout_floating paper_stage_runout floating
+# Spectra (docs/dynamic.md, "Spectra"), sun fixed, 1500 rpm: 4 mesh cycles of start transient
+# and three carrier revolutions (199 mesh cycles = 199·81/26000 s), 24 outputs per mesh cycle.
+spectrum() {  # name scene
+  "$exe" dynamic "scenes/$2.toml" --sun fixed --speed-rpm 1500 --time 0.619961538461538 \
+    --outputs-per-cycle 24 --spectrum --quiet --out "$tmp/$1" > "$tmp/$1.log"
+  for f in te ring_force_x; do cp "$tmp/$1/dynamic_spectrum_$f.svg" "$out/$1_$f.svg"; done
+  cp "$tmp/$1/dynamic_spectrum.csv" "$out/$1.csv"
+}
+spectrum spectrum_healthy paper_stage
+spectrum spectrum_runout paper_stage_runout
 # Speed sweeps (docs/dynamic.md, "Speed sweeps"), sun fixed: the run-out case over a planet
 # revolution per speed, and the stage without errors over 3 mesh cycles per speed on a finer grid.
 sweep() {  # name scene speeds [options]

@@ -21,8 +21,10 @@
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
+#include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/dynamics/summary.hpp"
 #include "epicycle/report/run_files.hpp"
+#include "epicycle/report/spectrum_files.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "options.hpp"
 #include "speed_sweep_command.hpp"
@@ -36,15 +38,18 @@ using json = nlohmann::json;
 struct DynamicArgs {
   std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out",
                      range = "planet", sun, friction, cache, speed_sweep;
-  double rtol = 1e-6, start_deg = 0, window_cycles = 0;
+  double rtol = 1e-6, start_deg = 0, window_cycles = 0, spectrum_resolution = 0,
+         spectrum_skip = 4;
   // Not given: the scene's speed, the range's duration, the library's defaults.
   std::optional<double> speed_rpm, time, rate_scale, contact_tol;
   int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0;
-  bool no_cache = false, quiet = false, fd_jacobian = false, stresses = false;
+  bool no_cache = false, quiet = false, fd_jacobian = false, stresses = false, spectrum = false;
 };
 
 void RunDynamic(const DynamicArgs& a) {
   transmission::Scene input = StageScene(a.scene, a.sun, "dynamic");
+  if (!a.speed_sweep.empty() && a.spectrum)
+    throw std::invalid_argument("--spectrum belongs to a run at one speed, not --speed-sweep");
   if (!a.speed_sweep.empty() && (a.speed_rpm || a.time))
     throw std::invalid_argument("--speed-sweep = " + a.speed_sweep +
                                 ": runs its own speeds and windows; give it without --speed-rpm "
@@ -96,6 +101,11 @@ void RunDynamic(const DynamicArgs& a) {
       a.outputs_per_cycle > 0 ? a.outputs_per_cycle : 20);
   const double duration = span.duration, mesh_hz = span.mesh_frequency;
   const int outputs = span.outputs;
+  std::optional<dynamics::SpectrumOptions> spectrum;  // bad options before the run
+  if (a.spectrum)
+    spectrum = dynamics::RunSpectrumOptions(
+        span, dynamics::CharacteristicFrequencies(stage, model.sun_speed()),
+        a.spectrum_resolution, a.spectrum_skip, "--spectrum-resolution", "--spectrum-skip-cycles");
   const char* sun_name = transmission::SunSupportName(stage_model.setup().sun);
   std::printf(
       "%s: %d planets, sun %s, input torque %.1f N m, sun speed %.1f rpm (mesh frequency "
@@ -121,6 +131,8 @@ void RunDynamic(const DynamicArgs& a) {
   const std::string base = a.out + "/dynamic";
   const json provenance = Provenance(a.backend, &scene);
   report::DynamicRunFiles files(base, provenance, n, compliance.has_root_stress());
+  std::optional<report::VibrationFiles> vibration;
+  if (spectrum) vibration.emplace(base, provenance, model, *spectrum);
   const bool tty = !a.quiet && isatty(fileno(stderr));
   const auto t1 = std::chrono::steady_clock::now();
   int done = 0;
@@ -128,6 +140,7 @@ void RunDynamic(const DynamicArgs& a) {
       model, opt, d0, Eigen::VectorXd::Zero(model.size()), span.OutputTimes(),
       [&](const dynamics::DynamicSample& s) {
         files.Write(s);
+        if (vibration) vibration->Write(s);
         ++done;
         if (tty)
           Progress(done, outputs, 0,
@@ -135,32 +148,12 @@ void RunDynamic(const DynamicArgs& a) {
                    "steps");
       });
   files.Close();
+  if (vibration) std::printf("%s", vibration->Close(scene.name).c_str());
   if (tty && !result.completed) std::fprintf(stderr, "\n");
 
   const dynamics::DynamicSummary sum = dynamics::Summarise(result.samples);
   const dynamics::SimulationStats& st = result.stats;
-  std::printf("\n  planet   LSR mean     LSR min      LSR max      (ideal 1/n = %.6f)\n", 1.0 / n);
-  for (int i = 0; i < n && sum.samples > 0; ++i)
-    std::printf("  %-8d %-12.6f %-12.6f %-12.6f\n", i + 1, sum.lsr_mean[i], sum.lsr_min[i],
-                sum.lsr_max[i]);
-  // No output step: "-" (the summary's statistics are NaN, never printed).
-  const char* f3 = "{:.3f}";
-  std::printf("  K_gamma (max L_i)            %s\n", Num(sum.k_gamma, "{:.6f}", "-").c_str());
-  std::printf("  dynamic transmission error   %s .. %s urad (peak to peak %s urad)\n",
-              Num(sum.te_min * 1e6, f3, "-").c_str(), Num(sum.te_max * 1e6, f3, "-").c_str(),
-              Num(sum.te_peak_to_peak() * 1e6, f3, "-").c_str());
-  std::printf("  sun orbit radius             %s um largest, %s um mean\n",
-              Num(sum.orbit_radius * 1e6, f3, "-").c_str(),
-              Num(sum.orbit_mean_radius * 1e6, f3, "-").c_str());
-  std::printf(
-      "  integration                  %ld steps, %ld evaluations (%ld for FD Jacobians), %ld "
-      "Jacobians, %ld failed contact solves, %ld error-test failures, %ld nonlinear failures, %.3f "
-      "s "
-      "wall (%.3f s in evaluations)\n",
-      st.steps, st.rhs_evaluations, st.fd_rhs_evaluations, st.jacobian_evaluations,
-      st.failed_solves, st.error_test_failures, st.nonlinear_failures, st.wall_seconds,
-      st.rhs_seconds);
-  std::printf("%s", report::RootStressText(sum.root_stress, "t s", 1.0).c_str());
+  std::printf("%s", report::DynamicRunText(sum, st, n).c_str());
 
   // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
   std::vector<std::string> warnings = scene.warnings;
@@ -176,8 +169,8 @@ void RunDynamic(const DynamicArgs& a) {
   report::WriteDynamicPlots(base, scene.name, sun_name, n, result.samples);
   std::printf(
       "\nwrote %s_steps.csv, _pairs.csv, _bearings.csv, _summary.json, _lsr.svg, _te.svg, "
-      "_orbit.svg\n",
-      base.c_str());
+      "_orbit.svg%s\n",
+      base.c_str(), a.spectrum ? ", _vibration.csv, _spectrum.csv, _spectrum_lines.csv, _spectrum_*.svg" : "");
   if (!result.completed)
     throw ComputationFailed(fmt::format("the run stopped after {} of {} outputs: {}", sum.samples,
                                         outputs, result.message));
@@ -323,6 +316,14 @@ void RegisterDynamicCommands(CLI::App& app) {
             kThreads);
   AddNumber(cmd, "--max-order", a.max_order, "Largest BDF order of CVODE (1..5)",
             {1, 5, false, true, "", ""});
+  cmd->add_flag("--spectrum", a.spectrum,
+                "Also the vibration signals per step and their spectra (docs/dynamic.md, Spectra)");
+  AddNumber(cmd, "--spectrum-resolution", a.spectrum_resolution,
+            "Spectrum: segment length 1/this [Hz] (default 0: one carrier revolution)",
+            {0, 1e6, false, false, "[Hz]", "0: one carrier revolution"});
+  AddNumber(cmd, "--spectrum-skip-cycles", a.spectrum_skip,
+            "Spectrum: mesh cycles left out at the start (default 4)",
+            {0, 1e6, false, false, "[mesh cycles]", "the start transient"});
   cmd->add_flag("--stresses", a.stresses,
                 "Also each gear's root stress per output step (the scene's [model] stresses)");
   cmd->add_flag("--fd-jacobian", a.fd_jacobian,

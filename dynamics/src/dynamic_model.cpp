@@ -436,6 +436,8 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
                                        : body_moment[b];
   }
   e.sun_mesh_force = body_force[kSunBody];
+  e.ring_mesh_force = body_force[kRingBody];
+  e.ring_mesh_torque = body_moment[kRingBody];
   e.planet_bearing_force.assign(np, Vec2::Zero());
   e.sun_bearing_force.setZero();
   BearingForces(t, d, v, &qf, &e);

@@ -35,7 +35,9 @@ RunSpan MakeRunSpan(const geometry::Stage& stage, double carrier_speed,
                    ? s.cycle_time
                    : transmission::CarrierSpan(stage, range) / wc;
   s.mesh_frequency = stage.ring().teeth() * wc / (2.0 * std::numbers::pi);
-  const double outputs = std::ceil(s.duration / s.cycle_time * outputs_per_cycle);
+  // Whole output intervals within round-off count as whole (a time of exactly N mesh cycles
+  // computed in decimal gives N·outputs_per_cycle, not one more: the spectra need Δt exact).
+  const double outputs = std::ceil(s.duration / s.cycle_time * outputs_per_cycle * (1 - 1e-12));
   if (!(outputs <= kMaxRunOutputs)) {
     char text[300];
     std::snprintf(text, sizeof text,

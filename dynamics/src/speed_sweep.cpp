@@ -92,22 +92,11 @@ std::vector<bool> Families(const Mode& mode, const DynamicModel& model, const ge
 }
 
 // Parker & Lin (2004) for equally spaced planets: the symmetric mesh excitation at harmonic h
-// loads the planets with phases e^{i h z_s ψ_i}, family k ≡ ±h z_s (mod n).
+// loads the planets with phases e^{i h z_s ψ_i}, family k ≡ ±h z_s (mod n) (PhasingFamily).
 bool PhasingExcited(const std::vector<bool>& families, int h, int sun_teeth) {
-  const long n = static_cast<long>(families.size());
-  const long k = (static_cast<long>(h) * sun_teeth) % n;
+  const int n = static_cast<int>(families.size());
+  const int k = PhasingFamily(h, sun_teeth, n);
   return families[static_cast<std::size_t>(k)] || families[static_cast<std::size_t>((n - k) % n)];
-}
-
-bool EquallySpaced(const geometry::Stage& stage) {
-  const int n = stage.planets();
-  for (int i = 1; i < n; ++i) {
-    const double d = std::remainder(
-        stage.planet_angle(i) - stage.planet_angle(0) - 2.0 * std::numbers::pi * i / n,
-        2.0 * std::numbers::pi);
-    if (std::abs(d) > 1e-9) return false;
-  }
-  return true;
 }
 
 }  // namespace
@@ -170,6 +159,25 @@ DynamicModel ModelAtSpeed(const DynamicModel& base, double sun_speed_rpm) {
   DynamicModel m(base.stage_model(), s, base.inertias(), base.loads());
   m.SetMeshStiffness(base.sun_mesh_stiffness(), base.ring_mesh_stiffness());
   return m;
+}
+
+int PhasingFamily(int harmonic, int sun_teeth, int planets) {
+  if (planets < 1)
+    throw std::invalid_argument("planet phasing: planets = " + std::to_string(planets) +
+                                ": must be >= 1");
+  const long n = planets;
+  return static_cast<int>(((static_cast<long>(harmonic) * sun_teeth) % n + n) % n);
+}
+
+bool EquallySpaced(const geometry::Stage& stage) {
+  const int n = stage.planets();
+  for (int i = 1; i < n; ++i) {
+    const double d = std::remainder(
+        stage.planet_angle(i) - stage.planet_angle(0) - 2.0 * std::numbers::pi * i / n,
+        2.0 * std::numbers::pi);
+    if (std::abs(d) > 1e-9) return false;
+  }
+  return true;
 }
 
 std::vector<Coincidence> FindCoincidences(const DynamicModel& model, const std::vector<Mode>& modes,

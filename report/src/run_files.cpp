@@ -376,6 +376,31 @@ void WriteDynamicPlots(const std::string& base, const std::string& scene_name,
           "_orbit.svg");
 }
 
+std::string DynamicRunText(const dynamics::DynamicSummary& sum,
+                           const dynamics::SimulationStats& st, int n) {
+  std::string t = fmt::format(
+      "\n  planet   LSR mean     LSR min      LSR max      (ideal 1/n = {:.6f})\n", 1.0 / n);
+  for (int i = 0; i < n && sum.samples > 0; ++i)
+    t += fmt::format("  {:<8} {:<12.6f} {:<12.6f} {:<12.6f}\n", i + 1, sum.lsr_mean[i],
+                     sum.lsr_min[i], sum.lsr_max[i]);
+  // No output step: "-" (the summary's statistics are NaN, never printed).
+  const char* f3 = "{:.3f}";
+  t += fmt::format("  K_gamma (max L_i)            {}\n", Num(sum.k_gamma, "{:.6f}", "-"));
+  t += fmt::format("  dynamic transmission error   {} .. {} urad (peak to peak {} urad)\n",
+                   Num(sum.te_min * 1e6, f3, "-"), Num(sum.te_max * 1e6, f3, "-"),
+                   Num(sum.te_peak_to_peak() * 1e6, f3, "-"));
+  t += fmt::format("  sun orbit radius             {} um largest, {} um mean\n",
+                   Num(sum.orbit_radius * 1e6, f3, "-"), Num(sum.orbit_mean_radius * 1e6, f3, "-"));
+  t += fmt::format(
+      "  integration                  {} steps, {} evaluations ({} for FD Jacobians), {} "
+      "Jacobians, {} failed contact solves, {} error-test failures, {} nonlinear failures, {:.3f} "
+      "s wall ({:.3f} s in evaluations)\n",
+      st.steps, st.rhs_evaluations, st.fd_rhs_evaluations, st.jacobian_evaluations,
+      st.failed_solves, st.error_test_failures, st.nonlinear_failures, st.wall_seconds,
+      st.rhs_seconds);
+  return t + RootStressText(sum.root_stress, "t s", 1.0);
+}
+
 nlohmann::json DynamicRunJson(const dynamics::DynamicModel& model,
                               const dynamics::SimulationOptions& options,
                               const dynamics::RunSpan& span,

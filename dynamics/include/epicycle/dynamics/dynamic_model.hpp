@@ -98,6 +98,10 @@ struct Evaluation {
   Eigen::VectorXd generalised_force;    ///< Q per DOF (mesh + bearings + external) [N] or [N·m]
   std::vector<double> sun_mesh_torque;  ///< moment on the sun of each planet's mesh [N·m]
   Eigen::Vector2d sun_mesh_force = Eigen::Vector2d::Zero();  ///< net mesh force on the sun [N]
+  /// Net force and moment of every planet–ring contact (normal with damping, and friction) on
+  /// the ring, in the inertial frame, the moment about the ring's centre [N], [N·m].
+  Eigen::Vector2d ring_mesh_force = Eigen::Vector2d::Zero();
+  double ring_mesh_torque = 0;
   std::vector<Eigen::Vector2d> planet_bearing_force;         ///< force of the pin on planet i [N]
   Eigen::Vector2d sun_bearing_force = Eigen::Vector2d::Zero();  ///< on the sun [N]
   geometry::StagePoses poses;

@@ -14,7 +14,9 @@ struct RunSpan {
   double duration = 0;        ///< simulated time T [s]
   double cycle_time = 0;      ///< one mesh cycle at the carrier speed, (2π/z_r)/|ω_c| [s]
   double mesh_frequency = 0;  ///< f_m = z_r |ω_c|/2π [Hz]
-  int outputs = 0;            ///< N = max(1, ⌈T/cycle_time · outputs per cycle⌉) [-]
+  /// N = max(1, ⌈T/cycle_time · outputs per cycle · (1 − 1e-12)⌉) [-] (a whole number of
+  /// output intervals within round-off is whole)
+  int outputs = 0;
   /// t_k = T k/N, k = 1..N [s] (t = 0 is the start, not an output).
   std::vector<double> OutputTimes() const;
 };

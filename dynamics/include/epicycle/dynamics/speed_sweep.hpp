@@ -102,6 +102,17 @@ struct Coincidence {
   bool phasing_excited = true;  ///< Parker & Lin's rule for equally spaced planets (see above)
 };
 
+/// Parker & Lin's planet-phasing rule (above), the one place it is written: the cyclic family
+/// k = h z_s mod n, in [0, n), that mesh harmonic h of a stage with `sun_teeth` z_s and `planets`
+/// n equally spaced planets loads (k = 0: the planets in phase, the sun's rotation and every
+/// torque; k = 1 and n − 1: the net force on the central members, turning with the carrier one
+/// way or the other; docs/model.md §9 "Fault frequencies"). @throws std::invalid_argument for
+/// planets < 1.
+int PhasingFamily(int harmonic, int sun_teeth, int planets);
+
+/// The planets are at ψ_i = ψ_1 + 2π(i − 1)/n (to 1e-9 rad).
+bool EquallySpaced(const geometry::Stage& stage);
+
 /// Every coincidence of a mesh harmonic with one of `modes` inside [lo_rpm, hi_rpm] of sun speed:
 /// for each non-rigid mode j every harmonic h ≥ 1 with n_s = f_j/(h f_m per rpm) in the range
 /// (h ≤ max_harmonic when max_harmonic > 0), marked by the phasing rule above; sorted by speed.

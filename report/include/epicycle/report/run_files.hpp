@@ -119,6 +119,12 @@ nlohmann::json DynamicRunJson(const dynamics::DynamicModel& model,
                               const dynamics::SimulationResult& result,
                               const dynamics::DynamicSummary& summary);
 
+/// The console summary of a dynamic run with `planets` planets: LSR mean, min and max per planet,
+/// K_γ, the TE's range, the sun's orbit, the integrator's counts and times, and the root
+/// stresses if any ("-" for a statistic without an output step).
+std::string DynamicRunText(const dynamics::DynamicSummary& summary,
+                           const dynamics::SimulationStats& stats, int planets);
+
 /// The natural modes for `epicycle modes --json`: per mode its frequency, multiplicity, type
 /// ("rigid" for a rigid-body group), energy fractions and the sun speeds [rpm] where mesh
 /// harmonics 1, 2, 3 meet it (`hz_per_rpm`: dynamics::MeshHzPerSunRpm).
