@@ -449,8 +449,9 @@ void ReadDamage(TableReader& top, Scene& s,
     const bool by_radius = t.Has("radius_from_mm") || t.Has("radius_to_mm");
     if (by_roll == by_radius)
       t.Fail("roll_from_deg", by_roll ? "given with radius_from_mm/radius_to_mm" : "missing",
-             "give the region as roll_from_deg and roll_to_deg, or as radius_from_mm and "
-             "radius_to_mm, not both");
+             std::string("give the region as roll_from_deg and roll_to_deg, or as radius_from_mm "
+                         "and radius_to_mm") +
+                 (by_roll ? ", not both" : ""));
     const geometry::InvoluteFlank& inv = gear.involute();
     const double rb = gear.base_radius();
     auto radius_at = [&](double u) { return rb * std::hypot(1.0, u) / kMm; };
