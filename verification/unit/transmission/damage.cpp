@@ -60,6 +60,24 @@ TEST_CASE("damage: a scene without damage has none", "[unit][transmission]") {
   CHECK(test::PaperScene().damage.empty());
 }
 
+TEST_CASE("damage: a pair scene's pits name gear1 or gear2", "[unit][transmission]") {
+  const std::string pair = test::SceneText("iso_pair_20_40.toml");
+  const std::string pit =
+      "\n[[damage.pit]]\ngear = \"gear2\"\ntooth = 39\nflank = \"+\"\nroll_from_deg = 20\n"
+      "roll_to_deg = 22\nwidth_fraction = 1\ndepth_um = 10\n";
+  const transmission::Scene s = transmission::ParseScene(pair + pit, "pair.toml");
+  REQUIRE(s.damage.pits.size() == 1);
+  CHECK(s.damage.pits[0].gear == "gear2");
+  CHECK(s.damage.pits[0].tooth == 39);
+  try {
+    transmission::ParseScene(pair + test::Replace(pit, "\"gear2\"", "\"sun\""), "pair.toml");
+    FAIL("a sun pit in a pair scene");
+  } catch (const std::invalid_argument& e) {
+    CHECK_THAT(e.what(), Catch::Contains("damage.pit[0].gear = \"sun\"") &&
+                             Catch::Contains("must be one of \"gear1\", \"gear2\""));
+  }
+}
+
 namespace {
 
 geometry::PotentialContact Contact(geometry::ContactKind kind, int tooth_a, int tooth_b,
