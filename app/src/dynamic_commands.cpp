@@ -113,6 +113,7 @@ void RunDynamic(const DynamicArgs& a) {
       scene.name.c_str(), n, sun_name, scene.loads.sun_torque,
       std::abs(model.sun_speed()) * 30.0 / std::numbers::pi, mesh_hz);
   for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
+  for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
   std::printf(
       "  mean mesh stiffness: sun-planet %.4g N/m, planet-ring %.4g N/m; mesh damping %.4g and "
       "%.4g N s/m\n",

@@ -93,6 +93,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   std::printf("%s: %d planets, sun %s, input torque %.1f N m, back end %s\n", scene.name.c_str(), n,
               sun_name, scene.loads.sun_torque, a.backend.c_str());
   for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
+  for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
   const std::string threads =
       a.threads == 0 ? std::string("one thread per core") : fmt::format("{} thread(s)", a.threads);
   std::printf("  %zu positions from %.4f deg (%.2f s for the tables), %s, %s\n", angles.size(),

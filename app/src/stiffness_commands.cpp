@@ -51,6 +51,7 @@ void RunStiffness(const StiffnessArgs& a) {
               scene.name.c_str(), setup.mesh.c_str(), setup.torque, a.positions);
   const transmission::FePairCompliance compliance(scene, pair, fe);
   for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
+  for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
 
   transmission::MeshStiffnessOptions opt;
   opt.positions = a.positions;

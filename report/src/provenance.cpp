@@ -16,6 +16,7 @@ nlohmann::json Provenance(const std::string& backend, const transmission::Scene*
   if (scene) {
     j["scene"] = scene->source;
     j["scene_hash"] = scene->hash;
+    if (!scene->damage.empty()) j["damage"] = scene->damage.Describe();  // healthy: no key
   }
   return j;
 }
@@ -34,6 +35,8 @@ std::string ProvenanceCsvLine(const nlohmann::json& p) {
   for (const char* k : {"scene", "scene_hash", "input", "input_hash"}) {
     if (p.contains(k)) line += std::string("; ") + k + " " + p[k].get<std::string>();
   }
+  if (p.contains("damage"))
+    for (const auto& d : p["damage"]) line += "; " + d.get<std::string>();
   for (char& c : line) {
     if (c == '\n' || c == '\r') c = ' ';
   }

@@ -175,8 +175,8 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
     if (!(f > 0)) continue;
     const transmission::StageContact& c = r.problem.contacts[j];
     pairs += fmt::format("{:.6f},{},{},{},{}/{},{}", deg, geometry::MeshName(c.planet, c.mesh),
-                         geometry::KindName(c.contact.kind), c.loaded ? "drive" : "coast",
-                         c.contact.tooth_a, c.contact.tooth_b, Num(f));
+                         geometry::KindName(c.contact.kind), c.FlankName(), c.contact.tooth_a,
+                         c.contact.tooth_b, Num(f));
     if (friction_)
       pairs += friction ? fmt::format(",{},{}", Num(r.friction_force(static_cast<Eigen::Index>(j))),
                                       Num(r.sliding_velocity(static_cast<Eigen::Index>(j))))
@@ -342,7 +342,7 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
     const transmission::StageContact& c = e.terms.contacts[j];
     pairs += fmt::format("{:.9g},{},{},{},{}/{},{},{},{},{}\n", s.time,
                          geometry::MeshName(c.planet, c.mesh), geometry::KindName(c.contact.kind),
-                         c.loaded ? "drive" : "coast", c.contact.tooth_a, c.contact.tooth_b,
+                         c.FlankName(), c.contact.tooth_a, c.contact.tooth_b,
                          Num(e.total_force(j)), Num(e.force(j)), Num(e.friction(j)),
                          Num(e.overlap_rate(j) * 1e3));
   }

@@ -1,6 +1,7 @@
 // Validation of the contact problem: every rule names the field, the value and the rule.
 #include "epicycle/solvers/contact_problem.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -142,8 +143,18 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(d.compliance, Eigen::EigenvaluesOnly)
             .eigenvalues()
             .minCoeff();
-    throw std::invalid_argument("compliance is not positive definite: smallest eigenvalue " +
-                                Num(min_eig) + " (Cholesky failed); rule: C must be SPD");
+    // Contacts that share their rows of C (the strips of a pitted contact) make C singular; with
+    // a local term on every contact, strictly increasing (u' > 0), the program stays strictly
+    // convex and every Newton matrix C_AA + diag u'_A positive definite.
+    const bool all_local = !d.local.empty() &&
+                           std::all_of(d.local.begin(), d.local.end(),
+                                       [](const LocalTermParameters& l) { return l.enabled; });
+    const double scale = d.compliance.cwiseAbs().maxCoeff();
+    if (!all_local || min_eig < -kSymmetryTolerance * scale)
+      throw std::invalid_argument(
+          "compliance is not positive definite: smallest eigenvalue " + Num(min_eig) +
+          " (Cholesky failed); rule: C must be SPD, or positive semidefinite (eigenvalues >= " +
+          Num(-kSymmetryTolerance * scale) + ") when every contact has a local term");
   }
 
   support_ = Eigen::MatrixXd::Zero(m, m);

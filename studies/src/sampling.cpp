@@ -61,7 +61,8 @@ std::vector<double> SampleCase(const StudySpec& study, long case_id) {
   long grid_index = case_id % study.GridPoints();
   for (std::size_t j = 0; j < study.variables.size(); ++j) {
     const Variable& v = study.variables[j];
-    const double to_file = v.quantity == Quantity::kTorque ? 1.0 : 1e6;
+    const double to_file =
+        v.quantity == Quantity::kTorque || v.quantity == Quantity::kPitWidth ? 1.0 : 1e6;
     CaseStream rng(study.seed, case_id, static_cast<int>(j));
     double x = 0.0;
     switch (v.distribution) {
@@ -92,7 +93,8 @@ transmission::Scene CaseScene(const StudySpec& study, const std::vector<double>&
   std::size_t c = 0;
   for (const Variable& v : study.variables) {
     const double x = values.at(c++);
-    const double si = v.quantity == Quantity::kTorque ? x : x * 1e-6;
+    const double si =
+        v.quantity == Quantity::kTorque || v.quantity == Quantity::kPitWidth ? x : x * 1e-6;
     const auto i = static_cast<std::size_t>(v.target.planet);
     switch (v.quantity) {
       case Quantity::kPinRadial:
@@ -127,6 +129,20 @@ transmission::Scene CaseScene(const StudySpec& study, const std::vector<double>&
               std::to_string(study.scene.loads.sun_torque) + " (the loaded flanks are the scene's)");
         scene.loads.sun_torque = si;
         break;
+      case Quantity::kPitDepth:
+      case Quantity::kPitWidth: {
+        // A normal distribution's draw can leave the scene's range: the case is refused.
+        transmission::Pit& p = scene.damage.pits.at(static_cast<std::size_t>(v.target.pit));
+        const bool depth = v.quantity == Quantity::kPitDepth;
+        const double hi = depth ? 0.25 * st.sun.module : 1.0;
+        if (!(si > 0 && si <= hi))
+          throw std::invalid_argument(
+              "sampled pit" + std::to_string(v.target.pit) + (depth ? " depth " : " width ") +
+              std::to_string(depth ? si * 1e6 : si) + (depth ? " um" : "") + ": must be in (0, " +
+              std::to_string(depth ? hi * 1e6 : hi) + "] (the scene's depth_um, width_fraction)");
+        (depth ? p.depth : p.width_fraction) = si;
+        break;
+      }
     }
   }
   return scene;

@@ -35,6 +35,8 @@ constexpr QuantityInfo kQuantities[] = {
     {Quantity::kRunout, "runout", "um", kUm},
     {Quantity::kThickness, "thickness", "um", kUm},
     {Quantity::kTorque, "torque", "Nm", 1.0},
+    {Quantity::kPitDepth, "pit_depth", "um", kUm},
+    {Quantity::kPitWidth, "pit_width", "fraction", 1.0},
 };
 
 const QuantityInfo& Info(Quantity q) {
@@ -68,10 +70,21 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
   const std::string unit = info.unit;
   const int n = scene.stage.planets;
 
-  // Which gear: planets only for pin errors, none for the torque.
+  // Which gear: planets only for pin errors, none for the torque; a pit by its index.
   bool each_planet = false;
+  const bool pit = v.quantity == Quantity::kPitDepth || v.quantity == Quantity::kPitWidth;
   if (v.quantity == Quantity::kTorque) {
     v.target.kind = Target::Kind::kNone;
+  } else if (pit) {
+    const auto pits = static_cast<long>(scene.damage.pits.size());
+    if (pits == 0)
+      t.Fail("quantity", "\"" + qname + "\"",
+             "the scene '" + scene.source + "' has no [[damage.pit]] to vary");
+    v.target.kind = Target::Kind::kPit;
+    v.target.pit = static_cast<int>(t.Integer(
+        "pit", Rule::Closed(0, static_cast<double>(pits - 1))
+                   .Because("the index of one of the scene's " + std::to_string(pits) +
+                            " [[damage.pit]] tables, from 0")));
   } else {
     std::vector<std::string> allowed;
     if (v.quantity != Quantity::kPinRadial && v.quantity != Quantity::kPinTangential)
@@ -105,9 +118,15 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
   // Values of the quantity: lengths within a module of the gear (the errors are µm-scale
   // modifications of the geometry), a torque non-zero.
   const double module_um = scene.stage.sun.module / kUm;
-  const Rule value_rule =
+  Rule value_rule =
       length ? Rule::Closed(-module_um, module_um).Because("within one module of the nominal")
              : Rule::Any();
+  // A pit's values: the scene's rules (docs/scenes.md, "Damage").
+  if (v.quantity == Quantity::kPitDepth)
+    value_rule = Rule{0, module_um / 4, true, false, ""}.Because(
+        "a pit's depth_um: more than 0, at most a quarter of the module");
+  if (v.quantity == Quantity::kPitWidth)
+    value_rule = Rule{0, 1, true, false, ""}.Because("a pit's width_fraction");
   if (dist == "normal") {
     if (v.quantity == Quantity::kRunout)
       t.Fail("distribution", "\"normal\"",
@@ -186,6 +205,8 @@ std::string Target::Name() const {
       return "ring";
     case Kind::kPlanet:
       return "planet" + std::to_string(planet + 1);
+    case Kind::kPit:
+      return "pit" + std::to_string(pit);
     case Kind::kNone:
       break;
   }

@@ -115,7 +115,8 @@ FrictionContact ContactFrictionState(const StageModel& model, const StageContact
                                      double contact_modulus) {
   const geometry::PotentialContact& c = s.contact;
   FrictionContact fc;
-  fc.face_width = geometry::ContactFaceWidth(model.BodyGear(s.body_a), model.BodyGear(s.body_b));
+  fc.face_width = geometry::ContactFaceWidth(model.BodyGear(s.body_a), model.BodyGear(s.body_b)) *
+                  s.width_fraction;  // a pitted contact's strip (× 1 exactly when whole)
   fc.reduced_radius = local == nullptr
                           ? 1.0 / (1.0 / c.curvature_radius_a + 1.0 / c.curvature_radius_b)
                           : local->reduced_radius;

@@ -27,6 +27,7 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
     s.spec = scene.pair;
     s.torque = scene.pair_torque;
     s.gap_window = scene.gap_window;
+    s.damage = scene.damage;
     return s;
   }
   if (stage == nullptr) throw std::invalid_argument("MakeMeshPair: a stage scene needs its stage");
@@ -54,6 +55,7 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
     }
     s.spec.centre_distance = stage->carrier_radius();
     s.gap_window = scene.gap_window;
+    s.damage = scene.damage;
     return s;
   }
   throw std::invalid_argument("--mesh = '" + mesh + "': the stage's meshes are " + names);
@@ -83,7 +85,7 @@ namespace {
 
 // One position: the contact problem of the pair with gear 1's moment equilibrium (gear 2 held),
 // solved again at the moved pose until the rotation settles.
-MeshSample SolveSample(const MeshPairSetup& setup,
+MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
                        const geometry::GearPair& pair, const FePairCompliance& compliance,
                        const MeshStiffnessOptions& options, solvers::ContactSolver& solver,
                        double angle) {
@@ -95,6 +97,8 @@ MeshSample SolveSample(const MeshPairSetup& setup,
   const double rb1 = pair.gear1().base_radius();
   std::vector<geometry::PotentialContact> contacts;
   std::vector<solvers::LocalTermParameters> local;  // of the last problem built
+  std::vector<int> source;                          // a pitted contact's strips: damage.hpp
+  std::vector<ContactStrip> strips;
   geometry::PairPoses built;                        // the poses of the last problem built
   GeometricIterationOptions iteration;
   iteration.max_iterations = options.max_geometric_iterations;
@@ -106,12 +110,29 @@ MeshSample SolveSample(const MeshPairSetup& setup,
         built = poses;
         if (contacts.empty())
           return {StageStatus::kNoContact, "no potential contact within the gap window"};
-        const int n = static_cast<int>(contacts.size());
         solvers::ContactProblemData& d = *data;
         d.name = setup.mesh + " @ " + std::to_string(geometry::Deg(angle)) + " deg";
         d.compliance = compliance.Matrix(pair, poses, contacts);
-        if (!options.tooth_coupling)
+        if (!options.tooth_coupling)  // (a pitted contact's strips still share their rows)
           d.compliance = Eigen::MatrixXd(d.compliance.diagonal().asDiagonal());
+        if (!damage.empty() &&
+            SplitContacts(damage, std::vector<int>(contacts.size(), 0),
+                          std::vector<int>(contacts.size(), 1), contacts, setup.gap_window,
+                          options.local_terms, &source, &strips)) {
+          // Each strip takes its contact's rows of C (the stage model's rule).
+          d.compliance = ExpandCompliance(d.compliance, source);
+          std::vector<geometry::PotentialContact> parts;
+          for (std::size_t k = 0; k < source.size(); ++k) {
+            parts.push_back(contacts[static_cast<std::size_t>(source[k])]);
+            parts.back().overlap -= strips[k].depth;
+          }
+          contacts = std::move(parts);
+        } else {
+          strips.assign(contacts.size(), ContactStrip{});
+        }
+        const int n = static_cast<int>(contacts.size());
+        if (n == 0)
+          return {StageStatus::kNoContact, "no potential contact within the gap window"};
         d.overlap.resize(n);
         d.equality_matrix.resize(1, n);
         d.equality_rhs = Eigen::VectorXd::Constant(1, setup.torque);
@@ -125,6 +146,7 @@ MeshSample SolveSample(const MeshPairSetup& setup,
                 compliance.JoiningDepth(0), compliance.JoiningDepth(1),
                 d.name + " contact " + std::to_string(j), &d.local.back());
             if (!o.ok()) return o;
+            d.local.back().face_width *= strips[static_cast<std::size_t>(j)].width_fraction;
           }
         }
         d.multiplier_labels = {"gear1 rotation [rad]"};
@@ -206,12 +228,13 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup,
   r.min_stiffness = std::numeric_limits<double>::infinity();
   r.samples.resize(static_cast<std::size_t>(options.positions));
   RootStressTracker root_stress(setup.gears);
+  const DamageModel damage(setup.damage, setup.gears);
   internal::RunOrderedChunks(
       options.positions, options.threads, options.backend,
       [&](int k, bool, solvers::ContactSolver& solver) {
         const double angle = pair.mesh_cycle() * k / options.positions;
         r.samples[static_cast<std::size_t>(k)] =
-            SolveSample(setup, pair, compliance, options, solver, angle);
+            SolveSample(setup, damage, pair, compliance, options, solver, angle);
       },
       [&](int k) {
         // In the order of the positions: the statistics do not depend on the thread count.

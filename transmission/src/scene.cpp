@@ -61,6 +61,9 @@ double ReadGapWindow(TableReader& t, double module) {
 const Rule kBearingRule = Rule::Closed(1, 1e6).Because(
     "rolling bearings are 1e2 .. 1e4 N/um; below 1 the member floats, above 1e6 it is rigid");
 constexpr int kRingTeethSlack = 4;       // |z_r − z_s − 2 z_p| ≤ 4
+// Pit depth: a warning beyond 5 % of the module (the tooth's compliance stays the intact
+// tooth's), an error beyond a quarter of it.
+constexpr double kPitDepthModules[2] = {0.05, 0.25};
 
 Rule ErrorRule(double module) {
   const double e = kErrorModules * module / kUm;
@@ -431,6 +434,92 @@ void ReadErrors(TableReader& e, Scene& s, std::vector<ErrorKey>* keys) {
   }
 }
 
+// The scene's [[damage.pit]] tables (docs/scenes.md, "Damage"): `gears` names the gears a pit may
+// be on with the spec of each (a stage's planets share one spec), read once the radii are final.
+void ReadDamage(TableReader& top, Scene& s,
+                const std::vector<std::pair<std::string, const GearSpec*>>& gears) {
+  auto d = top.OptionalTable("damage");
+  if (!d) return;
+  std::string names;
+  std::vector<std::string> allowed;
+  for (const auto& [name, spec] : gears) {
+    names += (names.empty() ? "\"" : ", \"") + name + "\"";
+    allowed.push_back(name);
+  }
+  for (TableReader& t : d->TableArray("pit")) {
+    Pit p;
+    p.where = t.Where("gear");
+    p.gear = t.String("gear");
+    const GearSpec* spec = nullptr;
+    for (const auto& [name, g] : gears)
+      if (name == p.gear) spec = g;
+    if (spec == nullptr) t.Fail("gear", "\"" + p.gear + "\"", "must be one of " + names);
+    const geometry::Gear gear(*spec);
+    p.tooth = static_cast<int>(t.Integer(
+        "tooth", Rule::Closed(0, spec->teeth - 1)
+                     .Because("a tooth index k of the gear's body frame, 0 <= k < z = " +
+                              std::to_string(spec->teeth))));
+    p.flank = t.String("flank", {"+", "-"}) == "+" ? 1 : -1;
+    // The region: roll angles (primary) or radii, one form per pit.
+    const bool by_roll = t.Has("roll_from_deg") || t.Has("roll_to_deg");
+    const bool by_radius = t.Has("radius_from_mm") || t.Has("radius_to_mm");
+    if (by_roll == by_radius)
+      t.Fail("roll_from_deg", by_roll ? "given with radius_from_mm/radius_to_mm" : "missing",
+             std::string("give the region as roll_from_deg and roll_to_deg, or as radius_from_mm "
+                         "and radius_to_mm") +
+                 (by_roll ? ", not both" : ""));
+    const geometry::InvoluteFlank& inv = gear.involute();
+    const double rb = gear.base_radius();
+    auto radius_at = [&](double u) { return rb * std::hypot(1.0, u) / kMm; };
+    const std::string extent = "the involute of the flank runs over roll " +
+                               Num(geometry::Deg(inv.u_min)) + ".." +
+                               Num(geometry::Deg(inv.u_max)) + " deg (radius " +
+                               Num(radius_at(inv.u_min)) + ".." + Num(radius_at(inv.u_max)) +
+                               " mm); a pit lowers the involute only";
+    const std::string from = by_roll ? "roll_from_deg" : "radius_from_mm",
+                      to = by_roll ? "roll_to_deg" : "radius_to_mm";
+    if (by_roll) {
+      const Rule rule = Rule::Closed(geometry::Deg(inv.u_min), geometry::Deg(inv.u_max))
+                            .Because(extent);
+      p.roll_from = geometry::Rad(t.Real(from, rule));
+      p.roll_to = geometry::Rad(t.Real(to, rule));
+    } else {
+      const Rule rule = Rule::Closed(radius_at(inv.u_min), radius_at(inv.u_max)).Because(extent);
+      p.roll_from = geometry::InvoluteFlank::RollAtRadius(rb, t.Real(from, rule) * kMm);
+      p.roll_to = geometry::InvoluteFlank::RollAtRadius(rb, t.Real(to, rule) * kMm);
+    }
+    if (!(p.roll_to > p.roll_from))
+      t.Fail(to, Num(by_roll ? geometry::Deg(p.roll_to) : radius_at(p.roll_to)),
+             "must be greater than " + from + " (the region runs from the root side to the tip)");
+    p.width_fraction =
+        t.Real("width_fraction",
+               Rule{0, 1, true, false, ""}.Because("the share of the face width the pit covers"));
+    const double depth_um = t.Real(
+        "depth_um", Rule{0, kPitDepthModules[1] * spec->module / kUm, true, false, ""}.Because(
+                        "at most a quarter of the module: deeper, the pit takes a large part of "
+                        "the tooth's thickness"));
+    p.depth = depth_um * kUm;
+    if (p.depth > kPitDepthModules[0] * spec->module)
+      s.warnings.push_back(t.Warning(
+          "depth_um", "deeper than " + Num(kPitDepthModules[0] * spec->module / kUm) +
+                          " um (5 % of the module): the tooth keeps the compliance of the intact "
+                          "tooth, which a pit this deep softens"));
+    // Pits on one flank of one tooth must not overlap: the strips of the face width they would
+    // share are not defined by the scene.
+    for (const Pit& q : s.damage.pits) {
+      if (q.gear == p.gear && q.tooth == p.tooth && q.flank == p.flank &&
+          p.roll_from < q.roll_to && q.roll_from < p.roll_to)
+        t.Fail(from, Num(by_roll ? geometry::Deg(p.roll_from) : radius_at(p.roll_from)),
+               "the region overlaps the pit of " + q.where +
+                   " on the same flank of the same tooth; give one pit per region (join them, "
+                   "or split the roll range)");
+    }
+    t.Done();
+    s.damage.pits.push_back(p);
+  }
+  d->Done();
+}
+
 // Addendum/dedendum coefficients (stored negative by ReadGear) become radii once x is final.
 void ResolveRadii(GearSpec& g) {
   const double r = g.module * g.teeth / 2.0, xm = g.profile_shift * g.module;
@@ -653,6 +742,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
 
   if (is_pair) {
     ReadPair(top, s, fits, fit_gears, fitted);
+    ReadDamage(top, s, {{"gear1", &s.pair.gear1}, {"gear2", &s.pair.gear2}});
     top.Done();
     const bool internal = s.pair.gear2.kind == GearKind::kInternal;
     ContactRatioWarning(s.pair.gear1, s.pair.gear2, internal, s.pair.centre_distance,
@@ -768,6 +858,13 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     s.fits.push_back(f);
   }
   for (GearSpec* g : {&st.sun, &st.planet, &st.ring}) ResolveRadii(*g);
+  {
+    std::vector<std::pair<std::string, const GearSpec*>> gears{{"sun", &st.sun}};
+    for (int i = 0; i < st.planets; ++i)
+      gears.emplace_back("planet" + std::to_string(i + 1), &st.planet);
+    gears.emplace_back("ring", &st.ring);
+    ReadDamage(top, s, gears);
+  }
   top.Done();
   StageWarnings(error_keys, s);
   s.hash = ContentHash(text);

@@ -33,12 +33,16 @@ StageSetup SetupFromScene(const Scene& scene) {
   s.sun_stiffness = scene.supports.sun_stiffness;
   s.planet_stiffness = scene.supports.planet_stiffness;
   s.gap_window = scene.gap_window;
+  s.damage = scene.damage;
   return s;
 }
 
 StageModel::StageModel(const geometry::Stage& stage, const StageCompliance& compliance,
                        const StageSetup& setup)
-    : stage_(stage), compliance_(compliance), setup_(setup) {
+    : stage_(stage),
+      compliance_(compliance),
+      setup_(setup),
+      damage_(setup.damage, BodyNames(PlanetBody(stage.planets()))) {
   setup_.Validate();
   // DOFs and their support stiffness (0: an equality; k: an elastic bearing, G F + k λ = W).
   dofs_.push_back({StageDof::kSunRotation, 0});
@@ -86,9 +90,10 @@ StageOutcome StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* 
   }
   if (StageOutcome o = compliance_.TryMatrix(stage_, poses, t.contacts, &t.compliance); !o.ok())
     return o;
+  if (!damage_.empty()) SplitDamaged(&t);
   if (setup_.local_terms) {
-    t.local.resize(static_cast<std::size_t>(n));
-    for (int j = 0; j < n; ++j) {
+    t.local.resize(static_cast<std::size_t>(t.size()));
+    for (int j = 0; j < t.size(); ++j) {
       const StageContact& s = t.contacts[j];
       StageOutcome o = ContactLocalTerm(s, BodyGear(s.body_a), BodyGear(s.body_b),
                                         compliance_.material(), compliance_.plane(),
@@ -98,6 +103,38 @@ StageOutcome StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* 
     }
   }
   return {};
+}
+
+void StageModel::SplitDamaged(ContactTerms* terms) const {
+  ContactTerms& t = *terms;
+  const int n = t.size();
+  std::vector<int> body_a(n), body_b(n), source;
+  std::vector<PotentialContact> found(n);
+  std::vector<ContactStrip> strips;
+  for (int j = 0; j < n; ++j) {
+    body_a[j] = t.contacts[j].body_a;
+    body_b[j] = t.contacts[j].body_b;
+    found[j] = t.contacts[j].contact;
+  }
+  if (!SplitContacts(damage_, body_a, body_b, found, setup_.gap_window, setup_.local_terms,
+                     &source, &strips))
+    return;
+  // The compliance was built for the searched contacts: each strip takes its contact's rows
+  // (built again for a repeated point, the diagonal's joining-depth term would differ).
+  std::vector<StageContact> parts;
+  parts.reserve(source.size());
+  for (std::size_t s = 0; s < source.size(); ++s) {
+    StageContact c = t.contacts[static_cast<std::size_t>(source[s])];
+    c.width_fraction = strips[s].width_fraction;
+    c.pit_depth = strips[s].depth;
+    c.part = strips[s].part;
+    c.contact.overlap -= strips[s].depth;
+    parts.push_back(c);
+  }
+  t.compliance = ExpandCompliance(t.compliance, source);
+  t.contacts = std::move(parts);
+  t.overlap.resize(t.size());
+  for (int j = 0; j < t.size(); ++j) t.overlap(j) = t.contacts[j].contact.overlap;
 }
 
 namespace {

@@ -31,7 +31,13 @@ using geometry::Vec2;
 std::string StageContact::Label() const {
   return geometry::MeshName(planet, mesh) + " " + geometry::KindName(contact.kind) + " " +
          (loaded ? "drive" : "coast") + " teeth " + std::to_string(contact.tooth_a) + "/" +
-         std::to_string(contact.tooth_b);
+         std::to_string(contact.tooth_b) +
+         (pit_depth > 0 ? " pitted " + std::to_string(part) : std::string());
+}
+
+std::string StageContact::FlankName() const {
+  return std::string(loaded ? "drive" : "coast") +
+         (pit_depth > 0 ? " pitted " + std::to_string(part) : std::string());
 }
 
 std::string StageDof::Label() const {
@@ -185,7 +191,10 @@ StageOutcome ContactLocalTerm(const StageContact& contact, const geometry::Gear&
                               const geometry::Gear& b, const Material& material,
                               solvers::PlaneAssumption plane, double depth_a, double depth_b,
                               solvers::LocalTermParameters* out) {
-  if (LocalTermOf(contact.contact, a, b, material, plane, depth_a, depth_b, out)) return {};
+  if (LocalTermOf(contact.contact, a, b, material, plane, depth_a, depth_b, out)) {
+    out->face_width *= contact.width_fraction;  // × 1 exactly for a whole contact
+    return {};
+  }
   return NoReducedRadius(contact.contact, contact.Label());
 }
 

@@ -216,3 +216,34 @@ TEST_CASE("contacts loaded past the local term's validity are counted in a warni
 }
 
 }  // namespace epicycle::solvers
+
+namespace epicycle::solvers {
+
+TEST_CASE("contacts sharing their rows of C are accepted only with local terms on every contact",
+          "[unit][solvers]") {
+  // Two strips of one contact (a pitted flank, docs/model.md §9): identical rows, C singular
+  // (eigenvalues 0 and 8e-9). With both local terms, strictly increasing, the program stays
+  // strictly convex: accepted, and the Newton solve splits the load so that both gaps close
+  // (the strips' local approaches then differ by their overlaps' difference, 0.1 µm; the
+  // solve's tolerance, 1e-10 of the nondimensional residual, leaves 1e-6 of it).
+  auto d = Good();
+  d.compliance << 4e-9, 4e-9, 4e-9, 4e-9;
+  d.overlap = Eigen::Vector2d(5e-6, 4.9e-6);
+  d.local[0].face_width = 0.0175;  // (1 − w) b, w = 0.3
+  d.local[1].face_width = 0.0075;  // w b
+  const ContactProblem p(d);
+  auto solver = MakeContactSolver(Backend::kActiveSetNewton);
+  ContactSolution s;
+  const ContactReport r = solver->Solve(p, ContactOptions{}, &s);
+  REQUIRE(r.status == ContactStatus::kConverged);
+  CHECK(s.force.sum() == Approx(1000.0).epsilon(1e-9));
+  const double du = LocalApproach(d.local[0], s.force(0)) - LocalApproach(d.local[1], s.force(1));
+  REQUIRE(s.force(1) > 0);
+  CHECK(du == Approx(1e-7).epsilon(1e-6));
+  // Without local terms the same C is refused, with the rule.
+  d.local.clear();
+  CHECK_THROWS_WITH(ContactProblem(d), Catch::Contains("compliance is not positive definite") &&
+                                           Catch::Contains("when every contact has a local term"));
+}
+
+}  // namespace epicycle::solvers

@@ -176,3 +176,36 @@ TEST_CASE("ISO 1328-1:2013 run-out tolerance against a hand calculation", "[unit
   CHECK_THROWS_AS(studies::Iso1328RunoutTolerance(12, 0.1, 0.004), std::invalid_argument);
   CHECK_THROWS_AS(studies::Iso1328RunoutTolerance(5, 0.1, 0.0004), std::invalid_argument);
 }
+
+TEST_CASE("study file: a spall's size as study variables", "[unit][studies]") {
+  // The example scene's pit 0 (planet 1, w 0.5, 30 µm): its depth on a grid, its width uniform.
+  const std::string scene = std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_spall.toml";
+  const std::string vars =
+      "[[variable]]\nquantity = \"pit_depth\"\npit = 0\ndistribution = \"grid\"\n"
+      "values_um = [10.0, 50.0]\n[[variable]]\nquantity = \"pit_width\"\npit = 0\n"
+      "distribution = \"uniform\"\nmin_fraction = 0.2\nmax_fraction = 0.8\n";
+  const std::string text =
+      "[study]\nname = \"spall\"\nscene = \"" + scene + "\"\nsamples = 2\n" + vars;
+  const studies::StudySpec s = studies::ParseStudy(text, "spall.toml", "");
+  REQUIRE(s.variables.size() == 2);
+  CHECK(s.Columns() == std::vector<std::string>{"pit0.pit_depth_um", "pit0.pit_width_fraction"});
+  for (long k = 0; k < s.Cases(); ++k) {
+    const auto v = studies::SampleCase(s, k);
+    const transmission::Scene c = studies::CaseScene(s, v);
+    CHECK(c.damage.pits.at(0).depth == Approx(v[0] * 1e-6).epsilon(1e-15));
+    CHECK(c.damage.pits.at(0).width_fraction == v[1]);
+    CHECK(v[0] == Approx(k % 2 ? 50.0 : 10.0).epsilon(1e-15));  // through 1e-6 and back
+    CHECK(v[1] >= 0.2);
+    CHECK(v[1] < 0.8);
+    CHECK(c.damage.pits.at(0).tooth == 13);  // the rest of the pit is the scene's
+  }
+  // Bad: a pit the scene does not have, a width above 1, a scene without pits.
+  CHECK_THAT(StudyError(test::Replace(text, "pit = 0\ndistribution = \"grid\"",
+                                      "pit = 1\ndistribution = \"grid\"")),
+             Contains("variable[0].pit = 1") && Contains("must be in [0, 0]") &&
+                 Contains("[[damage.pit]]"));
+  CHECK_THAT(StudyError(test::Replace(text, "max_fraction = 0.8", "max_fraction = 1.5")),
+             Contains("variable[1].max_fraction = 1.5") && Contains("must be in (0, 1]"));
+  CHECK_THAT(StudyError(StudyText("", vars)),
+             Contains("variable[0].quantity = \"pit_depth\"") && Contains("no [[damage.pit]]"));
+}

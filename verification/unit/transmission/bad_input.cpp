@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "figures.hpp"
+#include "stage_fixtures.hpp"
 
 namespace {
 
@@ -177,6 +179,128 @@ TEST_CASE("bad scene values are named with key, value and rule, or warned about"
     Row(std::string(c.warning ? "warning: " : "error: ") + "`" + c.file + "`", expected, shown,
         pass);
   }
+}
+
+namespace {
+
+// A pit on the paper stage (scenes/paper_stage.toml with one [[damage.pit]] appended): every key
+// of the table, each with a bad value. The planet's flank (z = 24, m = 4.23 mm, r_b = 46.004 mm)
+// runs from its form circle to its tip round's tangency, roll 12.556..39.067 deg; depths up to
+// m/4 = 1057.5 um, warned above 0.05 m = 211.5 um.
+struct PitCase {
+  std::string name;                   // what is wrong, for the table
+  std::string keys;                   // the pit's keys (replacing those of kGoodPit they name)
+  bool warning;
+  std::vector<std::string> expected;  // every piece must be in the message
+};
+
+const char* kGoodPit[] = {"gear = \"planet1\"",  "tooth = 13",          "flank = \"-\"",
+                          "roll_from_deg = 23.0", "roll_to_deg = 28.0", "width_fraction = 0.5",
+                          "depth_um = 30.0"};
+
+const std::vector<PitCase> kPitCases = {
+    {"an unknown gear", "gear = \"planet4\"", false,
+     {"damage.pit[0].gear = \"planet4\"", "must be one of \"sun\", \"planet1\", \"planet2\", "
+                                          "\"planet3\", \"ring\""}},
+    {"a tooth index past z", "tooth = 24", false,
+     {"damage.pit[0].tooth = 24", "must be in [0, 23]", "0 <= k < z = 24"}},
+    {"a flank that is not + or -", "flank = \"left\"", false,
+     {"damage.pit[0].flank = \"left\"", "must be one of"}},
+    {"no region", "roll_from_deg = -\nroll_to_deg = -", false,
+     {"damage.pit[0].roll_from_deg = missing", "give the region as roll_from_deg and roll_to_deg, "
+                                               "or as radius_from_mm and radius_to_mm"}},
+    {"both forms of the region", "radius_from_mm = 50.0", false,
+     {"damage.pit[0].roll_from_deg = given with radius_from_mm/radius_to_mm", "not both"}},
+    {"a roll beyond the involute", "roll_to_deg = 45.0", false,
+     {"damage.pit[0].roll_to_deg = 45", "must be in [12.556", "39.066",
+      "a pit lowers the involute only"}},
+    {"a radius below the form circle",
+     "roll_from_deg = -\nroll_to_deg = -\nradius_from_mm = 46.5\nradius_to_mm = 50.0", false,
+     {"damage.pit[0].radius_from_mm = 46.5", "must be in [47.09", "55.68",
+      "a pit lowers the involute only"}},
+    {"an empty region", "roll_to_deg = 20.0", false,
+     {"damage.pit[0].roll_to_deg = 20", "must be greater than roll_from_deg"}},
+    {"a width fraction of 0", "width_fraction = 0", false,
+     {"damage.pit[0].width_fraction = 0", "must be in (0, 1]"}},
+    {"a width fraction above 1", "width_fraction = 1.5", false,
+     {"damage.pit[0].width_fraction = 1.5", "must be in (0, 1]"}},
+    {"a depth of 0", "depth_um = 0", false,
+     {"damage.pit[0].depth_um = 0", "must be in (0, 1057.5]", "quarter of the module"}},
+    {"a depth of 2 mm", "depth_um = 2000", false,
+     {"damage.pit[0].depth_um = 2000", "must be in (0, 1057.5]"}},
+    {"an unknown key", "diameter_mm = 1", false, {"damage.pit[0]", "diameter_mm"}},
+    {"a deep pit", "depth_um = 300", true,
+     {"damage.pit[0].depth_um = 300", "deeper than 211.5 um (5 % of the module)",
+      "compliance of the intact tooth"}},
+};
+
+// The pit's table: kGoodPit with the keys `keys` names replaced ("key = -" removes one).
+std::string PitTable(const std::string& keys) {
+  std::vector<std::string> lines(std::begin(kGoodPit), std::end(kGoodPit));
+  std::istringstream in(keys);
+  for (std::string line; std::getline(in, line);) {
+    const std::string key = line.substr(0, line.find(' '));
+    bool replaced = false;
+    for (std::string& l : lines)
+      if (l.substr(0, l.find(' ')) == key) {
+        l = line;
+        replaced = true;
+      }
+    if (!replaced) lines.push_back(line);
+  }
+  std::string table = "\n[[damage.pit]]\n";
+  for (const std::string& l : lines)
+    if (l.find(" = -") == std::string::npos) table += l + "\n";
+  return table;
+}
+
+}  // namespace
+
+TEST_CASE("bad pit values are named with key, value and rule, or warned about",
+          "[unit][transmission][bad-input]") {
+  const std::string stage = epicycle::test::SceneText("paper_stage.toml");
+  for (const PitCase& c : kPitCases) {
+    INFO(c.name);
+    std::string text, error;
+    try {
+      const auto scene = epicycle::transmission::ParseScene(stage + PitTable(c.keys), "pit.toml");
+      for (const std::string& w : scene.warnings) text += w + "\n";
+    } catch (const std::invalid_argument& e) {
+      error = e.what();
+    }
+    if (c.warning) {
+      CHECK(error.empty());
+    } else {
+      CHECK(text.empty());
+      text = error;
+    }
+    std::string expected;
+    const bool pass = HasPieces(text, c.expected, &expected);
+    while (!text.empty() && text.back() == '\n') text.pop_back();
+    Row(std::string(c.warning ? "warning: " : "error: ") + "`paper_stage.toml` + pit with " +
+            c.name + " (`" + epicycle::test::Replace(c.keys, "\n", "; ") + "`)",
+        expected, text, pass);
+  }
+  // Two pits overlapping on one flank of one tooth: refused, naming both tables.
+  const std::string two = stage + PitTable("") + PitTable("roll_from_deg = 27.0\nroll_to_deg = 30.0");
+  std::string error;
+  try {
+    epicycle::transmission::ParseScene(two, "pits.toml");
+  } catch (const std::invalid_argument& e) {
+    error = e.what();
+  }
+  std::string expected;
+  const bool pass = HasPieces(error,
+                              {"damage.pit[1].roll_from_deg = 27", "overlaps the pit of",
+                               "damage.pit[0].gear", "give one pit per region"},
+                              &expected);
+  Row("error: `paper_stage.toml` + two pits overlapping on one flank", expected, error, pass);
+  // The same regions on the other flank, or on another planet, are two pits.
+  CHECK_NOTHROW(epicycle::transmission::ParseScene(
+      stage + PitTable("") + PitTable("flank = \"+\"\nroll_from_deg = 27.0\nroll_to_deg = 30.0"),
+      "pits.toml"));
+  CHECK_NOTHROW(epicycle::transmission::ParseScene(
+      stage + PitTable("") + PitTable("gear = \"planet2\""), "pits.toml"));
 }
 
 TEST_CASE("a directory given as an input file is named as a directory",

@@ -23,7 +23,7 @@ namespace epicycle::solvers {
 ///   min Φ(F) = ½FᵀCF + Σ_j ∫₀^{F_j} u_local,j − δ0ᵀF (+ ½(GF−W)ᵀK⁻¹(GF−W))  s.t. F ≥ 0, (GF = W).
 struct ContactProblemData {
   std::string name;                        ///< free text, used in reports and file names
-  Eigen::MatrixXd compliance;              ///< C [m/N], N×N, symmetric positive definite
+  Eigen::MatrixXd compliance;              ///< C [m/N], N×N, symmetric positive definite (see below)
   Eigen::VectorXd overlap;                 ///< δ0 [m], N; > 0 interpenetration, < 0 gap
   std::vector<LocalTermParameters> local;  ///< empty (no local terms) or N entries
   Eigen::MatrixXd equality_matrix;    ///< G, m×N [-] (force rows) or [m] (moment rows); m may be 0
@@ -40,7 +40,10 @@ struct ContactProblemData {
 ///    of the matching size;
 ///  - every entry finite;
 ///  - C symmetric to |C_ij − C_ji| ≤ kSymmetryTolerance·max|C| and positive definite (Cholesky of
-///    its symmetric part);
+///    its symmetric part), or, when every contact has an enabled local term, positive
+///    semidefinite (eigenvalues ≥ −kSymmetryTolerance·max|C|): contacts that share their rows of
+///    C (the strips of a pitted contact) are then told apart by their local terms, which keep
+///    the program strictly convex;
 ///  - S symmetric (same rule) and positive semidefinite (eigenvalues ≥ −kSymmetryTolerance·max|S|);
 ///  - local-term parameters: face width, R_eq, E, h > 0, 0 ≤ ν < 0.5 (see ValidateLocalTerm).
 /// The stored C and S are the symmetric parts of the input.

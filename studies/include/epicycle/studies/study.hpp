@@ -21,6 +21,8 @@ enum class Quantity {
   kRunout,         ///< run-out amplitude e [m], with a phase uniform in [0, 2π) [rad]
   kThickness,      ///< tooth thickness error Δs [m]
   kTorque,         ///< input torque on the sun T [N·m]
+  kPitDepth,       ///< depth d of one of the scene's pits [m] (transmission::Pit::depth)
+  kPitWidth,       ///< width fraction w of one of the scene's pits [-]
 };
 
 enum class Distribution {
@@ -30,18 +32,20 @@ enum class Distribution {
   kGrid,     ///< the listed values, one grid axis of a deterministic parameter sweep
 };
 
-/// The gear a variable belongs to: sun, ring or planet i (0-based).
+/// The gear a variable belongs to: sun, ring or planet i (0-based), or one of the scene's pits.
 struct Target {
-  enum class Kind { kSun, kRing, kPlanet, kNone } kind = Kind::kNone;
-  int planet = 0;            ///< 0-based, Kind::kPlanet
-  std::string Name() const;  ///< "sun", "ring", "planet1", ... or "stage" (the torque)
+  enum class Kind { kSun, kRing, kPlanet, kNone, kPit } kind = Kind::kNone;
+  int planet = 0;  ///< 0-based, Kind::kPlanet
+  int pit = 0;     ///< index in the scene's [[damage.pit]], Kind::kPit
+  /// "sun", "ring", "planet1", ..., "pit0", ... or "stage" (the torque)
+  std::string Name() const;
 };
 
 struct Variable {
   Quantity quantity = Quantity::kPinTangential;
   Target target;
   Distribution distribution = Distribution::kNormal;
-  double mean = 0;           ///< [m] or [N·m] (normal)
+  double mean = 0;           ///< [m], [N·m] or [-] (a pit's width) (normal); likewise below
   double sigma = 0;          ///< σ [m] or [N·m] (normal)
   double min = 0, max = 0;   ///< [m] or [N·m] (uniform; iso1328: [0, F_rT/2])
   std::vector<double> grid;  ///< [m] or [N·m] (grid)

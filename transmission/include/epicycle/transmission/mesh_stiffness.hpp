@@ -10,6 +10,7 @@
 #include "epicycle/compliance/iso6336.hpp"
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/damage.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/root_stress.hpp"
 #include "epicycle/transmission/scene.hpp"
@@ -25,6 +26,9 @@ struct MeshPairSetup {
   geometry::PairSpec spec;
   double torque = 0;  ///< on gear 1 [N·m] (ccw +): the pair's, or the stage's per-planet share
   double gap_window = 100e-6;  ///< contact-search gap window [m] (the scene's)
+  /// The scene's pits (those on `gears`): the contacts on a pitted flank are split into strips
+  /// of the face width as in the stage model (damage.hpp).
+  Damage damage;
 };
 
 /// For a pair scene, `mesh` may be empty or "gear1-gear2". For a stage scene it names a mesh of

@@ -10,6 +10,7 @@
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/solvers/local_term.hpp"
+#include "epicycle/transmission/damage.hpp"
 #include "epicycle/transmission/dynamic_settings.hpp"
 
 namespace epicycle::transmission {
@@ -114,6 +115,7 @@ struct Scene {
   /// message each naming the key, its value and the limit; reported with every result.
   std::vector<std::string> warnings;
   DynamicSettings dynamics;  ///< the [dynamics] and [lubricant] tables
+  Damage damage;             ///< the [[damage.pit]] tables (empty: healthy teeth)
 };
 
 /// "fnv1a64:<16 hex digits>", the 64-bit FNV-1a hash of `text`: identifies an input file in the

@@ -13,6 +13,7 @@
 
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/transmission/damage.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 
@@ -30,12 +31,15 @@ struct StageSetup {
   double planet_stiffness = 0;  ///< k_p [N/m]: > 0 elastic planet bearings, 0 rigid pins
   double gap_window = 100e-6;   ///< contact-search gap window [m], > 0
   bool local_terms = true;      ///< false: structural compliance only (linear studies)
+  /// Pits and spalls on the teeth (the scene's [[damage.pit]]): the contacts on a pitted flank
+  /// are split into strips of the face width (damage.hpp) wherever Terms builds them.
+  Damage damage;
   /// @throws std::invalid_argument naming the field (negative or non-finite stiffness, an
   ///         elastic sun without stiffness, a gap window not > 0).
   void Validate() const;
 };
 
-/// The scene's supports, gap window and name as a setup.
+/// The scene's supports, gap window, damage and name as a setup.
 StageSetup SetupFromScene(const Scene& scene);
 
 /// The contact terms at given poses: everything the contact problem needs except the DOFs.
@@ -79,7 +83,9 @@ class StageModel {
   }
 
   /// The contact terms at `poses` into `terms`, reusing its buffers (but C, which the compliance
-  /// returns anew), or the geometric outcome that prevents them (kNoLineOfAction, kOffFlankGrid,
+  /// returns anew), with every contact on a pitted flank split into its strips (its rows of C
+  /// repeated, its gap grown by the depth, its local term of the strip's width: docs/model.md §9,
+  /// "Pitting and spalls"), or the geometric outcome that prevents them (kNoLineOfAction, kOffFlankGrid,
   /// kNoReducedRadius, naming the mesh or contact; `terms` is then incomplete).
   [[nodiscard]] StageOutcome Terms(const geometry::StagePoses& poses, ContactTerms* terms) const;
   /// The same as a value, for poses that must work (the reference configuration).
@@ -128,6 +134,8 @@ class StageModel {
   StageSetup setup_;
   std::vector<StageDof> dofs_;
   std::vector<double> support_;
+  DamageModel damage_;
+  void SplitDamaged(ContactTerms* terms) const;
 };
 
 }  // namespace epicycle::transmission

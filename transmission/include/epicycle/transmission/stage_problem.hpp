@@ -58,13 +58,23 @@ struct StageContact {
   geometry::MeshKind mesh = geometry::MeshKind::kSunPlanet;
   int body_a = kSunBody, body_b = kRingBody;
   bool loaded = true;  ///< on the flanks that carry the scene's torque (drive side)
+  /// A contact on a pitted flank is split into strips of the face width (damage.hpp): this
+  /// strip's share of the face width [-] (1: the whole contact), the depth [m] by which its gap
+  /// has grown (already in contact.overlap) and its index among its contact's strips.
+  double width_fraction = 1;
+  double pit_depth = 0;
+  int part = 0;
+  /// "sun-planet1 involute drive teeth 3/5", a pitted strip with " pitted <part>" appended.
   std::string Label() const;
+  /// "drive" or "coast" (the flank column of the output files), a pitted strip's with
+  /// " pitted <part>" appended.
+  std::string FlankName() const;
   /// The same potential contact as `other` (what Label() names: mesh, planet, kind, flank side,
   /// teeth), compared without building the labels.
   bool SameAs(const StageContact& other) const {
     return planet == other.planet && mesh == other.mesh && loaded == other.loaded &&
            contact.kind == other.contact.kind && contact.tooth_a == other.contact.tooth_a &&
-           contact.tooth_b == other.contact.tooth_b;
+           contact.tooth_b == other.contact.tooth_b && part == other.part;
   }
 };
 
@@ -150,7 +160,8 @@ StageOutcome ContactLocalTerm(const geometry::PotentialContact& contact, const g
                               const geometry::Gear& b, const Material& material,
                               solvers::PlaneAssumption plane, double depth_a, double depth_b,
                               const std::string& label, solvers::LocalTermParameters* out);
-/// The same for a stage contact, named by its label (built only for the message).
+/// The same for a stage contact, named by its label (built only for the message), with the face
+/// width of its strip (width_fraction of the narrower gear's).
 StageOutcome ContactLocalTerm(const StageContact& contact, const geometry::Gear& a,
                               const geometry::Gear& b, const Material& material,
                               solvers::PlaneAssumption plane, double depth_a, double depth_b,
