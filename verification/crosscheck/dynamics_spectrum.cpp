@@ -38,6 +38,16 @@ std::vector<int> LargestPeaks(const std::vector<double>& a, std::size_t count) {
   return p;
 }
 
+// One Hann segment of `cycles` mesh cycles of the output times, after `skip` cycles.
+dynamics::SpectrumOptions OneSegment(const std::vector<double>& times, int per_cycle, int skip,
+                                     int cycles) {
+  dynamics::SpectrumOptions so;
+  so.sample_interval = times[1] - times[0];
+  so.segment = cycles * per_cycle;
+  so.start_time = times[static_cast<std::size_t>(skip * per_cycle - 1)];
+  return so;
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -81,10 +91,7 @@ TEST_CASE(
   const int per_cycle = 24, skip = 4, z_r = 65;
   const std::vector<double> times = test::Times(model, *rig.stage, skip + z_r, per_cycle);
   const std::vector<dynamics::VibrationChannel> channels = dynamics::VibrationChannels(model);
-  dynamics::SpectrumOptions so;
-  so.sample_interval = times[1] - times[0];
-  so.segment = z_r * per_cycle;
-  so.start_time = times[static_cast<std::size_t>(skip * per_cycle - 1)];
+  const dynamics::SpectrumOptions so = OneSegment(times, per_cycle, skip, z_r);
   dynamics::WelchSpectrum spectrum(static_cast<int>(channels.size()), so);
   std::vector<double> values;
   double ring_torque = 0, balance = 0;  // over the samples the spectrum uses
@@ -200,4 +207,87 @@ TEST_CASE(
                  << " of the largest allowed");
     CHECK(worst < 1e-3 * largest);
   }
+}
+
+TEST_CASE(
+    "spectrum of a paper stage with a spall on a planet tooth: the TE gains the planet tooth's "
+    "lines k f_m/z_p, at the kinematic frequencies",
+    "[crosscheck][dynamics][spectrum]") {
+  // scenes/paper_stage_spall.toml: the paper stage with a spall on one flank of planet 1's tooth
+  // 13 (half the face width, 30 um deep). The spalled tooth meets its mate once per turn of the
+  // planet relative to the carrier, every z_p = 24 mesh cycles: its lines are k f_m/z_p
+  // (docs/model.md §9 "Fault frequencies"), by hand f_m/24 = 13.37 Hz at 1500 rpm. Segment: 48
+  // mesh cycles (two planet turns), so f_m/z_p is bin 2 and every planet-tooth line and mesh
+  // harmonic lies on a bin (Δf = f_m/48 = 6.69 Hz); the healthy stage's TE holds h f_m only
+  // (bins 48 h). Asserted: in the spalled run, the three largest peaks off the healthy stage's
+  // mesh harmonics lie on multiples of f_m/z_p (even bins), and there the spalled TE exceeds the
+  // healthy one by more than 100 (the healthy run holds only the numerical floor of the test
+  // above, ≤ 1e-3 of its mesh lines, at these bins).
+  const int per_cycle = 24, skip = 4, cycles = 48;
+  auto te_spectrum = [&](const std::string& file, dynamics::StageFrequencies* f, double* wall) {
+    test::RigOptions ro;
+    ro.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * test::kRpm; };
+    test::DynamicRig rig = test::MakeRig(test::SceneText(file), file, ro);
+    const dynamics::DynamicModel& model = *rig.model;
+    *f = dynamics::CharacteristicFrequencies(*rig.stage, model.sun_speed());
+    const std::vector<double> times = test::Times(model, *rig.stage, skip + cycles, per_cycle);
+    const std::vector<dynamics::VibrationChannel> channels = dynamics::VibrationChannels(model);
+    std::size_t te = 0;
+    while (te < channels.size() && channels[te].name != "te") ++te;
+    REQUIRE(te < channels.size());
+    const dynamics::SpectrumOptions so = OneSegment(times, per_cycle, skip, cycles);
+    dynamics::WelchSpectrum spectrum(static_cast<int>(channels.size()), so);
+    std::vector<double> values;
+    dynamics::SimulationOptions opt;
+    const dynamics::SimulationResult run = dynamics::Simulate(
+        model, opt, model.QuasiStaticStart(opt.contact, opt.backend),
+        Eigen::VectorXd::Zero(model.size()), times, [&](const dynamics::DynamicSample& s) {
+          dynamics::VibrationValues(model, s, &values);
+          spectrum.Add(s.time, values);
+        });
+    REQUIRE(run.completed);
+    REQUIRE(spectrum.segments() == 1);
+    *wall = run.stats.wall_seconds;
+    return spectrum.Amplitudes(static_cast<int>(te));
+  };
+  dynamics::StageFrequencies f, fh;
+  double wall = 0, wall_h = 0;
+  const std::vector<double> spalled = te_spectrum("paper_stage_spall.toml", &f, &wall);
+  const std::vector<double> healthy = te_spectrum("paper_stage.toml", &fh, &wall_h);
+  REQUIRE(f.planet_relative == Approx(f.mesh / 24).epsilon(1e-12));
+  const double resolution = f.mesh / cycles;
+  CHECK(f.planet_relative / resolution == Approx(2.0).epsilon(1e-9));
+  // The largest peaks off the mesh harmonics (bins 48 h and their two neighbours, where the
+  // window spreads a mesh line).
+  std::vector<double> off = spalled;
+  for (std::size_t j = 0; j < off.size(); ++j) {
+    const std::size_t r = j % cycles;
+    if (r == 0 || r == 1 || r == cycles - 1) off[j] = 0;
+  }
+  bool on_lines = true;
+  double least_ratio = 1e300;
+  std::string peaks;
+  for (int j : LargestPeaks(off, 3)) {
+    const double hz = j * resolution, k = hz / f.planet_relative;
+    const bool on = std::abs(k - std::round(k)) < 1e-9;
+    const double ratio = spalled[static_cast<std::size_t>(j)] /
+                         std::max(healthy[static_cast<std::size_t>(j)], 1e-300);
+    INFO("peak at " << hz << " Hz = " << k << " f_m/z_p, " << spalled[static_cast<std::size_t>(j)]
+                    << " rad, " << ratio << " x the healthy stage's");
+    CHECK(on);
+    CHECK(ratio > 100);
+    on_lines = on_lines && on;
+    least_ratio = std::min(least_ratio, ratio);
+    peaks += (peaks.empty() ? "" : ", ") + Fixed(k, 0) + " f_m/z_p (" +
+             test::Sci(spalled[static_cast<std::size_t>(j)] * 1e6, 2) + " urad)";
+  }
+  test::Figure("spectrum, spalled planet tooth, 1500 rpm: " + Fixed(wall, 2) + " s wall (" +
+               Fixed(wall_h, 2) + " s healthy)");
+  test::VerifyRow(
+      "spectrum, paper stage with a spall on planet 1's tooth 13 (1500 rpm, 48 mesh cycles): the "
+      "TE's three largest peaks off the mesh harmonics",
+      "k f_m/z_p, by hand f_m/24 = " + Fixed(f.planet_relative, 2) + " Hz", peaks,
+      "smallest " + test::Sci(least_ratio, 2) + " x the healthy TE there",
+      "on the lines (bins of " + Fixed(resolution, 2) + " Hz); > 100 x healthy",
+      on_lines && least_ratio > 100);
 }
