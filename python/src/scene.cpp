@@ -3,6 +3,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "common.hpp"
 
@@ -371,6 +373,36 @@ at phase_deg [deg] in the gear's frame. )doc") +
           (std::string(R"doc(
 Adds a tooth-thickness error ([[errors.thickness]]): error_um [µm] normal to the flank, both
 flanks, + thicker. )doc") +
+           kGearHelp)
+              .c_str())
+      .def(
+          "add_pit",
+          [](Scene& s, const std::string& gear, int tooth, const std::string& flank,
+             py::object roll_deg, py::object radius_mm, double width_fraction, double depth_um) {
+            if (roll_deg.is_none() == radius_mm.is_none())
+              throw py::value_error(
+                  "add_pit: give the region as roll_deg=(from, to) [deg] or radius_mm=(from, to) "
+                  "[mm], one of the two");
+            py::dict f;
+            f["gear"] = gear;
+            f["tooth"] = tooth;
+            f["flank"] = flank;
+            const bool roll = !roll_deg.is_none();
+            const auto range = (roll ? roll_deg : radius_mm).cast<std::pair<double, double>>();
+            f[roll ? "roll_from_deg" : "radius_from_mm"] = range.first;
+            f[roll ? "roll_to_deg" : "radius_to_mm"] = range.second;
+            f["width_fraction"] = width_fraction;
+            f["depth_um"] = depth_um;
+            EditInPlace(s, [&](toml::table& t) { AppendTable(t, "damage.pit", f); });
+          },
+          py::arg("gear"), py::arg("tooth"), py::arg("flank"), py::kw_only(),
+          py::arg("roll_deg") = py::none(), py::arg("radius_mm") = py::none(),
+          py::arg("width_fraction") = 1.0, py::arg("depth_um"),
+          (std::string(R"doc(
+Adds a pit or spall ([[damage.pit]], docs/model.md §9 "Pitting and spalls"): on tooth `tooth`
+(body frame, 0..z-1) of `gear`, flank "+" or "-", over roll_deg=(from, to) [deg] of involute roll
+angle or radius_mm=(from, to) [mm], covering width_fraction [-] of the face width, depth_um [µm]
+deep. )doc") +
            kGearHelp)
               .c_str())
       .def(

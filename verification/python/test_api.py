@@ -14,7 +14,7 @@ def test_every_public_name_has_a_docstring():
         assert getattr(epicycle, name).__doc__, name
     methods = [m for m in dir(epicycle.Scene) if not m.startswith("_")]
     assert {"load", "parse", "set", "with_values", "add_pin", "add_runout", "add_thickness",
-            "set_pitch", "set_relief"} <= set(methods)
+            "add_pit", "set_pitch", "set_relief"} <= set(methods)
     for m in methods:
         assert getattr(epicycle.Scene, m).__doc__, m
 

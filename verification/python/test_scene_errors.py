@@ -21,6 +21,8 @@ CASES = [
      "must be in"),
     (lambda s: s.set("supports.sun", "wobbly"), "supports.sun", "wobbly"),
     (lambda s: s.set_pitch("planet", iso1328_grade=40), "planet.pitch.iso1328_grade", "40"),
+    (lambda s: s.add_pit("planet1", 13, "-", roll_deg=(23.0, 28.0), depth_um=5000.0),
+     "damage.pit[0].depth_um", "must be in"),
 ]
 
 
