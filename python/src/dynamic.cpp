@@ -11,6 +11,7 @@
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "scene.hpp"
 
@@ -127,7 +128,14 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   RunColumns run;
   PairColumns p;
   std::vector<double> p_total, p_elastic, p_friction, p_rate;
+  // The vibration output (dynamics/vibration.hpp), one array per channel.
+  const std::vector<dynamics::VibrationChannel> channels =
+      dynamics::VibrationChannels(out.rig->model);
+  std::vector<std::vector<double>> vibration(channels.size());
+  std::vector<double> values;
   for (const dynamics::DynamicSample& x : samples) {
+    dynamics::VibrationValues(out.rig->model, x, &values);
+    for (std::size_t c = 0; c < channels.size(); ++c) vibration[c].push_back(values[c]);
     const dynamics::Evaluation& e = x.evaluation;
     time.push_back(x.time);
     deg.push_back(geometry::Deg(x.carrier_angle));
@@ -170,6 +178,18 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   pairs["elastic_force_N"] = Array(std::move(p_elastic));
   pairs["friction_force_N"] = Array(std::move(p_friction));
   pairs["overlap_rate_mm_per_s"] = Array(std::move(p_rate));
+  py::dict vib;
+  py::list kinds;
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    // The unit as a name's suffix: rad, N, Nm, m_per_s2, m.
+    std::string unit = channels[c].unit;
+    if (unit == "N m") unit = "Nm";
+    if (unit == "m/s2") unit = "m_per_s2";
+    const std::string key = channels[c].name + "_" + unit;
+    vib[key.c_str()] = Array(std::move(vibration[c]));
+    kinds.append(py::make_tuple(key, dynamics::SignalKindName(channels[c].kind)));
+  }
+  vib["channels"] = kinds;
 
   const dynamics::DynamicSummary sum = dynamics::Summarise(samples);
   py::dict summary;
@@ -215,6 +235,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   f["planet_bearing_force_N"] = py::array_t<double>(
       {count, static_cast<py::ssize_t>(n), py::ssize_t{2}}, planet_bearing.data());
   f["pairs"] = Result(pairs);
+  f["vibration"] = Result(vib);
   f["summary"] = Result(summary);
   f["stats"] = StatsObject(out.result.stats);
   f["completed"] = out.result.completed;
@@ -484,7 +505,10 @@ sun_y_um [µm] (sun centre from nominal), sun_torque_balance_Nm [N·m], external
 dissipated_work_J, kinetic_energy_J, elastic_energy_J [J], contacts, active_contacts,
 friction_power_W [W], sun_bearing_force_N (T, 2) [N], planet_bearing_force_N (T, n, 2) [N]; pairs
 (per loaded tooth pair and step: time_s, mesh, kind, flank, tooth_a, tooth_b, normal_force_N,
-elastic_force_N, friction_force_N [N], overlap_rate_mm_per_s [mm/s]); summary (lsr_mean/min/max
+elastic_force_N, friction_force_N [N], overlap_rate_mm_per_s [mm/s]); vibration (per step, the
+signals of docs/dynamic.md "Spectra": te_rad, ring_force_x_N, ring_force_y_N, ring_torque_Nm,
+sun_force_x_N/sun_force_y_N (held sun) or sun_x_m/sun_y_m (floating), and channels: (name,
+"torsional" or "housing") pairs); summary (lsr_mean/min/max
 (n,) [-], k_gamma [-], te_min/max/peak_to_peak_urad [µrad], orbit_radius_max/mean_um [µm],
 max_pair_force_N [N]); stats (integrator counts, times [s]); sun_speed_rpm, mesh_frequency_Hz,
 duration_s, outputs, mesh stiffness [N/m] and damping [N·s/m] of the meshes, completed, message,

@@ -1,6 +1,8 @@
 """The dynamic run, the natural modes and a speed sweep's plan through Python equal the program's
 files: `epicycle dynamic` over one mesh cycle of the paper's run-out case at 1500 rpm, to the
-printed digits of its CSV; `epicycle modes --json` exactly (JSON carries every digit)."""
+printed digits of its CSVs (the vibration output's too); `epicycle modes --json` exactly (JSON carries every digit)."""
+
+import pytest
 
 import epicycle
 from conftest import deg, num, read_csv, read_json, run_cli, scene_path
@@ -9,7 +11,8 @@ from conftest import deg, num, read_csv, read_json, run_cli, scene_path
 def test_dynamic_run_equals_the_program_files(tmp_path):
     out = tmp_path / "cli"
     run_cli("dynamic", scene_path("paper_stage_runout.toml"), "--range", "cycle",
-            "--outputs-per-cycle", 12, "--quiet", "--out", out)
+            "--outputs-per-cycle", 12, "--quiet", "--out", out, "--spectrum",
+            "--spectrum-skip-cycles", 0)
     r = epicycle.dynamic(epicycle.Scene.load(scene_path("paper_stage_runout.toml")),
                          range="cycle", outputs_per_cycle=12)
     assert r.completed and r.outputs == 12 and r.sun_speed_rpm == 1500.0
@@ -48,6 +51,17 @@ def test_dynamic_run_equals_the_program_files(tmp_path):
     for k, row in enumerate(bearings):
         assert row["sun_Fx_N"] == num(r.sun_bearing_force_N[k, 0])
         assert row["sun_Fy_N"] == num(r.sun_bearing_force_N[k, 1])
+    vibration = read_csv(out / "dynamic_vibration.csv")
+    v = r.vibration
+    assert [name for name, _ in v.channels] == [c for c in vibration[0] if c not in
+                                                 ("time_s", "carrier_deg")]
+    assert dict(v.channels)["te_rad"] == "torsional"
+    assert dict(v.channels)["ring_force_x_N"] == "housing"
+    assert len(vibration) == 12
+    for k, row in enumerate(vibration):
+        for name, _ in v.channels:
+            # Written with 10 significant digits: equal to half a unit of the last, 5e-10.
+            assert float(row[name]) == pytest.approx(getattr(v, name)[k], rel=5e-10, abs=0), name
     j = read_json(out / "dynamic_summary.json")
     s = r.summary
     assert j["K_gamma_max"] == s.k_gamma
