@@ -39,10 +39,31 @@ struct Case : dynamics::StageDynamics {
   }
 };
 
+// One evaluation's timing loop and its counters (BM_DynamicEvaluation, BM_DamagedEvaluation).
+void TimeEvaluations(benchmark::State& state, const dynamics::StageDynamics& c);
+
 // Arg 0: fixed sun; 1: floating sun.
 void BM_DynamicEvaluation(benchmark::State& state) {
-  Case c(state.range(0) == 0 ? transmission::SunSupport::kFixed
-                             : transmission::SunSupport::kFloating);
+  const Case c(state.range(0) == 0 ? transmission::SunSupport::kFixed
+                                   : transmission::SunSupport::kFloating);
+  TimeEvaluations(state, c);
+}
+BENCHMARK(BM_DynamicEvaluation)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The cost of a damaged tooth (docs/damage.md): the paper stage without errors (Arg 0) and with
+// scenes/paper_stage_spall.toml's spall on planet 1's tooth 13 (Arg 1), fixed sun, at t = 0,
+// where that tooth meshes with the sun inside the spall (its contact split into two strips).
+void BM_DamagedEvaluation(benchmark::State& state) {
+  auto scene = transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) +
+                                       (state.range(0) == 0 ? "/paper_stage.toml"
+                                                            : "/paper_stage_spall.toml"));
+  scene.dynamics.sun_speed = 1500 * std::numbers::pi / 30;
+  const dynamics::StageDynamics c(std::move(scene), Case::Cache());
+  TimeEvaluations(state, c);
+}
+BENCHMARK(BM_DamagedEvaluation)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+void TimeEvaluations(benchmark::State& state, const dynamics::StageDynamics& c) {
   const Eigen::VectorXd d = c.model.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
   const Eigen::VectorXd v = Eigen::VectorXd::Zero(c.model.size());
   auto solver = solvers::MakeContactSolver(solvers::Backend::kActiveSetNewton);
@@ -68,7 +89,6 @@ void BM_DynamicEvaluation(benchmark::State& state) {
   state.counters["contacts"] = e.terms.size();
   state.counters["ok"] = e.ok ? 1 : 0;
 }
-BENCHMARK(BM_DynamicEvaluation)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The parts of one evaluation at the same state (fixed sun), for the time split:
 //   0 poses of the members;  1 contact search of the stage;  2 the contact terms (search, FE

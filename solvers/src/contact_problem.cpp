@@ -139,22 +139,28 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
     for (Eigen::Index i = 0; i < j; ++i)
       d.compliance(i, j) = d.compliance(j, i) = 0.5 * (d.compliance(i, j) + d.compliance(j, i));
   if (!CholeskySucceeds(d.compliance)) {
-    const double min_eig =
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(d.compliance, Eigen::EigenvaluesOnly)
-            .eigenvalues()
-            .minCoeff();
     // Contacts that share their rows of C (the strips of a pitted contact) make C singular; with
     // a local term on every contact, strictly increasing (u' > 0), the program stays strictly
-    // convex and every Newton matrix C_AA + diag u'_A positive definite.
+    // convex and every Newton matrix C_AA + diag u'_A positive definite. Semidefinite within the
+    // tolerance: C + τ s I (s the largest |C_ij|) has a Cholesky factor exactly when every
+    // eigenvalue of C exceeds −τ s, the eigenvalues' test at a factorisation's cost (the
+    // eigenvalues are computed for the message only).
     const bool all_local = !d.local.empty() &&
                            std::all_of(d.local.begin(), d.local.end(),
                                        [](const LocalTermParameters& l) { return l.enabled; });
     const double scale = d.compliance.cwiseAbs().maxCoeff();
-    if (!all_local || min_eig < -kSymmetryTolerance * scale)
+    Eigen::MatrixXd shifted = d.compliance;
+    shifted.diagonal().array() += kSymmetryTolerance * scale;
+    if (!all_local || !CholeskySucceeds(shifted)) {
+      const double min_eig =
+          Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(d.compliance, Eigen::EigenvaluesOnly)
+              .eigenvalues()
+              .minCoeff();
       throw std::invalid_argument(
           "compliance is not positive definite: smallest eigenvalue " + Num(min_eig) +
           " (Cholesky failed); rule: C must be SPD, or positive semidefinite (eigenvalues >= " +
           Num(-kSymmetryTolerance * scale) + ") when every contact has a local term");
+    }
   }
 
   support_ = Eigen::MatrixXd::Zero(m, m);
