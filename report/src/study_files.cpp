@@ -1,5 +1,6 @@
 #include "epicycle/report/study_files.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -44,11 +45,15 @@ std::string SampleSummaryText(const std::string& name, const studies::SampleSumm
 
 nlohmann::json StudyRootStressJson(const std::vector<studies::GearStressStatistics>& gears) {
   nlohmann::json list = nlohmann::json::array();
-  for (const auto& g : gears)
-    list.push_back({{"gear", g.gear},
-                    {"tension_MPa", SampleSummaryJson(g.tension)},
-                    {"compression_magnitude_MPa", SampleSummaryJson(g.compression)},
-                    {"largest_range_MPa", SampleSummaryJson(g.range)}});
+  for (const auto& g : gears) {
+    nlohmann::json e = {{"gear", g.gear},
+                        {"tension_MPa", SampleSummaryJson(g.tension)},
+                        {"compression_magnitude_MPa", SampleSummaryJson(g.compression)},
+                        {"largest_range_MPa", SampleSummaryJson(g.range)}};
+    if (g.s_f.count > 0) e["S_F"] = SampleSummaryJson(g.s_f);
+    if (g.s_h.count > 0) e["S_H"] = SampleSummaryJson(g.s_h);
+    list.push_back(e);
+  }
   return list;
 }
 
@@ -69,6 +74,23 @@ std::string StudyRootStressText(const std::vector<studies::GearStressStatistics>
   for (const auto& g : gears)
     out += fmt::format("    {:<8}  {:<30} {:<30} {}\n", g.gear, cell(g.tension),
                        cell(g.compression), cell(g.range));
+  if (std::none_of(gears.begin(), gears.end(), [](const auto& g) { return g.s_f.count > 0; }))
+    return out;
+  // The safety factors' low tail: the P5 (kSafetyPercentiles' second level) and the smallest.
+  auto low = [](const studies::SampleSummary& s) {
+    const char* f = "{:.2f}";
+    for (const auto& q : s.percentiles)
+      if (q.p == 0.05)
+        return fmt::format("{:>6} {:>6} [{}, {}] {:>6}", Num(s.mean, f, "-"), Num(q.value, f, "-"),
+                           Num(q.lower, f, "-"), Num(q.upper, f, "-"), Num(s.min, f, "-"));
+    return fmt::format("{:>6}", Num(s.mean, f, "-"));
+  };
+  out += fmt::format(
+      "  safety factors from each case's own stresses: mean, P5 [CI], smallest\n    {:<8}  {:<34} "
+      "{}\n",
+      "gear", "S_F (root tension)", "S_H (contact pressure)");
+  for (const auto& g : gears)
+    out += fmt::format("    {:<8}  {:<34} {}\n", g.gear, low(g.s_f), low(g.s_h));
   return out;
 }
 

@@ -22,6 +22,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
@@ -100,6 +101,7 @@ std::string CaseRow::Format() const {
   for (double v : {k_gamma, k_gamma_mean, lsr_min, lsr_max, te_peak_to_peak, sun_orbit})
     field(ok ? Exact(v) : std::string());
   for (double v : root_stress) field(ok ? Exact(v) : std::string());
+  for (double v : safety) field(ok ? Exact(v) : std::string());
   field(Clean(message));
   field(RowCheck(s));
   s.push_back('\n');
@@ -115,6 +117,8 @@ std::string RowHeader(const StudySpec& study) {
   h += ",status,positions,converged,K_gamma,K_gamma_mean,LSR_min,LSR_max,TE_pp_urad,sun_orbit_um";
   for (const std::string& g : study.StressGears())
     h += ",sigma_t_" + g + "_MPa,sigma_c_" + g + "_MPa,sigma_range_" + g + "_MPa";
+  if (study.Rated())
+    for (const std::string& g : study.StressGears()) h += ",S_F_" + g + ",S_H_" + g;
   h += ",message,check";
   return h;
 }
@@ -139,12 +143,13 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   const std::vector<std::string> f = Split(line);
   const std::size_t nv = study.Columns().size();
   const std::size_t ns = 3 * study.StressGears().size();  // root-stress fields
+  const std::size_t nr = study.Rated() ? 2 * study.StressGears().size() : 0;  // safety factors
   auto bad = [&](const std::string& why) {
     throw std::invalid_argument(where + ": not a row of this study (" + why + "): '" + line + "'");
   };
-  if (f.size() != 1 + nv + kResultFields + ns + 1)
-    bad(std::to_string(f.size()) + " fields, " + std::to_string(1 + nv + kResultFields + ns + 1) +
-        " expected");
+  if (f.size() != 1 + nv + kResultFields + ns + nr + 1)
+    bad(std::to_string(f.size()) + " fields, " +
+        std::to_string(1 + nv + kResultFields + ns + nr + 1) + " expected");
   // Changed after it was written: the check covers every byte before its own field.
   const std::string_view body(line.data(), line.size() - f.back().size() - 1);
   if (f.back() != RowCheck(body))
@@ -180,6 +185,9 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   r.root_stress.resize(ns);
   for (double& v : r.root_stress)
     if (!ParseReal(f[k++], &v)) bad("root stress");
+  r.safety.resize(nr);
+  for (double& v : r.safety)
+    if (!ParseReal(f[k++], &v)) bad("safety factor");
   r.message = f[k];
   return r;
 }
@@ -259,6 +267,7 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
   row.values = SampleCase(study, case_id);
   const std::vector<std::string> gears = study.StressGears();
   row.root_stress.assign(3 * gears.size(), kNaN);
+  row.safety.assign(study.Rated() ? 2 * gears.size() : 0, kNaN);
   try {
     const transmission::Scene scene = CaseScene(study, row.values);
     const geometry::Stage stage = transmission::MakeStage(scene);
@@ -299,6 +308,16 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
       row.root_stress[3 * g] = s.root_stress[g].extremes.tension / 1e6;
       row.root_stress[3 * g + 1] = s.root_stress[g].extremes.compression / 1e6;
       row.root_stress[3 * g + 2] = s.root_stress[g].range.range / 1e6;
+    }
+    // The model's safety factors of every gear, from this case's own stresses (rating.hpp).
+    if (study.Rated() && s.converged > 0) {
+      const transmission::StageRating rating = transmission::RateStage(scene, stage, s);
+      for (std::size_t g = 0; g < gears.size(); ++g)
+        for (const transmission::GearRating& r : rating.gears)
+          if (r.gear == gears[g]) {
+            row.safety[2 * g] = r.s_f_stress;
+            row.safety[2 * g + 1] = r.s_h_pressure;
+          }
     }
   } catch (const std::exception& e) {
     row.ok = false;

@@ -241,6 +241,11 @@ std::vector<std::string> StudySpec::StressGears() const {
   return transmission::BodyNames(transmission::PlanetBody(scene.stage.planets));
 }
 
+bool StudySpec::Rated() const {
+  return scene.model.stresses && scene.material.bending_limit > 0 &&
+         scene.material.contact_limit > 0;
+}
+
 StudySpec ParseStudy(const std::string& text, const std::string& source,
                      const std::string& directory) {
   const toml::table root = ParseDocument(text, source);

@@ -33,16 +33,21 @@ StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& 
   std::sort(s.k_gamma_sorted.begin(), s.k_gamma_sorted.end());
   const std::vector<std::string> gears = study.StressGears();
   for (std::size_t g = 0; g < gears.size(); ++g) {
-    std::vector<double> tension, compression, range;
+    std::vector<double> tension, compression, range, s_f, s_h;
     for (const CaseRow& r : rows) {
       if (!r.ok || r.root_stress.size() != 3 * gears.size()) continue;
       tension.push_back(r.root_stress[3 * g]);
       compression.push_back(std::abs(r.root_stress[3 * g + 1]));
       range.push_back(r.root_stress[3 * g + 2]);
+      if (r.safety.size() != 2 * gears.size()) continue;
+      s_f.push_back(r.safety[2 * g]);  // NaN (no tension or pressure in the case): skipped
+      s_h.push_back(r.safety[2 * g + 1]);
     }
     s.root_stress.push_back({gears[g], Summarise(tension, kStudyPercentiles, level),
                              Summarise(compression, kStudyPercentiles, level),
-                             Summarise(range, kStudyPercentiles, level)});
+                             Summarise(range, kStudyPercentiles, level),
+                             Summarise(s_f, kSafetyPercentiles, level),
+                             Summarise(s_h, kSafetyPercentiles, level)});
   }
   return s;
 }

@@ -167,3 +167,73 @@ TEST_CASE("study root stress: each case's extremes those of the quasistatic prog
                              Catch::Contains("sigma_t_sun_MPa"));
   }
 }
+
+// With the material's endurance limits in the base scene, each case's row also carries every
+// gear's safety factors from its own stresses; the reference is the `quasistatic --rating`
+// program on the case's scene file (its JSON's S_F_model_stress, S_H_model_pressure), to the same
+// 1e-9 as the stresses above (the factors are σ_lim-scaled reciprocals of them).
+TEST_CASE("study safety factors: each case's S_F and S_H those of quasistatic --rating",
+          "[crosscheck][studies][stress]") {
+  test::TempDir dir("study-rating");
+  std::string base = test::FileBytes(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage.toml");
+  const std::string nu = "poisson_ratio = 0.3\n";
+  REQUIRE(base.find(nu) != std::string::npos);
+  base.insert(base.find(nu) + nu.size(), "bending_limit_MPa = 430.0\ncontact_limit_MPa = 1500.0\n");
+  const std::string scene = test::WriteText(dir.File("rated.toml"), base);
+  const studies::StudySpec study = studies::ParseStudy(
+      "[study]\nname = \"rated\"\nscene = \"" + scene + "\"\npositions = " +
+          std::to_string(kPositions) + "\nsun = \"fixed\"\nstresses = true\n" +
+          "[[variable]]\nquantity = \"pin_tangential\"\ngear = \"planet1\"\n"
+          "distribution = \"grid\"\nvalues_um = [0.0, 15.0]\n",
+      "rated_study.toml", "");
+  REQUIRE(study.Rated());
+  const std::vector<std::string> gears = study.StressGears();
+  CHECK_THAT(studies::RowHeader(study),
+             Catch::Contains(",sigma_range_planet3_MPa,S_F_sun,S_H_sun,S_F_ring,S_H_ring,") &&
+                 Catch::EndsWith(",S_F_planet3,S_H_planet3,message,check"));
+  const studies::RunReport report = Run(study, dir.File("rows.csv"));
+  REQUIRE(report.rows.size() == 2);
+  // Read back: the factors survive the rows file.
+  const auto back = studies::ReadRows(dir.File("rows.csv"), study);
+  REQUIRE(back.rows.size() == 2);
+  double largest = 0;
+  for (const studies::CaseRow& r : report.rows) {
+    INFO("case " << r.id << ": " << r.message);
+    REQUIRE(r.ok);
+    REQUIRE(r.safety.size() == 2 * gears.size());
+    for (const auto& b : back.rows)
+      if (b.id == r.id) CHECK(b.safety == r.safety);
+    const std::string case_scene = test::WriteText(
+        dir.File("case" + std::to_string(r.id) + ".toml"),
+        base + "\n[[errors.pin]]\ngear = \"planet1\"\ntangential_um = " +
+            std::to_string(kPinUm[r.id]) + "\n");
+    const std::string out = dir.File("qs" + std::to_string(r.id));
+    const pid_t pid = test::SpawnQuiet(
+        {EPICYCLE_EXE, "quasistatic", case_scene, "--range", "cycle", "--positions",
+         std::to_string(kPositions), "--sun", "fixed", "--rating", "--threads", "1", "--quiet",
+         "--cache", EPICYCLE_TEST_CACHE_DIR, "--out", out});
+    int status = 0;
+    waitpid(pid, &status, 0);
+    REQUIRE(WIFEXITED(status));
+    REQUIRE(WEXITSTATUS(status) == 0);
+    const nlohmann::json qs =
+        nlohmann::json::parse(test::FileBytes(out + "/quasistatic_summary.json"));
+    for (const nlohmann::json& g : qs.at("rating").at("gears")) {
+      const auto at = std::find(gears.begin(), gears.end(), g.at("gear").get<std::string>());
+      REQUIRE(at != gears.end());
+      const auto k = static_cast<std::size_t>(at - gears.begin());
+      const double sf = g.at("S_F_model_stress").get<double>(),
+                   sh = g.at("S_H_model_pressure").get<double>();
+      INFO(*at << ": S_F " << r.safety[2 * k] << " (program " << sf << "), S_H "
+               << r.safety[2 * k + 1] << " (program " << sh << ")");
+      CHECK(std::abs(r.safety[2 * k] - sf) <= 1e-9 * sf);
+      CHECK(std::abs(r.safety[2 * k + 1] - sh) <= 1e-9 * sh);
+      largest = std::max({largest, std::abs(r.safety[2 * k] - sf) / sf,
+                          std::abs(r.safety[2 * k + 1] - sh) / sh});
+    }
+  }
+  test::VerifyRow("study safety factors, 2 cases x 5 gears: S_F and S_H per case",
+                  "quasistatic --rating on each case's scene file", "",
+                  test::Sci(largest, 2) + " relative", "1e-9 (the stresses' tolerance)",
+                  largest <= 1e-9);
+}

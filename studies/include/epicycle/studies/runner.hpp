@@ -30,6 +30,10 @@ struct CaseRow {
   /// the case's sweep, its largest root tension (≥ 0), its most negative compression (≤ 0) and
   /// its largest range max − min at one fillet point [MPa] (transmission::RootStressSummary).
   std::vector<double> root_stress;
+  /// With StudySpec::Rated (else empty): per gear in StressGears' order, S_F from the case's
+  /// largest root tension and S_H from its largest line-of-action Hertz pressure [-]
+  /// (transmission::GearRating::s_f_stress, s_h_pressure; K_A of the scene, K_v = 1).
+  std::vector<double> safety;
   /// The CSV line, '\n'-terminated; numbers in their shortest exact (round-trip) form, so that
   /// the same result gives the same bytes; a failed case has empty result fields; the last field
   /// is the row's check (FNV-1a 64 of the text before it, 16 hex digits).
@@ -38,7 +42,7 @@ struct CaseRow {
 
 /// The column line of the rows file (without '\n'); with stresses the results end with
 /// sigma_t_<gear>_MPa, sigma_c_<gear>_MPa, sigma_range_<gear>_MPa per gear before the message;
-/// the check is last.
+/// then S_F_<gear>, S_H_<gear> per gear when rated (StudySpec::Rated); the check is last.
 std::string RowHeader(const StudySpec& study);
 
 /// Case k of the study on the shared (read-only) compliance of the nominal bodies. Never throws

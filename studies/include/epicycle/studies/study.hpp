@@ -89,6 +89,10 @@ struct StudySpec {
   /// of the stage) when the study has stresses (scene.model.stresses: the study's `stresses` key,
   /// by default the scene's [model] stresses), else none.
   std::vector<std::string> StressGears() const;
+  /// With stresses and the scene's [material] bending_limit_MPa and contact_limit_MPa: each case
+  /// also gives every gear's safety factors from its own run (transmission::RateStage's model
+  /// columns: S_F from the largest root tension, S_H from the largest line-of-action pressure).
+  bool Rated() const;
 };
 
 /// @throws std::invalid_argument naming the file, line, key, value and rule (an unknown

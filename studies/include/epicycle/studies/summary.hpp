@@ -18,6 +18,9 @@ struct GearStressStatistics {
   SampleSummary tension;      ///< largest tension σ_t ≥ 0
   SampleSummary compression;  ///< magnitude |σ_c| of the most negative compression
   SampleSummary range;        ///< largest range max − min at one fillet point
+  /// With StudySpec::Rated (else count 0): each case's S_F and S_H of this gear from its own
+  /// stresses [-] (the rows' S_F_<gear>, S_H_<gear>), percentiles at kSafetyPercentiles.
+  SampleSummary s_f, s_h;
 };
 
 struct StudySummary {
@@ -37,6 +40,8 @@ struct StudySummary {
 
 /// Percentile levels of the summaries: 0.50, 0.95, 0.99, 0.999.
 inline const std::vector<double> kStudyPercentiles{0.5, 0.95, 0.99, 0.999};
+/// Of the safety factors, whose tail that matters is the low one: 0.50, 0.05, 0.01, 0.001.
+inline const std::vector<double> kSafetyPercentiles{0.5, 0.05, 0.01, 0.001};
 
 /// @param level confidence level of every interval [-]
 StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& rows,
