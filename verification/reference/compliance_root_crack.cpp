@@ -337,3 +337,65 @@ TEST_CASE("Root crack: damaged rows against the healthy table (depth, monotony, 
     CHECK(worst < (std::abs(dk) == 1 ? 0.1 * min_rise : tol_mesh));
   }
 }
+
+TEST_CASE("Root crack: the compliance operator reads the damaged rows for the teeth near the crack",
+          "[reference][crack]") {
+  const Fixture& f = Sun();
+  if (!GmshMesher::Available()) return;
+  const DamagedInfluence d = DamagedInfluence::Build(f.gear, f.material, f.Crack(0.25));
+  CHECK(d.HoldsLoadsOn(kTooth - 1));
+  CHECK(d.HoldsLoadsOn(kTooth + 1));
+  CHECK(!d.HoldsLoadsOn(kTooth + 2));
+  // Contacts at grid points of the cracked tooth, its neighbour and a far tooth, against a
+  // second body that carries nothing of them (a point body of the same table, far away).
+  const int n = f.healthy.grid().num_points();
+  std::vector<OperatorBody> bodies(2);
+  bodies[0].table = &f.healthy;
+  bodies[0].name = "sun";
+  bodies[1] = bodies[0];
+  bodies[1].centre = Eigen::Vector2d(1.0, 0.0);
+  std::vector<OperatorContact> contacts;
+  const std::vector<std::pair<int, int>> where = {
+      {kTooth, n / 2}, {kTooth + 1, n / 3}, {kTooth + 6, n / 2}, {kTooth + 7, n / 4}};
+  for (const auto& [k, i] : where) {
+    const Eigen::Matrix2d r = Eigen::Rotation2Dd(k * f.gear.pitch_angle()).toRotationMatrix();
+    OperatorContact c;
+    for (int s = 0; s < 2; ++s) {
+      c.side[s].body = s;
+      c.side[s].tooth = k;
+      c.side[s].flank = 1;
+      c.side[s].point =
+          bodies[s].centre + r * f.healthy.grid().position[static_cast<std::size_t>(i)];
+      c.side[s].direction = -(r * f.healthy.grid().normal[static_cast<std::size_t>(i)]);
+    }
+    contacts.push_back(c);
+  }
+  const Eigen::MatrixXd healthy = AssembleCompliance(bodies, contacts);
+  bodies[0].damaged = &d;
+  const Eigen::MatrixXd damaged = AssembleCompliance(bodies, contacts);
+  // Symmetric (rows of D read transposed for loads outside D: exact by construction).
+  CHECK((damaged - damaged.transpose()).cwiseAbs().maxCoeff() == 0.0);
+  // Each entry: body 1's healthy term plus body 0's from the rule of DamagedInfluence.
+  for (int j = 0; j < 4; ++j) {
+    for (int k = 0; k < 4; ++k) {
+      const auto& a = where[static_cast<std::size_t>(j)];
+      const auto& b = where[static_cast<std::size_t>(k)];
+      const FlankPosition pa{a.first, 1,
+                             f.healthy.grid().arc_length[static_cast<std::size_t>(a.second)]};
+      const FlankPosition pb{b.first, 1,
+                             f.healthy.grid().arc_length[static_cast<std::size_t>(b.second)]};
+      const Eigen::Vector2d da = contacts[static_cast<std::size_t>(j)].side[0].direction;
+      const Eigen::Vector2d db = contacts[static_cast<std::size_t>(k)].side[0].direction;
+      const double body0 = da.dot(d.Influence(f.healthy, pb, pa) * db);
+      const double body1 = da.dot(f.healthy.Influence(pb, pa) * db);
+      CHECK(damaged(j, k) == Approx(body0 + body1).epsilon(1e-12));
+      // Far from the crack (teeth 9 and 10: six teeth away) the healthy table is read.
+      if (j >= 2 && k >= 2) CHECK(damaged(j, k) == healthy(j, k));
+    }
+  }
+  // The cracked tooth's own entry rises (25 % of s_Fn: +24–34 % on body 0's share, above).
+  CHECK(damaged(0, 0) > healthy(0, 0));
+  const auto s = d.build_seconds();
+  test::Figure("damaged rows K = 1: " + std::to_string(d.num_dofs()) + " dofs, build " +
+               test::Sci(s[0]) + " + " + test::Sci(s[1]) + " + " + test::Sci(s[2]) + " s");
+}
