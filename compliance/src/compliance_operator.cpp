@@ -5,6 +5,8 @@
 
 #include <Eigen/Geometry>
 
+#include "epicycle/compliance/damaged_influence.hpp"
+
 namespace epicycle::compliance {
 
 namespace {
@@ -104,12 +106,20 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
   for (int b = 0; b < nb; ++b) {
     const OperatorBody& body = bodies[b];
     const InfluenceTable& table = *body.table;
+    const DamagedInfluence* damaged = body.damaged;
+    if (damaged != nullptr && damaged->teeth() != table.teeth()) {
+      throw std::invalid_argument("AssembleCompliance: body " + std::to_string(b) + " ('" +
+                                  body.name + "'): damaged rows of " +
+                                  std::to_string(damaged->teeth()) + " teeth on a table of " +
+                                  std::to_string(table.teeth()));
+    }
     const bool support = !body.support.isZero(0.0);
     // The support acts on the centre in the inertial frame: rotate the directions back.
     const Eigen::Matrix2d to_world =
         support ? Eigen::Rotation2Dd(body.rotation).toRotationMatrix() : Eigen::Matrix2d::Zero();
     auto term = [&](const Located& response, const Located& load) {
-      double v = table.DirectedCompliance(load.node, response.node);
+      double v = damaged == nullptr ? table.DirectedCompliance(load.node, response.node)
+                                    : damaged->DirectedCompliance(table, load.node, response.node);
       if (support) {
         v += (to_world * response.node.direction)
                  .dot(body.support * (to_world * load.node.direction));
@@ -149,6 +159,11 @@ std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies
   std::vector<FilletStress> out;
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
     const InfluenceTable& table = *bodies[b].table;
+    if (bodies[b].damaged != nullptr)
+      throw std::invalid_argument("FilletStresses: body " + std::to_string(b) + " ('" +
+                                  bodies[b].name +
+                                  "') is damaged (a root crack): its root stresses are not "
+                                  "tabulated");
     if (!table.has_fillet_stress())
       throw std::invalid_argument("FilletStresses: body " + std::to_string(b) + " ('" +
                                   bodies[b].name + "') has a table without fillet stresses");

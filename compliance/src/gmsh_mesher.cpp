@@ -3,6 +3,7 @@
 
 #include "mesher_common.hpp"
 #include "quad_repair.hpp"
+#include "slit_mesh.hpp"
 
 #include <gmsh.h>
 
@@ -746,5 +747,291 @@ Mesh GmshMesher::BuildMesh(const Region& region) const {
   }
   return mesh;
 }
+
+// ---------------------------------------------------------------------------------------------
+// The slit polygon (slit_mesh.hpp): one gmsh plane surface bounded by the loop's corners, the
+// crack's segments embedded in it, quadrilaterals as in MeshPatch; then, for an open crack, the
+// crack's nodes (all but the tip) duplicated: around each, the cells fall into the two fans that
+// the crack's sides separate, and the fan on the right of the path gets the copy. The crack's
+// nodes (both copies) stay where they are through the smoothing (they are fixed like the loop),
+// and the triangle repair, which runs after the duplication, sees the two faces as boundary and
+// never pairs cells across them.
+namespace internal {
+
+SlitMesh MeshSlitPolygon(const SlitInput& input) {
+  const int n_loop = static_cast<int>(input.loop.size());
+  const int n_corners = n_loop / 2;
+  const int n_crack = static_cast<int>(input.crack.size());
+  if (n_loop < 6 || n_loop % 2 != 0 || input.mouth < 0 || input.mouth >= n_loop ||
+      input.mouth % 2 != 0 || n_crack < 1) {
+    Fail("slit polygon: bad input (loop of " + std::to_string(n_loop) + " samples, mouth " +
+         std::to_string(input.mouth) + ", " + std::to_string(n_crack) + " crack points)");
+  }
+  if (n_corners % 2 != 0) {
+    Fail("slit polygon: " + std::to_string(n_corners) +
+         " boundary intervals; the rule: an even number (an all-quadrilateral mesh)");
+  }
+  // Local ids: [0, n_loop) loop, [n_loop, n_fixed) crack nodes (gmsh's, then the copies),
+  // [n_fixed, …) free interior nodes.
+  std::vector<Eigen::Vector2d> crack_nodes;  // positions of ids n_loop + k
+  std::vector<Eigen::Vector2d> free_nodes;
+  std::vector<Cell> cells;
+  std::vector<int> path;  // local ids of the crack's corners, mouth → tip (gmsh's originals)
+  int n_fixed = 0;
+  // Filled inside the gmsh call; the rest runs outside it.
+  std::vector<std::array<double, 3>> raw_interior;  // gmsh interior nodes (x, y, tag)
+  {
+    const std::lock_guard<std::mutex> lock(GmshMutex());
+    PrepareGmsh();
+    CallGmsh("slit polygon", [&] {
+      gmsh::option::setNumber("Mesh.Algorithm", 6);
+      gmsh::option::setNumber("Mesh.MeshSizeFactor", 1.0);
+      ModelScope model("epicycle_gmsh_slit");
+      std::vector<double> size(n_corners);
+      double size_max = 0.0;
+      for (int k = 0; k < n_corners; ++k) {
+        const Eigen::Vector2d& x = input.loop[2 * k];
+        size[k] = 0.5 * ((x - input.loop[(2 * k + n_loop - 2) % n_loop]).norm() +
+                         (input.loop[(2 * k + 2) % n_loop] - x).norm());
+        size_max = std::max(size_max, size[k]);
+      }
+      std::vector<Eigen::Vector2d> crack_all = {input.loop[input.mouth]};
+      crack_all.insert(crack_all.end(), input.crack.begin(), input.crack.end());
+      std::vector<double> crack_size(crack_all.size());
+      for (std::size_t k = 0; k < crack_all.size(); ++k) {
+        const double before = k > 0 ? (crack_all[k] - crack_all[k - 1]).norm() : 0.0;
+        const double after =
+            k + 1 < crack_all.size() ? (crack_all[k + 1] - crack_all[k]).norm() : before;
+        crack_size[k] = k > 0 ? 0.5 * (before + after) : after;
+      }
+      size[input.mouth / 2] = std::min(size[input.mouth / 2], crack_size[0]);
+      std::vector<int> points(n_corners), lines(n_corners);
+      for (int k = 0; k < n_corners; ++k) {
+        const Eigen::Vector2d& x = input.loop[2 * k];
+        points[k] = gmsh::model::geo::addPoint(x.x(), x.y(), 0.0, size[k]);
+      }
+      for (int k = 0; k < n_corners; ++k) {
+        lines[k] = gmsh::model::geo::addLine(points[k], points[(k + 1) % n_corners]);
+        gmsh::model::geo::mesh::setTransfiniteCurve(lines[k], 2);
+      }
+      std::vector<int> crack_points = {points[input.mouth / 2]}, crack_lines;
+      for (int k = 1; k < static_cast<int>(crack_all.size()); ++k) {
+        crack_points.push_back(
+            gmsh::model::geo::addPoint(crack_all[k].x(), crack_all[k].y(), 0.0, crack_size[k]));
+        crack_lines.push_back(gmsh::model::geo::addLine(crack_points[k - 1], crack_points[k]));
+        gmsh::model::geo::mesh::setTransfiniteCurve(crack_lines.back(), 2);
+      }
+      const int loop = gmsh::model::geo::addCurveLoop(lines);
+      const int surface = gmsh::model::geo::addPlaneSurface({loop});
+      gmsh::model::geo::mesh::setRecombine(2, surface);
+      gmsh::model::geo::synchronize();
+      gmsh::model::mesh::embed(1, crack_lines, 2, surface);
+      std::vector<double> thresholds;
+      auto threshold_at = [&](int point, double h) {
+        const int distance = gmsh::model::mesh::field::add("Distance");
+        gmsh::model::mesh::field::setNumbers(distance, "PointsList", {static_cast<double>(point)});
+        const int threshold = gmsh::model::mesh::field::add("Threshold");
+        gmsh::model::mesh::field::setNumber(threshold, "InField", distance);
+        gmsh::model::mesh::field::setNumber(threshold, "SizeMin", h);
+        gmsh::model::mesh::field::setNumber(threshold, "SizeMax", size_max);
+        gmsh::model::mesh::field::setNumber(threshold, "DistMin", 0.0);
+        gmsh::model::mesh::field::setNumber(
+            threshold, "DistMax", std::max((size_max - h) / kSizeGrowth, 1e-6 * size_max));
+        thresholds.push_back(threshold);
+      };
+      for (int k = 0; k < n_corners; ++k) threshold_at(points[k], size[k]);
+      for (std::size_t k = 1; k < crack_points.size(); ++k)
+        threshold_at(crack_points[k], crack_size[k]);
+      const int smallest = gmsh::model::mesh::field::add("Min");
+      gmsh::model::mesh::field::setNumbers(smallest, "FieldsList", thresholds);
+      gmsh::model::mesh::field::setAsBackgroundMesh(smallest);
+      gmsh::model::mesh::generate(2);
+
+      std::unordered_map<std::size_t, int> local;
+      std::vector<std::size_t> tags;
+      std::vector<double> coord, param;
+      for (int k = 0; k < n_corners; ++k) {
+        gmsh::model::mesh::getNodes(tags, coord, param, 0, points[k], false, false);
+        if (tags.size() != 1) throw PatchFailure{"a boundary vertex has no mesh node"};
+        local[tags[0]] = 2 * k;
+        gmsh::model::mesh::getNodes(tags, coord, param, 1, lines[k], false, false);
+        if (!tags.empty()) throw PatchFailure{"a boundary interval was split by gmsh"};
+      }
+      path.push_back(input.mouth);
+      for (std::size_t k = 1; k < crack_points.size(); ++k) {
+        gmsh::model::mesh::getNodes(tags, coord, param, 0, crack_points[k], false, false);
+        if (tags.size() != 1) throw PatchFailure{"a crack point has no mesh node"};
+        local[tags[0]] = n_loop + static_cast<int>(crack_nodes.size());
+        path.push_back(n_loop + static_cast<int>(crack_nodes.size()));
+        crack_nodes.push_back(crack_all[k]);
+        gmsh::model::mesh::getNodes(tags, coord, param, 1, crack_lines[k - 1], false, false);
+        if (!tags.empty()) throw PatchFailure{"a crack segment was split by gmsh"};
+      }
+      gmsh::model::mesh::getNodes(tags, coord, param, 2, surface, false, false);
+      for (std::size_t a = 0; a < tags.size(); ++a) {
+        raw_interior.push_back({coord[3 * a], coord[3 * a + 1], static_cast<double>(a)});
+        local[tags[a]] = -1 - static_cast<int>(a);  // free node a (renumbered below)
+      }
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> element_tags, node_tags;
+      gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, surface);
+      for (std::size_t t = 0; t < types.size(); ++t) {
+        const int per = types[t] == kGmshQuad4 ? 4 : types[t] == kGmshTriangle3 ? 3 : 0;
+        if (per == 0) throw PatchFailure{"unexpected element type " + std::to_string(types[t])};
+        for (std::size_t e = 0; e < element_tags[t].size(); ++e) {
+          Cell cell{{}, per};
+          for (int a = 0; a < per; ++a) {
+            const auto it = local.find(node_tags[t][e * static_cast<std::size_t>(per) + a]);
+            if (it == local.end()) throw PatchFailure{"an element uses a node of no entity"};
+            cell.v[a] = it->second;
+          }
+          cells.push_back(cell);
+        }
+      }
+      if (cells.empty()) throw PatchFailure{"gmsh generated no elements"};
+    });
+  }
+  // Duplicates (open crack): ids n_loop + n_gmsh_crack + …, so that all crack ids precede the
+  // free ones; the free ids are set once the count is known.
+  std::vector<int> copy_of(path.size(), -1);
+  if (input.open) {
+    for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+      copy_of[k] = n_loop + static_cast<int>(crack_nodes.size());
+      crack_nodes.push_back(k == 0 ? input.loop[input.mouth] : crack_nodes[path[k] - n_loop]);
+    }
+  }
+  n_fixed = n_loop + static_cast<int>(crack_nodes.size());
+  for (Cell& cell : cells) {
+    for (int a = 0; a < cell.n; ++a) {
+      if (cell.v[a] < 0) cell.v[a] = n_fixed + (-1 - cell.v[a]);
+    }
+  }
+  for (const auto& x : raw_interior) free_nodes.emplace_back(x[0], x[1]);
+  auto position = [&](int id) -> const Eigen::Vector2d& {
+    if (id < n_loop) return input.loop[id];
+    if (id < n_fixed) return crack_nodes[id - n_loop];
+    return free_nodes[id - n_fixed];
+  };
+  SlitMesh out;
+  CallGmsh("slit polygon", [&] {
+    // Counter-clockwise cells.
+    double area2 = 0.0;
+    for (const Cell& cell : cells) {
+      for (int a = 0; a < cell.n; ++a) {
+        const Eigen::Vector2d& p = position(cell.v[a]);
+        const Eigen::Vector2d& q = position(cell.v[(a + 1) % cell.n]);
+        area2 += p.x() * q.y() - p.y() * q.x();
+      }
+    }
+    if (area2 < 0.0) {
+      for (Cell& cell : cells) std::reverse(cell.v.begin() + 1, cell.v.begin() + cell.n);
+    }
+    // Every crack side must be a cell side (gmsh keeps embedded segments).
+    auto has_side = [&](const Cell& c, int a, int b) {
+      for (int k = 0; k < c.n; ++k) {
+        const int p = c.v[k], q = c.v[(k + 1) % c.n];
+        if ((p == a && q == b) || (p == b && q == a)) return true;
+      }
+      return false;
+    };
+    for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+      int count = 0;
+      for (const Cell& c : cells) count += has_side(c, path[k], path[k + 1]) ? 1 : 0;
+      if (count != 2) throw PatchFailure{"crack segment " + std::to_string(k) + " is not a side"};
+    }
+    if (input.open) {
+      for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+        const int p = path[k];
+        const Eigen::Vector2d& x = position(p);
+        const Eigen::Vector2d out_dir = position(path[k + 1]) - x;
+        const Eigen::Vector2d back_dir =
+            k > 0 ? Eigen::Vector2d(position(path[k - 1]) - x) : Eigen::Vector2d(-out_dir);
+        auto ccw_angle = [&](const Eigen::Vector2d& v) {
+          double a = std::atan2(out_dir.x() * v.y() - out_dir.y() * v.x(), out_dir.dot(v));
+          if (a < 0.0) a += 2.0 * 3.14159265358979323846;
+          return a;
+        };
+        const double beta = ccw_angle(back_dir);
+        for (Cell& cell : cells) {
+          int at = -1;
+          for (int a = 0; a < cell.n; ++a) {
+            if (cell.v[a] == p) at = a;
+          }
+          if (at < 0) continue;
+          // The cell's direction at p: the bisector of its two sides there.
+          const Eigen::Vector2d u = (position(cell.v[(at + 1) % cell.n]) - x).normalized() +
+                                    (position(cell.v[(at + cell.n - 1) % cell.n]) - x).normalized();
+          if (k == 0) {
+            if (out_dir.x() * u.y() - out_dir.y() * u.x() < 0.0) cell.v[at] = copy_of[k];
+          } else if (ccw_angle(u) > beta) {
+            cell.v[at] = copy_of[k];
+          }
+        }
+      }
+    }
+    // Fixed: loop and crack; the free nodes are smoothed, the triangles repaired.
+    SmoothInterior(cells, n_fixed, position, &free_nodes);
+    RepairTriangles(&cells, position, [&](const Eigen::Vector2d& x) {
+      free_nodes.push_back(x);
+      return n_fixed + static_cast<int>(free_nodes.size()) - 1;
+    });
+    SmoothInterior(cells, n_fixed, position, &free_nodes);
+    // Output numbering: loop, then crack nodes, then free nodes, then mid-side nodes.
+    for (const Eigen::Vector2d& x : crack_nodes) out.interior.push_back(x);
+    for (const Eigen::Vector2d& x : free_nodes) out.interior.push_back(x);
+    std::map<std::pair<int, int>, int> mid;
+    auto mid_node = [&](int a, int b) {
+      if (a < n_loop && b < n_loop) {
+        if ((a + 2) % n_loop == b) return (a + 1) % n_loop;
+        if ((b + 2) % n_loop == a) return (b + 1) % n_loop;
+      }
+      // The mouth's copy is on the loop too: its boundary interval's mid-side sample.
+      const int a0 = input.open && a == copy_of[0] ? input.mouth : a;
+      const int b0 = input.open && b == copy_of[0] ? input.mouth : b;
+      if ((a0 != a || b0 != b) && a0 < n_loop && b0 < n_loop) {
+        if ((a0 + 2) % n_loop == b0) return (a0 + 1) % n_loop;
+        if ((b0 + 2) % n_loop == a0) return (b0 + 1) % n_loop;
+      }
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      const auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      const int id = n_loop + static_cast<int>(out.interior.size());
+      out.interior.push_back(0.5 * (position(a) + position(b)));
+      mid[key] = id;
+      return id;
+    };
+    for (const Cell& cell : cells) {
+      if (cell.n != 4) throw PatchFailure{"a triangle is left"};
+      std::array<int, kQ8Nodes> el{};
+      for (int a = 0; a < 4; ++a) el[a] = cell.v[a];
+      for (int a = 0; a < 4; ++a) el[4 + a] = mid_node(cell.v[a], cell.v[(a + 1) % 4]);
+      out.elements.push_back(el);
+    }
+    for (std::size_t e = 0; e < out.elements.size(); ++e) {
+      Q8Coordinates x;
+      for (int a = 0; a < kQ8Nodes; ++a) {
+        const int id = out.elements[e][a];
+        x.col(a) = id < n_loop ? input.loop[id] : out.interior[id - n_loop];
+      }
+      try {
+        CheckQ8Jacobian(x, static_cast<int>(e));
+      } catch (const std::invalid_argument& error) {
+        throw PatchFailure{std::string(error.what()) + " (element of the slit polygon)"};
+      }
+    }
+    out.left = path;
+    out.right = path;
+    if (input.open) {
+      for (std::size_t k = 0; k + 1 < path.size(); ++k) out.right[k] = copy_of[k];
+    }
+    for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+      out.left_mid.push_back(mid_node(out.left[k], out.left[k + 1]));
+      out.right_mid.push_back(mid_node(out.right[k], out.right[k + 1]));
+    }
+  });
+  return out;
+}
+
+}  // namespace internal
 
 }  // namespace epicycle::compliance

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "epicycle/compliance/gmsh_mesher.hpp"
+#include "slit_mesh.hpp"
 
 namespace epicycle::compliance {
 
@@ -16,5 +17,15 @@ Mesh GmshMesher::BuildMesh(const Region&) const {
       "configure with -DEPICYCLE_WITH_GMSH=ON (needs libgmsh-dev) to use it, or use the mapped "
       "mesher");
 }
+
+namespace internal {
+
+SlitMesh MeshSlitPolygon(const SlitInput&) {
+  throw std::invalid_argument(
+      "a root crack needs the gmsh mesher: this build of epicycle was not built with gmsh "
+      "(EPICYCLE_WITH_GMSH=OFF); configure with -DEPICYCLE_WITH_GMSH=ON (needs libgmsh-dev)");
+}
+
+}  // namespace internal
 
 }  // namespace epicycle::compliance

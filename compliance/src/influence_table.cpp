@@ -147,14 +147,34 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
                                      const InfluenceTableOptions& options) {
   options.Validate();
   material.Validate();
+  const double t0 = Cpu();
+  GearBodyMesh body = BuildGearMesh(gear, options.mesh);
+  std::vector<InfluenceTable> tables =
+      SolveLoads(gear, material, options, std::move(body), Cpu() - t0, {0}, true);
+  return std::move(tables.front());
+}
+
+// The table's solve on a given body mesh, loads on each of `load_teeth` (Build: tooth 0 of the
+// cyclic body; DamagedInfluence: the teeth near a crack). Table q holds the loads on tooth
+// t = load_teeth[q] in the frame of that tooth (directions and displacements turned by R_tᵀ;
+// response tooth k stored at k − t mod z), so that every accessor reads it as "tooth 0". With
+// `cyclic` the table is symmetrised by the cyclic Maxwell–Betti pairs and may carry fillet
+// stresses; without, it keeps the raw values (the caller symmetrises the pairs it holds).
+std::vector<InfluenceTable> InfluenceTable::SolveLoads(const geometry::Gear& gear,
+                                                       const ElasticMaterial& material,
+                                                       const InfluenceTableOptions& options,
+                                                       GearBodyMesh body, double t_mesh_before,
+                                                       const std::vector<int>& load_teeth,
+                                                       bool cyclic) {
   const std::string who = "influence table of '" + gear.name() + "': ";
+  if (!cyclic && options.fillet_stress)
+    throw std::invalid_argument(who + "fillet stresses are tabulated for a cyclic body only");
   InfluenceTable t;
   t.gear_ = std::make_shared<const geometry::Gear>(gear);
   t.path_ = std::make_shared<const ProfilePath>(*t.gear_);
   t.module_ = gear.module();
 
   double t0 = Cpu();
-  GearBodyMesh body = BuildGearMesh(gear, options.mesh);
   t.teeth_ = body.teeth;
   t.grid_ = body.grid;
   t.n_ = body.grid.num_points();
@@ -185,7 +205,7 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
         << kDefaultDepthFraction << " of it)";
     throw std::invalid_argument(msg.str());
   }
-  const double t_mesh = Cpu() - t0;
+  const double t_mesh = t_mesh_before + Cpu() - t0;
 
   t0 = Cpu();
   LinearElasticModel model(std::move(body.mesh), material);
@@ -195,220 +215,243 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
   model.Factorize();
   const double t_factor = Cpu() - t0;
 
-  t0 = Cpu();
-  // Depth read-out points of tooth 0's grid (DisplacementAtDepth's construction: the edge point
-  // at the node, minus the depth times the edge's outward normal m), located once: at h (the
-  // join) and at kLayerSamples depths r_k evenly over [r1, r2], where the layer strain is measured.
-  const double r1 = kDefaultDepthFraction * t.max_depth_, r2 = kLayerDepthRatio * r1;
-  std::array<double, kLayerSamples> r_k;
-  for (int k = 0; k < kLayerSamples; ++k) r_k[k] = r1 + (r2 - r1) * k / (kLayerSamples - 1);
-  std::array<std::vector<ElementPoint>, 2> depth_at;
-  std::array<std::array<std::vector<ElementPoint>, kLayerSamples>, 2> layer_at;
-  std::array<std::vector<Eigen::Vector2d>, 2> edge_normal;
-  for (int fl = 0; fl < 2; ++fl) {
-    const std::string set = std::string("flank0") + (fl == 0 ? "+" : "-");
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Vector2d x = model.mesh().nodes[body.grid_nodes[0][fl][i]];
-      const EdgePoint ep = model.mesh().LocateOnEdgeSet(set, x);
-      const Eigen::Vector2d m = model.mesh().EdgeNormal(set, ep);
-      edge_normal[fl].push_back(m);
-      for (int k = -1; k < kLayerSamples; ++k) {
-        const double depth = k < 0 ? t.depth_ : r_k[k];
-        std::vector<ElementPoint>& at = k < 0 ? depth_at[fl] : layer_at[fl][k];
-        try {
-          at.push_back(model.LocatePoint(model.mesh().EdgePosition(set, ep) - depth * m));
-        } catch (const std::invalid_argument& e) {
-          throw std::invalid_argument(who + "the depth read-out of grid point " +
-                                      std::to_string(i) + " at " + Num(depth * 1e3) +
-                                      " mm is outside the body (" + e.what() + ")");
-        }
-      }
-    }
-  }
-  // Flamant's coefficient a = 2k/(π b) (k = (1−ν²)/E plane strain, 1/E plane stress): the
-  // half-plane's normal approach between depths r1 and r2 under a unit point load is a ln(r2/r1).
-  const ElasticMaterial& mat = model.material();
-  const double flamant = 2.0 *
-                         (mat.plane == PlaneAssumption::kPlaneStrain
-                              ? (1.0 - mat.poisson_ratio * mat.poisson_ratio) / mat.youngs_modulus
-                              : 1.0 / mat.youngs_modulus) /
-                         (kPi * mat.thickness);
-  const std::size_t total = static_cast<std::size_t>(2) * n * 2 * z * 2 * n * 2;
-  std::vector<double> raw(total, 0.0);
-  std::vector<Eigen::Matrix2d> self(static_cast<std::size_t>(2) * n, Eigen::Matrix2d::Zero());
-  // Normal approach mᵀ U m at the layer depths per grid point (the sum over the two load cases).
-  std::vector<std::array<double, kLayerSamples>> normal_at(static_cast<std::size_t>(2) * n);
-  for (auto& v : normal_at) v.fill(0.0);
-  // The fillet read-out of every side of every tooth (tooth 0's σ = +1 side defines the points;
-  // the cyclic, mirrored mesh gives every other side the same points, checked).
-  std::vector<FilletReadout> fillets;
-  if (options.fillet_stress) {
-    const double tol = 1e-9 * gear.tip_radius();
-    for (int k = 0; k < z; ++k) {
-      for (int f = 0; f < 2; ++f) {
-        const std::string set = "fillet" + std::to_string(k) + (f == 0 ? "+" : "-");
-        fillets.push_back(
-            ReadFillet(model, *t.path_, t.grid_.form_arc, k * gear.pitch_angle(), f == 1, set));
-        const FilletReadout& r = fillets.back();
-        const FilletReadout& r0 = fillets.front();
-        bool same = r.arc_length.size() == r0.arc_length.size();
-        for (std::size_t m = 0; same && m < r.arc_length.size(); ++m)
-          same = std::abs(r.arc_length[m] - r0.arc_length[m]) <= tol;
-        if (!same)
-          throw std::invalid_argument(who + "the fillet points of set '" + set +
-                                      "' are not those of tooth 0 (the mesh is not cyclic)");
-      }
-    }
-    for (std::size_t m = 0; m < fillets.front().arc_length.size(); ++m) {
-      const double sm = fillets.front().arc_length[m];
-      t.fillet_.push_back({sm,
-                           model.mesh().nodes[static_cast<std::size_t>(fillets.front().node[m])],
-                           t.path_->Tangent(sm)});
-    }
-    t.fillet_stress_.assign(static_cast<std::size_t>(2) * n * 2 * z * 2 * t.fillet_.size(), 0.0);
-  }
-  const int cases = 2 * n * 2;
-  for (int first = 0; first < cases; first += options.batch) {
-    const int count = std::min(options.batch, cases - first);
-    Eigen::MatrixXd f = Eigen::MatrixXd::Zero(model.num_dofs(), count);
-    for (int q = 0; q < count; ++q) {
-      const int id = first + q, c = id % 2, i = (id / 2) % n, fl = id / (2 * n);
-      f(LinearElasticModel::Dof(body.grid_nodes[0][fl][i], c), q) = 1.0;
-    }
-    const Eigen::MatrixXd u = model.SolveMany(f);
-    for (int q = 0; q < count; ++q) {
-      const int id = first + q, c = id % 2, i = (id / 2) % n, fl = id / (2 * n);
-      for (int k = 0; k < z; ++k) {
-        for (int fr = 0; fr < 2; ++fr) {
-          for (int j = 0; j < n; ++j) {
-            const int node = body.grid_nodes[k][fr][j];
-            const std::size_t at = t.Index(fl, i, c, k, fr, j);
-            raw[at] = u(2 * node, q);
-            raw[at + 1] = u(2 * node + 1, q);
-          }
-        }
-      }
-      for (int k = 0; k < z && options.fillet_stress; ++k) {
-        for (int side = 0; side < 2; ++side) {
-          const FilletReadout& r = fillets[static_cast<std::size_t>(2 * k + side)];
-          double* out = &t.fillet_stress_[t.FilletIndex(fl, i, c, k, side)];
-          for (std::size_t m = 0; m < r.functional.size(); ++m) {
-            double sigma = 0.0;
-            for (const auto& [dof, coefficient] : r.functional[m]) sigma += coefficient * u(dof, q);
-            out[m] = sigma;
-          }
-        }
-      }
-      const std::size_t g = static_cast<std::size_t>(fl) * n + i;
-      self[g].col(c) = model.Displacement(u.col(q), depth_at[fl][i]);
-      const Eigen::Vector2d& m = edge_normal[fl][i];
-      for (int k = 0; k < kLayerSamples; ++k)
-        normal_at[g][k] += m(c) * m.dot(model.Displacement(u.col(q), layer_at[fl][k][i]));
-    }
-  }
-  // The layer term (docs/compliance.md, "The layer term"): the FE's normal approach less
-  // Flamant's, R(r) = D(r) + a ln r, is the structural (non-singular) field, which the half-plane
-  // local term does not contain. Its slope over [r1, r2] (least squares over the samples: the
-  // read-out inside an element carries an interpolation error that varies with the depth, which
-  // the fit averages), carried linearly to the surface, adds −h R' between the surface and h,
-  // so that the sum of the two terms no longer depends on h.
-  std::vector<double> layer(static_cast<std::size_t>(2) * n, 0.0);
-  if (options.layer_term) {
-    double mean_r = 0.0;
-    for (double r : r_k) mean_r += r / kLayerSamples;
-    for (std::size_t g = 0; g < layer.size(); ++g) {
-      double mean_v = 0.0;
-      for (int k = 0; k < kLayerSamples; ++k)
-        mean_v += (normal_at[g][k] + flamant * std::log(r_k[k])) / kLayerSamples;
-      double sxy = 0.0, sxx = 0.0;
-      for (int k = 0; k < kLayerSamples; ++k) {
-        const double dr = r_k[k] - mean_r;
-        sxy += dr * (normal_at[g][k] + flamant * std::log(r_k[k]) - mean_v);
-        sxx += dr * dr;
-      }
-      layer[g] = -t.depth_ * sxy / sxx;  // [m/N]
-    }
-    // Grid points alternate between corner and mid-side nodes of the Q8 edges, whose point loads
-    // leave different errors one element deep: a (1, 2, 1)/4 filter along the flank removes that
-    // alternation exactly and keeps linear trends (the structural field varies over the tooth's
-    // thickness, many grid spacings).
+  std::vector<InfluenceTable> result;
+  for (const int load_tooth : load_teeth) {
+    t0 = Cpu();
+    const int lt = ((load_tooth % z) + z) % z;
+    // R_tᵀ of the load tooth (identity for tooth 0, whose values are then those of Build).
+    const Eigen::Matrix2d to_load = Rot(-lt * gear.pitch_angle());
+    auto local = [&](const Eigen::Vector2d& v) -> Eigen::Vector2d {
+      return lt == 0 ? v : Eigen::Vector2d(to_load * v);
+    };
+    // Depth read-out points of tooth 0's grid (DisplacementAtDepth's construction: the edge point
+    // at the node, minus the depth times the edge's outward normal m), located once: at h (the
+    // join) and at kLayerSamples depths r_k evenly over [r1, r2], where the layer strain is
+    // measured.
+    const double r1 = kDefaultDepthFraction * t.max_depth_, r2 = kLayerDepthRatio * r1;
+    std::array<double, kLayerSamples> r_k;
+    for (int k = 0; k < kLayerSamples; ++k) r_k[k] = r1 + (r2 - r1) * k / (kLayerSamples - 1);
+    std::array<std::vector<ElementPoint>, 2> depth_at;
+    std::array<std::array<std::vector<ElementPoint>, kLayerSamples>, 2> layer_at;
+    std::array<std::vector<Eigen::Vector2d>, 2> edge_normal;
     for (int fl = 0; fl < 2; ++fl) {
-      const std::vector<double> c(layer.begin() + fl * n, layer.begin() + (fl + 1) * n);
-      for (int i = 1; i + 1 < n; ++i)
-        layer[static_cast<std::size_t>(fl) * n + i] = 0.25 * (c[i - 1] + 2.0 * c[i] + c[i + 1]);
+      const std::string set = "flank" + std::to_string(lt) + (fl == 0 ? "+" : "-");
+      for (int i = 0; i < n; ++i) {
+        const Eigen::Vector2d x = model.mesh().nodes[body.grid_nodes[lt][fl][i]];
+        const EdgePoint ep = model.mesh().LocateOnEdgeSet(set, x);
+        const Eigen::Vector2d m = model.mesh().EdgeNormal(set, ep);
+        edge_normal[fl].push_back(m);
+        for (int k = -1; k < kLayerSamples; ++k) {
+          const double depth = k < 0 ? t.depth_ : r_k[k];
+          std::vector<ElementPoint>& at = k < 0 ? depth_at[fl] : layer_at[fl][k];
+          try {
+            at.push_back(model.LocatePoint(model.mesh().EdgePosition(set, ep) - depth * m));
+          } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(who + "the depth read-out of grid point " +
+                                        std::to_string(i) + " at " + Num(depth * 1e3) +
+                                        " mm is outside the body (" + e.what() + ")");
+          }
+        }
+      }
     }
-  }
-
-  // Maxwell–Betti: Λ(a→b) = Λ(b→a)ᵀ. For a = (tooth 0, fl, i), b = (tooth k, fr, j), the
-  // reciprocal load sits on tooth k: Λ(b→a) = R_k M R_kᵀ with M = Λ((0, fr, j) → (−k, fl, i)).
-  std::vector<double> sym(total, 0.0);
-  auto block = [&](const std::vector<double>& v, int fl, int i, int k, int fr, int j) {
-    Eigen::Matrix2d m;
-    for (int c = 0; c < 2; ++c) {
-      const std::size_t at = t.Index(fl, i, c, k, fr, j);
-      m(0, c) = v[at];
-      m(1, c) = v[at + 1];
-    }
-    return m;
-  };
-  auto norm = [](const Eigen::Matrix2d& m) { return m.cwiseAbs().maxCoeff(); };
-  double asym = 0.0, self_asym = 0.0;
-  for (int fl = 0; fl < 2; ++fl) {
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Matrix2d& s = self[static_cast<std::size_t>(fl) * n + i];
-      self_asym = std::max(self_asym, std::abs(s(0, 1) - s(1, 0)) / norm(s));
-    }
-  }
-  for (int fl = 0; fl < 2; ++fl) {
-    for (int i = 0; i < n; ++i) {
-      const double da = norm(self[static_cast<std::size_t>(fl) * n + i]);
+    // Flamant's coefficient a = 2k/(π b) (k = (1−ν²)/E plane strain, 1/E plane stress): the
+    // half-plane's normal approach between depths r1 and r2 under a unit point load is a ln(r2/r1).
+    const ElasticMaterial& mat = model.material();
+    const double flamant = 2.0 *
+                           (mat.plane == PlaneAssumption::kPlaneStrain
+                                ? (1.0 - mat.poisson_ratio * mat.poisson_ratio) / mat.youngs_modulus
+                                : 1.0 / mat.youngs_modulus) /
+                           (kPi * mat.thickness);
+    const std::size_t total = static_cast<std::size_t>(2) * n * 2 * z * 2 * n * 2;
+    std::vector<double> raw(total, 0.0);
+    std::vector<Eigen::Matrix2d> self(static_cast<std::size_t>(2) * n, Eigen::Matrix2d::Zero());
+    // Normal approach mᵀ U m at the layer depths per grid point (the sum over the two load cases).
+    std::vector<std::array<double, kLayerSamples>> normal_at(static_cast<std::size_t>(2) * n);
+    for (auto& v : normal_at) v.fill(0.0);
+    // The fillet read-out of every side of every tooth (tooth 0's σ = +1 side defines the points;
+    // the cyclic, mirrored mesh gives every other side the same points, checked).
+    std::vector<FilletReadout> fillets;
+    if (options.fillet_stress) {
+      const double tol = 1e-9 * gear.tip_radius();
       for (int k = 0; k < z; ++k) {
-        const Eigen::Matrix2d r = Rot(k * gear.pitch_angle());
-        const int back = (z - k) % z;
-        for (int fr = 0; fr < 2; ++fr) {
-          for (int j = 0; j < n; ++j) {
-            const Eigen::Matrix2d ab = block(raw, fl, i, k, fr, j);
-            const Eigen::Matrix2d ba_t =
-                r * block(raw, fr, j, back, fl, i).transpose() * r.transpose();
-            const double db = norm(self[static_cast<std::size_t>(fr) * n + j]);
-            asym = std::max(asym, norm(ab - ba_t) / std::sqrt(da * db));
-            const Eigen::Matrix2d avg = 0.5 * (ab + ba_t);
-            for (int c = 0; c < 2; ++c) {
-              const std::size_t at = t.Index(fl, i, c, k, fr, j);
-              sym[at] = avg(0, c);
-              sym[at + 1] = avg(1, c);
+        for (int f = 0; f < 2; ++f) {
+          const std::string set = "fillet" + std::to_string(k) + (f == 0 ? "+" : "-");
+          fillets.push_back(
+              ReadFillet(model, *t.path_, t.grid_.form_arc, k * gear.pitch_angle(), f == 1, set));
+          const FilletReadout& r = fillets.back();
+          const FilletReadout& r0 = fillets.front();
+          bool same = r.arc_length.size() == r0.arc_length.size();
+          for (std::size_t m = 0; same && m < r.arc_length.size(); ++m)
+            same = std::abs(r.arc_length[m] - r0.arc_length[m]) <= tol;
+          if (!same)
+            throw std::invalid_argument(who + "the fillet points of set '" + set +
+                                        "' are not those of tooth 0 (the mesh is not cyclic)");
+        }
+      }
+      for (std::size_t m = 0; m < fillets.front().arc_length.size(); ++m) {
+        const double sm = fillets.front().arc_length[m];
+        t.fillet_.push_back({sm,
+                             model.mesh().nodes[static_cast<std::size_t>(fillets.front().node[m])],
+                             t.path_->Tangent(sm)});
+      }
+      t.fillet_stress_.assign(static_cast<std::size_t>(2) * n * 2 * z * 2 * t.fillet_.size(), 0.0);
+    }
+    const int cases = 2 * n * 2;
+    for (int first = 0; first < cases; first += options.batch) {
+      const int count = std::min(options.batch, cases - first);
+      Eigen::MatrixXd f = Eigen::MatrixXd::Zero(model.num_dofs(), count);
+      for (int q = 0; q < count; ++q) {
+        const int id = first + q, c = id % 2, i = (id / 2) % n, fl = id / (2 * n);
+        const int node = body.grid_nodes[lt][fl][i];
+        if (lt == 0) {
+          f(LinearElasticModel::Dof(node, c), q) = 1.0;
+        } else {  // unit force along the load tooth's axis c, R_t e_c
+          f(LinearElasticModel::Dof(node, 0), q) = to_load(c, 0);
+          f(LinearElasticModel::Dof(node, 1), q) = to_load(c, 1);
+        }
+      }
+      const Eigen::MatrixXd u = model.SolveMany(f);
+      for (int q = 0; q < count; ++q) {
+        const int id = first + q, c = id % 2, i = (id / 2) % n, fl = id / (2 * n);
+        for (int k = 0; k < z; ++k) {
+          const int dk = ((k - lt) % z + z) % z;
+          for (int fr = 0; fr < 2; ++fr) {
+            for (int j = 0; j < n; ++j) {
+              const int node = body.grid_nodes[k][fr][j];
+              const std::size_t at = t.Index(fl, i, c, dk, fr, j);
+              const Eigen::Vector2d v = local(Eigen::Vector2d(u(2 * node, q), u(2 * node + 1, q)));
+              raw[at] = v.x();
+              raw[at + 1] = v.y();
+            }
+          }
+        }
+        for (int k = 0; k < z && options.fillet_stress; ++k) {
+          for (int side = 0; side < 2; ++side) {
+            const FilletReadout& r = fillets[static_cast<std::size_t>(2 * k + side)];
+            double* out = &t.fillet_stress_[t.FilletIndex(fl, i, c, k, side)];
+            for (std::size_t m = 0; m < r.functional.size(); ++m) {
+              double sigma = 0.0;
+              for (const auto& [dof, coefficient] : r.functional[m])
+                sigma += coefficient * u(dof, q);
+              out[m] = sigma;
+            }
+          }
+        }
+        const std::size_t g = static_cast<std::size_t>(fl) * n + i;
+        self[g].col(c) = local(model.Displacement(u.col(q), depth_at[fl][i]));
+        const Eigen::Vector2d& m = edge_normal[fl][i];
+        const Eigen::Vector2d ml = local(m);
+        for (int k = 0; k < kLayerSamples; ++k)
+          normal_at[g][k] += ml(c) * m.dot(model.Displacement(u.col(q), layer_at[fl][k][i]));
+      }
+    }
+    // The layer term (docs/compliance.md, "The layer term"): the FE's normal approach less
+    // Flamant's, R(r) = D(r) + a ln r, is the structural (non-singular) field, which the half-plane
+    // local term does not contain. Its slope over [r1, r2] (least squares over the samples: the
+    // read-out inside an element carries an interpolation error that varies with the depth, which
+    // the fit averages), carried linearly to the surface, adds −h R' between the surface and h,
+    // so that the sum of the two terms no longer depends on h.
+    std::vector<double> layer(static_cast<std::size_t>(2) * n, 0.0);
+    if (options.layer_term) {
+      double mean_r = 0.0;
+      for (double r : r_k) mean_r += r / kLayerSamples;
+      for (std::size_t g = 0; g < layer.size(); ++g) {
+        double mean_v = 0.0;
+        for (int k = 0; k < kLayerSamples; ++k)
+          mean_v += (normal_at[g][k] + flamant * std::log(r_k[k])) / kLayerSamples;
+        double sxy = 0.0, sxx = 0.0;
+        for (int k = 0; k < kLayerSamples; ++k) {
+          const double dr = r_k[k] - mean_r;
+          sxy += dr * (normal_at[g][k] + flamant * std::log(r_k[k]) - mean_v);
+          sxx += dr * dr;
+        }
+        layer[g] = -t.depth_ * sxy / sxx;  // [m/N]
+      }
+      // Grid points alternate between corner and mid-side nodes of the Q8 edges, whose point loads
+      // leave different errors one element deep: a (1, 2, 1)/4 filter along the flank removes that
+      // alternation exactly and keeps linear trends (the structural field varies over the tooth's
+      // thickness, many grid spacings).
+      for (int fl = 0; fl < 2; ++fl) {
+        const std::vector<double> c(layer.begin() + fl * n, layer.begin() + (fl + 1) * n);
+        for (int i = 1; i + 1 < n; ++i)
+          layer[static_cast<std::size_t>(fl) * n + i] = 0.25 * (c[i - 1] + 2.0 * c[i] + c[i + 1]);
+      }
+    }
+
+    // Maxwell–Betti: Λ(a→b) = Λ(b→a)ᵀ. For a = (tooth 0, fl, i), b = (tooth k, fr, j), the
+    // reciprocal load sits on tooth k: Λ(b→a) = R_k M R_kᵀ with M = Λ((0, fr, j) → (−k, fl, i)).
+    std::vector<double> sym(total, 0.0);
+    auto block = [&](const std::vector<double>& v, int fl, int i, int k, int fr, int j) {
+      Eigen::Matrix2d m;
+      for (int c = 0; c < 2; ++c) {
+        const std::size_t at = t.Index(fl, i, c, k, fr, j);
+        m(0, c) = v[at];
+        m(1, c) = v[at + 1];
+      }
+      return m;
+    };
+    auto norm = [](const Eigen::Matrix2d& m) { return m.cwiseAbs().maxCoeff(); };
+    double asym = 0.0, self_asym = 0.0;
+    if (!cyclic) sym = raw;
+    for (int fl = 0; fl < 2; ++fl) {
+      for (int i = 0; i < n; ++i) {
+        const Eigen::Matrix2d& s = self[static_cast<std::size_t>(fl) * n + i];
+        self_asym = std::max(self_asym, std::abs(s(0, 1) - s(1, 0)) / norm(s));
+      }
+    }
+    for (int fl = 0; fl < 2 && cyclic; ++fl) {
+      for (int i = 0; i < n; ++i) {
+        const double da = norm(self[static_cast<std::size_t>(fl) * n + i]);
+        for (int k = 0; k < z; ++k) {
+          const Eigen::Matrix2d r = Rot(k * gear.pitch_angle());
+          const int back = (z - k) % z;
+          for (int fr = 0; fr < 2; ++fr) {
+            for (int j = 0; j < n; ++j) {
+              const Eigen::Matrix2d ab = block(raw, fl, i, k, fr, j);
+              const Eigen::Matrix2d ba_t =
+                  r * block(raw, fr, j, back, fl, i).transpose() * r.transpose();
+              const double db = norm(self[static_cast<std::size_t>(fr) * n + j]);
+              asym = std::max(asym, norm(ab - ba_t) / std::sqrt(da * db));
+              const Eigen::Matrix2d avg = 0.5 * (ab + ba_t);
+              for (int c = 0; c < 2; ++c) {
+                const std::size_t at = t.Index(fl, i, c, k, fr, j);
+                sym[at] = avg(0, c);
+                sym[at + 1] = avg(1, c);
+              }
             }
           }
         }
       }
     }
-  }
-  for (auto& s : self) s = 0.5 * (s + s.transpose()).eval();
-  for (int fl = 0; fl < 2; ++fl) {
-    for (int i = 0; i < n; ++i) {
-      const std::size_t g = static_cast<std::size_t>(fl) * n + i;
-      self[g] += layer[g] * edge_normal[fl][i] * edge_normal[fl][i].transpose();
-    }
-  }
-  // The join: the loaded point's own entry is the depth-h read-out.
-  for (int fl = 0; fl < 2; ++fl) {
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Matrix2d& s = self[static_cast<std::size_t>(fl) * n + i];
-      for (int c = 0; c < 2; ++c) {
-        const std::size_t at = t.Index(fl, i, c, 0, fl, i);
-        sym[at] = s(0, c);
-        sym[at + 1] = s(1, c);
+    for (auto& s : self) s = 0.5 * (s + s.transpose()).eval();
+    for (int fl = 0; fl < 2; ++fl) {
+      for (int i = 0; i < n; ++i) {
+        const std::size_t g = static_cast<std::size_t>(fl) * n + i;
+        const Eigen::Vector2d ml = local(edge_normal[fl][i]);
+        self[g] += layer[g] * ml * ml.transpose();
       }
     }
+    // The join: the loaded point's own entry is the depth-h read-out.
+    for (int fl = 0; fl < 2; ++fl) {
+      for (int i = 0; i < n; ++i) {
+        const Eigen::Matrix2d& s = self[static_cast<std::size_t>(fl) * n + i];
+        for (int c = 0; c < 2; ++c) {
+          const std::size_t at = t.Index(fl, i, c, 0, fl, i);
+          sym[at] = s(0, c);
+          sym[at + 1] = s(1, c);
+        }
+      }
+    }
+    InfluenceTable& r = result.emplace_back(t);
+    r.raw_asymmetry_ = asym;
+    r.raw_self_asymmetry_ = self_asym;
+    r.surface_ = std::move(sym);
+    r.self_ = std::move(self);
+    r.layer_ = std::move(layer);
+    r.raw_ = std::move(raw);
+    r.seconds_ = {t_mesh, t_factor, Cpu() - t0};
   }
-  t.raw_asymmetry_ = asym;
-  t.raw_self_asymmetry_ = self_asym;
-  t.surface_ = std::move(sym);
-  t.self_ = std::move(self);
-  t.layer_ = std::move(layer);
-  t.raw_ = std::move(raw);
-  t.seconds_ = {t_mesh, t_factor, Cpu() - t0};
-  return t;
+  return result;
 }
 
 void InfluenceTable::CheckHalfWidth(double half_width) const {

@@ -14,6 +14,8 @@
 
 namespace epicycle::compliance {
 
+class DamagedInfluence;  // damaged_influence.hpp
+
 /// One body as the operator sees it: its influence table (body frame, fixed at the hub or rim)
 /// and its pose, plus an optional translational support compliance of its centre.
 struct OperatorBody {
@@ -24,6 +26,11 @@ struct OperatorBody {
   /// (an elastic bearing); zero for a held body. Symmetric positive semidefinite.
   Eigen::Matrix2d support = Eigen::Matrix2d::Zero();
   std::string name;  ///< for messages
+  /// (Last, so that positional initialisers of the fields above keep working.) A damaged tooth's
+  /// rows (a root crack), or null for a healthy body; not owned. Its rows replace `table`'s for
+  /// every pair that involves a tooth near the damage (DamagedInfluence::DirectedCompliance);
+  /// `table` is the healthy table of the same gear and options.
+  const DamagedInfluence* damaged = nullptr;
 };
 
 /// Where a contact touches one body: the point on that body's profile and the unit direction of
@@ -67,9 +74,9 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
 /// The root stress of one fillet: side `side` of tooth `tooth` of body `body`.
 struct FilletStress {
   int body = 0;
-  int tooth = 0;              ///< k in [0, z), body frame
-  int side = 0;               ///< 0: σ = +1, 1: σ = −1
-  std::vector<double> sigma;  ///< σ_tt [Pa] at the body table's fillet_points()
+  int tooth = 0;                          ///< k in [0, z), body frame
+  int side = 0;                           ///< 0: σ = +1, 1: σ = −1
+  std::vector<double> sigma;              ///< σ_tt [Pa] at the body table's fillet_points()
   const InfluenceTable* table = nullptr;  ///< the body's table (its fillet_points()), not owned
 };
 
@@ -79,7 +86,8 @@ struct FilletStress {
 /// AssembleCompliance locates them. Contacts with F_j ≤ 0 carry nothing. Bodies are listed in
 /// order, teeth ascending, side 0 before 1.
 /// @throws std::invalid_argument as AssembleCompliance (a side off its flank throws), for a table
-///         built without fillet stresses, `force` not of one entry per contact, or neighbours < 0.
+///         built without fillet stresses, a damaged body (no root stresses are tabulated on a
+///         cracked body), `force` not of one entry per contact, or neighbours < 0.
 std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies,
                                          const std::vector<OperatorContact>& contacts,
                                          const Eigen::VectorXd& force, int neighbours = 1);

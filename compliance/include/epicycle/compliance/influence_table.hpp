@@ -231,6 +231,12 @@ class InfluenceTable {
                                     bool fillet_stress = false);
 
  private:
+  friend class DamagedInfluence;
+  static std::vector<InfluenceTable> SolveLoads(const geometry::Gear& gear,
+                                                const ElasticMaterial& material,
+                                                const InfluenceTableOptions& options,
+                                                GearBodyMesh body, double t_mesh_before,
+                                                const std::vector<int>& load_teeth, bool cyclic);
   std::size_t Index(int fl, int i, int c, int k, int f, int j) const;
   void BuildDerived();  // slope_, dense_, dense_key_, bucket_, tooth_rotation_ (grid_, path_)
   void Weights(double s, int* first, std::array<double, 4>* w) const;
