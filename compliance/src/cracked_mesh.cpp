@@ -408,24 +408,11 @@ CrackedBodyMesh BuildCrackedGearMesh(const geometry::Gear& gear, const RootCrack
   for (auto& tooth : healthy.grid_nodes)
     for (auto& flank : tooth)
       for (int& v : flank) v = renumber[v];
-  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
-  const GaussRule g = GaussLegendre(3);
-  for (int e = 0; e < out.num_elements(); ++e) {
-    const Q8Coordinates x = out.ElementCoordinates(e);
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        double det = 0.0;
-        Q8StrainDisplacement(x, g.points[i], g.points[j], &det);
-        lo = std::min(lo, det);
-        hi = std::max(hi, det);
-      }
-    }
-  }
+  result.body.min_jacobian_ratio = MinJacobianRatio(out);
   result.body.mesh = std::move(out);
   result.body.grid = std::move(healthy.grid);
   result.body.teeth = healthy.teeth;
   result.body.grid_nodes = std::move(healthy.grid_nodes);
-  result.body.min_jacobian_ratio = lo / hi;
   return result;
 }
 

@@ -495,11 +495,15 @@ GearBodyMesh BuildGearMesh(const geometry::Gear& gear, const GearMeshOptions& op
     }
   }
 
-  // Element quality figure: min det J over max det J (Gauss points).
+  out.min_jacobian_ratio = MinJacobianRatio(out.mesh);
+  return out;
+}
+
+double MinJacobianRatio(const Mesh& mesh) {
   double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
   const GaussRule g = GaussLegendre(3);
-  for (int e = 0; e < out.mesh.num_elements(); ++e) {
-    const Q8Coordinates x = out.mesh.ElementCoordinates(e);
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    const Q8Coordinates x = mesh.ElementCoordinates(e);
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
         double det = 0.0;
@@ -509,8 +513,7 @@ GearBodyMesh BuildGearMesh(const geometry::Gear& gear, const GearMeshOptions& op
       }
     }
   }
-  out.min_jacobian_ratio = lo / hi;
-  return out;
+  return lo / hi;
 }
 
 double OutlineArea(const geometry::Gear& gear, int per_segment) {

@@ -202,6 +202,31 @@ struct Attempt {
 };
 
 // Meshes one patch with gmsh (the caller holds the mutex).
+// The quadrilaterals and triangles gmsh made of `surface`, as cells of our node ids (`local`:
+// gmsh node tag → id). @throws PatchFailure for another element type, a node of no entity or no
+// element at all.
+std::vector<Cell> SurfaceCells(int surface, const std::unordered_map<std::size_t, int>& local) {
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> element_tags, node_tags;
+  gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, surface);
+  std::vector<Cell> cells;
+  for (std::size_t t = 0; t < types.size(); ++t) {
+    const int per = types[t] == kGmshQuad4 ? 4 : types[t] == kGmshTriangle3 ? 3 : 0;
+    if (per == 0) throw PatchFailure{"unexpected element type " + std::to_string(types[t])};
+    for (std::size_t e = 0; e < element_tags[t].size(); ++e) {
+      Cell cell{{}, per};
+      for (int a = 0; a < per; ++a) {
+        const auto it = local.find(node_tags[t][e * static_cast<std::size_t>(per) + a]);
+        if (it == local.end()) throw PatchFailure{"an element uses a node of no entity"};
+        cell.v[a] = it->second;
+      }
+      cells.push_back(cell);
+    }
+  }
+  if (cells.empty()) throw PatchFailure{"gmsh generated no elements"};
+  return cells;
+}
+
 LocalMesh MeshPatch(const PatchSamples& smp, const std::string& label, const Attempt& attempt) {
   const int n_loop = smp.loop_size();
   const int n_corners = n_loop / 2;
@@ -279,24 +304,7 @@ LocalMesh MeshPatch(const PatchSamples& smp, const std::string& label, const Att
     auto position = [&](int id) -> const Eigen::Vector2d& {
       return id < n_loop ? smp.loop[id] : out.interior[id - n_loop];
     };
-    std::vector<int> types;
-    std::vector<std::vector<std::size_t>> element_tags, node_tags;
-    gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, surface);
-    std::vector<Cell> cells;
-    for (std::size_t t = 0; t < types.size(); ++t) {
-      const int per = types[t] == kGmshQuad4 ? 4 : types[t] == kGmshTriangle3 ? 3 : 0;
-      if (per == 0) throw PatchFailure{"unexpected element type " + std::to_string(types[t])};
-      for (std::size_t e = 0; e < element_tags[t].size(); ++e) {
-        Cell cell{{}, per};
-        for (int a = 0; a < per; ++a) {
-          const auto it = local.find(node_tags[t][e * static_cast<std::size_t>(per) + a]);
-          if (it == local.end()) throw PatchFailure{"an element uses a node of no entity"};
-          cell.v[a] = it->second;
-        }
-        cells.push_back(cell);
-      }
-    }
-    if (cells.empty()) throw PatchFailure{"gmsh generated no elements"};
+    std::vector<Cell> cells = SurfaceCells(surface, local);
     // gmsh orients all elements of a surface alike; turn them counter-clockwise together, so
     // that an element its smoothing has tangled keeps a negative area (and gets untangled).
     double area2 = 0.0;
@@ -872,23 +880,7 @@ SlitMesh MeshSlitPolygon(const SlitInput& input) {
         raw_interior.push_back({coord[3 * a], coord[3 * a + 1], static_cast<double>(a)});
         local[tags[a]] = -1 - static_cast<int>(a);  // free node a (renumbered below)
       }
-      std::vector<int> types;
-      std::vector<std::vector<std::size_t>> element_tags, node_tags;
-      gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, surface);
-      for (std::size_t t = 0; t < types.size(); ++t) {
-        const int per = types[t] == kGmshQuad4 ? 4 : types[t] == kGmshTriangle3 ? 3 : 0;
-        if (per == 0) throw PatchFailure{"unexpected element type " + std::to_string(types[t])};
-        for (std::size_t e = 0; e < element_tags[t].size(); ++e) {
-          Cell cell{{}, per};
-          for (int a = 0; a < per; ++a) {
-            const auto it = local.find(node_tags[t][e * static_cast<std::size_t>(per) + a]);
-            if (it == local.end()) throw PatchFailure{"an element uses a node of no entity"};
-            cell.v[a] = it->second;
-          }
-          cells.push_back(cell);
-        }
-      }
-      if (cells.empty()) throw PatchFailure{"gmsh generated no elements"};
+      cells = SurfaceCells(surface, local);
     });
   }
   // Duplicates (open crack): ids n_loop + n_gmsh_crack + …, so that all crack ids precede the

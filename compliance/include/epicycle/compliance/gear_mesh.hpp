@@ -147,5 +147,8 @@ double OutlineArea(const geometry::Gear& gear, int per_segment);
 
 /// Area of a mesh [m²], Σ_e ∫∫ det J dξ dη (3×3 Gauss).
 double MeshArea(const Mesh& mesh);
+/// min over elements of det J / max det J over 3×3 Gauss points [-] (GearBodyMesh's quality
+/// figure).
+double MinJacobianRatio(const Mesh& mesh);
 
 }  // namespace epicycle::compliance
