@@ -49,7 +49,7 @@ void RunStiffness(const StiffnessArgs& a) {
   const transmission::FeComplianceOptions fe = TableOptions(a.cache, a.no_cache);
   std::printf("%s: mesh %s, torque on gear 1 %.3f N m, %d positions over one mesh cycle\n",
               scene.name.c_str(), setup.mesh.c_str(), setup.torque, a.positions);
-  const transmission::FePairCompliance compliance(scene, pair, fe);
+  const transmission::FePairCompliance compliance(scene, pair, fe, setup.gears);
   for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
   for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
 

@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <ctime>
+#include <istream>
+#include <ostream>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
+
+#include "payload_io.hpp"
 
 namespace epicycle::compliance {
 
@@ -131,6 +136,69 @@ Eigen::Matrix2d DamagedInfluence::Influence(const InfluenceTable& healthy,
   if (HoldsLoadsOn(response.tooth))
     return Rows(response.tooth).Influence(response, load).transpose();
   return healthy.Influence(load, response);
+}
+
+namespace {
+
+using internal::Put;
+
+template <typename T>
+T Get(std::istream& in) {
+  return internal::Get<T>(in, "damaged influence");
+}
+
+}  // namespace
+
+void DamagedInfluence::WritePayload(std::ostream& out) const {
+  Put<std::int32_t>(out, neighbours_);
+  Put<std::int32_t>(out, teeth_);
+  Put<std::int32_t>(out, num_dofs_);
+  Put<std::int32_t>(out, sector_elements_);
+  Put(out, raw_asymmetry_);
+  for (double v : seconds_) Put(out, v);
+  Put<std::int32_t>(out, static_cast<std::int32_t>(rows_.size()));
+  for (int t = 0; t < teeth_; ++t)
+    if (row_of_tooth_[static_cast<std::size_t>(t)] >= 0) {
+      Put<std::int32_t>(out, t);
+      Put<std::int32_t>(out, row_of_tooth_[static_cast<std::size_t>(t)]);
+    }
+  for (const InfluenceTable& row : rows_) row.WritePayload(out);
+}
+
+DamagedInfluence DamagedInfluence::ReadPayload(std::istream& in, const geometry::Gear& gear,
+                                               const RootCrack& crack) {
+  DamagedInfluence d;
+  d.crack_ = crack;
+  d.neighbours_ = Get<std::int32_t>(in);
+  d.teeth_ = Get<std::int32_t>(in);
+  d.num_dofs_ = Get<std::int32_t>(in);
+  d.sector_elements_ = Get<std::int32_t>(in);
+  d.raw_asymmetry_ = Get<double>(in);
+  for (double& v : d.seconds_) v = Get<double>(in);
+  const int z = gear.teeth();
+  const int held = Get<std::int32_t>(in);
+  if (d.teeth_ != z || d.neighbours_ < 0 || d.neighbours_ >= z || held < 1 ||
+      held > std::min(z, 2 * d.neighbours_ + 1))
+    throw std::runtime_error("damaged influence payload: " + std::to_string(d.teeth_) + " teeth, " +
+                             std::to_string(d.neighbours_) + " neighbours and " +
+                             std::to_string(held) + " row tables do not fit gear '" + gear.name() +
+                             "'");
+  d.row_of_tooth_.assign(static_cast<std::size_t>(z), -1);
+  std::vector<char> used(static_cast<std::size_t>(held), 0);
+  for (int q = 0; q < held; ++q) {
+    const int t = Get<std::int32_t>(in), row = Get<std::int32_t>(in);
+    const int away = std::min(((t - crack.tooth) % z + z) % z, ((crack.tooth - t) % z + z) % z);
+    if (t < 0 || t >= z || row < 0 || row >= held || away > d.neighbours_ ||
+        d.row_of_tooth_[static_cast<std::size_t>(t)] >= 0 || used[static_cast<std::size_t>(row)])
+      throw std::runtime_error("damaged influence payload: row table " + std::to_string(row) +
+                               " of tooth " + std::to_string(t) +
+                               " does not fit a crack in tooth " + std::to_string(crack.tooth) +
+                               " with " + std::to_string(d.neighbours_) + " neighbours");
+    d.row_of_tooth_[static_cast<std::size_t>(t)] = row;
+    used[static_cast<std::size_t>(row)] = 1;
+  }
+  for (int q = 0; q < held; ++q) d.rows_.push_back(InfluenceTable::ReadPayload(in, gear, false));
+  return d;
 }
 
 }  // namespace epicycle::compliance

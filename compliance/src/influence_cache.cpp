@@ -117,9 +117,10 @@ std::string InfluenceTableFile(const std::string& directory, std::uint64_t key) 
 
 namespace {
 
-// Reads and checks a file; returns false with `problem` set when it must not be used.
-bool TryLoad(const std::string& file, std::uint64_t key, const geometry::Gear& gear,
-             bool fillet_stress, InfluenceTable* table, std::string* problem) {
+// Reads and checks a cache file; returns false with `problem` set when it must not be used (no
+// file: false with `problem` empty). The payload is parsed by the caller.
+bool TryReadFile(const std::string& file, std::uint64_t key, std::string* payload,
+                 std::string* problem) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return false;
   char magic[16];
@@ -150,8 +151,8 @@ bool TryLoad(const std::string& file, std::uint64_t key, const geometry::Gear& g
     *problem = "damaged: implausible payload size " + std::to_string(size) + " bytes";
     return false;
   }
-  std::string payload(size, '\0');
-  in.read(payload.data(), static_cast<std::streamsize>(size));
+  payload->assign(size, '\0');
+  in.read(payload->data(), static_cast<std::streamsize>(size));
   std::uint64_t checksum = 0;
   in.read(reinterpret_cast<char*>(&checksum), sizeof checksum);
   if (!in) {
@@ -163,15 +164,24 @@ bool TryLoad(const std::string& file, std::uint64_t key, const geometry::Gear& g
     return false;
   }
   Fnv1a h;
-  h.Bytes(payload.data(), payload.size());
+  h.Bytes(payload->data(), payload->size());
   if (h.hash() != checksum) {
     *problem =
         "damaged: checksum " + Hex(h.hash()) + " of the payload, " + Hex(checksum) + " stored";
     return false;
   }
+  return true;
+}
+
+// A cache file read and parsed by `parse` (which throws std::runtime_error for a payload that
+// does not hold what it should); false with `problem` set when it must not be used.
+template <typename Parse>
+bool TryLoad(const std::string& file, std::uint64_t key, std::string* problem, Parse&& parse) {
+  std::string payload;
+  if (!TryReadFile(file, key, &payload, problem)) return false;
   try {
     std::istringstream body(std::move(payload));  // C++20: takes the buffer, no copy
-    *table = InfluenceTable::ReadPayload(body, gear, fillet_stress);
+    parse(body);
   } catch (const std::runtime_error& e) {
     *problem = std::string("damaged: ") + e.what();
     return false;
@@ -179,10 +189,7 @@ bool TryLoad(const std::string& file, std::uint64_t key, const geometry::Gear& g
   return true;
 }
 
-void Write(const std::string& file, std::uint64_t key, const InfluenceTable& table) {
-  std::ostringstream body;
-  table.WritePayload(body);
-  const std::string payload = body.str();
+void Write(const std::string& file, std::uint64_t key, const std::string& payload) {
   Fnv1a h;
   h.Bytes(payload.data(), payload.size());
   // A name of this process and call alone, so that processes (or threads) building the same table
@@ -222,6 +229,44 @@ void Write(const std::string& file, std::uint64_t key, const InfluenceTable& tab
 
 }  // namespace
 
+namespace {
+
+// The cache's one path for every kind of file: `value` read from `file` by `read` when the file is
+// valid, otherwise built by `build`, written by `write` and the outcome reported. `what` names
+// the value ("influence table of 'sun'"), `rebuilt` the phrase of a rebuild ("the table of 'sun'
+// was rebuilt").
+template <typename T, typename Read, typename Build, typename WritePayload>
+T LoadOrBuildFile(const std::string& directory, const std::string& file, std::uint64_t key,
+                  const std::string& what, const std::string& rebuilt, CacheReport* report,
+                  Read&& read, Build&& build, WritePayload&& write) {
+  CacheReport local;
+  CacheReport& r = report != nullptr ? *report : local;
+  r.file = file;
+  T value;
+  std::string problem;
+  if (TryLoad(file, key, &problem, [&](std::istream& in) { value = read(in); })) {
+    r.outcome = CacheOutcome::kLoaded;
+    r.message = what + " loaded from '" + file + "'";
+    return value;
+  }
+  value = build();
+  std::filesystem::create_directories(directory);
+  std::ostringstream body;
+  write(value, body);
+  Write(file, key, body.str());
+  if (problem.empty()) {
+    r.outcome = CacheOutcome::kBuilt;
+    r.message = what + " built and written to '" + file + "'";
+  } else {
+    r.outcome = CacheOutcome::kRebuilt;
+    r.message = "influence-table cache file '" + file + "' is " + problem +
+                "; not used: " + rebuilt + " and the file replaced";
+  }
+  return value;
+}
+
+}  // namespace
+
 InfluenceTable LoadOrBuildInfluenceTable(const geometry::Gear& gear,
                                          const ElasticMaterial& material,
                                          const InfluenceTableOptions& options,
@@ -234,28 +279,73 @@ InfluenceTable LoadOrBuildInfluenceTable(const geometry::Gear& gear,
   const std::uint64_t key = InfluenceTableKey(gear.spec(), material, options);
   const std::string file = InfluenceTableFile(directory, key);
   const geometry::Gear nominal = NominalBody(gear);
-  CacheReport local;
-  CacheReport& r = report != nullptr ? *report : local;
-  r.file = file;
-  InfluenceTable table;
-  std::string problem;
-  if (TryLoad(file, key, nominal, options.fillet_stress, &table, &problem)) {
-    r.outcome = CacheOutcome::kLoaded;
-    r.message = "influence table of '" + gear.name() + "' loaded from '" + file + "'";
-    return table;
+  return LoadOrBuildFile<InfluenceTable>(
+      directory, file, key, "influence table of '" + gear.name() + "'",
+      "the table of '" + gear.name() + "' was rebuilt", report,
+      [&](std::istream& in) {
+        return InfluenceTable::ReadPayload(in, nominal, options.fillet_stress);
+      },
+      [&] { return InfluenceTable::Build(nominal, material, options); },
+      [](const InfluenceTable& t, std::ostream& out) { t.WritePayload(out); });
+}
+
+std::uint64_t DamagedInfluenceKey(const geometry::GearSpec& spec, const ElasticMaterial& material,
+                                  const InfluenceTableOptions& options, const RootCrack& crack,
+                                  int neighbours, const CrackMeshOptions& crack_options) {
+  InfluenceTableOptions o = options;
+  o.fillet_stress = false;  // the rows are built without them (DamagedInfluence::Build)
+  Fnv1a h;
+  h.Value(InfluenceTableKey(spec, material, o));
+  const std::string tag = "root-crack";
+  h.Value(tag.size());
+  h.Bytes(tag.data(), tag.size());
+  h.Value(crack.tooth);
+  h.Value(crack.side);
+  h.Value(crack.start_arc);
+  h.Value(crack.path.size());
+  for (const CrackSegment& g : crack.path) {
+    h.Value(g.length);
+    h.Value(g.angle);
   }
-  table = InfluenceTable::Build(nominal, material, options);
-  std::filesystem::create_directories(directory);
-  Write(file, key, table);
-  if (problem.empty()) {
-    r.outcome = CacheOutcome::kBuilt;
-    r.message = "influence table of '" + gear.name() + "' built and written to '" + file + "'";
-  } else {
-    r.outcome = CacheOutcome::kRebuilt;
-    r.message = "influence-table cache file '" + file + "' is " + problem +
-                "; not used: the table of '" + gear.name() + "' was rebuilt and the file replaced";
+  h.Value(neighbours);
+  h.Value(crack_options.crack_elements);
+  h.Value(crack_options.tip_grading);
+  h.Value(crack_options.max_element);
+  h.Value(crack_options.open);
+  return h.hash();
+}
+
+std::string DamagedInfluenceFile(const std::string& directory, std::uint64_t key) {
+  return (std::filesystem::path(directory) / ("damaged-" + Hex(key) + ".ilt")).string();
+}
+
+DamagedInfluence LoadOrBuildDamagedInfluence(const geometry::Gear& gear,
+                                             const ElasticMaterial& material,
+                                             const RootCrack& crack,
+                                             const InfluenceTableOptions& options, int neighbours,
+                                             const CrackMeshOptions& crack_options,
+                                             const std::string& directory, CacheReport* report) {
+  if (directory.empty()) {
+    throw std::invalid_argument("influence-table cache: directory = '': must name a directory");
   }
-  return table;
+  options.Validate();
+  material.Validate();
+  crack_options.Validate();
+  const geometry::Gear nominal = NominalBody(gear);
+  crack.Validate(nominal);
+  const std::uint64_t key =
+      DamagedInfluenceKey(gear.spec(), material, options, crack, neighbours, crack_options);
+  const std::string file = DamagedInfluenceFile(directory, key);
+  const std::string what = "damaged rows of '" + gear.name() + "' (root crack in tooth " +
+                           std::to_string(crack.tooth) + ")";
+  return LoadOrBuildFile<DamagedInfluence>(
+      directory, file, key, what, "the " + what + " were rebuilt", report,
+      [&](std::istream& in) { return DamagedInfluence::ReadPayload(in, nominal, crack); },
+      [&] {
+        return DamagedInfluence::Build(nominal, material, crack, options, neighbours,
+                                       crack_options);
+      },
+      [](const DamagedInfluence& d, std::ostream& out) { d.WritePayload(out); });
 }
 
 }  // namespace epicycle::compliance

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "epicycle/compliance/elastic_model.hpp"
+#include "payload_io.hpp"
 
 namespace epicycle::compliance {
 namespace {
@@ -757,17 +758,11 @@ double InfluenceTable::LayerCompliance(int fl, int i) const {
 namespace epicycle::compliance {
 namespace {
 
-template <typename T>
-void Put(std::ostream& out, const T& v) {
-  out.write(reinterpret_cast<const char*>(&v), sizeof(T));
-}
+using internal::Put;
 
 template <typename T>
 T Get(std::istream& in) {
-  T v{};
-  in.read(reinterpret_cast<char*>(&v), sizeof(T));
-  if (!in) throw std::runtime_error("influence table payload truncated");
-  return v;
+  return internal::Get<T>(in, "influence table");
 }
 
 void PutVector(std::ostream& out, const std::vector<double>& v) {

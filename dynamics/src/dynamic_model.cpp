@@ -777,7 +777,7 @@ void ForEachModalMesh(const transmission::Scene& scene, const geometry::Stage& s
   for (int m = 0; m < 2; ++m) {
     const transmission::MeshPairSetup setup = transmission::MakeMeshPair(scene, &stage, meshes[m]);
     const geometry::GearPair pair = transmission::MakePair(scene, setup.spec);
-    const transmission::FePairCompliance compliance(scene, pair, fe);
+    const transmission::FePairCompliance compliance(scene, pair, fe, setup.gears);
     f(m, meshes[m], setup, pair, compliance);
   }
 }

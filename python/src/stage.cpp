@@ -156,7 +156,8 @@ py::object MeshStiffness(const ScenePtr& s, const std::string& mesh, int positio
     const transmission::MeshPairSetup setup =
         transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, mesh);
     const geometry::GearPair pair = transmission::MakePair(scene, setup.spec);
-    const transmission::FePairCompliance compliance(scene, pair, TableOptions(cache_dir));
+    const transmission::FePairCompliance compliance(scene, pair, TableOptions(cache_dir),
+                                                      setup.gears);
     long done = 0;
     Out o;
     o.result = transmission::ComputeMeshStiffness(

@@ -17,9 +17,36 @@ std::string Pit::Describe() const {
   return o.str();
 }
 
+std::string Crack::Describe() const {
+  std::ostringstream o;
+  o.precision(6);
+  o << gear << " tooth " << crack.tooth << " fillet " << (crack.side > 0 ? "+" : "-") << " from ";
+  if (start == CrackStart::kLargestTension) {
+    o << "the largest root tension";
+  } else if (start == CrackStart::kIso30) {
+    o << "ISO 6336-3's 30-degree point";
+  } else {
+    o << "fillet arc " << crack.start_arc * 1e3 << " mm";
+  }
+  o << ", depth " << crack.depth() * 1e3 << " mm";
+  if (crack.path.size() == 1) {
+    o << " at " << geometry::Deg(crack.path[0].angle) << " deg to the tooth centre line";
+  } else {
+    o << " (" << crack.path.size() << " segments)";
+  }
+  return o.str();
+}
+
+const Crack* Damage::CrackOn(const std::string& gear) const {
+  for (const Crack& c : cracks)
+    if (c.gear == gear) return &c;
+  return nullptr;
+}
+
 std::vector<std::string> Damage::Describe() const {
   std::vector<std::string> out;
   for (const Pit& p : pits) out.push_back("pit: " + p.Describe());
+  for (const Crack& c : cracks) out.push_back("root crack: " + c.Describe());
   return out;
 }
 

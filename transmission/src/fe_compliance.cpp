@@ -6,7 +6,9 @@
 #include <stdexcept>
 
 #include "epicycle/compliance/compliance_operator.hpp"
+#include "epicycle/compliance/gear_mesh.hpp"
 #include "epicycle/compliance/influence_cache.hpp"
+#include "epicycle/compliance/root_crack.hpp"
 
 namespace epicycle::transmission {
 
@@ -17,10 +19,11 @@ compliance::PlaneAssumption ToCompliance(solvers::PlaneAssumption p) {
                                                      : compliance::PlaneAssumption::kPlaneStress;
 }
 
-compliance::OperatorBody Body(const compliance::InfluenceTable& table,
-                              const geometry::GearPose& pose, const std::string& name) {
+compliance::OperatorBody Body(const GearTables& tables, int gear, const geometry::GearPose& pose,
+                              const std::string& name) {
   compliance::OperatorBody b;
-  b.table = &table;
+  b.table = &tables.Table(gear);
+  b.damaged = tables.Damaged(gear);
   b.centre = pose.geometric_centre;
   b.rotation = pose.rotation;
   b.name = name;
@@ -67,36 +70,99 @@ std::string DefaultCacheDirectory() {
   return ".epicycle-cache";
 }
 
+namespace {
+
+// The start of a crack placed by the body (Crack::start): ISO's 30° point, or the largest root
+// tension of a unit load at the tip-most involute point of the grid on the crack's side (the
+// largest bending arm of a load on the involute).
+double PlacedStart(const Crack& c, const geometry::Gear& gear,
+                   const compliance::InfluenceTable& table) {
+  if (c.start == CrackStart::kArc) return c.crack.start_arc;
+  if (c.start == CrackStart::kIso30) return compliance::IsoCriticalFilletArc(gear);
+  const compliance::FlankGrid& grid = table.grid();
+  const double involute =
+      compliance::ProfilePath(gear).RoleEnd(geometry::SegmentRole::kInvolute) - grid.form_arc;
+  int tip = 0;
+  for (int i = 0; i < grid.num_points(); ++i)
+    if (grid.arc_length[i] <= involute * (1.0 + 1e-9)) tip = i;
+  return compliance::LargestRootTensionArc(
+      table, gear, {c.crack.tooth, c.crack.side, grid.arc_length[tip]}, c.crack.side);
+}
+
+}  // namespace
+
 GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gear*>& gears,
-                       const FeComplianceOptions& options)
+                       const std::vector<std::string>& names, const FeComplianceOptions& options)
     : plane_(ToCompliance(scene.model.plane)) {
+  if (names.size() != gears.size())
+    throw std::invalid_argument("GearTables: " + std::to_string(names.size()) + " names for " +
+                                std::to_string(gears.size()) + " gears");
   compliance::InfluenceTableOptions o = options.table;
   if (scene.model.join_depth > 0) o.join_depth = scene.model.join_depth;
   o.join_depth_factor = scene.model.join_depth_factor;
   o.mesh.refinement = scene.model.mesh_refinement;
   o.fillet_stress = o.fillet_stress || scene.model.stresses;
   std::map<std::uint64_t, std::shared_ptr<const compliance::InfluenceTable>> built;
-  for (const geometry::Gear* g : gears) {
-    const compliance::ElasticMaterial material{
-        scene.material.youngs_modulus, scene.material.poisson_ratio, g->spec().face_width, plane_};
-    const std::uint64_t key = compliance::InfluenceTableKey(g->spec(), material, o);
+  auto table = [&](const geometry::Gear& g, const compliance::ElasticMaterial& material,
+                   const compliance::InfluenceTableOptions& opts) {
+    const std::uint64_t key = compliance::InfluenceTableKey(g.spec(), material, opts);
     auto it = built.find(key);
     if (it == built.end()) {
       std::shared_ptr<const compliance::InfluenceTable> t;
       if (options.cache_directory.empty()) {
         t = std::make_shared<const compliance::InfluenceTable>(
-            compliance::InfluenceTable::Build(compliance::NominalBody(*g), material, o));
-        messages_.push_back("influence table of '" + g->name() + "' built (no disk cache)");
+            compliance::InfluenceTable::Build(compliance::NominalBody(g), material, opts));
+        messages_.push_back("influence table of '" + g.name() + "' built (no disk cache)");
       } else {
         compliance::CacheReport report;
         t = std::make_shared<const compliance::InfluenceTable>(
-            compliance::LoadOrBuildInfluenceTable(*g, material, o, options.cache_directory,
+            compliance::LoadOrBuildInfluenceTable(g, material, opts, options.cache_directory,
                                                   &report));
         messages_.push_back(report.message);
       }
       it = built.emplace(key, std::move(t)).first;
     }
-    tables_.push_back(it->second);
+    return it->second;
+  };
+  for (std::size_t i = 0; i < gears.size(); ++i) {
+    const geometry::Gear& g = *gears[i];
+    const compliance::ElasticMaterial material{
+        scene.material.youngs_modulus, scene.material.poisson_ratio, g.spec().face_width, plane_};
+    const Crack* crack = scene.damage.CrackOn(names[i]);
+    if (crack != nullptr && o.fillet_stress)
+      throw std::invalid_argument(
+          crack->where + ": a root crack on '" + names[i] +
+          "' with root stresses asked ([model] stresses, --stresses or --rating): root stresses "
+          "are not tabulated on a cracked body (its crack tip is singular); run the stresses of "
+          "the healthy stage, or leave the crack out");
+    // A crack placed at the largest root tension needs its gear's fillet stresses.
+    compliance::InfluenceTableOptions own = o;
+    if (crack != nullptr && crack->start == CrackStart::kLargestTension) own.fillet_stress = true;
+    tables_.push_back(table(g, material, own));
+    damaged_.emplace_back();
+    if (crack == nullptr) continue;
+    compliance::RootCrack placed = crack->crack;
+    try {
+      const geometry::Gear nominal = compliance::NominalBody(g);
+      placed.start_arc = PlacedStart(*crack, nominal, *tables_.back());
+      placed.Validate(nominal);
+      if (options.cache_directory.empty()) {
+        damaged_.back() = std::make_shared<const compliance::DamagedInfluence>(
+            compliance::DamagedInfluence::Build(nominal, material, placed, o));
+        messages_.push_back("damaged rows of '" + names[i] + "' built (no disk cache)");
+      } else {
+        compliance::CacheReport report;
+        damaged_.back() = std::make_shared<const compliance::DamagedInfluence>(
+            compliance::LoadOrBuildDamagedInfluence(g, material, placed, o, 1, {},
+                                                    options.cache_directory, &report));
+        messages_.push_back(report.message);
+      }
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(crack->where + ": the root crack of '" + names[i] +
+                                  "' cannot be modelled: " + e.what());
+    }
+    messages_.push_back("root crack of '" + names[i] + "' starts at fillet arc " +
+                        std::to_string(placed.start_arc * 1e3) + " mm (" + crack->Describe() + ")");
   }
 }
 
@@ -112,7 +178,7 @@ std::vector<const geometry::Gear*> StageGears(const geometry::Stage& stage) {
 
 FeStageCompliance::FeStageCompliance(const Scene& scene, const geometry::Stage& stage,
                                      const FeComplianceOptions& options)
-    : tables_(scene, StageGears(stage), options),
+    : tables_(scene, StageGears(stage), BodyNames(PlanetBody(stage.planets())), options),
       material_(scene.material),
       plane_(scene.model.plane) {
   for (int b = 0; b < PlanetBody(stage.planets()); ++b) names_.push_back(BodyName(b));
@@ -124,12 +190,10 @@ void FeStageCompliance::Operator(const geometry::Stage& stage, const geometry::S
                                  std::vector<compliance::OperatorContact>* oc) const {
   bodies->clear();
   bodies->reserve(static_cast<std::size_t>(PlanetBody(stage.planets())));
-  bodies->push_back(Body(tables_.Table(kSunBody), poses.sun, names_[kSunBody]));
-  bodies->push_back(Body(tables_.Table(kRingBody), poses.ring, names_[kRingBody]));
-  for (int i = 0; i < stage.planets(); ++i) {
-    bodies->push_back(
-        Body(tables_.Table(PlanetBody(i)), poses.planets.at(i), names_.at(PlanetBody(i))));
-  }
+  bodies->push_back(Body(tables_, kSunBody, poses.sun, names_[kSunBody]));
+  bodies->push_back(Body(tables_, kRingBody, poses.ring, names_[kRingBody]));
+  for (int i = 0; i < stage.planets(); ++i)
+    bodies->push_back(Body(tables_, PlanetBody(i), poses.planets.at(i), names_.at(PlanetBody(i))));
   auto gear = [&](int body) -> const geometry::Gear& {
     return body == kSunBody    ? stage.sun()
            : body == kRingBody ? stage.ring()
@@ -199,8 +263,9 @@ StageOutcome FeStageCompliance::TryMatrix(const geometry::Stage& stage,
 double FeStageCompliance::JoiningDepth(int body) const { return tables_.Table(body).join_depth(); }
 
 FePairCompliance::FePairCompliance(const Scene& scene, const geometry::GearPair& pair,
-                                   const FeComplianceOptions& options)
-    : tables_(scene, {&pair.gear1(), &pair.gear2()}, options),
+                                   const FeComplianceOptions& options,
+                                   const std::vector<std::string>& gears)
+    : tables_(scene, {&pair.gear1(), &pair.gear2()}, gears, options),
       material_(scene.material),
       plane_(scene.model.plane) {}
 
@@ -208,8 +273,7 @@ void FePairCompliance::Operator(const geometry::GearPair& pair, const geometry::
                                 const std::vector<geometry::PotentialContact>& contacts,
                                 std::vector<compliance::OperatorBody>* bodies,
                                 std::vector<compliance::OperatorContact>* oc) const {
-  *bodies = {Body(tables_.Table(0), poses.gear1, "gear1"),
-             Body(tables_.Table(1), poses.gear2, "gear2")};
+  *bodies = {Body(tables_, 0, poses.gear1, "gear1"), Body(tables_, 1, poses.gear2, "gear2")};
   oc->clear();
   oc->reserve(contacts.size());
   for (std::size_t j = 0; j < contacts.size(); ++j)

@@ -8,7 +8,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "epicycle/compliance/gear_mesh.hpp"
 #include "epicycle/compliance/influence_table.hpp"
+#include "epicycle/compliance/root_crack.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/internal/toml_reader.hpp"
@@ -43,7 +45,7 @@ constexpr double kBacklashModules = 0.25;        // 0 ≤ j_n ≤ m/4
 constexpr double kYoungsRangeGPa[2] = {1.0, 1200.0};
 constexpr double kContactLimitMPa[2] = {100.0, 2500.0};  // σ_Hlim
 constexpr double kBendingLimitMPa[2] = {50.0, 1000.0};   // σ_Flim
-constexpr double kCarrierModules = 2.0;  // |a_c − m(z_s + z_p)/2| ≤ 2 m
+constexpr double kCarrierModules = 2.0;                  // |a_c − m(z_s + z_p)/2| ≤ 2 m
 
 // [contact] gap_window_um: from 1 µm up to a quarter module, the size of the largest error the
 // scene takes (the window must hold the gaps that deflections and errors can close, no more).
@@ -60,7 +62,7 @@ double ReadGapWindow(TableReader& t, double module) {
 // floats on it, above 1e6 it is rigid (a fixed support, or rigid pins).
 const Rule kBearingRule = Rule::Closed(1, 1e6).Because(
     "rolling bearings are 1e2 .. 1e4 N/um; below 1 the member floats, above 1e6 it is rigid");
-constexpr int kRingTeethSlack = 4;       // |z_r − z_s − 2 z_p| ≤ 4
+constexpr int kRingTeethSlack = 4;  // |z_r − z_s − 2 z_p| ≤ 4
 // Pit depth: a warning beyond 5 % of the module (the tooth's compliance stays the intact
 // tooth's), an error beyond a quarter of it.
 constexpr double kPitDepthModules[2] = {0.05, 0.25};
@@ -434,8 +436,96 @@ void ReadErrors(TableReader& e, Scene& s, std::vector<ErrorKey>* keys) {
   }
 }
 
-// The scene's [[damage.pit]] tables (docs/scenes.md, "Damage"): `gears` names the gears a pit may
-// be on with the spec of each (a stage's planets share one spec), read once the radii are final.
+// One [[damage.crack]] table (docs/scenes.md, "Damage"). The path is checked against the tooth's
+// body here; a crack placed at the largest root tension is checked at ISO's 30° point, the start
+// it lies near, and again once the body's table places it (GearTables).
+Crack ReadCrack(TableReader& t, const Scene& s,
+                const std::vector<std::pair<std::string, const GearSpec*>>& gears) {
+  Crack c;
+  c.where = t.Where("gear");
+  c.gear = t.String("gear");
+  const GearSpec* spec = nullptr;
+  std::string names;
+  for (const auto& [name, g] : gears) {
+    names += (names.empty() ? "\"" : ", \"") + name + "\"";
+    if (name == c.gear) spec = g;
+  }
+  if (spec == nullptr) t.Fail("gear", "\"" + c.gear + "\"", "must be one of " + names);
+  for (const Crack& q : s.damage.cracks)
+    if (q.gear == c.gear)
+      t.Fail("gear", "\"" + c.gear + "\"",
+             "the gear already has the crack of " + q.where + "; one root crack per gear");
+  const geometry::Gear gear(*spec);
+  compliance::RootCrack& k = c.crack;
+  k.tooth = static_cast<int>(
+      t.Integer("tooth", Rule::Closed(0, spec->teeth - 1)
+                             .Because("a tooth index k of the gear's body frame, 0 <= k < z = " +
+                                      std::to_string(spec->teeth))));
+  k.side = t.String("side", {"+", "-"}) == "+" ? 1 : -1;
+  if (t.Has("start_arc_mm")) {
+    if (t.Has("start"))
+      t.Fail("start", "\"" + t.String("start") + "\"", "give start or start_arc_mm, not both");
+    const double form = compliance::ProfilePath(gear).RoleStart(geometry::SegmentRole::kInvolute);
+    k.start_arc = t.Real("start_arc_mm", Rule::Open(0, form / kMm)
+                                             .Because("on the fillet: from the space centre line "
+                                                      "(0) to the form point")) *
+                  kMm;
+    c.start = CrackStart::kArc;
+  } else {
+    c.start =
+        t.StringOr("start", "largest_tension", {"largest_tension", "iso_30deg"}) == "iso_30deg"
+            ? CrackStart::kIso30
+            : CrackStart::kLargestTension;
+    try {
+      k.start_arc = compliance::IsoCriticalFilletArc(gear);
+    } catch (const std::invalid_argument& e) {
+      t.Fail(
+          "start", c.start == CrackStart::kIso30 ? "\"iso_30deg\"" : "\"largest_tension\"",
+          std::string("needs ISO's 30-degree point on the fillet; give start_arc_mm: ") + e.what());
+    }
+  }
+  const Rule angle = Rule::Open(0, 180).Because(
+      "the angle to the tooth centre line: below 90 toward the root, 90 straight across");
+  const std::string length_rule = "the crack's length along its path";
+  std::string depth_key = "depth_mm";
+  if (t.Has("path")) {
+    depth_key = "path";
+    if (t.Has("depth_mm") || t.Has("angle_deg"))
+      t.Fail("path", "given with depth_mm/angle_deg",
+             "a straight crack is depth_mm and angle_deg, a polyline is path; not both");
+    std::vector<TableReader> pieces = t.TableArray("path");
+    if (pieces.empty() || static_cast<int>(pieces.size()) > compliance::RootCrack::kMaxSegments)
+      t.Fail("path", std::to_string(pieces.size()) + " segments",
+             "must have 1 to " + std::to_string(compliance::RootCrack::kMaxSegments));
+    for (TableReader& piece : pieces) {
+      compliance::CrackSegment g;
+      g.length = piece.Real("length_mm", Rule::Positive().Because(length_rule)) * kMm;
+      g.angle = geometry::Rad(piece.Real("angle_deg", angle));
+      piece.Done();
+      k.path.push_back(g);
+    }
+  } else {
+    compliance::CrackSegment g;
+    g.length = t.Real("depth_mm", Rule::Positive().Because(length_rule)) * kMm;
+    g.angle = geometry::Rad(t.Real("angle_deg", angle));
+    k.path.push_back(g);
+  }
+  try {
+    k.Validate(gear);
+  } catch (const std::invalid_argument& e) {
+    t.Fail(depth_key, Num(k.depth() / kMm) + " mm",
+           std::string("the crack must stay inside its tooth") +
+               (c.start == CrackStart::kLargestTension ? " (checked from ISO's 30-degree point)"
+                                                       : "") +
+               ": " + e.what());
+  }
+  t.Done();
+  return c;
+}
+
+// The scene's [[damage.pit]] and [[damage.crack]] tables (docs/scenes.md, "Damage"): `gears` names
+// the gears a damage may be on with the spec of each (a stage's planets share one spec), read once
+// the radii are final.
 void ReadDamage(TableReader& top, Scene& s,
                 const std::vector<std::pair<std::string, const GearSpec*>>& gears) {
   auto d = top.OptionalTable("damage");
@@ -455,10 +545,10 @@ void ReadDamage(TableReader& top, Scene& s,
       if (name == p.gear) spec = g;
     if (spec == nullptr) t.Fail("gear", "\"" + p.gear + "\"", "must be one of " + names);
     const geometry::Gear gear(*spec);
-    p.tooth = static_cast<int>(t.Integer(
-        "tooth", Rule::Closed(0, spec->teeth - 1)
-                     .Because("a tooth index k of the gear's body frame, 0 <= k < z = " +
-                              std::to_string(spec->teeth))));
+    p.tooth = static_cast<int>(
+        t.Integer("tooth", Rule::Closed(0, spec->teeth - 1)
+                               .Because("a tooth index k of the gear's body frame, 0 <= k < z = " +
+                                        std::to_string(spec->teeth))));
     p.flank = t.String("flank", {"+", "-"}) == "+" ? 1 : -1;
     // The region: roll angles (primary) or radii, one form per pit.
     const bool by_roll = t.Has("roll_from_deg") || t.Has("roll_to_deg");
@@ -471,16 +561,15 @@ void ReadDamage(TableReader& top, Scene& s,
     const geometry::InvoluteFlank& inv = gear.involute();
     const double rb = gear.base_radius();
     auto radius_at = [&](double u) { return rb * std::hypot(1.0, u) / kMm; };
-    const std::string extent = "the involute of the flank runs over roll " +
-                               Num(geometry::Deg(inv.u_min)) + ".." +
-                               Num(geometry::Deg(inv.u_max)) + " deg (radius " +
-                               Num(radius_at(inv.u_min)) + ".." + Num(radius_at(inv.u_max)) +
-                               " mm); a pit lowers the involute only";
+    const std::string extent =
+        "the involute of the flank runs over roll " + Num(geometry::Deg(inv.u_min)) + ".." +
+        Num(geometry::Deg(inv.u_max)) + " deg (radius " + Num(radius_at(inv.u_min)) + ".." +
+        Num(radius_at(inv.u_max)) + " mm); a pit lowers the involute only";
     const std::string from = by_roll ? "roll_from_deg" : "radius_from_mm",
                       to = by_roll ? "roll_to_deg" : "radius_to_mm";
     if (by_roll) {
-      const Rule rule = Rule::Closed(geometry::Deg(inv.u_min), geometry::Deg(inv.u_max))
-                            .Because(extent);
+      const Rule rule =
+          Rule::Closed(geometry::Deg(inv.u_min), geometry::Deg(inv.u_max)).Because(extent);
       p.roll_from = geometry::Rad(t.Real(from, rule));
       p.roll_to = geometry::Rad(t.Real(to, rule));
     } else {
@@ -507,8 +596,8 @@ void ReadDamage(TableReader& top, Scene& s,
     // Pits on one flank of one tooth must not overlap: the strips of the face width they would
     // share are not defined by the scene.
     for (const Pit& q : s.damage.pits) {
-      if (q.gear == p.gear && q.tooth == p.tooth && q.flank == p.flank &&
-          p.roll_from < q.roll_to && q.roll_from < p.roll_to)
+      if (q.gear == p.gear && q.tooth == p.tooth && q.flank == p.flank && p.roll_from < q.roll_to &&
+          q.roll_from < p.roll_to)
         t.Fail(from, Num(by_roll ? geometry::Deg(p.roll_from) : radius_at(p.roll_from)),
                "the region overlaps the pit of " + q.where +
                    " on the same flank of the same tooth; give one pit per region (join them, "
@@ -517,6 +606,7 @@ void ReadDamage(TableReader& top, Scene& s,
     t.Done();
     s.damage.pits.push_back(p);
   }
+  for (TableReader& t : d->TableArray("crack")) s.damage.cracks.push_back(ReadCrack(t, s, gears));
   d->Done();
 }
 
@@ -552,13 +642,13 @@ void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
   {
     // As the carrier radius: m (z2 ∓ z1)/2 without shift, within 2 modules.
     const double m_mm = p.gear1.module / kMm;
-    const double a0 = m_mm * (internal ? p.gear2.teeth - p.gear1.teeth
-                                       : p.gear2.teeth + p.gear1.teeth) / 2.0;
-    pair_table.Check("centre_distance_mm", p.centre_distance / kMm,
-                     Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
-                         .Because(std::string(internal ? "m (z2 - z1)/2 = " : "m (z1 + z2)/2 = ") +
-                                  Num(a0) +
-                                  " mm within 2 modules (profile shifts move it by about x m)"));
+    const double a0 =
+        m_mm * (internal ? p.gear2.teeth - p.gear1.teeth : p.gear2.teeth + p.gear1.teeth) / 2.0;
+    pair_table.Check(
+        "centre_distance_mm", p.centre_distance / kMm,
+        Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
+            .Because(std::string(internal ? "m (z2 - z1)/2 = " : "m (z1 + z2)/2 = ") + Num(a0) +
+                     " mm within 2 modules (profile shifts move it by about x m)"));
     pair_table.Done();
   }
   {
@@ -822,8 +912,8 @@ Scene ParseScene(const std::string& text, const std::string& source) {
       s.supports.sun_stiffness = t->Real("sun_stiffness_N_per_um", kBearingRule) * 1e6;
     }
     // 0: rigid pins (the default); a bearing otherwise.
-    if (t->Has("planet_stiffness_N_per_um") && t->RealOr("planet_stiffness_N_per_um", 0.0,
-                                                         Rule::NonNegative()) != 0) {
+    if (t->Has("planet_stiffness_N_per_um") &&
+        t->RealOr("planet_stiffness_N_per_um", 0.0, Rule::NonNegative()) != 0) {
       s.supports.planet_stiffness = t->Real("planet_stiffness_N_per_um", kBearingRule) * 1e6;
     }
     t->Done();

@@ -3,7 +3,9 @@
 // angle u = √((r/r_b)² − 1), and the strips of the face width written out by hand.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -162,9 +164,10 @@ TEST_CASE("damage: a pit splits the contacts on its region into strips of the fa
   CHECK(s[0].depth == 5e-6);
 }
 
-TEST_CASE("damage: the split drops strips beyond the gap window and, without local terms, the "
-          "pitted strips beside an intact one",
-          "[unit][transmission]") {
+TEST_CASE(
+    "damage: the split drops strips beyond the gap window and, without local terms, the "
+    "pitted strips beside an intact one",
+    "[unit][transmission]") {
   using geometry::ContactKind;
   transmission::Damage damage;
   damage.pits.push_back(MakePit("gear1", 0, 1, 0.5, 150e-6));
@@ -196,4 +199,99 @@ TEST_CASE("damage: the split drops strips beyond the gap window and, without loc
   Eigen::Matrix3d expected;
   expected << 1, 1, 2, 1, 1, 2, 2, 2, 5;
   CHECK(e == expected);
+}
+
+namespace {
+
+const char* kCrack = R"(
+[[damage.crack]]
+gear = "sun"
+tooth = 4
+side = "-"
+start_arc_mm = 1.5
+depth_mm = 0.8
+angle_deg = 50
+)";
+
+std::string CrackError(const std::string& crack) {
+  try {
+    transmission::ParseScene(test::SceneText("paper_stage.toml") + crack, "crack.toml");
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+TEST_CASE("damage: a root crack is read from the scene in SI units", "[unit][transmission]") {
+  const transmission::Scene s =
+      transmission::ParseScene(test::SceneText("paper_stage.toml") + kCrack, "crack.toml");
+  REQUIRE(s.damage.cracks.size() == 1);
+  const transmission::Crack& c = s.damage.cracks[0];
+  CHECK(c.gear == "sun");
+  CHECK(c.start == transmission::CrackStart::kArc);
+  CHECK(c.crack.tooth == 4);
+  CHECK(c.crack.side == -1);
+  CHECK(c.crack.start_arc == Approx(1.5e-3).epsilon(1e-15));
+  REQUIRE(c.crack.path.size() == 1);
+  CHECK(c.crack.path[0].length == Approx(0.8e-3).epsilon(1e-15));
+  CHECK(c.crack.path[0].angle == Approx(50.0 * std::numbers::pi / 180).epsilon(1e-15));
+  const std::string base = test::SceneText("paper_stage.toml");
+  const long line = std::count(base.begin(), base.end(), '\n') + 3;  // kCrack's "gear =" line
+  CHECK(c.where == "crack.toml:" + std::to_string(line) + ": damage.crack[0].gear");
+  CHECK(s.damage.CrackOn("sun") == &c);
+  CHECK(s.damage.CrackOn("planet1") == nullptr);
+  REQUIRE(s.damage.Describe().size() == 1);
+  CHECK(s.damage.Describe()[0] ==
+        "root crack: sun tooth 4 fillet - from fillet arc 1.5 mm, depth 0.8 mm at 50 deg to the "
+        "tooth centre line");
+  // A polyline, and the starts placed by the body.
+  const transmission::Scene p = transmission::ParseScene(
+      test::SceneText("paper_stage.toml") +
+          "\n[[damage.crack]]\ngear = \"planet2\"\ntooth = 0\nside = \"+\"\nstart = "
+          "\"iso_30deg\"\npath = [{length_mm = 0.5, angle_deg = 45}, {length_mm = 0.25, "
+          "angle_deg = 80}]\n",
+      "poly.toml");
+  REQUIRE(p.damage.cracks.size() == 1);
+  CHECK(p.damage.cracks[0].start == transmission::CrackStart::kIso30);
+  REQUIRE(p.damage.cracks[0].crack.path.size() == 2);
+  CHECK(p.damage.cracks[0].crack.depth() == Approx(0.75e-3).epsilon(1e-14));
+  CHECK(p.damage.cracks[0].crack.path[1].angle == Approx(80.0 * std::numbers::pi / 180));
+}
+
+TEST_CASE("damage: a root crack's bad values name the key, the value and the rule",
+          "[unit][transmission]") {
+  CHECK_THAT(CrackError(test::Replace(kCrack, "\"sun\"", "\"planet4\"")),
+             Catch::Contains("damage.crack[0].gear = \"planet4\"") &&
+                 Catch::Contains("\"planet3\", \"ring\""));
+  CHECK_THAT(CrackError(std::string(kCrack) + test::Replace(kCrack, "tooth = 4", "tooth = 9")),
+             Catch::Contains("damage.crack[1].gear = \"sun\"") &&
+                 Catch::Contains("already has the crack of crack.toml:") &&
+                 Catch::Contains("one root crack per gear"));
+  CHECK_THAT(CrackError(test::Replace(kCrack, "tooth = 4", "tooth = 16")),
+             Catch::Contains("damage.crack[0].tooth = 16") && Catch::Contains("[0, 15]"));
+  CHECK_THAT(CrackError(test::Replace(kCrack, "side = \"-\"", "side = \"left\"")),
+             Catch::Contains("damage.crack[0].side"));
+  CHECK_THAT(
+      CrackError(test::Replace(kCrack, "start_arc_mm = 1.5", "start_arc_mm = 40")),
+      Catch::Contains("damage.crack[0].start_arc_mm = 40") && Catch::Contains("on the fillet"));
+  CHECK_THAT(
+      CrackError(test::Replace(kCrack, "start_arc_mm = 1.5",
+                               "start_arc_mm = 1.5\nstart = "
+                               "\"iso_30deg\"")),
+      Catch::Contains("damage.crack[0].start = \"iso_30deg\"") && Catch::Contains("not both"));
+  CHECK_THAT(CrackError(test::Replace(kCrack, "angle_deg = 50", "angle_deg = 180")),
+             Catch::Contains("damage.crack[0].angle_deg = 180") && Catch::Contains("(0, 180)"));
+  CHECK_THAT(CrackError(test::Replace(kCrack, "depth_mm = 0.8", "depth_mm = -1")),
+             Catch::Contains("damage.crack[0].depth_mm = -1"));
+  // Through the tooth: the path leaves its body sector (named by the crack's own rule).
+  CHECK_THAT(CrackError(test::Replace(kCrack, "depth_mm = 0.8", "depth_mm = 30")),
+             Catch::Contains("damage.crack[0].depth_mm = 30 mm") &&
+                 Catch::Contains("must stay inside its tooth"));
+  CHECK_THAT(CrackError(std::string(kCrack) + "path = [{length_mm = 1, angle_deg = 45}]\n"),
+             Catch::Contains("damage.crack[0].path") && Catch::Contains("not both"));
+  CHECK_THAT(CrackError(test::Replace(kCrack, "depth_mm = 0.8\nangle_deg = 50",
+                                      "path = [{length_mm = 1, angle_deg = 45, width = 2}]")),
+             Catch::Contains("width"));
 }

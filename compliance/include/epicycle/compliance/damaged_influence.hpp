@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <iosfwd>
 #include <vector>
 
 #include <Eigen/Core>
@@ -62,6 +63,14 @@ class DamagedInfluence {
   int sector_elements() const { return sector_elements_; }  ///< of the cracked sector
   /// CPU time [s]: mesh (healthy body, sector, crack), assembly + factorisation, solves.
   std::array<double, 3> build_seconds() const { return seconds_; }
+
+  /// The rows in binary (the disk cache's payload, influence_cache.hpp): K, z, the counts and
+  /// times, the load teeth, then each row table's InfluenceTable::WritePayload.
+  void WritePayload(std::ostream& out) const;
+  /// Reads a payload written by WritePayload for `gear` and `crack` (the caller has checked the
+  /// key). @throws std::runtime_error for a payload that does not fit the gear.
+  static DamagedInfluence ReadPayload(std::istream& in, const geometry::Gear& gear,
+                                      const RootCrack& crack);
 
  private:
   RootCrack crack_;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "epicycle/compliance/damaged_influence.hpp"
 #include "epicycle/compliance/influence_table.hpp"
 
 namespace epicycle::compliance {
@@ -61,5 +62,29 @@ InfluenceTable LoadOrBuildInfluenceTable(const geometry::Gear& gear,
                                          const ElasticMaterial& material,
                                          const InfluenceTableOptions& options,
                                          const std::string& directory, CacheReport* report);
+
+/// The key of a body's damaged rows (DamagedInfluence::Build): the healthy table's key
+/// (InfluenceTableKey with fillet_stress off, as the rows are built) and every field of the crack
+/// (tooth, side, start arc, each segment's length and angle), the neighbours K and the crack mesh
+/// options, doubles bit-exactly.
+std::uint64_t DamagedInfluenceKey(const geometry::GearSpec& spec, const ElasticMaterial& material,
+                                  const InfluenceTableOptions& options, const RootCrack& crack,
+                                  int neighbours, const CrackMeshOptions& crack_options);
+
+/// The file of a body's damaged rows: "<directory>/damaged-<key as 16 hex digits>.ilt".
+std::string DamagedInfluenceFile(const std::string& directory, std::uint64_t key);
+
+/// As LoadOrBuildInfluenceTable, for the damaged rows of `gear` with `crack` (the same file
+/// layout, the payload DamagedInfluence::WritePayload; built on NominalBody(gear)): loaded when
+/// its file is valid, otherwise built, written atomically, and a damaged or stale file reported
+/// and replaced.
+/// @throws std::invalid_argument as DamagedInfluence::Build or for an empty directory name;
+///         std::runtime_error if the file cannot be written.
+DamagedInfluence LoadOrBuildDamagedInfluence(const geometry::Gear& gear,
+                                             const ElasticMaterial& material,
+                                             const RootCrack& crack,
+                                             const InfluenceTableOptions& options, int neighbours,
+                                             const CrackMeshOptions& crack_options,
+                                             const std::string& directory, CacheReport* report);
 
 }  // namespace epicycle::compliance

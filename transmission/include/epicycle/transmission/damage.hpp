@@ -1,11 +1,12 @@
-// Tooth damage of a scene (docs/model.md §9, "Pitting and spalls"): where it is on which tooth of
-// which gear, read once from the scene's [[damage.*]] arrays, and how it changes the potential
-// contacts that every driver builds. A pit or spall lowers a region of one flank by its depth over
-// a fraction of the face width: a contact whose point lies in the region is split into strips of
-// the face width, each a contact of its own at the same point and along the same normal, with the
-// gap grown by the depth of the pits that cover it and a local term of its own width; all strips
-// of a contact share its rows of the structural compliance (the load spreads across the face
-// within the body).
+// Tooth damage of a scene (docs/model.md §9, "Pitting and spalls" and "Root crack"): where it is on
+// which tooth of which gear, read once from the scene's [[damage.*]] arrays, and how it changes
+// what every driver builds. A root crack changes the compliance of its body only (the cracked
+// tooth's influence rows, compliance::DamagedInfluence, built by GearTables). A pit or spall lowers
+// a region of one flank by its depth over a fraction of the face width: a contact whose point lies
+// in the region is split into strips of the face width, each a contact of its own at the same point
+// and along the same normal, with the gap grown by the depth of the pits that cover it and a local
+// term of its own width; all strips of a contact share its rows of the structural compliance (the
+// load spreads across the face within the body).
 #pragma once
 
 #include <string>
@@ -13,6 +14,7 @@
 
 #include <Eigen/Dense>
 
+#include "epicycle/compliance/root_crack.hpp"
 #include "epicycle/geometry/contact.hpp"
 
 namespace epicycle::transmission {
@@ -32,11 +34,35 @@ struct Pit {
   std::string Describe() const;
 };
 
-/// Every damage of a scene. Cracks will join the pits here.
+/// Where a crack's mouth is placed on its fillet (the scene's `start` or `start_arc_mm`).
+enum class CrackStart {
+  kArc,             ///< at RootCrack::start_arc as given
+  kLargestTension,  ///< compliance::LargestRootTensionArc of a unit load at the tip-most point
+                    ///< of the flank grid of the crack's side (needs the body's fillet stresses)
+  kIso30,           ///< compliance::IsoCriticalFilletArc (ISO 6336-3's 30° point)
+};
+
+/// A root crack in one tooth (the scene's [[damage.crack]]): an open crack (its faces do not
+/// touch), docs/model.md §9 "Root crack".
+struct Crack {
+  std::string gear;  ///< named as Pit::gear
+  /// The crack in the gear's body frame; `start_arc` is final only for CrackStart::kArc (the
+  /// others are placed when the body's table is at hand: ResolvedStart).
+  compliance::RootCrack crack;
+  CrackStart start = CrackStart::kLargestTension;
+  std::string where;  ///< "file:line: damage.crack[0]" for messages
+  /// "sun tooth 0 fillet + from the largest root tension, depth 1.2 mm (1 segment)"
+  std::string Describe() const;
+};
+
+/// Every damage of a scene.
 struct Damage {
   std::vector<Pit> pits;
-  bool empty() const { return pits.empty(); }
-  /// One line per damage (Pit::Describe), for reports.
+  std::vector<Crack> cracks;
+  bool empty() const { return pits.empty() && cracks.empty(); }
+  /// The crack on the gear named `gear`, or null (the scene allows one per gear).
+  const Crack* CrackOn(const std::string& gear) const;
+  /// One line per damage (Pit::Describe, Crack::Describe), for reports.
   std::vector<std::string> Describe() const;
 };
 

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "epicycle/compliance/compliance_operator.hpp"
+#include "epicycle/compliance/damaged_influence.hpp"
 #include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/transmission/scene.hpp"
@@ -29,12 +30,22 @@ struct FeComplianceOptions {
 std::string DefaultCacheDirectory();
 
 /// The influence tables of a set of gears: one per distinct body (gears with identical specs, such
-/// as error-free planets, share one table).
+/// as error-free planets, share one table), and the damaged rows of a gear with a root crack
+/// (the scene's [[damage.crack]], docs/model.md §9 "Root crack"; each healthy gear keeps the
+/// shared table, the cracked one gets compliance::DamagedInfluence beside it, cached like the
+/// tables).
 class GearTables {
  public:
+  /// `names[i]` is gear i's name in the scene's damage (a stage's BodyName, "gear1"/"gear2" of a
+  /// pair, or the stage's names of a mesh studied as a pair: MeshPairSetup::gears).
+  /// @throws std::invalid_argument for a table that cannot be built, a crack that cannot be
+  ///         meshed or placed (naming the scene's [[damage.crack]] table), or a crack with root
+  ///         stresses asked (none are tabulated on a cracked body).
   GearTables(const Scene& scene, const std::vector<const geometry::Gear*>& gears,
-             const FeComplianceOptions& options);
+             const std::vector<std::string>& names, const FeComplianceOptions& options);
   const compliance::InfluenceTable& Table(int gear) const { return *tables_.at(gear); }
+  /// Gear `gear`'s damaged rows (its root crack, placed), or null for a healthy gear.
+  const compliance::DamagedInfluence* Damaged(int gear) const { return damaged_.at(gear).get(); }
   int size() const { return static_cast<int>(tables_.size()); }  ///< gears (one table each)
   /// What the cache did, one line per distinct table.
   const std::vector<std::string>& messages() const { return messages_; }
@@ -42,6 +53,7 @@ class GearTables {
 
  private:
   std::vector<std::shared_ptr<const compliance::InfluenceTable>> tables_;
+  std::vector<std::shared_ptr<const compliance::DamagedInfluence>> damaged_;
   std::vector<std::string> messages_;
   compliance::PlaneAssumption plane_ = compliance::PlaneAssumption::kPlaneStrain;
 };
@@ -64,9 +76,10 @@ class FeStageCompliance final : public StageCompliance {
   solvers::PlaneAssumption plane() const override { return plane_; }
   const GearTables& tables() const { return tables_; }
   bool has_root_stress() const override;
-  std::vector<compliance::FilletStress> FilletStresses(
-      const geometry::Stage& stage, const geometry::StagePoses& poses,
-      const std::vector<StageContact>& contacts, const Eigen::VectorXd& force) const override;
+  std::vector<compliance::FilletStress> FilletStresses(const geometry::Stage& stage,
+                                                       const geometry::StagePoses& poses,
+                                                       const std::vector<StageContact>& contacts,
+                                                       const Eigen::VectorXd& force) const override;
 
  private:
   // The operator's bodies (sun, ring, planets at their poses) and contact sides.
@@ -87,8 +100,11 @@ class FeStageCompliance final : public StageCompliance {
 /// The contact compliance of a single gear pair (gear 1 body 0, gear 2 body 1).
 class FePairCompliance {
  public:
+  /// `gears`: the two gears' names in the scene's damage (MeshPairSetup::gears: a stage mesh
+  /// studied as a pair keeps the stage's names, so that a crack on its gears is found).
   FePairCompliance(const Scene& scene, const geometry::GearPair& pair,
-                   const FeComplianceOptions& options);
+                   const FeComplianceOptions& options,
+                   const std::vector<std::string>& gears = {"gear1", "gear2"});
   Eigen::MatrixXd Matrix(const geometry::GearPair& pair, const geometry::PairPoses& poses,
                          const std::vector<geometry::PotentialContact>& contacts) const;
   /// True when FilletStresses can answer: both tables built with their fillet stresses (the
