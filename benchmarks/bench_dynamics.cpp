@@ -50,18 +50,24 @@ void BM_DynamicEvaluation(benchmark::State& state) {
 }
 BENCHMARK(BM_DynamicEvaluation)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
-// The cost of a damaged tooth (docs/damage.md): the paper stage without errors (Arg 0) and with
-// scenes/paper_stage_spall.toml's spall on planet 1's tooth 13 (Arg 1), fixed sun, at t = 0,
-// where that tooth meshes with the sun inside the spall (its contact split into two strips).
+// The cost of a damaged tooth (docs/damage.md): the paper stage without errors (Arg 0), with
+// scenes/paper_stage_spall.toml's spall on planet 1's tooth 13 (Arg 1), and with
+// scenes/paper_stage_runout_crack.toml's root crack in sun tooth 0 alone (Arg 2), fixed sun, at
+// t = 0, where the damaged tooth meshes (the spall's contact split into two strips; the cracked
+// tooth's rows read from its damaged rows).
 void BM_DamagedEvaluation(benchmark::State& state) {
-  auto scene = transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) +
-                                       (state.range(0) == 0 ? "/paper_stage.toml"
-                                                            : "/paper_stage_spall.toml"));
+  const std::string dir = EPICYCLE_SCENES_DIR;
+  auto scene = transmission::ReadScene(
+      dir + (state.range(0) == 1 ? "/paper_stage_spall.toml" : "/paper_stage.toml"));
+  if (state.range(0) == 2) {
+    const auto cracked = transmission::ReadScene(dir + "/paper_stage_runout_crack.toml");
+    scene.damage.cracks = cracked.damage.cracks;
+  }
   scene.dynamics.sun_speed = 1500 * std::numbers::pi / 30;
   const dynamics::StageDynamics c(std::move(scene), Case::Cache());
   TimeEvaluations(state, c);
 }
-BENCHMARK(BM_DamagedEvaluation)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DamagedEvaluation)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
 void TimeEvaluations(benchmark::State& state, const dynamics::StageDynamics& c) {
   const Eigen::VectorXd d = c.model.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);

@@ -275,9 +275,9 @@ void RegisterDynamicCommands(CLI::App& app) {
             "Sun speed [rpm] (default: the scene's [dynamics] sun_speed_rpm, else 1500)",
             kSunSpeedRpm);
   cmd->add_option("--range", a.range,
-                  "Simulate one mesh cycle, one planet revolution relative to the carrier, or "
-                  "one carrier revolution")
-      ->check(CLI::IsMember({"cycle", "planet", "revolution"}));
+                  "Simulate one mesh cycle, one planet or sun revolution relative to the "
+                  "carrier, or one carrier revolution")
+      ->check(CLI::IsMember({"cycle", "planet", "sun", "revolution"}));
   AddNumber(cmd, "--time", a.time, "Simulate this long instead [s]",
             {0, 3600, true, false, "[s]", "an hour of motion"});
   AddNumber(cmd, "--start-deg", a.start_deg, "Carrier angle at t = 0 [deg]", kAngleDeg);

@@ -226,9 +226,10 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
             "Positions of the sweep (default 36 over a mesh cycle, 360 otherwise)",
             {1, 1e6, false, true, "", ""});
   cmd->add_option("--range", a.range,
-                  "Sweep one mesh cycle, one planet revolution relative to the carrier (the "
-                  "period of a planet's run-out), or one carrier revolution")
-      ->check(CLI::IsMember({"cycle", "planet", "revolution"}));
+                  "Sweep one mesh cycle, one planet or sun revolution relative to the carrier "
+                  "(the period of a planet's run-out, of a sun tooth's damage), or one carrier "
+                  "revolution")
+      ->check(CLI::IsMember({"cycle", "planet", "sun", "revolution"}));
   AddNumber(cmd, "--start-deg", a.start_deg, "Carrier angle of the first position [deg]",
             kAngleDeg);
   AddNumber(cmd, "--angles-deg", a.angles_deg, "A given list of carrier angles [deg]", kAngleDeg);

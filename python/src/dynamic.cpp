@@ -495,8 +495,8 @@ quasi-static solution at t = 0. The dynamic settings are the scene's ([dynamics]
 [supports] keys).
 
 sun_speed_rpm: sun speed [rpm] (None: the scene's dynamics.sun_speed_rpm; given: that key is set,
-  with the scene reader's checks); range: "cycle", "planet" (default), "revolution" of carrier
-  rotation; time_s: simulate this long instead [s]; outputs_per_cycle: output steps per mesh cycle
+  with the scene reader's checks); range: "cycle", "planet" (default), "sun", "revolution" of
+  carrier rotation (as quasistatic); time_s: simulate this long instead [s]; outputs_per_cycle: output steps per mesh cycle
   [-]; start_deg: carrier angle at t = 0 [deg]; cache_dir, progress(done, total) as quasistatic.)doc") +
        kIntegrationDoc + R"doc(
 Returns Result with per output step (T steps, n planets): time_s [s], carrier_deg [deg], lsr (T, n)
@@ -555,7 +555,7 @@ sweeps"): each sun speed run from the quasi-static solution, its start transient
 window measured.
 
 sun_speeds_rpm: increasing sun speeds [rpm] (epicycle.speed_grid(from, to, n)); range: the window,
-  "cycle", "planet" (default), "revolution", or window_cycles > 0 mesh cycles [-];
+  "cycle", "planet" (default), "sun", "revolution", or window_cycles > 0 mesh cycles [-];
   outputs_per_cycle: samples per mesh cycle [-]; start_deg: carrier angle where the window begins
   [deg]; harmonics: mesh harmonics 1..h for the coincidences; threads: workers (0: every core);
   cache_dir, progress(done, total) as quasistatic.)doc") +

@@ -479,7 +479,7 @@ Quasi-static load sharing of a stage over carrier positions (`epicycle quasistat
 quasistatic.md). The sun support is the scene's (key supports.sun: "fixed", "floating").
 
 range: "cycle" (one mesh cycle), "planet" (one planet revolution relative to the carrier),
-  "revolution" (one carrier revolution); positions: over the range [-] (0: 36 for a cycle, 360
+  "sun" (one sun revolution relative to the carrier), "revolution" (one carrier revolution); positions: over the range [-] (0: 36 for a cycle, 360
   otherwise); start_deg: carrier angle of the first position [deg]; angles_deg: given carrier
   angles [deg] instead; threads: workers (0: one per core; with warm_start the results depend on
   the thread count within the solver tolerances); warm_start: each position from its neighbour;

@@ -8,8 +8,9 @@ namespace epicycle::transmission {
 RunRange RunRangeFromName(const std::string& name) {
   if (name == "cycle") return RunRange::kMeshCycle;
   if (name == "planet") return RunRange::kPlanetRevolution;
+  if (name == "sun") return RunRange::kSunRevolution;
   if (name == "revolution") return RunRange::kCarrierRevolution;
-  throw std::invalid_argument("range = '" + name + "': must be cycle, planet or revolution");
+  throw std::invalid_argument("range = '" + name + "': must be cycle, planet, sun or revolution");
 }
 
 double CarrierSpan(const geometry::Stage& stage, RunRange range) {
@@ -20,6 +21,10 @@ double CarrierSpan(const geometry::Stage& stage, RunRange range) {
       // With the ring fixed a planet turns once relative to the carrier while the carrier turns
       // z_p/z_r of a revolution (z_p ring teeth pass it).
       return 2.0 * std::numbers::pi * stage.planet(0).teeth() / stage.ring().teeth();
+    case RunRange::kSunRevolution:
+      // The sun turns once relative to the carrier while z_s mesh cycles pass (f_m = z_s (f_s −
+      // f_c) = z_r f_c).
+      return 2.0 * std::numbers::pi * stage.sun().teeth() / stage.ring().teeth();
     case RunRange::kCarrierRevolution:
       return 2.0 * std::numbers::pi;
   }
@@ -32,6 +37,8 @@ double MeshCycles(const geometry::Stage& stage, RunRange range) {
       return 1.0;
     case RunRange::kPlanetRevolution:
       return static_cast<double>(stage.planet(0).teeth());
+    case RunRange::kSunRevolution:
+      return static_cast<double>(stage.sun().teeth());
     case RunRange::kCarrierRevolution:
       return static_cast<double>(stage.ring().teeth());
   }

@@ -48,6 +48,80 @@ dynamics::SpectrumOptions OneSegment(const std::vector<double>& times, int per_c
   return so;
 }
 
+// The TE spectrum of a run at 1500 rpm, one Hann segment of kFaultCycles mesh cycles after 4
+// (24 outputs per cycle), for the fault lines: its characteristic frequencies in *f, the run's
+// wall time in *wall.
+constexpr int kFaultCycles = 48;
+
+std::vector<std::vector<double>> FaultRun(const std::string& text, const std::string& file,
+                                          dynamics::StageFrequencies* f, double* wall,
+                                          std::vector<std::string>* names) {
+  const int per_cycle = 24, skip = 4, cycles = kFaultCycles;
+  test::RigOptions ro;
+  ro.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * test::kRpm; };
+  test::DynamicRig rig = test::MakeRig(text, file, ro);
+  const dynamics::DynamicModel& model = *rig.model;
+  *f = dynamics::CharacteristicFrequencies(*rig.stage, model.sun_speed());
+  const std::vector<double> times = test::Times(model, *rig.stage, skip + cycles, per_cycle);
+  const std::vector<dynamics::VibrationChannel> channels = dynamics::VibrationChannels(model);
+  const dynamics::SpectrumOptions so = OneSegment(times, per_cycle, skip, cycles);
+  dynamics::WelchSpectrum spectrum(static_cast<int>(channels.size()), so);
+  std::vector<double> values;
+  dynamics::SimulationOptions opt;
+  const dynamics::SimulationResult run = dynamics::Simulate(
+      model, opt, model.QuasiStaticStart(opt.contact, opt.backend),
+      Eigen::VectorXd::Zero(model.size()), times, [&](const dynamics::DynamicSample& s) {
+        dynamics::VibrationValues(model, s, &values);
+        spectrum.Add(s.time, values);
+      });
+  REQUIRE(run.completed);
+  REQUIRE(spectrum.segments() == 1);
+  *wall = run.stats.wall_seconds;
+  std::vector<std::vector<double>> out;
+  names->clear();
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    out.push_back(spectrum.Amplitudes(static_cast<int>(c)));
+    names->push_back(channels[c].name);
+  }
+  return out;
+}
+
+// The amplitudes of channel `name` of a FaultRun.
+const std::vector<double>& Channel(const std::vector<std::vector<double>>& run,
+                                   const std::vector<std::string>& names, const std::string& name) {
+  const auto it = std::find(names.begin(), names.end(), name);
+  REQUIRE(it != names.end());
+  return run[static_cast<std::size_t>(it - names.begin())];
+}
+
+std::vector<double> FaultRunTe(const std::string& text, const std::string& file,
+                               dynamics::StageFrequencies* f, double* wall) {
+  std::vector<std::string> names;
+  return Channel(FaultRun(text, file, f, wall, &names), names, "te");
+}
+
+// The healthy paper stage's, computed once for the fault tests.
+const std::vector<double>& HealthyFaultRunTe(dynamics::StageFrequencies* f, double* wall) {
+  static dynamics::StageFrequencies sf;
+  static double sw = 0;
+  static const std::vector<double> te =
+      FaultRunTe(test::SceneText("paper_stage.toml"), "paper_stage.toml", &sf, &sw);
+  *f = sf;
+  *wall = sw;
+  return te;
+}
+
+// The largest peaks of `a` off the mesh harmonics (bins kFaultCycles h and their two neighbours,
+// where the window spreads a mesh line).
+std::vector<int> LargestOffMesh(const std::vector<double>& a, std::size_t count) {
+  std::vector<double> off = a;
+  for (std::size_t j = 0; j < off.size(); ++j) {
+    const std::size_t r = j % kFaultCycles;
+    if (r == 0 || r == 1 || r == kFaultCycles - 1) off[j] = 0;
+  }
+  return LargestPeaks(off, count);
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -223,51 +297,19 @@ TEST_CASE(
   // mesh harmonics lie on multiples of f_m/z_p (even bins), and there the spalled TE exceeds the
   // healthy one by more than 100 (the healthy run holds only the numerical floor of the test
   // above, ≤ 1e-3 of its mesh lines, at these bins).
-  const int per_cycle = 24, skip = 4, cycles = 48;
-  auto te_spectrum = [&](const std::string& file, dynamics::StageFrequencies* f, double* wall) {
-    test::RigOptions ro;
-    ro.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * test::kRpm; };
-    test::DynamicRig rig = test::MakeRig(test::SceneText(file), file, ro);
-    const dynamics::DynamicModel& model = *rig.model;
-    *f = dynamics::CharacteristicFrequencies(*rig.stage, model.sun_speed());
-    const std::vector<double> times = test::Times(model, *rig.stage, skip + cycles, per_cycle);
-    const std::vector<dynamics::VibrationChannel> channels = dynamics::VibrationChannels(model);
-    std::size_t te = 0;
-    while (te < channels.size() && channels[te].name != "te") ++te;
-    REQUIRE(te < channels.size());
-    const dynamics::SpectrumOptions so = OneSegment(times, per_cycle, skip, cycles);
-    dynamics::WelchSpectrum spectrum(static_cast<int>(channels.size()), so);
-    std::vector<double> values;
-    dynamics::SimulationOptions opt;
-    const dynamics::SimulationResult run = dynamics::Simulate(
-        model, opt, model.QuasiStaticStart(opt.contact, opt.backend),
-        Eigen::VectorXd::Zero(model.size()), times, [&](const dynamics::DynamicSample& s) {
-          dynamics::VibrationValues(model, s, &values);
-          spectrum.Add(s.time, values);
-        });
-    REQUIRE(run.completed);
-    REQUIRE(spectrum.segments() == 1);
-    *wall = run.stats.wall_seconds;
-    return spectrum.Amplitudes(static_cast<int>(te));
-  };
+  const int cycles = kFaultCycles;
   dynamics::StageFrequencies f, fh;
   double wall = 0, wall_h = 0;
-  const std::vector<double> spalled = te_spectrum("paper_stage_spall.toml", &f, &wall);
-  const std::vector<double> healthy = te_spectrum("paper_stage.toml", &fh, &wall_h);
+  const std::vector<double> spalled =
+      FaultRunTe(test::SceneText("paper_stage_spall.toml"), "paper_stage_spall.toml", &f, &wall);
+  const std::vector<double>& healthy = HealthyFaultRunTe(&fh, &wall_h);
   REQUIRE(f.planet_relative == Approx(f.mesh / 24).epsilon(1e-12));
   const double resolution = f.mesh / cycles;
   CHECK(f.planet_relative / resolution == Approx(2.0).epsilon(1e-9));
-  // The largest peaks off the mesh harmonics (bins 48 h and their two neighbours, where the
-  // window spreads a mesh line).
-  std::vector<double> off = spalled;
-  for (std::size_t j = 0; j < off.size(); ++j) {
-    const std::size_t r = j % cycles;
-    if (r == 0 || r == 1 || r == cycles - 1) off[j] = 0;
-  }
   bool on_lines = true;
   double least_ratio = 1e300;
   std::string peaks;
-  for (int j : LargestPeaks(off, 3)) {
+  for (int j : LargestOffMesh(spalled, 3)) {
     const double hz = j * resolution, k = hz / f.planet_relative;
     const bool on = std::abs(k - std::round(k)) < 1e-9;
     const double ratio = spalled[static_cast<std::size_t>(j)] /
@@ -287,6 +329,86 @@ TEST_CASE(
       "spectrum, paper stage with a spall on planet 1's tooth 13 (1500 rpm, 48 mesh cycles): the "
       "TE's three largest peaks off the mesh harmonics",
       "k f_m/z_p, by hand f_m/24 = " + Fixed(f.planet_relative, 2) + " Hz", peaks,
+      "smallest " + test::Sci(least_ratio, 2) + " x the healthy TE there",
+      "on the lines (bins of " + Fixed(resolution, 2) + " Hz); > 100 x healthy",
+      on_lines && least_ratio > 100);
+}
+
+TEST_CASE(
+    "spectrum of a paper stage with a cracked sun tooth: the TE gains the sun tooth's lines "
+    "k n (f_s - f_c) and their sidebands, at the kinematic frequencies",
+    "[crosscheck][dynamics][spectrum][crack]") {
+  // The paper stage with a 2 mm crack (about a quarter of the root chord) at the largest root
+  // tension of sun tooth 0's loaded side. The tooth meets the n = 3 equally spaced planets at
+  // equal intervals, n times per turn of the sun relative to the carrier: its lines are
+  // k n (f_s − f_c) (docs/model.md §9 "Fault frequencies"), by hand f_s − f_c = f_m/z_s =
+  // f_m/16, so n (f_s − f_c) = 3 f_m/16 = 60.2 Hz at 1500 rpm, and the sidebands h f_m ±
+  // k n (f_s − f_c) of the mesh harmonics fall on the same comb. The segment of 48 mesh cycles
+  // (three relative turns) puts f_m/16 on bin 3 and 3 f_m/16 on bin 9 (Δf = f_m/48). Asserted:
+  // the three largest peaks off the mesh harmonics lie on multiples of n (f_s − f_c) (bins 9 k),
+  // none on a planet tooth's comb alone (bins 2 k, the spall's) and, there, the cracked TE
+  // exceeds the healthy one by more than 100 (the healthy run's floor, ≤ 1e-3 of its mesh lines).
+  const int cycles = kFaultCycles;
+  auto run = [&](double depth_mm, dynamics::StageFrequencies* f, double* wall) {
+    const std::string crack =
+        "\n[[damage.crack]]\ngear = \"sun\"\ntooth = 0\nside = \"-\"\ndepth_mm = " +
+        Fixed(depth_mm, 2) + "\nangle_deg = 45\n";
+    return FaultRunTe(test::SceneText("paper_stage.toml") + crack, "cracked_sun.toml", f, wall);
+  };
+  dynamics::StageFrequencies f, fh;
+  double wall = 0, wall_h = 0;
+  const std::vector<double> cracked = run(2.0, &f, &wall);
+  const std::vector<double>& healthy = HealthyFaultRunTe(&fh, &wall_h);
+  const double tooth_line = f.planets * f.sun_relative;  // n (f_s − f_c)
+  REQUIRE(f.sun_relative == Approx(f.mesh / 16).epsilon(1e-12));
+  const double resolution = f.mesh / cycles;
+  CHECK(tooth_line / resolution == Approx(9.0).epsilon(1e-9));
+  bool on_lines = true;
+  double least_ratio = 1e300;
+  std::string peaks;
+  for (int j : LargestOffMesh(cracked, 3)) {
+    const double hz = j * resolution, k = hz / tooth_line;
+    const bool on = std::abs(k - std::round(k)) < 1e-9;
+    const double ratio = cracked[static_cast<std::size_t>(j)] /
+                         std::max(healthy[static_cast<std::size_t>(j)], 1e-300);
+    INFO("peak at " << hz << " Hz = " << k << " n (f_s - f_c), "
+                    << cracked[static_cast<std::size_t>(j)] << " rad, " << ratio
+                    << " x the healthy stage's");
+    CHECK(on);
+    CHECK(ratio > 100);
+    on_lines = on_lines && on;
+    least_ratio = std::min(least_ratio, ratio);
+    peaks += (peaks.empty() ? "" : ", ") + Fixed(k, 0) + " n(f_s-f_c) (" +
+             test::Sci(cracked[static_cast<std::size_t>(j)] * 1e6, 2) + " urad)";
+  }
+  test::Figure("spectrum, cracked sun tooth, 1500 rpm: " + Fixed(wall, 2) + " s wall (" +
+               Fixed(wall_h, 2) + " s healthy)");
+  // The amplitudes against the crack's depth: the line n (f_s − f_c) (bin 9) grows with the
+  // depth, as the cracked tooth's compliance does (docs/model.md §9, "Root crack": monotone at
+  // every flank point).
+  std::string table;
+  double previous = 0;
+  bool rising = true;
+  for (double depth : {0.5, 1.0, 2.0, 3.0}) {
+    dynamics::StageFrequencies fd;
+    double w = 0;
+    const std::vector<double> te = depth == 2.0 ? cracked : run(depth, &fd, &w);
+    rising = rising && te[9] > previous;
+    previous = te[9];
+    table += (table.empty() ? "" : ", ") + Fixed(depth, 1) + " mm: " + test::Sci(te[9] * 1e6, 3) +
+             " / " + test::Sci(te[18] * 1e6, 3) + " / " +
+             test::Sci(te[static_cast<std::size_t>(cycles) - 9] * 1e6, 3);
+  }
+  test::VerifyRow(
+      "spectrum, paper stage with a crack in sun tooth 0 (1500 rpm): the TE at n (f_s - f_c), "
+      "2 n (f_s - f_c) and the sideband f_m - n (f_s - f_c) against the crack depth [urad]",
+      "rises with the depth (the cracked tooth's compliance does)", table,
+      rising ? "rising" : "not rising", "rising", rising);
+  CHECK(rising);
+  test::VerifyRow(
+      "spectrum, paper stage with a 2 mm crack in sun tooth 0 (1500 rpm, 48 mesh cycles): the TE's "
+      "three largest peaks off the mesh harmonics",
+      "k n (f_s - f_c), by hand 3 f_m/16 = " + Fixed(tooth_line, 2) + " Hz", peaks,
       "smallest " + test::Sci(least_ratio, 2) + " x the healthy TE there",
       "on the lines (bins of " + Fixed(resolution, 2) + " Hz); > 100 x healthy",
       on_lines && least_ratio > 100);

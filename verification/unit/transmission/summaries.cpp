@@ -55,9 +55,12 @@ TEST_CASE("run ranges of the paper's stage in carrier angle and mesh cycles",
   CHECK(transmission::MeshCycles(stage, RunRange::kMeshCycle) == 1.0);
   CHECK(transmission::MeshCycles(stage, RunRange::kPlanetRevolution) == 24.0);
   CHECK(transmission::MeshCycles(stage, RunRange::kCarrierRevolution) == 65.0);
+  CHECK(transmission::MeshCycles(stage, RunRange::kSunRevolution) == 16.0);
+  CHECK(transmission::CarrierSpan(stage, RunRange::kSunRevolution) == 2 * pi * 16 / 65);
   CHECK(transmission::RunRangeFromName("cycle") == RunRange::kMeshCycle);
   CHECK(transmission::RunRangeFromName("planet") == RunRange::kPlanetRevolution);
   CHECK(transmission::RunRangeFromName("revolution") == RunRange::kCarrierRevolution);
+  CHECK(transmission::RunRangeFromName("sun") == RunRange::kSunRevolution);
   CHECK_THROWS_AS(transmission::RunRangeFromName("week"), std::invalid_argument);
   CHECK(std::string(transmission::SunSupportName(transmission::SunSupport::kFixed)) == "fixed");
   CHECK(std::string(transmission::SunSupportName(transmission::SunSupport::kFloating)) ==

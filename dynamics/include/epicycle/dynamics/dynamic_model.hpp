@@ -250,7 +250,8 @@ struct StageDynamics {
 
 /// The mean mesh stiffness [N/m] of the stage's sun–planet and planet–ring meshes (planet 1) at
 /// the scene's load, from the mesh-stiffness driver (transmission::ComputeMeshStiffness) over
-/// `positions` samples of a mesh cycle: {sun mesh, ring mesh}.
+/// `positions` samples of a mesh cycle: {sun mesh, ring mesh}; of the healthy teeth (the scene's
+/// damage is left out: the modes and the mesh damping are the stage's about its healthy mean).
 /// @throws std::runtime_error if every sample of a mesh fails.
 std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
                                         const geometry::Stage& stage,

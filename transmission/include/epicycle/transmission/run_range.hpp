@@ -1,5 +1,6 @@
 // What a run of a stage covers in carrier angle: one mesh cycle, one planet revolution relative
-// to the carrier (the period of a planet's run-out), or one carrier revolution (ring fixed). One
+// to the carrier (the period of a planet's run-out), one sun revolution relative to the carrier
+// (the period of a sun tooth's damage), or one carrier revolution (ring fixed). One
 // definition for the quasi-static sweep, the dynamic run, the speed sweep's window and the
 // tolerance studies.
 #pragma once
@@ -13,16 +14,17 @@ namespace epicycle::transmission {
 enum class RunRange {
   kMeshCycle,          ///< "cycle": 2π/z_r of carrier rotation
   kPlanetRevolution,   ///< "planet": 2π z_p/z_r, one planet turn relative to the carrier
+  kSunRevolution,      ///< "sun": 2π z_s/z_r, one sun turn relative to the carrier
   kCarrierRevolution,  ///< "revolution": 2π
 };
 
-/// "cycle", "planet" or "revolution". @throws std::invalid_argument naming the value otherwise.
+/// "cycle", "planet", "sun" or "revolution". @throws std::invalid_argument naming the value otherwise.
 RunRange RunRangeFromName(const std::string& name);
 
-/// Carrier rotation of the range [rad]: 2π/z_r, 2π z_p/z_r or 2π.
+/// Carrier rotation of the range [rad]: 2π/z_r, 2π z_p/z_r, 2π z_s/z_r or 2π.
 double CarrierSpan(const geometry::Stage& stage, RunRange range);
 
-/// The same in mesh cycles [-]: 1, z_p or z_r (exact integers).
+/// The same in mesh cycles [-]: 1, z_p, z_s or z_r (exact integers).
 double MeshCycles(const geometry::Stage& stage, RunRange range);
 
 }  // namespace epicycle::transmission
