@@ -169,7 +169,12 @@ void Insert(toml::table& t, const std::string& key, const py::handle& v, const t
         a.push_back(x.cast<std::int64_t>());
       else if (py::isinstance<py::str>(x))
         a.push_back(x.cast<std::string>());
-      else
+      else if (py::isinstance<py::dict>(x)) {  // an array of tables (a crack's path)
+        toml::table sub;
+        for (const auto& [k, y] : x.cast<py::dict>())
+          Insert(sub, k.cast<std::string>(), y, nullptr);
+        a.push_back(std::move(sub));
+      } else
         a.push_back(x.cast<double>());
     }
     t.insert_or_assign(key, std::move(a));
@@ -403,6 +408,45 @@ Adds a pit or spall ([[damage.pit]], docs/model.md §9 "Pitting and spalls"): on
 (body frame, 0..z-1) of `gear`, flank "+" or "-", over roll_deg=(from, to) [deg] of involute roll
 angle or radius_mm=(from, to) [mm], covering width_fraction [-] of the face width, depth_um [µm]
 deep. )doc") +
+           kGearHelp)
+              .c_str())
+      .def(
+          "add_crack",
+          [](Scene& s, const std::string& gear, int tooth, const std::string& side,
+             py::object start, py::object start_arc_mm, py::object depth_mm, py::object angle_deg,
+             py::object path_mm_deg) {
+            py::dict f;
+            f["gear"] = gear;
+            f["tooth"] = tooth;
+            f["side"] = side;
+            if (!start.is_none()) f["start"] = start;
+            if (!start_arc_mm.is_none()) f["start_arc_mm"] = start_arc_mm;
+            if (!depth_mm.is_none()) f["depth_mm"] = depth_mm;
+            if (!angle_deg.is_none()) f["angle_deg"] = angle_deg;
+            if (!path_mm_deg.is_none()) {
+              py::list path;
+              for (const auto& segment : path_mm_deg.cast<py::sequence>()) {
+                const auto [length, angle] = segment.cast<std::pair<double, double>>();
+                py::dict g;
+                g["length_mm"] = length;
+                g["angle_deg"] = angle;
+                path.append(g);
+              }
+              f["path"] = path;
+            }
+            EditInPlace(s, [&](toml::table& t) { AppendTable(t, "damage.crack", f); });
+          },
+          py::arg("gear"), py::arg("tooth"), py::arg("side"), py::kw_only(),
+          py::arg("start") = py::none(), py::arg("start_arc_mm") = py::none(),
+          py::arg("depth_mm") = py::none(), py::arg("angle_deg") = py::none(),
+          py::arg("path_mm_deg") = py::none(),
+          (std::string(R"doc(
+Adds a root crack ([[damage.crack]], docs/model.md §9 "Root crack"; one per gear): in tooth `tooth`
+(body frame, 0..z-1) of `gear`, on the fillet of flank side "+" or "-"; starting at
+start="largest_tension" (the default) or "iso_30deg", or at start_arc_mm [mm] along the fillet
+from the space centre line; a straight crack of depth_mm [mm] at angle_deg [deg] to the tooth
+centre line (below 90 toward the root), or a polyline path_mm_deg=[(length_mm, angle_deg), ...].
+The crack is open; it needs gmsh, and no root stresses can be asked with it. )doc") +
            kGearHelp)
               .c_str())
       .def(
