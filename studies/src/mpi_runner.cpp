@@ -100,15 +100,14 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
       report.table_seconds = std::chrono::duration<double>(t1 - t0).count();
       // Rows go to rank 0 as their CSV text: what rank 0 writes is byte for byte what was
       // computed.
-      internal::ComputeCases(study, *compliance, mine, options.threads, -1,
+      internal::ComputeCases(study, *compliance, options.cache_directory, mine, options.threads, -1,
                              [&](const CaseRow& r) {
                                const std::string line = r.Format();
                                MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0,
                                         kRowTag, MPI_COMM_WORLD);
                                ++report.computed;
                              });
-      report.seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+      report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     } catch (const std::exception& e) {
       const std::string why = e.what();
       MPI_Send(why.data(), static_cast<int>(why.size()), MPI_CHAR, 0, kFailTag, MPI_COMM_WORLD);
@@ -126,10 +125,11 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
   std::exception_ptr error;
   std::thread local([&] {
     try {
-      internal::ComputeCases(study, *compliance, mine, options.threads, -1, [&](const CaseRow& r) {
-        const std::lock_guard<std::mutex> g(box.lock);
-        box.rows.push_back(r);
-      });
+      internal::ComputeCases(study, *compliance, options.cache_directory, mine, options.threads, -1,
+                             [&](const CaseRow& r) {
+                               const std::lock_guard<std::mutex> g(box.lock);
+                               box.rows.push_back(r);
+                             });
     } catch (...) {
       error = std::current_exception();
     }

@@ -142,7 +142,7 @@ std::vector<double> CaseAngles(const StudySpec& study, const geometry::Stage& st
 CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::string& where) {
   const std::vector<std::string> f = Split(line);
   const std::size_t nv = study.Columns().size();
-  const std::size_t ns = 3 * study.StressGears().size();  // root-stress fields
+  const std::size_t ns = 3 * study.StressGears().size();                      // root-stress fields
   const std::size_t nr = study.Rated() ? 2 * study.StressGears().size() : 0;  // safety factors
   auto bad = [&](const std::string& why) {
     throw std::invalid_argument(where + ": not a row of this study (" + why + "): '" + line + "'");
@@ -153,10 +153,10 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   // Changed after it was written: the check covers every byte before its own field.
   const std::string_view body(line.data(), line.size() - f.back().size() - 1);
   if (f.back() != RowCheck(body))
-    throw std::invalid_argument(
-        where + ": the row was changed after it was written (its check field is '" + f.back() +
-        "', its text gives '" + RowCheck(body) +
-        "'): delete the line to compute the case again, or restore it");
+    throw std::invalid_argument(where +
+                                ": the row was changed after it was written (its check field is '" +
+                                f.back() + "', its text gives '" + RowCheck(body) +
+                                "'): delete the line to compute the case again, or restore it");
   CaseRow r;
   if (!ParseLong(f[0], &r.id) || r.id < 0 || r.id >= study.Cases()) bad("case id");
   r.values.resize(nv);
@@ -167,11 +167,10 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   const std::vector<double> sampled = SampleCase(study, r.id);
   for (std::size_t j = 0; j < nv; ++j)
     if (!(r.values[j] == sampled[j]))
-      throw std::invalid_argument(where + ": case " + std::to_string(r.id) + "'s " +
-                                  study.Columns()[j] + " is " + f[1 + j] +
-                                  ", but this study samples " + Exact(sampled[j]) +
-                                  " for it (seed " + std::to_string(study.seed) +
-                                  "): the row was not computed by this study");
+      throw std::invalid_argument(
+          where + ": case " + std::to_string(r.id) + "'s " + study.Columns()[j] + " is " +
+          f[1 + j] + ", but this study samples " + Exact(sampled[j]) + " for it (seed " +
+          std::to_string(study.seed) + "): the row was not computed by this study");
   std::size_t k = 1 + nv;
   if (f[k] != "ok" && f[k] != "failed") bad("status");
   r.ok = f[k++] == "ok";
@@ -235,13 +234,14 @@ void RowWriter::Write(const std::string& text) {
 // Runs `ids` on `threads` workers, each with its own solver; `sink` gets every row (called under
 // one lock, in completion order). Stops taking cases after `limit` (< 0: none).
 void ComputeCases(const StudySpec& study, const transmission::StageCompliance& compliance,
-                  const std::vector<long>& ids, int threads, long limit,
-                  const std::function<void(const CaseRow&)>& sink) {
+                  const std::string& cache_directory, const std::vector<long>& ids, int threads,
+                  long limit, const std::function<void(const CaseRow&)>& sink) {
   const std::size_t count =
       limit < 0 ? ids.size() : std::min(ids.size(), static_cast<std::size_t>(limit));
   std::vector<CaseRow> rows(count);
   transmission::RunWorkQueue(
-      count, threads, [&](std::size_t i) { rows[i] = ComputeCase(study, compliance, ids[i]); },
+      count, threads,
+      [&](std::size_t i) { rows[i] = ComputeCase(study, compliance, ids[i], cache_directory); },
       [&](std::size_t i) {
         sink(rows[i]);
         rows[i] = CaseRow{};  // written: its memory goes
@@ -261,7 +261,7 @@ std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(
 }  // namespace internal
 
 CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance& compliance,
-                    long case_id) {
+                    long case_id, const std::string& cache_directory) {
   CaseRow row;
   row.id = case_id;
   row.values = SampleCase(study, case_id);
@@ -277,8 +277,16 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
     opt.backend = study.backend;
     opt.threads = 1;  // the cases already run on every core (ComputeCases): no nested workers
     const std::vector<double> angles = internal::CaseAngles(study, stage);
-    const auto results = transmission::Sweep(transmission::StageModel(stage, compliance, setup),
-                                             scene.loads, angles, opt);
+    // A case with its own bodies (a crack's depth) gets its own tables: the healthy ones read
+    // from the cache, the cracked gear's damaged rows built (or read) for its crack.
+    std::unique_ptr<transmission::FeStageCompliance> own;
+    if (study.VariesBodies()) {
+      transmission::FeComplianceOptions fe;
+      fe.cache_directory = cache_directory;
+      own = std::make_unique<transmission::FeStageCompliance>(scene, stage, fe);
+    }
+    const auto results = transmission::Sweep(
+        transmission::StageModel(stage, own ? *own : compliance, setup), scene.loads, angles, opt);
     const transmission::SweepSummary s = transmission::SummariseSweep(results, stage.planets());
     row.positions = s.positions;
     row.converged = s.converged;
@@ -351,8 +359,9 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
     const std::string where = path + ":" + std::to_string(number);
     if (!line.empty() && line.back() == '\r')
       throw std::invalid_argument(
-          where + ": the line ends in CR (carriage return): the file was converted to CRLF line "
-                  "ends after it was written; convert it back (dos2unix) to resume it");
+          where +
+          ": the line ends in CR (carriage return): the file was converted to CRLF line "
+          "ends after it was written; convert it back (dos2unix) to resume it");
     if (!header && line.rfind("# study ", 0) == 0) {
       if (line != internal::StudyLine(study))
         throw std::invalid_argument(where + ": the rows were written by another study ('" + line +
@@ -399,8 +408,8 @@ RunReport RunStudy(const StudySpec& study, const RunOptions& options) {
     report.table_messages = compliance->tables().messages();
     const auto t1 = std::chrono::steady_clock::now();
     report.table_seconds = std::chrono::duration<double>(t1 - t0).count();
-    internal::ComputeCases(study, *compliance, missing, options.threads, options.max_new_cases,
-                           [&](const CaseRow& row) {
+    internal::ComputeCases(study, *compliance, options.cache_directory, missing, options.threads,
+                           options.max_new_cases, [&](const CaseRow& row) {
                              writer.Write(row.Format());
                              report.rows.push_back(row);
                              ++report.computed;

@@ -42,8 +42,8 @@ class RowWriter {
 
 /// The ids on a pool of `threads` workers; `sink` sees each row under one lock.
 void ComputeCases(const StudySpec& study, const transmission::StageCompliance& compliance,
-                  const std::vector<long>& ids, int threads, long limit,
-                  const std::function<void(const CaseRow&)>& sink);
+                  const std::string& cache_directory, const std::vector<long>& ids, int threads,
+                  long limit, const std::function<void(const CaseRow&)>& sink);
 
 /// The FE compliance of the base scene's nominal bodies, shared by every case.
 std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(

@@ -61,8 +61,7 @@ std::vector<double> SampleCase(const StudySpec& study, long case_id) {
   long grid_index = case_id % study.GridPoints();
   for (std::size_t j = 0; j < study.variables.size(); ++j) {
     const Variable& v = study.variables[j];
-    const double to_file =
-        v.quantity == Quantity::kTorque || v.quantity == Quantity::kPitWidth ? 1.0 : 1e6;
+    const double to_file = SiToFile(v.quantity);
     CaseStream rng(study.seed, case_id, static_cast<int>(j));
     double x = 0.0;
     switch (v.distribution) {
@@ -93,8 +92,7 @@ transmission::Scene CaseScene(const StudySpec& study, const std::vector<double>&
   std::size_t c = 0;
   for (const Variable& v : study.variables) {
     const double x = values.at(c++);
-    const double si =
-        v.quantity == Quantity::kTorque || v.quantity == Quantity::kPitWidth ? x : x * 1e-6;
+    const double si = x * FileToSi(v.quantity);
     const auto i = static_cast<std::size_t>(v.target.planet);
     switch (v.quantity) {
       case Quantity::kPinRadial:
@@ -126,7 +124,8 @@ transmission::Scene CaseScene(const StudySpec& study, const std::vector<double>&
           throw std::invalid_argument(
               "sampled torque " + std::to_string(si) +
               " N m: must be non-zero with the sign of the scene's sun_torque_Nm = " +
-              std::to_string(study.scene.loads.sun_torque) + " (the loaded flanks are the scene's)");
+              std::to_string(study.scene.loads.sun_torque) +
+              " (the loaded flanks are the scene's)");
         scene.loads.sun_torque = si;
         break;
       case Quantity::kPitDepth:
@@ -141,6 +140,21 @@ transmission::Scene CaseScene(const StudySpec& study, const std::vector<double>&
               std::to_string(depth ? si * 1e6 : si) + (depth ? " um" : "") + ": must be in (0, " +
               std::to_string(depth ? hi * 1e6 : hi) + "] (the scene's depth_um, width_fraction)");
         (depth ? p.depth : p.width_fraction) = si;
+        break;
+      }
+      case Quantity::kCrackDepth: {
+        compliance::RootCrack& k =
+            scene.damage.cracks.at(static_cast<std::size_t>(v.target.crack)).crack;
+        if (!(si > 0))
+          throw std::invalid_argument("sampled crack" + std::to_string(v.target.crack) + " depth " +
+                                      std::to_string(si * 1e3) +
+                                      " mm: must be > 0 (the scene's depth_mm)");
+        if (k.path.size() == 1) {
+          k.path[0].length = si;
+        } else {
+          const double scale = si / k.depth();  // a polyline's segments alike
+          for (compliance::CrackSegment& g : k.path) g.length *= scale;
+        }
         break;
       }
     }

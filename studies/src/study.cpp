@@ -27,16 +27,18 @@ struct QuantityInfo {
   const char* key;   // the study file's name
   const char* unit;  // the suffix of its value keys
   double scale;      // file unit → SI
+  double to_file;    // SI → file unit, exactly 1/scale as written
 };
 
 constexpr QuantityInfo kQuantities[] = {
-    {Quantity::kPinRadial, "pin_radial", "um", kUm},
-    {Quantity::kPinTangential, "pin_tangential", "um", kUm},
-    {Quantity::kRunout, "runout", "um", kUm},
-    {Quantity::kThickness, "thickness", "um", kUm},
-    {Quantity::kTorque, "torque", "Nm", 1.0},
-    {Quantity::kPitDepth, "pit_depth", "um", kUm},
-    {Quantity::kPitWidth, "pit_width", "fraction", 1.0},
+    {Quantity::kPinRadial, "pin_radial", "um", kUm, 1e6},
+    {Quantity::kPinTangential, "pin_tangential", "um", kUm, 1e6},
+    {Quantity::kRunout, "runout", "um", kUm, 1e6},
+    {Quantity::kThickness, "thickness", "um", kUm, 1e6},
+    {Quantity::kTorque, "torque", "Nm", 1.0, 1.0},
+    {Quantity::kPitDepth, "pit_depth", "um", kUm, 1e6},
+    {Quantity::kPitWidth, "pit_width", "fraction", 1.0, 1.0},
+    {Quantity::kCrackDepth, "crack_depth", "mm", 1e-3, 1e3},
 };
 
 const QuantityInfo& Info(Quantity q) {
@@ -44,6 +46,13 @@ const QuantityInfo& Info(Quantity q) {
     if (i.quantity == q) return i;
   throw std::logic_error("studies: unknown quantity");
 }
+
+}  // namespace
+
+double FileToSi(Quantity q) { return Info(q).scale; }
+double SiToFile(Quantity q) { return Info(q).to_file; }
+
+namespace {
 
 std::string Num(double v) {
   std::ostringstream o;
@@ -75,16 +84,26 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
   const bool pit = v.quantity == Quantity::kPitDepth || v.quantity == Quantity::kPitWidth;
   if (v.quantity == Quantity::kTorque) {
     v.target.kind = Target::Kind::kNone;
+  } else if (v.quantity == Quantity::kCrackDepth) {
+    const auto cracks = static_cast<long>(scene.damage.cracks.size());
+    if (cracks == 0)
+      t.Fail("quantity", "\"" + qname + "\"",
+             "the scene '" + scene.source + "' has no [[damage.crack]] to vary");
+    v.target.kind = Target::Kind::kCrack;
+    v.target.crack = static_cast<int>(t.Integer(
+        "crack", Rule::Closed(0, static_cast<double>(cracks - 1))
+                     .Because("the index of one of the scene's " + std::to_string(cracks) +
+                              " [[damage.crack]] tables, from 0")));
   } else if (pit) {
     const auto pits = static_cast<long>(scene.damage.pits.size());
     if (pits == 0)
       t.Fail("quantity", "\"" + qname + "\"",
              "the scene '" + scene.source + "' has no [[damage.pit]] to vary");
     v.target.kind = Target::Kind::kPit;
-    v.target.pit = static_cast<int>(t.Integer(
-        "pit", Rule::Closed(0, static_cast<double>(pits - 1))
-                   .Because("the index of one of the scene's " + std::to_string(pits) +
-                            " [[damage.pit]] tables, from 0")));
+    v.target.pit = static_cast<int>(
+        t.Integer("pit", Rule::Closed(0, static_cast<double>(pits - 1))
+                             .Because("the index of one of the scene's " + std::to_string(pits) +
+                                      " [[damage.pit]] tables, from 0")));
   } else {
     std::vector<std::string> allowed;
     if (v.quantity != Quantity::kPinRadial && v.quantity != Quantity::kPinTangential)
@@ -127,6 +146,11 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
         "a pit's depth_um: more than 0, at most a quarter of the module");
   if (v.quantity == Quantity::kPitWidth)
     value_rule = Rule{0, 1, true, false, ""}.Because("a pit's width_fraction");
+  // A crack's depth: positive, within a module (the crack's own rule, inside its tooth, is
+  // checked per case: a case whose crack leaves the tooth fails with that message).
+  if (v.quantity == Quantity::kCrackDepth)
+    value_rule = Rule{0, scene.stage.sun.module / 1e-3, true, false, ""}.Because(
+        "a crack's depth_mm: more than 0, at most a module");
   if (dist == "normal") {
     if (v.quantity == Quantity::kRunout)
       t.Fail("distribution", "\"normal\"",
@@ -207,6 +231,8 @@ std::string Target::Name() const {
       return "planet" + std::to_string(planet + 1);
     case Kind::kPit:
       return "pit" + std::to_string(pit);
+    case Kind::kCrack:
+      return "crack" + std::to_string(crack);
     case Kind::kNone:
       break;
   }
@@ -228,6 +254,12 @@ long StudySpec::GridPoints() const {
 }
 
 long StudySpec::Cases() const { return GridPoints() * samples; }
+
+bool StudySpec::VariesBodies() const {
+  for (const Variable& v : variables)
+    if (v.quantity == Quantity::kCrackDepth) return true;
+  return false;
+}
 
 std::vector<std::string> StudySpec::Columns() const {
   std::vector<std::string> c;

@@ -6,8 +6,6 @@
 // sharing is the same either way.
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -20,7 +18,7 @@
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/summary.hpp"
 #include "figures.hpp"
-#include "program_runs.hpp"
+#include "quasistatic_program.hpp"
 #include "study_fixtures.hpp"
 
 using namespace epicycle;
@@ -57,16 +55,8 @@ nlohmann::json QuasiStatic(const test::TempDir& dir, double pin_um, int k) {
       dir.File("case" + std::to_string(k) + ".toml"),
       test::FileBytes(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage.toml") +
           "\n[[errors.pin]]\ngear = \"planet1\"\ntangential_um = " + std::to_string(pin_um) + "\n");
-  const std::string out = dir.File("qs" + std::to_string(k));
-  const pid_t pid =
-      test::SpawnQuiet({EPICYCLE_EXE, "quasistatic", scene, "--range", "cycle", "--positions",
-                        std::to_string(kPositions), "--sun", "fixed", "--stresses", "--threads",
-                        "1", "--quiet", "--cache", EPICYCLE_TEST_CACHE_DIR, "--out", out});
-  int status = 0;
-  waitpid(pid, &status, 0);
-  REQUIRE(WIFEXITED(status));
-  REQUIRE(WEXITSTATUS(status) == 0);
-  return nlohmann::json::parse(test::FileBytes(out + "/quasistatic_summary.json"));
+  return nlohmann::json::parse(test::QuasiStaticCycleSummary(
+      scene, kPositions, dir.File("qs" + std::to_string(k)), {"--stresses"}));
 }
 
 }  // namespace
@@ -181,8 +171,8 @@ TEST_CASE("study safety factors: each case's S_F and S_H those of quasistatic --
   base.insert(base.find(nu) + nu.size(), "bending_limit_MPa = 430.0\ncontact_limit_MPa = 1500.0\n");
   const std::string scene = test::WriteText(dir.File("rated.toml"), base);
   const studies::StudySpec study = studies::ParseStudy(
-      "[study]\nname = \"rated\"\nscene = \"" + scene + "\"\npositions = " +
-          std::to_string(kPositions) + "\nsun = \"fixed\"\nstresses = true\n" +
+      "[study]\nname = \"rated\"\nscene = \"" + scene +
+          "\"\npositions = " + std::to_string(kPositions) + "\nsun = \"fixed\"\nstresses = true\n" +
           "[[variable]]\nquantity = \"pin_tangential\"\ngear = \"planet1\"\n"
           "distribution = \"grid\"\nvalues_um = [0.0, 15.0]\n",
       "rated_study.toml", "");
@@ -203,21 +193,12 @@ TEST_CASE("study safety factors: each case's S_F and S_H those of quasistatic --
     REQUIRE(r.safety.size() == 2 * gears.size());
     for (const auto& b : back.rows)
       if (b.id == r.id) CHECK(b.safety == r.safety);
-    const std::string case_scene = test::WriteText(
-        dir.File("case" + std::to_string(r.id) + ".toml"),
-        base + "\n[[errors.pin]]\ngear = \"planet1\"\ntangential_um = " +
-            std::to_string(kPinUm[r.id]) + "\n");
-    const std::string out = dir.File("qs" + std::to_string(r.id));
-    const pid_t pid = test::SpawnQuiet(
-        {EPICYCLE_EXE, "quasistatic", case_scene, "--range", "cycle", "--positions",
-         std::to_string(kPositions), "--sun", "fixed", "--rating", "--threads", "1", "--quiet",
-         "--cache", EPICYCLE_TEST_CACHE_DIR, "--out", out});
-    int status = 0;
-    waitpid(pid, &status, 0);
-    REQUIRE(WIFEXITED(status));
-    REQUIRE(WEXITSTATUS(status) == 0);
-    const nlohmann::json qs =
-        nlohmann::json::parse(test::FileBytes(out + "/quasistatic_summary.json"));
+    const std::string case_scene =
+        test::WriteText(dir.File("case" + std::to_string(r.id) + ".toml"),
+                        base + "\n[[errors.pin]]\ngear = \"planet1\"\ntangential_um = " +
+                            std::to_string(kPinUm[r.id]) + "\n");
+    const nlohmann::json qs = nlohmann::json::parse(test::QuasiStaticCycleSummary(
+        case_scene, kPositions, dir.File("qs" + std::to_string(r.id)), {"--rating"}));
     for (const nlohmann::json& g : qs.at("rating").at("gears")) {
       const auto at = std::find(gears.begin(), gears.end(), g.at("gear").get<std::string>());
       REQUIRE(at != gears.end());
@@ -228,8 +209,8 @@ TEST_CASE("study safety factors: each case's S_F and S_H those of quasistatic --
                << r.safety[2 * k + 1] << " (program " << sh << ")");
       CHECK(std::abs(r.safety[2 * k] - sf) <= 1e-9 * sf);
       CHECK(std::abs(r.safety[2 * k + 1] - sh) <= 1e-9 * sh);
-      largest = std::max({largest, std::abs(r.safety[2 * k] - sf) / sf,
-                          std::abs(r.safety[2 * k + 1] - sh) / sh});
+      largest = std::max(
+          {largest, std::abs(r.safety[2 * k] - sf) / sf, std::abs(r.safety[2 * k + 1] - sh) / sh});
     }
   }
   test::VerifyRow("study safety factors, 2 cases x 5 gears: S_F and S_H per case",

@@ -209,3 +209,34 @@ TEST_CASE("study file: a spall's size as study variables", "[unit][studies]") {
   CHECK_THAT(StudyError(StudyText("", vars)),
              Contains("variable[0].quantity = \"pit_depth\"") && Contains("no [[damage.pit]]"));
 }
+
+TEST_CASE("study file: a root crack's depth as a study variable", "[unit][studies]") {
+  // The example scene's crack 0 (sun tooth 0, 2 mm at 45°): its depth on a grid.
+  const std::string scene = std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_runout_crack.toml";
+  const std::string vars =
+      "[[variable]]\nquantity = \"crack_depth\"\ncrack = 0\ndistribution = \"grid\"\n"
+      "values_mm = [0.5, 1.5]\n";
+  const std::string text =
+      "[study]\nname = \"crack\"\nscene = \"" + scene + "\"\nsamples = 1\n" + vars;
+  const studies::StudySpec s = studies::ParseStudy(text, "crack.toml", "");
+  REQUIRE(s.variables.size() == 1);
+  CHECK(s.VariesBodies());
+  CHECK(s.Columns() == std::vector<std::string>{"crack0.crack_depth_mm"});
+  REQUIRE(s.Cases() == 2);
+  for (long k = 0; k < s.Cases(); ++k) {
+    const auto v = studies::SampleCase(s, k);
+    const transmission::Scene c = studies::CaseScene(s, v);
+    CHECK(v[0] == Approx(k == 0 ? 0.5 : 1.5).epsilon(1e-15));  // through 1e-3 and back
+    REQUIRE(c.damage.cracks.at(0).crack.path.size() == 1);
+    CHECK(c.damage.cracks.at(0).crack.path[0].length == v[0] * 1e-3);
+    CHECK(c.damage.cracks.at(0).crack.path[0].angle ==
+          s.scene.damage.cracks[0].crack.path[0].angle);  // the rest of the crack is the scene's
+  }
+  CHECK_THAT(StudyError(test::Replace(text, "values_mm = [0.5, 1.5]", "values_mm = [0.0]")),
+             Contains("variable[0].values_mm") && Contains("(0, 4.23]"));
+  CHECK_THAT(StudyError(test::Replace(text, "crack = 0", "crack = 2")),
+             Contains("variable[0].crack = 2") && Contains("[[damage.crack]]"));
+  CHECK_THAT(StudyError(StudyText("", vars)),
+             Contains("variable[0].quantity = \"crack_depth\"") && Contains("no [[damage.crack]]"));
+  CHECK_FALSE(test::PinStudy("").VariesBodies());
+}

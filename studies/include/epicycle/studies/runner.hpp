@@ -45,10 +45,12 @@ struct CaseRow {
 /// then S_F_<gear>, S_H_<gear> per gear when rated (StudySpec::Rated); the check is last.
 std::string RowHeader(const StudySpec& study);
 
-/// Case k of the study on the shared (read-only) compliance of the nominal bodies. Never throws
-/// for a failed computation or a case the geometry rejects: the row says why (ok = false).
+/// Case k of the study on the shared (read-only) compliance of the nominal bodies, or, when the
+/// study varies the bodies (StudySpec::VariesBodies: a crack's depth), on the case's own tables
+/// (built or read from `cache_directory`; empty: built in memory). Never throws for a failed
+/// computation or a case the geometry rejects: the row says why (ok = false).
 CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance& compliance,
-                    long case_id);
+                    long case_id, const std::string& cache_directory = {});
 
 /// What a rows file already holds.
 struct ExistingRows {

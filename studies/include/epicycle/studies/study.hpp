@@ -23,7 +23,15 @@ enum class Quantity {
   kTorque,         ///< input torque on the sun T [N·m]
   kPitDepth,       ///< depth d of one of the scene's pits [m] (transmission::Pit::depth)
   kPitWidth,       ///< width fraction w of one of the scene's pits [-]
+  /// depth q of one of the scene's root cracks [m] (compliance::RootCrack::depth: a polyline's
+  /// segments scaled alike); a case with its own crack builds its own damaged rows (cached)
+  kCrackDepth,
 };
+
+/// The factor from a quantity's study-file unit to SI (µm: 1e-6; mm: 1e-3; N·m and fractions: 1)
+/// and its inverse as written exactly (1e6, 1e3, 1), for the rows' values.
+double FileToSi(Quantity q);
+double SiToFile(Quantity q);
 
 enum class Distribution {
   kNormal,   ///< mean + σ·Z, Z standard normal
@@ -34,10 +42,11 @@ enum class Distribution {
 
 /// The gear a variable belongs to: sun, ring or planet i (0-based), or one of the scene's pits.
 struct Target {
-  enum class Kind { kSun, kRing, kPlanet, kNone, kPit } kind = Kind::kNone;
+  enum class Kind { kSun, kRing, kPlanet, kNone, kPit, kCrack } kind = Kind::kNone;
   int planet = 0;  ///< 0-based, Kind::kPlanet
   int pit = 0;     ///< index in the scene's [[damage.pit]], Kind::kPit
-  /// "sun", "ring", "planet1", ..., "pit0", ... or "stage" (the torque)
+  int crack = 0;   ///< index in the scene's [[damage.crack]], Kind::kCrack
+  /// "sun", "ring", "planet1", ..., "pit0", ..., "crack0", ... or "stage" (the torque)
   std::string Name() const;
 };
 
@@ -93,6 +102,9 @@ struct StudySpec {
   /// also gives every gear's safety factors from its own run (transmission::RateStage's model
   /// columns: S_F from the largest root tension, S_H from the largest line-of-action pressure).
   bool Rated() const;
+  /// True when a variable changes the bodies' compliance (a crack's depth): each case then
+  /// builds its own tables (from the cache) instead of sharing the nominal ones.
+  bool VariesBodies() const;
 };
 
 /// @throws std::invalid_argument naming the file, line, key, value and rule (an unknown
