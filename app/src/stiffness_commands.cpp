@@ -47,14 +47,19 @@ void RunStiffness(const StiffnessArgs& a) {
       transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, a.mesh);
   const geometry::GearPair pair = transmission::MakePair(scene, setup.spec);
   const transmission::FeComplianceOptions fe = TableOptions(a.cache, a.no_cache);
-  std::printf("%s: mesh %s, torque on gear 1 %.3f N m, %d positions over one mesh cycle\n",
-              scene.name.c_str(), setup.mesh.c_str(), setup.torque, a.positions);
+  // A damaged tooth: the cycles it meshes in, framed by healthy ones (one cycle otherwise).
+  const auto [first, cycles] = transmission::DamagedToothCycles(setup, pair);
+  std::printf("%s: mesh %s, torque on gear 1 %.3f N m, %d positions per cycle, cycles %d..%d\n",
+              scene.name.c_str(), setup.mesh.c_str(), setup.torque, a.positions, first,
+              first + cycles - 1);
   const transmission::FePairCompliance compliance(scene, pair, fe, setup.gears);
   for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
   for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
 
   transmission::MeshStiffnessOptions opt;
-  opt.positions = a.positions;
+  opt.positions = a.positions * cycles;
+  opt.first_cycle = first;
+  opt.cycles = cycles;
   opt.threads = a.threads;
   opt.backend = solvers::BackendFromName(a.backend);
   opt.local_terms = !a.no_local;
@@ -93,6 +98,13 @@ void RunStiffness(const StiffnessArgs& a) {
   j["local_terms"] = !a.no_local;
   j["plane"] = scene.model.plane == solvers::PlaneAssumption::kPlaneStrain ? "strain" : "stress";
   j["join_depth_mm"] = {compliance.JoiningDepth(0) * 1e3, compliance.JoiningDepth(1) * 1e3};
+  if (first != 0 || cycles != 1) {  // the same cycles with healthy teeth, beside
+    const auto healthy = transmission::ComputeHealthyMeshStiffness(scene, setup, pair, fe, opt);
+    std::printf("  healthy teeth, same cycles: mean %.4e N/m (damaged %+.2f %%), %.4e .. %.4e\n",
+                healthy.mean_stiffness, 100 * (result.mean_stiffness / healthy.mean_stiffness - 1),
+                healthy.min_stiffness, healthy.max_stiffness);
+    j["healthy"] = report::MeshStiffnessJson(pair, healthy, c_prime, c_gamma);
+  }
   WriteTextFile(base + ".json", j.dump(2) + "\n");
   std::printf("\nwrote %s.csv, %s.svg, %s.json\n", base.c_str(), base.c_str(), base.c_str());
   if (result.failed > 0)
@@ -109,7 +121,7 @@ void RegisterStiffnessCommands(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--mesh", a.mesh, "Mesh of a stage: sun-planet1, planet1-ring, ...");
-  AddNumber(cmd, "--positions", a.positions, "Positions over one mesh cycle",
+  AddNumber(cmd, "--positions", a.positions, "Positions per mesh cycle",
             {2, 1e5, false, true, "", ""});
   AddNumber(cmd, "--threads", a.threads,
             "Worker threads: the positions in contiguous chunks, one per thread (0: one per core)",

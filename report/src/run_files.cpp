@@ -642,7 +642,7 @@ void WriteMeshStiffnessPlot(const std::string& path, const std::string& title,
   const double b = face_width;
   LinePlot plot;
   plot.title = title;
-  plot.x_label = "gear 1 rotation in the mesh cycle [deg]";
+  plot.x_label = "gear 1 rotation [deg]";
   plot.y_label = "stiffness per face width [N/(mm um)]";
   PlotSeries mesh{"mesh", {}, {}};
   std::map<std::string, PlotSeries> pairs;

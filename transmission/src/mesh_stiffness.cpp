@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 
 #include "epicycle/solvers/contact_problem.hpp"
@@ -70,6 +71,11 @@ void MeshStiffnessOptions::Validate() const {
     throw std::invalid_argument("mesh stiffness: max_geometric_iterations = " +
                                 std::to_string(max_geometric_iterations) + ": must be at least 1");
   }
+  if (cycles < 1 || first_cycle < 0) {
+    throw std::invalid_argument("mesh stiffness: cycles = " + std::to_string(cycles) +
+                                ", first_cycle = " + std::to_string(first_cycle) +
+                                ": must be >= 1 and >= 0");
+  }
   if (threads < 0) {
     throw std::invalid_argument("mesh stiffness: threads = " + std::to_string(threads) +
                                 ": must be >= 0 (0: one per core)");
@@ -99,7 +105,7 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
   std::vector<solvers::LocalTermParameters> local;  // of the last problem built
   std::vector<int> source;                          // a pitted contact's strips: damage.hpp
   std::vector<ContactStrip> strips;
-  geometry::PairPoses built;                        // the poses of the last problem built
+  geometry::PairPoses built;  // the poses of the last problem built
   GeometricIterationOptions iteration;
   iteration.max_iterations = options.max_geometric_iterations;
   iteration.tolerance = options.geometric_tolerance;
@@ -131,8 +137,7 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
           strips.assign(contacts.size(), ContactStrip{});
         }
         const int n = static_cast<int>(contacts.size());
-        if (n == 0)
-          return {StageStatus::kNoContact, "no potential contact within the gap window"};
+        if (n == 0) return {StageStatus::kNoContact, "no potential contact within the gap window"};
         d.overlap.resize(n);
         d.equality_matrix.resize(1, n);
         d.equality_rhs = Eigen::VectorXd::Constant(1, setup.torque);
@@ -208,8 +213,7 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
 
 }  // namespace
 
-MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup,
-                                         const geometry::GearPair& pair,
+MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geometry::GearPair& pair,
                                          const FePairCompliance& compliance,
                                          const MeshStiffnessOptions& options,
                                          const std::function<void(const MeshSample&)>& on_sample) {
@@ -232,7 +236,9 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup,
   internal::RunOrderedChunks(
       options.positions, options.threads, options.backend,
       [&](int k, bool, solvers::ContactSolver& solver) {
-        const double angle = pair.mesh_cycle() * k / options.positions;
+        const double angle =
+            pair.mesh_cycle() *
+            (options.first_cycle + static_cast<double>(options.cycles) * k / options.positions);
         r.samples[static_cast<std::size_t>(k)] =
             SolveSample(setup, damage, pair, compliance, options, solver, angle);
       },
@@ -256,6 +262,61 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup,
   r.root_stress = root_stress.Result();
   if (good == 0) r.min_stiffness = 0.0;
   return r;
+}
+
+std::array<int, 2> DamagedToothCycles(const MeshPairSetup& setup, const geometry::GearPair& pair) {
+  // The damaged teeth of each gear: pits and cracks named by the setup's gear names.
+  std::vector<int> teeth[2];
+  for (int g = 0; g < 2; ++g) {
+    for (const Pit& p : setup.damage.pits)
+      if (p.gear == setup.gears.at(g)) teeth[g].push_back(p.tooth);
+    for (const Crack& c : setup.damage.cracks)
+      if (c.gear == setup.gears.at(g)) teeth[g].push_back(c.crack.tooth);
+  }
+  if (teeth[0].empty() && teeth[1].empty()) return {0, 1};
+  const int z1 = pair.gear1().teeth(), z2 = pair.gear2().teeth();
+  // Over the period in which every damaged tooth comes round (z1 cycles for gear 1's teeth, z2 for
+  // gear 2's; both: their least common multiple), the cycles where one is within the window.
+  const int period = teeth[1].empty() ? z1 : teeth[0].empty() ? z2 : z1 / std::gcd(z1, z2) * z2;
+  constexpr int kPerCycle = 8;
+  geometry::ContactSearchOptions search;
+  search.gap_window = setup.gap_window;
+  std::vector<char> meshes(static_cast<std::size_t>(period), 0);
+  for (int c = 0; c < period; ++c) {
+    for (int f = 0; f < kPerCycle && !meshes[c]; ++f) {
+      const double angle = pair.mesh_cycle() * (c + static_cast<double>(f) / kPerCycle);
+      for (const geometry::PotentialContact& k : pair.Contacts(pair.Poses(angle), search)) {
+        for (int t : teeth[0]) meshes[c] = meshes[c] || k.tooth_a == t;
+        for (int t : teeth[1]) meshes[c] = meshes[c] || k.tooth_b == t;
+      }
+    }
+  }
+  // The cycles from the end of the longest run of cycles without the damage (cyclically: a tooth
+  // meshing across the period's start is one run), with one cycle of margin each side so that
+  // healthy cycles frame it; the sweep may run past the period (the rotation is periodic).
+  int gap = 0, gap_end = -1;  // longest run of quiet cycles and the cycle after it
+  for (int c = 0, run = 0; c < 2 * period; ++c) {
+    run = meshes[static_cast<std::size_t>(c % period)] ? 0 : run + 1;
+    if (run > gap && run <= period) {
+      gap = run;
+      gap_end = (c + 1) % period;
+    }
+  }
+  if (gap == 0) return {0, period};        // always meshing
+  if (gap == period) return {0, 1};        // never within the window
+  if (gap <= 2) return {gap_end, period};  // no quiet cycles to frame it with
+  return {(gap_end + period - 1) % period, period - gap + 2};
+}
+
+MeshStiffnessResult ComputeHealthyMeshStiffness(const Scene& scene, const MeshPairSetup& setup,
+                                                const geometry::GearPair& pair,
+                                                const FeComplianceOptions& fe,
+                                                const MeshStiffnessOptions& options) {
+  Scene healthy = scene;
+  MeshPairSetup healthy_setup = setup;
+  healthy.damage = healthy_setup.damage = {};
+  return ComputeMeshStiffness(healthy_setup, pair, FePairCompliance(healthy, pair, fe, setup.gears),
+                              options);
 }
 
 compliance::iso6336::PairData IsoPairData(const geometry::GearPair& pair) {

@@ -199,10 +199,11 @@ TEST_CASE("pitting: a full-width pit changes the rigid transmission error by its
   // Both kinds of positions occur in the cycle (ε_α = 1.64: the single-pair zone is 36 %).
   CHECK(alone >= 4);
   CHECK(shared >= 4);
-  Figure("pitting: rigid TE change, full-width pit 20 um: positions alone / shared / between / "
-         "worst error: " +
-         std::to_string(alone) + " / " + std::to_string(shared) + " / " +
-         std::to_string(between) + " / " + test::Sci(worst) + " m");
+  Figure(
+      "pitting: rigid TE change, full-width pit 20 um: positions alone / shared / between / "
+      "worst error: " +
+      std::to_string(alone) + " / " + std::to_string(shared) + " / " + std::to_string(between) +
+      " / " + test::Sci(worst) + " m");
 }
 
 TEST_CASE("pitting: a spall's intact strip has the local term of the remaining width",
@@ -345,10 +346,9 @@ TEST_CASE("pitting: a spall lowers the ISO 20/40 pair's mesh stiffness within it
     auto approach = [&](const transmission::MeshSample& m, int j, double width) {
       const std::vector<geometry::PotentialContact> one{m.contacts[static_cast<std::size_t>(j)]};
       solvers::LocalTermParameters l;
-      REQUIRE(transmission::ContactLocalTerm(one[0], Iso().pair.gear1(), Iso().pair.gear2(),
-                                             Iso().fe.material(), Iso().fe.plane(),
-                                             Iso().fe.JoiningDepth(0), Iso().fe.JoiningDepth(1),
-                                             "", &l)
+      REQUIRE(transmission::ContactLocalTerm(
+                  one[0], Iso().pair.gear1(), Iso().pair.gear2(), Iso().fe.material(),
+                  Iso().fe.plane(), Iso().fe.JoiningDepth(0), Iso().fe.JoiningDepth(1), "", &l)
                   .ok());
       return Iso().fe.Matrix(Iso().pair, m.poses, one)(0, 0) * force +
              HertzApproach(l, width, force);
@@ -365,9 +365,76 @@ TEST_CASE("pitting: a spall lowers the ISO 20/40 pair's mesh stiffness within it
   }
   CHECK(single >= 2);
   Figure("pitting: ISO 20/40 mean stiffness drop, spall w 0.5, 20 um: " +
-         test::Sci(1 - s.mean_stiffness / healthy.mean_stiffness) + " (tooth removed: " +
-         std::to_string(r.failed) + " of " + std::to_string(kPositions) +
+         test::Sci(1 - s.mean_stiffness / healthy.mean_stiffness) +
+         " (tooth removed: " + std::to_string(r.failed) + " of " + std::to_string(kPositions) +
          " positions without a loaded contact)");
   Figure("pitting: single-pair approach growth against the reference (worst relative): " +
          test::Sci(worst_single));
+}
+
+TEST_CASE(
+    "pitting: the stiffness sweep of a damaged pair covers the cycles its tooth meshes in, "
+    "framed by healthy cycles",
+    "[reference][transmission]") {
+  // A full-width 20 µm pit over gear 2's tooth 7's whole involute (flank of the load): the sweep
+  // (DamagedToothCycles) must hold every position where the tooth carries load, and its first
+  // and last cycles must be healthy, equal to the healthy pair's there (bit-identical: the same
+  // solves), while inside somewhere the pit acts.
+  IsoPair& p = Iso();
+  const geometry::Gear& g2 = p.pair.gear2();
+  transmission::MeshPairSetup setup = p.setup;
+  transmission::Pit pit;
+  pit.gear = "gear2";
+  pit.tooth = 7;
+  pit.roll_from = g2.involute().u_min;
+  pit.roll_to = g2.involute().u_max;
+  pit.width_fraction = 1.0;
+  pit.depth = 20e-6;
+  for (int flank : {1, -1}) {
+    pit.flank = flank;
+    setup.damage.pits.push_back(pit);
+  }
+  const auto [first, cycles] = transmission::DamagedToothCycles(setup, p.pair);
+  REQUIRE(cycles >= 3);
+  constexpr int kPerCycle = 8;
+  transmission::MeshStiffnessOptions o;
+  o.positions = kPerCycle * cycles;
+  o.first_cycle = first;
+  o.cycles = cycles;
+  o.threads = 1;
+  const transmission::MeshStiffnessResult d =
+      transmission::ComputeMeshStiffness(setup, p.pair, p.fe, o);
+  transmission::MeshPairSetup healthy_setup = p.setup;
+  const transmission::MeshStiffnessResult h =
+      transmission::ComputeMeshStiffness(healthy_setup, p.pair, p.fe, o);
+  // Where the healthy pair loads tooth 7 of gear 2 (every such position of the pair's period
+  // lies in the sweep: counted over a full turn of gear 2, z2 cycles).
+  auto loads_tooth = [](const transmission::MeshSample& s) {
+    for (std::size_t j = 0; j < s.contacts.size(); ++j)
+      if (s.force(static_cast<Eigen::Index>(j)) > 0 && s.contacts[j].tooth_b == 7) return true;
+    return false;
+  };
+  int inside = 0;
+  for (const transmission::MeshSample& s : h.samples) inside += loads_tooth(s) ? 1 : 0;
+  transmission::MeshStiffnessOptions turn = o;
+  turn.first_cycle = 0;
+  turn.cycles = p.pair.gear2().teeth();
+  turn.positions = kPerCycle * turn.cycles;
+  int all = 0;
+  for (const transmission::MeshSample& s :
+       transmission::ComputeMeshStiffness(healthy_setup, p.pair, p.fe, turn).samples)
+    all += loads_tooth(s) ? 1 : 0;
+  CHECK(inside > 0);
+  CHECK(inside == all);
+  bool acts = false;
+  for (int k = 0; k < o.positions; ++k) {
+    const bool margin = k < kPerCycle || k >= o.positions - kPerCycle;
+    const double dk = d.samples[k].mesh_stiffness, hk = h.samples[k].mesh_stiffness;
+    if (margin) CHECK(dk == hk);
+    acts = acts || dk < hk * (1 - 1e-6);
+  }
+  CHECK(acts);
+  Figure("pitting: damaged-tooth sweep cycles " + std::to_string(first) + ".." +
+         std::to_string(first + cycles - 1) + ", positions loading the tooth " +
+         std::to_string(inside) + " of " + std::to_string(all) + " over gear 2's turn");
 }

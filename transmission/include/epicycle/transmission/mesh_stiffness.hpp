@@ -1,8 +1,9 @@
 // Mesh stiffness of one gear pair over a mesh cycle at a given load (the hybrid model: FE
-// structural term + local contact term, docs/model.md §4), with each tooth pair's stiffness and load
-// share: the quantity ISO 6336-1 (c′, c_γα) and the potential-energy method are compared with.
+// structural term + local contact term, docs/model.md §4), with each tooth pair's stiffness and
+// load share: the quantity ISO 6336-1 (c′, c_γα) and the potential-energy method are compared with.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -40,7 +41,11 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
                            const std::string& mesh);
 
 struct MeshStiffnessOptions {
-  int positions = 60;  ///< samples over one mesh cycle [-], ≥ 2
+  int positions = 60;  ///< samples over the sweep (all its cycles) [-], ≥ 2
+  /// The sweep covers gear-1 rotations [first_cycle, first_cycle + cycles) mesh cycles [-]
+  /// (DamagedToothCycles: the cycles a damaged tooth meshes in); cycles ≥ 1, first_cycle ≥ 0.
+  int first_cycle = 0;
+  int cycles = 1;
   solvers::Backend backend = solvers::Backend::kActiveSetNewton;
   solvers::ContactOptions contact;
   bool local_terms = true;  ///< add the nonlinear local term (false: structural only)
@@ -111,23 +116,38 @@ struct MeshStiffnessResult {
   double peak_pair_per_width() const { return peak_pair_stiffness / face_width / 1e9; }
 };
 
-/// Sweeps one mesh cycle of gear 1: at every position, contact search → FE compliance → contact
-/// problem with the moment equilibrium of gear 1 (gear 2 held) → back end, repeated at the moved
-/// position until the rotation settles. A position that fails is reported in its sample and the
-/// sweep goes on. With a compliance that has root stresses (FePairCompliance::has_root_stress)
-/// every converged sample carries its fillet stresses and the result their summary; without, no
-/// stress is computed. The positions run on options.threads workers; `on_sample` (if given) sees
-/// each sample in the order of the positions as soon as it and every earlier one are computed
-/// (under a lock, from any worker).
+/// The mesh cycles [first, first + count) of gear 1's rotation (as MeshStiffnessOptions) in which
+/// a tooth of `setup`'s damage (a pit or a root crack on gear 1 or gear 2) comes within the gap
+/// window of its mate, found by the rigid contact search at 8 angles per cycle over the pair's
+/// period for that tooth (z of its gear cycles); with one cycle of margin each side. {0, 1} for a
+/// pair without damage on its gears. Several damaged teeth: the cycles from the first to the last
+/// of them (at most z1 z2 / gcd cycles).
+std::array<int, 2> DamagedToothCycles(const MeshPairSetup& setup, const geometry::GearPair& pair);
+
+/// Sweeps options.cycles mesh cycles of gear 1 from options.first_cycle: at every position, contact
+/// search → FE compliance → contact problem with the moment equilibrium of gear 1 (gear 2 held) →
+/// back end, repeated at the moved position until the rotation settles. A position that fails is
+/// reported in its sample and the sweep goes on. With a compliance that has root stresses
+/// (FePairCompliance::has_root_stress) every converged sample carries its fillet stresses and the
+/// result their summary; without, no stress is computed. The positions run on options.threads
+/// workers; `on_sample` (if given) sees each sample in the order of the positions as soon as it and
+/// every earlier one are computed (under a lock, from any worker).
 MeshStiffnessResult ComputeMeshStiffness(
-    const MeshPairSetup& setup, const geometry::GearPair& pair,
-    const FePairCompliance& compliance, const MeshStiffnessOptions& options,
+    const MeshPairSetup& setup, const geometry::GearPair& pair, const FePairCompliance& compliance,
+    const MeshStiffnessOptions& options,
     const std::function<void(const MeshSample&)>& on_sample = {});
 
 /// The pair's data for ISO 6336-1 method B (c′, c_γα): tooth counts, shifts, the basic-rack
 /// dedendum h_fP/m of each gear (the rack's addendum, or for a directly defined ring its root
 /// depth below the shifted reference circle), tool pressure angle, C_R = 1 (solid bodies) and
 /// ε_α from the tip circles.
+/// ComputeMeshStiffness of the same pair and options with the scene's damage left out: the healthy
+/// teeth beside a damaged run (`epicycle stiffness` of a damaged pair). Its own tables (`fe`).
+MeshStiffnessResult ComputeHealthyMeshStiffness(const Scene& scene, const MeshPairSetup& setup,
+                                                const geometry::GearPair& pair,
+                                                const FeComplianceOptions& fe,
+                                                const MeshStiffnessOptions& options);
+
 compliance::iso6336::PairData IsoPairData(const geometry::GearPair& pair);
 
 }  // namespace epicycle::transmission
