@@ -100,6 +100,11 @@ void RunDynamic(const DynamicArgs& a) {
       stage, model.carrier_speed(), transmission::RunRangeFromName(a.range), a.time.value_or(0.0),
       a.outputs_per_cycle > 0 ? a.outputs_per_cycle : 20);
   const double duration = span.duration, mesh_hz = span.mesh_frequency;
+  const std::string cost = dynamics::RunCostWarning(  // a run of hours: said before it starts
+      span, model.sun_speed() * 30 / std::numbers::pi,
+      a.time ? fmt::format("--time = {} s", *a.time) : "--range " + a.range,
+      a.speed_rpm ? fmt::format("--speed-rpm = {}", *a.speed_rpm) : "[dynamics] sun_speed_rpm");
+  if (!cost.empty()) std::fprintf(stderr, "warning: %s\n", cost.c_str());
   const int outputs = span.outputs;
   std::optional<dynamics::SpectrumOptions> spectrum;  // bad options before the run
   if (a.spectrum)
@@ -158,6 +163,7 @@ void RunDynamic(const DynamicArgs& a) {
 
   // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
   std::vector<std::string> warnings = scene.warnings;
+  if (!cost.empty()) warnings.push_back(cost);
   for (const std::string& w : dynamics::DynamicWarnings(stage, result.samples))
     warnings.push_back(w);
   PrintWarnings(warnings);

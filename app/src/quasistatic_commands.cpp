@@ -31,6 +31,8 @@ namespace {
 
 using json = nlohmann::json;
 
+constexpr int kListedFailures = 100;  // failed positions listed in the report and the JSON
+
 struct QuasiStaticArgs {
   std::string scene, backend = "newton", out = "quasistatic-out", range = "cycle", sun, cache, dump,
                      friction = "off";
@@ -49,16 +51,18 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   const geometry::Stage stage = transmission::MakeStage(scene);
   const int n = stage.planets();
 
+  // The carrier angles: the list given, or `count` over the range (computed as they are needed).
   std::vector<double> angles;
-  if (!a.angles_deg.empty()) {
-    for (double d : a.angles_deg) angles.push_back(geometry::Rad(d));
-  } else {
-    const transmission::RunRange range = transmission::RunRangeFromName(a.range);
-    const int count =
-        a.positions > 0 ? a.positions : (range == transmission::RunRange::kMeshCycle ? 36 : 360);
-    angles = transmission::SweepAngles(geometry::Rad(a.start_deg),
-                                       transmission::CarrierSpan(stage, range), count);
-  }
+  for (double d : a.angles_deg) angles.push_back(geometry::Rad(d));
+  const transmission::RunRange range = transmission::RunRangeFromName(a.range);
+  const int count = !angles.empty() ? static_cast<int>(angles.size())
+                    : a.positions > 0 ? a.positions
+                                      : (range == transmission::RunRange::kMeshCycle ? 36 : 360);
+  const double start = geometry::Rad(a.start_deg), span = transmission::CarrierSpan(stage, range);
+  const auto angle = [&](int k) {
+    return angles.empty() ? transmission::SweepAngle(start, span, k, count)
+                          : angles[static_cast<std::size_t>(k)];
+  };
 
   const transmission::FeComplianceOptions fe = TableOptions(a.cache, a.no_cache);
   const auto t0 = std::chrono::steady_clock::now();
@@ -74,21 +78,6 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   opt.warm_start = !a.cold;
   transmission::SetRestFriction(scene.dynamics, a.friction, &opt);
   const bool friction = opt.friction.law != transmission::FrictionLaw::kOff;
-  if (angles.size() > 10000) {
-    // Every result is kept until the summary: refuse a sweep the machine cannot hold now
-    // (estimated from the first position's result) before computing it.
-    try {
-      transmission::CheckSweepMemory(
-          transmission::SolvePosition(model, angles.front(), scene.loads, opt), angles.size(),
-          transmission::AvailableMemoryBytes());
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument((a.angles_deg.empty()
-                                       ? fmt::format("--positions = {}: ", a.positions)
-                                       : std::string("--angles-deg: ")) +
-                                  e.what());
-    }
-  }
-
   const char* sun_name = transmission::SunSupportName(setup.sun);
   std::printf("%s: %d planets, sun %s, input torque %.1f N m, back end %s\n", scene.name.c_str(), n,
               sun_name, scene.loads.sun_torque, a.backend.c_str());
@@ -96,8 +85,8 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
   const std::string threads =
       a.threads == 0 ? std::string("one thread per core") : fmt::format("{} thread(s)", a.threads);
-  std::printf("  %zu positions from %.4f deg (%.2f s for the tables), %s, %s\n", angles.size(),
-              geometry::Deg(angles.front()), table_seconds,
+  std::printf("  %d positions from %.4f deg (%.2f s for the tables), %s, %s\n", count,
+              geometry::Deg(angle(0)), table_seconds,
               a.cold ? "every position cold" : "each warm-started from its neighbour",
               threads.c_str());
 
@@ -112,19 +101,26 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
                 opt.sun_speed * 30 / std::numbers::pi);
 
   const bool tty = !a.quiet && isatty(fileno(stderr));
+  // Every position is written, summarised and drawn as it comes, then let go (flat memory).
   int failed = 0;
-  std::vector<std::string> failures;
+  std::vector<std::string> failures;  // the first kListedFailures
+  transmission::SweepAccumulator accumulator(n);
+  transmission::ValidityTally tally(stage, "position(s)");
+  report::QuasiStaticPlots plots(base, n, count);
   const auto t1 = std::chrono::steady_clock::now();
-  const auto results = transmission::Sweep(
-      model, scene.loads, angles, opt, [&](const transmission::PositionResult& r, int k) {
+  transmission::SweepEach(
+      model, scene.loads, count, angle, opt, [&](const transmission::PositionResult& r, int k) {
         const double deg = geometry::Deg(r.carrier_angle);
         if (!r.converged) {
-          ++failed;
-          failures.push_back(fmt::format("{:.4f} deg: {}", deg, r.message));
+          if (++failed <= kListedFailures)
+            failures.push_back(fmt::format("{:.4f} deg: {}", deg, r.message));
           if (!tty)
             std::fprintf(stderr, "  position %.4f deg FAILED: %s\n", deg, r.message.c_str());
         }
         files.Write(r);
+        accumulator.Add(r);
+        tally.Add(r);
+        plots.Add(r);
         if (!a.dump.empty() && r.problem.data.compliance.size() > 0)
           report::WriteStageProblemFile(
               a.dump,
@@ -134,7 +130,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
               fmt::format("{} at carrier {:.4f} deg, sun {}, back end {}: {}", scene.name, deg,
                           sun_name, a.backend, r.converged ? "converged" : r.message));
         if (tty)
-          Progress(k + 1, static_cast<int>(angles.size()), failed,
+          Progress(k + 1, count, failed,
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(),
                    "positions");
       });
@@ -143,11 +139,10 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 
   std::vector<std::string> warnings = scene.warnings;
-  for (const std::string& w : transmission::QuasiStaticWarnings(stage, results))
-    warnings.push_back(w);
+  for (const std::string& w : tally.Messages()) warnings.push_back(w);
 
   // Summary over the converged positions (none converged: no statistics, "-" in the report).
-  const transmission::SweepSummary summary = transmission::SummariseSweep(results, n);
+  const transmission::SweepSummary summary = accumulator.Result();
   const int good = summary.converged;
   std::printf("\n  planet   LSR mean     LSR min      LSR max      (ideal 1/n = %.6f)\n", 1.0 / n);
   for (int i = 0; i < n; ++i) {
@@ -178,10 +173,12 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   std::optional<transmission::StageRating> rating;
   if (a.rating && good > 0) rating = transmission::RateStage(scene, stage, summary);
   if (rating) std::printf("%s", report::RatingText(*rating).c_str());
-  std::printf("  positions converged          %d of %zu, %.3f s (%.3f ms per position)\n", good,
-              angles.size(), sweep_seconds,
-              1e3 * sweep_seconds / static_cast<double>(angles.size()));
+  std::printf("  positions converged          %d of %d, %.3f s (%.3f ms per position)\n", good,
+              count, sweep_seconds, 1e3 * sweep_seconds / count);
   for (const std::string& f : failures) std::printf("  FAILED %s\n", f.c_str());
+  if (failed > kListedFailures)
+    std::printf("  and %d more failed (status and message in %s_positions.csv)\n",
+                failed - kListedFailures, base.c_str());
   PrintWarnings(warnings);
 
   json j = report::SweepSummaryJson(summary);  // the statistics, null where none converged
@@ -196,21 +193,22 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   if (friction) j["friction"] = transmission::FrictionLawName(opt.friction.law);
   if (rating) j["rating"] = report::RatingJson(*rating);
   j["threads"] = a.threads;  // 0: one per core
-  j["positions"] = angles.size();
+  j["positions"] = count;
   j["converged_positions"] = good;
-  j["failures"] = failures;
+  j["failures"] = failures;  // the first kListedFailures
+  if (failed > kListedFailures) j["failures_not_listed"] = failed - kListedFailures;
   j["sweep_seconds"] = sweep_seconds;
   j["table_seconds"] = table_seconds;
   WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
 
-  report::WriteQuasiStaticPlots(base, scene.name, sun_name, n, results);
+  plots.Write(scene.name, sun_name);
   std::printf(
       "\nwrote %s_positions.csv, _pairs.csv, _summary.json, _lsr.svg, _te.svg, _sun_path.svg\n",
       base.c_str());
   if (!a.dump.empty()) std::printf("wrote the contact problems to %s\n", a.dump.c_str());
   if (failed > 0)
     throw ComputationFailed(
-        fmt::format("{} of {} positions failed (listed above)", failed, angles.size()));
+        fmt::format("{} of {} positions failed (listed above)", failed, count));
 }
 
 }  // namespace

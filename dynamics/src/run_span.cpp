@@ -51,6 +51,27 @@ RunSpan MakeRunSpan(const geometry::Stage& stage, double carrier_speed,
   return s;
 }
 
+double ExpectedSteps(double duration, double sun_rpm) {
+  return duration * kStepsPerSecondAtOneRpm * std::sqrt(std::abs(sun_rpm));
+}
+
+std::string RunCostWarning(const RunSpan& span, double sun_rpm, const std::string& duration_source,
+                           const std::string& speed_source) {
+  const double steps = ExpectedSteps(span.duration, sun_rpm);
+  if (!(steps > kStepsWarning)) return "";
+  char text[600];
+  std::snprintf(text, sizeof text,
+                "%s (%.4g s of motion) at %s (%.4g rpm): about %.2g integrator steps expected "
+                "(%.0f steps per simulated second x sqrt(speed/rpm), the rate measured on the "
+                "paper's stage; friction can take several times more), more than %.0e: at "
+                "20-130 us a step %.0f to %.0f minutes; shorten the run, or use quasistatic at "
+                "speeds this low",
+                duration_source.c_str(), span.duration, speed_source.c_str(), std::abs(sun_rpm),
+                steps, kStepsPerSecondAtOneRpm, kStepsWarning, steps * 20e-6 / 60,
+                steps * 130e-6 / 60);
+  return text;
+}
+
 double MeshHzPerSunRpm(const geometry::Stage& stage) {
   return stage.ring().teeth() / stage.sun_ratio() / 60.0;
 }

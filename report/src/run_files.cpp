@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <utility>
 
@@ -70,8 +71,6 @@ void RootStressCells(std::string& line, const std::vector<compliance::FilletStre
   }
 }
 
-// The three figures of a run of a stage against x (carrier angle or time): LSR_i, the
-// transmission error at the sun [µrad], and the sun centre's path [µm] (equal axes).
 // Per planet its LSR mean, min and max [-] (null where there is none).
 nlohmann::json PlanetsJson(const std::vector<double>& mean, const std::vector<double>& min,
                            const std::vector<double>& max) {
@@ -84,25 +83,44 @@ nlohmann::json PlanetsJson(const std::vector<double>& mean, const std::vector<do
   return planets;
 }
 
+}  // namespace
+
+// The three figures of a run of a stage against x (carrier angle or time): LSR_i, the
+// transmission error at the sun [µrad], and the sun centre's path [µm] (equal axes). With `bin`
+// > 1 (a long run), each run of `bin` states adds its lowest and highest point of each series (in
+// their order) and the path its points nearest to and farthest from the origin, so that a peak
+// narrower than a bin still shows while the figures hold a bounded number of points.
 class RunFigures {
  public:
-  RunFigures(std::string base, int planets, std::string x_label)
-      : base_(std::move(base)), planets_(planets), x_label_(std::move(x_label)) {
-    for (int i = 0; i < planets_; ++i) lsr_.push_back({fmt::format("planet {}", i + 1), {}, {}});
+  RunFigures(std::string base, int planets, std::string x_label, long bin = 1)
+      : base_(std::move(base)), planets_(planets), x_label_(std::move(x_label)), bin_(bin) {
+    for (int i = 0; i < planets_; ++i) {
+      lsr_.push_back({fmt::format("planet {}", i + 1), {}, {}});
+      lsr_bin_.emplace_back();
+    }
   }
   void Add(double x, const std::vector<double>& load_sharing, double te_rad, double sun_x,
            double sun_y) {
-    for (int i = 0; i < planets_; ++i) {
-      lsr_[i].x.push_back(x);
-      lsr_[i].y.push_back(load_sharing[i]);
+    if (bin_ <= 1) {
+      for (int i = 0; i < planets_; ++i) {
+        lsr_[i].x.push_back(x);
+        lsr_[i].y.push_back(load_sharing[i]);
+      }
+      te_.x.push_back(x);
+      te_.y.push_back(te_rad * 1e6);
+      path_.x.push_back(sun_x * 1e6);
+      path_.y.push_back(sun_y * 1e6);
+      return;
     }
-    te_.x.push_back(x);
-    te_.y.push_back(te_rad * 1e6);
-    path_.x.push_back(sun_x * 1e6);
-    path_.y.push_back(sun_y * 1e6);
+    if (states_ > 0 && states_ % bin_ == 0) Flush();
+    ++states_;
+    for (int i = 0; i < planets_; ++i) lsr_bin_[i].Add(states_, x, load_sharing[i], load_sharing[i]);
+    te_bin_.Add(states_, x, te_rad * 1e6, te_rad);
+    path_bin_.Add(states_, sun_x * 1e6, sun_y * 1e6, std::hypot(sun_x, sun_y));
   }
   void Write(const std::string& lsr_title, const std::string& te_title,
              const std::string& path_title, const std::string& path_file) {
+    Flush();
     LinePlot l{lsr_title, x_label_, "LSR_i [-]", lsr_, false, {1.0 / planets_}};
     LinePlot t{te_title, x_label_, "sun rotation from kinematic [urad]", {te_}, false, {}};
     LinePlot p{path_title, "x [um]", "y [um]", {path_}, true, {}};
@@ -112,14 +130,48 @@ class RunFigures {
   }
 
  private:
+  // One series' points of the current bin with the smallest and largest key.
+  struct Extremes {
+    struct Point {
+      long state = 0;
+      double x = 0, y = 0, key = 0;
+    };
+    Point low, high;
+    bool empty = true;
+    void Add(long state, double x, double y, double key) {
+      const Point p{state, x, y, key};
+      if (empty || key < low.key) low = p;
+      if (empty || key > high.key) high = p;
+      empty = false;
+    }
+    void MoveTo(PlotSeries& series) {
+      if (empty) return;
+      const Point& first = low.state <= high.state ? low : high;
+      const Point& second = low.state <= high.state ? high : low;
+      series.x.push_back(first.x);
+      series.y.push_back(first.y);
+      if (second.state != first.state) {
+        series.x.push_back(second.x);
+        series.y.push_back(second.y);
+      }
+      empty = true;
+    }
+  };
+  void Flush() {
+    for (int i = 0; i < planets_; ++i) lsr_bin_[i].MoveTo(lsr_[i]);
+    te_bin_.MoveTo(te_);
+    path_bin_.MoveTo(path_);
+  }
+
   std::string base_;
   int planets_ = 0;
   std::string x_label_;
+  long bin_ = 1, states_ = 0;
   std::vector<PlotSeries> lsr_;
   PlotSeries te_{"TE", {}, {}}, path_{"sun centre", {}, {}};
+  std::vector<Extremes> lsr_bin_;
+  Extremes te_bin_, path_bin_;
 };
-
-}  // namespace
 
 nlohmann::json JsonValue(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
@@ -270,17 +322,23 @@ nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
   return j;
 }
 
-void WriteQuasiStaticPlots(const std::string& base, const std::string& scene_name,
-                           const std::string& sun_name, int planets,
-                           const std::vector<transmission::PositionResult>& results) {
-  RunFigures f{base, planets, "carrier angle [deg]"};
-  for (const auto& r : results)
-    if (r.converged)
-      f.Add(geometry::Deg(r.carrier_angle), r.load_sharing, r.transmission_error,
-            r.sun_displacement.x(), r.sun_displacement.y());
-  f.Write(scene_name + ": load-sharing ratio (sun " + sun_name + ")",
-          scene_name + ": loaded static transmission error at the sun",
-          scene_name + ": sun centre path", "_sun_path.svg");
+QuasiStaticPlots::QuasiStaticPlots(const std::string& base, int planets, long positions)
+    : figures_(std::make_unique<RunFigures>(
+          base, planets, "carrier angle [deg]",
+          positions > kPlotPoints ? (positions + kPlotPoints / 2 - 1) / (kPlotPoints / 2) : 1)) {}
+
+QuasiStaticPlots::~QuasiStaticPlots() = default;
+
+void QuasiStaticPlots::Add(const transmission::PositionResult& r) {
+  if (r.converged)
+    figures_->Add(geometry::Deg(r.carrier_angle), r.load_sharing, r.transmission_error,
+                  r.sun_displacement.x(), r.sun_displacement.y());
+}
+
+void QuasiStaticPlots::Write(const std::string& scene_name, const std::string& sun_name) {
+  figures_->Write(scene_name + ": load-sharing ratio (sun " + sun_name + ")",
+                  scene_name + ": loaded static transmission error at the sun",
+                  scene_name + ": sun centre path", "_sun_path.svg");
 }
 
 namespace {

@@ -285,25 +285,32 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
       fe.cache_directory = cache_directory;
       own = std::make_unique<transmission::FeStageCompliance>(scene, stage, fe);
     }
-    const auto results = transmission::Sweep(
-        transmission::StageModel(stage, own ? *own : compliance, setup), scene.loads, angles, opt);
-    const transmission::SweepSummary s = transmission::SummariseSweep(results, stage.planets());
+    // The case needs the sweep's summary, its warnings and its first failure only.
+    transmission::SweepAccumulator accumulator(stage.planets());
+    transmission::ValidityTally tally(stage, "position(s)");
+    std::string first_failure;
+    transmission::SweepEach(
+        transmission::StageModel(stage, own ? *own : compliance, setup), scene.loads,
+        static_cast<int>(angles.size()),
+        [&](int k) { return angles[static_cast<std::size_t>(k)]; }, opt,
+        [&](const transmission::PositionResult& r, int) {
+          accumulator.Add(r);
+          tally.Add(r);
+          if (!r.converged && first_failure.empty())
+            first_failure = std::to_string(r.carrier_angle * 180.0 / std::numbers::pi) +
+                            " deg: " + r.message;
+        });
+    const transmission::SweepSummary s = accumulator.Result();
     row.positions = s.positions;
     row.converged = s.converged;
     row.ok = s.converged == s.positions;
     if (row.ok) {
       // Legal values outside the model's validity: the case stands, its message says so.
-      for (const std::string& w : transmission::QuasiStaticWarnings(stage, results))
+      for (const std::string& w : tally.Messages())
         row.message += (row.message.empty() ? "warning: " : " / warning: ") + w;
     } else {
-      for (const auto& r : results) {
-        if (r.converged) continue;
-        row.message = std::to_string(s.positions - s.converged) + " of " +
-                      std::to_string(s.positions) + " positions failed; first at " +
-                      std::to_string(r.carrier_angle * 180.0 / std::numbers::pi) +
-                      " deg: " + r.message;
-        break;
-      }
+      row.message = std::to_string(s.positions - s.converged) + " of " +
+                    std::to_string(s.positions) + " positions failed; first at " + first_failure;
     }
     row.k_gamma = s.k_gamma;
     row.k_gamma_mean = s.k_gamma_mean;

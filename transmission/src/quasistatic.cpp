@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -312,12 +313,16 @@ double MeshLoadFactor(const PositionResult& r) {
   return k;
 }
 
+double SweepAngle(double start, double span, int k, int count) {
+  return start + span * k / count;
+}
+
 std::vector<double> SweepAngles(double start, double span, int count) {
   if (count < 1)
     throw std::invalid_argument("sweep: positions = " + std::to_string(count) +
                                 ": must be at least 1");
   std::vector<double> a;
-  for (int k = 0; k < count; ++k) a.push_back(start + span * k / count);
+  for (int k = 0; k < count; ++k) a.push_back(SweepAngle(start, span, k, count));
   return a;
 }
 
@@ -372,24 +377,59 @@ std::size_t AvailableMemoryBytes() {
                                : 0;
 }
 
+namespace {
+
+// The sweep with its results in `ring`: position k in slot k mod ring.size(), at least
+// min(count, kSweepInFlight + 1) slots (RunOrderedChunks keeps every position in flight within
+// kSweepInFlight of the first not yet handed on, and k − 1's slot while k is solved).
+void RunSweep(const StageModel& model, const StageLoads& loads, int count,
+              const std::function<double(int)>& angle, const QuasiStaticOptions& options,
+              std::vector<PositionResult>& ring,
+              const std::function<void(const PositionResult&, int)>& on_result) {
+  options.Validate();
+  if (count < 0)
+    throw std::invalid_argument("sweep: positions = " + std::to_string(count) + ": must be >= 0");
+  const std::size_t slots = ring.size();
+  auto slot = [&](int k) -> PositionResult& { return ring[static_cast<std::size_t>(k) % slots]; };
+  internal::RunOrderedChunks(
+      count, options.threads, options.backend,
+      [&](int k, bool chunk_first, solvers::ContactSolver& solver) {
+        // A chunk's first position cold, each next one from its neighbour.
+        const PositionResult* neighbour =
+            options.warm_start && !chunk_first ? &slot(k - 1) : nullptr;
+        PositionResult r = Solve(model, angle(k), loads, options, neighbour, solver);
+        slot(k) = std::move(r);
+      },
+      [&](int k) {
+        if (on_result) on_result(slot(k), k);
+      },
+      kSweepInFlight);
+}
+
+}  // namespace
+
+void SweepEach(const StageModel& model, const StageLoads& loads, int count,
+               const std::function<double(int)>& angle, const QuasiStaticOptions& options,
+               const std::function<void(const PositionResult&, int)>& on_result) {
+  std::vector<PositionResult> ring(
+      static_cast<std::size_t>(std::clamp(count, 1, kSweepInFlight + 1)));
+  RunSweep(model, loads, count, angle, options, ring, on_result);
+}
+
 std::vector<PositionResult> Sweep(
     const StageModel& model, const StageLoads& loads, const std::vector<double>& carrier_angles,
     const QuasiStaticOptions& options,
     const std::function<void(const PositionResult&, int)>& on_result) {
-  options.Validate();
-  std::vector<PositionResult> out(carrier_angles.size());
-  internal::RunOrderedChunks(
-      static_cast<int>(carrier_angles.size()), options.threads, options.backend,
-      [&](int k, bool chunk_first, solvers::ContactSolver& solver) {
-        // A chunk's first position cold, each next one from its neighbour.
-        const std::size_t i = static_cast<std::size_t>(k);
-        const PositionResult* neighbour =
-            options.warm_start && !chunk_first ? &out[i - 1] : nullptr;
-        out[i] = Solve(model, carrier_angles[i], loads, options, neighbour, solver);
-      },
-      [&](int k) {
-        if (on_result) on_result(out[static_cast<std::size_t>(k)], k);
+  const std::size_t count = carrier_angles.size();
+  std::vector<PositionResult> out(std::max<std::size_t>(count, 1));
+  RunSweep(
+      model, loads, static_cast<int>(count),
+      [&](int k) { return carrier_angles[static_cast<std::size_t>(k)]; }, options, out,
+      [&](const PositionResult& r, int k) {
+        if (k == 0 && count > 10000) CheckSweepMemory(r, count, AvailableMemoryBytes());
+        if (on_result) on_result(r, k);
       });
+  out.resize(count);
   return out;
 }
 

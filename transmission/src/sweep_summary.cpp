@@ -6,8 +6,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "epicycle/transmission/statistics.hpp"
-
 namespace epicycle::transmission {
 
 namespace {
@@ -26,67 +24,81 @@ double SweepSummary::LsrMax() const {
   return v;
 }
 
-SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int planets) {
+namespace {
+
+int CheckedPlanets(int planets) {
   if (planets < 1)
     throw std::invalid_argument("SummariseSweep: planets = " + std::to_string(planets) +
                                 ": must be >= 1");
-  const auto n = static_cast<std::size_t>(planets);
-  std::vector<Accumulator> lsr(n);
-  Accumulator te, displacement, k_gamma, efficiency, friction_power, iterations;
-  bool friction = false;
-  for (const PositionResult& r : results) {
-    friction = friction || r.friction;
-    if (!r.converged) continue;
-    if (r.load_sharing.size() != n)
-      throw std::invalid_argument(
-          "SummariseSweep: a converged position has " + std::to_string(r.load_sharing.size()) +
-          " load-sharing ratios for " + std::to_string(planets) + " planets");
-    for (std::size_t i = 0; i < n; ++i) lsr[i].Add(r.load_sharing[i]);
-    te.Add(r.transmission_error);
-    displacement.Add(r.sun_displacement.norm());
-    k_gamma.Add(MeshLoadFactor(r));
-    if (r.friction) {
-      efficiency.Add(r.Efficiency());
-      friction_power.Add(r.friction_power);
-      iterations.Add(r.geometric_iterations);
-    }
+  return planets;
+}
+
+}  // namespace
+
+SweepAccumulator::SweepAccumulator(int planets)
+    : planets_(CheckedPlanets(planets)),
+      lsr_(static_cast<std::size_t>(planets)),
+      root_stress_(BodyNames(PlanetBody(planets))) {}
+
+void SweepAccumulator::Add(const PositionResult& r) {
+  const auto n = static_cast<std::size_t>(planets_);
+  ++positions_;
+  friction_ = friction_ || r.friction;
+  if (!r.converged) return;
+  if (r.load_sharing.size() != n)
+    throw std::invalid_argument(
+        "SummariseSweep: a converged position has " + std::to_string(r.load_sharing.size()) +
+        " load-sharing ratios for " + std::to_string(planets_) + " planets");
+  for (std::size_t i = 0; i < n; ++i) lsr_[i].Add(r.load_sharing[i]);
+  te_.Add(r.transmission_error);
+  displacement_.Add(r.sun_displacement.norm());
+  k_gamma_.Add(MeshLoadFactor(r));
+  if (r.friction) {
+    efficiency_.Add(r.Efficiency());
+    friction_power_.Add(r.friction_power);
+    iterations_.Add(r.geometric_iterations);
   }
+  // Root stresses and contact pressures, when the positions carry stresses.
+  if (!r.fillet_stress.empty()) {
+    root_stress_.Add(r.fillet_stress, r.carrier_angle);
+    pressure_.Add(r.problem.contacts, r.problem.data.local, r.solution.force, r.carrier_angle);
+  }
+}
+
+SweepSummary SweepAccumulator::Result() const {
   SweepSummary s;
-  s.positions = static_cast<int>(results.size());
-  s.converged = static_cast<int>(te.count());
+  s.positions = positions_;
+  s.converged = static_cast<int>(te_.count());
   // No converged position: NaN everywhere (the accumulators' empty rule).
-  for (std::size_t i = 0; i < n; ++i) {
-    s.lsr_mean.push_back(lsr[i].mean());
-    s.lsr_min.push_back(lsr[i].min());
-    s.lsr_max.push_back(lsr[i].max());
+  for (const Accumulator& a : lsr_) {
+    s.lsr_mean.push_back(a.mean());
+    s.lsr_min.push_back(a.min());
+    s.lsr_max.push_back(a.max());
   }
-  s.transmission_error_min = te.min();
-  s.transmission_error_max = te.max();
-  s.sun_displacement_max = displacement.max();
-  s.k_gamma = k_gamma.empty() ? kNaN : std::max(0.0, k_gamma.max());
+  s.transmission_error_min = te_.min();
+  s.transmission_error_max = te_.max();
+  s.sun_displacement_max = displacement_.max();
+  s.k_gamma = k_gamma_.empty() ? kNaN : std::max(0.0, k_gamma_.max());
   s.k_gamma_mean = kNaN;
   if (s.converged > 0) {
     s.k_gamma_mean = 0.0;
     for (double m : s.lsr_mean)
-      s.k_gamma_mean = std::max(s.k_gamma_mean, static_cast<double>(planets) * m);
+      s.k_gamma_mean = std::max(s.k_gamma_mean, static_cast<double>(planets_) * m);
   }
-  // Root stresses, when the positions carry them.
-  // Root stresses and contact pressures, when the positions carry stresses.
-  RootStressTracker root_stress(BodyNames(PlanetBody(planets)));
-  ContactPressureTracker pressure;
-  for (const PositionResult& r : results) {
-    if (!r.converged || r.fillet_stress.empty()) continue;
-    root_stress.Add(r.fillet_stress, r.carrier_angle);
-    pressure.Add(r.problem.contacts, r.problem.data.local, r.solution.force, r.carrier_angle);
-  }
-  s.root_stress = root_stress.Result();
-  s.contact_pressure = pressure.Result();
-  s.friction = friction;
-  s.efficiency_mean = efficiency.mean();
-  s.efficiency_min = efficiency.min();
-  s.friction_power_mean = friction_power.mean();
-  s.friction_iterations_mean = iterations.mean();
+  s.root_stress = root_stress_.Result();
+  s.contact_pressure = pressure_.Result();
+  s.friction = friction_;
+  s.efficiency_mean = efficiency_.mean();
+  s.efficiency_min = efficiency_.min();
+  s.friction_power_mean = friction_power_.mean();
+  s.friction_iterations_mean = iterations_.mean();
   return s;
+}
+
+SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int planets) {
+  SweepAccumulator a(planets);
+  for (const PositionResult& r : results) a.Add(r);
+  return a.Result();
 }
 
 }  // namespace epicycle::transmission

@@ -86,6 +86,12 @@ void ValidityTally::Add(double carrier_angle, const std::vector<double>& load_sh
   }
 }
 
+void ValidityTally::Add(const PositionResult& r) {
+  if (r.converged)
+    Add(r.carrier_angle, r.load_sharing, r.transmission_error, r.problem.data.local,
+        r.solution.force);
+}
+
 std::vector<std::string> ValidityTally::Messages() const {
   std::vector<std::string> out;
   for (int i = 0; i < planets_; ++i) {
@@ -114,10 +120,7 @@ std::vector<std::string> ValidityTally::Messages() const {
 std::vector<std::string> QuasiStaticWarnings(const geometry::Stage& stage,
                                              const std::vector<PositionResult>& results) {
   ValidityTally tally(stage, "position(s)");
-  for (const PositionResult& r : results)
-    if (r.converged)
-      tally.Add(r.carrier_angle, r.load_sharing, r.transmission_error, r.problem.data.local,
-                r.solution.force);
+  for (const PositionResult& r : results) tally.Add(r);
   return tally.Messages();
 }
 

@@ -20,6 +20,7 @@
 //    per position from the cold position's own problem.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -30,6 +31,7 @@
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/run_range.hpp"
+#include "epicycle/transmission/sweep_summary.hpp"
 #include "fe_fixtures.hpp"
 #include "figures.hpp"
 
@@ -276,6 +278,43 @@ TEST_CASE("quasistatic sweep: on_result sees every position in order, failed one
   o.threads = -1;
   CHECK_THROWS_WITH(transmission::Sweep(*rig.model, rig.loads(), rig.angles, o),
                     Catch::Contains("threads = -1"));
+}
+
+TEST_CASE("quasistatic sweep: a streamed sweep beyond the positions in flight",
+          "[crosscheck][transmission][quasistatic][sweep]") {
+  // kSweepInFlight + 904 positions on 2 workers: chunks of at most kSweepInFlight/2 positions, so
+  // at least ⌈5000/2048⌉ = 3 cold positions (each chunk's first), every other one warm; the
+  // streamed sweep (SweepEach, results let go once handed on) and the one that keeps them (Sweep)
+  // run the same chunks, so they agree bit for bit, and so do their summaries.
+  const int count = transmission::kSweepInFlight + 904;
+  Rig rig(SunSupport::kFixed, count);
+  rig.options.threads = 2;
+  const std::vector<PositionResult> kept = rig.Sweep(true, 2);
+  REQUIRE(kept.size() == static_cast<std::size_t>(count));
+  transmission::SweepAccumulator streamed(3);
+  int same = 0, cold = 0, longest = 0, run = 0;
+  transmission::SweepEach(
+      *rig.model, rig.loads(), count,
+      [&](int k) { return rig.angles[static_cast<std::size_t>(k)]; }, rig.options,
+      [&](const PositionResult& r, int k) {
+        const PositionResult& e = kept[static_cast<std::size_t>(k)];
+        same += r.converged && e.converged && r.load_sharing == e.load_sharing &&
+                r.transmission_error == e.transmission_error &&
+                r.warm_started == e.warm_started;
+        cold += !r.warm_started;
+        run = r.warm_started ? run + 1 : 1;
+        longest = std::max(longest, run);
+        streamed.Add(r);
+      });
+  CHECK(same == count);
+  CHECK(cold >= 3);
+  CHECK(longest <= transmission::kSweepInFlight / 2);
+  const transmission::SweepSummary a = streamed.Result(),
+                                   b = transmission::SummariseSweep(kept, 3);
+  CHECK(a.converged == count);
+  CHECK(a.lsr_mean == b.lsr_mean);
+  CHECK(a.k_gamma == b.k_gamma);
+  CHECK(a.transmission_error_max == b.transmission_error_max);
 }
 
 TEST_CASE("mesh stiffness: the same samples, in order, on 1 and 3 threads",

@@ -91,3 +91,24 @@ TEST_CASE("a dynamic run's summary, hand-counted, and of no step", "[unit][dynam
   CHECK(std::isnan(none.orbit_mean_radius));
   CHECK(std::isnan(none.max_pair_force));
 }
+
+TEST_CASE("run span: a run expected to take more than 1e7 steps is warned about",
+          "[unit][dynamics]") {
+  // The rule of run_span.hpp: 1e4 sqrt(n_s/rpm) steps per simulated second. At 1 rpm that is
+  // 1e4 steps a second: 1000 s is 1e7 steps (not past the limit), 1001 s is past it; at 1500 rpm
+  // the paper's planet revolution (0.075 s) is 2.9e4 steps. The measured 60 s at 1 rpm (paper
+  // stage, friction on) took 3.7e5 steps against the rule's 6e5: the same order.
+  dynamics::RunSpan span;
+  span.duration = 1000.0;
+  CHECK(dynamics::ExpectedSteps(span.duration, 1.0) == Approx(1e7).epsilon(1e-14));
+  CHECK(dynamics::RunCostWarning(span, 1.0, "--time = 1000 s", "--speed-rpm = 1").empty());
+  span.duration = 3600.0;
+  const std::string w = dynamics::RunCostWarning(span, -1.0, "--time = 3600 s", "--speed-rpm = 1");
+  CHECK_THAT(w, Catch::Contains("--time = 3600 s (3600 s of motion) at --speed-rpm = 1 (1 rpm)"));
+  CHECK_THAT(w, Catch::Contains("about 3.6e+07 integrator steps expected"));
+  CHECK_THAT(w, Catch::Contains("more than 1e+07"));
+  CHECK_THAT(w, Catch::Contains("12 to 78 minutes"));
+  span.duration = 0.075;
+  CHECK(dynamics::ExpectedSteps(span.duration, 1500.0) == Approx(0.075e4 * std::sqrt(1500.0)));
+  CHECK(dynamics::RunCostWarning(span, 1500.0, "--range planet", "--speed-rpm = 1500").empty());
+}

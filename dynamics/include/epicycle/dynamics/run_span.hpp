@@ -3,6 +3,7 @@
 // per mesh cycle.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "epicycle/geometry/stage.hpp"
@@ -29,6 +30,24 @@ struct RunSpan {
 inline constexpr int kMaxRunOutputs = 1000000;
 RunSpan MakeRunSpan(const geometry::Stage& stage, double carrier_speed,
                     transmission::RunRange range, double time, int outputs_per_cycle);
+
+/// Integrator steps a run of `duration` [s] at sun speed n_s = `sun_rpm` [rpm] is expected to take
+/// (CVODE BDF at its defaults): duration × kStepsPerSecondAtOneRpm · √(n_s/rpm), the rate
+/// measured on the paper's stage without friction (3.3k, 29k, 92k and 378k steps per simulated
+/// second at 1, 10, 100 and 1500 rpm, docs/dynamic.md "Cost of a long run"); with friction it was
+/// up to 7 times more (10 rpm). An estimate of the order of magnitude, for a warning.
+inline constexpr double kStepsPerSecondAtOneRpm = 1e4;
+double ExpectedSteps(double duration, double sun_rpm);
+
+/// Expected steps past which a run is warned about before it starts (at 20–130 µs a step, 3 to
+/// 22 minutes and more; docs/dynamic.md "Cost of a long run").
+inline constexpr double kStepsWarning = 1e7;
+
+/// The warning of a run over `span` at `sun_rpm` [rpm] expected to take more than kStepsWarning
+/// steps, "" otherwise: it names what set the duration (`duration_source`, e.g. "--time = 3600 s")
+/// and the speed (`speed_source`, e.g. "--speed-rpm = 1"), the estimate and its rule.
+std::string RunCostWarning(const RunSpan& span, double sun_rpm, const std::string& duration_source,
+                           const std::string& speed_source);
 
 /// Mesh frequency per sun speed, f_m/n_s = z_r/(60 (1 + z_r/z_s)) [Hz/rpm] (ring fixed).
 double MeshHzPerSunRpm(const geometry::Stage& stage);

@@ -4,6 +4,7 @@
 // empty cell (docs: README "Exit status").
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -73,10 +74,29 @@ std::string RootStressText(const std::vector<transmission::RootStressSummary>& g
 /// null where no position converged (JSON has no NaN). The caller adds the run's settings.
 nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary);
 
-/// BASE_lsr.svg, BASE_te.svg and BASE_sun_path.svg of the converged positions.
-void WriteQuasiStaticPlots(const std::string& base, const std::string& scene_name,
-                           const std::string& sun_name, int planets,
-                           const std::vector<transmission::PositionResult>& results);
+class RunFigures;
+
+/// BASE_lsr.svg, BASE_te.svg and BASE_sun_path.svg of a sweep's converged positions, gathered one
+/// position at a time. A sweep of up to kPlotPoints positions draws every one; a longer one, in
+/// bins of ⌈positions/(kPlotPoints/2)⌉ positions, each bin's lowest and highest LSR_i and TE (and
+/// the sun path's points nearest to and farthest from the centre), so that the figures stay the
+/// same size whatever the number of positions.
+class QuasiStaticPlots {
+ public:
+  static constexpr long kPlotPoints = 4000;
+  /// `positions`: the sweep's positions (converged or not).
+  QuasiStaticPlots(const std::string& base, int planets, long positions);
+  ~QuasiStaticPlots();
+  QuasiStaticPlots(const QuasiStaticPlots&) = delete;
+  QuasiStaticPlots& operator=(const QuasiStaticPlots&) = delete;
+  /// The next position of the sweep (drawn if converged).
+  void Add(const transmission::PositionResult& r);
+  /// @throws std::runtime_error naming a file that cannot be written.
+  void Write(const std::string& scene_name, const std::string& sun_name);
+
+ private:
+  std::unique_ptr<RunFigures> figures_;
+};
 
 /// BASE_steps.csv (one line per output step: LSR_i, L_i, K_γ, TE, sun centre, the sun's torque
 /// balance, work and energies, contacts, friction power), BASE_pairs.csv (one line per loaded

@@ -113,8 +113,8 @@ double MeshLoadFactor(const PositionResult& r);
 /// the equalities, local terms, labels), the potential contacts, forces and poses.
 std::size_t ResultBytes(const PositionResult& r);
 
-/// Refuses a sweep of `positions` whose results (Sweep keeps them all, about `sample`'s
-/// ResultBytes each) would take more than half of the memory `memory_bytes` available.
+/// Refuses a sweep of `positions` whose results, all kept (Sweep, about `sample`'s ResultBytes
+/// each), would take more than half of the memory `memory_bytes` available.
 /// @throws std::invalid_argument "a sweep of N positions keeps about X GB of results in memory
 ///         (Y kB per position: Z potential contacts), more than half of the M GB available: at
 ///         most K positions".
@@ -125,18 +125,38 @@ void CheckSweepMemory(const PositionResult& sample, std::size_t positions,
 /// /proc/meminfo, else the physical memory (0 if unknown).
 std::size_t AvailableMemoryBytes();
 
-/// Carrier angles of a sweep: `count` positions over [start, start + span) [rad].
+/// Carrier angle of position k of a sweep of `count` positions over [start, start + span) [rad]:
+/// start + span·k/count.
+double SweepAngle(double start, double span, int k, int count);
+/// Carrier angles of a sweep: SweepAngle(start, span, k, count) for k in [0, count) [rad].
+/// @throws std::invalid_argument if count < 1.
 std::vector<double> SweepAngles(double start, double span, int count);
 
-/// Solves every position; a position that does not converge (a geometric outcome or a failed
-/// solve: its status) is reported in its result (converged = false, status, message) and the
-/// sweep goes on. The positions run
-/// in options.threads contiguous chunks, each warm-started in sequence (options.warm_start).
-/// `on_result` (if given) sees every result with its index, in the order of the angles, as soon as
-/// it and every earlier one are computed (for files written incrementally and progress); it is
-/// called under a lock, from any of the workers. An exception from on_result or another exception
-/// from a position stops the workers and is rethrown.
-/// @throws std::invalid_argument for options that fail Validate().
+/// Positions a streamed sweep holds at most at once (solved, or being solved, and not yet handed
+/// on): its memory is that many results whatever the number of positions (docs/quasistatic.md,
+/// "Memory").
+inline constexpr int kSweepInFlight = 4096;
+
+/// Solves the positions k in [0, count) at the carrier angles angle(k) and hands each result to
+/// on_result(result, k), in the order of k, as soon as it and every earlier one are computed
+/// (called under a lock, from any of the workers); a result is not kept after that, so the memory
+/// does not grow with `count` (at most kSweepInFlight results are held). A position that does not
+/// converge (a geometric outcome or a failed solve: its status) is reported in its result
+/// (converged = false, status, message) and the sweep goes on.
+/// The positions run on options.threads workers in contiguous chunks, each warm-started in
+/// sequence from its own first, cold, position (options.warm_start): one chunk per worker up to
+/// kSweepInFlight positions, chunks of kSweepInFlight/workers positions beyond. An exception from
+/// on_result or another exception from a position stops the workers and is rethrown.
+/// @throws std::invalid_argument for options that fail Validate() or count < 0.
+void SweepEach(const StageModel& model, const StageLoads& loads, int count,
+               const std::function<double(int)>& angle, const QuasiStaticOptions& options,
+               const std::function<void(const PositionResult&, int)>& on_result);
+
+/// SweepEach over `carrier_angles`, every result kept and returned (for a few thousand positions:
+/// a sweep of more than 10 000 positions is checked by CheckSweepMemory from its first result
+/// and stopped with its message if the results would not fit). `on_result` (if given) sees every
+/// result as SweepEach's does.
+/// @throws std::invalid_argument for options that fail Validate(), or from CheckSweepMemory.
 std::vector<PositionResult> Sweep(
     const StageModel& model, const StageLoads& loads, const std::vector<double>& carrier_angles,
     const QuasiStaticOptions& options,

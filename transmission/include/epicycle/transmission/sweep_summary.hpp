@@ -9,6 +9,7 @@
 #include "epicycle/transmission/contact_pressure.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/root_stress.hpp"
+#include "epicycle/transmission/statistics.hpp"
 
 namespace epicycle::transmission {
 
@@ -50,9 +51,30 @@ struct SweepSummary {
   std::vector<FlankPressure> contact_pressure;
 };
 
-/// The statistics of `results` (a sweep of a stage with `planets` planets); positions that did
-/// not converge are left out. @throws std::invalid_argument if planets < 1 or a converged result
-/// has not `planets` load-sharing ratios.
+/// The statistics of a sweep of a stage with `planets` planets gathered one position at a time,
+/// in the order of the positions (the means are sums in that order): what it keeps does not grow
+/// with the positions (a streamed sweep, SweepEach, needs no result after its Add).
+class SweepAccumulator {
+ public:
+  /// @throws std::invalid_argument if planets < 1.
+  explicit SweepAccumulator(int planets);
+  /// One position; one that did not converge only counts.
+  /// @throws std::invalid_argument if a converged result has not `planets` load-sharing ratios.
+  void Add(const PositionResult& r);
+  SweepSummary Result() const;
+
+ private:
+  int planets_ = 0, positions_ = 0;
+  bool friction_ = false;
+  std::vector<Accumulator> lsr_;
+  Accumulator te_, displacement_, k_gamma_, efficiency_, friction_power_, iterations_;
+  RootStressTracker root_stress_;
+  ContactPressureTracker pressure_;
+};
+
+/// The statistics of `results` (a sweep of a stage with `planets` planets): SweepAccumulator over
+/// them; positions that did not converge are left out. @throws std::invalid_argument if planets <
+/// 1 or a converged result has not `planets` load-sharing ratios.
 SweepSummary SummariseSweep(const std::vector<PositionResult>& results, int planets);
 
 }  // namespace epicycle::transmission

@@ -35,6 +35,8 @@ class ValidityTally {
   /// (`local` empty: no local terms, forces not checked).
   void Add(double carrier_angle, const std::vector<double>& load_sharing, double transmission_error,
            const std::vector<solvers::LocalTermParameters>& local, const Eigen::VectorXd& force);
+  /// One position of a quasi-static sweep: its state if it converged, nothing otherwise.
+  void Add(const PositionResult& r);
   /// One message per kind of violation seen, with the number of states (contacts for the local
   /// term) and the worst value; empty when everything was within validity.
   std::vector<std::string> Messages() const;
