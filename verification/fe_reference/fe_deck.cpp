@@ -129,7 +129,8 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
     std::tie(mouth_seg, mouth_t) = NearestFilletParameter(half, mouth0);
     const geometry::Segment& seg = half.segments[static_cast<std::size_t>(mouth_seg)];
     const double margin = 1e-6 * std::abs(seg.t1 - seg.t0);
-    if (!(mouth_t > seg.t0 + margin && mouth_t < seg.t1 - margin))
+    if (!(mouth_t > std::min(seg.t0, seg.t1) + margin &&
+          mouth_t < std::max(seg.t0, seg.t1) - margin))
       throw std::invalid_argument("fe deck: crack start_arc = " + Num(crack->crack.start_arc) +
                                   " m: the mouth falls on a joint of the fillet's segments");
     tip_body = Vec2(pts.back().x(), pts.back().y());
