@@ -17,6 +17,16 @@
 #                       divided by the refinement too)
 #   --jobs J            ccx runs at once (default 1; each single-threaded, nice 10)
 #   --keep              keep decks and ccx output (default: only the logs)
+#   --crack SPEC        a root crack in the FE model: gear,tooth,side,depth_mm,angle_deg[,start_arc_mm]
+#                       (start: ISO 6336-3's 30 deg point); a [[damage.pit]] of SCENE (width 1)
+#                       is meshed as a spall. Either writes DIR/fe_damage.csv instead of
+#                       fe_reference.csv (no hybrid columns: the hybrid model of the damaged pair
+#                       is computed by the test that reads it)
+#   --crack-tip-size U  element size at the crack tip [um] (default 10; divided by the refinement)
+#   --hybrid-scene FILE the scene of the hybrid run whose rotation the FE steps bracket (default
+#                       SCENE; the healthy scene for a crack gives the lower bracket)
+#   --te-scale "a,b,.." the FE steps' rotations as multiples of the hybrid's (default 0.9,1.04;
+#                       a crack needs an upper step above the cracked pair's rotation)
 # Writes DIR/fe_reference.csv (one row per position and tooth pair, appended as runs finish),
 # DIR/fe_fillet.csv (one row per position and read tooth: its largest fillet tension and
 # compression σ_tt, fillet side σ and arc length from the space centre line, and the FE normal
@@ -30,7 +40,8 @@ app="$build/app/epicycle"
 
 if [ "${1:-}" = "_one" ]; then  # internal: one position (called through xargs)
   shift
-  scene=$1 mesh=$2 out=$3 refinement=$4 penalty=$5 keep=$6 fillet=$7 index=$8
+  scene=$1 mesh=$2 out=$3 refinement=$4 penalty=$5 keep=$6 fillet=$7 crack=$8 tip=$9
+  scales=${10} damage=${11} index=${12}
   hybrid="$out/hybrid/$(ls "$out/hybrid" | grep '^stiffness_.*\.csv$' | head -1)"
   # Grid positions are the distinct angles of the data rows in file order (compared as strings:
   # "0.000000" would equal an unset variable as a number).
@@ -42,11 +53,14 @@ if [ "${1:-}" = "_one" ]; then  # internal: one position (called through xargs)
   khyb=$(echo "$row" | cut -d, -f4)
   # Two steps bracketing the hybrid model's rotation: the FE answer is interpolated between them
   # (extrapolated, and flagged, if it lies outside).
-  rot=$(awk -v t="$te" 'BEGIN { printf "%.9g,%.9g", 0.9 * t, 1.04 * t }')
+  rot=$(awk -v t="$te" -v s="$scales" 'BEGIN { n = split(s, f, ",")
+        for (i = 1; i <= n; i++) printf "%s%.9g", (i > 1 ? "," : ""), f[i] * t }')
   dir="$out/pos${index}_r${refinement}_k${penalty}_f${fillet}"
+  [ -n "$crack" ] && dir="${dir}_t${tip}"
   mkdir -p "$dir"
   meshopt=()
   [ -n "$mesh" ] && meshopt=(--mesh "$mesh")
+  [ -n "$crack" ] && meshopt+=(--crack "$crack" --crack-tip-size-um "$tip")
   if [ -f "$dir/time.txt" ] && [ -f "$dir/deck.info" ] && [ -f "$dir/deck.frd" ] && grep -q "Job finished" "$dir/ccx.log" 2>/dev/null; then
     echo "position $index: reading the finished run in $dir"
   else
@@ -61,6 +75,19 @@ if [ "${1:-}" = "_one" ]; then  # internal: one position (called through xargs)
   read -r wall cpu < "$dir/time.txt"
   nodes=$(awk '$1 == "nodes" { print $2 }' "$dir/deck.info")
   elements=$(awk '$1 == "elements" { print $2 }' "$dir/deck.info")
+  if [ -n "$damage" ]; then
+    # kind and depth [mm] of the damage (crack: its length q; spall: its depth d), then per pair.
+    kind=${damage%%:*} depth=${damage#*:}
+    echo "$fe" | awk -F, -v idx="$index" -v r="$refinement" -v K="$penalty" -v n="$nodes" \
+        -v e="$elements" -v w="$wall" -v c="$cpu" -v kind="$kind" -v q="$depth" -v tip="$tip" '
+      { for (j = 8; j + 2 <= NF; j += 3)
+          printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", kind, q, idx, $1, r, K,
+                 (kind == "crack" ? tip : 0), n, e, w, c, $6, $7, $2, $4, $j, $(j + 1) "," $(j + 2) }
+    ' >> "$out/fe_damage.csv"
+    [ "$keep" = 1 ] || rm -f "$dir/deck.inp" "$dir/deck.frd" "$dir/deck.12d" "$dir/spooles.out"
+    echo "position $index (${angle} deg): done in ${wall} s (ccx CPU ${cpu} s)"
+    exit 0
+  fi
   # One row per FE tooth pair, with the hybrid model's share of the same teeth (0 if unloaded).
   echo "$fe" | awk -F, -v idx="$index" -v r="$refinement" -v K="$penalty" -v n="$nodes" \
       -v e="$elements" -v w="$wall" -v c="$cpu" -v te="$te" -v kh="$khyb" -v hyb="$hybrid" \
@@ -86,7 +113,7 @@ if [ "${1:-}" = "_one" ]; then  # internal: one position (called through xargs)
 fi
 
 scene="" mesh="" out="fe-reference-out" grid=48 positions="" refinement=1 penalty=1e8 jobs=1 keep=0
-fillet=0.025
+fillet=0.025 crack="" tip=10 hybrid_scene="" scales="0.9,1.04"
 while [ $# -gt 0 ]; do
   case "$1" in
     --mesh) mesh=$2; shift 2 ;;
@@ -98,11 +125,22 @@ while [ $# -gt 0 ]; do
     --fillet-size) fillet=$2; shift 2 ;;
     --jobs) jobs=$2; shift 2 ;;
     --keep) keep=1; shift ;;
+    --crack) crack=$2; shift 2 ;;
+    --crack-tip-size) tip=$2; shift 2 ;;
+    --hybrid-scene) hybrid_scene=$2; shift 2 ;;
+    --te-scale) scales=$2; shift 2 ;;
     -*) echo "fe_reference: unknown option $1" >&2; exit 2 ;;
     *) scene=$1; shift ;;
   esac
 done
-[ -n "$scene" ] || { sed -n '2,24p' "$0"; exit 2; }
+[ -n "$scene" ] || { sed -n '2,33p' "$0"; exit 2; }
+[ -n "$hybrid_scene" ] || hybrid_scene=$scene
+# The damage the FE model carries (kind:depth_mm), empty for the healthy pair.
+damage=""
+[ -n "$crack" ] && damage="crack:$(echo "$crack" | cut -d, -f4)"
+if [ -z "$crack" ] && grep -q '^\[\[damage.pit\]\]' "$scene"; then
+  damage="spall:$(awk -F= '$1 ~ /^depth_um/ { printf "%.6g", $2 / 1000 }' "$scene")"
+fi
 if ! command -v ccx > /dev/null; then
   echo "fe_reference: installing calculix-ccx"
   SUDO=""
@@ -117,7 +155,7 @@ out="$(cd "$out" && pwd)"
 meshopt=()
 [ -n "$mesh" ] && meshopt=(--mesh "$mesh")
 if [ ! -d "$out/hybrid" ]; then
-  "$app" stiffness "$scene" "${meshopt[@]}" --positions "$grid" --out "$out/hybrid" \
+  "$app" stiffness "$hybrid_scene" "${meshopt[@]}" --positions "$grid" --out "$out/hybrid" \
     > "$out/hybrid.log"
 fi
 hybrid="$out/hybrid/$(ls "$out/hybrid" | grep '^stiffness_.*\.csv$' | head -1)"
@@ -130,9 +168,11 @@ if [ -z "$positions" ]; then
           for (i = 0; i < n; i++) if (pick[i]) printf "%d ", i }' "$hybrid")
 fi
 [ -f "$out/fe_reference.csv" ] || echo "index,angle_deg,refinement,penalty_MPa_per_mm,nodes,elements,ccx_wall_s,ccx_cpu_s,extrapolated,moment_balance,fe_te_urad,hybrid_te_urad,fe_k_N_per_mm_um,hybrid_k_N_per_mm_um,pair_teeth,fe_pair_force_N,fe_share,hybrid_share" > "$out/fe_reference.csv"
+[ -z "$damage" ] || [ -f "$out/fe_damage.csv" ] || echo "damage,depth_mm,index,angle_deg,refinement,penalty_MPa_per_mm,crack_tip_size_um,nodes,elements,ccx_wall_s,ccx_cpu_s,extrapolated,moment_balance,fe_te_urad,fe_k_N_per_mm_um,pair_teeth,fe_pair_force_N,fe_share" > "$out/fe_damage.csv"
 [ -f "$out/fe_fillet.csv" ] || echo "index,angle_deg,refinement,penalty_MPa_per_mm,fillet_size_per_module,nodes,ccx_cpu_s,gear,tooth,tension_MPa,tension_side,tension_arc_mm,compression_MPa,compression_side,compression_arc_mm,fe_tooth_force_N" > "$out/fe_fillet.csv"
 echo "fe_reference: $scene, positions $positions(refinement $refinement, penalty $penalty)"
 for p in $positions; do echo "$p"; done |
   xargs -P "$jobs" -I{} bash "$0" _one "$scene" "$mesh" "$out" "$refinement" "$penalty" "$keep" \
-    "$fillet" {}
-echo "fe_reference: wrote $out/fe_reference.csv and $out/fe_fillet.csv"
+    "$fillet" "$crack" "$tip" "$scales" "$damage" {}
+if [ -n "$damage" ]; then echo "fe_reference: wrote $out/fe_damage.csv"
+else echo "fe_reference: wrote $out/fe_reference.csv and $out/fe_fillet.csv"; fi

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include <gmsh.h>
 
@@ -50,27 +51,97 @@ struct GearModel {
   // (tooth, side) → the curves of its root land and fillet.
   std::map<std::pair<int, int>, std::vector<int>> fillet_curves;
   std::set<int> curves;
+  int crack_curve = 0, crack_tip = 0;  // the crack's curve and its tip point (0: none)
+  Vec2 tip_xy = Vec2::Zero();          // the tip [mm]
 };
+
+// The parameter t of `seg` (t0 <= t <= t1) where the radius |p(t)| is `radius` (bisection; the
+// involute's radius grows with t), clamped to the segment.
+double ParameterAtRadius(const geometry::Segment& seg, double radius) {
+  double lo = seg.t0, hi = seg.t1;
+  if (seg.Point(lo).norm() >= radius) return lo;
+  if (seg.Point(hi).norm() <= radius) return hi;
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (seg.Point(mid).norm() < radius ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The segment (index into the half profile) and parameter of the point of the fillet (root land
+// or fillet, σ = +1 half of tooth 0) nearest `x` (tooth-0 frame, σ = +1 side) [m]: dense sampling,
+// then golden-section refinement.
+std::pair<int, double> NearestFilletParameter(const geometry::HalfProfile& half, const Vec2& x) {
+  int best_seg = -1;
+  double best_t = 0, best_d = 1e300;
+  for (std::size_t i = 0; i < half.segments.size(); ++i) {
+    const geometry::Segment& seg = half.segments[i];
+    if (seg.role != geometry::SegmentRole::kRootLand && seg.role != geometry::SegmentRole::kFillet)
+      continue;
+    constexpr int kSamples = 2000;
+    for (int j = 0; j <= kSamples; ++j) {
+      const double t = seg.t0 + (seg.t1 - seg.t0) * j / kSamples;
+      const double d = (seg.Point(t) - x).norm();
+      if (d < best_d) best_seg = static_cast<int>(i), best_t = t, best_d = d;
+    }
+  }
+  if (best_seg < 0) throw std::runtime_error("fe deck: the profile has no fillet");
+  const geometry::Segment& seg = half.segments[best_seg];
+  const double step = (seg.t1 - seg.t0) / 2000;
+  double a = std::max(seg.t0, best_t - step), b = std::min(seg.t1, best_t + step);
+  const double g = 0.5 * (std::sqrt(5.0) - 1);
+  for (int i = 0; i < 200; ++i) {
+    const double c = b - g * (b - a), d = a + g * (b - a);
+    if ((seg.Point(c) - x).norm() < (seg.Point(d) - x).norm())
+      b = d;
+    else
+      a = c;
+  }
+  return {best_seg, 0.5 * (a + b)};
+}
 
 // The gear's outline as OCC splines through points of the exact profile (per segment, so each
 // spline is one analytic piece and the G1 joints are spline ends), closed by the hub circle
 // (external: the hole) or the rim circle (internal: the outside). Teeth in `fine_teeth` get
 // `fine_points` interpolation points per segment, the others a quarter (the spline error falls as
 // (segment length / points)^4, far below the deflections on either).
+// A crack splits its fillet segment at the mouth and adds the straight crack curve (to be embedded
+// in the surface); a spall splits its involute at the roll range, lowers the middle piece by the
+// depth along the inward normal and joins the pieces by straight steps.
 GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
-                    const std::set<int>& fine_teeth, int fine_points) {
+                    const std::set<int>& fine_teeth, int fine_points, const FeCrack* crack,
+                    const FeSpall* spall) {
   GearModel g;
   const geometry::HalfProfile& half = gear.half_profile();
   auto world = [&](const Vec2& body) {
     const Vec2 w = pose.geometric_centre + geometry::Rotate(body, pose.rotation);
     return Vec2(w.x() * kMm, w.y() * kMm);
   };
+  // The crack's mouth on the σ = +1 half of tooth 0 (segment, parameter) and its tip (body).
+  int mouth_seg = -1;
+  double mouth_t = 0;
+  Vec2 tip_body = Vec2::Zero();
+  if (crack) {
+    const std::vector<Eigen::Vector2d> pts = crack->crack.Points(gear);
+    Vec2 mouth0 = geometry::Rotate(Vec2(pts.front().x(), pts.front().y()),
+                                   -crack->crack.tooth * gear.pitch_angle());
+    if (crack->crack.side < 0) mouth0.y() = -mouth0.y();
+    std::tie(mouth_seg, mouth_t) = NearestFilletParameter(half, mouth0);
+    const geometry::Segment& seg = half.segments[static_cast<std::size_t>(mouth_seg)];
+    const double margin = 1e-6 * std::abs(seg.t1 - seg.t0);
+    if (!(mouth_t > std::min(seg.t0, seg.t1) + margin &&
+          mouth_t < std::max(seg.t0, seg.t1) - margin))
+      throw std::invalid_argument("fe deck: crack start_arc = " + Num(crack->crack.start_arc) +
+                                  " m: the mouth falls on a joint of the fillet's segments");
+    tip_body = Vec2(pts.back().x(), pts.back().y());
+  }
   // The closed outline as pieces (one per non-empty segment), counter-clockwise: per tooth the
   // mirrored half (side −1) root → tip, then the half (side +1) tip → root.
   struct Piece {
     std::vector<Vec2> points;
     int tooth = 0, side = 0;
     bool flank = false, fillet = false;
+    bool ends_at_mouth = false;
   };
   std::vector<Piece> pieces;
   const int z = gear.teeth();
@@ -80,30 +151,77 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
     const int n = fine_teeth.count(k) ? fine_points : std::max(4, fine_points / 4);
     for (int side : {-1, 1}) {
       for (int i = 0; i < count; ++i) {
-        const geometry::Segment& seg = half.segments[side < 0 ? i : count - 1 - i];
+        const int si = side < 0 ? i : count - 1 - i;
+        const geometry::Segment& seg = half.segments[si];
         if ((seg.Point(seg.t0) - seg.Point(seg.t1)).norm() < 1e-12) continue;  // empty piece
-        Piece piece;
-        piece.tooth = k;
-        piece.side = side;
-        piece.flank = seg.role == geometry::SegmentRole::kInvolute ||
-                      seg.role == geometry::SegmentRole::kTipRound;
-        piece.fillet = seg.role == geometry::SegmentRole::kRootLand ||
-                       seg.role == geometry::SegmentRole::kFillet;
-        for (int j = 0; j <= n; ++j) {
-          const double t = seg.t0 + (seg.t1 - seg.t0) * (side < 0 ? j : n - j) / n;
-          Vec2 p = seg.Point(t);
-          if (side < 0) p.y() = -p.y();
-          piece.points.push_back(world(geometry::Rotate(p, turn)));
+        // Sub-ranges of t (root → tip) with their inward offset [m]; `cut` marks the crack's mouth
+        // (the end t of the first sub-range).
+        std::vector<std::array<double, 3>> ranges = {{seg.t0, seg.t1, 0.0}};
+        bool cut = false;
+        if (crack && k == crack->crack.tooth && side == crack->crack.side && si == mouth_seg) {
+          ranges = {{seg.t0, mouth_t, 0.0}, {mouth_t, seg.t1, 0.0}};
+          cut = true;
         }
-        pieces.push_back(std::move(piece));
+        if (spall && k == spall->tooth && side == spall->side &&
+            seg.role == geometry::SegmentRole::kInvolute) {
+          const double rb = gear.base_radius();
+          const double ta = ParameterAtRadius(seg, rb * std::hypot(1.0, spall->roll_from));
+          const double tb = ParameterAtRadius(seg, rb * std::hypot(1.0, spall->roll_to));
+          if (!(tb > ta))
+            throw std::invalid_argument("fe deck: the spall's roll range lies off the involute");
+          ranges.clear();
+          if (ta > seg.t0) ranges.push_back({seg.t0, ta, 0.0});
+          ranges.push_back({ta, tb, spall->depth});
+          if (tb < seg.t1) ranges.push_back({tb, seg.t1, 0.0});
+        }
+        if (side > 0) std::reverse(ranges.begin(), ranges.end());
+        for (std::size_t r = 0; r < ranges.size(); ++r) {
+          const auto [ra, rb, offset] = ranges[r];
+          Piece piece;
+          piece.tooth = k;
+          piece.side = side;
+          piece.flank = seg.role == geometry::SegmentRole::kInvolute ||
+                        seg.role == geometry::SegmentRole::kTipRound;
+          piece.fillet = seg.role == geometry::SegmentRole::kRootLand ||
+                         seg.role == geometry::SegmentRole::kFillet;
+          // Side −1 runs root → tip: the mouth ends its first range; side +1 its (reversed) first.
+          piece.ends_at_mouth = cut && r == 0;
+          const int np = ranges.size() == 1 ? n : std::max(4, n / 2);
+          for (int j = 0; j <= np; ++j) {
+            const double t = ra + (rb - ra) * (side < 0 ? j : np - j) / np;
+            const geometry::CurvePoint cp = seg.Evaluate(t);
+            Vec2 p = cp.p;
+            if (offset > 0) {
+              // Inward normal of the σ = +1 half: the tangent turned toward the centre line.
+              Vec2 nrm(cp.d1.y(), -cp.d1.x());
+              if (nrm.y() > 0) nrm = -nrm;
+              p += offset * nrm.normalized();
+            }
+            if (side < 0) p.y() = -p.y();
+            piece.points.push_back(world(geometry::Rotate(p, turn)));
+          }
+          pieces.push_back(std::move(piece));
+        }
       }
     }
   }
   // Consecutive pieces share their end points (one gmsh point each); the last closes on the first.
+  // A piece starting elsewhere than where the last ended (a spall's edge) is joined by a line.
   std::vector<int> outline;
   int first_point = -1, last_point = -1;
+  Vec2 last_xy = Vec2::Zero();
+  int mouth_point = -1;
   for (std::size_t q = 0; q < pieces.size(); ++q) {
     const Piece& piece = pieces[q];
+    if (last_point > 0 && (piece.points.front() - last_xy).norm() > 1e-9) {
+      const int start =
+          gmsh::model::occ::addPoint(piece.points.front().x(), piece.points.front().y(), 0.0);
+      const int c = gmsh::model::occ::addLine(last_point, start);
+      outline.push_back(c);
+      g.curves.insert(c);
+      g.flank_curves[{piece.tooth, piece.side}].push_back(c);
+      last_point = start;
+    }
     std::vector<int> pts;
     for (std::size_t j = 0; j < piece.points.size(); ++j) {
       if (j == 0 && last_point > 0) {
@@ -116,11 +234,21 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
     }
     if (first_point < 0) first_point = pts.front();
     last_point = pts.back();
+    last_xy = piece.points.back();
+    if (piece.ends_at_mouth) mouth_point = last_point;
     const int c = gmsh::model::occ::addSpline(pts);
     outline.push_back(c);
     g.curves.insert(c);
     if (piece.flank) g.flank_curves[{piece.tooth, piece.side}].push_back(c);
     if (piece.fillet) g.fillet_curves[{piece.tooth, piece.side}].push_back(c);
+  }
+  if (crack) {
+    if (mouth_point < 0) throw std::runtime_error("fe deck: the crack's mouth was not placed");
+    const Vec2 tip = world(tip_body);
+    g.crack_tip = gmsh::model::occ::addPoint(tip.x(), tip.y(), 0.0);
+    g.crack_curve = gmsh::model::occ::addLine(mouth_point, g.crack_tip);
+    g.curves.insert(g.crack_curve);
+    g.tip_xy = tip;
   }
   const Vec2 c = world(Vec2::Zero());
   const double r = gear.spec().hub_radius * kMm;
@@ -158,8 +286,8 @@ struct ToothZone {
 // κ·chord/2 < 1e-3 rad of the tangent, the arc length within 1e-6 relative).
 struct FilletLine {
   int gear = 1, tooth = 0, side = 1;
-  std::vector<Vec2> p;     // [mm]
-  std::vector<double> s;   // [mm]
+  std::vector<Vec2> p;    // [mm]
+  std::vector<double> s;  // [mm]
   // The nearest point of the polyline to x: arc length [mm], unit tangent, distance [mm].
   void Project(const Vec2& x, double* arc, Vec2* tangent, double* distance) const {
     *distance = 1e300;
@@ -191,9 +319,9 @@ FilletLine MakeFilletLine(const geometry::Gear& gear, const geometry::GearPose& 
     for (int j = line.p.empty() ? 0 : 1; j <= kPoints; ++j) {
       Vec2 q = seg.Point(seg.t0 + (seg.t1 - seg.t0) * j / kPoints);
       if (side < 0) q.y() = -q.y();
-      const Vec2 w = pose.geometric_centre +
-                     geometry::Rotate(geometry::Rotate(q, tooth * gear.pitch_angle()),
-                                      pose.rotation);
+      const Vec2 w =
+          pose.geometric_centre +
+          geometry::Rotate(geometry::Rotate(q, tooth * gear.pitch_angle()), pose.rotation);
       const Vec2 mm(w.x() * kMm, w.y() * kMm);
       line.s.push_back(line.p.empty() ? 0.0 : line.s.back() + (mm - line.p.back()).norm());
       line.p.push_back(mm);
@@ -240,7 +368,7 @@ void FeDeckInfo::Write(const std::string& path) const {
   f << "thickness_m " << thickness << "\nface_width_m " << face_width << "\ntorque_Nm " << torque
     << "\nbase_radius1_m " << base_radius1 << "\nangle_rad " << angle << "\nnodes " << nodes
     << "\nelements " << elements << "\nnodes_2d " << nodes_2d << "\ntriangles " << triangles
-    << "\nstraightened " << straightened << "\n";
+    << "\nstraightened " << straightened << "\ncrack_nodes " << crack_nodes << "\n";
   for (double r : rotations) f << "rotation_rad " << r << "\n";
   for (const FeToothPair& p : pairs)
     f << "pair " << p.tooth1 << " " << p.tooth2 << " " << p.slave << " " << p.master << " "
@@ -284,6 +412,8 @@ FeDeckInfo FeDeckInfo::Read(const std::string& path) {
       ok = static_cast<bool>(s >> info.triangles);
     else if (key == "straightened")
       ok = static_cast<bool>(s >> info.straightened);
+    else if (key == "crack_nodes")
+      ok = static_cast<bool>(s >> info.crack_nodes);
     else if (key == "rotation_rad") {
       double r = 0;
       ok = static_cast<bool>(s >> r);
@@ -317,7 +447,7 @@ FeDeckInfo FeDeckInfo::Read(const std::string& path) {
 FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair& pair,
                      double torque, double angle, const std::vector<double>& rotations,
                      const FeMeshOptions& mesh, const FeContactOptions& contact,
-                     const std::string& directory) {
+                     const std::string& directory, const FeDamage& damage) {
   mesh.Validate();
   if (rotations.empty())
     throw std::invalid_argument("fe deck: rotations: at least one step is needed");
@@ -330,6 +460,36 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   const geometry::Gear& g1 = pair.gear1();
   const geometry::Gear& g2 = pair.gear2();
   const geometry::PairPoses poses = pair.Poses(angle);
+  const FeCrack* crack = damage.crack ? &*damage.crack : nullptr;
+  const FeSpall* spall = damage.spall ? &*damage.spall : nullptr;
+  if (crack) {
+    if (crack->gear != 1 && crack->gear != 2)
+      throw std::invalid_argument("fe deck: crack gear = " + std::to_string(crack->gear) +
+                                  ": must be 1 or 2");
+    if (crack->crack.path.size() != 1)
+      throw std::invalid_argument(
+          "fe deck: crack path: " + std::to_string(crack->crack.path.size()) +
+          " segments: the deck meshes a straight crack (one segment)");
+    if (!(crack->tip_size > 0) || !(crack->face_size_per_module > 0) || !(crack->tip_grading > 0))
+      throw std::invalid_argument(
+          "fe deck: crack tip_size, face_size_per_module, tip_grading: "
+          "must be > 0");
+    crack->crack.Validate(crack->gear == 1 ? g1 : g2);
+  }
+  if (spall) {
+    const geometry::Gear& g = spall->gear == 1 ? g1 : g2;
+    if ((spall->gear != 1 && spall->gear != 2) || g.internal())
+      throw std::invalid_argument("fe deck: spall gear = " + std::to_string(spall->gear) +
+                                  ": must be 1 or 2, an external gear");
+    if (spall->tooth < 0 || spall->tooth >= g.teeth() || (spall->side != 1 && spall->side != -1))
+      throw std::invalid_argument("fe deck: spall tooth " + std::to_string(spall->tooth) +
+                                  " side " + std::to_string(spall->side) +
+                                  ": tooth in [0, z), side ±1");
+    if (!(spall->depth > 0) || !(spall->roll_to > spall->roll_from) || !(spall->roll_from >= 0))
+      throw std::invalid_argument("fe deck: spall depth " + Num(spall->depth) + " m, roll " +
+                                  Num(spall->roll_from) + ".." + Num(spall->roll_to) +
+                                  " rad: depth > 0 and 0 <= roll_from < roll_to");
+  }
 
   // The tooth pairs in or near contact on the loaded flanks.
   geometry::ContactSearchOptions search;
@@ -392,7 +552,8 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   };
 
   // The fillets whose stress is read: both sides of the loaded teeth and their fillet_zone
-  // neighbours, meshed at h_f (the stress peaks there; the contact and tooth sizes do not reach it).
+  // neighbours, meshed at h_f (the stress peaks there; the contact and tooth sizes do not reach
+  // it).
   const double h_f = mesh.fillet_size_per_module * m / mesh.refinement;
   std::vector<FilletLine> fillet_lines;
   auto add_fillets = [&](const geometry::Gear& g, const geometry::GearPose& pose, int which,
@@ -427,9 +588,35 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   }
 
   GmshSession session;
-  const GearModel m1 = BuildGear(g1, poses.gear1, fine_of(g1, teeth1), mesh.points_per_segment);
-  const GearModel m2 = BuildGear(g2, poses.gear2, fine_of(g2, teeth2), mesh.points_per_segment);
+  const GearModel m1 = BuildGear(g1, poses.gear1, fine_of(g1, teeth1), mesh.points_per_segment,
+                                 crack && crack->gear == 1 ? crack : nullptr,
+                                 spall && spall->gear == 1 ? spall : nullptr);
+  const GearModel m2 = BuildGear(g2, poses.gear2, fine_of(g2, teeth2), mesh.points_per_segment,
+                                 crack && crack->gear == 2 ? crack : nullptr,
+                                 spall && spall->gear == 2 ? spall : nullptr);
   gmsh::model::occ::synchronize();
+  // The crack: its curve embedded in its gear's surface (the mesh keeps it as element sides).
+  const GearModel* cracked = crack ? (crack->gear == 1 ? &m1 : &m2) : nullptr;
+  Vec2 mouth_xy = Vec2::Zero(), crack_dir = Vec2::Zero();
+  double crack_len = 0;
+  if (cracked) {
+    gmsh::model::mesh::embed(1, {cracked->crack_curve}, 2, cracked->surface);
+    double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
+    // The mouth: the curve's end other than the tip.
+    std::vector<std::pair<int, int>> ends;
+    gmsh::model::getBoundary({{1, cracked->crack_curve}}, ends, false, false, false);
+    for (const auto& [dim, tag] : ends) {
+      if (std::abs(tag) == cracked->crack_tip) continue;
+      gmsh::model::getBoundingBox(0, std::abs(tag), xmin, ymin, zmin, xmax, ymax, zmax);
+      mouth_xy = Vec2(xmin, ymin);
+    }
+    crack_len = (cracked->tip_xy - mouth_xy).norm();
+    crack_dir = (cracked->tip_xy - mouth_xy) / crack_len;
+  }
+  const double h_tip = crack ? crack->tip_size * kMm / mesh.refinement : 0.0;
+  const double h_crack = crack ? crack->face_size_per_module *
+                                     (crack->gear == 1 ? g1 : g2).module() * kMm / mesh.refinement
+                               : 0.0;
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
@@ -442,6 +629,14 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
       s = std::min(s, h_c + mesh.grading * std::max(0.0, std::hypot(x - c.x(), y - c.y()) - r0));
     const bool on1 = (dim == 2 && tag == m1.surface) || (dim == 1 && m1.curves.count(tag));
     const bool on2 = (dim == 2 && tag == m2.surface) || (dim == 1 && m2.curves.count(tag));
+    if (cracked && (cracked == &m1 ? on1 || !on2 : on2 || !on1)) {
+      // h_tip at the tip growing by tip_grading with the distance; h_crack along the faces.
+      const Vec2 p(x, y);
+      const double u = std::clamp((p - mouth_xy).dot(crack_dir), 0.0, crack_len);
+      const double to_path = (p - (mouth_xy + u * crack_dir)).norm();
+      s = std::min({s, h_tip + crack->tip_grading * (p - cracked->tip_xy).norm(),
+                    h_crack + mesh.grading * to_path});
+    }
     if (on1 || !on2) s = std::min(s, h_tooth + mesh.grading * zone1.Distance(x, y));
     if (on2 || !on1) s = std::min(s, h_tooth + mesh.grading * zone2.Distance(x, y));
     for (const FilletZone& z : fillet_zones) {
@@ -475,7 +670,7 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
         xy.push_back(position.at(tag));
     }
   }
-  const int n2 = static_cast<int>(xy.size());
+  int n2 = static_cast<int>(xy.size());
 
   // Triangles (6-node, gmsh type 9), counter-clockwise.
   std::vector<Tri> tris;
@@ -528,6 +723,47 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
     ++straightened;
   }
 
+  // The crack's faces: every node on the crack curve but the tip's gets a copy, taken by the
+  // elements on the left of the path (mouth → tip); the faces are then free surfaces (open).
+  int crack_nodes = 0;
+  if (cracked) {
+    std::vector<std::size_t> tags;
+    std::vector<double> c, u;
+    gmsh::model::mesh::getNodes(tags, c, u, 1, cracked->crack_curve, true, false);
+    std::map<int, int> copy_of;
+    for (std::size_t tag : tags) {
+      const int i = index.at(tag);
+      if ((xy[i] - cracked->tip_xy).norm() < 1e-9 * std::max(1.0, crack_len)) continue;
+      if (copy_of.count(i)) continue;
+      copy_of[i] = static_cast<int>(xy.size());
+      xy.push_back(xy[i]);
+    }
+    if (copy_of.size() < 3)
+      throw std::runtime_error("fe deck: the crack has " + std::to_string(copy_of.size()) +
+                               " mesh nodes: it was not embedded in the mesh");
+    const int body = cracked == &m1 ? 0 : 1;
+    for (Tri& t : tris) {
+      if (t.body != body) continue;
+      bool touches = false;
+      for (int j = 0; j < 6; ++j) touches = touches || copy_of.count(t.n[j]);
+      if (!touches) continue;
+      const Vec2 centroid = (xy[t.n[0]] + xy[t.n[1]] + xy[t.n[2]]) / 3.0;
+      if (geometry::Cross(crack_dir, centroid - mouth_xy) <= 0) continue;
+      for (int j = 0; j < 6; ++j) {
+        const auto it = copy_of.find(t.n[j]);
+        if (it != copy_of.end()) t.n[j] = it->second;
+      }
+    }
+    crack_nodes = static_cast<int>(copy_of.size());
+    n2 = static_cast<int>(xy.size());
+    edge_of.clear();
+    for (std::size_t id = 0; id < tris.size(); ++id)
+      for (int j = 0; j < 3; ++j) {
+        const int a = tris[id].n[j], b = tris[id].n[(j + 1) % 3];
+        edge_of[{std::min(a, b), std::max(a, b)}] = {static_cast<int>(id), j};
+      }
+  }
+
   // Slab node ids: bottom i+1, top n2+i+1, mid-thickness 2·n2+i+1 (corner nodes only).
   std::vector<char> corner(n2, 0);
   for (const Tri& t : tris)
@@ -547,6 +783,7 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   info.nodes_2d = n2;
   info.triangles = static_cast<int>(tris.size());
   info.straightened = straightened;
+  info.crack_nodes = crack_nodes;
   for (auto& [key, p] : by_teeth) info.pairs.push_back(p);
 
   std::filesystem::create_directories(directory);
@@ -719,6 +956,38 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   if (!f) throw std::runtime_error(deck_path + ": write failed");
   info.Write(directory + "/deck.info");
   return info;
+}
+
+}  // namespace epicycle::fe_reference
+
+namespace epicycle::fe_reference {
+
+std::optional<FeSpall> SpallOfScene(const transmission::Scene& scene) {
+  const std::vector<transmission::Pit>& pits = scene.damage.pits;
+  if (pits.empty()) return std::nullopt;
+  if (pits.size() > 1)
+    throw std::invalid_argument("fe deck: damage.pit: " + std::to_string(pits.size()) +
+                                " pits: the deck takes one");
+  const transmission::Pit& p = pits.front();
+  if (p.width_fraction < 1)
+    throw std::invalid_argument(p.where + ": width_fraction = " + Num(p.width_fraction) +
+                                ": the plane-strain deck takes a spall over the whole face (1)");
+  if (p.gear != "gear1" && p.gear != "gear2")
+    throw std::invalid_argument(p.where + ": gear = '" + p.gear + "': must be gear1 or gear2");
+  FeSpall s;
+  s.gear = p.gear == "gear1" ? 1 : 2;
+  s.tooth = p.tooth;
+  s.side = p.flank;
+  s.roll_from = p.roll_from;
+  s.roll_to = p.roll_to;
+  s.depth = p.depth;
+  return s;
+}
+
+double IsoRootChord(const geometry::Gear& gear) {
+  compliance::RootCrack c;
+  c.start_arc = compliance::IsoCriticalFilletArc(gear);
+  return 2.0 * std::abs(c.Points(gear).front().y());
 }
 
 }  // namespace epicycle::fe_reference

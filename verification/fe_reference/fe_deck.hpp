@@ -18,9 +18,11 @@
 // that torque, the quantities of transmission/mesh_stiffness.hpp.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "epicycle/compliance/root_crack.hpp"
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/transmission/scene.hpp"
 
@@ -39,9 +41,9 @@ struct FeMeshOptions {
   /// `fillet_zone` teeth either side, per module [-]: m/40 = ρ_F/15 on the ISO rack's fillet
   double fillet_size_per_module = 0.025;
   int fillet_zone = 1;  ///< teeth either side of the loaded ones whose fillet stress is read [-]
-  double refinement = 1.0;              ///< divides every size [-], > 0
-  int points_per_segment = 40;          ///< interpolation points of each profile spline [-]
-  void Validate() const;                ///< @throws std::invalid_argument naming the field
+  double refinement = 1.0;      ///< divides every size [-], > 0
+  int points_per_segment = 40;  ///< interpolation points of each profile spline [-]
+  void Validate() const;        ///< @throws std::invalid_argument naming the field
 };
 
 struct FeContactOptions {
@@ -50,6 +52,35 @@ struct FeContactOptions {
   double gap_window = 200e-6;    ///< tooth pairs within this rigid gap get a contact pair [m]
   double slave_reach = 1.0e-3;   ///< slave faces within this of the rigid contact points [m]
   double master_reach = 1.5e-3;  ///< master faces likewise [m]
+};
+
+/// A root crack in one tooth of gear 1 or 2 (the geometry of compliance::RootCrack, one straight
+/// segment), meshed here independently of compliance's cracked mesh: the crack is a straight curve
+/// embedded in the gear's gmsh surface (its mouth splits the fillet curve), and every mesh node on
+/// it but the tip's is duplicated in the deck, the elements on the σ-flank side of the path taking
+/// the copy. The faces are open: no contact between them (docs/model.md §9 "Root crack").
+struct FeCrack {
+  int gear = 1;                 ///< 1 or 2
+  compliance::RootCrack crack;  ///< tooth, side, start_arc [m] and one segment (length, ν)
+  double tip_size = 10e-6;      ///< h_tip [m], element size at the tip (divided by refinement)
+  double face_size_per_module = 0.025;  ///< h along the crack faces per module (÷ refinement)
+  double tip_grading = 0.25;            ///< growth of the size with distance from the tip [-]
+};
+
+/// A spall over the whole face width (w = 1): the involute of one flank lowered by `depth`, normal
+/// to the flank, between two roll angles; the lowered piece joins the intact flank by straight
+/// steps (the sharp edges of transmission::Pit's region).
+struct FeSpall {
+  int gear = 1;                       ///< 1 or 2 (external gears)
+  int tooth = 0, side = 1;            ///< body-frame tooth k and flank σ
+  double roll_from = 0, roll_to = 0;  ///< involute roll angles u [rad], roll_from < roll_to
+  double depth = 0;                   ///< d [m], > 0
+};
+
+/// Damage of the deck's teeth (both optional).
+struct FeDamage {
+  std::optional<FeCrack> crack;
+  std::optional<FeSpall> spall;
 };
 
 /// One tooth pair of the deck: its contact pair's slave (gear 1) and master (gear 2) surfaces.
@@ -77,12 +108,13 @@ struct FeDeckInfo {
   double angle = 0;               ///< position: gear-1 rotation from the cycle start [rad]
   std::vector<double> rotations;  ///< θ of each step [rad]
   std::vector<FeToothPair> pairs;
-  std::vector<int> hub_nodes;        ///< CalculiX ids of gear 1's hub nodes
-  std::vector<double> hub_x, hub_y;  ///< their coordinates relative to c_1 [mm]
+  std::vector<int> hub_nodes;              ///< CalculiX ids of gear 1's hub nodes
+  std::vector<double> hub_x, hub_y;        ///< their coordinates relative to c_1 [mm]
   std::vector<FeFilletNode> fillet_nodes;  ///< the nodes of the fillets whose stress is written
-  int nodes = 0, elements = 0;       ///< of the 3-D deck
-  int nodes_2d = 0, triangles = 0;   ///< of the gmsh mesh
+  int nodes = 0, elements = 0;             ///< of the 3-D deck
+  int nodes_2d = 0, triangles = 0;         ///< of the gmsh mesh
   int straightened = 0;  ///< curved triangles given straight sides (inside out on a small round)
+  int crack_nodes = 0;   ///< nodes of the gmsh mesh duplicated on the crack's faces
   void Write(const std::string& path) const;
   /// @throws std::runtime_error naming the file and line that cannot be read.
   static FeDeckInfo Read(const std::string& path);
@@ -95,7 +127,15 @@ struct FeDeckInfo {
 FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair& pair,
                      double torque, double angle, const std::vector<double>& rotations,
                      const FeMeshOptions& mesh, const FeContactOptions& contact,
-                     const std::string& directory);
+                     const std::string& directory, const FeDamage& damage = {});
+
+/// The spall of the scene's pit on gear "gear1" or "gear2" (a pair scene's [[damage.pit]]), if
+/// any. @throws std::invalid_argument for more than one pit or a pit with width_fraction < 1
+/// (the slab is plane strain: a partial-width pit needs layers in z).
+std::optional<FeSpall> SpallOfScene(const transmission::Scene& scene);
+
+/// s_Fn [m], the root chord between ISO 6336-3's 30° points of a gear (60° internal).
+double IsoRootChord(const geometry::Gear& gear);
 
 /// One static step as CalculiX reports it.
 struct FeStepResult {

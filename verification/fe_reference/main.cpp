@@ -27,9 +27,32 @@ std::vector<double> ParseList(const std::string& text) {
   return out;
 }
 
+// --crack "gear,tooth,side,depth_mm,angle_deg[,start_arc_mm]" (start: ISO's 30° point when
+// left out) into the deck's crack.
+std::optional<fe_reference::FeCrack> ParseCrack(const std::string& text, double tip_size_um,
+                                                const geometry::GearPair& pair) {
+  if (text.empty()) return std::nullopt;
+  const std::vector<double> v = ParseList(text);
+  if (v.size() != 5 && v.size() != 6)
+    throw std::invalid_argument("--crack '" + text +
+                                "': needs gear,tooth,side,depth_mm,angle_deg[,start_arc_mm]");
+  fe_reference::FeCrack c;
+  c.gear = static_cast<int>(v[0]);
+  if (c.gear != 1 && c.gear != 2)
+    throw std::invalid_argument("--crack '" + text + "': gear must be 1 or 2");
+  const geometry::Gear& gear = c.gear == 1 ? pair.gear1() : pair.gear2();
+  c.crack.tooth = static_cast<int>(v[1]);
+  c.crack.side = v[2] < 0 ? -1 : 1;
+  c.crack.path = {{v[3] * 1e-3, v[4] * geometry::kPi / 180.0}};
+  c.crack.start_arc = v.size() == 6 ? v[5] * 1e-3 : compliance::IsoCriticalFilletArc(gear);
+  c.tip_size = tip_size_um * 1e-6;
+  return c;
+}
+
 int Deck(const std::string& scene_path, const std::string& mesh_name, double angle_deg,
          const std::string& rotations_urad, const fe_reference::FeMeshOptions& mesh,
-         const fe_reference::FeContactOptions& contact, const std::string& out) {
+         const fe_reference::FeContactOptions& contact, const std::string& out,
+         const std::string& crack, double tip_size_um) {
   const transmission::Scene scene = transmission::ReadScene(scene_path);
   std::optional<geometry::Stage> stage;
   if (scene.kind == transmission::SceneKind::kStage) stage.emplace(scene.stage);
@@ -38,11 +61,44 @@ int Deck(const std::string& scene_path, const std::string& mesh_name, double ang
   const geometry::GearPair pair(setup.spec);
   std::vector<double> rotations;
   for (double r : ParseList(rotations_urad)) rotations.push_back(r * 1e-6);
-  const fe_reference::FeDeckInfo info = fe_reference::WriteDeck(
-      scene, pair, setup.torque, angle_deg * geometry::kPi / 180.0, rotations, mesh, contact, out);
+  fe_reference::FeDamage damage;
+  damage.crack = ParseCrack(crack, tip_size_um, pair);
+  damage.spall = fe_reference::SpallOfScene(scene);
+  const fe_reference::FeDeckInfo info =
+      fe_reference::WriteDeck(scene, pair, setup.torque, angle_deg * geometry::kPi / 180.0,
+                              rotations, mesh, contact, out, damage);
   std::printf("%s/deck.inp: %d nodes, %d C3D15 (gmsh: %d nodes, %d triangles), %zu tooth pairs\n",
               out.c_str(), info.nodes, info.elements, info.nodes_2d, info.triangles,
               info.pairs.size());
+  if (damage.crack)
+    std::printf(
+        "crack: gear %d tooth %d side %+d, start arc %.5f mm, q %.5f mm, nu %.3f deg, "
+        "%d nodes duplicated\n",
+        damage.crack->gear, damage.crack->crack.tooth, damage.crack->crack.side,
+        damage.crack->crack.start_arc * 1e3, damage.crack->crack.depth() * 1e3,
+        damage.crack->crack.path.front().angle * 180.0 / geometry::kPi, info.crack_nodes);
+  if (damage.spall)
+    std::printf("spall: gear %d tooth %d side %+d, roll %.4f..%.4f deg, depth %.3f um\n",
+                damage.spall->gear, damage.spall->tooth, damage.spall->side,
+                damage.spall->roll_from * 180.0 / geometry::kPi,
+                damage.spall->roll_to * 180.0 / geometry::kPi, damage.spall->depth * 1e6);
+  return 0;
+}
+
+// ISO 6336-3's critical fillet point of both gears: its arc length from the space centre line and
+// the root chord s_Fn between the two teeth's sides' points [mm].
+int Chord(const std::string& scene_path, const std::string& mesh_name) {
+  const transmission::Scene scene = transmission::ReadScene(scene_path);
+  std::optional<geometry::Stage> stage;
+  if (scene.kind == transmission::SceneKind::kStage) stage.emplace(scene.stage);
+  const geometry::GearPair pair(
+      transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, mesh_name).spec);
+  std::printf("gear,iso_arc_mm,s_Fn_mm,loaded_side\n");
+  for (int g : {1, 2}) {
+    const geometry::Gear& gear = g == 1 ? pair.gear1() : pair.gear2();
+    std::printf("%d,%.6f,%.6f,%d\n", g, compliance::IsoCriticalFilletArc(gear) * 1e3,
+                fe_reference::IsoRootChord(gear) * 1e3, pair.loaded_side());
+  }
   return 0;
 }
 
@@ -177,6 +233,15 @@ int main(int argc, char** argv) {
   deck->add_option("--fillet-size-per-module", mesh.fillet_size_per_module,
                    "element size on the read fillets per module [-]");
   deck->add_option("--out", out, "output directory");
+  std::string crack;
+  double tip_size_um = 10.0;
+  deck->add_option("--crack", crack,
+                   "root crack gear,tooth,side,depth_mm,angle_deg[,start_arc_mm] (start: ISO's "
+                   "30 deg point); a pit of the scene is meshed as a spall");
+  deck->add_option("--crack-tip-size-um", tip_size_um, "element size at the crack tip [um]");
+  CLI::App* chord = app.add_subcommand("chord", "ISO 30-deg fillet points and s_Fn of both gears");
+  chord->add_option("scene", scene, "scene file")->required();
+  chord->add_option("--mesh", mesh_name, "a stage scene's mesh");
   CLI::App* read = app.add_subcommand("read", "read DIR/deck.dat, print the reference CSV row");
   read->add_option("dir", dir, "directory of deck.inp")->required();
   CLI::App* fillets =
@@ -192,7 +257,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     if (*plot) return Plot(hybrid_csv, fe_csv, prefix, title);
     mesh.contact_size = contact_size_um * 1e-6;
-    if (*deck) return Deck(scene, mesh_name, angle_deg, rotations, mesh, contact, out);
+    if (*deck)
+      return Deck(scene, mesh_name, angle_deg, rotations, mesh, contact, out, crack, tip_size_um);
+    if (*chord) return Chord(scene, mesh_name);
     if (*fillets) return Fillets(dir);
     return Read(dir);
   } catch (const CLI::ParseError& e) {
