@@ -155,7 +155,7 @@ out="$(cd "$out" && pwd)"
 meshopt=()
 [ -n "$mesh" ] && meshopt=(--mesh "$mesh")
 if [ ! -d "$out/hybrid" ]; then
-  "$app" stiffness "$hybrid_scene" "${meshopt[@]}" --positions "$grid" --out "$out/hybrid" \
+  "$app" stiffness "$hybrid_scene" "${meshopt[@]}" --positions "$grid" --cycle 0 --out "$out/hybrid" \
     > "$out/hybrid.log"
 fi
 hybrid="$out/hybrid/$(ls "$out/hybrid" | grep '^stiffness_.*\.csv$' | head -1)"

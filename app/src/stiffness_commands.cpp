@@ -26,7 +26,7 @@ using json = nlohmann::json;
 
 struct StiffnessArgs {
   std::string scene, mesh, backend = "newton", out = "stiffness-out", cache;
-  int positions = 60;
+  int positions = 60, cycle = -1;
   int threads = 0;  // 0: one per core
   bool no_cache = false, no_local = false, stresses = false;
 };
@@ -47,8 +47,8 @@ void RunStiffness(const StiffnessArgs& a) {
       transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, a.mesh);
   const geometry::GearPair pair = transmission::MakePair(scene, setup.spec);
   const transmission::FeComplianceOptions fe = TableOptions(a.cache, a.no_cache);
-  // A damaged tooth: the cycles it meshes in, framed by healthy ones (one cycle otherwise).
-  const auto [first, cycles] = transmission::DamagedToothCycles(setup, pair);
+  const auto [first, cycles] =
+      a.cycle >= 0 ? std::array<int, 2>{a.cycle, 1} : transmission::DamagedToothCycles(setup, pair);
   std::printf("%s: mesh %s, torque on gear 1 %.3f N m, %d positions per cycle, cycles %d..%d\n",
               scene.name.c_str(), setup.mesh.c_str(), setup.torque, a.positions, first,
               first + cycles - 1);
@@ -123,6 +123,7 @@ void RegisterStiffnessCommands(CLI::App& app) {
   cmd->add_option("--mesh", a.mesh, "Mesh of a stage: sun-planet1, planet1-ring, ...");
   AddNumber(cmd, "--positions", a.positions, "Positions per mesh cycle",
             {2, 1e5, false, true, "", ""});
+  AddNumber(cmd, "--cycle", a.cycle, "Sweep this one mesh cycle", {0, 1e6, false, false, "", ""});
   AddNumber(cmd, "--threads", a.threads,
             "Worker threads: the positions in contiguous chunks, one per thread (0: one per core)",
             kThreadsOrZero);
