@@ -8,9 +8,10 @@
 //    surface and duplicates its nodes in the deck (open faces, no contact on them), independently
 //    of compliance's cracked sector mesh — committed in
 //    verification/data/fe_reference/iso_pair_20_40_crack.csv;
-//  - a spall over the whole face width (w = 1), 10 µm deep, on the same flank over roll 8..13°
+//  - a spall over the whole face width (w = 1), 10 µm deep, on the same flank over roll 4.5..18°
 //    (verification/data/fe_reference/iso_pair_20_40_spall.toml; the FE model lowers that piece of
-//    the flank by 10 µm) — committed in iso_pair_20_40_spall.csv.
+//    the flank by 10 µm) — committed in iso_pair_20_40_spall.csv; and a narrow one over roll
+//    8..13° (iso_pair_20_40_spall_narrow), whose edges the mate rests on: reported, not asserted.
 // ccx is not needed here: this test recomputes the hybrid model at the reference's positions of
 // its 48-position grid and compares the mesh stiffness k (and the loaded transmission error).
 #include <catch2/catch.hpp>
