@@ -236,9 +236,12 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geome
   internal::RunOrderedChunks(
       options.positions, options.threads, options.backend,
       [&](int k, bool, solvers::ContactSolver& solver) {
-        const double angle =
-            pair.mesh_cycle() *
-            (options.first_cycle + static_cast<double>(options.cycles) * k / options.positions);
+        // (first·N + cycles·k)/N cycles, in this order so that one cycle from 0 gives the angles
+        // c·k/N of a single-cycle sweep bit for bit.
+        const double angle = pair.mesh_cycle() *
+                             (static_cast<double>(options.first_cycle) * options.positions +
+                              static_cast<double>(options.cycles) * k) /
+                             options.positions;
         r.samples[static_cast<std::size_t>(k)] =
             SolveSample(setup, damage, pair, compliance, options, solver, angle);
       },
