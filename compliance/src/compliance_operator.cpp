@@ -168,19 +168,22 @@ std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies
       throw std::invalid_argument("FilletStresses: body " + std::to_string(b) + " ('" +
                                   bodies[b].name + "') has a table without fillet stresses");
     const int z = table.teeth();
-    // The teeth within `neighbours` of a tooth of this body that carries load, each once.
+    // This body's loads, prepared once, and the teeth within `neighbours` of one that carries
+    // load, each once.
+    std::vector<InfluenceTable::FilletLoad> loads;
     std::vector<char> wanted(static_cast<std::size_t>(z), 0);
-    for (const Located& l : loc)
-      if (l.body == b && force(l.contact) > 0.0)
-        for (int d = -neighbours; d <= neighbours; ++d)
-          wanted[static_cast<std::size_t>(((l.node.tooth + d) % z + z) % z)] = 1;
+    for (const Located& l : loc) {
+      if (l.body != b || !(force(l.contact) > 0.0)) continue;
+      loads.push_back(table.PrepareFilletLoad(l.node, force(l.contact)));
+      for (int d = -neighbours; d <= neighbours; ++d)
+        wanted[static_cast<std::size_t>(((l.node.tooth + d) % z + z) % z)] = 1;
+    }
     for (int k = 0; k < z; ++k) {
       if (!wanted[static_cast<std::size_t>(k)]) continue;
       for (int side = 0; side < 2; ++side) {
         FilletStress f{b, k, side, std::vector<double>(table.fillet_points().size(), 0.0), &table};
-        for (const Located& l : loc)
-          if (l.body == b && force(l.contact) > 0.0)
-            table.AddFilletStress(l.node, force(l.contact), k, side, f.sigma.data());
+        for (const InfluenceTable::FilletLoad& l : loads)
+          table.AddFilletStress(l, k, side, f.sigma.data());
         out.push_back(std::move(f));
       }
     }

@@ -114,25 +114,59 @@ std::size_t InfluenceTable::FilletIndex(int fl, int i, int c, int k, int f) cons
   return ((((static_cast<std::size_t>(fl) * n_ + i) * 2 + c) * teeth_ + k) * 2 + f) * m;
 }
 
-void InfluenceTable::AddFilletStress(const DirectedNode& load, double force, int tooth, int side,
-                                     double* sigma) const {
+InfluenceTable::FilletLoad InfluenceTable::PrepareFilletLoad(const DirectedNode& load,
+                                                             double force) const {
   if (!has_fillet_stress())
     throw std::logic_error("InfluenceTable: built without fillet stress (fillet_stress = false)");
+  FilletLoad out;
+  out.tooth = load.tooth;
+  for (int p = 0; p < 4; ++p) {
+    for (int c = 0; c < 2; ++c) {
+      const double w = force * load.load_weight[static_cast<std::size_t>(2 * p + c)];
+      if (w == 0.0) continue;
+      const auto q = static_cast<std::size_t>(out.count++);
+      out.weight[q] = w;
+      out.row[q] = &fillet_stress_[FilletIndex(load.flank_index, load.node.first + p, c, 0, 0)];
+    }
+  }
+  return out;
+}
+
+void InfluenceTable::AddFilletStress(const FilletLoad& load, int tooth, int side,
+                                     double* sigma) const {
   if (side != 0 && side != 1)
     throw std::invalid_argument("InfluenceTable: fillet side " + std::to_string(side) +
                                 ": must be 0 (sigma = +1) or 1 (sigma = -1)");
   const int z = teeth_;
   const int k = ((tooth - load.tooth) % z + z) % z;  // the response tooth seen from the load's
   const std::size_t m_count = fillet_.size();
-  for (int p = 0; p < 4; ++p) {
-    for (int c = 0; c < 2; ++c) {
-      const double w = force * load.load_weight[static_cast<std::size_t>(2 * p + c)];
-      if (w == 0.0) continue;
-      const double* s =
-          &fillet_stress_[FilletIndex(load.flank_index, load.node.first + p, c, k, side)];
-      for (std::size_t m = 0; m < m_count; ++m) sigma[m] += w * s[m];
-    }
+  const std::size_t offset = (static_cast<std::size_t>(k) * 2 + side) * m_count;
+  // Per point the weights in the order AddFilletStress(DirectedNode) adds them: the same
+  // roundings, one load and store of σ. The usual load (8 non-zero weights) as one Eigen
+  // expression, which evaluates element by element in that order and in SIMD packets.
+  double* __restrict out = sigma;
+  if (load.count == 8) {
+    using Row = Eigen::Map<const Eigen::ArrayXd>;
+    const auto n = static_cast<Eigen::Index>(m_count);
+    const auto& w = load.weight;
+    const auto row = [&](int q) { return Row(load.row[static_cast<std::size_t>(q)] + offset, n); };
+    Eigen::Map<Eigen::ArrayXd> s(out, n);
+    s = s + w[0] * row(0) + w[1] * row(1) + w[2] * row(2) + w[3] * row(3) + w[4] * row(4) +
+        w[5] * row(5) + w[6] * row(6) + w[7] * row(7);
+    return;
   }
+  for (std::size_t m = 0; m < m_count; ++m) {
+    double s = out[m];
+    for (int q = 0; q < load.count; ++q)
+      s += load.weight[static_cast<std::size_t>(q)] *
+           load.row[static_cast<std::size_t>(q)][offset + m];
+    out[m] = s;
+  }
+}
+
+void InfluenceTable::AddFilletStress(const DirectedNode& load, double force, int tooth, int side,
+                                     double* sigma) const {
+  AddFilletStress(PrepareFilletLoad(load, force), tooth, side, sigma);
 }
 
 double InfluenceTable::FilletGridValue(int fl, int i, int c, int k, int f, int m) const {

@@ -35,7 +35,11 @@ std::vector<GearRootStress> SummariseRootStress(
 void RootStressEnvelope::Add(const std::vector<compliance::FilletStress>& fillets) {
   ++states_;
   for (const compliance::FilletStress& f : fillets) {
-    Point& p = points_[{f.body, f.tooth, f.side}];
+    if (points_.size() <= static_cast<std::size_t>(f.body))
+      points_.resize(static_cast<std::size_t>(f.body) + 1);
+    std::vector<Point>& body = points_[static_cast<std::size_t>(f.body)];
+    if (body.empty()) body.resize(2 * static_cast<std::size_t>(f.table->teeth()));
+    Point& p = body.at(2 * static_cast<std::size_t>(f.tooth) + static_cast<std::size_t>(f.side));
     if (p.table == nullptr) {
       p.table = f.table;
       p.max.assign(f.sigma.size(), 0.0);
@@ -51,16 +55,20 @@ void RootStressEnvelope::Add(const std::vector<compliance::FilletStress>& fillet
 std::vector<RootStressEnvelope::Range> RootStressEnvelope::Ranges() const {
   std::vector<Range> out(static_cast<std::size_t>(bodies_));
   for (int b = 0; b < bodies_; ++b) out[b].body = b;
-  for (const auto& [key, p] : points_) {
-    const auto [body, tooth, side] = key;
-    Range& r = out.at(static_cast<std::size_t>(body));
-    for (std::size_t m = 0; m < p.max.size(); ++m) {
-      // max and min start at 0: a state that did not compute the point counts as unloaded.
-      if (p.max[m] - p.min[m] > r.range) {
-        r.range = p.max[m] - p.min[m];
-        r.at = {tooth, side, p.table->fillet_points()[m].arc_length};
-        r.max = p.max[m];
-        r.min = p.min[m];
+  for (std::size_t body = 0; body < points_.size(); ++body) {
+    for (std::size_t key = 0; key < points_[body].size(); ++key) {
+      const Point& p = points_[body][key];
+      if (p.table == nullptr) continue;
+      Range& r = out.at(body);
+      for (std::size_t m = 0; m < p.max.size(); ++m) {
+        // max and min start at 0: a state that did not compute the point counts as unloaded.
+        if (p.max[m] - p.min[m] > r.range) {
+          r.range = p.max[m] - p.min[m];
+          r.at = {static_cast<int>(key / 2), static_cast<int>(key % 2),
+                  p.table->fillet_points()[m].arc_length};
+          r.max = p.max[m];
+          r.min = p.min[m];
+        }
       }
     }
   }

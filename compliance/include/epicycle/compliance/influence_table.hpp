@@ -217,6 +217,20 @@ class InfluenceTable {
   /// entries [Pa]. @throws std::logic_error on a table without stress.
   void AddFilletStress(const DirectedNode& load, double force, int tooth, int side,
                        double* sigma) const;
+  /// A load prepared once for the superposition on many fillets: its non-zero stencil weights
+  /// times the force, F w_p (R_kᵀ d)_c [N], each with the tabulated row it scales (response tooth
+  /// 0, side 0; a fillet is a fixed offset from it).
+  struct FilletLoad {
+    int tooth = 0;  ///< the loaded tooth, k mod z
+    int count = 0;  ///< non-zero weights [-], ≤ 8
+    std::array<double, 8> weight{};
+    std::array<const double*, 8> row{};
+  };
+  /// @throws std::logic_error on a table without stress.
+  FilletLoad PrepareFilletLoad(const DirectedNode& load, double force) const;
+  /// The same sum as AddFilletStress(load's node, force, ...), bit for bit, in one pass over the
+  /// fillet points.
+  void AddFilletStress(const FilletLoad& load, int tooth, int side, double* sigma) const;
   /// The tabulated σ_tt [Pa/N] at fillet point m of (tooth k, side f) under a unit force along
   /// axis c at grid point i of tooth 0's flank fl (fl, f: 0 for σ = +1, 1 for σ = −1).
   double FilletGridValue(int fl, int i, int c, int k, int f, int m) const;

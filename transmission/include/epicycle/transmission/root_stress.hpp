@@ -4,9 +4,7 @@
 // other in the ring mesh: ISO 6336-5's reversed bending).
 #pragma once
 
-#include <map>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -59,7 +57,9 @@ class RootStressEnvelope {
   };
   int bodies_ = 0;
   int states_ = 0;
-  std::map<std::tuple<int, int, int>, Point> points_;  // (body, tooth, side)
+  // points_[body][2 tooth + side], sized by the body's teeth when it is first seen (a point
+  // without table was never computed).
+  std::vector<std::vector<Point>> points_;
 };
 
 /// Per body over many states (a sweep's positions, a run's output steps): the extremes, where
