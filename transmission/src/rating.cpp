@@ -51,7 +51,7 @@ void CheckRatingInputs(const Scene& scene, const std::string& asked_by) {
 
 StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
                       const SweepSummary& summary, double dynamic_factor,
-                      const std::string& dynamic_source) {
+                      const std::string& dynamic_source, const MotionStresses* motion) {
   CheckRatingInputs(scene, "a rating");
   if (!(dynamic_factor >= 1 && std::isfinite(dynamic_factor)))
     throw std::invalid_argument(fmt::format("RateStage: K_v = {}: must be finite and >= 1",
@@ -74,6 +74,9 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
   factor("K_A", out.application_factor,
          "the scene's [rating] application_factor (default 1: uniform load)");
   factor("K_v", dynamic_factor, dynamic_source);
+  if (motion != nullptr)
+    factor("model's own stresses", 1.0,
+           motion->source + ": root stresses and pressures in motion, taken without K_v");
   factor("K_Hbeta = K_Fbeta", 1.0, "plane model: the load is uniform over the face width");
   factor("K_Halpha = K_Falpha", 1.0,
          "nominal case; the model resolves the sharing between tooth pairs in its own columns");
@@ -216,17 +219,21 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
     r.s_h_table = hlim / r.sigma_h_table;
     r.s_h_model = hlim / r.sigma_h_model;
     r.root_stress = r.contact_pressure = r.s_f_stress = r.s_h_pressure = kNaN;
-    for (const RootStressSummary& s : summary.root_stress)
+    // The model's own: the run's stresses, times K_v unless they are the stresses in motion.
+    const auto& root = motion != nullptr ? motion->root_stress : summary.root_stress;
+    const auto& pressure = motion != nullptr ? motion->contact_pressure : summary.contact_pressure;
+    const double own = motion != nullptr ? out.application_factor : ka_kv;
+    for (const RootStressSummary& s : root)
       if (s.extremes.body == body && s.extremes.tension > 0) {
         r.root_stress = s.extremes.tension;
-        r.s_f_stress = flim / (r.root_stress * ka_kv);
+        r.s_f_stress = flim / (r.root_stress * own);
       }
-    for (const FlankPressure& p : summary.contact_pressure)
+    for (const FlankPressure& p : pressure)
       if (p.body == body && p.drive && !p.tip && p.pressure > 0) {
         r.contact_pressure = p.pressure;
-        r.s_h_pressure = hlim / (p.pressure * std::sqrt(ka_kv));
+        r.s_h_pressure = hlim / (p.pressure * std::sqrt(own));
       }
-    if (summary.root_stress.empty())
+    if (root.empty())
       r.note += std::string(r.note.empty() ? "" : "; ") +
                 "the model's own columns need the run's stresses ([model] stresses)";
     return r;

@@ -106,6 +106,43 @@ TEST_CASE("Ratings from the run's own stresses", "[unit][transmission][rating]")
   CHECK(g.s_h_pressure == Approx(1.5).epsilon(1e-15));
 }
 
+TEST_CASE("A dynamic rating: the ISO columns take K_v, the stresses in motion do not",
+          "[unit][transmission][rating]") {
+  const Scene scene = RatedScene();
+  const geometry::Stage stage(scene.stage);
+  SweepSummary at_rest = Summary();  // the quasi-static reference: its own stresses are not used
+  RootStressSummary rest;
+  rest.extremes.body = kSunBody;
+  rest.extremes.tension = 150e6;
+  at_rest.root_stress.push_back(rest);
+  MotionStresses motion;
+  motion.source = "a run in motion";
+  RootStressSummary moving = rest;
+  moving.extremes.tension = 240e6;
+  motion.root_stress.push_back(moving);
+  FlankPressure p;
+  p.body = kSunBody;
+  p.pressure = 1200e6;
+  motion.contact_pressure.push_back(p);
+  const double kv = 1.25;
+  const StageRating still = RateStage(scene, stage, at_rest);
+  const StageRating dynamic = RateStage(scene, stage, at_rest, kv, "the run", &motion);
+  const GearRating &g = still.gears.front(), &h = dynamic.gears.front();
+  // ISO 6336: σ_F ∝ K_v, σ_H ∝ √K_v, with K_γ of the reference.
+  CHECK(h.sigma_f_model == Approx(g.sigma_f_model * kv).epsilon(1e-15));
+  CHECK(h.sigma_h_model == Approx(g.sigma_h_model * std::sqrt(kv)).epsilon(1e-15));
+  CHECK(h.k_gamma_model == g.k_gamma_model);
+  // The model's own: the stresses in motion, K_A = 1 and no K_v (they carry the dynamics).
+  CHECK(h.root_stress == 240e6);
+  CHECK(h.s_f_stress == Approx(430e6 * 2 / 240e6).epsilon(1e-15));
+  CHECK(h.contact_pressure == 1200e6);
+  CHECK(h.s_h_pressure == Approx(1500.0 / 1200.0).epsilon(1e-15));
+  bool listed = false;
+  for (const RatingFactor& f : dynamic.factors)
+    listed = listed || f.source.find("a run in motion") != std::string::npos;
+  CHECK(listed);
+}
+
 TEST_CASE("A rating without its inputs is refused by name", "[unit][transmission][rating]") {
   Scene scene = test::PaperScene();
   const geometry::Stage stage(scene.stage);

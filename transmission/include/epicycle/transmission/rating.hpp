@@ -79,18 +79,30 @@ struct StageRating {
   std::vector<GearRating> gears;      ///< sun, planets, ring
 };
 
+/// A run in motion's own stresses for the model's columns of a rating: its largest root stresses
+/// and Hertz pressures, which already carry the dynamic loads (those columns then take K_v = 1;
+/// the ISO columns take the run's K_v against the quasi-static reference).
+struct MotionStresses {
+  std::vector<RootStressSummary> root_stress;
+  std::vector<FlankPressure> contact_pressure;
+  std::string source;  ///< "the dynamic run at 1000 rpm", for the factor list
+};
+
 /// Refuses a rating (asked for by `asked_by`, e.g. "--rating") of a scene without both endurance
 /// limits. @throws std::invalid_argument naming the missing [material] key.
 void CheckRatingInputs(const Scene& scene, const std::string& asked_by);
 
 /// The ratings of `stage` (the scene's material, limits and K_A) with the run's `summary` (K_γ from
 /// its LSR; root stresses and contact pressures when it has them) and the dynamic factor K_v
-/// (`dynamic_source` says where it came from).
+/// (`dynamic_source` says where it came from). With `motion` (a dynamic run: `summary` is then
+/// its quasi-static reference at the same carrier angles) the model's own columns are the run's
+/// stresses in motion without K_v.
 /// @throws std::invalid_argument naming the scene key if the scene gives no bending_limit_MPa or
 ///         contact_limit_MPa in [material], or for K_v not finite and ≥ 1;
 ///         std::runtime_error if the summary has no converged position (no K_γ from the run).
 StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
                       const SweepSummary& summary, double dynamic_factor = 1.0,
-                      const std::string& dynamic_source = "quasi-static run");
+                      const std::string& dynamic_source = "quasi-static run",
+                      const MotionStresses* motion = nullptr);
 
 }  // namespace epicycle::transmission

@@ -1,0 +1,61 @@
+// The dynamic factor K_v of a run (docs/model.md §9 "Ratings"): per mesh, the largest total
+// tooth force of the run (elastic plus damping, Σ over the mesh's contacts) over the largest
+// quasi-static one at the same carrier angles; K_v is the largest ratio over the meshes. The
+// quasi-static reference is solved at the run's output angles with the run's back end and contact
+// options, so both peaks are taken over the same poses; with the run it gives the rating's K_γ at
+// rest (transmission::RateStage) and the run gives the model's own stresses in motion.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "epicycle/dynamics/dynamic_model.hpp"
+#include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/transmission/contact_pressure.hpp"
+#include "epicycle/transmission/sweep_summary.hpp"
+
+namespace epicycle::dynamics {
+
+/// The loads of a run's output steps that a rating needs, gathered one step at a time (nothing
+/// grows with the steps): the largest total force per mesh and, when the steps carry root
+/// stresses, the largest Hertz pressure per flank (transmission::ContactPressureTracker, x the
+/// time [s]).
+class MotionLoads {
+ public:
+  /// Meshes in the order of geometry::Stage::meshes() (2 per planet).
+  explicit MotionLoads(const geometry::Stage& stage);
+  /// One output step; a step whose evaluation failed only counts.
+  void Add(const DynamicSample& s);
+  int steps() const { return steps_; }  ///< steps added whose evaluation was ok [-]
+  const std::vector<double>& peak_mesh_force() const { return peak_; }  ///< per mesh [N]
+  std::vector<transmission::FlankPressure> contact_pressure() const { return pressure_.Result(); }
+
+ private:
+  std::vector<double> peak_;
+  transmission::ContactPressureTracker pressure_;
+  int steps_ = 0;
+};
+
+/// K_v with the mesh that gives it and the quasi-static reference.
+struct DynamicFactor {
+  double value = std::numeric_limits<double>::quiet_NaN();  ///< K_v [-]
+  int mesh = -1;                 ///< index into geometry::Stage::meshes(), −1: none
+  std::string mesh_name;         ///< "sun-planet1", ...
+  double peak_dynamic = 0;       ///< that mesh's largest total force in motion [N]
+  double peak_quasi_static = 0;  ///< and at rest at the same angles [N]
+  /// The quasi-static sweep at the run's angles (its K_γ, load sharing; with the scene's
+  /// stresses its root stresses and pressures).
+  transmission::SweepSummary quasi_static;
+  std::string source;  ///< one line: how K_v was obtained, for a rating's factor list
+};
+
+/// K_v of a run of `model` whose output steps were at times `output_times` [s] (their carrier
+/// angles model.CarrierAngle(t)) with peaks `loads`: the quasi-static sweep at those angles with
+/// `options`' back end and contact options, streamed (the sweep keeps nothing per position).
+/// @throws std::invalid_argument if `loads` has no step or its meshes are not the model's;
+///         std::runtime_error naming the carrier angle of a quasi-static position that fails.
+DynamicFactor DynamicLoadFactor(const DynamicModel& model, const SimulationOptions& options,
+                                const std::vector<double>& output_times, const MotionLoads& loads);
+
+}  // namespace epicycle::dynamics

@@ -1,0 +1,83 @@
+#include "epicycle/dynamics/dynamic_factor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "epicycle/transmission/quasistatic.hpp"
+
+namespace epicycle::dynamics {
+
+namespace {
+
+int MeshOf(const transmission::StageContact& c) { return geometry::MeshIndex(c.planet, c.mesh); }
+
+}  // namespace
+
+MotionLoads::MotionLoads(const geometry::Stage& stage) : peak_(stage.meshes().size(), 0.0) {}
+
+void MotionLoads::Add(const DynamicSample& s) {
+  const Evaluation& e = s.evaluation;
+  if (!e.ok) return;
+  ++steps_;
+  std::vector<double> mesh(peak_.size(), 0.0);
+  for (int j = 0; j < e.terms.size(); ++j)
+    mesh.at(static_cast<std::size_t>(MeshOf(e.terms.contacts[j]))) += e.total_force(j);
+  for (std::size_t q = 0; q < mesh.size(); ++q) peak_[q] = std::max(peak_[q], mesh[q]);
+  // The pressures of the forces the stresses use (with damping), when the step has stresses.
+  if (!s.fillet_stress.empty())
+    pressure_.Add(e.terms.contacts, e.terms.local, e.total_force, s.time);
+}
+
+DynamicFactor DynamicLoadFactor(const DynamicModel& model, const SimulationOptions& options,
+                                const std::vector<double>& output_times, const MotionLoads& loads) {
+  const geometry::Stage& stage = model.stage_model().stage();
+  if (loads.steps() == 0 || output_times.empty())
+    throw std::invalid_argument("DynamicLoadFactor: the run has no output step to compare");
+  if (loads.peak_mesh_force().size() != stage.meshes().size())
+    throw std::invalid_argument("DynamicLoadFactor: the peaks are not of this stage's meshes");
+  transmission::QuasiStaticOptions qo;
+  qo.backend = options.backend;
+  qo.contact = options.contact;
+  std::vector<double> peak(stage.meshes().size(), 0.0);
+  transmission::SweepAccumulator summary(stage.planets());
+  transmission::SweepEach(
+      model.stage_model(), model.loads(), static_cast<int>(output_times.size()),
+      [&](int k) { return model.CarrierAngle(output_times[static_cast<std::size_t>(k)]); }, qo,
+      [&](const transmission::PositionResult& r, int) {
+        if (!r.converged)
+          throw std::runtime_error(
+              fmt::format("K_v: the quasi-static reference at carrier {:.6g} deg failed: {}",
+                          r.carrier_angle * 180 / std::numbers::pi, r.message));
+        summary.Add(r);
+        std::vector<double> mesh(peak.size(), 0.0);
+        for (std::size_t j = 0; j < r.problem.contacts.size(); ++j)
+          mesh.at(static_cast<std::size_t>(MeshOf(r.problem.contacts[j]))) +=
+              std::max(0.0, r.solution.force(static_cast<Eigen::Index>(j)));
+        for (std::size_t q = 0; q < mesh.size(); ++q) peak[q] = std::max(peak[q], mesh[q]);
+      });
+  DynamicFactor out;
+  out.quasi_static = summary.Result();
+  for (std::size_t q = 0; q < peak.size(); ++q) {
+    if (!(peak[q] > 0)) continue;
+    const double f = loads.peak_mesh_force()[q] / peak[q];
+    if (!(f <= out.value)) {  // NaN at first
+      out.value = f;
+      out.mesh = static_cast<int>(q);
+      out.mesh_name = stage.meshes()[q].name;
+      out.peak_dynamic = loads.peak_mesh_force()[q];
+      out.peak_quasi_static = peak[q];
+    }
+  }
+  out.source = fmt::format(
+      "the dynamic run at {:.6g} rpm: largest {} force in motion {:.6g} N over {:.6g} N at rest "
+      "at the same {} carrier angles",
+      std::abs(model.sun_speed()) * 30 / std::numbers::pi, out.mesh_name, out.peak_dynamic,
+      out.peak_quasi_static, output_times.size());
+  return out;
+}
+
+}  // namespace epicycle::dynamics
