@@ -391,6 +391,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   e.dissipated_power = 0;
   e.friction_power = 0;
   const bool friction = settings_.friction.law != transmission::FrictionLaw::kOff;
+  if (friction) e.friction_tangent.assign(static_cast<std::size_t>(n), Vec2::Zero());
   Eigen::VectorXd& qf = e.generalised_force;
   qf.setZero(nd);
   std::vector<Vec2>& body_force = w.body_force;
@@ -416,6 +417,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
       const SurfaceVelocity u = transmission::ContactSurfaceVelocity(model_, s, e.poses, body);
       e.friction(j) = transmission::FrictionForce(friction_, FrictionState(terms, j), e.total_force(j), u.ua, u.ub);
       f += e.friction(j) * u.tangent;
+      e.friction_tangent[static_cast<std::size_t>(j)] = u.tangent;
       const double p_friction = e.friction(j) * (u.ua - u.ub);  // μ_s F v_s ≥ 0
       e.friction_power += p_friction;
       e.dissipated_power += p_friction;

@@ -372,9 +372,15 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
       sample.external_work = y[2 * n];
       sample.dissipated_work = y[2 * n + 1];
       const transmission::StageCompliance& compliance = model.stage_model().compliance();
-      if (compliance.has_root_stress())
-        sample.fillet_stress = compliance.FilletStresses(model.stage_model().stage(), e.poses,
-                                                         e.terms.contacts, e.total_force);
+      if (compliance.has_root_stress()) {
+        // With friction the friction forces load the teeth too.
+        transmission::TangentialLoads rubbing;
+        const bool rubs = e.friction_tangent.size() == e.terms.contacts.size();
+        if (rubs) rubbing = {e.friction, e.friction_tangent};
+        sample.fillet_stress =
+            compliance.FilletStresses(model.stage_model().stage(), e.poses, e.terms.contacts,
+                                      e.total_force, rubs ? &rubbing : nullptr);
+      }
       if (on_sample) on_sample(sample);
       result.samples.push_back(std::move(sample));
       last_y = Eigen::Map<Eigen::VectorXd>(y, size);

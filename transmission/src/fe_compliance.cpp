@@ -215,11 +215,33 @@ bool FeStageCompliance::has_root_stress() const {
 
 std::vector<compliance::FilletStress> FeStageCompliance::FilletStresses(
     const geometry::Stage& stage, const geometry::StagePoses& poses,
-    const std::vector<StageContact>& contacts, const Eigen::VectorXd& force) const {
+    const std::vector<StageContact>& contacts, const Eigen::VectorXd& force,
+    const TangentialLoads* friction) const {
   std::vector<compliance::OperatorBody> bodies;
   std::vector<compliance::OperatorContact> oc;
   Operator(stage, poses, contacts, &bodies, &oc);
-  return compliance::FilletStresses(bodies, oc, force);
+  if (friction == nullptr) return compliance::FilletStresses(bodies, oc, force);
+  const std::size_t n = contacts.size();
+  if (static_cast<std::size_t>(friction->force.size()) != n || friction->tangent.size() != n)
+    throw std::invalid_argument("FilletStresses: friction loads of " +
+                                std::to_string(friction->force.size()) + " forces and " +
+                                std::to_string(friction->tangent.size()) + " tangents for " +
+                                std::to_string(n) + " contacts");
+  // Each friction force as a load at its contact's sides: |φ| along ±sign(φ) t (on B along φ t,
+  // on A the opposite), only where the contact carries a normal force (φ = μ F).
+  Eigen::VectorXd all(static_cast<Eigen::Index>(2 * n));
+  all.head(static_cast<Eigen::Index>(n)) = force;
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto k = static_cast<Eigen::Index>(j);
+    const double phi = force(k) > 0 ? friction->force(k) : 0.0;
+    compliance::OperatorContact t = oc[j];
+    const Eigen::Vector2d d = (phi < 0 ? -1.0 : 1.0) * friction->tangent[j];
+    t.side[0].direction = -d;
+    t.side[1].direction = d;
+    oc.push_back(std::move(t));
+    all(static_cast<Eigen::Index>(n + j)) = std::abs(phi);
+  }
+  return compliance::FilletStresses(bodies, oc, all);
 }
 
 void FeStageCompliance::Assemble(const geometry::Stage& stage, const geometry::StagePoses& poses,

@@ -101,6 +101,7 @@ class RestFriction {
     const StageProblem& p = r->problem;
     const Eigen::VectorXd& force = r->solution.force;
     Evaluate(p, poses, force, &r->friction_force, &r->sliding_velocity, nullptr);
+    r->friction_tangent.assign(p.contacts.size(), Eigen::Vector2d::Zero());
     r->friction_power = r->friction_force.dot(r->sliding_velocity);
     const geometry::Stage& stage = model_.stage();
     r->input_power = loads.sun_torque * carrier_speed_ * stage.sun_ratio();
@@ -112,6 +113,7 @@ class RestFriction {
       const StageContact& s = p.contacts[j];
       const Eigen::Index k = static_cast<Eigen::Index>(j);
       const SurfaceVelocity u = ContactSurfaceVelocity(model_, s, poses, motion_);
+      r->friction_tangent[j] = u.tangent;
       const geometry::Vec2 on_b =
           std::max(force(k), 0.0) * s.contact.normal + r->friction_force(k) * u.tangent;
       const double sign = s.body_b == PlanetBody(s.planet) ? 1.0 : -1.0;
@@ -280,9 +282,13 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
         break;
     }
   }
-  if (r.converged && root_stress)
+  if (r.converged && root_stress) {
+    TangentialLoads rubbing;  // friction at rest: its forces load the teeth too
+    const bool rubs = r.friction && r.friction_tangent.size() == r.problem.contacts.size();
+    if (rubs) rubbing = {r.friction_force, r.friction_tangent};
     r.fillet_stress = model.compliance().FilletStresses(model.stage(), built, r.problem.contacts,
-                                                        r.solution.force);
+                                                        r.solution.force, rubs ? &rubbing : nullptr);
+  }
   return r;
 }
 
@@ -343,7 +349,8 @@ std::size_t ResultBytes(const PositionResult& r) {
          matrix(d.equality_rhs) + matrix(d.support_stiffness) + strings(d.contact_labels) +
          strings(d.multiplier_labels) + d.name.capacity() + matrix(r.solution.force) +
          matrix(r.solution.multiplier) + r.poses.planets.capacity() * sizeof(geometry::GearPose) +
-         matrix(r.displacements) + matrix(r.friction_force) + matrix(r.sliding_velocity);
+         matrix(r.displacements) + matrix(r.friction_force) + matrix(r.sliding_velocity) +
+         r.friction_tangent.size() * sizeof(Eigen::Vector2d);
 }
 
 void CheckSweepMemory(const PositionResult& sample, std::size_t positions,

@@ -20,7 +20,7 @@ std::vector<std::string> BodyNames(int bodies) {
 
 std::vector<compliance::FilletStress> StageCompliance::FilletStresses(
     const geometry::Stage&, const geometry::StagePoses&, const std::vector<StageContact>&,
-    const Eigen::VectorXd&) const {
+    const Eigen::VectorXd&, const TangentialLoads*) const {
   throw std::logic_error("this stage compliance has no root-stress model");
 }
 

@@ -17,6 +17,7 @@
 #include "epicycle/compliance/influence_cache.hpp"
 #include "epicycle/compliance/influence_table.hpp"
 #include "figures.hpp"
+#include "fillet_fixtures.hpp"
 #include "stage_fixtures.hpp"
 
 using namespace epicycle;
@@ -62,22 +63,7 @@ Eigen::Vector2d OnTooth(const Eigen::Vector2d& x0, double angle, bool mirrored) 
   return Eigen::Rotation2Dd(angle).toRotationMatrix() * x;
 }
 
-// σ_tt [Pa] at the node of `set` at x, averaged over the fillet edges that share it (the
-// definition of the table's read-out at a node), from a displacement field solved directly.
-double NodeStress(const LinearElasticModel& model, const Eigen::VectorXd& u, const std::string& set,
-                  const Eigen::Vector2d& x, double tol) {
-  const auto& edges = model.mesh().EdgeSet(set);
-  double sum = 0.0;
-  int count = 0;
-  for (int e = 0; e < static_cast<int>(edges.size()); ++e)
-    for (int a = 0; a < 3; ++a)
-      if ((model.mesh().nodes[edges[e].nodes[a]] - x).norm() <= tol) {
-        sum += model.SurfaceStress(u, set, EdgePoint{e, a - 1.0});
-        ++count;
-      }
-  REQUIRE(count > 0);
-  return sum / count;
-}
+using test::NodeStress;
 
 struct Load {
   FlankPosition at;
@@ -99,7 +85,7 @@ TEST_CASE("fillet stress: two off-grid loads against the FE solved directly",
   const InfluenceTable& table = StressTable(which);
   REQUIRE(table.has_fillet_stress());
   const auto& points = table.fillet_points();
-  const int z = gear.teeth(), n = table.grid().num_points(), m_count = int(points.size());
+  const int m_count = int(points.size());
   // The direct solve: the same body mesh, the loads applied as the FE applies a point force on
   // an edge (consistent nodal forces), one solve with both loads at once.
   const GearBodyMesh body = BuildGearMesh(gear);
@@ -133,13 +119,9 @@ TEST_CASE("fillet stress: two off-grid loads against the FE solved directly",
   }
   const Eigen::VectorXd u = model.Solve(f);
 
-  // The bound of the comparison: the FE answer to a consistent point force is the quadratic
-  // (3-node) interpolation of its nodes' answers, the table's the 4-point Hermite interpolant;
-  // both reproduce quadratics, so each differs from the smooth S(s) by a fraction of its third
-  // difference Δ³S on the grid: the quadratic by max_t |t(t−1)(t−2)|/6 = 0.064, the Hermite with
-  // parabola slopes by at most 0.05 (h10/h11 ≤ 4/27 times two slopes' error Δ³S/3, rounded up).
-  // The tolerance is (0.064 + 0.05) Σ_loads F max |Δ³S| over the loads' stencils, plus
-  // round-off of the two solves (1e-9 of the largest stress).
+  // The bound of the comparison: the table's and the FE's interpolations of a load between grid
+  // points, Σ_loads test::FilletInterpolationBound (0.114 F |Δ³S| per point), plus round-off of
+  // the two solves (1e-9 of the largest stress).
   const double theta = 0.3, tol_node = 1e-9 * gear.tip_radius();
   const Eigen::Vector2d centre(0.02, -0.01);
   const Eigen::Matrix2d rot = Eigen::Rotation2Dd(theta).toRotationMatrix();
@@ -177,18 +159,8 @@ TEST_CASE("fillet stress: two off-grid loads against the FE solved directly",
       largest = std::max(largest, std::abs(direct));
       if (m == 0) rim = std::max(rim, std::abs(direct));
       double b = 0.0;
-      for (const Load& l : placed) {
-        const auto node = table.Prepare(l.at);
-        const int fl = l.at.flank > 0 ? 0 : 1;
-        const int kr = ((k - l.at.tooth) % z + z) % z;
-        double d3 = 0.0;
-        for (int c = 0; c < 2; ++c)
-          for (int i = std::max(0, node.first - 1); i + 3 < n && i <= node.first + 1; ++i) {
-            const auto S = [&](int j) { return table.FilletGridValue(fl, j, c, kr, side, m); };
-            d3 = std::max(d3, std::abs(S(i + 3) - 3 * S(i + 2) + 3 * S(i + 1) - S(i)));
-          }
-        b += (0.064 + 0.05) * l.force * d3;
-      }
+      for (const Load& l : placed)
+        b += test::FilletInterpolationBound(table, l.at, l.force, k, side, m);
       bound = std::max(bound, b);
       INFO("tooth " << k << " side " << side << " point " << m << ": table " << sigma[m]
                     << " Pa, direct " << direct << " Pa, bound " << b);

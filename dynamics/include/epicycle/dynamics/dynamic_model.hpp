@@ -93,6 +93,9 @@ struct Evaluation {
   Eigen::VectorXd force;                ///< elastic contact forces F [N] (the contact problem's)
   Eigen::VectorXd total_force;          ///< F + damping, clipped at 0 [N]
   Eigen::VectorXd friction;             ///< friction force magnitude with sign μ_s F_total [N]
+  /// Its direction t_j [-] (unit; on body B along t_j, on A along −t_j), per contact; empty with
+  /// friction off, zero where a contact carries no force.
+  std::vector<Eigen::Vector2d> friction_tangent;
   Eigen::VectorXd overlap_rate;         ///< δ̇ [m/s]
   Eigen::VectorXd acceleration;         ///< d̈ per DOF [m/s²] or [rad/s²]
   Eigen::VectorXd generalised_force;    ///< Q per DOF (mesh + bearings + external) [N] or [N·m]

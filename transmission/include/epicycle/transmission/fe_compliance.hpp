@@ -76,10 +76,12 @@ class FeStageCompliance final : public StageCompliance {
   solvers::PlaneAssumption plane() const override { return plane_; }
   const GearTables& tables() const { return tables_; }
   bool has_root_stress() const override;
-  std::vector<compliance::FilletStress> FilletStresses(const geometry::Stage& stage,
-                                                       const geometry::StagePoses& poses,
-                                                       const std::vector<StageContact>& contacts,
-                                                       const Eigen::VectorXd& force) const override;
+  /// The normal forces' and (with `friction`) the friction forces' fillet stresses in one
+  /// superposition: a friction force is one more load at its contact, along ±t_j.
+  std::vector<compliance::FilletStress> FilletStresses(
+      const geometry::Stage& stage, const geometry::StagePoses& poses,
+      const std::vector<StageContact>& contacts, const Eigen::VectorXd& force,
+      const TangentialLoads* friction = nullptr) const override;
 
  private:
   // The operator's bodies (sun, ring, planets at their poses) and contact sides.

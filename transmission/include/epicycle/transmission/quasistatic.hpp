@@ -71,13 +71,16 @@ struct PositionResult {
   /// (the values the named fields above read out; empty if no contact problem was solved).
   Eigen::VectorXd displacements;
   /// The root stresses of the converged state (docs/model.md §9) when the compliance has them
-  /// (the scene's [model] stresses), else empty.
+  /// (the scene's [model] stresses), else empty: of the normal forces, and with friction at rest
+  /// of the friction forces too.
   std::vector<compliance::FilletStress> fillet_stress;
   /// Friction at rest (options.friction on; otherwise false, empty and 0). With it, load_sharing
   /// is the whole sun-mesh torque's share, the friction moments included (paper eq. 4).
   bool friction = false;
   Eigen::VectorXd friction_force;  ///< φ_j = μ_s F_j [N] per contact of `problem` (friction.hpp)
   Eigen::VectorXd sliding_velocity;  ///< v_s = u_A − u_B [m/s] per contact of `problem`
+  /// t_j [-], unit, inertial frame: φ_j acts on body B along t_j, on A along −t_j.
+  std::vector<Eigen::Vector2d> friction_tangent;
   double force_change = 0;    ///< the fixed point's last relative force change [-]
   double friction_power = 0;  ///< P_f = Σ_j φ_j v_s,j [W], ≥ 0: the power friction dissipates
   double input_power = 0;     ///< P_in = T_s ω_s [W] (the sun's input torque at its speed)

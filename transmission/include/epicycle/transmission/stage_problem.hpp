@@ -95,6 +95,14 @@ std::vector<StageContact> SearchStage(const geometry::Stage& stage,
 StageOutcome SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses,
                          double gap_window, std::vector<StageContact>* out);
 
+/// Friction forces of a state's contacts for the root stresses: φ_j [N] on body B along the unit
+/// tangent t_j (inertial frame), on body A along −t_j (contact_kinematics.hpp, FrictionForce),
+/// one entry each per contact.
+struct TangentialLoads {
+  Eigen::VectorXd force;                 ///< φ_j [N], signed
+  std::vector<Eigen::Vector2d> tangent;  ///< t_j [-]
+};
+
 /// The structural compliance of the stage's bodies (built by the compliance layer):
 /// C_jk [m/N] of contacts j, k, coupling every pair of contacts that share a body.
 class StageCompliance {
@@ -122,10 +130,12 @@ class StageCompliance {
   virtual bool has_root_stress() const { return false; }
   /// The root stresses (docs/model.md §9) of the state with contact forces `force` [N] at these
   /// poses: both fillets of the loaded teeth and their neighbours, per body (body index as in
-  /// StageContact). @throws std::logic_error unless has_root_stress().
+  /// StageContact); with `friction` also those of the contacts' friction forces.
+  /// @throws std::logic_error unless has_root_stress().
   virtual std::vector<compliance::FilletStress> FilletStresses(
       const geometry::Stage& stage, const geometry::StagePoses& poses,
-      const std::vector<StageContact>& contacts, const Eigen::VectorXd& force) const;
+      const std::vector<StageContact>& contacts, const Eigen::VectorXd& force,
+      const TangentialLoads* friction = nullptr) const;
 };
 
 /// A rigid degree of freedom of a gear body: in a quasi-static problem one set by equilibrium (a
