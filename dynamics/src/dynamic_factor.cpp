@@ -80,4 +80,24 @@ DynamicFactor DynamicLoadFactor(const DynamicModel& model, const SimulationOptio
   return out;
 }
 
+MotionRating RateInMotion(const transmission::Scene& scene, const DynamicModel& model,
+                          const SimulationOptions& options, const std::vector<double>& output_times,
+                          const MotionLoads& loads,
+                          const std::vector<transmission::RootStressSummary>& root_stress) {
+  transmission::CheckRatingInputs(scene, "a rating in motion");
+  MotionRating out;
+  out.factor = DynamicLoadFactor(model, options, output_times, loads);
+  const double kv = std::max(1.0, out.factor.value);
+  std::string source = out.factor.source;
+  if (!(out.factor.value >= 1))
+    source += fmt::format(" = {:.6g}, below the standard's least K_v: 1 used", out.factor.value);
+  transmission::MotionStresses motion{
+      root_stress, loads.contact_pressure(),
+      fmt::format("the dynamic run at {:.6g} rpm",
+                  std::abs(model.sun_speed()) * 30 / std::numbers::pi)};
+  out.rating = transmission::RateStage(scene, model.stage_model().stage(), out.factor.quasi_static,
+                                       kv, source, &motion);
+  return out;
+}
+
 }  // namespace epicycle::dynamics

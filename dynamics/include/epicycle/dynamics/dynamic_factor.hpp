@@ -13,6 +13,9 @@
 #include "epicycle/dynamics/dynamic_model.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/transmission/contact_pressure.hpp"
+#include "epicycle/transmission/rating.hpp"
+#include "epicycle/transmission/root_stress.hpp"
+#include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 
 namespace epicycle::dynamics {
@@ -57,5 +60,20 @@ struct DynamicFactor {
 ///         std::runtime_error naming the carrier angle of a quasi-static position that fails.
 DynamicFactor DynamicLoadFactor(const DynamicModel& model, const SimulationOptions& options,
                                 const std::vector<double>& output_times, const MotionLoads& loads);
+
+/// A run's rating (docs/stresses.md "Ratings in motion"): ISO 6336 with K_γ of the quasi-static
+/// reference at the run's angles and the run's K_v (the standard's K_v is ≥ 1: a run whose peaks
+/// stay below the quasi-static ones is rated with 1, and the factor's source says so), beside the
+/// model's own root stresses `root_stress` (the run's, DynamicSummary::root_stress) and the
+/// loads' contact pressures, which carry the dynamics and take no K_v.
+struct MotionRating {
+  DynamicFactor factor;
+  transmission::StageRating rating;
+};
+/// @throws as DynamicLoadFactor and transmission::RateStage (a scene without the limits).
+MotionRating RateInMotion(const transmission::Scene& scene, const DynamicModel& model,
+                          const SimulationOptions& options, const std::vector<double>& output_times,
+                          const MotionLoads& loads,
+                          const std::vector<transmission::RootStressSummary>& root_stress);
 
 }  // namespace epicycle::dynamics
