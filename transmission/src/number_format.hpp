@@ -7,9 +7,10 @@
 
 namespace epicycle::transmission::internal {
 
-inline std::string Num(double v) {
+/// `v` with `digits` significant digits.
+inline std::string Num(double v, int digits = 6) {
   std::ostringstream os;
-  os.precision(6);
+  os.precision(digits);
   os << v;
   return os.str();
 }

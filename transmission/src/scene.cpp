@@ -5,15 +5,13 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 
-#include "epicycle/compliance/gear_mesh.hpp"
 #include "epicycle/compliance/influence_table.hpp"
-#include "epicycle/compliance/root_crack.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/internal/toml_reader.hpp"
+#include "scene_internal.hpp"
 
 namespace epicycle::transmission {
 
@@ -25,14 +23,10 @@ using internal::TableReader;
 
 namespace {
 
-std::string Num(double v) {
-  std::ostringstream o;
-  o.precision(10);
-  o << v;
-  return o.str();
-}
-
-constexpr double kMm = 1e-3, kUm = 1e-6;
+using internal::kMm;
+using internal::kUm;
+using internal::SceneNum;
+using internal::ReadDamage;
 
 // Physical ranges of the scene's values (docs/scenes.md, "Ranges and validity"). Sizes are
 // relative to the module, errors to the module (errors) and to the backlash (warnings).
@@ -63,9 +57,6 @@ double ReadGapWindow(TableReader& t, double module) {
 const Rule kBearingRule = Rule::Closed(1, 1e6).Because(
     "rolling bearings are 1e2 .. 1e4 N/um; below 1 the member floats, above 1e6 it is rigid");
 constexpr int kRingTeethSlack = 4;  // |z_r − z_s − 2 z_p| ≤ 4
-// Pit depth: a warning beyond 5 % of the module (the tooth's compliance stays the intact
-// tooth's), an error beyond a quarter of it.
-constexpr double kPitDepthModules[2] = {0.05, 0.25};
 
 Rule ErrorRule(double module) {
   const double e = kErrorModules * module / kUm;
@@ -138,7 +129,7 @@ void ReadDynamics(TableReader& top, DynamicSettings& d) {
     const double roughness_um = t->RealOr("roughness_um", 0.8, Rule::Positive());
     // Benedict & Kelley's roughness factor 50/(50 − S) takes S in µin: S < 50 µin = 1.27 µm.
     if (d.friction.law == FrictionLaw::kBenedictKelley && !(roughness_um < 1.27))
-      t->Fail("roughness_um", Num(roughness_um),
+      t->Fail("roughness_um", SceneNum(roughness_um),
               "must be < 1.27 (50 microinch) for friction = \"benedict-kelley\" (its roughness "
               "factor 50/(50 - S))");
     d.friction.lubricant.composite_roughness = roughness_um * kUm;
@@ -216,7 +207,7 @@ void InertiaWarnings(const TableReader& t, const GearSpec& g, const Inertia& i,
     if (value > 0 && (value < 1e-2 * disc || value > 1e2 * disc))
       warnings->push_back(
           t.Warning(key, "outside [1/100, 100] times the solid steel disc of the pitch circle (" +
-                             Num(disc) + " " + unit + "): another unit, or a typing error?"));
+                             SceneNum(disc) + " " + unit + "): another unit, or a typing error?"));
   };
   check("mass_kg", i.mass, disc_mass, "kg");
   check("inertia_kgm2", i.inertia, disc_inertia, "kg m2");
@@ -343,14 +334,14 @@ int GearIndex(TableReader& t, const std::string& key, int planets) {
 // Meshing gears share module and pressure angle: a mismatch is blamed on the gear read second.
 void SameAsMate(TableReader& t, const GearSpec& g, const GearSpec& mate, const std::string& name) {
   if (std::abs(g.module - mate.module) > 1e-12 * mate.module) {
-    t.Fail("module_mm", Num(g.module / kMm),
-           "must equal " + name + ".module_mm = " + Num(mate.module / kMm) +
+    t.Fail("module_mm", SceneNum(g.module / kMm),
+           "must equal " + name + ".module_mm = " + SceneNum(mate.module / kMm) +
                " (gears that mesh share the module)");
   }
   if (std::abs(g.pressure_angle - mate.pressure_angle) > 1e-12) {
-    t.Fail("pressure_angle_deg", Num(g.pressure_angle * 180.0 / geometry::kPi),
+    t.Fail("pressure_angle_deg", SceneNum(g.pressure_angle * 180.0 / geometry::kPi),
            "must equal " + name +
-               ".pressure_angle_deg = " + Num(mate.pressure_angle * 180.0 / geometry::kPi) +
+               ".pressure_angle_deg = " + SceneNum(mate.pressure_angle * 180.0 / geometry::kPi) +
                " (gears that mesh share the pressure angle)");
   }
 }
@@ -436,180 +427,6 @@ void ReadErrors(TableReader& e, Scene& s, std::vector<ErrorKey>* keys) {
   }
 }
 
-// One [[damage.crack]] table (docs/scenes.md, "Damage"). The path is checked against the tooth's
-// body here; a crack placed at the largest root tension is checked at ISO's 30° point, the start
-// it lies near, and again once the body's table places it (GearTables).
-Crack ReadCrack(TableReader& t, const Scene& s,
-                const std::vector<std::pair<std::string, const GearSpec*>>& gears) {
-  Crack c;
-  c.where = t.Where("gear");
-  c.gear = t.String("gear");
-  const GearSpec* spec = nullptr;
-  std::string names;
-  for (const auto& [name, g] : gears) {
-    names += (names.empty() ? "\"" : ", \"") + name + "\"";
-    if (name == c.gear) spec = g;
-  }
-  if (spec == nullptr) t.Fail("gear", "\"" + c.gear + "\"", "must be one of " + names);
-  for (const Crack& q : s.damage.cracks)
-    if (q.gear == c.gear)
-      t.Fail("gear", "\"" + c.gear + "\"",
-             "the gear already has the crack of " + q.where + "; one root crack per gear");
-  const geometry::Gear gear(*spec);
-  compliance::RootCrack& k = c.crack;
-  k.tooth = static_cast<int>(
-      t.Integer("tooth", Rule::Closed(0, spec->teeth - 1)
-                             .Because("a tooth index k of the gear's body frame, 0 <= k < z = " +
-                                      std::to_string(spec->teeth))));
-  k.side = t.String("side", {"+", "-"}) == "+" ? 1 : -1;
-  if (t.Has("start_arc_mm")) {
-    if (t.Has("start"))
-      t.Fail("start", "\"" + t.String("start") + "\"", "give start or start_arc_mm, not both");
-    const double form = compliance::ProfilePath(gear).RoleStart(geometry::SegmentRole::kInvolute);
-    k.start_arc = t.Real("start_arc_mm", Rule::Open(0, form / kMm)
-                                             .Because("on the fillet: from the space centre line "
-                                                      "(0) to the form point")) *
-                  kMm;
-    c.start = CrackStart::kArc;
-  } else {
-    c.start =
-        t.StringOr("start", "largest_tension", {"largest_tension", "iso_30deg"}) == "iso_30deg"
-            ? CrackStart::kIso30
-            : CrackStart::kLargestTension;
-    try {
-      k.start_arc = compliance::IsoCriticalFilletArc(gear);
-    } catch (const std::invalid_argument& e) {
-      t.Fail(
-          "start", c.start == CrackStart::kIso30 ? "\"iso_30deg\"" : "\"largest_tension\"",
-          std::string("needs ISO's 30-degree point on the fillet; give start_arc_mm: ") + e.what());
-    }
-  }
-  const Rule angle = Rule::Open(0, 180).Because(
-      "the angle to the tooth centre line: below 90 toward the root, 90 straight across");
-  const std::string length_rule = "the crack's length along its path";
-  std::string depth_key = "depth_mm";
-  if (t.Has("path")) {
-    depth_key = "path";
-    if (t.Has("depth_mm") || t.Has("angle_deg"))
-      t.Fail("path", "given with depth_mm/angle_deg",
-             "a straight crack is depth_mm and angle_deg, a polyline is path; not both");
-    std::vector<TableReader> pieces = t.TableArray("path");
-    if (pieces.empty() || static_cast<int>(pieces.size()) > compliance::RootCrack::kMaxSegments)
-      t.Fail("path", std::to_string(pieces.size()) + " segments",
-             "must have 1 to " + std::to_string(compliance::RootCrack::kMaxSegments));
-    for (TableReader& piece : pieces) {
-      compliance::CrackSegment g;
-      g.length = piece.Real("length_mm", Rule::Positive().Because(length_rule)) * kMm;
-      g.angle = geometry::Rad(piece.Real("angle_deg", angle));
-      piece.Done();
-      k.path.push_back(g);
-    }
-  } else {
-    compliance::CrackSegment g;
-    g.length = t.Real("depth_mm", Rule::Positive().Because(length_rule)) * kMm;
-    g.angle = geometry::Rad(t.Real("angle_deg", angle));
-    k.path.push_back(g);
-  }
-  try {
-    k.Validate(gear);
-  } catch (const std::invalid_argument& e) {
-    t.Fail(depth_key, Num(k.depth() / kMm) + " mm",
-           std::string("the crack must stay inside its tooth") +
-               (c.start == CrackStart::kLargestTension ? " (checked from ISO's 30-degree point)"
-                                                       : "") +
-               ": " + e.what());
-  }
-  t.Done();
-  return c;
-}
-
-// The scene's [[damage.pit]] and [[damage.crack]] tables (docs/scenes.md, "Damage"): `gears` names
-// the gears a damage may be on with the spec of each (a stage's planets share one spec), read once
-// the radii are final.
-void ReadDamage(TableReader& top, Scene& s,
-                const std::vector<std::pair<std::string, const GearSpec*>>& gears) {
-  auto d = top.OptionalTable("damage");
-  if (!d) return;
-  std::string names;
-  std::vector<std::string> allowed;
-  for (const auto& [name, spec] : gears) {
-    names += (names.empty() ? "\"" : ", \"") + name + "\"";
-    allowed.push_back(name);
-  }
-  for (TableReader& t : d->TableArray("pit")) {
-    Pit p;
-    p.where = t.Where("gear");
-    p.gear = t.String("gear");
-    const GearSpec* spec = nullptr;
-    for (const auto& [name, g] : gears)
-      if (name == p.gear) spec = g;
-    if (spec == nullptr) t.Fail("gear", "\"" + p.gear + "\"", "must be one of " + names);
-    const geometry::Gear gear(*spec);
-    p.tooth = static_cast<int>(
-        t.Integer("tooth", Rule::Closed(0, spec->teeth - 1)
-                               .Because("a tooth index k of the gear's body frame, 0 <= k < z = " +
-                                        std::to_string(spec->teeth))));
-    p.flank = t.String("flank", {"+", "-"}) == "+" ? 1 : -1;
-    // The region: roll angles (primary) or radii, one form per pit.
-    const bool by_roll = t.Has("roll_from_deg") || t.Has("roll_to_deg");
-    const bool by_radius = t.Has("radius_from_mm") || t.Has("radius_to_mm");
-    if (by_roll == by_radius)
-      t.Fail("roll_from_deg", by_roll ? "given with radius_from_mm/radius_to_mm" : "missing",
-             std::string("give the region as roll_from_deg and roll_to_deg, or as radius_from_mm "
-                         "and radius_to_mm") +
-                 (by_roll ? ", not both" : ""));
-    const geometry::InvoluteFlank& inv = gear.involute();
-    const double rb = gear.base_radius();
-    auto radius_at = [&](double u) { return rb * std::hypot(1.0, u) / kMm; };
-    const std::string extent =
-        "the involute of the flank runs over roll " + Num(geometry::Deg(inv.u_min)) + ".." +
-        Num(geometry::Deg(inv.u_max)) + " deg (radius " + Num(radius_at(inv.u_min)) + ".." +
-        Num(radius_at(inv.u_max)) + " mm); a pit lowers the involute only";
-    const std::string from = by_roll ? "roll_from_deg" : "radius_from_mm",
-                      to = by_roll ? "roll_to_deg" : "radius_to_mm";
-    if (by_roll) {
-      const Rule rule =
-          Rule::Closed(geometry::Deg(inv.u_min), geometry::Deg(inv.u_max)).Because(extent);
-      p.roll_from = geometry::Rad(t.Real(from, rule));
-      p.roll_to = geometry::Rad(t.Real(to, rule));
-    } else {
-      const Rule rule = Rule::Closed(radius_at(inv.u_min), radius_at(inv.u_max)).Because(extent);
-      p.roll_from = geometry::InvoluteFlank::RollAtRadius(rb, t.Real(from, rule) * kMm);
-      p.roll_to = geometry::InvoluteFlank::RollAtRadius(rb, t.Real(to, rule) * kMm);
-    }
-    if (!(p.roll_to > p.roll_from))
-      t.Fail(to, Num(by_roll ? geometry::Deg(p.roll_to) : radius_at(p.roll_to)),
-             "must be greater than " + from + " (the region runs from the root side to the tip)");
-    p.width_fraction =
-        t.Real("width_fraction",
-               Rule{0, 1, true, false, ""}.Because("the share of the face width the pit covers"));
-    const double depth_um = t.Real(
-        "depth_um", Rule{0, kPitDepthModules[1] * spec->module / kUm, true, false, ""}.Because(
-                        "at most a quarter of the module: deeper, the pit takes a large part of "
-                        "the tooth's thickness"));
-    p.depth = depth_um * kUm;
-    if (p.depth > kPitDepthModules[0] * spec->module)
-      s.warnings.push_back(t.Warning(
-          "depth_um", "deeper than " + Num(kPitDepthModules[0] * spec->module / kUm) +
-                          " um (5 % of the module): the tooth keeps the compliance of the intact "
-                          "tooth, which a pit this deep softens"));
-    // Pits on one flank of one tooth must not overlap: the strips of the face width they would
-    // share are not defined by the scene.
-    for (const Pit& q : s.damage.pits) {
-      if (q.gear == p.gear && q.tooth == p.tooth && q.flank == p.flank && p.roll_from < q.roll_to &&
-          q.roll_from < p.roll_to)
-        t.Fail(from, Num(by_roll ? geometry::Deg(p.roll_from) : radius_at(p.roll_from)),
-               "the region overlaps the pit of " + q.where +
-                   " on the same flank of the same tooth; give one pit per region (join them, "
-                   "or split the roll range)");
-    }
-    t.Done();
-    s.damage.pits.push_back(p);
-  }
-  for (TableReader& t : d->TableArray("crack")) s.damage.cracks.push_back(ReadCrack(t, s, gears));
-  d->Done();
-}
-
 // Addendum/dedendum coefficients (stored negative by ReadGear) become radii once x is final.
 void ResolveRadii(GearSpec& g) {
   const double r = g.module * g.teeth / 2.0, xm = g.profile_shift * g.module;
@@ -647,7 +464,7 @@ void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
     pair_table.Check(
         "centre_distance_mm", p.centre_distance / kMm,
         Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
-            .Because(std::string(internal ? "m (z2 - z1)/2 = " : "m (z1 + z2)/2 = ") + Num(a0) +
+            .Because(std::string(internal ? "m (z2 - z1)/2 = " : "m (z1 + z2)/2 = ") + SceneNum(a0) +
                      " mm within 2 modules (profile shifts move it by about x m)"));
     pair_table.Done();
   }
@@ -704,7 +521,7 @@ void ContactRatioWarning(const GearSpec& g1, const GearSpec& g2, bool internal, 
   const double eps =
       geometry::iso::ContactRatio(rb1, g1.tip_radius, rb2, g2.tip_radius, a, alpha_w, pb, internal);
   if (std::isfinite(eps) && eps < 1.0) {
-    warnings->push_back(where + ": transverse contact ratio epsilon_alpha = " + Num(eps) +
+    warnings->push_back(where + ": transverse contact ratio epsilon_alpha = " + SceneNum(eps) +
                         " < 1 (tip radii, shifts and centre distance): there are instants "
                         "without a loaded tooth pair; the results are outside the model's "
                         "validity for a working mesh");
@@ -725,7 +542,7 @@ void StageWarnings(const std::vector<ErrorKey>& keys, Scene& s) {
                        : j_sp <= j_pr ? "sun-planet"
                                       : "planet-ring";
     if (k.value > j) {
-      s.warnings.push_back(k.where + "larger than the normal backlash j_n = " + Num(j / kUm) +
+      s.warnings.push_back(k.where + "larger than the normal backlash j_n = " + SceneNum(j / kUm) +
                            " um of the " + mesh +
                            " meshes: the gear can close the backlash and load the coast flanks "
                            "(a planet jams and its load-sharing ratio can turn negative); the "
@@ -877,7 +694,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     const double m_mm = st.sun.module / kMm;
     st.carrier_radius =
         t.Real("radius_mm", Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
-                                .Because("m (z_sun + z_planet)/2 = " + Num(a0) +
+                                .Because("m (z_sun + z_planet)/2 = " + SceneNum(a0) +
                                          " mm within 2 modules (profile shifts move it by "
                                          "about x m)")) *
         kMm;

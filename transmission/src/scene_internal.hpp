@@ -1,0 +1,26 @@
+// What the scene reader's parts share (transmission/src/scene*.cpp): the number format of its
+// messages, its unit factors and the readers of the scene's sections that live in their own files.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/transmission/scene.hpp"
+#include "number_format.hpp"
+
+namespace epicycle::transmission::internal {
+
+/// A value in a scene message: 10 significant digits (a scene's values are read back exactly).
+inline std::string SceneNum(double v) { return Num(v, 10); }
+
+inline constexpr double kMm = 1e-3, kUm = 1e-6;
+
+/// The scene's [[damage.pit]] and [[damage.crack]] tables (docs/scenes.md, "Damage"): `gears`
+/// names the gears a damage may be on with the spec of each (a stage's planets share one spec),
+/// read once the radii are final. @throws std::invalid_argument naming the key, value and rule.
+void ReadDamage(TableReader& top, Scene& s,
+                const std::vector<std::pair<std::string, const geometry::GearSpec*>>& gears);
+
+}  // namespace epicycle::transmission::internal
