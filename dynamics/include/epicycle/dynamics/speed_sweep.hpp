@@ -55,6 +55,7 @@
 #include <vector>
 
 #include "epicycle/dynamics/dynamic_model.hpp"
+#include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 
@@ -151,6 +152,12 @@ struct SpeedResult {
   double te_amplitude = 0;     ///< ½ peak-to-peak TE over the window [rad]
   double orbit_radius = 0;     ///< largest sun-centre displacement over the window [m]
   double lsr_min = 0, lsr_max = 0;  ///< extremes of LSR_i over planets and window [-]
+  /// The largest |LSR_i − 1/n| over planets and window [-], and its parts at that sample and
+  /// planet (DecomposeLoadSharing, in the order of kLoadSharingPartNames; they sum to the signed
+  /// deviation LSR_i − 1/n there) [-].
+  double lsr_deviation = 0;
+  std::array<double, kLoadSharingPartCount> deviation_parts{};
+  double largest_residual = 0;  ///< the largest |residual| of the parts over planets and window [-]
   /// Results outside the model's validity over the window (DynamicWarnings); empty: none.
   std::vector<std::string> warnings;
   SimulationStats stats;    ///< of the whole run (skip and window)
