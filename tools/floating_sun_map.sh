@@ -5,7 +5,8 @@
 # around the main job's speed, where the resonances at the coincidences of
 # `epicycle modes scenes/paper_stage_runout.toml --sun floating --speed-range-rpm 60 6000` (3-6 %
 # wide, ζ ≈ 0.03-0.06) crowd; friction off and with the scene's (Xu & Kahraman). Per speed the
-# largest |LSR - 1/3| and its parts there (dynamics::DecomposeLoadSharing). Writes
+# largest |LSR - 1/3| and its parts there (dynamics::DecomposeLoadSharing); coincidences of mesh
+# harmonics up to 12 marked. Writes
 # docs/figures/floating_map{,_fine}_{off,on}.csv and _lsr_deviation.svg. About 400 s CPU in all
 # (each friction setting on one thread, the two at once).
 # Usage: bash tools/floating_sun_map.sh [build-dir]
@@ -18,7 +19,7 @@ trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$out"
 map() {  # name friction speeds
   "$exe" dynamic scenes/paper_stage_runout.toml --sun floating --friction "$2" \
-    --speed-sweep "$3" --threads 1 --quiet --out "$tmp/$1" > "$tmp/$1.log"
+    --speed-sweep "$3" --harmonics 12 --threads 1 --quiet --out "$tmp/$1" > "$tmp/$1.log"
   cp "$tmp/$1/speed_sweep.csv" "$out/$1.csv"
   cp "$tmp/$1/speed_sweep_lsr_deviation.svg" "$out/$1_lsr_deviation.svg"
 }
