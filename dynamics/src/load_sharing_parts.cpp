@@ -18,22 +18,16 @@ Vec2 Perp(const Vec2& a) { return {-a.y(), a.x()}; }
 }  // namespace
 
 const std::vector<double>& Part(const LoadSharingParts& p, int k) {
-  switch (k) {
-    case 0:
-      return p.sun_rotation;
-    case 1:
-      return p.sun_translation;
-    case 2:
-      return p.bearing;
-    case 3:
-      return p.friction;
-    case 4:
-      return p.off_line;
-    case 5:
-      return p.geometry;
-    default:
-      return p.residual;
-  }
+  // In the order of kLoadSharingPartNames.
+  static constexpr std::vector<double> LoadSharingParts::*kMembers[kLoadSharingPartCount] = {
+      &LoadSharingParts::sun_rotation, &LoadSharingParts::sun_translation,
+      &LoadSharingParts::bearing,      &LoadSharingParts::friction,
+      &LoadSharingParts::off_line,     &LoadSharingParts::geometry,
+      &LoadSharingParts::residual};
+  if (k < 0 || k >= kLoadSharingPartCount)
+    throw std::invalid_argument("load-sharing part " + std::to_string(k) + ": must lie in 0.." +
+                                std::to_string(kLoadSharingPartCount - 1));
+  return p.*kMembers[k];
 }
 
 LoadSharingParts DecomposeLoadSharing(const DynamicModel& model, const DynamicSample& sample) {

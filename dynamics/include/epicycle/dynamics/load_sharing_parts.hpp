@@ -66,6 +66,7 @@ inline constexpr const char* kLoadSharingPartNames[] = {
     "sun_rotation", "sun_translation", "bearing", "friction", "off_line", "geometry", "residual"};
 inline constexpr int kLoadSharingPartCount = 7;
 /// Part k (0 … kLoadSharingPartCount − 1, the order of kLoadSharingPartNames).
+/// @throws std::invalid_argument for k outside that range.
 const std::vector<double>& Part(const LoadSharingParts& parts, int k);
 
 /// The parts of `sample` (an output of Simulate with `model`). All zero for a sample without input
