@@ -15,6 +15,8 @@
 //   TE amp.    = ½ (max_t TE − min_t TE), half the peak-to-peak dynamic transmission error at
 //                the sun [rad]
 //   orbit      = max_t |sun centre − nominal| [m] (0 for a fixed sun)
+//   deviation  = max over window samples and planets of |LSR_i − 1/n|, with its parts at that
+//                sample and planet (DecomposeLoadSharing, load_sharing_parts.hpp)
 // The quasi-static reference uses the same stage model (compliance, local terms, supports, errors)
 // at exactly the carrier angles of the window's samples, which are the same for every speed.
 //
