@@ -57,8 +57,8 @@ double Largest(const std::vector<double>& v) {
 }  // namespace
 
 TEST_CASE(
-    "the parts of LSR - 1/n sum to it with the sun's rotational balance as the residual; "
-    "friction's part vanishes without friction; a fixed sun's bearing replaces the inertia",
+    "the parts of LSR - 1/n sum to it with the sun's rotational balance as the residual, "
+    "friction's part vanishes without friction, a fixed sun's bearing replaces the inertia",
     "[crosscheck][dynamics][paper]") {
   // Round-off of the sum: every part is a ratio to τ = 600 N·m of torques no larger than
   // |T_i| ≈ 200 N·m built in ≲ 100 operations through A⁻¹ (condition number 2 for three unit
