@@ -3,7 +3,7 @@
 # scenes, and the quasi-static load sharing of the paper's stage without errors (one mesh cycle)
 # and with planet 1's 20 um run-out (one planet revolution), constrained and floating; the same
 # run-out case with the dynamic model at 1500 rpm; the spectra of the stage with and without it;
-# speed sweeps of the stage with and without it.
+# speed sweeps of the stage with and without it; the floating sun's load-sharing map.
 # Usage: bash tools/paper_figures.sh [build-dir]   (default ./build; tables cached as usual)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -60,4 +60,7 @@ sweep() {  # name scene speeds [options]
 }
 sweep speed_sweep_runout paper_stage_runout 500:12000:47
 sweep speed_sweep_noerrors paper_stage 500:12000:116 --window-cycles 3
+# The floating sun's largest |LSR - 1/3| and its parts over speed (docs/dynamic.md, "Why a
+# floating sun's shares differ").
+bash tools/floating_sun_map.sh "${1:-build}"
 echo "figures written to $out"

@@ -361,6 +361,21 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
 
 namespace {
 
+// The largest |LSR_i − 1/n| of the window and its parts there (DecomposeLoadSharing).
+void AddDeviationParts(const DynamicModel& model, const std::vector<DynamicSample>& window,
+                       SpeedResult* r) {
+  for (const DynamicSample& s : window) {
+    const LoadSharingParts parts = DecomposeLoadSharing(model, s);
+    for (std::size_t i = 0; i < parts.deviation.size(); ++i) {
+      r->largest_residual = std::max(r->largest_residual, std::abs(parts.residual[i]));
+      if (!(std::abs(parts.deviation[i]) > r->lsr_deviation)) continue;
+      r->lsr_deviation = std::abs(parts.deviation[i]);
+      for (int k = 0; k < kLoadSharingPartCount; ++k)
+        r->deviation_parts[static_cast<std::size_t>(k)] = Part(parts, k)[i];
+    }
+  }
+}
+
 // One speed, start to end; never throws for a failed computation (the result says why).
 SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
                      const SpeedSweepPlan& plan, int index) {
@@ -389,6 +404,7 @@ SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
         run.samples.begin() + static_cast<std::ptrdiff_t>(std::min(skipped, run.samples.size())),
         run.samples.end());
     r = SummariseSpeed(plan, window);
+    AddDeviationParts(model, window, &r);
     r.warnings = DynamicWarnings(model.stage_model().stage(), window);
     r.stats = run.stats;
     r.ok = run.completed;

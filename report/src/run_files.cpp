@@ -551,22 +551,37 @@ nlohmann::json ModesJson(const std::vector<dynamics::Mode>& modes, double hz_per
   return list;
 }
 
+namespace {
+
+// "dev_sun_rotation,dev_sun_translation,…," : the parts of the largest |LSR_i − 1/n|.
+std::string DeviationPartColumns() {
+  std::string out;
+  for (const char* name : dynamics::kLoadSharingPartNames) out += fmt::format("dev_{},", name);
+  return out;
+}
+
+}  // namespace
+
 SpeedSweepFile::SpeedSweepFile(const std::string& path, const nlohmann::json& provenance)
     : csv_(path) {
   csv_.Write(ProvenanceCsvLine(provenance) +
              "index,sun_speed_rpm,mesh_frequency_Hz,status,K_gamma,dynamic_factor,"
              "dynamic_factor_mesh,peak_mesh_force_N,te_amplitude_urad,sun_orbit_radius_um,lsr_min,"
-             "lsr_max,steps,evaluations,failed_contact_solves,cpu_s,wall_s,message\n");
+             "lsr_max,lsr_deviation," + DeviationPartColumns() +
+             "largest_residual,steps,evaluations,failed_contact_solves,cpu_s,wall_s,message\n");
 }
 
 void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::SpeedSweepPlan& plan) {
   // A failed speed keeps its speed, status and message; its figures are empty (not zeros).
   auto v = [&](double x) { return r.ok ? Num(x) : std::string(); };
+  std::string parts;
+  for (double x : r.deviation_parts) parts += v(x) + ",";
   csv_.WriteLine(fmt::format(
-      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Num(r.sun_speed_rpm),
+      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Num(r.sun_speed_rpm),
       Num(r.mesh_frequency), r.ok ? "ok" : "failed", v(r.k_gamma), v(r.dynamic_factor),
       r.ok && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "", v(r.peak_mesh_force),
-      v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min), v(r.lsr_max), r.stats.steps,
+      v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min), v(r.lsr_max),
+      v(r.lsr_deviation) + "," + parts + v(r.largest_residual), r.stats.steps,
       r.stats.rhs_evaluations, r.stats.failed_solves, Num(r.cpu_seconds), Num(r.wall_seconds),
       CsvText(r.message)));
 }
@@ -614,6 +629,34 @@ void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name
   plot("TE amplitude", "urad", "te_amplitude", 1e6, [](const auto& r) { return r.te_amplitude; },
        {plan.qs_te_amplitude * 1e6});
   plot("sun orbit radius", "um", "orbit", 1e6, [](const auto& r) { return r.orbit_radius; }, {});
+  // The largest |LSR_i − 1/n| and its parts at that sample and planet (signed: the parts sum to
+  // the signed deviation there; the curve is its magnitude).
+  LinePlot dev{scene_name + ": largest |LSR - 1/n| and its parts against sun speed",
+               "sun speed [rpm]",
+               "LSR - 1/n [-]",
+               {},
+               false,
+               {0.0}};
+  PlotSeries total{"largest |LSR - 1/n|", {}, {}, false};
+  std::vector<PlotSeries> parts;
+  for (const char* name : dynamics::kLoadSharingPartNames) parts.push_back({name, {}, {}, false});
+  for (const dynamics::SpeedResult& r : speeds) {
+    if (!r.ok) continue;
+    total.x.push_back(r.sun_speed_rpm);
+    total.y.push_back(r.lsr_deviation);
+    // Oriented so that the parts sum to +|LSR − 1/n|.
+    double sum = 0;
+    for (double x : r.deviation_parts) sum += x;
+    const double sign = sum < 0 ? -1.0 : 1.0;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      parts[k].x.push_back(r.sun_speed_rpm);
+      parts[k].y.push_back(sign * r.deviation_parts[k]);
+    }
+  }
+  dev.series.push_back(total);
+  for (PlotSeries& p : parts) dev.series.push_back(std::move(p));
+  dev.x_markers = markers;
+  WriteTextFile(path + "_lsr_deviation.svg", RenderSvg(dev));
 }
 
 MeshStiffnessFile::MeshStiffnessFile(const std::string& path, const nlohmann::json& provenance,
@@ -746,6 +789,12 @@ nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
       j["sun_orbit_radius_um"] = r.orbit_radius * 1e6;
       j["lsr_min"] = r.lsr_min;
       j["lsr_max"] = r.lsr_max;
+      j["lsr_deviation"] = r.lsr_deviation;
+      json parts;
+      for (int k = 0; k < dynamics::kLoadSharingPartCount; ++k)
+        parts[dynamics::kLoadSharingPartNames[k]] = r.deviation_parts[static_cast<std::size_t>(k)];
+      j["lsr_deviation_parts"] = parts;
+      j["largest_residual"] = r.largest_residual;
     }
     list.push_back(j);
   }

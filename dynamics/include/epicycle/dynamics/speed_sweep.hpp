@@ -15,6 +15,8 @@
 //   TE amp.    = ½ (max_t TE − min_t TE), half the peak-to-peak dynamic transmission error at
 //                the sun [rad]
 //   orbit      = max_t |sun centre − nominal| [m] (0 for a fixed sun)
+//   deviation  = max over window samples and planets of |LSR_i − 1/n|, with its parts at that
+//                sample and planet (DecomposeLoadSharing, load_sharing_parts.hpp)
 // The quasi-static reference uses the same stage model (compliance, local terms, supports, errors)
 // at exactly the carrier angles of the window's samples, which are the same for every speed.
 //
@@ -55,6 +57,7 @@
 #include <vector>
 
 #include "epicycle/dynamics/dynamic_model.hpp"
+#include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 
@@ -151,6 +154,12 @@ struct SpeedResult {
   double te_amplitude = 0;     ///< ½ peak-to-peak TE over the window [rad]
   double orbit_radius = 0;     ///< largest sun-centre displacement over the window [m]
   double lsr_min = 0, lsr_max = 0;  ///< extremes of LSR_i over planets and window [-]
+  /// The largest |LSR_i − 1/n| over planets and window [-], and its parts at that sample and
+  /// planet (DecomposeLoadSharing, in the order of kLoadSharingPartNames; they sum to the signed
+  /// deviation LSR_i − 1/n there) [-].
+  double lsr_deviation = 0;
+  std::array<double, kLoadSharingPartCount> deviation_parts{};
+  double largest_residual = 0;  ///< the largest |residual| of the parts over planets and window [-]
   /// Results outside the model's validity over the window (DynamicWarnings); empty: none.
   std::vector<std::string> warnings;
   SimulationStats stats;    ///< of the whole run (skip and window)
