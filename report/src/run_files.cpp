@@ -192,7 +192,11 @@ class RunFigures {
     LinePlot t{te_title, x_label_, "sun rotation from kinematic [urad]", {te_}, false, {}};
     LinePlot p{path_title, "x [um]", "y [um]", {path_}, true, {}};
     if (envelope_) {
-      const std::vector<BinEnvelope::Bin> bins = envelope_->Bins();
+      // A partial bin at either end (fewer than half the fullest bin's states) is not drawn.
+      std::vector<BinEnvelope::Bin> bins = envelope_->Bins();
+      long full = 0;
+      for (const BinEnvelope::Bin& b : bins) full = std::max(full, b.count);
+      std::erase_if(bins, [&](const BinEnvelope::Bin& b) { return 2 * b.count < full; });
       const std::string per = "mean per " + envelope_name_ + ", band: lowest to highest";
       l.series.clear();
       l.y_label = "LSR_i [-] (" + per + ")";
