@@ -175,7 +175,9 @@ LinePlot SpectrumPlot(const std::string& title, const std::string& y_label,
   PlotSeries s{legend, {}, {}};
   double top = 0;
   for (std::size_t j = 1; j < amplitude.size(); ++j) top = std::max(top, amplitude[j]);
+  // Against mesh order: up to kSpectrumPlotOrders (the CSV holds every bin).
   for (std::size_t j = 1; j < amplitude.size(); ++j) {
+    if (orders && static_cast<double>(j) * resolution > kSpectrumPlotOrders * mesh_hz) break;
     s.x.push_back(static_cast<double>(j) * resolution / unit);
     s.y.push_back(std::max(amplitude[j], kPlotFloor * top));
   }

@@ -58,7 +58,9 @@ class VibrationFiles {
 
 /// The amplitude spectrum `amplitude` (bin j at j·resolution [Hz], bin 0 left out) as a log plot,
 /// `lines` marked: those `allowed` solid, the others dashed; `legend` names the curve. With
-/// `mesh_hz` > 0 (f_m [Hz]) against mesh order f/f_m, else against frequency [Hz].
+/// `mesh_hz` > 0 (f_m [Hz]) against mesh order f/f_m up to kSpectrumPlotOrders (the paper
+/// stage's highest mode is 21 mesh orders at 1500 rpm), else against frequency [Hz], every bin.
+inline constexpr double kSpectrumPlotOrders = 32;
 LinePlot SpectrumPlot(const std::string& title, const std::string& y_label,
                       const std::vector<double>& amplitude, double resolution,
                       const std::vector<dynamics::SpectralLine>& lines,
