@@ -96,9 +96,13 @@ void RunDynamic(const DynamicArgs& a) {
     RunSpeedSweep(s, rig, opt);
     return;
   }
-  const dynamics::RunSpan span = dynamics::MakeRunSpan(
-      stage, model.carrier_speed(), transmission::RunRangeFromName(a.range), a.time.value_or(0.0),
-      a.outputs_per_cycle > 0 ? a.outputs_per_cycle : 20);
+  const double f_max = dynamics::HighestModeFrequency(model),
+               f_m = dynamics::MeshHzPerSunRpm(stage) * std::abs(model.sun_speed()) * 30 / std::numbers::pi;
+  const int per_cycle = a.outputs_per_cycle > 0 ? a.outputs_per_cycle
+                                                : dynamics::DefaultOutputsPerCycle(f_max, f_m);
+  const dynamics::RunSpan span =
+      dynamics::MakeRunSpan(stage, model.carrier_speed(), transmission::RunRangeFromName(a.range),
+                            a.time.value_or(0.0), per_cycle);
   const double duration = span.duration, mesh_hz = span.mesh_frequency;
   const std::string cost = dynamics::RunCostWarning(  // a run of hours: said before it starts
       span, model.sun_speed() * 30 / std::numbers::pi,
@@ -130,42 +134,37 @@ void RunDynamic(const DynamicArgs& a) {
   const Eigen::VectorXd d0 = model.QuasiStaticStart(opt.contact, opt.backend);
   std::printf(
       "  t = 0: the quasi-static solution at carrier %.4f deg (no start-up transient), "
-      "%.4f s simulated in %d outputs (%.2f s of set-up)\n",
-      geometry::Deg(model.CarrierAngle(0)), duration, outputs, setup_seconds);
+      "%.4f s simulated in %d outputs, %d per mesh cycle (highest mode %.0f Hz; %.2f s of "
+      "set-up)\n",
+      geometry::Deg(model.CarrierAngle(0)), duration, outputs, per_cycle, f_max, setup_seconds);
 
   std::filesystem::create_directories(a.out);
   const std::string base = a.out + "/dynamic";
   const json provenance = Provenance(a.backend, &scene);
-  report::DynamicRunFiles files(base, provenance, n, compliance.has_root_stress());
-  std::optional<report::VibrationFiles> vibration;
-  if (spectrum) vibration.emplace(base, provenance, model, *spectrum);
+  report::DynamicRunRecorder recorder(base, provenance, model, span, spectrum);
   const bool tty = !a.quiet && isatty(fileno(stderr));
   const auto t1 = std::chrono::steady_clock::now();
-  int done = 0;
+  opt.keep_samples = false;  // each step recorded as it comes, then let go (flat memory)
   const dynamics::SimulationResult result = dynamics::Simulate(
       model, opt, d0, Eigen::VectorXd::Zero(model.size()), span.OutputTimes(),
       [&](const dynamics::DynamicSample& s) {
-        files.Write(s);
-        if (vibration) vibration->Write(s);
-        ++done;
+        recorder.Add(s);
         if (tty)
-          Progress(done, outputs, 0,
+          Progress(static_cast<int>(recorder.outputs()), outputs, 0,
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(),
                    "steps");
       });
-  files.Close();
-  if (vibration) std::printf("%s", vibration->Close(scene.name).c_str());
+  std::printf("%s", recorder.Close(scene.name, sun_name).c_str());
   if (tty && !result.completed) std::fprintf(stderr, "\n");
 
-  const dynamics::DynamicSummary sum = dynamics::Summarise(result.samples);
+  const dynamics::DynamicSummary sum = recorder.Summary();
   const dynamics::SimulationStats& st = result.stats;
   std::printf("%s", report::DynamicRunText(sum, st, n).c_str());
 
   // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
   std::vector<std::string> warnings = scene.warnings;
   if (!cost.empty()) warnings.push_back(cost);
-  for (const std::string& w : dynamics::DynamicWarnings(stage, result.samples))
-    warnings.push_back(w);
+  for (const std::string& w : recorder.Warnings()) warnings.push_back(w);
   PrintWarnings(warnings);
   json j = report::DynamicRunJson(model, opt, span, result, sum);
   j["provenance"] = provenance;
@@ -173,7 +172,6 @@ void RunDynamic(const DynamicArgs& a) {
   j["setup_seconds"] = setup_seconds;
   WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
 
-  report::WriteDynamicPlots(base, scene.name, sun_name, n, result.samples);
   std::printf(
       "\nwrote %s_steps.csv, _pairs.csv, _bearings.csv, _summary.json, _lsr.svg, _te.svg, "
       "_orbit.svg%s\n",
@@ -306,7 +304,8 @@ void RegisterDynamicCommands(CLI::App& app) {
             "Tolerance of every contact solve on its nondimensional residual (default 1e-10)",
             {1e-14, 1e-2, false, false, "", "a nondimensional residual"});
   AddNumber(cmd, "--outputs-per-cycle", a.outputs_per_cycle,
-            "Output steps per mesh cycle (default 20; 64 in a speed sweep's window)",
+            "Output steps per mesh cycle (default: 10 per period of the highest natural "
+            "frequency, 20 to 500; 64 in a speed sweep's window; docs/dynamic.md, Outputs)",
             {1, 1e5, false, true, "", ""});
   cmd->add_option("--speed-sweep", a.speed_sweep,
                   "FROM:TO:N: run N sun speeds [rpm] from FROM to TO (ends included) in parallel; "

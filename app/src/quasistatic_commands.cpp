@@ -106,7 +106,8 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   std::vector<std::string> failures;  // the first kListedFailures
   transmission::SweepAccumulator accumulator(n);
   transmission::ValidityTally tally(stage, "position(s)");
-  report::QuasiStaticPlots plots(base, n, count);
+  report::QuasiStaticPlots plots(base, n, count, 360.0 / stage.ring().teeth(),  // mesh cycle
+                                 angles.empty() ? geometry::Deg(span) : 0.0);
   const auto t1 = std::chrono::steady_clock::now();
   transmission::SweepEach(
       model, scene.loads, count, angle, opt, [&](const transmission::PositionResult& r, int k) {

@@ -7,6 +7,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "epicycle/dynamics/dynamic_model.hpp"
+#include "epicycle/dynamics/modes.hpp"
+
 namespace epicycle::dynamics {
 
 std::vector<double> RunSpan::OutputTimes() const {
@@ -80,6 +83,23 @@ std::vector<double> HarmonicSunSpeeds(double frequency, double hz_per_rpm, int h
   std::vector<double> rpm;
   for (int h = 1; h <= harmonics && frequency > 0; ++h) rpm.push_back(frequency / (h * hz_per_rpm));
   return rpm;
+}
+
+int DefaultOutputsPerCycle(double highest_mode_hz, double mesh_hz) {
+  if (!(mesh_hz > 0) || !std::isfinite(mesh_hz))
+    throw std::invalid_argument("DefaultOutputsPerCycle: mesh frequency = " +
+                                std::to_string(mesh_hz) + " Hz: must be positive and finite");
+  const double wanted = std::ceil(kOutputsPerModePeriod * std::max(0.0, highest_mode_hz) / mesh_hz);
+  const double most = kOutputsPerModePeriod * kMaxResolvedHarmonic;
+  return static_cast<int>(std::min(std::max(std::isfinite(wanted) ? wanted : most, 20.0), most));
+}
+
+double HighestModeFrequency(const DynamicModel& model) {
+  Eigen::MatrixXd m, k;
+  model.Linearise(0.0, &m, &k);
+  double top = 0;
+  for (const Mode& mode : SolveModes(m, k, model.ModeLayout())) top = std::max(top, mode.frequency);
+  return top;
 }
 
 }  // namespace epicycle::dynamics

@@ -382,11 +382,12 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
                                       e.total_force, rubs ? &rubbing : nullptr);
       }
       if (on_sample) on_sample(sample);
-      result.samples.push_back(std::move(sample));
+      ++result.outputs;
+      if (options.keep_samples) result.samples.push_back(std::move(sample));
       last_y = Eigen::Map<Eigen::VectorXd>(y, size);
       last_t = tout;
     }
-    result.completed = result.samples.size() == output_times.size();
+    result.completed = static_cast<std::size_t>(result.outputs) == output_times.size();
   } catch (const std::exception& ex) {
     result.completed = false;
     result.message = "stopped after t = " + std::to_string(last_t) + " s: " + ex.what() +

@@ -1,9 +1,12 @@
 #include "epicycle/report/run_files.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <numbers>
+#include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include <fmt/format.h>
@@ -85,22 +88,86 @@ nlohmann::json PlanetsJson(const std::vector<double>& mean, const std::vector<do
 
 }  // namespace
 
+BinEnvelope::BinEnvelope(int values, double origin, double width)
+    : values_(values), origin_(origin), width_(width) {
+  if (values < 1 || !(width > 0) || !std::isfinite(width) || !std::isfinite(origin))
+    throw std::invalid_argument(fmt::format(
+        "BinEnvelope: {} values, bins of width {} from {}: need >= 1 value and a positive, finite "
+        "width",
+        values, width, origin));
+}
+
+void BinEnvelope::Add(double x, const std::vector<double>& values) {
+  const auto key = static_cast<long>(std::floor((x - origin_) / width_));
+  if (open_.count > 0 && key != key_) {
+    closed_.push_back(Close(open_));
+    open_.count = 0;
+  }
+  if (open_.count == 0) {
+    key_ = key;
+    open_.x_first = x;
+    open_.x_mean = 0;
+    open_.mean.assign(static_cast<std::size_t>(values_), 0.0);
+    open_.min = values;
+    open_.max = values;
+  }
+  ++open_.count;
+  open_.x_last = x;
+  open_.x_mean += x;
+  for (std::size_t k = 0; k < open_.mean.size(); ++k) {
+    open_.mean[k] += values[k];
+    open_.min[k] = std::min(open_.min[k], values[k]);
+    open_.max[k] = std::max(open_.max[k], values[k]);
+  }
+}
+
+BinEnvelope::Bin BinEnvelope::Close(const Bin& open) const {
+  Bin b = open;
+  const auto n = static_cast<double>(b.count);
+  b.x_mean /= n;
+  for (double& m : b.mean) m /= n;
+  return b;
+}
+
+std::vector<BinEnvelope::Bin> BinEnvelope::Bins() const {
+  std::vector<Bin> out = closed_;
+  if (open_.count > 0) out.push_back(Close(open_));
+  return out;
+}
+
 // The three figures of a run of a stage against x (carrier angle or time): LSR_i, the
 // transmission error at the sun [µrad], and the sun centre's path [µm] (equal axes). With `bin`
 // > 1 (a long run), each run of `bin` states adds its lowest and highest point of each series (in
 // their order) and the path its points nearest to and farthest from the origin, so that a peak
-// narrower than a bin still shows while the figures hold a bounded number of points.
+// narrower than a bin still shows while the figures hold a bounded number of points. With an
+// envelope (`envelope_width` > 0, bins of mesh cycles named `envelope_name`), LSR_i and TE are
+// drawn as their mean per bin over the band from lowest to highest, and the path's mean per bin
+// over the raw path.
 class RunFigures {
  public:
-  RunFigures(std::string base, int planets, std::string x_label, long bin = 1)
-      : base_(std::move(base)), planets_(planets), x_label_(std::move(x_label)), bin_(bin) {
+  RunFigures(std::string base, int planets, std::string x_label, long bin = 1,
+             double envelope_width = 0, std::string envelope_name = "")
+      : base_(std::move(base)),
+        planets_(planets),
+        x_label_(std::move(x_label)),
+        envelope_name_(std::move(envelope_name)),
+        bin_(bin) {
     for (int i = 0; i < planets_; ++i) {
       lsr_.push_back({fmt::format("planet {}", i + 1), {}, {}});
       lsr_bin_.emplace_back();
     }
+    if (envelope_width > 0) envelope_.emplace(planets_ + 3, 0.0, envelope_width);
   }
   void Add(double x, const std::vector<double>& load_sharing, double te_rad, double sun_x,
            double sun_y) {
+    if (envelope_) {
+      values_.assign(load_sharing.begin(), load_sharing.end());
+      values_.resize(static_cast<std::size_t>(planets_));
+      values_.push_back(te_rad * 1e6);
+      values_.push_back(sun_x * 1e6);
+      values_.push_back(sun_y * 1e6);
+      envelope_->Add(x, values_);
+    }
     if (bin_ <= 1) {
       for (int i = 0; i < planets_; ++i) {
         lsr_[i].x.push_back(x);
@@ -124,12 +191,63 @@ class RunFigures {
     LinePlot l{lsr_title, x_label_, "LSR_i [-]", lsr_, false, {1.0 / planets_}};
     LinePlot t{te_title, x_label_, "sun rotation from kinematic [urad]", {te_}, false, {}};
     LinePlot p{path_title, "x [um]", "y [um]", {path_}, true, {}};
+    if (envelope_) {
+      // A partial bin at either end (fewer than half the fullest bin's states) is not drawn.
+      std::vector<BinEnvelope::Bin> bins = envelope_->Bins();
+      long full = 0;
+      for (const BinEnvelope::Bin& b : bins) full = std::max(full, b.count);
+      std::erase_if(bins, [&](const BinEnvelope::Bin& b) { return 2 * b.count < full; });
+      const std::string per = "mean per " + envelope_name_ + ", band: lowest to highest";
+      l.series.clear();
+      l.y_label = "LSR_i [-] (" + per + ")";
+      for (int i = 0; i < planets_; ++i) {
+        l.series.push_back(Band(bins, i, i));
+        l.series.push_back(Mean(bins, i, fmt::format("planet {}", i + 1), i));
+      }
+      t.series = {Band(bins, planets_, 0), Mean(bins, planets_, "TE", 0)};
+      t.y_label += " (" + per + ")";
+      PlotSeries raw = path_;
+      raw.faint = true;
+      PlotSeries mean{"mean per " + envelope_name_, {}, {}};
+      mean.colour = 1;
+      for (const BinEnvelope::Bin& b : bins) {
+        mean.x.push_back(b.mean[static_cast<std::size_t>(planets_) + 1]);
+        mean.y.push_back(b.mean[static_cast<std::size_t>(planets_) + 2]);
+      }
+      p.series = {raw, mean};
+    }
     WriteTextFile(base_ + "_lsr.svg", RenderSvg(l));
     WriteTextFile(base_ + "_te.svg", RenderSvg(t));
     WriteTextFile(base_ + path_file, RenderSvg(p));
   }
 
  private:
+  // Value k of the bins: lowest forwards, highest backwards, as one band.
+  static PlotSeries Band(const std::vector<BinEnvelope::Bin>& bins, int k, int colour) {
+    PlotSeries b{"", {}, {}};
+    b.band = true;
+    b.colour = colour;
+    const auto v = static_cast<std::size_t>(k);
+    for (const BinEnvelope::Bin& bin : bins) {
+      b.x.push_back(bin.x_mean);
+      b.y.push_back(bin.min[v]);
+    }
+    for (auto it = bins.rbegin(); it != bins.rend(); ++it) {
+      b.x.push_back(it->x_mean);
+      b.y.push_back(it->max[v]);
+    }
+    return b;
+  }
+  static PlotSeries Mean(const std::vector<BinEnvelope::Bin>& bins, int k, std::string name,
+                         int colour) {
+    PlotSeries m{std::move(name), {}, {}};
+    m.colour = colour;
+    for (const BinEnvelope::Bin& bin : bins) {
+      m.x.push_back(bin.x_mean);
+      m.y.push_back(bin.mean[static_cast<std::size_t>(k)]);
+    }
+    return m;
+  }
   // One series' points of the current bin with the smallest and largest key.
   struct Extremes {
     struct Point {
@@ -165,13 +283,33 @@ class RunFigures {
 
   std::string base_;
   int planets_ = 0;
-  std::string x_label_;
+  std::string x_label_, envelope_name_;
   long bin_ = 1, states_ = 0;
   std::vector<PlotSeries> lsr_;
   PlotSeries te_{"TE", {}, {}}, path_{"sun centre", {}, {}};
   std::vector<Extremes> lsr_bin_;
   Extremes te_bin_, path_bin_;
+  std::optional<BinEnvelope> envelope_;
+  std::vector<double> values_;
 };
+
+namespace {
+
+// Bins of states for RunFigures: 1 up to kPlotPoints states, else ⌈states/(kPlotPoints/2)⌉.
+long StateBin(long states) {
+  const long most = QuasiStaticPlots::kPlotPoints;
+  return states > most ? (states + most / 2 - 1) / (most / 2) : 1;
+}
+
+// The envelope's bin of a run over `cycles` mesh cycles of `cycle` (in x): {width, name}, or
+// {0, ""} (no envelope) below 8 cycles; ⌈cycles/(kPlotPoints/2)⌉ cycles a bin.
+std::pair<double, std::string> CycleBin(double cycle, double cycles) {
+  if (!(cycle > 0) || !(cycles >= 8)) return {0.0, ""};
+  const double per = std::max(1.0, std::ceil(cycles / (QuasiStaticPlots::kPlotPoints / 2)));
+  return {cycle * per, per == 1 ? "mesh cycle" : fmt::format("{:g} mesh cycles", per)};
+}
+
+}  // namespace
 
 nlohmann::json JsonValue(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
@@ -322,10 +460,12 @@ nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
   return j;
 }
 
-QuasiStaticPlots::QuasiStaticPlots(const std::string& base, int planets, long positions)
-    : figures_(std::make_unique<RunFigures>(
-          base, planets, "carrier angle [deg]",
-          positions > kPlotPoints ? (positions + kPlotPoints / 2 - 1) / (kPlotPoints / 2) : 1)) {}
+QuasiStaticPlots::QuasiStaticPlots(const std::string& base, int planets, long positions,
+                                   double cycle_deg, double span_deg) {
+  const auto [width, name] = CycleBin(cycle_deg, std::abs(span_deg) / cycle_deg);
+  figures_ = std::make_unique<RunFigures>(base, planets, "carrier angle [deg]",
+                                          StateBin(positions), width, name);
+}
 
 QuasiStaticPlots::~QuasiStaticPlots() = default;
 
@@ -423,15 +563,49 @@ void DynamicRunFiles::Close() {
   bearings_.Close();
 }
 
-void WriteDynamicPlots(const std::string& base, const std::string& scene_name,
-                       const std::string& sun_name, int planets,
-                       const std::vector<dynamics::DynamicSample>& samples) {
-  RunFigures f{base, planets, "time [ms]"};
-  for (const auto& s : samples)
-    f.Add(s.time * 1e3, s.load_sharing, s.transmission_error, s.sun_centre.x(), s.sun_centre.y());
-  f.Write(scene_name + ": dynamic load-sharing ratio (sun " + sun_name + ")",
-          scene_name + ": dynamic transmission error at the sun", scene_name + ": sun centre orbit",
-          "_orbit.svg");
+DynamicPlots::DynamicPlots(const std::string& base, int planets, const dynamics::RunSpan& span) {
+  const auto [width, name] = CycleBin(span.cycle_time * 1e3, span.duration / span.cycle_time);
+  figures_ = std::make_unique<RunFigures>(base, planets, "time [ms]", StateBin(span.outputs),
+                                          width, name);
+}
+
+DynamicPlots::~DynamicPlots() = default;
+
+void DynamicPlots::Add(const dynamics::DynamicSample& s) {
+  figures_->Add(s.time * 1e3, s.load_sharing, s.transmission_error, s.sun_centre.x(),
+                s.sun_centre.y());
+}
+
+void DynamicPlots::Write(const std::string& scene_name, const std::string& sun_name) {
+  figures_->Write(scene_name + ": dynamic load-sharing ratio (sun " + sun_name + ")",
+                  scene_name + ": dynamic transmission error at the sun",
+                  scene_name + ": sun centre orbit", "_orbit.svg");
+}
+
+DynamicRunRecorder::DynamicRunRecorder(const std::string& base, const nlohmann::json& provenance,
+                                       const dynamics::DynamicModel& model,
+                                       const dynamics::RunSpan& span,
+                                       const std::optional<dynamics::SpectrumOptions>& spectrum)
+    : files_(base, provenance, model.stage_model().stage().planets(),
+             model.stage_model().compliance().has_root_stress()),
+      warnings_(model.stage_model().stage()),
+      plots_(base, model.stage_model().stage().planets(), span) {
+  if (spectrum) vibration_.emplace(base, provenance, model, *spectrum);
+}
+
+void DynamicRunRecorder::Add(const dynamics::DynamicSample& s) {
+  ++outputs_;
+  files_.Write(s);
+  if (vibration_) vibration_->Write(s);
+  summary_.Add(s);
+  warnings_.Add(s);
+  plots_.Add(s);
+}
+
+std::string DynamicRunRecorder::Close(const std::string& scene_name, const std::string& sun_name) {
+  files_.Close();
+  plots_.Write(scene_name, sun_name);
+  return vibration_ ? vibration_->Close(scene_name) : "";
 }
 
 std::string DynamicRunText(const dynamics::DynamicSummary& sum,

@@ -153,29 +153,36 @@ std::string VibrationFiles::Close(const std::string& title) {
     WriteTextFile(path, RenderSvg(SpectrumPlot(
                             fmt::format("{}: {}", title, ch.name),
                             fmt::format("{} amplitude [{}]", ch.name, ch.unit), amp[c], df, marked,
-                            fmt::format("{} segments, {:.3g} Hz", sp.segments(), df))));
+                            fmt::format("{} segments, {:.3g} Hz", sp.segments(), df),
+                            frequencies_.mesh)));
   }
   return text;
 }
 
 LinePlot SpectrumPlot(const std::string& title, const std::string& y_label,
                       const std::vector<double>& amplitude, double resolution,
-                      const std::vector<dynamics::SpectralLine>& lines, const std::string& legend) {
+                      const std::vector<dynamics::SpectralLine>& lines, const std::string& legend,
+                      double mesh_hz) {
   LinePlot p;
   p.title = title;
-  p.x_label =
-      "frequency [Hz] (solid: lines of a healthy stage; dashed: phasing-cancelled or fault)";
+  const bool orders = mesh_hz > 0 && std::isfinite(mesh_hz);
+  const double unit = orders ? mesh_hz : 1.0;  // x = frequency / unit
+  p.x_label = (orders ? fmt::format("mesh order f/f_m (f_m = {:.4g} Hz)", mesh_hz)
+                      : std::string("frequency [Hz]")) +
+              " (solid: lines of a healthy stage; dashed: phasing-cancelled or fault)";
   p.y_label = y_label;
   p.log_y = true;
   PlotSeries s{legend, {}, {}};
   double top = 0;
   for (std::size_t j = 1; j < amplitude.size(); ++j) top = std::max(top, amplitude[j]);
+  // Against mesh order: up to kSpectrumPlotOrders (the CSV holds every bin).
   for (std::size_t j = 1; j < amplitude.size(); ++j) {
-    s.x.push_back(static_cast<double>(j) * resolution);
+    if (orders && static_cast<double>(j) * resolution > kSpectrumPlotOrders * mesh_hz) break;
+    s.x.push_back(static_cast<double>(j) * resolution / unit);
     s.y.push_back(std::max(amplitude[j], kPlotFloor * top));
   }
   p.series.push_back(std::move(s));
-  for (const auto& x : lines) p.x_markers.push_back({x.frequency, x.name, !x.allowed});
+  for (const auto& x : lines) p.x_markers.push_back({x.frequency / unit, x.name, !x.allowed});
   return p;
 }
 

@@ -159,9 +159,10 @@ std::string RenderSvg(const LinePlot& input) {
         right ? px(m.x) - 2 : px(m.x) + 2, top + 12 + 11 * static_cast<double>(row),
         Escape(m.label), right ? " text-anchor=\"end\"" : "");
   }
+  int legend = 0;
   for (std::size_t b = 0; b < plot.series.size(); ++b) {
     const PlotSeries& ser = plot.series[b];
-    const char* col = kColours[b % 8];
+    const char* col = kColours[(ser.colour >= 0 ? static_cast<std::size_t>(ser.colour) : b) % 8];
     std::string pts;
     for (std::size_t k = 0; k < std::min(ser.x.size(), ser.y.size()); ++k) {
       if (!std::isfinite(ser.x[k]) || !std::isfinite(ser.y[k])) continue;
@@ -173,12 +174,17 @@ std::string RenderSvg(const LinePlot& input) {
         pts += fmt::format("{:.1f},{:.1f} ", px(ser.x[k]), py(ser.y[k]));
       }
     }
-    if (!pts.empty()) {
+    if (!pts.empty() && ser.band) {
+      s += fmt::format("<polygon fill=\"{}\" fill-opacity=\"0.25\" stroke=\"none\" points=\"{}\"/>\n",
+                       col, pts);
+    } else if (!pts.empty()) {
       s += fmt::format(
-          "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\" points=\"{}\"/>\n", col, pts);
+          "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{} points=\"{}\"/>\n", col,
+          ser.faint ? 0.6 : 1.5, ser.faint ? " stroke-opacity=\"0.45\"" : "", pts);
     }
+    if (ser.name.empty()) continue;
     s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", left + pw + 12,
-                     top + 14 + 16 * static_cast<double>(b), col, Escape(ser.name));
+                     top + 14 + 16 * static_cast<double>(legend++), col, Escape(ser.name));
   }
   s += "</svg>\n";
   return s;

@@ -49,6 +49,25 @@ inline constexpr double kStepsWarning = 1e7;
 std::string RunCostWarning(const RunSpan& span, double sun_rpm, const std::string& duration_source,
                            const std::string& speed_source);
 
+/// The default outputs per mesh cycle of a run (docs/dynamic.md "Outputs"): enough to draw the
+/// vibration the run excites, taken as every elastic mode of the model linearised at its
+/// operating point up to the kMaxResolvedHarmonic-th mesh harmonic (above that the mesh drives a
+/// mode only through the ringing after each change of the contact set, which decays within the
+/// cycle): N = min(max(⌈kOutputsPerModePeriod · f_max/f_m⌉, 20), kOutputsPerModePeriod ·
+/// kMaxResolvedHarmonic), f_max the highest elastic natural frequency [Hz], f_m the mesh
+/// frequency [Hz]. Every mode below the cap then has at least kOutputsPerModePeriod outputs per
+/// period; 20 is the floor for a stage whose modes lie near its mesh frequency.
+inline constexpr int kOutputsPerModePeriod = 10;
+inline constexpr int kMaxResolvedHarmonic = 50;
+/// @throws std::invalid_argument if f_m is not positive and finite.
+int DefaultOutputsPerCycle(double highest_mode_hz, double mesh_hz);
+
+class DynamicModel;
+/// f_max for DefaultOutputsPerCycle: the highest natural frequency of `model` linearised at
+/// carrier angle 0 with its own (secant) mesh stiffnesses (DynamicModel::Linearise, SolveModes)
+/// [Hz]; 0 if it has no elastic mode.
+double HighestModeFrequency(const DynamicModel& model);
+
 /// Mesh frequency per sun speed, f_m/n_s = z_r/(60 (1 + z_r/z_s)) [Hz/rpm] (ring fixed).
 double MeshHzPerSunRpm(const geometry::Stage& stage);
 

@@ -63,6 +63,10 @@ struct SimulationOptions {
   double time_limit = 0;
   solvers::Backend backend = solvers::Backend::kActiveSetNewton;
   solvers::ContactOptions contact;  ///< the contact solve inside every evaluation
+  /// Keep every output in SimulationResult::samples (true), or only hand each to the caller's
+  /// `on_sample` (false: a run's memory then does not grow with its length; the command-line
+  /// program streams its files, summary and plots this way).
+  bool keep_samples = true;
   void Validate() const;            ///< @throws std::invalid_argument naming the field
 };
 
@@ -116,7 +120,9 @@ struct SimulationStats {
 struct SimulationResult {
   bool completed = false;  ///< every output time reached
   std::string message;     ///< where and why a run stopped early
+  /// Every output step, in order (empty with SimulationOptions::keep_samples = false).
   std::vector<DynamicSample> samples;
+  int outputs = 0;  ///< output steps computed (and handed to `on_sample`) [-]
   SimulationStats stats;
 };
 

@@ -2,11 +2,14 @@
 // them: load-sharing extremes and K_γ, transmission-error peak to peak, the sun's orbit.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/transmission/root_stress.hpp"
+#include "epicycle/transmission/statistics.hpp"
+#include "epicycle/transmission/validity.hpp"
 
 namespace epicycle::dynamics {
 
@@ -26,13 +29,41 @@ struct DynamicSummary {
   std::vector<transmission::RootStressSummary> root_stress;
 };
 
-/// Summary of the samples.
+/// The statistics of a run gathered one output step at a time, in the order of the steps (the
+/// means are sums in that order): what it keeps does not grow with the steps, so a long run need
+/// not keep its samples (SimulationOptions::keep_samples). The number of planets is that of the
+/// first step's LSR list.
+class DynamicAccumulator {
+ public:
+  /// @throws std::invalid_argument if a step has not the first step's number of LSR values.
+  void Add(const DynamicSample& x);
+  DynamicSummary Result() const;
+
+ private:
+  int samples_ = 0;
+  std::vector<transmission::Accumulator> lsr_;
+  transmission::Accumulator te_, orbit_, k_gamma_, pair_force_;
+  std::optional<transmission::RootStressTracker> root_stress_;
+};
+
+/// Summary of the samples: DynamicAccumulator over them.
 DynamicSummary Summarise(const std::vector<DynamicSample>& samples);
+
+/// DynamicWarnings gathered one output step at a time (same messages).
+class DynamicWarningTally {
+ public:
+  explicit DynamicWarningTally(const geometry::Stage& stage);
+  void Add(const DynamicSample& x);
+  std::vector<std::string> Messages() const { return tally_.Messages(); }
+
+ private:
+  transmission::ValidityTally tally_;
+};
 
 /// The result warnings of the quasi-static driver (transmission::ValidityTally: a jammed planet,
 /// a rotation past a tenth of the module, a contact force past the local term's validity) over
 /// the output steps whose contact solve converged, counted in output steps; the forces checked
-/// are the elastic contact forces F of the contact problem.
+/// are the elastic contact forces F of the contact problem. DynamicWarningTally over the samples.
 std::vector<std::string> DynamicWarnings(const geometry::Stage& stage,
                                          const std::vector<DynamicSample>& samples);
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/summary.hpp"
 #include "epicycle/report/files.hpp"
+#include "epicycle/report/spectrum_files.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
@@ -74,18 +76,51 @@ std::string RootStressText(const std::vector<transmission::RootStressSummary>& g
 /// null where no position converged (JSON has no NaN). The caller adds the run's settings.
 nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary);
 
+/// States of a run gathered one at a time into bins of x (time or carrier angle) of width
+/// `width` from `origin` (a mesh cycle or a whole number of them): per bin its count, first, last
+/// and mean x, and per value the mean (sum over the bin in the order added / count), lowest and
+/// highest. x must not decrease; a bin closes when a state falls past it.
+class BinEnvelope {
+ public:
+  struct Bin {
+    long count = 0;
+    double x_first = 0, x_last = 0, x_mean = 0;
+    std::vector<double> mean, min, max;  ///< per value
+  };
+  /// @throws std::invalid_argument if values < 1 or width is not positive and finite.
+  BinEnvelope(int values, double origin, double width);
+  /// One state at `x` with its `values` (the constructor's number of them).
+  void Add(double x, const std::vector<double>& values);
+  /// The bins so far, the last one (still open) included.
+  std::vector<Bin> Bins() const;
+
+ private:
+  Bin Close(const Bin& open) const;
+  int values_;
+  double origin_, width_;
+  long key_ = 0;
+  Bin open_;  // sums in `mean`, x sum in x_mean
+  std::vector<Bin> closed_;
+};
+
 class RunFigures;
 
 /// BASE_lsr.svg, BASE_te.svg and BASE_sun_path.svg of a sweep's converged positions, gathered one
-/// position at a time. A sweep of up to kPlotPoints positions draws every one; a longer one, in
-/// bins of ⌈positions/(kPlotPoints/2)⌉ positions, each bin's lowest and highest LSR_i and TE (and
-/// the sun path's points nearest to and farthest from the centre), so that the figures stay the
-/// same size whatever the number of positions.
+/// position at a time. With `cycle_deg` > 0 (the carrier rotation of a mesh cycle [deg]) and a
+/// sweep of at least 8 mesh cycles, LSR_i and TE are drawn per bin of mesh cycles as their mean
+/// (line) and lowest to highest (band), and the sun path's mean per bin over the path; bins of
+/// ⌈cycles/(kPlotPoints/2)⌉ mesh cycles. Otherwise, and for the raw path: a sweep of up to
+/// kPlotPoints positions draws every one; a longer one, in bins of ⌈positions/(kPlotPoints/2)⌉
+/// positions, each bin's lowest and highest LSR_i and TE (and the sun path's points nearest to and
+/// farthest from the centre), so that the figures stay the same size whatever the number of
+/// positions.
 class QuasiStaticPlots {
  public:
   static constexpr long kPlotPoints = 4000;
-  /// `positions`: the sweep's positions (converged or not).
-  QuasiStaticPlots(const std::string& base, int planets, long positions);
+  /// `positions`: the sweep's positions (converged or not); `span_deg`: the carrier rotation they
+  /// cover [deg] (with `cycle_deg`).
+  QuasiStaticPlots(const std::string& base, int planets, long positions, double cycle_deg = 0,
+                   double span_deg = 0);
   ~QuasiStaticPlots();
   QuasiStaticPlots(const QuasiStaticPlots&) = delete;
   QuasiStaticPlots& operator=(const QuasiStaticPlots&) = delete;
@@ -120,10 +155,50 @@ class DynamicRunFiles {
   int bodies_ = 0;                     // root-stress columns: one pair per body, 0 without
 };
 
-/// BASE_lsr.svg, BASE_te.svg and BASE_orbit.svg of a run's samples.
-void WriteDynamicPlots(const std::string& base, const std::string& scene_name,
-                       const std::string& sun_name, int planets,
-                       const std::vector<dynamics::DynamicSample>& samples);
+/// BASE_lsr.svg, BASE_te.svg and BASE_orbit.svg of a run over `span`, gathered one output step
+/// at a time (bounded like QuasiStaticPlots, against time [ms]): a run of at least 8 mesh cycles
+/// draws LSR_i and TE per bin of mesh cycles as their mean (line) and lowest to highest (band) and
+/// the orbit's mean per bin over the raw orbit; a shorter run draws every output.
+class DynamicPlots {
+ public:
+  DynamicPlots(const std::string& base, int planets, const dynamics::RunSpan& span);
+  ~DynamicPlots();
+  DynamicPlots(const DynamicPlots&) = delete;
+  DynamicPlots& operator=(const DynamicPlots&) = delete;
+  void Add(const dynamics::DynamicSample& s);
+  /// @throws std::runtime_error naming a file that cannot be written.
+  void Write(const std::string& scene_name, const std::string& sun_name);
+
+ private:
+  std::unique_ptr<RunFigures> figures_;
+};
+
+/// Everything a dynamic run records per output step, fed one step at a time so that nothing grows
+/// with the run: DynamicRunFiles, the vibration files (with `spectrum`), the summary
+/// (dynamics::DynamicAccumulator), the result warnings (dynamics::DynamicWarningTally) and
+/// DynamicPlots. Files are created by the constructor.
+class DynamicRunRecorder {
+ public:
+  /// @throws as DynamicRunFiles and VibrationFiles.
+  DynamicRunRecorder(const std::string& base, const nlohmann::json& provenance,
+                     const dynamics::DynamicModel& model, const dynamics::RunSpan& span,
+                     const std::optional<dynamics::SpectrumOptions>& spectrum);
+  void Add(const dynamics::DynamicSample& s);
+  /// Closes the step files, writes the plots (`scene_name`, `sun_name` in their titles) and the
+  /// spectrum; returns VibrationFiles::Close's summary ("" without a spectrum).
+  std::string Close(const std::string& scene_name, const std::string& sun_name);
+  dynamics::DynamicSummary Summary() const { return summary_.Result(); }
+  std::vector<std::string> Warnings() const { return warnings_.Messages(); }
+  long outputs() const { return outputs_; }  ///< steps recorded [-]
+
+ private:
+  long outputs_ = 0;
+  DynamicRunFiles files_;
+  std::optional<VibrationFiles> vibration_;
+  dynamics::DynamicAccumulator summary_;
+  dynamics::DynamicWarningTally warnings_;
+  DynamicPlots plots_;
+};
 
 /// The JSON summary of a dynamic run of `model` over `span` with `options`: its settings ("scene",
 /// "sun_support", "sun_torque_Nm", "sun_speed_rpm", "mesh_frequency_Hz", "friction",

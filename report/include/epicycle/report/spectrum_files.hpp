@@ -7,8 +7,9 @@
 //   BASE_spectrum_lines.csv   the stage's characteristic lines up to the Nyquist frequency
 //                             (dynamics::CharacteristicLines) with whether a healthy stage shows
 //                             each in a torsional and a housing-fixed signal;
-//   BASE_spectrum_CHANNEL.svg log amplitude over frequency for te, ring_force_x, ring_torque and
-//                             the sun's first channel, the lines a healthy stage shows marked
+//   BASE_spectrum_CHANNEL.svg log amplitude over mesh order f/f_m for te, ring_force_x,
+//                             ring_torque and the sun's first channel, the lines a healthy stage
+//                             shows marked
 //                             (solid), the mesh harmonics the planet phasing keeps out of a
 //                             torsional signal and the tooth-fault fundamentals dashed.
 // Every line is written whole and checked (CsvFile); a value that is not finite is an empty cell.
@@ -56,10 +57,13 @@ class VibrationFiles {
 };
 
 /// The amplitude spectrum `amplitude` (bin j at j·resolution [Hz], bin 0 left out) as a log plot,
-/// `lines` marked: those `allowed` solid, the others dashed; `legend` names the curve.
+/// `lines` marked: those `allowed` solid, the others dashed; `legend` names the curve. With
+/// `mesh_hz` > 0 (f_m [Hz]) against mesh order f/f_m up to kSpectrumPlotOrders (the paper
+/// stage's highest mode is 21 mesh orders at 1500 rpm), else against frequency [Hz], every bin.
+inline constexpr double kSpectrumPlotOrders = 32;
 LinePlot SpectrumPlot(const std::string& title, const std::string& y_label,
                       const std::vector<double>& amplitude, double resolution,
                       const std::vector<dynamics::SpectralLine>& lines,
-                      const std::string& legend = "amplitude");
+                      const std::string& legend = "amplitude", double mesh_hz = 0);
 
 }  // namespace epicycle::report

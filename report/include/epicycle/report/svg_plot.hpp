@@ -1,6 +1,7 @@
 // A small SVG line-plot writer for the project's figures (stiffness curves, load sharing,
 // transmission error, orbits; the command-line program, the benchmarks' studies and the FE
-// reference tool): axes with ticks, one polyline per series, a legend.
+// reference tool): axes with ticks, one polyline (or band) per series, a legend of the named
+// series.
 #pragma once
 
 #include <string>
@@ -13,6 +14,11 @@ struct PlotSeries {
   std::vector<double> x, y;
   bool points = false;   ///< markers instead of a line
   bool markers = false;  ///< markers on the line's points as well (with points = false)
+  /// A filled band instead of a line: the points go round its outline (e.g. the lower edge
+  /// forwards, the upper edge backwards), drawn as a closed polygon, translucent, no stroke.
+  bool band = false;
+  bool faint = false;  ///< a thin translucent line (raw samples under their means)
+  int colour = -1;     ///< index into the palette; -1: the series' own index
 };
 
 /// A vertical marker at x with a label (e.g. a resonance speed); dashed when `dashed`.
