@@ -21,8 +21,9 @@
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
-#include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/vibration.hpp"
+#include "epicycle/report/ratings.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/report/spectrum_files.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
@@ -38,12 +39,12 @@ using json = nlohmann::json;
 struct DynamicArgs {
   std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out",
                      range = "planet", sun, friction, cache, speed_sweep;
-  double rtol = 1e-6, start_deg = 0, window_cycles = 0, spectrum_resolution = 0,
-         spectrum_skip = 4;
+  double rtol = 1e-6, start_deg = 0, window_cycles = 0, spectrum_resolution = 0, spectrum_skip = 4;
   // Not given: the scene's speed, the range's duration, the library's defaults.
   std::optional<double> speed_rpm, time, rate_scale, contact_tol;
   int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0;
-  bool no_cache = false, quiet = false, fd_jacobian = false, stresses = false, spectrum = false;
+  bool no_cache = false, quiet = false, fd_jacobian = false, stresses = false, spectrum = false,
+       rating = false;
 };
 
 void RunDynamic(const DynamicArgs& a) {
@@ -60,7 +61,8 @@ void RunDynamic(const DynamicArgs& a) {
   if (a.speed_rpm) input.dynamics.sun_speed = *a.speed_rpm * std::numbers::pi / 30.0;
   if (!a.friction.empty())
     input.dynamics.friction.law = transmission::FrictionLawFromName(a.friction);
-  input.model.stresses = input.model.stresses || a.stresses;
+  input.model.stresses = input.model.stresses || a.stresses || a.rating;
+  if (a.rating) transmission::CheckRatingInputs(input, "--rating");
   const auto t0 = std::chrono::steady_clock::now();
   dynamics::StageDynamics rig(std::move(input), TableOptions(a.cache, a.no_cache));
   const transmission::Scene& scene = rig.scene;
@@ -81,25 +83,15 @@ void RunDynamic(const DynamicArgs& a) {
   opt.analytic_jacobian = !a.fd_jacobian;
   opt.max_order = a.max_order;
   if (!a.speed_sweep.empty()) {
-    SpeedSweepArgs s;
-    s.spec = a.speed_sweep;
-    s.out = a.out;
-    s.range = a.range;
-    s.backend = a.backend;
-    s.integrator = a.integrator;
-    s.window_cycles = a.window_cycles;
-    s.start_deg = a.start_deg;
-    if (a.outputs_per_cycle > 0) s.outputs_per_cycle = a.outputs_per_cycle;
-    s.threads = a.threads;
-    s.harmonics = a.harmonics;
-    s.quiet = a.quiet;
-    RunSpeedSweep(s, rig, opt);
-    return;
+    const int per_cycle =
+        a.outputs_per_cycle > 0 ? a.outputs_per_cycle : SpeedSweepArgs{}.outputs_per_cycle;
+    return RunSpeedSweep({a.speed_sweep, a.out, a.range, a.backend, a.integrator, a.window_cycles,
+                          a.start_deg, per_cycle, a.harmonics, a.threads, a.quiet},
+                         rig, opt);
   }
-  const double f_max = dynamics::HighestModeFrequency(model),
-               f_m = dynamics::MeshHzPerSunRpm(stage) * std::abs(model.sun_speed()) * 30 / std::numbers::pi;
-  const int per_cycle = a.outputs_per_cycle > 0 ? a.outputs_per_cycle
-                                                : dynamics::DefaultOutputsPerCycle(f_max, f_m);
+  const double f_max = dynamics::HighestModeFrequency(model);
+  const int per_cycle =
+      a.outputs_per_cycle > 0 ? a.outputs_per_cycle : dynamics::DefaultOutputsPerCycle(model, f_max);
   const dynamics::RunSpan span =
       dynamics::MakeRunSpan(stage, model.carrier_speed(), transmission::RunRangeFromName(a.range),
                             a.time.value_or(0.0), per_cycle);
@@ -113,8 +105,8 @@ void RunDynamic(const DynamicArgs& a) {
   std::optional<dynamics::SpectrumOptions> spectrum;  // bad options before the run
   if (a.spectrum)
     spectrum = dynamics::RunSpectrumOptions(
-        span, dynamics::CharacteristicFrequencies(stage, model.sun_speed()),
-        a.spectrum_resolution, a.spectrum_skip, "--spectrum-resolution", "--spectrum-skip-cycles");
+        span, dynamics::CharacteristicFrequencies(stage, model.sun_speed()), a.spectrum_resolution,
+        a.spectrum_skip, "--spectrum-resolution", "--spectrum-skip-cycles");
   const char* sun_name = transmission::SunSupportName(stage_model.setup().sun);
   std::printf(
       "%s: %d planets, sun %s, input torque %.1f N m, sun speed %.1f rpm (mesh frequency "
@@ -141,7 +133,7 @@ void RunDynamic(const DynamicArgs& a) {
   std::filesystem::create_directories(a.out);
   const std::string base = a.out + "/dynamic";
   const json provenance = Provenance(a.backend, &scene);
-  report::DynamicRunRecorder recorder(base, provenance, model, span, spectrum);
+  report::DynamicRunRecorder recorder(base, provenance, model, span, spectrum, a.rating);
   const bool tty = !a.quiet && isatty(fileno(stderr));
   const auto t1 = std::chrono::steady_clock::now();
   opt.keep_samples = false;  // each step recorded as it comes, then let go (flat memory)
@@ -160,6 +152,9 @@ void RunDynamic(const DynamicArgs& a) {
   const dynamics::DynamicSummary sum = recorder.Summary();
   const dynamics::SimulationStats& st = result.stats;
   std::printf("%s", report::DynamicRunText(sum, st, n).c_str());
+  std::optional<dynamics::MotionRating> rating;  // ISO 6336 with the run's K_v (docs/stresses.md)
+  if (a.rating && sum.samples > 0) rating = recorder.Rate(scene, opt);
+  if (rating) std::printf("%s", report::RatingText(rating->rating).c_str());
 
   // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
   std::vector<std::string> warnings = scene.warnings;
@@ -170,12 +165,14 @@ void RunDynamic(const DynamicArgs& a) {
   j["provenance"] = provenance;
   j["warnings"] = warnings;
   j["setup_seconds"] = setup_seconds;
+  if (rating) j["rating"] = report::RatingJson(rating->rating);
   WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
 
   std::printf(
       "\nwrote %s_steps.csv, _pairs.csv, _bearings.csv, _summary.json, _lsr.svg, _te.svg, "
       "_orbit.svg%s\n",
-      base.c_str(), a.spectrum ? ", _vibration.csv, _spectrum.csv, _spectrum_lines.csv, _spectrum_*.svg" : "");
+      base.c_str(),
+      a.spectrum ? ", _vibration.csv, _spectrum.csv, _spectrum_lines.csv, _spectrum_*.svg" : "");
   if (!result.completed)
     throw ComputationFailed(fmt::format("the run stopped after {} of {} outputs: {}", sum.samples,
                                         outputs, result.message));
@@ -330,6 +327,9 @@ void RegisterDynamicCommands(CLI::App& app) {
   AddNumber(cmd, "--spectrum-skip-cycles", a.spectrum_skip,
             "Spectrum: mesh cycles left out at the start (default 4)",
             {0, 1e6, false, false, "[mesh cycles]", "the start transient"});
+  cmd->add_flag("--rating", a.rating,
+                "ISO 6336 ratings with the run's K_v and the stresses in motion (needs the scene's "
+                "[material] bending_limit_MPa and contact_limit_MPa; implies --stresses)");
   cmd->add_flag("--stresses", a.stresses,
                 "Also each gear's root stress per output step (the scene's [model] stresses)");
   cmd->add_flag("--fd-jacobian", a.fd_jacobian,

@@ -94,6 +94,12 @@ int DefaultOutputsPerCycle(double highest_mode_hz, double mesh_hz) {
   return static_cast<int>(std::min(std::max(std::isfinite(wanted) ? wanted : most, 20.0), most));
 }
 
+int DefaultOutputsPerCycle(const DynamicModel& model, double highest_mode_hz) {
+  const double rpm = std::abs(model.sun_speed()) * 30 / std::numbers::pi;
+  return DefaultOutputsPerCycle(highest_mode_hz,
+                                MeshHzPerSunRpm(model.stage_model().stage()) * rpm);
+}
+
 double HighestModeFrequency(const DynamicModel& model) {
   Eigen::MatrixXd m, k;
   model.Linearise(0.0, &m, &k);

@@ -585,12 +585,25 @@ void DynamicPlots::Write(const std::string& scene_name, const std::string& sun_n
 DynamicRunRecorder::DynamicRunRecorder(const std::string& base, const nlohmann::json& provenance,
                                        const dynamics::DynamicModel& model,
                                        const dynamics::RunSpan& span,
-                                       const std::optional<dynamics::SpectrumOptions>& spectrum)
-    : files_(base, provenance, model.stage_model().stage().planets(),
+                                       const std::optional<dynamics::SpectrumOptions>& spectrum,
+                                       bool rating)
+    : model_(model),
+      span_(span),
+      files_(base, provenance, model.stage_model().stage().planets(),
              model.stage_model().compliance().has_root_stress()),
       warnings_(model.stage_model().stage()),
       plots_(base, model.stage_model().stage().planets(), span) {
   if (spectrum) vibration_.emplace(base, provenance, model, *spectrum);
+  if (rating) loads_.emplace(model.stage_model().stage());
+}
+
+dynamics::MotionRating DynamicRunRecorder::Rate(const transmission::Scene& scene,
+                                                const dynamics::SimulationOptions& options) const {
+  if (!loads_) throw std::logic_error("DynamicRunRecorder::Rate: made without rating");
+  std::vector<double> times = span_.OutputTimes();
+  times.resize(static_cast<std::size_t>(std::min<long>(outputs_, std::ssize(times))));
+  return dynamics::RateInMotion(scene, model_, options, times, *loads_,
+                                summary_.Result().root_stress);
 }
 
 void DynamicRunRecorder::Add(const dynamics::DynamicSample& s) {
@@ -600,6 +613,7 @@ void DynamicRunRecorder::Add(const dynamics::DynamicSample& s) {
   summary_.Add(s);
   warnings_.Add(s);
   plots_.Add(s);
+  if (loads_) loads_->Add(s);
 }
 
 std::string DynamicRunRecorder::Close(const std::string& scene_name, const std::string& sun_name) {

@@ -67,6 +67,8 @@ class DynamicModel;
 /// carrier angle 0 with its own (secant) mesh stiffnesses (DynamicModel::Linearise, SolveModes)
 /// [Hz]; 0 if it has no elastic mode.
 double HighestModeFrequency(const DynamicModel& model);
+/// DefaultOutputsPerCycle at `model`'s own mesh frequency (its sun speed, MeshHzPerSunRpm).
+int DefaultOutputsPerCycle(const DynamicModel& model, double highest_mode_hz);
 
 /// Mesh frequency per sun speed, f_m/n_s = z_r/(60 (1 + z_r/z_s)) [Hz/rpm] (ring fixed).
 double MeshHzPerSunRpm(const geometry::Stage& stage);

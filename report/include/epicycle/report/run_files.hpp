@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "epicycle/dynamics/dynamic_factor.hpp"
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
@@ -179,10 +180,12 @@ class DynamicPlots {
 /// DynamicPlots. Files are created by the constructor.
 class DynamicRunRecorder {
  public:
+  /// With `rating` the loads a rating in motion needs are gathered too (dynamics::MotionLoads).
   /// @throws as DynamicRunFiles and VibrationFiles.
   DynamicRunRecorder(const std::string& base, const nlohmann::json& provenance,
                      const dynamics::DynamicModel& model, const dynamics::RunSpan& span,
-                     const std::optional<dynamics::SpectrumOptions>& spectrum);
+                     const std::optional<dynamics::SpectrumOptions>& spectrum,
+                     bool rating = false);
   void Add(const dynamics::DynamicSample& s);
   /// Closes the step files, writes the plots (`scene_name`, `sun_name` in their titles) and the
   /// spectrum; returns VibrationFiles::Close's summary ("" without a spectrum).
@@ -190,9 +193,17 @@ class DynamicRunRecorder {
   dynamics::DynamicSummary Summary() const { return summary_.Result(); }
   std::vector<std::string> Warnings() const { return warnings_.Messages(); }
   long outputs() const { return outputs_; }  ///< steps recorded [-]
+  /// The rating of the steps recorded (dynamics::RateInMotion: the quasi-static reference at
+  /// their carrier angles with `options`' back end), for a recorder made with `rating`.
+  /// @throws std::logic_error without `rating`; as dynamics::RateInMotion.
+  dynamics::MotionRating Rate(const transmission::Scene& scene,
+                              const dynamics::SimulationOptions& options) const;
 
  private:
   long outputs_ = 0;
+  const dynamics::DynamicModel& model_;
+  dynamics::RunSpan span_;
+  std::optional<dynamics::MotionLoads> loads_;
   DynamicRunFiles files_;
   std::optional<VibrationFiles> vibration_;
   dynamics::DynamicAccumulator summary_;
