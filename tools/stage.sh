@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 bash tools/setup.sh
 for sun in fixed floating; do
   echo
-  ./build/app/epicycle quasistatic scenes/paper_stage_runout.toml --range planet --positions 360 \
+  ./build/app/epicycle quasistatic scenes/paper_stage_runout.toml --range planet \
     --sun "$sun" --out "results/paper_stage_runout_$sun"
 done
 for sun in fixed floating; do

@@ -36,7 +36,7 @@ constexpr int kListedFailures = 100;  // failed positions listed in the report a
 struct QuasiStaticArgs {
   std::string scene, backend = "newton", out = "quasistatic-out", range = "cycle", sun, cache, dump,
                      friction = "off";
-  int positions = 0;  // 0: 36 over a mesh cycle, 360 over a revolution
+  int positions = 0;  // 0: transmission::DefaultPositions, 60 per mesh cycle
   int threads = 0;    // 0: one per core
   std::vector<double> angles_deg;
   double start_deg = 0.0;
@@ -57,7 +57,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   const transmission::RunRange range = transmission::RunRangeFromName(a.range);
   const int count = !angles.empty() ? static_cast<int>(angles.size())
                     : a.positions > 0 ? a.positions
-                                      : (range == transmission::RunRange::kMeshCycle ? 36 : 360);
+                                      : transmission::DefaultPositions(stage, range);
   const double start = geometry::Rad(a.start_deg), span = transmission::CarrierSpan(stage, range);
   const auto angle = [&](int k) {
     return angles.empty() ? transmission::SweepAngle(start, span, k, count)
@@ -222,7 +222,7 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   AddNumber(cmd, "--positions", a.positions,
-            "Positions of the sweep (default 36 over a mesh cycle, 360 otherwise)",
+            "Positions of the sweep (default 60 per mesh cycle: docs/quasistatic.md, Positions)",
             {1, 1e6, false, true, "", ""});
   cmd->add_option("--range", a.range,
                   "Sweep one mesh cycle, one planet or sun revolution relative to the carrier "

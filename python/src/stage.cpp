@@ -312,7 +312,7 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
       for (double d : *angles_deg) angles.push_back(geometry::Rad(d));
     } else {
       const int count =
-          positions > 0 ? positions : (run_range == transmission::RunRange::kMeshCycle ? 36 : 360);
+          positions > 0 ? positions : transmission::DefaultPositions(stage, run_range);
       angles = transmission::SweepAngles(geometry::Rad(start_deg),
                                          transmission::CarrierSpan(stage, run_range), count);
     }
@@ -479,8 +479,8 @@ Quasi-static load sharing of a stage over carrier positions (`epicycle quasistat
 quasistatic.md). The sun support is the scene's (key supports.sun: "fixed", "floating").
 
 range: "cycle" (one mesh cycle), "planet" (one planet revolution relative to the carrier),
-  "sun" (one sun revolution relative to the carrier), "revolution" (one carrier revolution); positions: over the range [-] (0: 36 for a cycle, 360
-  otherwise); start_deg: carrier angle of the first position [deg]; angles_deg: given carrier
+  "sun" (one sun revolution relative to the carrier), "revolution" (one carrier revolution); positions: over the range [-] (0: 60 per mesh cycle,
+  docs/quasistatic.md "Positions"); start_deg: carrier angle of the first position [deg]; angles_deg: given carrier
   angles [deg] instead; threads: workers (0: one per core; with warm_start the results depend on
   the thread count within the solver tolerances); warm_start: each position from its neighbour;
   backend: contact back end ("newton", "ipopt", "nlopt-slsqp", ...); local_terms: False for the

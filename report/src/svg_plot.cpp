@@ -99,8 +99,12 @@ std::string RenderSvg(const LinePlot& input) {
       "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
       "fill=\"white\"/>\n",
       w, h);
-  s += fmt::format("<text x=\"{}\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n",
-                   left + pw / 2, Escape(plot.title));
+  // The title over the whole width, smaller when it would not fit (~0.55 em per character).
+  const double title_size = std::min(
+      14.0, std::floor((w - 20) /
+                       (0.55 * static_cast<double>(std::max<std::size_t>(plot.title.size(), 1)))));
+  s += fmt::format("<text x=\"{}\" y=\"22\" text-anchor=\"middle\" font-size=\"{}\">{}</text>\n",
+                   w / 2, title_size, Escape(plot.title));
   s += fmt::format(
       "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", left,
       top, pw, ph);
@@ -175,8 +179,11 @@ std::string RenderSvg(const LinePlot& input) {
       }
     }
     if (!pts.empty() && ser.band) {
-      s += fmt::format("<polygon fill=\"{}\" fill-opacity=\"0.25\" stroke=\"none\" points=\"{}\"/>\n",
-                       col, pts);
+      // Light fill with its edge drawn: overlapping bands stay apart by their outlines.
+      s += fmt::format(
+          "<polygon fill=\"{0}\" fill-opacity=\"0.12\" stroke=\"{0}\" stroke-width=\"0.7\" "
+          "stroke-opacity=\"0.7\" points=\"{1}\"/>\n",
+          col, pts);
     } else if (!pts.empty()) {
       s += fmt::format(
           "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{} points=\"{}\"/>\n", col,

@@ -1,5 +1,6 @@
 #include "epicycle/transmission/run_range.hpp"
 
+#include <cmath>
 #include <numbers>
 #include <stdexcept>
 
@@ -43,6 +44,10 @@ double MeshCycles(const geometry::Stage& stage, RunRange range) {
       return static_cast<double>(stage.ring().teeth());
   }
   throw std::invalid_argument("MeshCycles: unknown range");
+}
+
+int DefaultPositions(const geometry::Stage& stage, RunRange range) {
+  return static_cast<int>(std::lround(kPositionsPerMeshCycle * MeshCycles(stage, range)));
 }
 
 }  // namespace epicycle::transmission

@@ -15,7 +15,6 @@
 #include "figures.hpp"
 
 using namespace epicycle;
-using test::kRpm;
 
 TEST_CASE("dynamic factor: the quasi-static reference at the run's angles, K_v -> 1 with the speed",
           "[crosscheck][dynamics][rating]") {
@@ -28,14 +27,7 @@ TEST_CASE("dynamic factor: the quasi-static reference at the run's angles, K_v -
   double excess[2];
   const double speeds[2] = {120.0, 60.0};
   for (int k = 0; k < 2; ++k) {
-    test::RigOptions o;
-    o.local_terms = false;
-    o.edit = [&](transmission::DynamicSettings& s) {
-      s.sun_speed = speeds[k] * kRpm;
-      s.friction.law = transmission::FrictionLaw::kOff;
-    };
-    const auto rig =
-        test::MakeRig(test::WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
+    const auto rig = test::LowSpeedRunoutRig(speeds[k]);
     dynamics::SimulationOptions so;
     so.rtol = 1e-8;
     const std::vector<double> times = test::Times(*rig.model, *rig.stage, 24, 2);

@@ -13,7 +13,6 @@
 #include "figures.hpp"
 
 using namespace epicycle;
-using test::kRpm;
 
 TEST_CASE("root stress: the dynamic root stress tends to the quasi-static one with the speed",
           "[crosscheck][slow][dynamics][stress]") {
@@ -27,15 +26,7 @@ TEST_CASE("root stress: the dynamic root stress tends to the quasi-static one wi
   double gap[2], largest = 0;
   const double speeds[2] = {120.0, 60.0};
   for (int k = 0; k < 2; ++k) {
-    test::RigOptions o;
-    o.local_terms = false;
-    o.edit = [&](transmission::DynamicSettings& s) {
-      s.sun_speed = speeds[k] * kRpm;
-      s.friction.law = transmission::FrictionLaw::kOff;
-    };
-    const auto rig = test::MakeRig(
-        test::WithRunout(test::SceneText("paper_stage.toml")) + "\n[model]\nstresses = true\n",
-        "runout", o);
+    const auto rig = test::LowSpeedRunoutRig(speeds[k], "[model]\nstresses = true\n");
     REQUIRE(rig.compliance->has_root_stress());
     dynamics::SimulationOptions so;
     so.rtol = 1e-8;

@@ -110,6 +110,19 @@ inline std::string WithRunout(const std::string& text) {
   return text + "\n[[errors.runout]]\ngear = \"planet1\"\namplitude_um = 20.0\nphase_deg = 0.0\n";
 }
 
+// The quasi-static-limit setting of the run-out case: FE compliance without the local term,
+// friction off, planet 1 with 20 µm run-out, sun fixed, the sun at `rpm`; `extra` appended to the
+// scene's text (e.g. "[model]\nstresses = true\n").
+inline DynamicRig LowSpeedRunoutRig(double rpm, const std::string& extra = "") {
+  RigOptions o;
+  o.local_terms = false;
+  o.edit = [rpm](transmission::DynamicSettings& s) {
+    s.sun_speed = rpm * kRpm;
+    s.friction.law = transmission::FrictionLaw::kOff;
+  };
+  return MakeRig(WithRunout(SceneText("paper_stage.toml")) + "\n" + extra, "runout", o);
+}
+
 // Largest |LSR_dyn − LSR_qs| over the samples, the quasi-static solver at each sample's carrier
 // angle on the same stage model.
 inline double QuasiStaticGap(const DynamicRig& rig,

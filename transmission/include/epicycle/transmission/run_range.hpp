@@ -27,4 +27,12 @@ double CarrierSpan(const geometry::Stage& stage, RunRange range);
 /// The same in mesh cycles [-]: 1, z_p, z_s or z_r (exact integers).
 double MeshCycles(const geometry::Stage& stage, RunRange range);
 
+/// Positions per mesh cycle of a quasi-static sweep by default (docs/quasistatic.md, "Positions"):
+/// the contact set changes about 4 n times per mesh cycle (n planets, two meshes each, a tooth
+/// pair entering and leaving), every 1/12 cycle with three planets; 60 positions put about five
+/// between two changes, so that a plot shows each step of the load sharing, not a row of spikes.
+inline constexpr int kPositionsPerMeshCycle = 60;
+/// kPositionsPerMeshCycle × MeshCycles(range): the sweep's positions when none are asked for.
+int DefaultPositions(const geometry::Stage& stage, RunRange range);
+
 }  // namespace epicycle::transmission
