@@ -29,8 +29,8 @@ run runout_fixed paper_stage_runout fixed planet 2880
 run runout_floating paper_stage_runout floating planet 2880
 # The dynamic model: the paper's run-out case in motion at 1500 rpm over a planet revolution.
 dyn() {  # name scene sun
-  "$exe" dynamic "scenes/$2.toml" --sun "$3" --range planet --quiet --out "$tmp/$1" \
-    > "$tmp/$1.log"
+  "$exe" dynamic "scenes/$2.toml" --sun "$3" --range planet --outputs-per-cycle 20 --quiet \
+    --out "$tmp/$1" > "$tmp/$1.log"
   for f in lsr te orbit; do cp "$tmp/$1/dynamic_$f.svg" "$out/$1_$f.svg"; done
   cp "$tmp/$1/dynamic_summary.json" "$out/$1_summary.json"
 }
