@@ -35,14 +35,31 @@ struct Run {
   SweepSummary summary;
 };
 
+// The run-out scene, fixed sun, root stresses on or off, with its tables from the suite's cache.
+struct RunOutStage {
+  Scene scene;
+  geometry::Stage stage;
+  FeStageCompliance compliance;
+  StageModel model;
+  explicit RunOutStage(bool root_stress)
+      : scene(Read(root_stress)),
+        stage(scene.stage),
+        compliance(scene, stage, test::CachedTables()),
+        model(stage, compliance, SetupFromScene(scene)) {}
+  static Scene Read(bool root_stress) {
+    Scene s = ParseScene(test::SceneText("paper_stage_runout.toml"), "paper_stage_runout.toml");
+    s.model.stresses = root_stress;
+    return s;
+  }
+};
+
 // The run-out scene over one planet revolution (the period of everything that happens to a
 // planet tooth), `positions` positions, fixed sun, root stresses on or off.
 Run RunOut(bool root_stress, int positions) {
-  Scene scene = ParseScene(test::SceneText("paper_stage_runout.toml"), "paper_stage_runout.toml");
-  scene.model.stresses = root_stress;
-  const geometry::Stage stage(scene.stage);
-  const FeStageCompliance compliance(scene, stage, test::CachedTables());
-  const StageModel model(stage, compliance, SetupFromScene(scene));
+  const RunOutStage rig(root_stress);
+  const geometry::Stage& stage = rig.stage;
+  const StageModel& model = rig.model;
+  const Scene& scene = rig.scene;
   QuasiStaticOptions options;
   options.threads = 1;
   const std::vector<double> angles =
@@ -109,11 +126,11 @@ TEST_CASE("root stress with friction at rest: the sun's fillets against its body
   // A), applied as consistent point forces; its fillet stresses against the driver's, within
   // the table interpolation's bound per load (test::FilletInterpolationBound with the load's
   // size) plus round-off (1e-9 of the largest stress).
-  Scene scene = ParseScene(test::SceneText("paper_stage_runout.toml"), "paper_stage_runout.toml");
-  scene.model.stresses = true;
-  const geometry::Stage stage(scene.stage);
-  const FeStageCompliance compliance(scene, stage, test::CachedTables());
-  const StageModel model(stage, compliance, SetupFromScene(scene));
+  const RunOutStage rig(true);
+  const Scene& scene = rig.scene;
+  const geometry::Stage& stage = rig.stage;
+  const FeStageCompliance& compliance = rig.compliance;
+  const StageModel& model = rig.model;
   QuasiStaticOptions options;
   options.friction.law = FrictionLaw::kConstant;
   options.friction.coefficient = 0.1;
