@@ -81,8 +81,8 @@ SurfaceVelocity ContactSurfaceVelocity(const StageModel& model, const StageConta
   const geometry::PotentialContact& c = s.contact;
   const Vec2 va = MaterialVelocity(s.body_a, c.point, poses, motion),
              vb = MaterialVelocity(s.body_b, c.point, poses, motion);
-  // The contact point's own velocity along the surface: 0 on the line of action; a tip round's
-  // contact point stays at the round, moving with its centre.
+  // The contact point's own velocity: a tip round's contact point stays at the round, moving
+  // with its centre.
   Vec2 v_contact = Vec2::Zero();
   if (c.kind == geometry::ContactKind::kTipRoundA) {
     const double rt = model.BodyGear(s.body_a).spec().tip_round_radius;
@@ -91,7 +91,18 @@ SurfaceVelocity ContactSurfaceVelocity(const StageModel& model, const StageConta
     const double rt = model.BodyGear(s.body_b).spec().tip_round_radius;
     v_contact = MaterialVelocity(s.body_b, c.point_b + rt * c.normal, poses, motion);
   } else {
-    v_contact = c.normal.dot(0.5 * (va + vb)) * c.normal;
+    // On the line of action: it moves with the line through the two gears' geometric centres
+    // (a planet's meshes turn with the carrier), and the point slides along it with the bodies'
+    // common normal motion. The frame velocity at p: the centre line's translation and rotation,
+    // ω_l = ((g_B − g_A) × (v_gB − v_gA))/|g_B − g_A|² (0 for gears on fixed axes).
+    const Vec2 ga = BodyPose(poses, s.body_a).geometric_centre,
+               gb = BodyPose(poses, s.body_b).geometric_centre;
+    const Vec2 vga = MaterialVelocity(s.body_a, ga, poses, motion),
+               vgb = MaterialVelocity(s.body_b, gb, poses, motion);
+    const Vec2 d = gb - ga;
+    const double w_line = Cross(d, vgb - vga) / d.squaredNorm();
+    const Vec2 v_frame = vga + w_line * Perp(c.point - ga);
+    v_contact = v_frame + c.normal.dot(0.5 * (va + vb) - v_frame) * c.normal;
   }
   SurfaceVelocity u;
   u.tangent = tangent != nullptr ? *tangent : Vec2(Perp(c.normal));

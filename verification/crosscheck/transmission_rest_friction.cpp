@@ -5,12 +5,14 @@
 // And friction off: the frictionless results, bit for bit, whatever the friction settings hold.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/contact_kinematics.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "fe_fixtures.hpp"
 #include "figures.hpp"
@@ -184,4 +186,60 @@ TEST_CASE(
   CHECK(worst_a <= 1.0);
   CHECK(worst_b <= 1.0);
   CHECK(worst_c <= 1.0);
+}
+
+TEST_CASE(
+    "contact kinematics: the surface velocities are the carrier frame's, where the lines of "
+    "action stand still",
+    "[crosscheck][transmission][friction]") {
+  // The paper's stage at its kinematic poses, ring fixed, the sun at 1500 rpm. A planet's lines of
+  // action turn with the carrier, so the entrainment speed V_e = (u_A + u_B)/2 that the lubricated
+  // laws take is the carrier frame's: u = ω' ẑ × (p − c)·t with ω_s' = ω_s − ω_c,
+  // ω_p' = −ω_s' z_s/z_p, ω_r' = −ω_c (docs/model.md §7). At the ring mesh's pitch point a planet
+  // rolling in the fixed ring has no velocity in the inertial frame, so an inertial V_e would
+  // vanish there while the carrier frame's is ω_c r_b,ring (an inertial u is off by the carrier's
+  // velocity at p along t, up to ω_c r ≈ 4 m/s here). Every involute contact within the gap
+  // window over a mesh cycle, against transmission::ContactSurfaceVelocity with the rigid body
+  // motion: the same to round-off (1e-12 of the speeds).
+  Rig rig("paper_stage.toml");
+  const geometry::Stage& st = rig.stage;
+  const double z_s = st.sun().teeth(), z_r = st.ring().teeth(), z_p = st.planet(0).teeth();
+  const double w_s = 1500.0 * std::numbers::pi / 30.0, w_c = w_s * z_s / (z_s + z_r);
+  const double w_sr = w_s - w_c, w_pr = -w_sr * z_s / z_p, w_rr = -w_c;
+  double worst = 0, scale = 0, ring_least = INFINITY;
+  int compared = 0;
+  for (int k = 0; k < 12; ++k) {
+    const double angle = st.mesh_cycle() * k / 12.0;
+    const geometry::StagePoses poses = rig.model->KinematicPoses(angle);
+    const transmission::ContactTerms terms = rig.model->Terms(poses);
+    std::vector<transmission::BodyMotion> motion;
+    transmission::RigidBodyMotion(st, angle, w_c, &motion);
+    for (const StageContact& s : terms.contacts) {
+      if (s.contact.kind != geometry::ContactKind::kInvolute) continue;
+      const transmission::SurfaceVelocity u =
+          transmission::ContactSurfaceVelocity(*rig.model, s, poses, motion);
+      auto frame = [&](int body) {
+        const geometry::GearPose& g = transmission::BodyPose(poses, body);
+        const double w = body == transmission::kSunBody    ? w_sr
+                         : body == transmission::kRingBody ? w_rr
+                                                           : w_pr;
+        return (w * Perp(s.contact.point - g.rotation_centre)).dot(u.tangent);
+      };
+      const double ua = frame(s.body_a), ub = frame(s.body_b);
+      worst = std::max({worst, std::abs(u.ua - ua), std::abs(u.ub - ub)});
+      scale = std::max({scale, std::abs(ua), std::abs(ub)});
+      if (s.mesh == geometry::MeshKind::kPlanetRing)
+        ring_least = std::min(ring_least, 0.5 * (u.ua + u.ub));
+      ++compared;
+    }
+  }
+  REQUIRE(compared > 0);
+  const bool pass = worst <= 1e-12 * scale;
+  const double rolling = std::abs(w_c) * st.ring().base_radius();  // V_e at its pitch point
+  VerifyRow("surface velocities of the stage's involute contacts (paper stage, 1500 rpm)",
+            "carrier-frame kinematics (the lines of action at rest)",
+            std::to_string(compared) + " contact sides over a mesh cycle; least ring-mesh V_e " +
+                Sci(ring_least) + " m/s (w_c r_b,ring " + Sci(rolling) + ")",
+            Sci(worst) + " m/s", "1e-12 of the speeds", pass);
+  CHECK(pass);
 }
