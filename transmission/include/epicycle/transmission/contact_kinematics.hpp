@@ -10,9 +10,11 @@
 //
 //   u_A = (v_A − v_p)·t,   u_B = (v_B − v_p)·t,   t = ẑ × n (or −ẑ × n, so that u_A + u_B ≥ 0),
 //
-// v_p = (n·(v_A + v_B)/2) n on the line of action (the point slides along the line of action
-// only with the bodies' common normal motion), and a tip round's centre velocity for a contact on
-// a tip round (the point stays on the round). Slide-to-roll ratio SR = |u_A − u_B|/V_e and
+// v_p = v_l + (n·((v_A + v_B)/2 − v_l)) n on the line of action, v_l the velocity at p of the
+// frame of the line through the two gears' geometric centres g_A, g_B (it moves with them: a
+// planet's lines of action turn with the carrier), v_l = v_gA + ω_l ẑ × (p − g_A),
+// ω_l = ((g_B − g_A) × (v_gB − v_gA))/|g_B − g_A|²; the point slides along the line with the
+// bodies' common normal motion. A tip round's contact point moves with the round's centre. Slide-to-roll ratio SR = |u_A − u_B|/V_e and
 // entrainment V_e = (u_A + u_B)/2 follow (friction.hpp).
 #pragma once
 
