@@ -101,8 +101,8 @@ TEST_CASE(
   // (∝ speed), the inertial terms (∝ speed²), and friction's response to the deviation rates in
   // the sliding and rolling speeds. The rates are ∝ speed as the rigid speeds are, so a law of the
   // speeds' ratio (Xu & Kahraman: μ ∝ SR^1.036) keeps a gap that does not fall with the speed
-  // (docs/quasistatic.md, "Friction at rest": 4e-3 to 6e-3 in LSR at 30 rpm on this case): the
-  // quasi-static model leaves the rates out by definition. The law whose μ does not depend on the
+  // (docs/quasistatic.md, "Friction at rest": 5e-5 with the sun fixed, 4e-3 floating, in LSR at
+  // 30 rpm on this case): the quasi-static model leaves the rates out by definition. The law whose μ does not depend on the
   // speeds is the constant one away from the pitch point: μ_s = μ tanh(v_s/v_ε) with v_ε = 1e-5
   // m/s, and positions where a loaded contact slides slower than 10 v_ε at rest left out
   // (tanh 10 = 1 − 4e-9). There friction adds no velocity term and the friction-off derivation
