@@ -189,6 +189,7 @@ class RunFigures {
              const std::string& path_title, const std::string& path_file) {
     Flush();
     LinePlot l{lsr_title, x_label_, "LSR_i [-]", lsr_, false, {1.0 / planets_}};
+    std::string lsr_svg;  // the envelope's panels, else `l`
     LinePlot t{te_title, x_label_, "sun rotation from kinematic [urad]", {te_}, false, {}};
     LinePlot p{path_title, "x [um]", "y [um]", {path_}, true, {}};
     if (envelope_) {
@@ -198,12 +199,30 @@ class RunFigures {
       for (const BinEnvelope::Bin& b : bins) full = std::max(full, b.count);
       std::erase_if(bins, [&](const BinEnvelope::Bin& b) { return 2 * b.count < full; });
       const std::string per = "mean per " + envelope_name_ + ", band: lowest to highest";
-      l.series.clear();
-      l.y_label = "LSR_i [-] (" + per + ")";
-      for (int i = 0; i < planets_; ++i) {
-        l.series.push_back(Band(bins, i, i));
-        l.series.push_back(Mean(bins, i, fmt::format("planet {}", i + 1), i));
+      // One panel per planet on one scale: each planet's band can span most of the others'
+      // (a floating sun's planets swing through the same range within every mesh cycle).
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const BinEnvelope::Bin& b : bins) {
+        for (int i = 0; i < planets_; ++i) {
+          lo = std::min(lo, b.min[static_cast<std::size_t>(i)]);
+          hi = std::max(hi, b.max[static_cast<std::size_t>(i)]);
+        }
       }
+      lo = std::min(lo, 1.0 / planets_);
+      hi = std::max(hi, 1.0 / planets_);
+      const double pad = 0.05 * std::max(hi - lo, 1e-9);
+      std::vector<LinePlot> panels;
+      for (int i = 0; i < planets_; ++i) {
+        // The x label under the last panel only.
+        LinePlot panel{fmt::format("planet {} ({})", i + 1, per),
+                       i + 1 == planets_ ? x_label_ : "", fmt::format("LSR_{} [-]", i + 1),
+                       {Band(bins, i, i), Mean(bins, i, "mean", i)}, false, {1.0 / planets_}};
+        panel.height = 260;
+        panel.y_min = lo - pad;
+        panel.y_max = hi + pad;
+        panels.push_back(std::move(panel));
+      }
+      lsr_svg = RenderSvgStack(lsr_title, panels);
       t.series = {Band(bins, planets_, 0), Mean(bins, planets_, "TE", 0)};
       t.y_label += " (" + per + ")";
       PlotSeries raw = path_;
@@ -216,7 +235,7 @@ class RunFigures {
       }
       p.series = {raw, mean};
     }
-    WriteTextFile(base_ + "_lsr.svg", RenderSvg(l));
+    WriteTextFile(base_ + "_lsr.svg", lsr_svg.empty() ? RenderSvg(l) : lsr_svg);
     WriteTextFile(base_ + "_te.svg", RenderSvg(t));
     WriteTextFile(base_ + path_file, RenderSvg(p));
   }

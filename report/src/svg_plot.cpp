@@ -41,6 +41,13 @@ std::string Escape(const std::string& s) {
 // A decade tick label, 10^k.
 std::string Decade(double k) { return fmt::format("1e{:.0f}", k); }
 
+// A title's font size over a figure `w` px wide: 14, smaller when it would not fit (~0.55 em per
+// character).
+double TitleSize(double w, const std::string& title) {
+  return std::min(14.0, std::floor((w - 20) / (0.55 * static_cast<double>(
+                                                          std::max<std::size_t>(title.size(), 1)))));
+}
+
 }  // namespace
 
 std::string RenderSvg(const LinePlot& input) {
@@ -79,9 +86,15 @@ std::string RenderSvg(const LinePlot& input) {
   const double pad = plot.log_y ? 0.0 : 0.05 * (y1 - y0);
   y0 -= pad;
   y1 += pad;
+  if (!plot.log_y && std::isfinite(plot.y_min) && std::isfinite(plot.y_max) &&
+      plot.y_min < plot.y_max) {
+    y0 = plot.y_min;
+    y1 = plot.y_max;
+  }
   if (plot.log_x) x0 = std::floor(x0), x1 = std::max(std::ceil(x1), x0 + 1);
   if (plot.log_y) y0 = std::floor(y0), y1 = std::max(std::ceil(y1), y0 + 1);
-  const double w = 760, h = 480, left = 90, top = 40, pw = 520, ph = 380;
+  const double w = 760, h = std::max(plot.height, 200.0), left = 90, top = 40, pw = 520,
+               ph = h - 100;
   double sx = pw / (x1 - x0), sy = ph / (y1 - y0);
   if (plot.equal_axes) {
     const double s = std::min(sx, sy);
@@ -99,10 +112,7 @@ std::string RenderSvg(const LinePlot& input) {
       "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
       "fill=\"white\"/>\n",
       w, h);
-  // The title over the whole width, smaller when it would not fit (~0.55 em per character).
-  const double title_size = std::min(
-      14.0, std::floor((w - 20) /
-                       (0.55 * static_cast<double>(std::max<std::size_t>(plot.title.size(), 1)))));
+  const double title_size = TitleSize(w, plot.title);
   s += fmt::format("<text x=\"{}\" y=\"22\" text-anchor=\"middle\" font-size=\"{}\">{}</text>\n",
                    w / 2, title_size, Escape(plot.title));
   s += fmt::format(
@@ -195,6 +205,27 @@ std::string RenderSvg(const LinePlot& input) {
   }
   s += "</svg>\n";
   return s;
+}
+
+std::string RenderSvgStack(const std::string& title, const std::vector<LinePlot>& panels) {
+  const double w = 760, head = 30;
+  double h = head;
+  std::string body;
+  for (const LinePlot& panel : panels) {
+    // Each panel is its own document, nested at its offset.
+    std::string svg = RenderSvg(panel);
+    svg.replace(0, 4, fmt::format("<svg x=\"0\" y=\"{}\"", h));
+    body += svg;
+    h += std::max(panel.height, 200.0);
+  }
+  const double title_size = TitleSize(w, title);
+  return fmt::format(
+             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
+             "viewBox=\"0 0 {0} {1}\" font-family=\"sans-serif\" font-size=\"12\">\n"
+             "<rect width=\"{0}\" height=\"{1}\" fill=\"white\"/>\n"
+             "<text x=\"{2}\" y=\"20\" text-anchor=\"middle\" font-size=\"{3}\">{4}</text>\n",
+             w, h, w / 2, title_size, Escape(title)) +
+         body + "</svg>\n";
 }
 
 PlotSeries HistogramOutline(const std::string& name, double lo, double width,

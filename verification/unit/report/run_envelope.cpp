@@ -1,8 +1,16 @@
 // The dynamic run's sampling rule (dynamics::DefaultOutputsPerCycle) against the mode it must
-// resolve, and the plots' mesh-cycle envelope (report::BinEnvelope) against the raw states.
+// resolve, the plots' mesh-cycle envelope (report::BinEnvelope) against the raw states, and the
+// load-sharing figure's panels.
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "epicycle/dynamics/run_span.hpp"
@@ -72,4 +80,60 @@ TEST_CASE("mesh-cycle envelope: every raw state within its bin, the mean the bin
     CHECK(std::floor(b.x_first / width) == std::floor(b.x_last / width));
   }
   CHECK(total == static_cast<long>(xs.size()));
+}
+
+TEST_CASE("load-sharing figure of a long run: one panel per planet, all on one scale",
+          "[unit][report]") {
+  // 40 mesh cycles of 50 outputs: planet 1 swings between 0.1 and 0.5 within every cycle, planets
+  // 2 and 3 share the rest; each panel must hold its planet's band and mean, every panel the same
+  // y ticks (one scale), and the scale must reach both planet 1's 0.1 and its 0.5.
+  dynamics::RunSpan span;
+  span.cycle_time = 1e-3;
+  span.duration = 40e-3;
+  span.outputs = 2000;
+  span.mesh_frequency = 1e3;
+  const std::string base =
+      (std::filesystem::temp_directory_path() / "epicycle_lsr_panels").string();
+  {
+    report::DynamicPlots plots(base, 3, span);
+    for (int k = 1; k <= span.outputs; ++k) {
+      dynamics::DynamicSample s;
+      s.time = span.duration * k / span.outputs;
+      const double l1 = 0.3 + 0.2 * std::sin(2 * std::numbers::pi * k / 50.0);
+      s.load_sharing = {l1, (1 - l1) / 2, (1 - l1) / 2};
+      s.sun_centre = geometry::Vec2(0.0, 0.0);
+      plots.Add(s);
+    }
+    plots.Write("test", "fixed");
+  }
+  std::ifstream in(base + "_lsr.svg");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string svg = text.str();
+  // The panels are nested documents, one per planet.
+  std::vector<std::string> panels;
+  for (std::size_t at = svg.find("<svg x=\"0\""); at != std::string::npos;
+       at = svg.find("<svg x=\"0\"", at + 1)) {
+    panels.push_back(svg.substr(at, svg.find("</svg>", at) - at));
+  }
+  REQUIRE(panels.size() == 3);
+  std::set<std::string> scales;
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    const std::string& p = panels[i];
+    CHECK(p.find("planet " + std::to_string(i + 1)) != std::string::npos);
+    CHECK(p.find("<polygon") != std::string::npos);   // the band
+    CHECK(p.find("<polyline") != std::string::npos);  // the mean
+    // The y tick labels (right-aligned text left of the plot) name the panel's scale.
+    std::string ticks;
+    const std::regex tick("text-anchor=\"end\">([-0-9.e]+)</text>");
+    for (auto it = std::sregex_iterator(p.begin(), p.end(), tick); it != std::sregex_iterator();
+         ++it)
+      ticks += (*it)[1].str() + " ";
+    scales.insert(ticks);
+    if (i == 0) {
+      CHECK(ticks.find("0.1 ") != std::string::npos);
+      CHECK(ticks.find("0.5 ") != std::string::npos);
+    }
+  }
+  CHECK(scales.size() == 1);
 }

@@ -4,6 +4,7 @@
 // series.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,10 +39,19 @@ struct LinePlot {
   std::vector<XMarker> x_markers = {};
   /// Logarithmic axes (decade ticks); values ≤ 0 are skipped like non-finite ones.
   bool log_x = false, log_y = false;
+  /// The figure's height [px] (760 px wide; the plot area is 100 px less high).
+  double height = 480;
+  /// A fixed y range (linear axes; both finite and y_min < y_max): panels drawn to one scale.
+  double y_min = std::numeric_limits<double>::quiet_NaN();
+  double y_max = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The plot as a complete SVG document. Non-finite values are skipped.
 std::string RenderSvg(const LinePlot& plot);
+
+/// Panels stacked top to bottom under one title, as one SVG document (e.g. one planet's load
+/// sharing per panel, where their bands would cover each other in one plot).
+std::string RenderSvgStack(const std::string& title, const std::vector<LinePlot>& panels);
 
 /// A histogram as a step outline: bins [lo + k w, lo + (k + 1) w) of width w = `width` with
 /// `counts[k]` values, each bin drawn (x0, 0), (x0, c), (x1, c), (x1, 0).
