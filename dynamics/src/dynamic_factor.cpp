@@ -32,6 +32,43 @@ void MotionLoads::Add(const DynamicSample& s) {
     pressure_.Add(e.terms.contacts, e.terms.local, e.total_force, s.time);
 }
 
+RestReference SolveRestReference(
+    const DynamicModel& model, const SimulationOptions& options, int count,
+    const std::function<double(int)>& angle,
+    const std::function<void(const transmission::PositionResult&)>& each) {
+  transmission::QuasiStaticOptions qo;
+  qo.backend = options.backend;
+  qo.contact = options.contact;
+  qo.friction = model.settings().friction;
+  qo.sun_speed = model.settings().sun_speed;
+  RestReference out;
+  out.peak_mesh_force.assign(model.stage_model().stage().meshes().size(), 0.0);
+  transmission::SweepEach(
+      model.stage_model(), model.loads(), count, angle, qo,
+      [&](const transmission::PositionResult& r, int) {
+        if (!r.converged && r.status == transmission::StageStatus::kFrictionNotSettled) {
+          ++out.left_out;
+          return;
+        }
+        if (!r.converged)
+          throw std::runtime_error(
+              fmt::format("the quasi-static reference at carrier {:.6g} deg failed: {}",
+                          r.carrier_angle * 180 / std::numbers::pi, r.message));
+        std::vector<double> mesh(out.peak_mesh_force.size(), 0.0);
+        for (std::size_t j = 0; j < r.problem.contacts.size(); ++j)
+          mesh.at(static_cast<std::size_t>(MeshOf(r.problem.contacts[j]))) +=
+              std::max(0.0, r.solution.force(static_cast<Eigen::Index>(j)));
+        for (std::size_t q = 0; q < mesh.size(); ++q)
+          out.peak_mesh_force[q] = std::max(out.peak_mesh_force[q], mesh[q]);
+        if (each) each(r);
+      });
+  if (count > 0 && out.left_out == count)
+    throw std::runtime_error(
+        "the quasi-static reference: the friction of no position settled (docs/quasistatic.md "
+        "\"Friction at rest\")");
+  return out;
+}
+
 DynamicFactor DynamicLoadFactor(const DynamicModel& model, const SimulationOptions& options,
                                 const std::vector<double>& output_times, const MotionLoads& loads) {
   const geometry::Stage& stage = model.stage_model().stage();
@@ -39,28 +76,15 @@ DynamicFactor DynamicLoadFactor(const DynamicModel& model, const SimulationOptio
     throw std::invalid_argument("DynamicLoadFactor: the run has no output step to compare");
   if (loads.peak_mesh_force().size() != stage.meshes().size())
     throw std::invalid_argument("DynamicLoadFactor: the peaks are not of this stage's meshes");
-  transmission::QuasiStaticOptions qo;
-  qo.backend = options.backend;
-  qo.contact = options.contact;
-  std::vector<double> peak(stage.meshes().size(), 0.0);
   transmission::SweepAccumulator summary(stage.planets());
-  transmission::SweepEach(
-      model.stage_model(), model.loads(), static_cast<int>(output_times.size()),
-      [&](int k) { return model.CarrierAngle(output_times[static_cast<std::size_t>(k)]); }, qo,
-      [&](const transmission::PositionResult& r, int) {
-        if (!r.converged)
-          throw std::runtime_error(
-              fmt::format("K_v: the quasi-static reference at carrier {:.6g} deg failed: {}",
-                          r.carrier_angle * 180 / std::numbers::pi, r.message));
-        summary.Add(r);
-        std::vector<double> mesh(peak.size(), 0.0);
-        for (std::size_t j = 0; j < r.problem.contacts.size(); ++j)
-          mesh.at(static_cast<std::size_t>(MeshOf(r.problem.contacts[j]))) +=
-              std::max(0.0, r.solution.force(static_cast<Eigen::Index>(j)));
-        for (std::size_t q = 0; q < mesh.size(); ++q) peak[q] = std::max(peak[q], mesh[q]);
-      });
+  const RestReference rest = SolveRestReference(
+      model, options, static_cast<int>(output_times.size()),
+      [&](int k) { return model.CarrierAngle(output_times[static_cast<std::size_t>(k)]); },
+      [&](const transmission::PositionResult& r) { summary.Add(r); });
+  const std::vector<double>& peak = rest.peak_mesh_force;
   DynamicFactor out;
   out.quasi_static = summary.Result();
+  out.reference_left_out = rest.left_out;
   for (std::size_t q = 0; q < peak.size(); ++q) {
     if (!(peak[q] > 0)) continue;
     const double f = loads.peak_mesh_force()[q] / peak[q];
@@ -74,9 +98,17 @@ DynamicFactor DynamicLoadFactor(const DynamicModel& model, const SimulationOptio
   }
   out.source = fmt::format(
       "the dynamic run at {:.6g} rpm: largest {} force in motion {:.6g} N over {:.6g} N at rest "
-      "at the same {} carrier angles",
+      "at the same {} carrier angles{}",
       std::abs(model.sun_speed()) * 30 / std::numbers::pi, out.mesh_name, out.peak_dynamic,
-      out.peak_quasi_static, output_times.size());
+      out.peak_quasi_static, output_times.size(),
+      model.settings().friction.law == transmission::FrictionLaw::kOff
+          ? std::string()
+          : fmt::format(", friction {} at rest as in motion{}",
+                        transmission::FrictionLawName(model.settings().friction.law),
+                        rest.left_out > 0 ? fmt::format(" ({} positions whose friction did not "
+                                                        "settle left out)",
+                                                        rest.left_out)
+                                          : std::string()));
   return out;
 }
 

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "epicycle/dynamics/dynamic_factor.hpp"
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
@@ -300,34 +301,30 @@ SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions&
                                  sign * stage.mesh_cycle() * s / options.outputs_per_cycle);
   // The meshes in the order of geometry::Stage::meshes() (geometry::MeshIndex).
   for (const geometry::MeshSummary& mesh : stage.meshes()) plan.meshes.push_back(mesh.name);
-  plan.qs_peak_mesh_force.assign(2 * static_cast<std::size_t>(n), 0.0);
-  transmission::QuasiStaticOptions qo;
-  qo.backend = sim.backend;
-  qo.contact = sim.contact;
+  // The quasi-static reference at the window's angles (with base's friction at its speed; a speed
+  // with friction takes its own, RunSpeed).
   double te_min = INFINITY, te_max = -INFINITY;
-  const auto qs = transmission::Sweep(stage_model, base.loads(), plan.window_angles, qo);
-  for (const transmission::PositionResult& r : qs) {
-    if (!r.converged)
-      throw std::runtime_error("speed sweep: the quasi-static reference at carrier " +
-                               Num(geometry::Deg(r.carrier_angle)) + " deg failed: " + r.message);
-    std::vector<double> mesh(plan.qs_peak_mesh_force.size(), 0.0);
-    for (std::size_t j = 0; j < r.problem.contacts.size(); ++j)
-      mesh[MeshIndex(r.problem.contacts[j])] += std::max(0.0, r.solution.force(j));
-    for (std::size_t q = 0; q < mesh.size(); ++q)
-      plan.qs_peak_mesh_force[q] = std::max(plan.qs_peak_mesh_force[q], mesh[q]);
-    plan.qs_k_gamma = std::max(plan.qs_k_gamma, transmission::MeshLoadFactor(r));
-    te_min = std::min(te_min, r.transmission_error);
-    te_max = std::max(te_max, r.transmission_error);
-  }
+  const RestReference rest = SolveRestReference(
+      base, sim, static_cast<int>(plan.window_angles.size()),
+      [&](int i) { return plan.window_angles[static_cast<std::size_t>(i)]; },
+      [&](const transmission::PositionResult& r) {
+        plan.qs_k_gamma = std::max(plan.qs_k_gamma, transmission::MeshLoadFactor(r));
+        te_min = std::min(te_min, r.transmission_error);
+        te_max = std::max(te_max, r.transmission_error);
+      });
+  plan.qs_peak_mesh_force = rest.peak_mesh_force;
   plan.qs_te_amplitude = 0.5 * (te_max - te_min);
   plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return plan;
 }
 
-SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window) {
+SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window,
+                           const std::vector<double>& qs_peak_mesh_force) {
+  const std::vector<double>& rest =
+      qs_peak_mesh_force.empty() ? plan.qs_peak_mesh_force : qs_peak_mesh_force;
   SpeedResult r;
   if (window.empty()) return r;
-  std::vector<double> peak(plan.qs_peak_mesh_force.size(), 0.0);
+  std::vector<double> peak(rest.size(), 0.0);
   double te_min = INFINITY, te_max = -INFINITY;
   r.lsr_min = INFINITY;
   r.lsr_max = -INFINITY;
@@ -348,12 +345,13 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
   }
   r.te_amplitude = 0.5 * (te_max - te_min);
   for (std::size_t q = 0; q < peak.size(); ++q) {
-    if (!(plan.qs_peak_mesh_force[q] > 0)) continue;
-    const double f = peak[q] / plan.qs_peak_mesh_force[q];
+    if (!(rest[q] > 0)) continue;
+    const double f = peak[q] / rest[q];
     if (f > r.dynamic_factor) {
       r.dynamic_factor = f;
       r.factor_mesh = static_cast<int>(q);
       r.peak_mesh_force = peak[q];
+      r.qs_peak_mesh_force = rest[q];
     }
   }
   return r;
@@ -403,7 +401,15 @@ SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
     const std::vector<DynamicSample> window(
         run.samples.begin() + static_cast<std::ptrdiff_t>(std::min(skipped, run.samples.size())),
         run.samples.end());
-    r = SummariseSpeed(plan, window);
+    // With friction μ depends on the speed: the reference at rest is this speed's.
+    std::vector<double> rest;
+    if (model.settings().friction.law != transmission::FrictionLaw::kOff) {
+      rest =
+          SolveRestReference(model, options.simulation, static_cast<int>(plan.window_angles.size()),
+                             [&](int k) { return plan.window_angles[static_cast<std::size_t>(k)]; })
+              .peak_mesh_force;
+    }
+    r = SummariseSpeed(plan, window, rest);
     AddDeviationParts(model, window, &r);
     r.warnings = DynamicWarnings(model.stage_model().stage(), window);
     r.stats = run.stats;

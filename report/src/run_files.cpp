@@ -215,8 +215,11 @@ class RunFigures {
       for (int i = 0; i < planets_; ++i) {
         // The x label under the last panel only.
         LinePlot panel{fmt::format("planet {} ({})", i + 1, per),
-                       i + 1 == planets_ ? x_label_ : "", fmt::format("LSR_{} [-]", i + 1),
-                       {Band(bins, i, i), Mean(bins, i, "mean", i)}, false, {1.0 / planets_}};
+                       i + 1 == planets_ ? x_label_ : "",
+                       fmt::format("LSR_{} [-]", i + 1),
+                       {Band(bins, i, i), Mean(bins, i, "mean", i)},
+                       false,
+                       {1.0 / planets_}};
         panel.height = 260;
         panel.y_min = lo - pad;
         panel.y_max = hi + pad;

@@ -44,8 +44,9 @@ std::string Decade(double k) { return fmt::format("1e{:.0f}", k); }
 // A title's font size over a figure `w` px wide: 14, smaller when it would not fit (~0.55 em per
 // character).
 double TitleSize(double w, const std::string& title) {
-  return std::min(14.0, std::floor((w - 20) / (0.55 * static_cast<double>(
-                                                          std::max<std::size_t>(title.size(), 1)))));
+  return std::min(
+      14.0,
+      std::floor((w - 20) / (0.55 * static_cast<double>(std::max<std::size_t>(title.size(), 1)))));
 }
 
 }  // namespace

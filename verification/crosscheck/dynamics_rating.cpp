@@ -78,7 +78,8 @@ TEST_CASE(
     "[crosscheck][dynamics][rating][stress]") {
   // The run-out case in motion at the scene's speed over 4 mesh cycles (8 outputs each), fixed
   // sun, with stresses and case-hardened limits (σ_Flim 430, σ_Hlim 1500 MPa). The references
-  // solved here: K_γ at rest from quasi-static positions at the run's angles, the run's largest
+  // solved here: K_γ at rest from quasi-static positions at the run's angles with the run's
+  // friction (the scene's Xu & Kahraman at its speed), the run's largest
   // sun root tension from its samples' fillet stresses; ISO 6336-3's σ_F = σ_F0 K_A K_v K_γ and
   // the model's own S_F = σ_Flim Y_ST / σ_root (no K_v: the stresses in motion carry it).
   test::RigOptions o;
@@ -103,10 +104,14 @@ TEST_CASE(
   const auto summary = dynamics::Summarise(r.samples);
   const dynamics::MotionRating m =
       dynamics::RateInMotion(scene, *rig.model, so, times, loads, summary.root_stress);
-  double k_gamma = 0;  // at rest, the run's angles
+  double k_gamma = 0;  // at rest with the run's friction (the scene's law at its speed), its angles
+  transmission::QuasiStaticOptions rest;
+  rest.friction = rig.model->settings().friction;
+  rest.sun_speed = rig.model->settings().sun_speed;
   for (const double t : times) {
     const auto q = transmission::SolvePosition(*rig.stage_model, rig.model->CarrierAngle(t),
-                                               rig.scene.loads, transmission::QuasiStaticOptions{});
+                                               rig.scene.loads, rest);
+    if (!q.converged && q.status == transmission::StageStatus::kFrictionNotSettled) continue;
     REQUIRE(q.converged);
     k_gamma = std::max(k_gamma, transmission::MeshLoadFactor(q));
   }
@@ -123,4 +128,70 @@ TEST_CASE(
   test::Figure("rating in motion at the scene's speed: K_v " + test::Sci(m.factor.value, 6) + " (" +
                m.factor.mesh_name + "), sun sigma_root " + test::Sci(sun_root / 1e6) +
                " MPa, S_F " + test::Sci(sun.s_f_stress) + ", ISO S_F " + test::Sci(sun.s_f_model));
+}
+
+TEST_CASE(
+    "dynamic factor with friction: the reference is the quasi-static model with the run's "
+    "friction at rest",
+    "[crosscheck][dynamics][rating][friction]") {
+  // K_v answers what the dynamics add, so its reference carries the same friction at rest
+  // (docs/quasistatic.md "Friction at rest"). The low-speed run-out rig at 60 rpm with constant
+  // μ = 0.05 (v_ε = 1e-5 m/s), 6 mesh cycles with 2 outputs each, rtol 1e-8. Reference: each
+  // position solved cold by the quasi-static solver with that friction at that speed; the warm
+  // reference meets it to the contact solve's tolerance (1e-10 relative), checked at 1e-8. Friction
+  // moves the mesh peaks by a share of order μ (levers of the friction forces), the dynamics at
+  // 60 rpm by ~1e-4 (the friction-off case above), so the frictionless reference would leave
+  // friction's share in K_v: it must be farther from 1 than the friction reference's K_v.
+  test::RigOptions o;
+  o.local_terms = false;
+  o.edit = [](transmission::DynamicSettings& s) {
+    s.sun_speed = 60 * test::kRpm;
+    s.friction.law = transmission::FrictionLaw::kConstant;
+    s.friction.coefficient = 0.05;
+    s.friction.smoothing_velocity = 1e-5;
+  };
+  const auto rig =
+      test::MakeRig(test::WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
+  dynamics::SimulationOptions so;
+  so.rtol = 1e-8;
+  const std::vector<double> times = test::Times(*rig.model, *rig.stage, 6, 2);
+  const auto r = test::Run(rig, times, so);
+  REQUIRE(r.completed);
+  dynamics::MotionLoads loads(*rig.stage);
+  for (const dynamics::DynamicSample& s : r.samples) loads.Add(s);
+  const dynamics::DynamicFactor kv = dynamics::DynamicLoadFactor(*rig.model, so, times, loads);
+  REQUIRE(kv.mesh >= 0);
+  transmission::QuasiStaticOptions with;
+  with.friction = rig.model->settings().friction;
+  with.sun_speed = rig.model->settings().sun_speed;
+  const transmission::QuasiStaticOptions without;
+  std::vector<double> rest(rig.stage->meshes().size(), 0.0), rest_off = rest;
+  int settled = 0;
+  for (const double t : times) {
+    const transmission::QuasiStaticOptions* both[2] = {&with, &without};
+    for (const transmission::QuasiStaticOptions* qo : both) {
+      const auto q = transmission::SolvePosition(*rig.stage_model, rig.model->CarrierAngle(t),
+                                                 rig.scene.loads, *qo);
+      if (!q.converged && q.status == transmission::StageStatus::kFrictionNotSettled) continue;
+      REQUIRE(q.converged);
+      if (qo == &with) ++settled;
+      std::vector<double> mesh(rest.size(), 0.0);
+      for (std::size_t j = 0; j < q.problem.contacts.size(); ++j)
+        mesh[static_cast<std::size_t>(
+            geometry::MeshIndex(q.problem.contacts[j].planet, q.problem.contacts[j].mesh))] +=
+            std::max(0.0, q.solution.force(static_cast<Eigen::Index>(j)));
+      auto& peak = qo == &with ? rest : rest_off;
+      for (std::size_t m = 0; m < mesh.size(); ++m) peak[m] = std::max(peak[m], mesh[m]);
+    }
+  }
+  CHECK(settled + kv.reference_left_out == static_cast<int>(times.size()));
+  CHECK(kv.peak_quasi_static == Approx(rest[static_cast<std::size_t>(kv.mesh)]).epsilon(1e-8));
+  double largest_off = 0;
+  for (std::size_t m = 0; m < rest_off.size(); ++m)
+    largest_off = std::max(largest_off, loads.peak_mesh_force()[m] / rest_off[m]);
+  test::Figure("K_v at 60 rpm with constant friction 0.05: " + test::Sci(kv.value, 8) +
+               " against the friction reference, " + test::Sci(largest_off, 8) +
+               " against the frictionless one");
+  CHECK(std::abs(kv.value - 1) < std::abs(largest_off - 1));
+  CHECK(kv.source.find("friction constant at rest") != std::string::npos);
 }

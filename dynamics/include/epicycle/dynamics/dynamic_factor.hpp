@@ -1,11 +1,13 @@
 // The dynamic factor K_v of a run (docs/model.md §9 "Ratings"): per mesh, the largest total
 // tooth force of the run (elastic plus damping, Σ over the mesh's contacts) over the largest
 // quasi-static one at the same carrier angles; K_v is the largest ratio over the meshes. The
-// quasi-static reference is solved at the run's output angles with the run's back end and contact
-// options, so both peaks are taken over the same poses; with the run it gives the rating's K_γ at
-// rest (transmission::RateStage) and the run gives the model's own stresses in motion.
+// quasi-static reference is solved at the run's output angles with the run's back end, contact
+// options and friction (at rest, at the run's speed), so both peaks are taken over the same poses
+// under the same loads and K_v is the dynamics' part alone; with the run it gives the rating's K_γ
+// at rest (transmission::RateStage) and the run gives the model's own stresses in motion.
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -40,6 +42,26 @@ class MotionLoads {
   int steps_ = 0;
 };
 
+/// The quasi-static reference of a run: at given carrier angles, the model's stage solved with
+/// the run's back end and contact options and the model's friction law at its sun speed (friction
+/// at rest, docs/quasistatic.md "Friction at rest"), so that a ratio of the run to it is the
+/// dynamics' part alone.
+struct RestReference {
+  /// The largest total tooth force per mesh over the settled positions, in the order of
+  /// geometry::Stage::meshes() [N].
+  std::vector<double> peak_mesh_force;
+  int left_out = 0;  ///< positions whose friction fixed point did not settle, left out [-]
+};
+
+/// The reference of `model` at `count` carrier angles angle(k) [rad], k = 0..count−1, streamed:
+/// each settled position is handed to `each` as it is solved (nothing is kept per position).
+/// @throws std::runtime_error naming the carrier angle of a position that fails other than by its
+///         friction not settling, or when no position settled.
+RestReference SolveRestReference(
+    const DynamicModel& model, const SimulationOptions& options, int count,
+    const std::function<double(int)>& angle,
+    const std::function<void(const transmission::PositionResult&)>& each = {});
+
 /// K_v with the mesh that gives it and the quasi-static reference.
 struct DynamicFactor {
   double value = std::numeric_limits<double>::quiet_NaN();  ///< K_v [-]
@@ -47,6 +69,8 @@ struct DynamicFactor {
   std::string mesh_name;         ///< "sun-planet1", ...
   double peak_dynamic = 0;       ///< that mesh's largest total force in motion [N]
   double peak_quasi_static = 0;  ///< and at rest at the same angles [N]
+  /// Reference positions left out because their friction fixed point did not settle [-].
+  int reference_left_out = 0;
   /// The quasi-static sweep at the run's angles (its K_γ, load sharing; with the scene's
   /// stresses its root stresses and pressures).
   transmission::SweepSummary quasi_static;
@@ -54,10 +78,9 @@ struct DynamicFactor {
 };
 
 /// K_v of a run of `model` whose output steps were at times `output_times` [s] (their carrier
-/// angles model.CarrierAngle(t)) with peaks `loads`: the quasi-static sweep at those angles with
-/// `options`' back end and contact options, streamed (the sweep keeps nothing per position).
+/// angles model.CarrierAngle(t)) with peaks `loads`: SolveRestReference at those angles.
 /// @throws std::invalid_argument if `loads` has no step or its meshes are not the model's;
-///         std::runtime_error naming the carrier angle of a quasi-static position that fails.
+///         what SolveRestReference throws.
 DynamicFactor DynamicLoadFactor(const DynamicModel& model, const SimulationOptions& options,
                                 const std::vector<double>& output_times, const MotionLoads& loads);
 

@@ -134,7 +134,8 @@ struct SpeedSweepPlan {
   std::vector<double> window_angles;      ///< carrier angles of the window's samples [rad]
   /// Mesh names in the order of geometry::Stage::meshes(): "sun-planet1", "planet1-ring", ...
   std::vector<std::string> meshes;
-  std::vector<double> qs_peak_mesh_force;  ///< max_φ F_m,qs per mesh [N]
+  /// max_φ F_m,qs per mesh [N], with the base model's friction at its speed (SolveRestReference)
+  std::vector<double> qs_peak_mesh_force;
   double qs_k_gamma = 0;                   ///< K_γ of the quasi-static window [-]
   double qs_te_amplitude = 0;  ///< ½ peak-to-peak of the static TE over the window [rad]
   double seconds = 0;          ///< wall time of the planning [s]
@@ -151,6 +152,7 @@ struct SpeedResult {
   double dynamic_factor = 0;   ///< K_v [-]
   int factor_mesh = -1;        ///< the mesh m that gives K_v (index into plan.meshes), −1: none
   double peak_mesh_force = 0;  ///< max_t F_m(t) of that mesh [N]
+  double qs_peak_mesh_force = 0;  ///< and its quasi-static reference's at this speed [N]
   double te_amplitude = 0;     ///< ½ peak-to-peak TE over the window [rad]
   double orbit_radius = 0;     ///< largest sun-centre displacement over the window [m]
   double lsr_min = 0, lsr_max = 0;  ///< extremes of LSR_i over planets and window [-]
@@ -182,8 +184,10 @@ struct SpeedSweepResult {
 SpeedSweepPlan PlanSpeedSweep(const DynamicModel& base, const SpeedSweepOptions& options);
 
 /// The figures of one speed from its window's samples (those at plan.window_angles); K_γ is the
-/// largest DynamicSample::k_gamma of the window.
-SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window);
+/// largest DynamicSample::k_gamma of the window; K_v against `qs_peak_mesh_force` (the speed's own
+/// reference, SolveRestReference; empty: the plan's).
+SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<DynamicSample>& window,
+                           const std::vector<double>& qs_peak_mesh_force = {});
 
 /// Runs every speed of `plan` (from PlanSpeedSweep with the same options) on `options.threads`
 /// workers (lowest speed first: the slowest to run), each result handed to `on_result` as soon as
