@@ -811,9 +811,12 @@ void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name
       XMarker& m = markers.back();
       m.label.insert(m.label.size() - tail.size(), fmt::format(",{}", c.mode + 1));
       m.dashed = m.dashed && !c.phasing_excited;
+      m.rank = std::min(m.rank, c.harmonic + (c.phasing_excited ? 0 : 1000));
       continue;
     }
-    markers.push_back({c.sun_speed_rpm, fmt::format("m{}", c.mode + 1) + tail, !c.phasing_excited});
+    // Labels go first to the phasing's excited lines, then to the lower harmonics.
+    markers.push_back({c.sun_speed_rpm, fmt::format("m{}", c.mode + 1) + tail, !c.phasing_excited,
+                       c.harmonic + (c.phasing_excited ? 0 : 1000)});
   }
   auto plot = [&](const std::string& what, const std::string& unit, const std::string& file,
                   double scale, auto field, std::vector<double> refs) {

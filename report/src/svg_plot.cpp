@@ -147,33 +147,45 @@ std::string RenderSvg(const LinePlot& input) {
         "stroke-dasharray=\"4 3\"/>\n",
         left, py(r), left + pw);
   }
-  // Marker labels: each in the first row (from the top) where it does not overlap a label
-  // already placed, markers taken from left to right (a label is about 5.6 px per character).
+  // Marker labels, in rank order: each in the first row (from the top) where it overlaps no label
+  // already placed, in at most eight rows inside the plot (a label is about 5.6 px per
+  // character); a marker left without room is a light line.
   std::vector<std::size_t> order;
   for (std::size_t k = 0; k < plot.x_markers.size(); ++k) {
     const XMarker& m = plot.x_markers[k];
     if (std::isfinite(m.x) && m.x >= x0 && m.x <= x1) order.push_back(k);
   }
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return plot.x_markers[a].x < plot.x_markers[b].x;
+    const XMarker &ma = plot.x_markers[a], &mb = plot.x_markers[b];
+    return ma.rank != mb.rank ? ma.rank < mb.rank : ma.x < mb.x;
   });
-  std::vector<double> row_end;  // right end of the last label in each row [px]
+  const std::size_t rows = static_cast<std::size_t>(std::clamp((ph - 20) / 11, 0.0, 8.0));
+  std::vector<std::vector<std::pair<double, double>>> taken(rows);  // [from, to] per row [px]
+  std::string lines, labels;
   for (std::size_t k : order) {
     const XMarker& m = plot.x_markers[k];
     const bool right = px(m.x) > left + pw - 50;  // label left of the line, off the legend
     const double width = 5.6 * static_cast<double>(m.label.size()) + 4;
-    const double from = right ? px(m.x) - width : px(m.x);
+    const double from = right ? px(m.x) - width : px(m.x), to = from + width;
     std::size_t row = 0;
-    while (row < row_end.size() && row_end[row] > from) ++row;
-    if (row == row_end.size()) row_end.push_back(0);
-    row_end[row] = from + width;
-    s += fmt::format(
-        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#888\"{3}/>\n"
-        "<text x=\"{4:.1f}\" y=\"{5}\" fill=\"#555\" font-size=\"10\"{7}>{6}</text>\n",
-        px(m.x), top, top + ph, m.dashed ? " stroke-dasharray=\"2 3\"" : "",
-        right ? px(m.x) - 2 : px(m.x) + 2, top + 12 + 11 * static_cast<double>(row),
-        Escape(m.label), right ? " text-anchor=\"end\"" : "");
+    auto free = [&](std::size_t r) {
+      return std::none_of(taken[r].begin(), taken[r].end(),
+                          [&](const auto& t) { return from < t.second && t.first < to; });
+    };
+    while (row < rows && !free(row)) ++row;
+    const bool placed = !m.label.empty() && row < rows;
+    if (placed) {
+      taken[row].emplace_back(from, to);
+      labels +=
+          fmt::format("<text x=\"{:.1f}\" y=\"{}\" fill=\"#555\" font-size=\"10\"{}>{}</text>\n",
+                      right ? px(m.x) - 2 : px(m.x) + 2, top + 12 + 11 * static_cast<double>(row),
+                      right ? " text-anchor=\"end\"" : "", Escape(m.label));
+    }
+    lines += fmt::format(
+        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"{4}/>\n", px(m.x),
+        top, top + ph, placed ? "#888" : "#d8d8d8", m.dashed ? " stroke-dasharray=\"2 3\"" : "");
   }
+  s += lines + labels;
   int legend = 0;
   for (std::size_t b = 0; b < plot.series.size(); ++b) {
     const PlotSeries& ser = plot.series[b];

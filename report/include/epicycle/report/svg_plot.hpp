@@ -22,11 +22,14 @@ struct PlotSeries {
   int colour = -1;     ///< index into the palette; -1: the series' own index
 };
 
-/// A vertical marker at x with a label (e.g. a resonance speed); dashed when `dashed`.
+/// A vertical marker at x with a label (e.g. a resonance speed); dashed when `dashed`. Labels are
+/// placed in the order of `rank` (lower first, then left to right) in up to eight rows inside
+/// the plot; a marker whose label finds no room is drawn as a light line without it.
 struct XMarker {
   double x = 0;
   std::string label;
   bool dashed = false;
+  int rank = 0;
 };
 
 struct LinePlot {
