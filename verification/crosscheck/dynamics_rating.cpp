@@ -16,6 +16,52 @@
 
 using namespace epicycle;
 
+namespace {
+
+// A run of `rig` at `times` (rtol 1e-8) with its peaks and K_v.
+struct RunFactor {
+  dynamics::MotionLoads loads;
+  dynamics::DynamicFactor kv;
+};
+RunFactor RunWithFactor(const test::DynamicRig& rig, const std::vector<double>& times) {
+  dynamics::SimulationOptions so;
+  so.rtol = 1e-8;
+  const auto r = test::Run(rig, times, so);
+  REQUIRE(r.completed);
+  RunFactor out{dynamics::MotionLoads(*rig.stage), {}};
+  for (const dynamics::DynamicSample& s : r.samples) out.loads.Add(s);
+  out.kv = dynamics::DynamicLoadFactor(*rig.model, so, times, out.loads);
+  REQUIRE(out.kv.mesh >= 0);
+  return out;
+}
+
+// The reference solved here: each position at `times`' carrier angles on its own (cold) with
+// `qo`, Σ F per mesh, largest per mesh [N]; positions whose friction does not settle are skipped.
+struct ColdPeaks {
+  std::vector<double> peak;
+  int settled = 0;  // positions used [-]
+};
+ColdPeaks ColdMeshPeaks(const test::DynamicRig& rig, const std::vector<double>& times,
+                        const transmission::QuasiStaticOptions& qo) {
+  ColdPeaks out{std::vector<double>(rig.stage->meshes().size(), 0.0)};
+  for (const double t : times) {
+    const auto q = transmission::SolvePosition(*rig.stage_model, rig.model->CarrierAngle(t),
+                                               rig.scene.loads, qo);
+    if (!q.converged && q.status == transmission::StageStatus::kFrictionNotSettled) continue;
+    REQUIRE(q.converged);
+    ++out.settled;
+    std::vector<double> mesh(out.peak.size(), 0.0);
+    for (std::size_t j = 0; j < q.problem.contacts.size(); ++j)
+      mesh[static_cast<std::size_t>(
+          geometry::MeshIndex(q.problem.contacts[j].planet, q.problem.contacts[j].mesh))] +=
+          std::max(0.0, q.solution.force(static_cast<Eigen::Index>(j)));
+    for (std::size_t m = 0; m < mesh.size(); ++m) out.peak[m] = std::max(out.peak[m], mesh[m]);
+  }
+  return out;
+}
+
+}  // namespace
+
 TEST_CASE("dynamic factor: the quasi-static reference at the run's angles, K_v -> 1 with the speed",
           "[crosscheck][dynamics][rating]") {
   // The setting of "root stress: the dynamic root stress tends to the quasi-static one" (FE
@@ -28,29 +74,11 @@ TEST_CASE("dynamic factor: the quasi-static reference at the run's angles, K_v -
   const double speeds[2] = {120.0, 60.0};
   for (int k = 0; k < 2; ++k) {
     const auto rig = test::LowSpeedRunoutRig(speeds[k]);
-    dynamics::SimulationOptions so;
-    so.rtol = 1e-8;
     const std::vector<double> times = test::Times(*rig.model, *rig.stage, 24, 2);
-    const auto r = test::Run(rig, times, so);
-    REQUIRE(r.completed);
-    dynamics::MotionLoads loads(*rig.stage);
-    for (const dynamics::DynamicSample& s : r.samples) loads.Add(s);
-    const dynamics::DynamicFactor kv = dynamics::DynamicLoadFactor(*rig.model, so, times, loads);
-    // The reference: each position solved on its own (cold), Σ F per mesh, largest per mesh.
-    std::vector<double> rest(rig.stage->meshes().size(), 0.0);
-    for (const double t : times) {
-      const auto q =
-          transmission::SolvePosition(*rig.stage_model, rig.model->CarrierAngle(t), rig.scene.loads,
-                                      transmission::QuasiStaticOptions{});
-      REQUIRE(q.converged);
-      std::vector<double> mesh(rest.size(), 0.0);
-      for (std::size_t j = 0; j < q.problem.contacts.size(); ++j)
-        mesh[static_cast<std::size_t>(
-            geometry::MeshIndex(q.problem.contacts[j].planet, q.problem.contacts[j].mesh))] +=
-            std::max(0.0, q.solution.force(static_cast<Eigen::Index>(j)));
-      for (std::size_t m = 0; m < mesh.size(); ++m) rest[m] = std::max(rest[m], mesh[m]);
-    }
-    REQUIRE(kv.mesh >= 0);
+    const auto [loads, kv] = RunWithFactor(rig, times);
+    const ColdPeaks cold = ColdMeshPeaks(rig, times, transmission::QuasiStaticOptions{});
+    REQUIRE(cold.settled == static_cast<int>(times.size()));
+    const std::vector<double>& rest = cold.peak;
     // Warm against cold starts: the same solution to the contact solve's tolerance (relative
     // 1e-10 on the forces), far inside 1e-8.
     CHECK(kv.peak_quasi_static == Approx(rest[static_cast<std::size_t>(kv.mesh)]).epsilon(1e-8));
@@ -152,38 +180,16 @@ TEST_CASE(
   };
   const auto rig =
       test::MakeRig(test::WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
-  dynamics::SimulationOptions so;
-  so.rtol = 1e-8;
   const std::vector<double> times = test::Times(*rig.model, *rig.stage, 6, 2);
-  const auto r = test::Run(rig, times, so);
-  REQUIRE(r.completed);
-  dynamics::MotionLoads loads(*rig.stage);
-  for (const dynamics::DynamicSample& s : r.samples) loads.Add(s);
-  const dynamics::DynamicFactor kv = dynamics::DynamicLoadFactor(*rig.model, so, times, loads);
-  REQUIRE(kv.mesh >= 0);
+  const auto [loads, kv] = RunWithFactor(rig, times);
   transmission::QuasiStaticOptions with;
   with.friction = rig.model->settings().friction;
   with.sun_speed = rig.model->settings().sun_speed;
-  const transmission::QuasiStaticOptions without;
-  std::vector<double> rest(rig.stage->meshes().size(), 0.0), rest_off = rest;
-  int settled = 0;
-  for (const double t : times) {
-    const transmission::QuasiStaticOptions* both[2] = {&with, &without};
-    for (const transmission::QuasiStaticOptions* qo : both) {
-      const auto q = transmission::SolvePosition(*rig.stage_model, rig.model->CarrierAngle(t),
-                                                 rig.scene.loads, *qo);
-      if (!q.converged && q.status == transmission::StageStatus::kFrictionNotSettled) continue;
-      REQUIRE(q.converged);
-      if (qo == &with) ++settled;
-      std::vector<double> mesh(rest.size(), 0.0);
-      for (std::size_t j = 0; j < q.problem.contacts.size(); ++j)
-        mesh[static_cast<std::size_t>(
-            geometry::MeshIndex(q.problem.contacts[j].planet, q.problem.contacts[j].mesh))] +=
-            std::max(0.0, q.solution.force(static_cast<Eigen::Index>(j)));
-      auto& peak = qo == &with ? rest : rest_off;
-      for (std::size_t m = 0; m < mesh.size(); ++m) peak[m] = std::max(peak[m], mesh[m]);
-    }
-  }
+  const ColdPeaks cold = ColdMeshPeaks(rig, times, with);
+  const ColdPeaks cold_off = ColdMeshPeaks(rig, times, transmission::QuasiStaticOptions{});
+  const std::vector<double>& rest = cold.peak;
+  const std::vector<double>& rest_off = cold_off.peak;
+  const int settled = cold.settled;
   CHECK(settled + kv.reference_left_out == static_cast<int>(times.size()));
   CHECK(kv.peak_quasi_static == Approx(rest[static_cast<std::size_t>(kv.mesh)]).epsilon(1e-8));
   double largest_off = 0;
