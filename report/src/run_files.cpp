@@ -998,6 +998,7 @@ nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
       j["dynamic_factor"] = r.dynamic_factor;
       j["dynamic_factor_mesh"] = r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "";
       j["peak_mesh_force_N"] = r.peak_mesh_force;
+      j["quasi_static_peak_mesh_force_N"] = r.qs_peak_mesh_force;
       j["te_amplitude_urad"] = r.te_amplitude * 1e6;
       j["sun_orbit_radius_um"] = r.orbit_radius * 1e6;
       j["lsr_min"] = r.lsr_min;
@@ -1028,7 +1029,9 @@ nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
       {"K_gamma", "max over window samples and planets of n LSR_i"},
       {"dynamic_factor",
        "max over meshes of (peak total normal force of the mesh in motion, damping included) / "
-       "(peak quasi-static total normal force of that mesh at the same carrier angles)"},
+       "(peak quasi-static total normal force of that mesh at the same carrier angles, with the "
+       "same friction at rest at that speed: quasi_static_peak_mesh_force_N of the speed; the "
+       "top-level one is at the scene's speed)"},
       {"te_amplitude", "half the peak-to-peak dynamic transmission error at the sun"},
       {"sun_orbit_radius", "largest sun-centre displacement over the window"},
       {"window",
