@@ -157,15 +157,15 @@ std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies
   std::vector<int> first;
   LocateSides(bodies, contacts, nullptr, &loc, &first, &force);
   // Per body its loads, prepared once, and the teeth within `neighbours` of one that carries
-  // load, each once (body b's teeth from tooth_start[b] in `wanted`); then the fillets, all
-  // allocated at once.
+  // load, each once (body b's teeth from tooth_start[b] in `wanted`); then the fillets, their
+  // values in one block.
   const int nb = static_cast<int>(bodies.size());
   std::vector<InfluenceTable::FilletLoad> loads;
   loads.reserve(loc.size());
   std::vector<std::size_t> load_start(static_cast<std::size_t>(nb) + 1, 0);
   std::vector<char> wanted;
   std::vector<std::size_t> tooth_start(static_cast<std::size_t>(nb) + 1, 0);
-  std::size_t fillets = 0;
+  std::size_t fillets = 0, values = 0;
   for (int b = 0; b < nb; ++b) {
     const InfluenceTable& table = *bodies[b].table;
     if (bodies[b].damaged != nullptr)
@@ -187,10 +187,15 @@ std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies
     }
     load_start[b + 1] = loads.size();
     tooth_start[b + 1] = wanted.size();
-    for (std::size_t k = teeth; k < wanted.size(); ++k) fillets += wanted[k] ? 2 : 0;
+    for (std::size_t k = teeth; k < wanted.size(); ++k) {
+      fillets += wanted[k] ? 2 : 0;
+      values += wanted[k] ? 2 * table.fillet_points().size() : 0;
+    }
   }
   std::vector<FilletStress> out;
   out.reserve(fillets);
+  const std::shared_ptr<double[]> block = std::make_shared<double[]>(values);  // all 0
+  double* next = block.get();
   std::vector<InfluenceTable::FilletTarget> targets;
   targets.reserve(fillets);
   for (int b = 0; b < nb; ++b) {
@@ -201,9 +206,9 @@ std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies
       if (!wanted[k]) continue;
       const int tooth = static_cast<int>(k - tooth_start[b]);
       for (int side = 0; side < 2; ++side) {
-        FilletStress& f = out.emplace_back(
-            FilletStress{b, tooth, side, std::vector<double>(points, 0.0), &table});
-        targets.push_back({tooth, side, f.sigma.data()});
+        out.push_back({b, tooth, side, std::span<const double>(next, points), &table, block});
+        targets.push_back({tooth, side, next});
+        next += points;
       }
     }
     // Each load on all of the body's fillets: every fillet still adds the loads in their order.

@@ -47,13 +47,9 @@ void RootStressEnvelope::Add(const std::vector<compliance::FilletStress>& fillet
       p.max.assign(f.sigma.size(), 0.0);
       p.min.assign(f.sigma.size(), 0.0);
     }
-    // Distinct vectors: as pointers that alias nothing the loop runs in SIMD packets.
-    double* __restrict hi = p.max.data();
-    double* __restrict lo = p.min.data();
-    const double* __restrict sigma = f.sigma.data();
     for (std::size_t m = 0; m < f.sigma.size(); ++m) {
-      hi[m] = std::max(hi[m], sigma[m]);
-      lo[m] = std::min(lo[m], sigma[m]);
+      p.max[m] = std::max(p.max[m], f.sigma[m]);
+      p.min[m] = std::min(p.min[m], f.sigma[m]);
     }
   }
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -150,7 +151,7 @@ TEST_CASE("fillet stress: two off-grid loads against the FE solved directly",
   for (const FilletStress& fs : fillets) {
     if (fs.body != 0) continue;
     const int k = fs.tooth, side = fs.side;
-    const std::vector<double>& sigma = fs.sigma;
+    const std::span<const double> sigma = fs.sigma;
     for (int m = 0; m < m_count; ++m) {
       const std::string set = "fillet" + std::to_string(k) + (side == 0 ? "+" : "-");
       const double direct = NodeStress(
