@@ -121,13 +121,17 @@ InfluenceTable::FilletLoad InfluenceTable::PrepareFilletLoad(const DirectedNode&
     throw std::logic_error("InfluenceTable: built without fillet stress (fillet_stress = false)");
   FilletLoad out;
   out.tooth = load.tooth;
+  // The row of (grid point first + p, axis c) is 2p + c rows of all fillets after the first's.
+  const double* first = &fillet_stress_[FilletIndex(load.flank_index, load.node.first, 0, 0, 0)];
+  const std::size_t rows = FilletIndex(0, 0, 1, 0, 0);
   for (int p = 0; p < 4; ++p) {
     for (int c = 0; c < 2; ++c) {
-      const double w = force * load.load_weight[static_cast<std::size_t>(2 * p + c)];
+      const auto pc = static_cast<std::size_t>(2 * p + c);
+      const double w = force * load.load_weight[pc];
       if (w == 0.0) continue;
       const auto q = static_cast<std::size_t>(out.count++);
       out.weight[q] = w;
-      out.row[q] = &fillet_stress_[FilletIndex(load.flank_index, load.node.first + p, c, 0, 0)];
+      out.row[q] = first + pc * rows;
     }
   }
   return out;
