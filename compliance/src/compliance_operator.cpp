@@ -156,8 +156,17 @@ std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies
   std::vector<Located> loc;
   std::vector<int> first;
   LocateSides(bodies, contacts, nullptr, &loc, &first, &force);
-  std::vector<FilletStress> out;
-  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+  // Per body its loads, prepared once, and the teeth within `neighbours` of one that carries
+  // load, each once (body b's teeth from tooth_start[b] in `wanted`); then the fillets, their
+  // values in one block.
+  const int nb = static_cast<int>(bodies.size());
+  std::vector<InfluenceTable::FilletLoad> loads;
+  loads.reserve(loc.size());
+  std::vector<std::size_t> load_start(static_cast<std::size_t>(nb) + 1, 0);
+  std::vector<char> wanted;
+  std::vector<std::size_t> tooth_start(static_cast<std::size_t>(nb) + 1, 0);
+  std::size_t fillets = 0, values = 0;
+  for (int b = 0; b < nb; ++b) {
     const InfluenceTable& table = *bodies[b].table;
     if (bodies[b].damaged != nullptr)
       throw std::invalid_argument("FilletStresses: body " + std::to_string(b) + " ('" +
@@ -168,25 +177,43 @@ std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies
       throw std::invalid_argument("FilletStresses: body " + std::to_string(b) + " ('" +
                                   bodies[b].name + "') has a table without fillet stresses");
     const int z = table.teeth();
-    // This body's loads, prepared once, and the teeth within `neighbours` of one that carries
-    // load, each once.
-    std::vector<InfluenceTable::FilletLoad> loads;
-    std::vector<char> wanted(static_cast<std::size_t>(z), 0);
+    const std::size_t teeth = tooth_start[b];
+    wanted.resize(teeth + static_cast<std::size_t>(z), 0);
     for (const Located& l : loc) {
       if (l.body != b || !(force(l.contact) > 0.0)) continue;
       loads.push_back(table.PrepareFilletLoad(l.node, force(l.contact)));
       for (int d = -neighbours; d <= neighbours; ++d)
-        wanted[static_cast<std::size_t>(((l.node.tooth + d) % z + z) % z)] = 1;
+        wanted[teeth + static_cast<std::size_t>(((l.node.tooth + d) % z + z) % z)] = 1;
     }
-    for (int k = 0; k < z; ++k) {
-      if (!wanted[static_cast<std::size_t>(k)]) continue;
+    load_start[b + 1] = loads.size();
+    tooth_start[b + 1] = wanted.size();
+    for (std::size_t k = teeth; k < wanted.size(); ++k) {
+      fillets += wanted[k] ? 2 : 0;
+      values += wanted[k] ? 2 * table.fillet_points().size() : 0;
+    }
+  }
+  std::vector<FilletStress> out;
+  out.reserve(fillets);
+  const std::shared_ptr<double[]> block = std::make_shared<double[]>(values);  // all 0
+  double* next = block.get();
+  std::vector<InfluenceTable::FilletTarget> targets;
+  targets.reserve(fillets);
+  for (int b = 0; b < nb; ++b) {
+    const InfluenceTable& table = *bodies[b].table;
+    const std::size_t points = table.fillet_points().size();
+    targets.clear();
+    for (std::size_t k = tooth_start[b]; k < tooth_start[b + 1]; ++k) {
+      if (!wanted[k]) continue;
+      const int tooth = static_cast<int>(k - tooth_start[b]);
       for (int side = 0; side < 2; ++side) {
-        FilletStress f{b, k, side, std::vector<double>(table.fillet_points().size(), 0.0), &table};
-        for (const InfluenceTable::FilletLoad& l : loads)
-          table.AddFilletStress(l, k, side, f.sigma.data());
-        out.push_back(std::move(f));
+        out.push_back({b, tooth, side, std::span<const double>(next, points), &table, block});
+        targets.push_back({tooth, side, next});
+        next += points;
       }
     }
+    // Each load on all of the body's fillets: every fillet still adds the loads in their order.
+    for (std::size_t q = load_start[b]; q < load_start[b + 1]; ++q)
+      table.AddFilletStress(loads[q], targets);
   }
   return out;
 }

@@ -1,6 +1,7 @@
 #include "epicycle/compliance/influence_table.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <ctime>
 #include <limits>
@@ -120,13 +121,17 @@ InfluenceTable::FilletLoad InfluenceTable::PrepareFilletLoad(const DirectedNode&
     throw std::logic_error("InfluenceTable: built without fillet stress (fillet_stress = false)");
   FilletLoad out;
   out.tooth = load.tooth;
+  // The row of (grid point first + p, axis c) is 2p + c rows of all fillets after the first's.
+  const double* first = &fillet_stress_[FilletIndex(load.flank_index, load.node.first, 0, 0, 0)];
+  const std::size_t rows = FilletIndex(0, 0, 1, 0, 0);
   for (int p = 0; p < 4; ++p) {
     for (int c = 0; c < 2; ++c) {
-      const double w = force * load.load_weight[static_cast<std::size_t>(2 * p + c)];
+      const auto pc = static_cast<std::size_t>(2 * p + c);
+      const double w = force * load.load_weight[pc];
       if (w == 0.0) continue;
       const auto q = static_cast<std::size_t>(out.count++);
       out.weight[q] = w;
-      out.row[q] = &fillet_stress_[FilletIndex(load.flank_index, load.node.first + p, c, 0, 0)];
+      out.row[q] = first + pc * rows;
     }
   }
   return out;
@@ -134,33 +139,59 @@ InfluenceTable::FilletLoad InfluenceTable::PrepareFilletLoad(const DirectedNode&
 
 void InfluenceTable::AddFilletStress(const FilletLoad& load, int tooth, int side,
                                      double* sigma) const {
-  if (side != 0 && side != 1)
-    throw std::invalid_argument("InfluenceTable: fillet side " + std::to_string(side) +
-                                ": must be 0 (sigma = +1) or 1 (sigma = -1)");
+  const FilletTarget target{tooth, side, sigma};
+  AddFilletStress(load, std::span<const FilletTarget>(&target, 1));
+}
+
+void InfluenceTable::AddFilletStress(const FilletLoad& load,
+                                     std::span<const FilletTarget> fillets) const {
   const int z = teeth_;
-  const int k = ((tooth - load.tooth) % z + z) % z;  // the response tooth seen from the load's
   const std::size_t m_count = fillet_.size();
-  const std::size_t offset = (static_cast<std::size_t>(k) * 2 + side) * m_count;
+  // Per fillet its rows: the fixed offset of (response tooth seen from the load's, side).
+  auto offset = [&](const FilletTarget& f) {
+    if (f.side != 0 && f.side != 1)
+      throw std::invalid_argument("InfluenceTable: fillet side " + std::to_string(f.side) +
+                                  ": must be 0 (sigma = +1) or 1 (sigma = -1)");
+    const int k = ((f.tooth - load.tooth) % z + z) % z;
+    return (static_cast<std::size_t>(k) * 2 + static_cast<std::size_t>(f.side)) * m_count;
+  };
   // Per point the weights in the order AddFilletStress(DirectedNode) adds them: the same
-  // roundings, one load and store of σ. The usual load (8 non-zero weights) as one Eigen
-  // expression, which evaluates element by element in that order and in SIMD packets.
-  double* __restrict out = sigma;
-  if (load.count == 8) {
-    using Row = Eigen::Map<const Eigen::ArrayXd>;
-    const auto n = static_cast<Eigen::Index>(m_count);
-    const auto& w = load.weight;
-    const auto row = [&](int q) { return Row(load.row[static_cast<std::size_t>(q)] + offset, n); };
-    Eigen::Map<Eigen::ArrayXd> s(out, n);
-    s = s + w[0] * row(0) + w[1] * row(1) + w[2] * row(2) + w[3] * row(3) + w[4] * row(4) +
-        w[5] * row(5) + w[6] * row(6) + w[7] * row(7);
+  // roundings, one load and store of σ. The weights are copied to locals (σ's stores cannot alias
+  // them): they stay in registers over the fillets and their points.
+  const std::array<double, 8> w = load.weight;
+  if (load.count != 8) {
+    for (const FilletTarget& f : fillets) {
+      const std::size_t o = offset(f);
+      double* __restrict out = f.sigma;
+      for (std::size_t m = 0; m < m_count; ++m) {
+        double s = out[m];
+        for (std::size_t q = 0; q < static_cast<std::size_t>(load.count); ++q)
+          s += w[q] * load.row[q][o + m];
+        out[m] = s;
+      }
+    }
     return;
   }
-  for (std::size_t m = 0; m < m_count; ++m) {
-    double s = out[m];
-    for (int q = 0; q < load.count; ++q)
-      s += load.weight[static_cast<std::size_t>(q)] *
-           load.row[static_cast<std::size_t>(q)][offset + m];
-    out[m] = s;
+  // The usual load (8 non-zero weights): two points at a time as one SSE2 packet (an Eigen
+  // expression of fixed size 2, evaluated element by element in that order), then the last odd
+  // point.
+  using Pair = Eigen::Array2d;
+  using Row = Eigen::Map<const Pair>;
+  for (const FilletTarget& f : fillets) {
+    const std::size_t o = offset(f);
+    std::array<const double*, 8> r{};
+    for (std::size_t q = 0; q < 8; ++q) r[q] = load.row[q] + o;
+    double* __restrict out = f.sigma;
+    std::size_t m = 0;
+    for (; m + 2 <= m_count; m += 2) {
+      Eigen::Map<Pair> s(out + m);
+      s = s + w[0] * Row(r[0] + m) + w[1] * Row(r[1] + m) + w[2] * Row(r[2] + m) +
+          w[3] * Row(r[3] + m) + w[4] * Row(r[4] + m) + w[5] * Row(r[5] + m) +
+          w[6] * Row(r[6] + m) + w[7] * Row(r[7] + m);
+    }
+    for (; m < m_count; ++m)
+      out[m] = out[m] + w[0] * r[0][m] + w[1] * r[1][m] + w[2] * r[2][m] + w[3] * r[3][m] +
+               w[4] * r[4][m] + w[5] * r[5][m] + w[6] * r[6][m] + w[7] * r[7][m];
   }
 }
 

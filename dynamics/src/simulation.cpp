@@ -380,6 +380,9 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
         sample.fillet_stress =
             compliance.FilletStresses(model.stage_model().stage(), e.poses, e.terms.contacts,
                                       e.total_force, rubs ? &rubbing : nullptr);
+        if (!sample.fillet_stress.empty())
+          sample.root_stress = transmission::SummariseRootStress(
+              sample.fillet_stress, transmission::PlanetBody(model.stage_model().planets()));
       }
       if (on_sample) on_sample(sample);
       ++result.outputs;

@@ -19,7 +19,7 @@ void DynamicAccumulator::Add(const DynamicSample& x) {
                                 std::to_string(lsr_.size()));
   }
   ++samples_;
-  root_stress_->Add(x.fillet_stress, x.time);
+  root_stress_->Add(x.fillet_stress, x.root_stress, x.time);
   for (std::size_t i = 0; i < lsr_.size(); ++i) lsr_[i].Add(x.load_sharing[i]);
   k_gamma_.Add(x.k_gamma);
   te_.Add(x.transmission_error);

@@ -25,7 +25,7 @@ namespace {
 // Appends ",<v>" (Num: an empty cell where v is not finite).
 void Cell(std::string& line, double v) {
   line += ',';
-  line += Num(v);
+  AppendNum(line, v);
 }
 
 // "a,b,c" of the values formatted by Num (empty cells where not finite), each led by a comma.
@@ -49,14 +49,15 @@ std::string RootStressHead(const std::vector<std::string>& gears, bool where = f
   return head;
 }
 
-// Each body's largest tension and compression [MPa] of a state's fillets (with `where`, each
-// followed by its tooth, fillet side + or - and arc length from the space centre line [mm], empty
-// for a gear the state does not load); empty cells for a state without them (a failed position).
-void RootStressCells(std::string& line, const std::vector<compliance::FilletStress>& fillets,
+// Each body's largest tension and compression [MPa] of a state (`g`: its extremes, body order;
+// with `where`, each followed by its tooth, fillet side + or - and arc length from the space
+// centre line [mm], empty for a gear the state does not load); empty cells for a state without
+// them (`g` empty: a failed position).
+void RootStressCells(std::string& line, const std::vector<transmission::GearRootStress>& g,
                      int bodies, bool where = false) {
-  const std::vector<transmission::GearRootStress> g =
-      fillets.empty() ? std::vector<transmission::GearRootStress>()
-                      : transmission::SummariseRootStress(fillets, bodies);
+  if (!g.empty() && g.size() != static_cast<std::size_t>(bodies))
+    throw std::invalid_argument(fmt::format(
+        "root stress cells: extremes of {} bodies for {} columns' bodies", g.size(), bodies));
   auto cells = [&](double sigma, const transmission::FilletSpot& at) {
     Cell(line, sigma / 1e6);
     if (!where) return;
@@ -378,8 +379,8 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
                         Num(friction ? r.input_power : NAN), Num(friction ? r.output_power : NAN),
                         Num(friction ? r.Efficiency() : NAN), Num(r.force_change));
   // A failed position has no stresses (empty cells), a converged one its extremes per gear.
-  static const std::vector<compliance::FilletStress> kNone;
-  if (bodies_ > 0) RootStressCells(line, ok ? r.fillet_stress : kNone, bodies_);
+  static const std::vector<transmission::GearRootStress> kNone;
+  if (bodies_ > 0) RootStressCells(line, ok ? r.root_stress : kNone, bodies_);
   positions_.WriteLine(line);
   std::string pairs;
   for (std::size_t j = 0; j < r.problem.contacts.size() && ok; ++j) {
@@ -555,7 +556,7 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
                        Num(s.dissipated_work), Num(e.kinetic_energy), Num(e.elastic_energy),
                        e.terms.size(), active, Num(e.friction_power));
   steps += Cells(s.force_sharing);
-  if (bodies_ > 0) RootStressCells(steps, s.fillet_stress, bodies_);
+  if (bodies_ > 0) RootStressCells(steps, s.root_stress, bodies_);
   std::string pairs;
   for (int j = 0; j < e.terms.size(); ++j) {
     if (!(e.total_force(j) > 0)) continue;
@@ -890,7 +891,7 @@ void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
                   Num(s.rotation * 1e6), Num(s.approach * 1e6), Num(s.total_force), s.pairs.size());
   std::string tail = CsvText(s.message);
   // A failed position has no stresses (empty cells), a converged one its extremes per gear.
-  if (bodies_ > 0) RootStressCells(tail, s.fillet_stress, bodies_, true);
+  if (bodies_ > 0) RootStressCells(tail, s.root_stress, bodies_, true);
   tail += '\n';
   std::string lines = s.pairs.empty() ? head + ",,,,,," + tail : "";
   for (const auto& p : s.pairs)

@@ -180,8 +180,11 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
   out.poses = built;
   out.contacts = contacts;
   out.force = solution.force;
-  if (compliance.has_root_stress())
+  if (compliance.has_root_stress()) {
     out.fillet_stress = compliance.FilletStresses(pair, built, contacts, solution.force);
+    if (!out.fillet_stress.empty())  // the pair's two bodies
+      out.root_stress = SummariseRootStress(out.fillet_stress, 2);
+  }
   // Tooth pairs: the loaded contacts of the last problem, merged per (teeth, flank).
   std::map<std::array<int, 3>, ToothPairLoad> merged;
   for (std::size_t j = 0; j < contacts.size(); ++j) {
@@ -255,7 +258,7 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geome
           r.max_stiffness = std::max(r.max_stiffness, s.mesh_stiffness);
           for (const ToothPairLoad& p : s.pairs)
             r.peak_pair_stiffness = std::max(r.peak_pair_stiffness, p.stiffness);
-          root_stress.Add(s.fillet_stress, s.angle);
+          root_stress.Add(s.fillet_stress, s.root_stress, s.angle);
         } else {
           ++r.failed;
         }

@@ -288,6 +288,8 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
     if (rubs) rubbing = {r.friction_force, r.friction_tangent};
     r.fillet_stress = model.compliance().FilletStresses(model.stage(), built, r.problem.contacts,
                                                         r.solution.force, rubs ? &rubbing : nullptr);
+    if (!r.fillet_stress.empty())
+      r.root_stress = SummariseRootStress(r.fillet_stress, PlanetBody(model.planets()));
   }
   return r;
 }

@@ -1,6 +1,8 @@
 #include "epicycle/transmission/root_stress.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace epicycle::transmission {
 
@@ -77,6 +79,16 @@ std::vector<RootStressEnvelope::Range> RootStressEnvelope::Ranges() const {
 
 void RootStressTracker::Add(const std::vector<compliance::FilletStress>& fillets, double x) {
   if (fillets.empty()) return;
+  Add(fillets, SummariseRootStress(fillets, bodies_), x);
+}
+
+void RootStressTracker::Add(const std::vector<compliance::FilletStress>& fillets,
+                            const std::vector<GearRootStress>& extremes, double x) {
+  if (fillets.empty()) return;
+  if (extremes.size() != static_cast<std::size_t>(bodies_))
+    throw std::invalid_argument("RootStressTracker: extremes of " +
+                                std::to_string(extremes.size()) + " bodies for " +
+                                std::to_string(bodies_) + " gears");
   if (summary_.empty()) {
     summary_.resize(static_cast<std::size_t>(bodies_));
     for (int b = 0; b < bodies_; ++b) {
@@ -85,17 +97,16 @@ void RootStressTracker::Add(const std::vector<compliance::FilletStress>& fillets
     }
   }
   envelope_.Add(fillets);
-  const std::vector<GearRootStress> here = SummariseRootStress(fillets, bodies_);
-  for (std::size_t b = 0; b < here.size(); ++b) {
+  for (std::size_t b = 0; b < extremes.size(); ++b) {
     RootStressSummary& g = summary_[b];
-    if (here[b].tension > g.extremes.tension) {
-      g.extremes.tension = here[b].tension;
-      g.extremes.tension_at = here[b].tension_at;
+    if (extremes[b].tension > g.extremes.tension) {
+      g.extremes.tension = extremes[b].tension;
+      g.extremes.tension_at = extremes[b].tension_at;
       g.tension_x = x;
     }
-    if (here[b].compression < g.extremes.compression) {
-      g.extremes.compression = here[b].compression;
-      g.extremes.compression_at = here[b].compression_at;
+    if (extremes[b].compression < g.extremes.compression) {
+      g.extremes.compression = extremes[b].compression;
+      g.extremes.compression_at = extremes[b].compression_at;
       g.compression_x = x;
     }
   }

@@ -60,7 +60,7 @@ void SweepAccumulator::Add(const PositionResult& r) {
   }
   // Root stresses and contact pressures, when the positions carry stresses.
   if (!r.fillet_stress.empty()) {
-    root_stress_.Add(r.fillet_stress, r.carrier_angle);
+    root_stress_.Add(r.fillet_stress, r.root_stress, r.carrier_angle);
     pressure_.Add(r.problem.contacts, r.problem.data.local, r.solution.force, r.carrier_angle);
   }
 }

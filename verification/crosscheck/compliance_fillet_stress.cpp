@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -150,7 +152,7 @@ TEST_CASE("fillet stress: two off-grid loads against the FE solved directly",
   for (const FilletStress& fs : fillets) {
     if (fs.body != 0) continue;
     const int k = fs.tooth, side = fs.side;
-    const std::vector<double>& sigma = fs.sigma;
+    const std::span<const double> sigma = fs.sigma;
     for (int m = 0; m < m_count; ++m) {
       const std::string set = "fillet" + std::to_string(k) + (side == 0 ? "+" : "-");
       const double direct = NodeStress(
@@ -215,6 +217,56 @@ TEST_CASE("fillet stress: a mirrored load gives the mirrored stresses",
   }
   CHECK(largest > 1e3);  // [Pa/N]
   CHECK(worst <= 1e-8 * largest);
+}
+
+TEST_CASE("fillet stress: loads superposed on all fillets at once are the per-node sums",
+          "[crosscheck][compliance][stress]") {
+  // The definition σ(k, side, m) = Σ_l Σ_pc (F_l w_lpc) S(fl_l, i_l + p, c, k − k_l, side, m),
+  // summed load by load and term by term (a zero weight skipped) from the tabulated values, against
+  // each load prepared once and added to every fillet of the body in one call (FilletStresses'
+  // path): the same products and sums in the same order, so equal bit for bit, on the usual load
+  // (8 weights) and on one along a body axis (4 weights: the other path).
+  const InfluenceTable& table = SunStressTable();
+  const int z = table.teeth();
+  const std::size_t points = table.fillet_points().size();
+  const double s_max = table.arc_length_max();
+  const std::vector<std::pair<InfluenceTable::DirectedNode, double>> loads = {
+      {table.PrepareDirected({0, 1, 0.45 * s_max}, Eigen::Vector2d(-0.8, -0.6)), 1234.5},
+      {table.PrepareDirected({1, -1, 0.3 * s_max}, Eigen::Vector2d(0.6, -0.8)), 987.25},
+      {table.PrepareDirected({0, 1, 0.7 * s_max}, Eigen::Vector2d(0.0, 1.0)), 55.5}};
+  std::vector<InfluenceTable::FilletLoad> prepared;
+  for (const auto& [node, force] : loads) prepared.push_back(table.PrepareFilletLoad(node, force));
+  CHECK(prepared[0].count == 8);
+  CHECK(prepared[2].count == 4);
+  std::vector<std::vector<double>> sigma(2 * static_cast<std::size_t>(z),
+                                         std::vector<double>(points, 0.0));
+  std::vector<InfluenceTable::FilletTarget> targets;
+  for (int k = 0; k < z; ++k)
+    for (int side = 0; side < 2; ++side)
+      targets.push_back({k, side, sigma[2 * static_cast<std::size_t>(k) + side].data()});
+  for (const InfluenceTable::FilletLoad& l : prepared) table.AddFilletStress(l, targets);
+  int differ = 0;
+  double largest = 0.0;
+  for (int k = 0; k < z; ++k)
+    for (int side = 0; side < 2; ++side)
+      for (std::size_t m = 0; m < points; ++m) {
+        double expect = 0.0;
+        for (const auto& [node, force] : loads) {
+          const int kr = ((k - node.tooth) % z + z) % z;
+          for (int p = 0; p < 4; ++p)
+            for (int c = 0; c < 2; ++c) {
+              const double w = force * node.load_weight[static_cast<std::size_t>(2 * p + c)];
+              if (w == 0.0) continue;
+              expect += w * table.FilletGridValue(node.flank_index, node.node.first + p, c, kr,
+                                                  side, static_cast<int>(m));
+            }
+        }
+        const double got = sigma[2 * static_cast<std::size_t>(k) + side][m];
+        differ += got != expect;
+        largest = std::max(largest, std::abs(expect));
+      }
+  CHECK(largest > 1e6);  // [Pa]: the loads bend the teeth
+  CHECK(differ == 0);
 }
 
 TEST_CASE("fillet stress: a table with stresses survives the cache, under its own key",

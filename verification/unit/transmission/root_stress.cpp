@@ -3,6 +3,9 @@
 // one fillet point, a point a state did not compute counting as unloaded.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "epicycle/compliance/influence_table.hpp"
@@ -31,10 +34,13 @@ const compliance::InfluenceTable& Table() {
   return table;
 }
 
+// A fillet whose first values are `head`, the others 0 (its own block of values).
 compliance::FilletStress Fillet(int body, int tooth, int side, std::vector<double> head) {
   const std::size_t m = Table().fillet_points().size();
   head.resize(m, 0.0);
-  return {body, tooth, side, head, &Table()};
+  const std::shared_ptr<double[]> values = std::make_shared<double[]>(m);
+  std::copy(head.begin(), head.end(), values.get());
+  return {body, tooth, side, std::span<const double>(values.get(), m), &Table(), values};
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <array>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -76,8 +78,11 @@ struct FilletStress {
   int body = 0;
   int tooth = 0;                          ///< k in [0, z), body frame
   int side = 0;                           ///< 0: σ = +1, 1: σ = −1
-  std::vector<double> sigma;              ///< σ_tt [Pa] at the body table's fillet_points()
+  std::span<const double> sigma;          ///< σ_tt [Pa] at the body table's fillet_points()
   const InfluenceTable* table = nullptr;  ///< the body's table (its fillet_points()), not owned
+  /// The storage `sigma` views: one block for all fillets of a state (FilletStresses), kept alive
+  /// by each of them and their copies (a state's fillets cost one allocation, not one each).
+  std::shared_ptr<const double[]> values;
 };
 
 /// The root stresses of a state (docs/model.md §9): σ_tt(p) = Σ_j S_B(p; j) F_j on both fillets

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -231,6 +232,17 @@ class InfluenceTable {
   /// The same sum as AddFilletStress(load's node, force, ...), bit for bit, in one pass over the
   /// fillet points.
   void AddFilletStress(const FilletLoad& load, int tooth, int side, double* sigma) const;
+  /// One fillet to add to: tooth `tooth`, side `side` (0: σ = +1, 1: σ = −1), its σ [Pa] at the
+  /// fillet_points() (not owned).
+  struct FilletTarget {
+    int tooth = 0;
+    int side = 0;
+    double* sigma = nullptr;
+  };
+  /// AddFilletStress(load, f.tooth, f.side, f.sigma) for each fillet f, the same sums bit for bit
+  /// (a fillet adds its loads in the order they are given, whichever loop is outer), with the
+  /// load's weights set up once.
+  void AddFilletStress(const FilletLoad& load, std::span<const FilletTarget> fillets) const;
   /// The tabulated σ_tt [Pa/N] at fillet point m of (tooth k, side f) under a unit force along
   /// axis c at grid point i of tooth 0's flank fl (fl, f: 0 for σ = +1, 1 for σ = −1).
   double FilletGridValue(int fl, int i, int c, int k, int f, int m) const;

@@ -21,6 +21,7 @@
 #include <Eigen/Dense>
 
 #include "epicycle/dynamics/dynamic_model.hpp"
+#include "epicycle/transmission/root_stress.hpp"
 
 namespace epicycle::dynamics {
 
@@ -97,6 +98,8 @@ struct DynamicSample {
   /// Root stresses of this step's state (docs/model.md §9) under the contact forces with their
   /// damping, when the stage's tables carry them (the scene's [model] stresses), else empty.
   std::vector<compliance::FilletStress> fillet_stress;
+  /// Each gear's extremes of fillet_stress (SummariseRootStress, body order; empty with it).
+  std::vector<transmission::GearRootStress> root_stress;
 };
 
 struct SimulationStats {

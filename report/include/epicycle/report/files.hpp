@@ -11,8 +11,12 @@
 namespace epicycle::report {
 
 /// A number for a report or a file cell: `v` formatted with `format` (fmt syntax) if finite,
-/// otherwise `missing` (default empty: an empty CSV cell). Never prints nan or inf.
-std::string Num(double v, const char* format = "{:.9g}", const char* missing = "");
+/// otherwise `missing` (an empty CSV cell by default). Never prints nan or inf.
+std::string Num(double v, const char* format, const char* missing = "");
+/// Num with 9 significant digits ("{:.9g}", printf's %.9g: the same text), empty if not finite.
+std::string Num(double v);
+/// Appends Num(v) to `out` (a CSV line's cell without a string of its own).
+void AppendNum(std::string& out, double v);
 
 /// A free-text CSV cell: every ',' and line break replaced by ';' (one cell, one line).
 std::string CsvText(std::string text);

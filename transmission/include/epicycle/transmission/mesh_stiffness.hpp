@@ -96,6 +96,8 @@ struct MeshSample {
   /// and their neighbours, body 0 gear 1, body 1 gear 2) when the compliance has them (the
   /// scene's [model] stresses), else empty.
   std::vector<compliance::FilletStress> fillet_stress;
+  /// Each gear's extremes of fillet_stress (SummariseRootStress, body order; empty with it).
+  std::vector<GearRootStress> root_stress;
 };
 
 struct MeshStiffnessResult {

@@ -13,6 +13,7 @@
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/transmission/dynamic_settings.hpp"
 #include "epicycle/transmission/friction.hpp"
+#include "epicycle/transmission/root_stress.hpp"
 #include "epicycle/transmission/stage_model.hpp"
 
 namespace epicycle::transmission {
@@ -74,6 +75,8 @@ struct PositionResult {
   /// (the scene's [model] stresses), else empty: of the normal forces, and with friction at rest
   /// of the friction forces too.
   std::vector<compliance::FilletStress> fillet_stress;
+  /// Each gear's extremes of fillet_stress (SummariseRootStress, body order; empty with it).
+  std::vector<GearRootStress> root_stress;
   /// Friction at rest (options.friction on; otherwise false, empty and 0). With it, load_sharing
   /// is the whole sun-mesh torque's share, the friction moments included (paper eq. 4).
   bool friction = false;

@@ -81,6 +81,10 @@ class RootStressTracker {
   explicit RootStressTracker(std::vector<std::string> gears)
       : bodies_(static_cast<int>(gears.size())), envelope_(bodies_), gears_(std::move(gears)) {}
   void Add(const std::vector<compliance::FilletStress>& fillets, double x);
+  /// The same with the state's extremes already summarised (`extremes`:
+  /// SummariseRootStress(fillets, gears.size()), the state's own, which its CSV line shows too).
+  void Add(const std::vector<compliance::FilletStress>& fillets,
+           const std::vector<GearRootStress>& extremes, double x);
   /// Empty when no state carried fillets.
   std::vector<RootStressSummary> Result() const;
 
