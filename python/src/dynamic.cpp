@@ -1,11 +1,13 @@
 // The drivers of dynamics/: a dynamic run in time, the natural modes, a speed sweep.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
 #include <thread>
 
 #include "common.hpp"
+#include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
@@ -354,7 +356,8 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
   });
   const dynamics::SpeedSweepResult& r = out.result;
   const dynamics::SpeedSweepPlan& plan = r.plan;
-  std::vector<double> rpm, fm, kg, kv, peak, te, orbit, lmin, lmax, wall, cpu;
+  std::vector<double> rpm, fm, kg, kv, peak, ref, te, orbit, lmin, lmax, dev, residual, wall, cpu;
+  std::array<std::vector<double>, dynamics::kLoadSharingPartCount> parts;
   std::vector<char> ok;
   py::list message, factor_mesh, warnings;
   for (const dynamics::SpeedResult& x : r.speeds) {
@@ -369,10 +372,14 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
                            ? plan.meshes[static_cast<std::size_t>(x.factor_mesh)]
                            : std::string());
     peak.push_back(v * x.peak_mesh_force);
+    ref.push_back(v * x.qs_peak_mesh_force);
     te.push_back(v * x.te_amplitude * 1e6);
     orbit.push_back(v * x.orbit_radius * 1e6);
     lmin.push_back(v * x.lsr_min);
     lmax.push_back(v * x.lsr_max);
+    dev.push_back(v * x.lsr_deviation);
+    for (std::size_t k = 0; k < parts.size(); ++k) parts[k].push_back(v * x.deviation_parts[k]);
+    residual.push_back(v * x.largest_residual);
     wall.push_back(x.wall_seconds);
     cpu.push_back(x.cpu_seconds);
     warnings.append(x.warnings);
@@ -418,10 +425,17 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
   f["dynamic_factor"] = Array(std::move(kv));
   f["dynamic_factor_mesh"] = factor_mesh;
   f["peak_mesh_force_N"] = Array(std::move(peak));
+  f["reference_peak_mesh_force_N"] = Array(std::move(ref));
   f["te_amplitude_urad"] = Array(std::move(te));
   f["sun_orbit_radius_um"] = Array(std::move(orbit));
   f["lsr_min"] = Array(std::move(lmin));
   f["lsr_max"] = Array(std::move(lmax));
+  f["lsr_deviation"] = Array(std::move(dev));
+  py::dict pp;
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    pp[dynamics::kLoadSharingPartNames[k]] = Array(std::move(parts[k]));
+  f["lsr_deviation_parts"] = Result(pp);
+  f["largest_residual"] = Array(std::move(residual));
   f["wall_s"] = Array(std::move(wall));
   f["cpu_s"] = Array(std::move(cpu));
   f["warnings"] = warnings;
@@ -561,8 +575,12 @@ sun_speeds_rpm: increasing sun speeds [rpm] (epicycle.speed_grid(from, to, n)); 
   cache_dir, progress(done, total) as quasistatic.)doc") +
        kIntegrationDoc + R"doc(
 Returns Result with per speed: sun_speed_rpm [rpm], mesh_frequency_Hz [Hz], ok, message, k_gamma
-[-], dynamic_factor [-] (K_v) and dynamic_factor_mesh, peak_mesh_force_N [N], te_amplitude_urad
-[µrad], sun_orbit_radius_um [µm], lsr_min, lsr_max [-] (NaN where failed), wall_s, cpu_s [s],
+[-], dynamic_factor [-] (K_v) and dynamic_factor_mesh, peak_mesh_force_N [N] and that mesh's
+reference_peak_mesh_force_N [N] (the quasi-static one at the speed, with its friction at rest),
+te_amplitude_urad [µrad], sun_orbit_radius_um [µm], lsr_min, lsr_max [-], lsr_deviation (the
+largest |LSR_i − 1/n|) [-] with lsr_deviation_parts (sun_rotation, sun_translation, bearing,
+friction, off_line, geometry, residual [-] at that sample and planet; they sum to the signed
+deviation) and largest_residual [-] (NaN where failed), wall_s, cpu_s [s],
 warnings; modes (frequency_Hz, type, damping_ratio, decay_rate_per_s, families), coincidences
 (sun_speed_rpm, frequency_Hz, mode, harmonic, phasing_excited), meshes, mesh_hz_per_sun_rpm,
 skip_time_s [s], the quasi-static reference qs_k_gamma, qs_te_amplitude_urad, qs_peak_mesh_force_N

@@ -1,7 +1,7 @@
 """The other drivers through Python equal the program's outputs on the same scenes: the geometry
 report (`geometry --json`), the potential contacts at a pose (`contacts`, its printed columns),
 a mesh's stiffness (`stiffness`: CSV to the printed digits, JSON exactly) and a two-speed sweep
-(`dynamic --speed-sweep`: CSV to the printed digits)."""
+(`dynamic --speed-sweep`: CSV to the printed digits, the load-sharing parts included)."""
 
 import epicycle
 from conftest import num, read_csv, read_json, run_cli, scene_path
@@ -84,3 +84,11 @@ def test_speed_sweep_equals_the_program_csv(tmp_path):
         assert row["te_amplitude_urad"] == num(s.te_amplitude_urad[k])
         assert row["sun_orbit_radius_um"] == num(s.sun_orbit_radius_um[k])
         assert row["lsr_min"] == num(s.lsr_min[k]) and row["lsr_max"] == num(s.lsr_max[k])
+        assert row["lsr_deviation"] == num(s.lsr_deviation[k])
+        for name in ("sun_rotation", "sun_translation", "bearing", "friction", "off_line",
+                     "geometry", "residual"):
+            assert row["dev_" + name] == num(getattr(s.lsr_deviation_parts, name)[k]), name
+        assert row["largest_residual"] == num(s.largest_residual[k])
+        # K_v is the ratio of the mesh's peak in motion to its reference's (the same doubles
+        # divided: equal to the last bit).
+        assert s.dynamic_factor[k] == s.peak_mesh_force_N[k] / s.reference_peak_mesh_force_N[k]
