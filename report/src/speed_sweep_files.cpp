@@ -1,0 +1,239 @@
+// The natural modes' and the speed sweep's files (docs/dynamic.md, "Natural modes" and "Speed
+// sweeps"): the modes and coincidences as JSON, the sweep's CSV written a speed at a time, its
+// summary JSON and its figures against sun speed.
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "epicycle/dynamics/load_sharing_parts.hpp"
+#include "epicycle/report/provenance.hpp"
+#include "epicycle/report/run_files.hpp"
+#include "epicycle/report/svg_plot.hpp"
+
+namespace epicycle::report {
+
+nlohmann::json ModesRunJson(const dynamics::DynamicModel& model,
+                            const dynamics::OperatingPointModes& operating, double lo_rpm,
+                            double hi_rpm, const std::vector<dynamics::Coincidence>& coincidences) {
+  const double hz_per_rpm = dynamics::MeshHzPerSunRpm(model.stage_model().stage());
+  nlohmann::json j;
+  j["scene"] = model.stage_model().name();
+  j["mesh_stiffness_sun_planet_N_per_m"] = operating.mesh_stiffness[0];
+  j["mesh_stiffness_planet_ring_N_per_m"] = operating.mesh_stiffness[1];
+  j["mesh_stiffness_kind"] = "tangent dF/ddelta, mean over a mesh cycle";
+  j["secant_mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
+  j["secant_mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
+  j["mesh_frequency_Hz_per_sun_rpm"] = hz_per_rpm;
+  j["modes"] = ModesJson(operating.modes, hz_per_rpm);
+  j["coincidence_range_rpm"] = {lo_rpm, hi_rpm};
+  j["coincidences"] = CoincidencesJson(coincidences);
+  return j;
+}
+
+nlohmann::json CoincidencesJson(const std::vector<dynamics::Coincidence>& coincidences) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const dynamics::Coincidence& c : coincidences)
+    list.push_back({{"sun_speed_rpm", c.sun_speed_rpm},
+                    {"frequency_Hz", c.frequency},
+                    {"mode", c.mode + 1},
+                    {"harmonic", c.harmonic},
+                    {"phasing_excited", c.phasing_excited}});
+  return list;
+}
+
+nlohmann::json ModesJson(const std::vector<dynamics::Mode>& modes, double hz_per_rpm) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const dynamics::Mode& x : modes)
+    list.push_back({{"frequency_Hz", x.frequency},
+                    {"multiplicity", x.multiplicity},
+                    {"type", x.rigid ? std::string("rigid") : dynamics::ModeTypeName(x.type)},
+                    {"central_translation_energy", x.central_translation},
+                    {"central_rotation_energy", x.central_rotation},
+                    {"planet_energy", x.planets},
+                    {"sun_rpm_at_mesh_harmonics_1_2_3",
+                     dynamics::HarmonicSunSpeeds(x.frequency, hz_per_rpm, 3)}});
+  return list;
+}
+
+namespace {
+
+// "dev_sun_rotation,dev_sun_translation,…," : the parts of the largest |LSR_i − 1/n|.
+std::string DeviationPartColumns() {
+  std::string out;
+  for (const char* name : dynamics::kLoadSharingPartNames) out += fmt::format("dev_{},", name);
+  return out;
+}
+
+}  // namespace
+
+SpeedSweepFile::SpeedSweepFile(const std::string& path, const nlohmann::json& provenance)
+    : csv_(path) {
+  csv_.Write(ProvenanceCsvLine(provenance) +
+             "index,sun_speed_rpm,mesh_frequency_Hz,status,K_gamma,dynamic_factor,"
+             "dynamic_factor_mesh,peak_mesh_force_N,te_amplitude_urad,sun_orbit_radius_um,lsr_min,"
+             "lsr_max,lsr_deviation," +
+             DeviationPartColumns() +
+             "largest_residual,steps,evaluations,failed_contact_solves,cpu_s,wall_s,message\n");
+}
+
+void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::SpeedSweepPlan& plan) {
+  // A failed speed keeps its speed, status and message; its figures are empty (not zeros).
+  auto v = [&](double x) { return r.ok ? Num(x) : std::string(); };
+  std::string parts;
+  for (double x : r.deviation_parts) parts += v(x) + ",";
+  csv_.WriteLine(fmt::format(
+      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Num(r.sun_speed_rpm),
+      Num(r.mesh_frequency), r.ok ? "ok" : "failed", v(r.k_gamma), v(r.dynamic_factor),
+      r.ok && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "", v(r.peak_mesh_force),
+      v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min), v(r.lsr_max),
+      v(r.lsr_deviation) + "," + parts + v(r.largest_residual), r.stats.steps,
+      r.stats.rhs_evaluations, r.stats.failed_solves, Num(r.cpu_seconds), Num(r.wall_seconds),
+      CsvText(r.message)));
+}
+
+void SpeedSweepFile::Close() { csv_.Close(); }
+
+void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name,
+                          const dynamics::SpeedSweepPlan& plan,
+                          const std::vector<dynamics::SpeedResult>& speeds) {
+  std::vector<XMarker> markers;
+  for (const dynamics::Coincidence& c : plan.coincidences) {
+    // A degenerate pair split by an error (e.g. 4941.95 and 4942.25 Hz): one marker "m2,3 h4".
+    const std::string tail = fmt::format(" h{}", c.harmonic);
+    if (!markers.empty() &&
+        std::abs(markers.back().x - c.sun_speed_rpm) <= 1e-3 * c.sun_speed_rpm &&
+        markers.back().label.ends_with(tail)) {
+      XMarker& m = markers.back();
+      m.label.insert(m.label.size() - tail.size(), fmt::format(",{}", c.mode + 1));
+      m.dashed = m.dashed && !c.phasing_excited;
+      m.rank = std::min(m.rank, c.harmonic + (c.phasing_excited ? 0 : 1000));
+      continue;
+    }
+    // Labels go first to the phasing's excited lines, then to the lower harmonics.
+    markers.push_back({c.sun_speed_rpm, fmt::format("m{}", c.mode + 1) + tail, !c.phasing_excited,
+                       c.harmonic + (c.phasing_excited ? 0 : 1000)});
+  }
+  auto plot = [&](const std::string& what, const std::string& unit, const std::string& file,
+                  double scale, auto field, std::vector<double> refs) {
+    LinePlot p{scene_name + ": " + what + " against sun speed",
+               "sun speed [rpm]",
+               what + " [" + unit + "]",
+               {},
+               false,
+               std::move(refs)};
+    PlotSeries s{what, {}, {}, false};
+    for (const dynamics::SpeedResult& r : speeds) {
+      if (!r.ok) continue;
+      s.x.push_back(r.sun_speed_rpm);
+      s.y.push_back(field(r) * scale);
+    }
+    p.series.push_back(s);
+    p.x_markers = markers;
+    WriteTextFile(path + "_" + file + ".svg", RenderSvg(p));
+  };
+  plot("K_gamma", "-", "k_gamma", 1.0, [](const auto& r) { return r.k_gamma; }, {plan.qs_k_gamma});
+  plot("dynamic factor", "-", "dynamic_factor", 1.0, [](const auto& r) { return r.dynamic_factor; },
+       {1.0});
+  plot("TE amplitude", "urad", "te_amplitude", 1e6, [](const auto& r) { return r.te_amplitude; },
+       {plan.qs_te_amplitude * 1e6});
+  plot("sun orbit radius", "um", "orbit", 1e6, [](const auto& r) { return r.orbit_radius; }, {});
+  // The largest |LSR_i − 1/n| and its parts at that sample and planet (signed: the parts sum to
+  // the signed deviation there; the curve is its magnitude).
+  LinePlot dev{scene_name + ": largest |LSR - 1/n| and its parts against sun speed",
+               "sun speed [rpm]",
+               "LSR - 1/n [-]",
+               {},
+               false,
+               {0.0}};
+  PlotSeries total{"largest |LSR - 1/n|", {}, {}, false};
+  std::vector<PlotSeries> parts;
+  for (const char* name : dynamics::kLoadSharingPartNames) parts.push_back({name, {}, {}, false});
+  for (const dynamics::SpeedResult& r : speeds) {
+    if (!r.ok) continue;
+    total.x.push_back(r.sun_speed_rpm);
+    total.y.push_back(r.lsr_deviation);
+    // Oriented so that the parts sum to +|LSR − 1/n|.
+    double sum = 0;
+    for (double x : r.deviation_parts) sum += x;
+    const double sign = sum < 0 ? -1.0 : 1.0;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      parts[k].x.push_back(r.sun_speed_rpm);
+      parts[k].y.push_back(sign * r.deviation_parts[k]);
+    }
+  }
+  dev.series.push_back(total);
+  for (PlotSeries& p : parts) dev.series.push_back(std::move(p));
+  dev.x_markers = markers;
+  WriteTextFile(path + "_lsr_deviation.svg", RenderSvg(dev));
+}
+
+nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
+                                     const std::vector<dynamics::SpeedResult>& speeds) {
+  using json = nlohmann::json;
+  json list = json::array();
+  for (const dynamics::SpeedResult& r : speeds) {
+    json j = {{"sun_speed_rpm", r.sun_speed_rpm},
+              {"mesh_frequency_Hz", r.mesh_frequency},
+              {"ok", r.ok},
+              {"message", r.message},
+              {"steps", r.stats.steps},
+              {"evaluations", r.stats.rhs_evaluations},
+              {"failed_contact_solves", r.stats.failed_solves},
+              {"cpu_s", r.cpu_seconds},
+              {"wall_s", r.wall_seconds},
+              {"warnings", r.warnings}};
+    if (r.ok) {
+      j["K_gamma"] = r.k_gamma;
+      j["dynamic_factor"] = r.dynamic_factor;
+      j["dynamic_factor_mesh"] = r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "";
+      j["peak_mesh_force_N"] = r.peak_mesh_force;
+      j["quasi_static_peak_mesh_force_N"] = r.qs_peak_mesh_force;
+      j["te_amplitude_urad"] = r.te_amplitude * 1e6;
+      j["sun_orbit_radius_um"] = r.orbit_radius * 1e6;
+      j["lsr_min"] = r.lsr_min;
+      j["lsr_max"] = r.lsr_max;
+      j["lsr_deviation"] = r.lsr_deviation;
+      json parts;
+      for (int k = 0; k < dynamics::kLoadSharingPartCount; ++k)
+        parts[dynamics::kLoadSharingPartNames[k]] = r.deviation_parts[static_cast<std::size_t>(k)];
+      j["lsr_deviation_parts"] = parts;
+      j["largest_residual"] = r.largest_residual;
+    }
+    list.push_back(j);
+  }
+  json modes = json::array(), coincidences = json::array();
+  for (const dynamics::ModeDamping& m : plan.modes)
+    modes.push_back({{"frequency_Hz", m.mode.frequency},
+                     {"type", dynamics::ModeTypeName(m.mode.type)},
+                     {"multiplicity", m.mode.multiplicity},
+                     {"cyclic_families_k", m.families},
+                     {"damping_ratio", m.damping_ratio},
+                     {"decay_rate_per_s", m.decay_rate}});
+  coincidences = CoincidencesJson(plan.coincidences);
+  json qs_force = json::object();
+  for (std::size_t q = 0; q < plan.meshes.size(); ++q)
+    qs_force[plan.meshes[q]] = plan.qs_peak_mesh_force[q];
+  json j;
+  j["definitions"] = {
+      {"K_gamma", "max over window samples and planets of n LSR_i"},
+      {"dynamic_factor",
+       "max over meshes of (peak total normal force of the mesh in motion, damping included) / "
+       "(peak quasi-static total normal force of that mesh at the same carrier angles, with the "
+       "same friction at rest at that speed: quasi_static_peak_mesh_force_N of the speed; the "
+       "top-level one is at the scene's speed)"},
+      {"te_amplitude", "half the peak-to-peak dynamic transmission error at the sun"},
+      {"sun_orbit_radius", "largest sun-centre displacement over the window"},
+      {"window",
+       "each speed starts at the quasi-static solution, skips skip_time_s (start transient below "
+       "transient_fraction in every mode) and measures window_mesh_cycles from "
+       "window_start_carrier_deg"}};
+  j["quasi_static_peak_mesh_force_N"] = qs_force;
+  j["modes"] = modes;
+  j["coincidences"] = coincidences;
+  j["speeds"] = list;
+  return j;
+}
+
+}  // namespace epicycle::report
