@@ -31,7 +31,8 @@
 //     Writes DIR/dynamic_wp_backends.csv and .svg (LSR panels; TE in the CSV).
 //
 //   Both take --rate-scale X [1/s]: SimulationOptions::rate_scale (the rates' absolute tolerance
-//   is the position tolerance times X) for every run instead of the library's default.
+//   is the position tolerance times X) for every run instead of the library's default; their
+//   files are then named with "_rate_scale_X" after the stem (X as given).
 //
 // Error measures (both against the reference's samples at the same output times):
 //   LSR: max over the samples and the planets of |LSR_i − LSR_i,ref| [-] (LSR is a fraction of
@@ -97,8 +98,15 @@ struct Run {
 
 // Absolute tolerances scaled with rtol; at rtol 1e-6 they are SimulationOptions' defaults
 // (1e-10 m, 1e-9 rad, 1e-6 J), so that tightening rtol tightens the whole error test.
-// --rate-scale: SimulationOptions::rate_scale for every run (0: the library's default).
+// --rate-scale: SimulationOptions::rate_scale for every run (0: the library's default), and the
+// value as given, which names the output files (the default run's files are not written over).
 double rate_scale_option = 0;
+std::string rate_scale_text;
+
+// The output file `stem` + `extension`, with "_rate_scale_X" after the stem under --rate-scale X.
+std::string OutputName(const std::string& stem, const std::string& extension) {
+  return stem + (rate_scale_text.empty() ? "" : "_rate_scale_" + rate_scale_text) + extension;
+}
 
 dynamics::SimulationOptions Options(dynamics::Integrator integrator, double rtol) {
   dynamics::SimulationOptions o;
@@ -345,7 +353,7 @@ void Integrators(const Setup& setup) {
                      "reference cvode-bdf");
   Print(ref);
   if (!ref.completed) throw std::runtime_error("the reference run failed: " + ref.message);
-  WriteTrace(setup.out / "dynamic_wp_reference_trace.csv", ref.trace);
+  WriteTrace(setup.out / OutputName("dynamic_wp_reference_trace", ".csv"), ref.trace);
   Run ref9 =
       Simulate(c.model, Options(Integrator::kCvodeBdf, 1e-9), c.d0, c.times, "check cvode-bdf");
   Judge(&ref9, ref.trace);
@@ -384,10 +392,11 @@ void Integrators(const Setup& setup) {
   std::snprintf(
       note, sizeof(note),
       "paper stage run-out 20 um fixed sun 1500 rpm; from mesh cycle %.2f; %d mesh cycles; "
-      "reference cvode-bdf rtol %.0e (contact tolerance 1e-10)",
-      setup.windows.front().start_cycle, setup.cycles, kReferenceRtol);
+      "reference cvode-bdf rtol %.0e (contact tolerance 1e-10); rate scale %g 1/s",
+      setup.windows.front().start_cycle, setup.cycles, kReferenceRtol,
+      Options(Integrator::kCvodeBdf, kReferenceRtol).rate_scale);
   for (Run& r : runs) r.start_cycle = setup.windows.front().start_cycle;
-  WriteCsv(setup.out / "dynamic_wp_integrators.csv", runs, note);
+  WriteCsv(setup.out / OutputName("dynamic_wp_integrators", ".csv"), runs, note);
   const std::vector<std::pair<double, std::string>> lsr_lines = {
       {ref9.lsr_error, "BDF 1e-9 vs reference"}, {ref_erk.lsr_error, "ERK 1e-10 vs reference"}};
   const std::vector<std::pair<double, std::string>> te_lines = {
@@ -405,9 +414,10 @@ void Integrators(const Setup& setup) {
                            runs, names, {"#1b9e77", "#d95f02", "#7570b3"},
                            [](const Run& r) { return r.rtol; }, "rtol", lsr_lines, te_lines, ""),
                        Notes(runs));
-  std::ofstream(setup.out / "dynamic_wp_integrators.svg") << svg;
-  std::printf("wrote %s and %s\n", (setup.out / "dynamic_wp_integrators.csv").c_str(),
-              (setup.out / "dynamic_wp_integrators.svg").c_str());
+  std::ofstream(setup.out / OutputName("dynamic_wp_integrators", ".svg")) << svg;
+  std::printf("wrote %s and %s\n",
+              (setup.out / OutputName("dynamic_wp_integrators", ".csv")).c_str(),
+              (setup.out / OutputName("dynamic_wp_integrators", ".svg")).c_str());
 }
 
 // One window of the back-end study: the tight reference, then per rtol the Newton run at contact
@@ -485,7 +495,7 @@ void Backends(const Setup& setup) {
                 "paper stage run-out 20 um fixed sun 1500 rpm; %d mesh cycles per window; "
                 "cvode-bdf analytic J; reference cvode-bdf rtol %.0e newton contact tolerance %.0e",
                 setup.cycles, kReferenceRtol, kReferenceContactTolerance);
-  WriteCsv(setup.out / "dynamic_wp_backends.csv", runs, note);
+  WriteCsv(setup.out / OutputName("dynamic_wp_backends", ".csv"), runs, note);
   std::vector<std::string> notes = {"labels: contact tolerance",
                                     "(k failed): failed contact solves",
                                     "hollow: run stopped; its error covers",
@@ -496,9 +506,9 @@ void Backends(const Setup& setup) {
   const auto missing = Unplotted(runs, [](const Run& r) { return r.contact_tolerance; });
   notes.insert(notes.end(), missing.begin(), missing.end());
   const std::string svg = bench::LogLogSvg(panels, notes);
-  std::ofstream(setup.out / "dynamic_wp_backends.svg") << svg;
-  std::printf("wrote %s and %s\n", (setup.out / "dynamic_wp_backends.csv").c_str(),
-              (setup.out / "dynamic_wp_backends.svg").c_str());
+  std::ofstream(setup.out / OutputName("dynamic_wp_backends", ".svg")) << svg;
+  std::printf("wrote %s and %s\n", (setup.out / OutputName("dynamic_wp_backends", ".csv")).c_str(),
+              (setup.out / OutputName("dynamic_wp_backends", ".svg")).c_str());
 }
 
 }  // namespace
@@ -538,6 +548,7 @@ int main(int argc, char** argv) {
         for (Window& w : setup.windows) w.rtols = {rtol};
       } else if (key == "--rate-scale") {
         rate_scale_option = std::stod(value);
+        rate_scale_text = value;
         if (!(rate_scale_option > 0))
           throw std::invalid_argument("--rate-scale = " + value + ": must be > 0 [1/s]");
       } else if (key == "--time-limit") {
