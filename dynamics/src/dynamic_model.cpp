@@ -390,6 +390,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   for (int j = 0; j < n; ++j) mesh_load[mesh_index(terms.contacts[j])] += e.force(j);
   e.dissipated_power = 0;
   e.friction_power = 0;
+  e.contact_power = 0;
   const bool friction = settings_.friction.law != transmission::FrictionLaw::kOff;
   if (friction) e.friction_tangent.assign(static_cast<std::size_t>(n), Vec2::Zero());
   Eigen::VectorXd& qf = e.generalised_force;
@@ -407,6 +408,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
                vb = transmission::MaterialVelocity(s.body_b, p, e.poses, body);
     e.overlap_rate(j) = c.normal.dot(va - vb);
     if (!(e.force(j) > 0)) continue;
+    e.contact_power += e.force(j) * e.overlap_rate(j);
     const double cm = s.mesh == geometry::MeshKind::kSunPlanet ? damping_sun_ : damping_ring_;
     const double cj = cm * e.force(j) / mesh_load[mesh_index(s)];
     e.total_force(j) = std::max(0.0, e.force(j) + cj * e.overlap_rate(j));
@@ -496,6 +498,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
                  solvers::LocalApproachIntegral(terms.local[j], fj);
     }
   }
+  e.contact_energy = energies ? elastic : 0.0;
   const transmission::StageSetup& setup = model_.setup();
   const int ks = Find(MotionDof::kSun, MotionDof::kX);
   if (ks >= 0 && setup.sun == transmission::SunSupport::kElastic) {
@@ -740,21 +743,42 @@ void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::Ma
     const double km = mi % 2 == 0 ? k_sun_ : k_ring_;
     *k += km * g * g.transpose();
   }
-  // Bearings: −∂Q/∂d by central differences (linear springs: exact to round-off), with the pins
-  // where the carrier is at `carrier_angle`.
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(nd);
-  const double t = (carrier_angle - start_angle_) / carrier_speed_;
-  for (int q = 0; q < nd; ++q) {
-    const double h = 1e-9;
-    Eigen::VectorXd dp = zero, dm = zero;
-    dp(q) += h;
-    dm(q) -= h;
-    Eigen::VectorXd qp = Eigen::VectorXd::Zero(nd), qm = Eigen::VectorXd::Zero(nd);
-    BearingForces(t, dp, zero, &qp, nullptr);
-    BearingForces(t, dm, zero, &qm, nullptr);
-    k->col(q) -= (qp - qm) / (2 * h);
+  // Bearings: the Hessian of their stored energy at the reference configuration, symmetric by
+  // construction. Every bearing is a linear spring, so its energy is ½ k |J d|² for the map J from
+  // the state to the spring's deflection; at d = 0 every spring is unstretched (a pin's centre is
+  // its pin, as Pin and PinReference agree there), so the rotation of a pin with the carrier adds
+  // no geometric term and the Hessian is k JᵀJ.
+  const transmission::StageSetup& setup = model_.setup();
+  auto spring = [&](double stiffness, const std::vector<std::pair<int, double>>& j) {
+    for (const auto& [a, ja] : j)
+      for (const auto& [b, jb] : j) (*k)(a, b) += stiffness * ja * jb;
+  };
+  const int ks = Find(MotionDof::kSun, MotionDof::kX);
+  if (ks >= 0 && setup.sun == transmission::SunSupport::kElastic)
+    for (int a = 0; a < 2; ++a) spring(setup.sun_stiffness, {{ks + a, 1.0}});
+  const int kr = Find(MotionDof::kRing, MotionDof::kRotation);
+  if (kr >= 0) {
+    spring(settings_.ring_torsional_stiffness, {{kr, 1.0}});
+    for (int a = 1; a <= 2; ++a) spring(settings_.ring_stiffness, {{kr + a, 1.0}});
   }
-  *k = 0.5 * (*k + k->transpose());
+  const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
+  const int kcx = Find(MotionDof::kCarrier, MotionDof::kX);
+  if (kcx >= 0)
+    for (int a = 0; a < 2; ++a) spring(settings_.carrier_stiffness, {{kcx + a, 1.0}});
+  const double t = (carrier_angle - start_angle_) / carrier_speed_;
+  for (int i = 0; i < model_.planets(); ++i) {
+    const int kx = Find(MotionDof::kPlanet, MotionDof::kX, i);
+    if (kx < 0) continue;
+    // The pin spring's deflection: the planet's centre less its pin, which moves with the
+    // carrier's centre and turns with its rotation φ by φ ẑ × (pin − carrier centre).
+    const Vec2 arm = Perp(PinReference(i, t));
+    for (int a = 0; a < 2; ++a) {
+      std::vector<std::pair<int, double>> j = {{kx + a, 1.0}};
+      if (kcx >= 0) j.push_back({kcx + a, -1.0});
+      if (kc >= 0) j.push_back({kc, -arm(a)});
+      spring(setup.planet_stiffness, j);
+    }
+  }
 }
 
 StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeComplianceOptions& f)

@@ -120,6 +120,7 @@ int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     }
     out[2 * c.n] = c.scratch.external_power;
     out[2 * c.n + 1] = c.scratch.dissipated_power;
+    out[2 * c.n + 2] = c.scratch.contact_power;
     std::swap(c.warm, c.scratch);
     return 0;
   } catch (...) {
@@ -225,13 +226,15 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
 
   Sundials s;
   Check(SUNContext_Create(nullptr, &s.ctx), "SUNContext_Create");
-  const int size = 2 * n + 2;
+  // The deviations, their rates, and three works: W_ext, W_diss and the elastic contact forces'.
+  const int size = 2 * n + 3;
   s.y = N_VNew_Serial(size, s.ctx);
   s.atol = N_VNew_Serial(size, s.ctx);
   s.dky = N_VNew_Serial(size, s.ctx);
   if (!s.y || !s.atol || !s.dky) throw std::runtime_error("SUNDIALS: cannot allocate vectors");
   // The warm start of the first evaluation: the state itself, solved cold.
-  model.Evaluate(0.0, d0, v0, *c.solver, c.contact, nullptr, &c.warm, /*energies=*/false);
+  model.Evaluate(0.0, d0, v0, *c.solver, c.contact, nullptr, &c.warm, /*energies=*/true);
+  const double contact_energy0 = c.warm.contact_energy;
   result.stats.rate_scale =
       options.rate_scale > 0 ? options.rate_scale : HighestFrequency(model, d0, v0, c.warm);
 
@@ -245,8 +248,8 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     atol[k] = a;
     atol[n + k] = a * result.stats.rate_scale;
   }
-  y[2 * n] = y[2 * n + 1] = 0.0;
-  atol[2 * n] = atol[2 * n + 1] = options.atol_energy;
+  y[2 * n] = y[2 * n + 1] = y[2 * n + 2] = 0.0;
+  atol[2 * n] = atol[2 * n + 1] = atol[2 * n + 2] = options.atol_energy;
 
   const bool cvode = options.integrator == Integrator::kCvodeBdf;
   if (cvode) {
@@ -371,6 +374,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
       }
       sample.external_work = y[2 * n];
       sample.dissipated_work = y[2 * n + 1];
+      sample.compliance_work = e.contact_energy - contact_energy0 - y[2 * n + 2];
       const transmission::StageCompliance& compliance = model.stage_model().compliance();
       if (compliance.has_root_stress()) {
         // With friction the friction forces load the teeth too.

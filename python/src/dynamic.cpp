@@ -124,8 +124,8 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   const int n = out.rig->stage.planets();
   const auto& samples = out.result.samples;
   const auto count = static_cast<py::ssize_t>(samples.size());
-  std::vector<double> time, deg, balance, w_ext, w_diss, kin, elastic, friction_power, sun_bearing,
-      planet_bearing;
+  std::vector<double> time, deg, balance, w_ext, w_diss, kin, elastic, compliance_work,
+      friction_power, sun_bearing, planet_bearing;
   std::vector<int> contacts, active;
   RunColumns run;
   PairColumns p;
@@ -150,6 +150,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
     w_diss.push_back(x.dissipated_work);
     kin.push_back(e.kinetic_energy);
     elastic.push_back(e.elastic_energy);
+    compliance_work.push_back(x.compliance_work);
     friction_power.push_back(e.friction_power);
     int a = 0;
     for (int j = 0; j < e.total_force.size(); ++j) a += e.total_force(j) > 0;
@@ -230,6 +231,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   f["dissipated_work_J"] = Array(std::move(w_diss));
   f["kinetic_energy_J"] = Array(std::move(kin));
   f["elastic_energy_J"] = Array(std::move(elastic));
+  f["compliance_work_J"] = Array(std::move(compliance_work));
   f["contacts"] = Array(std::move(contacts));
   f["active_contacts"] = Array(std::move(active));
   f["friction_power_W"] = Array(std::move(friction_power));
@@ -516,7 +518,7 @@ sun_speed_rpm: sun speed [rpm] (None: the scene's dynamics.sun_speed_rpm; given:
 Returns Result with per output step (T steps, n planets): time_s [s], carrier_deg [deg], lsr (T, n)
 [-], load_sharing_factor (T, n) [-], k_gamma [-], te_urad [µrad] (dynamic TE at the sun), sun_x_um,
 sun_y_um [µm] (sun centre from nominal), sun_torque_balance_Nm [N·m], external_work_J,
-dissipated_work_J, kinetic_energy_J, elastic_energy_J [J], contacts, active_contacts,
+dissipated_work_J, kinetic_energy_J, elastic_energy_J, compliance_work_J [J], contacts, active_contacts,
 friction_power_W [W], sun_bearing_force_N (T, 2) [N], planet_bearing_force_N (T, n, 2) [N]; pairs
 (per loaded tooth pair and step: time_s, mesh, kind, flank, tooth_a, tooth_b, normal_force_N,
 elastic_force_N, friction_force_N [N], overlap_rate_mm_per_s [mm/s]); vibration (per step, the

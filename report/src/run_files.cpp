@@ -513,7 +513,8 @@ std::string DynamicStepsHead(const std::string& provenance_line, int planets, in
   for (int i = 1; i <= planets; ++i) steps += ",L_" + std::to_string(i);
   steps +=
       ",K_gamma,transmission_error_urad,sun_x_um,sun_y_um,sun_torque_balance_Nm,"
-      "external_work_J,dissipated_work_J,kinetic_energy_J,elastic_energy_J,contacts,"
+      "external_work_J,dissipated_work_J,kinetic_energy_J,elastic_energy_J,compliance_work_J,"
+      "contacts,"
       "active_contacts,friction_power_W";
   for (int i = 1; i <= planets; ++i) steps += ",LSR_force_" + std::to_string(i);
   return steps + RootStressHead(transmission::BodyNames(stress_bodies)) + "\n";
@@ -550,11 +551,11 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
   for (double v : s.load_sharing) Cell(steps, n * v);
   int active = 0;
   for (int j = 0; j < e.total_force.size(); ++j) active += e.total_force(j) > 0;
-  steps += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}", Num(s.k_gamma),
+  steps += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}", Num(s.k_gamma),
                        Num(s.transmission_error * 1e6), Num(s.sun_centre.x() * 1e6),
                        Num(s.sun_centre.y() * 1e6), Num(s.sun_torque_balance), Num(s.external_work),
                        Num(s.dissipated_work), Num(e.kinetic_energy), Num(e.elastic_energy),
-                       e.terms.size(), active, Num(e.friction_power));
+                       Num(s.compliance_work), e.terms.size(), active, Num(e.friction_power));
   steps += Cells(s.force_sharing);
   if (bodies_ > 0) RootStressCells(steps, s.root_stress, bodies_);
   std::string pairs;

@@ -142,19 +142,10 @@ TEST_CASE(
     for (int tight = 0; tight < 2; ++tight) {
       dynamics::SimulationOptions so;
       so.rtol = 1e-8;
-      if (tight) {
-        so.rtol /= 100;
-        so.atol_length /= 100;
-        so.atol_angle /= 100;
-        so.atol_energy /= 100;
-      }
+      if (tight) so = test::Tightened(so, 100);
       const auto r = Run(rig, Times(*rig.model, *rig.stage, 2, 100), so);
       REQUIRE(r.completed);
-      const Eigen::VectorXd d0 = rig.model->QuasiStaticStart({}, so.backend);
-      auto solver = solvers::MakeContactSolver(so.backend);
-      dynamics::Evaluation start;
-      rig.model->Evaluate(0.0, d0, Eigen::VectorXd::Zero(rig.model->size()), *solver, {}, nullptr,
-                          &start);
+      const dynamics::Evaluation start = test::StartEvaluation(rig, so);
       const double energy0 = start.kinetic_energy + start.elastic_energy;
       for (const DynamicSample& s : r.samples) {
         const double e = s.evaluation.kinetic_energy + s.evaluation.elastic_energy;

@@ -32,6 +32,7 @@ def test_dynamic_run_equals_the_program_files(tmp_path):
                                ("dissipated_work_J", r.dissipated_work_J),
                                ("kinetic_energy_J", r.kinetic_energy_J),
                                ("elastic_energy_J", r.elastic_energy_J),
+                               ("compliance_work_J", r.compliance_work_J),
                                ("friction_power_W", r.friction_power_W)]:
             assert row[column] == num(values[k]), column
         assert row["contacts"] == str(r.contacts[k])

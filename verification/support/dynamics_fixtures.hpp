@@ -106,6 +106,26 @@ inline dynamics::SimulationResult Run(const DynamicRig& rig, const std::vector<d
   return dynamics::Simulate(*rig.model, o, d0, Eigen::VectorXd::Zero(rig.model->size()), times);
 }
 
+// The options with every tolerance (rtol, the absolute ones and the works') divided by `factor`.
+inline dynamics::SimulationOptions Tightened(dynamics::SimulationOptions o, double factor) {
+  o.rtol /= factor;
+  o.atol_length /= factor;
+  o.atol_angle /= factor;
+  o.atol_energy /= factor;
+  return o;
+}
+
+// The evaluation of the run's start (the quasi-static state at rest), with its energies.
+inline dynamics::Evaluation StartEvaluation(const DynamicRig& rig,
+                                            const dynamics::SimulationOptions& o) {
+  const Eigen::VectorXd d0 = rig.model->QuasiStaticStart(o.contact, o.backend);
+  auto solver = solvers::MakeContactSolver(o.backend);
+  dynamics::Evaluation start;
+  rig.model->Evaluate(0.0, d0, Eigen::VectorXd::Zero(rig.model->size()), *solver, o.contact,
+                      nullptr, &start);
+  return start;
+}
+
 inline std::string WithRunout(const std::string& text) {
   return text + "\n[[errors.runout]]\ngear = \"planet1\"\namplitude_um = 20.0\nphase_deg = 0.0\n";
 }

@@ -112,8 +112,14 @@ struct Evaluation {
   double external_power = 0;    ///< power of the input torque and of the driven carrier [W]
   double dissipated_power = 0;  ///< friction + mesh damping + bearing damping [W], ≥ 0
   double friction_power = 0;    ///< friction alone [W], ≥ 0
+  /// Σ_j F_j δ̇_j: the power the elastic contact forces take from the bodies [W] (the contacts'
+  /// damping and friction are in dissipated_power). With a compliance C that changes as the
+  /// contacts move along the flanks it differs from the rate of the contacts' stored energy by
+  /// ½FᵀĊF (docs/dynamic.md, "Energy balance").
+  double contact_power = 0;
   double kinetic_energy = 0;    ///< [J] (0 unless asked for: Evaluate's `energies`)
   double elastic_energy = 0;  ///< contacts ½FᵀCF + Σ[F u(F) − ∫u] plus bearings [J] (ditto)
+  double contact_energy = 0;  ///< the contacts' part of elastic_energy [J] (ditto)
   solvers::ContactReport report;
   EvaluationWorkspace work;  ///< Evaluate's buffers (no result)
 };

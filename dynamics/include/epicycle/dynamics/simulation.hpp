@@ -94,6 +94,11 @@ struct DynamicSample {
   double sun_torque_balance = 0;
   double external_work = 0;    ///< W_ext since t = 0 [J]
   double dissipated_work = 0;  ///< W_diss since t = 0 [J]
+  /// W_C since t = 0 [J]: the change of the contacts' stored energy less the work the elastic
+  /// contact forces took from the bodies, −∫½FᵀĊF dt, the energy the compliance's change along
+  /// the flanks adds (the model's contact forces omit −½Fᵀ(∂C/∂q)F; docs/dynamic.md, "Energy
+  /// balance"). E(t) − E(0) = W_ext − W_diss + W_C to the integrator's tolerance.
+  double compliance_work = 0;
   Evaluation evaluation;       ///< forces, energies, contacts at this step
   /// Root stresses of this step's state (docs/model.md §9) under the contact forces with their
   /// damping, when the stage's tables carry them (the scene's [model] stresses), else empty.
