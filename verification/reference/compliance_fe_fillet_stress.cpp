@@ -22,8 +22,9 @@
 //      doubled: the refined sequences are not monotonic (no observed order), so the largest
 //      change over three refined tables stands for the default's error; the refined models lie
 //      within 0.6 % (ISO) and 1.4 % (sun–planet) of the reference at refinement 2.
-// A single-load estimate (build/benchmarks/fillet_stress_convergence SCENE GEAR: 1.3–2.2 %)
-// understates (b) for the sun–planet pair: the contact states load the flank elsewhere.
+// A single load held at d_en (build/benchmarks/fillet_stress_convergence SCENE GEAR: the ISO
+// 20/40 gears 1.2 % high and 1.6 % low, the sun and planet 2.5 % and 2.1 % low) understates (b):
+// the contact states load the flank elsewhere.
 // Every position is asserted, tip positions too: their fillet stress depends on the force and
 // its place, not on the tip corner's local compliance.
 #include <catch2/catch.hpp>

@@ -23,7 +23,7 @@
 // f_bearing the bearing's (a fixed sun: the reaction −(net mesh force); an elastic sun: its
 // spring and damper; floating: 0). With A = [u_1 … u_n; 1 … 1] (3 × n) and A⁺ its pseudo-inverse
 // (A⁻¹ for n = 3, where the sun's balance fixes the three forces), F − F̄ splits linearly into
-//   A⁺[m_s a_s; 0] (translational inertia), −A⁺[f_bearing; 0], −A⁺[f_fric; 0], −A⁺[f_off; 0],
+//   A⁺[m_s a_s; 0] (the sun's inertial force), −A⁺[f_bearing; 0], −A⁺[f_fric; 0], −A⁺[f_off; 0],
 //   and what remains (the lines of action not 120° apart: run-out, the sun's displacement; for
 //   n ≠ 3 also the share the sun's balance leaves to the meshes' stiffness).
 // Then, with ℓ̄ the planets' mean lever (ℓ_i = ℓ̄ for a sun without run-out),
@@ -52,8 +52,12 @@ namespace epicycle::dynamics {
 /// The parts of LSR_i − 1/n at one sample (above), each per planet [-].
 struct LoadSharingParts {
   std::vector<double> deviation;        ///< LSR_i − 1/n
-  std::vector<double> sun_rotation;     ///< the sun's rotational inertia J_s θ̈_s
-  std::vector<double> sun_translation;  ///< the sun's translational inertia m_s a_s
+  /// The sun's inertial moment J_s θ̈_s and force m_s a_s: the net moment and force on the sun,
+  /// i.e. its departure from the quasi-static equilibrium, whatever moves it (its ringing at its
+  /// own modes included). Not the share its mass causes: they do not scale with it
+  /// (docs/dynamic.md, "What the two sun parts are, and are not").
+  std::vector<double> sun_rotation;     ///< J_s θ̈_s part
+  std::vector<double> sun_translation;  ///< m_s a_s part
   std::vector<double> bearing;          ///< the sun's bearing (fixed or elastic sun; else 0)
   std::vector<double> friction;         ///< friction's moment and force (exactly 0 without friction)
   std::vector<double> off_line;         ///< normal forces off the lines of action
