@@ -740,6 +740,14 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     t->Done();
   }
   ReadDynamics(top, s.dynamics);
+  if (s.dynamics.carrier_free && !s.dynamics.sun_speed_driven)
+    s.warnings.push_back(
+        s.source +
+        ": [dynamics] carrier = \"torque\" with the sun torque-driven: both ends carry a torque "
+        "and nothing holds the stage's speed; in motion the mesh damping and friction take their "
+        "losses from its rotation, so it slows over a long run (a speed sweep's start transient "
+        "of seconds: the transmission error then grows past the model's validity); sun = "
+        "\"speed\" holds the sun at its speed");
   for (std::size_t k = 0; k < fits.size(); ++k) {
     TableReader& fit = fits[k];
     ShiftFit f;
