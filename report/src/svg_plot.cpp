@@ -192,8 +192,8 @@ std::string RenderSvg(const LinePlot& input) {
       s += fmt::format(
           "<text x=\"{0:.1f}\" y=\"{1}\" transform=\"rotate(-90 {0:.1f} {1})\" "
           "text-anchor=\"middle\"{2}>{3}</text>\n",
-          x, centre,
-          size == 12.0 ? "" : fmt::format(" font-size=\"{:.1f}\"", size), Escape(parts[k]));
+          x, centre, size == 12.0 ? "" : fmt::format(" font-size=\"{:.1f}\"", size),
+          Escape(parts[k]));
     }
   }
   for (double r : plot.y_references) {

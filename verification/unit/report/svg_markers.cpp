@@ -70,15 +70,16 @@ std::vector<Label> Labels(const std::string& svg) {
   std::vector<Label> out;
   for (auto it = std::sregex_iterator(svg.begin(), svg.end(), label); it != std::sregex_iterator();
        ++it)
-    out.push_back({std::stod((*it)[1].str()), std::stod((*it)[2].str()), (*it)[4].str(),
-                   (*it)[3].matched});
+    out.push_back(
+        {std::stod((*it)[1].str()), std::stod((*it)[2].str()), (*it)[4].str(), (*it)[3].matched});
   return out;
 }
 
 // The x [px] of every marker line (drawn from the plot's top, 40 px, to its bottom).
 std::vector<double> MarkerLines(const std::string& svg) {
-  const std::regex line("<line x1=\"([0-9.]+)\" y1=\"40\" x2=\"[0-9.]+\" y2=\"[0-9.]+\" "
-                        "stroke=\"(#888|#d8d8d8)\"");
+  const std::regex line(
+      "<line x1=\"([0-9.]+)\" y1=\"40\" x2=\"[0-9.]+\" y2=\"[0-9.]+\" "
+      "stroke=\"(#888|#d8d8d8)\"");
   std::vector<double> out;
   for (auto it = std::sregex_iterator(svg.begin(), svg.end(), line); it != std::sregex_iterator();
        ++it)
@@ -139,9 +140,10 @@ TEST_CASE("a y label longer than the plot is broken between words, inside the im
       "sun rotation from kinematic [urad] (mean per mesh cycle, band: lowest to highest)";
   report::LinePlot p{"te", "time [ms]", label, {{"s", {0.0, 1.0}, {0.0, 1.0}}}, false, {}};
   const std::string svg = report::RenderSvg(p);
-  const std::regex turned("<text x=\"([0-9.]+)\" y=\"([0-9.]+)\" transform=\"rotate\\(-90 "
-                          "[0-9. ]+\\)\" text-anchor=\"middle\"( font-size=\"([0-9.]+)\")?>([^<]*)"
-                          "</text>");
+  const std::regex turned(
+      "<text x=\"([0-9.]+)\" y=\"([0-9.]+)\" transform=\"rotate\\(-90 "
+      "[0-9. ]+\\)\" text-anchor=\"middle\"( font-size=\"([0-9.]+)\")?>([^<]*)"
+      "</text>");
   std::string joined;
   int count = 0;
   for (auto it = std::sregex_iterator(svg.begin(), svg.end(), turned); it != std::sregex_iterator();

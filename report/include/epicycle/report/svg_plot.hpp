@@ -45,8 +45,8 @@ struct LinePlot {
   /// Vertical markers with labels, drawn in grey (outside the data's x range: left out).
   std::vector<XMarker> x_markers = {};
   /// Every marker label right of its line, on a white ground over the curves (readable across
-  /// other markers' lines): the x axis reaches far enough past the data for the rightmost ones (labels wider
-  /// than a third of the plot excepted).
+  /// other markers' lines): the x axis reaches far enough past the data for the rightmost ones
+  /// (labels wider than a third of the plot excepted).
   bool labels_right = false;
   /// Logarithmic axes (decade ticks); values ≤ 0 are skipped like non-finite ones.
   bool log_x = false, log_y = false;
