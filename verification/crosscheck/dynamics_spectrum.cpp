@@ -426,6 +426,47 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "spectrum of a paper stage with a cracked planet tooth: the TE keeps the odd multiples of "
+    "f_m/z_p beside the even ones",
+    "[crosscheck][dynamics][spectrum][crack]") {
+  // A 2 mm crack at the largest root tension of planet 1's tooth 0 (fillet "-"): the tooth meets
+  // the sun on one flank and, half a planet turn later, the ring on the other (docs/damage.md
+  // "Which lines a tooth fault puts into which signal"). Two meetings per turn of the planet
+  // relative to the carrier put their weight on the even multiples of f_m/z_p; the odd ones would
+  // cancel only if the two meetings were alike, and they are not (another mate, another flank).
+  // Segment of 48 mesh cycles: f_m/z_p on bin 2, every multiple on a bin (Δf = f_m/48). Asserted:
+  // at k f_m/z_p, k = 1 … 4 (bins 2 k), the cracked TE exceeds the healthy one by more than 100
+  // (the healthy run's floor, ≤ 1e-3 of its mesh lines, test above), odd k included.
+  const std::string crack =
+      "\n[[damage.crack]]\ngear = \"planet1\"\ntooth = 0\nside = \"-\"\ndepth_mm = 2.0\n"
+      "angle_deg = 45\n";
+  dynamics::StageFrequencies f, fh;
+  double wall = 0, wall_h = 0;
+  const std::vector<double> cracked =
+      FaultRunTe(test::SceneText("paper_stage.toml") + crack, "cracked_planet.toml", &f, &wall);
+  const std::vector<double>& healthy = HealthyFaultRunTe(&fh, &wall_h);
+  REQUIRE(f.planet_relative / (f.mesh / kFaultCycles) == Approx(2.0).epsilon(1e-9));
+  std::string table;
+  double least = 1e300;
+  for (int k = 1; k <= 4; ++k) {
+    const auto j = static_cast<std::size_t>(2 * k);
+    const double ratio = cracked[j] / std::max(healthy[j], 1e-300);
+    INFO(k << " f_m/z_p: " << cracked[j] << " rad, " << ratio << " x the healthy TE");
+    CHECK(ratio > 100);
+    least = std::min(least, ratio);
+    table +=
+        (table.empty() ? "" : ", ") + std::to_string(k) + ": " + test::Sci(cracked[j] * 1e6, 2);
+  }
+  test::Figure("spectrum, cracked planet tooth, 1500 rpm: " + Fixed(wall, 2) + " s wall");
+  test::VerifyRow(
+      "spectrum, paper stage with a 2 mm crack in planet 1's tooth 0 (1500 rpm, 48 mesh cycles): "
+      "the TE at k f_m/z_p, k = 1 .. 4 [urad]",
+      "every k, odd ones too (two unlike meetings per planet turn)", table,
+      "smallest " + test::Sci(least, 2) + " x the healthy TE there", "> 100 x healthy",
+      least > 100);
+}
+
+TEST_CASE(
     "spectrum of a 4-planet stage with a spall on a sun tooth: the TE holds k n (f_s - f_c), the "
     "housing signals k n (f_s - f_c) +- f_s, nothing at k n (f_s - f_c) +- f_c",
     "[crosscheck][dynamics][spectrum]") {
