@@ -478,9 +478,9 @@ TEST_CASE(
   // f_s − f_c = f_m/z_s = 3 f_c, f_m = 63 f_c. A term of order m of the sun's turn relative to
   // the carrier from planet i carries e^{−i m ψ_i}, a housing-fixed component e^{±i(φ_c + ψ_i)};
   // the sum over the 4 planets keeps m ≡ 0 (TE) or m ≡ ±1 (mod 4) (housing): the TE's lines
-  // 12 k, the ring's mounting and the sun's bearing 12 k ± 4 (k n (f_s − f_c) ± f_s); the rule
-  // the markers used before, k n (f_s − f_c) ± f_c, is 12 k ± 1. One Hann segment of a carrier
-  // revolution (63 mesh cycles after 4; 24 outputs per cycle): every line on a bin (bin j =
+  // 12 k, the ring's mounting and the sun's bearing 12 k ± 4 (k n (f_s − f_c) ± f_s); the lines
+  // k n (f_s − f_c) ± f_c, which only unlike planets add, are 12 k ± 1. One Hann segment of a
+  // carrier revolution (63 mesh cycles after 4; 24 outputs per cycle): every line on a bin (bin j =
   // order j), spreading to its two neighbours only, so lines 3 bins apart do not touch.
   // Asserted below f_m (bins 2 … 59; f_m's own spread reaches 62): (1) the largest local maxima,
   // as many as the rule has lines there (TE 4, housing 10), each on a line of the rule; (2) at the
@@ -575,13 +575,13 @@ TEST_CASE(
         torsional ? "k n (f_s - f_c) = 12 k, by hand"
                   : "k n (f_s - f_c) +- f_s = 12 k +- 4, by hand",
         peaks, "smallest " + test::Sci(least, 3) + unit, "on the rule's lines (bins of f_c)", on);
-    test::VerifyRow("spectrum, the same: " + channel + " at the orders the rule excludes (" +
-                        (torsional ? "12 k +- 4" : "12 k +- 1, the former markers, and 12 k") + ")",
-                    "0 (a symmetric stage); the markers' sun-tooth lines all on the rule",
-                    test::Sci(worst, 2) + unit + " (order " + std::to_string(worst_order) + ")",
-                    test::Sci(worst / largest, 2) + " of the largest line; " +
-                        test::Sci(least / std::max(worst, 1e-300), 2) + " x below the rule's",
-                    "1e-3 (integrator, start transient, contact solve)",
-                    worst < 1e-3 * largest && markers);
+    test::VerifyRow(
+        "spectrum, the same: " + channel + " at the orders the rule excludes (" +
+            (torsional ? "12 k +- 4" : "12 k +- 1 = k n (f_s - f_c) +- f_c, and 12 k") + ")",
+        "0 (a symmetric stage); the markers' sun-tooth lines all on the rule",
+        test::Sci(worst, 2) + unit + " (order " + std::to_string(worst_order) + ")",
+        test::Sci(worst / largest, 2) + " of the largest line; " +
+            test::Sci(least / std::max(worst, 1e-300), 2) + " x below the rule's",
+        "1e-3 (integrator, start transient, contact solve)", worst < 1e-3 * largest && markers);
   }
 }
