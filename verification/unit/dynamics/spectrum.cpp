@@ -331,6 +331,32 @@ TEST_CASE(
   CHECK(orders(torsional, dynamics::LineKind::kSunTooth) == V{3, 6, 9, 60, 66});
 }
 
+TEST_CASE("fault lines of a scene: a damaged or run-out gear's comb, each once",
+          "[unit][dynamics][spectrum]") {
+  // dynamics::FaultKinds: a pit or crack on a gear, or its run-out, repeats with that gear's turn
+  // (docs/damage.md "Which lines a tooth fault puts into which signal"); pin-hole and thickness
+  // errors repeat with nothing and add no comb.
+  using K = dynamics::LineKind;
+  transmission::Damage damage;
+  geometry::StageSpec errors;
+  CHECK(dynamics::FaultKinds(damage, errors).empty());
+  errors.pin_errors = {{5e-6, 0}, {}, {}};
+  errors.planet_thickness_errors = {0, 5e-6, 0};
+  CHECK(dynamics::FaultKinds(damage, errors).empty());
+  damage.pits.push_back({});
+  damage.pits.back().gear = "planet2";
+  damage.cracks.push_back({});
+  damage.cracks.back().gear = "sun";
+  damage.pits.push_back({});
+  damage.pits.back().gear = "planet3";
+  CHECK(dynamics::FaultKinds(damage, errors) == std::vector<K>{K::kSunTooth, K::kPlanetTooth});
+  errors.ring_runout.amplitude = 10e-6;
+  CHECK(dynamics::FaultKinds(damage, errors) ==
+        std::vector<K>{K::kSunTooth, K::kPlanetTooth, K::kRingTooth});
+  errors.planet_runouts = {{20e-6, 0}, {}, {}};
+  CHECK(dynamics::FaultKinds({}, errors) == std::vector<K>{K::kPlanetTooth, K::kRingTooth});
+}
+
 TEST_CASE(
     "spectrum of a run: the skip, the segment of one carrier revolution or of whole mesh "
     "cycles, and a run too short",
