@@ -152,6 +152,14 @@ StageFrequencies CharacteristicFrequencies(const geometry::Stage& stage, double 
   f.ring_teeth = stage.ring().teeth();
   f.planets = stage.planets();
   f.symmetric = EquallySpaced(stage) && (f.sun_teeth + f.ring_teeth) % f.planets == 0;
+  const geometry::StageSpec& spec = stage.spec();
+  f.identical_planets =
+      std::all_of(spec.pin_errors.begin(), spec.pin_errors.end(),
+                  [](const geometry::PinError& e) { return e.radial == 0 && e.tangential == 0; }) &&
+      std::all_of(spec.planet_runouts.begin(), spec.planet_runouts.end(),
+                  [](const geometry::Runout& r) { return r.amplitude == 0; }) &&
+      std::all_of(spec.planet_thickness_errors.begin(), spec.planet_thickness_errors.end(),
+                  [](double e) { return e == 0; });
   // docs/model.md §9 "Fault frequencies", ring fixed.
   f.sun = std::abs(sun_speed) / (2.0 * std::numbers::pi);
   f.carrier = f.sun * f.sun_teeth / (f.sun_teeth + f.ring_teeth);
@@ -159,6 +167,25 @@ StageFrequencies CharacteristicFrequencies(const geometry::Stage& stage, double 
   f.sun_relative = f.sun - f.carrier;
   f.planet_relative = f.mesh / f.planet_teeth;
   return f;
+}
+
+std::vector<LineKind> FaultKinds(const transmission::Damage& damage,
+                                 const geometry::StageSpec& errors) {
+  bool sun = errors.sun_runout.amplitude > 0, ring = errors.ring_runout.amplitude > 0;
+  bool planet = std::any_of(errors.planet_runouts.begin(), errors.planet_runouts.end(),
+                            [](const geometry::Runout& r) { return r.amplitude > 0; });
+  auto note = [&](const std::string& gear) {
+    sun = sun || gear == "sun";
+    ring = ring || gear == "ring";
+    planet = planet || gear.rfind("planet", 0) == 0;
+  };
+  for (const auto& p : damage.pits) note(p.gear);
+  for (const auto& c : damage.cracks) note(c.gear);
+  std::vector<LineKind> kinds;
+  if (sun) kinds.push_back(LineKind::kSunTooth);
+  if (planet) kinds.push_back(LineKind::kPlanetTooth);
+  if (ring) kinds.push_back(LineKind::kRingTooth);
+  return kinds;
 }
 
 std::string SignalKindName(SignalKind kind) {
@@ -175,12 +202,8 @@ std::string LineKindName(LineKind kind) {
       return "sun tooth";
     case LineKind::kPlanetTooth:
       return "planet tooth";
-    case LineKind::kPlanetToothBoth:
-      return "planet tooth, both flanks";
     case LineKind::kRingTooth:
       return "ring tooth";
-    case LineKind::kFaultSideband:
-      return "fault sideband";
   }
   return "?";
 }
@@ -236,26 +259,79 @@ std::vector<SpectralLine> CharacteristicLines(const StageFrequencies& f, SignalK
       }
     }
   }
-  struct Fault {
+  // The tooth faults (docs/damage.md "Which lines a tooth fault puts into which signal"): a
+  // term of order m of planet i's response carries the phase of planet i (sun tooth: e^{−i m ψ_i}
+  // in the sun's turn relative to the carrier; ring tooth: e^{i m ψ_i} in the carrier's turn) and
+  // a housing-fixed component of a vector adds e^{±i(φ_c + ψ_i)}; the sum over n equally spaced
+  // identical planets keeps the orders whose total phase is a multiple of 2π for every i. A
+  // planet tooth's lines come from one planet: nothing cancels.
+  std::vector<double> healthy;
+  for (const SpectralLine& x : lines)
+    if (x.allowed) healthy.push_back(x.frequency);
+  auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(a, b); };
+  const bool phased = f.symmetric && f.identical_planets;
+  struct Comb {
     LineKind kind;
-    const char* name;
-    double hz;
+    double spacing;            // F [Hz]
+    std::string spacing_name;  // "n (f_s - f_c)"
+    double shift;              // g [Hz]: the housing frame's, 0 for none
+    std::string shift_name;
   };
-  const Fault faults[] = {
-      {LineKind::kSunTooth, "n (f_s - f_c)", n * f.sun_relative},
-      {LineKind::kPlanetTooth, "f_m/z_p", f.planet_relative},
-      {LineKind::kPlanetToothBoth, "2 f_m/z_p", 2 * f.planet_relative},
-      {LineKind::kRingTooth, "n f_c", n * f.carrier},
+  const bool housing = kind == SignalKind::kHousing;
+  const Comb combs[] = {
+      phased ? Comb{LineKind::kSunTooth, n * f.sun_relative, "n (f_s - f_c)", housing ? f.sun : 0,
+                    "f_s"}
+             : Comb{LineKind::kSunTooth, f.sun_relative, "(f_s - f_c)", housing ? f.carrier : 0,
+                    "f_c"},
+      Comb{LineKind::kPlanetTooth, f.planet_relative, "f_m/z_p", housing ? f.carrier : 0, "f_c"},
+      phased ? Comb{LineKind::kRingTooth, n * f.carrier, "n f_c", 0, ""}
+             : Comb{LineKind::kRingTooth, f.carrier, "f_c", 0, ""},
   };
-  for (const Fault& fault : faults) {
-    for (int k = 1; k <= fault_multiples; ++k)
-      add(k == 1 ? std::string(fault.name) : std::to_string(k) + " x " + fault.name, fault.kind,
-          k * fault.hz, 0, 0, k, false);
+  for (const Comb& c : combs) {
+    const std::vector<int> shifts = c.shift > 0 ? std::vector<int>{-1, 1} : std::vector<int>{0};
+    // "n (f_s - f_c)", "2 x n (f_s - f_c) + f_s", "f_s - f_c", "(f_s - f_c) + f_c", "f_c".
+    auto name = [&](int k, int s) {
+      const std::string& sp = c.spacing_name;
+      std::string out = k == 0                        ? ""
+                        : k > 1                       ? std::to_string(k) + " x " + sp
+                        : s != 0 || sp.front() != '(' ? sp
+                                                      : sp.substr(1, sp.size() - 2);
+      if (s != 0) out += k == 0 ? c.shift_name : (s < 0 ? " - " : " + ") + c.shift_name;
+      return out;
+    };
+    auto hz = [&](int k, int s) { return k * c.spacing + s * c.shift; };
+    std::vector<double> listed;
+    for (int k = 0; k <= fault_multiples; ++k)
+      for (int s : shifts)
+        if (hz(k, s) > 0) {
+          add(name(k, s), c.kind, hz(k, s), 0, s, k, false);
+          listed.push_back(hz(k, s));
+        }
     if (fault_multiples == 0) continue;
-    for (int h = 1; h <= harmonics; ++h)
-      for (int sign : {-1, 1})
-        add(times(h, "f_m") + (sign < 0 ? " - " : " + ") + fault.name, LineKind::kFaultSideband,
-            h * f.mesh + sign * fault.hz, h, sign, 1, false);
+    // Beside each mesh harmonic: the comb's nearest line below and above that is neither the
+    // harmonic, nor a healthy stage's line, nor listed above.
+    for (int h = 1; h <= harmonics; ++h) {
+      const double fm = h * f.mesh;
+      struct Near {
+        int k = -1, s = 0;
+        double d = 0;
+      } below, above;
+      for (int s : shifts) {
+        const int k0 = static_cast<int>(std::floor((fm - s * c.shift) / c.spacing));
+        for (int k = std::max(0, k0 - 3); k <= k0 + 4; ++k) {
+          const double x = hz(k, s);
+          if (!(x > 0) || same(x, fm) ||
+              std::any_of(healthy.begin(), healthy.end(), [&](double y) { return same(x, y); }) ||
+              std::any_of(listed.begin(), listed.end(), [&](double y) { return same(x, y); }))
+            continue;
+          Near& side = x < fm ? below : above;
+          if (side.k < 0 || std::abs(x - fm) < side.d) side = {k, s, std::abs(x - fm)};
+        }
+      }
+      for (const Near* side : {&below, &above})
+        if (side->k >= 0)
+          add(name(side->k, side->s), c.kind, hz(side->k, side->s), h, side->s, side->k, false);
+    }
   }
   std::stable_sort(lines.begin(), lines.end(), [](const SpectralLine& a, const SpectralLine& b) {
     return a.frequency < b.frequency;

@@ -8,6 +8,7 @@
 
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/report/provenance.hpp"
+#include "epicycle/report/svg_plot.hpp"
 
 namespace epicycle::report {
 
@@ -99,16 +100,23 @@ std::string VibrationFiles::Close(const std::string& title) {
       dynamics::CharacteristicLines(frequencies_, dynamics::SignalKind::kHousing, nyquist);
   CsvFile lines(base_ + "_spectrum_lines.csv",
                 ProvenanceCsvLine(provenance_) +
-                    "name,kind,frequency_Hz,carrier_order,sun_order,harmonic,sideband,multiple,"
-                    "healthy_torsional,healthy_housing\n");
-  for (std::size_t k = 0; k < torsional.size(); ++k) {
-    const dynamics::SpectralLine& x = torsional[k];
-    lines.WriteLine(fmt::format("{},{},{:.9g},{:.9g},{:.9g},{},{},{},{},{}", CsvText(x.name),
-                                dynamics::LineKindName(x.kind), x.frequency, x.carrier_order,
-                                x.sun_order, x.harmonic, x.sideband, x.multiple, x.allowed ? 1 : 0,
-                                housing[k].allowed ? 1 : 0));
-  }
+                    "signal,name,kind,frequency_Hz,carrier_order,sun_order,harmonic,sideband,"
+                    "multiple,healthy\n");
+  for (const auto kind : {dynamics::SignalKind::kTorsional, dynamics::SignalKind::kHousing})
+    for (const dynamics::SpectralLine& x :
+         kind == dynamics::SignalKind::kTorsional ? torsional : housing)
+      lines.WriteLine(fmt::format(
+          "{},{},{},{:.9g},{:.9g},{:.9g},{},{},{},{}", dynamics::SignalKindName(kind),
+          CsvText(x.name), CsvText(dynamics::LineKindName(x.kind)), x.frequency, x.carrier_order,
+          x.sun_order, x.harmonic, x.sideband, x.multiple, x.allowed ? 1 : 0));
   lines.Close();
+  const std::vector<dynamics::LineKind> faults = dynamics::FaultKinds(
+      model_.stage_model().setup().damage, model_.stage_model().stage().spec());
+  // The console names the healthy lines and the scene's own faults' only.
+  auto own = [&](const dynamics::SpectralLine& x) {
+    return x.kind == dynamics::LineKind::kMesh || x.kind == dynamics::LineKind::kCarrierSideband ||
+           std::find(faults.begin(), faults.end(), x.kind) != faults.end();
+  };
 
   std::string text = fmt::format(
       "  spectrum: {} segments of {} samples ({:.4g} s, Hann, half-overlapping) from t = {:.4g} "
@@ -127,7 +135,7 @@ std::string VibrationFiles::Close(const std::string& title) {
       double best = df * (1 + 1e-9);
       for (const auto& x : all) {
         const double d = std::abs(x.frequency - sp.Frequency(j));
-        if (d < best || (d == best && x.allowed)) {
+        if (own(x) && (d < best || (d == best && x.allowed))) {
           best = d;
           near = x.name;
         }
@@ -140,50 +148,91 @@ std::string VibrationFiles::Close(const std::string& title) {
                       ch.name == "sun_force_x" || ch.name == "sun_x" ||
                       ch.name == "ring_acceleration_x";
     if (!plot) continue;
-    // Marked: what a healthy stage shows, the mesh harmonics the phasing removes from a torsional
-    // signal, and the tooth-fault fundamentals.
-    std::vector<dynamics::SpectralLine> marked;
-    for (const auto& x : all) {
-      const bool fault = x.multiple == 1 && x.harmonic == 0;
-      if (x.allowed || fault ||
-          (x.kind == dynamics::LineKind::kMesh && ch.kind == dynamics::SignalKind::kTorsional))
-        marked.push_back(x);
-    }
-    const std::string path = base_ + "_spectrum_" + ch.name + ".svg";
-    WriteTextFile(path, RenderSvg(SpectrumPlot(
-                            fmt::format("{}: {}", title, ch.name),
-                            fmt::format("{} amplitude [{}]", ch.name, ch.unit), amp[c], df, marked,
-                            fmt::format("{} segments, {:.3g} Hz", sp.segments(), df),
-                            frequencies_.mesh)));
+    SpectrumFigure figure;
+    figure.title = fmt::format("{}: {}", title, ch.name);
+    figure.y_label = fmt::format("{} amplitude [{}]", ch.name, ch.unit);
+    figure.legend = fmt::format("{} segments, {:.3g} Hz", sp.segments(), df);
+    figure.kind = ch.kind;
+    figure.frequencies = frequencies_;
+    figure.faults = faults;
+    WriteTextFile(base_ + "_spectrum_" + ch.name + ".svg", SpectrumSvg(figure, amp[c], df));
   }
   return text;
 }
 
-LinePlot SpectrumPlot(const std::string& title, const std::string& y_label,
-                      const std::vector<double>& amplitude, double resolution,
-                      const std::vector<dynamics::SpectralLine>& lines, const std::string& legend,
-                      double mesh_hz) {
-  LinePlot p;
-  p.title = title;
-  const bool orders = mesh_hz > 0 && std::isfinite(mesh_hz);
-  const double unit = orders ? mesh_hz : 1.0;  // x = frequency / unit
-  p.x_label = (orders ? fmt::format("mesh order f/f_m (f_m = {:.4g} Hz)", mesh_hz)
-                      : std::string("frequency [Hz]")) +
-              " (solid: lines of a healthy stage; dashed: phasing-cancelled or fault)";
-  p.y_label = y_label;
-  p.log_y = true;
-  PlotSeries s{legend, {}, {}};
+std::string SpectrumSvg(const SpectrumFigure& figure, const std::vector<double>& amplitude,
+                        double resolution) {
+  const dynamics::StageFrequencies& f = figure.frequencies;
+  const bool torsional = figure.kind == dynamics::SignalKind::kTorsional;
+  const double nyquist = resolution * static_cast<double>(amplitude.size() - 1);
   double top = 0;
   for (std::size_t j = 1; j < amplitude.size(); ++j) top = std::max(top, amplitude[j]);
-  // Against mesh order: up to kSpectrumPlotOrders (the CSV holds every bin).
-  for (std::size_t j = 1; j < amplitude.size(); ++j) {
-    if (orders && static_cast<double>(j) * resolution > kSpectrumPlotOrders * mesh_hz) break;
-    s.x.push_back(static_cast<double>(j) * resolution / unit);
-    s.y.push_back(std::max(amplitude[j], kPlotFloor * top));
+  // The curve over [0, upto] Hz in units of `unit` Hz.
+  auto curve = [&](double upto, double unit) {
+    PlotSeries s{figure.legend, {}, {}};
+    s.envelope = true;
+    for (std::size_t j = 1; j < amplitude.size(); ++j) {
+      const double hz = static_cast<double>(j) * resolution;
+      if (hz > upto * (1 + 1e-12)) break;
+      s.x.push_back(hz / unit);
+      s.y.push_back(std::max(amplitude[j], kPlotFloor * top));
+    }
+    return s;
+  };
+  auto panel = [&](const std::string& title, const std::string& x_label) {
+    LinePlot p;
+    p.title = title;
+    p.x_label = x_label;
+    p.y_label = figure.y_label;
+    p.log_y = true;
+    p.labels_right = true;
+    return p;
+  };
+
+  // The whole spectrum over mesh order, up to kSpectrumPlotOrders (the CSV holds every bin): the
+  // lines a healthy stage shows (solid) and the mesh harmonics the phasing cancels (dashed).
+  const double orders_to = std::min(nyquist, kSpectrumPlotOrders * f.mesh);
+  LinePlot whole =
+      panel(figure.faults.empty() ? figure.title : "the whole spectrum",
+            fmt::format("mesh order f/f_m (f_m = {:.4g} Hz); solid: lines of a healthy stage{}",
+                        f.mesh, torsional ? ", dashed: mesh harmonics the phasing cancels" : ""));
+  whole.series.push_back(curve(orders_to, f.mesh));
+  for (const auto& x : dynamics::CharacteristicLines(f, figure.kind, orders_to, 1, 0))
+    if (x.allowed || (torsional && x.kind == dynamics::LineKind::kMesh))
+      whole.x_markers.push_back({x.frequency / f.mesh, x.name, !x.allowed, x.allowed ? 0 : 1});
+  if (figure.faults.empty()) return RenderSvg(whole);
+
+  // The faults' lowest lines (multiples 0 … 3 of their spacing) over frequency, from 0 to a
+  // quarter past the highest of them, at least 12 bins.
+  const int multiples = 3;
+  double highest = 0;
+  for (const auto& x : dynamics::CharacteristicLines(f, figure.kind, nyquist, 1, multiples))
+    if (x.harmonic == 0 &&
+        std::find(figure.faults.begin(), figure.faults.end(), x.kind) != figure.faults.end())
+      highest = std::max(highest, x.frequency);
+  const double zoom_to = std::min(nyquist, std::max(1.25 * highest, 12 * resolution));
+  std::string gears;
+  for (auto k : figure.faults)
+    gears +=
+        std::string(gears.empty() ? "" : ", ") + (k == dynamics::LineKind::kSunTooth      ? "sun"
+                                                  : k == dynamics::LineKind::kPlanetTooth ? "planet"
+                                                                                          : "ring");
+  LinePlot zoom =
+      panel(fmt::format("the lines of the scene's damaged or run-out gears ({}), {} signal", gears,
+                        dynamics::SignalKindName(figure.kind)),
+            "frequency [Hz]; dashed: those lines (docs/damage.md), solid: a healthy stage's");
+  zoom.height = 400;
+  zoom.x_min = 0;
+  zoom.x_max = zoom_to;
+  zoom.series.push_back(curve(zoom_to, 1.0));
+  for (const auto& x : dynamics::CharacteristicLines(f, figure.kind, zoom_to, 1, multiples)) {
+    const bool fault = x.harmonic == 0 && std::find(figure.faults.begin(), figure.faults.end(),
+                                                    x.kind) != figure.faults.end();
+    if (fault || x.allowed)
+      zoom.x_markers.push_back({x.frequency, x.name, fault, fault ? std::max(1, x.multiple) : 0});
   }
-  p.series.push_back(std::move(s));
-  for (const auto& x : lines) p.x_markers.push_back({x.frequency / unit, x.name, !x.allowed});
-  return p;
+  whole.height = 400;
+  return RenderSvgStack(figure.title, {whole, zoom});
 }
 
 }  // namespace epicycle::report

@@ -49,6 +49,30 @@ double TitleSize(double w, const std::string& title) {
       std::floor((w - 20) / (0.55 * static_cast<double>(std::max<std::size_t>(title.size(), 1)))));
 }
 
+// `text` broken between words into lines of at most `chars` characters (a longer word alone).
+std::vector<std::string> WrapWords(const std::string& text, double chars) {
+  std::vector<std::string> lines;
+  std::string line, word;
+  auto flush_word = [&] {
+    if (word.empty()) return;
+    if (!line.empty() && static_cast<double>(line.size() + 1 + word.size()) > chars) {
+      lines.push_back(line);
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    word.clear();
+  };
+  for (char c : text) {
+    if (c == ' ')
+      flush_word();
+    else
+      word += c;
+  }
+  flush_word();
+  if (!line.empty() || lines.empty()) lines.push_back(line);
+  return lines;
+}
+
 }  // namespace
 
 std::string RenderSvg(const LinePlot& input) {
@@ -92,6 +116,11 @@ std::string RenderSvg(const LinePlot& input) {
     y0 = plot.y_min;
     y1 = plot.y_max;
   }
+  if (!plot.log_x && std::isfinite(plot.x_min) && std::isfinite(plot.x_max) &&
+      plot.x_min < plot.x_max) {
+    x0 = plot.x_min;
+    x1 = plot.x_max;
+  }
   if (plot.log_x) x0 = std::floor(x0), x1 = std::max(std::ceil(x1), x0 + 1);
   if (plot.log_y) y0 = std::floor(y0), y1 = std::max(std::ceil(y1), y0 + 1);
   const double w = 760, h = std::max(plot.height, 200.0), left = 90, top = 40, pw = 520,
@@ -105,6 +134,19 @@ std::string RenderSvg(const LinePlot& input) {
     x1 = cx + 0.5 * pw / s;
     y0 = cy - 0.5 * ph / s;
     y1 = cy + 0.5 * ph / s;
+  }
+  // A marker label is about 5.6 px per character (10 px sans-serif) plus 4 px.
+  auto label_width = [](const XMarker& m) { return 5.6 * static_cast<double>(m.label.size()) + 4; };
+  if (plot.labels_right && !plot.equal_axes) {
+    // x1 so that the rightmost labels end inside the plot: (x_m − x0) sx + 2 + width ≤ pw.
+    double reach = x1;
+    for (const XMarker& m : plot.x_markers) {
+      const double width = label_width(m) + 2;
+      if (std::isfinite(m.x) && m.x >= x0 && m.x <= x1 && !m.label.empty() && width <= pw / 3)
+        reach = std::max(reach, x0 + (m.x - x0) * pw / (pw - width));
+    }
+    x1 = reach;
+    sx = pw / (x1 - x0);
   }
   auto px = [&](double x) { return left + (x - x0) * sx; };
   auto py = [&](double y) { return top + ph - (y - y0) * sy; };
@@ -137,10 +179,23 @@ std::string RenderSvg(const LinePlot& input) {
   }
   s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", left + pw / 2,
                    h - 14, Escape(plot.x_label));
-  s += fmt::format(
-      "<text x=\"16\" y=\"{0}\" transform=\"rotate(-90 16 {0})\" "
-      "text-anchor=\"middle\">{1}</text>\n",
-      top + ph / 2, Escape(plot.y_label));
+  // The y label, turned, centred on the plot: in lines of at most the image's height (about
+  // 0.6 em per character at 12 px), broken between words, smaller if more than two are needed.
+  {
+    const double centre = top + ph / 2, room = 2 * std::min(centre, h - centre) - 8;
+    std::vector<std::string> parts = WrapWords(plot.y_label, room / 7.2);
+    const double size = parts.size() <= 2 ? 12.0 : 12.0 * 2 / static_cast<double>(parts.size());
+    if (parts.size() > 2) parts = WrapWords(plot.y_label, room / (0.6 * size));
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      // Its glyphs lie about one size left of x (turned): the first line at 16 alone, else at 13.
+      const double x = (parts.size() == 1 ? 16 : 13) + 1.15 * size * static_cast<double>(k);
+      s += fmt::format(
+          "<text x=\"{0:.1f}\" y=\"{1}\" transform=\"rotate(-90 {0:.1f} {1})\" "
+          "text-anchor=\"middle\"{2}>{3}</text>\n",
+          x, centre, size == 12.0 ? "" : fmt::format(" font-size=\"{:.1f}\"", size),
+          Escape(parts[k]));
+    }
+  }
   for (double r : plot.y_references) {
     s += fmt::format(
         "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"black\" "
@@ -164,8 +219,9 @@ std::string RenderSvg(const LinePlot& input) {
   std::string lines, labels;
   for (std::size_t k : order) {
     const XMarker& m = plot.x_markers[k];
-    const bool right = px(m.x) > left + pw - 50;  // label left of the line, off the legend
-    const double width = 5.6 * static_cast<double>(m.label.size()) + 4;
+    // Near the right edge a label goes left of its line, off the legend (not with labels_right).
+    const bool right = !plot.labels_right && px(m.x) > left + pw - 50;
+    const double width = label_width(m);
     const double from = right ? px(m.x) - width : px(m.x), to = from + width;
     std::size_t row = 0;
     auto free = [&](std::size_t r) {
@@ -173,9 +229,15 @@ std::string RenderSvg(const LinePlot& input) {
                           [&](const auto& t) { return from < t.second && t.first < to; });
     };
     while (row < rows && !free(row)) ++row;
-    const bool placed = !m.label.empty() && row < rows;
+    const bool placed = !m.label.empty() && row < rows && to <= left + pw + 1e-9;
     if (placed) {
       taken[row].emplace_back(from, to);
+      // Over the curves and other markers' lines: on a white ground as wide as its estimate.
+      if (plot.labels_right)
+        labels += fmt::format(
+            "<rect x=\"{:.1f}\" y=\"{}\" width=\"{:.1f}\" height=\"11\" fill=\"white\" "
+            "fill-opacity=\"0.85\"/>\n",
+            px(m.x) + 1, top + 3 + 11 * static_cast<double>(row), width - 2);
       labels +=
           fmt::format("<text x=\"{:.1f}\" y=\"{}\" fill=\"#555\" font-size=\"10\"{}>{}</text>\n",
                       right ? px(m.x) - 2 : px(m.x) + 2, top + 12 + 11 * static_cast<double>(row),
@@ -185,14 +247,27 @@ std::string RenderSvg(const LinePlot& input) {
         "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"{4}/>\n", px(m.x),
         top, top + ph, placed ? "#888" : "#d8d8d8", m.dashed ? " stroke-dasharray=\"2 3\"" : "");
   }
-  s += lines + labels;
+  // With labels_right the labels go over the curves (below, last), else under them.
+  s += plot.labels_right ? lines : lines + labels;
   int legend = 0;
   for (std::size_t b = 0; b < plot.series.size(); ++b) {
     const PlotSeries& ser = plot.series[b];
     const char* col = kColours[(ser.colour >= 0 ? static_cast<std::size_t>(ser.colour) : b) % 8];
     std::string pts;
+    // Upper envelope per pixel column [px, smallest y px] of a dense `envelope` series.
+    std::vector<std::pair<double, double>> top_px;
+    std::size_t drawn = 0;
     for (std::size_t k = 0; k < std::min(ser.x.size(), ser.y.size()); ++k) {
       if (!std::isfinite(ser.x[k]) || !std::isfinite(ser.y[k])) continue;
+      if (ser.x[k] < x0 || ser.x[k] > x1) continue;  // outside a fixed x range
+      ++drawn;
+      if (ser.envelope) {
+        const double column = std::floor(px(ser.x[k])) + 0.5;
+        if (top_px.empty() || top_px.back().first != column)
+          top_px.emplace_back(column, py(ser.y[k]));
+        else
+          top_px.back().second = std::min(top_px.back().second, py(ser.y[k]));
+      }
       if (ser.points || ser.markers) {
         s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"{}\"/>\n",
                          px(ser.x[k]), py(ser.y[k]), col);
@@ -207,6 +282,15 @@ std::string RenderSvg(const LinePlot& input) {
           "<polygon fill=\"{0}\" fill-opacity=\"0.12\" stroke=\"{0}\" stroke-width=\"0.7\" "
           "stroke-opacity=\"0.7\" points=\"{1}\"/>\n",
           col, pts);
+    } else if (!pts.empty() && ser.envelope && drawn > top_px.size()) {
+      // Denser than the pixels: the data thin and light, its upper envelope over it.
+      std::string env;
+      for (const auto& [x, y] : top_px) env += fmt::format("{:.1f},{:.1f} ", x, y);
+      s += fmt::format(
+          "<polyline fill=\"none\" stroke=\"{0}\" stroke-width=\"0.5\" stroke-opacity=\"0.35\" "
+          "points=\"{1}\"/>\n<polyline fill=\"none\" stroke=\"{0}\" stroke-width=\"1.2\" "
+          "points=\"{2}\"/>\n",
+          col, pts, env);
     } else if (!pts.empty()) {
       s += fmt::format(
           "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{} points=\"{}\"/>\n", col,
@@ -216,6 +300,7 @@ std::string RenderSvg(const LinePlot& input) {
     s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", left + pw + 12,
                      top + 14 + 16 * static_cast<double>(legend++), col, Escape(ser.name));
   }
+  if (plot.labels_right) s += labels;
   s += "</svg>\n";
   return s;
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dynamics_fixtures.hpp"
@@ -48,15 +49,16 @@ dynamics::SpectrumOptions OneSegment(const std::vector<double>& times, int per_c
   return so;
 }
 
-// The TE spectrum of a run at 1500 rpm, one Hann segment of kFaultCycles mesh cycles after 4
-// (24 outputs per cycle), for the fault lines: its characteristic frequencies in *f, the run's
-// wall time in *wall.
+// The spectra of a run at 1500 rpm, one Hann segment of `cycles` mesh cycles after 4 (24 outputs
+// per cycle), for the fault lines: its characteristic frequencies in *f, the run's wall time in
+// *wall, the channels' names in *names.
 constexpr int kFaultCycles = 48;
 
 std::vector<std::vector<double>> FaultRun(const std::string& text, const std::string& file,
                                           dynamics::StageFrequencies* f, double* wall,
-                                          std::vector<std::string>* names) {
-  const int per_cycle = 24, skip = 4, cycles = kFaultCycles;
+                                          std::vector<std::string>* names,
+                                          int cycles = kFaultCycles) {
+  const int per_cycle = 24, skip = 4;
   test::RigOptions ro;
   ro.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * test::kRpm; };
   test::DynamicRig rig = test::MakeRig(text, file, ro);
@@ -362,12 +364,14 @@ TEST_CASE(
   // tension of sun tooth 0's loaded side. The tooth meets the n = 3 equally spaced planets at
   // equal intervals, n times per turn of the sun relative to the carrier: its lines are
   // k n (f_s − f_c) (docs/model.md §9 "Fault frequencies"), by hand f_s − f_c = f_m/z_s =
-  // f_m/16, so n (f_s − f_c) = 3 f_m/16 = 60.2 Hz at 1500 rpm (the sidebands h f_m ±
-  // k n (f_s − f_c) of the mesh harmonics fall on the same comb). The segment of 48 mesh cycles
-  // (three relative turns) puts f_m/16 on bin 3 and 3 f_m/16 on bin 9 (Δf = f_m/48). Asserted:
-  // the three largest peaks off the mesh harmonics lie on multiples of n (f_s − f_c) (bins 9 k),
-  // none on a planet tooth's comb alone (bins 2 k, the spall's) and, there, the cracked TE
-  // exceeds the healthy one by more than 100 (the healthy run's floor, ≤ 1e-3 of its mesh lines).
+  // f_m/16, so n (f_s − f_c) = 3 f_m/16 = 60.2 Hz at 1500 rpm (beside f_m = 16 (f_s − f_c), with
+  // 16 ≢ 0 mod 3, the comb's lines are 15 and 18 (f_s − f_c), not f_m ± n (f_s − f_c):
+  // docs/damage.md "Which lines a tooth fault puts into which signal"). The segment of 48 mesh
+  // cycles (three relative turns) puts f_m/16 on bin 3 and 3 f_m/16 on bin 9 (Δf = f_m/48).
+  // Asserted: the three largest peaks off the mesh harmonics lie on multiples of n (f_s − f_c)
+  // (bins 9 k), none on a planet tooth's comb alone (bins 2 k, the spall's) and, there, the cracked
+  // TE exceeds the healthy one by more than 100 (the healthy run's floor, ≤ 1e-3 of its mesh
+  // lines).
   const int cycles = kFaultCycles;
   auto run = [&](double depth_mm, dynamics::StageFrequencies* f, double* wall) {
     const std::string crack =
@@ -388,7 +392,9 @@ TEST_CASE(
                Fixed(wall_h, 2) + " s healthy)");
   // The amplitudes against the crack's depth: the line n (f_s − f_c) (bin 9) grows with the
   // depth, as the cracked tooth's compliance does (docs/model.md §9, "Root crack": monotone at
-  // every flank point).
+  // every flank point); beside it 2 n (f_s − f_c) (bin 18), the comb's line below f_m,
+  // 5 n (f_s − f_c) = f_m − (f_s − f_c) (bin 45), and f_m − n (f_s − f_c) (bin 39), which the
+  // phasing keeps out of the TE (13 ≢ 0 mod 3).
   std::string table;
   double previous = 0;
   bool rising = true;
@@ -400,11 +406,13 @@ TEST_CASE(
     previous = te[9];
     table += (table.empty() ? "" : ", ") + Fixed(depth, 1) + " mm: " + test::Sci(te[9] * 1e6, 3) +
              " / " + test::Sci(te[18] * 1e6, 3) + " / " +
+             test::Sci(te[static_cast<std::size_t>(cycles) - 3] * 1e6, 3) + " / " +
              test::Sci(te[static_cast<std::size_t>(cycles) - 9] * 1e6, 3);
   }
   test::VerifyRow(
       "spectrum, paper stage with a crack in sun tooth 0 (1500 rpm): the TE at n (f_s - f_c), "
-      "2 n (f_s - f_c) and the sideband f_m - n (f_s - f_c) against the crack depth [urad]",
+      "2 n (f_s - f_c), 5 n (f_s - f_c) = f_m - (f_s - f_c) (the comb beside f_m) and "
+      "f_m - n (f_s - f_c) (off the comb) against the crack depth [urad]",
       "rises with the depth (the cracked tooth's compliance does)", table,
       rising ? "rising" : "not rising", "rising", rising);
   CHECK(rising);
@@ -415,4 +423,165 @@ TEST_CASE(
       "smallest " + test::Sci(r.least_ratio, 2) + " x the healthy TE there",
       "on the lines (bins of " + Fixed(resolution, 2) + " Hz); > 100 x healthy",
       r.on_lines && r.least_ratio > 100);
+}
+
+TEST_CASE(
+    "spectrum of a paper stage with a cracked planet tooth: the TE keeps the odd multiples of "
+    "f_m/z_p beside the even ones",
+    "[crosscheck][dynamics][spectrum][crack]") {
+  // A 2 mm crack at the largest root tension of planet 1's tooth 0 (fillet "-"): the tooth meets
+  // the sun on one flank and, half a planet turn later, the ring on the other (docs/damage.md
+  // "Which lines a tooth fault puts into which signal"). Two meetings per turn of the planet
+  // relative to the carrier put their weight on the even multiples of f_m/z_p; the odd ones would
+  // cancel only if the two meetings were alike, and they are not (another mate, another flank).
+  // Segment of 48 mesh cycles: f_m/z_p on bin 2, every multiple on a bin (Δf = f_m/48). Asserted:
+  // at k f_m/z_p, k = 1 … 4 (bins 2 k), the cracked TE exceeds the healthy one by more than 100
+  // (the healthy run's floor, ≤ 1e-3 of its mesh lines, test above), odd k included.
+  const std::string crack =
+      "\n[[damage.crack]]\ngear = \"planet1\"\ntooth = 0\nside = \"-\"\ndepth_mm = 2.0\n"
+      "angle_deg = 45\n";
+  dynamics::StageFrequencies f, fh;
+  double wall = 0, wall_h = 0;
+  const std::vector<double> cracked =
+      FaultRunTe(test::SceneText("paper_stage.toml") + crack, "cracked_planet.toml", &f, &wall);
+  const std::vector<double>& healthy = HealthyFaultRunTe(&fh, &wall_h);
+  REQUIRE(f.planet_relative / (f.mesh / kFaultCycles) == Approx(2.0).epsilon(1e-9));
+  std::string table;
+  double least = 1e300;
+  for (int k = 1; k <= 4; ++k) {
+    const auto j = static_cast<std::size_t>(2 * k);
+    const double ratio = cracked[j] / std::max(healthy[j], 1e-300);
+    INFO(k << " f_m/z_p: " << cracked[j] << " rad, " << ratio << " x the healthy TE");
+    CHECK(ratio > 100);
+    least = std::min(least, ratio);
+    table +=
+        (table.empty() ? "" : ", ") + std::to_string(k) + ": " + test::Sci(cracked[j] * 1e6, 2);
+  }
+  test::Figure("spectrum, cracked planet tooth, 1500 rpm: " + Fixed(wall, 2) + " s wall");
+  test::VerifyRow(
+      "spectrum, paper stage with a 2 mm crack in planet 1's tooth 0 (1500 rpm, 48 mesh cycles): "
+      "the TE at k f_m/z_p, k = 1 .. 4 [urad]",
+      "every k, odd ones too (two unlike meetings per planet turn)", table,
+      "smallest " + test::Sci(least, 2) + " x the healthy TE there", "> 100 x healthy",
+      least > 100);
+}
+
+TEST_CASE(
+    "spectrum of a 4-planet stage with a spall on a sun tooth: the TE holds k n (f_s - f_c), the "
+    "housing signals k n (f_s - f_c) +- f_s, nothing at k n (f_s - f_c) +- f_c",
+    "[crosscheck][dynamics][spectrum]") {
+  // A stage other than the paper's: its tools and body sizes with 21/21/63 teeth and 4 equally
+  // spaced planets ((21 + 63)/4 = 21 whole; carrier radius m (z_r − z_p)/2 = 88.83 mm), sun fixed,
+  // 1500 rpm, and a spall on one sun tooth's loaded flank (r 44 … 46.5 mm of the active 42.3 …
+  // 49.8 mm, half the face width, 30 um deep). By hand (docs/damage.md "Which lines a tooth
+  // fault puts into which signal"), in carrier orders: f_c = 25·21/84 = 6.25 Hz, f_s = 4 f_c,
+  // f_s − f_c = f_m/z_s = 3 f_c, f_m = 63 f_c. A term of order m of the sun's turn relative to
+  // the carrier from planet i carries e^{−i m ψ_i}, a housing-fixed component e^{±i(φ_c + ψ_i)};
+  // the sum over the 4 planets keeps m ≡ 0 (TE) or m ≡ ±1 (mod 4) (housing): the TE's lines
+  // 12 k, the ring's mounting and the sun's bearing 12 k ± 4 (k n (f_s − f_c) ± f_s); the lines
+  // k n (f_s − f_c) ± f_c, which only unlike planets add, are 12 k ± 1. One Hann segment of a
+  // carrier revolution (63 mesh cycles after 4; 24 outputs per cycle): every line on a bin (bin j =
+  // order j), spreading to its two neighbours only, so lines 3 bins apart do not touch.
+  // Asserted below f_m (bins 2 … 59; f_m's own spread reaches 62): (1) the largest local maxima,
+  // as many as the rule has lines there (TE 4, housing 10), each on a line of the rule; (2) at the
+  // orders the rule excludes (TE 12 k ± 4; housing 12 k ± 1 and 12 k) below 1e-3 of the channel's
+  // largest line: the bound of the healthy stage's phasing test above (a symmetric model keeps
+  // the symmetry; the integrator, the start transient and the contact solve break it by ≤ 1.2e-4,
+  // margin 8); (3) every sun-tooth line the spectrum markers list there
+  // (dynamics::CharacteristicLines) on a line of the rule, reading 100 times the excluded ones.
+  const std::string paper = test::SceneText("paper_stage.toml");
+  std::string text = paper;
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"[sun]\nteeth = 16", "[sun]\nteeth = 21"},
+           {"[planet]\nteeth = 24", "[planet]\nteeth = 21"},
+           {"[ring]\nteeth = 65", "[ring]\nteeth = 63"},
+           {"radius_mm = 86.715               # m (z_r - z_p)/2\nplanets = 3",
+            "radius_mm = 88.83\nplanets = 4"},
+           {"rim_radius_mm = 156.4", "rim_radius_mm = 160.0"},
+           {"mass_kg = 1.19\ninertia_kgm2 = 9.92e-4", "mass_kg = 2.0\ninertia_kgm2 = 1.9e-3"},
+           {"mass_kg = 1.23\ninertia_kgm2 = 24e-4", "mass_kg = 0.94\ninertia_kgm2 = 1.4e-3"}}) {
+    REQUIRE(text.find(from) != std::string::npos);
+    text = test::Replace(text, from, to);
+  }
+  text +=
+      "\n[[damage.pit]]\ngear = \"sun\"\ntooth = 0\nflank = \"-\"\nradius_from_mm = 44.0\n"
+      "radius_to_mm = 46.5\nwidth_fraction = 0.5\ndepth_um = 30.0\n";
+  dynamics::StageFrequencies f;
+  double wall = 0;
+  std::vector<std::string> names;
+  const int z_r = 63;
+  const auto run = FaultRun(text, "four_planets_sun_spall.toml", &f, &wall, &names, z_r);
+  REQUIRE(f.planets == 4);
+  REQUIRE(f.symmetric);
+  REQUIRE(f.carrier == Approx(6.25).epsilon(1e-12));
+  REQUIRE(f.sun_relative == Approx(3 * f.carrier).epsilon(1e-12));
+  REQUIRE(f.sun == Approx(4 * f.carrier).epsilon(1e-12));
+  test::Figure(
+      "spectrum, 4-planet 21/21/63 stage with a sun-tooth spall, 1500 rpm, 67 mesh "
+      "cycles: " +
+      Fixed(wall, 2) + " s wall");
+  const int last = 59;
+  for (const std::string channel : {"te", "ring_force_x", "sun_force_x"}) {
+    const bool torsional = channel == "te";
+    const std::vector<double>& a = Channel(run, names, channel);
+    auto on_rule = [&](int j) { return torsional ? j % 12 == 0 : j % 12 == 4 || j % 12 == 8; };
+    auto excluded = [&](int j) {
+      return torsional ? j % 12 == 4 || j % 12 == 8 : j % 12 == 1 || j % 12 == 11 || j % 12 == 0;
+    };
+    int rule_lines = 0;
+    for (int j = 2; j <= last; ++j) rule_lines += on_rule(j) ? 1 : 0;
+    const double largest = *std::max_element(a.begin() + 1, a.end());
+    std::vector<double> region(a.begin(), a.begin() + last + 2);
+    region[static_cast<std::size_t>(last + 1)] = 0;
+    std::string peaks;
+    bool on = true;
+    double least = 1e300, worst = 0;
+    int worst_order = 0;
+    for (int j : LargestPeaks(region, static_cast<std::size_t>(rule_lines))) {
+      INFO(channel << ": peak at carrier order " << j << ", " << a[static_cast<std::size_t>(j)]);
+      CHECK(on_rule(j));
+      on = on && on_rule(j);
+      least = std::min(least, a[static_cast<std::size_t>(j)]);
+      if (!peaks.empty()) peaks += " ";
+      peaks += std::to_string(j);
+    }
+    for (int j = 2; j <= last; ++j)
+      if (excluded(j) && a[static_cast<std::size_t>(j)] > worst) {
+        worst = a[static_cast<std::size_t>(j)];
+        worst_order = j;
+      }
+    INFO(channel << ": largest at an excluded order " << worst << " (order " << worst_order
+                 << "), channel's largest line " << largest);
+    CHECK(worst < 1e-3 * largest);
+    // The markers' sun-tooth lines below bin 59.
+    bool markers = true;
+    for (const auto& l : dynamics::CharacteristicLines(
+             f, torsional ? dynamics::SignalKind::kTorsional : dynamics::SignalKind::kHousing,
+             last * f.carrier, 1, 3)) {
+      if (l.kind != dynamics::LineKind::kSunTooth) continue;
+      const int j = static_cast<int>(std::lround(l.carrier_order));
+      const bool good = std::abs(l.carrier_order - j) < 1e-9 && on_rule(j) &&
+                        a[static_cast<std::size_t>(j)] > 100 * worst;
+      INFO(channel << ": marker " << l.name << " at carrier order " << l.carrier_order);
+      CHECK(good);
+      markers = markers && good;
+    }
+    const std::string unit = torsional ? " rad" : " N";
+    test::VerifyRow(
+        "spectrum, 4-planet 21/21/63 stage with a spall on a sun tooth (1500 rpm, one carrier "
+        "revolution): " +
+            channel + ", the " + std::to_string(rule_lines) +
+            " largest peaks below f_m [carrier orders]",
+        torsional ? "k n (f_s - f_c) = 12 k, by hand"
+                  : "k n (f_s - f_c) +- f_s = 12 k +- 4, by hand",
+        peaks, "smallest " + test::Sci(least, 3) + unit, "on the rule's lines (bins of f_c)", on);
+    test::VerifyRow(
+        "spectrum, the same: " + channel + " at the orders the rule excludes (" +
+            (torsional ? "12 k +- 4" : "12 k +- 1 = k n (f_s - f_c) +- f_c, and 12 k") + ")",
+        "0 (a symmetric stage); the markers' sun-tooth lines all on the rule",
+        test::Sci(worst, 2) + unit + " (order " + std::to_string(worst_order) + ")",
+        test::Sci(worst / largest, 2) + " of the largest line; " +
+            test::Sci(least / std::max(worst, 1e-300), 2) + " x below the rule's",
+        "1e-3 (integrator, start transient, contact solve)", worst < 1e-3 * largest && markers);
+  }
 }

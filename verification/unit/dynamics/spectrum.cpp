@@ -16,6 +16,7 @@
 #include "epicycle/dynamics/spectrum.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/vibration.hpp"
+#include "spectrum_fixtures.hpp"
 #include "stage_fixtures.hpp"
 
 using namespace epicycle;
@@ -253,23 +254,107 @@ TEST_CASE("stage frequencies: the paper stage's mesh, fault and sideband lines f
     CHECK(allowed[static_cast<std::size_t>(k)] == Approx(orders[k]).epsilon(1e-13));
   CHECK(names[0] == "f_m + f_c");
   CHECK(names[1] == "2 f_m - f_c");
-  // The fault lines (not lines of a healthy stage).
-  auto find = [&](const std::string& name) {
-    for (const auto& l : dynamics::CharacteristicLines(f, dynamics::SignalKind::kHousing, fmax))
+  // The fault lines (not lines of a healthy stage), by hand: a sun tooth k n (f_s − f_c) in a
+  // torsional signal and k n (f_s − f_c) ± f_s in a housing one (3 · 1625/81 ± 25 Hz).
+  auto find = [&](dynamics::SignalKind kind, const std::string& name) {
+    for (const auto& l : dynamics::CharacteristicLines(f, kind, fmax))
       if (l.name == name) return l;
     FAIL("no line " << name);
     return dynamics::SpectralLine{};
   };
-  CHECK(find("n (f_s - f_c)").frequency == Approx(3 * 1625.0 / 81).epsilon(1e-14));
-  CHECK(find("n (f_s - f_c)").sun_order == Approx(3).epsilon(1e-14));
-  CHECK(find("f_m/z_p").frequency == Approx(26000.0 / 81 / 24).epsilon(1e-14));
-  CHECK(find("2 f_m/z_p").frequency == Approx(26000.0 / 81 / 12).epsilon(1e-14));
-  CHECK(find("n f_c").carrier_order == Approx(3).epsilon(1e-14));
-  CHECK(find("2 x n f_c").carrier_order == Approx(6).epsilon(1e-14));
-  CHECK(find("f_m - n (f_s - f_c)").sun_order == Approx(13).epsilon(1e-14));
-  CHECK_FALSE(find("n (f_s - f_c)").allowed);
+  const auto housing = dynamics::SignalKind::kHousing, torsional = dynamics::SignalKind::kTorsional;
+  CHECK(find(torsional, "n (f_s - f_c)").frequency == Approx(3 * 1625.0 / 81).epsilon(1e-14));
+  CHECK(find(torsional, "n (f_s - f_c)").sun_order == Approx(3).epsilon(1e-14));
+  CHECK(find(housing, "n (f_s - f_c) + f_s").frequency ==
+        Approx(3 * 1625.0 / 81 + 25).epsilon(1e-14));
+  CHECK(find(housing, "2 x n (f_s - f_c) - f_s").frequency ==
+        Approx(6 * 1625.0 / 81 - 25).epsilon(1e-14));
+  CHECK(find(housing, "f_s").frequency == Approx(25).epsilon(1e-14));
+  CHECK(find(torsional, "f_m/z_p").frequency == Approx(26000.0 / 81 / 24).epsilon(1e-14));
+  CHECK(find(housing, "f_m/z_p + f_c").frequency ==
+        Approx(26000.0 / 81 / 24 + 400.0 / 81).epsilon(1e-14));
+  CHECK(find(housing, "n f_c").carrier_order == Approx(3).epsilon(1e-14));
+  CHECK(find(torsional, "2 x n f_c").carrier_order == Approx(6).epsilon(1e-14));
+  // Beside f_m = 16 (f_s − f_c) in the TE: the comb's 15 and 18 (f_s − f_c).
+  CHECK(find(torsional, "5 x n (f_s - f_c)").sun_order == Approx(15).epsilon(1e-14));
+  CHECK(find(torsional, "5 x n (f_s - f_c)").harmonic == 1);
+  CHECK_FALSE(find(housing, "n (f_s - f_c) + f_s").allowed);
   CHECK_THROWS_WITH(dynamics::CharacteristicFrequencies(stage, 0.0),
                     Catch::Contains("sun speed = 0 rad/s: must be finite and non-zero"));
+}
+
+TEST_CASE(
+    "fault lines: the orders the planets' phasing keeps for each tooth fault and kind of signal, "
+    "by hand on a 4-planet 21/21/63 stage",
+    "[unit][dynamics][spectrum]") {
+  // docs/damage.md "Which lines a tooth fault puts into which signal". The stage: z_s = 21,
+  // z_p = 21, z_r = 63, n = 4 equally spaced ((21 + 63)/4 = 21), frequencies in units of f_c:
+  // f_s − f_c = f_m/z_s = 63/21 = 3, f_s = 4, f_m = 63, f_m/z_p = 3. By hand, orders m of the
+  // fault's own period kept when m ≡ s (mod n) (sun tooth; s = 0 torsional, ±1 housing) or
+  // m + s ≡ 0 (ring tooth); a planet tooth's, all:
+  //   sun tooth, torsional: 12 k;            housing: 12 k ± 4 (orders ≡ ±4 mod 12)
+  //   planet tooth, torsional: 3 k;          housing: 3 k ± 1
+  //   ring tooth, either: 4 k
+  // and with a planet carrying its own error (no cancellation) the sun's housing lines 3 k ± 1.
+  // Listed up to 70 f_c: multiples k ≤ 3 and, beside f_m = 63, the comb's nearest lines on either
+  // side that are not f_m and, in a housing signal, not the healthy stage's f_m + f_c = 64
+  // (21 ≡ 1 mod 4; a torsional signal's healthy lines are h f_m with 21 h ≡ 0 mod 4: none here).
+  dynamics::StageFrequencies f = test::KinematicFrequencies(21, 21, 63, 4, 4.0);
+  REQUIRE(f.symmetric);
+  REQUIRE(f.carrier == 1);
+  REQUIRE(f.sun_relative == 3);
+  auto orders = [&](dynamics::SignalKind kind, dynamics::LineKind fault) {
+    std::vector<double> o;
+    for (const auto& l : dynamics::CharacteristicLines(f, kind, 70, 1, 3))
+      if (l.kind == fault) o.push_back(l.carrier_order);
+    return o;
+  };
+  using V = std::vector<double>;
+  const auto torsional = dynamics::SignalKind::kTorsional, housing = dynamics::SignalKind::kHousing;
+  CHECK(orders(torsional, dynamics::LineKind::kSunTooth) == V{12, 24, 36, 60});
+  CHECK(orders(housing, dynamics::LineKind::kSunTooth) == V{4, 8, 16, 20, 28, 32, 40, 56, 68});
+  CHECK(orders(torsional, dynamics::LineKind::kPlanetTooth) == V{3, 6, 9, 60, 66});
+  CHECK(orders(housing, dynamics::LineKind::kPlanetTooth) == V{1, 2, 4, 5, 7, 8, 10, 62, 65});
+  CHECK(orders(torsional, dynamics::LineKind::kRingTooth) == V{4, 8, 12, 60, 64});
+  CHECK(orders(housing, dynamics::LineKind::kRingTooth) == V{4, 8, 12, 60, 68});
+  // The housing lines the sun tooth does not put there: k n (f_s − f_c) ± f_c (12 k ± 1) and
+  // k n (f_s − f_c) (12 k).
+  for (double o : orders(housing, dynamics::LineKind::kSunTooth)) {
+    const double r = std::fmod(o, 12.0);
+    CHECK(r != 1);
+    CHECK(r != 11);
+    CHECK(r != 0);
+  }
+  // A planet with an error of its own: every order m (f_s − f_c) ± f_c, 3 k ± 1.
+  f.identical_planets = false;
+  CHECK(orders(housing, dynamics::LineKind::kSunTooth) == V{1, 2, 4, 5, 7, 8, 10, 62, 65});
+  CHECK(orders(torsional, dynamics::LineKind::kSunTooth) == V{3, 6, 9, 60, 66});
+}
+
+TEST_CASE("fault lines of a scene: a damaged or run-out gear's comb, each once",
+          "[unit][dynamics][spectrum]") {
+  // dynamics::FaultKinds: a pit or crack on a gear, or its run-out, repeats with that gear's turn
+  // (docs/damage.md "Which lines a tooth fault puts into which signal"); pin-hole and thickness
+  // errors repeat with nothing and add no comb.
+  using K = dynamics::LineKind;
+  transmission::Damage damage;
+  geometry::StageSpec errors;
+  CHECK(dynamics::FaultKinds(damage, errors).empty());
+  errors.pin_errors = {{5e-6, 0}, {}, {}};
+  errors.planet_thickness_errors = {0, 5e-6, 0};
+  CHECK(dynamics::FaultKinds(damage, errors).empty());
+  damage.pits.push_back({});
+  damage.pits.back().gear = "planet2";
+  damage.cracks.push_back({});
+  damage.cracks.back().gear = "sun";
+  damage.pits.push_back({});
+  damage.pits.back().gear = "planet3";
+  CHECK(dynamics::FaultKinds(damage, errors) == std::vector<K>{K::kSunTooth, K::kPlanetTooth});
+  errors.ring_runout.amplitude = 10e-6;
+  CHECK(dynamics::FaultKinds(damage, errors) ==
+        std::vector<K>{K::kSunTooth, K::kPlanetTooth, K::kRingTooth});
+  errors.planet_runouts = {{20e-6, 0}, {}, {}};
+  CHECK(dynamics::FaultKinds({}, errors) == std::vector<K>{K::kPlanetTooth, K::kRingTooth});
 }
 
 TEST_CASE(

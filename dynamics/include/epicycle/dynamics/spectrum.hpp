@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "epicycle/geometry/stage.hpp"
+#include "epicycle/transmission/damage.hpp"
 
 namespace epicycle::dynamics {
 
@@ -104,6 +105,11 @@ struct StageFrequencies {
   /// Equally spaced planets with (z_s + z_r)/n whole: the planet-phasing rule decides which lines
   /// a healthy stage shows (otherwise every line may appear).
   bool symmetric = false;
+  /// No planet carries an error of its own (pin-hole position, run-out, tooth thickness). With
+  /// `symmetric`, a sun or ring tooth's lines follow the phasing as well (docs/damage.md "Which
+  /// lines a tooth fault puts into which signal"); a planet with an error of its own lets every
+  /// order of the fault through.
+  bool identical_planets = true;
   double sun = 0;              ///< f_s, the sun's speed [Hz]
   double carrier = 0;          ///< f_c = f_s z_s/(z_s + z_r) [Hz]
   double mesh = 0;             ///< f_m = z_r f_c = z_s (f_s − f_c) [Hz]
@@ -125,23 +131,34 @@ std::string SignalKindName(SignalKind kind);  ///< "torsional", "housing"
 enum class LineKind {
   kMesh,             ///< h f_m
   kCarrierSideband,  ///< h f_m ± k f_c
-  kSunTooth,         ///< k n (f_s − f_c): one sun tooth meets the n planets
-  kPlanetTooth,      ///< k f_m/z_p: one flank of a planet tooth meets its mate once a turn
-  kPlanetToothBoth,  ///< 2k f_m/z_p: both flanks (a crack) meet the sun and the ring
-  kRingTooth,        ///< k n f_c: the n planets pass one ring tooth
-  kFaultSideband,    ///< h f_m ± (a tooth fault's fundamental)
+  kSunTooth,         ///< a sun tooth meets the n planets: k n (f_s − f_c) (torsional),
+                     ///< k n (f_s − f_c) ± f_s (housing)
+  kPlanetTooth,      ///< a planet tooth (one flank or both) meets its mates once a turn of the
+                     ///< planet: k f_m/z_p (torsional), k f_m/z_p ± f_c (housing)
+  kRingTooth,        ///< the n planets pass one ring tooth: k n f_c (either kind)
 };
 std::string LineKindName(LineKind kind);  ///< "mesh", "carrier sideband", "sun tooth", ...
 
+/// The tooth-fault lines a scene puts into a spectrum: kSunTooth, kPlanetTooth, kRingTooth for
+/// each gear that carries a pit or a crack, or a run-out (`errors`: it repeats with its gear's
+/// turn as a damaged tooth does), in that order, each once.
+std::vector<LineKind> FaultKinds(const transmission::Damage& damage,
+                                 const geometry::StageSpec& errors);
+
 struct SpectralLine {
-  std::string name;  ///< "3 f_m", "2 f_m - f_c", "n (f_s - f_c)", "f_m/z_p", "f_m + n f_c", ...
+  std::string name;  ///< "3 f_m", "2 f_m - f_c", "n (f_s - f_c) + f_s", "2 x f_m/z_p", ...
   LineKind kind = LineKind::kMesh;
   double frequency = 0;      ///< [Hz]
   double carrier_order = 0;  ///< f/f_c [-]
   double sun_order = 0;      ///< f/(f_s − f_c) [-]
-  int harmonic = 0;          ///< h of the mesh harmonic the line sits on or beside (0: none)
-  int sideband = 0;          ///< signed k of ± k f_c (carrier sidebands) or ±1 (fault sidebands)
-  int multiple = 1;          ///< k of a fault line k·(fundamental) [-]
+  /// h of the mesh harmonic the line sits on or beside (0: none; a fault line beside h f_m is
+  /// the fault's line nearest to it on that side).
+  int harmonic = 0;
+  /// Carrier sidebands: the signed k of ± k f_c. Fault lines: the sign s of the housing frame's
+  /// shift, the line being |k F + s g| (F the fault's spacing, g = f_s for a sun tooth, f_c for a
+  /// planet tooth; s = 0 in a torsional signal and for a ring tooth).
+  int sideband = 0;
+  int multiple = 1;  ///< fault lines: k of k F + s g [-] (≥ 0); others 1
   /// The line appears in this kind of signal of a healthy stage with identical planets: for a
   /// symmetric stage by the planet phasing (docs/model.md §9): torsional, h f_m when
   /// h z_s ≡ 0 (mod n); housing, h f_m + f_c when h z_s ≡ 1 and h f_m − f_c when
@@ -152,8 +169,16 @@ struct SpectralLine {
 
 /// The characteristic lines of `f` in (0, max_frequency] [Hz] for `kind` of signal, sorted by
 /// frequency: every mesh harmonic h f_m, their carrier sidebands h f_m ± k f_c for k ≤
-/// `carrier_sidebands`, the tooth-fault lines k·(fundamental) for k ≤ `fault_multiples` and the
-/// fault fundamentals' sidebands h f_m ± (fundamental).
+/// `carrier_sidebands`, and for each tooth fault its lines in this kind of signal
+/// (docs/damage.md "Which lines a tooth fault puts into which signal"): with F its spacing and
+/// s g the housing frame's shift, |k F + s g| for k = 0 … `fault_multiples`, and beside every
+/// mesh harmonic its nearest line on either side that is not a healthy stage's line. With
+/// identical planets on a symmetric stage (f.symmetric, f.identical_planets):
+///   sun tooth   torsional k n (f_s − f_c)        housing k n (f_s − f_c) ± f_s
+///   planet      torsional k f_m/z_p              housing k f_m/z_p ± f_c
+///   ring tooth  either    k n f_c
+/// otherwise the sun's and ring's lines are those of n = 1 with the shift f_c: every
+/// k (f_s − f_c) (± f_c), every k f_c.
 /// @throws std::invalid_argument for max_frequency ≤ 0 or not finite, negative counts.
 std::vector<SpectralLine> CharacteristicLines(const StageFrequencies& f, SignalKind kind,
                                               double max_frequency, int carrier_sidebands = 3,

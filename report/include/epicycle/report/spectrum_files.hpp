@@ -5,13 +5,14 @@
 //                             order, order of the sun's speed relative to the carrier, and each
 //                             channel's amplitude (Hann window, Welch average) in its unit;
 //   BASE_spectrum_lines.csv   the stage's characteristic lines up to the Nyquist frequency
-//                             (dynamics::CharacteristicLines) with whether a healthy stage shows
-//                             each in a torsional and a housing-fixed signal;
-//   BASE_spectrum_CHANNEL.svg log amplitude over mesh order f/f_m for te, ring_force_x,
-//                             ring_torque and the sun's first channel, the lines a healthy stage
-//                             shows marked
-//                             (solid), the mesh harmonics the planet phasing keeps out of a
-//                             torsional signal and the tooth-fault fundamentals dashed.
+//                             (dynamics::CharacteristicLines), a row per kind of signal
+//                             (torsional, housing) and line, with whether a healthy stage shows
+//                             it in that kind of signal; every tooth fault's lines are listed,
+//                             whatever the scene's damage;
+//   BASE_spectrum_CHANNEL.svg for te, ring_force_x, ring_torque and the sun's first channel
+//                             (SpectrumSvg): log amplitude over mesh order with the lines of a
+//                             healthy stage, and with damage or a run-out a panel over its
+//                             lines.
 // Every line is written whole and checked (CsvFile); a value that is not finite is an empty cell.
 #pragma once
 
@@ -23,7 +24,6 @@
 #include "epicycle/dynamics/spectrum.hpp"
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/report/files.hpp"
-#include "epicycle/report/svg_plot.hpp"
 
 namespace epicycle::report {
 
@@ -56,14 +56,26 @@ class VibrationFiles {
   std::vector<double> values_;
 };
 
-/// The amplitude spectrum `amplitude` (bin j at j·resolution [Hz], bin 0 left out) as a log plot,
-/// `lines` marked: those `allowed` solid, the others dashed; `legend` names the curve. With
-/// `mesh_hz` > 0 (f_m [Hz]) against mesh order f/f_m up to kSpectrumPlotOrders (the paper
-/// stage's highest mode is 21 mesh orders at 1500 rpm), else against frequency [Hz], every bin.
+/// One channel's spectrum figure (BASE_spectrum_CHANNEL.svg).
+struct SpectrumFigure {
+  std::string title;    ///< "paper stage, 3 planets: te"
+  std::string y_label;  ///< "te amplitude [rad]"
+  std::string legend;   ///< names the curve: "5 segments, 4.94 Hz"
+  dynamics::SignalKind kind = dynamics::SignalKind::kTorsional;
+  dynamics::StageFrequencies frequencies;
+  /// The scene's damaged or run-out gears (dynamics::FaultKinds): only their lines are marked.
+  std::vector<dynamics::LineKind> faults;
+};
+
+/// The amplitude spectrum `amplitude` (bin j at j·resolution [Hz], bin 0 left out) as an SVG: a
+/// log plot over mesh order f/f_m up to kSpectrumPlotOrders (the paper stage's highest mode is
+/// 21 mesh orders at 1500 rpm) with the lines a healthy stage shows in this kind of signal
+/// marked solid and the mesh harmonics the phasing keeps out of a torsional signal dashed; with
+/// faults, under it a panel over frequency [Hz] from 0 past the faults' lowest lines
+/// (their multiples 0 … 3) with those marked dashed. Each label starts at its line;
+/// a curve denser than the pixels is drawn light under its upper envelope.
 inline constexpr double kSpectrumPlotOrders = 32;
-LinePlot SpectrumPlot(const std::string& title, const std::string& y_label,
-                      const std::vector<double>& amplitude, double resolution,
-                      const std::vector<dynamics::SpectralLine>& lines,
-                      const std::string& legend = "amplitude", double mesh_hz = 0);
+std::string SpectrumSvg(const SpectrumFigure& figure, const std::vector<double>& amplitude,
+                        double resolution);
 
 }  // namespace epicycle::report

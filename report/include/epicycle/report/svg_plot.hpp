@@ -20,11 +20,15 @@ struct PlotSeries {
   bool band = false;
   bool faint = false;  ///< a thin translucent line (raw samples under their means)
   int colour = -1;     ///< index into the palette; -1: the series' own index
+  /// Where the points are denser than the pixels (a spectrum's fine comb of lines): the line
+  /// drawn faint and over it the upper envelope, the largest value in each pixel column.
+  bool envelope = false;
 };
 
 /// A vertical marker at x with a label (e.g. a resonance speed); dashed when `dashed`. Labels are
 /// placed in the order of `rank` (lower first, then left to right) in up to eight rows inside
-/// the plot; a marker whose label finds no room is drawn as a light line without it.
+/// the plot; a marker whose label finds no room is drawn as a light line without it. A label
+/// starts at its line and runs right (near the right edge left, unless LinePlot::labels_right).
 struct XMarker {
   double x = 0;
   std::string label;
@@ -40,6 +44,10 @@ struct LinePlot {
   std::vector<double> y_references;
   /// Vertical markers with labels, drawn in grey (outside the data's x range: left out).
   std::vector<XMarker> x_markers = {};
+  /// Every marker label right of its line, on a white ground over the curves (readable across
+  /// other markers' lines): the x axis reaches far enough past the data for the rightmost ones
+  /// (labels wider than a third of the plot excepted).
+  bool labels_right = false;
   /// Logarithmic axes (decade ticks); values ≤ 0 are skipped like non-finite ones.
   bool log_x = false, log_y = false;
   /// The figure's height [px] (760 px wide; the plot area is 100 px less high).
@@ -47,6 +55,9 @@ struct LinePlot {
   /// A fixed y range (linear axes; both finite and y_min < y_max): panels drawn to one scale.
   double y_min = std::numeric_limits<double>::quiet_NaN();
   double y_max = std::numeric_limits<double>::quiet_NaN();
+  /// A fixed x range (both finite, x_min < x_max): a zoom into part of the data.
+  double x_min = std::numeric_limits<double>::quiet_NaN();
+  double x_max = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The plot as a complete SVG document. Non-finite values are skipped.
