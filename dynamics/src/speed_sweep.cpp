@@ -21,6 +21,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/work_queue.hpp"
 #include "number_format.hpp"
 
@@ -110,7 +111,8 @@ void SpeedSweepOptions::Validate() const {
     throw std::invalid_argument("speed sweep: sun_speeds_rpm is empty: needs at least one speed");
   for (std::size_t k = 0; k < sun_speeds_rpm.size(); ++k) {
     const double s = sun_speeds_rpm[k];
-    if (!(s > 0) || !std::isfinite(s)) bad("sun_speeds_rpm[" + std::to_string(k) + "]", s, "> 0");
+    if (!transmission::kSunSpeedRpm.Holds(s))
+      bad("sun_speeds_rpm[" + std::to_string(k) + "]", s, transmission::kSunSpeedRpm.Describe());
     if (k > 0 && !(s > sun_speeds_rpm[k - 1]))
       bad("sun_speeds_rpm[" + std::to_string(k) + "]", s, "must exceed the speed before it");
   }

@@ -11,6 +11,7 @@
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/transmission/run_arguments.hpp"
 #include "scene_internal.hpp"
 
 namespace epicycle::transmission {
@@ -90,12 +91,11 @@ Inertia ReadInertia(TableReader& t) {
 // (DynamicSettings::Validate's) named at the key the user wrote.
 void ReadDynamics(TableReader& top, DynamicSettings& d) {
   if (auto t = top.OptionalTable("dynamics")) {
-    // The command line's range for --speed-rpm (app/src/options.hpp), the same words.
-    d.sun_speed = t->RealOr("sun_speed_rpm", 1500.0,
-                            Rule::Closed(1, 1e5).Because(
-                                "slower runs are quasi-static: epicycle quasistatic; faster ones "
-                                "are past any gear's pitch-line speed")) *
-                  std::numbers::pi / 30.0;
+    // The rule of every sun speed a run is given (run_arguments.hpp: --speed-rpm, Python's).
+    d.sun_speed =
+        t->RealOr("sun_speed_rpm", 1500.0,
+                  Rule::Closed(kSunSpeedRpm.lo, kSunSpeedRpm.hi).Because(kSunSpeedRpm.why)) *
+        std::numbers::pi / 30.0;
     d.carrier_free = t->StringOr("carrier", "speed", {"speed", "torque"}) == "torque";
     d.carrier_load_inertia = t->RealOr("carrier_load_inertia_kgm2", 0.0, Rule::NonNegative());
     d.sun_speed_driven = t->StringOr("sun", "torque", {"torque", "speed"}) == "speed";
