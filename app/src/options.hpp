@@ -49,14 +49,12 @@ using dynamics::kSpectrumSkipCycles;
 using dynamics::kSweepSpeeds;
 using dynamics::kWindowCycles;
 using transmission::kCarrierAngleDeg;
+using transmission::kContactTolerance;
 using transmission::kStiffnessCycle;
 using transmission::kStiffnessPositions;
 using transmission::kSunSpeedRpm;
 using transmission::kSweepPositions;
 using transmission::kThreads;
 using transmission::kThreadsOrZero;
-
-/// A contact solve's tolerance on its nondimensional residual (the contact commands).
-inline constexpr OptionRange kContactTolerance{0, 1, true, false, "", "a nondimensional residual"};
 
 }  // namespace epicycle::app

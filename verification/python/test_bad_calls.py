@@ -1,4 +1,4 @@
-"""Bad calls of every driver, as the program's bad options (verification/CMakeLists.txt, "bad
+"""Bad calls of every driver and of the contact core's solve_contact, as the program's bad options (verification/CMakeLists.txt, "bad
 option: ..."): for every numeric argument, values outside its rule (negative, zero where it is not
 allowed, nan, ±inf, huge, tiny, random ones past either bound) raise ValueError naming the
 argument, its value and the rule (the library's: transmission/ and dynamics/run_arguments.hpp,
@@ -130,14 +130,19 @@ DRIVERS = {
                    {"from_rpm": SPEED, "to_rpm": SPEED, "count": Int(1, 1e5)}),
     "study": ({"path": STUDY, "cache_dir": ""},
               {"threads": THREADS, "max_cases": Int(0, 1e9, negative_default=True, long=True)}),
+    # The contact core: the first argument a problem of the collection, not the scene.
+    "solve_contact": ({}, {"tolerance": Real(0, 1, lo_open=True), "max_iterations": Int(1, 1e6),
+                           "time_limit_s": Real(0, 86400, lo_open=True)}),
 }
 NO_SCENE = {"speed_grid", "study"}
+PROBLEM = os.path.join(SOURCE_DIR, "verification", "data", "contact", "cf_two_symmetric.json")
 
 # The child: reads the calls (JSON lines), announces and makes each, reports what happened.
 CHILD = r"""
 import json, math, sys, time
 import epicycle
 scene = epicycle.Scene.load(sys.argv[1])
+problem = epicycle.read_contact_problem(sys.argv[2]).problem
 def decode(v):
     if isinstance(v, dict) and "float" in v:
         return float(v["float"])
@@ -151,7 +156,8 @@ for line in sys.stdin:
     kwargs = {k: decode(v) for k, v in call["kwargs"].items()}
     t0 = time.monotonic()
     try:
-        r = f(**kwargs) if call["no_scene"] else f(scene, **kwargs)
+        first = problem if call["driver"] == "solve_contact" else scene
+        r = f(**kwargs) if call["no_scene"] else f(first, **kwargs)
         out = {"kind": "returned", "message": repr(r)[:300]}
     except Exception as e:
         out = {"kind": type(e).__name__, "message": str(e)}
@@ -194,7 +200,7 @@ def run_children(calls):
             kwargs[arg] = value
             lines.append(json.dumps({"id": i, "driver": driver, "no_scene": driver in NO_SCENE,
                                      "kwargs": {k: encode(v) for k, v in kwargs.items()}}))
-        p = subprocess.run([sys.executable, "-c", CHILD, STAGE], input="\n".join(lines) + "\n",
+        p = subprocess.run([sys.executable, "-c", CHILD, STAGE, PROBLEM], input="\n".join(lines) + "\n",
                            capture_output=True, text=True, env=env, cwd=SOURCE_DIR)
         started = None
         for line in p.stdout.splitlines():

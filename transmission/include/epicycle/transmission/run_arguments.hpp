@@ -39,6 +39,13 @@ inline constexpr ArgumentRange kSweepPositions{1, 1e6, false, true, "", ""};
 inline constexpr ArgumentRange kStiffnessPositions{2, 1e5, false, true, "", ""};
 /// The mesh cycle a mesh-stiffness run sweeps (0: the first).
 inline constexpr ArgumentRange kStiffnessCycle{0, 1e6, false, false, "", ""};
+/// A contact solve's tolerance on its nondimensional residual (the contact commands' --tol,
+/// Python's solve_contact; a run's contact solves: dynamics/run_arguments.hpp).
+inline constexpr ArgumentRange kContactTolerance{0,     1,  true,
+                                                 false, "", "a nondimensional residual"};
+/// The iterations and the time one contact solve may take (Python's solve_contact).
+inline constexpr ArgumentRange kContactIterations{1, 1e6, false, true, "", ""};
+inline constexpr ArgumentRange kContactTimeLimitS{0, 86400, true, false, "[s]", "up to a day"};
 /// New cases a tolerance study (of quasi-static sweeps, studies/) computes before it summarises.
 inline constexpr ArgumentRange kStudyCases{0, 1e9, false, true, "", ""};
 
