@@ -185,6 +185,8 @@ def bad_calls(rng):
                 calls.append((driver, fixed, arg, value, "ValueError"))
             for value in rule.wrong_types():
                 calls.append((driver, fixed, arg, value, "TypeError"))
+            if isinstance(rule, Each):  # one past the most items, each legal
+                calls.append((driver, fixed, arg, [1000.0] * (rule.most + 1), "ValueError"))
     return calls
 
 
@@ -236,7 +238,7 @@ def test_every_bad_argument_of_every_driver_is_refused_by_name_before_any_work()
     failures = []
     for i, (driver, _, arg, value, expected) in enumerate(calls):
         o = outcomes.get(i, {"kind": "missing", "message": ""})
-        what = f"{driver}({arg}={value!r})"
+        what = f"{driver}({arg}={value!r:.80})"
         if o["kind"] != expected:
             failures.append(f"{what}: {o['kind']} {o.get('message', '')!r}, expected {expected}")
             continue
