@@ -279,9 +279,8 @@ void RegisterDynamicCommands(CLI::App& app) {
                   "Simulate one mesh cycle, one planet or sun revolution relative to the "
                   "carrier, or one carrier revolution")
       ->check(CLI::IsMember({"cycle", "planet", "sun", "revolution"}));
-  AddNumber(cmd, "--time", a.time, "Simulate this long instead [s]",
-            {0, 3600, true, false, "[s]", "an hour of motion"});
-  AddNumber(cmd, "--start-deg", a.start_deg, "Carrier angle at t = 0 [deg]", kAngleDeg);
+  AddNumber(cmd, "--time", a.time, "Simulate this long instead [s]", kRunTimeS);
+  AddNumber(cmd, "--start-deg", a.start_deg, "Carrier angle at t = 0 [deg]", kCarrierAngleDeg);
   cmd->add_option("--sun", a.sun, "Override the scene's sun support")
       ->check(CLI::IsMember({"fixed", "floating"}));
   cmd->add_option("--friction", a.friction, "Override the scene's friction law")
@@ -289,44 +288,39 @@ void RegisterDynamicCommands(CLI::App& app) {
   cmd->add_option("--backend", a.backend, "Contact back end (newton, ipopt, nlopt-lbfgs, ...)");
   cmd->add_option("--integrator", a.integrator, "cvode-bdf (default) or arkode-erk")
       ->check(CLI::IsMember({"cvode-bdf", "arkode-erk"}));
-  AddNumber(cmd, "--rtol", a.rtol, "Relative tolerance of the integrator",
-            {1e-12, 0.1, false, false, "", ""});
-  AddNumber(
-      cmd, "--rate-scale", a.rate_scale,
-      "Absolute tolerance of the rates = that of the positions times this [1/s] "
-      "(default 1e4; 0: the stage's highest linearised natural frequency; "
-      "docs/dynamic.md, Error against run time)",
-      {0, 1e12, false, false, "[1/s]", "0: the stage's highest linearised natural frequency"});
+  AddNumber(cmd, "--rtol", a.rtol, "Relative tolerance of the integrator", kRelativeTolerance);
+  AddNumber(cmd, "--rate-scale", a.rate_scale,
+            "Absolute tolerance of the rates = that of the positions times this [1/s] "
+            "(default 1e4; 0: the stage's highest linearised natural frequency; "
+            "docs/dynamic.md, Error against run time)",
+            kRateScale);
   AddNumber(cmd, "--contact-tol", a.contact_tol,
             "Tolerance of every contact solve on its nondimensional residual (default 1e-10)",
-            {1e-14, 1e-2, false, false, "", "a nondimensional residual"});
+            kRunContactTolerance);
   AddNumber(cmd, "--outputs-per-cycle", a.outputs_per_cycle,
             "Output steps per mesh cycle (default: 10 per period of the highest natural "
             "frequency, 20 to 500; 64 in a speed sweep's window; docs/dynamic.md, Outputs)",
-            {1, 1e5, false, true, "", ""});
+            kOutputsPerCycle);
   cmd->add_option("--speed-sweep", a.speed_sweep,
                   "FROM:TO:N: run N sun speeds [rpm] from FROM to TO (ends included) in parallel; "
                   "per speed K_gamma, dynamic factor, TE amplitude, sun orbit, against speed with "
                   "the mesh-harmonic coincidences of the natural frequencies (--range or "
                   "--window-cycles: the measured window; --start-deg: where it begins)");
   AddNumber(cmd, "--window-cycles", a.window_cycles,
-            "Speed sweep: mesh cycles measured per speed (replaces --range)",
-            {0, 1e5, true, false, "", ""});
+            "Speed sweep: mesh cycles measured per speed (replaces --range)", kWindowCycles);
   AddNumber(cmd, "--harmonics", a.harmonics,
             "Speed sweep: mark coincidences of mesh harmonics 1..N (default: every one in range)",
-            {1, 100, false, true, "", ""});
+            kHarmonics);
   AddNumber(cmd, "--threads", a.threads, "Speed sweep: worker threads (default: every core)",
             kThreads);
-  AddNumber(cmd, "--max-order", a.max_order, "Largest BDF order of CVODE (1..5)",
-            {1, 5, false, true, "", ""});
+  AddNumber(cmd, "--max-order", a.max_order, "Largest BDF order of CVODE (1..5)", kMaxOrder);
   cmd->add_flag("--spectrum", a.spectrum,
                 "Also the vibration signals per step and their spectra (docs/dynamic.md, Spectra)");
   AddNumber(cmd, "--spectrum-resolution", a.spectrum_resolution,
             "Spectrum: segment length 1/this [Hz] (default 0: one carrier revolution)",
-            {0, 1e6, false, false, "[Hz]", "0: one carrier revolution"});
+            kSpectrumResolution);
   AddNumber(cmd, "--spectrum-skip-cycles", a.spectrum_skip,
-            "Spectrum: mesh cycles left out at the start (default 4)",
-            {0, 1e6, false, false, "[mesh cycles]", "the start transient"});
+            "Spectrum: mesh cycles left out at the start (default 4)", kSpectrumSkipCycles);
   cmd->add_flag("--rating", a.rating,
                 "ISO 6336 ratings with the run's K_v and the stresses in motion (needs the scene's "
                 "[material] bending_limit_MPa and contact_limit_MPa; implies --stresses)");

@@ -183,7 +183,7 @@ void RegisterGeometryCommands(CLI::App& app) {
   geo->add_option("--json", json_path, "Also write the report as JSON (keys: docs/geometry.md)");
   geo->add_option("--svg", svg_path, "Draw the stage as SVG");
   AddNumber(geo, "--carrier-deg", carrier_deg,
-            "Carrier angle of the drawing [deg] (gear pairs: gear 1's turn)", kAngleDeg);
+            "Carrier angle of the drawing [deg] (gear pairs: gear 1's turn)", kCarrierAngleDeg);
   geo->add_option("--zoom", zoom_mesh,
                   "Draw one tooth pair of this mesh instead (sun-planet<i>, planet<i>-ring; a "
                   "pair scene: gear1-gear2, its default): undercut, form circles, relief");
@@ -258,7 +258,7 @@ void RegisterGeometryCommands(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   AddNumber(con, "--carrier-deg", contacts_deg, "Carrier angle [deg] (gear pairs: gear 1's turn)",
-            kAngleDeg)
+            kCarrierAngleDeg)
       ->required();
   con->callback([] {
     const transmission::Scene scene = transmission::ReadScene(contacts_scene);

@@ -52,8 +52,9 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   const int n = stage.planets();
 
   // The carrier angles: the list given, or `count` over the range (computed as they are needed).
-  std::vector<double> angles;
-  for (double d : a.angles_deg) angles.push_back(geometry::Rad(d));
+  const std::vector<double> angles =
+      a.angles_deg.empty() ? std::vector<double>{}
+                           : transmission::CheckedCarrierAngles("--angles-deg", a.angles_deg);
   const transmission::RunRange range = transmission::RunRangeFromName(a.range);
   const int count = !angles.empty() ? static_cast<int>(angles.size())
                     : a.positions > 0 ? a.positions
@@ -223,15 +224,16 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
       ->check(CLI::ExistingFile);
   AddNumber(cmd, "--positions", a.positions,
             "Positions of the sweep (default 60 per mesh cycle: docs/quasistatic.md, Positions)",
-            {1, 1e6, false, true, "", ""});
+            kSweepPositions);
   cmd->add_option("--range", a.range,
                   "Sweep one mesh cycle, one planet or sun revolution relative to the carrier "
                   "(the period of a planet's run-out, of a sun tooth's damage), or one carrier "
                   "revolution")
       ->check(CLI::IsMember({"cycle", "planet", "sun", "revolution"}));
   AddNumber(cmd, "--start-deg", a.start_deg, "Carrier angle of the first position [deg]",
-            kAngleDeg);
-  AddNumber(cmd, "--angles-deg", a.angles_deg, "A given list of carrier angles [deg]", kAngleDeg);
+            kCarrierAngleDeg);
+  AddNumber(cmd, "--angles-deg", a.angles_deg, "A given list of carrier angles [deg]",
+            kCarrierAngleDeg);
   cmd->add_option("--sun", a.sun, "Override the scene's sun support")
       ->check(CLI::IsMember({"fixed", "floating"}));
   AddNumber(cmd, "--threads", a.threads,

@@ -60,9 +60,9 @@ std::vector<double> ParseSpeedSweep(const std::string& spec) {
   if (!kSunSpeedRpm.Holds(to))
     throw std::invalid_argument("--speed-sweep = " + spec + ": TO = " + t + ": " +
                                 kSunSpeedRpm.Describe());
-  if (n > 100000)
-    throw std::invalid_argument("--speed-sweep = " + spec + ": N = " + std::to_string(n) +
-                                ": must be <= 100000");
+  if (!kSweepSpeeds.Holds(static_cast<double>(n)) && n > 0)
+    throw std::invalid_argument("--speed-sweep = " + spec + ": N = " + std::to_string(n) + ": " +
+                                kSweepSpeeds.Describe());
   try {
     return dynamics::SpeedGrid(from, to, static_cast<int>(n));
   } catch (const std::invalid_argument& e) {

@@ -121,9 +121,8 @@ void RegisterStiffnessCommands(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--mesh", a.mesh, "Mesh of a stage: sun-planet1, planet1-ring, ...");
-  AddNumber(cmd, "--positions", a.positions, "Positions per mesh cycle",
-            {2, 1e5, false, true, "", ""});
-  AddNumber(cmd, "--cycle", a.cycle, "Sweep this one mesh cycle", {0, 1e6, false, false, "", ""});
+  AddNumber(cmd, "--positions", a.positions, "Positions per mesh cycle", kStiffnessPositions);
+  AddNumber(cmd, "--cycle", a.cycle, "Sweep this one mesh cycle", kStiffnessCycle);
   AddNumber(cmd, "--threads", a.threads,
             "Worker threads: the positions in contiguous chunks, one per thread (0: one per core)",
             kThreadsOrZero);

@@ -153,7 +153,7 @@ void RegisterStudyCommands(CLI::App& app) {
   AddNumber(cmd, "--threads", a.threads, "Worker threads (default: every core)", kThreads);
   AddNumber(cmd, "--max-cases", a.max_cases,
             "Compute at most this many new cases, then summarise (a partial run)",
-            {0, 1e9, false, true, "", ""});
+            transmission::kStudyCases);
   cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");
   cmd->add_flag("--no-cache", a.no_cache, "Build the influence tables in memory only");
   cmd->add_flag("--quiet", a.quiet, "No progress bar");

@@ -21,6 +21,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/work_queue.hpp"
 #include "number_format.hpp"
 
@@ -110,7 +111,8 @@ void SpeedSweepOptions::Validate() const {
     throw std::invalid_argument("speed sweep: sun_speeds_rpm is empty: needs at least one speed");
   for (std::size_t k = 0; k < sun_speeds_rpm.size(); ++k) {
     const double s = sun_speeds_rpm[k];
-    if (!(s > 0) || !std::isfinite(s)) bad("sun_speeds_rpm[" + std::to_string(k) + "]", s, "> 0");
+    if (!transmission::kSunSpeedRpm.Holds(s))
+      bad("sun_speeds_rpm[" + std::to_string(k) + "]", s, transmission::kSunSpeedRpm.Describe());
     if (k > 0 && !(s > sun_speeds_rpm[k - 1]))
       bad("sun_speeds_rpm[" + std::to_string(k) + "]", s, "must exceed the speed before it");
   }
@@ -194,10 +196,15 @@ std::vector<Coincidence> FindCoincidences(const DynamicModel& model, const std::
     if (modes[j].rigid) continue;
     const std::vector<bool> families = Families(modes[j], model, stage);
     const double f = modes[j].frequency;
-    // n_s = f/(h f_m per rpm) falls in [lo, hi] for h in [f/(hi f_m), f/(lo f_m)].
-    const auto first = std::max(1L, static_cast<long>(std::ceil(f / (hi_rpm * hz_per_rpm))));
-    auto last = static_cast<long>(std::floor(f / (lo_rpm * hz_per_rpm)));
-    if (max_harmonic > 0) last = std::min(last, static_cast<long>(max_harmonic));
+    // n_s = f/(h f_m per rpm) falls in [lo, hi] for h in [f/(hi f_m), f/(lo f_m)]; by default
+    // only up to the highest harmonic a run resolves (kMaxResolvedHarmonic, run_span.hpp), so
+    // that the work is bounded whatever the modes and the range (a mode at 1e17 Hz has 1e14
+    // harmonics in any range).
+    const double top = max_harmonic > 0 ? max_harmonic : kMaxResolvedHarmonic;
+    const double lowest = std::ceil(f / (hi_rpm * hz_per_rpm));
+    if (!(lowest <= top)) continue;  // beyond every harmonic counted (NaN too)
+    const auto first = std::max(1L, static_cast<long>(lowest));
+    const auto last = static_cast<long>(std::min(top, std::floor(f / (lo_rpm * hz_per_rpm))));
     for (long h = first; h <= last; ++h) {
       Coincidence x;
       x.frequency = f;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "epicycle/geometry/argument_range.hpp"
 #include "jet.hpp"
 
 namespace epicycle::geometry {
@@ -149,6 +150,7 @@ double InvoluteFlank::RollAtRadius(double base_radius, double radius) {
 }
 
 Polyline HalfProfile::Sample(int per_segment) const {
+  CheckArgument("points_per_segment", per_segment, kPointsPerSegment);
   Polyline out;
   for (std::size_t s = 0; s < segments.size(); ++s) {
     const Segment& seg = segments[s];

@@ -7,6 +7,7 @@
 #include "common.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/transmission/run_arguments.hpp"
 
 namespace epicycle::python {
 
@@ -87,6 +88,10 @@ py::object Solve(const Problem& problem, const std::string& backend, double tole
                  int max_iterations, double time_limit_s, bool polish,
                  std::optional<Eigen::VectorXd> force_N, std::optional<Eigen::VectorXd> multiplier,
                  const std::map<std::string, std::string>& options) {
+  // The rules of the program's --tol and of the solve's other limits (run_arguments.hpp).
+  transmission::CheckArgument("tolerance", tolerance, transmission::kContactTolerance);
+  transmission::CheckArgument("max_iterations", max_iterations, transmission::kContactIterations);
+  transmission::CheckArgument("time_limit_s", time_limit_s, transmission::kContactTimeLimitS);
   solvers::ContactOptions o;
   o.tolerance = tolerance;
   o.max_iterations = max_iterations;

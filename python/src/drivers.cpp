@@ -10,6 +10,7 @@
 #include "epicycle/studies/study.hpp"
 #include "epicycle/studies/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/run_arguments.hpp"
 
 namespace epicycle::python {
 
@@ -43,6 +44,10 @@ py::object SampleObject(const studies::SampleSummary& s);
 py::object Study(const std::string& path, std::optional<std::string> text, int threads,
                  long max_cases, std::optional<std::string> rows_file,
                  std::optional<std::string> cache_dir, py::object progress) {
+  transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
+  if (max_cases >= 0)  // < 0: every case
+    transmission::CheckArgument("max_cases", static_cast<double>(max_cases),
+                                transmission::kStudyCases);
   const studies::StudySpec study =
       text ? studies::ParseStudy(*text, path, std::filesystem::path(path).parent_path().string())
            : studies::ReadStudy(path);

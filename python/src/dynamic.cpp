@@ -9,6 +9,7 @@
 #include "common.hpp"
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
+#include "epicycle/dynamics/run_arguments.hpp"
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
@@ -24,7 +25,8 @@ namespace {
 using ScenePtr = std::shared_ptr<Scene>;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The integrator and contact settings of a run (SimulationOptions), checked by Validate.
+// The integrator and contact settings of a run (SimulationOptions), each number by its option's
+// rule (dynamics/run_arguments.hpp), then by Validate.
 struct Integration {
   std::string integrator = "cvode-bdf";
   double rtol = 1e-6;
@@ -33,6 +35,11 @@ struct Integration {
   bool analytic_jacobian = true;
   std::string backend = "newton";
   dynamics::SimulationOptions Options() const {
+    dynamics::CheckArgument("rtol", rtol, dynamics::kRelativeTolerance);
+    if (rate_scale) dynamics::CheckArgument("rate_scale", *rate_scale, dynamics::kRateScale);
+    if (contact_tol)
+      dynamics::CheckArgument("contact_tol", *contact_tol, dynamics::kRunContactTolerance);
+    dynamics::CheckArgument("max_order", max_order, dynamics::kMaxOrder);
     dynamics::SimulationOptions o;
     o.integrator = dynamics::IntegratorFromName(integrator);
     o.backend = BackendOf(backend);
@@ -89,6 +96,9 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
                    const std::string& range, double time_s, int outputs_per_cycle, double start_deg,
                    const Integration& integration, std::optional<std::string> cache_dir,
                    py::object progress, bool raise_on_failure) {
+  if (time_s != 0) dynamics::CheckArgument("time_s", time_s, dynamics::kRunTimeS);  // 0: the range
+  dynamics::CheckArgument("outputs_per_cycle", outputs_per_cycle, dynamics::kOutputsPerCycle);
+  dynamics::CheckArgument("start_deg", start_deg, transmission::kCarrierAngleDeg);
   const dynamics::SimulationOptions opt = integration.Options();
   const transmission::RunRange run_range = transmission::RunRangeFromName(range);
   const ScenePtr s = AtSpeed(scene, sun_speed_rpm);
@@ -325,6 +335,20 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
                       double start_deg, int harmonics, int threads, const Integration& integration,
                       std::optional<std::string> cache_dir, py::object progress,
                       bool raise_on_failure) {
+  // Every number by its option's rule (run_arguments.hpp), before any work.
+  if (!dynamics::kSweepSpeeds.Holds(static_cast<double>(sun_speeds_rpm.size())))
+    throw std::invalid_argument("sun_speeds_rpm: " + std::to_string(sun_speeds_rpm.size()) +
+                                " speeds: " + dynamics::kSweepSpeeds.Describe());
+  for (std::size_t k = 0; k < sun_speeds_rpm.size(); ++k)
+    dynamics::CheckArgument("sun_speeds_rpm[" + std::to_string(k) + "]", sun_speeds_rpm[k],
+                            transmission::kSunSpeedRpm);
+  if (window_cycles != 0)  // 0: the range's
+    dynamics::CheckArgument("window_cycles", window_cycles, dynamics::kWindowCycles);
+  dynamics::CheckArgument("outputs_per_cycle", outputs_per_cycle, dynamics::kOutputsPerCycle);
+  dynamics::CheckArgument("start_deg", start_deg, transmission::kCarrierAngleDeg);
+  if (harmonics != 0)  // 0: every harmonic in the range
+    dynamics::CheckArgument("harmonics", harmonics, dynamics::kHarmonics);
+  dynamics::CheckArgument("threads", threads, transmission::kThreadsOrZero);
   dynamics::SpeedSweepOptions o;
   o.sun_speeds_rpm = sun_speeds_rpm;
   o.threads =
@@ -334,6 +358,8 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
   o.window_start = geometry::Rad(start_deg);
   o.simulation = integration.Options();
   const transmission::RunRange run_range = transmission::RunRangeFromName(range);
+  o.window_cycles = window_cycles > 0 ? window_cycles : 1;  // the range's: set with the stage
+  o.Validate();
   CancelToken token;
   const Progress report(std::move(progress), &token);
   struct Out {
@@ -591,6 +617,9 @@ per mesh, window_carrier_deg. Raises ComputationError (with .result) if a speed 
   m.def(
       "speed_grid",
       [](double from_rpm, double to_rpm, int count) {
+        dynamics::CheckArgument("from_rpm", from_rpm, transmission::kSunSpeedRpm);
+        dynamics::CheckArgument("to_rpm", to_rpm, transmission::kSunSpeedRpm);
+        dynamics::CheckArgument("count", count, dynamics::kSweepSpeeds);
         return Array(dynamics::SpeedGrid(from_rpm, to_rpm, count));
       },
       py::arg("from_rpm"), py::arg("to_rpm"), py::arg("count"),

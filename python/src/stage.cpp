@@ -12,6 +12,7 @@
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/rating.hpp"
+#include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
@@ -60,6 +61,7 @@ py::object GearProfiles(const geometry::Gear& gear, int per_segment) {
 }
 
 py::object Geometry(const ScenePtr& s, int per_segment) {
+  geometry::CheckArgument("points_per_segment", per_segment, geometry::kPointsPerSegment);
   const transmission::Scene& scene = s->scene();
   py::dict f;
   py::dict gears;
@@ -82,12 +84,19 @@ py::object Geometry(const ScenePtr& s, int per_segment) {
 }
 
 py::object Contacts(const ScenePtr& s, double carrier_deg, std::optional<double> gap_window_um) {
-  const transmission::Scene& scene = s->scene();
+  transmission::CheckArgument("carrier_deg", carrier_deg, transmission::kCarrierAngleDeg);
+  // The window given: the scene's key contact.gap_window_um set, with the scene reader's rule.
+  const ScenePtr run_scene = gap_window_um ? s->Edited([w = *gap_window_um](toml::table& t) {
+    if (!t["contact"].is_table()) t.insert_or_assign("contact", toml::table{});
+    t["contact"].as_table()->insert_or_assign("gap_window_um", w);
+  })
+                                           : s;
+  const transmission::Scene& scene = run_scene->scene();
   RequireStage(scene, "contacts");
   const geometry::Stage st = transmission::MakeStage(scene);
   const geometry::StagePoses p = st.Poses(geometry::Rad(carrier_deg));
   geometry::ContactSearchOptions opt;
-  opt.gap_window = gap_window_um ? *gap_window_um * 1e-6 : scene.gap_window;
+  opt.gap_window = scene.gap_window;
   py::list mesh, kind, flank;
   std::vector<int> tooth, mate;
   std::vector<double> x, y, nx, ny, overlap, arm_a, arm_b, rho_a, rho_b;
@@ -135,6 +144,8 @@ py::object Contacts(const ScenePtr& s, double carrier_deg, std::optional<double>
 py::object MeshStiffness(const ScenePtr& s, const std::string& mesh, int positions,
                          const std::string& backend, bool local_terms, bool tooth_coupling,
                          int threads, std::optional<std::string> cache_dir, py::object progress) {
+  transmission::CheckArgument("positions", positions, transmission::kStiffnessPositions);
+  transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
   transmission::MeshStiffnessOptions opt;
   opt.positions = positions;
   opt.threads = threads;
@@ -278,6 +289,14 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
                        std::optional<std::string> cache_dir, py::object progress,
                        bool raise_on_failure, const std::string& friction, bool stresses,
                        bool rating) {
+  // Every number by the program's rule for its option, before any work (run_arguments.hpp).
+  if (positions != 0)  // 0: the default, 60 per mesh cycle
+    transmission::CheckArgument("positions", positions, transmission::kSweepPositions);
+  transmission::CheckArgument("start_deg", start_deg, transmission::kCarrierAngleDeg);
+  const std::vector<double> given_angles =
+      angles_deg ? transmission::CheckedCarrierAngles("angles_deg", *angles_deg)
+                 : std::vector<double>{};
+  transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
   // Stresses (or a rating, which needs them): the scene with [model] stresses = true.
   ScenePtr run_scene = s;
   if ((stresses || rating) && !s->scene().model.stresses)
@@ -292,9 +311,6 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   opt.warm_start = warm_start;
   transmission::SetRestFriction(s->scene().dynamics, friction, &opt);
   opt.Validate();
-  if (positions < 0)
-    throw std::invalid_argument("positions = " + std::to_string(positions) +
-                                ": must be >= 1 (0: 36 over a mesh cycle, 360 otherwise)");
   const transmission::RunRange run_range = transmission::RunRangeFromName(range);
   CancelToken token;
   const Progress report(std::move(progress), &token);
@@ -307,10 +323,8 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     Out o;
     o.rig = run_scene->Rig(cache_dir, "quasistatic");
     const geometry::Stage& stage = o.rig->stage;
-    std::vector<double> angles;
-    if (angles_deg) {
-      for (double d : *angles_deg) angles.push_back(geometry::Rad(d));
-    } else {
+    std::vector<double> angles = given_angles;
+    if (!angles_deg) {
       const int count =
           positions > 0 ? positions : transmission::DefaultPositions(stage, run_range);
       angles = transmission::SweepAngles(geometry::Rad(start_deg),

@@ -1,5 +1,6 @@
 #include "epicycle/studies/study.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -7,6 +8,7 @@
 #include <stdexcept>
 
 #include "epicycle/geometry/gear.hpp"
+#include "epicycle/geometry/iso.hpp"
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/internal/toml_reader.hpp"
@@ -67,8 +69,70 @@ const geometry::GearSpec& TargetSpec(const transmission::Scene& scene, const Tar
                                          : scene.stage.planet;
 }
 
+// A normal variable's spread against the values its cases can take, in the file's unit (the
+// scene's rules: an error within a quarter module, a pit's depth in (0, m/4], its width fraction in
+// (0, 1], a crack's depth in (0, m]; docs/studies.md). With mean ± sigma past them a sixth of the
+// cases or more fail (the one-sided tail beyond one standard deviation holds 15.9 %): an error.
+// With mean ± 3 sigma past them (0.13 % a side), or an error past the smaller backlash of the
+// gear's meshes (its planet jams, the scene's warning in each such case): a warning.
+void CheckSpread(TableReader& t, const transmission::Scene& scene, const Variable& v,
+                 const std::string& unit, double scale, std::vector<std::string>* warnings) {
+  const double m = scene.stage.sun.module / scale;  // the module in the file's unit
+  double lo = 0, hi = 0, backlash = 0;
+  std::string what;
+  switch (v.quantity) {
+    case Quantity::kPinRadial:
+    case Quantity::kPinTangential:
+    case Quantity::kThickness: {
+      lo = -0.25 * m, hi = 0.25 * m;
+      what = "an error within a quarter module";
+      const geometry::StageSpec& st = scene.stage;
+      const double sp = geometry::iso::NormalBacklash(
+          st.sun.module, st.sun.teeth, st.planet.teeth, st.sun.profile_shift,
+          st.planet.profile_shift, st.sun.pressure_angle, st.carrier_radius, false);
+      const double pr = geometry::iso::NormalBacklash(
+          st.planet.module, st.planet.teeth, st.ring.teeth, st.planet.profile_shift,
+          st.ring.profile_shift, st.planet.pressure_angle, st.carrier_radius, true);
+      backlash = (v.target.kind == Target::Kind::kSun    ? sp
+                  : v.target.kind == Target::Kind::kRing ? pr
+                                                         : std::min(sp, pr)) /
+                 scale;
+      break;
+    }
+    case Quantity::kPitDepth:
+      hi = 0.25 * m, what = "a pit's depth in (0, m/4]";
+      break;
+    case Quantity::kPitWidth:
+      hi = 1, what = "a pit's width fraction in (0, 1]";
+      break;
+    case Quantity::kCrackDepth:
+      hi = m, what = "a crack's depth in (0, m]";
+      break;
+    default:
+      return;  // a torque: the sign rule of its own
+  }
+  const double mean = v.mean / scale, sigma = v.sigma / scale;
+  const double room = std::min(mean - lo, hi - mean);
+  const std::string cases = " (the cases' values: " + what + ", [" + Num(lo) + ", " + Num(hi) +
+                            "] " + unit + " here; mean_" + unit + " = " + Num(mean) + ")";
+  if (sigma > room)
+    t.Fail("sigma_" + unit, Num(sigma),
+           "must be <= " + Num(std::max(room, 0.0)) + cases +
+               ": a wider spread puts a sixth of the cases or more outside, and they fail");
+  if (3 * sigma > room)
+    warnings->push_back(t.Warning("sigma_" + unit, "mean +- 3 sigma reaches outside" + cases +
+                                                       ": 0.1 % of the cases or more fail"));
+  if (backlash > 0 && std::abs(mean) + 3 * sigma > backlash)
+    warnings->push_back(t.Warning(
+        "sigma_" + unit, "|mean| + 3 sigma = " + Num(std::abs(mean) + 3 * sigma) + " " + unit +
+                             " is past the normal backlash j_n = " + Num(backlash) + " " + unit +
+                             " of the gear's meshes: such cases close it and jam a planet (the "
+                             "scene's warning); the model is meant for errors below the backlash"));
+}
+
 // One [[variable]] table: one Variable, or one per planet for gear = "planets".
-std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& scene) {
+std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& scene,
+                                   std::vector<std::string>* warnings) {
   std::vector<std::string> quantities;
   for (const QuantityInfo& i : kQuantities) quantities.emplace_back(i.key);
   const std::string qname = t.String("quantity", quantities);
@@ -159,6 +223,7 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
     v.mean = t.RealOr("mean_" + unit, 0.0, value_rule) * info.scale;
     v.sigma = t.Real("sigma_" + unit, Rule::NonNegative().Because("a standard deviation is >= 0")) *
               info.scale;
+    CheckSpread(t, scene, v, unit, info.scale, warnings);
   } else if (dist == "uniform") {
     v.distribution = Distribution::kUniform;
     const Rule r = v.quantity == Quantity::kRunout
@@ -319,7 +384,7 @@ StudySpec ParseStudy(const std::string& text, const std::string& source,
   }
   st.Done();
   for (TableReader& t : top.TableArray("variable"))
-    for (Variable& v : ReadVariable(t, s.scene)) s.variables.push_back(std::move(v));
+    for (Variable& v : ReadVariable(t, s.scene, &s.warnings)) s.variables.push_back(std::move(v));
   top.Done();
   // A gear's quantity sampled twice would give two columns writing one value.
   for (std::size_t a = 0; a < s.variables.size(); ++a)

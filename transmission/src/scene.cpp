@@ -11,6 +11,7 @@
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/transmission/run_arguments.hpp"
 #include "scene_internal.hpp"
 
 namespace epicycle::transmission {
@@ -88,14 +89,13 @@ Inertia ReadInertia(TableReader& t) {
 
 // The optional [dynamics] and [lubricant] tables (docs/scenes.md), with their cross-key rules
 // (DynamicSettings::Validate's) named at the key the user wrote.
-void ReadDynamics(TableReader& top, DynamicSettings& d) {
+void ReadDynamics(TableReader& top, DynamicSettings& d, std::vector<std::string>* warnings) {
   if (auto t = top.OptionalTable("dynamics")) {
-    // The command line's range for --speed-rpm (app/src/options.hpp), the same words.
-    d.sun_speed = t->RealOr("sun_speed_rpm", 1500.0,
-                            Rule::Closed(1, 1e5).Because(
-                                "slower runs are quasi-static: epicycle quasistatic; faster ones "
-                                "are past any gear's pitch-line speed")) *
-                  std::numbers::pi / 30.0;
+    // The rule of every sun speed a run is given (run_arguments.hpp: --speed-rpm, Python's).
+    d.sun_speed =
+        t->RealOr("sun_speed_rpm", 1500.0,
+                  Rule::Closed(kSunSpeedRpm.lo, kSunSpeedRpm.hi).Because(kSunSpeedRpm.why)) *
+        std::numbers::pi / 30.0;
     d.carrier_free = t->StringOr("carrier", "speed", {"speed", "torque"}) == "torque";
     d.carrier_load_inertia = t->RealOr("carrier_load_inertia_kgm2", 0.0, Rule::NonNegative());
     d.sun_speed_driven = t->StringOr("sun", "torque", {"torque", "speed"}) == "speed";
@@ -124,8 +124,25 @@ void ReadDynamics(TableReader& top, DynamicSettings& d) {
     t->Done();
   }
   if (auto t = top.OptionalTable("lubricant")) {
-    d.friction.lubricant.dynamic_viscosity =
-        t->RealOr("viscosity_mPas", 50.0, Rule::Positive()) * 1e-3;
+    // The lubricated laws (docs/dynamic.md, "Friction") are regressions on gear oils at their
+    // running temperatures, ISO VG 22 at 100 C (about 3 mPa s) to VG 1000 at 40 C (about 900):
+    // outside [2, 1000] they are extrapolated (a warning). Below 0.1 mPa s Xu-Kahraman's
+    // e^(b5 e^(-SR P_h log10 nu0)) overflows (at 0.078 for SR = 2, P_h = 2.5 GPa): no finite
+    // coefficient; above 1e4 its coefficient passes the cap in most contacts (median 0.78 over
+    // P_h 0.3-2.5 GPa, SR 0.05-2, V_e 1-30 m/s, R 3-50 mm) and Benedict-Kelley's logarithm turns
+    // negative (no friction): the laws give no coefficient of the contact, only their bounds.
+    const double nu = t->RealOr(
+        "viscosity_mPas", 50.0,
+        Rule::Closed(0.1, 1e4).Because(
+            "below 0.1 Xu-Kahraman's law overflows (no finite coefficient); above 1e4 both "
+            "lubricated laws are pinned at their bounds (the cap, or no friction) in most "
+            "contacts"));
+    if (nu < 2 || nu > 1000)
+      warnings->push_back(
+          t->Warning("viscosity_mPas",
+                     "outside [2, 1000], the gear oils at running temperature that the "
+                     "friction laws were fitted on: the coefficients are extrapolated"));
+    d.friction.lubricant.dynamic_viscosity = nu * 1e-3;
     const double roughness_um = t->RealOr("roughness_um", 0.8, Rule::Positive());
     // Benedict & Kelley's roughness factor 50/(50 − S) takes S in µin: S < 50 µin = 1.27 µm.
     if (d.friction.law == FrictionLaw::kBenedictKelley && !(roughness_um < 1.27))
@@ -213,6 +230,35 @@ void InertiaWarnings(const TableReader& t, const GearSpec& g, const Inertia& i,
   check("inertia_kgm2", i.inertia, disc_inertia, "kg m2");
 }
 
+// The lightest gear the model represents (docs/scenes.md, "Ranges and validity"). The model takes
+// the teeth as massless springs (the static FE compliance and the local term), so a member's
+// motion on its mesh must be slower than its teeth's own first bending vibration. A tooth as a
+// cantilever of the whole depth L = 2.25 m and the pitch thickness s = πm/2 (Euler–Bernoulli)
+// bends at ω_t = 1.875² (s/L²) √(E/(12 ρ)); a member of mass M on one mesh of stiffness k = c_γ b
+// (ISO 6336-1: c_γ ≈ 20 N/(mm·µm) for steel, in proportion to E for other materials) moves at
+// ω = √(k/M). ω ≤ ω_t gives M ≥ k/ω_t² = (c_γ/E) 12 ρ L⁴ b/(1.875⁴ s²) = 0.98 ρ b m² (E cancels;
+// steel's ρ): about the steel of half a tooth. The rotation likewise at the base circle:
+// J ≥ M_min r_b². A lighter gear puts the model's modes above its teeth's (a planet of
+// 1e-30 kg m² at 2.4e17 Hz) and its runs' steps below any physical time scale.
+void InertiaRule(TableReader& t, const GearSpec& g, const Inertia& i) {
+  constexpr double kSteelDensity = 7850;                              // [kg/m³]
+  constexpr double kMeshStiffnessOverModulus = 20e9 / 206e9;          // c_γ/E [-]
+  constexpr double kDepth = 2.25, kThickness = std::numbers::pi / 2;  // L/m, s/m [-]
+  constexpr double kClamped = 1.875 * 1.875 * 1.875 * 1.875;          // (β₁L)⁴ [-]
+  const double m_min = kMeshStiffnessOverModulus * 12 * kSteelDensity * std::pow(kDepth, 4) *
+                       g.face_width * g.module * g.module / (kClamped * kThickness * kThickness);
+  const double r_b = 0.5 * g.module * g.teeth * std::cos(g.pressure_angle);
+  const std::string why =
+      ": the lightest gear the model represents, 0.98 rho b m^2 of steel (half a tooth; J: that "
+      "at the base circle): lighter, it moves on its mesh faster than its teeth's own bending "
+      "vibration, which the model (teeth as massless springs) does not have";
+  if (i.mass > 0 && i.mass < m_min)
+    t.Fail("mass_kg", SceneNum(i.mass), "must be 0 (not given) or >= " + SceneNum(m_min) + why);
+  if (i.inertia > 0 && i.inertia < m_min * r_b * r_b)
+    t.Fail("inertia_kgm2", SceneNum(i.inertia),
+           "must be 0 (not given) or >= " + SceneNum(m_min * r_b * r_b) + why);
+}
+
 GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool fit_target,
                   Inertia* inertia, std::vector<std::string>* warnings = nullptr) {
   GearSpec g;
@@ -245,6 +291,7 @@ GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool f
   g.min_tip_thickness = t.RealOr("min_tip_thickness_mm", -1e3, Rule::Any()) * kMm;
   if (g.min_tip_thickness < 0) g.min_tip_thickness = -1;
   *inertia = ReadInertia(t);
+  InertiaRule(t, g, *inertia);
   if (warnings != nullptr) InertiaWarnings(t, g, *inertia, warnings);
   TableReader cutter = t.Table("cutter");
   // The tip (and a directly defined ring's root) is given as a radius, or as an addendum
@@ -739,7 +786,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     ReadErrors(*t, s, &error_keys);
     t->Done();
   }
-  ReadDynamics(top, s.dynamics);
+  ReadDynamics(top, s.dynamics, &s.warnings);
   if (s.dynamics.carrier_free && !s.dynamics.sun_speed_driven)
     s.warnings.push_back(
         s.source +

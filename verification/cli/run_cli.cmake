@@ -10,17 +10,23 @@
 # opens and refuses every write: ENOSPC), their folders created.
 # ECHOED (optional, a ;-list): the user's own bad values as the message quotes them
 # ("--speed-rpm = nan"), left out of the nan/inf search.
+# ABSENT (optional, a ;-list): strings that must not be in stdout + stderr.
+# MEMORY_KB (optional): the program's address space limited to this (sh's ulimit -v): a run that
+# allocates more fails (std::bad_alloc, exit 1), whatever it was asked.
 foreach(f IN LISTS FULL)
   get_filename_component(folder "${f}" DIRECTORY)
   file(MAKE_DIRECTORY "${folder}")
   file(REMOVE "${f}")
   file(CREATE_LINK /dev/full "${f}" SYMBOLIC)
 endforeach()
+set(command ${EXE} ${ARGS})
+if(MEMORY_KB)
+  set(command sh -c "ulimit -v ${MEMORY_KB} && exec \"$0\" \"$@\"" ${EXE} ${ARGS})
+endif()
 if(STDOUT)
-  execute_process(COMMAND ${EXE} ${ARGS} RESULT_VARIABLE rc OUTPUT_FILE ${STDOUT}
-                  ERROR_VARIABLE err)
+  execute_process(COMMAND ${command} RESULT_VARIABLE rc OUTPUT_FILE ${STDOUT} ERROR_VARIABLE err)
 else()
-  execute_process(COMMAND ${EXE} ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${command} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 endif()
 set(all "${out}${err}")
 if(NOT "${rc}" STREQUAL "${EXPECT_RC}")
@@ -30,6 +36,12 @@ foreach(piece IN LISTS CONTAIN)
   string(FIND "${all}" "${piece}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "output lacks \"${piece}\"; output:\n${all}")
+  endif()
+endforeach()
+foreach(piece IN LISTS ABSENT)
+  string(FIND "${all}" "${piece}" at)
+  if(NOT at EQUAL -1)
+    message(FATAL_ERROR "output holds \"${piece}\"; output:\n${all}")
   endif()
 endforeach()
 set(texts "${all}")

@@ -286,6 +286,13 @@ TEST_CASE("speed sweep: bad speed lists and options are named with value and rul
   o.transient_fraction = 1;
   CHECK(message([&] { o.Validate(); }) ==
         "speed sweep: transient_fraction = 1: must lie in (0, 1)");
+  // A sun speed by the rule of every run's (transmission/run_arguments.hpp, --speed-rpm's).
+  dynamics::SpeedSweepOptions slow;
+  slow.sun_speeds_rpm = {0.5};
+  CHECK(message([&] { slow.Validate(); }) ==
+        "speed sweep: sun_speeds_rpm[0] = 0.5: must be finite and in [1, 100000] [rpm] (slower "
+        "runs are quasi-static: epicycle quasistatic; faster ones are past any gear's pitch-line "
+        "speed)");
 }
 
 TEST_CASE(

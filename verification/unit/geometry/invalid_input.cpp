@@ -1,6 +1,10 @@
 // Invalid gears and stages are refused with a message that names the key, the value and the rule.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <string>
+#include <vector>
+
 #include "epicycle/geometry/stage.hpp"
 #include "geometry_fixtures.hpp"
 
@@ -102,4 +106,18 @@ TEST_CASE("cutters that cannot make the tooth", "[unit][geometry]") {
   g = Sun();
   g.rack.reset();
   CHECK_THROWS_WITH(Gear(g), Contains("sun.cutter = none: an external gear needs its rack cutter"));
+}
+
+TEST_CASE("an outline or profile of a bad point count is refused, naming the argument",
+          "[unit][geometry]") {
+  // geometry::kPointsPerSegment: a whole number in [1, 1000] (0 divides by zero, a negative count
+  // reads before the start of an empty profile, 1e7 points a segment fill the memory).
+  const Gear sun(Sun());
+  for (int n : {0, -5, 1001, 10000000})
+    CHECK_THROWS_WITH(sun.Outline(n), "points_per_segment = " + std::to_string(n) +
+                                          ": must be a whole number in [1, 1000]");
+  CHECK_THROWS_WITH(sun.half_profile().Sample(0), Contains("points_per_segment = 0"));
+  const std::vector<Vec2> one = sun.Outline(1), two = sun.Outline(2);
+  CHECK(two.size() > one.size());
+  for (const Vec2& p : two) CHECK(std::isfinite(p.x() + p.y()));
 }

@@ -47,6 +47,20 @@ TEST_CASE("study file: bad input names the key, the value and the rule", "[unit]
     CHECK_THAT(m, Contains("variable[0].sigma_um = -2") && Contains("must be >= 0") &&
                       Contains("a standard deviation is >= 0"));
   }
+  SECTION("a sigma wider than the values the cases can take") {
+    // docs/studies.md: a pin error within a quarter module, m/4 = 4230/4 = 1057.5 um on the
+    // paper's stage; with mean 1000 um the room is 57.5 um (a sixth of the cases or more fail
+    // past it).
+    const std::string pin =
+        "[[variable]]\nquantity = \"pin_tangential\"\ngear = \"planet1\"\ndistribution = "
+        "\"normal\"\n";
+    CHECK_THAT(StudyError(StudyText("", pin + "sigma_um = 1e6\n")),
+               Contains("variable[0].sigma_um = 1000000") && Contains("must be <= 1057.5") &&
+                   Contains("[-1057.5, 1057.5] um") && Contains("a sixth of the cases or more"));
+    CHECK_THAT(StudyError(StudyText("", pin + "mean_um = 1000.0\nsigma_um = 60.0\n")),
+               Contains("variable[0].sigma_um = 60") && Contains("must be <= 57.5"));
+    CHECK(StudyError(StudyText("", pin + "mean_um = 1000.0\nsigma_um = 57.0\n")).empty());
+  }
   SECTION("grade outside the standard") {
     const std::string m =
         StudyError(StudyText("",
@@ -239,4 +253,27 @@ TEST_CASE("study file: a root crack's depth as a study variable", "[unit][studie
   CHECK_THAT(StudyError(StudyText("", vars)),
              Contains("variable[0].quantity = \"crack_depth\"") && Contains("no [[damage.crack]]"));
   CHECK_FALSE(test::PinStudy("").VariesBodies());
+}
+
+TEST_CASE("study file: a spread reaching past the backlash or the cases' values is a warning",
+          "[unit][studies]") {
+  // The paper's stage: normal backlash j_n = 150 um (the [[fit]]s), pin errors within m/4 =
+  // 1057.5 um. sigma 40: 3 sigma = 120 < 150, no warning; sigma 60: 180 > 150, the backlash
+  // warning; mean 900, sigma 100: 900 + 300 past 1057.5, the range warning too.
+  auto warnings = [](const std::string& keys) {
+    const studies::StudySpec s = studies::ParseStudy(
+        StudyText("",
+                  "[[variable]]\nquantity = \"pin_radial\"\ngear = \"planet2\"\n"
+                  "distribution = \"normal\"\n" +
+                      keys),
+        "w.toml", "");
+    std::string all;
+    for (const std::string& w : s.warnings) all += w + "\n";
+    return all;
+  };
+  CHECK(warnings("sigma_um = 40.0\n").find("sigma_um") == std::string::npos);
+  CHECK_THAT(warnings("sigma_um = 60.0\n"), Contains("variable[0].sigma_um = 60") &&
+                                                Contains("past the normal backlash j_n = 150"));
+  CHECK_THAT(warnings("mean_um = 900.0\nsigma_um = 100.0\n"),
+             Contains("mean +- 3 sigma reaches outside") && Contains("0.1 % of the cases"));
 }

@@ -102,6 +102,32 @@ const std::vector<Case> kCases = {
      false,
      {"planet_angle_240.0001.toml:74: carrier.planet_angles_deg[2] = 240.0001: ", "not whole",
       "240°"}},
+    // The lightest gear the model represents (docs/scenes.md, "Ranges and validity"): 0.98 rho b
+    // m^2 = 0.98 * 7850 * 0.025 * 4.23e-3^2 = 3.44e-3 kg, that times r_b^2 for the inertia (planet:
+    // r_b = 50.76 cos 25 = 46.00 mm, 7.28e-6 kg m^2).
+    {"planet_inertia_1e-30.toml",
+     false,
+     {"planet_inertia_1e-30.toml:46: planet.inertia_kgm2 = 1e-30",
+      "must be 0 (not given) or >= 7.2", "lightest gear the model represents",
+      "teeth as massless springs"}},
+    {"sun_mass_1e-6.toml",
+     false,
+     {"sun_mass_1e-6.toml:27: sun.mass_kg = 1e-06", "must be 0 (not given) or >= 0.0034"}},
+    // The lubricant's viscosity: where the lubricated friction laws give a coefficient, [0.1, 1e4]
+    // mPa s; a warning outside the gear oils they were fitted on, [2, 1000].
+    {"viscosity_1e300.toml",
+     false,
+     {"lubricant.viscosity_mPas = 1e+300", "must be in [0.1, 10000]", "pinned at their bounds"}},
+    {"viscosity_1e-300.toml",
+     false,
+     {"lubricant.viscosity_mPas = 1e-300", "must be in [0.1, 10000]", "overflows"}},
+    {"warn_viscosity_5000.toml",
+     true,
+     {"lubricant.viscosity_mPas = 5000", "outside [2, 1000]", "extrapolated"}},
+    {"warn_planet_inertia_8e-6.toml",
+     true,
+     {"warn_planet_inertia_8e-6.toml:46: planet.inertia_kgm2 = 8e-06",
+      "outside [1/100, 100] times the solid steel disc"}},
     {"warn_runout_above_backlash.toml",
      true,
      {"errors.runout[0].amplitude_um = 200", "larger than the normal backlash j_n = 150 um"}},

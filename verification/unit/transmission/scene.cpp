@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "epicycle/transmission/scene.hpp"
@@ -214,9 +215,10 @@ TEST_CASE("a gear's mass or inertia far from its steel disc is a warning naming 
       if (w.find(key) != std::string::npos && w.find("steel disc") != std::string::npos) return w;
     return std::string();
   };
-  const std::string tiny =
-      warned(Replace(base, "inertia_kgm2 = 24e-4", "inertia_kgm2 = 1e-30"), "planet.inertia_kgm2");
-  CHECK_THAT(tiny, Contains("planet.inertia_kgm2 = 1e-30"));
+  const std::string light =
+      warned(Replace(base, "inertia_kgm2 = 24e-4", "inertia_kgm2 = " + number(jd * 0.005)),
+             "planet.inertia_kgm2");
+  CHECK_THAT(light, Contains("planet.inertia_kgm2 = " + number(jd * 0.005)));
   CHECK(warned(Replace(base, "inertia_kgm2 = 24e-4", "inertia_kgm2 = " + number(jd * 0.011)),
                "planet.inertia_kgm2")
             .empty());
@@ -226,6 +228,35 @@ TEST_CASE("a gear's mass or inertia far from its steel disc is a warning naming 
   CHECK_FALSE(
       warned(Replace(base, "mass_kg = 1.23", "mass_kg = " + number(md * 101)), "planet.mass_kg")
           .empty());
+}
+
+TEST_CASE(
+    "a gear lighter than the model represents (half a tooth of steel) is refused naming the key",
+    "[unit][transmission]") {
+  // docs/scenes.md, "Ranges and validity": M >= 0.98 rho b m^2 (the member on one mesh, c_gamma b,
+  // no faster than its teeth's first bending mode), J >= that times r_b^2. The planet of the
+  // paper's stage: m = 4.23 mm, b = 25 mm, z = 24, 25 deg: 0.98 * 7850 * 0.025 * 4.23e-3^2 =
+  // 3.44e-3 kg, r_b = 50.76 cos 25 = 46.00 mm, J >= 7.28e-6 kg m^2 (a planet of 1e-30 kg m^2
+  // would have modes at 2.4e17 Hz).
+  const std::string base = SceneText("paper_stage.toml");
+  const double m_min = 0.98 * 7850 * 0.025 * 4.23e-3 * 4.23e-3;
+  const double rb = 0.5 * 4.23e-3 * 24 * std::cos(25 * 3.14159265358979 / 180);
+  const double j_min = m_min * rb * rb;
+  auto with = [&](const std::string& from, const std::string& to) {
+    return Replace(base, from, to);
+  };
+  auto text = [](double v) { return std::to_string(v); };
+  CHECK_THROWS_WITH(Parse(with("inertia_kgm2 = 24e-4", "inertia_kgm2 = 1e-30")),
+                    Contains("planet.inertia_kgm2 = 1e-30: must be 0 (not given) or >= 7.2") &&
+                        Contains("lightest gear the model represents") &&
+                        Contains("teeth as massless springs"));
+  CHECK_THROWS_WITH(Parse(with("inertia_kgm2 = 24e-4", "inertia_kgm2 = " + text(0.9 * j_min))),
+                    Contains("planet.inertia_kgm2"));
+  CHECK_NOTHROW(Parse(with("inertia_kgm2 = 24e-4", "inertia_kgm2 = " + text(1.1 * j_min))));
+  CHECK_THROWS_WITH(Parse(with("mass_kg = 1.23", "mass_kg = " + text(0.9 * m_min))),
+                    Contains("planet.mass_kg = " + text(0.9 * m_min)) &&
+                        Contains("must be 0 (not given) or >= 0.0034"));
+  CHECK_NOTHROW(Parse(with("mass_kg = 1.23", "mass_kg = " + text(1.1 * m_min))));
 }
 
 // A pair's centre distance, as the stage's carrier radius: within 2 modules of m (z1 ± z2)/2,
