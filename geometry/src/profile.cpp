@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
-#include "epicycle/geometry/argument_range.hpp"
 #include "jet.hpp"
 
 namespace epicycle::geometry {
@@ -150,7 +150,11 @@ double InvoluteFlank::RollAtRadius(double base_radius, double radius) {
 }
 
 Polyline HalfProfile::Sample(int per_segment) const {
-  CheckArgument("points_per_segment", per_segment, kPointsPerSegment);
+  // The front ends hold a user's count to kPointsPerSegment; a finer sampling is the meshers' and
+  // the tests' (thousands of points): only a count that samples nothing is refused here.
+  if (per_segment < 1)
+    throw std::invalid_argument("HalfProfile::Sample: points_per_segment = " +
+                                std::to_string(per_segment) + ": must be >= 1");
   Polyline out;
   for (std::size_t s = 0; s < segments.size(); ++s) {
     const Segment& seg = segments[s];
