@@ -104,9 +104,9 @@ std::string VibrationFiles::Close(const std::string& title) {
   for (std::size_t k = 0; k < torsional.size(); ++k) {
     const dynamics::SpectralLine& x = torsional[k];
     lines.WriteLine(fmt::format("{},{},{:.9g},{:.9g},{:.9g},{},{},{},{},{}", CsvText(x.name),
-                                dynamics::LineKindName(x.kind), x.frequency, x.carrier_order,
-                                x.sun_order, x.harmonic, x.sideband, x.multiple, x.allowed ? 1 : 0,
-                                housing[k].allowed ? 1 : 0));
+                                CsvText(dynamics::LineKindName(x.kind)), x.frequency,
+                                x.carrier_order, x.sun_order, x.harmonic, x.sideband, x.multiple,
+                                x.allowed ? 1 : 0, housing[k].allowed ? 1 : 0));
   }
   lines.Close();
 
