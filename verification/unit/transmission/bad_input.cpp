@@ -102,6 +102,19 @@ const std::vector<Case> kCases = {
      false,
      {"planet_angle_240.0001.toml:74: carrier.planet_angles_deg[2] = 240.0001: ", "not whole",
       "240°"}},
+    // Rack cutters with h_a0 = 1.35 m, ρ = 0.05 m: their tooth is pointed from
+    // tan α = (π/4)/1.35, α = 30.19° (30.1898); with the tip round, η_c = π m/2 at
+    // α = atan2(π/4, 1.3) − asin(0.05/|(1.3, π/4)|) = 29.25°.
+    {"pressure_angle_44.9.toml",
+     false,
+     {"pressure_angle_44.9.toml:22: sun.pressure_angle_deg = 44.9: too large for the rack cutter",
+      "α < 29.25", "at most 30.18"}},
+    // Two planets at 0°: named by the later one's angle, with the spacing neighbours need.
+    {"planet_angles_coincident.toml",
+     false,
+     {"planet_angles_coincident.toml:74: carrier.planet_angles_deg[1] = 0: clashes with planet 1 "
+      "at 0°",
+      "neighbouring planets must be at least"}},
     {"warn_runout_above_backlash.toml",
      true,
      {"errors.runout[0].amplitude_um = 200", "larger than the normal backlash j_n = 150 um"}},
