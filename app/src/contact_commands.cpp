@@ -144,11 +144,12 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
         fail(fmt::format("{} on {} ({}): {}", row.backend, row.problem, path,
                          solvers::StatusWithMessage(row.status, row.message)));
       if (out)
-        out->WriteLine(fmt::format(
-            "{},{},{},{},{},{},{},{},{},{},{}", row.backend, row.problem, row.category, row.status,
-            Num(row.residual, "{:.6e}"), Num(row.force_error, "{:.6e}"),
-            Num(row.multiplier_error, "{:.6e}"), Num(row.displacement_error, "{:.6e}"),
-            Num(row.median_seconds, "{:.6e}"), row.iterations, CsvText(row.message)));
+        out->WriteLine(
+            fmt::format("{},{},{},{},{},{},{},{},{},{},{}", CsvText(row.backend),
+                        CsvText(row.problem), CsvText(row.category), CsvText(row.status),
+                        Num(row.residual, "{:.6e}"), Num(row.force_error, "{:.6e}"),
+                        Num(row.multiplier_error, "{:.6e}"), Num(row.displacement_error, "{:.6e}"),
+                        Num(row.median_seconds, "{:.6e}"), row.iterations, CsvText(row.message)));
       rows.push_back(row);
     }
   }

@@ -37,11 +37,13 @@ namespace {
 using json = nlohmann::json;
 
 struct DynamicArgs {
-  std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out",
-                     range = "planet", sun, friction, cache, speed_sweep;
-  double rtol = 1e-6, start_deg = 0, window_cycles = 0, spectrum_resolution = 0, spectrum_skip = 4;
-  // Not given: the scene's speed, the range's duration, the library's defaults.
-  std::optional<double> speed_rpm, time, rate_scale, contact_tol;
+  std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out", range, sun,
+                     friction, cache, speed_sweep;  // range "": planet
+  double rtol = 1e-6, start_deg = 0, window_cycles = 0;
+  // Not given: the scene's speed, the range's duration, the library's defaults (the spectrum's:
+  // one carrier revolution, 4 mesh cycles skipped).
+  std::optional<double> speed_rpm, time, rate_scale, contact_tol, spectrum_resolution,
+      spectrum_skip;
   int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0;
   bool no_cache = false, quiet = false, fd_jacobian = false, stresses = false, spectrum = false,
        rating = false;
@@ -49,6 +51,7 @@ struct DynamicArgs {
 
 void RunDynamic(const DynamicArgs& a) {
   transmission::Scene input = StageScene(a.scene, a.sun, "dynamic");
+  const std::string range = a.range.empty() ? "planet" : a.range;
   if (!a.speed_sweep.empty() && a.spectrum)
     throw std::invalid_argument("--spectrum belongs to a run at one speed, not --speed-sweep");
   if (!a.speed_sweep.empty() && (a.speed_rpm || a.time))
@@ -85,7 +88,7 @@ void RunDynamic(const DynamicArgs& a) {
   if (!a.speed_sweep.empty()) {
     const int per_cycle =
         a.outputs_per_cycle > 0 ? a.outputs_per_cycle : SpeedSweepArgs{}.outputs_per_cycle;
-    return RunSpeedSweep({a.speed_sweep, a.out, a.range, a.backend, a.integrator, a.window_cycles,
+    return RunSpeedSweep({a.speed_sweep, a.out, range, a.backend, a.integrator, a.window_cycles,
                           a.start_deg, per_cycle, a.harmonics, a.threads, a.quiet},
                          rig, opt);
   }
@@ -93,20 +96,26 @@ void RunDynamic(const DynamicArgs& a) {
   const int per_cycle =
       a.outputs_per_cycle > 0 ? a.outputs_per_cycle : dynamics::DefaultOutputsPerCycle(model, f_max);
   const dynamics::RunSpan span =
-      dynamics::MakeRunSpan(stage, model.carrier_speed(), transmission::RunRangeFromName(a.range),
+      dynamics::MakeRunSpan(stage, model.carrier_speed(), transmission::RunRangeFromName(range),
                             a.time.value_or(0.0), per_cycle);
   const double duration = span.duration, mesh_hz = span.mesh_frequency;
   const std::string cost = dynamics::RunCostWarning(  // a run of hours: said before it starts
       span, model.sun_speed() * 30 / std::numbers::pi,
-      a.time ? fmt::format("--time = {} s", *a.time) : "--range " + a.range,
+      a.time ? fmt::format("--time = {} s", *a.time) : "--range " + range,
       a.speed_rpm ? fmt::format("--speed-rpm = {}", *a.speed_rpm) : "[dynamics] sun_speed_rpm");
   if (!cost.empty()) std::fprintf(stderr, "warning: %s\n", cost.c_str());
   const int outputs = span.outputs;
   std::optional<dynamics::SpectrumOptions> spectrum;  // bad options before the run
   if (a.spectrum)
     spectrum = dynamics::RunSpectrumOptions(
-        span, dynamics::CharacteristicFrequencies(stage, model.sun_speed()), a.spectrum_resolution,
-        a.spectrum_skip, "--spectrum-resolution", "--spectrum-skip-cycles");
+        span, dynamics::CharacteristicFrequencies(stage, model.sun_speed()),
+        a.spectrum_resolution.value_or(0),
+        a.spectrum_skip.value_or(dynamics::kDefaultSpectrumSkipCycles),
+        {"--spectrum-resolution", a.spectrum_resolution.has_value(), "--spectrum-skip-cycles",
+         a.spectrum_skip.has_value(),
+         a.time            ? fmt::format("--time = {} s", *a.time)
+         : a.range.empty() ? "one planet revolution (the default --range planet)"
+                           : "--range " + a.range});
   const char* sun_name = transmission::SunSupportName(stage_model.setup().sun);
   std::printf(
       "%s: %d planets, sun %s, input torque %.1f N m, sun speed %.1f rpm (mesh frequency "

@@ -3,6 +3,7 @@
 // library's runtime_error, a result that could not be written); 2 bad input or usage (a command
 // line CLI11 rejects, a missing or unreadable input file, std::invalid_argument from a library).
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -15,6 +16,9 @@
 #include "epicycle/config.h"
 
 int main(int argc, char** argv) {
+  // A file past the size limit (ulimit -f) is a write that fails with EFBIG, named with its path
+  // like a full disk's, not a process killed by SIGXFSZ without a word.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"epicycle " EPICYCLE_VERSION
                ": load sharing in planetary spur-gear transmissions with manufacturing errors"};
   epicycle::app::RegisterCommands(app);

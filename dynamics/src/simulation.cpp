@@ -293,6 +293,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
   const int sx = model.Find(MotionDof::kSun, MotionDof::kX);
   Eigen::VectorXd last_y = Eigen::Map<Eigen::VectorXd>(y, size);
   double last_t = 0.0;
+  std::exception_ptr sink_error;  // thrown by on_sample: rethrown once the integrator is freed
   int restarts_in_a_row = 0;
   try {
     for (std::size_t k = 0; k < output_times.size(); ++k) {
@@ -388,7 +389,16 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
           sample.root_stress = transmission::SummariseRootStress(
               sample.fillet_stress, transmission::PlanetBody(model.stage_model().planets()));
       }
-      if (on_sample) on_sample(sample);
+      if (on_sample) {
+        try {
+          on_sample(sample);
+        } catch (...) {
+          // The sink failed (a result file that cannot be written): not a numerical outcome of
+          // the run; its own exception, naming where it happened, goes to the caller.
+          sink_error = std::current_exception();
+          break;
+        }
+      }
       ++result.outputs;
       if (options.keep_samples) result.samples.push_back(std::move(sample));
       last_y = Eigen::Map<Eigen::VectorXd>(y, size);
@@ -417,6 +427,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     result.stats.error_test_failures = v;
   }
   result.stats.wall_seconds = Seconds(start);
+  if (sink_error) std::rethrow_exception(sink_error);
   return result;
 }
 

@@ -120,6 +120,14 @@ void SpeedSweepOptions::Validate() const {
   if (!(window_cycles > 0) || !std::isfinite(window_cycles))
     bad("window_cycles", window_cycles, "must be > 0");
   if (outputs_per_cycle < 4) bad("outputs_per_cycle", outputs_per_cycle, "must be >= 4");
+  // The window's samples are counted before they are made an int (1e5 cycles x 1e5 per cycle
+  // would wrap).
+  if (!(window_cycles * outputs_per_cycle <= kMaxRunOutputs))
+    throw std::invalid_argument(
+        "speed sweep: window_cycles x outputs_per_cycle = " + Num(window_cycles) + " x " +
+        std::to_string(outputs_per_cycle) + " = " + Num(window_cycles * outputs_per_cycle) +
+        " samples per speed: must be at most " + std::to_string(kMaxRunOutputs) +
+        " (the output steps a run may have)");
   if (!std::isfinite(window_start)) bad("window_start", window_start, "must be finite");
   if (!(transient_fraction > 0 && transient_fraction < 1))
     bad("transient_fraction", transient_fraction, "must lie in (0, 1)");

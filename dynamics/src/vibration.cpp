@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "number_format.hpp"
 
 namespace epicycle::dynamics {
@@ -72,41 +74,62 @@ void VibrationValues(const DynamicModel& model, const DynamicSample& s, std::vec
 
 SpectrumOptions RunSpectrumOptions(const RunSpan& span, const StageFrequencies& frequencies,
                                    double resolution, double skip_cycles,
-                                   const std::string& resolution_option,
-                                   const std::string& skip_option) {
+                                   const SpectrumInputs& inputs) {
+  const std::string& res_option = inputs.resolution_option;
+  const std::string& skip_option = inputs.skip_option;
   if (!(skip_cycles >= 0) || !std::isfinite(skip_cycles))
     throw std::invalid_argument(skip_option + " = " + Num(skip_cycles) +
                                 ": must be finite and >= 0 [mesh cycles]");
   if (!(resolution >= 0) || !std::isfinite(resolution))
-    throw std::invalid_argument(resolution_option + " = " + Num(resolution) +
+    throw std::invalid_argument(res_option + " = " + Num(resolution) +
                                 ": must be finite and >= 0 [Hz] (0: one carrier revolution)");
   if (!(span.outputs > 0 && span.duration > 0 && span.cycle_time > 0))
     throw std::invalid_argument("spectrum: the run has no output steps");
   SpectrumOptions o;
   o.sample_interval = span.duration / span.outputs;
   o.start_time = skip_cycles * span.cycle_time;
-  // Samples from the first output at or after start_time to the end.
-  const long first = std::max(1L, std::lround(std::ceil(o.start_time / o.sample_interval - 1e-9)));
-  const long rest = std::max(0L, span.outputs - first + 1);
+  const double dt = o.sample_interval;
+  // Samples from the first output at or after start_time to the end (counted in doubles: a skip
+  // far past the run's end is no count to convert).
+  const double first_real = std::max(1.0, std::ceil(o.start_time / dt - 1e-9));
+  const long rest = first_real > span.outputs ? 0L : span.outputs - std::lround(first_real) + 1;
+  const std::string skipped =
+      skip_cycles == 0 ? std::string("from the start")
+      : inputs.skip_given
+          ? "after " + skip_option + " = " + Num(skip_cycles) + " mesh cycles"
+          : "after the first " + Num(skip_cycles) + " mesh cycles (the start transient; " +
+                skip_option + " changes it)";
+  const std::string run_rest = fmt::format(
+      "{} runs {:.4g} s in {} output steps (dt {:.4g} s) and leaves {} of them ({:.4g} s) {}",
+      inputs.run, span.duration, span.outputs, dt, rest, static_cast<double>(rest) * dt, skipped);
+  if (rest < 8)
+    throw std::invalid_argument("spectrum: " + run_rest +
+                                "; a spectrum needs at least 8: lengthen the run" +
+                                (skip_cycles > 0 ? " or skip fewer mesh cycles" : ""));
   long n = 0;
   if (resolution > 0) {
-    n = std::lround(1.0 / (resolution * o.sample_interval));
+    // The segment's length in samples, as a double first: 1/(Δf Δt) of a tiny Δf is no count.
+    const double samples = 1.0 / (resolution * dt);
+    if (!(samples >= 7.5 && samples < static_cast<double>(rest) + 0.5))
+      throw std::invalid_argument(fmt::format(
+          "{} = {} Hz: must be in [{:.4g}, {:.4g}] Hz here (a segment 1/resolution long holds "
+          "at least 8 output steps and at most the {} the run has after its skip: {})",
+          res_option, Num(resolution), 1.0 / (static_cast<double>(rest) * dt), 1.0 / (8 * dt), rest,
+          run_rest));
+    n = std::lround(samples);
   } else {
-    const long revolution = std::lround(1.0 / (frequencies.carrier * o.sample_interval));
-    const long cycle = std::lround(span.cycle_time / o.sample_interval);
+    const long revolution = std::lround(std::min(1.0 / (frequencies.carrier * dt), 1e12));
+    const long cycle = std::lround(span.cycle_time / dt);
     n = revolution <= rest ? revolution : cycle > 0 ? rest / cycle * cycle : rest;
+    if (n < 8)
+      throw std::invalid_argument(fmt::format(
+          "spectrum: {}; a segment of whole mesh cycles ({} output steps each) does not fit: "
+          "lengthen the run or give {} (a segment 1/resolution long, at least 8 steps)",
+          run_rest, cycle, res_option));
   }
-  if (n < 8 || n > rest)
-    throw std::invalid_argument(resolution_option + " = " + Num(resolution) + " Hz: a segment of " +
-                                std::to_string(n) + " samples (" +
-                                Num(static_cast<double>(n) * o.sample_interval) +
-                                " s) needs at least 8 and at most the " + std::to_string(rest) +
-                                " output steps after " + skip_option + " = " + Num(skip_cycles) +
-                                " (" + Num(static_cast<double>(rest) * o.sample_interval) +
-                                " s): lengthen the run or ask for a coarser resolution");
   o.segment = static_cast<int>(n);
   o.hop = std::max(1, o.segment / 2);
-  o.start_time = static_cast<double>(first) * o.sample_interval;
+  o.start_time = first_real * dt;
   return o;
 }
 

@@ -281,8 +281,24 @@ void Gear::BuildExternal() {
          "too large for this cutter: its tip-round centre lies outside the rolling circle");
   }
   if (eta_c >= kPi * m / 2.0) {
+    // The rack tooth's two tip rounds meet. Its width at the tip line, π m/2 − 2 h_a0 tan α, sets
+    // the largest pressure angle, α_max = φ − asin(ρ/R) with R = |(h_a0 − ρ, π m/4)| and
+    // φ = atan2(π m/4, h_a0 − ρ) (η_c = π m/2 there); above atan(π m/(4 h_a0)) no tip round fits.
+    const double wide = c.addendum - rho, half = kPi * m / 4.0;
+    const double a_max = std::atan2(half, wide) - std::asin(rho / std::hypot(wide, half));
+    if (ta >= half / c.addendum)
+      Fail(spec_.name, "pressure_angle_deg", Num(a * 180.0 / kPi),
+           "too large for the rack cutter: with its addendum h_a0 = " + Num(c.addendum / m) +
+               " m (cutter.addendum_per_module) its tooth is pointed (tip width π m/2 − 2 h_a0 "
+               "tan α = " +
+               Mm(2 * half - 2 * c.addendum * ta) + " mm); the tool needs α < " +
+               Num(a_max * 180.0 / kPi) + "° with its tip round ρ = " + Num(rho / m) +
+               " m, at most " + Num(std::atan(half / c.addendum) * 180.0 / kPi) + "° without one");
+    // Else the round alone: η_c = π m/2 at ρ_max = (π m/4 cos α − h_a0 sin α)/(1 − sin α).
     Fail(spec_.name, "cutter.tip_radius_per_module", Num(rho / m),
-         "too large: the tool's two tip rounds overlap");
+         "too large: the tool's two tip rounds overlap; at α = " + Num(a * 180.0 / kPi) +
+             "° with h_a0 = " + Num(c.addendum / m) + " m it must be below " +
+             Num((half * ca - c.addendum * sa) / (1 - sa) / m));
   }
   // Undercut: the straight edge's lowest point (tangency with the tip round) reaches below the
   // interference point, where the line of action touches the base circle. The tooth is then

@@ -184,16 +184,32 @@ void Stage::CheckAssembly() {
 void Stage::CheckClearances() const {
   const double a = spec_.carrier_radius;
   const Gear& p = planets_[0];
-  // Neighbouring planets.
-  std::vector<double> sorted = angles_;
-  std::sort(sorted.begin(), sorted.end());
-  for (std::size_t i = 0; i < sorted.size() && sorted.size() > 1; ++i) {
-    const double next = i + 1 < sorted.size() ? sorted[i + 1] : sorted[0] + 2.0 * kPi;
-    const double gap = 2.0 * a * std::sin((next - sorted[i]) / 2.0) - 2.0 * p.tip_radius();
+  // Neighbouring planets (in angle order; `order` keeps their indices).
+  std::vector<std::size_t> order(angles_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return angles_[x] < angles_[y]; });
+  for (std::size_t i = 0; i < order.size() && order.size() > 1; ++i) {
+    const std::size_t j = order[i], k = order[(i + 1) % order.size()];
+    const double next = i + 1 < order.size() ? angles_[k] : angles_[k] + 2.0 * kPi;
+    const double gap = 2.0 * a * std::sin((next - angles_[j]) / 2.0) - 2.0 * p.tip_radius();
     if (gap < spec_.min_planet_gap) {
-      Fail("stage", "planets", std::to_string(planets()),
-           "neighbouring planets clash: their tip circles are " + Mm(gap) +
-               " mm apart, less than min_planet_gap_mm = " + Mm(spec_.min_planet_gap));
+      const std::string clash =
+          "tip circles are " + Mm(gap) +
+          " mm apart, less than min_planet_gap_mm = " + Mm(spec_.min_planet_gap);
+      if (spec_.planet_angles.empty())
+        Fail("stage", "planets", std::to_string(planets()),
+             "neighbouring planets clash: their " + clash);
+      // Angles given: the later of the two planets, with the spacing neighbours need,
+      // 2 asin((2 r_a + gap)/(2 a)).
+      const double need =
+          2.0 * std::asin(std::min(1.0, (2.0 * p.tip_radius() + spec_.min_planet_gap) / (2.0 * a)));
+      const std::size_t later = std::max(j, k), earlier = std::min(j, k);
+      Fail("stage", "planet_angles_deg[" + std::to_string(later) + "]",
+           Precise(Deg(angles_[later])),
+           "clashes with planet " + std::to_string(earlier + 1) + " at " +
+               Precise(Deg(angles_[earlier])) + "° (their " + clash +
+               "): neighbouring planets must be at least " + Num(Deg(need)) + "° apart");
     }
   }
   CheckMesh(sun_, p, false, a, "stage");

@@ -48,10 +48,17 @@ void AppendNum(std::string& out, double v) {
   out.append(text, r.ptr);
 }
 
-std::string CsvText(std::string text) {
-  for (char& c : text)
-    if (c == ',' || c == '\n' || c == '\r') c = ';';
-  return text;
+std::string CsvText(std::string_view text) {
+  std::string cell(text);
+  for (char& c : cell)
+    if (c == '\n' || c == '\r') c = ';';
+  if (cell.find_first_of(",\"#") == std::string::npos) return cell;
+  std::string quoted = "\"";
+  for (char c : cell) {
+    if (c == '"') quoted.push_back('"');
+    quoted.push_back(c);
+  }
+  return quoted + '"';
 }
 
 void WriteTextFile(const std::string& path, std::string_view text) {

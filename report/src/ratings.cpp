@@ -91,22 +91,28 @@ std::string RatingText(const transmission::StageRating& rating) {
       "sigma_H [MPa] / S_H\n"
       "    gear      table  model  ISO table   ISO model   model stress  "
       "ISO table   ISO model   model p_H\n";
+  // A stress of 0 (an unloaded gear) has no finite safety factor: "unloaded" (the JSON's null);
+  // a factor of thousands (a gear barely touched) in 3 digits, not 40.
   auto pair = [](double sigma, double s) {
-    return std::isfinite(sigma) ? fmt::format("{:5.0f} {:5.2f}", sigma / 1e6, s)
-                                : std::string("    -     -");
+    if (!std::isfinite(sigma)) return std::string("    -     -");
+    return fmt::format("{:5.0f} {:>5}", sigma / 1e6,
+                       !std::isfinite(s)   ? std::string("unloaded")
+                       : std::abs(s) < 1e3 ? fmt::format("{:.2f}", s)
+                                           : fmt::format("{:.2g}", s));
   };
   for (const auto& g : rating.gears) {
-    out += fmt::format("    {:<9} {:5.2f}  {:5.3f}  {}  {}  {}    {}  {}  {}\n", g.gear,
-                       g.k_gamma_table, g.k_gamma_model, pair(g.sigma_f_table, g.s_f_table),
-                       pair(g.sigma_f_model, g.s_f_model), pair(g.root_stress, g.s_f_stress),
-                       pair(g.sigma_h_table, g.s_h_table), pair(g.sigma_h_model, g.s_h_model),
-                       pair(g.contact_pressure, g.s_h_pressure));
+    out +=
+        fmt::format("    {:<9} {:>5}  {:>5}  {}  {}  {}    {}  {}  {}\n", g.gear,
+                    Num(g.k_gamma_table, "{:.2f}", "-"), Num(g.k_gamma_model, "{:.3f}", "-"),
+                    pair(g.sigma_f_table, g.s_f_table), pair(g.sigma_f_model, g.s_f_model),
+                    pair(g.root_stress, g.s_f_stress), pair(g.sigma_h_table, g.s_h_table),
+                    pair(g.sigma_h_model, g.s_h_model), pair(g.contact_pressure, g.s_h_pressure));
   }
   for (const auto& g : rating.gears)
     if (!g.note.empty()) out += fmt::format("    {}: {}\n", g.gear, g.note);
   out += "  factors:\n";
   for (const auto& f : rating.factors)
-    out += fmt::format("    {:<34} {:10.5g}  {}\n", f.symbol, f.value, f.source);
+    out += fmt::format("    {:<34} {:>10}  {}\n", f.symbol, Num(f.value, "{:.5g}", "-"), f.source);
   return out;
 }
 

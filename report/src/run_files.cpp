@@ -28,6 +28,12 @@ void Cell(std::string& line, double v) {
   AppendNum(line, v);
 }
 
+// "mesh,kind,flank" of a contact: the text cells of a pairs file's line.
+std::string PairCells(const transmission::StageContact& c) {
+  return CsvText(geometry::MeshName(c.planet, c.mesh)) + "," +
+         CsvText(geometry::KindName(c.contact.kind)) + "," + CsvText(c.FlankName());
+}
+
 // "a,b,c" of the values formatted by Num (empty cells where not finite), each led by a comma.
 template <typename Range>
 std::string Cells(const Range& values) {
@@ -370,9 +376,9 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
       ",{},{},{},{},{},{},{},{},{},{},{},{},{}", Num(ok ? transmission::MeshLoadFactor(r) : NAN),
       Num(ok ? r.transmission_error * 1e6 : NAN), Num(ok ? r.sun_displacement.x() * 1e6 : NAN),
       Num(ok ? r.sun_displacement.y() * 1e6 : NAN), r.geometric_iterations, r.contact_iterations,
-      r.warm_started ? 1 : 0, Num(r.report.residual.total), solvers::StatusName(r.report.status),
-      r.report.active_contacts, r.problem.contacts.size(),
-      Num(r.report.total_seconds * 1e3, "{:.4g}"), CsvText(r.message));
+      r.warm_started ? 1 : 0, Num(r.report.residual.total),
+      CsvText(solvers::StatusName(r.report.status)), r.report.active_contacts,
+      r.problem.contacts.size(), Num(r.report.total_seconds * 1e3, "{:.4g}"), CsvText(r.message));
   const bool friction = friction_ && ok && r.friction;
   if (friction_)
     line += fmt::format(",{},{},{},{},{}", Num(friction ? r.friction_power : NAN),
@@ -387,8 +393,7 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
     const double f = r.solution.force(static_cast<Eigen::Index>(j));
     if (!(f > 0)) continue;
     const transmission::StageContact& c = r.problem.contacts[j];
-    pairs += fmt::format("{:.6f},{},{},{},{}/{},{}", deg, geometry::MeshName(c.planet, c.mesh),
-                         geometry::KindName(c.contact.kind), c.FlankName(), c.contact.tooth_a,
+    pairs += fmt::format("{:.6f},{},{}/{},{}", deg, PairCells(c), c.contact.tooth_a,
                          c.contact.tooth_b, Num(f));
     if (friction_)
       pairs += friction ? fmt::format(",{},{}", Num(r.friction_force(static_cast<Eigen::Index>(j))),
@@ -562,11 +567,9 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
   for (int j = 0; j < e.terms.size(); ++j) {
     if (!(e.total_force(j) > 0)) continue;
     const transmission::StageContact& c = e.terms.contacts[j];
-    pairs += fmt::format("{:.9g},{},{},{},{}/{},{},{},{},{}\n", s.time,
-                         geometry::MeshName(c.planet, c.mesh), geometry::KindName(c.contact.kind),
-                         c.FlankName(), c.contact.tooth_a, c.contact.tooth_b,
-                         Num(e.total_force(j)), Num(e.force(j)), Num(e.friction(j)),
-                         Num(e.overlap_rate(j) * 1e3));
+    pairs += fmt::format("{:.9g},{},{}/{},{},{},{},{}\n", s.time, PairCells(c), c.contact.tooth_a,
+                         c.contact.tooth_b, Num(e.total_force(j)), Num(e.force(j)),
+                         Num(e.friction(j)), Num(e.overlap_rate(j) * 1e3));
   }
   std::string bearings = fmt::format("{:.9g},{},{}", s.time, Num(e.sun_bearing_force.x()),
                                      Num(e.sun_bearing_force.y()));
@@ -742,9 +745,9 @@ void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
   tail += '\n';
   std::string lines = s.pairs.empty() ? head + ",,,,,," + tail : "";
   for (const auto& p : s.pairs)
-    lines +=
-        fmt::format("{},{}/{},{},{},{},{},{}", head, p.tooth1, p.tooth2, geometry::KindName(p.kind),
-                    Num(p.force), Num(p.stiffness), Num(p.share), tail);
+    lines += fmt::format("{},{}/{},{},{},{},{},{}", head, p.tooth1, p.tooth2,
+                         CsvText(geometry::KindName(p.kind)), Num(p.force), Num(p.stiffness),
+                         Num(p.share), tail);
   csv_.Write(lines);
 }
 

@@ -106,7 +106,7 @@ std::string VibrationFiles::Close(const std::string& title) {
     for (const dynamics::SpectralLine& x :
          kind == dynamics::SignalKind::kTorsional ? torsional : housing)
       lines.WriteLine(fmt::format(
-          "{},{},{},{:.9g},{:.9g},{:.9g},{},{},{},{}", dynamics::SignalKindName(kind),
+          "{},{},{},{:.9g},{:.9g},{:.9g},{},{},{},{}", CsvText(dynamics::SignalKindName(kind)),
           CsvText(x.name), CsvText(dynamics::LineKindName(x.kind)), x.frequency, x.carrier_order,
           x.sun_order, x.harmonic, x.sideband, x.multiple, x.allowed ? 1 : 0));
   lines.Close();

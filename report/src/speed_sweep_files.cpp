@@ -86,7 +86,7 @@ void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::Speed
   csv_.WriteLine(fmt::format(
       "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Num(r.sun_speed_rpm),
       Num(r.mesh_frequency), r.ok ? "ok" : "failed", v(r.k_gamma), v(r.dynamic_factor),
-      r.ok && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "", v(r.peak_mesh_force),
+      CsvText(r.ok && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : ""), v(r.peak_mesh_force),
       v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min), v(r.lsr_max),
       v(r.lsr_deviation) + "," + parts + v(r.largest_residual), r.stats.steps,
       r.stats.rhs_evaluations, r.stats.failed_solves, Num(r.cpu_seconds), Num(r.wall_seconds),

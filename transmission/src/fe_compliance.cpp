@@ -9,6 +9,7 @@
 #include "epicycle/compliance/gear_mesh.hpp"
 #include "epicycle/compliance/influence_cache.hpp"
 #include "epicycle/compliance/root_crack.hpp"
+#include "scene_internal.hpp"
 
 namespace epicycle::transmission {
 
@@ -109,16 +110,26 @@ GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gea
     auto it = built.find(key);
     if (it == built.end()) {
       std::shared_ptr<const compliance::InfluenceTable> t;
-      if (options.cache_directory.empty()) {
-        t = std::make_shared<const compliance::InfluenceTable>(
-            compliance::InfluenceTable::Build(compliance::NominalBody(g), material, opts));
-        messages_.push_back("influence table of '" + g.name() + "' built (no disk cache)");
-      } else {
-        compliance::CacheReport report;
-        t = std::make_shared<const compliance::InfluenceTable>(
-            compliance::LoadOrBuildInfluenceTable(g, material, opts, options.cache_directory,
-                                                  &report));
-        messages_.push_back(report.message);
+      try {
+        if (options.cache_directory.empty()) {
+          t = std::make_shared<const compliance::InfluenceTable>(
+              compliance::InfluenceTable::Build(compliance::NominalBody(g), material, opts));
+          messages_.push_back("influence table of '" + g.name() + "' built (no disk cache)");
+        } else {
+          compliance::CacheReport report;
+          t = std::make_shared<const compliance::InfluenceTable>(
+              compliance::LoadOrBuildInfluenceTable(g, material, opts, options.cache_directory,
+                                                    &report));
+          messages_.push_back(report.message);
+        }
+      } catch (const std::invalid_argument& e) {
+        // The scene's join depth, which only a body's grid can check: under the user's key.
+        const std::string what = e.what();
+        const bool depth =
+            scene.model.join_depth > 0 && what.find("join_depth h") != std::string::npos;
+        const std::string at = depth ? internal::KeyAt(scene, "model.join_depth_mm") : "";
+        if (at.empty()) throw;
+        throw std::invalid_argument(at + ": " + what);
       }
       it = built.emplace(key, std::move(t)).first;
     }

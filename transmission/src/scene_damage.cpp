@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "epicycle/config.h"
+#include "epicycle/compliance/cracked_mesh.hpp"
 #include "epicycle/compliance/gear_mesh.hpp"
 #include "epicycle/compliance/root_crack.hpp"
 #include "epicycle/transmission/internal/toml_reader.hpp"
@@ -19,6 +21,66 @@ namespace {
 // Pit depth: a warning beyond 5 % of the module (the tooth's compliance stays the intact
 // tooth's), an error beyond a quarter of it.
 constexpr double kPitDepthModules[2] = {0.05, 0.25};
+
+// What gmsh can mesh around a crack has no closed form (a short crack's elements, graded to its
+// tip, must meet the sector's boundary elements; a sharp turn folds the two faces' elements onto
+// each other): the mesher itself is the rule. The crack's tooth is meshed as the table will mesh
+// it (from ISO's point for a crack placed at the largest tension), and a crack it cannot mesh is
+// refused here under its key, with a depth at which the same path shape meshes (its segments
+// doubled while it stays in its tooth) or, if none does, its sharpest turn.
+void CheckCrackMeshes(TableReader& t, const std::string& key, const Scene& s,
+                      const geometry::Gear& gear, const compliance::RootCrack& k) {
+#if EPICYCLE_HAVE_GMSH
+  compliance::GearMeshOptions mesh;
+  mesh.refinement = s.model.mesh_refinement;
+  auto meshes = [&](const compliance::RootCrack& x, std::string* why) {
+    try {
+      compliance::BuildCrackedGearMesh(gear, x, mesh);
+      return true;
+    } catch (const std::invalid_argument& e) {
+      if (why != nullptr) *why = e.what();
+      return false;
+    }
+  };
+  std::string why;
+  if (meshes(k, &why)) return;
+  std::string rule;
+  for (double scale = 2; scale <= 4096; scale *= 2) {
+    compliance::RootCrack larger = k;
+    for (compliance::CrackSegment& g : larger.path) g.length *= scale;
+    try {
+      larger.Validate(gear);
+    } catch (const std::invalid_argument&) {
+      break;  // no longer inside its tooth
+    }
+    if (meshes(larger, nullptr)) {
+      rule = "the same shape meshes at a depth of " + SceneNum(larger.depth() / kMm) +
+             " mm (its segments " + SceneNum(scale) + " times as long)";
+      break;
+    }
+  }
+  if (rule.empty()) {
+    double turn = 0;
+    std::size_t at = 0;
+    for (std::size_t i = 1; i < k.path.size(); ++i)
+      if (std::abs(k.path[i].angle - k.path[i - 1].angle) > turn) {
+        turn = std::abs(k.path[i].angle - k.path[i - 1].angle);
+        at = i;
+      }
+    rule = k.path.size() > 1
+               ? "no longer path of this shape meshes either: its sharpest turn, " +
+                     SceneNum(geometry::Deg(turn)) + " deg between segments " +
+                     std::to_string(at - 1) + " and " + std::to_string(at) +
+                     ", folds the crack's faces onto each other: open it"
+               : "no longer crack at this angle that stays in the tooth meshes either";
+  }
+  t.Fail(key, SceneNum(k.depth() / kMm) + " mm",
+         "must be a crack the FE mesher (gmsh) can mesh in its tooth: " + rule +
+             " (the mesher: " + why + ")");
+#else
+  (void)t, (void)key, (void)s, (void)gear, (void)k;
+#endif
+}
 
 // One [[damage.crack]] table (docs/scenes.md, "Damage"). The path is checked against the tooth's
 // body here; a crack placed at the largest root tension is checked at ISO's 30° point, the start
@@ -103,6 +165,7 @@ Crack ReadCrack(TableReader& t, const Scene& s,
                                                        : "") +
                ": " + e.what());
   }
+  CheckCrackMeshes(t, depth_key, s, gear, k);
   t.Done();
   return c;
 }

@@ -12,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include "epicycle/transmission/scene.hpp"
+#include "scene_internal.hpp"
 
 namespace epicycle::transmission {
 
@@ -120,6 +121,22 @@ std::string Reword(const Scene& scene, const std::string& message, bool error_fr
   }
   return message;
 }
+
+}  // namespace
+
+std::string internal::KeyAt(const Scene& scene, const std::string& path) {
+  if (scene.text.empty()) return "";
+  try {
+    const toml::table root = toml::parse(scene.text, scene.source);
+    std::string value;
+    const std::string where = Line(root, scene.source, path, &value);
+    return where.empty() ? "" : where + ": " + path + " = " + value;
+  } catch (const toml::parse_error&) {
+    return "";  // not the text the scene was read from
+  }
+}
+
+namespace {
 
 // A copy of the stage without any manufacturing or assembly error.
 geometry::StageSpec ErrorFree(geometry::StageSpec s) {

@@ -17,6 +17,11 @@ inline std::string SceneNum(double v) { return Num(v, 10); }
 
 inline constexpr double kMm = 1e-3, kUm = 1e-6;
 
+/// "file:line: path = value" of a key the scene's text holds (a toml++ path:
+/// "model.join_depth_mm"), for a message about a value only a later stage can check (the text is
+/// parsed again on that error path only); "" if the scene has no text or not that key.
+std::string KeyAt(const Scene& scene, const std::string& path);
+
 /// The scene's [[damage.pit]] and [[damage.crack]] tables (docs/scenes.md, "Damage"): `gears`
 /// names the gears a damage may be on with the spec of each (a stage's planets share one spec),
 /// read once the radii are final. @throws std::invalid_argument naming the key, value and rule.

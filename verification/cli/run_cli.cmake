@@ -8,6 +8,8 @@
 # cannot be written); CONTAIN then looks at stderr only.
 # FULL (optional, a ;-list): result files made symlinks to /dev/full before the run (a file that
 # opens and refuses every write: ENOSPC), their folders created.
+# FSIZE (optional): the largest file the program may write [bytes] (prlimit --fsize): a write
+# past it fails (EFBIG) as on a full disk, in the middle of a run.
 # ECHOED (optional, a ;-list): the user's own bad values as the message quotes them
 # ("--speed-rpm = nan"), left out of the nan/inf search.
 # ABSENT (optional, a ;-list): strings that must not be in stdout + stderr.
@@ -19,14 +21,19 @@ foreach(f IN LISTS FULL)
   file(REMOVE "${f}")
   file(CREATE_LINK /dev/full "${f}" SYMBOLIC)
 endforeach()
-set(command ${EXE} ${ARGS})
+set(command ${EXE})
+if(FSIZE)
+  set(command prlimit --fsize=${FSIZE} ${EXE})
+endif()
 if(MEMORY_KB)
-  set(command sh -c "ulimit -v ${MEMORY_KB} && exec \"$0\" \"$@\"" ${EXE} ${ARGS})
+  set(command sh -c "ulimit -v ${MEMORY_KB} && exec \"$0\" \"$@\"" ${command})
 endif()
 if(STDOUT)
-  execute_process(COMMAND ${command} RESULT_VARIABLE rc OUTPUT_FILE ${STDOUT} ERROR_VARIABLE err)
+  execute_process(COMMAND ${command} ${ARGS} RESULT_VARIABLE rc OUTPUT_FILE ${STDOUT}
+                  ERROR_VARIABLE err)
 else()
-  execute_process(COMMAND ${command} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${command} ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err)
 endif()
 set(all "${out}${err}")
 if(NOT "${rc}" STREQUAL "${EXPECT_RC}")

@@ -385,9 +385,24 @@ TEST_CASE(
   CHECK(dynamics::RunSpectrumOptions(planet, f, 0, 4).segment == 480);
   // A resolution given: N = round(1/(Δf Δt)) = round(24/(10 ms · 20 Hz)) = 120.
   CHECK(dynamics::RunSpectrumOptions(planet, f, 20, 4).segment == 120);
-  CHECK_THROWS_WITH(dynamics::RunSpectrumOptions(planet, f, 1, 4, "--res", "--skip"),
-                    Catch::Contains("--res = 1 Hz: a segment of 2400 samples (1 s) needs at least "
-                                    "8 and at most the 481 output steps after --skip = 4"));
-  CHECK_THROWS_WITH(dynamics::RunSpectrumOptions(planet, f, 0, -1, "--res", "--skip"),
+  const dynamics::SpectrumInputs given{"--res", true, "--skip", true, "--range planet"};
+  // Outside [1/(481 Δt), 1/(8 Δt)] = [4.99, 300] Hz: named with the rule, before any count.
+  CHECK_THROWS_WITH(dynamics::RunSpectrumOptions(planet, f, 1, 4, given),
+                    Catch::Contains("--res = 1 Hz: must be in [4.99, 300] Hz here") &&
+                        Catch::Contains("leaves 481 of them (0.2004 s) after --skip = 4 mesh"));
+  CHECK_THROWS_WITH(dynamics::RunSpectrumOptions(planet, f, 1e-300, 4, given),
+                    Catch::Contains("--res = 1e-300 Hz: must be in [4.99, 300] Hz here") &&
+                        !Catch::Contains("-9223372036854775808"));
+  // A run shorter than the skip: the message names what set the run and the default skip, not
+  // an option that was not given.
+  const auto cycle = dynamics::MakeRunSpan(stage, wc, transmission::RunRange::kMeshCycle, 0, 24);
+  CHECK_THROWS_WITH(
+      dynamics::RunSpectrumOptions(cycle, f, 0, 4,
+                                   {"--res", false, "--skip", false, "--range cycle"}),
+      Catch::StartsWith("spectrum: --range cycle runs 0.01 s in 24 output steps") &&
+          Catch::Contains("leaves 0 of them (0 s) after the first 4 mesh cycles (the start "
+                          "transient; --skip changes it)") &&
+          !Catch::Contains("--res"));
+  CHECK_THROWS_WITH(dynamics::RunSpectrumOptions(planet, f, 0, -1, given),
                     "--skip = -1: must be finite and >= 0 [mesh cycles]");
 }

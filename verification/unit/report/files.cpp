@@ -80,5 +80,13 @@ TEST_CASE("Num formats finite numbers and leaves the rest missing", "[unit][repo
   CHECK(report::Num(std::numeric_limits<double>::infinity(), "{:.3e}", "not finite") ==
         "not finite");
   CHECK(report::Num(-std::numeric_limits<double>::infinity(), "{:.2f}", "-") == "-");
-  CHECK(report::CsvText("a, b\nc,d") == "a; b;c;d");
+}
+
+TEST_CASE("CsvText quotes a text cell as RFC 4180 says, on one line", "[unit][report]") {
+  CHECK(report::CsvText("planet tooth") == "planet tooth");  // nothing to quote
+  CHECK(report::CsvText("planet tooth, both flanks") == "\"planet tooth, both flanks\"");
+  CHECK(report::CsvText("say \"no\"") == "\"say \"\"no\"\"\"");  // quotes doubled
+  CHECK(report::CsvText("planet #2") == "\"planet #2\"");     // pandas' comment='#' reads it whole
+  CHECK(report::CsvText("a, b\nc\r\nd") == "\"a, b;c;;d\"");  // a row stays one line
+  CHECK(report::CsvText("").empty());
 }

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "epicycle/config.h"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/transmission/scene.hpp"
@@ -128,6 +129,32 @@ const std::vector<Case> kCases = {
      true,
      {"warn_planet_inertia_8e-6.toml:46: planet.inertia_kgm2 = 8e-06",
       "outside [1/100, 100] times the solid steel disc"}},
+    // Rack cutters with h_a0 = 1.35 m, ρ = 0.05 m: their tooth is pointed from
+    // tan α = (π/4)/1.35, α = 30.19° (30.1898); with the tip round, η_c = π m/2 at
+    // α = atan2(π/4, 1.3) − asin(0.05/|(1.3, π/4)|) = 29.25°.
+    {"pressure_angle_44.9.toml",
+     false,
+     {"pressure_angle_44.9.toml:22: sun.pressure_angle_deg = 44.9: too large for the rack cutter",
+      "α < 29.25", "at most 30.18"}},
+    // Two planets at 0°: named by the later one's angle, with the spacing neighbours need.
+    {"planet_angles_coincident.toml",
+     false,
+     {"planet_angles_coincident.toml:74: carrier.planet_angles_deg[1] = 0: clashes with planet 1 "
+      "at 0°",
+      "neighbouring planets must be at least"}},
+#if EPICYCLE_HAVE_GMSH
+    // Cracks the mesher cannot mesh, refused as the scene is read under the key that sets them:
+    // 0.5 um at 45° (its shape meshes at 4 times the length), and a path that turns back by 130°.
+    {"crack_depth_0.0005mm.toml",
+     false,
+     {"crack_depth_0.0005mm.toml:122: damage.crack[0].depth_mm = 0.0005 mm: must be a crack the "
+      "FE mesher (gmsh) can mesh in its tooth",
+      "the same shape meshes at a depth of 0.002 mm (its segments 4 times as long)"}},
+    {"crack_hairpin.toml",
+     false,
+     {"crack_hairpin.toml:122: damage.crack[0].path = 1.5 mm: must be a crack the FE mesher",
+      "its sharpest turn, 130 deg between segments 0 and 1"}},
+#endif
     {"warn_runout_above_backlash.toml",
      true,
      {"errors.runout[0].amplitude_um = 200", "larger than the normal backlash j_n = 150 um"}},

@@ -136,8 +136,10 @@ struct SimulationResult {
 
 /// Integrates from t = 0 (state d0, ḋ0) through the increasing output times (> 0). Each output
 /// goes to `on_sample` as soon as it is computed; a run that fails midway returns what it has,
-/// with completed = false and the time and reason in `message`.
-/// @throws std::invalid_argument for bad options or sizes.
+/// with completed = false and the time and reason in `message`. An exception thrown by
+/// `on_sample` (a result that cannot be written) stops the run and is rethrown as it is: it says
+/// where it happened, and no later write can take its place.
+/// @throws std::invalid_argument for bad options or sizes; whatever `on_sample` throws.
 SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& options,
                           const Eigen::VectorXd& d0, const Eigen::VectorXd& v0,
                           const std::vector<double>& output_times,

@@ -39,6 +39,20 @@ std::vector<VibrationChannel> VibrationChannels(const DynamicModel& model);
 /// The channels' values at output step `s` of a run of `model` (resized to the channels).
 void VibrationValues(const DynamicModel& model, const DynamicSample& s, std::vector<double>* out);
 
+/// What the caller's user gave for a spectrum's settings, for the messages of
+/// RunSpectrumOptions: each option's name, whether it was given (a default is said to be one, so
+/// that a message never blames an option the user did not give), and what set the run's length.
+struct SpectrumInputs {
+  std::string resolution_option = "resolution";  ///< e.g. "--spectrum-resolution"
+  bool resolution_given = true;
+  std::string skip_option = "skip_cycles";  ///< e.g. "--spectrum-skip-cycles"
+  bool skip_given = true;
+  std::string run = "the run";  ///< what set the run's length: "--range cycle", "--time = 0.1 s"
+};
+
+/// Mesh cycles a spectrum leaves out at the start of a run unless told otherwise.
+inline constexpr double kDefaultSpectrumSkipCycles = 4;
+
 /// Spectrum settings of a run over `span` (uniform output times T k/N):
 ///   - the first `skip_cycles` mesh cycles are left out (the start transient, docs/dynamic.md
 ///     "Start": it decays within a few mesh cycles);
@@ -46,11 +60,12 @@ void VibrationValues(const DynamicModel& model, const DynamicSample& s, std::vec
 ///     the run holds one (every kinematic line is then on a bin: all are whole carrier orders),
 ///     else the rest of the run in whole mesh cycles (mesh harmonics on bins);
 ///   - half-overlapping segments (Welch).
-/// @throws std::invalid_argument naming `resolution_option` / `skip_option` (the caller's names
-/// for them) when the rest of the run is shorter than one segment or a value is out of range.
+/// A segment has 8 samples at least and at most the R output steps after the skip: a resolution
+/// given must lie in [1/(R Δt), 1/(8 Δt)] (checked before the segment's length is made a count).
+/// @throws std::invalid_argument naming what the user gave (`inputs`) when a value is out of
+/// range or the rest of the run is shorter than a segment.
 SpectrumOptions RunSpectrumOptions(const RunSpan& span, const StageFrequencies& frequencies,
                                    double resolution, double skip_cycles,
-                                   const std::string& resolution_option = "resolution",
-                                   const std::string& skip_option = "skip_cycles");
+                                   const SpectrumInputs& inputs = {});
 
 }  // namespace epicycle::dynamics

@@ -18,8 +18,11 @@ std::string Num(double v);
 /// Appends Num(v) to `out` (a CSV line's cell without a string of its own).
 void AppendNum(std::string& out, double v);
 
-/// A free-text CSV cell: every ',' and line break replaced by ';' (one cell, one line).
-std::string CsvText(std::string text);
+/// A text cell of a CSV line (RFC 4180): the text as it is, unless it holds a ',', a '"' or a
+/// '#' (pandas' comment='#' would cut the line there): then in double quotes, each '"' doubled.
+/// A line break becomes ';' first (a row stays one line: the files are read and resumed line by
+/// line). Every text cell of every CSV the report writes goes through here.
+std::string CsvText(std::string_view text);
 
 /// Writes `text` to `path` (created or truncated) and closes it.
 /// @throws std::runtime_error "PATH: cannot be written: REASON" on any failure.
