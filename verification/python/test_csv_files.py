@@ -88,11 +88,15 @@ def test_every_csv_has_its_header_fields_in_every_row(tmp_path, name, args, expe
 
 
 def test_a_text_cell_with_a_comma_stays_one_field(tmp_path):
-    """The spectrum lines' kinds, read back whole: "planet tooth, both flanks" is one cell."""
-    out = tmp_path / "out"
-    run_cli("dynamic", scene_path("paper_stage.toml"), "--range", "cycle", "--outputs-per-cycle",
-            24, "--spectrum", "--spectrum-skip-cycles", 0, "--quiet", "--out", out)
-    rows = strict_rows(out / "dynamic_spectrum_lines.csv")
-    kind = rows[0].index("kind")
-    kinds = {row[kind] for row in rows[1:]}
-    assert "planet tooth, both flanks" in kinds and "mesh" in kinds
+    """A back end's message, commas and all, read back whole from the comparison's CSV."""
+    out = tmp_path / "compare.csv"
+    p = run_cli("contact", "compare", os.path.join(CONTACT, "stiff_cond1e10_s1.json"), "--tol", "1e-30",
+                "--repeat", 1, "--csv", out, check=False)
+    assert p.returncode == 1, p.stderr
+    rows = strict_rows(out)
+    message = rows[0].index("message")
+    with_commas = [row[message] for row in rows[1:] if "," in row[message]]
+    assert with_commas, "no message with a comma to read back"
+    for text in with_commas:
+        assert text.startswith(("iteration-limit: ", "numerical-failure: ", "converged")), text
+        assert "residual" in text
