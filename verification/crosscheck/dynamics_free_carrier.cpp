@@ -71,7 +71,8 @@ TEST_CASE(
     "free carrier through the program: `epicycle modes` equals Lin & Parker's model with the "
     "carrier free in rotation and on its bearing",
     "[crosscheck][dynamics][modes]") {
-  const std::string dir = "free_carrier_modes";
+  const test::TempDir temp("free-carrier-modes");
+  const std::string dir = temp.path.string();
   const std::string text = FreeCarrierScene(true);
   const std::string scene = WriteScene(dir, text);
   RunProgram({"modes", scene, "--cache", EPICYCLE_TEST_CACHE_DIR, "--json", dir + "/modes.json"});
@@ -151,7 +152,8 @@ TEST_CASE(
   // the pins at sqrt(n k_p r_c² / J) = 15 rad/s, far below the mesh frequency (2017 rad/s): the
   // mesh torques turn it by ~T/(J ω_m²) ~ 1e-7 rad, and the free carrier must move as the carrier
   // that the other run turns at its speed, a model without the carrier's rotation.
-  const std::string dir = "free_carrier_dynamic";
+  const test::TempDir temp("free-carrier-dynamic");
+  const std::string dir = temp.path.string();
   const std::string pin =
       "\n[[errors.pin]]\ngear = \"planet1\"\nradial_um = 0.0\ntangential_um = 30.0\n";
   const std::string free_text = test::Replace(FreeCarrierScene(false) + pin,

@@ -3,7 +3,9 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -34,5 +36,21 @@ inline std::string FileBytes(const std::string& path) {
   s << in.rdbuf();
   return s.str();
 }
+
+/// A fresh folder under the system's temporary directory, removed at the end of the test.
+struct TempDir {
+  std::filesystem::path path;
+  explicit TempDir(const std::string& tag) {
+    path = std::filesystem::temp_directory_path() /
+           ("epicycle-" + tag + "-" + std::to_string(::getpid()) + "-" +
+            std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    std::filesystem::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code e;
+    std::filesystem::remove_all(path, e);
+  }
+  std::string File(const std::string& name) const { return (path / name).string(); }
+};
 
 }  // namespace epicycle::test

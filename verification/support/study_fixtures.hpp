@@ -13,22 +13,6 @@
 
 namespace epicycle::test {
 
-/// A fresh folder under the system's temporary directory, removed at the end of the test.
-struct TempDir {
-  std::filesystem::path path;
-  explicit TempDir(const std::string& tag) {
-    path = std::filesystem::temp_directory_path() /
-           ("epicycle-" + tag + "-" + std::to_string(::getpid()) + "-" +
-            std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code e;
-    std::filesystem::remove_all(path, e);
-  }
-  std::string File(const std::string& name) const { return (path / name).string(); }
-};
-
 /// A [study] table on the paper's stage (absolute scene path) followed by `rest`.
 inline std::string StudyText(const std::string& study_keys, const std::string& rest) {
   return "[study]\nname = \"test\"\nscene = \"" + std::string(EPICYCLE_SCENES_DIR) +
