@@ -35,7 +35,8 @@ bool LocateSides(const std::vector<OperatorBody>& bodies,
     }
   }
   first->assign(static_cast<std::size_t>(nb) + 1, 0);
-  std::vector<Eigen::Matrix2d> to_body(static_cast<std::size_t>(nb));  // R(−θ_B)
+  thread_local std::vector<Eigen::Matrix2d> to_body;  // R(−θ_B); kept: no allocation per call
+  to_body.resize(static_cast<std::size_t>(nb));
   for (int b = 0; b < nb; ++b)
     to_body[b] = Eigen::Rotation2Dd(-bodies[b].rotation).toRotationMatrix();
   const int n = static_cast<int>(contacts.size());
@@ -88,21 +89,36 @@ bool LocateSides(const std::vector<OperatorBody>& bodies,
 Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                    const std::vector<OperatorContact>& contacts,
                                    std::string* off_flank) {
+  Eigen::MatrixXd c;
+  AssembleCompliance(bodies, contacts, &c, off_flank);
+  return c;
+}
+
+void AssembleCompliance(const std::vector<OperatorBody>& bodies,
+                        const std::vector<OperatorContact>& contacts, Eigen::MatrixXd* out,
+                        std::string* off_flank) {
   const int nb = static_cast<int>(bodies.size());
   const int n = static_cast<int>(contacts.size());
-  std::vector<Located> loc;
-  std::vector<int> first;
-  if (!LocateSides(bodies, contacts, off_flank, &loc, &first)) return Eigen::MatrixXd();
+  // The located sides and their order, kept per thread: the dynamic model assembles C on every
+  // evaluation, and the studies' threads share the operator.
+  thread_local std::vector<Located> loc;
+  thread_local std::vector<int> first;
+  thread_local std::vector<int> order;
+  if (!LocateSides(bodies, contacts, off_flank, &loc, &first)) {
+    out->resize(0, 0);
+    return;
+  }
   // The sides grouped by body, in contact order within a body (a counting sort): each body's
   // pairs are then one triangle of its sides.
   for (int b = 0; b < nb; ++b) first[b + 1] += first[b];
-  std::vector<int> order(loc.size());
+  order.resize(loc.size());
   for (int i = 0; i < 2 * n; ++i) order[first[loc[i].body]++] = i;
   for (int b = nb; b > 0; --b) first[b] = first[b - 1];  // back to the starts
   first[0] = 0;
   // C_jk = Σ_B d_Bjᵀ Λ_B(p_Bk → p_Bj) d_Bk (+ support): every pair of sides x ≤ y of a body adds
   // its term to C_jk and C_kj, j ≤ k their contacts (the response at j, the load at k).
-  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixXd& c = *out;
+  c.setZero(n, n);
   for (int b = 0; b < nb; ++b) {
     const OperatorBody& body = bodies[b];
     const InfluenceTable& table = *body.table;
@@ -139,7 +155,6 @@ Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
       }
     }
   }
-  return c;
 }
 
 std::vector<FilletStress> FilletStresses(const std::vector<OperatorBody>& bodies,

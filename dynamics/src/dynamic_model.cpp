@@ -224,7 +224,7 @@ geometry::StagePoses DynamicModel::Poses(double t, const Eigen::VectorXd& d) con
 
 void DynamicModel::Poses(double t, const Eigen::VectorXd& d, Eigen::VectorXd* q,
                          geometry::StagePoses* poses) const {
-  *poses = model_.KinematicPoses(CarrierAngle(t));
+  model_.KinematicPoses(CarrierAngle(t), poses);
   q->resize(static_cast<Eigen::Index>(stage_dofs_.size()));
   for (int k = 0; k < size(); ++k)
     if (stage_dof_[k] >= 0) (*q)(stage_dof_[k]) = d(k);
@@ -330,7 +330,13 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   e.ok = false;
   e.message.clear();
   Poses(t, d, &w.stage_displacement, &e.poses);
-  e.report = {};
+  {
+    // A fresh report that keeps its message's storage (SolveInto writes into it).
+    std::string kept = std::move(e.report.message);
+    kept.clear();
+    e.report = {};
+    e.report.message = std::move(kept);
+  }
   e.geometry = model_.Terms(e.poses, &e.terms);
   if (!e.geometry.ok()) {
     // A pose the stage cannot be evaluated at (a trial step that swung a member past where its
@@ -364,7 +370,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
       solution.force.resize(0);
     }
     solution.multiplier.resize(0);
-    e.report = solver.Solve(problem, opt, &solution);
+    solver.SolveInto(problem, opt, &solution, &e.report);
     data = std::move(problem).Release();
     if (e.report.status != solvers::ContactStatus::kConverged) {
       e.message =

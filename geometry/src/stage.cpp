@@ -234,6 +234,12 @@ void Stage::Align() {
 
 StagePoses Stage::Poses(double carrier_angle, bool with_errors) const {
   StagePoses p;
+  Poses(carrier_angle, &p, with_errors);
+  return p;
+}
+
+void Stage::Poses(double carrier_angle, StagePoses* out, bool with_errors) const {
+  StagePoses& p = *out;
   p.carrier_angle = carrier_angle;
   auto place = [&](const Vec2& centre, double rotation, const Runout& r) {
     GearPose g;
@@ -245,12 +251,12 @@ StagePoses Stage::Poses(double carrier_angle, bool with_errors) const {
   };
   p.sun = place(Vec2::Zero(), sun_turn0_ + sun_ratio() * carrier_angle, spec_.sun_runout);
   p.ring = place(Vec2::Zero(), 0.0, spec_.ring_runout);
+  p.planets.resize(static_cast<std::size_t>(planets()));
   for (int i = 0; i < planets(); ++i) {
     const Runout r = spec_.planet_runouts.empty() ? Runout{} : spec_.planet_runouts[i];
-    p.planets.push_back(place(Pin(i, carrier_angle, with_errors),
-                              planet_turn0_[i] + planet_ratio() * carrier_angle, r));
+    p.planets[i] = place(Pin(i, carrier_angle, with_errors),
+                         planet_turn0_[i] + planet_ratio() * carrier_angle, r);
   }
-  return p;
 }
 
 Vec2 Stage::Pin(int planet, double carrier_angle, bool with_errors) const {

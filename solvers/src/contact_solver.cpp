@@ -80,6 +80,13 @@ class DriverSolver final : public ContactSolver {
 
   ContactReport Solve(const ContactProblem& problem, const ContactOptions& options,
                       ContactSolution* in_out) override {
+    ContactReport report;
+    SolveInto(problem, options, in_out, &report);
+    return report;
+  }
+
+  void SolveInto(const ContactProblem& problem, const ContactOptions& options,
+                 ContactSolution* in_out, ContactReport* out) override {
     const auto t0 = Clock::now();
     if (in_out == nullptr) throw std::invalid_argument("in_out = null: must point to a solution");
     options.Validate();
@@ -93,7 +100,12 @@ class DriverSolver final : public ContactSolver {
     if (options.warm_start && (!in_out->force.allFinite() || !in_out->multiplier.allFinite()))
       throw std::invalid_argument("warm start solution: every entry must be finite");
 
-    ContactReport report;
+    // A fresh report that keeps the message's storage of the one it replaces.
+    std::string kept = std::move(out->message);
+    kept.clear();
+    *out = ContactReport{};
+    out->message = std::move(kept);
+    ContactReport& report = *out;
     report.backend = backend_;
     if (!impl_->available()) {
       report.status = ContactStatus::kBackendUnavailable;
@@ -102,7 +114,7 @@ class DriverSolver final : public ContactSolver {
       in_out->multiplier = Eigen::VectorXd::Zero(m);
       report.residual.total = report.residual.complementarity = report.residual.equilibrium =
           std::numeric_limits<double>::infinity();
-      return report;
+      return;
     }
 
     // Kept between calls (storage reused); rebuilt from this problem on every call.
@@ -157,7 +169,7 @@ class DriverSolver final : public ContactSolver {
         report.status = ContactStatus::kConverged;
         report.active_contacts = static_cast<int>((x0.array() > gap_.array()).count());
         internal::Unscale(sp, x0, Eigen::VectorXd(), in_out);
-        std::string& msg = report.message;  // one allocation
+        std::string& msg = report.message;  // its storage kept: no allocation when reused
         msg.reserve(160);
         msg.append("converged: newton: residual ")
             .append(Sci(report.residual.total))
@@ -166,7 +178,7 @@ class DriverSolver final : public ContactSolver {
             .append(" iterations)");
         AppendValidityWarning(sp, x0, &report.message);
         report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-        return report;
+        return;
       }
       direct_note = "; the direct path gave up after " + std::to_string(iterations) +
                     " iterations: its iterates missed the tolerance by the driver's residual (best " +
@@ -219,7 +231,7 @@ class DriverSolver final : public ContactSolver {
       in_out->multiplier = Eigen::VectorXd::Zero(m);
       report.residual = sp.Residuals(Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(m));
       report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-      return report;
+      return;
     }
 
     report.status = Judge(report.residual.total, options.tolerance, raw);
@@ -269,7 +281,6 @@ class DriverSolver final : public ContactSolver {
     report.message = StatusName(report.status) + ": " + text;
     AppendValidityWarning(sp, x.cwiseMax(0.0), &report.message);
     report.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    return report;
   }
 
  private:

@@ -32,7 +32,11 @@ bool DirectNewton::Step(const ScaledProblem& p, const Eigen::VectorXd& g,
   const int na = static_cast<int>(active_.size());
   r_.resize(na);
   du_a_.resize(na);
-  c_aa_ = p.C(active_, active_);
+  // C_AA copied entry by entry: Eigen's indexed view with std::vector indices copies them
+  // (allocations on every step).
+  c_aa_.resize(na, na);
+  for (int b = 0; b < na; ++b)
+    for (int a = 0; a < na; ++a) c_aa_(a, b) = p.C(active_[a], active_[b]);
   for (int a = 0; a < na; ++a) {
     const int ja = active_[a];
     du_a_(a) = du(ja);

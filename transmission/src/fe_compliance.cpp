@@ -258,8 +258,10 @@ std::vector<compliance::FilletStress> FeStageCompliance::FilletStresses(
 void FeStageCompliance::Assemble(const geometry::Stage& stage, const geometry::StagePoses& poses,
                                  const std::vector<StageContact>& contacts, Eigen::MatrixXd* out,
                                  std::string* off_flank) const {
-  std::vector<compliance::OperatorBody> bodies;
-  std::vector<compliance::OperatorContact> oc;
+  // Kept per thread (the compliance is shared by the studies' threads): the dynamic model
+  // assembles C on every evaluation without allocating.
+  thread_local std::vector<compliance::OperatorBody> bodies;
+  thread_local std::vector<compliance::OperatorContact> oc;
   Operator(stage, poses, contacts, &bodies, &oc);
   // The labels only when something is wrong: this is on the dynamic model's hot path.
   auto labelled = [&](std::string text) {
@@ -268,7 +270,7 @@ void FeStageCompliance::Assemble(const geometry::Stage& stage, const geometry::S
     return text;
   };
   try {
-    *out = compliance::AssembleCompliance(bodies, oc, off_flank);
+    compliance::AssembleCompliance(bodies, oc, out, off_flank);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(labelled(e.what()));
   }

@@ -101,8 +101,9 @@ StageOutcome SearchStage(const geometry::Stage& stage, const geometry::StagePose
   out.reserve(8 * stage.planets());  // a few per mesh and flank side: one allocation
   geometry::ContactSearchOptions opt;
   opt.gap_window = gap_window;
-  std::vector<PotentialContact> found;  // one mesh's at a time: one allocation for the search
-  found.reserve(16);
+  // One mesh's at a time, in a buffer kept per thread: no allocation once it has grown (the
+  // search is on the dynamic model's hot path; the stage and the studies' threads share it).
+  thread_local std::vector<PotentialContact> found;
   for (int i = 0; i < stage.planets(); ++i) {
     for (MeshKind kind : {MeshKind::kSunPlanet, MeshKind::kPlanetRing}) {
       const int loaded_side =

@@ -72,6 +72,11 @@ struct OperatorContact {
 Eigen::MatrixXd AssembleCompliance(const std::vector<OperatorBody>& bodies,
                                    const std::vector<OperatorContact>& contacts,
                                    std::string* off_flank = nullptr);
+/// The same into `out`, reusing its storage (no allocation once it has held an N×N matrix and
+/// the thread has assembled N contacts before); resized to 0×0 for a point off its flank.
+void AssembleCompliance(const std::vector<OperatorBody>& bodies,
+                        const std::vector<OperatorContact>& contacts, Eigen::MatrixXd* out,
+                        std::string* off_flank = nullptr);
 
 /// The root stress of one fillet: side `side` of tooth `tooth` of body `body`.
 struct FilletStress {

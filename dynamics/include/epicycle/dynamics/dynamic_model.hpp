@@ -66,9 +66,10 @@ struct MotionDof {
 using transmission::BodyMotion;
 
 /// Buffers that DynamicModel::Evaluate reuses from one call to the next (Evaluation::work): with
-/// the same Evaluation passed again, an evaluation allocates only what the stage's kinematic
-/// poses, the contact search, the compliance and the solver allocate inside. Nothing here is a
-/// result.
+/// the same Evaluation passed again, the same contact set and a warm solve on the Newton's direct
+/// path, an evaluation without energies allocates nothing (the poses, the search, the compliance
+/// and the solver keep their buffers too: verification/unit/dynamics/evaluation_allocations.cpp).
+/// Nothing here is a result.
 struct EvaluationWorkspace {
   Eigen::VectorXd stage_displacement;  ///< the deviations on the stage model's DOFs
   /// The contact problem's data: the terms' C, δ0 and local terms copied in (same sizes, no

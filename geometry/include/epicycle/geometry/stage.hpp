@@ -104,6 +104,8 @@ class Stage {
   /// Rigid kinematic poses at carrier angle φ_c: nominal positions and rotations, with the
   /// scene's errors applied to the geometry when `with_errors`.
   StagePoses Poses(double carrier_angle, bool with_errors = true) const;
+  /// The same into `out`, reusing its planets' storage (no allocation once it has held them).
+  void Poses(double carrier_angle, StagePoses* out, bool with_errors = true) const;
   /// Centre of planet i's pin at carrier angle φ_c [m]: r_c e(φ_c + ψ_i) plus the pin error in
   /// the carrier frame when `with_errors`; the planets' rotation centres of Poses, and the pins
   /// the dynamic model moves with the carrier.

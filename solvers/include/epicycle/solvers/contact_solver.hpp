@@ -86,6 +86,13 @@ class ContactSolver {
   /// @throws std::invalid_argument for a bad problem or options (not for numerical trouble).
   virtual ContactReport Solve(const class ContactProblem& problem, const ContactOptions& options,
                               ContactSolution* in_out) = 0;
+  /// The same, the report written into `report` (never null), whose message's storage is
+  /// reused: a warm solve on the Newton's direct path then allocates nothing (the dynamic
+  /// model's right-hand side calls it on every evaluation). The default calls Solve.
+  virtual void SolveInto(const class ContactProblem& problem, const ContactOptions& options,
+                         ContactSolution* in_out, ContactReport* report) {
+    *report = Solve(problem, options, in_out);
+  }
 };
 
 std::unique_ptr<ContactSolver> MakeContactSolver(Backend backend);  ///< never null

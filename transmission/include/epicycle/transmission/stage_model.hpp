@@ -81,6 +81,10 @@ class StageModel {
   geometry::StagePoses KinematicPoses(double carrier_angle) const {
     return stage_.Poses(carrier_angle);
   }
+  /// The same into `out`, reusing its storage (the dynamic model's hot path).
+  void KinematicPoses(double carrier_angle, geometry::StagePoses* out) const {
+    stage_.Poses(carrier_angle, out);
+  }
 
   /// The contact terms at `poses` into `terms`, reusing its buffers (but C, which the compliance
   /// returns anew), with every contact on a pitted flank split into its strips (its rows of C
