@@ -119,8 +119,8 @@ struct SimulationStats {
   long error_test_failures = 0;
   long nonlinear_failures = 0;  ///< CVODE Newton convergence failures
   long restarts = 0;            ///< explicit method: restarts after a failed evaluation
-  double rhs_seconds = 0;       ///< CPU in evaluations [s]
-  double jacobian_seconds = 0;  ///< in the analytic Jacobian [s]
+  double rhs_seconds = 0;       ///< wall time in evaluations (a steady clock) [s]
+  double jacobian_seconds = 0;  ///< wall time in the analytic Jacobian [s]
   double wall_seconds = 0;      ///< the whole run [s]
   double rate_scale = 0;        ///< the rates' tolerance factor used [rad/s] (see the options)
 };
