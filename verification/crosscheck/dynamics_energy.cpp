@@ -71,8 +71,8 @@ double ComplianceWorkFromMatrices(const std::vector<DynamicSample>& samples, std
 }  // namespace
 
 TEST_CASE(
-    "energy balance with the FE compliance at -600 and -20000 N m: E(t) - E(0) = W_ext - "
-    "W_diss + W_C to the integrator's error, W_C from the contact terms along the run",
+    "energy balance with the FE compliance at -600, -6000 and -20000 N m: E(t) - E(0) = "
+    "W_ext - W_diss + W_C to the integrator's error, W_C from the contact terms along the run",
     "[crosscheck][dynamics]") {
   // -600 N m is the paper's load, -6000 ten times that; at -20000 N m the teeth deflect 0.6 mm,
   // four times the backlash, past what the model represents (the run warns: contact forces 7.7
