@@ -104,12 +104,6 @@ void InfluenceTableOptions::Validate() const {
   }
 }
 
-std::size_t InfluenceTable::Index(int fl, int i, int c, int k, int f, int j) const {
-  const std::size_t per_load = static_cast<std::size_t>(teeth_) * 2 * n_ * 2;
-  return ((static_cast<std::size_t>(fl) * n_ + i) * 2 + c) * per_load +
-         ((static_cast<std::size_t>(k) * 2 + f) * n_ + j) * 2;
-}
-
 std::size_t InfluenceTable::FilletIndex(int fl, int i, int c, int k, int f) const {
   const std::size_t m = fillet_.size();
   return ((((static_cast<std::size_t>(fl) * n_ + i) * 2 + c) * teeth_ + k) * 2 + f) * m;

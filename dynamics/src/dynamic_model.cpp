@@ -132,14 +132,23 @@ DynamicModel::DynamicModel(const transmission::StageModel& model,
     }
   }
   contact_modulus_ = transmission::ContactModulus(model_.material());
+  // Find's table: −1 where a member has no such DOF.
+  dof_index_.assign(static_cast<std::size_t>(3 * (3 + stage.planets())), -1);
+  for (int k = size() - 1; k >= 0; --k) dof_index_[DofSlot(dofs_[k])] = k;
+}
+
+std::size_t DynamicModel::DofSlot(const MotionDof& f) {
+  const int member = f.member == MotionDof::kPlanet ? 3 + f.planet : static_cast<int>(f.member);
+  return static_cast<std::size_t>(3 * member + static_cast<int>(f.axis));
 }
 
 int DynamicModel::Find(MotionDof::Member member, MotionDof::Axis axis, int planet) const {
-  for (int k = 0; k < size(); ++k)
-    if (dofs_[k].member == member && dofs_[k].axis == axis &&
-        (member != MotionDof::kPlanet || dofs_[k].planet == planet))
-      return k;
-  return -1;
+  MotionDof f;
+  f.member = member;
+  f.axis = axis;
+  f.planet = member == MotionDof::kPlanet ? planet : 0;
+  if (member == MotionDof::kPlanet && (planet < 0 || planet >= model_.planets())) return -1;
+  return dof_index_[DofSlot(f)];
 }
 
 std::vector<MemberDofs> DynamicModel::ModeLayout() const {

@@ -69,6 +69,11 @@ struct Context {
   solvers::ContactOptions contact;
   Evaluation warm, scratch;  // last successful evaluation (the warm start), work space
   Eigen::VectorXd d, v;      // the state of the evaluation (reused)
+  // Where `warm` was evaluated: the Jacobian at that very state (CVODE's Newton set-up follows
+  // its right-hand side at the predicted state) reads it instead of solving the contacts again.
+  double warm_t = 0;
+  Eigen::VectorXd warm_y;
+  bool warm_valid = false;
   SimulationStats* stats = nullptr;
   std::exception_ptr error;
   std::string last_failure;
@@ -122,6 +127,9 @@ int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     out[2 * c.n + 1] = c.scratch.dissipated_power;
     out[2 * c.n + 2] = c.scratch.contact_power;
     std::swap(c.warm, c.scratch);
+    c.warm_t = t;
+    c.warm_y = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(y), 2 * c.n);
+    c.warm_valid = true;
     return 0;
   } catch (...) {
     c.error = std::current_exception();
@@ -134,10 +142,18 @@ int Jac(sunrealtype t, N_Vector y, N_Vector /*fy*/, SUNMatrix jac, void* user, N
   auto& c = *static_cast<Context*>(user);
   try {
     const auto t0 = Clock::now();
-    // The contact solution at this state (CVODE has just evaluated it: the warm start is there).
-    if (!EvaluateAt(c, t, y, &c.d, &c.v, " (Jacobian)")) return 1;
+    // The contact solution at this state: CVODE has usually just evaluated it (the last
+    // successful evaluation, at the same t and y bit for bit); otherwise solved again here.
+    const Evaluation* at = &c.warm;
+    if (c.warm_valid && t == c.warm_t &&
+        c.warm_y == Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(y), 2 * c.n)) {
+      Split(c, N_VGetArrayPointer(y), &c.d, &c.v);
+    } else {
+      if (!EvaluateAt(c, t, y, &c.d, &c.v, " (Jacobian)")) return 1;
+      at = &c.scratch;
+    }
     Eigen::MatrixXd dd, dv;
-    c.model->Jacobian(t, c.d, c.v, c.scratch, &dd, &dv);
+    c.model->Jacobian(t, c.d, c.v, *at, &dd, &dv);
     SUNMatZero(jac);
     const int n = c.n;
     for (int k = 0; k < n; ++k) SM_ELEMENT_D(jac, k, n + k) = 1.0;

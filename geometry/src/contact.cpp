@@ -36,11 +36,22 @@ Vec2 NominalTooth(const PosedGear& g, int tooth, const Vec2& p) {
   return g.pose.geometric_centre + Rotate(p - g.pose.geometric_centre, -off);
 }
 
+// ⌊x⌋ and ⌈x⌉ as integers without a library call: the conversion truncates exactly (|x| < 2⁶³;
+// here a few hundred at most), and one comparison moves it to the floor or the ceiling.
+long Floor(double x) {
+  const long j = static_cast<long>(x);
+  return static_cast<double>(j) > x ? j - 1 : j;
+}
+long Ceil(double x) {
+  const long j = static_cast<long>(x);
+  return static_cast<double>(j) < x ? j + 1 : j;
+}
+
 // All roll angles u = u0 + j·p inside [lo, hi) (a flank's roll repeats every tooth pitch p).
 template <typename F>
 void ForEachRoll(double u0, double p, double lo, double hi, F&& f) {
-  const long j0 = static_cast<long>(std::ceil((lo - u0) / p));
-  const long j1 = static_cast<long>(std::floor((hi - u0) / p));
+  const long j0 = Ceil((lo - u0) / p);
+  const long j1 = Floor((hi - u0) / p);
   for (long j = j0; j <= j1; ++j) {
     const double u = u0 + static_cast<double>(j) * p;
     if (u >= lo && u < hi) f(u, j);
@@ -231,23 +242,27 @@ bool MayReach(const FlankReach& f, const Vec2& c) {
   // lattice point u + H·offset of a tooth turned by its offset sits.
   const double w_lo = std::max((l + (f.flank_hand > 0 ? f.d_lo : -f.d_hi)) / rb, f.u_min) - f.widen;
   const double w_hi = std::min((l + (f.flank_hand > 0 ? f.d_hi : -f.d_lo)) / rb, f.u_max) + f.widen;
-  // Some j with u0 + j p in [w_lo, w_hi] for some u0 in [u0_lo, u0_hi].
-  return std::floor((w_hi - u0_lo) / f.pitch) >= std::ceil((w_lo - u0_hi) / f.pitch);
+  // Some j with u0 + j p in [w_lo, w_hi] for some u0 in [u0_lo, u0_hi]: an integer j in
+  // [(w_lo − u0_hi)/p, (w_hi − u0_lo)/p], i.e. the upper end's floor at or above the lower end.
+  return static_cast<double>(Floor((w_hi - u0_lo) / f.pitch)) >= (w_lo - u0_hi) / f.pitch;
 }
 
-// The tip round of tooth k, side σ, in the inertial frame: centre and normal span.
-struct WorldArc {
-  Vec2 centre;
+// The tip round of tooth k, side σ, in the inertial frame: its centre (`rotation` is
+// Dir(g.pose.rotation), computed once per search of a mesh) and, for a round that may reach the
+// mate, the span of its normals.
+Vec2 TipRoundCentre(const PosedGear& g, const Vec2& rotation, int tooth, int side) {
+  const TipRound& t = g.gear->tip_round();
+  const Vec2 body(t.centre.x(), side * t.centre.y());
+  return g.pose.geometric_centre +
+         RotateBy(RotateBy(body, g.gear->tooth_direction(tooth)), rotation);
+}
+struct NormalSpan {
   double from, to;
 };
-// `rotation` is Dir(g.pose.rotation), computed once per search of a mesh.
-WorldArc TipRoundInWorld(const PosedGear& g, const Vec2& rotation, int tooth, int side) {
+NormalSpan TipRoundNormals(const PosedGear& g, int tooth, int side) {
   const TipRound& t = g.gear->tip_round();
   const double turn = g.pose.rotation + tooth * g.gear->pitch_angle() + g.gear->tooth_offset(tooth);
-  const Vec2 body(t.centre.x(), side * t.centre.y());
-  return {
-      g.pose.geometric_centre + RotateBy(RotateBy(body, g.gear->tooth_direction(tooth)), rotation),
-      side * t.normal_from + turn, side * t.normal_to + turn};
+  return {side * t.normal_from + turn, side * t.normal_to + turn};
 }
 // The unrelieved round of the nominal tooth (where the FE table reads the contact), only for hits.
 Vec2 NominalTipRoundCentre(const PosedGear& g, int tooth, int side) {
@@ -532,18 +547,20 @@ void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
         const int* begin() const { return b; }
         const int* end() const { return e; }
       } teeth{teeth_begin, teeth_end};
+      if (teeth_begin == teeth_end) return;
       const FlankReach reach =
           ReachOf(other, other_side, other_reference, other_base_angle, rho, window);
       for (const int tooth : teeth) {
-        const WorldArc arc = TipRoundInWorld(owner, rotation, tooth, owner_side);
-        if (!options.exhaustive_tips && !MayReach(reach, arc.centre)) continue;
+        const Vec2 centre = TipRoundCentre(owner, rotation, tooth, owner_side);
+        if (!options.exhaustive_tips && !MayReach(reach, centre)) continue;
+        const NormalSpan span = TipRoundNormals(owner, tooth, owner_side);
         ArcAgainstFlanks(
-            arc.centre, rho, arc.from, arc.to, other, other_side, window, [&](const ArcHit& h) {
+            centre, rho, span.from, span.to, other, other_side, window, [&](const ArcHit& h) {
               PotentialContact c;
               c.kind = owner_is_a ? ContactKind::kTipRoundA : ContactKind::kTipRoundB;
               c.side_a = l.side_a;
               c.side_b = l.side_b;
-              const Vec2 on_arc = arc.centre - rho * h.flank_normal;
+              const Vec2 on_arc = centre - rho * h.flank_normal;
               c.overlap = rho - h.distance;
               const double other_radius = other.gear->base_radius() * h.roll;
               if (owner_is_a) {

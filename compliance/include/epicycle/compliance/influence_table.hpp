@@ -263,7 +263,13 @@ class InfluenceTable {
                                                 const InfluenceTableOptions& options,
                                                 GearBodyMesh body, double t_mesh_before,
                                                 const std::vector<int>& load_teeth, bool cyclic);
-  std::size_t Index(int fl, int i, int c, int k, int f, int j) const;
+  // Where T_(c, e)(i → j) of load flank fl, tooth offset k, response flank f starts in surface_
+  // (inline: DirectedCompliance reads it for every pair of contact sides).
+  std::size_t Index(int fl, int i, int c, int k, int f, int j) const {
+    const std::size_t per_load = static_cast<std::size_t>(teeth_) * 2 * n_ * 2;
+    return ((static_cast<std::size_t>(fl) * n_ + i) * 2 + c) * per_load +
+           ((static_cast<std::size_t>(k) * 2 + f) * n_ + j) * 2;
+  }
   void BuildDerived();  // slope_, dense_, dense_key_, bucket_, tooth_rotation_ (grid_, path_)
   void Weights(double s, int* first, std::array<double, 4>* w) const;
 

@@ -229,6 +229,8 @@ class DynamicModel {
   const transmission::StageModel& model_;
   transmission::DynamicSettings settings_;
   std::vector<MotionDof> dofs_;
+  std::vector<int> dof_index_;  // Find's answer per DofSlot (member, axis), −1 if absent
+  static std::size_t DofSlot(const MotionDof& f);
   std::vector<int> stage_dof_;  // per DOF: index into stage_dofs_, or −1 (carrier)
   std::vector<transmission::StageDof> stage_dofs_;
   Eigen::VectorXd mass_;
