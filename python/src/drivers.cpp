@@ -180,6 +180,9 @@ py::object SobolObject(const studies::SobolEstimate& e) {
     f[(k + "_upper").c_str()] = Array(std::move(upper));
     f[(k + "_standard_error").c_str()] = Array(std::move(se));
   }
+  f["sum_first"] = e.sum_first.value;
+  f["sum_first_lower"] = e.sum_first.lower;
+  f["sum_first_upper"] = e.sum_first.upper;
   return Result(f);
 }
 
@@ -204,7 +207,8 @@ total Jansen, outputs centred on their mean, V(Y) from A and B; rows with a non-
 left out. bootstrap: resamples of the rows for the percentile intervals at `level` (0: none);
 seed: of the resampling.
 Returns Result: rows, mean, variance, first, first_lower, first_upper, first_standard_error,
-total, total_lower, total_upper, total_standard_error (arrays of d).)doc");
+total, total_lower, total_upper, total_standard_error (arrays of d), sum_first (Σ S_i),
+sum_first_lower, sum_first_upper.)doc");
 
   m.def(
       "study",

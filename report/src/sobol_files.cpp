@@ -23,12 +23,6 @@ nlohmann::json Indices(const std::vector<std::string>& variables,
   return list;
 }
 
-double SumFirst(const studies::SobolEstimate& e) {
-  double sum = 0;
-  for (const auto& i : e.first) sum += i.value;
-  return sum;
-}
-
 }  // namespace
 
 nlohmann::json SobolJson(const studies::SobolSummary& s) {
@@ -51,7 +45,10 @@ nlohmann::json SobolJson(const studies::SobolSummary& s) {
                        {"variance", Stat(e.variance)},
                        {"first_order", Indices(s.variables, e.first)},
                        {"total", Indices(s.variables, e.total)},
-                       {"sum_first_order", Stat(SumFirst(e))}};
+                       {"sum_first_order",
+                        {{"value", Stat(e.sum_first.value)},
+                         {"ci", {Stat(e.sum_first.lower), Stat(e.sum_first.upper)}},
+                         {"standard_error", Stat(e.sum_first.standard_error)}}}};
   }
   j["outputs"] = outputs;
   return j;
@@ -76,15 +73,17 @@ std::string SobolText(const studies::SobolSummary& s) {
                          Num(a.value, f, "-"), Num(a.lower, f, "-"), Num(a.upper, f, "-"),
                          Num(t.value, f, "-"), Num(t.lower, f, "-"), Num(t.upper, f, "-"));
     }
-    out += fmt::format("    {:<22} {:<34} {:>6}\n", "", "sum of S_i", Num(SumFirst(e), f, "-"));
+    out += fmt::format("    {:<22} {:<34} {:>6} [{}, {}]\n", "", "sum of S_i",
+                       Num(e.sum_first.value, f, "-"), Num(e.sum_first.lower, f, "-"),
+                       Num(e.sum_first.upper, f, "-"));
   }
   return out;
 }
 
 LinePlot SobolBarPlot(const std::string& title, const studies::SobolSummary& s,
                       const studies::SobolOutput& output) {
-  LinePlot p{title + ": Sobol indices of " + output.name, "variable [-]", "index [-]", {}, false,
-             {}};
+  LinePlot p{title + ": Sobol indices of " + output.name, "variable (1 ... d, named above) [-]",
+             "index [-]", {}, false, {}};
   const auto& e = output.estimate;
   const double half = 0.16;  // bar half-width [x units]; first order at i − 0.18, total at i + 0.18
   for (int kind = 0; kind < 2; ++kind) {
@@ -109,7 +108,7 @@ LinePlot SobolBarPlot(const std::string& title, const studies::SobolSummary& s,
       if (!std::isfinite(x[i].lower) || !std::isfinite(x[i].upper)) continue;
       // One polyline per whisker with its caps (a series is one line); the first one named.
       const bool named = kind == 0 && i == 0;
-      PlotSeries w{named ? fmt::format("{:g} % bootstrap interval", 100.0 * s.level) : "", {}, {}};
+      PlotSeries w{named ? fmt::format("{:g} % interval", 100.0 * s.level) : "", {}, {}};
       w.colour = 3;
       for (auto [wx, wy] : {std::pair{c - 0.06, x[i].lower}, {c + 0.06, x[i].lower},
                             {c, x[i].lower}, {c, x[i].upper}, {c - 0.06, x[i].upper},
@@ -120,8 +119,9 @@ LinePlot SobolBarPlot(const std::string& title, const studies::SobolSummary& s,
       p.series.push_back(w);
     }
   }
+  // Each variable's name over its pair of bars, from a separator line at the pair's left.
   for (std::size_t i = 0; i < s.variables.size(); ++i)
-    p.x_markers.push_back({static_cast<double>(i + 1), s.variables[i], false, 0});
+    p.x_markers.push_back({static_cast<double>(i) + 0.5, s.variables[i], false, 0});
   p.y_references = {0.0};
   p.x_min = 0.5;
   p.x_max = static_cast<double>(s.variables.size()) + 0.5;

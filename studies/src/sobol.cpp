@@ -141,15 +141,19 @@ SobolEstimate EstimateSobol(const std::vector<double>& y, int d, const SobolOpti
   const auto nd = static_cast<std::size_t>(d);
   e.first.resize(nd);
   e.total.resize(nd);
+  double sum = 0;
   for (std::size_t i = 0; i < nd; ++i) {
     e.first[i] = {p.first[i], kNaN, kNaN, kNaN};
     e.total[i] = {p.total[i], kNaN, kNaN, kNaN};
+    sum += p.first[i];
   }
+  e.sum_first = {sum, kNaN, kNaN, kNaN};
   if (options.bootstrap == 0 || rows.size() < 2 || !(p.variance > 0)) return e;
   // Resamples of the rows, drawn from one stream (the same for every output of a study).
   CaseStream rng(options.seed, -1, 0);
   const auto b = static_cast<std::size_t>(options.bootstrap);
   std::vector<std::vector<double>> first(nd), total(nd);
+  std::vector<double> sums;
   std::vector<long> use(rows.size());
   for (std::size_t r = 0; r < b; ++r) {
     for (long& u : use) {
@@ -158,10 +162,13 @@ SobolEstimate EstimateSobol(const std::vector<double>& y, int d, const SobolOpti
     }
     const Point q = Estimate(y, d, use);
     if (!(q.variance > 0)) continue;  // a resample of one repeated row: no shares to resample
+    double qsum = 0;
     for (std::size_t i = 0; i < nd; ++i) {
       first[i].push_back(q.first[i]);
       total[i].push_back(q.total[i]);
+      qsum += q.first[i];
     }
+    sums.push_back(qsum);
   }
   const double lo = 0.5 * (1 - options.level), hi = 0.5 * (1 + options.level);
   auto interval = [&](std::vector<double>& x, SobolIndex* s) {
@@ -180,6 +187,7 @@ SobolEstimate EstimateSobol(const std::vector<double>& y, int d, const SobolOpti
     interval(first[i], &e.first[i]);
     interval(total[i], &e.total[i]);
   }
+  interval(sums, &e.sum_first);
   return e;
 }
 

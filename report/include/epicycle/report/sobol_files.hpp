@@ -13,11 +13,13 @@ namespace epicycle::report {
 
 /// {"design": ..., "base_samples_N", "complete_rows", "bootstrap_resamples", "confidence_level",
 /// "variables": [...], "outputs": {NAME: {"rows", "mean", "variance", "first_order": [{"variable",
-/// "value", "ci", "standard_error"}...], "total": [...], "sum_first_order"}}}; null where an index
+/// "value", "ci", "standard_error"}...], "total": [...], "sum_first_order": {"value", "ci",
+/// "standard_error"}}}}; null where an index
 /// has no value (a constant output).
 nlohmann::json SobolJson(const studies::SobolSummary& s);
 
-/// A table per output with variance: "variable  S_i [lo, hi]  S_Ti [lo, hi]", the sum of S_i.
+/// A table per output with variance: "variable  S_i [lo, hi]  S_Ti [lo, hi]", the sum of S_i
+/// with its interval.
 std::string SobolText(const studies::SobolSummary& s);
 
 /// The bar plot of one output's indices: per variable (x = 1 … d, named by the labels above the

@@ -62,6 +62,8 @@ struct SobolEstimate {
   double variance = 0;  ///< V(Y), sample variance of the 2·rows outputs of A and B [unit²]
   /// Per variable; NaN when V(Y) = 0 (a constant output has no shares).
   std::vector<SobolIndex> first, total;
+  /// Σ_i S_i, its interval from the same resamples (≤ 1 in theory: the rest is interactions).
+  SobolIndex sum_first;
 };
 
 /// The indices of one output from its values in the design's case order, y[j (d + 2) + m]
