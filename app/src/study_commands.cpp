@@ -135,8 +135,8 @@ void RunStudyCommand(const StudyArgs& a) {
     const studies::SobolSummary sobol = studies::SummariseSobol(study, report.rows, so);
     std::printf("%s", report::SobolText(sobol).c_str());
     j["sobol"] = report::SobolJson(sobol);
-    WriteTextFile(base + "_sobol.svg", RenderSvg(report::SobolBarPlot(study.name, sobol,
-                                                                      sobol.outputs.front())));
+    WriteTextFile(base + "_sobol.svg",
+                  RenderSvg(report::SobolBarPlot(study.name, sobol, sobol.outputs.front())));
     sobol_files = ", _sobol.svg";
   }
   j["warnings"] = study.warnings;

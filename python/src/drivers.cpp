@@ -103,7 +103,8 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
     so.seed = study.seed;  // as `epicycle study`
     const studies::SobolSummary sobol = studies::SummariseSobol(study, run.rows, so);
     py::dict outputs;
-    for (const studies::SobolOutput& o : sobol.outputs) outputs[o.name.c_str()] = SobolObject(o.estimate);
+    for (const studies::SobolOutput& o : sobol.outputs)
+      outputs[o.name.c_str()] = SobolObject(o.estimate);
     py::dict d;
     d["variables"] = sobol.variables;
     d["complete_rows"] = sobol.complete_rows;

@@ -82,8 +82,12 @@ std::string SobolText(const studies::SobolSummary& s) {
 
 LinePlot SobolBarPlot(const std::string& title, const studies::SobolSummary& s,
                       const studies::SobolOutput& output) {
-  LinePlot p{title + ": Sobol indices of " + output.name, "variable (1 ... d, named above) [-]",
-             "index [-]", {}, false, {}};
+  LinePlot p{title + ": Sobol indices of " + output.name,
+             "variable (1 ... d, named above) [-]",
+             "index [-]",
+             {},
+             false,
+             {}};
   const auto& e = output.estimate;
   const double half = 0.16;  // bar half-width [x units]; first order at i − 0.18, total at i + 0.18
   for (int kind = 0; kind < 2; ++kind) {
@@ -96,8 +100,10 @@ LinePlot SobolBarPlot(const std::string& title, const studies::SobolSummary& s,
     for (std::size_t i = 0; i < x.size(); ++i) {
       const double c = static_cast<double>(i + 1) + shift;
       if (!std::isfinite(x[i].value)) continue;
-      for (auto [bx, by] : {std::pair{c - half, 0.0}, {c - half, x[i].value},
-                            {c + half, x[i].value}, {c + half, 0.0}}) {
+      for (auto [bx, by] : {std::pair{c - half, 0.0},
+                            {c - half, x[i].value},
+                            {c + half, x[i].value},
+                            {c + half, 0.0}}) {
         bars.x.push_back(bx);
         bars.y.push_back(by);
       }
@@ -110,8 +116,11 @@ LinePlot SobolBarPlot(const std::string& title, const studies::SobolSummary& s,
       const bool named = kind == 0 && i == 0;
       PlotSeries w{named ? fmt::format("{:g} % interval", 100.0 * s.level) : "", {}, {}};
       w.colour = 3;
-      for (auto [wx, wy] : {std::pair{c - 0.06, x[i].lower}, {c + 0.06, x[i].lower},
-                            {c, x[i].lower}, {c, x[i].upper}, {c - 0.06, x[i].upper},
+      for (auto [wx, wy] : {std::pair{c - 0.06, x[i].lower},
+                            {c + 0.06, x[i].lower},
+                            {c, x[i].lower},
+                            {c, x[i].upper},
+                            {c - 0.06, x[i].upper},
                             {c + 0.06, x[i].upper}}) {
         w.x.push_back(wx);
         w.y.push_back(wy);

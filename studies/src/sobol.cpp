@@ -216,8 +216,8 @@ SobolSummary SummariseSobol(const StudySpec& study, const std::vector<CaseRow>& 
     if (!r.ok || r.id < 0 || static_cast<std::size_t>(r.id) >= cases) continue;
     const auto k = static_cast<std::size_t>(r.id);
     std::size_t o = 0;
-    for (double v : {r.k_gamma, r.k_gamma_mean, r.lsr_min, r.lsr_max, r.te_peak_to_peak,
-                     r.sun_orbit})
+    for (double v :
+         {r.k_gamma, r.k_gamma_mean, r.lsr_min, r.lsr_max, r.te_peak_to_peak, r.sun_orbit})
       y[o++][k] = v;
     for (double v : r.root_stress) y[o++][k] = v;
     for (double v : r.safety) y[o++][k] = v;

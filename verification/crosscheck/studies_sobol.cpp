@@ -22,9 +22,12 @@ namespace {
 
 // The variables as [[variable]] tables, in the study's order.
 const std::vector<std::string> kVariables = {
-    "quantity = \"pin_tangential\"\ngear = \"planet1\"\ndistribution = \"normal\"\nsigma_um = 6.0\n",
-    "quantity = \"pin_tangential\"\ngear = \"planet2\"\ndistribution = \"normal\"\nsigma_um = 4.0\n",
-    "quantity = \"pin_tangential\"\ngear = \"planet3\"\ndistribution = \"normal\"\nsigma_um = 2.0\n",
+    "quantity = \"pin_tangential\"\ngear = \"planet1\"\ndistribution = \"normal\"\nsigma_um = "
+    "6.0\n",
+    "quantity = \"pin_tangential\"\ngear = \"planet2\"\ndistribution = \"normal\"\nsigma_um = "
+    "4.0\n",
+    "quantity = \"pin_tangential\"\ngear = \"planet3\"\ndistribution = \"normal\"\nsigma_um = "
+    "2.0\n",
     "quantity = \"runout\"\ngear = \"sun\"\ndistribution = \"iso1328\"\ngrade = 6\n"};
 
 // Runs `epicycle study` on `text` (written into `dir`) and returns its summary JSON.
@@ -48,8 +51,8 @@ TEST_CASE("study Sobol indices: theory's bounds and the one-at-a-time ranking",
   const std::string keys = "positions = 12\nsun = \"fixed\"\nseed = 31\n";
   std::string vars;
   for (const std::string& v : kVariables) vars += "[[variable]]\n" + v;
-  const json j = RunStudy(dir, "sobol",
-                          test::StudyText(keys + "design = \"sobol\"\nsamples = 300", vars));
+  const json j =
+      RunStudy(dir, "sobol", test::StudyText(keys + "design = \"sobol\"\nsamples = 300", vars));
   const json& s = j["sobol"];
   REQUIRE(s["base_samples_N"] == 300);
   REQUIRE(s["complete_rows"] == 300);
@@ -80,9 +83,9 @@ TEST_CASE("study Sobol indices: theory's bounds and the one-at-a-time ranking",
   std::vector<double> oat;
   for (std::size_t i = 0; i < kVariables.size(); ++i)
     oat.push_back(RunStudy(dir, "oat" + std::to_string(i),
-                           test::StudyText(keys + "samples = 300", "[[variable]]\n" + kVariables[i]))
-                      ["K_gamma"]["std"]
-                          .get<double>());
+                           test::StudyText(keys + "samples = 300",
+                                           "[[variable]]\n" + kVariables[i]))["K_gamma"]["std"]
+                      .get<double>());
   // The ranking: every pair of variables whose index intervals do not overlap is ordered as
   // the one-at-a-time standard deviations order them; enough pairs decided that this says
   // something (4 of the 6 pairs of total indices).

@@ -188,7 +188,8 @@ TEST_CASE("Sobol design of a study: A, B and A_B^(i) from the Monte-Carlo stream
                       "distribution = \"uniform\"\nmin_um = 0\nmax_um = 10\n"),
       "mc.toml", "");
   for (long j : {0L, 5L, 11L}) {
-    const std::vector<double> a = studies::SampleCase(s, 6 * j), b = studies::SampleCase(s, 6 * j + 1);
+    const std::vector<double> a = studies::SampleCase(s, 6 * j),
+                              b = studies::SampleCase(s, 6 * j + 1);
     CHECK(a == studies::SampleCase(mc, 2 * j));
     CHECK(b == studies::SampleCase(mc, 2 * j + 1));
     // Columns: pin1, pin2, pin3, run-out amplitude, run-out phase.

@@ -51,14 +51,14 @@ struct SobolOptions {
 
 /// One index: the estimate and its bootstrap interval.
 struct SobolIndex {
-  double value = 0;           ///< [-]
+  double value = 0;             ///< [-]
   double lower = 0, upper = 0;  ///< percentile bootstrap interval at SobolOptions::level [-]
-  double standard_error = 0;  ///< standard deviation of the bootstrap replicates [-]
+  double standard_error = 0;    ///< standard deviation of the bootstrap replicates [-]
 };
 
 struct SobolEstimate {
-  long rows = 0;       ///< rows j used: every one of its d + 2 outputs finite [-]
-  double mean = 0;     ///< of the outputs of every used case (the centring) [output unit]
+  long rows = 0;        ///< rows j used: every one of its d + 2 outputs finite [-]
+  double mean = 0;      ///< of the outputs of every used case (the centring) [output unit]
   double variance = 0;  ///< V(Y), sample variance of the 2·rows outputs of A and B [unit²]
   /// Per variable; NaN when V(Y) = 0 (a constant output has no shares).
   std::vector<SobolIndex> first, total;
@@ -85,10 +85,10 @@ struct SobolOutput {
   SobolEstimate estimate;
 };
 struct SobolSummary {
-  long base_samples = 0;           ///< N of the design [-]
-  long complete_rows = 0;          ///< rows j with all d + 2 cases in the file and ok [-]
-  int bootstrap = 0;               ///< resamples [-]
-  double level = 0;                ///< of the intervals [-]
+  long base_samples = 0;               ///< N of the design [-]
+  long complete_rows = 0;              ///< rows j with all d + 2 cases in the file and ok [-]
+  int bootstrap = 0;                   ///< resamples [-]
+  double level = 0;                    ///< of the intervals [-]
   std::vector<std::string> variables;  ///< SobolVariableNames
   /// The rows file's results in its order: K_gamma, K_gamma_mean, LSR_min, LSR_max, TE_pp_urad,
   /// sun_orbit_um, then with stresses the root stresses and safety factors.
