@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <thread>
 
 #include <fmt/format.h>
@@ -107,6 +108,14 @@ void RunStudyCommand(const StudyArgs& a) {
   for (std::size_t j = 0; j < s.columns.size(); ++j)
     std::printf("    %-36s %s\n", s.columns[j].c_str(),
                 Num(s.spearman[j], "{:+.3f}", "- (constant)").c_str());
+  // The Sobol indices (the bootstrap seeded by the study's seed: reproducible intervals).
+  std::optional<studies::SobolSummary> sobol;
+  if (study.design == studies::Design::kSobol) {
+    studies::SobolOptions so;
+    so.seed = study.seed;
+    sobol = studies::SummariseSobol(study, report.rows, so);
+    std::printf("%s", report::SobolText(*sobol).c_str());
+  }
   PrintWarnings(study.warnings);
 
   json j;
@@ -129,14 +138,10 @@ void RunStudyCommand(const StudyArgs& a) {
   for (std::size_t k = 0; k < s.columns.size(); ++k) rho[s.columns[k]] = Stat(s.spearman[k]);
   j["spearman_K_gamma"] = rho;
   std::string sobol_files;
-  if (study.design == studies::Design::kSobol) {
-    studies::SobolOptions so;
-    so.seed = study.seed;
-    const studies::SobolSummary sobol = studies::SummariseSobol(study, report.rows, so);
-    std::printf("%s", report::SobolText(sobol).c_str());
-    j["sobol"] = report::SobolJson(sobol);
+  if (sobol) {
+    j["sobol"] = report::SobolJson(*sobol);
     WriteTextFile(base + "_sobol.svg",
-                  RenderSvg(report::SobolBarPlot(study.name, sobol, sobol.outputs.front())));
+                  RenderSvg(report::SobolBarPlot(study.name, *sobol, sobol->outputs.front())));
     sobol_files = ", _sobol.svg";
   }
   j["warnings"] = study.warnings;
