@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "figures.hpp"
 #include "study_fixtures.hpp"
 
 using namespace epicycle;
@@ -102,4 +103,10 @@ TEST_CASE("study Sobol indices: theory's bounds and the one-at-a-time ranking",
       }
     if (std::string(kind) == "total") CHECK(decided >= 4);
   }
+  const double sum = k["sum_first_order"]["ci"][0].get<double>();
+  test::VerifyRow(
+      "Sobol study, paper stage, 3 pin holes + sun run-out, N = 300: sum of S_i of "
+      "K_gamma",
+      "theory: <= 1", test::Sci(k["sum_first_order"]["value"].get<double>(), 3),
+      "lower end " + test::Sci(sum, 3), "<= 1", sum <= 1);
 }

@@ -1,17 +1,20 @@
 // Sobol indices (studies/sobol.hpp, docs/studies.md "Sensitivity: Sobol indices"): the
 // estimators on Ishigami's function against its closed-form indices; the bootstrap's standard
-// error against the delta method's and the 1/√N law; the Saltelli design of a study (A_B^(i) is A with variable i's
-// values from B, a run-out's amplitude and phase together, the seeds of a Monte-Carlo study);
-// the study file's rules for the design.
+// error against the delta method's and the 1/√N law; the Saltelli design of a study (A_B^(i) is A
+// with variable i's values from B, a run-out's amplitude and phase together, the seeds of a
+// Monte-Carlo study); the study file's rules for the design.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/studies/sobol.hpp"
+#include "figures.hpp"
 #include "study_fixtures.hpp"
 
 using namespace epicycle;
@@ -91,6 +94,17 @@ TEST_CASE("Sobol indices of Ishigami's function against the closed form", "[unit
     // estimator is that far off with probability 6e-5; the 99.9 % percentile interval covers it.
     CHECK(std::abs(s.value - c.s[i]) <= 4 * s.standard_error);
     CHECK(std::abs(t.value - c.st[i]) <= 4 * t.standard_error);
+    for (const auto& [name, x, exact] :
+         {std::tuple{"S_", s, c.s[i]}, std::tuple{"S_T", t, c.st[i]}})
+      test::VerifyRow("Sobol indices, Ishigami (a = 7, b = 0.1), N = 20000: " + std::string(name) +
+                          std::to_string(i + 1),
+                      "closed form " + test::Sci(exact, 4),
+                      test::Sci(x.value, 4) + " [" + test::Sci(x.lower, 4) + ", " +
+                          test::Sci(x.upper, 4) + "] (99.9 %)",
+                      test::Sci(std::abs(x.value - exact)),
+                      "4 bootstrap SE = " + test::Sci(4 * x.standard_error),
+                      std::abs(x.value - exact) <= 4 * x.standard_error && x.lower <= exact &&
+                          exact <= x.upper);
     CHECK(s.lower <= c.s[i]);
     CHECK(c.s[i] <= s.upper);
     CHECK(t.lower <= c.st[i]);
