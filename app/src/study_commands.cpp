@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <thread>
 
 #include <fmt/format.h>
@@ -15,8 +16,10 @@
 
 #include "commands.hpp"
 #include "console.hpp"
+#include "epicycle/report/sobol_files.hpp"
 #include "epicycle/report/study_files.hpp"
 #include "epicycle/studies/runner.hpp"
+#include "epicycle/studies/sobol.hpp"
 #include "epicycle/studies/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "options.hpp"
@@ -35,6 +38,13 @@ struct StudyArgs {
 };
 
 json Stat(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+std::string DesignText(const studies::StudySpec& study) {
+  if (study.design == studies::Design::kSobol)
+    return fmt::format("Sobol design: N (d + 2) = {} x {}", study.samples,
+                       study.variables.size() + 2);
+  return fmt::format("{} grid points x {} samples", study.GridPoints(), study.samples);
+}
 
 void RunStudyCommand(const StudyArgs& a) {
   const studies::MpiSession mpi;
@@ -69,9 +79,9 @@ void RunStudyCommand(const StudyArgs& a) {
                "cases");
   };
   if (root)
-    std::printf("%s: %ld cases (%ld grid points x %ld samples), %zu variables, seed %llu, %s\n",
-                study.name.c_str(), study.Cases(), study.GridPoints(), study.samples,
-                study.variables.size(), static_cast<unsigned long long>(study.seed),
+    std::printf("%s: %ld cases (%s), %zu variables, seed %llu, %s\n", study.name.c_str(),
+                study.Cases(), DesignText(study).c_str(), study.variables.size(),
+                static_cast<unsigned long long>(study.seed),
                 mpi.active()
                     ? fmt::format("{} MPI ranks x {} threads", mpi.size(), opt.threads).c_str()
                     : fmt::format("{} threads", opt.threads).c_str());
@@ -98,6 +108,14 @@ void RunStudyCommand(const StudyArgs& a) {
   for (std::size_t j = 0; j < s.columns.size(); ++j)
     std::printf("    %-36s %s\n", s.columns[j].c_str(),
                 Num(s.spearman[j], "{:+.3f}", "- (constant)").c_str());
+  // The Sobol indices (the bootstrap seeded by the study's seed: reproducible intervals).
+  std::optional<studies::SobolSummary> sobol;
+  if (study.design == studies::Design::kSobol) {
+    studies::SobolOptions so;
+    so.seed = study.seed;
+    sobol = studies::SummariseSobol(study, report.rows, so);
+    std::printf("%s", report::SobolText(*sobol).c_str());
+  }
   PrintWarnings(study.warnings);
 
   json j;
@@ -119,6 +137,13 @@ void RunStudyCommand(const StudyArgs& a) {
   json rho = json::object();
   for (std::size_t k = 0; k < s.columns.size(); ++k) rho[s.columns[k]] = Stat(s.spearman[k]);
   j["spearman_K_gamma"] = rho;
+  std::string sobol_files;
+  if (sobol) {
+    j["sobol"] = report::SobolJson(*sobol);
+    WriteTextFile(base + "_sobol.svg",
+                  RenderSvg(report::SobolBarPlot(study.name, *sobol, sobol->outputs.front())));
+    sobol_files = ", _sobol.svg";
+  }
   j["warnings"] = study.warnings;
   j["computed_seconds"] = report.seconds;
   WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
@@ -132,8 +157,8 @@ void RunStudyCommand(const StudyArgs& a) {
   cdf.series.push_back(report::EmpiricalCdfSteps("empirical CDF", s.k_gamma_sorted));
   WriteTextFile(base + "_kgamma_hist.svg", RenderSvg(hist));
   WriteTextFile(base + "_kgamma_cdf.svg", RenderSvg(cdf));
-  std::printf("\nwrote %s_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg\n",
-              base.c_str());
+  std::printf("\nwrote %s_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
+              base.c_str(), sobol_files.c_str());
   if (s.failed > 0)
     throw ComputationFailed(
         fmt::format("{} of {} cases failed (their rows say why)", s.failed, s.cases));

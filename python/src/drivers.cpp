@@ -7,6 +7,7 @@
 
 #include "common.hpp"
 #include "epicycle/studies/runner.hpp"
+#include "epicycle/studies/sobol.hpp"
 #include "epicycle/studies/study.hpp"
 #include "epicycle/studies/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
@@ -40,6 +41,7 @@ class TemporaryRows {
 };
 
 py::object SampleObject(const studies::SampleSummary& s);
+py::object SobolObject(const studies::SobolEstimate& e);
 
 py::object Study(const std::string& path, std::optional<std::string> text, int threads,
                  long max_cases, std::optional<std::string> rows_file,
@@ -96,6 +98,19 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   summary["te_peak_to_peak_urad"] = SampleObject(sum.te_peak_to_peak);
   summary["sun_orbit_um"] = SampleObject(sum.sun_orbit);
   summary["spearman_k_gamma"] = Array(std::vector<double>(sum.spearman));
+  if (study.design == studies::Design::kSobol) {
+    studies::SobolOptions so;
+    so.seed = study.seed;  // as `epicycle study`
+    const studies::SobolSummary sobol = studies::SummariseSobol(study, run.rows, so);
+    py::dict outputs;
+    for (const studies::SobolOutput& o : sobol.outputs)
+      outputs[o.name.c_str()] = SobolObject(o.estimate);
+    py::dict d;
+    d["variables"] = sobol.variables;
+    d["complete_rows"] = sobol.complete_rows;
+    d["outputs"] = Result(outputs);
+    summary["sobol"] = Result(d);
+  }
   py::dict f;
   f["study"] = study.name;
   f["cases"] = study.Cases();
@@ -146,9 +161,56 @@ py::object SampleObject(const studies::SampleSummary& s) {
   return Result(f);
 }
 
+py::object SobolObject(const studies::SobolEstimate& e) {
+  py::dict f;
+  f["rows"] = e.rows;
+  f["mean"] = e.mean;
+  f["variance"] = e.variance;
+  for (const char* kind : {"first", "total"}) {
+    const auto& x = std::string(kind) == "first" ? e.first : e.total;
+    std::vector<double> value, lower, upper, se;
+    for (const studies::SobolIndex& i : x) {
+      value.push_back(i.value);
+      lower.push_back(i.lower);
+      upper.push_back(i.upper);
+      se.push_back(i.standard_error);
+    }
+    const std::string k(kind);
+    f[(k).c_str()] = Array(std::move(value));
+    f[(k + "_lower").c_str()] = Array(std::move(lower));
+    f[(k + "_upper").c_str()] = Array(std::move(upper));
+    f[(k + "_standard_error").c_str()] = Array(std::move(se));
+  }
+  f["sum_first"] = e.sum_first.value;
+  f["sum_first_lower"] = e.sum_first.lower;
+  f["sum_first_upper"] = e.sum_first.upper;
+  return Result(f);
+}
+
 }  // namespace
 
 void BindStudies(py::module_& m) {
+  m.def(
+      "sobol_indices",
+      [](const std::vector<double>& y, int d, int bootstrap, double level, std::uint64_t seed) {
+        studies::SobolOptions o;
+        o.bootstrap = bootstrap;
+        o.level = level;
+        o.seed = seed;
+        return SobolObject(studies::EstimateSobol(y, d, o));
+      },
+      py::arg("y"), py::arg("d"), py::arg("bootstrap") = 1000, py::arg("level") = 0.95,
+      py::arg("seed") = 0, R"doc(
+First-order and total Sobol indices (studies::EstimateSobol; docs/studies.md "Sensitivity: Sobol
+indices") of one output from its values in the Saltelli design's order y[j (d + 2) + m]: m = 0
+row j of A, 1 of B, 2 + i of A_B^(i) (A with variable i from B). First order Saltelli 2010,
+total Jansen, outputs centred on their mean, V(Y) from A and B; rows with a non-finite value
+left out. bootstrap: resamples of the rows for the percentile intervals at `level` (0: none);
+seed: of the resampling.
+Returns Result: rows, mean, variance, first, first_lower, first_upper, first_standard_error,
+total, total_lower, total_upper, total_standard_error (arrays of d), sum_first (Σ S_i),
+sum_first_lower, sum_first_upper.)doc");
+
   m.def(
       "study",
       [](const std::string& path, std::optional<std::string> text, int threads, long max_cases,
@@ -171,7 +233,9 @@ units: _um µm, _deg deg, _Nm N·m], ok, message, positions, converged, k_gamma 
 [-], lsr_min, lsr_max [-], te_peak_to_peak_urad [µrad], sun_orbit_um [µm]; columns, header and
 rows_csv (each row as the rows file has it); summary (cases, failed, k_gamma, k_gamma_mean,
 te_peak_to_peak_urad, sun_orbit_um: count, mean, percentiles with confidence intervals;
-spearman_k_gamma per column); study, cases, resumed, computed, seconds [s], warnings.)doc");
+spearman_k_gamma per column; with design = "sobol" also sobol: variables, complete_rows and
+outputs, per rows-file result column the sobol_indices Result); study, cases, resumed, computed,
+seconds [s], warnings.)doc");
 }
 
 }  // namespace epicycle::python

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "epicycle/studies/sobol.hpp"
+
 namespace epicycle::studies {
 
 namespace {
@@ -56,13 +58,18 @@ std::vector<double> SampleCase(const StudySpec& study, long case_id) {
   if (case_id < 0 || case_id >= study.Cases())
     throw std::invalid_argument("case " + std::to_string(case_id) + ": the study has " +
                                 std::to_string(study.Cases()) + " cases");
+  if (study.design == Design::kSobol) return SobolCaseValues(study, case_id);
+  return DrawValues(study, case_id);
+}
+
+std::vector<double> DrawValues(const StudySpec& study, long stream) {
   std::vector<double> values;
   // Grid point g = k mod G (the first grid variable varies fastest); the random streams use k.
-  long grid_index = case_id % study.GridPoints();
+  long grid_index = stream % study.GridPoints();
   for (std::size_t j = 0; j < study.variables.size(); ++j) {
     const Variable& v = study.variables[j];
     const double to_file = SiToFile(v.quantity);
-    CaseStream rng(study.seed, case_id, static_cast<int>(j));
+    CaseStream rng(study.seed, stream, static_cast<int>(j));
     double x = 0.0;
     switch (v.distribution) {
       case Distribution::kNormal:

@@ -10,6 +10,7 @@
 #include "epicycle/geometry/gear.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/studies/sampling.hpp"
+#include "epicycle/studies/sobol.hpp"
 #include "epicycle/transmission/internal/input_file.hpp"
 #include "epicycle/transmission/internal/toml_reader.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
@@ -284,6 +285,29 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
   return out;
 }
 
+// The Sobol design's rules (studies/sobol.hpp): random variables only, N within what the
+// bootstrap needs and the study's case count can hold.
+void CheckSobolStudy(const TableReader& st, const StudySpec& s) {
+  const auto d = static_cast<long>(s.variables.size());
+  if (d == 0)
+    st.Fail("design", "\"sobol\"",
+            "a Sobol design needs at least one random [[variable]] (its indices are per variable)");
+  for (const Variable& v : s.variables)
+    if (v.distribution == Distribution::kGrid)
+      st.Fail("design", "\"sobol\"",
+              "variable " + v.Columns().front() +
+                  " has distribution \"grid\": a Sobol design samples random variables only "
+                  "(run one study per grid value)");
+  const long most = 1000000000L / (d + 2);
+  if (s.samples < kSobolMinSamples || s.samples > most)
+    st.Fail("samples", std::to_string(s.samples),
+            "with design = \"sobol\" the base sample N must be a whole number in [" +
+                std::to_string(kSobolMinSamples) + ", " + std::to_string(most) +
+                "] (N rows of A and B for its bootstrap intervals; the study has N (d + 2) = N x " +
+                std::to_string(d + 2) + " cases, d = " + std::to_string(d) +
+                " variables, at most 1e9)");
+}
+
 }  // namespace
 
 std::string Target::Name() const {
@@ -318,7 +342,10 @@ long StudySpec::GridPoints() const {
   return g;
 }
 
-long StudySpec::Cases() const { return GridPoints() * samples; }
+long StudySpec::Cases() const {
+  if (design == Design::kSobol) return samples * (static_cast<long>(variables.size()) + 2);
+  return GridPoints() * samples;
+}
 
 bool StudySpec::VariesBodies() const {
   for (const Variable& v : variables)
@@ -366,6 +393,9 @@ StudySpec ParseStudy(const std::string& text, const std::string& source,
     st.Fail("scene", "\"" + s.scene_file + "\"", "must be a stage scene, not a gear pair");
   s.seed = static_cast<std::uint64_t>(st.IntegerOr("seed", 0, Rule::NonNegative()));
   s.samples = st.IntegerOr("samples", 1, Rule::Closed(1, 1e9).Because("cases per grid point"));
+  s.design = st.StringOr("design", "monte-carlo", {"monte-carlo", "sobol"}) == "sobol"
+                 ? Design::kSobol
+                 : Design::kMonteCarlo;
   const std::string compute =
       st.StringOr("compute", "mesh-cycle", {"mesh-cycle", "planet-revolution"});
   s.compute = compute == "mesh-cycle" ? CaseKind::kMeshCycle : CaseKind::kPlanetRevolution;
@@ -386,6 +416,7 @@ StudySpec ParseStudy(const std::string& text, const std::string& source,
   for (TableReader& t : top.TableArray("variable"))
     for (Variable& v : ReadVariable(t, s.scene, &s.warnings)) s.variables.push_back(std::move(v));
   top.Done();
+  if (s.design == Design::kSobol) CheckSobolStudy(st, s);
   // A gear's quantity sampled twice would give two columns writing one value.
   for (std::size_t a = 0; a < s.variables.size(); ++a)
     for (std::size_t b = 0; b < a; ++b)

@@ -3,20 +3,27 @@
 #include <algorithm>
 #include <cmath>
 
+#include "epicycle/studies/sobol.hpp"
+
 namespace epicycle::studies {
 
-StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& rows,
+StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& all_rows,
                             double level) {
   StudySummary s;
-  s.cases = static_cast<long>(rows.size());
+  s.cases = static_cast<long>(all_rows.size());
+  for (const CaseRow& r : all_rows) s.failed += r.ok ? 0 : 1;
+  // The distributions need independent cases: of a Sobol design, those of A and B (the
+  // A_B^(i) repeat all but one of A's values).
+  std::vector<CaseRow> independent;
+  if (study.design == Design::kSobol)
+    for (const CaseRow& r : all_rows)
+      if (SobolCaseOf(study, r.id).matrix <= 1) independent.push_back(r);
+  const std::vector<CaseRow>& rows = study.design == Design::kSobol ? independent : all_rows;
   s.columns = study.Columns();
   std::vector<double> kg, kgm, te, orbit;
   std::vector<std::vector<double>> values(s.columns.size());
   for (const CaseRow& r : rows) {
-    if (!r.ok) {
-      ++s.failed;
-      continue;
-    }
+    if (!r.ok) continue;
     kg.push_back(r.k_gamma);
     kgm.push_back(r.k_gamma_mean);
     te.push_back(r.te_peak_to_peak);

@@ -40,8 +40,14 @@ class CaseStream {
   std::mt19937_64 engine_;
 };
 
-/// The sampled values of case k in file units (the Columns() of the study: µm, deg, N·m).
+/// The sampled values of case k in file units (the Columns() of the study: µm, deg, N·m): with
+/// the Monte-Carlo design DrawValues(study, k), with the Sobol design SobolCaseValues.
+/// @throws std::invalid_argument for k outside [0, Cases()).
 std::vector<double> SampleCase(const StudySpec& study, long case_id);
+
+/// The values of random stream s in file units: variable j from CaseStream(seed, s, j), a grid
+/// variable at grid point s mod GridPoints() (the first grid variable varies fastest).
+std::vector<double> DrawValues(const StudySpec& study, long stream);
 
 /// The base scene with case k's values applied (they replace the scene's). Input that the
 /// geometry rejects (a run-out beyond its limits) surfaces when the case's stage is built.

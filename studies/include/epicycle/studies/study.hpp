@@ -70,13 +70,22 @@ enum class CaseKind {
   kPlanetRevolution,  ///< over one planet revolution relative to the carrier (run-out period)
 };
 
+/// How the cases sample the random variables.
+enum class Design {
+  kMonteCarlo,  ///< `samples` independent cases per grid point
+  /// The Saltelli design of the Sobol indices (studies/sobol.hpp): N = `samples` rows of two
+  /// independent matrices A and B and the d matrices A_B^(i), N (d + 2) cases, d = variables.size()
+  kSobol,
+};
+
 struct StudySpec {
   std::string name;
   std::string source;         ///< the study file (for messages)
   std::string scene_file;     ///< the base scene's file, relative paths resolved against the study
   transmission::Scene scene;  ///< the base scene
   std::uint64_t seed = 0;     ///< of the counter-based random streams [-]
-  long samples = 1;           ///< Monte-Carlo cases per grid point [-]
+  long samples = 1;           ///< Monte-Carlo cases per grid point; Sobol: the base sample N [-]
+  Design design = Design::kMonteCarlo;
   CaseKind compute = CaseKind::kMeshCycle;
   int positions = 0;       ///< carrier positions per case [-] (default 36 cycle, 360 revolution)
   double start_angle = 0;  ///< carrier angle of the first position [rad]
@@ -90,7 +99,7 @@ struct StudySpec {
 
   /// Points of the grid: the product of the grid variables' sizes (1 without grids) [-].
   long GridPoints() const;
-  /// Cases of the study: GridPoints() · samples [-].
+  /// Cases of the study: GridPoints() · samples, or samples · (d + 2) with the Sobol design [-].
   long Cases() const;
   /// The sampled-value columns of every variable, in order.
   std::vector<std::string> Columns() const;

@@ -43,6 +43,8 @@ inline const std::vector<double> kStudyPercentiles{0.5, 0.95, 0.99, 0.999};
 /// Of the safety factors, whose tail that matters is the low one: 0.50, 0.05, 0.01, 0.001.
 inline const std::vector<double> kSafetyPercentiles{0.5, 0.05, 0.01, 0.001};
 
+/// With the Sobol design (StudySpec::design) the distributions and correlations come from the
+/// 2N independent cases of A and B only (cases and failed count every row).
 /// @param level confidence level of every interval [-]
 StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& rows,
                             double level = 0.95);
