@@ -36,7 +36,7 @@ dyn() {  # name scene sun
 }
 dyn dynamic_runout_fixed paper_stage_runout fixed
 dyn dynamic_runout_floating paper_stage_runout floating
-# Spectra (docs/dynamic.md, "Spectra"), sun fixed, 1500 rpm: 4 mesh cycles of start transient
+# Spectra (docs/spectra.md), sun fixed, 1500 rpm: 4 mesh cycles of start transient
 # and three carrier revolutions (199 mesh cycles = 199·81/26000 s), 24 outputs per mesh cycle.
 spectrum() {  # name scene
   "$exe" dynamic "scenes/$2.toml" --sun fixed --speed-rpm 1500 --time 0.619961538461538 \
@@ -46,7 +46,7 @@ spectrum() {  # name scene
 }
 spectrum spectrum_healthy paper_stage
 spectrum spectrum_runout paper_stage_runout
-# Speed sweeps (docs/dynamic.md, "Speed sweeps"), sun fixed: the run-out case over a planet
+# Speed sweeps (docs/speed_sweeps.md), sun fixed: the run-out case over a planet
 # revolution per speed, and the stage without errors over 3 mesh cycles per speed on a finer grid.
 sweep() {  # name scene speeds [options]
   local name=$1 scene=$2 speeds=$3

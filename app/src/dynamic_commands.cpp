@@ -301,7 +301,7 @@ void RegisterDynamicCommands(CLI::App& app) {
   AddNumber(cmd, "--rate-scale", a.rate_scale,
             "Absolute tolerance of the rates = that of the positions times this [1/s] "
             "(default 1e4; 0: the stage's highest linearised natural frequency; "
-            "docs/dynamic.md, Error against run time)",
+            "docs/dynamic_cost.md, Error against run time)",
             kRateScale);
   AddNumber(cmd, "--contact-tol", a.contact_tol,
             "Tolerance of every contact solve on its nondimensional residual (default 1e-10)",
@@ -324,7 +324,7 @@ void RegisterDynamicCommands(CLI::App& app) {
             kThreads);
   AddNumber(cmd, "--max-order", a.max_order, "Largest BDF order of CVODE (1..5)", kMaxOrder);
   cmd->add_flag("--spectrum", a.spectrum,
-                "Also the vibration signals per step and their spectra (docs/dynamic.md, Spectra)");
+                "Also the vibration signals per step and their spectra (docs/spectra.md)");
   AddNumber(cmd, "--spectrum-resolution", a.spectrum_resolution,
             "Spectrum: segment length 1/this [Hz] (default 0: one carrier revolution)",
             kSpectrumResolution);

@@ -548,7 +548,7 @@ dissipated_work_J, kinetic_energy_J, elastic_energy_J, compliance_work_J [J], co
 friction_power_W [W], sun_bearing_force_N (T, 2) [N], planet_bearing_force_N (T, n, 2) [N]; pairs
 (per loaded tooth pair and step: time_s, mesh, kind, flank, tooth_a, tooth_b, normal_force_N,
 elastic_force_N, friction_force_N [N], overlap_rate_mm_per_s [mm/s]); vibration (per step, the
-signals of docs/dynamic.md "Spectra": te_rad, ring_force_x_N, ring_force_y_N, ring_torque_Nm,
+signals of docs/spectra.md: te_rad, ring_force_x_N, ring_force_y_N, ring_torque_Nm,
 sun_force_x_N/sun_force_y_N (held sun) or sun_x_m/sun_y_m (floating), and channels: (name,
 "torsional" or "housing") pairs); summary (lsr_mean/min/max
 (n,) [-], k_gamma [-], te_min/max/peak_to_peak_urad [µrad], orbit_radius_max/mean_um [µm],
@@ -592,9 +592,8 @@ secant_mesh_stiffness_*_N_per_m [N/m]; ring_elastic, sun_support, warnings.)doc"
       py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
       py::arg("raise_on_failure") = true,
       (std::string(R"doc(
-A speed sweep of the dynamic model (`epicycle dynamic --speed-sweep`; docs/dynamic.md, "Speed
-sweeps"): each sun speed run from the quasi-static solution, its start transient skipped, then a
-window measured.
+A speed sweep of the dynamic model (`epicycle dynamic --speed-sweep`; docs/speed_sweeps.md): each
+sun speed run from the quasi-static solution, its start transient skipped, then a window measured.
 
 sun_speeds_rpm: increasing sun speeds [rpm] (epicycle.speed_grid(from, to, n)); range: the window,
   "cycle", "planet" (default), "sun", "revolution", or window_cycles > 0 mesh cycles [-];

@@ -1,6 +1,6 @@
-// The natural modes' and the speed sweep's files (docs/dynamic.md, "Natural modes" and "Speed
-// sweeps"): the modes and coincidences as JSON, the sweep's CSV written a speed at a time, its
-// summary JSON and its figures against sun speed.
+// The natural modes' and the speed sweep's files (docs/modes.md and docs/speed_sweeps.md): the
+// modes and coincidences as JSON, the sweep's CSV written a speed at a time, its summary JSON and
+// its figures against sun speed.
 #include <algorithm>
 #include <cmath>
 #include <utility>

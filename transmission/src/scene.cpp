@@ -124,7 +124,7 @@ void ReadDynamics(TableReader& top, DynamicSettings& d, std::vector<std::string>
     t->Done();
   }
   if (auto t = top.OptionalTable("lubricant")) {
-    // The lubricated laws (docs/dynamic.md, "Friction") are regressions on gear oils at their
+    // The lubricated laws (docs/friction.md) are regressions on gear oils at their
     // running temperatures, ISO VG 22 at 100 C (about 3 mPa s) to VG 1000 at 40 C (about 900):
     // outside [2, 1000] they are extrapolated (a warning). Below 0.1 mPa s Xu-Kahraman's
     // e^(b5 e^(-SR P_h log10 nu0)) overflows (at 0.078 for SR = 2, P_h = 2.5 GPa): no finite

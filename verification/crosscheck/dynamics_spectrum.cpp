@@ -1,5 +1,5 @@
 // The vibration signature of a healthy stage (dynamics/vibration.hpp, dynamics/spectrum.hpp,
-// docs/dynamic.md "Spectra"): the spectra of a dynamic run of the paper stage against the
+// docs/spectra.md): the spectra of a dynamic run of the paper stage against the
 // kinematics and the planet phasing worked out from its tooth numbers (docs/model.md §9 "Fault
 // frequencies"), which share nothing with the integration.
 #include <catch2/catch.hpp>
@@ -182,7 +182,7 @@ TEST_CASE(
   // and h f_m ± f_c on the forbidden side, except where one bin from an allowed line) the amplitude
   // is below 1e-3 of the channel's largest line. Why 1e-3: a symmetric model's response keeps the
   // symmetry exactly; what breaks it is numerical: the integrator's global error (LSR 20–70 × rtol
-  // at rtol 1e-6: ≤ 7e-5 of the response, docs/dynamic.md "Error against run time"), the start
+  // at rtol 1e-6: ≤ 7e-5 of the response, docs/dynamic_cost.md, "Error against run time"), the start
   // transient left after the skip (e^{−10} = 4.5e-5 of its initial size, at most the response's
   // size) and the contact solve's tolerance (1e-10 relative): together ≤ 1.2e-4, asserted with a
   // margin of 8 for the transient's and the error's spread into single bins, not their sum over

@@ -1,4 +1,4 @@
-// Speed sweeps of the dynamic model (dynamics/speed_sweep.hpp, docs/dynamic.md "Speed sweeps")
+// Speed sweeps of the dynamic model (dynamics/speed_sweep.hpp, docs/speed_sweeps.md)
 // against references that do not come from the sweep: the resonance speeds predicted by the
 // linearised natural frequencies (SolveModes) and the mesh stiffness driver's range of the
 // instantaneous mesh stiffness, and the quasi-static limit of the dynamic factor.

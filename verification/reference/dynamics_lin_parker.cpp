@@ -60,7 +60,7 @@ TEST_CASE("Lin & Parker 1999 example system: natural frequencies equal the publi
   // differ from this model by 0.27, 0.16 and 0.065 Hz while the other 60 entries of the table
   // agree to half a printed digit; the first two look like entries whose decimals were lost
   // (transcription or print), the third is a rounding of 1536.55. They are reported, not
-  // asserted (docs/dynamic.md "Natural modes"); the original paper could not be consulted.
+  // asserted (docs/modes.md); the original paper could not be consulted.
   const auto known_deviation = [](int n, double published) {
     return n == 4 && (published == 727.0 || published == 1091.0 || published == 1536.6);
   };
@@ -108,7 +108,7 @@ TEST_CASE("Lin & Parker 1999 example system: natural frequencies equal the publi
           "Lin & Parker 1999 example, N = 4: the other " + std::to_string(deviating) +
               " entries (727.0 x2, 1091.0 x2, 1536.6 Hz)",
           "published table as transcribed", "SolveModes: 727.27, 1091.16, 1536.54 Hz",
-          Sci(worst_deviating, 2) + " Hz", "suspected transcription/print error (docs/dynamic.md)");
+          Sci(worst_deviating, 2) + " Hz", "suspected transcription/print error (docs/modes.md)");
   }
 }
 

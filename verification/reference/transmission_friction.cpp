@@ -1,7 +1,7 @@
 // Friction laws against independent evaluations: Xu–Kahraman from docs/model.md's printed
 // constants in log space and as the printed product in long double, Benedict–Kelley in its original
 // US units, and μ along the path of contact of the paper's sun–planet mesh at 1500 rpm
-// (docs/dynamic.md "Friction").
+// (docs/friction.md).
 //
 // No published numeric check point of the Xu et al. (2007) formula (a μ value with all of its
 // inputs stated) was found, so the Xu–Kahraman rows check the implementation against other

@@ -1,7 +1,7 @@
 // Heap allocations during one right-hand-side evaluation (DynamicModel::Evaluate) of the paper's
 // run-out case (scenes/paper_stage_runout.toml, FE compliance with the local terms), sun fixed
 // and floating, friction on (the scene's Xu & Kahraman) and off: with the same Evaluation passed
-// again and the same contact set, an evaluation allocates nothing (docs/dynamic.md, "Cost").
+// again and the same contact set, an evaluation allocates nothing (docs/dynamic_cost.md).
 //
 // The count: this file replaces the C library's allocating functions (malloc, calloc, realloc,
 // aligned_alloc, posix_memalign, memalign) by pass-throughs to glibc's own (__libc_malloc, ...)

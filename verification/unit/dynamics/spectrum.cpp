@@ -1,5 +1,5 @@
 // Amplitude spectra and the stage's characteristic frequencies (dynamics/spectrum.hpp,
-// docs/dynamic.md "Spectra", docs/model.md §9 "Fault frequencies") against closed forms: the
+// docs/spectra.md, docs/model.md §9 "Fault frequencies") against closed forms: the
 // periodic Hann window's transform, the statistics of white noise, and frequencies worked out by
 // hand from the paper stage's tooth numbers.
 #include <catch2/catch.hpp>

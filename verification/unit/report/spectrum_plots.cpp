@@ -1,4 +1,4 @@
-// The spectrum figures (report::SpectrumSvg, docs/dynamic.md "Spectra"): which lines are marked
+// The spectrum figures (report::SpectrumSvg, docs/spectra.md): which lines are marked
 // for which damage, and where their labels go.
 #include <catch2/catch.hpp>
 

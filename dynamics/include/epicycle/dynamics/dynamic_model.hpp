@@ -277,7 +277,7 @@ std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
 /// Why: MeanMeshStiffness is the secant F/δ; the local contact term's deflection grows less than
 /// linearly with the load (docs/model.md §4), so small vibrations about the operating point see
 /// the tangent, which is higher (about 6 % on the paper's stage). The resonances of the speed
-/// sweep sit at the tangent stiffness' coincidences (docs/dynamic.md, "Speed sweeps").
+/// sweep sit at the tangent stiffness' coincidences (docs/speed_sweeps.md).
 /// @throws std::invalid_argument for step outside (0, 0.5) or positions < 2;
 ///         std::runtime_error if a sample fails at either load.
 std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,

@@ -1,5 +1,5 @@
 // Natural modes of the linearised stage and their classification after Lin & Parker (1999)
-// (docs/model.md §7, docs/dynamic.md "Natural modes").
+// (docs/model.md §7, docs/modes.md).
 #pragma once
 
 #include <string>

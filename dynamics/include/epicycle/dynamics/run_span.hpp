@@ -34,13 +34,13 @@ RunSpan MakeRunSpan(const geometry::Stage& stage, double carrier_speed,
 /// Integrator steps a run of `duration` [s] at sun speed n_s = `sun_rpm` [rpm] is expected to take
 /// (CVODE BDF at its defaults): duration × kStepsPerSecondAtOneRpm · √(n_s/rpm), the rate
 /// measured on the paper's stage without friction (3.3k, 29k, 92k and 378k steps per simulated
-/// second at 1, 10, 100 and 1500 rpm, docs/dynamic.md "Cost of a long run"); with friction it was
+/// second at 1, 10, 100 and 1500 rpm, docs/dynamic_cost.md, "Cost of a long run"); with friction it was
 /// up to 7 times more (10 rpm). An estimate of the order of magnitude, for a warning.
 inline constexpr double kStepsPerSecondAtOneRpm = 1e4;
 double ExpectedSteps(double duration, double sun_rpm);
 
 /// Expected steps past which a run is warned about before it starts (at 20–130 µs a step, 3 to
-/// 22 minutes and more; docs/dynamic.md "Cost of a long run").
+/// 22 minutes and more; docs/dynamic_cost.md, "Cost of a long run").
 inline constexpr double kStepsWarning = 1e7;
 
 /// The warning of a run over `span` at `sun_rpm` [rpm] expected to take more than kStepsWarning

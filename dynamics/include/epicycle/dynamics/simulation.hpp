@@ -39,7 +39,7 @@ struct SimulationOptions {
   double atol_length = 1e-10;  ///< absolute tolerance on translations [m]
   double atol_angle = 1e-9;    ///< absolute tolerance on rotations [rad]
   /// Absolute tolerances of the rates: the position tolerance times this [1/s]. The default,
-  /// 1e4, is the work-precision study's choice (docs/dynamic.md, "Error against run time"): with
+  /// 1e4, is the work-precision study's choice (docs/dynamic_cost.md, "Error against run time"): with
   /// it rtol 1e-6 keeps the paper stage's LSR to 1e-4 over a planet revolution. 0: the stage's
   /// highest linearised natural frequency at t = 0, √max|λ(∂d̈/∂d)| (4.3e4 on the paper stage),
   /// which weighs a vibration's velocity as its amplitude: ~25 % fewer steps at equal rtol, and a

@@ -1,5 +1,5 @@
 // Amplitude spectra of uniformly sampled signals and the characteristic frequencies of a planetary
-// stage (docs/dynamic.md "Spectra", docs/model.md §9 "Fault frequencies").
+// stage (docs/spectra.md, docs/model.md §9 "Fault frequencies").
 //
 // WelchSpectrum: Welch's averaged, windowed periodogram, accumulated as the samples arrive. Each
 // segment of N samples has its mean removed, is weighted by the periodic Hann window

@@ -1,4 +1,4 @@
-// Speed sweeps of the dynamic model (docs/dynamic.md, "Speed sweeps"): the stage run at a list of
+// Speed sweeps of the dynamic model (docs/speed_sweeps.md): the stage run at a list of
 // sun speeds, each from the quasi-static solution, and per speed the figures a gear engineer reads
 // off a run-up: the dynamic mesh load factor, the dynamic factor, the transmission-error amplitude
 // and the sun's orbit, with the speeds where a mesh harmonic meets a linearised natural frequency.

@@ -1,4 +1,4 @@
-// The vibration output of a dynamic run (docs/dynamic.md "Spectra"): per output step the signals
+// The vibration output of a dynamic run (docs/spectra.md): per output step the signals
 // a test rig would measure, from what the step's evaluation holds, and the spectrum settings of a
 // run.
 //

@@ -1,4 +1,4 @@
-// The vibration output of a dynamic run and its spectra (docs/dynamic.md "Spectra"):
+// The vibration output of a dynamic run and its spectra (docs/spectra.md):
 //   BASE_vibration.csv        one line per output step as it is computed: time, carrier angle and
 //                             every channel of dynamics::VibrationChannels with its unit;
 //   BASE_spectrum.csv         at the end, one line per frequency bin: frequency [Hz], carrier

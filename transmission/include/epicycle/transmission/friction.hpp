@@ -1,4 +1,4 @@
-// Tooth friction laws of the dynamic model (docs/model.md §7, docs/dynamic.md "Friction"): the
+// Tooth friction laws of the dynamic model (docs/model.md §7, docs/friction.md): the
 // signed Coulomb coefficient of one tooth contact from its load, its surface velocities and the
 // lubricant.
 #pragma once
