@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The FE contact reference of a gear pair (docs/compliance.md, "FE contact reference"): for chosen
+# The FE contact reference of a gear pair (docs/fe_reference.md): for chosen
 # positions of the hybrid model's mesh-stiffness grid, writes a CalculiX deck (gmsh mesh of the
 # exact profile, verification/fe_reference), runs ccx and reads the rotation, the mesh stiffness
 # and the tooth pairs' forces at the scene's torque back, beside the hybrid model's values, and

@@ -1,5 +1,5 @@
-// An independent full-FE contact reference for the hybrid mesh-stiffness model (docs/compliance.md,
-// "FE contact reference"): the two gears of a pair at one mesh position, meshed by gmsh from the
+// An independent full-FE contact reference for the hybrid mesh-stiffness model
+// (docs/fe_reference.md): the two gears of a pair at one mesh position, meshed by gmsh from the
 // exact generated profile (never through compliance/'s mappers), second-order elements refined at
 // the contacts, written as a CalculiX input deck; and the reader of CalculiX's results.
 //
@@ -29,7 +29,7 @@
 namespace epicycle::fe_reference {
 
 /// Mesh sizes of the reference model; `refinement` divides every size (0.7, 1, 1.41, 2 in the
-/// convergence study of docs/compliance.md).
+/// convergence study of docs/fe_reference.md).
 struct FeMeshOptions {
   double contact_size = 40e-6;     ///< h_c [m], element size within contact_radius of a contact
   double contact_radius = 0.3e-3;  ///< r_0 [m]

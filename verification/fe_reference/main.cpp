@@ -133,7 +133,7 @@ int Fillets(const std::string& dir) {
   return 0;
 }
 
-// Figures of docs/compliance.md: the hybrid model over its grid (lines) and the FE reference
+// Figures of docs/fe_reference.md: the hybrid model over its grid (lines) and the FE reference
 // (markers, one series per refinement): mesh stiffness, transmission error, tooth-pair shares.
 int Plot(const std::string& hybrid_csv, const std::string& fe_csv, const std::string& prefix,
          const std::string& title) {

@@ -1,5 +1,5 @@
 // The hybrid model of a damaged pair against the full-FE contact reference (CalculiX,
-// verification/fe_reference, tools/fe_reference.sh; docs/compliance.md "FE contact reference",
+// verification/fe_reference, tools/fe_reference.sh; docs/fe_reference.md,
 // "Cracked tooth and spall"): the ISO 20/40 pair with
 //  - a root crack in pinion tooth 19 (the tooth of pair 19/21, loaded at every position of the
 //    mesh cycle sampled), on its loaded (+) flank's fillet from ISO 6336-3's 30° point, straight at

@@ -7,7 +7,7 @@
 //
 // Tolerance: the reference's own error (its mesh-convergence and penalty studies) plus the hybrid
 // model's own join uncertainty (h ± 50 %), derived in the test case; positions whose contact is
-// at a tooth's tip corner are reported, not asserted (docs/compliance.md explains why).
+// at a tooth's tip corner are reported, not asserted (docs/fe_reference.md explains why).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -140,7 +140,7 @@ const char* const kScenes[] = {"iso_pair_20_40", "paper_sun_planet", "paper_plan
 
 TEST_CASE("Mesh stiffness, transmission error and load shares against the FE contact reference",
           "[reference][slow][stiffness][fe_reference]") {
-  // Relative tolerance on k and θ (docs/compliance.md, "FE contact reference"), the sum of
+  // Relative tolerance on k and θ (docs/fe_reference.md), the sum of
   //  - the reference's discretisation error: kFeMesh, twice the largest change of k from its
   //    mesh to the 2× refined one (−0.061 % at 2.25°, −0.044 % at 13.5°: a Richardson bound for
   //    an observed order ≥ 1);
@@ -218,7 +218,7 @@ TEST_CASE("Mesh stiffness, transmission error and load shares against the FE con
         "k " + test::Sci(c.worst_tip_k) + ", share " + test::Sci(c.worst_tip_share) +
             " largest (without the layer term: k " + test::Sci(before.worst_tip_k) + ", share " +
             test::Sci(before.worst_tip_share) + ")",
-        "contact at a tip corner: local term's half-plane premise, docs/compliance.md");
+        "contact at a tip corner: local term's half-plane premise, docs/fe_reference.md");
   }
 }
 

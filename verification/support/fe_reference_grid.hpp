@@ -1,5 +1,5 @@
 // The hybrid model at the positions of the FE contact reference (tools/fe_reference.sh,
-// docs/compliance.md "FE contact reference"): its mesh-stiffness grid and which of its positions
+// docs/fe_reference.md): its mesh-stiffness grid and which of its positions
 // are tip positions (a loaded pair touches through a tip round there or one grid step away).
 #pragma once
 
