@@ -17,9 +17,9 @@
 #include "commands.hpp"
 #include "console.hpp"
 #include "epicycle/report/ratings.hpp"
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
-#include "epicycle/transmission/fe_compliance.hpp"
-#include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/quasistatic_run.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
@@ -30,8 +30,6 @@ namespace epicycle::app {
 namespace {
 
 using json = nlohmann::json;
-
-constexpr int kListedFailures = 100;  // failed positions listed in the report and the JSON
 
 struct QuasiStaticArgs {
   std::string scene, backend = "newton", out = "quasistatic-out", range = "cycle", sun, cache, dump,
@@ -44,122 +42,99 @@ struct QuasiStaticArgs {
        rating = false;
 };
 
-void RunQuasiStatic(const QuasiStaticArgs& a) {
-  transmission::Scene scene = StageScene(a.scene, a.sun, "quasistatic");
-  scene.model.stresses = scene.model.stresses || a.stresses || a.rating;
-  if (a.rating) transmission::CheckRatingInputs(scene, "--rating");
-  const geometry::Stage stage = transmission::MakeStage(scene);
-  const int n = stage.planets();
+// The program's sink: the run's header, its files and plots written position by position, the
+// problems dumped when asked, the progress bar.
+class ConsoleSink final : public transmission::QuasiStaticSink {
+ public:
+  ConsoleSink(const QuasiStaticArgs& a, json provenance)
+      : a_(a), provenance_(std::move(provenance)), tty_(!a.quiet && isatty(fileno(stderr))) {}
 
-  // The carrier angles: the list given, or `count` over the range (computed as they are needed).
-  const std::vector<double> angles =
-      a.angles_deg.empty() ? std::vector<double>{}
-                           : transmission::CheckedCarrierAngles("--angles-deg", a.angles_deg);
-  const transmission::RunRange range = transmission::RunRangeFromName(a.range);
-  const int count = !angles.empty() ? static_cast<int>(angles.size())
-                    : a.positions > 0 ? a.positions
-                                      : transmission::DefaultPositions(stage, range);
-  const double start = geometry::Rad(a.start_deg), span = transmission::CarrierSpan(stage, range);
-  const auto angle = [&](int k) {
-    return angles.empty() ? transmission::SweepAngle(start, span, k, count)
-                          : angles[static_cast<std::size_t>(k)];
-  };
+  void Start(const transmission::QuasiStaticPlan& p) override {
+    const transmission::Scene& scene = *p.scene;
+    const int n = p.stage->planets();
+    sun_name_ = transmission::SunSupportName(scene.supports.sun);
+    scene_name_ = scene.name;
+    count_ = p.positions;
+    std::printf("%s: %d planets, sun %s, input torque %.1f N m, back end %s\n", scene.name.c_str(),
+                n, sun_name_.c_str(), scene.loads.sun_torque, a_.backend.c_str());
+    for (const std::string& m : p.compliance->tables().messages()) std::printf("  %s\n", m.c_str());
+    for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
+    const std::string threads = a_.threads == 0 ? std::string("one thread per core")
+                                                : fmt::format("{} thread(s)", a_.threads);
+    std::printf("  %d positions from %.4f deg (%.2f s for the tables), %s, %s\n", p.positions,
+                geometry::Deg(p.first_angle), p.table_seconds,
+                a_.cold ? "every position cold" : "each warm-started from its neighbour",
+                threads.c_str());
+    std::filesystem::create_directories(a_.out);
+    if (!a_.dump.empty()) std::filesystem::create_directories(a_.dump);
+    base_ = a_.out + "/quasistatic";
+    files_ = std::make_unique<report::QuasiStaticFiles>(base_, provenance_, n, p.friction,
+                                                        p.compliance->has_root_stress());
+    if (p.friction)
+      std::printf("  friction %s at rest, sun at %.1f rpm\n",
+                  transmission::FrictionLawName(p.options->friction.law).c_str(),
+                  p.options->sun_speed * 30 / std::numbers::pi);
+    plots_ = std::make_unique<report::QuasiStaticPlots>(base_, n, p.positions,
+                                                        360.0 / p.stage->ring().teeth(),
+                                                        geometry::Deg(p.span));
+    t0_ = std::chrono::steady_clock::now();
+  }
 
-  const transmission::FeComplianceOptions fe = TableOptions(a.cache, a.no_cache);
-  const auto t0 = std::chrono::steady_clock::now();
-  const transmission::FeStageCompliance compliance(scene, stage, fe);
-  const double table_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  transmission::StageSetup setup = transmission::SetupFromScene(scene);
-  setup.local_terms = !a.no_local;
-  const transmission::StageModel model(stage, compliance, setup);
-  transmission::QuasiStaticOptions opt;
-  opt.backend = solvers::BackendFromName(a.backend);
-  opt.threads = a.threads;
-  opt.warm_start = !a.cold;
-  transmission::SetRestFriction(scene.dynamics, a.friction, &opt);
-  const bool friction = opt.friction.law != transmission::FrictionLaw::kOff;
-  const char* sun_name = transmission::SunSupportName(setup.sun);
-  std::printf("%s: %d planets, sun %s, input torque %.1f N m, back end %s\n", scene.name.c_str(), n,
-              sun_name, scene.loads.sun_torque, a.backend.c_str());
-  for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
-  for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
-  const std::string threads =
-      a.threads == 0 ? std::string("one thread per core") : fmt::format("{} thread(s)", a.threads);
-  std::printf("  %d positions from %.4f deg (%.2f s for the tables), %s, %s\n", count,
-              geometry::Deg(angle(0)), table_seconds,
-              a.cold ? "every position cold" : "each warm-started from its neighbour",
-              threads.c_str());
+  void Position(const transmission::PositionResult& r, int k) override {
+    const double deg = geometry::Deg(r.carrier_angle);
+    if (!r.converged) {
+      ++failed_;
+      if (!tty_) std::fprintf(stderr, "  position %.4f deg FAILED: %s\n", deg, r.message.c_str());
+    }
+    files_->Write(r);
+    plots_->Add(r);
+    if (!a_.dump.empty() && r.problem.data.compliance.size() > 0)
+      report::WriteStageProblemFile(
+          a_.dump,
+          fmt::format("{}_{}_{}_{:03d}", std::filesystem::path(a_.scene).stem().string(),
+                      sun_name_, a_.no_local ? "linear" : "local", k),
+          r.problem.data, provenance_,
+          fmt::format("{} at carrier {:.4f} deg, sun {}, back end {}: {}", scene_name_, deg,
+                      sun_name_, a_.backend, r.converged ? "converged" : r.message));
+    if (tty_)
+      Progress(k + 1, count_, failed_,
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(),
+               "positions");
+  }
 
-  std::filesystem::create_directories(a.out);
-  if (!a.dump.empty()) std::filesystem::create_directories(a.dump);
-  const std::string base = a.out + "/quasistatic";
-  const json provenance = Provenance(a.backend, &scene);
-  report::QuasiStaticFiles files(base, provenance, n, friction, compliance.has_root_stress());
-  if (friction)
-    std::printf("  friction %s at rest, sun at %.1f rpm\n",
-                transmission::FrictionLawName(opt.friction.law).c_str(),
-                opt.sun_speed * 30 / std::numbers::pi);
+  void Close() { files_->Close(); }
+  void WritePlots() { plots_->Write(scene_name_, sun_name_); }
+  const std::string& base() const { return base_; }
 
-  const bool tty = !a.quiet && isatty(fileno(stderr));
-  // Every position is written, summarised and drawn as it comes, then let go (flat memory).
-  int failed = 0;
-  std::vector<std::string> failures;  // the first kListedFailures
-  transmission::SweepAccumulator accumulator(n);
-  transmission::ValidityTally tally(stage, "position(s)");
-  report::QuasiStaticPlots plots(base, n, count, 360.0 / stage.ring().teeth(),  // mesh cycle
-                                 angles.empty() ? geometry::Deg(span) : 0.0);
-  const auto t1 = std::chrono::steady_clock::now();
-  transmission::SweepEach(
-      model, scene.loads, count, angle, opt, [&](const transmission::PositionResult& r, int k) {
-        const double deg = geometry::Deg(r.carrier_angle);
-        if (!r.converged) {
-          if (++failed <= kListedFailures)
-            failures.push_back(fmt::format("{:.4f} deg: {}", deg, r.message));
-          if (!tty)
-            std::fprintf(stderr, "  position %.4f deg FAILED: %s\n", deg, r.message.c_str());
-        }
-        files.Write(r);
-        accumulator.Add(r);
-        tally.Add(r);
-        plots.Add(r);
-        if (!a.dump.empty() && r.problem.data.compliance.size() > 0)
-          report::WriteStageProblemFile(
-              a.dump,
-              fmt::format("{}_{}_{}_{:03d}", std::filesystem::path(a.scene).stem().string(),
-                          sun_name, a.no_local ? "linear" : "local", k),
-              r.problem.data, provenance,
-              fmt::format("{} at carrier {:.4f} deg, sun {}, back end {}: {}", scene.name, deg,
-                          sun_name, a.backend, r.converged ? "converged" : r.message));
-        if (tty)
-          Progress(k + 1, count, failed,
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(),
-                   "positions");
-      });
-  files.Close();
-  const double sweep_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+ private:
+  const QuasiStaticArgs& a_;
+  json provenance_;
+  bool tty_;
+  std::string sun_name_, scene_name_, base_;
+  int count_ = 0, failed_ = 0;
+  std::unique_ptr<report::QuasiStaticFiles> files_;
+  std::unique_ptr<report::QuasiStaticPlots> plots_;
+  std::chrono::steady_clock::time_point t0_;
+};
 
-  std::vector<std::string> warnings = scene.warnings;
-  for (const std::string& w : tally.Messages()) warnings.push_back(w);
-
-  // Summary over the converged positions (none converged: no statistics, "-" in the report).
-  const transmission::SweepSummary summary = accumulator.Result();
-  const int good = summary.converged;
-  std::printf("\n  planet   LSR mean     LSR min      LSR max      (ideal 1/n = %.6f)\n", 1.0 / n);
-  for (int i = 0; i < n; ++i) {
+// The record as the console report.
+void PrintRecord(const transmission::QuasiStaticRecord& r, int planets) {
+  const transmission::SweepSummary& summary = r.summary;
+  std::printf("\n  planet   LSR mean     LSR min      LSR max      (ideal 1/n = %.6f)\n",
+              1.0 / planets);
+  for (int i = 0; i < planets; ++i) {
     const char* f = "{:<12.6f}";
     std::printf("  %-8d %s %s %s\n", i + 1, Num(summary.lsr_mean[i], f, "-           ").c_str(),
                 Num(summary.lsr_min[i], f, "-           ").c_str(),
                 Num(summary.lsr_max[i], f, "-").c_str());
   }
-  if (good > 0) {
+  if (r.converged_positions > 0) {
     std::printf("  K_gamma (max L_i)            %.6f\n", summary.k_gamma);
     std::printf("  transmission error           %.3f .. %.3f urad (peak to peak %.3f urad)\n",
                 summary.transmission_error_min * 1e6, summary.transmission_error_max * 1e6,
                 summary.TransmissionErrorPeakToPeak() * 1e6);
     std::printf("  sun displacement, largest    %.3f um\n", summary.sun_displacement_max * 1e6);
-    if (friction)
+    if (r.friction)
       std::printf("  efficiency mean %.6f (min %.6f), friction loss mean %.3f W, %.2f iterations\n",
                   summary.efficiency_mean, summary.efficiency_min, summary.friction_power_mean,
                   summary.friction_iterations_mean);
@@ -172,45 +147,52 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   std::printf("%s", report::ContactPressureText(summary.contact_pressure, "carrier deg",
                                                 180.0 / std::numbers::pi)
                         .c_str());
-  std::optional<transmission::StageRating> rating;
-  if (a.rating && good > 0) rating = transmission::RateStage(scene, stage, summary);
-  if (rating) std::printf("%s", report::RatingText(*rating).c_str());
-  std::printf("  positions converged          %d of %d, %.3f s (%.3f ms per position)\n", good,
-              count, sweep_seconds, 1e3 * sweep_seconds / count);
-  for (const std::string& f : failures) std::printf("  FAILED %s\n", f.c_str());
-  if (failed > kListedFailures)
+  if (r.rating) std::printf("%s", report::RatingText(*r.rating).c_str());
+  std::printf("  positions converged          %d of %d, %.3f s (%.3f ms per position)\n",
+              r.converged_positions, r.positions, r.sweep_seconds,
+              1e3 * r.sweep_seconds / r.positions);
+  for (const std::string& f : r.failures) std::printf("  FAILED %s\n", f.c_str());
+}
+
+void RunQuasiStatic(const QuasiStaticArgs& a) {
+  transmission::QuasiStaticRequest request;
+  request.scene = StageScene(a.scene, a.sun, "quasistatic");
+  request.backend = a.backend;
+  request.range = transmission::RunRangeFromName(a.range);
+  request.positions = a.positions;
+  request.angles_deg = a.angles_deg;
+  request.angles_option = "--angles-deg";
+  request.start_deg = a.start_deg;
+  request.threads = a.threads;
+  request.warm_start = !a.cold;
+  request.local_terms = !a.no_local;
+  request.friction = a.friction;
+  request.stresses = a.stresses;
+  request.rating = a.rating;
+  request.rating_option = "--rating";
+  request.tables = TableOptions(a.cache, a.no_cache);
+
+  const json provenance = Provenance(a.backend, &request.scene);
+  ConsoleSink sink(a, provenance);
+  const transmission::QuasiStaticRecord record = transmission::RunQuasiStatic(request, sink);
+  sink.Close();
+  const int planets = static_cast<int>(record.summary.lsr_mean.size());
+  PrintRecord(record, planets);
+  const int failed = record.positions - record.converged_positions;
+  if (record.failures_not_listed > 0)
     std::printf("  and %d more failed (status and message in %s_positions.csv)\n",
-                failed - kListedFailures, base.c_str());
-  PrintWarnings(warnings);
-
-  json j = report::SweepSummaryJson(summary);  // the statistics, null where none converged
-  j["provenance"] = provenance;
-  j["warnings"] = warnings;
-  j["scene"] = scene.name;
-  j["sun_support"] = sun_name;
-  j["sun_torque_Nm"] = scene.loads.sun_torque;
-  j["backend"] = a.backend;
-  j["local_terms"] = !a.no_local;
-  j["warm_start"] = !a.cold;
-  if (friction) j["friction"] = transmission::FrictionLawName(opt.friction.law);
-  if (rating) j["rating"] = report::RatingJson(*rating);
-  j["threads"] = a.threads;  // 0: one per core
-  j["positions"] = count;
-  j["converged_positions"] = good;
-  j["failures"] = failures;  // the first kListedFailures
-  if (failed > kListedFailures) j["failures_not_listed"] = failed - kListedFailures;
-  j["sweep_seconds"] = sweep_seconds;
-  j["table_seconds"] = table_seconds;
-  WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
-
-  plots.Write(scene.name, sun_name);
+                record.failures_not_listed, sink.base().c_str());
+  PrintWarnings(record.warnings);
+  WriteTextFile(sink.base() + "_summary.json",
+                report::QuasiStaticRecordJson(record, provenance).dump(2) + "\n");
+  sink.WritePlots();
   std::printf(
       "\nwrote %s_positions.csv, _pairs.csv, _summary.json, _lsr.svg, _te.svg, _sun_path.svg\n",
-      base.c_str());
+      sink.base().c_str());
   if (!a.dump.empty()) std::printf("wrote the contact problems to %s\n", a.dump.c_str());
   if (failed > 0)
     throw ComputationFailed(
-        fmt::format("{} of {} positions failed (listed above)", failed, count));
+        fmt::format("{} of {} positions failed (listed above)", failed, record.positions));
 }
 
 }  // namespace

@@ -467,27 +467,6 @@ std::string RootStressText(const std::vector<transmission::RootStressSummary>& g
   return out;
 }
 
-nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
-  nlohmann::json j;
-  j["planets"] = PlanetsJson(summary.lsr_mean, summary.lsr_min, summary.lsr_max);
-  j["K_gamma_max"] = JsonValue(summary.k_gamma);
-  j["transmission_error_min_urad"] = JsonValue(summary.transmission_error_min * 1e6);
-  j["transmission_error_max_urad"] = JsonValue(summary.transmission_error_max * 1e6);
-  j["sun_displacement_max_um"] = JsonValue(summary.sun_displacement_max * 1e6);
-  if (!summary.root_stress.empty())
-    j["root_stress"] = RootStressJson(summary.root_stress, "carrier_deg", geometry::Deg(1.0));
-  if (!summary.contact_pressure.empty())
-    j["contact_pressure"] =
-        ContactPressureJson(summary.contact_pressure, "carrier_deg", geometry::Deg(1.0));
-  if (summary.friction) {
-    j["efficiency_mean"] = JsonValue(summary.efficiency_mean);
-    j["efficiency_min"] = JsonValue(summary.efficiency_min);
-    j["friction_power_mean_W"] = JsonValue(summary.friction_power_mean);
-    j["friction_iterations_mean"] = JsonValue(summary.friction_iterations_mean);
-  }
-  return j;
-}
-
 QuasiStaticPlots::QuasiStaticPlots(const std::string& base, int planets, long positions,
                                    double cycle_deg, double span_deg) {
   const auto [width, name] = CycleBin(cycle_deg, std::abs(span_deg) / cycle_deg);

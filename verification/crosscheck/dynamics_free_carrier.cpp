@@ -58,11 +58,7 @@ std::string WriteScene(const std::string& dir, const std::string& text) {
 void RunProgram(const std::vector<std::string>& args) {
   std::vector<std::string> all{EPICYCLE_EXE};
   all.insert(all.end(), args.begin(), args.end());
-  const pid_t pid = test::SpawnQuiet(all);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  REQUIRE(WIFEXITED(status));
-  REQUIRE(WEXITSTATUS(status) == 0);
+  REQUIRE(test::ExitStatus(all) == 0);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Running the `epicycle` program from a test (to kill it midway) and reading what it wrote.
 #pragma once
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -30,6 +31,15 @@ inline pid_t SpawnQuiet(const std::vector<std::string>& args) {
 }
 
 /// The bytes of a file ("" if it cannot be read).
+/// Runs args[0] with `args` (standard output to /dev/null) to its end; its exit status, or −1 if
+/// it did not exit normally.
+inline int ExitStatus(const std::vector<std::string>& args) {
+  const pid_t pid = SpawnQuiet(args);
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
 inline std::string FileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;

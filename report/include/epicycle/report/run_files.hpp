@@ -68,14 +68,6 @@ nlohmann::json RootStressJson(const std::vector<transmission::RootStressSummary>
 std::string RootStressText(const std::vector<transmission::RootStressSummary>& gears,
                            const std::string& x_name, double x_scale);
 
-/// The statistics of a quasi-static sweep for its JSON summary: "planets" (LSR mean, min, max
-/// per planet), "K_gamma_max", "transmission_error_{min,max}_urad", "sun_displacement_max_um";
-/// with friction at rest also "efficiency_mean", "efficiency_min", "friction_power_mean_W",
-/// "friction_iterations_mean"; with root stresses "root_stress" (per gear the largest tension and
-/// compression [MPa] with their carrier angle, tooth, fillet side and arc length along the fillet
-/// [mm], and the largest range at one fillet point);
-/// null where no position converged (JSON has no NaN). The caller adds the run's settings.
-nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary);
 
 /// States of a run gathered one at a time into bins of x (time or carrier angle) of width
 /// `width` from `origin` (a mesh cycle or a whole number of them): per bin its count, first, last

@@ -1,0 +1,40 @@
+// The fields of a driver's record, visited once each with the name (unit included) under which
+// every serialisation writes them: report/ turns a visit into the summary JSON, the bindings into
+// a dict, a test into the list of keys. A record defines its fields in one VisitRecord function,
+// so that a new output is one field and one line there.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace epicycle::transmission {
+
+struct SweepSummary;
+struct StageRating;
+
+/// Receives a record's fields in order. Numbers are in the unit their key names ("_urad", "_Nm",
+/// "_s"; none for a ratio); a number that is not finite means "none" (null in JSON, None in
+/// Python).
+class RecordVisitor {
+ public:
+  virtual ~RecordVisitor() = default;
+  virtual void Number(const char* key, double value) = 0;
+  virtual void Integer(const char* key, long value) = 0;
+  virtual void Flag(const char* key, bool value) = 0;
+  virtual void Text(const char* key, const std::string& value) = 0;
+  virtual void Texts(const char* key, const std::vector<std::string>& value) = 0;
+  /// A list of objects with the same fields (the planets' statistics): Item() before each.
+  virtual void BeginList(const char* key) = 0;
+  virtual void Item() = 0;
+  virtual void EndList() = 0;
+  /// The fields of a sweep's root stresses and contact pressures and of a rating, as their
+  /// serialisations define them (report::RootStressJson, ContactPressureJson, RatingJson).
+  virtual void Stresses(const SweepSummary& summary) = 0;
+  virtual void Rating(const char* key, const StageRating& rating) = 0;
+};
+
+/// The statistics of a sweep over carrier positions (SweepSummary), the quasi-static run's and
+/// the study cases': LSR per planet, K_γ, TE, the sun's displacement, stresses, friction.
+void VisitRecord(const SweepSummary& summary, RecordVisitor& visit);
+
+}  // namespace epicycle::transmission
