@@ -132,6 +132,18 @@ std::string StudyLine(const StudySpec& study) {
   return o.str();
 }
 
+std::string PartLine(const StudySpec& study, const CaseRange& range) {
+  return "# part cases " + std::to_string(range.first) + ":" + std::to_string(range.last) +
+         " of " + std::to_string(study.Cases()) + "; scene_hash " + study.scene.hash +
+         "; stresses " + (study.scene.model.stresses ? "on" : "off");
+}
+
+std::string PartStudyFileLine(const StudySpec& study) {
+  std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::absolute(study.source, error);
+  return "# part of study file " + Clean(error ? study.source : absolute.string());
+}
+
 std::vector<double> CaseAngles(const StudySpec& study, const geometry::Stage& stage) {
   const double span = transmission::CarrierSpan(
       stage, study.compute == CaseKind::kMeshCycle ? transmission::RunRange::kMeshCycle
@@ -192,14 +204,15 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
 }
 
 std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows,
-                               long limit) {
+                               long limit, const std::optional<CaseRange>& part) {
   std::vector<long> have;
   have.reserve(rows.size());
   for (const CaseRow& r : rows) have.push_back(r.id);
   std::sort(have.begin(), have.end());
   std::vector<long> missing;
   auto next = have.begin();
-  for (long k = 0; k < study.Cases(); ++k) {
+  const CaseRange range = part.value_or(CaseRange{0, study.Cases()});
+  for (long k = range.first; k < range.last; ++k) {
     if (limit >= 0 && static_cast<long>(missing.size()) >= limit) break;
     while (next != have.end() && *next < k) ++next;
     if (next == have.end() || *next != k) missing.push_back(k);
@@ -208,14 +221,16 @@ std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow
 }
 
 RowWriter::RowWriter(const std::string& path, const StudySpec& study, const std::string& comment,
-                     bool exists) {
+                     bool exists, const std::optional<CaseRange>& part) {
   file_ = std::fopen(path.c_str(), "ab");
   if (file_ == nullptr) throw std::runtime_error(path + ": cannot write the study's rows");
   path_ = path;
   if (!exists) {
     std::string head;
     if (!comment.empty()) head += "# " + Clean(comment) + "\n";
-    head += StudyLine(study) + "\n" + RowHeader(study) + "\n";
+    head += StudyLine(study) + "\n";
+    if (part) head += PartLine(study, *part) + "\n" + PartStudyFileLine(study) + "\n";
+    head += RowHeader(study) + "\n";
     Write(head);
   }
 }
@@ -341,7 +356,8 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
   return row;
 }
 
-ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
+ExistingRows ReadRows(const std::string& path, const StudySpec& study,
+                      const std::optional<CaseRange>& part) {
   ExistingRows out;
   std::error_code none;
   if (!std::filesystem::exists(path, none) && !std::filesystem::is_symlink(path, none)) return out;
@@ -359,7 +375,7 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
   std::istringstream lines(text.substr(0, complete));
   std::string line;
   int number = 0;
-  bool study_line = false, header = false;
+  bool study_line = false, header = false, part_line = false;
   std::set<long> seen;
   while (std::getline(lines, line)) {
     ++number;
@@ -377,8 +393,25 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
       study_line = true;
       continue;
     }
+    if (!header && line.rfind("# part cases ", 0) == 0) {
+      if (!part)
+        throw std::invalid_argument(where + ": the file is a shard's part ('" + line +
+                                    "'), not a whole study's rows: join the parts with `epicycle "
+                                    "study merge` or run the same shard again to resume it");
+      if (line != internal::PartLine(study, *part))
+        throw std::invalid_argument(where + ": the part holds other cases or was written by "
+                                    "another study or scene ('" + line + "', this shard's is '" +
+                                    internal::PartLine(study, *part) +
+                                    "'): use another output folder or the same study file");
+      part_line = true;
+      continue;
+    }
     if (!line.empty() && line[0] == '#') continue;
     if (!header) {
+      if (part && study_line && !part_line)
+        throw std::invalid_argument(where + ": the file holds a whole study's rows, not the part " +
+                                    internal::PartLine(study, *part).substr(2) +
+                                    ": use another output folder for the shards");
       if (!study_line || line != RowHeader(study))
         throw std::invalid_argument(where + ": not the rows file of this study (column line '" +
                                     line + "', this study's is '" + RowHeader(study) + "')");
@@ -386,6 +419,10 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
       continue;
     }
     CaseRow r = internal::ParseRow(line, study, where);
+    if (part && !part->Contains(r.id))
+      throw std::invalid_argument(where + ": case " + std::to_string(r.id) +
+                                  " is not one of the part's cases " +
+                                  std::to_string(part->first) + ":" + std::to_string(part->last));
     if (!seen.insert(r.id).second)
       throw std::invalid_argument(where + ": case " + std::to_string(r.id) +
                                   " appears twice (two runs writing one file?)");
@@ -402,13 +439,14 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
 
 RunReport RunStudy(const StudySpec& study, const RunOptions& options) {
   RunReport report;
-  ExistingRows existing = ReadRows(options.rows_file, study);
+  ExistingRows existing = ReadRows(options.rows_file, study, options.part);
   report.resumed = static_cast<long>(existing.rows.size());
   report.dropped_partial = existing.dropped_partial;
   report.rows = std::move(existing.rows);
   const std::vector<long> missing =
-      internal::MissingCases(study, report.rows, options.max_new_cases);
-  internal::RowWriter writer(options.rows_file, study, options.comment, existing.exists);
+      internal::MissingCases(study, report.rows, options.max_new_cases, options.part);
+  internal::RowWriter writer(options.rows_file, study, options.comment, existing.exists,
+                             options.part);
   if (!missing.empty() && options.max_new_cases != 0) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto compliance = internal::NominalCompliance(study, options.cache_directory);
@@ -422,7 +460,7 @@ RunReport RunStudy(const StudySpec& study, const RunOptions& options) {
                              ++report.computed;
                              if (options.on_row)
                                options.on_row(row, static_cast<long>(report.rows.size()),
-                                              study.Cases());
+                                              options.part ? options.part->Size() : study.Cases());
                            });
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   }

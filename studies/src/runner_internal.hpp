@@ -15,21 +15,26 @@ namespace epicycle::studies::internal {
 
 /// "# study <name>; study_hash ...; seed ...; cases ...": identifies the study in its rows file.
 std::string StudyLine(const StudySpec& study);
+/// "# part cases I:J of C; scene_hash ...; stresses on|off": the cases a part file holds.
+std::string PartLine(const StudySpec& study, const CaseRange& range);
+/// "# part of study file <absolute path>" (where the merge finds the study file).
+std::string PartStudyFileLine(const StudySpec& study);
 /// The carrier angles of every case [rad].
 std::vector<double> CaseAngles(const StudySpec& study, const geometry::Stage& stage);
 /// A row from its CSV line. @throws std::invalid_argument naming `where`.
 CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::string& where);
-/// The first `limit` case ids without a row (< 0: all), ascending; memory for the rows' ids and
-/// those returned only (a study of 1e9 samples run with --max-cases 3 lists 3 ids).
+/// The first `limit` case ids without a row (< 0: all), ascending, of `part` (none: of the
+/// study); memory for the rows' ids and those returned only (a study of 1e9 samples run with
+/// --max-cases 3 lists 3 ids).
 std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows,
-                               long limit);
+                               long limit, const std::optional<CaseRange>& part = std::nullopt);
 
-/// Appends whole lines to the rows file, each flushed at once (writes the comment, study and
-/// column lines first when the file is new).
+/// Appends whole lines to the rows file, each flushed at once (writes the comment, study, part
+/// and column lines first when the file is new).
 class RowWriter {
  public:
   RowWriter(const std::string& path, const StudySpec& study, const std::string& comment,
-            bool exists);
+            bool exists, const std::optional<CaseRange>& part = std::nullopt);
   ~RowWriter();
   RowWriter(const RowWriter&) = delete;
   RowWriter& operator=(const RowWriter&) = delete;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,14 @@ std::string RowHeader(const StudySpec& study);
 CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance& compliance,
                     long case_id, const std::string& cache_directory = {});
 
+/// A slice of a study's case ids, [first, last) (a shard's part: studies/shards.hpp).
+struct CaseRange {
+  long first = 0;  ///< the first case id [-]
+  long last = 0;   ///< one past the last case id [-]
+  long Size() const { return last - first; }
+  bool Contains(long id) const { return id >= first && id < last; }
+};
+
 /// What a rows file already holds.
 struct ExistingRows {
   std::vector<CaseRow> rows;     ///< complete, valid rows, in file order
@@ -64,7 +73,10 @@ struct ExistingRows {
 ///         line differ), holds a malformed complete line, a case twice, a row whose check does
 ///         not match its text or whose sampled values are not the study's for its case (the
 ///         message names the file and line).
-ExistingRows ReadRows(const std::string& path, const StudySpec& study);
+/// With `part`: the file is the part of those cases (its part line, docs/studies.md "Shards"),
+/// and a row of another case is refused; without, a part file is refused (merge it instead).
+ExistingRows ReadRows(const std::string& path, const StudySpec& study,
+                      const std::optional<CaseRange>& part = std::nullopt);
 
 struct RunOptions {
   std::string rows_file;        ///< the CSV of rows (created or resumed)
@@ -72,6 +84,9 @@ struct RunOptions {
   std::string cache_directory;  ///< FE influence-table cache; empty: in memory only
   int threads = 1;              ///< worker threads, each with its own solver [-]
   long max_new_cases = -1;      ///< stop after computing this many cases (< 0: all) [-]
+  /// Only these cases, into a part file (rows_file: its name is studies::PartFileName) that says
+  /// so (studies/shards.hpp); none: the whole study.
+  std::optional<CaseRange> part;
   /// Sees each new row as it is written (under the writer's lock), with the count of rows now in
   /// the file and the study's total.
   std::function<void(const CaseRow&, long rows, long total)> on_row;
