@@ -61,6 +61,8 @@ from ._epicycle import (  # noqa: E402  (the classes above are used by the modul
     speed_grid,
     speed_sweep,
     study,
+    study_merge,
+    study_part,
 )
 
 __all__ = [
@@ -82,4 +84,6 @@ __all__ = [
     "speed_grid",
     "speed_sweep",
     "study",
+    "study_merge",
+    "study_part",
 ]
