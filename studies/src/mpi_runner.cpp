@@ -101,6 +101,7 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
       // Rows go to rank 0 as their CSV text: what rank 0 writes is byte for byte what was
       // computed.
       internal::ComputeCases(study, *compliance, options.cache_directory, mine, options.threads, -1,
+                             options.warm_start_cases,
                              [&](const CaseRow& r) {
                                const std::string line = r.Format();
                                MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0,
@@ -126,6 +127,7 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
   std::thread local([&] {
     try {
       internal::ComputeCases(study, *compliance, options.cache_directory, mine, options.threads, -1,
+                             options.warm_start_cases,
                              [&](const CaseRow& r) {
                                const std::lock_guard<std::mutex> g(box.lock);
                                box.rows.push_back(r);

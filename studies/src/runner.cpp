@@ -250,13 +250,16 @@ void RowWriter::Write(const std::string& text) {
 // one lock, in completion order). Stops taking cases after `limit` (< 0: none).
 void ComputeCases(const StudySpec& study, const transmission::StageCompliance& compliance,
                   const std::string& cache_directory, const std::vector<long>& ids, int threads,
-                  long limit, const std::function<void(const CaseRow&)>& sink) {
+                  long limit, bool warm_start, const std::function<void(const CaseRow&)>& sink) {
+  CaseStarts starts(study, compliance, warm_start);
   const std::size_t count =
       limit < 0 ? ids.size() : std::min(ids.size(), static_cast<std::size_t>(limit));
   std::vector<CaseRow> rows(count);
   transmission::RunWorkQueue(
       count, threads,
-      [&](std::size_t i) { rows[i] = ComputeCase(study, compliance, ids[i], cache_directory); },
+      [&](std::size_t i) {
+        rows[i] = ComputeCase(study, compliance, ids[i], cache_directory, starts.For(ids[i]));
+      },
       [&](std::size_t i) {
         sink(rows[i]);
         rows[i] = CaseRow{};  // written: its memory goes
@@ -275,8 +278,68 @@ std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(
 
 }  // namespace internal
 
+namespace {
+
+// A case's scene, stage, supports and carrier angles (its values applied to the base scene).
+struct CaseRig {
+  transmission::Scene scene;
+  geometry::Stage stage;
+  transmission::StageSetup setup;
+  std::vector<double> angles;
+  transmission::QuasiStaticOptions options;
+  CaseRig(const StudySpec& study, const std::vector<double>& values)
+      : scene(CaseScene(study, values)),
+        stage(transmission::MakeStage(scene)),
+        setup(transmission::SetupFromScene(scene)),
+        angles(internal::CaseAngles(study, stage)) {
+    if (study.sun) setup.sun = *study.sun;
+    options.backend = study.backend;
+    options.threads = 1;  // the cases already run on every core (ComputeCases): no nested workers
+  }
+};
+
+}  // namespace
+
+namespace internal {
+
+CaseStarts::CaseStarts(const StudySpec& study, const transmission::StageCompliance& compliance,
+                       bool enabled)
+    : study_(study), compliance_(compliance) {
+  // Tables of their own per case (a crack's depth): no shared start. Past kMaxGridPoints grid
+  // points the starts' memory (each holds its contact problem) is not spent: cold.
+  if (enabled && !study.VariesBodies() && study.GridPoints() <= kMaxGridPoints) {
+    const auto points = static_cast<std::size_t>(study.GridPoints());
+    once_ = std::make_unique<std::once_flag[]>(points);
+    starts_.resize(points);
+  }
+}
+
+const transmission::PositionResult* CaseStarts::For(long case_id) {
+  if (starts_.empty()) return nullptr;
+  // Case g (< GridPoints) is the first sample of grid point g = case_id mod G (sampling.hpp).
+  const long g = case_id % study_.GridPoints();
+  const auto i = static_cast<std::size_t>(g);
+  std::call_once(once_[i], [&] {
+    try {
+      const CaseRig rig(study_, SampleCase(study_, g));
+      transmission::SweepEach(
+          transmission::StageModel(rig.stage, compliance_, rig.setup), rig.scene.loads, 1,
+          [&](int) { return rig.angles.front(); }, rig.options,
+          [&](const transmission::PositionResult& r, int) {
+            if (r.converged) starts_[i] = std::make_unique<transmission::PositionResult>(r);
+          });
+    } catch (const std::exception&) {
+      // A grid point whose first case the geometry rejects: its cases start cold (and say why).
+    }
+  });
+  return starts_[i].get();
+}
+
+}  // namespace internal
+
 CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance& compliance,
-                    long case_id, const std::string& cache_directory) {
+                    long case_id, const std::string& cache_directory,
+                    const transmission::PositionResult* start) {
   CaseRow row;
   row.id = case_id;
   row.values = SampleCase(study, case_id);
@@ -284,14 +347,10 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
   row.root_stress.assign(3 * gears.size(), kNaN);
   row.safety.assign(study.Rated() ? 2 * gears.size() : 0, kNaN);
   try {
-    const transmission::Scene scene = CaseScene(study, row.values);
-    const geometry::Stage stage = transmission::MakeStage(scene);
-    transmission::QuasiStaticOptions opt;
-    transmission::StageSetup setup = transmission::SetupFromScene(scene);
-    if (study.sun) setup.sun = *study.sun;
-    opt.backend = study.backend;
-    opt.threads = 1;  // the cases already run on every core (ComputeCases): no nested workers
-    const std::vector<double> angles = internal::CaseAngles(study, stage);
+    const CaseRig rig(study, row.values);
+    const transmission::Scene& scene = rig.scene;
+    const geometry::Stage& stage = rig.stage;
+    const std::vector<double>& angles = rig.angles;
     // A case with its own bodies (a crack's depth) gets its own tables: the healthy ones read
     // from the cache, the cracked gear's damaged rows built (or read) for its crack.
     std::unique_ptr<transmission::FeStageCompliance> own;
@@ -305,16 +364,17 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
     transmission::ValidityTally tally(stage, "position(s)");
     std::string first_failure;
     transmission::SweepEach(
-        transmission::StageModel(stage, own ? *own : compliance, setup), scene.loads,
+        transmission::StageModel(stage, own ? *own : compliance, rig.setup), scene.loads,
         static_cast<int>(angles.size()),
-        [&](int k) { return angles[static_cast<std::size_t>(k)]; }, opt,
+        [&](int k) { return angles[static_cast<std::size_t>(k)]; }, rig.options,
         [&](const transmission::PositionResult& r, int) {
           accumulator.Add(r);
           tally.Add(r);
           if (!r.converged && first_failure.empty())
             first_failure = std::to_string(r.carrier_angle * 180.0 / std::numbers::pi) +
                             " deg: " + r.message;
-        });
+        },
+        own ? nullptr : start);
     const transmission::SweepSummary s = accumulator.Result();
     row.positions = s.positions;
     row.converged = s.converged;
@@ -454,7 +514,8 @@ RunReport RunStudy(const StudySpec& study, const RunOptions& options) {
     const auto t1 = std::chrono::steady_clock::now();
     report.table_seconds = std::chrono::duration<double>(t1 - t0).count();
     internal::ComputeCases(study, *compliance, options.cache_directory, missing, options.threads,
-                           options.max_new_cases, [&](const CaseRow& row) {
+                           options.max_new_cases, options.warm_start_cases,
+                           [&](const CaseRow& row) {
                              writer.Write(row.Format());
                              report.rows.push_back(row);
                              ++report.computed;

@@ -4,12 +4,14 @@
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
 
 namespace epicycle::studies::internal {
 
@@ -45,10 +47,32 @@ class RowWriter {
   std::string path_;
 };
 
-/// The ids on a pool of `threads` workers; `sink` sees each row under one lock.
+/// The warm starts of the cases' first positions (docs/studies.md "Throughput"): per grid point
+/// g, the converged first position of case g (the grid point's first sample), solved cold once on
+/// first use and shared read-only; every case of grid point g starts its first position from it,
+/// whichever worker, rank or shard computes the case, so a row does not depend on the schedule.
+class CaseStarts {
+ public:
+  /// Grid points beyond which the cases start cold (each start holds its contact problem).
+  static constexpr long kMaxGridPoints = 256;
+  /// enabled = false, a study that varies the bodies or more than kMaxGridPoints: every case cold.
+  CaseStarts(const StudySpec& study, const transmission::StageCompliance& compliance,
+             bool enabled);
+  /// The start of case `case_id`'s first position; nullptr: cold. Thread-safe.
+  const transmission::PositionResult* For(long case_id);
+
+ private:
+  const StudySpec& study_;
+  const transmission::StageCompliance& compliance_;
+  std::unique_ptr<std::once_flag[]> once_;
+  std::vector<std::unique_ptr<transmission::PositionResult>> starts_;
+};
+
+/// The ids on a pool of `threads` workers (warm_start: CaseStarts); `sink` sees each row under
+/// one lock.
 void ComputeCases(const StudySpec& study, const transmission::StageCompliance& compliance,
                   const std::string& cache_directory, const std::vector<long>& ids, int threads,
-                  long limit, const std::function<void(const CaseRow&)>& sink);
+                  long limit, bool warm_start, const std::function<void(const CaseRow&)>& sink);
 
 /// The FE compliance of the base scene's nominal bodies, shared by every case.
 std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(

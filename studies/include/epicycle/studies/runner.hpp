@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "epicycle/studies/study.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 
 namespace epicycle::studies {
@@ -50,8 +51,11 @@ std::string RowHeader(const StudySpec& study);
 /// study varies the bodies (StudySpec::VariesBodies: a crack's depth), on the case's own tables
 /// (built or read from `cache_directory`; empty: built in memory). Never throws for a failed
 /// computation or a case the geometry rejects: the row says why (ok = false).
+/// `start`: the case's first position is warm-started from it (the converged first position of
+/// another case at the same angle: docs/studies.md "Throughput"); nullptr: cold.
 CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance& compliance,
-                    long case_id, const std::string& cache_directory = {});
+                    long case_id, const std::string& cache_directory = {},
+                    const transmission::PositionResult* start = nullptr);
 
 /// A slice of a study's case ids, [first, last) (a shard's part: studies/shards.hpp).
 struct CaseRange {
@@ -87,6 +91,9 @@ struct RunOptions {
   /// Only these cases, into a part file (rows_file: its name is studies::PartFileName) that says
   /// so (studies/shards.hpp); none: the whole study.
   std::optional<CaseRange> part;
+  /// Warm-start each case's first position from its grid point's first case (docs/studies.md
+  /// "Throughput"; within the solvers' tolerances of the cold start); false: cold.
+  bool warm_start_cases = true;
   /// Sees each new row as it is written (under the writer's lock), with the count of rows now in
   /// the file and the study's total.
   std::function<void(const CaseRow&, long rows, long total)> on_row;
