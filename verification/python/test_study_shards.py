@@ -16,21 +16,13 @@ from conftest import EXE, SCENES, run_cli
 
 CACHE = os.environ.get("EPICYCLE_CACHE_DIR", "")
 
-# 16 cases of 4 positions: pins of every planet, σ = 5 µm (a few ms per case).
-STUDY_TEXT = f"""[study]
-name = "shards"
-scene = "{os.path.join(SCENES, "paper_stage.toml")}"
-seed = 3
-samples = 16
-positions = 4
-sun = "fixed"
-
-[[variable]]
-quantity = "pin_tangential"
-gear = "planets"
-distribution = "normal"
-sigma_um = 5.0
-"""
+# The shipped pin-tolerance study (pins of every planet, σ = 5 µm, fixed sun) cut to 16 cases of
+# 4 positions (a few ms per case), its scene path made absolute for the temporary folder.
+with open(os.path.join(SCENES, "studies", "pin_tolerance.toml")) as _f:
+    STUDY_TEXT = (_f.read().replace("samples = 200", "samples = 16")
+                  .replace("positions = 24", "positions = 4")
+                  .replace('"../paper_stage.toml"', '"' + os.path.join(SCENES, "paper_stage.toml") + '"'))
+assert "samples = 16" in STUDY_TEXT and "positions = 4" in STUDY_TEXT and SCENES in STUDY_TEXT
 
 FILES = ["study_rows.csv", "study_kgamma_hist.svg", "study_kgamma_cdf.svg"]
 
