@@ -459,10 +459,10 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study,
                                     "'), not a whole study's rows: join the parts with `epicycle "
                                     "study merge` or run the same shard again to resume it");
       if (line != internal::PartLine(study, *part))
-        throw std::invalid_argument(where + ": the part holds other cases or was written by "
-                                    "another study or scene ('" + line + "', this shard's is '" +
-                                    internal::PartLine(study, *part) +
-                                    "'): use another output folder or the same study file");
+        throw std::invalid_argument(where + ": the part holds other cases or was written from "
+                                    "another scene or with other outputs (--stresses) ('" + line +
+                                    "', this shard's is '" + internal::PartLine(study, *part) +
+                                    "'): use another output folder, or the shard's first options");
       part_line = true;
       continue;
     }
