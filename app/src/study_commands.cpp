@@ -31,13 +31,66 @@ namespace {
 using json = nlohmann::json;
 
 struct StudyArgs {
-  std::string study, out = "study-out", cache;
+  std::string study, out = "study-out", cache, cases, shard;
   int threads = 0;  // 0: every core
   long max_cases = -1;
   bool no_cache = false, quiet = false, stresses = false;
 };
 
-json Stat(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// The summary on the terminal (a run's and a merge's).
+void PrintStudySummary(const studies::StudySpec& study, const studies::StudySummary& s) {
+  std::printf("\n  %ld of %ld cases in the file, %ld failed (left out of the statistics)\n",
+              s.cases, study.Cases(), s.failed);
+  std::printf("%s%s%s%s%s", report::SampleSummaryText("K_gamma", s.k_gamma, "").c_str(),
+              report::SampleSummaryText("K_gamma (sweep mean)", s.k_gamma_mean, "").c_str(),
+              report::SampleSummaryText("TE peak-to-peak", s.te_peak_to_peak, " urad").c_str(),
+              report::SampleSummaryText("sun orbit", s.sun_orbit, " um").c_str(),
+              report::StudyRootStressText(s.root_stress).c_str());
+  std::printf("  Spearman rank correlation of K_gamma with\n");
+  for (std::size_t j = 0; j < s.columns.size(); ++j)
+    std::printf("    %-36s %s\n", s.columns[j].c_str(),
+                Num(s.spearman[j], "{:+.3f}", "- (constant)").c_str());
+  if (s.sobol) std::printf("%s", report::SobolText(*s.sobol).c_str());
+  PrintWarnings(study.warnings);
+}
+
+// "I:J" (--cases) → the range; the numbers as CLI11 would read them.
+studies::CaseRange ParseCases(const std::string& text, long cases) {
+  const std::size_t colon = text.find(':');
+  studies::CaseRange r{-1, -1};
+  try {
+    std::size_t used = 0;
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    r.first = std::stol(text.substr(0, colon), &used);
+    if (used != colon) throw std::invalid_argument("trailing text");
+    r.last = std::stol(text.substr(colon + 1), &used);
+    if (used != text.size() - colon - 1) throw std::invalid_argument("trailing text");
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--cases = " + text +
+                                ": must be I:J, two whole numbers (the case ids I <= k < J)");
+  }
+  studies::CheckCaseRange(r, cases, "--cases");
+  return r;
+}
+
+// "K/N" (--shard) → shard K of N's range.
+studies::CaseRange ParseShard(const std::string& text, long cases) {
+  const std::size_t slash = text.find('/');
+  long k = -1, n = -1;
+  try {
+    std::size_t used = 0;
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    k = std::stol(text.substr(0, slash), &used);
+    if (used != slash) throw std::invalid_argument("trailing text");
+    n = std::stol(text.substr(slash + 1), &used);
+    if (used != text.size() - slash - 1) throw std::invalid_argument("trailing text");
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--shard = " + text +
+                                ": must be K/N, two whole numbers (shard K of N, K from 0)");
+  }
+  return studies::ShardRange(cases, k, n, "--shard");
+}
 
 std::string DesignText(const studies::StudySpec& study) {
   if (study.design == studies::Design::kSobol)
@@ -54,12 +107,14 @@ void RunStudyCommand(const StudyArgs& a) {
   std::filesystem::create_directories(a.out);
   const std::string base = a.out + "/study";
   studies::RunOptions opt;
-  opt.rows_file = base + "_rows.csv";
+  if (!a.cases.empty() && !a.shard.empty())
+    throw std::invalid_argument("--cases = " + a.cases + " and --shard = " + a.shard +
+                                ": give one of them (both select the cases of a part)");
+  if (!a.cases.empty()) opt.part = ParseCases(a.cases, study.Cases());
+  if (!a.shard.empty()) opt.part = ParseShard(a.shard, study.Cases());
+  opt.rows_file = opt.part ? a.out + "/" + studies::PartFileName(*opt.part) : base + "_rows.csv";
   const json provenance = Provenance(study.backend_name, &study.scene);
-  std::string comment = ProvenanceCsvLine(provenance);
-  while (!comment.empty() && (comment.back() == '\n')) comment.pop_back();
-  if (comment.rfind("# ", 0) == 0) comment = comment.substr(2);
-  opt.comment = comment + "; study " + a.study;
+  opt.comment = report::StudyComment(provenance, a.study);
   if (!a.no_cache)
     opt.cache_directory = a.cache.empty() ? transmission::DefaultCacheDirectory() : a.cache;
   opt.threads = a.threads > 0 ? a.threads
@@ -95,73 +150,45 @@ void RunStudyCommand(const StudyArgs& a) {
               report.resumed, report.computed, report.seconds,
               report.seconds > 0 ? static_cast<double>(report.computed) / report.seconds : 0.0,
               report.table_seconds);
+  if (opt.part) {
+    // A part: its rows only; the summary is the merge's (over every case).
+    long failed_rows = 0;
+    for (const studies::CaseRow& r : report.rows) failed_rows += r.ok ? 0 : 1;
+    std::printf("\nwrote %s: cases %ld:%ld, %zu of %ld rows (join the parts with `epicycle "
+                "study merge %s`)\n",
+                opt.rows_file.c_str(), opt.part->first, opt.part->last, report.rows.size(),
+                opt.part->Size(), a.out.c_str());
+    if (failed_rows > 0)
+      throw ComputationFailed(fmt::format("{} of {} cases failed (their rows say why)",
+                                          failed_rows, report.rows.size()));
+    return;
+  }
 
   const studies::StudySummary s = studies::SummariseStudy(study, report.rows);
-  std::printf("\n  %ld of %ld cases in the file, %ld failed (left out of the statistics)\n",
-              s.cases, study.Cases(), s.failed);
-  std::printf("%s%s%s%s%s", report::SampleSummaryText("K_gamma", s.k_gamma, "").c_str(),
-              report::SampleSummaryText("K_gamma (sweep mean)", s.k_gamma_mean, "").c_str(),
-              report::SampleSummaryText("TE peak-to-peak", s.te_peak_to_peak, " urad").c_str(),
-              report::SampleSummaryText("sun orbit", s.sun_orbit, " um").c_str(),
-              report::StudyRootStressText(s.root_stress).c_str());
-  std::printf("  Spearman rank correlation of K_gamma with\n");
-  for (std::size_t j = 0; j < s.columns.size(); ++j)
-    std::printf("    %-36s %s\n", s.columns[j].c_str(),
-                Num(s.spearman[j], "{:+.3f}", "- (constant)").c_str());
-  // The Sobol indices (the bootstrap seeded by the study's seed: reproducible intervals).
-  std::optional<studies::SobolSummary> sobol;
-  if (study.design == studies::Design::kSobol) {
-    studies::SobolOptions so;
-    so.seed = study.seed;
-    sobol = studies::SummariseSobol(study, report.rows, so);
-    std::printf("%s", report::SobolText(*sobol).c_str());
-  }
-  PrintWarnings(study.warnings);
-
-  json j;
-  j["provenance"] = provenance;
-  j["study"] = a.study;
-  j["study_hash"] = study.hash;
-  j["seed"] = study.seed;
-  j["cases_total"] = study.Cases();
-  j["cases_in_file"] = s.cases;
-  j["cases_failed"] = s.failed;
-  j["statistics_note"] =
-      "mean CI: normal approximation x +- z s/sqrt(n); percentile CIs: exact binomial order "
-      "statistics (distribution-free), null where n is too small for the bound";
-  j["K_gamma"] = report::SampleSummaryJson(s.k_gamma);
-  j["K_gamma_sweep_mean"] = report::SampleSummaryJson(s.k_gamma_mean);
-  j["TE_peak_to_peak_urad"] = report::SampleSummaryJson(s.te_peak_to_peak);
-  j["sun_orbit_um"] = report::SampleSummaryJson(s.sun_orbit);
-  if (!s.root_stress.empty()) j["root_stress"] = report::StudyRootStressJson(s.root_stress);
-  json rho = json::object();
-  for (std::size_t k = 0; k < s.columns.size(); ++k) rho[s.columns[k]] = Stat(s.spearman[k]);
-  j["spearman_K_gamma"] = rho;
-  std::string sobol_files;
-  if (sobol) {
-    j["sobol"] = report::SobolJson(*sobol);
-    WriteTextFile(base + "_sobol.svg",
-                  RenderSvg(report::SobolBarPlot(study.name, *sobol, sobol->outputs.front())));
-    sobol_files = ", _sobol.svg";
-  }
-  j["warnings"] = study.warnings;
-  j["computed_seconds"] = report.seconds;
-  WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
-
-  // Histogram as a step outline; the empirical CDF F(x_(i)) = i/n as steps.
-  const auto& h = s.k_gamma_histogram;
-  LinePlot hist{study.name + ": K_gamma histogram", "K_gamma [-]", "cases [-]", {}, false, {}};
-  hist.series.push_back(report::HistogramOutline("K_gamma", h.lo, h.width, h.counts));
-  LinePlot cdf{
-      study.name + ": K_gamma empirical CDF", "K_gamma [-]", "F [-]", {}, false, {0.95, 0.99}};
-  cdf.series.push_back(report::EmpiricalCdfSteps("empirical CDF", s.k_gamma_sorted));
-  WriteTextFile(base + "_kgamma_hist.svg", RenderSvg(hist));
-  WriteTextFile(base + "_kgamma_cdf.svg", RenderSvg(cdf));
+  PrintStudySummary(study, s);
+  report::WriteStudySummaryFiles(base, study, s, provenance, a.study, report.seconds);
   std::printf("\nwrote %s_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
-              base.c_str(), sobol_files.c_str());
+              base.c_str(), s.sobol ? ", _sobol.svg" : "");
   if (s.failed > 0)
     throw ComputationFailed(
         fmt::format("{} of {} cases failed (their rows say why)", s.failed, s.cases));
+}
+
+struct MergeArgs {
+  std::vector<std::string> parts;
+  std::string out = "study-out", study;
+};
+
+void MergeStudyCommand(const MergeArgs& a) {
+  const report::MergedStudy m = report::MergeStudy(a.parts, a.out, a.study);
+  std::printf("%s: %zu parts of %s merged, %ld cases\n", m.study.name.c_str(), m.parts.size(),
+              m.study_path.c_str(), m.study.Cases());
+  PrintStudySummary(m.study, m.summary);
+  std::printf("\nwrote %s/study_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
+              a.out.c_str(), m.summary.sobol ? ", _sobol.svg" : "");
+  if (m.summary.failed > 0)
+    throw ComputationFailed(fmt::format("{} of {} cases failed (their rows say why)",
+                                        m.summary.failed, m.summary.cases));
 }
 
 }  // namespace
@@ -171,8 +198,8 @@ void RegisterStudyCommands(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "study",
       "Tolerance study: Monte-Carlo and parameter sweeps of the quasi-static load sharing");
+  static MergeArgs m;
   cmd->add_option("study", a.study, "Study file (TOML, docs/studies.md)")
-      ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", a.out, "Output folder (rows CSV, summary JSON, SVG); a re-run resumes");
   AddNumber(cmd, "--threads", a.threads, "Worker threads (default: every core)", kThreads);
@@ -184,7 +211,25 @@ void RegisterStudyCommands(CLI::App& app) {
   cmd->add_flag("--quiet", a.quiet, "No progress bar");
   cmd->add_flag("--stresses", a.stresses,
                 "Also each gear's root stress per case (the study's or scene's stresses)");
-  cmd->callback([] { RunStudyCommand(a); });
+  cmd->add_option("--cases", a.cases,
+                  "Only the cases I <= k < J (I:J), into the part study_cases_I_J.csv (merge the "
+                  "parts with `study merge`)");
+  cmd->add_option("--shard", a.shard,
+                  "Only shard K of N (K/N, K from 0): the cases floor(K C/N) .. floor((K+1) C/N)");
+  auto* merge = cmd->add_subcommand(
+      "merge", "Join the parts of a study (--cases/--shard runs) into the files a single run writes");
+  merge->add_option("parts", m.parts, "Part files (study_cases_*.csv) or folders of them")
+      ->required();
+  merge->add_option("--out", m.out, "Output folder (rows CSV, summary JSON, SVG)");
+  merge->add_option("--study", m.study,
+                    "The study file (default: the one the first part names)")
+      ->check(CLI::ExistingFile);
+  merge->callback([] { MergeStudyCommand(m); });
+  cmd->callback([cmd] {
+    if (cmd->got_subcommand("merge")) return;
+    if (a.study.empty()) throw CLI::RequiredError("study");
+    RunStudyCommand(a);
+  });
 }
 
 }  // namespace epicycle::app

@@ -63,6 +63,24 @@ from ._epicycle import (  # noqa: E402  (the classes above are used by the modul
     speed_sweep,
     study,
 )
+from . import _epicycle  # noqa: E402
+
+
+# Python functions around the module's study_part and study_merge: a scheduler sends a task's
+# function to its workers by pickling it, which works for a module-level Python function (by
+# name) and not for a compiled one.
+def study_part(path, *, cases=None, shard=None, out_dir, threads=1, cache_dir=None,
+               progress=None):
+    return _epicycle.study_part(path, cases=cases, shard=shard, out_dir=out_dir, threads=threads,
+                                cache_dir=cache_dir, progress=progress)
+
+
+def study_merge(parts, *, out_dir, study=None):
+    return _epicycle.study_merge(parts, out_dir=out_dir, study=study)
+
+
+study_part.__doc__ = _epicycle.study_part.__doc__
+study_merge.__doc__ = _epicycle.study_merge.__doc__
 
 __all__ = [
     "ComputationError",
@@ -84,4 +102,6 @@ __all__ = [
     "speed_grid",
     "speed_sweep",
     "study",
+    "study_merge",
+    "study_part",
 ]

@@ -6,8 +6,11 @@
 #include <thread>
 
 #include "common.hpp"
+#include "epicycle/report/provenance.hpp"
+#include "epicycle/report/study_files.hpp"
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/sobol.hpp"
+#include "epicycle/studies/shards.hpp"
 #include "epicycle/studies/study.hpp"
 #include "epicycle/studies/summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
@@ -98,10 +101,8 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   summary["te_peak_to_peak_urad"] = SampleObject(sum.te_peak_to_peak);
   summary["sun_orbit_um"] = SampleObject(sum.sun_orbit);
   summary["spearman_k_gamma"] = Array(std::vector<double>(sum.spearman));
-  if (study.design == studies::Design::kSobol) {
-    studies::SobolOptions so;
-    so.seed = study.seed;  // as `epicycle study`
-    const studies::SobolSummary sobol = studies::SummariseSobol(study, run.rows, so);
+  if (sum.sobol) {
+    const studies::SobolSummary& sobol = *sum.sobol;
     py::dict outputs;
     for (const studies::SobolOutput& o : sobol.outputs)
       outputs[o.name.c_str()] = SobolObject(o.estimate);
@@ -134,6 +135,65 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   f["seconds"] = run.seconds;
   f["summary"] = Result(summary);
   f["warnings"] = study.warnings;
+  return Result(f);
+}
+
+// One shard's part (`epicycle study FILE --cases I:J | --shard K/N --out DIR`): the same file
+// and bytes as the program writes for the same study path.
+py::object StudyPart(const std::string& path, std::optional<std::pair<long, long>> cases,
+                     std::optional<std::pair<long, long>> shard, const std::string& out_dir,
+                     int threads, std::optional<std::string> cache_dir, py::object progress) {
+  transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
+  studies::StudySpec study = studies::ReadStudy(path);
+  if (cases.has_value() == shard.has_value())
+    throw std::invalid_argument(
+        "cases and shard: give exactly one (cases=(I, J): the ids I <= k < J; shard=(K, N): "
+        "shard K of N, K from 0)");
+  const studies::CaseRange range =
+      cases ? studies::CaseRange{cases->first, cases->second}
+            : studies::ShardRange(study.Cases(), shard->first, shard->second, "shard");
+  studies::CheckCaseRange(range, study.Cases(), "cases");
+  CancelToken token;
+  const Progress report(std::move(progress), &token);
+  studies::RunOptions o;
+  o.part = range;
+  std::filesystem::create_directories(out_dir);
+  o.rows_file = (std::filesystem::path(out_dir) / studies::PartFileName(range)).string();
+  o.comment =
+      report::StudyComment(report::Provenance(study.backend_name, &study.scene), path);
+  o.cache_directory = cache_dir ? *cache_dir : transmission::DefaultCacheDirectory();
+  o.threads =
+      threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.on_row = [&](const studies::CaseRow&, long rows, long total) { report(rows, total); };
+  const studies::RunReport run = RunReleased(token, [&] { return studies::RunStudy(study, o); });
+  long failed = 0;
+  for (const studies::CaseRow& r : run.rows) failed += r.ok ? 0 : 1;
+  py::dict f;
+  f["part_file"] = o.rows_file;
+  f["first_case"] = range.first;
+  f["last_case"] = range.last;
+  f["cases"] = study.Cases();
+  f["rows"] = static_cast<long>(run.rows.size());
+  f["failed"] = failed;
+  f["resumed"] = run.resumed;
+  f["computed"] = run.computed;
+  f["seconds"] = run.seconds;
+  return Result(f);
+}
+
+py::object StudyMerge(const std::vector<std::string>& parts, const std::string& out_dir,
+                      std::optional<std::string> study) {
+  const report::MergedStudy m = report::MergeStudy(parts, out_dir, study.value_or(""));
+  const std::filesystem::path base = std::filesystem::path(out_dir) / "study";
+  py::dict f;
+  f["study"] = m.study.name;
+  f["study_file"] = m.study_path;
+  f["parts"] = m.parts;
+  f["cases"] = m.study.Cases();
+  f["failed"] = m.summary.failed;
+  f["rows_file"] = base.string() + "_rows.csv";
+  f["summary_file"] = base.string() + "_summary.json";
+  f["k_gamma"] = SampleObject(m.summary.k_gamma);
   return Result(f);
 }
 
@@ -236,6 +296,24 @@ te_peak_to_peak_urad, sun_orbit_um: count, mean, percentiles with confidence int
 spearman_k_gamma per column; with design = "sobol" also sobol: variables, complete_rows and
 outputs, per rows-file result column the sobol_indices Result); study, cases, resumed, computed,
 seconds [s], warnings.)doc");
+  m.def("study_part", &StudyPart, py::arg("path"), py::kw_only(), py::arg("cases") = py::none(),
+        py::arg("shard") = py::none(), py::arg("out_dir"), py::arg("threads") = 1,
+        py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(), R"doc(
+One shard of a study (`epicycle study PATH --cases I:J | --shard K/N --out OUT_DIR`; docs/studies.md
+"Shards"): the cases I <= k < J (cases=(I, J)) or shard K of N (shard=(K, N), K from 0), with the
+seeds of a whole run, into OUT_DIR/study_cases_I_J.csv (resumed if it exists: a killed shard run
+again computes only its missing cases). threads: workers (default 1: a scheduler runs one shard
+per core; 0: every core); cache_dir as quasistatic; progress(rows, total).
+Returns Result: part_file, first_case, last_case, cases (the study's), rows, failed, resumed,
+computed, seconds [s].)doc");
+  m.def("study_merge", &StudyMerge, py::arg("parts"), py::kw_only(), py::arg("out_dir"),
+        py::arg("study") = py::none(), R"doc(
+Joins a study's parts (`epicycle study merge PARTS --out OUT_DIR`): parts are part files or folders
+of them; writes OUT_DIR/study_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg, the files
+a single run writes. study: the study file (default: the one the first part names). A part of
+another study, two parts sharing cases (a shard given twice) or cases in no part (a missing shard)
+raise ValueError naming the part files and the case range.
+Returns Result: study, study_file, parts, cases, failed, rows_file, summary_file, k_gamma.)doc");
 }
 
 }  // namespace epicycle::python

@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "epicycle/report/files.hpp"
+#include "epicycle/report/provenance.hpp"
+#include "epicycle/report/sobol_files.hpp"
+#include "epicycle/report/svg_plot.hpp"
 
 namespace epicycle::report {
 
@@ -92,6 +97,88 @@ std::string StudyRootStressText(const std::vector<studies::GearStressStatistics>
   for (const auto& g : gears)
     out += fmt::format("    {:<8}  {:<34} {}\n", g.gear, low(g.s_f), low(g.s_h));
   return out;
+}
+
+std::string StudyComment(const nlohmann::json& provenance, const std::string& study_path) {
+  std::string comment = ProvenanceCsvLine(provenance);
+  while (!comment.empty() && comment.back() == '\n') comment.pop_back();
+  if (comment.rfind("# ", 0) == 0) comment = comment.substr(2);
+  return comment + "; study " + study_path;
+}
+
+void WriteStudySummaryFiles(const std::string& base, const studies::StudySpec& study,
+                            const studies::StudySummary& s, const nlohmann::json& provenance,
+                            const std::string& study_path, double computed_seconds) {
+  nlohmann::json j;
+  j["provenance"] = provenance;
+  j["study"] = study_path;
+  j["study_hash"] = study.hash;
+  j["seed"] = study.seed;
+  j["cases_total"] = study.Cases();
+  j["cases_in_file"] = s.cases;
+  j["cases_failed"] = s.failed;
+  j["statistics_note"] =
+      "mean CI: normal approximation x +- z s/sqrt(n); percentile CIs: exact binomial order "
+      "statistics (distribution-free), null where n is too small for the bound";
+  j["K_gamma"] = SampleSummaryJson(s.k_gamma);
+  j["K_gamma_sweep_mean"] = SampleSummaryJson(s.k_gamma_mean);
+  j["TE_peak_to_peak_urad"] = SampleSummaryJson(s.te_peak_to_peak);
+  j["sun_orbit_um"] = SampleSummaryJson(s.sun_orbit);
+  if (!s.root_stress.empty()) j["root_stress"] = StudyRootStressJson(s.root_stress);
+  nlohmann::json rho = nlohmann::json::object();
+  for (std::size_t k = 0; k < s.columns.size(); ++k) rho[s.columns[k]] = Stat(s.spearman[k]);
+  j["spearman_K_gamma"] = rho;
+  if (s.sobol) {
+    j["sobol"] = SobolJson(*s.sobol);
+    WriteTextFile(base + "_sobol.svg",
+                  RenderSvg(SobolBarPlot(study.name, *s.sobol, s.sobol->outputs.front())));
+  }
+  j["warnings"] = study.warnings;
+  j["computed_seconds"] = computed_seconds;
+  WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
+
+  // Histogram as a step outline; the empirical CDF F(x_(i)) = i/n as steps.
+  const auto& h = s.k_gamma_histogram;
+  LinePlot hist{study.name + ": K_gamma histogram", "K_gamma [-]", "cases [-]", {}, false, {}};
+  hist.series.push_back(HistogramOutline("K_gamma", h.lo, h.width, h.counts));
+  LinePlot cdf{
+      study.name + ": K_gamma empirical CDF", "K_gamma [-]", "F [-]", {}, false, {0.95, 0.99}};
+  cdf.series.push_back(EmpiricalCdfSteps("empirical CDF", s.k_gamma_sorted));
+  WriteTextFile(base + "_kgamma_hist.svg", RenderSvg(hist));
+  WriteTextFile(base + "_kgamma_cdf.svg", RenderSvg(cdf));
+}
+
+MergedStudy MergeStudy(const std::vector<std::string>& paths, const std::string& out_dir,
+                       const std::string& study_path) {
+  MergedStudy m;
+  m.parts = studies::FindParts(paths);
+  const studies::PartHead head = studies::ReadPartHead(m.parts.front());
+  m.study_path = study_path.empty() ? head.study_file : study_path;
+  if (m.study_path.empty())
+    throw std::invalid_argument(head.path +
+                                ": the part names no study file; give it with --study FILE");
+  try {
+    m.study = studies::ReadStudy(m.study_path);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(e.what()) + " (the study file of " + head.path +
+                                (study_path.empty() ? "; give another with --study FILE)" : ")"));
+  }
+  // The shard's `--stresses` (its part line says so) is part of what it computed.
+  m.study.scene.model.stresses = m.study.scene.model.stresses || head.stresses;
+  if (head.study_line.find("; study_hash " + m.study.hash + ";") == std::string::npos)
+    throw std::invalid_argument(m.study_path + ": not the study of " + head.path + " (its hash is " +
+                                m.study.hash + "; the part's line is '" + head.study_line +
+                                "'): the file changed since the shards ran, or give the study "
+                                "file they ran with --study FILE");
+  studies::MergedRows merged = studies::MergeParts(m.study, m.parts);
+  m.rows = std::move(merged.rows);
+  std::filesystem::create_directories(out_dir);
+  const std::string base = (std::filesystem::path(out_dir) / "study").string();
+  studies::WriteRowsFile(base + "_rows.csv", m.study, merged.comment, m.rows);
+  m.summary = studies::SummariseStudy(m.study, m.rows);
+  WriteStudySummaryFiles(base, m.study, m.summary, Provenance(m.study.backend_name, &m.study.scene),
+                         m.study_path, 0.0);
+  return m;
 }
 
 }  // namespace epicycle::report

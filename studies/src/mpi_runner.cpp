@@ -65,13 +65,13 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
   std::unique_ptr<internal::RowWriter> writer;
   if (rank == 0) {
     try {
-      ExistingRows existing = ReadRows(options.rows_file, study);
+      ExistingRows existing = ReadRows(options.rows_file, study, options.part);
       report.resumed = static_cast<long>(existing.rows.size());
       report.dropped_partial = existing.dropped_partial;
       report.rows = std::move(existing.rows);
-      missing = internal::MissingCases(study, report.rows, options.max_new_cases);
+      missing = internal::MissingCases(study, report.rows, options.max_new_cases, options.part);
       writer = std::make_unique<internal::RowWriter>(options.rows_file, study, options.comment,
-                                                     existing.exists);
+                                                     existing.exists, options.part);
     } catch (...) {
       // Bad input found on rank 0: the other ranks wait in the broadcast; end them too.
       long none = -1;
@@ -101,6 +101,7 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
       // Rows go to rank 0 as their CSV text: what rank 0 writes is byte for byte what was
       // computed.
       internal::ComputeCases(study, *compliance, options.cache_directory, mine, options.threads, -1,
+                             options.warm_start_cases,
                              [&](const CaseRow& r) {
                                const std::string line = r.Format();
                                MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0,
@@ -126,6 +127,7 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
   std::thread local([&] {
     try {
       internal::ComputeCases(study, *compliance, options.cache_directory, mine, options.threads, -1,
+                             options.warm_start_cases,
                              [&](const CaseRow& r) {
                                const std::lock_guard<std::mutex> g(box.lock);
                                box.rows.push_back(r);
@@ -140,7 +142,8 @@ RunReport RunStudyMpi(const StudySpec& study, const RunOptions& options) {
     writer->Write(text);
     report.rows.push_back(row);
     ++report.computed;
-    if (options.on_row) options.on_row(row, static_cast<long>(report.rows.size()), study.Cases());
+    if (options.on_row) options.on_row(row, static_cast<long>(report.rows.size()),
+                         options.part ? options.part->Size() : study.Cases());
   };
   int remote_done = 0;
   bool local_done = false;

@@ -132,6 +132,18 @@ std::string StudyLine(const StudySpec& study) {
   return o.str();
 }
 
+std::string PartLine(const StudySpec& study, const CaseRange& range) {
+  return "# part cases " + std::to_string(range.first) + ":" + std::to_string(range.last) +
+         " of " + std::to_string(study.Cases()) + "; scene_hash " + study.scene.hash +
+         "; stresses " + (study.scene.model.stresses ? "on" : "off");
+}
+
+std::string PartStudyFileLine(const StudySpec& study) {
+  std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::absolute(study.source, error);
+  return "# part of study file " + Clean(error ? study.source : absolute.string());
+}
+
 std::vector<double> CaseAngles(const StudySpec& study, const geometry::Stage& stage) {
   const double span = transmission::CarrierSpan(
       stage, study.compute == CaseKind::kMeshCycle ? transmission::RunRange::kMeshCycle
@@ -192,14 +204,15 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
 }
 
 std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows,
-                               long limit) {
+                               long limit, const std::optional<CaseRange>& part) {
   std::vector<long> have;
   have.reserve(rows.size());
   for (const CaseRow& r : rows) have.push_back(r.id);
   std::sort(have.begin(), have.end());
   std::vector<long> missing;
   auto next = have.begin();
-  for (long k = 0; k < study.Cases(); ++k) {
+  const CaseRange range = part.value_or(CaseRange{0, study.Cases()});
+  for (long k = range.first; k < range.last; ++k) {
     if (limit >= 0 && static_cast<long>(missing.size()) >= limit) break;
     while (next != have.end() && *next < k) ++next;
     if (next == have.end() || *next != k) missing.push_back(k);
@@ -208,14 +221,16 @@ std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow
 }
 
 RowWriter::RowWriter(const std::string& path, const StudySpec& study, const std::string& comment,
-                     bool exists) {
+                     bool exists, const std::optional<CaseRange>& part) {
   file_ = std::fopen(path.c_str(), "ab");
   if (file_ == nullptr) throw std::runtime_error(path + ": cannot write the study's rows");
   path_ = path;
   if (!exists) {
     std::string head;
     if (!comment.empty()) head += "# " + Clean(comment) + "\n";
-    head += StudyLine(study) + "\n" + RowHeader(study) + "\n";
+    head += StudyLine(study) + "\n";
+    if (part) head += PartLine(study, *part) + "\n" + PartStudyFileLine(study) + "\n";
+    head += RowHeader(study) + "\n";
     Write(head);
   }
 }
@@ -235,13 +250,16 @@ void RowWriter::Write(const std::string& text) {
 // one lock, in completion order). Stops taking cases after `limit` (< 0: none).
 void ComputeCases(const StudySpec& study, const transmission::StageCompliance& compliance,
                   const std::string& cache_directory, const std::vector<long>& ids, int threads,
-                  long limit, const std::function<void(const CaseRow&)>& sink) {
+                  long limit, bool warm_start, const std::function<void(const CaseRow&)>& sink) {
+  CaseStarts starts(study, compliance, warm_start);
   const std::size_t count =
       limit < 0 ? ids.size() : std::min(ids.size(), static_cast<std::size_t>(limit));
   std::vector<CaseRow> rows(count);
   transmission::RunWorkQueue(
       count, threads,
-      [&](std::size_t i) { rows[i] = ComputeCase(study, compliance, ids[i], cache_directory); },
+      [&](std::size_t i) {
+        rows[i] = ComputeCase(study, compliance, ids[i], cache_directory, starts.For(ids[i]));
+      },
       [&](std::size_t i) {
         sink(rows[i]);
         rows[i] = CaseRow{};  // written: its memory goes
@@ -260,8 +278,68 @@ std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(
 
 }  // namespace internal
 
+namespace {
+
+// A case's scene, stage, supports and carrier angles (its values applied to the base scene).
+struct CaseRig {
+  transmission::Scene scene;
+  geometry::Stage stage;
+  transmission::StageSetup setup;
+  std::vector<double> angles;
+  transmission::QuasiStaticOptions options;
+  CaseRig(const StudySpec& study, const std::vector<double>& values)
+      : scene(CaseScene(study, values)),
+        stage(transmission::MakeStage(scene)),
+        setup(transmission::SetupFromScene(scene)),
+        angles(internal::CaseAngles(study, stage)) {
+    if (study.sun) setup.sun = *study.sun;
+    options.backend = study.backend;
+    options.threads = 1;  // the cases already run on every core (ComputeCases): no nested workers
+  }
+};
+
+}  // namespace
+
+namespace internal {
+
+CaseStarts::CaseStarts(const StudySpec& study, const transmission::StageCompliance& compliance,
+                       bool enabled)
+    : study_(study), compliance_(compliance) {
+  // Tables of their own per case (a crack's depth): no shared start. Past kMaxGridPoints grid
+  // points the starts' memory (each holds its contact problem) is not spent: cold.
+  if (enabled && !study.VariesBodies() && study.GridPoints() <= kMaxGridPoints) {
+    const auto points = static_cast<std::size_t>(study.GridPoints());
+    once_ = std::make_unique<std::once_flag[]>(points);
+    starts_.resize(points);
+  }
+}
+
+const transmission::PositionResult* CaseStarts::For(long case_id) {
+  if (starts_.empty()) return nullptr;
+  // Case g (< GridPoints) is the first sample of grid point g = case_id mod G (sampling.hpp).
+  const long g = case_id % study_.GridPoints();
+  const auto i = static_cast<std::size_t>(g);
+  std::call_once(once_[i], [&] {
+    try {
+      const CaseRig rig(study_, SampleCase(study_, g));
+      transmission::SweepEach(
+          transmission::StageModel(rig.stage, compliance_, rig.setup), rig.scene.loads, 1,
+          [&](int) { return rig.angles.front(); }, rig.options,
+          [&](const transmission::PositionResult& r, int) {
+            if (r.converged) starts_[i] = std::make_unique<transmission::PositionResult>(r);
+          });
+    } catch (const std::exception&) {
+      // A grid point whose first case the geometry rejects: its cases start cold (and say why).
+    }
+  });
+  return starts_[i].get();
+}
+
+}  // namespace internal
+
 CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance& compliance,
-                    long case_id, const std::string& cache_directory) {
+                    long case_id, const std::string& cache_directory,
+                    const transmission::PositionResult* start) {
   CaseRow row;
   row.id = case_id;
   row.values = SampleCase(study, case_id);
@@ -269,14 +347,10 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
   row.root_stress.assign(3 * gears.size(), kNaN);
   row.safety.assign(study.Rated() ? 2 * gears.size() : 0, kNaN);
   try {
-    const transmission::Scene scene = CaseScene(study, row.values);
-    const geometry::Stage stage = transmission::MakeStage(scene);
-    transmission::QuasiStaticOptions opt;
-    transmission::StageSetup setup = transmission::SetupFromScene(scene);
-    if (study.sun) setup.sun = *study.sun;
-    opt.backend = study.backend;
-    opt.threads = 1;  // the cases already run on every core (ComputeCases): no nested workers
-    const std::vector<double> angles = internal::CaseAngles(study, stage);
+    const CaseRig rig(study, row.values);
+    const transmission::Scene& scene = rig.scene;
+    const geometry::Stage& stage = rig.stage;
+    const std::vector<double>& angles = rig.angles;
     // A case with its own bodies (a crack's depth) gets its own tables: the healthy ones read
     // from the cache, the cracked gear's damaged rows built (or read) for its crack.
     std::unique_ptr<transmission::FeStageCompliance> own;
@@ -290,16 +364,17 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
     transmission::ValidityTally tally(stage, "position(s)");
     std::string first_failure;
     transmission::SweepEach(
-        transmission::StageModel(stage, own ? *own : compliance, setup), scene.loads,
+        transmission::StageModel(stage, own ? *own : compliance, rig.setup), scene.loads,
         static_cast<int>(angles.size()),
-        [&](int k) { return angles[static_cast<std::size_t>(k)]; }, opt,
+        [&](int k) { return angles[static_cast<std::size_t>(k)]; }, rig.options,
         [&](const transmission::PositionResult& r, int) {
           accumulator.Add(r);
           tally.Add(r);
           if (!r.converged && first_failure.empty())
             first_failure = std::to_string(r.carrier_angle * 180.0 / std::numbers::pi) +
                             " deg: " + r.message;
-        });
+        },
+        own ? nullptr : start);
     const transmission::SweepSummary s = accumulator.Result();
     row.positions = s.positions;
     row.converged = s.converged;
@@ -341,7 +416,8 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
   return row;
 }
 
-ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
+ExistingRows ReadRows(const std::string& path, const StudySpec& study,
+                      const std::optional<CaseRange>& part) {
   ExistingRows out;
   std::error_code none;
   if (!std::filesystem::exists(path, none) && !std::filesystem::is_symlink(path, none)) return out;
@@ -359,7 +435,7 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
   std::istringstream lines(text.substr(0, complete));
   std::string line;
   int number = 0;
-  bool study_line = false, header = false;
+  bool study_line = false, header = false, part_line = false;
   std::set<long> seen;
   while (std::getline(lines, line)) {
     ++number;
@@ -377,8 +453,25 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
       study_line = true;
       continue;
     }
+    if (!header && line.rfind("# part cases ", 0) == 0) {
+      if (!part)
+        throw std::invalid_argument(where + ": the file is a shard's part ('" + line +
+                                    "'), not a whole study's rows: join the parts with `epicycle "
+                                    "study merge` or run the same shard again to resume it");
+      if (line != internal::PartLine(study, *part))
+        throw std::invalid_argument(where + ": the part holds other cases or was written from "
+                                    "another scene or with other outputs (--stresses) ('" + line +
+                                    "', this shard's is '" + internal::PartLine(study, *part) +
+                                    "'): use another output folder, or the shard's first options");
+      part_line = true;
+      continue;
+    }
     if (!line.empty() && line[0] == '#') continue;
     if (!header) {
+      if (part && study_line && !part_line)
+        throw std::invalid_argument(where + ": the file holds a whole study's rows, not the part " +
+                                    internal::PartLine(study, *part).substr(2) +
+                                    ": use another output folder for the shards");
       if (!study_line || line != RowHeader(study))
         throw std::invalid_argument(where + ": not the rows file of this study (column line '" +
                                     line + "', this study's is '" + RowHeader(study) + "')");
@@ -386,6 +479,10 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
       continue;
     }
     CaseRow r = internal::ParseRow(line, study, where);
+    if (part && !part->Contains(r.id))
+      throw std::invalid_argument(where + ": case " + std::to_string(r.id) +
+                                  " is not one of the part's cases " +
+                                  std::to_string(part->first) + ":" + std::to_string(part->last));
     if (!seen.insert(r.id).second)
       throw std::invalid_argument(where + ": case " + std::to_string(r.id) +
                                   " appears twice (two runs writing one file?)");
@@ -402,13 +499,14 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study) {
 
 RunReport RunStudy(const StudySpec& study, const RunOptions& options) {
   RunReport report;
-  ExistingRows existing = ReadRows(options.rows_file, study);
+  ExistingRows existing = ReadRows(options.rows_file, study, options.part);
   report.resumed = static_cast<long>(existing.rows.size());
   report.dropped_partial = existing.dropped_partial;
   report.rows = std::move(existing.rows);
   const std::vector<long> missing =
-      internal::MissingCases(study, report.rows, options.max_new_cases);
-  internal::RowWriter writer(options.rows_file, study, options.comment, existing.exists);
+      internal::MissingCases(study, report.rows, options.max_new_cases, options.part);
+  internal::RowWriter writer(options.rows_file, study, options.comment, existing.exists,
+                             options.part);
   if (!missing.empty() && options.max_new_cases != 0) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto compliance = internal::NominalCompliance(study, options.cache_directory);
@@ -416,13 +514,14 @@ RunReport RunStudy(const StudySpec& study, const RunOptions& options) {
     const auto t1 = std::chrono::steady_clock::now();
     report.table_seconds = std::chrono::duration<double>(t1 - t0).count();
     internal::ComputeCases(study, *compliance, options.cache_directory, missing, options.threads,
-                           options.max_new_cases, [&](const CaseRow& row) {
+                           options.max_new_cases, options.warm_start_cases,
+                           [&](const CaseRow& row) {
                              writer.Write(row.Format());
                              report.rows.push_back(row);
                              ++report.computed;
                              if (options.on_row)
                                options.on_row(row, static_cast<long>(report.rows.size()),
-                                              study.Cases());
+                                              options.part ? options.part->Size() : study.Cases());
                            });
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   }

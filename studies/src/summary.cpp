@@ -56,6 +56,12 @@ StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& 
                              Summarise(s_f, kSafetyPercentiles, level),
                              Summarise(s_h, kSafetyPercentiles, level)});
   }
+  if (study.design == Design::kSobol) {
+    SobolOptions so;
+    so.seed = study.seed;
+    so.level = level;
+    s.sobol = SummariseSobol(study, all_rows, so);
+  }
   return s;
 }
 

@@ -394,7 +394,8 @@ namespace {
 void RunSweep(const StageModel& model, const StageLoads& loads, int count,
               const std::function<double(int)>& angle, const QuasiStaticOptions& options,
               std::vector<PositionResult>& ring,
-              const std::function<void(const PositionResult&, int)>& on_result) {
+              const std::function<void(const PositionResult&, int)>& on_result,
+              const PositionResult* start = nullptr) {
   options.Validate();
   if (count < 0)
     throw std::invalid_argument("sweep: positions = " + std::to_string(count) + ": must be >= 0");
@@ -403,9 +404,10 @@ void RunSweep(const StageModel& model, const StageLoads& loads, int count,
   internal::RunOrderedChunks(
       count, options.threads, options.backend,
       [&](int k, bool chunk_first, solvers::ContactSolver& solver) {
-        // A chunk's first position cold, each next one from its neighbour.
+        // A chunk's first position cold (position 0 from `start` if given), each next one from
+        // its neighbour.
         const PositionResult* neighbour =
-            options.warm_start && !chunk_first ? &slot(k - 1) : nullptr;
+            !options.warm_start ? nullptr : !chunk_first ? &slot(k - 1) : k == 0 ? start : nullptr;
         PositionResult r = Solve(model, angle(k), loads, options, neighbour, solver);
         slot(k) = std::move(r);
       },
@@ -419,10 +421,11 @@ void RunSweep(const StageModel& model, const StageLoads& loads, int count,
 
 void SweepEach(const StageModel& model, const StageLoads& loads, int count,
                const std::function<double(int)>& angle, const QuasiStaticOptions& options,
-               const std::function<void(const PositionResult&, int)>& on_result) {
+               const std::function<void(const PositionResult&, int)>& on_result,
+               const PositionResult* start) {
   std::vector<PositionResult> ring(
       static_cast<std::size_t>(std::clamp(count, 1, kSweepInFlight + 1)));
-  RunSweep(model, loads, count, angle, options, ring, on_result);
+  RunSweep(model, loads, count, angle, options, ring, on_result, start);
 }
 
 std::vector<PositionResult> Sweep(

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "epicycle/studies/shards.hpp"
 #include "epicycle/studies/summary.hpp"
 
 namespace epicycle::report {
@@ -28,5 +29,35 @@ nlohmann::json StudyRootStressJson(const std::vector<studies::GearStressStatisti
 /// One line per gear: tension, compression magnitude and range [MPa], each its mean and P95 with
 /// the P95's interval ("" without stresses).
 std::string StudyRootStressText(const std::vector<studies::GearStressStatistics>& gears);
+
+/// The rows file's first line (without "# "): the provenance (ProvenanceCsvLine) and
+/// "; study <study_path>".
+std::string StudyComment(const nlohmann::json& provenance, const std::string& study_path);
+
+/// `base`_summary.json (the summary, with "provenance", "study": study_path and
+/// "computed_seconds"), `base`_kgamma_hist.svg and `base`_kgamma_cdf.svg: the files a study run
+/// writes beside its rows. @throws std::runtime_error if one cannot be written.
+void WriteStudySummaryFiles(const std::string& base, const studies::StudySpec& study,
+                            const studies::StudySummary& summary,
+                            const nlohmann::json& provenance, const std::string& study_path,
+                            double computed_seconds);
+
+/// What MergeStudy did.
+struct MergedStudy {
+  studies::StudySpec study;            ///< the study of the parts (its file as read)
+  std::string study_path;              ///< that file
+  std::vector<std::string> parts;      ///< the part files joined
+  std::vector<studies::CaseRow> rows;  ///< every case, sorted by id
+  studies::StudySummary summary;
+};
+/// Joins the parts of one study (studies::FindParts of `paths`: part files or folders of them)
+/// into `out_dir`/study_rows.csv, _summary.json, _kgamma_hist.svg and _kgamma_cdf.svg, the files
+/// a single run of the study writes (its rows in case order, as one thread writes them;
+/// computed_seconds 0, as a run that resumes every row). The study file is `study_path`, or
+/// (empty) the one the first part names; its hash must be the parts'.
+/// @throws std::invalid_argument as studies::MergeParts, or for a study file that is not the
+///         parts'; std::runtime_error if a file cannot be written.
+MergedStudy MergeStudy(const std::vector<std::string>& paths, const std::string& out_dir,
+                       const std::string& study_path = {});
 
 }  // namespace epicycle::report

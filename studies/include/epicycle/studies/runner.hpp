@@ -6,10 +6,12 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "epicycle/studies/study.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 
 namespace epicycle::studies {
@@ -49,8 +51,19 @@ std::string RowHeader(const StudySpec& study);
 /// study varies the bodies (StudySpec::VariesBodies: a crack's depth), on the case's own tables
 /// (built or read from `cache_directory`; empty: built in memory). Never throws for a failed
 /// computation or a case the geometry rejects: the row says why (ok = false).
+/// `start`: the case's first position is warm-started from it (the converged first position of
+/// another case at the same angle: docs/studies.md "Throughput"); nullptr: cold.
 CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance& compliance,
-                    long case_id, const std::string& cache_directory = {});
+                    long case_id, const std::string& cache_directory = {},
+                    const transmission::PositionResult* start = nullptr);
+
+/// A slice of a study's case ids, [first, last) (a shard's part: studies/shards.hpp).
+struct CaseRange {
+  long first = 0;  ///< the first case id [-]
+  long last = 0;   ///< one past the last case id [-]
+  long Size() const { return last - first; }
+  bool Contains(long id) const { return id >= first && id < last; }
+};
 
 /// What a rows file already holds.
 struct ExistingRows {
@@ -64,7 +77,10 @@ struct ExistingRows {
 ///         line differ), holds a malformed complete line, a case twice, a row whose check does
 ///         not match its text or whose sampled values are not the study's for its case (the
 ///         message names the file and line).
-ExistingRows ReadRows(const std::string& path, const StudySpec& study);
+/// With `part`: the file is the part of those cases (its part line, docs/studies.md "Shards"),
+/// and a row of another case is refused; without, a part file is refused (merge it instead).
+ExistingRows ReadRows(const std::string& path, const StudySpec& study,
+                      const std::optional<CaseRange>& part = std::nullopt);
 
 struct RunOptions {
   std::string rows_file;        ///< the CSV of rows (created or resumed)
@@ -72,6 +88,12 @@ struct RunOptions {
   std::string cache_directory;  ///< FE influence-table cache; empty: in memory only
   int threads = 1;              ///< worker threads, each with its own solver [-]
   long max_new_cases = -1;      ///< stop after computing this many cases (< 0: all) [-]
+  /// Only these cases, into a part file (rows_file: its name is studies::PartFileName) that says
+  /// so (studies/shards.hpp); none: the whole study.
+  std::optional<CaseRange> part;
+  /// Warm-start each case's first position from its grid point's first case (docs/studies.md
+  /// "Throughput"; within the solvers' tolerances of the cold start); false: cold.
+  bool warm_start_cases = true;
   /// Sees each new row as it is written (under the writer's lock), with the count of rows now in
   /// the file and the study's total.
   std::function<void(const CaseRow&, long rows, long total)> on_row;

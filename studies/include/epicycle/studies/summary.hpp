@@ -6,7 +6,10 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "epicycle/studies/runner.hpp"
+#include "epicycle/studies/sobol.hpp"
 #include "epicycle/studies/statistics.hpp"
 
 namespace epicycle::studies {
@@ -36,6 +39,9 @@ struct StudySummary {
   std::vector<double> k_gamma_sorted;  ///< the empirical CDF's steps: F(x_(i)) = i/n
   /// Per gear of StudySpec::StressGears (none without stresses).
   std::vector<GearStressStatistics> root_stress;
+  /// With the Sobol design: the indices of every output over all rows, their bootstrap seeded by
+  /// the study's seed (reproducible intervals) at the summary's level.
+  std::optional<SobolSummary> sobol;
 };
 
 /// Percentile levels of the summaries: 0.50, 0.95, 0.99, 0.999.

@@ -153,10 +153,14 @@ inline constexpr int kSweepInFlight = 4096;
 /// sequence from its own first, cold, position (options.warm_start): one chunk per worker up to
 /// kSweepInFlight positions, chunks of kSweepInFlight/workers positions beyond. An exception from
 /// on_result or another exception from a position stops the workers and is rethrown.
+/// `start` (with options.warm_start): position 0 is warm-started from it as from a neighbour (a
+/// converged result of the same stage's DOFs near angle(0): another case of a study at the same
+/// angle); ignored if it did not converge; nullptr: position 0 cold.
 /// @throws std::invalid_argument for options that fail Validate() or count < 0.
 void SweepEach(const StageModel& model, const StageLoads& loads, int count,
                const std::function<double(int)>& angle, const QuasiStaticOptions& options,
-               const std::function<void(const PositionResult&, int)>& on_result);
+               const std::function<void(const PositionResult&, int)>& on_result,
+               const PositionResult* start = nullptr);
 
 /// SweepEach over `carrier_angles`, every result kept and returned (for a few thousand positions:
 /// a sweep of more than 10 000 positions is checked by CheckSweepMemory from its first result
