@@ -629,9 +629,9 @@ Result
     active_contacts, friction_power_W [W], sun_bearing_force_N (T, 2) [N],
     planet_bearing_force_N (T, n, 2) [N]; pairs (per loaded tooth pair and step: time_s, mesh,
     kind, flank, tooth_a, tooth_b, normal_force_N, elastic_force_N, friction_force_N [N],
-    overlap_rate_mm_per_s [mm/s]); vibration (per step, the signals of docs/dynamic.md
-    "Spectra": te_rad, ring_force_x_N, ring_force_y_N, ring_torque_Nm, sun_force_x_N/sun_force_y_N
-    (held sun) or sun_x_m/sun_y_m (floating), and channels: (name, "torsional" or "housing")
+    overlap_rate_mm_per_s [mm/s]); vibration (per step, the signals of docs/spectra.md: te_rad,
+    ring_force_x_N, ring_force_y_N, ring_torque_Nm, sun_force_x_N/sun_force_y_N (held sun) or
+    sun_x_m/sun_y_m (floating), and channels: (name, "torsional" or "housing")
     pairs); summary (lsr_mean/min/max (n,) [-], k_gamma [-], te_min/max/peak_to_peak_urad [µrad],
     orbit_radius_max/mean_um [µm], max_pair_force_N [N]); stats (integrator counts, times [s]);
     sun_speed_rpm [rpm], mesh_frequency_Hz [Hz], duration_s [s], outputs, mesh stiffness [N/m]
@@ -701,9 +701,8 @@ ValueError
       py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
       py::arg("raise_on_failure") = true,
       (std::string(R"doc(
-A speed sweep of the dynamic model (`epicycle dynamic --speed-sweep`; docs/dynamic.md, "Speed
-sweeps"): each sun speed run from the quasi-static solution, its start transient skipped, then a
-window measured.
+A speed sweep of the dynamic model (`epicycle dynamic --speed-sweep`; docs/speed_sweeps.md): each
+sun speed run from the quasi-static solution, its start transient skipped, then a window measured.
 
 Parameters
 ----------
