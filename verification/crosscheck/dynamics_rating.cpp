@@ -18,6 +18,21 @@ using namespace epicycle;
 
 namespace {
 
+// The run-out case (paper_stage.toml with planet 1's run-out) with root stresses on.
+test::DynamicRig RunoutWithStresses() {
+  test::RigOptions o;
+  return test::MakeRig(
+      test::WithRunout(test::SceneText("paper_stage.toml")) + "\n[model]\nstresses = true\n",
+      "runout", o);
+}
+
+// `scene` with case-hardened limits (σ_Flim 430, σ_Hlim 1500 MPa): a scene a rating takes.
+transmission::Scene WithLimits(transmission::Scene scene) {
+  scene.material.bending_limit = 430e6;
+  scene.material.contact_limit = 1500e6;
+  return scene;
+}
+
 // A run of `rig` at `times` (rtol 1e-8) with its peaks and K_v.
 struct RunFactor {
   dynamics::MotionLoads loads;
@@ -110,13 +125,8 @@ TEST_CASE(
   // friction (the scene's Xu & Kahraman at its speed), the run's largest
   // sun root tension from its samples' fillet stresses; ISO 6336-3's σ_F = σ_F0 K_A K_v K_γ and
   // the model's own S_F = σ_Flim Y_ST / σ_root (no K_v: the stresses in motion carry it).
-  test::RigOptions o;
-  const auto rig = test::MakeRig(
-      test::WithRunout(test::SceneText("paper_stage.toml")) + "\n[model]\nstresses = true\n",
-      "runout", o);
-  transmission::Scene scene = rig.scene;
-  scene.material.bending_limit = 430e6;
-  scene.material.contact_limit = 1500e6;
+  const auto rig = RunoutWithStresses();
+  const transmission::Scene scene = WithLimits(rig.scene);
   const std::vector<double> times = test::Times(*rig.model, *rig.stage, 4, 8);
   const dynamics::SimulationOptions so;
   const auto r = test::Run(rig, times, so);
@@ -210,13 +220,8 @@ TEST_CASE(
   // over a one-mesh-cycle span of 8 outputs given only the first 5 steps (a run that stopped
   // there) is RateInMotion at those 5 output times: the same K_v and ratings, to the last bit;
   // a failed step counts as an output (its time is one of the run's) but carries no load.
-  test::RigOptions o;
-  const auto rig = test::MakeRig(
-      test::WithRunout(test::SceneText("paper_stage.toml")) + "\n[model]\nstresses = true\n",
-      "runout", o);
-  transmission::Scene scene = rig.scene;
-  scene.material.bending_limit = 430e6;
-  scene.material.contact_limit = 1500e6;
+  const auto rig = RunoutWithStresses();
+  const transmission::Scene scene = WithLimits(rig.scene);
   const dynamics::RunSpan span = dynamics::MakeRunSpan(
       *rig.stage, rig.model->carrier_speed(), transmission::RunRange::kMeshCycle, 0.0, 8);
   REQUIRE(span.outputs == 8);
