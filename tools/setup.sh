@@ -8,7 +8,7 @@ packages=(build-essential cmake pkg-config libeigen3-dev libnlopt-cxx-dev coinor
           libsundials-dev catch2 libbenchmark-dev libtomlplusplus-dev libcli11-dev
           nlohmann-json3-dev libfmt-dev libgmsh-dev libopenmpi-dev openmpi-bin
           pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
-          python3-openturns parallel python3-dask python3-distributed)
+          python3-openturns parallel python3-dask python3-distributed python3-mypy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -20,6 +20,7 @@ int MeshOf(const transmission::StageContact& c) { return geometry::MeshIndex(c.p
 MotionLoads::MotionLoads(const geometry::Stage& stage) : peak_(stage.meshes().size(), 0.0) {}
 
 void MotionLoads::Add(const DynamicSample& s) {
+  ++outputs_;
   const Evaluation& e = s.evaluation;
   if (!e.ok) return;
   ++steps_;
@@ -130,6 +131,15 @@ MotionRating RateInMotion(const transmission::Scene& scene, const DynamicModel& 
   out.rating = transmission::RateStage(scene, model.stage_model().stage(), out.factor.quasi_static,
                                        kv, source, &motion);
   return out;
+}
+
+MotionRating RateRun(const transmission::Scene& scene, const DynamicModel& model,
+                     const SimulationOptions& options, const RunSpan& span,
+                     const MotionLoads& loads,
+                     const std::vector<transmission::RootStressSummary>& root_stress) {
+  std::vector<double> times = span.OutputTimes();
+  times.resize(static_cast<std::size_t>(std::min<long>(loads.outputs(), std::ssize(times))));
+  return RateInMotion(scene, model, options, times, loads, root_stress);
 }
 
 }  // namespace epicycle::dynamics

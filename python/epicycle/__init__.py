@@ -19,7 +19,13 @@ import numpy as _np
 
 
 class Result(_types.SimpleNamespace):
-    """A driver's results: attributes named with their units (numpy arrays, numbers, lists)."""
+    """A driver's results: attributes named with their units (numpy arrays, numbers, lists).
+
+    Parameters
+    ----------
+    **fields
+        The results by name, each name with its unit (carrier_deg, te_urad, force_N).
+    """
 
     def __repr__(self):
         def show(v):
@@ -37,7 +43,15 @@ class Result(_types.SimpleNamespace):
 
 class ComputationError(RuntimeError):
     """A computation that did not succeed (failed positions, a run that stopped early, a failed
-    solve). `result` holds what was computed (a Result), or None."""
+    solve).
+
+    Parameters
+    ----------
+    message : str
+        What failed.
+    result : Result or None, default None
+        What was computed (also the attribute `result`).
+    """
 
     def __init__(self, message, result=None):
         super().__init__(message)
@@ -46,6 +60,7 @@ class ComputationError(RuntimeError):
 
 from ._epicycle import (  # noqa: E402  (the classes above are used by the module)
     ContactProblem,
+    QuasiStaticPositions,
     Scene,
     compare_solutions,
     contact_backends,
@@ -56,6 +71,7 @@ from ._epicycle import (  # noqa: E402  (the classes above are used by the modul
     mesh_stiffness,
     modes,
     quasistatic,
+    quasistatic_positions,
     read_contact_problem,
     sobol_indices,
     solve_contact,
@@ -85,6 +101,7 @@ study_merge.__doc__ = _epicycle.study_merge.__doc__
 __all__ = [
     "ComputationError",
     "ContactProblem",
+    "QuasiStaticPositions",
     "Result",
     "Scene",
     "compare_solutions",
@@ -96,6 +113,7 @@ __all__ = [
     "mesh_stiffness",
     "modes",
     "quasistatic",
+    "quasistatic_positions",
     "read_contact_problem",
     "sobol_indices",
     "solve_contact",

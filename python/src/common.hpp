@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -61,6 +62,10 @@ py::object Result(const py::dict& fields);
 
 /// Raises epicycle.ComputationError(message) with `result` (what was computed) as its `.result`.
 [[noreturn]] void RaiseComputationError(const std::string& message, const py::object& result);
+
+/// A JSON document as Python objects (through the json module: the report's own keys and units,
+/// the numbers as the summary JSON files hold them).
+py::object JsonToPython(const nlohmann::json& j);
 
 /// The back end of a name ("newton", "ipopt", ...). @throws std::invalid_argument (ValueError).
 solvers::Backend BackendOf(const std::string& name);
@@ -133,5 +138,6 @@ void BindStage(py::module_& m);    // stage.cpp: geometry, contacts, mesh stiffn
 void BindDynamic(py::module_& m);  // dynamic.cpp: dynamic run, modes, speed sweep
 void BindStudies(py::module_& m);  // drivers.cpp: tolerance studies
 void BindContact(py::module_& m);  // contact.cpp: the contact core
+void BindStream(py::module_& m);   // stream.cpp: the quasi-static sweep one position at a time
 
 }  // namespace epicycle::python

@@ -148,18 +148,38 @@ void BindContact(py::module_& m) {
   py::class_<Problem, ProblemPtr>(m, "ContactProblem", R"doc(
 A contact problem (docs/model.md §3), validated on construction (ValueError naming the field):
 find forces F >= 0 [N] and multipliers λ with
-  g = C F + u_local(F) − δ0 − Gᵀλ >= 0,  Fᵀg = 0,  G F + K λ = W.)doc")
-      .def(py::init(&MakeProblem), py::arg("compliance_m_per_N"), py::arg("overlap_m"),
+  g = C F + u_local(F) − δ0 − Gᵀλ >= 0,  Fᵀg = 0,  G F + K λ = W.
+
+Parameters
+----------
+compliance_m_per_N : numpy.ndarray
+    C (N, N) [m/N], symmetric positive definite.
+overlap_m : numpy.ndarray
+    δ0 (N,) [m] (> 0 interpenetration).
+equality_matrix : numpy.ndarray or None, default None
+    G (m, N) [-] for force rows, [m] for moment rows.
+equality_rhs : numpy.ndarray or None, default None
+    W (m,) [N] or [N·m].
+support_stiffness : numpy.ndarray or None, default None
+    K (m, m) [N/m] or [N·m/rad] (None: 0, hard equalities).
+local_terms : list of dict or None, default None
+    N dicts {face_width_m, reduced_radius_m, plane ("strain", "stress"), youngs_modulus_Pa (E1,
+    E2), poisson_ratio (ν1, ν2), depth_m (h1, h2), enabled}.
+name : str, default ""
+    Free text.
+contact_labels, multiplier_labels : list of str, default []
+    Free text per contact and per multiplier.
+
+Raises
+------
+ValueError
+    A field of the wrong shape or value (its name).)doc")
+      .def(py::init(&MakeProblem), py::arg("compliance_m_per_N"), py::arg("overlap_m"), py::kw_only(),
            py::arg("equality_matrix") = py::none(), py::arg("equality_rhs") = py::none(),
            py::arg("support_stiffness") = py::none(), py::arg("local_terms") = py::none(),
            py::arg("name") = "", py::arg("contact_labels") = std::vector<std::string>{},
-           py::arg("multiplier_labels") = std::vector<std::string>{}, R"doc(
-compliance_m_per_N: C (N, N) [m/N], symmetric positive definite; overlap_m: δ0 (N,) [m] (> 0
-interpenetration); equality_matrix: G (m, N) [-] for force rows, [m] for moment rows;
-equality_rhs: W (m,) [N] or [N·m]; support_stiffness: K (m, m) [N/m] or [N·m/rad] (None: 0,
-hard equalities); local_terms: None or N dicts {face_width_m, reduced_radius_m, plane ("strain",
-"stress"), youngs_modulus_Pa (E1, E2), poisson_ratio (ν1, ν2), depth_m (h1, h2), enabled};
-name and labels: free text.)doc")
+           py::arg("multiplier_labels") = std::vector<std::string>{},
+           "A contact problem; the parameters as the class's.")
       .def_property_readonly("name", &Problem::name)
       .def_property_readonly("num_contacts", &Problem::num_contacts, "N [-]")
       .def_property_readonly("num_equalities", &Problem::num_equalities, "m [-]")
@@ -177,29 +197,100 @@ name and labels: free text.)doc")
           },
           "The local terms as dicts (empty: none).")
       .def("gap_m", &Problem::Gap, py::arg("force_N"), py::arg("multiplier"),
-           "g = C F + u_local(F) − δ0 − Gᵀλ [m] at forces F [N] and multipliers λ.")
+           R"doc(
+The gaps g = C F + u_local(F) − δ0 − Gᵀλ.
+
+Parameters
+----------
+force_N : numpy.ndarray
+    F (N,) [N].
+multiplier : numpy.ndarray
+    λ (m,) [m] or [rad].
+
+Returns
+-------
+numpy.ndarray
+    g (N,) [m].)doc")
       .def("potential_J", &Problem::Potential, py::arg("force_N"),
-           "Φ(F) [J] (without the support term), F >= 0 [N].")
+           R"doc(
+The potential Φ(F) (without the support term).
+
+Parameters
+----------
+force_N : numpy.ndarray
+    F (N,) >= 0 [N].
+
+Returns
+-------
+float
+    Φ [J].)doc")
       .def("local_approach_m", &Problem::LocalApproach, py::arg("force_N"),
-           "u_local(F) [m] per contact at forces F >= 0 [N].")
+           R"doc(
+The local approach u_local(F) per contact.
+
+Parameters
+----------
+force_N : numpy.ndarray
+    The contact forces F (N,) >= 0 [N].
+
+Returns
+-------
+numpy.ndarray
+    u_local (N,) [m].)doc")
       .def("validity_limit_force_N", &Problem::ValidityLimitForce, py::arg("contact"),
-           "Force [N] at which contact j's Hertz half-width reaches its depth h (inf: no term).");
-  m.def("solve_contact", &Solve, py::arg("problem"), py::arg("backend") = "newton",
+           R"doc(
+The force at which a contact's Hertz half-width reaches its depth h.
+
+Parameters
+----------
+contact : int
+    The contact j, 0..N-1.
+
+Returns
+-------
+float
+    The force [N] (inf: no local term).)doc");
+  m.def("solve_contact", &Solve, py::arg("problem"), py::arg("backend") = "newton", py::kw_only(),
         py::arg("tolerance") = 1e-10, py::arg("max_iterations") = 200,
         py::arg("time_limit_s") = 60.0, py::arg("polish") = false, py::arg("force_N") = py::none(),
         py::arg("multiplier") = py::none(),
         py::arg("options") = std::map<std::string, std::string>{}, R"doc(
-Solves a contact problem with a back end ("newton", "ipopt", "nlopt-slsqp", "nlopt-lbfgs",
-"nlopt-auglag"; epicycle.contact_backends()). The driver judges every back end by one residual.
+Solves a contact problem with a back end; the driver judges every back end by one residual
+(docs/solvers.md). A status other than converged is a result, not an exception.
 
-tolerance: on the nondimensional residual [-]; max_iterations [-]; time_limit_s [s]; polish: a
-labelled active-set polish step; force_N [N], multiplier: a warm start; options: back-end knobs
-("ipopt.mu_strategy": "adaptive", ...).
-Returns Result(force_N (N,) [N], multiplier (m,) [m] or [rad], status ("converged",
-"converged-inaccurate", "iteration-limit", ...), converged (status converged), message,
-iterations, backend_code, residual, residual_complementarity, residual_equilibrium [-],
-active_contacts, solve_s, total_s [s], polished, backend). A status is a result, not an
-exception; bad input raises ValueError.)doc");
+Parameters
+----------
+problem : ContactProblem
+    The problem.
+backend : str, default "newton"
+    "newton", "ipopt", "nlopt-slsqp", "nlopt-lbfgs", "nlopt-auglag" (epicycle.contact_backends()).
+tolerance : float, default 1e-10
+    On the nondimensional residual [-], in (0, 1].
+max_iterations : int, default 200
+    [-], in [1, 10^6].
+time_limit_s : float, default 60
+    [s], in (0, 86400].
+polish : bool, default False
+    A labelled active-set polish step.
+force_N : numpy.ndarray or None, default None
+    Warm start F (N,) [N].
+multiplier : numpy.ndarray or None, default None
+    Warm start λ (m,) [m] or [rad].
+options : dict of str to str, default {}
+    Back-end knobs ("ipopt.mu_strategy": "adaptive", ...).
+
+Returns
+-------
+Result
+    force_N (N,) [N], multiplier (m,) [m] or [rad], status ("converged", "converged-inaccurate",
+    "iteration-limit", ...), converged (status converged), message, iterations, backend_code,
+    residual, residual_complementarity, residual_equilibrium [-], active_contacts, solve_s,
+    total_s [s], polished, backend.
+
+Raises
+------
+ValueError
+    Bad input (the argument's name, value and rule).)doc");
   m.def(
       "contact_residuals",
       [](const Problem& problem, const Eigen::VectorXd& force_N,
@@ -213,10 +304,27 @@ exception; bad input raises ValueError.)doc");
         return Result(f);
       },
       py::arg("problem"), py::arg("force_N"), py::arg("multiplier") = py::none(), R"doc(
-The residuals every back end is judged by, of any answer: forces force_N (N,) [N] and
-multipliers (m,) [m] or [rad] (None: zeros), e.g. from a solver of one's own.
-Returns Result(residual, residual_complementarity (the natural map), residual_equilibrium) [-],
-nondimensional as solve_contact's report (docs/solvers.md).)doc");
+The residuals every back end is judged by, of any answer (e.g. from a solver of one's own),
+nondimensional as solve_contact's report (docs/solvers.md).
+
+Parameters
+----------
+problem : ContactProblem
+    The problem.
+force_N : numpy.ndarray
+    F (N,) [N].
+multiplier : numpy.ndarray or None, default None
+    λ (m,) [m] or [rad] (None: zeros).
+
+Returns
+-------
+Result
+    residual, residual_complementarity (the natural map), residual_equilibrium [-].
+
+Raises
+------
+ValueError
+    Arrays of the wrong length.)doc");
   m.def(
       "compare_solutions",
       [](const Problem& problem, const Eigen::VectorXd& force_N,
@@ -233,9 +341,28 @@ nondimensional as solve_contact's report (docs/solvers.md).)doc");
       },
       py::arg("problem"), py::arg("force_N"), py::arg("multiplier"), py::arg("reference_force_N"),
       py::arg("reference_multiplier"), R"doc(
-Relative differences [-] of a solution (force_N [N], multiplier) from a reference: force
+Relative differences of a solution from a reference (docs/solvers.md): force
 ‖F − F_ref‖∞ / max(‖F_ref‖∞, F*), multiplier (as rigid displacements) and displacement
-‖Gᵀ(λ − λ_ref)‖∞ / max(‖Gᵀλ_ref‖∞, ℓ*) (docs/solvers.md).)doc");
+‖Gᵀ(λ − λ_ref)‖∞ / max(‖Gᵀλ_ref‖∞, ℓ*).
+
+Parameters
+----------
+problem : ContactProblem
+    The problem.
+force_N, reference_force_N : numpy.ndarray
+    F and F_ref (N,) [N].
+multiplier, reference_multiplier : numpy.ndarray or None
+    λ and λ_ref (m,) [m] or [rad] (None: zeros).
+
+Returns
+-------
+Result
+    force, multiplier, displacement [-].
+
+Raises
+------
+ValueError
+    Arrays of the wrong length.)doc");
   m.def(
       "contact_backends",
       [](bool available_only) {
@@ -245,7 +372,18 @@ Relative differences [-] of a solution (force_N [N], multiplier) from a referenc
           names.push_back(solvers::BackendName(b));
         return names;
       },
-      py::arg("available_only") = true, "Names of the contact back ends (compiled in).");
+      py::kw_only(), py::arg("available_only") = true, R"doc(
+The names of the contact back ends.
+
+Parameters
+----------
+available_only : bool, default True
+    Only those compiled in (False: every back end the library knows).
+
+Returns
+-------
+list of str
+    Back-end names, as solve_contact takes them.)doc");
   m.def(
       "read_contact_problem",
       [](const std::string& path) {
@@ -270,8 +408,22 @@ Relative differences [-] of a solution (force_N [N], multiplier) from a referenc
       },
       py::arg("path"), R"doc(
 Reads a contact problem file (JSON, the collection's format: verification/data/contact).
-Returns Result(problem: ContactProblem, category, description, provenance, expected_force_N
-[N] and expected_multiplier (an independent solution) or None).)doc");
+
+Parameters
+----------
+path : str
+    The file.
+
+Returns
+-------
+Result
+    problem (ContactProblem), category, description, provenance, expected_force_N [N] and
+    expected_multiplier ([m] or [rad]; an independent solution) or None.
+
+Raises
+------
+ValueError
+    A missing or malformed file (its path and the field).)doc");
 }
 
 }  // namespace epicycle::python

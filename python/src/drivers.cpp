@@ -259,17 +259,37 @@ void BindStudies(py::module_& m) {
         o.seed = seed;
         return SobolObject(studies::EstimateSobol(y, d, o));
       },
-      py::arg("y"), py::arg("d"), py::arg("bootstrap") = 1000, py::arg("level") = 0.95,
+      py::arg("y"), py::arg("d"), py::kw_only(), py::arg("bootstrap") = 1000, py::arg("level") = 0.95,
       py::arg("seed") = 0, R"doc(
-First-order and total Sobol indices (studies::EstimateSobol; docs/studies.md "Sensitivity: Sobol
-indices") of one output from its values in the Saltelli design's order y[j (d + 2) + m]: m = 0
-row j of A, 1 of B, 2 + i of A_B^(i) (A with variable i from B). First order Saltelli 2010,
-total Jansen, outputs centred on their mean, V(Y) from A and B; rows with a non-finite value
-left out. bootstrap: resamples of the rows for the percentile intervals at `level` (0: none);
-seed: of the resampling.
-Returns Result: rows, mean, variance, first, first_lower, first_upper, first_standard_error,
-total, total_lower, total_upper, total_standard_error (arrays of d), sum_first (Σ S_i),
-sum_first_lower, sum_first_upper.)doc");
+First-order and total Sobol indices of one output (studies::EstimateSobol; docs/studies.md
+"Sensitivity: Sobol indices"): first order Saltelli 2010, total Jansen, outputs centred on their
+mean, V(Y) from A and B; rows with a non-finite value left out.
+
+Parameters
+----------
+y : list of float
+    The output's values in the Saltelli design's order y[j (d + 2) + m]: m = 0 row j of A, 1 of
+    B, 2 + i of A_B^(i) (A with variable i from B); any unit.
+d : int
+    Variables [-].
+bootstrap : int, default 1000
+    Resamples of the rows for the percentile intervals [-] (0: none).
+level : float, default 0.95
+    Confidence level of the intervals [-].
+seed : int, default 0
+    Seed of the resampling.
+
+Returns
+-------
+Result
+    rows [-], mean and variance (y's unit and its square), first, first_lower, first_upper,
+    first_standard_error, total, total_lower, total_upper, total_standard_error (arrays of d)
+    [-], sum_first (Σ S_i), sum_first_lower, sum_first_upper [-].
+
+Raises
+------
+ValueError
+    A length of y that is not a multiple of d + 2, a bad d, bootstrap or level.)doc");
 
   m.def(
       "study",
@@ -278,42 +298,105 @@ sum_first_lower, sum_first_upper.)doc");
          py::object progress) {
         return Study(path, text, threads, max_cases, rows_file, cache_dir, std::move(progress));
       },
-      py::arg("path"), py::arg("text") = py::none(), py::arg("threads") = 0,
+      py::arg("path"), py::kw_only(), py::arg("text") = py::none(), py::arg("threads") = 0,
       py::arg("max_cases") = -1, py::arg("rows_file") = py::none(),
       py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(), R"doc(
 A tolerance study (`epicycle study`; docs/studies.md): every case a quasi-static sweep of the base
 scene with its sampled errors, on threads.
 
-path: the study file (TOML); text: the study's text instead (path then names it in messages and
-  its folder resolves the scene path); threads: workers (0: every core); max_cases: stop after
-  this many new cases (< 0: all); rows_file: a rows CSV to write and resume (None: a temporary
-  one, removed); cache_dir as quasistatic; progress(rows, total).
-Returns Result with per case (sorted by case_id): case_id, values (cases, columns) [the columns'
-units: _um µm, _deg deg, _Nm N·m], ok, message, positions, converged, k_gamma [-], k_gamma_mean
-[-], lsr_min, lsr_max [-], te_peak_to_peak_urad [µrad], sun_orbit_um [µm]; columns, header and
-rows_csv (each row as the rows file has it); summary (cases, failed, k_gamma, k_gamma_mean,
-te_peak_to_peak_urad, sun_orbit_um: count, mean, percentiles with confidence intervals;
-spearman_k_gamma per column; with design = "sobol" also sobol: variables, complete_rows and
-outputs, per rows-file result column the sobol_indices Result); study, cases, resumed, computed,
-seconds [s], warnings.)doc");
+Parameters
+----------
+path : str
+    The study file (TOML).
+text : str or None, default None
+    The study's text instead (path then names it in messages and its folder resolves the scene
+    path).
+threads : int, default 0
+    Workers [-] (0: every core).
+max_cases : int, default -1
+    Stop after this many new cases [-] (< 0: all).
+rows_file : str or None, default None
+    A rows CSV to write and resume (None: a temporary one, removed).
+cache_dir : str or None, default None
+    Influence-table cache (as quasistatic's).
+progress : callable or None, default None
+    progress(rows, total), called as cases complete.
+
+Returns
+-------
+Result
+    Per case (sorted by case_id): case_id, values (cases, columns) [the columns' units: _um µm,
+    _deg deg, _Nm N·m], ok, message, positions, converged, k_gamma [-], k_gamma_mean [-], lsr_min,
+    lsr_max [-], te_peak_to_peak_urad [µrad], sun_orbit_um [µm]; columns, header and rows_csv
+    (each row as the rows file has it); summary (cases, failed, k_gamma, k_gamma_mean,
+    te_peak_to_peak_urad, sun_orbit_um: count, mean, percentiles with confidence intervals;
+    spearman_k_gamma per column; with design = "sobol" also sobol: variables, complete_rows and
+    outputs, per rows-file result column the sobol_indices Result); study, cases, resumed,
+    computed, seconds [s], warnings.
+
+Raises
+------
+ValueError
+    A bad study file or argument (its name, value and rule).)doc");
   m.def("study_part", &StudyPart, py::arg("path"), py::kw_only(), py::arg("cases") = py::none(),
         py::arg("shard") = py::none(), py::arg("out_dir"), py::arg("threads") = 1,
         py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(), R"doc(
 One shard of a study (`epicycle study PATH --cases I:J | --shard K/N --out OUT_DIR`; docs/studies.md
-"Shards"): the cases I <= k < J (cases=(I, J)) or shard K of N (shard=(K, N), K from 0), with the
-seeds of a whole run, into OUT_DIR/study_cases_I_J.csv (resumed if it exists: a killed shard run
-again computes only its missing cases). threads: workers (default 1: a scheduler runs one shard
-per core; 0: every core); cache_dir as quasistatic; progress(rows, total).
-Returns Result: part_file, first_case, last_case, cases (the study's), rows, failed, resumed,
-computed, seconds [s].)doc");
+"Shards"), with the seeds of a whole run, into OUT_DIR/study_cases_I_J.csv (resumed if it exists:
+a killed shard run again computes only its missing cases).
+
+Parameters
+----------
+path : str
+    The study file (TOML).
+cases : tuple of int or None, default None
+    (I, J): the cases I <= k < J [-].
+shard : tuple of int or None, default None
+    (K, N): shard K of N, K from 0 [-] (give cases or shard).
+out_dir : str
+    The folder of the part file.
+threads : int, default 1
+    Workers [-] (1: a scheduler runs one shard per core; 0: every core).
+cache_dir : str or None, default None
+    Influence-table cache (as quasistatic's).
+progress : callable or None, default None
+    progress(rows, total), called as cases complete.
+
+Returns
+-------
+Result
+    part_file, first_case, last_case, cases (the study's), rows, failed, resumed, computed,
+    seconds [s].
+
+Raises
+------
+ValueError
+    A bad study file, case range or shard (its name, value and rule).)doc");
   m.def("study_merge", &StudyMerge, py::arg("parts"), py::kw_only(), py::arg("out_dir"),
         py::arg("study") = py::none(), R"doc(
-Joins a study's parts (`epicycle study merge PARTS --out OUT_DIR`): parts are part files or folders
-of them; writes OUT_DIR/study_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg, the files
-a single run writes. study: the study file (default: the one the first part names). A part of
-another study, two parts sharing cases (a shard given twice) or cases in no part (a missing shard)
-raise ValueError naming the part files and the case range.
-Returns Result: study, study_file, parts, cases, failed, rows_file, summary_file, k_gamma.)doc");
+Joins a study's parts (`epicycle study merge PARTS --out OUT_DIR`) into the files a single run
+writes: OUT_DIR/study_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg (and _sobol.svg
+for a Sobol design).
+
+Parameters
+----------
+parts : list of str
+    Part files or folders of them.
+out_dir : str
+    The folder of the merged files.
+study : str or None, default None
+    The study file (None: the one the first part names).
+
+Returns
+-------
+Result
+    study, study_file, parts, cases, failed, rows_file, summary_file, k_gamma.
+
+Raises
+------
+ValueError
+    A part of another study, two parts sharing cases (a shard given twice) or cases in no part (a
+    missing shard), naming the part files and the case range.)doc");
 }
 
 }  // namespace epicycle::python

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "common.hpp"
+#include "epicycle/dynamics/dynamic_factor.hpp"
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/run_arguments.hpp"
@@ -15,7 +16,11 @@
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/summary.hpp"
 #include "epicycle/dynamics/vibration.hpp"
+#include "epicycle/report/ratings.hpp"
+#include "epicycle/report/run_files.hpp"
+#include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_range.hpp"
+#include "epicycle/transmission/stage_problem.hpp"
 #include "scene.hpp"
 
 namespace epicycle::python {
@@ -95,13 +100,17 @@ py::object StatsObject(const dynamics::SimulationStats& st) {
 py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
                    const std::string& range, double time_s, int outputs_per_cycle, double start_deg,
                    const Integration& integration, std::optional<std::string> cache_dir,
-                   py::object progress, bool raise_on_failure) {
+                   py::object progress, bool raise_on_failure, bool stresses, bool rating) {
   if (time_s != 0) dynamics::CheckArgument("time_s", time_s, dynamics::kRunTimeS);  // 0: the range
   dynamics::CheckArgument("outputs_per_cycle", outputs_per_cycle, dynamics::kOutputsPerCycle);
   dynamics::CheckArgument("start_deg", start_deg, transmission::kCarrierAngleDeg);
   const dynamics::SimulationOptions opt = integration.Options();
   const transmission::RunRange run_range = transmission::RunRangeFromName(range);
-  const ScenePtr s = AtSpeed(scene, sun_speed_rpm);
+  // Stresses (or a rating, which needs them): the scene with [model] stresses = true, as the
+  // program's --stresses and --rating.
+  const ScenePtr at_speed = AtSpeed(scene, sun_speed_rpm);
+  const ScenePtr s = stresses || rating ? WithStresses(at_speed) : at_speed;
+  if (rating) transmission::CheckRatingInputs(s->scene(), "rating=True");
   CancelToken token;
   const Progress report(std::move(progress), &token);
   struct Out {
@@ -110,6 +119,8 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
     dynamics::SimulationResult result;
     std::vector<std::string> warnings;
     double sun_speed = 0;
+    dynamics::DynamicSummary summary;
+    std::optional<dynamics::MotionRating> rating;
   };
   const Out out = RunReleased(token, [&] {
     Out o;
@@ -128,12 +139,22 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
     o.warnings = o.rig->scene.warnings;
     for (const std::string& w : dynamics::DynamicWarnings(o.rig->stage, o.result.samples))
       o.warnings.push_back(w);
+    o.summary = dynamics::Summarise(o.result.samples);
+    if (rating && o.summary.samples > 0) {  // ISO 6336 with the run's K_v (docs/stresses.md)
+      dynamics::MotionLoads loads(o.rig->stage);
+      for (const dynamics::DynamicSample& x : o.result.samples) loads.Add(x);
+      o.rating = dynamics::RateRun(o.rig->scene, model, opt, o.span, loads, o.summary.root_stress);
+    }
     return o;
   });
 
   const int n = out.rig->stage.planets();
   const auto& samples = out.result.samples;
   const auto count = static_cast<py::ssize_t>(samples.size());
+  // Stresses: per step each gear's largest tension and compression [MPa] (NaN for a failed
+  // step), the columns sigma_t_<gear>_MPa, sigma_c_<gear>_MPa of the program's steps file.
+  const int bodies = out.rig->compliance.has_root_stress() ? transmission::PlanetBody(n) : 0;
+  std::vector<std::vector<double>> sigma(2 * static_cast<std::size_t>(bodies));
   std::vector<double> time, deg, balance, w_ext, w_diss, kin, elastic, compliance_work,
       friction_power, sun_bearing, planet_bearing;
   std::vector<int> contacts, active;
@@ -149,6 +170,12 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
     dynamics::VibrationValues(out.rig->model, x, &values);
     for (std::size_t c = 0; c < channels.size(); ++c) vibration[c].push_back(values[c]);
     const dynamics::Evaluation& e = x.evaluation;
+    for (int b = 0; b < bodies; ++b) {
+      const bool has = std::ssize(x.root_stress) > b;
+      const auto k = static_cast<std::size_t>(b);
+      sigma[2 * k].push_back(has ? x.root_stress[k].tension / 1e6 : kNaN);
+      sigma[2 * k + 1].push_back(has ? x.root_stress[k].compression / 1e6 : kNaN);
+    }
     time.push_back(x.time);
     deg.push_back(geometry::Deg(x.carrier_angle));
     std::vector<double> factors;
@@ -204,7 +231,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   }
   vib["channels"] = kinds;
 
-  const dynamics::DynamicSummary sum = dynamics::Summarise(samples);
+  const dynamics::DynamicSummary& sum = out.summary;
   py::dict summary;
   summary["samples"] = sum.samples;
   summary["lsr_mean"] = Array(std::vector<double>(sum.lsr_mean));
@@ -217,6 +244,10 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   summary["orbit_radius_max_um"] = sum.orbit_radius * 1e6;
   summary["orbit_radius_mean_um"] = sum.orbit_mean_radius * 1e6;
   summary["max_pair_force_N"] = sum.max_pair_force;
+  // Stresses on: the summary JSON's root_stress (report/), as Python objects.
+  if (!sum.root_stress.empty())
+    summary["root_stress"] =
+        JsonToPython(report::RootStressJson(sum.root_stress, "time_s", 1.0));
 
   const dynamics::StageDynamics& rig = *out.rig;
   py::dict f;
@@ -254,6 +285,16 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   f["stats"] = StatsObject(out.result.stats);
   f["completed"] = out.result.completed;
   f["message"] = out.result.message;
+  if (bodies > 0) {
+    py::dict root;
+    const std::vector<std::string> gears = transmission::BodyNames(bodies);
+    for (std::size_t b = 0; b < gears.size(); ++b) {
+      root[("sigma_t_" + gears[b] + "_MPa").c_str()] = Array(std::move(sigma[2 * b]));
+      root[("sigma_c_" + gears[b] + "_MPa").c_str()] = Array(std::move(sigma[2 * b + 1]));
+    }
+    f["root_stress"] = Result(root);
+  }
+  if (out.rating) f["rating"] = JsonToPython(report::RatingJson(out.rating->rating));
   f["warnings"] = out.warnings;
   py::object result = Result(f);
   if (!out.result.completed && raise_on_failure)
@@ -488,12 +529,29 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
   return result;
 }
 
+// The integration parameters dynamic and speed_sweep share (numpydoc entries).
 const char* kIntegrationDoc = R"doc(
-Integration: integrator "cvode-bdf" (default) or "arkode-erk"; rtol [-]; rate_scale [1/s] (None:
-the library's default 1e4; 0: the stage's highest linearised natural frequency); contact_tol [-]
-(None: 1e-10, on the nondimensional residual); max_order: CVODE's largest BDF order;
-analytic_jacobian: the contact sensitivity (False: CVODE's difference quotients); backend: the
-contact back end.)doc";
+integrator : str, default "cvode-bdf"
+    "cvode-bdf" or "arkode-erk".
+rtol : float, default 1e-6
+    Relative tolerance [-].
+rate_scale : float or None, default None
+    Rate tolerance scale [1/s] (None: the library's default 1e4; 0: the stage's highest
+    linearised natural frequency).
+contact_tol : float or None, default None
+    Contact solve tolerance [-] on the nondimensional residual (None: 1e-10).
+max_order : int, default 5
+    CVODE's largest BDF order [-].
+analytic_jacobian : bool, default True
+    The contact sensitivity (False: CVODE's difference quotients).
+backend : str, default "newton"
+    The contact back end.
+cache_dir : str or None, default None
+    Influence-table cache (as quasistatic's).
+progress : callable or None, default None
+    progress(done, total), called as results complete.
+raise_on_failure : bool, default True
+    Raise ComputationError on a failure (else return the Result).)doc";
 
 }  // namespace
 
@@ -518,56 +576,106 @@ void BindDynamic(py::module_& m) {
           double time_s, int outputs_per_cycle, double start_deg, const std::string& integrator,
           double rtol, std::optional<double> rate_scale, std::optional<double> contact_tol,
           int max_order, bool analytic_jacobian, const std::string& backend,
-          std::optional<std::string> cache_dir, py::object progress, bool raise_on_failure) {
+          std::optional<std::string> cache_dir, py::object progress, bool raise_on_failure,
+          bool stresses, bool rating) {
         return Dynamic(s, sun_speed_rpm, range, time_s, outputs_per_cycle, start_deg,
                        integration(integrator, rtol, rate_scale, contact_tol, max_order,
                                    analytic_jacobian, backend),
-                       cache_dir, std::move(progress), raise_on_failure);
+                       cache_dir, std::move(progress), raise_on_failure, stresses, rating);
       },
-      py::arg("scene"), py::arg("sun_speed_rpm") = py::none(), py::arg("range") = "planet",
+      py::arg("scene"), py::arg("sun_speed_rpm") = py::none(), py::kw_only(),
+      py::arg("range") = "planet",
       py::arg("time_s") = 0.0, py::arg("outputs_per_cycle") = 20, py::arg("start_deg") = 0.0,
       py::arg("integrator") = "cvode-bdf", py::arg("rtol") = 1e-6,
       py::arg("rate_scale") = py::none(), py::arg("contact_tol") = py::none(),
       py::arg("max_order") = 5, py::arg("analytic_jacobian") = true, py::arg("backend") = "newton",
       py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
-      py::arg("raise_on_failure") = true,
+      py::arg("raise_on_failure") = true, py::arg("stresses") = false, py::arg("rating") = false,
       (std::string(R"doc(
 The dynamic model of a stage integrated in time (`epicycle dynamic`; docs/dynamic.md), from the
 quasi-static solution at t = 0. The dynamic settings are the scene's ([dynamics], [lubricant],
 [supports] keys).
 
-sun_speed_rpm: sun speed [rpm] (None: the scene's dynamics.sun_speed_rpm; given: that key is set,
-  with the scene reader's checks); range: "cycle", "planet" (default), "sun", "revolution" of
-  carrier rotation (as quasistatic); time_s: simulate this long instead [s]; outputs_per_cycle: output steps per mesh cycle
-  [-]; start_deg: carrier angle at t = 0 [deg]; cache_dir, progress(done, total) as quasistatic.)doc") +
+Parameters
+----------
+scene : Scene
+    A stage scene.
+sun_speed_rpm : float or None, default None
+    Sun speed [rpm] (None: the scene's dynamics.sun_speed_rpm; given: that key is set, with the
+    scene reader's checks).
+range : str, default "planet"
+    Carrier rotation simulated: "cycle", "planet", "sun", "revolution" (as quasistatic's).
+time_s : float, default 0
+    Simulate this long instead [s] (0: the range).
+outputs_per_cycle : int, default 20
+    Output steps per mesh cycle [-].
+start_deg : float, default 0
+    Carrier angle at t = 0 [deg].)doc") +
        kIntegrationDoc + R"doc(
-Returns Result with per output step (T steps, n planets): time_s [s], carrier_deg [deg], lsr (T, n)
-[-], load_sharing_factor (T, n) [-], k_gamma [-], te_urad [µrad] (dynamic TE at the sun), sun_x_um,
-sun_y_um [µm] (sun centre from nominal), sun_torque_balance_Nm [N·m], external_work_J,
-dissipated_work_J, kinetic_energy_J, elastic_energy_J, compliance_work_J [J], contacts, active_contacts,
-friction_power_W [W], sun_bearing_force_N (T, 2) [N], planet_bearing_force_N (T, n, 2) [N]; pairs
-(per loaded tooth pair and step: time_s, mesh, kind, flank, tooth_a, tooth_b, normal_force_N,
-elastic_force_N, friction_force_N [N], overlap_rate_mm_per_s [mm/s]); vibration (per step, the
-signals of docs/spectra.md: te_rad, ring_force_x_N, ring_force_y_N, ring_torque_Nm,
-sun_force_x_N/sun_force_y_N (held sun) or sun_x_m/sun_y_m (floating), and channels: (name,
-"torsional" or "housing") pairs); summary (lsr_mean/min/max
-(n,) [-], k_gamma [-], te_min/max/peak_to_peak_urad [µrad], orbit_radius_max/mean_um [µm],
-max_pair_force_N [N]); stats (integrator counts, times [s]); sun_speed_rpm, mesh_frequency_Hz,
-duration_s, outputs, mesh stiffness [N/m] and damping [N·s/m] of the meshes, completed, message,
-warnings. Raises ComputationError (with .result, the steps computed) if the run stopped early and
-raise_on_failure.)doc")
+stresses : bool, default False
+    Root stresses per output step (docs/stresses.md; the scene's model.stresses), as
+    `epicycle dynamic --stresses`.
+rating : bool, default False
+    ISO 6336 ratings with the run's K_v (implies stresses; needs the scene's
+    material.bending_limit_MPa and material.contact_limit_MPa), as `epicycle dynamic --rating`.
+
+Returns
+-------
+Result
+    Per output step (T steps, n planets): time_s [s], carrier_deg [deg], lsr (T, n) [-],
+    load_sharing_factor (T, n) [-], k_gamma [-], te_urad [µrad] (dynamic TE at the sun), sun_x_um,
+    sun_y_um [µm] (sun centre from nominal), sun_torque_balance_Nm [N·m], external_work_J,
+    dissipated_work_J, kinetic_energy_J, elastic_energy_J, compliance_work_J [J], contacts,
+    active_contacts, friction_power_W [W], sun_bearing_force_N (T, 2) [N],
+    planet_bearing_force_N (T, n, 2) [N]; pairs (per loaded tooth pair and step: time_s, mesh,
+    kind, flank, tooth_a, tooth_b, normal_force_N, elastic_force_N, friction_force_N [N],
+    overlap_rate_mm_per_s [mm/s]); vibration (per step, the signals of docs/spectra.md: te_rad,
+    ring_force_x_N, ring_force_y_N, ring_torque_Nm, sun_force_x_N/sun_force_y_N (held sun) or
+    sun_x_m/sun_y_m (floating), and channels: (name, "torsional" or "housing")
+    pairs); summary (lsr_mean/min/max (n,) [-], k_gamma [-], te_min/max/peak_to_peak_urad [µrad],
+    orbit_radius_max/mean_um [µm], max_pair_force_N [N]); stats (integrator counts, times [s]);
+    sun_speed_rpm [rpm], mesh_frequency_Hz [Hz], duration_s [s], outputs, mesh stiffness [N/m]
+    and damping [N·s/m] of the meshes, completed, message, warnings.
+    With stresses: root_stress (per step sigma_t_<gear>_MPa, sigma_c_<gear>_MPa [MPa], each
+    gear's largest tension and compression, NaN for a failed step: the steps file's columns) and
+    the summary's root_stress (per gear tension_MPa, compression_MPa [MPa] with time_s [s], tooth,
+    fillet and arc_from_space_centre_mm [mm], largest_range_MPa: the summary JSON's).
+    With rating: rating, as the summary JSON's (per gear sigma_F_*_MPa, S_F_*, sigma_H_*_MPa,
+    S_H_*; every factor with its value and source, K_v the run's).
+
+Raises
+------
+ValueError
+    Bad input (the argument's name, value and rule), a rating without the material's limits.
+ComputationError
+    The run stopped early and raise_on_failure (its .result the steps computed).)doc")
           .c_str());
-  m.def("modes", &Modes, py::arg("scene"), py::arg("cache_dir") = py::none(), R"doc(
+  m.def("modes", &Modes, py::arg("scene"), py::kw_only(), py::arg("cache_dir") = py::none(), R"doc(
 Natural modes of a stage linearised about its operating point (`epicycle modes`; docs/dynamic.md):
 the tangent mesh stiffness dF/dδ at the scene's load, carrier angle 0.
 
-Returns Result with per mode group (M groups): frequency_Hz [Hz], multiplicity [-], type
-("rigid", "rotational", "translational", "planet", "other"), rigid (bool),
-central_translation_energy, central_rotation_energy, planet_energy [-] (kinetic-energy fractions),
-member_energy (M, members) [-], shapes (list of (dofs, multiplicity) arrays, M-orthonormal; units
-of dofs: [m] or [rad]), sun_rpm_at_mesh_harmonics_1_2_3 (M, 3) [rpm] (NaN: none); dofs, members
-(names); mesh_hz_per_sun_rpm [Hz/rpm]; mesh_stiffness_*_N_per_m (tangent, used) and
-secant_mesh_stiffness_*_N_per_m [N/m]; ring_elastic, sun_support, warnings.)doc");
+Parameters
+----------
+scene : Scene
+    A stage scene.
+cache_dir : str or None, default None
+    Influence-table cache (as quasistatic's).
+
+Returns
+-------
+Result
+    Per mode group (M groups): frequency_Hz [Hz], multiplicity [-], type ("rigid", "rotational",
+    "translational", "planet", "other"), rigid (bool), central_translation_energy,
+    central_rotation_energy, planet_energy [-] (kinetic-energy fractions), member_energy
+    (M, members) [-], shapes (list of (dofs, multiplicity) arrays, M-orthonormal; units of dofs:
+    [m] or [rad]), sun_rpm_at_mesh_harmonics_1_2_3 (M, 3) [rpm] (NaN: none); dofs, members
+    (names); mesh_hz_per_sun_rpm [Hz/rpm]; mesh_stiffness_*_N_per_m (tangent, used) and
+    secant_mesh_stiffness_*_N_per_m [N/m]; ring_elastic, sun_support, warnings.
+
+Raises
+------
+ValueError
+    A gear-pair scene, or a bad scene value.)doc");
   m.def(
       "speed_sweep",
       [integration](const ScenePtr& s, const std::vector<double>& sun_speeds_rpm,
@@ -583,7 +691,8 @@ secant_mesh_stiffness_*_N_per_m [N/m]; ring_elastic, sun_support, warnings.)doc"
                                       analytic_jacobian, backend),
                           cache_dir, std::move(progress), raise_on_failure);
       },
-      py::arg("scene"), py::arg("sun_speeds_rpm"), py::arg("range") = "planet",
+      py::arg("scene"), py::arg("sun_speeds_rpm"), py::kw_only(),
+      py::arg("range") = "planet",
       py::arg("window_cycles") = 0.0, py::arg("outputs_per_cycle") = 64, py::arg("start_deg") = 0.0,
       py::arg("harmonics") = 6, py::arg("threads") = 0, py::arg("integrator") = "cvode-bdf",
       py::arg("rtol") = 1e-6, py::arg("rate_scale") = py::none(),
@@ -595,23 +704,48 @@ secant_mesh_stiffness_*_N_per_m [N/m]; ring_elastic, sun_support, warnings.)doc"
 A speed sweep of the dynamic model (`epicycle dynamic --speed-sweep`; docs/speed_sweeps.md): each
 sun speed run from the quasi-static solution, its start transient skipped, then a window measured.
 
-sun_speeds_rpm: increasing sun speeds [rpm] (epicycle.speed_grid(from, to, n)); range: the window,
-  "cycle", "planet" (default), "sun", "revolution", or window_cycles > 0 mesh cycles [-];
-  outputs_per_cycle: samples per mesh cycle [-]; start_deg: carrier angle where the window begins
-  [deg]; harmonics: mesh harmonics 1..h for the coincidences; threads: workers (0: every core);
-  cache_dir, progress(done, total) as quasistatic.)doc") +
+Parameters
+----------
+scene : Scene
+    A stage scene.
+sun_speeds_rpm : list of float
+    Increasing sun speeds [rpm] (epicycle.speed_grid(from, to, n)).
+range : str, default "planet"
+    The window: "cycle", "planet", "sun", "revolution".
+window_cycles : float, default 0
+    A window of this many mesh cycles [-] instead of range (0: range).
+outputs_per_cycle : int, default 64
+    Samples per mesh cycle [-].
+start_deg : float, default 0
+    Carrier angle where the window begins [deg].
+harmonics : int, default 6
+    Mesh harmonics 1..h for the coincidences [-].
+threads : int, default 0
+    Workers [-] (0: every core).)doc") +
        kIntegrationDoc + R"doc(
-Returns Result with per speed: sun_speed_rpm [rpm], mesh_frequency_Hz [Hz], ok, message, k_gamma
-[-], dynamic_factor [-] (K_v) and dynamic_factor_mesh, peak_mesh_force_N [N] and that mesh's
-reference_peak_mesh_force_N [N] (the quasi-static one at the speed, with its friction at rest),
-te_amplitude_urad [µrad], sun_orbit_radius_um [µm], lsr_min, lsr_max [-], lsr_deviation (the
-largest |LSR_i − 1/n|) [-] with lsr_deviation_parts (sun_rotation, sun_translation, bearing,
-friction, off_line, geometry, residual [-] at that sample and planet; they sum to the signed
-deviation) and largest_residual [-] (NaN where failed), wall_s, cpu_s [s],
-warnings; modes (frequency_Hz, type, damping_ratio, decay_rate_per_s, families), coincidences
-(sun_speed_rpm, frequency_Hz, mode, harmonic, phasing_excited), meshes, mesh_hz_per_sun_rpm,
-skip_time_s [s], the quasi-static reference qs_k_gamma, qs_te_amplitude_urad, qs_peak_mesh_force_N
-per mesh, window_carrier_deg. Raises ComputationError (with .result) if a speed failed.)doc")
+
+Returns
+-------
+Result
+    Per speed: sun_speed_rpm [rpm], mesh_frequency_Hz [Hz], ok, message, k_gamma [-],
+    dynamic_factor [-] (K_v) and dynamic_factor_mesh, peak_mesh_force_N [N] and that mesh's
+    reference_peak_mesh_force_N [N] (the quasi-static one at the speed, with its friction at
+    rest), te_amplitude_urad [µrad], sun_orbit_radius_um [µm], lsr_min, lsr_max [-],
+    lsr_deviation (the largest |LSR_i − 1/n|) [-] with lsr_deviation_parts (sun_rotation,
+    sun_translation, bearing, friction, off_line, geometry, residual [-] at that sample and
+    planet; they sum to the signed deviation) and largest_residual [-] (NaN where failed),
+    wall_s, cpu_s [s], warnings; modes (frequency_Hz [Hz], type, damping_ratio [-],
+    decay_rate_per_s [1/s], families), coincidences (sun_speed_rpm [rpm], frequency_Hz [Hz], mode,
+    harmonic, phasing_excited), meshes, mesh_hz_per_sun_rpm [Hz/rpm], skip_time_s [s], the
+    quasi-static reference qs_k_gamma [-], qs_te_amplitude_urad [µrad], qs_peak_mesh_force_N [N]
+    per mesh, window_carrier_deg [deg].
+
+Raises
+------
+ValueError
+    Bad input (the argument's name, value and rule).
+ComputationError
+    A speed failed and raise_on_failure (its .result the Result above).)doc")
           .c_str());
   m.def(
       "speed_grid",
@@ -622,7 +756,27 @@ per mesh, window_carrier_deg. Raises ComputationError (with .result) if a speed 
         return Array(dynamics::SpeedGrid(from_rpm, to_rpm, count));
       },
       py::arg("from_rpm"), py::arg("to_rpm"), py::arg("count"),
-      "`count` sun speeds [rpm] from from_rpm to to_rpm, ends included, equally spaced.");
+      R"doc(
+Sun speeds equally spaced from from_rpm to to_rpm, ends included (for speed_sweep).
+
+Parameters
+----------
+from_rpm : float
+    First speed [rpm].
+to_rpm : float
+    Last speed [rpm].
+count : int
+    Speeds [-].
+
+Returns
+-------
+numpy.ndarray
+    (count,) sun speeds [rpm].
+
+Raises
+------
+ValueError
+    A speed or count outside its rule.)doc");
 }
 
 }  // namespace epicycle::python

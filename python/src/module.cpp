@@ -1,5 +1,6 @@
 // The module `epicycle._epicycle` (imported by the package epicycle: python/epicycle/__init__.py).
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 #include "common.hpp"
 
@@ -21,6 +22,10 @@ void RaiseComputationError(const std::string& message, const py::object& result)
   const py::object error = type(message, result);
   PyErr_SetObject(type.ptr(), error.ptr());
   throw py::error_already_set();
+}
+
+py::object JsonToPython(const nlohmann::json& j) {
+  return py::module_::import("json").attr("loads")(j.dump());
 }
 
 solvers::Backend BackendOf(const std::string& name) { return solvers::BackendFromName(name); }
@@ -49,4 +54,5 @@ PYBIND11_MODULE(_epicycle, m) {
   ep::BindDynamic(m);
   ep::BindStudies(m);
   ep::BindContact(m);
+  ep::BindStream(m);
 }

@@ -97,6 +97,14 @@ void Scene::Assign(const Scene& other) {
   dynamics_.reset();
 }
 
+std::shared_ptr<Scene> WithStresses(const std::shared_ptr<Scene>& s) {
+  if (s->scene().model.stresses) return s;
+  return s->Edited([](toml::table& t) {
+    if (!t["model"].is_table()) t.insert_or_assign("model", toml::table{});
+    t["model"].as_table()->insert_or_assign("stresses", true);
+  });
+}
+
 std::shared_ptr<const StageRig> Scene::Rig(const std::optional<std::string>& cache_dir,
                                            const char* command) const {
   const transmission::FeComplianceOptions fe = TableOptions(cache_dir);
@@ -269,8 +277,6 @@ void EditInPlace(Scene& s, Edit&& edit) {
   s.Assign(*s.Edited(std::forward<Edit>(edit)));
 }
 
-const char* kGearHelp = "gear: \"sun\", \"ring\", \"planet1\"..\"planetN\" (docs/scenes.md)";
-
 }  // namespace
 
 void BindScene(py::module_& m) {
@@ -282,9 +288,39 @@ key, value, rule) and leaves the scene unchanged.)doc")
       .def_static("load", &Scene::Load, py::arg("path"), R"doc(
 Reads a scene file.
 
-path: the TOML file. Raises ValueError with the reader's message (a missing file, a bad value).)doc")
-      .def_static("parse", &Scene::Parse, py::arg("text"), py::arg("source") = "<string>", R"doc(
-Reads a scene from TOML text; `source` names it in messages (as a file name would).)doc")
+Parameters
+----------
+path : str
+    The TOML file.
+
+Returns
+-------
+Scene
+    The scene the file gives.
+
+Raises
+------
+ValueError
+    The reader's message (a missing file, a bad value: file, line, key, value, rule).)doc")
+      .def_static("parse", &Scene::Parse, py::arg("text"), py::kw_only(), py::arg("source") = "<string>", R"doc(
+Reads a scene from TOML text.
+
+Parameters
+----------
+text : str
+    The scene's TOML.
+source : str, default "<string>"
+    Names the text in messages (as a file name would).
+
+Returns
+-------
+Scene
+    The scene the text gives.
+
+Raises
+------
+ValueError
+    The reader's message (line, key, value, rule).)doc")
       .def(
           "__getitem__",
           [](const Scene& s, const std::string& key) {
@@ -293,14 +329,38 @@ Reads a scene from TOML text; `source` names it in messages (as a file name woul
             return ToPython(*v.node());
           },
           py::arg("key"), R"doc(
-The value of a scene key as written in the scene, in the key's unit: scene["load.sun_torque_Nm"]
-[N·m], scene["errors.runout[0].amplitude_um"] [µm]. KeyError if the scene does not give it.)doc")
+The value of a scene key as written in the scene, in the key's unit.
+
+Parameters
+----------
+key : str
+    A key path: "load.sun_torque_Nm" [N·m], "errors.runout[0].amplitude_um" [µm].
+
+Returns
+-------
+object
+    The value (a number in the key's unit, a string, a list or a dict).
+
+Raises
+------
+KeyError
+    The scene does not give the key (its default applies).)doc")
       .def(
           "__contains__",
           [](const Scene& s, const std::string& key) {
             return static_cast<bool>(s.table().at_path(key));
           },
-          py::arg("key"), "Whether the scene gives the key (else its default applies).")
+          py::arg("key"), R"doc(
+Whether the scene gives a key (else its default applies).
+
+Parameters
+----------
+key : str
+    A key path ("supports.sun").
+
+Returns
+-------
+bool)doc")
       .def(
           "get",
           [](const Scene& s, const std::string& key, py::object fallback) {
@@ -308,16 +368,39 @@ The value of a scene key as written in the scene, in the key's unit: scene["load
             return v ? ToPython(*v.node()) : fallback;
           },
           py::arg("key"), py::arg("default") = py::none(),
-          "The value of a scene key in its unit, or `default` where the scene does not give it.")
+          R"doc(
+The value of a scene key in its unit, or `default` where the scene does not give it.
+
+Parameters
+----------
+key : str
+    A key path ("load.sun_torque_Nm").
+default : object, default None
+    Returned when the scene does not give the key.
+
+Returns
+-------
+object)doc")
       .def(
           "set",
           [](Scene& s, const std::string& key, py::object value) {
             EditInPlace(s, [&](toml::table& t) { SetKey(t, key, value); });
           },
           py::arg("key"), py::arg("value"), R"doc(
-Sets a scene key to `value` in the key's unit (None removes it: its default applies), e.g.
-scene.set("supports.sun", "floating"), scene.set("load.sun_torque_Nm", -700.0). Tables are created
-as needed. Raises ValueError with the scene reader's message for a bad value or an unknown key.)doc")
+Sets a scene key in place: scene.set("supports.sun", "floating"),
+scene.set("load.sun_torque_Nm", -700.0). Tables are created as needed.
+
+Parameters
+----------
+key : str
+    A key path.
+value : object
+    The value in the key's unit (None removes the key: its default applies).
+
+Raises
+------
+ValueError
+    The scene reader's message for a bad value or an unknown key (the scene unchanged).)doc")
       .def(
           "with_values",
           [](const Scene& s, const py::dict& values) {
@@ -326,10 +409,29 @@ as needed. Raises ValueError with the scene reader's message for a bad value or 
             });
           },
           py::arg("values"), R"doc(
-A copy with several keys set ({key: value in the key's unit}); this scene is unchanged.)doc")
+A copy with several keys set; this scene is unchanged.
+
+Parameters
+----------
+values : dict
+    {key path: value in the key's unit}.
+
+Returns
+-------
+Scene
+
+Raises
+------
+ValueError
+    The scene reader's message for a bad value (the scene unchanged).)doc")
       .def(
           "copy", [](const Scene& s) { return s.Edited([](toml::table&) {}); },
-          "A copy of the scene (its TOML as written by the editor).")
+          R"doc(
+A copy of the scene (its TOML as written by the editor).
+
+Returns
+-------
+Scene)doc")
       .def(
           "keys",
           [](const Scene& s) {
@@ -337,7 +439,13 @@ A copy with several keys set ({key: value in the key's unit}); this scene is unc
             KeyPaths(s.table(), "", out);
             return out;
           },
-          "Every key the scene gives, as paths (\"sun.cutter.type\", \"errors.runout[0].gear\").")
+          R"doc(
+Every key the scene gives.
+
+Returns
+-------
+list of str
+    Key paths ("sun.cutter.type", "errors.runout[0].gear").)doc")
       .def(
           "add_pin",
           [](Scene& s, const std::string& gear, double radial_um, double tangential_um) {
@@ -347,10 +455,23 @@ A copy with several keys set ({key: value in the key's unit}); this scene is unc
             f["tangential_um"] = tangential_um;
             EditInPlace(s, [&](toml::table& t) { AppendTable(t, "errors.pin", f); });
           },
-          py::arg("gear"), py::arg("radial_um") = 0.0, py::arg("tangential_um") = 0.0,
+          py::arg("gear"), py::kw_only(), py::arg("radial_um") = 0.0, py::arg("tangential_um") = 0.0,
           R"doc(
-Adds a planet pin-hole position error ([[errors.pin]]): gear "planet1".."planetN", radial_um [µm]
-(outward), tangential_um [µm] (counter-clockwise). ValueError with the reader's message.)doc")
+Adds a planet pin-hole position error ([[errors.pin]]).
+
+Parameters
+----------
+gear : str
+    "planet1".."planetN".
+radial_um : float, default 0
+    Radial error [µm] (outward +).
+tangential_um : float, default 0
+    Tangential error [µm] (counter-clockwise +).
+
+Raises
+------
+ValueError
+    The scene reader's message for a bad value (the scene unchanged).)doc")
       .def(
           "add_runout",
           [](Scene& s, const std::string& gear, double amplitude_um, double phase_deg) {
@@ -360,12 +481,23 @@ Adds a planet pin-hole position error ([[errors.pin]]): gear "planet1".."planetN
             f["phase_deg"] = phase_deg;
             EditInPlace(s, [&](toml::table& t) { AppendTable(t, "errors.runout", f); });
           },
-          py::arg("gear"), py::arg("amplitude_um"), py::arg("phase_deg") = 0.0,
-          (std::string(R"doc(
-Adds a run-out ([[errors.runout]]): the geometric centre amplitude_um [µm] off the rotation centre
-at phase_deg [deg] in the gear's frame. )doc") +
-           kGearHelp)
-              .c_str())
+          py::arg("gear"), py::arg("amplitude_um"), py::kw_only(), py::arg("phase_deg") = 0.0,
+          R"doc(
+Adds a run-out ([[errors.runout]]): the geometric centre off the rotation centre.
+
+Parameters
+----------
+gear : str
+    "sun", "ring", "planet1".."planetN" (docs/scenes.md).
+amplitude_um : float
+    The offset [µm].
+phase_deg : float, default 0
+    Its direction in the gear's frame [deg].
+
+Raises
+------
+ValueError
+    The scene reader's message for a bad value (the scene unchanged).)doc")
       .def(
           "add_thickness",
           [](Scene& s, const std::string& gear, double error_um) {
@@ -375,11 +507,20 @@ at phase_deg [deg] in the gear's frame. )doc") +
             EditInPlace(s, [&](toml::table& t) { AppendTable(t, "errors.thickness", f); });
           },
           py::arg("gear"), py::arg("error_um"),
-          (std::string(R"doc(
-Adds a tooth-thickness error ([[errors.thickness]]): error_um [µm] normal to the flank, both
-flanks, + thicker. )doc") +
-           kGearHelp)
-              .c_str())
+          R"doc(
+Adds a tooth-thickness error ([[errors.thickness]]), normal to the flank, both flanks.
+
+Parameters
+----------
+gear : str
+    "sun", "ring", "planet1".."planetN" (docs/scenes.md).
+error_um : float
+    The error [µm] (+ thicker).
+
+Raises
+------
+ValueError
+    The scene reader's message for a bad value (the scene unchanged).)doc")
       .def(
           "add_pit",
           [](Scene& s, const std::string& gear, int tooth, const std::string& flank,
@@ -403,13 +544,31 @@ flanks, + thicker. )doc") +
           py::arg("gear"), py::arg("tooth"), py::arg("flank"), py::kw_only(),
           py::arg("roll_deg") = py::none(), py::arg("radius_mm") = py::none(),
           py::arg("width_fraction") = 1.0, py::arg("depth_um"),
-          (std::string(R"doc(
-Adds a pit or spall ([[damage.pit]], docs/model.md §9 "Pitting and spalls"): on tooth `tooth`
-(body frame, 0..z-1) of `gear`, flank "+" or "-", over roll_deg=(from, to) [deg] of involute roll
-angle or radius_mm=(from, to) [mm], covering width_fraction [-] of the face width, depth_um [µm]
-deep. )doc") +
-           kGearHelp)
-              .c_str())
+          R"doc(
+Adds a pit or spall ([[damage.pit]], docs/model.md §9 "Pitting and spalls") on one flank of one
+tooth; the region by roll angle or by radius, one of the two.
+
+Parameters
+----------
+gear : str
+    "sun", "ring", "planet1".."planetN" (docs/scenes.md).
+tooth : int
+    The tooth (body frame, 0..z-1).
+flank : str
+    "+" or "-".
+roll_deg : tuple of float or None, default None
+    (from, to) involute roll angle [deg].
+radius_mm : tuple of float or None, default None
+    (from, to) radius [mm].
+width_fraction : float, default 1
+    The share of the face width covered [-].
+depth_um : float
+    The depth [µm].
+
+Raises
+------
+ValueError
+    The scene reader's message for a bad value (the scene unchanged).)doc")
       .def(
           "add_crack",
           [](Scene& s, const std::string& gear, int tooth, const std::string& side,
@@ -440,15 +599,33 @@ deep. )doc") +
           py::arg("start") = py::none(), py::arg("start_arc_mm") = py::none(),
           py::arg("depth_mm") = py::none(), py::arg("angle_deg") = py::none(),
           py::arg("path_mm_deg") = py::none(),
-          (std::string(R"doc(
-Adds a root crack ([[damage.crack]], docs/model.md §9 "Root crack"; one per gear): in tooth `tooth`
-(body frame, 0..z-1) of `gear`, on the fillet of flank side "+" or "-"; starting at
-start="largest_tension" (the default) or "iso_30deg", or at start_arc_mm [mm] along the fillet
-from the space centre line; a straight crack of depth_mm [mm] at angle_deg [deg] to the tooth
-centre line (below 90 toward the root), or a polyline path_mm_deg=[(length_mm, angle_deg), ...].
-The crack is open; it needs gmsh, and no root stresses can be asked with it. )doc") +
-           kGearHelp)
-              .c_str())
+          R"doc(
+Adds a root crack ([[damage.crack]], docs/model.md §9 "Root crack"; one per gear). The crack is
+open; it needs gmsh, and no root stresses can be asked with it.
+
+Parameters
+----------
+gear : str
+    "sun", "ring", "planet1".."planetN" (docs/scenes.md).
+tooth : int
+    The cracked tooth (body frame, 0..z-1).
+side : str
+    The fillet of flank side "+" or "-".
+start : str or None, default None
+    "largest_tension" (the default) or "iso_30deg".
+start_arc_mm : float or None, default None
+    The start at this arc length [mm] along the fillet from the space centre line instead.
+depth_mm : float or None, default None
+    A straight crack's depth [mm].
+angle_deg : float or None, default None
+    A straight crack's angle to the tooth centre line [deg] (below 90 toward the root).
+path_mm_deg : list of (float, float) or None, default None
+    A polyline instead: [(length_mm [mm], angle_deg [deg]), ...].
+
+Raises
+------
+ValueError
+    The scene reader's message for a bad value (the scene unchanged).)doc")
       .def(
           "set_pitch",
           [](Scene& s, const std::string& gear, py::object single_um, py::object cumulative_um,
@@ -460,11 +637,28 @@ The crack is open; it needs gmsh, and no root stresses can be asked with it. )do
             f["seed"] = seed;
             EditInPlace(s, [&](toml::table& t) { SetTable(t, gear + ".pitch", f); });
           },
-          py::arg("gear"), py::arg("single_um") = py::none(), py::arg("cumulative_um") = py::none(),
+          py::arg("gear"), py::kw_only(), py::arg("single_um") = py::none(), py::arg("cumulative_um") = py::none(),
           py::arg("iso1328_grade") = py::none(), py::arg("seed") = py::none(), R"doc(
-Sets a gear's pitch deviations ([<gear>.pitch], gear "sun", "planet", "ring", "gear1", "gear2"):
-exactly one of single_um (z values [µm], summing to 0), cumulative_um (z values [µm]) or
-iso1328_grade (class 1..11, with seed >= 0).)doc")
+Sets a gear's pitch deviations ([<gear>.pitch]): exactly one of single_um, cumulative_um or
+iso1328_grade.
+
+Parameters
+----------
+gear : str
+    "sun", "planet", "ring", "gear1", "gear2".
+single_um : list of float or None, default None
+    z single pitch deviations [µm], summing to 0.
+cumulative_um : list of float or None, default None
+    z cumulative pitch deviations [µm].
+iso1328_grade : int or None, default None
+    ISO 1328-1 class 1..11 (with seed).
+seed : int or None, default None
+    The sampling's seed, >= 0.
+
+Raises
+------
+ValueError
+    The scene reader's message for a bad value (the scene unchanged).)doc")
       .def(
           "set_relief",
           [](Scene& s, const std::string& gear, const py::kwargs& keys) {
@@ -473,9 +667,20 @@ iso1328_grade (class 1..11, with seed >= 0).)doc")
             EditInPlace(s, [&](toml::table& t) { SetTable(t, gear + ".modification", f); });
           },
           py::arg("gear"), R"doc(
-Sets a gear's profile relief ([<gear>.modification]) from its keys: tip_relief_um [µm],
-tip_relief_start_mm [mm] or tip_relief_start_roll_deg [deg], tip_relief_shape ("linear",
-"parabolic"), and the same root_relief_* keys. Replaces the gear's previous relief.)doc")
+Sets a gear's profile relief ([<gear>.modification]); replaces the gear's previous relief.
+
+Parameters
+----------
+gear : str
+    "sun", "planet", "ring", "gear1", "gear2".
+**kwargs
+    tip_relief_um [µm], tip_relief_start_mm [mm] or tip_relief_start_roll_deg [deg],
+    tip_relief_shape ("linear", "parabolic"), and the same root_relief_* keys.
+
+Raises
+------
+ValueError
+    The scene reader's message for a bad value (the scene unchanged).)doc")
       .def_property_readonly("text", &Scene::text, "The scene's TOML text.")
       .def_property_readonly(
           "source", [](const Scene& s) { return s.scene().source; },

@@ -113,6 +113,10 @@ class Scene {
   mutable std::string dynamics_cache_;
 };
 
+/// The scene of a run with stresses (docs/stresses.md): `s` itself if its [model] stresses is on,
+/// else a copy with it on.
+std::shared_ptr<Scene> WithStresses(const std::shared_ptr<Scene>& s);
+
 /// The scene of a command that needs a stage. @throws std::invalid_argument for a pair scene.
 void RequireStage(const transmission::Scene& scene, const char* command);
 

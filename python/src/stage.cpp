@@ -17,6 +17,7 @@
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
 #include "scene.hpp"
+#include "sweep.hpp"
 
 namespace epicycle::python {
 
@@ -27,11 +28,6 @@ using ScenePtr = std::shared_ptr<Scene>;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double Deg(double rad) { return geometry::Deg(rad); }
-
-// A JSON document as Python objects (through the json module: the report's own keys and units).
-py::object JsonToPython(const nlohmann::json& j) {
-  return py::module_::import("json").attr("loads")(j.dump());
-}
 
 // A gear's outline and half profile [mm] with each profile point's role.
 py::object GearProfiles(const geometry::Gear& gear, int per_segment) {
@@ -283,35 +279,85 @@ py::object SummaryObject(const transmission::SweepSummary& s) {
 
 }  // namespace
 
+SweepRequest MakeSweepRequest(const ScenePtr& s, const std::string& range, int positions,
+                              double start_deg, std::optional<std::vector<double>> angles_deg,
+                              int threads, bool warm_start, const std::string& backend,
+                              bool local_terms, const std::string& friction, bool stresses,
+                              bool rating) {
+  SweepRequest q;
+  if (positions != 0)  // 0: the default, 60 per mesh cycle
+    transmission::CheckArgument("positions", positions, transmission::kSweepPositions);
+  transmission::CheckArgument("start_deg", start_deg, transmission::kCarrierAngleDeg);
+  if (angles_deg) q.angles = transmission::CheckedCarrierAngles("angles_deg", *angles_deg);
+  transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
+  // Stresses (or a rating, which needs them): the scene with [model] stresses = true.
+  q.scene = stresses || rating ? WithStresses(s) : s;
+  if (rating) transmission::CheckRatingInputs(q.scene->scene(), "rating=True");
+  q.options.backend = BackendOf(backend);
+  q.options.threads = threads;
+  q.options.warm_start = warm_start;
+  transmission::SetRestFriction(s->scene().dynamics, friction, &q.options);
+  q.options.Validate();
+  q.range = transmission::RunRangeFromName(range);
+  q.positions = positions;
+  q.start_deg = start_deg;
+  q.local_terms = local_terms;
+  return q;
+}
+
+std::vector<double> SweepRequest::Angles(const geometry::Stage& stage) const {
+  if (angles) return *angles;
+  const int count = positions > 0 ? positions : transmission::DefaultPositions(stage, range);
+  return transmission::SweepAngles(geometry::Rad(start_deg),
+                                   transmission::CarrierSpan(stage, range), count);
+}
+
+PositionRow RowOf(const transmission::PositionResult& r, int planets, bool with_friction) {
+  PositionRow w;
+  const bool good = r.converged;
+  w.carrier_deg = Deg(r.carrier_angle);
+  w.converged = good;
+  if (good) {
+    w.lsr = r.load_sharing;
+    w.factor = transmission::LoadSharingFactors(r);
+    w.k_gamma = transmission::MeshLoadFactor(r);
+    w.te_rad = r.transmission_error;
+    w.sun_x_m = r.sun_displacement.x();
+    w.sun_y_m = r.sun_displacement.y();
+  } else {
+    w.lsr.assign(static_cast<std::size_t>(planets), kNaN);
+    w.factor = w.lsr;
+    w.k_gamma = w.te_rad = w.sun_x_m = w.sun_y_m = kNaN;
+  }
+  w.geometric_iterations = r.geometric_iterations;
+  w.contact_iterations = r.contact_iterations;
+  w.warm_started = r.warm_started;
+  w.residual = r.report.residual.total;
+  w.status = solvers::StatusName(r.report.status);
+  w.active_contacts = r.report.active_contacts;
+  w.contacts = static_cast<int>(r.problem.contacts.size());
+  w.solve_ms = r.report.total_seconds * 1e3;
+  w.message = r.message;
+  if (with_friction) {
+    w.friction_power_W = good ? r.friction_power : kNaN;
+    w.input_power_W = good ? r.input_power : kNaN;
+    w.output_power_W = good ? r.output_power : kNaN;
+    w.efficiency = good ? r.Efficiency() : kNaN;
+    w.force_change = r.force_change;
+  }
+  return w;
+}
+
 py::object QuasiStatic(const ScenePtr& s, const std::string& range, int positions, double start_deg,
                        std::optional<std::vector<double>> angles_deg, int threads, bool warm_start,
                        const std::string& backend, bool local_terms,
                        std::optional<std::string> cache_dir, py::object progress,
                        bool raise_on_failure, const std::string& friction, bool stresses,
                        bool rating) {
-  // Every number by the program's rule for its option, before any work (run_arguments.hpp).
-  if (positions != 0)  // 0: the default, 60 per mesh cycle
-    transmission::CheckArgument("positions", positions, transmission::kSweepPositions);
-  transmission::CheckArgument("start_deg", start_deg, transmission::kCarrierAngleDeg);
-  const std::vector<double> given_angles =
-      angles_deg ? transmission::CheckedCarrierAngles("angles_deg", *angles_deg)
-                 : std::vector<double>{};
-  transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
-  // Stresses (or a rating, which needs them): the scene with [model] stresses = true.
-  ScenePtr run_scene = s;
-  if ((stresses || rating) && !s->scene().model.stresses)
-    run_scene = s->Edited([](toml::table& t) {
-      if (!t["model"].is_table()) t.insert_or_assign("model", toml::table{});
-      t["model"].as_table()->insert_or_assign("stresses", true);
-    });
-  if (rating) transmission::CheckRatingInputs(run_scene->scene(), "rating=True");
-  transmission::QuasiStaticOptions opt;
-  opt.backend = BackendOf(backend);
-  opt.threads = threads;
-  opt.warm_start = warm_start;
-  transmission::SetRestFriction(s->scene().dynamics, friction, &opt);
-  opt.Validate();
-  const transmission::RunRange run_range = transmission::RunRangeFromName(range);
+  const SweepRequest q =
+      MakeSweepRequest(s, range, positions, start_deg, std::move(angles_deg), threads, warm_start,
+                       backend, local_terms, friction, stresses, rating);
+  const transmission::QuasiStaticOptions& opt = q.options;
   CancelToken token;
   const Progress report(std::move(progress), &token);
   struct Out {
@@ -321,16 +367,10 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   };
   Out out = RunReleased(token, [&] {
     Out o;
-    o.rig = run_scene->Rig(cache_dir, "quasistatic");
+    o.rig = q.scene->Rig(cache_dir, "quasistatic");
     const geometry::Stage& stage = o.rig->stage;
-    std::vector<double> angles = given_angles;
-    if (!angles_deg) {
-      const int count =
-          positions > 0 ? positions : transmission::DefaultPositions(stage, run_range);
-      angles = transmission::SweepAngles(geometry::Rad(start_deg),
-                                         transmission::CarrierSpan(stage, run_range), count);
-    }
-    const transmission::StageModel model = o.rig->Model(local_terms);
+    const std::vector<double> angles = q.Angles(stage);
+    const transmission::StageModel model = o.rig->Model(q.local_terms);
     const long total = static_cast<long>(angles.size());
     o.results = transmission::Sweep(
         model, o.rig->scene.loads, angles, opt,
@@ -345,7 +385,6 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   std::vector<double> deg, residual, solve_ms;
   RunColumns run;
   Interned names;
-  const std::vector<double> none(static_cast<std::size_t>(n), kNaN);
   std::vector<int> geo_it, contact_it, active, contacts;
   std::vector<char> ok, warm;
   py::list status, message;
@@ -357,32 +396,28 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   std::vector<double> loss, p_in, p_out, efficiency, change;
   int failed = 0;
   for (const transmission::PositionResult& r : out.results) {
-    const bool good = r.converged;
-    failed += !good;
-    deg.push_back(Deg(r.carrier_angle));
-    ok.push_back(good);
-    if (good)
-      run.Add(r.load_sharing, transmission::LoadSharingFactors(r), transmission::MeshLoadFactor(r),
-              r.transmission_error, r.sun_displacement.x(), r.sun_displacement.y());
-    else
-      run.Add(none, none, kNaN, kNaN, kNaN, kNaN);
-    geo_it.push_back(r.geometric_iterations);
-    contact_it.push_back(r.contact_iterations);
-    warm.push_back(r.warm_started);
-    residual.push_back(r.report.residual.total);
-    status.append(names(solvers::StatusName(r.report.status)));
-    active.push_back(r.report.active_contacts);
-    contacts.push_back(static_cast<int>(r.problem.contacts.size()));
-    solve_ms.push_back(r.report.total_seconds * 1e3);
-    message.append(names(r.message));
+    const PositionRow w = RowOf(r, n, with_friction);
+    failed += !w.converged;
+    deg.push_back(w.carrier_deg);
+    ok.push_back(w.converged);
+    run.Add(w.lsr, w.factor, w.k_gamma, w.te_rad, w.sun_x_m, w.sun_y_m);
+    geo_it.push_back(w.geometric_iterations);
+    contact_it.push_back(w.contact_iterations);
+    warm.push_back(w.warm_started);
+    residual.push_back(w.residual);
+    status.append(names(w.status));
+    active.push_back(w.active_contacts);
+    contacts.push_back(w.contacts);
+    solve_ms.push_back(w.solve_ms);
+    message.append(names(w.message));
     if (with_friction) {
-      loss.push_back(good ? r.friction_power : kNaN);
-      p_in.push_back(good ? r.input_power : kNaN);
-      p_out.push_back(good ? r.output_power : kNaN);
-      efficiency.push_back(good ? r.Efficiency() : kNaN);
-      change.push_back(r.force_change);
+      loss.push_back(w.friction_power_W);
+      p_in.push_back(w.input_power_W);
+      p_out.push_back(w.output_power_W);
+      efficiency.push_back(w.efficiency);
+      change.push_back(w.force_change);
     }
-    for (std::size_t j = 0; j < r.problem.contacts.size() && good; ++j) {
+    for (std::size_t j = 0; j < r.problem.contacts.size() && w.converged; ++j) {
       const auto k = static_cast<Eigen::Index>(j);
       const double force = r.solution.force(k);
       if (!(force > 0)) continue;
@@ -446,87 +481,178 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
 }
 
 void BindStage(py::module_& m) {
-  m.def("geometry", &Geometry, py::arg("scene"), py::arg("points_per_segment") = 20, R"doc(
-The generated geometry of a scene's gears.
+  m.def("geometry", &Geometry, py::arg("scene"), py::kw_only(), py::arg("points_per_segment") = 20, R"doc(
+The generated geometry of a scene's gears (`epicycle geometry --json`; docs/geometry.md).
 
-Returns Result with
-  report: dict, the geometry report (keys with units, docs/geometry.md; `epicycle geometry --json`)
-  gears: {name: Result(teeth, outline_mm (K, 2) [mm] the whole gear in its body frame,
-         half_profile_mm (H, 2) [mm] one flank root to tip, half_profile_roles: list of str)}
-  warnings: list of str
-points_per_segment: points per profile segment [-].)doc");
-  m.def("contacts", &Contacts, py::arg("scene"), py::arg("carrier_deg") = 0.0,
+Parameters
+----------
+scene : Scene
+    A stage or gear-pair scene.
+points_per_segment : int, default 20
+    Points per profile segment [-], in [1, 1000].
+
+Returns
+-------
+Result
+    report : dict, the geometry report (keys with units, docs/geometry.md); gears : {name:
+    Result(teeth, outline_mm (K, 2) [mm] the whole gear in its body frame, half_profile_mm (H, 2)
+    [mm] one flank root to tip, half_profile_roles: list of str)}; warnings : list of str.
+
+Raises
+------
+ValueError
+    A bad argument (its name, value and rule).)doc");
+  m.def("contacts", &Contacts, py::arg("scene"), py::arg("carrier_deg") = 0.0, py::kw_only(),
         py::arg("gap_window_um") = py::none(), R"doc(
-The potential contacts of every mesh of a stage at carrier angle carrier_deg [deg] (rigid poses
-with the scene's errors), as `epicycle contacts` prints them.
+The potential contacts of every mesh of a stage at a carrier angle (rigid poses with the scene's
+errors), as `epicycle contacts` prints them.
 
-gap_window_um: contacts with overlap >= -window [µm] (None: the scene's [contact] gap_window_um).
-Returns Result with per contact: mesh, kind, flank ("drive"/"coast"), tooth, mate, x_mm, y_mm
-[mm], normal_x, normal_y [-] (out of the mesh's first gear), overlap_um [µm] (> 0
-interpenetration), arm_a_mm, arm_b_mm [mm] (moment arms), curvature_radius_a_mm,
-curvature_radius_b_mm [mm].)doc");
-  m.def("mesh_stiffness", &MeshStiffness, py::arg("scene"), py::arg("mesh") = "",
+Parameters
+----------
+scene : Scene
+    A stage scene.
+carrier_deg : float, default 0
+    Carrier angle [deg].
+gap_window_um : float or None, default None
+    Contacts with overlap >= -window [µm] (None: the scene's [contact] gap_window_um).
+
+Returns
+-------
+Result
+    Per contact: mesh, kind, flank ("drive"/"coast"), tooth, mate, x_mm, y_mm [mm], normal_x,
+    normal_y [-] (out of the mesh's first gear), overlap_um [µm] (> 0 interpenetration),
+    arm_a_mm, arm_b_mm [mm] (moment arms), curvature_radius_a_mm, curvature_radius_b_mm [mm].
+
+Raises
+------
+ValueError
+    A gear-pair scene, or a bad argument (its name, value and rule).)doc");
+  m.def("mesh_stiffness", &MeshStiffness, py::arg("scene"), py::arg("mesh") = "", py::kw_only(),
         py::arg("positions") = 60, py::arg("backend") = "newton", py::arg("local_terms") = true,
         py::arg("tooth_coupling") = true, py::arg("threads") = 0, py::arg("cache_dir") = py::none(),
         py::arg("progress") = py::none(), R"doc(
 Mesh stiffness of a gear pair over one mesh cycle (`epicycle stiffness`): a pair scene, or one mesh
 of a stage ("sun-planet1", "planet2-ring") at the scene's load share.
 
-positions: samples over the cycle [-]; threads: workers (0: one per core); cache_dir: influence-
-table cache folder (None: $EPICYCLE_CACHE_DIR or ~/.cache/epicycle; "": in memory);
-progress(done, total): called as samples complete.
-Returns Result with per sample angle_deg [deg] (gear 1 from the cycle start), converged, message,
-rotation_urad [µrad] (loaded static TE), approach_um [µm] (deflection along the line of action),
-total_force_N [N], stiffness_N_per_m [N/m], local_validity_ratio [-]; pairs (per loaded tooth pair:
-angle_deg, tooth1, tooth2, kind, force_N, stiffness_N_per_m, share, roll1_deg); mean, min, max and
-peak single-pair stiffness [N/m] and per face width [N/(mm·µm)]; ISO 6336-1's
-iso6336_c_prime_N_per_mm_um and iso6336_c_gamma_alpha_N_per_mm_um [N/(mm·µm)] for comparison;
-contact_ratio [-] (tip circles); torque_Nm, face_width_mm, warnings. Raises ComputationError (with .result) if a sample failed.)doc");
-  m.def("quasistatic", &QuasiStatic, py::arg("scene"), py::arg("range") = "cycle",
+Parameters
+----------
+scene : Scene
+    A gear-pair or stage scene.
+mesh : str, default ""
+    The stage's mesh ("sun-planet1", "planet2-ring"); "" for a pair scene.
+positions : int, default 60
+    Samples over the cycle [-].
+backend : str, default "newton"
+    Contact back end ("newton", "ipopt", "nlopt-slsqp", ...).
+local_terms : bool, default True
+    False: the structural compliance only.
+tooth_coupling : bool, default True
+    True: the bodies couple the teeth (the model); False: every contact's compliance alone
+    (the off-diagonal terms dropped: the potential-energy method's independent springs).
+threads : int, default 0
+    Workers [-] (0: one per core).
+cache_dir : str or None, default None
+    Influence-table cache folder (None: $EPICYCLE_CACHE_DIR or ~/.cache/epicycle; "": in memory).
+progress : callable or None, default None
+    progress(done, total), called as samples complete.
+
+Returns
+-------
+Result
+    Per sample angle_deg [deg] (gear 1 from the cycle start), converged, message, rotation_urad
+    [µrad] (loaded static TE), approach_um [µm] (deflection along the line of action),
+    total_force_N [N], stiffness_N_per_m [N/m], local_validity_ratio [-]; pairs (per loaded tooth
+    pair: angle_deg, tooth1, tooth2, kind, force_N, stiffness_N_per_m, share, roll1_deg); mean,
+    min, max and peak single-pair stiffness [N/m] and per face width [N/(mm·µm)]; ISO 6336-1's
+    iso6336_c_prime_N_per_mm_um and iso6336_c_gamma_alpha_N_per_mm_um [N/(mm·µm)] for comparison;
+    contact_ratio [-] (tip circles); torque_Nm [N·m], face_width_mm [mm], warnings.
+
+Raises
+------
+ValueError
+    A bad argument (its name, value and rule) or mesh name.
+ComputationError
+    A sample failed (its .result the Result above).)doc");
+  m.def("quasistatic", &QuasiStatic, py::arg("scene"), py::kw_only(), py::arg("range") = "cycle",
         py::arg("positions") = 0, py::arg("start_deg") = 0.0, py::arg("angles_deg") = py::none(),
         py::arg("threads") = 0, py::arg("warm_start") = true, py::arg("backend") = "newton",
         py::arg("local_terms") = true, py::arg("cache_dir") = py::none(),
         py::arg("progress") = py::none(), py::arg("raise_on_failure") = true,
         py::arg("friction") = "off", py::arg("stresses") = false, py::arg("rating") = false,
         R"doc(
-Quasi-static load sharing of a stage over carrier positions (`epicycle quasistatic`; docs/
-quasistatic.md). The sun support is the scene's (key supports.sun: "fixed", "floating").
+Quasi-static load sharing of a stage over carrier positions (`epicycle quasistatic`;
+docs/quasistatic.md). The sun support is the scene's (key supports.sun: "fixed", "floating").
 
-range: "cycle" (one mesh cycle), "planet" (one planet revolution relative to the carrier),
-  "sun" (one sun revolution relative to the carrier), "revolution" (one carrier revolution); positions: over the range [-] (0: 60 per mesh cycle,
-  docs/quasistatic.md "Positions"); start_deg: carrier angle of the first position [deg]; angles_deg: given carrier
-  angles [deg] instead; threads: workers (0: one per core; with warm_start the results depend on
-  the thread count within the solver tolerances); warm_start: each position from its neighbour;
-  backend: contact back end ("newton", "ipopt", "nlopt-slsqp", ...); local_terms: False for the
-  structural compliance only; cache_dir: influence-table cache (None: $EPICYCLE_CACHE_DIR or
-  ~/.cache/epicycle; "": in memory); progress(done, total): called in order as positions complete.
-Returns Result with, per position (P positions, n planets):
-  carrier_deg (P,) [deg], converged (P,) bool, lsr (P, n) [-] (LSR_i, paper eq. 4; NaN where not
-  converged), load_sharing_factor (P, n) [-] (L_i = n LSR_i), k_gamma (P,) [-] (max_i L_i),
-  te_urad (P,) [µrad] (loaded static transmission error at the sun), sun_x_um, sun_y_um (P,) [µm]
-  (sun centre displacement), geometric_iterations, contact_iterations, warm_started, residual [-],
-  status, active_contacts, contacts, solve_ms [ms], message;
-  pairs: per loaded tooth pair carrier_deg, mesh, kind, flank, tooth_a, tooth_b, force_N [N];
-  summary: positions, converged, lsr_mean/lsr_min/lsr_max (n,) [-], k_gamma [-], k_gamma_mean [-],
-  te_min_urad, te_max_urad, te_peak_to_peak_urad [µrad], sun_displacement_max_um [µm];
-  scene, sun_support, sun_torque_Nm [N·m], backend, planets, warnings; friction (the law's name).
-friction: friction at rest (docs/quasistatic.md, "Friction at rest"): "off" (default), "scene"
-  (the scene's [dynamics] friction), or a law ("constant", "xu-kahraman", "benedict-kelley"), with
-  the scene's coefficient, lubricant and sun_speed_rpm; with it, per position friction_power_W,
-  input_power_W, output_power_W [W], efficiency [-] (P_out/P_in), force_change [-] (the fixed
-  point's last relative change), per pair friction_N [N] and sliding_m_per_s [m/s], and in the
-  summary efficiency_mean, efficiency_min [-], friction_power_mean_W [W],
-  friction_iterations_mean [-]; lsr is then the whole sun-mesh torque's share, friction included.
-stresses: root stresses and contact pressures (docs/stresses.md; the scene's model.stresses): the
-  summary gets root_stress (per gear tension_MPa, compression_MPa [MPa] with carrier_deg, tooth,
-  fillet and arc_from_space_centre_mm [mm], largest_range_MPa) and contact_pressure (per gear and
-  flank hertz_pressure_MPa [MPa], half_width_um [µm], roll_deg [deg], contact, mesh, carrier_deg).
-rating: ISO 6336 ratings (implies stresses; needs the scene's material.bending_limit_MPa and
-  material.contact_limit_MPa): the Result gets rating, as `epicycle quasistatic --rating`'s JSON
-  (per gear sigma_F_*_MPa, S_F_*, sigma_H_*_MPa, S_H_* with the table's and the run's K_gamma and
-  the model's own; every factor with its value and source).
-Raises ValueError for bad input; ComputationError (its .result the Result above) if positions
-failed and raise_on_failure.)doc");
+Parameters
+----------
+scene : Scene
+    A stage scene.
+range : str, default "cycle"
+    "cycle" (one mesh cycle), "planet" (one planet revolution relative to the carrier), "sun"
+    (one sun revolution relative to the carrier), "revolution" (one carrier revolution).
+positions : int, default 0
+    Positions over the range [-] (0: 60 per mesh cycle, docs/quasistatic.md "Positions").
+start_deg : float, default 0
+    Carrier angle of the first position [deg].
+angles_deg : list of float or None, default None
+    Given carrier angles [deg] instead of range and positions.
+threads : int, default 0
+    Workers [-] (0: one per core; with warm_start the results depend on the thread count within
+    the solver tolerances).
+warm_start : bool, default True
+    Each position from its neighbour.
+backend : str, default "newton"
+    Contact back end ("newton", "ipopt", "nlopt-slsqp", ...).
+local_terms : bool, default True
+    False: the structural compliance only.
+cache_dir : str or None, default None
+    Influence-table cache (None: $EPICYCLE_CACHE_DIR or ~/.cache/epicycle; "": in memory).
+progress : callable or None, default None
+    progress(done, total), called in order as positions complete.
+raise_on_failure : bool, default True
+    Raise ComputationError if positions failed (else return the Result).
+friction : str, default "off"
+    Friction at rest (docs/quasistatic.md, "Friction at rest"): "off", "scene" (the scene's
+    [dynamics] friction), or a law ("constant", "xu-kahraman", "benedict-kelley") with the
+    scene's coefficient, lubricant and sun_speed_rpm.
+stresses : bool, default False
+    Root stresses and contact pressures (docs/stresses.md; the scene's model.stresses).
+rating : bool, default False
+    ISO 6336 ratings (implies stresses; needs the scene's material.bending_limit_MPa and
+    material.contact_limit_MPa).
+
+Returns
+-------
+Result
+    Per position (P positions, n planets): carrier_deg (P,) [deg], converged (P,) bool, lsr (P, n)
+    [-] (LSR_i, paper eq. 4; NaN where not converged), load_sharing_factor (P, n) [-]
+    (L_i = n LSR_i), k_gamma (P,) [-] (max_i L_i), te_urad (P,) [µrad] (loaded static
+    transmission error at the sun), sun_x_um, sun_y_um (P,) [µm] (sun centre displacement),
+    geometric_iterations, contact_iterations, warm_started, residual [-], status,
+    active_contacts, contacts, solve_ms [ms], message; pairs: per loaded tooth pair carrier_deg,
+    mesh, kind, flank, tooth_a, tooth_b, force_N [N]; summary: positions, converged,
+    lsr_mean/lsr_min/lsr_max (n,) [-], k_gamma [-], k_gamma_mean [-], te_min_urad, te_max_urad,
+    te_peak_to_peak_urad [µrad], sun_displacement_max_um [µm]; scene, sun_support, sun_torque_Nm
+    [N·m], backend, planets, warnings; friction (the law's name).
+    With friction: per position friction_power_W, input_power_W, output_power_W [W], efficiency
+    [-] (P_out/P_in), force_change [-] (the fixed point's last relative change), per pair
+    friction_N [N] and sliding_m_per_s [m/s], and in the summary efficiency_mean, efficiency_min
+    [-], friction_power_mean_W [W], friction_iterations_mean [-]; lsr is then the whole sun-mesh
+    torque's share, friction included.
+    With stresses: the summary's root_stress (per gear tension_MPa, compression_MPa [MPa] with
+    carrier_deg, tooth, fillet and arc_from_space_centre_mm [mm], largest_range_MPa) and
+    contact_pressure (per gear and flank hertz_pressure_MPa [MPa], half_width_um [µm], roll_deg
+    [deg], contact, mesh, carrier_deg).
+    With rating: rating, as `epicycle quasistatic --rating`'s JSON (per gear sigma_F_*_MPa,
+    S_F_*, sigma_H_*_MPa, S_H_* with the table's and the run's K_gamma and the model's own;
+    every factor with its value and source).
+
+Raises
+------
+ValueError
+    Bad input (the argument's name, value and rule).
+ComputationError
+    Positions failed and raise_on_failure (its .result the Result above).)doc");
 }
 
 }  // namespace epicycle::python

@@ -606,10 +606,7 @@ DynamicRunRecorder::DynamicRunRecorder(const std::string& base, const nlohmann::
 dynamics::MotionRating DynamicRunRecorder::Rate(const transmission::Scene& scene,
                                                 const dynamics::SimulationOptions& options) const {
   if (!loads_) throw std::logic_error("DynamicRunRecorder::Rate: made without rating");
-  std::vector<double> times = span_.OutputTimes();
-  times.resize(static_cast<std::size_t>(std::min<long>(outputs_, std::ssize(times))));
-  return dynamics::RateInMotion(scene, model_, options, times, *loads_,
-                                summary_.Result().root_stress);
+  return dynamics::RateRun(scene, model_, options, span_, *loads_, summary_.Result().root_stress);
 }
 
 void DynamicRunRecorder::Add(const dynamics::DynamicSample& s) {

@@ -18,6 +18,21 @@ using namespace epicycle;
 
 namespace {
 
+// The run-out case (paper_stage.toml with planet 1's run-out) with root stresses on.
+test::DynamicRig RunoutWithStresses() {
+  test::RigOptions o;
+  return test::MakeRig(
+      test::WithRunout(test::SceneText("paper_stage.toml")) + "\n[model]\nstresses = true\n",
+      "runout", o);
+}
+
+// `scene` with case-hardened limits (σ_Flim 430, σ_Hlim 1500 MPa): a scene a rating takes.
+transmission::Scene WithLimits(transmission::Scene scene) {
+  scene.material.bending_limit = 430e6;
+  scene.material.contact_limit = 1500e6;
+  return scene;
+}
+
 // A run of `rig` at `times` (rtol 1e-8) with its peaks and K_v.
 struct RunFactor {
   dynamics::MotionLoads loads;
@@ -110,13 +125,8 @@ TEST_CASE(
   // friction (the scene's Xu & Kahraman at its speed), the run's largest
   // sun root tension from its samples' fillet stresses; ISO 6336-3's σ_F = σ_F0 K_A K_v K_γ and
   // the model's own S_F = σ_Flim Y_ST / σ_root (no K_v: the stresses in motion carry it).
-  test::RigOptions o;
-  const auto rig = test::MakeRig(
-      test::WithRunout(test::SceneText("paper_stage.toml")) + "\n[model]\nstresses = true\n",
-      "runout", o);
-  transmission::Scene scene = rig.scene;
-  scene.material.bending_limit = 430e6;
-  scene.material.contact_limit = 1500e6;
+  const auto rig = RunoutWithStresses();
+  const transmission::Scene scene = WithLimits(rig.scene);
   const std::vector<double> times = test::Times(*rig.model, *rig.stage, 4, 8);
   const dynamics::SimulationOptions so;
   const auto r = test::Run(rig, times, so);
@@ -200,4 +210,46 @@ TEST_CASE(
                " against the frictionless one");
   CHECK(std::abs(kv.value - 1) < std::abs(largest_off - 1));
   CHECK(kv.source.find("friction constant at rest") != std::string::npos);
+}
+
+TEST_CASE(
+    "rating of a run: the output steps it made, a run that stopped early rated over its first "
+    "steps",
+    "[crosscheck][dynamics][rating]") {
+  // dynamics::RateRun (what `epicycle dynamic --rating` and Python's dynamic(rating=True) call)
+  // over a one-mesh-cycle span of 8 outputs given only the first 5 steps (a run that stopped
+  // there) is RateInMotion at those 5 output times: the same K_v and ratings, to the last bit;
+  // a failed step counts as an output (its time is one of the run's) but carries no load.
+  const auto rig = RunoutWithStresses();
+  const transmission::Scene scene = WithLimits(rig.scene);
+  const dynamics::RunSpan span = dynamics::MakeRunSpan(
+      *rig.stage, rig.model->carrier_speed(), transmission::RunRange::kMeshCycle, 0.0, 8);
+  REQUIRE(span.outputs == 8);
+  const std::vector<double> all = span.OutputTimes();
+  const dynamics::SimulationOptions so;
+  const auto r = test::Run(rig, all, so);
+  REQUIRE(r.completed);
+  const std::vector<dynamics::DynamicSample> made(r.samples.begin(), r.samples.begin() + 5);
+  dynamics::MotionLoads loads(*rig.stage);
+  for (const dynamics::DynamicSample& s : made) loads.Add(s);
+  CHECK(loads.outputs() == 5);
+  CHECK(loads.steps() == 5);
+  const auto root = dynamics::Summarise(made).root_stress;
+  const dynamics::MotionRating run = dynamics::RateRun(scene, *rig.model, so, span, loads, root);
+  const dynamics::MotionRating reference = dynamics::RateInMotion(
+      scene, *rig.model, so, std::vector<double>(all.begin(), all.begin() + 5), loads, root);
+  CHECK(run.factor.value == reference.factor.value);
+  REQUIRE(run.rating.gears.size() == reference.rating.gears.size());
+  // The same double, or both NaN (a figure the rating leaves undefined for a gear).
+  auto same = [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); };
+  for (std::size_t g = 0; g < run.rating.gears.size(); ++g) {
+    CHECK(same(run.rating.gears[g].sigma_f_model, reference.rating.gears[g].sigma_f_model));
+    CHECK(same(run.rating.gears[g].k_gamma_model, reference.rating.gears[g].k_gamma_model));
+    CHECK(same(run.rating.gears[g].root_stress, reference.rating.gears[g].root_stress));
+  }
+  dynamics::DynamicSample failed = made.back();
+  failed.evaluation.ok = false;
+  loads.Add(failed);
+  CHECK(loads.outputs() == 6);
+  CHECK(loads.steps() == 5);
 }

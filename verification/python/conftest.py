@@ -10,6 +10,7 @@ import csv
 import json
 import os
 import subprocess
+import sys
 
 import pytest
 
@@ -18,6 +19,39 @@ SOURCE_DIR = os.environ.get(
 )
 SCENES = os.path.join(SOURCE_DIR, "scenes")
 EXE = os.environ.get("EPICYCLE_EXE", os.path.join(SOURCE_DIR, "build", "app", "epicycle"))
+
+
+# The signature parser of the stub generator (tools/python_stubs.py).
+sys.path.insert(0, os.path.join(SOURCE_DIR, "tools"))
+from python_stubs import parse_signature  # noqa: E402
+
+
+def public_callables():
+    """(qualified name, callable, name in its signature line) of every public function of the
+    module epicycle._epicycle, every public method of its classes and their constructors."""
+    import inspect
+
+    import epicycle
+    out = []
+    for name in epicycle.__all__:
+        obj = getattr(epicycle, name)
+        if inspect.isclass(obj):
+            if obj.__module__ != "epicycle._epicycle":
+                continue  # Result, ComputationError: the package's Python classes
+            if (obj.__dict__.get("__init__").__doc__ or "").startswith("__init__("):
+                out.append((name, obj, "__init__"))
+            for m, member in obj.__dict__.items():
+                if m.startswith("_") or isinstance(member, property):
+                    continue
+                out.append((f"{name}.{m}", getattr(obj, m), m))
+        elif callable(obj):
+            out.append((name, obj, name))
+    return out
+
+
+def signature_doc(obj, sig_name):
+    """The docstring holding a callable's signature line (a class's: its __init__'s)."""
+    return (obj.__init__ if sig_name == "__init__" else obj).__doc__
 
 
 def scene_path(name):

@@ -55,7 +55,7 @@ def test_add_crack_equals_the_scene_text():
     assert cracked["damage.crack[0].side"] == "-"
     assert cracked["damage.crack[0].depth_mm"] == 1.0
     with open(scene_path("paper_stage.toml")) as f:
-        text = epicycle.Scene.parse(f.read() + CRACK, "cracked.toml")
+        text = epicycle.Scene.parse(f.read() + CRACK, source="cracked.toml")
     a = epicycle.quasistatic(cracked, range="sun", positions=32, threads=1)
     b = epicycle.quasistatic(text, range="sun", positions=32, threads=1)
     h = epicycle.quasistatic(base, range="sun", positions=32, threads=1)

@@ -93,3 +93,35 @@ def test_modes_equal_the_program_json(tmp_path):
         assert rpm == [v for v in m.sun_rpm_at_mesh_harmonics_1_2_3[k] if v == v]
         # a mode group's shapes: one column per mode of the group, one row per DOF
         assert m.shapes[k].shape == (len(m.dofs), m.multiplicity[k])
+
+
+def test_dynamic_stresses_and_rating_equal_the_program(tmp_path):
+    """Stresses and the rating in motion (docs/stresses.md, "Ratings in motion") through
+    Python's dynamic equal `epicycle dynamic --rating`'s: the summary JSON's root_stress and
+    rating key by key and value by value (JSON carries every digit), and each step's root
+    stresses the steps file's sigma_t_<gear>_MPa, sigma_c_<gear>_MPa columns to their printed
+    digits; a rating without the material's limits raises ValueError naming the key."""
+    scene = epicycle.Scene.load(scene_path("paper_stage_runout_rated.toml"))
+    assert "material.bending_limit_MPa" in scene and "material.contact_limit_MPa" in scene
+    out = tmp_path / "cli"
+    run_cli("dynamic", scene_path("paper_stage_runout_rated.toml"), "--range", "cycle",
+            "--outputs-per-cycle", 8, "--rating", "--quiet", "--out", out)
+    j = read_json(out / "dynamic_summary.json")
+    r = epicycle.dynamic(scene, range="cycle", outputs_per_cycle=8, rating=True)
+    assert r.completed and r.outputs == 8
+    assert r.summary.root_stress == j["root_stress"]
+    assert r.rating == j["rating"]
+    assert len(r.rating["gears"]) == 5
+    steps = read_csv(out / "dynamic_steps.csv")
+    columns = [c for c in steps[0] if c.startswith("sigma_")]
+    assert sorted(columns) == sorted(vars(r.root_stress)) and len(columns) == 10
+    for k, row in enumerate(steps):
+        for c in columns:
+            assert row[c] == num(getattr(r.root_stress, c)[k]), (k, c)
+    # stresses alone: the same stresses, no rating
+    s = epicycle.dynamic(scene, range="cycle", outputs_per_cycle=8, stresses=True)
+    assert s.summary.root_stress == j["root_stress"] and not hasattr(s, "rating")
+    with pytest.raises(ValueError, match=r"rating=True needs the scene's \[material\] "
+                                         r"bending_limit_MPa"):
+        epicycle.dynamic(epicycle.Scene.load(scene_path("paper_stage_runout.toml")),
+                         range="cycle", outputs_per_cycle=8, rating=True)

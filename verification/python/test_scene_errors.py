@@ -30,7 +30,7 @@ CASES = [
 def test_a_bad_value_raises_the_program_message(tmp_path, edit, key, rule):
     path = tmp_path / "bad.toml"
     with open(scene_path("paper_stage.toml")) as f:
-        s = epicycle.Scene.parse(f.read(), str(path))
+        s = epicycle.Scene.parse(f.read(), source=str(path))
     before = s.text
     with pytest.raises(ValueError) as e:
         edit(s)
@@ -46,7 +46,7 @@ def test_a_bad_value_raises_the_program_message(tmp_path, edit, key, rule):
 
 def test_a_syntax_error_and_a_missing_file():
     with pytest.raises(ValueError, match=r"bad\.toml.*2"):
-        epicycle.Scene.parse("[scene]\nname = \n", "bad.toml")
+        epicycle.Scene.parse("[scene]\nname = \n", source="bad.toml")
     with pytest.raises(ValueError, match=r"/nonexistent/scene\.toml: cannot be opened"):
         epicycle.Scene.load("/nonexistent/scene.toml")
 

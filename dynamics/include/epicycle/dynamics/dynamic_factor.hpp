@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "epicycle/dynamics/dynamic_model.hpp"
+#include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/transmission/contact_pressure.hpp"
 #include "epicycle/transmission/rating.hpp"
@@ -32,7 +33,8 @@ class MotionLoads {
   explicit MotionLoads(const geometry::Stage& stage);
   /// One output step; a step whose evaluation failed only counts.
   void Add(const DynamicSample& s);
-  int steps() const { return steps_; }  ///< steps added whose evaluation was ok [-]
+  int steps() const { return steps_; }      ///< steps added whose evaluation was ok [-]
+  long outputs() const { return outputs_; }  ///< steps added, failed ones included [-]
   const std::vector<double>& peak_mesh_force() const { return peak_; }  ///< per mesh [N]
   std::vector<transmission::FlankPressure> contact_pressure() const { return pressure_.Result(); }
 
@@ -40,6 +42,7 @@ class MotionLoads {
   std::vector<double> peak_;
   transmission::ContactPressureTracker pressure_;
   int steps_ = 0;
+  long outputs_ = 0;
 };
 
 /// The quasi-static reference of a run: at given carrier angles, the model's stage solved with
@@ -98,5 +101,12 @@ MotionRating RateInMotion(const transmission::Scene& scene, const DynamicModel& 
                           const SimulationOptions& options, const std::vector<double>& output_times,
                           const MotionLoads& loads,
                           const std::vector<transmission::RootStressSummary>& root_stress);
+/// RateInMotion of a run over `span` whose output steps, in order from the first, were added to
+/// `loads` (a run that stopped early: the output times of the steps it made). The one rating of
+/// a run that `epicycle dynamic --rating` and Python's dynamic(rating=True) give.
+MotionRating RateRun(const transmission::Scene& scene, const DynamicModel& model,
+                     const SimulationOptions& options, const RunSpan& span,
+                     const MotionLoads& loads,
+                     const std::vector<transmission::RootStressSummary>& root_stress);
 
 }  // namespace epicycle::dynamics
