@@ -370,7 +370,6 @@ class PeriodIntegrator {
       if (!c.G(s, c.y_, c.p_, c.period_, &c.f_)) return 1;
       Eigen::Map<Eigen::VectorXd>(out, n) = c.f_;
       if (!c.variational_ && c.column_ < 0) return 0;
-      const Eigen::VectorXd g = c.f_;
       if (!c.ScaledJacobian(s, c.y_)) return 1;
       int off = n;
       if (c.variational_) {
@@ -393,7 +392,6 @@ class PeriodIntegrator {
             c.jac_ * Eigen::Map<const Eigen::VectorXd>(z + off, n) +
             (c.fp_ - c.fm_) / (pp(c.column_) - pm(c.column_));
       }
-      (void)g;
       return 0;
     } catch (...) {
       c.error_ = std::current_exception();
@@ -841,7 +839,6 @@ ContinuationResult ContinuePeriodicOrbit(const PeriodicSystem& system,
     if (new_tangent(n) * tangent(n) < 0) {
       double a = 0, ha = tangent(n), b = ds, hb = new_tangent(n);
       Continuer::Point best = next;
-      double best_h = hb;
       for (int k = 0; k < options.fold_refinements; ++k) {
         const double sigma = a - ha * (b - a) / (hb - ha);
         if (!(sigma > a && sigma < b)) break;
@@ -849,7 +846,6 @@ ContinuationResult ContinuePeriodicOrbit(const PeriodicSystem& system,
         if (!mid.ok) break;
         const double h = c.Tangent(mid.jacobian, tangent)(n);
         best = mid;
-        best_h = h;
         if (std::abs(h) < 1e-8) break;
         if (h * ha > 0) {
           a = sigma;
@@ -859,7 +855,6 @@ ContinuationResult ContinuePeriodicOrbit(const PeriodicSystem& system,
           hb = h;
         }
       }
-      (void)best_h;
       Bifurcation fold;
       fold.kind = BifurcationKind::kFold;
       fold.parameter = c.Lambda(best.u);

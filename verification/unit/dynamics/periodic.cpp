@@ -283,3 +283,68 @@ TEST_CASE("periodic solver: a failed Newton or continuation step says where it s
   CHECK(start.points.empty());
   CHECK_THAT(start.message, Catch::Contains("the first orbit, at omega = 3 rad/s, was not found"));
 }
+
+TEST_CASE("continuation on the Mathieu equation: period doublings flagged at the first tongue's "
+          "boundaries, a Neimark–Sacker where the damping changes sign",
+          "[unit][dynamics][periodic]") {
+  const MathieuOscillator m;
+  const double eps = 0.1;
+  // The trivial orbit y = 0 over δ from 0.4 down to 0.1 crosses the first tongue: a real
+  // multiplier leaves through −1 at its upper boundary and comes back at its lower one.
+  ContinuationOptions c;
+  c.parameter = "delta";
+  c.start = 0.4;
+  c.end = 0.1;
+  c.max_step = 0.02;
+  c.shooting.rtol = 1e-10;
+  c.shooting.atol = Eigen::VectorXd::Constant(1, 1e-12);
+  const ContinuationResult r =
+      ContinuePeriodicOrbit(m, c, Eigen::Vector2d::Zero(), Eigen::Vector3d(0.4, eps, 0));
+  REQUIRE(r.status == ContinuationStatus::kCompleted);
+  std::vector<Bifurcation> pd;
+  for (const Bifurcation& b : r.bifurcations) {
+    CHECK(b.kind == BifurcationKind::kPeriodDoubling);
+    if (b.kind == BifurcationKind::kPeriodDoubling) pd.push_back(b);
+  }
+  REQUIRE(pd.size() == 2);
+  for (int k = 0; k < 2; ++k) {
+    const int side = k == 0 ? +1 : -1;  // upper boundary first (δ decreasing)
+    const double third = 0.25 + side * eps / 2 - eps * eps / 8 - side * std::pow(eps, 3) / 32;
+    // Tolerance: the crossing is interpolated between the two points that bracket it (the
+    // outside one has a complex pair, so the midpoint): half their distance, plus the
+    // expansion's rest (ε⁴/384).
+    const BranchPoint& before = r.points[static_cast<std::size_t>(pd[k].after_point) - 1];
+    const BranchPoint& after = r.points[static_cast<std::size_t>(pd[k].after_point)];
+    const double tol = std::abs(after.parameter - before.parameter) / 2 + std::pow(eps, 4) / 384;
+    CHECK(std::abs(pd[k].parameter - third) <= tol);
+    CHECK(pd[k].multiplier.real() <= -1);
+  }
+  // Between the flags the points are unstable, outside marginal (no damping).
+  for (const BranchPoint& b : r.points) {
+    const bool inside = b.parameter < pd[0].parameter && b.parameter > pd[1].parameter;
+    if (std::abs(b.parameter - pd[0].parameter) < 0.01 || std::abs(b.parameter - pd[1].parameter) < 0.01)
+      continue;  // near a boundary the interpolated flag may sit on either side of a point
+    INFO("delta = " << b.parameter);
+    CHECK(b.floquet.stability == (inside ? Stability::kUnstable : Stability::kMarginal));
+  }
+
+  // Over the damping c from 0.02 to −0.02 at δ = 0.4: the complex pair |μ| = e^{−πc} leaves the
+  // unit circle at c = 0.
+  c.parameter = "damping";
+  c.start = 0.02;
+  c.end = -0.02;
+  const ContinuationResult ns =
+      ContinuePeriodicOrbit(m, c, Eigen::Vector2d::Zero(), Eigen::Vector3d(0.4, eps, 0.02));
+  REQUIRE(ns.status == ContinuationStatus::kCompleted);
+  REQUIRE(ns.bifurcations.size() == 1);
+  const Bifurcation& b = ns.bifurcations[0];
+  CHECK(b.kind == BifurcationKind::kNeimarkSacker);
+  CHECK(std::abs(b.multiplier) > 1);
+  // Tolerance: |μ| − 1 = e^{−πc} − 1 interpolated linearly between the bracketing c_a, c_b: the
+  // root moves by |f''/(2f')| |c_a c_b| = (π/2)|c_a c_b|; the unit-circle tolerance 1e-6 shifts
+  // the flagged crossing by 1e-6/π; M's error (steps·rtol) is smaller still.
+  const double ca = ns.points[static_cast<std::size_t>(b.after_point) - 1].parameter;
+  const double cb = ns.points[static_cast<std::size_t>(b.after_point)].parameter;
+  CHECK(std::abs(b.parameter) <=
+        std::numbers::pi / 2 * std::abs(ca * cb) + c.shooting.unit_circle_tolerance);
+}
