@@ -13,8 +13,9 @@
 #include <cmath>
 #include <exception>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
+
+#include "number_format.hpp"
 
 namespace epicycle::dynamics {
 
@@ -44,12 +45,7 @@ Eigen::VectorXd PeriodicSystem::DefaultParameters() const {
 
 namespace {
 
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
-}
+using internal::Num;
 
 [[noreturn]] void Fail(const std::string& where, const std::string& field, double value,
                        const std::string& rule) {

@@ -1,7 +1,8 @@
-// Periodic steady state of a T-periodic system y' = f(t, y; p) (docs/periodic.md; docs/model.md
-// §7 for the stage it is meant for): shooting with the monodromy matrix from the variational
-// equations, Floquet multipliers, and pseudo-arclength continuation over one named parameter with
-// folds located and period doubling / Neimark–Sacker flagged.
+// Periodic steady state of a T-periodic system y' = f(t, y; p): shooting with the monodromy
+// matrix from the variational equations, Floquet multipliers, and pseudo-arclength continuation
+// over one named parameter with folds located and period doubling / Neimark–Sacker flagged.
+// Equations: docs/periodic.md §1; the method and its choices: docs/periodic.md §2; verification:
+// docs/periodic.md §3; the stage's model it is meant for: docs/model.md §7.
 //
 // Time is scaled to the period: s = t/T(p) ∈ [0, 1], dy/ds = T f(T s, y; p), so that a parameter
 // that changes the period (a forcing frequency ω, T = 2π/ω) is an ordinary parameter of a fixed

@@ -1,4 +1,4 @@
-// Small periodic systems with known answers (docs/periodic.md): the reference cases of the
+// Small periodic systems with known answers (docs/periodic.md §3): the reference cases of the
 // periodic solver's tests and benchmark, and examples of the PeriodicSystem interface. All are
 // nondimensional (time in units of 1/ω_n where a natural frequency exists).
 #pragma once
