@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -38,7 +39,11 @@ TEST_CASE("paper stage, perfect, springs: the shooting orbit is the state a long
   so.atol = atol;
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);
   y0.head(n) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  const auto clock = std::chrono::steady_clock::now();
   const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
+  test::FigureValue("stage shooting wall time",
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count(),
+                    "s");
   INFO(r.message);
   REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
   test::FigureValue("stage shooting iterations", r.iterations, "-");
@@ -55,6 +60,8 @@ TEST_CASE("paper stage, perfect, springs: the shooting orbit is the state a long
   const dynamics::SimulationResult run = dynamics::Simulate(
       m, sim, y0.head(n), y0.tail(n), {cycles * r.period});
   REQUIRE(run.completed);
+  test::FigureValue("stage Simulate 60 cycles wall time", run.stats.wall_seconds, "s");
+  test::FigureValue("stage Simulate steps", static_cast<double>(run.stats.steps), "-");
   Eigen::VectorXd settled(2 * n);
   settled << run.samples.back().d, run.samples.back().v;
   // Weighted by the integrator's tolerance per component, rtol |y_k| + atol_k.
