@@ -103,39 +103,54 @@ void ContinuationOptions::Validate(int n) const {
 
 std::string ShootingStatusName(ShootingStatus status) {
   switch (status) {
-    case ShootingStatus::kConverged: return "converged";
-    case ShootingStatus::kIterationLimit: return "iteration-limit";
-    case ShootingStatus::kLineSearchFailed: return "line-search-failed";
-    case ShootingStatus::kSingularJacobian: return "singular-jacobian";
-    case ShootingStatus::kIntegrationFailed: return "integration-failed";
+    case ShootingStatus::kConverged:
+      return "converged";
+    case ShootingStatus::kIterationLimit:
+      return "iteration-limit";
+    case ShootingStatus::kLineSearchFailed:
+      return "line-search-failed";
+    case ShootingStatus::kSingularJacobian:
+      return "singular-jacobian";
+    case ShootingStatus::kIntegrationFailed:
+      return "integration-failed";
   }
   return "?";
 }
 
 std::string StabilityName(Stability stability) {
   switch (stability) {
-    case Stability::kStable: return "stable";
-    case Stability::kMarginal: return "marginal";
-    case Stability::kUnstable: return "unstable";
+    case Stability::kStable:
+      return "stable";
+    case Stability::kMarginal:
+      return "marginal";
+    case Stability::kUnstable:
+      return "unstable";
   }
   return "?";
 }
 
 std::string ContinuationStatusName(ContinuationStatus status) {
   switch (status) {
-    case ContinuationStatus::kCompleted: return "completed";
-    case ContinuationStatus::kPointLimit: return "point-limit";
-    case ContinuationStatus::kStartFailed: return "start-failed";
-    case ContinuationStatus::kStepTooSmall: return "step-too-small";
+    case ContinuationStatus::kCompleted:
+      return "completed";
+    case ContinuationStatus::kPointLimit:
+      return "point-limit";
+    case ContinuationStatus::kStartFailed:
+      return "start-failed";
+    case ContinuationStatus::kStepTooSmall:
+      return "step-too-small";
   }
   return "?";
 }
 
 std::string BifurcationKindName(BifurcationKind kind) {
   switch (kind) {
-    case BifurcationKind::kFold: return "fold";
-    case BifurcationKind::kPeriodDoubling: return "period-doubling";
-    case BifurcationKind::kNeimarkSacker: return "neimark-sacker";
+    case BifurcationKind::kFold:
+      return "fold";
+    case BifurcationKind::kPeriodDoubling:
+      return "period-doubling";
+    case BifurcationKind::kNeimarkSacker:
+      return "neimark-sacker";
   }
   return "?";
 }
@@ -154,16 +169,19 @@ FloquetReport FloquetMultipliers(const Eigen::MatrixXd& monodromy, double tol) {
     // Real: the imaginary part below the eigensolver's round-off relative to |μ|.
     const bool real = std::abs(m.imag()) <= 1e-12 * std::max(1.0, a);
     if (a > 1 + tol) {
-      if (!real) ++r.complex_outside;
-      else if (m.real() > 0) ++r.real_above_one;
-      else ++r.real_below_minus_one;
+      if (!real)
+        ++r.complex_outside;
+      else if (m.real() > 0)
+        ++r.real_above_one;
+      else
+        ++r.real_below_minus_one;
     } else if (a >= 1 - tol) {
       on_circle = true;
     }
   }
   r.stability = r.spectral_radius > 1 + tol ? Stability::kUnstable
-                : on_circle                  ? Stability::kMarginal
-                                             : Stability::kStable;
+                : on_circle                 ? Stability::kMarginal
+                                            : Stability::kStable;
   return r;
 }
 
@@ -173,9 +191,9 @@ namespace {
 struct Flow {
   bool ok = false;
   std::string message;
-  Eigen::VectorXd end;       // φ(1; y0, p)
-  Eigen::MatrixXd phi;       // ∂φ/∂y0 (with variational equations)
-  Eigen::VectorXd psi;       // ∂φ/∂λ (with the parameter column)
+  Eigen::VectorXd end;  // φ(1; y0, p)
+  Eigen::MatrixXd phi;  // ∂φ/∂y0 (with variational equations)
+  Eigen::VectorXd psi;  // ∂φ/∂λ (with the parameter column)
   long steps = 0, rhs = 0;
 };
 
@@ -210,14 +228,18 @@ void Check(int flag, const char* what) {
 // is exact for f linear or piecewise linear in y), hence a band matrix of half-bandwidth n − 1.
 class PeriodIntegrator {
  public:
-  PeriodIntegrator(const PeriodicSystem& system, const ShootingOptions& options,
-                   Eigen::VectorXd p, bool variational, int parameter_column,
-                   double parameter_scale)
-      : sys_(system), p_(std::move(p)), n_(system.size()), variational_(variational),
-        column_(parameter_column), lambda_scale_(parameter_scale), rtol_(options.rtol),
+  PeriodIntegrator(const PeriodicSystem& system, const ShootingOptions& options, Eigen::VectorXd p,
+                   bool variational, int parameter_column, double parameter_scale)
+      : sys_(system),
+        p_(std::move(p)),
+        n_(system.size()),
+        variational_(variational),
+        column_(parameter_column),
+        lambda_scale_(parameter_scale),
+        rtol_(options.rtol),
         max_steps_(options.max_steps) {
-    atol_ = options.atol.size() == 1 ? Eigen::VectorXd::Constant(n_, options.atol(0))
-                                     : options.atol;
+    atol_ =
+        options.atol.size() == 1 ? Eigen::VectorXd::Constant(n_, options.atol(0)) : options.atol;
     period_ = PeriodOf(p_);
     size_ = n_ + (variational_ ? n_ * n_ : 0) + (column_ >= 0 ? n_ : 0);
     f_.resize(n_);
@@ -296,8 +318,8 @@ class PeriodIntegrator {
       const int flag = CVode(s.cvode, tout, s.z, &t, CV_NORMAL);
       if (error_) std::rethrow_exception(error_);
       if (flag < 0) {
-        flow.message = "the integration stopped at t = " + Num(t * period_) + " s (s = " +
-                       Num(t) + " of the period): " + CVodeGetReturnFlagName(flag) +
+        flow.message = "the integration stopped at t = " + Num(t * period_) + " s (s = " + Num(t) +
+                       " of the period): " + CVodeGetReturnFlagName(flag) +
                        (message_.empty() ? "" : "; " + message_);
         long v = 0;
         CVodeGetNumSteps(s.cvode, &v);
@@ -576,8 +598,7 @@ Eigen::VectorXd IntegratePeriods(const PeriodicSystem& system, const ShootingOpt
   PeriodIntegrator integrator(system, options, ParametersOr(system, p_in), false, -1, 1.0);
   std::vector<double> s_out;
   for (int k = 1; k <= periods; ++k) s_out.push_back(k);
-  std::vector<Eigen::VectorXd> ys;
-  const Flow f = integrator.Run(y0, s_out, &ys);
+  const Flow f = integrator.Run(y0, s_out, nullptr);
   if (!f.ok) throw std::runtime_error("time integration: " + f.message);
   return f.end;
 }
@@ -587,8 +608,8 @@ namespace {
 // The continuation's unknowns in scaled coordinates u = (y/state_scale, λ/Λ).
 class Continuer {
  public:
-  Continuer(const PeriodicSystem& system, const ContinuationOptions& options,
-            Eigen::VectorXd p, int column)
+  Continuer(const PeriodicSystem& system, const ContinuationOptions& options, Eigen::VectorXd p,
+            int column)
       : sys_(system), o_(options), p_(std::move(p)), column_(column), n_(system.size()) {
     scale_ = o_.state_scale.size() == 1 ? Eigen::VectorXd::Constant(n_, o_.state_scale(0))
                                         : o_.state_scale;
@@ -598,10 +619,10 @@ class Continuer {
   struct Point {
     bool ok = false;
     std::string message;
-    Eigen::VectorXd u;          // scaled (y, λ)
-    Eigen::MatrixXd jacobian;   // scaled [M − I, ψ]: n × (n + 1)
+    Eigen::VectorXd u;         // scaled (y, λ)
+    Eigen::MatrixXd jacobian;  // scaled [M − I, ψ]: n × (n + 1)
     Eigen::MatrixXd monodromy;
-    double residual = 0;        // weighted RMS of R
+    double residual = 0;  // weighted RMS of R
     int iterations = 0;
   };
 
@@ -639,9 +660,8 @@ class Continuer {
     at->monodromy = f.phi;
     at->jacobian.resize(n_, n_ + 1);
     // R̃ = R/scale: ∂R̃/∂ỹ = diag(1/scale)(M − I) diag(scale), ∂R̃/∂λ̃ = ψ Λ/scale.
-    at->jacobian.leftCols(n_) =
-        scale_.cwiseInverse().asDiagonal() *
-        (f.phi - Eigen::MatrixXd::Identity(n_, n_)) * scale_.asDiagonal();
+    at->jacobian.leftCols(n_) = scale_.cwiseInverse().asDiagonal() *
+                                (f.phi - Eigen::MatrixXd::Identity(n_, n_)) * scale_.asDiagonal();
     at->jacobian.col(n_) = f.psi.cwiseQuotient(scale_) * lambda_scale_;
     at->u = u;
     return true;
@@ -681,16 +701,17 @@ class Continuer {
       // The update below the integrator's tolerance in y and in λ: converged.
       const double lambda = Lambda(u);
       if (Wrms(dy, Y(u), o_.shooting) <= o_.shooting.newton_tolerance &&
-          std::abs(du(n_) * lambda_scale_) <=
-              o_.shooting.newton_tolerance * o_.shooting.rtol * (std::abs(lambda) + lambda_scale_)) {
+          std::abs(du(n_) * lambda_scale_) <= o_.shooting.newton_tolerance * o_.shooting.rtol *
+                                                  (std::abs(lambda) + lambda_scale_)) {
         at.ok = true;
         return at;
       }
       u += du;
     }
     at.iterations = o_.max_corrector_iterations;
-    at.message = "the corrector did not converge in " + std::to_string(o_.max_corrector_iterations) +
-                 " iterations (weighted |R| " + Num(at.residual) + ")";
+    at.message = "the corrector did not converge in " +
+                 std::to_string(o_.max_corrector_iterations) + " iterations (weighted |R| " +
+                 Num(at.residual) + ")";
     return at;
   }
 
@@ -774,8 +795,8 @@ ContinuationResult ContinuePeriodicOrbit(const PeriodicSystem& system,
   if (result.start.status != ShootingStatus::kConverged) {
     result.status = ContinuationStatus::kStartFailed;
     result.message = "continuation: the first orbit, at " + options.parameter + " = " +
-                     Num(options.start) + " " + result.unit + ", was not found: " +
-                     result.start.message;
+                     Num(options.start) + " " + result.unit +
+                     ", was not found: " + result.start.message;
     return result;
   }
   const double direction = options.end > options.start ? 1.0 : -1.0;
@@ -821,11 +842,10 @@ ContinuationResult ContinuePeriodicOrbit(const PeriodicSystem& system,
       ++result.rejected_steps;
       if (ds <= options.min_step)
         return stop(ContinuationStatus::kStepTooSmall,
-                    "continuation stopped after " + options.parameter + " = " +
-                        Num(c.Lambda(u)) + " " + result.unit + " (point " +
-                        std::to_string(result.points.size() - 1) + ", arclength " + Num(s) +
-                        "): the step at its minimum " + Num(options.min_step) + " failed: " +
-                        next.message);
+                    "continuation stopped after " + options.parameter + " = " + Num(c.Lambda(u)) +
+                        " " + result.unit + " (point " + std::to_string(result.points.size() - 1) +
+                        ", arclength " + Num(s) + "): the step at its minimum " +
+                        Num(options.min_step) + " failed: " + next.message);
       ds = std::max(ds / 2, options.min_step);
       continue;
     }
@@ -856,8 +876,8 @@ ContinuationResult ContinuePeriodicOrbit(const PeriodicSystem& system,
       fold.parameter = c.Lambda(best.u);
       fold.state = c.Y(best.u);
       fold.after_point = static_cast<int>(result.points.size());
-      fold.multiplier = NearestToOne(
-          FloquetMultipliers(best.monodromy, options.shooting.unit_circle_tolerance));
+      fold.multiplier =
+          NearestToOne(FloquetMultipliers(best.monodromy, options.shooting.unit_circle_tolerance));
       result.bifurcations.push_back(std::move(fold));
     }
     s += ds;

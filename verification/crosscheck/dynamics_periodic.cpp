@@ -44,10 +44,11 @@ double Amplitude(const BacklashOscillator& s, const ShootingOptions& o, const Ei
 
 }  // namespace
 
-TEST_CASE("backlash oscillator: the continuation over the forcing frequency finds both folds, the "
-          "unstable segment between them, and the linear steady state where the teeth stay in "
-          "contact",
-          "[crosscheck][dynamics][periodic]") {
+TEST_CASE(
+    "backlash oscillator: the continuation over the forcing frequency finds both folds, the "
+    "unstable segment between them, and the linear steady state where the teeth stay in "
+    "contact",
+    "[crosscheck][dynamics][periodic]") {
   const BacklashOscillator s;
   const ContinuationOptions c = Sweep();
   const Eigen::Vector2d p0(c.start, s.alternating_force);
@@ -70,8 +71,8 @@ TEST_CASE("backlash oscillator: the continuation over the forcing frequency find
   // Every point between the folds (in arclength) is unstable, every other stable (a fold is a
   // real multiplier through +1, and nothing else crosses here).
   for (std::size_t k = 0; k < r.points.size(); ++k) {
-    const bool middle = static_cast<int>(k) >= low.after_point &&
-                        static_cast<int>(k) < high.after_point;
+    const bool middle =
+        static_cast<int>(k) >= low.after_point && static_cast<int>(k) < high.after_point;
     INFO("point " << k << " at Omega = " << r.points[k].parameter);
     CHECK((r.points[k].floquet.stability == Stability::kUnstable) == middle);
     if (middle) CHECK(r.points[k].floquet.real_above_one == 1);
@@ -114,9 +115,10 @@ TEST_CASE("backlash oscillator: the continuation over the forcing frequency find
   epicycle::test::FigureValue("linear branch worst error over tolerance", worst_linear, "-");
 }
 
-TEST_CASE("backlash oscillator: between the folds, time integrations from two initial states "
-          "settle on the two stable orbits of the continuation",
-          "[crosscheck][dynamics][periodic]") {
+TEST_CASE(
+    "backlash oscillator: between the folds, time integrations from two initial states "
+    "settle on the two stable orbits of the continuation",
+    "[crosscheck][dynamics][periodic]") {
   const BacklashOscillator s;
   const ContinuationOptions c = Sweep();
   const ContinuationResult r =
@@ -133,8 +135,7 @@ TEST_CASE("backlash oscillator: between the folds, time integrations from two in
     if ((a.parameter - omega) * (b.parameter - omega) > 0) continue;
     if (a.floquet.stability != Stability::kStable || b.floquet.stability != Stability::kStable)
       continue;
-    const BranchPoint& near =
-        std::abs(a.parameter - omega) < std::abs(b.parameter - omega) ? a : b;
+    const BranchPoint& near = std::abs(a.parameter - omega) < std::abs(b.parameter - omega) ? a : b;
     branch.push_back(SolvePeriodicOrbit(s, c.shooting, near.state, p));
     REQUIRE(branch.back().status == ShootingStatus::kConverged);
   }
@@ -145,8 +146,7 @@ TEST_CASE("backlash oscillator: between the folds, time integrations from two in
   });
   // From rest at the static deflection (x = 1 + F_m): the small orbit, teeth in contact. From a
   // displaced start that separates the teeth at once: the large orbit.
-  const Eigen::Vector2d starts[2] = {Eigen::Vector2d(1 + s.mean_force, 0),
-                                     Eigen::Vector2d(0.0, 0)};
+  const Eigen::Vector2d starts[2] = {Eigen::Vector2d(1 + s.mean_force, 0), Eigen::Vector2d(0.0, 0)};
   const int periods = 100;
   for (int k = 0; k < 2; ++k) {
     const Eigen::VectorXd settled = IntegratePeriods(s, c.shooting, starts[k], p, periods);
@@ -162,13 +162,14 @@ TEST_CASE("backlash oscillator: between the folds, time integrations from two in
     INFO("start " << k << ", settled " << settled.transpose() << ", branch "
                   << orbit.initial_state.transpose());
     CHECK((settled - orbit.initial_state).cwiseAbs().maxCoeff() <= tol);
-    epicycle::test::FigureValue("settled - branch", (settled - orbit.initial_state).cwiseAbs().maxCoeff(), "-");
+    epicycle::test::FigureValue("settled - branch",
+                                (settled - orbit.initial_state).cwiseAbs().maxCoeff(), "-");
     epicycle::test::FigureValue("settled tolerance", tol, "-");
     const double a_time = Amplitude(s, c.shooting, settled, p);
     const double a_branch = Amplitude(s, c.shooting, orbit.initial_state, p);
-    epicycle::test::FigureValue(k == 0 ? "backlash small orbit amplitude at 0.6"
-                                       : "backlash large orbit amplitude at 0.6",
-                                a_branch, "-");
+    epicycle::test::FigureValue(
+        k == 0 ? "backlash small orbit amplitude at 0.6" : "backlash large orbit amplitude at 0.6",
+        a_branch, "-");
     CHECK(a_time == Approx(a_branch).margin(tol));
   }
 }

@@ -15,9 +15,10 @@
 
 using namespace epicycle;
 
-TEST_CASE("paper stage, perfect, springs: the shooting orbit is the state a long time integration "
-          "settles into",
-          "[crosscheck][dynamics][periodic]") {
+TEST_CASE(
+    "paper stage, perfect, springs: the shooting orbit is the state a long time integration "
+    "settles into",
+    "[crosscheck][dynamics][periodic]") {
   test::RigOptions o;
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
@@ -57,8 +58,8 @@ TEST_CASE("paper stage, perfect, springs: the shooting orbit is the state a long
   sim.atol_angle = 1e-11;
   sim.atol_length = 1e-12;
   sim.rate_scale = 1e4;
-  const dynamics::SimulationResult run = dynamics::Simulate(
-      m, sim, y0.head(n), y0.tail(n), {cycles * r.period});
+  const dynamics::SimulationResult run =
+      dynamics::Simulate(m, sim, y0.head(n), y0.tail(n), {cycles * r.period});
   REQUIRE(run.completed);
   test::FigureValue("stage Simulate 60 cycles wall time", run.stats.wall_seconds, "s");
   test::FigureValue("stage Simulate steps", static_cast<double>(run.stats.steps), "-");

@@ -62,16 +62,18 @@ struct NegativePeriod : DrivenLinearOscillator {
 
 }  // namespace
 
-TEST_CASE("a damped oscillator under harmonic forcing: the orbit is the analytic steady state, "
-          "the multipliers exp(λ_k T)",
-          "[unit][dynamics][periodic]") {
+TEST_CASE(
+    "a damped oscillator under harmonic forcing: the orbit is the analytic steady state, "
+    "the multipliers exp(λ_k T)",
+    "[unit][dynamics][periodic]") {
   const DrivenLinearOscillator s;
   const ShootingOptions o = Tight();
   const ShootingResult r = SolvePeriodicOrbit(s, o, Eigen::Vector2d::Zero());
   REQUIRE(r.status == ShootingStatus::kConverged);
   const double wn = s.natural_frequency, z = s.damping_ratio, w = s.omega;
   // x(t) = Re(H e^{iωt}), H = a/(ω_n² − ω² + 2iζω_nω): x(0) = Re H, x'(0) = −ω Im H.
-  const std::complex<double> h = s.amplitude / std::complex<double>(wn * wn - w * w, 2 * z * wn * w);
+  const std::complex<double> h =
+      s.amplitude / std::complex<double>(wn * wn - w * w, 2 * z * wn * w);
   const Eigen::Vector2d exact(h.real(), -w * h.imag());
   // Tolerance: Newton stops with R to newton_tolerance integrator tolerances, an orbit error of
   // ‖(M − I)⁻¹‖ times that; R itself carries the integration's global error over a period, at
@@ -80,7 +82,8 @@ TEST_CASE("a damped oscillator under harmonic forcing: the orbit is the analytic
   const Eigen::MatrixXd inv = (r.monodromy - Eigen::MatrixXd::Identity(2, 2)).inverse();
   const double tol = (inv.norm() * o.newton_tolerance + steps) * Weight(o, exact);
   CHECK((r.initial_state - exact).cwiseAbs().maxCoeff() <= tol);
-  epicycle::test::FigureValue("linear orbit error", (r.initial_state - exact).cwiseAbs().maxCoeff(), "-");
+  epicycle::test::FigureValue("linear orbit error", (r.initial_state - exact).cwiseAbs().maxCoeff(),
+                              "-");
   epicycle::test::FigureValue("linear orbit tolerance", tol, "-");
   CHECK(r.period == Approx(2 * std::numbers::pi / w).epsilon(1e-15));
 
@@ -93,15 +96,15 @@ TEST_CASE("a damped oscillator under harmonic forcing: the orbit is the analytic
   // condition number κ = ‖l‖‖r‖/|lᵀr| times ‖δM‖₂ ≤ 2 max|δM_ij| (2 × 2). κ from the analytic
   // eigenvectors (1, λ) of the companion matrix and their left partners.
   const std::complex<double> l1 = lambda, l2 = std::conj(lambda);
-  const double kappa = std::abs(l1 - l2) > 0
-                           ? std::sqrt(1 + std::norm(l1)) * std::sqrt(1 + std::norm(l2)) /
-                                 std::abs(l1 - l2)
-                           : 1.0;
+  const double kappa = std::abs(l1 - l2) > 0 ? std::sqrt(1 + std::norm(l1)) *
+                                                   std::sqrt(1 + std::norm(l2)) / std::abs(l1 - l2)
+                                             : 1.0;
   const double mu_tol = kappa * 2 * steps * o.rtol * (r.monodromy.cwiseAbs().maxCoeff() + 1);
   bool upper_found = false, lower_found = false;
   epicycle::test::FigureValue("linear multiplier error",
                               std::min(std::abs(r.floquet.multipliers[0] - mu),
-                                       std::abs(r.floquet.multipliers[0] - std::conj(mu))), "-");
+                                       std::abs(r.floquet.multipliers[0] - std::conj(mu))),
+                              "-");
   epicycle::test::FigureValue("linear multiplier tolerance", mu_tol, "-");
   for (const std::complex<double> m : r.floquet.multipliers) {
     upper_found |= std::abs(m - mu) <= mu_tol;
@@ -113,9 +116,10 @@ TEST_CASE("a damped oscillator under harmonic forcing: the orbit is the analytic
   CHECK(r.floquet.spectral_radius == Approx(std::abs(mu)).margin(mu_tol));
 }
 
-TEST_CASE("the Mathieu equation: multipliers outside the unit circle inside the first tongue, on "
-          "it outside, the tongue's boundary at δ = 1/4 ± ε/2 to the expansion's next terms",
-          "[unit][dynamics][periodic]") {
+TEST_CASE(
+    "the Mathieu equation: multipliers outside the unit circle inside the first tongue, on "
+    "it outside, the tongue's boundary at δ = 1/4 ± ε/2 to the expansion's next terms",
+    "[unit][dynamics][periodic]") {
   const MathieuOscillator m;
   const ShootingOptions o = Tight();
   const double eps = 0.1;
@@ -154,9 +158,10 @@ TEST_CASE("the Mathieu equation: multipliers outside the unit circle inside the 
   }
 }
 
-TEST_CASE("the damped Mathieu equation: |μ|² = det M = exp(−2πc) outside the tongue; inside, a "
-          "long integration grows at log|μ|/T per unit time",
-          "[unit][dynamics][periodic]") {
+TEST_CASE(
+    "the damped Mathieu equation: |μ|² = det M = exp(−2πc) outside the tongue, and inside, a "
+    "long integration grows at log|μ|/T per unit time",
+    "[unit][dynamics][periodic]") {
   const MathieuOscillator m;
   const ShootingOptions o = Tight();
   const double c = 0.02, eps = 0.1;
@@ -173,7 +178,8 @@ TEST_CASE("the damped Mathieu equation: |μ|² = det M = exp(−2πc) outside th
                          out.monodromy.cwiseAbs().maxCoeff();
   CHECK(out.monodromy.determinant() == Approx(std::exp(-2 * std::numbers::pi * c)).margin(det_tol));
   epicycle::test::FigureValue("damped Mathieu det M error",
-                              out.monodromy.determinant() - std::exp(-2 * std::numbers::pi * c), "-");
+                              out.monodromy.determinant() - std::exp(-2 * std::numbers::pi * c),
+                              "-");
   epicycle::test::FigureValue("damped Mathieu det M tolerance", det_tol, "-");
   for (const auto mu : out.floquet.multipliers)
     CHECK(std::abs(mu) == Approx(std::exp(-std::numbers::pi * c)).margin(det_tol));
@@ -192,10 +198,10 @@ TEST_CASE("the damped Mathieu equation: |μ|² = det M = exp(−2πc) outside th
   const double rate = std::log(y40.norm() / y20.norm()) / (n * in.period);  // [1/time]
   // Tolerance: the other mode's share after 20 periods, (μ₂/μ₁)²⁰ relative (≈ 1e-6 at c = 0.02),
   // over the 20 periods' time, plus the integrations' relative error (steps·rtol per period).
-  const double rate_tol =
-      (std::pow(mu2 / mu1, n) + 2 * n * steps * o.rtol) / (n * in.period);
+  const double rate_tol = (std::pow(mu2 / mu1, n) + 2 * n * steps * o.rtol) / (n * in.period);
   epicycle::test::FigureValue("Mathieu growth rate, integration", rate, "1/time");
-  epicycle::test::FigureValue("Mathieu growth rate, log|mu|/T", std::log(mu1) / in.period, "1/time");
+  epicycle::test::FigureValue("Mathieu growth rate, log|mu|/T", std::log(mu1) / in.period,
+                              "1/time");
   epicycle::test::FigureValue("Mathieu growth rate tolerance", rate_tol, "1/time");
   CHECK(rate == Approx(std::log(mu1) / in.period).margin(rate_tol));
 }
@@ -235,14 +241,14 @@ TEST_CASE("periodic solver: bad input names the field, its value and the rule",
   o.atol = Eigen::VectorXd::Constant(3, 1e-9);
   CHECK(ThrownMessage([&] { SolvePeriodicOrbit(s, o, Eigen::Vector2d::Zero()); }) ==
         "shooting: atol's size = 3: must be 1 or the state's size 2");
-  CHECK(ThrownMessage([&] {
-          SolvePeriodicOrbit(s, ShootingOptions{}, Eigen::Vector3d::Zero());
-        }) == "shooting: the initial state has 3 entries, the system 2");
+  CHECK(ThrownMessage([&] { SolvePeriodicOrbit(s, ShootingOptions{}, Eigen::Vector3d::Zero()); }) ==
+        "shooting: the initial state has 3 entries, the system 2");
 }
 
-TEST_CASE("periodic solver: a failed Newton or continuation step says where it stopped and keeps "
-          "the branch so far",
-          "[unit][dynamics][periodic]") {
+TEST_CASE(
+    "periodic solver: a failed Newton or continuation step says where it stopped and keeps "
+    "the branch so far",
+    "[unit][dynamics][periodic]") {
   // Newton: the model cannot be evaluated at the shooting's parameters.
   FailsAbove s;
   s.limit = 2.0;  // the default ω = 3 lies above
@@ -272,10 +278,10 @@ TEST_CASE("periodic solver: a failed Newton or continuation step says where it s
   const double last = cr.points.back().parameter;
   CHECK(last <= 3.5);
   CHECK(last > 3.5 - 3 * c.max_step * (c.end - c.start));
-  CHECK_THAT(cr.message, Catch::Contains("continuation stopped after omega = ") &&
-                             Catch::Contains("rad/s (point " +
-                                             std::to_string(cr.points.size() - 1)) &&
-                             Catch::Contains("the integration stopped at t = 0 s"));
+  CHECK_THAT(cr.message,
+             Catch::Contains("continuation stopped after omega = ") &&
+                 Catch::Contains("rad/s (point " + std::to_string(cr.points.size() - 1)) &&
+                 Catch::Contains("the integration stopped at t = 0 s"));
   // The start failing is its own status, with the shooting's record.
   s.limit = 2.0;
   const ContinuationResult start = ContinuePeriodicOrbit(s, c, Eigen::Vector2d::Zero());
@@ -284,9 +290,10 @@ TEST_CASE("periodic solver: a failed Newton or continuation step says where it s
   CHECK_THAT(start.message, Catch::Contains("the first orbit, at omega = 3 rad/s, was not found"));
 }
 
-TEST_CASE("continuation on the Mathieu equation: period doublings flagged at the first tongue's "
-          "boundaries, a Neimark–Sacker where the damping changes sign",
-          "[unit][dynamics][periodic]") {
+TEST_CASE(
+    "continuation on the Mathieu equation: period doublings flagged at the first tongue's "
+    "boundaries, a Neimark–Sacker where the damping changes sign",
+    "[unit][dynamics][periodic]") {
   const MathieuOscillator m;
   const double eps = 0.1;
   // The trivial orbit y = 0 over δ from 0.4 down to 0.1 crosses the first tongue: a real
@@ -322,7 +329,8 @@ TEST_CASE("continuation on the Mathieu equation: period doublings flagged at the
   // Between the flags the points are unstable, outside marginal (no damping).
   for (const BranchPoint& b : r.points) {
     const bool inside = b.parameter < pd[0].parameter && b.parameter > pd[1].parameter;
-    if (std::abs(b.parameter - pd[0].parameter) < 0.01 || std::abs(b.parameter - pd[1].parameter) < 0.01)
+    if (std::abs(b.parameter - pd[0].parameter) < 0.01 ||
+        std::abs(b.parameter - pd[1].parameter) < 0.01)
       continue;  // near a boundary the interpolated flag may sit on either side of a point
     INFO("delta = " << b.parameter);
     CHECK(b.floquet.stability == (inside ? Stability::kUnstable : Stability::kMarginal));

@@ -32,7 +32,7 @@ struct PeriodicParameter {
 class PeriodicSystem {
  public:
   virtual ~PeriodicSystem() = default;
-  virtual int size() const = 0;                                ///< n, the state's size [-]
+  virtual int size() const = 0;                                   ///< n, the state's size [-]
   virtual std::vector<PeriodicParameter> parameters() const = 0;  ///< may be empty
   /// T(p) [s], the forcing period.
   virtual double Period(const Eigen::VectorXd& p) const = 0;
@@ -63,8 +63,8 @@ struct ShootingOptions {
   /// docs/periodic.md: R stagnates at 1–50 on the unstable branch), so a Newton tolerance of 1
   /// chases noise. 100: R to 100 local tolerances.
   double newton_tolerance = 100.0;
-  int max_iterations = 25;           ///< Newton iterations [-], ≥ 1
-  long max_steps = 1000000;          ///< integrator steps over one period [-], ≥ 1
+  int max_iterations = 25;   ///< Newton iterations [-], ≥ 1
+  long max_steps = 1000000;  ///< integrator steps over one period [-], ≥ 1
   /// A multiplier is outside (inside) the unit circle when |μ| > 1 + this (< 1 − this) [-];
   /// between, it is on it (a marginal orbit, e.g. a conservative system's).
   double unit_circle_tolerance = 1e-6;
@@ -93,16 +93,16 @@ struct FloquetReport {
   std::vector<std::complex<double>> multipliers;  ///< eigenvalues of M, by decreasing |μ| [-]
   double spectral_radius = 0;                     ///< max |μ| [-]
   Stability stability = Stability::kStable;
-  int real_above_one = 0;      ///< real μ > 1 + tol (a fold's unstable side) [-]
+  int real_above_one = 0;        ///< real μ > 1 + tol (a fold's unstable side) [-]
   int real_below_minus_one = 0;  ///< real μ < −1 − tol (past a period doubling) [-]
-  int complex_outside = 0;     ///< complex μ with |μ| > 1 + tol, counted singly [-]
+  int complex_outside = 0;       ///< complex μ with |μ| > 1 + tol, counted singly [-]
 };
 /// Classifies the eigenvalues of a monodromy matrix.
 FloquetReport FloquetMultipliers(const Eigen::MatrixXd& monodromy, double unit_circle_tolerance);
 
 struct ShootingResult {
   ShootingStatus status = ShootingStatus::kIntegrationFailed;
-  std::string message;        ///< where and why it stopped, when not converged
+  std::string message;            ///< where and why it stopped, when not converged
   Eigen::VectorXd initial_state;  ///< y0 on the orbit, at t = 0 [units of y]
   Eigen::VectorXd parameters;     ///< p of the orbit
   double period = 0;              ///< T [s]
@@ -130,8 +130,7 @@ Eigen::MatrixXd SampleOrbit(const PeriodicSystem& system, const ShootingOptions&
 /// tolerances) and returns y at their end: the settled state a time integration reaches.
 /// @throws std::runtime_error if the integration fails.
 Eigen::VectorXd IntegratePeriods(const PeriodicSystem& system, const ShootingOptions& options,
-                                 const Eigen::VectorXd& y0, const Eigen::VectorXd& p,
-                                 int periods);
+                                 const Eigen::VectorXd& y0, const Eigen::VectorXd& p, int periods);
 
 struct ContinuationOptions {
   std::string parameter;  ///< the parameter continued (one of the system's names)
@@ -143,37 +142,37 @@ struct ContinuationOptions {
   double max_step = 0.1;
   /// The state's scale per component [units of y] (size 1: for every component).
   Eigen::VectorXd state_scale = Eigen::VectorXd::Ones(1);
-  int max_points = 500;            ///< points of the branch [-]
+  int max_points = 500;              ///< points of the branch [-]
   int max_corrector_iterations = 8;  ///< Newton iterations per point [-]
   /// A step whose corrector took ≤ this many iterations lets the next grow 1.5× [-].
   int fast_iterations = 3;
-  int fold_refinements = 10;  ///< secant steps locating a fold [-]
+  int fold_refinements = 10;    ///< secant steps locating a fold [-]
   int amplitude_component = 0;  ///< c of BranchPoint::amplitude [-]
   int amplitude_samples = 256;  ///< instants per period for BranchPoint::amplitude [-], ≥ 4
-  ShootingOptions shooting;   ///< tolerances, Newton of the first point, unit circle
+  ShootingOptions shooting;     ///< tolerances, Newton of the first point, unit circle
   /// @throws std::invalid_argument naming the field, its value and the rule.
   void Validate(int n) const;
 };
 
 enum class ContinuationStatus {
-  kCompleted,      ///< the branch reached `end` (or left the range)
-  kPointLimit,     ///< max_points reached first
-  kStartFailed,    ///< shooting at λ_0 did not converge (ContinuationResult::start says why)
-  kStepTooSmall,   ///< the corrector failed with the step at min_step
+  kCompleted,     ///< the branch reached `end` (or left the range)
+  kPointLimit,    ///< max_points reached first
+  kStartFailed,   ///< shooting at λ_0 did not converge (ContinuationResult::start says why)
+  kStepTooSmall,  ///< the corrector failed with the step at min_step
 };
 std::string ContinuationStatusName(ContinuationStatus status);
 
 enum class BifurcationKind {
-  kFold,             ///< dλ/ds changes sign; a real multiplier at +1
-  kPeriodDoubling,   ///< a real multiplier through −1
-  kNeimarkSacker,    ///< a complex pair through the unit circle
+  kFold,            ///< dλ/ds changes sign; a real multiplier at +1
+  kPeriodDoubling,  ///< a real multiplier through −1
+  kNeimarkSacker,   ///< a complex pair through the unit circle
 };
 std::string BifurcationKindName(BifurcationKind kind);
 
 struct BranchPoint {
-  double parameter = 0;    ///< λ [its unit]
-  double period = 0;       ///< T [s]
-  Eigen::VectorXd state;   ///< y0 on the orbit [units of y]
+  double parameter = 0;   ///< λ [its unit]
+  double period = 0;      ///< T [s]
+  Eigen::VectorXd state;  ///< y0 on the orbit [units of y]
   /// Half the peak-to-peak of y_c over the period, c = ContinuationOptions::amplitude_component,
   /// from amplitude_samples + 1 equally spaced instants [units of y_c].
   double amplitude = 0;
@@ -185,7 +184,7 @@ struct BranchPoint {
 
 struct Bifurcation {
   BifurcationKind kind = BifurcationKind::kFold;
-  double parameter = 0;  ///< λ where it is (fold: located; others: interpolated) [its unit]
+  double parameter = 0;   ///< λ where it is (fold: located; others: interpolated) [its unit]
   Eigen::VectorXd state;  ///< y0 there (fold) or at the point after it [units of y]
   int after_point = 0;    ///< index of the branch point it lies just before [-]
   /// Fold: the real multiplier nearest +1 at the located point; others: the crossing
@@ -199,10 +198,10 @@ struct ContinuationResult {
   std::string parameter, unit;
   std::vector<BranchPoint> points;  ///< the branch, stable and unstable, in arclength order
   std::vector<Bifurcation> bifurcations;
-  ShootingResult start;  ///< the first point's shooting
-  long integrations = 0;  ///< periods integrated in all [-]
-  long steps = 0;         ///< integrator steps in all [-]
-  int rejected_steps = 0; ///< corrector failures that halved the step [-]
+  ShootingResult start;    ///< the first point's shooting
+  long integrations = 0;   ///< periods integrated in all [-]
+  long steps = 0;          ///< integrator steps in all [-]
+  int rejected_steps = 0;  ///< corrector failures that halved the step [-]
 };
 
 /// Pseudo-arclength continuation of the periodic orbit from (y0 guess, λ = start) towards `end`,

@@ -34,8 +34,8 @@ class DrivenLinearOscillator : public PeriodicSystem {
 /// oscillator's about x = 1 + F_m.
 class BacklashOscillator : public PeriodicSystem {
  public:
-  double damping_ratio = 0.05;  ///< ζ [-]
-  double mean_force = 0.1;      ///< F_m [-]
+  double damping_ratio = 0.05;      ///< ζ [-]
+  double mean_force = 0.1;          ///< F_m [-]
   double alternating_force = 0.05;  ///< F_a's default [-]
   double omega = 1.0;               ///< Ω's default [-]
   int size() const override { return 2; }
