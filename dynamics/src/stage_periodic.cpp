@@ -29,17 +29,23 @@ bool StagePeriodicSystem::Rhs(double t, const Eigen::VectorXd& y, const Eigen::V
   f->tail(n) = scratch_.acceleration;
   std::swap(warm_, scratch_);
   warm_valid_ = true;
+  warm_t_ = t;
+  warm_y_ = y;
   return true;
 }
 
 bool StagePeriodicSystem::Jacobian(double t, const Eigen::VectorXd& y, const Eigen::VectorXd&,
                                    Eigen::MatrixXd* jac) const {
-  if (!EvaluateAt(t, y, &scratch_)) return false;
+  if (!(warm_valid_ && t == warm_t_ && y == warm_y_)) {
+    if (!EvaluateAt(t, y, &scratch_)) return false;
+    std::swap(warm_, scratch_);
+    warm_valid_ = true;
+    warm_t_ = t;
+    warm_y_ = y;
+  }
   const int n = model_.size();
   Eigen::MatrixXd dd, dv;
-  model_.Jacobian(t, y.head(n), y.tail(n), scratch_, &dd, &dv);
-  std::swap(warm_, scratch_);
-  warm_valid_ = true;
+  model_.Jacobian(t, y.head(n), y.tail(n), warm_, &dd, &dv);
   jac->setZero(2 * n, 2 * n);
   jac->topRightCorner(n, n).setIdentity();
   jac->bottomLeftCorner(n, n) = dd;

@@ -41,6 +41,10 @@ class StagePeriodicSystem : public PeriodicSystem {
   std::unique_ptr<solvers::ContactSolver> solver_;
   mutable Evaluation warm_, scratch_;
   mutable bool warm_valid_ = false;
+  // Where warm_ was evaluated: a Jacobian at that very state (the periodic solver asks for f and
+  // then ∂f/∂y at each state of the variational equations) reads it instead of solving again.
+  mutable double warm_t_ = 0;
+  mutable Eigen::VectorXd warm_y_;
   mutable long evaluations_ = 0;
 };
 
