@@ -293,8 +293,9 @@ std::string RenderSvg(const LinePlot& input) {
           col, pts, env);
     } else if (!pts.empty()) {
       s += fmt::format(
-          "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{} points=\"{}\"/>\n", col,
-          ser.faint ? 0.6 : 1.5, ser.faint ? " stroke-opacity=\"0.45\"" : "", pts);
+          "<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{}{} points=\"{}\"/>\n", col,
+          ser.faint ? 0.6 : 1.5, ser.faint ? " stroke-opacity=\"0.45\"" : "",
+          ser.dashed ? " stroke-dasharray=\"6,4\"" : "", pts);
     }
     if (ser.name.empty()) continue;
     s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", left + pw + 12,

@@ -19,6 +19,7 @@ struct PlotSeries {
   /// forwards, the upper edge backwards), drawn as a closed polygon, translucent, no stroke.
   bool band = false;
   bool faint = false;  ///< a thin translucent line (raw samples under their means)
+  bool dashed = false;  ///< a dashed line (an unstable branch)
   int colour = -1;     ///< index into the palette; -1: the series' own index
   /// Where the points are denser than the pixels (a spectrum's fine comb of lines): the line
   /// drawn faint and over it the upper envelope, the largest value in each pixel column.

@@ -1,0 +1,175 @@
+// The periodic solver's continuation on the gear pair with backlash of Kahraman & Singh (1990)
+// (docs/periodic.md): the frequency response bends to lower frequencies once the teeth separate
+// (the contact spring works one way), so that between two folds two stable orbits coexist with an
+// unstable one. Checked against references outside the continuation: the linear oscillator's
+// steady state where the teeth never separate, a multiplier at +1 at every fold (what a fold
+// is), and time integrations from two initial states that settle on the two stable orbits.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <string>
+
+#include "epicycle/dynamics/periodic.hpp"
+#include "epicycle/dynamics/periodic_systems.hpp"
+#include "figures.hpp"
+
+using namespace epicycle::dynamics;
+
+namespace {
+
+ContinuationOptions Sweep() {
+  ContinuationOptions c;
+  c.parameter = "Omega";
+  c.start = 1.5;  // above the resonance: one orbit, teeth in contact
+  c.end = 0.4;
+  c.max_step = 0.02;
+  c.shooting.rtol = 1e-8;
+  c.shooting.atol = Eigen::VectorXd::Constant(1, 1e-10);
+  return c;
+}
+
+// The weighted tolerance of a state, rtol |y|_∞ + atol.
+double Weight(const ShootingOptions& o, const Eigen::VectorXd& y) {
+  return o.rtol * y.cwiseAbs().maxCoeff() + o.atol.maxCoeff();
+}
+
+// Half the peak-to-peak of x over one period from y0 (a time integration's samples).
+double Amplitude(const BacklashOscillator& s, const ShootingOptions& o, const Eigen::VectorXd& y0,
+                 const Eigen::VectorXd& p) {
+  const Eigen::MatrixXd orbit = SampleOrbit(s, o, y0, p, 512);
+  return (orbit.col(0).maxCoeff() - orbit.col(0).minCoeff()) / 2;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "backlash oscillator: the continuation over the forcing frequency finds both folds, the "
+    "unstable segment between them, and the linear steady state where the teeth stay in "
+    "contact",
+    "[crosscheck][dynamics][periodic]") {
+  const BacklashOscillator s;
+  const ContinuationOptions c = Sweep();
+  const Eigen::Vector2d p0(c.start, s.alternating_force);
+  const ContinuationResult r = ContinuePeriodicOrbit(s, c, Eigen::Vector2d(1.1, 0), p0);
+  INFO(r.message);
+  REQUIRE(r.status == ContinuationStatus::kCompleted);
+  std::vector<Bifurcation> folds;
+  for (const Bifurcation& b : r.bifurcations)
+    if (b.kind == BifurcationKind::kFold) folds.push_back(b);
+  REQUIRE(folds.size() == 2);
+  // Down in frequency along the resonant branch to the lower fold, back up along the unstable
+  // branch to the upper fold, down again along the branch where the teeth stay in contact.
+  const Bifurcation& low = folds[0];
+  const Bifurcation& high = folds[1];
+  CHECK(low.parameter < high.parameter);
+  CHECK(low.parameter > 0.4);
+  CHECK(high.parameter < 1.0);  // below the linear resonance: the contact loss softens
+  epicycle::test::FigureValue("backlash lower fold Omega", low.parameter, "-");
+  epicycle::test::FigureValue("backlash upper fold Omega", high.parameter, "-");
+  // Every point between the folds (in arclength) is unstable, every other stable (a fold is a
+  // real multiplier through +1, and nothing else crosses here).
+  for (std::size_t k = 0; k < r.points.size(); ++k) {
+    const bool middle =
+        static_cast<int>(k) >= low.after_point && static_cast<int>(k) < high.after_point;
+    INFO("point " << k << " at Omega = " << r.points[k].parameter);
+    CHECK((r.points[k].floquet.stability == Stability::kUnstable) == middle);
+    if (middle) CHECK(r.points[k].floquet.real_above_one == 1);
+  }
+  // At each located fold a multiplier is +1. Tolerance: the secant stops with dλ/ds ≈ 0 to
+  // ~1e-8, and M's entries carry the integration's error, ≤ steps·rtol·(|M| + 1) with ~10³ steps a
+  // period at rtol 1e-8: 1e-5 × |M| (≤ 3 here), times the multiplier's condition.
+  const double steps = static_cast<double>(r.steps) / static_cast<double>(r.integrations);
+  const double mu_tol = 4 * steps * c.shooting.rtol * 3;
+  for (const Bifurcation& f : folds) {
+    epicycle::test::FigureValue("fold multiplier - 1", std::abs(f.multiplier - 1.0), "-");
+    CHECK(std::abs(f.multiplier - 1.0) <= mu_tol);
+  }
+  epicycle::test::FigureValue("fold multiplier tolerance", mu_tol, "-");
+  epicycle::test::FigureValue("branch points", static_cast<double>(r.points.size()), "-");
+  epicycle::test::FigureValue("branch integrations", static_cast<double>(r.integrations), "-");
+
+  // Where the teeth stay in contact (amplitude < F_m, x > 1 throughout), the orbit is the linear
+  // oscillator's about x = 1 + F_m: x = 1 + F_m + Re(H e^{iΩt}), H = F_a/(1 − Ω² + 2iζΩ).
+  int linear_points = 0;
+  double worst_linear = 0;
+  for (const BranchPoint& b : r.points) {
+    if (b.amplitude >= 0.9 * s.mean_force) continue;
+    const double w = b.parameter;
+    const std::complex<double> h =
+        s.alternating_force / std::complex<double>(1 - w * w, 2 * s.damping_ratio * w);
+    const Eigen::Vector2d exact(1 + s.mean_force + h.real(), -w * h.imag());
+    // Tolerance: the corrector stops with R to newton_tolerance local tolerances (an orbit error
+    // ‖(M − I)⁻¹‖ ≤ 1/(1 − ρ) times that, ρ the spectral radius) plus the period's global error
+    // (one local tolerance per step).
+    const double tol = (c.shooting.newton_tolerance / (1 - b.floquet.spectral_radius) + steps) *
+                       Weight(c.shooting, exact);
+    INFO("Omega = " << w);
+    CHECK((b.state - exact).cwiseAbs().maxCoeff() <= tol);
+    worst_linear = std::max(worst_linear, (b.state - exact).cwiseAbs().maxCoeff() / tol);
+    CHECK(b.amplitude == Approx(std::abs(h)).epsilon(1e-3));  // 256 samples: 1 − cos(π/256)
+    ++linear_points;
+  }
+  CHECK(linear_points > 20);
+  epicycle::test::FigureValue("linear branch worst error over tolerance", worst_linear, "-");
+}
+
+TEST_CASE(
+    "backlash oscillator: between the folds, time integrations from two initial states "
+    "settle on the two stable orbits of the continuation",
+    "[crosscheck][dynamics][periodic]") {
+  const BacklashOscillator s;
+  const ContinuationOptions c = Sweep();
+  const ContinuationResult r =
+      ContinuePeriodicOrbit(s, c, Eigen::Vector2d(1.1, 0), Eigen::Vector2d(c.start, 0.05));
+  REQUIRE(r.status == ContinuationStatus::kCompleted);
+  const double omega = 0.6;  // between the folds (0.45, 0.75)
+  const Eigen::Vector2d p(omega, s.alternating_force);
+  // The continuation's two stable orbits at Ω = 0.6: the stable points that bracket it, the
+  // nearer corrected onto Ω = 0.6 by shooting.
+  std::vector<ShootingResult> branch;
+  for (std::size_t k = 0; k + 1 < r.points.size(); ++k) {
+    const BranchPoint& a = r.points[k];
+    const BranchPoint& b = r.points[k + 1];
+    if ((a.parameter - omega) * (b.parameter - omega) > 0) continue;
+    if (a.floquet.stability != Stability::kStable || b.floquet.stability != Stability::kStable)
+      continue;
+    const BranchPoint& near = std::abs(a.parameter - omega) < std::abs(b.parameter - omega) ? a : b;
+    branch.push_back(SolvePeriodicOrbit(s, c.shooting, near.state, p));
+    REQUIRE(branch.back().status == ShootingStatus::kConverged);
+  }
+  REQUIRE(branch.size() == 2);
+  std::sort(branch.begin(), branch.end(), [&](const auto& x, const auto& y) {
+    return Amplitude(s, c.shooting, x.initial_state, p) <
+           Amplitude(s, c.shooting, y.initial_state, p);
+  });
+  // From rest at the static deflection (x = 1 + F_m): the small orbit, teeth in contact. From a
+  // displaced start that separates the teeth at once: the large orbit.
+  const Eigen::Vector2d starts[2] = {Eigen::Vector2d(1 + s.mean_force, 0), Eigen::Vector2d(0.0, 0)};
+  const int periods = 100;
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::VectorXd settled = IntegratePeriods(s, c.shooting, starts[k], p, periods);
+    const ShootingResult& orbit = branch[static_cast<std::size_t>(k)];
+    // Tolerance: what is left of the transient, ρ^periods (ρ ≤ 0.7 here: 1e-15), plus the
+    // integration's error: one local tolerance a step, steps a period, contracted by ρ each
+    // period (1/(1 − ρ)), plus the shooting's own (as in the test above).
+    const double rho = orbit.floquet.spectral_radius;
+    const double steps = static_cast<double>(orbit.steps) / static_cast<double>(orbit.integrations);
+    const double w = Weight(c.shooting, orbit.initial_state);
+    const double tol = std::pow(rho, periods) * 2 +
+                       (steps / (1 - rho) + c.shooting.newton_tolerance / (1 - rho)) * w;
+    INFO("start " << k << ", settled " << settled.transpose() << ", branch "
+                  << orbit.initial_state.transpose());
+    CHECK((settled - orbit.initial_state).cwiseAbs().maxCoeff() <= tol);
+    epicycle::test::FigureValue("settled - branch",
+                                (settled - orbit.initial_state).cwiseAbs().maxCoeff(), "-");
+    epicycle::test::FigureValue("settled tolerance", tol, "-");
+    const double a_time = Amplitude(s, c.shooting, settled, p);
+    const double a_branch = Amplitude(s, c.shooting, orbit.initial_state, p);
+    epicycle::test::FigureValue(
+        k == 0 ? "backlash small orbit amplitude at 0.6" : "backlash large orbit amplitude at 0.6",
+        a_branch, "-");
+    CHECK(a_time == Approx(a_branch).margin(tol));
+  }
+}
