@@ -104,6 +104,8 @@ void RunStudyCommand(const StudyArgs& a) {
               report::SampleSummaryText("TE peak-to-peak", s.te_peak_to_peak, " urad").c_str(),
               report::SampleSummaryText("sun orbit", s.sun_orbit, " um").c_str(),
               report::StudyRootStressText(s.root_stress).c_str());
+  for (const studies::Exceedance& e : s.k_gamma_exceedance)
+    std::printf("%s", report::ExceedanceText(e).c_str());
   std::printf("  Spearman rank correlation of K_gamma with\n");
   for (std::size_t j = 0; j < s.columns.size(); ++j)
     std::printf("    %-36s %s\n", s.columns[j].c_str(),
@@ -133,6 +135,11 @@ void RunStudyCommand(const StudyArgs& a) {
   j["K_gamma_sweep_mean"] = report::SampleSummaryJson(s.k_gamma_mean);
   j["TE_peak_to_peak_urad"] = report::SampleSummaryJson(s.te_peak_to_peak);
   j["sun_orbit_um"] = report::SampleSummaryJson(s.sun_orbit);
+  if (!s.k_gamma_exceedance.empty()) {
+    json ex = json::array();
+    for (const studies::Exceedance& e : s.k_gamma_exceedance) ex.push_back(report::ExceedanceJson(e));
+    j["K_gamma_exceedance"] = ex;
+  }
   if (!s.root_stress.empty()) j["root_stress"] = report::StudyRootStressJson(s.root_stress);
   json rho = json::object();
   for (std::size_t k = 0; k < s.columns.size(); ++k) rho[s.columns[k]] = Stat(s.spearman[k]);

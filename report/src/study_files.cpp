@@ -30,6 +30,23 @@ nlohmann::json SampleSummaryJson(const studies::SampleSummary& s) {
   return j;
 }
 
+nlohmann::json ExceedanceJson(const studies::Exceedance& e) {
+  return {{"k_gamma_limit", e.threshold},
+          {"cases", e.count},
+          {"above", e.above},
+          {"probability", Stat(e.p)},
+          {"ci", {Stat(e.lower), Stat(e.upper)}},
+          {"interval", "Clopper-Pearson (exact binomial)"},
+          {"confidence_level", e.level}};
+}
+
+std::string ExceedanceText(const studies::Exceedance& e) {
+  const char* f = "{:.4f}";
+  return fmt::format("  P(K_gamma > {}) = {} [{}, {}] ({} of {} cases; {:g} % Clopper-Pearson)\n",
+                     e.threshold, Num(e.p, f, "-"), Num(e.lower, f, "-"), Num(e.upper, f, "-"),
+                     e.above, e.count, 100.0 * e.level);
+}
+
 std::string SampleSummaryText(const std::string& name, const studies::SampleSummary& s,
                               const std::string& unit) {
   const char* f = "{:.6g}";

@@ -13,6 +13,7 @@
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/studies/study.hpp"
+#include "epicycle/studies/summary.hpp"
 #include "figures.hpp"
 #include "stage_fixtures.hpp"
 #include "study_fixtures.hpp"
@@ -276,4 +277,36 @@ TEST_CASE("study file: a spread reaching past the backlash or the cases' values 
                                                 Contains("past the normal backlash j_n = 150"));
   CHECK_THAT(warnings("mean_um = 900.0\nsigma_um = 100.0\n"),
              Contains("mean +- 3 sigma reaches outside") && Contains("0.1 % of the cases"));
+}
+
+TEST_CASE("study file: k_gamma_limit, a number or an array, reported as P(K_gamma > x)",
+          "[unit][studies]") {
+  CHECK(test::PinStudy("k_gamma_limit = 1.25").k_gamma_limits == std::vector<double>{1.25});
+  CHECK(test::PinStudy("k_gamma_limit = [1.1, 1.2]").k_gamma_limits ==
+        std::vector<double>{1.1, 1.2});
+  CHECK(test::PinStudy("").k_gamma_limits.empty());
+  // K_γ = max_i n LSR_i is in [1, n]: the paper's stage has n = 3.
+  CHECK_THAT(StudyError(StudyText("k_gamma_limit = 0.9", kPins)),
+             Contains("study.k_gamma_limit = 0.9") && Contains("must be in [1, 3]") &&
+                 Contains("K_gamma = max_i n LSR_i lies in [1, n] (n = 3 planets)"));
+  CHECK_THAT(StudyError(StudyText("k_gamma_limit = [1.2, 4.0]", kPins)),
+             Contains("study.k_gamma_limit[1] = 4") && Contains("must be in [1, 3]"));
+  CHECK_THAT(StudyError(StudyText("k_gamma_limit = []", kPins)),
+             Contains("study.k_gamma_limit = []") && Contains("at least one value"));
+  // The summary counts the ok rows above each limit: K_γ = 1.0, 1.1, ..., 1.9 (ten cases, one
+  // failed case left out): 5 above 1.45, 2 above 1.75.
+  const studies::StudySpec s = test::PinStudy("samples = 11\nk_gamma_limit = [1.45, 1.75]");
+  std::vector<studies::CaseRow> rows(11);
+  for (int i = 0; i < 11; ++i) {
+    rows[i].id = i;
+    rows[i].values = {0, 0, 0};
+    rows[i].ok = i < 10;
+    rows[i].k_gamma = rows[i].k_gamma_mean = 1.0 + 0.1 * i;
+  }
+  const studies::StudySummary sum = studies::SummariseStudy(s, rows);
+  REQUIRE(sum.k_gamma_exceedance.size() == 2);
+  CHECK(sum.k_gamma_exceedance[0].count == 10);
+  CHECK(sum.k_gamma_exceedance[0].above == 5);
+  CHECK(sum.k_gamma_exceedance[1].above == 2);
+  CHECK(sum.k_gamma_exceedance[1].threshold == 1.75);
 }
