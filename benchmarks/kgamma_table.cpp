@@ -3,7 +3,7 @@
 // tools/kgamma_table.sh) into a table (CSV and Markdown) of P(K_γ > table value) with its
 // Clopper–Pearson interval per planet count and ISO 1328-1 class, and a figure (the report
 // library's SVG writer): the probability against the planet count, one series per class, each
-// interval a whisker.
+// interval a whisker (each study's last k_gamma_limit).
 //
 //   kgamma_table PREFIX LABEL N:A:DIR/study_summary.json ...
 //     writes PREFIX.csv, PREFIX.md, PREFIX.svg; LABEL (the sun's support) goes into the title
@@ -97,7 +97,9 @@ int main(int argc, char** argv) {
                           n, Fixed(Number(c.k_gamma.at("mean")), 3), Fixed(p95, 3),
                           Fixed(p95_lo, 3), Fixed(p95_hi, 3),
                           Fixed(Number(c.k_gamma.at("max")), 3));
-        if (k != 0) continue;  // the figure: each study's first limit (the table value)
+        // The figure: each study's last limit (3 planets: 1.1; the table's 1.0 is exceeded by
+        // every K_γ, which is at least 1).
+        if (k + 1 != c.exceedance.size()) continue;
         // The classes side by side at each planet count (5, 6, 7 at N - 0.1, N, N + 0.1).
         const double at = c.planets + 0.1 * (c.grade - 6);
         auto& s = series[c.grade];
@@ -117,7 +119,7 @@ int main(int argc, char** argv) {
     epicycle::report::WriteTextFile(prefix + ".md", md);
     epicycle::report::LinePlot plot{
         "P(K_gamma > table value), " + label + ": pin holes and run-outs of one ISO 1328-1 class",
-        "planets (table K_gamma: 3: 1.0, 4: 1.2, 5: 1.3, 6: 1.4)",
+        "planets (K_gamma limit: 3: 1.1, 4: 1.2, 5: 1.3, 6: 1.4)",
         "P(K_gamma > table value) [-], 95 % Clopper-Pearson",
         {},
         false,

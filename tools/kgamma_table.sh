@@ -2,7 +2,8 @@
 # The standard's K_gamma table put to the test (docs/studies.md, "The standard's K_gamma table"):
 # runs the 24 studies scenes/studies/kgamma_table/planets<N>_class<A>[_fixed].toml (N = 3..6
 # planets, ISO 1328-1 classes 5..7, floating and fixed sun) and gathers P(K_gamma > table value)
-# with its interval into docs/figures/kgamma_table_{floating,fixed}.{csv,md,svg}.
+# with its interval into docs/figures/kgamma_table_{floating,fixed}.{csv,md,svg}; then the pin
+# holes' share (planets4_class6_pins_only.toml, no run-out).
 # Usage: bash tools/kgamma_table.sh [--out DIR] [--threads T] [--max-cases M]
 # Needs a configured tree (tools/setup.sh). A rerun with the same --out resumes every study
 # (docs/studies.md "Resuming"); the influence tables of the four stages are built once into the
@@ -39,4 +40,9 @@ for support in floating fixed; do
   mkdir -p docs/figures
   build/benchmarks/kgamma_table docs/figures/kgamma_table_$support "$support sun" "${cells[@]}"
 done
+# The pin holes' share: 4 planets, class 6, floating sun, without the run-outs.
+name=planets4_class6_pins_only
+build/app/epicycle study "scenes/studies/kgamma_table/$name.toml" --out "$out/$name" \
+  --threads "$threads" --quiet "${max[@]}" > "$out/$name.log" || echo "$name: exit status $?"
+echo "$name: $(grep -m1 "P(K_gamma" "$out/$name.log"); $(grep -m1 "K_gamma  " "$out/$name.log")"
 echo "all studies: $(( $(date +%s) - start )) s on $threads threads"

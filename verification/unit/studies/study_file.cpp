@@ -1,15 +1,18 @@
 // The study file (docs/studies.md): bad files give messages naming the key, the value and the
 // rule; counter-based sampling (case k's values depend on (seed, k) only); the distributions'
-// moments against their definitions; ISO 1328-1's run-out tolerance against a hand calculation.
+// moments against their definitions; ISO 1328-1's run-out tolerance against a hand calculation;
+// k_gamma_limit's rules and counts; the shipped K_gamma table studies' tolerances and table values.
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 
+#include "epicycle/geometry/iso.hpp"
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/studies/study.hpp"
@@ -309,4 +312,53 @@ TEST_CASE("study file: k_gamma_limit, a number or an array, reported as P(K_gamm
   CHECK(sum.k_gamma_exceedance[0].above == 5);
   CHECK(sum.k_gamma_exceedance[1].above == 2);
   CHECK(sum.k_gamma_exceedance[1].threshold == 1.75);
+}
+
+TEST_CASE("the shipped K_gamma table studies: tolerances of their class, the table's values",
+          "[unit][studies]") {
+  // docs/studies.md "The standard's K_gamma table": every pin hole within ±f_pT/2 of ISO 1328-1
+  // at the carrier's pitch circle d = 2 r_c (m_n of the gears), every gear's run-out of the same
+  // class, the ABS table's K_γ by planet count (up to 3: 1.0, 4: 1.2, 5: 1.3, 6 and over: 1.4),
+  // and the 3-planet stage's force per sun mesh, T/(n z_s) = 600/(3 · 16) N·m per tooth-count.
+  const std::map<int, double> table{{3, 1.0}, {4, 1.2}, {5, 1.3}, {6, 1.4}};
+  int files = 0;
+  for (int n = 3; n <= 6; ++n)
+    for (int grade = 5; grade <= 7; ++grade)
+      for (const std::string support : {"", "_fixed"}) {
+        const std::string path = std::string(EPICYCLE_SCENES_DIR) + "/studies/kgamma_table/planets" +
+                                 std::to_string(n) + "_class" + std::to_string(grade) + support +
+                                 ".toml";
+        INFO(path);
+        const studies::StudySpec s = studies::ReadStudy(path);
+        ++files;
+        const auto& st = s.scene.stage;
+        REQUIRE(st.planets == n);
+        CHECK(s.sun == (support.empty() ? transmission::SunSupport::kFloating
+                                        : transmission::SunSupport::kFixed));
+        CHECK(s.k_gamma_limits.front() == table.at(n));
+        // The files give f_pT/2 to 4 decimals of a µm: within 5e-5 µm.
+        const double half = 0.5 * geometry::iso::SinglePitchTolerance(
+                                      st.sun.module, 2 * st.carrier_radius, grade);
+        double torque = s.scene.loads.sun_torque;
+        int pins = 0, runouts = 0;
+        for (const studies::Variable& v : s.variables) {
+          if (v.quantity == studies::Quantity::kPinRadial ||
+              v.quantity == studies::Quantity::kPinTangential) {
+            ++pins;
+            CHECK(v.distribution == studies::Distribution::kUniform);
+            CHECK(v.max == Approx(half).margin(5.1e-11));
+            CHECK(v.min == -v.max);
+          }
+          if (v.quantity == studies::Quantity::kRunout) {
+            ++runouts;
+            CHECK(v.distribution == studies::Distribution::kIso1328);
+            CHECK(v.grade == grade);
+          }
+          if (v.quantity == studies::Quantity::kTorque) torque = v.grid.at(0);
+        }
+        CHECK(pins == 2 * n);
+        CHECK(runouts == n + 2);
+        CHECK(torque / (n * st.sun.teeth) == Approx(-600.0 / (3 * 16)).epsilon(1e-12));
+      }
+  CHECK(files == 24);
 }
