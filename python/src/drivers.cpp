@@ -98,6 +98,19 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   summary["te_peak_to_peak_urad"] = SampleObject(sum.te_peak_to_peak);
   summary["sun_orbit_um"] = SampleObject(sum.sun_orbit);
   summary["spearman_k_gamma"] = Array(std::vector<double>(sum.spearman));
+  py::list exceedance;  // P(K_γ > each k_gamma_limit), Clopper–Pearson
+  for (const studies::Exceedance& e : sum.k_gamma_exceedance) {
+    py::dict d;
+    d["k_gamma_limit"] = e.threshold;
+    d["cases"] = e.count;
+    d["above"] = e.above;
+    d["probability"] = e.p;
+    d["lower"] = e.lower;
+    d["upper"] = e.upper;
+    d["confidence_level"] = e.level;
+    exceedance.append(Result(d));
+  }
+  summary["k_gamma_exceedance"] = exceedance;
   if (study.design == studies::Design::kSobol) {
     studies::SobolOptions so;
     so.seed = study.seed;  // as `epicycle study`
@@ -233,7 +246,9 @@ units: _um µm, _deg deg, _Nm N·m], ok, message, positions, converged, k_gamma 
 [-], lsr_min, lsr_max [-], te_peak_to_peak_urad [µrad], sun_orbit_um [µm]; columns, header and
 rows_csv (each row as the rows file has it); summary (cases, failed, k_gamma, k_gamma_mean,
 te_peak_to_peak_urad, sun_orbit_um: count, mean, percentiles with confidence intervals;
-spearman_k_gamma per column; with design = "sobol" also sobol: variables, complete_rows and
+spearman_k_gamma per column; k_gamma_exceedance, per k_gamma_limit of the study its
+k_gamma_limit, cases, above, probability P(K_gamma > limit) and its Clopper-Pearson lower and
+upper bounds, confidence_level; with design = "sobol" also sobol: variables, complete_rows and
 outputs, per rows-file result column the sobol_indices Result); study, cases, resumed, computed,
 seconds [s], warnings.)doc");
 }
