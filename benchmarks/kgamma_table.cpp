@@ -3,10 +3,11 @@
 // tools/kgamma_table.sh) into a table (CSV and Markdown) of P(K_γ > table value) with its
 // Clopper–Pearson interval per planet count and ISO 1328-1 class, and a figure (the report
 // library's SVG writer): the probability against the planet count, one series per class, each
-// interval a whisker (each study's last k_gamma_limit).
+// interval a whisker (each study's last k_gamma_limit), and K_γ's P95 with its interval against
+// the table's value.
 //
 //   kgamma_table PREFIX LABEL N:A:DIR/study_summary.json ...
-//     writes PREFIX.csv, PREFIX.md, PREFIX.svg; LABEL (the sun's support) goes into the title
+//     writes PREFIX.csv, PREFIX.md, PREFIX.svg, PREFIX_p95.svg; LABEL (the sun's support) goes into the title
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -55,6 +56,34 @@ Cell ReadCell(const std::string& arg) {
   return c;
 }
 
+// One figure's points: per class a series of markers, each point's interval a whisker (an
+// unnamed series: no legend entry); the classes side by side at each planet count (5, 6, 7 at
+// N - 0.1, N, N + 0.1).
+struct Points {
+  std::map<int, epicycle::report::PlotSeries> series;  // by class
+  std::vector<epicycle::report::PlotSeries> whiskers;
+  void Add(int planets, int grade, double y, double lo, double hi) {
+    const double at = planets + 0.1 * (grade - 6);
+    auto& s = series[grade];
+    s.name = fmt::format("ISO 1328-1 class {}", grade);
+    s.markers = true;
+    s.colour = grade - 5;
+    s.x.push_back(at);
+    s.y.push_back(y);
+    epicycle::report::PlotSeries w;
+    w.colour = grade - 5;
+    w.x = {at, at};
+    w.y = {lo, hi};
+    whiskers.push_back(w);
+  }
+  void Into(epicycle::report::LinePlot* plot) const {
+    for (const auto& [grade, s] : series) plot->series.push_back(s);
+    for (const auto& w : whiskers) plot->series.push_back(w);
+    plot->x_min = 2.6;
+    plot->x_max = 6.4;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -73,8 +102,9 @@ int main(int argc, char** argv) {
     std::string md =
         "| planets | class | table K_γ | P(K_γ > table) [95 % CI] | cases above / cases | "
         "K_γ mean | K_γ P95 [95 % CI] | K_γ max |\n|---|---|---|---|---|---|---|---|\n";
-    std::map<int, epicycle::report::PlotSeries> series;  // by class
-    std::vector<epicycle::report::PlotSeries> whiskers;
+    Points probability, p95s;
+    epicycle::report::PlotSeries table{"table K_gamma (ABS)", {}, {}};
+    table.colour = 3;
     for (const Cell& c : cells) {
       const json& pct = c.k_gamma.at("percentiles");
       double p95 = std::nan(""), p95_lo = p95, p95_hi = p95;
@@ -84,6 +114,12 @@ int main(int argc, char** argv) {
           p95_lo = Number(q.at("ci")[0]);
           p95_hi = Number(q.at("ci")[1]);
         }
+      p95s.Add(c.planets, c.grade, p95, p95_lo, p95_hi);
+      const double table_value = Number(c.exceedance.at(0).at("k_gamma_limit"));
+      if (table.x.empty() || table.x.back() != c.planets) {
+        table.x.push_back(c.planets);
+        table.y.push_back(table_value);
+      }
       for (std::size_t k = 0; k < c.exceedance.size(); ++k) {
         const json& e = c.exceedance[k];
         const double x = Number(e.at("k_gamma_limit")), p = Number(e.at("probability"));
@@ -100,19 +136,7 @@ int main(int argc, char** argv) {
         // The figure: each study's last limit (3 planets: 1.1; the table's 1.0 is exceeded by
         // every K_γ, which is at least 1).
         if (k + 1 != c.exceedance.size()) continue;
-        // The classes side by side at each planet count (5, 6, 7 at N - 0.1, N, N + 0.1).
-        const double at = c.planets + 0.1 * (c.grade - 6);
-        auto& s = series[c.grade];
-        s.name = fmt::format("ISO 1328-1 class {}", c.grade);
-        s.markers = true;
-        s.colour = c.grade - 5;
-        s.x.push_back(at);
-        s.y.push_back(p);
-        epicycle::report::PlotSeries w;  // unnamed: no legend entry
-        w.colour = c.grade - 5;
-        w.x = {at, at};
-        w.y = {lo, hi};
-        whiskers.push_back(w);
+        probability.Add(c.planets, c.grade, p, lo, hi);
       }
     }
     epicycle::report::WriteTextFile(prefix + ".csv", csv);
@@ -124,15 +148,17 @@ int main(int argc, char** argv) {
         {},
         false,
         {}};
-    for (auto& [grade, s] : series) plot.series.push_back(s);
-    for (auto& w : whiskers) plot.series.push_back(w);
+    probability.Into(&plot);
     plot.y_min = 0;
     plot.y_max = 1;
-    plot.x_min = 2.6;
-    plot.x_max = 6.4;
     epicycle::report::WriteTextFile(prefix + ".svg", epicycle::report::RenderSvg(plot));
+    epicycle::report::LinePlot tail{"K_gamma's P95 (95 % CI) and the table value, " + label,
+                                    "planets", "K_gamma [-]", {}, false, {}};
+    p95s.Into(&tail);
+    tail.series.push_back(table);
+    epicycle::report::WriteTextFile(prefix + "_p95.svg", epicycle::report::RenderSvg(tail));
     std::printf("%s", md.c_str());
-    std::printf("wrote %s.csv, %s.md, %s.svg\n", prefix.c_str(), prefix.c_str(), prefix.c_str());
+    std::printf("wrote %s.csv, .md, .svg, _p95.svg\n", prefix.c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "kgamma_table: error: %s\n", e.what());
