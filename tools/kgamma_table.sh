@@ -2,8 +2,8 @@
 # The standard's K_gamma table put to the test (docs/studies.md, "The standard's K_gamma table"):
 # runs the 24 studies scenes/studies/kgamma_table/planets<N>_class<A>[_fixed].toml (N = 3..6
 # planets, ISO 1328-1 classes 5..7, floating and fixed sun) and gathers P(K_gamma > table value)
-# with its interval into docs/figures/kgamma_table_{floating,fixed}{.csv,.md,.svg,_p95.svg}; then the pin
-# holes' share (planets4_class6_pins_only.toml, no run-out).
+# with its interval into docs/figures/kgamma_table_{floating,fixed}{.csv,.md,.svg,_p95.svg};
+# then the pin holes' share (planets4_class6_pins_only.toml, no run-out).
 # Usage: bash tools/kgamma_table.sh [--out DIR] [--threads T] [--max-cases M]
 # Needs a configured tree (tools/setup.sh). A rerun with the same --out resumes every study
 # (docs/studies.md "Resuming"); the influence tables of the four stages are built once into the
