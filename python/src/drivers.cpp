@@ -100,15 +100,10 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   summary["spearman_k_gamma"] = Array(std::vector<double>(sum.spearman));
   py::list exceedance;  // P(K_γ > each k_gamma_limit), Clopper–Pearson
   for (const studies::Exceedance& e : sum.k_gamma_exceedance) {
-    py::dict d;
-    d["k_gamma_limit"] = e.threshold;
-    d["cases"] = e.count;
-    d["above"] = e.above;
-    d["probability"] = e.p;
-    d["lower"] = e.lower;
-    d["upper"] = e.upper;
-    d["confidence_level"] = e.level;
-    exceedance.append(Result(d));
+    exceedance.append(Result(py::dict(
+        py::arg("k_gamma_limit") = e.threshold, py::arg("cases") = e.count,
+        py::arg("above") = e.above, py::arg("probability") = e.p, py::arg("lower") = e.lower,
+        py::arg("upper") = e.upper, py::arg("confidence_level") = e.level)));
   }
   summary["k_gamma_exceedance"] = exceedance;
   if (study.design == studies::Design::kSobol) {
