@@ -47,6 +47,8 @@ void PrintStudySummary(const studies::StudySpec& study, const studies::StudySumm
               report::SampleSummaryText("TE peak-to-peak", s.te_peak_to_peak, " urad").c_str(),
               report::SampleSummaryText("sun orbit", s.sun_orbit, " um").c_str(),
               report::StudyRootStressText(s.root_stress).c_str());
+  for (const studies::Exceedance& e : s.k_gamma_exceedance)
+    std::printf("%s", report::ExceedanceText(e).c_str());
   std::printf("  Spearman rank correlation of K_gamma with\n");
   for (std::size_t j = 0; j < s.columns.size(); ++j)
     std::printf("    %-36s %s\n", s.columns[j].c_str(),

@@ -101,6 +101,14 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   summary["te_peak_to_peak_urad"] = SampleObject(sum.te_peak_to_peak);
   summary["sun_orbit_um"] = SampleObject(sum.sun_orbit);
   summary["spearman_k_gamma"] = Array(std::vector<double>(sum.spearman));
+  py::list exceedance;  // P(K_γ > each k_gamma_limit), Clopper–Pearson
+  for (const studies::Exceedance& e : sum.k_gamma_exceedance) {
+    exceedance.append(Result(py::dict(
+        py::arg("k_gamma_limit") = e.threshold, py::arg("cases") = e.count,
+        py::arg("above") = e.above, py::arg("probability") = e.p, py::arg("lower") = e.lower,
+        py::arg("upper") = e.upper, py::arg("confidence_level") = e.level)));
+  }
+  summary["k_gamma_exceedance"] = exceedance;
   if (sum.sobol) {
     const studies::SobolSummary& sobol = *sum.sobol;
     py::dict outputs;
@@ -330,7 +338,9 @@ Result
     lsr_max [-], te_peak_to_peak_urad [µrad], sun_orbit_um [µm]; columns, header and rows_csv
     (each row as the rows file has it); summary (cases, failed, k_gamma, k_gamma_mean,
     te_peak_to_peak_urad, sun_orbit_um: count, mean, percentiles with confidence intervals;
-    spearman_k_gamma per column; with design = "sobol" also sobol: variables, complete_rows and
+    spearman_k_gamma per column; k_gamma_exceedance, per k_gamma_limit of the study its
+    k_gamma_limit, cases, above, probability P(K_gamma > limit) and its Clopper-Pearson lower and
+    upper bounds, confidence_level; with design = "sobol" also sobol: variables, complete_rows and
     outputs, per rows-file result column the sobol_indices Result); study, cases, resumed,
     computed, seconds [s], warnings.
 

@@ -35,6 +35,23 @@ nlohmann::json SampleSummaryJson(const studies::SampleSummary& s) {
   return j;
 }
 
+nlohmann::json ExceedanceJson(const studies::Exceedance& e) {
+  return {{"k_gamma_limit", e.threshold},
+          {"cases", e.count},
+          {"above", e.above},
+          {"probability", Stat(e.p)},
+          {"ci", {Stat(e.lower), Stat(e.upper)}},
+          {"interval", "Clopper-Pearson (exact binomial)"},
+          {"confidence_level", e.level}};
+}
+
+std::string ExceedanceText(const studies::Exceedance& e) {
+  const char* f = "{:.4f}";
+  return fmt::format("  P(K_gamma > {}) = {} [{}, {}] ({} of {} cases; {:g} % Clopper-Pearson)\n",
+                     e.threshold, Num(e.p, f, "-"), Num(e.lower, f, "-"), Num(e.upper, f, "-"),
+                     e.above, e.count, 100.0 * e.level);
+}
+
 std::string SampleSummaryText(const std::string& name, const studies::SampleSummary& s,
                               const std::string& unit) {
   const char* f = "{:.6g}";
@@ -124,6 +141,11 @@ void WriteStudySummaryFiles(const std::string& base, const studies::StudySpec& s
   j["K_gamma_sweep_mean"] = SampleSummaryJson(s.k_gamma_mean);
   j["TE_peak_to_peak_urad"] = SampleSummaryJson(s.te_peak_to_peak);
   j["sun_orbit_um"] = SampleSummaryJson(s.sun_orbit);
+  if (!s.k_gamma_exceedance.empty()) {
+    nlohmann::json ex = nlohmann::json::array();
+    for (const studies::Exceedance& e : s.k_gamma_exceedance) ex.push_back(ExceedanceJson(e));
+    j["K_gamma_exceedance"] = ex;
+  }
   if (!s.root_stress.empty()) j["root_stress"] = StudyRootStressJson(s.root_stress);
   nlohmann::json rho = nlohmann::json::object();
   for (std::size_t k = 0; k < s.columns.size(); ++k) rho[s.columns[k]] = Stat(s.spearman[k]);

@@ -5,6 +5,9 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <stdexcept>
+#include <string>
+#include <tuple>
 
 #include "epicycle/transmission/statistics.hpp"
 
@@ -70,6 +73,50 @@ std::pair<long, long> PercentileRanks(long n, double p, double level) {
   for (long k = n; k >= 1; --k)
     if (1.0 - cdf[static_cast<std::size_t>(k - 1)] <= 0.5 * alpha) u = k;
   return {l, u};
+}
+
+std::pair<double, double> ClopperPearson(long k, long n, double level) {
+  if (n < 1 || k < 0 || k > n || !(level > 0 && level < 1))
+    throw std::invalid_argument("ClopperPearson: k = " + std::to_string(k) + ", n = " +
+                                std::to_string(n) + ", level = " + std::to_string(level) +
+                                ": needs 0 <= k <= n, n >= 1 and 0 < level < 1");
+  const double half = 0.5 * (1.0 - level);
+  // P(B <= k | p) falls as p grows; bisection on p in (0, 1) to 2^-60 (no closed form except at
+  // k = 0 and k = n, which the bisection reaches as well).
+  auto solve = [&](auto above_target) {
+    double lo = 0.0, hi = 1.0;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (above_target(mid) ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  const double lower =
+      k == 0 ? 0.0 : solve([&](double p) {  // P(B >= k | p) = 1 − P(B <= k − 1 | p) < α/2
+        return 1.0 - BinomialCdf(n, p)[static_cast<std::size_t>(k - 1)] < half;
+      });
+  const double upper = k == n ? 1.0 : solve([&](double p) {  // P(B <= k | p) > α/2
+    return BinomialCdf(n, p)[static_cast<std::size_t>(k)] > half;
+  });
+  return {lower, upper};
+}
+
+Exceedance ExceedanceProbability(const std::vector<double>& x, double threshold, double level) {
+  Exceedance e;
+  e.threshold = threshold;
+  e.level = level;
+  for (double v : x) {
+    if (!std::isfinite(v)) continue;
+    ++e.count;
+    e.above += v > threshold ? 1 : 0;
+  }
+  if (e.count == 0) {
+    e.p = e.lower = e.upper = kNaN;
+    return e;
+  }
+  e.p = static_cast<double>(e.above) / static_cast<double>(e.count);
+  std::tie(e.lower, e.upper) = ClopperPearson(e.above, e.count, level);
+  return e;
 }
 
 SampleSummary Summarise(std::vector<double> x, const std::vector<double>& levels, double level) {

@@ -406,6 +406,15 @@ StudySpec ParseStudy(const std::string& text, const std::string& source,
   if (sun == "fixed") s.sun = transmission::SunSupport::kFixed;
   if (sun == "floating") s.sun = transmission::SunSupport::kFloating;
   s.scene.model.stresses = st.BoolOr("stresses", s.scene.model.stresses);
+  if (const toml::node* limit = root["study"]["k_gamma_limit"].node()) {
+    const double n = s.scene.stage.planets;
+    const Rule rule = Rule::Closed(1, n).Because(
+        "K_gamma = max_i n LSR_i lies in [1, n] (n = " + Num(n) +
+        " planets): a design value outside is always or never exceeded");
+    s.k_gamma_limits = limit->is_array() ? st.RealArray("k_gamma_limit", rule)
+                                         : std::vector<double>{st.Real("k_gamma_limit", rule)};
+    if (s.k_gamma_limits.empty()) st.Fail("k_gamma_limit", "[]", "must list at least one value");
+  }
   s.backend_name = st.StringOr("backend", "newton");
   try {
     s.backend = solvers::BackendFromName(s.backend_name);

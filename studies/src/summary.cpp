@@ -35,6 +35,8 @@ StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& 
   s.te_peak_to_peak = Summarise(te, kStudyPercentiles, level);
   s.sun_orbit = Summarise(orbit, kStudyPercentiles, level);
   for (const auto& v : values) s.spearman.push_back(SpearmanCorrelation(v, kg));
+  for (double x : study.k_gamma_limits)
+    s.k_gamma_exceedance.push_back(ExceedanceProbability(kg, x, level));
   s.k_gamma_histogram = MakeHistogram(kg);
   s.k_gamma_sorted = kg;
   std::sort(s.k_gamma_sorted.begin(), s.k_gamma_sorted.end());

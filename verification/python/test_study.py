@@ -36,3 +36,29 @@ def test_study_from_text_resolves_the_scene_beside_its_path():
         text = f.read()
     r = epicycle.study(STUDY, text=text.replace("samples = 200", "samples = 2"), threads=1)
     assert r.cases == 2 and len(r.rows_csv) == 2
+
+
+def test_study_exceedance_counts_the_cases_above_each_limit():
+    # docs/studies.md "Results": P(K_gamma > x) = k/n with k counted here from the returned
+    # K_gamma of every case, and the Clopper-Pearson bounds at their closed forms where k = 0 or
+    # k = n (1 - 0.025^(1/n), 0.025^(1/n)), else bracketing k/n.
+    with open(STUDY) as f:
+        text = f.read()
+    limits = [1.0, 1.3, 3.0]
+    text = text.replace("samples = 200", "samples = 6").replace(
+        "sun = \"fixed\"", "sun = \"fixed\"\nk_gamma_limit = [1.0, 1.3, 3.0]")
+    r = epicycle.study(STUDY, text=text, threads=2)
+    assert r.ok.all() and len(r.summary.k_gamma_exceedance) == 3
+    n = len(r.k_gamma)
+    for x, e in zip(limits, r.summary.k_gamma_exceedance):
+        k = int((r.k_gamma > x).sum())
+        assert e.k_gamma_limit == x and e.cases == n and e.above == k
+        assert e.probability == k / n
+        if k == 0:
+            assert e.lower == 0 and abs(e.upper - (1 - 0.025 ** (1 / n))) < 1e-12
+        elif k == n:
+            assert e.upper == 1 and abs(e.lower - 0.025 ** (1 / n)) < 1e-12
+        else:
+            assert e.lower < k / n < e.upper
+    assert r.summary.k_gamma_exceedance[0].above == n  # K_gamma >= 1 always
+    assert r.summary.k_gamma_exceedance[2].above == 0  # K_gamma <= n = 3

@@ -1,18 +1,22 @@
 // The study file (docs/studies.md): bad files give messages naming the key, the value and the
 // rule; counter-based sampling (case k's values depend on (seed, k) only); the distributions'
-// moments against their definitions; ISO 1328-1's run-out tolerance against a hand calculation.
+// moments against their definitions; ISO 1328-1's run-out tolerance against a hand calculation;
+// k_gamma_limit's rules and counts; the shipped K_gamma table studies' tolerances and table values.
 #include <catch2/catch.hpp>
 
 #include <sys/stat.h>
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 
+#include "epicycle/geometry/iso.hpp"
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/studies/study.hpp"
+#include "epicycle/studies/summary.hpp"
 #include "figures.hpp"
 #include "stage_fixtures.hpp"
 #include "study_fixtures.hpp"
@@ -276,4 +280,85 @@ TEST_CASE("study file: a spread reaching past the backlash or the cases' values 
                                                 Contains("past the normal backlash j_n = 150"));
   CHECK_THAT(warnings("mean_um = 900.0\nsigma_um = 100.0\n"),
              Contains("mean +- 3 sigma reaches outside") && Contains("0.1 % of the cases"));
+}
+
+TEST_CASE("study file: k_gamma_limit, a number or an array, reported as P(K_gamma > x)",
+          "[unit][studies]") {
+  CHECK(test::PinStudy("k_gamma_limit = 1.25").k_gamma_limits == std::vector<double>{1.25});
+  CHECK(test::PinStudy("k_gamma_limit = [1.1, 1.2]").k_gamma_limits ==
+        std::vector<double>{1.1, 1.2});
+  CHECK(test::PinStudy("").k_gamma_limits.empty());
+  // K_γ = max_i n LSR_i is in [1, n]: the paper's stage has n = 3.
+  CHECK_THAT(StudyError(StudyText("k_gamma_limit = 0.9", kPins)),
+             Contains("study.k_gamma_limit = 0.9") && Contains("must be in [1, 3]") &&
+                 Contains("K_gamma = max_i n LSR_i lies in [1, n] (n = 3 planets)"));
+  CHECK_THAT(StudyError(StudyText("k_gamma_limit = [1.2, 4.0]", kPins)),
+             Contains("study.k_gamma_limit[1] = 4") && Contains("must be in [1, 3]"));
+  CHECK_THAT(StudyError(StudyText("k_gamma_limit = []", kPins)),
+             Contains("study.k_gamma_limit = []") && Contains("at least one value"));
+  // The summary counts the ok rows above each limit: K_γ = 1.0, 1.1, ..., 1.9 (ten cases, one
+  // failed case left out): 5 above 1.45, 2 above 1.75.
+  const studies::StudySpec s = test::PinStudy("samples = 11\nk_gamma_limit = [1.45, 1.75]");
+  std::vector<studies::CaseRow> rows(11);
+  for (int i = 0; i < 11; ++i) {
+    rows[i].id = i;
+    rows[i].values = {0, 0, 0};
+    rows[i].ok = i < 10;
+    rows[i].k_gamma = rows[i].k_gamma_mean = 1.0 + 0.1 * i;
+  }
+  const studies::StudySummary sum = studies::SummariseStudy(s, rows);
+  REQUIRE(sum.k_gamma_exceedance.size() == 2);
+  CHECK(sum.k_gamma_exceedance[0].count == 10);
+  CHECK(sum.k_gamma_exceedance[0].above == 5);
+  CHECK(sum.k_gamma_exceedance[1].above == 2);
+  CHECK(sum.k_gamma_exceedance[1].threshold == 1.75);
+}
+
+TEST_CASE("the shipped K_gamma table studies: tolerances of their class, the table's values",
+          "[unit][studies]") {
+  // docs/studies.md "The standard's K_gamma table": every pin hole within ±f_pT/2 of ISO 1328-1
+  // at the carrier's pitch circle d = 2 r_c (m_n of the gears), every gear's run-out of the same
+  // class, the ABS table's K_γ by planet count (up to 3: 1.0, 4: 1.2, 5: 1.3, 6 and over: 1.4),
+  // and the 3-planet stage's force per sun mesh, T/(n z_s) = 600/(3 · 16) N·m per tooth-count.
+  const std::map<int, double> table{{3, 1.0}, {4, 1.2}, {5, 1.3}, {6, 1.4}};
+  int files = 0;
+  for (int n = 3; n <= 6; ++n)
+    for (int grade = 5; grade <= 7; ++grade)
+      for (const std::string support : {"", "_fixed"}) {
+        const std::string path = std::string(EPICYCLE_SCENES_DIR) + "/studies/kgamma_table/planets" +
+                                 std::to_string(n) + "_class" + std::to_string(grade) + support +
+                                 ".toml";
+        INFO(path);
+        const studies::StudySpec s = studies::ReadStudy(path);
+        ++files;
+        const auto& st = s.scene.stage;
+        REQUIRE(st.planets == n);
+        CHECK(s.sun == (support.empty() ? transmission::SunSupport::kFloating
+                                        : transmission::SunSupport::kFixed));
+        CHECK(s.k_gamma_limits.front() == table.at(n));
+        // The files give f_pT/2 to 4 decimals of a µm: within 5e-5 µm.
+        const double half = 0.5 * geometry::iso::SinglePitchTolerance(
+                                      st.sun.module, 2 * st.carrier_radius, grade);
+        double torque = s.scene.loads.sun_torque;
+        int pins = 0, runouts = 0;
+        for (const studies::Variable& v : s.variables) {
+          if (v.quantity == studies::Quantity::kPinRadial ||
+              v.quantity == studies::Quantity::kPinTangential) {
+            ++pins;
+            CHECK(v.distribution == studies::Distribution::kUniform);
+            CHECK(v.max == Approx(half).margin(5.1e-11));
+            CHECK(v.min == -v.max);
+          }
+          if (v.quantity == studies::Quantity::kRunout) {
+            ++runouts;
+            CHECK(v.distribution == studies::Distribution::kIso1328);
+            CHECK(v.grade == grade);
+          }
+          if (v.quantity == studies::Quantity::kTorque) torque = v.grid.at(0);
+        }
+        CHECK(pins == 2 * n);
+        CHECK(runouts == n + 2);
+        CHECK(torque / (n * st.sun.teeth) == Approx(-600.0 / (3 * 16)).epsilon(1e-12));
+      }
+  CHECK(files == 24);
 }

@@ -17,6 +17,13 @@ namespace epicycle::report {
 /// "p", "value", "ci"); null where a statistic has no value (JSON has no NaN).
 nlohmann::json SampleSummaryJson(const studies::SampleSummary& s);
 
+/// "k_gamma_limit", "cases", "above", "probability", "ci" (Clopper–Pearson), "interval" (its
+/// name) and "confidence_level"; null where a statistic has no value.
+nlohmann::json ExceedanceJson(const studies::Exceedance& e);
+
+/// One line: "P(K_gamma > x) = p [lo, hi] (k of n cases)".
+std::string ExceedanceText(const studies::Exceedance& e);
+
 /// Two lines and one per percentile: "NAME mean m [lo, hi], std s, max x UNIT", then
 /// "P<p> value [lo, hi]" ("-" where a statistic has no value).
 std::string SampleSummaryText(const std::string& name, const studies::SampleSummary& s,

@@ -93,6 +93,10 @@ struct StudySpec {
   solvers::Backend backend = solvers::Backend::kActiveSetNewton;
   std::string backend_name = "newton";
   std::vector<Variable> variables;  ///< "planets" entries expanded, one per planet
+  /// Design values of K_γ (a standard's table values; the key `k_gamma_limit`, a number or an
+  /// array): the summary reports P(K_γ > each) with its Clopper–Pearson interval
+  /// (studies::ExceedanceProbability); empty: none reported [-].
+  std::vector<double> k_gamma_limits;
   std::string hash;                 ///< transmission::ContentHash of the study text
   /// Legal values outside the model's validity (as transmission::Scene::warnings).
   std::vector<std::string> warnings;

@@ -37,6 +37,8 @@ struct StudySummary {
   std::vector<double> spearman;      ///< ρ_s(K_γ, column) per column (NaN: constant column)
   Histogram k_gamma_histogram;
   std::vector<double> k_gamma_sorted;  ///< the empirical CDF's steps: F(x_(i)) = i/n
+  /// P(K_γ > x) over the ok rows with its interval, per x of StudySpec::k_gamma_limits.
+  std::vector<Exceedance> k_gamma_exceedance;
   /// Per gear of StudySpec::StressGears (none without stresses).
   std::vector<GearStressStatistics> root_stress;
   /// With the Sobol design: the indices of every output over all rows, their bootstrap seeded by
