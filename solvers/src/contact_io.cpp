@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "epicycle/transmission/internal/input_file.hpp"
+#include "epicycle/io/input_file.hpp"
 
 namespace epicycle::solvers {
 namespace {
@@ -234,7 +234,7 @@ ContactProblemFile ReadContactProblemFile(const std::string& path) {
   // A problem holds its dense compliance matrix: 256 MiB is a problem of thousands of contacts.
   std::string text;
   try {
-    text = transmission::internal::ReadInputFile(path, "problem file (JSON)", 256u << 20);
+    text = io::ReadInputFile(path, "problem file (JSON)", 256u << 20);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("contact problem file ") + e.what());
   }

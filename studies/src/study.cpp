@@ -10,17 +10,17 @@
 #include "epicycle/geometry/gear.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/studies/sampling.hpp"
-#include "epicycle/transmission/internal/input_file.hpp"
-#include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/io/input_file.hpp"
+#include "epicycle/io/toml_reader.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 
 namespace epicycle::studies {
 
 namespace {
 
-using transmission::internal::ParseDocument;
-using transmission::internal::Rule;
-using transmission::internal::TableReader;
+using io::ParseDocument;
+using io::Rule;
+using io::TableReader;
 
 constexpr double kUm = 1e-6;
 
@@ -400,7 +400,7 @@ StudySpec ParseStudy(const std::string& text, const std::string& source,
 
 StudySpec ReadStudy(const std::string& path) {
   // A study file is a page of keys, as a scene is.
-  return ParseStudy(transmission::internal::ReadInputFile(path, "study file (TOML)", 1u << 20),
+  return ParseStudy(io::ReadInputFile(path, "study file (TOML)", 1u << 20),
                     path, std::filesystem::path(path).parent_path().string());
 }
 

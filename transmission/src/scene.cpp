@@ -9,8 +9,8 @@
 
 #include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/geometry/iso.hpp"
-#include "epicycle/transmission/internal/input_file.hpp"
-#include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/io/input_file.hpp"
+#include "epicycle/io/toml_reader.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 #include "scene_internal.hpp"
 
@@ -18,9 +18,9 @@ namespace epicycle::transmission {
 
 using geometry::GearKind;
 using geometry::GearSpec;
-using internal::ParseDocument;
-using internal::Rule;
-using internal::TableReader;
+using io::ParseDocument;
+using io::Rule;
+using io::TableReader;
 
 namespace {
 
@@ -836,7 +836,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
 
 Scene ReadScene(const std::string& path) {
   // A scene is a page of keys (the paper's stage: 3 kB); 1 MiB leaves room for comments.
-  return ParseScene(internal::ReadInputFile(path, "scene file (TOML)", 1u << 20), path);
+  return ParseScene(io::ReadInputFile(path, "scene file (TOML)", 1u << 20), path);
 }
 
 const char* SunSupportName(SunSupport support) {

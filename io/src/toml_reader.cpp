@@ -1,11 +1,11 @@
-#include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/io/toml_reader.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
-namespace epicycle::transmission::internal {
+namespace epicycle::io {
 
 namespace {
 
@@ -258,4 +258,4 @@ void TableReader::Done() const {
                               " (known keys here: " + (known.empty() ? "nothing" : known) + ")");
 }
 
-}  // namespace epicycle::transmission::internal
+}  // namespace epicycle::io
