@@ -273,26 +273,20 @@ const char* kGearHelp = "gear: \"sun\", \"ring\", \"planet1\"..\"planetN\" (docs
 
 }  // namespace
 
-void BindScene(py::module_& m) {
-  py::class_<Scene, ScenePtr>(m, "Scene", R"doc(
-A scene: one planetary stage (or gear pair) read from TOML (docs/scenes.md). Keys name their
-units (module_mm, torque_Nm, runout_um). Every change goes through the scene's keys and is read
-again by the scene reader, so a bad value raises ValueError with the reader's message (file, line,
-key, value, rule) and leaves the scene unchanged.)doc")
-      .def_static("load", &Scene::Load, py::arg("path"), R"doc(
-Reads a scene file.
+namespace {
 
-path: the TOML file. Raises ValueError with the reader's message (a missing file, a bad value).)doc")
-      .def_static("parse", &Scene::Parse, py::arg("text"), py::arg("source") = "<string>", R"doc(
-Reads a scene from TOML text; `source` names it in messages (as a file name would).)doc")
-      .def(
-          "__getitem__",
-          [](const Scene& s, const std::string& key) {
-            const toml::node_view<const toml::node> v = s.table().at_path(key);
-            if (!v) throw py::key_error(key + ": not in the scene (its default applies)");
-            return ToPython(*v.node());
-          },
-          py::arg("key"), R"doc(
+using SceneClass = py::class_<Scene, ScenePtr>;
+
+// The scene's keys read and set by path.
+void BindSceneKeys(SceneClass& c) {
+  c.def(
+       "__getitem__",
+       [](const Scene& s, const std::string& key) {
+         const toml::node_view<const toml::node> v = s.table().at_path(key);
+         if (!v) throw py::key_error(key + ": not in the scene (its default applies)");
+         return ToPython(*v.node());
+       },
+       py::arg("key"), R"doc(
 The value of a scene key as written in the scene, in the key's unit: scene["load.sun_torque_Nm"]
 [N·m], scene["errors.runout[0].amplitude_um"] [µm]. KeyError if the scene does not give it.)doc")
       .def(
@@ -337,18 +331,22 @@ A copy with several keys set ({key: value in the key's unit}); this scene is unc
             KeyPaths(s.table(), "", out);
             return out;
           },
-          "Every key the scene gives, as paths (\"sun.cutter.type\", \"errors.runout[0].gear\").")
-      .def(
-          "add_pin",
-          [](Scene& s, const std::string& gear, double radial_um, double tangential_um) {
-            py::dict f;
-            f["gear"] = gear;
-            f["radial_um"] = radial_um;
-            f["tangential_um"] = tangential_um;
-            EditInPlace(s, [&](toml::table& t) { AppendTable(t, "errors.pin", f); });
-          },
-          py::arg("gear"), py::arg("radial_um") = 0.0, py::arg("tangential_um") = 0.0,
-          R"doc(
+          "Every key the scene gives, as paths (\"sun.cutter.type\", \"errors.runout[0].gear\").");
+}
+
+// The manufacturing errors added to a scene.
+void BindSceneErrors(SceneClass& c) {
+  c.def(
+       "add_pin",
+       [](Scene& s, const std::string& gear, double radial_um, double tangential_um) {
+         py::dict f;
+         f["gear"] = gear;
+         f["radial_um"] = radial_um;
+         f["tangential_um"] = tangential_um;
+         EditInPlace(s, [&](toml::table& t) { AppendTable(t, "errors.pin", f); });
+       },
+       py::arg("gear"), py::arg("radial_um") = 0.0, py::arg("tangential_um") = 0.0,
+       R"doc(
 Adds a planet pin-hole position error ([[errors.pin]]): gear "planet1".."planetN", radial_um [µm]
 (outward), tangential_um [µm] (counter-clockwise). ValueError with the reader's message.)doc")
       .def(
@@ -379,37 +377,41 @@ at phase_deg [deg] in the gear's frame. )doc") +
 Adds a tooth-thickness error ([[errors.thickness]]): error_um [µm] normal to the flank, both
 flanks, + thicker. )doc") +
            kGearHelp)
-              .c_str())
-      .def(
-          "add_pit",
-          [](Scene& s, const std::string& gear, int tooth, const std::string& flank,
-             py::object roll_deg, py::object radius_mm, double width_fraction, double depth_um) {
-            if (roll_deg.is_none() == radius_mm.is_none())
-              throw py::value_error(
-                  "add_pit: give the region as roll_deg=(from, to) [deg] or radius_mm=(from, to) "
-                  "[mm], one of the two");
-            py::dict f;
-            f["gear"] = gear;
-            f["tooth"] = tooth;
-            f["flank"] = flank;
-            const bool roll = !roll_deg.is_none();
-            const auto range = (roll ? roll_deg : radius_mm).cast<std::pair<double, double>>();
-            f[roll ? "roll_from_deg" : "radius_from_mm"] = range.first;
-            f[roll ? "roll_to_deg" : "radius_to_mm"] = range.second;
-            f["width_fraction"] = width_fraction;
-            f["depth_um"] = depth_um;
-            EditInPlace(s, [&](toml::table& t) { AppendTable(t, "damage.pit", f); });
-          },
-          py::arg("gear"), py::arg("tooth"), py::arg("flank"), py::kw_only(),
-          py::arg("roll_deg") = py::none(), py::arg("radius_mm") = py::none(),
-          py::arg("width_fraction") = 1.0, py::arg("depth_um"),
-          (std::string(R"doc(
+              .c_str());
+}
+
+// The damage (pits, cracks) added to a scene.
+void BindSceneDamage(SceneClass& c) {
+  c.def(
+       "add_pit",
+       [](Scene& s, const std::string& gear, int tooth, const std::string& flank,
+          py::object roll_deg, py::object radius_mm, double width_fraction, double depth_um) {
+         if (roll_deg.is_none() == radius_mm.is_none())
+           throw py::value_error(
+               "add_pit: give the region as roll_deg=(from, to) [deg] or radius_mm=(from, to) "
+               "[mm], one of the two");
+         py::dict f;
+         f["gear"] = gear;
+         f["tooth"] = tooth;
+         f["flank"] = flank;
+         const bool roll = !roll_deg.is_none();
+         const auto range = (roll ? roll_deg : radius_mm).cast<std::pair<double, double>>();
+         f[roll ? "roll_from_deg" : "radius_from_mm"] = range.first;
+         f[roll ? "roll_to_deg" : "radius_to_mm"] = range.second;
+         f["width_fraction"] = width_fraction;
+         f["depth_um"] = depth_um;
+         EditInPlace(s, [&](toml::table& t) { AppendTable(t, "damage.pit", f); });
+       },
+       py::arg("gear"), py::arg("tooth"), py::arg("flank"), py::kw_only(),
+       py::arg("roll_deg") = py::none(), py::arg("radius_mm") = py::none(),
+       py::arg("width_fraction") = 1.0, py::arg("depth_um"),
+       (std::string(R"doc(
 Adds a pit or spall ([[damage.pit]], docs/model.md §9 "Pitting and spalls"): on tooth `tooth`
 (body frame, 0..z-1) of `gear`, flank "+" or "-", over roll_deg=(from, to) [deg] of involute roll
 angle or radius_mm=(from, to) [mm], covering width_fraction [-] of the face width, depth_um [µm]
 deep. )doc") +
-           kGearHelp)
-              .c_str())
+        kGearHelp)
+           .c_str())
       .def(
           "add_crack",
           [](Scene& s, const std::string& gear, int tooth, const std::string& side,
@@ -448,20 +450,24 @@ from the space centre line; a straight crack of depth_mm [mm] at angle_deg [deg]
 centre line (below 90 toward the root), or a polyline path_mm_deg=[(length_mm, angle_deg), ...].
 The crack is open; it needs gmsh, and no root stresses can be asked with it. )doc") +
            kGearHelp)
-              .c_str())
-      .def(
-          "set_pitch",
-          [](Scene& s, const std::string& gear, py::object single_um, py::object cumulative_um,
-             py::object iso1328_grade, py::object seed) {
-            py::dict f;
-            f["single_um"] = single_um;
-            f["cumulative_um"] = cumulative_um;
-            f["iso1328_grade"] = iso1328_grade;
-            f["seed"] = seed;
-            EditInPlace(s, [&](toml::table& t) { SetTable(t, gear + ".pitch", f); });
-          },
-          py::arg("gear"), py::arg("single_um") = py::none(), py::arg("cumulative_um") = py::none(),
-          py::arg("iso1328_grade") = py::none(), py::arg("seed") = py::none(), R"doc(
+              .c_str());
+}
+
+// A gear's pitch deviations and profile relief.
+void BindSceneGearEdits(SceneClass& c) {
+  c.def(
+       "set_pitch",
+       [](Scene& s, const std::string& gear, py::object single_um, py::object cumulative_um,
+          py::object iso1328_grade, py::object seed) {
+         py::dict f;
+         f["single_um"] = single_um;
+         f["cumulative_um"] = cumulative_um;
+         f["iso1328_grade"] = iso1328_grade;
+         f["seed"] = seed;
+         EditInPlace(s, [&](toml::table& t) { SetTable(t, gear + ".pitch", f); });
+       },
+       py::arg("gear"), py::arg("single_um") = py::none(), py::arg("cumulative_um") = py::none(),
+       py::arg("iso1328_grade") = py::none(), py::arg("seed") = py::none(), R"doc(
 Sets a gear's pitch deviations ([<gear>.pitch], gear "sun", "planet", "ring", "gear1", "gear2"):
 exactly one of single_um (z values [µm], summing to 0), cumulative_um (z values [µm]) or
 iso1328_grade (class 1..11, with seed >= 0).)doc")
@@ -475,8 +481,12 @@ iso1328_grade (class 1..11, with seed >= 0).)doc")
           py::arg("gear"), R"doc(
 Sets a gear's profile relief ([<gear>.modification]) from its keys: tip_relief_um [µm],
 tip_relief_start_mm [mm] or tip_relief_start_roll_deg [deg], tip_relief_shape ("linear",
-"parabolic"), and the same root_relief_* keys. Replaces the gear's previous relief.)doc")
-      .def_property_readonly("text", &Scene::text, "The scene's TOML text.")
+"parabolic"), and the same root_relief_* keys. Replaces the gear's previous relief.)doc");
+}
+
+// The scene's read-only properties.
+void BindSceneProperties(SceneClass& c) {
+  c.def_property_readonly("text", &Scene::text, "The scene's TOML text.")
       .def_property_readonly(
           "source", [](const Scene& s) { return s.scene().source; },
           "The file name (or source) used in messages.")
@@ -507,6 +517,27 @@ tip_relief_start_mm [mm] or tip_relief_start_roll_deg [deg], tip_relief_shape ("
       .def("__repr__", [](const Scene& s) {
         return "<epicycle.Scene '" + s.scene().name + "' from " + s.scene().source + ">";
       });
+}
+
+}  // namespace
+
+void BindScene(py::module_& m) {
+  SceneClass c(m, "Scene", R"doc(
+A scene: one planetary stage (or gear pair) read from TOML (docs/scenes.md). Keys name their
+units (module_mm, torque_Nm, runout_um). Every change goes through the scene's keys and is read
+again by the scene reader, so a bad value raises ValueError with the reader's message (file, line,
+key, value, rule) and leaves the scene unchanged.)doc");
+  c.def_static("load", &Scene::Load, py::arg("path"), R"doc(
+Reads a scene file.
+
+path: the TOML file. Raises ValueError with the reader's message (a missing file, a bad value).)doc")
+      .def_static("parse", &Scene::Parse, py::arg("text"), py::arg("source") = "<string>", R"doc(
+Reads a scene from TOML text; `source` names it in messages (as a file name would).)doc");
+  BindSceneKeys(c);
+  BindSceneErrors(c);
+  BindSceneDamage(c);
+  BindSceneGearEdits(c);
+  BindSceneProperties(c);
 }
 
 }  // namespace epicycle::python
