@@ -14,7 +14,7 @@
 #include <string>
 
 #include "epicycle/dynamics/simulation.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "recording_reporter.hpp"
 

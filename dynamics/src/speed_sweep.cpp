@@ -17,7 +17,7 @@
 
 #include "epicycle/dynamics/dynamic_factor.hpp"
 #include "epicycle/dynamics/run_span.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"

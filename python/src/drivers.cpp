@@ -8,7 +8,7 @@
 #include "common.hpp"
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/study.hpp"
-#include "epicycle/studies/summary.hpp"
+#include "epicycle/studies/study_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 

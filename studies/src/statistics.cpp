@@ -6,7 +6,7 @@
 #include <numbers>
 #include <numeric>
 
-#include "epicycle/transmission/statistics.hpp"
+#include "epicycle/transmission/accumulator.hpp"
 
 namespace epicycle::studies {
 

@@ -9,7 +9,7 @@
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/dynamic_factor.hpp"
 #include "epicycle/dynamics/simulation.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/root_stress.hpp"
 #include "figures.hpp"

@@ -11,7 +11,7 @@
 
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/simulation.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "figures.hpp"
 #include "lin_parker.hpp"
