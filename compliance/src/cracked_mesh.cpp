@@ -12,17 +12,13 @@
 #include <Eigen/Geometry>
 
 #include "epicycle/compliance/gmsh_mesher.hpp"
+#include "epicycle/io/number_format.hpp"
 #include "slit_mesh.hpp"
 
 namespace epicycle::compliance {
 namespace {
 
-std::string Num(double x) {
-  std::ostringstream s;
-  s.precision(9);
-  s << x;
-  return s.str();
-}
+using io::Num;
 
 // One interval of the sector's boundary loop: its first corner and its mid-side node (global ids,
 // or −1 for a node made here), with positions, and the names of the sets the interval belongs to.
@@ -43,9 +39,9 @@ void CrackMeshOptions::Validate() const {
   if (crack_elements < 2 || crack_elements > 200)
     fail("crack_elements", std::to_string(crack_elements), "must be in [2, 200]");
   if (!(tip_grading >= 1.0 && tip_grading <= 100.0))
-    fail("tip_grading", Num(tip_grading), "must be in [1, 100]");
+    fail("tip_grading", Num(tip_grading, 9), "must be in [1, 100]");
   if (!(max_element > 0.0 && max_element <= 1.0))
-    fail("max_element", Num(max_element), "must be in (0, 1] modules");
+    fail("max_element", Num(max_element, 9), "must be in (0, 1] modules");
 }
 
 namespace {
@@ -145,9 +141,9 @@ int SplitAtMouth(const geometry::Gear& gear, const RootCrack& crack, const Eigen
     }
   }
   if (mouth_interval < 0)
-    throw std::invalid_argument(who + "no interval of set '" + fillet_set +
-                                "' holds the crack's start (start_arc = " + Num(crack.start_arc) +
-                                " m)");
+    throw std::invalid_argument(
+        who + "no interval of set '" + fillet_set +
+        "' holds the crack's start (start_arc = " + Num(crack.start_arc, 9) + " m)");
   std::vector<double> cuts = {crack.start_arc};
   if (loop.size() % 2 == 0) {  // three pieces: also cut the longer part in its middle
     const double far = std::abs(sb - crack.start_arc) > std::abs(crack.start_arc - sa) ? sb : sa;

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "epicycle/compliance/elastic_model.hpp"
+#include "epicycle/io/number_format.hpp"
 #include "payload_io.hpp"
 
 namespace epicycle::compliance {
@@ -71,12 +72,7 @@ FilletReadout ReadFillet(const LinearElasticModel& model, const ProfilePath& pat
   return out;
 }
 
-std::string Num(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
+using io::Num;
 
 int FlankIndex(int flank, const char* what) {
   if (flank != 1 && flank != -1) {

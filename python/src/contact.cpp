@@ -28,11 +28,11 @@ solvers::LocalTermParameters LocalTermOf(const py::dict& d) {
       p.reduced_radius = value.cast<double>();
     } else if (k == "plane") {
       const std::string plane = value.cast<std::string>();
-      if (plane != "strain" && plane != "stress")
+      const auto a = io::ValueOf(solvers::kPlaneAssumptionNames, plane);
+      if (!a)
         throw std::invalid_argument("local term plane = \"" + plane +
                                     "\": must be \"strain\" or \"stress\"");
-      p.plane = plane == "strain" ? solvers::PlaneAssumption::kPlaneStrain
-                                  : solvers::PlaneAssumption::kPlaneStress;
+      p.plane = *a;
     } else if (k == "youngs_modulus_Pa" || k == "poisson_ratio" || k == "depth_m") {
       const auto pair = value.cast<std::vector<double>>();
       if (pair.size() != 2)

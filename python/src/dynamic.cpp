@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <optional>
 #include <thread>
 
@@ -17,6 +16,7 @@
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "scene.hpp"
+#include "epicycle/io/units.hpp"
 
 namespace epicycle::python {
 
@@ -223,7 +223,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   f["scene"] = rig.scene.name;
   f["sun_support"] = transmission::SunSupportName(rig.stage_model.setup().sun);
   f["sun_torque_Nm"] = rig.scene.loads.sun_torque;
-  f["sun_speed_rpm"] = std::abs(out.sun_speed) * 30.0 / std::numbers::pi;
+  f["sun_speed_rpm"] = io::RadPerSecondToRpm(std::abs(out.sun_speed));
   f["mesh_frequency_Hz"] = out.span.mesh_frequency;
   f["duration_s"] = out.span.duration;
   f["outputs"] = out.span.outputs;

@@ -184,10 +184,8 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
       p.reduced_radius = rd.Number(rd.Required(e, "reduced_radius_m"), key + ".reduced_radius_m");
       if (e.contains("plane")) {
         const std::string plane = e["plane"].is_string() ? e["plane"].get<std::string>() : "";
-        if (plane == "strain")
-          p.plane = PlaneAssumption::kPlaneStrain;
-        else if (plane == "stress")
-          p.plane = PlaneAssumption::kPlaneStress;
+        if (const auto a = io::ValueOf(kPlaneAssumptionNames, plane))
+          p.plane = *a;
         else
           rd.Fail(key + ".plane", "must be \"strain\" or \"stress\", found " + e["plane"].dump());
       }
@@ -267,7 +265,7 @@ std::string FormatContactProblemFile(const ContactProblemFile& f) {
       e["enabled"] = p.enabled;
       e["face_width_m"] = p.face_width;
       e["reduced_radius_m"] = p.reduced_radius;
-      e["plane"] = p.plane == PlaneAssumption::kPlaneStrain ? "strain" : "stress";
+      e["plane"] = io::NameOf(kPlaneAssumptionNames, p.plane);
       for (int b = 0; b < 2; ++b)
         e["bodies"].push_back({{"youngs_modulus_Pa", p.body[b].youngs_modulus},
                                {"poisson_ratio", p.body[b].poisson_ratio},

@@ -11,6 +11,7 @@
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/io/input_file.hpp"
 #include "epicycle/io/toml_reader.hpp"
+#include "epicycle/io/units.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 #include "scene_internal.hpp"
 
@@ -92,10 +93,9 @@ Inertia ReadInertia(TableReader& t) {
 void ReadDynamics(TableReader& top, DynamicSettings& d, std::vector<std::string>* warnings) {
   if (auto t = top.OptionalTable("dynamics")) {
     // The rule of every sun speed a run is given (run_arguments.hpp: --speed-rpm, Python's).
-    d.sun_speed =
+    d.sun_speed = io::RpmToRadPerSecond(
         t->RealOr("sun_speed_rpm", 1500.0,
-                  Rule::Closed(kSunSpeedRpm.lo, kSunSpeedRpm.hi).Because(kSunSpeedRpm.why)) *
-        std::numbers::pi / 30.0;
+                  Rule::Closed(kSunSpeedRpm.lo, kSunSpeedRpm.hi).Because(kSunSpeedRpm.why)));
     d.carrier_free = t->StringOr("carrier", "speed", {"speed", "torque"}) == "torque";
     d.carrier_load_inertia = t->RealOr("carrier_load_inertia_kgm2", 0.0, Rule::NonNegative());
     d.sun_speed_driven = t->StringOr("sun", "torque", {"torque", "speed"}) == "speed";
@@ -118,8 +118,8 @@ void ReadDynamics(TableReader& top, DynamicSettings& d, std::vector<std::string>
       d.ring_torsional_damping =
           t->RealOr("ring_torsional_damping_Nms_per_rad", 0.0, Rule::NonNegative());
     }
-    d.friction.law = FrictionLawFromName(t->StringOr(
-        "friction", "xu-kahraman", {"off", "constant", "xu-kahraman", "benedict-kelley"}));
+    d.friction.law =
+        FrictionLawFromName(t->StringOr("friction", "xu-kahraman", io::Names(kFrictionLawNames)));
     d.friction.coefficient = t->RealOr("friction_coefficient", 0.05, Rule::Closed(0, 1));
     t->Done();
   }
@@ -646,9 +646,9 @@ void ReadMaterialRatingModel(TableReader& top, Scene& s) {
     t->Done();
   }
   if (auto t = top.OptionalTable("model")) {
-    const std::string plane = t->StringOr("plane", "strain", {"strain", "stress"});
-    s.model.plane = plane == "strain" ? solvers::PlaneAssumption::kPlaneStrain
-                                      : solvers::PlaneAssumption::kPlaneStress;
+    s.model.plane =
+        *io::ValueOf(solvers::kPlaneAssumptionNames,
+                     t->StringOr("plane", "strain", io::Names(solvers::kPlaneAssumptionNames)));
     s.model.join_depth = t->RealOr("join_depth_mm", 0.0, Rule::NonNegative()) * kMm;
     if (t->Has("join_depth_factor") && s.model.join_depth > 0) {
       t->Fail("join_depth_factor", "given",
@@ -734,10 +734,8 @@ void ReadStageMembers(TableReader& top, Scene& s, Fitted&& fitted) {
 // A stage's optional [supports] table.
 void ReadSupports(TableReader& top, Scene& s) {
   if (auto t = top.OptionalTable("supports")) {
-    const std::string sun = t->StringOr("sun", "fixed", {"fixed", "floating", "elastic"});
-    s.supports.sun = sun == "fixed"      ? SunSupport::kFixed
-                     : sun == "floating" ? SunSupport::kFloating
-                                         : SunSupport::kElastic;
+    s.supports.sun =
+        *io::ValueOf(kSunSupportNames, t->StringOr("sun", "fixed", io::Names(kSunSupportNames)));
     if (s.supports.sun == SunSupport::kElastic) {
       s.supports.sun_stiffness = t->Real("sun_stiffness_N_per_um", kBearingRule) * 1e6;
     }
@@ -870,9 +868,8 @@ Scene ReadScene(const std::string& path) {
 }
 
 const char* SunSupportName(SunSupport support) {
-  return support == SunSupport::kFixed      ? "fixed"
-         : support == SunSupport::kFloating ? "floating"
-                                            : "elastic";
+  const char* name = io::NameOf(kSunSupportNames, support);
+  return name ? name : "elastic";
 }
 
 }  // namespace epicycle::transmission

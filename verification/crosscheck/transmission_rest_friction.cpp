@@ -16,6 +16,7 @@
 #include "epicycle/transmission/quasistatic.hpp"
 #include "fe_fixtures.hpp"
 #include "figures.hpp"
+#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 using test::Sci;
@@ -106,7 +107,7 @@ TEST_CASE(
   opt.friction.law = transmission::FrictionLaw::kConstant;
   opt.friction.coefficient = mu;
   opt.friction.smoothing_velocity = v_eps;
-  opt.sun_speed = 1500.0 * std::numbers::pi / 30.0;
+  opt.sun_speed = io::RpmToRadPerSecond(1500.0);
   const double t_s = rig.scene.loads.sun_torque;
   const double z_s = st.sun().teeth(), z_r = st.ring().teeth(), z_p = st.planet(0).teeth();
   const double w_s = (t_s > 0 ? 1.0 : -1.0) * opt.sun_speed;  // the sun turns as T_s drives it

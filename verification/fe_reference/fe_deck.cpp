@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include <gmsh.h>
+#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::fe_reference {
 
@@ -23,12 +24,7 @@ using geometry::Vec2;
 constexpr double kMm = 1e3;  // the deck is in mm, N, MPa
 
 // CalculiX reads at most 20 characters per field: 13 significant digits fit any sign and exponent.
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(13);
-  s << v;
-  return s.str();
-}
+using io::Num;
 
 // gmsh state is global: one session per deck, finalized even when an exception leaves.
 struct GmshSession {
@@ -131,7 +127,7 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
     const double margin = 1e-6 * std::abs(seg.t1 - seg.t0);
     if (!(mouth_t > std::min(seg.t0, seg.t1) + margin &&
           mouth_t < std::max(seg.t0, seg.t1) - margin))
-      throw std::invalid_argument("fe deck: crack start_arc = " + Num(crack->crack.start_arc) +
+      throw std::invalid_argument("fe deck: crack start_arc = " + Num(crack->crack.start_arc, 13) +
                                   " m: the mouth falls on a joint of the fillet's segments");
     tip_body = Vec2(pts.back().x(), pts.back().y());
   }
@@ -340,7 +336,7 @@ struct Tri {
 void FeMeshOptions::Validate() const {
   auto positive = [](const char* key, double v) {
     if (!(v > 0) || !std::isfinite(v))
-      throw std::invalid_argument(std::string("fe mesh: ") + key + " = " + Num(v) +
+      throw std::invalid_argument(std::string("fe mesh: ") + key + " = " + Num(v, 13) +
                                   ": must be > 0");
   };
   positive("contact_size", contact_size);
@@ -460,7 +456,7 @@ void CheckDeckInput(const geometry::GearPair& pair, double torque,
     throw std::invalid_argument("fe deck: rotations: at least one step is needed");
   for (double r : rotations) {
     if (!(r * rotations.front() > 0) || !std::isfinite(r))
-      throw std::invalid_argument("fe deck: rotation = " + Num(r) +
+      throw std::invalid_argument("fe deck: rotation = " + Num(r, 13) +
                                   ": every step's rotation must be non-zero and of one sign");
   }
   if (torque == 0) throw std::invalid_argument("fe deck: torque = 0: must be non-zero");
@@ -488,8 +484,8 @@ void CheckDeckInput(const geometry::GearPair& pair, double torque,
                                   " side " + std::to_string(spall->side) +
                                   ": tooth in [0, z), side ±1");
     if (!(spall->depth > 0) || !(spall->roll_to > spall->roll_from) || !(spall->roll_from >= 0))
-      throw std::invalid_argument("fe deck: spall depth " + Num(spall->depth) + " m, roll " +
-                                  Num(spall->roll_from) + ".." + Num(spall->roll_to) +
+      throw std::invalid_argument("fe deck: spall depth " + Num(spall->depth, 13) + " m, roll " +
+                                  Num(spall->roll_from, 13) + ".." + Num(spall->roll_to, 13) +
                                   " rad: depth > 0 and 0 <= roll_from < roll_to");
   }
 }
@@ -819,7 +815,7 @@ std::vector<int> FilletNodes(const std::vector<FilletLine>& fillet_lines, const 
         line.Project(xy[i], &arc, &t, &distance);
         if (distance > 1e-3)
           throw std::runtime_error("fe deck: fillet node " + std::to_string(n.node) + " lies " +
-                                   Num(distance) + " mm off its fillet");
+                                   Num(distance, 13) + " mm off its fillet");
         n.arc_length = arc / kMm;
         n.tx = t.x();
         n.ty = t.y();
@@ -868,12 +864,12 @@ void WriteSteps(std::ostream& f, const transmission::Scene& scene, const FeConta
                 const std::vector<double>& rotations, const FeDeckInfo& info) {
   const transmission::Material& mat = scene.material;
   f << "*MATERIAL, NAME=STEEL\n*ELASTIC\n"
-    << Num(mat.youngs_modulus / 1e6) << ", " << Num(mat.poisson_ratio) << "\n"
+    << Num(mat.youngs_modulus / 1e6, 13) << ", " << Num(mat.poisson_ratio, 13) << "\n"
     << "*SOLID SECTION, ELSET=GEAR1, MATERIAL=STEEL\n"
     << "*SOLID SECTION, ELSET=GEAR2, MATERIAL=STEEL\n"
     << "*SURFACE INTERACTION, NAME=FLANKS\n"
     << "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-    << Num(contact.penalty) << ", " << Num(contact.tension) << "\n";
+    << Num(contact.penalty, 13) << ", " << Num(contact.tension, 13) << "\n";
   for (const FeToothPair& p : info.pairs)
     f << "*CONTACT PAIR, INTERACTION=FLANKS, TYPE=SURFACE TO SURFACE\n"
       << p.slave << ", " << p.master << "\n";
@@ -884,8 +880,8 @@ void WriteSteps(std::ostream& f, const transmission::Scene& scene, const FeConta
     // automatic stepping would add a spurious 1e-6 increment at the end of the step.
     f << "*STEP, INC=1000\n*STATIC, DIRECT\n1., 1.\n*BOUNDARY\n";
     for (std::size_t i = 0; i < info.hub_nodes.size(); ++i) {
-      f << info.hub_nodes[i] << ", 1, 1, " << Num(-theta * info.hub_y[i]) << "\n"
-        << info.hub_nodes[i] << ", 2, 2, " << Num(theta * info.hub_x[i]) << "\n";
+      f << info.hub_nodes[i] << ", 1, 1, " << Num(-theta * info.hub_y[i], 13) << "\n"
+        << info.hub_nodes[i] << ", 2, 2, " << Num(theta * info.hub_x[i], 13) << "\n";
     }
     f << "*NODE PRINT, NSET=HUB1\nRF\n*EL FILE, NSET=FILLETS\nS\n";
     for (const FeToothPair& p : info.pairs)  // CF needs the pair named (ccx 2.20)
@@ -1045,8 +1041,9 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   if (!f) throw std::runtime_error(deck_path + ": cannot be written");
   f.precision(13);
   f << "** epicycle FE contact reference (verification/fe_reference): " << scene.name << "\n"
-    << "** gear-1 angle " << Num(geometry::Deg(angle)) << " deg, torque on gear 1 " << Num(torque)
-    << " N m over b = " << Num(info.face_width * kMm) << " mm; slab t = 1 mm; units mm, N, MPa\n"
+    << "** gear-1 angle " << Num(geometry::Deg(angle), 13) << " deg, torque on gear 1 "
+    << Num(torque, 13) << " N m over b = " << Num(info.face_width * kMm, 13)
+    << " mm; slab t = 1 mm; units mm, N, MPa\n"
     << "*NODE, NSET=NALL\n";
   info.nodes = WriteNodesAndElements(f, dm, slab, t_mm);
   info.elements = static_cast<int>(dm.tris.size());
@@ -1091,7 +1088,7 @@ std::optional<FeSpall> SpallOfScene(const transmission::Scene& scene) {
                                 " pits: the deck takes one");
   const transmission::Pit& p = pits.front();
   if (p.width_fraction < 1)
-    throw std::invalid_argument(p.where + ": width_fraction = " + Num(p.width_fraction) +
+    throw std::invalid_argument(p.where + ": width_fraction = " + Num(p.width_fraction, 13) +
                                 ": the plane-strain deck takes a spall over the whole face (1)");
   if (p.gear != "gear1" && p.gear != "gear2")
     throw std::invalid_argument(p.where + ": gear = '" + p.gear + "': must be gear1 or gear2");
