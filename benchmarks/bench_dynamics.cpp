@@ -14,9 +14,10 @@
 #include <string>
 
 #include "epicycle/dynamics/simulation.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "recording_reporter.hpp"
+#include "epicycle/io/units.hpp"
 
 namespace {
 
@@ -25,7 +26,7 @@ using namespace epicycle;
 transmission::Scene RunoutScene(transmission::SunSupport sun) {
   auto s = transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_runout.toml");
   s.supports.sun = sun;
-  s.dynamics.sun_speed = 1500 * std::numbers::pi / 30;
+  s.dynamics.sun_speed = io::RpmToRadPerSecond(1500);
   return s;
 }
 
@@ -63,7 +64,7 @@ void BM_DamagedEvaluation(benchmark::State& state) {
     const auto cracked = transmission::ReadScene(dir + "/paper_stage_runout_crack.toml");
     scene.damage.cracks = cracked.damage.cracks;
   }
-  scene.dynamics.sun_speed = 1500 * std::numbers::pi / 30;
+  scene.dynamics.sun_speed = io::RpmToRadPerSecond(1500);
   const dynamics::StageDynamics c(std::move(scene), Case::Cache());
   TimeEvaluations(state, c);
 }

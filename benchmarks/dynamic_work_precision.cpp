@@ -63,6 +63,7 @@
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/io/units.hpp"
 #include "log_log_svg.hpp"
 
 namespace {
@@ -330,7 +331,7 @@ struct Case : dynamics::StageDynamics {
     std::printf(
         "paper stage, planet 1 run-out 20 um, fixed sun, %.0f rpm (mesh cycle %.4f ms), from "
         "mesh cycle %.2f, %d mesh cycles = %.3f ms, %zu outputs, %d DOFs\n",
-        std::abs(model.sun_speed()) * 30 / std::numbers::pi, cycle_time * 1e3, start_cycle, cycles,
+        io::RadPerSecondToRpm(std::abs(model.sun_speed())), cycle_time * 1e3, start_cycle, cycles,
         cycles * cycle_time * 1e3, times.size(), model.size());
   }
   static transmission::Scene Scene() {

@@ -11,7 +11,7 @@
 # Prints FILE:LINE of every case or file that breaks a rule and exits 1 if there is one (CTest
 # "tests: every case is tagged and every file named by the scheme").
 source "$(dirname "${BASH_SOURCE[0]}")/check_common.sh" "$@"
-layers="geometry|solvers|compliance|transmission|dynamics|studies|report"
+layers="io|geometry|solvers|compliance|transmission|dynamics|studies|report"
 failures=0
 
 # Tags. A case's declaration runs from its TEST_CASE( (or SCENARIO(, ...) to the first "{".

@@ -49,9 +49,15 @@ inline transmission::Scene StageScene(const std::string& file, const std::string
   transmission::Scene scene = transmission::ReadScene(file);
   if (scene.kind != transmission::SceneKind::kStage)
     throw std::invalid_argument(file + ": a gear-pair scene; " + command + " needs a stage");
-  if (sun == "fixed") scene.supports.sun = transmission::SunSupport::kFixed;
-  if (sun == "floating") scene.supports.sun = transmission::SunSupport::kFloating;
+  if (const auto support = io::ValueOf(transmission::kSunSupportNames, sun))
+    scene.supports.sun = *support;
   return scene;
+}
+
+/// The sun supports `--sun` may set (an elastic one needs the scene's stiffness).
+inline std::vector<std::string> SunOverrideNames() {
+  return {transmission::SunSupportName(transmission::SunSupport::kFixed),
+          transmission::SunSupportName(transmission::SunSupport::kFloating)};
 }
 
 /// "[#####     ] done/total what, failed failed, s s" on one rewritten stderr line.

@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <numbers>
 #include <optional>
 
 #include <fmt/format.h>
@@ -21,7 +20,7 @@
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/report/ratings.hpp"
 #include "epicycle/report/run_files.hpp"
@@ -29,6 +28,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "options.hpp"
 #include "speed_sweep_command.hpp"
+#include "epicycle/io/units.hpp"
 
 namespace epicycle::app {
 
@@ -61,7 +61,7 @@ void RunDynamic(const DynamicArgs& a) {
   if (a.speed_sweep.empty() && (a.threads != 0 || a.window_cycles != 0))
     throw std::invalid_argument("--threads and --window-cycles belong to --speed-sweep");
   if (!a.speed_sweep.empty()) ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
-  if (a.speed_rpm) input.dynamics.sun_speed = *a.speed_rpm * std::numbers::pi / 30.0;
+  if (a.speed_rpm) input.dynamics.sun_speed = io::RpmToRadPerSecond(*a.speed_rpm);
   if (!a.friction.empty())
     input.dynamics.friction.law = transmission::FrictionLawFromName(a.friction);
   input.model.stresses = input.model.stresses || a.stresses || a.rating;
@@ -100,7 +100,7 @@ void RunDynamic(const DynamicArgs& a) {
                             a.time.value_or(0.0), per_cycle);
   const double duration = span.duration, mesh_hz = span.mesh_frequency;
   const std::string cost = dynamics::RunCostWarning(  // a run of hours: said before it starts
-      span, model.sun_speed() * 30 / std::numbers::pi,
+      span, io::RadPerSecondToRpm(model.sun_speed()),
       a.time ? fmt::format("--time = {} s", *a.time) : "--range " + range,
       a.speed_rpm ? fmt::format("--speed-rpm = {}", *a.speed_rpm) : "[dynamics] sun_speed_rpm");
   if (!cost.empty()) std::fprintf(stderr, "warning: %s\n", cost.c_str());
@@ -121,7 +121,7 @@ void RunDynamic(const DynamicArgs& a) {
       "%s: %d planets, sun %s, input torque %.1f N m, sun speed %.1f rpm (mesh frequency "
       "%.1f Hz)\n",
       scene.name.c_str(), n, sun_name, scene.loads.sun_torque,
-      std::abs(model.sun_speed()) * 30.0 / std::numbers::pi, mesh_hz);
+      io::RadPerSecondToRpm(std::abs(model.sun_speed())), mesh_hz);
   for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
   for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
   std::printf(
@@ -233,7 +233,7 @@ void RunModes(const ModesArgs& a) {
   }
   // Every mesh harmonic that meets a mode within the speeds asked (default: the scene's speed
   // / 2 .. x 2), marked by the planet-phasing rule.
-  const double rpm = model.settings().sun_speed * 30.0 / std::numbers::pi;
+  const double rpm = io::RadPerSecondToRpm(model.settings().sun_speed);
   const double lo = a.speed_range_rpm.empty() ? rpm / 2 : a.speed_range_rpm[0];
   const double hi = a.speed_range_rpm.empty() ? rpm * 2 : a.speed_range_rpm[1];
   const auto coincidences = dynamics::FindCoincidences(model, modes, lo, hi);
@@ -264,7 +264,7 @@ void RegisterDynamicCommands(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   modes->add_option("--sun", m.sun, "Override the scene's sun support")
-      ->check(CLI::IsMember({"fixed", "floating"}));
+      ->check(CLI::IsMember(SunOverrideNames()));
   modes->add_option("--json", m.json, "Also write the modes as JSON");
   AddNumber(modes, "--speed-range-rpm", m.speed_range_rpm,
             "Sun speeds LO HI [rpm] for the mesh-harmonic coincidences (default: the scene's "
@@ -287,13 +287,13 @@ void RegisterDynamicCommands(CLI::App& app) {
   cmd->add_option("--range", a.range,
                   "Simulate one mesh cycle, one planet or sun revolution relative to the "
                   "carrier, or one carrier revolution")
-      ->check(CLI::IsMember({"cycle", "planet", "sun", "revolution"}));
+      ->check(CLI::IsMember(io::Names(transmission::kRunRangeNames)));
   AddNumber(cmd, "--time", a.time, "Simulate this long instead [s]", kRunTimeS);
   AddNumber(cmd, "--start-deg", a.start_deg, "Carrier angle at t = 0 [deg]", kCarrierAngleDeg);
   cmd->add_option("--sun", a.sun, "Override the scene's sun support")
-      ->check(CLI::IsMember({"fixed", "floating"}));
+      ->check(CLI::IsMember(SunOverrideNames()));
   cmd->add_option("--friction", a.friction, "Override the scene's friction law")
-      ->check(CLI::IsMember({"off", "constant", "xu-kahraman", "benedict-kelley"}));
+      ->check(CLI::IsMember(io::Names(transmission::kFrictionLawNames)));
   cmd->add_option("--backend", a.backend, "Contact back end (newton, ipopt, nlopt-lbfgs, ...)");
   cmd->add_option("--integrator", a.integrator, "cvode-bdf (default) or arkode-erk")
       ->check(CLI::IsMember({"cvode-bdf", "arkode-erk"}));

@@ -23,6 +23,7 @@
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
+#include "epicycle/io/units.hpp"
 #include "options.hpp"
 
 namespace epicycle::app {
@@ -73,7 +74,7 @@ class ConsoleSink final : public transmission::QuasiStaticSink {
     if (p.friction)
       std::printf("  friction %s at rest, sun at %.1f rpm\n",
                   transmission::FrictionLawName(p.options->friction.law).c_str(),
-                  p.options->sun_speed * 30 / std::numbers::pi);
+                  io::RadPerSecondToRpm(p.options->sun_speed));
     plots_ = std::make_unique<report::QuasiStaticPlots>(base_, n, p.positions,
                                                         360.0 / p.stage->ring().teeth(),
                                                         geometry::Deg(p.span));
@@ -211,13 +212,13 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
                   "Sweep one mesh cycle, one planet or sun revolution relative to the carrier "
                   "(the period of a planet's run-out, of a sun tooth's damage), or one carrier "
                   "revolution")
-      ->check(CLI::IsMember({"cycle", "planet", "sun", "revolution"}));
+      ->check(CLI::IsMember(io::Names(transmission::kRunRangeNames)));
   AddNumber(cmd, "--start-deg", a.start_deg, "Carrier angle of the first position [deg]",
             kCarrierAngleDeg);
   AddNumber(cmd, "--angles-deg", a.angles_deg, "A given list of carrier angles [deg]",
             kCarrierAngleDeg);
   cmd->add_option("--sun", a.sun, "Override the scene's sun support")
-      ->check(CLI::IsMember({"fixed", "floating"}));
+      ->check(CLI::IsMember(SunOverrideNames()));
   AddNumber(cmd, "--threads", a.threads,
             "Worker threads: the positions in contiguous chunks, one per thread (0: one per core)",
             kThreadsOrZero);
@@ -227,7 +228,7 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
   cmd->add_option("--friction", a.friction,
                   "Friction at rest: off (default), scene (the scene's [dynamics] friction), or a "
                   "law; lubricant and sliding from the scene's [lubricant] and sun_speed_rpm")
-      ->check(CLI::IsMember({"off", "scene", "constant", "xu-kahraman", "benedict-kelley"}));
+      ->check(CLI::IsMember(transmission::RestFrictionNames()));
   cmd->add_option("--backend", a.backend, "Contact back end (newton, ipopt, nlopt-slsqp, ...)");
   cmd->add_option("--out", a.out, "Output folder (CSV, JSON, SVG)");
   cmd->add_option("--dump-problems", a.dump, "Also write every position's contact problem here");

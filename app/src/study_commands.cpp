@@ -20,7 +20,7 @@
 #include "epicycle/report/study_files.hpp"
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/sobol.hpp"
-#include "epicycle/studies/summary.hpp"
+#include "epicycle/studies/study_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "options.hpp"
 

@@ -464,11 +464,12 @@ void CheckConformity(const Mesh& mesh, const Region& region, const std::vector<i
 
 }  // namespace
 
-Mesh GmshMesher::BuildMesh(const Region& region) const {
-  if (region.patches.empty()) Fail("the region has no patches");
-  const int num_patches = static_cast<int>(region.patches.size());
+namespace {
 
-  // Side curves present and finite; scale of the region.
+// The region's scale (the diagonal of its bounding box [m]), its side curves checked present and
+// finite.
+double RegionScale(const Region& region) {
+  const int num_patches = static_cast<int>(region.patches.size());
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
   for (int p = 0; p < num_patches; ++p) {
@@ -488,13 +489,13 @@ Mesh GmshMesher::BuildMesh(const Region& region) const {
       }
     }
   }
-  const double scale = (hi - lo).norm();
-  if (!(scale > 0.0)) Fail("the region has zero size");
-  const double merge_tol = options_.merge_tolerance * scale;
-  const double corner_tol = options_.corner_tolerance * scale;
+  return (hi - lo).norm();
+}
 
-  // Boundary nodes of every patch at the distributions' parameters, with the corner checks of
-  // MappedMesher.
+// Boundary nodes of every patch at the distributions' parameters, with the corner checks of
+// MappedMesher.
+std::vector<PatchSamples> SampleBoundaries(const Region& region, double corner_tol) {
+  const int num_patches = static_cast<int>(region.patches.size());
   std::vector<PatchSamples> samples(num_patches);
   for (int p = 0; p < num_patches; ++p) {
     const Patch& patch = region.patches[p];
@@ -509,75 +510,82 @@ Mesh GmshMesher::BuildMesh(const Region& region) const {
       for (double t : samples[p].param[s]) samples[p].side[s].push_back(sides[s](t));
     }
   }
+  return samples;
+}
 
-  // Unnamed sides: intervals much longer than the element size at their ends are subdivided
-  // (SplitFractions), the same way by every patch that has the side, so that the unstructured
-  // interior can grade from short to long intervals. The size at a vertex is its shortest
-  // interval over all sides of all patches; named sides (flanks, hub) are never subdivided.
-  {
-    PointIndex vertices(merge_tol);
-    std::vector<double> vertex_size;
-    std::vector<std::array<std::vector<int>, 4>> vertex_of(num_patches);
-    for (int p = 0; p < num_patches; ++p) {
-      for (int s = 0; s < 4; ++s) {
-        const auto& x = samples[p].side[s];
-        const int n = static_cast<int>(x.size()) / 2;  // intervals
-        for (int i = 0; i <= n; ++i) {
-          const int id = vertices.Add(x[2 * i]);
-          vertex_of[p][s].push_back(id);
-          if (id >= static_cast<int>(vertex_size.size())) {
-            vertex_size.push_back(std::numeric_limits<double>::infinity());
-          }
-          if (i > 0) vertex_size[id] = std::min(vertex_size[id], (x[2 * i] - x[2 * i - 2]).norm());
-          if (i < n) vertex_size[id] = std::min(vertex_size[id], (x[2 * i + 2] - x[2 * i]).norm());
+// Unnamed sides: intervals much longer than the element size at their ends are subdivided
+// (SplitFractions), the same way by every patch that has the side, so that the unstructured
+// interior can grade from short to long intervals. The size at a vertex is its shortest
+// interval over all sides of all patches; named sides (flanks, hub) are never subdivided.
+void SubdivideUnnamedSides(const Region& region, double merge_tol,
+                           std::vector<PatchSamples>& samples) {
+  const int num_patches = static_cast<int>(region.patches.size());
+  PointIndex vertices(merge_tol);
+  std::vector<double> vertex_size;
+  std::vector<std::array<std::vector<int>, 4>> vertex_of(num_patches);
+  for (int p = 0; p < num_patches; ++p) {
+    for (int s = 0; s < 4; ++s) {
+      const auto& x = samples[p].side[s];
+      const int n = static_cast<int>(x.size()) / 2;  // intervals
+      for (int i = 0; i <= n; ++i) {
+        const int id = vertices.Add(x[2 * i]);
+        vertex_of[p][s].push_back(id);
+        if (id >= static_cast<int>(vertex_size.size())) {
+          vertex_size.push_back(std::numeric_limits<double>::infinity());
         }
-      }
-    }
-    std::set<std::pair<int, int>> named;
-    for (int p = 0; p < num_patches; ++p) {
-      for (int s = 0; s < 4; ++s) {
-        if (region.patches[p].side_names[s].empty()) continue;
-        const auto& ids = vertex_of[p][s];
-        for (std::size_t i = 0; i + 1 < ids.size(); ++i) {
-          named.insert({std::min(ids[i], ids[i + 1]), std::max(ids[i], ids[i + 1])});
-        }
-      }
-    }
-    for (int p = 0; p < num_patches; ++p) {
-      for (int s = 0; s < 4; ++s) {
-        const std::vector<double> t = samples[p].param[s];
-        const auto& x = samples[p].side[s];
-        const auto& ids = vertex_of[p][s];
-        std::vector<double> refined;
-        for (std::size_t i = 0; i + 1 < ids.size(); ++i) {
-          const double ta = t[2 * i], tb = t[2 * i + 2];
-          std::vector<double> cut;
-          if (named.count({std::min(ids[i], ids[i + 1]), std::max(ids[i], ids[i + 1])}) == 0) {
-            cut = SplitFractions((x[2 * i + 2] - x[2 * i]).norm(), vertex_size[ids[i]],
-                                 vertex_size[ids[i + 1]]);
-          }
-          if (cut.empty()) {
-            refined.push_back(ta);
-            refined.push_back(t[2 * i + 1]);
-            continue;
-          }
-          double previous = ta;
-          for (std::size_t j = 0; j <= cut.size(); ++j) {
-            const double next = j < cut.size() ? ta + cut[j] * (tb - ta) : tb;
-            refined.push_back(previous);
-            refined.push_back(0.5 * (previous + next));
-            previous = next;
-          }
-        }
-        refined.push_back(t.back());
-        if (refined.size() == t.size()) continue;
-        samples[p].param[s] = refined;
-        samples[p].side[s].clear();
-        for (double ti : refined) samples[p].side[s].push_back(region.patches[p].sides[s](ti));
+        if (i > 0) vertex_size[id] = std::min(vertex_size[id], (x[2 * i] - x[2 * i - 2]).norm());
+        if (i < n) vertex_size[id] = std::min(vertex_size[id], (x[2 * i + 2] - x[2 * i]).norm());
       }
     }
   }
+  std::set<std::pair<int, int>> named;
+  for (int p = 0; p < num_patches; ++p) {
+    for (int s = 0; s < 4; ++s) {
+      if (region.patches[p].side_names[s].empty()) continue;
+      const auto& ids = vertex_of[p][s];
+      for (std::size_t i = 0; i + 1 < ids.size(); ++i) {
+        named.insert({std::min(ids[i], ids[i + 1]), std::max(ids[i], ids[i + 1])});
+      }
+    }
+  }
+  for (int p = 0; p < num_patches; ++p) {
+    for (int s = 0; s < 4; ++s) {
+      const std::vector<double> t = samples[p].param[s];
+      const auto& x = samples[p].side[s];
+      const auto& ids = vertex_of[p][s];
+      std::vector<double> refined;
+      for (std::size_t i = 0; i + 1 < ids.size(); ++i) {
+        const double ta = t[2 * i], tb = t[2 * i + 2];
+        std::vector<double> cut;
+        if (named.count({std::min(ids[i], ids[i + 1]), std::max(ids[i], ids[i + 1])}) == 0) {
+          cut = SplitFractions((x[2 * i + 2] - x[2 * i]).norm(), vertex_size[ids[i]],
+                               vertex_size[ids[i + 1]]);
+        }
+        if (cut.empty()) {
+          refined.push_back(ta);
+          refined.push_back(t[2 * i + 1]);
+          continue;
+        }
+        double previous = ta;
+        for (std::size_t j = 0; j <= cut.size(); ++j) {
+          const double next = j < cut.size() ? ta + cut[j] * (tb - ta) : tb;
+          refined.push_back(previous);
+          refined.push_back(0.5 * (previous + next));
+          previous = next;
+        }
+      }
+      refined.push_back(t.back());
+      if (refined.size() == t.size()) continue;
+      samples[p].param[s] = refined;
+      samples[p].side[s].clear();
+      for (double ti : refined) samples[p].side[s].push_back(region.patches[p].sides[s](ti));
+    }
+  }
+}
 
+// The loop of every patch, checked to enclose an area.
+void BuildLoops(const Region& region, std::vector<PatchSamples>& samples) {
+  const int num_patches = static_cast<int>(region.patches.size());
   for (int p = 0; p < num_patches; ++p) {
     PatchSamples& smp = samples[p];
     smp.BuildLoop();
@@ -591,14 +599,19 @@ Mesh GmshMesher::BuildMesh(const Region& region) const {
       Fail(PatchLabel(region, p) + ": the patch encloses zero area (degenerate patch)");
     }
   }
+}
 
-  // Rotated copies: the loop of patch p equals R(θ) × the loop of an earlier master.
+// Rotated copies: the loop of patch p equals R(θ) × the loop of an earlier master. Returns each
+// patch's source; `masters` receives the patches that are their own.
+std::vector<Source> RotatedCopies(const std::vector<PatchSamples>& samples, double merge_tol,
+                                  bool reuse_rotated_copies, std::vector<int>* masters_out) {
+  const int num_patches = static_cast<int>(samples.size());
   std::vector<Source> source(num_patches);
   std::vector<int> masters;
   for (int p = 0; p < num_patches; ++p) {
     const PatchSamples& sp = samples[p];
     source[p] = Source{p, 1.0, 0.0};
-    if (!options_.reuse_rotated_copies) continue;
+    if (!reuse_rotated_copies) continue;
     for (int m : masters) {
       const PatchSamples& sm = samples[m];
       if (sm.loop_size() != sp.loop_size()) continue;
@@ -624,37 +637,115 @@ Mesh GmshMesher::BuildMesh(const Region& region) const {
     }
     if (source[p].master == p) masters.push_back(p);
   }
+  *masters_out = std::move(masters);
+  return source;
+}
 
-  // gmsh meshes the masters, one model each.
-  std::vector<LocalMesh> local(num_patches);
-  {
-    const std::lock_guard<std::mutex> lock(GmshMutex());
-    PrepareGmsh();
-    // The unstructured mesh of a patch can fail (gmsh leaves a tangle, or a quadrilateral that
-    // the curved side makes invalid at a corner): then the patch is meshed again with the other
-    // triangle algorithm and with 20 % smaller elements; the first failure is reported if all do.
-    const int other = options_.algorithm == 6 ? 5 : 6;
-    const Attempt attempts[] = {
-        {options_.algorithm, 1.0}, {other, 1.0}, {options_.algorithm, 0.8}, {other, 0.8}};
-    for (int m : masters) {
-      std::string first_error;
-      bool done = false;
-      for (const Attempt& attempt : attempts) {
-        try {
-          local[m] = MeshPatch(samples[m], PatchLabel(region, m), attempt);
-          done = true;
-          break;
-        } catch (const std::invalid_argument& error) {
-          if (first_error.empty()) first_error = error.what();
-        }
-      }
-      if (!done) {
-        throw std::invalid_argument(first_error + " (and with " +
-                                    std::to_string(std::size(attempts) - 1) +
-                                    " other gmsh settings)");
+// gmsh meshes the masters, one model each.
+std::vector<LocalMesh> MeshMasters(const Region& region, const std::vector<PatchSamples>& samples,
+                                   const std::vector<int>& masters, int algorithm) {
+  std::vector<LocalMesh> local(samples.size());
+  const std::lock_guard<std::mutex> lock(GmshMutex());
+  PrepareGmsh();
+  // The unstructured mesh of a patch can fail (gmsh leaves a tangle, or a quadrilateral that
+  // the curved side makes invalid at a corner): then the patch is meshed again with the other
+  // triangle algorithm and with 20 % smaller elements; the first failure is reported if all do.
+  const int other = algorithm == 6 ? 5 : 6;
+  const Attempt attempts[] = {{algorithm, 1.0}, {other, 1.0}, {algorithm, 0.8}, {other, 0.8}};
+  for (int m : masters) {
+    std::string first_error;
+    bool done = false;
+    for (const Attempt& attempt : attempts) {
+      try {
+        local[m] = MeshPatch(samples[m], PatchLabel(region, m), attempt);
+        done = true;
+        break;
+      } catch (const std::invalid_argument& error) {
+        if (first_error.empty()) first_error = error.what();
       }
     }
+    if (!done) {
+      throw std::invalid_argument(first_error + " (and with " +
+                                  std::to_string(std::size(attempts) - 1) +
+                                  " other gmsh settings)");
+    }
   }
+  return local;
+}
+
+// Named sides of patch p (its elements first_element … last_element − 1 of `mesh`, `global` its
+// local node numbers): node sets along the curve; edge sets with the element's own (counter-
+// clockwise) node order.
+void AddNamedSides(const Region& region, int p, const PatchSamples& smp,
+                   const std::vector<int>& global, int first_element, int last_element,
+                   Mesh& mesh) {
+  const Patch& patch = region.patches[p];
+  std::map<std::pair<int, int>, std::pair<int, int>> edge_owner;  // corners → (element, side)
+  bool have_owners = false;
+  for (int side = 0; side < 4; ++side) {
+    const std::string& name = patch.side_names[side];
+    if (name.empty()) continue;
+    if (!have_owners) {
+      for (int e = first_element; e < last_element; ++e) {
+        for (int q = 0; q < 4; ++q) {
+          const int a = mesh.elements[e][kQ8Sides[q][0]], b = mesh.elements[e][kQ8Sides[q][2]];
+          edge_owner[{std::min(a, b), std::max(a, b)}] = {e, q};
+        }
+      }
+      have_owners = true;
+    }
+    const int count = static_cast<int>(smp.side[side].size());
+    auto& nodes = mesh.node_sets[name];
+    for (int k = 0; k < count; ++k) {
+      const int id = global[smp.LoopIndex(side, k)];
+      if (std::find(nodes.begin(), nodes.end(), id) == nodes.end()) nodes.push_back(id);
+    }
+    auto& edges = mesh.edge_sets[name];
+    for (int k = 0; k + 2 < count; k += 2) {
+      const int a = global[smp.LoopIndex(side, k)];
+      const int m = global[smp.LoopIndex(side, k + 1)];
+      const int b = global[smp.LoopIndex(side, k + 2)];
+      const auto it = edge_owner.find({std::min(a, b), std::max(a, b)});
+      if (it == edge_owner.end() ||
+          mesh.elements[it->second.first][kQ8Sides[it->second.second][1]] != m) {
+        std::ostringstream msg;
+        msg << PatchLabel(region, p) << ": " << kSideNames[side] << " side '" << name
+            << "', interval " << k / 2 << ": no element of the patch has the side (nodes " << a
+            << ", " << m << ", " << b << ")";
+        Fail(msg.str());
+      }
+      const int element = it->second.first;
+      const auto& local_side = kQ8Sides[it->second.second];
+      const std::array<int, 3> tri = {mesh.elements[element][local_side[0]],
+                                      mesh.elements[element][local_side[1]],
+                                      mesh.elements[element][local_side[2]]};
+      const bool duplicate = std::any_of(edges.begin(), edges.end(), [&](const BoundaryEdge& edge) {
+        return edge.nodes[1] == tri[1] &&
+               std::min(edge.nodes[0], edge.nodes[2]) == std::min(tri[0], tri[2]);
+      });
+      if (!duplicate) edges.push_back(BoundaryEdge{tri, element});
+    }
+  }
+}
+
+}  // namespace
+
+Mesh GmshMesher::BuildMesh(const Region& region) const {
+  if (region.patches.empty()) Fail("the region has no patches");
+  const int num_patches = static_cast<int>(region.patches.size());
+
+  const double scale = RegionScale(region);
+  if (!(scale > 0.0)) Fail("the region has zero size");
+  const double merge_tol = options_.merge_tolerance * scale;
+  const double corner_tol = options_.corner_tolerance * scale;
+
+  std::vector<PatchSamples> samples = SampleBoundaries(region, corner_tol);
+  SubdivideUnnamedSides(region, merge_tol, samples);
+  BuildLoops(region, samples);
+  std::vector<int> masters;
+  const std::vector<Source> source =
+      RotatedCopies(samples, merge_tol, options_.reuse_rotated_copies, &masters);
+  const std::vector<LocalMesh> local = MeshMasters(region, samples, masters, options_.algorithm);
 
   // Assembly: boundary nodes are the patch's own samples (merged across patches), interior nodes
   // the master's, rotated.
@@ -685,56 +776,7 @@ Mesh GmshMesher::BuildMesh(const Region& region) const {
       auto& set = mesh.element_sets[patch.name];
       for (int e = first_element; e < last_element; ++e) set.push_back(e);
     }
-
-    // Named sides: node sets along the curve; edge sets with the element's own (counter-
-    // clockwise) node order.
-    std::map<std::pair<int, int>, std::pair<int, int>> edge_owner;  // corners → (element, side)
-    bool have_owners = false;
-    for (int side = 0; side < 4; ++side) {
-      const std::string& name = patch.side_names[side];
-      if (name.empty()) continue;
-      if (!have_owners) {
-        for (int e = first_element; e < last_element; ++e) {
-          for (int q = 0; q < 4; ++q) {
-            const int a = mesh.elements[e][kQ8Sides[q][0]], b = mesh.elements[e][kQ8Sides[q][2]];
-            edge_owner[{std::min(a, b), std::max(a, b)}] = {e, q};
-          }
-        }
-        have_owners = true;
-      }
-      const int count = static_cast<int>(smp.side[side].size());
-      auto& nodes = mesh.node_sets[name];
-      for (int k = 0; k < count; ++k) {
-        const int id = global[smp.LoopIndex(side, k)];
-        if (std::find(nodes.begin(), nodes.end(), id) == nodes.end()) nodes.push_back(id);
-      }
-      auto& edges = mesh.edge_sets[name];
-      for (int k = 0; k + 2 < count; k += 2) {
-        const int a = global[smp.LoopIndex(side, k)];
-        const int m = global[smp.LoopIndex(side, k + 1)];
-        const int b = global[smp.LoopIndex(side, k + 2)];
-        const auto it = edge_owner.find({std::min(a, b), std::max(a, b)});
-        if (it == edge_owner.end() ||
-            mesh.elements[it->second.first][kQ8Sides[it->second.second][1]] != m) {
-          std::ostringstream msg;
-          msg << PatchLabel(region, p) << ": " << kSideNames[side] << " side '" << name
-              << "', interval " << k / 2 << ": no element of the patch has the side (nodes " << a
-              << ", " << m << ", " << b << ")";
-          Fail(msg.str());
-        }
-        const int element = it->second.first;
-        const auto& local_side = kQ8Sides[it->second.second];
-        const std::array<int, 3> tri = {mesh.elements[element][local_side[0]],
-                                        mesh.elements[element][local_side[1]],
-                                        mesh.elements[element][local_side[2]]};
-        const bool duplicate =
-            std::any_of(edges.begin(), edges.end(), [&](const BoundaryEdge& edge) {
-              return edge.nodes[1] == tri[1] &&
-                     std::min(edge.nodes[0], edge.nodes[2]) == std::min(tri[0], tri[2]);
-            });
-        if (!duplicate) edges.push_back(BoundaryEdge{tri, element});
-      }
-    }
+    AddNamedSides(region, p, smp, global, first_element, last_element, mesh);
   }
 
   mesh.nodes = std::move(merged.points());
@@ -766,6 +808,256 @@ Mesh GmshMesher::BuildMesh(const Region& region) const {
 // never pairs cells across them.
 namespace internal {
 
+namespace {
+
+// gmsh's mesh of the slit polygon: the crack's nodes (mouth excluded) with their positions, the
+// cells (loop ids, crack ids n_loop + k, free interior nodes −1 − a), the crack's corner ids
+// from the mouth to the tip, and gmsh's interior nodes (x, y, a).
+struct SlitGmshMesh {
+  std::vector<Eigen::Vector2d> crack_nodes;  // positions of ids n_loop + k
+  std::vector<Cell> cells;
+  std::vector<int> path;                            // mouth → tip (gmsh's originals)
+  std::vector<std::array<double, 3>> raw_interior;  // gmsh interior nodes (x, y, tag)
+};
+
+SlitGmshMesh GmshSlitMesh(const SlitInput& input) {
+  const int n_loop = static_cast<int>(input.loop.size());
+  const int n_corners = n_loop / 2;
+  SlitGmshMesh g;
+  std::vector<Eigen::Vector2d>& crack_nodes = g.crack_nodes;
+  std::vector<Cell>& cells = g.cells;
+  std::vector<int>& path = g.path;
+  std::vector<std::array<double, 3>>& raw_interior = g.raw_interior;
+  const std::lock_guard<std::mutex> lock(GmshMutex());
+  PrepareGmsh();
+  CallGmsh("slit polygon", [&] {
+    gmsh::option::setNumber("Mesh.Algorithm", 6);
+    gmsh::option::setNumber("Mesh.MeshSizeFactor", 1.0);
+    ModelScope model("epicycle_gmsh_slit");
+    std::vector<double> size(n_corners);
+    double size_max = 0.0;
+    for (int k = 0; k < n_corners; ++k) {
+      const Eigen::Vector2d& x = input.loop[2 * k];
+      size[k] = 0.5 * ((x - input.loop[(2 * k + n_loop - 2) % n_loop]).norm() +
+                       (input.loop[(2 * k + 2) % n_loop] - x).norm());
+      size_max = std::max(size_max, size[k]);
+    }
+    std::vector<Eigen::Vector2d> crack_all = {input.loop[input.mouth]};
+    crack_all.insert(crack_all.end(), input.crack.begin(), input.crack.end());
+    std::vector<double> crack_size(crack_all.size());
+    for (std::size_t k = 0; k < crack_all.size(); ++k) {
+      const double before = k > 0 ? (crack_all[k] - crack_all[k - 1]).norm() : 0.0;
+      const double after =
+          k + 1 < crack_all.size() ? (crack_all[k + 1] - crack_all[k]).norm() : before;
+      crack_size[k] = k > 0 ? 0.5 * (before + after) : after;
+    }
+    size[input.mouth / 2] = std::min(size[input.mouth / 2], crack_size[0]);
+    std::vector<int> points(n_corners), lines(n_corners);
+    for (int k = 0; k < n_corners; ++k) {
+      const Eigen::Vector2d& x = input.loop[2 * k];
+      points[k] = gmsh::model::geo::addPoint(x.x(), x.y(), 0.0, size[k]);
+    }
+    for (int k = 0; k < n_corners; ++k) {
+      lines[k] = gmsh::model::geo::addLine(points[k], points[(k + 1) % n_corners]);
+      gmsh::model::geo::mesh::setTransfiniteCurve(lines[k], 2);
+    }
+    std::vector<int> crack_points = {points[input.mouth / 2]}, crack_lines;
+    for (int k = 1; k < static_cast<int>(crack_all.size()); ++k) {
+      crack_points.push_back(
+          gmsh::model::geo::addPoint(crack_all[k].x(), crack_all[k].y(), 0.0, crack_size[k]));
+      crack_lines.push_back(gmsh::model::geo::addLine(crack_points[k - 1], crack_points[k]));
+      gmsh::model::geo::mesh::setTransfiniteCurve(crack_lines.back(), 2);
+    }
+    const int loop = gmsh::model::geo::addCurveLoop(lines);
+    const int surface = gmsh::model::geo::addPlaneSurface({loop});
+    gmsh::model::geo::mesh::setRecombine(2, surface);
+    gmsh::model::geo::synchronize();
+    gmsh::model::mesh::embed(1, crack_lines, 2, surface);
+    std::vector<double> thresholds;
+    auto threshold_at = [&](int point, double h) {
+      const int distance = gmsh::model::mesh::field::add("Distance");
+      gmsh::model::mesh::field::setNumbers(distance, "PointsList", {static_cast<double>(point)});
+      const int threshold = gmsh::model::mesh::field::add("Threshold");
+      gmsh::model::mesh::field::setNumber(threshold, "InField", distance);
+      gmsh::model::mesh::field::setNumber(threshold, "SizeMin", h);
+      gmsh::model::mesh::field::setNumber(threshold, "SizeMax", size_max);
+      gmsh::model::mesh::field::setNumber(threshold, "DistMin", 0.0);
+      gmsh::model::mesh::field::setNumber(threshold, "DistMax",
+                                          std::max((size_max - h) / kSizeGrowth, 1e-6 * size_max));
+      thresholds.push_back(threshold);
+    };
+    for (int k = 0; k < n_corners; ++k) threshold_at(points[k], size[k]);
+    for (std::size_t k = 1; k < crack_points.size(); ++k)
+      threshold_at(crack_points[k], crack_size[k]);
+    const int smallest = gmsh::model::mesh::field::add("Min");
+    gmsh::model::mesh::field::setNumbers(smallest, "FieldsList", thresholds);
+    gmsh::model::mesh::field::setAsBackgroundMesh(smallest);
+    gmsh::model::mesh::generate(2);
+
+    std::unordered_map<std::size_t, int> local;
+    std::vector<std::size_t> tags;
+    std::vector<double> coord, param;
+    for (int k = 0; k < n_corners; ++k) {
+      gmsh::model::mesh::getNodes(tags, coord, param, 0, points[k], false, false);
+      if (tags.size() != 1) throw PatchFailure{"a boundary vertex has no mesh node"};
+      local[tags[0]] = 2 * k;
+      gmsh::model::mesh::getNodes(tags, coord, param, 1, lines[k], false, false);
+      if (!tags.empty()) throw PatchFailure{"a boundary interval was split by gmsh"};
+    }
+    path.push_back(input.mouth);
+    for (std::size_t k = 1; k < crack_points.size(); ++k) {
+      gmsh::model::mesh::getNodes(tags, coord, param, 0, crack_points[k], false, false);
+      if (tags.size() != 1) throw PatchFailure{"a crack point has no mesh node"};
+      local[tags[0]] = n_loop + static_cast<int>(crack_nodes.size());
+      path.push_back(n_loop + static_cast<int>(crack_nodes.size()));
+      crack_nodes.push_back(crack_all[k]);
+      gmsh::model::mesh::getNodes(tags, coord, param, 1, crack_lines[k - 1], false, false);
+      if (!tags.empty()) throw PatchFailure{"a crack segment was split by gmsh"};
+    }
+    gmsh::model::mesh::getNodes(tags, coord, param, 2, surface, false, false);
+    for (std::size_t a = 0; a < tags.size(); ++a) {
+      raw_interior.push_back({coord[3 * a], coord[3 * a + 1], static_cast<double>(a)});
+      local[tags[a]] = -1 - static_cast<int>(a);  // free node a (renumbered below)
+    }
+    cells = SurfaceCells(surface, local);
+  });
+  return g;
+}
+
+// The sides of the cells oriented counter-clockwise; every crack side must be a cell side (gmsh
+// keeps embedded segments). `position` gives a node id's point.
+template <class Position>
+void OrientAndCheckCells(const std::vector<int>& path, const Position& position,
+                         std::vector<Cell>& cells) {
+  // Counter-clockwise cells.
+  double area2 = 0.0;
+  for (const Cell& cell : cells) {
+    for (int a = 0; a < cell.n; ++a) {
+      const Eigen::Vector2d& p = position(cell.v[a]);
+      const Eigen::Vector2d& q = position(cell.v[(a + 1) % cell.n]);
+      area2 += p.x() * q.y() - p.y() * q.x();
+    }
+  }
+  if (area2 < 0.0) {
+    for (Cell& cell : cells) std::reverse(cell.v.begin() + 1, cell.v.begin() + cell.n);
+  }
+  // Every crack side must be a cell side (gmsh keeps embedded segments).
+  auto has_side = [&](const Cell& c, int a, int b) {
+    for (int k = 0; k < c.n; ++k) {
+      const int p = c.v[k], q = c.v[(k + 1) % c.n];
+      if ((p == a && q == b) || (p == b && q == a)) return true;
+    }
+    return false;
+  };
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    int count = 0;
+    for (const Cell& c : cells) count += has_side(c, path[k], path[k + 1]) ? 1 : 0;
+    if (count != 2) throw PatchFailure{"crack segment " + std::to_string(k) + " is not a side"};
+  }
+}
+
+// An open crack: around each of its nodes but the tip, the cells fall into the two fans that the
+// crack's sides separate, and the fan on the right of the path (mouth → tip) gets the copy
+// `copy_of[k]` of node path[k].
+template <class Position>
+void SeparateCrackFaces(const std::vector<int>& path, const std::vector<int>& copy_of,
+                        const Position& position, std::vector<Cell>& cells) {
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    const int p = path[k];
+    const Eigen::Vector2d& x = position(p);
+    const Eigen::Vector2d out_dir = position(path[k + 1]) - x;
+    const Eigen::Vector2d back_dir =
+        k > 0 ? Eigen::Vector2d(position(path[k - 1]) - x) : Eigen::Vector2d(-out_dir);
+    auto ccw_angle = [&](const Eigen::Vector2d& v) {
+      double a = std::atan2(out_dir.x() * v.y() - out_dir.y() * v.x(), out_dir.dot(v));
+      if (a < 0.0) a += 2.0 * 3.14159265358979323846;
+      return a;
+    };
+    const double beta = ccw_angle(back_dir);
+    for (Cell& cell : cells) {
+      int at = -1;
+      for (int a = 0; a < cell.n; ++a) {
+        if (cell.v[a] == p) at = a;
+      }
+      if (at < 0) continue;
+      // The cell's direction at p: the bisector of its two sides there.
+      const Eigen::Vector2d u = (position(cell.v[(at + 1) % cell.n]) - x).normalized() +
+                                (position(cell.v[(at + cell.n - 1) % cell.n]) - x).normalized();
+      if (k == 0) {
+        if (out_dir.x() * u.y() - out_dir.y() * u.x() < 0.0) cell.v[at] = copy_of[k];
+      } else if (ccw_angle(u) > beta) {
+        cell.v[at] = copy_of[k];
+      }
+    }
+  }
+}
+
+// The slit mesh's output: numbering loop, then crack nodes, then free nodes, then mid-side
+// nodes; the Q8 elements of the (all-quadrilateral) cells, checked; the crack's faces.
+template <class Position>
+SlitMesh SlitOutput(const SlitInput& input, const std::vector<Cell>& cells,
+                    const std::vector<Eigen::Vector2d>& crack_nodes,
+                    const std::vector<Eigen::Vector2d>& free_nodes, const std::vector<int>& path,
+                    const std::vector<int>& copy_of, const Position& position) {
+  const int n_loop = static_cast<int>(input.loop.size());
+  SlitMesh out;
+  // Output numbering: loop, then crack nodes, then free nodes, then mid-side nodes.
+  for (const Eigen::Vector2d& x : crack_nodes) out.interior.push_back(x);
+  for (const Eigen::Vector2d& x : free_nodes) out.interior.push_back(x);
+  std::map<std::pair<int, int>, int> mid;
+  auto mid_node = [&](int a, int b) {
+    if (a < n_loop && b < n_loop) {
+      if ((a + 2) % n_loop == b) return (a + 1) % n_loop;
+      if ((b + 2) % n_loop == a) return (b + 1) % n_loop;
+    }
+    // The mouth's copy is on the loop too: its boundary interval's mid-side sample.
+    const int a0 = input.open && a == copy_of[0] ? input.mouth : a;
+    const int b0 = input.open && b == copy_of[0] ? input.mouth : b;
+    if ((a0 != a || b0 != b) && a0 < n_loop && b0 < n_loop) {
+      if ((a0 + 2) % n_loop == b0) return (a0 + 1) % n_loop;
+      if ((b0 + 2) % n_loop == a0) return (b0 + 1) % n_loop;
+    }
+    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+    const auto it = mid.find(key);
+    if (it != mid.end()) return it->second;
+    const int id = n_loop + static_cast<int>(out.interior.size());
+    out.interior.push_back(0.5 * (position(a) + position(b)));
+    mid[key] = id;
+    return id;
+  };
+  for (const Cell& cell : cells) {
+    if (cell.n != 4) throw PatchFailure{"a triangle is left"};
+    std::array<int, kQ8Nodes> el{};
+    for (int a = 0; a < 4; ++a) el[a] = cell.v[a];
+    for (int a = 0; a < 4; ++a) el[4 + a] = mid_node(cell.v[a], cell.v[(a + 1) % 4]);
+    out.elements.push_back(el);
+  }
+  for (std::size_t e = 0; e < out.elements.size(); ++e) {
+    Q8Coordinates x;
+    for (int a = 0; a < kQ8Nodes; ++a) {
+      const int id = out.elements[e][a];
+      x.col(a) = id < n_loop ? input.loop[id] : out.interior[id - n_loop];
+    }
+    try {
+      CheckQ8Jacobian(x, static_cast<int>(e));
+    } catch (const std::invalid_argument& error) {
+      throw PatchFailure{std::string(error.what()) + " (element of the slit polygon)"};
+    }
+  }
+  out.left = path;
+  out.right = path;
+  if (input.open) {
+    for (std::size_t k = 0; k + 1 < path.size(); ++k) out.right[k] = copy_of[k];
+  }
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    out.left_mid.push_back(mid_node(out.left[k], out.left[k + 1]));
+    out.right_mid.push_back(mid_node(out.right[k], out.right[k + 1]));
+  }
+  return out;
+}
+
+}  // namespace
+
 SlitMesh MeshSlitPolygon(const SlitInput& input) {
   const int n_loop = static_cast<int>(input.loop.size());
   const int n_corners = n_loop / 2;
@@ -780,109 +1072,12 @@ SlitMesh MeshSlitPolygon(const SlitInput& input) {
          " boundary intervals; the rule: an even number (an all-quadrilateral mesh)");
   }
   // Local ids: [0, n_loop) loop, [n_loop, n_fixed) crack nodes (gmsh's, then the copies),
-  // [n_fixed, …) free interior nodes.
-  std::vector<Eigen::Vector2d> crack_nodes;  // positions of ids n_loop + k
+  // [n_fixed, …) free interior nodes. gmsh's mesh is made under its lock; the rest runs outside.
+  SlitGmshMesh g = GmshSlitMesh(input);
+  std::vector<Eigen::Vector2d>& crack_nodes = g.crack_nodes;
+  std::vector<Cell>& cells = g.cells;
+  const std::vector<int>& path = g.path;
   std::vector<Eigen::Vector2d> free_nodes;
-  std::vector<Cell> cells;
-  std::vector<int> path;  // local ids of the crack's corners, mouth → tip (gmsh's originals)
-  int n_fixed = 0;
-  // Filled inside the gmsh call; the rest runs outside it.
-  std::vector<std::array<double, 3>> raw_interior;  // gmsh interior nodes (x, y, tag)
-  {
-    const std::lock_guard<std::mutex> lock(GmshMutex());
-    PrepareGmsh();
-    CallGmsh("slit polygon", [&] {
-      gmsh::option::setNumber("Mesh.Algorithm", 6);
-      gmsh::option::setNumber("Mesh.MeshSizeFactor", 1.0);
-      ModelScope model("epicycle_gmsh_slit");
-      std::vector<double> size(n_corners);
-      double size_max = 0.0;
-      for (int k = 0; k < n_corners; ++k) {
-        const Eigen::Vector2d& x = input.loop[2 * k];
-        size[k] = 0.5 * ((x - input.loop[(2 * k + n_loop - 2) % n_loop]).norm() +
-                         (input.loop[(2 * k + 2) % n_loop] - x).norm());
-        size_max = std::max(size_max, size[k]);
-      }
-      std::vector<Eigen::Vector2d> crack_all = {input.loop[input.mouth]};
-      crack_all.insert(crack_all.end(), input.crack.begin(), input.crack.end());
-      std::vector<double> crack_size(crack_all.size());
-      for (std::size_t k = 0; k < crack_all.size(); ++k) {
-        const double before = k > 0 ? (crack_all[k] - crack_all[k - 1]).norm() : 0.0;
-        const double after =
-            k + 1 < crack_all.size() ? (crack_all[k + 1] - crack_all[k]).norm() : before;
-        crack_size[k] = k > 0 ? 0.5 * (before + after) : after;
-      }
-      size[input.mouth / 2] = std::min(size[input.mouth / 2], crack_size[0]);
-      std::vector<int> points(n_corners), lines(n_corners);
-      for (int k = 0; k < n_corners; ++k) {
-        const Eigen::Vector2d& x = input.loop[2 * k];
-        points[k] = gmsh::model::geo::addPoint(x.x(), x.y(), 0.0, size[k]);
-      }
-      for (int k = 0; k < n_corners; ++k) {
-        lines[k] = gmsh::model::geo::addLine(points[k], points[(k + 1) % n_corners]);
-        gmsh::model::geo::mesh::setTransfiniteCurve(lines[k], 2);
-      }
-      std::vector<int> crack_points = {points[input.mouth / 2]}, crack_lines;
-      for (int k = 1; k < static_cast<int>(crack_all.size()); ++k) {
-        crack_points.push_back(
-            gmsh::model::geo::addPoint(crack_all[k].x(), crack_all[k].y(), 0.0, crack_size[k]));
-        crack_lines.push_back(gmsh::model::geo::addLine(crack_points[k - 1], crack_points[k]));
-        gmsh::model::geo::mesh::setTransfiniteCurve(crack_lines.back(), 2);
-      }
-      const int loop = gmsh::model::geo::addCurveLoop(lines);
-      const int surface = gmsh::model::geo::addPlaneSurface({loop});
-      gmsh::model::geo::mesh::setRecombine(2, surface);
-      gmsh::model::geo::synchronize();
-      gmsh::model::mesh::embed(1, crack_lines, 2, surface);
-      std::vector<double> thresholds;
-      auto threshold_at = [&](int point, double h) {
-        const int distance = gmsh::model::mesh::field::add("Distance");
-        gmsh::model::mesh::field::setNumbers(distance, "PointsList", {static_cast<double>(point)});
-        const int threshold = gmsh::model::mesh::field::add("Threshold");
-        gmsh::model::mesh::field::setNumber(threshold, "InField", distance);
-        gmsh::model::mesh::field::setNumber(threshold, "SizeMin", h);
-        gmsh::model::mesh::field::setNumber(threshold, "SizeMax", size_max);
-        gmsh::model::mesh::field::setNumber(threshold, "DistMin", 0.0);
-        gmsh::model::mesh::field::setNumber(
-            threshold, "DistMax", std::max((size_max - h) / kSizeGrowth, 1e-6 * size_max));
-        thresholds.push_back(threshold);
-      };
-      for (int k = 0; k < n_corners; ++k) threshold_at(points[k], size[k]);
-      for (std::size_t k = 1; k < crack_points.size(); ++k)
-        threshold_at(crack_points[k], crack_size[k]);
-      const int smallest = gmsh::model::mesh::field::add("Min");
-      gmsh::model::mesh::field::setNumbers(smallest, "FieldsList", thresholds);
-      gmsh::model::mesh::field::setAsBackgroundMesh(smallest);
-      gmsh::model::mesh::generate(2);
-
-      std::unordered_map<std::size_t, int> local;
-      std::vector<std::size_t> tags;
-      std::vector<double> coord, param;
-      for (int k = 0; k < n_corners; ++k) {
-        gmsh::model::mesh::getNodes(tags, coord, param, 0, points[k], false, false);
-        if (tags.size() != 1) throw PatchFailure{"a boundary vertex has no mesh node"};
-        local[tags[0]] = 2 * k;
-        gmsh::model::mesh::getNodes(tags, coord, param, 1, lines[k], false, false);
-        if (!tags.empty()) throw PatchFailure{"a boundary interval was split by gmsh"};
-      }
-      path.push_back(input.mouth);
-      for (std::size_t k = 1; k < crack_points.size(); ++k) {
-        gmsh::model::mesh::getNodes(tags, coord, param, 0, crack_points[k], false, false);
-        if (tags.size() != 1) throw PatchFailure{"a crack point has no mesh node"};
-        local[tags[0]] = n_loop + static_cast<int>(crack_nodes.size());
-        path.push_back(n_loop + static_cast<int>(crack_nodes.size()));
-        crack_nodes.push_back(crack_all[k]);
-        gmsh::model::mesh::getNodes(tags, coord, param, 1, crack_lines[k - 1], false, false);
-        if (!tags.empty()) throw PatchFailure{"a crack segment was split by gmsh"};
-      }
-      gmsh::model::mesh::getNodes(tags, coord, param, 2, surface, false, false);
-      for (std::size_t a = 0; a < tags.size(); ++a) {
-        raw_interior.push_back({coord[3 * a], coord[3 * a + 1], static_cast<double>(a)});
-        local[tags[a]] = -1 - static_cast<int>(a);  // free node a (renumbered below)
-      }
-      cells = SurfaceCells(surface, local);
-    });
-  }
   // Duplicates (open crack): ids n_loop + n_gmsh_crack + …, so that all crack ids precede the
   // free ones; the free ids are set once the count is known.
   std::vector<int> copy_of(path.size(), -1);
@@ -892,13 +1087,13 @@ SlitMesh MeshSlitPolygon(const SlitInput& input) {
       crack_nodes.push_back(k == 0 ? input.loop[input.mouth] : crack_nodes[path[k] - n_loop]);
     }
   }
-  n_fixed = n_loop + static_cast<int>(crack_nodes.size());
+  const int n_fixed = n_loop + static_cast<int>(crack_nodes.size());
   for (Cell& cell : cells) {
     for (int a = 0; a < cell.n; ++a) {
       if (cell.v[a] < 0) cell.v[a] = n_fixed + (-1 - cell.v[a]);
     }
   }
-  for (const auto& x : raw_interior) free_nodes.emplace_back(x[0], x[1]);
+  for (const auto& x : g.raw_interior) free_nodes.emplace_back(x[0], x[1]);
   auto position = [&](int id) -> const Eigen::Vector2d& {
     if (id < n_loop) return input.loop[id];
     if (id < n_fixed) return crack_nodes[id - n_loop];
@@ -906,61 +1101,8 @@ SlitMesh MeshSlitPolygon(const SlitInput& input) {
   };
   SlitMesh out;
   CallGmsh("slit polygon", [&] {
-    // Counter-clockwise cells.
-    double area2 = 0.0;
-    for (const Cell& cell : cells) {
-      for (int a = 0; a < cell.n; ++a) {
-        const Eigen::Vector2d& p = position(cell.v[a]);
-        const Eigen::Vector2d& q = position(cell.v[(a + 1) % cell.n]);
-        area2 += p.x() * q.y() - p.y() * q.x();
-      }
-    }
-    if (area2 < 0.0) {
-      for (Cell& cell : cells) std::reverse(cell.v.begin() + 1, cell.v.begin() + cell.n);
-    }
-    // Every crack side must be a cell side (gmsh keeps embedded segments).
-    auto has_side = [&](const Cell& c, int a, int b) {
-      for (int k = 0; k < c.n; ++k) {
-        const int p = c.v[k], q = c.v[(k + 1) % c.n];
-        if ((p == a && q == b) || (p == b && q == a)) return true;
-      }
-      return false;
-    };
-    for (std::size_t k = 0; k + 1 < path.size(); ++k) {
-      int count = 0;
-      for (const Cell& c : cells) count += has_side(c, path[k], path[k + 1]) ? 1 : 0;
-      if (count != 2) throw PatchFailure{"crack segment " + std::to_string(k) + " is not a side"};
-    }
-    if (input.open) {
-      for (std::size_t k = 0; k + 1 < path.size(); ++k) {
-        const int p = path[k];
-        const Eigen::Vector2d& x = position(p);
-        const Eigen::Vector2d out_dir = position(path[k + 1]) - x;
-        const Eigen::Vector2d back_dir =
-            k > 0 ? Eigen::Vector2d(position(path[k - 1]) - x) : Eigen::Vector2d(-out_dir);
-        auto ccw_angle = [&](const Eigen::Vector2d& v) {
-          double a = std::atan2(out_dir.x() * v.y() - out_dir.y() * v.x(), out_dir.dot(v));
-          if (a < 0.0) a += 2.0 * 3.14159265358979323846;
-          return a;
-        };
-        const double beta = ccw_angle(back_dir);
-        for (Cell& cell : cells) {
-          int at = -1;
-          for (int a = 0; a < cell.n; ++a) {
-            if (cell.v[a] == p) at = a;
-          }
-          if (at < 0) continue;
-          // The cell's direction at p: the bisector of its two sides there.
-          const Eigen::Vector2d u = (position(cell.v[(at + 1) % cell.n]) - x).normalized() +
-                                    (position(cell.v[(at + cell.n - 1) % cell.n]) - x).normalized();
-          if (k == 0) {
-            if (out_dir.x() * u.y() - out_dir.y() * u.x() < 0.0) cell.v[at] = copy_of[k];
-          } else if (ccw_angle(u) > beta) {
-            cell.v[at] = copy_of[k];
-          }
-        }
-      }
-    }
+    OrientAndCheckCells(path, position, cells);
+    if (input.open) SeparateCrackFaces(path, copy_of, position, cells);
     // Fixed: loop and crack; the free nodes are smoothed, the triangles repaired.
     SmoothInterior(cells, n_fixed, position, &free_nodes);
     RepairTriangles(&cells, position, [&](const Eigen::Vector2d& x) {
@@ -968,58 +1110,7 @@ SlitMesh MeshSlitPolygon(const SlitInput& input) {
       return n_fixed + static_cast<int>(free_nodes.size()) - 1;
     });
     SmoothInterior(cells, n_fixed, position, &free_nodes);
-    // Output numbering: loop, then crack nodes, then free nodes, then mid-side nodes.
-    for (const Eigen::Vector2d& x : crack_nodes) out.interior.push_back(x);
-    for (const Eigen::Vector2d& x : free_nodes) out.interior.push_back(x);
-    std::map<std::pair<int, int>, int> mid;
-    auto mid_node = [&](int a, int b) {
-      if (a < n_loop && b < n_loop) {
-        if ((a + 2) % n_loop == b) return (a + 1) % n_loop;
-        if ((b + 2) % n_loop == a) return (b + 1) % n_loop;
-      }
-      // The mouth's copy is on the loop too: its boundary interval's mid-side sample.
-      const int a0 = input.open && a == copy_of[0] ? input.mouth : a;
-      const int b0 = input.open && b == copy_of[0] ? input.mouth : b;
-      if ((a0 != a || b0 != b) && a0 < n_loop && b0 < n_loop) {
-        if ((a0 + 2) % n_loop == b0) return (a0 + 1) % n_loop;
-        if ((b0 + 2) % n_loop == a0) return (b0 + 1) % n_loop;
-      }
-      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      const auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      const int id = n_loop + static_cast<int>(out.interior.size());
-      out.interior.push_back(0.5 * (position(a) + position(b)));
-      mid[key] = id;
-      return id;
-    };
-    for (const Cell& cell : cells) {
-      if (cell.n != 4) throw PatchFailure{"a triangle is left"};
-      std::array<int, kQ8Nodes> el{};
-      for (int a = 0; a < 4; ++a) el[a] = cell.v[a];
-      for (int a = 0; a < 4; ++a) el[4 + a] = mid_node(cell.v[a], cell.v[(a + 1) % 4]);
-      out.elements.push_back(el);
-    }
-    for (std::size_t e = 0; e < out.elements.size(); ++e) {
-      Q8Coordinates x;
-      for (int a = 0; a < kQ8Nodes; ++a) {
-        const int id = out.elements[e][a];
-        x.col(a) = id < n_loop ? input.loop[id] : out.interior[id - n_loop];
-      }
-      try {
-        CheckQ8Jacobian(x, static_cast<int>(e));
-      } catch (const std::invalid_argument& error) {
-        throw PatchFailure{std::string(error.what()) + " (element of the slit polygon)"};
-      }
-    }
-    out.left = path;
-    out.right = path;
-    if (input.open) {
-      for (std::size_t k = 0; k + 1 < path.size(); ++k) out.right[k] = copy_of[k];
-    }
-    for (std::size_t k = 0; k + 1 < path.size(); ++k) {
-      out.left_mid.push_back(mid_node(out.left[k], out.left[k + 1]));
-      out.right_mid.push_back(mid_node(out.right[k], out.right[k + 1]));
-    }
+    out = SlitOutput(input, cells, crack_nodes, free_nodes, path, copy_of, position);
   });
   return out;
 }

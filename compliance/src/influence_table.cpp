@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "epicycle/compliance/elastic_model.hpp"
+#include "epicycle/io/number_format.hpp"
 #include "payload_io.hpp"
 
 namespace epicycle::compliance {
@@ -71,12 +72,7 @@ FilletReadout ReadFillet(const LinearElasticModel& model, const ProfilePath& pat
   return out;
 }
 
-std::string Num(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
+using io::Num;
 
 int FlankIndex(int flank, const char* what) {
   if (flank != 1 && flank != -1) {
@@ -220,6 +216,166 @@ InfluenceTable InfluenceTable::Build(const geometry::Gear& gear, const ElasticMa
 // response tooth k stored at k − t mod z), so that every accessor reads it as "tooth 0". With
 // `cyclic` the table is symmetrised by the cyclic Maxwell–Betti pairs and may carry fillet
 // stresses; without, it keeps the raw values (the caller symmetrises the pairs it holds).
+namespace {
+
+constexpr int kLayerSamples = InfluenceTable::kLayerSamples;
+
+// The depth read-out points of one load tooth's grid (DisplacementAtDepth's construction: the edge
+// point at the node, minus the depth times the edge's outward normal m), located once: at h (the
+// join) and at kLayerSamples depths r_k, where the layer strain is measured; per flank fl.
+struct DepthReadouts {
+  std::array<std::vector<ElementPoint>, 2> depth_at;                             // [fl][i] at h
+  std::array<std::array<std::vector<ElementPoint>, kLayerSamples>, 2> layer_at;  // [fl][k][i]
+  std::array<std::vector<Eigen::Vector2d>, 2> edge_normal;                       // [fl][i] m
+};
+
+DepthReadouts LocateDepthReadouts(const LinearElasticModel& model,
+                                  const std::array<std::vector<int>, 2>& grid_nodes, int n, int lt,
+                                  double depth_h, const std::array<double, kLayerSamples>& r_k,
+                                  const std::string& who) {
+  DepthReadouts d;
+  for (int fl = 0; fl < 2; ++fl) {
+    const std::string set = "flank" + std::to_string(lt) + (fl == 0 ? "+" : "-");
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector2d x = model.mesh().nodes[grid_nodes[fl][i]];
+      const EdgePoint ep = model.mesh().LocateOnEdgeSet(set, x);
+      const Eigen::Vector2d m = model.mesh().EdgeNormal(set, ep);
+      d.edge_normal[fl].push_back(m);
+      for (int k = -1; k < kLayerSamples; ++k) {
+        const double depth = k < 0 ? depth_h : r_k[k];
+        std::vector<ElementPoint>& at = k < 0 ? d.depth_at[fl] : d.layer_at[fl][k];
+        try {
+          at.push_back(model.LocatePoint(model.mesh().EdgePosition(set, ep) - depth * m));
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(who + "the depth read-out of grid point " +
+                                      std::to_string(i) + " at " + Num(depth * 1e3) +
+                                      " mm is outside the body (" + e.what() + ")");
+        }
+      }
+    }
+  }
+  return d;
+}
+
+// The fillet read-out of every side of every tooth (tooth 0's σ = +1 side defines the points;
+// the cyclic, mirrored mesh gives every other side the same points, checked), [2 k + side].
+std::vector<FilletReadout> ReadFillets(const LinearElasticModel& model, const ProfilePath& path,
+                                       double form_arc, const geometry::Gear& gear, int z,
+                                       const std::string& who) {
+  std::vector<FilletReadout> fillets;
+  const double tol = 1e-9 * gear.tip_radius();
+  for (int k = 0; k < z; ++k) {
+    for (int f = 0; f < 2; ++f) {
+      const std::string set = "fillet" + std::to_string(k) + (f == 0 ? "+" : "-");
+      fillets.push_back(ReadFillet(model, path, form_arc, k * gear.pitch_angle(), f == 1, set));
+      const FilletReadout& r = fillets.back();
+      const FilletReadout& r0 = fillets.front();
+      bool same = r.arc_length.size() == r0.arc_length.size();
+      for (std::size_t m = 0; same && m < r.arc_length.size(); ++m)
+        same = std::abs(r.arc_length[m] - r0.arc_length[m]) <= tol;
+      if (!same)
+        throw std::invalid_argument(who + "the fillet points of set '" + set +
+                                    "' are not those of tooth 0 (the mesh is not cyclic)");
+    }
+  }
+  return fillets;
+}
+
+// The layer term per grid point [fl][i] [m/N] (docs/compliance.md, "The layer term"): the FE's
+// normal approach less Flamant's, R(r) = D(r) + a ln r, is the structural (non-singular) field,
+// which the half-plane local term does not contain. Its slope over [r1, r2] (least squares over
+// the samples: the read-out inside an element carries an interpolation error that varies with the
+// depth, which the fit averages), carried linearly to the surface, adds −h R' between the surface
+// and h, so that the sum of the two terms no longer depends on h.
+std::vector<double> LayerTerm(const std::vector<std::array<double, kLayerSamples>>& normal_at,
+                              const std::array<double, kLayerSamples>& r_k, double flamant,
+                              double depth_h, int n) {
+  std::vector<double> layer(static_cast<std::size_t>(2) * n, 0.0);
+  double mean_r = 0.0;
+  for (double r : r_k) mean_r += r / kLayerSamples;
+  for (std::size_t g = 0; g < layer.size(); ++g) {
+    double mean_v = 0.0;
+    for (int k = 0; k < kLayerSamples; ++k)
+      mean_v += (normal_at[g][k] + flamant * std::log(r_k[k])) / kLayerSamples;
+    double sxy = 0.0, sxx = 0.0;
+    for (int k = 0; k < kLayerSamples; ++k) {
+      const double dr = r_k[k] - mean_r;
+      sxy += dr * (normal_at[g][k] + flamant * std::log(r_k[k]) - mean_v);
+      sxx += dr * dr;
+    }
+    layer[g] = -depth_h * sxy / sxx;  // [m/N]
+  }
+  // Grid points alternate between corner and mid-side nodes of the Q8 edges, whose point loads
+  // leave different errors one element deep: a (1, 2, 1)/4 filter along the flank removes that
+  // alternation exactly and keeps linear trends (the structural field varies over the tooth's
+  // thickness, many grid spacings).
+  for (int fl = 0; fl < 2; ++fl) {
+    const std::vector<double> c(layer.begin() + fl * n, layer.begin() + (fl + 1) * n);
+    for (int i = 1; i + 1 < n; ++i)
+      layer[static_cast<std::size_t>(fl) * n + i] = 0.25 * (c[i - 1] + 2.0 * c[i] + c[i + 1]);
+  }
+  return layer;
+}
+
+// Maxwell–Betti: Λ(a→b) = Λ(b→a)ᵀ. For a = (tooth 0, fl, i), b = (tooth k, fr, j), the
+// reciprocal load sits on tooth k: Λ(b→a) = R_k M R_kᵀ with M = Λ((0, fr, j) → (−k, fl, i)).
+// Returns the symmetrised table (the raw one for a body that is not cyclic) and the largest
+// relative asymmetries of the raw table and of its self blocks; `index` is the table's Index.
+template <class IndexOf>
+std::vector<double> Symmetrise(const std::vector<double>& raw,
+                               const std::vector<Eigen::Matrix2d>& self, int n, int z,
+                               const geometry::Gear& gear, bool cyclic, const IndexOf& index,
+                               double* asym_out, double* self_asym_out) {
+  std::vector<double> sym(raw.size(), 0.0);
+  auto block = [&](const std::vector<double>& v, int fl, int i, int k, int fr, int j) {
+    Eigen::Matrix2d m;
+    for (int c = 0; c < 2; ++c) {
+      const std::size_t at = index(fl, i, c, k, fr, j);
+      m(0, c) = v[at];
+      m(1, c) = v[at + 1];
+    }
+    return m;
+  };
+  auto norm = [](const Eigen::Matrix2d& m) { return m.cwiseAbs().maxCoeff(); };
+  double asym = 0.0, self_asym = 0.0;
+  if (!cyclic) sym = raw;
+  for (int fl = 0; fl < 2; ++fl) {
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Matrix2d& s = self[static_cast<std::size_t>(fl) * n + i];
+      self_asym = std::max(self_asym, std::abs(s(0, 1) - s(1, 0)) / norm(s));
+    }
+  }
+  for (int fl = 0; fl < 2 && cyclic; ++fl) {
+    for (int i = 0; i < n; ++i) {
+      const double da = norm(self[static_cast<std::size_t>(fl) * n + i]);
+      for (int k = 0; k < z; ++k) {
+        const Eigen::Matrix2d r = Rot(k * gear.pitch_angle());
+        const int back = (z - k) % z;
+        for (int fr = 0; fr < 2; ++fr) {
+          for (int j = 0; j < n; ++j) {
+            const Eigen::Matrix2d ab = block(raw, fl, i, k, fr, j);
+            const Eigen::Matrix2d ba_t =
+                r * block(raw, fr, j, back, fl, i).transpose() * r.transpose();
+            const double db = norm(self[static_cast<std::size_t>(fr) * n + j]);
+            asym = std::max(asym, norm(ab - ba_t) / std::sqrt(da * db));
+            const Eigen::Matrix2d avg = 0.5 * (ab + ba_t);
+            for (int c = 0; c < 2; ++c) {
+              const std::size_t at = index(fl, i, c, k, fr, j);
+              sym[at] = avg(0, c);
+              sym[at + 1] = avg(1, c);
+            }
+          }
+        }
+      }
+    }
+  }
+  *asym_out = asym;
+  *self_asym_out = self_asym;
+  return sym;
+}
+
+}  // namespace
+
 std::vector<InfluenceTable> InfluenceTable::SolveLoads(const geometry::Gear& gear,
                                                        const ElasticMaterial& material,
                                                        const InfluenceTableOptions& options,
@@ -284,36 +440,16 @@ std::vector<InfluenceTable> InfluenceTable::SolveLoads(const geometry::Gear& gea
     auto local = [&](const Eigen::Vector2d& v) -> Eigen::Vector2d {
       return lt == 0 ? v : Eigen::Vector2d(to_load * v);
     };
-    // Depth read-out points of tooth 0's grid (DisplacementAtDepth's construction: the edge point
-    // at the node, minus the depth times the edge's outward normal m), located once: at h (the
-    // join) and at kLayerSamples depths r_k evenly over [r1, r2], where the layer strain is
-    // measured.
+    // Depth read-out points of tooth 0's grid: at h and at kLayerSamples depths r_k evenly over
+    // [r1, r2], where the layer strain is measured.
     const double r1 = kDefaultDepthFraction * t.max_depth_, r2 = kLayerDepthRatio * r1;
     std::array<double, kLayerSamples> r_k;
     for (int k = 0; k < kLayerSamples; ++k) r_k[k] = r1 + (r2 - r1) * k / (kLayerSamples - 1);
-    std::array<std::vector<ElementPoint>, 2> depth_at;
-    std::array<std::array<std::vector<ElementPoint>, kLayerSamples>, 2> layer_at;
-    std::array<std::vector<Eigen::Vector2d>, 2> edge_normal;
-    for (int fl = 0; fl < 2; ++fl) {
-      const std::string set = "flank" + std::to_string(lt) + (fl == 0 ? "+" : "-");
-      for (int i = 0; i < n; ++i) {
-        const Eigen::Vector2d x = model.mesh().nodes[body.grid_nodes[lt][fl][i]];
-        const EdgePoint ep = model.mesh().LocateOnEdgeSet(set, x);
-        const Eigen::Vector2d m = model.mesh().EdgeNormal(set, ep);
-        edge_normal[fl].push_back(m);
-        for (int k = -1; k < kLayerSamples; ++k) {
-          const double depth = k < 0 ? t.depth_ : r_k[k];
-          std::vector<ElementPoint>& at = k < 0 ? depth_at[fl] : layer_at[fl][k];
-          try {
-            at.push_back(model.LocatePoint(model.mesh().EdgePosition(set, ep) - depth * m));
-          } catch (const std::invalid_argument& e) {
-            throw std::invalid_argument(who + "the depth read-out of grid point " +
-                                        std::to_string(i) + " at " + Num(depth * 1e3) +
-                                        " mm is outside the body (" + e.what() + ")");
-          }
-        }
-      }
-    }
+    const DepthReadouts readouts =
+        LocateDepthReadouts(model, body.grid_nodes[lt], n, lt, t.depth_, r_k, who);
+    const auto& depth_at = readouts.depth_at;
+    const auto& layer_at = readouts.layer_at;
+    const auto& edge_normal = readouts.edge_normal;
     // Flamant's coefficient a = 2k/(π b) (k = (1−ν²)/E plane strain, 1/E plane stress): the
     // half-plane's normal approach between depths r1 and r2 under a unit point load is a ln(r2/r1).
     const ElasticMaterial& mat = model.material();
@@ -332,22 +468,7 @@ std::vector<InfluenceTable> InfluenceTable::SolveLoads(const geometry::Gear& gea
     // the cyclic, mirrored mesh gives every other side the same points, checked).
     std::vector<FilletReadout> fillets;
     if (options.fillet_stress) {
-      const double tol = 1e-9 * gear.tip_radius();
-      for (int k = 0; k < z; ++k) {
-        for (int f = 0; f < 2; ++f) {
-          const std::string set = "fillet" + std::to_string(k) + (f == 0 ? "+" : "-");
-          fillets.push_back(
-              ReadFillet(model, *t.path_, t.grid_.form_arc, k * gear.pitch_angle(), f == 1, set));
-          const FilletReadout& r = fillets.back();
-          const FilletReadout& r0 = fillets.front();
-          bool same = r.arc_length.size() == r0.arc_length.size();
-          for (std::size_t m = 0; same && m < r.arc_length.size(); ++m)
-            same = std::abs(r.arc_length[m] - r0.arc_length[m]) <= tol;
-          if (!same)
-            throw std::invalid_argument(who + "the fillet points of set '" + set +
-                                        "' are not those of tooth 0 (the mesh is not cyclic)");
-        }
-      }
+      fillets = ReadFillets(model, *t.path_, t.grid_.form_arc, gear, z, who);
       for (std::size_t m = 0; m < fillets.front().arc_length.size(); ++m) {
         const double sm = fillets.front().arc_length[m];
         t.fillet_.push_back({sm,
@@ -405,84 +526,16 @@ std::vector<InfluenceTable> InfluenceTable::SolveLoads(const geometry::Gear& gea
           normal_at[g][k] += ml(c) * m.dot(model.Displacement(u.col(q), layer_at[fl][k][i]));
       }
     }
-    // The layer term (docs/compliance.md, "The layer term"): the FE's normal approach less
-    // Flamant's, R(r) = D(r) + a ln r, is the structural (non-singular) field, which the half-plane
-    // local term does not contain. Its slope over [r1, r2] (least squares over the samples: the
-    // read-out inside an element carries an interpolation error that varies with the depth, which
-    // the fit averages), carried linearly to the surface, adds −h R' between the surface and h,
-    // so that the sum of the two terms no longer depends on h.
+    // The layer term (docs/compliance.md, "The layer term").
     std::vector<double> layer(static_cast<std::size_t>(2) * n, 0.0);
-    if (options.layer_term) {
-      double mean_r = 0.0;
-      for (double r : r_k) mean_r += r / kLayerSamples;
-      for (std::size_t g = 0; g < layer.size(); ++g) {
-        double mean_v = 0.0;
-        for (int k = 0; k < kLayerSamples; ++k)
-          mean_v += (normal_at[g][k] + flamant * std::log(r_k[k])) / kLayerSamples;
-        double sxy = 0.0, sxx = 0.0;
-        for (int k = 0; k < kLayerSamples; ++k) {
-          const double dr = r_k[k] - mean_r;
-          sxy += dr * (normal_at[g][k] + flamant * std::log(r_k[k]) - mean_v);
-          sxx += dr * dr;
-        }
-        layer[g] = -t.depth_ * sxy / sxx;  // [m/N]
-      }
-      // Grid points alternate between corner and mid-side nodes of the Q8 edges, whose point loads
-      // leave different errors one element deep: a (1, 2, 1)/4 filter along the flank removes that
-      // alternation exactly and keeps linear trends (the structural field varies over the tooth's
-      // thickness, many grid spacings).
-      for (int fl = 0; fl < 2; ++fl) {
-        const std::vector<double> c(layer.begin() + fl * n, layer.begin() + (fl + 1) * n);
-        for (int i = 1; i + 1 < n; ++i)
-          layer[static_cast<std::size_t>(fl) * n + i] = 0.25 * (c[i - 1] + 2.0 * c[i] + c[i + 1]);
-      }
-    }
+    if (options.layer_term) layer = LayerTerm(normal_at, r_k, flamant, t.depth_, n);
 
-    // Maxwell–Betti: Λ(a→b) = Λ(b→a)ᵀ. For a = (tooth 0, fl, i), b = (tooth k, fr, j), the
-    // reciprocal load sits on tooth k: Λ(b→a) = R_k M R_kᵀ with M = Λ((0, fr, j) → (−k, fl, i)).
-    std::vector<double> sym(total, 0.0);
-    auto block = [&](const std::vector<double>& v, int fl, int i, int k, int fr, int j) {
-      Eigen::Matrix2d m;
-      for (int c = 0; c < 2; ++c) {
-        const std::size_t at = t.Index(fl, i, c, k, fr, j);
-        m(0, c) = v[at];
-        m(1, c) = v[at + 1];
-      }
-      return m;
-    };
-    auto norm = [](const Eigen::Matrix2d& m) { return m.cwiseAbs().maxCoeff(); };
+    // Maxwell–Betti symmetry.
     double asym = 0.0, self_asym = 0.0;
-    if (!cyclic) sym = raw;
-    for (int fl = 0; fl < 2; ++fl) {
-      for (int i = 0; i < n; ++i) {
-        const Eigen::Matrix2d& s = self[static_cast<std::size_t>(fl) * n + i];
-        self_asym = std::max(self_asym, std::abs(s(0, 1) - s(1, 0)) / norm(s));
-      }
-    }
-    for (int fl = 0; fl < 2 && cyclic; ++fl) {
-      for (int i = 0; i < n; ++i) {
-        const double da = norm(self[static_cast<std::size_t>(fl) * n + i]);
-        for (int k = 0; k < z; ++k) {
-          const Eigen::Matrix2d r = Rot(k * gear.pitch_angle());
-          const int back = (z - k) % z;
-          for (int fr = 0; fr < 2; ++fr) {
-            for (int j = 0; j < n; ++j) {
-              const Eigen::Matrix2d ab = block(raw, fl, i, k, fr, j);
-              const Eigen::Matrix2d ba_t =
-                  r * block(raw, fr, j, back, fl, i).transpose() * r.transpose();
-              const double db = norm(self[static_cast<std::size_t>(fr) * n + j]);
-              asym = std::max(asym, norm(ab - ba_t) / std::sqrt(da * db));
-              const Eigen::Matrix2d avg = 0.5 * (ab + ba_t);
-              for (int c = 0; c < 2; ++c) {
-                const std::size_t at = t.Index(fl, i, c, k, fr, j);
-                sym[at] = avg(0, c);
-                sym[at + 1] = avg(1, c);
-              }
-            }
-          }
-        }
-      }
-    }
+    std::vector<double> sym = Symmetrise(
+        raw, self, n, z, gear, cyclic,
+        [&t](int fl, int i, int c, int k, int fr, int j) { return t.Index(fl, i, c, k, fr, j); },
+        &asym, &self_asym);
     for (auto& s : self) s = 0.5 * (s + s.transpose()).eval();
     for (int fl = 0; fl < 2; ++fl) {
       for (int i = 0; i < n; ++i) {

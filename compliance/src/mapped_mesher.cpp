@@ -136,12 +136,12 @@ struct PatchGrid {
 
 }  // namespace
 
-Mesh MappedMesher::BuildMesh(const Region& region) const {
-  if (region.patches.empty())
-    throw std::invalid_argument("mapped mesher: the region has no patches");
-  const int num_patches = static_cast<int>(region.patches.size());
+namespace {
 
-  // Sides present, corners consistent, scale of the region.
+// The scale of the region (its bounding box's diagonal [m]), its side curves checked present and
+// finite.
+double MappedRegionScale(const Region& region) {
+  const int num_patches = static_cast<int>(region.patches.size());
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
   for (int p = 0; p < num_patches; ++p) {
@@ -163,7 +163,60 @@ Mesh MappedMesher::BuildMesh(const Region& region) const {
       }
     }
   }
-  const double scale = (hi - lo).norm();
+  return (hi - lo).norm();
+}
+
+// The named sides of a patch (its grid `g`, its elements `patch_elements` row by row): node sets
+// in curve order, edge sets counter-clockwise per element.
+void AddNamedSides(const Patch& patch, const PatchGrid& g, const std::vector<int>& patch_elements,
+                   Mesh& mesh) {
+  const int mu = 2 * g.nu + 1;
+  const int mv = 2 * g.nv + 1;
+  for (int s = 0; s < 4; ++s) {
+    const std::string& name = patch.side_names[s];
+    if (name.empty()) continue;
+    const bool along_u = (s == 0 || s == 2);
+    const int count = along_u ? mu : mv;
+    auto& nodes = mesh.node_sets[name];
+    for (int k = 0; k < count; ++k) {
+      const int id = along_u ? g.At(k, s == 0 ? 0 : mv - 1) : g.At(s == 3 ? 0 : mu - 1, k);
+      if (std::find(nodes.begin(), nodes.end(), id) == nodes.end()) nodes.push_back(id);
+    }
+    // Walking the side curve forward, the patch lies to the left on bottom and right sides of
+    // a counter-clockwise patch; to the right on top and left sides.
+    const bool forward_is_ccw = ((s == 0 || s == 1) == g.positive);
+    auto& edges = mesh.edge_sets[name];
+    const int n_edges = along_u ? g.nu : g.nv;
+    for (int k = 0; k < n_edges; ++k) {
+      std::array<int, 3> tri;
+      int element;
+      if (along_u) {
+        const int j = s == 0 ? 0 : mv - 1;
+        tri = {g.At(2 * k, j), g.At(2 * k + 1, j), g.At(2 * k + 2, j)};
+        element = patch_elements[static_cast<std::size_t>(s == 0 ? 0 : g.nv - 1) * g.nu + k];
+      } else {
+        const int i = s == 3 ? 0 : mu - 1;
+        tri = {g.At(i, 2 * k), g.At(i, 2 * k + 1), g.At(i, 2 * k + 2)};
+        element = patch_elements[static_cast<std::size_t>(k) * g.nu + (s == 3 ? 0 : g.nu - 1)];
+      }
+      if (!forward_is_ccw) std::swap(tri[0], tri[2]);
+      const bool duplicate = std::any_of(edges.begin(), edges.end(), [&](const BoundaryEdge& e) {
+        return e.nodes[1] == tri[1] && std::min(e.nodes[0], e.nodes[2]) == std::min(tri[0], tri[2]);
+      });
+      if (!duplicate) edges.push_back(BoundaryEdge{tri, element});
+    }
+  }
+}
+
+}  // namespace
+
+Mesh MappedMesher::BuildMesh(const Region& region) const {
+  if (region.patches.empty())
+    throw std::invalid_argument("mapped mesher: the region has no patches");
+  const int num_patches = static_cast<int>(region.patches.size());
+
+  // Sides present, scale of the region, corners consistent.
+  const double scale = MappedRegionScale(region);
   if (!(scale > 0.0)) throw std::invalid_argument("mapped mesher: the region has zero size");
   const double merge_tol = options_.merge_tolerance * scale;
   const double corner_tol = options_.corner_tolerance * scale;
@@ -296,42 +349,7 @@ Mesh MappedMesher::BuildMesh(const Region& region) const {
       set.insert(set.end(), patch_elements.begin(), patch_elements.end());
     }
 
-    // Named sides: node sets in curve order, edge sets counter-clockwise per element.
-    for (int s = 0; s < 4; ++s) {
-      const std::string& name = patch.side_names[s];
-      if (name.empty()) continue;
-      const bool along_u = (s == 0 || s == 2);
-      const int count = along_u ? mu : mv;
-      auto& nodes = mesh.node_sets[name];
-      for (int k = 0; k < count; ++k) {
-        const int id = along_u ? g.At(k, s == 0 ? 0 : mv - 1) : g.At(s == 3 ? 0 : mu - 1, k);
-        if (std::find(nodes.begin(), nodes.end(), id) == nodes.end()) nodes.push_back(id);
-      }
-      // Walking the side curve forward, the patch lies to the left on bottom and right sides of
-      // a counter-clockwise patch; to the right on top and left sides.
-      const bool forward_is_ccw = ((s == 0 || s == 1) == g.positive);
-      auto& edges = mesh.edge_sets[name];
-      const int n_edges = along_u ? g.nu : g.nv;
-      for (int k = 0; k < n_edges; ++k) {
-        std::array<int, 3> tri;
-        int element;
-        if (along_u) {
-          const int j = s == 0 ? 0 : mv - 1;
-          tri = {g.At(2 * k, j), g.At(2 * k + 1, j), g.At(2 * k + 2, j)};
-          element = patch_elements[static_cast<std::size_t>(s == 0 ? 0 : g.nv - 1) * g.nu + k];
-        } else {
-          const int i = s == 3 ? 0 : mu - 1;
-          tri = {g.At(i, 2 * k), g.At(i, 2 * k + 1), g.At(i, 2 * k + 2)};
-          element = patch_elements[static_cast<std::size_t>(k) * g.nu + (s == 3 ? 0 : g.nu - 1)];
-        }
-        if (!forward_is_ccw) std::swap(tri[0], tri[2]);
-        const bool duplicate = std::any_of(edges.begin(), edges.end(), [&](const BoundaryEdge& e) {
-          return e.nodes[1] == tri[1] &&
-                 std::min(e.nodes[0], e.nodes[2]) == std::min(tri[0], tri[2]);
-        });
-        if (!duplicate) edges.push_back(BoundaryEdge{tri, element});
-      }
-    }
+    AddNamedSides(patch, g, patch_elements, mesh);
   }
 
   // Element geometry, with the patch named in the message.

@@ -9,18 +9,14 @@
 #include <Eigen/Geometry>
 
 #include "epicycle/compliance/gear_mesh.hpp"
+#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::compliance {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string Num(double x) {
-  std::ostringstream s;
-  s.precision(9);
-  s << x;
-  return s.str();
-}
+using io::Num;
 
 std::string Mm(const Eigen::Vector2d& x) {
   std::ostringstream s;
@@ -139,8 +135,8 @@ void RootCrack::Validate(const geometry::Gear& gear) const {
   const ProfilePath profile(gear);
   const double s_form = profile.RoleStart(geometry::SegmentRole::kInvolute);
   if (!(std::isfinite(start_arc) && start_arc > 0.0 && start_arc < s_form))
-    Fail("start_arc", Num(start_arc) + " m",
-         "must be in (0, " + Num(s_form) +
+    Fail("start_arc", Num(start_arc, 9) + " m",
+         "must be in (0, " + Num(s_form, 9) +
              ") m, the fillet from the space centre line to the form point of '" + gear.name() +
              "'");
   if (path.empty() || static_cast<int>(path.size()) > kMaxSegments)
@@ -149,9 +145,9 @@ void RootCrack::Validate(const geometry::Gear& gear) const {
   for (std::size_t i = 0; i < path.size(); ++i) {
     const std::string at = "path[" + std::to_string(i) + "]";
     if (!(std::isfinite(path[i].length) && path[i].length > 0.0))
-      Fail(at + ".length", Num(path[i].length) + " m", "must be finite and > 0");
+      Fail(at + ".length", Num(path[i].length, 9) + " m", "must be finite and > 0");
     if (!(std::isfinite(path[i].angle) && path[i].angle > 0.0 && path[i].angle < kPi))
-      Fail(at + ".angle", Num(path[i].angle) + " rad",
+      Fail(at + ".angle", Num(path[i].angle, 9) + " rad",
            "must be in (0, pi): the crack runs across the tooth (angle to its centre line)");
   }
   // The path inside tooth 0's sector (the points turned back from tooth k).
@@ -181,7 +177,7 @@ void RootCrack::Validate(const geometry::Gear& gear) const {
              << kClearance << " m) = " << need * 1e3
              << " mm from its outline (l the distance along the path; m the module)";
         Fail("path[" + std::to_string(i) + "]",
-             "{length " + Num(path[i].length) + " m, angle " + Num(path[i].angle) + " rad}",
+             "{length " + Num(path[i].length, 9) + " m, angle " + Num(path[i].angle, 9) + " rad}",
              rule.str());
       }
     }
@@ -216,7 +212,7 @@ double IsoCriticalFilletArc(const geometry::Gear& gear) {
     f_hi = f_lo;
   }
   throw std::invalid_argument("IsoCriticalFilletArc: the fillet of '" + gear.name() +
-                              "' has no point whose tangent makes " + Num(target * 180.0 / kPi) +
+                              "' has no point whose tangent makes " + Num(target * 180.0 / kPi, 9) +
                               " deg with the tooth centre line");
 }
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/io/units.hpp"
 
 namespace epicycle::dynamics {
 
@@ -100,7 +101,7 @@ DynamicFactor DynamicLoadFactor(const DynamicModel& model, const SimulationOptio
   out.source = fmt::format(
       "the dynamic run at {:.6g} rpm: largest {} force in motion {:.6g} N over {:.6g} N at rest "
       "at the same {} carrier angles{}",
-      std::abs(model.sun_speed()) * 30 / std::numbers::pi, out.mesh_name, out.peak_dynamic,
+      io::RadPerSecondToRpm(std::abs(model.sun_speed())), out.mesh_name, out.peak_dynamic,
       out.peak_quasi_static, output_times.size(),
       model.settings().friction.law == transmission::FrictionLaw::kOff
           ? std::string()
@@ -127,7 +128,7 @@ MotionRating RateInMotion(const transmission::Scene& scene, const DynamicModel& 
   transmission::MotionStresses motion{
       root_stress, loads.contact_pressure(),
       fmt::format("the dynamic run at {:.6g} rpm",
-                  std::abs(model.sun_speed()) * 30 / std::numbers::pi)};
+                  io::RadPerSecondToRpm(std::abs(model.sun_speed())))};
   out.rating = transmission::RateStage(scene, model.stage_model().stage(), out.factor.quasi_static,
                                        kv, source, &motion);
   return out;

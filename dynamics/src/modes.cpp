@@ -8,12 +8,12 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
-#include "number_format.hpp"
+#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::dynamics {
 namespace {
 
-using internal::Num;
+using io::Num;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kSymmetryTolerance = 1e-10;

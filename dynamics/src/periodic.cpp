@@ -15,7 +15,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "number_format.hpp"
+#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::dynamics {
 
@@ -45,7 +45,7 @@ Eigen::VectorXd PeriodicSystem::DefaultParameters() const {
 
 namespace {
 
-using internal::Num;
+using io::Num;
 
 [[noreturn]] void Fail(const std::string& where, const std::string& field, double value,
                        const std::string& rule) {

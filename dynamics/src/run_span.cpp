@@ -9,6 +9,7 @@
 
 #include "epicycle/dynamics/dynamic_model.hpp"
 #include "epicycle/dynamics/modes.hpp"
+#include "epicycle/io/units.hpp"
 
 namespace epicycle::dynamics {
 
@@ -95,7 +96,7 @@ int DefaultOutputsPerCycle(double highest_mode_hz, double mesh_hz) {
 }
 
 int DefaultOutputsPerCycle(const DynamicModel& model, double highest_mode_hz) {
-  const double rpm = std::abs(model.sun_speed()) * 30 / std::numbers::pi;
+  const double rpm = io::RadPerSecondToRpm(std::abs(model.sun_speed()));
   return DefaultOutputsPerCycle(highest_mode_hz,
                                 MeshHzPerSunRpm(model.stage_model().stage()) * rpm);
 }

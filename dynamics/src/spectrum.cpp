@@ -11,11 +11,11 @@
 #include <unsupported/Eigen/FFT>
 
 #include "epicycle/dynamics/speed_sweep.hpp"
-#include "number_format.hpp"
+#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::dynamics {
 
-using internal::Num;
+using io::Num;
 
 namespace {
 // A time in a message, to 12 digits (a sample off the grid may differ in the 7th).

@@ -17,21 +17,21 @@
 
 #include "epicycle/dynamics/dynamic_factor.hpp"
 #include "epicycle/dynamics/run_span.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/work_queue.hpp"
-#include "number_format.hpp"
+#include "epicycle/io/number_format.hpp"
+#include "epicycle/io/units.hpp"
 
 namespace epicycle::dynamics {
 
-using internal::Num;
+using io::Num;
 
 namespace {
 
-constexpr double kRpm = std::numbers::pi / 30.0;  // [rad/s] per rpm
 
 double ThreadCpuSeconds() {
   timespec ts{};
@@ -166,7 +166,7 @@ int SpeedSweepResult::failed() const {
 
 DynamicModel ModelAtSpeed(const DynamicModel& base, double sun_speed_rpm) {
   transmission::DynamicSettings s = base.settings();
-  s.sun_speed = sun_speed_rpm * kRpm;
+  s.sun_speed = io::RpmToRadPerSecond(sun_speed_rpm);
   DynamicModel m(base.stage_model(), s, base.inertias(), base.loads());
   m.SetMeshStiffness(base.sun_mesh_stiffness(), base.ring_mesh_stiffness());
   return m;

@@ -6,11 +6,11 @@
 
 #include <fmt/format.h>
 
-#include "number_format.hpp"
+#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::dynamics {
 
-using internal::Num;
+using io::Num;
 
 namespace {
 

@@ -6,21 +6,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "epicycle/io/number_format.hpp"
+
 namespace epicycle::geometry::internal {
 
-/// A number printed compactly (up to 6 significant digits).
-inline std::string Num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+/// A number printed compactly (up to 6 significant digits): io's message format.
+using io::Num;
 /// A number printed with 10 significant digits: a value whose fault is a small departure (an
 /// angle 1e-4 deg off a whole assembly) shows it.
-inline std::string Precise(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
+inline std::string Precise(double v) { return Num(v, 10); }
 /// A length [m] printed in millimetres.
 inline std::string Mm(double metres) { return Num(metres * 1e3); }
 

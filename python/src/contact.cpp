@@ -28,11 +28,11 @@ solvers::LocalTermParameters LocalTermOf(const py::dict& d) {
       p.reduced_radius = value.cast<double>();
     } else if (k == "plane") {
       const std::string plane = value.cast<std::string>();
-      if (plane != "strain" && plane != "stress")
+      const auto a = io::ValueOf(solvers::kPlaneAssumptionNames, plane);
+      if (!a)
         throw std::invalid_argument("local term plane = \"" + plane +
                                     "\": must be \"strain\" or \"stress\"");
-      p.plane = plane == "strain" ? solvers::PlaneAssumption::kPlaneStrain
-                                  : solvers::PlaneAssumption::kPlaneStress;
+      p.plane = *a;
     } else if (k == "youngs_modulus_Pa" || k == "poisson_ratio" || k == "depth_m") {
       const auto pair = value.cast<std::vector<double>>();
       if (pair.size() != 2)
@@ -142,9 +142,9 @@ solvers::ContactSolution SolutionOf(const Problem& problem, const Eigen::VectorX
   return s;
 }
 
-}  // namespace
 
-void BindContact(py::module_& m) {
+// The contact problem as a Python class: its data, gaps, potential and local terms.
+void BindContactProblem(py::module_& m) {
   py::class_<Problem, ProblemPtr>(m, "ContactProblem", R"doc(
 A contact problem (docs/model.md §3), validated on construction (ValueError naming the field):
 find forces F >= 0 [N] and multipliers λ with
@@ -250,6 +250,10 @@ Returns
 -------
 float
     The force [N] (inf: no local term).)doc");
+}
+
+// The solvers: one back end, the comparison of every back end, the files of problems.
+void BindContactSolvers(py::module_& m) {
   m.def("solve_contact", &Solve, py::arg("problem"), py::arg("backend") = "newton", py::kw_only(),
         py::arg("tolerance") = 1e-10, py::arg("max_iterations") = 200,
         py::arg("time_limit_s") = 60.0, py::arg("polish") = false, py::arg("force_N") = py::none(),
@@ -424,6 +428,13 @@ Raises
 ------
 ValueError
     A missing or malformed file (its path and the field).)doc");
+}
+
+}  // namespace
+
+void BindContact(py::module_& m) {
+  BindContactProblem(m);
+  BindContactSolvers(m);
 }
 
 }  // namespace epicycle::python

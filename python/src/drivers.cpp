@@ -12,7 +12,7 @@
 #include "epicycle/studies/sobol.hpp"
 #include "epicycle/studies/shards.hpp"
 #include "epicycle/studies/study.hpp"
-#include "epicycle/studies/summary.hpp"
+#include "epicycle/studies/study_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <optional>
 #include <thread>
 
@@ -14,7 +13,7 @@
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/report/ratings.hpp"
 #include "epicycle/report/run_files.hpp"
@@ -22,6 +21,7 @@
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 #include "scene.hpp"
+#include "epicycle/io/units.hpp"
 
 namespace epicycle::python {
 
@@ -95,6 +95,27 @@ py::object StatsObject(const dynamics::SimulationStats& st) {
   f["wall_s"] = st.wall_seconds;
   f["rate_scale_per_s"] = st.rate_scale;
   return Result(f);
+}
+
+// A run's summary (dynamics::DynamicSummary) as Python values in the names' units.
+py::dict SummaryObject(const dynamics::DynamicSummary& sum) {
+  py::dict summary;
+  summary["samples"] = sum.samples;
+  summary["lsr_mean"] = Array(std::vector<double>(sum.lsr_mean));
+  summary["lsr_min"] = Array(std::vector<double>(sum.lsr_min));
+  summary["lsr_max"] = Array(std::vector<double>(sum.lsr_max));
+  summary["k_gamma"] = sum.k_gamma;
+  summary["te_min_urad"] = sum.te_min * 1e6;
+  summary["te_max_urad"] = sum.te_max * 1e6;
+  summary["te_peak_to_peak_urad"] = sum.te_peak_to_peak() * 1e6;
+  summary["orbit_radius_max_um"] = sum.orbit_radius * 1e6;
+  summary["orbit_radius_mean_um"] = sum.orbit_mean_radius * 1e6;
+  summary["max_pair_force_N"] = sum.max_pair_force;
+  // Stresses on: the summary JSON's root_stress (report/), as Python objects.
+  if (!sum.root_stress.empty())
+    summary["root_stress"] =
+        JsonToPython(report::RootStressJson(sum.root_stress, "time_s", 1.0));
+  return summary;
 }
 
 py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
@@ -231,30 +252,12 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   }
   vib["channels"] = kinds;
 
-  const dynamics::DynamicSummary& sum = out.summary;
-  py::dict summary;
-  summary["samples"] = sum.samples;
-  summary["lsr_mean"] = Array(std::vector<double>(sum.lsr_mean));
-  summary["lsr_min"] = Array(std::vector<double>(sum.lsr_min));
-  summary["lsr_max"] = Array(std::vector<double>(sum.lsr_max));
-  summary["k_gamma"] = sum.k_gamma;
-  summary["te_min_urad"] = sum.te_min * 1e6;
-  summary["te_max_urad"] = sum.te_max * 1e6;
-  summary["te_peak_to_peak_urad"] = sum.te_peak_to_peak() * 1e6;
-  summary["orbit_radius_max_um"] = sum.orbit_radius * 1e6;
-  summary["orbit_radius_mean_um"] = sum.orbit_mean_radius * 1e6;
-  summary["max_pair_force_N"] = sum.max_pair_force;
-  // Stresses on: the summary JSON's root_stress (report/), as Python objects.
-  if (!sum.root_stress.empty())
-    summary["root_stress"] =
-        JsonToPython(report::RootStressJson(sum.root_stress, "time_s", 1.0));
-
   const dynamics::StageDynamics& rig = *out.rig;
   py::dict f;
   f["scene"] = rig.scene.name;
   f["sun_support"] = transmission::SunSupportName(rig.stage_model.setup().sun);
   f["sun_torque_Nm"] = rig.scene.loads.sun_torque;
-  f["sun_speed_rpm"] = std::abs(out.sun_speed) * 30.0 / std::numbers::pi;
+  f["sun_speed_rpm"] = io::RadPerSecondToRpm(std::abs(out.sun_speed));
   f["mesh_frequency_Hz"] = out.span.mesh_frequency;
   f["duration_s"] = out.span.duration;
   f["outputs"] = out.span.outputs;
@@ -281,7 +284,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
       {count, static_cast<py::ssize_t>(n), py::ssize_t{2}}, planet_bearing.data());
   f["pairs"] = Result(pairs);
   f["vibration"] = Result(vib);
-  f["summary"] = Result(summary);
+  f["summary"] = Result(SummaryObject(out.summary));
   f["stats"] = StatsObject(out.result.stats);
   f["completed"] = out.result.completed;
   f["message"] = out.result.message;
@@ -553,25 +556,26 @@ progress : callable or None, default None
 raise_on_failure : bool, default True
     Raise ComputationError on a failure (else return the Result).)doc";
 
-}  // namespace
+// The integration settings of a driver call, as its keyword options give them.
+Integration MakeIntegration(const std::string& integrator, double rtol,
+                            std::optional<double> rate_scale, std::optional<double> contact_tol,
+                            int max_order, bool analytic_jacobian, const std::string& backend) {
+  Integration i;
+  i.integrator = integrator;
+  i.rtol = rtol;
+  i.rate_scale = rate_scale;
+  i.contact_tol = contact_tol;
+  i.max_order = max_order;
+  i.analytic_jacobian = analytic_jacobian;
+  i.backend = backend;
+  return i;
+}
 
-void BindDynamic(py::module_& m) {
-  auto integration = [](const std::string& integrator, double rtol,
-                        std::optional<double> rate_scale, std::optional<double> contact_tol,
-                        int max_order, bool analytic_jacobian, const std::string& backend) {
-    Integration i;
-    i.integrator = integrator;
-    i.rtol = rtol;
-    i.rate_scale = rate_scale;
-    i.contact_tol = contact_tol;
-    i.max_order = max_order;
-    i.analytic_jacobian = analytic_jacobian;
-    i.backend = backend;
-    return i;
-  };
+// A run in time and the natural modes.
+void BindDynamicRun(py::module_& m) {
   m.def(
       "dynamic",
-      [integration](
+      [](
           const ScenePtr& s, std::optional<double> sun_speed_rpm, const std::string& range,
           double time_s, int outputs_per_cycle, double start_deg, const std::string& integrator,
           double rtol, std::optional<double> rate_scale, std::optional<double> contact_tol,
@@ -579,7 +583,7 @@ void BindDynamic(py::module_& m) {
           std::optional<std::string> cache_dir, py::object progress, bool raise_on_failure,
           bool stresses, bool rating) {
         return Dynamic(s, sun_speed_rpm, range, time_s, outputs_per_cycle, start_deg,
-                       integration(integrator, rtol, rate_scale, contact_tol, max_order,
+                       MakeIntegration(integrator, rtol, rate_scale, contact_tol, max_order,
                                    analytic_jacobian, backend),
                        cache_dir, std::move(progress), raise_on_failure, stresses, rating);
       },
@@ -676,9 +680,13 @@ Raises
 ------
 ValueError
     A gear-pair scene, or a bad scene value.)doc");
+}
+
+// Speed sweeps and their speed grids.
+void BindSpeedSweep(py::module_& m) {
   m.def(
       "speed_sweep",
-      [integration](const ScenePtr& s, const std::vector<double>& sun_speeds_rpm,
+      [](const ScenePtr& s, const std::vector<double>& sun_speeds_rpm,
                     const std::string& range, double window_cycles, int outputs_per_cycle,
                     double start_deg, int harmonics, int threads, const std::string& integrator,
                     double rtol, std::optional<double> rate_scale,
@@ -687,7 +695,7 @@ ValueError
                     py::object progress, bool raise_on_failure) {
         return SpeedSweep(s, sun_speeds_rpm, range, window_cycles, outputs_per_cycle, start_deg,
                           harmonics, threads,
-                          integration(integrator, rtol, rate_scale, contact_tol, max_order,
+                          MakeIntegration(integrator, rtol, rate_scale, contact_tol, max_order,
                                       analytic_jacobian, backend),
                           cache_dir, std::move(progress), raise_on_failure);
       },
@@ -777,6 +785,13 @@ Raises
 ------
 ValueError
     A speed or count outside its rule.)doc");
+}
+
+}  // namespace
+
+void BindDynamic(py::module_& m) {
+  BindDynamicRun(m);
+  BindSpeedSweep(m);
 }
 
 }  // namespace epicycle::python

@@ -277,15 +277,11 @@ void EditInPlace(Scene& s, Edit&& edit) {
   s.Assign(*s.Edited(std::forward<Edit>(edit)));
 }
 
-}  // namespace
+using SceneClass = py::class_<Scene, ScenePtr>;
 
-void BindScene(py::module_& m) {
-  py::class_<Scene, ScenePtr>(m, "Scene", R"doc(
-A scene: one planetary stage (or gear pair) read from TOML (docs/scenes.md). Keys name their
-units (module_mm, torque_Nm, runout_um). Every change goes through the scene's keys and is read
-again by the scene reader, so a bad value raises ValueError with the reader's message (file, line,
-key, value, rule) and leaves the scene unchanged.)doc")
-      .def_static("load", &Scene::Load, py::arg("path"), R"doc(
+// Reading a scene: from a file or from text.
+void BindSceneReading(SceneClass& c) {
+  c.def_static("load", &Scene::Load, py::arg("path"), R"doc(
 Reads a scene file.
 
 Parameters
@@ -320,8 +316,12 @@ Scene
 Raises
 ------
 ValueError
-    The reader's message (line, key, value, rule).)doc")
-      .def(
+    The reader's message (line, key, value, rule).)doc");
+}
+
+// The scene's keys read and set by path, copies with changed values, the key list.
+void BindSceneKeys(SceneClass& c) {
+  c.def(
           "__getitem__",
           [](const Scene& s, const std::string& key) {
             const toml::node_view<const toml::node> v = s.table().at_path(key);
@@ -445,8 +445,12 @@ Every key the scene gives.
 Returns
 -------
 list of str
-    Key paths ("sun.cutter.type", "errors.runout[0].gear").)doc")
-      .def(
+    Key paths ("sun.cutter.type", "errors.runout[0].gear").)doc");
+}
+
+// Manufacturing errors added to a gear: pin-hole positions, run-out, tooth thickness.
+void BindSceneErrors(SceneClass& c) {
+  c.def(
           "add_pin",
           [](Scene& s, const std::string& gear, double radial_um, double tangential_um) {
             py::dict f;
@@ -520,8 +524,12 @@ error_um : float
 Raises
 ------
 ValueError
-    The scene reader's message for a bad value (the scene unchanged).)doc")
-      .def(
+    The scene reader's message for a bad value (the scene unchanged).)doc");
+}
+
+// Damage added to a tooth: a pit (spall) and a root crack.
+void BindSceneDamage(SceneClass& c) {
+  c.def(
           "add_pit",
           [](Scene& s, const std::string& gear, int tooth, const std::string& flank,
              py::object roll_deg, py::object radius_mm, double width_fraction, double depth_um) {
@@ -625,8 +633,12 @@ path_mm_deg : list of (float, float) or None, default None
 Raises
 ------
 ValueError
-    The scene reader's message for a bad value (the scene unchanged).)doc")
-      .def(
+    The scene reader's message for a bad value (the scene unchanged).)doc");
+}
+
+// Flank changes of a gear: pitch deviations and tip or root relief.
+void BindSceneFlanks(SceneClass& c) {
+  c.def(
           "set_pitch",
           [](Scene& s, const std::string& gear, py::object single_um, py::object cumulative_um,
              py::object iso1328_grade, py::object seed) {
@@ -680,8 +692,12 @@ gear : str
 Raises
 ------
 ValueError
-    The scene reader's message for a bad value (the scene unchanged).)doc")
-      .def_property_readonly("text", &Scene::text, "The scene's TOML text.")
+    The scene reader's message for a bad value (the scene unchanged).)doc");
+}
+
+// What the scene is: its text, names, counts, load, hash and warnings.
+void BindSceneProperties(SceneClass& c) {
+  c.def_property_readonly("text", &Scene::text, "The scene's TOML text.")
       .def_property_readonly(
           "source", [](const Scene& s) { return s.scene().source; },
           "The file name (or source) used in messages.")
@@ -712,6 +728,22 @@ ValueError
       .def("__repr__", [](const Scene& s) {
         return "<epicycle.Scene '" + s.scene().name + "' from " + s.scene().source + ">";
       });
+}
+
+}  // namespace
+
+void BindScene(py::module_& m) {
+  SceneClass c(m, "Scene", R"doc(
+A scene: one planetary stage (or gear pair) read from TOML (docs/scenes.md). Keys name their
+units (module_mm, torque_Nm, runout_um). Every change goes through the scene's keys and is read
+again by the scene reader, so a bad value raises ValueError with the reader's message (file, line,
+key, value, rule) and leaves the scene unchanged.)doc");
+  BindSceneReading(c);
+  BindSceneKeys(c);
+  BindSceneErrors(c);
+  BindSceneDamage(c);
+  BindSceneFlanks(c);
+  BindSceneProperties(c);
 }
 
 }  // namespace epicycle::python

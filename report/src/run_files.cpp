@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -17,6 +16,7 @@
 #include "epicycle/report/svg_plot.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/local_term.hpp"
+#include "epicycle/io/units.hpp"
 
 namespace epicycle::report {
 
@@ -660,7 +660,7 @@ nlohmann::json DynamicRunJson(const dynamics::DynamicModel& model,
   j["scene"] = model.stage_model().name();
   j["sun_support"] = transmission::SunSupportName(model.stage_model().setup().sun);
   j["sun_torque_Nm"] = model.sun_torque();
-  j["sun_speed_rpm"] = std::abs(model.sun_speed()) * 30.0 / std::numbers::pi;
+  j["sun_speed_rpm"] = io::RadPerSecondToRpm(std::abs(model.sun_speed()));
   j["mesh_frequency_Hz"] = span.mesh_frequency;
   j["friction"] = transmission::FrictionLawName(model.settings().friction.law);
   j["integrator"] = dynamics::IntegratorName(options.integrator);

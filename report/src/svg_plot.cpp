@@ -73,11 +73,19 @@ std::vector<std::string> WrapWords(const std::string& text, double chars) {
   return lines;
 }
 
-}  // namespace
+// A marker label's width: about 5.6 px per character (10 px sans-serif) plus 4 px.
+double LabelWidth(const XMarker& m) { return 5.6 * static_cast<double>(m.label.size()) + 4; }
 
-std::string RenderSvg(const LinePlot& input) {
-  // Logarithmic axes: the plot is drawn in log10 of its values, on whole decades.
-  LinePlot plot = input;
+// The figure and its plot area [px], the data range shown and the scales [px per unit].
+struct Frame {
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1, sx = 1, sy = 1;
+  double w = 760, h = 200, left = 90, top = 40, pw = 520, ph = 100;
+  double px(double x) const { return left + (x - x0) * sx; }
+  double py(double y) const { return top + ph - (y - y0) * sy; }
+};
+
+// The plot's values in log10 on its logarithmic axes (a value ≤ 0 dropped).
+void ToLogAxes(LinePlot& plot) {
   auto to_log = [](std::vector<double>& v) {
     for (double& x : v) x = x > 0 ? std::log10(x) : std::numeric_limits<double>::quiet_NaN();
   };
@@ -87,102 +95,106 @@ std::string RenderSvg(const LinePlot& input) {
   }
   if (plot.log_y) to_log(plot.y_references);
   std::erase_if(plot.y_references, [](double r) { return !std::isfinite(r); });
-  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+}
+
+// The range shown (the data's, padded, or the plot's fixed one; whole decades on logarithmic
+// axes; equal scales if asked; room on the right for the marker labels if they go there).
+Frame PlotFrame(const LinePlot& plot) {
+  Frame f;
+  f.x0 = std::numeric_limits<double>::infinity(), f.x1 = -f.x0, f.y0 = f.x0, f.y1 = -f.x0;
   for (const PlotSeries& s : plot.series) {
     for (std::size_t k = 0; k < std::min(s.x.size(), s.y.size()); ++k) {
       if (!std::isfinite(s.x[k]) || !std::isfinite(s.y[k])) continue;
-      x0 = std::min(x0, s.x[k]);
-      x1 = std::max(x1, s.x[k]);
-      y0 = std::min(y0, s.y[k]);
-      y1 = std::max(y1, s.y[k]);
+      f.x0 = std::min(f.x0, s.x[k]);
+      f.x1 = std::max(f.x1, s.x[k]);
+      f.y0 = std::min(f.y0, s.y[k]);
+      f.y1 = std::max(f.y1, s.y[k]);
     }
   }
   for (double r : plot.y_references) {
-    y0 = std::min(y0, r);
-    y1 = std::max(y1, r);
+    f.y0 = std::min(f.y0, r);
+    f.y1 = std::max(f.y1, r);
   }
-  if (!std::isfinite(x0)) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
-  if (x1 - x0 <= 0) x0 -= 0.5, x1 += 0.5;
-  if (y1 - y0 <= 1e-12 * std::max(1.0, std::abs(y0))) {
-    const double d = std::max(std::abs(y0) * 1e-3, 1e-12);
-    y0 -= d;
-    y1 += d;
+  if (!std::isfinite(f.x0)) f.x0 = 0, f.x1 = 1, f.y0 = 0, f.y1 = 1;
+  if (f.x1 - f.x0 <= 0) f.x0 -= 0.5, f.x1 += 0.5;
+  if (f.y1 - f.y0 <= 1e-12 * std::max(1.0, std::abs(f.y0))) {
+    const double d = std::max(std::abs(f.y0) * 1e-3, 1e-12);
+    f.y0 -= d;
+    f.y1 += d;
   }
-  const double pad = plot.log_y ? 0.0 : 0.05 * (y1 - y0);
-  y0 -= pad;
-  y1 += pad;
+  const double pad = plot.log_y ? 0.0 : 0.05 * (f.y1 - f.y0);
+  f.y0 -= pad;
+  f.y1 += pad;
   if (!plot.log_y && std::isfinite(plot.y_min) && std::isfinite(plot.y_max) &&
       plot.y_min < plot.y_max) {
-    y0 = plot.y_min;
-    y1 = plot.y_max;
+    f.y0 = plot.y_min;
+    f.y1 = plot.y_max;
   }
   if (!plot.log_x && std::isfinite(plot.x_min) && std::isfinite(plot.x_max) &&
       plot.x_min < plot.x_max) {
-    x0 = plot.x_min;
-    x1 = plot.x_max;
+    f.x0 = plot.x_min;
+    f.x1 = plot.x_max;
   }
-  if (plot.log_x) x0 = std::floor(x0), x1 = std::max(std::ceil(x1), x0 + 1);
-  if (plot.log_y) y0 = std::floor(y0), y1 = std::max(std::ceil(y1), y0 + 1);
-  const double w = 760, h = std::max(plot.height, 200.0), left = 90, top = 40, pw = 520,
-               ph = h - 100;
-  double sx = pw / (x1 - x0), sy = ph / (y1 - y0);
+  if (plot.log_x) f.x0 = std::floor(f.x0), f.x1 = std::max(std::ceil(f.x1), f.x0 + 1);
+  if (plot.log_y) f.y0 = std::floor(f.y0), f.y1 = std::max(std::ceil(f.y1), f.y0 + 1);
+  f.h = std::max(plot.height, 200.0);
+  f.ph = f.h - 100;
+  f.sx = f.pw / (f.x1 - f.x0);
+  f.sy = f.ph / (f.y1 - f.y0);
   if (plot.equal_axes) {
-    const double s = std::min(sx, sy);
-    const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
-    sx = sy = s;
-    x0 = cx - 0.5 * pw / s;
-    x1 = cx + 0.5 * pw / s;
-    y0 = cy - 0.5 * ph / s;
-    y1 = cy + 0.5 * ph / s;
+    const double s = std::min(f.sx, f.sy);
+    const double cx = 0.5 * (f.x0 + f.x1), cy = 0.5 * (f.y0 + f.y1);
+    f.sx = f.sy = s;
+    f.x0 = cx - 0.5 * f.pw / s;
+    f.x1 = cx + 0.5 * f.pw / s;
+    f.y0 = cy - 0.5 * f.ph / s;
+    f.y1 = cy + 0.5 * f.ph / s;
   }
-  // A marker label is about 5.6 px per character (10 px sans-serif) plus 4 px.
-  auto label_width = [](const XMarker& m) { return 5.6 * static_cast<double>(m.label.size()) + 4; };
   if (plot.labels_right && !plot.equal_axes) {
     // x1 so that the rightmost labels end inside the plot: (x_m − x0) sx + 2 + width ≤ pw.
-    double reach = x1;
+    double reach = f.x1;
     for (const XMarker& m : plot.x_markers) {
-      const double width = label_width(m) + 2;
-      if (std::isfinite(m.x) && m.x >= x0 && m.x <= x1 && !m.label.empty() && width <= pw / 3)
-        reach = std::max(reach, x0 + (m.x - x0) * pw / (pw - width));
+      const double width = LabelWidth(m) + 2;
+      if (std::isfinite(m.x) && m.x >= f.x0 && m.x <= f.x1 && !m.label.empty() && width <= f.pw / 3)
+        reach = std::max(reach, f.x0 + (m.x - f.x0) * f.pw / (f.pw - width));
     }
-    x1 = reach;
-    sx = pw / (x1 - x0);
+    f.x1 = reach;
+    f.sx = f.pw / (f.x1 - f.x0);
   }
-  auto px = [&](double x) { return left + (x - x0) * sx; };
-  auto py = [&](double y) { return top + ph - (y - y0) * sy; };
-  std::string s = fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} "
-      "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
-      "fill=\"white\"/>\n",
-      w, h);
-  const double title_size = TitleSize(w, plot.title);
+  return f;
+}
+
+// The title, the frame, the ticks and their labels, the axis labels and the y reference lines.
+void AppendAxes(const LinePlot& plot, const Frame& f, std::string& s) {
+  const double title_size = TitleSize(f.w, plot.title);
   s += fmt::format("<text x=\"{}\" y=\"22\" text-anchor=\"middle\" font-size=\"{}\">{}</text>\n",
-                   w / 2, title_size, Escape(plot.title));
+                   f.w / 2, title_size, Escape(plot.title));
   s += fmt::format(
-      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n", left,
-      top, pw, ph);
-  const double xs = plot.log_x ? std::ceil((x1 - x0) / 8) : TickStep(x1 - x0);
-  const double ys = plot.log_y ? std::ceil((y1 - y0) / 8) : TickStep(y1 - y0);
-  for (double t = std::ceil(x0 / xs) * xs; t <= x1 + 1e-9 * xs; t += xs) {
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n",
+      f.left, f.top, f.pw, f.ph);
+  const double xs = plot.log_x ? std::ceil((f.x1 - f.x0) / 8) : TickStep(f.x1 - f.x0);
+  const double ys = plot.log_y ? std::ceil((f.y1 - f.y0) / 8) : TickStep(f.y1 - f.y0);
+  for (double t = std::ceil(f.x0 / xs) * xs; t <= f.x1 + 1e-9 * xs; t += xs) {
     s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>",
-                     px(t), top, top + ph);
+                     f.px(t), f.top, f.top + f.ph);
     s += fmt::format(
-        "<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", px(t), top + ph + 16,
+        "<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", f.px(t),
+        f.top + f.ph + 16,
         plot.log_x ? Decade(t) : fmt::format("{:g}", std::abs(t) < 1e-12 * xs ? 0.0 : t));
   }
-  for (double t = std::ceil(y0 / ys) * ys; t <= y1 + 1e-9 * ys; t += ys) {
+  for (double t = std::ceil(f.y0 / ys) * ys; t <= f.y1 + 1e-9 * ys; t += ys) {
     s += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>",
-                     left, py(t), left + pw);
+                     f.left, f.py(t), f.left + f.pw);
     s += fmt::format(
-        "<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n", left - 4, py(t) + 4,
+        "<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n", f.left - 4, f.py(t) + 4,
         plot.log_y ? Decade(t) : fmt::format("{:.6g}", std::abs(t) < 1e-12 * ys ? 0.0 : t));
   }
-  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", left + pw / 2,
-                   h - 14, Escape(plot.x_label));
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", f.left + f.pw / 2,
+                   f.h - 14, Escape(plot.x_label));
   // The y label, turned, centred on the plot: in lines of at most the image's height (about
   // 0.6 em per character at 12 px), broken between words, smaller if more than two are needed.
   {
-    const double centre = top + ph / 2, room = 2 * std::min(centre, h - centre) - 8;
+    const double centre = f.top + f.ph / 2, room = 2 * std::min(centre, f.h - centre) - 8;
     std::vector<std::string> parts = WrapWords(plot.y_label, room / 7.2);
     const double size = parts.size() <= 2 ? 12.0 : 12.0 * 2 / static_cast<double>(parts.size());
     if (parts.size() > 2) parts = WrapWords(plot.y_label, room / (0.6 * size));
@@ -200,36 +212,39 @@ std::string RenderSvg(const LinePlot& input) {
     s += fmt::format(
         "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"black\" "
         "stroke-dasharray=\"4 3\"/>\n",
-        left, py(r), left + pw);
+        f.left, f.py(r), f.left + f.pw);
   }
-  // Marker labels, in rank order: each in the first row (from the top) where it overlaps no label
-  // already placed, in at most eight rows inside the plot (a label is about 5.6 px per
-  // character); a marker left without room is a light line.
+}
+
+// The x markers: their lines (`lines`) and their labels (`labels`), in rank order: each label in
+// the first row (from the top) where it overlaps no label already placed, in at most eight rows
+// inside the plot (a label is about 5.6 px per character); a marker left without room is a light
+// line.
+void MarkerLines(const LinePlot& plot, const Frame& f, std::string& lines, std::string& labels) {
   std::vector<std::size_t> order;
   for (std::size_t k = 0; k < plot.x_markers.size(); ++k) {
     const XMarker& m = plot.x_markers[k];
-    if (std::isfinite(m.x) && m.x >= x0 && m.x <= x1) order.push_back(k);
+    if (std::isfinite(m.x) && m.x >= f.x0 && m.x <= f.x1) order.push_back(k);
   }
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     const XMarker &ma = plot.x_markers[a], &mb = plot.x_markers[b];
     return ma.rank != mb.rank ? ma.rank < mb.rank : ma.x < mb.x;
   });
-  const std::size_t rows = static_cast<std::size_t>(std::clamp((ph - 20) / 11, 0.0, 8.0));
+  const std::size_t rows = static_cast<std::size_t>(std::clamp((f.ph - 20) / 11, 0.0, 8.0));
   std::vector<std::vector<std::pair<double, double>>> taken(rows);  // [from, to] per row [px]
-  std::string lines, labels;
   for (std::size_t k : order) {
     const XMarker& m = plot.x_markers[k];
     // Near the right edge a label goes left of its line, off the legend (not with labels_right).
-    const bool right = !plot.labels_right && px(m.x) > left + pw - 50;
-    const double width = label_width(m);
-    const double from = right ? px(m.x) - width : px(m.x), to = from + width;
+    const bool right = !plot.labels_right && f.px(m.x) > f.left + f.pw - 50;
+    const double width = LabelWidth(m);
+    const double from = right ? f.px(m.x) - width : f.px(m.x), to = from + width;
     std::size_t row = 0;
     auto free = [&](std::size_t r) {
       return std::none_of(taken[r].begin(), taken[r].end(),
                           [&](const auto& t) { return from < t.second && t.first < to; });
     };
     while (row < rows && !free(row)) ++row;
-    const bool placed = !m.label.empty() && row < rows && to <= left + pw + 1e-9;
+    const bool placed = !m.label.empty() && row < rows && to <= f.left + f.pw + 1e-9;
     if (placed) {
       taken[row].emplace_back(from, to);
       // Over the curves and other markers' lines: on a white ground as wide as its estimate.
@@ -237,18 +252,21 @@ std::string RenderSvg(const LinePlot& input) {
         labels += fmt::format(
             "<rect x=\"{:.1f}\" y=\"{}\" width=\"{:.1f}\" height=\"11\" fill=\"white\" "
             "fill-opacity=\"0.85\"/>\n",
-            px(m.x) + 1, top + 3 + 11 * static_cast<double>(row), width - 2);
-      labels +=
-          fmt::format("<text x=\"{:.1f}\" y=\"{}\" fill=\"#555\" font-size=\"10\"{}>{}</text>\n",
-                      right ? px(m.x) - 2 : px(m.x) + 2, top + 12 + 11 * static_cast<double>(row),
-                      right ? " text-anchor=\"end\"" : "", Escape(m.label));
+            f.px(m.x) + 1, f.top + 3 + 11 * static_cast<double>(row), width - 2);
+      labels += fmt::format(
+          "<text x=\"{:.1f}\" y=\"{}\" fill=\"#555\" font-size=\"10\"{}>{}</text>\n",
+          right ? f.px(m.x) - 2 : f.px(m.x) + 2, f.top + 12 + 11 * static_cast<double>(row),
+          right ? " text-anchor=\"end\"" : "", Escape(m.label));
     }
     lines += fmt::format(
-        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"{4}/>\n", px(m.x),
-        top, top + ph, placed ? "#888" : "#d8d8d8", m.dashed ? " stroke-dasharray=\"2 3\"" : "");
+        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"{4}/>\n",
+        f.px(m.x), f.top, f.top + f.ph, placed ? "#888" : "#d8d8d8",
+        m.dashed ? " stroke-dasharray=\"2 3\"" : "");
   }
-  // With labels_right the labels go over the curves (below, last), else under them.
-  s += plot.labels_right ? lines : lines + labels;
+}
+
+// The series (lines, points, bands, envelopes) and the legend of those with a name.
+void AppendSeries(const LinePlot& plot, const Frame& f, std::string& s) {
   int legend = 0;
   for (std::size_t b = 0; b < plot.series.size(); ++b) {
     const PlotSeries& ser = plot.series[b];
@@ -259,21 +277,21 @@ std::string RenderSvg(const LinePlot& input) {
     std::size_t drawn = 0;
     for (std::size_t k = 0; k < std::min(ser.x.size(), ser.y.size()); ++k) {
       if (!std::isfinite(ser.x[k]) || !std::isfinite(ser.y[k])) continue;
-      if (ser.x[k] < x0 || ser.x[k] > x1) continue;  // outside a fixed x range
+      if (ser.x[k] < f.x0 || ser.x[k] > f.x1) continue;  // outside a fixed x range
       ++drawn;
       if (ser.envelope) {
-        const double column = std::floor(px(ser.x[k])) + 0.5;
+        const double column = std::floor(f.px(ser.x[k])) + 0.5;
         if (top_px.empty() || top_px.back().first != column)
-          top_px.emplace_back(column, py(ser.y[k]));
+          top_px.emplace_back(column, f.py(ser.y[k]));
         else
-          top_px.back().second = std::min(top_px.back().second, py(ser.y[k]));
+          top_px.back().second = std::min(top_px.back().second, f.py(ser.y[k]));
       }
       if (ser.points || ser.markers) {
         s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"{}\"/>\n",
-                         px(ser.x[k]), py(ser.y[k]), col);
+                         f.px(ser.x[k]), f.py(ser.y[k]), col);
       }
       if (!ser.points) {
-        pts += fmt::format("{:.1f},{:.1f} ", px(ser.x[k]), py(ser.y[k]));
+        pts += fmt::format("{:.1f},{:.1f} ", f.px(ser.x[k]), f.py(ser.y[k]));
       }
     }
     if (!pts.empty() && ser.band) {
@@ -298,9 +316,29 @@ std::string RenderSvg(const LinePlot& input) {
           ser.dashed ? " stroke-dasharray=\"6,4\"" : "", pts);
     }
     if (ser.name.empty()) continue;
-    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", left + pw + 12,
-                     top + 14 + 16 * static_cast<double>(legend++), col, Escape(ser.name));
+    s += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>\n", f.left + f.pw + 12,
+                     f.top + 14 + 16 * static_cast<double>(legend++), col, Escape(ser.name));
   }
+}
+
+}  // namespace
+
+std::string RenderSvg(const LinePlot& input) {
+  // Logarithmic axes: the plot is drawn in log10 of its values, on whole decades.
+  LinePlot plot = input;
+  ToLogAxes(plot);
+  const Frame f = PlotFrame(plot);
+  std::string s = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} "
+      "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
+      "fill=\"white\"/>\n",
+      f.w, f.h);
+  AppendAxes(plot, f, s);
+  std::string lines, labels;
+  MarkerLines(plot, f, lines, labels);
+  // With labels_right the labels go over the curves (below, last), else under them.
+  s += plot.labels_right ? lines : lines + labels;
+  AppendSeries(plot, f, s);
   if (plot.labels_right) s += labels;
   s += "</svg>\n";
   return s;

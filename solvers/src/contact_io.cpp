@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "epicycle/transmission/internal/input_file.hpp"
+#include "epicycle/io/input_file.hpp"
 
 namespace epicycle::solvers {
 namespace {
@@ -184,10 +184,8 @@ ContactProblemFile ParseContactProblemFile(const std::string& text, const std::s
       p.reduced_radius = rd.Number(rd.Required(e, "reduced_radius_m"), key + ".reduced_radius_m");
       if (e.contains("plane")) {
         const std::string plane = e["plane"].is_string() ? e["plane"].get<std::string>() : "";
-        if (plane == "strain")
-          p.plane = PlaneAssumption::kPlaneStrain;
-        else if (plane == "stress")
-          p.plane = PlaneAssumption::kPlaneStress;
+        if (const auto a = io::ValueOf(kPlaneAssumptionNames, plane))
+          p.plane = *a;
         else
           rd.Fail(key + ".plane", "must be \"strain\" or \"stress\", found " + e["plane"].dump());
       }
@@ -234,7 +232,7 @@ ContactProblemFile ReadContactProblemFile(const std::string& path) {
   // A problem holds its dense compliance matrix: 256 MiB is a problem of thousands of contacts.
   std::string text;
   try {
-    text = transmission::internal::ReadInputFile(path, "problem file (JSON)", 256u << 20);
+    text = io::ReadInputFile(path, "problem file (JSON)", 256u << 20);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("contact problem file ") + e.what());
   }
@@ -267,7 +265,7 @@ std::string FormatContactProblemFile(const ContactProblemFile& f) {
       e["enabled"] = p.enabled;
       e["face_width_m"] = p.face_width;
       e["reduced_radius_m"] = p.reduced_radius;
-      e["plane"] = p.plane == PlaneAssumption::kPlaneStrain ? "strain" : "stress";
+      e["plane"] = io::NameOf(kPlaneAssumptionNames, p.plane);
       for (int b = 0; b < 2; ++b)
         e["bodies"].push_back({{"youngs_modulus_Pa", p.body[b].youngs_modulus},
                                {"poisson_ratio", p.body[b].poisson_ratio},

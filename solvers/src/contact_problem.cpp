@@ -10,16 +10,12 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::solvers {
 namespace {
 
-std::string Num(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
+using io::Num;
 
 // One vectorised test for the common case; the entries are searched for the message only when it
 // fails.

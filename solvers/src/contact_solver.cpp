@@ -13,6 +13,7 @@
 
 #include "backend.hpp"
 #include "direct_newton.hpp"
+#include "epicycle/io/enum_names.hpp"
 
 namespace epicycle::solvers {
 namespace {
@@ -320,45 +321,42 @@ class DriverSolver final : public ContactSolver {
 
 }  // namespace
 
+namespace {
+
+// The back ends' names, in the order of AllBackends(): the one table of BackendName and
+// BackendFromName.
+constexpr std::array<io::EnumName<Backend>, 5> kBackendNames{{
+    {Backend::kActiveSetNewton, "newton"},
+    {Backend::kIpopt, "ipopt"},
+    {Backend::kNloptSlsqp, "nlopt-slsqp"},
+    {Backend::kNloptLbfgs, "nlopt-lbfgs"},
+    {Backend::kNloptAuglag, "nlopt-auglag"},
+}};
+
+constexpr std::array<io::EnumName<ContactStatus>, 6> kStatusNames{{
+    {ContactStatus::kConverged, "converged"},
+    {ContactStatus::kConvergedInaccurate, "converged-inaccurate"},
+    {ContactStatus::kIterationLimit, "iteration-limit"},
+    {ContactStatus::kNumericalFailure, "numerical-failure"},
+    {ContactStatus::kInfeasible, "infeasible"},
+    {ContactStatus::kBackendUnavailable, "backend-unavailable"},
+}};
+
+}  // namespace
+
 std::string BackendName(Backend backend) {
-  switch (backend) {
-    case Backend::kActiveSetNewton:
-      return "newton";
-    case Backend::kIpopt:
-      return "ipopt";
-    case Backend::kNloptSlsqp:
-      return "nlopt-slsqp";
-    case Backend::kNloptLbfgs:
-      return "nlopt-lbfgs";
-    case Backend::kNloptAuglag:
-      return "nlopt-auglag";
-  }
+  if (const char* name = io::NameOf(kBackendNames, backend)) return name;
   return "unknown(" + std::to_string(static_cast<int>(backend)) + ")";
 }
 
 Backend BackendFromName(const std::string& name) {
-  for (Backend b : AllBackends())
-    if (BackendName(b) == name) return b;
-  std::string known;
-  for (Backend b : AllBackends()) known += (known.empty() ? "" : ", ") + BackendName(b);
-  throw std::invalid_argument("backend = '" + name + "': must be one of " + known);
+  if (const std::optional<Backend> b = io::ValueOf(kBackendNames, name)) return *b;
+  throw std::invalid_argument("backend = '" + name + "': must be one of " +
+                              io::NameList(kBackendNames));
 }
 
 std::string StatusName(ContactStatus status) {
-  switch (status) {
-    case ContactStatus::kConverged:
-      return "converged";
-    case ContactStatus::kConvergedInaccurate:
-      return "converged-inaccurate";
-    case ContactStatus::kIterationLimit:
-      return "iteration-limit";
-    case ContactStatus::kNumericalFailure:
-      return "numerical-failure";
-    case ContactStatus::kInfeasible:
-      return "infeasible";
-    case ContactStatus::kBackendUnavailable:
-      return "backend-unavailable";
-  }
+  if (const char* name = io::NameOf(kStatusNames, status)) return name;
   return "unknown";
 }
 
@@ -451,8 +449,9 @@ ContactResiduals EvaluateResiduals(const ContactProblem& problem, const ContactS
 }
 
 std::vector<Backend> AllBackends() {
-  return {Backend::kActiveSetNewton, Backend::kIpopt, Backend::kNloptSlsqp, Backend::kNloptLbfgs,
-          Backend::kNloptAuglag};
+  std::vector<Backend> all;
+  for (const auto& e : kBackendNames) all.push_back(e.value);
+  return all;
 }
 
 std::vector<Backend> AvailableBackends() {

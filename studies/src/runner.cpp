@@ -20,7 +20,7 @@
 
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
-#include "epicycle/transmission/internal/input_file.hpp"
+#include "epicycle/io/input_file.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_range.hpp"
@@ -422,7 +422,7 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study,
   std::error_code none;
   if (!std::filesystem::exists(path, none) && !std::filesystem::is_symlink(path, none)) return out;
   // As every input: a regular file (a symlink to a device is refused, not read forever).
-  const std::string text = transmission::internal::ReadInputFile(
+  const std::string text = io::ReadInputFile(
       path, "study rows file (CSV)", std::numeric_limits<std::uintmax_t>::max());
   if (text.empty()) return out;
   // A last line without '\n' is a row (or header) the writer was killed in: cut it off.

@@ -9,7 +9,7 @@
 #include <string>
 #include <tuple>
 
-#include "epicycle/transmission/statistics.hpp"
+#include "epicycle/transmission/accumulator.hpp"
 
 namespace epicycle::studies {
 

@@ -10,18 +10,20 @@
 #include "epicycle/geometry/gear.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/studies/sampling.hpp"
+#include "epicycle/io/input_file.hpp"
+#include "epicycle/io/toml_reader.hpp"
 #include "epicycle/studies/sobol.hpp"
-#include "epicycle/transmission/internal/input_file.hpp"
-#include "epicycle/transmission/internal/toml_reader.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
+#include "epicycle/io/enum_names.hpp"
+#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::studies {
 
 namespace {
 
-using transmission::internal::ParseDocument;
-using transmission::internal::Rule;
-using transmission::internal::TableReader;
+using io::ParseDocument;
+using io::Rule;
+using io::TableReader;
 
 constexpr double kUm = 1e-6;
 
@@ -57,12 +59,13 @@ double SiToFile(Quantity q) { return Info(q).to_file; }
 
 namespace {
 
-std::string Num(double v) {
-  std::ostringstream o;
-  o.precision(12);
-  o << v;
-  return o.str();
-}
+using io::Num;
+
+// The study file's compute = "...": what a case computes.
+constexpr std::array<io::EnumName<CaseKind>, 2> kCaseKindNames{{
+    {CaseKind::kMeshCycle, "mesh-cycle"},
+    {CaseKind::kPlanetRevolution, "planet-revolution"},
+}};
 
 const geometry::GearSpec& TargetSpec(const transmission::Scene& scene, const Target& t) {
   return t.kind == Target::Kind::kSun    ? scene.stage.sun
@@ -114,19 +117,19 @@ void CheckSpread(TableReader& t, const transmission::Scene& scene, const Variabl
   }
   const double mean = v.mean / scale, sigma = v.sigma / scale;
   const double room = std::min(mean - lo, hi - mean);
-  const std::string cases = " (the cases' values: " + what + ", [" + Num(lo) + ", " + Num(hi) +
-                            "] " + unit + " here; mean_" + unit + " = " + Num(mean) + ")";
+  const std::string cases = " (the cases' values: " + what + ", [" + Num(lo, 12) + ", " + Num(hi, 12) +
+                            "] " + unit + " here; mean_" + unit + " = " + Num(mean, 12) + ")";
   if (sigma > room)
-    t.Fail("sigma_" + unit, Num(sigma),
-           "must be <= " + Num(std::max(room, 0.0)) + cases +
+    t.Fail("sigma_" + unit, Num(sigma, 12),
+           "must be <= " + Num(std::max(room, 0.0), 12) + cases +
                ": a wider spread puts a sixth of the cases or more outside, and they fail");
   if (3 * sigma > room)
     warnings->push_back(t.Warning("sigma_" + unit, "mean +- 3 sigma reaches outside" + cases +
                                                        ": 0.1 % of the cases or more fail"));
   if (backlash > 0 && std::abs(mean) + 3 * sigma > backlash)
     warnings->push_back(t.Warning(
-        "sigma_" + unit, "|mean| + 3 sigma = " + Num(std::abs(mean) + 3 * sigma) + " " + unit +
-                             " is past the normal backlash j_n = " + Num(backlash) + " " + unit +
+        "sigma_" + unit, "|mean| + 3 sigma = " + Num(std::abs(mean) + 3 * sigma, 12) + " " + unit +
+                             " is past the normal backlash j_n = " + Num(backlash, 12) + " " + unit +
                              " of the gear's meshes: such cases close it and jam a planet (the "
                              "scene's warning); the model is meant for errors below the backlash"));
 }
@@ -233,8 +236,8 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
     v.min = t.Real("min_" + unit, r) * info.scale;
     v.max = t.Real("max_" + unit, r) * info.scale;
     if (!(v.max > v.min))
-      t.Fail("max_" + unit, Num(v.max / info.scale),
-             "must be > min_" + unit + " = " + Num(v.min / info.scale));
+      t.Fail("max_" + unit, Num(v.max / info.scale, 12),
+             "must be > min_" + unit + " = " + Num(v.min / info.scale, 12));
   } else if (dist == "iso1328") {
     if (v.quantity != Quantity::kRunout)
       t.Fail("distribution", "\"iso1328\"",
@@ -249,7 +252,7 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
       t.Fail("grade", std::to_string(v.grade),
              "ISO 1328-1:2013 covers 0.5 <= m_n <= 70 mm and 5 <= d <= 15000 mm; this gear has m_n "
              "= " +
-                 Num(g.module * 1e3) + " mm, d = " + Num(d * 1e3) + " mm");
+                 Num(g.module * 1e3, 12) + " mm, d = " + Num(d * 1e3, 12) + " mm");
     v.min = 0.0;
     v.max = 0.5 * Iso1328RunoutTolerance(v.grade, d, g.module);
   } else {
@@ -263,9 +266,9 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
   if (v.quantity == Quantity::kTorque) {
     auto nonzero_same_sign = [&](double x, const std::string& key) {
       if (!(x * scene.loads.sun_torque > 0))
-        t.Fail(key, Num(x),
+        t.Fail(key, Num(x, 12),
                "must be non-zero with the sign of the scene's sun_torque_Nm = " +
-                   Num(scene.loads.sun_torque) + " (the loaded flanks are the scene's)");
+                   Num(scene.loads.sun_torque, 12) + " (the loaded flanks are the scene's)");
     };
     if (v.distribution == Distribution::kGrid)
       for (double x : v.grid) nonzero_same_sign(x, "values_Nm");
@@ -396,15 +399,16 @@ StudySpec ParseStudy(const std::string& text, const std::string& source,
   s.design = st.StringOr("design", "monte-carlo", {"monte-carlo", "sobol"}) == "sobol"
                  ? Design::kSobol
                  : Design::kMonteCarlo;
-  const std::string compute =
-      st.StringOr("compute", "mesh-cycle", {"mesh-cycle", "planet-revolution"});
-  s.compute = compute == "mesh-cycle" ? CaseKind::kMeshCycle : CaseKind::kPlanetRevolution;
+  s.compute =
+      *io::ValueOf(kCaseKindNames, st.StringOr("compute", "mesh-cycle", io::Names(kCaseKindNames)));
   s.positions = static_cast<int>(st.IntegerOr(
       "positions", s.compute == CaseKind::kMeshCycle ? 36 : 360, Rule::Closed(1, 100000)));
   s.start_angle = st.RealOr("start_deg", 0.0, Rule::Closed(-360, 360)) * std::numbers::pi / 180.0;
-  const std::string sun = st.StringOr("sun", "scene", {"scene", "fixed", "floating"});
-  if (sun == "fixed") s.sun = transmission::SunSupport::kFixed;
-  if (sun == "floating") s.sun = transmission::SunSupport::kFloating;
+  const std::string sun =
+      st.StringOr("sun", "scene",
+                  {"scene", transmission::SunSupportName(transmission::SunSupport::kFixed),
+                   transmission::SunSupportName(transmission::SunSupport::kFloating)});
+  if (const auto support = io::ValueOf(transmission::kSunSupportNames, sun)) s.sun = *support;
   s.scene.model.stresses = st.BoolOr("stresses", s.scene.model.stresses);
   if (const toml::node* limit = root["study"]["k_gamma_limit"].node()) {
     const double n = s.scene.stage.planets;
@@ -440,7 +444,7 @@ StudySpec ParseStudy(const std::string& text, const std::string& source,
 
 StudySpec ReadStudy(const std::string& path) {
   // A study file is a page of keys, as a scene is.
-  return ParseStudy(transmission::internal::ReadInputFile(path, "study file (TOML)", 1u << 20),
+  return ParseStudy(io::ReadInputFile(path, "study file (TOML)", 1u << 20),
                     path, std::filesystem::path(path).parent_path().string());
 }
 

@@ -2,20 +2,20 @@
 #include "epicycle/transmission/dynamic_settings.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
-#include "number_format.hpp"
+#include "epicycle/io/number_format.hpp"
+#include "epicycle/io/units.hpp"
 
 namespace epicycle::transmission {
 
 void DynamicSettings::Validate() const {
   auto fail = [](const std::string& field, double v, const std::string& rule) {
-    throw std::invalid_argument("dynamics: " + field + " = " + internal::Num(v) + ": " + rule);
+    throw std::invalid_argument("dynamics: " + field + " = " + io::Num(v) + ": " + rule);
   };
   if (!std::isfinite(sun_speed) || !(sun_speed > 0))
-    fail("sun_speed_rpm", sun_speed * 30.0 / std::numbers::pi,
+    fail("sun_speed_rpm", io::RadPerSecondToRpm(sun_speed),
          "must be > 0 (the sun and the carrier are driven at a speed)");
   auto non_negative = [&](const std::string& field, double v) {
     if (!std::isfinite(v) || v < 0) fail(field, v, "must be finite and >= 0");

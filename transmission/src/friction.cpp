@@ -6,12 +6,12 @@
 #include <limits>
 #include <stdexcept>
 
-#include "number_format.hpp"
+#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::transmission {
 namespace {
 
-using internal::Num;
+using io::Num;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -117,30 +117,19 @@ double FrictionModel::SignedCoefficient(const FrictionContact& c) const {
       return BenedictKelley(c);
   }
   throw std::invalid_argument("friction.law = " + std::to_string(static_cast<int>(options_.law)) +
-                              ": not one of off, constant, xu-kahraman, benedict-kelley");
+                              ": not one of " + io::NameList(kFrictionLawNames));
 }
 
 std::string FrictionLawName(FrictionLaw law) {
-  switch (law) {
-    case FrictionLaw::kOff:
-      return "off";
-    case FrictionLaw::kConstant:
-      return "constant";
-    case FrictionLaw::kXuKahraman:
-      return "xu-kahraman";
-    case FrictionLaw::kBenedictKelley:
-      return "benedict-kelley";
-  }
+  if (const char* name = io::NameOf(kFrictionLawNames, law)) return name;
   throw std::invalid_argument("friction law " + std::to_string(static_cast<int>(law)) +
-                              ": not one of off, constant, xu-kahraman, benedict-kelley");
+                              ": not one of " + io::NameList(kFrictionLawNames));
 }
 
 FrictionLaw FrictionLawFromName(const std::string& name) {
-  for (FrictionLaw law : {FrictionLaw::kOff, FrictionLaw::kConstant, FrictionLaw::kXuKahraman,
-                          FrictionLaw::kBenedictKelley})
-    if (FrictionLawName(law) == name) return law;
-  throw std::invalid_argument("friction law \"" + name +
-                              "\": must be one of off, constant, xu-kahraman, benedict-kelley");
+  if (const std::optional<FrictionLaw> law = io::ValueOf(kFrictionLawNames, name)) return *law;
+  throw std::invalid_argument("friction law \"" + name + "\": must be one of " +
+                              io::NameList(kFrictionLawNames));
 }
 
 void FrictionOptions::Validate() const {

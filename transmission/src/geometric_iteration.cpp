@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "epicycle/io/number_format.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
-#include "number_format.hpp"
 
 namespace epicycle::transmission {
 
@@ -74,9 +74,9 @@ GeometricIterationResult IterateGeometry(
     if (it == options.max_iterations && r.force_change > forces.tolerance) {
       r.status = StageStatus::kFrictionNotSettled;
       r.message = "the friction fixed point did not settle in " + std::to_string(it) +
-                  " iterations: last relative force change " + internal::Num(r.force_change) +
-                  " (tolerance " + internal::Num(forces.tolerance) +
-                  "), last displacement increment " + internal::Num(step) + " m";
+                  " iterations: last relative force change " + io::Num(r.force_change) +
+                  " (tolerance " + io::Num(forces.tolerance) + "), last displacement increment " +
+                  io::Num(step) + " m";
     } else if (it == options.max_iterations) {
       r.status = StageStatus::kNotSettled;
       r.message = "geometric iterations did not settle: last displacement increment " +

@@ -38,6 +38,12 @@ void QuasiStaticOptions::Validate() const {
   }
 }
 
+std::vector<std::string> RestFrictionNames() {
+  std::vector<std::string> names = io::Names(kFrictionLawNames);
+  names.insert(names.begin() + 1, "scene");  // after "off"
+  return names;
+}
+
 void SetRestFriction(const DynamicSettings& scene, const std::string& choice,
                      QuasiStaticOptions* options) {
   if (choice == "off") {
@@ -50,9 +56,9 @@ void SetRestFriction(const DynamicSettings& scene, const std::string& choice,
   try {
     options->friction.law = FrictionLawFromName(choice);
   } catch (const std::invalid_argument&) {
-    throw std::invalid_argument("friction = \"" + choice +
-                                "\": must be one of off, scene, constant, xu-kahraman, "
-                                "benedict-kelley");
+    std::string names;
+    for (const std::string& n : RestFrictionNames()) names += (names.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("friction = \"" + choice + "\": must be one of " + names);
   }
 }
 

@@ -7,11 +7,9 @@
 namespace epicycle::transmission {
 
 RunRange RunRangeFromName(const std::string& name) {
-  if (name == "cycle") return RunRange::kMeshCycle;
-  if (name == "planet") return RunRange::kPlanetRevolution;
-  if (name == "sun") return RunRange::kSunRevolution;
-  if (name == "revolution") return RunRange::kCarrierRevolution;
-  throw std::invalid_argument("range = '" + name + "': must be cycle, planet, sun or revolution");
+  if (const std::optional<RunRange> range = io::ValueOf(kRunRangeNames, name)) return *range;
+  throw std::invalid_argument("range = '" + name + "': must be " +
+                              io::NameList(kRunRangeNames, " or "));
 }
 
 double CarrierSpan(const geometry::Stage& stage, RunRange range) {

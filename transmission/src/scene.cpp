@@ -9,8 +9,9 @@
 
 #include "epicycle/compliance/influence_table.hpp"
 #include "epicycle/geometry/iso.hpp"
-#include "epicycle/transmission/internal/input_file.hpp"
-#include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/io/input_file.hpp"
+#include "epicycle/io/toml_reader.hpp"
+#include "epicycle/io/units.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 #include "scene_internal.hpp"
 
@@ -18,16 +19,16 @@ namespace epicycle::transmission {
 
 using geometry::GearKind;
 using geometry::GearSpec;
-using internal::ParseDocument;
-using internal::Rule;
-using internal::TableReader;
+using io::ParseDocument;
+using io::Rule;
+using io::TableReader;
 
 namespace {
 
 using internal::kMm;
 using internal::kUm;
-using internal::SceneNum;
 using internal::ReadDamage;
+using internal::SceneNum;
 
 // Physical ranges of the scene's values (docs/scenes.md, "Ranges and validity"). Sizes are
 // relative to the module, errors to the module (errors) and to the backlash (warnings).
@@ -92,10 +93,9 @@ Inertia ReadInertia(TableReader& t) {
 void ReadDynamics(TableReader& top, DynamicSettings& d, std::vector<std::string>* warnings) {
   if (auto t = top.OptionalTable("dynamics")) {
     // The rule of every sun speed a run is given (run_arguments.hpp: --speed-rpm, Python's).
-    d.sun_speed =
+    d.sun_speed = io::RpmToRadPerSecond(
         t->RealOr("sun_speed_rpm", 1500.0,
-                  Rule::Closed(kSunSpeedRpm.lo, kSunSpeedRpm.hi).Because(kSunSpeedRpm.why)) *
-        std::numbers::pi / 30.0;
+                  Rule::Closed(kSunSpeedRpm.lo, kSunSpeedRpm.hi).Because(kSunSpeedRpm.why)));
     d.carrier_free = t->StringOr("carrier", "speed", {"speed", "torque"}) == "torque";
     d.carrier_load_inertia = t->RealOr("carrier_load_inertia_kgm2", 0.0, Rule::NonNegative());
     d.sun_speed_driven = t->StringOr("sun", "torque", {"torque", "speed"}) == "speed";
@@ -118,8 +118,8 @@ void ReadDynamics(TableReader& top, DynamicSettings& d, std::vector<std::string>
       d.ring_torsional_damping =
           t->RealOr("ring_torsional_damping_Nms_per_rad", 0.0, Rule::NonNegative());
     }
-    d.friction.law = FrictionLawFromName(t->StringOr(
-        "friction", "xu-kahraman", {"off", "constant", "xu-kahraman", "benedict-kelley"}));
+    d.friction.law =
+        FrictionLawFromName(t->StringOr("friction", "xu-kahraman", io::Names(kFrictionLawNames)));
     d.friction.coefficient = t->RealOr("friction_coefficient", 0.05, Rule::Closed(0, 1));
     t->Done();
   }
@@ -511,8 +511,8 @@ void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
     pair_table.Check(
         "centre_distance_mm", p.centre_distance / kMm,
         Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
-            .Because(std::string(internal ? "m (z2 - z1)/2 = " : "m (z1 + z2)/2 = ") + SceneNum(a0) +
-                     " mm within 2 modules (profile shifts move it by about x m)"));
+            .Because(std::string(internal ? "m (z2 - z1)/2 = " : "m (z1 + z2)/2 = ") +
+                     SceneNum(a0) + " mm within 2 modules (profile shifts move it by about x m)"));
     pair_table.Done();
   }
   {
@@ -611,17 +611,10 @@ std::string ContentHash(const std::string& text) {
   return buf;
 }
 
-Scene ParseScene(const std::string& text, const std::string& source) {
-  const toml::table root = ParseDocument(text, source);
-  Scene s;
-  s.source = source;
-  TableReader top(root, "", source);
-  {
-    TableReader t = top.Table("scene");
-    s.name = t.String("name");
-    s.description = t.StringOr("description", "");
-    t.Done();
-  }
+namespace {
+
+// The scene's optional [material], [rating] and [model] tables.
+void ReadMaterialRatingModel(TableReader& top, Scene& s) {
   if (auto t = top.OptionalTable("material")) {
     s.material.youngs_modulus =
         t->Real("youngs_modulus_GPa",
@@ -653,9 +646,9 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     t->Done();
   }
   if (auto t = top.OptionalTable("model")) {
-    const std::string plane = t->StringOr("plane", "strain", {"strain", "stress"});
-    s.model.plane = plane == "strain" ? solvers::PlaneAssumption::kPlaneStrain
-                                      : solvers::PlaneAssumption::kPlaneStress;
+    s.model.plane =
+        *io::ValueOf(solvers::kPlaneAssumptionNames,
+                     t->StringOr("plane", "strain", io::Names(solvers::kPlaneAssumptionNames)));
     s.model.join_depth = t->RealOr("join_depth_mm", 0.0, Rule::NonNegative()) * kMm;
     if (t->Has("join_depth_factor") && s.model.join_depth > 0) {
       t->Fail("join_depth_factor", "given",
@@ -673,40 +666,13 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     s.model.stresses = t->BoolOr("stresses", false);
     t->Done();
   }
-  // A scene is a planetary stage, or a single gear pair when it has a [pair] table.
-  const bool is_pair = top.Has("pair");
-  s.kind = is_pair ? SceneKind::kPair : SceneKind::kStage;
-  // [[fit]] tables name gears whose profile shift is solved for a backlash, in order.
-  std::vector<TableReader> fits = top.TableArray("fit");
-  std::vector<std::string> fit_gears;
-  for (TableReader& f : fits) {
-    const std::string g = is_pair ? f.String("gear", {"gear1", "gear2"})
-                                  : f.String("gear", {"sun", "planet", "ring"});
-    for (const std::string& h : fit_gears) {
-      if (h == g) f.Fail("gear", "\"" + g + "\"", "each gear can be fitted once");
-    }
-    fit_gears.push_back(g);
-  }
-  auto fitted = [&](const std::string& g) {
-    for (const std::string& h : fit_gears) {
-      if (h == g) return true;
-    }
-    return false;
-  };
+}
 
-  if (is_pair) {
-    ReadPair(top, s, fits, fit_gears, fitted);
-    ReadDamage(top, s, {{"gear1", &s.pair.gear1}, {"gear2", &s.pair.gear2}});
-    top.Done();
-    const bool internal = s.pair.gear2.kind == GearKind::kInternal;
-    ContactRatioWarning(s.pair.gear1, s.pair.gear2, internal, s.pair.centre_distance,
-                        s.source + ": [gear1]/[gear2]", &s.warnings);
-    s.hash = ContentHash(text);
-    s.text = text;
-    return s;
-  }
+// A stage's [sun], [planet], [ring], [carrier] and [load] tables; `fitted(gear)`: the gear's
+// profile shift is fitted ([[fit]]).
+template <typename Fitted>
+void ReadStageMembers(TableReader& top, Scene& s, Fitted&& fitted) {
   geometry::StageSpec& st = s.stage;
-  std::vector<ErrorKey> error_keys;
   {
     TableReader t = top.Table("sun");
     st.sun = ReadGear(t, "sun", GearKind::kExternal, fitted("sun"), &s.inertia.sun, &s.warnings);
@@ -763,15 +729,13 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     st.load_sign = s.loads.sun_torque > 0 ? 1 : -1;
     t.Done();
   }
-  if (auto t = top.OptionalTable("contact")) {
-    s.gap_window = ReadGapWindow(*t, st.sun.module);
-    t->Done();
-  }
+}
+
+// A stage's optional [supports] table.
+void ReadSupports(TableReader& top, Scene& s) {
   if (auto t = top.OptionalTable("supports")) {
-    const std::string sun = t->StringOr("sun", "fixed", {"fixed", "floating", "elastic"});
-    s.supports.sun = sun == "fixed"      ? SunSupport::kFixed
-                     : sun == "floating" ? SunSupport::kFloating
-                                         : SunSupport::kElastic;
+    s.supports.sun =
+        *io::ValueOf(kSunSupportNames, t->StringOr("sun", "fixed", io::Names(kSunSupportNames)));
     if (s.supports.sun == SunSupport::kElastic) {
       s.supports.sun_stiffness = t->Real("sun_stiffness_N_per_um", kBearingRule) * 1e6;
     }
@@ -782,19 +746,13 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     }
     t->Done();
   }
-  if (auto t = top.OptionalTable("errors")) {
-    ReadErrors(*t, s, &error_keys);
-    t->Done();
-  }
-  ReadDynamics(top, s.dynamics, &s.warnings);
-  if (s.dynamics.carrier_free && !s.dynamics.sun_speed_driven)
-    s.warnings.push_back(
-        s.source +
-        ": [dynamics] carrier = \"torque\" with the sun torque-driven: both ends carry a torque "
-        "and nothing holds the stage's speed; in motion the mesh damping and friction take their "
-        "losses from its rotation, so it slows over a long run (a speed sweep's start transient "
-        "of seconds: the transmission error then grows past the model's validity); sun = "
-        "\"speed\" holds the sun at its speed");
+}
+
+// A stage's [[fit]] tables (`fits`, their gears `fit_gears`): each solves the profile shift of
+// its gear for a normal backlash in its mesh, on the nominal teeth, in order.
+void ApplyStageFits(std::vector<TableReader>& fits, const std::vector<std::string>& fit_gears,
+                    Scene& s) {
+  geometry::StageSpec& st = s.stage;
   for (std::size_t k = 0; k < fits.size(); ++k) {
     TableReader& fit = fits[k];
     ShiftFit f;
@@ -819,6 +777,76 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     target.profile_shift = f.profile_shift;
     s.fits.push_back(f);
   }
+}
+
+}  // namespace
+
+Scene ParseScene(const std::string& text, const std::string& source) {
+  const toml::table root = ParseDocument(text, source);
+  Scene s;
+  s.source = source;
+  TableReader top(root, "", source);
+  {
+    TableReader t = top.Table("scene");
+    s.name = t.String("name");
+    s.description = t.StringOr("description", "");
+    t.Done();
+  }
+  ReadMaterialRatingModel(top, s);
+  // A scene is a planetary stage, or a single gear pair when it has a [pair] table.
+  const bool is_pair = top.Has("pair");
+  s.kind = is_pair ? SceneKind::kPair : SceneKind::kStage;
+  // [[fit]] tables name gears whose profile shift is solved for a backlash, in order.
+  std::vector<TableReader> fits = top.TableArray("fit");
+  std::vector<std::string> fit_gears;
+  for (TableReader& f : fits) {
+    const std::string g = is_pair ? f.String("gear", {"gear1", "gear2"})
+                                  : f.String("gear", {"sun", "planet", "ring"});
+    for (const std::string& h : fit_gears) {
+      if (h == g) f.Fail("gear", "\"" + g + "\"", "each gear can be fitted once");
+    }
+    fit_gears.push_back(g);
+  }
+  auto fitted = [&](const std::string& g) {
+    for (const std::string& h : fit_gears) {
+      if (h == g) return true;
+    }
+    return false;
+  };
+
+  if (is_pair) {
+    ReadPair(top, s, fits, fit_gears, fitted);
+    ReadDamage(top, s, {{"gear1", &s.pair.gear1}, {"gear2", &s.pair.gear2}});
+    top.Done();
+    const bool internal = s.pair.gear2.kind == GearKind::kInternal;
+    ContactRatioWarning(s.pair.gear1, s.pair.gear2, internal, s.pair.centre_distance,
+                        s.source + ": [gear1]/[gear2]", &s.warnings);
+    s.hash = ContentHash(text);
+    s.text = text;
+    return s;
+  }
+  geometry::StageSpec& st = s.stage;
+  std::vector<ErrorKey> error_keys;
+  ReadStageMembers(top, s, fitted);
+  if (auto t = top.OptionalTable("contact")) {
+    s.gap_window = ReadGapWindow(*t, st.sun.module);
+    t->Done();
+  }
+  ReadSupports(top, s);
+  if (auto t = top.OptionalTable("errors")) {
+    ReadErrors(*t, s, &error_keys);
+    t->Done();
+  }
+  ReadDynamics(top, s.dynamics, &s.warnings);
+  if (s.dynamics.carrier_free && !s.dynamics.sun_speed_driven)
+    s.warnings.push_back(
+        s.source +
+        ": [dynamics] carrier = \"torque\" with the sun torque-driven: both ends carry a torque "
+        "and nothing holds the stage's speed; in motion the mesh damping and friction take their "
+        "losses from its rotation, so it slows over a long run (a speed sweep's start transient "
+        "of seconds: the transmission error then grows past the model's validity); sun = "
+        "\"speed\" holds the sun at its speed");
+  ApplyStageFits(fits, fit_gears, s);
   for (GearSpec* g : {&st.sun, &st.planet, &st.ring}) ResolveRadii(*g);
   {
     std::vector<std::pair<std::string, const GearSpec*>> gears{{"sun", &st.sun}};
@@ -836,13 +864,12 @@ Scene ParseScene(const std::string& text, const std::string& source) {
 
 Scene ReadScene(const std::string& path) {
   // A scene is a page of keys (the paper's stage: 3 kB); 1 MiB leaves room for comments.
-  return ParseScene(internal::ReadInputFile(path, "scene file (TOML)", 1u << 20), path);
+  return ParseScene(io::ReadInputFile(path, "scene file (TOML)", 1u << 20), path);
 }
 
 const char* SunSupportName(SunSupport support) {
-  return support == SunSupport::kFixed      ? "fixed"
-         : support == SunSupport::kFloating ? "floating"
-                                            : "elastic";
+  const char* name = io::NameOf(kSunSupportNames, support);
+  return name ? name : "elastic";
 }
 
 }  // namespace epicycle::transmission

@@ -9,7 +9,7 @@
 #include "epicycle/compliance/cracked_mesh.hpp"
 #include "epicycle/compliance/gear_mesh.hpp"
 #include "epicycle/compliance/root_crack.hpp"
-#include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/io/toml_reader.hpp"
 #include "scene_internal.hpp"
 
 namespace epicycle::transmission::internal {

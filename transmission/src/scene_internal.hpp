@@ -6,14 +6,17 @@
 #include <utility>
 #include <vector>
 
-#include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/io/number_format.hpp"
+#include "epicycle/io/toml_reader.hpp"
 #include "epicycle/transmission/scene.hpp"
-#include "number_format.hpp"
 
 namespace epicycle::transmission::internal {
 
+using io::Rule;
+using io::TableReader;
+
 /// A value in a scene message: 10 significant digits (a scene's values are read back exactly).
-inline std::string SceneNum(double v) { return Num(v, 10); }
+inline std::string SceneNum(double v) { return io::Num(v, 10); }
 
 inline constexpr double kMm = 1e-3, kUm = 1e-6;
 

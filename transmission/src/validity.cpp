@@ -5,14 +5,14 @@
 #include <cstdio>
 #include <utility>
 
+#include "epicycle/io/number_format.hpp"
 #include "epicycle/solvers/local_term.hpp"
-#include "number_format.hpp"
 
 namespace epicycle::transmission {
 
 namespace {
 
-using internal::Num;
+using io::Num;
 
 // The transmission-error warning: `worst` and `limit` are rotations [rad] of the gear named in
 // `along` (a tenth of its module along its line of action).

@@ -14,6 +14,7 @@
 #include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 #include "figures.hpp"
+#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 using dynamics::DynamicSample;
@@ -84,7 +85,7 @@ TEST_CASE(
   for (const double torque : {-600.0, -6000.0, -20000.0}) {
     test::RigOptions o;
     o.edit = [](transmission::DynamicSettings& s) {
-      s.sun_speed = 1500 * test::kRpm;
+      s.sun_speed = io::RpmToRadPerSecond(1500);
       s.friction.law = transmission::FrictionLaw::kOff;  // mesh damping 5 %: W_diss > 0
     };
     const std::string text =

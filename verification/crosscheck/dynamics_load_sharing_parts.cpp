@@ -11,12 +11,12 @@
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "figures.hpp"
+#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 using dynamics::DynamicSample;
 using dynamics::LoadSharingParts;
 using test::Figure;
-using test::kRpm;
 using test::RigOptions;
 using test::Sci;
 using test::Times;
@@ -36,7 +36,7 @@ Case RunCase(SunSupport sun, bool friction) {
   RigOptions o;
   o.sun = sun;
   o.edit = [friction](transmission::DynamicSettings& s) {
-    s.sun_speed = 1500 * kRpm;
+    s.sun_speed = io::RpmToRadPerSecond(1500);
     if (!friction) s.friction.law = transmission::FrictionLaw::kOff;
   };
   Case c{test::MakeRig(test::WithRunout(test::SceneText("paper_stage.toml")), "parts", o), {}};

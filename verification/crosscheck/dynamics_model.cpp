@@ -12,16 +12,16 @@
 
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/simulation.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "figures.hpp"
 #include "lin_parker.hpp"
+#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 using dynamics::DynamicSample;
 using test::Figure;
 using test::Harmonic;
-using test::kRpm;
 using test::QuasiStaticGap;
 using test::RigOptions;
 using test::Run;
@@ -47,7 +47,7 @@ TEST_CASE("quasi-static limit: the dynamic LSR tends to the quasi-static sweep w
     RigOptions o;
     o.local_terms = false;
     o.edit = [&](transmission::DynamicSettings& s) {
-      s.sun_speed = speeds[k] * kRpm;
+      s.sun_speed = io::RpmToRadPerSecond(speeds[k]);
       s.friction.law = transmission::FrictionLaw::kOff;
     };
     const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
@@ -130,7 +130,7 @@ TEST_CASE(
     o.spring = 1e-9;
     o.spring_mesh_stiffness = 1.5e9;
     o.edit = [&](transmission::DynamicSettings& s) {
-      s.sun_speed = 1500 * kRpm;
+      s.sun_speed = io::RpmToRadPerSecond(1500);
       s.mesh_damping_ratio = dissipative ? 0.05 : 0.0;
       s.friction.law =
           dissipative ? transmission::FrictionLaw::kConstant : transmission::FrictionLaw::kOff;
@@ -191,7 +191,7 @@ TEST_CASE(
   // right-hand side's value; its error is about the local error of θ̇_s over a step,
   // (rtol|θ̇_s| + atol_v)/h. The tolerance is 10 times that, with h the mean step.
   RigOptions o;
-  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
+  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1500); };
   const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
   dynamics::SimulationOptions so;
   const auto times = Times(*rig.model, *rig.stage, 2, 20);
@@ -231,7 +231,7 @@ TEST_CASE(
   // the largest allowed one (what remains: the transient, the integrator's error at rtol 1e-6).
   RigOptions o;
   o.edit = [](transmission::DynamicSettings& s) {
-    s.sun_speed = 1500 * kRpm;
+    s.sun_speed = io::RpmToRadPerSecond(1500);
     s.friction.law = transmission::FrictionLaw::kOff;
   };
   const auto rig = test::MakeRig(test::SceneText("paper_stage.toml"), "perfect", o);
@@ -287,7 +287,7 @@ TEST_CASE(
   // with the mesh stiffness, so its error is about κ·rtol with κ = (k δ)/F ~ 1 ... stated as
   // 100 rtol (absolute, on LSR ~ 1/3): 1e-4 at rtol 1e-6.
   RigOptions o;
-  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
+  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1500); };
   const auto rig = test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
   const auto times = Times(*rig.model, *rig.stage, 2, 20);
   dynamics::SimulationOptions a, b, c;
@@ -348,7 +348,7 @@ TEST_CASE(
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
   o.edit = [](transmission::DynamicSettings& s) {
-    s.sun_speed = 1500 * kRpm;
+    s.sun_speed = io::RpmToRadPerSecond(1500);
     s.mesh_damping_ratio = 0;
     s.friction.law = transmission::FrictionLaw::kXuKahraman;
   };
@@ -477,7 +477,7 @@ TEST_CASE(
     RigOptions o;
     o.sun = transmission::SunSupport::kFloating;  // translations too
     o.edit = [law](transmission::DynamicSettings& s) {
-      s.sun_speed = 30 * kRpm;
+      s.sun_speed = io::RpmToRadPerSecond(30);
       s.friction.law = law;
     };
     return test::MakeRig(WithRunout(test::SceneText("paper_stage.toml")), "jacobian", o);

@@ -11,6 +11,7 @@
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/periodic.hpp"
 #include "epicycle/dynamics/stage_periodic.hpp"
+#include "epicycle/io/units.hpp"
 #include "figures.hpp"
 
 using namespace epicycle;
@@ -22,7 +23,7 @@ TEST_CASE(
   test::RigOptions o;
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
-  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1000 * test::kRpm; };
+  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1000); };
   const auto rig = test::MakeRig(test::SceneText("paper_stage.toml"), "springs", o);
   const dynamics::DynamicModel& m = *rig.model;
   std::string dofs;

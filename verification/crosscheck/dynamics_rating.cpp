@@ -9,10 +9,11 @@
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/dynamic_factor.hpp"
 #include "epicycle/dynamics/simulation.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/root_stress.hpp"
 #include "figures.hpp"
+#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 
@@ -183,7 +184,7 @@ TEST_CASE(
   test::RigOptions o;
   o.local_terms = false;
   o.edit = [](transmission::DynamicSettings& s) {
-    s.sun_speed = 60 * test::kRpm;
+    s.sun_speed = io::RpmToRadPerSecond(60);
     s.friction.law = transmission::FrictionLaw::kConstant;
     s.friction.coefficient = 0.05;
     s.friction.smoothing_velocity = 1e-5;

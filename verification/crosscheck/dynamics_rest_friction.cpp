@@ -12,10 +12,10 @@
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "figures.hpp"
+#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 using test::Figure;
-using test::kRpm;
 using test::RigOptions;
 using test::Run;
 using test::Sci;
@@ -120,7 +120,7 @@ TEST_CASE(
     o.sun = sun;
     o.local_terms = false;
     o.edit = [&](transmission::DynamicSettings& s) {
-      s.sun_speed = speeds[k] * kRpm;
+      s.sun_speed = io::RpmToRadPerSecond(speeds[k]);
       s.friction.law = law;
       s.friction.smoothing_velocity = 1e-5;
     };

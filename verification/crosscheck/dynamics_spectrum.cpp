@@ -14,6 +14,7 @@
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/spectrum.hpp"
 #include "epicycle/dynamics/vibration.hpp"
+#include "epicycle/io/units.hpp"
 #include "figures.hpp"
 #include "stage_fixtures.hpp"
 
@@ -60,7 +61,7 @@ std::vector<std::vector<double>> FaultRun(const std::string& text, const std::st
                                           int cycles = kFaultCycles) {
   const int per_cycle = 24, skip = 4;
   test::RigOptions ro;
-  ro.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * test::kRpm; };
+  ro.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1500); };
   test::DynamicRig rig = test::MakeRig(text, file, ro);
   const dynamics::DynamicModel& model = *rig.model;
   *f = dynamics::CharacteristicFrequencies(*rig.stage, model.sun_speed());
@@ -188,7 +189,7 @@ TEST_CASE(
   // margin of 8 for the transient's and the error's spread into single bins, not their sum over
   // bins.
   test::RigOptions ro;
-  ro.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * test::kRpm; };
+  ro.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1500); };
   test::DynamicRig rig = test::MakeRig(test::SceneText("paper_stage.toml"), "paper stage", ro);
   const dynamics::DynamicModel& model = *rig.model;
   const dynamics::StageFrequencies f =

@@ -11,6 +11,7 @@
 
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
+#include "epicycle/io/units.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "figures.hpp"
 
@@ -34,7 +35,7 @@ test::DynamicRig PaperRig(bool local_terms) {
   RigOptions o;
   o.local_terms = local_terms;
   o.edit = [](transmission::DynamicSettings& s) {
-    s.sun_speed = 1000 * test::kRpm;
+    s.sun_speed = io::RpmToRadPerSecond(1000);
     s.friction.law = transmission::FrictionLaw::kOff;
   };
   return test::MakeRig(test::SceneText("paper_stage.toml"), "paper stage", o);
@@ -239,7 +240,7 @@ TEST_CASE("speed sweep: a failed speed is a result with its message, never left 
   RigOptions o;
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
-  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1000 * test::kRpm; };
+  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1000); };
   const auto rig = test::MakeRig(test::SceneText("paper_stage.toml"), "springs", o);
   dynamics::SpeedSweepOptions so;
   so.sun_speeds_rpm = {1000, 2000, 3000};

@@ -11,10 +11,11 @@
 
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/simulation.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "figures.hpp"
 #include "lin_parker.hpp"
+#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 using dynamics::DynamicSample;
@@ -23,7 +24,6 @@ using test::Figure;
 using test::Harmonic;
 using test::kBearing;
 using test::kRingTorsion;
-using test::kRpm;
 using test::MeanDeviation;
 using test::RigOptions;
 using test::Run;
@@ -138,7 +138,7 @@ TEST_CASE(
     "[crosscheck][slow][dynamics][paper]") {
   const std::string text = WithRunout(test::SceneText("paper_stage.toml"));
   RigOptions o;
-  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = 1500 * kRpm; };
+  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1500); };
   const double cycles = 24;  // a planet revolution relative to the carrier: z_p mesh cycles
 
   SECTION("fixed sun") {
@@ -211,7 +211,7 @@ TEST_CASE(
     for (const double rpm : {150.0, 1500.0}) {
       RigOptions op = o;
       op.edit = [rpm](transmission::DynamicSettings& s) {
-        s.sun_speed = rpm * kRpm;
+        s.sun_speed = io::RpmToRadPerSecond(rpm);
         s.friction.law = transmission::FrictionLaw::kOff;
       };
       double ratio[2], baseline[2];
@@ -263,7 +263,7 @@ TEST_CASE(
     RigOptions of = o;
     of.sun = SunSupport::kFloating;
     of.edit = [](transmission::DynamicSettings& s) {
-      s.sun_speed = 1500 * kRpm;
+      s.sun_speed = io::RpmToRadPerSecond(1500);
       s.friction.law = transmission::FrictionLaw::kOff;
     };
     const auto rig = test::MakeRig(text, "runout floating", of);
@@ -471,7 +471,7 @@ TEST_CASE(
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
   o.edit = [](transmission::DynamicSettings& s) {
-    s.sun_speed = 1500 * kRpm;
+    s.sun_speed = io::RpmToRadPerSecond(1500);
     s.sun_speed_driven = true;
     s.carrier_free = true;
     s.carrier_load_inertia = 0.05;

@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "epicycle/studies/runner.hpp"
-#include "epicycle/studies/summary.hpp"
+#include "epicycle/studies/study_summary.hpp"
 #include "figures.hpp"
 #include "quasistatic_program.hpp"
 #include "study_fixtures.hpp"

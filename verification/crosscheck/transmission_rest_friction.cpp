@@ -16,6 +16,7 @@
 #include "epicycle/transmission/quasistatic.hpp"
 #include "fe_fixtures.hpp"
 #include "figures.hpp"
+#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 using test::Sci;
@@ -106,7 +107,7 @@ TEST_CASE(
   opt.friction.law = transmission::FrictionLaw::kConstant;
   opt.friction.coefficient = mu;
   opt.friction.smoothing_velocity = v_eps;
-  opt.sun_speed = 1500.0 * std::numbers::pi / 30.0;
+  opt.sun_speed = io::RpmToRadPerSecond(1500.0);
   const double t_s = rig.scene.loads.sun_torque;
   const double z_s = st.sun().teeth(), z_r = st.ring().teeth(), z_p = st.planet(0).teeth();
   const double w_s = (t_s > 0 ? 1.0 : -1.0) * opt.sun_speed;  // the sun turns as T_s drives it
@@ -204,7 +205,7 @@ TEST_CASE(
   Rig rig("paper_stage.toml");
   const geometry::Stage& st = rig.stage;
   const double z_s = st.sun().teeth(), z_r = st.ring().teeth(), z_p = st.planet(0).teeth();
-  const double w_s = 1500.0 * std::numbers::pi / 30.0, w_c = w_s * z_s / (z_s + z_r);
+  const double w_s = io::RpmToRadPerSecond(1500.0), w_c = w_s * z_s / (z_s + z_r);
   const double w_sr = w_s - w_c, w_pr = -w_sr * z_s / z_p, w_rr = -w_c;
   double worst = 0, scale = 0, ring_least = INFINITY;
   int compared = 0;

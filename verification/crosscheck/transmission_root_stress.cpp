@@ -24,6 +24,7 @@
 #include "figures.hpp"
 #include "fillet_fixtures.hpp"
 #include "stage_fixtures.hpp"
+#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 using namespace epicycle::transmission;
@@ -135,7 +136,7 @@ TEST_CASE("root stress with friction at rest: the sun's fillets against its body
   options.friction.law = FrictionLaw::kConstant;
   options.friction.coefficient = 0.1;
   options.friction.smoothing_velocity = 1e-5;
-  options.sun_speed = 1500.0 * std::numbers::pi / 30.0;
+  options.sun_speed = io::RpmToRadPerSecond(1500.0);
   const PositionResult r =
       SolvePosition(model, 0.3 * stage.mesh_cycle(), scene.loads, options);
   REQUIRE(r.converged);

@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include <gmsh.h>
+#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::fe_reference {
 
@@ -23,12 +24,7 @@ using geometry::Vec2;
 constexpr double kMm = 1e3;  // the deck is in mm, N, MPa
 
 // CalculiX reads at most 20 characters per field: 13 significant digits fit any sign and exponent.
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(13);
-  s << v;
-  return s.str();
-}
+using io::Num;
 
 // gmsh state is global: one session per deck, finalized even when an exception leaves.
 struct GmshSession {
@@ -131,7 +127,7 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
     const double margin = 1e-6 * std::abs(seg.t1 - seg.t0);
     if (!(mouth_t > std::min(seg.t0, seg.t1) + margin &&
           mouth_t < std::max(seg.t0, seg.t1) - margin))
-      throw std::invalid_argument("fe deck: crack start_arc = " + Num(crack->crack.start_arc) +
+      throw std::invalid_argument("fe deck: crack start_arc = " + Num(crack->crack.start_arc, 13) +
                                   " m: the mouth falls on a joint of the fillet's segments");
     tip_body = Vec2(pts.back().x(), pts.back().y());
   }
@@ -340,7 +336,7 @@ struct Tri {
 void FeMeshOptions::Validate() const {
   auto positive = [](const char* key, double v) {
     if (!(v > 0) || !std::isfinite(v))
-      throw std::invalid_argument(std::string("fe mesh: ") + key + " = " + Num(v) +
+      throw std::invalid_argument(std::string("fe mesh: ") + key + " = " + Num(v, 13) +
                                   ": must be > 0");
   };
   positive("contact_size", contact_size);
@@ -444,24 +440,26 @@ FeDeckInfo FeDeckInfo::Read(const std::string& path) {
   return info;
 }
 
-FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair& pair,
-                     double torque, double angle, const std::vector<double>& rotations,
-                     const FeMeshOptions& mesh, const FeContactOptions& contact,
-                     const std::string& directory, const FeDamage& damage) {
+namespace {
+
+// The deck's inputs: mesh options, rotations of one sign, a torque, and the damage it meshes (a
+// straight crack, an external gear's spall). @throws std::invalid_argument naming the value.
+void CheckDeckInput(const geometry::GearPair& pair, double torque,
+                    const std::vector<double>& rotations, const FeMeshOptions& mesh,
+                    const FeDamage& damage) {
+  const geometry::Gear& g1 = pair.gear1();
+  const geometry::Gear& g2 = pair.gear2();
+  const FeCrack* crack = damage.crack ? &*damage.crack : nullptr;
+  const FeSpall* spall = damage.spall ? &*damage.spall : nullptr;
   mesh.Validate();
   if (rotations.empty())
     throw std::invalid_argument("fe deck: rotations: at least one step is needed");
   for (double r : rotations) {
     if (!(r * rotations.front() > 0) || !std::isfinite(r))
-      throw std::invalid_argument("fe deck: rotation = " + Num(r) +
+      throw std::invalid_argument("fe deck: rotation = " + Num(r, 13) +
                                   ": every step's rotation must be non-zero and of one sign");
   }
   if (torque == 0) throw std::invalid_argument("fe deck: torque = 0: must be non-zero");
-  const geometry::Gear& g1 = pair.gear1();
-  const geometry::Gear& g2 = pair.gear2();
-  const geometry::PairPoses poses = pair.Poses(angle);
-  const FeCrack* crack = damage.crack ? &*damage.crack : nullptr;
-  const FeSpall* spall = damage.spall ? &*damage.spall : nullptr;
   if (crack) {
     if (crack->gear != 1 && crack->gear != 2)
       throw std::invalid_argument("fe deck: crack gear = " + std::to_string(crack->gear) +
@@ -486,12 +484,30 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
                                   " side " + std::to_string(spall->side) +
                                   ": tooth in [0, z), side ±1");
     if (!(spall->depth > 0) || !(spall->roll_to > spall->roll_from) || !(spall->roll_from >= 0))
-      throw std::invalid_argument("fe deck: spall depth " + Num(spall->depth) + " m, roll " +
-                                  Num(spall->roll_from) + ".." + Num(spall->roll_to) +
+      throw std::invalid_argument("fe deck: spall depth " + Num(spall->depth, 13) + " m, roll " +
+                                  Num(spall->roll_from, 13) + ".." + Num(spall->roll_to, 13) +
                                   " rad: depth > 0 and 0 <= roll_from < roll_to");
   }
+}
 
-  // The tooth pairs in or near contact on the loaded flanks.
+// The tooth pairs in or near contact on the loaded flanks (keyed by their teeth), their contact
+// points [mm], the loaded teeth of each gear and the loaded sides.
+struct LoadedContacts {
+  std::map<std::pair<int, int>, FeToothPair> by_teeth;
+  std::map<std::pair<int, int>, std::vector<Vec2>> points_of;  // each pair's contact points [mm]
+  std::vector<Vec2> contact_points;                            // [mm]
+  std::set<int> teeth1, teeth2;
+  int side1 = 0, side2 = 0;
+};
+
+LoadedContacts FindLoadedContacts(const geometry::GearPair& pair, const geometry::PairPoses& poses,
+                                  const FeContactOptions& contact) {
+  LoadedContacts lc;
+  auto& by_teeth = lc.by_teeth;
+  auto& points_of = lc.points_of;
+  auto& contact_points = lc.contact_points;
+  auto& teeth1 = lc.teeth1;
+  auto& teeth2 = lc.teeth2;
   geometry::ContactSearchOptions search;
   search.gap_window = contact.gap_window;
   search.both_sides = false;
@@ -499,11 +515,6 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   const std::vector<geometry::PotentialContact> contacts = pair.Contacts(poses, search);
   if (contacts.empty())
     throw std::invalid_argument("fe deck: no tooth pair within the gap window at this position");
-  std::map<std::pair<int, int>, FeToothPair> by_teeth;
-  std::map<std::pair<int, int>, std::vector<Vec2>> points_of;  // each pair's contact points [mm]
-  std::vector<Vec2> contact_points;                            // [mm]
-  std::set<int> teeth1, teeth2;
-  int side1 = 0, side2 = 0;
   for (const geometry::PotentialContact& c : contacts) {
     auto [it, fresh] = by_teeth.try_emplace({c.tooth_a, c.tooth_b});
     FeToothPair& p = it->second;
@@ -519,10 +530,384 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
     points_of[{c.tooth_a, c.tooth_b}].push_back(contact_points.back());
     teeth1.insert(c.tooth_a);
     teeth2.insert(c.tooth_b);
-    side1 = c.side_a;
-    side2 = c.side_b;
+    lc.side1 = c.side_a;
+    lc.side2 = c.side_b;
+  }
+  return lc;
+}
+
+// The size field's view of each fillet: every 10th polyline point and the bounding box.
+struct FilletZone {
+  int gear = 1;
+  std::vector<Vec2> points;
+  Vec2 lo, hi;
+};
+
+std::vector<FilletZone> FilletZones(const std::vector<FilletLine>& fillet_lines) {
+  std::vector<FilletZone> fillet_zones;
+  for (const FilletLine& line : fillet_lines) {
+    FilletZone z;
+    z.gear = line.gear;
+    z.lo = z.hi = line.p.front();
+    for (std::size_t j = 0; j < line.p.size(); ++j) {
+      if (j % 10 != 0 && j + 1 != line.p.size()) continue;
+      z.points.push_back(line.p[j]);
+      z.lo = z.lo.cwiseMin(line.p[j]);
+      z.hi = z.hi.cwiseMax(line.p[j]);
+    }
+    fillet_zones.push_back(std::move(z));
+  }
+  return fillet_zones;
+}
+
+// The straight crack's axis in the mesh [mm]: its mouth, its unit direction toward the tip and
+// its length.
+struct CrackAxis {
+  Vec2 mouth = Vec2::Zero(), dir = Vec2::Zero();
+  double length = 0;
+};
+
+// Embeds the crack's curve in its gear's surface (the mesh keeps it as element sides).
+CrackAxis EmbedCrack(const GearModel& cracked) {
+  CrackAxis axis;
+  Vec2& mouth_xy = axis.mouth;
+  gmsh::model::mesh::embed(1, {cracked.crack_curve}, 2, cracked.surface);
+  double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
+  // The mouth: the curve's end other than the tip.
+  std::vector<std::pair<int, int>> ends;
+  gmsh::model::getBoundary({{1, cracked.crack_curve}}, ends, false, false, false);
+  for (const auto& [dim, tag] : ends) {
+    if (std::abs(tag) == cracked.crack_tip) continue;
+    gmsh::model::getBoundingBox(0, std::abs(tag), xmin, ymin, zmin, xmax, ymax, zmax);
+    mouth_xy = Vec2(xmin, ymin);
+  }
+  axis.length = (cracked.tip_xy - mouth_xy).norm();
+  axis.dir = (cracked.tip_xy - mouth_xy) / axis.length;
+  return axis;
+}
+
+// The second-order triangle mesh of the two gears: gmsh's node tags → compact 0-based indices,
+// the nodes' points [mm], the 6-node triangles counter-clockwise and each corner pair's
+// (triangle, edge). The spline interpolation points are model vertices of their own, meshed as
+// free nodes: left out.
+struct DeckMesh {
+  std::map<std::size_t, int> index;
+  std::vector<Vec2> xy;
+  std::vector<Tri> tris;
+  std::map<std::pair<int, int>, std::pair<int, int>> edge_of;  // sorted corners → (tri, edge)
+};
+
+DeckMesh ReadDeckMesh(const GearModel& m1, const GearModel& m2) {
+  DeckMesh dm;
+  auto& index = dm.index;
+  auto& xy = dm.xy;
+  auto& tris = dm.tris;
+  auto& edge_of = dm.edge_of;
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords, param;
+  gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1, true, false);
+  std::map<std::size_t, Vec2> position;
+  for (std::size_t i = 0; i < node_tags.size(); ++i)
+    position[node_tags[i]] = Vec2(coords[3 * i], coords[3 * i + 1]);
+  for (int surface : {m1.surface, m2.surface}) {
+    std::vector<std::size_t> elem_tags, elem_nodes;
+    gmsh::model::mesh::getElementsByType(9, elem_tags, elem_nodes, surface);
+    for (std::size_t tag : elem_nodes) {
+      if (index.try_emplace(tag, static_cast<int>(xy.size())).second)
+        xy.push_back(position.at(tag));
+    }
   }
 
+  // Triangles (6-node, gmsh type 9), counter-clockwise.
+  for (int body = 0; body < 2; ++body) {
+    std::vector<std::size_t> elem_tags, elem_nodes;
+    gmsh::model::mesh::getElementsByType(9, elem_tags, elem_nodes,
+                                         body == 0 ? m1.surface : m2.surface);
+    for (std::size_t e = 0; e < elem_tags.size(); ++e) {
+      Tri t;
+      t.body = body;
+      for (int j = 0; j < 6; ++j) t.n[j] = index.at(elem_nodes[6 * e + j]);
+      const double area = geometry::Cross(xy[t.n[1]] - xy[t.n[0]], xy[t.n[2]] - xy[t.n[0]]);
+      if (area < 0) t.n = {t.n[0], t.n[2], t.n[1], t.n[5], t.n[4], t.n[3]};
+      const int id = static_cast<int>(tris.size());
+      for (int j = 0; j < 3; ++j) {
+        const int a = t.n[j], b = t.n[(j + 1) % 3];
+        edge_of[{std::min(a, b), std::max(a, b)}] = {id, j};
+      }
+      tris.push_back(t);
+    }
+  }
+  if (tris.empty()) throw std::runtime_error("fe deck: gmsh produced no triangles");
+  return dm;
+}
+
+// An element larger than a tip round (0.08–0.21 mm radius under m/4 or 2 m elements) can turn
+// inside out when its mid-side node goes onto the arc. Such an element (det J below 2 % of the
+// straight triangle's anywhere at its six nodes) gets straight sides: the tip corner it cuts
+// carries no load (the contacts have 40 µm elements), its sagitta is below the round's radius.
+// Returns how many were straightened.
+int StraightenInvertedTriangles(DeckMesh& dm) {
+  std::vector<Vec2>& xy = dm.xy;
+  int straightened = 0;
+  for (const Tri& t : dm.tris) {
+    const Vec2 a = xy[t.n[0]], b = xy[t.n[1]], c = xy[t.n[2]];
+    const double area2 = geometry::Cross(b - a, c - a);
+    // det J of the quadratic map at the corners and mid-sides (ξ, η) ∈ {0, ½, 1}.
+    bool bad = false;
+    const double pts[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
+    for (const auto& q : pts) {
+      const double xi = q[0], eta = q[1], l0 = 1 - xi - eta;
+      // Shape-function derivatives of the 6-node triangle (corners 0..2, mid-sides 01, 12, 20).
+      const double dxi[6] = {-(4 * l0 - 1), 4 * xi - 1, 0, 4 * (l0 - xi), 4 * eta, -4 * eta};
+      const double deta[6] = {-(4 * l0 - 1), 0, 4 * eta - 1, -4 * xi, 4 * xi, 4 * (l0 - eta)};
+      Vec2 jx = Vec2::Zero(), je = Vec2::Zero();
+      for (int j = 0; j < 6; ++j) {
+        jx += dxi[j] * xy[t.n[j]];
+        je += deta[j] * xy[t.n[j]];
+      }
+      if (geometry::Cross(jx, je) < 0.02 * area2) bad = true;
+    }
+    if (!bad) continue;
+    for (int j = 0; j < 3; ++j) xy[t.n[3 + j]] = 0.5 * (xy[t.n[j]] + xy[t.n[(j + 1) % 3]]);
+    ++straightened;
+  }
+
+  return straightened;
+}
+
+// The crack's faces: every node on the crack curve but the tip's gets a copy, taken by the
+// elements on the left of the path (mouth → tip); the faces are then free surfaces (open).
+// `body`: the cracked gear's (0 or 1). Returns the number of copies.
+int OpenCrack(const GearModel& cracked, int body, const CrackAxis& axis, DeckMesh& dm) {
+  std::vector<Vec2>& xy = dm.xy;
+  const Vec2& mouth_xy = axis.mouth;
+  const Vec2& crack_dir = axis.dir;
+  const double crack_len = axis.length;
+  std::vector<std::size_t> tags;
+  std::vector<double> c, u;
+  gmsh::model::mesh::getNodes(tags, c, u, 1, cracked.crack_curve, true, false);
+  std::map<int, int> copy_of;
+  for (std::size_t tag : tags) {
+    const int i = dm.index.at(tag);
+    if ((xy[i] - cracked.tip_xy).norm() < 1e-9 * std::max(1.0, crack_len)) continue;
+    if (copy_of.count(i)) continue;
+    copy_of[i] = static_cast<int>(xy.size());
+    xy.push_back(xy[i]);
+  }
+  if (copy_of.size() < 3)
+    throw std::runtime_error("fe deck: the crack has " + std::to_string(copy_of.size()) +
+                             " mesh nodes: it was not embedded in the mesh");
+  for (Tri& t : dm.tris) {
+    if (t.body != body) continue;
+    bool touches = false;
+    for (int j = 0; j < 6; ++j) touches = touches || copy_of.count(t.n[j]);
+    if (!touches) continue;
+    const Vec2 centroid = (xy[t.n[0]] + xy[t.n[1]] + xy[t.n[2]]) / 3.0;
+    if (geometry::Cross(crack_dir, centroid - mouth_xy) <= 0) continue;
+    for (int j = 0; j < 6; ++j) {
+      const auto it = copy_of.find(t.n[j]);
+      if (it != copy_of.end()) t.n[j] = it->second;
+    }
+  }
+  dm.edge_of.clear();
+  for (std::size_t id = 0; id < dm.tris.size(); ++id)
+    for (int j = 0; j < 3; ++j) {
+      const int a = dm.tris[id].n[j], b = dm.tris[id].n[(j + 1) % 3];
+      dm.edge_of[{std::min(a, b), std::max(a, b)}] = {static_cast<int>(id), j};
+    }
+  return static_cast<int>(copy_of.size());
+}
+
+// The slab of the plane mesh, 1 mm thick: node ids bottom i+1, top n2+i+1, mid-thickness
+// 2·n2+i+1 (corner nodes only).
+struct Slab {
+  int n2 = 0;
+  std::vector<char> corner;
+  int bottom(int i) const { return i + 1; }
+  int top(int i) const { return n2 + i + 1; }
+  int middle(int i) const { return 2 * n2 + i + 1; }
+  // The slab nodes above plane node i.
+  void Each(int i, const std::function<void(int)>& emit) const {
+    emit(bottom(i));
+    emit(top(i));
+    if (corner[i]) emit(middle(i));
+  }
+};
+
+// The *NODE and *ELEMENT blocks (C3D15 wedges over the triangles, one ELSET per gear). Returns
+// the number of nodes.
+int WriteNodesAndElements(std::ostream& f, const DeckMesh& dm, const Slab& slab, double t_mm) {
+  const std::vector<Vec2>& xy = dm.xy;
+  auto bottom = [&](int i) { return slab.bottom(i); };
+  auto top = [&](int i) { return slab.top(i); };
+  auto middle = [&](int i) { return slab.middle(i); };
+  int nodes = 0;
+  for (int i = 0; i < slab.n2; ++i) {
+    f << bottom(i) << ", " << xy[i].x() << ", " << xy[i].y() << ", 0\n";
+    f << top(i) << ", " << xy[i].x() << ", " << xy[i].y() << ", " << t_mm << "\n";
+    nodes += 2;
+    if (slab.corner[i]) {
+      f << middle(i) << ", " << xy[i].x() << ", " << xy[i].y() << ", " << 0.5 * t_mm << "\n";
+      ++nodes;
+    }
+  }
+  for (int body = 0; body < 2; ++body) {
+    f << "*ELEMENT, TYPE=C3D15, ELSET=GEAR" << body + 1 << "\n";
+    for (std::size_t e = 0; e < dm.tris.size(); ++e) {
+      const Tri& t = dm.tris[e];
+      if (t.body != body) continue;
+      const auto& n = t.n;
+      f << e + 1 << ", " << bottom(n[0]) << ", " << bottom(n[1]) << ", " << bottom(n[2]) << ", "
+        << top(n[0]) << ", " << top(n[1]) << ", " << top(n[2]) << ", " << bottom(n[3]) << ", "
+        << bottom(n[4]) << ", " << bottom(n[5]) << ",\n"
+        << top(n[3]) << ", " << top(n[4]) << ", " << top(n[5]) << ", " << middle(n[0]) << ", "
+        << middle(n[1]) << ", " << middle(n[2]) << "\n";
+    }
+  }
+  return nodes;
+}
+
+// The plane nodes on a gear's hub curve, sorted, each once.
+std::vector<int> HubNodes(const GearModel& g, const DeckMesh& dm) {
+  std::vector<std::size_t> tags;
+  std::vector<double> c, u;
+  gmsh::model::mesh::getNodes(tags, c, u, 1, g.hub_curve, true, false);
+  std::vector<int> out;
+  for (std::size_t tag : tags) out.push_back(dm.index.at(tag));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// A *NSET block, ten ids a line.
+void WriteNodeSet(std::ostream& f, const std::string& name, const std::vector<int>& ids) {
+  f << "*NSET, NSET=" << name << "\n";
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    f << ids[i] << (i + 1 == ids.size() || i % 10 == 9 ? "\n" : ", ");
+}
+
+// Fillet nodes (corner and mid-side nodes of the fillet curves, z = 0 layer): their place along
+// the fillet and the surface tangent, from the exact profile (the nodes lie on the splines
+// through it, within a micrometre), appended to info.fillet_nodes. Returns their slab ids,
+// sorted, each once.
+std::vector<int> FilletNodes(const std::vector<FilletLine>& fillet_lines, const GearModel& m1,
+                             const GearModel& m2, const DeckMesh& dm, const Slab& slab,
+                             FeDeckInfo& info) {
+  const std::vector<Vec2>& xy = dm.xy;
+  std::vector<int> fillet_ids;
+  for (const FilletLine& line : fillet_lines) {
+    const GearModel& g = line.gear == 1 ? m1 : m2;
+    std::set<int> seen;
+    for (int curve : g.fillet_curves.at({line.tooth, line.side})) {
+      std::vector<std::size_t> tags;
+      std::vector<double> c, u;
+      gmsh::model::mesh::getNodes(tags, c, u, 1, curve, true, false);
+      for (std::size_t tag : tags) {
+        const int i = dm.index.at(tag);
+        if (!seen.insert(i).second) continue;
+        FeFilletNode n;
+        n.gear = line.gear;
+        n.tooth = line.tooth;
+        n.side = line.side;
+        n.node = slab.bottom(i);
+        double arc = 0, distance = 0;
+        Vec2 t = Vec2::Zero();
+        line.Project(xy[i], &arc, &t, &distance);
+        if (distance > 1e-3)
+          throw std::runtime_error("fe deck: fillet node " + std::to_string(n.node) + " lies " +
+                                   Num(distance, 13) + " mm off its fillet");
+        n.arc_length = arc / kMm;
+        n.tx = t.x();
+        n.ty = t.y();
+        info.fillet_nodes.push_back(n);
+        fillet_ids.push_back(n.node);
+      }
+    }
+  }
+  std::sort(fillet_ids.begin(), fillet_ids.end());
+  fillet_ids.erase(std::unique(fillet_ids.begin(), fillet_ids.end()), fillet_ids.end());
+  if (fillet_ids.empty()) throw std::runtime_error("fe deck: no fillet node");
+  return fillet_ids;
+}
+
+// Contact surfaces: the wedge faces over the flank curves' boundary edges within `reach` of
+// the pair's rigid contact points (the Hertzian half-width is ~0.1 mm and the contact moves
+// less than that under load; the whole flank as slave makes CalculiX's contact search drop
+// far-off contact elements a few per iteration, tens of iterations per step).
+void WriteSurface(std::ostream& f, const std::string& name, const std::vector<int>& curves,
+                  const std::vector<Vec2>& near, double reach, const DeckMesh& dm) {
+  const std::vector<Vec2>& xy = dm.xy;
+  f << "*SURFACE, NAME=" << name << ", TYPE=ELEMENT\n";
+  int faces = 0;
+  for (int curve : curves) {
+    std::vector<std::size_t> tags, en;
+    gmsh::model::mesh::getElementsByType(8, tags, en, curve);
+    for (std::size_t e = 0; e < tags.size(); ++e) {
+      const int a = dm.index.at(en[3 * e]), b = dm.index.at(en[3 * e + 1]);
+      const Vec2 mid = 0.5 * (xy[a] + xy[b]);
+      double d = 1e300;
+      for (const Vec2& c : near) d = std::min(d, (mid - c).norm());
+      if (d > reach) continue;
+      const auto it = dm.edge_of.find({std::min(a, b), std::max(a, b)});
+      if (it == dm.edge_of.end())
+        throw std::runtime_error("fe deck: a flank edge of " + name + " has no triangle");
+      f << it->second.first + 1 << ", S" << it->second.second + 3 << "\n";
+      ++faces;
+    }
+  }
+  if (faces == 0) throw std::runtime_error("fe deck: surface " + name + " has no faces");
+}
+
+// The material, the contact pairs, the plane-strain boundary and one step per rotation of gear 1's
+// hub (gear 2 held at its hub; ring: rim).
+void WriteSteps(std::ostream& f, const transmission::Scene& scene, const FeContactOptions& contact,
+                const std::vector<double>& rotations, const FeDeckInfo& info) {
+  const transmission::Material& mat = scene.material;
+  f << "*MATERIAL, NAME=STEEL\n*ELASTIC\n"
+    << Num(mat.youngs_modulus / 1e6, 13) << ", " << Num(mat.poisson_ratio, 13) << "\n"
+    << "*SOLID SECTION, ELSET=GEAR1, MATERIAL=STEEL\n"
+    << "*SOLID SECTION, ELSET=GEAR2, MATERIAL=STEEL\n"
+    << "*SURFACE INTERACTION, NAME=FLANKS\n"
+    << "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
+    << Num(contact.penalty, 13) << ", " << Num(contact.tension, 13) << "\n";
+  for (const FeToothPair& p : info.pairs)
+    f << "*CONTACT PAIR, INTERACTION=FLANKS, TYPE=SURFACE TO SURFACE\n"
+      << p.slave << ", " << p.master << "\n";
+  // Plane strain: u_z = 0 everywhere; gear 2 held at its hub (ring: rim).
+  f << "*BOUNDARY\nNALL, 3, 3\nHUB2, 1, 2\n";
+  for (double theta : rotations) {
+    // One fixed increment per step (each step starts from the last, near its answer); ccx's
+    // automatic stepping would add a spurious 1e-6 increment at the end of the step.
+    f << "*STEP, INC=1000\n*STATIC, DIRECT\n1., 1.\n*BOUNDARY\n";
+    for (std::size_t i = 0; i < info.hub_nodes.size(); ++i) {
+      f << info.hub_nodes[i] << ", 1, 1, " << Num(-theta * info.hub_y[i], 13) << "\n"
+        << info.hub_nodes[i] << ", 2, 2, " << Num(theta * info.hub_x[i], 13) << "\n";
+    }
+    f << "*NODE PRINT, NSET=HUB1\nRF\n*EL FILE, NSET=FILLETS\nS\n";
+    for (const FeToothPair& p : info.pairs)  // CF needs the pair named (ccx 2.20)
+      f << "*CONTACT PRINT, SLAVE=" << p.slave << ", MASTER=" << p.master << "\nCF\n";
+    f << "*END STEP\n";
+  }
+}
+
+}  // namespace
+
+FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair& pair,
+                     double torque, double angle, const std::vector<double>& rotations,
+                     const FeMeshOptions& mesh, const FeContactOptions& contact,
+                     const std::string& directory, const FeDamage& damage) {
+  CheckDeckInput(pair, torque, rotations, mesh, damage);
+  const geometry::Gear& g1 = pair.gear1();
+  const geometry::Gear& g2 = pair.gear2();
+  const geometry::PairPoses poses = pair.Poses(angle);
+  const FeCrack* crack = damage.crack ? &*damage.crack : nullptr;
+  const FeSpall* spall = damage.spall ? &*damage.spall : nullptr;
+
+  // The tooth pairs in or near contact on the loaded flanks.
+  const LoadedContacts lc = FindLoadedContacts(pair, poses, contact);
+  const auto& contact_points = lc.contact_points;
+  const auto& teeth1 = lc.teeth1;
+  const auto& teeth2 = lc.teeth2;
   const double m = g1.module() * kMm;
   const double h_c = mesh.contact_size * kMm / mesh.refinement;
   const double r0 = mesh.contact_radius * kMm;
@@ -567,25 +952,7 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   };
   add_fillets(g1, poses.gear1, 1, teeth1);
   add_fillets(g2, poses.gear2, 2, teeth2);
-  // The size field's view of each fillet: every 10th polyline point and the bounding box.
-  struct FilletZone {
-    int gear = 1;
-    std::vector<Vec2> points;
-    Vec2 lo, hi;
-  };
-  std::vector<FilletZone> fillet_zones;
-  for (const FilletLine& line : fillet_lines) {
-    FilletZone z;
-    z.gear = line.gear;
-    z.lo = z.hi = line.p.front();
-    for (std::size_t j = 0; j < line.p.size(); ++j) {
-      if (j % 10 != 0 && j + 1 != line.p.size()) continue;
-      z.points.push_back(line.p[j]);
-      z.lo = z.lo.cwiseMin(line.p[j]);
-      z.hi = z.hi.cwiseMax(line.p[j]);
-    }
-    fillet_zones.push_back(std::move(z));
-  }
+  const std::vector<FilletZone> fillet_zones = FilletZones(fillet_lines);
 
   GmshSession session;
   const GearModel m1 = BuildGear(g1, poses.gear1, fine_of(g1, teeth1), mesh.points_per_segment,
@@ -597,22 +964,10 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   gmsh::model::occ::synchronize();
   // The crack: its curve embedded in its gear's surface (the mesh keeps it as element sides).
   const GearModel* cracked = crack ? (crack->gear == 1 ? &m1 : &m2) : nullptr;
-  Vec2 mouth_xy = Vec2::Zero(), crack_dir = Vec2::Zero();
-  double crack_len = 0;
-  if (cracked) {
-    gmsh::model::mesh::embed(1, {cracked->crack_curve}, 2, cracked->surface);
-    double xmin = 0, ymin = 0, zmin = 0, xmax = 0, ymax = 0, zmax = 0;
-    // The mouth: the curve's end other than the tip.
-    std::vector<std::pair<int, int>> ends;
-    gmsh::model::getBoundary({{1, cracked->crack_curve}}, ends, false, false, false);
-    for (const auto& [dim, tag] : ends) {
-      if (std::abs(tag) == cracked->crack_tip) continue;
-      gmsh::model::getBoundingBox(0, std::abs(tag), xmin, ymin, zmin, xmax, ymax, zmax);
-      mouth_xy = Vec2(xmin, ymin);
-    }
-    crack_len = (cracked->tip_xy - mouth_xy).norm();
-    crack_dir = (cracked->tip_xy - mouth_xy) / crack_len;
-  }
+  const CrackAxis axis = cracked ? EmbedCrack(*cracked) : CrackAxis{};
+  const Vec2& mouth_xy = axis.mouth;
+  const Vec2& crack_dir = axis.dir;
+  const double crack_len = axis.length;
   const double h_tip = crack ? crack->tip_size * kMm / mesh.refinement : 0.0;
   const double h_crack = crack ? crack->face_size_per_module *
                                      (crack->gear == 1 ? g1 : g2).module() * kMm / mesh.refinement
@@ -652,126 +1007,20 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   gmsh::model::mesh::generate(2);
   gmsh::model::mesh::setOrder(2);
 
-  // Nodes of the triangles, compacted to 0-based indices (the spline interpolation points are
-  // model vertices of their own, meshed as free nodes: left out).
-  std::vector<std::size_t> node_tags;
-  std::vector<double> coords, param;
-  gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1, true, false);
-  std::map<std::size_t, Vec2> position;
-  for (std::size_t i = 0; i < node_tags.size(); ++i)
-    position[node_tags[i]] = Vec2(coords[3 * i], coords[3 * i + 1]);
-  std::map<std::size_t, int> index;
-  std::vector<Vec2> xy;
-  for (int surface : {m1.surface, m2.surface}) {
-    std::vector<std::size_t> elem_tags, elem_nodes;
-    gmsh::model::mesh::getElementsByType(9, elem_tags, elem_nodes, surface);
-    for (std::size_t tag : elem_nodes) {
-      if (index.try_emplace(tag, static_cast<int>(xy.size())).second)
-        xy.push_back(position.at(tag));
-    }
-  }
-  int n2 = static_cast<int>(xy.size());
-
-  // Triangles (6-node, gmsh type 9), counter-clockwise.
-  std::vector<Tri> tris;
-  int straightened = 0;
-  std::map<std::pair<int, int>, std::pair<int, int>> edge_of;  // sorted corners → (tri, edge)
-  for (int body = 0; body < 2; ++body) {
-    std::vector<std::size_t> elem_tags, elem_nodes;
-    gmsh::model::mesh::getElementsByType(9, elem_tags, elem_nodes,
-                                         body == 0 ? m1.surface : m2.surface);
-    for (std::size_t e = 0; e < elem_tags.size(); ++e) {
-      Tri t;
-      t.body = body;
-      for (int j = 0; j < 6; ++j) t.n[j] = index.at(elem_nodes[6 * e + j]);
-      const double area = geometry::Cross(xy[t.n[1]] - xy[t.n[0]], xy[t.n[2]] - xy[t.n[0]]);
-      if (area < 0) t.n = {t.n[0], t.n[2], t.n[1], t.n[5], t.n[4], t.n[3]};
-      const int id = static_cast<int>(tris.size());
-      for (int j = 0; j < 3; ++j) {
-        const int a = t.n[j], b = t.n[(j + 1) % 3];
-        edge_of[{std::min(a, b), std::max(a, b)}] = {id, j};
-      }
-      tris.push_back(t);
-    }
-  }
-  if (tris.empty()) throw std::runtime_error("fe deck: gmsh produced no triangles");
-  // An element larger than a tip round (0.08–0.21 mm radius under m/4 or 2 m elements) can turn
-  // inside out when its mid-side node goes onto the arc. Such an element (det J below 2 % of the
-  // straight triangle's anywhere at its six nodes) gets straight sides: the tip corner it cuts
-  // carries no load (the contacts have 40 µm elements), its sagitta is below the round's radius
-  // (counted in `straightened`).
-  for (const Tri& t : tris) {
-    const Vec2 a = xy[t.n[0]], b = xy[t.n[1]], c = xy[t.n[2]];
-    const double area2 = geometry::Cross(b - a, c - a);
-    // det J of the quadratic map at the corners and mid-sides (ξ, η) ∈ {0, ½, 1}.
-    bool bad = false;
-    const double pts[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5, 0}, {0.5, 0.5}, {0, 0.5}};
-    for (const auto& q : pts) {
-      const double xi = q[0], eta = q[1], l0 = 1 - xi - eta;
-      // Shape-function derivatives of the 6-node triangle (corners 0..2, mid-sides 01, 12, 20).
-      const double dxi[6] = {-(4 * l0 - 1), 4 * xi - 1, 0, 4 * (l0 - xi), 4 * eta, -4 * eta};
-      const double deta[6] = {-(4 * l0 - 1), 0, 4 * eta - 1, -4 * xi, 4 * xi, 4 * (l0 - eta)};
-      Vec2 jx = Vec2::Zero(), je = Vec2::Zero();
-      for (int j = 0; j < 6; ++j) {
-        jx += dxi[j] * xy[t.n[j]];
-        je += deta[j] * xy[t.n[j]];
-      }
-      if (geometry::Cross(jx, je) < 0.02 * area2) bad = true;
-    }
-    if (!bad) continue;
-    for (int j = 0; j < 3; ++j) xy[t.n[3 + j]] = 0.5 * (xy[t.n[j]] + xy[t.n[(j + 1) % 3]]);
-    ++straightened;
-  }
-
-  // The crack's faces: every node on the crack curve but the tip's gets a copy, taken by the
-  // elements on the left of the path (mouth → tip); the faces are then free surfaces (open).
-  int crack_nodes = 0;
-  if (cracked) {
-    std::vector<std::size_t> tags;
-    std::vector<double> c, u;
-    gmsh::model::mesh::getNodes(tags, c, u, 1, cracked->crack_curve, true, false);
-    std::map<int, int> copy_of;
-    for (std::size_t tag : tags) {
-      const int i = index.at(tag);
-      if ((xy[i] - cracked->tip_xy).norm() < 1e-9 * std::max(1.0, crack_len)) continue;
-      if (copy_of.count(i)) continue;
-      copy_of[i] = static_cast<int>(xy.size());
-      xy.push_back(xy[i]);
-    }
-    if (copy_of.size() < 3)
-      throw std::runtime_error("fe deck: the crack has " + std::to_string(copy_of.size()) +
-                               " mesh nodes: it was not embedded in the mesh");
-    const int body = cracked == &m1 ? 0 : 1;
-    for (Tri& t : tris) {
-      if (t.body != body) continue;
-      bool touches = false;
-      for (int j = 0; j < 6; ++j) touches = touches || copy_of.count(t.n[j]);
-      if (!touches) continue;
-      const Vec2 centroid = (xy[t.n[0]] + xy[t.n[1]] + xy[t.n[2]]) / 3.0;
-      if (geometry::Cross(crack_dir, centroid - mouth_xy) <= 0) continue;
-      for (int j = 0; j < 6; ++j) {
-        const auto it = copy_of.find(t.n[j]);
-        if (it != copy_of.end()) t.n[j] = it->second;
-      }
-    }
-    crack_nodes = static_cast<int>(copy_of.size());
-    n2 = static_cast<int>(xy.size());
-    edge_of.clear();
-    for (std::size_t id = 0; id < tris.size(); ++id)
-      for (int j = 0; j < 3; ++j) {
-        const int a = tris[id].n[j], b = tris[id].n[(j + 1) % 3];
-        edge_of[{std::min(a, b), std::max(a, b)}] = {static_cast<int>(id), j};
-      }
-  }
+  // Nodes of the triangles, compacted to 0-based indices, and the triangles.
+  DeckMesh dm = ReadDeckMesh(m1, m2);
+  const int straightened = StraightenInvertedTriangles(dm);
+  const int crack_nodes = cracked ? OpenCrack(*cracked, cracked == &m1 ? 0 : 1, axis, dm) : 0;
+  const int n2 = static_cast<int>(dm.xy.size());
+  const std::vector<Vec2>& xy = dm.xy;
 
   // Slab node ids: bottom i+1, top n2+i+1, mid-thickness 2·n2+i+1 (corner nodes only).
-  std::vector<char> corner(n2, 0);
-  for (const Tri& t : tris)
-    for (int j = 0; j < 3; ++j) corner[t.n[j]] = 1;
+  Slab slab;
+  slab.n2 = n2;
+  slab.corner.assign(n2, 0);
+  for (const Tri& t : dm.tris)
+    for (int j = 0; j < 3; ++j) slab.corner[t.n[j]] = 1;
   const double t_mm = 1.0;  // slab thickness: 1 mm, forces per mm of face width
-  auto bottom = [](int i) { return i + 1; };
-  auto top = [n2](int i) { return n2 + i + 1; };
-  auto middle = [n2](int i) { return 2 * n2 + i + 1; };
 
   FeDeckInfo info;
   info.thickness = t_mm / kMm;
@@ -781,10 +1030,10 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   info.angle = angle;
   info.rotations = rotations;
   info.nodes_2d = n2;
-  info.triangles = static_cast<int>(tris.size());
+  info.triangles = static_cast<int>(dm.tris.size());
   info.straightened = straightened;
   info.crack_nodes = crack_nodes;
-  for (auto& [key, p] : by_teeth) info.pairs.push_back(p);
+  for (auto& [key, p] : lc.by_teeth) info.pairs.push_back(p);
 
   std::filesystem::create_directories(directory);
   const std::string deck_path = directory + "/deck.inp";
@@ -792,167 +1041,36 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   if (!f) throw std::runtime_error(deck_path + ": cannot be written");
   f.precision(13);
   f << "** epicycle FE contact reference (verification/fe_reference): " << scene.name << "\n"
-    << "** gear-1 angle " << Num(geometry::Deg(angle)) << " deg, torque on gear 1 " << Num(torque)
-    << " N m over b = " << Num(info.face_width * kMm) << " mm; slab t = 1 mm; units mm, N, MPa\n"
+    << "** gear-1 angle " << Num(geometry::Deg(angle), 13) << " deg, torque on gear 1 "
+    << Num(torque, 13) << " N m over b = " << Num(info.face_width * kMm, 13)
+    << " mm; slab t = 1 mm; units mm, N, MPa\n"
     << "*NODE, NSET=NALL\n";
-  int nodes = 0;
-  for (int i = 0; i < n2; ++i) {
-    f << bottom(i) << ", " << xy[i].x() << ", " << xy[i].y() << ", 0\n";
-    f << top(i) << ", " << xy[i].x() << ", " << xy[i].y() << ", " << t_mm << "\n";
-    nodes += 2;
-    if (corner[i]) {
-      f << middle(i) << ", " << xy[i].x() << ", " << xy[i].y() << ", " << 0.5 * t_mm << "\n";
-      ++nodes;
-    }
-  }
-  info.nodes = nodes;
-  for (int body = 0; body < 2; ++body) {
-    f << "*ELEMENT, TYPE=C3D15, ELSET=GEAR" << body + 1 << "\n";
-    for (std::size_t e = 0; e < tris.size(); ++e) {
-      const Tri& t = tris[e];
-      if (t.body != body) continue;
-      const auto& n = t.n;
-      f << e + 1 << ", " << bottom(n[0]) << ", " << bottom(n[1]) << ", " << bottom(n[2]) << ", "
-        << top(n[0]) << ", " << top(n[1]) << ", " << top(n[2]) << ", " << bottom(n[3]) << ", "
-        << bottom(n[4]) << ", " << bottom(n[5]) << ",\n"
-        << top(n[3]) << ", " << top(n[4]) << ", " << top(n[5]) << ", " << middle(n[0]) << ", "
-        << middle(n[1]) << ", " << middle(n[2]) << "\n";
-    }
-  }
-  info.elements = static_cast<int>(tris.size());
+  info.nodes = WriteNodesAndElements(f, dm, slab, t_mm);
+  info.elements = static_cast<int>(dm.tris.size());
 
   // Hub node sets: every slab node above a hub-curve node.
-  auto hub_nodes = [&](const GearModel& g) {
-    std::vector<std::size_t> tags;
-    std::vector<double> c, u;
-    gmsh::model::mesh::getNodes(tags, c, u, 1, g.hub_curve, true, false);
-    std::vector<int> out;
-    for (std::size_t tag : tags) out.push_back(index.at(tag));
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  };
   const Vec2 c1 = poses.gear1.rotation_centre * kMm;
-  auto slab = [&](int i, const std::function<void(int)>& emit) {
-    emit(bottom(i));
-    emit(top(i));
-    if (corner[i]) emit(middle(i));
-  };
-  const std::vector<int> hub1 = hub_nodes(m1), hub2 = hub_nodes(m2);
-  for (int i : hub1) {
-    slab(i, [&](int id) {
+  for (int i : HubNodes(m1, dm)) {
+    slab.Each(i, [&](int id) {
       info.hub_nodes.push_back(id);
       info.hub_x.push_back(xy[i].x() - c1.x());
       info.hub_y.push_back(xy[i].y() - c1.y());
     });
   }
-  auto write_set = [&](const std::string& name, const std::vector<int>& ids) {
-    f << "*NSET, NSET=" << name << "\n";
-    for (std::size_t i = 0; i < ids.size(); ++i)
-      f << ids[i] << (i + 1 == ids.size() || i % 10 == 9 ? "\n" : ", ");
-  };
-  write_set("HUB1", info.hub_nodes);
+  WriteNodeSet(f, "HUB1", info.hub_nodes);
   std::vector<int> hub2_ids;
-  for (int i : hub2) slab(i, [&](int id) { hub2_ids.push_back(id); });
-  write_set("HUB2", hub2_ids);
+  for (int i : HubNodes(m2, dm)) slab.Each(i, [&](int id) { hub2_ids.push_back(id); });
+  WriteNodeSet(f, "HUB2", hub2_ids);
+  WriteNodeSet(f, "FILLETS", FilletNodes(fillet_lines, m1, m2, dm, slab, info));
 
-  // Fillet nodes (corner and mid-side nodes of the fillet curves, z = 0 layer): their place along
-  // the fillet and the surface tangent, from the exact profile (the nodes lie on the splines
-  // through it, within a micrometre).
-  std::vector<int> fillet_ids;
-  for (const FilletLine& line : fillet_lines) {
-    const GearModel& g = line.gear == 1 ? m1 : m2;
-    std::set<int> seen;
-    for (int curve : g.fillet_curves.at({line.tooth, line.side})) {
-      std::vector<std::size_t> tags;
-      std::vector<double> c, u;
-      gmsh::model::mesh::getNodes(tags, c, u, 1, curve, true, false);
-      for (std::size_t tag : tags) {
-        const int i = index.at(tag);
-        if (!seen.insert(i).second) continue;
-        FeFilletNode n;
-        n.gear = line.gear;
-        n.tooth = line.tooth;
-        n.side = line.side;
-        n.node = bottom(i);
-        double arc = 0, distance = 0;
-        Vec2 t = Vec2::Zero();
-        line.Project(xy[i], &arc, &t, &distance);
-        if (distance > 1e-3)
-          throw std::runtime_error("fe deck: fillet node " + std::to_string(n.node) + " lies " +
-                                   Num(distance) + " mm off its fillet");
-        n.arc_length = arc / kMm;
-        n.tx = t.x();
-        n.ty = t.y();
-        info.fillet_nodes.push_back(n);
-        fillet_ids.push_back(n.node);
-      }
-    }
-  }
-  std::sort(fillet_ids.begin(), fillet_ids.end());
-  fillet_ids.erase(std::unique(fillet_ids.begin(), fillet_ids.end()), fillet_ids.end());
-  if (fillet_ids.empty()) throw std::runtime_error("fe deck: no fillet node");
-  write_set("FILLETS", fillet_ids);
-
-  // Contact surfaces: the wedge faces over the flank curves' boundary edges within `reach` of
-  // the pair's rigid contact points (the Hertzian half-width is ~0.1 mm and the contact moves
-  // less than that under load; the whole flank as slave makes CalculiX's contact search drop
-  // far-off contact elements a few per iteration, tens of iterations per step).
-  auto write_surface = [&](const std::string& name, const std::vector<int>& curves,
-                           const std::vector<Vec2>& near, double reach) {
-    f << "*SURFACE, NAME=" << name << ", TYPE=ELEMENT\n";
-    int faces = 0;
-    for (int curve : curves) {
-      std::vector<std::size_t> tags, en;
-      gmsh::model::mesh::getElementsByType(8, tags, en, curve);
-      for (std::size_t e = 0; e < tags.size(); ++e) {
-        const int a = index.at(en[3 * e]), b = index.at(en[3 * e + 1]);
-        const Vec2 mid = 0.5 * (xy[a] + xy[b]);
-        double d = 1e300;
-        for (const Vec2& c : near) d = std::min(d, (mid - c).norm());
-        if (d > reach) continue;
-        const auto it = edge_of.find({std::min(a, b), std::max(a, b)});
-        if (it == edge_of.end())
-          throw std::runtime_error("fe deck: a flank edge of " + name + " has no triangle");
-        f << it->second.first + 1 << ", S" << it->second.second + 3 << "\n";
-        ++faces;
-      }
-    }
-    if (faces == 0) throw std::runtime_error("fe deck: surface " + name + " has no faces");
-  };
   for (const FeToothPair& p : info.pairs) {
-    const std::vector<Vec2>& near = points_of.at({p.tooth1, p.tooth2});
-    write_surface(p.slave, m1.flank_curves.at({p.tooth1, side1}), near, contact.slave_reach * kMm);
-    write_surface(p.master, m2.flank_curves.at({p.tooth2, side2}), near,
-                  contact.master_reach * kMm);
+    const std::vector<Vec2>& near = lc.points_of.at({p.tooth1, p.tooth2});
+    WriteSurface(f, p.slave, m1.flank_curves.at({p.tooth1, lc.side1}), near,
+                 contact.slave_reach * kMm, dm);
+    WriteSurface(f, p.master, m2.flank_curves.at({p.tooth2, lc.side2}), near,
+                 contact.master_reach * kMm, dm);
   }
-
-  const transmission::Material& mat = scene.material;
-  f << "*MATERIAL, NAME=STEEL\n*ELASTIC\n"
-    << Num(mat.youngs_modulus / 1e6) << ", " << Num(mat.poisson_ratio) << "\n"
-    << "*SOLID SECTION, ELSET=GEAR1, MATERIAL=STEEL\n"
-    << "*SOLID SECTION, ELSET=GEAR2, MATERIAL=STEEL\n"
-    << "*SURFACE INTERACTION, NAME=FLANKS\n"
-    << "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-    << Num(contact.penalty) << ", " << Num(contact.tension) << "\n";
-  for (const FeToothPair& p : info.pairs)
-    f << "*CONTACT PAIR, INTERACTION=FLANKS, TYPE=SURFACE TO SURFACE\n"
-      << p.slave << ", " << p.master << "\n";
-  // Plane strain: u_z = 0 everywhere; gear 2 held at its hub (ring: rim).
-  f << "*BOUNDARY\nNALL, 3, 3\nHUB2, 1, 2\n";
-  for (double theta : rotations) {
-    // One fixed increment per step (each step starts from the last, near its answer); ccx's
-    // automatic stepping would add a spurious 1e-6 increment at the end of the step.
-    f << "*STEP, INC=1000\n*STATIC, DIRECT\n1., 1.\n*BOUNDARY\n";
-    for (std::size_t i = 0; i < info.hub_nodes.size(); ++i) {
-      f << info.hub_nodes[i] << ", 1, 1, " << Num(-theta * info.hub_y[i]) << "\n"
-        << info.hub_nodes[i] << ", 2, 2, " << Num(theta * info.hub_x[i]) << "\n";
-    }
-    f << "*NODE PRINT, NSET=HUB1\nRF\n*EL FILE, NSET=FILLETS\nS\n";
-    for (const FeToothPair& p : info.pairs)  // CF needs the pair named (ccx 2.20)
-      f << "*CONTACT PRINT, SLAVE=" << p.slave << ", MASTER=" << p.master << "\nCF\n";
-    f << "*END STEP\n";
-  }
+  WriteSteps(f, scene, contact, rotations, info);
   if (!f) throw std::runtime_error(deck_path + ": write failed");
   info.Write(directory + "/deck.info");
   return info;
@@ -970,7 +1088,7 @@ std::optional<FeSpall> SpallOfScene(const transmission::Scene& scene) {
                                 " pits: the deck takes one");
   const transmission::Pit& p = pits.front();
   if (p.width_fraction < 1)
-    throw std::invalid_argument(p.where + ": width_fraction = " + Num(p.width_fraction) +
+    throw std::invalid_argument(p.where + ": width_fraction = " + Num(p.width_fraction, 13) +
                                 ": the plane-strain deck takes a spall over the whole face (1)");
   if (p.gear != "gear1" && p.gear != "gear2")
     throw std::invalid_argument(p.where + ": gear = '" + p.gear + "': must be gear1 or gear2");

@@ -10,6 +10,7 @@
 
 #include "epicycle/dynamics/dynamic_model.hpp"
 #include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/io/units.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "fe_fixtures.hpp"
@@ -88,8 +89,6 @@ inline DynamicRig MakeRig(const std::string& text, const std::string& name, cons
 
 // Helpers of the dynamics cross-checks.
 
-inline constexpr double kRpm = std::numbers::pi / 30.0;
-
 // Output times: `per_cycle` per mesh cycle over `cycles` mesh cycles.
 inline std::vector<double> Times(const dynamics::DynamicModel& m, const geometry::Stage& st,
                                  double cycles, int per_cycle, double skip = 0.0) {
@@ -137,7 +136,7 @@ inline DynamicRig LowSpeedRunoutRig(double rpm, const std::string& extra = "") {
   RigOptions o;
   o.local_terms = false;
   o.edit = [rpm](transmission::DynamicSettings& s) {
-    s.sun_speed = rpm * kRpm;
+    s.sun_speed = io::RpmToRadPerSecond(rpm);
     s.friction.law = transmission::FrictionLaw::kOff;
   };
   return MakeRig(WithRunout(SceneText("paper_stage.toml")) + "\n" + extra, "runout", o);

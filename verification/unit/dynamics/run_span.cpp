@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "epicycle/dynamics/run_span.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "stage_fixtures.hpp"
 
 using namespace epicycle;

@@ -16,6 +16,7 @@
 #include "epicycle/dynamics/spectrum.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/vibration.hpp"
+#include "epicycle/io/units.hpp"
 #include "spectrum_fixtures.hpp"
 #include "stage_fixtures.hpp"
 
@@ -219,7 +220,7 @@ TEST_CASE("stage frequencies: the paper stage's mesh, fault and sideband lines f
   // f_s − f_c = 20.061728 Hz; sun tooth 3·20.061728 = 60.185185 Hz; planet tooth
   // f_m/24 = 13.374486 Hz (both flanks 26.748971 Hz); ring tooth 3 f_c = 14.814815 Hz.
   const geometry::Stage stage(test::PaperScene().stage);
-  const double ws = 1500 * kPi / 30;
+  const double ws = io::RpmToRadPerSecond(1500);
   const dynamics::StageFrequencies f = dynamics::CharacteristicFrequencies(stage, -ws);
   CHECK(f.symmetric);
   CHECK(f.sun == Approx(25.0).epsilon(1e-14));

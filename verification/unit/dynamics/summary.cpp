@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "local_term_fixtures.hpp"
 #include "stage_fixtures.hpp"
 

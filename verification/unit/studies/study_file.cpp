@@ -16,7 +16,7 @@
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/studies/study.hpp"
-#include "epicycle/studies/summary.hpp"
+#include "epicycle/studies/study_summary.hpp"
 #include "figures.hpp"
 #include "stage_fixtures.hpp"
 #include "study_fixtures.hpp"

@@ -1,4 +1,4 @@
-// The one statistics accumulator (transmission/statistics.hpp) on a hand-counted sequence and on
+// The one statistics accumulator (transmission/accumulator.hpp) on a hand-counted sequence and on
 // empty input; the run ranges of a stage (transmission/run_range.hpp) against 2π/z_r, 2π z_p/z_r
 // and 2π for the paper's 16/24/65 stage; the sun supports' names.
 #include <catch2/catch.hpp>
@@ -10,7 +10,7 @@
 #include "epicycle/transmission/load_sharing.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/run_range.hpp"
-#include "epicycle/transmission/statistics.hpp"
+#include "epicycle/transmission/accumulator.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "stage_fixtures.hpp"
 

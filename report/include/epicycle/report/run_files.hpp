@@ -16,7 +16,7 @@
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/report/files.hpp"
 #include "epicycle/report/spectrum_files.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "epicycle/studies/shards.hpp"
-#include "epicycle/studies/summary.hpp"
+#include "epicycle/studies/study_summary.hpp"
 
 namespace epicycle::report {
 

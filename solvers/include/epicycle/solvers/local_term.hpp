@@ -2,12 +2,22 @@
 // eq. 2 with its printed second term corrected.
 #pragma once
 
+#include <array>
 #include <string>
+
+#include "epicycle/io/enum_names.hpp"
 
 namespace epicycle::solvers {
 
 /// How the 2D elastic bodies are idealised (the same assumption must be used in FE and here).
 enum class PlaneAssumption { kPlaneStrain, kPlaneStress };
+
+/// The assumptions' names (the scene's model.plane, a problem file's and Python's plane): the one
+/// table of every reader and writer of the word.
+inline constexpr std::array<io::EnumName<PlaneAssumption>, 2> kPlaneAssumptionNames{{
+    {PlaneAssumption::kPlaneStrain, "strain"},
+    {PlaneAssumption::kPlaneStress, "stress"},
+}};
 
 /// One body's side of a contact.
 struct LocalBody {

@@ -3,6 +3,7 @@
 // the dynamics layer builds its model from them and a command line may override them.
 #pragma once
 
+#include "epicycle/io/units.hpp"
 #include "epicycle/transmission/friction.hpp"
 
 namespace epicycle::transmission {
@@ -11,7 +12,7 @@ namespace epicycle::transmission {
 struct DynamicSettings {
   /// |ω_s| [rad/s], > 0 (scene: sun_speed_rpm, default 1500 rpm); the sun turns the way its input
   /// torque drives it.
-  double sun_speed = 1500.0 * 3.14159265358979323846 / 30.0;
+  double sun_speed = io::RpmToRadPerSecond(1500.0);
   /// false: the sun carries the input torque T_s (its speed follows); true: the sun turns at
   /// exactly ω_s (speed-controlled, the input torque is the reaction; needs a free carrier).
   bool sun_speed_driven = false;

@@ -3,14 +3,27 @@
 // lubricant.
 #pragma once
 
+#include <array>
 #include <string>
+
+#include "epicycle/io/enum_names.hpp"
 
 namespace epicycle::transmission {
 
 /// Which friction law gives the coefficient of a tooth contact.
 enum class FrictionLaw { kOff, kConstant, kXuKahraman, kBenedictKelley };
 
+/// The laws' names (the scene's [dynamics] friction, the programs' --friction): the one table of
+/// FrictionLawName and FrictionLawFromName.
+inline constexpr std::array<io::EnumName<FrictionLaw>, 4> kFrictionLawNames{{
+    {FrictionLaw::kOff, "off"},
+    {FrictionLaw::kConstant, "constant"},
+    {FrictionLaw::kXuKahraman, "xu-kahraman"},
+    {FrictionLaw::kBenedictKelley, "benedict-kelley"},
+}};
+
 /// "off", "constant", "xu-kahraman", "benedict-kelley".
+/// @throws std::invalid_argument for a value outside the enum.
 std::string FrictionLawName(FrictionLaw law);
 /// The inverse of FrictionLawName.
 /// @throws std::invalid_argument naming the value and the allowed names.

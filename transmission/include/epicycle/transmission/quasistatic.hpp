@@ -93,6 +93,10 @@ struct PositionResult {
   double Efficiency() const { return output_power / input_power; }  ///< η = P_out/P_in [-]
 };
 
+/// The choices of SetRestFriction: "off", "scene" (the scene's own law), then every law's name
+/// (kFrictionLawNames).
+std::vector<std::string> RestFrictionNames();
+
 /// Friction at rest as a command or a binding asks for it (docs/quasistatic.md, "Friction at
 /// rest"): "off" (none: options->friction off), "scene" (the scene's law), or a law's name
 /// (FrictionLawFromName) replacing it; the coefficient, the lubricant and the speed of the rigid

@@ -5,9 +5,11 @@
 // tolerance studies.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "epicycle/geometry/stage.hpp"
+#include "epicycle/io/enum_names.hpp"
 
 namespace epicycle::transmission {
 
@@ -17,6 +19,14 @@ enum class RunRange {
   kSunRevolution,      ///< "sun": 2π z_s/z_r, one sun turn relative to the carrier
   kCarrierRevolution,  ///< "revolution": 2π
 };
+
+/// The ranges' names (the programs' --range, Python's range): the one table of RunRangeFromName.
+inline constexpr std::array<io::EnumName<RunRange>, 4> kRunRangeNames{{
+    {RunRange::kMeshCycle, "cycle"},
+    {RunRange::kPlanetRevolution, "planet"},
+    {RunRange::kSunRevolution, "sun"},
+    {RunRange::kCarrierRevolution, "revolution"},
+}};
 
 /// "cycle", "planet", "sun" or "revolution". @throws std::invalid_argument naming the value otherwise.
 RunRange RunRangeFromName(const std::string& name);

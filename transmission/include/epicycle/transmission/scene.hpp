@@ -9,6 +9,7 @@
 
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
+#include "epicycle/io/enum_names.hpp"
 #include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/damage.hpp"
 #include "epicycle/transmission/dynamic_settings.hpp"
@@ -77,6 +78,14 @@ enum class SunSupport {
   kFloating,  ///< free: the paper's second case
   kElastic,   ///< on a bearing of stiffness Supports::sun_stiffness
 };
+
+/// The supports' names (the scene's supports.sun, the programs' --sun): the one table of
+/// SunSupportName and of every reader of the word.
+inline constexpr std::array<io::EnumName<SunSupport>, 3> kSunSupportNames{{
+    {SunSupport::kFixed, "fixed"},
+    {SunSupport::kFloating, "floating"},
+    {SunSupport::kElastic, "elastic"},
+}};
 
 /// "fixed", "floating" or "elastic": the scene file's word for the support.
 const char* SunSupportName(SunSupport support);

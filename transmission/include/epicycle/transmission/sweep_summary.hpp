@@ -9,7 +9,7 @@
 #include "epicycle/transmission/contact_pressure.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/root_stress.hpp"
-#include "epicycle/transmission/statistics.hpp"
+#include "epicycle/transmission/accumulator.hpp"
 
 namespace epicycle::transmission {
 

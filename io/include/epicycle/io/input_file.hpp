@@ -3,13 +3,14 @@
 // ends, a symlink to one) and what is larger than the kind of file can be, so that a wrong path
 // is a message and never a hang or gigabytes read.
 //
-// Part of the library epicycle_toml_reader (the readers of input files; not installed).
+// Part of the bottom layer io/ (library epicycle_io: no TOML library), read by every layer that
+// reads a file, the contact core's problem files included.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
-namespace epicycle::transmission::internal {
+namespace epicycle::io {
 
 /// The bytes of `path`, a `what` ("scene file (TOML)"), of at most `max_bytes`.
 /// @throws std::invalid_argument "PATH: is a directory, not a WHAT", "PATH: is a FIFO (named pipe),
@@ -18,4 +19,4 @@ namespace epicycle::transmission::internal {
 std::string ReadInputFile(const std::string& path, const std::string& what,
                           std::uintmax_t max_bytes);
 
-}  // namespace epicycle::transmission::internal
+}  // namespace epicycle::io

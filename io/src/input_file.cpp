@@ -1,4 +1,4 @@
-#include "epicycle/transmission/internal/input_file.hpp"
+#include "epicycle/io/input_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -8,7 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace epicycle::transmission::internal {
+namespace epicycle::io {
 
 namespace {
 
@@ -71,4 +71,4 @@ std::string ReadInputFile(const std::string& path, const std::string& what,
   return text;
 }
 
-}  // namespace epicycle::transmission::internal
+}  // namespace epicycle::io

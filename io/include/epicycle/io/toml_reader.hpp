@@ -2,9 +2,10 @@
 // unknown keys, missing keys, wrong types and out-of-range values are errors that name the key,
 // the value and the rule.
 //
-// The library epicycle_toml_reader, linked privately by the scene reader (transmission) and the
-// study-file reader (studies) so that every input file has the same rules and messages. Its
-// interface holds toml++ types, so it is not one of the installed public headers.
+// The library epicycle_io_toml of the bottom layer io/, linked privately by the scene reader
+// (transmission) and the study-file reader (studies) so that every input file has the same rules
+// and messages. Its interface holds toml++ types, so it is a library of its own (the rest of io/,
+// which the contact core links, links no TOML library) and not one of the installed headers.
 #pragma once
 
 #include <optional>
@@ -14,7 +15,7 @@
 
 #include <toml++/toml.h>
 
-namespace epicycle::transmission::internal {
+namespace epicycle::io {
 
 /// A range rule for numbers: lo/hi bounds, open or closed, in the key's unit, and why (the
 /// physical reason, quoted in the message: "must be in [0, 1057.5] (a quarter module: ...)").
@@ -85,4 +86,4 @@ class TableReader {
   mutable std::set<std::string> known_;  // every key this reader asked about
 };
 
-}  // namespace epicycle::transmission::internal
+}  // namespace epicycle::io

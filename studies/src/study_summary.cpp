@@ -1,4 +1,4 @@
-#include "epicycle/studies/summary.hpp"
+#include "epicycle/studies/study_summary.hpp"
 
 #include <algorithm>
 #include <cmath>

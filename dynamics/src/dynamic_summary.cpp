@@ -1,4 +1,4 @@
-#include "epicycle/dynamics/summary.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 
 #include <algorithm>
 #include <cmath>

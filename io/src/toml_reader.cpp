@@ -1,19 +1,15 @@
-#include "epicycle/transmission/internal/toml_reader.hpp"
+#include "epicycle/io/toml_reader.hpp"
+
+#include "epicycle/io/number_format.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
-namespace epicycle::transmission::internal {
+namespace epicycle::io {
 
 namespace {
-
-std::string Num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
 
 std::string TypeName(const toml::node& n) {
   switch (n.type()) {
@@ -45,7 +41,7 @@ std::string Show(const toml::node& n) {
   } else if (const auto* i = n.as_integer()) {
     o << i->get();
   } else if (const auto* f = n.as_floating_point()) {
-    o << Num(f->get());
+    o << Num(f->get(), 10);
   } else if (const auto* b = n.as_boolean()) {
     o << (b->get() ? "true" : "false");
   } else {
@@ -67,12 +63,12 @@ std::string Rule::Describe() const {
   const bool has_lo = lo > -1e299, has_hi = hi < 1e299;
   std::string text;
   if (has_lo && has_hi) {
-    text = std::string("must be in ") + (lo_open ? "(" : "[") + Num(lo) + ", " + Num(hi) +
+    text = std::string("must be in ") + (lo_open ? "(" : "[") + Num(lo, 10) + ", " + Num(hi, 10) +
            (hi_open ? ")" : "]");
   } else if (has_lo) {
-    text = std::string("must be ") + (lo_open ? "> " : ">= ") + Num(lo);
+    text = std::string("must be ") + (lo_open ? "> " : ">= ") + Num(lo, 10);
   } else if (has_hi) {
-    text = std::string("must be ") + (hi_open ? "< " : "<= ") + Num(hi);
+    text = std::string("must be ") + (hi_open ? "< " : "<= ") + Num(hi, 10);
   } else {
     text = "must be a finite number";
   }
@@ -120,7 +116,7 @@ std::string TableReader::Warning(const std::string& key, const std::string& rule
 void TableReader::Check(const std::string& key, double value, const Rule& rule) const {
   if (!rule.Holds(value)) {
     const toml::node* n = Node(key);
-    Fail(key, n ? Show(*n) : Num(value), rule.Describe());
+    Fail(key, n ? Show(*n) : Num(value, 10), rule.Describe());
   }
 }
 
@@ -258,4 +254,4 @@ void TableReader::Done() const {
                               " (known keys here: " + (known.empty() ? "nothing" : known) + ")");
 }
 
-}  // namespace epicycle::transmission::internal
+}  // namespace epicycle::io

@@ -8,7 +8,7 @@
 
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/transmission/root_stress.hpp"
-#include "epicycle/transmission/statistics.hpp"
+#include "epicycle/transmission/accumulator.hpp"
 #include "epicycle/transmission/validity.hpp"
 
 namespace epicycle::dynamics {
