@@ -39,9 +39,9 @@ struct QuasiStaticArgs {
 class ConsoleSink final : public report::QuasiStaticRunFiles {
  public:
   ConsoleSink(const QuasiStaticArgs& a, json provenance)
-      : QuasiStaticRunFiles({a.out, a.dump, std::filesystem::path(a.scene).stem().string(),
-                             a.backend, a.no_local},
-                            std::move(provenance)),
+      : QuasiStaticRunFiles(
+            {a.out, a.dump, std::filesystem::path(a.scene).stem().string(), a.backend, a.no_local},
+            std::move(provenance)),
         a_(a),
         tty_(!a.quiet && isatty(fileno(stderr))) {}
 

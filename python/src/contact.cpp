@@ -142,7 +142,6 @@ solvers::ContactSolution SolutionOf(const Problem& problem, const Eigen::VectorX
   return s;
 }
 
-
 // The contact problem as a Python class: its data, gaps, potential and local terms.
 void BindContactProblem(py::module_& m) {
   py::class_<Problem, ProblemPtr>(m, "ContactProblem", R"doc(
@@ -174,10 +173,11 @@ Raises
 ------
 ValueError
     A field of the wrong shape or value (its name).)doc")
-      .def(py::init(&MakeProblem), py::arg("compliance_m_per_N"), py::arg("overlap_m"), py::kw_only(),
-           py::arg("equality_matrix") = py::none(), py::arg("equality_rhs") = py::none(),
-           py::arg("support_stiffness") = py::none(), py::arg("local_terms") = py::none(),
-           py::arg("name") = "", py::arg("contact_labels") = std::vector<std::string>{},
+      .def(py::init(&MakeProblem), py::arg("compliance_m_per_N"), py::arg("overlap_m"),
+           py::kw_only(), py::arg("equality_matrix") = py::none(),
+           py::arg("equality_rhs") = py::none(), py::arg("support_stiffness") = py::none(),
+           py::arg("local_terms") = py::none(), py::arg("name") = "",
+           py::arg("contact_labels") = std::vector<std::string>{},
            py::arg("multiplier_labels") = std::vector<std::string>{},
            "A contact problem; the parameters as the class's.")
       .def_property_readonly("name", &Problem::name)

@@ -7,21 +7,21 @@
 
 #include "common.hpp"
 #include "epicycle/dynamics/dynamic_factor.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/run_arguments.hpp"
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
-#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/vibration.hpp"
+#include "epicycle/io/units.hpp"
 #include "epicycle/report/ratings.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 #include "scene.hpp"
-#include "epicycle/io/units.hpp"
 
 namespace epicycle::python {
 
@@ -113,8 +113,7 @@ py::dict SummaryObject(const dynamics::DynamicSummary& sum) {
   summary["max_pair_force_N"] = sum.max_pair_force;
   // Stresses on: the summary JSON's root_stress (report/), as Python objects.
   if (!sum.root_stress.empty())
-    summary["root_stress"] =
-        JsonToPython(report::RootStressJson(sum.root_stress, "time_s", 1.0));
+    summary["root_stress"] = JsonToPython(report::RootStressJson(sum.root_stress, "time_s", 1.0));
   return summary;
 }
 
@@ -575,22 +574,20 @@ Integration MakeIntegration(const std::string& integrator, double rtol,
 void BindDynamicRun(py::module_& m) {
   m.def(
       "dynamic",
-      [](
-          const ScenePtr& s, std::optional<double> sun_speed_rpm, const std::string& range,
-          double time_s, int outputs_per_cycle, double start_deg, const std::string& integrator,
-          double rtol, std::optional<double> rate_scale, std::optional<double> contact_tol,
-          int max_order, bool analytic_jacobian, const std::string& backend,
-          std::optional<std::string> cache_dir, py::object progress, bool raise_on_failure,
-          bool stresses, bool rating) {
+      [](const ScenePtr& s, std::optional<double> sun_speed_rpm, const std::string& range,
+         double time_s, int outputs_per_cycle, double start_deg, const std::string& integrator,
+         double rtol, std::optional<double> rate_scale, std::optional<double> contact_tol,
+         int max_order, bool analytic_jacobian, const std::string& backend,
+         std::optional<std::string> cache_dir, py::object progress, bool raise_on_failure,
+         bool stresses, bool rating) {
         return Dynamic(s, sun_speed_rpm, range, time_s, outputs_per_cycle, start_deg,
                        MakeIntegration(integrator, rtol, rate_scale, contact_tol, max_order,
-                                   analytic_jacobian, backend),
+                                       analytic_jacobian, backend),
                        cache_dir, std::move(progress), raise_on_failure, stresses, rating);
       },
       py::arg("scene"), py::arg("sun_speed_rpm") = py::none(), py::kw_only(),
-      py::arg("range") = "planet",
-      py::arg("time_s") = 0.0, py::arg("outputs_per_cycle") = 20, py::arg("start_deg") = 0.0,
-      py::arg("integrator") = "cvode-bdf", py::arg("rtol") = 1e-6,
+      py::arg("range") = "planet", py::arg("time_s") = 0.0, py::arg("outputs_per_cycle") = 20,
+      py::arg("start_deg") = 0.0, py::arg("integrator") = "cvode-bdf", py::arg("rtol") = 1e-6,
       py::arg("rate_scale") = py::none(), py::arg("contact_tol") = py::none(),
       py::arg("max_order") = 5, py::arg("analytic_jacobian") = true, py::arg("backend") = "newton",
       py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
@@ -686,21 +683,19 @@ ValueError
 void BindSpeedSweep(py::module_& m) {
   m.def(
       "speed_sweep",
-      [](const ScenePtr& s, const std::vector<double>& sun_speeds_rpm,
-                    const std::string& range, double window_cycles, int outputs_per_cycle,
-                    double start_deg, int harmonics, int threads, const std::string& integrator,
-                    double rtol, std::optional<double> rate_scale,
-                    std::optional<double> contact_tol, int max_order, bool analytic_jacobian,
-                    const std::string& backend, std::optional<std::string> cache_dir,
-                    py::object progress, bool raise_on_failure) {
+      [](const ScenePtr& s, const std::vector<double>& sun_speeds_rpm, const std::string& range,
+         double window_cycles, int outputs_per_cycle, double start_deg, int harmonics, int threads,
+         const std::string& integrator, double rtol, std::optional<double> rate_scale,
+         std::optional<double> contact_tol, int max_order, bool analytic_jacobian,
+         const std::string& backend, std::optional<std::string> cache_dir, py::object progress,
+         bool raise_on_failure) {
         return SpeedSweep(s, sun_speeds_rpm, range, window_cycles, outputs_per_cycle, start_deg,
                           harmonics, threads,
                           MakeIntegration(integrator, rtol, rate_scale, contact_tol, max_order,
-                                      analytic_jacobian, backend),
+                                          analytic_jacobian, backend),
                           cache_dir, std::move(progress), raise_on_failure);
       },
-      py::arg("scene"), py::arg("sun_speeds_rpm"), py::kw_only(),
-      py::arg("range") = "planet",
+      py::arg("scene"), py::arg("sun_speeds_rpm"), py::kw_only(), py::arg("range") = "planet",
       py::arg("window_cycles") = 0.0, py::arg("outputs_per_cycle") = 64, py::arg("start_deg") = 0.0,
       py::arg("harmonics") = 6, py::arg("threads") = 0, py::arg("integrator") = "cvode-bdf",
       py::arg("rtol") = 1e-6, py::arg("rate_scale") = py::none(),

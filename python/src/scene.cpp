@@ -298,7 +298,8 @@ Raises
 ------
 ValueError
     The reader's message (a missing file, a bad value: file, line, key, value, rule).)doc")
-      .def_static("parse", &Scene::Parse, py::arg("text"), py::kw_only(), py::arg("source") = "<string>", R"doc(
+      .def_static("parse", &Scene::Parse, py::arg("text"), py::kw_only(),
+                  py::arg("source") = "<string>", R"doc(
 Reads a scene from TOML text.
 
 Parameters
@@ -322,13 +323,13 @@ ValueError
 // The scene's keys read and set by path, copies with changed values, the key list.
 void BindSceneKeys(SceneClass& c) {
   c.def(
-          "__getitem__",
-          [](const Scene& s, const std::string& key) {
-            const toml::node_view<const toml::node> v = s.table().at_path(key);
-            if (!v) throw py::key_error(key + ": not in the scene (its default applies)");
-            return ToPython(*v.node());
-          },
-          py::arg("key"), R"doc(
+       "__getitem__",
+       [](const Scene& s, const std::string& key) {
+         const toml::node_view<const toml::node> v = s.table().at_path(key);
+         if (!v) throw py::key_error(key + ": not in the scene (its default applies)");
+         return ToPython(*v.node());
+       },
+       py::arg("key"), R"doc(
 The value of a scene key as written in the scene, in the key's unit.
 
 Parameters
@@ -451,16 +452,16 @@ list of str
 // Manufacturing errors added to a gear: pin-hole positions, run-out, tooth thickness.
 void BindSceneErrors(SceneClass& c) {
   c.def(
-          "add_pin",
-          [](Scene& s, const std::string& gear, double radial_um, double tangential_um) {
-            py::dict f;
-            f["gear"] = gear;
-            f["radial_um"] = radial_um;
-            f["tangential_um"] = tangential_um;
-            EditInPlace(s, [&](toml::table& t) { AppendTable(t, "errors.pin", f); });
-          },
-          py::arg("gear"), py::kw_only(), py::arg("radial_um") = 0.0, py::arg("tangential_um") = 0.0,
-          R"doc(
+       "add_pin",
+       [](Scene& s, const std::string& gear, double radial_um, double tangential_um) {
+         py::dict f;
+         f["gear"] = gear;
+         f["radial_um"] = radial_um;
+         f["tangential_um"] = tangential_um;
+         EditInPlace(s, [&](toml::table& t) { AppendTable(t, "errors.pin", f); });
+       },
+       py::arg("gear"), py::kw_only(), py::arg("radial_um") = 0.0, py::arg("tangential_um") = 0.0,
+       R"doc(
 Adds a planet pin-hole position error ([[errors.pin]]).
 
 Parameters
@@ -530,29 +531,29 @@ ValueError
 // Damage added to a tooth: a pit (spall) and a root crack.
 void BindSceneDamage(SceneClass& c) {
   c.def(
-          "add_pit",
-          [](Scene& s, const std::string& gear, int tooth, const std::string& flank,
-             py::object roll_deg, py::object radius_mm, double width_fraction, double depth_um) {
-            if (roll_deg.is_none() == radius_mm.is_none())
-              throw py::value_error(
-                  "add_pit: give the region as roll_deg=(from, to) [deg] or radius_mm=(from, to) "
-                  "[mm], one of the two");
-            py::dict f;
-            f["gear"] = gear;
-            f["tooth"] = tooth;
-            f["flank"] = flank;
-            const bool roll = !roll_deg.is_none();
-            const auto range = (roll ? roll_deg : radius_mm).cast<std::pair<double, double>>();
-            f[roll ? "roll_from_deg" : "radius_from_mm"] = range.first;
-            f[roll ? "roll_to_deg" : "radius_to_mm"] = range.second;
-            f["width_fraction"] = width_fraction;
-            f["depth_um"] = depth_um;
-            EditInPlace(s, [&](toml::table& t) { AppendTable(t, "damage.pit", f); });
-          },
-          py::arg("gear"), py::arg("tooth"), py::arg("flank"), py::kw_only(),
-          py::arg("roll_deg") = py::none(), py::arg("radius_mm") = py::none(),
-          py::arg("width_fraction") = 1.0, py::arg("depth_um"),
-          R"doc(
+       "add_pit",
+       [](Scene& s, const std::string& gear, int tooth, const std::string& flank,
+          py::object roll_deg, py::object radius_mm, double width_fraction, double depth_um) {
+         if (roll_deg.is_none() == radius_mm.is_none())
+           throw py::value_error(
+               "add_pit: give the region as roll_deg=(from, to) [deg] or radius_mm=(from, to) "
+               "[mm], one of the two");
+         py::dict f;
+         f["gear"] = gear;
+         f["tooth"] = tooth;
+         f["flank"] = flank;
+         const bool roll = !roll_deg.is_none();
+         const auto range = (roll ? roll_deg : radius_mm).cast<std::pair<double, double>>();
+         f[roll ? "roll_from_deg" : "radius_from_mm"] = range.first;
+         f[roll ? "roll_to_deg" : "radius_to_mm"] = range.second;
+         f["width_fraction"] = width_fraction;
+         f["depth_um"] = depth_um;
+         EditInPlace(s, [&](toml::table& t) { AppendTable(t, "damage.pit", f); });
+       },
+       py::arg("gear"), py::arg("tooth"), py::arg("flank"), py::kw_only(),
+       py::arg("roll_deg") = py::none(), py::arg("radius_mm") = py::none(),
+       py::arg("width_fraction") = 1.0, py::arg("depth_um"),
+       R"doc(
 Adds a pit or spall ([[damage.pit]], docs/model.md §9 "Pitting and spalls") on one flank of one
 tooth; the region by roll angle or by radius, one of the two.
 
@@ -639,18 +640,19 @@ ValueError
 // Flank changes of a gear: pitch deviations and tip or root relief.
 void BindSceneFlanks(SceneClass& c) {
   c.def(
-          "set_pitch",
-          [](Scene& s, const std::string& gear, py::object single_um, py::object cumulative_um,
-             py::object iso1328_grade, py::object seed) {
-            py::dict f;
-            f["single_um"] = single_um;
-            f["cumulative_um"] = cumulative_um;
-            f["iso1328_grade"] = iso1328_grade;
-            f["seed"] = seed;
-            EditInPlace(s, [&](toml::table& t) { SetTable(t, gear + ".pitch", f); });
-          },
-          py::arg("gear"), py::kw_only(), py::arg("single_um") = py::none(), py::arg("cumulative_um") = py::none(),
-          py::arg("iso1328_grade") = py::none(), py::arg("seed") = py::none(), R"doc(
+       "set_pitch",
+       [](Scene& s, const std::string& gear, py::object single_um, py::object cumulative_um,
+          py::object iso1328_grade, py::object seed) {
+         py::dict f;
+         f["single_um"] = single_um;
+         f["cumulative_um"] = cumulative_um;
+         f["iso1328_grade"] = iso1328_grade;
+         f["seed"] = seed;
+         EditInPlace(s, [&](toml::table& t) { SetTable(t, gear + ".pitch", f); });
+       },
+       py::arg("gear"), py::kw_only(), py::arg("single_um") = py::none(),
+       py::arg("cumulative_um") = py::none(), py::arg("iso1328_grade") = py::none(),
+       py::arg("seed") = py::none(), R"doc(
 Sets a gear's pitch deviations ([<gear>.pitch]): exactly one of single_um, cumulative_um or
 iso1328_grade.
 

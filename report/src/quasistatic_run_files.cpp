@@ -37,38 +37,36 @@ void QuasiStaticRunFiles::Position(const transmission::PositionResult& r, int k)
   files_->Write(r);
   plots_->Add(r);
   if (options_.dump.empty() || r.problem.data.compliance.size() == 0) return;
-  WriteStageProblemFile(
-      options_.dump,
-      fmt::format("{}_{}_{}_{:03d}", options_.dump_stem, sun_name_,
-                  options_.linear ? "linear" : "local", k),
-      r.problem.data, provenance_,
-      fmt::format("{} at carrier {:.4f} deg, sun {}, back end {}: {}", scene_name_,
-                  geometry::Deg(r.carrier_angle), sun_name_, options_.backend,
-                  r.converged ? "converged" : r.message));
+  WriteStageProblemFile(options_.dump,
+                        fmt::format("{}_{}_{}_{:03d}", options_.dump_stem, sun_name_,
+                                    options_.linear ? "linear" : "local", k),
+                        r.problem.data, provenance_,
+                        fmt::format("{} at carrier {:.4f} deg, sun {}, back end {}: {}",
+                                    scene_name_, geometry::Deg(r.carrier_angle), sun_name_,
+                                    options_.backend, r.converged ? "converged" : r.message));
 }
 
 void QuasiStaticRunFiles::Close() { files_->Close(); }
 
 void QuasiStaticRunFiles::Finish(const transmission::QuasiStaticRecord& record) {
-  WriteTextFile(base_ + "_summary.json",
-                QuasiStaticRecordJson(record, provenance_).dump(2) + "\n");
+  WriteTextFile(base_ + "_summary.json", QuasiStaticRecordJson(record, provenance_).dump(2) + "\n");
   plots_->Write(scene_name_, sun_name_);
 }
 
-std::string QuasiStaticPlanText(const transmission::QuasiStaticPlan& p,
-                                const std::string& backend, bool cold, int threads) {
+std::string QuasiStaticPlanText(const transmission::QuasiStaticPlan& p, const std::string& backend,
+                                bool cold, int threads) {
   const transmission::Scene& scene = *p.scene;
-  std::string t = fmt::format("{}: {} planets, sun {}, input torque {:.1f} N m, back end {}\n",
-                              scene.name, p.stage->planets(),
-                              transmission::SunSupportName(scene.supports.sun),
-                              scene.loads.sun_torque, backend);
+  std::string t =
+      fmt::format("{}: {} planets, sun {}, input torque {:.1f} N m, back end {}\n", scene.name,
+                  p.stage->planets(), transmission::SunSupportName(scene.supports.sun),
+                  scene.loads.sun_torque, backend);
   for (const std::string& m : p.compliance->tables().messages()) t += "  " + m + "\n";
   for (const std::string& d : scene.damage.Describe()) t += "  " + d + "\n";
-  t += fmt::format("  {} positions from {:.4f} deg ({:.2f} s for the tables), {}, {}\n",
-                   p.positions, geometry::Deg(p.first_angle), p.table_seconds,
-                   cold ? "every position cold" : "each warm-started from its neighbour",
-                   threads == 0 ? std::string("one thread per core")
-                                : fmt::format("{} thread(s)", threads));
+  t += fmt::format(
+      "  {} positions from {:.4f} deg ({:.2f} s for the tables), {}, {}\n", p.positions,
+      geometry::Deg(p.first_angle), p.table_seconds,
+      cold ? "every position cold" : "each warm-started from its neighbour",
+      threads == 0 ? std::string("one thread per core") : fmt::format("{} thread(s)", threads));
   if (p.friction)
     t += fmt::format("  friction {} at rest, sun at {:.1f} rpm\n",
                      transmission::FrictionLawName(p.options->friction.law),
@@ -89,9 +87,10 @@ std::string QuasiStaticRecordText(const transmission::QuasiStaticRecord& r,
   }
   if (r.converged_positions > 0) {
     t += fmt::format("  K_gamma (max L_i)            {:.6f}\n", s.k_gamma);
-    t += fmt::format("  transmission error           {:.3f} .. {:.3f} urad (peak to peak {:.3f} urad)\n",
-                     s.transmission_error_min * 1e6, s.transmission_error_max * 1e6,
-                     s.TransmissionErrorPeakToPeak() * 1e6);
+    t += fmt::format(
+        "  transmission error           {:.3f} .. {:.3f} urad (peak to peak {:.3f} urad)\n",
+        s.transmission_error_min * 1e6, s.transmission_error_max * 1e6,
+        s.TransmissionErrorPeakToPeak() * 1e6);
     t += fmt::format("  sun displacement, largest    {:.3f} um\n", s.sun_displacement_max * 1e6);
     if (r.friction)
       t += fmt::format(

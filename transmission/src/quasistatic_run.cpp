@@ -23,7 +23,8 @@ double Since(std::chrono::steady_clock::time_point t0) {
 QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticSink& sink) {
   Scene scene = request.scene;
   if (scene.kind != SceneKind::kStage)
-    throw std::invalid_argument(scene.name + ": a gear-pair scene; a quasi-static run needs a stage");
+    throw std::invalid_argument(scene.name +
+                                ": a gear-pair scene; a quasi-static run needs a stage");
   if (request.sun) scene.supports.sun = *request.sun;
   scene.model.stresses = scene.model.stresses || request.stresses || request.rating;
   if (request.rating) CheckRatingInputs(scene, request.rating_option);
@@ -32,9 +33,8 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
 
   // The carrier angles: the list given, or `count` over the range (computed as they are needed).
   const std::vector<double> angles =
-      request.angles_deg.empty()
-          ? std::vector<double>{}
-          : CheckedCarrierAngles(request.angles_option, request.angles_deg);
+      request.angles_deg.empty() ? std::vector<double>{}
+                                 : CheckedCarrierAngles(request.angles_option, request.angles_deg);
   const int count = !angles.empty()         ? static_cast<int>(angles.size())
                     : request.positions > 0 ? request.positions
                                             : DefaultPositions(stage, request.range);

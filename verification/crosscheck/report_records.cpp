@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "program_runs.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
+#include "program_runs.hpp"
 
 namespace epicycle {
 namespace {
@@ -69,11 +69,12 @@ TEST_CASE(
     "library run's values (rating, friction, stresses, a list of angles)",
     "[crosscheck][report][records]") {
   const test::TempDir temp("quasistatic-record");
-  const std::string scene_file = std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_runout_rated.toml";
-  REQUIRE(test::ExitStatus({EPICYCLE_EXE, "quasistatic", scene_file, "--rating", "--friction",
-                            "xu-kahraman", "--angles-deg", "0", "1.5", "3", "--threads", "1",
-                            "--cache", EPICYCLE_TEST_CACHE_DIR, "--quiet", "--out",
-                            temp.path.string()}) == 0);
+  const std::string scene_file =
+      std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_runout_rated.toml";
+  REQUIRE(
+      test::ExitStatus({EPICYCLE_EXE, "quasistatic", scene_file, "--rating", "--friction",
+                        "xu-kahraman", "--angles-deg", "0", "1.5", "3", "--threads", "1", "--cache",
+                        EPICYCLE_TEST_CACHE_DIR, "--quiet", "--out", temp.path.string()}) == 0);
   std::ifstream in(temp.File("quasistatic_summary.json"));
   REQUIRE(in.good());
   nlohmann::json program = nlohmann::json::parse(in);

@@ -24,20 +24,20 @@ namespace epicycle::transmission {
 /// its messages (the program: "--positions"; Python: "positions"), so that a rule broken is
 /// reported under the name the user typed.
 struct QuasiStaticRequest {
-  Scene scene;                        ///< read and validated (ReadScene)
-  std::optional<SunSupport> sun;      ///< overrides [supports] sun when given
-  std::string backend = "newton";     ///< contact back end (solvers::BackendFromName)
+  Scene scene;                            ///< read and validated (ReadScene)
+  std::optional<SunSupport> sun;          ///< overrides [supports] sun when given
+  std::string backend = "newton";         ///< contact back end (solvers::BackendFromName)
   RunRange range = RunRange::kMeshCycle;  ///< the carrier span swept when no angles are given
-  int positions = 0;                  ///< positions over the range; 0: DefaultPositions
-  std::vector<double> angles_deg;     ///< the carrier angles [deg] instead of a range (not empty)
-  double start_deg = 0.0;             ///< the range's first carrier angle [deg]
-  int threads = 0;                    ///< worker threads; 0: one per core
-  bool warm_start = true;             ///< each position from its neighbour's forces
-  bool local_terms = true;            ///< the contacts' local terms (false: linear contacts)
-  std::string friction = "off";       ///< friction at rest: off, scene, or a law's name
-  bool stresses = false;              ///< root stresses too (also when the scene asks for them)
-  bool rating = false;                ///< ISO 6336 ratings (implies stresses)
-  FeComplianceOptions tables;         ///< the influence tables' cache
+  int positions = 0;                      ///< positions over the range; 0: DefaultPositions
+  std::vector<double> angles_deg;  ///< the carrier angles [deg] instead of a range (not empty)
+  double start_deg = 0.0;          ///< the range's first carrier angle [deg]
+  int threads = 0;                 ///< worker threads; 0: one per core
+  bool warm_start = true;          ///< each position from its neighbour's forces
+  bool local_terms = true;         ///< the contacts' local terms (false: linear contacts)
+  std::string friction = "off";    ///< friction at rest: off, scene, or a law's name
+  bool stresses = false;           ///< root stresses too (also when the scene asks for them)
+  bool rating = false;             ///< ISO 6336 ratings (implies stresses)
+  FeComplianceOptions tables;      ///< the influence tables' cache
   /// The names of the options that set angles_deg and rating, for their messages.
   std::string angles_option = "angles_deg", rating_option = "rating";
 };
@@ -72,9 +72,9 @@ inline constexpr int kListedFailures = 100;
 /// What a quasi-static run found. Every field is in the record's one serialisation
 /// (VisitRecord), named with its unit there.
 struct QuasiStaticRecord {
-  std::string scene;             ///< the scene's name
+  std::string scene;  ///< the scene's name
   SunSupport sun = SunSupport::kFixed;
-  double sun_torque = 0;         ///< [N·m], the scene's input torque with its sign
+  double sun_torque = 0;  ///< [N·m], the scene's input torque with its sign
   std::string backend;
   bool local_terms = true, warm_start = true;
   std::optional<FrictionLaw> friction;  ///< set when friction at rest was on
