@@ -31,4 +31,10 @@ std::string KeyAt(const Scene& scene, const std::string& path);
 void ReadDamage(TableReader& top, Scene& s,
                 const std::vector<std::pair<std::string, const geometry::GearSpec*>>& gears);
 
+/// The scene's [face_width] table (docs/scenes.md, "Face width"), read once the radii and the
+/// gap window are final; `gears` as ReadDamage's. @throws std::invalid_argument naming the key,
+/// value and rule.
+void ReadFaceWidth(TableReader& top, Scene& s,
+                   const std::vector<std::pair<std::string, const geometry::GearSpec*>>& gears);
+
 }  // namespace epicycle::transmission::internal
