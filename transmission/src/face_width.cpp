@@ -256,6 +256,8 @@ std::vector<MeshFaceLoad> FaceLoads(const geometry::Stage& stage, int slices,
     f.mean = sum / slices;
     const auto top = std::max_element(f.line_load.begin(), f.line_load.end());
     f.largest_slice = static_cast<int>(top - f.line_load.begin());
+    const double b = f.ring_mesh ? b_pr : b_sp;
+    f.largest_z = -0.5 * b + (f.largest_slice + 0.5) * b / slices;
     f.k_h_beta = f.mean > 0 ? *top / f.mean : 1.0;
   }
   return out;

@@ -92,8 +92,12 @@ void ReadFaceWidth(TableReader& top, Scene& s,
                                  Rule::Positive().Because("the length over which the pin's "
                                                           "parallelism deviation is measured")) *
                         kMm;
-    p.radial = r.RealOr("radial_um", 0, Rule::Any()) * kUm / over;
-    p.tangential = r.RealOr("tangential_um", 0, Rule::Any()) * kUm / over;
+    const double radial_um = r.RealOr("radial_um", 0, Rule::Any());
+    const double tangential_um = r.RealOr("tangential_um", 0, Rule::Any());
+    p.radial = radial_um * kUm / over;
+    p.tangential = tangential_um * kUm / over;
+    p.where += " (radial_um = " + SceneNum(radial_um) + ", tangential_um = " +
+               SceneNum(tangential_um) + " over " + SceneNum(over / kMm) + " mm)";
     for (const PinTilt& q : f.pin_tilts)
       if (q.planet == p.planet)
         r.Fail("planet", std::to_string(p.planet + 1),

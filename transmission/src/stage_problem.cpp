@@ -39,7 +39,9 @@ std::string StageContact::Label() const {
 
 std::string StageContact::FlankName() const {
   return std::string(loaded ? "drive" : "coast") +
-         (pit_depth > 0 ? " pitted " + std::to_string(part) : std::string());
+         (pit_depth > 0 ? " pitted " + std::to_string(part) : std::string()) +
+         (slices > 1 ? " slice " + std::to_string(slice + 1) + "/" + std::to_string(slices)
+                     : std::string());
 }
 
 std::string StageDof::Label() const {

@@ -143,6 +143,7 @@ struct MeshFaceLoad {
   double mean = 0;                ///< F/b [N/m]
   double k_h_beta = 1;            ///< K_Hβ = max w_s / mean [-] (1 without load)
   int largest_slice = 0;          ///< where the largest w_s sits
+  double largest_z = 0;           ///< its slice centre z [m]
 };
 
 /// The face loads of every mesh (sun–planet meshes of planets 0…, then planet–ring meshes) from

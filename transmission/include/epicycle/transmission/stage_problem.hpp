@@ -72,7 +72,7 @@ struct StageContact {
   /// slice with " slice <s+1>/<S>".
   std::string Label() const;
   /// "drive" or "coast" (the flank column of the output files), a pitted strip's with
-  /// " pitted <part>" appended.
+  /// " pitted <part>" appended, a slice's with " slice <s+1>/<S>".
   std::string FlankName() const;
   /// The same potential contact as `other` (what Label() names: mesh, planet, kind, flank side,
   /// teeth), compared without building the labels.
