@@ -106,16 +106,10 @@ void ReadFaceWidth(TableReader& top, Scene& s,
     r.Done();
     f.pin_tilts.push_back(p);
   }
-  std::string names;
-  for (const auto& [name, spec] : gears) names += (names.empty() ? "\"" : ", \"") + name + "\"";
   for (TableReader& r : t->TableArray("lead")) {
     LeadSpec l;
     l.where = r.Where("gear");
-    l.gear = r.String("gear");
-    const GearSpec* spec = nullptr;
-    for (const auto& [name, g] : gears)
-      if (name == l.gear) spec = g;
-    if (spec == nullptr) r.Fail("gear", "\"" + l.gear + "\"", "must be one of " + names);
+    const GearSpec* spec = &NamedGear(r, gears, &l.gear);
     needs_slices(r, "gear");
     const double b = spec->face_width;
     l.slope = r.RealOr("slope_um", 0, Rule::Any()) * kUm;
