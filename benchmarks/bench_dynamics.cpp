@@ -70,6 +70,25 @@ void BM_DamagedEvaluation(benchmark::State& state) {
 }
 BENCHMARK(BM_DamagedEvaluation)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
+// The cost of slices of the face width (docs/face_width.md, "Cost"): scenes/
+// paper_stage_pin_tilt.toml (planet 1's pin tilted radially by 20 µm over the face), fixed sun,
+// 1500 rpm, with S = 1, 2, 5, 10, 20 slices.
+void BM_FaceWidthEvaluation(benchmark::State& state) {
+  auto scene =
+      transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_pin_tilt.toml");
+  scene.face_width.slices = static_cast<int>(state.range(0));
+  scene.dynamics.sun_speed = io::RpmToRadPerSecond(1500);
+  const dynamics::StageDynamics c(std::move(scene), Case::Cache());
+  TimeEvaluations(state, c);
+}
+BENCHMARK(BM_FaceWidthEvaluation)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(5)
+    ->Arg(10)
+    ->Arg(20)
+    ->Unit(benchmark::kMicrosecond);
+
 void TimeEvaluations(benchmark::State& state, const dynamics::StageDynamics& c) {
   const Eigen::VectorXd d = c.model.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
   const Eigen::VectorXd v = Eigen::VectorXd::Zero(c.model.size());

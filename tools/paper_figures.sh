@@ -3,7 +3,8 @@
 # scenes, and the quasi-static load sharing of the paper's stage without errors (one mesh cycle)
 # and with planet 1's 20 um run-out (one planet revolution), constrained and floating; the same
 # run-out case with the dynamic model at 1500 rpm; the spectra of the stage with and without it;
-# speed sweeps of the stage with and without it; the floating sun's load-sharing map.
+# speed sweeps of the stage with and without it; the floating sun's load-sharing map; the load
+# across the face width of the stage with a pin tilted and with the carrier's wind-up.
 # Usage: bash tools/paper_figures.sh [build-dir]   (default ./build; tables cached as usual)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -60,6 +61,16 @@ sweep() {  # name scene speeds [options]
 }
 sweep speed_sweep_runout paper_stage_runout 500:12000:47
 sweep speed_sweep_noerrors paper_stage 500:12000:116 --window-cycles 3
+# Across the face width (docs/face_width.md): a pin tilted radially, tangentially, the carrier's
+# wind-up; one mesh cycle.
+face() {  # name scene
+  "$exe" quasistatic "scenes/$2.toml" --quiet --out "$tmp/$1" > "$tmp/$1.log"
+  for f in face_load k_hbeta; do cp "$tmp/$1/quasistatic_$f.svg" "$out/$1_$f.svg"; done
+  cp "$tmp/$1/quasistatic_summary.json" "$out/$1_summary.json"
+}
+face face_pin_tilt_radial paper_stage_pin_tilt
+face face_pin_tilt_tangential paper_stage_pin_tilt_tangential
+face face_wind_up paper_stage_wind_up
 # The floating sun's largest |LSR - 1/3| and its parts over speed (docs/dynamic.md, "Why a
 # floating sun's shares differ").
 bash tools/floating_sun_map.sh "${1:-build}"

@@ -98,8 +98,9 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   PrintWarnings(record.warnings);
   sink.Finish(record);
   std::printf(
-      "\nwrote %s_positions.csv, _pairs.csv, _summary.json, _lsr.svg, _te.svg, _sun_path.svg\n",
-      sink.base().c_str());
+      "\nwrote %s_positions.csv, _pairs.csv, _summary.json, _lsr.svg, _te.svg, _sun_path.svg%s\n",
+      sink.base().c_str(),
+      request.scene.face_width.active() ? ", _face_load.csv, _face_load.svg, _k_hbeta.svg" : "");
   if (!a.dump.empty()) std::printf("wrote the contact problems to %s\n", a.dump.c_str());
   const int failed = record.positions - record.converged_positions;
   if (failed > 0)

@@ -31,11 +31,26 @@ void QuasiStaticRunFiles::Start(const transmission::QuasiStaticPlan& p) {
   plots_ = std::make_unique<QuasiStaticPlots>(base_, n, p.positions,
                                               360.0 / p.stage->ring().teeth(),  // mesh cycle
                                               geometry::Deg(p.span));
+  if (p.scene->face_width.active()) {
+    std::vector<std::string> meshes;
+    std::vector<double> widths;
+    for (const bool ring : {false, true}) {
+      for (int i = 0; i < n; ++i) {
+        meshes.push_back(geometry::MeshName(
+            i, ring ? geometry::MeshKind::kPlanetRing : geometry::MeshKind::kSunPlanet));
+        widths.push_back(ring ? geometry::ContactFaceWidth(p.stage->planet(i), p.stage->ring())
+                              : geometry::ContactFaceWidth(p.stage->sun(), p.stage->planet(i)));
+      }
+    }
+    faces_ = std::make_unique<FaceLoadFiles>(base_, provenance_, p.scene->face_width.slices,
+                                             std::move(meshes), std::move(widths), p.positions);
+  }
 }
 
 void QuasiStaticRunFiles::Position(const transmission::PositionResult& r, int k) {
   files_->Write(r);
   plots_->Add(r);
+  if (faces_) faces_->Write(r);
   if (options_.dump.empty() || r.problem.data.compliance.size() == 0) return;
   WriteStageProblemFile(options_.dump,
                         fmt::format("{}_{}_{}_{:03d}", options_.dump_stem, sun_name_,
@@ -46,11 +61,15 @@ void QuasiStaticRunFiles::Position(const transmission::PositionResult& r, int k)
                                     options_.backend, r.converged ? "converged" : r.message));
 }
 
-void QuasiStaticRunFiles::Close() { files_->Close(); }
+void QuasiStaticRunFiles::Close() {
+  files_->Close();
+  if (faces_) faces_->Close();
+}
 
 void QuasiStaticRunFiles::Finish(const transmission::QuasiStaticRecord& record) {
   WriteTextFile(base_ + "_summary.json", QuasiStaticRecordJson(record, provenance_).dump(2) + "\n");
   plots_->Write(scene_name_, sun_name_);
+  if (faces_) faces_->WritePlots(scene_name_ + ", sun " + sun_name_);
 }
 
 std::string QuasiStaticPlanText(const transmission::QuasiStaticPlan& p, const std::string& backend,
@@ -98,6 +117,14 @@ std::string QuasiStaticRecordText(const transmission::QuasiStaticRecord& r,
           s.efficiency_mean, s.efficiency_min, s.friction_power_mean, s.friction_iterations_mean);
   } else {
     t += "  K_gamma, transmission error, sun displacement: - (no position converged)\n";
+  }
+  if (!s.face_width.empty()) {
+    t += "\n  mesh             K_Hbeta max  K_Hbeta mean  at carrier deg  largest load at z mm  "
+         "max L_i K_Hbeta\n";
+    for (const transmission::MeshFaceSummary& f : s.face_width)
+      t += fmt::format("  {:<16} {:<12.6f} {:<13.6f} {:<15.4f} {:<21.3f} {:.6f}\n", f.mesh,
+                       f.k_h_beta_max, f.k_h_beta_mean, geometry::Deg(f.carrier_angle),
+                       f.largest_z * 1e3, f.k_gamma_k_h_beta_max);
   }
   t += RootStressText(s.root_stress, "carrier deg", 180.0 / std::numbers::pi);
   t += ContactPressureText(s.contact_pressure, "carrier deg", 180.0 / std::numbers::pi);

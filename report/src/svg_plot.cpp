@@ -391,4 +391,106 @@ PlotSeries EmpiricalCdfSteps(const std::string& name, const std::vector<double>&
   return cs;
 }
 
+namespace {
+
+// A colour of the map's scale at t ∈ [0, 1]: dark blue, teal, green, yellow (a perceptually
+// ordered ramp, light for large values).
+std::string RampColour(double t) {
+  static const double stops[5][3] = {
+      {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
+  t = std::clamp(t, 0.0, 1.0) * 4;
+  const int k = std::min(3, static_cast<int>(t));
+  const double f = t - k;
+  int c[3];
+  for (int i = 0; i < 3; ++i)
+    c[i] = static_cast<int>(std::lround(stops[k][i] + f * (stops[k + 1][i] - stops[k][i])));
+  return fmt::format("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
+}
+
+}  // namespace
+
+std::string RenderHeatMaps(const std::string& title, const std::vector<HeatMap>& maps) {
+  const double w = 760, panel = 170, top = 40, left = 70, right = 110, gap = 40;
+  const double h = top + static_cast<double>(maps.size()) * (panel + gap) + 10;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const HeatMap& m : maps)
+    for (double v : m.values)
+      if (std::isfinite(v)) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+  if (!(hi > lo)) {
+    lo = std::isfinite(lo) ? lo - 0.5 : 0;
+    hi = lo + 1;
+  }
+  std::string s = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} "
+      "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"{0}\" height=\"{1}\" "
+      "fill=\"white\"/>\n<text x=\"{2}\" y=\"20\" text-anchor=\"middle\" font-size=\"{3}\">{4}"
+      "</text>\n",
+      w, h, w / 2, TitleSize(w, title), Escape(title));
+  const double pw = w - left - right;
+  for (std::size_t p = 0; p < maps.size(); ++p) {
+    const HeatMap& m = maps[p];
+    const double y_top = top + static_cast<double>(p) * (panel + gap);
+    const double cw = pw / std::max(1, m.columns), ch = panel / std::max(1, m.rows);
+    for (int r = 0; r < m.rows; ++r) {
+      for (int c = 0; c < m.columns; ++c) {
+        const double v = m.values[static_cast<std::size_t>(r * m.columns + c)];
+        if (!std::isfinite(v)) continue;
+        // Row 0 at the bottom (y0), cells overlapping by half a pixel (no seams).
+        s += fmt::format(
+            "<rect x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" fill=\"{}\"/>\n",
+            left + c * cw, y_top + panel - (r + 1) * ch, cw + 0.5, ch + 0.5,
+            RampColour((v - lo) / (hi - lo)));
+      }
+    }
+    s += fmt::format(
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"black\"/>\n",
+        left, y_top, pw, panel);
+    s += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"12\">{}</text>\n", left, y_top - 5,
+                     Escape(m.title));
+    // Ticks on both axes.
+    const double xs = TickStep(m.x1 - m.x0), ys = TickStep(m.y1 - m.y0);
+    for (double x = std::ceil(m.x0 / xs) * xs; x <= m.x1 + 1e-9 * xs; x += xs) {
+      const double px = left + (x - m.x0) / (m.x1 - m.x0) * pw;
+      s += fmt::format(
+          "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"black\"/>\n"
+          "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\" font-size=\"10\">{4}</text>\n",
+          px, y_top + panel, y_top + panel + 4, y_top + panel + 15,
+          fmt::format("{:g}", std::abs(x) < 1e-9 * xs ? 0.0 : x));
+    }
+    for (double y = std::ceil(m.y0 / ys) * ys; y <= m.y1 + 1e-9 * ys; y += ys) {
+      const double py = y_top + panel - (y - m.y0) / (m.y1 - m.y0) * panel;
+      s += fmt::format(
+          "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"black\"/>\n"
+          "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\" font-size=\"10\">{5}</text>\n",
+          left - 4, py, left, left - 6, py + 3,
+          fmt::format("{:g}", std::abs(y) < 1e-9 * ys ? 0.0 : y));
+    }
+    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"11\">{}</text>\n",
+                     left + pw / 2, y_top + panel + 28, Escape(m.x_label));
+    s += fmt::format(
+        "<text x=\"16\" y=\"{0}\" text-anchor=\"middle\" font-size=\"11\" transform=\"rotate(-90 "
+        "16 {0})\">{1}</text>\n",
+        y_top + panel / 2, Escape(m.y_label));
+  }
+  // The colour bar, beside the first panel.
+  const double bx = w - right + 20, by = top, bh = panel;
+  for (int k = 0; k < 50; ++k)
+    s += fmt::format("<rect x=\"{}\" y=\"{:.2f}\" width=\"16\" height=\"{:.2f}\" fill=\"{}\"/>\n",
+                     bx, by + bh - (k + 1) * bh / 50, bh / 50 + 0.5, RampColour((k + 0.5) / 50));
+  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"16\" height=\"{}\" fill=\"none\" "
+                   "stroke=\"black\"/>\n",
+                   bx, by, bh);
+  s += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"10\">{}</text>\n", bx + 20, by + bh,
+                   fmt::format("{:.4g}", lo));
+  s += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"10\">{}</text>\n", bx + 20, by + 8,
+                   fmt::format("{:.4g}", hi));
+  if (!maps.empty())
+    s += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"10\">{}</text>\n", bx - 4, by + bh + 16,
+                     Escape(maps.front().unit));
+  return s + "</svg>\n";
+}
+
 }  // namespace epicycle::report

@@ -57,13 +57,11 @@ DamageModel::DamageModel(const Damage& damage, const std::vector<std::string>& b
   }
 }
 
-void DamageModel::Strips(int body_a, int body_b, const geometry::PotentialContact& c,
-                         std::vector<ContactStrip>* out) const {
-  out->assign(1, ContactStrip{});
-  if (pits_.empty()) return;
+void DamageModel::FlankPits(int body_a, int body_b, const geometry::PotentialContact& c,
+                            double w[2], double d[2]) const {
+  w[0] = w[1] = d[0] = d[1] = 0;
   // The pit (w, d) on each flank at the contact point, if any (the scene refuses overlapping pits
   // on one flank, so there is at most one per flank).
-  double w[2] = {0, 0}, d[2] = {0, 0};
   for (const Resolved& r : pits_) {
     for (int which = 0; which < 2; ++which) {
       const bool own_round = c.kind == (which == 0 ? geometry::ContactKind::kTipRoundA
@@ -78,6 +76,22 @@ void DamageModel::Strips(int body_a, int body_b, const geometry::PotentialContac
       d[which] = r.pit.depth;
     }
   }
+}
+
+double DamageModel::DepthAt(int body_a, int body_b, const geometry::PotentialContact& c,
+                            double fraction) const {
+  if (pits_.empty()) return 0;
+  double w[2], d[2];
+  FlankPits(body_a, body_b, c, w, d);
+  return (fraction < w[0] ? d[0] : 0.0) + (fraction < w[1] ? d[1] : 0.0);
+}
+
+void DamageModel::Strips(int body_a, int body_b, const geometry::PotentialContact& c,
+                         std::vector<ContactStrip>* out) const {
+  out->assign(1, ContactStrip{});
+  if (pits_.empty()) return;
+  double w[2], d[2];
+  FlankPits(body_a, body_b, c, w, d);
   if (w[0] == 0 && w[1] == 0) return;
   // Both pits measured from the same edge of the face: strips between the breakpoints.
   const double lo = std::min(w[0], w[1]), hi = std::max(w[0], w[1]);

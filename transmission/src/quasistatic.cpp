@@ -255,6 +255,10 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
   // Outputs from the last contact problem (solved at the poses before its own small increment).
   const int n = model.planets();
   r.load_sharing = model.LoadSharing(r.problem.contacts, r.solution.force, loads.sun_torque);
+  if (model.face_width().active() &&
+      r.solution.force.size() == static_cast<Eigen::Index>(r.problem.contacts.size()))
+    r.face_loads = FaceLoads(model.stage(), model.face_width().slices(), r.problem.contacts,
+                             r.solution.force);
   if (friction) {
     r.friction = true;
     r.force_change = g.force_change;

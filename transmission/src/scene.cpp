@@ -28,6 +28,7 @@ namespace {
 using internal::kMm;
 using internal::kUm;
 using internal::ReadDamage;
+using internal::ReadFaceWidth;
 using internal::SceneNum;
 
 // Physical ranges of the scene's values (docs/scenes.md, "Ranges and validity"). Sizes are
@@ -817,6 +818,10 @@ Scene ParseScene(const std::string& text, const std::string& source) {
   if (is_pair) {
     ReadPair(top, s, fits, fit_gears, fitted);
     ReadDamage(top, s, {{"gear1", &s.pair.gear1}, {"gear2", &s.pair.gear2}});
+    if (top.Has("face_width"))
+      top.Fail("face_width", "a table of a pair scene",
+               "slices of the face width are built for stage scenes (docs/scenes.md, \"Face "
+               "width\")");
     top.Done();
     const bool internal = s.pair.gear2.kind == GearKind::kInternal;
     ContactRatioWarning(s.pair.gear1, s.pair.gear2, internal, s.pair.centre_distance,
@@ -854,6 +859,7 @@ Scene ParseScene(const std::string& text, const std::string& source) {
       gears.emplace_back("planet" + std::to_string(i + 1), &st.planet);
     gears.emplace_back("ring", &st.ring);
     ReadDamage(top, s, gears);
+    ReadFaceWidth(top, s, gears);
   }
   top.Done();
   StageWarnings(error_keys, s);

@@ -89,14 +89,7 @@ Crack ReadCrack(TableReader& t, const Scene& s,
                 const std::vector<std::pair<std::string, const GearSpec*>>& gears) {
   Crack c;
   c.where = t.Where("gear");
-  c.gear = t.String("gear");
-  const GearSpec* spec = nullptr;
-  std::string names;
-  for (const auto& [name, g] : gears) {
-    names += (names.empty() ? "\"" : ", \"") + name + "\"";
-    if (name == c.gear) spec = g;
-  }
-  if (spec == nullptr) t.Fail("gear", "\"" + c.gear + "\"", "must be one of " + names);
+  const GearSpec* spec = &NamedGear(t, gears, &c.gear);
   for (const Crack& q : s.damage.cracks)
     if (q.gear == c.gear)
       t.Fail("gear", "\"" + c.gear + "\"",
@@ -172,6 +165,18 @@ Crack ReadCrack(TableReader& t, const Scene& s,
 
 }  // namespace
 
+const GearSpec& NamedGear(TableReader& t,
+                         const std::vector<std::pair<std::string, const GearSpec*>>& gears,
+                         std::string* name) {
+  *name = t.String("gear");
+  std::string names;
+  for (const auto& [n, g] : gears) {
+    if (n == *name) return *g;
+    names += (names.empty() ? "\"" : ", \"") + n + "\"";
+  }
+  t.Fail("gear", "\"" + *name + "\"", "must be one of " + names);
+}
+
 // The scene's [[damage.pit]] and [[damage.crack]] tables (docs/scenes.md, "Damage"): `gears` names
 // the gears a damage may be on with the spec of each (a stage's planets share one spec), read once
 // the radii are final.
@@ -179,20 +184,10 @@ void ReadDamage(TableReader& top, Scene& s,
                 const std::vector<std::pair<std::string, const GearSpec*>>& gears) {
   auto d = top.OptionalTable("damage");
   if (!d) return;
-  std::string names;
-  std::vector<std::string> allowed;
-  for (const auto& [name, spec] : gears) {
-    names += (names.empty() ? "\"" : ", \"") + name + "\"";
-    allowed.push_back(name);
-  }
   for (TableReader& t : d->TableArray("pit")) {
     Pit p;
     p.where = t.Where("gear");
-    p.gear = t.String("gear");
-    const GearSpec* spec = nullptr;
-    for (const auto& [name, g] : gears)
-      if (name == p.gear) spec = g;
-    if (spec == nullptr) t.Fail("gear", "\"" + p.gear + "\"", "must be one of " + names);
+    const GearSpec* spec = &NamedGear(t, gears, &p.gear);
     const geometry::Gear gear(*spec);
     p.tooth = static_cast<int>(
         t.Integer("tooth", Rule::Closed(0, spec->teeth - 1)

@@ -25,10 +25,22 @@ inline constexpr double kMm = 1e-3, kUm = 1e-6;
 /// parsed again on that error path only); "" if the scene has no text or not that key.
 std::string KeyAt(const Scene& scene, const std::string& path);
 
+/// The gear a table's `gear` key names among `gears` (its name into *name): the spec.
+/// @throws std::invalid_argument naming the key, the value and the names allowed.
+const geometry::GearSpec& NamedGear(
+    TableReader& t, const std::vector<std::pair<std::string, const geometry::GearSpec*>>& gears,
+    std::string* name);
+
 /// The scene's [[damage.pit]] and [[damage.crack]] tables (docs/scenes.md, "Damage"): `gears`
 /// names the gears a damage may be on with the spec of each (a stage's planets share one spec),
 /// read once the radii are final. @throws std::invalid_argument naming the key, value and rule.
 void ReadDamage(TableReader& top, Scene& s,
                 const std::vector<std::pair<std::string, const geometry::GearSpec*>>& gears);
+
+/// The scene's [face_width] table (docs/scenes.md, "Face width"), read once the radii and the
+/// gap window are final; `gears` as ReadDamage's. @throws std::invalid_argument naming the key,
+/// value and rule.
+void ReadFaceWidth(TableReader& top, Scene& s,
+                   const std::vector<std::pair<std::string, const geometry::GearSpec*>>& gears);
 
 }  // namespace epicycle::transmission::internal

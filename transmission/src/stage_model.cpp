@@ -34,6 +34,8 @@ StageSetup SetupFromScene(const Scene& scene) {
   s.planet_stiffness = scene.supports.planet_stiffness;
   s.gap_window = scene.gap_window;
   s.damage = scene.damage;
+  s.face_width = scene.face_width;
+  s.wind_up_sun_torque = scene.loads.sun_torque;
   return s;
 }
 
@@ -44,6 +46,11 @@ StageModel::StageModel(const geometry::Stage& stage, const StageCompliance& comp
       setup_(setup),
       damage_(setup.damage, BodyNames(PlanetBody(stage.planets()))) {
   setup_.Validate();
+  if (setup_.face_width.active()) {
+    // A fixed ring: the carrier's torque balances the sun's and the ring's, T_c = −T_s (1 + z_r/z_s).
+    const double ratio = static_cast<double>(stage_.ring().spec().teeth) / stage_.sun().spec().teeth;
+    faces_ = FaceWidthModel(setup_.face_width, stage_, -setup_.wind_up_sun_torque * (1 + ratio));
+  }
   // DOFs and their support stiffness (0: an equality; k: an elastic bearing, G F + k λ = W).
   dofs_.push_back({StageDof::kSunRotation, 0});
   support_.push_back(0.0);
@@ -90,7 +97,11 @@ StageOutcome StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* 
   }
   if (StageOutcome o = compliance_.TryMatrix(stage_, poses, t.contacts, &t.compliance); !o.ok())
     return o;
-  if (!damage_.empty()) SplitDamaged(&t);
+  if (faces_.active()) {
+    faces_.Expand(poses, damage_, &t);
+  } else if (!damage_.empty()) {
+    SplitDamaged(&t);
+  }
   if (setup_.local_terms) {
     t.local.resize(static_cast<std::size_t>(t.size()));
     for (int j = 0; j < t.size(); ++j) {

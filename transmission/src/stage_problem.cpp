@@ -32,12 +32,16 @@ std::string StageContact::Label() const {
   return geometry::MeshName(planet, mesh) + " " + geometry::KindName(contact.kind) + " " +
          (loaded ? "drive" : "coast") + " teeth " + std::to_string(contact.tooth_a) + "/" +
          std::to_string(contact.tooth_b) +
-         (pit_depth > 0 ? " pitted " + std::to_string(part) : std::string());
+         (pit_depth > 0 ? " pitted " + std::to_string(part) : std::string()) +
+         (slices > 1 ? " slice " + std::to_string(slice + 1) + "/" + std::to_string(slices)
+                     : std::string());
 }
 
 std::string StageContact::FlankName() const {
   return std::string(loaded ? "drive" : "coast") +
-         (pit_depth > 0 ? " pitted " + std::to_string(part) : std::string());
+         (pit_depth > 0 ? " pitted " + std::to_string(part) : std::string()) +
+         (slices > 1 ? " slice " + std::to_string(slice + 1) + "/" + std::to_string(slices)
+                     : std::string());
 }
 
 std::string StageDof::Label() const {

@@ -58,6 +58,35 @@ void SweepAccumulator::Add(const PositionResult& r) {
     friction_power_.Add(r.friction_power);
     iterations_.Add(r.geometric_iterations);
   }
+  // The load across the face width, when the positions carry slices.
+  if (!r.face_loads.empty()) {
+    const std::vector<double> factors = LoadSharingFactors(r);
+    if (faces_.empty()) {
+      for (const MeshFaceLoad& m : r.face_loads) {
+        MeshFaceSummary f;
+        f.planet = m.planet;
+        f.ring_mesh = m.ring_mesh;
+        f.mesh = geometry::MeshName(m.planet, m.ring_mesh ? geometry::MeshKind::kPlanetRing
+                                                          : geometry::MeshKind::kSunPlanet);
+        f.k_h_beta_max = -1;
+        f.k_gamma_k_h_beta_max = -1;
+        faces_.push_back(f);
+      }
+      face_mean_.resize(faces_.size());
+    }
+    for (std::size_t m = 0; m < r.face_loads.size() && m < faces_.size(); ++m) {
+      const MeshFaceLoad& load = r.face_loads[m];
+      MeshFaceSummary& f = faces_[m];
+      face_mean_[m].Add(load.k_h_beta);
+      if (load.k_h_beta > f.k_h_beta_max) {
+        f.k_h_beta_max = load.k_h_beta;
+        f.carrier_angle = r.carrier_angle;
+        f.largest_z = load.largest_z;
+      }
+      const double product = factors[static_cast<std::size_t>(load.planet)] * load.k_h_beta;
+      f.k_gamma_k_h_beta_max = std::max(f.k_gamma_k_h_beta_max, product);
+    }
+  }
   // Root stresses and contact pressures, when the positions carry stresses.
   if (!r.fillet_stress.empty()) {
     root_stress_.Add(r.fillet_stress, r.root_stress, r.carrier_angle);
@@ -87,6 +116,8 @@ SweepSummary SweepAccumulator::Result() const {
   }
   s.root_stress = root_stress_.Result();
   s.contact_pressure = pressure_.Result();
+  s.face_width = faces_;
+  for (std::size_t m = 0; m < faces_.size(); ++m) s.face_width[m].k_h_beta_mean = face_mean_[m].mean();
   s.friction = friction_;
   s.efficiency_mean = efficiency_.mean();
   s.efficiency_min = efficiency_.min();

@@ -155,6 +155,23 @@ const std::vector<Case> kCases = {
      {"crack_hairpin.toml:122: damage.crack[0].path = 1.5 mm: must be a crack the FE mesher",
       "its sharpest turn, 130 deg between segments 0 and 1"}},
 #endif
+    // The face width's slices (docs/scenes.md, "Face width"): 1 to 200; a crowning removes
+    // material; a variation along the face needs two slices; the gap's change across a mesh at
+    // most half the contact search's window: 200 um over 25 mm tilts the pin by 8 mrad, 100 um
+    // from the mid-plane to an end.
+    {"face_slices_0.toml", false, {"face_width.slices = 0", "must be in [1, 200]"}},
+    {"face_slices_1e6.toml", false, {"face_width.slices = 1000000", "must be in [1, 200]"}},
+    {"face_crowning_negative.toml",
+     false,
+     {"face_width.lead[0].crowning_um = -5", "must be >= 0", "would add material"}},
+    {"face_lead_one_slice.toml",
+     false,
+     {"face_width.lead[0].gear = given with face_width.slices = 1", "needs slices >= 2"}},
+    {"face_pin_tilt_200um.toml",
+     false,
+     {"face_width.pin_tilt[0].planet (radial_um = 0, tangential_um = 200 over 25 mm)",
+      "the gap changes by up to 100 um across the sun-planet2 mesh",
+      "more than half the contact search's gap window (contact.gap_window_um = 100)"}},
     {"warn_runout_above_backlash.toml",
      true,
      {"errors.runout[0].amplitude_um = 200", "larger than the normal backlash j_n = 150 um"}},

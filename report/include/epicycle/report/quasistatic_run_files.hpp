@@ -8,13 +8,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "epicycle/report/face_width_files.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
 
 namespace epicycle::report {
 
 /// Writes OUT/quasistatic_positions.csv and _pairs.csv position by position (whole lines, every
-/// write checked), gathers the plots, and dumps each position's contact problem into `dump` when
+/// write checked), with slices of the face width _face_load.csv too (FaceLoadFiles), gathers the
+/// plots, and dumps each position's contact problem into `dump` when
 /// it is not empty (files named STEM_SUN_local|linear_K).
 class QuasiStaticRunFiles : public transmission::QuasiStaticSink {
  public:
@@ -42,6 +44,7 @@ class QuasiStaticRunFiles : public transmission::QuasiStaticSink {
   std::string base_, sun_name_, scene_name_;
   std::unique_ptr<QuasiStaticFiles> files_;
   std::unique_ptr<QuasiStaticPlots> plots_;
+  std::unique_ptr<FaceLoadFiles> faces_;  ///< with slices of the face width
 };
 
 /// The run's header on the console: scene, support, load and back end, the tables' and damage's

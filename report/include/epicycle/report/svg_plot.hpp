@@ -76,4 +76,16 @@ PlotSeries HistogramOutline(const std::string& name, double lo, double width,
 /// The empirical CDF of `sorted` (ascending) as steps: at x_(i) from (i − 1)/n up to i/n.
 PlotSeries EmpiricalCdfSteps(const std::string& name, const std::vector<double>& sorted);
 
+/// A heat map as an SVG document: `values` row-major (rows along y, `columns` per row), cells
+/// over [x0, x1] × [y0, y1], coloured on one scale from the smallest to the largest finite value
+/// (a colour bar labelled `unit`); NaN cells left blank.
+struct HeatMap {
+  std::string title, x_label, y_label, unit;
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  int columns = 0, rows = 0;
+  std::vector<double> values;
+};
+/// Maps stacked top to bottom under one title, on one colour scale.
+std::string RenderHeatMaps(const std::string& title, const std::vector<HeatMap>& maps);
+
 }  // namespace epicycle::report

@@ -93,8 +93,16 @@ class DamageModel {
   /// out), ordered by depth.
   void Strips(int body_a, int body_b, const geometry::PotentialContact& contact,
               std::vector<ContactStrip>* out) const;
+  /// The depth [m] by which the pits of the contact's two flanks lower the face at `fraction` of
+  /// the face width from the edge the pits are measured from (Strips' breakpoints: a slice of
+  /// the face width takes the depth at its centre).
+  double DepthAt(int body_a, int body_b, const geometry::PotentialContact& contact,
+                 double fraction) const;
 
  private:
+  // The pit (width fraction, depth) on each flank of the contact, (0, 0) where none.
+  void FlankPits(int body_a, int body_b, const geometry::PotentialContact& c, double w[2],
+                 double d[2]) const;
   struct Resolved {
     int body = 0;
     Pit pit;

@@ -60,6 +60,9 @@ struct PositionResult {
   int contact_iterations = 0;  ///< back-end iterations summed over the geometric iterations [-]
   bool warm_started = false;   ///< started from a neighbour's state (Sweep with warm_start)
   std::vector<double> load_sharing;  ///< LSR_i = T_mesh(P_i–S)/T_input [-], per planet
+  /// With slices of the face width (face_width.hpp): each mesh's load per unit width and K_Hβ
+  /// (sun–planet meshes, then planet–ring meshes); empty with one slice.
+  std::vector<MeshFaceLoad> face_loads;
   double transmission_error = 0;     ///< loaded static TE: sun rotation from kinematic [rad]
   geometry::Vec2 sun_displacement = geometry::Vec2::Zero();  ///< [m] (floating sun)
   std::vector<double> planet_rotations;                      ///< from kinematic [rad]

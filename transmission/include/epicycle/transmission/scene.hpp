@@ -13,6 +13,7 @@
 #include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/damage.hpp"
 #include "epicycle/transmission/dynamic_settings.hpp"
+#include "epicycle/transmission/face_width.hpp"
 
 namespace epicycle::transmission {
 
@@ -125,6 +126,7 @@ struct Scene {
   std::vector<std::string> warnings;
   DynamicSettings dynamics;  ///< the [dynamics] and [lubricant] tables
   Damage damage;             ///< the [[damage.pit]] tables (empty: healthy teeth)
+  FaceWidthSpec face_width;  ///< the [face_width] table (one slice: the plane model)
 };
 
 /// "fnv1a64:<16 hex digits>", the 64-bit FNV-1a hash of `text`: identifies an input file in the

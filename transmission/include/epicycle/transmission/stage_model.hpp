@@ -14,6 +14,7 @@
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/transmission/damage.hpp"
+#include "epicycle/transmission/face_width.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 
@@ -34,6 +35,12 @@ struct StageSetup {
   /// Pits and spalls on the teeth (the scene's [[damage.pit]]): the contacts on a pitted flank
   /// are split into strips of the face width (damage.hpp) wherever Terms builds them.
   Damage damage;
+  /// Slices across the face width and what varies along it (face_width.hpp; one slice: the
+  /// plane model, nothing of it runs).
+  FaceWidthSpec face_width;
+  /// The sun torque [N·m] at which the carrier's wind-up tilts the pins (the scene's; the
+  /// wind-up is taken at this nominal load in every computation of the model).
+  double wind_up_sun_torque = 0;
   /// @throws std::invalid_argument naming the field (negative or non-finite stiffness, an
   ///         elastic sun without stiffness, a gap window not > 0).
   void Validate() const;
@@ -62,6 +69,8 @@ class StageModel {
   const geometry::Stage& stage() const { return stage_; }
   const StageCompliance& compliance() const { return compliance_; }
   const StageSetup& setup() const { return setup_; }
+  /// The face-width model (inactive with one slice).
+  const FaceWidthModel& face_width() const { return faces_; }
   const Material& material() const { return compliance_.material(); }
   const std::string& name() const { return setup_.name; }
   int planets() const { return stage_.planets(); }
@@ -89,7 +98,8 @@ class StageModel {
   /// The contact terms at `poses` into `terms`, reusing its buffers (but C, which the compliance
   /// returns anew), with every contact on a pitted flank split into its strips (its rows of C
   /// repeated, its gap grown by the depth, its local term of the strip's width: docs/model.md §9,
-  /// "Pitting and spalls"), or the geometric outcome that prevents them (kNoLineOfAction, kOffFlankGrid,
+  /// "Pitting and spalls"), or with slices of the face width every contact split into its slices
+  /// (face_width.hpp, docs/model.md §10; the pits lower the slices they cover), or the geometric outcome that prevents them (kNoLineOfAction, kOffFlankGrid,
   /// kNoReducedRadius, naming the mesh or contact; `terms` is then incomplete).
   [[nodiscard]] StageOutcome Terms(const geometry::StagePoses& poses, ContactTerms* terms) const;
   /// The same as a value, for poses that must work (the reference configuration).
@@ -139,6 +149,7 @@ class StageModel {
   std::vector<StageDof> dofs_;
   std::vector<double> support_;
   DamageModel damage_;
+  FaceWidthModel faces_;
   void SplitDamaged(ContactTerms* terms) const;
 };
 

@@ -64,17 +64,23 @@ struct StageContact {
   double width_fraction = 1;
   double pit_depth = 0;
   int part = 0;
-  /// "sun-planet1 involute drive teeth 3/5", a pitted strip with " pitted <part>" appended.
+  /// A slice of the face width (face_width.hpp): its index s among the mesh's S slices (0 and 1:
+  /// the plane model's whole face).
+  int slice = 0;
+  int slices = 1;
+  /// "sun-planet1 involute drive teeth 3/5", a pitted strip with " pitted <part>" appended, a
+  /// slice with " slice <s+1>/<S>".
   std::string Label() const;
   /// "drive" or "coast" (the flank column of the output files), a pitted strip's with
-  /// " pitted <part>" appended.
+  /// " pitted <part>" appended, a slice's with " slice <s+1>/<S>".
   std::string FlankName() const;
   /// The same potential contact as `other` (what Label() names: mesh, planet, kind, flank side,
   /// teeth), compared without building the labels.
   bool SameAs(const StageContact& other) const {
     return planet == other.planet && mesh == other.mesh && loaded == other.loaded &&
            contact.kind == other.contact.kind && contact.tooth_a == other.contact.tooth_a &&
-           contact.tooth_b == other.contact.tooth_b && part == other.part;
+           contact.tooth_b == other.contact.tooth_b && part == other.part &&
+           slice == other.slice;
   }
 };
 

@@ -4,6 +4,7 @@
 // command and the tolerance studies (studies/), so both report the same numbers.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "epicycle/transmission/contact_pressure.hpp"
@@ -12,6 +13,21 @@
 #include "epicycle/transmission/accumulator.hpp"
 
 namespace epicycle::transmission {
+
+/// The load across the face width of one mesh over a sweep (slices of the face width:
+/// PositionResult::face_loads).
+struct MeshFaceSummary {
+  std::string mesh;           ///< "sun-planet1", "planet1-ring"
+  int planet = 0;             ///< 0-based
+  bool ring_mesh = false;
+  double k_h_beta_max = 0;    ///< largest K_Hβ over the positions [-]
+  double k_h_beta_mean = 0;   ///< mean over the positions [-]
+  double carrier_angle = 0;   ///< where the largest sits [rad]
+  double largest_z = 0;       ///< the slice centre z [m] of the largest line load there
+  /// max over positions of L_i K_Hβ: the peak load per unit width over the ideal stage's
+  /// (equal sharing, uniform face) [-], the product every rating multiplies with.
+  double k_gamma_k_h_beta_max = 0;
+};
 
 /// Statistics over the converged positions of a sweep. With no converged position every
 /// statistic is NaN (callers print "-" or null, never the NaN).
@@ -49,6 +65,8 @@ struct SweepSummary {
   /// With the root stresses (stresses on), the largest Hertz pressure per gear and flank side over
   /// the converged positions (x: the carrier angle [rad]); else empty.
   std::vector<FlankPressure> contact_pressure;
+  /// With slices of the face width, per mesh (sun–planet meshes, then planet–ring); else empty.
+  std::vector<MeshFaceSummary> face_width;
 };
 
 /// The statistics of a sweep of a stage with `planets` planets gathered one position at a time,
@@ -70,6 +88,8 @@ class SweepAccumulator {
   Accumulator te_, displacement_, k_gamma_, efficiency_, friction_power_, iterations_;
   RootStressTracker root_stress_;
   ContactPressureTracker pressure_;
+  std::vector<MeshFaceSummary> faces_;
+  std::vector<Accumulator> face_mean_;
 };
 
 /// The statistics of `results` (a sweep of a stage with `planets` planets): SweepAccumulator over

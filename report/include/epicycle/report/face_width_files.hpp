@@ -1,0 +1,44 @@
+// The load across the face width of a quasi-static run with slices (docs/face_width.md): each
+// position's line loads per mesh and slice written as it is computed, and at the end the maps of
+// the line load over carrier angle and face width and K_Hβ over the run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "epicycle/report/files.hpp"
+#include "epicycle/report/svg_plot.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
+
+namespace epicycle::report {
+
+/// BASE_face_load.csv: one line per position and mesh (carrier_deg, mesh, converged, K_Hbeta,
+/// the largest line load's z, the mean and each slice's line load [N/mm]); BASE_face_load.svg (a
+/// map per mesh: line load over carrier angle × z) and BASE_k_hbeta.svg (K_Hβ per mesh over the
+/// carrier angle) at the end.
+class FaceLoadFiles {
+ public:
+  /// `meshes` the stage's mesh names in face_loads order, `widths` each mesh's face width [m].
+  FaceLoadFiles(const std::string& base, const nlohmann::json& provenance, int slices,
+                std::vector<std::string> meshes, std::vector<double> widths, int positions);
+  void Write(const transmission::PositionResult& r);
+  void Close() { csv_.Close(); }
+  void WritePlots(const std::string& title) const;
+
+ private:
+  std::string base_;
+  CsvFile csv_;
+  int slices_ = 0, positions_ = 0, columns_ = 0;
+  std::vector<std::string> meshes_;
+  std::vector<double> widths_;
+  // The maps: per mesh, columns_ × slices_ line loads [N/mm] (the largest of the positions that
+  // fall in a column), NaN where none converged; K_Hβ per mesh and position.
+  std::vector<std::vector<double>> map_;
+  std::vector<std::vector<double>> angle_, k_h_beta_;
+  double first_angle_ = 0, last_angle_ = 0;
+  int seen_ = 0;
+};
+
+}  // namespace epicycle::report

@@ -1,0 +1,111 @@
+// The load across the face width of a quasi-static run (face_width_files.hpp).
+#include "epicycle/report/face_width_files.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "epicycle/geometry/plane.hpp"
+#include "epicycle/report/provenance.hpp"
+
+namespace epicycle::report {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The maps' columns at most: positions beyond share a column (its largest line load).
+constexpr int kMapColumns = 360;
+
+std::string Head(const nlohmann::json& provenance, int slices, const std::vector<double>& widths) {
+  std::string head = ProvenanceCsvLine(provenance);
+  head += "# slice centres z [mm] of a face of width b: -b/2 + (s + 1/2) b/S, S = " +
+          std::to_string(slices) + "; b = " + fmt::format("{:g}", widths.front() * 1e3) +
+          " mm (sun meshes), " + fmt::format("{:g}", widths.back() * 1e3) + " mm (ring meshes)\n";
+  head += "carrier_deg,mesh,converged,K_Hbeta,largest_z_mm,mean_N_per_mm";
+  for (int s = 1; s <= slices; ++s) head += ",w" + std::to_string(s) + "_N_per_mm";
+  return head + "\n";
+}
+
+}  // namespace
+
+FaceLoadFiles::FaceLoadFiles(const std::string& base, const nlohmann::json& provenance, int slices,
+                             std::vector<std::string> meshes, std::vector<double> widths,
+                             int positions)
+    : base_(base),
+      csv_(base + "_face_load.csv", Head(provenance, slices, widths)),
+      slices_(slices),
+      positions_(std::max(1, positions)),
+      columns_(std::min(kMapColumns, std::max(1, positions))),
+      meshes_(std::move(meshes)),
+      widths_(std::move(widths)) {
+  map_.assign(meshes_.size(), std::vector<double>(static_cast<std::size_t>(columns_ * slices_), kNaN));
+  angle_.resize(meshes_.size());
+  k_h_beta_.resize(meshes_.size());
+}
+
+void FaceLoadFiles::Write(const transmission::PositionResult& r) {
+  const double deg = geometry::Deg(r.carrier_angle);
+  if (seen_ == 0) first_angle_ = deg;
+  last_angle_ = deg;
+  const int column = std::min(columns_ - 1, static_cast<int>(static_cast<long>(seen_) * columns_ /
+                                                            positions_));
+  ++seen_;
+  std::string lines;
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    const bool ok = r.converged && m < r.face_loads.size();
+    std::string line = fmt::format("{:.6f},{},{}", deg, meshes_[m], ok ? 1 : 0);
+    if (!ok) {
+      line += ",,,";
+      for (int s = 0; s < slices_; ++s) line += ",";
+      lines += line + "\n";
+      continue;
+    }
+    const transmission::MeshFaceLoad& f = r.face_loads[m];
+    line += fmt::format(",{},{},{}", Num(f.k_h_beta), Num(f.largest_z * 1e3), Num(f.mean * 1e-3));
+    for (int s = 0; s < slices_; ++s) {
+      const double w = f.line_load[static_cast<std::size_t>(s)] * 1e-3;  // [N/mm]
+      line += "," + Num(w);
+      double& cell = map_[m][static_cast<std::size_t>(s * columns_ + column)];
+      cell = std::isnan(cell) ? w : std::max(cell, w);
+    }
+    angle_[m].push_back(deg);
+    k_h_beta_[m].push_back(f.k_h_beta);
+    lines += line + "\n";
+  }
+  csv_.Write(lines);
+}
+
+void FaceLoadFiles::WritePlots(const std::string& title) const {
+  if (seen_ == 0) return;
+  std::vector<HeatMap> maps;
+  const double step = positions_ > 1 ? (last_angle_ - first_angle_) / (positions_ - 1) : 1.0;
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    HeatMap h;
+    h.title = meshes_[m];
+    h.x_label = "carrier angle [deg]";
+    h.y_label = "z [mm]";
+    h.unit = "N/mm";
+    h.x0 = first_angle_ - 0.5 * step;
+    h.x1 = last_angle_ + 0.5 * step;
+    h.y0 = -0.5 * widths_[m] * 1e3;
+    h.y1 = 0.5 * widths_[m] * 1e3;
+    h.columns = columns_;
+    h.rows = slices_;
+    h.values = map_[m];
+    maps.push_back(std::move(h));
+  }
+  WriteTextFile(base_ + "_face_load.svg",
+                RenderHeatMaps(title + ": load per unit face width", maps));
+  LinePlot k;
+  k.title = title + ": face load factor K_Hbeta";
+  k.x_label = "carrier angle [deg]";
+  k.y_label = "K_Hbeta [-]";
+  k.y_references = {1.0};
+  for (std::size_t m = 0; m < meshes_.size(); ++m)
+    k.series.push_back({meshes_[m], angle_[m], k_h_beta_[m]});
+  WriteTextFile(base_ + "_k_hbeta.svg", RenderSvg(k));
+}
+
+}  // namespace epicycle::report

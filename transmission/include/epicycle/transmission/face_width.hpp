@@ -1,0 +1,155 @@
+// Load across the face width (docs/model.md §10, "Face width"): each mesh's face width b divided
+// into S slices of width b/S, every slice the plane model per unit width at the same contact
+// point (its own gap, local term and structural compliance), the slices of a body coupled along
+// the face, and the gap of each slice changed by what varies along the axis: a planet pin's tilt,
+// the carrier's torsional wind-up, each gear's lead slope deviation, crowning and end relief.
+//
+// Axial coordinate z [m] from the mid-plane of the stage (every gear centred on it), slice s of
+// a mesh of width b at z_s = −b/2 + (s + ½) b/S.
+//
+// Gap of slice s of a contact j between bodies A and B (δ_j the plane contact's overlap):
+//   δ_js = δ_j + z_s n·(t_A − t_B) − z_s (ℓ_A h_A + ℓ_B h_B) − c_A(z_s) − c_B(z_s)
+// with n the contact normal (from A into B), t_X the axis slope of body X [-] (a displacement
+// z t_X of its section at z: a planet's pin tilt plus the carrier's wind-up; zero for the sun and
+// the ring), ℓ_X the lever of the unit force on X [m] (PotentialContact::lever_a/b), h_X the
+// lead slope deviation as a turn of the sections [rad/m] (f_Hβ/(b r_b)), and c_X(z) ≥ 0 the
+// material removed by the lead modifications [m]: crowning C_β (2z/b)² and an end relief
+// C_I ((|z| − (b/2 − L_I))/L_I) over the last L_I of each end.
+//
+// Structural compliance of slices (s, t) of contacts (j, k): C_jk W_st, W [-] the coupling along
+// the face, with Σ_t W_st = S (a load uniform along the face deflects every slice as the plane
+// model does):
+//   - kNone: W = S I (uncoupled strips, ISO 6336-1 method C's idealisation);
+//   - kPasternak: the face is an elastic foundation with shear coupling (a Pasternak layer,
+//     w − λ² w'' = c p, free ends: w' = 0), whose Green's function on [0, b] is
+//       G(x, x') = cosh(x_</λ) cosh((b − x_>)/λ) / (λ sinh(b/λ)),
+//     and W_st = (S/Δz) ∫_s ∫_t G dx dx' (a Galerkin average over both slices: symmetric,
+//     positive definite; λ → 0 gives S I, λ → ∞ the rigid 1 1ᵀ).
+// The local contact term of a slice is the plane term of width b/S.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "epicycle/geometry/stage.hpp"
+#include "epicycle/transmission/damage.hpp"
+
+namespace epicycle::transmission {
+
+struct ContactTerms;
+struct StageContact;
+
+/// How the slices of one body deflect together (the kernel W above).
+enum class FaceCoupling {
+  kNone,       ///< uncoupled strips
+  kPasternak,  ///< a Pasternak foundation of coupling length λ with free ends
+};
+
+/// A lead (helix) deviation and the lead modifications of one gear (the scene's
+/// [[face_width.lead]]).
+struct LeadSpec {
+  std::string gear;       ///< "sun", "ring", "planet<i>" (a stage); "gear1", "gear2" (a pair)
+  double slope = 0;       ///< f_Hβ [m] of arc on the base circle over the face width, + ccw at +z
+  double crowning = 0;    ///< C_β [m] removed at each end, parabolic, ≥ 0
+  double end_relief = 0;  ///< C_I [m] removed at each end, linear over end_relief_length, ≥ 0
+  double end_relief_length = 0;  ///< L_I [m], in (0, b/2] when end_relief > 0
+  std::string where;             ///< "file:line: face_width.lead[0]" for messages
+};
+
+/// A planet pin's tilt in the carrier (the scene's [[face_width.pin_tilt]]): the slope of the
+/// pin's axis, radial (outward at +z) and tangential (counter-clockwise at +z) [-].
+struct PinTilt {
+  int planet = 0;  ///< 0-based
+  double radial = 0, tangential = 0;
+  std::string where;
+};
+
+/// The scene's [face_width] table. slices == 1 is the plane model (nothing here runs).
+struct FaceWidthSpec {
+  int slices = 1;  ///< S [-], 1..kMaxFaceSlices
+  FaceCoupling coupling = FaceCoupling::kNone;
+  double coupling_length = 0;  ///< λ [m], > 0 for kPasternak
+  std::vector<PinTilt> pin_tilts;
+  std::vector<LeadSpec> leads;
+  /// The carrier's torsional stiffness between its two plates [N·m/rad] (0: rigid) and the
+  /// distance between the plates [m]: under the carrier torque T_c every pin tilts tangentially
+  /// by T_c r_c/(k_θ L), r_c the carrier radius, the end at the output plate leading.
+  double carrier_torsional_stiffness = 0;
+  double carrier_plate_distance = 0;  ///< L [m], > 0 when the stiffness is given
+  int carrier_output_side = 1;        ///< the output plate at z = +L/2 (+1) or −L/2 (−1)
+  bool active() const { return slices > 1; }
+};
+
+inline constexpr int kMaxFaceSlices = 200;
+
+/// W [-], S×S, of `coupling` on a face of width `width` [m] (docs/model.md §10, "Face width").
+/// @throws std::invalid_argument for S < 1, a width not > 0, or kPasternak with λ not > 0.
+Eigen::MatrixXd FaceCouplingMatrix(int slices, double width, FaceCoupling coupling,
+                                   double coupling_length);
+
+/// z_s [m] of the slices of a face of width b.
+std::vector<double> SliceCentres(int slices, double width);
+
+/// The face-width model of a stage, resolved against its bodies once: every body's axis slope,
+/// lead slope and modifications, and the coupling matrix of each mesh's face width.
+class FaceWidthModel {
+ public:
+  FaceWidthModel() = default;
+  /// `carrier_torque` [N·m] the carrier's torque from the stage at its nominal load (the
+  /// wind-up's). @throws std::invalid_argument naming the key for a gear or planet that the stage
+  /// does not have.
+  FaceWidthModel(const FaceWidthSpec& spec, const geometry::Stage& stage, double carrier_torque);
+  bool active() const { return spec_.active(); }
+  int slices() const { return spec_.slices; }
+  const FaceWidthSpec& spec() const { return spec_; }
+
+  /// Splits every contact of `terms` into its slices (contacts, compliance, overlap; the local
+  /// terms are built afterwards from each slice's width fraction), growing each slice's gap by
+  /// the depth of the pits of `damage` that cover its centre.
+  void Expand(const geometry::StagePoses& poses, const DamageModel& damage,
+              ContactTerms* terms) const;
+
+  /// The gap change [m] of slice s of `contact` (the terms in the header's equation but δ_j).
+  double GapChange(const geometry::StagePoses& poses, const StageContact& contact, int s) const;
+
+  /// The largest |gap change| [m] over every mesh's slices at the stage's reference poses (for
+  /// the scene's check against the contact search's gap window).
+  double LargestGapChange(const geometry::Stage& stage) const;
+
+  /// The axis slope of body b in the inertial frame at these poses [-].
+  Eigen::Vector2d AxisSlope(const geometry::StagePoses& poses, int body) const;
+
+ private:
+  struct BodyLead {
+    double slope = 0;  ///< h [rad/m]
+    double crowning = 0, end_relief = 0, end_relief_length = 0, width = 0;
+    double Removed(double z) const;  ///< c(z) [m]
+  };
+  FaceWidthSpec spec_;
+  std::vector<BodyLead> lead_;                  // per body
+  std::vector<Eigen::Vector2d> planet_slope_;   // carrier frame: (radial, tangential)
+  double wind_up_slope_ = 0;                    // tangential [-], every pin
+  double sun_planet_width_ = 0, planet_ring_width_ = 0;
+  Eigen::MatrixXd coupling_sun_planet_, coupling_planet_ring_;
+};
+
+/// The load per unit face width of one mesh at one state.
+struct MeshFaceLoad {
+  int planet = 0;
+  bool ring_mesh = false;      ///< false: the sun–planet mesh
+  std::vector<double> line_load;  ///< w_s [N/m] per slice (Σ over the mesh's contacts)
+  double mean = 0;                ///< F/b [N/m]
+  double k_h_beta = 1;            ///< K_Hβ = max w_s / mean [-] (1 without load)
+  int largest_slice = 0;          ///< where the largest w_s sits
+  double largest_z = 0;           ///< its slice centre z [m]
+};
+
+/// The face loads of every mesh (sun–planet meshes of planets 0…, then planet–ring meshes) from
+/// the forces [N] of sliced contacts; `width` [m] of each mesh as in FaceWidthModel.
+std::vector<MeshFaceLoad> FaceLoads(const geometry::Stage& stage, int slices,
+                                    const std::vector<StageContact>& contacts,
+                                    const Eigen::VectorXd& force);
+
+}  // namespace epicycle::transmission

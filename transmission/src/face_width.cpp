@@ -1,0 +1,266 @@
+#include "epicycle/transmission/face_width.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "epicycle/io/number_format.hpp"
+#include "epicycle/transmission/stage_model.hpp"
+#include "epicycle/transmission/stage_problem.hpp"
+
+namespace epicycle::transmission {
+
+namespace {
+
+// sinh(u) sinh(v) / sinh(B) for u, v ≥ 0, u + v ≤ B, without overflow (every exponent ≤ 0).
+double SinhSinhOverSinh(double u, double v, double B) {
+  return (std::exp(u + v - B) - std::exp(u - v - B) - std::exp(v - u - B) +
+          std::exp(-u - v - B)) /
+         (2.0 * (1.0 - std::exp(-2.0 * B)));
+}
+
+// cosh(w) / sinh(B) for |w| ≤ B, without overflow.
+double CoshOverSinh(double w, double B) {
+  return (std::exp(w - B) + std::exp(-w - B)) / (1.0 - std::exp(-2.0 * B));
+}
+
+// ∫_s ∫_t G(x, x') dx dx' of the Pasternak Green's function on [0, B] with λ = 1 (lengths in
+// units of λ; docs/model.md §10), slices s = [a1, a2] and t = [c1, c2] with a2 ≤ c1 or s = t.
+// Apart (x < x'): G = cosh x cosh(B − x')/sinh B, so the integral is
+//   (sinh a2 − sinh a1)(sinh(B − c1) − sinh(B − c2))/sinh B.
+// The same slice [p, q]: twice the integral over x < x',
+//   2/sinh B ∫_p^q cosh(B − x') (sinh x' − sinh p) dx'
+//   = (q − p) + (cosh(2q − B) − cosh(2p − B))/(2 sinh B)
+//     − 2 sinh p (sinh(B − p) − sinh(B − q))/sinh B.
+double GreenDoubleIntegral(double a1, double a2, double c1, double c2, double B) {
+  if (a1 == c1) {
+    const double p = a1, q = a2;
+    return (q - p) + 0.5 * (CoshOverSinh(2 * q - B, B) - CoshOverSinh(2 * p - B, B)) -
+           2 * (SinhSinhOverSinh(p, B - p, B) - SinhSinhOverSinh(p, B - q, B));
+  }
+  return SinhSinhOverSinh(a2, B - c1, B) - SinhSinhOverSinh(a2, B - c2, B) -
+         SinhSinhOverSinh(a1, B - c1, B) + SinhSinhOverSinh(a1, B - c2, B);
+}
+
+}  // namespace
+
+std::vector<double> SliceCentres(int slices, double width) {
+  std::vector<double> z(static_cast<std::size_t>(slices));
+  const double dz = width / slices;
+  for (int s = 0; s < slices; ++s) z[static_cast<std::size_t>(s)] = -0.5 * width + (s + 0.5) * dz;
+  return z;
+}
+
+Eigen::MatrixXd FaceCouplingMatrix(int slices, double width, FaceCoupling coupling,
+                                   double coupling_length) {
+  if (slices < 1)
+    throw std::invalid_argument("face width: slices = " + std::to_string(slices) +
+                                ": must be at least 1");
+  if (!(width > 0) || !std::isfinite(width))
+    throw std::invalid_argument("face width: width = " + io::Num(width) + " m: must be > 0");
+  const int n = slices;
+  if (coupling == FaceCoupling::kNone || n == 1)
+    return Eigen::MatrixXd::Identity(n, n) * static_cast<double>(n);
+  if (!(coupling_length > 0) || !std::isfinite(coupling_length))
+    throw std::invalid_argument("face width: coupling_length = " + io::Num(coupling_length) +
+                                " m: must be > 0 for the Pasternak coupling");
+  // In units of λ: the face [0, B], slices of width D; W_st = (S/D) ∫_s ∫_t G.
+  const double B = width / coupling_length, D = B / n;
+  Eigen::MatrixXd w(n, n);
+  for (int s = 0; s < n; ++s)
+    for (int t = s; t < n; ++t)
+      w(s, t) = w(t, s) = n / D * GreenDoubleIntegral(s * D, (s + 1) * D, t * D, (t + 1) * D, B);
+  return w;
+}
+
+double FaceWidthModel::BodyLead::Removed(double z) const {
+  double c = 0;
+  if (crowning > 0) c += crowning * (2 * z / width) * (2 * z / width);
+  if (end_relief > 0) {
+    const double into = std::abs(z) - (0.5 * width - end_relief_length);
+    if (into > 0) c += end_relief * into / end_relief_length;
+  }
+  return c;
+}
+
+FaceWidthModel::FaceWidthModel(const FaceWidthSpec& spec, const geometry::Stage& stage,
+                               double carrier_torque)
+    : spec_(spec) {
+  if (!spec_.active()) return;
+  const int planets = stage.planets();
+  const int bodies = PlanetBody(planets);
+  const std::vector<std::string> names = BodyNames(bodies);
+  auto gear_of = [&](int body) -> const geometry::Gear& {
+    if (body == kSunBody) return stage.sun();
+    if (body == kRingBody) return stage.ring();
+    return stage.planet(body - 2);
+  };
+  lead_.assign(static_cast<std::size_t>(bodies), BodyLead{});
+  for (int b = 0; b < bodies; ++b) lead_[b].width = gear_of(b).spec().face_width;
+  for (const LeadSpec& l : spec_.leads) {
+    const auto it = std::find(names.begin(), names.end(), l.gear);
+    if (it == names.end())
+      throw std::invalid_argument(l.where + ".gear = \"" + l.gear +
+                                  "\": the stage has no such gear");
+    BodyLead& b = lead_[static_cast<std::size_t>(it - names.begin())];
+    const geometry::Gear& g = gear_of(static_cast<int>(it - names.begin()));
+    b.slope = l.slope / (b.width * g.base_radius());
+    b.crowning = l.crowning;
+    b.end_relief = l.end_relief;
+    b.end_relief_length = l.end_relief_length;
+  }
+  planet_slope_.assign(static_cast<std::size_t>(planets), Eigen::Vector2d::Zero());
+  for (const PinTilt& t : spec_.pin_tilts) {
+    if (t.planet < 0 || t.planet >= planets)
+      throw std::invalid_argument(t.where + ".planet = " + std::to_string(t.planet + 1) +
+                                  ": the stage has planets 1.." + std::to_string(planets));
+    planet_slope_[static_cast<std::size_t>(t.planet)] += Eigen::Vector2d(t.radial, t.tangential);
+  }
+  if (spec_.carrier_torsional_stiffness > 0) {
+    // The plates twist by Δφ = T_c/k_θ; a pin at the carrier radius r_c spans L between them. The
+    // planets drive the carrier in the sense of −T_c (T_c the carrier's external torque, which
+    // balances them): the end away from the output plate leads in that sense.
+    const double twist = -carrier_torque / spec_.carrier_torsional_stiffness;
+    wind_up_slope_ = -spec_.carrier_output_side * twist * stage.carrier_radius() /
+                     spec_.carrier_plate_distance;
+  }
+  const double b_sp = geometry::ContactFaceWidth(stage.sun(), stage.planet(0));
+  const double b_pr = geometry::ContactFaceWidth(stage.planet(0), stage.ring());
+  sun_planet_width_ = b_sp;
+  planet_ring_width_ = b_pr;
+  coupling_sun_planet_ =
+      FaceCouplingMatrix(spec_.slices, b_sp, spec_.coupling, spec_.coupling_length);
+  coupling_planet_ring_ =
+      FaceCouplingMatrix(spec_.slices, b_pr, spec_.coupling, spec_.coupling_length);
+}
+
+Eigen::Vector2d FaceWidthModel::AxisSlope(const geometry::StagePoses& poses, int body) const {
+  if (body < 2) return Eigen::Vector2d::Zero();
+  const int i = body - 2;
+  const geometry::Vec2 c = poses.planets.at(static_cast<std::size_t>(i)).rotation_centre;
+  const double r = c.norm();
+  if (!(r > 0)) return Eigen::Vector2d::Zero();
+  const Eigen::Vector2d radial = c / r, tangential(-radial.y(), radial.x());
+  const Eigen::Vector2d& own = planet_slope_[static_cast<std::size_t>(i)];
+  return own.x() * radial + (own.y() + wind_up_slope_) * tangential;
+}
+
+double FaceWidthModel::GapChange(const geometry::StagePoses& poses, const StageContact& c,
+                                 int s) const {
+  const bool ring = c.mesh == geometry::MeshKind::kPlanetRing;
+  const double b = ring ? planet_ring_width_ : sun_planet_width_;
+  const double z = -0.5 * b + (s + 0.5) * b / spec_.slices;
+  const geometry::PotentialContact& p = c.contact;
+  const Eigen::Vector2d tilt = AxisSlope(poses, c.body_a) - AxisSlope(poses, c.body_b);
+  const BodyLead& la = lead_[static_cast<std::size_t>(c.body_a)];
+  const BodyLead& lb = lead_[static_cast<std::size_t>(c.body_b)];
+  return z * p.normal.dot(tilt) - z * (p.lever_a * la.slope + p.lever_b * lb.slope) -
+         la.Removed(z) - lb.Removed(z);
+}
+
+double FaceWidthModel::LargestGapChange(const geometry::Stage& stage) const {
+  if (!active()) return 0;
+  const geometry::StagePoses poses = stage.Poses(0.0);
+  double worst = 0;
+  // Along each mesh's line of action (|lever| = r_b): the tilt's share n·t and the leads'.
+  for (int i = 0; i < stage.planets(); ++i) {
+    for (const bool ring : {false, true}) {
+      StageContact c;
+      c.planet = i;
+      c.mesh = ring ? geometry::MeshKind::kPlanetRing : geometry::MeshKind::kSunPlanet;
+      c.body_a = ring ? PlanetBody(i) : kSunBody;
+      c.body_b = ring ? kRingBody : PlanetBody(i);
+      const Eigen::Vector2d t = AxisSlope(poses, c.body_a) - AxisSlope(poses, c.body_b);
+      const double b = ring ? planet_ring_width_ : sun_planet_width_;
+      const geometry::Gear& ga = ring ? stage.planet(i) : stage.sun();
+      const geometry::Gear& gb = ring ? stage.ring() : stage.planet(i);
+      const BodyLead& la = lead_[static_cast<std::size_t>(c.body_a)];
+      const BodyLead& lb = lead_[static_cast<std::size_t>(c.body_b)];
+      for (int s = 0; s < spec_.slices; ++s) {
+        const double z = -0.5 * b + (s + 0.5) * b / spec_.slices;
+        const double change = std::abs(z) * (t.norm() + ga.base_radius() * std::abs(la.slope) +
+                                             gb.base_radius() * std::abs(lb.slope)) +
+                              la.Removed(z) + lb.Removed(z);
+        worst = std::max(worst, change);
+      }
+    }
+  }
+  return worst;
+}
+
+void FaceWidthModel::Expand(const geometry::StagePoses& poses, const DamageModel& damage,
+                            ContactTerms* terms) const {
+  ContactTerms& t = *terms;
+  const int n = t.size(), S = spec_.slices;
+  if (n == 0) return;
+  std::vector<StageContact> out;
+  out.reserve(static_cast<std::size_t>(n * S));
+  for (int j = 0; j < n; ++j) {
+    const StageContact& c = t.contacts[static_cast<std::size_t>(j)];
+    for (int s = 0; s < S; ++s) {
+      StageContact k = c;
+      k.slice = s;
+      k.slices = S;
+      k.width_fraction = c.width_fraction / S;
+      // The pits covering the slice's centre, measured from the edge z = −b/2 (damage.hpp).
+      const double pit = damage.DepthAt(c.body_a, c.body_b, c.contact, (s + 0.5) / S);
+      k.pit_depth = pit;
+      k.contact.overlap = c.contact.overlap + GapChange(poses, c, s) - pit;
+      out.push_back(k);
+    }
+  }
+  Eigen::MatrixXd c(n * S, n * S);
+  for (int j = 0; j < n; ++j) {
+    for (int k = 0; k < n; ++k) {
+      const double cjk = t.compliance(j, k);
+      // Slices of two contacts couple through the body they share; contacts on different meshes
+      // of one planet share the planet, whose face is the narrower mesh's: the sun mesh's W.
+      const bool ring = t.contacts[static_cast<std::size_t>(j)].mesh ==
+                            geometry::MeshKind::kPlanetRing &&
+                        t.contacts[static_cast<std::size_t>(k)].mesh ==
+                            geometry::MeshKind::kPlanetRing;
+      const Eigen::MatrixXd& w = ring ? coupling_planet_ring_ : coupling_sun_planet_;
+      c.block(j * S, k * S, S, S) = cjk * w;
+    }
+  }
+  t.compliance = std::move(c);
+  t.contacts = std::move(out);
+  t.overlap.resize(t.size());
+  for (int j = 0; j < t.size(); ++j) t.overlap(j) = t.contacts[static_cast<std::size_t>(j)].contact.overlap;
+}
+
+std::vector<MeshFaceLoad> FaceLoads(const geometry::Stage& stage, int slices,
+                                    const std::vector<StageContact>& contacts,
+                                    const Eigen::VectorXd& force) {
+  const int planets = stage.planets();
+  std::vector<MeshFaceLoad> out(static_cast<std::size_t>(2 * planets));
+  const double b_sp = geometry::ContactFaceWidth(stage.sun(), stage.planet(0));
+  const double b_pr = geometry::ContactFaceWidth(stage.planet(0), stage.ring());
+  for (int m = 0; m < 2 * planets; ++m) {
+    MeshFaceLoad& f = out[static_cast<std::size_t>(m)];
+    f.planet = m % planets;
+    f.ring_mesh = m >= planets;
+    f.line_load.assign(static_cast<std::size_t>(slices), 0.0);
+  }
+  for (std::size_t j = 0; j < contacts.size() && j < static_cast<std::size_t>(force.size()); ++j) {
+    const StageContact& c = contacts[j];
+    const bool ring = c.mesh == geometry::MeshKind::kPlanetRing;
+    const double dz = (ring ? b_pr : b_sp) / slices;
+    MeshFaceLoad& f = out[static_cast<std::size_t>((ring ? planets : 0) + c.planet)];
+    f.line_load[static_cast<std::size_t>(std::min(c.slice, slices - 1))] +=
+        force(static_cast<Eigen::Index>(j)) / dz;
+  }
+  for (MeshFaceLoad& f : out) {
+    double sum = 0;
+    for (double w : f.line_load) sum += w;
+    f.mean = sum / slices;
+    const auto top = std::max_element(f.line_load.begin(), f.line_load.end());
+    f.largest_slice = static_cast<int>(top - f.line_load.begin());
+    const double b = f.ring_mesh ? b_pr : b_sp;
+    f.largest_z = -0.5 * b + (f.largest_slice + 0.5) * b / slices;
+    f.k_h_beta = f.mean > 0 ? *top / f.mean : 1.0;
+  }
+  return out;
+}
+
+}  // namespace epicycle::transmission

@@ -1,0 +1,188 @@
+// The scene's [face_width] table with its [[face_width.pin_tilt]] and [[face_width.lead]] arrays
+// (docs/scenes.md, "Face width"; the model: docs/model.md §10).
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "epicycle/io/toml_reader.hpp"
+#include "scene_internal.hpp"
+
+namespace epicycle::transmission::internal {
+
+using geometry::GearSpec;
+
+namespace {
+
+constexpr double kDefaultSlices = 20;  // docs/scenes.md, "Face width": the convergence behind it
+
+// The largest gap change across one mesh (A, B) of the stage, a bound of FaceWidthModel's
+// (|n·t| ≤ |t|, |ℓ| ≤ r_b for the lead slope's turn of the sections), and the key that
+// contributes most, for the message.
+struct MeshBound {
+  double change = 0;
+  std::string key;
+};
+
+}  // namespace
+
+void ReadFaceWidth(TableReader& top, Scene& s,
+                   const std::vector<std::pair<std::string, const GearSpec*>>& gears) {
+  auto t = top.OptionalTable("face_width");
+  if (!t) return;
+  FaceWidthSpec& f = s.face_width;
+  const geometry::StageSpec& st = s.stage;
+  const double b_planet = st.planet.face_width;
+  const bool has_more = t->Has("pin_tilt") || t->Has("lead") ||
+                        t->Has("carrier_torsional_stiffness_Nm_per_rad");
+  f.slices = static_cast<int>(t->IntegerOr(
+      "slices", has_more ? static_cast<long>(kDefaultSlices) : 1L,
+      Rule::Closed(1, kMaxFaceSlices)
+          .Because("slices of the face width, each a plane contact problem of its own; 1 is the "
+                   "plane model")));
+  if (f.slices > 1 && s.model.stresses)
+    t->Fail("slices", std::to_string(f.slices) + " with [model] stresses = true",
+            "root stresses per slice of the face width are not built: a slice's fillet stress "
+            "is not the plane model's; run the face-width model with stresses off");
+  auto needs_slices = [&](TableReader& r, const std::string& key) {
+    if (f.slices < 2)
+      r.Fail(key, "given with face_width.slices = 1",
+             "a variation along the face width needs slices >= 2 (one slice has no axial "
+             "extent)");
+  };
+  const std::string coupling = t->StringOr("coupling", "none", {"none", "pasternak"});
+  if (coupling == "pasternak") {
+    f.coupling = FaceCoupling::kPasternak;
+    f.coupling_length =
+        t->Real("coupling_length_mm",
+                Rule::Open(0, 10 * b_planet / kMm)
+                    .Because("the length over which a load on one slice deflects its "
+                             "neighbours (the Pasternak layer's sqrt(G/k)), up to ten face "
+                             "widths")) *
+        kMm;
+  } else if (t->Has("coupling_length_mm")) {
+    t->Fail("coupling_length_mm", "given with coupling = \"none\"",
+            "a coupling length belongs to coupling = \"pasternak\"");
+  }
+  // The carrier's wind-up.
+  if (t->Has("carrier_torsional_stiffness_Nm_per_rad")) {
+    needs_slices(*t, "carrier_torsional_stiffness_Nm_per_rad");
+    f.carrier_torsional_stiffness =
+        t->Real("carrier_torsional_stiffness_Nm_per_rad",
+                Rule::Positive().Because("the torque that twists the carrier's two plates by "
+                                         "one radian against each other"));
+    f.carrier_plate_distance =
+        t->RealOr("carrier_plate_distance_mm", b_planet / kMm,
+                  Rule{b_planet / kMm, 100 * b_planet / kMm, false, false, ""}.Because(
+                      "the pins span the plates, at least the planet's face width")) *
+        kMm;
+    f.carrier_output_side = t->StringOr("carrier_output_side", "+z", {"+z", "-z"}) == "+z" ? 1 : -1;
+  }
+  for (TableReader& r : t->TableArray("pin_tilt")) {
+    PinTilt p;
+    p.where = r.Where("planet");
+    p.planet = static_cast<int>(
+                   r.Integer("planet", Rule::Closed(1, st.planets)
+                                           .Because("planets are numbered 1.." +
+                                                    std::to_string(st.planets)))) -
+               1;
+    needs_slices(r, "planet");
+    const double over = r.RealOr("over_mm", b_planet / kMm,
+                                 Rule::Positive().Because("the length over which the pin's "
+                                                          "parallelism deviation is measured")) *
+                        kMm;
+    const double radial_um = r.RealOr("radial_um", 0, Rule::Any());
+    const double tangential_um = r.RealOr("tangential_um", 0, Rule::Any());
+    p.radial = radial_um * kUm / over;
+    p.tangential = tangential_um * kUm / over;
+    p.where += " (radial_um = " + SceneNum(radial_um) + ", tangential_um = " +
+               SceneNum(tangential_um) + " over " + SceneNum(over / kMm) + " mm)";
+    for (const PinTilt& q : f.pin_tilts)
+      if (q.planet == p.planet)
+        r.Fail("planet", std::to_string(p.planet + 1),
+               "planet " + std::to_string(p.planet + 1) + " already has a pin tilt at " +
+                   q.where + "; give one per planet");
+    r.Done();
+    f.pin_tilts.push_back(p);
+  }
+  for (TableReader& r : t->TableArray("lead")) {
+    LeadSpec l;
+    l.where = r.Where("gear");
+    const GearSpec* spec = &NamedGear(r, gears, &l.gear);
+    needs_slices(r, "gear");
+    const double b = spec->face_width;
+    l.slope = r.RealOr("slope_um", 0, Rule::Any()) * kUm;
+    l.crowning = r.RealOr("crowning_um", 0,
+                          Rule::NonNegative().Because(
+                              "material removed at each end of the face width; a negative "
+                              "crowning would add material")) *
+                 kUm;
+    l.end_relief = r.RealOr("end_relief_um", 0,
+                            Rule::NonNegative().Because("material removed at each end")) *
+                   kUm;
+    if (l.end_relief > 0) {
+      l.end_relief_length =
+          r.Real("end_relief_length_mm",
+                 Rule{0, 0.5 * b / kMm, true, false, ""}.Because(
+                     "the relieved length at each end, at most half the face width")) *
+          kMm;
+    }
+    for (const LeadSpec& q : f.leads)
+      if (q.gear == l.gear)
+        r.Fail("gear", "\"" + l.gear + "\"",
+               "the gear already has a lead entry at " + q.where + "; give one per gear");
+    r.Done();
+    f.leads.push_back(l);
+  }
+  // The gap change across each mesh against the contact search's window: the search runs in the
+  // mid-plane and finds the contacts whose gap there is within the window; a slice closer than
+  // the mid-plane by more than half the window could carry where the search found nothing.
+  if (f.active()) {
+    const double ratio = static_cast<double>(st.ring.teeth) / st.sun.teeth;
+    const double carrier_torque = std::abs(s.loads.sun_torque) * (1 + ratio);
+    const double wind_up = f.carrier_torsional_stiffness > 0
+                               ? carrier_torque / f.carrier_torsional_stiffness *
+                                     st.carrier_radius / f.carrier_plate_distance
+                               : 0.0;
+    auto lead_of = [&](const std::string& gear) -> const LeadSpec* {
+      for (const LeadSpec& l : f.leads)
+        if (l.gear == gear) return &l;
+      return nullptr;
+    };
+    for (int i = 0; i < st.planets; ++i) {
+      const std::string planet = "planet" + std::to_string(i + 1);
+      for (const std::string& mate : {std::string("sun"), std::string("ring")}) {
+        const GearSpec& other = mate == "sun" ? st.sun : st.ring;
+        const double b = std::min(b_planet, other.face_width);
+        MeshBound bound;
+        double largest = 0;
+        auto add = [&](double change, const std::string& key) {
+          bound.change += change;
+          if (change > largest) {
+            largest = change;
+            bound.key = key;
+          }
+        };
+        for (const PinTilt& p : f.pin_tilts)
+          if (p.planet == i) add(0.5 * b * std::hypot(p.radial, p.tangential), p.where);
+        if (wind_up > 0) add(0.5 * b * wind_up, t->Where("carrier_torsional_stiffness_Nm_per_rad"));
+        for (const std::string& g : {planet, mate}) {
+          if (const LeadSpec* l = lead_of(g))
+            add(0.5 * std::abs(l->slope) + l->crowning + l->end_relief, l->where);
+        }
+        if (bound.change > 0.5 * s.gap_window)
+          throw std::invalid_argument(
+              bound.key + ": the gap changes by up to " + SceneNum(bound.change / kUm) +
+              " um across the " + (mate == "sun" ? "sun-" + planet : planet + "-ring") +
+              " mesh, more than half the contact search's gap window (contact.gap_window_um = " +
+              SceneNum(s.gap_window / kUm) +
+              "): the search runs in the mid-plane and would miss a slice's contact; widen the "
+              "window or reduce the misalignment");
+      }
+    }
+  }
+  t->Done();
+}
+
+}  // namespace epicycle::transmission::internal
