@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "epicycle/geometry/helical.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/geometry/plane.hpp"
 
@@ -65,6 +66,7 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
   out.dynamic_factor = dynamic_factor;
   out.dynamic_source = dynamic_source;
   const geometry::Gear& sun = stage.sun();
+  const bool helical = sun.spec().helix.helical();
   const double torque = std::abs(scene.loads.sun_torque);
   out.tangential_force = torque / (n * sun.reference_radius());
   const double ft = out.tangential_force;
@@ -117,14 +119,24 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
     c.wheel = a_pinion ? b : a;
     const geometry::Gear& g1 = gear_of(c.pinion);
     const geometry::Gear& g2 = gear_of(c.wheel);
-    const auto f = geometry::iso::ContactFactorsB(
-        g1.teeth(), g1.spec().pressure_angle, m.pressure_angle, m.centre_distance,
-        g1.base_radius(), g1.tip_radius(), g2.base_radius(), g2.tip_radius(), m.contact_ratio_iso,
-        internal);
+    // A helical mesh: the transverse section's factors with β_b and ε_β (ISO 6336-2:2006).
+    const geometry::HelicalMesh hm = geometry::SummariseHelicalMesh(m, g1, g2);
+    const auto f =
+        helical ? geometry::iso::HelicalContactFactorsB(
+                      g1.teeth(), g1.spec().pressure_angle, m.pressure_angle, m.centre_distance,
+                      g1.base_radius(), g1.tip_radius(), g2.base_radius(), g2.tip_radius(),
+                      m.contact_ratio_iso, internal, hm.helix_angle, hm.base_helix_angle,
+                      hm.overlap_ratio)
+                : geometry::iso::ContactFactorsB(g1.teeth(), g1.spec().pressure_angle,
+                                                 m.pressure_angle, m.centre_distance,
+                                                 g1.base_radius(), g1.tip_radius(),
+                                                 g2.base_radius(), g2.tip_radius(),
+                                                 m.contact_ratio_iso, internal);
     const double u = (internal ? -1.0 : 1.0) * g2.teeth() / g1.teeth();
     const double b_width = geometry::ContactFaceWidth(g1, g2);
     c.sigma_h0 = f.z_h * z_e * f.z_eps *
                  std::sqrt(ft / (2 * g1.reference_radius() * b_width) * (u + 1) / u);
+    if (helical) c.sigma_h0 *= f.z_beta;
     c.z_b = f.z_b;
     c.z_d = f.z_d;
     const std::string mesh = internal ? "ring mesh" : "sun mesh";
@@ -139,6 +151,12 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
            internal ? at + " (internal wheel: 1)"
                     : fmt::format("{} (wheel {}): M_2 = {:.4f}", at, role(c.wheel), f.m2));
     factor("u " + mesh, u, "z_wheel/z_pinion (negative: internal)");
+    if (helical) {
+      factor("Z_beta " + mesh, f.z_beta,
+             fmt::format("ISO 6336-2: 1/sqrt(cos beta), beta = {}", Deg(hm.helix_angle)));
+      factor("eps_beta " + mesh, hm.overlap_ratio,
+             fmt::format("b sin beta/(pi m_n), b = {:.4g} mm", hm.face_width * 1e3));
+    }
     meshes.push_back(c);
   }
 
@@ -160,10 +178,24 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
     const geometry::Gear& mate = role == 0 ? stage.planet(0)
                                  : m.kind == geometry::MeshKind::kSunPlanet ? stage.sun()
                                                                            : stage.ring();
-    const auto y = geometry::iso::RootFormFactorsB(g.teeth(), s.module, s.pressure_angle,
-                                                   s.profile_shift, s.rack->addendum,
-                                                   s.rack->tip_radius, 2 * g.tip_radius(),
-                                                   m.contact_ratio_iso);
+    // A helical gear: its virtual spur gear in the normal section (ISO 6336-3:2006), and Y_β.
+    const double beta = s.helix.angle, c_beta = std::cos(beta);
+    const geometry::HelicalMesh hm = geometry::SummariseHelicalMesh(m, g, mate);
+    const auto y =
+        helical ? geometry::iso::HelicalRootFormFactorsB(
+                      g.teeth(), geometry::NormalModule(g),
+                      std::atan(std::tan(s.pressure_angle) * c_beta), s.profile_shift / c_beta,
+                      beta, hm.base_helix_angle, s.rack->addendum, s.rack->tip_radius,
+                      2 * g.tip_radius(), m.contact_ratio_iso)
+                : geometry::iso::RootFormFactorsB(g.teeth(), s.module, s.pressure_angle,
+                                                  s.profile_shift, s.rack->addendum,
+                                                  s.rack->tip_radius, 2 * g.tip_radius(),
+                                                  m.contact_ratio_iso);
+    const double y_beta =
+        helical ? geometry::iso::HelicalBending(g.teeth(), beta, hm.base_helix_angle,
+                                                m.contact_ratio_iso, hm.overlap_ratio)
+                      .y_beta
+                : 1.0;
     const std::string who = role == 0 ? "sun" : "planets",
                       mesh_name = m.kind == geometry::MeshKind::kSunPlanet ? "sun mesh"
                                                                            : "ring mesh";
@@ -173,7 +205,15 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
         who, mesh_name, y.s_fn * 1e3, y.rho_f * 1e3, y.h_fe * 1e3, Deg(y.alpha_fen));
     factor("Y_F " + who + " " + mesh_name, y.y_f, at);
     factor("Y_S " + who + " " + mesh_name, y.y_s, at);
-    return sigma_f0[key] = {ft / (geometry::ContactFaceWidth(g, mate) * s.module) * y.y_f * y.y_s,
+    if (!helical)
+      return sigma_f0[key] = {
+                 ft / (geometry::ContactFaceWidth(g, mate) * s.module) * y.y_f * y.y_s,
+                 std::string()};
+    factor("Y_beta " + who + " " + mesh_name, y_beta,
+           fmt::format("ISO 6336-3: 1 - eps_beta beta/120 deg, eps_beta = {:.4f}",
+                       hm.overlap_ratio));
+    return sigma_f0[key] = {ft / (geometry::ContactFaceWidth(g, mate) * geometry::NormalModule(g)) *
+                                y.y_f * y.y_s * y_beta,
                             std::string()};
   };
 
