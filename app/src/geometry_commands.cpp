@@ -28,29 +28,29 @@ constexpr double kToMm = 1e3;
 // transverse data, each mesh's working quantities and contact ratios, the axial forces and the
 // planets' tilting moments.
 void PrintHelical(const json& h) {
-  std::printf("\nHelical gears (ISO 21771; module, pressure angle and shift given in the normal "
-              "section)\n");
+  std::printf(
+      "\nHelical gears (ISO 21771; module, pressure angle and shift given in the normal "
+      "section)\n");
   std::printf("  %-8s %9s %6s %9s %9s %9s %9s %9s %9s %10s %10s\n", "gear", "beta[deg]", "hand",
               "m_n[mm]", "alpha_n", "x_n", "m_t[mm]", "alpha_t", "x_t", "beta_b[deg]", "p_z[mm]");
   for (const auto& [name, g] : h["gears"].items()) {
     std::printf("  %-8s %9.4f %6s %9.4f %9.4f %9.4f %9.5f %9.4f %9.4f %10.4f %10.1f\n",
                 name.c_str(), g["helix_angle_deg"].get<double>(),
                 g["hand"].get<std::string>().c_str(), g["normal_module_mm"].get<double>(),
-                g["normal_pressure_angle_deg"].get<double>(), g["normal_profile_shift"].get<double>(),
-                g["transverse_module_mm"].get<double>(),
+                g["normal_pressure_angle_deg"].get<double>(),
+                g["normal_profile_shift"].get<double>(), g["transverse_module_mm"].get<double>(),
                 g["transverse_pressure_angle_deg"].get<double>(),
-                g["transverse_profile_shift"].get<double>(), g["base_helix_angle_deg"].get<double>(),
-                g["lead_mm"].get<double>());
+                g["transverse_profile_shift"].get<double>(),
+                g["base_helix_angle_deg"].get<double>(), g["lead_mm"].get<double>());
   }
   std::printf("  %-13s %8s %12s %12s %8s %8s %8s\n", "mesh", "b [mm]", "alpha_wt[deg]",
               "beta_w[deg]", "eps_a", "eps_b", "eps_g");
   for (const json& m : h["meshes"]) {
-    std::printf("  %-13s %8.2f %12.4f %12.4f %8.4f %8.4f %8.4f\n",
-                m["name"].get<std::string>().c_str(), m["face_width_mm"].get<double>(),
-                m["working_transverse_pressure_angle_deg"].get<double>(),
-                m["working_helix_angle_deg"].get<double>(),
-                m["transverse_contact_ratio"].get<double>(), m["overlap_ratio"].get<double>(),
-                m["total_contact_ratio"].get<double>());
+    std::printf(
+        "  %-13s %8.2f %12.4f %12.4f %8.4f %8.4f %8.4f\n", m["name"].get<std::string>().c_str(),
+        m["face_width_mm"].get<double>(), m["working_transverse_pressure_angle_deg"].get<double>(),
+        m["working_helix_angle_deg"].get<double>(), m["transverse_contact_ratio"].get<double>(),
+        m["overlap_ratio"].get<double>(), m["total_contact_ratio"].get<double>());
   }
   if (!h.contains("mesh_forces")) return;
   std::printf(

@@ -20,9 +20,7 @@ GearSpec TransverseSpec(GearSpec normal) {
   return normal;
 }
 
-double NormalModule(const Gear& gear) {
-  return gear.module() * std::cos(gear.spec().helix.angle);
-}
+double NormalModule(const Gear& gear) { return gear.module() * std::cos(gear.spec().helix.angle); }
 
 double SectionTurn(const Gear& gear, double z) {
   const Helix& h = gear.spec().helix;

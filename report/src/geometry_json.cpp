@@ -76,9 +76,9 @@ json HelicalStageJson(const transmission::Scene& scene, const Stage& st) {
   json meshes = json::array();
   for (const geometry::MeshSummary& m : st.meshes()) {
     const bool ring = m.kind == geometry::MeshKind::kPlanetRing;
-    meshes.push_back(HelicalMeshJson(
-        ring ? geometry::SummariseHelicalMesh(m, st.planet(m.planet), st.ring())
-             : geometry::SummariseHelicalMesh(m, st.sun(), st.planet(m.planet))));
+    meshes.push_back(
+        HelicalMeshJson(ring ? geometry::SummariseHelicalMesh(m, st.planet(m.planet), st.ring())
+                             : geometry::SummariseHelicalMesh(m, st.sun(), st.planet(m.planet))));
   }
   const geometry::StageAxialLoads loads = geometry::AxialLoads(st, scene.loads.sun_torque);
   json forces = json::array();
@@ -183,10 +183,11 @@ json PairJson(const transmission::Scene& scene, const geometry::GearPair& pair) 
   j["meshes"] = json::array({MeshJson(pair.summary())});
   j["fits"] = FitsJson(scene);
   if (transmission::IsHelical(scene))
-    j["helical"] = {{"gears", {{"gear1", HelicalGearJson(pair.gear1())},
-                               {"gear2", HelicalGearJson(pair.gear2())}}},
-                    {"meshes", json::array({HelicalMeshJson(geometry::SummariseHelicalMesh(
-                                   pair.summary(), pair.gear1(), pair.gear2()))})}};
+    j["helical"] = {
+        {"gears",
+         {{"gear1", HelicalGearJson(pair.gear1())}, {"gear2", HelicalGearJson(pair.gear2())}}},
+        {"meshes", json::array({HelicalMeshJson(geometry::SummariseHelicalMesh(
+                       pair.summary(), pair.gear1(), pair.gear2()))})}};
   return j;
 }
 

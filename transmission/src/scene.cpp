@@ -425,8 +425,8 @@ int GearIndex(TableReader& t, const std::string& key, int planets) {
 void SameAsMate(TableReader& t, const GearSpec& g, const GearSpec& mate, const std::string& name) {
   if (std::abs(g.helix.angle - mate.helix.angle) > 1e-12) {
     t.Fail("helix_angle_deg", SceneNum(geometry::Deg(g.helix.angle)),
-           "must equal " + name + ".helix_angle_deg = " +
-               SceneNum(geometry::Deg(mate.helix.angle)) +
+           "must equal " + name +
+               ".helix_angle_deg = " + SceneNum(geometry::Deg(mate.helix.angle)) +
                " (gears that mesh share the helix angle at the reference cylinder)");
   }
   const double c = std::cos(g.helix.angle);  // 1 for spur gears
@@ -737,8 +737,7 @@ void CarrierFitsModule(const TableReader& sun_table, const geometry::StageSpec& 
           " the transverse module m_n/cos(beta) = " + SceneNum(st.sun.module / kMm) +
           " mm puts the sun-planet centre distance of unshifted gears, m_t (z_sun + z_planet)/2, "
           "at " +
-          SceneNum(a0) + " mm, more than 2 normal modules from carrier.radius_mm = " +
-          SceneNum(a) +
+          SceneNum(a0) + " mm, more than 2 normal modules from carrier.radius_mm = " + SceneNum(a) +
           ": the stage cannot be assembled at that carrier radius (profile shifts move it by "
           "about x m_n)");
 }
@@ -781,8 +780,8 @@ void ReadStageMembers(TableReader& top, Scene& s, Fitted&& fitted) {
             Rule::Closed(expect - kRingTeethSlack, expect + kRingTeethSlack)
                 .Because("z_sun + 2 z_planet = " + std::to_string(expect) +
                          " within 4 teeth: the planets must fit between sun and ring"));
-    st.ring = ReadGear(t, "ring", GearKind::kInternal, fitted("ring"), &s.inertia.ring,
-                       &s.warnings, planet_helix);
+    st.ring = ReadGear(t, "ring", GearKind::kInternal, fitted("ring"), &s.inertia.ring, &s.warnings,
+                       planet_helix);
     SameAsMate(t, st.ring, st.planet, "planet");
     t.Done();
   }

@@ -161,8 +161,8 @@ TEST_CASE("a slice's flank lies on the exact involute helicoid", "[unit][geometr
           const Vec2 exact_m = rb * (Dir(tau_m) - u * DirPerp(tau_m));
           const Vec3 code_m = SurfacePoint(gear, Vec2(p.x(), -p.y()), z);
           CHECK((code_m.head<2>() - exact_m).norm() < 1e-9);
-          worst = std::max({worst, (code.head<2>() - exact).norm(),
-                            (code_m.head<2>() - exact_m).norm()});
+          worst = std::max(
+              {worst, (code.head<2>() - exact).norm(), (code_m.head<2>() - exact_m).norm()});
           ++checked;
         }
       }
@@ -195,9 +195,8 @@ TEST_CASE("a helical stage's working quantities and contact ratios", "[unit][geo
     const double rb1 = z1 * mt * std::cos(at) / 2, rb2 = z2 * mt * std::cos(at) / 2;
     const double l1 = std::sqrt(std::pow(g1.tip_radius(), 2) - rb1 * rb1);
     const double l2 = std::sqrt(std::pow(g2.tip_radius(), 2) - rb2 * rb2);
-    const double eps_alpha =
-        (ring ? l1 - l2 + a * std::sin(awt) : l1 + l2 - a * std::sin(awt)) /
-        (kPi * mt * std::cos(at));
+    const double eps_alpha = (ring ? l1 - l2 + a * std::sin(awt) : l1 + l2 - a * std::sin(awt)) /
+                             (kPi * mt * std::cos(at));
     CHECK(h.working_pressure_angle == Approx(awt).epsilon(1e-12));
     CHECK(h.working_helix_angle == Approx(bw).epsilon(1e-12));
     CHECK(h.overlap_ratio == Approx(eps_beta).epsilon(1e-14));
@@ -248,7 +247,8 @@ TEST_CASE("axial forces and the planets' tilting moments against a hand calculat
       CHECK(std::abs(loads.planets[i].net_axial_force) < 1e-9 * f_a);
     }
     // Magnitude: F_a d_w,planet, a diameter apart (here both meshes at the same centre distance).
-    CHECK(std::abs(loads.planets[0].tilting_moment) == Approx(f_a * 2 * a * 39 / 60).epsilon(1e-12));
+    CHECK(std::abs(loads.planets[0].tilting_moment) ==
+          Approx(f_a * 2 * a * 39 / 60).epsilon(1e-12));
   }
 }
 

@@ -11,7 +11,8 @@
 
 using namespace epicycle::geometry;
 
-TEST_CASE("ISO 6336-3 helical bending factors: z_n, eps_alpha_n, Y_beta, Y_eps", "[unit][geometry]") {
+TEST_CASE("ISO 6336-3 helical bending factors: z_n, eps_alpha_n, Y_beta, Y_eps",
+          "[unit][geometry]") {
   // z = 21, β = 15°, α_n = 20°: tan α_t = tan 20°/cos 15°, tan β_b = tan 15° cos α_t
   // (β_b = 14.07609542166249°); ε_α = 1.5, ε_β = 0.8.
   const double beta = Rad(15), at = std::atan(std::tan(Rad(20)) / std::cos(beta));
@@ -20,7 +21,7 @@ TEST_CASE("ISO 6336-3 helical bending factors: z_n, eps_alpha_n, Y_beta, Y_eps",
   const iso::HelicalBendingFactors f = iso::HelicalBending(21, beta, beta_b, 1.5, 0.8);
   CHECK(f.virtual_teeth == Approx(23.10764648969068).epsilon(1e-12));  // z/(cos²β_b cos β)
   CHECK(f.virtual_contact_ratio == Approx(1.5943051806535828).epsilon(1e-12));  // ε_α/cos²β_b
-  CHECK(f.y_beta == Approx(0.9).epsilon(1e-12));  // 1 − 0.8 · 15/120
+  CHECK(f.y_beta == Approx(0.9).epsilon(1e-12));                // 1 − 0.8 · 15/120
   CHECK(f.y_eps == Approx(0.7204243636042997).epsilon(1e-12));  // 0.25 + 0.75/ε_αn
   // ε_β taken as 1 above 1, β as 30° above 30°: Y_β = 1 − 30/120 = 0.75.
   CHECK(iso::HelicalBending(21, Rad(35), Rad(33), 1.5, 1.3).y_beta == Approx(0.75).epsilon(1e-12));
@@ -36,17 +37,17 @@ TEST_CASE("ISO 6336-2 helical contact factors: Z_H, Z_eps, Z_beta, Z_B, Z_D", "[
   // The 20/40 pair of m = 4 mm, α = 20°, a = 120 mm, tips r + m: ε_α = 1.635185963571462,
   // Z_H = 2.494573171394588, M_1 = 1.062338666814336, M_2 = 0.9739664806485453 (spur). As helical
   // factors with β = 13°, β_b = 12°, ε_β = 0.6:
-  //   Z_H √cos β_b = 2.467166414045009,  Z_ε = √((4 − ε_α)(1 − ε_β)/3 + ε_β/ε_α) = 0.8259777726126627,
-  //   Z_β = 1/√cos 13° = 1.013066684771240,  Z_B = M_1 − ε_β (M_1 − 1) = 1.024935466725735,
-  //   Z_D = max(1, M_2 − ε_β (M_2 − 1)) = 1.
+  //   Z_H √cos β_b = 2.467166414045009,  Z_ε = √((4 − ε_α)(1 − ε_β)/3 + ε_β/ε_α) =
+  //   0.8259777726126627, Z_β = 1/√cos 13° = 1.013066684771240,  Z_B = M_1 − ε_β (M_1 − 1)
+  //   = 1.024935466725735, Z_D = max(1, M_2 − ε_β (M_2 − 1)) = 1.
   const double a20 = Rad(20), rb1 = 0.037587704831436336, rb2 = 0.07517540966287267;
   const double ea = 1.635185963571462;
   const iso::ContactFactors spur =
       iso::ContactFactorsB(20, a20, a20, 0.12, rb1, 0.044, rb2, 0.084, ea, false);
   CHECK(spur.z_h == Approx(2.494573171394588).epsilon(1e-12));
   CHECK(spur.m1 == Approx(1.0623386668143364).epsilon(1e-12));
-  const iso::ContactFactors h = iso::HelicalContactFactorsB(20, a20, a20, 0.12, rb1, 0.044, rb2,
-                                                            0.084, ea, false, Rad(13), Rad(12), 0.6);
+  const iso::ContactFactors h = iso::HelicalContactFactorsB(
+      20, a20, a20, 0.12, rb1, 0.044, rb2, 0.084, ea, false, Rad(13), Rad(12), 0.6);
   CHECK(h.z_h == Approx(2.467166414045009).epsilon(1e-12));
   CHECK(h.z_eps == Approx(0.8259777726126627).epsilon(1e-12));
   CHECK(h.z_beta == Approx(1.0130666847712404).epsilon(1e-12));
@@ -66,7 +67,8 @@ TEST_CASE("ISO 6336-2 helical contact factors: Z_H, Z_eps, Z_beta, Z_B, Z_D", "[
   CHECK(zero.z_beta == 1);
 }
 
-TEST_CASE("ISO 6336-3 helical form factors are those of the virtual spur gear", "[unit][geometry]") {
+TEST_CASE("ISO 6336-3 helical form factors are those of the virtual spur gear",
+          "[unit][geometry]") {
   // The virtual gear in the normal section: z_n = z/(cos²β_b cos β), m_n, α_n, x_n,
   // d_an = m_n z_n + d_a − z m_n/cos β, ε_αn = ε_α/cos²β_b (ISO 6336-3:2006).
   const int z = 21;
@@ -75,8 +77,8 @@ TEST_CASE("ISO 6336-3 helical form factors are those of the virtual spur gear", 
   const double bb = std::atan(std::tan(beta) * std::cos(at));
   const double d = z * mn / std::cos(beta), da = d + 2 * (xn + 1) * mn;
   const double zn = z / (std::cos(bb) * std::cos(bb) * std::cos(beta));
-  const iso::RootFormFactors h = iso::HelicalRootFormFactorsB(z, mn, an, xn, beta, bb, 1.25 * mn,
-                                                              0.38 * mn, da, 1.55);
+  const iso::RootFormFactors h =
+      iso::HelicalRootFormFactorsB(z, mn, an, xn, beta, bb, 1.25 * mn, 0.38 * mn, da, 1.55);
   const iso::RootFormFactors v = iso::RootFormFactorsB(
       zn, mn, an, xn, 1.25 * mn, 0.38 * mn, mn * zn + da - d, 1.55 / std::pow(std::cos(bb), 2));
   CHECK(h.y_f == Approx(v.y_f).epsilon(1e-14));

@@ -31,10 +31,12 @@ transmission::Scene Grc(const std::string& text = SceneText("grc_helical_stage.t
 std::string PerGearText() {
   std::string t = Replace(SceneText("grc_helical_stage.toml"),
                           "[helix]\nhelix_angle_deg = 7.5\nsun_hand = \"right\"\n", "");
-  t = Replace(t, "[sun]\nteeth = 21\n", "[sun]\nteeth = 21\nhelix_angle_deg = 7.5\nhand = \"right\"\n");
+  t = Replace(t, "[sun]\nteeth = 21\n",
+              "[sun]\nteeth = 21\nhelix_angle_deg = 7.5\nhand = \"right\"\n");
   t = Replace(t, "[planet]\nteeth = 39\n",
               "[planet]\nteeth = 39\nhelix_angle_deg = 7.5\nhand = \"left\"\n");
-  return Replace(t, "[ring]\nteeth = 99\n", "[ring]\nteeth = 99\nhelix_angle_deg = 7.5\nhand = \"left\"\n");
+  return Replace(t, "[ring]\nteeth = 99\n",
+                 "[ring]\nteeth = 99\nhelix_angle_deg = 7.5\nhand = \"left\"\n");
 }
 
 }  // namespace
@@ -63,7 +65,8 @@ TEST_CASE("a helical scene is read in the normal section", "[unit][transmission]
   CHECK(s.warnings.empty());
   // The gears' own keys give the same stage as [helix].
   const transmission::Scene per_gear = Grc(PerGearText());
-  for (auto [a, b] : {std::pair{&st.sun, &per_gear.stage.sun}, {&st.planet, &per_gear.stage.planet},
+  for (auto [a, b] : {std::pair{&st.sun, &per_gear.stage.sun},
+                      {&st.planet, &per_gear.stage.planet},
                       {&st.ring, &per_gear.stage.ring}}) {
     CHECK(a->module == b->module);
     CHECK(a->pressure_angle == b->pressure_angle);
@@ -76,8 +79,8 @@ TEST_CASE("a helical scene is read in the normal section", "[unit][transmission]
 
 TEST_CASE("helix angle 0 is the spur scene, bit for bit", "[unit][transmission]") {
   const transmission::Scene spur = epicycle::test::PaperScene();
-  const std::string text = SceneText("paper_stage.toml") +
-                           "\n[helix]\nhelix_angle_deg = 0.0\nsun_hand = \"left\"\n";
+  const std::string text =
+      SceneText("paper_stage.toml") + "\n[helix]\nhelix_angle_deg = 0.0\nsun_hand = \"left\"\n";
   const transmission::Scene zero = transmission::ParseScene(text, "paper_stage.toml");
   CHECK_FALSE(transmission::IsHelical(zero));
   for (auto [a, b] : {std::pair{&spur.stage.sun, &zero.stage.sun},
@@ -144,8 +147,8 @@ TEST_CASE("the ISO 6336 rating of a helical stage takes the helical factors",
   const double y_beta = 1 - eb * 7.5 / 120;
   CHECK(r.gears[0].sigma_f0 == Approx(ft / (b * mn) * y.y_f * y.y_s * y_beta).epsilon(1e-12));
   // Contact in the sun mesh (the sun's rating: its only mesh).
-  const double z_h = std::sqrt(2 * std::cos(bb) * std::cos(awt) /
-                               (std::pow(std::cos(at), 2) * std::sin(awt)));
+  const double z_h =
+      std::sqrt(2 * std::cos(bb) * std::cos(awt) / (std::pow(std::cos(at), 2) * std::sin(awt)));
   const double z_eps = std::sqrt((4 - ea) * (1 - eb) / 3 + eb / ea);
   const double z_e = geometry::iso::ElasticityFactor(206e9, 0.3, 206e9, 0.3);
   const double u = 39.0 / 21;

@@ -43,17 +43,17 @@ Vec3 SurfacePoint(const Gear& gear, const Vec2& p, double z);
 
 /// The working quantities of one helical mesh (ISO 21771:2007), beside its MeshSummary.
 struct HelicalMesh {
-  std::string name;                 ///< the MeshSummary's name
-  double face_width = 0;            ///< b, the common face width [m]
-  double transverse_module = 0;     ///< m_t [m]
-  double normal_module = 0;         ///< m_n [m]
-  double helix_angle = 0;           ///< β [rad]
-  double base_helix_angle = 0;      ///< β_b [rad]
-  double working_pressure_angle = 0;  ///< α_wt [rad] (the MeshSummary's pressure_angle)
-  double working_helix_angle = 0;   ///< β_w [rad]
+  std::string name;                     ///< the MeshSummary's name
+  double face_width = 0;                ///< b, the common face width [m]
+  double transverse_module = 0;         ///< m_t [m]
+  double normal_module = 0;             ///< m_n [m]
+  double helix_angle = 0;               ///< β [rad]
+  double base_helix_angle = 0;          ///< β_b [rad]
+  double working_pressure_angle = 0;    ///< α_wt [rad] (the MeshSummary's pressure_angle)
+  double working_helix_angle = 0;       ///< β_w [rad]
   double transverse_contact_ratio = 0;  ///< ε_α from the tip circles [-]
-  double overlap_ratio = 0;         ///< ε_β [-]
-  double total_contact_ratio = 0;   ///< ε_γ = ε_α + ε_β [-]
+  double overlap_ratio = 0;             ///< ε_β [-]
+  double total_contact_ratio = 0;       ///< ε_γ = ε_α + ε_β [-]
 };
 /// The helical quantities of mesh `m` of gears g1, g2 (a MeshSummary of them).
 HelicalMesh SummariseHelicalMesh(const MeshSummary& m, const Gear& g1, const Gear& g2);
@@ -67,21 +67,22 @@ HelicalMesh SummariseHelicalMesh(const MeshSummary& m, const Gear& g1, const Gea
 /// gear of hand h has the axial part −σ h sin β_b. A planet's two meshes push on opposite flanks,
 /// so their axial forces are opposite; acting at the two operating pitch points, a diameter
 /// apart, they tilt the planet about its tangential axis e_t = (−sin ψ_i, cos ψ_i):
-///   M_t = F_a,sun (r_w,planet|sun + r_w,planet|ring)   (F_a,sun the sun mesh's force on the planet)
+///   M_t = F_a,sun (r_w,planet|sun + r_w,planet|ring)   (F_a,sun the sun mesh's force on the
+///   planet)
 /// with no net axial force on the planet (the radial-axis part from the contact's position along
 /// the path of contact is left out: zero when the path is centred on the pitch point).
 struct MeshAxialLoad {
-  std::string name;                 ///< "sun-planet1", "planet1-ring"
-  double transverse_force = 0;      ///< F_t at the working pitch cylinder [N]
-  double base_transverse_force = 0; ///< F_bt on the base plane [N]
-  double axial_force = 0;           ///< |F_a| = F_t tan β_w [N]
-  double axial_on_planet = 0;       ///< F_a on the planet along +z (signed) [N]
-  double planet_arm = 0;            ///< r_w of the planet in this mesh, its lever arm [m]
+  std::string name;                  ///< "sun-planet1", "planet1-ring"
+  double transverse_force = 0;       ///< F_t at the working pitch cylinder [N]
+  double base_transverse_force = 0;  ///< F_bt on the base plane [N]
+  double axial_force = 0;            ///< |F_a| = F_t tan β_w [N]
+  double axial_on_planet = 0;        ///< F_a on the planet along +z (signed) [N]
+  double planet_arm = 0;             ///< r_w of the planet in this mesh, its lever arm [m]
 };
 struct PlanetTilt {
-  int planet = 0;                ///< 0-based
-  double tilting_moment = 0;     ///< M_t about e_t [N·m] (signed)
-  double net_axial_force = 0;    ///< F_a,sun + F_a,ring on the planet [N] (0)
+  int planet = 0;              ///< 0-based
+  double tilting_moment = 0;   ///< M_t about e_t [N·m] (signed)
+  double net_axial_force = 0;  ///< F_a,sun + F_a,ring on the planet [N] (0)
 };
 struct StageAxialLoads {
   std::vector<MeshAxialLoad> meshes;  ///< in Stage::meshes() order
