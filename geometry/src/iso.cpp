@@ -308,9 +308,8 @@ RootFormFactors HelicalRootFormFactorsB(int teeth, double normal_module, double 
       HelicalBending(teeth, helix_angle, base_helix_angle, contact_ratio, 0.0);
   const double d = teeth * normal_module / std::cos(helix_angle);
   const double d_n = normal_module * h.virtual_teeth;
-  return RootFormFactorsB(h.virtual_teeth, normal_module, normal_alpha, normal_shift,
-                          rack_dedendum, rack_tip_radius, d_n + tip_diameter - d,
-                          h.virtual_contact_ratio);
+  return RootFormFactorsB(h.virtual_teeth, normal_module, normal_alpha, normal_shift, rack_dedendum,
+                          rack_tip_radius, d_n + tip_diameter - d, h.virtual_contact_ratio);
 }
 
 double ElasticityFactor(double e1, double nu1, double e2, double nu2) {

@@ -32,23 +32,21 @@ struct MeshContact {
 };
 
 const geometry::Gear& GearOfBody(const geometry::Stage& stage, int body) {
-  return body == kSunBody ? stage.sun() : body == kRingBody ? stage.ring()
-                                                            : stage.planet(body - 2);
+  return body == kSunBody ? stage.sun() : body == kRingBody ? stage.ring() : stage.planet(body - 2);
 }
 
 // Mesh m's ISO 6336-2 nominal contact stress σ_H0 (without Z_B, Z_D) at the tangential force ft
 // [N] with the elasticity factor z_e [√Pa], its factors appended to `factors`. A helical mesh
 // takes the transverse section's factors with β_b and ε_β, and Z_β (ISO 6336-2:2006).
-MeshContact RateMeshContact(const geometry::Stage& stage, const geometry::MeshSummary& m,
-                            double ft, double z_e, std::vector<RatingFactor>* factors) {
+MeshContact RateMeshContact(const geometry::Stage& stage, const geometry::MeshSummary& m, double ft,
+                            double z_e, std::vector<RatingFactor>* factors) {
   auto factor = [&](std::string symbol, double value, std::string source) {
     factors->push_back({std::move(symbol), value, std::move(source)});
   };
   const bool helical = stage.sun().spec().helix.helical();
   const bool internal = m.kind == geometry::MeshKind::kPlanetRing;
   const int a = internal ? PlanetBody(0) : kSunBody, b = internal ? kRingBody : PlanetBody(0);
-  const bool a_pinion =
-      internal || GearOfBody(stage, a).teeth() <= GearOfBody(stage, b).teeth();
+  const bool a_pinion = internal || GearOfBody(stage, a).teeth() <= GearOfBody(stage, b).teeth();
   MeshContact c;
   c.name = m.name;
   c.pinion = a_pinion ? a : b;
@@ -56,28 +54,26 @@ MeshContact RateMeshContact(const geometry::Stage& stage, const geometry::MeshSu
   const geometry::Gear& g1 = GearOfBody(stage, c.pinion);
   const geometry::Gear& g2 = GearOfBody(stage, c.wheel);
   const geometry::HelicalMesh hm = geometry::SummariseHelicalMesh(m, g1, g2);
-  const auto f =
-      helical ? geometry::iso::HelicalContactFactorsB(
-                    g1.teeth(), g1.spec().pressure_angle, m.pressure_angle, m.centre_distance,
-                    g1.base_radius(), g1.tip_radius(), g2.base_radius(), g2.tip_radius(),
-                    m.contact_ratio_iso, internal, hm.helix_angle, hm.base_helix_angle,
-                    hm.overlap_ratio)
-              : geometry::iso::ContactFactorsB(g1.teeth(), g1.spec().pressure_angle,
-                                               m.pressure_angle, m.centre_distance,
-                                               g1.base_radius(), g1.tip_radius(),
-                                               g2.base_radius(), g2.tip_radius(),
-                                               m.contact_ratio_iso, internal);
+  const auto f = helical ? geometry::iso::HelicalContactFactorsB(
+                               g1.teeth(), g1.spec().pressure_angle, m.pressure_angle,
+                               m.centre_distance, g1.base_radius(), g1.tip_radius(),
+                               g2.base_radius(), g2.tip_radius(), m.contact_ratio_iso, internal,
+                               hm.helix_angle, hm.base_helix_angle, hm.overlap_ratio)
+                         : geometry::iso::ContactFactorsB(
+                               g1.teeth(), g1.spec().pressure_angle, m.pressure_angle,
+                               m.centre_distance, g1.base_radius(), g1.tip_radius(),
+                               g2.base_radius(), g2.tip_radius(), m.contact_ratio_iso, internal);
   const double u = (internal ? -1.0 : 1.0) * g2.teeth() / g1.teeth();
   const double b_width = geometry::ContactFaceWidth(g1, g2);
-  c.sigma_h0 = f.z_h * z_e * f.z_eps *
-               std::sqrt(ft / (2 * g1.reference_radius() * b_width) * (u + 1) / u);
+  c.sigma_h0 =
+      f.z_h * z_e * f.z_eps * std::sqrt(ft / (2 * g1.reference_radius() * b_width) * (u + 1) / u);
   if (helical) c.sigma_h0 *= f.z_beta;
   c.z_b = f.z_b;
   c.z_d = f.z_d;
   const std::string mesh = internal ? "ring mesh" : "sun mesh";
   auto role = [](int body) { return body >= PlanetBody(0) ? "planet" : BodyName(body); };
-  const std::string at = fmt::format("ISO 6336-2, the {}: alpha_w = {}, eps_alpha = {:.4f}",
-                                     mesh, Deg(m.pressure_angle), m.contact_ratio_iso);
+  const std::string at = fmt::format("ISO 6336-2, the {}: alpha_w = {}, eps_alpha = {:.4f}", mesh,
+                                     Deg(m.pressure_angle), m.contact_ratio_iso);
   factor("Z_H " + mesh, f.z_h, at);
   factor("Z_eps " + mesh, f.z_eps, at);
   factor("Z_B " + mesh, f.z_b,
@@ -199,15 +195,14 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
                       std::atan(std::tan(s.pressure_angle) * c_beta), s.profile_shift / c_beta,
                       beta, hm.base_helix_angle, s.rack->addendum, s.rack->tip_radius,
                       2 * g.tip_radius(), m.contact_ratio_iso)
-                : geometry::iso::RootFormFactorsB(g.teeth(), s.module, s.pressure_angle,
-                                                  s.profile_shift, s.rack->addendum,
-                                                  s.rack->tip_radius, 2 * g.tip_radius(),
-                                                  m.contact_ratio_iso);
-    const double y_beta =
-        helical ? geometry::iso::HelicalBending(g.teeth(), beta, hm.base_helix_angle,
-                                                m.contact_ratio_iso, hm.overlap_ratio)
-                      .y_beta
-                : 1.0;
+                : geometry::iso::RootFormFactorsB(
+                      g.teeth(), s.module, s.pressure_angle, s.profile_shift, s.rack->addendum,
+                      s.rack->tip_radius, 2 * g.tip_radius(), m.contact_ratio_iso);
+    const double y_beta = helical
+                              ? geometry::iso::HelicalBending(g.teeth(), beta, hm.base_helix_angle,
+                                                              m.contact_ratio_iso, hm.overlap_ratio)
+                                    .y_beta
+                              : 1.0;
     const std::string who = role == 0 ? "sun" : "planets",
                       mesh_name = m.kind == geometry::MeshKind::kSunPlanet ? "sun mesh"
                                                                            : "ring mesh";
@@ -218,12 +213,11 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
     factor("Y_F " + who + " " + mesh_name, y.y_f, at);
     factor("Y_S " + who + " " + mesh_name, y.y_s, at);
     if (!helical)
-      return sigma_f0[key] = {
-                 ft / (geometry::ContactFaceWidth(g, mate) * s.module) * y.y_f * y.y_s,
-                 std::string()};
-    factor("Y_beta " + who + " " + mesh_name, y_beta,
-           fmt::format("ISO 6336-3: 1 - eps_beta beta/120 deg, eps_beta = {:.4f}",
-                       hm.overlap_ratio));
+      return sigma_f0[key] = {ft / (geometry::ContactFaceWidth(g, mate) * s.module) * y.y_f * y.y_s,
+                              std::string()};
+    factor(
+        "Y_beta " + who + " " + mesh_name, y_beta,
+        fmt::format("ISO 6336-3: 1 - eps_beta beta/120 deg, eps_beta = {:.4f}", hm.overlap_ratio));
     return sigma_f0[key] = {ft / (geometry::ContactFaceWidth(g, mate) * geometry::NormalModule(g)) *
                                 y.y_f * y.y_s * y_beta,
                             std::string()};

@@ -168,11 +168,12 @@ bool IsHelical(const Scene& scene) {
 
 void RequireSpur(const Scene& scene, const std::string& driver) {
   if (!IsHelical(scene)) return;
-  const double beta = scene.kind == SceneKind::kPair ? scene.pair.gear1.helix.angle
-                                                     : scene.stage.sun.helix.angle;
+  const double beta =
+      scene.kind == SceneKind::kPair ? scene.pair.gear1.helix.angle : scene.stage.sun.helix.angle;
   std::string where;
-  for (const char* path : {"helix.helix_angle_deg", "sun.helix_angle_deg", "planet.helix_angle_deg",
-                           "ring.helix_angle_deg", "gear1.helix_angle_deg", "gear2.helix_angle_deg"})
+  for (const char* path :
+       {"helix.helix_angle_deg", "sun.helix_angle_deg", "planet.helix_angle_deg",
+        "ring.helix_angle_deg", "gear1.helix_angle_deg", "gear2.helix_angle_deg"})
     if (where.empty()) where = internal::KeyAt(scene, path);
   if (where.empty())
     where = scene.source + ": helix_angle_deg = " + internal::SceneNum(geometry::Deg(beta));

@@ -150,10 +150,10 @@ ContactFactors HelicalContactFactorsB(int pinion_teeth, double alpha_t, double a
 ///                                    single pair contact of the virtual gear instead, so σ_F0
 ///                                    there does not take Y_ε (reported beside it)
 struct HelicalBendingFactors {
-  double virtual_teeth = 0;           ///< z_n [-]
-  double virtual_contact_ratio = 0;   ///< ε_αn [-]
-  double y_beta = 1;                  ///< Y_β [-]
-  double y_eps = 0;                   ///< Y_ε [-]
+  double virtual_teeth = 0;          ///< z_n [-]
+  double virtual_contact_ratio = 0;  ///< ε_αn [-]
+  double y_beta = 1;                 ///< Y_β [-]
+  double y_eps = 0;                  ///< Y_ε [-]
 };
 /// @throws std::invalid_argument for z < 1, β outside [0, 45°), β_b outside [0, β], ε_α ≤ 0 or
 ///         ε_β < 0.
