@@ -24,6 +24,57 @@ namespace {
 
 constexpr double kToMm = 1e3;
 
+// The "helical" section of the report (report::HelicalStageJson): the gears' normal and
+// transverse data, each mesh's working quantities and contact ratios, the axial forces and the
+// planets' tilting moments.
+void PrintHelical(const json& h) {
+  std::printf(
+      "\nHelical gears (ISO 21771; module, pressure angle and shift given in the normal "
+      "section)\n");
+  std::printf("  %-8s %9s %6s %9s %9s %9s %9s %9s %9s %10s %10s\n", "gear", "beta[deg]", "hand",
+              "m_n[mm]", "alpha_n", "x_n", "m_t[mm]", "alpha_t", "x_t", "beta_b[deg]", "p_z[mm]");
+  for (const auto& [name, g] : h["gears"].items()) {
+    std::printf("  %-8s %9.4f %6s %9.4f %9.4f %9.4f %9.5f %9.4f %9.4f %10.4f %10.1f\n",
+                name.c_str(), g["helix_angle_deg"].get<double>(),
+                g["hand"].get<std::string>().c_str(), g["normal_module_mm"].get<double>(),
+                g["normal_pressure_angle_deg"].get<double>(),
+                g["normal_profile_shift"].get<double>(), g["transverse_module_mm"].get<double>(),
+                g["transverse_pressure_angle_deg"].get<double>(),
+                g["transverse_profile_shift"].get<double>(),
+                g["base_helix_angle_deg"].get<double>(), g["lead_mm"].get<double>());
+  }
+  std::printf("  %-13s %8s %12s %12s %8s %8s %8s\n", "mesh", "b [mm]", "alpha_wt[deg]",
+              "beta_w[deg]", "eps_a", "eps_b", "eps_g");
+  for (const json& m : h["meshes"]) {
+    std::printf(
+        "  %-13s %8.2f %12.4f %12.4f %8.4f %8.4f %8.4f\n", m["name"].get<std::string>().c_str(),
+        m["face_width_mm"].get<double>(), m["working_transverse_pressure_angle_deg"].get<double>(),
+        m["working_helix_angle_deg"].get<double>(), m["transverse_contact_ratio"].get<double>(),
+        m["overlap_ratio"].get<double>(), m["total_contact_ratio"].get<double>());
+  }
+  if (!h.contains("mesh_forces")) return;
+  std::printf(
+      "Axial forces at sun torque %.6g N m shared equally (F_a = F_t tan beta_w; + along the "
+      "axis z, out of the drawing)\n",
+      h["sun_torque_Nm"].get<double>());
+  std::printf("  %-13s %12s %12s %12s %16s %10s\n", "mesh", "F_bt [N]", "F_t [N]", "F_a [N]",
+              "F_a planet [N]", "arm [mm]");
+  for (const json& f : h["mesh_forces"]) {
+    std::printf("  %-13s %12.1f %12.1f %12.1f %16.1f %10.3f\n",
+                f["name"].get<std::string>().c_str(), f["base_transverse_force_N"].get<double>(),
+                f["transverse_force_N"].get<double>(), f["axial_force_N"].get<double>(),
+                f["axial_force_on_planet_N"].get<double>(), f["planet_arm_mm"].get<double>());
+  }
+  for (const json& p : h["planets"]) {
+    std::printf(
+        "  planet %d: tilting moment %.1f N m about its tangential axis, net axial force %.3g N\n",
+        p["planet"].get<int>(), p["tilting_moment_Nm"].get<double>(),
+        p["net_axial_force_N"].get<double>());
+  }
+  std::printf("  sun: axial force %.1f N; ring: %.1f N\n", h["sun_axial_force_N"].get<double>(),
+              h["ring_axial_force_N"].get<double>());
+}
+
 void PrintReport(const json& j) {
   std::printf("epicycle geometry: %s  (%s)\n\n", j["scene"].get<std::string>().c_str(),
               j["source"].get<std::string>().c_str());
@@ -106,7 +157,10 @@ void PrintReport(const json& j) {
                 f["gear"].get<std::string>().c_str(), f["profile_shift"].get<double>(),
                 f["normal_backlash_um"].get<double>(), f["mesh"].get<std::string>().c_str());
   }
-  if (!j.contains("assembly")) return;
+  if (!j.contains("assembly")) {
+    if (j.contains("helical")) PrintHelical(j["helical"]);
+    return;
+  }
   const json& a = j["assembly"];
   std::printf(
       "\nAssembly: carrier radius %.4f mm, z_sun + z_ring = %d, %s\n",
@@ -121,6 +175,7 @@ void PrintReport(const json& j) {
   }
   std::printf("  one mesh cycle = %.4f deg of carrier rotation\n",
               a["mesh_cycle_carrier_deg"].get<double>());
+  if (j.contains("helical")) PrintHelical(j["helical"]);
 }
 
 void PrintContactHeader() {
@@ -262,6 +317,7 @@ void RegisterGeometryCommands(CLI::App& app) {
       ->required();
   con->callback([] {
     const transmission::Scene scene = transmission::ReadScene(contacts_scene);
+    transmission::RequireSpur(scene, "`epicycle contacts` (the planar contact search)");
     if (scene.kind == transmission::SceneKind::kPair) {
       PrintPairContacts(geometry::GearPair(scene.pair), contacts_deg, scene.gap_window);
     } else {

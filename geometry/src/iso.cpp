@@ -159,7 +159,7 @@ std::vector<double> RandomPitchDeviations(int teeth, double module, int grade, s
   return cumulative;
 }
 
-RootFormFactors RootFormFactorsB(int teeth, double module, double alpha, double profile_shift,
+RootFormFactors RootFormFactorsB(double teeth, double module, double alpha, double profile_shift,
                                  double rack_dedendum, double rack_tip_radius, double tip_diameter,
                                  double contact_ratio) {
   const auto fail = [](const std::string& what, double v, const std::string& rule) {
@@ -254,6 +254,62 @@ ContactFactors ContactFactorsB(int pinion_teeth, double alpha, double alpha_w,
     f.z_d = std::max(1.0, f.m2);
   }
   return f;
+}
+
+ContactFactors HelicalContactFactorsB(int pinion_teeth, double alpha_t, double alpha_wt,
+                                      double centre_distance, double rb1, double ra1, double rb2,
+                                      double ra2, double contact_ratio, bool internal,
+                                      double helix_angle, double base_helix_angle,
+                                      double overlap_ratio) {
+  ContactFactors f = ContactFactorsB(pinion_teeth, alpha_t, alpha_wt, centre_distance, rb1, ra1,
+                                     rb2, ra2, contact_ratio, internal);
+  if (helix_angle == 0) return f;
+  if (!(overlap_ratio >= 0))
+    throw std::invalid_argument("ISO 6336-2 contact factors: overlap ratio = " +
+                                internal::Num(overlap_ratio) + ": must be >= 0");
+  const double eb = overlap_ratio, ea = contact_ratio;
+  f.z_h *= std::sqrt(std::cos(base_helix_angle));
+  f.z_eps = eb < 1 ? std::sqrt((4 - ea) * (1 - eb) / 3 + eb / ea) : std::sqrt(1 / ea);
+  f.z_beta = 1 / std::sqrt(std::cos(helix_angle));
+  const auto single_pair = [&](double m) { return eb < 1 ? std::max(1.0, m - eb * (m - 1)) : 1.0; };
+  f.z_b = single_pair(f.m1);
+  if (!internal) f.z_d = single_pair(f.m2);
+  return f;
+}
+
+HelicalBendingFactors HelicalBending(int teeth, double helix_angle, double base_helix_angle,
+                                     double contact_ratio, double overlap_ratio) {
+  const auto fail = [](const std::string& what, double v, const std::string& rule) {
+    throw std::invalid_argument("ISO 6336-3 helical factors: " + what + " = " + internal::Num(v) +
+                                ": " + rule);
+  };
+  if (teeth < 1) fail("teeth", teeth, "must be >= 1");
+  if (!(helix_angle >= 0 && helix_angle < kPi / 4))
+    fail("helix angle [deg]", Deg(helix_angle), "must be in [0, 45)");
+  if (!(base_helix_angle >= 0 && base_helix_angle <= helix_angle))
+    fail("base helix angle [deg]", Deg(base_helix_angle), "must be in [0, beta]");
+  if (!(contact_ratio > 0)) fail("contact ratio", contact_ratio, "must be > 0");
+  if (!(overlap_ratio >= 0)) fail("overlap ratio", overlap_ratio, "must be >= 0");
+  const double cb = std::cos(base_helix_angle);
+  HelicalBendingFactors h;
+  h.virtual_teeth = teeth / (cb * cb * std::cos(helix_angle));
+  h.virtual_contact_ratio = contact_ratio / (cb * cb);
+  h.y_beta = 1 - std::min(overlap_ratio, 1.0) * std::min(Deg(helix_angle), 30.0) / 120.0;
+  h.y_eps = 0.25 + 0.75 / h.virtual_contact_ratio;
+  return h;
+}
+
+RootFormFactors HelicalRootFormFactorsB(int teeth, double normal_module, double normal_alpha,
+                                        double normal_shift, double helix_angle,
+                                        double base_helix_angle, double rack_dedendum,
+                                        double rack_tip_radius, double tip_diameter,
+                                        double contact_ratio) {
+  const HelicalBendingFactors h =
+      HelicalBending(teeth, helix_angle, base_helix_angle, contact_ratio, 0.0);
+  const double d = teeth * normal_module / std::cos(helix_angle);
+  const double d_n = normal_module * h.virtual_teeth;
+  return RootFormFactorsB(h.virtual_teeth, normal_module, normal_alpha, normal_shift, rack_dedendum,
+                          rack_tip_radius, d_n + tip_diameter - d, h.virtual_contact_ratio);
 }
 
 double ElasticityFactor(double e1, double nu1, double e2, double nu2) {

@@ -2,11 +2,16 @@
 
 #include <stdexcept>
 
+#include "epicycle/geometry/helical.hpp"
 #include "messages.hpp"
 
 namespace epicycle::geometry {
 
-GearPair::GearPair(PairSpec spec) : spec_(std::move(spec)), g1_(spec_.gear1), g2_(spec_.gear2) {
+GearPair::GearPair(PairSpec spec)
+    : spec_(std::move(spec)),
+      g1_((CheckMeshHelices(spec_.gear1, spec_.gear2, spec_.gear2.kind == GearKind::kInternal),
+           spec_.gear1)),
+      g2_(spec_.gear2) {
   if (g1_.internal()) Fail("pair", "gear1", g1_.name(), "gear 1 must be an external gear");
   if (std::abs(g1_.module() - g2_.module()) > 1e-12) {
     Fail("pair", "gear2.module_mm", Mm(g2_.module()), "both gears must have the same module");

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "epicycle/geometry/helical.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "messages.hpp"
 
@@ -37,6 +38,13 @@ std::vector<Gear> MakePlanets(const StageSpec& s) {
   std::vector<Gear> out;
   for (int i = 0; i < s.planets; ++i) out.emplace_back(PlanetSpec(s, i));
   return out;
+}
+
+// Helices first: gears of different helix angles differ in transverse module, which the module
+// check would blame.
+void CheckHelices(const StageSpec& s) {
+  CheckMeshHelices(s.sun, s.planet, false);
+  CheckMeshHelices(s.planet, s.ring, true);
 }
 
 double Sap(double rb, double roll) { return std::sqrt(rb * rb + roll * roll); }
@@ -127,7 +135,10 @@ MeshSummary SummariseMesh(const Gear& g1, const Gear& g2, bool internal, double 
 }
 
 Stage::Stage(StageSpec spec)
-    : spec_(std::move(spec)), sun_(spec_.sun), ring_(spec_.ring), planets_(MakePlanets(spec_)) {
+    : spec_(std::move(spec)),
+      sun_((CheckHelices(spec_), spec_.sun)),
+      ring_(spec_.ring),
+      planets_(MakePlanets(spec_)) {
   if (sun_.internal() || planets_[0].internal() || !ring_.internal()) {
     throw std::invalid_argument(
         "stage: the sun and planets must be external gears, the ring internal");

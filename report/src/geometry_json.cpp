@@ -1,9 +1,11 @@
 #include "epicycle/report/geometry_json.hpp"
 
+#include <cmath>
 #include <tuple>
 
 #include <fmt/format.h>
 
+#include "epicycle/geometry/helical.hpp"
 #include "epicycle/geometry/iso.hpp"
 
 namespace epicycle::report {
@@ -28,7 +30,78 @@ json FitsJson(const transmission::Scene& scene) {
   return fits;
 }
 
+// A helical gear's normal-section data and the transverse quantities derived from it.
+json HelicalGearJson(const Gear& g) {
+  const geometry::GearSpec& s = g.spec();
+  const double c = std::cos(s.helix.angle);
+  const double alpha_n = std::atan(std::tan(s.pressure_angle) * c);
+  const geometry::TransverseQuantities t = geometry::Transverse(
+      g.teeth(), geometry::NormalModule(g), alpha_n, s.profile_shift / c, s.helix.angle);
+  return {{"helix_angle_deg", Deg(s.helix.angle)},
+          {"hand", geometry::HandName(s.helix.hand)},
+          {"normal_module_mm", geometry::NormalModule(g) * kToMm},
+          {"normal_pressure_angle_deg", Deg(alpha_n)},
+          {"normal_profile_shift", s.profile_shift / c},
+          {"transverse_module_mm", t.module * kToMm},
+          {"transverse_pressure_angle_deg", Deg(t.pressure_angle)},
+          {"transverse_profile_shift", t.profile_shift},
+          {"reference_diameter_mm", t.reference_diameter * kToMm},
+          {"base_diameter_mm", t.base_diameter * kToMm},
+          {"base_helix_angle_deg", Deg(t.base_helix_angle)},
+          {"axial_pitch_mm", t.axial_pitch * kToMm},
+          {"lead_mm", t.lead * kToMm}};
+}
+
+json HelicalMeshJson(const geometry::HelicalMesh& h) {
+  return {{"name", h.name},
+          {"face_width_mm", h.face_width * kToMm},
+          {"transverse_module_mm", h.transverse_module * kToMm},
+          {"normal_module_mm", h.normal_module * kToMm},
+          {"helix_angle_deg", Deg(h.helix_angle)},
+          {"base_helix_angle_deg", Deg(h.base_helix_angle)},
+          {"working_transverse_pressure_angle_deg", Deg(h.working_pressure_angle)},
+          {"working_helix_angle_deg", Deg(h.working_helix_angle)},
+          {"transverse_contact_ratio", h.transverse_contact_ratio},
+          {"overlap_ratio", h.overlap_ratio},
+          {"total_contact_ratio", h.total_contact_ratio}};
+}
+
 }  // namespace
+
+json HelicalStageJson(const transmission::Scene& scene, const Stage& st) {
+  json gears;
+  gears["sun"] = HelicalGearJson(st.sun());
+  gears["planet"] = HelicalGearJson(st.planet(0));
+  gears["ring"] = HelicalGearJson(st.ring());
+  json meshes = json::array();
+  for (const geometry::MeshSummary& m : st.meshes()) {
+    const bool ring = m.kind == geometry::MeshKind::kPlanetRing;
+    meshes.push_back(
+        HelicalMeshJson(ring ? geometry::SummariseHelicalMesh(m, st.planet(m.planet), st.ring())
+                             : geometry::SummariseHelicalMesh(m, st.sun(), st.planet(m.planet))));
+  }
+  const geometry::StageAxialLoads loads = geometry::AxialLoads(st, scene.loads.sun_torque);
+  json forces = json::array();
+  for (const geometry::MeshAxialLoad& a : loads.meshes)
+    forces.push_back({{"name", a.name},
+                      {"base_transverse_force_N", a.base_transverse_force},
+                      {"transverse_force_N", a.transverse_force},
+                      {"axial_force_N", a.axial_force},
+                      {"axial_force_on_planet_N", a.axial_on_planet},
+                      {"planet_arm_mm", a.planet_arm * kToMm}});
+  json planets = json::array();
+  for (const geometry::PlanetTilt& p : loads.planets)
+    planets.push_back({{"planet", p.planet + 1},
+                       {"tilting_moment_Nm", p.tilting_moment},
+                       {"net_axial_force_N", p.net_axial_force}});
+  return {{"gears", gears},
+          {"meshes", meshes},
+          {"sun_torque_Nm", scene.loads.sun_torque},
+          {"mesh_forces", forces},
+          {"planets", planets},
+          {"sun_axial_force_N", loads.sun_axial_force},
+          {"ring_axial_force_N", loads.ring_axial_force}};
+}
 
 json GearJson(const Gear& g) {
   const geometry::GearSpec& s = g.spec();
@@ -109,6 +182,12 @@ json PairJson(const transmission::Scene& scene, const geometry::GearPair& pair) 
   j["gear_order"] = {"gear1", "gear2"};
   j["meshes"] = json::array({MeshJson(pair.summary())});
   j["fits"] = FitsJson(scene);
+  if (transmission::IsHelical(scene))
+    j["helical"] = {
+        {"gears",
+         {{"gear1", HelicalGearJson(pair.gear1())}, {"gear2", HelicalGearJson(pair.gear2())}}},
+        {"meshes", json::array({HelicalMeshJson(geometry::SummariseHelicalMesh(
+                       pair.summary(), pair.gear1(), pair.gear2()))})}};
   return j;
 }
 
@@ -137,6 +216,7 @@ json StageJson(const transmission::Scene& scene, const Stage& st) {
                    {"equally_spaced", st.spec().planet_angles.empty()},
                    {"mesh_cycle_carrier_deg", Deg(st.mesh_cycle())}};
   j["fits"] = FitsJson(scene);
+  if (transmission::IsHelical(scene)) j["helical"] = HelicalStageJson(scene, st);
   return j;
 }
 

@@ -95,6 +95,9 @@ double PlacedStart(const Crack& c, const geometry::Gear& gear,
 GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gear*>& gears,
                        const std::vector<std::string>& names, const FeComplianceOptions& options)
     : plane_(ToCompliance(scene.model.plane)) {
+  RequireSpur(scene,
+              "this run (quasistatic, stiffness, dynamic, modes, study: the gear bodies' FE "
+              "compliance)");
   if (names.size() != gears.size())
     throw std::invalid_argument("GearTables: " + std::to_string(names.size()) + " names for " +
                                 std::to_string(gears.size()) + " gears");

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "epicycle/geometry/helical.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/geometry/plane.hpp"
 
@@ -29,6 +30,66 @@ struct MeshContact {
   double sigma_h0 = 0;        // [Pa]
   double z_b = 1, z_d = 1;
 };
+
+const geometry::Gear& GearOfBody(const geometry::Stage& stage, int body) {
+  return body == kSunBody ? stage.sun() : body == kRingBody ? stage.ring() : stage.planet(body - 2);
+}
+
+// Mesh m's ISO 6336-2 nominal contact stress σ_H0 (without Z_B, Z_D) at the tangential force ft
+// [N] with the elasticity factor z_e [√Pa], its factors appended to `factors`. A helical mesh
+// takes the transverse section's factors with β_b and ε_β, and Z_β (ISO 6336-2:2006).
+MeshContact RateMeshContact(const geometry::Stage& stage, const geometry::MeshSummary& m, double ft,
+                            double z_e, std::vector<RatingFactor>* factors) {
+  auto factor = [&](std::string symbol, double value, std::string source) {
+    factors->push_back({std::move(symbol), value, std::move(source)});
+  };
+  const bool helical = stage.sun().spec().helix.helical();
+  const bool internal = m.kind == geometry::MeshKind::kPlanetRing;
+  const int a = internal ? PlanetBody(0) : kSunBody, b = internal ? kRingBody : PlanetBody(0);
+  const bool a_pinion = internal || GearOfBody(stage, a).teeth() <= GearOfBody(stage, b).teeth();
+  MeshContact c;
+  c.name = m.name;
+  c.pinion = a_pinion ? a : b;
+  c.wheel = a_pinion ? b : a;
+  const geometry::Gear& g1 = GearOfBody(stage, c.pinion);
+  const geometry::Gear& g2 = GearOfBody(stage, c.wheel);
+  const geometry::HelicalMesh hm = geometry::SummariseHelicalMesh(m, g1, g2);
+  const auto f = helical ? geometry::iso::HelicalContactFactorsB(
+                               g1.teeth(), g1.spec().pressure_angle, m.pressure_angle,
+                               m.centre_distance, g1.base_radius(), g1.tip_radius(),
+                               g2.base_radius(), g2.tip_radius(), m.contact_ratio_iso, internal,
+                               hm.helix_angle, hm.base_helix_angle, hm.overlap_ratio)
+                         : geometry::iso::ContactFactorsB(
+                               g1.teeth(), g1.spec().pressure_angle, m.pressure_angle,
+                               m.centre_distance, g1.base_radius(), g1.tip_radius(),
+                               g2.base_radius(), g2.tip_radius(), m.contact_ratio_iso, internal);
+  const double u = (internal ? -1.0 : 1.0) * g2.teeth() / g1.teeth();
+  const double b_width = geometry::ContactFaceWidth(g1, g2);
+  c.sigma_h0 =
+      f.z_h * z_e * f.z_eps * std::sqrt(ft / (2 * g1.reference_radius() * b_width) * (u + 1) / u);
+  if (helical) c.sigma_h0 *= f.z_beta;
+  c.z_b = f.z_b;
+  c.z_d = f.z_d;
+  const std::string mesh = internal ? "ring mesh" : "sun mesh";
+  auto role = [](int body) { return body >= PlanetBody(0) ? "planet" : BodyName(body); };
+  const std::string at = fmt::format("ISO 6336-2, the {}: alpha_w = {}, eps_alpha = {:.4f}", mesh,
+                                     Deg(m.pressure_angle), m.contact_ratio_iso);
+  factor("Z_H " + mesh, f.z_h, at);
+  factor("Z_eps " + mesh, f.z_eps, at);
+  factor("Z_B " + mesh, f.z_b,
+         fmt::format("{} (pinion {}): M_1 = {:.4f}", at, role(c.pinion), f.m1));
+  factor("Z_D " + mesh, f.z_d,
+         internal ? at + " (internal wheel: 1)"
+                  : fmt::format("{} (wheel {}): M_2 = {:.4f}", at, role(c.wheel), f.m2));
+  factor("u " + mesh, u, "z_wheel/z_pinion (negative: internal)");
+  if (helical) {
+    factor("Z_beta " + mesh, f.z_beta,
+           fmt::format("ISO 6336-2: 1/sqrt(cos beta), beta = {}", Deg(hm.helix_angle)));
+    factor("eps_beta " + mesh, hm.overlap_ratio,
+           fmt::format("b sin beta/(pi m_n), b = {:.4g} mm", hm.face_width * 1e3));
+  }
+  return c;
+}
 
 }  // namespace
 
@@ -65,6 +126,7 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
   out.dynamic_factor = dynamic_factor;
   out.dynamic_source = dynamic_source;
   const geometry::Gear& sun = stage.sun();
+  const bool helical = sun.spec().helix.helical();
   const double torque = std::abs(scene.loads.sun_torque);
   out.tangential_force = torque / (n * sun.reference_radius());
   const double ft = out.tangential_force;
@@ -100,47 +162,11 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
   factor("life, lubricant, roughness, size factors", 1.0,
          "endurance beyond 5e7 cycles, reference test-gear conditions");
 
-  // The body's gear.
-  auto gear_of = [&](int body) -> const geometry::Gear& {
-    return body == kSunBody ? stage.sun() : body == kRingBody ? stage.ring()
-                                                              : stage.planet(body - 2);
-  };
   // ISO 6336-2 per mesh (the planets' meshes are alike: planet 1's geometry).
   std::vector<MeshContact> meshes;
-  for (const geometry::MeshSummary& m : {stage.meshes()[0], stage.meshes()[1]}) {
-    const bool internal = m.kind == geometry::MeshKind::kPlanetRing;
-    const int a = internal ? PlanetBody(0) : kSunBody, b = internal ? kRingBody : PlanetBody(0);
-    const bool a_pinion = internal || gear_of(a).teeth() <= gear_of(b).teeth();
-    MeshContact c;
-    c.name = m.name;
-    c.pinion = a_pinion ? a : b;
-    c.wheel = a_pinion ? b : a;
-    const geometry::Gear& g1 = gear_of(c.pinion);
-    const geometry::Gear& g2 = gear_of(c.wheel);
-    const auto f = geometry::iso::ContactFactorsB(
-        g1.teeth(), g1.spec().pressure_angle, m.pressure_angle, m.centre_distance,
-        g1.base_radius(), g1.tip_radius(), g2.base_radius(), g2.tip_radius(), m.contact_ratio_iso,
-        internal);
-    const double u = (internal ? -1.0 : 1.0) * g2.teeth() / g1.teeth();
-    const double b_width = geometry::ContactFaceWidth(g1, g2);
-    c.sigma_h0 = f.z_h * z_e * f.z_eps *
-                 std::sqrt(ft / (2 * g1.reference_radius() * b_width) * (u + 1) / u);
-    c.z_b = f.z_b;
-    c.z_d = f.z_d;
-    const std::string mesh = internal ? "ring mesh" : "sun mesh";
-    auto role = [](int body) { return body >= PlanetBody(0) ? "planet" : BodyName(body); };
-    const std::string at = fmt::format("ISO 6336-2, the {}: alpha_w = {}, eps_alpha = {:.4f}",
-                                       mesh, Deg(m.pressure_angle), m.contact_ratio_iso);
-    factor("Z_H " + mesh, f.z_h, at);
-    factor("Z_eps " + mesh, f.z_eps, at);
-    factor("Z_B " + mesh, f.z_b,
-           fmt::format("{} (pinion {}): M_1 = {:.4f}", at, role(c.pinion), f.m1));
-    factor("Z_D " + mesh, f.z_d,
-           internal ? at + " (internal wheel: 1)"
-                    : fmt::format("{} (wheel {}): M_2 = {:.4f}", at, role(c.wheel), f.m2));
-    factor("u " + mesh, u, "z_wheel/z_pinion (negative: internal)");
-    meshes.push_back(c);
-  }
+  for (const geometry::MeshSummary& m : {stage.meshes()[0], stage.meshes()[1]})
+    meshes.push_back(RateMeshContact(stage, m, ft, z_e, &out.factors));
+  auto gear_of = [&](int body) -> const geometry::Gear& { return GearOfBody(stage, body); };
 
   // ISO 6336-3 σ_F0 of a gear in a mesh, once per member and mesh (the planets are alike); NaN
   // (with the reason) where method B does not apply.
@@ -160,10 +186,23 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
     const geometry::Gear& mate = role == 0 ? stage.planet(0)
                                  : m.kind == geometry::MeshKind::kSunPlanet ? stage.sun()
                                                                            : stage.ring();
-    const auto y = geometry::iso::RootFormFactorsB(g.teeth(), s.module, s.pressure_angle,
-                                                   s.profile_shift, s.rack->addendum,
-                                                   s.rack->tip_radius, 2 * g.tip_radius(),
-                                                   m.contact_ratio_iso);
+    // A helical gear: its virtual spur gear in the normal section (ISO 6336-3:2006), and Y_β.
+    const double beta = s.helix.angle, c_beta = std::cos(beta);
+    const geometry::HelicalMesh hm = geometry::SummariseHelicalMesh(m, g, mate);
+    const auto y =
+        helical ? geometry::iso::HelicalRootFormFactorsB(
+                      g.teeth(), geometry::NormalModule(g),
+                      std::atan(std::tan(s.pressure_angle) * c_beta), s.profile_shift / c_beta,
+                      beta, hm.base_helix_angle, s.rack->addendum, s.rack->tip_radius,
+                      2 * g.tip_radius(), m.contact_ratio_iso)
+                : geometry::iso::RootFormFactorsB(
+                      g.teeth(), s.module, s.pressure_angle, s.profile_shift, s.rack->addendum,
+                      s.rack->tip_radius, 2 * g.tip_radius(), m.contact_ratio_iso);
+    const double y_beta = helical
+                              ? geometry::iso::HelicalBending(g.teeth(), beta, hm.base_helix_angle,
+                                                              m.contact_ratio_iso, hm.overlap_ratio)
+                                    .y_beta
+                              : 1.0;
     const std::string who = role == 0 ? "sun" : "planets",
                       mesh_name = m.kind == geometry::MeshKind::kSunPlanet ? "sun mesh"
                                                                            : "ring mesh";
@@ -173,7 +212,14 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
         who, mesh_name, y.s_fn * 1e3, y.rho_f * 1e3, y.h_fe * 1e3, Deg(y.alpha_fen));
     factor("Y_F " + who + " " + mesh_name, y.y_f, at);
     factor("Y_S " + who + " " + mesh_name, y.y_s, at);
-    return sigma_f0[key] = {ft / (geometry::ContactFaceWidth(g, mate) * s.module) * y.y_f * y.y_s,
+    if (!helical)
+      return sigma_f0[key] = {ft / (geometry::ContactFaceWidth(g, mate) * s.module) * y.y_f * y.y_s,
+                              std::string()};
+    factor(
+        "Y_beta " + who + " " + mesh_name, y_beta,
+        fmt::format("ISO 6336-3: 1 - eps_beta beta/120 deg, eps_beta = {:.4f}", hm.overlap_ratio));
+    return sigma_f0[key] = {ft / (geometry::ContactFaceWidth(g, mate) * geometry::NormalModule(g)) *
+                                y.y_f * y.y_s * y_beta,
                             std::string()};
   };
 

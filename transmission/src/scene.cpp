@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "epicycle/compliance/influence_table.hpp"
+#include "epicycle/geometry/helical.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/io/input_file.hpp"
 #include "epicycle/io/toml_reader.hpp"
@@ -260,8 +262,43 @@ void InertiaRule(TableReader& t, const GearSpec& g, const Inertia& i) {
            "must be 0 (not given) or >= " + SceneNum(m_min * r_b * r_b) + why);
 }
 
+// The helix angle at the reference cylinder (docs/scenes.md, "Helical gears"): its magnitude,
+// the hand its direction.
+const Rule kHelixRule = Rule::HalfOpen(0, 45).Because(
+    "the helix angle at the reference cylinder, 0 (spur) up to below 45 deg; the hand gives its "
+    "direction");
+
+geometry::Hand HandFromName(const std::string& name) {
+  return name == "left" ? geometry::Hand::kLeft : geometry::Hand::kRight;
+}
+
+// A gear's helix: its own helix_angle_deg and hand, or the one the stage's [helix] table gives it
+// (`given`; then the gear's table may not have them).
+geometry::Helix ReadHelix(TableReader& t, const std::optional<geometry::Helix>& given) {
+  if (given) {
+    for (const char* key : {"helix_angle_deg", "hand"})
+      if (t.Has(key))
+        t.Fail(key, "given",
+               "the scene's [helix] table sets every gear's helix: give it there or in each "
+               "gear's table, not both");
+    return *given;
+  }
+  geometry::Helix h;
+  h.angle = geometry::Rad(t.RealOr("helix_angle_deg", 0.0, kHelixRule));
+  if (!h.helical()) {
+    if (t.Has("hand")) t.String("hand", {"right", "left"});  // a spur gear's hand says nothing
+    return h;
+  }
+  if (!t.Has("hand"))
+    t.Fail("hand", "missing",
+           "a helical gear (helix_angle_deg > 0) needs its hand, \"right\" or \"left\"");
+  h.hand = HandFromName(t.String("hand", {"right", "left"}));
+  return h;
+}
+
 GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool fit_target,
-                  Inertia* inertia, std::vector<std::string>* warnings = nullptr) {
+                  Inertia* inertia, std::vector<std::string>* warnings = nullptr,
+                  const std::optional<geometry::Helix>& helix = std::nullopt) {
   GearSpec g;
   g.name = name;
   g.kind = kind;
@@ -359,6 +396,10 @@ GearSpec ReadGear(TableReader& t, const std::string& name, GearKind kind, bool f
     }
   }
   cutter.Done();
+  // Module, pressure angle and shift were read in the normal section (a helical gear's rack);
+  // every length above is the same in the transverse section, which the generator takes.
+  g.helix = ReadHelix(t, helix);
+  g = geometry::TransverseSpec(std::move(g));
   ReadFlankModifications(t, g);
   return g;
 }
@@ -380,16 +421,28 @@ int GearIndex(TableReader& t, const std::string& key, int planets) {
 }
 
 // Meshing gears share module and pressure angle: a mismatch is blamed on the gear read second.
+// The helix angle first: gears of different helix angles differ in transverse module. Module and
+// pressure angle are told in the section the scene gives them (the normal section).
 void SameAsMate(TableReader& t, const GearSpec& g, const GearSpec& mate, const std::string& name) {
+  if (std::abs(g.helix.angle - mate.helix.angle) > 1e-12) {
+    t.Fail("helix_angle_deg", SceneNum(geometry::Deg(g.helix.angle)),
+           "must equal " + name +
+               ".helix_angle_deg = " + SceneNum(geometry::Deg(mate.helix.angle)) +
+               " (gears that mesh share the helix angle at the reference cylinder)");
+  }
+  const double c = std::cos(g.helix.angle);  // 1 for spur gears
+  auto normal_angle = [&](double alpha_t) {
+    return g.helix.helical() ? std::atan(std::tan(alpha_t) * c) : alpha_t;
+  };
   if (std::abs(g.module - mate.module) > 1e-12 * mate.module) {
-    t.Fail("module_mm", SceneNum(g.module / kMm),
-           "must equal " + name + ".module_mm = " + SceneNum(mate.module / kMm) +
+    t.Fail("module_mm", SceneNum(g.module * c / kMm),
+           "must equal " + name + ".module_mm = " + SceneNum(mate.module * c / kMm) +
                " (gears that mesh share the module)");
   }
   if (std::abs(g.pressure_angle - mate.pressure_angle) > 1e-12) {
-    t.Fail("pressure_angle_deg", SceneNum(g.pressure_angle * 180.0 / geometry::kPi),
-           "must equal " + name +
-               ".pressure_angle_deg = " + SceneNum(mate.pressure_angle * 180.0 / geometry::kPi) +
+    t.Fail("pressure_angle_deg", SceneNum(normal_angle(g.pressure_angle) * 180.0 / geometry::kPi),
+           "must equal " + name + ".pressure_angle_deg = " +
+               SceneNum(normal_angle(mate.pressure_angle) * 180.0 / geometry::kPi) +
                " (gears that mesh share the pressure angle)");
   }
 }
@@ -476,11 +529,13 @@ void ReadErrors(TableReader& e, Scene& s, std::vector<ErrorKey>* keys) {
 }
 
 // Addendum/dedendum coefficients (stored negative by ReadGear) become radii once x is final.
+// The coefficients are in normal modules m_n = m_t cos β (= m for a spur gear); x_t m_t = x_n m_n.
 void ResolveRadii(GearSpec& g) {
   const double r = g.module * g.teeth / 2.0, xm = g.profile_shift * g.module;
   const double sign = g.kind == GearKind::kInternal ? -1.0 : 1.0;  // a ring's tip is inside
-  if (g.tip_radius < 0) g.tip_radius = r + xm + sign * (-g.tip_radius) * g.module;
-  if (g.root_radius < 0) g.root_radius = r + xm + (-g.root_radius) * g.module;
+  const double mn = g.module * std::cos(g.helix.angle);
+  if (g.tip_radius < 0) g.tip_radius = r + xm + sign * (-g.tip_radius) * mn;
+  if (g.root_radius < 0) g.root_radius = r + xm + (-g.root_radius) * mn;
 }
 
 template <typename Fitted>
@@ -669,20 +724,50 @@ void ReadMaterialRatingModel(TableReader& top, Scene& s) {
   }
 }
 
-// A stage's [sun], [planet], [ring], [carrier] and [load] tables; `fitted(gear)`: the gear's
-// profile shift is fitted ([[fit]]).
+// A helical stage's carrier radius a [mm] against its normal module: the unshifted sun-planet
+// centre distance m_t (z_s + z_p)/2 = a0 [mm] with m_t = m_n / cos β must lie within 2 m_n of a
+// (the spur rule of [carrier] radius_mm); otherwise no shift assembles the stage at a, and the
+// module the user wrote is what moved it.
+void CarrierFitsModule(const TableReader& sun_table, const geometry::StageSpec& st, double a,
+                       double a0) {
+  const double mn_mm = st.sun.module * std::cos(st.sun.helix.angle) / kMm;
+  if (std::abs(a - a0) <= kCarrierModules * mn_mm) return;
+  sun_table.Fail(
+      "module_mm", SceneNum(mn_mm),
+      "with helix_angle_deg = " + SceneNum(geometry::Deg(st.sun.helix.angle)) +
+          " the transverse module m_n/cos(beta) = " + SceneNum(st.sun.module / kMm) +
+          " mm puts the sun-planet centre distance of unshifted gears, m_t (z_sun + z_planet)/2, "
+          "at " +
+          SceneNum(a0) + " mm, more than 2 normal modules from carrier.radius_mm = " + SceneNum(a) +
+          ": the stage cannot be assembled at that carrier radius (profile shifts move it by "
+          "about x m_n)");
+}
+
+// A stage's [helix], [sun], [planet], [ring], [carrier] and [load] tables; `fitted(gear)`: the
+// gear's profile shift is fitted ([[fit]]).
 template <typename Fitted>
 void ReadStageMembers(TableReader& top, Scene& s, Fitted&& fitted) {
   geometry::StageSpec& st = s.stage;
-  {
-    TableReader t = top.Table("sun");
-    st.sun = ReadGear(t, "sun", GearKind::kExternal, fitted("sun"), &s.inertia.sun, &s.warnings);
-    t.Done();
+  // The stage's [helix] table: one helix angle, the sun's hand; the planets take the opposite
+  // hand (external meshes), the ring the planets' (internal mesh).
+  std::optional<geometry::Helix> sun_helix, planet_helix;
+  if (auto h = top.OptionalTable("helix")) {
+    sun_helix.emplace();
+    sun_helix->angle = geometry::Rad(h->Real("helix_angle_deg", kHelixRule));
+    sun_helix->hand = HandFromName(h->String("sun_hand", {"right", "left"}));
+    h->Done();
+    planet_helix = sun_helix;
+    planet_helix->hand =
+        sun_helix->hand == geometry::Hand::kRight ? geometry::Hand::kLeft : geometry::Hand::kRight;
   }
+  TableReader sun_table = top.Table("sun");
+  st.sun = ReadGear(sun_table, "sun", GearKind::kExternal, fitted("sun"), &s.inertia.sun,
+                    &s.warnings, sun_helix);
+  sun_table.Done();
   {
     TableReader t = top.Table("planet");
     st.planet = ReadGear(t, "planet", GearKind::kExternal, fitted("planet"), &s.inertia.planet,
-                         &s.warnings);
+                         &s.warnings, planet_helix);
     SameAsMate(t, st.planet, st.sun, "sun");
     t.Done();
   }
@@ -696,8 +781,8 @@ void ReadStageMembers(TableReader& top, Scene& s, Fitted&& fitted) {
             Rule::Closed(expect - kRingTeethSlack, expect + kRingTeethSlack)
                 .Because("z_sun + 2 z_planet = " + std::to_string(expect) +
                          " within 4 teeth: the planets must fit between sun and ring"));
-    st.ring =
-        ReadGear(t, "ring", GearKind::kInternal, fitted("ring"), &s.inertia.ring, &s.warnings);
+    st.ring = ReadGear(t, "ring", GearKind::kInternal, fitted("ring"), &s.inertia.ring, &s.warnings,
+                       planet_helix);
     SameAsMate(t, st.ring, st.planet, "planet");
     t.Done();
   }
@@ -706,12 +791,17 @@ void ReadStageMembers(TableReader& top, Scene& s, Fitted&& fitted) {
     // The sun-planet centre distance of gears without shift, m (z_s + z_p)/2, within 2 m.
     const double a0 = st.sun.module * (st.sun.teeth + st.planet.teeth) / 2.0 / kMm;
     const double m_mm = st.sun.module / kMm;
-    st.carrier_radius =
-        t.Real("radius_mm", Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
-                                .Because("m (z_sun + z_planet)/2 = " + SceneNum(a0) +
-                                         " mm within 2 modules (profile shifts move it by "
-                                         "about x m)")) *
-        kMm;
+    if (st.sun.helix.helical()) {
+      st.carrier_radius = t.Real("radius_mm", Rule::Positive()) * kMm;
+      CarrierFitsModule(sun_table, st, st.carrier_radius / kMm, a0);
+    } else {
+      st.carrier_radius =
+          t.Real("radius_mm",
+                 Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
+                     .Because("m (z_sun + z_planet)/2 = " + SceneNum(a0) +
+                              " mm within 2 modules (profile shifts move it by about x m)")) *
+          kMm;
+    }
     st.planets = static_cast<int>(t.Integer("planets", Rule::Closed(1, 12)));
     if (t.Has("planet_angles_deg")) {
       for (double a : t.RealArray("planet_angles_deg", Rule::HalfOpen(0, 360))) {
@@ -764,6 +854,10 @@ void ApplyStageFits(std::vector<TableReader>& fits, const std::vector<std::strin
         (f.gear == "ring" && f.mesh != "planet-ring")) {
       fit.Fail("mesh", "\"" + f.mesh + "\"", "the " + f.gear + " is not in that mesh");
     }
+    if (st.sun.helix.helical())
+      fit.Fail("gear", "\"" + f.gear + "\"",
+               "a [[fit]] solves a shift in the transverse plane of a spur stage; a helical stage "
+               "(helix_angle_deg > 0) gives each gear's profile_shift (normal section)");
     f.normal_backlash = fit.Real("normal_backlash_um", BacklashRule(st.sun.module)) * kUm;
     fit.Done();
     const bool internal = f.mesh == "planet-ring";

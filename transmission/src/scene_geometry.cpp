@@ -11,6 +11,8 @@
 
 #include <toml++/toml.h>
 
+#include "epicycle/geometry/plane.hpp"
+
 #include "epicycle/transmission/scene.hpp"
 #include "scene_internal.hpp"
 
@@ -156,6 +158,32 @@ bool HasErrors(const geometry::StageSpec& s) {
 }
 
 }  // namespace
+
+bool IsHelical(const Scene& scene) {
+  const auto helical = [](const geometry::GearSpec& g) { return g.helix.helical(); };
+  return scene.kind == SceneKind::kPair
+             ? helical(scene.pair.gear1) || helical(scene.pair.gear2)
+             : helical(scene.stage.sun) || helical(scene.stage.planet) || helical(scene.stage.ring);
+}
+
+void RequireSpur(const Scene& scene, const std::string& driver) {
+  if (!IsHelical(scene)) return;
+  const double beta =
+      scene.kind == SceneKind::kPair ? scene.pair.gear1.helix.angle : scene.stage.sun.helix.angle;
+  std::string where;
+  for (const char* path :
+       {"helix.helix_angle_deg", "sun.helix_angle_deg", "planet.helix_angle_deg",
+        "ring.helix_angle_deg", "gear1.helix_angle_deg", "gear2.helix_angle_deg"})
+    if (where.empty()) where = internal::KeyAt(scene, path);
+  if (where.empty())
+    where = scene.source + ": helix_angle_deg = " + internal::SceneNum(geometry::Deg(beta));
+  throw std::invalid_argument(
+      where + ": " + driver +
+      " computes the planar (spur) model and does not take a helical scene (helix_angle_deg > "
+      "0): its contact lines cross the face width, which the model does not resolve yet; "
+      "`epicycle geometry` reports a helical stage (transverse quantities, contact ratios, "
+      "axial forces and tilting moments)");
+}
 
 geometry::Stage MakeStage(const Scene& scene) {
   try {

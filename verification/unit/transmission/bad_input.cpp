@@ -181,6 +181,27 @@ const std::vector<Case> kCases = {
     {"warn_contact_ratio_below_1.toml",
      true,
      {"[sun]/[planet]: transverse contact ratio epsilon_alpha = 0.6", "< 1"}},
+    // Helical stages (scenes/grc_helical_stage.toml, docs/scenes.md "Helical gears"): the helix
+    // angle's magnitude in [0, 45) deg; an external mesh needs opposite hands, an internal one
+    // the same hand; a normal module whose transverse module m_n/cos β puts the unshifted
+    // centre distance m_t (z_s + z_p)/2 more than 2 m_n from the carrier radius (12 mm:
+    // 12/cos 7.5° · 60/2 = 363.1 mm against 302.789 mm).
+    {"helix_angle_50.toml",
+     false,
+     {"helix.helix_angle_deg = 50", "must be in [0, 45)", "the hand gives its direction"}},
+    {"helix_angle_-10.toml", false, {"helix.helix_angle_deg = -10", "must be in [0, 45)"}},
+    {"hands_external_same.toml",
+     false,
+     {"hands_external_same.toml:", "planet.hand = \"right\"",
+      "an external mesh needs opposite hands"}},
+    {"hands_internal_opposite.toml",
+     false,
+     {"hands_internal_opposite.toml:", "ring.hand = \"right\"",
+      "an internal mesh needs the same hand"}},
+    {"helix_module_12mm.toml",
+     false,
+     {"sun.module_mm = 12", "transverse module m_n/cos(beta) = 12.10", "at 363.1",
+      "carrier.radius_mm = 302.789", "cannot be assembled"}},
 };
 
 std::string Dir() { return std::string(EPICYCLE_TEST_DATA_DIR) + "/bad_inputs/"; }

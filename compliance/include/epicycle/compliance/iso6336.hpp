@@ -7,6 +7,8 @@
 //   c′_th = 1/q′,   c′ = c′_th C_M C_R C_B cos β   (single pair, per unit face width)
 //   C_M = 0.8,  C_B = [1 + 0.5(1.2 − h_fP/m)][1 − 0.02(20° − α_P)] (mean of the two tools)
 //   c_γα = c′ (0.75 ε_α + 0.25)   (mesh stiffness, mean over a mesh cycle)
+// Helical pairs (ISO 6336-1:2006, 9.3): z_n = z/cos³β in q′, c′ takes cos β and the basic rack is
+// the normal section's (h_fP/m_n, α_n); β = 0 is the spur pair.
 // Stiffnesses are per unit face width in N/(mm·µm) = 1e9 N/m². Internal gears: z_n2 = ∞ and the
 // ring's shift is not in the formula (x2 = 0), as ISO 6336-1 prescribes for internal gears.
 #pragma once
@@ -21,10 +23,11 @@ struct PairData {
   double dedendum2 = 1.25;       ///< same, gear 2 [-]
   double pressure_angle = 0;     ///< α_P of the tool [rad]
   double blank_factor = 1.0;     ///< C_R [-] (1: solid disc)
-  double contact_ratio = 0;      ///< ε_α [-] (for c_γα)
+  double contact_ratio = 0;      ///< ε_α [-] (for c_γα; transverse for a helical pair)
+  double helix_angle = 0;        ///< β [rad] at the reference cylinder (0: spur)
 };
 
-/// q′ [mm·µm/N]. @throws std::invalid_argument for z < 3.
+/// q′ [mm·µm/N]. @throws std::invalid_argument for z < 3 or β outside [0, 45°).
 double MinimumFlexibility(const PairData& p);
 /// C_B [-].
 double BasicRackFactor(const PairData& p);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "epicycle/geometry/helix.hpp"
 #include "epicycle/geometry/profile.hpp"
 
 namespace epicycle::geometry {
@@ -80,6 +81,10 @@ struct GearSpec {
   /// sits F_p,k further counter-clockwise than nominal (both flanks). Empty: none; else z entries.
   /// Single pitch deviations are f_pt,k = F_p,k − F_p,k−1 (ISO 1328-1).
   std::vector<double> pitch_deviations;
+  /// The helix at the reference cylinder (β = 0: a spur gear). The fields above are those of the
+  /// transverse section (module m_t, pressure angle α_t, shift x_t); a gear given in the normal
+  /// section is brought there by TransverseSpec (helical.hpp).
+  Helix helix;
 };
 
 /// Value and roll-angle derivatives of a flank's relief at roll u: C [m], dC/du [m], d²C/du² [m].

@@ -94,7 +94,8 @@ struct RootFormFactors {
 };
 /// @throws std::invalid_argument (naming the argument) for z < 5, non-positive or non-finite
 ///         lengths, ε_α outside (1, 2.5), or a fixed point that does not settle.
-RootFormFactors RootFormFactorsB(int teeth, double module, double alpha, double profile_shift,
+/// `teeth` may be a virtual number of teeth (a helical gear's z_n, HelicalRootFormFactorsB).
+RootFormFactors RootFormFactorsB(double teeth, double module, double alpha, double profile_shift,
                                  double rack_dedendum, double rack_tip_radius, double tip_diameter,
                                  double contact_ratio);
 
@@ -117,6 +118,7 @@ struct ContactFactors {
   double m2 = 0;     ///< M_2 [-] (0 for an internal wheel: not defined)
   double z_b = 1;    ///< Z_B [-] (pinion)
   double z_d = 1;    ///< Z_D [-] (wheel)
+  double z_beta = 1;  ///< Z_β [-] (1: spur; HelicalContactFactorsB)
 };
 /// z_1 the pinion's teeth; angles [rad], lengths [m]; ε_α as ContactRatio gives it from the tip
 /// circles.
@@ -125,6 +127,47 @@ struct ContactFactors {
 ContactFactors ContactFactorsB(int pinion_teeth, double alpha, double alpha_w,
                                double centre_distance, double rb1, double ra1, double rb2,
                                double ra2, double contact_ratio, bool internal);
+
+/// ISO 6336-2:2006 method B factors of a helical mesh: ContactFactorsB of its transverse section
+/// (α = α_t, α_w = α_wt, ε_α transverse; the base pitch p_bt = 2π r_b1/z_1), then
+///   Z_H = √(2 cos β_b cos α_wt / (cos²α_t sin α_wt))
+///   Z_ε = √((4 − ε_α)(1 − ε_β)/3 + ε_β/ε_α)  for ε_β < 1,   √(1/ε_α)  for ε_β ≥ 1
+///   Z_β = 1/√cos β
+///   Z_B = M_1 − ε_β (M_1 − 1) for ε_β < 1 (at least 1), 1 for ε_β ≥ 1; Z_D alike with M_2.
+/// β = 0 (ε_β = 0, β_b = 0) gives ContactFactorsB's values.
+ContactFactors HelicalContactFactorsB(int pinion_teeth, double alpha_t, double alpha_wt,
+                                      double centre_distance, double rb1, double ra1, double rb2,
+                                      double ra2, double contact_ratio, bool internal,
+                                      double helix_angle, double base_helix_angle,
+                                      double overlap_ratio);
+
+/// ISO 6336-3:2006 helical factors of one gear:
+///   z_n = z / (cos²β_b cos β)        virtual number of teeth (for Y_F and Y_S)
+///   ε_αn = ε_α / cos²β_b             virtual contact ratio
+///   Y_β = 1 − ε_β β/120°             with ε_β taken ≤ 1 and β ≤ 30° (so Y_β ≥ 0.75)
+///   Y_ε = 0.25 + 0.75/ε_αn           contact ratio factor of the load at the tip (method C of
+///                                    ISO 6336-3:1996); method B of 2006 loads the outer point of
+///                                    single pair contact of the virtual gear instead, so σ_F0
+///                                    there does not take Y_ε (reported beside it)
+struct HelicalBendingFactors {
+  double virtual_teeth = 0;          ///< z_n [-]
+  double virtual_contact_ratio = 0;  ///< ε_αn [-]
+  double y_beta = 1;                 ///< Y_β [-]
+  double y_eps = 0;                  ///< Y_ε [-]
+};
+/// @throws std::invalid_argument for z < 1, β outside [0, 45°), β_b outside [0, β], ε_α ≤ 0 or
+///         ε_β < 0.
+HelicalBendingFactors HelicalBending(int teeth, double helix_angle, double base_helix_angle,
+                                     double contact_ratio, double overlap_ratio);
+
+/// ISO 6336-3:2006 method B form factors of a helical gear: RootFormFactorsB of its virtual spur
+/// gear in the normal section, z_n (HelicalBending), m_n, α_n, x_n, the tip diameter
+/// d_an = d_n + d_a − d (d_n = m_n z_n, d = z m_n / cos β) and ε_αn.
+RootFormFactors HelicalRootFormFactorsB(int teeth, double normal_module, double normal_alpha,
+                                        double normal_shift, double helix_angle,
+                                        double base_helix_angle, double rack_dedendum,
+                                        double rack_tip_radius, double tip_diameter,
+                                        double contact_ratio);
 
 /// ISO 6336-2's elasticity factor Z_E = √(1 / (π [(1 − ν_1²)/E_1 + (1 − ν_2²)/E_2])) [√Pa]
 /// (E [Pa]; steel on steel, E = 206 GPa, ν = 0.3: 189.8 √MPa).

@@ -17,7 +17,12 @@ nlohmann::json GearJson(const geometry::Gear& gear);
 nlohmann::json MeshJson(const geometry::MeshSummary& mesh);
 /// The report of a gear-pair scene: "scene", "source", "gears", "gear_order", "meshes", "fits".
 nlohmann::json PairJson(const transmission::Scene& scene, const geometry::GearPair& pair);
-/// The report of a stage scene: the same keys and "assembly" (carrier radius, planets).
+/// A helical stage's "helical" section (docs/geometry.md, "Helical gears"): each gear's normal and
+/// transverse quantities, each mesh's α_wt, β_w, ε_α, ε_β, ε_γ, the axial forces of the scene's
+/// torque shared equally and each planet's tilting moment (geometry::AxialLoads).
+nlohmann::json HelicalStageJson(const transmission::Scene& scene, const geometry::Stage& stage);
+/// The report of a stage scene: the same keys and "assembly" (carrier radius, planets); a helical
+/// scene adds "helical" (HelicalStageJson; a pair: its gears and mesh).
 nlohmann::json StageJson(const transmission::Scene& scene, const geometry::Stage& stage);
 
 }  // namespace epicycle::report

@@ -144,6 +144,15 @@ Scene ReadScene(const std::string& path);
 geometry::Stage MakeStage(const Scene& scene);
 /// The same for a gear pair: `spec` the scene's pair, or a mesh of its stage (MakeMeshPair).
 geometry::GearPair MakePair(const Scene& scene, const geometry::PairSpec& spec);
+/// Whether any gear of the scene is helical (helix_angle_deg > 0).
+bool IsHelical(const Scene& scene);
+/// Refuses a helical scene in `driver` (a command or run that computes the planar model: contact
+/// search, compliance, load sharing, dynamics): until the model resolves the face width in slices
+/// (docs/geometry.md, "Helical gears"), a helical scene runs only the geometry report, and the
+/// planar model would give a spur result for it.
+/// @throws std::invalid_argument naming the scene's helix_angle_deg key (file:line), its value and
+///         the rule, for a helical scene.
+void RequireSpur(const Scene& scene, const std::string& driver);
 /// Same, from text (source names it in messages).
 Scene ParseScene(const std::string& text, const std::string& source);
 
