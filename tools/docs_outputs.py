@@ -104,8 +104,10 @@ def run(source, exe, out, only, timeout):
         with open(os.path.join(folder, "stdout.txt"), "wb") as so, \
                 open(os.path.join(folder, "stderr.txt"), "wb") as se:
             try:
-                rc = subprocess.run([exe] + words, cwd=folder, stdout=so, stderr=se,
-                                    stdin=subprocess.DEVNULL, timeout=timeout).returncode
+                # argv[0] "epicycle" whichever build runs: the usage lines name it.
+                rc = subprocess.run(["epicycle"] + words, executable=exe, cwd=folder, stdout=so,
+                                    stderr=se, stdin=subprocess.DEVNULL,
+                                    timeout=timeout).returncode
             except subprocess.TimeoutExpired:
                 rc = "timeout"
         seconds = time.monotonic() - t0

@@ -143,9 +143,7 @@ void RunStudyCommand(const StudyArgs& a) {
   if (!a.shard.empty()) request.part = ParseShard(a.shard, study.Cases());
   request.rows_file =
       request.part ? a.out + "/" + studies::PartFileName(*request.part) : base + "_rows.csv";
-  studies::StudySpec as_run = study;  // the provenance names the scene as run
-  as_run.scene.model.stresses = as_run.scene.model.stresses || a.stresses;
-  const json provenance = Provenance(study.backend_name, &as_run.scene);
+  const json provenance = Provenance(study.backend_name, &study.scene);
   request.comment = report::StudyComment(provenance, a.study);
   if (!a.no_cache)
     request.cache_directory = a.cache.empty() ? transmission::DefaultCacheDirectory() : a.cache;

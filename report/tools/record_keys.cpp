@@ -48,15 +48,15 @@ class KeyTable final : public RecordVisitor {
   }
   void BeginObject(const char* key) override {
     Row(key, "object");
-    prefix_.push_back(std::string(key) + ".");
+    Open(key, ".");
   }
-  void EndObject() override { prefix_.pop_back(); }
+  void EndObject() override { Close(); }
   void BeginList(const char* key) override {
     Row(key, "list of objects");
-    prefix_.push_back(std::string(key) + "[].");
+    Open(key, "[].");
   }
   void Item() override {}  // the sample records hold one item per list
-  void EndList() override { prefix_.pop_back(); }
+  void EndList() override { Close(); }
   void Stresses(const epicycle::transmission::SweepSummary&) override {
     Row("root_stress", "object (per gear: docs/stresses.md)");
     Row("contact_pressure", "object (per gear and flank: docs/stresses.md)");
@@ -71,11 +71,31 @@ class KeyTable final : public RecordVisitor {
 
  private:
   std::vector<std::string> prefix_;
+  std::vector<std::string> units_;  // the unit of each open object or list ("" for none)
+  void Open(const char* key, const char* separator) {
+    prefix_.push_back(std::string(key) + separator);
+    units_.push_back(KeyUnit(key));
+  }
+  void Close() {
+    prefix_.pop_back();
+    units_.pop_back();
+  }
+  // A key's unit: its own, or for a statistic of a quantity (a study's mean, its interval, a
+  // percentile's value) the quantity's.
+  std::string KeyUnit(const std::string& key) const {
+    const std::string own = Unit(key);
+    static const std::vector<std::string> statistics = {"mean", "mean_ci", "std", "min",
+                                                        "max",  "value",   "ci",  "percentiles"};
+    if (!own.empty() || units_.empty()) return own;
+    for (const std::string& s : statistics)
+      if (key == s) return units_.back();
+    return "";
+  }
   void Row(const std::string& key, const char* kind) {
     std::string name;
     for (const std::string& p : prefix_) name += p;
     name += key;
-    const std::string unit = Unit(key);
+    const std::string unit = KeyUnit(key);
     std::printf("| `%s` | %s | %s |\n", name.c_str(), kind, unit.empty() ? "-" : unit.c_str());
   }
 };

@@ -163,7 +163,7 @@ TEST_CASE(
 TEST_CASE(
     "modes record: the program's JSON has exactly the record's fields and the library run's "
     "values (modes, coincidences)",
-    "[crosscheck][report][records][slow]") {
+    "[crosscheck][report][records]") {
   const test::TempDir temp("modes-record");
   const std::string scene_file = std::string(EPICYCLE_SCENES_DIR) + "/paper_stage.toml";
   REQUIRE(test::ExitStatus({EPICYCLE_EXE, "modes", scene_file, "--sun", "floating",
@@ -193,7 +193,7 @@ TEST_CASE(
 TEST_CASE(
     "study record: the program's summary JSON has exactly the record's fields and the library "
     "run's values (exceedances, Spearman columns)",
-    "[crosscheck][report][records][slow]") {
+    "[crosscheck][report][records]") {
   const test::TempDir temp("study-record");
   const std::string study_file =
       std::string(EPICYCLE_TEST_DATA_DIR) + "/studies/kgamma_limit_small.toml";
