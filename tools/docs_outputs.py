@@ -15,9 +15,10 @@ the repository does not hold, or one that writes outside its folder. Each comman
 code beside. The influence tables come from $EPICYCLE_CACHE_DIR (give both builds the same one).
 
 Masked before comparing (they differ between two runs of one build): JSON keys named provenance or
-ending in _seconds/_s/_ms, or seconds; CSV comment lines (# provenance) and columns named *_s,
+seconds, ending in _seconds/_s/_ms/_over_wall, or holding _seconds_; CSV comment lines (# provenance) and columns named *_s,
 *_ms, *seconds; in text, numbers followed by s, ms, cases/s or positions/s, `wall`/`cpu`
-times, and whether an influence table was built or loaded from the cache.
+times, and whether an influence table was built or loaded from the cache; a study's rows are
+compared in sorted order (its threads append them as cases complete).
 """
 import json
 import os
@@ -131,7 +132,7 @@ def mask_text(data):
     return text
 
 
-TIMED = re.compile(r"(^provenance$|_seconds$|_s$|_ms$|^seconds$)")
+TIMED = re.compile(r"(^provenance$|_seconds$|_seconds_|_s$|_ms$|^seconds$|_over_wall$)")
 
 
 def mask_json(value):
@@ -168,7 +169,13 @@ def masked(path):
         except ValueError:
             return mask_text(data)
     if path.endswith(".csv"):
-        return mask_csv(data)
+        text = mask_csv(data)
+        if os.path.basename(path).startswith("study_"):
+            # A study's rows are appended as cases complete on its threads: their order is not
+            # the run's result (the merge and the summary sort them by case id).
+            head, *rows = text.split("\n")
+            text = "\n".join([head] + sorted(rows))
+        return text
     if path.endswith((".txt", ".svg", ".md")):
         return mask_text(data) if path.endswith(".txt") else data.decode("utf-8", "replace")
     return data
