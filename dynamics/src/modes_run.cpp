@@ -13,10 +13,9 @@ namespace epicycle::dynamics {
 
 ModesRecord RunModes(const ModesRequest& request, ModesSink& sink) {
   if (request.speed_range_rpm && !((*request.speed_range_rpm)[0] <= (*request.speed_range_rpm)[1]))
-    throw std::invalid_argument(fmt::format("{} = {} {}: LO must not exceed HI",
-                                            request.speed_range_option,
-                                            (*request.speed_range_rpm)[0],
-                                            (*request.speed_range_rpm)[1]));
+    throw std::invalid_argument(
+        fmt::format("{} = {} {}: LO must not exceed HI", request.speed_range_option,
+                    (*request.speed_range_rpm)[0], (*request.speed_range_rpm)[1]));
   std::shared_ptr<const StageDynamics> rig = request.rig;
   if (!rig) {
     transmission::Scene scene = request.scene;
@@ -70,8 +69,7 @@ void VisitRecord(const ModesRecord& r, transmission::RecordVisitor& visit) {
                   HarmonicSunSpeeds(x.frequency, r.mesh_hz_per_sun_rpm, 3));
   }
   visit.EndList();
-  visit.Numbers("coincidence_range_rpm",
-                {r.coincidence_range_rpm[0], r.coincidence_range_rpm[1]});
+  visit.Numbers("coincidence_range_rpm", {r.coincidence_range_rpm[0], r.coincidence_range_rpm[1]});
   VisitCoincidences(r.coincidences, visit);
   visit.Texts("warnings", r.warnings);
 }

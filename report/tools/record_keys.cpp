@@ -22,12 +22,23 @@ using epicycle::transmission::RecordVisitor;
 // The unit a key's suffix names (docs/records.md, "Units in the keys").
 std::string Unit(const std::string& key) {
   static const std::vector<std::pair<std::string, std::string>> suffixes = {
-      {"_N_per_mm_um", "N/(mm·µm)"}, {"_N_per_m", "N/m"}, {"_Hz_per_sun_rpm", "Hz/rpm"},
-      {"_Nm", "N·m"},   {"_urad", "µrad"}, {"_um", "µm"},   {"_mm", "mm"},  {"_MPa", "MPa"},
-      {"_Hz", "Hz"},    {"_rpm", "rpm"},   {"_deg", "deg"}, {"_W", "W"},    {"_seconds", "s"},
+      {"_N_per_mm_um", "N/(mm·µm)"},
+      {"_N_per_m", "N/m"},
+      {"_Hz_per_sun_rpm", "Hz/rpm"},
+      {"_Nm", "N·m"},
+      {"_urad", "µrad"},
+      {"_um", "µm"},
+      {"_mm", "mm"},
+      {"_MPa", "MPa"},
+      {"_Hz", "Hz"},
+      {"_rpm", "rpm"},
+      {"_deg", "deg"},
+      {"_W", "W"},
+      {"_seconds", "s"},
       {"_s", "s"}};
   for (const auto& [suffix, unit] : suffixes)
-    if (key.size() > suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
+    if (key.size() > suffix.size() &&
+        key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
       return unit;
   return "";
 }

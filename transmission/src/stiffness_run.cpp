@@ -26,7 +26,8 @@ void VisitResult(const MeshStiffnessResult& r, RecordVisitor& visit) {
   visit.Number("peak_single_pair_stiffness_N_per_mm_um", r.peak_pair_per_width());
   visit.Number("min_mesh_stiffness_N_per_m", r.min_stiffness);
   visit.Number("max_mesh_stiffness_N_per_m", r.max_stiffness);
-  if (!r.root_stress.empty()) visit.RootStress("root_stress", r.root_stress, "angle_deg", geometry::Deg(1.0));
+  if (!r.root_stress.empty())
+    visit.RootStress("root_stress", r.root_stress, "angle_deg", geometry::Deg(1.0));
 }
 
 // The pair's own comparison values, in the record and in its healthy twin.
@@ -55,8 +56,8 @@ StiffnessRecord RunStiffness(const StiffnessRequest& request, StiffnessSink& sin
   }
   const MeshPairSetup setup = MakeMeshPair(scene, stage ? &*stage : nullptr, request.mesh);
   const geometry::GearPair pair = MakePair(scene, setup.spec);
-  const auto [first, cycles] = request.cycle >= 0 ? std::array<int, 2>{request.cycle, 1}
-                                                  : DamagedToothCycles(setup, pair);
+  const auto [first, cycles] =
+      request.cycle >= 0 ? std::array<int, 2>{request.cycle, 1} : DamagedToothCycles(setup, pair);
   MeshStiffnessOptions opt;
   opt.positions = request.positions * cycles;
   opt.first_cycle = first;

@@ -21,11 +21,11 @@ namespace epicycle::studies {
 
 /// What a study run is asked for.
 struct StudyRequest {
-  StudySpec study;           ///< read and validated (ReadStudy, ParseStudy)
-  std::string study_path;    ///< the study file as the user named it (in the record)
-  bool stresses = false;     ///< root stresses too (also when the study or scene asks for them)
-  int threads = 0;           ///< worker threads [-]; 0: one per core
-  long max_cases = -1;       ///< compute at most this many new cases (< 0: all) [-]
+  StudySpec study;         ///< read and validated (ReadStudy, ParseStudy)
+  std::string study_path;  ///< the study file as the user named it (in the record)
+  bool stresses = false;   ///< root stresses too (also when the study or scene asks for them)
+  int threads = 0;         ///< worker threads [-]; 0: one per core
+  long max_cases = -1;     ///< compute at most this many new cases (< 0: all) [-]
   std::optional<CaseRange> part;  ///< only these cases, into a part file (no summary)
   /// The rows file (created or resumed); a part's is in its folder under PartFileName.
   std::string rows_file;
@@ -47,8 +47,8 @@ struct StudyRecord {
   std::string study;       ///< the study file as named in the request
   std::string study_hash;  ///< of the study text (StudySpec::hash)
   std::uint64_t seed = 0;
-  long cases_total = 0;  ///< of the study [-]
-  StudySummary summary;  ///< over the rows in the file
+  long cases_total = 0;               ///< of the study [-]
+  StudySummary summary;               ///< over the rows in the file
   std::vector<std::string> warnings;  ///< the study's
   double computed_seconds = 0;        ///< wall time of the cases computed now [s]
 };
@@ -64,7 +64,8 @@ struct StudyRun {
 
 /// Resolves the request's defaults (threads: one per core; stresses), runs or resumes the cases
 /// (RunStudyMpi) and summarises them.
-/// @throws std::invalid_argument as RunStudy; std::runtime_error if the rows file cannot be written.
+/// @throws std::invalid_argument as RunStudy; std::runtime_error if the rows file cannot be
+/// written.
 StudyRun RunStudy(const StudyRequest& request, StudySink& sink);
 
 /// The record of `rows` (a merge's, a run's): the study's summary and its identity.

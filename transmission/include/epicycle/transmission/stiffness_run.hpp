@@ -27,8 +27,8 @@ struct StiffnessRequest {
   Scene scene;       ///< read and validated (ReadScene): a gear pair or a stage
   std::string mesh;  ///< a stage's mesh ("sun-planet1", "planet2-ring"); "" for a pair scene
   int positions = kDefaultStiffnessPositions;  ///< samples per mesh cycle [-]
-  int cycle = -1;      ///< this one mesh cycle of gear 1; < 0: the cycles a damaged tooth meshes in
-  int threads = 0;     ///< worker threads [-]; 0: one per core
+  int cycle = -1;   ///< this one mesh cycle of gear 1; < 0: the cycles a damaged tooth meshes in
+  int threads = 0;  ///< worker threads [-]; 0: one per core
   std::string backend = "newton";  ///< contact back end (solvers::BackendFromName)
   bool local_terms = true;         ///< false: the structural compliance only
   bool tooth_coupling = true;      ///< MeshStiffnessOptions::tooth_coupling
@@ -46,7 +46,7 @@ struct StiffnessPlan {
   const MeshPairSetup* setup = nullptr;
   const geometry::GearPair* pair = nullptr;
   const FePairCompliance* compliance = nullptr;  ///< null before the tables are built
-  int positions_per_cycle = 0;  ///< [-]
+  int positions_per_cycle = 0;                   ///< [-]
   int first_cycle = 0, cycles = 1;
   double face_width = 0;  ///< b [m], the narrower gear's
 };
@@ -67,11 +67,11 @@ class StiffnessSink {
 /// What a mesh-stiffness run found. Every field is in the record's one serialisation
 /// (VisitRecord), named with its unit there.
 struct StiffnessRecord {
-  std::string scene;          ///< the scene's name
-  std::string plane;          ///< "strain" or "stress" (the scene's [model] plane)
+  std::string scene;  ///< the scene's name
+  std::string plane;  ///< "strain" or "stress" (the scene's [model] plane)
   bool local_terms = true;
-  MeshStiffnessResult result;  ///< the samples and their statistics
-  double contact_ratio = 0;    ///< ε_α from the tip circles [-]
+  MeshStiffnessResult result;                             ///< the samples and their statistics
+  double contact_ratio = 0;                               ///< ε_α from the tip circles [-]
   double iso6336_c_prime = 0, iso6336_c_gamma_alpha = 0;  ///< ISO 6336-1 method B [N/(mm·µm)]
   std::array<double, 2> join_depth{};                     ///< each gear's joining depth [m]
   std::optional<MeshStiffnessResult> healthy;  ///< the healthy teeth over the same cycles
