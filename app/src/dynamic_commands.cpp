@@ -17,12 +17,14 @@
 #include "commands.hpp"
 #include "console.hpp"
 #include "epicycle/dynamics/modes.hpp"
+#include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/report/ratings.hpp"
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/report/spectrum_files.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
@@ -193,63 +195,54 @@ struct ModesArgs {
   bool no_cache = false;
 };
 
+// The program's modes sink: the rig's header on the console before the modes are solved.
+class ModesConsole final : public dynamics::ModesSink {
+ public:
+  void Start(const dynamics::ModesPlan& p) override {
+    const dynamics::StageDynamics& rig = *p.rig;
+    std::printf("%s: %d planets, sun %s, %d DOFs (%s)\n", rig.scene.name.c_str(),
+                rig.stage.planets(), transmission::SunSupportName(rig.stage_model.setup().sun),
+                rig.model.size(), rig.model.settings().ring_elastic ? "ring elastic" : "ring fixed");
+  }
+};
+
 void RunModes(const ModesArgs& a) {
-  if (!a.speed_range_rpm.empty() && !(a.speed_range_rpm[0] <= a.speed_range_rpm[1]))
-    throw std::invalid_argument(fmt::format("--speed-range-rpm = {} {}: LO must not exceed HI",
-                                            a.speed_range_rpm[0], a.speed_range_rpm[1]));
-  dynamics::StageDynamics rig(StageScene(a.scene, a.sun, "modes"),
-                              TableOptions(a.cache, a.no_cache));
-  const transmission::Scene& scene = rig.scene;
-  const geometry::Stage& stage = rig.stage;
-  const transmission::StageModel& stage_model = rig.stage_model;
-  // The linearisation's mesh stiffness is the tangent dF/dδ about the operating point (the
-  // speed sweep's peaks sit at its coincidences; the secant F/δ, which sets the mesh damping, is
-  // softer by the local term's curvature and puts them ~3.5 % low on the paper stage).
-  const dynamics::OperatingPointModes operating = dynamics::StageModes(rig);
-  const std::vector<dynamics::Mode>& modes = operating.modes;
-  const dynamics::DynamicModel& model = rig.model;
-  const std::array<double, 2>& tangent = operating.mesh_stiffness;
-  // Mesh frequency per sun rpm: f_m = z_r ω_c/2π with ω_c = ω_s z_s/(z_s + z_r).
-  const double hz_per_rpm = dynamics::MeshHzPerSunRpm(stage);
-  std::printf("%s: %d planets, sun %s, %d DOFs (%s)\n", scene.name.c_str(), stage.planets(),
-              transmission::SunSupportName(stage_model.setup().sun), model.size(),
-              model.settings().ring_elastic ? "ring elastic" : "ring fixed");
+  dynamics::ModesRequest request;
+  request.scene = StageScene(a.scene, a.sun, "modes");
+  if (!a.speed_range_rpm.empty())
+    request.speed_range_rpm = {a.speed_range_rpm[0], a.speed_range_rpm[1]};
+  request.speed_range_option = "--speed-range-rpm";
+  request.tables = TableOptions(a.cache, a.no_cache);
+  ModesConsole console;
+  const dynamics::ModesRecord r = dynamics::RunModes(request, console);
   std::printf(
       "  mean mesh stiffness (the mesh-stiffness driver at the scene's load), tangent dF/ddelta "
       "(used here): sun-planet %.4g N/m, planet-ring %.4g N/m\n",
-      tangent[0], tangent[1]);
+      r.mesh_stiffness[0], r.mesh_stiffness[1]);
   std::printf(
       "  secant F/delta (sets the mesh damping of a run): sun-planet %.4g N/m, planet-ring %.4g "
       "N/m\n",
-      rig.model.sun_mesh_stiffness(), rig.model.ring_mesh_stiffness());
-  std::printf("  mesh frequency %.4f Hz per sun rpm\n\n", hz_per_rpm);
+      r.secant_mesh_stiffness[0], r.secant_mesh_stiffness[1]);
+  std::printf("  mesh frequency %.4f Hz per sun rpm\n\n", r.mesh_hz_per_sun_rpm);
   std::printf("  %-5s %-12s %-5s %-14s %s\n", "mode", "f [Hz]", "mult", "type",
               "energy: central tr/rot, planets");
-  for (std::size_t j = 0; j < modes.size(); ++j) {
-    const auto& x = modes[j];
+  for (std::size_t j = 0; j < r.modes.size(); ++j) {
+    const auto& x = r.modes[j];
     const std::string type = x.rigid ? "rigid" : dynamics::ModeTypeName(x.type);
     std::printf("  %-5zu %-12.2f %-5d %-14s %.3f / %.3f, %.3f\n", j + 1, x.frequency,
                 x.multiplicity, type.c_str(), x.central_translation, x.central_rotation, x.planets);
   }
-  // Every mesh harmonic that meets a mode within the speeds asked (default: the scene's speed
-  // / 2 .. x 2), marked by the planet-phasing rule.
-  const double rpm = io::RadPerSecondToRpm(model.settings().sun_speed);
-  const double lo = a.speed_range_rpm.empty() ? rpm / 2 : a.speed_range_rpm[0];
-  const double hi = a.speed_range_rpm.empty() ? rpm * 2 : a.speed_range_rpm[1];
-  const auto coincidences = dynamics::FindCoincidences(model, modes, lo, hi);
-  std::printf("\n  coincidences h f_m = f_j from %.0f to %.0f rpm (%zu):\n", lo, hi,
-              coincidences.size());
-  for (const dynamics::Coincidence& c : coincidences)
+  std::printf("\n  coincidences h f_m = f_j from %.0f to %.0f rpm (%zu):\n",
+              r.coincidence_range_rpm[0], r.coincidence_range_rpm[1], r.coincidences.size());
+  for (const dynamics::Coincidence& c : r.coincidences)
     std::printf("    %9.1f rpm  harmonic %-3d x mode %d (%.2f Hz, %s)%s\n", c.sun_speed_rpm,
                 c.harmonic, c.mode + 1, c.frequency,
-                dynamics::ModeTypeName(modes[static_cast<std::size_t>(c.mode)].type).c_str(),
+                dynamics::ModeTypeName(r.modes[static_cast<std::size_t>(c.mode)].type).c_str(),
                 c.phasing_excited ? "" : "  not excited by a symmetric stage (planet phasing)");
-  PrintWarnings(scene.warnings);
+  PrintWarnings(r.warnings);
   if (!a.json.empty()) {
-    nlohmann::json j = report::ModesRunJson(model, operating, lo, hi, coincidences);
-    j["provenance"] = Provenance("none", &scene);
-    j["warnings"] = scene.warnings;
-    WriteTextFile(a.json, j.dump(2) + "\n");
+    WriteTextFile(a.json,
+                  report::SummaryJson(r, Provenance("none", &request.scene)).dump(2) + "\n");
     std::printf("\nwrote %s\n", a.json.c_str());
   }
 }

@@ -13,9 +13,9 @@
 
 #include "commands.hpp"
 #include "console.hpp"
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
-#include "epicycle/transmission/mesh_stiffness.hpp"
-#include "epicycle/transmission/validity.hpp"
+#include "epicycle/transmission/stiffness_run.hpp"
 #include "options.hpp"
 
 namespace epicycle::app {
@@ -26,86 +26,85 @@ using json = nlohmann::json;
 
 struct StiffnessArgs {
   std::string scene, mesh, backend = "newton", out = "stiffness-out", cache;
-  int positions = 60, cycle = -1;
+  int positions = transmission::kDefaultStiffnessPositions, cycle = -1;
   int threads = 0;  // 0: one per core
   bool no_cache = false, no_local = false, stresses = false;
 };
 
-void RunStiffness(const StiffnessArgs& a) {
-  transmission::Scene scene = transmission::ReadScene(a.scene);
-  scene.model.stresses = scene.model.stresses || a.stresses;
-  std::optional<geometry::Stage> stage;
-  if (scene.kind == transmission::SceneKind::kStage) {
-    stage.emplace(transmission::MakeStage(scene));
-    if (a.mesh.empty()) {
-      std::string names;
-      for (const auto& m : stage->meshes()) names += (names.empty() ? "" : ", ") + m.name;
-      throw std::invalid_argument("--mesh is required for a stage scene; its meshes are " + names);
-    }
+// The program's sink: the run's header on the console and the CSV written as each sample is
+// computed (a failed sample said on stderr).
+class ConsoleSink final : public transmission::StiffnessSink {
+ public:
+  ConsoleSink(const StiffnessArgs& a, json provenance) : a_(a), provenance_(std::move(provenance)) {}
+
+  void Pair(const transmission::StiffnessPlan& p) override {
+    std::printf("%s: mesh %s, torque on gear 1 %.3f N m, %d positions per cycle, cycles %d..%d\n",
+                p.scene->name.c_str(), p.setup->mesh.c_str(), p.setup->torque,
+                p.positions_per_cycle, p.first_cycle, p.first_cycle + p.cycles - 1);
   }
-  const transmission::MeshPairSetup setup =
-      transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, a.mesh);
-  const geometry::GearPair pair = transmission::MakePair(scene, setup.spec);
-  const transmission::FeComplianceOptions fe = TableOptions(a.cache, a.no_cache);
-  const auto [first, cycles] =
-      a.cycle >= 0 ? std::array<int, 2>{a.cycle, 1} : transmission::DamagedToothCycles(setup, pair);
-  std::printf("%s: mesh %s, torque on gear 1 %.3f N m, %d positions per cycle, cycles %d..%d\n",
-              scene.name.c_str(), setup.mesh.c_str(), setup.torque, a.positions, first,
-              first + cycles - 1);
-  const transmission::FePairCompliance compliance(scene, pair, fe, setup.gears);
-  for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
-  for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
 
-  transmission::MeshStiffnessOptions opt;
-  opt.positions = a.positions * cycles;
-  opt.first_cycle = first;
-  opt.cycles = cycles;
-  opt.threads = a.threads;
-  opt.backend = solvers::BackendFromName(a.backend);
-  opt.local_terms = !a.no_local;
-  std::filesystem::create_directories(a.out);
-  const std::string base = a.out + "/stiffness_" + setup.mesh;
-  const json provenance = Provenance(a.backend, &scene);
-  const double b = geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
-  report::MeshStiffnessFile csv(
-      base + ".csv", provenance, b,
-      compliance.has_root_stress() ? setup.gears : std::vector<std::string>{});
-  const auto result = transmission::ComputeMeshStiffness(
-      setup, pair, compliance, opt, [&](const transmission::MeshSample& s) {
-        csv.Write(s);  // written as computed
-        if (!s.converged)
-          std::fprintf(stderr, "  position %.4f deg FAILED: %s\n", geometry::Deg(s.angle),
-                       s.message.c_str());
-      });
-  csv.Close();
-  const compliance::iso6336::PairData iso = transmission::IsoPairData(pair);
-  const double c_prime = compliance::iso6336::SinglePairStiffness(iso);
-  const double c_gamma = compliance::iso6336::MeshStiffness(iso);
-  std::printf("%s", report::MeshStiffnessText(pair, result, c_prime, c_gamma).c_str());
+  void Start(const transmission::StiffnessPlan& p) override {
+    const transmission::MeshPairSetup& setup = *p.setup;
+    for (const std::string& m : p.compliance->tables().messages())
+      std::printf("  %s\n", m.c_str());
+    for (const std::string& d : p.scene->damage.Describe()) std::printf("  %s\n", d.c_str());
+    std::filesystem::create_directories(a_.out);
+    base = a_.out + "/stiffness_" + setup.mesh;
+    face_width = p.face_width;
+    csv_.emplace(base + ".csv", provenance_, face_width,
+                 p.compliance->has_root_stress() ? setup.gears : std::vector<std::string>{});
+  }
 
-  report::WriteMeshStiffnessPlot(base + ".svg", scene.name + ": " + setup.mesh + " mesh stiffness",
-                                 result, b, {c_gamma, c_prime});
+  void Sample(const transmission::MeshSample& s) override {
+    csv_->Write(s);  // written as computed
+    if (!s.converged)
+      std::fprintf(stderr, "  position %.4f deg FAILED: %s\n", geometry::Deg(s.angle),
+                   s.message.c_str());
+  }
 
-  // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
-  std::vector<std::string> warnings = scene.warnings;
-  for (const std::string& w : transmission::MeshStiffnessWarnings(pair, result))
-    warnings.push_back(w);
-  PrintWarnings(warnings);
-  json j = report::MeshStiffnessJson(pair, result, c_prime, c_gamma);
-  j["provenance"] = provenance;
-  j["warnings"] = warnings;
-  j["scene"] = scene.name;
-  j["local_terms"] = !a.no_local;
-  j["plane"] = scene.model.plane == solvers::PlaneAssumption::kPlaneStrain ? "strain" : "stress";
-  j["join_depth_mm"] = {compliance.JoiningDepth(0) * 1e3, compliance.JoiningDepth(1) * 1e3};
-  if (first != 0 || cycles != 1) {  // the same cycles with healthy teeth, beside
-    const auto healthy = transmission::ComputeHealthyMeshStiffness(scene, setup, pair, fe, opt);
+  void Close() { csv_->Close(); }
+
+  std::string base;
+  double face_width = 0;
+
+ private:
+  const StiffnessArgs& a_;
+  json provenance_;
+  std::optional<report::MeshStiffnessFile> csv_;
+};
+
+void RunStiffness(const StiffnessArgs& a) {
+  transmission::StiffnessRequest request;
+  request.scene = transmission::ReadScene(a.scene);
+  request.mesh = a.mesh;
+  request.positions = a.positions;
+  request.cycle = a.cycle;
+  request.threads = a.threads;
+  request.backend = a.backend;
+  request.local_terms = !a.no_local;
+  request.stresses = a.stresses;
+  request.tables = TableOptions(a.cache, a.no_cache);
+  request.mesh_option = "--mesh";
+  request.positions_option = "--positions";
+  request.threads_option = "--threads";
+  const json provenance = Provenance(a.backend, &request.scene);
+  ConsoleSink sink(a, provenance);
+  const transmission::StiffnessRecord record = transmission::RunStiffness(request, sink);
+  sink.Close();
+  const transmission::MeshStiffnessResult& result = record.result;
+  const std::string& base = sink.base;
+  std::printf("%s", report::MeshStiffnessText(record).c_str());
+  report::WriteMeshStiffnessPlot(base + ".svg", record.scene + ": " + result.mesh + " mesh stiffness",
+                                 result, sink.face_width,
+                                 {record.iso6336_c_gamma_alpha, record.iso6336_c_prime});
+  PrintWarnings(record.warnings);
+  if (record.healthy) {  // the same cycles with healthy teeth, beside
+    const transmission::MeshStiffnessResult& healthy = *record.healthy;
     std::printf("  healthy teeth, same cycles: mean %.4e N/m (damaged %+.2f %%), %.4e .. %.4e\n",
                 healthy.mean_stiffness, 100 * (result.mean_stiffness / healthy.mean_stiffness - 1),
                 healthy.min_stiffness, healthy.max_stiffness);
-    j["healthy"] = report::MeshStiffnessJson(pair, healthy, c_prime, c_gamma);
   }
-  WriteTextFile(base + ".json", j.dump(2) + "\n");
+  WriteTextFile(base + ".json", report::SummaryJson(record, provenance).dump(2) + "\n");
   std::printf("\nwrote %s.csv, %s.svg, %s.json\n", base.c_str(), base.c_str(), base.c_str());
   if (result.failed > 0)
     throw ComputationFailed(fmt::format("{} position(s) failed (see above)", result.failed));

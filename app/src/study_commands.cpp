@@ -20,6 +20,7 @@
 #include "epicycle/report/study_files.hpp"
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/sobol.hpp"
+#include "epicycle/studies/study_run.hpp"
 #include "epicycle/studies/study_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "options.hpp"
@@ -101,74 +102,90 @@ std::string DesignText(const studies::StudySpec& study) {
   return fmt::format("{} grid points x {} samples", study.GridPoints(), study.samples);
 }
 
+// The program's study sink: a failed case on stderr (or counted in the progress bar).
+class StudyConsole final : public studies::StudySink {
+ public:
+  explicit StudyConsole(bool tty) : tty_(tty), t0_(std::chrono::steady_clock::now()) {}
+  void Row(const studies::CaseRow& r, long rows, long total) override {
+    if (!r.ok) {
+      ++failed_;
+      if (!tty_) std::fprintf(stderr, "  case %ld FAILED: %s\n", r.id, r.message.c_str());
+    }
+    if (tty_)
+      Progress(static_cast<int>(rows), static_cast<int>(total), static_cast<int>(failed_),
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(),
+               "cases");
+  }
+
+ private:
+  bool tty_;
+  long failed_ = 0;
+  std::chrono::steady_clock::time_point t0_;
+};
+
 void RunStudyCommand(const StudyArgs& a) {
   const studies::MpiSession mpi;
-  studies::StudySpec study = studies::ReadStudy(a.study);
-  study.scene.model.stresses = study.scene.model.stresses || a.stresses;
+  studies::StudyRequest request;
+  request.study = studies::ReadStudy(a.study);
+  request.study_path = a.study;
+  request.stresses = a.stresses;
+  request.threads = a.threads;
+  request.max_cases = a.max_cases;
+  request.rank = mpi.rank();
+  const studies::StudySpec& study = request.study;
   const bool root = mpi.rank() == 0;
   std::filesystem::create_directories(a.out);
   const std::string base = a.out + "/study";
-  studies::RunOptions opt;
   if (!a.cases.empty() && !a.shard.empty())
     throw std::invalid_argument("--cases = " + a.cases + " and --shard = " + a.shard +
                                 ": give one of them (both select the cases of a part)");
-  if (!a.cases.empty()) opt.part = ParseCases(a.cases, study.Cases());
-  if (!a.shard.empty()) opt.part = ParseShard(a.shard, study.Cases());
-  opt.rows_file = opt.part ? a.out + "/" + studies::PartFileName(*opt.part) : base + "_rows.csv";
+  if (!a.cases.empty()) request.part = ParseCases(a.cases, study.Cases());
+  if (!a.shard.empty()) request.part = ParseShard(a.shard, study.Cases());
+  request.rows_file =
+      request.part ? a.out + "/" + studies::PartFileName(*request.part) : base + "_rows.csv";
   const json provenance = Provenance(study.backend_name, &study.scene);
-  opt.comment = report::StudyComment(provenance, a.study);
+  request.comment = report::StudyComment(provenance, a.study);
   if (!a.no_cache)
-    opt.cache_directory = a.cache.empty() ? transmission::DefaultCacheDirectory() : a.cache;
-  opt.threads = a.threads > 0 ? a.threads
-                              : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  opt.max_new_cases = a.max_cases;
-  const bool tty = root && !a.quiet && isatty(fileno(stderr));
-  long failed = 0;
-  const auto t0 = std::chrono::steady_clock::now();
-  opt.on_row = [&](const studies::CaseRow& r, long rows, long total) {
-    if (!r.ok) {
-      ++failed;
-      if (!tty) std::fprintf(stderr, "  case %ld FAILED: %s\n", r.id, r.message.c_str());
-    }
-    if (tty)
-      Progress(static_cast<int>(rows), static_cast<int>(total), static_cast<int>(failed),
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-               "cases");
-  };
+    request.cache_directory = a.cache.empty() ? transmission::DefaultCacheDirectory() : a.cache;
+  const int threads = a.threads > 0
+                          ? a.threads
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (root)
     std::printf("%s: %ld cases (%s), %zu variables, seed %llu, %s\n", study.name.c_str(),
                 study.Cases(), DesignText(study).c_str(), study.variables.size(),
                 static_cast<unsigned long long>(study.seed),
                 mpi.active()
-                    ? fmt::format("{} MPI ranks x {} threads", mpi.size(), opt.threads).c_str()
-                    : fmt::format("{} threads", opt.threads).c_str());
-  const studies::RunReport report = studies::RunStudyMpi(study, opt);
+                    ? fmt::format("{} MPI ranks x {} threads", mpi.size(), threads).c_str()
+                    : fmt::format("{} threads", threads).c_str());
+  StudyConsole console(root && !a.quiet && isatty(fileno(stderr)));
+  const studies::StudyRun run = studies::RunStudy(request, console);
   if (!root) return;
+  const studies::RunReport& report = run.report;
   for (const std::string& m : report.table_messages) std::printf("  %s\n", m.c_str());
   if (report.dropped_partial)
     std::printf("  dropped a truncated last row of %s (a run killed while writing it)\n",
-                opt.rows_file.c_str());
+                request.rows_file.c_str());
   std::printf("  %ld rows resumed, %ld computed in %.3f s (%.1f cases/s; tables %.2f s)\n",
               report.resumed, report.computed, report.seconds,
               report.seconds > 0 ? static_cast<double>(report.computed) / report.seconds : 0.0,
               report.table_seconds);
-  if (opt.part) {
+  if (request.part) {
     // A part: its rows only; the summary is the merge's (over every case).
     long failed_rows = 0;
     for (const studies::CaseRow& r : report.rows) failed_rows += r.ok ? 0 : 1;
     std::printf("\nwrote %s: cases %ld:%ld, %zu of %ld rows (join the parts with `epicycle "
                 "study merge %s`)\n",
-                opt.rows_file.c_str(), opt.part->first, opt.part->last, report.rows.size(),
-                opt.part->Size(), a.out.c_str());
+                request.rows_file.c_str(), request.part->first, request.part->last,
+                report.rows.size(), request.part->Size(), a.out.c_str());
     if (failed_rows > 0)
       throw ComputationFailed(fmt::format("{} of {} cases failed (their rows say why)",
                                           failed_rows, report.rows.size()));
     return;
   }
 
-  const studies::StudySummary s = studies::SummariseStudy(study, report.rows);
+  const studies::StudySummary& s = run.record->summary;
   PrintStudySummary(study, s);
-  report::WriteStudySummaryFiles(base, study, s, provenance, a.study, report.seconds);
+  report::WriteStudySummaryFiles(base, study.name, *run.record, provenance);
   std::printf("\nwrote %s_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
               base.c_str(), s.sobol ? ", _sobol.svg" : "");
   if (s.failed > 0)
@@ -185,12 +202,13 @@ void MergeStudyCommand(const MergeArgs& a) {
   const report::MergedStudy m = report::MergeStudy(a.parts, a.out, a.study);
   std::printf("%s: %zu parts of %s merged, %ld cases\n", m.study.name.c_str(), m.parts.size(),
               m.study_path.c_str(), m.study.Cases());
-  PrintStudySummary(m.study, m.summary);
+  const studies::StudySummary& s = m.record.summary;
+  PrintStudySummary(m.study, s);
   std::printf("\nwrote %s/study_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
-              a.out.c_str(), m.summary.sobol ? ", _sobol.svg" : "");
-  if (m.summary.failed > 0)
-    throw ComputationFailed(fmt::format("{} of {} cases failed (their rows say why)",
-                                        m.summary.failed, m.summary.cases));
+              a.out.c_str(), s.sobol ? ", _sobol.svg" : "");
+  if (s.failed > 0)
+    throw ComputationFailed(
+        fmt::format("{} of {} cases failed (their rows say why)", s.failed, s.cases));
 }
 
 }  // namespace

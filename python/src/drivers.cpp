@@ -7,11 +7,13 @@
 
 #include "common.hpp"
 #include "epicycle/report/provenance.hpp"
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/study_files.hpp"
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/sobol.hpp"
 #include "epicycle/studies/shards.hpp"
 #include "epicycle/studies/study.hpp"
+#include "epicycle/studies/study_run.hpp"
 #include "epicycle/studies/study_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
@@ -58,17 +60,28 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
            : studies::ReadStudy(path);
   CancelToken token;
   const Progress report(std::move(progress), &token);
-  const studies::RunReport run = RunReleased(token, [&] {
+  // The library's run: the record the program writes, and every row for the columns below.
+  class Rows final : public studies::StudySink {
+   public:
+    explicit Rows(const Progress& report) : report_(report) {}
+    void Row(const studies::CaseRow&, long rows, long total) override { report_(rows, total); }
+
+   private:
+    const Progress& report_;
+  };
+  const studies::StudyRun outcome = RunReleased(token, [&] {
     TemporaryRows temporary;
-    studies::RunOptions o;
-    o.rows_file = rows_file ? *rows_file : temporary.path();
-    o.cache_directory = cache_dir ? *cache_dir : transmission::DefaultCacheDirectory();
-    o.threads =
-        threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    o.max_new_cases = max_cases;
-    o.on_row = [&](const studies::CaseRow&, long rows, long total) { report(rows, total); };
-    return studies::RunStudy(study, o);
+    studies::StudyRequest request;
+    request.study = study;
+    request.study_path = path;
+    request.rows_file = rows_file ? *rows_file : temporary.path();
+    request.cache_directory = cache_dir ? *cache_dir : transmission::DefaultCacheDirectory();
+    request.threads = threads;
+    request.max_cases = max_cases;
+    Rows sink(report);
+    return studies::RunStudy(request, sink);
   });
+  const studies::RunReport& run = outcome.report;
   const std::vector<std::string> columns = study.Columns();
   const auto count = static_cast<py::ssize_t>(run.rows.size());
   const auto width = static_cast<py::ssize_t>(columns.size());
@@ -92,7 +105,7 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
     orbit.push_back(r.sun_orbit);
     lines.append(r.Format());
   }
-  const studies::StudySummary sum = studies::SummariseStudy(study, run.rows);
+  const studies::StudySummary& sum = outcome.record->summary;
   py::dict summary;
   summary["cases"] = sum.cases;
   summary["failed"] = sum.failed;
@@ -143,6 +156,8 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   f["seconds"] = run.seconds;
   f["summary"] = Result(summary);
   f["warnings"] = study.warnings;
+  // The program's summary JSON (`epicycle study`), its one serialisation, without provenance.
+  f["record"] = JsonToPython(report::RecordJson(*outcome.record));
   return Result(f);
 }
 
@@ -198,10 +213,10 @@ py::object StudyMerge(const std::vector<std::string>& parts, const std::string& 
   f["study_file"] = m.study_path;
   f["parts"] = m.parts;
   f["cases"] = m.study.Cases();
-  f["failed"] = m.summary.failed;
+  f["failed"] = m.record.summary.failed;
   f["rows_file"] = base.string() + "_rows.csv";
   f["summary_file"] = base.string() + "_summary.json";
-  f["k_gamma"] = SampleObject(m.summary.k_gamma);
+  f["k_gamma"] = SampleObject(m.record.summary.k_gamma);
   return Result(f);
 }
 
@@ -342,7 +357,8 @@ Result
     k_gamma_limit, cases, above, probability P(K_gamma > limit) and its Clopper-Pearson lower and
     upper bounds, confidence_level; with design = "sobol" also sobol: variables, complete_rows and
     outputs, per rows-file result column the sobol_indices Result); study, cases, resumed,
-    computed, seconds [s], warnings.
+    computed, seconds [s], warnings; record: the study's record, the keys and values of
+    `epicycle study`'s study_summary.json (docs/records.md).
 
 Raises
 ------

@@ -10,6 +10,7 @@
 #include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
+#include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/dynamics/run_arguments.hpp"
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
@@ -17,6 +18,7 @@
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/io/units.hpp"
 #include "epicycle/report/ratings.hpp"
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_range.hpp"
@@ -306,21 +308,33 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   return result;
 }
 
-py::object Modes(const ScenePtr& s, std::optional<std::string> cache_dir) {
+py::object Modes(const ScenePtr& s, std::optional<std::vector<double>> speed_range_rpm,
+                 std::optional<std::string> cache_dir) {
+  dynamics::ModesRequest request;
+  request.scene = s->scene();
+  if (speed_range_rpm) {
+    if (speed_range_rpm->size() != 2)
+      throw std::invalid_argument("speed_range_rpm: must be two sun speeds LO, HI [rpm]");
+    for (const double v : *speed_range_rpm)
+      transmission::CheckArgument("speed_range_rpm", v, transmission::kSunSpeedRpm);
+    request.speed_range_rpm = {(*speed_range_rpm)[0], (*speed_range_rpm)[1]};
+  }
   CancelToken token;
   struct Out {
     std::shared_ptr<const dynamics::StageDynamics> rig;
-    dynamics::OperatingPointModes modes;
+    dynamics::ModesRecord record;
   };
   const Out out = RunReleased(token, [&] {
     Out o;
-    o.rig = s->Dynamics(cache_dir, "modes");
-    o.modes = dynamics::StageModes(*o.rig);
+    o.rig = s->Dynamics(cache_dir, "modes");  // this scene's, built once
+    request.rig = o.rig;
+    dynamics::ModesSink none;
+    o.record = dynamics::RunModes(request, none);
     return o;
   });
   const dynamics::StageDynamics& rig = *out.rig;
-  const double hz_per_rpm = dynamics::MeshHzPerSunRpm(rig.stage);
-  const auto& modes = out.modes.modes;
+  const double hz_per_rpm = out.record.mesh_hz_per_sun_rpm;
+  const auto& modes = out.record.modes;
   const auto count = static_cast<py::ssize_t>(modes.size());
   std::vector<double> freq, ct, cr, pl, rpm;
   std::vector<int> mult;
@@ -365,11 +379,13 @@ py::object Modes(const ScenePtr& s, std::optional<std::string> cache_dir) {
   f["shapes"] = shapes;
   f["sun_rpm_at_mesh_harmonics_1_2_3"] = Array2(std::move(rpm), count, 3);
   f["mesh_hz_per_sun_rpm"] = hz_per_rpm;
-  f["mesh_stiffness_sun_planet_N_per_m"] = out.modes.mesh_stiffness[0];
-  f["mesh_stiffness_planet_ring_N_per_m"] = out.modes.mesh_stiffness[1];
-  f["secant_mesh_stiffness_sun_planet_N_per_m"] = rig.model.sun_mesh_stiffness();
-  f["secant_mesh_stiffness_planet_ring_N_per_m"] = rig.model.ring_mesh_stiffness();
-  f["warnings"] = rig.scene.warnings;
+  f["mesh_stiffness_sun_planet_N_per_m"] = out.record.mesh_stiffness[0];
+  f["mesh_stiffness_planet_ring_N_per_m"] = out.record.mesh_stiffness[1];
+  f["secant_mesh_stiffness_sun_planet_N_per_m"] = out.record.secant_mesh_stiffness[0];
+  f["secant_mesh_stiffness_planet_ring_N_per_m"] = out.record.secant_mesh_stiffness[1];
+  f["warnings"] = out.record.warnings;
+  // The program's JSON (`epicycle modes --json`), its one serialisation, without provenance.
+  f["record"] = JsonToPython(report::RecordJson(out.record));
   return Result(f);
 }
 
@@ -651,7 +667,8 @@ ValueError
 ComputationError
     The run stopped early and raise_on_failure (its .result the steps computed).)doc")
           .c_str());
-  m.def("modes", &Modes, py::arg("scene"), py::kw_only(), py::arg("cache_dir") = py::none(), R"doc(
+  m.def("modes", &Modes, py::arg("scene"), py::kw_only(), py::arg("speed_range_rpm") = py::none(),
+        py::arg("cache_dir") = py::none(), R"doc(
 Natural modes of a stage linearised about its operating point (`epicycle modes`; docs/dynamic.md):
 the tangent mesh stiffness dF/dδ at the scene's load, carrier angle 0.
 
@@ -659,6 +676,8 @@ Parameters
 ----------
 scene : Scene
     A stage scene.
+speed_range_rpm : [float, float] or None, default None
+    Sun speeds LO, HI [rpm] for the mesh-harmonic coincidences (None: the scene's speed / 2 .. x 2).
 cache_dir : str or None, default None
     Influence-table cache (as quasistatic's).
 
@@ -671,7 +690,8 @@ Result
     (M, members) [-], shapes (list of (dofs, multiplicity) arrays, M-orthonormal; units of dofs:
     [m] or [rad]), sun_rpm_at_mesh_harmonics_1_2_3 (M, 3) [rpm] (NaN: none); dofs, members
     (names); mesh_hz_per_sun_rpm [Hz/rpm]; mesh_stiffness_*_N_per_m (tangent, used) and
-    secant_mesh_stiffness_*_N_per_m [N/m]; ring_elastic, sun_support, warnings.
+    secant_mesh_stiffness_*_N_per_m [N/m]; ring_elastic, sun_support, warnings; record: the
+    run's record, the keys and values of `epicycle modes --json` (docs/records.md).
 
 Raises
 ------

@@ -18,24 +18,12 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/stage_model.hpp"
+#include "epicycle/transmission/stage_rig.hpp"
 
 namespace epicycle::python {
 
-/// A stage scene's geometry and FE compliance (read-only once built: shared by every driver call
-/// and thread).
-struct StageRig {
-  transmission::Scene scene;
-  geometry::Stage stage;
-  transmission::FeStageCompliance compliance;
-  StageRig(transmission::Scene s, const transmission::FeComplianceOptions& fe)
-      : scene(std::move(s)), stage(transmission::MakeStage(scene)), compliance(scene, stage, fe) {}
-  /// The stage model of the scene's supports (cheap: the DOF list).
-  transmission::StageModel Model(bool local_terms) const {
-    transmission::StageSetup setup = transmission::SetupFromScene(scene);
-    setup.local_terms = local_terms;
-    return transmission::StageModel(stage, compliance, setup);
-  }
-};
+/// A stage scene's geometry and FE compliance, built once per scene (transmission/).
+using transmission::StageRig;
 
 /// The tooth-pair columns of a driver's results (a quasi-static position's or a dynamic step's
 /// loaded contacts): where (carrier angle or time), mesh, kind, flank, teeth.

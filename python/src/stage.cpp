@@ -8,12 +8,14 @@
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/report/geometry_json.hpp"
 #include "epicycle/report/ratings.hpp"
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/run_range.hpp"
+#include "epicycle/transmission/stiffness_run.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
 #include "scene.hpp"
@@ -137,49 +139,52 @@ py::object Contacts(const ScenePtr& s, double carrier_deg, std::optional<double>
   return Result(f);
 }
 
-py::object MeshStiffness(const ScenePtr& s, const std::string& mesh, int positions,
+// A record as Python: the keys and values of the program's summary JSON (report::RecordJson), its
+// one serialisation, without the program's provenance.
+template <class Record>
+py::object RecordObject(const Record& record) {
+  return JsonToPython(report::RecordJson(record));
+}
+
+// A run's progress as its sink sees the samples.
+class StiffnessProgress final : public transmission::StiffnessSink {
+ public:
+  explicit StiffnessProgress(const Progress& report) : report_(report) {}
+  void Start(const transmission::StiffnessPlan& p) override {
+    total_ = static_cast<long>(p.positions_per_cycle) * p.cycles;
+  }
+  void Sample(const transmission::MeshSample&) override { report_(++done_, total_); }
+
+ private:
+  const Progress& report_;
+  long done_ = 0, total_ = 0;
+};
+
+py::object MeshStiffness(const ScenePtr& s, const std::string& mesh, int positions, int cycle,
                          const std::string& backend, bool local_terms, bool tooth_coupling,
-                         int threads, std::optional<std::string> cache_dir, py::object progress) {
-  transmission::CheckArgument("positions", positions, transmission::kStiffnessPositions);
-  transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
-  transmission::MeshStiffnessOptions opt;
-  opt.positions = positions;
-  opt.threads = threads;
-  opt.backend = BackendOf(backend);
-  opt.local_terms = local_terms;
-  opt.tooth_coupling = tooth_coupling;
-  opt.Validate();
+                         bool stresses, int threads, std::optional<std::string> cache_dir,
+                         py::object progress) {
+  transmission::StiffnessRequest request;
+  request.scene = s->scene();
+  request.mesh = mesh;
+  request.positions = positions;
+  request.cycle = cycle;
+  request.threads = threads;
+  request.backend = backend;
+  request.local_terms = local_terms;
+  request.tooth_coupling = tooth_coupling;
+  request.stresses = stresses;
+  request.tables = TableOptions(cache_dir);
   CancelToken token;
   const Progress report(std::move(progress), &token);
   struct Out {
-    transmission::MeshStiffnessResult result;
-    std::vector<std::string> warnings;
-    double c_prime = 0, c_gamma = 0, contact_ratio = 0;
+    transmission::StiffnessRecord record;
   };
-  const transmission::Scene scene = s->scene();
   const Out out = RunReleased(token, [&] {
-    std::optional<geometry::Stage> stage;
-    if (scene.kind == transmission::SceneKind::kStage) stage.emplace(transmission::MakeStage(scene));
-    const transmission::MeshPairSetup setup =
-        transmission::MakeMeshPair(scene, stage ? &*stage : nullptr, mesh);
-    const geometry::GearPair pair = transmission::MakePair(scene, setup.spec);
-    const transmission::FePairCompliance compliance(scene, pair, TableOptions(cache_dir),
-                                                      setup.gears);
-    long done = 0;
-    Out o;
-    o.result = transmission::ComputeMeshStiffness(
-        setup, pair, compliance, opt,
-        [&](const transmission::MeshSample&) { report(++done, positions); });
-    const compliance::iso6336::PairData iso = transmission::IsoPairData(pair);
-    o.c_prime = compliance::iso6336::SinglePairStiffness(iso);
-    o.c_gamma = compliance::iso6336::MeshStiffness(iso);
-    o.contact_ratio = pair.summary().contact_ratio_iso;
-    o.warnings = scene.warnings;
-    for (const std::string& w : transmission::MeshStiffnessWarnings(pair, o.result))
-      o.warnings.push_back(w);
-    return o;
+    StiffnessProgress sink(report);
+    return Out{transmission::RunStiffness(request, sink)};
   });
-  const transmission::MeshStiffnessResult& r = out.result;
+  const transmission::MeshStiffnessResult& r = out.record.result;
   std::vector<double> angle, rotation, approach, force, k, validity;
   std::vector<char> ok;
   py::list messages;
@@ -235,10 +240,11 @@ py::object MeshStiffness(const ScenePtr& s, const std::string& mesh, int positio
   f["peak_pair_stiffness_N_per_m"] = r.peak_pair_stiffness;
   f["mean_stiffness_N_per_mm_um"] = r.mean_per_width();
   f["peak_pair_stiffness_N_per_mm_um"] = r.peak_pair_per_width();
-  f["iso6336_c_prime_N_per_mm_um"] = out.c_prime;
-  f["iso6336_c_gamma_alpha_N_per_mm_um"] = out.c_gamma;
-  f["contact_ratio"] = out.contact_ratio;
-  f["warnings"] = out.warnings;
+  f["iso6336_c_prime_N_per_mm_um"] = out.record.iso6336_c_prime;
+  f["iso6336_c_gamma_alpha_N_per_mm_um"] = out.record.iso6336_c_gamma_alpha;
+  f["contact_ratio"] = out.record.contact_ratio;
+  f["warnings"] = out.record.warnings;
+  f["record"] = RecordObject(out.record);
   py::object result = Result(f);
   if (r.failed > 0)
     RaiseComputationError(std::to_string(r.failed) + " of " + std::to_string(r.samples.size()) +
@@ -354,30 +360,55 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
                        std::optional<std::string> cache_dir, py::object progress,
                        bool raise_on_failure, const std::string& friction, bool stresses,
                        bool rating) {
+  const std::optional<std::vector<double>> angles_copy = angles_deg;
   const SweepRequest q =
       MakeSweepRequest(s, range, positions, start_deg, std::move(angles_deg), threads, warm_start,
                        backend, local_terms, friction, stresses, rating);
   const transmission::QuasiStaticOptions& opt = q.options;
+  // The library's run on this scene's cached rig: the record the program writes, and every
+  // position kept for the per-position columns.
+  transmission::QuasiStaticRequest request;
+  request.scene = q.scene->scene();
+  request.backend = backend;
+  request.range = q.range;
+  request.positions = q.positions;
+  if (q.angles) request.angles_deg = *angles_copy;
+  request.start_deg = start_deg;
+  request.threads = threads;
+  request.warm_start = warm_start;
+  request.local_terms = local_terms;
+  request.friction = friction;
+  request.stresses = stresses;
+  request.rating = rating;
+  request.rating_option = "rating=True";
   CancelToken token;
   const Progress report(std::move(progress), &token);
+  class Keep final : public transmission::QuasiStaticSink {
+   public:
+    explicit Keep(const Progress& report) : report_(report) {}
+    void Start(const transmission::QuasiStaticPlan& p) override { total_ = p.positions; }
+    void Position(const transmission::PositionResult& r, int k) override {
+      results.push_back(r);
+      report_(k + 1, total_);
+    }
+    std::vector<transmission::PositionResult> results;
+
+   private:
+    const Progress& report_;
+    long total_ = 0;
+  };
   struct Out {
     std::shared_ptr<const StageRig> rig;
     std::vector<transmission::PositionResult> results;
-    std::vector<std::string> warnings;
+    transmission::QuasiStaticRecord record;
   };
   Out out = RunReleased(token, [&] {
     Out o;
     o.rig = q.scene->Rig(cache_dir, "quasistatic");
-    const geometry::Stage& stage = o.rig->stage;
-    const std::vector<double> angles = q.Angles(stage);
-    const transmission::StageModel model = o.rig->Model(q.local_terms);
-    const long total = static_cast<long>(angles.size());
-    o.results = transmission::Sweep(
-        model, o.rig->scene.loads, angles, opt,
-        [&](const transmission::PositionResult&, int k) { report(k + 1, total); });
-    o.warnings = o.rig->scene.warnings;
-    for (const std::string& w : transmission::QuasiStaticWarnings(stage, o.results))
-      o.warnings.push_back(w);
+    request.rig = o.rig;
+    Keep keep(report);
+    o.record = transmission::RunQuasiStatic(request, keep);
+    o.results = std::move(keep.results);
     return o;
   });
 
@@ -466,12 +497,10 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     f["force_change"] = Array(std::move(change));
   }
   f["pairs"] = Result(pairs);
-  const transmission::SweepSummary summary = transmission::SummariseSweep(out.results, n);
-  f["summary"] = SummaryObject(summary);
-  if (rating && summary.converged > 0)
-    f["rating"] = JsonToPython(report::RatingJson(
-        transmission::RateStage(out.rig->scene, out.rig->stage, summary)));
-  f["warnings"] = out.warnings;
+  f["summary"] = SummaryObject(out.record.summary);
+  if (out.record.rating) f["rating"] = JsonToPython(report::RatingJson(*out.record.rating));
+  f["warnings"] = out.record.warnings;
+  f["record"] = RecordObject(out.record);
   py::object result = Result(f);
   if (failed > 0 && raise_on_failure)
     RaiseComputationError(std::to_string(failed) + " of " + std::to_string(out.results.size()) +
@@ -528,9 +557,10 @@ Raises
 ValueError
     A gear-pair scene, or a bad argument (its name, value and rule).)doc");
   m.def("mesh_stiffness", &MeshStiffness, py::arg("scene"), py::arg("mesh") = "", py::kw_only(),
-        py::arg("positions") = 60, py::arg("backend") = "newton", py::arg("local_terms") = true,
-        py::arg("tooth_coupling") = true, py::arg("threads") = 0, py::arg("cache_dir") = py::none(),
-        py::arg("progress") = py::none(), R"doc(
+        py::arg("positions") = transmission::kDefaultStiffnessPositions, py::arg("cycle") = -1,
+        py::arg("backend") = "newton", py::arg("local_terms") = true,
+        py::arg("tooth_coupling") = true, py::arg("stresses") = false, py::arg("threads") = 0,
+        py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(), R"doc(
 Mesh stiffness of a gear pair over one mesh cycle (`epicycle stiffness`): a pair scene, or one mesh
 of a stage ("sun-planet1", "planet2-ring") at the scene's load share.
 
@@ -541,7 +571,9 @@ scene : Scene
 mesh : str, default ""
     The stage's mesh ("sun-planet1", "planet2-ring"); "" for a pair scene.
 positions : int, default 60
-    Samples over the cycle [-].
+    Samples per mesh cycle [-].
+cycle : int, default -1
+    This one mesh cycle of gear 1 (-1: the cycles a damaged tooth meshes in, else the first).
 backend : str, default "newton"
     Contact back end ("newton", "ipopt", "nlopt-slsqp", ...).
 local_terms : bool, default True
@@ -549,6 +581,8 @@ local_terms : bool, default True
 tooth_coupling : bool, default True
     True: the bodies couple the teeth (the model); False: every contact's compliance alone
     (the off-diagonal terms dropped: the potential-energy method's independent springs).
+stresses : bool, default False
+    Each gear's root stress too (the scene's model.stresses).
 threads : int, default 0
     Workers [-] (0: one per core).
 cache_dir : str or None, default None
@@ -565,7 +599,8 @@ Result
     pair: angle_deg, tooth1, tooth2, kind, force_N, stiffness_N_per_m, share, roll1_deg); mean,
     min, max and peak single-pair stiffness [N/m] and per face width [N/(mm·µm)]; ISO 6336-1's
     iso6336_c_prime_N_per_mm_um and iso6336_c_gamma_alpha_N_per_mm_um [N/(mm·µm)] for comparison;
-    contact_ratio [-] (tip circles); torque_Nm [N·m], face_width_mm [mm], warnings.
+    contact_ratio [-] (tip circles); torque_Nm [N·m], face_width_mm [mm], warnings; record: the
+    run's record, the keys and values of `epicycle stiffness`'s JSON (docs/records.md).
 
 Raises
 ------

@@ -729,32 +729,9 @@ void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
 
 void MeshStiffnessFile::Close() { csv_.Close(); }
 
-nlohmann::json MeshStiffnessJson(const geometry::GearPair& pair,
-                                 const transmission::MeshStiffnessResult& result, double c_prime,
-                                 double c_gamma_alpha) {
-  nlohmann::json j;
-  j["mesh"] = result.mesh;
-  j["torque_gear1_Nm"] = result.torque;
-  j["face_width_mm"] = result.face_width * 1e3;
-  j["positions"] = result.samples.size();
-  j["failed_positions"] = result.failed;
-  j["mean_mesh_stiffness_N_per_m"] = result.mean_stiffness;
-  j["mean_mesh_stiffness_N_per_mm_um"] = result.mean_per_width();
-  j["peak_single_pair_stiffness_N_per_m"] = result.peak_pair_stiffness;
-  j["peak_single_pair_stiffness_N_per_mm_um"] = result.peak_pair_per_width();
-  j["min_mesh_stiffness_N_per_m"] = result.min_stiffness;
-  j["max_mesh_stiffness_N_per_m"] = result.max_stiffness;
-  j["contact_ratio"] = pair.summary().contact_ratio_iso;
-  j["iso6336_c_prime_N_per_mm_um"] = c_prime;
-  j["iso6336_c_gamma_alpha_N_per_mm_um"] = c_gamma_alpha;
-  if (!result.root_stress.empty())
-    j["root_stress"] = RootStressJson(result.root_stress, "angle_deg", geometry::Deg(1.0));
-  return j;
-}
-
-std::string MeshStiffnessText(const geometry::GearPair& pair,
-                              const transmission::MeshStiffnessResult& result, double c_prime,
-                              double c_gamma_alpha) {
+std::string MeshStiffnessText(const transmission::StiffnessRecord& record) {
+  const transmission::MeshStiffnessResult& result = record.result;
+  const double c_prime = record.iso6336_c_prime, c_gamma_alpha = record.iso6336_c_gamma_alpha;
   const auto positions = result.samples.size();
   std::string out;
   if (result.failed >= static_cast<int>(positions)) {
@@ -771,7 +748,7 @@ std::string MeshStiffnessText(const geometry::GearPair& pair,
         result.peak_pair_stiffness, peak, c_prime, peak / c_prime);
     out += fmt::format(
         "  mesh stiffness range     {:10.4g} .. {:.4g} N/m; contact ratio {:.4f} (tip circles)\n",
-        result.min_stiffness, result.max_stiffness, pair.summary().contact_ratio_iso);
+        result.min_stiffness, result.max_stiffness, record.contact_ratio);
   }
   out += fmt::format("  positions failed         {} of {}\n", result.failed, positions);
   return out + RootStressText(result.root_stress, "angle deg", geometry::Deg(1.0));

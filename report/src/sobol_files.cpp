@@ -8,52 +8,6 @@
 
 namespace epicycle::report {
 
-namespace {
-
-nlohmann::json Stat(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
-
-nlohmann::json Indices(const std::vector<std::string>& variables,
-                       const std::vector<studies::SobolIndex>& x) {
-  nlohmann::json list = nlohmann::json::array();
-  for (std::size_t i = 0; i < x.size(); ++i)
-    list.push_back({{"variable", variables[i]},
-                    {"value", Stat(x[i].value)},
-                    {"ci", {Stat(x[i].lower), Stat(x[i].upper)}},
-                    {"standard_error", Stat(x[i].standard_error)}});
-  return list;
-}
-
-}  // namespace
-
-nlohmann::json SobolJson(const studies::SobolSummary& s) {
-  nlohmann::json j = {
-      {"design", "Saltelli: A, B and A_B^(i) of N rows each, N (d + 2) cases"},
-      {"estimators",
-       "first order: Saltelli et al. 2010 (1/N) sum y_B (y_ABi - y_A) / V; total: Jansen "
-       "(1/2N) sum (y_A - y_ABi)^2 / V; outputs centred on their mean, V from A and B"},
-      {"intervals", "percentile bootstrap over the rows j"},
-      {"base_samples_N", s.base_samples},
-      {"complete_rows", s.complete_rows},
-      {"bootstrap_resamples", s.bootstrap},
-      {"confidence_level", s.level},
-      {"variables", s.variables}};
-  nlohmann::json outputs = nlohmann::json::object();
-  for (const auto& o : s.outputs) {
-    const auto& e = o.estimate;
-    outputs[o.name] = {{"rows", e.rows},
-                       {"mean", Stat(e.mean)},
-                       {"variance", Stat(e.variance)},
-                       {"first_order", Indices(s.variables, e.first)},
-                       {"total", Indices(s.variables, e.total)},
-                       {"sum_first_order",
-                        {{"value", Stat(e.sum_first.value)},
-                         {"ci", {Stat(e.sum_first.lower), Stat(e.sum_first.upper)}},
-                         {"standard_error", Stat(e.sum_first.standard_error)}}}};
-  }
-  j["outputs"] = outputs;
-  return j;
-}
-
 std::string SobolText(const studies::SobolSummary& s) {
   std::string out = fmt::format(
       "  Sobol indices: N = {} rows ({} complete), {} bootstrap resamples, {:g} % intervals\n",

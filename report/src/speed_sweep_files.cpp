@@ -9,52 +9,16 @@
 
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/report/provenance.hpp"
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/report/svg_plot.hpp"
 
 namespace epicycle::report {
 
-nlohmann::json ModesRunJson(const dynamics::DynamicModel& model,
-                            const dynamics::OperatingPointModes& operating, double lo_rpm,
-                            double hi_rpm, const std::vector<dynamics::Coincidence>& coincidences) {
-  const double hz_per_rpm = dynamics::MeshHzPerSunRpm(model.stage_model().stage());
-  nlohmann::json j;
-  j["scene"] = model.stage_model().name();
-  j["mesh_stiffness_sun_planet_N_per_m"] = operating.mesh_stiffness[0];
-  j["mesh_stiffness_planet_ring_N_per_m"] = operating.mesh_stiffness[1];
-  j["mesh_stiffness_kind"] = "tangent dF/ddelta, mean over a mesh cycle";
-  j["secant_mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
-  j["secant_mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
-  j["mesh_frequency_Hz_per_sun_rpm"] = hz_per_rpm;
-  j["modes"] = ModesJson(operating.modes, hz_per_rpm);
-  j["coincidence_range_rpm"] = {lo_rpm, hi_rpm};
-  j["coincidences"] = CoincidencesJson(coincidences);
-  return j;
-}
-
 nlohmann::json CoincidencesJson(const std::vector<dynamics::Coincidence>& coincidences) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const dynamics::Coincidence& c : coincidences)
-    list.push_back({{"sun_speed_rpm", c.sun_speed_rpm},
-                    {"frequency_Hz", c.frequency},
-                    {"mode", c.mode + 1},
-                    {"harmonic", c.harmonic},
-                    {"phasing_excited", c.phasing_excited}});
-  return list;
-}
-
-nlohmann::json ModesJson(const std::vector<dynamics::Mode>& modes, double hz_per_rpm) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const dynamics::Mode& x : modes)
-    list.push_back({{"frequency_Hz", x.frequency},
-                    {"multiplicity", x.multiplicity},
-                    {"type", x.rigid ? std::string("rigid") : dynamics::ModeTypeName(x.type)},
-                    {"central_translation_energy", x.central_translation},
-                    {"central_rotation_energy", x.central_rotation},
-                    {"planet_energy", x.planets},
-                    {"sun_rpm_at_mesh_harmonics_1_2_3",
-                     dynamics::HarmonicSunSpeeds(x.frequency, hz_per_rpm, 3)}});
-  return list;
+  JsonRecord json;
+  dynamics::VisitCoincidences(coincidences, json);
+  return json.Result()["coincidences"];
 }
 
 namespace {

@@ -9,41 +9,11 @@
 
 #include "epicycle/report/files.hpp"
 #include "epicycle/report/provenance.hpp"
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/sobol_files.hpp"
 #include "epicycle/report/svg_plot.hpp"
 
 namespace epicycle::report {
-
-namespace {
-
-nlohmann::json Stat(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
-
-}  // namespace
-
-nlohmann::json SampleSummaryJson(const studies::SampleSummary& s) {
-  nlohmann::json j = {{"count", s.count},
-                      {"mean", Stat(s.mean)},
-                      {"mean_ci", {Stat(s.mean_lower), Stat(s.mean_upper)}},
-                      {"std", Stat(s.standard_deviation)},
-                      {"min", Stat(s.min)},
-                      {"max", Stat(s.max)},
-                      {"confidence_level", s.level}};
-  nlohmann::json p = nlohmann::json::array();
-  for (const auto& q : s.percentiles)
-    p.push_back({{"p", q.p}, {"value", Stat(q.value)}, {"ci", {Stat(q.lower), Stat(q.upper)}}});
-  j["percentiles"] = p;
-  return j;
-}
-
-nlohmann::json ExceedanceJson(const studies::Exceedance& e) {
-  return {{"k_gamma_limit", e.threshold},
-          {"cases", e.count},
-          {"above", e.above},
-          {"probability", Stat(e.p)},
-          {"ci", {Stat(e.lower), Stat(e.upper)}},
-          {"interval", "Clopper-Pearson (exact binomial)"},
-          {"confidence_level", e.level}};
-}
 
 std::string ExceedanceText(const studies::Exceedance& e) {
   const char* f = "{:.4f}";
@@ -63,20 +33,6 @@ std::string SampleSummaryText(const std::string& name, const studies::SampleSumm
     out += fmt::format("  {:<22} P{:<5} {} [{}, {}]\n", "", 100.0 * q.p, Num(q.value, f, "-"),
                        Num(q.lower, f, "-"), Num(q.upper, f, "-"));
   return out;
-}
-
-nlohmann::json StudyRootStressJson(const std::vector<studies::GearStressStatistics>& gears) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const auto& g : gears) {
-    nlohmann::json e = {{"gear", g.gear},
-                        {"tension_MPa", SampleSummaryJson(g.tension)},
-                        {"compression_magnitude_MPa", SampleSummaryJson(g.compression)},
-                        {"largest_range_MPa", SampleSummaryJson(g.range)}};
-    if (g.s_f.count > 0) e["S_F"] = SampleSummaryJson(g.s_f);
-    if (g.s_h.count > 0) e["S_H"] = SampleSummaryJson(g.s_h);
-    list.push_back(e);
-  }
-  return list;
 }
 
 std::string StudyRootStressText(const std::vector<studies::GearStressStatistics>& gears) {
@@ -123,48 +79,20 @@ std::string StudyComment(const nlohmann::json& provenance, const std::string& st
   return comment + "; study " + study_path;
 }
 
-void WriteStudySummaryFiles(const std::string& base, const studies::StudySpec& study,
-                            const studies::StudySummary& s, const nlohmann::json& provenance,
-                            const std::string& study_path, double computed_seconds) {
-  nlohmann::json j;
-  j["provenance"] = provenance;
-  j["study"] = study_path;
-  j["study_hash"] = study.hash;
-  j["seed"] = study.seed;
-  j["cases_total"] = study.Cases();
-  j["cases_in_file"] = s.cases;
-  j["cases_failed"] = s.failed;
-  j["statistics_note"] =
-      "mean CI: normal approximation x +- z s/sqrt(n); percentile CIs: exact binomial order "
-      "statistics (distribution-free), null where n is too small for the bound";
-  j["K_gamma"] = SampleSummaryJson(s.k_gamma);
-  j["K_gamma_sweep_mean"] = SampleSummaryJson(s.k_gamma_mean);
-  j["TE_peak_to_peak_urad"] = SampleSummaryJson(s.te_peak_to_peak);
-  j["sun_orbit_um"] = SampleSummaryJson(s.sun_orbit);
-  if (!s.k_gamma_exceedance.empty()) {
-    nlohmann::json ex = nlohmann::json::array();
-    for (const studies::Exceedance& e : s.k_gamma_exceedance) ex.push_back(ExceedanceJson(e));
-    j["K_gamma_exceedance"] = ex;
-  }
-  if (!s.root_stress.empty()) j["root_stress"] = StudyRootStressJson(s.root_stress);
-  nlohmann::json rho = nlohmann::json::object();
-  for (std::size_t k = 0; k < s.columns.size(); ++k) rho[s.columns[k]] = Stat(s.spearman[k]);
-  j["spearman_K_gamma"] = rho;
-  if (s.sobol) {
-    j["sobol"] = SobolJson(*s.sobol);
+void WriteStudySummaryFiles(const std::string& base, const std::string& study_name,
+                            const studies::StudyRecord& record, const nlohmann::json& provenance) {
+  const studies::StudySummary& s = record.summary;
+  if (s.sobol)
     WriteTextFile(base + "_sobol.svg",
-                  RenderSvg(SobolBarPlot(study.name, *s.sobol, s.sobol->outputs.front())));
-  }
-  j["warnings"] = study.warnings;
-  j["computed_seconds"] = computed_seconds;
-  WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
+                  RenderSvg(SobolBarPlot(study_name, *s.sobol, s.sobol->outputs.front())));
+  WriteTextFile(base + "_summary.json", SummaryJson(record, provenance).dump(2) + "\n");
 
   // Histogram as a step outline; the empirical CDF F(x_(i)) = i/n as steps.
   const auto& h = s.k_gamma_histogram;
-  LinePlot hist{study.name + ": K_gamma histogram", "K_gamma [-]", "cases [-]", {}, false, {}};
+  LinePlot hist{study_name + ": K_gamma histogram", "K_gamma [-]", "cases [-]", {}, false, {}};
   hist.series.push_back(HistogramOutline("K_gamma", h.lo, h.width, h.counts));
   LinePlot cdf{
-      study.name + ": K_gamma empirical CDF", "K_gamma [-]", "F [-]", {}, false, {0.95, 0.99}};
+      study_name + ": K_gamma empirical CDF", "K_gamma [-]", "F [-]", {}, false, {0.95, 0.99}};
   cdf.series.push_back(EmpiricalCdfSteps("empirical CDF", s.k_gamma_sorted));
   WriteTextFile(base + "_kgamma_hist.svg", RenderSvg(hist));
   WriteTextFile(base + "_kgamma_cdf.svg", RenderSvg(cdf));
@@ -197,9 +125,9 @@ MergedStudy MergeStudy(const std::vector<std::string>& paths, const std::string&
   std::filesystem::create_directories(out_dir);
   const std::string base = (std::filesystem::path(out_dir) / "study").string();
   studies::WriteRowsFile(base + "_rows.csv", m.study, merged.comment, m.rows);
-  m.summary = studies::SummariseStudy(m.study, m.rows);
-  WriteStudySummaryFiles(base, m.study, m.summary, Provenance(m.study.backend_name, &m.study.scene),
-                         m.study_path, 0.0);
+  m.record = studies::MakeStudyRecord(m.study, m.study_path, m.rows, 0.0);
+  WriteStudySummaryFiles(base, m.study.name, m.record,
+                         Provenance(m.study.backend_name, &m.study.scene));
   return m;
 }
 

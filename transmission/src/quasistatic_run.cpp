@@ -29,8 +29,15 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
   if (request.sun) scene.supports.sun = *request.sun;
   scene.model.stresses = scene.model.stresses || request.stresses || request.rating;
   if (request.rating) CheckRatingInputs(scene, request.rating_option);
-  const geometry::Stage stage = MakeStage(scene);
-  const int n = stage.planets();
+  if (request.rig && request.rig->compliance.has_root_stress() != scene.model.stresses)
+    throw std::invalid_argument(scene.name + ": the prebuilt rig's tables " +
+                                (scene.model.stresses ? "have no" : "have") +
+                                " root stresses; the run asks for the opposite");
+  std::optional<geometry::Stage> own_stage;  // checked before the tables are built
+  if (!request.rig) own_stage.emplace(MakeStage(scene));
+  // The stage until the rig exists (then the rig's: own_stage moves into it).
+  const geometry::Stage& early = request.rig ? request.rig->stage : *own_stage;
+  const int n = early.planets();
 
   // The carrier angles: the list given, or `count` over the range (computed as they are needed).
   const std::vector<double> angles =
@@ -38,9 +45,9 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
                                  : CheckedCarrierAngles(request.angles_option, request.angles_deg);
   const int count = !angles.empty()         ? static_cast<int>(angles.size())
                     : request.positions > 0 ? request.positions
-                                            : DefaultPositions(stage, request.range);
+                                            : DefaultPositions(early, request.range);
   const double start = geometry::Rad(request.start_deg);
-  const double span = angles.empty() ? CarrierSpan(stage, request.range) : 0.0;
+  const double span = angles.empty() ? CarrierSpan(early, request.range) : 0.0;
   const auto angle = [&](int k) {
     return angles.empty() ? SweepAngle(start, span, k, count) : angles[static_cast<std::size_t>(k)];
   };
@@ -53,11 +60,15 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
   opt.Validate();
 
   const auto t0 = std::chrono::steady_clock::now();
-  const FeStageCompliance compliance(scene, stage, request.tables);
+  const std::shared_ptr<const StageRig> rig =
+      request.rig ? request.rig
+                  : std::make_shared<const StageRig>(scene, std::move(*own_stage), request.tables);
   const double table_seconds = Since(t0);
+  const geometry::Stage& stage = rig->stage;
+  const FeStageCompliance& compliance = rig->compliance;
   StageSetup setup = SetupFromScene(scene);
   setup.local_terms = request.local_terms;
-  const StageModel model(stage, compliance, setup);
+  const StageModel model = rig->Model(setup);
 
   QuasiStaticPlan plan;
   plan.scene = &scene;

@@ -1,7 +1,8 @@
-// A driver's record has one definition of its fields (transmission::VisitRecord) and one
-// serialisation (report::RecordJson): the summary JSON that the program writes has exactly the
-// record's keys, and the program writes the record that the library's run returns for the same
-// request, value for value (docs/quasistatic.md).
+// A driver's record has one definition of its fields (transmission::VisitRecord,
+// dynamics::VisitRecord) and one serialisation (report::RecordJson): the summary JSON that the
+// program writes has exactly the record's keys, and the program writes the record that the
+// library's run returns for the same request, value for value (docs/quasistatic.md, docs/records.md),
+// for the quasi-static, mesh-stiffness and modes drivers.
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -10,39 +11,53 @@
 
 #include <nlohmann/json.hpp>
 
+#include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/report/record_json.hpp"
+#include "epicycle/studies/study_run.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
+#include "epicycle/transmission/stiffness_run.hpp"
 #include "program_runs.hpp"
 
 namespace epicycle {
 namespace {
 
-// The top-level keys a record's visit names (the keys of the objects inside a list or a
+// The top-level keys a record's visit names (the keys of the objects inside a list, an object or a
 // composite belong to those).
 class KeyList final : public transmission::RecordVisitor {
  public:
   std::set<std::string> keys;
   void Number(const char* key, double) override { Add(key); }
   void Integer(const char* key, long) override { Add(key); }
+  void Unsigned(const char* key, unsigned long long) override { Add(key); }
   void Flag(const char* key, bool) override { Add(key); }
   void Text(const char* key, const std::string&) override { Add(key); }
   void Texts(const char* key, const std::vector<std::string>&) override { Add(key); }
+  void Numbers(const char* key, const std::vector<double>&) override { Add(key); }
+  void BeginObject(const char* key) override {
+    Add(key);
+    ++depth_;
+  }
+  void EndObject() override { --depth_; }
   void BeginList(const char* key) override {
     Add(key);
-    in_list_ = true;
+    ++depth_;
   }
   void Item() override {}
-  void EndList() override { in_list_ = false; }
+  void EndList() override { --depth_; }
   void Stresses(const transmission::SweepSummary& s) override {
     if (!s.root_stress.empty()) Add("root_stress");
     if (!s.contact_pressure.empty()) Add("contact_pressure");
   }
   void Rating(const char* key, const transmission::StageRating&) override { Add(key); }
+  void RootStress(const char* key, const std::vector<transmission::RootStressSummary>&,
+                  const char*, double) override {
+    Add(key);
+  }
 
  private:
-  bool in_list_ = false;
+  int depth_ = 0;  // inside a list or an object: not a top-level key
   void Add(const char* key) {
-    if (in_list_) return;
+    if (depth_ > 0) return;
     const bool fresh = keys.insert(key).second;
     INFO("key " << key);
     CHECK(fresh);  // each field once
@@ -60,6 +75,12 @@ std::set<std::string> Keys(const nlohmann::json& j) {
 // What two runs may differ in: their wall times and the program's provenance.
 void DropRunDependent(nlohmann::json* j) {
   for (const char* k : {"sweep_seconds", "table_seconds", "provenance"}) j->erase(k);
+}
+
+nlohmann::json ReadJson(const std::string& path) {
+  std::ifstream in(path);
+  REQUIRE(in.good());
+  return nlohmann::json::parse(in);
 }
 
 }  // namespace
@@ -103,6 +124,105 @@ TEST_CASE(
   nlohmann::json library = report::QuasiStaticRecordJson(record, nlohmann::json());
   DropRunDependent(&program);
   DropRunDependent(&library);
+  CHECK(program == library);
+}
+
+TEST_CASE(
+    "stiffness record: the program's summary JSON has exactly the record's fields and the "
+    "library run's values (root stresses)",
+    "[crosscheck][report][records]") {
+  const test::TempDir temp("stiffness-record");
+  const std::string scene_file = std::string(EPICYCLE_SCENES_DIR) + "/iso_pair_20_40.toml";
+  REQUIRE(test::ExitStatus({EPICYCLE_EXE, "stiffness", scene_file, "--positions", "6",
+                            "--stresses", "--threads", "1", "--cache", EPICYCLE_TEST_CACHE_DIR,
+                            "--out", temp.path.string()}) == 0);
+  nlohmann::json program = ReadJson(temp.File("stiffness_gear1-gear2.json"));
+
+  transmission::StiffnessRequest request;
+  request.scene = transmission::ReadScene(scene_file);
+  request.positions = 6;
+  request.stresses = true;
+  request.threads = 1;
+  request.tables.cache_directory = EPICYCLE_TEST_CACHE_DIR;
+  transmission::StiffnessSink sink;
+  const transmission::StiffnessRecord record = transmission::RunStiffness(request, sink);
+  REQUIRE(record.result.failed == 0);
+  REQUIRE_FALSE(record.result.root_stress.empty());
+
+  KeyList fields;
+  transmission::VisitRecord(record, fields);
+  std::set<std::string> file_keys = Keys(program);
+  file_keys.erase("provenance");  // the program's, not the run's
+  CHECK(file_keys == fields.keys);
+  CHECK(fields.keys.count("root_stress") == 1);
+  // Every value bit for bit (17 significant digits written and read back).
+  program.erase("provenance");
+  CHECK(program == report::RecordJson(record));
+}
+
+TEST_CASE(
+    "modes record: the program's JSON has exactly the record's fields and the library run's "
+    "values (modes, coincidences)",
+    "[crosscheck][report][records]") {
+  const test::TempDir temp("modes-record");
+  const std::string scene_file = std::string(EPICYCLE_SCENES_DIR) + "/paper_stage.toml";
+  REQUIRE(test::ExitStatus({EPICYCLE_EXE, "modes", scene_file, "--sun", "floating",
+                            "--speed-range-rpm", "100", "20000", "--cache",
+                            EPICYCLE_TEST_CACHE_DIR, "--json", temp.File("modes.json")}) == 0);
+  nlohmann::json program = ReadJson(temp.File("modes.json"));
+
+  dynamics::ModesRequest request;
+  request.scene = transmission::ReadScene(scene_file);
+  request.sun = transmission::SunSupport::kFloating;
+  request.speed_range_rpm = std::array<double, 2>{100, 20000};
+  request.tables.cache_directory = EPICYCLE_TEST_CACHE_DIR;
+  dynamics::ModesSink sink;
+  const dynamics::ModesRecord record = dynamics::RunModes(request, sink);
+  REQUIRE_FALSE(record.modes.empty());
+  REQUIRE_FALSE(record.coincidences.empty());
+
+  KeyList fields;
+  dynamics::VisitRecord(record, fields);
+  std::set<std::string> file_keys = Keys(program);
+  file_keys.erase("provenance");
+  CHECK(file_keys == fields.keys);
+  program.erase("provenance");
+  CHECK(program == report::RecordJson(record));
+}
+
+TEST_CASE(
+    "study record: the program's summary JSON has exactly the record's fields and the library "
+    "run's values (exceedances, Spearman columns)",
+    "[crosscheck][report][records]") {
+  const test::TempDir temp("study-record");
+  const std::string study_file =
+      std::string(EPICYCLE_TEST_DATA_DIR) + "/studies/kgamma_limit_small.toml";
+  REQUIRE(test::ExitStatus({EPICYCLE_EXE, "study", study_file, "--threads", "1", "--cache",
+                            EPICYCLE_TEST_CACHE_DIR, "--quiet", "--out",
+                            temp.File("program")}) == 0);
+  nlohmann::json program = ReadJson(temp.File("program/study_summary.json"));
+
+  studies::StudyRequest request;
+  request.study = studies::ReadStudy(study_file);
+  request.study_path = study_file;
+  request.threads = 1;
+  request.rows_file = temp.File("library_rows.csv");
+  request.cache_directory = EPICYCLE_TEST_CACHE_DIR;
+  studies::StudySink sink;
+  const studies::StudyRun run = studies::RunStudy(request, sink);
+  REQUIRE(run.record.has_value());
+  REQUIRE(run.record->summary.cases == 4);
+  REQUIRE(run.record->summary.k_gamma_exceedance.size() == 2);
+
+  KeyList fields;
+  studies::VisitRecord(*run.record, fields);
+  std::set<std::string> file_keys = Keys(program);
+  file_keys.erase("provenance");
+  CHECK(file_keys == fields.keys);
+  // The values, the wall time of the computation aside.
+  nlohmann::json library = report::RecordJson(*run.record);
+  for (nlohmann::json* j : {&program, &library})
+    for (const char* k : {"provenance", "computed_seconds"}) j->erase(k);
   CHECK(program == library);
 }
 

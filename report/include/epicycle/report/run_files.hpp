@@ -21,6 +21,7 @@
 #include "epicycle/report/spectrum_files.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/stiffness_run.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 
 namespace epicycle::report {
@@ -223,17 +224,6 @@ nlohmann::json DynamicRunJson(const dynamics::DynamicModel& model,
 std::string DynamicRunText(const dynamics::DynamicSummary& summary,
                            const dynamics::SimulationStats& stats, int planets);
 
-/// The natural modes for `epicycle modes --json`: per mode its frequency, multiplicity, type
-/// ("rigid" for a rigid-body group), energy fractions and the sun speeds [rpm] where mesh
-/// harmonics 1, 2, 3 meet it (`hz_per_rpm`: dynamics::MeshHzPerSunRpm).
-nlohmann::json ModesJson(const std::vector<dynamics::Mode>& modes, double hz_per_rpm);
-/// The JSON of `epicycle modes`: the scene, the tangent mesh stiffnesses the modes use and the
-/// secant ones of a run, the mesh frequency per sun rpm, ModesJson of `operating.modes`, and the
-/// coincidences found within [lo_rpm, hi_rpm] of sun speed. The caller adds provenance and
-/// warnings.
-nlohmann::json ModesRunJson(const dynamics::DynamicModel& model,
-                            const dynamics::OperatingPointModes& operating, double lo_rpm,
-                            double hi_rpm, const std::vector<dynamics::Coincidence>& coincidences);
 /// The coincidences of mesh harmonics with natural modes (dynamics::FindCoincidences), mode
 /// numbers from 1.
 nlohmann::json CoincidencesJson(const std::vector<dynamics::Coincidence>& coincidences);
@@ -284,18 +274,7 @@ class MeshStiffnessFile {
 /// 6336-1's c_γα and c′ with their ratios, the range and contact ratio (or that no position
 /// converged), the failed positions, and with root stresses RootStressText against the gear-1
 /// rotation [deg].
-std::string MeshStiffnessText(const geometry::GearPair& pair,
-                              const transmission::MeshStiffnessResult& result, double c_prime,
-                              double c_gamma_alpha);
-
-/// The results of `epicycle stiffness` for its JSON summary: the mesh, the torque, the face
-/// width, positions and failures, mean / peak single-pair / min / max stiffness (N/m and
-/// N/(mm µm)), the contact ratio, and ISO 6336-1's c′ and c_γα [N/(mm µm)] to compare with; with
-/// root stresses "root_stress" (RootStressJson against the gear-1 rotation, "angle_deg"). The
-/// caller adds the run's settings.
-nlohmann::json MeshStiffnessJson(const geometry::GearPair& pair,
-                                 const transmission::MeshStiffnessResult& result, double c_prime,
-                                 double c_gamma_alpha);
+std::string MeshStiffnessText(const transmission::StiffnessRecord& record);
 
 /// The mesh stiffness and each tooth pair's stiffness over the cycle per unit face width
 /// `face_width` [m] (N/(mm µm) against gear 1's rotation in degrees), the converged positions

@@ -1,5 +1,5 @@
 // The Sobol indices of a study (studies/sobol.hpp, docs/studies.md "Sensitivity: Sobol indices")
-// for its JSON summary, the console and a bar plot.
+// on the console and as a bar plot (their JSON is the study record's, studies/study_run.hpp).
 #pragma once
 
 #include <string>
@@ -10,13 +10,6 @@
 #include "epicycle/studies/sobol.hpp"
 
 namespace epicycle::report {
-
-/// {"design": ..., "base_samples_N", "complete_rows", "bootstrap_resamples", "confidence_level",
-/// "variables": [...], "outputs": {NAME: {"rows", "mean", "variance", "first_order": [{"variable",
-/// "value", "ci", "standard_error"}...], "total": [...], "sum_first_order": {"value", "ci",
-/// "standard_error"}}}}; null where an index
-/// has no value (a constant output).
-nlohmann::json SobolJson(const studies::SobolSummary& s);
 
 /// A table per output with variance: "variable  S_i [lo, hi]  S_Ti [lo, hi]", the sum of S_i
 /// with its interval.

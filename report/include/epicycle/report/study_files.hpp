@@ -9,17 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "epicycle/studies/shards.hpp"
+#include "epicycle/studies/study_run.hpp"
 #include "epicycle/studies/study_summary.hpp"
 
 namespace epicycle::report {
-
-/// "count", "mean", "mean_ci", "std", "min", "max", "confidence_level" and "percentiles" (each
-/// "p", "value", "ci"); null where a statistic has no value (JSON has no NaN).
-nlohmann::json SampleSummaryJson(const studies::SampleSummary& s);
-
-/// "k_gamma_limit", "cases", "above", "probability", "ci" (Clopper–Pearson), "interval" (its
-/// name) and "confidence_level"; null where a statistic has no value.
-nlohmann::json ExceedanceJson(const studies::Exceedance& e);
 
 /// One line: "P(K_gamma > x) = p [lo, hi] (k of n cases)".
 std::string ExceedanceText(const studies::Exceedance& e);
@@ -29,10 +22,6 @@ std::string ExceedanceText(const studies::Exceedance& e);
 std::string SampleSummaryText(const std::string& name, const studies::SampleSummary& s,
                               const std::string& unit);
 
-/// Per gear its "tension_MPa", "compression_magnitude_MPa" and "largest_range_MPa"
-/// (SampleSummaryJson of each case's largest over its sweep).
-nlohmann::json StudyRootStressJson(const std::vector<studies::GearStressStatistics>& gears);
-
 /// One line per gear: tension, compression magnitude and range [MPa], each its mean and P95 with
 /// the P95's interval ("" without stresses).
 std::string StudyRootStressText(const std::vector<studies::GearStressStatistics>& gears);
@@ -41,13 +30,11 @@ std::string StudyRootStressText(const std::vector<studies::GearStressStatistics>
 /// "; study <study_path>".
 std::string StudyComment(const nlohmann::json& provenance, const std::string& study_path);
 
-/// `base`_summary.json (the summary, with "provenance", "study": study_path and
-/// "computed_seconds"), `base`_kgamma_hist.svg and `base`_kgamma_cdf.svg: the files a study run
-/// writes beside its rows. @throws std::runtime_error if one cannot be written.
-void WriteStudySummaryFiles(const std::string& base, const studies::StudySpec& study,
-                            const studies::StudySummary& summary,
-                            const nlohmann::json& provenance, const std::string& study_path,
-                            double computed_seconds);
+/// `base`_summary.json (the record's one serialisation, RecordJson, with "provenance"),
+/// `base`_kgamma_hist.svg, `base`_kgamma_cdf.svg and with Sobol indices `base`_sobol.svg: the
+/// files a study run writes beside its rows. @throws std::runtime_error if one cannot be written.
+void WriteStudySummaryFiles(const std::string& base, const std::string& study_name,
+                            const studies::StudyRecord& record, const nlohmann::json& provenance);
 
 /// What MergeStudy did.
 struct MergedStudy {
@@ -55,7 +42,7 @@ struct MergedStudy {
   std::string study_path;              ///< that file
   std::vector<std::string> parts;      ///< the part files joined
   std::vector<studies::CaseRow> rows;  ///< every case, sorted by id
-  studies::StudySummary summary;
+  studies::StudyRecord record;         ///< the summary of every case (computed_seconds 0)
 };
 /// Joins the parts of one study (studies::FindParts of `paths`: part files or folders of them)
 /// into `out_dir`/study_rows.csv, _summary.json, _kgamma_hist.svg and _kgamma_cdf.svg, the files

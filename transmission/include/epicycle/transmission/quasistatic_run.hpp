@@ -6,6 +6,7 @@
 // record's fields as VisitRecord names them.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "epicycle/transmission/record.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/scene.hpp"
+#include "epicycle/transmission/stage_rig.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 
 namespace epicycle::transmission {
@@ -38,6 +40,9 @@ struct QuasiStaticRequest {
   bool stresses = false;           ///< root stresses too (also when the scene asks for them)
   bool rating = false;             ///< ISO 6336 ratings (implies stresses)
   FeComplianceOptions tables;      ///< the influence tables' cache
+  /// The stage and tables built from `scene` with its stresses as run (a front end's cache, e.g.
+  /// Python's per scene); null: the run builds its own.
+  std::shared_ptr<const StageRig> rig;
   /// The names of the options that set angles_deg and rating, for their messages.
   std::string angles_option = "angles_deg", rating_option = "rating";
 };

@@ -11,6 +11,7 @@ namespace epicycle::transmission {
 
 struct SweepSummary;
 struct StageRating;
+struct RootStressSummary;
 
 /// Receives a record's fields in order. Numbers are in the unit their key names ("_urad", "_Nm",
 /// "_s"; none for a ratio); a number that is not finite means "none" (null in JSON, None in
@@ -20,9 +21,17 @@ class RecordVisitor {
   virtual ~RecordVisitor() = default;
   virtual void Number(const char* key, double value) = 0;
   virtual void Integer(const char* key, long value) = 0;
+  /// A whole number that may exceed a long (a random seed).
+  virtual void Unsigned(const char* key, unsigned long long value) = 0;
   virtual void Flag(const char* key, bool value) = 0;
   virtual void Text(const char* key, const std::string& value) = 0;
   virtual void Texts(const char* key, const std::vector<std::string>& value) = 0;
+  /// A list of numbers in the key's unit (a pair of depths, a mode's speeds).
+  virtual void Numbers(const char* key, const std::vector<double>& value) = 0;
+  /// A record inside the record (the healthy teeth beside a damaged run): its fields follow,
+  /// until EndObject().
+  virtual void BeginObject(const char* key) = 0;
+  virtual void EndObject() = 0;
   /// A list of objects with the same fields (the planets' statistics): Item() before each.
   virtual void BeginList(const char* key) = 0;
   virtual void Item() = 0;
@@ -31,6 +40,10 @@ class RecordVisitor {
   /// serialisations define them (report::RootStressJson, ContactPressureJson, RatingJson).
   virtual void Stresses(const SweepSummary& summary) = 0;
   virtual void Rating(const char* key, const StageRating& rating) = 0;
+  /// Each gear's root-stress extremes over a run (report::RootStressJson), where they occur as
+  /// `x_key` = x · x_scale (a mesh-stiffness run's "angle_deg").
+  virtual void RootStress(const char* key, const std::vector<RootStressSummary>& gears,
+                          const char* x_key, double x_scale) = 0;
 };
 
 /// The statistics of a sweep over carrier positions (SweepSummary), the quasi-static run's and

@@ -1,0 +1,173 @@
+// `epicycle_record_keys`: every driver record's fields as markdown tables (docs/records.md), each
+// key with its kind and the unit its name carries. The lists come from the records' own
+// VisitRecord functions, visited with every optional part present (friction, stresses, a rating, a
+// healthy twin), so that the docs list exactly what the summary JSON files can hold.
+//
+//   epicycle_record_keys > table.md        (tools/record_keys.sh writes it into docs/records.md)
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "epicycle/dynamics/modes_run.hpp"
+#include "epicycle/studies/study_run.hpp"
+#include "epicycle/transmission/quasistatic_run.hpp"
+#include "epicycle/transmission/record.hpp"
+#include "epicycle/transmission/stiffness_run.hpp"
+
+namespace {
+
+using epicycle::transmission::RecordVisitor;
+
+// The unit a key's suffix names (docs/records.md, "Units in the keys").
+std::string Unit(const std::string& key) {
+  static const std::vector<std::pair<std::string, std::string>> suffixes = {
+      {"_N_per_mm_um", "N/(mm·µm)"},
+      {"_N_per_m", "N/m"},
+      {"_Hz_per_sun_rpm", "Hz/rpm"},
+      {"_Nm", "N·m"},
+      {"_urad", "µrad"},
+      {"_um", "µm"},
+      {"_mm", "mm"},
+      {"_MPa", "MPa"},
+      {"_Hz", "Hz"},
+      {"_rpm", "rpm"},
+      {"_deg", "deg"},
+      {"_W", "W"},
+      {"_seconds", "s"},
+      {"_s", "s"}};
+  for (const auto& [suffix, unit] : suffixes)
+    if (key.size() > suffix.size() &&
+        key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
+      return unit;
+  return "";
+}
+
+// Prints one table row per field, nested fields as PARENT[].KEY (a list's items) or PARENT.KEY.
+class KeyTable final : public RecordVisitor {
+ public:
+  void Number(const char* key, double) override { Row(key, "number"); }
+  void Integer(const char* key, long) override { Row(key, "integer"); }
+  void Unsigned(const char* key, unsigned long long) override { Row(key, "integer"); }
+  void Flag(const char* key, bool) override { Row(key, "true/false"); }
+  void Text(const char* key, const std::string&) override { Row(key, "text"); }
+  void Texts(const char* key, const std::vector<std::string>&) override {
+    Row(key, "list of texts");
+  }
+  void Numbers(const char* key, const std::vector<double>&) override {
+    Row(key, "list of numbers");
+  }
+  void BeginObject(const char* key) override {
+    Row(key, "object");
+    Open(key, ".");
+  }
+  void EndObject() override { Close(); }
+  void BeginList(const char* key) override {
+    Row(key, "list of objects");
+    Open(key, "[].");
+  }
+  void Item() override {}  // the sample records hold one item per list
+  void EndList() override { Close(); }
+  void Stresses(const epicycle::transmission::SweepSummary&) override {
+    Row("root_stress", "object (per gear: docs/stresses.md)");
+    Row("contact_pressure", "object (per gear and flank: docs/stresses.md)");
+  }
+  void Rating(const char* key, const epicycle::transmission::StageRating&) override {
+    Row(key, "object (ISO 6336: docs/stresses.md)");
+  }
+  void RootStress(const char* key, const std::vector<epicycle::transmission::RootStressSummary>&,
+                  const char*, double) override {
+    Row(key, "object (per gear: docs/stresses.md)");
+  }
+
+ private:
+  std::vector<std::string> prefix_;
+  std::vector<std::string> units_;  // the unit of each open object or list ("" for none)
+  void Open(const char* key, const char* separator) {
+    prefix_.push_back(std::string(key) + separator);
+    units_.push_back(KeyUnit(key));
+  }
+  void Close() {
+    prefix_.pop_back();
+    units_.pop_back();
+  }
+  // A key's unit: its own, or for a statistic of a quantity (a study's mean, its interval, a
+  // percentile's value) the quantity's.
+  std::string KeyUnit(const std::string& key) const {
+    const std::string own = Unit(key);
+    static const std::vector<std::string> statistics = {"mean", "mean_ci", "std", "min",
+                                                        "max",  "value",   "ci",  "percentiles"};
+    if (!own.empty() || units_.empty()) return own;
+    for (const std::string& s : statistics)
+      if (key == s) return units_.back();
+    return "";
+  }
+  void Row(const std::string& key, const char* kind) {
+    std::string name;
+    for (const std::string& p : prefix_) name += p;
+    name += key;
+    const std::string unit = KeyUnit(key);
+    std::printf("| `%s` | %s | %s |\n", name.c_str(), kind, unit.empty() ? "-" : unit.c_str());
+  }
+};
+
+void Table(const char* title, const char* file, const auto& record) {
+  std::printf("### %s\n\n%s\n\n| key | kind | unit |\n|---|---|---|\n", title, file);
+  KeyTable table;
+  VisitRecord(record, table);
+  std::printf("| `provenance` | object (the program's: version, build, inputs) | - |\n\n");
+}
+
+}  // namespace
+
+int main() {
+  using namespace epicycle;
+  // Every optional part present, so that every field the record can hold is listed.
+  transmission::QuasiStaticRecord quasistatic;
+  quasistatic.summary.lsr_mean = quasistatic.summary.lsr_min = quasistatic.summary.lsr_max = {0};
+  quasistatic.summary.friction = true;
+  quasistatic.summary.root_stress.resize(1);
+  quasistatic.summary.contact_pressure.resize(1);
+  quasistatic.friction = transmission::FrictionLaw::kConstant;
+  quasistatic.rating.emplace();
+  quasistatic.failures_not_listed = 1;
+  transmission::StiffnessRecord stiffness;
+  stiffness.result.root_stress.resize(1);
+  stiffness.healthy = stiffness.result;
+  dynamics::ModesRecord modes;
+  modes.modes.resize(1);
+  modes.coincidences.resize(1);
+
+  Table("Quasi-static run (`epicycle quasistatic`, Python `quasistatic(...)[\"record\"]`)",
+        "OUT/quasistatic_summary.json; `failures_not_listed` only when failures were not listed, "
+        "`friction` and the efficiency keys only with friction at rest, `root_stress` and "
+        "`contact_pressure` only with stresses, `rating` only when asked.",
+        quasistatic);
+  Table("Mesh stiffness (`epicycle stiffness`, Python `mesh_stiffness(...)[\"record\"]`)",
+        "OUT/stiffness_MESH.json; `root_stress` only with stresses, `healthy` only beside a "
+        "damaged tooth's cycles.",
+        stiffness);
+  studies::StudyRecord study;
+  study.summary.k_gamma.percentiles.resize(1);
+  study.summary.k_gamma_exceedance.resize(1);
+  study.summary.root_stress.resize(1);
+  study.summary.root_stress[0].s_f.count = study.summary.root_stress[0].s_h.count = 1;
+  study.summary.columns = {"COLUMN"};
+  study.summary.spearman = {0};
+  studies::SobolSummary sobol;
+  sobol.variables = {"VARIABLE"};
+  sobol.outputs.push_back({"OUTPUT", {}});
+  sobol.outputs[0].estimate.first.resize(1);
+  sobol.outputs[0].estimate.total.resize(1);
+  study.summary.sobol = sobol;
+
+  Table("Natural modes (`epicycle modes --json FILE`, Python `modes(...)[\"record\"]`)", "FILE.",
+        modes);
+  Table("Tolerance study (`epicycle study`, Python `study(...)[\"record\"]`)",
+        "OUT/study_summary.json; `K_gamma_exceedance` only with the study's k_gamma_limit, "
+        "`root_stress` only with stresses (`S_F`, `S_H` only when rated), `sobol` only with the "
+        "Sobol design. `spearman_K_gamma` has one key per sampled-value column (COLUMN), "
+        "`sobol.outputs` one object per rows-file result column (OUTPUT).",
+        study);
+  return 0;
+}

@@ -1,0 +1,120 @@
+// One mesh-stiffness run: the request resolved, the pair and its tables built once, the samples
+// streamed, the record (stiffness_run.hpp; docs/model.md §4).
+#include "epicycle/transmission/stiffness_run.hpp"
+
+#include <stdexcept>
+
+#include "epicycle/geometry/plane.hpp"
+
+#include "epicycle/transmission/run_arguments.hpp"
+#include "epicycle/transmission/validity.hpp"
+
+namespace epicycle::transmission {
+
+namespace {
+
+// The mesh-stiffness statistics of a run (the record's and its healthy twin's fields).
+void VisitResult(const MeshStiffnessResult& r, RecordVisitor& visit) {
+  visit.Text("mesh", r.mesh);
+  visit.Number("torque_gear1_Nm", r.torque);
+  visit.Number("face_width_mm", r.face_width * 1e3);
+  visit.Integer("positions", static_cast<long>(r.samples.size()));
+  visit.Integer("failed_positions", r.failed);
+  visit.Number("mean_mesh_stiffness_N_per_m", r.mean_stiffness);
+  visit.Number("mean_mesh_stiffness_N_per_mm_um", r.mean_per_width());
+  visit.Number("peak_single_pair_stiffness_N_per_m", r.peak_pair_stiffness);
+  visit.Number("peak_single_pair_stiffness_N_per_mm_um", r.peak_pair_per_width());
+  visit.Number("min_mesh_stiffness_N_per_m", r.min_stiffness);
+  visit.Number("max_mesh_stiffness_N_per_m", r.max_stiffness);
+  if (!r.root_stress.empty())
+    visit.RootStress("root_stress", r.root_stress, "angle_deg", geometry::Deg(1.0));
+}
+
+// The pair's own comparison values, in the record and in its healthy twin.
+void VisitReferences(const StiffnessRecord& r, RecordVisitor& visit) {
+  visit.Number("contact_ratio", r.contact_ratio);
+  visit.Number("iso6336_c_prime_N_per_mm_um", r.iso6336_c_prime);
+  visit.Number("iso6336_c_gamma_alpha_N_per_mm_um", r.iso6336_c_gamma_alpha);
+}
+
+}  // namespace
+
+StiffnessRecord RunStiffness(const StiffnessRequest& request, StiffnessSink& sink) {
+  CheckArgument(request.positions_option, request.positions, kStiffnessPositions);
+  CheckArgument(request.threads_option, request.threads, kThreadsOrZero);
+  Scene scene = request.scene;
+  scene.model.stresses = scene.model.stresses || request.stresses;
+  std::optional<geometry::Stage> stage;
+  if (scene.kind == SceneKind::kStage) {
+    stage.emplace(MakeStage(scene));
+    if (request.mesh.empty()) {
+      std::string names;
+      for (const auto& m : stage->meshes()) names += (names.empty() ? "" : ", ") + m.name;
+      throw std::invalid_argument(request.mesh_option +
+                                  " is required for a stage scene; its meshes are " + names);
+    }
+  }
+  const MeshPairSetup setup = MakeMeshPair(scene, stage ? &*stage : nullptr, request.mesh);
+  const geometry::GearPair pair = MakePair(scene, setup.spec);
+  const auto [first, cycles] =
+      request.cycle >= 0 ? std::array<int, 2>{request.cycle, 1} : DamagedToothCycles(setup, pair);
+  MeshStiffnessOptions opt;
+  opt.positions = request.positions * cycles;
+  opt.first_cycle = first;
+  opt.cycles = cycles;
+  opt.threads = request.threads;
+  opt.backend = solvers::BackendFromName(request.backend);
+  opt.local_terms = request.local_terms;
+  opt.tooth_coupling = request.tooth_coupling;
+  opt.Validate();
+
+  StiffnessPlan plan;
+  plan.scene = &scene;
+  plan.setup = &setup;
+  plan.pair = &pair;
+  plan.positions_per_cycle = request.positions;
+  plan.first_cycle = first;
+  plan.cycles = cycles;
+  plan.face_width = geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
+  sink.Pair(plan);
+  const FePairCompliance compliance(scene, pair, request.tables, setup.gears);
+  plan.compliance = &compliance;
+  sink.Start(plan);
+
+  StiffnessRecord record;
+  record.result = ComputeMeshStiffness(setup, pair, compliance, opt,
+                                       [&](const MeshSample& s) { sink.Sample(s); });
+  record.scene = scene.name;
+  record.plane = scene.model.plane == solvers::PlaneAssumption::kPlaneStrain ? "strain" : "stress";
+  record.local_terms = request.local_terms;
+  const compliance::iso6336::PairData iso = IsoPairData(pair);
+  record.iso6336_c_prime = compliance::iso6336::SinglePairStiffness(iso);
+  record.iso6336_c_gamma_alpha = compliance::iso6336::MeshStiffness(iso);
+  record.contact_ratio = pair.summary().contact_ratio_iso;
+  record.join_depth = {compliance.JoiningDepth(0), compliance.JoiningDepth(1)};
+  // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
+  record.warnings = scene.warnings;
+  for (const std::string& w : MeshStiffnessWarnings(pair, record.result))
+    record.warnings.push_back(w);
+  if (request.healthy && (first != 0 || cycles != 1))
+    record.healthy = ComputeHealthyMeshStiffness(scene, setup, pair, request.tables, opt);
+  return record;
+}
+
+void VisitRecord(const StiffnessRecord& r, RecordVisitor& visit) {
+  VisitResult(r.result, visit);
+  VisitReferences(r, visit);
+  visit.Texts("warnings", r.warnings);
+  visit.Text("scene", r.scene);
+  visit.Flag("local_terms", r.local_terms);
+  visit.Text("plane", r.plane);
+  visit.Numbers("join_depth_mm", {r.join_depth[0] * 1e3, r.join_depth[1] * 1e3});
+  if (r.healthy) {
+    visit.BeginObject("healthy");
+    VisitResult(*r.healthy, visit);
+    VisitReferences(r, visit);
+    visit.EndObject();
+  }
+}
+
+}  // namespace epicycle::transmission

@@ -1,0 +1,62 @@
+"""Given the same request, the program and Python return the same record (docs/records.md): the
+program's summary JSON and Python's result.record hold the same keys and, value by value, the
+same numbers bit for bit (the JSON writes each double with the digits that read back exactly),
+every setting left at its default on both sides. The program's provenance and the runs' wall
+times are the only keys taken out: they describe the process, not the run's results."""
+
+import epicycle
+from conftest import read_json, run_cli, scene_path
+
+# Keys that differ between two runs of the same request: the program's provenance and wall times.
+RUN_DEPENDENT = {"provenance", "sweep_seconds", "table_seconds"}
+
+
+def same_record(program, python):
+    program = {k: v for k, v in program.items() if k not in RUN_DEPENDENT}
+    python = {k: v for k, v in python.items() if k not in RUN_DEPENDENT}
+    assert sorted(program) == sorted(python)
+    for key in program:
+        # == on floats is bit for bit (NaN is null on both sides: JSON has no NaN).
+        assert program[key] == python[key], key
+
+
+def test_stiffness_record_equals_the_program_json(tmp_path):
+    scene = scene_path("iso_pair_20_40.toml")
+    run_cli("stiffness", scene, "--out", tmp_path)
+    program = read_json(tmp_path / "stiffness_gear1-gear2.json")
+    python = epicycle.mesh_stiffness(epicycle.Scene.load(scene)).record
+    same_record(program, python)
+    assert program["positions"] == 60  # the default, on both sides
+
+
+def test_modes_record_equals_the_program_json(tmp_path):
+    scene = scene_path("paper_stage.toml")
+    run_cli("modes", scene, "--json", tmp_path / "modes.json")
+    program = read_json(tmp_path / "modes.json")
+    python = epicycle.modes(epicycle.Scene.load(scene)).record
+    same_record(program, python)
+    assert len(program["modes"]) > 0 and len(program["coincidences"]) > 0
+
+
+def test_quasistatic_record_equals_the_program_json(tmp_path):
+    scene = scene_path("paper_stage_runout.toml")
+    run_cli("quasistatic", scene, "--quiet", "--out", tmp_path)
+    program = read_json(tmp_path / "quasistatic_summary.json")
+    python = epicycle.quasistatic(epicycle.Scene.load(scene)).record
+    same_record(program, python)
+    assert program["positions"] == 60 and program["converged_positions"] == 60
+
+
+def test_study_record_equals_the_program_json(tmp_path):
+    # Four cases of 24 positions (verification/data/studies/kgamma_limit_small.toml): every
+    # default of both sides, the exceedances and the Spearman columns in the record.
+    import os
+    from conftest import SOURCE_DIR
+    study = os.path.join(SOURCE_DIR, "verification", "data", "studies", "kgamma_limit_small.toml")
+    run_cli("study", study, "--quiet", "--out", tmp_path)
+    program = read_json(tmp_path / "study_summary.json")
+    python = epicycle.study(study).record
+    program.pop("computed_seconds")  # wall time: run-dependent
+    python.pop("computed_seconds")
+    same_record(program, python)
+    assert program["cases_in_file"] == 4 and len(program["K_gamma_exceedance"]) == 2
