@@ -127,6 +127,9 @@ int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     out[2 * c.n + 1] = c.scratch.dissipated_power;
     out[2 * c.n + 2] = c.scratch.contact_power;
     std::swap(c.warm, c.scratch);
+    // The search's tip-round reuse stays with the work space of the next evaluation: its poses
+    // are this one's neighbours (fewer refreshes than keeping one per Evaluation).
+    std::swap(c.warm.work.tip_rounds, c.scratch.work.tip_rounds);
     c.warm_t = t;
     c.warm_y = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(y), 2 * c.n);
     c.warm_valid = true;

@@ -91,7 +91,10 @@ class StageModel {
   /// repeated, its gap grown by the depth, its local term of the strip's width: docs/model.md §9,
   /// "Pitting and spalls"), or the geometric outcome that prevents them (kNoLineOfAction, kOffFlankGrid,
   /// kNoReducedRadius, naming the mesh or contact; `terms` is then incomplete).
-  [[nodiscard]] StageOutcome Terms(const geometry::StagePoses& poses, ContactTerms* terms) const;
+  /// With `reuse` (kept by the caller between calls, e.g. a right-hand side's work space), the
+  /// search reuses each mesh's tip rounds under a pose bound (SearchStage): the same terms.
+  [[nodiscard]] StageOutcome Terms(const geometry::StagePoses& poses, ContactTerms* terms,
+                                   std::vector<geometry::TipRoundReuse>* reuse = nullptr) const;
   /// The same as a value, for poses that must work (the reference configuration).
   /// @throws std::runtime_error with the outcome's message if they do not.
   ContactTerms Terms(const geometry::StagePoses& poses) const;
