@@ -236,8 +236,7 @@ void LatticeRolls(const FlankReach& f, double t, double* u0_lo, double* u0_hi) {
 // Whether a roll of the lattice u0 + j p, u0 in [u0_lo, u0_hi], falls where a hit needs it for a
 // tangent length L in [l_lo, l_hi]: r_b u = L + h d with d in [d_lo, d_hi] and u in [u_min, u_max],
 // widened to where the lattice point u + H·offset of a tooth turned by its offset sits.
-bool LatticeMeetsWindow(const FlankReach& f, double u0_lo, double u0_hi, double l_lo,
-                        double l_hi) {
+bool LatticeMeetsWindow(const FlankReach& f, double u0_lo, double u0_hi, double l_lo, double l_hi) {
   const double rb = f.base_radius;
   const double w_lo =
       std::max((l_lo + (f.flank_hand > 0 ? f.d_lo : -f.d_hi)) / rb, f.u_min) - f.widen;

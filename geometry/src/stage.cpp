@@ -276,8 +276,8 @@ std::vector<PotentialContact> Stage::Contacts(const StagePoses& p, int planet, M
 }
 
 void Stage::AppendContacts(const StagePoses& p, int planet, MeshKind kind,
-                           const ContactSearchOptions& options,
-                           std::vector<PotentialContact>* out, TipRoundReuse* reuse) const {
+                           const ContactSearchOptions& options, std::vector<PotentialContact>* out,
+                           TipRoundReuse* reuse) const {
   if (kind == MeshKind::kSunPlanet) {
     geometry::AppendContacts(Sun(p), Planet(p, planet), false, options, out, reuse);
   } else {

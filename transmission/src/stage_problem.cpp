@@ -120,10 +120,10 @@ StageOutcome SearchStage(const geometry::Stage& stage, const geometry::StagePose
                     "(a planet or the sun moved far from its place)"};
       }
       found.clear();
-      stage.AppendContacts(
-          poses, i, kind, opt, &found,
-          reuse != nullptr ? &(*reuse)[static_cast<std::size_t>(geometry::MeshIndex(i, kind))]
-                           : nullptr);
+      stage.AppendContacts(poses, i, kind, opt, &found,
+                           reuse != nullptr
+                               ? &(*reuse)[static_cast<std::size_t>(geometry::MeshIndex(i, kind))]
+                               : nullptr);
       for (const PotentialContact& c : found) {
         StageContact s;
         s.contact = c;

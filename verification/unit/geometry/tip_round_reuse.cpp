@@ -99,24 +99,16 @@ TEST_CASE("tip rounds reused under a pose bound: the same contacts as the search
     s.pin_errors[2] = PinError{30e-6, -50e-6};
     s.sun_runout = Runout{25e-6, 2.0};
   };
-  const auto modify = [](StageSpec& s) {
-    using epicycle::test::ReliefStartRadius;
-    s.sun.modification.tip = {8e-6, ReliefStartRadius(s.sun, 30.0), ReliefShape::kLinear};
-    s.sun.pitch_deviations = iso::RandomPitchDeviations(s.sun.teeth, s.sun.module, 6, 3);
-    s.planet.modification.tip = {10e-6, ReliefStartRadius(s.planet, 30.0), ReliefShape::kParabolic};
-    s.planet.pitch_deviations = iso::RandomPitchDeviations(s.planet.teeth, s.planet.module, 7, 5);
-  };
   for (const bool relieved : {false, true}) {
     auto scene = epicycle::test::PaperStage();
     errors(scene.stage);
-    if (relieved) modify(scene.stage);
+    if (relieved) epicycle::test::AddReliefAndPitchDeviations(scene.stage);
     const Stage st(scene.stage);
     // As in a dynamic run (about 1200 steps a mesh cycle at 1500 rpm, deviations of micrometres),
     // and with coarse steps and deviations of 20 µm and 0.2 mrad that cross the budget often.
     for (const auto& [steps, shift, turn, budget] :
-         std::vector<std::tuple<int, double, double, double>>{{600, 2e-6, 2e-5, 100e-6},
-                                                              {40, 20e-6, 2e-4, 100e-6},
-                                                              {300, 5e-6, 5e-5, 400e-6}}) {
+         std::vector<std::tuple<int, double, double, double>>{
+             {600, 2e-6, 2e-5, 100e-6}, {40, 20e-6, 2e-4, 100e-6}, {300, 5e-6, 5e-5, 400e-6}}) {
       INFO("relieved " << relieved << ", " << steps << " steps a cycle, budget " << budget);
       const Counts n = Compare(st, 100e-6, budget, steps, 2.3, shift, turn);
       // Not vacuous: tip contacts were found; with fine steps most calls reused a refresh and

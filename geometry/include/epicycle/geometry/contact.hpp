@@ -126,10 +126,10 @@ struct TipRoundReuse {
   double gap_window = 0;
   bool both_sides = true;
   int side_a = 1;
-  GearPose pose_a, pose_b;    ///< P0
-  double centre_budget = 0;   ///< [m]
-  double turn_budget_a = 0;   ///< [rad]
-  double turn_budget_b = 0;   ///< [rad]
+  GearPose pose_a, pose_b;   ///< P0
+  double centre_budget = 0;  ///< [m]
+  double turn_budget_a = 0;  ///< [rad]
+  double turn_budget_b = 0;  ///< [rad]
   /// One flank side's rounds of one gear: the teeth that can be candidates within the budget
   /// (at most three) and whether each cannot reach the mate within it; `usable` false if the
   /// budget admitted more candidates than that (then nothing is skipped).
