@@ -540,6 +540,38 @@ bool WithinBudget(const TipRoundReuse& r, const PosedGear& a, const PosedGear& b
 // The largest distance of a gear's material points from its geometric centre [m].
 double OuterRadius(const Gear& g) { return std::max(g.tip_radius(), g.root_radius()); }
 
+// A refresh: notes P0, the options and the budgets in `r`, and sets owner_roll[0], [1] to how far
+// a tooth of A, of B may move in roll on the line of action within the budget: the line's base
+// angle pitch_dir ∓ α moves with the centre line dv (|Δdv| ≤ 2D): |Δ pitch_dir| ≤ 2D/(a − 2D),
+// |Δα| ≤ 2D k/(a_min √(a_min² − k²)) (α = acos(k/a), a_min = a − 2D), and the tooth turns with
+// its gear.
+void BeginRefresh(TipRoundReuse* keep, const PosedGear& a, const PosedGear& b, bool internal,
+                  const ContactSearchOptions& options, const CentreLine& centre_line,
+                  double owner_roll[2]) {
+  TipRoundReuse& r = *keep;
+  ++r.refreshes;
+  r.valid = false;
+  r.gear_a = a.gear;
+  r.gear_b = b.gear;
+  r.internal = internal;
+  r.gap_window = options.gap_window;
+  r.both_sides = options.both_sides;
+  r.side_a = options.side_a;
+  r.pose_a = a.pose;
+  r.pose_b = b.pose;
+  const double d = r.budget;
+  r.centre_budget = d;
+  r.turn_budget_a = d / OuterRadius(*a.gear);
+  r.turn_budget_b = d / OuterRadius(*b.gear);
+  const double k = centre_line.dist * centre_line.cos_alpha, a_min = centre_line.dist - 2.0 * d;
+  const bool bounded = a_min > k && d >= 0;
+  const double line_turn =
+      bounded ? 2.0 * d / a_min + 2.0 * d * k / (a_min * std::sqrt(a_min * a_min - k * k))
+              : INFINITY;
+  owner_roll[0] = line_turn + r.turn_budget_a;
+  owner_roll[1] = line_turn + r.turn_budget_b;
+}
+
 }  // namespace
 
 void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
@@ -554,34 +586,9 @@ void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
   // Tip rounds reused under a pose bound (TipRoundReuse; docs/dynamic_cost.md).
   TipRoundReuse* keep = options.exhaustive_tips ? nullptr : reuse;
   const bool refresh = keep != nullptr && !WithinBudget(*keep, a, b, internal, options);
-  // At a refresh: how far a tooth's roll on the line of action may move within the budget, per
-  // owner (A, B): the line's base angle pitch_dir ∓ α moves with the centre line dv (|Δdv| ≤ 2D):
-  // |Δ pitch_dir| ≤ 2D/(a − 2D), |Δα| ≤ 2D k/(a_min √(a_min² − k²)) (α = acos(k/a), a_min =
-  // a − 2D), and the tooth turns with its gear.
   double owner_roll[2] = {0, 0};
   if (refresh) {
-    TipRoundReuse& r = *keep;
-    ++r.refreshes;
-    r.valid = false;
-    r.gear_a = a.gear;
-    r.gear_b = b.gear;
-    r.internal = internal;
-    r.gap_window = options.gap_window;
-    r.both_sides = options.both_sides;
-    r.side_a = options.side_a;
-    r.pose_a = a.pose;
-    r.pose_b = b.pose;
-    const double d = r.budget;
-    r.centre_budget = d;
-    r.turn_budget_a = d / OuterRadius(*a.gear);
-    r.turn_budget_b = d / OuterRadius(*b.gear);
-    const double k = centre_line.dist * centre_line.cos_alpha, a_min = centre_line.dist - 2.0 * d;
-    const bool bounded = a_min > k && d >= 0;
-    const double line_turn =
-        bounded ? 2.0 * d / a_min + 2.0 * d * k / (a_min * std::sqrt(a_min * a_min - k * k))
-                : INFINITY;
-    owner_roll[0] = line_turn + r.turn_budget_a;
-    owner_roll[1] = line_turn + r.turn_budget_b;
+    BeginRefresh(keep, a, b, internal, options, centre_line, owner_roll);
   } else if (keep != nullptr) {
     ++keep->reuses;
   }
