@@ -30,6 +30,10 @@
 //     (default: 400 times the Newton run's, at least 60 s) and counted as failed.
 //     Writes DIR/dynamic_wp_backends.csv and .svg (LSR panels; TE in the CSV).
 //
+//   `integrators` takes --max-order N: CVODE BDF's largest order for the studied BDF runs (the
+//   reference keeps 5); its files are then named with "_max_order_N" after the stem. And
+//   --nonlinear-convergence C: CVODE's Newton convergence factor for those runs (reference 0.1),
+//   files named with "_nonlinear_convergence_C".
 //   Both take --rate-scale X [1/s]: SimulationOptions::rate_scale (the rates' absolute tolerance
 //   is the position tolerance times X) for every run instead of the library's default; their
 //   files are then named with "_rate_scale_X" after the stem (X as given).
@@ -103,10 +107,20 @@ struct Run {
 // value as given, which names the output files (the default run's files are not written over).
 double rate_scale_option = 0;
 std::string rate_scale_text;
+// --max-order: CVODE BDF's largest order (SimulationOptions::max_order) for the studied BDF runs;
+// the reference and its checks keep the default 5. 0: the default.
+int max_order_option = 0;
+// --nonlinear-convergence: SimulationOptions::nonlinear_convergence for the studied BDF runs (the
+// reference keeps CVODE's 0.1), and the value as given, which names the files. Empty: the default.
+double nonlinear_option = 0;
+std::string nonlinear_text;
 
-// The output file `stem` + `extension`, with "_rate_scale_X" after the stem under --rate-scale X.
+// The output file `stem` + `extension`, with "_rate_scale_X" after the stem under --rate-scale X
+// and "_max_order_N" under --max-order N.
 std::string OutputName(const std::string& stem, const std::string& extension) {
-  return stem + (rate_scale_text.empty() ? "" : "_rate_scale_" + rate_scale_text) + extension;
+  return stem + (rate_scale_text.empty() ? "" : "_rate_scale_" + rate_scale_text) +
+         (max_order_option > 0 ? "_max_order_" + std::to_string(max_order_option) : "") +
+         (nonlinear_text.empty() ? "" : "_nonlinear_convergence_" + nonlinear_text) + extension;
 }
 
 dynamics::SimulationOptions Options(dynamics::Integrator integrator, double rtol) {
@@ -383,6 +397,8 @@ void Integrators(const Setup& setup) {
     for (double rtol : rtols) {
       auto o = Options(m == 2 ? Integrator::kArkodeErk : Integrator::kCvodeBdf, rtol);
       o.analytic_jacobian = m == 0;
+      if (m < 2 && max_order_option > 0) o.max_order = max_order_option;
+      if (m < 2 && nonlinear_option > 0) o.nonlinear_convergence = nonlinear_option;
       Run r = Simulate(c.model, o, c.d0, c.times, names[m]);
       Judge(&r, ref.trace);
       Print(r);
@@ -518,7 +534,8 @@ int main(int argc, char** argv) {
   const char* usage =
       "usage: dynamic_work_precision integrators|backends [--out DIR] [--cycles N] [--start-cycle "
       "K] "
-      "[--rtol R] [--time-limit S] [--rate-scale X]\n";
+      "[--rtol R] [--time-limit S] [--rate-scale X] [--max-order N] [--nonlinear-convergence "
+      "C]\n";
   if (argc < 2) {
     std::fputs(usage, stderr);
     return 2;
@@ -552,6 +569,16 @@ int main(int argc, char** argv) {
         rate_scale_text = value;
         if (!(rate_scale_option > 0))
           throw std::invalid_argument("--rate-scale = " + value + ": must be > 0 [1/s]");
+      } else if (key == "--max-order") {
+        max_order_option = std::stoi(value);
+        if (max_order_option < 1 || max_order_option > 5)
+          throw std::invalid_argument("--max-order = " + value + ": must lie in 1..5");
+      } else if (key == "--nonlinear-convergence") {
+        nonlinear_option = std::stod(value);
+        nonlinear_text = value;
+        if (!(nonlinear_option > 0 && nonlinear_option <= 1))
+          throw std::invalid_argument("--nonlinear-convergence = " + value +
+                                      ": must lie in (0, 1]");
       } else if (key == "--time-limit") {
         setup.time_limit = std::stod(value);
         if (!(setup.time_limit > 0))

@@ -346,7 +346,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     e.report = {};
     e.report.message = std::move(kept);
   }
-  e.geometry = model_.Terms(e.poses, &e.terms);
+  e.geometry = model_.Terms(e.poses, &e.terms, &w.tip_rounds);
   if (!e.geometry.ok()) {
     // A pose the stage cannot be evaluated at (a trial step that swung a member past where its
     // meshes have a line of action or its contacts lie on the tables' flank grids): recoverable,

@@ -50,6 +50,8 @@ void SimulationOptions::Validate() const {
   if (!(time_limit >= 0) || !std::isfinite(time_limit))
     fail("time_limit", time_limit, "must be >= 0 and finite");
   if (max_order < 1 || max_order > 5) fail("max_order", max_order, "must lie in 1..5");
+  if (!(nonlinear_convergence > 0 && nonlinear_convergence <= 1))
+    fail("nonlinear_convergence", nonlinear_convergence, "must lie in (0, 1]");
   contact.Validate();
 }
 
@@ -127,6 +129,9 @@ int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
     out[2 * c.n + 1] = c.scratch.dissipated_power;
     out[2 * c.n + 2] = c.scratch.contact_power;
     std::swap(c.warm, c.scratch);
+    // The search's tip-round reuse stays with the work space of the next evaluation: its poses
+    // are this one's neighbours (fewer refreshes than keeping one per Evaluation).
+    std::swap(c.warm.work.tip_rounds, c.scratch.work.tip_rounds);
     c.warm_t = t;
     c.warm_y = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(y), 2 * c.n);
     c.warm_valid = true;
@@ -283,6 +288,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     // default 10 error-test failures before it gives up.
     Check(CVodeSetMaxErrTestFails(s.cvode, 20), "CVodeSetMaxErrTestFails");
     Check(CVodeSetMaxOrd(s.cvode, options.max_order), "CVodeSetMaxOrd");
+    Check(CVodeSetNonlinConvCoef(s.cvode, options.nonlinear_convergence), "CVodeSetNonlinConvCoef");
     Check(CVodeSetStabLimDet(s.cvode, options.stability_limit_detection ? SUNTRUE : SUNFALSE),
           "CVodeSetStabLimDet");
     Check(CVodeSetMaxConvFails(s.cvode, 50), "CVodeSetMaxConvFails");

@@ -222,6 +222,31 @@ FlankReach ReachOf(const PosedGear& g, int side, const Vec2& reference, double r
   return r;
 }
 
+// The interval [u0_lo, u0_hi] that holds the roll lattice's u0 = roll + HΔ, Δ = atan t (the
+// alternating series' bracket above, |t| ≤ 1).
+void LatticeRolls(const FlankReach& f, double t, double* u0_lo, double* u0_hi) {
+  const double a = std::abs(t), a2 = a * a;
+  const double atan_hi = a * (1.0 - a2 * (1.0 / 3.0 - a2 / 5.0)),
+               atan_lo = atan_hi - a * a2 * a2 * a2 / 7.0;
+  const double turn_lo = t < 0 ? -atan_hi : atan_lo, turn_hi = t < 0 ? -atan_lo : atan_hi;
+  *u0_lo = f.roll + (f.hand > 0 ? turn_lo : -turn_hi);
+  *u0_hi = f.roll + (f.hand > 0 ? turn_hi : -turn_lo);
+}
+
+// Whether a roll of the lattice u0 + j p, u0 in [u0_lo, u0_hi], falls where a hit needs it for a
+// tangent length L in [l_lo, l_hi]: r_b u = L + h d with d in [d_lo, d_hi] and u in [u_min, u_max],
+// widened to where the lattice point u + H·offset of a tooth turned by its offset sits.
+bool LatticeMeetsWindow(const FlankReach& f, double u0_lo, double u0_hi, double l_lo, double l_hi) {
+  const double rb = f.base_radius;
+  const double w_lo =
+      std::max((l_lo + (f.flank_hand > 0 ? f.d_lo : -f.d_hi)) / rb, f.u_min) - f.widen;
+  const double w_hi =
+      std::min((l_hi + (f.flank_hand > 0 ? f.d_hi : -f.d_lo)) / rb, f.u_max) + f.widen;
+  // Some j with u0 + j p in [w_lo, w_hi] for some u0 in [u0_lo, u0_hi]: an integer j in
+  // [(w_lo − u0_hi)/p, (w_hi − u0_lo)/p], i.e. the upper end's floor at or above the lower end.
+  return static_cast<double>(Floor((w_hi - u0_lo) / f.pitch)) >= (w_lo - u0_hi) / f.pitch;
+}
+
 // False only if no flank of the mate can come within ρ + window of a round centred at c (above).
 bool MayReach(const FlankReach& f, const Vec2& c) {
   const Vec2 rel = c - f.centre;
@@ -232,19 +257,49 @@ bool MayReach(const FlankReach& f, const Vec2& c) {
   const Vec2 e = rb * rel + (f.hand * l) * Vec2(-rel.y(), rel.x());
   const double sn = Cross(f.reference, e), cs = f.reference.dot(e);
   if (!(cs > 0) || std::abs(sn) > cs) return true;
-  const double t = sn / cs, a = std::abs(t), a2 = a * a;
-  const double atan_hi = a * (1.0 - a2 * (1.0 / 3.0 - a2 / 5.0)),
-               atan_lo = atan_hi - a * a2 * a2 * a2 / 7.0;
-  const double turn_lo = t < 0 ? -atan_hi : atan_lo, turn_hi = t < 0 ? -atan_lo : atan_hi;
-  const double u0_lo = f.roll + (f.hand > 0 ? turn_lo : -turn_hi);
-  const double u0_hi = f.roll + (f.hand > 0 ? turn_hi : -turn_lo);
-  // Rolls of a hit, r_b u = L + h d with d in [d_lo, d_hi] and u in [u_min, u_max], and where the
-  // lattice point u + H·offset of a tooth turned by its offset sits.
-  const double w_lo = std::max((l + (f.flank_hand > 0 ? f.d_lo : -f.d_hi)) / rb, f.u_min) - f.widen;
-  const double w_hi = std::min((l + (f.flank_hand > 0 ? f.d_hi : -f.d_lo)) / rb, f.u_max) + f.widen;
-  // Some j with u0 + j p in [w_lo, w_hi] for some u0 in [u0_lo, u0_hi]: an integer j in
-  // [(w_lo − u0_hi)/p, (w_hi − u0_lo)/p], i.e. the upper end's floor at or above the lower end.
-  return static_cast<double>(Floor((w_hi - u0_lo) / f.pitch)) >= (w_lo - u0_hi) / f.pitch;
+  double u0_lo = 0, u0_hi = 0;
+  LatticeRolls(f, sn / cs, &u0_lo, &u0_hi);
+  return LatticeMeetsWindow(f, u0_lo, u0_hi, l, l);
+}
+
+// MayReach for every centre within `eps` of c [m] with the mate turned by at most `turn` [rad]
+// (TipRoundReuse): false only if no such centre's round can reach the mate. A hit of lattice
+// roll u = u0 + j p needs r_b u = L + h d, d in [d_lo, d_hi], and u in [u_min, u_max] (each
+// widened as in MayReach). Written with g = u0 − L/r_b, the first is g + j p in [h d/r_b] and
+// the second g + j p + L/r_b in [u_min, u_max]. g = H(ψ − S_0), ψ = β − H L/r_b the start angle of
+// the involute of the mate's base circle through c, and |∇ψ| = 1/r_b exactly (radially
+// ∂ψ/∂r = −H L/(r r_b), across 1/r, and L² + r_b² = r²): the involutes are parallel curves. So
+// over |Δc| ≤ ε (the ball outside the base circle, r − ε > r_b), with the mate turned by Δθ
+// (S_0 turns with it), |Δg| ≤ ε/r_b + |Δθ|. For the flank range only, L moves by at most
+//   |ΔL| ≤ ε max r/L ≤ ε (r + ε)/L_min,  L_min = √((r − ε)² − r_b²),
+// and a centre that could come within 2(ρ + window) of the base circle along the tangent (where
+// the full search tries the second tangent) counts as reaching.
+bool MayReachWithin(const FlankReach& f, const Vec2& c, double eps, double turn) {
+  const Vec2 rel = c - f.centre;
+  const double rb = f.base_radius, r = rel.norm();
+  if (!(r - eps > rb)) return true;
+  const double l = std::sqrt(r * r - rb * rb);
+  const double l_min = std::sqrt((r - eps) * (r - eps) - rb * rb);
+  const double dl = eps * (r + eps) / l_min;
+  if (!(l - dl > 0) || !((l - dl) * (l - dl) > f.near_base)) return true;
+  const Vec2 e = rb * rel + (f.hand * l) * Vec2(-rel.y(), rel.x());
+  const double sn = Cross(f.reference, e), cs = f.reference.dot(e);
+  if (!(cs > 0) || std::abs(sn) > cs) return true;
+  double u0_lo = 0, u0_hi = 0;
+  LatticeRolls(f, sn / cs, &u0_lo, &u0_hi);
+  const double dg = eps / rb + turn;
+  const double g_lo = u0_lo - l / rb - dg, g_hi = u0_hi - l / rb + dg;
+  // g + j p within the distances a hit needs (h d/r_b, widened), and g + j p + L/r_b within the
+  // flank's rolls (widened by |ΔL|/r_b too).
+  const double a_lo = (f.flank_hand > 0 ? f.d_lo : -f.d_hi) / rb - f.widen;
+  const double a_hi = (f.flank_hand > 0 ? f.d_hi : -f.d_lo) / rb + f.widen;
+  const double range_lo = f.u_min - f.widen - dl / rb, range_hi = f.u_max + f.widen + dl / rb;
+  const long j_lo = Ceil((a_lo - g_hi) / f.pitch), j_hi = Floor((a_hi - g_lo) / f.pitch);
+  for (long j = j_lo; j <= j_hi; ++j) {
+    const double shift = static_cast<double>(j) * f.pitch + l / rb;
+    if (g_hi + shift >= range_lo && g_lo + shift <= range_hi) return true;
+  }
+  return false;
 }
 
 // The tip round of tooth k, side σ, in the inertial frame: its centre (`rotation` is
@@ -468,14 +523,75 @@ std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& 
   return out;
 }
 
+namespace {
+
+// Whether the poses lie within the budget of the last refresh, for the same gears and options.
+bool WithinBudget(const TipRoundReuse& r, const PosedGear& a, const PosedGear& b, bool internal,
+                  const ContactSearchOptions& options) {
+  return r.valid && r.gear_a == a.gear && r.gear_b == b.gear && r.internal == internal &&
+         r.gap_window == options.gap_window && r.both_sides == options.both_sides &&
+         r.side_a == options.side_a &&
+         (a.pose.geometric_centre - r.pose_a.geometric_centre).norm() <= r.centre_budget &&
+         (b.pose.geometric_centre - r.pose_b.geometric_centre).norm() <= r.centre_budget &&
+         std::abs(a.pose.rotation - r.pose_a.rotation) <= r.turn_budget_a &&
+         std::abs(b.pose.rotation - r.pose_b.rotation) <= r.turn_budget_b;
+}
+
+// The largest distance of a gear's material points from its geometric centre [m].
+double OuterRadius(const Gear& g) { return std::max(g.tip_radius(), g.root_radius()); }
+
+// A refresh: notes P0, the options and the budgets in `r`, and sets owner_roll[0], [1] to how far
+// a tooth of A, of B may move in roll on the line of action within the budget: the line's base
+// angle pitch_dir ∓ α moves with the centre line dv (|Δdv| ≤ 2D): |Δ pitch_dir| ≤ 2D/(a − 2D),
+// |Δα| ≤ 2D k/(a_min √(a_min² − k²)) (α = acos(k/a), a_min = a − 2D), and the tooth turns with
+// its gear.
+void BeginRefresh(TipRoundReuse* keep, const PosedGear& a, const PosedGear& b, bool internal,
+                  const ContactSearchOptions& options, const CentreLine& centre_line,
+                  double owner_roll[2]) {
+  TipRoundReuse& r = *keep;
+  ++r.refreshes;
+  r.valid = false;
+  r.gear_a = a.gear;
+  r.gear_b = b.gear;
+  r.internal = internal;
+  r.gap_window = options.gap_window;
+  r.both_sides = options.both_sides;
+  r.side_a = options.side_a;
+  r.pose_a = a.pose;
+  r.pose_b = b.pose;
+  const double d = r.budget;
+  r.centre_budget = d;
+  r.turn_budget_a = d / OuterRadius(*a.gear);
+  r.turn_budget_b = d / OuterRadius(*b.gear);
+  const double k = centre_line.dist * centre_line.cos_alpha, a_min = centre_line.dist - 2.0 * d;
+  const bool bounded = a_min > k && d >= 0;
+  const double line_turn =
+      bounded ? 2.0 * d / a_min + 2.0 * d * k / (a_min * std::sqrt(a_min * a_min - k * k))
+              : INFINITY;
+  owner_roll[0] = line_turn + r.turn_budget_a;
+  owner_roll[1] = line_turn + r.turn_budget_b;
+}
+
+}  // namespace
+
 void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
-                    const ContactSearchOptions& options, std::vector<PotentialContact>* out) {
+                    const ContactSearchOptions& options, std::vector<PotentialContact>* out,
+                    TipRoundReuse* reuse) {
   const double window = options.gap_window;
   const Vec2 oa = a.pose.rotation_centre, ob = b.pose.rotation_centre;
   const double ring_sign = internal ? -1.0 : 1.0;  // B's curvature: a ring's flank is concave
   const int sides[2] = {options.both_sides ? 1 : options.side_a, -1};
   const CentreLine centre_line = MakeCentreLine(a, b, internal);
   const Vec2 rotation_a = Dir(a.pose.rotation), rotation_b = Dir(b.pose.rotation);
+  // Tip rounds reused under a pose bound (TipRoundReuse; docs/dynamic_cost.md).
+  TipRoundReuse* keep = options.exhaustive_tips ? nullptr : reuse;
+  const bool refresh = keep != nullptr && !WithinBudget(*keep, a, b, internal, options);
+  double owner_roll[2] = {0, 0};
+  if (refresh) {
+    BeginRefresh(keep, a, b, internal, options, centre_line, owner_roll);
+  } else if (keep != nullptr) {
+    ++keep->reuses;
+  }
   for (int si = 0; si < (options.both_sides ? 2 : 1); ++si) {
     const int side_a = sides[si];
     const LineOfAction l = LineOnSide(a, b, internal, centre_line, side_a);
@@ -525,11 +641,54 @@ void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
                     int owner_side, int other_side, double base_angle, double other_base_angle,
                     const Vec2& other_reference, bool owner_is_a) {
       if (!owner.gear->has_tip_round()) return;
+      TipRoundReuse::Rounds* known =
+          keep != nullptr ? &keep->rounds[si][owner_is_a ? 0 : 1] : nullptr;
+      if (known != nullptr && !refresh && known->usable &&
+          std::all_of(known->dead, known->dead + known->count, [](bool d) { return d; })) {
+        ++keep->skipped;
+        return;
+      }
       const double p = owner.gear->pitch_angle();
       const double rho = owner.gear->tip_round().radius;
       const WorldInvolute f0 = NominalFlank(owner, 0, owner_side);
       const double u0 = f0.hand * WrapAngle(base_angle - f0.start);
       const double u_tip = owner.gear->internal() ? f0.u_min : f0.u_max;
+      if (refresh) {
+        // The rounds that can be candidates anywhere within the budget (the window of rolls
+        // widened by the owner's roll bound), and which of them cannot reach the mate there: a
+        // round centre moves by at most 2D + D (both centres, the owner's turn at its outer
+        // radius) relative to the mate's centre, and the mate turns by at most its budget.
+        TipRoundReuse::Rounds& k = *known;
+        k = {};
+        const double widen = owner_roll[owner_is_a ? 0 : 1];
+        k.usable = widen < 0.5 * p;
+        if (k.usable) {
+          ForEachRoll(u0, p, u_tip - p - widen, u_tip + p + widen, [&](double, long j) {
+            if (k.count < 3)
+              k.teeth[k.count++] = Mod(-f0.hand * j, owner.gear->teeth());
+            else
+              k.usable = false;
+          });
+        }
+        if (k.usable) {
+          const FlankReach reach =
+              ReachOf(other, other_side, other_reference, other_base_angle, rho, window);
+          const double eps = 3.0 * keep->centre_budget;
+          const double turn = owner_is_a ? keep->turn_budget_b : keep->turn_budget_a;
+          for (int t = 0; t < k.count; ++t)
+            k.dead[t] = !MayReachWithin(
+                reach, TipRoundCentre(owner, rotation, k.teeth[t], owner_side), eps, turn);
+        }
+      }
+      auto skipped = [&](int tooth) {
+        if (known == nullptr || !known->usable) return false;
+        for (int t = 0; t < known->count; ++t) {
+          if (known->teeth[t] != tooth) continue;
+          keep->skipped += known->dead[t];
+          return known->dead[t];
+        }
+        return false;
+      };
       // At most three rolls fall in a window two pitches wide: no allocation for them.
       std::vector<int> all;
       int near[3], count = 0;
@@ -551,6 +710,7 @@ void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
       const FlankReach reach =
           ReachOf(other, other_side, other_reference, other_base_angle, rho, window);
       for (const int tooth : teeth) {
+        if (skipped(tooth)) continue;
         const Vec2 centre = TipRoundCentre(owner, rotation, tooth, owner_side);
         if (!options.exhaustive_tips && !MayReach(reach, centre)) continue;
         const NormalSpan span = TipRoundNormals(owner, tooth, owner_side);
@@ -598,6 +758,7 @@ void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
     tips(a, rotation_a, b, l.side_a, l.side_b, l.base_angle_a, l.base_angle_b, ref_b, true);
     tips(b, rotation_b, a, l.side_b, l.side_a, l.base_angle_b, l.base_angle_a, ref_a, false);
   }
+  if (refresh) keep->valid = true;
 }
 
 }  // namespace epicycle::geometry

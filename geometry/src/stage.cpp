@@ -287,12 +287,12 @@ std::vector<PotentialContact> Stage::Contacts(const StagePoses& p, int planet, M
 }
 
 void Stage::AppendContacts(const StagePoses& p, int planet, MeshKind kind,
-                           const ContactSearchOptions& options,
-                           std::vector<PotentialContact>* out) const {
+                           const ContactSearchOptions& options, std::vector<PotentialContact>* out,
+                           TipRoundReuse* reuse) const {
   if (kind == MeshKind::kSunPlanet) {
-    geometry::AppendContacts(Sun(p), Planet(p, planet), false, options, out);
+    geometry::AppendContacts(Sun(p), Planet(p, planet), false, options, out, reuse);
   } else {
-    geometry::AppendContacts(Planet(p, planet), Ring(p), true, options, out);
+    geometry::AppendContacts(Planet(p, planet), Ring(p), true, options, out, reuse);
   }
 }
 

@@ -84,9 +84,11 @@ ContactTerms StageModel::Terms(const geometry::StagePoses& poses) const {
   return t;
 }
 
-StageOutcome StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* terms) const {
+StageOutcome StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* terms,
+                               std::vector<geometry::TipRoundReuse>* reuse) const {
   ContactTerms& t = *terms;
-  if (StageOutcome o = SearchStage(stage_, poses, setup_.gap_window, &t.contacts); !o.ok()) return o;
+  if (StageOutcome o = SearchStage(stage_, poses, setup_.gap_window, &t.contacts, reuse); !o.ok())
+    return o;
   const int n = t.size();
   t.overlap.resize(n);
   for (int j = 0; j < n; ++j) t.overlap(j) = t.contacts[j].contact.overlap;

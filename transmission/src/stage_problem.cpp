@@ -99,7 +99,10 @@ std::vector<StageContact> SearchStage(const geometry::Stage& stage,
 }
 
 StageOutcome SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses,
-                         double gap_window, std::vector<StageContact>* contacts) {
+                         double gap_window, std::vector<StageContact>* contacts,
+                         std::vector<geometry::TipRoundReuse>* reuse) {
+  if (reuse != nullptr && reuse->size() != static_cast<std::size_t>(2 * stage.planets()))
+    reuse->resize(static_cast<std::size_t>(2 * stage.planets()));
   std::vector<StageContact>& out = *contacts;
   out.clear();
   out.reserve(8 * stage.planets());  // a few per mesh and flank side: one allocation
@@ -121,7 +124,10 @@ StageOutcome SearchStage(const geometry::Stage& stage, const geometry::StagePose
                     "(a planet or the sun moved far from its place)"};
       }
       found.clear();
-      stage.AppendContacts(poses, i, kind, opt, &found);
+      stage.AppendContacts(poses, i, kind, opt, &found,
+                           reuse != nullptr
+                               ? &(*reuse)[static_cast<std::size_t>(geometry::MeshIndex(i, kind))]
+                               : nullptr);
       for (const PotentialContact& c : found) {
         StageContact s;
         s.contact = c;

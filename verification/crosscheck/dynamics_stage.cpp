@@ -425,6 +425,14 @@ TEST_CASE(
     so.time_limit = -1;
     const std::string m = Thrown([&] { so.Validate(); });
     CHECK(m.find("time_limit = -1") != std::string::npos);
+    so.time_limit = 0;
+    for (const double bad : {0.0, 1.5, std::nan("")}) {
+      so.nonlinear_convergence = bad;
+      const std::string n = Thrown([&] { so.Validate(); });
+      INFO(n);
+      CHECK(n.find("nonlinear_convergence") != std::string::npos);
+      CHECK(n.find("(0, 1]") != std::string::npos);
+    }
   }
   SECTION("a run that fails midway") {
     transmission::Scene scene = transmission::ParseScene(paper, "paper");

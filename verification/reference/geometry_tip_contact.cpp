@@ -106,19 +106,10 @@ TEST_CASE("the tip rounds tried are all that can touch (against trying every too
   // With errors that move the centres and turn the gears off their kinematic phase; the exhaustive
   // search also skips the pre-filter of the rounds tried (contact.cpp, FlankReach), whose window
   // is wider for a relieved mate and for teeth turned by pitch deviations: once more with those.
-  // Relief given by roll angle and ISO 1328-1 pitch deviations of a grade, as a scene's
-  // [<gear>.modification] and [<gear>.pitch] tables set them.
-  const auto modify = [](StageSpec& s) {
-    using epicycle::test::ReliefStartRadius;
-    s.sun.modification.tip = {8e-6, ReliefStartRadius(s.sun, 30.0), ReliefShape::kLinear};
-    s.sun.modification.root = {5e-6, ReliefStartRadius(s.sun, 20.0), ReliefShape::kLinear};
-    s.sun.pitch_deviations = iso::RandomPitchDeviations(s.sun.teeth, s.sun.module, 6, 3);
-    s.planet.modification.tip = {10e-6, ReliefStartRadius(s.planet, 30.0), ReliefShape::kParabolic};
-    s.planet.pitch_deviations = iso::RandomPitchDeviations(s.planet.teeth, s.planet.module, 7, 5);
-  };
+  // Relief and pitch deviations as a scene sets them (test::AddReliefAndPitchDeviations).
   for (const bool relieved : {false, true}) {
     auto scene = epicycle::test::PaperStage();
-    if (relieved) modify(scene.stage);
+    if (relieved) epicycle::test::AddReliefAndPitchDeviations(scene.stage);
     REQUIRE((scene.stage.planet.modification.tip.amount > 0) == relieved);
     scene.stage.planet_runouts.assign(3, Runout{});
     scene.stage.planet_runouts[0] = Runout{40e-6, 1.0};

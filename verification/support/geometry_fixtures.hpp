@@ -132,6 +132,20 @@ inline double ReliefStartRadius(const geometry::GearSpec& g, double roll_deg) {
          std::hypot(1.0, geometry::Rad(roll_deg));
 }
 
+/// Tip and root relief given by roll angle on the sun, tip relief on the planet, and ISO 1328-1
+/// pitch deviations of grades 6 (sun) and 7 (planet), as a scene's [<gear>.modification] and
+/// [<gear>.pitch] tables set them: the modifications that widen the contact search's tip-round
+/// filter (a relieved mate, teeth turned by their offsets).
+inline void AddReliefAndPitchDeviations(geometry::StageSpec& s) {
+  using geometry::ReliefShape;
+  s.sun.modification.tip = {8e-6, ReliefStartRadius(s.sun, 30.0), ReliefShape::kLinear};
+  s.sun.modification.root = {5e-6, ReliefStartRadius(s.sun, 20.0), ReliefShape::kLinear};
+  s.sun.pitch_deviations = geometry::iso::RandomPitchDeviations(s.sun.teeth, s.sun.module, 6, 3);
+  s.planet.modification.tip = {10e-6, ReliefStartRadius(s.planet, 30.0), ReliefShape::kParabolic};
+  s.planet.pitch_deviations =
+      geometry::iso::RandomPitchDeviations(s.planet.teeth, s.planet.module, 7, 5);
+}
+
 /// Every potential contact of every mesh of the stage at poses p: f(a, b, kind, contact), with a
 /// and b the mesh's first and second gear (sun–planet i, or planet i–ring).
 template <typename F>

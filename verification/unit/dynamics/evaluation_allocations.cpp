@@ -172,6 +172,11 @@ TEST_CASE("a warm evaluation of the run-out case allocates nothing", "[unit][dyn
     CHECK((pair[0].acceleration - before).norm() <= 1e-9 * before.norm());
     CHECK(counted == 0);
     if (friction) CHECK(pair[0].friction.cwiseAbs().maxCoeff() > 0);
+    // The count sees the evaluation's own buffers: the same evaluation into a fresh work space
+    // (no poses, search, compliance or tip-round buffers kept) allocates.
+    dynamics::Evaluation fresh;
+    CHECK(AllocationsDuring(
+              [&] { model->Evaluate(times[0], d, v, *solver, {}, &pair[1], &fresh, false); }) > 0);
   }
 }
 

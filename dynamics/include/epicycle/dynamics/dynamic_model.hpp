@@ -80,6 +80,9 @@ struct EvaluationWorkspace {
   std::vector<Eigen::Vector2d> body_force;  ///< mesh force per body [N]
   std::vector<double> body_moment;          ///< mesh moment per body about its centre [N·m]
   std::vector<double> mesh_load;            ///< Σ F per mesh (2 per planet) [N]
+  /// Per mesh, the tip rounds the search proved out of reach near the last refresh's poses
+  /// (geometry::TipRoundReuse): the same contacts with fewer rounds tried.
+  std::vector<geometry::TipRoundReuse> tip_rounds;
 };
 
 /// What one evaluation of the right-hand side computed (also the outputs of a step).

@@ -52,6 +52,10 @@ struct SimulationOptions {
   /// CVODE: largest BDF order (1..5). Orders above 2 are not A-stable: lightly damped stiff modes
   /// (mesh modes of kHz at a mesh frequency of Hz) then cap the step unless the order drops.
   int max_order = 5;
+  /// CVODE: the safety factor of the Newton iteration's convergence test (CVodeSetNonlinConvCoef):
+  /// a step's nonlinear solve stops when its estimated error, in the error test's weighted norm,
+  /// is below this [-]. CVODE's default 0.1; in (0, 1].
+  double nonlinear_convergence = 0.1;
   /// CVODE's BDF stability-limit detection (drops the order when the step nears the stability
   /// boundary of an oscillatory mode).
   bool stability_limit_detection = true;

@@ -104,6 +104,47 @@ struct ContactSearchOptions {
 /// (an integrator's trial step) asks first.
 bool HasLineOfAction(const PosedGear& a, const PosedGear& b, bool internal);
 
+/// What AppendContacts keeps of one mesh between calls so that it skips the tip rounds that
+/// provably cannot reach the mate while the gears stay near where they were (docs/dynamic_cost.md,
+/// "Tip rounds reused under a pose bound"). At a refresh (the first call, a changed gear, window or
+/// side, or a pose outside the budget) the search notes the poses P0 and, for each flank side and
+/// each gear's rounds, the teeth whose round could become a candidate within the budget, and
+/// which of them cannot reach the mate anywhere within it. Until the next refresh a call whose
+/// every geometric centre lies within `centre_budget` of P0's and whose rotations lie within
+/// `turn_budget_a`, `turn_budget_b` of P0's skips those rounds: the contacts it appends are the
+/// ones a search without reuse appends, in the same order. Owned by the caller, one per mesh
+/// (e.g. per thread, or per right-hand-side work space); the statistics are the caller's to read.
+struct TipRoundReuse {
+  /// The budget D [m]: each gear may turn by D over its largest radius and its geometric centre
+  /// move by D before a refresh. Larger: fewer refreshes, more rounds that may reach within it.
+  double budget = 100e-6;
+  // Set by the search.
+  bool valid = false;
+  const Gear* gear_a = nullptr;
+  const Gear* gear_b = nullptr;
+  bool internal = false;
+  double gap_window = 0;
+  bool both_sides = true;
+  int side_a = 1;
+  GearPose pose_a, pose_b;   ///< P0
+  double centre_budget = 0;  ///< [m]
+  double turn_budget_a = 0;  ///< [rad]
+  double turn_budget_b = 0;  ///< [rad]
+  /// One flank side's rounds of one gear: the teeth that can be candidates within the budget
+  /// (at most three) and whether each cannot reach the mate within it; `usable` false if the
+  /// budget admitted more candidates than that (then nothing is skipped).
+  struct Rounds {
+    bool usable = false;
+    int count = 0;
+    int teeth[3] = {0, 0, 0};
+    bool dead[3] = {false, false, false};
+  };
+  Rounds rounds[2][2];  ///< [side index][0: A's rounds, 1: B's]
+  long refreshes = 0;   ///< calls that refreshed
+  long reuses = 0;      ///< calls within the budget of the last refresh
+  long skipped = 0;     ///< rounds skipped (a gear's rounds on a side skipped at once count 1)
+};
+
 /// Every potential contact between A and B (internal: B is the ring, A a planet inside it).
 /// Relief and pitch deviations enter the geometry: on the line of action the overlap is the
 /// involutes' minus C_A(u_A) + C_B(u_B) (exact along the line, whose direction stays the contact
@@ -113,7 +154,10 @@ bool HasLineOfAction(const PosedGear& a, const PosedGear& b, bool internal);
 std::vector<PotentialContact> FindContacts(const PosedGear& a, const PosedGear& b, bool internal,
                                            const ContactSearchOptions& options);
 /// FindContacts appending to `out`: a caller that searches many meshes reuses one vector.
+/// With `reuse` (not null, and options.exhaustive_tips false), the tip rounds it proves out of
+/// reach are skipped (TipRoundReuse); the contacts are the same.
 void AppendContacts(const PosedGear& a, const PosedGear& b, bool internal,
-                    const ContactSearchOptions& options, std::vector<PotentialContact>* out);
+                    const ContactSearchOptions& options, std::vector<PotentialContact>* out,
+                    TipRoundReuse* reuse = nullptr);
 
 }  // namespace epicycle::geometry

@@ -118,10 +118,11 @@ class Stage {
   /// The potential contacts of one mesh (planet i; sun mesh or ring mesh).
   std::vector<PotentialContact> Contacts(const StagePoses& p, int planet, MeshKind kind,
                                          const ContactSearchOptions& options) const;
-  /// The same, appended to `out`.
+  /// The same, appended to `out`; with `reuse`, the mesh's tip rounds reused under a pose bound
+  /// (geometry::TipRoundReuse, one per mesh), the same contacts.
   void AppendContacts(const StagePoses& p, int planet, MeshKind kind,
-                      const ContactSearchOptions& options,
-                      std::vector<PotentialContact>* out) const;
+                      const ContactSearchOptions& options, std::vector<PotentialContact>* out,
+                      TipRoundReuse* reuse = nullptr) const;
   /// Whether the mesh's gears admit a line of action at these poses (geometry::HasLineOfAction):
   /// Contacts and AppendContacts throw std::invalid_argument for a mesh that does not.
   bool HasLineOfAction(const StagePoses& p, int planet, MeshKind kind) const;

@@ -99,9 +99,13 @@ class StageModel {
   /// returns anew), with every contact on a pitted flank split into its strips (its rows of C
   /// repeated, its gap grown by the depth, its local term of the strip's width: docs/model.md §9,
   /// "Pitting and spalls"), or with slices of the face width every contact split into its slices
-  /// (face_width.hpp, docs/model.md §10; the pits lower the slices they cover), or the geometric outcome that prevents them (kNoLineOfAction, kOffFlankGrid,
-  /// kNoReducedRadius, naming the mesh or contact; `terms` is then incomplete).
-  [[nodiscard]] StageOutcome Terms(const geometry::StagePoses& poses, ContactTerms* terms) const;
+  /// (face_width.hpp, docs/model.md §10; the pits lower the slices they cover), or the geometric
+  /// outcome that prevents them (kNoLineOfAction, kOffFlankGrid, kNoReducedRadius, naming the mesh
+  /// or contact; `terms` is then incomplete). With `reuse` (kept by the caller between calls, e.g.
+  /// a right-hand side's work space), the search reuses each mesh's tip rounds under a pose bound
+  /// (SearchStage): the same terms.
+  [[nodiscard]] StageOutcome Terms(const geometry::StagePoses& poses, ContactTerms* terms,
+                                   std::vector<geometry::TipRoundReuse>* reuse = nullptr) const;
   /// The same as a value, for poses that must work (the reference configuration).
   /// @throws std::runtime_error with the outcome's message if they do not.
   ContactTerms Terms(const geometry::StagePoses& poses) const;

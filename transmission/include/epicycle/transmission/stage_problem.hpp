@@ -97,9 +97,12 @@ int CarryForces(const std::vector<StageContact>& from, const Eigen::VectorXd& fo
 std::vector<StageContact> SearchStage(const geometry::Stage& stage,
                                       const geometry::StagePoses& poses, double gap_window);
 /// The same into `out` (cleared first; its capacity is reused); kNoLineOfAction (naming the mesh)
-/// if the poses place a mesh's base circles so that it has no line of action.
+/// if the poses place a mesh's base circles so that it has no line of action. With `reuse`, each
+/// mesh's tip rounds are reused under a pose bound (geometry::TipRoundReuse, one per mesh in the
+/// order of geometry::MeshIndex; sized here): the same contacts.
 StageOutcome SearchStage(const geometry::Stage& stage, const geometry::StagePoses& poses,
-                         double gap_window, std::vector<StageContact>* out);
+                         double gap_window, std::vector<StageContact>* out,
+                         std::vector<geometry::TipRoundReuse>* reuse = nullptr);
 
 /// Friction forces of a state's contacts for the root stresses: φ_j [N] on body B along the unit
 /// tangent t_j (inertial frame), on body A along −t_j (contact_kinematics.hpp, FrictionForce),
