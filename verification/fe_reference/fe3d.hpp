@@ -1,9 +1,8 @@
 // The FE contact reference across the face width (docs/fe_reference.md, "3D reference across the
 // face width"): the pair of the plane reference (fe_deck.hpp) extruded over the face width b into
 // layers of 15-node wedges, with gear 2's axis turned in the plane of action, so that the load per
-// unit width along the face, the face-load factor K_Hβ and the stiffness per unit width in the
-// middle of the face come from a full 3D contact analysis (docs/model.md §10, "Face-load
-// distribution").
+// unit width along the face, the face-load factor K_Hβ = max q / mean q (ISO 6336-1) and the
+// stiffness per unit width in the middle of the face come from a full 3D contact analysis.
 //
 // The deck (units mm, N, MPa): each gear a sector of teeth (the loaded ones and `sector_teeth`
 // either side, closed along the root circle) down to its hub circle (ring: rim), meshed by gmsh in
@@ -39,7 +38,8 @@ struct Fe3dOptions {
   int layers = 10;          ///< N_z wedge layers of thickness b/N_z, one axial station each [-]
   double misalignment = 0;  ///< F_β [m], the rigid gap's change from z = 0 to z = b
   int sector_teeth = 1;     ///< teeth modelled either side of the loaded ones [-]
-  /// u_z = 0 at every node of a one-layer deck: the plane-strain model on the same plane mesh.
+  /// u_z = 0 at every node: the plane-strain model on the same plane mesh (with one layer the
+  /// plane deck; with more, the same field, a check of the layers' contact pairs).
   bool plane_strain = false;
   FeMeshOptions mesh = Fe3dDefaultMesh();
   /// The plane reference's contact law; a 60 µm window keeps the one tooth pair of a
@@ -72,9 +72,9 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
 
 /// The load across the face at the scene's torque.
 struct Fe3dLineLoad {
-  double angle = 0;         ///< gear-1 position [rad]
-  double face_width = 0;    ///< b [m]
-  double misalignment = 0;  ///< F_β [m]
+  double angle = 0;                   ///< gear-1 position [rad]
+  double face_width = 0;              ///< b [m]
+  double misalignment = 0;            ///< F_β [m]
   std::vector<double> z_lo, z_hi, z;  ///< each station's ends and centre [m]
   std::vector<double> line_load;      ///< q_l = F_l/Δz_l [N/m]
   double rotation = 0;                ///< θ at T [rad]

@@ -1,14 +1,15 @@
 // The 3D FE reference's parts that need no ccx (docs/fe_reference.md, "3D reference across the
 // face width"):
-//  - SliceApproach, the uncoupled-slice estimate of the steps, against the closed forms of
-//    docs/model.md §10 ("Face-load distribution"): the peak line load c′(δ + F_β/2) over the mean
-//    F/b is K_Hβ = 1 + c′ F_β b/(2F) while the whole face carries load and √(2 c′ F_β b/F) once
-//    part of it lifts off; and ∫ c′(δ − g)₊ dz = F by quadrature (midpoint rule on 10⁵ cells:
-//    the integrand is piecewise linear with one kink, error ≤ F_β c′ b/10⁵ per cell edge, 1e-9
-//    relative here).
+//  - SliceApproach, the uncoupled-slice estimate of the steps, against the closed forms of ISO
+//    6336-1 method C's idealisation (uniform c′, no coupling between slices): the peak line load
+//    c′(δ + F_β/2) over the mean F/b is K_Hβ = 1 + c′ F_β b/(2F) while the whole face carries load
+//    and √(2 c′ F_β b/F) once part of it lifts off; and ∫ c′(δ − g)₊ dz = F by quadrature (midpoint
+//    rule on 10⁵ cells: the integrand is piecewise linear with one kink, error ≤ F_β c′ b/10⁵ per
+//    cell edge, 1e-9 relative here).
 //  - Bad options: the error names the field, its value and the rule.
 //  - The committed reference data (verification/data/fe_reference/iso_pair_20_40_face_load.csv,
-//    written by `fe_reference fe3d`): every run's stations add up to the mesh force T/r_b1 within
+//    written by `fe_reference fe3d`): every run's stations add up to the mesh force T/r_b1 (T
+//    scaled with b from the scene's 20 mm) within
 //    the run's moment balance (≤ 1e-3, as the plane reference's test), the stations tile [0, b],
 //    and the aligned face is symmetric about b/2 within ccx's residual criterion (0.5 % of the
 //    average force, twice for a difference: 1 % of the mean line load).
@@ -24,7 +25,8 @@
 
 using namespace epicycle;
 
-TEST_CASE("3D FE reference: uncoupled-slice approach against K_Hbeta's closed forms", "[unit][fe3d]") {
+TEST_CASE("3D FE reference: uncoupled-slice approach against K_Hbeta's closed forms",
+          "[unit][fe3d]") {
   const double c = 13.1e9, b = 0.02, force = 5321.0;  // N/m², m, N (ISO 20/40 at 200 N m)
   for (double fbeta : {0.0, 10e-6, 40e-6, 80e-6, 200e-6}) {
     const double delta = fe_reference::SliceApproach(force, b, c, fbeta);
@@ -60,8 +62,8 @@ TEST_CASE("3D FE reference: bad options name the field, its value and the rule",
         std::string::npos);
   o = {};
   o.plane_strain = true;
-  o.layers = 4;
-  CHECK(message(o).find("the plane-strain deck has one layer") != std::string::npos);
+  o.misalignment = 10e-6;
+  CHECK(message(o).find("plane_strain with misalignment = 1e-05 m") != std::string::npos);
   CHECK_THROWS_AS(fe_reference::SliceApproach(0.0, 0.02, 1e10, 0.0), std::invalid_argument);
 }
 
@@ -93,7 +95,8 @@ TEST_CASE("3D FE reference: the committed line loads balance the torque and tile
     INFO(key);
     CHECK(run.covered == Approx(run.b).epsilon(1e-9));
     CHECK(run.balance <= 1e-3);
-    CHECK(std::abs(run.force / kMeshForce - 1) <= 1e-3);
+    // The tool keeps the scene's load per unit width: the torque scales with b (20 mm: the pair's).
+    CHECK(std::abs(run.force / (kMeshForce * run.b / 20.0) - 1) <= 1e-3);
     if (!run.aligned) continue;
     const int n = static_cast<int>(run.q.size());
     for (const auto& [l, q] : run.q) CHECK(std::abs(q - run.q.at(n - 1 - l)) <= 0.01 * run.mean);

@@ -117,10 +117,9 @@ void Fe3dOptions::Validate() const {
   if (sector_teeth < 0)
     throw std::invalid_argument("fe3d: sector_teeth = " + std::to_string(sector_teeth) +
                                 ": must be >= 0");
-  if (plane_strain && (layers != 1 || misalignment != 0))
-    throw std::invalid_argument("fe3d: plane_strain with layers = " + std::to_string(layers) +
-                                ", misalignment = " + Num(misalignment, 13) +
-                                " m: the plane-strain deck has one layer and no misalignment");
+  if (plane_strain && misalignment != 0)
+    throw std::invalid_argument("fe3d: plane_strain with misalignment = " + Num(misalignment, 13) +
+                                " m: the plane-strain deck (u_z = 0) takes no misalignment");
   if (!(contact.penalty > 0) || !(contact.gap_window > 0) || !(contact.slave_reach > 0) ||
       !(contact.master_reach > 0))
     throw std::invalid_argument(
@@ -313,8 +312,8 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
   std::vector<int> hub2_ids;
   for (int i : detail::HubNodes(m2, dm))
     ex.Each(i, [&](int level, int id) {
-      hub2.push_back({id, dm.xy[i].x() - c2.x(), dm.xy[i].y() - c2.y(),
-                      b_mm * level / (2.0 * ex.layers)});
+      hub2.push_back(
+          {id, dm.xy[i].x() - c2.x(), dm.xy[i].y() - c2.y(), b_mm * level / (2.0 * ex.layers)});
       hub2_ids.push_back(id);
     });
   detail::WriteNodeSet(f, "HUB2", hub2_ids);
@@ -323,10 +322,10 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
   const int ntri = static_cast<int>(dm.tris.size());
   for (const auto& [teeth, p] : lc.by_teeth) {
     const std::vector<Vec2>& near = lc.points_of.at(teeth);
-    const auto master = detail::FlankFaces(p.master, m2.flank_curves.at({p.tooth2, lc.side2}),
-                                           near, options.contact.master_reach * kMm, dm);
-    const auto slave = detail::FlankFaces(p.slave, m1.flank_curves.at({p.tooth1, lc.side1}),
-                                          near, options.contact.slave_reach * kMm, dm);
+    const auto master = detail::FlankFaces(p.master, m2.flank_curves.at({p.tooth2, lc.side2}), near,
+                                           options.contact.master_reach * kMm, dm);
+    const auto slave = detail::FlankFaces(p.slave, m1.flank_curves.at({p.tooth1, lc.side1}), near,
+                                          options.contact.slave_reach * kMm, dm);
     f << "*SURFACE, NAME=" << p.master << ", TYPE=ELEMENT\n";
     for (int l = 0; l < options.layers; ++l)
       for (const auto& [tri, edge] : master) f << l * ntri + tri + 1 << ", S" << edge + 3 << "\n";
@@ -340,37 +339,20 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
     }
   }
 
-  const transmission::Material& mat = scene.material;
-  const FeContactOptions& contact = options.contact;
-  f << "*MATERIAL, NAME=STEEL\n*ELASTIC\n"
-    << Num(mat.youngs_modulus / 1e6, 13) << ", " << Num(mat.poisson_ratio, 13) << "\n"
-    << "*SOLID SECTION, ELSET=GEAR1, MATERIAL=STEEL\n"
-    << "*SOLID SECTION, ELSET=GEAR2, MATERIAL=STEEL\n"
-    << "*SURFACE INTERACTION, NAME=FLANKS\n"
-    << "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-    << Num(contact.penalty, 13) << ", " << Num(contact.tension, 13) << "\n";
-  for (const FeToothPair& p : deck.pairs)
-    f << "*CONTACT PAIR, INTERACTION=FLANKS, TYPE=SURFACE TO SURFACE\n"
-      << p.slave << ", " << p.master << "\n";
+  detail::WriteMaterialAndPairs(f, scene, options.contact, deck.pairs);
   // Hubs: gear 1 axially held; gear 2 held (plane strain: u_z = 0 everywhere) or turned by ψ.
   f << "*BOUNDARY\n" << (options.plane_strain ? "NALL" : "HUB1") << ", 3, 3\n";
   if (options.misalignment == 0) f << "HUB2, 1, 3\n";
   const double psi = options.misalignment * kMm / b_mm;
   for (double theta : rotations) {
-    f << "*STEP, INC=1000\n*STATIC, DIRECT\n1., 1.\n*BOUNDARY\n";
-    for (std::size_t i = 0; i < deck.hub_nodes.size(); ++i)
-      f << deck.hub_nodes[i] << ", 1, 1, " << Num(-theta * deck.hub_y[i], 13) << "\n"
-        << deck.hub_nodes[i] << ", 2, 2, " << Num(theta * deck.hub_x[i], 13) << "\n";
+    detail::WriteStepAndHubRotation(f, theta, deck);
     if (options.misalignment != 0)
       for (const HubNode& h : hub2) {
         const auto u = Misalign(psi, normal, h.x, h.y, h.z, b_mm);
         for (int d = 0; d < 3; ++d)
           f << h.id << ", " << d + 1 << ", " << d + 1 << ", " << Num(u[d], 13) << "\n";
       }
-    f << "*NODE PRINT, NSET=HUB1\nRF\n";
-    for (const FeToothPair& p : deck.pairs)
-      f << "*CONTACT PRINT, SLAVE=" << p.slave << ", MASTER=" << p.master << "\nCF\n";
-    f << "*END STEP\n";
+    detail::WriteStepOutputAndEnd(f, deck, "");
   }
   if (!f) throw std::runtime_error(deck_path + ": write failed");
   f.close();

@@ -101,9 +101,8 @@ Fe3dRun RunFe3d(const transmission::Scene& scene, const geometry::GearPair& pair
   if (step_scales.size() < 2)
     throw std::invalid_argument("fe3d: step_scales: two or more steps bracket the torque");
   const double rb1 = pair.gear1().base_radius();
-  const double b =
-      options.face_width > 0 ? options.face_width
-                             : geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
+  const double b = options.face_width > 0 ? options.face_width
+                                          : geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
   const double sign = torque > 0 ? 1.0 : -1.0;
   double theta =
       sign * SliceApproach(std::abs(torque) / rb1, b, stiffness_per_width, options.misalignment) /
@@ -116,9 +115,9 @@ Fe3dRun RunFe3d(const transmission::Scene& scene, const geometry::GearPair& pair
     for (double s : step_scales) rotations.push_back(s * theta);
     std::filesystem::remove(directory + "/deck.dat");
     run.deck = WriteDeck3d(scene, pair, torque, angle, rotations, options, directory);
-    const std::string command = "cd '" + directory + "' && OMP_NUM_THREADS=" +
-                                std::to_string(threads) + " nice -n 10 '" + ccx +
-                                "' -i deck > ccx.log 2>&1";
+    const std::string command = "cd '" + directory +
+                                "' && OMP_NUM_THREADS=" + std::to_string(threads) +
+                                " nice -n 10 '" + ccx + "' -i deck > ccx.log 2>&1";
     if (std::system(command.c_str()) != 0)
       throw std::runtime_error("fe3d: ccx failed (see " + directory + "/ccx.log)");
     run.result = ReadLineLoad(directory, run.deck);

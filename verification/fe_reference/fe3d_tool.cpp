@@ -48,14 +48,17 @@ int Fe3dCommand(const Fe3dCommandArgs& a) {
   if (a.tooth_zone >= 0) o.mesh.tooth_zone = a.tooth_zone;
   if (a.contact_size_um > 0) o.mesh.contact_size = a.contact_size_um * 1e-6;
   if (a.deck_only) {
-    const Fe3dDeckInfo d = WriteDeck3d(scene, pair, setup.torque, a.angle_deg * geometry::kPi / 180.0,
-                                       {1e-4, 2e-4}, o, a.out);
+    const Fe3dDeckInfo d =
+        WriteDeck3d(scene, pair, 1.0, a.angle_deg * geometry::kPi / 180.0, {1e-4, 2e-4}, o, a.out);
     std::printf("%s/deck.inp: %d nodes, %d C3D15 (plane: %d nodes, %d triangles), %zu pairs\n",
                 a.out.c_str(), d.deck.nodes, d.deck.elements, d.deck.nodes_2d, d.deck.triangles,
                 d.deck.pairs.size());
     return 0;
   }
-  const Fe3dRun run = RunFe3d(scene, pair, setup.torque, a.angle_deg * geometry::kPi / 180.0,
+  // A face width of its own keeps the scene's load per unit width: the torque scales with b.
+  const double b_pair = geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
+  const double torque = setup.torque * (o.face_width > 0 ? o.face_width / b_pair : 1.0);
+  const Fe3dRun run = RunFe3d(scene, pair, torque, a.angle_deg * geometry::kPi / 180.0,
                               a.plane_k * 1e9, o, a.out, a.ccx, a.threads);
   const Fe3dLineLoad& r = run.result;
   const bool fresh = !std::filesystem::exists(a.csv);
@@ -77,11 +80,12 @@ int Fe3dCommand(const Fe3dCommandArgs& a) {
     f << line;
   }
   if (!f) throw std::runtime_error(a.csv + ": write failed");
-  std::printf("%s: F_beta %.3g um, %d layers, refinement %.3g: %d nodes, K_Hbeta %.4f, "
-              "k %.4f, k_mid %.4f N/(mm um), balance %.1e, ccx %.0f s CPU (%d run%s)\n",
-              a.name.c_str(), r.misalignment * 1e6, a.layers, a.refinement, r.nodes, r.k_hbeta,
-              r.stiffness_per_width / 1e9, r.middle_stiffness_per_width / 1e9, r.moment_balance,
-              run.cpu_seconds, run.runs, run.runs > 1 ? "s" : "");
+  std::printf(
+      "%s: F_beta %.3g um, %d layers, refinement %.3g: %d nodes, K_Hbeta %.4f, "
+      "k %.4f, k_mid %.4f N/(mm um), balance %.1e, ccx %.0f s CPU (%d run%s)\n",
+      a.name.c_str(), r.misalignment * 1e6, a.layers, a.refinement, r.nodes, r.k_hbeta,
+      r.stiffness_per_width / 1e9, r.middle_stiffness_per_width / 1e9, r.moment_balance,
+      run.cpu_seconds, run.runs, run.runs > 1 ? "s" : "");
   return 0;
 }
 
@@ -99,8 +103,8 @@ int Fe3dPlot(const std::string& csv, const std::string& svg, int layers, double 
     const bool chosen = std::stoi(r[4]) == layers && std::stod(r[5]) == refinement;
     const std::string key = r[0] + (chosen ? "" : ", " + r[4] + " layers, refinement " + r[5]);
     PlotSeries& s = (chosen ? main : other)[key];
-    s.name = r[0] + " (F_beta " + r[3] + " um" + (chosen ? "" : ", " + r[4] + " layers, ref. " + r[5]) +
-             ")";
+    s.name = r[0] + " (F_beta " + r[3] + " um" +
+             (chosen ? "" : ", " + r[4] + " layers, ref. " + r[5]) + ")";
     s.markers = chosen;
     s.points = !chosen;
     s.x.push_back(std::stod(r[25]));

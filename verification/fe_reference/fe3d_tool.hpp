@@ -7,14 +7,14 @@ namespace epicycle::fe_reference {
 
 struct Fe3dCommandArgs {
   std::string scene, name = "case", out = "fe3d-out", csv = "fe3d.csv", ccx = "ccx";
-  double angle_deg = 13.5;       ///< gear-1 position [deg]
-  double misalignment_um = 0;    ///< F_β [µm]
-  double face_width_mm = 0;      ///< b [mm]; 0: the pair's
-  int layers = 10;               ///< [-]
-  double refinement = 1;         ///< divides every in-plane size [-]
-  bool plane_strain = false;     ///< one layer, u_z = 0
-  double plane_k = 13.12;        ///< c′ of the plane model for the steps' estimate [N/(mm·µm)]
-  int threads = 1;               ///< ccx's OMP_NUM_THREADS
+  double angle_deg = 13.5;     ///< gear-1 position [deg]
+  double misalignment_um = 0;  ///< F_β [µm]
+  double face_width_mm = 0;    ///< b [mm]; 0: the pair's
+  int layers = 10;             ///< [-]
+  double refinement = 1;       ///< divides every in-plane size [-]
+  bool plane_strain = false;   ///< one layer, u_z = 0
+  double plane_k = 13.12;      ///< c′ of the plane model for the steps' estimate [N/(mm·µm)]
+  int threads = 1;             ///< ccx's OMP_NUM_THREADS
   double tooth_size_per_module = 0;  ///< in-plane size on the sector's teeth per module; 0: default
   double body_size_per_module = 0;   ///< largest in-plane size per module; 0: default
   double grading = 0;                ///< growth of the size with distance; 0: default

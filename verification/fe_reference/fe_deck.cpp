@@ -828,10 +828,9 @@ void WriteSurface(std::ostream& f, const std::string& name, const std::vector<in
     f << tri + 1 << ", S" << edge + 3 << "\n";
 }
 
-// The material, the contact pairs, the plane-strain boundary and one step per rotation of gear 1's
-// hub (gear 2 held at its hub; ring: rim).
-void WriteSteps(std::ostream& f, const transmission::Scene& scene, const FeContactOptions& contact,
-                const std::vector<double>& rotations, const FeDeckInfo& info) {
+// The material, the surface interaction and one frictionless contact pair per entry of `pairs`.
+void WriteMaterialAndPairs(std::ostream& f, const transmission::Scene& scene,
+                           const FeContactOptions& contact, const std::vector<FeToothPair>& pairs) {
   const transmission::Material& mat = scene.material;
   f << "*MATERIAL, NAME=STEEL\n*ELASTIC\n"
     << Num(mat.youngs_modulus / 1e6, 13) << ", " << Num(mat.poisson_ratio, 13) << "\n"
@@ -840,23 +839,40 @@ void WriteSteps(std::ostream& f, const transmission::Scene& scene, const FeConta
     << "*SURFACE INTERACTION, NAME=FLANKS\n"
     << "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
     << Num(contact.penalty, 13) << ", " << Num(contact.tension, 13) << "\n";
-  for (const FeToothPair& p : info.pairs)
+  for (const FeToothPair& p : pairs)
     f << "*CONTACT PAIR, INTERACTION=FLANKS, TYPE=SURFACE TO SURFACE\n"
       << p.slave << ", " << p.master << "\n";
+}
+
+// A step's start (one fixed increment: each step starts from the last, near its answer; ccx's
+// automatic stepping would add a spurious 1e-6 increment at the end of the step) and gear 1's hub
+// turned rigidly by θ about c_1 in the plane.
+void WriteStepAndHubRotation(std::ostream& f, double theta, const FeDeckInfo& info) {
+  f << "*STEP, INC=1000\n*STATIC, DIRECT\n1., 1.\n*BOUNDARY\n";
+  for (std::size_t i = 0; i < info.hub_nodes.size(); ++i)
+    f << info.hub_nodes[i] << ", 1, 1, " << Num(-theta * info.hub_y[i], 13) << "\n"
+      << info.hub_nodes[i] << ", 2, 2, " << Num(theta * info.hub_x[i], 13) << "\n";
+}
+
+// The step's outputs: the hub reactions, `more` (further output requests), every pair's contact
+// force; then its end.
+void WriteStepOutputAndEnd(std::ostream& f, const FeDeckInfo& info, const char* more) {
+  f << "*NODE PRINT, NSET=HUB1\nRF\n" << more;
+  for (const FeToothPair& p : info.pairs)  // CF needs the pair named (ccx 2.20)
+    f << "*CONTACT PRINT, SLAVE=" << p.slave << ", MASTER=" << p.master << "\nCF\n";
+  f << "*END STEP\n";
+}
+
+// The material, the contact pairs, the plane-strain boundary and one step per rotation of gear 1's
+// hub (gear 2 held at its hub; ring: rim).
+void WriteSteps(std::ostream& f, const transmission::Scene& scene, const FeContactOptions& contact,
+                const std::vector<double>& rotations, const FeDeckInfo& info) {
+  WriteMaterialAndPairs(f, scene, contact, info.pairs);
   // Plane strain: u_z = 0 everywhere; gear 2 held at its hub (ring: rim).
   f << "*BOUNDARY\nNALL, 3, 3\nHUB2, 1, 2\n";
   for (double theta : rotations) {
-    // One fixed increment per step (each step starts from the last, near its answer); ccx's
-    // automatic stepping would add a spurious 1e-6 increment at the end of the step.
-    f << "*STEP, INC=1000\n*STATIC, DIRECT\n1., 1.\n*BOUNDARY\n";
-    for (std::size_t i = 0; i < info.hub_nodes.size(); ++i) {
-      f << info.hub_nodes[i] << ", 1, 1, " << Num(-theta * info.hub_y[i], 13) << "\n"
-        << info.hub_nodes[i] << ", 2, 2, " << Num(theta * info.hub_x[i], 13) << "\n";
-    }
-    f << "*NODE PRINT, NSET=HUB1\nRF\n*EL FILE, NSET=FILLETS\nS\n";
-    for (const FeToothPair& p : info.pairs)  // CF needs the pair named (ccx 2.20)
-      f << "*CONTACT PRINT, SLAVE=" << p.slave << ", MASTER=" << p.master << "\nCF\n";
-    f << "*END STEP\n";
+    WriteStepAndHubRotation(f, theta, info);
+    WriteStepOutputAndEnd(f, info, "*EL FILE, NSET=FILLETS\nS\n");
   }
 }
 

@@ -104,4 +104,12 @@ std::vector<std::pair<int, int>> FlankFaces(const std::string& name, const std::
                                             const std::vector<Vec2>& near, double reach,
                                             const DeckMesh& dm);
 
+// Deck blocks shared by the plane and the 3D deck: material and contact pairs; a static step with
+// gear 1's hub turned by θ [rad] (its *BOUNDARY block left open for more); the step's outputs and
+// its end.
+void WriteMaterialAndPairs(std::ostream& f, const transmission::Scene& scene,
+                           const FeContactOptions& contact, const std::vector<FeToothPair>& pairs);
+void WriteStepAndHubRotation(std::ostream& f, double theta, const FeDeckInfo& info);
+void WriteStepOutputAndEnd(std::ostream& f, const FeDeckInfo& info, const char* more);
+
 }  // namespace epicycle::fe_reference::detail

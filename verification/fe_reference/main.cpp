@@ -263,7 +263,8 @@ int main(int argc, char** argv) {
   fe3d->add_option("--angle-deg", f3.angle_deg, "gear-1 angle from the cycle start [deg]");
   fe3d->add_option("--misalignment-um", f3.misalignment_um,
                    "F_beta: the rigid gap's change from z = 0 to z = b [um]");
-  fe3d->add_option("--face-width-mm", f3.face_width_mm, "b [mm] (0: the pair's)");
+  fe3d->add_option("--face-width-mm", f3.face_width_mm,
+                   "b [mm] (0: the pair's); the torque scales with b");
   fe3d->add_option("--layers", f3.layers, "wedge layers (axial stations) over b");
   fe3d->add_option("--refinement", f3.refinement, "divides every in-plane mesh size");
   fe3d->add_flag("--plane-strain", f3.plane_strain, "one layer with u_z = 0: plane strain");
@@ -277,7 +278,8 @@ int main(int argc, char** argv) {
                    "largest in-plane element size per module (0: default)");
   fe3d->add_option("--sector-teeth", f3.sector_teeth, "teeth modelled either side of the loaded");
   fe3d->add_option("--tooth-zone", f3.tooth_zone, "teeth either side at the tooth size");
-  fe3d->add_option("--grading", f3.grading, "growth of the in-plane size with distance (0: default)");
+  fe3d->add_option("--grading", f3.grading,
+                   "growth of the in-plane size with distance (0: default)");
   fe3d->add_option("--contact-size-um", f3.contact_size_um, "in-plane size at the contact [um]");
   fe3d->add_option("--ccx", f3.ccx, "CalculiX program");
   fe3d->add_option("--out", f3.out, "work directory");
