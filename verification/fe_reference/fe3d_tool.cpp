@@ -98,13 +98,19 @@ int Fe3dPlot(const std::string& csv, const std::string& svg, int layers, double 
   // Each case at the chosen discretisation as a line with markers (the stations' means, drawn
   // at their centres); the other discretisations of the same cases as markers.
   std::map<std::string, PlotSeries> main, other;
-  for (const auto& r : test::ReadCsvRows(csv)) {
-    if (r.size() != 27 || r[7] == "1") continue;
+  const auto rows = test::ReadCsvRows(csv);
+  // The face width of the chosen discretisation's runs: runs of another b are left out.
+  std::string width;
+  for (const auto& r : rows)
+    if (r.size() == 27 && r[7] != "1" && std::stoi(r[4]) == layers &&
+        std::stod(r[5]) == refinement && width.empty())
+      width = r[2];
+  for (const auto& r : rows) {
+    if (r.size() != 27 || r[7] == "1" || r[2] != width) continue;
     const bool chosen = std::stoi(r[4]) == layers && std::stod(r[5]) == refinement;
-    const std::string key = r[0] + (chosen ? "" : ", " + r[4] + " layers, refinement " + r[5]);
+    const std::string key = r[0] + (chosen ? "" : ", " + r[4] + " layers, ref. " + r[5]);
     PlotSeries& s = (chosen ? main : other)[key];
-    s.name = r[0] + " (F_beta " + r[3] + " um" +
-             (chosen ? "" : ", " + r[4] + " layers, ref. " + r[5]) + ")";
+    s.name = chosen ? r[0] + ": F_beta " + r[3] + " um" : key;
     s.markers = chosen;
     s.points = !chosen;
     s.x.push_back(std::stod(r[25]));
@@ -113,12 +119,47 @@ int Fe3dPlot(const std::string& csv, const std::string& svg, int layers, double 
   if (main.empty())
     throw std::invalid_argument(csv + ": no 3D rows with " + std::to_string(layers) +
                                 " layers at refinement " + std::to_string(refinement));
-  int colour = 0;
+  // One colour per case: its line at the chosen discretisation, its markers at the others.
+  std::map<std::string, int> colour_of;
   for (auto& [key, s] : main) {
-    s.colour = colour++;
+    const int colour = static_cast<int>(colour_of.size());
+    colour_of[key] = colour;
+    s.colour = colour;
     plot.series.push_back(s);
   }
-  for (auto& [key, s] : other) plot.series.push_back(s);
+  for (auto& [key, s] : other) {
+    const auto it = colour_of.find(key.substr(0, key.find(',')));
+    s.colour = it == colour_of.end() ? -1 : it->second;
+    plot.series.push_back(s);
+  }
+  plot.x_min = 0;
+  plot.x_max = std::stod(width);
+  // Uncoupled slices of the aligned face's middle stiffness c′ under each misalignment (dashed):
+  // q = c′ (δ − F_β (z/b − 1/2))₊ with δ from SliceApproach.
+  double c_mid = 0, force = 0;
+  std::map<std::string, double> misalignment_of;
+  for (const auto& r : rows) {
+    if (r.size() != 27 || r[7] == "1" || r[2] != width || std::stoi(r[4]) != layers ||
+        std::stod(r[5]) != refinement)
+      continue;
+    if (std::stod(r[3]) == 0) c_mid = std::stod(r[21]) * 1e9;
+    force = std::stod(r[17]);
+    misalignment_of[r[0]] = std::stod(r[3]) * 1e-6;
+  }
+  const double b = std::stod(width) * 1e-3;
+  for (const auto& [name, fbeta] : misalignment_of) {
+    if (!(c_mid > 0) || fbeta == 0) continue;
+    const double delta = SliceApproach(force, b, c_mid, fbeta);
+    PlotSeries s{name + ": uncoupled slices", {}, {}, false};
+    s.dashed = true;
+    s.colour = colour_of.count(name) ? colour_of[name] : -1;
+    for (int i = 0; i <= 200; ++i) {
+      const double z = b * i / 200;
+      s.x.push_back(z * 1e3);
+      s.y.push_back(c_mid * std::max(0.0, delta - fbeta * (z / b - 0.5)) / 1e3);
+    }
+    plot.series.push_back(s);
+  }
   report::WriteTextFile(svg, report::RenderSvg(plot));
   std::printf("wrote %s\n", svg.c_str());
   return 0;
