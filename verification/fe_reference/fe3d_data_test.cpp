@@ -81,7 +81,7 @@ TEST_CASE("3D FE reference: the committed line loads balance the torque and tile
   std::map<std::string, Run> runs;
   for (const auto& r : rows) {
     REQUIRE(r.size() == 27);
-    Run& run = runs[r[0] + "/" + r[4] + "/" + r[5] + "/" + r[7]];
+    Run& run = runs[r[0] + "/" + r[4] + "/" + r[5] + "/" + r[6] + "/" + r[7]];
     const double lo = std::stod(r[23]), hi = std::stod(r[24]);  // mm
     run.force += std::stod(r[26]) * (hi - lo);
     run.covered += hi - lo;

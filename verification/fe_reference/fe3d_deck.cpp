@@ -209,21 +209,8 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
   const double r0 = mesh.contact_radius * kMm;
   const double h_tooth = mesh.tooth_size_per_module * m / mesh.refinement;
   const double h_body = mesh.body_size_per_module * m / mesh.refinement;
-  auto zone_of = [&](const geometry::Gear& g, const geometry::GearPose& pose,
-                     const std::set<int>& loaded) {
-    detail::ToothZone zone;
-    zone.centre = pose.geometric_centre * kMm;
-    zone.rotation = pose.rotation;
-    zone.pitch = g.pitch_angle();
-    zone.half_width = (mesh.tooth_zone + 0.5) * g.pitch_angle();
-    zone.teeth.assign(loaded.begin(), loaded.end());
-    const double root = g.root_radius() * kMm, tip = g.tip_radius() * kMm;
-    zone.r_in = g.internal() ? tip : root - 2 * m;
-    zone.r_out = g.internal() ? root + 2 * m : tip;
-    return zone;
-  };
-  const detail::ToothZone zone1 = zone_of(g1, poses.gear1, lc.teeth1);
-  const detail::ToothZone zone2 = zone_of(g2, poses.gear2, lc.teeth2);
+  const detail::ToothZone zone1 = detail::MakeToothZone(g1, poses.gear1, lc.teeth1, mesh);
+  const detail::ToothZone zone2 = detail::MakeToothZone(g2, poses.gear2, lc.teeth2, mesh);
   const std::vector<int> sector1 = SectorTeeth(lc.teeth1, options.sector_teeth, g1.teeth());
   const std::vector<int> sector2 = SectorTeeth(lc.teeth2, options.sector_teeth, g2.teeth());
   auto all_of = [](const std::vector<int>& sector, int z) {
@@ -240,11 +227,7 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
       detail::BuildGear(g2, poses.gear2, all_of(sector2, g2.teeth()), mesh.points_per_segment,
                         nullptr, nullptr, sector2.empty() ? nullptr : &sector2);
   gmsh::model::occ::synchronize();
-  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-  gmsh::option::setNumber("Mesh.Algorithm", 6);
-  gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);
+  detail::SetPlaneMeshOptions();
   // Size: the smallest of the contact refinement, the tooth zone of the entity's gear and h_body
   // (the plane reference's rule without its fillet and crack terms).
   gmsh::model::mesh::setSizeCallback([&](int dim, int tag, double x, double y, double) {

@@ -828,6 +828,29 @@ void WriteSurface(std::ostream& f, const std::string& name, const std::vector<in
     f << tri + 1 << ", S" << edge + 3 << "\n";
 }
 
+ToothZone MakeToothZone(const geometry::Gear& gear, const geometry::GearPose& pose,
+                        const std::set<int>& loaded, const FeMeshOptions& mesh) {
+  const double m = gear.module() * kMm;
+  ToothZone zone;
+  zone.centre = pose.geometric_centre * kMm;
+  zone.rotation = pose.rotation;
+  zone.pitch = gear.pitch_angle();
+  zone.half_width = (mesh.tooth_zone + 0.5) * gear.pitch_angle();
+  zone.teeth.assign(loaded.begin(), loaded.end());
+  const double root = gear.root_radius() * kMm, tip = gear.tip_radius() * kMm;
+  zone.r_in = gear.internal() ? tip : root - 2 * m;
+  zone.r_out = gear.internal() ? root + 2 * m : tip;
+  return zone;
+}
+
+void SetPlaneMeshOptions() {
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.Algorithm", 6);
+  gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);
+}
+
 // The material, the surface interaction and one frictionless contact pair per entry of `pairs`.
 void WriteMaterialAndPairs(std::ostream& f, const transmission::Scene& scene,
                            const FeContactOptions& contact, const std::vector<FeToothPair>& pairs) {
@@ -899,21 +922,8 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   const double r0 = mesh.contact_radius * kMm;
   const double h_tooth = mesh.tooth_size_per_module * m / mesh.refinement;
   const double h_body = mesh.body_size_per_module * m / mesh.refinement;
-  auto zone_of = [&](const geometry::Gear& g, const geometry::GearPose& pose,
-                     const std::set<int>& loaded) {
-    ToothZone zone;
-    zone.centre = pose.geometric_centre * kMm;
-    zone.rotation = pose.rotation;
-    zone.pitch = g.pitch_angle();
-    zone.half_width = (mesh.tooth_zone + 0.5) * g.pitch_angle();
-    zone.teeth.assign(loaded.begin(), loaded.end());
-    const double root = g.root_radius() * kMm, tip = g.tip_radius() * kMm;
-    zone.r_in = g.internal() ? tip : root - 2 * m;
-    zone.r_out = g.internal() ? root + 2 * m : tip;
-    return zone;
-  };
-  const ToothZone zone1 = zone_of(g1, poses.gear1, teeth1);
-  const ToothZone zone2 = zone_of(g2, poses.gear2, teeth2);
+  const ToothZone zone1 = MakeToothZone(g1, poses.gear1, teeth1, mesh);
+  const ToothZone zone2 = MakeToothZone(g2, poses.gear2, teeth2, mesh);
   auto fine_of = [&](const geometry::Gear& g, const std::set<int>& loaded) {
     std::set<int> fine;
     for (int k : loaded)
@@ -958,11 +968,7 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   const double h_crack = crack ? crack->face_size_per_module *
                                      (crack->gear == 1 ? g1 : g2).module() * kMm / mesh.refinement
                                : 0.0;
-  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-  gmsh::option::setNumber("Mesh.Algorithm", 6);
-  gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);
+  SetPlaneMeshOptions();
   // Size: the smallest of the contact refinement, the tooth zone of the entity's gear and h_body.
   gmsh::model::mesh::setSizeCallback([&](int dim, int tag, double x, double y, double) {
     double s = h_body;

@@ -91,6 +91,13 @@ struct LoadedContacts {
   int side1 = 0, side2 = 0;
 };
 
+// The ToothZone of `gear` at `pose` around its `loaded` teeth (mesh.tooth_zone either side).
+ToothZone MakeToothZone(const geometry::Gear& gear, const geometry::GearPose& pose,
+                        const std::set<int>& loaded, const FeMeshOptions& mesh);
+// gmsh's options for the plane mesh: sizes from the size callback only, Frontal-Delaunay,
+// curved second-order elements.
+void SetPlaneMeshOptions();
+
 GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
                     const std::set<int>& fine_teeth, int fine_points, const FeCrack* crack,
                     const FeSpall* spall, const std::vector<int>* sector);
