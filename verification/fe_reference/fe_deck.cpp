@@ -1,4 +1,5 @@
 #include "fe_deck.hpp"
+#include "fe_deck_detail.hpp"
 
 #include <algorithm>
 #include <array>
@@ -17,7 +18,9 @@
 
 namespace epicycle::fe_reference {
 
-namespace {
+using namespace detail;
+
+namespace detail {
 
 using geometry::Vec2;
 
@@ -25,31 +28,6 @@ constexpr double kMm = 1e3;  // the deck is in mm, N, MPa
 
 // CalculiX reads at most 20 characters per field: 13 significant digits fit any sign and exponent.
 using io::Num;
-
-// gmsh state is global: one session per deck, finalized even when an exception leaves.
-struct GmshSession {
-  GmshSession() {
-    gmsh::initialize();
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::model::add("pair");
-  }
-  ~GmshSession() { gmsh::finalize(); }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
-
-// Which curves of a gear's outline carry which tooth flank.
-struct GearModel {
-  int surface = 0;
-  int hub_curve = 0;
-  // (tooth, side) → the curves of its involute and tip round (the loaded part of a flank).
-  std::map<std::pair<int, int>, std::vector<int>> flank_curves;
-  // (tooth, side) → the curves of its root land and fillet.
-  std::map<std::pair<int, int>, std::vector<int>> fillet_curves;
-  std::set<int> curves;
-  int crack_curve = 0, crack_tip = 0;  // the crack's curve and its tip point (0: none)
-  Vec2 tip_xy = Vec2::Zero();          // the tip [mm]
-};
 
 // The parameter t of `seg` (t0 <= t <= t1) where the radius |p(t)| is `radius` (bisection; the
 // involute's radius grows with t), clamped to the segment.
@@ -104,9 +82,12 @@ std::pair<int, double> NearestFilletParameter(const geometry::HalfProfile& half,
 // A crack splits its fillet segment at the mouth and adds the straight crack curve (to be embedded
 // in the surface); a spall splits its involute at the roll range, lowers the middle piece by the
 // depth along the inward normal and joins the pieces by straight steps.
+// A `sector` (teeth consecutive in the cyclic order) keeps only those teeth: the outline runs from
+// the space centre line before the first to the one after the last and closes along the circle
+// through those two points (the root circle) about the gear's centre.
 GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
                     const std::set<int>& fine_teeth, int fine_points, const FeCrack* crack,
-                    const FeSpall* spall) {
+                    const FeSpall* spall, const std::vector<int>* sector) {
   GearModel g;
   const geometry::HalfProfile& half = gear.half_profile();
   auto world = [&](const Vec2& body) {
@@ -142,7 +123,13 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
   std::vector<Piece> pieces;
   const int z = gear.teeth();
   const int count = static_cast<int>(half.segments.size());
-  for (int k = 0; k < z; ++k) {
+  std::vector<int> teeth;
+  if (sector) {
+    teeth = *sector;
+  } else {
+    for (int k = 0; k < z; ++k) teeth.push_back(k);
+  }
+  for (int k : teeth) {
     const double turn = k * gear.pitch_angle();
     const int n = fine_teeth.count(k) ? fine_points : std::max(4, fine_points / 4);
     for (int side : {-1, 1}) {
@@ -222,7 +209,7 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
     for (std::size_t j = 0; j < piece.points.size(); ++j) {
       if (j == 0 && last_point > 0) {
         pts.push_back(last_point);
-      } else if (j + 1 == piece.points.size() && q + 1 == pieces.size()) {
+      } else if (j + 1 == piece.points.size() && q + 1 == pieces.size() && !sector) {
         pts.push_back(first_point);
       } else {
         pts.push_back(gmsh::model::occ::addPoint(piece.points[j].x(), piece.points[j].y(), 0.0));
@@ -247,6 +234,26 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
     g.tip_xy = tip;
   }
   const Vec2 c = world(Vec2::Zero());
+  if (sector) {
+    // Counter-clockwise from the last tooth's end back to the first's start, in arcs below π.
+    const Vec2 from = last_xy - c, to = pieces.front().points.front() - c;
+    const double radius = from.norm();
+    if (std::abs(to.norm() - radius) > 1e-6 * radius)
+      throw std::runtime_error("fe deck: a sector's ends lie on different circles");
+    double span = std::atan2(to.y(), to.x()) - std::atan2(from.y(), from.x());
+    while (span <= 0) span += 2 * geometry::kPi;
+    const int arcs = static_cast<int>(std::ceil(span / (0.5 * geometry::kPi)));
+    const int centre = gmsh::model::occ::addPoint(c.x(), c.y(), 0.0);
+    int start = last_point;
+    for (int a = 1; a <= arcs; ++a) {
+      const Vec2 p = c + geometry::Rotate(from, span * a / arcs);
+      const int end = a == arcs ? first_point : gmsh::model::occ::addPoint(p.x(), p.y(), 0.0);
+      const int arc = gmsh::model::occ::addCircleArc(start, centre, end);
+      outline.push_back(arc);
+      g.curves.insert(arc);
+      start = end;
+    }
+  }
   const double r = gear.spec().hub_radius * kMm;
   g.hub_curve = gmsh::model::occ::addCircle(c.x(), c.y(), 0.0, r);
   g.curves.insert(g.hub_curve);
@@ -256,25 +263,6 @@ GearModel BuildGear(const geometry::Gear& gear, const geometry::GearPose& pose,
                               : gmsh::model::occ::addPlaneSurface({outline_loop, hub_loop});
   return g;
 }
-
-// The mesh-size rule of one gear near the mesh: h_tooth on the teeth within `zone` of a loaded
-// tooth (and the rim under them, to 2 modules below the root circle), growing with the distance
-// outside that zone.
-struct ToothZone {
-  Vec2 centre;  // [mm]
-  double rotation = 0, pitch = 0, half_width = 0, r_in = 0, r_out = 0;
-  std::vector<int> teeth;
-  double Distance(double x, double y) const {
-    const double dx = x - centre.x(), dy = y - centre.y();
-    const double r = std::hypot(dx, dy);
-    const double phi = std::atan2(dy, dx) - rotation;
-    double ang = 1e300;
-    for (int k : teeth)
-      ang = std::min(ang, std::abs(geometry::WrapAngle(phi - k * pitch)) - half_width);
-    const double radial = std::max({0.0, r_in - r, r - r_out});
-    return std::max(std::max(0.0, ang * r), radial);
-  }
-};
 
 // The fillet (root land and fillet) of one tooth side as a dense polyline in the deck's frame
 // [mm] with the arc length from the space centre line: where a mesh node on it lies along the
@@ -326,12 +314,7 @@ FilletLine MakeFilletLine(const geometry::Gear& gear, const geometry::GearPose& 
   return line;
 }
 
-struct Tri {
-  std::array<int, 6> n;  // corners a, b, c, mid-sides ab, bc, ca (compact 0-based indices)
-  int body = 0;
-};
-
-}  // namespace
+}  // namespace detail
 
 void FeMeshOptions::Validate() const {
   auto positive = [](const char* key, double v) {
@@ -440,7 +423,7 @@ FeDeckInfo FeDeckInfo::Read(const std::string& path) {
   return info;
 }
 
-namespace {
+namespace detail {
 
 // The deck's inputs: mesh options, rotations of one sign, a torque, and the damage it meshes (a
 // straight crack, an external gear's spall). @throws std::invalid_argument naming the value.
@@ -489,16 +472,6 @@ void CheckDeckInput(const geometry::GearPair& pair, double torque,
                                   " rad: depth > 0 and 0 <= roll_from < roll_to");
   }
 }
-
-// The tooth pairs in or near contact on the loaded flanks (keyed by their teeth), their contact
-// points [mm], the loaded teeth of each gear and the loaded sides.
-struct LoadedContacts {
-  std::map<std::pair<int, int>, FeToothPair> by_teeth;
-  std::map<std::pair<int, int>, std::vector<Vec2>> points_of;  // each pair's contact points [mm]
-  std::vector<Vec2> contact_points;                            // [mm]
-  std::set<int> teeth1, teeth2;
-  int side1 = 0, side2 = 0;
-};
 
 LoadedContacts FindLoadedContacts(const geometry::GearPair& pair, const geometry::PairPoses& poses,
                                   const FeContactOptions& contact) {
@@ -585,17 +558,6 @@ CrackAxis EmbedCrack(const GearModel& cracked) {
   axis.dir = (cracked.tip_xy - mouth_xy) / axis.length;
   return axis;
 }
-
-// The second-order triangle mesh of the two gears: gmsh's node tags → compact 0-based indices,
-// the nodes' points [mm], the 6-node triangles counter-clockwise and each corner pair's
-// (triangle, edge). The spline interpolation points are model vertices of their own, meshed as
-// free nodes: left out.
-struct DeckMesh {
-  std::map<std::size_t, int> index;
-  std::vector<Vec2> xy;
-  std::vector<Tri> tris;
-  std::map<std::pair<int, int>, std::pair<int, int>> edge_of;  // sorted corners → (tri, edge)
-};
 
 DeckMesh ReadDeckMesh(const GearModel& m1, const GearModel& m2) {
   DeckMesh dm;
@@ -830,15 +792,15 @@ std::vector<int> FilletNodes(const std::vector<FilletLine>& fillet_lines, const 
   return fillet_ids;
 }
 
-// Contact surfaces: the wedge faces over the flank curves' boundary edges within `reach` of
+// Contact surfaces: the triangle edges (triangle, edge) on the flank curves within `reach` of
 // the pair's rigid contact points (the Hertzian half-width is ~0.1 mm and the contact moves
 // less than that under load; the whole flank as slave makes CalculiX's contact search drop
 // far-off contact elements a few per iteration, tens of iterations per step).
-void WriteSurface(std::ostream& f, const std::string& name, const std::vector<int>& curves,
-                  const std::vector<Vec2>& near, double reach, const DeckMesh& dm) {
+std::vector<std::pair<int, int>> FlankFaces(const std::string& name, const std::vector<int>& curves,
+                                            const std::vector<Vec2>& near, double reach,
+                                            const DeckMesh& dm) {
   const std::vector<Vec2>& xy = dm.xy;
-  f << "*SURFACE, NAME=" << name << ", TYPE=ELEMENT\n";
-  int faces = 0;
+  std::vector<std::pair<int, int>> faces;
   for (int curve : curves) {
     std::vector<std::size_t> tags, en;
     gmsh::model::mesh::getElementsByType(8, tags, en, curve);
@@ -851,17 +813,47 @@ void WriteSurface(std::ostream& f, const std::string& name, const std::vector<in
       const auto it = dm.edge_of.find({std::min(a, b), std::max(a, b)});
       if (it == dm.edge_of.end())
         throw std::runtime_error("fe deck: a flank edge of " + name + " has no triangle");
-      f << it->second.first + 1 << ", S" << it->second.second + 3 << "\n";
-      ++faces;
+      faces.push_back(it->second);
     }
   }
-  if (faces == 0) throw std::runtime_error("fe deck: surface " + name + " has no faces");
+  if (faces.empty()) throw std::runtime_error("fe deck: surface " + name + " has no faces");
+  return faces;
 }
 
-// The material, the contact pairs, the plane-strain boundary and one step per rotation of gear 1's
-// hub (gear 2 held at its hub; ring: rim).
-void WriteSteps(std::ostream& f, const transmission::Scene& scene, const FeContactOptions& contact,
-                const std::vector<double>& rotations, const FeDeckInfo& info) {
+// The wedge faces over FlankFaces (the slab's elements are numbered as the triangles).
+void WriteSurface(std::ostream& f, const std::string& name, const std::vector<int>& curves,
+                  const std::vector<Vec2>& near, double reach, const DeckMesh& dm) {
+  f << "*SURFACE, NAME=" << name << ", TYPE=ELEMENT\n";
+  for (const auto& [tri, edge] : FlankFaces(name, curves, near, reach, dm))
+    f << tri + 1 << ", S" << edge + 3 << "\n";
+}
+
+ToothZone MakeToothZone(const geometry::Gear& gear, const geometry::GearPose& pose,
+                        const std::set<int>& loaded, const FeMeshOptions& mesh) {
+  const double m = gear.module() * kMm;
+  ToothZone zone;
+  zone.centre = pose.geometric_centre * kMm;
+  zone.rotation = pose.rotation;
+  zone.pitch = gear.pitch_angle();
+  zone.half_width = (mesh.tooth_zone + 0.5) * gear.pitch_angle();
+  zone.teeth.assign(loaded.begin(), loaded.end());
+  const double root = gear.root_radius() * kMm, tip = gear.tip_radius() * kMm;
+  zone.r_in = gear.internal() ? tip : root - 2 * m;
+  zone.r_out = gear.internal() ? root + 2 * m : tip;
+  return zone;
+}
+
+void SetPlaneMeshOptions() {
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.Algorithm", 6);
+  gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);
+}
+
+// The material, the surface interaction and one frictionless contact pair per entry of `pairs`.
+void WriteMaterialAndPairs(std::ostream& f, const transmission::Scene& scene,
+                           const FeContactOptions& contact, const std::vector<FeToothPair>& pairs) {
   const transmission::Material& mat = scene.material;
   f << "*MATERIAL, NAME=STEEL\n*ELASTIC\n"
     << Num(mat.youngs_modulus / 1e6, 13) << ", " << Num(mat.poisson_ratio, 13) << "\n"
@@ -870,27 +862,44 @@ void WriteSteps(std::ostream& f, const transmission::Scene& scene, const FeConta
     << "*SURFACE INTERACTION, NAME=FLANKS\n"
     << "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
     << Num(contact.penalty, 13) << ", " << Num(contact.tension, 13) << "\n";
-  for (const FeToothPair& p : info.pairs)
+  for (const FeToothPair& p : pairs)
     f << "*CONTACT PAIR, INTERACTION=FLANKS, TYPE=SURFACE TO SURFACE\n"
       << p.slave << ", " << p.master << "\n";
+}
+
+// A step's start (one fixed increment: each step starts from the last, near its answer; ccx's
+// automatic stepping would add a spurious 1e-6 increment at the end of the step) and gear 1's hub
+// turned rigidly by θ about c_1 in the plane.
+void WriteStepAndHubRotation(std::ostream& f, double theta, const FeDeckInfo& info) {
+  f << "*STEP, INC=1000\n*STATIC, DIRECT\n1., 1.\n*BOUNDARY\n";
+  for (std::size_t i = 0; i < info.hub_nodes.size(); ++i)
+    f << info.hub_nodes[i] << ", 1, 1, " << Num(-theta * info.hub_y[i], 13) << "\n"
+      << info.hub_nodes[i] << ", 2, 2, " << Num(theta * info.hub_x[i], 13) << "\n";
+}
+
+// The step's outputs: the hub reactions, `more` (further output requests), every pair's contact
+// force; then its end.
+void WriteStepOutputAndEnd(std::ostream& f, const FeDeckInfo& info, const char* more) {
+  f << "*NODE PRINT, NSET=HUB1\nRF\n" << more;
+  for (const FeToothPair& p : info.pairs)  // CF needs the pair named (ccx 2.20)
+    f << "*CONTACT PRINT, SLAVE=" << p.slave << ", MASTER=" << p.master << "\nCF\n";
+  f << "*END STEP\n";
+}
+
+// The material, the contact pairs, the plane-strain boundary and one step per rotation of gear 1's
+// hub (gear 2 held at its hub; ring: rim).
+void WriteSteps(std::ostream& f, const transmission::Scene& scene, const FeContactOptions& contact,
+                const std::vector<double>& rotations, const FeDeckInfo& info) {
+  WriteMaterialAndPairs(f, scene, contact, info.pairs);
   // Plane strain: u_z = 0 everywhere; gear 2 held at its hub (ring: rim).
   f << "*BOUNDARY\nNALL, 3, 3\nHUB2, 1, 2\n";
   for (double theta : rotations) {
-    // One fixed increment per step (each step starts from the last, near its answer); ccx's
-    // automatic stepping would add a spurious 1e-6 increment at the end of the step.
-    f << "*STEP, INC=1000\n*STATIC, DIRECT\n1., 1.\n*BOUNDARY\n";
-    for (std::size_t i = 0; i < info.hub_nodes.size(); ++i) {
-      f << info.hub_nodes[i] << ", 1, 1, " << Num(-theta * info.hub_y[i], 13) << "\n"
-        << info.hub_nodes[i] << ", 2, 2, " << Num(theta * info.hub_x[i], 13) << "\n";
-    }
-    f << "*NODE PRINT, NSET=HUB1\nRF\n*EL FILE, NSET=FILLETS\nS\n";
-    for (const FeToothPair& p : info.pairs)  // CF needs the pair named (ccx 2.20)
-      f << "*CONTACT PRINT, SLAVE=" << p.slave << ", MASTER=" << p.master << "\nCF\n";
-    f << "*END STEP\n";
+    WriteStepAndHubRotation(f, theta, info);
+    WriteStepOutputAndEnd(f, info, "*EL FILE, NSET=FILLETS\nS\n");
   }
 }
 
-}  // namespace
+}  // namespace detail
 
 FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair& pair,
                      double torque, double angle, const std::vector<double>& rotations,
@@ -913,21 +922,8 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   const double r0 = mesh.contact_radius * kMm;
   const double h_tooth = mesh.tooth_size_per_module * m / mesh.refinement;
   const double h_body = mesh.body_size_per_module * m / mesh.refinement;
-  auto zone_of = [&](const geometry::Gear& g, const geometry::GearPose& pose,
-                     const std::set<int>& loaded) {
-    ToothZone zone;
-    zone.centre = pose.geometric_centre * kMm;
-    zone.rotation = pose.rotation;
-    zone.pitch = g.pitch_angle();
-    zone.half_width = (mesh.tooth_zone + 0.5) * g.pitch_angle();
-    zone.teeth.assign(loaded.begin(), loaded.end());
-    const double root = g.root_radius() * kMm, tip = g.tip_radius() * kMm;
-    zone.r_in = g.internal() ? tip : root - 2 * m;
-    zone.r_out = g.internal() ? root + 2 * m : tip;
-    return zone;
-  };
-  const ToothZone zone1 = zone_of(g1, poses.gear1, teeth1);
-  const ToothZone zone2 = zone_of(g2, poses.gear2, teeth2);
+  const ToothZone zone1 = MakeToothZone(g1, poses.gear1, teeth1, mesh);
+  const ToothZone zone2 = MakeToothZone(g2, poses.gear2, teeth2, mesh);
   auto fine_of = [&](const geometry::Gear& g, const std::set<int>& loaded) {
     std::set<int> fine;
     for (int k : loaded)
@@ -957,10 +953,10 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   GmshSession session;
   const GearModel m1 = BuildGear(g1, poses.gear1, fine_of(g1, teeth1), mesh.points_per_segment,
                                  crack && crack->gear == 1 ? crack : nullptr,
-                                 spall && spall->gear == 1 ? spall : nullptr);
+                                 spall && spall->gear == 1 ? spall : nullptr, nullptr);
   const GearModel m2 = BuildGear(g2, poses.gear2, fine_of(g2, teeth2), mesh.points_per_segment,
                                  crack && crack->gear == 2 ? crack : nullptr,
-                                 spall && spall->gear == 2 ? spall : nullptr);
+                                 spall && spall->gear == 2 ? spall : nullptr, nullptr);
   gmsh::model::occ::synchronize();
   // The crack: its curve embedded in its gear's surface (the mesh keeps it as element sides).
   const GearModel* cracked = crack ? (crack->gear == 1 ? &m1 : &m2) : nullptr;
@@ -972,11 +968,7 @@ FeDeckInfo WriteDeck(const transmission::Scene& scene, const geometry::GearPair&
   const double h_crack = crack ? crack->face_size_per_module *
                                      (crack->gear == 1 ? g1 : g2).module() * kMm / mesh.refinement
                                : 0.0;
-  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
-  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-  gmsh::option::setNumber("Mesh.Algorithm", 6);
-  gmsh::option::setNumber("Mesh.SecondOrderLinear", 0);
+  SetPlaneMeshOptions();
   // Size: the smallest of the contact refinement, the tooth zone of the entity's gear and h_body.
   gmsh::model::mesh::setSizeCallback([&](int dim, int tag, double x, double y, double) {
     double s = h_body;

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
@@ -13,6 +14,7 @@
 #include "epicycle/report/files.hpp"
 #include "epicycle/report/svg_plot.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
+#include "fe3d_tool.hpp"
 #include "fe_deck.hpp"
 
 namespace {
@@ -253,9 +255,50 @@ int main(int argc, char** argv) {
   plot->add_option("fe", fe_csv, "fe_reference.csv of tools/fe_reference.sh")->required();
   plot->add_option("prefix", prefix, "output path prefix")->required();
   plot->add_option("--title", title, "figure title");
+  fe_reference::Fe3dCommandArgs f3;
+  CLI::App* fe3d = app.add_subcommand(
+      "fe3d", "3D reference across the face width: run one case, append its stations to --csv");
+  fe3d->add_option("scene", f3.scene, "pair scene file")->required();
+  fe3d->add_option("--name", f3.name, "case name in the CSV");
+  fe3d->add_option("--angle-deg", f3.angle_deg, "gear-1 angle from the cycle start [deg]");
+  fe3d->add_option("--misalignment-um", f3.misalignment_um,
+                   "F_beta: the rigid gap's change from z = 0 to z = b [um]");
+  fe3d->add_option("--face-width-mm", f3.face_width_mm,
+                   "b [mm] (0: the pair's); the torque scales with b");
+  fe3d->add_option("--layers", f3.layers, "wedge layers (axial stations) over b");
+  fe3d->add_option("--refinement", f3.refinement, "divides every in-plane mesh size");
+  fe3d->add_flag("--plane-strain", f3.plane_strain, "one layer with u_z = 0: plane strain");
+  fe3d->add_option("--plane-k", f3.plane_k,
+                   "plane model's stiffness per width for the steps' estimate [N/(mm um)]");
+  fe3d->add_option("--threads", f3.threads, "ccx threads");
+  fe3d->add_option("--tooth-size-per-module", f3.tooth_size_per_module,
+                   "in-plane element size on the modelled teeth per module (0: default)");
+  fe3d->add_flag("--deck-only", f3.deck_only, "write the deck and stop");
+  fe3d->add_option("--body-size-per-module", f3.body_size_per_module,
+                   "largest in-plane element size per module (0: default)");
+  fe3d->add_option("--sector-teeth", f3.sector_teeth, "teeth modelled either side of the loaded");
+  fe3d->add_option("--tooth-zone", f3.tooth_zone, "teeth either side at the tooth size");
+  fe3d->add_option("--grading", f3.grading,
+                   "growth of the in-plane size with distance (0: default)");
+  fe3d->add_option("--contact-size-um", f3.contact_size_um, "in-plane size at the contact [um]");
+  fe3d->add_option("--ccx", f3.ccx, "CalculiX program");
+  fe3d->add_option("--out", f3.out, "work directory");
+  fe3d->add_option("--csv", f3.csv, "CSV to append to");
+  int plot_layers = 10;
+  double plot_refinement = 1;
+  CLI::App* fe3d_plot =
+      app.add_subcommand("fe3d-plot", "figure: load per unit width across the face");
+  fe3d_plot->add_option("csv", fe_csv, "CSV of fe3d runs")->required();
+  fe3d_plot->add_option("svg", prefix, "output SVG")->required();
+  fe3d_plot->add_option("--layers", plot_layers, "the discretisation drawn as lines");
+  fe3d_plot->add_option("--refinement", plot_refinement, "the discretisation drawn as lines");
+  fe3d_plot->add_option("--title", title, "figure title");
   try {
     app.parse(argc, argv);
     if (*plot) return Plot(hybrid_csv, fe_csv, prefix, title);
+    if (*fe3d) return fe_reference::Fe3dCommand(f3);
+    if (*fe3d_plot)
+      return fe_reference::Fe3dPlot(fe_csv, prefix, plot_layers, plot_refinement, title);
     mesh.contact_size = contact_size_um * 1e-6;
     if (*deck)
       return Deck(scene, mesh_name, angle_deg, rotations, mesh, contact, out, crack, tip_size_um);
@@ -264,6 +307,9 @@ int main(int argc, char** argv) {
     return Read(dir);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const std::invalid_argument& e) {  // bad input: exit 2
+    std::fprintf(stderr, "fe_reference: %s\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fe_reference: %s\n", e.what());
     return 1;

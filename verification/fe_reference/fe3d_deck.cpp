@@ -1,0 +1,346 @@
+// The 3D deck across the face width (fe3d.hpp): the plane reference's outline and mesh (sector of
+// teeth), extruded into layers of C3D15 wedges, one contact pair per layer.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "epicycle/io/number_format.hpp"
+#include "fe3d.hpp"
+#include "fe_deck_detail.hpp"
+
+namespace epicycle::fe_reference {
+
+namespace {
+
+using detail::Vec2;
+using io::Num;
+
+constexpr double kMm = 1e3;  // the deck is in mm, N, MPa
+
+// The teeth of a sector: the loaded ones (consecutive in the cyclic order) and `extra` either
+// side, in outline order; all of them when the sector would close on itself.
+std::vector<int> SectorTeeth(const std::set<int>& loaded, int extra, int z) {
+  int first = -1;
+  for (int k : loaded)
+    if (!loaded.count((k - 1 + z) % z)) first = k;
+  const int count = static_cast<int>(loaded.size());
+  if (first < 0 || count + 2 * extra >= z) return {};
+  for (int i = 0; i < count; ++i)
+    if (!loaded.count((first + i) % z))
+      throw std::runtime_error("fe3d deck: the loaded teeth are not consecutive");
+  std::vector<int> teeth;
+  for (int i = -extra; i < count + extra; ++i) teeth.push_back(((first + i) % z + z) % z);
+  return teeth;
+}
+
+// Node ids of the extruded mesh: level j = 0..2 N_z (even: layer faces, odd: mid-layer, corner
+// nodes only) above plane node i: j·n2 + i + 1.
+struct Extrusion {
+  int n2 = 0, layers = 1;
+  std::vector<char> corner;
+  int Id(int level, int i) const { return level * n2 + i + 1; }
+  template <class F>
+  void Each(int i, F&& emit) const {
+    for (int level = 0; level <= 2 * layers; ++level)
+      if (level % 2 == 0 || corner[i]) emit(level, Id(level, i));
+  }
+};
+
+void WriteMesh(std::ostream& f, const detail::DeckMesh& dm, const Extrusion& ex, double b_mm,
+               Fe3dDeckInfo& info) {
+  int nodes = 0;
+  for (int i = 0; i < ex.n2; ++i)
+    ex.Each(i, [&](int level, int id) {
+      f << id << ", " << dm.xy[i].x() << ", " << dm.xy[i].y() << ", "
+        << b_mm * level / (2.0 * ex.layers) << "\n";
+      ++nodes;
+    });
+  const int ntri = static_cast<int>(dm.tris.size());
+  for (int body = 0; body < 2; ++body) {
+    f << "*ELEMENT, TYPE=C3D15, ELSET=GEAR" << body + 1 << "\n";
+    for (int l = 0; l < ex.layers; ++l) {
+      const int lo = 2 * l, mid = 2 * l + 1, hi = 2 * l + 2;
+      for (int e = 0; e < ntri; ++e) {
+        const detail::Tri& t = dm.tris[e];
+        if (t.body != body) continue;
+        const auto& n = t.n;
+        f << l * ntri + e + 1 << ", " << ex.Id(lo, n[0]) << ", " << ex.Id(lo, n[1]) << ", "
+          << ex.Id(lo, n[2]) << ", " << ex.Id(hi, n[0]) << ", " << ex.Id(hi, n[1]) << ", "
+          << ex.Id(hi, n[2]) << ", " << ex.Id(lo, n[3]) << ", " << ex.Id(lo, n[4]) << ", "
+          << ex.Id(lo, n[5]) << ",\n"
+          << ex.Id(hi, n[3]) << ", " << ex.Id(hi, n[4]) << ", " << ex.Id(hi, n[5]) << ", "
+          << ex.Id(mid, n[0]) << ", " << ex.Id(mid, n[1]) << ", " << ex.Id(mid, n[2]) << "\n";
+      }
+    }
+  }
+  info.deck.nodes = nodes;
+  info.deck.elements = ntri * ex.layers;
+}
+
+// Gear 2's hub motion at a node (x, y relative to c_2, z) [mm]: the rigid rotation ψ about
+// e_z × n through (c_2, b/2) (fe3d.hpp).
+std::array<double, 3> Misalign(double psi, const Vec2& n, double x, double y, double z,
+                               double b_mm) {
+  const double dz = z - 0.5 * b_mm;
+  return {psi * dz * n.x(), psi * dz * n.y(), -psi * (n.x() * x + n.y() * y)};
+}
+
+}  // namespace
+
+FeMeshOptions Fe3dDefaultMesh() {
+  FeMeshOptions m;
+  m.contact_size = 200e-6;
+  m.tooth_size_per_module = 0.5;
+  m.body_size_per_module = 4.0;
+  m.grading = 0.5;
+  m.tooth_zone = 0;
+  m.points_per_segment = 12;
+  m.fillet_size_per_module = m.tooth_size_per_module;  // no fillet stress is read
+  m.fillet_zone = 0;
+  return m;
+}
+
+void Fe3dOptions::Validate() const {
+  mesh.Validate();
+  if (!(face_width >= 0) || !std::isfinite(face_width))
+    throw std::invalid_argument("fe3d: face_width = " + Num(face_width, 13) +
+                                " m: must be >= 0 (0: the pair's)");
+  if (layers < 1 || layers > 200)
+    throw std::invalid_argument("fe3d: layers = " + std::to_string(layers) +
+                                ": must be in [1, 200]");
+  if (!std::isfinite(misalignment) || std::abs(misalignment) > 1e-3)
+    throw std::invalid_argument("fe3d: misalignment = " + Num(misalignment, 13) +
+                                " m: must be finite and within ±1 mm");
+  if (sector_teeth < 0)
+    throw std::invalid_argument("fe3d: sector_teeth = " + std::to_string(sector_teeth) +
+                                ": must be >= 0");
+  if (plane_strain && misalignment != 0)
+    throw std::invalid_argument("fe3d: plane_strain with misalignment = " + Num(misalignment, 13) +
+                                " m: the plane-strain deck (u_z = 0) takes no misalignment");
+  if (!(contact.penalty > 0) || !(contact.gap_window > 0) || !(contact.slave_reach > 0) ||
+      !(contact.master_reach > 0))
+    throw std::invalid_argument(
+        "fe3d: contact penalty, gap_window, slave_reach, master_reach: must be > 0");
+}
+
+void Fe3dDeckInfo::Write(const std::string& path) const {
+  deck.Write(path + ".base");
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot be written");
+  f.precision(17);
+  f << "misalignment_m " << misalignment << "\n";
+  for (double z : z_edges) f << "z_edge_m " << z << "\n";
+  for (int l : pair_layer) f << "pair_layer " << l << "\n";
+  if (!f) throw std::runtime_error(path + ": write failed");
+}
+
+Fe3dDeckInfo Fe3dDeckInfo::Read(const std::string& path) {
+  Fe3dDeckInfo info;
+  info.deck = FeDeckInfo::Read(path + ".base");
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot be read");
+  std::string line;
+  for (int number = 1; std::getline(f, line); ++number) {
+    std::istringstream s(line);
+    std::string key;
+    s >> key;
+    bool ok = true;
+    if (key == "misalignment_m") {
+      ok = static_cast<bool>(s >> info.misalignment);
+    } else if (key == "z_edge_m") {
+      double z = 0;
+      ok = static_cast<bool>(s >> z);
+      info.z_edges.push_back(z);
+    } else if (key == "pair_layer") {
+      int l = 0;
+      ok = static_cast<bool>(s >> l);
+      info.pair_layer.push_back(l);
+    } else if (!key.empty()) {
+      ok = false;
+    }
+    if (!ok)
+      throw std::runtime_error(path + ":" + std::to_string(number) + ": cannot read '" + line +
+                               "'");
+  }
+  if (info.pair_layer.size() != info.deck.pairs.size() || info.z_edges.size() < 2)
+    throw std::runtime_error(path + ": " + std::to_string(info.pair_layer.size()) +
+                             " pair layers for " + std::to_string(info.deck.pairs.size()) +
+                             " pairs, " + std::to_string(info.z_edges.size()) + " layer edges");
+  return info;
+}
+
+Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearPair& pair,
+                         double torque, double angle, const std::vector<double>& rotations,
+                         const Fe3dOptions& options, const std::string& directory) {
+  options.Validate();
+  if (rotations.empty())
+    throw std::invalid_argument("fe3d deck: rotations: at least one step is needed");
+  for (double r : rotations)
+    if (!(r * rotations.front() > 0) || !std::isfinite(r))
+      throw std::invalid_argument("fe3d deck: rotation = " + Num(r, 13) +
+                                  ": every step's rotation must be non-zero and of one sign");
+  if (!(torque != 0) || !std::isfinite(torque))
+    throw std::invalid_argument("fe3d deck: torque = " + Num(torque, 13) +
+                                " N m: must be finite and non-zero");
+  const geometry::Gear& g1 = pair.gear1();
+  const geometry::Gear& g2 = pair.gear2();
+  const geometry::PairPoses poses = pair.Poses(angle);
+  const FeMeshOptions& mesh = options.mesh;
+  const detail::LoadedContacts lc = detail::FindLoadedContacts(pair, poses, options.contact);
+  const double b = options.face_width > 0 ? options.face_width : geometry::ContactFaceWidth(g1, g2);
+  const double b_mm = b * kMm;
+
+  // The contact normal (gear 1 → gear 2) of the pair with the smallest rigid gap: the direction
+  // of the line of action in which gear 2's axis turns.
+  geometry::ContactSearchOptions search;
+  search.gap_window = options.contact.gap_window;
+  search.both_sides = false;
+  search.side_a = pair.loaded_side();
+  Vec2 normal = Vec2::Zero();
+  double best = -1e300;
+  for (const geometry::PotentialContact& c : pair.Contacts(poses, search))
+    if (c.overlap > best) best = c.overlap, normal = c.normal;
+
+  const double m = g1.module() * kMm;
+  const double h_c = mesh.contact_size * kMm / mesh.refinement;
+  const double r0 = mesh.contact_radius * kMm;
+  const double h_tooth = mesh.tooth_size_per_module * m / mesh.refinement;
+  const double h_body = mesh.body_size_per_module * m / mesh.refinement;
+  const detail::ToothZone zone1 = detail::MakeToothZone(g1, poses.gear1, lc.teeth1, mesh);
+  const detail::ToothZone zone2 = detail::MakeToothZone(g2, poses.gear2, lc.teeth2, mesh);
+  const std::vector<int> sector1 = SectorTeeth(lc.teeth1, options.sector_teeth, g1.teeth());
+  const std::vector<int> sector2 = SectorTeeth(lc.teeth2, options.sector_teeth, g2.teeth());
+  auto all_of = [](const std::vector<int>& sector, int z) {
+    std::set<int> s(sector.begin(), sector.end());
+    for (int k = 0; s.empty() && k < z; ++k) s.insert(k);  // an empty sector: the whole gear
+    return s;
+  };
+
+  detail::GmshSession session;
+  const detail::GearModel m1 =
+      detail::BuildGear(g1, poses.gear1, all_of(sector1, g1.teeth()), mesh.points_per_segment,
+                        nullptr, nullptr, sector1.empty() ? nullptr : &sector1);
+  const detail::GearModel m2 =
+      detail::BuildGear(g2, poses.gear2, all_of(sector2, g2.teeth()), mesh.points_per_segment,
+                        nullptr, nullptr, sector2.empty() ? nullptr : &sector2);
+  gmsh::model::occ::synchronize();
+  detail::SetPlaneMeshOptions();
+  // Size: the smallest of the contact refinement, the tooth zone of the entity's gear and h_body
+  // (the plane reference's rule without its fillet and crack terms).
+  gmsh::model::mesh::setSizeCallback([&](int dim, int tag, double x, double y, double) {
+    double s = h_body;
+    for (const Vec2& c : lc.contact_points)
+      s = std::min(s, h_c + mesh.grading * std::max(0.0, std::hypot(x - c.x(), y - c.y()) - r0));
+    const bool on1 = (dim == 2 && tag == m1.surface) || (dim == 1 && m1.curves.count(tag));
+    const bool on2 = (dim == 2 && tag == m2.surface) || (dim == 1 && m2.curves.count(tag));
+    if (on1 || !on2) s = std::min(s, h_tooth + mesh.grading * zone1.Distance(x, y));
+    if (on2 || !on1) s = std::min(s, h_tooth + mesh.grading * zone2.Distance(x, y));
+    return s;
+  });
+  gmsh::model::mesh::generate(2);
+  gmsh::model::mesh::setOrder(2);
+  detail::DeckMesh dm = detail::ReadDeckMesh(m1, m2);
+  const int straightened = detail::StraightenInvertedTriangles(dm);
+
+  Extrusion ex;
+  ex.n2 = static_cast<int>(dm.xy.size());
+  ex.layers = options.layers;
+  ex.corner.assign(ex.n2, 0);
+  for (const detail::Tri& t : dm.tris)
+    for (int j = 0; j < 3; ++j) ex.corner[t.n[j]] = 1;
+
+  Fe3dDeckInfo info;
+  FeDeckInfo& deck = info.deck;
+  deck.thickness = b;  // the forces read are the whole face's
+  deck.face_width = b;
+  deck.torque = torque;
+  deck.base_radius1 = g1.base_radius();
+  deck.angle = angle;
+  deck.rotations = rotations;
+  deck.nodes_2d = ex.n2;
+  deck.triangles = static_cast<int>(dm.tris.size());
+  deck.straightened = straightened;
+  info.misalignment = options.misalignment;
+  for (int l = 0; l <= options.layers; ++l) info.z_edges.push_back(b * l / options.layers);
+
+  std::filesystem::create_directories(directory);
+  const std::string deck_path = directory + "/deck.inp";
+  std::ofstream f(deck_path);
+  if (!f) throw std::runtime_error(deck_path + ": cannot be written");
+  f.precision(13);
+  f << "** epicycle FE contact reference across the face width (verification/fe_reference): "
+    << scene.name << "\n** gear-1 angle " << Num(geometry::Deg(angle), 13) << " deg, torque "
+    << Num(torque, 13) << " N m, b = " << Num(b_mm, 13) << " mm in " << options.layers
+    << " layers, F_beta = " << Num(options.misalignment * 1e6, 13)
+    << " um; units mm, N, MPa\n*NODE, NSET=NALL\n";
+  WriteMesh(f, dm, ex, b_mm, info);
+
+  const Vec2 c1 = poses.gear1.rotation_centre * kMm;
+  const Vec2 c2 = poses.gear2.rotation_centre * kMm;
+  for (int i : detail::HubNodes(m1, dm))
+    ex.Each(i, [&](int, int id) {
+      deck.hub_nodes.push_back(id);
+      deck.hub_x.push_back(dm.xy[i].x() - c1.x());
+      deck.hub_y.push_back(dm.xy[i].y() - c1.y());
+    });
+  detail::WriteNodeSet(f, "HUB1", deck.hub_nodes);
+  struct HubNode {
+    int id;
+    double x, y, z;
+  };
+  std::vector<HubNode> hub2;
+  std::vector<int> hub2_ids;
+  for (int i : detail::HubNodes(m2, dm))
+    ex.Each(i, [&](int level, int id) {
+      hub2.push_back(
+          {id, dm.xy[i].x() - c2.x(), dm.xy[i].y() - c2.y(), b_mm * level / (2.0 * ex.layers)});
+      hub2_ids.push_back(id);
+    });
+  detail::WriteNodeSet(f, "HUB2", hub2_ids);
+
+  // Surfaces: gear 2's flank over every layer (master), gear 1's flank one slave per layer.
+  const int ntri = static_cast<int>(dm.tris.size());
+  for (const auto& [teeth, p] : lc.by_teeth) {
+    const std::vector<Vec2>& near = lc.points_of.at(teeth);
+    const auto master = detail::FlankFaces(p.master, m2.flank_curves.at({p.tooth2, lc.side2}), near,
+                                           options.contact.master_reach * kMm, dm);
+    const auto slave = detail::FlankFaces(p.slave, m1.flank_curves.at({p.tooth1, lc.side1}), near,
+                                          options.contact.slave_reach * kMm, dm);
+    f << "*SURFACE, NAME=" << p.master << ", TYPE=ELEMENT\n";
+    for (int l = 0; l < options.layers; ++l)
+      for (const auto& [tri, edge] : master) f << l * ntri + tri + 1 << ", S" << edge + 3 << "\n";
+    for (int l = 0; l < options.layers; ++l) {
+      FeToothPair layer = p;
+      layer.slave = p.slave + "Z" + std::to_string(l);
+      f << "*SURFACE, NAME=" << layer.slave << ", TYPE=ELEMENT\n";
+      for (const auto& [tri, edge] : slave) f << l * ntri + tri + 1 << ", S" << edge + 3 << "\n";
+      deck.pairs.push_back(layer);
+      info.pair_layer.push_back(l);
+    }
+  }
+
+  detail::WriteMaterialAndPairs(f, scene, options.contact, deck.pairs);
+  // Hubs: gear 1 axially held; gear 2 held (plane strain: u_z = 0 everywhere) or turned by ψ.
+  f << "*BOUNDARY\n" << (options.plane_strain ? "NALL" : "HUB1") << ", 3, 3\n";
+  if (options.misalignment == 0) f << "HUB2, 1, 3\n";
+  const double psi = options.misalignment * kMm / b_mm;
+  for (double theta : rotations) {
+    detail::WriteStepAndHubRotation(f, theta, deck);
+    if (options.misalignment != 0)
+      for (const HubNode& h : hub2) {
+        const auto u = Misalign(psi, normal, h.x, h.y, h.z, b_mm);
+        for (int d = 0; d < 3; ++d)
+          f << h.id << ", " << d + 1 << ", " << d + 1 << ", " << Num(u[d], 13) << "\n";
+      }
+    detail::WriteStepOutputAndEnd(f, deck, "");
+  }
+  if (!f) throw std::runtime_error(deck_path + ": write failed");
+  f.close();
+  info.Write(directory + "/deck3d.info");
+  return info;
+}
+
+}  // namespace epicycle::fe_reference

@@ -1,0 +1,133 @@
+// The 3D reference's reading and its run (fe3d.hpp): the layers' contact forces at the scene's
+// torque as a line load across the face, and the ccx run that produces them.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "epicycle/io/number_format.hpp"
+#include "fe3d.hpp"
+
+namespace epicycle::fe_reference {
+
+namespace {
+
+// CPU seconds (user + system) of the waited-for children so far.
+double ChildrenCpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_CHILDREN, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+}  // namespace
+
+Fe3dLineLoad ReadLineLoad(const std::string& directory, const Fe3dDeckInfo& info) {
+  const FeSample s = Interpolate(info.deck, ReadSteps(directory, info.deck));
+  const std::size_t layers = info.z_edges.size() - 1;
+  Fe3dLineLoad r;
+  r.angle = info.deck.angle;
+  r.face_width = info.z_edges.back() - info.z_edges.front();
+  r.misalignment = info.misalignment;
+  std::vector<double> force(layers, 0.0);
+  for (std::size_t j = 0; j < s.pair_force.size(); ++j) {
+    const int l = info.pair_layer[j];
+    if (l < 0 || static_cast<std::size_t>(l) >= layers)
+      throw std::runtime_error(directory + "/deck3d.info: pair layer " + std::to_string(l) +
+                               " outside [0, " + std::to_string(layers) + ")");
+    force[static_cast<std::size_t>(l)] += s.pair_force[j];
+  }
+  for (std::size_t l = 0; l < layers; ++l) {
+    const double lo = info.z_edges[l], hi = info.z_edges[l + 1];
+    r.z_lo.push_back(lo);
+    r.z_hi.push_back(hi);
+    r.z.push_back(0.5 * (lo + hi));
+    r.line_load.push_back(force[l] / (hi - lo));
+    r.total_force += force[l];
+  }
+  r.rotation = s.rotation;
+  r.approach = s.approach;
+  const double mean = r.total_force / r.face_width;
+  const auto peak = std::max_element(r.line_load.begin(), r.line_load.end());
+  r.k_hbeta = *peak / mean;
+  r.peak_z = r.z[static_cast<std::size_t>(peak - r.line_load.begin())];
+  r.stiffness_per_width = mean / r.approach;
+  // q at b/2 between the station centres around it (one station: its own value).
+  const double middle = 0.5 * (info.z_edges.front() + info.z_edges.back());
+  double q_mid = r.line_load.front();
+  for (std::size_t l = 0; l + 1 < layers; ++l) {
+    if (r.z[l] <= middle && middle <= r.z[l + 1]) {
+      const double u = (middle - r.z[l]) / (r.z[l + 1] - r.z[l]);
+      q_mid = (1 - u) * r.line_load[l] + u * r.line_load[l + 1];
+    }
+  }
+  r.middle_stiffness_per_width = q_mid / r.approach;
+  r.moment_balance = s.moment_balance;
+  r.extrapolated = s.extrapolated;
+  r.nodes = info.deck.nodes;
+  r.elements = info.deck.elements;
+  for (double q : r.line_load)
+    if (!std::isfinite(q))
+      throw std::runtime_error(directory + ": a station's line load is not finite");
+  return r;
+}
+
+double SliceApproach(double force, double face_width, double stiffness_per_width,
+                     double misalignment) {
+  if (!(force > 0) || !(face_width > 0) || !(stiffness_per_width > 0) ||
+      !std::isfinite(misalignment))
+    throw std::invalid_argument("fe3d: SliceApproach(force " + io::Num(force, 13) + " N, b " +
+                                io::Num(face_width, 13) + " m, c' " +
+                                io::Num(stiffness_per_width, 13) + " N/m^2, F_beta " +
+                                io::Num(misalignment, 13) + " m): needs F, b, c' > 0");
+  const double f = std::abs(misalignment);
+  const double uniform = force / (stiffness_per_width * face_width);
+  // Whole face loaded while δ ≥ F_β/2; else (δ + F_β/2)² b c′/(2 F_β) = F.
+  if (uniform >= 0.5 * f) return uniform;
+  return std::sqrt(2 * force * f / (stiffness_per_width * face_width)) - 0.5 * f;
+}
+
+Fe3dRun RunFe3d(const transmission::Scene& scene, const geometry::GearPair& pair, double torque,
+                double angle, double stiffness_per_width, const Fe3dOptions& options,
+                const std::string& directory, const std::string& ccx, int threads,
+                const std::vector<double>& step_scales) {
+  options.Validate();
+  if (threads < 1)
+    throw std::invalid_argument("fe3d: threads = " + std::to_string(threads) + ": must be >= 1");
+  if (step_scales.size() < 2)
+    throw std::invalid_argument("fe3d: step_scales: two or more steps bracket the torque");
+  const double rb1 = pair.gear1().base_radius();
+  const double b = options.face_width > 0 ? options.face_width
+                                          : geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
+  const double sign = torque > 0 ? 1.0 : -1.0;
+  double theta =
+      sign * SliceApproach(std::abs(torque) / rb1, b, stiffness_per_width, options.misalignment) /
+      rb1;
+  Fe3dRun run;
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu0 = ChildrenCpuSeconds();
+  for (run.runs = 1;; ++run.runs) {
+    std::vector<double> rotations;
+    for (double s : step_scales) rotations.push_back(s * theta);
+    std::filesystem::remove(directory + "/deck.dat");
+    run.deck = WriteDeck3d(scene, pair, torque, angle, rotations, options, directory);
+    const std::string command = "cd '" + directory +
+                                "' && OMP_NUM_THREADS=" + std::to_string(threads) +
+                                " nice -n 10 '" + ccx + "' -i deck > ccx.log 2>&1";
+    if (std::system(command.c_str()) != 0)
+      throw std::runtime_error("fe3d: ccx failed (see " + directory + "/ccx.log)");
+    run.result = ReadLineLoad(directory, run.deck);
+    if (!run.result.extrapolated || run.runs == 2) break;
+    theta = run.result.rotation;  // the first run's extrapolation: the steps around it
+  }
+  run.cpu_seconds = ChildrenCpuSeconds() - cpu0;
+  run.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+}  // namespace epicycle::fe_reference

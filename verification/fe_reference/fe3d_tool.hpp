@@ -1,0 +1,34 @@
+// The fe_reference tool's 3D subcommands (fe3d_tool.cpp).
+#pragma once
+
+#include <string>
+
+namespace epicycle::fe_reference {
+
+struct Fe3dCommandArgs {
+  std::string scene, name = "case", out = "fe3d-out", csv = "fe3d.csv", ccx = "ccx";
+  double angle_deg = 13.5;     ///< gear-1 position [deg]
+  double misalignment_um = 0;  ///< F_β [µm]
+  double face_width_mm = 0;    ///< b [mm]; 0: the pair's
+  int layers = 10;             ///< [-]
+  double refinement = 1;       ///< divides every in-plane size [-]
+  bool plane_strain = false;   ///< one layer, u_z = 0
+  double plane_k = 13.12;      ///< c′ of the plane model for the steps' estimate [N/(mm·µm)]
+  int threads = 1;             ///< ccx's OMP_NUM_THREADS
+  double tooth_size_per_module = 0;  ///< in-plane size on the sector's teeth per module; 0: default
+  double body_size_per_module = 0;   ///< largest in-plane size per module; 0: default
+  double grading = 0;                ///< growth of the size with distance; 0: default
+  double contact_size_um = 0;        ///< in-plane size at the contact [µm]; 0: default
+  int sector_teeth = -1;             ///< teeth either side of the loaded ones; -1: default
+  int tooth_zone = -1;               ///< teeth either side meshed at the tooth size; -1: default
+  bool deck_only = false;            ///< write the deck and stop
+};
+
+/// Runs one case and appends its stations to args.csv. @throws on bad input or a failed run.
+int Fe3dCommand(const Fe3dCommandArgs& args);
+
+/// The load per unit width across the face of every 3D case of `csv`.
+int Fe3dPlot(const std::string& csv, const std::string& svg, int layers, double refinement,
+             const std::string& title);
+
+}  // namespace epicycle::fe_reference
