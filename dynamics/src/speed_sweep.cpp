@@ -428,7 +428,7 @@ SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
     AddDeviationParts(model, window, &r);
     r.warnings = DynamicWarnings(model.stage_model().stage(), window);
     r.stats = run.stats;
-    r.ok = run.completed;
+    r.ok = run.completed();
     r.message = run.message;
   } catch (const std::exception& e) {
     r.ok = false;

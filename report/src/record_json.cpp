@@ -47,6 +47,12 @@ void JsonRecord::Rating(const char* key, const transmission::StageRating& rating
   (*object_)[key] = RatingJson(rating);
 }
 
+void JsonRecord::RootStress(const char* key,
+                            const std::vector<transmission::RootStressSummary>& gears,
+                            const char* x_name, double x_scale) {
+  (*object_)[key] = RootStressJson(gears, x_name, x_scale);
+}
+
 nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
   JsonRecord json;
   transmission::VisitRecord(summary, json);
@@ -57,6 +63,15 @@ nlohmann::json QuasiStaticRecordJson(const transmission::QuasiStaticRecord& reco
                                      const nlohmann::json& provenance) {
   JsonRecord json;
   transmission::VisitRecord(record, json);
+  nlohmann::json j = json.Result();
+  j["provenance"] = provenance;
+  return j;
+}
+
+nlohmann::json DynamicRecordJson(const dynamics::DynamicRecord& record,
+                                 const nlohmann::json& provenance) {
+  JsonRecord json;
+  dynamics::VisitRecord(record, json);
   nlohmann::json j = json.Result();
   j["provenance"] = provenance;
   return j;

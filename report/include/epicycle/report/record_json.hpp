@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
 #include "epicycle/transmission/record.hpp"
 
@@ -24,6 +25,8 @@ class JsonRecord final : public transmission::RecordVisitor {
   void EndList() override;
   void Stresses(const transmission::SweepSummary& summary) override;
   void Rating(const char* key, const transmission::StageRating& rating) override;
+  void RootStress(const char* key, const std::vector<transmission::RootStressSummary>& gears,
+                  const char* x_name, double x_scale) override;
   /// The object built so far.
   const nlohmann::json& Result() const { return root_; }
 
@@ -39,5 +42,9 @@ nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary);
 /// A quasi-static run's summary JSON: its record's fields and the program's provenance.
 nlohmann::json QuasiStaticRecordJson(const transmission::QuasiStaticRecord& record,
                                      const nlohmann::json& provenance);
+
+/// A dynamic run's summary JSON: its record's fields and the program's provenance.
+nlohmann::json DynamicRecordJson(const dynamics::DynamicRecord& record,
+                                 const nlohmann::json& provenance);
 
 }  // namespace epicycle::report

@@ -11,6 +11,7 @@ namespace epicycle::transmission {
 
 struct SweepSummary;
 struct StageRating;
+struct RootStressSummary;
 
 /// Receives a record's fields in order. Numbers are in the unit their key names ("_urad", "_Nm",
 /// "_s"; none for a ratio); a number that is not finite means "none" (null in JSON, None in
@@ -31,6 +32,10 @@ class RecordVisitor {
   /// serialisations define them (report::RootStressJson, ContactPressureJson, RatingJson).
   virtual void Stresses(const SweepSummary& summary) = 0;
   virtual void Rating(const char* key, const StageRating& rating) = 0;
+  /// Each gear's root-stress extremes over a run against x (report::RootStressJson's fields;
+  /// `x_name` its unit, e.g. "time_s", the state's x times `x_scale`).
+  virtual void RootStress(const char* key, const std::vector<RootStressSummary>& gears,
+                          const char* x_name, double x_scale) = 0;
 };
 
 /// The statistics of a sweep over carrier positions (SweepSummary), the quasi-static run's and
