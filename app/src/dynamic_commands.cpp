@@ -45,7 +45,8 @@ struct DynamicArgs {
   // Not given: the scene's speed, the range's duration, the library's defaults (the spectrum's:
   // one carrier revolution, 4 mesh cycles skipped).
   std::optional<double> speed_rpm, time, rate_scale, contact_tol, spectrum_resolution,
-      spectrum_skip;
+      spectrum_skip, time_limit;
+  std::optional<long> max_steps;
   int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0;
   bool no_cache = false, quiet = false, fd_jacobian = false, stresses = false, spectrum = false,
        rating = false;
@@ -102,6 +103,8 @@ dynamics::DynamicRequest Request(const DynamicArgs& a) {
   r.contact_tolerance = a.contact_tol;
   r.max_order = a.max_order;
   r.analytic_jacobian = !a.fd_jacobian;
+  r.max_steps = a.max_steps;
+  r.time_limit_s = a.time_limit;
   r.stresses = a.stresses;
   r.rating = a.rating;
   r.spectrum = a.spectrum;
@@ -110,7 +113,7 @@ dynamics::DynamicRequest Request(const DynamicArgs& a) {
   r.tables = TableOptions(a.cache, a.no_cache);
   r.names = {"--time", "--speed-rpm", "--range", "--rating", "--spectrum-resolution",
              "--spectrum-skip-cycles", "--outputs-per-cycle", "--start-deg", "--rtol",
-             "--rate-scale", "--contact-tol", "--max-order"};
+             "--rate-scale", "--contact-tol", "--max-order", "--max-steps", "--time-limit"};
   return r;
 }
 
@@ -126,15 +129,12 @@ void RunDynamic(const DynamicArgs& a) {
   const dynamics::DynamicRequest request = Request(a);
   if (!a.speed_sweep.empty()) {
     ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
-    dynamics::StageDynamics rig(dynamics::ResolvedScene(request), request.tables);
-    dynamics::SimulationOptions opt = dynamics::ResolvedOptions(request);
-    opt.keep_samples = true;  // each speed keeps its window
-    const int per_cycle =
-        a.outputs_per_cycle > 0 ? a.outputs_per_cycle : SpeedSweepArgs{}.outputs_per_cycle;
-    return RunSpeedSweep({a.speed_sweep, a.out, a.range.empty() ? "planet" : a.range, a.backend,
-                          a.integrator, a.window_cycles, a.start_deg, per_cycle, a.harmonics,
-                          a.threads, a.quiet},
-                         rig, opt);
+    dynamics::SpeedSweepRequest sweep;
+    sweep.run = request;
+    sweep.window_cycles = a.window_cycles;
+    sweep.harmonics = a.harmonics;
+    sweep.threads = a.threads;
+    return RunSpeedSweep({a.speed_sweep, a.out, a.backend, a.quiet}, std::move(sweep));
   }
   ConsoleSink sink(a, Provenance(a.backend, &request.scene));
   const dynamics::DynamicRecord record = dynamics::RunDynamic(request, sink);
@@ -296,6 +296,12 @@ void RegisterDynamicCommands(CLI::App& app) {
   AddNumber(cmd, "--threads", a.threads, "Speed sweep: worker threads (default: every core)",
             kThreads);
   AddNumber(cmd, "--max-order", a.max_order, "Largest BDF order of CVODE (1..5)", kMaxOrder);
+  AddNumber(cmd, "--max-steps", a.max_steps,
+            "Integrator steps per output interval before the run stops (default 2000000)",
+            dynamics::kMaxSteps);
+  AddNumber(cmd, "--time-limit", a.time_limit,
+            "Wall-time budget of the run [s]: when spent it stops with what it has (exit 1)",
+            dynamics::kRunTimeLimitS);
   cmd->add_flag("--spectrum", a.spectrum,
                 "Also the vibration signals per step and their spectra (docs/spectra.md)");
   AddNumber(cmd, "--spectrum-resolution", a.spectrum_resolution,

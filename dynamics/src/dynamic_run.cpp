@@ -40,6 +40,8 @@ SimulationOptions ResolvedOptions(const DynamicRequest& r) {
   if (r.rate_scale) CheckArgument(n.rate_scale, *r.rate_scale, kRateScale);
   if (r.contact_tolerance) CheckArgument(n.contact_tolerance, *r.contact_tolerance, kRunContactTolerance);
   CheckArgument(n.max_order, r.max_order, kMaxOrder);
+  if (r.max_steps) CheckArgument(n.max_steps, static_cast<double>(*r.max_steps), kMaxSteps);
+  if (r.time_limit_s) CheckArgument(n.time_limit, *r.time_limit_s, kRunTimeLimitS);
   if (r.spectrum_resolution_hz)
     CheckArgument(n.spectrum_resolution, *r.spectrum_resolution_hz, kSpectrumResolution);
   if (r.spectrum_skip_cycles) CheckArgument(n.spectrum_skip, *r.spectrum_skip_cycles, kSpectrumSkipCycles);
@@ -51,6 +53,8 @@ SimulationOptions ResolvedOptions(const DynamicRequest& r) {
   if (r.contact_tolerance) o.contact.tolerance = *r.contact_tolerance;
   o.analytic_jacobian = r.analytic_jacobian;
   o.max_order = r.max_order;
+  if (r.max_steps) o.max_steps = *r.max_steps;
+  if (r.time_limit_s) o.time_limit = *r.time_limit_s;
   o.keep_samples = false;  // each step to the sink and the accumulators, then let go
   o.Validate();
   return o;

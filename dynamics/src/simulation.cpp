@@ -444,7 +444,10 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     if (static_cast<std::size_t>(result.outputs) == output_times.size())
       result.status = transmission::RunStatus::kCompleted;
   } catch (const std::exception& ex) {
+    // The time limit; an evaluation that threw (its contact solve or compliance: the model's
+    // failure, not the integrator's); else the integrator's own set-up or step.
     result.status = c.timed_out ? transmission::RunStatus::kTimeLimit
+                    : c.error   ? transmission::RunStatus::kContactFailure
                                 : transmission::RunStatus::kIntegratorFailure;
     result.message = "stopped after t = " + std::to_string(last_t) + " s: " + ex.what() +
                      (c.last_failure.empty() ? "" : "; last failed evaluation " + c.last_failure);

@@ -408,6 +408,12 @@ TEST_CASE(
     });
     INFO(m);
     CHECK(m.find("quasi-static start") != std::string::npos);
+    // The same start as an outcome: geometry, the planet named.
+    const auto rig = test::MakeRig(text, "separated", o);
+    const dynamics::StartOutcome start =
+        rig.model->SolveQuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+    CHECK(start.status == transmission::RunStatus::kGeometry);
+    CHECK(start.message.find("planet2 is separated") != std::string::npos);
   }
   SECTION("a run over its time limit stops, keeps what it has and says why") {
     // 1 ns of wall time: spent before CVODE's first right-hand side (Simulate evaluates the start
@@ -420,6 +426,7 @@ TEST_CASE(
     so.time_limit = 1e-9;
     const auto r = test::Run(rig, Times(*rig.model, *rig.stage, 1, 4), so);
     CHECK_FALSE(r.completed());
+    CHECK(r.status == transmission::RunStatus::kTimeLimit);
     CHECK(r.samples.empty());
     CHECK(r.message.find("time limit") != std::string::npos);
     so.time_limit = -1;
@@ -443,6 +450,8 @@ TEST_CASE(
     const auto r = dynamics::Simulate(m, {}, d0, Eigen::VectorXd::Zero(m.size()), times,
                                       [&](const DynamicSample& s) { seen.push_back(s.time); });
     CHECK_FALSE(r.completed());
+    // The evaluation threw (its compliance): the model's failure, not the integrator's.
+    CHECK(r.status == transmission::RunStatus::kContactFailure);
     CHECK(r.message.find("injected compliance failure") != std::string::npos);
     CHECK(r.message.find("stopped after t =") != std::string::npos);
     CHECK(seen.size() == r.samples.size());

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
 #include "program_runs.hpp"
@@ -38,6 +39,10 @@ class KeyList final : public transmission::RecordVisitor {
     if (!s.contact_pressure.empty()) Add("contact_pressure");
   }
   void Rating(const char* key, const transmission::StageRating&) override { Add(key); }
+  void RootStress(const char* key, const std::vector<transmission::RootStressSummary>&,
+                  const char*, double) override {
+    Add(key);
+  }
 
  private:
   bool in_list_ = false;
@@ -50,6 +55,7 @@ class KeyList final : public transmission::RecordVisitor {
 };
 
 class NoSink final : public transmission::QuasiStaticSink {};
+class NoDynamicSink final : public dynamics::DynamicSink {};
 
 std::set<std::string> Keys(const nlohmann::json& j) {
   std::set<std::string> out;
@@ -59,7 +65,9 @@ std::set<std::string> Keys(const nlohmann::json& j) {
 
 // What two runs may differ in: their wall times and the program's provenance.
 void DropRunDependent(nlohmann::json* j) {
-  for (const char* k : {"sweep_seconds", "table_seconds", "provenance"}) j->erase(k);
+  for (const char* k : {"sweep_seconds", "table_seconds", "setup_seconds", "wall_seconds",
+                        "evaluation_seconds", "provenance"})
+    j->erase(k);
 }
 
 }  // namespace
@@ -101,6 +109,49 @@ TEST_CASE(
   // The same record: every value bit for bit (the JSON numbers are written with 17 digits and
   // read back exactly), the wall times aside.
   nlohmann::json library = report::QuasiStaticRecordJson(record, nlohmann::json());
+  DropRunDependent(&program);
+  DropRunDependent(&library);
+  CHECK(program == library);
+}
+
+// The dynamic run's record: one mesh cycle with stresses and a rating (the fields that only some
+// runs have: root_stress, rating), the same request through the program and through the library.
+TEST_CASE(
+    "dynamic record: the program's summary JSON has exactly the record's fields and the library "
+    "run's values (stresses, rating)",
+    "[crosscheck][report][records]") {
+  const test::TempDir temp("dynamic-record");
+  const std::string scene_file =
+      std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_runout_rated.toml";
+  REQUIRE(test::ExitStatus({EPICYCLE_EXE, "dynamic", scene_file, "--range", "cycle",
+                            "--outputs-per-cycle", "24", "--rating", "--cache",
+                            EPICYCLE_TEST_CACHE_DIR, "--quiet", "--out",
+                            temp.path.string()}) == 0);
+  std::ifstream in(temp.File("dynamic_summary.json"));
+  REQUIRE(in.good());
+  nlohmann::json program = nlohmann::json::parse(in);
+
+  dynamics::DynamicRequest request;
+  request.scene = transmission::ReadScene(scene_file);
+  request.range = transmission::RunRange::kMeshCycle;
+  request.outputs_per_cycle = 24;
+  request.rating = true;
+  request.tables.cache_directory = EPICYCLE_TEST_CACHE_DIR;
+  NoDynamicSink sink;
+  const dynamics::DynamicRecord record = dynamics::RunDynamic(request, sink);
+  REQUIRE(record.completed());
+  REQUIRE(record.rating.has_value());
+  REQUIRE_FALSE(record.summary.root_stress.empty());
+  CHECK(record.summary.samples == 24);
+
+  KeyList fields;
+  dynamics::VisitRecord(record, fields);
+  std::set<std::string> file_keys = Keys(program);
+  file_keys.erase("provenance");  // the program's, not the run's
+  CHECK(file_keys == fields.keys);
+
+  // The same record: every value bit for bit, the wall times aside.
+  nlohmann::json library = report::DynamicRecordJson(record, nlohmann::json());
   DropRunDependent(&program);
   DropRunDependent(&library);
   CHECK(program == library);

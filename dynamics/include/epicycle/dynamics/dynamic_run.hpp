@@ -30,7 +30,8 @@ struct DynamicOptionNames {
               spectrum_resolution = "spectrum_resolution",
               spectrum_skip = "spectrum_skip_cycles", outputs_per_cycle = "outputs_per_cycle",
               start = "start_deg", rtol = "rtol", rate_scale = "rate_scale",
-              contact_tolerance = "contact_tol", max_order = "max_order";
+              contact_tolerance = "contact_tol", max_order = "max_order",
+              max_steps = "max_steps", time_limit = "time_limit_s";
 };
 
 /// What a dynamic run is asked for; an unset optional is the scene's or the library's default.
@@ -49,6 +50,8 @@ struct DynamicRequest {
   std::optional<double> contact_tolerance;  ///< none: SimulationOptions' default
   int max_order = 5;                     ///< CVODE's largest BDF order
   bool analytic_jacobian = true;
+  std::optional<long> max_steps;        ///< per output interval; none: SimulationOptions'
+  std::optional<double> time_limit_s;   ///< wall-time budget of the run [s]; none: no limit
   bool stresses = false;  ///< root stresses per step (also when the scene asks for them)
   bool rating = false;    ///< ISO 6336 ratings with the run's K_v (implies stresses)
   bool spectrum = false;  ///< the vibration signals and their spectra (docs/spectra.md)
