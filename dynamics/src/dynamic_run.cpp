@@ -105,7 +105,11 @@ DynamicRecord RunDynamic(const DynamicRequest& request, DynamicSink& sink) {
   plan.options = &opt;
   plan.setup_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  plan.highest_mode_hz = HighestModeFrequency(model);
+  // The start first: a stage whose start fails (a planet separated from a member) has no
+  // operating point to linearise about; its plan keeps the default's floor of outputs.
+  const StartOutcome start = model.SolveQuasiStaticStart(opt.contact, opt.backend);
+  plan.started = start.status == transmission::RunStatus::kCompleted;
+  plan.highest_mode_hz = plan.started ? HighestModeFrequency(model) : 0.0;
   plan.outputs_per_cycle = request.outputs_per_cycle > 0
                                ? request.outputs_per_cycle
                                : DefaultOutputsPerCycle(model, plan.highest_mode_hz);
@@ -133,8 +137,6 @@ DynamicRecord RunDynamic(const DynamicRequest& request, DynamicSink& sink) {
 
   DynamicRecord record = Settings(model, opt, span);
   record.setup_seconds = plan.setup_seconds;
-  const StartOutcome start = model.SolveQuasiStaticStart(opt.contact, opt.backend);
-  plan.started = start.status == transmission::RunStatus::kCompleted;
   sink.Start(plan);
   record.warnings = rig.scene.warnings;
   if (!plan.cost_warning.empty()) record.warnings.push_back(plan.cost_warning);
