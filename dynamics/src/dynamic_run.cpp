@@ -193,15 +193,7 @@ void VisitRecord(const DynamicRecord& r, transmission::RecordVisitor& visit) {
   visit.Number("mesh_stiffness_planet_ring_N_per_m", r.mesh_stiffness[1]);
   const DynamicSummary& s = r.summary;
   if (!s.root_stress.empty()) visit.RootStress("root_stress", s.root_stress, "time_s", 1.0);
-  visit.BeginList("planets");
-  for (std::size_t i = 0; i < s.lsr_mean.size(); ++i) {
-    visit.Item();
-    visit.Integer("planet", static_cast<long>(i + 1));
-    visit.Number("lsr_mean", s.lsr_mean[i]);
-    visit.Number("lsr_min", s.lsr_min[i]);
-    visit.Number("lsr_max", s.lsr_max[i]);
-  }
-  visit.EndList();
+  transmission::VisitPlanets(visit, s.lsr_mean, s.lsr_min, s.lsr_max);
   visit.Integer("outputs_written", s.samples);
   visit.Number("K_gamma_max", s.k_gamma);
   visit.Number("transmission_error_min_urad", s.te_min * 1e6);

@@ -7,6 +7,7 @@
 
 #include "common.hpp"
 #include "epicycle/dynamics/dynamic_factor.hpp"
+#include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
@@ -17,6 +18,7 @@
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/io/units.hpp"
 #include "epicycle/report/ratings.hpp"
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_range.hpp"
@@ -58,25 +60,10 @@ struct Integration {
   }
 };
 
-// The scene of a dynamic command, its sun speed changed through its key when given (the scene
-// reader checks it: dynamics.sun_speed_rpm).
-ScenePtr AtSpeed(const ScenePtr& s, std::optional<double> sun_speed_rpm) {
-  if (!sun_speed_rpm) return s;
-  const double rpm = *sun_speed_rpm;
-  return s->Edited([rpm](toml::table& t) {
-    if (!t.contains("dynamics")) t.insert_or_assign("dynamics", toml::table{});
-    t.get_as<toml::table>("dynamics")->insert_or_assign("sun_speed_rpm", rpm);
-  });
-}
-
 // The dynamic settings a run used: the one place the bindings read them (from the model the
 // library built from the scene).
 const transmission::DynamicSettings& SettingsOf(const dynamics::StageDynamics& rig) {
   return rig.model.settings();
-}
-
-std::string FrictionName(const transmission::DynamicSettings& s) {
-  return transmission::FrictionLawName(s.friction.law);
 }
 
 py::object StatsObject(const dynamics::SimulationStats& st) {
@@ -188,7 +175,6 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   const dynamics::DynamicRecord& record = out.record;
 
   const int n = sink.planets;
-  const int n = out.rig->stage.planets();
   const auto& samples = sink.samples;
   const auto count = static_cast<py::ssize_t>(samples.size());
   // Stresses: per step each gear's largest tension and compression [MPa] (NaN for a failed
@@ -204,9 +190,10 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   // The vibration output (dynamics/vibration.hpp), one array per channel.
   const std::vector<dynamics::VibrationChannel>& channels = sink.channels;
   std::vector<std::vector<double>> vibration(channels.size());
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    const dynamics::DynamicSample& x = samples[k];
-    for (std::size_t c = 0; c < channels.size(); ++c) vibration[c].push_back(sink.vibration[k][c]);
+  for (std::size_t step = 0; step < samples.size(); ++step) {
+    const dynamics::DynamicSample& x = samples[step];
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      vibration[c].push_back(sink.vibration[step][c]);
     const dynamics::Evaluation& e = x.evaluation;
     for (int b = 0; b < bodies; ++b) {
       const bool has = std::ssize(x.root_stress) > b;

@@ -61,20 +61,12 @@ nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
 
 nlohmann::json QuasiStaticRecordJson(const transmission::QuasiStaticRecord& record,
                                      const nlohmann::json& provenance) {
-  JsonRecord json;
-  transmission::VisitRecord(record, json);
-  nlohmann::json j = json.Result();
-  j["provenance"] = provenance;
-  return j;
+  return RecordJson(record, provenance);
 }
 
 nlohmann::json DynamicRecordJson(const dynamics::DynamicRecord& record,
                                  const nlohmann::json& provenance) {
-  JsonRecord json;
-  dynamics::VisitRecord(record, json);
-  nlohmann::json j = json.Result();
-  j["provenance"] = provenance;
-  return j;
+  return RecordJson(record, provenance);
 }
 
 }  // namespace epicycle::report

@@ -70,6 +70,22 @@ void DropRunDependent(nlohmann::json* j) {
     j->erase(k);
 }
 
+// The program's summary JSON `program` against the library's `record` (`library`: its JSON): the
+// file's keys are the record's fields (the provenance is the program's, not the run's), and every
+// value is the same bit for bit (the JSON numbers are written with 17 digits and read back
+// exactly), the wall times aside.
+template <class Record>
+void CheckSameRecord(nlohmann::json program, const Record& record, nlohmann::json library) {
+  KeyList fields;
+  VisitRecord(record, fields);
+  std::set<std::string> file_keys = Keys(program);
+  file_keys.erase("provenance");
+  CHECK(file_keys == fields.keys);
+  DropRunDependent(&program);
+  DropRunDependent(&library);
+  CHECK(program == library);
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -100,18 +116,7 @@ TEST_CASE(
   REQUIRE(record.rating.has_value());
   REQUIRE(record.friction.has_value());
 
-  KeyList fields;
-  transmission::VisitRecord(record, fields);
-  std::set<std::string> file_keys = Keys(program);
-  file_keys.erase("provenance");  // the program's, not the run's
-  CHECK(file_keys == fields.keys);
-
-  // The same record: every value bit for bit (the JSON numbers are written with 17 digits and
-  // read back exactly), the wall times aside.
-  nlohmann::json library = report::QuasiStaticRecordJson(record, nlohmann::json());
-  DropRunDependent(&program);
-  DropRunDependent(&library);
-  CHECK(program == library);
+  CheckSameRecord(program, record, report::QuasiStaticRecordJson(record, nlohmann::json()));
 }
 
 // The dynamic run's record: one mesh cycle with stresses and a rating (the fields that only some
@@ -144,17 +149,7 @@ TEST_CASE(
   REQUIRE_FALSE(record.summary.root_stress.empty());
   CHECK(record.summary.samples == 24);
 
-  KeyList fields;
-  dynamics::VisitRecord(record, fields);
-  std::set<std::string> file_keys = Keys(program);
-  file_keys.erase("provenance");  // the program's, not the run's
-  CHECK(file_keys == fields.keys);
-
-  // The same record: every value bit for bit, the wall times aside.
-  nlohmann::json library = report::DynamicRecordJson(record, nlohmann::json());
-  DropRunDependent(&program);
-  DropRunDependent(&library);
-  CHECK(program == library);
+  CheckSameRecord(program, record, report::DynamicRecordJson(record, nlohmann::json()));
 }
 
 }  // namespace epicycle

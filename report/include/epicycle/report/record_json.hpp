@@ -36,6 +36,16 @@ class JsonRecord final : public transmission::RecordVisitor {
   nlohmann::json* list_ = nullptr;
 };
 
+/// A record's summary JSON: the fields its VisitRecord names and the program's provenance.
+template <class Record>
+nlohmann::json RecordJson(const Record& record, const nlohmann::json& provenance) {
+  JsonRecord json;
+  VisitRecord(record, json);
+  nlohmann::json j = json.Result();
+  j["provenance"] = provenance;
+  return j;
+}
+
 /// The statistics of a sweep over carrier positions (transmission::VisitRecord(SweepSummary)).
 nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary);
 
