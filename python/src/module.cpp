@@ -31,7 +31,6 @@ void RaiseRunFailure(transmission::RunStatus status, const std::string& message,
                      : status == RunStatus::kIntegratorFailure ? "IntegratorFailure"
                      : status == RunStatus::kTimeLimit         ? "TimeLimitReached"
                      : status == RunStatus::kGeometry          ? "GeometryFailure"
-                     : status == RunStatus::kBadSampledValue   ? "BadSampledValue"
                                                                : "ComputationError";
   const py::object type = py::module_::import("epicycle").attr(name);
   const py::object error = type(message, result);

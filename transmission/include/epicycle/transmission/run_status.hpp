@@ -15,7 +15,7 @@ enum class RunStatus {
   kIntegratorFailure,  ///< the integrator gave up (error test, Newton iteration, step count)
   kTimeLimit,          ///< the wall-time budget of the run was spent
   kGeometry,           ///< a member swung past where its meshes can be evaluated
-  kBadSampledValue,    ///< a study's sampled input broke a rule of the scene (the case not run)
+  kBadSampledValue,    ///< a study case's sampled input broke a rule of the scene (not run)
 };  // append only
 
 /// The statuses' names in records and messages: the one table of RunStatusName.
