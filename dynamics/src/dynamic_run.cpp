@@ -34,17 +34,20 @@ transmission::Scene ResolvedScene(const DynamicRequest& request) {
 SimulationOptions ResolvedOptions(const DynamicRequest& r) {
   const DynamicOptionNames& n = r.names;
   if (r.time_s) CheckArgument(n.time, *r.time_s, kRunTimeS);
-  if (r.outputs_per_cycle != 0) CheckArgument(n.outputs_per_cycle, r.outputs_per_cycle, kOutputsPerCycle);
+  if (r.outputs_per_cycle != 0)
+    CheckArgument(n.outputs_per_cycle, r.outputs_per_cycle, kOutputsPerCycle);
   CheckArgument(n.start, r.start_deg, transmission::kCarrierAngleDeg);
   CheckArgument(n.rtol, r.rtol, kRelativeTolerance);
   if (r.rate_scale) CheckArgument(n.rate_scale, *r.rate_scale, kRateScale);
-  if (r.contact_tolerance) CheckArgument(n.contact_tolerance, *r.contact_tolerance, kRunContactTolerance);
+  if (r.contact_tolerance)
+    CheckArgument(n.contact_tolerance, *r.contact_tolerance, kRunContactTolerance);
   CheckArgument(n.max_order, r.max_order, kMaxOrder);
   if (r.max_steps) CheckArgument(n.max_steps, static_cast<double>(*r.max_steps), kMaxSteps);
   if (r.time_limit_s) CheckArgument(n.time_limit, *r.time_limit_s, kRunTimeLimitS);
   if (r.spectrum_resolution_hz)
     CheckArgument(n.spectrum_resolution, *r.spectrum_resolution_hz, kSpectrumResolution);
-  if (r.spectrum_skip_cycles) CheckArgument(n.spectrum_skip, *r.spectrum_skip_cycles, kSpectrumSkipCycles);
+  if (r.spectrum_skip_cycles)
+    CheckArgument(n.spectrum_skip, *r.spectrum_skip_cycles, kSpectrumSkipCycles);
   SimulationOptions o;
   o.integrator = IntegratorFromName(r.integrator);
   o.backend = solvers::BackendFromName(r.backend);
@@ -103,8 +106,7 @@ DynamicRecord RunDynamic(const DynamicRequest& request, DynamicSink& sink) {
   DynamicPlan plan;
   plan.rig = &rig;
   plan.options = &opt;
-  plan.setup_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  plan.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // The start first: a stage whose start fails (a planet separated from a member) has no
   // operating point to linearise about; its plan keeps the default's floor of outputs.
   const StartOutcome start = model.SolveQuasiStaticStart(opt.contact, opt.backend);
@@ -113,15 +115,15 @@ DynamicRecord RunDynamic(const DynamicRequest& request, DynamicSink& sink) {
   plan.outputs_per_cycle = request.outputs_per_cycle > 0
                                ? request.outputs_per_cycle
                                : DefaultOutputsPerCycle(model, plan.highest_mode_hz);
-  const RunSpan span = MakeRunSpan(rig.stage, model.carrier_speed(),
-                                   request.range.value_or(transmission::RunRange::kPlanetRevolution),
-                                   request.time_s.value_or(0.0), plan.outputs_per_cycle);
+  const RunSpan span =
+      MakeRunSpan(rig.stage, model.carrier_speed(),
+                  request.range.value_or(transmission::RunRange::kPlanetRevolution),
+                  request.time_s.value_or(0.0), plan.outputs_per_cycle);
   plan.span = &span;
   plan.cost_warning = RunCostWarning(  // a run of hours: said before it starts
       span, io::RadPerSecondToRpm(model.sun_speed()), DurationSource(request),
-      request.sun_speed_rpm
-          ? fmt::format("{} = {}", request.names.speed, *request.sun_speed_rpm)
-          : std::string("[dynamics] sun_speed_rpm"));
+      request.sun_speed_rpm ? fmt::format("{} = {}", request.names.speed, *request.sun_speed_rpm)
+                            : std::string("[dynamics] sun_speed_rpm"));
   std::optional<SpectrumOptions> spectrum;  // bad options before the run
   if (request.spectrum)
     spectrum = RunSpectrumOptions(
@@ -150,14 +152,13 @@ DynamicRecord RunDynamic(const DynamicRequest& request, DynamicSink& sink) {
   DynamicWarningTally tally(rig.stage);
   std::optional<MotionLoads> loads;
   if (request.rating) loads.emplace(rig.stage);
-  const SimulationResult result = Simulate(
-      model, opt, start.d, Eigen::VectorXd::Zero(model.size()), span.OutputTimes(),
-      [&](const DynamicSample& s) {
-        accumulator.Add(s);
-        tally.Add(s);
-        if (loads) loads->Add(s);
-        sink.Step(s);
-      });
+  const SimulationResult result = Simulate(model, opt, start.d, Eigen::VectorXd::Zero(model.size()),
+                                           span.OutputTimes(), [&](const DynamicSample& s) {
+                                             accumulator.Add(s);
+                                             tally.Add(s);
+                                             if (loads) loads->Add(s);
+                                             sink.Step(s);
+                                           });
   sink.Stop();
   record.status = result.status;
   record.failure = result.message;
@@ -212,7 +213,8 @@ void VisitRecord(const DynamicRecord& r, transmission::RecordVisitor& visit) {
   visit.Integer("failed_geometry", st.failed_geometry);
   visit.Number("wall_seconds", st.wall_seconds);
   visit.Number("evaluation_seconds", st.rhs_seconds);
-  visit.Number("rate_tolerance_scale_rad_per_s", st.rate_scale);  // rate atol = position atol x this
+  visit.Number("rate_tolerance_scale_rad_per_s",
+               st.rate_scale);  // rate atol = position atol x this
   if (r.rating) visit.Rating("rating", *r.rating);
   visit.Texts("warnings", r.warnings);
   visit.Number("setup_seconds", r.setup_seconds);

@@ -29,8 +29,8 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   o.window_cycles =
       request.window_cycles > 0
           ? request.window_cycles
-          : transmission::MeshCycles(
-                rig.stage, run.range.value_or(transmission::RunRange::kPlanetRevolution));
+          : transmission::MeshCycles(rig.stage,
+                                     run.range.value_or(transmission::RunRange::kPlanetRevolution));
   o.outputs_per_cycle = run.outputs_per_cycle > 0 ? run.outputs_per_cycle : kSweepOutputsPerCycle;
   o.harmonics = request.harmonics;
   o.window_start = geometry::Rad(run.start_deg);
@@ -59,8 +59,8 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   record.plan = PlanSpeedSweep(base, o);
   sink.Start({&rig, &o, &record.plan});
 
-  const SpeedSweepResult res = SweepSpeeds(
-      base, o, record.plan, [&](const SpeedResult& r) { sink.Speed(r, record.plan); });
+  const SpeedSweepResult res =
+      SweepSpeeds(base, o, record.plan, [&](const SpeedResult& r) { sink.Speed(r, record.plan); });
   record.speeds = res.speeds;
   record.wall_seconds = res.wall_seconds;
   record.warnings = rig.scene.warnings;

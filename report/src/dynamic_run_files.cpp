@@ -26,8 +26,8 @@ void DynamicRunOutput::Start(const dynamics::DynamicPlan& p) {
   std::filesystem::create_directories(out_);
   if (!p.started) return;
   const int n = p.rig->stage.planets();
-  files_ = std::make_unique<DynamicRunFiles>(base_, provenance_, n,
-                                             p.rig->compliance.has_root_stress());
+  files_ =
+      std::make_unique<DynamicRunFiles>(base_, provenance_, n, p.rig->compliance.has_root_stress());
   if (*p.spectrum) vibration_.emplace(base_, provenance_, model, **p.spectrum);
   plots_ = std::make_unique<DynamicPlots>(base_, n, *p.span);
 }

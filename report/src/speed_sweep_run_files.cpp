@@ -45,18 +45,20 @@ std::string SpeedSweepPlanText(const dynamics::SpeedSweepStart& start) {
       if (!k.empty()) k += ',';
       k += std::to_string(f);
     }
-    t += fmt::format("    mode {:<3} {:10.2f} Hz  {:<13} x{}  family k = {:<5} zeta {:.4f}  sigma "
-                     "{:.1f} 1/s\n",
-                     j + 1, m.mode.frequency, dynamics::ModeTypeName(m.mode.type),
-                     m.mode.multiplicity, k, m.damping_ratio, m.decay_rate);
+    t += fmt::format(
+        "    mode {:<3} {:10.2f} Hz  {:<13} x{}  family k = {:<5} zeta {:.4f}  sigma "
+        "{:.1f} 1/s\n",
+        j + 1, m.mode.frequency, dynamics::ModeTypeName(m.mode.type), m.mode.multiplicity, k,
+        m.damping_ratio, m.decay_rate);
   }
   t += fmt::format(
       "  coincidences h f_m = f_j in the range (mesh frequency {:.4f} Hz per sun rpm):\n",
       plan.mesh_hz_per_rpm);
   for (const dynamics::Coincidence& c : plan.coincidences)
-    t += fmt::format("    {:9.1f} rpm  harmonic {} x {}{}\n", c.sun_speed_rpm, c.harmonic,
-                     ModeName(plan, c.mode),
-                     c.phasing_excited ? "" : "  (not excited by a symmetric stage: planet phasing)");
+    t += fmt::format(
+        "    {:9.1f} rpm  harmonic {} x {}{}\n", c.sun_speed_rpm, c.harmonic,
+        ModeName(plan, c.mode),
+        c.phasing_excited ? "" : "  (not excited by a symmetric stage: planet phasing)");
   t += fmt::format(
       "  per speed: the quasi-static start, {:.3f} ms skipped (ln(1/{:.0e})/sigma_min, sigma_min = "
       "{:.1f} 1/s), then {:.4g} mesh cycles measured from carrier {:.3f} deg ({} samples); "
@@ -67,9 +69,9 @@ std::string SpeedSweepPlanText(const dynamics::SpeedSweepStart& start) {
 }
 
 std::string SpeedSweepRecordText(const dynamics::SpeedSweepRecord& record) {
-  std::string t = fmt::format("\n  {:<10} {:<9} {:<9} {:<9} {:<13} {:<11} {:<10} {}\n", "sun rpm",
-                              "K_gamma", "K_v", "mesh", "TE amp urad", "orbit um", "CPU s",
-                              "status");
+  std::string t =
+      fmt::format("\n  {:<10} {:<9} {:<9} {:<9} {:<13} {:<11} {:<10} {}\n", "sun rpm", "K_gamma",
+                  "K_v", "mesh", "TE amp urad", "orbit um", "CPU s", "status");
   for (const dynamics::SpeedResult& r : record.speeds) {
     const std::string mesh = r.factor_mesh >= 0 ? record.plan.meshes[r.factor_mesh] : "";
     t += fmt::format("  {:<10.1f} {:<9.5f} {:<9.5f} {:<9} {:<13.3f} {:<11.4f} {:<10.2f} {}\n",

@@ -27,31 +27,30 @@ namespace epicycle::dynamics {
 /// name them (the program: "--time", "--speed-rpm"; Python: "time_s", "sun_speed_rpm").
 struct DynamicOptionNames {
   std::string time = "time_s", speed = "sun_speed_rpm", range = "range", rating = "rating",
-              spectrum_resolution = "spectrum_resolution",
-              spectrum_skip = "spectrum_skip_cycles", outputs_per_cycle = "outputs_per_cycle",
-              start = "start_deg", rtol = "rtol", rate_scale = "rate_scale",
-              contact_tolerance = "contact_tol", max_order = "max_order",
+              spectrum_resolution = "spectrum_resolution", spectrum_skip = "spectrum_skip_cycles",
+              outputs_per_cycle = "outputs_per_cycle", start = "start_deg", rtol = "rtol",
+              rate_scale = "rate_scale", contact_tolerance = "contact_tol", max_order = "max_order",
               max_steps = "max_steps", time_limit = "time_limit_s";
 };
 
 /// What a dynamic run is asked for; an unset optional is the scene's or the library's default.
 struct DynamicRequest {
-  transmission::Scene scene;                          ///< read and validated (ReadScene)
-  std::optional<transmission::SunSupport> sun;        ///< overrides [supports] sun
-  std::optional<double> sun_speed_rpm;                ///< overrides [dynamics] sun_speed_rpm [rpm]
-  std::string friction;                               ///< "": the scene's law; else a law's name
-  std::optional<transmission::RunRange> range;        ///< none: one planet revolution
-  std::optional<double> time_s;                       ///< simulated time instead of the range [s]
-  double start_deg = 0;                               ///< carrier angle at t = 0 [deg]
+  transmission::Scene scene;                    ///< read and validated (ReadScene)
+  std::optional<transmission::SunSupport> sun;  ///< overrides [supports] sun
+  std::optional<double> sun_speed_rpm;          ///< overrides [dynamics] sun_speed_rpm [rpm]
+  std::string friction;                         ///< "": the scene's law; else a law's name
+  std::optional<transmission::RunRange> range;  ///< none: one planet revolution
+  std::optional<double> time_s;                 ///< simulated time instead of the range [s]
+  double start_deg = 0;                         ///< carrier angle at t = 0 [deg]
   int outputs_per_cycle = 0;  ///< output steps per mesh cycle; 0: DefaultOutputsPerCycle
   std::string backend = "newton", integrator = "cvode-bdf";
-  double rtol = 1e-6;                    ///< the integrator's relative tolerance [-]
-  std::optional<double> rate_scale;      ///< [rad/s]; none: SimulationOptions' default
+  double rtol = 1e-6;                       ///< the integrator's relative tolerance [-]
+  std::optional<double> rate_scale;         ///< [rad/s]; none: SimulationOptions' default
   std::optional<double> contact_tolerance;  ///< none: SimulationOptions' default
-  int max_order = 5;                     ///< CVODE's largest BDF order
+  int max_order = 5;                        ///< CVODE's largest BDF order
   bool analytic_jacobian = true;
-  std::optional<long> max_steps;        ///< per output interval; none: SimulationOptions'
-  std::optional<double> time_limit_s;   ///< wall-time budget of the run [s]; none: no limit
+  std::optional<long> max_steps;       ///< per output interval; none: SimulationOptions'
+  std::optional<double> time_limit_s;  ///< wall-time budget of the run [s]; none: no limit
   bool stresses = false;  ///< root stresses per step (also when the scene asks for them)
   bool rating = false;    ///< ISO 6336 ratings with the run's K_v (implies stresses)
   bool spectrum = false;  ///< the vibration signals and their spectra (docs/spectra.md)
@@ -72,11 +71,11 @@ struct DynamicPlan {
   const SimulationOptions* options = nullptr;
   const RunSpan* span = nullptr;
   const std::optional<SpectrumOptions>* spectrum = nullptr;  ///< with the request's spectrum
-  int outputs_per_cycle = 0;    ///< as resolved [-]
-  double highest_mode_hz = 0;   ///< highest natural frequency of the linearised model [Hz]
-  double setup_seconds = 0;     ///< wall time to build the rig [s]
-  std::string cost_warning;     ///< RunCostWarning ("" for a run of minutes)
-  bool started = true;          ///< the quasi-static start solved (else no step follows)
+  int outputs_per_cycle = 0;                                 ///< as resolved [-]
+  double highest_mode_hz = 0;  ///< highest natural frequency of the linearised model [Hz]
+  double setup_seconds = 0;    ///< wall time to build the rig [s]
+  std::string cost_warning;    ///< RunCostWarning ("" for a run of minutes)
+  bool started = true;         ///< the quasi-static start solved (else no step follows)
 };
 
 /// Where a run streams what it computes, in order.
@@ -97,9 +96,9 @@ class DynamicSink {
 struct DynamicRecord {
   std::string scene;
   transmission::SunSupport sun = transmission::SunSupport::kFixed;
-  double sun_torque = 0;          ///< [N·m], with its sign
-  double sun_speed_rpm = 0;       ///< |ω_s| [rpm]
-  double mesh_frequency = 0;      ///< [Hz]
+  double sun_torque = 0;      ///< [N·m], with its sign
+  double sun_speed_rpm = 0;   ///< |ω_s| [rpm]
+  double mesh_frequency = 0;  ///< [Hz]
   transmission::FrictionLaw friction = transmission::FrictionLaw::kOff;
   Integrator integrator = Integrator::kCvodeBdf;
   double rtol = 0, atol_length = 0, atol_angle = 0, contact_tolerance = 0;  ///< [-, m, rad, -]
@@ -107,7 +106,7 @@ struct DynamicRecord {
   double duration = 0;  ///< [s]
   int outputs = 0;      ///< output steps asked for [-]
   transmission::RunStatus status = transmission::RunStatus::kCompleted;
-  std::string failure;  ///< where and why the run stopped ("" when completed)
+  std::string failure;                     ///< where and why the run stopped ("" when completed)
   std::array<double, 2> mesh_stiffness{};  ///< secant, {sun–planet, planet–ring} [N/m]
   DynamicSummary summary;                  ///< over the steps written
   SimulationStats stats;

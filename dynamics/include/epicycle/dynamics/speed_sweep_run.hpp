@@ -51,7 +51,7 @@ struct SpeedSweepRecord {
   std::string scene;
   double sun_torque = 0;  ///< [N·m]
   transmission::FrictionLaw friction = transmission::FrictionLaw::kOff;
-  std::string integrator, backend;  ///< as the request names them
+  std::string integrator, backend;                   ///< as the request names them
   double rtol = 0, atol_length = 0, atol_angle = 0;  ///< [-, m, rad]
   double rate_scale = 0;         ///< [rad/s]; 0: each speed's highest natural frequency
   double contact_tolerance = 0;  ///< [-]
@@ -59,9 +59,9 @@ struct SpeedSweepRecord {
   std::array<double, 2> mesh_stiffness{}, modal_mesh_stiffness{};  ///< secant, tangent [N/m]
   int threads = 0;
   SpeedSweepPlan plan;
-  std::vector<SpeedResult> speeds;  ///< in the order of the speeds
-  double wall_seconds = 0;          ///< of the speeds' runs [s]
-  double cpu_seconds = 0;           ///< CPU in the speeds [s]
+  std::vector<SpeedResult> speeds;    ///< in the order of the speeds
+  double wall_seconds = 0;            ///< of the speeds' runs [s]
+  double cpu_seconds = 0;             ///< CPU in the speeds [s]
   std::vector<std::string> warnings;  ///< the scene's and each speed's ("at N rpm: ...")
   int failed() const;                 ///< speeds that did not complete
 };

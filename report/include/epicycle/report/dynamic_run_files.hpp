@@ -25,7 +25,7 @@ class DynamicRunOutput : public dynamics::DynamicSink {
   /// @throws std::runtime_error naming a file that cannot be created.
   void Start(const dynamics::DynamicPlan& plan) override;
   void Step(const dynamics::DynamicSample& sample) override;
-  long steps() const { return steps_; }  ///< output steps written [-]
+  long steps() const { return steps_; }               ///< output steps written [-]
   bool started() const { return files_ != nullptr; }  ///< the step files were created
   /// Closes the step files, writes the plots and the spectrum.
   void Stop() override;

@@ -16,7 +16,7 @@ enum class RunStatus {
   kTimeLimit,          ///< the wall-time budget of the run was spent
   kGeometry,           ///< a member swung past where its meshes can be evaluated
   kBadSampledValue,    ///< a study case's sampled input broke a rule of the scene (not run)
-};  // append only
+};                     // append only
 
 /// The statuses' names in records and messages: the one table of RunStatusName.
 inline constexpr std::array<io::EnumName<RunStatus>, 6> kRunStatusNames{{
