@@ -138,9 +138,10 @@ class KeepSteps final : public dynamics::DynamicSink {
 };
 
 py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
-                   const std::string& range, double time_s, int outputs_per_cycle, double start_deg,
-                   const Integration& integration, std::optional<std::string> cache_dir,
-                   py::object progress, bool raise_on_failure, bool stresses, bool rating,
+                   const std::string& range, double time_s, std::optional<int> outputs_per_cycle,
+                   double start_deg, const Integration& integration,
+                   std::optional<std::string> cache_dir, py::object progress,
+                   bool raise_on_failure, bool stresses, bool rating,
                    std::optional<long> max_steps, std::optional<double> time_limit_s) {
   dynamics::DynamicRequest request;
   request.scene = scene->scene();
@@ -149,7 +150,10 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   request.sun_speed_rpm = sun_speed_rpm;
   request.range = transmission::RunRangeFromName(range);
   if (time_s != 0) request.time_s = time_s;  // 0: the range
-  request.outputs_per_cycle = outputs_per_cycle;
+  // None: the library's default; a number given is checked as given (0 is not the default).
+  if (outputs_per_cycle)
+    dynamics::CheckArgument("outputs_per_cycle", *outputs_per_cycle, dynamics::kOutputsPerCycle);
+  request.outputs_per_cycle = outputs_per_cycle.value_or(0);
   request.start_deg = start_deg;
   request.integrator = integration.integrator;
   request.rtol = integration.rtol;
@@ -594,7 +598,7 @@ void BindDynamicRun(py::module_& m) {
          const std::string& backend, std::optional<std::string> cache_dir, py::object progress,
          bool raise_on_failure, bool stresses, bool rating, std::optional<long> max_steps,
          std::optional<double> time_limit_s) {
-        return Dynamic(s, sun_speed_rpm, range, time_s, outputs_per_cycle.value_or(0), start_deg,
+        return Dynamic(s, sun_speed_rpm, range, time_s, outputs_per_cycle, start_deg,
                        MakeIntegration(integrator, rtol, rate_scale, contact_tol, max_order,
                                        analytic_jacobian, backend),
                        cache_dir, std::move(progress), raise_on_failure, stresses, rating,
