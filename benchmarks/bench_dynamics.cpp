@@ -222,7 +222,7 @@ void BM_CarrierRevolution(benchmark::State& state) {
     r = dynamics::Simulate(c.model, o, d0, Eigen::VectorXd::Zero(c.model.size()), times);
     benchmark::DoNotOptimize(r.samples.data());
   }
-  state.counters["completed"] = r.completed ? 1 : 0;
+  state.counters["completed"] = r.completed() ? 1 : 0;
   state.counters["steps"] = static_cast<double>(r.stats.steps);
   state.counters["evaluations"] = static_cast<double>(r.stats.rhs_evaluations);
   state.counters["jacobians"] = static_cast<double>(r.stats.jacobian_evaluations);

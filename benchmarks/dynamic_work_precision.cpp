@@ -149,7 +149,7 @@ Run Simulate(const dynamics::DynamicModel& model, const dynamics::SimulationOpti
   r.cpu = CpuSeconds() - cpu0;
   r.wall = result.stats.wall_seconds;
   r.stats = result.stats;
-  r.completed = result.completed;
+  r.completed = result.completed();
   r.message = result.message;
   r.samples = static_cast<int>(result.samples.size());
   for (const dynamics::DynamicSample& s : result.samples) {

@@ -21,9 +21,11 @@
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
+#include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/report/ratings.hpp"
+#include "epicycle/report/dynamic_run_files.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/report/spectrum_files.hpp"
@@ -45,15 +47,79 @@ struct DynamicArgs {
   // Not given: the scene's speed, the range's duration, the library's defaults (the spectrum's:
   // one carrier revolution, 4 mesh cycles skipped).
   std::optional<double> speed_rpm, time, rate_scale, contact_tol, spectrum_resolution,
-      spectrum_skip;
+      spectrum_skip, time_limit;
+  std::optional<long> max_steps;
   int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0;
   bool no_cache = false, quiet = false, fd_jacobian = false, stresses = false, spectrum = false,
        rating = false;
 };
 
+// The program's sink: the run's files (report/), its header on the console and the progress bar.
+class ConsoleSink final : public report::DynamicRunOutput {
+ public:
+  ConsoleSink(const DynamicArgs& a, json provenance)
+      : DynamicRunOutput(a.out, std::move(provenance)),
+        a_(a),
+        tty_(!a.quiet && isatty(fileno(stderr))) {}
+
+  void Start(const dynamics::DynamicPlan& p) override {
+    if (!p.cost_warning.empty()) std::fprintf(stderr, "warning: %s\n", p.cost_warning.c_str());
+    std::printf("%s", report::DynamicPlanText(p, a_.integrator, a_.backend).c_str());
+    DynamicRunOutput::Start(p);
+    planets_ = p.rig->stage.planets();
+    outputs_ = p.span->outputs;
+    t0_ = std::chrono::steady_clock::now();
+  }
+
+  void Step(const dynamics::DynamicSample& s) override {
+    DynamicRunOutput::Step(s);
+    if (tty_)
+      Progress(static_cast<int>(steps()), outputs_, 0,
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(),
+               "steps");
+  }
+
+  bool tty() const { return tty_; }
+  int planets() const { return planets_; }
+
+ private:
+  const DynamicArgs& a_;
+  bool tty_;
+  int planets_ = 0, outputs_ = 0;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+dynamics::DynamicRequest Request(const DynamicArgs& a) {
+  dynamics::DynamicRequest r;
+  r.scene = StageScene(a.scene, a.sun, "dynamic");
+  r.sun_speed_rpm = a.speed_rpm;
+  r.friction = a.friction;
+  if (!a.range.empty()) r.range = transmission::RunRangeFromName(a.range);
+  r.time_s = a.time;
+  r.start_deg = a.start_deg;
+  r.outputs_per_cycle = a.outputs_per_cycle;
+  r.backend = a.backend;
+  r.integrator = a.integrator;
+  r.rtol = a.rtol;
+  r.rate_scale = a.rate_scale;
+  r.contact_tolerance = a.contact_tol;
+  r.max_order = a.max_order;
+  r.analytic_jacobian = !a.fd_jacobian;
+  r.max_steps = a.max_steps;
+  r.time_limit_s = a.time_limit;
+  r.stresses = a.stresses;
+  r.rating = a.rating;
+  r.spectrum = a.spectrum;
+  r.spectrum_resolution_hz = a.spectrum_resolution;
+  r.spectrum_skip_cycles = a.spectrum_skip;
+  r.tables = TableOptions(a.cache, a.no_cache);
+  r.names = {"--time", "--speed-rpm", "--range", "--rating", "--spectrum-resolution",
+             "--spectrum-skip-cycles", "--outputs-per-cycle", "--start-deg", "--rtol",
+             "--rate-scale", "--contact-tol", "--max-order", "--max-steps", "--time-limit"};
+  return r;
+}
+
 void RunDynamic(const DynamicArgs& a) {
-  transmission::Scene input = StageScene(a.scene, a.sun, "dynamic");
-  const std::string range = a.range.empty() ? "planet" : a.range;
   if (!a.speed_sweep.empty() && a.spectrum)
     throw std::invalid_argument("--spectrum belongs to a run at one speed, not --speed-sweep");
   if (!a.speed_sweep.empty() && (a.speed_rpm || a.time))
@@ -62,131 +128,38 @@ void RunDynamic(const DynamicArgs& a) {
                                 "and --time");
   if (a.speed_sweep.empty() && (a.threads != 0 || a.window_cycles != 0))
     throw std::invalid_argument("--threads and --window-cycles belong to --speed-sweep");
-  if (!a.speed_sweep.empty()) ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
-  if (a.speed_rpm) input.dynamics.sun_speed = io::RpmToRadPerSecond(*a.speed_rpm);
-  if (!a.friction.empty())
-    input.dynamics.friction.law = transmission::FrictionLawFromName(a.friction);
-  input.model.stresses = input.model.stresses || a.stresses || a.rating;
-  if (a.rating) transmission::CheckRatingInputs(input, "--rating");
-  const auto t0 = std::chrono::steady_clock::now();
-  dynamics::StageDynamics rig(std::move(input), TableOptions(a.cache, a.no_cache));
-  const transmission::Scene& scene = rig.scene;
-  const geometry::Stage& stage = rig.stage;
-  const transmission::FeStageCompliance& compliance = rig.compliance;
-  const transmission::StageModel& stage_model = rig.stage_model;
-  dynamics::DynamicModel& model = rig.model;
-  const int n = stage.planets();
-  model.SetStartAngle(geometry::Rad(a.start_deg));
-  const double setup_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  dynamics::SimulationOptions opt;
-  opt.integrator = dynamics::IntegratorFromName(a.integrator);
-  opt.backend = solvers::BackendFromName(a.backend);
-  opt.rtol = a.rtol;
-  if (a.rate_scale) opt.rate_scale = *a.rate_scale;
-  if (a.contact_tol) opt.contact.tolerance = *a.contact_tol;
-  opt.analytic_jacobian = !a.fd_jacobian;
-  opt.max_order = a.max_order;
+  const dynamics::DynamicRequest request = Request(a);
   if (!a.speed_sweep.empty()) {
-    const int per_cycle =
-        a.outputs_per_cycle > 0 ? a.outputs_per_cycle : SpeedSweepArgs{}.outputs_per_cycle;
-    return RunSpeedSweep({a.speed_sweep, a.out, range, a.backend, a.integrator, a.window_cycles,
-                          a.start_deg, per_cycle, a.harmonics, a.threads, a.quiet},
-                         rig, opt);
+    ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
+    dynamics::SpeedSweepRequest sweep;
+    sweep.run = request;
+    sweep.window_cycles = a.window_cycles;
+    sweep.harmonics = a.harmonics;
+    sweep.threads = a.threads;
+    return RunSpeedSweep({a.speed_sweep, a.out, a.backend, a.quiet}, std::move(sweep));
   }
-  const double f_max = dynamics::HighestModeFrequency(model);
-  const int per_cycle =
-      a.outputs_per_cycle > 0 ? a.outputs_per_cycle : dynamics::DefaultOutputsPerCycle(model, f_max);
-  const dynamics::RunSpan span =
-      dynamics::MakeRunSpan(stage, model.carrier_speed(), transmission::RunRangeFromName(range),
-                            a.time.value_or(0.0), per_cycle);
-  const double duration = span.duration, mesh_hz = span.mesh_frequency;
-  const std::string cost = dynamics::RunCostWarning(  // a run of hours: said before it starts
-      span, io::RadPerSecondToRpm(model.sun_speed()),
-      a.time ? fmt::format("--time = {} s", *a.time) : "--range " + range,
-      a.speed_rpm ? fmt::format("--speed-rpm = {}", *a.speed_rpm) : "[dynamics] sun_speed_rpm");
-  if (!cost.empty()) std::fprintf(stderr, "warning: %s\n", cost.c_str());
-  const int outputs = span.outputs;
-  std::optional<dynamics::SpectrumOptions> spectrum;  // bad options before the run
-  if (a.spectrum)
-    spectrum = dynamics::RunSpectrumOptions(
-        span, dynamics::CharacteristicFrequencies(stage, model.sun_speed()),
-        a.spectrum_resolution.value_or(0),
-        a.spectrum_skip.value_or(dynamics::kDefaultSpectrumSkipCycles),
-        {"--spectrum-resolution", a.spectrum_resolution.has_value(), "--spectrum-skip-cycles",
-         a.spectrum_skip.has_value(),
-         a.time            ? fmt::format("--time = {} s", *a.time)
-         : a.range.empty() ? "one planet revolution (the default --range planet)"
-                           : "--range " + a.range});
-  const char* sun_name = transmission::SunSupportName(stage_model.setup().sun);
-  std::printf(
-      "%s: %d planets, sun %s, input torque %.1f N m, sun speed %.1f rpm (mesh frequency "
-      "%.1f Hz)\n",
-      scene.name.c_str(), n, sun_name, scene.loads.sun_torque,
-      io::RadPerSecondToRpm(std::abs(model.sun_speed())), mesh_hz);
-  for (const std::string& m : compliance.tables().messages()) std::printf("  %s\n", m.c_str());
-  for (const std::string& d : scene.damage.Describe()) std::printf("  %s\n", d.c_str());
-  std::printf(
-      "  mean mesh stiffness: sun-planet %.4g N/m, planet-ring %.4g N/m; mesh damping %.4g and "
-      "%.4g N s/m\n",
-      model.sun_mesh_stiffness(), model.ring_mesh_stiffness(), model.sun_mesh_damping(),
-      model.ring_mesh_damping());
-  std::printf("  friction %s, integrator %s (rtol %.1e), back end %s, %d DOFs\n",
-              transmission::FrictionLawName(scene.dynamics.friction.law).c_str(),
-              a.integrator.c_str(), a.rtol, a.backend.c_str(), model.size());
-  const Eigen::VectorXd d0 = model.QuasiStaticStart(opt.contact, opt.backend);
-  std::printf(
-      "  t = 0: the quasi-static solution at carrier %.4f deg (no start-up transient), "
-      "%.4f s simulated in %d outputs, %d per mesh cycle (highest mode %.0f Hz; %.2f s of "
-      "set-up)\n",
-      geometry::Deg(model.CarrierAngle(0)), duration, outputs, per_cycle, f_max, setup_seconds);
-
-  std::filesystem::create_directories(a.out);
-  const std::string base = a.out + "/dynamic";
-  const json provenance = Provenance(a.backend, &scene);
-  report::DynamicRunRecorder recorder(base, provenance, model, span, spectrum, a.rating);
-  const bool tty = !a.quiet && isatty(fileno(stderr));
-  const auto t1 = std::chrono::steady_clock::now();
-  opt.keep_samples = false;  // each step recorded as it comes, then let go (flat memory)
-  const dynamics::SimulationResult result = dynamics::Simulate(
-      model, opt, d0, Eigen::VectorXd::Zero(model.size()), span.OutputTimes(),
-      [&](const dynamics::DynamicSample& s) {
-        recorder.Add(s);
-        if (tty)
-          Progress(static_cast<int>(recorder.outputs()), outputs, 0,
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(),
-                   "steps");
-      });
-  std::printf("%s", recorder.Close(scene.name, sun_name).c_str());
-  if (tty && !result.completed) std::fprintf(stderr, "\n");
-
-  const dynamics::DynamicSummary sum = recorder.Summary();
-  const dynamics::SimulationStats& st = result.stats;
-  std::printf("%s", report::DynamicRunText(sum, st, n).c_str());
-  std::optional<dynamics::MotionRating> rating;  // ISO 6336 with the run's K_v (docs/stresses.md)
-  if (a.rating && sum.samples > 0) rating = recorder.Rate(scene, opt);
-  if (rating) std::printf("%s", report::RatingText(rating->rating).c_str());
-
-  // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
-  std::vector<std::string> warnings = scene.warnings;
-  if (!cost.empty()) warnings.push_back(cost);
-  for (const std::string& w : recorder.Warnings()) warnings.push_back(w);
-  PrintWarnings(warnings);
-  json j = report::DynamicRunJson(model, opt, span, result, sum);
-  j["provenance"] = provenance;
-  j["warnings"] = warnings;
-  j["setup_seconds"] = setup_seconds;
-  if (rating) j["rating"] = report::RatingJson(rating->rating);
-  WriteTextFile(base + "_summary.json", j.dump(2) + "\n");
-
-  std::printf(
-      "\nwrote %s_steps.csv, _pairs.csv, _bearings.csv, _summary.json, _lsr.svg, _te.svg, "
-      "_orbit.svg%s\n",
-      base.c_str(),
-      a.spectrum ? ", _vibration.csv, _spectrum.csv, _spectrum_lines.csv, _spectrum_*.svg" : "");
-  if (!result.completed)
-    throw ComputationFailed(fmt::format("the run stopped after {} of {} outputs: {}", sum.samples,
-                                        outputs, result.message));
+  ConsoleSink sink(a, Provenance(a.backend, &request.scene));
+  const dynamics::DynamicRecord record = dynamics::RunDynamic(request, sink);
+  if (sink.started()) {
+    std::printf("%s", sink.spectrum_text().c_str());
+    if (sink.tty() && !record.completed()) std::fprintf(stderr, "\n");
+    std::printf("%s", report::DynamicRecordText(record, sink.planets()).c_str());
+  }
+  PrintWarnings(record.warnings);
+  sink.Finish(record);
+  if (sink.started())
+    std::printf(
+        "\nwrote %s_steps.csv, _pairs.csv, _bearings.csv, _summary.json, _lsr.svg, _te.svg, "
+        "_orbit.svg%s\n",
+        sink.base().c_str(),
+        a.spectrum ? ", _vibration.csv, _spectrum.csv, _spectrum_lines.csv, _spectrum_*.svg" : "");
+  else
+    std::printf("\nwrote %s_summary.json\n", sink.base().c_str());
+  if (!record.completed())  // the start's failure, or where the run stopped
+    throw ComputationFailed(
+        sink.started() ? fmt::format("the run stopped after {} of {} outputs: {}",
+                                     record.summary.samples, record.outputs, record.failure)
+                       : record.failure);
 }
 
 struct ModesArgs {
@@ -316,6 +289,12 @@ void RegisterDynamicCommands(CLI::App& app) {
   AddNumber(cmd, "--threads", a.threads, "Speed sweep: worker threads (default: every core)",
             kThreads);
   AddNumber(cmd, "--max-order", a.max_order, "Largest BDF order of CVODE (1..5)", kMaxOrder);
+  AddNumber(cmd, "--max-steps", a.max_steps,
+            "Integrator steps per output interval before the run stops (default 2000000)",
+            dynamics::kMaxSteps);
+  AddNumber(cmd, "--time-limit", a.time_limit,
+            "Wall-time budget of the run [s]: when spent it stops with what it has (exit 1)",
+            dynamics::kRunTimeLimitS);
   cmd->add_flag("--spectrum", a.spectrum,
                 "Also the vibration signals per step and their spectra (docs/spectra.md)");
   AddNumber(cmd, "--spectrum-resolution", a.spectrum_resolution,

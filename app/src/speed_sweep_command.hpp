@@ -6,21 +6,14 @@
 #include <string>
 #include <vector>
 
-#include "epicycle/dynamics/dynamic_model.hpp"
-#include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/dynamics/speed_sweep_run.hpp"
 
 namespace epicycle::app {
 
 struct SpeedSweepArgs {
-  std::string spec;   ///< "FROM:TO:N" as the user gave it
-  std::string out;    ///< output folder
-  std::string range;  ///< cycle | planet | revolution: the measured window
-  std::string backend, integrator;
-  double window_cycles = 0;  ///< > 0 replaces the range [mesh cycles]
-  double start_deg = 0;      ///< carrier angle where the window begins [deg]
-  int outputs_per_cycle = 64;
-  int harmonics = 6;  ///< mesh harmonics 1..harmonics for the coincidences
-  int threads = 0;    ///< 0: every core
+  std::string spec;     ///< "FROM:TO:N" as the user gave it
+  std::string out;      ///< output folder
+  std::string backend;  ///< as the user named it (the provenance)
   bool quiet = false;
 };
 
@@ -28,10 +21,9 @@ struct SpeedSweepArgs {
 /// @throws std::invalid_argument naming --speed-sweep, the value and the rule.
 std::vector<double> ParseSpeedSweep(const std::string& spec);
 
-/// Runs the sweep on the rig's stage with `simulation`'s integrator settings; writes
-/// OUT/speed_sweep.csv (rows as computed), _summary.json and the SVG plots.
+/// Runs the sweep of `request` at the speeds of args.spec; writes OUT/speed_sweep.csv (rows as
+/// computed), _summary.json and the SVG plots.
 /// @throws ComputationFailed naming the failed speeds (after writing everything).
-void RunSpeedSweep(const SpeedSweepArgs& args, const dynamics::StageDynamics& rig,
-                   const dynamics::SimulationOptions& simulation);
+void RunSpeedSweep(const SpeedSweepArgs& args, dynamics::SpeedSweepRequest request);
 
 }  // namespace epicycle::app

@@ -677,6 +677,14 @@ void DynamicModel::AddFrictionJacobian(double t, const Eigen::VectorXd& d, const
 
 Eigen::VectorXd DynamicModel::QuasiStaticStart(const solvers::ContactOptions& contact,
                                                solvers::Backend backend) const {
+  StartOutcome start = SolveQuasiStaticStart(contact, backend);
+  if (start.status != transmission::RunStatus::kCompleted) throw std::runtime_error(start.message);
+  return std::move(start.d);
+}
+
+StartOutcome DynamicModel::SolveQuasiStaticStart(const solvers::ContactOptions& contact,
+                                                 solvers::Backend backend) const {
+  StartOutcome out;
   transmission::QuasiStaticOptions opt;
   opt.backend = backend;
   opt.contact = contact;
@@ -692,19 +700,26 @@ Eigen::VectorXd DynamicModel::QuasiStaticStart(const solvers::ContactOptions& co
       const bool any =
           std::any_of(r.problem.contacts.begin(), r.problem.contacts.end(),
                       [&](const StageContact& s) { return s.planet == i && s.mesh == kind; });
-      if (!any)
-        throw std::runtime_error(
-            "the quasi-static start at carrier " + Num(geometry::Deg(CarrierAngle(0.0))) +
-            " deg: planet" + std::to_string(i + 1) + " is separated from the " +
-            (kind == geometry::MeshKind::kSunPlanet ? "sun" : "ring") +
-            " (no flank within the gap window): the scene's errors or backlash separate the "
-            "gears");
+      if (!any) {
+        out.status = transmission::RunStatus::kGeometry;
+        out.message = "the quasi-static start at carrier " +
+                      Num(geometry::Deg(CarrierAngle(0.0))) + " deg: planet" +
+                      std::to_string(i + 1) + " is separated from the " +
+                      (kind == geometry::MeshKind::kSunPlanet ? "sun" : "ring") +
+                      " (no flank within the gap window): the scene's errors or backlash "
+                      "separate the gears";
+        return out;
+      }
     }
   }
-  if (!r.converged)
-    throw std::runtime_error("the quasi-static start at carrier " +
-                             Num(geometry::Deg(CarrierAngle(0.0))) + " deg failed: " + r.message);
-  Eigen::VectorXd d = Eigen::VectorXd::Zero(size());
+  if (!r.converged) {
+    out.status = transmission::RunStatus::kContactFailure;
+    out.message = "the quasi-static start at carrier " + Num(geometry::Deg(CarrierAngle(0.0))) +
+                  " deg failed: " + r.message;
+    return out;
+  }
+  Eigen::VectorXd& d = out.d;
+  d = Eigen::VectorXd::Zero(size());
   // A speed-driven sun cannot lag: the quasi-static lag λ_s goes to the carrier instead, by the
   // rigid kinematic motion that turns the sun back by −λ_s (carrier −λ_s/(1 + z_r/z_s), planets
   // with it), which leaves every mesh deflection as the quasi-static solution has it.
@@ -730,7 +745,7 @@ Eigen::VectorXd DynamicModel::QuasiStaticStart(const solvers::ContactOptions& co
       }
     }
   }
-  return d;
+  return out;
 }
 
 void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::MatrixXd* k) const {

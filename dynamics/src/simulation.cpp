@@ -79,6 +79,8 @@ struct Context {
   SimulationStats* stats = nullptr;
   std::exception_ptr error;
   std::string last_failure;
+  bool last_failure_geometry = false;  // the last failed evaluation: poses (true) or contact solve
+  bool timed_out = false;              // the time limit was spent
   std::string integrator_message;  // SUNDIALS' own error message (instead of stderr)
   int n = 0;                       // DOFs
   bool limited = false;            // SimulationOptions::time_limit > 0
@@ -90,6 +92,19 @@ void ErrorHandler(int code, const char* module, const char* function, char* mess
   auto& c = *static_cast<Context*>(user);
   c.integrator_message =
       std::string(module) + " " + function + " (" + std::to_string(code) + "): " + message;
+}
+
+// Why the integrator stopped: a right-hand side it could not step around is the last failed
+// evaluation's cause (its contact solve or its poses); any other flag is the integrator's own.
+transmission::RunStatus StopStatus(int flag, const Context& c) {
+  const bool rhs = flag == CV_RHSFUNC_FAIL || flag == CV_REPTD_RHSFUNC_ERR ||
+                   flag == CV_UNREC_RHSFUNC_ERR || flag == CV_FIRST_RHSFUNC_ERR ||
+                   flag == ARK_RHSFUNC_FAIL || flag == ARK_UNREC_RHSFUNC_ERR ||
+                   flag == ARK_REPTD_RHSFUNC_ERR || flag == ARK_FIRST_RHSFUNC_ERR;
+  if (rhs && !c.last_failure.empty())
+    return c.last_failure_geometry ? transmission::RunStatus::kGeometry
+                                   : transmission::RunStatus::kContactFailure;
+  return transmission::RunStatus::kIntegratorFailure;
 }
 
 void Split(const Context& c, const double* y, Eigen::VectorXd* d, Eigen::VectorXd* v) {
@@ -105,7 +120,8 @@ bool EvaluateAt(Context& c, double t, N_Vector y, Eigen::VectorXd* d, Eigen::Vec
   c.model->Evaluate(t, *d, *v, *c.solver, c.contact, &c.warm, &c.scratch, /*energies=*/false);
   ++c.stats->rhs_evaluations;
   if (c.scratch.ok) return true;
-  ++(c.scratch.geometry.ok() ? c.stats->failed_solves : c.stats->failed_geometry);
+  c.last_failure_geometry = !c.scratch.geometry.ok();
+  ++(c.last_failure_geometry ? c.stats->failed_geometry : c.stats->failed_solves);
   c.last_failure = "t = " + std::to_string(t) + " s" + what + ": " + c.scratch.message;
   return false;
 }
@@ -114,9 +130,11 @@ int Rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   auto& c = *static_cast<Context*>(user);
   try {
     const auto t0 = Clock::now();
-    if (c.limited && t0 > c.deadline)
+    if (c.limited && t0 > c.deadline) {
+      c.timed_out = true;
       throw std::runtime_error(
           "the time limit of the run is spent (SimulationOptions::time_limit)");
+    }
     const bool ok = EvaluateAt(c, t, y, &c.d, &c.v, "");
     c.stats->rhs_seconds += Seconds(t0);
     if (!ok) return 1;  // recoverable: a smaller step
@@ -349,6 +367,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
             std::to_string(tout) +
             " s: " + (cvode ? CVodeGetReturnFlagName(flag) : ERKStepGetReturnFlagName(flag)) +
             (c.last_failure.empty() ? "" : "; last failed evaluation " + c.last_failure);
+        result.status = StopStatus(flag, c);
         break;
       }
       // The output: the state at tout and one evaluation there.
@@ -361,6 +380,8 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
       if (!sample.evaluation.ok) {
         result.message = "the output evaluation at t = " + std::to_string(tout) +
                          " s failed: " + sample.evaluation.message;
+        result.status = sample.evaluation.geometry.ok() ? transmission::RunStatus::kContactFailure
+                                                        : transmission::RunStatus::kGeometry;
         break;
       }
       const Evaluation& e = sample.evaluation;
@@ -426,9 +447,14 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
       last_y = Eigen::Map<Eigen::VectorXd>(y, size);
       last_t = tout;
     }
-    result.completed = static_cast<std::size_t>(result.outputs) == output_times.size();
+    if (static_cast<std::size_t>(result.outputs) == output_times.size())
+      result.status = transmission::RunStatus::kCompleted;
   } catch (const std::exception& ex) {
-    result.completed = false;
+    // The time limit; an evaluation that threw (its contact solve or compliance: the model's
+    // failure, not the integrator's); else the integrator's own set-up or step.
+    result.status = c.timed_out ? transmission::RunStatus::kTimeLimit
+                    : c.error   ? transmission::RunStatus::kContactFailure
+                                : transmission::RunStatus::kIntegratorFailure;
     result.message = "stopped after t = " + std::to_string(last_t) + " s: " + ex.what() +
                      (c.last_failure.empty() ? "" : "; last failed evaluation " + c.last_failure);
   }

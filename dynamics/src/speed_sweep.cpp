@@ -161,7 +161,7 @@ std::vector<double> SpeedGrid(double from, double to, int count) {
 
 int SpeedSweepResult::failed() const {
   return static_cast<int>(
-      std::count_if(speeds.begin(), speeds.end(), [](const SpeedResult& r) { return !r.ok; }));
+      std::count_if(speeds.begin(), speeds.end(), [](const SpeedResult& r) { return !r.ok(); }));
 }
 
 DynamicModel ModelAtSpeed(const DynamicModel& base, double sun_speed_rpm) {
@@ -396,6 +396,7 @@ SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = ThreadCpuSeconds();
   SpeedResult r;
+  bool start_failed = false;
   try {
     DynamicModel model = ModelAtSpeed(base, rpm);
     const double wc = std::abs(model.carrier_speed());
@@ -409,10 +410,15 @@ SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
     const std::size_t skipped = times.size();
     for (std::size_t s = 1; s <= plan.window_angles.size(); ++s)
       times.push_back(plan.skip_time + cycle * static_cast<double>(s) / options.outputs_per_cycle);
-    const Eigen::VectorXd d0 =
-        model.QuasiStaticStart(options.simulation.contact, options.simulation.backend);
+    const StartOutcome start =
+        model.SolveQuasiStaticStart(options.simulation.contact, options.simulation.backend);
+    if (start.status != transmission::RunStatus::kCompleted) {
+      r.status = start.status;
+      start_failed = true;
+      throw std::runtime_error(start.message);
+    }
     SimulationResult run =
-        Simulate(model, options.simulation, d0, Eigen::VectorXd::Zero(model.size()), times);
+        Simulate(model, options.simulation, start.d, Eigen::VectorXd::Zero(model.size()), times);
     const std::vector<DynamicSample> window(
         run.samples.begin() + static_cast<std::ptrdiff_t>(std::min(skipped, run.samples.size())),
         run.samples.end());
@@ -428,10 +434,12 @@ SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
     AddDeviationParts(model, window, &r);
     r.warnings = DynamicWarnings(model.stage_model().stage(), window);
     r.stats = run.stats;
-    r.ok = run.completed;
+    r.status = run.status;
     r.message = run.message;
   } catch (const std::exception& e) {
-    r.ok = false;
+    // The start's status, or the reference at rest's contact solve (the only other step that
+    // throws on legal input).
+    if (!start_failed) r.status = transmission::RunStatus::kContactFailure;
     r.message = e.what();
   }
   r.index = index;

@@ -58,6 +58,26 @@ class ComputationError(RuntimeError):
         self.result = result
 
 
+class ContactFailure(ComputationError):
+    """A run stopped by a contact solve that failed where it could not step around it (status
+    "contact-failure"), or whose quasi-static start did not converge."""
+
+
+class IntegratorFailure(ComputationError):
+    """A run the integrator gave up (error test, Newton iteration, step count; status
+    "integrator-failure")."""
+
+
+class TimeLimitReached(ComputationError):
+    """A run whose wall-time budget was spent (status "time-limit"); `.result` holds the steps
+    computed until then."""
+
+
+class GeometryFailure(ComputationError):
+    """A run in which a member swung past where its meshes can be evaluated, or whose start
+    found a planet separated from a member (status "geometry")."""
+
+
 from ._epicycle import (  # noqa: E402  (the classes above are used by the module)
     ContactProblem,
     QuasiStaticPositions,
@@ -100,6 +120,10 @@ study_merge.__doc__ = _epicycle.study_merge.__doc__
 
 __all__ = [
     "ComputationError",
+    "ContactFailure",
+    "GeometryFailure",
+    "IntegratorFailure",
+    "TimeLimitReached",
     "ContactProblem",
     "QuasiStaticPositions",
     "Result",

@@ -20,6 +20,7 @@
 #include <pybind11/stl.h>
 
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/run_status.hpp"
 
 namespace epicycle::python {
 
@@ -62,6 +63,10 @@ py::object Result(const py::dict& fields);
 
 /// Raises epicycle.ComputationError(message) with `result` (what was computed) as its `.result`.
 [[noreturn]] void RaiseComputationError(const std::string& message, const py::object& result);
+/// Raises the ComputationError subclass of a run's `status` (epicycle.ContactFailure,
+/// IntegratorFailure, TimeLimitReached, GeometryFailure) with `message` and `result`.
+[[noreturn]] void RaiseRunFailure(transmission::RunStatus status, const std::string& message,
+                                  const py::object& result);
 
 /// A JSON document as Python objects (through the json module: the report's own keys and units,
 /// the numbers as the summary JSON files hold them).

@@ -7,6 +7,7 @@
 
 #include "common.hpp"
 #include "epicycle/dynamics/dynamic_factor.hpp"
+#include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
@@ -60,25 +61,10 @@ struct Integration {
   }
 };
 
-// The scene of a dynamic command, its sun speed changed through its key when given (the scene
-// reader checks it: dynamics.sun_speed_rpm).
-ScenePtr AtSpeed(const ScenePtr& s, std::optional<double> sun_speed_rpm) {
-  if (!sun_speed_rpm) return s;
-  const double rpm = *sun_speed_rpm;
-  return s->Edited([rpm](toml::table& t) {
-    if (!t.contains("dynamics")) t.insert_or_assign("dynamics", toml::table{});
-    t.get_as<toml::table>("dynamics")->insert_or_assign("sun_speed_rpm", rpm);
-  });
-}
-
 // The dynamic settings a run used: the one place the bindings read them (from the model the
 // library built from the scene).
 const transmission::DynamicSettings& SettingsOf(const dynamics::StageDynamics& rig) {
   return rig.model.settings();
-}
-
-std::string FrictionName(const transmission::DynamicSettings& s) {
-  return transmission::FrictionLawName(s.friction.law);
 }
 
 py::object StatsObject(const dynamics::SimulationStats& st) {
@@ -119,63 +105,86 @@ py::dict SummaryObject(const dynamics::DynamicSummary& sum) {
   return summary;
 }
 
+// Python's sink of a dynamic run: every output step kept (Python returns them as arrays), its
+// vibration values computed while the run's model exists, and what the arrays need of the rig.
+class KeepSteps final : public dynamics::DynamicSink {
+ public:
+  explicit KeepSteps(const Progress& report) : report_(report) {}
+  void Start(const dynamics::DynamicPlan& p) override {
+    model_ = &p.rig->model;
+    planets = p.rig->stage.planets();
+    bodies = p.rig->compliance.has_root_stress() ? transmission::PlanetBody(planets) : 0;
+    channels = dynamics::VibrationChannels(p.rig->model);
+    damping = {p.rig->model.sun_mesh_damping(), p.rig->model.ring_mesh_damping()};
+    total_ = p.span->outputs;
+  }
+  void Step(const dynamics::DynamicSample& x) override {
+    samples.push_back(x);
+    vibration.emplace_back();
+    dynamics::VibrationValues(*model_, x, &vibration.back());
+    report_(static_cast<long>(samples.size()), total_);
+  }
+  void Stop() override { model_ = nullptr; }
+
+  std::vector<dynamics::DynamicSample> samples;
+  std::vector<std::vector<double>> vibration;  // per step, per channel
+  std::vector<dynamics::VibrationChannel> channels;
+  std::array<double, 2> damping{};  // the mesh damping [N s/m]
+  int planets = 0, bodies = 0;
+
+ private:
+  const Progress& report_;
+  const dynamics::DynamicModel* model_ = nullptr;
+  long total_ = 0;
+};
+
 py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
-                   const std::string& range, double time_s, int outputs_per_cycle, double start_deg,
-                   const Integration& integration, std::optional<std::string> cache_dir,
-                   py::object progress, bool raise_on_failure, bool stresses, bool rating) {
-  if (time_s != 0) dynamics::CheckArgument("time_s", time_s, dynamics::kRunTimeS);  // 0: the range
-  dynamics::CheckArgument("outputs_per_cycle", outputs_per_cycle, dynamics::kOutputsPerCycle);
-  dynamics::CheckArgument("start_deg", start_deg, transmission::kCarrierAngleDeg);
-  const dynamics::SimulationOptions opt = integration.Options();
-  const transmission::RunRange run_range = transmission::RunRangeFromName(range);
-  // Stresses (or a rating, which needs them): the scene with [model] stresses = true, as the
-  // program's --stresses and --rating.
-  const ScenePtr at_speed = AtSpeed(scene, sun_speed_rpm);
-  const ScenePtr s = stresses || rating ? WithStresses(at_speed) : at_speed;
-  if (rating) transmission::CheckRatingInputs(s->scene(), "rating=True");
+                   const std::string& range, double time_s, std::optional<int> outputs_per_cycle,
+                   double start_deg, const Integration& integration,
+                   std::optional<std::string> cache_dir, py::object progress,
+                   bool raise_on_failure, bool stresses, bool rating,
+                   std::optional<long> max_steps, std::optional<double> time_limit_s) {
+  dynamics::DynamicRequest request;
+  request.scene = scene->scene();
+  request.names.speed = "dynamics.sun_speed_rpm";  // the scene key it sets
+  request.names.rating = "rating=True";
+  request.sun_speed_rpm = sun_speed_rpm;
+  request.range = transmission::RunRangeFromName(range);
+  if (time_s != 0) request.time_s = time_s;  // 0: the range
+  // None: the library's default; a number given is checked as given (0 is not the default).
+  if (outputs_per_cycle)
+    dynamics::CheckArgument("outputs_per_cycle", *outputs_per_cycle, dynamics::kOutputsPerCycle);
+  request.outputs_per_cycle = outputs_per_cycle.value_or(0);
+  request.start_deg = start_deg;
+  request.integrator = integration.integrator;
+  request.rtol = integration.rtol;
+  request.rate_scale = integration.rate_scale;
+  request.contact_tolerance = integration.contact_tol;
+  request.max_order = integration.max_order;
+  request.analytic_jacobian = integration.analytic_jacobian;
+  request.backend = integration.backend;
+  request.max_steps = max_steps;
+  request.time_limit_s = time_limit_s;
+  request.stresses = stresses;
+  request.rating = rating;
+  request.tables = TableOptions(cache_dir);
+  if (request.scene.kind != transmission::SceneKind::kStage) RequireStage(request.scene, "dynamic");
+  dynamics::ResolvedOptions(request);  // bad input as ValueError before the worker starts
   CancelToken token;
   const Progress report(std::move(progress), &token);
+  KeepSteps sink(report);
   struct Out {
-    std::shared_ptr<const dynamics::StageDynamics> rig;
-    dynamics::RunSpan span;
-    dynamics::SimulationResult result;
-    std::vector<std::string> warnings;
-    double sun_speed = 0;
-    dynamics::DynamicSummary summary;
-    std::optional<dynamics::MotionRating> rating;
+    dynamics::DynamicRecord record;
   };
-  const Out out = RunReleased(token, [&] {
-    Out o;
-    o.rig = s->Dynamics(cache_dir, "dynamic");
-    dynamics::DynamicModel model = o.rig->model;
-    model.SetStartAngle(geometry::Rad(start_deg));
-    o.sun_speed = model.sun_speed();
-    o.span = dynamics::MakeRunSpan(o.rig->stage, model.carrier_speed(), run_range, time_s,
-                                   outputs_per_cycle);
-    const Eigen::VectorXd d0 = model.QuasiStaticStart(opt.contact, opt.backend);
-    long done = 0;
-    const long total = o.span.outputs;
-    o.result = dynamics::Simulate(model, opt, d0, Eigen::VectorXd::Zero(model.size()),
-                                  o.span.OutputTimes(),
-                                  [&](const dynamics::DynamicSample&) { report(++done, total); });
-    o.warnings = o.rig->scene.warnings;
-    for (const std::string& w : dynamics::DynamicWarnings(o.rig->stage, o.result.samples))
-      o.warnings.push_back(w);
-    o.summary = dynamics::Summarise(o.result.samples);
-    if (rating && o.summary.samples > 0) {  // ISO 6336 with the run's K_v (docs/stresses.md)
-      dynamics::MotionLoads loads(o.rig->stage);
-      for (const dynamics::DynamicSample& x : o.result.samples) loads.Add(x);
-      o.rating = dynamics::RateRun(o.rig->scene, model, opt, o.span, loads, o.summary.root_stress);
-    }
-    return o;
-  });
+  const Out out = RunReleased(token, [&] { return Out{dynamics::RunDynamic(request, sink)}; });
+  const dynamics::DynamicRecord& record = out.record;
 
-  const int n = out.rig->stage.planets();
-  const auto& samples = out.result.samples;
+  const int n = sink.planets;
+  const auto& samples = sink.samples;
   const auto count = static_cast<py::ssize_t>(samples.size());
   // Stresses: per step each gear's largest tension and compression [MPa] (NaN for a failed
   // step), the columns sigma_t_<gear>_MPa, sigma_c_<gear>_MPa of the program's steps file.
-  const int bodies = out.rig->compliance.has_root_stress() ? transmission::PlanetBody(n) : 0;
+  const int bodies = sink.bodies;
   std::vector<std::vector<double>> sigma(2 * static_cast<std::size_t>(bodies));
   std::vector<double> time, deg, balance, w_ext, w_diss, kin, elastic, compliance_work,
       friction_power, sun_bearing, planet_bearing;
@@ -184,13 +193,12 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   PairColumns p;
   std::vector<double> p_total, p_elastic, p_friction, p_rate;
   // The vibration output (dynamics/vibration.hpp), one array per channel.
-  const std::vector<dynamics::VibrationChannel> channels =
-      dynamics::VibrationChannels(out.rig->model);
+  const std::vector<dynamics::VibrationChannel>& channels = sink.channels;
   std::vector<std::vector<double>> vibration(channels.size());
-  std::vector<double> values;
-  for (const dynamics::DynamicSample& x : samples) {
-    dynamics::VibrationValues(out.rig->model, x, &values);
-    for (std::size_t c = 0; c < channels.size(); ++c) vibration[c].push_back(values[c]);
+  for (std::size_t step = 0; step < samples.size(); ++step) {
+    const dynamics::DynamicSample& x = samples[step];
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      vibration[c].push_back(sink.vibration[step][c]);
     const dynamics::Evaluation& e = x.evaluation;
     for (int b = 0; b < bodies; ++b) {
       const bool has = std::ssize(x.root_stress) > b;
@@ -253,20 +261,19 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   }
   vib["channels"] = kinds;
 
-  const dynamics::StageDynamics& rig = *out.rig;
   py::dict f;
-  f["scene"] = rig.scene.name;
-  f["sun_support"] = transmission::SunSupportName(rig.stage_model.setup().sun);
-  f["sun_torque_Nm"] = rig.scene.loads.sun_torque;
-  f["sun_speed_rpm"] = io::RadPerSecondToRpm(std::abs(out.sun_speed));
-  f["mesh_frequency_Hz"] = out.span.mesh_frequency;
-  f["duration_s"] = out.span.duration;
-  f["outputs"] = out.span.outputs;
-  f["friction"] = FrictionName(SettingsOf(rig));
-  f["mesh_stiffness_sun_planet_N_per_m"] = rig.model.sun_mesh_stiffness();
-  f["mesh_stiffness_planet_ring_N_per_m"] = rig.model.ring_mesh_stiffness();
-  f["mesh_damping_sun_planet_Ns_per_m"] = rig.model.sun_mesh_damping();
-  f["mesh_damping_planet_ring_Ns_per_m"] = rig.model.ring_mesh_damping();
+  f["scene"] = record.scene;
+  f["sun_support"] = transmission::SunSupportName(record.sun);
+  f["sun_torque_Nm"] = record.sun_torque;
+  f["sun_speed_rpm"] = record.sun_speed_rpm;
+  f["mesh_frequency_Hz"] = record.mesh_frequency;
+  f["duration_s"] = record.duration;
+  f["outputs"] = record.outputs;
+  f["friction"] = transmission::FrictionLawName(record.friction);
+  f["mesh_stiffness_sun_planet_N_per_m"] = record.mesh_stiffness[0];
+  f["mesh_stiffness_planet_ring_N_per_m"] = record.mesh_stiffness[1];
+  f["mesh_damping_sun_planet_Ns_per_m"] = sink.damping[0];
+  f["mesh_damping_planet_ring_Ns_per_m"] = sink.damping[1];
   f["planets"] = n;
   f["time_s"] = Array(std::move(time));
   f["carrier_deg"] = Array(std::move(deg));
@@ -285,10 +292,11 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
       {count, static_cast<py::ssize_t>(n), py::ssize_t{2}}, planet_bearing.data());
   f["pairs"] = Result(pairs);
   f["vibration"] = Result(vib);
-  f["summary"] = Result(SummaryObject(out.summary));
-  f["stats"] = StatsObject(out.result.stats);
-  f["completed"] = out.result.completed;
-  f["message"] = out.result.message;
+  f["summary"] = Result(SummaryObject(record.summary));
+  f["stats"] = StatsObject(record.stats);
+  f["status"] = transmission::RunStatusName(record.status);
+  f["completed"] = record.completed();
+  f["message"] = record.failure;
   if (bodies > 0) {
     py::dict root;
     const std::vector<std::string> gears = transmission::BodyNames(bodies);
@@ -298,13 +306,21 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
     }
     f["root_stress"] = Result(root);
   }
-  if (out.rating) f["rating"] = JsonToPython(report::RatingJson(out.rating->rating));
-  f["warnings"] = out.warnings;
+  if (record.rating) f["rating"] = JsonToPython(report::RatingJson(*record.rating));
+  f["warnings"] = record.warnings;
+  // The record as the program's summary JSON has it: the same keys and values (its provenance
+  // is the program's).
+  nlohmann::json j = report::DynamicRecordJson(record, nlohmann::json());
+  j.erase("provenance");
+  f["record"] = JsonToPython(j);
   py::object result = Result(f);
-  if (!out.result.completed && raise_on_failure)
-    RaiseComputationError("the run stopped after " + std::to_string(samples.size()) + " of " +
-                              std::to_string(out.span.outputs) + " outputs: " + out.result.message,
-                          result);
+  if (!record.completed() && raise_on_failure)
+    RaiseRunFailure(record.status,
+                    samples.empty() && record.stats.steps == 0
+                        ? record.failure
+                        : "the run stopped after " + std::to_string(samples.size()) + " of " +
+                              std::to_string(record.outputs) + " outputs: " + record.failure,
+                    result);
   return result;
 }
 
@@ -448,14 +464,14 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
   std::vector<char> ok;
   py::list message, factor_mesh, warnings;
   for (const dynamics::SpeedResult& x : r.speeds) {
-    const double v = x.ok ? 1.0 : kNaN;
+    const double v = x.ok() ? 1.0 : kNaN;
     rpm.push_back(x.sun_speed_rpm);
     fm.push_back(x.mesh_frequency);
-    ok.push_back(x.ok);
+    ok.push_back(x.ok());
     message.append(x.message);
     kg.push_back(v * x.k_gamma);
     kv.push_back(v * x.dynamic_factor);
-    factor_mesh.append(x.ok && x.factor_mesh >= 0
+    factor_mesh.append(x.ok() && x.factor_mesh >= 0
                            ? plan.meshes[static_cast<std::size_t>(x.factor_mesh)]
                            : std::string());
     peak.push_back(v * x.peak_mesh_force);
@@ -591,23 +607,27 @@ void BindDynamicRun(py::module_& m) {
   m.def(
       "dynamic",
       [](const ScenePtr& s, std::optional<double> sun_speed_rpm, const std::string& range,
-         double time_s, int outputs_per_cycle, double start_deg, const std::string& integrator,
-         double rtol, std::optional<double> rate_scale, std::optional<double> contact_tol,
-         int max_order, bool analytic_jacobian, const std::string& backend,
-         std::optional<std::string> cache_dir, py::object progress, bool raise_on_failure,
-         bool stresses, bool rating) {
+         double time_s, std::optional<int> outputs_per_cycle, double start_deg,
+         const std::string& integrator, double rtol, std::optional<double> rate_scale,
+         std::optional<double> contact_tol, int max_order, bool analytic_jacobian,
+         const std::string& backend, std::optional<std::string> cache_dir, py::object progress,
+         bool raise_on_failure, bool stresses, bool rating, std::optional<long> max_steps,
+         std::optional<double> time_limit_s) {
         return Dynamic(s, sun_speed_rpm, range, time_s, outputs_per_cycle, start_deg,
                        MakeIntegration(integrator, rtol, rate_scale, contact_tol, max_order,
                                        analytic_jacobian, backend),
-                       cache_dir, std::move(progress), raise_on_failure, stresses, rating);
+                       cache_dir, std::move(progress), raise_on_failure, stresses, rating,
+                       max_steps, time_limit_s);
       },
       py::arg("scene"), py::arg("sun_speed_rpm") = py::none(), py::kw_only(),
-      py::arg("range") = "planet", py::arg("time_s") = 0.0, py::arg("outputs_per_cycle") = 20,
-      py::arg("start_deg") = 0.0, py::arg("integrator") = "cvode-bdf", py::arg("rtol") = 1e-6,
+      py::arg("range") = "planet", py::arg("time_s") = 0.0,
+      py::arg("outputs_per_cycle") = py::none(), py::arg("start_deg") = 0.0,
+      py::arg("integrator") = "cvode-bdf", py::arg("rtol") = 1e-6,
       py::arg("rate_scale") = py::none(), py::arg("contact_tol") = py::none(),
       py::arg("max_order") = 5, py::arg("analytic_jacobian") = true, py::arg("backend") = "newton",
       py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
       py::arg("raise_on_failure") = true, py::arg("stresses") = false, py::arg("rating") = false,
+      py::arg("max_steps") = py::none(), py::arg("time_limit_s") = py::none(),
       (std::string(R"doc(
 The dynamic model of a stage integrated in time (`epicycle dynamic`; docs/dynamic.md), from the
 quasi-static solution at t = 0. The dynamic settings are the scene's ([dynamics], [lubricant],
@@ -624,8 +644,9 @@ range : str, default "planet"
     Carrier rotation simulated: "cycle", "planet", "sun", "revolution" (as quasistatic's).
 time_s : float, default 0
     Simulate this long instead [s] (0: the range).
-outputs_per_cycle : int, default 20
-    Output steps per mesh cycle [-].
+outputs_per_cycle : int or None, default None
+    Output steps per mesh cycle [-] (None: the library's default, as the program's: 10 per period
+    of the highest natural frequency, 20 to 500; docs/dynamic.md, Outputs).
 start_deg : float, default 0
     Carrier angle at t = 0 [deg].)doc") +
        kIntegrationDoc + R"doc(
@@ -635,6 +656,10 @@ stresses : bool, default False
 rating : bool, default False
     ISO 6336 ratings with the run's K_v (implies stresses; needs the scene's
     material.bending_limit_MPa and material.contact_limit_MPa), as `epicycle dynamic --rating`.
+max_steps : int or None, default None
+    Integrator steps per output interval before the run stops (None: 2000000), as --max-steps.
+time_limit_s : float or None, default None
+    Wall-time budget of the run [s] (None: none), as --time-limit.
 
 Returns
 -------
@@ -652,7 +677,10 @@ Result
     pairs); summary (lsr_mean/min/max (n,) [-], k_gamma [-], te_min/max/peak_to_peak_urad [µrad],
     orbit_radius_max/mean_um [µm], max_pair_force_N [N]); stats (integrator counts, times [s]);
     sun_speed_rpm [rpm], mesh_frequency_Hz [Hz], duration_s [s], outputs, mesh stiffness [N/m]
-    and damping [N·s/m] of the meshes, completed, message, warnings.
+    and damping [N·s/m] of the meshes, status ("completed", "contact-failure",
+    "integrator-failure", "time-limit", "geometry"), completed, message, warnings; record (the
+    run's record as a dict: the keys and values of the program's dynamic_summary.json but its
+    provenance).
     With stresses: root_stress (per step sigma_t_<gear>_MPa, sigma_c_<gear>_MPa [MPa], each
     gear's largest tension and compression, NaN for a failed step: the steps file's columns) and
     the summary's root_stress (per gear tension_MPa, compression_MPa [MPa] with time_s [s], tooth,
@@ -665,7 +693,9 @@ Raises
 ValueError
     Bad input (the argument's name, value and rule), a rating without the material's limits.
 ComputationError
-    The run stopped early and raise_on_failure (its .result the steps computed).)doc")
+    The run stopped early (or its quasi-static start failed) and raise_on_failure, as the
+    subclass of its status: ContactFailure, IntegratorFailure, TimeLimitReached or
+    GeometryFailure (its .result the steps computed and the record).)doc")
           .c_str());
   m.def("modes", &Modes, py::arg("scene"), py::kw_only(), py::arg("speed_range_rpm") = py::none(),
         py::arg("cache_dir") = py::none(), R"doc(

@@ -24,6 +24,20 @@ void RaiseComputationError(const std::string& message, const py::object& result)
   throw py::error_already_set();
 }
 
+void RaiseRunFailure(transmission::RunStatus status, const std::string& message,
+                     const py::object& result) {
+  using transmission::RunStatus;
+  const char* name = status == RunStatus::kContactFailure      ? "ContactFailure"
+                     : status == RunStatus::kIntegratorFailure ? "IntegratorFailure"
+                     : status == RunStatus::kTimeLimit         ? "TimeLimitReached"
+                     : status == RunStatus::kGeometry          ? "GeometryFailure"
+                                                               : "ComputationError";
+  const py::object type = py::module_::import("epicycle").attr(name);
+  const py::object error = type(message, result);
+  PyErr_SetObject(type.ptr(), error.ptr());
+  throw py::error_already_set();
+}
+
 py::object JsonToPython(const nlohmann::json& j) {
   return py::module_::import("json").attr("loads")(j.dump());
 }

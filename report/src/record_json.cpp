@@ -80,6 +80,7 @@ void JsonRecord::RootStress(const char* key,
   Current()[key] = RootStressJson(gears, x_key, x_scale);
 }
 
+
 nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
   JsonRecord json;
   transmission::VisitRecord(summary, json);
@@ -88,6 +89,11 @@ nlohmann::json SweepSummaryJson(const transmission::SweepSummary& summary) {
 
 nlohmann::json QuasiStaticRecordJson(const transmission::QuasiStaticRecord& record,
                                      const nlohmann::json& provenance) {
+  return SummaryJson(record, provenance);
+}
+
+nlohmann::json DynamicRecordJson(const dynamics::DynamicRecord& record,
+                                 const nlohmann::json& provenance) {
   return SummaryJson(record, provenance);
 }
 

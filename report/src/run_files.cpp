@@ -82,17 +82,6 @@ void RootStressCells(std::string& line, const std::vector<transmission::GearRoot
 }
 
 // Per planet its LSR mean, min and max [-] (null where there is none).
-nlohmann::json PlanetsJson(const std::vector<double>& mean, const std::vector<double>& min,
-                           const std::vector<double>& max) {
-  nlohmann::json planets = nlohmann::json::array();
-  for (std::size_t i = 0; i < mean.size(); ++i)
-    planets.push_back({{"planet", i + 1},
-                       {"lsr_mean", JsonValue(mean[i])},
-                       {"lsr_min", JsonValue(min[i])},
-                       {"lsr_max", JsonValue(max[i])}});
-  return planets;
-}
-
 }  // namespace
 
 BinEnvelope::BinEnvelope(int values, double origin, double width)
@@ -588,43 +577,6 @@ void DynamicPlots::Write(const std::string& scene_name, const std::string& sun_n
                   scene_name + ": sun centre orbit", "_orbit.svg");
 }
 
-DynamicRunRecorder::DynamicRunRecorder(const std::string& base, const nlohmann::json& provenance,
-                                       const dynamics::DynamicModel& model,
-                                       const dynamics::RunSpan& span,
-                                       const std::optional<dynamics::SpectrumOptions>& spectrum,
-                                       bool rating)
-    : model_(model),
-      span_(span),
-      files_(base, provenance, model.stage_model().stage().planets(),
-             model.stage_model().compliance().has_root_stress()),
-      warnings_(model.stage_model().stage()),
-      plots_(base, model.stage_model().stage().planets(), span) {
-  if (spectrum) vibration_.emplace(base, provenance, model, *spectrum);
-  if (rating) loads_.emplace(model.stage_model().stage());
-}
-
-dynamics::MotionRating DynamicRunRecorder::Rate(const transmission::Scene& scene,
-                                                const dynamics::SimulationOptions& options) const {
-  if (!loads_) throw std::logic_error("DynamicRunRecorder::Rate: made without rating");
-  return dynamics::RateRun(scene, model_, options, span_, *loads_, summary_.Result().root_stress);
-}
-
-void DynamicRunRecorder::Add(const dynamics::DynamicSample& s) {
-  ++outputs_;
-  files_.Write(s);
-  if (vibration_) vibration_->Write(s);
-  summary_.Add(s);
-  warnings_.Add(s);
-  plots_.Add(s);
-  if (loads_) loads_->Add(s);
-}
-
-std::string DynamicRunRecorder::Close(const std::string& scene_name, const std::string& sun_name) {
-  files_.Close();
-  plots_.Write(scene_name, sun_name);
-  return vibration_ ? vibration_->Close(scene_name) : "";
-}
-
 std::string DynamicRunText(const dynamics::DynamicSummary& sum,
                            const dynamics::SimulationStats& st, int n) {
   std::string t = fmt::format(
@@ -648,55 +600,6 @@ std::string DynamicRunText(const dynamics::DynamicSummary& sum,
       st.failed_solves, st.error_test_failures, st.nonlinear_failures, st.wall_seconds,
       st.rhs_seconds);
   return t + RootStressText(sum.root_stress, "t s", 1.0);
-}
-
-nlohmann::json DynamicRunJson(const dynamics::DynamicModel& model,
-                              const dynamics::SimulationOptions& options,
-                              const dynamics::RunSpan& span,
-                              const dynamics::SimulationResult& result,
-                              const dynamics::DynamicSummary& sum) {
-  const dynamics::SimulationStats& st = result.stats;
-  nlohmann::json j;
-  j["scene"] = model.stage_model().name();
-  j["sun_support"] = transmission::SunSupportName(model.stage_model().setup().sun);
-  j["sun_torque_Nm"] = model.sun_torque();
-  j["sun_speed_rpm"] = io::RadPerSecondToRpm(std::abs(model.sun_speed()));
-  j["mesh_frequency_Hz"] = span.mesh_frequency;
-  j["friction"] = transmission::FrictionLawName(model.settings().friction.law);
-  j["integrator"] = dynamics::IntegratorName(options.integrator);
-  j["rtol"] = options.rtol;
-  j["atol_length_m"] = options.atol_length;
-  j["atol_angle_rad"] = options.atol_angle;
-  j["contact_tolerance"] = options.contact.tolerance;
-  j["backend"] = solvers::BackendName(options.backend);
-  j["start"] = "quasi-static solution at t = 0 (no start-up transient)";
-  j["duration_s"] = span.duration;
-  j["outputs"] = span.outputs;
-  j["completed"] = result.completed;
-  j["failure"] = result.message;
-  j["mesh_stiffness_sun_planet_N_per_m"] = model.sun_mesh_stiffness();
-  j["mesh_stiffness_planet_ring_N_per_m"] = model.ring_mesh_stiffness();
-  if (!sum.root_stress.empty()) j["root_stress"] = RootStressJson(sum.root_stress, "time_s", 1.0);
-  j["planets"] = PlanetsJson(sum.lsr_mean, sum.lsr_min, sum.lsr_max);
-  j["outputs_written"] = sum.samples;
-  j["K_gamma_max"] = JsonValue(sum.k_gamma);
-  j["transmission_error_min_urad"] = JsonValue(sum.te_min * 1e6);
-  j["transmission_error_max_urad"] = JsonValue(sum.te_max * 1e6);
-  j["transmission_error_peak_to_peak_urad"] = JsonValue(sum.te_peak_to_peak() * 1e6);
-  j["sun_orbit_radius_max_um"] = JsonValue(sum.orbit_radius * 1e6);
-  j["sun_orbit_radius_mean_um"] = JsonValue(sum.orbit_mean_radius * 1e6);
-  j["steps"] = st.steps;
-  j["evaluations"] = st.rhs_evaluations;
-  j["fd_jacobian_evaluations"] = st.fd_rhs_evaluations;
-  j["jacobians"] = st.jacobian_evaluations;
-  j["failed_contact_solves"] = st.failed_solves;
-  j["error_test_failures"] = st.error_test_failures;
-  j["nonlinear_failures"] = st.nonlinear_failures;
-  j["failed_geometry"] = st.failed_geometry;
-  j["wall_seconds"] = st.wall_seconds;
-  j["evaluation_seconds"] = st.rhs_seconds;
-  j["rate_tolerance_scale_rad_per_s"] = st.rate_scale;  // rate atol = position atol x this
-  return j;
 }
 
 MeshStiffnessFile::MeshStiffnessFile(const std::string& path, const nlohmann::json& provenance,

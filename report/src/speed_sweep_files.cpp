@@ -44,13 +44,13 @@ SpeedSweepFile::SpeedSweepFile(const std::string& path, const nlohmann::json& pr
 
 void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::SpeedSweepPlan& plan) {
   // A failed speed keeps its speed, status and message; its figures are empty (not zeros).
-  auto v = [&](double x) { return r.ok ? Num(x) : std::string(); };
+  auto v = [&](double x) { return r.ok() ? Num(x) : std::string(); };
   std::string parts;
   for (double x : r.deviation_parts) parts += v(x) + ",";
   csv_.WriteLine(fmt::format(
       "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Num(r.sun_speed_rpm),
-      Num(r.mesh_frequency), r.ok ? "ok" : "failed", v(r.k_gamma), v(r.dynamic_factor),
-      CsvText(r.ok && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : ""), v(r.peak_mesh_force),
+      Num(r.mesh_frequency), r.ok() ? "ok" : transmission::RunStatusName(r.status), v(r.k_gamma), v(r.dynamic_factor),
+      CsvText(r.ok() && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : ""), v(r.peak_mesh_force),
       v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min), v(r.lsr_max),
       v(r.lsr_deviation) + "," + parts + v(r.largest_residual), r.stats.steps,
       r.stats.rhs_evaluations, r.stats.failed_solves, Num(r.cpu_seconds), Num(r.wall_seconds),
@@ -89,7 +89,7 @@ void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name
                std::move(refs)};
     PlotSeries s{what, {}, {}, false};
     for (const dynamics::SpeedResult& r : speeds) {
-      if (!r.ok) continue;
+      if (!r.ok()) continue;
       s.x.push_back(r.sun_speed_rpm);
       s.y.push_back(field(r) * scale);
     }
@@ -115,7 +115,7 @@ void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name
   std::vector<PlotSeries> parts;
   for (const char* name : dynamics::kLoadSharingPartNames) parts.push_back({name, {}, {}, false});
   for (const dynamics::SpeedResult& r : speeds) {
-    if (!r.ok) continue;
+    if (!r.ok()) continue;
     total.x.push_back(r.sun_speed_rpm);
     total.y.push_back(r.lsr_deviation);
     // Oriented so that the parts sum to +|LSR − 1/n|.
@@ -140,7 +140,8 @@ nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
   for (const dynamics::SpeedResult& r : speeds) {
     json j = {{"sun_speed_rpm", r.sun_speed_rpm},
               {"mesh_frequency_Hz", r.mesh_frequency},
-              {"ok", r.ok},
+              {"ok", r.ok()},
+              {"status", transmission::RunStatusName(r.status)},
               {"message", r.message},
               {"steps", r.stats.steps},
               {"evaluations", r.stats.rhs_evaluations},
@@ -148,7 +149,7 @@ nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
               {"cpu_s", r.cpu_seconds},
               {"wall_s", r.wall_seconds},
               {"warnings", r.warnings}};
-    if (r.ok) {
+    if (r.ok()) {
       j["K_gamma"] = r.k_gamma;
       j["dynamic_factor"] = r.dynamic_factor;
       j["dynamic_factor_mesh"] = r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "";

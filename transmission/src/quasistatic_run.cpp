@@ -118,16 +118,21 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
   return record;
 }
 
-void VisitRecord(const SweepSummary& s, RecordVisitor& visit) {
+void VisitPlanets(RecordVisitor& visit, const std::vector<double>& mean,
+                  const std::vector<double>& min, const std::vector<double>& max) {
   visit.BeginList("planets");
-  for (std::size_t i = 0; i < s.lsr_mean.size(); ++i) {
+  for (std::size_t i = 0; i < mean.size(); ++i) {
     visit.Item();
     visit.Integer("planet", static_cast<long>(i + 1));
-    visit.Number("lsr_mean", s.lsr_mean[i]);
-    visit.Number("lsr_min", s.lsr_min[i]);
-    visit.Number("lsr_max", s.lsr_max[i]);
+    visit.Number("lsr_mean", mean[i]);
+    visit.Number("lsr_min", min[i]);
+    visit.Number("lsr_max", max[i]);
   }
   visit.EndList();
+}
+
+void VisitRecord(const SweepSummary& s, RecordVisitor& visit) {
+  VisitPlanets(visit, s.lsr_mean, s.lsr_min, s.lsr_max);
   visit.Number("K_gamma_max", s.k_gamma);
   visit.Number("transmission_error_min_urad", s.transmission_error_min * 1e6);
   visit.Number("transmission_error_max_urad", s.transmission_error_max * 1e6);

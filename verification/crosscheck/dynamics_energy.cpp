@@ -98,7 +98,7 @@ TEST_CASE(
       so.rtol = 1e-8;
       if (tight) so = test::Tightened(so, 100);
       const auto r = test::Run(rig, test::Times(*rig.model, *rig.stage, 1, 400), so);
-      REQUIRE(r.completed);
+      REQUIRE(r.completed());
       const dynamics::Evaluation start = test::StartEvaluation(rig, so);
       const double e0 = start.kinetic_energy + start.elastic_energy;
       for (const DynamicSample& s : r.samples) {

@@ -69,7 +69,7 @@ TEST_CASE(
 
   SECTION("floating sun with friction") {
     const Case c = RunCase(SunSupport::kFloating, true);
-    REQUIRE(c.run.completed);
+    REQUIRE(c.run.completed());
     const dynamics::DynamicModel& m = *c.rig.model;
     const int sx = m.Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kX);
     const double rbs = c.rig.stage->sun().base_radius();
@@ -143,7 +143,7 @@ TEST_CASE(
 
   SECTION("floating sun without friction: friction's part is exactly zero") {
     const Case c = RunCase(SunSupport::kFloating, false);
-    REQUIRE(c.run.completed);
+    REQUIRE(c.run.completed());
     for (const DynamicSample& s : c.run.samples) {
       const LoadSharingParts p = dynamics::DecomposeLoadSharing(*c.rig.model, s);
       CHECK(p.friction == std::vector<double>(3, 0.0));
@@ -153,7 +153,7 @@ TEST_CASE(
 
   SECTION("fixed sun: no translational inertia, the bearing carries the force inequality") {
     const Case c = RunCase(SunSupport::kFixed, false);
-    REQUIRE(c.run.completed);
+    REQUIRE(c.run.completed());
     double bearing = 0, dev = 0;
     for (const DynamicSample& s : c.run.samples) {
       const LoadSharingParts p = dynamics::DecomposeLoadSharing(*c.rig.model, s);

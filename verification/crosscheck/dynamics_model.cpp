@@ -54,7 +54,7 @@ TEST_CASE("quasi-static limit: the dynamic LSR tends to the quasi-static sweep w
     dynamics::SimulationOptions so;
     so.rtol = 1e-8;
     const auto r = Run(rig, Times(*rig.model, *rig.stage, 24, 2), so);
-    REQUIRE(r.completed);
+    REQUIRE(r.completed());
     gap[k] = QuasiStaticGap(rig, r.samples);
     Figure("quasi-static limit at " + std::to_string(speeds[k]) + " rpm: largest |LSR - LSR_qs| " +
            Sci(gap[k]) + ", " + std::to_string(r.stats.steps) + " steps");
@@ -144,7 +144,7 @@ TEST_CASE(
       so.rtol = 1e-8;
       if (tight) so = test::Tightened(so, 100);
       const auto r = Run(rig, Times(*rig.model, *rig.stage, 2, 100), so);
-      REQUIRE(r.completed);
+      REQUIRE(r.completed());
       const dynamics::Evaluation start = test::StartEvaluation(rig, so);
       const double energy0 = start.kinetic_energy + start.elastic_energy;
       for (const DynamicSample& s : r.samples) {
@@ -196,7 +196,7 @@ TEST_CASE(
   dynamics::SimulationOptions so;
   const auto times = Times(*rig.model, *rig.stage, 2, 20);
   const auto r = Run(rig, times, so);
-  REQUIRE(r.completed);
+  REQUIRE(r.completed());
   const double h = times.back() / static_cast<double>(r.stats.steps);
   const int ks = rig.model->Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kRotation);
   const double js = rig.model->mass()(ks);
@@ -238,7 +238,7 @@ TEST_CASE(
   auto times = Times(*rig.model, *rig.stage, 6, 4);
   for (double t : Times(*rig.model, *rig.stage, 3, 128, 6.0)) times.push_back(t);
   const auto r = Run(rig, times);
-  REQUIRE(r.completed);
+  REQUIRE(r.completed());
   std::vector<std::complex<double>> te, force;
   for (std::size_t k = 6 * 4; k < r.samples.size(); ++k) {
     const DynamicSample& s = r.samples[k];
@@ -302,9 +302,9 @@ TEST_CASE(
   c.atol_angle = a.atol_angle / 10;
   c.atol_length = a.atol_length / 10;
   const auto ra = Run(rig, times, a), rb = Run(rig, times, b), rc = Run(rig, times, c);
-  REQUIRE(ra.completed);
-  REQUIRE(rb.completed);
-  REQUIRE(rc.completed);
+  REQUIRE(ra.completed());
+  REQUIRE(rb.completed());
+  REQUIRE(rc.completed());
   auto diff = [](const dynamics::SimulationResult& x, const dynamics::SimulationResult& y) {
     double w = 0;
     for (std::size_t k = 0; k < x.samples.size(); ++k)
@@ -357,7 +357,7 @@ TEST_CASE(
   so.rtol = 1e-8;
   const auto times = Times(*rig.model, *rig.stage, 9, 4);
   const auto r = Run(rig, times, so);
-  REQUIRE(r.completed);
+  REQUIRE(r.completed());
   const DynamicSample& a = r.samples[6 * 4 - 1];
   const DynamicSample& b = r.samples.back();
   const int ks = rig.model->Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kRotation);

@@ -61,7 +61,7 @@ TEST_CASE(
   sim.rate_scale = 1e4;
   const dynamics::SimulationResult run =
       dynamics::Simulate(m, sim, y0.head(n), y0.tail(n), {cycles * r.period});
-  REQUIRE(run.completed);
+  REQUIRE(run.completed());
   test::FigureValue("stage Simulate 60 cycles wall time", run.stats.wall_seconds, "s");
   test::FigureValue("stage Simulate steps", static_cast<double>(run.stats.steps), "-");
   Eigen::VectorXd settled(2 * n);

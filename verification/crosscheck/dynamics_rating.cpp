@@ -43,7 +43,7 @@ RunFactor RunWithFactor(const test::DynamicRig& rig, const std::vector<double>& 
   dynamics::SimulationOptions so;
   so.rtol = 1e-8;
   const auto r = test::Run(rig, times, so);
-  REQUIRE(r.completed);
+  REQUIRE(r.completed());
   RunFactor out{dynamics::MotionLoads(*rig.stage), {}};
   for (const dynamics::DynamicSample& s : r.samples) out.loads.Add(s);
   out.kv = dynamics::DynamicLoadFactor(*rig.model, so, times, out.loads);
@@ -131,7 +131,7 @@ TEST_CASE(
   const std::vector<double> times = test::Times(*rig.model, *rig.stage, 4, 8);
   const dynamics::SimulationOptions so;
   const auto r = test::Run(rig, times, so);
-  REQUIRE(r.completed);
+  REQUIRE(r.completed());
   dynamics::MotionLoads loads(*rig.stage);
   for (const dynamics::DynamicSample& s : r.samples) loads.Add(s);
   const int bodies = transmission::PlanetBody(rig.stage->planets());
@@ -229,7 +229,7 @@ TEST_CASE(
   const std::vector<double> all = span.OutputTimes();
   const dynamics::SimulationOptions so;
   const auto r = test::Run(rig, all, so);
-  REQUIRE(r.completed);
+  REQUIRE(r.completed());
   const std::vector<dynamics::DynamicSample> made(r.samples.begin(), r.samples.begin() + 5);
   dynamics::MotionLoads loads(*rig.stage);
   for (const dynamics::DynamicSample& s : made) loads.Add(s);

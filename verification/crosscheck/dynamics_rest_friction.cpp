@@ -128,7 +128,7 @@ TEST_CASE(
     dynamics::SimulationOptions so;
     so.rtol = 1e-8;
     const auto r = Run(rig, Times(*rig.model, *rig.stage, 6, 2), so);
-    REQUIRE(r.completed);
+    REQUIRE(r.completed());
     gap[k] = RestFrictionGap(rig, law, so, r.samples);
     Figure("friction at rest, " + name + ", " + std::to_string(speeds[k]) +
            " rpm: largest |LSR - LSR_qs| " + Sci(gap[k].rest) + " at the run's positions without "

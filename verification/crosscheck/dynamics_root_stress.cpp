@@ -31,7 +31,7 @@ TEST_CASE("root stress: the dynamic root stress tends to the quasi-static one wi
     dynamics::SimulationOptions so;
     so.rtol = 1e-8;
     const auto r = test::Run(rig, test::Times(*rig.model, *rig.stage, 24, 2), so);
-    REQUIRE(r.completed);
+    REQUIRE(r.completed());
     const int bodies = transmission::PlanetBody(rig.stage->planets());
     gap[k] = 0;
     for (const dynamics::DynamicSample& s : r.samples) {

@@ -77,7 +77,7 @@ std::vector<std::vector<double>> FaultRun(const std::string& text, const std::st
         dynamics::VibrationValues(model, s, &values);
         spectrum.Add(s.time, values);
       });
-  REQUIRE(run.completed);
+  REQUIRE(run.completed());
   REQUIRE(spectrum.segments() == 1);
   *wall = run.stats.wall_seconds;
   std::vector<std::vector<double>> out;
@@ -225,7 +225,7 @@ TEST_CASE(
                            balance = std::max(balance, std::abs(values[3] - moment));
                            ++used;
                          });
-  REQUIRE(run.completed);
+  REQUIRE(run.completed());
   REQUIRE(spectrum.segments() == 1);
   CHECK(spectrum.resolution() == Approx(f.carrier).epsilon(1e-9));
   test::Figure("spectrum, healthy paper stage, 1500 rpm, " + std::to_string(times.size()) +

@@ -144,7 +144,7 @@ TEST_CASE(
   SECTION("fixed sun") {
     const auto rig = test::MakeRig(text, "runout", o);
     const auto r = Run(rig, Times(*rig.model, *rig.stage, cycles, 4));
-    REQUIRE(r.completed);
+    REQUIRE(r.completed());
     // Each sample's K_γ is max(0, max_i 3·LSR_i), and its sun balance Σ T_mesh + T_in − J_s θ̈_s
     // is the residual of the sun's equation of motion the integrator solves: small against the
     // 600 N·m it balances (1e-3 of it; a wrong sign of any torque gives 2·600 N·m).
@@ -227,7 +227,7 @@ TEST_CASE(
             std::vector<double> run_times = Times(*rig.model, *rig.stage, 6, 1);
             run_times.insert(run_times.end(), times.begin(), times.end());
             const auto r = Run(rig, run_times);
-            REQUIRE(r.completed);
+            REQUIRE(r.completed());
             for (std::size_t j = 6; j < r.samples.size(); ++j)
               l1.push_back(r.samples[j].load_sharing[0]);
           } else {
@@ -268,7 +268,7 @@ TEST_CASE(
     };
     const auto rig = test::MakeRig(text, "runout floating", of);
     const auto r = Run(rig, Times(*rig.model, *rig.stage, cycles, 4));
-    REQUIRE(r.completed);
+    REQUIRE(r.completed());
     // In motion the floating sun is balanced by its inertia as well: the mesh harmonics move its
     // quasi-static equilibrium by about a micrometre (the net mesh force of a fixed sun at
     // harmonics 1, 2, 4, 5 over its translational stiffness), and at 1500 rpm following that
@@ -408,6 +408,12 @@ TEST_CASE(
     });
     INFO(m);
     CHECK(m.find("quasi-static start") != std::string::npos);
+    // The same start as an outcome: geometry, the planet named.
+    const auto rig = test::MakeRig(text, "separated", o);
+    const dynamics::StartOutcome start =
+        rig.model->SolveQuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+    CHECK(start.status == transmission::RunStatus::kGeometry);
+    CHECK(start.message.find("planet2 is separated") != std::string::npos);
   }
   SECTION("a run over its time limit stops, keeps what it has and says why") {
     // 1 ns of wall time: spent before CVODE's first right-hand side (Simulate evaluates the start
@@ -419,7 +425,8 @@ TEST_CASE(
     dynamics::SimulationOptions so;
     so.time_limit = 1e-9;
     const auto r = test::Run(rig, Times(*rig.model, *rig.stage, 1, 4), so);
-    CHECK_FALSE(r.completed);
+    CHECK_FALSE(r.completed());
+    CHECK(r.status == transmission::RunStatus::kTimeLimit);
     CHECK(r.samples.empty());
     CHECK(r.message.find("time limit") != std::string::npos);
     so.time_limit = -1;
@@ -450,7 +457,9 @@ TEST_CASE(
     const Eigen::VectorXd d0 = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
     const auto r = dynamics::Simulate(m, {}, d0, Eigen::VectorXd::Zero(m.size()), times,
                                       [&](const DynamicSample& s) { seen.push_back(s.time); });
-    CHECK_FALSE(r.completed);
+    CHECK_FALSE(r.completed());
+    // The evaluation threw (its compliance): the model's failure, not the integrator's.
+    CHECK(r.status == transmission::RunStatus::kContactFailure);
     CHECK(r.message.find("injected compliance failure") != std::string::npos);
     CHECK(r.message.find("stopped after t =") != std::string::npos);
     CHECK(seen.size() == r.samples.size());
@@ -508,7 +517,7 @@ TEST_CASE(
     so.atol_length = k == 0 ? 1e-9 : 1e-11;
     so.atol_angle = k == 0 ? 1e-8 : 1e-10;
     r = dynamics::Simulate(m, so, d0, Eigen::VectorXd::Zero(m.size()), times);
-    REQUIRE(r.completed);
+    REQUIRE(r.completed());
     imbalance[k] = 0;
     for (const DynamicSample& s : r.samples)
       imbalance[k] =
@@ -606,8 +615,8 @@ TEST_CASE(
     const auto a = dynamics::Simulate(m, reference, d0, vel, times);
     const auto b = dynamics::Simulate(m, long_first, d0, vel, times);
     INFO(b.message);
-    REQUIRE(a.completed);
-    REQUIRE(b.completed);
+    REQUIRE(a.completed());
+    REQUIRE(b.completed());
     CHECK(a.stats.failed_geometry == 0);
     CHECK(b.stats.failed_geometry >= 1);
     // Both runs keep each step's local error below rtol|y| + atol; over N steps the global errors

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/studies/study_run.hpp"
@@ -65,6 +66,7 @@ class KeyList final : public transmission::RecordVisitor {
 };
 
 class NoSink final : public transmission::QuasiStaticSink {};
+class NoDynamicSink final : public dynamics::DynamicSink {};
 
 std::set<std::string> Keys(const nlohmann::json& j) {
   std::set<std::string> out;
@@ -74,7 +76,25 @@ std::set<std::string> Keys(const nlohmann::json& j) {
 
 // What two runs may differ in: their wall times and the program's provenance.
 void DropRunDependent(nlohmann::json* j) {
-  for (const char* k : {"sweep_seconds", "table_seconds", "provenance"}) j->erase(k);
+  for (const char* k : {"sweep_seconds", "table_seconds", "setup_seconds", "wall_seconds",
+                        "evaluation_seconds", "provenance"})
+    j->erase(k);
+}
+
+// The program's summary JSON `program` against the library's `record` (`library`: its JSON): the
+// file's keys are the record's fields (the provenance is the program's, not the run's), and every
+// value is the same bit for bit (the JSON numbers are written with 17 digits and read back
+// exactly), the wall times aside.
+template <class Record>
+void CheckSameRecord(nlohmann::json program, const Record& record, nlohmann::json library) {
+  KeyList fields;
+  VisitRecord(record, fields);
+  std::set<std::string> file_keys = Keys(program);
+  file_keys.erase("provenance");
+  CHECK(file_keys == fields.keys);
+  DropRunDependent(&program);
+  DropRunDependent(&library);
+  CHECK(program == library);
 }
 
 nlohmann::json ReadJson(const std::string& path) {
@@ -113,18 +133,40 @@ TEST_CASE(
   REQUIRE(record.rating.has_value());
   REQUIRE(record.friction.has_value());
 
-  KeyList fields;
-  transmission::VisitRecord(record, fields);
-  std::set<std::string> file_keys = Keys(program);
-  file_keys.erase("provenance");  // the program's, not the run's
-  CHECK(file_keys == fields.keys);
+  CheckSameRecord(program, record, report::QuasiStaticRecordJson(record, nlohmann::json()));
+}
 
-  // The same record: every value bit for bit (the JSON numbers are written with 17 digits and
-  // read back exactly), the wall times aside.
-  nlohmann::json library = report::QuasiStaticRecordJson(record, nlohmann::json());
-  DropRunDependent(&program);
-  DropRunDependent(&library);
-  CHECK(program == library);
+// The dynamic run's record: one mesh cycle with stresses and a rating (the fields that only some
+// runs have: root_stress, rating), the same request through the program and through the library.
+TEST_CASE(
+    "dynamic record: the program's summary JSON has exactly the record's fields and the library "
+    "run's values (stresses, rating)",
+    "[crosscheck][report][records]") {
+  const test::TempDir temp("dynamic-record");
+  const std::string scene_file =
+      std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_runout_rated.toml";
+  REQUIRE(test::ExitStatus({EPICYCLE_EXE, "dynamic", scene_file, "--range", "cycle",
+                            "--outputs-per-cycle", "24", "--rating", "--cache",
+                            EPICYCLE_TEST_CACHE_DIR, "--quiet", "--out",
+                            temp.path.string()}) == 0);
+  std::ifstream in(temp.File("dynamic_summary.json"));
+  REQUIRE(in.good());
+  nlohmann::json program = nlohmann::json::parse(in);
+
+  dynamics::DynamicRequest request;
+  request.scene = transmission::ReadScene(scene_file);
+  request.range = transmission::RunRange::kMeshCycle;
+  request.outputs_per_cycle = 24;
+  request.rating = true;
+  request.tables.cache_directory = EPICYCLE_TEST_CACHE_DIR;
+  NoDynamicSink sink;
+  const dynamics::DynamicRecord record = dynamics::RunDynamic(request, sink);
+  REQUIRE(record.completed());
+  REQUIRE(record.rating.has_value());
+  REQUIRE_FALSE(record.summary.root_stress.empty());
+  CHECK(record.summary.samples == 24);
+
+  CheckSameRecord(program, record, report::DynamicRecordJson(record, nlohmann::json()));
 }
 
 TEST_CASE(

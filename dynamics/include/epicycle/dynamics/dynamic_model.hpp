@@ -48,6 +48,7 @@
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/transmission/contact_kinematics.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/run_status.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/stage_model.hpp"
 
@@ -128,6 +129,14 @@ struct Evaluation {
   EvaluationWorkspace work;  ///< Evaluate's buffers (no result)
 };
 
+/// The start of a run (DynamicModel::SolveQuasiStaticStart): its status, why it failed, and the
+/// initial deviations d(0) [m, rad] when it did not.
+struct StartOutcome {
+  transmission::RunStatus status = transmission::RunStatus::kCompleted;
+  std::string message;
+  Eigen::VectorXd d;
+};
+
 class DynamicModel {
  public:
   /// Keeps a reference to `model` (it must outlive this): the stage model with its supports, the
@@ -191,6 +200,10 @@ class DynamicModel {
   /// @throws std::runtime_error if that quasi-static solve fails.
   Eigen::VectorXd QuasiStaticStart(const solvers::ContactOptions& contact,
                                    solvers::Backend backend) const;
+  /// The same as an outcome: kCompleted with `d`, or kGeometry (a planet separated from a
+  /// member at the start) or kContactFailure (the solve did not converge) with the message.
+  StartOutcome SolveQuasiStaticStart(const solvers::ContactOptions& contact,
+                                     solvers::Backend backend) const;
 
   /// Linearised mass and stiffness about the reference configuration at carrier angle φ: mean
   /// mesh stiffness along each mesh's line of action (k_m g gᵀ, g the involute contact's

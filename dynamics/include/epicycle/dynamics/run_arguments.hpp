@@ -37,6 +37,11 @@ inline constexpr ArgumentRange kSweepSpeeds{1, 1e5, false, true, "", ""};
 /// A spectrum's frequency resolution [Hz] (0: one carrier revolution per segment).
 inline constexpr ArgumentRange kSpectrumResolution{0,     1e6,    false,
                                                    false, "[Hz]", "0: one carrier revolution"};
+/// The integrator's steps per output interval before it gives up (SimulationOptions::max_steps).
+inline constexpr ArgumentRange kMaxSteps{1, 1e9, false, true, "", "per output interval"};
+/// A run's wall-time budget [s] (SimulationOptions::time_limit): when spent the run stops with
+/// what it has (up to about eleven days).
+inline constexpr ArgumentRange kRunTimeLimitS{0, 1e6, true, false, "[s]", "the run's wall time"};
 /// Mesh cycles a spectrum leaves out at the start of a run.
 inline constexpr ArgumentRange kSpectrumSkipCycles{
     0, 1e6, false, false, "[mesh cycles]", "the start transient"};

@@ -22,6 +22,7 @@
 
 #include "epicycle/dynamics/dynamic_model.hpp"
 #include "epicycle/transmission/root_stress.hpp"
+#include "epicycle/transmission/run_status.hpp"
 
 namespace epicycle::dynamics {
 
@@ -130,8 +131,11 @@ struct SimulationStats {
 };
 
 struct SimulationResult {
-  bool completed = false;  ///< every output time reached
-  std::string message;     ///< where and why a run stopped early
+  /// kCompleted: every output time reached; else why the run stopped early (contact failure,
+  /// geometry, integrator failure, time limit).
+  transmission::RunStatus status = transmission::RunStatus::kIntegratorFailure;
+  std::string message;  ///< where and why a run stopped early
+  bool completed() const { return status == transmission::RunStatus::kCompleted; }
   /// Every output step, in order (empty with SimulationOptions::keep_samples = false).
   std::vector<DynamicSample> samples;
   int outputs = 0;  ///< output steps computed (and handed to `on_sample`) [-]

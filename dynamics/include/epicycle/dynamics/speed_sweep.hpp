@@ -146,7 +146,9 @@ struct SpeedResult {
   int index = 0;               ///< position in sun_speeds_rpm [-]
   double sun_speed_rpm = 0;    ///< [rpm]
   double mesh_frequency = 0;   ///< f_m [Hz]
-  bool ok = false;             ///< the run reached every output
+  /// kCompleted: the run reached every output; else why it stopped (its start or its run).
+  transmission::RunStatus status = transmission::RunStatus::kIntegratorFailure;
+  bool ok() const { return status == transmission::RunStatus::kCompleted; }
   std::string message;         ///< why not
   double k_gamma = 0;          ///< K_γ over the window [-]
   double dynamic_factor = 0;   ///< K_v [-]

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
 #include "epicycle/transmission/record.hpp"
@@ -68,5 +69,9 @@ nlohmann::json SummaryJson(const Record& record, const nlohmann::json& provenanc
   j["provenance"] = provenance;
   return j;
 }
+
+/// A dynamic run's summary JSON (SummaryJson): its record's fields and the program's provenance.
+nlohmann::json DynamicRecordJson(const dynamics::DynamicRecord& record,
+                                 const nlohmann::json& provenance);
 
 }  // namespace epicycle::report

@@ -167,57 +167,6 @@ class DynamicPlots {
   std::unique_ptr<RunFigures> figures_;
 };
 
-/// Everything a dynamic run records per output step, fed one step at a time so that nothing grows
-/// with the run: DynamicRunFiles, the vibration files (with `spectrum`), the summary
-/// (dynamics::DynamicAccumulator), the result warnings (dynamics::DynamicWarningTally) and
-/// DynamicPlots. Files are created by the constructor.
-class DynamicRunRecorder {
- public:
-  /// With `rating` the loads a rating in motion needs are gathered too (dynamics::MotionLoads).
-  /// @throws as DynamicRunFiles and VibrationFiles.
-  DynamicRunRecorder(const std::string& base, const nlohmann::json& provenance,
-                     const dynamics::DynamicModel& model, const dynamics::RunSpan& span,
-                     const std::optional<dynamics::SpectrumOptions>& spectrum,
-                     bool rating = false);
-  void Add(const dynamics::DynamicSample& s);
-  /// Closes the step files, writes the plots (`scene_name`, `sun_name` in their titles) and the
-  /// spectrum; returns VibrationFiles::Close's summary ("" without a spectrum).
-  std::string Close(const std::string& scene_name, const std::string& sun_name);
-  dynamics::DynamicSummary Summary() const { return summary_.Result(); }
-  std::vector<std::string> Warnings() const { return warnings_.Messages(); }
-  long outputs() const { return outputs_; }  ///< steps recorded [-]
-  /// The rating of the steps recorded (dynamics::RateInMotion: the quasi-static reference at
-  /// their carrier angles with `options`' back end), for a recorder made with `rating`.
-  /// @throws std::logic_error without `rating`; as dynamics::RateInMotion.
-  dynamics::MotionRating Rate(const transmission::Scene& scene,
-                              const dynamics::SimulationOptions& options) const;
-
- private:
-  long outputs_ = 0;
-  const dynamics::DynamicModel& model_;
-  dynamics::RunSpan span_;
-  std::optional<dynamics::MotionLoads> loads_;
-  DynamicRunFiles files_;
-  std::optional<VibrationFiles> vibration_;
-  dynamics::DynamicAccumulator summary_;
-  dynamics::DynamicWarningTally warnings_;
-  DynamicPlots plots_;
-};
-
-/// The JSON summary of a dynamic run of `model` over `span` with `options`: its settings ("scene",
-/// "sun_support", "sun_torque_Nm", "sun_speed_rpm", "mesh_frequency_Hz", "friction",
-/// "integrator", "rtol", "atol_*", "contact_tolerance", "backend", "duration_s", "outputs",
-/// "completed", "failure", the secant mesh stiffnesses), its results ("planets": LSR mean, min,
-/// max per planet; "outputs_written", "K_gamma_max", "transmission_error_{min,max,
-/// peak_to_peak}_urad", "sun_orbit_radius_{max,mean}_um") and the integrator's counts and times
-/// ("steps", "evaluations", ..., "rate_tolerance_scale_rad_per_s"). The caller adds provenance,
-/// warnings and its own timings.
-nlohmann::json DynamicRunJson(const dynamics::DynamicModel& model,
-                              const dynamics::SimulationOptions& options,
-                              const dynamics::RunSpan& span,
-                              const dynamics::SimulationResult& result,
-                              const dynamics::DynamicSummary& summary);
-
 /// The console summary of a dynamic run with `planets` planets: LSR mean, min and max per planet,
 /// K_γ, the TE's range, the sun's orbit, the integrator's counts and times, and the root
 /// stresses if any ("-" for a statistic without an output step).

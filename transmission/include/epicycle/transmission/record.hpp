@@ -46,6 +46,11 @@ class RecordVisitor {
                           const char* x_key, double x_scale) = 0;
 };
 
+/// The planets' load-sharing ratios over a run as the list "planets": per planet its number (from
+/// 1) and lsr_mean, lsr_min, lsr_max [-].
+void VisitPlanets(RecordVisitor& visit, const std::vector<double>& mean,
+                  const std::vector<double>& min, const std::vector<double>& max);
+
 /// The statistics of a sweep over carrier positions (SweepSummary), the quasi-static run's and
 /// the study cases': LSR per planet, K_γ, TE, the sun's displacement, stresses, friction.
 void VisitRecord(const SweepSummary& summary, RecordVisitor& visit);
