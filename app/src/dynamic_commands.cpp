@@ -27,6 +27,7 @@
 #include "epicycle/report/spectrum_files.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "options.hpp"
+#include "periodic_command.hpp"
 #include "speed_sweep_command.hpp"
 #include "epicycle/io/units.hpp"
 
@@ -38,14 +39,14 @@ using json = nlohmann::json;
 
 struct DynamicArgs {
   std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out", range, sun,
-                     friction, cache, speed_sweep;  // range "": planet
+                     friction, cache, speed_sweep, continue_spec;  // range "": planet
   double rtol = 1e-6, start_deg = 0, window_cycles = 0;
   // Not given: the scene's speed, the range's duration, the library's defaults (the spectrum's:
   // one carrier revolution, 4 mesh cycles skipped).
   std::optional<double> speed_rpm, time, rate_scale, contact_tol, spectrum_resolution,
       spectrum_skip;
-  int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0;
-  bool no_cache = false, quiet = false, fd_jacobian = false, stresses = false, spectrum = false,
+  int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0, periodic_points = 0;
+  bool periodic = false, no_cache = false, quiet = false, fd_jacobian = false, stresses = false, spectrum = false,
        rating = false;
 };
 
@@ -61,6 +62,20 @@ void RunDynamic(const DynamicArgs& a) {
   if (a.speed_sweep.empty() && (a.threads != 0 || a.window_cycles != 0))
     throw std::invalid_argument("--threads and --window-cycles belong to --speed-sweep");
   if (!a.speed_sweep.empty()) ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
+  // The periodic orbits: over the sun speed (--speed-sweep with --periodic) or another parameter
+  // (--continue); their range and the scene's period are checked before the tables.
+  std::optional<BranchArgs> branch;
+  if (a.periodic && a.speed_sweep.empty())
+    throw std::invalid_argument("--periodic: needs --speed-sweep FROM:TO:N (the sun speed's range)");
+  if (!a.continue_spec.empty() && !a.speed_sweep.empty())
+    throw std::invalid_argument("--continue = " + a.continue_spec +
+                                ": one continuation at a time; give it without --speed-sweep");
+  if (!a.continue_spec.empty() && a.spectrum)
+    throw std::invalid_argument("--spectrum belongs to a run at one speed, not --continue");
+  if (a.periodic_points != 0 && !a.periodic && a.continue_spec.empty())
+    throw std::invalid_argument("--periodic-points belongs to --periodic and --continue");
+  if (a.periodic) branch = ParseBranch("--speed-sweep", a.speed_sweep, input);
+  if (!a.continue_spec.empty()) branch = ParseBranch("--continue", a.continue_spec, input);
   if (a.speed_rpm) input.dynamics.sun_speed = io::RpmToRadPerSecond(*a.speed_rpm);
   if (!a.friction.empty())
     input.dynamics.friction.law = transmission::FrictionLawFromName(a.friction);
@@ -85,6 +100,13 @@ void RunDynamic(const DynamicArgs& a) {
   if (a.contact_tol) opt.contact.tolerance = *a.contact_tol;
   opt.analytic_jacobian = !a.fd_jacobian;
   opt.max_order = a.max_order;
+  if (branch) {
+    branch->out = a.out;
+    branch->backend = a.backend;
+    branch->quiet = a.quiet;
+    branch->max_points = a.periodic_points;
+    return RunBranch(*branch, rig, opt);
+  }
   if (!a.speed_sweep.empty()) {
     const int per_cycle =
         a.outputs_per_cycle > 0 ? a.outputs_per_cycle : SpeedSweepArgs{}.outputs_per_cycle;
@@ -315,6 +337,16 @@ void RegisterDynamicCommands(CLI::App& app) {
                   "per speed K_gamma, dynamic factor, TE amplitude, sun orbit, against speed with "
                   "the mesh-harmonic coincidences of the natural frequencies (--range or "
                   "--window-cycles: the measured window; --start-deg: where it begins)");
+  cmd->add_flag("--periodic", a.periodic,
+                "Speed sweep: the periodic orbits instead of time integrations: shooting and "
+                "pseudo-arclength continuation from FROM to TO through the folds, both branches "
+                "with their Floquet stability, steps of at most 1/N of the range "
+                "(docs/periodic.md)");
+  cmd->add_option("--continue", a.continue_spec,
+                  "NAME:FROM:TO:N: the periodic orbits continued over the stage's sun_speed_rpm, "
+                  "sun_torque_Nm or mesh_damping_ratio at the scene's (or --speed-rpm's) speed");
+  AddNumber(cmd, "--periodic-points", a.periodic_points,
+            "--periodic, --continue: the most points of the branch (default 400)", kSweepSpeeds);
   AddNumber(cmd, "--window-cycles", a.window_cycles,
             "Speed sweep: mesh cycles measured per speed (replaces --range)", kWindowCycles);
   AddNumber(cmd, "--harmonics", a.harmonics,

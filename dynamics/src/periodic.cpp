@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <exception>
 #include <limits>
 #include <stdexcept>
@@ -214,6 +215,8 @@ struct Sundials {
   }
 };
 
+std::vector<double> EndOnly() { return {1.0}; }
+
 void Check(int flag, const char* what) {
   if (flag < 0)
     throw std::runtime_error(std::string("SUNDIALS: ") + what + " returned " +
@@ -262,6 +265,20 @@ class PeriodIntegrator {
     return t;
   }
   double period() const { return period_; }
+
+  // One period for the shooting: Run to s = 1, then the system's period map S applied to the end
+  // state and its derivatives (docs/periodic.md §1, "Symmetry"): the periodicity condition is
+  // S φ(1; y0) = y0 and the monodromy matrix S Φ(1).
+  Flow Shoot(const Eigen::VectorXd& y0) {
+    Flow f = Run(y0, EndOnly(), nullptr);
+    if (!f.ok) return f;
+    const Eigen::MatrixXd map = sys_.PeriodMap(p_);
+    if (map.size() == 0) return f;
+    f.end = map * f.end;
+    if (variational_) f.phi = map * f.phi;
+    if (column_ >= 0) f.psi = map * f.psi;
+    return f;
+  }
 
   // y(s_k) at the increasing scaled times s_out (the last is the end); with the variational
   // parts at the end in *flow.
@@ -483,8 +500,6 @@ double Wrms(const Eigen::VectorXd& r, const Eigen::VectorXd& y, const ShootingOp
   return std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(r.size(), 1)));
 }
 
-std::vector<double> EndOnly() { return {1.0}; }
-
 }  // namespace
 
 ShootingResult SolvePeriodicOrbit(const PeriodicSystem& system, const ShootingOptions& options,
@@ -500,7 +515,7 @@ ShootingResult SolvePeriodicOrbit(const PeriodicSystem& system, const ShootingOp
 
   Eigen::VectorXd y = y0;
   auto integrate = [&](const Eigen::VectorXd& from) {
-    Flow f = integrator.Run(from, EndOnly(), nullptr);
+    Flow f = integrator.Shoot(from);
     ++r.integrations;
     r.steps += f.steps;
     r.rhs_evaluations += f.rhs;
@@ -646,9 +661,17 @@ class Continuer {
   // R and its scaled Jacobian at u (one integration with the variational equations).
   bool Evaluate(const Eigen::VectorXd& u, Eigen::VectorXd* r, Point* at) {
     const double lambda = Lambda(u);
-    PeriodIntegrator integrator(sys_, o_.shooting, P(lambda), true, column_, lambda_scale_);
     const Eigen::VectorXd y = Y(u);
-    const Flow f = integrator.Run(y, EndOnly(), nullptr);
+    Flow f;
+    // A corrector's iterate may leave the parameter's domain (a speed through zero): the system
+    // refuses it, and the step fails and is retried shorter, as a failed integration is.
+    try {
+      PeriodIntegrator integrator(sys_, o_.shooting, P(lambda), true, column_, lambda_scale_);
+      f = integrator.Shoot(y);
+    } catch (const std::invalid_argument& e) {
+      at->message = o_.parameter + " = " + Num(lambda) + ": " + e.what();
+      return false;
+    }
     ++integrations_;
     steps_ += f.steps;
     if (!f.ok) {
@@ -774,9 +797,9 @@ double LargestComplex(const FloquetReport& f) {
 
 }  // namespace
 
-ContinuationResult ContinuePeriodicOrbit(const PeriodicSystem& system,
-                                         const ContinuationOptions& options,
-                                         const Eigen::VectorXd& y0, const Eigen::VectorXd& p_in) {
+ContinuationResult ContinuePeriodicOrbit(
+    const PeriodicSystem& system, const ContinuationOptions& options, const Eigen::VectorXd& y0,
+    const Eigen::VectorXd& p_in, const std::function<void(const ContinuationResult&)>& on_point) {
   const int n = system.size();
   options.Validate(n);
   CheckState(system, y0, "continuation");
@@ -827,6 +850,7 @@ ContinuationResult ContinuePeriodicOrbit(const PeriodicSystem& system,
   };
   here.iterations = 0;
   add_point(here, tangent, 0.0);
+  if (on_point) on_point(result);
 
   double ds = options.initial_step, s = 0;
   auto stop = [&](ContinuationStatus status, const std::string& message) {
@@ -916,6 +940,7 @@ ContinuationResult ContinuePeriodicOrbit(const PeriodicSystem& system,
         }
       result.bifurcations.push_back(std::move(ns));
     }
+    if (on_point) on_point(result);
     if (cur.parameter > hi || cur.parameter < lo) return stop(ContinuationStatus::kCompleted, "");
     // Step control: grow after an easy corrector, shrink after a hard one.
     if (next.iterations <= options.fast_iterations)
