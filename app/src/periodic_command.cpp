@@ -40,12 +40,9 @@ void ParseContinue(const std::string& spec, BranchArgs* b) {
   } catch (const std::logic_error&) {
     throw std::invalid_argument("--continue = " + spec + ": " + rule);
   }
-  const std::vector<std::string> names = {dynamics::StagePeriodicSystem::kSunSpeed,
-                                          dynamics::StagePeriodicSystem::kSunTorque,
-                                          dynamics::StagePeriodicSystem::kMeshDampingRatio};
   std::string list;
   bool known = false;
-  for (const std::string& n : names) {
+  for (const std::string& n : dynamics::StagePeriodicSystem::ParameterNames()) {
     known = known || n == b->parameter;
     list += (list.empty() ? "" : ", ") + n;
   }

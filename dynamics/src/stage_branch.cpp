@@ -76,6 +76,13 @@ void CheckBranchPeriod(const StagePeriod& period, long max_period_mesh_cycles) {
 }
 
 void StageBranchOptions::Validate() const {
+  const std::vector<std::string> names = StagePeriodicSystem::ParameterNames();
+  if (std::find(names.begin(), names.end(), parameter) == names.end()) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("stage branch: parameter = '" + parameter +
+                                "': not a parameter of the stage (its parameters: " + list + ")");
+  }
   if (!std::isfinite(start)) Fail("start", start, "must be finite");
   if (!std::isfinite(end)) Fail("end", end, "must be finite");
   if (end == start)
@@ -128,8 +135,13 @@ StageBranchRecord ContinueStageBranch(
   c.shooting.atol = Tolerances(base, o.simulation);
   c.shooting.max_steps = o.simulation.max_steps;
   // The state's scale: the quasi-static deviations (at least 100 absolute tolerances), and for the
-  // rates that amplitude vibrating at the mesh frequency of the start.
-  const double mesh_rate = 2 * std::numbers::pi / system.Period(p) * static_cast<double>(o.period.mesh_cycles);
+  // rates that amplitude vibrating at the highest mesh frequency of the range (a response that
+  // follows the mesh has rates in proportion to the speed).
+  Eigen::VectorXd p_end = p;
+  p_end(column) = o.end;
+  const double cycles = static_cast<double>(o.period.mesh_cycles);
+  const double mesh_rate =
+      2 * std::numbers::pi * cycles / std::min(system.Period(p), system.Period(p_end));
   c.state_scale.resize(2 * n);
   for (int k = 0; k < n; ++k) {
     c.state_scale(k) = std::max(std::abs(y0(k)), 100 * c.shooting.atol(k));

@@ -54,6 +54,10 @@ class StagePeriodicSystem : public PeriodicSystem {
   static constexpr const char* kSunSpeed = "sun_speed_rpm";
   static constexpr const char* kSunTorque = "sun_torque_Nm";
   static constexpr const char* kMeshDampingRatio = "mesh_damping_ratio";
+  /// The parameters' names in order, as parameters() gives them.
+  static std::vector<std::string> ParameterNames() {
+    return {kSunSpeed, kSunTorque, kMeshDampingRatio};
+  }
 
   /// `model` must outlive this object. `mesh_cycles` k ≥ 1 (StagePeriodMeshCycles).
   /// @throws std::invalid_argument for mesh_cycles < 1.
