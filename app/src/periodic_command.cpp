@@ -134,12 +134,7 @@ void RunBranch(const BranchArgs& a, const dynamics::StageDynamics& rig,
   j["provenance"] = provenance;
   j["scene"] = scene.name;
   j["warnings"] = scene.warnings;
-  j["rtol"] = simulation.rtol;
-  j["atol_length_m"] = simulation.atol_length;
-  j["atol_angle_rad"] = simulation.atol_angle;
-  j["rate_tolerance_scale_rad_per_s"] = simulation.rate_scale;
-  j["contact_tolerance"] = simulation.contact.tolerance;
-  j["backend"] = a.backend;
+  AddTolerances(simulation, a.backend, &j);
   j["range"] = {o.start, o.end};
   j["max_step"] = o.max_step;
   WriteTextFile(path + "_summary.json", j.dump(2) + "\n");

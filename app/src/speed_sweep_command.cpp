@@ -33,6 +33,16 @@ std::string ModeName(const dynamics::SpeedSweepPlan& plan, int mode) {
 
 }  // namespace
 
+void AddTolerances(const dynamics::SimulationOptions& simulation, const std::string& backend,
+                   nlohmann::json* j) {
+  (*j)["rtol"] = simulation.rtol;
+  (*j)["atol_length_m"] = simulation.atol_length;
+  (*j)["atol_angle_rad"] = simulation.atol_angle;
+  (*j)["rate_tolerance_scale_rad_per_s"] = simulation.rate_scale;
+  (*j)["contact_tolerance"] = simulation.contact.tolerance;
+  (*j)["backend"] = backend;
+}
+
 std::vector<double> ParseSpeedSweep(const std::string& spec) {
   const std::string rule =
       "must be FROM:TO:N, sun speeds in rpm with N speeds, ends included (e.g. 500:12000:24)";
@@ -179,13 +189,9 @@ void RunSpeedSweep(const SpeedSweepArgs& a, const dynamics::StageDynamics& rig,
   j["sun_torque_Nm"] = scene.loads.sun_torque;
   j["friction"] = transmission::FrictionLawName(scene.dynamics.friction.law);
   j["integrator"] = a.integrator;
-  j["rtol"] = simulation.rtol;
-  j["atol_length_m"] = simulation.atol_length;
-  j["atol_angle_rad"] = simulation.atol_angle;
-  // 0: each speed's highest linearised natural frequency (its row's run reports it).
-  j["rate_tolerance_scale_rad_per_s"] = simulation.rate_scale;
-  j["contact_tolerance"] = simulation.contact.tolerance;
-  j["backend"] = a.backend;
+  // rate_tolerance_scale 0: each speed's highest linearised natural frequency (its row's run
+  // reports it).
+  AddTolerances(simulation, a.backend, &j);
   j["skip_time_s"] = plan.skip_time;
   j["transient_fraction"] = o.transient_fraction;
   j["slowest_modal_decay_rate_per_s"] = plan.slowest_decay_rate;

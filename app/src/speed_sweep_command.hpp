@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "epicycle/dynamics/dynamic_model.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 
@@ -23,6 +25,11 @@ struct SpeedSweepArgs {
   int threads = 0;    ///< 0: every core
   bool quiet = false;
 };
+
+/// The integrator's tolerances and contact back end as a summary JSON's keys (rtol,
+/// atol_length_m, atol_angle_rad, rate_tolerance_scale_rad_per_s, contact_tolerance, backend).
+void AddTolerances(const dynamics::SimulationOptions& simulation, const std::string& backend,
+                   nlohmann::json* j);
 
 /// Parses "FROM:TO:N" (sun speeds [rpm], N speeds, ends included).
 /// @throws std::invalid_argument naming --speed-sweep, the value and the rule.

@@ -861,7 +861,15 @@ ContinuationResult ContinuePeriodicOrbit(
     return result;
   };
   while (static_cast<int>(result.points.size()) < options.max_points) {
-    const Continuer::Point next = c.Correct(u, tangent, ds);
+    Continuer::Point next = c.Correct(u, tangent, ds);
+    // A corrector that lands further from its predictor than the step is long has left the
+    // branch for another part of the solution set (the hyperplane τ·(u − u_k) = Δs crosses the
+    // branch again far away): the step is retried shorter.
+    if (next.ok && (next.u - (u + ds * tangent)).norm() > ds) {
+      next.ok = false;
+      next.message = "the corrector moved " + Num((next.u - (u + ds * tangent)).norm()) +
+                     " from its predictor, more than the step " + Num(ds);
+    }
     if (!next.ok) {
       ++result.rejected_steps;
       if (ds <= options.min_step)

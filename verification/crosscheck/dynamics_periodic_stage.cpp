@@ -178,7 +178,7 @@ TEST_CASE(
   test::FigureValue("floating sun: tolerance (weighted)", tol, "-");
   CHECK(r.floquet.stability == dynamics::Stability::kStable);
   CHECK(error <= tol);
-  // Without the turn, the settled centre is off the orbit's by far more (the map is needed).
+  // The same distance without the turn: what the period map changes (a figure, not a check).
   const double unturned = Weighted(so, settled, r.initial_state);
   test::FigureValue("floating sun: settled - unturned orbit (weighted)", unturned, "-");
 }
