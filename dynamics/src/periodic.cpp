@@ -98,7 +98,8 @@ void ContinuationOptions::Validate(int n) const {
   if (amplitude_component < 0 || amplitude_component >= n)
     Fail(w, "amplitude_component", amplitude_component,
          "must lie in [0, " + std::to_string(n - 1) + "]");
-  if (amplitude_samples < 4) Fail(w, "amplitude_samples", amplitude_samples, "must be >= 4");
+  if (amplitude_samples < 4 && amplitude_samples != 0)
+    Fail(w, "amplitude_samples", amplitude_samples, "must be >= 4, or 0 (no amplitude)");
   shooting.Validate(n);
 }
 
@@ -752,6 +753,7 @@ class Continuer {
   }
 
   double Amplitude(const Eigen::VectorXd& u) const {
+    if (o_.amplitude_samples == 0) return 0;
     const Eigen::MatrixXd orbit =
         SampleOrbit(sys_, o_.shooting, Y(u), P(Lambda(u)), o_.amplitude_samples);
     const Eigen::VectorXd c = orbit.col(o_.amplitude_component);

@@ -147,7 +147,7 @@ StageBranchRecord ContinueStageBranch(
     c.state_scale(k) = std::max(std::abs(y0(k)), 100 * c.shooting.atol(k));
     c.state_scale(n + k) = std::max(mesh_rate * c.state_scale(k), 100 * c.shooting.atol(n + k));
   }
-  c.amplitude_samples = 4;  // BranchPoint::amplitude is not used: the figures come from Simulate
+  c.amplitude_samples = 0;  // BranchPoint::amplitude is not used: the figures come from Simulate
 
   std::size_t written = 0;
   // The new points of the branch so far into the record, with their figures.

@@ -158,7 +158,9 @@ struct ContinuationOptions {
   int fast_iterations = 3;
   int fold_refinements = 10;    ///< secant steps locating a fold [-]
   int amplitude_component = 0;  ///< c of BranchPoint::amplitude [-]
-  int amplitude_samples = 256;  ///< instants per period for BranchPoint::amplitude [-], ≥ 4
+  /// Instants per period for BranchPoint::amplitude [-], ≥ 4; 0: no amplitude (0), which saves
+  /// a period's integration a point.
+  int amplitude_samples = 256;
   ShootingOptions shooting;     ///< tolerances, Newton of the first point, unit circle
   /// @throws std::invalid_argument naming the field, its value and the rule.
   void Validate(int n) const;
