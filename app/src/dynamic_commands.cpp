@@ -16,23 +16,24 @@
 
 #include "commands.hpp"
 #include "console.hpp"
+#include "epicycle/dynamics/dynamic_run.hpp"
+#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
-#include "epicycle/dynamics/dynamic_run.hpp"
-#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/vibration.hpp"
-#include "epicycle/report/ratings.hpp"
+#include "epicycle/io/units.hpp"
 #include "epicycle/report/dynamic_run_files.hpp"
+#include "epicycle/report/ratings.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/report/spectrum_files.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "options.hpp"
+#include "periodic_command.hpp"
 #include "speed_sweep_command.hpp"
-#include "epicycle/io/units.hpp"
 
 namespace epicycle::app {
 
@@ -42,16 +43,16 @@ using json = nlohmann::json;
 
 struct DynamicArgs {
   std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out", range, sun,
-                     friction, cache, speed_sweep;  // range "": planet
+                     friction, cache, speed_sweep, continue_spec;  // range "": planet
   double rtol = 1e-6, start_deg = 0, window_cycles = 0;
   // Not given: the scene's speed, the range's duration, the library's defaults (the spectrum's:
   // one carrier revolution, 4 mesh cycles skipped).
   std::optional<double> speed_rpm, time, rate_scale, contact_tol, spectrum_resolution,
       spectrum_skip, time_limit;
   std::optional<long> max_steps;
-  int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0;
-  bool no_cache = false, quiet = false, fd_jacobian = false, stresses = false, spectrum = false,
-       rating = false;
+  int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0, periodic_points = 0;
+  bool periodic = false, no_cache = false, quiet = false, fd_jacobian = false, stresses = false,
+       spectrum = false, rating = false;
 };
 
 // The program's sink: the run's files (report/), its header on the console and the progress bar.
@@ -113,9 +114,20 @@ dynamics::DynamicRequest Request(const DynamicArgs& a) {
   r.spectrum_resolution_hz = a.spectrum_resolution;
   r.spectrum_skip_cycles = a.spectrum_skip;
   r.tables = TableOptions(a.cache, a.no_cache);
-  r.names = {"--time", "--speed-rpm", "--range", "--rating", "--spectrum-resolution",
-             "--spectrum-skip-cycles", "--outputs-per-cycle", "--start-deg", "--rtol",
-             "--rate-scale", "--contact-tol", "--max-order", "--max-steps", "--time-limit"};
+  r.names = {"--time",
+             "--speed-rpm",
+             "--range",
+             "--rating",
+             "--spectrum-resolution",
+             "--spectrum-skip-cycles",
+             "--outputs-per-cycle",
+             "--start-deg",
+             "--rtol",
+             "--rate-scale",
+             "--contact-tol",
+             "--max-order",
+             "--max-steps",
+             "--time-limit"};
   return r;
 }
 
@@ -129,6 +141,32 @@ void RunDynamic(const DynamicArgs& a) {
   if (a.speed_sweep.empty() && (a.threads != 0 || a.window_cycles != 0))
     throw std::invalid_argument("--threads and --window-cycles belong to --speed-sweep");
   const dynamics::DynamicRequest request = Request(a);
+  // The periodic orbits: over the sun speed (--speed-sweep with --periodic) or another parameter
+  // (--continue); their range and the scene's period are checked before the tables.
+  if (a.periodic && a.speed_sweep.empty())
+    throw std::invalid_argument(
+        "--periodic: needs --speed-sweep FROM:TO:N (the sun speed's range)");
+  if (!a.continue_spec.empty() && !a.speed_sweep.empty())
+    throw std::invalid_argument("--continue = " + a.continue_spec +
+                                ": one continuation at a time; give it without --speed-sweep");
+  if (!a.continue_spec.empty() && a.spectrum)
+    throw std::invalid_argument("--spectrum belongs to a run at one speed, not --continue");
+  if (a.periodic_points != 0 && !a.periodic && a.continue_spec.empty())
+    throw std::invalid_argument("--periodic-points belongs to --periodic and --continue");
+  if (a.periodic || !a.continue_spec.empty()) {
+    if (a.periodic) ParseSpeedSweep(a.speed_sweep);
+    transmission::Scene input = dynamics::ResolvedScene(request);
+    BranchArgs branch = a.periodic ? ParseBranch("--speed-sweep", a.speed_sweep, input)
+                                   : ParseBranch("--continue", a.continue_spec, input);
+    const dynamics::SimulationOptions opt = dynamics::ResolvedOptions(request);
+    dynamics::StageDynamics rig(std::move(input), request.tables);
+    rig.model.SetStartAngle(geometry::Rad(a.start_deg));
+    branch.out = a.out;
+    branch.backend = a.backend;
+    branch.quiet = a.quiet;
+    branch.max_points = a.periodic_points;
+    return RunBranch(branch, rig, opt);
+  }
   if (!a.speed_sweep.empty()) {
     ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
     dynamics::SpeedSweepRequest sweep;
@@ -175,7 +213,8 @@ class ModesConsole final : public dynamics::ModesSink {
     const dynamics::StageDynamics& rig = *p.rig;
     std::printf("%s: %d planets, sun %s, %d DOFs (%s)\n", rig.scene.name.c_str(),
                 rig.stage.planets(), transmission::SunSupportName(rig.stage_model.setup().sun),
-                rig.model.size(), rig.model.settings().ring_elastic ? "ring elastic" : "ring fixed");
+                rig.model.size(),
+                rig.model.settings().ring_elastic ? "ring elastic" : "ring fixed");
   }
 };
 
@@ -281,6 +320,16 @@ void RegisterDynamicCommands(CLI::App& app) {
                   "per speed K_gamma, dynamic factor, TE amplitude, sun orbit, against speed with "
                   "the mesh-harmonic coincidences of the natural frequencies (--range or "
                   "--window-cycles: the measured window; --start-deg: where it begins)");
+  cmd->add_flag("--periodic", a.periodic,
+                "Speed sweep: the periodic orbits instead of time integrations: shooting and "
+                "pseudo-arclength continuation from FROM to TO through the folds, both branches "
+                "with their Floquet stability, steps of at most 1/N of the range "
+                "(docs/periodic.md)");
+  cmd->add_option("--continue", a.continue_spec,
+                  "NAME:FROM:TO:N: the periodic orbits continued over the stage's sun_speed_rpm, "
+                  "sun_torque_Nm or mesh_damping_ratio at the scene's (or --speed-rpm's) speed");
+  AddNumber(cmd, "--periodic-points", a.periodic_points,
+            "--periodic, --continue: the most points of the branch (default 400)", kSweepSpeeds);
   AddNumber(cmd, "--window-cycles", a.window_cycles,
             "Speed sweep: mesh cycles measured per speed (replaces --range)", kWindowCycles);
   AddNumber(cmd, "--harmonics", a.harmonics,

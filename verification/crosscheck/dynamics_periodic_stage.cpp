@@ -1,6 +1,8 @@
 // The periodic solver on the paper's stage (docs/periodic.md §3): a perfect stage (no errors) with
-// spring contacts and the sun fixed, whose response repeats with the mesh cycle; the shooting
-// orbit against the state a long time integration settles into.
+// spring contacts, whose response repeats with the mesh cycle; the shooting orbit against the
+// state a long time integration (dynamics::Simulate, the project's own) settles into, at one
+// speed, with a floating sun (the period map turns its centre back by the carrier's advance), and
+// along a branch continued over the sun speed.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -10,35 +12,95 @@
 
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/periodic.hpp"
+#include "epicycle/dynamics/stage_branch.hpp"
 #include "epicycle/dynamics/stage_periodic.hpp"
 #include "epicycle/io/units.hpp"
 #include "figures.hpp"
 
 using namespace epicycle;
 
+namespace {
+
+// The suite's spring rig of the paper stage at `rpm`, with the sun held as `sun` says.
+test::DynamicRig SpringRig(double rpm, transmission::SunSupport sun) {
+  test::RigOptions o;
+  o.spring = 1e-9;
+  o.spring_mesh_stiffness = 1.5e9;
+  o.sun = sun;
+  o.edit = [rpm](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(rpm); };
+  return test::MakeRig(test::SceneText("paper_stage.toml"), "springs", o);
+}
+
+// The integration's tolerances of the tests: rtol 1e-8, 1e-11 rad and 1e-12 m, rates × 1e4.
+constexpr double kRtol = 1e-8, kAtolAngle = 1e-11, kAtolLength = 1e-12, kRateScale = 1e4;
+
+dynamics::SimulationOptions Integration() {
+  dynamics::SimulationOptions sim;
+  sim.rtol = kRtol;
+  sim.atol_angle = kAtolAngle;
+  sim.atol_length = kAtolLength;
+  sim.rate_scale = kRateScale;
+  return sim;
+}
+
+dynamics::ShootingOptions Shooting(const dynamics::DynamicModel& m) {
+  const int n = m.size();
+  dynamics::ShootingOptions so;
+  so.rtol = kRtol;
+  Eigen::VectorXd atol(2 * n);
+  for (int k = 0; k < n; ++k) {
+    atol(k) = m.dofs()[k].axis == dynamics::MotionDof::kRotation ? kAtolAngle : kAtolLength;
+    atol(n + k) = atol(k) * kRateScale;
+  }
+  so.atol = atol;
+  return so;
+}
+
+// max_k |a_k − b_k| / (rtol |b_k| + atol_k): in integrator tolerances per component.
+double Weighted(const dynamics::ShootingOptions& so, const Eigen::VectorXd& a,
+                const Eigen::VectorXd& b) {
+  double worst = 0;
+  for (Eigen::Index k = 0; k < a.size(); ++k)
+    worst = std::max(worst, std::abs(a(k) - b(k)) / (so.rtol * std::abs(b(k)) + so.atol(k)));
+  return worst;
+}
+
+// The state Simulate reaches after `cycles` periods from y0 (the raw state: a stage with
+// translations has it turned by the carrier's advance).
+Eigen::VectorXd Settle(const dynamics::DynamicModel& m, const Eigen::VectorXd& y0, double period,
+                       int cycles) {
+  const int n = m.size();
+  const dynamics::SimulationResult run =
+      dynamics::Simulate(m, Integration(), y0.head(n), y0.tail(n), {cycles * period});
+  REQUIRE(run.completed());
+  Eigen::VectorXd settled(2 * n);
+  settled << run.samples.back().d, run.samples.back().v;
+  return settled;
+}
+
+// Tolerance (weighted) of a settled state against the shooting orbit: what is left of the
+// transient, ρ^cycles times the start's distance, plus the integration's error, one local
+// tolerance a step contracted by ρ each cycle (steps a cycle/(1 − ρ)), plus the shooting's own R
+// to newton_tolerance over (1 − ρ).
+double SettledTolerance(double rho, int cycles, double start_distance, double steps_per_period,
+                        double newton_tolerance) {
+  return std::pow(rho, cycles) * start_distance + (steps_per_period + newton_tolerance) / (1 - rho);
+}
+
+}  // namespace
+
 TEST_CASE(
     "paper stage, perfect, springs: the shooting orbit is the state a long time integration "
     "settles into",
     "[crosscheck][dynamics][periodic]") {
-  test::RigOptions o;
-  o.spring = 1e-9;
-  o.spring_mesh_stiffness = 1.5e9;
-  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1000); };
-  const auto rig = test::MakeRig(test::SceneText("paper_stage.toml"), "springs", o);
+  const auto rig = SpringRig(1000, transmission::SunSupport::kFixed);
   const dynamics::DynamicModel& m = *rig.model;
   std::string dofs;
   for (int k = 0; k < m.size(); ++k) dofs += m.dofs()[k].Label() + "; ";
   test::Figure("stage DOFs: " + dofs);
   const dynamics::StagePeriodicSystem system(m, solvers::Backend::kActiveSetNewton, {});
   const int n = m.size();
-  dynamics::ShootingOptions so;
-  so.rtol = 1e-8;
-  Eigen::VectorXd atol(2 * n);
-  for (int k = 0; k < n; ++k) {
-    atol(k) = m.dofs()[k].axis == dynamics::MotionDof::kRotation ? 1e-11 : 1e-12;
-    atol(n + k) = atol(k) * 1e4;
-  }
-  so.atol = atol;
+  const dynamics::ShootingOptions so = Shooting(m);
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);
   y0.head(n) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
   const auto clock = std::chrono::steady_clock::now();
@@ -51,37 +113,13 @@ TEST_CASE(
   test::FigureValue("stage shooting iterations", r.iterations, "-");
   test::FigureValue("stage shooting steps", static_cast<double>(r.steps), "-");
   test::FigureValue("stage spectral radius", r.floquet.spectral_radius, "-");
-  // The project's time integration (dynamics::Simulate, CVODE on the stage's own right-hand
-  // side) from the same start over 60 mesh cycles, at the same tolerances.
   const int cycles = 60;
-  dynamics::SimulationOptions sim;
-  sim.rtol = so.rtol;
-  sim.atol_angle = 1e-11;
-  sim.atol_length = 1e-12;
-  sim.rate_scale = 1e4;
-  const dynamics::SimulationResult run =
-      dynamics::Simulate(m, sim, y0.head(n), y0.tail(n), {cycles * r.period});
-  REQUIRE(run.completed());
-  test::FigureValue("stage Simulate 60 cycles wall time", run.stats.wall_seconds, "s");
-  test::FigureValue("stage Simulate steps", static_cast<double>(run.stats.steps), "-");
-  Eigen::VectorXd settled(2 * n);
-  settled << run.samples.back().d, run.samples.back().v;
-  // Weighted by the integrator's tolerance per component, rtol |y_k| + atol_k.
-  auto weighted = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-    double worst = 0;
-    for (int k = 0; k < 2 * n; ++k)
-      worst = std::max(worst, std::abs(a(k) - b(k)) / (so.rtol * std::abs(b(k)) + atol(k)));
-    return worst;
-  };
-  // Tolerance (weighted): what is left of the transient, ρ^cycles times the start's distance
-  // (ρ ≈ 1e-3: nothing), plus the integration's error, one local tolerance a step contracted by ρ
-  // each cycle (steps a cycle/(1 − ρ)), plus the shooting's own R to newton_tolerance over
-  // (1 − ρ).
+  const Eigen::VectorXd settled = Settle(m, y0, r.period, cycles);
   const double rho = r.floquet.spectral_radius;
   const double steps = static_cast<double>(r.steps) / static_cast<double>(r.integrations);
-  const double tol = std::pow(rho, cycles) * weighted(y0, r.initial_state) +
-                     (steps + so.newton_tolerance) / (1 - rho);
-  const double settled_error = weighted(settled, r.initial_state);
+  const double tol =
+      SettledTolerance(rho, cycles, Weighted(so, y0, r.initial_state), steps, so.newton_tolerance);
+  const double settled_error = Weighted(so, settled, r.initial_state);
   test::FigureValue("stage settled - orbit (weighted)", settled_error, "-");
   test::FigureValue("stage settled tolerance (weighted)", tol, "-");
   CHECK(settled_error <= tol);
@@ -94,7 +132,150 @@ TEST_CASE(
   other.head(n) *= 0.5;
   const dynamics::ShootingResult r2 = dynamics::SolvePeriodicOrbit(system, so, other);
   REQUIRE(r2.status == dynamics::ShootingStatus::kConverged);
-  const double other_error = weighted(r2.initial_state, r.initial_state);
+  const double other_error = Weighted(so, r2.initial_state, r.initial_state);
   test::FigureValue("stage second start - orbit (weighted)", other_error, "-");
   CHECK(other_error <= 2 * (so.newton_tolerance + steps) / (1 - rho));
+}
+
+TEST_CASE(
+    "paper stage, floating sun: the orbit repeats turned by the carrier's advance, and is the "
+    "state a long time integration settles into",
+    "[crosscheck][dynamics][periodic][slow]") {
+  const auto rig = SpringRig(1000, transmission::SunSupport::kFloating);
+  const dynamics::DynamicModel& m = *rig.model;
+  const int n = m.size();
+  REQUIRE(m.Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kX) >= 0);
+  const dynamics::StagePeriodicSystem system(m, solvers::Backend::kActiveSetNewton, {});
+  const dynamics::ShootingOptions so = Shooting(m);
+  // The period map is orthogonal and turns (x, y) by −Δφ_c = −sign(ω_c) 2π/z_r.
+  const Eigen::MatrixXd map = system.PeriodMap(system.DefaultParameters());
+  REQUIRE(map.rows() == 2 * n);
+  CHECK((map.transpose() * map - Eigen::MatrixXd::Identity(2 * n, 2 * n)).norm() < 1e-14);
+  const int kx = m.Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kX);
+  const int ky = m.Find(dynamics::MotionDof::kSun, dynamics::MotionDof::kY);
+  const double advance = std::copysign(rig.stage->mesh_cycle(), m.carrier_speed());
+  CHECK(std::atan2(map(ky, kx), map(kx, kx)) == Approx(-advance).margin(1e-14));
+
+  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);
+  y0.head(n) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
+  INFO(r.message);
+  REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
+  test::FigureValue("floating sun: shooting iterations", r.iterations, "-");
+  test::FigureValue("floating sun: spectral radius", r.floquet.spectral_radius, "-");
+  const int cycles = 60;
+  const Eigen::VectorXd settled = Settle(m, y0, r.period, cycles);
+  // After `cycles` periods the orbit's state is S^−cycles y_orbit (turned by cycles Δφ_c).
+  Eigen::MatrixXd turn = Eigen::MatrixXd::Identity(2 * n, 2 * n);
+  for (int k = 0; k < cycles; ++k) turn = map.transpose() * turn;
+  const Eigen::VectorXd expected = turn * r.initial_state;
+  const double rho = r.floquet.spectral_radius;
+  const double steps = static_cast<double>(r.steps) / static_cast<double>(r.integrations);
+  const double tol =
+      SettledTolerance(rho, cycles, Weighted(so, y0, r.initial_state), steps, so.newton_tolerance);
+  const double error = Weighted(so, settled, expected);
+  test::FigureValue("floating sun: settled - turned orbit (weighted)", error, "-");
+  test::FigureValue("floating sun: tolerance (weighted)", tol, "-");
+  CHECK(r.floquet.stability == dynamics::Stability::kStable);
+  CHECK(error <= tol);
+  // Without the turn the settled state is not the orbit: the period map is needed.
+  const double unturned = Weighted(so, settled, r.initial_state);
+  test::FigureValue("floating sun: settled - unturned orbit (weighted)", unturned, "-");
+  CHECK(unturned > tol);
+}
+
+TEST_CASE(
+    "paper stage, springs: the branch continued over the sun speed is, at each of several "
+    "speeds, the state a long time integration settles into",
+    "[crosscheck][dynamics][periodic][slow]") {
+  const auto rig = SpringRig(1000, transmission::SunSupport::kFixed);
+  const dynamics::DynamicModel& base = *rig.model;
+  dynamics::StageBranchOptions o;
+  o.start = 1000;
+  o.end = 1250;
+  o.simulation = Integration();
+  o.max_step = 0.2;
+  int streamed = 0;
+  const dynamics::StageBranchRecord rec =
+      dynamics::ContinueStageBranch(base, o, [&](const dynamics::StageBranchRecord& so_far) {
+        CHECK(static_cast<int>(so_far.points.size()) == streamed + 1);
+        streamed = static_cast<int>(so_far.points.size());
+      });
+  INFO(rec.message + rec.figures_message);
+  REQUIRE(rec.ok());
+  CHECK(streamed == static_cast<int>(rec.points.size()));
+  test::FigureValue("speed branch points", static_cast<double>(rec.points.size()), "-");
+  test::FigureValue("speed branch CPU", rec.cpu_seconds, "s");
+  test::FigureValue("speed branch steps", static_cast<double>(rec.steps), "-");
+  REQUIRE(rec.points.size() >= 3);
+  CHECK(rec.points.front().sun_speed_rpm == Approx(1000).epsilon(1e-12));
+  CHECK(rec.points.back().sun_speed_rpm >= o.end);
+  const dynamics::ShootingOptions so = Shooting(base);
+  const dynamics::StagePeriodicSystem system(base, solvers::Backend::kActiveSetNewton, {});
+  for (const std::size_t i : {std::size_t{0}, rec.points.size() / 2, rec.points.size() - 2}) {
+    const dynamics::StageBranchPoint& q = rec.points[i];
+    Eigen::VectorXd p = system.DefaultParameters();
+    p(0) = q.sun_speed_rpm;
+    const dynamics::DynamicModel& m = system.ModelAt(p);
+    // T = 2π/(z_r |ω_c|) at this speed: the speed entered the period.
+    CHECK(q.period == Approx(rig.stage->mesh_cycle() / std::abs(m.carrier_speed())).epsilon(1e-14));
+    Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * base.size());
+    y0.head(base.size()) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+    const int cycles = 60;
+    const Eigen::VectorXd settled = Settle(m, y0, q.period, cycles);
+    // The corrector's orbit: R to newton_tolerance (weighted) like the shooting's; steps per
+    // period from the branch's own count, an upper bound of one period's (the mean over every
+    // integration, each a period).
+    const double steps = static_cast<double>(rec.steps) / static_cast<double>(rec.integrations);
+    const double rho = q.spectral_radius;
+    const double tol =
+        SettledTolerance(rho, cycles, Weighted(so, y0, q.state), steps, 100.0);
+    const double error = Weighted(so, settled, q.state);
+    test::FigureValue("speed branch at " + std::to_string(q.sun_speed_rpm) +
+                          " rpm: settled - orbit (weighted)",
+                      error, "-");
+    CHECK(error <= tol);
+    CHECK(q.stability == dynamics::Stability::kStable);
+  }
+}
+
+TEST_CASE("stage branch: bad input names the field, its value and the rule",
+          "[crosscheck][dynamics][periodic]") {
+  const auto rig = SpringRig(1000, transmission::SunSupport::kFixed);
+  dynamics::StageBranchOptions o;
+  o.simulation = Integration();
+  o.start = 1000;
+  o.end = 1000;
+  CHECK_THROWS_WITH(dynamics::ContinueStageBranch(*rig.model, o),
+                    "stage branch: end = 1000: equals start = 1000: the range must have non-zero "
+                    "width");
+  o.end = 2000;
+  o.parameter = "speed";
+  CHECK_THROWS_WITH(dynamics::ContinueStageBranch(*rig.model, o),
+                    "stage branch: parameter = 'speed': not a parameter of the stage (its "
+                    "parameters: sun_speed_rpm, sun_torque_Nm, mesh_damping_ratio)");
+  o.parameter = dynamics::StagePeriodicSystem::kSunSpeed;
+  o.period.mesh_cycles = 24;
+  o.period.reasons = {"planet1 run-out: 24 mesh cycles"};
+  CHECK_THROWS_WITH(dynamics::ContinueStageBranch(*rig.model, o),
+                    Catch::Contains("the stage's period = 24 mesh cycles (planet1 run-out: 24 "
+                                    "mesh cycles): must be <= max_period_mesh_cycles = 4"));
+}
+
+TEST_CASE("the stage's period: the common period of the mesh and the rotations its errors need",
+          "[crosscheck][dynamics][periodic]") {
+  const auto rig = SpringRig(1000, transmission::SunSupport::kFixed);
+  geometry::StageSpec spec = rig.stage->spec();
+  CHECK(dynamics::StagePeriodMeshCycles(geometry::Stage(spec), {}).mesh_cycles == 1);
+  // 16/24/65: a planet's run-out repeats after z_p = 24 cycles, the sun's after z_s = 16, both
+  // after lcm = 48; the ring's (held) after a carrier turn, z_r = 65 cycles.
+  spec.planet_runouts.assign(3, {});
+  spec.planet_runouts[0].amplitude = 20e-6;
+  CHECK(dynamics::StagePeriodMeshCycles(geometry::Stage(spec), {}).mesh_cycles == 24);
+  spec.sun_runout.amplitude = 10e-6;
+  const dynamics::StagePeriod both = dynamics::StagePeriodMeshCycles(geometry::Stage(spec), {});
+  CHECK(both.mesh_cycles == 48);
+  CHECK(both.reasons.size() == 2);
+  spec.ring_runout.amplitude = 10e-6;
+  CHECK(dynamics::StagePeriodMeshCycles(geometry::Stage(spec), {}).mesh_cycles == 48 * 65);
 }

@@ -92,3 +92,40 @@ def test_speed_sweep_equals_the_program_csv(tmp_path):
         # K_v is the ratio of the mesh's peak in motion to its reference's (the same doubles
         # divided: equal to the last bit).
         assert s.dynamic_factor[k] == s.peak_mesh_force_N[k] / s.reference_peak_mesh_force_N[k]
+
+
+def test_periodic_branch_equals_the_program_csv(tmp_path):
+    """The periodic orbits over the sun speed as arrays: the program's branch, point by point."""
+    out = tmp_path / "cli"
+    run_cli("dynamic", scene_path("paper_stage.toml"), "--speed-sweep", "4000:4100:2",
+            "--periodic", "--quiet", "--out", out)
+    rows = read_csv(out / "periodic_branch.csv")
+    b = epicycle.periodic_branch(epicycle.Scene.load(scene_path("paper_stage.toml")),
+                                 "sun_speed_rpm", 4000, 4100, steps=2)
+    assert b.ok and b.status == "completed" and b.unit == "rpm"
+    assert len(rows) == len(b.sun_speed_rpm) >= 2
+    assert b.sun_speed_rpm[0] == 4000 and b.sun_speed_rpm[-1] >= 4100
+    assert b.state.shape == (len(rows), len(b.state_labels))
+    for k, row in enumerate(rows):
+        assert row["sun_speed_rpm"] == num(b.sun_speed_rpm[k])
+        assert row["period_s"] == num(b.period_s[k])
+        assert row["stability"] == b.stability[k]
+        assert (row["stability"] != "unstable") == b.stable[k]
+        assert row["spectral_radius"] == num(b.spectral_radius[k])
+        assert row["K_gamma"] == num(b.k_gamma[k])
+        assert row["te_amplitude_urad"] == num(b.te_amplitude_urad[k])
+
+
+def test_periodic_branch_bad_input_names_the_argument():
+    import pytest
+
+    scene = epicycle.Scene.load(scene_path("paper_stage.toml"))
+    with pytest.raises(ValueError, match="parameter = 'speed': not a parameter of the stage"):
+        epicycle.periodic_branch(scene, "speed", 1000, 2000, cache_dir="")
+    with pytest.raises(ValueError, match="end = 1000: equals start = 1000: the range must have"):
+        epicycle.periodic_branch(scene, "sun_speed_rpm", 1000, 1000, cache_dir="")
+    with pytest.raises(ValueError, match="steps = 0: must be >= 1"):
+        epicycle.periodic_branch(scene, "sun_speed_rpm", 1000, 2000, steps=0, cache_dir="")
+    runout = epicycle.Scene.load(scene_path("paper_stage_runout.toml"))
+    with pytest.raises(ValueError, match="period = 24 mesh cycles .planet1 run-out"):
+        epicycle.periodic_branch(runout, "sun_speed_rpm", 1000, 2000, cache_dir="")

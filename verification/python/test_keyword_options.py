@@ -60,6 +60,7 @@ def samples():
         "compliance_m_per_N": np.eye(2) * 1e-9,
         "overlap_m": np.array([1e-6, -1e-6]),
         "from_rpm": 100.0, "to_rpm": 200.0, "count": 2,
+        "parameter": "sun_speed_rpm", "start": 1000.0, "end": 2000.0,
         "gear": "planet1", "tooth": 0, "flank": "+", "side": "+",
         "amplitude_um": 1.0, "error_um": 1.0,
         "key": "load.sun_torque_Nm", "value": -700.0, "values": {},

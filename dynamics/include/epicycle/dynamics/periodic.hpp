@@ -13,6 +13,7 @@
 #pragma once
 
 #include <complex>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,15 @@ class PeriodicSystem {
   /// ∂f/∂y at (t, y; p) into *jac (n × n). false as for Rhs.
   virtual bool Jacobian(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& p,
                         Eigen::MatrixXd* jac) const;
+  /// The period map S of a system with a symmetry (docs/periodic.md §1, "Symmetry"): its orbits
+  /// repeat as y(t + T) = S⁻¹ y(t), so the shooting solves S φ_T(y0) = y0 and the Floquet
+  /// multipliers are the eigenvalues of S Φ(T) (n × n, orthogonal). Empty (the default): S = I.
+  /// A stage whose translations are in the inertial frame repeats a mesh cycle later turned by the
+  /// carrier's advance: S turns them back.
+  virtual Eigen::MatrixXd PeriodMap(const Eigen::VectorXd& p) const {
+    (void)p;
+    return {};
+  }
   /// The index of the parameter named `name`.
   /// @throws std::invalid_argument naming the name and the parameters there are.
   int ParameterIndex(const std::string& name) const;
@@ -148,7 +158,9 @@ struct ContinuationOptions {
   int fast_iterations = 3;
   int fold_refinements = 10;    ///< secant steps locating a fold [-]
   int amplitude_component = 0;  ///< c of BranchPoint::amplitude [-]
-  int amplitude_samples = 256;  ///< instants per period for BranchPoint::amplitude [-], ≥ 4
+  /// Instants per period for BranchPoint::amplitude [-], ≥ 4; 0: no amplitude (0), which saves
+  /// a period's integration a point.
+  int amplitude_samples = 256;
   ShootingOptions shooting;     ///< tolerances, Newton of the first point, unit circle
   /// @throws std::invalid_argument naming the field, its value and the rule.
   void Validate(int n) const;
@@ -207,10 +219,13 @@ struct ContinuationResult {
 /// Pseudo-arclength continuation of the periodic orbit from (y0 guess, λ = start) towards `end`,
 /// the other parameters at `p` (empty: the system's defaults). Returns the branch so far whatever
 /// happens.
+/// `on_point`, if given, is called with the branch so far after each point is added (its last
+/// point the new one, with the bifurcations found up to it): a caller streams the branch.
 /// @throws std::invalid_argument for bad options, an unknown parameter, or a period that is not
-/// > 0 and finite at a point asked for.
-ContinuationResult ContinuePeriodicOrbit(const PeriodicSystem& system,
-                                         const ContinuationOptions& options,
-                                         const Eigen::VectorXd& y0, const Eigen::VectorXd& p = {});
+/// > 0 and finite at a point asked for; what `on_point` throws.
+ContinuationResult ContinuePeriodicOrbit(
+    const PeriodicSystem& system, const ContinuationOptions& options, const Eigen::VectorXd& y0,
+    const Eigen::VectorXd& p = {},
+    const std::function<void(const ContinuationResult&)>& on_point = {});
 
 }  // namespace epicycle::dynamics

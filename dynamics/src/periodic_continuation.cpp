@@ -1,0 +1,369 @@
+// Pseudo-arclength continuation of periodic orbits (docs/periodic.md §1 and §2, "Continuation").
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/LU>
+
+#include "epicycle/dynamics/periodic.hpp"
+#include "period_integrator.hpp"
+
+namespace epicycle::dynamics {
+
+using io::Num;
+using periodic_detail::CheckState;
+using periodic_detail::Flow;
+using periodic_detail::ParametersOr;
+using periodic_detail::PeriodIntegrator;
+using periodic_detail::Wrms;
+
+namespace {
+
+// The continuation's unknowns in scaled coordinates u = (y/state_scale, λ/Λ).
+class Continuer {
+ public:
+  Continuer(const PeriodicSystem& system, const ContinuationOptions& options, Eigen::VectorXd p,
+            int column)
+      : sys_(system), o_(options), p_(std::move(p)), column_(column), n_(system.size()) {
+    scale_ = o_.state_scale.size() == 1 ? Eigen::VectorXd::Constant(n_, o_.state_scale(0))
+                                        : o_.state_scale;
+    lambda_scale_ = std::abs(o_.end - o_.start);
+  }
+
+  struct Point {
+    bool ok = false;
+    std::string message;
+    Eigen::VectorXd u;         // scaled (y, λ)
+    Eigen::MatrixXd jacobian;  // scaled [M − I, ψ]: n × (n + 1)
+    Eigen::MatrixXd monodromy;
+    double residual = 0;  // weighted RMS of R
+    int iterations = 0;
+  };
+
+  Eigen::VectorXd Y(const Eigen::VectorXd& u) const { return u.head(n_).cwiseProduct(scale_); }
+  double Lambda(const Eigen::VectorXd& u) const { return u(n_) * lambda_scale_; }
+  Eigen::VectorXd Scaled(const Eigen::VectorXd& y, double lambda) const {
+    Eigen::VectorXd u(n_ + 1);
+    u.head(n_) = y.cwiseQuotient(scale_);
+    u(n_) = lambda / lambda_scale_;
+    return u;
+  }
+  Eigen::VectorXd P(double lambda) const {
+    Eigen::VectorXd p = p_;
+    p(column_) = lambda;
+    return p;
+  }
+  double PeriodAt(double lambda) const {
+    return PeriodIntegrator(sys_, o_.shooting, P(lambda), false, -1, lambda_scale_).period();
+  }
+
+  // R and its scaled Jacobian at u (one integration with the variational equations).
+  bool Evaluate(const Eigen::VectorXd& u, Eigen::VectorXd* r, Point* at) {
+    const double lambda = Lambda(u);
+    const Eigen::VectorXd y = Y(u);
+    Flow f;
+    // A corrector's iterate may leave the parameter's domain (a speed through zero): the system
+    // refuses it, and the step fails and is retried shorter, as a failed integration is.
+    try {
+      PeriodIntegrator integrator(sys_, o_.shooting, P(lambda), true, column_, lambda_scale_);
+      f = integrator.Shoot(y);
+    } catch (const std::invalid_argument& e) {
+      at->message = o_.parameter + " = " + Num(lambda) + ": " + e.what();
+      return false;
+    }
+    ++integrations_;
+    steps_ += f.steps;
+    if (!f.ok) {
+      at->message = f.message;
+      return false;
+    }
+    *r = f.end - y;
+    at->residual = Wrms(*r, y, o_.shooting);
+    at->monodromy = f.phi;
+    at->jacobian.resize(n_, n_ + 1);
+    // R̃ = R/scale: ∂R̃/∂ỹ = diag(1/scale)(M − I) diag(scale), ∂R̃/∂λ̃ = ψ Λ/scale.
+    at->jacobian.leftCols(n_) = scale_.cwiseInverse().asDiagonal() *
+                                (f.phi - Eigen::MatrixXd::Identity(n_, n_)) * scale_.asDiagonal();
+    at->jacobian.col(n_) = f.psi.cwiseQuotient(scale_) * lambda_scale_;
+    at->u = u;
+    return true;
+  }
+
+  // Corrector: Newton on [R̃(u); τ·(u − u0) − ds] = 0 from u0 + ds τ.
+  Point Correct(const Eigen::VectorXd& u0, const Eigen::VectorXd& tangent, double ds) {
+    Point at;
+    Eigen::VectorXd u = u0 + ds * tangent;
+    Eigen::VectorXd r;
+    double previous = std::numeric_limits<double>::infinity();
+    for (at.iterations = 1; at.iterations <= o_.max_corrector_iterations; ++at.iterations) {
+      if (!Evaluate(u, &r, &at)) return at;
+      if (at.residual <= o_.shooting.newton_tolerance) {
+        at.ok = true;
+        return at;
+      }
+      if (at.residual > 2 * previous && at.iterations > 2) {
+        at.message = "the corrector diverged (weighted |R| " + Num(previous) + " -> " +
+                     Num(at.residual) + ")";
+        return at;
+      }
+      previous = at.residual;
+      Eigen::MatrixXd a(n_ + 1, n_ + 1);
+      a.topRows(n_) = at.jacobian;
+      a.row(n_) = tangent.transpose();
+      Eigen::VectorXd g(n_ + 1);
+      g.head(n_) = r.cwiseQuotient(scale_);
+      g(n_) = tangent.dot(u - u0) - ds;
+      const Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
+      if (!lu.isInvertible()) {
+        at.message = "the bordered Jacobian is singular";
+        return at;
+      }
+      const Eigen::VectorXd du = -lu.solve(g);
+      const Eigen::VectorXd dy = du.head(n_).cwiseProduct(scale_);
+      // The update below the integrator's tolerance in y and in λ: converged.
+      const double lambda = Lambda(u);
+      if (Wrms(dy, Y(u), o_.shooting) <= o_.shooting.newton_tolerance &&
+          std::abs(du(n_) * lambda_scale_) <= o_.shooting.newton_tolerance * o_.shooting.rtol *
+                                                  (std::abs(lambda) + lambda_scale_)) {
+        at.ok = true;
+        return at;
+      }
+      u += du;
+    }
+    at.iterations = o_.max_corrector_iterations;
+    at.message = "the corrector did not converge in " +
+                 std::to_string(o_.max_corrector_iterations) + " iterations (weighted |R| " +
+                 Num(at.residual) + ")";
+    return at;
+  }
+
+  // The unit tangent: the null vector of the scaled Jacobian, oriented along `previous`.
+  Eigen::VectorXd Tangent(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& previous) const {
+    Eigen::MatrixXd a(n_ + 1, n_ + 1);
+    a.topRows(n_) = jacobian;
+    a.row(n_) = previous.transpose();
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n_ + 1);
+    rhs(n_) = 1;
+    Eigen::VectorXd t = a.fullPivLu().solve(rhs);
+    t.normalize();
+    if (t.dot(previous) < 0) t = -t;
+    return t;
+  }
+
+  double Amplitude(const Eigen::VectorXd& u) const {
+    if (o_.amplitude_samples == 0) return 0;
+    const Eigen::MatrixXd orbit =
+        SampleOrbit(sys_, o_.shooting, Y(u), P(Lambda(u)), o_.amplitude_samples);
+    const Eigen::VectorXd c = orbit.col(o_.amplitude_component);
+    return (c.maxCoeff() - c.minCoeff()) / 2;
+  }
+
+  long integrations_ = 0, steps_ = 0;
+
+ private:
+  const PeriodicSystem& sys_;
+  const ContinuationOptions& o_;
+  Eigen::VectorXd p_;
+  int column_;
+  int n_;
+  Eigen::VectorXd scale_;
+  double lambda_scale_ = 1;
+};
+
+// The real multiplier nearest +1.
+std::complex<double> NearestToOne(const FloquetReport& f) {
+  std::complex<double> best = std::numeric_limits<double>::quiet_NaN();
+  for (const auto m : f.multipliers)
+    if (std::isnan(best.real()) || std::abs(m - 1.0) < std::abs(best - 1.0)) best = m;
+  return best;
+}
+
+// The most negative real multiplier (NaN if none), and the largest |μ| of a complex one.
+double MostNegativeReal(const FloquetReport& f) {
+  double m = std::numeric_limits<double>::quiet_NaN();
+  for (const auto mu : f.multipliers)
+    if (std::abs(mu.imag()) <= 1e-12 * std::max(1.0, std::abs(mu)) && mu.real() < 0 &&
+        !(mu.real() >= m))
+      m = mu.real();
+  return m;
+}
+double LargestComplex(const FloquetReport& f) {
+  double m = std::numeric_limits<double>::quiet_NaN();
+  for (const auto mu : f.multipliers)
+    if (std::abs(mu.imag()) > 1e-12 * std::max(1.0, std::abs(mu)) && !(std::abs(mu) <= m))
+      m = std::abs(mu);
+  return m;
+}
+
+}  // namespace
+
+ContinuationResult ContinuePeriodicOrbit(
+    const PeriodicSystem& system, const ContinuationOptions& options, const Eigen::VectorXd& y0,
+    const Eigen::VectorXd& p_in, const std::function<void(const ContinuationResult&)>& on_point) {
+  const int n = system.size();
+  options.Validate(n);
+  CheckState(system, y0, "continuation");
+  const int column = system.ParameterIndex(options.parameter);
+  ContinuationResult result;
+  result.parameter = options.parameter;
+  result.unit = system.parameters()[static_cast<std::size_t>(column)].unit;
+  Eigen::VectorXd p = ParametersOr(system, p_in);
+  p(column) = options.start;
+  Continuer c(system, options, p, column);
+
+  // The first point: shooting at λ = start.
+  result.start = SolvePeriodicOrbit(system, options.shooting, y0, p);
+  result.integrations += result.start.integrations;
+  result.steps += result.start.steps;
+  if (result.start.status != ShootingStatus::kConverged) {
+    result.status = ContinuationStatus::kStartFailed;
+    result.message = "continuation: the first orbit, at " + options.parameter + " = " +
+                     Num(options.start) + " " + result.unit +
+                     ", was not found: " + result.start.message;
+    return result;
+  }
+  const double direction = options.end > options.start ? 1.0 : -1.0;
+  const double lo = std::min(options.start, options.end), hi = std::max(options.start, options.end);
+  Eigen::VectorXd u = c.Scaled(result.start.initial_state, options.start);
+  Continuer::Point here;
+  Eigen::VectorXd r;
+  if (!c.Evaluate(u, &r, &here)) {
+    result.status = ContinuationStatus::kStartFailed;
+    result.message = "continuation: the first orbit's parameter derivative: " + here.message;
+    return result;
+  }
+  Eigen::VectorXd axis = Eigen::VectorXd::Zero(n + 1);
+  axis(n) = direction;
+  Eigen::VectorXd tangent = c.Tangent(here.jacobian, axis);
+
+  auto add_point = [&](const Continuer::Point& at, const Eigen::VectorXd& t, double s) {
+    BranchPoint b;
+    b.state = c.Y(at.u);
+    b.parameter = c.Lambda(at.u);
+    b.period = c.PeriodAt(b.parameter);
+    b.floquet = FloquetMultipliers(at.monodromy, options.shooting.unit_circle_tolerance);
+    b.tangent_parameter = t(n);
+    b.arclength = s;
+    b.corrector_iterations = at.iterations;
+    b.amplitude = c.Amplitude(at.u);
+    result.points.push_back(std::move(b));
+  };
+  here.iterations = 0;
+  add_point(here, tangent, 0.0);
+  if (on_point) on_point(result);
+
+  double ds = options.initial_step, s = 0;
+  auto stop = [&](ContinuationStatus status, const std::string& message) {
+    result.status = status;
+    result.message = message;
+    result.integrations += c.integrations_;
+    result.steps += c.steps_;
+    return result;
+  };
+  while (static_cast<int>(result.points.size()) < options.max_points) {
+    Continuer::Point next = c.Correct(u, tangent, ds);
+    // A corrector that lands further from its predictor than the step is long has left the
+    // branch for another part of the solution set (the hyperplane τ·(u − u_k) = Δs crosses the
+    // branch again far away): the step is retried shorter.
+    if (next.ok && (next.u - (u + ds * tangent)).norm() > ds) {
+      next.ok = false;
+      next.message = "the corrector moved " + Num((next.u - (u + ds * tangent)).norm()) +
+                     " from its predictor, more than the step " + Num(ds);
+    }
+    if (!next.ok) {
+      ++result.rejected_steps;
+      if (ds <= options.min_step)
+        return stop(ContinuationStatus::kStepTooSmall,
+                    "continuation stopped after " + options.parameter + " = " + Num(c.Lambda(u)) +
+                        " " + result.unit + " (point " + std::to_string(result.points.size() - 1) +
+                        ", arclength " + Num(s) + "): the step at its minimum " +
+                        Num(options.min_step) + " failed: " + next.message);
+      ds = std::max(ds / 2, options.min_step);
+      continue;
+    }
+    const Eigen::VectorXd new_tangent = c.Tangent(next.jacobian, tangent);
+    // A fold: dλ/ds changes sign between the two points. Locate it by the secant method on
+    // h(σ) = dλ/ds of the point σ along the previous tangent's corrector.
+    if (new_tangent(n) * tangent(n) < 0) {
+      double a = 0, ha = tangent(n), b = ds, hb = new_tangent(n);
+      Continuer::Point best = next;
+      for (int k = 0; k < options.fold_refinements; ++k) {
+        const double sigma = a - ha * (b - a) / (hb - ha);
+        if (!(sigma > a && sigma < b)) break;
+        const Continuer::Point mid = c.Correct(u, tangent, sigma);
+        if (!mid.ok) break;
+        const double h = c.Tangent(mid.jacobian, tangent)(n);
+        best = mid;
+        if (std::abs(h) < 1e-8) break;
+        if (h * ha > 0) {
+          a = sigma;
+          ha = h;
+        } else {
+          b = sigma;
+          hb = h;
+        }
+      }
+      Bifurcation fold;
+      fold.kind = BifurcationKind::kFold;
+      fold.parameter = c.Lambda(best.u);
+      fold.state = c.Y(best.u);
+      fold.after_point = static_cast<int>(result.points.size());
+      fold.multiplier =
+          NearestToOne(FloquetMultipliers(best.monodromy, options.shooting.unit_circle_tolerance));
+      result.bifurcations.push_back(std::move(fold));
+    }
+    s += ds;
+    u = next.u;
+    tangent = new_tangent;
+    add_point(next, tangent, s);
+    const BranchPoint& prev = result.points[result.points.size() - 2];
+    const BranchPoint& cur = result.points.back();
+    if (prev.floquet.real_below_minus_one != cur.floquet.real_below_minus_one) {
+      Bifurcation pd;
+      pd.kind = BifurcationKind::kPeriodDoubling;
+      const double m0 = MostNegativeReal(prev.floquet), m1 = MostNegativeReal(cur.floquet);
+      const double w = std::isfinite(m0) && std::isfinite(m1) && m1 != m0
+                           ? std::clamp((-1 - m0) / (m1 - m0), 0.0, 1.0)
+                           : 0.5;
+      pd.parameter = prev.parameter + w * (cur.parameter - prev.parameter);
+      pd.state = cur.state;
+      pd.after_point = static_cast<int>(result.points.size()) - 1;
+      pd.multiplier = std::isfinite(m1) ? std::complex<double>(m1, 0) : std::complex<double>(-1, 0);
+      result.bifurcations.push_back(std::move(pd));
+    }
+    if (prev.floquet.complex_outside != cur.floquet.complex_outside) {
+      Bifurcation ns;
+      ns.kind = BifurcationKind::kNeimarkSacker;
+      const double m0 = LargestComplex(prev.floquet), m1 = LargestComplex(cur.floquet);
+      const double w = std::isfinite(m0) && std::isfinite(m1) && m1 != m0
+                           ? std::clamp((1 - m0) / (m1 - m0), 0.0, 1.0)
+                           : 0.5;
+      ns.parameter = prev.parameter + w * (cur.parameter - prev.parameter);
+      ns.state = cur.state;
+      ns.after_point = static_cast<int>(result.points.size()) - 1;
+      for (const auto mu : cur.floquet.multipliers)
+        if (mu.imag() > 0) {
+          ns.multiplier = mu;
+          break;
+        }
+      result.bifurcations.push_back(std::move(ns));
+    }
+    if (on_point) on_point(result);
+    if (cur.parameter > hi || cur.parameter < lo) return stop(ContinuationStatus::kCompleted, "");
+    // Step control: grow after an easy corrector, shrink after a hard one.
+    if (next.iterations <= options.fast_iterations)
+      ds = std::min(ds * 1.5, options.max_step);
+    else if (next.iterations >= options.max_corrector_iterations - 1)
+      ds = std::max(ds / 2, options.min_step);
+  }
+  return stop(ContinuationStatus::kPointLimit,
+              "continuation: " + std::to_string(options.max_points) + " points reached at " +
+                  options.parameter + " = " + Num(result.points.back().parameter) + " " +
+                  result.unit + " before the end " + Num(options.end));
+}
+
+}  // namespace epicycle::dynamics

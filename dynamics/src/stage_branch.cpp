@@ -1,0 +1,203 @@
+#include "epicycle/dynamics/stage_branch.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <numbers>
+#include <stdexcept>
+
+#include "epicycle/io/number_format.hpp"
+
+namespace epicycle::dynamics {
+
+using io::Num;
+
+namespace {
+
+[[noreturn]] void Fail(const std::string& field, double value, const std::string& rule) {
+  throw std::invalid_argument("stage branch: " + field + " = " + Num(value) + ": " + rule);
+}
+
+double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+// The integrator's absolute tolerance per state component: atol_angle or atol_length per DOF, the
+// rates' times rate_scale (SimulationOptions).
+Eigen::VectorXd Tolerances(const DynamicModel& m, const SimulationOptions& s) {
+  const int n = m.size();
+  Eigen::VectorXd atol(2 * n);
+  for (int k = 0; k < n; ++k) {
+    atol(k) = m.dofs()[static_cast<std::size_t>(k)].axis == MotionDof::kRotation ? s.atol_angle
+                                                                                  : s.atol_length;
+    atol(n + k) = atol(k) * s.rate_scale;
+  }
+  return atol;
+}
+
+// One period of the orbit by Simulate: K_γ, TE amplitude and sun orbit as the speed sweep reads
+// them off its window (dynamics/speed_sweep.hpp).
+bool PeriodFigures(const DynamicModel& m, const SimulationOptions& sim, const Eigen::VectorXd& y,
+                   double period, int samples, StageBranchPoint* p, std::string* message) {
+  const int n = m.size();
+  std::vector<double> times;
+  for (int k = 1; k <= samples; ++k) times.push_back(period * k / samples);
+  SimulationOptions s = sim;
+  s.keep_samples = false;
+  double te_lo = 0, te_hi = 0;
+  bool first = true;
+  p->k_gamma = 0;
+  p->orbit_radius = 0;
+  const SimulationResult r =
+      Simulate(m, s, y.head(n), y.tail(n), times, [&](const DynamicSample& d) {
+        p->k_gamma = std::max(p->k_gamma, d.k_gamma);
+        p->orbit_radius = std::max(p->orbit_radius, d.sun_centre.norm());
+        te_lo = first ? d.transmission_error : std::min(te_lo, d.transmission_error);
+        te_hi = first ? d.transmission_error : std::max(te_hi, d.transmission_error);
+        first = false;
+      });
+  p->te_amplitude = (te_hi - te_lo) / 2;
+  if (!r.completed()) *message = "the period's figures: " + r.message;
+  return r.completed();
+}
+
+}  // namespace
+
+void CheckBranchPeriod(const StagePeriod& period, long max_period_mesh_cycles) {
+  if (period.mesh_cycles <= max_period_mesh_cycles) return;
+  std::string why;
+  for (const std::string& r : period.reasons) why += (why.empty() ? "" : "; ") + r;
+  throw std::invalid_argument(
+      "stage branch: the stage's period = " + std::to_string(period.mesh_cycles) +
+      " mesh cycles (" + why + "): must be <= max_period_mesh_cycles = " +
+      std::to_string(max_period_mesh_cycles) +
+      " (shooting integrates the period with its variational equations at every Newton "
+      "iteration, where a time integration settles in a number of cycles that does not grow with "
+      "the period: run the time-integration sweep)");
+}
+
+void StageBranchOptions::Validate() const {
+  const std::vector<std::string> names = StagePeriodicSystem::ParameterNames();
+  if (std::find(names.begin(), names.end(), parameter) == names.end()) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("stage branch: parameter = '" + parameter +
+                                "': not a parameter of the stage (its parameters: " + list + ")");
+  }
+  if (!std::isfinite(start)) Fail("start", start, "must be finite");
+  if (!std::isfinite(end)) Fail("end", end, "must be finite");
+  if (end == start)
+    Fail("end", end, "equals start = " + Num(start) + ": the range must have non-zero width");
+  if (max_period_mesh_cycles < 1)
+    Fail("max_period_mesh_cycles", static_cast<double>(max_period_mesh_cycles), "must be >= 1");
+  if (period.mesh_cycles < 1)
+    Fail("period mesh cycles", static_cast<double>(period.mesh_cycles), "must be >= 1");
+  if (samples_per_period < 4) Fail("samples_per_period", samples_per_period, "must be >= 4");
+  if (!(simulation.rate_scale > 0))
+    Fail("rate_scale", simulation.rate_scale,
+         "must be > 0 (the rates' absolute tolerance of the shooting)");
+  simulation.Validate();
+}
+
+StageBranchRecord ContinueStageBranch(
+    const DynamicModel& base, const StageBranchOptions& o,
+    const std::function<void(const StageBranchRecord&)>& on_point) {
+  o.Validate();
+  const double cpu0 = CpuSeconds();
+  const auto wall0 = std::chrono::steady_clock::now();
+  CheckBranchPeriod(o.period, o.max_period_mesh_cycles);
+  const StagePeriodicSystem system(base, o.simulation.backend, o.simulation.contact,
+                                   o.period.mesh_cycles);
+  const int column = system.ParameterIndex(o.parameter);
+  StageBranchRecord rec;
+  rec.parameter = o.parameter;
+  rec.unit = system.parameters()[static_cast<std::size_t>(column)].unit;
+  rec.period_mesh_cycles = o.period.mesh_cycles;
+  rec.period_reasons = o.period.reasons;
+  const int n = base.size();
+  for (const char* suffix : {"", " rate"})
+    for (const MotionDof& f : base.dofs()) rec.dof_labels.push_back(f.Label() + std::string(suffix));
+
+  Eigen::VectorXd p = system.DefaultParameters();
+  p(column) = o.start;
+  const DynamicModel& start_model = system.ModelAt(p);
+  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);
+  y0.head(n) = start_model.QuasiStaticStart(o.simulation.contact, o.simulation.backend);
+
+  ContinuationOptions c;
+  c.parameter = o.parameter;
+  c.start = o.start;
+  c.end = o.end;
+  c.initial_step = o.initial_step;
+  c.max_step = o.max_step;
+  c.min_step = o.min_step;
+  c.max_points = o.max_points;
+  c.shooting.rtol = o.simulation.rtol;
+  c.shooting.atol = Tolerances(base, o.simulation);
+  c.shooting.max_steps = o.simulation.max_steps;
+  // The state's scale: the quasi-static deviations (at least 100 absolute tolerances), and for the
+  // rates that amplitude vibrating at the highest mesh frequency of the range (a response that
+  // follows the mesh has rates in proportion to the speed).
+  Eigen::VectorXd p_end = p;
+  p_end(column) = o.end;
+  const double cycles = static_cast<double>(o.period.mesh_cycles);
+  const double mesh_rate =
+      2 * std::numbers::pi * cycles / std::min(system.Period(p), system.Period(p_end));
+  c.state_scale.resize(2 * n);
+  for (int k = 0; k < n; ++k) {
+    c.state_scale(k) = std::max(std::abs(y0(k)), 100 * c.shooting.atol(k));
+    c.state_scale(n + k) = std::max(mesh_rate * c.state_scale(k), 100 * c.shooting.atol(n + k));
+  }
+  c.amplitude_samples = 0;  // BranchPoint::amplitude is not used: the figures come from Simulate
+
+  std::size_t written = 0;
+  // The new points of the branch so far into the record, with their figures.
+  auto collect = [&](const ContinuationResult& so_far) {
+    for (; written < so_far.points.size(); ++written) {
+      const BranchPoint& b = so_far.points[written];
+      StageBranchPoint q;
+      q.index = static_cast<int>(written);
+      q.parameter = b.parameter;
+      Eigen::VectorXd pb = p;
+      pb(column) = b.parameter;
+      q.sun_speed_rpm = pb(0);
+      q.period = b.period;
+      q.spectral_radius = b.floquet.spectral_radius;
+      q.stability = b.floquet.stability;
+      q.real_above_one = b.floquet.real_above_one;
+      q.real_below_minus_one = b.floquet.real_below_minus_one;
+      q.complex_outside = b.floquet.complex_outside;
+      q.arclength = b.arclength;
+      q.corrector_iterations = b.corrector_iterations;
+      q.state = b.state;
+      std::string message;
+      if (!PeriodFigures(system.ModelAt(pb), o.simulation, b.state, b.period,
+                         o.samples_per_period, &q, &message) &&
+          rec.figures_message.empty())
+        rec.figures_message = "at " + o.parameter + " = " + Num(b.parameter) + " " + rec.unit +
+                              ": " + message;
+      rec.points.push_back(std::move(q));
+    }
+    rec.bifurcations.clear();
+    for (const Bifurcation& b : so_far.bifurcations)
+      rec.bifurcations.push_back({b.kind, b.parameter, b.after_point, b.multiplier});
+    rec.cpu_seconds = CpuSeconds() - cpu0;
+    rec.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  };
+  const ContinuationResult r =
+      ContinuePeriodicOrbit(system, c, y0, p, [&](const ContinuationResult& so_far) {
+        collect(so_far);
+        if (on_point) on_point(rec);
+      });
+  collect(r);
+  rec.status = r.status;
+  rec.message = r.message;
+  rec.integrations = r.integrations;
+  rec.steps = r.steps;
+  rec.cpu_seconds = CpuSeconds() - cpu0;
+  rec.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return rec;
+}
+
+}  // namespace epicycle::dynamics

@@ -1,0 +1,160 @@
+#include "epicycle/report/branch_files.hpp"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "epicycle/report/provenance.hpp"
+
+namespace epicycle::report {
+
+namespace {
+const std::string kSunSpeed = dynamics::StagePeriodicSystem::kSunSpeed;
+
+// The provenance line and the columns: the parameter's, the sun speed's when it is another.
+std::string BranchHead(const nlohmann::json& provenance, const std::string& parameter) {
+  std::string head = ProvenanceCsvLine(provenance);
+  head += "index,";
+  head += parameter;
+  if (parameter != kSunSpeed) head += ",sun_speed_rpm";
+  head +=
+      ",period_s,stability,spectral_radius,real_multipliers_above_1,"
+      "real_multipliers_below_minus_1,complex_multipliers_outside,K_gamma,te_amplitude_urad,"
+      "sun_orbit_radius_um,arclength,corrector_iterations,bifurcations_before,"
+      "bifurcation_parameters\n";
+  return head;
+}
+}  // namespace
+
+
+std::vector<PlotSeries> StabilitySegments(const std::string& name, const std::vector<double>& x,
+                                          const std::vector<double>& y,
+                                          const std::vector<bool>& stable, int colour) {
+  if (x.size() != y.size() || x.size() != stable.size())
+    throw std::invalid_argument("stability segments: x, y and stable must have one size (" +
+                                std::to_string(x.size()) + ", " + std::to_string(y.size()) +
+                                ", " + std::to_string(stable.size()) + ")");
+  std::vector<PlotSeries> out;
+  bool named_stable = false, named_unstable = false;
+  for (std::size_t k = 0; k < x.size();) {
+    PlotSeries seg;
+    seg.colour = colour;
+    seg.dashed = !stable[k];
+    if (stable[k] && !named_stable) seg.name = name + ", stable", named_stable = true;
+    if (!stable[k] && !named_unstable) seg.name = name + ", unstable", named_unstable = true;
+    std::size_t j = k;
+    for (; j < x.size() && stable[j] == stable[k]; ++j) {
+      seg.x.push_back(x[j]);
+      seg.y.push_back(y[j]);
+    }
+    if (j < x.size()) {
+      seg.x.push_back(x[j]);
+      seg.y.push_back(y[j]);
+    }
+    out.push_back(std::move(seg));
+    k = j;
+  }
+  return out;
+}
+
+BranchFile::BranchFile(const std::string& path, const nlohmann::json& provenance,
+                       const std::string& parameter)
+    : csv_(path, BranchHead(provenance, parameter)), speed_column_(parameter != kSunSpeed) {}
+
+void BranchFile::Update(const dynamics::StageBranchRecord& r) {
+  for (; written_ < r.points.size(); ++written_) {
+    const dynamics::StageBranchPoint& p = r.points[written_];
+    std::string kinds, where;
+    for (const dynamics::StageBranchBifurcation& b : r.bifurcations)
+      if (b.after_point == p.index) {
+        if (!kinds.empty()) kinds += ';', where += ';';
+        kinds += dynamics::BifurcationKindName(b.kind);
+        where += Num(b.parameter);
+      }
+    std::string speed;
+    if (speed_column_) speed = ',', speed += Num(p.sun_speed_rpm);
+    csv_.WriteLine(fmt::format("{},{}{},{},{},{},{},{},{},{},{},{},{},{},{},{}", p.index,
+                               Num(p.parameter), speed, Num(p.period),
+                               dynamics::StabilityName(p.stability), Num(p.spectral_radius),
+                               p.real_above_one, p.real_below_minus_one, p.complex_outside,
+                               Num(p.k_gamma), Num(p.te_amplitude * 1e6),
+                               Num(p.orbit_radius * 1e6), Num(p.arclength),
+                               p.corrector_iterations, CsvText(kinds), CsvText(where)));
+  }
+}
+
+void BranchFile::Close() { csv_.Close(); }
+
+nlohmann::json BranchJson(const dynamics::StageBranchRecord& r) {
+  using json = nlohmann::json;
+  json j;
+  j["parameter"] = r.parameter;
+  j["unit"] = r.unit;
+  j["status"] = dynamics::ContinuationStatusName(r.status);
+  j["message"] = r.message;
+  j["figures_message"] = r.figures_message;
+  j["period_mesh_cycles"] = r.period_mesh_cycles;
+  j["period_reasons"] = r.period_reasons;
+  j["integrations"] = r.integrations;
+  j["steps"] = r.steps;
+  j["cpu_seconds"] = r.cpu_seconds;
+  j["wall_seconds"] = r.wall_seconds;
+  json bif = json::array();
+  for (const dynamics::StageBranchBifurcation& b : r.bifurcations)
+    bif.push_back({{"kind", dynamics::BifurcationKindName(b.kind)},
+                   {r.parameter, b.parameter},
+                   {"before_point", b.after_point},
+                   {"multiplier_re", b.multiplier.real()},
+                   {"multiplier_im", b.multiplier.imag()}});
+  j["bifurcations"] = bif;
+  json points = json::array();
+  for (const dynamics::StageBranchPoint& p : r.points)
+    points.push_back({{"index", p.index},
+                      {r.parameter, p.parameter},
+                      {"sun_speed_rpm", p.sun_speed_rpm},
+                      {"period_s", p.period},
+                      {"stability", dynamics::StabilityName(p.stability)},
+                      {"spectral_radius", p.spectral_radius},
+                      {"K_gamma", p.k_gamma},
+                      {"te_amplitude_urad", p.te_amplitude * 1e6},
+                      {"sun_orbit_radius_um", p.orbit_radius * 1e6}});
+  j["points"] = points;
+  return j;
+}
+
+void WriteBranchPlots(const std::string& path, const std::string& scene_name,
+                      const dynamics::StageBranchRecord& r) {
+  std::vector<double> x;
+  std::vector<bool> stable;
+  for (const dynamics::StageBranchPoint& p : r.points) {
+    x.push_back(p.parameter);
+    stable.push_back(p.stability != dynamics::Stability::kUnstable);
+  }
+  std::vector<XMarker> folds;
+  for (const dynamics::StageBranchBifurcation& b : r.bifurcations)
+    folds.push_back({b.parameter,
+                     fmt::format("{} {:.5g}", dynamics::BifurcationKindName(b.kind), b.parameter),
+                     false, b.kind == dynamics::BifurcationKind::kFold ? 0 : 1});
+  const std::string x_label = r.parameter + " (periodic orbits: stable solid, unstable dashed)";
+  auto plot = [&](const std::string& what, const std::string& unit, const std::string& file,
+                  double scale, auto field, std::vector<double> refs) {
+    std::vector<double> y;
+    for (const dynamics::StageBranchPoint& p : r.points) y.push_back(field(p) * scale);
+    LinePlot figure{scene_name + ": " + what + " along the branch", x_label,
+                    what + " [" + unit + "]", StabilitySegments(what, x, y, stable), false,
+                    std::move(refs)};
+    figure.x_markers = folds;
+    WriteTextFile(path + "_" + file + ".svg", RenderSvg(figure));
+  };
+  plot("K_gamma", "-", "k_gamma", 1.0, [](const auto& p) { return p.k_gamma; }, {});
+  plot("TE amplitude", "urad", "te_amplitude", 1e6, [](const auto& p) { return p.te_amplitude; },
+       {});
+  plot("Floquet spectral radius", "-", "spectral_radius", 1.0,
+       [](const auto& p) { return p.spectral_radius; }, {1.0});
+  bool moves = false;
+  for (const dynamics::StageBranchPoint& p : r.points) moves = moves || p.orbit_radius > 0;
+  if (moves)
+    plot("sun orbit radius", "um", "orbit", 1e6, [](const auto& p) { return p.orbit_radius; }, {});
+}
+
+}  // namespace epicycle::report
