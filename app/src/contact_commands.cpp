@@ -13,6 +13,7 @@
 #include "console.hpp"
 #include "epicycle/config.h"
 #include "epicycle/report/contact_plots.hpp"
+#include "epicycle/report/contact_text.hpp"
 #include "epicycle/solvers/backend_comparison.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
@@ -51,41 +52,8 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
   ContactSolution sol;
   const ContactReport r = solver->Solve(problem, options, &sol);
   const bool converged = r.status == ContactStatus::kConverged;
-  fmt::print("problem      {} (N = {}, m = {}, {})\n", problem.name(), problem.num_contacts(),
-             problem.num_equalities(), file.category);
-  fmt::print("program      epicycle {}, input {}\n", EPICYCLE_VERSION, FileHash(path));
-  fmt::print("back end     {}\n", solvers::BackendName(backend));
-  fmt::print("status       {}\n", solvers::StatusName(r.status));
-  fmt::print("message      {}\n", r.message);
-  fmt::print("iterations   {} (back-end code {})\n", r.iterations, r.backend_code);
-  fmt::print("time         {:.3e} s in the back end, {:.3e} s in total\n", r.solve_seconds,
-             r.total_seconds);
-  fmt::print("residual     complementarity {}, equilibrium {}, total {} (tolerance {:.1e})\n",
-             Num(r.residual.complementarity, "{:.3e}", "not finite"),
-             Num(r.residual.equilibrium, "{:.3e}", "not finite"),
-             Num(r.residual.total, "{:.3e}", "not finite"), tol);
-  fmt::print("active       {} of {} contacts{}\n", r.active_contacts, problem.num_contacts(),
-             r.polished ? " (POLISHED)" : "");
-  // A failed solve still shows its last iterate (what the back end stopped at), marked as such;
-  // components that are not finite are named, never printed as nan/inf.
-  const char* what = converged ? "" : " -- last iterate of a FAILED solve, not a solution";
-  const auto& labels = problem.data().contact_labels;
-  fmt::print("forces [N]{}:\n", what);
-  for (int j = 0; j < sol.force.size() && j < problem.num_contacts(); ++j)
-    fmt::print("  {:4d} {:>16}  {}\n", j, Num(sol.force(j), "{:.9e}", "not finite"),
-               labels.empty() ? "" : labels[j]);
-  if (problem.num_equalities() > 0) {
-    const auto& ml = problem.data().multiplier_labels;
-    fmt::print("multipliers (rigid displacements){}:\n", what);
-    for (int i = 0; i < sol.multiplier.size() && i < problem.num_equalities(); ++i)
-      fmt::print("  {:4d} {:>16}  {}\n", i, Num(sol.multiplier(i), "{:.9e}", "not finite"),
-                 ml.empty() ? "" : ml[i]);
-  }
-  if (file.expected && converged) {
-    const auto d = solvers::CompareSolutions(problem, sol, *file.expected);
-    fmt::print("against the file's expected solution ({}): force {:.2e}, multiplier {:.2e}\n",
-               file.expected_note, d.force, d.multiplier);
-  }
+  fmt::print("{}",
+             report::ContactSolveText(problem, file, FileHash(path), backend, options, r, sol));
   if (!converged)
     throw ComputationFailed(fmt::format("{}: the {} back end did not converge: {} ({})", path,
                                         solvers::BackendName(backend),
@@ -153,28 +121,10 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
       rows.push_back(row);
     }
   }
-  fmt::print(
-      "{} problems, tolerance {:.1e}, reference: newton at {:.0e}, {} repeat(s); error = max of "
-      "the "
-      "relative force and rigid-displacement (G^T lambda) differences, over converged runs\n\n",
-      files.size(), tol, solvers::kReferenceTolerance, repeats);
-  fmt::print("{:<14} {:>8} {:>14} {:>14} {:>16}  {}\n", "back end", "solved", "median time",
-             "worst error", "worst residual", "failures");
-  std::string md = fmt::format(
-      "{} problems, tolerance {:.0e}, median of {} solve(s) per problem.\n\n"
-      "| back end | solved | median time [s] | worst error | worst residual | not converged |\n"
-      "|---|---|---|---|---|---|\n",
-      files.size(), tol, repeats);
-  for (const solvers::BackendSummary& b : solvers::SummarizeByBackend(rows, names)) {
-    std::string failed;
-    for (const std::string& f : b.failed) failed += (failed.empty() ? "" : ", ") + f;
-    fmt::print("{:<14} {:>4}/{:<3} {:>12.3e} s {:>14.2e} {:>16.2e}  {}\n", b.backend, b.solved,
-               b.runs, b.median_seconds, b.worst_error, b.worst_residual,
-               failed.empty() ? "-" : failed);
-    md += fmt::format("| {} | {}/{} | {:.2e} | {:.1e} | {:.1e} | {} |\n", b.backend, b.solved,
-                      b.runs, b.median_seconds, b.worst_error, b.worst_residual,
-                      b.runs - b.solved);
-  }
+  const report::ComparisonTables tables =
+      report::ComparisonSummaryText(rows, names, files.size(), tol, repeats);
+  fmt::print("{}", tables.console);
+  const std::string& md = tables.markdown;
   if (out) out->Close();
   if (!csv.empty()) fmt::print("\nCSV written to {}\n", csv);
   if (!markdown.empty()) WriteTextFile(markdown, md);

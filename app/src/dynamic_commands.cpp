@@ -26,6 +26,7 @@
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/io/units.hpp"
 #include "epicycle/report/dynamic_run_files.hpp"
+#include "epicycle/report/modes_text.hpp"
 #include "epicycle/report/ratings.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
@@ -210,11 +211,7 @@ struct ModesArgs {
 class ModesConsole final : public dynamics::ModesSink {
  public:
   void Start(const dynamics::ModesPlan& p) override {
-    const dynamics::StageDynamics& rig = *p.rig;
-    std::printf("%s: %d planets, sun %s, %d DOFs (%s)\n", rig.scene.name.c_str(),
-                rig.stage.planets(), transmission::SunSupportName(rig.stage_model.setup().sun),
-                rig.model.size(),
-                rig.model.settings().ring_elastic ? "ring elastic" : "ring fixed");
+    std::printf("%s", report::ModesPlanText(p).c_str());
   }
 };
 
@@ -227,30 +224,7 @@ void RunModes(const ModesArgs& a) {
   request.tables = TableOptions(a.cache, a.no_cache);
   ModesConsole console;
   const dynamics::ModesRecord r = dynamics::RunModes(request, console);
-  std::printf(
-      "  mean mesh stiffness (the mesh-stiffness driver at the scene's load), tangent dF/ddelta "
-      "(used here): sun-planet %.4g N/m, planet-ring %.4g N/m\n",
-      r.mesh_stiffness[0], r.mesh_stiffness[1]);
-  std::printf(
-      "  secant F/delta (sets the mesh damping of a run): sun-planet %.4g N/m, planet-ring %.4g "
-      "N/m\n",
-      r.secant_mesh_stiffness[0], r.secant_mesh_stiffness[1]);
-  std::printf("  mesh frequency %.4f Hz per sun rpm\n\n", r.mesh_hz_per_sun_rpm);
-  std::printf("  %-5s %-12s %-5s %-14s %s\n", "mode", "f [Hz]", "mult", "type",
-              "energy: central tr/rot, planets");
-  for (std::size_t j = 0; j < r.modes.size(); ++j) {
-    const auto& x = r.modes[j];
-    const std::string type = x.rigid ? "rigid" : dynamics::ModeTypeName(x.type);
-    std::printf("  %-5zu %-12.2f %-5d %-14s %.3f / %.3f, %.3f\n", j + 1, x.frequency,
-                x.multiplicity, type.c_str(), x.central_translation, x.central_rotation, x.planets);
-  }
-  std::printf("\n  coincidences h f_m = f_j from %.0f to %.0f rpm (%zu):\n",
-              r.coincidence_range_rpm[0], r.coincidence_range_rpm[1], r.coincidences.size());
-  for (const dynamics::Coincidence& c : r.coincidences)
-    std::printf("    %9.1f rpm  harmonic %-3d x mode %d (%.2f Hz, %s)%s\n", c.sun_speed_rpm,
-                c.harmonic, c.mode + 1, c.frequency,
-                dynamics::ModeTypeName(r.modes[static_cast<std::size_t>(c.mode)].type).c_str(),
-                c.phasing_excited ? "" : "  not excited by a symmetric stage (planet phasing)");
+  std::printf("%s", report::ModesRecordText(r).c_str());
   PrintWarnings(r.warnings);
   if (!a.json.empty()) {
     WriteTextFile(a.json,

@@ -38,26 +38,6 @@ struct StudyArgs {
   bool no_cache = false, quiet = false, stresses = false;
 };
 
-
-// The summary on the terminal (a run's and a merge's).
-void PrintStudySummary(const studies::StudySpec& study, const studies::StudySummary& s) {
-  std::printf("\n  %ld of %ld cases in the file, %ld failed (left out of the statistics)\n",
-              s.cases, study.Cases(), s.failed);
-  std::printf("%s%s%s%s%s", report::SampleSummaryText("K_gamma", s.k_gamma, "").c_str(),
-              report::SampleSummaryText("K_gamma (sweep mean)", s.k_gamma_mean, "").c_str(),
-              report::SampleSummaryText("TE peak-to-peak", s.te_peak_to_peak, " urad").c_str(),
-              report::SampleSummaryText("sun orbit", s.sun_orbit, " um").c_str(),
-              report::StudyRootStressText(s.root_stress).c_str());
-  for (const studies::Exceedance& e : s.k_gamma_exceedance)
-    std::printf("%s", report::ExceedanceText(e).c_str());
-  std::printf("  Spearman rank correlation of K_gamma with\n");
-  for (std::size_t j = 0; j < s.columns.size(); ++j)
-    std::printf("    %-36s %s\n", s.columns[j].c_str(),
-                Num(s.spearman[j], "{:+.3f}", "- (constant)").c_str());
-  if (s.sobol) std::printf("%s", report::SobolText(*s.sobol).c_str());
-  PrintWarnings(study.warnings);
-}
-
 // "I:J" (--cases) → the range; the numbers as CLI11 would read them.
 studies::CaseRange ParseCases(const std::string& text, long cases) {
   const std::size_t colon = text.find(':');
@@ -154,9 +134,8 @@ void RunStudyCommand(const StudyArgs& a) {
     std::printf("%s: %ld cases (%s), %zu variables, seed %llu, %s\n", study.name.c_str(),
                 study.Cases(), DesignText(study).c_str(), study.variables.size(),
                 static_cast<unsigned long long>(study.seed),
-                mpi.active()
-                    ? fmt::format("{} MPI ranks x {} threads", mpi.size(), threads).c_str()
-                    : fmt::format("{} threads", threads).c_str());
+                mpi.active() ? fmt::format("{} MPI ranks x {} threads", mpi.size(), threads).c_str()
+                             : fmt::format("{} threads", threads).c_str());
   StudyConsole console(root && !a.quiet && isatty(fileno(stderr)));
   const studies::StudyRun run = studies::RunStudy(request, console);
   if (!root) return;
@@ -173,18 +152,20 @@ void RunStudyCommand(const StudyArgs& a) {
     // A part: its rows only; the summary is the merge's (over every case).
     long failed_rows = 0;
     for (const studies::CaseRow& r : report.rows) failed_rows += r.ok ? 0 : 1;
-    std::printf("\nwrote %s: cases %ld:%ld, %zu of %ld rows (join the parts with `epicycle "
-                "study merge %s`)\n",
-                request.rows_file.c_str(), request.part->first, request.part->last,
-                report.rows.size(), request.part->Size(), a.out.c_str());
+    std::printf(
+        "\nwrote %s: cases %ld:%ld, %zu of %ld rows (join the parts with `epicycle "
+        "study merge %s`)\n",
+        request.rows_file.c_str(), request.part->first, request.part->last, report.rows.size(),
+        request.part->Size(), a.out.c_str());
     if (failed_rows > 0)
-      throw ComputationFailed(fmt::format("{} of {} cases failed (their rows say why)",
-                                          failed_rows, report.rows.size()));
+      throw ComputationFailed(fmt::format("{} of {} cases failed (their rows say why)", failed_rows,
+                                          report.rows.size()));
     return;
   }
 
   const studies::StudySummary& s = run.record->summary;
-  PrintStudySummary(study, s);
+  std::printf("%s", report::StudySummaryText(study, s).c_str());
+  PrintWarnings(study.warnings);
   report::WriteStudySummaryFiles(base, study.name, *run.record, provenance);
   std::printf("\nwrote %s_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
               base.c_str(), s.sobol ? ", _sobol.svg" : "");
@@ -203,7 +184,8 @@ void MergeStudyCommand(const MergeArgs& a) {
   std::printf("%s: %zu parts of %s merged, %ld cases\n", m.study.name.c_str(), m.parts.size(),
               m.study_path.c_str(), m.study.Cases());
   const studies::StudySummary& s = m.record.summary;
-  PrintStudySummary(m.study, s);
+  std::printf("%s", report::StudySummaryText(m.study, s).c_str());
+  PrintWarnings(m.study.warnings);
   std::printf("\nwrote %s/study_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
               a.out.c_str(), s.sobol ? ", _sobol.svg" : "");
   if (s.failed > 0)
@@ -219,8 +201,7 @@ void RegisterStudyCommands(CLI::App& app) {
       "study",
       "Tolerance study: Monte-Carlo and parameter sweeps of the quasi-static load sharing");
   static MergeArgs m;
-  cmd->add_option("study", a.study, "Study file (TOML, docs/studies.md)")
-      ->check(CLI::ExistingFile);
+  cmd->add_option("study", a.study, "Study file (TOML, docs/studies.md)")->check(CLI::ExistingFile);
   cmd->add_option("--out", a.out, "Output folder (rows CSV, summary JSON, SVG); a re-run resumes");
   AddNumber(cmd, "--threads", a.threads, "Worker threads (default: every core)", kThreads);
   AddNumber(cmd, "--max-cases", a.max_cases,
@@ -237,12 +218,12 @@ void RegisterStudyCommands(CLI::App& app) {
   cmd->add_option("--shard", a.shard,
                   "Only shard K of N (K/N, K from 0): the cases floor(K C/N) .. floor((K+1) C/N)");
   auto* merge = cmd->add_subcommand(
-      "merge", "Join the parts of a study (--cases/--shard runs) into the files a single run writes");
+      "merge",
+      "Join the parts of a study (--cases/--shard runs) into the files a single run writes");
   merge->add_option("parts", m.parts, "Part files (study_cases_*.csv) or folders of them")
       ->required();
   merge->add_option("--out", m.out, "Output folder (rows CSV, summary JSON, SVG)");
-  merge->add_option("--study", m.study,
-                    "The study file (default: the one the first part names)")
+  merge->add_option("--study", m.study, "The study file (default: the one the first part names)")
       ->check(CLI::ExistingFile);
   merge->callback([] { MergeStudyCommand(m); });
   cmd->callback([cmd] {

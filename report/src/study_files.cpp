@@ -116,8 +116,9 @@ MergedStudy MergeStudy(const std::vector<std::string>& paths, const std::string&
   // The shard's `--stresses` (its part line says so) is part of what it computed.
   m.study.scene.model.stresses = m.study.scene.model.stresses || head.stresses;
   if (head.study_line.find("; study_hash " + m.study.hash + ";") == std::string::npos)
-    throw std::invalid_argument(m.study_path + ": not the study of " + head.path + " (its hash is " +
-                                m.study.hash + "; the part's line is '" + head.study_line +
+    throw std::invalid_argument(m.study_path + ": not the study of " + head.path +
+                                " (its hash is " + m.study.hash + "; the part's line is '" +
+                                head.study_line +
                                 "'): the file changed since the shards ran, or give the study "
                                 "file they ran with --study FILE");
   studies::MergedRows merged = studies::MergeParts(m.study, m.parts);
@@ -129,6 +130,23 @@ MergedStudy MergeStudy(const std::vector<std::string>& paths, const std::string&
   WriteStudySummaryFiles(base, m.study.name, m.record,
                          Provenance(m.study.backend_name, &m.study.scene));
   return m;
+}
+
+std::string StudySummaryText(const studies::StudySpec& study, const studies::StudySummary& s) {
+  std::string t =
+      fmt::format("\n  {} of {} cases in the file, {} failed (left out of the statistics)\n",
+                  s.cases, study.Cases(), s.failed);
+  t += SampleSummaryText("K_gamma", s.k_gamma, "") +
+       SampleSummaryText("K_gamma (sweep mean)", s.k_gamma_mean, "") +
+       SampleSummaryText("TE peak-to-peak", s.te_peak_to_peak, " urad") +
+       SampleSummaryText("sun orbit", s.sun_orbit, " um") + StudyRootStressText(s.root_stress);
+  for (const studies::Exceedance& e : s.k_gamma_exceedance) t += ExceedanceText(e);
+  t += "  Spearman rank correlation of K_gamma with\n";
+  for (std::size_t j = 0; j < s.columns.size(); ++j)
+    t +=
+        fmt::format("    {:<36} {}\n", s.columns[j], Num(s.spearman[j], "{:+.3f}", "- (constant)"));
+  if (s.sobol) t += SobolText(*s.sobol);
+  return t;
 }
 
 }  // namespace epicycle::report

@@ -16,6 +16,9 @@ namespace epicycle::report {
 
 /// One line: "P(K_gamma > x) = p [lo, hi] (k of n cases)".
 std::string ExceedanceText(const studies::Exceedance& e);
+/// A study's summary on the terminal (a run's and a merge's): the cases, K_γ and the outputs'
+/// statistics, root stresses, K_γ's exceedances, the Spearman correlations and the Sobol indices.
+std::string StudySummaryText(const studies::StudySpec& study, const studies::StudySummary& s);
 
 /// Two lines and one per percentile: "NAME mean m [lo, hi], std s, max x UNIT", then
 /// "P<p> value [lo, hi]" ("-" where a statistic has no value).
