@@ -66,7 +66,8 @@ void FaceLoadFiles::Write(const transmission::PositionResult& r) {
     line += fmt::format(",{},{},{}", Num(f.k_h_beta), Num(f.largest_z * 1e3), Num(f.mean * 1e-3));
     for (int s = 0; s < slices_; ++s) {
       const double w = f.line_load[static_cast<std::size_t>(s)] * 1e-3;  // [N/mm]
-      line += "," + Num(w);
+      line += ',';
+      line += Num(w);
       double& cell = map_[m][static_cast<std::size_t>(s * columns_ + column)];
       cell = std::isnan(cell) ? w : std::max(cell, w);
     }
