@@ -2,6 +2,7 @@
 // the failure that exits 1; and the report library's writers under the app's namespace.
 #pragma once
 
+#include <cerrno>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -71,6 +72,21 @@ inline void Progress(int done, int total, int failed, double seconds, const char
 
 /// Scene warnings (Scene::warnings plus those computed from results), printed to stdout under a
 /// "WARNING" heading; nothing if the list is empty.
+/// The errno of the first write to the standard output that failed (0: none): main names it when
+/// the final flush finds the stream's error flag (a report larger than the stream's buffer is
+/// written, and fails, inside the call that prints it).
+inline int& StdoutErrno() {
+  static int first = 0;
+  return first;
+}
+
+/// `text` onto the standard output; a write that fails keeps its errno (StdoutErrno).
+inline void Print(const std::string& text) {
+  errno = 0;
+  if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() && StdoutErrno() == 0)
+    StdoutErrno() = errno != 0 ? errno : EIO;
+}
+
 inline void PrintWarnings(const std::vector<std::string>& warnings) {
   if (warnings.empty()) return;
   std::printf(

@@ -52,8 +52,7 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
   ContactSolution sol;
   const ContactReport r = solver->Solve(problem, options, &sol);
   const bool converged = r.status == ContactStatus::kConverged;
-  fmt::print("{}",
-             report::ContactSolveText(problem, file, FileHash(path), backend, options, r, sol));
+  Print(report::ContactSolveText(problem, file, FileHash(path), backend, options, r, sol));
   if (!converged)
     throw ComputationFailed(fmt::format("{}: the {} back end did not converge: {} ({})", path,
                                         solvers::BackendName(backend),
@@ -123,7 +122,7 @@ void CompareCommand(const std::vector<std::string>& inputs, const std::string& c
   }
   const report::ComparisonTables tables =
       report::ComparisonSummaryText(rows, names, files.size(), tol, repeats);
-  fmt::print("{}", tables.console);
+  Print(tables.console);
   const std::string& md = tables.markdown;
   if (out) out->Close();
   if (!csv.empty()) fmt::print("\nCSV written to {}\n", csv);

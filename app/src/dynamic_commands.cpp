@@ -66,7 +66,7 @@ class ConsoleSink final : public report::DynamicRunOutput {
 
   void Start(const dynamics::DynamicPlan& p) override {
     if (!p.cost_warning.empty()) std::fprintf(stderr, "warning: %s\n", p.cost_warning.c_str());
-    std::printf("%s", report::DynamicPlanText(p, a_.integrator, a_.backend).c_str());
+    Print(report::DynamicPlanText(p, a_.integrator, a_.backend));
     DynamicRunOutput::Start(p);
     planets_ = p.rig->stage.planets();
     outputs_ = p.span->outputs;
@@ -180,9 +180,9 @@ void RunDynamic(const DynamicArgs& a) {
   ConsoleSink sink(a, Provenance(a.backend, &request.scene));
   const dynamics::DynamicRecord record = dynamics::RunDynamic(request, sink);
   if (sink.started()) {
-    std::printf("%s", sink.spectrum_text().c_str());
+    Print(sink.spectrum_text());
     if (sink.tty() && !record.completed()) std::fprintf(stderr, "\n");
-    std::printf("%s", report::DynamicRecordText(record, sink.planets()).c_str());
+    Print(report::DynamicRecordText(record, sink.planets()));
   }
   PrintWarnings(record.warnings);
   sink.Finish(record);
@@ -210,9 +210,7 @@ struct ModesArgs {
 // The program's modes sink: the rig's header on the console before the modes are solved.
 class ModesConsole final : public dynamics::ModesSink {
  public:
-  void Start(const dynamics::ModesPlan& p) override {
-    std::printf("%s", report::ModesPlanText(p).c_str());
-  }
+  void Start(const dynamics::ModesPlan& p) override { Print(report::ModesPlanText(p)); }
 };
 
 void RunModes(const ModesArgs& a) {
@@ -224,7 +222,7 @@ void RunModes(const ModesArgs& a) {
   request.tables = TableOptions(a.cache, a.no_cache);
   ModesConsole console;
   const dynamics::ModesRecord r = dynamics::RunModes(request, console);
-  std::printf("%s", report::ModesRecordText(r).c_str());
+  Print(report::ModesRecordText(r));
   PrintWarnings(r.warnings);
   if (!a.json.empty()) {
     WriteTextFile(a.json,

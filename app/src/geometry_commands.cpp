@@ -43,7 +43,7 @@ void RegisterGeometryCommands(CLI::App& app) {
       json report = report::PairJson(scene, pair);
       report["provenance"] = Provenance("none", &scene);
       report["warnings"] = scene.warnings;
-      std::printf("%s", report::GeometryReportText(report).c_str());
+      Print(report::GeometryReportText(report));
       PrintWarnings(scene.warnings);
       if (!json_path.empty()) WriteTextFile(json_path, report.dump(2) + "\n");
       if (!svg_path.empty()) {
@@ -63,7 +63,7 @@ void RegisterGeometryCommands(CLI::App& app) {
     json report = report::StageJson(scene, stage);
     report["provenance"] = Provenance("none", &scene);
     report["warnings"] = scene.warnings;
-    std::printf("%s", report::GeometryReportText(report).c_str());
+    Print(report::GeometryReportText(report));
     PrintWarnings(scene.warnings);
     if (!json_path.empty()) {
       WriteTextFile(json_path, report.dump(2) + "\n");
@@ -110,13 +110,11 @@ void RegisterGeometryCommands(CLI::App& app) {
     const transmission::Scene scene = transmission::ReadScene(contacts_scene);
     transmission::RequireSpur(scene, "`epicycle contacts` (the planar contact search)");
     if (scene.kind == transmission::SceneKind::kPair) {
-      std::printf("%s", report::PairContactsText(geometry::GearPair(scene.pair), contacts_deg,
-                                                 scene.gap_window)
-                            .c_str());
+      Print(
+          report::PairContactsText(geometry::GearPair(scene.pair), contacts_deg, scene.gap_window));
     } else {
-      std::printf("%s", report::StageContactsText(transmission::MakeStage(scene), contacts_deg,
-                                                  scene.gap_window)
-                            .c_str());
+      Print(report::StageContactsText(transmission::MakeStage(scene), contacts_deg,
+                                      scene.gap_window));
     }
     PrintWarnings(scene.warnings);
   });

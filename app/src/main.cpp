@@ -44,9 +44,11 @@ int main(int argc, char** argv) {
   // The printed report is a result too: one that could not be written is a failure.
   errno = 0;
   if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-    // errno is the flush's; an earlier write that failed left only the stream's error flag.
+    // errno is the flush's, or the first failed write's (a report larger than the stream's
+    // buffer is written inside the call that prints it); else only the error flag is left.
+    const int cause = errno != 0 ? errno : epicycle::app::StdoutErrno();
     std::fprintf(stderr, "epicycle: failed: standard output: cannot be written: %s\n",
-                 errno != 0 ? std::strerror(errno) : "an earlier write failed");
+                 cause != 0 ? std::strerror(cause) : "an earlier write failed");
     return 1;
   }
   return 0;

@@ -112,9 +112,8 @@ void RunBranch(const BranchArgs& a, const dynamics::StageDynamics& rig,
       "%s: periodic orbits continued over %s from %s to %s (%s), sun %s, period %ld mesh "
       "cycle(s), rtol %.1e\n",
       scene.name.c_str(), o.parameter.c_str(), Num(o.start).c_str(), Num(o.end).c_str(),
-      (a.option + " " + a.spec).c_str(),
-      transmission::SunSupportName(rig.stage_model.setup().sun), o.period.mesh_cycles,
-      simulation.rtol);
+      (a.option + " " + a.spec).c_str(), transmission::SunSupportName(rig.stage_model.setup().sun),
+      o.period.mesh_cycles, simulation.rtol);
   for (const std::string& m : rig.compliance.tables().messages()) std::printf("  %s\n", m.c_str());
   std::printf("  %-6s %-14s %-10s %-11s %-10s %-12s %s\n", "point", o.parameter.c_str(),
               "stability", "max |mu|", "K_gamma", "TE amp urad", "bifurcations before");
@@ -133,8 +132,8 @@ void RunBranch(const BranchArgs& a, const dynamics::StageDynamics& rig,
           std::string before;
           for (const dynamics::StageBranchBifurcation& b : r.bifurcations)
             if (b.after_point == p.index)
-              before += fmt::format("{} at {} ", dynamics::BifurcationKindName(b.kind),
-                                    Num(b.parameter));
+              before +=
+                  fmt::format("{} at {} ", dynamics::BifurcationKindName(b.kind), Num(b.parameter));
           std::printf("  %-6d %-14s %-10s %-11.6f %-10.5f %-12.4f %s\n", p.index,
                       Num(p.parameter).c_str(), dynamics::StabilityName(p.stability).c_str(),
                       p.spectral_radius, p.k_gamma, p.te_amplitude * 1e6, before.c_str());
@@ -161,11 +160,11 @@ void RunBranch(const BranchArgs& a, const dynamics::StageDynamics& rig,
       "variational equations (%ld steps); %.2f s CPU, %.2f s wall\n",
       rec.points.size(), unstable, rec.bifurcations.size(), rec.integrations, rec.steps,
       rec.cpu_seconds, rec.wall_seconds);
-  std::printf("\nwrote %s.csv, _summary.json, _k_gamma.svg, _te_amplitude.svg, "
-              "_spectral_radius.svg\n",
-              path.c_str());
-  if (!rec.ok())
-    throw ComputationFailed(rec.message.empty() ? rec.figures_message : rec.message);
+  std::printf(
+      "\nwrote %s.csv, _summary.json, _k_gamma.svg, _te_amplitude.svg, "
+      "_spectral_radius.svg\n",
+      path.c_str());
+  if (!rec.ok()) throw ComputationFailed(rec.message.empty() ? rec.figures_message : rec.message);
 }
 
 }  // namespace epicycle::app

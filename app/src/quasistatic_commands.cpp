@@ -46,7 +46,7 @@ class ConsoleSink final : public report::QuasiStaticRunFiles {
         tty_(!a.quiet && isatty(fileno(stderr))) {}
 
   void Start(const transmission::QuasiStaticPlan& p) override {
-    std::printf("%s", report::QuasiStaticPlanText(p, a_.backend, a_.cold, a_.threads).c_str());
+    Print(report::QuasiStaticPlanText(p, a_.backend, a_.cold, a_.threads));
     QuasiStaticRunFiles::Start(p);
     count_ = p.positions;
     t0_ = std::chrono::steady_clock::now();
@@ -94,7 +94,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   ConsoleSink sink(a, Provenance(a.backend, &request.scene));
   const transmission::QuasiStaticRecord record = transmission::RunQuasiStatic(request, sink);
   sink.Close();
-  std::printf("%s", report::QuasiStaticRecordText(record, sink.base()).c_str());
+  Print(report::QuasiStaticRecordText(record, sink.base()));
   PrintWarnings(record.warnings);
   sink.Finish(record);
   std::printf(

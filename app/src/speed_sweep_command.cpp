@@ -71,7 +71,7 @@ class ConsoleSweepSink final : public dynamics::SpeedSweepSink {
       : a_(a), provenance_(std::move(provenance)), tty_(!a.quiet && isatty(fileno(stderr))) {}
 
   void Start(const dynamics::SpeedSweepStart& start) override {
-    std::printf("%s", report::SpeedSweepPlanText(start).c_str());
+    Print(report::SpeedSweepPlanText(start));
     std::fflush(stdout);  // the plan is on screen (or in a log) before the runs start
     std::filesystem::create_directories(a_.out);
     csv_.emplace(path() + ".csv", provenance_);
@@ -109,7 +109,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, dynamics::SpeedSweepRequest request)
   ConsoleSweepSink sink(a, Provenance(a.backend, &request.run.scene));
   const dynamics::SpeedSweepRecord record = dynamics::RunSpeedSweep(request, sink);
   sink.Close();
-  std::printf("%s", report::SpeedSweepRecordText(record).c_str());
+  Print(report::SpeedSweepRecordText(record));
   const std::string path = sink.path();
   WriteTextFile(path + "_summary.json",
                 report::SpeedSweepRecordJson(record, sink.provenance()).dump(2) + "\n");

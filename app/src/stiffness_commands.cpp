@@ -35,7 +35,8 @@ struct StiffnessArgs {
 // computed (a failed sample said on stderr).
 class ConsoleSink final : public transmission::StiffnessSink {
  public:
-  ConsoleSink(const StiffnessArgs& a, json provenance) : a_(a), provenance_(std::move(provenance)) {}
+  ConsoleSink(const StiffnessArgs& a, json provenance)
+      : a_(a), provenance_(std::move(provenance)) {}
 
   void Pair(const transmission::StiffnessPlan& p) override {
     std::printf("%s: mesh %s, torque on gear 1 %.3f N m, %d positions per cycle, cycles %d..%d\n",
@@ -45,8 +46,7 @@ class ConsoleSink final : public transmission::StiffnessSink {
 
   void Start(const transmission::StiffnessPlan& p) override {
     const transmission::MeshPairSetup& setup = *p.setup;
-    for (const std::string& m : p.compliance->tables().messages())
-      std::printf("  %s\n", m.c_str());
+    for (const std::string& m : p.compliance->tables().messages()) std::printf("  %s\n", m.c_str());
     for (const std::string& d : p.scene->damage.Describe()) std::printf("  %s\n", d.c_str());
     std::filesystem::create_directories(a_.out);
     base = a_.out + "/stiffness_" + setup.mesh;
@@ -93,10 +93,10 @@ void RunStiffness(const StiffnessArgs& a) {
   sink.Close();
   const transmission::MeshStiffnessResult& result = record.result;
   const std::string& base = sink.base;
-  std::printf("%s", report::MeshStiffnessText(record).c_str());
-  report::WriteMeshStiffnessPlot(base + ".svg", record.scene + ": " + result.mesh + " mesh stiffness",
-                                 result, sink.face_width,
-                                 {record.iso6336_c_gamma_alpha, record.iso6336_c_prime});
+  Print(report::MeshStiffnessText(record));
+  report::WriteMeshStiffnessPlot(
+      base + ".svg", record.scene + ": " + result.mesh + " mesh stiffness", result, sink.face_width,
+      {record.iso6336_c_gamma_alpha, record.iso6336_c_prime});
   PrintWarnings(record.warnings);
   if (record.healthy) {  // the same cycles with healthy teeth, beside
     const transmission::MeshStiffnessResult& healthy = *record.healthy;

@@ -164,7 +164,7 @@ void RunStudyCommand(const StudyArgs& a) {
   }
 
   const studies::StudySummary& s = run.record->summary;
-  std::printf("%s", report::StudySummaryText(study, s).c_str());
+  Print(report::StudySummaryText(study, s));
   PrintWarnings(study.warnings);
   report::WriteStudySummaryFiles(base, study.name, *run.record, provenance);
   std::printf("\nwrote %s_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
@@ -184,7 +184,7 @@ void MergeStudyCommand(const MergeArgs& a) {
   std::printf("%s: %zu parts of %s merged, %ld cases\n", m.study.name.c_str(), m.parts.size(),
               m.study_path.c_str(), m.study.Cases());
   const studies::StudySummary& s = m.record.summary;
-  std::printf("%s", report::StudySummaryText(m.study, s).c_str());
+  Print(report::StudySummaryText(m.study, s));
   PrintWarnings(m.study.warnings);
   std::printf("\nwrote %s/study_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
               a.out.c_str(), s.sobol ? ", _sobol.svg" : "");
