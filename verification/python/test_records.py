@@ -47,6 +47,20 @@ def test_quasistatic_record_equals_the_program_json(tmp_path):
     assert program["positions"] == 60 and program["converged_positions"] == 60
 
 
+def test_face_width_record_equals_the_program_json(tmp_path):
+    # Slices of the face width (docs/face_width.md): planet 1's radial pin tilt loads its sun mesh
+    # at -z and its ring mesh at +z, the end slices' centres -+11.875 mm of the 25 mm face in 20.
+    scene = scene_path("paper_stage_pin_tilt.toml")
+    run_cli("quasistatic", scene, "--positions", "6", "--quiet", "--out", tmp_path)
+    program = read_json(tmp_path / "quasistatic_summary.json")
+    python = epicycle.quasistatic(epicycle.Scene.load(scene), positions=6).record
+    same_record(program, python)
+    meshes = {m["mesh"]: m for m in python["face_width"]}
+    assert meshes["sun-planet1"]["largest_load_z_mm"] == -11.875
+    assert meshes["planet1-ring"]["largest_load_z_mm"] == 11.875
+    assert meshes["sun-planet1"]["K_Hbeta_max"] > 1.05
+
+
 def test_study_record_equals_the_program_json(tmp_path):
     # Four cases of 24 positions (verification/data/studies/kgamma_limit_small.toml): every
     # default of both sides, the exceedances and the Spearman columns in the record.
