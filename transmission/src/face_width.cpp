@@ -46,8 +46,7 @@ double GreenDoubleIntegral(double a1, double a2, double c1, double c2, double B)
 
 std::vector<double> SliceCentres(int slices, double width) {
   std::vector<double> z(static_cast<std::size_t>(slices));
-  const double dz = width / slices;
-  for (int s = 0; s < slices; ++s) z[static_cast<std::size_t>(s)] = -0.5 * width + (s + 0.5) * dz;
+  for (int s = 0; s < slices; ++s) z[static_cast<std::size_t>(s)] = SliceCentre(s, slices, width);
   return z;
 }
 
@@ -149,43 +148,13 @@ double FaceWidthModel::GapChange(const geometry::StagePoses& poses, const StageC
                                  int s) const {
   const bool ring = c.mesh == geometry::MeshKind::kPlanetRing;
   const double b = ring ? planet_ring_width_ : sun_planet_width_;
-  const double z = -0.5 * b + (s + 0.5) * b / spec_.slices;
+  const double z = SliceCentre(s, spec_.slices, b);
   const geometry::PotentialContact& p = c.contact;
   const Eigen::Vector2d tilt = AxisSlope(poses, c.body_a) - AxisSlope(poses, c.body_b);
   const BodyLead& la = lead_[static_cast<std::size_t>(c.body_a)];
   const BodyLead& lb = lead_[static_cast<std::size_t>(c.body_b)];
   return z * p.normal.dot(tilt) - z * (p.lever_a * la.slope + p.lever_b * lb.slope) -
          la.Removed(z) - lb.Removed(z);
-}
-
-double FaceWidthModel::LargestGapChange(const geometry::Stage& stage) const {
-  if (!active()) return 0;
-  const geometry::StagePoses poses = stage.Poses(0.0);
-  double worst = 0;
-  // Along each mesh's line of action (|lever| = r_b): the tilt's share n·t and the leads'.
-  for (int i = 0; i < stage.planets(); ++i) {
-    for (const bool ring : {false, true}) {
-      StageContact c;
-      c.planet = i;
-      c.mesh = ring ? geometry::MeshKind::kPlanetRing : geometry::MeshKind::kSunPlanet;
-      c.body_a = ring ? PlanetBody(i) : kSunBody;
-      c.body_b = ring ? kRingBody : PlanetBody(i);
-      const Eigen::Vector2d t = AxisSlope(poses, c.body_a) - AxisSlope(poses, c.body_b);
-      const double b = ring ? planet_ring_width_ : sun_planet_width_;
-      const geometry::Gear& ga = ring ? stage.planet(i) : stage.sun();
-      const geometry::Gear& gb = ring ? stage.ring() : stage.planet(i);
-      const BodyLead& la = lead_[static_cast<std::size_t>(c.body_a)];
-      const BodyLead& lb = lead_[static_cast<std::size_t>(c.body_b)];
-      for (int s = 0; s < spec_.slices; ++s) {
-        const double z = -0.5 * b + (s + 0.5) * b / spec_.slices;
-        const double change = std::abs(z) * (t.norm() + ga.base_radius() * std::abs(la.slope) +
-                                             gb.base_radius() * std::abs(lb.slope)) +
-                              la.Removed(z) + lb.Removed(z);
-        worst = std::max(worst, change);
-      }
-    }
-  }
-  return worst;
 }
 
 void FaceWidthModel::Expand(const geometry::StagePoses& poses, const DamageModel& damage,
@@ -257,7 +226,7 @@ std::vector<MeshFaceLoad> FaceLoads(const geometry::Stage& stage, int slices,
     const auto top = std::max_element(f.line_load.begin(), f.line_load.end());
     f.largest_slice = static_cast<int>(top - f.line_load.begin());
     const double b = f.ring_mesh ? b_pr : b_sp;
-    f.largest_z = -0.5 * b + (f.largest_slice + 0.5) * b / slices;
+    f.largest_z = SliceCentre(f.largest_slice, slices, b);
     f.k_h_beta = f.mean > 0 ? *top / f.mean : 1.0;
   }
   return out;

@@ -89,6 +89,10 @@ inline constexpr int kMaxFaceSlices = 200;
 Eigen::MatrixXd FaceCouplingMatrix(int slices, double width, FaceCoupling coupling,
                                    double coupling_length);
 
+/// z_s = −b/2 + (s + ½) b/S [m], the centre of slice s of a face of width b.
+inline double SliceCentre(int slice, int slices, double width) {
+  return -0.5 * width + (slice + 0.5) * width / slices;
+}
 /// z_s [m] of the slices of a face of width b.
 std::vector<double> SliceCentres(int slices, double width);
 
@@ -113,10 +117,6 @@ class FaceWidthModel {
 
   /// The gap change [m] of slice s of `contact` (the terms in the header's equation but δ_j).
   double GapChange(const geometry::StagePoses& poses, const StageContact& contact, int s) const;
-
-  /// The largest |gap change| [m] over every mesh's slices at the stage's reference poses (for
-  /// the scene's check against the contact search's gap window).
-  double LargestGapChange(const geometry::Stage& stage) const;
 
   /// The axis slope of body b in the inertial frame at these poses [-].
   Eigen::Vector2d AxisSlope(const geometry::StagePoses& poses, int body) const;
