@@ -9,16 +9,16 @@
 
 #include <chrono>
 #include <ctime>
-#include <memory>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 
 #include "epicycle/studies/runner.hpp"
 #include "epicycle/studies/sampling.hpp"
-#include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/run_range.hpp"
 
 namespace {
 
@@ -57,7 +57,7 @@ void BM_Study1000MeshCycles(benchmark::State& state) {
     state.ResumeTiming();
     const studies::RunReport r = studies::RunStudy(study, o);
     seconds += r.seconds;
-    for (const auto& row : r.rows) failed += row.ok ? 0 : 1;
+    for (const auto& row : r.rows) failed += row.ok() ? 0 : 1;
   }
   std::filesystem::remove(rows);
   const double cases = static_cast<double>(kCases) * static_cast<double>(state.iterations());
@@ -110,8 +110,8 @@ BENCHMARK(BM_SingleSweepSameSize)->Iterations(1)->Unit(benchmark::kSecond)->UseR
 void BM_ShippedStudy(benchmark::State& state) {
   const char* files[] = {"pin_tolerance.toml", "grades_and_torque.toml"};
   const long limits[] = {-1, 40};
-  const studies::StudySpec study = studies::ReadStudy(std::string(EPICYCLE_SCENES_DIR) +
-                                                      "/studies/" + files[state.range(0)]);
+  const studies::StudySpec study =
+      studies::ReadStudy(std::string(EPICYCLE_SCENES_DIR) + "/studies/" + files[state.range(0)]);
   const std::string rows =
       (std::filesystem::temp_directory_path() / "epicycle-bench-shipped-study.csv").string();
   studies::RunOptions o;
@@ -132,7 +132,7 @@ void BM_ShippedStudy(benchmark::State& state) {
     cpu += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC - r.table_seconds;
     seconds += r.seconds;
     cases += r.computed;
-    for (const auto& row : r.rows) failed += row.ok ? 0 : 1;
+    for (const auto& row : r.rows) failed += row.ok() ? 0 : 1;
   }
   std::filesystem::remove(rows);
   state.counters["cases_per_s"] = static_cast<double>(cases) / seconds;
@@ -183,8 +183,8 @@ void BM_CasePhases(benchmark::State& state) {
       if (study.sun) setup_of.sun = *study.sun;
       const transmission::StageModel model(stage, compliance, setup_of);
       const auto angles = transmission::SweepAngles(
-          study.start_angle,
-          transmission::CarrierSpan(stage, transmission::RunRange::kMeshCycle), study.positions);
+          study.start_angle, transmission::CarrierSpan(stage, transmission::RunRange::kMeshCycle),
+          study.positions);
       transmission::QuasiStaticOptions opt;
       opt.threads = 1;
       setup += since(t0);

@@ -1,5 +1,4 @@
 // `epicycle contact solve|compare|stability`: the contact core on problem files.
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -11,7 +10,6 @@
 
 #include "commands.hpp"
 #include "console.hpp"
-#include "epicycle/config.h"
 #include "epicycle/report/contact_plots.hpp"
 #include "epicycle/report/contact_text.hpp"
 #include "epicycle/solvers/backend_comparison.hpp"
@@ -59,134 +57,76 @@ void SolveCommand(const std::string& path, const std::string& backend_name, doub
                                         solvers::StatusName(r.status), r.message));
 }
 
+// The program's comparison sink: a failed run on stderr as it happens, every run a flushed row
+// of the CSV (a later bad file or an interrupted run keeps every row computed before it).
+class CompareConsole final : public solvers::ComparisonSink {
+ public:
+  explicit CompareConsole(std::optional<CsvFile>* csv) : csv_(csv) {}
+  void Failure(const std::string& what) override {
+    std::fprintf(stderr, "contact compare: FAILED %s\n", what.c_str());
+  }
+  void Run(const ComparisonRun& run) override {
+    if (*csv_) (*csv_)->WriteLine(report::ComparisonCsvRow(run));
+  }
+
+ private:
+  std::optional<CsvFile>* csv_;
+};
+
 void CompareCommand(const std::vector<std::string>& inputs, const std::string& csv,
                     const std::string& svg_prefix, double tol, int repeats,
                     const std::string& markdown) {
-  const std::vector<std::string> files = solvers::ListProblemFiles(inputs);
-  const std::vector<Backend> backends = solvers::AvailableBackends();
-  std::vector<ComparisonRun> rows;
-  std::vector<std::string> names, problem_names;
-  for (Backend b : backends) names.push_back(solvers::BackendName(b));
-  ContactOptions options;
-  options.tolerance = tol;
-  // The CSV is written as the runs are computed (one flushed row per run), so that a later bad
-  // file or an interrupted run keeps every row computed before it.
+  solvers::ComparisonRequest request;
+  request.inputs = inputs;
+  request.backends = solvers::AvailableBackends();
+  request.options.tolerance = tol;
+  request.repeats = repeats;
   std::optional<CsvFile> out;
   if (!csv.empty()) {
+    const std::vector<std::string> files = solvers::ListProblemFiles(inputs);
     const fs::path parent = fs::path(csv).parent_path();
     if (!parent.empty()) fs::create_directories(parent);
     out.emplace(csv);
-    std::string hashes;
+    std::string hashes, backends_used;
     for (const std::string& f : files) hashes += FileHash(f) + "\n";
-    std::string backends_used;
-    for (const std::string& b : names) backends_used += (backends_used.empty() ? "" : " ") + b;
+    for (Backend b : request.backends)
+      backends_used += (backends_used.empty() ? "" : " ") + solvers::BackendName(b);
     out->Write(ProvenanceCsvLine(FileProvenance(backends_used,
                                                 fmt::format("{} problem files", files.size()),
                                                 transmission::ContentHash(hashes))));
-    out->WriteLine(
-        "backend,problem,category,status,residual,force_error,multiplier_error,"
-        "displacement_error,median_seconds,iterations,message");
+    out->WriteLine(report::ComparisonCsvHeader());
   }
-  // Failed runs: reported on stderr as they happen, and the command exits 1 at the end.
-  std::vector<std::string> failures;
-  auto fail = [&](const std::string& what) {
-    std::fprintf(stderr, "contact compare: FAILED %s\n", what.c_str());
-    failures.push_back(what);
-  };
-  for (const std::string& path : files) {
-    const ContactProblemFile file = solvers::ReadContactProblemFile(path);
-    const ContactProblem problem(file.data);
-    problem_names.push_back(problem.name());
-    const solvers::TimedSolve ref = solvers::SolveReference(problem);
-    if (ref.report.status != ContactStatus::kConverged)
-      fail(fmt::format(
-          "reference (newton at {:.0e}) on {} ({}): {}; errors of this problem "
-          "are against its last iterate",
-          solvers::kReferenceTolerance, problem.name(), path,
-          solvers::StatusWithMessage(solvers::StatusName(ref.report.status), ref.report.message)));
-    for (Backend b : backends) {
-      const ComparisonRun row =
-          solvers::CompareBackend(b, problem, file.category, options, repeats, ref.solution);
-      if (!row.solved)
-        fail(fmt::format("{} on {} ({}): {}", row.backend, row.problem, path,
-                         solvers::StatusWithMessage(row.status, row.message)));
-      if (out)
-        out->WriteLine(
-            fmt::format("{},{},{},{},{},{},{},{},{},{},{}", CsvText(row.backend),
-                        CsvText(row.problem), CsvText(row.category), CsvText(row.status),
-                        Num(row.residual, "{:.6e}"), Num(row.force_error, "{:.6e}"),
-                        Num(row.multiplier_error, "{:.6e}"), Num(row.displacement_error, "{:.6e}"),
-                        Num(row.median_seconds, "{:.6e}"), row.iterations, CsvText(row.message)));
-      rows.push_back(row);
-    }
-  }
-  const report::ComparisonTables tables =
-      report::ComparisonSummaryText(rows, names, files.size(), tol, repeats);
+  CompareConsole console(&out);
+  const solvers::ComparisonRecord record = solvers::RunComparison(request, console);
+  const report::ComparisonTables tables = report::ComparisonSummaryText(
+      record.runs, record.backends, record.files.size(), tol, repeats);
   Print(tables.console);
-  const std::string& md = tables.markdown;
   if (out) out->Close();
   if (!csv.empty()) fmt::print("\nCSV written to {}\n", csv);
-  if (!markdown.empty()) WriteTextFile(markdown, md);
+  if (!markdown.empty()) WriteTextFile(markdown, tables.markdown);
   if (!svg_prefix.empty()) {
     std::vector<solvers::ProfileRun> runs;
     std::vector<report::ErrorTimePoint> points;
-    for (const ComparisonRun& r : rows) {
+    for (const ComparisonRun& r : record.runs) {
       runs.push_back({r.problem, r.backend, r.median_seconds, r.solved});
       points.push_back({r.backend, r.median_seconds, r.error(), r.solved});
     }
     WriteTextFile(svg_prefix + "_profile.svg",
-                  report::PerformanceProfileSvg(solvers::DolanMoreProfile(runs, names),
-                                                problem_names.size()));
-    WriteTextFile(svg_prefix + "_error_vs_time.svg", report::ErrorVersusTimeSvg(names, points));
+                  report::PerformanceProfileSvg(solvers::DolanMoreProfile(runs, record.backends),
+                                                record.problem_names.size()));
+    WriteTextFile(svg_prefix + "_error_vs_time.svg",
+                  report::ErrorVersusTimeSvg(record.backends, points));
     fmt::print("SVG written to {0}_profile.svg and {0}_error_vs_time.svg\n", svg_prefix);
   }
-  if (!failures.empty())
+  if (!record.failures.empty())
     throw ComputationFailed(fmt::format(
         "{} of {} runs (the reference and every back end on every problem) did not converge: "
         "listed above as FAILED; every run's row is in the table{}",
-        failures.size(), files.size() * (backends.size() + 1), csv.empty() ? "" : " and the CSV"));
+        record.failures.size(), record.RunsInAll(), csv.empty() ? "" : " and the CSV"));
 }
 
 void StabilityCommand(const std::string& dir, double tol) {
-  std::vector<std::string> files;
-  for (const std::string& f : solvers::ListProblemFiles({dir}))
-    if (solvers::ReadContactProblemFile(f).category == "stiff") files.push_back(f);
-  const std::vector<Backend> backends = solvers::AllBackends();
-  std::string table = "| case | N | m |";
-  std::string rule = "|---|---|---|";
-  for (Backend b : backends) {
-    table += " " + solvers::BackendName(b) + " |";
-    rule += "---|";
-  }
-  table += "\n" + rule + "\n";
-  ContactOptions options;
-  options.tolerance = tol;
-  for (const std::string& path : files) {
-    const ContactProblemFile file = solvers::ReadContactProblemFile(path);
-    const ContactProblem problem(file.data);
-    const solvers::TimedSolve ref = solvers::SolveReference(problem);
-    table += fmt::format("| {} | {} | {} |", problem.name(), problem.num_contacts(),
-                         problem.num_equalities());
-    for (Backend b : backends) {
-      const ComparisonRun run =
-          solvers::CompareBackend(b, problem, file.category, options, 1, ref.solution);
-      std::string cell = "n/a";
-      if (run.status != solvers::StatusName(ContactStatus::kBackendUnavailable)) {
-        cell = fmt::format("{}, res {:.0e}, err {:.0e}", run.status, run.residual,
-                           std::max(run.force_error, run.displacement_error));
-        if (!run.finite) cell += ", NaN!";
-        if (run.solved && run.residual > tol) cell += ", BAD";
-      }
-      table += " " + cell + " |";
-    }
-    table += "\n";
-  }
-  table += fmt::format(
-      "\nTolerance {:.0e}; err = max relative force / rigid-displacement difference from the "
-      "active-set Newton at {:.0e} (see CompareSolutions). Written by `epicycle contact "
-      "stability` ({}).\n",
-      tol, solvers::kReferenceTolerance, EPICYCLE_VERSION);
-  fmt::print("{}", table);
+  Print(report::StabilityTableText(solvers::RunStability(dir, tol), tol));
 }
 
 }  // namespace

@@ -47,14 +47,10 @@ void RegisterGeometryCommands(CLI::App& app) {
       PrintWarnings(scene.warnings);
       if (!json_path.empty()) WriteTextFile(json_path, report.dump(2) + "\n");
       if (!svg_path.empty()) {
-        if (!zoom_mesh.empty() && zoom_mesh != "gear1-gear2") {
-          throw std::invalid_argument("--zoom = " + zoom_mesh +
-                                      ": a gear pair has one mesh, gear1-gear2");
-        }
-        const geometry::PairPoses p = pair.Poses(geometry::Rad(carrier_deg));
         WriteTextFile(svg_path,
-                      report::DrawMeshZoom(pair.A(p), pair.B(p), pair.internal(),
-                                           pair.loaded_side(), scene.gap_window, relief_scale));
+                      report::DrawPairMeshZoom(pair, geometry::Rad(carrier_deg),
+                                               zoom_mesh.empty() ? "gear1-gear2" : zoom_mesh,
+                                               scene.gap_window, relief_scale));
         std::printf("wrote %s (tooth pair of gear1-gear2)\n", svg_path.c_str());
       }
       return;
@@ -70,23 +66,8 @@ void RegisterGeometryCommands(CLI::App& app) {
       std::printf("\nwrote %s\n", json_path.c_str());
     }
     if (!svg_path.empty() && !zoom_mesh.empty()) {
-      // "sun-planet<i>" or "planet<i>-ring": the mesh names of the report.
-      const geometry::StagePoses p = stage.Poses(geometry::Rad(carrier_deg));
-      int found = -1;
-      for (int m = 0; m < static_cast<int>(stage.meshes().size()); ++m) {
-        if (stage.meshes()[m].name == zoom_mesh) found = m;
-      }
-      if (found < 0) {
-        throw std::invalid_argument("--zoom = " + zoom_mesh +
-                                    ": not a mesh of the stage (sun-planet<i>, planet<i>-ring)");
-      }
-      const int i = found / 2;
-      const bool ring = found % 2 == 1;
-      const std::string svg =
-          ring ? report::DrawMeshZoom(stage.Planet(p, i), stage.Ring(p), true,
-                                      stage.ring_mesh_planet_side(), scene.gap_window, relief_scale)
-               : report::DrawMeshZoom(stage.Sun(p), stage.Planet(p, i), false,
-                                      stage.sun_mesh_side(), scene.gap_window, relief_scale);
+      const std::string svg = report::DrawStageMeshZoom(stage, geometry::Rad(carrier_deg),
+                                                        zoom_mesh, scene.gap_window, relief_scale);
       WriteTextFile(svg_path, svg);
       std::printf("wrote %s (tooth pair of %s, carrier at %.3f deg)\n", svg_path.c_str(),
                   zoom_mesh.c_str(), carrier_deg);

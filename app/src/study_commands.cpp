@@ -87,7 +87,7 @@ class StudyConsole final : public studies::StudySink {
  public:
   explicit StudyConsole(bool tty) : tty_(tty), t0_(std::chrono::steady_clock::now()) {}
   void Row(const studies::CaseRow& r, long rows, long total) override {
-    if (!r.ok) {
+    if (!r.ok()) {
       ++failed_;
       if (!tty_) std::fprintf(stderr, "  case %ld FAILED: %s\n", r.id, r.message.c_str());
     }
@@ -151,7 +151,7 @@ void RunStudyCommand(const StudyArgs& a) {
   if (request.part) {
     // A part: its rows only; the summary is the merge's (over every case).
     long failed_rows = 0;
-    for (const studies::CaseRow& r : report.rows) failed_rows += r.ok ? 0 : 1;
+    for (const studies::CaseRow& r : report.rows) failed_rows += r.ok() ? 0 : 1;
     std::printf(
         "\nwrote %s: cases %ld:%ld, %zu of %ld rows (join the parts with `epicycle "
         "study merge %s`)\n",

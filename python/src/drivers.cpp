@@ -10,8 +10,8 @@
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/report/study_files.hpp"
 #include "epicycle/studies/runner.hpp"
-#include "epicycle/studies/sobol.hpp"
 #include "epicycle/studies/shards.hpp"
+#include "epicycle/studies/sobol.hpp"
 #include "epicycle/studies/study.hpp"
 #include "epicycle/studies/study_run.hpp"
 #include "epicycle/studies/study_summary.hpp"
@@ -89,11 +89,12 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   std::vector<double> values, kg, kgm, lmin, lmax, te, orbit;
   std::vector<int> positions, converged;
   std::vector<char> ok;
-  py::list message, lines;
+  py::list message, lines, status;
   for (const studies::CaseRow& r : run.rows) {
     id.push_back(r.id);
     values.insert(values.end(), r.values.begin(), r.values.end());
-    ok.push_back(r.ok);
+    ok.push_back(r.ok());
+    status.append(transmission::RunStatusName(r.status));
     message.append(r.message);
     positions.push_back(r.positions);
     converged.push_back(r.converged);
@@ -140,6 +141,7 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   f["case_id"] = Array(std::move(id));
   f["values"] = Array2(std::move(values), count, width);
   f["ok"] = BoolArray(ok);
+  f["status"] = status;
   f["message"] = message;
   f["positions"] = Array(std::move(positions));
   f["converged"] = Array(std::move(converged));
@@ -182,15 +184,14 @@ py::object StudyPart(const std::string& path, std::optional<std::pair<long, long
   o.part = range;
   std::filesystem::create_directories(out_dir);
   o.rows_file = (std::filesystem::path(out_dir) / studies::PartFileName(range)).string();
-  o.comment =
-      report::StudyComment(report::Provenance(study.backend_name, &study.scene), path);
+  o.comment = report::StudyComment(report::Provenance(study.backend_name, &study.scene), path);
   o.cache_directory = cache_dir ? *cache_dir : transmission::DefaultCacheDirectory();
   o.threads =
       threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.on_row = [&](const studies::CaseRow&, long rows, long total) { report(rows, total); };
   const studies::RunReport run = RunReleased(token, [&] { return studies::RunStudy(study, o); });
   long failed = 0;
-  for (const studies::CaseRow& r : run.rows) failed += r.ok ? 0 : 1;
+  for (const studies::CaseRow& r : run.rows) failed += r.ok() ? 0 : 1;
   py::dict f;
   f["part_file"] = o.rows_file;
   f["first_case"] = range.first;
@@ -282,8 +283,8 @@ void BindStudies(py::module_& m) {
         o.seed = seed;
         return SobolObject(studies::EstimateSobol(y, d, o));
       },
-      py::arg("y"), py::arg("d"), py::kw_only(), py::arg("bootstrap") = 1000, py::arg("level") = 0.95,
-      py::arg("seed") = 0, R"doc(
+      py::arg("y"), py::arg("d"), py::kw_only(), py::arg("bootstrap") = 1000,
+      py::arg("level") = 0.95, py::arg("seed") = 0, R"doc(
 First-order and total Sobol indices of one output (studies::EstimateSobol; docs/studies.md
 "Sensitivity: Sobol indices"): first order Saltelli 2010, total Jansen, outputs centred on their
 mean, V(Y) from A and B; rows with a non-finite value left out.

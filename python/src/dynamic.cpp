@@ -16,12 +16,14 @@
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
+#include "epicycle/dynamics/speed_sweep_run.hpp"
 #include "epicycle/dynamics/stage_branch.hpp"
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/io/units.hpp"
 #include "epicycle/report/ratings.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
+#include "epicycle/report/speed_sweep_run_files.hpp"
 #include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
@@ -59,6 +61,16 @@ struct Integration {
     o.max_order = max_order;
     o.Validate();
     return o;
+  }
+  // The same settings as a run's request (the library resolves and checks them).
+  void Apply(dynamics::DynamicRequest* request) const {
+    request->integrator = integrator;
+    request->rtol = rtol;
+    request->rate_scale = rate_scale;
+    request->contact_tolerance = contact_tol;
+    request->max_order = max_order;
+    request->analytic_jacobian = analytic_jacobian;
+    request->backend = backend;
   }
 };
 
@@ -142,9 +154,9 @@ class KeepSteps final : public dynamics::DynamicSink {
 py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
                    const std::string& range, double time_s, std::optional<int> outputs_per_cycle,
                    double start_deg, const Integration& integration,
-                   std::optional<std::string> cache_dir, py::object progress,
-                   bool raise_on_failure, bool stresses, bool rating,
-                   std::optional<long> max_steps, std::optional<double> time_limit_s) {
+                   std::optional<std::string> cache_dir, py::object progress, bool raise_on_failure,
+                   bool stresses, bool rating, std::optional<long> max_steps,
+                   std::optional<double> time_limit_s) {
   dynamics::DynamicRequest request;
   request.scene = scene->scene();
   request.names.speed = "dynamics.sun_speed_rpm";  // the scene key it sets
@@ -157,13 +169,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
     dynamics::CheckArgument("outputs_per_cycle", *outputs_per_cycle, dynamics::kOutputsPerCycle);
   request.outputs_per_cycle = outputs_per_cycle.value_or(0);
   request.start_deg = start_deg;
-  request.integrator = integration.integrator;
-  request.rtol = integration.rtol;
-  request.rate_scale = integration.rate_scale;
-  request.contact_tolerance = integration.contact_tol;
-  request.max_order = integration.max_order;
-  request.analytic_jacobian = integration.analytic_jacobian;
-  request.backend = integration.backend;
+  integration.Apply(&request);
   request.max_steps = max_steps;
   request.time_limit_s = time_limit_s;
   request.stresses = stresses;
@@ -406,6 +412,22 @@ py::object Modes(const ScenePtr& s, std::optional<std::vector<double>> speed_ran
   return Result(f);
 }
 
+// Python's sink of a speed sweep: the progress of the speeds as they complete.
+class SweepProgress final : public dynamics::SpeedSweepSink {
+ public:
+  explicit SweepProgress(const Progress& report) : report_(report) {}
+  void Start(const dynamics::SpeedSweepStart& start) override {
+    total_ = static_cast<long>(start.options->sun_speeds_rpm.size());
+  }
+  void Speed(const dynamics::SpeedResult&, const dynamics::SpeedSweepPlan&) override {
+    report_(++done_, total_);
+  }
+
+ private:
+  const Progress& report_;
+  long done_ = 0, total_ = 0;
+};
+
 py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_rpm,
                       const std::string& range, double window_cycles, int outputs_per_cycle,
                       double start_deg, int harmonics, int threads, const Integration& integration,
@@ -425,40 +447,28 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
   if (harmonics != 0)  // 0: every harmonic in the range
     dynamics::CheckArgument("harmonics", harmonics, dynamics::kHarmonics);
   dynamics::CheckArgument("threads", threads, transmission::kThreadsOrZero);
-  dynamics::SpeedSweepOptions o;
-  o.sun_speeds_rpm = sun_speeds_rpm;
-  o.threads =
-      threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  o.outputs_per_cycle = outputs_per_cycle;
-  o.harmonics = harmonics;
-  o.window_start = geometry::Rad(start_deg);
-  o.simulation = integration.Options();
-  const transmission::RunRange run_range = transmission::RunRangeFromName(range);
-  o.window_cycles = window_cycles > 0 ? window_cycles : 1;  // the range's: set with the stage
-  o.Validate();
+  dynamics::SpeedSweepRequest request;
+  dynamics::DynamicRequest& run = request.run;
+  run.scene = s->scene();
+  run.range = transmission::RunRangeFromName(range);
+  run.start_deg = start_deg;
+  run.outputs_per_cycle = outputs_per_cycle;
+  integration.Apply(&run);
+  run.tables = TableOptions(cache_dir);
+  if (run.scene.kind != transmission::SceneKind::kStage) RequireStage(run.scene, "speed sweep");
+  dynamics::ResolvedOptions(run);  // bad input as ValueError before the worker starts
+  request.sun_speeds_rpm = sun_speeds_rpm;
+  request.window_cycles = window_cycles;
+  request.harmonics = harmonics;
+  request.threads = threads;
   CancelToken token;
   const Progress report(std::move(progress), &token);
+  SweepProgress sink(report);
   struct Out {
-    std::shared_ptr<const dynamics::StageDynamics> rig;
-    dynamics::SpeedSweepResult result;
+    dynamics::SpeedSweepRecord record;
   };
-  const Out out = RunReleased(token, [&] {
-    Out x;
-    x.rig = s->Dynamics(cache_dir, "speed sweep");
-    const dynamics::StageDynamics& rig = *x.rig;
-    o.window_cycles =
-        window_cycles > 0 ? window_cycles : transmission::MeshCycles(rig.stage, run_range);
-    o.Validate();
-    // The modes from the tangent mesh stiffness (dynamics/speed_sweep.hpp).
-    o.modal_mesh_stiffness = dynamics::MeanTangentMeshStiffness(rig.scene, rig.stage, rig.fe);
-    const dynamics::SpeedSweepPlan plan = dynamics::PlanSpeedSweep(rig.model, o);
-    long done = 0;
-    const long total = static_cast<long>(o.sun_speeds_rpm.size());
-    x.result = dynamics::SweepSpeeds(rig.model, o, plan,
-                                     [&](const dynamics::SpeedResult&) { report(++done, total); });
-    return x;
-  });
-  const dynamics::SpeedSweepResult& r = out.result;
+  const Out out = RunReleased(token, [&] { return Out{dynamics::RunSpeedSweep(request, sink)}; });
+  const dynamics::SpeedSweepRecord& r = out.record;
   const dynamics::SpeedSweepPlan& plan = r.plan;
   std::vector<double> rpm, fm, kg, kv, peak, ref, te, orbit, lmin, lmax, dev, residual, wall, cpu;
   std::array<std::vector<double>, dynamics::kLoadSharingPartCount> parts;
@@ -520,7 +530,7 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
   pc["harmonic"] = Array(std::move(c_h));
   pc["phasing_excited"] = BoolArray(c_excited);
   py::dict f;
-  f["scene"] = out.rig->scene.name;
+  f["scene"] = r.scene;
   f["sun_speed_rpm"] = Array(std::move(rpm));
   f["mesh_frequency_Hz"] = Array(std::move(fm));
   f["ok"] = BoolArray(ok);
@@ -556,6 +566,10 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
     for (double a : plan.window_angles) d.push_back(geometry::Deg(a));
     return Array(std::move(d));
   }();
+  // The record as the program's summary JSON has it (its provenance is the program's).
+  nlohmann::json j = report::SpeedSweepRecordJson(r, nlohmann::json());
+  j.erase("provenance");
+  f["record"] = JsonToPython(j);
   py::object result = Result(f);
   if (r.failed() > 0 && raise_on_failure)
     RaiseComputationError(std::to_string(r.failed()) + " of " + std::to_string(r.speeds.size()) +
@@ -748,7 +762,7 @@ void BindSpeedSweep(py::module_& m) {
       },
       py::arg("scene"), py::arg("sun_speeds_rpm"), py::kw_only(), py::arg("range") = "planet",
       py::arg("window_cycles") = 0.0, py::arg("outputs_per_cycle") = 64, py::arg("start_deg") = 0.0,
-      py::arg("harmonics") = 6, py::arg("threads") = 0, py::arg("integrator") = "cvode-bdf",
+      py::arg("harmonics") = 0, py::arg("threads") = 0, py::arg("integrator") = "cvode-bdf",
       py::arg("rtol") = 1e-6, py::arg("rate_scale") = py::none(),
       py::arg("contact_tol") = py::none(), py::arg("max_order") = 5,
       py::arg("analytic_jacobian") = true, py::arg("backend") = "newton",
@@ -772,8 +786,9 @@ outputs_per_cycle : int, default 64
     Samples per mesh cycle [-].
 start_deg : float, default 0
     Carrier angle where the window begins [deg].
-harmonics : int, default 6
-    Mesh harmonics 1..h for the coincidences [-].
+harmonics : int, default 0
+    Mesh harmonics 1..h for the coincidences [-] (0: every one in the speed range, as the
+    program's --harmonics).
 threads : int, default 0
     Workers [-] (0: every core).)doc") +
        kIntegrationDoc + R"doc(
@@ -792,7 +807,8 @@ Result
     decay_rate_per_s [1/s], families), coincidences (sun_speed_rpm [rpm], frequency_Hz [Hz], mode,
     harmonic, phasing_excited), meshes, mesh_hz_per_sun_rpm [Hz/rpm], skip_time_s [s], the
     quasi-static reference qs_k_gamma [-], qs_te_amplitude_urad [µrad], qs_peak_mesh_force_N [N]
-    per mesh, window_carrier_deg [deg].
+    per mesh, window_carrier_deg [deg]; record: the sweep's record, the keys and values of
+    `speed_sweep_summary.json` but its provenance.
 
 Raises
 ------
@@ -836,8 +852,8 @@ ValueError
 }  // namespace
 
 // A branch of periodic orbits (dynamics/stage_branch.hpp) as arrays, one entry per point.
-py::object PeriodicBranch(const ScenePtr& s, const std::string& parameter, double start,
-                          double end, int steps, int max_points, const Integration& integration,
+py::object PeriodicBranch(const ScenePtr& s, const std::string& parameter, double start, double end,
+                          int steps, int max_points, const Integration& integration,
                           std::optional<std::string> cache_dir, py::object progress,
                           bool raise_on_failure) {
   dynamics::StageBranchOptions o;
@@ -866,8 +882,8 @@ py::object PeriodicBranch(const ScenePtr& s, const std::string& parameter, doubl
   const Out out = RunReleased(token, [&] {
     Out x;
     x.rig = s->Dynamics(cache_dir, "periodic branch");
-    x.record = dynamics::ContinueStageBranch(
-        x.rig->model, o, [&](const dynamics::StageBranchRecord& r) {
+    x.record =
+        dynamics::ContinueStageBranch(x.rig->model, o, [&](const dynamics::StageBranchRecord& r) {
           report(static_cast<long>(r.points.size()), o.max_points);
         });
     return x;
@@ -950,10 +966,10 @@ void BindPeriodicBranch(py::module_& m) {
          int max_points, double rtol, std::optional<double> rate_scale,
          std::optional<double> contact_tol, const std::string& backend,
          std::optional<std::string> cache_dir, py::object progress, bool raise_on_failure) {
-        return PeriodicBranch(s, parameter, start, end, steps, max_points,
-                              MakeIntegration("cvode-bdf", rtol, rate_scale, contact_tol, 5, true,
-                                              backend),
-                              cache_dir, std::move(progress), raise_on_failure);
+        return PeriodicBranch(
+            s, parameter, start, end, steps, max_points,
+            MakeIntegration("cvode-bdf", rtol, rate_scale, contact_tol, 5, true, backend),
+            cache_dir, std::move(progress), raise_on_failure);
       },
       py::arg("scene"), py::arg("parameter"), py::arg("start"), py::arg("end"), py::kw_only(),
       py::arg("steps") = 20, py::arg("max_points") = 400, py::arg("rtol") = 1e-6,

@@ -1,6 +1,8 @@
 // A contact solve's report as console text (contact_text.hpp).
 #include "epicycle/report/contact_text.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "epicycle/config.h"
@@ -82,6 +84,50 @@ ComparisonTables ComparisonSummaryText(const std::vector<solvers::ComparisonRun>
                     b.median_seconds, b.worst_error, b.worst_residual, b.runs - b.solved);
   }
   return t;
+}
+
+std::string ComparisonCsvHeader() {
+  return "backend,problem,category,status,residual,force_error,multiplier_error,"
+         "displacement_error,median_seconds,iterations,message";
+}
+
+std::string ComparisonCsvRow(const solvers::ComparisonRun& row) {
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{}", CsvText(row.backend), CsvText(row.problem),
+                     CsvText(row.category), CsvText(row.status), Num(row.residual, "{:.6e}"),
+                     Num(row.force_error, "{:.6e}"), Num(row.multiplier_error, "{:.6e}"),
+                     Num(row.displacement_error, "{:.6e}"), Num(row.median_seconds, "{:.6e}"),
+                     row.iterations, CsvText(row.message));
+}
+
+std::string StabilityTableText(const std::vector<solvers::StabilityRow>& rows, double tol) {
+  std::string table = "| case | N | m |";
+  std::string rule = "|---|---|---|";
+  // Appended piece by piece (GCC 12's -Wrestrict misfires on "text" + string).
+  for (solvers::Backend b : solvers::AllBackends()) {
+    table += fmt::format(" {} |", solvers::BackendName(b));
+    rule += "---|";
+  }
+  table += fmt::format("\n{}\n", rule);
+  for (const solvers::StabilityRow& row : rows) {
+    table += fmt::format("| {} | {} | {} |", row.problem, row.contacts, row.equalities);
+    for (const solvers::ComparisonRun& run : row.runs) {
+      std::string cell = "n/a";
+      if (run.status != solvers::StatusName(solvers::ContactStatus::kBackendUnavailable)) {
+        cell = fmt::format("{}, res {:.0e}, err {:.0e}", run.status, run.residual,
+                           std::max(run.force_error, run.displacement_error));
+        if (!run.finite) cell += ", NaN!";
+        if (run.solved && run.residual > tol) cell += ", BAD";
+      }
+      table += " " + cell + " |";
+    }
+    table += "\n";
+  }
+  table += fmt::format(
+      "\nTolerance {:.0e}; err = max relative force / rigid-displacement difference from the "
+      "active-set Newton at {:.0e} (see CompareSolutions). Written by `epicycle contact "
+      "stability` ({}).\n",
+      tol, solvers::kReferenceTolerance, EPICYCLE_VERSION);
+  return table;
 }
 
 }  // namespace epicycle::report

@@ -1,5 +1,7 @@
 #include "epicycle/report/stage_svg.hpp"
 
+#include <stdexcept>
+
 #include <fmt/format.h>
 
 namespace epicycle::report {
@@ -165,6 +167,32 @@ std::string DrawMeshZoom(const geometry::PosedGear& a, const geometry::PosedGear
         fmt::format("fill=\"{}\" fill-opacity=\"{}\"", colour, c.overlap >= -1e-6 ? 1.0 : 0.35));
   }
   return s + "</svg>\n";
+}
+
+std::string DrawStageMeshZoom(const geometry::Stage& stage, double carrier_angle,
+                              const std::string& mesh, double gap_window, double relief_scale) {
+  int found = -1;
+  for (int m = 0; m < static_cast<int>(stage.meshes().size()); ++m)
+    if (stage.meshes()[m].name == mesh) found = m;
+  if (found < 0)
+    throw std::invalid_argument("--zoom = " + mesh +
+                                ": not a mesh of the stage (sun-planet<i>, planet<i>-ring)");
+  const geometry::StagePoses p = stage.Poses(carrier_angle);
+  const int i = found / 2;  // the meshes are sun-planet i, planet i-ring, in turn
+  if (found % 2 == 1)
+    return DrawMeshZoom(stage.Planet(p, i), stage.Ring(p), true, stage.ring_mesh_planet_side(),
+                        gap_window, relief_scale);
+  return DrawMeshZoom(stage.Sun(p), stage.Planet(p, i), false, stage.sun_mesh_side(), gap_window,
+                      relief_scale);
+}
+
+std::string DrawPairMeshZoom(const geometry::GearPair& pair, double turn, const std::string& mesh,
+                             double gap_window, double relief_scale) {
+  if (mesh != "gear1-gear2")
+    throw std::invalid_argument("--zoom = " + mesh + ": a gear pair has one mesh, gear1-gear2");
+  const geometry::PairPoses p = pair.Poses(turn);
+  return DrawMeshZoom(pair.A(p), pair.B(p), pair.internal(), pair.loaded_side(), gap_window,
+                      relief_scale);
 }
 
 }  // namespace epicycle::report

@@ -136,6 +136,9 @@ std::string StudySummaryText(const studies::StudySpec& study, const studies::Stu
   std::string t =
       fmt::format("\n  {} of {} cases in the file, {} failed (left out of the statistics)\n",
                   s.cases, study.Cases(), s.failed);
+  if (s.failed > 0)
+    t += fmt::format("    by status: {} contact-failure, {} geometry, {} bad-sampled-value\n",
+                     s.failed_contact, s.failed_geometry, s.failed_bad_sampled_value);
   t += SampleSummaryText("K_gamma", s.k_gamma, "") +
        SampleSummaryText("K_gamma (sweep mean)", s.k_gamma_mean, "") +
        SampleSummaryText("TE peak-to-peak", s.te_peak_to_peak, " urad") +

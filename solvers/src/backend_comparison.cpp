@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
+
+#include "epicycle/solvers/contact_io.hpp"
 
 namespace epicycle::solvers {
 
@@ -93,6 +96,56 @@ std::vector<BackendSummary> SummarizeByBackend(const std::vector<ComparisonRun>&
     out.push_back(std::move(s));
   }
   return out;
+}
+
+ComparisonRecord RunComparison(const ComparisonRequest& request, ComparisonSink& sink) {
+  ComparisonRecord record;
+  record.files = ListProblemFiles(request.inputs);
+  for (Backend b : request.backends) record.backends.push_back(BackendName(b));
+  auto fail = [&](const std::string& what) {
+    record.failures.push_back(what);
+    sink.Failure(what);
+  };
+  for (const std::string& path : record.files) {
+    const ContactProblemFile file = ReadContactProblemFile(path);
+    const ContactProblem problem(file.data);
+    record.problem_names.push_back(problem.name());
+    const TimedSolve ref = SolveReference(problem);
+    if (ref.report.status != ContactStatus::kConverged) {
+      char tol[16];
+      std::snprintf(tol, sizeof tol, "%.0e", kReferenceTolerance);
+      fail("reference (newton at " + std::string(tol) + ") on " + problem.name() + " (" + path +
+           "): " + StatusWithMessage(StatusName(ref.report.status), ref.report.message) +
+           "; errors of this problem are against its last iterate");
+    }
+    for (Backend b : request.backends) {
+      const ComparisonRun run =
+          CompareBackend(b, problem, file.category, request.options, request.repeats, ref.solution);
+      if (!run.solved)
+        fail(run.backend + " on " + run.problem + " (" + path +
+             "): " + StatusWithMessage(run.status, run.message));
+      sink.Run(run);
+      record.runs.push_back(run);
+    }
+  }
+  return record;
+}
+
+std::vector<StabilityRow> RunStability(const std::string& dir, double tolerance) {
+  ContactOptions options;
+  options.tolerance = tolerance;
+  std::vector<StabilityRow> rows;
+  for (const std::string& path : ListProblemFiles({dir})) {
+    const ContactProblemFile file = ReadContactProblemFile(path);
+    if (file.category != "stiff") continue;
+    const ContactProblem problem(file.data);
+    const TimedSolve ref = SolveReference(problem);
+    StabilityRow row{problem.name(), problem.num_contacts(), problem.num_equalities(), {}};
+    for (Backend b : AllBackends())
+      row.runs.push_back(CompareBackend(b, problem, file.category, options, 1, ref.solution));
+    rows.push_back(std::move(row));
+  }
+  return rows;
 }
 
 }  // namespace epicycle::solvers

@@ -12,15 +12,17 @@
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
 #include <thread>
 
+#include "epicycle/io/enum_names.hpp"
+#include "epicycle/io/input_file.hpp"
 #include "epicycle/studies/sampling.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
-#include "epicycle/io/input_file.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_range.hpp"
@@ -95,13 +97,13 @@ std::string CaseRow::Format() const {
     s.append(f);
   };
   for (double v : values) field(Exact(v));
-  field(ok ? "ok" : "failed");
+  field(ok() ? "ok" : transmission::RunStatusName(status));
   field(std::to_string(positions));
   field(std::to_string(converged));
   for (double v : {k_gamma, k_gamma_mean, lsr_min, lsr_max, te_peak_to_peak, sun_orbit})
-    field(ok ? Exact(v) : std::string());
-  for (double v : root_stress) field(ok ? Exact(v) : std::string());
-  for (double v : safety) field(ok ? Exact(v) : std::string());
+    field(ok() ? Exact(v) : std::string());
+  for (double v : root_stress) field(ok() ? Exact(v) : std::string());
+  for (double v : safety) field(ok() ? Exact(v) : std::string());
   field(Clean(message));
   field(RowCheck(s));
   s.push_back('\n');
@@ -133,9 +135,9 @@ std::string StudyLine(const StudySpec& study) {
 }
 
 std::string PartLine(const StudySpec& study, const CaseRange& range) {
-  return "# part cases " + std::to_string(range.first) + ":" + std::to_string(range.last) +
-         " of " + std::to_string(study.Cases()) + "; scene_hash " + study.scene.hash +
-         "; stresses " + (study.scene.model.stresses ? "on" : "off");
+  return "# part cases " + std::to_string(range.first) + ":" + std::to_string(range.last) + " of " +
+         std::to_string(study.Cases()) + "; scene_hash " + study.scene.hash + "; stresses " +
+         (study.scene.model.stresses ? "on" : "off");
 }
 
 std::string PartStudyFileLine(const StudySpec& study) {
@@ -184,8 +186,12 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
           f[1 + j] + ", but this study samples " + Exact(sampled[j]) + " for it (seed " +
           std::to_string(study.seed) + "): the row was not computed by this study");
   std::size_t k = 1 + nv;
-  if (f[k] != "ok" && f[k] != "failed") bad("status");
-  r.ok = f[k++] == "ok";
+  const std::optional<transmission::RunStatus> status =
+      f[k] == "ok" ? transmission::RunStatus::kCompleted
+                   : io::ValueOf(transmission::kRunStatusNames, f[k]);
+  if (!status || (*status == transmission::RunStatus::kCompleted && f[k] != "ok")) bad("status");
+  r.status = *status;
+  ++k;
   long pos = 0, conv = 0;
   if (!ParseLong(f[k++], &pos) || !ParseLong(f[k++], &conv)) bad("position counts");
   r.positions = static_cast<int>(pos);
@@ -203,8 +209,8 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   return r;
 }
 
-std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows,
-                               long limit, const std::optional<CaseRange>& part) {
+std::vector<long> MissingCases(const StudySpec& study, const std::vector<CaseRow>& rows, long limit,
+                               const std::optional<CaseRange>& part) {
   std::vector<long> have;
   have.reserve(rows.size());
   for (const CaseRow& r : rows) have.push_back(r.id);
@@ -346,40 +352,55 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
   const std::vector<std::string> gears = study.StressGears();
   row.root_stress.assign(3 * gears.size(), kNaN);
   row.safety.assign(study.Rated() ? 2 * gears.size() : 0, kNaN);
+  // The case's scene, stage and (for a crack's depth) own tables. The base scene passed every
+  // rule when the study was read, so a rule broken here is a sampled value's.
+  std::optional<CaseRig> built;
+  std::unique_ptr<transmission::FeStageCompliance> own;
   try {
-    const CaseRig rig(study, row.values);
-    const transmission::Scene& scene = rig.scene;
-    const geometry::Stage& stage = rig.stage;
-    const std::vector<double>& angles = rig.angles;
+    built.emplace(study, row.values);
     // A case with its own bodies (a crack's depth) gets its own tables: the healthy ones read
     // from the cache, the cracked gear's damaged rows built (or read) for its crack.
-    std::unique_ptr<transmission::FeStageCompliance> own;
     if (study.VariesBodies()) {
       transmission::FeComplianceOptions fe;
       fe.cache_directory = cache_directory;
-      own = std::make_unique<transmission::FeStageCompliance>(scene, stage, fe);
+      own = std::make_unique<transmission::FeStageCompliance>(built->scene, built->stage, fe);
     }
+  } catch (const std::invalid_argument& e) {
+    row.status = transmission::RunStatus::kBadSampledValue;
+    row.message = e.what();
+    return row;
+  } catch (const std::exception& e) {
+    row.status = transmission::RunStatus::kGeometry;
+    row.message = e.what();
+    return row;
+  }
+  try {
+    const CaseRig& rig = *built;
+    const transmission::Scene& scene = rig.scene;
+    const geometry::Stage& stage = rig.stage;
+    const std::vector<double>& angles = rig.angles;
     // The case needs the sweep's summary, its warnings and its first failure only.
     transmission::SweepAccumulator accumulator(stage.planets());
     transmission::ValidityTally tally(stage, "position(s)");
     std::string first_failure;
     transmission::SweepEach(
         transmission::StageModel(stage, own ? *own : compliance, rig.setup), scene.loads,
-        static_cast<int>(angles.size()),
-        [&](int k) { return angles[static_cast<std::size_t>(k)]; }, rig.options,
+        static_cast<int>(angles.size()), [&](int k) { return angles[static_cast<std::size_t>(k)]; },
+        rig.options,
         [&](const transmission::PositionResult& r, int) {
           accumulator.Add(r);
           tally.Add(r);
           if (!r.converged && first_failure.empty())
-            first_failure = std::to_string(r.carrier_angle * 180.0 / std::numbers::pi) +
-                            " deg: " + r.message;
+            first_failure =
+                std::to_string(r.carrier_angle * 180.0 / std::numbers::pi) + " deg: " + r.message;
         },
         own ? nullptr : start);
     const transmission::SweepSummary s = accumulator.Result();
     row.positions = s.positions;
     row.converged = s.converged;
-    row.ok = s.converged == s.positions;
-    if (row.ok) {
+    row.status = s.converged == s.positions ? transmission::RunStatus::kCompleted
+                                            : transmission::RunStatus::kContactFailure;
+    if (row.ok()) {
       // Legal values outside the model's validity: the case stands, its message says so.
       for (const std::string& w : tally.Messages())
         row.message += (row.message.empty() ? "warning: " : " / warning: ") + w;
@@ -410,7 +431,9 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
           }
     }
   } catch (const std::exception& e) {
-    row.ok = false;
+    // The sweep could not evaluate the stage at these values (every position's own failure is
+    // a row of its sweep, not an exception).
+    row.status = transmission::RunStatus::kGeometry;
     row.message = e.what();
   }
   return row;
@@ -422,8 +445,8 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study,
   std::error_code none;
   if (!std::filesystem::exists(path, none) && !std::filesystem::is_symlink(path, none)) return out;
   // As every input: a regular file (a symlink to a device is refused, not read forever).
-  const std::string text = io::ReadInputFile(
-      path, "study rows file (CSV)", std::numeric_limits<std::uintmax_t>::max());
+  const std::string text =
+      io::ReadInputFile(path, "study rows file (CSV)", std::numeric_limits<std::uintmax_t>::max());
   if (text.empty()) return out;
   // A last line without '\n' is a row (or header) the writer was killed in: cut it off.
   std::size_t complete = text.rfind('\n');
@@ -459,9 +482,11 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study,
                                     "'), not a whole study's rows: join the parts with `epicycle "
                                     "study merge` or run the same shard again to resume it");
       if (line != internal::PartLine(study, *part))
-        throw std::invalid_argument(where + ": the part holds other cases or was written from "
-                                    "another scene or with other outputs (--stresses) ('" + line +
-                                    "', this shard's is '" + internal::PartLine(study, *part) +
+        throw std::invalid_argument(where +
+                                    ": the part holds other cases or was written from "
+                                    "another scene or with other outputs (--stresses) ('" +
+                                    line + "', this shard's is '" +
+                                    internal::PartLine(study, *part) +
                                     "'): use another output folder, or the shard's first options");
       part_line = true;
       continue;
@@ -481,8 +506,8 @@ ExistingRows ReadRows(const std::string& path, const StudySpec& study,
     CaseRow r = internal::ParseRow(line, study, where);
     if (part && !part->Contains(r.id))
       throw std::invalid_argument(where + ": case " + std::to_string(r.id) +
-                                  " is not one of the part's cases " +
-                                  std::to_string(part->first) + ":" + std::to_string(part->last));
+                                  " is not one of the part's cases " + std::to_string(part->first) +
+                                  ":" + std::to_string(part->last));
     if (!seen.insert(r.id).second)
       throw std::invalid_argument(where + ": case " + std::to_string(r.id) +
                                   " appears twice (two runs writing one file?)");

@@ -213,7 +213,7 @@ SobolSummary SummariseSobol(const StudySpec& study, const std::vector<CaseRow>& 
   const auto cases = static_cast<std::size_t>(study.Cases());
   std::vector<std::vector<double>> y(names.size(), std::vector<double>(cases, kNaN));
   for (const CaseRow& r : rows) {
-    if (!r.ok || r.id < 0 || static_cast<std::size_t>(r.id) >= cases) continue;
+    if (!r.ok() || r.id < 0 || static_cast<std::size_t>(r.id) >= cases) continue;
     const auto k = static_cast<std::size_t>(r.id);
     std::size_t o = 0;
     for (double v :

@@ -123,6 +123,13 @@ void VisitRecord(const StudyRecord& r, RecordVisitor& visit) {
   visit.Integer("cases_total", r.cases_total);
   visit.Integer("cases_in_file", s.cases);
   visit.Integer("cases_failed", s.failed);
+  visit.BeginObject("cases_failed_by_status");
+  visit.Integer(transmission::RunStatusName(transmission::RunStatus::kContactFailure),
+                s.failed_contact);
+  visit.Integer(transmission::RunStatusName(transmission::RunStatus::kGeometry), s.failed_geometry);
+  visit.Integer(transmission::RunStatusName(transmission::RunStatus::kBadSampledValue),
+                s.failed_bad_sampled_value);
+  visit.EndObject();
   visit.Text("statistics_note",
              "mean CI: normal approximation x +- z s/sqrt(n); percentile CIs: exact binomial order "
              "statistics (distribution-free), null where n is too small for the bound");

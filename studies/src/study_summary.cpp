@@ -11,7 +11,12 @@ StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& 
                             double level) {
   StudySummary s;
   s.cases = static_cast<long>(all_rows.size());
-  for (const CaseRow& r : all_rows) s.failed += r.ok ? 0 : 1;
+  for (const CaseRow& r : all_rows) {
+    s.failed += r.ok() ? 0 : 1;
+    s.failed_contact += r.status == transmission::RunStatus::kContactFailure ? 1 : 0;
+    s.failed_geometry += r.status == transmission::RunStatus::kGeometry ? 1 : 0;
+    s.failed_bad_sampled_value += r.status == transmission::RunStatus::kBadSampledValue ? 1 : 0;
+  }
   // The distributions need independent cases: of a Sobol design, those of A and B (the
   // A_B^(i) repeat all but one of A's values).
   std::vector<CaseRow> independent;
@@ -23,7 +28,7 @@ StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& 
   std::vector<double> kg, kgm, te, orbit;
   std::vector<std::vector<double>> values(s.columns.size());
   for (const CaseRow& r : rows) {
-    if (!r.ok) continue;
+    if (!r.ok()) continue;
     kg.push_back(r.k_gamma);
     kgm.push_back(r.k_gamma_mean);
     te.push_back(r.te_peak_to_peak);
@@ -44,7 +49,7 @@ StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& 
   for (std::size_t g = 0; g < gears.size(); ++g) {
     std::vector<double> tension, compression, range, s_f, s_h;
     for (const CaseRow& r : rows) {
-      if (!r.ok || r.root_stress.size() != 3 * gears.size()) continue;
+      if (!r.ok() || r.root_stress.size() != 3 * gears.size()) continue;
       tension.push_back(r.root_stress[3 * g]);
       compression.push_back(std::abs(r.root_stress[3 * g + 1]));
       range.push_back(r.root_stress[3 * g + 2]);

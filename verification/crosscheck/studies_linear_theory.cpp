@@ -126,7 +126,7 @@ TEST_CASE("study against the linear load-sharing theory: tangential pin errors, 
   };
   for (const auto& r : report.rows) {
     INFO("case " << r.id << ": " << r.message);
-    REQUIRE(r.ok);
+    REQUIRE(r.ok());
     std::vector<double> eta;
     double l1 = 0;
     for (double v : r.values) {
@@ -194,7 +194,7 @@ TEST_CASE(
   double worst = 0, kmax = 0;
   for (const auto& r : report.rows) {
     INFO("case " << r.id << ": " << r.message);
-    REQUIRE(r.ok);
+    REQUIRE(r.ok());
     worst = std::max({worst, std::abs(r.lsr_min - 1.0 / 3), std::abs(r.lsr_max - 1.0 / 3)});
     kmax = std::max(kmax, r.k_gamma);
   }

@@ -94,8 +94,8 @@ TEST_CASE("study root stress: each case's extremes those of the quasistatic prog
   for (std::size_t k = 0; k < 2; ++k) {
     const studies::CaseRow& r = a.rows[k];
     INFO("case " << r.id << ": " << r.message);
-    REQUIRE(r.ok);
-    REQUIRE(b.rows[k].ok);
+    REQUIRE(r.ok());
+    REQUIRE(b.rows[k].ok());
     CHECK(b.rows[k].root_stress.empty());
     // The load sharing does not depend on the stresses (the tables' compliance is the same).
     CHECK(b.rows[k].k_gamma == r.k_gamma);
@@ -189,7 +189,7 @@ TEST_CASE("study safety factors: each case's S_F and S_H those of quasistatic --
   double largest = 0;
   for (const studies::CaseRow& r : report.rows) {
     INFO("case " << r.id << ": " << r.message);
-    REQUIRE(r.ok);
+    REQUIRE(r.ok());
     REQUIRE(r.safety.size() == 2 * gears.size());
     for (const auto& b : back.rows)
       if (b.id == r.id) CHECK(b.safety == r.safety);

@@ -79,7 +79,7 @@ TEST_CASE("study: identical rows with 1 and 4 threads; a restart computes only w
   CHECK(a.size() == static_cast<std::size_t>(s.Cases()));
   CHECK(a == b);
   long ok = 0;
-  for (const auto& r : one.rows) ok += r.ok ? 1 : 0;
+  for (const auto& r : one.rows) ok += r.ok() ? 1 : 0;
   CHECK(ok == s.Cases());
   VerifyRow("study, 40 cases: rows with 4 threads against 1 thread", "the 1-thread rows",
             std::to_string(b.size()) + " rows", a == b ? "identical bytes" : "DIFFER", "identical",
@@ -201,12 +201,13 @@ TEST_CASE("study: a rank that fails stops the run with its message, and a rerun 
     return std::string(" -np 1 ") + EPICYCLE_EXE + " study " + file + " --out " + dir.File("mpi") +
            " --quiet --threads 1 --cache " + cache;
   };
-  const std::string launch = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 " +
-                             std::string(EPICYCLE_MPIEXEC) + " --oversubscribe";
-  const int failed = std::system((launch + rank(EPICYCLE_TEST_CACHE_DIR) + " :" +
-                                  rank(not_a_folder + "/cache") + " > " + dir.File("fail.log") +
-                                  " 2>&1")
-                                     .c_str());
+  const std::string launch =
+      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 " +
+      std::string(EPICYCLE_MPIEXEC) + " --oversubscribe";
+  const int failed =
+      std::system((launch + rank(EPICYCLE_TEST_CACHE_DIR) + " :" + rank(not_a_folder + "/cache") +
+                   " > " + dir.File("fail.log") + " 2>&1")
+                      .c_str());
   const std::string log = test::FileBytes(dir.File("fail.log"));
   INFO(log);
   REQUIRE(WIFEXITED(failed));
@@ -231,7 +232,7 @@ TEST_CASE("study: a rank that fails stops the run with its message, and a rerun 
   VerifyRow("study, 40 cases, 2 MPI ranks, rank 1's tables fail", "the 1-process rows",
             std::to_string(partial.size()) + " rows, then " + std::to_string(after.size()) +
                 " after a rerun",
-            after == reference ? "identical bytes" : "DIFFER",
-            "rank 0's half, then identical", after == reference);
+            after == reference ? "identical bytes" : "DIFFER", "rank 0's half, then identical",
+            after == reference);
 }
 #endif

@@ -37,8 +37,7 @@ struct CaseRig {
   std::unique_ptr<transmission::StageModel> model;
   std::vector<double> angles;
   transmission::QuasiStaticOptions options;
-  CaseRig(const studies::StudySpec& study, const transmission::StageCompliance& compliance,
-          long k)
+  CaseRig(const studies::StudySpec& study, const transmission::StageCompliance& compliance, long k)
       : scene(studies::CaseScene(study, studies::SampleCase(study, k))),
         stage(transmission::MakeStage(scene)),
         setup(transmission::SetupFromScene(scene)) {
@@ -71,19 +70,20 @@ TEST_CASE("study warm start across cases: within the stopping rules' bounds of t
     const char* file;
     long cases;  // the first cases checked
   };
-  for (const Shipped& shipped : {Shipped{"pin_tolerance.toml", 12}, Shipped{"grades_and_torque.toml", 6}}) {
+  for (const Shipped& shipped :
+       {Shipped{"pin_tolerance.toml", 12}, Shipped{"grades_and_torque.toml", 6}}) {
     const studies::StudySpec study =
         studies::ReadStudy(std::string(EPICYCLE_SCENES_DIR) + "/studies/" + shipped.file);
     transmission::FeComplianceOptions fe;
     fe.cache_directory = EPICYCLE_TEST_CACHE_DIR;
-    const transmission::FeStageCompliance compliance(
-        study.scene, transmission::MakeStage(study.scene), fe);
+    const transmission::FeStageCompliance compliance(study.scene,
+                                                     transmission::MakeStage(study.scene), fe);
     // The starts, computed here: each grid point's first case, its first position solved cold.
     std::vector<PositionResult> starts;
     for (long g = 0; g < study.GridPoints(); ++g) {
       const CaseRig rig(study, compliance, g);
-      starts.push_back(
-          transmission::SolvePosition(*rig.model, rig.angles.front(), rig.scene.loads, rig.options));
+      starts.push_back(transmission::SolvePosition(*rig.model, rig.angles.front(), rig.scene.loads,
+                                                   rig.options));
       REQUIRE(starts.back().converged);
     }
     // The runner's rows, warm and cold, for the first cases.
@@ -122,8 +122,8 @@ TEST_CASE("study warm start across cases: within the stopping rules' bounds of t
       // their K_γ within n times the largest LSR bound over the case's positions.
       const studies::CaseRow& rw = warm.rows[static_cast<std::size_t>(k)];
       const studies::CaseRow& rc = cold.rows[static_cast<std::size_t>(k)];
-      REQUIRE(rw.ok);
-      REQUIRE(rc.ok);
+      REQUIRE(rw.ok());
+      REQUIRE(rc.ok());
       CHECK(rw.Format() == studies::ComputeCase(study, compliance, k, "", &start).Format());
       CHECK(rc.Format() == studies::ComputeCase(study, compliance, k, "").Format());
       double lsr_bound = 0;
@@ -140,15 +140,16 @@ TEST_CASE("study warm start across cases: within the stopping rules' bounds of t
     }
     // The point of it: the first positions need fewer contact iterations from the start.
     CHECK(first_warm < first_cold);
-    test::VerifyRow(std::string("study warm start across cases, ") + shipped.file + ", first " +
-                        std::to_string(shipped.cases) + " cases",
-                    "the cold path (first position from the kinematic poses)",
-                    "largest |dK_gamma| " + Sci(worst_k_gamma) + "; first positions' contact "
-                        "iterations " + std::to_string(first_warm) + " against " +
-                        std::to_string(first_cold),
-                    "largest share of the derived bounds " +
-                        Sci(std::max(worst_ratio, worst_k_gamma_ratio)),
-                    "2(tau + eps l*); first-order force response + eps F*; K_gamma: n x LSR's",
-                    worst_ratio <= 1.0 && worst_k_gamma_ratio <= 1.0);
+    test::VerifyRow(
+        std::string("study warm start across cases, ") + shipped.file + ", first " +
+            std::to_string(shipped.cases) + " cases",
+        "the cold path (first position from the kinematic poses)",
+        "largest |dK_gamma| " + Sci(worst_k_gamma) +
+            "; first positions' contact "
+            "iterations " +
+            std::to_string(first_warm) + " against " + std::to_string(first_cold),
+        "largest share of the derived bounds " + Sci(std::max(worst_ratio, worst_k_gamma_ratio)),
+        "2(tau + eps l*); first-order force response + eps F*; K_gamma: n x LSR's",
+        worst_ratio <= 1.0 && worst_k_gamma_ratio <= 1.0);
   }
 }

@@ -92,6 +92,17 @@ def test_speed_sweep_equals_the_program_csv(tmp_path):
         # K_v is the ratio of the mesh's peak in motion to its reference's (the same doubles
         # divided: equal to the last bit).
         assert s.dynamic_factor[k] == s.peak_mesh_force_N[k] / s.reference_peak_mesh_force_N[k]
+    # The record: the keys and values of the program's summary JSON, defaults included, bit for
+    # bit but the times and the provenance (the same request, the same run).
+    j = read_json(out / "speed_sweep_summary.json")
+    times = {"plan_seconds", "wall_seconds", "cpu_seconds_in_speeds", "cpu_over_wall"}
+    assert sorted(s.record) == sorted(k for k in j if k != "provenance")
+    for key in s.record:
+        if key not in times and key != "speeds":
+            assert s.record[key] == j[key], key
+    for a, b in zip(s.record["speeds"], j["speeds"]):
+        assert {k: v for k, v in a.items() if not k.endswith("_s")} == \
+            {k: v for k, v in b.items() if not k.endswith("_s")}
 
 
 def test_periodic_branch_equals_the_program_csv(tmp_path):

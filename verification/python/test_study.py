@@ -4,7 +4,7 @@
 import os
 
 import epicycle
-from conftest import SCENES, read_json, run_cli
+from conftest import SCENES, SOURCE_DIR, read_json, run_cli
 
 STUDY = os.path.join(SCENES, "studies", "pin_tolerance.toml")
 
@@ -62,3 +62,24 @@ def test_study_exceedance_counts_the_cases_above_each_limit():
             assert e.lower < k / n < e.upper
     assert r.summary.k_gamma_exceedance[0].above == n  # K_gamma >= 1 always
     assert r.summary.k_gamma_exceedance[2].above == 0  # K_gamma <= n = 3
+
+
+def test_study_case_status_names_how_each_case_ended(tmp_path):
+    # verification/data/bad_inputs/study_bad_sampled_value.toml: the second grid point is a tooth
+    # thickness error of 3 mm, past the scene's rule (below m/2), so that case is not run: its
+    # status is bad-sampled-value, in Python's rows as in the program's rows file and summary JSON.
+    study = os.path.join(SOURCE_DIR, "verification", "data", "bad_inputs",
+                         "study_bad_sampled_value.toml")
+    r = epicycle.study(study, threads=1)
+    assert list(r.status) == ["completed", "bad-sampled-value"]
+    assert list(r.ok) == [True, False]
+    status_column = r.header.split(",").index("status")
+    assert r.rows_csv[1].split(",")[status_column] == "bad-sampled-value"
+    assert "planet.thickness_error_um = 3000" in r.message[1]
+    assert r.record["cases_failed"] == 1
+    assert r.record["cases_failed_by_status"] == {
+        "contact-failure": 0, "geometry": 0, "bad-sampled-value": 1}
+    assert run_cli("study", study, "--quiet", "--threads", 1, "--out", tmp_path,
+                   check=False).returncode == 1
+    program = read_json(tmp_path / "study_summary.json")
+    assert program["cases_failed_by_status"] == r.record["cases_failed_by_status"]

@@ -303,7 +303,8 @@ TEST_CASE("study file: k_gamma_limit, a number or an array, reported as P(K_gamm
   for (int i = 0; i < 11; ++i) {
     rows[i].id = i;
     rows[i].values = {0, 0, 0};
-    rows[i].ok = i < 10;
+    rows[i].status =
+        i < 10 ? transmission::RunStatus::kCompleted : transmission::RunStatus::kContactFailure;
     rows[i].k_gamma = rows[i].k_gamma_mean = 1.0 + 0.1 * i;
   }
   const studies::StudySummary sum = studies::SummariseStudy(s, rows);
@@ -325,9 +326,9 @@ TEST_CASE("the shipped K_gamma table studies: tolerances of their class, the tab
   for (int n = 3; n <= 6; ++n)
     for (int grade = 5; grade <= 7; ++grade)
       for (const std::string support : {"", "_fixed"}) {
-        const std::string path = std::string(EPICYCLE_SCENES_DIR) + "/studies/kgamma_table/planets" +
-                                 std::to_string(n) + "_class" + std::to_string(grade) + support +
-                                 ".toml";
+        const std::string path = std::string(EPICYCLE_SCENES_DIR) +
+                                 "/studies/kgamma_table/planets" + std::to_string(n) + "_class" +
+                                 std::to_string(grade) + support + ".toml";
         INFO(path);
         const studies::StudySpec s = studies::ReadStudy(path);
         ++files;
@@ -337,8 +338,8 @@ TEST_CASE("the shipped K_gamma table studies: tolerances of their class, the tab
                                         : transmission::SunSupport::kFixed));
         CHECK(s.k_gamma_limits.front() == table.at(n));
         // The files give f_pT/2 to 4 decimals of a µm: within 5e-5 µm.
-        const double half = 0.5 * geometry::iso::SinglePitchTolerance(
-                                      st.sun.module, 2 * st.carrier_radius, grade);
+        const double half =
+            0.5 * geometry::iso::SinglePitchTolerance(st.sun.module, 2 * st.carrier_radius, grade);
         double torque = s.scene.loads.sun_torque;
         int pins = 0, runouts = 0;
         for (const studies::Variable& v : s.variables) {

@@ -32,4 +32,13 @@ ComparisonTables ComparisonSummaryText(const std::vector<solvers::ComparisonRun>
                                        const std::vector<std::string>& names, std::size_t problems,
                                        double tol, int repeats);
 
+/// The comparison CSV's column line and one run's row (without '\n'; numbers as %.6e, text
+/// quoted where it must be).
+std::string ComparisonCsvHeader();
+std::string ComparisonCsvRow(const solvers::ComparisonRun& run);
+
+/// `epicycle contact stability`'s Markdown table: a row per problem, a cell per back end
+/// ("status, res R, err E", marked NaN! or BAD), with its note on the tolerance `tol`.
+std::string StabilityTableText(const std::vector<solvers::StabilityRow>& rows, double tol);
+
 }  // namespace epicycle::report

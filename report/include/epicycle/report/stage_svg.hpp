@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 
 namespace epicycle::report {
@@ -18,5 +19,16 @@ std::string DrawStage(const geometry::Stage& stage, double carrier_angle, double
 /// flank drawn offset by its relief × `relief_scale` (the relief is a few µm). Millimetres.
 std::string DrawMeshZoom(const geometry::PosedGear& a, const geometry::PosedGear& b, bool internal,
                          int loaded_side, double gap_window, double relief_scale);
+
+/// The zoom on one tooth pair of the stage's mesh named `mesh` ("sun-planet<i>", "planet<i>-ring",
+/// the names of the geometry report) at carrier angle φ_c [rad].
+/// @throws std::invalid_argument naming `--zoom = mesh` when the stage has no such mesh.
+std::string DrawStageMeshZoom(const geometry::Stage& stage, double carrier_angle,
+                              const std::string& mesh, double gap_window, double relief_scale);
+
+/// The same for a gear pair, whose one mesh is "gear1-gear2", at gear 1's turn [rad].
+/// @throws std::invalid_argument naming `--zoom = mesh` for any other name.
+std::string DrawPairMeshZoom(const geometry::GearPair& pair, double turn, const std::string& mesh,
+                             double gap_window, double relief_scale);
 
 }  // namespace epicycle::report

@@ -21,8 +21,8 @@ inline constexpr double kReferenceTolerance = 1e-12;
 
 /// `repeats` solves (at least one) of one problem by one back end.
 struct TimedSolve {
-  ContactReport report;      ///< of the last solve
-  ContactSolution solution;  ///< of the last solve
+  ContactReport report;         ///< of the last solve
+  ContactSolution solution;     ///< of the last solve
   double median_seconds = 0.0;  ///< median of the solves' total times [s]
 };
 TimedSolve SolveRepeated(Backend backend, const ContactProblem& problem,
@@ -34,16 +34,16 @@ TimedSolve SolveReference(const ContactProblem& problem);
 /// One (back end, problem) run of a comparison. Errors are NaN where not computed (a back end
 /// that threw has no solution to compare).
 struct ComparisonRun {
-  std::string backend;   ///< BackendName
-  std::string problem;   ///< the problem's name
-  std::string category;  ///< the problem file's category
-  std::string status;    ///< StatusName, or "exception" when the back end threw
-  std::string message;   ///< the back end's message (the exception's text when it threw)
-  double residual = 0.0;        ///< driver residual, nondimensional [-]
+  std::string backend;    ///< BackendName
+  std::string problem;    ///< the problem's name
+  std::string category;   ///< the problem file's category
+  std::string status;     ///< StatusName, or "exception" when the back end threw
+  std::string message;    ///< the back end's message (the exception's text when it threw)
+  double residual = 0.0;  ///< driver residual, nondimensional [-]
   double force_error = std::numeric_limits<double>::quiet_NaN();         ///< [-]
   double multiplier_error = std::numeric_limits<double>::quiet_NaN();    ///< [-]
   double displacement_error = std::numeric_limits<double>::quiet_NaN();  ///< [-]
-  double median_seconds = 0.0;  ///< [s]
+  double median_seconds = 0.0;                                           ///< [s]
   int iterations = 0;
   bool solved = false;  ///< converged and did not throw
   bool finite = false;  ///< the answer's forces and multipliers are all finite
@@ -64,16 +64,61 @@ std::string StatusWithMessage(const std::string& status, const std::string& mess
 /// One back end over every problem of a comparison.
 struct BackendSummary {
   std::string backend;
-  int solved = 0;                    ///< runs that converged
-  int runs = 0;                      ///< runs in all
-  double median_seconds = 0.0;       ///< median run time, 0 when there are no runs [s]
-  double worst_error = 0.0;          ///< largest error() over solved runs, 0 if none [-]
-  double worst_residual = 0.0;       ///< largest residual over solved runs, 0 if none [-]
-  std::vector<std::string> failed;   ///< "problem (status)" of each run not solved
+  int solved = 0;                   ///< runs that converged
+  int runs = 0;                     ///< runs in all
+  double median_seconds = 0.0;      ///< median run time, 0 when there are no runs [s]
+  double worst_error = 0.0;         ///< largest error() over solved runs, 0 if none [-]
+  double worst_residual = 0.0;      ///< largest residual over solved runs, 0 if none [-]
+  std::vector<std::string> failed;  ///< "problem (status)" of each run not solved
 };
 
 /// The summary of each of `backends` (in that order) over `runs`.
 std::vector<BackendSummary> SummarizeByBackend(const std::vector<ComparisonRun>& runs,
                                                const std::vector<std::string>& backends);
+
+/// A comparison of back ends over problem files (`epicycle contact compare`): every problem's
+/// reference, then every back end of `backends` on it.
+struct ComparisonRequest {
+  std::vector<std::string> inputs;  ///< problem files or folders of them (ListProblemFiles)
+  std::vector<Backend> backends;    ///< in the order of the runs
+  ContactOptions options;           ///< of every back end's run (its tolerance is the verdict's)
+  int repeats = 1;                  ///< solves per (back end, problem); the median time [-]
+};
+
+/// Receives each run as it is computed (a table written row by row keeps what came before a
+/// later failure).
+class ComparisonSink {
+ public:
+  virtual ~ComparisonSink() = default;
+  /// A failed reference or back-end run, with where it happened (the problem's file).
+  virtual void Failure(const std::string& what) = 0;
+  virtual void Run(const ComparisonRun& run) = 0;
+};
+
+/// What a comparison found.
+struct ComparisonRecord {
+  std::vector<std::string> files;          ///< the problem files, in the runs' order
+  std::vector<std::string> problem_names;  ///< each file's problem name
+  std::vector<std::string> backends;       ///< BackendName of each requested back end
+  std::vector<ComparisonRun> runs;         ///< per problem, per back end
+  std::vector<std::string> failures;       ///< each failed run, as the sink was told
+  /// Every run counted in the failures: the reference and each back end on every problem.
+  std::size_t RunsInAll() const { return files.size() * (backends.size() + 1); }
+};
+
+/// Runs `request`, streaming every run to `sink`.
+/// @throws std::invalid_argument for a file that is not a problem file (naming it).
+ComparisonRecord RunComparison(const ComparisonRequest& request, ComparisonSink& sink);
+
+/// One row of the stability table (`epicycle contact stability`): each back end once on a
+/// problem of the "stiff" category, against its reference.
+struct StabilityRow {
+  std::string problem;
+  int contacts = 0, equalities = 0;  ///< N, m [-]
+  std::vector<ComparisonRun> runs;   ///< per back end of AllBackends()
+};
+
+/// The "stiff" problems of the folder `dir`, each back end once at `tolerance`.
+std::vector<StabilityRow> RunStability(const std::string& dir, double tolerance);
 
 }  // namespace epicycle::solvers

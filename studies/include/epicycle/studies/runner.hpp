@@ -12,15 +12,21 @@
 
 #include "epicycle/studies/study.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/run_status.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 
 namespace epicycle::studies {
 
 /// One case's result: the row of the rows file.
 struct CaseRow {
-  long id = 0;                       ///< case id k, 0-based [-]
-  std::vector<double> values;        ///< sampled values in file units (StudySpec::Columns())
-  bool ok = false;                   ///< every position converged
+  long id = 0;                 ///< case id k, 0-based [-]
+  std::vector<double> values;  ///< sampled values in file units (StudySpec::Columns())
+  /// How the case ended (the rows file's status field: "ok" for kCompleted, else the status's
+  /// name): kCompleted (every position converged), kContactFailure (a position's contact solve
+  /// failed), kBadSampledValue (a sampled value broke a rule of the scene: not run), kGeometry
+  /// (the stage could not be built or evaluated at the sampled values).
+  transmission::RunStatus status = transmission::RunStatus::kContactFailure;
+  bool ok() const { return status == transmission::RunStatus::kCompleted; }
   std::string message;               ///< why not (commas and newlines replaced by ';')
   int positions = 0, converged = 0;  ///< [-]
   double k_gamma = 0;                ///< K_γ = max over positions of max_i L_i [-]

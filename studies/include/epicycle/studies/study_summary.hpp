@@ -27,8 +27,11 @@ struct GearStressStatistics {
 };
 
 struct StudySummary {
-  long cases = 0;                    ///< rows [-]
-  long failed = 0;                   ///< rows with status failed (left out of the statistics) [-]
+  long cases = 0;   ///< rows [-]
+  long failed = 0;  ///< rows not completed (left out of the statistics) [-]
+  /// The failed rows by how they ended (CaseRow::status): contact failure, geometry, bad sampled
+  /// value [-].
+  long failed_contact = 0, failed_geometry = 0, failed_bad_sampled_value = 0;
   SampleSummary k_gamma;             ///< K_γ over the ok rows
   SampleSummary k_gamma_mean;        ///< max_i mean L_i over the ok rows
   SampleSummary te_peak_to_peak;     ///< [µrad]
