@@ -95,10 +95,6 @@ TEST_CASE(
     "[crosscheck][transmission][face_width]") {
   const double phi = Reference().BodyShare();
   INFO("body share phi " << phi);
-  // The neighbours' share of the structural compliance is a fraction of it, and less than the
-  // whole body's: between the tooth-only and body-only bounds.
-  CHECK(phi > 0.1);
-  CHECK(phi < 0.5);
   const Eigen::MatrixXd none =
       transmission::FaceCouplingMatrix(kSlices, kWidth, FaceCoupling::kNone, 0);
   const Eigen::MatrixXd tooth_body =
@@ -118,8 +114,8 @@ TEST_CASE(
 
 TEST_CASE(
     "face width on the ISO 20/40 pair: the slices' station means within the 3D reference's "
-    "derived tolerance (2.0, 5.2, 11 N/mm for the aligned, full-contact and lifted faces; "
-    "not met: docs/face_width.md, 'Coupling against the 3D reference')",
+    "derived tolerance of 2.0, 5.2 and 11 N/mm for the aligned, full-contact and lifted faces "
+    "(not met, docs/face_width.md 'Coupling against the 3D reference')",
     "[crosscheck][transmission][face_width][!shouldfail]") {
   const double phi = Reference().BodyShare();
   const Eigen::MatrixXd w =
