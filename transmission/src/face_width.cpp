@@ -51,7 +51,7 @@ std::vector<double> SliceCentres(int slices, double width) {
 }
 
 Eigen::MatrixXd FaceCouplingMatrix(int slices, double width, FaceCoupling coupling,
-                                   double coupling_length) {
+                                   double coupling_length, double body_share) {
   if (slices < 1)
     throw std::invalid_argument("face width: slices = " + std::to_string(slices) +
                                 ": must be at least 1");
@@ -60,6 +60,20 @@ Eigen::MatrixXd FaceCouplingMatrix(int slices, double width, FaceCoupling coupli
   const int n = slices;
   if (coupling == FaceCoupling::kNone || n == 1)
     return Eigen::MatrixXd::Identity(n, n) * static_cast<double>(n);
+  if (coupling == FaceCoupling::kToothBody) {
+    if (!(body_share >= 0 && body_share < 1))
+      throw std::invalid_argument("face width: body_share = " + io::Num(body_share) +
+                                  ": must be in [0, 1) for the tooth_body coupling");
+    if (!(coupling_length >= 0) || !std::isfinite(coupling_length))
+      throw std::invalid_argument("face width: coupling_length = " + io::Num(coupling_length) +
+                                  " m: must be >= 0 for the tooth_body coupling (0: strips)");
+    // Rows sum to (1 − φ) S + φ S = S; the tooth part positive definite, the body's semidefinite.
+    const Eigen::MatrixXd tooth =
+        coupling_length > 0
+            ? FaceCouplingMatrix(n, width, FaceCoupling::kPasternak, coupling_length)
+            : Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n) * static_cast<double>(n));
+    return (1 - body_share) * tooth + Eigen::MatrixXd::Constant(n, n, body_share);
+  }
   if (!(coupling_length > 0) || !std::isfinite(coupling_length))
     throw std::invalid_argument("face width: coupling_length = " + io::Num(coupling_length) +
                                 " m: must be > 0 for the Pasternak coupling");

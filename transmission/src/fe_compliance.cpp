@@ -5,6 +5,8 @@
 #include <map>
 #include <stdexcept>
 
+#include <Eigen/Geometry>
+
 #include "epicycle/compliance/compliance_operator.hpp"
 #include "epicycle/compliance/gear_mesh.hpp"
 #include "epicycle/compliance/influence_cache.hpp"
@@ -339,6 +341,39 @@ std::vector<compliance::FilletStress> FePairCompliance::FilletStresses(
   std::vector<compliance::OperatorContact> oc;
   Operator(pair, poses, contacts, &bodies, &oc);
   return compliance::FilletStresses(bodies, oc, force);
+}
+
+double ContactBodyShare(const FePairCompliance& compliance, const geometry::GearPair& pair,
+                        const geometry::PairPoses& poses,
+                        const geometry::PotentialContact& contact) {
+  const geometry::GearPose* pose[2] = {&poses.gear1, &poses.gear2};
+  const geometry::Gear* gear[2] = {&pair.gear1(), &pair.gear2()};
+  const int tooth[2] = {contact.tooth_a, contact.tooth_b}, side[2] = {contact.side_a, contact.side_b};
+  const Eigen::Vector2d surface[2] = {contact.surface_a, contact.surface_b};
+  const Eigen::Vector2d direction[2] = {-contact.normal, contact.normal};
+  double self = 0, body = 0;
+  for (int b = 0; b < 2; ++b) {
+    const compliance::InfluenceTable& t = compliance.tables().Table(b);
+    const Eigen::Rotation2Dd to_body(-pose[b]->rotation);
+    const Eigen::Vector2d centre = pose[b]->geometric_centre;
+    const Eigen::Vector2d p =
+        to_body * (OnNominalBody(surface[b], *gear[b], side[b], centre) - centre);
+    const Eigen::Vector2d d = to_body * direction[b];
+    const compliance::FlankPosition at = t.Locate(p, tooth[b], side[b]);
+    const compliance::InfluenceTable::DirectedNode load = t.PrepareDirected(at, d);
+    self += t.DirectedCompliance(load, load);
+    for (int k : {-1, 1}) {
+      compliance::FlankPosition next = at;
+      next.tooth += k;
+      const Eigen::Vector2d dk = Eigen::Rotation2Dd(k * 2 * geometry::kPi / t.teeth()) * d;
+      body += 0.5 * t.DirectedCompliance(load, t.PrepareDirected(next, dk));
+    }
+  }
+  const double share = body / self;
+  if (!(share >= 0 && share < 1))
+    throw std::invalid_argument("ContactBodyShare: phi = " + std::to_string(share) +
+                                ": must be in [0, 1) (the neighbours' compliance over the contact's)");
+  return share;
 }
 
 }  // namespace epicycle::transmission

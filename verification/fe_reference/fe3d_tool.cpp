@@ -1,6 +1,6 @@
-// `fe_reference fe3d` and `fe_reference fe3d-plot` (docs/fe_reference.md, "3D reference across
+// `fe_reference fe3d`, `fe3d-plot` and `fe3d-slices` (docs/fe_reference.md, "3D reference across
 // the face width"): one 3D run appended to a CSV, one row per axial station; the figure of the
-// load per unit width across the face.
+// load per unit width across the face; the slice model against it (docs/face_width.md).
 #include "fe3d_tool.hpp"
 
 #include <cstdio>
@@ -10,6 +10,8 @@
 #include <stdexcept>
 
 #include "csv_rows.hpp"
+#include "epicycle/transmission/face_width.hpp"
+#include "fe3d_slices.hpp"
 #include "epicycle/report/files.hpp"
 #include "epicycle/report/svg_plot.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
@@ -160,6 +162,69 @@ int Fe3dPlot(const std::string& csv, const std::string& svg, int layers, double 
     }
     plot.series.push_back(s);
   }
+  report::WriteTextFile(svg, report::RenderSvg(plot));
+  std::printf("wrote %s\n", svg.c_str());
+  return 0;
+}
+
+int Fe3dSlices(const std::string& scene, const std::string& csv, const std::string& svg,
+               int layers, double refinement, double lambda, const std::string& title) {
+  using report::PlotSeries;
+  transmission::FeComplianceOptions tables;
+  tables.cache_directory = transmission::DefaultCacheDirectory();
+  const test::Fe3dSlicePair pair(transmission::ReadScene(scene), tables);
+  const double b = pair.width(), phi = pair.BodyShare();
+  constexpr int kSlices = 40;
+  const Eigen::MatrixXd strips =
+      transmission::FaceCouplingMatrix(kSlices, b, transmission::FaceCoupling::kNone, 0);
+  const Eigen::MatrixXd coupled = transmission::FaceCouplingMatrix(
+      kSlices, b, transmission::FaceCoupling::kToothBody, lambda, phi);
+  std::printf("body share phi = %.4f, tooth coupling length %.2f mm, C = %.5g m/N\n", phi,
+              lambda * 1e3, pair.structural());
+  report::LinePlot plot{title, "z across the face width [mm]", "load per unit width q [N/mm]",
+                        {}, false, {}};
+  int colour = 0;
+  for (const auto& [name, f_beta] : {std::pair{"c", 0.0}, std::pair{"a", 20e-6}, std::pair{"b", 80e-6}}) {
+    // The 3D stations' means as markers at their centres; the slices as lines.
+    PlotSeries ref{std::string(name) + ": 3D stations", {}, {}, true};
+    ref.colour = colour;
+    for (const auto& r : test::ReadCsvRows(csv))
+      if (r.size() == 27 && r[0] == name && std::stoi(r[4]) == layers &&
+          std::stod(r[5]) == refinement && std::stod(r[2]) == b * 1e3) {
+        ref.x.push_back(std::stod(r[25]));
+        ref.y.push_back(std::stod(r[26]));
+      }
+    if (ref.x.empty())
+      throw std::invalid_argument(csv + ": no case " + name + " with " + std::to_string(layers) +
+                                  " layers at refinement " + std::to_string(refinement));
+    const test::SliceLoads s = pair.Solve(strips, f_beta), t = pair.Solve(coupled, f_beta);
+    PlotSeries line_s{std::string(name) + ": strips", {}, {}, false};
+    line_s.dashed = true;
+    line_s.colour = colour;
+    PlotSeries line_t{std::string(name) + ": tooth_body", {}, {}, false};
+    line_t.colour = colour;
+    for (int k = 0; k < kSlices; ++k) {
+      const double z = (k + 0.5) * b / kSlices * 1e3;
+      line_s.x.push_back(z);
+      line_s.y.push_back(s.line_load[static_cast<std::size_t>(k)] / 1e3);
+      line_t.x.push_back(z);
+      line_t.y.push_back(t.line_load[static_cast<std::size_t>(k)] / 1e3);
+    }
+    const int n = static_cast<int>(ref.x.size());
+    const std::vector<double> ss = s.Stations(n), ts = t.Stations(n);
+    std::printf("%s (F_beta %.0f um): station, 3D, strips, tooth_body [N/mm]\n", name,
+                f_beta * 1e6);
+    for (int k = 0; k < n; ++k)
+      std::printf("  %5.2f  %7.1f  %7.1f  %7.1f\n", ref.x[static_cast<std::size_t>(k)],
+                  ref.y[static_cast<std::size_t>(k)], ss[static_cast<std::size_t>(k)] / 1e3,
+                  ts[static_cast<std::size_t>(k)] / 1e3);
+    plot.series.push_back(ref);
+    plot.series.push_back(line_s);
+    plot.series.push_back(line_t);
+    ++colour;
+  }
+  plot.x_min = 0;
+  plot.x_max = b * 1e3;
   report::WriteTextFile(svg, report::RenderSvg(plot));
   std::printf("wrote %s\n", svg.c_str());
   return 0;

@@ -31,4 +31,11 @@ int Fe3dCommand(const Fe3dCommandArgs& args);
 int Fe3dPlot(const std::string& csv, const std::string& svg, int layers, double refinement,
              const std::string& title);
 
+/// The slice model of the same contact against the 3D stations of `csv` at (`layers`,
+/// `refinement`): uncoupled strips and the tooth_body coupling of the scene's body share φ
+/// (ContactBodyShare) with a tooth coupling length `lambda` [m] (0: strips); writes the figure
+/// and prints each station's loads. @throws on bad input or a failed solve.
+int Fe3dSlices(const std::string& scene, const std::string& csv, const std::string& svg,
+               int layers, double refinement, double lambda, const std::string& title);
+
 }  // namespace epicycle::fe_reference

@@ -293,9 +293,26 @@ int main(int argc, char** argv) {
   fe3d_plot->add_option("--layers", plot_layers, "the discretisation drawn as lines");
   fe3d_plot->add_option("--refinement", plot_refinement, "the discretisation drawn as lines");
   fe3d_plot->add_option("--title", title, "figure title");
+  std::string slices_scene;
+  double slices_lambda_mm = 0;
+  int slices_layers = 4;
+  double slices_refinement = 1.41;
+  CLI::App* fe3d_slices = app.add_subcommand(
+      "fe3d-slices", "figure: the slice model (strips, tooth_body) against the 3D stations");
+  fe3d_slices->add_option("scene", slices_scene, "the pair scene")->required();
+  fe3d_slices->add_option("csv", fe_csv, "CSV of fe3d runs")->required();
+  fe3d_slices->add_option("svg", prefix, "output SVG")->required();
+  fe3d_slices->add_option("--layers", slices_layers, "the 3D discretisation compared");
+  fe3d_slices->add_option("--refinement", slices_refinement, "the 3D discretisation compared");
+  fe3d_slices->add_option("--coupling-length-mm", slices_lambda_mm,
+                          "the tooth's Pasternak length [mm] (0: strips)");
+  fe3d_slices->add_option("--title", title, "figure title");
   try {
     app.parse(argc, argv);
     if (*plot) return Plot(hybrid_csv, fe_csv, prefix, title);
+    if (*fe3d_slices)
+      return fe_reference::Fe3dSlices(slices_scene, fe_csv, prefix, slices_layers,
+                                      slices_refinement, slices_lambda_mm * 1e-3, title);
     if (*fe3d) return fe_reference::Fe3dCommand(f3);
     if (*fe3d_plot)
       return fe_reference::Fe3dPlot(fe_csv, prefix, plot_layers, plot_refinement, title);

@@ -54,9 +54,9 @@ Eigen::MatrixXd PasternakByDifferences(int slices, double b, double lambda, int 
 // Newton back end. Returns the line loads w_s = F_s/Δz [N/m].
 template <typename Gap>
 std::vector<double> LineLoads(int slices, double b, double c, double force, FaceCoupling coupling,
-                              double lambda, Gap gap) {
+                              double lambda, Gap gap, double body_share = 0) {
   solvers::ContactProblemData d;
-  d.compliance = FaceCouplingMatrix(slices, b, coupling, lambda) / (c * b);
+  d.compliance = FaceCouplingMatrix(slices, b, coupling, lambda, body_share) / (c * b);
   const std::vector<double> z = transmission::SliceCentres(slices, b);
   d.overlap.resize(slices);
   for (int s = 0; s < slices; ++s) d.overlap(s) = -gap(z[static_cast<std::size_t>(s)]);
@@ -148,6 +148,48 @@ TEST_CASE("face width: K_Hbeta of a linear misalignment is ISO 6336-1's 1 + c F_
     CHECK(err <= k_exact * k_exact / (2.0 * S));
     CHECK(err < last);
     last = err;
+  }
+}
+
+TEST_CASE("face width: the tooth_body coupling (1 - phi) S I + phi 1 1^T keeps the plane model "
+          "under a uniform load and meets a linear gap with the tooth's stiffness c/(1 - phi)",
+          "[unit][transmission][face_width]") {
+  CHECK_THROWS_WITH(FaceCouplingMatrix(4, kB, FaceCoupling::kToothBody, 0, 1.0),
+                    Catch::Contains("body_share = 1") && Catch::Contains("[0, 1)"));
+  CHECK_THROWS_WITH(FaceCouplingMatrix(4, kB, FaceCoupling::kToothBody, 0, -0.1),
+                    Catch::Contains("body_share = -0.1"));
+  CHECK_THROWS_WITH(FaceCouplingMatrix(4, kB, FaceCoupling::kToothBody, -1e-3, 0.3),
+                    Catch::Contains("coupling_length = -0.001") && Catch::Contains(">= 0"));
+  // With a tooth length λ the tooth part is the Pasternak layer's W, scaled by 1 − φ.
+  CHECK(FaceCouplingMatrix(6, kB, FaceCoupling::kToothBody, 3e-3, 0.3)
+            .isApprox(0.7 * FaceCouplingMatrix(6, kB, FaceCoupling::kPasternak, 3e-3) +
+                          Eigen::MatrixXd::Constant(6, 6, 0.3),
+                      1e-14));
+  CHECK(FaceCouplingMatrix(6, kB, FaceCoupling::kToothBody, 0, 0)
+            .isApprox(FaceCouplingMatrix(6, kB, FaceCoupling::kNone, 0), 0));
+  const Eigen::MatrixXd w = FaceCouplingMatrix(10, kB, FaceCoupling::kToothBody, 0, 0.4);
+  // Entries 0.4 and 6.4: sums of ten exact binary fractions' neighbours, 1e-14 relative.
+  for (int s = 0; s < 10; ++s) CHECK(std::abs(w.row(s).sum() - 10) <= 1e-14 * 10);
+  CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(w).eigenvalues().minCoeff() ==
+        Approx(0.6 * 10).epsilon(1e-12));
+  // Slice s deflects by (1/(c b)) [(1 − φ) S F_s + φ F] = δ − g(z_s): with q_s = F_s S/b,
+  // q_s = c/(1 − φ) (δ − g(z_s) − φ F/(c b)), linear in z with slope c F_β/((1 − φ) b) while the
+  // whole face carries, so the discrete K_Hβ is exactly 1 + x (1 − 1/S)/(1 − φ), x = c F_β b/(2F);
+  // once the face lifts off, the uncoupled closed form with c/(1 − φ), within K²/(2S) as above.
+  const double F = 20000, phi = 0.4;
+  for (const int S : {4, 10, 40}) {
+    const double f_beta = 20e-6, x = kC * f_beta * kB / (2 * F);
+    const auto full = LineLoads(S, kB, kC, F, FaceCoupling::kToothBody, 0,
+                                [&](double z) { return f_beta * (z / kB + 0.5); }, phi);
+    CHECK(KHBeta(full, F, kB) == Approx(1 + x * (1 - 1.0 / S) / (1 - phi)).epsilon(1e-9));
+  }
+  const double f_beta = 120e-6;
+  const double k_exact = std::sqrt(2 * kC / (1 - phi) * f_beta * kB / F);
+  for (const int S : {40, 160}) {
+    const auto lifted = LineLoads(S, kB, kC, F, FaceCoupling::kToothBody, 0,
+                                  [&](double z) { return f_beta * (z / kB + 0.5); }, phi);
+    INFO("S " << S << " K " << KHBeta(lifted, F, kB) << " closed form " << k_exact);
+    CHECK(std::abs(KHBeta(lifted, F, kB) - k_exact) <= k_exact * k_exact / (2.0 * S));
   }
 }
 

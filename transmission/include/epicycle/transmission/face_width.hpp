@@ -24,7 +24,16 @@
 //     w − λ² w'' = c p, free ends: w' = 0), whose Green's function on [0, b] is
 //       G(x, x') = cosh(x_</λ) cosh((b − x_>)/λ) / (λ sinh(b/λ)),
 //     and W_st = (S/Δz) ∫_s ∫_t G dx dx' (a Galerkin average over both slices: symmetric,
-//     positive definite; λ → 0 gives S I, λ → ∞ the rigid 1 1ᵀ).
+//     positive definite; λ → 0 gives S I, λ → ∞ the rigid 1 1ᵀ);
+//   - kToothBody: the tooth along the face (strips, or a Pasternak layer of λ > 0), the gear
+//     body on the face's resultant,
+//       W = (1 − φ) W_tooth + φ 1 1ᵀ,   W_tooth = S I (λ = 0) or the Pasternak W of λ,
+//     φ ∈ [0, 1) the bodies' share of the structural compliance at the contact (a disc held at
+//     its hub answers the resultant of a load on its face, not where along the face it sits).
+//     A gap linear in z then meets the tooth part alone: with strips the load falls at
+//     c_t F_β/b per unit length, 1/c_t = (1 − φ) C b + (the local term per unit width), C the
+//     plane contact's structural compliance [m/N] over the face width b. ContactBodyShare
+//     (fe_compliance.hpp) computes φ from the FE tables (docs/model.md §10).
 // The local contact term of a slice is the plane term of width b/S.
 #pragma once
 
@@ -45,6 +54,7 @@ struct StageContact;
 enum class FaceCoupling {
   kNone,       ///< uncoupled strips
   kPasternak,  ///< a Pasternak foundation of coupling length λ with free ends
+  kToothBody,  ///< the tooth (strips or Pasternak λ) plus bodies that answer the resultant (φ)
 };
 
 /// A lead (helix) deviation and the lead modifications of one gear (the scene's
@@ -84,10 +94,13 @@ struct FaceWidthSpec {
 
 inline constexpr int kMaxFaceSlices = 200;
 
-/// W [-], S×S, of `coupling` on a face of width `width` [m] (docs/model.md §10, "Face width").
-/// @throws std::invalid_argument for S < 1, a width not > 0, or kPasternak with λ not > 0.
+/// W [-], S×S, of `coupling` on a face of width `width` [m] (docs/model.md §10, "Face width"):
+/// `coupling_length` λ [m] of kPasternak and of kToothBody's tooth (0: strips), `body_share` φ
+/// [-] of kToothBody.
+/// @throws std::invalid_argument for S < 1, a width not > 0, kPasternak with λ not > 0, or
+///         kToothBody with φ outside [0, 1) or λ < 0.
 Eigen::MatrixXd FaceCouplingMatrix(int slices, double width, FaceCoupling coupling,
-                                   double coupling_length);
+                                   double coupling_length, double body_share = 0);
 
 /// z_s = −b/2 + (s + ½) b/S [m], the centre of slice s of a face of width b.
 inline double SliceCentre(int slice, int slices, double width) {

@@ -136,4 +136,17 @@ class FePairCompliance {
   solvers::PlaneAssumption plane_;
 };
 
+/// φ [-], the gear bodies' share of the structural compliance of `contact` (FaceCoupling::
+/// kToothBody, docs/model.md §10): on each body B, the displacement that a unit force at the
+/// contact causes at the same flank point of the neighbouring teeth k ± 1, along their own
+/// normals (the mean of the two), is what the rim, web and hub carry under the loaded tooth;
+/// summed over both bodies and divided by the contact's structural compliance C_jj (the depth-h
+/// self terms):
+///   φ = Σ_B ½ [Λ_B(k → k+1) + Λ_B(k → k−1)] / Σ_B Λ_B(k → k).
+/// The healthy tables are read (a crack's rows are not).
+/// @throws std::invalid_argument for a contact point off its flank grid, or a φ outside [0, 1).
+double ContactBodyShare(const FePairCompliance& compliance, const geometry::GearPair& pair,
+                        const geometry::PairPoses& poses,
+                        const geometry::PotentialContact& contact);
+
 }  // namespace epicycle::transmission
