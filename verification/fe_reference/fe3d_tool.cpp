@@ -186,7 +186,7 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
   int colour = 0;
   for (const auto& [name, f_beta] : {std::pair{"c", 0.0}, std::pair{"a", 20e-6}, std::pair{"b", 80e-6}}) {
     // The 3D stations' means as markers at their centres; the slices as lines.
-    PlotSeries ref{std::string(name) + ": 3D stations", {}, {}, true};
+    PlotSeries ref{std::string(name) + ": 3D stations (dots)", {}, {}, true};
     ref.colour = colour;
     for (const auto& r : test::ReadCsvRows(csv))
       if (r.size() == 27 && r[0] == name && std::stoi(r[4]) == layers &&
@@ -198,10 +198,10 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
       throw std::invalid_argument(csv + ": no case " + name + " with " + std::to_string(layers) +
                                   " layers at refinement " + std::to_string(refinement));
     const test::SliceLoads s = pair.Solve(strips, f_beta), t = pair.Solve(coupled, f_beta);
-    PlotSeries line_s{std::string(name) + ": strips", {}, {}, false};
+    PlotSeries line_s{std::string(name) + ": strips (dashed)", {}, {}, false};
     line_s.dashed = true;
     line_s.colour = colour;
-    PlotSeries line_t{std::string(name) + ": tooth_body", {}, {}, false};
+    PlotSeries line_t{std::string(name) + ": tooth_body (solid)", {}, {}, false};
     line_t.colour = colour;
     for (int k = 0; k < kSlices; ++k) {
       const double z = (k + 0.5) * b / kSlices * 1e3;
