@@ -291,6 +291,21 @@ std::vector<std::vector<compliance::FilletStress>> SliceFilletStresses(
   return out;
 }
 
+std::vector<compliance::FilletStress> StateFilletStresses(
+    const StageCompliance& compliance, const geometry::Stage& stage,
+    const geometry::StagePoses& poses, const std::vector<StageContact>& contacts,
+    const Eigen::VectorXd& force, const TangentialLoads* friction,
+    std::vector<std::vector<compliance::FilletStress>>* slices) {
+  if (contacts.empty() || contacts.front().slices < 2)
+    return compliance.FilletStresses(stage, poses, contacts, force, friction);
+  std::vector<std::vector<compliance::FilletStress>> own =
+      SliceFilletStresses(compliance, stage, poses, contacts, force, friction);
+  std::vector<compliance::FilletStress> out;
+  for (const auto& s : own) out.insert(out.end(), s.begin(), s.end());
+  if (slices != nullptr) *slices = std::move(own);
+  return out;
+}
+
 void AddFaceStresses(const std::vector<StageContact>& contacts,
                      const std::vector<solvers::LocalTermParameters>& local,
                      const Eigen::VectorXd& force,

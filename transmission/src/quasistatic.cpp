@@ -312,19 +312,15 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
     TangentialLoads rubbing;  // friction at rest: its forces load the teeth too
     const bool rubs = r.friction && r.friction_tangent.size() == r.problem.contacts.size();
     if (rubs) rubbing = {r.friction_force, r.friction_tangent};
-    if (r.face_loads.empty()) {
-      r.fillet_stress = model.compliance().FilletStresses(
-          model.stage(), built, r.problem.contacts, r.solution.force, rubs ? &rubbing : nullptr);
-    } else {
-      // Slices: each slice's stresses are the plane model's at its own line load; the gears'
-      // extremes are those over the slices (docs/model.md §10, "Stresses across the face").
-      const std::vector<std::vector<compliance::FilletStress>> slices =
-          SliceFilletStresses(model.compliance(), model.stage(), built, r.problem.contacts,
-                              r.solution.force, rubs ? &rubbing : nullptr);
+    // With slices each slice's stresses are the plane model's at its own line load, the gears'
+    // extremes those over the slices (docs/model.md §10, "Stresses across the face").
+    std::vector<std::vector<compliance::FilletStress>> slices;
+    r.fillet_stress =
+        StateFilletStresses(model.compliance(), model.stage(), built, r.problem.contacts,
+                            r.solution.force, rubs ? &rubbing : nullptr, &slices);
+    if (!r.face_loads.empty())
       AddFaceStresses(r.problem.contacts, r.problem.data.local, r.solution.force, slices,
                       &r.face_loads);
-      for (const auto& s : slices) r.fillet_stress.insert(r.fillet_stress.end(), s.begin(), s.end());
-    }
     if (!r.fillet_stress.empty())
       r.root_stress = SummariseRootStress(r.fillet_stress, PlanetBody(model.planets()));
   }

@@ -180,6 +180,15 @@ std::vector<std::vector<compliance::FilletStress>> SliceFilletStresses(
     const geometry::StagePoses& poses, const std::vector<StageContact>& contacts,
     const Eigen::VectorXd& force, const TangentialLoads* friction);
 
+/// The fillet stresses of a state: compliance.FilletStresses of its contacts, or, for sliced
+/// contacts (StageContact::slices > 1), every slice's SliceFilletStresses one after the other
+/// (a gear's extremes are then those over its slices), each slice's also into `slices` if given.
+std::vector<compliance::FilletStress> StateFilletStresses(
+    const StageCompliance& compliance, const geometry::Stage& stage,
+    const geometry::StagePoses& poses, const std::vector<StageContact>& contacts,
+    const Eigen::VectorXd& force, const TangentialLoads* friction,
+    std::vector<std::vector<compliance::FilletStress>>* slices = nullptr);
+
 /// Fills MeshFaceLoad::root_stress, root_stress_body and hertz_pressure of `loads` (FaceLoads of
 /// the same contacts and forces) from the slices' fillets (SliceFilletStresses) and each
 /// contact's Hertz pressure at its own force (its local term is the slice's: width b/S). A fillet
