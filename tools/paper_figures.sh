@@ -62,15 +62,18 @@ sweep() {  # name scene speeds [options]
 sweep speed_sweep_runout paper_stage_runout 500:12000:47
 sweep speed_sweep_noerrors paper_stage 500:12000:116 --window-cycles 3
 # Across the face width (docs/face_width.md): a pin tilted radially, tangentially, the carrier's
-# wind-up; one mesh cycle.
+# wind-up; one mesh cycle, rated (the ratings' tables: tools/face_width_table.py).
 face() {  # name scene
-  "$exe" quasistatic "scenes/$2.toml" --quiet --out "$tmp/$1" > "$tmp/$1.log"
+  "$exe" quasistatic "scenes/$2.toml" --rating --quiet --out "$tmp/$1" > "$tmp/$1.log"
   for f in face_load k_hbeta; do cp "$tmp/$1/quasistatic_$f.svg" "$out/$1_$f.svg"; done
   cp "$tmp/$1/quasistatic_summary.json" "$out/$1_summary.json"
 }
 face face_pin_tilt_radial paper_stage_pin_tilt
 face face_pin_tilt_tangential paper_stage_pin_tilt_tangential
 face face_wind_up paper_stage_wind_up
+python3 tools/face_width_table.py "radial tilt=$out/face_pin_tilt_radial_summary.json" \
+  "tangential tilt=$out/face_pin_tilt_tangential_summary.json" \
+  "wind-up=$out/face_wind_up_summary.json" > "$out/face_ratings.md"
 # The floating sun's largest |LSR - 1/3| and its parts over speed (docs/dynamic.md, "Why a
 # floating sun's shares differ").
 bash tools/floating_sun_map.sh "${1:-build}"

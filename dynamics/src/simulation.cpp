@@ -16,6 +16,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "epicycle/transmission/face_width.hpp"
 #include "epicycle/transmission/load_sharing.hpp"
 
 namespace epicycle::dynamics {
@@ -425,9 +426,10 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
         transmission::TangentialLoads rubbing;
         const bool rubs = e.friction_tangent.size() == e.terms.contacts.size();
         if (rubs) rubbing = {e.friction, e.friction_tangent};
-        sample.fillet_stress =
-            compliance.FilletStresses(model.stage_model().stage(), e.poses, e.terms.contacts,
-                                      e.total_force, rubs ? &rubbing : nullptr);
+        // With slices of the face width: each slice's stresses at its own line load.
+        sample.fillet_stress = transmission::StateFilletStresses(
+            compliance, model.stage_model().stage(), e.poses, e.terms.contacts, e.total_force,
+            rubs ? &rubbing : nullptr);
         if (!sample.fillet_stress.empty())
           sample.root_stress = transmission::SummariseRootStress(
               sample.fillet_stress, transmission::PlanetBody(model.stage_model().planets()));

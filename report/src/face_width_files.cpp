@@ -18,13 +18,17 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // The maps' columns at most: positions beyond share a column (its largest line load).
 constexpr int kMapColumns = 360;
 
-std::string Head(const nlohmann::json& provenance, int slices, const std::vector<double>& widths) {
+std::string Head(const nlohmann::json& provenance, int slices, const std::vector<double>& widths,
+                 bool stresses) {
   std::string head = ProvenanceCsvLine(provenance);
   head += "# slice centres z [mm] of a face of width b: -b/2 + (s + 1/2) b/S, S = " +
           std::to_string(slices) + "; b = " + fmt::format("{:g}", widths.front() * 1e3) +
           " mm (sun meshes), " + fmt::format("{:g}", widths.back() * 1e3) + " mm (ring meshes)\n";
   head += "carrier_deg,mesh,converged,K_Hbeta,largest_z_mm,mean_N_per_mm";
   for (int s = 1; s <= slices; ++s) head += ",w" + std::to_string(s) + "_N_per_mm";
+  if (stresses)
+    head += ",root_stress_max_MPa,root_stress_gear,root_stress_z_mm,hertz_pressure_max_MPa,"
+            "hertz_pressure_z_mm";
   return head + "\n";
 }
 
@@ -32,12 +36,13 @@ std::string Head(const nlohmann::json& provenance, int slices, const std::vector
 
 FaceLoadFiles::FaceLoadFiles(const std::string& base, const nlohmann::json& provenance, int slices,
                              std::vector<std::string> meshes, std::vector<double> widths,
-                             int positions)
+                             int positions, bool stresses)
     : base_(base),
-      csv_(base + "_face_load.csv", Head(provenance, slices, widths)),
+      csv_(base + "_face_load.csv", Head(provenance, slices, widths, stresses)),
       slices_(slices),
       positions_(std::max(1, positions)),
       columns_(std::min(kMapColumns, std::max(1, positions))),
+      stresses_(stresses),
       meshes_(std::move(meshes)),
       widths_(std::move(widths)) {
   map_.assign(meshes_.size(), std::vector<double>(static_cast<std::size_t>(columns_ * slices_), kNaN));
@@ -59,6 +64,7 @@ void FaceLoadFiles::Write(const transmission::PositionResult& r) {
     if (!ok) {
       line += ",,,";
       for (int s = 0; s < slices_; ++s) line += ",";
+      if (stresses_) line += ",,,,,";
       lines += line + "\n";
       continue;
     }
@@ -70,6 +76,25 @@ void FaceLoadFiles::Write(const transmission::PositionResult& r) {
       line += Num(w);
       double& cell = map_[m][static_cast<std::size_t>(s * columns_ + column)];
       cell = std::isnan(cell) ? w : std::max(cell, w);
+    }
+    if (stresses_) {
+      // The largest over the slices (the first slice of a tie); a state without fillets: empty.
+      int rs = -1, hp = -1;
+      for (int s = 0; s < static_cast<int>(f.root_stress.size()); ++s) {
+        const auto k = static_cast<std::size_t>(s);
+        if (rs < 0 || f.root_stress[k] > f.root_stress[static_cast<std::size_t>(rs)]) rs = s;
+        if (hp < 0 || f.hertz_pressure[k] > f.hertz_pressure[static_cast<std::size_t>(hp)]) hp = s;
+      }
+      if (rs < 0) {
+        line += ",,,,,";
+      } else {
+        const auto at = static_cast<std::size_t>(rs), h = static_cast<std::size_t>(hp);
+        line += fmt::format(",{},{},{},{},{}", Num(f.root_stress[at] * 1e-6),
+                            transmission::BodyName(f.root_stress_body[at]),
+                            Num(transmission::SliceCentre(rs, slices_, f.width) * 1e3),
+                            Num(f.hertz_pressure[h] * 1e-6),
+                            Num(transmission::SliceCentre(hp, slices_, f.width) * 1e3));
+      }
     }
     angle_[m].push_back(deg);
     k_h_beta_[m].push_back(f.k_h_beta);

@@ -43,7 +43,8 @@ void QuasiStaticRunFiles::Start(const transmission::QuasiStaticPlan& p) {
       }
     }
     faces_ = std::make_unique<FaceLoadFiles>(base_, provenance_, p.scene->face_width.slices,
-                                             std::move(meshes), std::move(widths), p.positions);
+                                             std::move(meshes), std::move(widths), p.positions,
+                                             p.compliance->has_root_stress());
   }
 }
 
@@ -125,6 +126,14 @@ std::string QuasiStaticRecordText(const transmission::QuasiStaticRecord& r,
       t += fmt::format("  {:<16} {:<12.6f} {:<13.6f} {:<15.4f} {:<21.3f} {:.6f}\n", f.mesh,
                        f.k_h_beta_max, f.k_h_beta_mean, geometry::Deg(f.carrier_angle),
                        f.largest_z * 1e3, f.k_gamma_k_h_beta_max);
+    if (s.face_width.front().stresses) {
+      t += "\n  mesh             root stress max MPa  gear      at z mm  Hertz pressure max MPa  "
+           "at z mm\n";
+      for (const transmission::MeshFaceSummary& f : s.face_width)
+        t += fmt::format("  {:<16} {:<20.2f} {:<9} {:<8.3f} {:<23.2f} {:.3f}\n", f.mesh,
+                         f.root_stress_max * 1e-6, f.root_stress_gear, f.root_stress_z * 1e3,
+                         f.hertz_pressure_max * 1e-6, f.hertz_pressure_z * 1e3);
+    }
   }
   t += RootStressText(s.root_stress, "carrier deg", 180.0 / std::numbers::pi);
   t += ContactPressureText(s.contact_pressure, "carrier deg", 180.0 / std::numbers::pi);

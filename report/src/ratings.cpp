@@ -72,12 +72,41 @@ nlohmann::json RatingJson(const transmission::StageRating& rating) {
                      {"contact_pressure_model_MPa", mpa(g.contact_pressure)},
                      {"S_H_model_pressure", JsonValue(g.s_h_pressure)},
                      {"note", g.note}});
-  return {{"tangential_force_per_planet_N", rating.tangential_force},
-          {"K_A", rating.application_factor},
-          {"K_v", rating.dynamic_factor},
-          {"K_v_source", rating.dynamic_source},
-          {"gears", gears},
-          {"factors", factors}};
+  nlohmann::json out = {{"tangential_force_per_planet_N", rating.tangential_force},
+                         {"K_A", rating.application_factor},
+                         {"K_v", rating.dynamic_factor},
+                         {"K_v_source", rating.dynamic_source},
+                         {"gears", gears},
+                         {"factors", factors}};
+  if (!rating.face_width.empty()) {
+    nlohmann::json meshes = nlohmann::json::array();
+    auto um = [](double v) { return JsonValue(v * 1e6); };
+    for (const auto& m : rating.face_width)
+      meshes.push_back({{"mesh", m.mesh},
+                        {"K_gamma_table", JsonValue(m.k_gamma_table)},
+                        {"K_gamma_model", JsonValue(m.k_gamma_model)},
+                        {"K_Hbeta_model", JsonValue(m.k_h_beta_model)},
+                        {"K_Hbeta_ISO_method_C", JsonValue(m.iso.k_h_beta)},
+                        {"K_Fbeta_ISO_method_C", JsonValue(m.iso.k_f_beta)},
+                        {"N_F", JsonValue(m.iso.n_f)},
+                        {"f_ma_um", um(m.iso_inputs.assembly)},
+                        {"f_sh_um", um(m.iso_inputs.deflection)},
+                        {"F_betax_um", um(m.iso.f_beta_x)},
+                        {"y_beta_um", um(m.iso.y_beta)},
+                        {"F_betay_um", um(m.iso.f_beta_y)},
+                        {"c_gamma_beta_N_per_mm_um", JsonValue(m.iso.c_gamma_beta / 1e9)},
+                        {"F_m_N", JsonValue(m.iso_inputs.mean_force)},
+                        {"ISO_face_partly_unloaded", m.iso.lifted},
+                        {"K_gamma_K_Hbeta_model", JsonValue(m.k_gamma_k_h_beta_model)},
+                        {"K_gamma_K_Hbeta_ISO", JsonValue(m.k_gamma_k_h_beta_iso)},
+                        {"root_stress_gear", m.root_stress_gear},
+                        {"root_stress_model_MPa", mpa(m.root_stress)},
+                        {"S_F_model_stress", JsonValue(m.s_f_stress)},
+                        {"hertz_pressure_model_MPa", mpa(m.hertz_pressure)},
+                        {"S_H_model_pressure", JsonValue(m.s_h_pressure)}});
+    out["face_width"] = meshes;
+  }
+  return out;
 }
 
 std::string RatingText(const transmission::StageRating& rating) {
@@ -110,6 +139,20 @@ std::string RatingText(const transmission::StageRating& rating) {
   }
   for (const auto& g : rating.gears)
     if (!g.note.empty()) out += fmt::format("    {}: {}\n", g.gear, g.note);
+  if (!rating.face_width.empty()) {
+    out +=
+        "  across the face width (ISO 6336-1 method C fed the model's misalignment and c_gamma; "
+        "the model's stresses per slice):\n"
+        "    mesh          K_gamma  K_Hbeta model  ISO C  F_betay [um]  K_g K_Hb model  ISO     "
+        "sigma_F [MPa] / S_F     p_H [MPa] / S_H\n";
+    for (const auto& m : rating.face_width)
+      out += fmt::format("    {:<13} {:7.3f}  {:13.3f}  {:5.3f}  {:12.2f}  {:13.3f}  {:5.3f}   {:<7} {}  "
+                         "{}\n",
+                         m.mesh, m.k_gamma_model, m.k_h_beta_model, m.iso.k_h_beta,
+                         m.iso.f_beta_y * 1e6, m.k_gamma_k_h_beta_model, m.k_gamma_k_h_beta_iso,
+                         m.root_stress_gear.empty() ? "-" : m.root_stress_gear,
+                         pair(m.root_stress, m.s_f_stress), pair(m.hertz_pressure, m.s_h_pressure));
+  }
   out += "  factors:\n";
   for (const auto& f : rating.factors)
     out += fmt::format("    {:<34} {:>10}  {}\n", f.symbol, Num(f.value, "{:.5g}", "-"), f.source);

@@ -158,6 +158,30 @@ Eigen::Vector2d FaceWidthModel::AxisSlope(const geometry::StagePoses& poses, int
   return own.x() * radial + (own.y() + wind_up_slope_) * tangential;
 }
 
+FaceWidthModel::Misalignment FaceWidthModel::MeshMisalignment(const geometry::StagePoses& poses,
+                                                              const StageContact& c) const {
+  const bool ring = c.mesh == geometry::MeshKind::kPlanetRing;
+  const double b = ring ? planet_ring_width_ : sun_planet_width_;
+  const geometry::PotentialContact& p = c.contact;
+  // The wind-up alone: every pin's tangential slope, the sun and the ring untilted.
+  auto wind_up = [&](int body) -> Eigen::Vector2d {
+    if (body < 2) return Eigen::Vector2d::Zero();
+    const geometry::Vec2 centre =
+        poses.planets.at(static_cast<std::size_t>(body - 2)).rotation_centre;
+    const double r = centre.norm();
+    if (!(r > 0)) return Eigen::Vector2d::Zero();
+    return wind_up_slope_ * Eigen::Vector2d(-centre.y() / r, centre.x() / r);
+  };
+  const Eigen::Vector2d all = AxisSlope(poses, c.body_a) - AxisSlope(poses, c.body_b);
+  const Eigen::Vector2d deflection = wind_up(c.body_a) - wind_up(c.body_b);
+  const BodyLead& la = lead_[static_cast<std::size_t>(c.body_a)];
+  const BodyLead& lb = lead_[static_cast<std::size_t>(c.body_b)];
+  Misalignment m;
+  m.deflection = b * p.normal.dot(deflection);
+  m.assembly = b * (p.normal.dot(all - deflection) - (p.lever_a * la.slope + p.lever_b * lb.slope));
+  return m;
+}
+
 double FaceWidthModel::GapChange(const geometry::StagePoses& poses, const StageContact& c,
                                  int s) const {
   const bool ring = c.mesh == geometry::MeshKind::kPlanetRing;
@@ -240,10 +264,119 @@ std::vector<MeshFaceLoad> FaceLoads(const geometry::Stage& stage, int slices,
     const auto top = std::max_element(f.line_load.begin(), f.line_load.end());
     f.largest_slice = static_cast<int>(top - f.line_load.begin());
     const double b = f.ring_mesh ? b_pr : b_sp;
+    f.width = b;
     f.largest_z = SliceCentre(f.largest_slice, slices, b);
     f.k_h_beta = f.mean > 0 ? *top / f.mean : 1.0;
   }
   return out;
+}
+
+std::vector<std::vector<compliance::FilletStress>> SliceFilletStresses(
+    const StageCompliance& compliance, const geometry::Stage& stage,
+    const geometry::StagePoses& poses, const std::vector<StageContact>& contacts,
+    const Eigen::VectorXd& force, const TangentialLoads* friction) {
+  if (force.size() != static_cast<Eigen::Index>(contacts.size()))
+    throw std::invalid_argument("SliceFilletStresses: " + std::to_string(force.size()) +
+                                " forces for " + std::to_string(contacts.size()) + " contacts");
+  const int slices = contacts.empty() ? 1 : contacts.front().slices;
+  std::vector<std::vector<compliance::FilletStress>> out(static_cast<std::size_t>(slices));
+  for (int s = 0; s < slices; ++s) {
+    std::vector<StageContact> own;
+    std::vector<double> f;
+    TangentialLoads rubbing;
+    std::vector<double> phi;
+    for (std::size_t j = 0; j < contacts.size(); ++j) {
+      if (contacts[j].slice != s) continue;
+      own.push_back(contacts[j]);
+      // The plane model per unit width at the slice's line load w = S f/b carries w b = S f.
+      f.push_back(slices * force(static_cast<Eigen::Index>(j)));
+      if (friction != nullptr) {
+        phi.push_back(slices * friction->force(static_cast<Eigen::Index>(j)));
+        rubbing.tangent.push_back(friction->tangent.at(j));
+      }
+    }
+    if (own.empty()) continue;
+    rubbing.force = Eigen::Map<const Eigen::VectorXd>(phi.data(), static_cast<Eigen::Index>(phi.size()));
+    out[static_cast<std::size_t>(s)] = compliance.FilletStresses(
+        stage, poses, own,
+        Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size())),
+        friction != nullptr ? &rubbing : nullptr);
+  }
+  return out;
+}
+
+std::vector<compliance::FilletStress> StateFilletStresses(
+    const StageCompliance& compliance, const geometry::Stage& stage,
+    const geometry::StagePoses& poses, const std::vector<StageContact>& contacts,
+    const Eigen::VectorXd& force, const TangentialLoads* friction,
+    std::vector<std::vector<compliance::FilletStress>>* slices) {
+  if (contacts.empty() || contacts.front().slices < 2)
+    return compliance.FilletStresses(stage, poses, contacts, force, friction);
+  std::vector<std::vector<compliance::FilletStress>> own =
+      SliceFilletStresses(compliance, stage, poses, contacts, force, friction);
+  std::vector<compliance::FilletStress> out;
+  for (const auto& s : own) out.insert(out.end(), s.begin(), s.end());
+  if (slices != nullptr) *slices = std::move(own);
+  return out;
+}
+
+void AddFaceStresses(const std::vector<StageContact>& contacts,
+                     const std::vector<solvers::LocalTermParameters>& local,
+                     const Eigen::VectorXd& force,
+                     const std::vector<std::vector<compliance::FilletStress>>& slice_fillets,
+                     std::vector<MeshFaceLoad>* loads) {
+  if (force.size() != static_cast<Eigen::Index>(contacts.size()) ||
+      (!local.empty() && local.size() != contacts.size()))
+    throw std::invalid_argument("AddFaceStresses: " + std::to_string(contacts.size()) +
+                                " contacts, " + std::to_string(local.size()) +
+                                " local terms and " + std::to_string(force.size()) +
+                                " forces: must be equal");
+  const int slices = static_cast<int>(slice_fillets.size());
+  const int planets = static_cast<int>(loads->size()) / 2;
+  auto mesh_of = [&](const StageContact& c) {
+    return static_cast<std::size_t>((c.mesh == geometry::MeshKind::kPlanetRing ? planets : 0) +
+                                    c.planet);
+  };
+  for (MeshFaceLoad& m : *loads) {
+    m.root_stress.assign(static_cast<std::size_t>(slices), 0.0);
+    m.root_stress_body.assign(static_cast<std::size_t>(slices), 0);
+    m.hertz_pressure.assign(static_cast<std::size_t>(slices), 0.0);
+  }
+  for (std::size_t j = 0; j < contacts.size(); ++j) {
+    const StageContact& c = contacts[j];
+    const double f = force(static_cast<Eigen::Index>(j));
+    if (local.empty() || !(f > 0) || c.contact.kind != geometry::ContactKind::kInvolute) continue;
+    double& p = loads->at(mesh_of(c)).hertz_pressure.at(static_cast<std::size_t>(c.slice));
+    p = std::max(p, solvers::HertzPressure(local[j], f));
+  }
+  for (int s = 0; s < slices; ++s) {
+    for (const compliance::FilletStress& fillet : slice_fillets[static_cast<std::size_t>(s)]) {
+      // The mesh whose loaded contact of this slice sits nearest on the fillet's body.
+      const int teeth = fillet.table->teeth();
+      int nearest = teeth + 1;
+      std::size_t mesh = 0;
+      for (std::size_t j = 0; j < contacts.size(); ++j) {
+        const StageContact& c = contacts[j];
+        if (c.slice != s || !(force(static_cast<Eigen::Index>(j)) > 0)) continue;
+        if (c.body_a != fillet.body && c.body_b != fillet.body) continue;
+        const int tooth = c.body_a == fillet.body ? c.contact.tooth_a : c.contact.tooth_b;
+        const int d = ((tooth - fillet.tooth) % teeth + teeth) % teeth;
+        const int distance = std::min(d, teeth - d);
+        if (distance < nearest) {
+          nearest = distance;
+          mesh = mesh_of(c);
+        }
+      }
+      if (nearest > teeth) continue;
+      MeshFaceLoad& m = loads->at(mesh);
+      for (double sigma : fillet.sigma) {
+        if (sigma > m.root_stress[static_cast<std::size_t>(s)]) {
+          m.root_stress[static_cast<std::size_t>(s)] = sigma;
+          m.root_stress_body[static_cast<std::size_t>(s)] = fillet.body;
+        }
+      }
+    }
+  }
 }
 
 }  // namespace epicycle::transmission

@@ -325,6 +325,23 @@ MeshStiffnessResult ComputeHealthyMeshStiffness(const Scene& scene, const MeshPa
                               options);
 }
 
+std::array<double, 2> MeanMeshStiffnessPerWidth(const Scene& scene, const geometry::Stage& stage,
+                                                const FeComplianceOptions& fe, int positions) {
+  std::array<double, 2> c{};
+  const std::array<std::string, 2> meshes{"sun-planet1", "planet1-ring"};
+  for (std::size_t m = 0; m < 2; ++m) {
+    const MeshPairSetup setup = MakeMeshPair(scene, &stage, meshes[m]);
+    const geometry::GearPair pair = MakePair(scene, setup.spec);
+    MeshStiffnessOptions opt;
+    opt.positions = positions;
+    const MeshStiffnessResult r = ComputeHealthyMeshStiffness(scene, setup, pair, fe, opt);
+    if (r.failed == positions)
+      throw std::runtime_error("mean mesh stiffness of " + meshes[m] + ": every position failed");
+    c[m] = r.mean_stiffness / geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
+  }
+  return c;
+}
+
 compliance::iso6336::PairData IsoPairData(const geometry::GearPair& pair) {
   auto dedendum = [](const geometry::Gear& g) {
     const geometry::GearSpec& s = g.spec();

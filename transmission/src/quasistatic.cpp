@@ -257,8 +257,24 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
   r.load_sharing = model.LoadSharing(r.problem.contacts, r.solution.force, loads.sun_torque);
   if (model.face_width().active() &&
       r.solution.force.size() == static_cast<Eigen::Index>(r.problem.contacts.size()))
+  {
     r.face_loads = FaceLoads(model.stage(), model.face_width().slices(), r.problem.contacts,
                              r.solution.force);
+    // Each mesh's misalignment, from its most loaded contact (ISO 6336-1 method C's input).
+    std::vector<double> most(r.face_loads.size(), 0.0);
+    for (std::size_t j = 0; j < r.problem.contacts.size(); ++j) {
+      const StageContact& c = r.problem.contacts[j];
+      const std::size_t m =
+          (c.mesh == geometry::MeshKind::kPlanetRing ? static_cast<std::size_t>(n) : 0) +
+          static_cast<std::size_t>(c.planet);
+      const double f = r.solution.force(static_cast<Eigen::Index>(j));
+      if (m >= most.size() || !(f > most[m])) continue;
+      most[m] = f;
+      const FaceWidthModel::Misalignment a = model.face_width().MeshMisalignment(r.poses, c);
+      r.face_loads[m].misalignment_assembly = a.assembly;
+      r.face_loads[m].misalignment_deflection = a.deflection;
+    }
+  }
   if (friction) {
     r.friction = true;
     r.force_change = g.force_change;
@@ -296,8 +312,15 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
     TangentialLoads rubbing;  // friction at rest: its forces load the teeth too
     const bool rubs = r.friction && r.friction_tangent.size() == r.problem.contacts.size();
     if (rubs) rubbing = {r.friction_force, r.friction_tangent};
-    r.fillet_stress = model.compliance().FilletStresses(model.stage(), built, r.problem.contacts,
-                                                        r.solution.force, rubs ? &rubbing : nullptr);
+    // With slices each slice's stresses are the plane model's at its own line load, the gears'
+    // extremes those over the slices (docs/model.md §10, "Stresses across the face").
+    std::vector<std::vector<compliance::FilletStress>> slices;
+    r.fillet_stress =
+        StateFilletStresses(model.compliance(), model.stage(), built, r.problem.contacts,
+                            r.solution.force, rubs ? &rubbing : nullptr, &slices);
+    if (!r.face_loads.empty())
+      AddFaceStresses(r.problem.contacts, r.problem.data.local, r.solution.force, slices,
+                      &r.face_loads);
     if (!r.fillet_stress.empty())
       r.root_stress = SummariseRootStress(r.fillet_stress, PlanetBody(model.planets()));
   }

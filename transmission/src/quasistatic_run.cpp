@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/validity.hpp"
 
@@ -113,8 +114,15 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
   for (const std::string& w : tally.Messages()) record.warnings.push_back(w);
   record.summary = accumulator.Result();
   record.converged_positions = record.summary.converged;
-  if (request.rating && record.converged_positions > 0)
-    record.rating = RateStage(scene, stage, record.summary);
+  if (request.rating && record.converged_positions > 0) {
+    if (record.summary.face_width.empty()) {
+      record.rating = RateStage(scene, stage, record.summary);
+    } else {
+      // Method C's c_γ: the model's own mean mesh stiffness per unit width.
+      const std::array<double, 2> c = MeanMeshStiffnessPerWidth(scene, stage, request.tables);
+      record.rating = RateStage(scene, stage, record.summary, 1.0, "quasi-static run", nullptr, &c);
+    }
+  }
   return record;
 }
 
@@ -148,6 +156,16 @@ void VisitRecord(const SweepSummary& s, RecordVisitor& visit) {
       visit.Number("carrier_angle_at_max_deg", f.carrier_angle * 180 / std::numbers::pi);
       visit.Number("largest_load_z_mm", f.largest_z * 1e3);
       visit.Number("K_gamma_K_Hbeta_max", f.k_gamma_k_h_beta_max);
+      if (f.stresses) {
+        visit.Number("root_stress_max_MPa", f.root_stress_max * 1e-6);
+        visit.Text("root_stress_gear", f.root_stress_gear);
+        visit.Number("root_stress_z_mm", f.root_stress_z * 1e3);
+        visit.Number("root_stress_carrier_angle_deg", f.root_stress_angle * 180 / std::numbers::pi);
+        visit.Number("hertz_pressure_max_MPa", f.hertz_pressure_max * 1e-6);
+        visit.Number("hertz_pressure_z_mm", f.hertz_pressure_z * 1e3);
+        visit.Number("hertz_pressure_carrier_angle_deg",
+                     f.hertz_pressure_angle * 180 / std::numbers::pi);
+      }
     }
     visit.EndList();
   }

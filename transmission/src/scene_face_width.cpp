@@ -41,10 +41,6 @@ void ReadFaceWidth(TableReader& top, Scene& s,
       Rule::Closed(1, kMaxFaceSlices)
           .Because("slices of the face width, each a plane contact problem of its own; 1 is the "
                    "plane model")));
-  if (f.slices > 1 && s.model.stresses)
-    t->Fail("slices", std::to_string(f.slices) + " with [model] stresses = true",
-            "root stresses per slice of the face width are not built: a slice's fillet stress "
-            "is not the plane model's; run the face-width model with stresses off");
   auto needs_slices = [&](TableReader& r, const std::string& key) {
     if (f.slices < 2)
       r.Fail(key, "given with face_width.slices = 1",

@@ -70,6 +70,8 @@ void SweepAccumulator::Add(const PositionResult& r) {
                                                           : geometry::MeshKind::kSunPlanet);
         f.k_h_beta_max = -1;
         f.k_gamma_k_h_beta_max = -1;
+        f.misalignment_assembly = m.misalignment_assembly;
+        f.misalignment_deflection = m.misalignment_deflection;
         faces_.push_back(f);
       }
       face_mean_.resize(faces_.size());
@@ -85,6 +87,22 @@ void SweepAccumulator::Add(const PositionResult& r) {
       }
       const double product = factors[static_cast<std::size_t>(load.planet)] * load.k_h_beta;
       f.k_gamma_k_h_beta_max = std::max(f.k_gamma_k_h_beta_max, product);
+      const int slices = static_cast<int>(load.line_load.size());
+      for (int s = 0; s < static_cast<int>(load.root_stress.size()); ++s) {
+        const auto k = static_cast<std::size_t>(s);
+        f.stresses = true;
+        if (load.root_stress[k] > f.root_stress_max) {
+          f.root_stress_max = load.root_stress[k];
+          f.root_stress_gear = BodyName(load.root_stress_body[k]);
+          f.root_stress_z = SliceCentre(s, slices, load.width);
+          f.root_stress_angle = r.carrier_angle;
+        }
+        if (load.hertz_pressure[k] > f.hertz_pressure_max) {
+          f.hertz_pressure_max = load.hertz_pressure[k];
+          f.hertz_pressure_z = SliceCentre(s, slices, load.width);
+          f.hertz_pressure_angle = r.carrier_angle;
+        }
+      }
     }
   }
   // Root stresses and contact pressures, when the positions carry stresses.

@@ -1,12 +1,16 @@
 // The paper stage with slices of the face width (docs/model.md §10): which end of each mesh a
 // planet pin's tilt and the carrier's wind-up load, against the planet's kinematics worked out
 // from the directions of the solved contact forces; the gap change across each mesh against the
-// line of action's inclination; one slice is the plane model.
+// line of action's inclination; one slice is the plane model; with stresses, each slice's root
+// stress and Hertz pressure are the plane model's at the slice's line load, and the largest sit
+// at the loaded end.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
+#include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "fe_fixtures.hpp"
 
@@ -163,4 +167,111 @@ TEST_CASE("face width: one slice is the plane model, the [face_width] table read
   CHECK(a.load_sharing == b.load_sharing);
   CHECK(a.transmission_error == b.transmission_error);
   CHECK(b.face_loads.empty());
+}
+
+namespace {
+
+// The paper stage with its tables' root stresses (the scene's [model] stresses), `face_width`
+// appended to its scene.
+struct StressRig {
+  transmission::Scene scene;
+  geometry::Stage stage;
+  transmission::FeStageCompliance compliance;
+  transmission::StageModel model;
+  explicit StressRig(const std::string& face_width)
+      : scene(Read(face_width)),
+        stage(scene.stage),
+        compliance(scene, stage, test::CachedTables()),
+        model(stage, compliance, transmission::SetupFromScene(scene)) {}
+  static transmission::Scene Read(const std::string& face_width) {
+    transmission::Scene s = transmission::ParseScene(
+        test::SceneText("paper_stage.toml") + face_width, "paper_stage.toml + [face_width]");
+    s.model.stresses = true;
+    return s;
+  }
+  PositionResult Solve(double carrier_angle) const {
+    PositionResult r = transmission::SolvePosition(model, carrier_angle, scene.loads,
+                                                   transmission::QuasiStaticOptions{});
+    REQUIRE(r.converged);
+    REQUIRE_FALSE(r.fillet_stress.empty());
+    return r;
+  }
+};
+
+double Largest(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+
+}  // namespace
+
+TEST_CASE("face width with stresses: a uniform face's slices each carry the plane model's root "
+          "stress and Hertz pressure",
+          "[crosscheck][transmission][face_width][stress]") {
+  // Uncoupled slices of an aligned face: slice s is the plane problem at the line load F/b (its
+  // compliance S C, its local term of width b/S), so its forces are the plane forces over S and
+  // its stresses, the plane model's at S f_s = F, are the plane stresses. Both are solved to the
+  // contact residual 1e-10 (relative to the load) from the same start; their solutions of the
+  // same equations then agree to that residual times the compliance's conditioning between the
+  // meshes, well below 10: 1e-9 relative (they agree to round-off, about 1e-16, here).
+  const double tol = 1e-9;
+  const StressRig plane(""), sliced(Table(""));
+  const PositionResult a = plane.Solve(0.1), b = sliced.Solve(0.1);
+  // Each gear's largest fillet tension over the slices is the plane model's.
+  REQUIRE(a.root_stress.size() == b.root_stress.size());
+  for (std::size_t g = 0; g < a.root_stress.size(); ++g) {
+    INFO(transmission::BodyName(static_cast<int>(g)));
+    CHECK(b.root_stress[g].tension == Approx(a.root_stress[g].tension).epsilon(tol));
+  }
+  // Per mesh: every slice alike; the Hertz pressure the plane contacts' largest on the line of
+  // action, computed here from the plane problem's own local terms.
+  for (const MeshFaceLoad& m : b.face_loads) {
+    INFO("planet " << m.planet + 1 << (m.ring_mesh ? " ring" : " sun") << " mesh");
+    REQUIRE(m.root_stress.size() == static_cast<std::size_t>(kSlices));
+    double p_plane = 0;
+    for (std::size_t j = 0; j < a.problem.contacts.size(); ++j) {
+      const auto& c = a.problem.contacts[j];
+      const double f = a.solution.force(static_cast<Eigen::Index>(j));
+      if (c.planet != m.planet || (c.mesh == geometry::MeshKind::kPlanetRing) != m.ring_mesh ||
+          c.contact.kind != geometry::ContactKind::kInvolute || !(f > 0))
+        continue;
+      p_plane = std::max(p_plane, solvers::HertzPressure(a.problem.data.local[j], f));
+    }
+    REQUIRE(p_plane > 0);
+    for (int s = 0; s < kSlices; ++s) {
+      CHECK(m.root_stress[static_cast<std::size_t>(s)] == Approx(m.root_stress[0]).epsilon(tol));
+      CHECK(m.hertz_pressure[static_cast<std::size_t>(s)] == Approx(p_plane).epsilon(tol));
+    }
+    // The mesh's largest root stress is one of its two gears' plane value.
+    const int gear = m.root_stress_body[0];
+    CHECK((gear == (m.ring_mesh ? transmission::kRingBody : transmission::kSunBody) ||
+           gear == transmission::PlanetBody(m.planet)));
+    CHECK(m.root_stress[0] <= a.root_stress[static_cast<std::size_t>(gear)].tension * (1 + tol));
+  }
+}
+
+TEST_CASE("face width with stresses: under a radial pin tilt the largest root stress and Hertz "
+          "pressure sit at each mesh's loaded end, and the mesh's misalignment is b sin(alpha_w) "
+          "times the tilt",
+          "[crosscheck][transmission][face_width][stress]") {
+  const StressRig rig(Table("[[face_width.pin_tilt]]\nplanet = 1\nradial_um = 20.0\n"));
+  const PositionResult r = rig.Solve(0.0);
+  for (const bool ring : {false, true}) {
+    const MeshFaceLoad& m = Mesh(r, 0, ring);
+    INFO((ring ? "planet1-ring" : "sun-planet1"));
+    // The kinematics (the first test case): the sun mesh carries at −z, the ring mesh at +z.
+    const std::size_t end = ring ? kSlices - 1 : 0, other = ring ? 0 : kSlices - 1;
+    CHECK(m.root_stress[end] == Largest(m.root_stress));
+    CHECK(m.hertz_pressure[end] == Largest(m.hertz_pressure));
+    CHECK(m.root_stress[end] > 1.05 * m.root_stress[other]);
+    CHECK(m.hertz_pressure[end] > m.hertz_pressure[other]);
+    // The gap change across the face, from the tilt's share along the line of action: sin α_w
+    // of the radial tilt, closing at +z in the ring mesh, opening in the sun mesh. The planet's
+    // loaded displacement turns the line of action by its ratio to the centre distance (below
+    // 1e-3), which bounds the difference.
+    double alpha = 0;
+    for (const geometry::MeshSummary& s : rig.stage.meshes())
+      if (s.planet == 0 && (s.kind == geometry::MeshKind::kPlanetRing) == ring)
+        alpha = s.pressure_angle;
+    CHECK(m.misalignment_assembly ==
+          Approx((ring ? 1.0 : -1.0) * 20e-6 * std::sin(alpha)).epsilon(1e-3));
+    CHECK(m.misalignment_deflection == 0);
+  }
 }

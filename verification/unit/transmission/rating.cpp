@@ -4,6 +4,7 @@
 // root stresses and line-of-action pressures, and missing inputs are named.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -162,4 +163,105 @@ TEST_CASE("A rating without its inputs is refused by name", "[unit][transmission
   none.converged = 0;
   CHECK_THROWS_AS(RateStage(scene, stage, none), std::runtime_error);
   CHECK_THROWS_AS(RateStage(scene, stage, Summary(), 0.9), std::invalid_argument);
+}
+
+// ISO 6336-1:2019 clause 7, K_Hβ by method C, in the standard's own units (µm, N/mm, N/(mm·µm))
+// worked by hand here: F_βx = 1.33 f_sh + f_ma (B1 = B2 = 1), at least 0.005 F_m/b; y_β = 0.15
+// F_βx, at most 6 µm (case-hardened); F_βy = F_βx − y_β; c_γβ = 0.85 c_γα;
+// K_Hβ = 1 + F_βy c_γβ/(2 F_m/b) up to 2, else √(2 F_βy c_γβ/(F_m/b)); K_Fβ = K_Hβ^N_F with
+// N_F = (b/h)²/(1 + b/h + (b/h)²), b/h at least 3. The function works in SI: the conversions are
+// exact up to round-off, so 1e-12 relative.
+TEST_CASE("ISO 6336-1 method C: K_Hbeta and K_Fbeta from the misalignment and c_gamma",
+          "[unit][transmission][rating][face_width]") {
+  const double tol = 1e-12;
+  FaceLoadFactorInputs in;
+  in.face_width = 25e-3;        // b = 25 mm
+  in.mean_force = 6000;         // F_m/b = 240 N/mm
+  in.mesh_stiffness = 17.56e9;  // c_γα = 17.56 N/(mm·µm)
+  in.tooth_depth = 5e-3;        // b/h = 5
+  SECTION("the whole face carries: a pin's tilt of 9.34 um across the mesh") {
+    in.assembly = 9.34e-6;
+    const FaceLoadFactorC c = IsoFaceLoadFactorC(in);
+    // F_βx = 9.34, y_β = 1.401, F_βy = 7.939 µm; c_γβ = 14.926; x = 7.939·14.926/480.
+    const double f_beta_y = 9.34 * 0.85, x = f_beta_y * 0.85 * 17.56 / (2 * 240.0);
+    CHECK(c.f_beta_x == Approx(9.34e-6).epsilon(tol));
+    CHECK(c.y_beta == Approx(0.15 * 9.34e-6).epsilon(tol));
+    CHECK(c.f_beta_y == Approx(f_beta_y * 1e-6).epsilon(tol));
+    CHECK(c.c_gamma_beta == Approx(0.85 * 17.56e9).epsilon(tol));
+    CHECK_FALSE(c.lifted);
+    CHECK(c.k_h_beta == Approx(1 + x).epsilon(tol));
+    CHECK(c.k_h_beta == Approx(1.24687).epsilon(1e-5));  // the same by a calculator
+    CHECK(c.n_f == Approx(25.0 / 31.0).epsilon(tol));    // 25/(1 + 5 + 25)
+    CHECK(c.k_f_beta == Approx(std::pow(1 + x, 25.0 / 31.0)).epsilon(tol));
+  }
+  SECTION("part of the face lifts: the square-root branch, continuous at K_Hbeta = 2") {
+    in.assembly = 50e-6;  // F_βx = 50 µm: y_β = 7.5 µm capped at 6 µm, F_βy = 44 µm
+    const FaceLoadFactorC c = IsoFaceLoadFactorC(in);
+    CHECK(c.y_beta == Approx(6e-6).epsilon(tol));
+    CHECK(c.f_beta_y == Approx(44e-6).epsilon(tol));
+    CHECK(c.lifted);
+    CHECK(c.k_h_beta == Approx(std::sqrt(2 * 44 * 0.85 * 17.56 / 240.0)).epsilon(tol));
+    // At x = 1 both branches give 2: F_βy = 2 F_m/b / c_γβ, i.e. F_βx = F_βy/0.85.
+    in.assembly = 2 * 240.0 / (0.85 * 17.56) / 0.85 * 1e-6;
+    CHECK(IsoFaceLoadFactorC(in).k_h_beta == Approx(2.0).epsilon(1e-9));
+  }
+  SECTION("deformation counts 1.33 times, and F_betax has its minimum") {
+    in.deflection = 3e-6;
+    in.assembly = 1e-6;
+    CHECK(IsoFaceLoadFactorC(in).f_beta_x == Approx((1.33 * 3 + 1) * 1e-6).epsilon(tol));
+    in.deflection = in.assembly = 0;
+    const FaceLoadFactorC c = IsoFaceLoadFactorC(in);
+    CHECK(c.f_beta_x_min == Approx(0.005 * 240 * 1e-6).epsilon(tol));  // 1.2 µm
+    CHECK(c.f_beta_x == c.f_beta_x_min);
+    CHECK(c.k_h_beta == Approx(1 + 1.2 * 0.85 * 0.85 * 17.56 / 480.0).epsilon(tol));
+  }
+  SECTION("b/h below 3 counts as 3") {
+    in.tooth_depth = 10e-3;  // b/h = 2.5
+    CHECK(IsoFaceLoadFactorC(in).n_f == Approx(9.0 / 13.0).epsilon(tol));
+  }
+  SECTION("bad inputs are named") {
+    in.mean_force = 0;
+    CHECK_THROWS_WITH(IsoFaceLoadFactorC(in), Catch::Contains("F_m [N] = 0"));
+    in.mean_force = 6000;
+    in.assembly = -1e-6;
+    CHECK_THROWS_WITH(IsoFaceLoadFactorC(in), Catch::Contains("f_ma [m]"));
+  }
+}
+
+TEST_CASE("A rating across the face width: the model's K_Hbeta beside method C's, the safety "
+          "factors of the stresses per slice",
+          "[unit][transmission][rating][face_width]") {
+  const Scene scene = RatedScene();
+  const geometry::Stage stage(scene.stage);
+  SweepSummary s = Summary();
+  MeshFaceSummary sun_mesh;
+  sun_mesh.mesh = "sun-planet1";
+  sun_mesh.k_h_beta_max = 1.4;
+  sun_mesh.k_gamma_k_h_beta_max = 1.5;
+  sun_mesh.misalignment_assembly = -9.34e-6;  // a sign: the end it opens; ISO takes |f_ma|
+  sun_mesh.stresses = true;
+  sun_mesh.root_stress_max = 250e6;
+  sun_mesh.root_stress_gear = "planet1";
+  sun_mesh.hertz_pressure_max = 1200e6;
+  s.face_width = {sun_mesh};
+  const std::array<double, 2> c{17.56e9, 23.61e9};
+  // Without the meshes' stiffness no face-width rating; with it, one per mesh.
+  CHECK(RateStage(scene, stage, s).face_width.empty());
+  const StageRating rating = RateStage(scene, stage, s, 1.0, "quasi-static", nullptr, &c);
+  REQUIRE(rating.face_width.size() == 1);
+  const MeshFaceRating& m = rating.face_width.front();
+  CHECK(m.k_gamma_model == Approx(1.2).epsilon(1e-15));  // 3 × 0.4
+  CHECK(m.k_h_beta_model == 1.4);
+  CHECK(m.iso_inputs.assembly == Approx(9.34e-6).epsilon(1e-15));
+  // F_m = F_t K_A K_γ(table) K_v = T_s/(3 r_s) with K_A = K_γ = K_v = 1 for three planets.
+  const double ft = std::abs(scene.loads.sun_torque) / (3 * stage.sun().reference_radius());
+  CHECK(m.iso_inputs.mean_force == Approx(ft).epsilon(1e-15));
+  CHECK(m.iso_inputs.mesh_stiffness == 17.56e9);
+  const double x = 0.85 * 9.34e-6 * 0.85 * 17.56e9 * 25e-3 / (2 * ft);
+  CHECK(m.iso.k_h_beta == Approx(1 + x).epsilon(1e-12));
+  CHECK(m.k_gamma_k_h_beta_iso == Approx(1 + x).epsilon(1e-12));  // K_γ table = 1
+  CHECK(m.k_gamma_k_h_beta_model == 1.5);
+  // A planet's fillet: Y_M = 0.7, Y_ST = 2.
+  CHECK(m.s_f_stress == Approx(430e6 * 2 * 0.7 / 250e6).epsilon(1e-15));
+  CHECK(m.s_h_pressure == Approx(1500.0 / 1200.0).epsilon(1e-15));
 }

@@ -17,12 +17,15 @@ namespace epicycle::report {
 /// BASE_face_load.csv: one line per position and mesh (carrier_deg, mesh, converged, K_Hbeta,
 /// the largest line load's z, the mean and each slice's line load [N/mm]); BASE_face_load.svg (a
 /// map per mesh: line load over carrier angle × z) and BASE_k_hbeta.svg (K_Hβ per mesh over the
-/// carrier angle) at the end.
+/// carrier angle) at the end. With `stresses`, each line ends with the position's largest root
+/// stress over the slices [MPa], its gear and slice centre z [mm], and the largest Hertz pressure
+/// [MPa] and its z [mm] (MeshFaceLoad::root_stress, hertz_pressure).
 class FaceLoadFiles {
  public:
   /// `meshes` the stage's mesh names in face_loads order, `widths` each mesh's face width [m].
   FaceLoadFiles(const std::string& base, const nlohmann::json& provenance, int slices,
-                std::vector<std::string> meshes, std::vector<double> widths, int positions);
+                std::vector<std::string> meshes, std::vector<double> widths, int positions,
+                bool stresses = false);
   void Write(const transmission::PositionResult& r);
   void Close() { csv_.Close(); }
   void WritePlots(const std::string& title) const;
@@ -31,6 +34,7 @@ class FaceLoadFiles {
   std::string base_;
   CsvFile csv_;
   int slices_ = 0, positions_ = 0, columns_ = 0;
+  bool stresses_ = false;
   std::vector<std::string> meshes_;
   std::vector<double> widths_;
   // The maps: per mesh, columns_ × slices_ line loads [N/mm] (the largest of the positions that

@@ -42,13 +42,17 @@
 
 #include <Eigen/Dense>
 
+#include "epicycle/compliance/compliance_operator.hpp"
 #include "epicycle/geometry/stage.hpp"
+#include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/damage.hpp"
 
 namespace epicycle::transmission {
 
 struct ContactTerms;
 struct StageContact;
+struct TangentialLoads;
+class StageCompliance;
 
 /// How the slices of one body deflect together (the kernel W above).
 enum class FaceCoupling {
@@ -134,6 +138,16 @@ class FaceWidthModel {
   /// The axis slope of body b in the inertial frame at these poses [-].
   Eigen::Vector2d AxisSlope(const geometry::StagePoses& poses, int body) const;
 
+  /// The misalignment of `contact`'s mesh that varies linearly across its face, the gap change
+  /// from z = −b/2 to +b/2 [m], signed (+: the gap closes towards +z), split as ISO 6336-1 splits
+  /// it: `assembly` (f_ma: the pin tilts and the lead slopes) and `deflection` (f_sh: the
+  /// carrier's wind-up under load). Crowning and end relief are even in z and not part of it.
+  struct Misalignment {
+    double assembly = 0, deflection = 0;  ///< [m]
+  };
+  Misalignment MeshMisalignment(const geometry::StagePoses& poses,
+                                const StageContact& contact) const;
+
  private:
   struct BodyLead {
     double slope = 0;  ///< h [rad/m]
@@ -152,12 +166,52 @@ class FaceWidthModel {
 struct MeshFaceLoad {
   int planet = 0;
   bool ring_mesh = false;      ///< false: the sun–planet mesh
+  double width = 0;            ///< b [m], the mesh's face width
   std::vector<double> line_load;  ///< w_s [N/m] per slice (Σ over the mesh's contacts)
   double mean = 0;                ///< F/b [N/m]
   double k_h_beta = 1;            ///< K_Hβ = max w_s / mean [-] (1 without load)
   int largest_slice = 0;          ///< where the largest w_s sits
   double largest_z = 0;           ///< its slice centre z [m]
+  /// The mesh's misalignment (FaceWidthModel::MeshMisalignment of its most loaded contact) [m].
+  double misalignment_assembly = 0, misalignment_deflection = 0;
+  /// With stresses (AddFaceStresses; else empty), per slice: the largest fillet tension of the
+  /// mesh's two gears [Pa] and the largest Hertz pressure of its contacts on the line of action
+  /// [Pa] (0 where the slice carries nothing).
+  std::vector<double> root_stress, hertz_pressure;
+  std::vector<int> root_stress_body;  ///< per slice: the gear of root_stress (kSunBody, ...)
 };
+
+/// The root stresses of a sliced state, slice by slice (docs/model.md §10, "Stresses across the
+/// face"): slice s is the plane model per unit width at its own line load w_s, and the plane
+/// model's fillet stresses are those of a load w b spread over the face width b, so slice s's
+/// stresses are `compliance.FilletStresses` of the slice's contacts alone at the forces S f_js
+/// (the stress recovery σ = Σ_j S_B(p; j) F_j is linear in the forces: this is the plane model at
+/// w_s, not a scaling of a face-mean stress); `friction` likewise (its forces times S).
+/// @return per slice, its fillets; the compliance's exceptions propagate.
+std::vector<std::vector<compliance::FilletStress>> SliceFilletStresses(
+    const StageCompliance& compliance, const geometry::Stage& stage,
+    const geometry::StagePoses& poses, const std::vector<StageContact>& contacts,
+    const Eigen::VectorXd& force, const TangentialLoads* friction);
+
+/// The fillet stresses of a state: compliance.FilletStresses of its contacts, or, for sliced
+/// contacts (StageContact::slices > 1), every slice's SliceFilletStresses one after the other
+/// (a gear's extremes are then those over its slices), each slice's also into `slices` if given.
+std::vector<compliance::FilletStress> StateFilletStresses(
+    const StageCompliance& compliance, const geometry::Stage& stage,
+    const geometry::StagePoses& poses, const std::vector<StageContact>& contacts,
+    const Eigen::VectorXd& force, const TangentialLoads* friction,
+    std::vector<std::vector<compliance::FilletStress>>* slices = nullptr);
+
+/// Fills MeshFaceLoad::root_stress, root_stress_body and hertz_pressure of `loads` (FaceLoads of
+/// the same contacts and forces) from the slices' fillets (SliceFilletStresses) and each
+/// contact's Hertz pressure at its own force (its local term is the slice's: width b/S). A fillet
+/// belongs to the mesh whose loaded contact of that slice on the fillet's body sits on the
+/// nearest tooth. @throws std::invalid_argument if the sizes differ.
+void AddFaceStresses(const std::vector<StageContact>& contacts,
+                     const std::vector<solvers::LocalTermParameters>& local,
+                     const Eigen::VectorXd& force,
+                     const std::vector<std::vector<compliance::FilletStress>>& slice_fillets,
+                     std::vector<MeshFaceLoad>* loads);
 
 /// The face loads of every mesh (sun–planet meshes of planets 0…, then planet–ring meshes) from
 /// the forces [N] of sliced contacts; `width` [m] of each mesh as in FaceWidthModel.

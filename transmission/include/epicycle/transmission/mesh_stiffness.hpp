@@ -152,4 +152,12 @@ MeshStiffnessResult ComputeHealthyMeshStiffness(const Scene& scene, const MeshPa
 
 compliance::iso6336::PairData IsoPairData(const geometry::GearPair& pair);
 
+/// c_γα [N/m²]: the mean mesh stiffness per unit face width of planet 1's sun and ring meshes of
+/// `stage` at the scene's load (MakeMeshPair; ComputeHealthyMeshStiffness over `positions`
+/// samples of a mesh cycle, the secant F/δ divided by the pair's face width), {sun mesh, ring
+/// mesh}: the model's c_γ that ISO 6336-1 method C takes (rating.hpp).
+/// @throws std::runtime_error if every sample of a mesh fails.
+std::array<double, 2> MeanMeshStiffnessPerWidth(const Scene& scene, const geometry::Stage& stage,
+                                                const FeComplianceOptions& fe, int positions = 24);
+
 }  // namespace epicycle::transmission

@@ -23,6 +23,7 @@
 // concentration of the actual fillet.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,56 @@ struct GearRating {
   std::string note;
 };
 
+/// ISO 6336-1:2019 clause 7, K_Hβ by method C, with the inputs the model was given (docs/model.md
+/// §10, "Ratings across the face"). All lengths in m, forces in N, stiffnesses per unit face
+/// width in N/m² (1 N/(mm·µm) = 1e9 N/m²):
+///   F_βx = 1.33 B1 f_sh + B2 f_ma,  B1 = B2 = 1 (no helix modification),
+///   F_βx ≥ F_βx,min = 0.005 µm per N/mm of F_m/b (= 5e-12 m²/N × F_m/b),
+///   y_β = 0.15 F_βx ≤ 6 µm (case-hardened or nitrided steel),
+///   F_βy = F_βx − y_β,  c_γβ = 0.85 c_γα,  x = F_βy c_γβ b/(2 F_m),
+///   K_Hβ = 1 + x (x ≤ 1: the whole face carries),  2 √x = √(2 F_βy c_γβ b/F_m) (x > 1),
+///   K_Fβ = K_Hβ^N_F,  N_F = (b/h)²/(1 + b/h + (b/h)²),  b/h ≥ 3 (h the tooth depth).
+struct FaceLoadFactorInputs {
+  double assembly = 0;    ///< f_ma [m] ≥ 0
+  double deflection = 0;  ///< f_sh [m] ≥ 0
+  double mesh_stiffness = 0;  ///< c_γα [N/m²] > 0, per unit face width
+  double face_width = 0;      ///< b [m] > 0
+  double mean_force = 0;      ///< F_m = F_t K_A K_γ K_v [N] > 0
+  double tooth_depth = 0;     ///< h [m] > 0
+};
+struct FaceLoadFactorC {
+  double f_beta_x = 0;      ///< F_βx [m], after its minimum
+  double f_beta_x_min = 0;  ///< 0.005 µm per N/mm of F_m/b [m]
+  double y_beta = 0;        ///< running-in allowance y_β [m]
+  double f_beta_y = 0;      ///< F_βy [m]
+  double c_gamma_beta = 0;  ///< c_γβ [N/m²]
+  bool lifted = false;      ///< x > 1: part of the face carries nothing (the square-root case)
+  double k_h_beta = 1;      ///< K_Hβ [-]
+  double n_f = 1;           ///< N_F [-]
+  double k_f_beta = 1;      ///< K_Fβ [-]
+};
+/// @throws std::invalid_argument naming the field whose value breaks its rule.
+FaceLoadFactorC IsoFaceLoadFactorC(const FaceLoadFactorInputs& in);
+
+/// The rating of one planet mesh across its face width (a stage with slices): the model's K_Hβ
+/// beside ISO 6336-1 method C's fed the model's misalignment and mesh stiffness, and the safety
+/// factors of the model's own stresses per slice.
+struct MeshFaceRating {
+  std::string mesh;             ///< "sun-planet1", "planet1-ring"
+  double k_gamma_table = 0;     ///< K_γ, the standard's table [-]
+  double k_gamma_model = 0;     ///< K_γ of the planet, the run's max L_i [-]
+  double k_h_beta_model = 0;    ///< the run's largest K_Hβ [-]
+  FaceLoadFactorInputs iso_inputs;
+  FaceLoadFactorC iso;          ///< method C
+  double k_gamma_k_h_beta_model = 0;  ///< max over positions of L_i K_Hβ [-]
+  double k_gamma_k_h_beta_iso = 0;    ///< K_γ table × K_Hβ method C [-]
+  std::string root_stress_gear;       ///< the gear whose fillet carries root_stress
+  double root_stress = 0;   ///< the largest root stress over slices and positions [Pa]
+  double s_f_stress = 0;    ///< S_F = σ_Flim Y_ST Y_M/(σ K_A K_v) [-]
+  double hertz_pressure = 0;  ///< the largest Hertz pressure over slices and positions [Pa]
+  double s_h_pressure = 0;    ///< S_H = σ_Hlim/(p_H √(K_A K_v)) [-]
+};
+
 struct StageRating {
   double tangential_force = 0;  ///< F_t per planet mesh [N]
   double application_factor = 1;  ///< K_A [-]
@@ -77,6 +128,9 @@ struct StageRating {
   std::string dynamic_source;
   std::vector<RatingFactor> factors;  ///< every factor, in the order computed
   std::vector<GearRating> gears;      ///< sun, planets, ring
+  /// With slices of the face width and the meshes' stiffness (RateStage's `mesh_stiffness`): per
+  /// mesh (sun–planet meshes, then planet–ring); else empty.
+  std::vector<MeshFaceRating> face_width;
 };
 
 /// A run in motion's own stresses for the model's columns of a rating: its largest root stresses
@@ -96,13 +150,16 @@ void CheckRatingInputs(const Scene& scene, const std::string& asked_by);
 /// its LSR; root stresses and contact pressures when it has them) and the dynamic factor K_v
 /// (`dynamic_source` says where it came from). With `motion` (a dynamic run: `summary` is then
 /// its quasi-static reference at the same carrier angles) the model's own columns are the run's
-/// stresses in motion without K_v.
+/// stresses in motion without K_v. With `mesh_stiffness` (c_γα [N/m²] per unit face width of the
+/// sun and ring meshes, MeanMeshStiffnessPerWidth) and a summary with face_width, the meshes'
+/// face-width ratings (StageRating::face_width).
 /// @throws std::invalid_argument naming the scene key if the scene gives no bending_limit_MPa or
 ///         contact_limit_MPa in [material], or for K_v not finite and ≥ 1;
 ///         std::runtime_error if the summary has no converged position (no K_γ from the run).
 StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
                       const SweepSummary& summary, double dynamic_factor = 1.0,
                       const std::string& dynamic_source = "quasi-static run",
-                      const MotionStresses* motion = nullptr);
+                      const MotionStresses* motion = nullptr,
+                      const std::array<double, 2>* mesh_stiffness = nullptr);
 
 }  // namespace epicycle::transmission

@@ -27,6 +27,19 @@ struct MeshFaceSummary {
   /// max over positions of L_i K_Hβ: the peak load per unit width over the ideal stage's
   /// (equal sharing, uniform face) [-], the product every rating multiplies with.
   double k_gamma_k_h_beta_max = 0;
+  /// The mesh's misalignment across its face (MeshFaceLoad's, at the first converged position)
+  /// [m]: f_ma (pin tilts, lead slopes) and f_sh (the carrier's wind-up).
+  double misalignment_assembly = 0, misalignment_deflection = 0;
+  /// With stresses (MeshFaceLoad::root_stress not empty), over the positions and slices: the
+  /// largest fillet tension of the mesh's gears [Pa], which gear ("sun", "planet1", ...), its
+  /// slice centre z [m] and carrier angle [rad]; the largest Hertz pressure on the line of
+  /// action [Pa], its z [m] and carrier angle [rad]. stresses false: all 0.
+  bool stresses = false;
+  double root_stress_max = 0;
+  std::string root_stress_gear;
+  double root_stress_z = 0, root_stress_angle = 0;
+  double hertz_pressure_max = 0;
+  double hertz_pressure_z = 0, hertz_pressure_angle = 0;
 };
 
 /// Statistics over the converged positions of a sweep. With no converged position every
