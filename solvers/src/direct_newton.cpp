@@ -41,10 +41,13 @@ bool DirectNewton::Step(const ScaledProblem& p, const Eigen::VectorXd& g,
   r_.resize(na);
   du_a_.resize(na);
   // C_AA copied entry by entry: Eigen's indexed view with std::vector indices copies them
-  // (allocations on every step).
+  // (allocations on every step). Only its diagonal blocks (one per slice group, the whole matrix
+  // without a structure): every use of C_AA and of H_AA below stays inside them.
   c_aa_.resize(na, na);
-  for (int b = 0; b < na; ++b)
-    for (int a = 0; a < na; ++a) c_aa_(a, b) = p.C(active_[a], active_[b]);
+  for (std::size_t grp = 0; grp + 1 < group_start_.size(); ++grp)
+    for (int b = group_start_[grp]; b < group_start_[grp + 1]; ++b)
+      for (int a = group_start_[grp]; a < group_start_[grp + 1]; ++a)
+        c_aa_(a, b) = p.C(active_[a], active_[b]);
   for (int a = 0; a < na; ++a) {
     const int ja = active_[a];
     du_a_(a) = du(ja);
@@ -132,21 +135,25 @@ void DirectNewton::Substitute(Eigen::VectorXd* v) const {
   // memory): for the few contacts of a stage, plain loops cost less than the general triangular
   // solvers, and with the diagonal's reciprocals kept with the factorisation the chain of
   // dependent operations multiplies instead of dividing.
+  // With slice groups L is block diagonal: each block [lo, hi) is substituted on its own.
   double* r = v->data();
-  const double* l = l_.data();  // lower triangle: L (block diagonal with slice groups)
+  const double* l = l_.data();  // lower triangle: L
   const double* inv_d = inv_diag_.data();
   const int na = static_cast<int>(v->size());
-  for (int k = 0; k < na; ++k) {  // L z = v, column by column
-    const double zk = r[k] * inv_d[k];
-    r[k] = zk;
-    const double* col = l + static_cast<std::ptrdiff_t>(k) * na;
-    for (int i = k + 1; i < na; ++i) r[i] -= col[i] * zk;
-  }
-  for (int i = na - 1; i >= 0; --i) {  // Lᵀ y = z: row i of Lᵀ is column i of L
-    const double* col = l + static_cast<std::ptrdiff_t>(i) * na;
-    double s = r[i];
-    for (int k = i + 1; k < na; ++k) s -= col[k] * r[k];
-    r[i] = s * inv_d[i];
+  for (std::size_t grp = 0; grp + 1 < group_start_.size(); ++grp) {
+    const int lo = group_start_[grp], hi = group_start_[grp + 1];
+    for (int k = lo; k < hi; ++k) {  // L z = v, column by column
+      const double zk = r[k] * inv_d[k];
+      r[k] = zk;
+      const double* col = l + static_cast<std::ptrdiff_t>(k) * na;
+      for (int i = k + 1; i < hi; ++i) r[i] -= col[i] * zk;
+    }
+    for (int i = hi - 1; i >= lo; --i) {  // Lᵀ y = z: row i of Lᵀ is column i of L
+      const double* col = l + static_cast<std::ptrdiff_t>(i) * na;
+      double s = r[i];
+      for (int k = i + 1; k < hi; ++k) s -= col[k] * r[k];
+      r[i] = s * inv_d[i];
+    }
   }
 }
 
@@ -183,10 +190,13 @@ bool DirectNewton::ModelStep(const ScaledProblem& p, const Eigen::VectorXd& x, d
     // e = r − C_AA dx − (u'_A + q∘dx)∘dx, C_AA dx by columns (contiguous; the general product
     // costs more at this size).
     e_ = r_;
-    for (int b = 0; b < na; ++b) {
-      const double* col = c_aa_.data() + static_cast<std::ptrdiff_t>(b) * na;
-      const double d = dx_(b);
-      for (int a = 0; a < na; ++a) e_(a) -= col[a] * d;
+    for (std::size_t grp = 0; grp + 1 < group_start_.size(); ++grp) {  // block by block
+      const int lo = group_start_[grp], hi = group_start_[grp + 1];
+      for (int b = lo; b < hi; ++b) {
+        const double* col = c_aa_.data() + static_cast<std::ptrdiff_t>(b) * na;
+        const double d = dx_(b);
+        for (int a = lo; a < hi; ++a) e_(a) -= col[a] * d;
+      }
     }
     double neglected = 0.01 * target;
     for (int a = 0; a < na; ++a) {
