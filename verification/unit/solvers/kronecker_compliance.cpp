@@ -35,6 +35,11 @@ Eigen::MatrixXd SourceCompliance(int n) {
   return (a * a.transpose() + n * Eigen::MatrixXd::Identity(n, n)) * 1e-10;
 }
 
+// Uncoupled slices: W = S I.
+Eigen::MatrixXd UncoupledKernel(int slices) {
+  return slices * Eigen::MatrixXd::Identity(slices, slices);
+}
+
 // An exponential kernel S exp(−|s − t|/2): the covariance of an Ornstein–Uhlenbeck process,
 // positive definite, dense (every slice coupled to every other).
 Eigen::MatrixXd DenseKernel(int slices) {
@@ -74,8 +79,7 @@ TEST_CASE("Kronecker compliance: validation proves definiteness from the factors
           "does not match",
           "[unit][solvers]") {
   const int n = 3, slices = 4;
-  const Eigen::MatrixXd cn = SourceCompliance(n);
-  const Eigen::MatrixXd identity = slices * Eigen::MatrixXd::Identity(slices, slices);
+  const Eigen::MatrixXd cn = SourceCompliance(n), identity = UncoupledKernel(slices);
   {
     const ContactProblem p(SlicedProblem(n, slices, {{cn, identity}}));
     CHECK(p.definite_by_structure());
@@ -130,8 +134,7 @@ TEST_CASE("Kronecker compliance: validation proves definiteness from the factors
 TEST_CASE("Kronecker compliance: the slice groups that the Newton factorises on their own",
           "[unit][solvers]") {
   const int n = 3, slices = 5;
-  const Eigen::MatrixXd cn = SourceCompliance(n);
-  const Eigen::MatrixXd identity = slices * Eigen::MatrixXd::Identity(slices, slices);
+  const Eigen::MatrixXd cn = SourceCompliance(n), identity = UncoupledKernel(slices);
   // S I: every slice its own group. A tridiagonal kernel: one group (a chain). 1 1ᵀ: one group.
   CHECK(internal::MakeScaledProblem(ContactProblem(SlicedProblem(n, slices, {{cn, identity}})))
             .slice_groups == slices);
@@ -155,8 +158,7 @@ TEST_CASE("Kronecker compliance: the structured Newton's answer is the dense New
           "KKT bound",
           "[unit][solvers]") {
   const int n = 6, slices = 8;
-  const Eigen::MatrixXd cn = SourceCompliance(n);
-  const Eigen::MatrixXd identity = slices * Eigen::MatrixXd::Identity(slices, slices);
+  const Eigen::MatrixXd cn = SourceCompliance(n), identity = UncoupledKernel(slices);
   const Eigen::MatrixXd ones = Eigen::MatrixXd::Ones(slices, slices);
   const std::vector<std::pair<std::string, std::vector<KroneckerTerm>>> kinds = {
       {"identity kernel (block path)", {{cn, identity}}},
