@@ -363,6 +363,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     // into the problem, released after the solve. The terms keep C as the compliance gave it.
     solvers::ContactProblemData& data = w.problem;
     data.compliance = terms.compliance;
+    data.compliance_terms = terms.compliance_terms;
     data.overlap = terms.overlap;
     data.local = terms.local;
     data.equality_matrix.resize(0, n);

@@ -54,7 +54,11 @@ double ParseOption(const ContactOptions& options, const std::string& key, double
   }
 }
 
-// Factorises and solves the face system above.
+// Factorises and solves the face system above. When the compliance's Kronecker structure leaves
+// groups of slices uncoupled (ScaledProblem::slice_group: uncoupled face-width slices, W = S I),
+// H_AA is block diagonal over the groups: each block is factorised on its own (Σ_b n_b³/3 instead
+// of n_A³/3 multiply-adds; S blocks of the plane problem's size for uncoupled slices) and the
+// Schur complement is the sum of the blocks' G_b H_b⁻¹ G_bᵀ.
 class FaceSolver {
  public:
   explicit FaceSolver(const ScaledProblem& p) : p_(p), m_(p.num_equalities()) {}
@@ -70,13 +74,21 @@ class FaceSolver {
         if (p_.local[active[a]].enabled)
           h_(a, a) +=
               p_.LocalDerivativeAt(active[a], std::max(std::abs(x(active[a])), kDerivativeFloor));
-    h_llt_.compute(h_);
     have_ = false;
-    if (h_llt_.info() != Eigen::Success) return false;
+    if (!FactorH()) return false;
     if (m_ > 0) {
       ga_ = p_.G(Eigen::all, active);
-      y_ = h_llt_.matrixL().solve(ga_.transpose());
-      schur_ = y_.transpose() * y_;
+      if (blocks_.empty()) {
+        y_ = h_llt_.matrixL().solve(ga_.transpose());
+        schur_ = y_.transpose() * y_;
+      } else {
+        schur_.setZero(m_, m_);
+        for (std::size_t b = 0; b < blocks_.size(); ++b) {
+          y_ = ga_(Eigen::all, blocks_[b]).transpose();
+          block_llt_[b].matrixL().solveInPlace(y_);
+          schur_.noalias() += y_.transpose() * y_;
+        }
+      }
       if (p_.has_support) schur_ += p_.S;
       s_llt_.compute(schur_);
       // A singular or nearly singular Schur complement would make the Cholesky factor garbage.
@@ -136,7 +148,7 @@ class FaceSolver {
   void SolveOnce(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd* dxa,
                  Eigen::VectorXd* dl) const {
     if (m_ == 0) {
-      *dxa = h_llt_.solve(r1);
+      *dxa = HSolve(r1);
       dl->resize(0);
       return;
     }
@@ -150,13 +162,51 @@ class FaceSolver {
       }
       return;
     }
-    const Eigen::VectorXd h_r1 = h_llt_.solve(r1);
+    const Eigen::VectorXd h_r1 = HSolve(r1);
     const Eigen::VectorXd rs = r2 - ga_ * h_r1;
     if (pinv_)
       *dl = s_eig_.eigenvectors() * inv_ev_.cwiseProduct(s_eig_.eigenvectors().transpose() * rs);
     else
       *dl = s_llt_.solve(rs);
-    *dxa = h_llt_.solve(r1 + ga_.transpose() * *dl);
+    *dxa = HSolve(r1 + ga_.transpose() * *dl);
+  }
+
+  // Factorises h_: dense, or block by block over the slice groups of the active contacts.
+  bool FactorH() {
+    blocks_.clear();
+    if (p_.slice_groups > 1) {
+      const int na = static_cast<int>(active_.size());
+      std::vector<std::vector<int>> by_group(static_cast<std::size_t>(p_.slice_groups));
+      for (int a = 0; a < na; ++a)
+        by_group[static_cast<std::size_t>(p_.slice_group[active_[a] % p_.slices])].push_back(a);
+      for (auto& g : by_group)
+        if (!g.empty()) blocks_.push_back(std::move(g));
+    }
+    if (blocks_.size() <= 1) {  // one group: the dense factorisation
+      blocks_.clear();
+      h_llt_.compute(h_);
+      return h_llt_.info() == Eigen::Success;
+    }
+    block_llt_.resize(blocks_.size());
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      hb_ = h_(blocks_[b], blocks_[b]);
+      block_llt_[b].compute(hb_);
+      if (block_llt_[b].info() != Eigen::Success) return false;
+    }
+    return true;
+  }
+
+  // H_AA⁻¹ r.
+  Eigen::VectorXd HSolve(const Eigen::VectorXd& r) const {
+    if (blocks_.empty()) return h_llt_.solve(r);
+    Eigen::VectorXd out(r.size());
+    Eigen::VectorXd rb;
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      rb = r(blocks_[b]);
+      block_llt_[b].solveInPlace(rb);
+      out(blocks_[b]) = rb;
+    }
+    return out;
   }
 
   const ScaledProblem& p_;
@@ -167,6 +217,9 @@ class FaceSolver {
   Eigen::VectorXd inv_ev_;
   Eigen::MatrixXd h_, ga_, y_, schur_;
   Eigen::LLT<Eigen::MatrixXd> h_llt_, s_llt_;
+  std::vector<std::vector<int>> blocks_;  // positions in active_ of each slice group; empty: dense
+  std::vector<Eigen::LLT<Eigen::MatrixXd>> block_llt_;
+  Eigen::MatrixXd hb_;
 };
 
 class ActiveSetNewton final : public BackendImpl {
@@ -221,6 +274,7 @@ class ActiveSetNewton final : public BackendImpl {
       const Eigen::MatrixXd gp = p.G(supported, Eigen::all);
       const Eigen::MatrixXd s_inv_gp = spp_llt.solve(gp);
       q.C = p.C + gp.transpose() * s_inv_gp;
+      q.slice_groups = 1;  // the folded supports couple every contact: no block structure
       const Eigen::VectorXd wp = p.W(supported);
       q.delta0 = p.delta0 + s_inv_gp.transpose() * wp;
       q.G = p.G(hard, Eigen::all);

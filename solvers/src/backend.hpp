@@ -30,6 +30,14 @@ struct ScaledProblem {
   Eigen::MatrixXd S;         ///< m×m PSD (all zero when there are no elastic supports)
   bool has_support = false;  ///< S has a non-zero entry
   bool has_local = false;    ///< any local term enabled
+  /// Slices S of the compliance's Kronecker structure (ContactProblem::compliance_terms; 1
+  /// without one) and the group of every slice: slices s, t in different groups have
+  /// kernel_st = 0 in every term, so C has no entry between contacts of different groups and the
+  /// Newton's C_AA + diag u' is block diagonal over the groups (contact i in group
+  /// slice_group[i mod S]). slice_groups = 1: one dense block.
+  int slices = 1;
+  int slice_groups = 1;
+  std::vector<int> slice_group;
 
   int num_contacts() const { return static_cast<int>(C.rows()); }
   int num_equalities() const { return static_cast<int>(G.rows()); }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -94,6 +95,95 @@ bool CholeskySucceeds(const Eigen::MatrixXd& c) {
   return true;
 }
 
+// Positive definite (Cholesky succeeds) or, failing that, positive semidefinite within the
+// tolerance (eigenvalues ≥ −kSymmetryTolerance·max|A|); returns 2, 1 or 0 for definite,
+// semidefinite, neither. Factors are n×n or S×S, small next to C.
+int Definiteness(const Eigen::MatrixXd& a) {
+  if (CholeskySucceeds(a)) return 2;
+  const double scale = a.cwiseAbs().maxCoeff();
+  if (!(scale > 0.0)) return 1;  // the zero matrix
+  const double min_eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a, Eigen::EigenvaluesOnly)
+                             .eigenvalues()
+                             .minCoeff();
+  return min_eig >= -ContactProblem::kSymmetryTolerance * scale ? 1 : 0;
+}
+
+// The rules of compliance_terms (contact_problem.hpp); returns whether they prove C positive
+// definite. `c` is the symmetric compliance already validated as N×N and finite.
+bool CheckComplianceTerms(const std::vector<KroneckerTerm>& terms, const Eigen::MatrixXd& c) {
+  if (terms.empty()) return false;
+  const Eigen::Index big_n = c.rows();
+  const Eigen::Index n = terms[0].source.rows(), slices = terms[0].kernel.rows();
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    // The fields' names on the stack: the dynamic model validates a problem per right-hand side
+    // and must not allocate.
+    char source[48], kernel[48];
+    std::snprintf(source, sizeof source, "compliance_terms[%zu].source", k);
+    std::snprintf(kernel, sizeof kernel, "compliance_terms[%zu].kernel", k);
+    const KroneckerTerm& t = terms[k];
+    CheckSize(t.source.rows(), t.source.cols(), n, n, source,
+              [] { return std::string("n x n, n the same for every term"); });
+    CheckSize(t.kernel.rows(), t.kernel.cols(), slices, slices, kernel,
+              [] { return std::string("S x S, S the same for every term"); });
+    CheckFinite(t.source, source);
+    CheckFinite(t.kernel, kernel);
+    CheckSymmetric(t.source, source);
+    CheckSymmetric(t.kernel, kernel);
+  }
+  if (n * slices != big_n)
+    throw std::invalid_argument("compliance_terms have n = " + std::to_string(n) + " sources of S = " +
+                                std::to_string(slices) + " slices: n*S = " +
+                                std::to_string(n * slices) + " must equal N = " +
+                                std::to_string(big_n));
+  // C = Σ source ⊗ kernel, block (j, k) by block: C_jk,block − Σ_terms source_jk kernel.
+  const double tol = ContactProblem::kSymmetryTolerance * c.cwiseAbs().maxCoeff();
+  for (Eigen::Index k = 0; k < n; ++k)
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const auto block = c.block(j * slices, k * slices, slices, slices);
+      double worst = 0.0;
+      if (terms.size() == 1) {
+        worst = (block - terms[0].source(j, k) * terms[0].kernel).cwiseAbs().maxCoeff();
+      } else if (terms.size() == 2) {
+        worst = (block - terms[0].source(j, k) * terms[0].kernel -
+                 terms[1].source(j, k) * terms[1].kernel)
+                    .cwiseAbs()
+                    .maxCoeff();
+      } else {
+        for (Eigen::Index t = 0; t < slices; ++t)
+          for (Eigen::Index s = 0; s < slices; ++s) {
+            double v = block(s, t);
+            for (const KroneckerTerm& term : terms) v -= term.source(j, k) * term.kernel(s, t);
+            worst = std::max(worst, std::abs(v));
+          }
+      }
+      if (worst <= tol) continue;
+      // The first entry beyond the rule, for the message.
+      for (Eigen::Index t = 0; t < slices; ++t)
+        for (Eigen::Index s = 0; s < slices; ++s) {
+          double v = 0.0;
+          for (const KroneckerTerm& term : terms) v += term.source(j, k) * term.kernel(s, t);
+          const Eigen::Index row = j * slices + s, col = k * slices + t;
+          if (std::abs(c(row, col) - v) > tol)
+            throw std::invalid_argument(
+                "compliance(" + std::to_string(row) + "," + std::to_string(col) + ") = " +
+                Num(c(row, col)) + " but the sum of compliance_terms source(" +
+                std::to_string(j) + "," + std::to_string(k) + ") * kernel(" + std::to_string(s) +
+                "," + std::to_string(t) + ") gives " + Num(v) +
+                "; rule: |C - sum source (x) kernel| <= " +
+                Num(ContactProblem::kSymmetryTolerance) + " * max|C| = " + Num(tol));
+        }
+    }
+  // Positive semidefinite factors make every term PSD; one term of two definite factors makes
+  // the sum definite.
+  bool definite_term = false;
+  for (const KroneckerTerm& t : terms) {
+    const int a = Definiteness(t.source), b = Definiteness(t.kernel);
+    if (a == 0 || b == 0) return false;  // not proved: the dense test decides
+    definite_term = definite_term || (a == 2 && b == 2);
+  }
+  return definite_term;
+}
+
 }  // namespace
 
 ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data)) {
@@ -134,7 +224,8 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
   for (Eigen::Index j = 0; j < n; ++j)  // the symmetric part, in place
     for (Eigen::Index i = 0; i < j; ++i)
       d.compliance(i, j) = d.compliance(j, i) = 0.5 * (d.compliance(i, j) + d.compliance(j, i));
-  if (!CholeskySucceeds(d.compliance)) {
+  definite_by_structure_ = CheckComplianceTerms(d.compliance_terms, d.compliance);
+  if (!definite_by_structure_ && !CholeskySucceeds(d.compliance)) {
     // Contacts that share their rows of C (the strips of a pitted contact) make C singular; with
     // a local term on every contact, strictly increasing (u' > 0), the program stays strictly
     // convex and every Newton matrix C_AA + diag u'_A positive definite. Semidefinite within the
@@ -212,6 +303,7 @@ double ContactProblem::Potential(const Eigen::VectorXd& force) const {
 
 ContactProblemData ContactProblem::Release() && {
   support_.resize(0, 0);
+  definite_by_structure_ = false;
   return std::move(data_);
 }
 

@@ -53,18 +53,23 @@ class DirectNewton final : public DirectPath {
             int iteration, double target, Eigen::VectorXd* x) override;
 
  private:
-  /// The step on the local model (see the class comment), on llt_; false if its sweeps do not
+  /// The step on the local model (see the class comment), on l_; false if its sweeps do not
   /// converge.
   bool ModelStep(const ScaledProblem& p, const Eigen::VectorXd& x, double target);
-  void Substitute(Eigen::VectorXd* v) const;  ///< v ← (L Lᵀ)⁻¹ v with llt_
+  void Substitute(Eigen::VectorXd* v) const;  ///< v ← (L Lᵀ)⁻¹ v with l_
+  /// L of h_ into l_ (block by block over the slice groups); false if h_ is not positive
+  /// definite.
+  bool Factor();
 
   Eigen::VectorXd r_, du_a_, q_, dx_, e_;  ///< per active contact
   Eigen::MatrixXd c_aa_;                   ///< C_AA of the step
-  Eigen::VectorXd inv_diag_;               ///< 1/L_ii of llt_
+  Eigen::VectorXd inv_diag_;               ///< 1/L_ii of l_
   Eigen::MatrixXd h_;
   Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::MatrixXd l_;  ///< L of h_ (lower triangle), the factor every substitution uses
   std::vector<int> active_, released_;
-  // What llt_ factorises: C_AA + diag u'_A for the active set factor_active_ of a problem with
+  std::vector<int> group_start_;  ///< first position in active_ of each slice group, then n_A
+  // What l_ factorises: C_AA + diag u'_A for the active set factor_active_ of a problem with
   // factor_n_ contacts (−1: nothing usable).
   std::vector<int> factor_active_;
   Eigen::VectorXd factor_du_;  ///< the u'_A in it

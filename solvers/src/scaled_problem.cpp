@@ -242,6 +242,34 @@ void MakeScaledProblem(const ContactProblem& problem, ScaledProblem* out) {
     sp.S.setZero(m, m);
   }
 
+  // The groups of slices that no kernel couples (connected components of the kernels' pattern),
+  // by flooding from each unlabelled slice; S is small (≤ 200) and this runs once per problem.
+  sp.slices = problem.slices();
+  sp.slice_group.assign(static_cast<std::size_t>(sp.slices), -1);
+  sp.slice_groups = 0;
+  const std::vector<KroneckerTerm>& terms = problem.compliance_terms();
+  auto coupled = [&](int s, int t) {
+    for (const KroneckerTerm& term : terms)
+      if (term.kernel(s, t) != 0.0) return true;
+    return false;
+  };
+  for (int s = 0; s < sp.slices; ++s) {
+    if (sp.slice_group[s] >= 0) continue;
+    const int g = sp.slice_groups++;
+    sp.slice_group[s] = g;
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (int a = 0; a < sp.slices; ++a) {
+        if (sp.slice_group[a] != g) continue;
+        for (int b = 0; b < sp.slices; ++b)
+          if (sp.slice_group[b] < 0 && coupled(a, b)) {
+            sp.slice_group[b] = g;
+            grew = true;
+          }
+      }
+    }
+  }
+
   sp.has_local = problem.has_local();
   sp.local.assign(n, {});
   if (sp.has_local) {

@@ -197,15 +197,18 @@ double FaceWidthModel::GapChange(const geometry::StagePoses& poses, const StageC
 
 void FaceWidthModel::Expand(const geometry::StagePoses& poses, const DamageModel& damage,
                             ContactTerms* terms) const {
+  // Every buffer is the terms' own and keeps its storage from one call to the next: an evaluation
+  // with the same number of contacts allocates nothing here.
   ContactTerms& t = *terms;
-  const int n = t.size(), S = spec_.slices;
-  if (n == 0) return;
-  std::vector<StageContact> out;
-  out.reserve(static_cast<std::size_t>(n * S));
+  const std::vector<StageContact>& plane = t.plane_contacts;
+  const int n = static_cast<int>(plane.size()), S = spec_.slices;
+  t.contacts.resize(static_cast<std::size_t>(n * S));
+  t.overlap.resize(n * S);
   for (int j = 0; j < n; ++j) {
-    const StageContact& c = t.contacts[static_cast<std::size_t>(j)];
+    const StageContact& c = plane[static_cast<std::size_t>(j)];
     for (int s = 0; s < S; ++s) {
-      StageContact k = c;
+      StageContact& k = t.contacts[static_cast<std::size_t>(j * S + s)];
+      k = c;
       k.slice = s;
       k.slices = S;
       k.width_fraction = c.width_fraction / S;
@@ -213,27 +216,40 @@ void FaceWidthModel::Expand(const geometry::StagePoses& poses, const DamageModel
       const double pit = damage.DepthAt(c.body_a, c.body_b, c.contact, (s + 0.5) / S);
       k.pit_depth = pit;
       k.contact.overlap = c.contact.overlap + GapChange(poses, c, s) - pit;
-      out.push_back(k);
+      t.overlap(j * S + s) = k.contact.overlap;
     }
   }
-  Eigen::MatrixXd c(n * S, n * S);
-  for (int j = 0; j < n; ++j) {
-    for (int k = 0; k < n; ++k) {
-      const double cjk = t.compliance(j, k);
-      // Slices of two contacts couple through the body they share; contacts on different meshes
-      // of one planet share the planet, whose face is the narrower mesh's: the sun mesh's W.
-      const bool ring = t.contacts[static_cast<std::size_t>(j)].mesh ==
-                            geometry::MeshKind::kPlanetRing &&
-                        t.contacts[static_cast<std::size_t>(k)].mesh ==
-                            geometry::MeshKind::kPlanetRing;
-      const Eigen::MatrixXd& w = ring ? coupling_planet_ring_ : coupling_sun_planet_;
-      c.block(j * S, k * S, S, S) = cjk * w;
-    }
+  // Slices of two contacts couple through the body they share; contacts on different meshes of
+  // one planet share the planet, whose face is the narrower mesh's: the sun mesh's W. Hence
+  // C = C_n ⊗ W_sp when both meshes have the same W, and otherwise
+  // C = C_n,other ⊗ W_sp + C_n,ring–ring ⊗ W_pr (the plane matrix split by pairs of contacts).
+  const Eigen::MatrixXd& cn = t.plane_compliance;
+  auto ring = [&](int j) {
+    return plane[static_cast<std::size_t>(j)].mesh == geometry::MeshKind::kPlanetRing;
+  };
+  const bool one_kernel = coupling_sun_planet_ == coupling_planet_ring_;
+  t.compliance_terms.resize(one_kernel ? 1 : 2);
+  solvers::KroneckerTerm& first = t.compliance_terms[0];
+  first.source = cn;
+  first.kernel = coupling_sun_planet_;
+  if (!one_kernel) {
+    solvers::KroneckerTerm& second = t.compliance_terms[1];
+    second.source.setZero(n, n);
+    second.kernel = coupling_planet_ring_;
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        if (ring(j) && ring(k)) {
+          second.source(j, k) = cn(j, k);
+          first.source(j, k) = 0.0;
+        }
   }
-  t.compliance = std::move(c);
-  t.contacts = std::move(out);
-  t.overlap.resize(t.size());
-  for (int j = 0; j < t.size(); ++j) t.overlap(j) = t.contacts[static_cast<std::size_t>(j)].contact.overlap;
+  t.compliance.resize(n * S, n * S);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j) {
+      const Eigen::MatrixXd& w = one_kernel || !(ring(j) && ring(k)) ? coupling_sun_planet_
+                                                                      : coupling_planet_ring_;
+      t.compliance.block(j * S, k * S, S, S) = cn(j, k) * w;
+    }
 }
 
 std::vector<MeshFaceLoad> FaceLoads(const geometry::Stage& stage, int slices,

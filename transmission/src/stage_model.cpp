@@ -87,22 +87,31 @@ ContactTerms StageModel::Terms(const geometry::StagePoses& poses) const {
 StageOutcome StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* terms,
                                std::vector<geometry::TipRoundReuse>* reuse) const {
   ContactTerms& t = *terms;
-  if (StageOutcome o = SearchStage(stage_, poses, setup_.gap_window, &t.contacts, reuse); !o.ok())
+  // With slices, the search and the compliance fill the plane buffers that Expand splits.
+  const bool sliced = faces_.active();
+  std::vector<StageContact>& found = sliced ? t.plane_contacts : t.contacts;
+  if (StageOutcome o = SearchStage(stage_, poses, setup_.gap_window, &found, reuse); !o.ok())
     return o;
-  const int n = t.size();
-  t.overlap.resize(n);
-  for (int j = 0; j < n; ++j) t.overlap(j) = t.contacts[j].contact.overlap;
+  const int n = static_cast<int>(found.size());
   t.local.clear();
   if (n == 0) {
+    t.compliance_terms.clear();
+    t.contacts.clear();
+    t.overlap.resize(0);
     t.compliance.resize(0, 0);
     return {};
   }
-  if (StageOutcome o = compliance_.TryMatrix(stage_, poses, t.contacts, &t.compliance); !o.ok())
+  if (StageOutcome o = compliance_.TryMatrix(stage_, poses, found,
+                                             sliced ? &t.plane_compliance : &t.compliance);
+      !o.ok())
     return o;
-  if (faces_.active()) {
+  if (sliced) {
     faces_.Expand(poses, damage_, &t);
-  } else if (!damage_.empty()) {
-    SplitDamaged(&t);
+  } else {
+    t.compliance_terms.clear();
+    t.overlap.resize(n);
+    for (int j = 0; j < n; ++j) t.overlap(j) = t.contacts[j].contact.overlap;
+    if (!damage_.empty()) SplitDamaged(&t);
   }
   if (setup_.local_terms) {
     t.local.resize(static_cast<std::size_t>(t.size()));
@@ -234,6 +243,7 @@ StageOutcome StageModel::Problem(const geometry::StagePoses& poses, const StageL
   d.equality_matrix = Sensitivity(t, dofs_);  // G F = W: Σ −lever_sun F = T_sun
   d.equality_rhs = LoadVector(dofs_, loads);
   d.compliance = std::move(t.compliance);
+  d.compliance_terms = std::move(t.compliance_terms);
   d.overlap = std::move(t.overlap);
   d.local = std::move(t.local);
   for (const StageContact& s : t.contacts) d.contact_labels.push_back(s.Label());

@@ -180,4 +180,48 @@ TEST_CASE("a warm evaluation of the run-out case allocates nothing", "[unit][dyn
   }
 }
 
+TEST_CASE("a warm evaluation of a stage with face-width slices allocates nothing",
+          "[unit][dynamics][face_width]") {
+  // scenes/paper_stage_pin_tilt.toml: 20 uncoupled slices per contact and planet 1's pin tilted,
+  // friction on. The slices' expansion (FaceWidthModel::Expand into the terms' own buffers) and
+  // the contact problem's Kronecker terms (validated from their factors, no dense Cholesky) are on
+  // the path measured. At 10 slices too, the kernel S I of the face's other count.
+  const int slices = GENERATE(10, 20);
+  CAPTURE(slices);
+  std::string text = test::SceneText("paper_stage_pin_tilt.toml");
+  const std::string key = "slices = 20";
+  const std::size_t at = text.find(key);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, key.size(), "slices = " + std::to_string(slices));
+  const test::DynamicRig rig = test::MakeRig(text, "paper_stage_pin_tilt.toml", {});
+  REQUIRE(rig.scene.face_width.slices == slices);
+  const dynamics::DynamicModel& model = *rig.model;
+  const Eigen::VectorXd d = model.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  const Eigen::VectorXd v = Eigen::VectorXd::Zero(model.size());
+  auto solver = solvers::MakeContactSolver(solvers::Backend::kActiveSetNewton);
+  dynamics::Evaluation pair[2];
+  const double times[2] = {0.0, 3e-6};
+  model.Evaluate(times[0], d, v, *solver, {}, nullptr, &pair[0], false);
+  for (int round = 0; round < 4; ++round)
+    for (int k = 0; k < 2; ++k)
+      model.Evaluate(times[k], d, v, *solver, {}, &pair[1 - k], &pair[k], false);
+  REQUIRE(pair[0].ok);
+  REQUIRE(pair[1].ok);
+  REQUIRE(SameContacts(pair[0], pair[1]));
+  // Every potential contact is split into its slices, and the terms carry the structure.
+  REQUIRE(pair[0].terms.size() == slices * static_cast<int>(pair[0].terms.plane_contacts.size()));
+  REQUIRE(pair[0].terms.compliance_terms.size() == 1);
+  long counted = 0;
+  for (int k : {0, 1})
+    counted += AllocationsDuring(
+        [&] { model.Evaluate(times[k], d, v, *solver, {}, &pair[1 - k], &pair[k], false); });
+  CHECK(pair[0].ok);
+  CHECK(pair[1].ok);
+  CHECK(counted == 0);
+  // The count sees the slices' buffers: a fresh work space allocates them.
+  dynamics::Evaluation fresh;
+  CHECK(AllocationsDuring(
+            [&] { model.Evaluate(times[0], d, v, *solver, {}, &pair[1], &fresh, false); }) > 0);
+}
+
 #endif  // EPICYCLE_TEST_COUNTS_ALLOCATIONS

@@ -11,6 +11,18 @@
 
 namespace epicycle::solvers {
 
+/// One term of a compliance given as a sum of Kronecker products (docs/solvers.md §12): for n
+/// source contacts of S slices each, contact i = j·S + s (slice s of source contact j) and
+///
+///   C_{jS+s, kS+t} = Σ_terms source_jk · kernel_st,   i.e.  C = Σ_terms source ⊗ kernel.
+///
+/// The face-width slices (transmission/face_width.hpp) give one term C_n ⊗ W; a body compliance
+/// acting on the face's mean load adds C_body ⊗ 1 1ᵀ.
+struct KroneckerTerm {
+  Eigen::MatrixXd source;  ///< n×n [m/N], symmetric positive semidefinite
+  Eigen::MatrixXd kernel;  ///< S×S [-], symmetric positive semidefinite
+};
+
 /// Unknowns: contact forces F ∈ ℝᴺ and multipliers λ ∈ ℝᵐ (rigid displacements of the members
 /// whose position is set by equilibrium). With u(F) = C F + u_local(F):
 ///
@@ -32,6 +44,11 @@ struct ContactProblemData {
   std::vector<std::string>
       contact_labels;  ///< empty or N labels (e.g. "sun-planet1 tooth 3 drive")
   std::vector<std::string> multiplier_labels;  ///< empty or m labels (e.g. "sun rotation [rad]")
+  /// Empty, or the structure of `compliance`: C = Σ source ⊗ kernel (KroneckerTerm). The dense
+  /// `compliance` stays the problem's definition (every residual and every back end uses it); the
+  /// structure lets validation prove positive definiteness from the factors and lets the Newton
+  /// factorise C_AA block by block when the kernels leave groups of slices uncoupled.
+  std::vector<KroneckerTerm> compliance_terms;
 };
 
 /// A validated contact problem. Construction checks (each failure throws std::invalid_argument
@@ -44,6 +61,12 @@ struct ContactProblemData {
 ///    semidefinite (eigenvalues ≥ −kSymmetryTolerance·max|C|): contacts that share their rows of
 ///    C (the strips of a pitted contact) are then told apart by their local terms, which keep
 ///    the program strictly convex;
+///  - compliance_terms, when given: every source n×n and every kernel S×S with n·S = N, each
+///    symmetric (same rule), and C = Σ source ⊗ kernel entry by entry to kSymmetryTolerance·max|C|
+///    (O(N²)). When every factor is positive semidefinite and one term has both factors positive
+///    definite (Cholesky of the n×n and S×S factors), Σ source ⊗ kernel is positive definite
+///    (the eigenvalues of A ⊗ B are the products of theirs) and the O(N³) test of C is skipped;
+///    otherwise C is tested as above;
 ///  - S symmetric (same rule) and positive semidefinite (eigenvalues ≥ −kSymmetryTolerance·max|S|);
 ///  - local-term parameters: face width, R_eq, E, h > 0, 0 ≤ ν < 0.5 (see ValidateLocalTerm).
 /// The stored C and S are the symmetric parts of the input.
@@ -65,6 +88,14 @@ class ContactProblem {
   const Eigen::MatrixXd& equality_matrix() const { return data_.equality_matrix; }
   const Eigen::VectorXd& equality_rhs() const { return data_.equality_rhs; }
   const Eigen::MatrixXd& support_stiffness() const { return support_; }  ///< m×m (zeros if empty)
+  const std::vector<KroneckerTerm>& compliance_terms() const { return data_.compliance_terms; }
+  /// S of compliance_terms (1 without them).
+  int slices() const {
+    return data_.compliance_terms.empty() ? 1
+                                          : static_cast<int>(data_.compliance_terms[0].kernel.rows());
+  }
+  /// Whether validation proved C positive definite from its Kronecker factors (no O(N³) test).
+  bool definite_by_structure() const { return definite_by_structure_; }
 
   /// u_local(F) [m] for every contact (0 where there is no local term), F ≥ 0.
   Eigen::VectorXd LocalApproach(const Eigen::VectorXd& force) const;
@@ -83,6 +114,7 @@ class ContactProblem {
  private:
   ContactProblemData data_;
   Eigen::MatrixXd support_;
+  bool definite_by_structure_ = false;
 };
 
 }  // namespace epicycle::solvers

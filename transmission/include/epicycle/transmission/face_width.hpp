@@ -126,9 +126,13 @@ class FaceWidthModel {
   int slices() const { return spec_.slices; }
   const FaceWidthSpec& spec() const { return spec_; }
 
-  /// Splits every contact of `terms` into its slices (contacts, compliance, overlap; the local
-  /// terms are built afterwards from each slice's width fraction), growing each slice's gap by
-  /// the depth of the pits of `damage` that cover its centre.
+  /// Splits every searched contact (terms->plane_contacts, compliance terms->plane_compliance)
+  /// into its slices: terms->contacts, overlap and the dense compliance, and the compliance's
+  /// Kronecker terms (terms->compliance_terms: C_n ⊗ W, or two terms when the ring mesh's W
+  /// differs from the sun mesh's); the local terms are built afterwards from each slice's width
+  /// fraction. Each slice's gap grows by the depth of the pits of `damage` that cover its centre.
+  /// Writes into the terms' own buffers: with the same number of contacts as the last call it
+  /// allocates nothing.
   void Expand(const geometry::StagePoses& poses, const DamageModel& damage,
               ContactTerms* terms) const;
 

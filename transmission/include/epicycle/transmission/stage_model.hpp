@@ -56,6 +56,13 @@ struct ContactTerms {
   Eigen::MatrixXd compliance;                       ///< C [m/N], N×N
   Eigen::VectorXd overlap;                          ///< δ0 [m], N
   std::vector<solvers::LocalTermParameters> local;  ///< N entries, or empty without local terms
+  /// Empty, or the structure of `compliance` over the face-width slices, C = Σ source ⊗ kernel
+  /// (solvers::KroneckerTerm; FaceWidthModel::Expand), handed to the contact problem.
+  std::vector<solvers::KroneckerTerm> compliance_terms;
+  /// With slices: the searched contacts and their compliance [m/N] before Expand splits them
+  /// (kept here so that an evaluation reusing these terms allocates nothing).
+  std::vector<StageContact> plane_contacts;
+  Eigen::MatrixXd plane_compliance;
   int size() const { return static_cast<int>(contacts.size()); }
 };
 
