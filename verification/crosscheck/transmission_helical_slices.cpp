@@ -1,0 +1,133 @@
+// Helical meshes in slices (docs/model.md §10; helical_slices.hpp): the helical search at β = 0
+// is the spur face-width model's expansion; on the helical paper stage, the axial forces that the
+// sun and the ring take against the sun torque, and each planet's tilting moment against a hand
+// calculation from its sun-mesh load.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "epicycle/geometry/helical.hpp"
+#include "epicycle/transmission/helical_slices.hpp"
+#include "epicycle/transmission/quasistatic.hpp"
+#include "fe_fixtures.hpp"
+
+using namespace epicycle;
+using transmission::ContactTerms;
+using transmission::PositionResult;
+using transmission::StageContact;
+
+namespace {
+
+const transmission::FeStageCompliance& HelicalCompliance(const transmission::Scene& scene,
+                                                         const geometry::Stage& stage) {
+  static std::unique_ptr<transmission::FeStageCompliance> c;
+  if (!c) {
+    transmission::FeComplianceOptions o = test::CachedTables();
+    o.helical_slices = true;
+    c = std::make_unique<transmission::FeStageCompliance>(scene, stage, o);
+  }
+  return *c;
+}
+
+}  // namespace
+
+TEST_CASE("helical slices at beta = 0 are the spur face-width model's slices",
+          "[crosscheck][transmission][helical]") {
+  // The spur paper stage with a tilted pin (paper_stage_pin_tilt.toml): at β = 0 every section
+  // is the one the poses describe, so the helical search must find the contacts the spur model
+  // expands, with the same gaps (tilt and lead terms) and the same compliance C_jk W_st. The
+  // reference is FaceWidthModel::Expand, a separate code path (one search, rows repeated).
+  const transmission::Scene scene = transmission::ParseScene(
+      test::SceneText("paper_stage_pin_tilt.toml"), "paper_stage_pin_tilt.toml");
+  const geometry::Stage stage(scene.stage);
+  const transmission::StageModel model(stage, test::Compliance("paper_stage.toml"),
+                                       transmission::SetupFromScene(scene));
+  REQUIRE(model.face_width().active());
+  const geometry::StagePoses poses = model.KinematicPoses(0.01);
+  const ContactTerms spur = model.Terms(poses);
+  ContactTerms helical;
+  const transmission::DamageModel damage(scene.damage, transmission::BodyNames(5));
+  REQUIRE(transmission::HelicalSliceTerms(stage, model.compliance(), model.face_width(), damage,
+                                          poses, model.setup().gap_window, &helical)
+              .ok());
+  REQUIRE(helical.size() == spur.size());
+  std::vector<int> match(static_cast<std::size_t>(spur.size()), -1);
+  for (int j = 0; j < spur.size(); ++j)
+    for (int k = 0; k < helical.size(); ++k)
+      if (helical.contacts[k].SameAs(spur.contacts[j])) match[j] = k;
+  for (int j = 0; j < spur.size(); ++j) {
+    REQUIRE(match[j] >= 0);
+    // The same arithmetic on the same searched contact: equal to rounding of the gap terms'
+    // sums (1e-15 m on overlaps of 1e-4 m).
+    CHECK(helical.overlap(match[j]) == Approx(spur.overlap(j)).margin(1e-15));
+    CHECK(helical.contacts[match[j]].width_fraction == spur.contacts[j].width_fraction);
+    for (int k = 0; k < spur.size(); ++k)
+      CHECK(helical.compliance(match[j], match[k]) ==
+            Approx(spur.compliance(j, k)).epsilon(1e-12).margin(1e-20));
+  }
+}
+
+TEST_CASE("helical paper stage: the sun's and the ring's axial forces balance the sun torque, "
+          "each planet's tilting moment is the hand calculation's",
+          "[crosscheck][transmission][helical][slow]") {
+  const transmission::Scene scene = transmission::ParseScene(
+      test::SceneText("paper_stage_helical.toml"), "paper_stage_helical.toml");
+  const geometry::Stage stage(scene.stage);
+  const transmission::StageModel model(stage, HelicalCompliance(scene, stage),
+                                       transmission::SetupFromScene(scene));
+  const PositionResult r =
+      transmission::SolvePosition(model, 0.0, scene.loads, transmission::QuasiStaticOptions{});
+  REQUIRE(r.converged);
+  const transmission::HelicalLoads& h = r.helical;
+  REQUIRE(h.planets.size() == 3);
+
+  // Hand calculation (ISO 21771, docs/model.md §10): the planets' sun meshes carry the sun
+  // torque, Σ F_bt,i r_b,sun = |T_s|, each with the axial part F_bt,i tan β_b; so the sun takes
+  // |F_a| = |T_s| tan β_b / r_b,sun. Contacts off the line of action (tip rounds) have other
+  // levers; none carries load at this position, so the rule holds to the contact solve's
+  // equilibrium residual (relative 1e-9 here).
+  const double tan_bb = std::tan(std::atan(std::tan(stage.sun().spec().helix.angle) *
+                                           std::cos(stage.sun().spec().pressure_angle)));
+  const double torque = std::abs(scene.loads.sun_torque);
+  const double sun_axial = torque * tan_bb / stage.sun().base_radius();
+  CHECK(std::abs(h.sun_axial_force) == Approx(sun_axial).epsilon(1e-6));
+  // Its sign: the rule of geometry::AxialLoads (the flank carrying the load, the hand).
+  const geometry::StageAxialLoads ref = geometry::AxialLoads(stage, scene.loads.sun_torque);
+  CHECK((h.sun_axial_force > 0) == (ref.sun_axial_force > 0));
+  CHECK((h.ring_axial_force > 0) == (ref.ring_axial_force > 0));
+  // Newton's third law over the stage: the carrier takes nothing, the ring the sun's opposite.
+  CHECK(h.ring_axial_force == Approx(-h.sun_axial_force).epsilon(1e-6));
+  CHECK(std::abs(h.carrier_axial_force) <= 1e-6 * sun_axial);
+
+  const double r_b_sun = stage.sun().base_radius();
+  for (int i = 0; i < 3; ++i) {
+    const transmission::PlanetHelicalLoad& p = h.planets[static_cast<std::size_t>(i)];
+    // The planet's rotation balances its meshes: equal transverse base forces, equal and
+    // opposite axial forces (to the equilibrium residual).
+    const double f_bt = r.load_sharing[static_cast<std::size_t>(i)] * torque / r_b_sun;
+    const double f_a = f_bt * tan_bb;
+    CHECK(std::abs(p.sun_mesh_axial) == Approx(f_a).epsilon(1e-6));
+    CHECK(std::abs(p.axial_force) <= 1e-6 * f_a);
+    // Hand calculation of the tilting moment: the two axial forces at the operating pitch
+    // points, a diameter apart, M_t = F_a (r_w,p|s + r_w,p|r), sign as geometry::AxialLoads.
+    const auto& m = ref.meshes;
+    const double arm = m[static_cast<std::size_t>(2 * i)].planet_arm +
+                       m[static_cast<std::size_t>(2 * i + 1)].planet_arm;
+    const double hand = f_a * arm * (ref.planets[static_cast<std::size_t>(i)].tilting_moment > 0 ? 1 : -1);
+    // Tolerance: each mesh's contacts lie on its line of action, at a distance u from the pitch
+    // point of at most the path of contact's length g_α = ε_α p_bt, i.e. radially u sin α_wt from
+    // the pitch point: |M − M_hand| ≤ F_a Σ_meshes g_α sin α_wt.
+    double bound = 0;
+    for (int k : {2 * i, 2 * i + 1}) {
+      const geometry::MeshSummary& s = stage.meshes()[static_cast<std::size_t>(k)];
+      const double p_bt = 2 * M_PI * stage.sun().base_radius() / stage.sun().spec().teeth;
+      bound += s.contact_ratio_iso * p_bt * std::sin(s.pressure_angle);
+    }
+    INFO("planet " << i + 1 << ": M_t " << p.axial_moment_tangential << " N m, hand " << hand
+                   << " N m, bound " << f_a * bound << " N m; whole moment (radial, tangential) "
+                   << p.moment_radial << ", " << p.moment_tangential);
+    CHECK(std::abs(p.axial_moment_tangential - hand) <= f_a * bound);
+  }
+}
