@@ -27,6 +27,7 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
     throw std::invalid_argument(scene.name +
                                 ": a gear-pair scene; a quasi-static run needs a stage");
   if (request.sun) scene.supports.sun = *request.sun;
+  RequireHelicalSlices(scene, "`epicycle quasistatic`");
   scene.model.stresses = scene.model.stresses || request.stresses || request.rating;
   if (request.rating) CheckRatingInputs(scene, request.rating_option);
   if (request.rig && request.rig->compliance.has_root_stress() != scene.model.stresses)

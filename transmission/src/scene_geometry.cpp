@@ -185,6 +185,17 @@ void RequireSpur(const Scene& scene, const std::string& driver) {
       "axial forces and tilting moments)");
 }
 
+void RequireHelicalSlices(const Scene& scene, const std::string& driver) {
+  if (!IsHelical(scene) || scene.face_width.active()) return;
+  std::string where = internal::KeyAt(scene, "face_width.slices");
+  if (where.empty()) where = internal::KeyAt(scene, "helix.helix_angle_deg");
+  if (where.empty()) where = scene.source;
+  throw std::invalid_argument(
+      where + ": face_width.slices = " + std::to_string(scene.face_width.slices) + ": " + driver +
+      " resolves a helical stage in slices of the face width and needs slices >= 2 (its contact "
+      "lines cross the face width; add [face_width] slices = 20, docs/face_width.md)");
+}
+
 geometry::Stage MakeStage(const Scene& scene) {
   try {
     return geometry::Stage(scene.stage);
