@@ -1,6 +1,7 @@
 // One quasi-static run: the request resolved, the rig built once, the positions streamed, the
 // record (quasistatic_run.hpp; docs/quasistatic.md).
 #include "epicycle/transmission/quasistatic_run.hpp"
+#include "epicycle/transmission/helical_scene.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -13,6 +13,7 @@
 
 #include "epicycle/geometry/plane.hpp"
 
+#include "epicycle/transmission/helical_scene.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "scene_internal.hpp"
 

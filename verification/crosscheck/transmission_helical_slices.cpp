@@ -10,6 +10,7 @@
 #include <string>
 
 #include "epicycle/geometry/helical.hpp"
+#include "epicycle/transmission/helical_scene.hpp"
 #include "epicycle/transmission/helical_slices.hpp"
 #include "epicycle/transmission/helical_study.hpp"
 #include "epicycle/transmission/quasistatic.hpp"

@@ -153,11 +153,6 @@ bool IsHelical(const Scene& scene);
 /// @throws std::invalid_argument naming the scene's helix_angle_deg key (file:line), its value and
 ///         the rule, for a helical scene.
 void RequireSpur(const Scene& scene, const std::string& driver);
-/// A driver that resolves a helical stage in slices of the face width (helical_slices.hpp)
-/// refuses a helical scene with fewer than two slices, before its tables are built.
-/// @throws std::invalid_argument naming face_width.slices (or the helix key when the scene has
-///         no [face_width]), its value and the rule.
-void RequireHelicalSlices(const Scene& scene, const std::string& driver);
 /// Same, from text (source names it in messages).
 Scene ParseScene(const std::string& text, const std::string& source);
 
