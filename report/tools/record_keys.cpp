@@ -130,6 +130,7 @@ int main() {
   quasistatic.summary.contact_pressure.resize(1);
   quasistatic.summary.face_width.resize(1);
   quasistatic.summary.face_width[0].stresses = true;
+  quasistatic.summary.helical_mean.planets.resize(1);
   quasistatic.friction = transmission::FrictionLaw::kConstant;
   quasistatic.rating.emplace();
   quasistatic.failures_not_listed = 1;
@@ -144,7 +145,8 @@ int main() {
         "OUT/quasistatic_summary.json; `failures_not_listed` only when failures were not listed, "
         "`friction` and the efficiency keys only with friction at rest, `root_stress` and "
         "`contact_pressure` only with stresses, `rating` only when asked, `face_width` only with "
-        "slices of the face width (its root stress and Hertz pressure keys only with stresses).",
+        "slices of the face width (its root stress and Hertz pressure keys only with stresses), "
+        "`helical` only for a helical stage.",
         quasistatic);
   Table("Mesh stiffness (`epicycle stiffness`, Python `mesh_stiffness(...)[\"record\"]`)",
         "OUT/stiffness_MESH.json; `root_stress` only with stresses, `healthy` only beside a "

@@ -62,6 +62,12 @@ compliance::OperatorContact Sides(const geometry::PotentialContact& c, int body_
   return o;
 }
 
+// A contact side turned by `angle` about its body's centre (point and force direction).
+void TurnSide(compliance::ContactSide* side, const Eigen::Vector2d& centre, double angle) {
+  side->point = centre + geometry::Rotate(side->point - centre, angle);
+  side->direction = geometry::Rotate(side->direction, angle);
+}
+
 }  // namespace
 
 std::string DefaultCacheDirectory() {
@@ -97,9 +103,9 @@ double PlacedStart(const Crack& c, const geometry::Gear& gear,
 GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gear*>& gears,
                        const std::vector<std::string>& names, const FeComplianceOptions& options)
     : plane_(ToCompliance(scene.model.plane)) {
-  RequireSpur(scene,
-              "this run (quasistatic, stiffness, dynamic, modes, study: the gear bodies' FE "
-              "compliance)");
+  if (!options.helical_slices)
+    RequireSpur(scene,
+                "this run (stiffness, dynamic, modes, study: the gear bodies' FE compliance)");
   if (names.size() != gears.size())
     throw std::invalid_argument("GearTables: " + std::to_string(names.size()) + " names for " +
                                 std::to_string(gears.size()) + " gears");
@@ -220,6 +226,12 @@ void FeStageCompliance::Operator(const geometry::Stage& stage, const geometry::S
   for (const StageContact& s : contacts) {
     oc->push_back(Sides(s.contact, s.body_a, s.body_b, gear(s.body_a), gear(s.body_b),
                         bodies->at(s.body_a).centre, bodies->at(s.body_b).centre, {}));
+    // A helical slice was searched with each body's section turned by its lead: its sides are
+    // carried back onto the section the poses describe (docs/model.md §10).
+    if (s.section_turn_a != 0 || s.section_turn_b != 0) {
+      TurnSide(&oc->back().side[0], bodies->at(s.body_a).centre, -s.section_turn_a);
+      TurnSide(&oc->back().side[1], bodies->at(s.body_b).centre, -s.section_turn_b);
+    }
   }
 }
 

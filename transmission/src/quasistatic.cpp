@@ -275,6 +275,9 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
       r.face_loads[m].misalignment_deflection = a.deflection;
     }
   }
+  if (IsHelicalStage(model.stage()) &&
+      r.solution.force.size() == static_cast<Eigen::Index>(r.problem.contacts.size()))
+    r.helical = HelicalLoadsOf(model.stage(), poses, r.problem.contacts, r.solution.force);
   if (friction) {
     r.friction = true;
     r.force_change = g.force_change;

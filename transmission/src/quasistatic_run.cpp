@@ -1,6 +1,7 @@
 // One quasi-static run: the request resolved, the rig built once, the positions streamed, the
 // record (quasistatic_run.hpp; docs/quasistatic.md).
 #include "epicycle/transmission/quasistatic_run.hpp"
+#include "epicycle/transmission/helical_scene.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -28,6 +29,7 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
     throw std::invalid_argument(scene.name +
                                 ": a gear-pair scene; a quasi-static run needs a stage");
   if (request.sun) scene.supports.sun = *request.sun;
+  RequireHelicalSlices(scene, "`epicycle quasistatic`");
   scene.model.stresses = scene.model.stresses || request.stresses || request.rating;
   if (request.rating) CheckRatingInputs(scene, request.rating_option);
   if (request.rig && request.rig->compliance.has_root_stress() != scene.model.stresses)
@@ -168,6 +170,27 @@ void VisitRecord(const SweepSummary& s, RecordVisitor& visit) {
       }
     }
     visit.EndList();
+  }
+  if (!s.helical_mean.planets.empty()) {
+    // Means over the converged positions (helical_slices.hpp): +z along the gears' axis.
+    visit.BeginObject("helical");
+    visit.Number("sun_axial_force_N", s.helical_mean.sun_axial_force);
+    visit.Number("ring_axial_force_N", s.helical_mean.ring_axial_force);
+    visit.Number("carrier_axial_force_N", s.helical_mean.carrier_axial_force);
+    visit.BeginList("planets");
+    for (const PlanetHelicalLoad& p : s.helical_mean.planets) {
+      visit.Item();
+      visit.Integer("planet", p.planet + 1);
+      visit.Number("sun_mesh_axial_force_N", p.sun_mesh_axial);
+      visit.Number("ring_mesh_axial_force_N", p.ring_mesh_axial);
+      visit.Number("axial_force_N", p.axial_force);
+      visit.Number("axial_tilting_moment_radial_Nm", p.axial_moment_radial);
+      visit.Number("axial_tilting_moment_tangential_Nm", p.axial_moment_tangential);
+      visit.Number("tilting_moment_radial_Nm", p.moment_radial);
+      visit.Number("tilting_moment_tangential_Nm", p.moment_tangential);
+    }
+    visit.EndList();
+    visit.EndObject();
   }
   if (s.friction) {
     visit.Number("efficiency_mean", s.efficiency_mean);

@@ -13,6 +13,7 @@
 
 #include "epicycle/geometry/plane.hpp"
 
+#include "epicycle/transmission/helical_scene.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "scene_internal.hpp"
 
@@ -183,6 +184,17 @@ void RequireSpur(const Scene& scene, const std::string& driver) {
       "0): its contact lines cross the face width, which the model does not resolve yet; "
       "`epicycle geometry` reports a helical stage (transverse quantities, contact ratios, "
       "axial forces and tilting moments)");
+}
+
+void RequireHelicalSlices(const Scene& scene, const std::string& driver) {
+  if (!IsHelical(scene) || scene.face_width.active()) return;
+  std::string where = internal::KeyAt(scene, "face_width.slices");
+  if (where.empty()) where = internal::KeyAt(scene, "helix.helix_angle_deg");
+  if (where.empty()) where = scene.source;
+  throw std::invalid_argument(
+      where + ": face_width.slices = " + std::to_string(scene.face_width.slices) + ": " + driver +
+      " resolves a helical stage in slices of the face width and needs slices >= 2 (its contact "
+      "lines cross the face width; add [face_width] slices = 20, docs/face_width.md)");
 }
 
 geometry::Stage MakeStage(const Scene& scene) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "epicycle/transmission/helical_slices.hpp"
 #include "epicycle/transmission/load_sharing.hpp"
 
 namespace epicycle::transmission {
@@ -46,6 +47,12 @@ StageModel::StageModel(const geometry::Stage& stage, const StageCompliance& comp
       setup_(setup),
       damage_(setup.damage, BodyNames(PlanetBody(stage.planets()))) {
   setup_.Validate();
+  helical_ = IsHelicalStage(stage_);
+  if (helical_ && !setup_.face_width.active())
+    throw std::invalid_argument(
+        "face_width.slices = " + std::to_string(setup_.face_width.slices) +
+        ": a helical stage needs slices >= 2 (its contact lines cross the face width; "
+        "docs/model.md §10)");
   if (setup_.face_width.active()) {
     // A fixed ring: the carrier's torque balances the sun's and the ring's, T_c = −T_s (1 + z_r/z_s).
     const double ratio = static_cast<double>(stage_.ring().spec().teeth) / stage_.sun().spec().teeth;
@@ -86,6 +93,7 @@ ContactTerms StageModel::Terms(const geometry::StagePoses& poses) const {
 
 StageOutcome StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* terms,
                                std::vector<geometry::TipRoundReuse>* reuse) const {
+  if (helical_) return HelicalTerms(poses, terms);
   ContactTerms& t = *terms;
   // With slices, the search and the compliance fill the plane buffers that Expand splits.
   const bool sliced = faces_.active();
@@ -113,6 +121,23 @@ StageOutcome StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* 
     for (int j = 0; j < n; ++j) t.overlap(j) = t.contacts[j].contact.overlap;
     if (!damage_.empty()) SplitDamaged(&t);
   }
+  return LocalTerms(&t);
+}
+
+StageOutcome StageModel::HelicalTerms(const geometry::StagePoses& poses,
+                                      ContactTerms* terms) const {
+  // Each slice at its own section reads its own flank points: no Kronecker structure.
+  terms->compliance_terms.clear();
+  if (StageOutcome o = HelicalSliceTerms(stage_, compliance_, faces_, damage_, poses,
+                                         setup_.gap_window, terms);
+      !o.ok())
+    return o;
+  if (terms->size() == 0) return {};
+  return LocalTerms(terms);
+}
+
+StageOutcome StageModel::LocalTerms(ContactTerms* terms) const {
+  ContactTerms& t = *terms;
   if (setup_.local_terms) {
     t.local.resize(static_cast<std::size_t>(t.size()));
     for (int j = 0; j < t.size(); ++j) {
@@ -122,6 +147,8 @@ StageOutcome StageModel::Terms(const geometry::StagePoses& poses, ContactTerms* 
                                         compliance_.JoiningDepth(s.body_a),
                                         compliance_.JoiningDepth(s.body_b), &t.local[j]);
       if (!o.ok()) return o;
+      // A helical slice's term per unit length of contact line (helical_slices.hpp).
+      if (helical_) t.local[j].face_width *= LocalWidthFactor(BodyGear(s.body_a), BodyGear(s.body_b));
     }
   }
   return {};

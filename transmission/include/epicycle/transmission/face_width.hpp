@@ -152,6 +152,16 @@ class FaceWidthModel {
   Misalignment MeshMisalignment(const geometry::StagePoses& poses,
                                 const StageContact& contact) const;
 
+  /// W [-] of the slices of two contacts: the planet–ring mesh's when both are on it, else the
+  /// sun–planet mesh's (the planet's face is the narrower mesh's).
+  const Eigen::MatrixXd& Coupling(bool both_on_ring_mesh) const {
+    return both_on_ring_mesh ? coupling_planet_ring_ : coupling_sun_planet_;
+  }
+  /// The face width b [m] of the sun–planet or the planet–ring meshes.
+  double MeshWidth(bool ring_mesh) const {
+    return ring_mesh ? planet_ring_width_ : sun_planet_width_;
+  }
+
  private:
   struct BodyLead {
     double slope = 0;  ///< h [rad/m]

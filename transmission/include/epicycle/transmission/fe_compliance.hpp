@@ -23,6 +23,9 @@ struct FeComplianceOptions {
   compliance::InfluenceTableOptions table;
   /// Disk cache of the tables; empty: build in memory, write nothing.
   std::string cache_directory;
+  /// True for a run whose stage model resolves helical meshes in slices (StageRig:
+  /// helical_slices.hpp): a helical scene is taken; false refuses it (RequireSpur).
+  bool helical_slices = false;
 };
 
 /// The default cache directory: $EPICYCLE_CACHE_DIR, else $XDG_CACHE_HOME/epicycle, else

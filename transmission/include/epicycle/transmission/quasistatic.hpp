@@ -13,6 +13,7 @@
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/transmission/dynamic_settings.hpp"
 #include "epicycle/transmission/friction.hpp"
+#include "epicycle/transmission/helical_slices.hpp"
 #include "epicycle/transmission/root_stress.hpp"
 #include "epicycle/transmission/stage_model.hpp"
 
@@ -63,6 +64,9 @@ struct PositionResult {
   /// With slices of the face width (face_width.hpp): each mesh's load per unit width and K_Hβ
   /// (sun–planet meshes, then planet–ring meshes); empty with one slice.
   std::vector<MeshFaceLoad> face_loads;
+  /// A helical stage's axial forces and each planet's tilting moment (helical_slices.hpp); no
+  /// planets for a spur stage.
+  HelicalLoads helical;
   double transmission_error = 0;     ///< loaded static TE: sun rotation from kinematic [rad]
   geometry::Vec2 sun_displacement = geometry::Vec2::Zero();  ///< [m] (floating sun)
   std::vector<double> planet_rotations;                      ///< from kinematic [rad]

@@ -161,7 +161,10 @@ class StageModel {
   std::vector<double> support_;
   DamageModel damage_;
   FaceWidthModel faces_;
+  bool helical_ = false;  // every slice at its own section's poses (helical_slices.hpp)
   void SplitDamaged(ContactTerms* terms) const;
+  StageOutcome HelicalTerms(const geometry::StagePoses& poses, ContactTerms* terms) const;
+  StageOutcome LocalTerms(ContactTerms* terms) const;
 };
 
 }  // namespace epicycle::transmission

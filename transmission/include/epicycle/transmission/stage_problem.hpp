@@ -68,6 +68,10 @@ struct StageContact {
   /// the plane model's whole face).
   int slice = 0;
   int slices = 1;
+  /// A slice of a helical mesh (helical_slices.hpp): the turns [rad] of body A's and body B's
+  /// transverse sections at the slice's z from the sections the poses describe (the contact was
+  /// searched with each body turned by them); 0 for a spur mesh.
+  double section_turn_a = 0, section_turn_b = 0;
   /// "sun-planet1 involute drive teeth 3/5", a pitted strip with " pitted <part>" appended, a
   /// slice with " slice <s+1>/<S>".
   std::string Label() const;

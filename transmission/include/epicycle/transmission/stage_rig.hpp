@@ -16,11 +16,12 @@ struct StageRig {
   geometry::Stage stage;
   FeStageCompliance compliance;
   /// @throws std::invalid_argument as MakeStage and FeStageCompliance.
+  /// Its stage model resolves a helical stage in slices (helical_slices.hpp): the tables take it.
   StageRig(Scene s, const FeComplianceOptions& fe)
-      : scene(std::move(s)), stage(MakeStage(scene)), compliance(scene, stage, fe) {}
+      : scene(std::move(s)), stage(MakeStage(scene)), compliance(scene, stage, Sliced(fe)) {}
   /// The same with the scene's stage already made (MakeStage(s): checked before the tables).
   StageRig(Scene s, geometry::Stage st, const FeComplianceOptions& fe)
-      : scene(std::move(s)), stage(std::move(st)), compliance(scene, stage, fe) {}
+      : scene(std::move(s)), stage(std::move(st)), compliance(scene, stage, Sliced(fe)) {}
   /// The stage model of `setup` (cheap: the DOF list; it refers to this rig).
   StageModel Model(const StageSetup& setup) const { return StageModel(stage, compliance, setup); }
   /// The stage model of the scene's supports, with or without the local terms.
@@ -28,6 +29,12 @@ struct StageRig {
     StageSetup setup = SetupFromScene(scene);
     setup.local_terms = local_terms;
     return Model(setup);
+  }
+
+ private:
+  static FeComplianceOptions Sliced(FeComplianceOptions fe) {
+    fe.helical_slices = true;
+    return fe;
   }
 };
 

@@ -80,6 +80,9 @@ struct SweepSummary {
   std::vector<FlankPressure> contact_pressure;
   /// With slices of the face width, per mesh (sun–planet meshes, then planet–ring); else empty.
   std::vector<MeshFaceSummary> face_width;
+  /// A helical stage's axial forces and tilting moments, each the mean over the converged
+  /// positions (helical_slices.hpp); no planets for a spur stage.
+  HelicalLoads helical_mean;
 };
 
 /// The statistics of a sweep of a stage with `planets` planets gathered one position at a time,
@@ -103,6 +106,8 @@ class SweepAccumulator {
   ContactPressureTracker pressure_;
   std::vector<MeshFaceSummary> faces_;
   std::vector<Accumulator> face_mean_;
+  HelicalLoads helical_sum_;
+  int helical_count_ = 0;
 };
 
 /// The statistics of `results` (a sweep of a stage with `planets` planets): SweepAccumulator over
