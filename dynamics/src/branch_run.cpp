@@ -99,6 +99,7 @@ void VisitRecord(const BranchRecord& r, transmission::RecordVisitor& visit) {
   }
   visit.EndList();
   visit.Integer("integrations", b.integrations);
+  visit.Integer("plain_integrations", b.plain_integrations);
   visit.Integer("steps", b.steps);
   visit.Number("cpu_seconds", b.cpu_seconds);
   visit.Number("wall_seconds", b.wall_seconds);

@@ -937,6 +937,7 @@ py::object PeriodicBranch(const ScenePtr& s, const std::string& parameter, doubl
   f["state_labels"] = r.dof_labels;
   f["bifurcations"] = Result(bif);
   f["integrations"] = r.integrations;
+  f["plain_integrations"] = r.plain_integrations;
   f["steps"] = r.steps;
   f["cpu_s"] = r.cpu_seconds;
   f["wall_s"] = r.wall_seconds;
@@ -1011,7 +1012,7 @@ Result
     complex_multipliers_outside [-], k_gamma [-], te_amplitude_urad [µrad],
     sun_orbit_radius_um [µm], arclength [-], state (points × 2n: the deviations [m, rad] and
     their rates [m/s, rad/s] at t = 0) with state_labels; bifurcations (kind, the parameter's
-    values, before_point); integrations, steps [-], cpu_s, wall_s [s], warnings; record: the
+    values, before_point); integrations, plain_integrations, steps [-], cpu_s, wall_s [s], warnings; record: the
     branch's record, the keys and values of the program's periodic_branch_summary.json
     (docs/records.md).
 

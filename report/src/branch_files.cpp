@@ -122,8 +122,9 @@ std::string BranchRecordText(const dynamics::BranchRecord& record) {
     unstable += p.stability == dynamics::Stability::kUnstable;
   return fmt::format(
       "\n  {} points ({} unstable), {} bifurcations; {} periods integrated with the "
-      "variational equations ({} steps); {:.2f} s CPU, {:.2f} s wall\n",
-      r.points.size(), unstable, r.bifurcations.size(), r.integrations, r.steps, r.cpu_seconds,
+      "variational equations and {} without ({} steps); {:.2f} s CPU, {:.2f} s wall\n",
+      r.points.size(), unstable, r.bifurcations.size(), r.integrations, r.plain_integrations,
+      r.steps, r.cpu_seconds,
       r.wall_seconds);
 }
 
