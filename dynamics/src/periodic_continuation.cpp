@@ -63,55 +63,46 @@ class Continuer {
 
   // R and its scaled Jacobian at u (one integration with the variational equations).
   bool Evaluate(const Eigen::VectorXd& u, Eigen::VectorXd* r, Point* at) {
-    const double lambda = Lambda(u);
-    const Eigen::VectorXd y = Y(u);
     Flow f;
-    // A corrector's iterate may leave the parameter's domain (a speed through zero): the system
-    // refuses it, and the step fails and is retried shorter, as a failed integration is.
-    try {
-      PeriodIntegrator integrator(sys_, o_.shooting, P(lambda), true, column_, lambda_scale_);
-      f = integrator.Shoot(y);
-    } catch (const std::invalid_argument& e) {
-      at->message = o_.parameter + " = " + Num(lambda) + ": " + e.what();
-      return false;
-    }
-    ++integrations_;
-    steps_ += f.steps;
-    if (!f.ok) {
-      at->message = f.message;
-      return false;
-    }
-    *r = f.end - y;
-    at->residual = Wrms(*r, y, o_.shooting);
+    if (!Integrate(u, true, r, at, &f)) return false;
     at->monodromy = f.phi;
     at->jacobian.resize(n_, n_ + 1);
     // R̃ = R/scale: ∂R̃/∂ỹ = diag(1/scale)(M − I) diag(scale), ∂R̃/∂λ̃ = ψ Λ/scale.
     at->jacobian.leftCols(n_) = scale_.cwiseInverse().asDiagonal() *
                                 (f.phi - Eigen::MatrixXd::Identity(n_, n_)) * scale_.asDiagonal();
     at->jacobian.col(n_) = f.psi.cwiseQuotient(scale_) * lambda_scale_;
-    at->u = u;
     return true;
   }
 
   // R at u alone: one integration of the state without the variational equations.
   bool Residual(const Eigen::VectorXd& u, Eigen::VectorXd* r, Point* at) {
+    Flow f;
+    return Integrate(u, false, r, at, &f);
+  }
+
+  // One period from u, with the variational equations and the parameter column or without:
+  // R = φ − y into *r, its weighted norm and u into *at, the flow into *f.
+  bool Integrate(const Eigen::VectorXd& u, bool variational, Eigen::VectorXd* r, Point* at,
+                 Flow* f) {
     const double lambda = Lambda(u);
     const Eigen::VectorXd y = Y(u);
-    Flow f;
+    // A corrector's iterate may leave the parameter's domain (a speed through zero): the system
+    // refuses it, and the step fails and is retried shorter, as a failed integration is.
     try {
-      PeriodIntegrator integrator(sys_, o_.shooting, P(lambda), false, -1, lambda_scale_);
-      f = integrator.Shoot(y);
+      PeriodIntegrator integrator(sys_, o_.shooting, P(lambda), variational,
+                                  variational ? column_ : -1, lambda_scale_);
+      *f = integrator.Shoot(y);
     } catch (const std::invalid_argument& e) {
       at->message = o_.parameter + " = " + Num(lambda) + ": " + e.what();
       return false;
     }
-    ++plain_integrations_;
-    steps_ += f.steps;
-    if (!f.ok) {
-      at->message = f.message;
+    ++(variational ? integrations_ : plain_integrations_);
+    steps_ += f->steps;
+    if (!f->ok) {
+      at->message = f->message;
       return false;
     }
-    *r = f.end - y;
+    *r = f->end - y;
     at->residual = Wrms(*r, y, o_.shooting);
     at->u = u;
     return true;
