@@ -155,18 +155,14 @@ void RunDynamic(const DynamicArgs& a) {
   if (a.periodic_points != 0 && !a.periodic && a.continue_spec.empty())
     throw std::invalid_argument("--periodic-points belongs to --periodic and --continue");
   if (a.periodic || !a.continue_spec.empty()) {
-    if (a.periodic) ParseSpeedSweep(a.speed_sweep);
-    transmission::Scene input = dynamics::ResolvedScene(request);
-    BranchArgs branch = a.periodic ? ParseBranch("--speed-sweep", a.speed_sweep, input)
-                                   : ParseBranch("--continue", a.continue_spec, input);
-    const dynamics::SimulationOptions opt = dynamics::ResolvedOptions(request);
-    dynamics::StageDynamics rig(std::move(input), request.tables);
-    rig.model.SetStartAngle(geometry::Rad(a.start_deg));
-    branch.out = a.out;
-    branch.backend = a.backend;
-    branch.quiet = a.quiet;
-    branch.max_points = a.periodic_points;
-    return RunBranch(branch, rig, opt);
+    dynamics::BranchRequest branch;
+    branch.run = request;
+    if (a.periodic) ParseBranch("--speed-sweep", a.speed_sweep, &branch);
+    else ParseBranch("--continue", a.continue_spec, &branch);
+    if (a.periodic_points != 0) branch.max_points = a.periodic_points;
+    return RunBranch({a.periodic ? "--speed-sweep" : "--continue",
+                      a.periodic ? a.speed_sweep : a.continue_spec, a.out, a.quiet},
+                     branch);
   }
   if (!a.speed_sweep.empty()) {
     ParseSpeedSweep(a.speed_sweep);  // bad input before the tables

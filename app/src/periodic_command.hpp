@@ -7,37 +7,28 @@
 
 #include <string>
 
-#include "epicycle/dynamics/dynamic_model.hpp"
-#include "epicycle/dynamics/simulation.hpp"
-#include "epicycle/dynamics/stage_branch.hpp"
-#include "epicycle/transmission/scene.hpp"
+#include "epicycle/dynamics/branch_run.hpp"
 
 namespace epicycle::app {
 
 struct BranchArgs {
   std::string option;  ///< "--speed-sweep" or "--continue": the option that gave the range
   std::string spec;    ///< its value as the user gave it
-  std::string parameter;
-  double from = 0, to = 0;
-  int steps = 0;       ///< N: the largest arclength step is 1/N [-]
-  int max_points = 0;  ///< 0: the library's default
-  std::string out, backend;
+  std::string out;
   bool quiet = false;
 };
 
 /// Parses `--speed-sweep FROM:TO:N` with --periodic (the sun speed) or `--continue NAME:FROM:TO:N`
-/// into a branch's range, and checks the scene's period against the branch's limit: bad input
-/// before any table is built.
+/// into the request's parameter, range and steps: bad input before any table is built.
 /// @throws std::invalid_argument naming the option, its value and the rule (an unknown NAME, a
-///         range of zero width, a period of too many mesh cycles).
-BranchArgs ParseBranch(const std::string& option, const std::string& spec,
-                       const transmission::Scene& scene);
+///         range of zero width, N < 1).
+void ParseBranch(const std::string& option, const std::string& spec,
+                 dynamics::BranchRequest* request);
 
-/// Runs the branch on the rig's model with `simulation`'s tolerances and back end; writes
-/// OUT/periodic_branch.csv (lines as computed), _summary.json and the SVG plots.
+/// Runs the branch (dynamics::RunBranch); writes OUT/periodic_branch.csv (lines as computed),
+/// _summary.json and the SVG plots.
 /// @throws ComputationFailed saying where the continuation stopped (after writing the branch so
 ///         far).
-void RunBranch(const BranchArgs& args, const dynamics::StageDynamics& rig,
-               const dynamics::SimulationOptions& simulation);
+void RunBranch(const BranchArgs& args, const dynamics::BranchRequest& request);
 
 }  // namespace epicycle::app

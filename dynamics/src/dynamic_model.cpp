@@ -749,10 +749,12 @@ StartOutcome DynamicModel::SolveQuasiStaticStart(const solvers::ContactOptions& 
   return out;
 }
 
-void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::MatrixXd* k) const {
+void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::MatrixXd* k,
+                             Eigen::MatrixXd* c) const {
   const int nd = size();
   *m = mass_.asDiagonal();
   k->setZero(nd, nd);
+  Eigen::MatrixXd damping = Eigen::MatrixXd::Zero(nd, nd);
   // One involute contact on the loaded flanks of each mesh gives the mesh's line of action.
   const transmission::ContactTerms terms = model_.Terms(model_.KinematicPoses(carrier_angle));
   const Eigen::MatrixXd gs = model_.Sensitivity(terms, stage_dofs_);
@@ -760,8 +762,8 @@ void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::Ma
   for (int j = 0; j < terms.size(); ++j) {
     const StageContact& s = terms.contacts[j];
     if (!s.loaded || s.contact.kind != geometry::ContactKind::kInvolute) continue;
-    int& c = chosen[2 * s.planet + (s.mesh == geometry::MeshKind::kSunPlanet ? 0 : 1)];
-    if (c < 0 || s.contact.overlap > terms.contacts[c].contact.overlap) c = j;
+    int& pick = chosen[2 * s.planet + (s.mesh == geometry::MeshKind::kSunPlanet ? 0 : 1)];
+    if (pick < 0 || s.contact.overlap > terms.contacts[pick].contact.overlap) pick = j;
   }
   for (std::size_t mi = 0; mi < chosen.size(); ++mi) {
     if (chosen[mi] < 0)
@@ -773,29 +775,39 @@ void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::Ma
       if (stage_dof_[q] >= 0) g(q) = gs(stage_dof_[q], chosen[mi]);
     const double km = mi % 2 == 0 ? k_sun_ : k_ring_;
     *k += km * g * g.transpose();
+    // The mesh's damping c_m along the same line (the contacts share it in proportion to their
+    // loads, so one loaded contact carries all of it).
+    damping += (mi % 2 == 0 ? damping_sun_ : damping_ring_) * g * g.transpose();
   }
   // Bearings: the Hessian of their stored energy at the reference configuration, symmetric by
   // construction. Every bearing is a linear spring, so its energy is ½ k |J d|² for the map J from
   // the state to the spring's deflection; at d = 0 every spring is unstretched (a pin's centre is
   // its pin, as Pin and PinReference agree there), so the rotation of a pin with the carrier adds
   // no geometric term and the Hessian is k JᵀJ.
+  // The bearings' dampers act on the same deflections, so their matrix is c JᵀJ alike.
   const transmission::StageSetup& setup = model_.setup();
-  auto spring = [&](double stiffness, const std::vector<std::pair<int, double>>& j) {
+  auto spring = [&](double stiffness, double damper, const std::vector<std::pair<int, double>>& j) {
     for (const auto& [a, ja] : j)
-      for (const auto& [b, jb] : j) (*k)(a, b) += stiffness * ja * jb;
+      for (const auto& [b, jb] : j) {
+        (*k)(a, b) += stiffness * ja * jb;
+        damping(a, b) += damper * ja * jb;
+      }
   };
   const int ks = Find(MotionDof::kSun, MotionDof::kX);
   if (ks >= 0 && setup.sun == transmission::SunSupport::kElastic)
-    for (int a = 0; a < 2; ++a) spring(setup.sun_stiffness, {{ks + a, 1.0}});
+    for (int a = 0; a < 2; ++a)
+      spring(setup.sun_stiffness, settings_.sun_bearing_damping, {{ks + a, 1.0}});
   const int kr = Find(MotionDof::kRing, MotionDof::kRotation);
   if (kr >= 0) {
-    spring(settings_.ring_torsional_stiffness, {{kr, 1.0}});
-    for (int a = 1; a <= 2; ++a) spring(settings_.ring_stiffness, {{kr + a, 1.0}});
+    spring(settings_.ring_torsional_stiffness, settings_.ring_torsional_damping, {{kr, 1.0}});
+    for (int a = 1; a <= 2; ++a)
+      spring(settings_.ring_stiffness, settings_.ring_damping, {{kr + a, 1.0}});
   }
   const int kc = Find(MotionDof::kCarrier, MotionDof::kRotation);
   const int kcx = Find(MotionDof::kCarrier, MotionDof::kX);
   if (kcx >= 0)
-    for (int a = 0; a < 2; ++a) spring(settings_.carrier_stiffness, {{kcx + a, 1.0}});
+    for (int a = 0; a < 2; ++a)
+      spring(settings_.carrier_stiffness, settings_.carrier_damping, {{kcx + a, 1.0}});
   const double t = (carrier_angle - start_angle_) / carrier_speed_;
   for (int i = 0; i < model_.planets(); ++i) {
     const int kx = Find(MotionDof::kPlanet, MotionDof::kX, i);
@@ -807,9 +819,10 @@ void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::Ma
       std::vector<std::pair<int, double>> j = {{kx + a, 1.0}};
       if (kcx >= 0) j.push_back({kcx + a, -1.0});
       if (kc >= 0) j.push_back({kc, -arm(a)});
-      spring(setup.planet_stiffness, j);
+      spring(setup.planet_stiffness, settings_.planet_bearing_damping, j);
     }
   }
+  if (c) *c = std::move(damping);
 }
 
 StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeComplianceOptions& f)

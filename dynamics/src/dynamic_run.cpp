@@ -75,11 +75,8 @@ DynamicRecord Settings(const DynamicModel& model, const SimulationOptions& o, co
   r.mesh_frequency = span.mesh_frequency;
   r.friction = model.settings().friction.law;
   r.integrator = o.integrator;
-  r.rtol = o.rtol;
-  r.atol_length = o.atol_length;
-  r.atol_angle = o.atol_angle;
-  r.contact_tolerance = o.contact.tolerance;
-  r.backend = o.backend;
+  r.tolerances = TolerancesOf(o, solvers::BackendName(o.backend));
+  r.tolerances.rate_scale = 0;  // the run's, once it has started (SimulationStats::rate_scale)
   r.duration = span.duration;
   r.outputs = span.outputs;
   r.mesh_stiffness = {model.sun_mesh_stiffness(), model.ring_mesh_stiffness()};
@@ -163,6 +160,7 @@ DynamicRecord RunDynamic(const DynamicRequest& request, DynamicSink& sink) {
   record.status = result.status;
   record.failure = result.message;
   record.stats = result.stats;
+  record.tolerances.rate_scale = result.stats.rate_scale;
   record.summary = accumulator.Result();
   for (const std::string& w : tally.Messages()) record.warnings.push_back(w);
   // ISO 6336 with the run's K_v (docs/stresses.md)
@@ -179,11 +177,7 @@ void VisitRecord(const DynamicRecord& r, transmission::RecordVisitor& visit) {
   visit.Number("mesh_frequency_Hz", r.mesh_frequency);
   visit.Text("friction", transmission::FrictionLawName(r.friction));
   visit.Text("integrator", IntegratorName(r.integrator));
-  visit.Number("rtol", r.rtol);
-  visit.Number("atol_length_m", r.atol_length);
-  visit.Number("atol_angle_rad", r.atol_angle);
-  visit.Number("contact_tolerance", r.contact_tolerance);
-  visit.Text("backend", solvers::BackendName(r.backend));
+  VisitTolerances(r.tolerances, visit);
   visit.Text("start", "quasi-static solution at t = 0 (no start-up transient)");
   visit.Number("duration_s", r.duration);
   visit.Integer("outputs", r.outputs);
@@ -213,8 +207,6 @@ void VisitRecord(const DynamicRecord& r, transmission::RecordVisitor& visit) {
   visit.Integer("failed_geometry", st.failed_geometry);
   visit.Number("wall_seconds", st.wall_seconds);
   visit.Number("evaluation_seconds", st.rhs_seconds);
-  visit.Number("rate_tolerance_scale_rad_per_s",
-               st.rate_scale);  // rate atol = position atol x this
   if (r.rating) visit.Rating("rating", *r.rating);
   visit.Texts("warnings", r.warnings);
   visit.Number("setup_seconds", r.setup_seconds);

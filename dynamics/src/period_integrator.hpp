@@ -85,7 +85,6 @@ class PeriodIntegrator {
     size_ = n_ + (variational_ ? n_ * n_ : 0) + (column_ >= 0 ? n_ : 0);
     f_.resize(n_);
     fp_.resize(n_);
-    fm_.resize(n_);
     jac_.resize(n_, n_);
   }
 
@@ -251,19 +250,19 @@ class PeriodIntegrator {
         off += n * n;
       }
       if (c.column_ >= 0) {
-        // ∂g/∂λ by central differences, step cbrt(ε) of λ's scale (truncation and round-off
-        // balanced for a smooth dependence on λ).
+        // ∂g/∂λ by forward differences from g at λ (out's first n entries), step √ε of λ's
+        // scale (truncation and round-off balanced for a one-sided difference): one evaluation
+        // of the system a step. ∂φ/∂λ steers the predictor and the corrector's Newton; where
+        // the corrector converges is set by R alone (docs/periodic.md §2).
         const double lambda = c.p_(c.column_);
-        const double h = std::cbrt(std::numeric_limits<double>::epsilon()) *
+        const double h = std::sqrt(std::numeric_limits<double>::epsilon()) *
                          std::max(std::abs(lambda), c.lambda_scale_);
-        Eigen::VectorXd pp = c.p_, pm = c.p_;
+        Eigen::VectorXd pp = c.p_;
         pp(c.column_) = lambda + h;
-        pm(c.column_) = lambda - h;
         if (!c.G(s, c.y_, pp, c.PeriodOf(pp), &c.fp_)) return 1;
-        if (!c.G(s, c.y_, pm, c.PeriodOf(pm), &c.fm_)) return 1;
         Eigen::Map<Eigen::VectorXd>(out + off, n) =
             c.jac_ * Eigen::Map<const Eigen::VectorXd>(z + off, n) +
-            (c.fp_ - c.fm_) / (pp(c.column_) - pm(c.column_));
+            (c.fp_ - Eigen::Map<const Eigen::VectorXd>(out, n)) / (pp(c.column_) - lambda);
       }
       return 0;
     } catch (...) {
@@ -301,7 +300,7 @@ class PeriodIntegrator {
   Eigen::VectorXd atol_;
   double period_ = 0;
   int size_ = 0;
-  Eigen::VectorXd y_, f_, fp_, fm_;
+  Eigen::VectorXd y_, f_, fp_;
   Eigen::MatrixXd jac_;
   long rhs_ = 0;
   std::exception_ptr error_;

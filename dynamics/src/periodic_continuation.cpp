@@ -63,65 +63,81 @@ class Continuer {
 
   // R and its scaled Jacobian at u (one integration with the variational equations).
   bool Evaluate(const Eigen::VectorXd& u, Eigen::VectorXd* r, Point* at) {
-    const double lambda = Lambda(u);
-    const Eigen::VectorXd y = Y(u);
     Flow f;
-    // A corrector's iterate may leave the parameter's domain (a speed through zero): the system
-    // refuses it, and the step fails and is retried shorter, as a failed integration is.
-    try {
-      PeriodIntegrator integrator(sys_, o_.shooting, P(lambda), true, column_, lambda_scale_);
-      f = integrator.Shoot(y);
-    } catch (const std::invalid_argument& e) {
-      at->message = o_.parameter + " = " + Num(lambda) + ": " + e.what();
-      return false;
-    }
-    ++integrations_;
-    steps_ += f.steps;
-    if (!f.ok) {
-      at->message = f.message;
-      return false;
-    }
-    *r = f.end - y;
-    at->residual = Wrms(*r, y, o_.shooting);
+    if (!Integrate(u, true, r, at, &f)) return false;
     at->monodromy = f.phi;
     at->jacobian.resize(n_, n_ + 1);
     // R̃ = R/scale: ∂R̃/∂ỹ = diag(1/scale)(M − I) diag(scale), ∂R̃/∂λ̃ = ψ Λ/scale.
     at->jacobian.leftCols(n_) = scale_.cwiseInverse().asDiagonal() *
                                 (f.phi - Eigen::MatrixXd::Identity(n_, n_)) * scale_.asDiagonal();
     at->jacobian.col(n_) = f.psi.cwiseQuotient(scale_) * lambda_scale_;
+    return true;
+  }
+
+  // R at u alone: one integration of the state without the variational equations.
+  bool Residual(const Eigen::VectorXd& u, Eigen::VectorXd* r, Point* at) {
+    Flow f;
+    return Integrate(u, false, r, at, &f);
+  }
+
+  // One period from u, with the variational equations and the parameter column or without:
+  // R = φ − y into *r, its weighted norm and u into *at, the flow into *f.
+  bool Integrate(const Eigen::VectorXd& u, bool variational, Eigen::VectorXd* r, Point* at,
+                 Flow* f) {
+    const double lambda = Lambda(u);
+    const Eigen::VectorXd y = Y(u);
+    // A corrector's iterate may leave the parameter's domain (a speed through zero): the system
+    // refuses it, and the step fails and is retried shorter, as a failed integration is.
+    try {
+      PeriodIntegrator integrator(sys_, o_.shooting, P(lambda), variational,
+                                  variational ? column_ : -1, lambda_scale_);
+      *f = integrator.Shoot(y);
+    } catch (const std::invalid_argument& e) {
+      at->message = o_.parameter + " = " + Num(lambda) + ": " + e.what();
+      return false;
+    }
+    ++(variational ? integrations_ : plain_integrations_);
+    steps_ += f->steps;
+    if (!f->ok) {
+      at->message = f->message;
+      return false;
+    }
+    *r = f->end - y;
+    at->residual = Wrms(*r, y, o_.shooting);
     at->u = u;
     return true;
   }
 
-  // Corrector: Newton on [R̃(u); τ·(u − u0) − ds] = 0 from u0 + ds τ.
-  Point Correct(const Eigen::VectorXd& u0, const Eigen::VectorXd& tangent, double ds) {
+  // Corrector: a chord Newton on [R̃(u); τ·(u − u0) − ds] = 0 from u0 + ds τ, its matrix the
+  // bordered Jacobian `chord` of the point u0 (docs/periodic.md §2, "Continuation"): each
+  // iteration integrates the state alone, and the monodromy matrix and ∂φ/∂λ are integrated once,
+  // at the converged point.
+  Point Correct(const Eigen::VectorXd& u0, const Eigen::VectorXd& tangent, double ds,
+                const Eigen::MatrixXd& chord) {
     Point at;
     Eigen::VectorXd u = u0 + ds * tangent;
     Eigen::VectorXd r;
+    Eigen::MatrixXd a(n_ + 1, n_ + 1);
+    a.topRows(n_) = chord;
+    a.row(n_) = tangent.transpose();
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
+    if (!lu.isInvertible()) {
+      at.message = "the bordered Jacobian is singular";
+      return at;
+    }
     double previous = std::numeric_limits<double>::infinity();
     for (at.iterations = 1; at.iterations <= o_.max_corrector_iterations; ++at.iterations) {
-      if (!Evaluate(u, &r, &at)) return at;
-      if (at.residual <= o_.shooting.newton_tolerance) {
-        at.ok = true;
-        return at;
-      }
+      if (!Residual(u, &r, &at)) return at;
+      if (at.residual <= o_.shooting.newton_tolerance) return Converged(u, at.iterations);
       if (at.residual > 2 * previous && at.iterations > 2) {
         at.message = "the corrector diverged (weighted |R| " + Num(previous) + " -> " +
                      Num(at.residual) + ")";
         return at;
       }
       previous = at.residual;
-      Eigen::MatrixXd a(n_ + 1, n_ + 1);
-      a.topRows(n_) = at.jacobian;
-      a.row(n_) = tangent.transpose();
       Eigen::VectorXd g(n_ + 1);
       g.head(n_) = r.cwiseQuotient(scale_);
       g(n_) = tangent.dot(u - u0) - ds;
-      const Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
-      if (!lu.isInvertible()) {
-        at.message = "the bordered Jacobian is singular";
-        return at;
-      }
       const Eigen::VectorXd du = -lu.solve(g);
       const Eigen::VectorXd dy = du.head(n_).cwiseProduct(scale_);
       // The update below the integrator's tolerance in y and in λ: converged.
@@ -129,8 +145,7 @@ class Continuer {
       if (Wrms(dy, Y(u), o_.shooting) <= o_.shooting.newton_tolerance &&
           std::abs(du(n_) * lambda_scale_) <= o_.shooting.newton_tolerance * o_.shooting.rtol *
                                                   (std::abs(lambda) + lambda_scale_)) {
-        at.ok = true;
-        return at;
+        return Converged(u, at.iterations);
       }
       u += du;
     }
@@ -138,6 +153,16 @@ class Continuer {
     at.message = "the corrector did not converge in " +
                  std::to_string(o_.max_corrector_iterations) + " iterations (weighted |R| " +
                  Num(at.residual) + ")";
+    return at;
+  }
+
+  // The converged point with its monodromy matrix and bordered Jacobian (one integration with
+  // the variational equations and the parameter column).
+  Point Converged(const Eigen::VectorXd& u, int iterations) {
+    Point at;
+    Eigen::VectorXd r;
+    at.ok = Evaluate(u, &r, &at);
+    at.iterations = iterations;
     return at;
   }
 
@@ -162,7 +187,7 @@ class Continuer {
     return (c.maxCoeff() - c.minCoeff()) / 2;
   }
 
-  long integrations_ = 0, steps_ = 0;
+  long integrations_ = 0, plain_integrations_ = 0, steps_ = 0;
 
  private:
   const PeriodicSystem& sys_;
@@ -239,6 +264,7 @@ ContinuationResult ContinuePeriodicOrbit(
   Eigen::VectorXd axis = Eigen::VectorXd::Zero(n + 1);
   axis(n) = direction;
   Eigen::VectorXd tangent = c.Tangent(here.jacobian, axis);
+  Eigen::MatrixXd chord = here.jacobian;  // the bordered Jacobian of the point u
 
   auto add_point = [&](const Continuer::Point& at, const Eigen::VectorXd& t, double s) {
     BranchPoint b;
@@ -261,11 +287,12 @@ ContinuationResult ContinuePeriodicOrbit(
     result.status = status;
     result.message = message;
     result.integrations += c.integrations_;
+    result.plain_integrations += c.plain_integrations_;
     result.steps += c.steps_;
     return result;
   };
   while (static_cast<int>(result.points.size()) < options.max_points) {
-    Continuer::Point next = c.Correct(u, tangent, ds);
+    Continuer::Point next = c.Correct(u, tangent, ds, chord);
     // A corrector that lands further from its predictor than the step is long has left the
     // branch for another part of the solution set (the hyperplane τ·(u − u_k) = Δs crosses the
     // branch again far away): the step is retried shorter.
@@ -294,7 +321,7 @@ ContinuationResult ContinuePeriodicOrbit(
       for (int k = 0; k < options.fold_refinements; ++k) {
         const double sigma = a - ha * (b - a) / (hb - ha);
         if (!(sigma > a && sigma < b)) break;
-        const Continuer::Point mid = c.Correct(u, tangent, sigma);
+        const Continuer::Point mid = c.Correct(u, tangent, sigma, chord);
         if (!mid.ok) break;
         const double h = c.Tangent(mid.jacobian, tangent)(n);
         best = mid;
@@ -319,6 +346,7 @@ ContinuationResult ContinuePeriodicOrbit(
     s += ds;
     u = next.u;
     tangent = new_tangent;
+    chord = next.jacobian;
     add_point(next, tangent, s);
     const BranchPoint& prev = result.points[result.points.size() - 2];
     const BranchPoint& cur = result.points.back();

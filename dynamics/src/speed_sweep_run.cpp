@@ -44,12 +44,7 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   record.sun_torque = rig.scene.loads.sun_torque;
   record.friction = rig.scene.dynamics.friction.law;
   record.integrator = run.integrator;
-  record.backend = run.backend;
-  record.rtol = simulation.rtol;
-  record.atol_length = simulation.atol_length;
-  record.atol_angle = simulation.atol_angle;
-  record.rate_scale = simulation.rate_scale;
-  record.contact_tolerance = simulation.contact.tolerance;
+  record.tolerances = TolerancesOf(simulation, run.backend);
   record.transient_fraction = o.transient_fraction;
   record.window_cycles = o.window_cycles;
   record.window_start_deg = run.start_deg;

@@ -193,6 +193,7 @@ StageBranchRecord ContinueStageBranch(
   rec.status = r.status;
   rec.message = r.message;
   rec.integrations = r.integrations;
+  rec.plain_integrations = r.plain_integrations;
   rec.steps = r.steps;
   rec.cpu_seconds = CpuSeconds() - cpu0;
   rec.wall_seconds =

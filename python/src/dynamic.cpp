@@ -17,7 +17,7 @@
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/speed_sweep_run.hpp"
-#include "epicycle/dynamics/stage_branch.hpp"
+#include "epicycle/dynamics/branch_run.hpp"
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/io/units.hpp"
 #include "epicycle/report/ratings.hpp"
@@ -856,39 +856,37 @@ py::object PeriodicBranch(const ScenePtr& s, const std::string& parameter, doubl
                           int steps, int max_points, const Integration& integration,
                           std::optional<std::string> cache_dir, py::object progress,
                           bool raise_on_failure) {
-  dynamics::StageBranchOptions o;
-  o.parameter = parameter;
-  o.start = start;
-  o.end = end;
-  if (steps < 1)
-    throw std::invalid_argument("steps = " + std::to_string(steps) +
-                                ": must be >= 1 (the largest step is 1/steps of the range)");
-  if (max_points < 2)
-    throw std::invalid_argument("max_points = " + std::to_string(max_points) + ": must be >= 2");
-  o.max_step = std::max(1.0 / steps, o.min_step);
-  o.initial_step = std::min(o.initial_step, o.max_step);
-  o.max_points = max_points;
-  o.simulation = integration.Options();
-  o.Validate();
+  dynamics::BranchRequest request;
+  request.run.scene = s->scene();
+  integration.Apply(&request.run);
+  request.run.tables = TableOptions(cache_dir);
+  request.parameter = parameter;
+  request.start = start;
+  request.end = end;
+  request.steps = steps;
+  request.max_points = max_points;
+  integration.Options();  // bad input as ValueError, by Python's names, before the worker starts
   RequireStage(s->scene(), "periodic_branch");
-  o.period = dynamics::StagePeriodMeshCycles(geometry::Stage(s->scene().stage), s->scene().damage);
-  dynamics::CheckBranchPeriod(o.period, o.max_period_mesh_cycles);
   CancelToken token;
   const Progress report(std::move(progress), &token);
+  // Reports each point against the most points.
+  class ProgressSink final : public dynamics::BranchSink {
+   public:
+    explicit ProgressSink(const Progress& report) : report_(report) {}
+    void Start(const dynamics::BranchPlan& plan) override { most_ = plan.options->max_points; }
+    void Point(const dynamics::StageBranchRecord& so_far) override {
+      report_(static_cast<long>(so_far.points.size()), most_);
+    }
+
+   private:
+    const Progress& report_;
+    long most_ = 0;
+  } sink(report);
   struct Out {
-    std::shared_ptr<const dynamics::StageDynamics> rig;
-    dynamics::StageBranchRecord record;
+    dynamics::BranchRecord record;
   };
-  const Out out = RunReleased(token, [&] {
-    Out x;
-    x.rig = s->Dynamics(cache_dir, "periodic branch");
-    x.record =
-        dynamics::ContinueStageBranch(x.rig->model, o, [&](const dynamics::StageBranchRecord& r) {
-          report(static_cast<long>(r.points.size()), o.max_points);
-        });
-    return x;
-  });
-  const dynamics::StageBranchRecord& r = out.record;
+  const Out out = RunReleased(token, [&] { return Out{dynamics::RunBranch(request, sink)}; });
+  const dynamics::StageBranchRecord& r = out.record.branch;
   const auto n = static_cast<py::ssize_t>(r.points.size());
   const py::ssize_t width = n > 0 ? r.points.front().state.size() : 0;
   std::vector<double> value, rpm, period, rho, kg, te, orbit, arc, states;
@@ -924,7 +922,7 @@ py::object PeriodicBranch(const ScenePtr& s, const std::string& parameter, doubl
   bif[r.parameter.c_str()] = Array(std::move(where));
   bif["before_point"] = Array(std::move(before));
   py::dict f;
-  f["scene"] = out.rig->scene.name;
+  f["scene"] = out.record.scene;
   f["parameter"] = r.parameter;
   f["unit"] = r.unit;
   f["ok"] = r.ok();
@@ -949,10 +947,14 @@ py::object PeriodicBranch(const ScenePtr& s, const std::string& parameter, doubl
   f["state_labels"] = r.dof_labels;
   f["bifurcations"] = Result(bif);
   f["integrations"] = r.integrations;
+  f["plain_integrations"] = r.plain_integrations;
   f["steps"] = r.steps;
   f["cpu_s"] = r.cpu_seconds;
   f["wall_s"] = r.wall_seconds;
-  f["warnings"] = out.rig->scene.warnings;
+  f["warnings"] = out.record.warnings;
+  // The record as the program's summary JSON has it: the same keys and values (its provenance
+  // aside, docs/records.md).
+  f["record"] = JsonToPython(report::RecordJson(out.record));
   py::object result = Result(f);
   if (!r.ok() && raise_on_failure)
     RaiseComputationError("periodic branch: " + f["message"].cast<std::string>(), result);
@@ -1020,7 +1022,9 @@ Result
     complex_multipliers_outside [-], k_gamma [-], te_amplitude_urad [µrad],
     sun_orbit_radius_um [µm], arclength [-], state (points × 2n: the deviations [m, rad] and
     their rates [m/s, rad/s] at t = 0) with state_labels; bifurcations (kind, the parameter's
-    values, before_point); integrations, steps [-], cpu_s, wall_s [s], warnings.
+    values, before_point); integrations, plain_integrations, steps [-], cpu_s, wall_s [s], warnings; record: the
+    branch's record, the keys and values of the program's periodic_branch_summary.json
+    (docs/records.md).
 
 Raises
 ------

@@ -85,41 +85,47 @@ void BranchFile::Update(const dynamics::StageBranchRecord& r) {
 
 void BranchFile::Close() { csv_.Close(); }
 
-nlohmann::json BranchJson(const dynamics::StageBranchRecord& r) {
-  using json = nlohmann::json;
-  json j;
-  j["parameter"] = r.parameter;
-  j["unit"] = r.unit;
-  j["status"] = dynamics::ContinuationStatusName(r.status);
-  j["message"] = r.message;
-  j["figures_message"] = r.figures_message;
-  j["period_mesh_cycles"] = r.period_mesh_cycles;
-  j["period_reasons"] = r.period_reasons;
-  j["integrations"] = r.integrations;
-  j["steps"] = r.steps;
-  j["cpu_seconds"] = r.cpu_seconds;
-  j["wall_seconds"] = r.wall_seconds;
-  json bif = json::array();
-  for (const dynamics::StageBranchBifurcation& b : r.bifurcations)
-    bif.push_back({{"kind", dynamics::BifurcationKindName(b.kind)},
-                   {r.parameter, b.parameter},
-                   {"before_point", b.after_point},
-                   {"multiplier_re", b.multiplier.real()},
-                   {"multiplier_im", b.multiplier.imag()}});
-  j["bifurcations"] = bif;
-  json points = json::array();
+std::string BranchPlanText(const dynamics::BranchPlan& plan, const std::string& given) {
+  const dynamics::StageBranchOptions& o = *plan.options;
+  const dynamics::StageDynamics& rig = *plan.rig;
+  std::string t = fmt::format(
+      "{}: periodic orbits continued over {} from {} to {} ({}), sun {}, period {} mesh "
+      "cycle(s), rtol {:.1e}\n",
+      rig.scene.name, o.parameter, Num(o.start), Num(o.end), given,
+      transmission::SunSupportName(rig.stage_model.setup().sun), o.period.mesh_cycles,
+      o.simulation.rtol);
+  for (const std::string& m : rig.compliance.tables().messages()) t += "  " + m + "\n";
+  t += fmt::format("  {:<6} {:<14} {:<10} {:<11} {:<10} {:<12} {}\n", "point", o.parameter,
+                   "stability", "max |mu|", "K_gamma", "TE amp urad", "bifurcations before");
+  return t;
+}
+
+std::string BranchPointsText(const dynamics::StageBranchRecord& r, std::size_t from) {
+  std::string t;
+  for (std::size_t k = from; k < r.points.size(); ++k) {
+    const dynamics::StageBranchPoint& p = r.points[k];
+    std::string before;
+    for (const dynamics::StageBranchBifurcation& b : r.bifurcations)
+      if (b.after_point == p.index)
+        before += fmt::format("{} at {} ", dynamics::BifurcationKindName(b.kind), Num(b.parameter));
+    t += fmt::format("  {:<6} {:<14} {:<10} {:<11.6f} {:<10.5f} {:<12.4f} {}\n", p.index,
+                     Num(p.parameter), dynamics::StabilityName(p.stability), p.spectral_radius,
+                     p.k_gamma, p.te_amplitude * 1e6, before);
+  }
+  return t;
+}
+
+std::string BranchRecordText(const dynamics::BranchRecord& record) {
+  const dynamics::StageBranchRecord& r = record.branch;
+  int unstable = 0;
   for (const dynamics::StageBranchPoint& p : r.points)
-    points.push_back({{"index", p.index},
-                      {r.parameter, p.parameter},
-                      {"sun_speed_rpm", p.sun_speed_rpm},
-                      {"period_s", p.period},
-                      {"stability", dynamics::StabilityName(p.stability)},
-                      {"spectral_radius", p.spectral_radius},
-                      {"K_gamma", p.k_gamma},
-                      {"te_amplitude_urad", p.te_amplitude * 1e6},
-                      {"sun_orbit_radius_um", p.orbit_radius * 1e6}});
-  j["points"] = points;
-  return j;
+    unstable += p.stability == dynamics::Stability::kUnstable;
+  return fmt::format(
+      "\n  {} points ({} unstable), {} bifurcations; {} periods integrated with the "
+      "variational equations and {} without ({} steps); {:.2f} s CPU, {:.2f} s wall\n",
+      r.points.size(), unstable, r.bifurcations.size(), r.integrations, r.plain_integrations,
+      r.steps, r.cpu_seconds,
+      r.wall_seconds);
 }
 
 void WriteBranchPlots(const std::string& path, const std::string& scene_name,

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
 
 namespace epicycle::report {
@@ -97,13 +98,11 @@ nlohmann::json SpeedSweepRecordJson(const dynamics::SpeedSweepRecord& r,
   j["sun_torque_Nm"] = r.sun_torque;
   j["friction"] = transmission::FrictionLawName(r.friction);
   j["integrator"] = r.integrator;
-  j["rtol"] = r.rtol;
-  j["atol_length_m"] = r.atol_length;
-  j["atol_angle_rad"] = r.atol_angle;
-  // 0: each speed's highest linearised natural frequency (its row's run reports it).
-  j["rate_tolerance_scale_rad_per_s"] = r.rate_scale;
-  j["contact_tolerance"] = r.contact_tolerance;
-  j["backend"] = r.backend;
+  // rate_tolerance_scale_rad_per_s 0: each speed's highest linearised natural frequency (its
+  // row's run reports it).
+  JsonRecord tolerances;
+  dynamics::VisitTolerances(r.tolerances, tolerances);
+  j.update(tolerances.Result());
   j["skip_time_s"] = plan.skip_time;
   j["transient_fraction"] = r.transient_fraction;
   j["slowest_modal_decay_rate_per_s"] = plan.slowest_decay_rate;

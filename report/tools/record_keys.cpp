@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "epicycle/dynamics/branch_run.hpp"
 #include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/studies/study_run.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
@@ -25,6 +26,7 @@ std::string Unit(const std::string& key) {
       {"_N_per_mm_um", "N/(mm·µm)"},
       {"_N_per_m", "N/m"},
       {"_Hz_per_sun_rpm", "Hz/rpm"},
+      {"_rad_per_s", "rad/s"},
       {"_Nm", "N·m"},
       {"_urad", "µrad"},
       {"_um", "µm"},
@@ -33,6 +35,8 @@ std::string Unit(const std::string& key) {
       {"_Hz", "Hz"},
       {"_rpm", "rpm"},
       {"_deg", "deg"},
+      {"_rad", "rad"},
+      {"_m", "m"},
       {"_W", "W"},
       {"_seconds", "s"},
       {"_s", "s"}};
@@ -174,5 +178,15 @@ int main() {
         "Sobol design. `spearman_K_gamma` has one key per sampled-value column (COLUMN), "
         "`sobol.outputs` one object per rows-file result column (OUTPUT).",
         study);
+  dynamics::BranchRecord branch;
+  branch.branch.parameter = "PARAMETER";  // not the sun speed: both columns listed
+  branch.branch.points.resize(1);
+  branch.branch.bifurcations.resize(1);
+  Table("Branch of periodic orbits (`epicycle dynamic --speed-sweep ... --periodic`, `--continue`; "
+        "Python `periodic_branch(...).record`)",
+        "OUT/periodic_branch_summary.json; PARAMETER is the continued parameter's name "
+        "(`sun_speed_rpm`, `sun_torque_Nm` or `mesh_damping_ratio`, docs/periodic.md §3), "
+        "`points[].sun_speed_rpm` beside it only when it is another.",
+        branch);
   return 0;
 }

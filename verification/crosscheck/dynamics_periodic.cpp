@@ -80,7 +80,8 @@ TEST_CASE(
   // At each located fold a multiplier is +1. Tolerance: the secant stops with dλ/ds ≈ 0 to
   // ~1e-8, and M's entries carry the integration's error, ≤ steps·rtol·(|M| + 1) with ~10³ steps a
   // period at rtol 1e-8: 1e-5 × |M| (≤ 3 here), times the multiplier's condition.
-  const double steps = static_cast<double>(r.steps) / static_cast<double>(r.integrations);
+  const double steps = static_cast<double>(r.steps) /
+                       static_cast<double>(r.integrations + r.plain_integrations);
   const double mu_tol = 4 * steps * c.shooting.rtol * 3;
   for (const Bifurcation& f : folds) {
     epicycle::test::FigureValue("fold multiplier - 1", std::abs(f.multiplier - 1.0), "-");

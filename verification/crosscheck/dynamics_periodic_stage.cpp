@@ -226,7 +226,8 @@ TEST_CASE(
     // The corrector's orbit: R to newton_tolerance (weighted) like the shooting's; steps per
     // period from the branch's own count, an upper bound of one period's (the mean over every
     // integration, each a period).
-    const double steps = static_cast<double>(rec.steps) / static_cast<double>(rec.integrations);
+    const double steps = static_cast<double>(rec.steps) /
+                         static_cast<double>(rec.integrations + rec.plain_integrations);
     const double rho = q.spectral_radius;
     const double tol =
         SettledTolerance(rho, cycles, Weighted(so, y0, q.state), steps, 100.0);

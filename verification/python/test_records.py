@@ -74,3 +74,22 @@ def test_study_record_equals_the_program_json(tmp_path):
     python.pop("computed_seconds")
     same_record(program, python)
     assert program["cases_in_file"] == 4 and len(program["K_gamma_exceedance"]) == 2
+
+
+def test_periodic_branch_record_equals_the_program_json(tmp_path):
+    # The sun speed from 4000 to 4100 rpm in steps of at most 1/2 of the range (docs/periodic.md
+    # §3): every other setting at its default on both sides (rtol 1e-6, rate scale 1e4, the
+    # contact tolerance, the back end, 400 points at most).
+    scene = scene_path("paper_stage.toml")
+    run_cli("dynamic", scene, "--speed-sweep", "4000:4100:2", "--periodic", "--quiet", "--out",
+            tmp_path)
+    program = read_json(tmp_path / "periodic_branch_summary.json")
+    python = epicycle.periodic_branch(epicycle.Scene.load(scene), "sun_speed_rpm", 4000, 4100,
+                                      steps=2).record
+    for times in (program, python):  # the run's own CPU and wall times: run-dependent
+        times.pop("cpu_seconds")
+        times.pop("wall_seconds")
+    same_record(program, python)
+    assert program["range"] == [4000, 4100] and program["max_step"] == 0.5
+    assert program["rate_tolerance_scale_rad_per_s"] == 1e4 and program["rtol"] == 1e-6
+    assert program["status"] == "completed" and len(program["points"]) >= 2

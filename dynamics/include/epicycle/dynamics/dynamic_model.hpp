@@ -207,8 +207,11 @@ class DynamicModel {
 
   /// Linearised mass and stiffness about the reference configuration at carrier angle φ: mean
   /// mesh stiffness along each mesh's line of action (k_m g gᵀ, g the involute contact's
-  /// sensitivity), bearings; M diagonal.
-  void Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::MatrixXd* k) const;
+  /// sensitivity), bearings; M diagonal. `c` (optional): the viscous damping of the same
+  /// linearisation, M q̈ + C q̇ + K q = f: each mesh's c_m g gᵀ (sun_mesh_damping,
+  /// ring_mesh_damping) and the bearings' dampers c JᵀJ on the springs' deflections.
+  void Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::MatrixXd* k,
+                 Eigen::MatrixXd* c = nullptr) const;
 
   /// The members and their DOF indices, for SolveModes (sun, ring, carrier central; planets).
   std::vector<MemberDofs> ModeLayout() const;

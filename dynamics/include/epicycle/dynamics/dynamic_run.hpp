@@ -14,6 +14,7 @@
 #include "epicycle/dynamics/dynamic_model.hpp"
 #include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/run_span.hpp"
+#include "epicycle/dynamics/run_tolerances.hpp"
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/transmission/record.hpp"
@@ -101,8 +102,8 @@ struct DynamicRecord {
   double mesh_frequency = 0;  ///< [Hz]
   transmission::FrictionLaw friction = transmission::FrictionLaw::kOff;
   Integrator integrator = Integrator::kCvodeBdf;
-  double rtol = 0, atol_length = 0, atol_angle = 0, contact_tolerance = 0;  ///< [-, m, rad, -]
-  solvers::Backend backend = solvers::Backend::kActiveSetNewton;
+  /// As run; rate_scale the run's (SimulationStats::rate_scale; 0 when the start failed).
+  RunTolerances tolerances;
   double duration = 0;  ///< [s]
   int outputs = 0;      ///< output steps asked for [-]
   transmission::RunStatus status = transmission::RunStatus::kCompleted;

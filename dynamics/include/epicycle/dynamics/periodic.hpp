@@ -211,8 +211,10 @@ struct ContinuationResult {
   std::vector<BranchPoint> points;  ///< the branch, stable and unstable, in arclength order
   std::vector<Bifurcation> bifurcations;
   ShootingResult start;    ///< the first point's shooting
-  long integrations = 0;   ///< periods integrated in all [-]
-  long steps = 0;          ///< integrator steps in all [-]
+  long integrations = 0;   ///< periods integrated with the variational equations [-]
+  /// Periods integrated without them (the chord corrector's iterations) [-].
+  long plain_integrations = 0;
+  long steps = 0;          ///< integrator steps of both kinds [-]
   int rejected_steps = 0;  ///< corrector failures that halved the step [-]
 };
 

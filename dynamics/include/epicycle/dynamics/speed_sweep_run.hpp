@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "epicycle/dynamics/dynamic_run.hpp"
+#include "epicycle/dynamics/run_tolerances.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 
 namespace epicycle::dynamics {
@@ -51,10 +52,9 @@ struct SpeedSweepRecord {
   std::string scene;
   double sun_torque = 0;  ///< [N·m]
   transmission::FrictionLaw friction = transmission::FrictionLaw::kOff;
-  std::string integrator, backend;                   ///< as the request names them
-  double rtol = 0, atol_length = 0, atol_angle = 0;  ///< [-, m, rad]
-  double rate_scale = 0;         ///< [rad/s]; 0: each speed's highest natural frequency
-  double contact_tolerance = 0;  ///< [-]
+  std::string integrator;  ///< as the request names it
+  /// The back end as the request names it; rate_scale 0: each speed's highest natural frequency.
+  RunTolerances tolerances;
   double transient_fraction = 0, window_cycles = 0, window_start_deg = 0;  ///< [-, -, deg]
   std::array<double, 2> mesh_stiffness{}, modal_mesh_stiffness{};  ///< secant, tangent [N/m]
   int threads = 0;

@@ -83,7 +83,8 @@ struct StageBranchRecord {
   std::vector<StageBranchPoint> points;
   std::vector<StageBranchBifurcation> bifurcations;
   long integrations = 0;  ///< periods integrated with the variational equations [-]
-  long steps = 0;         ///< their integrator steps [-]
+  long plain_integrations = 0;  ///< periods integrated without them (chord iterations) [-]
+  long steps = 0;         ///< the integrator steps of both [-]
   double cpu_seconds = 0;   ///< CPU of the run (one thread) [s]
   double wall_seconds = 0;  ///< [s]
   /// Non-empty: a point's period figures could not be integrated (the first such point and why);

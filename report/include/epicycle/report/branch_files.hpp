@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "epicycle/dynamics/branch_run.hpp"
 #include "epicycle/dynamics/stage_branch.hpp"
 #include "epicycle/report/files.hpp"
 #include "epicycle/report/svg_plot.hpp"
@@ -40,9 +41,16 @@ class BranchFile {
   std::size_t written_ = 0;
 };
 
-/// The record as JSON: the parameter, status, message, period, the bifurcations, counts and
-/// times, and each point's figures (not its state).
-nlohmann::json BranchJson(const dynamics::StageBranchRecord& record);
+/// The branch's header: what is continued over which range (`given`: as the user gave it), the
+/// stage's period and tolerance, the tables' messages, and the columns of BranchPointsText.
+std::string BranchPlanText(const dynamics::BranchPlan& plan, const std::string& given);
+
+/// The console lines of the branch's points from index `from` on (each with the bifurcations
+/// located just before it).
+std::string BranchPointsText(const dynamics::StageBranchRecord& branch, std::size_t from);
+
+/// The branch's closing line: points, unstable ones, bifurcations, integrations and times.
+std::string BranchRecordText(const dynamics::BranchRecord& record);
 
 /// PATH_k_gamma.svg, _te_amplitude.svg, _orbit.svg (a sun that moves) and
 /// _spectral_radius.svg against the parameter.

@@ -1,0 +1,84 @@
+// One branch of the stage's periodic orbits, as every front end asks for it (docs/periodic.md §3,
+// "The stage's branch"): a request (a dynamic run's request for the scene, its overrides and the
+// integrator's settings, and the parameter's range; every default resolved here), a run that
+// builds the rig once, continues the branch and streams it to a sink point by point, and one
+// record of the branch. The program (`epicycle dynamic --speed-sweep ... --periodic`, `--continue`)
+// and Python's `periodic_branch` parse their options into a request and format the record;
+// report/ writes its one serialisation (report::RecordJson), whose keys the fields VisitRecord
+// names.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "epicycle/dynamics/dynamic_run.hpp"
+#include "epicycle/dynamics/run_tolerances.hpp"
+#include "epicycle/dynamics/stage_branch.hpp"
+#include "epicycle/transmission/record.hpp"
+
+namespace epicycle::dynamics {
+
+/// The names under which a front end's user gives the branch's own fields, for the messages.
+struct BranchOptionNames {
+  std::string steps = "steps", max_points = "max_points";
+  /// Put before the message refusing a period of too many mesh cycles ("": none).
+  std::string period;
+};
+
+/// What a branch is asked for. `run` gives the scene and its overrides (sun support, friction,
+/// the speed at which another parameter is continued), the carrier angle at t = 0 (start_deg),
+/// the integrator's tolerances, the contact back end and the tables; its range, time, outputs,
+/// spectrum, stresses and rating belong to a run in time and are not used.
+struct BranchRequest {
+  DynamicRequest run;
+  /// StagePeriodicSystem::kSunSpeed, kSunTorque or kMeshDampingRatio.
+  std::string parameter = StagePeriodicSystem::kSunSpeed;
+  double start = 0;  ///< λ at the first point [the parameter's unit]
+  double end = 0;    ///< λ where the branch stops [its unit]; ≠ start
+  int steps = 20;    ///< the largest arclength step is 1/steps of the range [-], ≥ 1
+  std::optional<int> max_points;  ///< the most points [-], ≥ 2; none: StageBranchOptions'
+  BranchOptionNames names;
+};
+
+/// What the run has built before the first point (for a front end's header).
+struct BranchPlan {
+  const StageDynamics* rig = nullptr;
+  const StageBranchOptions* options = nullptr;  ///< as resolved
+};
+
+/// Where a branch streams its points as the continuation computes them.
+class BranchSink {
+ public:
+  virtual ~BranchSink() = default;
+  /// Once, after the rig is built and before the shooting from the start.
+  virtual void Start(const BranchPlan& /*plan*/) {}
+  /// After each new point: the branch so far (its last point new; bifurcations up to it).
+  virtual void Point(const StageBranchRecord& /*so_far*/) {}
+};
+
+/// What a branch found, with the settings it ran with. Every field is in the record's one
+/// serialisation (VisitRecord).
+struct BranchRecord {
+  std::string scene;
+  RunTolerances tolerances;         ///< the back end as the request names it
+  std::array<double, 2> range{};    ///< {start, end} [the parameter's unit]
+  double max_step = 0;              ///< the largest arclength step (scaled, docs/periodic.md §1) [-]
+  StageBranchRecord branch;         ///< the points, bifurcations, status and counts
+  std::vector<std::string> warnings;  ///< the scene's
+  bool ok() const { return branch.ok(); }
+};
+
+/// Resolves the request, refuses a period of too many mesh cycles before any table is built,
+/// builds the rig once and continues the branch (each point to `sink` as it is computed). A
+/// continuation that stops early is a status in the record, not an exception.
+/// @throws std::invalid_argument for a request that breaks a rule (named as `names` say);
+///         std::runtime_error if the quasi-static start fails; whatever `sink` throws.
+BranchRecord RunBranch(const BranchRequest& request, BranchSink& sink);
+
+/// The record's fields, each once with its name and unit (its serialisation's keys); a point's
+/// and a bifurcation's parameter value under the parameter's own key.
+void VisitRecord(const BranchRecord& record, transmission::RecordVisitor& visit);
+
+}  // namespace epicycle::dynamics
