@@ -157,6 +157,16 @@ void VisitRecord(const StudyRecord& r, RecordVisitor& visit) {
     }
     visit.EndList();
   }
+  if (!s.face_width.empty()) {
+    visit.BeginList("face_width");
+    for (const MeshFaceStatistics& m : s.face_width) {
+      visit.Item();
+      visit.Text("mesh", m.mesh);
+      VisitSample("K_Hbeta_max", m.k_h_beta, visit);
+      VisitSample("K_gamma_K_Hbeta_max", m.k_gamma_k_h_beta, visit);
+    }
+    visit.EndList();
+  }
   visit.BeginObject("spearman_K_gamma");  // ρ_s per sampled-value column (null: constant)
   for (std::size_t k = 0; k < s.columns.size(); ++k)
     visit.Number(s.columns[k].c_str(), s.spearman[k]);

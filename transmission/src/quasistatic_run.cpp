@@ -138,19 +138,7 @@ void VisitRecord(const SweepSummary& s, RecordVisitor& visit) {
   visit.Number("transmission_error_max_urad", s.transmission_error_max * 1e6);
   visit.Number("sun_displacement_max_um", s.sun_displacement_max * 1e6);
   visit.Stresses(s);
-  if (!s.face_width.empty()) {
-    visit.BeginList("face_width");
-    for (const MeshFaceSummary& f : s.face_width) {
-      visit.Item();
-      visit.Text("mesh", f.mesh);
-      visit.Number("K_Hbeta_max", f.k_h_beta_max);
-      visit.Number("K_Hbeta_mean", f.k_h_beta_mean);
-      visit.Number("carrier_angle_at_max_deg", f.carrier_angle * 180 / std::numbers::pi);
-      visit.Number("largest_load_z_mm", f.largest_z * 1e3);
-      visit.Number("K_gamma_K_Hbeta_max", f.k_gamma_k_h_beta_max);
-    }
-    visit.EndList();
-  }
+  VisitFaceWidth(visit, s.face_width);
   if (s.friction) {
     visit.Number("efficiency_mean", s.efficiency_mean);
     visit.Number("efficiency_min", s.efficiency_min);

@@ -79,6 +79,7 @@ struct FaceWidthSpec {
   double carrier_torsional_stiffness = 0;
   double carrier_plate_distance = 0;  ///< L [m], > 0 when the stiffness is given
   int carrier_output_side = 1;        ///< the output plate at z = +L/2 (+1) or −L/2 (−1)
+  std::string carrier_where;          ///< "file:line: face_width.carrier_..." for messages
   bool active() const { return slices > 1; }
 };
 
@@ -95,6 +96,11 @@ inline double SliceCentre(int slice, int slices, double width) {
 }
 /// z_s [m] of the slices of a face of width b.
 std::vector<double> SliceCentres(int slices, double width);
+
+/// c(z) [m]: what a lead's crowning C_β (2z/b)² and end relief C_I ((|z| − (b/2 − L_I))/L_I)
+/// over the last L_I of each end remove at z of a face of width b [m] (the header's c_X).
+double LeadRemoved(double crowning, double end_relief, double end_relief_length, double width,
+                   double z);
 
 /// The face-width model of a stage, resolved against its bodies once: every body's axis slope,
 /// lead slope and modifications, and the coupling matrix of each mesh's face width.
@@ -145,6 +151,10 @@ struct MeshFaceLoad {
   int largest_slice = 0;          ///< where the largest w_s sits
   double largest_z = 0;           ///< its slice centre z [m]
 };
+
+/// Completes a mesh's face load from its line loads w_s (f.line_load, slices of a face of width
+/// `width` [m]): the mean, K_Hβ = max/mean (1 without load), the largest slice and its z.
+void SummariseLineLoad(double width, MeshFaceLoad* f);
 
 /// The face loads of every mesh (sun–planet meshes of planets 0…, then planet–ring meshes) from
 /// the forces [N] of sliced contacts; `width` [m] of each mesh as in FaceWidthModel.
