@@ -206,7 +206,7 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
       t.Fail("gear", "\"" + g + "\"",
              "must be one of " + list + " (the scene '" + scene.source + "' has " +
                  std::to_string(n) + " planets" +
-                 (allowed.front() == "sun" ? "" : "; pins (their errors and tilts) exist for planets only") +
+                 (allowed.front() == "sun" ? "" : "; pin-hole errors exist for planets only") +
                  ")");
     }
     if (g == "sun") v.target.kind = Target::Kind::kSun;

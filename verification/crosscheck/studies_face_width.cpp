@@ -90,9 +90,6 @@ TEST_CASE("face width in a study: each case's K_Hbeta and K_gamma K_Hbeta per me
       CHECK(row.face_load[2 * m + 1] == Approx(f.k_gamma_k_h_beta_max).epsilon(2e-8));
       worst = std::max(worst, std::abs(row.face_load[2 * m] / f.k_h_beta_max - 1));
     }
-    // A tilt moves K_Hβ of planet 1's meshes off 1; without tilt (radial 0, tangential < 10 µm)
-    // it is smaller than with 20 µm radial.
-    if (std::abs(row.values[0]) > 19.0) CHECK(row.face_load[0] > 1.05);
   }
   // The summary's distribution per mesh: its largest is the largest case's.
   const studies::StudySummary s = studies::SummariseStudy(study, run.rows);
@@ -102,6 +99,10 @@ TEST_CASE("face width in a study: each case's K_Hbeta and K_gamma K_Hbeta per me
   for (const studies::CaseRow& row : run.rows) largest = std::max(largest, row.face_load[1]);
   CHECK(s.face_width[0].k_gamma_k_h_beta.max == largest);
   CHECK(s.face_width[0].k_gamma_k_h_beta.count == 6);
+  // The tilts misalign planet 1's meshes (a radial and a tangential tilt may cancel in one mesh:
+  // 20 µm radial has 20 sin 27.85° = 9.3 µm along the sun mesh's normal, 10 µm tangential
+  // 10 cos 27.85° = 8.8 µm), so some case's K_Hβ is well off 1.
+  CHECK(s.face_width[0].k_h_beta.max > 1.05);
   test::VerifyRow("study of a pin tilt: K_Hbeta per case and mesh (6 cases, 5 slices)",
                   "quasi-static driver on each case's scene", "largest relative difference " +
                       test::Sci(worst),

@@ -61,7 +61,7 @@ TEST_CASE("study file: bad input names the key, the value and the rule", "[unit]
         "\n[[variable]]\nquantity = \"pin_tilt_tangential\"\ngear = \"sun\"\n"
         "distribution = \"normal\"\nsigma_um = 5.0\n");
     CHECK_THAT(sun, Contains("variable[0].gear = \"sun\"") &&
-                        Contains("pins (their errors and tilts) exist for planets only"));
+                        Contains("pin-hole errors exist for planets only"));
     const std::string crowning = StudyError(
         "[study]\nname = \"t\"\n" + scene +
         "\n[[variable]]\nquantity = \"crowning\"\ngear = \"sun\"\n"
