@@ -87,7 +87,8 @@ FaceLoadFiles::FaceLoadFiles(const std::string& base, const nlohmann::json& prov
       meshes_(std::move(meshes)),
       widths_(std::move(widths)),
       k_h_beta_(meshes_) {
-  map_.assign(meshes_.size(), std::vector<double>(static_cast<std::size_t>(columns_ * slices_), kNaN));
+  map_.assign(meshes_.size(),
+              std::vector<double>(static_cast<std::size_t>(columns_ * slices_), kNaN));
 }
 
 void FaceLoadFiles::Write(const transmission::PositionResult& r) {

@@ -170,7 +170,8 @@ int main() {
   Table("Tolerance study (`epicycle study`, Python `study(...)[\"record\"]`)",
         "OUT/study_summary.json; `K_gamma_exceedance` only with the study's k_gamma_limit, "
         "`root_stress` only with stresses (`S_F`, `S_H` only when rated), `face_width` only with "
-        "slices of the face width, `sobol` only with the Sobol design. `spearman_K_gamma` has one key per sampled-value column (COLUMN), "
+        "slices of the face width, `sobol` only with the Sobol design. `spearman_K_gamma` has one "
+        "key per sampled-value column (COLUMN), "
         "`sobol.outputs` one object per rows-file result column (OUTPUT).",
         study);
   return 0;

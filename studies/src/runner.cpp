@@ -158,7 +158,7 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   const std::size_t nv = study.Columns().size();
   const std::size_t ns = 3 * study.StressGears().size();                      // root-stress fields
   const std::size_t nr = study.Rated() ? 2 * study.StressGears().size() : 0;  // safety factors
-  const std::size_t nf = 2 * study.FaceMeshes().size();  // face-load factors
+  const std::size_t nf = 2 * study.FaceMeshes().size();                       // face-load factors
   auto bad = [&](const std::string& why) {
     throw std::invalid_argument(where + ": not a row of this study (" + why + "): '" + line + "'");
   };

@@ -155,8 +155,9 @@ transmission::Scene CaseScene(const StudySpec& study, const std::vector<double>&
       case Quantity::kPinTiltTangential: {
         // The value over the planet's face width b replaces that component of the scene's tilt.
         transmission::FaceWidthSpec& f = scene.face_width;
-        auto it = std::find_if(f.pin_tilts.begin(), f.pin_tilts.end(),
-                               [&](const transmission::PinTilt& p) { return p.planet == v.target.planet; });
+        auto it = std::find_if(
+            f.pin_tilts.begin(), f.pin_tilts.end(),
+            [&](const transmission::PinTilt& p) { return p.planet == v.target.planet; });
         if (it == f.pin_tilts.end()) {
           f.pin_tilts.push_back({});
           it = std::prev(f.pin_tilts.end());

@@ -10,13 +10,13 @@
 #include "epicycle/geometry/gear.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/geometry/stage.hpp"
-#include "epicycle/studies/sampling.hpp"
+#include "epicycle/io/enum_names.hpp"
 #include "epicycle/io/input_file.hpp"
+#include "epicycle/io/number_format.hpp"
 #include "epicycle/io/toml_reader.hpp"
+#include "epicycle/studies/sampling.hpp"
 #include "epicycle/studies/sobol.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
-#include "epicycle/io/enum_names.hpp"
-#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::studies {
 
@@ -379,7 +379,8 @@ long StudySpec::Cases() const {
 std::vector<std::string> StudySpec::FaceMeshes() const {
   std::vector<std::string> m;
   if (!scene.face_width.active()) return m;
-  for (const geometry::MeshKind kind : {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing})
+  for (const geometry::MeshKind kind :
+       {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing})
     for (int i = 0; i < scene.stage.planets; ++i) m.push_back(geometry::MeshName(i, kind));
   return m;
 }

@@ -95,9 +95,9 @@ namespace {
 // One position: the contact problem of the pair with gear 1's moment equilibrium (gear 2 held),
 // solved again at the moved pose until the rotation settles.
 MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
-                       const PairFaceWidth& faces, const geometry::GearPair& pair, const FePairCompliance& compliance,
-                       const MeshStiffnessOptions& options, solvers::ContactSolver& solver,
-                       double angle) {
+                       const PairFaceWidth& faces, const geometry::GearPair& pair,
+                       const FePairCompliance& compliance, const MeshStiffnessOptions& options,
+                       solvers::ContactSolver& solver, double angle) {
   MeshSample out;
   out.angle = angle;
   geometry::PairPoses poses = pair.Poses(angle);
@@ -245,8 +245,9 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geome
   const DamageModel damage(setup.damage, setup.gears);
   const PairFaceWidth faces(setup.face_width, pair);
   if (faces.active() && !damage.empty())
-    throw std::invalid_argument("mesh stiffness: pits with slices of the face width are not built "
-                                "for a gear pair (the stage model has them)");
+    throw std::invalid_argument(
+        "mesh stiffness: pits with slices of the face width are not built "
+        "for a gear pair (the stage model has them)");
   r.slices = faces.slices();
   Accumulator k_h_beta;
   internal::RunOrderedChunks(

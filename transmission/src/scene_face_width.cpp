@@ -195,8 +195,8 @@ void CheckFaceGapWindow(const Scene& s) {
   const double ratio = static_cast<double>(st.ring.teeth) / st.sun.teeth;
   const double carrier_torque = std::abs(s.loads.sun_torque) * (1 + ratio);
   const double wind_up = f.carrier_torsional_stiffness > 0
-                             ? carrier_torque / f.carrier_torsional_stiffness *
-                                   st.carrier_radius / f.carrier_plate_distance
+                             ? carrier_torque / f.carrier_torsional_stiffness * st.carrier_radius /
+                                   f.carrier_plate_distance
                              : 0.0;
   auto lead_of = [&](const std::string& gear) -> const LeadSpec* {
     for (const LeadSpec& l : f.leads)

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 
 #include "epicycle/transmission/record.hpp"
@@ -45,8 +45,8 @@ void FaceLoadTracker::Add(const std::vector<MeshFaceLoad>& loads,
       MeshFaceSummary f;
       f.planet = m.planet;
       f.ring_mesh = m.ring_mesh;
-      f.mesh = geometry::MeshName(m.planet, m.ring_mesh ? geometry::MeshKind::kPlanetRing
-                                                        : geometry::MeshKind::kSunPlanet);
+      f.mesh = geometry::MeshName(
+          m.planet, m.ring_mesh ? geometry::MeshKind::kPlanetRing : geometry::MeshKind::kSunPlanet);
       f.k_h_beta_max = -1;
       f.k_gamma_k_h_beta_max = -1;
       faces_.push_back(f);

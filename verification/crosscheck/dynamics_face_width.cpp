@@ -35,9 +35,10 @@ test::DynamicRig TiltedPinRig(double rpm) {
 
 }  // namespace
 
-TEST_CASE("face width: the dynamic K_Hbeta tends to the quasi-static one with the speed, and the "
-          "summary holds the steps' largest and mean",
-          "[crosscheck][slow][dynamics][face_width]") {
+TEST_CASE(
+    "face width: the dynamic K_Hbeta tends to the quasi-static one with the speed, and the "
+    "summary holds the steps' largest and mean",
+    "[crosscheck][slow][dynamics][face_width]") {
   // What separates a dynamic step's contact forces from the quasi-static forces at its carrier
   // angle are the velocity and inertia terms (damping ∝ δ̇, inertia ∝ ω²), O(speed) at low speed;
   // K_Hβ = max_s w_s / mean_s w_s is Lipschitz in the forces while the mean load is away from 0.
@@ -87,11 +88,11 @@ TEST_CASE("face width: the dynamic K_Hbeta tends to the quasi-static one with th
   }
   const double floor = 1e-6 * 2.0;
   const bool pass = gap[1] <= gap[0] / 2 * 1.25 + floor;
-  test::VerifyRow("dynamic K_Hbeta -> quasi-static linearly in speed (120, 60 rpm; pin tilt, 5 "
-                  "slices)",
-                  "quasi-static solver at the same carrier angles",
-                  "largest gap " + test::Sci(gap[0]) + " at 120 rpm, " + test::Sci(gap[1]) +
-                      " at 60 rpm",
-                  "ratio " + test::Sci(gap[0] / gap[1], 2), "ratio >= 2/1.25 (1e-6 floor)", pass);
+  test::VerifyRow(
+      "dynamic K_Hbeta -> quasi-static linearly in speed (120, 60 rpm; pin tilt, 5 "
+      "slices)",
+      "quasi-static solver at the same carrier angles",
+      "largest gap " + test::Sci(gap[0]) + " at 120 rpm, " + test::Sci(gap[1]) + " at 60 rpm",
+      "ratio " + test::Sci(gap[0] / gap[1], 2), "ratio >= 2/1.25 (1e-6 floor)", pass);
   CHECK(pass);
 }

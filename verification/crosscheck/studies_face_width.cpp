@@ -24,7 +24,9 @@ namespace {
 
 // The paper stage with 5 uncoupled slices of the face width (a quarter of the scenes' default:
 // both drivers run the same model, the comparison does not need the converged count).
-std::string SlicedScene() { return test::SceneText("paper_stage.toml") + "\n[face_width]\nslices = 5\n"; }
+std::string SlicedScene() {
+  return test::SceneText("paper_stage.toml") + "\n[face_width]\nslices = 5\n";
+}
 
 class NoSink final : public transmission::QuasiStaticSink {};
 
@@ -38,9 +40,10 @@ std::string Exact(double v) {
 
 }  // namespace
 
-TEST_CASE("face width in a study: each case's K_Hbeta and K_gamma K_Hbeta per mesh are those of "
-          "the quasi-static driver on the case's scene",
-          "[crosscheck][studies][face_width]") {
+TEST_CASE(
+    "face width in a study: each case's K_Hbeta and K_gamma K_Hbeta per mesh are those of "
+    "the quasi-static driver on the case's scene",
+    "[crosscheck][studies][face_width]") {
   const test::TempDir dir("study-face-width");
   const std::string scene_file = test::WriteText(dir.File("sliced.toml"), SlicedScene());
   // Planet 1's radial tilt on a grid (either sign, and none) and a random tangential one: three
@@ -54,8 +57,8 @@ TEST_CASE("face width in a study: each case's K_Hbeta and K_gamma K_Hbeta per me
       "\"uniform\"\nmin_um = -10.0\nmax_um = 10.0\n";
   const studies::StudySpec study = studies::ParseStudy(text, "tilt.toml", "");
   REQUIRE(study.FaceMeshes().size() == 6);
-  REQUIRE(study.Columns() == std::vector<std::string>{"planet1.pin_tilt_radial_um",
-                                                      "planet1.pin_tilt_tangential_um"});
+  REQUIRE(study.Columns() ==
+          std::vector<std::string>{"planet1.pin_tilt_radial_um", "planet1.pin_tilt_tangential_um"});
   studies::RunOptions o;
   o.rows_file = dir.File("rows.csv");
   o.cache_directory = test::CachedTables().cache_directory;
@@ -73,8 +76,8 @@ TEST_CASE("face width in a study: each case's K_Hbeta and K_gamma K_Hbeta per me
     REQUIRE(row.face_load.size() == 12);
     transmission::QuasiStaticRequest q;
     q.scene = transmission::ParseScene(
-        SlicedScene() + "[[face_width.pin_tilt]]\nplanet = 1\nradial_um = " +
-            Exact(row.values[0]) + "\ntangential_um = " + Exact(row.values[1]) + "\n",
+        SlicedScene() + "[[face_width.pin_tilt]]\nplanet = 1\nradial_um = " + Exact(row.values[0]) +
+            "\ntangential_um = " + Exact(row.values[1]) + "\n",
         "case " + std::to_string(row.id));
     q.positions = 4;
     q.threads = 1;
@@ -104,7 +107,7 @@ TEST_CASE("face width in a study: each case's K_Hbeta and K_gamma K_Hbeta per me
   // 10 cos 27.85° = 8.8 µm), so some case's K_Hβ is well off 1.
   CHECK(s.face_width[0].k_h_beta.max > 1.05);
   test::VerifyRow("study of a pin tilt: K_Hbeta per case and mesh (6 cases, 5 slices)",
-                  "quasi-static driver on each case's scene", "largest relative difference " +
-                      test::Sci(worst),
-                  "", "<= 2e-8 (solver tolerance)", worst <= 2e-8);
+                  "quasi-static driver on each case's scene",
+                  "largest relative difference " + test::Sci(worst), "",
+                  "<= 2e-8 (solver tolerance)", worst <= 2e-8);
 }

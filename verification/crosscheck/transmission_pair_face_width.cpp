@@ -36,14 +36,15 @@ transmission::StiffnessRecord Run(const std::string& extra) {
 
 }  // namespace
 
-TEST_CASE("face width of a gear pair: a lead slope's K_Hbeta over the mesh cycle is the closed "
-          "form 1 + c F_beta b/(2F)(1 - 1/S) with the pair's own mesh stiffness",
-          "[crosscheck][transmission][face_width]") {
+TEST_CASE(
+    "face width of a gear pair: a lead slope's K_Hbeta over the mesh cycle is the closed "
+    "form 1 + c F_beta b/(2F)(1 - 1/S) with the pair's own mesh stiffness",
+    "[crosscheck][transmission][face_width]") {
   const transmission::StiffnessRecord plane = Run("");
-  const transmission::StiffnessRecord sliced =
-      Run("\n[face_width]\nslices = " + std::to_string(kSlices) +
-          "\n[[face_width.lead]]\ngear = \"gear1\"\nslope_um = " + std::to_string(kLeadSlope * 1e6) +
-          "\n");
+  const transmission::StiffnessRecord sliced = Run(
+      "\n[face_width]\nslices = " + std::to_string(kSlices) +
+      "\n[[face_width.lead]]\ngear = \"gear1\"\nslope_um = " + std::to_string(kLeadSlope * 1e6) +
+      "\n");
   REQUIRE(plane.result.failed == 0);
   REQUIRE(sliced.result.failed == 0);
   REQUIRE(sliced.result.slices == kSlices);
@@ -85,7 +86,8 @@ TEST_CASE("face width of a gear pair: a lead slope's K_Hbeta over the mesh cycle
     worst = std::max(worst, std::abs(s.face_load.k_h_beta - closed) / (closed - 1));
     // A gear 1 lead slope turns its +z sections ahead: the load gathers at one end. The end
     // follows from the sign of the gap change, −z F_β/b: the −z end for F_β > 0.
-    CHECK(s.face_load.largest_z == Approx(-0.5 * pair.gear1().spec().face_width * (1 - 1.0 / kSlices)));
+    CHECK(s.face_load.largest_z ==
+          Approx(-0.5 * pair.gear1().spec().face_width * (1 - 1.0 / kSlices)));
     // The stiffness of the mesh as a whole is the plane pair's (the gap's mean is 0).
     CHECK(s.mesh_stiffness == Approx(p.mesh_stiffness).epsilon(2e-6));
   }
