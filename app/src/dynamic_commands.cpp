@@ -185,8 +185,8 @@ void RunDynamic(const DynamicArgs& a) {
   if (sink.started())
     std::printf(
         "\nwrote %s_steps.csv, _pairs.csv, _bearings.csv, _summary.json, _lsr.svg, _te.svg, "
-        "_orbit.svg%s\n",
-        sink.base().c_str(),
+        "_orbit.svg%s%s\n",
+        sink.base().c_str(), record.summary.face_width.empty() ? "" : ", _k_hbeta.svg",
         a.spectrum ? ", _vibration.csv, _spectrum.csv, _spectrum_lines.csv, _spectrum_*.svg" : "");
   else
     std::printf("\nwrote %s_summary.json\n", sink.base().c_str());

@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "console.hpp"
+#include "epicycle/report/face_width_files.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/transmission/stiffness_run.hpp"
@@ -52,11 +53,14 @@ class ConsoleSink final : public transmission::StiffnessSink {
     base = a_.out + "/stiffness_" + setup.mesh;
     face_width = p.face_width;
     csv_.emplace(base + ".csv", provenance_, face_width,
-                 p.compliance->has_root_stress() ? setup.gears : std::vector<std::string>{});
+                 p.compliance->has_root_stress() ? setup.gears : std::vector<std::string>{},
+                 setup.face_width.slices);
+    if (setup.face_width.active()) k_h_beta.emplace(std::vector<std::string>{setup.mesh});
   }
 
   void Sample(const transmission::MeshSample& s) override {
     csv_->Write(s);  // written as computed
+    if (k_h_beta && s.converged) k_h_beta->Add(geometry::Deg(s.angle), {s.face_load});
     if (!s.converged)
       std::fprintf(stderr, "  position %.4f deg FAILED: %s\n", geometry::Deg(s.angle),
                    s.message.c_str());
@@ -66,6 +70,7 @@ class ConsoleSink final : public transmission::StiffnessSink {
 
   std::string base;
   double face_width = 0;
+  std::optional<report::KHBetaPlot> k_h_beta;  // with slices of the face width
 
  private:
   const StiffnessArgs& a_;
@@ -105,7 +110,11 @@ void RunStiffness(const StiffnessArgs& a) {
                 healthy.min_stiffness, healthy.max_stiffness);
   }
   WriteTextFile(base + ".json", report::SummaryJson(record, provenance).dump(2) + "\n");
-  std::printf("\nwrote %s.csv, %s.svg, %s.json\n", base.c_str(), base.c_str(), base.c_str());
+  if (sink.k_h_beta)  // K_Hβ over the mesh cycle
+    WriteTextFile(base + "_k_hbeta.svg",
+                  sink.k_h_beta->Svg(record.scene + ": " + result.mesh, "gear 1 rotation [deg]"));
+  std::printf("\nwrote %s.csv, %s.svg, %s.json%s\n", base.c_str(), base.c_str(), base.c_str(),
+              sink.k_h_beta ? (", " + base + "_k_hbeta.svg").c_str() : "");
   if (result.failed > 0)
     throw ComputationFailed(fmt::format("{} position(s) failed (see above)", result.failed));
 }

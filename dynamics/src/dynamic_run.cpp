@@ -196,6 +196,7 @@ void VisitRecord(const DynamicRecord& r, transmission::RecordVisitor& visit) {
   visit.Number("transmission_error_peak_to_peak_urad", s.te_peak_to_peak() * 1e6);
   visit.Number("sun_orbit_radius_max_um", s.orbit_radius * 1e6);
   visit.Number("sun_orbit_radius_mean_um", s.orbit_mean_radius * 1e6);
+  transmission::VisitFaceWidth(visit, s.face_width);
   const SimulationStats& st = r.stats;
   visit.Integer("steps", st.steps);
   visit.Integer("evaluations", st.rhs_evaluations);

@@ -25,6 +25,11 @@ void DynamicAccumulator::Add(const DynamicSample& x) {
   te_.Add(x.transmission_error);
   orbit_.Add(x.sun_centre.norm());
   if (x.evaluation.total_force.size() > 0) pair_force_.Add(x.evaluation.total_force.maxCoeff());
+  if (!x.face_loads.empty()) {
+    std::vector<double> factors;
+    for (double lsr : x.load_sharing) factors.push_back(static_cast<double>(lsr_.size()) * lsr);
+    faces_.Add(x.face_loads, factors, x.carrier_angle);
+  }
 }
 
 DynamicSummary DynamicAccumulator::Result() const {
@@ -45,6 +50,7 @@ DynamicSummary DynamicAccumulator::Result() const {
                      : pair_force_.empty() ? 0.0
                                            : std::max(0.0, pair_force_.max());
   if (root_stress_) s.root_stress = root_stress_->Result();
+  s.face_width = faces_.Result();
   return s;
 }
 

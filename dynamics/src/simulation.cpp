@@ -434,6 +434,10 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
           sample.root_stress = transmission::SummariseRootStress(
               sample.fillet_stress, transmission::PlanetBody(model.stage_model().planets()));
       }
+      if (model.stage_model().face_width().active())
+        sample.face_loads = transmission::FaceLoads(model.stage_model().stage(),
+                                                    model.stage_model().face_width().slices(),
+                                                    e.terms.contacts, e.total_force);
       if (on_sample) {
         try {
           on_sample(sample);

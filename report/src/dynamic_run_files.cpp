@@ -26,8 +26,13 @@ void DynamicRunOutput::Start(const dynamics::DynamicPlan& p) {
   std::filesystem::create_directories(out_);
   if (!p.started) return;
   const int n = p.rig->stage.planets();
-  files_ =
-      std::make_unique<DynamicRunFiles>(base_, provenance_, n, p.rig->compliance.has_root_stress());
+  std::vector<std::string> face_meshes;
+  if (p.rig->scene.face_width.active()) {
+    face_meshes = StageFaceMeshes(p.rig->stage).names;
+    k_h_beta_.emplace(face_meshes);
+  }
+  files_ = std::make_unique<DynamicRunFiles>(base_, provenance_, n,
+                                             p.rig->compliance.has_root_stress(), face_meshes);
   if (*p.spectrum) vibration_.emplace(base_, provenance_, model, **p.spectrum);
   plots_ = std::make_unique<DynamicPlots>(base_, n, *p.span);
 }
@@ -37,11 +42,14 @@ void DynamicRunOutput::Step(const dynamics::DynamicSample& s) {
   files_->Write(s);
   if (vibration_) vibration_->Write(s);
   plots_->Add(s);
+  if (k_h_beta_) k_h_beta_->Add(s.time * 1e3, s.face_loads);
 }
 
 void DynamicRunOutput::Stop() {
   files_->Close();
   plots_->Write(scene_name_, sun_name_);
+  if (k_h_beta_ && !k_h_beta_->empty())
+    WriteTextFile(base_ + "_k_hbeta.svg", k_h_beta_->Svg(scene_name_, "time [ms]"));
   if (vibration_) spectrum_text_ = vibration_->Close(scene_name_);
   vibration_.reset();  // it refers to the run's model
 }
@@ -81,6 +89,7 @@ std::string DynamicPlanText(const dynamics::DynamicPlan& p, const std::string& i
 
 std::string DynamicRecordText(const dynamics::DynamicRecord& r, int planets) {
   std::string t = DynamicRunText(r.summary, r.stats, planets);
+  t += FaceWidthText(r.summary.face_width);
   if (r.rating) t += RatingText(*r.rating);
   return t;
 }

@@ -34,6 +34,60 @@ std::string Head(const nlohmann::json& provenance, int slices, const std::vector
 
 }  // namespace
 
+FaceMeshes StageFaceMeshes(const geometry::Stage& stage) {
+  FaceMeshes m;
+  for (const bool ring : {false, true}) {
+    for (int i = 0; i < stage.planets(); ++i) {
+      m.names.push_back(geometry::MeshName(
+          i, ring ? geometry::MeshKind::kPlanetRing : geometry::MeshKind::kSunPlanet));
+      m.widths.push_back(ring ? geometry::ContactFaceWidth(stage.planet(i), stage.ring())
+                              : geometry::ContactFaceWidth(stage.sun(), stage.planet(i)));
+    }
+  }
+  return m;
+}
+
+std::string FaceWidthText(const std::vector<transmission::MeshFaceSummary>& faces) {
+  if (faces.empty()) return "";
+  std::string t =
+      "\n  mesh             K_Hbeta max  K_Hbeta mean  at carrier deg  largest load at z mm  "
+      "max L_i K_Hbeta\n";
+  for (const transmission::MeshFaceSummary& f : faces)
+    t += fmt::format("  {:<16} {:<12.6f} {:<13.6f} {:<15.4f} {:<21.3f} {:.6f}\n", f.mesh,
+                     f.k_h_beta_max, f.k_h_beta_mean, geometry::Deg(f.carrier_angle),
+                     f.largest_z * 1e3, f.k_gamma_k_h_beta_max);
+  if (faces.front().stresses) {
+    t += "\n  mesh             root stress max MPa  gear      at z mm  Hertz pressure max MPa  "
+         "at z mm\n";
+    for (const transmission::MeshFaceSummary& f : faces)
+      t += fmt::format("  {:<16} {:<20.2f} {:<9} {:<8.3f} {:<23.2f} {:.3f}\n", f.mesh,
+                       f.root_stress_max * 1e-6, f.root_stress_gear, f.root_stress_z * 1e3,
+                       f.hertz_pressure_max * 1e-6, f.hertz_pressure_z * 1e3);
+  }
+  return t;
+}
+
+void KHBetaPlot::Add(double x, const std::vector<transmission::MeshFaceLoad>& loads) {
+  for (std::size_t m = 0; m < meshes_.size() && m < loads.size(); ++m) {
+    x_[m].push_back(x);
+    k_[m].push_back(loads[m].k_h_beta);
+  }
+}
+
+bool KHBetaPlot::empty() const {
+  return std::all_of(x_.begin(), x_.end(), [](const auto& x) { return x.empty(); });
+}
+
+std::string KHBetaPlot::Svg(const std::string& title, const std::string& x_label) const {
+  LinePlot k;
+  k.title = title + ": face load factor K_Hbeta";
+  k.x_label = x_label;
+  k.y_label = "K_Hbeta [-]";
+  k.y_references = {1.0};
+  for (std::size_t m = 0; m < meshes_.size(); ++m) k.series.push_back({meshes_[m], x_[m], k_[m]});
+  return RenderSvg(k);
+}
+
 FaceLoadFiles::FaceLoadFiles(const std::string& base, const nlohmann::json& provenance, int slices,
                              std::vector<std::string> meshes, std::vector<double> widths,
                              int positions, bool stresses)
@@ -44,10 +98,10 @@ FaceLoadFiles::FaceLoadFiles(const std::string& base, const nlohmann::json& prov
       columns_(std::min(kMapColumns, std::max(1, positions))),
       stresses_(stresses),
       meshes_(std::move(meshes)),
-      widths_(std::move(widths)) {
-  map_.assign(meshes_.size(), std::vector<double>(static_cast<std::size_t>(columns_ * slices_), kNaN));
-  angle_.resize(meshes_.size());
-  k_h_beta_.resize(meshes_.size());
+      widths_(std::move(widths)),
+      k_h_beta_(meshes_) {
+  map_.assign(meshes_.size(),
+              std::vector<double>(static_cast<std::size_t>(columns_ * slices_), kNaN));
 }
 
 void FaceLoadFiles::Write(const transmission::PositionResult& r) {
@@ -96,10 +150,9 @@ void FaceLoadFiles::Write(const transmission::PositionResult& r) {
                             Num(transmission::SliceCentre(hp, slices_, f.width) * 1e3));
       }
     }
-    angle_[m].push_back(deg);
-    k_h_beta_[m].push_back(f.k_h_beta);
     lines += line + "\n";
   }
+  if (r.converged) k_h_beta_.Add(deg, r.face_loads);
   csv_.Write(lines);
 }
 
@@ -124,14 +177,7 @@ void FaceLoadFiles::WritePlots(const std::string& title) const {
   }
   WriteTextFile(base_ + "_face_load.svg",
                 RenderHeatMaps(title + ": load per unit face width", maps));
-  LinePlot k;
-  k.title = title + ": face load factor K_Hbeta";
-  k.x_label = "carrier angle [deg]";
-  k.y_label = "K_Hbeta [-]";
-  k.y_references = {1.0};
-  for (std::size_t m = 0; m < meshes_.size(); ++m)
-    k.series.push_back({meshes_[m], angle_[m], k_h_beta_[m]});
-  WriteTextFile(base_ + "_k_hbeta.svg", RenderSvg(k));
+  WriteTextFile(base_ + "_k_hbeta.svg", k_h_beta_.Svg(title, "carrier angle [deg]"));
 }
 
 }  // namespace epicycle::report

@@ -32,19 +32,10 @@ void QuasiStaticRunFiles::Start(const transmission::QuasiStaticPlan& p) {
                                               360.0 / p.stage->ring().teeth(),  // mesh cycle
                                               geometry::Deg(p.span));
   if (p.scene->face_width.active()) {
-    std::vector<std::string> meshes;
-    std::vector<double> widths;
-    for (const bool ring : {false, true}) {
-      for (int i = 0; i < n; ++i) {
-        meshes.push_back(geometry::MeshName(
-            i, ring ? geometry::MeshKind::kPlanetRing : geometry::MeshKind::kSunPlanet));
-        widths.push_back(ring ? geometry::ContactFaceWidth(p.stage->planet(i), p.stage->ring())
-                              : geometry::ContactFaceWidth(p.stage->sun(), p.stage->planet(i)));
-      }
-    }
+    FaceMeshes meshes = StageFaceMeshes(*p.stage);
     faces_ = std::make_unique<FaceLoadFiles>(base_, provenance_, p.scene->face_width.slices,
-                                             std::move(meshes), std::move(widths), p.positions,
-                                             p.compliance->has_root_stress());
+                                             std::move(meshes.names), std::move(meshes.widths),
+                                             p.positions, p.compliance->has_root_stress());
   }
 }
 
@@ -119,22 +110,7 @@ std::string QuasiStaticRecordText(const transmission::QuasiStaticRecord& r,
   } else {
     t += "  K_gamma, transmission error, sun displacement: - (no position converged)\n";
   }
-  if (!s.face_width.empty()) {
-    t += "\n  mesh             K_Hbeta max  K_Hbeta mean  at carrier deg  largest load at z mm  "
-         "max L_i K_Hbeta\n";
-    for (const transmission::MeshFaceSummary& f : s.face_width)
-      t += fmt::format("  {:<16} {:<12.6f} {:<13.6f} {:<15.4f} {:<21.3f} {:.6f}\n", f.mesh,
-                       f.k_h_beta_max, f.k_h_beta_mean, geometry::Deg(f.carrier_angle),
-                       f.largest_z * 1e3, f.k_gamma_k_h_beta_max);
-    if (s.face_width.front().stresses) {
-      t += "\n  mesh             root stress max MPa  gear      at z mm  Hertz pressure max MPa  "
-           "at z mm\n";
-      for (const transmission::MeshFaceSummary& f : s.face_width)
-        t += fmt::format("  {:<16} {:<20.2f} {:<9} {:<8.3f} {:<23.2f} {:.3f}\n", f.mesh,
-                         f.root_stress_max * 1e-6, f.root_stress_gear, f.root_stress_z * 1e3,
-                         f.hertz_pressure_max * 1e-6, f.hertz_pressure_z * 1e3);
-    }
-  }
+  t += FaceWidthText(s.face_width);
   t += RootStressText(s.root_stress, "carrier deg", 180.0 / std::numbers::pi);
   t += ContactPressureText(s.contact_pressure, "carrier deg", 180.0 / std::numbers::pi);
   if (r.rating) t += RatingText(*r.rating);

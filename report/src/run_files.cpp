@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -21,6 +22,8 @@
 namespace epicycle::report {
 
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Appends ",<v>" (Num: an empty cell where v is not finite).
 void Cell(std::string& line, double v) {
@@ -480,7 +483,8 @@ void QuasiStaticPlots::Write(const std::string& scene_name, const std::string& s
 namespace {
 
 // The first lines (provenance, columns) of a dynamic run's files.
-std::string DynamicStepsHead(const std::string& provenance_line, int planets, int stress_bodies) {
+std::string DynamicStepsHead(const std::string& provenance_line, int planets, int stress_bodies,
+                             const std::vector<std::string>& face_meshes) {
   std::string steps = provenance_line + "time_s,carrier_deg";
   for (int i = 1; i <= planets; ++i) steps += ",LSR_" + std::to_string(i);
   for (int i = 1; i <= planets; ++i) steps += ",L_" + std::to_string(i);
@@ -490,7 +494,9 @@ std::string DynamicStepsHead(const std::string& provenance_line, int planets, in
       "contacts,"
       "active_contacts,friction_power_W";
   for (int i = 1; i <= planets; ++i) steps += ",LSR_force_" + std::to_string(i);
-  return steps + RootStressHead(transmission::BodyNames(stress_bodies)) + "\n";
+  steps += RootStressHead(transmission::BodyNames(stress_bodies));
+  for (const std::string& m : face_meshes) steps += ",K_Hbeta_" + m + ",largest_z_mm_" + m;
+  return steps + "\n";
 }
 
 std::string DynamicBearingsHead(const std::string& provenance_line, int planets) {
@@ -504,7 +510,8 @@ std::string DynamicBearingsHead(const std::string& provenance_line, int planets)
 // Created in the order of a step's writes (pairs, bearings, steps), each with its head at once:
 // once the steps file has its head, every file has.
 DynamicRunFiles::DynamicRunFiles(const std::string& base, const nlohmann::json& provenance,
-                                 int planets, bool root_stress)
+                                 int planets, bool root_stress,
+                                 std::vector<std::string> face_meshes)
     : pairs_(base + "_pairs.csv",
              ProvenanceCsvLine(provenance) +
                  "time_s,mesh,kind,flank,teeth,normal_force_N,elastic_force_N,friction_force_N,"
@@ -513,8 +520,9 @@ DynamicRunFiles::DynamicRunFiles(const std::string& base, const nlohmann::json& 
                 DynamicBearingsHead(ProvenanceCsvLine(provenance), planets)),
       steps_(base + "_steps.csv",
              DynamicStepsHead(ProvenanceCsvLine(provenance), planets,
-                              root_stress ? transmission::PlanetBody(planets) : 0)),
-      bodies_(root_stress ? transmission::PlanetBody(planets) : 0) {}
+                              root_stress ? transmission::PlanetBody(planets) : 0, face_meshes)),
+      bodies_(root_stress ? transmission::PlanetBody(planets) : 0),
+      face_meshes_(face_meshes.size()) {}
 
 void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
   const dynamics::Evaluation& e = s.evaluation;
@@ -531,6 +539,14 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
                        Num(s.compliance_work), e.terms.size(), active, Num(e.friction_power));
   steps += Cells(s.force_sharing);
   if (bodies_ > 0) RootStressCells(steps, s.root_stress, bodies_);
+  for (std::size_t m = 0; m < face_meshes_; ++m) {
+    if (m < s.face_loads.size()) {
+      Cell(steps, s.face_loads[m].k_h_beta);
+      Cell(steps, s.face_loads[m].largest_z * 1e3);
+    } else {
+      steps += ",,";  // an empty cell: no value, never a NaN
+    }
+  }
   std::string pairs;
   for (int j = 0; j < e.terms.size(); ++j) {
     if (!(e.total_force(j) > 0)) continue;
@@ -604,13 +620,16 @@ std::string DynamicRunText(const dynamics::DynamicSummary& sum,
 
 MeshStiffnessFile::MeshStiffnessFile(const std::string& path, const nlohmann::json& provenance,
                                      double face_width,
-                                     const std::vector<std::string>& stress_gears)
-    : csv_(path), face_width_(face_width), bodies_(static_cast<int>(stress_gears.size())) {
+                                     const std::vector<std::string>& stress_gears, int slices)
+    : csv_(path),
+      face_width_(face_width),
+      bodies_(static_cast<int>(stress_gears.size())),
+      faces_(slices > 1) {
   csv_.Write(ProvenanceCsvLine(provenance) +
              "angle_deg,converged,mesh_stiffness_N_per_m,mesh_stiffness_N_per_mm_um,"
              "transmission_error_urad,approach_um,total_force_N,pairs,"
              "pair_teeth,pair_kind,pair_force_N,pair_stiffness_N_per_m,pair_share,message" +
-             RootStressHead(stress_gears, true) + "\n");
+             RootStressHead(stress_gears, true) + (faces_ ? ",K_Hbeta,largest_z_mm" : "") + "\n");
 }
 
 void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
@@ -621,6 +640,12 @@ void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
   std::string tail = CsvText(s.message);
   // A failed position has no stresses (empty cells), a converged one its extremes per gear.
   if (bodies_ > 0) RootStressCells(tail, s.root_stress, bodies_, true);
+  if (faces_) {
+    // A failed position (no line loads) has empty cells.
+    const bool has = s.converged && !s.face_load.line_load.empty();
+    Cell(tail, has ? s.face_load.k_h_beta : kNaN);
+    Cell(tail, has ? s.face_load.largest_z * 1e3 : kNaN);
+  }
   tail += '\n';
   std::string lines = s.pairs.empty() ? head + ",,,,,," + tail : "";
   for (const auto& p : s.pairs)
@@ -653,6 +678,12 @@ std::string MeshStiffnessText(const transmission::StiffnessRecord& record) {
         "  mesh stiffness range     {:10.4g} .. {:.4g} N/m; contact ratio {:.4f} (tip circles)\n",
         result.min_stiffness, result.max_stiffness, record.contact_ratio);
   }
+  if (result.slices > 1)
+    out += fmt::format(
+        "  K_Hbeta ({} slices)      max {} at {} deg (largest load at z = {} mm), mean {}\n",
+        result.slices, Num(result.k_h_beta_max, "{:.6f}", "-"),
+        Num(geometry::Deg(result.k_h_beta_angle), "{:.4f}", "-"),
+        Num(result.largest_z * 1e3, "{:.3f}", "-"), Num(result.k_h_beta_mean, "{:.6f}", "-"));
   out += fmt::format("  positions failed         {} of {}\n", result.failed, positions);
   return out + RootStressText(result.root_stress, "angle deg", geometry::Deg(1.0));
 }

@@ -143,6 +143,9 @@ std::string StudySummaryText(const studies::StudySpec& study, const studies::Stu
        SampleSummaryText("K_gamma (sweep mean)", s.k_gamma_mean, "") +
        SampleSummaryText("TE peak-to-peak", s.te_peak_to_peak, " urad") +
        SampleSummaryText("sun orbit", s.sun_orbit, " um") + StudyRootStressText(s.root_stress);
+  for (const studies::MeshFaceStatistics& m : s.face_width)
+    t += SampleSummaryText("K_gamma K_Hbeta " + m.mesh, m.k_gamma_k_h_beta, "") +
+         SampleSummaryText("K_Hbeta " + m.mesh, m.k_h_beta, "");
   for (const studies::Exceedance& e : s.k_gamma_exceedance) t += ExceedanceText(e);
   t += "  Spearman rank correlation of K_gamma with\n";
   for (std::size_t j = 0; j < s.columns.size(); ++j)

@@ -140,6 +140,7 @@ int main() {
   quasistatic.failures_not_listed = 1;
   transmission::StiffnessRecord stiffness;
   stiffness.result.root_stress.resize(1);
+  stiffness.result.slices = 2;
   stiffness.healthy = stiffness.result;
   dynamics::ModesRecord modes;
   modes.modes.resize(1);
@@ -153,14 +154,15 @@ int main() {
         "`helical` only for a helical stage.",
         quasistatic);
   Table("Mesh stiffness (`epicycle stiffness`, Python `mesh_stiffness(...)[\"record\"]`)",
-        "OUT/stiffness_MESH.json; `root_stress` only with stresses, `healthy` only beside a "
-        "damaged tooth's cycles.",
+        "OUT/stiffness_MESH.json; `root_stress` only with stresses, the `slices` and K_Hbeta keys "
+        "only with slices of the face width, `healthy` only beside a damaged tooth's cycles.",
         stiffness);
   studies::StudyRecord study;
   study.summary.k_gamma.percentiles.resize(1);
   study.summary.k_gamma_exceedance.resize(1);
   study.summary.root_stress.resize(1);
   study.summary.root_stress[0].s_f.count = study.summary.root_stress[0].s_h.count = 1;
+  study.summary.face_width.resize(1);
   study.summary.columns = {"COLUMN"};
   study.summary.spearman = {0};
   studies::SobolSummary sobol;
@@ -174,8 +176,9 @@ int main() {
         modes);
   Table("Tolerance study (`epicycle study`, Python `study(...)[\"record\"]`)",
         "OUT/study_summary.json; `K_gamma_exceedance` only with the study's k_gamma_limit, "
-        "`root_stress` only with stresses (`S_F`, `S_H` only when rated), `sobol` only with the "
-        "Sobol design. `spearman_K_gamma` has one key per sampled-value column (COLUMN), "
+        "`root_stress` only with stresses (`S_F`, `S_H` only when rated), `face_width` only with "
+        "slices of the face width, `sobol` only with the Sobol design. `spearman_K_gamma` has one "
+        "key per sampled-value column (COLUMN), "
         "`sobol.outputs` one object per rows-file result column (OUTPUT).",
         study);
   dynamics::BranchRecord branch;

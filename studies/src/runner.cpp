@@ -104,6 +104,7 @@ std::string CaseRow::Format() const {
     field(ok() ? Exact(v) : std::string());
   for (double v : root_stress) field(ok() ? Exact(v) : std::string());
   for (double v : safety) field(ok() ? Exact(v) : std::string());
+  for (double v : face_load) field(ok() ? Exact(v) : std::string());
   field(Clean(message));
   field(RowCheck(s));
   s.push_back('\n');
@@ -121,6 +122,7 @@ std::string RowHeader(const StudySpec& study) {
     h += ",sigma_t_" + g + "_MPa,sigma_c_" + g + "_MPa,sigma_range_" + g + "_MPa";
   if (study.Rated())
     for (const std::string& g : study.StressGears()) h += ",S_F_" + g + ",S_H_" + g;
+  for (const std::string& m : study.FaceMeshes()) h += ",K_Hbeta_" + m + ",K_gamma_K_Hbeta_" + m;
   h += ",message,check";
   return h;
 }
@@ -158,12 +160,13 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   const std::size_t nv = study.Columns().size();
   const std::size_t ns = 3 * study.StressGears().size();                      // root-stress fields
   const std::size_t nr = study.Rated() ? 2 * study.StressGears().size() : 0;  // safety factors
+  const std::size_t nf = 2 * study.FaceMeshes().size();                       // face-load factors
   auto bad = [&](const std::string& why) {
     throw std::invalid_argument(where + ": not a row of this study (" + why + "): '" + line + "'");
   };
-  if (f.size() != 1 + nv + kResultFields + ns + nr + 1)
+  if (f.size() != 1 + nv + kResultFields + ns + nr + nf + 1)
     bad(std::to_string(f.size()) + " fields, " +
-        std::to_string(1 + nv + kResultFields + ns + nr + 1) + " expected");
+        std::to_string(1 + nv + kResultFields + ns + nr + nf + 1) + " expected");
   // Changed after it was written: the check covers every byte before its own field.
   const std::string_view body(line.data(), line.size() - f.back().size() - 1);
   if (f.back() != RowCheck(body))
@@ -205,6 +208,9 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   r.safety.resize(nr);
   for (double& v : r.safety)
     if (!ParseReal(f[k++], &v)) bad("safety factor");
+  r.face_load.resize(nf);
+  for (double& v : r.face_load)
+    if (!ParseReal(f[k++], &v)) bad("face-load factor");
   r.message = f[k];
   return r;
 }
@@ -352,6 +358,8 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
   const std::vector<std::string> gears = study.StressGears();
   row.root_stress.assign(3 * gears.size(), kNaN);
   row.safety.assign(study.Rated() ? 2 * gears.size() : 0, kNaN);
+  const std::size_t meshes = study.FaceMeshes().size();
+  row.face_load.assign(2 * meshes, kNaN);
   // The case's scene, stage and (for a crack's depth) own tables. The base scene passed every
   // rule when the study was read, so a rule broken here is a sampled value's.
   std::optional<CaseRig> built;
@@ -419,6 +427,11 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
       row.root_stress[3 * g] = s.root_stress[g].extremes.tension / 1e6;
       row.root_stress[3 * g + 1] = s.root_stress[g].extremes.compression / 1e6;
       row.root_stress[3 * g + 2] = s.root_stress[g].range.range / 1e6;
+    }
+    // With slices of the face width, every converged position carries each mesh's face load.
+    for (std::size_t m = 0; m < s.face_width.size() && m < meshes; ++m) {
+      row.face_load[2 * m] = s.face_width[m].k_h_beta_max;
+      row.face_load[2 * m + 1] = s.face_width[m].k_gamma_k_h_beta_max;
     }
     // The model's safety factors of every gear, from this case's own stresses (rating.hpp).
     if (study.Rated() && s.converged > 0) {

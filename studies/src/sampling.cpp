@@ -1,6 +1,8 @@
 #include "epicycle/studies/sampling.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -149,6 +151,49 @@ transmission::Scene CaseScene(const StudySpec& study, const std::vector<double>&
         (depth ? p.depth : p.width_fraction) = si;
         break;
       }
+      case Quantity::kPinTiltRadial:
+      case Quantity::kPinTiltTangential: {
+        // The value over the planet's face width b replaces that component of the scene's tilt.
+        transmission::FaceWidthSpec& f = scene.face_width;
+        auto it = std::find_if(
+            f.pin_tilts.begin(), f.pin_tilts.end(),
+            [&](const transmission::PinTilt& p) { return p.planet == v.target.planet; });
+        if (it == f.pin_tilts.end()) {
+          f.pin_tilts.push_back({});
+          it = std::prev(f.pin_tilts.end());
+          it->planet = v.target.planet;
+        }
+        (v.quantity == Quantity::kPinTiltRadial ? it->radial : it->tangential) =
+            si / st.planet.face_width;
+        it->where = study.source + ": variable " + v.Columns().front() + " (the case's " +
+                    std::to_string(it->radial * st.planet.face_width * 1e6) + " um radial, " +
+                    std::to_string(it->tangential * st.planet.face_width * 1e6) +
+                    " um tangential over the face width)";
+        break;
+      }
+      case Quantity::kLeadSlope:
+      case Quantity::kCrowning: {
+        const bool crowning = v.quantity == Quantity::kCrowning;
+        // A draw below 0 (a grid's or uniform's values are checked when read): refused.
+        if (crowning && !(si >= 0))
+          throw std::invalid_argument("sampled " + v.Columns().front() + " " +
+                                      std::to_string(si * 1e6) +
+                                      " um: must be >= 0 (the scene's crowning_um)");
+        transmission::FaceWidthSpec& f = scene.face_width;
+        const std::string gear = v.target.Name();
+        auto it = std::find_if(f.leads.begin(), f.leads.end(),
+                               [&](const transmission::LeadSpec& l) { return l.gear == gear; });
+        if (it == f.leads.end()) {
+          f.leads.push_back({});
+          it = std::prev(f.leads.end());
+          it->gear = gear;
+        }
+        (crowning ? it->crowning : it->slope) = si;
+        it->where = study.source + ": variable " + v.Columns().front() + " (the case's slope " +
+                    std::to_string(it->slope * 1e6) + " um, crowning " +
+                    std::to_string(it->crowning * 1e6) + " um)";
+        break;
+      }
       case Quantity::kCrackDepth: {
         compliance::RootCrack& k =
             scene.damage.cracks.at(static_cast<std::size_t>(v.target.crack)).crack;
@@ -166,6 +211,8 @@ transmission::Scene CaseScene(const StudySpec& study, const std::vector<double>&
       }
     }
   }
+  // A case's tilts and leads within the contact search's window, as the scene reader checks them.
+  transmission::CheckFaceGapWindow(scene);
   return scene;
 }
 

@@ -210,6 +210,8 @@ SobolSummary SummariseSobol(const StudySpec& study, const std::vector<CaseRow>& 
   if (study.Rated())
     for (const std::string& g : gears)
       for (const char* q : {"S_F_", "S_H_"}) names.push_back(q + g);
+  for (const std::string& m : study.FaceMeshes())
+    for (const char* q : {"K_Hbeta_", "K_gamma_K_Hbeta_"}) names.push_back(q + m);
   const auto cases = static_cast<std::size_t>(study.Cases());
   std::vector<std::vector<double>> y(names.size(), std::vector<double>(cases, kNaN));
   for (const CaseRow& r : rows) {
@@ -221,6 +223,7 @@ SobolSummary SummariseSobol(const StudySpec& study, const std::vector<CaseRow>& 
       y[o++][k] = v;
     for (double v : r.root_stress) y[o++][k] = v;
     for (double v : r.safety) y[o++][k] = v;
+    for (double v : r.face_load) y[o++][k] = v;
   }
   for (std::size_t o = 0; o < names.size(); ++o)
     s.outputs.push_back({names[o], EstimateSobol(y[o], d, options)});

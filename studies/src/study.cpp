@@ -9,13 +9,14 @@
 
 #include "epicycle/geometry/gear.hpp"
 #include "epicycle/geometry/iso.hpp"
-#include "epicycle/studies/sampling.hpp"
+#include "epicycle/geometry/stage.hpp"
+#include "epicycle/io/enum_names.hpp"
 #include "epicycle/io/input_file.hpp"
+#include "epicycle/io/number_format.hpp"
 #include "epicycle/io/toml_reader.hpp"
+#include "epicycle/studies/sampling.hpp"
 #include "epicycle/studies/sobol.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
-#include "epicycle/io/enum_names.hpp"
-#include "epicycle/io/number_format.hpp"
 
 namespace epicycle::studies {
 
@@ -44,7 +45,22 @@ constexpr QuantityInfo kQuantities[] = {
     {Quantity::kPitDepth, "pit_depth", "um", kUm, 1e6},
     {Quantity::kPitWidth, "pit_width", "fraction", 1.0, 1.0},
     {Quantity::kCrackDepth, "crack_depth", "mm", 1e-3, 1e3},
+    {Quantity::kPinTiltRadial, "pin_tilt_radial", "um", kUm, 1e6},
+    {Quantity::kPinTiltTangential, "pin_tilt_tangential", "um", kUm, 1e6},
+    {Quantity::kLeadSlope, "lead_slope", "um", kUm, 1e6},
+    {Quantity::kCrowning, "crowning", "um", kUm, 1e6},
 };
+
+// Quantities along the face width (the scene's [face_width]).
+bool AlongFace(Quantity q) {
+  return q == Quantity::kPinTiltRadial || q == Quantity::kPinTiltTangential ||
+         q == Quantity::kLeadSlope || q == Quantity::kCrowning;
+}
+// Quantities of a planet's pin only.
+bool OfPin(Quantity q) {
+  return q == Quantity::kPinRadial || q == Quantity::kPinTangential ||
+         q == Quantity::kPinTiltRadial || q == Quantity::kPinTiltTangential;
+}
 
 const QuantityInfo& Info(Quantity q) {
   for (const QuantityInfo& i : kQuantities)
@@ -173,9 +189,12 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
                              .Because("the index of one of the scene's " + std::to_string(pits) +
                                       " [[damage.pit]] tables, from 0")));
   } else {
+    if (AlongFace(v.quantity) && !scene.face_width.active())
+      t.Fail("quantity", "\"" + qname + "\"",
+             "varies along the face width: the scene '" + scene.source +
+                 "' has none ([face_width] slices >= 2 needed; docs/face_width.md)");
     std::vector<std::string> allowed;
-    if (v.quantity != Quantity::kPinRadial && v.quantity != Quantity::kPinTangential)
-      allowed = {"sun", "ring"};
+    if (!OfPin(v.quantity)) allowed = {"sun", "ring"};
     for (int i = 1; i <= n; ++i) allowed.push_back("planet" + std::to_string(i));
     allowed.emplace_back("planets");
     const std::string g = t.String("gear");
@@ -223,6 +242,9 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
     if (v.quantity == Quantity::kRunout)
       t.Fail("distribution", "\"normal\"",
              "a run-out amplitude is >= 0: use \"uniform\" (min_um >= 0), \"iso1328\" or \"grid\"");
+    if (v.quantity == Quantity::kCrowning)
+      t.Fail("distribution", "\"normal\"",
+             "a crowning is >= 0: use \"uniform\" (min_um >= 0) or \"grid\"");
     v.distribution = Distribution::kNormal;
     v.mean = t.RealOr("mean_" + unit, 0.0, value_rule) * info.scale;
     v.sigma = t.Real("sigma_" + unit, Rule::NonNegative().Because("a standard deviation is >= 0")) *
@@ -232,6 +254,8 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
     v.distribution = Distribution::kUniform;
     const Rule r = v.quantity == Quantity::kRunout
                        ? Rule::Closed(0, module_um).Because("a run-out amplitude is >= 0")
+                   : v.quantity == Quantity::kCrowning
+                       ? Rule::Closed(0, module_um).Because("a crowning is >= 0")
                        : value_rule;
     v.min = t.Real("min_" + unit, r) * info.scale;
     v.max = t.Real("max_" + unit, r) * info.scale;
@@ -259,6 +283,8 @@ std::vector<Variable> ReadVariable(TableReader& t, const transmission::Scene& sc
     v.distribution = Distribution::kGrid;
     const Rule r = v.quantity == Quantity::kRunout
                        ? Rule::Closed(0, module_um).Because("a run-out amplitude is >= 0")
+                   : v.quantity == Quantity::kCrowning
+                       ? Rule::Closed(0, module_um).Because("a crowning is >= 0")
                        : value_rule;
     for (double x : t.RealArray("values_" + unit, r)) v.grid.push_back(x * info.scale);
     if (v.grid.empty()) t.Fail("values_" + unit, "[]", "must list at least one value");
@@ -348,6 +374,15 @@ long StudySpec::GridPoints() const {
 long StudySpec::Cases() const {
   if (design == Design::kSobol) return samples * (static_cast<long>(variables.size()) + 2);
   return GridPoints() * samples;
+}
+
+std::vector<std::string> StudySpec::FaceMeshes() const {
+  std::vector<std::string> m;
+  if (!scene.face_width.active()) return m;
+  for (const geometry::MeshKind kind :
+       {geometry::MeshKind::kSunPlanet, geometry::MeshKind::kPlanetRing})
+    for (int i = 0; i < scene.stage.planets; ++i) m.push_back(geometry::MeshName(i, kind));
+  return m;
 }
 
 bool StudySpec::VariesBodies() const {

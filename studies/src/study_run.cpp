@@ -3,12 +3,26 @@
 
 #include <algorithm>
 #include <thread>
+#include <vector>
 
 namespace epicycle::studies {
 
 namespace {
 
 using transmission::RecordVisitor;
+
+// A list of objects, one per item (`fields` visits an item's), left out when empty.
+template <typename T, typename Fields>
+void VisitItems(RecordVisitor& visit, const char* key, const std::vector<T>& items,
+                const Fields& fields) {
+  if (items.empty()) return;
+  visit.BeginList(key);
+  for (const T& item : items) {
+    visit.Item();
+    fields(item);
+  }
+  visit.EndList();
+}
 
 // A sample's statistics: count, mean with its interval, spread, extremes and percentiles with
 // theirs (docs/studies.md "Statistics").
@@ -151,19 +165,19 @@ void VisitRecord(const StudyRecord& r, RecordVisitor& visit) {
     }
     visit.EndList();
   }
-  if (!s.root_stress.empty()) {
-    visit.BeginList("root_stress");
-    for (const GearStressStatistics& g : s.root_stress) {
-      visit.Item();
-      visit.Text("gear", g.gear);
-      VisitSample("tension_MPa", g.tension, visit);
-      VisitSample("compression_magnitude_MPa", g.compression, visit);
-      VisitSample("largest_range_MPa", g.range, visit);
-      if (g.s_f.count > 0) VisitSample("S_F", g.s_f, visit);
-      if (g.s_h.count > 0) VisitSample("S_H", g.s_h, visit);
-    }
-    visit.EndList();
-  }
+  VisitItems(visit, "root_stress", s.root_stress, [&](const GearStressStatistics& g) {
+    visit.Text("gear", g.gear);
+    VisitSample("tension_MPa", g.tension, visit);
+    VisitSample("compression_magnitude_MPa", g.compression, visit);
+    VisitSample("largest_range_MPa", g.range, visit);
+    if (g.s_f.count > 0) VisitSample("S_F", g.s_f, visit);
+    if (g.s_h.count > 0) VisitSample("S_H", g.s_h, visit);
+  });
+  VisitItems(visit, "face_width", s.face_width, [&](const MeshFaceStatistics& m) {
+    visit.Text("mesh", m.mesh);
+    VisitSample("K_Hbeta_max", m.k_h_beta, visit);
+    VisitSample("K_gamma_K_Hbeta_max", m.k_gamma_k_h_beta, visit);
+  });
   visit.BeginObject("spearman_K_gamma");  // ρ_s per sampled-value column (null: constant)
   for (std::size_t k = 0; k < s.columns.size(); ++k)
     visit.Number(s.columns[k].c_str(), s.spearman[k]);

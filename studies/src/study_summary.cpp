@@ -63,6 +63,17 @@ StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& 
                              Summarise(s_f, kSafetyPercentiles, level),
                              Summarise(s_h, kSafetyPercentiles, level)});
   }
+  const std::vector<std::string> meshes = study.FaceMeshes();
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    std::vector<double> k_h_beta, product;
+    for (const CaseRow& r : rows) {
+      if (!r.ok || r.face_load.size() != 2 * meshes.size()) continue;
+      k_h_beta.push_back(r.face_load[2 * m]);
+      product.push_back(r.face_load[2 * m + 1]);
+    }
+    s.face_width.push_back({meshes[m], Summarise(k_h_beta, kStudyPercentiles, level),
+                            Summarise(product, kStudyPercentiles, level)});
+  }
   if (study.design == Design::kSobol) {
     SobolOptions so;
     so.seed = study.seed;

@@ -86,7 +86,8 @@ Eigen::MatrixXd FaceCouplingMatrix(int slices, double width, FaceCoupling coupli
   return w;
 }
 
-double FaceWidthModel::BodyLead::Removed(double z) const {
+double LeadRemoved(double crowning, double end_relief, double end_relief_length, double width,
+                   double z) {
   double c = 0;
   if (crowning > 0) c += crowning * (2 * z / width) * (2 * z / width);
   if (end_relief > 0) {
@@ -94,6 +95,10 @@ double FaceWidthModel::BodyLead::Removed(double z) const {
     if (into > 0) c += end_relief * into / end_relief_length;
   }
   return c;
+}
+
+double FaceWidthModel::BodyLead::Removed(double z) const {
+  return LeadRemoved(crowning, end_relief, end_relief_length, width, z);
 }
 
 FaceWidthModel::FaceWidthModel(const FaceWidthSpec& spec, const geometry::Stage& stage,
@@ -273,18 +278,20 @@ std::vector<MeshFaceLoad> FaceLoads(const geometry::Stage& stage, int slices,
     f.line_load[static_cast<std::size_t>(std::min(c.slice, slices - 1))] +=
         force(static_cast<Eigen::Index>(j)) / dz;
   }
-  for (MeshFaceLoad& f : out) {
-    double sum = 0;
-    for (double w : f.line_load) sum += w;
-    f.mean = sum / slices;
-    const auto top = std::max_element(f.line_load.begin(), f.line_load.end());
-    f.largest_slice = static_cast<int>(top - f.line_load.begin());
-    const double b = f.ring_mesh ? b_pr : b_sp;
-    f.width = b;
-    f.largest_z = SliceCentre(f.largest_slice, slices, b);
-    f.k_h_beta = f.mean > 0 ? *top / f.mean : 1.0;
-  }
+  for (MeshFaceLoad& f : out) SummariseLineLoad(f.ring_mesh ? b_pr : b_sp, &f);
   return out;
+}
+
+void SummariseLineLoad(double width, MeshFaceLoad* f) {
+  const int slices = static_cast<int>(f->line_load.size());
+  double sum = 0;
+  for (double w : f->line_load) sum += w;
+  f->mean = sum / slices;
+  const auto top = std::max_element(f->line_load.begin(), f->line_load.end());
+  f->largest_slice = static_cast<int>(top - f->line_load.begin());
+  f->largest_z = SliceCentre(f->largest_slice, slices, width);
+  f->width = width;
+  f->k_h_beta = f->mean > 0 ? *top / f->mean : 1.0;
 }
 
 std::vector<std::vector<compliance::FilletStress>> SliceFilletStresses(

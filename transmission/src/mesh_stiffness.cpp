@@ -10,7 +10,9 @@
 
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/local_term.hpp"
+#include "epicycle/transmission/accumulator.hpp"
 #include "epicycle/transmission/geometric_iteration.hpp"
+#include "epicycle/transmission/pair_face_width.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 #include "ordered_chunks.hpp"
 
@@ -29,6 +31,7 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
     s.torque = scene.pair_torque;
     s.gap_window = scene.gap_window;
     s.damage = scene.damage;
+    s.face_width = scene.face_width;
     return s;
   }
   if (stage == nullptr) throw std::invalid_argument("MakeMeshPair: a stage scene needs its stage");
@@ -92,9 +95,9 @@ namespace {
 // One position: the contact problem of the pair with gear 1's moment equilibrium (gear 2 held),
 // solved again at the moved pose until the rotation settles.
 MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
-                       const geometry::GearPair& pair, const FePairCompliance& compliance,
-                       const MeshStiffnessOptions& options, solvers::ContactSolver& solver,
-                       double angle) {
+                       const PairFaceWidth& faces, const geometry::GearPair& pair,
+                       const FePairCompliance& compliance, const MeshStiffnessOptions& options,
+                       solvers::ContactSolver& solver, double angle) {
   MeshSample out;
   out.angle = angle;
   geometry::PairPoses poses = pair.Poses(angle);
@@ -133,6 +136,9 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
             parts.back().overlap -= strips[k].depth;
           }
           contacts = std::move(parts);
+        } else if (faces.active()) {
+          faces.Expand(&contacts, &d.compliance);  // slice s of contact j at j S + s
+          strips.assign(contacts.size(), ContactStrip{1.0 / faces.slices(), 0.0, 0});
         } else {
           strips.assign(contacts.size(), ContactStrip{});
         }
@@ -180,6 +186,7 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
   out.poses = built;
   out.contacts = contacts;
   out.force = solution.force;
+  if (faces.active()) out.face_load = faces.Loads(solution.force);
   if (compliance.has_root_stress()) {
     out.fillet_stress = compliance.FilletStresses(pair, built, contacts, solution.force);
     if (!out.fillet_stress.empty())  // the pair's two bodies
@@ -236,6 +243,13 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geome
   r.samples.resize(static_cast<std::size_t>(options.positions));
   RootStressTracker root_stress(setup.gears);
   const DamageModel damage(setup.damage, setup.gears);
+  const PairFaceWidth faces(setup.face_width, pair);
+  if (faces.active() && !damage.empty())
+    throw std::invalid_argument(
+        "mesh stiffness: pits with slices of the face width are not built "
+        "for a gear pair (the stage model has them)");
+  r.slices = faces.slices();
+  Accumulator k_h_beta;
   internal::RunOrderedChunks(
       options.positions, options.threads, options.backend,
       [&](int k, bool, solvers::ContactSolver& solver) {
@@ -246,7 +260,7 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geome
                               static_cast<double>(options.cycles) * k) /
                              options.positions;
         r.samples[static_cast<std::size_t>(k)] =
-            SolveSample(setup, damage, pair, compliance, options, solver, angle);
+            SolveSample(setup, damage, faces, pair, compliance, options, solver, angle);
       },
       [&](int k) {
         // In the order of the positions: the statistics do not depend on the thread count.
@@ -259,12 +273,21 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geome
           for (const ToothPairLoad& p : s.pairs)
             r.peak_pair_stiffness = std::max(r.peak_pair_stiffness, p.stiffness);
           root_stress.Add(s.fillet_stress, s.root_stress, s.angle);
+          if (faces.active()) {
+            k_h_beta.Add(s.face_load.k_h_beta);
+            if (s.face_load.k_h_beta > r.k_h_beta_max) {
+              r.k_h_beta_max = s.face_load.k_h_beta;
+              r.k_h_beta_angle = s.angle;
+              r.largest_z = s.face_load.largest_z;
+            }
+          }
         } else {
           ++r.failed;
         }
         if (on_sample) on_sample(s);
       });
   r.mean_stiffness = good > 0 ? sum / good : 0.0;
+  if (faces.active()) r.k_h_beta_mean = k_h_beta.mean();
   r.root_stress = root_stress.Result();
   if (good == 0) r.min_stiffness = 0.0;
   return r;

@@ -148,29 +148,7 @@ void VisitRecord(const SweepSummary& s, RecordVisitor& visit) {
   visit.Number("transmission_error_max_urad", s.transmission_error_max * 1e6);
   visit.Number("sun_displacement_max_um", s.sun_displacement_max * 1e6);
   visit.Stresses(s);
-  if (!s.face_width.empty()) {
-    visit.BeginList("face_width");
-    for (const MeshFaceSummary& f : s.face_width) {
-      visit.Item();
-      visit.Text("mesh", f.mesh);
-      visit.Number("K_Hbeta_max", f.k_h_beta_max);
-      visit.Number("K_Hbeta_mean", f.k_h_beta_mean);
-      visit.Number("carrier_angle_at_max_deg", f.carrier_angle * 180 / std::numbers::pi);
-      visit.Number("largest_load_z_mm", f.largest_z * 1e3);
-      visit.Number("K_gamma_K_Hbeta_max", f.k_gamma_k_h_beta_max);
-      if (f.stresses) {
-        visit.Number("root_stress_max_MPa", f.root_stress_max * 1e-6);
-        visit.Text("root_stress_gear", f.root_stress_gear);
-        visit.Number("root_stress_z_mm", f.root_stress_z * 1e3);
-        visit.Number("root_stress_carrier_angle_deg", f.root_stress_angle * 180 / std::numbers::pi);
-        visit.Number("hertz_pressure_max_MPa", f.hertz_pressure_max * 1e-6);
-        visit.Number("hertz_pressure_z_mm", f.hertz_pressure_z * 1e3);
-        visit.Number("hertz_pressure_carrier_angle_deg",
-                     f.hertz_pressure_angle * 180 / std::numbers::pi);
-      }
-    }
-    visit.EndList();
-  }
+  VisitFaceWidth(visit, s.face_width);
   if (!s.helical_mean.planets.empty()) {
     // Means over the converged positions (helical_slices.hpp): +z along the gears' axis.
     visit.BeginObject("helical");

@@ -912,10 +912,13 @@ Scene ParseScene(const std::string& text, const std::string& source) {
   if (is_pair) {
     ReadPair(top, s, fits, fit_gears, fitted);
     ReadDamage(top, s, {{"gear1", &s.pair.gear1}, {"gear2", &s.pair.gear2}});
-    if (top.Has("face_width"))
-      top.Fail("face_width", "a table of a pair scene",
-               "slices of the face width are built for stage scenes (docs/scenes.md, \"Face "
-               "width\")");
+    // Slices and the leads of gear1 and gear2 (a pin's tilt and the carrier belong to stages).
+    ReadFaceWidth(top, s, {{"gear1", &s.pair.gear1}, {"gear2", &s.pair.gear2}});
+    if (s.face_width.active() && !s.damage.pits.empty())
+      top.Fail("face_width",
+               "slices = " + std::to_string(s.face_width.slices) + " with [[damage.pit]]",
+               "pits with slices of the face width are built for stage scenes; give the pair's "
+               "pits or its slices");
     top.Done();
     const bool internal = s.pair.gear2.kind == GearKind::kInternal;
     ContactRatioWarning(s.pair.gear1, s.pair.gear2, internal, s.pair.centre_distance,

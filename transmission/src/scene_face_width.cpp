@@ -23,6 +23,14 @@ constexpr double kDefaultSlices = 20;  // docs/scenes.md, "Face width": the conv
 struct MeshBound {
   double change = 0;
   std::string key;
+  double largest = 0;
+  void Add(double part, const std::string& where) {
+    change += part;
+    if (part > largest) {
+      largest = part;
+      key = where;
+    }
+  }
 };
 
 }  // namespace
@@ -33,7 +41,15 @@ void ReadFaceWidth(TableReader& top, Scene& s,
   if (!t) return;
   FaceWidthSpec& f = s.face_width;
   const geometry::StageSpec& st = s.stage;
-  const double b_planet = st.planet.face_width;
+  const bool pair = s.kind == SceneKind::kPair;
+  // The face the slices divide: the planet's in a stage, the narrower gear's in a pair.
+  const double b_planet =
+      pair ? std::min(s.pair.gear1.face_width, s.pair.gear2.face_width) : st.planet.face_width;
+  for (const char* key : {"pin_tilt", "carrier_torsional_stiffness_Nm_per_rad"})
+    if (pair && t->Has(key))
+      t->Fail(key, "given in a pair scene",
+              "a planet pin's tilt and the carrier's wind-up belong to stage scenes; a pair's "
+              "misalignment is a lead slope ([[face_width.lead]] slope_um of gear1 or gear2)");
   const bool has_more = t->Has("pin_tilt") || t->Has("lead") ||
                         t->Has("carrier_torsional_stiffness_Nm_per_rad");
   f.slices = static_cast<int>(t->IntegerOr(
@@ -131,54 +147,75 @@ void ReadFaceWidth(TableReader& top, Scene& s,
     r.Done();
     f.leads.push_back(l);
   }
-  // The gap change across each mesh against the contact search's window: the search runs in the
-  // mid-plane and finds the contacts whose gap there is within the window; a slice closer than
-  // the mid-plane by more than half the window could carry where the search found nothing.
-  if (f.active()) {
-    const double ratio = static_cast<double>(st.ring.teeth) / st.sun.teeth;
-    const double carrier_torque = std::abs(s.loads.sun_torque) * (1 + ratio);
-    const double wind_up = f.carrier_torsional_stiffness > 0
-                               ? carrier_torque / f.carrier_torsional_stiffness *
-                                     st.carrier_radius / f.carrier_plate_distance
-                               : 0.0;
-    auto lead_of = [&](const std::string& gear) -> const LeadSpec* {
-      for (const LeadSpec& l : f.leads)
-        if (l.gear == gear) return &l;
-      return nullptr;
-    };
-    for (int i = 0; i < st.planets; ++i) {
-      const std::string planet = "planet" + std::to_string(i + 1);
-      for (const std::string& mate : {std::string("sun"), std::string("ring")}) {
-        const GearSpec& other = mate == "sun" ? st.sun : st.ring;
-        const double b = std::min(b_planet, other.face_width);
-        MeshBound bound;
-        double largest = 0;
-        auto add = [&](double change, const std::string& key) {
-          bound.change += change;
-          if (change > largest) {
-            largest = change;
-            bound.key = key;
-          }
-        };
-        for (const PinTilt& p : f.pin_tilts)
-          if (p.planet == i) add(0.5 * b * std::hypot(p.radial, p.tangential), p.where);
-        if (wind_up > 0) add(0.5 * b * wind_up, t->Where("carrier_torsional_stiffness_Nm_per_rad"));
-        for (const std::string& g : {planet, mate}) {
-          if (const LeadSpec* l = lead_of(g))
-            add(0.5 * std::abs(l->slope) + l->crowning + l->end_relief, l->where);
-        }
-        if (bound.change > 0.5 * s.gap_window)
-          throw std::invalid_argument(
-              bound.key + ": the gap changes by up to " + SceneNum(bound.change / kUm) +
-              " um across the " + (mate == "sun" ? "sun-" + planet : planet + "-ring") +
-              " mesh, more than half the contact search's gap window (contact.gap_window_um = " +
-              SceneNum(s.gap_window / kUm) +
-              "): the search runs in the mid-plane and would miss a slice's contact; widen the "
-              "window or reduce the misalignment");
-      }
-    }
-  }
+  if (f.carrier_torsional_stiffness > 0)
+    f.carrier_where = t->Where("carrier_torsional_stiffness_Nm_per_rad");
+  CheckFaceGapWindow(s);
   t->Done();
 }
 
 }  // namespace epicycle::transmission::internal
+
+namespace epicycle::transmission {
+
+namespace {
+
+// Refuses a mesh whose gap changes across the face by more than half the search's window.
+void CheckMeshBound(const internal::MeshBound& bound, const std::string& mesh, const Scene& s) {
+  if (bound.change > 0.5 * s.gap_window)
+    throw std::invalid_argument(
+        bound.key + ": the gap changes by up to " +
+        internal::SceneNum(bound.change / internal::kUm) + " um across the " + mesh +
+        " mesh, more than half the contact search's gap window (contact.gap_window_um = " +
+        internal::SceneNum(s.gap_window / internal::kUm) +
+        "): the search runs in the mid-plane and would miss a slice's contact; widen the "
+        "window or reduce the misalignment");
+}
+
+}  // namespace
+
+// The gap change across each mesh against the contact search's window: the search runs in the
+// mid-plane and finds the contacts whose gap there is within the window; a slice closer than the
+// mid-plane by more than half the window could carry where the search found nothing.
+void CheckFaceGapWindow(const Scene& s) {
+  const FaceWidthSpec& f = s.face_width;
+  const geometry::StageSpec& st = s.stage;
+  if (!f.active()) return;
+  if (s.kind == SceneKind::kPair) {
+    internal::MeshBound bound;
+    for (const LeadSpec& l : f.leads)
+      bound.Add(0.5 * std::abs(l.slope) + l.crowning + l.end_relief, l.where);
+    CheckMeshBound(bound, "gear1-gear2", s);
+    return;
+  }
+  const double b_planet = st.planet.face_width;
+  const double ratio = static_cast<double>(st.ring.teeth) / st.sun.teeth;
+  const double carrier_torque = std::abs(s.loads.sun_torque) * (1 + ratio);
+  const double wind_up = f.carrier_torsional_stiffness > 0
+                             ? carrier_torque / f.carrier_torsional_stiffness * st.carrier_radius /
+                                   f.carrier_plate_distance
+                             : 0.0;
+  auto lead_of = [&](const std::string& gear) -> const LeadSpec* {
+    for (const LeadSpec& l : f.leads)
+      if (l.gear == gear) return &l;
+    return nullptr;
+  };
+  for (int i = 0; i < st.planets; ++i) {
+    const std::string planet = "planet" + std::to_string(i + 1);
+    for (const std::string& mate : {std::string("sun"), std::string("ring")}) {
+      const geometry::GearSpec& other = mate == "sun" ? st.sun : st.ring;
+      const double b = std::min(b_planet, other.face_width);
+      internal::MeshBound bound;
+      auto add = [&](double change, const std::string& key) { bound.Add(change, key); };
+      for (const PinTilt& p : f.pin_tilts)
+        if (p.planet == i) add(0.5 * b * std::hypot(p.radial, p.tangential), p.where);
+      if (wind_up > 0) add(0.5 * b * wind_up, f.carrier_where);
+      for (const std::string& g : {planet, mate}) {
+        if (const LeadSpec* l = lead_of(g))
+          add(0.5 * std::abs(l->slope) + l->crowning + l->end_relief, l->where);
+      }
+      CheckMeshBound(bound, mate == "sun" ? "sun-" + planet : planet + "-ring", s);
+    }
+  }
+}
+
+}  // namespace epicycle::transmission

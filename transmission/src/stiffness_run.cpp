@@ -28,6 +28,13 @@ void VisitResult(const MeshStiffnessResult& r, RecordVisitor& visit) {
   visit.Number("max_mesh_stiffness_N_per_m", r.max_stiffness);
   if (!r.root_stress.empty())
     visit.RootStress("root_stress", r.root_stress, "angle_deg", geometry::Deg(1.0));
+  if (r.slices > 1) {
+    visit.Integer("slices", r.slices);
+    visit.Number("K_Hbeta_max", r.k_h_beta_max);
+    visit.Number("K_Hbeta_mean", r.k_h_beta_mean);
+    visit.Number("angle_at_K_Hbeta_max_deg", geometry::Deg(r.k_h_beta_angle));
+    visit.Number("largest_load_z_mm", r.largest_z * 1e3);
+  }
 }
 
 // The pair's own comparison values, in the record and in its healthy twin.

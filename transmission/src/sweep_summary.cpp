@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "epicycle/transmission/record.hpp"
 
 namespace epicycle::transmission {
 
@@ -56,6 +59,85 @@ int CheckedPlanets(int planets) {
 
 }  // namespace
 
+void FaceLoadTracker::Add(const std::vector<MeshFaceLoad>& loads,
+                          const std::vector<double>& factors, double carrier_angle) {
+  if (faces_.empty()) {
+    for (const MeshFaceLoad& m : loads) {
+      MeshFaceSummary f;
+      f.planet = m.planet;
+      f.ring_mesh = m.ring_mesh;
+      f.mesh = geometry::MeshName(
+          m.planet, m.ring_mesh ? geometry::MeshKind::kPlanetRing : geometry::MeshKind::kSunPlanet);
+      f.k_h_beta_max = -1;
+      f.k_gamma_k_h_beta_max = -1;
+      f.misalignment_assembly = m.misalignment_assembly;
+      f.misalignment_deflection = m.misalignment_deflection;
+      faces_.push_back(f);
+    }
+    mean_.resize(faces_.size());
+  }
+  for (std::size_t m = 0; m < loads.size() && m < faces_.size(); ++m) {
+    const MeshFaceLoad& load = loads[m];
+    MeshFaceSummary& f = faces_[m];
+    mean_[m].Add(load.k_h_beta);
+    if (load.k_h_beta > f.k_h_beta_max) {
+      f.k_h_beta_max = load.k_h_beta;
+      f.carrier_angle = carrier_angle;
+      f.largest_z = load.largest_z;
+    }
+    const auto planet = static_cast<std::size_t>(load.planet);
+    const double factor = planet < factors.size() ? factors[planet] : kNaN;
+    f.k_gamma_k_h_beta_max = std::max(f.k_gamma_k_h_beta_max, factor * load.k_h_beta);
+    const int slices = static_cast<int>(load.line_load.size());
+    for (int s = 0; s < static_cast<int>(load.root_stress.size()); ++s) {
+      const auto k = static_cast<std::size_t>(s);
+      f.stresses = true;
+      if (load.root_stress[k] > f.root_stress_max) {
+        f.root_stress_max = load.root_stress[k];
+        f.root_stress_gear = BodyName(load.root_stress_body[k]);
+        f.root_stress_z = SliceCentre(s, slices, load.width);
+        f.root_stress_angle = carrier_angle;
+      }
+      if (load.hertz_pressure[k] > f.hertz_pressure_max) {
+        f.hertz_pressure_max = load.hertz_pressure[k];
+        f.hertz_pressure_z = SliceCentre(s, slices, load.width);
+        f.hertz_pressure_angle = carrier_angle;
+      }
+    }
+  }
+}
+
+std::vector<MeshFaceSummary> FaceLoadTracker::Result() const {
+  std::vector<MeshFaceSummary> s = faces_;
+  for (std::size_t m = 0; m < s.size(); ++m) s[m].k_h_beta_mean = mean_[m].mean();
+  return s;
+}
+
+void VisitFaceWidth(RecordVisitor& visit, const std::vector<MeshFaceSummary>& faces) {
+  if (faces.empty()) return;
+  visit.BeginList("face_width");
+  for (const MeshFaceSummary& f : faces) {
+    visit.Item();
+    visit.Text("mesh", f.mesh);
+    visit.Number("K_Hbeta_max", f.k_h_beta_max);
+    visit.Number("K_Hbeta_mean", f.k_h_beta_mean);
+    visit.Number("carrier_angle_at_max_deg", f.carrier_angle * 180 / std::numbers::pi);
+    visit.Number("largest_load_z_mm", f.largest_z * 1e3);
+    visit.Number("K_gamma_K_Hbeta_max", f.k_gamma_k_h_beta_max);
+    if (f.stresses) {
+      visit.Number("root_stress_max_MPa", f.root_stress_max * 1e-6);
+      visit.Text("root_stress_gear", f.root_stress_gear);
+      visit.Number("root_stress_z_mm", f.root_stress_z * 1e3);
+      visit.Number("root_stress_carrier_angle_deg", f.root_stress_angle * 180 / std::numbers::pi);
+      visit.Number("hertz_pressure_max_MPa", f.hertz_pressure_max * 1e-6);
+      visit.Number("hertz_pressure_z_mm", f.hertz_pressure_z * 1e3);
+      visit.Number("hertz_pressure_carrier_angle_deg",
+                   f.hertz_pressure_angle * 180 / std::numbers::pi);
+    }
+  }
+  visit.EndList();
+}
+
 SweepAccumulator::SweepAccumulator(int planets)
     : planets_(CheckedPlanets(planets)),
       lsr_(static_cast<std::size_t>(planets)),
@@ -81,52 +163,7 @@ void SweepAccumulator::Add(const PositionResult& r) {
     iterations_.Add(r.geometric_iterations);
   }
   // The load across the face width, when the positions carry slices.
-  if (!r.face_loads.empty()) {
-    const std::vector<double> factors = LoadSharingFactors(r);
-    if (faces_.empty()) {
-      for (const MeshFaceLoad& m : r.face_loads) {
-        MeshFaceSummary f;
-        f.planet = m.planet;
-        f.ring_mesh = m.ring_mesh;
-        f.mesh = geometry::MeshName(m.planet, m.ring_mesh ? geometry::MeshKind::kPlanetRing
-                                                          : geometry::MeshKind::kSunPlanet);
-        f.k_h_beta_max = -1;
-        f.k_gamma_k_h_beta_max = -1;
-        f.misalignment_assembly = m.misalignment_assembly;
-        f.misalignment_deflection = m.misalignment_deflection;
-        faces_.push_back(f);
-      }
-      face_mean_.resize(faces_.size());
-    }
-    for (std::size_t m = 0; m < r.face_loads.size() && m < faces_.size(); ++m) {
-      const MeshFaceLoad& load = r.face_loads[m];
-      MeshFaceSummary& f = faces_[m];
-      face_mean_[m].Add(load.k_h_beta);
-      if (load.k_h_beta > f.k_h_beta_max) {
-        f.k_h_beta_max = load.k_h_beta;
-        f.carrier_angle = r.carrier_angle;
-        f.largest_z = load.largest_z;
-      }
-      const double product = factors[static_cast<std::size_t>(load.planet)] * load.k_h_beta;
-      f.k_gamma_k_h_beta_max = std::max(f.k_gamma_k_h_beta_max, product);
-      const int slices = static_cast<int>(load.line_load.size());
-      for (int s = 0; s < static_cast<int>(load.root_stress.size()); ++s) {
-        const auto k = static_cast<std::size_t>(s);
-        f.stresses = true;
-        if (load.root_stress[k] > f.root_stress_max) {
-          f.root_stress_max = load.root_stress[k];
-          f.root_stress_gear = BodyName(load.root_stress_body[k]);
-          f.root_stress_z = SliceCentre(s, slices, load.width);
-          f.root_stress_angle = r.carrier_angle;
-        }
-        if (load.hertz_pressure[k] > f.hertz_pressure_max) {
-          f.hertz_pressure_max = load.hertz_pressure[k];
-          f.hertz_pressure_z = SliceCentre(s, slices, load.width);
-          f.hertz_pressure_angle = r.carrier_angle;
-        }
-      }
-    }
-  }
+  if (!r.face_loads.empty()) faces_.Add(r.face_loads, LoadSharingFactors(r), r.carrier_angle);
   // Root stresses and contact pressures, when the positions carry stresses.
   if (!r.fillet_stress.empty()) {
     root_stress_.Add(r.fillet_stress, r.root_stress, r.carrier_angle);
@@ -156,8 +193,7 @@ SweepSummary SweepAccumulator::Result() const {
   }
   s.root_stress = root_stress_.Result();
   s.contact_pressure = pressure_.Result();
-  s.face_width = faces_;
-  for (std::size_t m = 0; m < faces_.size(); ++m) s.face_width[m].k_h_beta_mean = face_mean_[m].mean();
+  s.face_width = faces_.Result();
   if (helical_count_ > 0) {
     int count = 0;
     AddHelical(helical_sum_, 1.0 / helical_count_, &s.helical_mean, &count);

@@ -39,6 +39,25 @@ def test_record_equals_the_program_summary_key_by_key_defaults_included(tmp_path
     assert r.record["status"] == r.status == "completed"
 
 
+def test_record_of_a_sliced_stage_equals_the_program_summary(tmp_path):
+    # Slices of the face width (docs/face_width.md): the record's face_width list, K_Hbeta per
+    # mesh over the run, has the program's keys and values; planet 1's radial pin tilt loads its
+    # sun mesh at -z (the end slice's centre, -11.875 mm of 25 mm in 20) as in the quasi-static run.
+    scene = scene_path("paper_stage_pin_tilt.toml")
+    out = tmp_path / "cli"
+    run_cli("dynamic", scene, "--range", "cycle", "--quiet", "--out", out)
+    j = read_json(out / "dynamic_summary.json")
+    r = epicycle.dynamic(epicycle.Scene.load(scene), range="cycle")
+    del j["provenance"]
+    assert sorted(r.record) == sorted(j)
+    assert without_times(r.record) == without_times(j)
+    meshes = {m["mesh"]: m for m in r.record["face_width"]}
+    assert sorted(meshes) == sorted(["sun-planet1", "sun-planet2", "sun-planet3",
+                                     "planet1-ring", "planet2-ring", "planet3-ring"])
+    assert meshes["sun-planet1"]["largest_load_z_mm"] == -11.875
+    assert meshes["sun-planet1"]["K_Hbeta_max"] >= meshes["sun-planet1"]["K_Hbeta_mean"] > 1.05
+
+
 def outcome(exc_type, *args, **kwargs):
     with pytest.raises(exc_type) as e:
         epicycle.dynamic(*args, range="cycle", **kwargs)

@@ -43,6 +43,32 @@ TEST_CASE("study file: bad input names the key, the value and the rule", "[unit]
     CHECK_THAT(m, Contains("bad.toml:") && Contains("variable[0].distribution = \"gauss\"") &&
                       Contains("must be one of \"normal\", \"uniform\", \"iso1328\", \"grid\""));
   }
+  SECTION("a variable along the face width on a scene without slices") {
+    // paper_stage.toml has no [face_width]: a pin tilt has no axial extent to act on.
+    const std::string m =
+        StudyError(StudyText("",
+                             "[[variable]]\nquantity = \"pin_tilt_radial\"\ngear = \"planet1\"\n"
+                             "distribution = \"normal\"\nsigma_um = 5.0\n"));
+    CHECK_THAT(m, Contains("variable[0].quantity = \"pin_tilt_radial\"") &&
+                      Contains("varies along the face width") &&
+                      Contains("[face_width] slices >= 2 needed"));
+  }
+  SECTION("a pin tilt of the sun, a normal crowning") {
+    const std::string scene =
+        "scene = \"" + std::string(EPICYCLE_SCENES_DIR) + "/paper_stage_pin_tilt.toml\"";
+    const std::string sun =
+        StudyError("[study]\nname = \"t\"\n" + scene +
+                   "\n[[variable]]\nquantity = \"pin_tilt_tangential\"\ngear = \"sun\"\n"
+                   "distribution = \"normal\"\nsigma_um = 5.0\n");
+    CHECK_THAT(sun, Contains("variable[0].gear = \"sun\"") &&
+                        Contains("pin-hole errors exist for planets only"));
+    const std::string crowning =
+        StudyError("[study]\nname = \"t\"\n" + scene +
+                   "\n[[variable]]\nquantity = \"crowning\"\ngear = \"sun\"\n"
+                   "distribution = \"normal\"\nsigma_um = 5.0\n");
+    CHECK_THAT(crowning,
+               Contains("variable[0].distribution = \"normal\"") && Contains("a crowning is >= 0"));
+  }
   SECTION("negative sigma") {
     const std::string m = StudyError(
         StudyText("",

@@ -172,6 +172,11 @@ const std::vector<Case> kCases = {
      {"face_width.pin_tilt[0].planet (radial_um = 0, tangential_um = 200 over 25 mm)",
       "the gap changes by up to 100 um across the sun-planet2 mesh",
       "more than half the contact search's gap window (contact.gap_window_um = 100)"}},
+    // A gear pair's slices take the leads of gear1 and gear2; a pin and a carrier are a stage's.
+    {"face_pair_pin_tilt.toml",
+     false,
+     {"face_width.pin_tilt = given in a pair scene", "belong to stage scenes",
+      "[[face_width.lead]] slope_um of gear1 or gear2"}},
     {"warn_runout_above_backlash.toml",
      true,
      {"errors.runout[0].amplitude_um = 200", "larger than the normal backlash j_n = 150 um"}},

@@ -8,6 +8,7 @@
 
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/transmission/root_stress.hpp"
+#include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/accumulator.hpp"
 #include "epicycle/transmission/validity.hpp"
 
@@ -27,6 +28,10 @@ struct DynamicSummary {
   /// Per body, when the samples carry root stresses (else empty): extremes with their time [s]
   /// (RootStressSummary's x) and the largest range at one fillet point.
   std::vector<transmission::RootStressSummary> root_stress;
+  /// With slices of the face width (DynamicSample::face_loads), per mesh over the steps: K_Hβ's
+  /// largest and mean, the carrier angle and z of the largest, and the largest L_i·K_Hβ with
+  /// L_i = n·LSR_i of the same step (transmission::MeshFaceSummary); else empty.
+  std::vector<transmission::MeshFaceSummary> face_width;
 };
 
 /// The statistics of a run gathered one output step at a time, in the order of the steps (the
@@ -44,6 +49,7 @@ class DynamicAccumulator {
   std::vector<transmission::Accumulator> lsr_;
   transmission::Accumulator te_, orbit_, k_gamma_, pair_force_;
   std::optional<transmission::RootStressTracker> root_stress_;
+  transmission::FaceLoadTracker faces_;
 };
 
 /// Summary of the samples: DynamicAccumulator over them.

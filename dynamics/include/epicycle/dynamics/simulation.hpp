@@ -21,6 +21,7 @@
 #include <Eigen/Dense>
 
 #include "epicycle/dynamics/dynamic_model.hpp"
+#include "epicycle/transmission/face_width.hpp"
 #include "epicycle/transmission/root_stress.hpp"
 #include "epicycle/transmission/run_status.hpp"
 
@@ -110,6 +111,10 @@ struct DynamicSample {
   std::vector<compliance::FilletStress> fillet_stress;
   /// Each gear's extremes of fillet_stress (SummariseRootStress, body order; empty with it).
   std::vector<transmission::GearRootStress> root_stress;
+  /// With slices of the face width (the scene's [face_width], docs/face_width.md), each mesh's
+  /// load per unit width across the face under the contact forces with their damping, its K_Hβ
+  /// and where the largest sits (transmission::FaceLoads); empty for the plane model.
+  std::vector<transmission::MeshFaceLoad> face_loads;
 };
 
 struct SimulationStats {

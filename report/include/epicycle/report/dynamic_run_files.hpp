@@ -10,13 +10,15 @@
 #include <nlohmann/json.hpp>
 
 #include "epicycle/dynamics/dynamic_run.hpp"
+#include "epicycle/report/face_width_files.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/report/spectrum_files.hpp"
 
 namespace epicycle::report {
 
 /// Writes OUT/dynamic_steps.csv, _pairs.csv and _bearings.csv step by step (DynamicRunFiles),
-/// with a spectrum OUT/dynamic_vibration.csv (VibrationFiles), and gathers the plots. A run whose
+/// with a spectrum OUT/dynamic_vibration.csv (VibrationFiles), and gathers the plots; with slices
+/// of the face width, K_Hβ per mesh in the steps file and over the run in OUT/dynamic_k_hbeta.svg. A run whose
 /// quasi-static start failed gets its folder and summary only.
 class DynamicRunOutput : public dynamics::DynamicSink {
  public:
@@ -43,6 +45,7 @@ class DynamicRunOutput : public dynamics::DynamicSink {
   std::unique_ptr<DynamicRunFiles> files_;
   std::unique_ptr<DynamicPlots> plots_;
   std::optional<VibrationFiles> vibration_;
+  std::optional<KHBetaPlot> k_h_beta_;  ///< with slices of the face width
 };
 
 /// The run's header on the console: scene, support, torque, speed and mesh frequency, the tables'

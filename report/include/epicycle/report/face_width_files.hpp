@@ -9,10 +9,42 @@
 #include <nlohmann/json.hpp>
 
 #include "epicycle/report/files.hpp"
+#include "epicycle/geometry/stage.hpp"
 #include "epicycle/report/svg_plot.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/sweep_summary.hpp"
 
 namespace epicycle::report {
+
+/// The meshes of a stage in FaceLoads' order (sun–planet meshes of planets 1…, then the
+/// planet–ring meshes): their names ("sun-planet1") and face widths [m].
+struct FaceMeshes {
+  std::vector<std::string> names;
+  std::vector<double> widths;
+};
+FaceMeshes StageFaceMeshes(const geometry::Stage& stage);
+
+/// The console's table of a run's face loads per mesh ("" without slices): K_Hβ's largest and
+/// mean, the carrier angle and z of the largest, the largest L_i K_Hβ.
+std::string FaceWidthText(const std::vector<transmission::MeshFaceSummary>& faces);
+
+/// K_Hβ per mesh over a run, gathered one state at a time, drawn as one line per mesh.
+class KHBetaPlot {
+ public:
+  explicit KHBetaPlot(std::vector<std::string> meshes) : meshes_(std::move(meshes)) {
+    x_.resize(meshes_.size());
+    k_.resize(meshes_.size());
+  }
+  /// One state at `x` (carrier angle [deg], time [ms]): each mesh's K_Hβ.
+  void Add(double x, const std::vector<transmission::MeshFaceLoad>& loads);
+  bool empty() const;
+  /// The plot's SVG document.
+  std::string Svg(const std::string& title, const std::string& x_label) const;
+
+ private:
+  std::vector<std::string> meshes_;
+  std::vector<std::vector<double>> x_, k_;
+};
 
 /// BASE_face_load.csv: one line per position and mesh (carrier_deg, mesh, converged, K_Hbeta,
 /// the largest line load's z, the mean and each slice's line load [N/mm]); BASE_face_load.svg (a
@@ -40,7 +72,7 @@ class FaceLoadFiles {
   // The maps: per mesh, columns_ × slices_ line loads [N/mm] (the largest of the positions that
   // fall in a column), NaN where none converged; K_Hβ per mesh and position.
   std::vector<std::vector<double>> map_;
-  std::vector<std::vector<double>> angle_, k_h_beta_;
+  KHBetaPlot k_h_beta_;
   double first_angle_ = 0, last_angle_ = 0;
   int seen_ = 0;
 };

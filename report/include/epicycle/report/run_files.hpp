@@ -139,14 +139,17 @@ class DynamicRunFiles {
   /// @throws std::runtime_error naming a file that cannot be written.
   /// `root_stress` (the scene's stresses): each step's line ends with each gear's largest
   /// tensile and compressive root stress, sigma_t_<gear>_MPa and sigma_c_<gear>_MPa.
+  /// `face_meshes` (slices of the face width; StageFaceMeshes' names): each step's line ends with
+  /// each mesh's K_Hbeta_<mesh> and largest_z_mm_<mesh> (the centre of its most loaded slice).
   DynamicRunFiles(const std::string& base, const nlohmann::json& provenance, int planets,
-                  bool root_stress = false);
+                  bool root_stress = false, std::vector<std::string> face_meshes = {});
   void Write(const dynamics::DynamicSample& s);
   void Close();
 
  private:
   CsvFile pairs_, bearings_, steps_;  // created, and written per step, in this order
   int bodies_ = 0;                     // root-stress columns: one pair per body, 0 without
+  std::size_t face_meshes_ = 0;        // face-load columns: one pair per mesh, 0 without
 };
 
 /// BASE_lsr.svg, BASE_te.svg and BASE_orbit.svg of a run over `span`, gathered one output step
@@ -208,8 +211,10 @@ class MeshStiffnessFile {
   /// (+ or -: the σ = ±1 side), sigma_t_<gear>_arc_mm (from the space centre line), the same for
   /// sigma_c_<gear>.
   /// @throws std::runtime_error naming the file if it cannot be written.
+  /// `slices` > 1 (slices of the face width): each line ends with the position's K_Hbeta and
+  /// largest_z_mm (the centre of its most loaded slice).
   MeshStiffnessFile(const std::string& path, const nlohmann::json& provenance, double face_width,
-                    const std::vector<std::string>& stress_gears = {});
+                    const std::vector<std::string>& stress_gears = {}, int slices = 1);
   void Write(const transmission::MeshSample& s);
   void Close();
 
@@ -217,6 +222,7 @@ class MeshStiffnessFile {
   CsvFile csv_;
   double face_width_;
   int bodies_ = 0;  // root-stress columns: one group per gear, 0 without
+  bool faces_ = false;  // face-load columns
 };
 
 /// The console summary of `epicycle stiffness`: mean and peak single-pair stiffness beside ISO

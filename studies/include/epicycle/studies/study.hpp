@@ -26,6 +26,15 @@ enum class Quantity {
   /// depth q of one of the scene's root cracks [m] (compliance::RootCrack::depth: a polyline's
   /// segments scaled alike); a case with its own crack builds its own damaged rows (cached)
   kCrackDepth,
+  /// A planet pin's tilt (the scene's [[face_width.pin_tilt]]): its axis' displacement over the
+  /// planet's face width b [m], radial (outward at +z) or tangential (counter-clockwise at +z);
+  /// the case's slope is the value over b. Needs the scene's slices of the face width.
+  kPinTiltRadial,
+  kPinTiltTangential,
+  /// A gear's lead slope deviation f_Hβ [m] and its crowning C_β ≥ 0 [m] (the scene's
+  /// [[face_width.lead]] slope_um, crowning_um). Need the scene's slices of the face width.
+  kLeadSlope,
+  kCrowning,
 };
 
 /// The factor from a quantity's study-file unit to SI (µm: 1e-6; mm: 1e-3; N·m and fractions: 1)
@@ -115,6 +124,10 @@ struct StudySpec {
   /// also gives every gear's safety factors from its own run (transmission::RateStage's model
   /// columns: S_F from the largest root tension, S_H from the largest line-of-action pressure).
   bool Rated() const;
+  /// With slices of the face width (the scene's [face_width]): each mesh's name in
+  /// transmission::FaceLoads' order ("sun-planet1", …, "planet1-ring", …), whose K_Hβ and K_γ·K_Hβ
+  /// every case reports; else empty.
+  std::vector<std::string> FaceMeshes() const;
   /// True when a variable changes the bodies' compliance (a crack's depth): each case then
   /// builds its own tables (from the cache) instead of sharing the nominal ones.
   bool VariesBodies() const;

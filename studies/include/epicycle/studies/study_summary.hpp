@@ -26,6 +26,14 @@ struct GearStressStatistics {
   SampleSummary s_f, s_h;
 };
 
+/// One mesh's face loads over a study's ok cases (the rows' K_Hbeta_<mesh>,
+/// K_gamma_K_Hbeta_<mesh>) [-].
+struct MeshFaceStatistics {
+  std::string mesh;
+  SampleSummary k_h_beta;          ///< each case's largest K_Hβ over its sweep
+  SampleSummary k_gamma_k_h_beta;  ///< each case's largest L_i·K_Hβ at one position
+};
+
 struct StudySummary {
   long cases = 0;   ///< rows [-]
   long failed = 0;  ///< rows not completed (left out of the statistics) [-]
@@ -44,6 +52,8 @@ struct StudySummary {
   std::vector<Exceedance> k_gamma_exceedance;
   /// Per gear of StudySpec::StressGears (none without stresses).
   std::vector<GearStressStatistics> root_stress;
+  /// Per mesh of StudySpec::FaceMeshes (none without slices of the face width).
+  std::vector<MeshFaceStatistics> face_width;
   /// With the Sobol design: the indices of every output over all rows, their bootstrap seeded by
   /// the study's seed (reproducible intervals) at the summary's level.
   std::optional<SobolSummary> sobol;

@@ -93,6 +93,7 @@ struct FaceWidthSpec {
   double carrier_torsional_stiffness = 0;
   double carrier_plate_distance = 0;  ///< L [m], > 0 when the stiffness is given
   int carrier_output_side = 1;        ///< the output plate at z = +L/2 (+1) or −L/2 (−1)
+  std::string carrier_where;          ///< "file:line: face_width.carrier_..." for messages
   bool active() const { return slices > 1; }
 };
 
@@ -112,6 +113,11 @@ inline double SliceCentre(int slice, int slices, double width) {
 }
 /// z_s [m] of the slices of a face of width b.
 std::vector<double> SliceCentres(int slices, double width);
+
+/// c(z) [m]: what a lead's crowning C_β (2z/b)² and end relief C_I ((|z| − (b/2 − L_I))/L_I)
+/// over the last L_I of each end remove at z of a face of width b [m] (the header's c_X).
+double LeadRemoved(double crowning, double end_relief, double end_relief_length, double width,
+                   double z);
 
 /// The face-width model of a stage, resolved against its bodies once: every body's axis slope,
 /// lead slope and modifications, and the coupling matrix of each mesh's face width.
@@ -194,6 +200,10 @@ struct MeshFaceLoad {
   std::vector<double> root_stress, hertz_pressure;
   std::vector<int> root_stress_body;  ///< per slice: the gear of root_stress (kSunBody, ...)
 };
+
+/// Completes a mesh's face load from its line loads w_s (f.line_load, slices of a face of width
+/// `width` [m]): the mean, K_Hβ = max/mean (1 without load), the largest slice and its z.
+void SummariseLineLoad(double width, MeshFaceLoad* f);
 
 /// The root stresses of a sliced state, slice by slice (docs/model.md §10, "Stresses across the
 /// face"): slice s is the plane model per unit width at its own line load w_s, and the plane

@@ -12,6 +12,7 @@
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/transmission/damage.hpp"
+#include "epicycle/transmission/face_width.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/root_stress.hpp"
 #include "epicycle/transmission/scene.hpp"
@@ -30,6 +31,9 @@ struct MeshPairSetup {
   /// The scene's pits (those on `gears`): the contacts on a pitted flank are split into strips
   /// of the face width as in the stage model (damage.hpp).
   Damage damage;
+  /// Slices of the face width with the leads of gear1 and gear2 (a pair scene's [face_width],
+  /// pair_face_width.hpp); one slice for a stage's mesh (the plane pair).
+  FaceWidthSpec face_width;
 };
 
 /// For a pair scene, `mesh` may be empty or "gear1-gear2". For a stage scene it names a mesh of
@@ -98,6 +102,9 @@ struct MeshSample {
   std::vector<compliance::FilletStress> fillet_stress;
   /// Each gear's extremes of fillet_stress (SummariseRootStress, body order; empty with it).
   std::vector<GearRootStress> root_stress;
+  /// With slices of the face width (MeshPairSetup::face_width): the load per unit width across
+  /// the face, K_Hβ and where the largest sits; else empty line loads.
+  MeshFaceLoad face_load;
 };
 
 struct MeshStiffnessResult {
@@ -113,6 +120,10 @@ struct MeshStiffnessResult {
   /// stresses (else empty): the extremes with the gear-1 rotation where they occur
   /// (RootStressSummary's x [rad]) and the largest range at one fillet point.
   std::vector<RootStressSummary> root_stress;
+  /// With slices of the face width (else slices = 1 and the rest unset): K_Hβ's largest and mean
+  /// over the converged samples, the gear-1 rotation [rad] and z [m] of the largest.
+  int slices = 1;
+  double k_h_beta_max = 0, k_h_beta_mean = 0, k_h_beta_angle = 0, largest_z = 0;
   /// Per unit face width in N/(mm·µm) (= 1e9 N/m²): mean (c_γα-like) and peak single pair (c′).
   double mean_per_width() const { return mean_stiffness / face_width / 1e9; }
   double peak_pair_per_width() const { return peak_pair_stiffness / face_width / 1e9; }

@@ -153,6 +153,12 @@ bool IsHelical(const Scene& scene);
 /// @throws std::invalid_argument naming the scene's helix_angle_deg key (file:line), its value and
 ///         the rule, for a helical scene.
 void RequireSpur(const Scene& scene, const std::string& driver);
+/// With slices of the face width: the largest gap change that the pin tilts, the carrier's
+/// wind-up and the leads give across each mesh within half the contact search's gap window (the
+/// search runs in the mid-plane). Called by the scene reader, and by a driver that changes these
+/// values in a scene it has read (a study's case).
+/// @throws std::invalid_argument naming the entry that contributes most, the change and the window.
+void CheckFaceGapWindow(const Scene& scene);
 /// Same, from text (source names it in messages).
 Scene ParseScene(const std::string& text, const std::string& source);
 

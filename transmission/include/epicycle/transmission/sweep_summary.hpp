@@ -14,6 +14,8 @@
 
 namespace epicycle::transmission {
 
+class RecordVisitor;
+
 /// The load across the face width of one mesh over a sweep (slices of the face width:
 /// PositionResult::face_loads).
 struct MeshFaceSummary {
@@ -41,6 +43,25 @@ struct MeshFaceSummary {
   double hertz_pressure_max = 0;
   double hertz_pressure_z = 0, hertz_pressure_angle = 0;
 };
+
+/// The face-load statistics of every mesh (MeshFaceSummary) gathered one state at a time: the
+/// quasi-static sweep's positions and the dynamic run's output steps share it.
+class FaceLoadTracker {
+ public:
+  /// One state's face loads (FaceLoads' order), `factors` L_i = n·LSR_i per planet [-] and the
+  /// state's carrier angle [rad]. The meshes are those of the first state added.
+  void Add(const std::vector<MeshFaceLoad>& loads, const std::vector<double>& factors,
+           double carrier_angle);
+  /// Empty when no state carried face loads.
+  std::vector<MeshFaceSummary> Result() const;
+
+ private:
+  std::vector<MeshFaceSummary> faces_;
+  std::vector<Accumulator> mean_;
+};
+
+/// The summaries' `face_width` list of a record (its keys are the same in every driver's).
+void VisitFaceWidth(RecordVisitor& visit, const std::vector<MeshFaceSummary>& faces);
 
 /// Statistics over the converged positions of a sweep. With no converged position every
 /// statistic is NaN (callers print "-" or null, never the NaN).
@@ -104,8 +125,7 @@ class SweepAccumulator {
   Accumulator te_, displacement_, k_gamma_, efficiency_, friction_power_, iterations_;
   RootStressTracker root_stress_;
   ContactPressureTracker pressure_;
-  std::vector<MeshFaceSummary> faces_;
-  std::vector<Accumulator> face_mean_;
+  FaceLoadTracker faces_;
   HelicalLoads helical_sum_;
   int helical_count_ = 0;
 };
