@@ -67,7 +67,7 @@ StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& 
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     std::vector<double> k_h_beta, product;
     for (const CaseRow& r : rows) {
-      if (!r.ok || r.face_load.size() != 2 * meshes.size()) continue;
+      if (!r.ok() || r.face_load.size() != 2 * meshes.size()) continue;
       k_h_beta.push_back(r.face_load[2 * m]);
       product.push_back(r.face_load[2 * m + 1]);
     }

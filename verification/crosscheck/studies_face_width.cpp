@@ -72,7 +72,7 @@ TEST_CASE(
   // first case, the driver from its previous position: the answers differ by no more.
   double worst = 0;
   for (const studies::CaseRow& row : run.rows) {
-    REQUIRE(row.ok);
+    REQUIRE(row.ok());
     REQUIRE(row.face_load.size() == 12);
     transmission::QuasiStaticRequest q;
     q.scene = transmission::ParseScene(
