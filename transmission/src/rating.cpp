@@ -94,17 +94,19 @@ MeshContact RateMeshContact(const geometry::Stage& stage, const geometry::MeshSu
 }  // namespace
 
 FaceLoadFactorC IsoFaceLoadFactorC(const FaceLoadFactorInputs& in) {
-  for (const auto& [name, value, positive] :
-       {std::tuple{"f_ma [m]", in.assembly, false}, {"f_sh [m]", in.deflection, false},
-        {"c_gamma_alpha [N/m^2]", in.mesh_stiffness, true}, {"b [m]", in.face_width, true},
-        {"F_m [N]", in.mean_force, true}, {"h [m]", in.tooth_depth, true}})
+  for (const auto& [name, value, positive] : {std::tuple{"f_ma [m]", in.assembly, false},
+                                              {"f_sh [m]", in.deflection, false},
+                                              {"c_gamma_alpha [N/m^2]", in.mesh_stiffness, true},
+                                              {"b [m]", in.face_width, true},
+                                              {"F_m [N]", in.mean_force, true},
+                                              {"h [m]", in.tooth_depth, true}})
     if (!std::isfinite(value) || value < 0 || (positive && value == 0))
       throw std::invalid_argument(fmt::format("ISO 6336-1 method C: {} = {}: must be finite and {}",
                                               name, value, positive ? "> 0" : ">= 0"));
   constexpr double kUm = 1e-6;
   FaceLoadFactorC c;
   const double line_load = in.mean_force / in.face_width;  // F_m/b [N/m]
-  c.f_beta_x_min = 0.005 * kUm * (line_load * 1e-3);      // 0.005 µm per N/mm
+  c.f_beta_x_min = 0.005 * kUm * (line_load * 1e-3);       // 0.005 µm per N/mm
   c.f_beta_x = std::max(1.33 * in.deflection + in.assembly, c.f_beta_x_min);
   c.y_beta = std::min(0.15 * c.f_beta_x, 6 * kUm);
   c.f_beta_y = c.f_beta_x - c.y_beta;
@@ -120,8 +122,8 @@ FaceLoadFactorC IsoFaceLoadFactorC(const FaceLoadFactorInputs& in) {
 
 double TableMeshLoadFactor(int planets) {
   if (planets < 1)
-    throw std::invalid_argument(fmt::format("TableMeshLoadFactor: planets = {}: must be >= 1",
-                                            planets));
+    throw std::invalid_argument(
+        fmt::format("TableMeshLoadFactor: planets = {}: must be >= 1", planets));
   return planets <= 3 ? 1.0 : planets == 4 ? 1.2 : planets == 5 ? 1.3 : 1.4;
 }
 
@@ -130,19 +132,78 @@ void CheckRatingInputs(const Scene& scene, const std::string& asked_by) {
        {std::tuple{"bending_limit_MPa", "sigma_Flim", scene.material.bending_limit},
         {"contact_limit_MPa", "sigma_Hlim", scene.material.contact_limit}})
     if (!(value > 0))
-      throw std::invalid_argument(fmt::format(
-          "{} needs the scene's [material] {} (ISO 6336-5's {}): {} does not give it", asked_by,
-          key, symbol, scene.source));
+      throw std::invalid_argument(
+          fmt::format("{} needs the scene's [material] {} (ISO 6336-5's {}): {} does not give it",
+                      asked_by, key, symbol, scene.source));
 }
 
-StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
-                      const SweepSummary& summary, double dynamic_factor,
-                      const std::string& dynamic_source, const MotionStresses* motion,
-                      const std::array<double, 2>* mesh_stiffness) {
+namespace {
+
+// ISO 6336-1:2019 clause 7, method C, per planet mesh, fed the model's misalignment and c_γ
+// (mesh_stiffness per unit face width [N/m²], sun and ring mesh), beside the model's K_Hβ and its
+// own stresses per slice.
+void RateFaceWidth(const Scene& scene, const geometry::Stage& stage, const SweepSummary& summary,
+                   const std::array<double, 2>& mesh_stiffness, double ft, double k_table,
+                   const std::vector<double>& k_model, double ka_kv, StageRating* out) {
+  auto factor = [&](std::string symbol, double value, std::string source) {
+    out->factors.push_back({std::move(symbol), value, std::move(source)});
+  };
+  const geometry::Gear& sun = stage.sun();
+  const double km = k_table * ka_kv;  // F_m = F_t K_A K_γ K_v
+  factor("F_m", ft * km, "ISO 6336-1 method C: F_t K_A K_gamma(table) K_v [N]");
+  factor("y_beta", 0.15,
+         "ISO 6336-1 method C running-in: 0.15 F_betax, at most 6 um (case-hardened steel)");
+  factor("c_gamma_beta / c_gamma_alpha", 0.85, "ISO 6336-1 method C");
+  for (std::size_t k = 0; k < 2; ++k)
+    factor(std::string("c_gamma_alpha ") + (k == 0 ? "sun mesh" : "ring mesh") + " [N/(mm um)]",
+           mesh_stiffness[k] / 1e9,
+           "the model's mean mesh stiffness per unit face width (planet 1's mesh at the "
+           "scene's load)");
+  auto depth = [&](const geometry::Gear& g) { return std::abs(g.tip_radius() - g.root_radius()); };
+  for (const MeshFaceSummary& f : summary.face_width) {
+    const std::size_t k = f.ring_mesh ? 1 : 0;
+    const geometry::Gear& mate = f.ring_mesh ? stage.ring() : sun;
+    const geometry::Gear& planet = stage.planet(f.planet);
+    MeshFaceRating r;
+    r.mesh = f.mesh;
+    r.k_gamma_table = k_table;
+    r.k_gamma_model = k_model[static_cast<std::size_t>(f.planet)];
+    r.k_h_beta_model = f.k_h_beta_max;
+    r.iso_inputs.assembly = std::abs(f.misalignment_assembly);
+    r.iso_inputs.deflection = std::abs(f.misalignment_deflection);
+    r.iso_inputs.mesh_stiffness = mesh_stiffness[k];
+    r.iso_inputs.face_width = geometry::ContactFaceWidth(planet, mate);
+    r.iso_inputs.mean_force = ft * km;
+    // b/h: the smaller of the two gears' (ISO 6336-1), so the deeper tooth.
+    r.iso_inputs.tooth_depth = std::max(depth(planet), depth(mate));
+    r.iso = IsoFaceLoadFactorC(r.iso_inputs);
+    r.k_gamma_k_h_beta_model = f.k_gamma_k_h_beta_max;
+    r.k_gamma_k_h_beta_iso = k_table * r.iso.k_h_beta;
+    r.root_stress = r.s_f_stress = r.hertz_pressure = r.s_h_pressure = kNaN;
+    if (f.stresses && f.root_stress_max > 0) {
+      const bool is_planet = f.root_stress_gear.rfind("planet", 0) == 0;
+      r.root_stress_gear = f.root_stress_gear;
+      r.root_stress = f.root_stress_max;
+      r.s_f_stress = scene.material.bending_limit * kStressCorrection *
+                     (is_planet ? kReversedBending : 1.0) / (r.root_stress * ka_kv);
+    }
+    if (f.stresses && f.hertz_pressure_max > 0) {
+      r.hertz_pressure = f.hertz_pressure_max;
+      r.s_h_pressure = scene.material.contact_limit / (r.hertz_pressure * std::sqrt(ka_kv));
+    }
+    out->face_width.push_back(r);
+  }
+}
+
+}  // namespace
+
+StageRating RateStage(const Scene& scene, const geometry::Stage& stage, const SweepSummary& summary,
+                      double dynamic_factor, const std::string& dynamic_source,
+                      const MotionStresses* motion, const std::array<double, 2>* mesh_stiffness) {
   CheckRatingInputs(scene, "a rating");
   if (!(dynamic_factor >= 1 && std::isfinite(dynamic_factor)))
-    throw std::invalid_argument(fmt::format("RateStage: K_v = {}: must be finite and >= 1",
-                                            dynamic_factor));
+    throw std::invalid_argument(
+        fmt::format("RateStage: K_v = {}: must be finite and >= 1", dynamic_factor));
   if (!(summary.converged > 0))
     throw std::runtime_error("rating: K_gamma from the run needs a converged position, none is");
 
@@ -182,9 +243,9 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
            fmt::format("the run: max over {} positions of L_{} = n LSR_{}", summary.converged,
                        i + 1, i + 1));
   }
-  const double z_e = geometry::iso::ElasticityFactor(
-      scene.material.youngs_modulus, scene.material.poisson_ratio, scene.material.youngs_modulus,
-      scene.material.poisson_ratio);
+  const double z_e =
+      geometry::iso::ElasticityFactor(scene.material.youngs_modulus, scene.material.poisson_ratio,
+                                      scene.material.youngs_modulus, scene.material.poisson_ratio);
   factor("Z_E [sqrt(MPa)]", z_e / 1e3, "ISO 6336-2, the scene's E and nu on both gears");
   factor("Y_ST", kStressCorrection, "ISO 6336-3: the reference test gear's stress correction");
   factor("Y_M planet", kReversedBending,
@@ -213,9 +274,9 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
                               "ISO 6336-3 bending not rated: method B's form factors here are "
                               "those of an external gear cut by a rack; the model's root stress "
                               "rates it"};
-    const geometry::Gear& mate = role == 0 ? stage.planet(0)
+    const geometry::Gear& mate = role == 0                                  ? stage.planet(0)
                                  : m.kind == geometry::MeshKind::kSunPlanet ? stage.sun()
-                                                                           : stage.ring();
+                                                                            : stage.ring();
     // A helical gear: its virtual spur gear in the normal section (ISO 6336-3:2006), and Y_β.
     const double beta = s.helix.angle, c_beta = std::cos(beta);
     const geometry::HelicalMesh hm = geometry::SummariseHelicalMesh(m, g, mate);
@@ -234,8 +295,8 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
                                     .y_beta
                               : 1.0;
     const std::string who = role == 0 ? "sun" : "planets",
-                      mesh_name = m.kind == geometry::MeshKind::kSunPlanet ? "sun mesh"
-                                                                           : "ring mesh";
+                      mesh_name =
+                          m.kind == geometry::MeshKind::kSunPlanet ? "sun mesh" : "ring mesh";
     const std::string at = fmt::format(
         "ISO 6336-3 method B, {} in the {}: s_Fn = {:.3f} mm, rho_F = {:.3f} mm, h_Fe = {:.3f} "
         "mm, alpha_Fen = {}",
@@ -314,54 +375,8 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
                 "the model's own columns need the run's stresses ([model] stresses)";
     return r;
   };
-  if (faces && mesh_stiffness != nullptr) {
-    // ISO 6336-1:2019 clause 7, method C, per planet mesh, fed the model's misalignment and c_γ.
-    const double km = k_table * ka_kv;  // F_m = F_t K_A K_γ K_v
-    factor("F_m", ft * km, "ISO 6336-1 method C: F_t K_A K_gamma(table) K_v [N]");
-    factor("y_beta", 0.15,
-           "ISO 6336-1 method C running-in: 0.15 F_betax, at most 6 um (case-hardened steel)");
-    factor("c_gamma_beta / c_gamma_alpha", 0.85, "ISO 6336-1 method C");
-    for (std::size_t k = 0; k < 2; ++k)
-      factor(std::string("c_gamma_alpha ") + (k == 0 ? "sun mesh" : "ring mesh") +
-                 " [N/(mm um)]",
-             (*mesh_stiffness)[k] / 1e9,
-             "the model's mean mesh stiffness per unit face width (planet 1's mesh at the "
-             "scene's load)");
-    auto depth = [&](const geometry::Gear& g) { return std::abs(g.tip_radius() - g.root_radius()); };
-    for (const MeshFaceSummary& f : summary.face_width) {
-      const std::size_t k = f.ring_mesh ? 1 : 0;
-      const geometry::Gear& mate = f.ring_mesh ? stage.ring() : sun;
-      const geometry::Gear& planet = stage.planet(f.planet);
-      MeshFaceRating r;
-      r.mesh = f.mesh;
-      r.k_gamma_table = k_table;
-      r.k_gamma_model = k_model[static_cast<std::size_t>(f.planet)];
-      r.k_h_beta_model = f.k_h_beta_max;
-      r.iso_inputs.assembly = std::abs(f.misalignment_assembly);
-      r.iso_inputs.deflection = std::abs(f.misalignment_deflection);
-      r.iso_inputs.mesh_stiffness = (*mesh_stiffness)[k];
-      r.iso_inputs.face_width = geometry::ContactFaceWidth(planet, mate);
-      r.iso_inputs.mean_force = ft * km;
-      // b/h: the smaller of the two gears' (ISO 6336-1), so the deeper tooth.
-      r.iso_inputs.tooth_depth = std::max(depth(planet), depth(mate));
-      r.iso = IsoFaceLoadFactorC(r.iso_inputs);
-      r.k_gamma_k_h_beta_model = f.k_gamma_k_h_beta_max;
-      r.k_gamma_k_h_beta_iso = k_table * r.iso.k_h_beta;
-      r.root_stress = r.s_f_stress = r.hertz_pressure = r.s_h_pressure = kNaN;
-      if (f.stresses && f.root_stress_max > 0) {
-        const bool is_planet = f.root_stress_gear.rfind("planet", 0) == 0;
-        r.root_stress_gear = f.root_stress_gear;
-        r.root_stress = f.root_stress_max;
-        r.s_f_stress = scene.material.bending_limit * kStressCorrection *
-                       (is_planet ? kReversedBending : 1.0) / (r.root_stress * ka_kv);
-      }
-      if (f.stresses && f.hertz_pressure_max > 0) {
-        r.hertz_pressure = f.hertz_pressure_max;
-        r.s_h_pressure = scene.material.contact_limit / (r.hertz_pressure * std::sqrt(ka_kv));
-      }
-      out.face_width.push_back(r);
-    }
-  }
+  if (faces && mesh_stiffness != nullptr)
+    RateFaceWidth(scene, stage, summary, *mesh_stiffness, ft, k_table, k_model, ka_kv, &out);
   const double k_all = *std::max_element(k_model.begin(), k_model.end());
   out.gears.push_back(rate(kSunBody, {0}, k_all));
   for (int i = 0; i < n; ++i) out.gears.push_back(rate(PlanetBody(i), {0, 1}, k_model[i]));
