@@ -535,6 +535,25 @@ SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& 
   return out;
 }
 
+int JumpIndex(const std::vector<SpeedResult>& speeds, CarryState carry, double te_threshold) {
+  if (carry == CarryState::kNone)
+    throw std::invalid_argument("jump: carry = none: a jump needs a sweep that carries its state");
+  if (!(te_threshold > 0) || !std::isfinite(te_threshold))
+    throw std::invalid_argument("jump: te_threshold = " + Num(te_threshold) +
+                                " rad: must be > 0 and finite");
+  const int count = static_cast<int>(speeds.size());
+  bool above = false;
+  for (int k = 0; k < count; ++k) {
+    const int i = carry == CarryState::kUp ? k : count - 1 - k;
+    const SpeedResult& r = speeds[static_cast<std::size_t>(i)];
+    if (!r.ok()) return -1;
+    const bool a = r.te_amplitude > te_threshold;
+    if (k == 0) above = a;
+    else if (a != above) return i;
+  }
+  return -1;
+}
+
 SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options,
                              const std::function<void(const SpeedResult&)>& on_result) {
   return SweepSpeeds(base, options, PlanSpeedSweep(base, options), on_result);

@@ -232,6 +232,14 @@ SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& 
 SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options,
                              const std::function<void(const SpeedResult&)>& on_result = {});
 
+/// Where a carried sweep (options.carry ≠ kNone) leaves the response it started on: walking the
+/// speeds in the carry's order (`speeds` in the order of sun_speeds_rpm), the index of the first
+/// speed whose TE amplitude lies on the other side of `te_threshold` [rad] than the first speed's
+/// (a jump between two coexisting orbits whose amplitudes the threshold separates); −1 when none
+/// does or a speed on the way failed.
+/// @throws std::invalid_argument for carry = kNone or a threshold that is not > 0 and finite.
+int JumpIndex(const std::vector<SpeedResult>& speeds, CarryState carry, double te_threshold);
+
 /// One sun speed's dynamic model: `base` with sun_speed = rpm·π/30, the same mesh stiffnesses.
 DynamicModel ModelAtSpeed(const DynamicModel& base, double sun_speed_rpm);
 
