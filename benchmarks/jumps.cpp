@@ -108,8 +108,8 @@ int main(int argc, char** argv) try {
       report::PlotSeries seg;
       seg.colour = 0;
       seg.dashed = !stable;
-      if (stable && !named_stable) seg.name = "periodic orbits, stable", named_stable = true;
-      if (!stable && !named_unstable) seg.name = "unstable", named_unstable = true;
+      if (stable && !named_stable) seg.name = "stable orbits", named_stable = true;
+      if (!stable && !named_unstable) seg.name = "unstable orbits", named_unstable = true;
       std::size_t j = k;
       for (; j < b->points.size(); ++j) {
         const dynamics::StageBranchPoint& p = b->points[j];
@@ -160,8 +160,8 @@ int main(int argc, char** argv) try {
         report::PlotSeries pts;
         pts.points = true;
         pts.colour = sw == &ups ? 1 : 2;
-        std::snprintf(label, sizeof label, "%s-sweep, steps of %.0f rpm",
-                      sw == &ups ? "up" : "down", steps[s]);
+        std::snprintf(label, sizeof label, "%s, %.0f rpm steps", sw == &ups ? "up" : "down",
+                      steps[s]);
         pts.name = label;
         for (const dynamics::SpeedResult& r : *sw) {
           pts.x.push_back(r.sun_speed_rpm);
