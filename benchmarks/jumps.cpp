@@ -6,38 +6,36 @@
 // unstable dashed, the folds marked, the finest sweeps' points).
 //
 //   build/benchmarks/jumps [OUT_DIR] [STEP_RPM ...]   (default docs/figures; steps 200 100 50)
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "epicycle/dynamics/jumps.hpp"
 #include "epicycle/report/branch_files.hpp"
+#include "epicycle/report/files.hpp"
 #include "epicycle/report/svg_plot.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/scene.hpp"
 
 using namespace epicycle;
 
-namespace {
-
-void Write(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-}
-
-}  // namespace
-
 int main(int argc, char** argv) try {
   const std::filesystem::path dir =
       argc > 1 ? argv[1] : std::filesystem::path(EPICYCLE_SOURCE_DIR) / "docs/figures";
   std::vector<double> steps;
-  for (int k = 2; k < argc; ++k) steps.push_back(std::atof(argv[k]));
+  for (int k = 2; k < argc; ++k) {
+    char* end = nullptr;
+    const double step = std::strtod(argv[k], &end);
+    if (end == argv[k] || *end != '\0' || !(step > 0) || !std::isfinite(step)) {
+      std::fprintf(stderr, "jumps: STEP_RPM = '%s': must be a number > 0 [rpm]\n", argv[k]);
+      return 2;
+    }
+    steps.push_back(step);
+  }
   if (steps.empty()) steps = {200, 100, 50};
 
   dynamics::JumpRequest request;
@@ -111,8 +109,8 @@ int main(int argc, char** argv) try {
     plot.series.push_back(std::move(pts));
   }
   std::filesystem::create_directories(dir);
-  Write(dir / "periodic_jumps.csv", csv);
-  Write(dir / "periodic_jumps.svg", report::RenderSvg(plot));
+  report::WriteTextFile((dir / "periodic_jumps.csv").string(), csv);
+  report::WriteTextFile((dir / "periodic_jumps.svg").string(), report::RenderSvg(plot));
   std::printf("wrote %s\n", (dir / "periodic_jumps.svg").c_str());
   return 0;
 } catch (const std::exception& e) {
