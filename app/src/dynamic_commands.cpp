@@ -52,6 +52,7 @@ struct DynamicArgs {
       spectrum_skip, time_limit;
   std::optional<long> max_steps;
   int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0, periodic_points = 0;
+  std::string carry_state;  // --carry-state: empty (none), up, down
   bool periodic = false, no_cache = false, quiet = false, fd_jacobian = false, stresses = false,
        spectrum = false, rating = false;
 };
@@ -141,6 +142,13 @@ void RunDynamic(const DynamicArgs& a) {
                                 "and --time");
   if (a.speed_sweep.empty() && (a.threads != 0 || a.window_cycles != 0))
     throw std::invalid_argument("--threads and --window-cycles belong to --speed-sweep");
+  if (!a.carry_state.empty() && (a.speed_sweep.empty() || a.periodic))
+    throw std::invalid_argument("--carry-state = " + a.carry_state +
+                                ": belongs to --speed-sweep's time integration (not --periodic, "
+                                "which follows the branch itself)");
+  const dynamics::CarryState carry =
+      a.carry_state.empty() ? dynamics::CarryState::kNone
+                            : dynamics::ParseCarryState("--carry-state", a.carry_state);
   const dynamics::DynamicRequest request = Request(a);
   // The periodic orbits: over the sun speed (--speed-sweep with --periodic) or another parameter
   // (--continue); their range and the scene's period are checked before the tables.
@@ -171,6 +179,7 @@ void RunDynamic(const DynamicArgs& a) {
     sweep.window_cycles = a.window_cycles;
     sweep.harmonics = a.harmonics;
     sweep.threads = a.threads;
+    sweep.carry = carry;
     return RunSpeedSweep({a.speed_sweep, a.out, a.backend, a.quiet}, std::move(sweep));
   }
   ConsoleSink sink(a, Provenance(a.backend, &request.scene));
@@ -305,6 +314,10 @@ void RegisterDynamicCommands(CLI::App& app) {
             kHarmonics);
   AddNumber(cmd, "--threads", a.threads, "Speed sweep: worker threads (default: every core)",
             kThreads);
+  cmd->add_option("--carry-state", a.carry_state,
+                  "Speed sweep: up or down: a run-up or run-down, one speed after the other in "
+                  "that order, each from the previous speed's end state (the jumps of "
+                  "docs/periodic.md); none: each speed from rest (the default)");
   AddNumber(cmd, "--max-order", a.max_order, "Largest BDF order of CVODE (1..5)", kMaxOrder);
   AddNumber(cmd, "--max-steps", a.max_steps,
             "Integrator steps per output interval before the run stops (default 2000000)",

@@ -14,6 +14,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "epicycle/dynamics/dynamic_factor.hpp"
 #include "epicycle/dynamics/run_span.hpp"
@@ -102,6 +103,23 @@ bool PhasingExcited(const std::vector<bool>& families, int h, int sun_teeth) {
 }
 
 }  // namespace
+
+const char* CarryStateName(CarryState carry) {
+  switch (carry) {
+    case CarryState::kUp: return "up";
+    case CarryState::kDown: return "down";
+    case CarryState::kNone: break;
+  }
+  return "none";
+}
+
+CarryState ParseCarryState(const std::string& key, const std::string& name) {
+  for (CarryState c : {CarryState::kNone, CarryState::kUp, CarryState::kDown})
+    if (name == CarryStateName(c)) return c;
+  throw std::invalid_argument(key + " = '" + name +
+                              "': not a carry (give up: each speed from the previous, increasing; "
+                              "down: the same, decreasing; none: each from rest)");
+}
 
 void SpeedSweepOptions::Validate() const {
   auto bad = [](const std::string& field, double value, const std::string& rule) {
@@ -389,9 +407,21 @@ void AddDeviationParts(const DynamicModel& model, const std::vector<DynamicSampl
   }
 }
 
-// One speed, start to end; never throws for a failed computation (the result says why).
+// The state a carried sweep hands from one speed to the next (speed_sweep.hpp, "Carried state").
+struct CarriedState {
+  bool valid = false;
+  double carrier_angle = 0;  // [rad]
+  Eigen::VectorXd d, v;      // [m, rad], [m/s, rad/s]
+};
+
+// One speed, start to end; never throws for a failed computation (the result says why). With a
+// valid `from` the run starts from its state and carrier angle instead of the quasi-static
+// solution; `end` (if given) receives the state at the end of the window (invalid if the run did
+// not complete).
 SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
-                     const SpeedSweepPlan& plan, int index) {
+                     const SpeedSweepPlan& plan, int index, const CarriedState* from = nullptr,
+                     CarriedState* end = nullptr) {
+  if (end) end->valid = false;
   const double rpm = options.sun_speeds_rpm[static_cast<std::size_t>(index)];
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = ThreadCpuSeconds();
@@ -400,7 +430,9 @@ SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
   try {
     DynamicModel model = ModelAtSpeed(base, rpm);
     const double wc = std::abs(model.carrier_speed());
-    model.SetStartAngle(options.window_start - model.carrier_speed() * plan.skip_time);
+    const bool carried = from && from->valid;
+    model.SetStartAngle(carried ? from->carrier_angle
+                                : options.window_start - model.carrier_speed() * plan.skip_time);
     // Outputs: a few through the skipped part (CVODE's NORMAL mode needs no outputs there; one
     // per mesh cycle keeps the progress of a run that fails visible in its message), then the
     // window's samples, at exactly plan.window_angles.
@@ -410,15 +442,28 @@ SpeedResult RunSpeed(const DynamicModel& base, const SpeedSweepOptions& options,
     const std::size_t skipped = times.size();
     for (std::size_t s = 1; s <= plan.window_angles.size(); ++s)
       times.push_back(plan.skip_time + cycle * static_cast<double>(s) / options.outputs_per_cycle);
-    const StartOutcome start =
-        model.SolveQuasiStaticStart(options.simulation.contact, options.simulation.backend);
-    if (start.status != transmission::RunStatus::kCompleted) {
-      r.status = start.status;
-      start_failed = true;
-      throw std::runtime_error(start.message);
+    Eigen::VectorXd d0, v0;
+    if (carried) {
+      d0 = from->d;
+      v0 = from->v;
+    } else {
+      const StartOutcome start =
+          model.SolveQuasiStaticStart(options.simulation.contact, options.simulation.backend);
+      if (start.status != transmission::RunStatus::kCompleted) {
+        r.status = start.status;
+        start_failed = true;
+        throw std::runtime_error(start.message);
+      }
+      d0 = start.d;
+      v0 = Eigen::VectorXd::Zero(model.size());
     }
-    SimulationResult run =
-        Simulate(model, options.simulation, start.d, Eigen::VectorXd::Zero(model.size()), times);
+    SimulationResult run = Simulate(model, options.simulation, d0, v0, times);
+    if (end && run.completed() && !run.samples.empty()) {
+      end->valid = true;
+      end->carrier_angle = run.samples.back().carrier_angle;
+      end->d = run.samples.back().d;
+      end->v = run.samples.back().v;
+    }
     const std::vector<DynamicSample> window(
         run.samples.begin() + static_cast<std::ptrdiff_t>(std::min(skipped, run.samples.size())),
         run.samples.end());
@@ -461,6 +506,20 @@ SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& 
   const auto t1 = std::chrono::steady_clock::now();
   const std::size_t count = options.sun_speeds_rpm.size();
   out.speeds.resize(count);
+  if (options.carry != CarryState::kNone) {
+    // One after the other, each from the previous speed's end state (speed_sweep.hpp).
+    CarriedState state;
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = options.carry == CarryState::kUp ? k : count - 1 - k;
+      CarriedState next;
+      out.speeds[i] = RunSpeed(base, options, out.plan, static_cast<int>(i), &state, &next);
+      state = std::move(next);
+      if (on_result) on_result(out.speeds[i]);
+    }
+    out.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    return out;
+  }
   // Work queue in speed order: the lowest speeds simulate the longest time (the window is a
   // number of mesh cycles), so they start first and the pool ends evenly. Each speed writes its
   // own slot; the hand-over is under the queue's lock.
@@ -474,6 +533,25 @@ SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& 
       });
   out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   return out;
+}
+
+int JumpIndex(const std::vector<SpeedResult>& speeds, CarryState carry, double te_threshold) {
+  if (carry == CarryState::kNone)
+    throw std::invalid_argument("jump: carry = none: a jump needs a sweep that carries its state");
+  if (!(te_threshold > 0) || !std::isfinite(te_threshold))
+    throw std::invalid_argument("jump: te_threshold = " + Num(te_threshold) +
+                                " rad: must be > 0 and finite");
+  const int count = static_cast<int>(speeds.size());
+  bool above = false;
+  for (int k = 0; k < count; ++k) {
+    const int i = carry == CarryState::kUp ? k : count - 1 - k;
+    const SpeedResult& r = speeds[static_cast<std::size_t>(i)];
+    if (!r.ok()) return -1;
+    const bool a = r.te_amplitude > te_threshold;
+    if (k == 0) above = a;
+    else if (a != above) return i;
+  }
+  return -1;
 }
 
 SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options,

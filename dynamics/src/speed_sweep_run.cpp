@@ -32,6 +32,8 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
           : transmission::MeshCycles(rig.stage,
                                      run.range.value_or(transmission::RunRange::kPlanetRevolution));
   o.outputs_per_cycle = run.outputs_per_cycle > 0 ? run.outputs_per_cycle : kSweepOutputsPerCycle;
+  o.carry = request.carry;
+  if (o.carry != CarryState::kNone) o.threads = 1;  // one speed after the other
   o.harmonics = request.harmonics;
   o.window_start = geometry::Rad(run.start_deg);
   o.simulation = simulation;
@@ -51,6 +53,7 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   record.mesh_stiffness = {base.sun_mesh_stiffness(), base.ring_mesh_stiffness()};
   record.modal_mesh_stiffness = o.modal_mesh_stiffness;
   record.threads = o.threads;
+  record.carry = o.carry;
   record.plan = PlanSpeedSweep(base, o);
   sink.Start({&rig, &o, &record.plan});
 

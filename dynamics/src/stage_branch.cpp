@@ -201,4 +201,26 @@ StageBranchRecord ContinueStageBranch(
   return rec;
 }
 
+double SeparatingTeAmplitude(const StageBranchRecord& from_below,
+                             const StageBranchRecord& from_above) {
+  if (from_below.bifurcations.empty() || from_above.bifurcations.empty())
+    throw std::invalid_argument(
+        "separating TE amplitude: both branches need a fold (from below: " +
+        std::to_string(from_below.bifurcations.size()) + " bifurcations, from above: " +
+        std::to_string(from_above.bifurcations.size()) + ")");
+  const StageBranchBifurcation& upper = from_below.bifurcations.front();
+  const StageBranchBifurcation& lower = from_above.bifurcations.front();
+  double small_max = 0, large_min = INFINITY;
+  for (const StageBranchPoint& p : from_below.points)
+    if (p.index < upper.after_point) small_max = std::max(small_max, p.te_amplitude);
+  for (const StageBranchPoint& p : from_above.points)
+    if (p.index < lower.after_point && p.parameter <= upper.parameter)
+      large_min = std::min(large_min, p.te_amplitude);
+  if (!std::isfinite(large_min))
+    throw std::invalid_argument("separating TE amplitude: the branch from above has no point at or "
+                                "below the upper fold's " +
+                                io::Num(upper.parameter) + " " + from_below.unit);
+  return 0.5 * (small_max + large_min);
+}
+
 }  // namespace epicycle::dynamics

@@ -27,9 +27,12 @@ std::string SpeedSweepPlanText(const dynamics::SpeedSweepStart& start) {
   const dynamics::SpeedSweepOptions& o = *start.options;
   const dynamics::SpeedSweepPlan& plan = *start.plan;
   std::string t = fmt::format(
-      "{}: speed sweep, {} sun speeds {:.1f} .. {:.1f} rpm, sun {}, {} threads\n", scene.name,
+      "{}: speed sweep, {} sun speeds {:.1f} .. {:.1f} rpm, sun {}, {} threads{}\n", scene.name,
       o.sun_speeds_rpm.size(), o.sun_speeds_rpm.front(), o.sun_speeds_rpm.back(),
-      transmission::SunSupportName(rig.stage_model.setup().sun), o.threads);
+      transmission::SunSupportName(rig.stage_model.setup().sun), o.threads,
+      o.carry == dynamics::CarryState::kNone
+          ? ""
+          : fmt::format(", carrying the state {}", dynamics::CarryStateName(o.carry)));
   for (const std::string& m : rig.compliance.tables().messages()) t += "  " + m + "\n";
   t += fmt::format(
       "  mean mesh stiffness: sun-planet {:.4g} N/m, planet-ring {:.4g} N/m (secant F/delta: the "
@@ -118,6 +121,7 @@ nlohmann::json SpeedSweepRecordJson(const dynamics::SpeedSweepRecord& r,
   j["quasi_static_te_amplitude_urad"] = plan.qs_te_amplitude * 1e6;
   j["failed_speeds"] = r.failed();
   j["threads"] = r.threads;
+  j["carry_state"] = dynamics::CarryStateName(r.carry);
   j["plan_seconds"] = plan.seconds;
   j["wall_seconds"] = r.wall_seconds;
   j["cpu_seconds_in_speeds"] = r.cpu_seconds;

@@ -47,6 +47,19 @@
 // as run-out break the symmetry and excite the others weakly; always true for unequally spaced
 // planets).
 //
+// Carried state (SpeedSweepOptions::carry): a slow run-up (kUp) or run-down (kDown) instead of
+// independent speeds. The speeds run one after the other on one thread, in increasing (up) or
+// decreasing (down) order; the first starts from the quasi-static solution as above, every later
+// one from the state (deviations and rates) and carrier angle at the end of the previous speed's
+// window, the carrier turning on without a break, and skips `skip_time` (or t_skip) before its
+// window as the others do. The speed changes in a step between two speeds, so the sweep rate is
+// Δn / (t_skip + window) per speed: finer steps or a longer dwell make it slower. Where several
+// periodic responses coexist (docs/periodic.md §3, the jumps) the sweep stays on the one it came
+// from until that one ends at a fold. A speed that fails hands on nothing: the next one starts
+// from the quasi-static solution again. Each window begins where the previous ended, at carrier
+// angles a whole number of mesh cycles from the plan's when the skip and the window are whole
+// numbers of mesh cycles (the quasi-static reference of K_v is the plan's).
+//
 // Threads: every speed has its own DynamicModel (the settings carry the speed) over the shared,
 // read-only stage model, and its own contact solver (inside Simulate); nothing mutable is shared.
 #pragma once
@@ -63,9 +76,23 @@
 
 namespace epicycle::dynamics {
 
+/// How the speeds of a sweep start (above, "Carried state").
+enum class CarryState {
+  kNone,  ///< every speed from the quasi-static solution, in parallel
+  kUp,    ///< in increasing speed, each from the previous speed's end state
+  kDown,  ///< in decreasing speed, each from the previous speed's end state
+};
+
+/// "none", "up", "down".
+const char* CarryStateName(CarryState carry);
+/// The carry named `name` ("none", "up", "down").
+/// @throws std::invalid_argument naming `key`, the value and the names allowed.
+CarryState ParseCarryState(const std::string& key, const std::string& name);
+
 struct SpeedSweepOptions {
   std::vector<double> sun_speeds_rpm;  ///< sun speeds [rpm], each > 0, strictly increasing
-  int threads = 1;                     ///< worker threads [-], ≥ 1
+  int threads = 1;                     ///< worker threads [-], ≥ 1 (one with carry ≠ kNone)
+  CarryState carry = CarryState::kNone;  ///< independent speeds, or a run-up / run-down
   double window_cycles = 4;            ///< mesh cycles measured per speed [-], > 0
   int outputs_per_cycle = 32;          ///< samples per mesh cycle in the window [-], ≥ 4
   double window_start = 0;             ///< carrier angle where the window begins [rad]
@@ -192,7 +219,8 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
                            const std::vector<double>& qs_peak_mesh_force = {});
 
 /// Runs every speed of `plan` (from PlanSpeedSweep with the same options) on `options.threads`
-/// workers (lowest speed first: the slowest to run), each result handed to `on_result` as soon as
+/// workers (lowest speed first: the slowest to run; with options.carry one after the other in
+/// the carry's order, each from the previous speed's end state), each result handed to `on_result` as soon as
 /// it is computed (under one lock, in completion order, the speed in the result). A speed that
 /// fails (its start, a step) is a result with ok = false and its message, never left out.
 /// @throws std::invalid_argument for bad options; what `on_result` throws (after the running
@@ -203,6 +231,14 @@ SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& 
 /// The same with the plan made first.
 SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options,
                              const std::function<void(const SpeedResult&)>& on_result = {});
+
+/// Where a carried sweep (options.carry ≠ kNone) leaves the response it started on: walking the
+/// speeds in the carry's order (`speeds` in the order of sun_speeds_rpm), the index of the first
+/// speed whose TE amplitude lies on the other side of `te_threshold` [rad] than the first speed's
+/// (a jump between two coexisting orbits whose amplitudes the threshold separates); −1 when none
+/// does or a speed on the way failed.
+/// @throws std::invalid_argument for carry = kNone or a threshold that is not > 0 and finite.
+int JumpIndex(const std::vector<SpeedResult>& speeds, CarryState carry, double te_threshold);
 
 /// One sun speed's dynamic model: `base` with sun_speed = rpm·π/30, the same mesh stiffnesses.
 DynamicModel ModelAtSpeed(const DynamicModel& base, double sun_speed_rpm);

@@ -25,6 +25,9 @@ struct SpeedSweepRequest {
   double window_cycles = 0;            ///< > 0: mesh cycles measured per speed, replacing range
   int harmonics = 0;                   ///< coincidences of mesh harmonics 1..N; 0: every one
   int threads = 0;                     ///< worker threads; 0: every core
+  /// kUp / kDown: a run-up or run-down, each speed from the previous one's end state, on one
+  /// thread (speed_sweep.hpp, "Carried state").
+  CarryState carry = CarryState::kNone;
 };
 
 /// The samples per mesh cycle of a speed sweep's window by default.
@@ -58,6 +61,7 @@ struct SpeedSweepRecord {
   double transient_fraction = 0, window_cycles = 0, window_start_deg = 0;  ///< [-, -, deg]
   std::array<double, 2> mesh_stiffness{}, modal_mesh_stiffness{};  ///< secant, tangent [N/m]
   int threads = 0;
+  CarryState carry = CarryState::kNone;  ///< as requested
   SpeedSweepPlan plan;
   std::vector<SpeedResult> speeds;    ///< in the order of the speeds
   double wall_seconds = 0;            ///< of the speeds' runs [s]

@@ -107,4 +107,14 @@ StageBranchRecord ContinueStageBranch(
     const DynamicModel& base, const StageBranchOptions& options,
     const std::function<void(const StageBranchRecord&)>& on_point = {});
 
+/// The TE amplitude [rad] that separates two stable orbits coexisting between two folds: midway
+/// between the largest TE amplitude of `from_below`'s points up to its first fold (the orbit that
+/// ends at the upper fold) and the smallest of `from_above`'s up to its first fold at speeds no
+/// higher than `from_below`'s fold (the orbit that ends at the lower fold), for a response whose
+/// upper orbit's amplitude exceeds the lower's between the folds (docs/periodic.md §3, "Jumps").
+/// @throws std::invalid_argument when either branch has no fold or the second has no point
+///         below the first's fold.
+double SeparatingTeAmplitude(const StageBranchRecord& from_below,
+                             const StageBranchRecord& from_above);
+
 }  // namespace epicycle::dynamics
