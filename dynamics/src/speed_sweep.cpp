@@ -12,27 +12,27 @@
 #include <limits>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <utility>
 
 #include "epicycle/dynamics/dynamic_factor.hpp"
-#include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/dynamic_summary.hpp"
+#include "epicycle/dynamics/run_span.hpp"
+#include "epicycle/io/number_format.hpp"
+#include "epicycle/io/units.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/work_queue.hpp"
-#include "epicycle/io/number_format.hpp"
-#include "epicycle/io/units.hpp"
 
 namespace epicycle::dynamics {
 
 using io::Num;
 
 namespace {
-
 
 double ThreadCpuSeconds() {
   timespec ts{};
@@ -104,18 +104,8 @@ bool PhasingExcited(const std::vector<bool>& families, int h, int sun_teeth) {
 
 }  // namespace
 
-const char* CarryStateName(CarryState carry) {
-  switch (carry) {
-    case CarryState::kUp: return "up";
-    case CarryState::kDown: return "down";
-    case CarryState::kNone: break;
-  }
-  return "none";
-}
-
 CarryState ParseCarryState(const std::string& key, const std::string& name) {
-  for (CarryState c : {CarryState::kNone, CarryState::kUp, CarryState::kDown})
-    if (name == CarryStateName(c)) return c;
+  if (const std::optional<CarryState> c = io::ValueOf(kCarryStateNames, name)) return *c;
   throw std::invalid_argument(key + " = '" + name +
                               "': not a carry (give up: each speed from the previous, increasing; "
                               "down: the same, decreasing; none: each from rest)");
@@ -516,8 +506,7 @@ SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& 
       state = std::move(next);
       if (on_result) on_result(out.speeds[i]);
     }
-    out.wall_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     return out;
   }
   // Work queue in speed order: the lowest speeds simulate the longest time (the window is a
@@ -548,8 +537,10 @@ int JumpIndex(const std::vector<SpeedResult>& speeds, CarryState carry, double t
     const SpeedResult& r = speeds[static_cast<std::size_t>(i)];
     if (!r.ok()) return -1;
     const bool a = r.te_amplitude > te_threshold;
-    if (k == 0) above = a;
-    else if (a != above) return i;
+    if (k == 0)
+      above = a;
+    else if (a != above)
+      return i;
   }
   return -1;
 }

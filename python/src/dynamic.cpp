@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "common.hpp"
+#include "epicycle/dynamics/branch_run.hpp"
 #include "epicycle/dynamics/dynamic_factor.hpp"
 #include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/dynamic_summary.hpp"
@@ -17,7 +18,6 @@
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/speed_sweep_run.hpp"
-#include "epicycle/dynamics/branch_run.hpp"
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/io/units.hpp"
 #include "epicycle/report/ratings.hpp"
@@ -432,7 +432,7 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
                       const std::string& range, double window_cycles, int outputs_per_cycle,
                       double start_deg, int harmonics, int threads, const Integration& integration,
                       std::optional<std::string> cache_dir, py::object progress,
-                      bool raise_on_failure) {
+                      bool raise_on_failure, dynamics::CarryState carry) {
   // Every number by its option's rule (run_arguments.hpp), before any work.
   if (!dynamics::kSweepSpeeds.Holds(static_cast<double>(sun_speeds_rpm.size())))
     throw std::invalid_argument("sun_speeds_rpm: " + std::to_string(sun_speeds_rpm.size()) +
@@ -461,6 +461,7 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
   request.window_cycles = window_cycles;
   request.harmonics = harmonics;
   request.threads = threads;
+  request.carry = carry;
   CancelToken token;
   const Progress report(std::move(progress), &token);
   SweepProgress sink(report);
@@ -753,12 +754,13 @@ void BindSpeedSweep(py::module_& m) {
          const std::string& integrator, double rtol, std::optional<double> rate_scale,
          std::optional<double> contact_tol, int max_order, bool analytic_jacobian,
          const std::string& backend, std::optional<std::string> cache_dir, py::object progress,
-         bool raise_on_failure) {
+         bool raise_on_failure, const std::string& carry_state) {
         return SpeedSweep(s, sun_speeds_rpm, range, window_cycles, outputs_per_cycle, start_deg,
                           harmonics, threads,
                           MakeIntegration(integrator, rtol, rate_scale, contact_tol, max_order,
                                           analytic_jacobian, backend),
-                          cache_dir, std::move(progress), raise_on_failure);
+                          cache_dir, std::move(progress), raise_on_failure,
+                          dynamics::ParseCarryState("carry_state", carry_state));
       },
       py::arg("scene"), py::arg("sun_speeds_rpm"), py::kw_only(), py::arg("range") = "planet",
       py::arg("window_cycles") = 0.0, py::arg("outputs_per_cycle") = 64, py::arg("start_deg") = 0.0,
@@ -767,7 +769,7 @@ void BindSpeedSweep(py::module_& m) {
       py::arg("contact_tol") = py::none(), py::arg("max_order") = 5,
       py::arg("analytic_jacobian") = true, py::arg("backend") = "newton",
       py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
-      py::arg("raise_on_failure") = true,
+      py::arg("raise_on_failure") = true, py::arg("carry_state") = "none",
       (std::string(R"doc(
 A speed sweep of the dynamic model (`epicycle dynamic --speed-sweep`; docs/speed_sweeps.md): each
 sun speed run from the quasi-static solution, its start transient skipped, then a window measured.
@@ -790,7 +792,11 @@ harmonics : int, default 0
     Mesh harmonics 1..h for the coincidences [-] (0: every one in the speed range, as the
     program's --harmonics).
 threads : int, default 0
-    Workers [-] (0: every core).)doc") +
+    Workers [-] (0: every core).
+carry_state : str, default "none"
+    "up" or "down": the speeds one after the other in that direction, each from the previous
+    speed's end state (a slow run-up or run-down, docs/speed_sweeps.md "Carried state"; the
+    program's --carry-state); "none": each speed from the quasi-static solution, in parallel.)doc") +
        kIntegrationDoc + R"doc(
 
 Returns

@@ -3,6 +3,8 @@ report (`geometry --json`), the potential contacts at a pose (`contacts`, its pr
 a mesh's stiffness (`stiffness`: CSV to the printed digits, JSON exactly) and a two-speed sweep
 (`dynamic --speed-sweep`: CSV to the printed digits, the load-sharing parts included)."""
 
+import pytest
+
 import epicycle
 from conftest import num, read_csv, read_json, run_cli, scene_path
 
@@ -63,6 +65,20 @@ def test_mesh_stiffness_equals_the_program_files(tmp_path):
         assert row["transmission_error_urad"] == num(t)
 
 
+def assert_same_sweep_record(record, summary):
+    """Python's speed-sweep record against the program's summary JSON: the same keys (but the
+    provenance) and values, bit for bit, but the times (wall and CPU, per speed `*_s`)."""
+    times = {"plan_seconds", "wall_seconds", "cpu_seconds_in_speeds", "cpu_over_wall"}
+    assert sorted(record) == sorted(k for k in summary if k != "provenance")
+    for key in record:
+        if key not in times and key != "speeds":
+            assert record[key] == summary[key], key
+    assert len(record["speeds"]) == len(summary["speeds"])
+    for a, b in zip(record["speeds"], summary["speeds"]):
+        assert {k: v for k, v in a.items() if not k.endswith("_s")} == \
+            {k: v for k, v in b.items() if not k.endswith("_s")}
+
+
 def test_speed_sweep_equals_the_program_csv(tmp_path):
     out = tmp_path / "cli"
     run_cli("dynamic", scene_path("paper_stage.toml"), "--speed-sweep", "1000:3000:2",
@@ -95,14 +111,7 @@ def test_speed_sweep_equals_the_program_csv(tmp_path):
     # The record: the keys and values of the program's summary JSON, defaults included, bit for
     # bit but the times and the provenance (the same request, the same run).
     j = read_json(out / "speed_sweep_summary.json")
-    times = {"plan_seconds", "wall_seconds", "cpu_seconds_in_speeds", "cpu_over_wall"}
-    assert sorted(s.record) == sorted(k for k in j if k != "provenance")
-    for key in s.record:
-        if key not in times and key != "speeds":
-            assert s.record[key] == j[key], key
-    for a, b in zip(s.record["speeds"], j["speeds"]):
-        assert {k: v for k, v in a.items() if not k.endswith("_s")} == \
-            {k: v for k, v in b.items() if not k.endswith("_s")}
+    assert_same_sweep_record(s.record, j)
 
 
 def test_periodic_branch_equals_the_program_csv(tmp_path):
@@ -140,3 +149,23 @@ def test_periodic_branch_bad_input_names_the_argument():
     runout = epicycle.Scene.load(scene_path("paper_stage_runout.toml"))
     with pytest.raises(ValueError, match="period = 24 mesh cycles .planet1 run-out"):
         epicycle.periodic_branch(runout, "sun_speed_rpm", 1000, 2000, cache_dir="")
+
+
+def test_carried_speed_sweep_equals_the_program(tmp_path):
+    """A run-up that carries each speed's end state into the next (`--carry-state up`,
+    docs/speed_sweeps.md "Carried state"): Python's record is the program's summary JSON, times and
+    provenance aside; an unknown carry is a ValueError naming the argument."""
+    out = tmp_path / "cli"
+    run_cli("dynamic", scene_path("paper_stage.toml"), "--speed-sweep", "1000:3000:2",
+            "--window-cycles", 1, "--outputs-per-cycle", 8, "--carry-state", "up", "--quiet",
+            "--out", out)
+    j = read_json(out / "speed_sweep_summary.json")
+    s = epicycle.speed_sweep(epicycle.Scene.load(scene_path("paper_stage.toml")),
+                             epicycle.speed_grid(1000, 3000, 2), window_cycles=1,
+                             outputs_per_cycle=8, carry_state="up")
+    assert j["carry_state"] == s.record["carry_state"] == "up"
+    assert j["threads"] == s.record["threads"] == 1  # one speed after the other
+    assert_same_sweep_record(s.record, j)
+    with pytest.raises(ValueError, match="carry_state = 'sideways'"):
+        epicycle.speed_sweep(epicycle.Scene.load(scene_path("paper_stage.toml")), [1000.0],
+                             carry_state="sideways")

@@ -73,6 +73,7 @@
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/io/enum_names.hpp"
 
 namespace epicycle::dynamics {
 
@@ -83,21 +84,28 @@ enum class CarryState {
   kDown,  ///< in decreasing speed, each from the previous speed's end state
 };
 
-/// "none", "up", "down".
-const char* CarryStateName(CarryState carry);
+/// The carries' names ("none", "up", "down"): the one table of CarryStateName and
+/// ParseCarryState.
+inline constexpr std::array<io::EnumName<CarryState>, 3> kCarryStateNames{{
+    {CarryState::kNone, "none"},
+    {CarryState::kUp, "up"},
+    {CarryState::kDown, "down"},
+}};
+
+inline const char* CarryStateName(CarryState carry) { return io::NameOf(kCarryStateNames, carry); }
 /// The carry named `name` ("none", "up", "down").
 /// @throws std::invalid_argument naming `key`, the value and the names allowed.
 CarryState ParseCarryState(const std::string& key, const std::string& name);
 
 struct SpeedSweepOptions {
-  std::vector<double> sun_speeds_rpm;  ///< sun speeds [rpm], each > 0, strictly increasing
-  int threads = 1;                     ///< worker threads [-], ≥ 1 (one with carry ≠ kNone)
+  std::vector<double> sun_speeds_rpm;    ///< sun speeds [rpm], each > 0, strictly increasing
+  int threads = 1;                       ///< worker threads [-], ≥ 1 (one with carry ≠ kNone)
   CarryState carry = CarryState::kNone;  ///< independent speeds, or a run-up / run-down
-  double window_cycles = 4;            ///< mesh cycles measured per speed [-], > 0
-  int outputs_per_cycle = 32;          ///< samples per mesh cycle in the window [-], ≥ 4
-  double window_start = 0;             ///< carrier angle where the window begins [rad]
-  double transient_fraction = 1e-2;    ///< ε of t_skip [-], in (0, 1)
-  double skip_time = 0;                ///< > 0: skip this long instead of t_skip [s]
+  double window_cycles = 4;              ///< mesh cycles measured per speed [-], > 0
+  int outputs_per_cycle = 32;            ///< samples per mesh cycle in the window [-], ≥ 4
+  double window_start = 0;               ///< carrier angle where the window begins [rad]
+  double transient_fraction = 1e-2;      ///< ε of t_skip [-], in (0, 1)
+  double skip_time = 0;                  ///< > 0: skip this long instead of t_skip [s]
   int harmonics = 0;  ///< coincidences of mesh harmonics h ≤ harmonics; 0: every one in range [-]
   /// > 0: the mesh stiffnesses {sun–planet, planet–ring} [N/m] of the linearisation that gives the
   /// modes and coincidences (e.g. MeanTangentMeshStiffness); 0: the base model's. The damping
@@ -163,16 +171,16 @@ struct SpeedSweepPlan {
   std::vector<std::string> meshes;
   /// max_φ F_m,qs per mesh [N], with the base model's friction at its speed (SolveRestReference)
   std::vector<double> qs_peak_mesh_force;
-  double qs_k_gamma = 0;                   ///< K_γ of the quasi-static window [-]
+  double qs_k_gamma = 0;       ///< K_γ of the quasi-static window [-]
   double qs_te_amplitude = 0;  ///< ½ peak-to-peak of the static TE over the window [rad]
   double seconds = 0;          ///< wall time of the planning [s]
 };
 
 /// One speed's result.
 struct SpeedResult {
-  int index = 0;               ///< position in sun_speeds_rpm [-]
-  double sun_speed_rpm = 0;    ///< [rpm]
-  double mesh_frequency = 0;   ///< f_m [Hz]
+  int index = 0;              ///< position in sun_speeds_rpm [-]
+  double sun_speed_rpm = 0;   ///< [rpm]
+  double mesh_frequency = 0;  ///< f_m [Hz]
   /// kCompleted: the run reached every output; else why it stopped (its start or its run).
   transmission::RunStatus status = transmission::RunStatus::kIntegratorFailure;
   bool ok() const { return status == transmission::RunStatus::kCompleted; }
@@ -181,9 +189,9 @@ struct SpeedResult {
   double dynamic_factor = 0;   ///< K_v [-]
   int factor_mesh = -1;        ///< the mesh m that gives K_v (index into plan.meshes), −1: none
   double peak_mesh_force = 0;  ///< max_t F_m(t) of that mesh [N]
-  double qs_peak_mesh_force = 0;  ///< and its quasi-static reference's at this speed [N]
-  double te_amplitude = 0;     ///< ½ peak-to-peak TE over the window [rad]
-  double orbit_radius = 0;     ///< largest sun-centre displacement over the window [m]
+  double qs_peak_mesh_force = 0;    ///< and its quasi-static reference's at this speed [N]
+  double te_amplitude = 0;          ///< ½ peak-to-peak TE over the window [rad]
+  double orbit_radius = 0;          ///< largest sun-centre displacement over the window [m]
   double lsr_min = 0, lsr_max = 0;  ///< extremes of LSR_i over planets and window [-]
   /// The largest |LSR_i − 1/n| over planets and window [-], and its parts at that sample and
   /// planet (DecomposeLoadSharing, in the order of kLoadSharingPartNames; they sum to the signed
@@ -220,9 +228,10 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
 
 /// Runs every speed of `plan` (from PlanSpeedSweep with the same options) on `options.threads`
 /// workers (lowest speed first: the slowest to run; with options.carry one after the other in
-/// the carry's order, each from the previous speed's end state), each result handed to `on_result` as soon as
-/// it is computed (under one lock, in completion order, the speed in the result). A speed that
-/// fails (its start, a step) is a result with ok = false and its message, never left out.
+/// the carry's order, each from the previous speed's end state), each result handed to `on_result`
+/// as soon as it is computed (under one lock, in completion order, the speed in the result). A
+/// speed that fails (its start, a step) is a result with ok = false and its message, never left
+/// out.
 /// @throws std::invalid_argument for bad options; what `on_result` throws (after the running
 ///         speeds end).
 SpeedSweepResult SweepSpeeds(const DynamicModel& base, const SpeedSweepOptions& options,
