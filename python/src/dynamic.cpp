@@ -20,6 +20,7 @@
 #include "epicycle/dynamics/speed_sweep_run.hpp"
 #include "epicycle/dynamics/vibration.hpp"
 #include "epicycle/io/units.hpp"
+#include "epicycle/report/face_width_files.hpp"
 #include "epicycle/report/ratings.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
@@ -129,6 +130,7 @@ class KeepSteps final : public dynamics::DynamicSink {
     bodies = p.rig->compliance.has_root_stress() ? transmission::PlanetBody(planets) : 0;
     channels = dynamics::VibrationChannels(p.rig->model);
     damping = {p.rig->model.sun_mesh_damping(), p.rig->model.ring_mesh_damping()};
+    if (p.rig->scene.face_width.active()) face_meshes = report::StageFaceMeshes(p.rig->stage).names;
     total_ = p.span->outputs;
   }
   void Step(const dynamics::DynamicSample& x) override {
@@ -144,6 +146,7 @@ class KeepSteps final : public dynamics::DynamicSink {
   std::vector<dynamics::VibrationChannel> channels;
   std::array<double, 2> damping{};  // the mesh damping [N s/m]
   int planets = 0, bodies = 0;
+  std::vector<std::string> face_meshes;  // with slices of the face width: the steps CSV's meshes
 
  private:
   const Progress& report_;
@@ -298,6 +301,22 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   f["planet_bearing_force_N"] = py::array_t<double>(
       {count, static_cast<py::ssize_t>(n), py::ssize_t{2}}, planet_bearing.data());
   f["pairs"] = Result(pairs);
+  if (!sink.face_meshes.empty()) {
+    // Per step and mesh (the steps file's K_Hbeta_<mesh>, largest_z_mm_<mesh>): NaN where the
+    // step carries no face loads.
+    const std::size_t meshes = sink.face_meshes.size();
+    std::vector<double> k_h_beta, largest_z;
+    for (const dynamics::DynamicSample& x : samples)
+      for (std::size_t m = 0; m < meshes; ++m) {
+        const bool has = x.face_loads.size() == meshes;
+        k_h_beta.push_back(has ? x.face_loads[m].k_h_beta : kNaN);
+        largest_z.push_back(has ? x.face_loads[m].largest_z * 1e3 : kNaN);
+      }
+    const auto width = static_cast<py::ssize_t>(meshes);
+    f["face_meshes"] = sink.face_meshes;
+    f["k_hbeta"] = Array2(std::move(k_h_beta), count, width);
+    f["largest_load_z_mm"] = Array2(std::move(largest_z), count, width);
+  }
   f["vibration"] = Result(vib);
   f["summary"] = Result(SummaryObject(record.summary));
   f["stats"] = StatsObject(record.stats);
@@ -685,7 +704,9 @@ Result
     sun_y_um [µm] (sun centre from nominal), sun_torque_balance_Nm [N·m], external_work_J,
     dissipated_work_J, kinetic_energy_J, elastic_energy_J, compliance_work_J [J], contacts,
     active_contacts, friction_power_W [W], sun_bearing_force_N (T, 2) [N],
-    planet_bearing_force_N (T, n, 2) [N]; pairs (per loaded tooth pair and step: time_s, mesh,
+    planet_bearing_force_N (T, n, 2) [N]; with slices of the face width face_meshes (M names),
+    k_hbeta (T, M) [-] and largest_load_z_mm (T, M) [mm] (the steps file's K_Hbeta_<mesh> and
+    largest_z_mm_<mesh>); pairs (per loaded tooth pair and step: time_s, mesh,
     kind, flank, tooth_a, tooth_b, normal_force_N, elastic_force_N, friction_force_N [N],
     overlap_rate_mm_per_s [mm/s]); vibration (per step, the signals of docs/spectra.md: te_rad,
     ring_force_x_N, ring_force_y_N, ring_torque_Nm, sun_force_x_N/sun_force_y_N (held sun) or

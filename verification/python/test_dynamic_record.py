@@ -10,7 +10,7 @@ import os
 import pytest
 
 import epicycle
-from conftest import SOURCE_DIR, read_json, run_cli, scene_path
+from conftest import SOURCE_DIR, num, read_csv, read_json, run_cli, scene_path
 
 # What two runs of the same request may differ in: wall times.
 TIMES = {"setup_seconds", "wall_seconds", "evaluation_seconds"}
@@ -56,6 +56,14 @@ def test_record_of_a_sliced_stage_equals_the_program_summary(tmp_path):
                                      "planet1-ring", "planet2-ring", "planet3-ring"])
     assert meshes["sun-planet1"]["largest_load_z_mm"] == -11.875
     assert meshes["sun-planet1"]["K_Hbeta_max"] >= meshes["sun-planet1"]["K_Hbeta_mean"] > 1.05
+    # Per step, the steps file's K_Hbeta_<mesh> and largest_z_mm_<mesh> columns as arrays.
+    rows = read_csv(out / "dynamic_steps.csv")
+    assert r.k_hbeta.shape == (len(rows), 6) == r.largest_load_z_mm.shape
+    for m, mesh in enumerate(r.face_meshes):
+        assert [row["K_Hbeta_" + mesh] for row in rows] == [num(k) for k in r.k_hbeta[:, m]]
+        assert [row["largest_z_mm_" + mesh] for row in rows] == \
+            [num(z) for z in r.largest_load_z_mm[:, m]]
+        assert max(r.k_hbeta[:, m]) == meshes[mesh]["K_Hbeta_max"]
 
 
 def outcome(exc_type, *args, **kwargs):
