@@ -31,6 +31,7 @@ struct QuasiStaticArgs {
   int threads = 0;    // 0: one per core
   std::vector<double> angles_deg;
   double start_deg = 0.0;
+  bool rigid_pins = false;
   bool no_cache = false, no_local = false, quiet = false, cold = false, stresses = false,
        rating = false;
 };
@@ -89,6 +90,7 @@ void RunQuasiStatic(const QuasiStaticArgs& a) {
   request.stresses = a.stresses;
   request.rating = a.rating;
   request.rating_option = "--rating";
+  request.pin_feedback = !a.rigid_pins;
   request.tables = TableOptions(a.cache, a.no_cache);
 
   ConsoleSink sink(a, Provenance(a.backend, &request.scene));
@@ -153,6 +155,9 @@ void RegisterQuasiStaticCommands(CLI::App& app) {
   cmd->add_flag("--rating", a.rating,
                 "ISO 6336 ratings with the run's K_gamma and stresses (needs the scene's "
                 "[material] bending_limit_MPa and contact_limit_MPa; implies --stresses)");
+  cmd->add_flag("--rigid-pins", a.rigid_pins,
+                "Leave out the scene's [[face_width.pin]]: every planet held at its given tilt "
+                "(the run without the tilt's feedback)");
   cmd->add_flag("--quiet", a.quiet, "No progress bar");
   cmd->callback([] { RunQuasiStatic(a); });
 }

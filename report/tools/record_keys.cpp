@@ -135,6 +135,7 @@ int main() {
   quasistatic.summary.face_width.resize(1);
   quasistatic.summary.face_width[0].stresses = true;
   quasistatic.summary.helical_mean.planets.resize(1);
+  quasistatic.summary.pin_tilts.resize(1);
   quasistatic.friction = transmission::FrictionLaw::kConstant;
   quasistatic.rating.emplace();
   quasistatic.failures_not_listed = 1;
@@ -151,7 +152,7 @@ int main() {
         "`friction` and the efficiency keys only with friction at rest, `root_stress` and "
         "`contact_pressure` only with stresses, `rating` only when asked, `face_width` only with "
         "slices of the face width (its root stress and Hertz pressure keys only with stresses), "
-        "`helical` only for a helical stage.",
+        "`helical` only for a helical stage, `pins` only with pins of finite stiffness.",
         quasistatic);
   Table("Mesh stiffness (`epicycle stiffness`, Python `mesh_stiffness(...)[\"record\"]`)",
         "OUT/stiffness_MESH.json; `root_stress` only with stresses, the `slices` and K_Hbeta keys "

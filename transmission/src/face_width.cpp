@@ -142,6 +142,7 @@ FaceWidthModel::FaceWidthModel(const FaceWidthSpec& spec, const geometry::Stage&
     wind_up_slope_ = -spec_.carrier_output_side * twist * stage.carrier_radius() /
                      spec_.carrier_plate_distance;
   }
+  pins_ = PinModel(spec_.pins, planets);
   const double b_sp = geometry::ContactFaceWidth(stage.sun(), stage.planet(0));
   const double b_pr = geometry::ContactFaceWidth(stage.planet(0), stage.ring());
   sun_planet_width_ = b_sp;
@@ -160,7 +161,9 @@ Eigen::Vector2d FaceWidthModel::AxisSlope(const geometry::StagePoses& poses, int
   if (!(r > 0)) return Eigen::Vector2d::Zero();
   const Eigen::Vector2d radial = c / r, tangential(-radial.y(), radial.x());
   const Eigen::Vector2d& own = planet_slope_[static_cast<std::size_t>(i)];
-  return own.x() * radial + (own.y() + wind_up_slope_) * tangential;
+  const Eigen::Vector2d given = own.x() * radial + (own.y() + wind_up_slope_) * tangential;
+  if (!pins_.active()) return given;
+  return given + poses.planets[static_cast<std::size_t>(i)].axis_slope;
 }
 
 FaceWidthModel::Misalignment FaceWidthModel::MeshMisalignment(const geometry::StagePoses& poses,
@@ -168,14 +171,17 @@ FaceWidthModel::Misalignment FaceWidthModel::MeshMisalignment(const geometry::St
   const bool ring = c.mesh == geometry::MeshKind::kPlanetRing;
   const double b = ring ? planet_ring_width_ : sun_planet_width_;
   const geometry::PotentialContact& p = c.contact;
-  // The wind-up alone: every pin's tangential slope, the sun and the ring untilted.
+  // The deflections alone: the wind-up (every pin's tangential slope) and a planet's tilt on its
+  // pin under load; the sun and the ring untilted.
   auto wind_up = [&](int body) -> Eigen::Vector2d {
     if (body < 2) return Eigen::Vector2d::Zero();
-    const geometry::Vec2 centre =
-        poses.planets.at(static_cast<std::size_t>(body - 2)).rotation_centre;
-    const double r = centre.norm();
-    if (!(r > 0)) return Eigen::Vector2d::Zero();
-    return wind_up_slope_ * Eigen::Vector2d(-centre.y() / r, centre.x() / r);
+    const geometry::GearPose& pose = poses.planets.at(static_cast<std::size_t>(body - 2));
+    const Eigen::Vector2d pin = pins_.active() ? pose.axis_slope : Eigen::Vector2d::Zero();
+    const double r = pose.rotation_centre.norm();
+    if (!(r > 0)) return pin;
+    const Eigen::Vector2d w =
+        wind_up_slope_ * Eigen::Vector2d(-pose.rotation_centre.y() / r, pose.rotation_centre.x() / r);
+    return pins_.active() ? Eigen::Vector2d(w + pin) : w;
   };
   const Eigen::Vector2d all = AxisSlope(poses, c.body_a) - AxisSlope(poses, c.body_b);
   const Eigen::Vector2d deflection = wind_up(c.body_a) - wind_up(c.body_b);

@@ -12,7 +12,9 @@
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/transmission/contact_kinematics.hpp"
 #include "epicycle/transmission/geometric_iteration.hpp"
+#include "epicycle/io/number_format.hpp"
 #include "epicycle/transmission/load_sharing.hpp"
+#include "epicycle/transmission/pin.hpp"
 #include "ordered_chunks.hpp"
 
 namespace epicycle::transmission {
@@ -172,6 +174,7 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
                      solvers::ContactSolver& solver) {
   PositionResult r;
   r.carrier_angle = carrier_angle;
+  const int n_planets = model.planets();
   const std::vector<StageDof>& dofs = model.dofs();
   geometry::StagePoses poses = model.KinematicPoses(carrier_angle);
   GeometricIterationOptions iteration;
@@ -222,9 +225,45 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
       return change;
     };
   }
+  // Pins of finite stiffness (pin.hpp): a fixed point on the planets' tilts alongside the
+  // geometric iteration. Each problem is built with the tilts (GearPose::axis_slope of this
+  // position's own poses, never the shared model) that the pins take under the forces of the
+  // previous solve (a neighbour's tilts for the first, else none); they have settled when the
+  // gap they change across the face, b |Δt|, moves by at most the geometric tolerance.
+  const PinModel& pins = model.face_width().pins();
+  double tilt_change = 0, friction_change = 0;
+  const double face = std::max(model.face_width().MeshWidth(false), model.face_width().MeshWidth(true));
+  if (pins.active()) {
+    for (int i = 0; i < model.planets(); ++i) {
+      const std::size_t k = static_cast<std::size_t>(i);
+      poses.planets[k].axis_slope =
+          r.warm_started && neighbour->pin_tilts.size() == poses.planets.size()
+              ? neighbour->pin_tilts[k]
+              : Eigen::Vector2d::Zero();
+    }
+    const std::function<double(const Eigen::VectorXd&)> friction_update = fixed_point.update;
+    const double friction_tolerance = fixed_point.tolerance;
+    fixed_point.tolerance = 1;  // both changes below are taken relative to their tolerances
+    fixed_point.update = [&, friction_update, friction_tolerance](const Eigen::VectorXd& force) {
+      const std::vector<PinLoad> load = PinLoadsOf(model.stage(), built, r.problem.contacts, force);
+      tilt_change = 0;
+      for (int i = 0; i < model.planets(); ++i) {
+        Eigen::Vector2d& t = poses.planets[static_cast<std::size_t>(i)].axis_slope;
+        const Eigen::Vector2d next = pins.Tilt(i, load[static_cast<std::size_t>(i)]);
+        tilt_change = std::max(tilt_change, face * (next - t).norm());
+        t = next;
+      }
+      double change = tilt_change / options.geometric_tolerance;
+      if (friction_update) {
+        friction_change = friction_update(force);
+        change = std::max(change, friction_change / friction_tolerance);
+      }
+      return change;
+    };
+  }
   GeometricIterationResult g = IterateGeometry(
       [&](solvers::ContactProblemData* data) {
-        if (root_stress || friction) built = poses;
+        if (root_stress || friction || pins.active()) built = poses;
         StageOutcome o = model.Problem(poses, loads, &r.problem);
         if (o.ok() && friction) {
           used_force.setZero(static_cast<Eigen::Index>(r.problem.contacts.size()));
@@ -244,6 +283,26 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
   r.converged = g.converged;
   r.status = g.status;
   r.message = std::move(g.message);
+  if (pins.active()) {
+    // The tilts the last problem was built with (within the tolerance of the settled ones).
+    r.pin_tilt_change = tilt_change;
+    for (int i = 0; i < n_planets; ++i) {
+      const geometry::GearPose& p = built.planets[static_cast<std::size_t>(i)];
+      const double c = p.rotation_centre.norm();
+      const Eigen::Vector2d er = c > 0 ? Eigen::Vector2d(p.rotation_centre / c) : Eigen::Vector2d(1, 0);
+      r.pin_tilts.push_back(p.axis_slope);
+      r.pin_tilts_carrier.emplace_back(p.axis_slope.dot(er), p.axis_slope.dot(Eigen::Vector2d(-er.y(), er.x())));
+    }
+    g.force_change = friction_change;
+    if (g.status == StageStatus::kFrictionNotSettled &&
+        tilt_change > options.geometric_tolerance) {
+      r.status = StageStatus::kTiltNotSettled;
+      r.message = "the planets' tilts on their pins did not settle in " +
+                  std::to_string(g.iterations) + " iterations: the last tilt update changed the " +
+                  "gap across the face by " + io::Num(tilt_change) + " m (tolerance " +
+                  io::Num(options.geometric_tolerance) + " m, quasistatic geometric_tolerance)";
+    }
+  }
   r.geometric_iterations = g.iterations;
   r.contact_iterations = g.contact_iterations;
   r.solution = std::move(g.solution);

@@ -29,6 +29,7 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
     throw std::invalid_argument(scene.name +
                                 ": a gear-pair scene; a quasi-static run needs a stage");
   if (request.sun) scene.supports.sun = *request.sun;
+  if (!request.pin_feedback) scene.face_width.pins.clear();
   RequireHelicalSlices(scene, "`epicycle quasistatic`");
   scene.model.stresses = scene.model.stresses || request.stresses || request.rating;
   if (request.rating) CheckRatingInputs(scene, request.rating_option);
@@ -166,6 +167,26 @@ void VisitRecord(const SweepSummary& s, RecordVisitor& visit) {
       visit.Number("axial_tilting_moment_tangential_Nm", p.axial_moment_tangential);
       visit.Number("tilting_moment_radial_Nm", p.moment_radial);
       visit.Number("tilting_moment_tangential_Nm", p.moment_tangential);
+    }
+    visit.EndList();
+    visit.EndObject();
+  }
+  if (!s.pin_tilts.empty()) {
+    // Each planet's tilt on its pin under load (pin.hpp), over the converged positions.
+    visit.BeginObject("pins");
+    visit.Number("iterations_mean", s.pin_iterations_mean);
+    visit.Number("iterations_max", s.pin_iterations_max);
+    visit.BeginList("planets");
+    for (std::size_t i = 0; i < s.pin_tilts.size(); ++i) {
+      const SweepSummary::PinTiltSummary& t = s.pin_tilts[i];
+      visit.Item();
+      visit.Integer("planet", static_cast<long>(i + 1));
+      visit.Number("tilt_radial_mean_urad", t.radial_mean * 1e6);
+      visit.Number("tilt_radial_min_urad", t.radial_min * 1e6);
+      visit.Number("tilt_radial_max_urad", t.radial_max * 1e6);
+      visit.Number("tilt_tangential_mean_urad", t.tangential_mean * 1e6);
+      visit.Number("tilt_tangential_min_urad", t.tangential_min * 1e6);
+      visit.Number("tilt_tangential_max_urad", t.tangential_max * 1e6);
     }
     visit.EndList();
     visit.EndObject();

@@ -45,12 +45,12 @@ void ReadFaceWidth(TableReader& top, Scene& s,
   // The face the slices divide: the planet's in a stage, the narrower gear's in a pair.
   const double b_planet =
       pair ? std::min(s.pair.gear1.face_width, s.pair.gear2.face_width) : st.planet.face_width;
-  for (const char* key : {"pin_tilt", "carrier_torsional_stiffness_Nm_per_rad"})
+  for (const char* key : {"pin_tilt", "pin", "carrier_torsional_stiffness_Nm_per_rad"})
     if (pair && t->Has(key))
       t->Fail(key, "given in a pair scene",
               "a planet pin's tilt and the carrier's wind-up belong to stage scenes; a pair's "
               "misalignment is a lead slope ([[face_width.lead]] slope_um of gear1 or gear2)");
-  const bool has_more = t->Has("pin_tilt") || t->Has("lead") ||
+  const bool has_more = t->Has("pin_tilt") || t->Has("pin") || t->Has("lead") ||
                         t->Has("carrier_torsional_stiffness_Nm_per_rad");
   f.slices = static_cast<int>(t->IntegerOr(
       "slices", has_more ? static_cast<long>(kDefaultSlices) : 1L,
@@ -147,6 +147,7 @@ void ReadFaceWidth(TableReader& top, Scene& s,
     r.Done();
     f.leads.push_back(l);
   }
+  ReadPins(*t, s);
   if (f.carrier_torsional_stiffness > 0)
     f.carrier_where = t->Where("carrier_torsional_stiffness_Nm_per_rad");
   CheckFaceGapWindow(s);

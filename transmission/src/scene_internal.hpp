@@ -43,4 +43,8 @@ void ReadDamage(TableReader& top, Scene& s,
 void ReadFaceWidth(TableReader& top, Scene& s,
                    const std::vector<std::pair<std::string, const geometry::GearSpec*>>& gears);
 
+/// The [face_width] table's [[face_width.pin]] array (scene_pin.cpp), read after its slices.
+/// @throws std::invalid_argument naming the key, value and rule.
+void ReadPins(TableReader& face_width, Scene& s);
+
 }  // namespace epicycle::transmission::internal

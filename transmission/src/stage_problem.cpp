@@ -86,6 +86,8 @@ std::string StatusName(StageStatus status) {
       return "not settled";
     case StageStatus::kFrictionNotSettled:
       return "friction not settled";
+    case StageStatus::kTiltNotSettled:
+      return "tilt not settled";
   }
   return "unknown";
 }

@@ -157,6 +157,15 @@ void SweepAccumulator::Add(const PositionResult& r) {
   displacement_.Add(r.sun_displacement.norm());
   k_gamma_.Add(MeshLoadFactor(r));
   if (!r.helical.planets.empty()) AddHelical(r.helical, 1.0, &helical_sum_, &helical_count_);
+  if (r.pin_tilts_carrier.size() == n) {
+    pin_radial_.resize(n);
+    pin_tangential_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      pin_radial_[i].Add(r.pin_tilts_carrier[i].x());
+      pin_tangential_[i].Add(r.pin_tilts_carrier[i].y());
+    }
+    pin_iterations_.Add(r.geometric_iterations);
+  }
   if (r.friction) {
     efficiency_.Add(r.Efficiency());
     friction_power_.Add(r.friction_power);
@@ -197,6 +206,14 @@ SweepSummary SweepAccumulator::Result() const {
   if (helical_count_ > 0) {
     int count = 0;
     AddHelical(helical_sum_, 1.0 / helical_count_, &s.helical_mean, &count);
+  }
+  for (std::size_t i = 0; i < pin_radial_.size(); ++i)
+    s.pin_tilts.push_back({pin_radial_[i].mean(), pin_radial_[i].min(), pin_radial_[i].max(),
+                           pin_tangential_[i].mean(), pin_tangential_[i].min(),
+                           pin_tangential_[i].max()});
+  if (!pin_radial_.empty()) {
+    s.pin_iterations_mean = pin_iterations_.mean();
+    s.pin_iterations_max = pin_iterations_.max();
   }
   s.friction = friction_;
   s.efficiency_mean = efficiency_.mean();

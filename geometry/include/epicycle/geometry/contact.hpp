@@ -16,6 +16,10 @@ struct GearPose {
   Vec2 rotation_centre = Vec2::Zero();   ///< [m]
   Vec2 geometric_centre = Vec2::Zero();  ///< [m] centre of the tooth geometry
   double rotation = 0;                   ///< θ [rad], counter-clockwise
+  /// The slope of the gear's axis [-], inertial frame: its section at z displaced by z·slope. A
+  /// planet's tilt on its pin under load (transmission/pin.hpp), set per position by the
+  /// quasi-static driver; 0 elsewhere.
+  Vec2 axis_slope = Vec2::Zero();
 };
 
 struct PosedGear {

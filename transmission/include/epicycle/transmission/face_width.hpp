@@ -46,6 +46,7 @@
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/damage.hpp"
+#include "epicycle/transmission/pin.hpp"
 
 namespace epicycle::transmission {
 
@@ -87,6 +88,8 @@ struct FaceWidthSpec {
   double coupling_length = 0;  ///< λ [m], > 0 for kPasternak
   std::vector<PinTilt> pin_tilts;
   std::vector<LeadSpec> leads;
+  /// The planets' pins as load-dependent tilts (pin.hpp); empty: rigid pins.
+  std::vector<PinSpec> pins;
   /// The carrier's torsional stiffness between its two plates [N·m/rad] (0: rigid) and the
   /// distance between the plates [m]: under the carrier torque T_c every pin tilts tangentially
   /// by T_c r_c/(k_θ L), r_c the carrier radius, the end at the output plate leading.
@@ -145,13 +148,18 @@ class FaceWidthModel {
   /// The gap change [m] of slice s of `contact` (the terms in the header's equation but δ_j).
   double GapChange(const geometry::StagePoses& poses, const StageContact& contact, int s) const;
 
-  /// The axis slope of body b in the inertial frame at these poses [-].
+  /// The axis slope of body b in the inertial frame at these poses [-]: with pins
+  /// (pins().active()), a planet's adds its tilt on its pin under load, held in the poses
+  /// (GearPose::axis_slope: per-position state, set by the quasi-static driver).
   Eigen::Vector2d AxisSlope(const geometry::StagePoses& poses, int body) const;
+
+  /// The planets' pins (pin.hpp); inactive when every pin is rigid.
+  const PinModel& pins() const { return pins_; }
 
   /// The misalignment of `contact`'s mesh that varies linearly across its face, the gap change
   /// from z = −b/2 to +b/2 [m], signed (+: the gap closes towards +z), split as ISO 6336-1 splits
   /// it: `assembly` (f_ma: the pin tilts and the lead slopes) and `deflection` (f_sh: the
-  /// carrier's wind-up under load). Crowning and end relief are even in z and not part of it.
+  /// carrier's wind-up and the planets' tilts on their pins under load). Crowning and end relief are even in z and not part of it.
   struct Misalignment {
     double assembly = 0, deflection = 0;  ///< [m]
   };
@@ -178,6 +186,7 @@ class FaceWidthModel {
   std::vector<BodyLead> lead_;                  // per body
   std::vector<Eigen::Vector2d> planet_slope_;   // carrier frame: (radial, tangential)
   double wind_up_slope_ = 0;                    // tangential [-], every pin
+  PinModel pins_;
   double sun_planet_width_ = 0, planet_ring_width_ = 0;
   Eigen::MatrixXd coupling_sun_planet_, coupling_planet_ring_;
 };

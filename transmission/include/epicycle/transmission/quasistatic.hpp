@@ -67,6 +67,13 @@ struct PositionResult {
   /// A helical stage's axial forces and each planet's tilting moment (helical_slices.hpp); no
   /// planets for a spur stage.
   HelicalLoads helical;
+  /// With pins of finite stiffness (pin.hpp; else empty): each planet's tilt on its pin under
+  /// the load of this position, t [-] in the inertial frame (GearPose::axis_slope of `poses`)
+  /// and in the carrier frame (radial outward, tangential counter-clockwise at +z), and the last
+  /// tilt update's change of the gap across the face b |Δt| [m] (settled: ≤ the geometric
+  /// tolerance; the iterations are geometric_iterations).
+  std::vector<Eigen::Vector2d> pin_tilts, pin_tilts_carrier;
+  double pin_tilt_change = 0;
   double transmission_error = 0;     ///< loaded static TE: sun rotation from kinematic [rad]
   geometry::Vec2 sun_displacement = geometry::Vec2::Zero();  ///< [m] (floating sun)
   std::vector<double> planet_rotations;                      ///< from kinematic [rad]

@@ -39,6 +39,9 @@ struct QuasiStaticRequest {
   std::string friction = "off";    ///< friction at rest: off, scene, or a law's name
   bool stresses = false;           ///< root stresses too (also when the scene asks for them)
   bool rating = false;             ///< ISO 6336 ratings (implies stresses)
+  /// false: the scene's [[face_width.pin]] left out, every planet held at its given tilt (the
+  /// pins rigid in tilt: the run without the tilt's feedback).
+  bool pin_feedback = true;
   FeComplianceOptions tables;      ///< the influence tables' cache
   /// The stage and tables built from `scene` with its stresses as run (a front end's cache, e.g.
   /// Python's per scene); null: the run builds its own.

@@ -31,6 +31,10 @@ enum class StageStatus {
   /// quasi-static with friction: the fixed point on the contact forces (the friction loads of
   /// the previous solve's forces) did not settle within the iterations (docs/model.md §9)
   kFrictionNotSettled,
+  /// quasi-static with pins of finite stiffness: the fixed point on the planets' tilts (the
+  /// pins' deflections under the previous solve's forces, pin.hpp) did not settle within the
+  /// iterations (docs/model.md §10)
+  kTiltNotSettled,
 };
 /// "ok", "no line of action", "off the flank grid", ... (for messages and files).
 std::string StatusName(StageStatus status);

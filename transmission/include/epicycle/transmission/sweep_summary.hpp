@@ -104,6 +104,15 @@ struct SweepSummary {
   /// A helical stage's axial forces and tilting moments, each the mean over the converged
   /// positions (helical_slices.hpp); no planets for a spur stage.
   HelicalLoads helical_mean;
+  /// With pins of finite stiffness (pin.hpp; else empty): per planet, its tilt on its pin in the
+  /// carrier frame (radial, tangential) [rad], the mean and the extremes over the converged
+  /// positions; and the iterations of the positions (geometric and tilt together) [-].
+  struct PinTiltSummary {
+    double radial_mean = 0, radial_min = 0, radial_max = 0;
+    double tangential_mean = 0, tangential_min = 0, tangential_max = 0;
+  };
+  std::vector<PinTiltSummary> pin_tilts;
+  double pin_iterations_mean = 0, pin_iterations_max = 0;
 };
 
 /// The statistics of a sweep of a stage with `planets` planets gathered one position at a time,
@@ -128,6 +137,8 @@ class SweepAccumulator {
   FaceLoadTracker faces_;
   HelicalLoads helical_sum_;
   int helical_count_ = 0;
+  std::vector<Accumulator> pin_radial_, pin_tangential_;
+  Accumulator pin_iterations_;
 };
 
 /// The statistics of `results` (a sweep of a stage with `planets` planets): SweepAccumulator over
