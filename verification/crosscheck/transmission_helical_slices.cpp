@@ -15,26 +15,12 @@
 #include "epicycle/transmission/helical_study.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "fe_fixtures.hpp"
+#include "helical_fixtures.hpp"
 
 using namespace epicycle;
 using transmission::ContactTerms;
 using transmission::PositionResult;
 using transmission::StageContact;
-
-namespace {
-
-const transmission::FeStageCompliance& HelicalCompliance(const transmission::Scene& scene,
-                                                         const geometry::Stage& stage) {
-  static std::unique_ptr<transmission::FeStageCompliance> c;
-  if (!c) {
-    transmission::FeComplianceOptions o = test::CachedTables();
-    o.helical_slices = true;
-    c = std::make_unique<transmission::FeStageCompliance>(scene, stage, o);
-  }
-  return *c;
-}
-
-}  // namespace
 
 TEST_CASE("helical slices at beta = 0 are the spur face-width model's slices",
           "[crosscheck][transmission][helical]") {
@@ -78,7 +64,7 @@ TEST_CASE("helical paper stage: the sun's and the ring's axial forces balance th
   const transmission::Scene scene = transmission::ParseScene(
       test::SceneText("paper_stage_helical.toml"), "paper_stage_helical.toml");
   const geometry::Stage stage(scene.stage);
-  const transmission::StageModel model(stage, HelicalCompliance(scene, stage),
+  const transmission::StageModel model(stage, test::HelicalCompliance(scene, stage),
                                        transmission::SetupFromScene(scene));
   const PositionResult r =
       transmission::SolvePosition(model, 0.0, scene.loads, transmission::QuasiStaticOptions{});

@@ -17,6 +17,7 @@
 #include "epicycle/transmission/pin.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "fe_fixtures.hpp"
+#include "helical_fixtures.hpp"
 
 using namespace epicycle;
 using transmission::MeshFaceLoad;
@@ -24,24 +25,13 @@ using transmission::PositionResult;
 
 namespace {
 
-const transmission::FeStageCompliance& HelicalCompliance(const transmission::Scene& scene,
-                                                         const geometry::Stage& stage) {
-  static std::unique_ptr<transmission::FeStageCompliance> c;
-  if (!c) {
-    transmission::FeComplianceOptions o = test::CachedTables();
-    o.helical_slices = true;
-    c = std::make_unique<transmission::FeStageCompliance>(scene, stage, o);
-  }
-  return *c;
-}
-
 struct Helical {
   transmission::Scene scene;
   geometry::Stage stage;
   std::unique_ptr<transmission::StageModel> model;
   explicit Helical(const std::string& text)
       : scene(transmission::ParseScene(text, "paper_stage_helical_pin.toml")), stage(scene.stage) {
-    model = std::make_unique<transmission::StageModel>(stage, HelicalCompliance(scene, stage),
+    model = std::make_unique<transmission::StageModel>(stage, test::HelicalCompliance(scene, stage),
                                                       transmission::SetupFromScene(scene));
   }
   PositionResult Solve(double angle = 0) const {
@@ -58,6 +48,17 @@ const MeshFaceLoad& Mesh(const PositionResult& r, int planet, bool ring) {
     if (m.planet == planet && m.ring_mesh == ring) return m;
   FAIL("no face load for the mesh");
   return r.face_loads.front();
+}
+
+// F_m |z̄_m| of a mesh: its force times its load centroid's distance from the mid-plane, from its
+// line loads [N·m].
+double LoadShiftMoment(const MeshFaceLoad& f) {
+  const int slices = static_cast<int>(f.line_load.size());
+  double first = 0;
+  for (int s = 0; s < slices; ++s)
+    first += f.line_load[static_cast<std::size_t>(s)] * f.width / slices *
+             transmission::SliceCentre(s, slices, f.width);
+  return std::abs(first);
 }
 
 // The scene without its [[face_width.pin]] table (the last table of the file).
@@ -119,16 +120,7 @@ TEST_CASE("pins on the helical paper stage: each planet's tilt is its tilting mo
       const geometry::MeshSummary& s = rig.stage.meshes()[static_cast<std::size_t>(k)];
       path += s.contact_ratio_iso * p_bt * std::sin(s.pressure_angle);
     }
-    for (const bool ring : {false, true}) {
-      const MeshFaceLoad& f = Mesh(r, i, ring);
-      double force = 0, first = 0;
-      for (std::size_t s = 0; s < f.line_load.size(); ++s) {
-        const double part = f.line_load[s] * f.width / static_cast<double>(f.line_load.size());
-        force += part;
-        first += part * transmission::SliceCentre(static_cast<int>(s), static_cast<int>(f.line_load.size()), f.width);
-      }
-      shift += std::abs(first);  // F_m |z̄_m|
-    }
+    for (const bool ring : {false, true}) shift += LoadShiftMoment(Mesh(r, i, ring));
     const double hand = hand_moment / k_tilt;
     const double bound = (f_a * path + shift) / k_tilt;
     const Eigen::Vector2d& t = r.pin_tilts_carrier[static_cast<std::size_t>(i)];
@@ -188,7 +180,7 @@ TEST_CASE("pins: a rigid pin (k_tilt = +inf) is the model without pins, bit for 
   transmission::PinSpec rigid;
   rigid.tilting_stiffness = std::numeric_limits<double>::infinity();
   scene.face_width.pins.push_back(rigid);
-  const transmission::StageModel model(none.stage, HelicalCompliance(none.scene, none.stage),
+  const transmission::StageModel model(none.stage, test::HelicalCompliance(none.scene, none.stage),
                                        transmission::SetupFromScene(scene));
   const PositionResult a = none.Solve(0.1);
   const PositionResult b = transmission::SolvePosition(model, 0.1, scene.loads,
@@ -238,14 +230,7 @@ TEST_CASE("pin bending on the spur paper stage: a cantilever pin's slope lies in
       const double f = r.solution.force(static_cast<Eigen::Index>(j));
       if (c.contact.kind != geometry::ContactKind::kInvolute) off_line += f;
     }
-    for (const bool ring : {false, true}) {
-      const MeshFaceLoad& f = Mesh(r, i, ring);
-      double first = 0;
-      for (std::size_t s = 0; s < f.line_load.size(); ++s)
-        first += f.line_load[s] * f.width / static_cast<double>(f.line_load.size()) *
-                 transmission::SliceCentre(static_cast<int>(s), static_cast<int>(f.line_load.size()), f.width);
-      shift += std::abs(first);
-    }
+    for (const bool ring : {false, true}) shift += LoadShiftMoment(Mesh(r, i, ring));
     const double hand = p_hand * a * a / (2 * ei);
     const double bound = shift * a / ei + 2 * off_line * a * a / (2 * ei) + 1e-9 * hand;
     // In the plane of the force: the planet's net force from its contacts.
