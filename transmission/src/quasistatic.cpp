@@ -168,13 +168,91 @@ void CarryPairForces(const std::vector<StageContact>& from, const Eigen::VectorX
   }
 }
 
+// Pins of finite stiffness (pin.hpp): a fixed point on the planets' tilts alongside the geometric
+// iteration. Each problem is built with the tilts (GearPose::axis_slope of this position's own
+// poses, never the shared model) that the pins take under the forces of the previous solve (a
+// neighbour's tilts for the first, else none); they have settled when the gap they change across
+// the face, b |Δt|, moves by at most the geometric tolerance. With friction at rest both fixed
+// points share the iteration, each change taken relative to its own tolerance.
+class PinTilts {
+ public:
+  PinTilts(const StageModel& model, const QuasiStaticOptions& options)
+      : model_(model),
+        pins_(model.face_width().pins()),
+        tolerance_(options.geometric_tolerance),
+        face_(std::max(model.face_width().MeshWidth(false), model.face_width().MeshWidth(true))) {}
+  bool active() const { return pins_.active(); }
+
+  // Starts `poses` from the neighbour's tilts (or none) and adds the tilts' update to
+  // `fixed_point` (after friction's, if it has one); `contacts` and `built` are those of the
+  // problem each solve answers.
+  void Install(const PositionResult* neighbour, const std::vector<StageContact>& contacts,
+               const geometry::StagePoses& built, geometry::StagePoses* poses,
+               ForceFixedPoint* fixed_point) {
+    for (std::size_t i = 0; i < poses->planets.size(); ++i)
+      poses->planets[i].axis_slope =
+          neighbour != nullptr && neighbour->pin_tilts.size() == poses->planets.size()
+              ? neighbour->pin_tilts[i]
+              : Eigen::Vector2d::Zero();
+    const std::function<double(const Eigen::VectorXd&)> friction = fixed_point->update;
+    const double friction_tolerance = fixed_point->tolerance;
+    fixed_point->tolerance = 1;  // both changes are taken relative to their tolerances
+    fixed_point->update = [this, &contacts, &built, poses, friction,
+                           friction_tolerance](const Eigen::VectorXd& force) {
+      const std::vector<PinLoad> load = PinLoadsOf(model_.stage(), built, contacts, force);
+      tilt_change_ = 0;
+      for (std::size_t i = 0; i < load.size(); ++i) {
+        Eigen::Vector2d& t = poses->planets[i].axis_slope;
+        const Eigen::Vector2d next = pins_.Tilt(static_cast<int>(i), load[i]);
+        tilt_change_ = std::max(tilt_change_, face_ * (next - t).norm());
+        t = next;
+      }
+      double change = tilt_change_ / tolerance_;
+      if (friction) {
+        friction_change_ = friction(force);
+        change = std::max(change, friction_change_ / friction_tolerance);
+      }
+      return change;
+    };
+  }
+
+  // The tilts the last problem was built with (`built`: within the tolerance of the settled
+  // ones) into `r`; friction's own force change back into `g`; a tilt that has not settled
+  // turns the fixed point's status into kTiltNotSettled.
+  void Finish(const geometry::StagePoses& built, GeometricIterationResult* g,
+              PositionResult* r) const {
+    r->pin_tilt_change = tilt_change_;
+    for (const geometry::GearPose& p : built.planets) {
+      const double c = p.rotation_centre.norm();
+      const Eigen::Vector2d er =
+          c > 0 ? Eigen::Vector2d(p.rotation_centre / c) : Eigen::Vector2d(1, 0);
+      r->pin_tilts.push_back(p.axis_slope);
+      r->pin_tilts_carrier.emplace_back(p.axis_slope.dot(er),
+                                        p.axis_slope.dot(Eigen::Vector2d(-er.y(), er.x())));
+    }
+    g->force_change = friction_change_;
+    if (g->status == StageStatus::kFrictionNotSettled && tilt_change_ > tolerance_) {
+      r->status = StageStatus::kTiltNotSettled;
+      r->message = "the planets' tilts on their pins did not settle in " +
+                   std::to_string(g->iterations) + " iterations: the last tilt update changed " +
+                   "the gap across the face by " + io::Num(tilt_change_) + " m (tolerance " +
+                   io::Num(tolerance_) + " m, quasistatic geometric_tolerance)";
+    }
+  }
+
+ private:
+  const StageModel& model_;
+  const PinModel& pins_;
+  double tolerance_, face_;
+  double tilt_change_ = 0, friction_change_ = 0;
+};
+
 // One position with the caller's solver (a sweep's worker keeps one for its chunk).
 PositionResult Solve(const StageModel& model, double carrier_angle, const StageLoads& loads,
                      const QuasiStaticOptions& options, const PositionResult* neighbour,
                      solvers::ContactSolver& solver) {
   PositionResult r;
   r.carrier_angle = carrier_angle;
-  const int n_planets = model.planets();
   const std::vector<StageDof>& dofs = model.dofs();
   geometry::StagePoses poses = model.KinematicPoses(carrier_angle);
   GeometricIterationOptions iteration;
@@ -225,45 +303,14 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
       return change;
     };
   }
-  // Pins of finite stiffness (pin.hpp): a fixed point on the planets' tilts alongside the
-  // geometric iteration. Each problem is built with the tilts (GearPose::axis_slope of this
-  // position's own poses, never the shared model) that the pins take under the forces of the
-  // previous solve (a neighbour's tilts for the first, else none); they have settled when the
-  // gap they change across the face, b |Δt|, moves by at most the geometric tolerance.
-  const PinModel& pins = model.face_width().pins();
-  double tilt_change = 0, friction_change = 0;
-  const double face = std::max(model.face_width().MeshWidth(false), model.face_width().MeshWidth(true));
-  if (pins.active()) {
-    for (int i = 0; i < model.planets(); ++i) {
-      const std::size_t k = static_cast<std::size_t>(i);
-      poses.planets[k].axis_slope =
-          r.warm_started && neighbour->pin_tilts.size() == poses.planets.size()
-              ? neighbour->pin_tilts[k]
-              : Eigen::Vector2d::Zero();
-    }
-    const std::function<double(const Eigen::VectorXd&)> friction_update = fixed_point.update;
-    const double friction_tolerance = fixed_point.tolerance;
-    fixed_point.tolerance = 1;  // both changes below are taken relative to their tolerances
-    fixed_point.update = [&, friction_update, friction_tolerance](const Eigen::VectorXd& force) {
-      const std::vector<PinLoad> load = PinLoadsOf(model.stage(), built, r.problem.contacts, force);
-      tilt_change = 0;
-      for (int i = 0; i < model.planets(); ++i) {
-        Eigen::Vector2d& t = poses.planets[static_cast<std::size_t>(i)].axis_slope;
-        const Eigen::Vector2d next = pins.Tilt(i, load[static_cast<std::size_t>(i)]);
-        tilt_change = std::max(tilt_change, face * (next - t).norm());
-        t = next;
-      }
-      double change = tilt_change / options.geometric_tolerance;
-      if (friction_update) {
-        friction_change = friction_update(force);
-        change = std::max(change, friction_change / friction_tolerance);
-      }
-      return change;
-    };
-  }
+  // Pins of finite stiffness: the tilts' fixed point beside the geometric iteration (PinTilts).
+  PinTilts tilts(model, options);
+  if (tilts.active())
+    tilts.Install(r.warm_started ? neighbour : nullptr, r.problem.contacts, built, &poses,
+                  &fixed_point);
   GeometricIterationResult g = IterateGeometry(
       [&](solvers::ContactProblemData* data) {
-        if (root_stress || friction || pins.active()) built = poses;
+        if (root_stress || friction || tilts.active()) built = poses;
         StageOutcome o = model.Problem(poses, loads, &r.problem);
         if (o.ok() && friction) {
           used_force.setZero(static_cast<Eigen::Index>(r.problem.contacts.size()));
@@ -283,26 +330,7 @@ PositionResult Solve(const StageModel& model, double carrier_angle, const StageL
   r.converged = g.converged;
   r.status = g.status;
   r.message = std::move(g.message);
-  if (pins.active()) {
-    // The tilts the last problem was built with (within the tolerance of the settled ones).
-    r.pin_tilt_change = tilt_change;
-    for (int i = 0; i < n_planets; ++i) {
-      const geometry::GearPose& p = built.planets[static_cast<std::size_t>(i)];
-      const double c = p.rotation_centre.norm();
-      const Eigen::Vector2d er = c > 0 ? Eigen::Vector2d(p.rotation_centre / c) : Eigen::Vector2d(1, 0);
-      r.pin_tilts.push_back(p.axis_slope);
-      r.pin_tilts_carrier.emplace_back(p.axis_slope.dot(er), p.axis_slope.dot(Eigen::Vector2d(-er.y(), er.x())));
-    }
-    g.force_change = friction_change;
-    if (g.status == StageStatus::kFrictionNotSettled &&
-        tilt_change > options.geometric_tolerance) {
-      r.status = StageStatus::kTiltNotSettled;
-      r.message = "the planets' tilts on their pins did not settle in " +
-                  std::to_string(g.iterations) + " iterations: the last tilt update changed the " +
-                  "gap across the face by " + io::Num(tilt_change) + " m (tolerance " +
-                  io::Num(options.geometric_tolerance) + " m, quasistatic geometric_tolerance)";
-    }
-  }
+  if (tilts.active()) tilts.Finish(built, &g, &r);
   r.geometric_iterations = g.iterations;
   r.contact_iterations = g.contact_iterations;
   r.solution = std::move(g.solution);
