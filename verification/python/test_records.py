@@ -61,6 +61,20 @@ def test_face_width_record_equals_the_program_json(tmp_path):
     assert meshes["sun-planet1"]["K_Hbeta_max"] > 1.05
 
 
+def test_pins_record_equals_the_program_json(tmp_path):
+    # Planets tilting on straddle pins (docs/face_width.md, "The planet's tilt on its pin"): the
+    # helical paper stage's tilting moment, about 163 N m, over k_tilt = 16 E I / L = 2.926e6 N m/rad
+    # turns each planet radially by about 55.6 urad (the hand calculation; the load's shift along
+    # the face moves it by less than 10 %).
+    scene = scene_path("paper_stage_helical_pin.toml")
+    run_cli("quasistatic", scene, "--positions", "2", "--quiet", "--out", tmp_path)
+    program = read_json(tmp_path / "quasistatic_summary.json")
+    python = epicycle.quasistatic(epicycle.Scene.load(scene), positions=2).record
+    same_record(program, python)
+    for p in python["pins"]["planets"]:
+        assert abs(p["tilt_radial_mean_urad"] - 55.6) < 5.6
+
+
 def test_study_record_equals_the_program_json(tmp_path):
     # Four cases of 24 positions (verification/data/studies/kgamma_limit_small.toml): every
     # default of both sides, the exceedances and the Spearman columns in the record.
