@@ -2,7 +2,9 @@
 // straddle and a cantilever pin against an Euler–Bernoulli finite-element beam (cubic Hermite
 // elements, exact for point loads at nodes: an independent solve of the same beam equation), the
 // tilt's direction against the rigid rotation of the planet's axis by the moment's rotation
-// vector, and the scene's [[face_width.pin]] keys refused with the key, value and rule.
+// vector, the tilt's feedback on one mesh of uniform stiffness in uncoupled slices against its
+// closed form (K_Hβ = 1 + c F_β b/(2F) with the settled tilt as F_β), and the scene's
+// [[face_width.pin]] keys refused with the key, value and rule.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -12,6 +14,9 @@
 
 #include <Eigen/Dense>
 
+#include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/face_width.hpp"
 #include "epicycle/transmission/pin.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "stage_fixtures.hpp"
@@ -170,4 +175,63 @@ TEST_CASE("pin: the scene's [[face_width.pin]] keys are read with their units an
                              "pin.toml");
   });
   CHECK_THAT(one_slice, Catch::Contains("slices = 1") && Catch::Contains("slices >= 2"));
+}
+
+TEST_CASE("pin feedback on one mesh of uniform stiffness in uncoupled slices: the settled tilt and "
+          "K_Hbeta = 1 + c F_beta b/(2F) in closed form",
+          "[unit][transmission][pin]") {
+  // One mesh pushes the planet along +x with F = 6500 N over a face b = 25 mm of S = 20 uncoupled
+  // slices of stiffness c = 20 N/(mm·µm) per unit width; an external moment M0 = 163 N·m about +y
+  // (a helical planet's axial forces) and the slices' forces load a pin of k_tilt = 2.926e6
+  // N·m/rad. The pin turns the axis by t_x = c_M M_y (pin.hpp); the section at z moves by z t_x
+  // along +x, away from the mate: the gap of slice s grows by z_s t_x. In full contact the line
+  // load is w(z) = F/b − c t z, whose moment Σ z_s F_s = −c t Σ z_s² Δz = −c t I with
+  // I = b³ (1 − 1/S²)/12 (the slices' centres), so the fixed point t = c_M (M0 − c t I) is
+  //   t = c_M M0 / (1 + c_M c I),
+  // and K_Hβ = max w/mean = 1 + c t (b − Δz)/2 · b/F = 1 + c F_β b (1 − 1/S)/(2F), F_β = t b.
+  const int S = 20;
+  const double b = 25e-3, c = 2e10, force = 6500, m0 = 163, k = 2.926e6;
+  PinSpec spec;
+  spec.tilting_stiffness = k;
+  const transmission::PinModel pins({spec}, 1);
+  const std::vector<double> z = transmission::SliceCentres(S, b);
+  auto solver = solvers::MakeContactSolver(solvers::Backend::kActiveSetNewton);
+  Eigen::Vector2d t = Eigen::Vector2d::Zero();
+  Eigen::VectorXd f;
+  int iterations = 0;
+  for (double change = 1; change > 1e-15 && iterations < 100; ++iterations) {
+    solvers::ContactProblemData d;
+    d.compliance = Eigen::MatrixXd::Identity(S, S) * (S / (c * b));  // strips: C0 S I
+    d.overlap.resize(S);
+    for (int s = 0; s < S; ++s) d.overlap(s) = -z[static_cast<std::size_t>(s)] * t.x();
+    d.equality_matrix = Eigen::MatrixXd::Ones(1, S);  // Σ F_s = F, λ the approach
+    d.equality_rhs = Eigen::VectorXd::Constant(1, force);
+    const solvers::ContactProblem problem(d);
+    solvers::ContactSolution solution;
+    const solvers::ContactReport report =
+        solver->Solve(problem, solvers::ContactOptions{}, &solution);
+    REQUIRE(report.status == solvers::ContactStatus::kConverged);
+    f = solution.force;
+    transmission::PinLoad load;
+    load.force = Eigen::Vector2d(force, 0);
+    load.moment = Eigen::Vector2d(0, m0);
+    for (int s = 0; s < S; ++s) load.moment.y() += z[static_cast<std::size_t>(s)] * f(s);
+    const Eigen::Vector2d next = pins.Tilt(0, load);
+    change = (next - t).norm() / next.norm();
+    t = next;
+  }
+  INFO(iterations << " iterations");
+  const double inertia = b * b * b * (1 - 1.0 / (S * S)) / 12;
+  const double settled = (m0 / k) / (1 + c * inertia / k);
+  // The fixed point contracts by c I/k ≈ 0.02 per step: 100 steps settle it to round-off; the
+  // contact solve's tolerance (1e-10 relative) bounds the forces' error: 1e-9 relative.
+  CHECK(t.x() == Approx(settled).epsilon(1e-9));
+  CHECK(t.y() == 0);
+  const double k_hbeta = f.maxCoeff() / (force / S);
+  const double closed = 1 + c * (settled * b) * b * (1 - 1.0 / S) / (2 * force);
+  CHECK(k_hbeta == Approx(closed).epsilon(1e-9));
+  // The load gathers at −z: the end the tilt moves towards the mate.
+  CHECK(f(0) == f.maxCoeff());
+  // Without the feedback (a rigid pin) the face would carry uniformly: K_Hβ = 1.
+  CHECK(closed > 1.01);
 }
