@@ -69,7 +69,7 @@ double LocalWidthFactor(const geometry::Gear& a, const geometry::Gear& b);
 /// above), in slice order, each with its gap changed by `faces`' lead terms (GapChange).
 struct PairSliceContacts {
   std::vector<geometry::PotentialContact> contacts;
-  std::vector<int> slice;                          ///< each contact's slice s [-]
+  std::vector<int> slice;                           ///< each contact's slice s [-]
   std::vector<std::array<double, 2>> section_turn;  ///< each contact's Δθ_1, Δθ_2 [rad]
 };
 /// @throws std::invalid_argument for faces without slices.
