@@ -670,10 +670,26 @@ std::string MeshStiffnessText(const transmission::StiffnessRecord& record) {
         "\n  mean mesh stiffness      {:10.4g} N/m = {:6.2f} N/(mm um)   ISO 6336-1 c_gamma_alpha "
         "{:6.2f} (ratio {:.3f})\n",
         result.mean_stiffness, mean, c_gamma_alpha, mean / c_gamma_alpha);
-    out += fmt::format(
-        "  peak single-pair         {:10.4g} N/m = {:6.2f} N/(mm um)   ISO 6336-1 c'            "
-        "{:6.2f} (ratio {:.3f})\n",
-        result.peak_pair_stiffness, peak, c_prime, peak / c_prime);
+    if (!result.helical) {
+      out += fmt::format(
+          "  peak single-pair         {:10.4g} N/m = {:6.2f} N/(mm um)   ISO 6336-1 c'            "
+          "{:6.2f} (ratio {:.3f})\n",
+          result.peak_pair_stiffness, peak, c_prime, peak / c_prime);
+    } else {
+      // A helical tooth pair never carries the mesh alone across the face: ISO's c′ stands for
+      // one section's single pair (docs/mesh_stiffness.md, "Helical pairs").
+      const double single = result.peak_slice_pair_per_width();
+      out += fmt::format(
+          "  peak tooth pair          {:10.4g} N/m = {:6.2f} N/(mm um) over the face; beta {:.4g} "
+          "deg, overlap ratio {:.4f}\n",
+          result.peak_pair_stiffness, peak, geometry::Deg(record.helix_angle),
+          record.overlap_ratio);
+      out += fmt::format(
+          "  single pair, one section                  {:6.2f} N/(mm um)   ISO 6336-1 c'           "
+          " "
+          "{:6.2f} (ratio {:.3f})\n",
+          single, c_prime, single / c_prime);
+    }
     out += fmt::format(
         "  mesh stiffness range     {:10.4g} .. {:.4g} N/m; contact ratio {:.4f} (tip circles)\n",
         result.min_stiffness, result.max_stiffness, record.contact_ratio);

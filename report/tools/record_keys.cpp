@@ -142,6 +142,8 @@ int main() {
   transmission::StiffnessRecord stiffness;
   stiffness.result.root_stress.resize(1);
   stiffness.result.slices = 2;
+  stiffness.result.helical = true;
+  stiffness.helix_angle = 0.1;
   stiffness.healthy = stiffness.result;
   dynamics::ModesRecord modes;
   modes.modes.resize(1);
@@ -156,7 +158,9 @@ int main() {
         quasistatic);
   Table("Mesh stiffness (`epicycle stiffness`, Python `mesh_stiffness(...)[\"record\"]`)",
         "OUT/stiffness_MESH.json; `root_stress` only with stresses, the `slices` and K_Hbeta keys "
-        "only with slices of the face width, `healthy` only beside a damaged tooth's cycles.",
+        "only with slices of the face width, `peak_slice_pair_stiffness_N_per_mm_um`, "
+        "`helix_angle_deg` and `overlap_ratio` only for a helical pair, `healthy` only beside a "
+        "damaged tooth's cycles.",
         stiffness);
   studies::StudyRecord study;
   study.summary.k_gamma.percentiles.resize(1);

@@ -323,22 +323,34 @@ FePairCompliance::FePairCompliance(const Scene& scene, const geometry::GearPair&
 
 void FePairCompliance::Operator(const geometry::GearPair& pair, const geometry::PairPoses& poses,
                                 const std::vector<geometry::PotentialContact>& contacts,
+                                const std::vector<std::array<double, 2>>& section_turns,
                                 std::vector<compliance::OperatorBody>* bodies,
                                 std::vector<compliance::OperatorContact>* oc) const {
+  if (!section_turns.empty() && section_turns.size() != contacts.size())
+    throw std::invalid_argument("FePairCompliance: " + std::to_string(section_turns.size()) +
+                                " section turns for " + std::to_string(contacts.size()) +
+                                " contacts");
   *bodies = {Body(tables_, 0, poses.gear1, "gear1"), Body(tables_, 1, poses.gear2, "gear2")};
   oc->clear();
   oc->reserve(contacts.size());
-  for (std::size_t j = 0; j < contacts.size(); ++j)
+  for (std::size_t j = 0; j < contacts.size(); ++j) {
     oc->push_back(Sides(contacts[j], 0, 1, pair.gear1(), pair.gear2(), (*bodies)[0].centre,
                         (*bodies)[1].centre, "contact " + std::to_string(j)));
+    // A helical slice's sides back onto the section the poses describe (as the stage's).
+    if (!section_turns.empty()) {
+      TurnSide(&oc->back().side[0], (*bodies)[0].centre, -section_turns[j][0]);
+      TurnSide(&oc->back().side[1], (*bodies)[1].centre, -section_turns[j][1]);
+    }
+  }
 }
 
 Eigen::MatrixXd FePairCompliance::Matrix(
     const geometry::GearPair& pair, const geometry::PairPoses& poses,
-    const std::vector<geometry::PotentialContact>& contacts) const {
+    const std::vector<geometry::PotentialContact>& contacts,
+    const std::vector<std::array<double, 2>>& section_turns) const {
   std::vector<compliance::OperatorBody> bodies;
   std::vector<compliance::OperatorContact> oc;
-  Operator(pair, poses, contacts, &bodies, &oc);
+  Operator(pair, poses, contacts, section_turns, &bodies, &oc);
   return compliance::AssembleCompliance(bodies, oc);
 }
 
@@ -348,10 +360,11 @@ bool FePairCompliance::has_root_stress() const {
 
 std::vector<compliance::FilletStress> FePairCompliance::FilletStresses(
     const geometry::GearPair& pair, const geometry::PairPoses& poses,
-    const std::vector<geometry::PotentialContact>& contacts, const Eigen::VectorXd& force) const {
+    const std::vector<geometry::PotentialContact>& contacts, const Eigen::VectorXd& force,
+    const std::vector<std::array<double, 2>>& section_turns) const {
   std::vector<compliance::OperatorBody> bodies;
   std::vector<compliance::OperatorContact> oc;
-  Operator(pair, poses, contacts, &bodies, &oc);
+  Operator(pair, poses, contacts, section_turns, &bodies, &oc);
   return compliance::FilletStresses(bodies, oc, force);
 }
 

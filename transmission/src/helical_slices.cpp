@@ -2,6 +2,8 @@
 #include "epicycle/transmission/helical_slices.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "epicycle/geometry/helical.hpp"
 #include "epicycle/transmission/stage_model.hpp"
@@ -22,11 +24,18 @@ double TanBaseHelix(const geometry::Gear& g) {
 }
 
 // The poses of the section at z: every gear turned by its lead about its own axis.
+void TurnSection(const geometry::Gear& gear, double z, geometry::GearPose* pose) {
+  pose->rotation += geometry::SectionTurn(gear, z);
+}
 void TurnSections(const geometry::Stage& stage, double z, geometry::StagePoses* poses) {
-  poses->sun.rotation += geometry::SectionTurn(stage.sun(), z);
-  poses->ring.rotation += geometry::SectionTurn(stage.ring(), z);
+  TurnSection(stage.sun(), z, &poses->sun);
+  TurnSection(stage.ring(), z, &poses->ring);
   for (int i = 0; i < stage.planets(); ++i)
-    poses->planets[static_cast<std::size_t>(i)].rotation += geometry::SectionTurn(stage.planet(i), z);
+    TurnSection(stage.planet(i), z, &poses->planets[static_cast<std::size_t>(i)]);
+}
+void TurnSections(const geometry::GearPair& pair, double z, geometry::PairPoses* poses) {
+  TurnSection(pair.gear1(), z, &poses->gear1);
+  TurnSection(pair.gear2(), z, &poses->gear2);
 }
 
 double ContactZ(const geometry::Stage& stage, const StageContact& c) {
@@ -99,6 +108,30 @@ StageOutcome HelicalSliceTerms(const geometry::Stage& stage, const StageComplian
     }
   }
   return {};
+}
+
+PairSliceContacts HelicalPairSlices(const geometry::GearPair& pair, const PairFaceWidth& faces,
+                                    const geometry::PairPoses& poses,
+                                    const geometry::ContactSearchOptions& search) {
+  if (!faces.active())
+    throw std::invalid_argument("HelicalPairSlices: slices = " + std::to_string(faces.slices()) +
+                                ": a helical pair needs slices >= 2");
+  PairSliceContacts out;
+  const int S = faces.slices();
+  for (int s = 0; s < S; ++s) {
+    const double z = SliceCentre(s, S, faces.width());
+    geometry::PairPoses turned = poses;
+    TurnSections(pair, z, &turned);
+    const std::array<double, 2> turn{geometry::SectionTurn(pair.gear1(), z),
+                                     geometry::SectionTurn(pair.gear2(), z)};
+    for (geometry::PotentialContact& c : pair.Contacts(turned, search)) {
+      c.overlap += faces.GapChange(c, s);
+      out.contacts.push_back(c);
+      out.slice.push_back(s);
+      out.section_turn.push_back(turn);
+    }
+  }
+  return out;
 }
 
 HelicalLoads HelicalLoadsOf(const geometry::Stage& stage, const geometry::StagePoses& poses,

@@ -12,6 +12,7 @@
 #include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/accumulator.hpp"
 #include "epicycle/transmission/geometric_iteration.hpp"
+#include "epicycle/transmission/helical_slices.hpp"
 #include "epicycle/transmission/pair_face_width.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 #include "ordered_chunks.hpp"
@@ -60,6 +61,13 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
     s.spec.centre_distance = stage->carrier_radius();
     s.gap_window = scene.gap_window;
     s.damage = scene.damage;
+    // A helical stage's mesh keeps the stage's slices and coupling (its contact lines cross the
+    // face); the pins' tilts and the leads belong to the stage.
+    if (s.spec.gear1.helix.helical()) {
+      s.face_width.slices = scene.face_width.slices;
+      s.face_width.coupling = scene.face_width.coupling;
+      s.face_width.coupling_length = scene.face_width.coupling_length;
+    }
     return s;
   }
   throw std::invalid_argument("--mesh = '" + mesh + "': the stage's meshes are " + names);
@@ -108,6 +116,11 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
   std::vector<solvers::LocalTermParameters> local;  // of the last problem built
   std::vector<int> source;                          // a pitted contact's strips: damage.hpp
   std::vector<ContactStrip> strips;
+  // A helical pair's slices (helical_slices.hpp): each contact's slice and section turns.
+  const bool helical = faces.active() && pair.gear1().spec().helix.helical();
+  const double local_width = helical ? LocalWidthFactor(pair.gear1(), pair.gear2()) : 1.0;
+  std::vector<int> slice;
+  std::vector<std::array<double, 2>> turns;
   geometry::PairPoses built;  // the poses of the last problem built
   GeometricIterationOptions iteration;
   iteration.max_iterations = options.max_geometric_iterations;
@@ -115,32 +128,54 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
   iteration.warm_start = false;
   const GeometricIterationResult g = IterateGeometry(
       [&](solvers::ContactProblemData* data) -> StageOutcome {
-        contacts = pair.Contacts(poses, search);
+        if (helical) {
+          PairSliceContacts found = HelicalPairSlices(pair, faces, poses, search);
+          contacts = std::move(found.contacts);
+          slice = std::move(found.slice);
+          turns = std::move(found.section_turn);
+        } else {
+          contacts = pair.Contacts(poses, search);
+        }
         built = poses;
         if (contacts.empty())
           return {StageStatus::kNoContact, "no potential contact within the gap window"};
         solvers::ContactProblemData& d = *data;
         d.name = setup.mesh + " @ " + std::to_string(geometry::Deg(angle)) + " deg";
-        d.compliance = compliance.Matrix(pair, poses, contacts);
-        if (!options.tooth_coupling)  // (a pitted contact's strips still share their rows)
-          d.compliance = Eigen::MatrixXd(d.compliance.diagonal().asDiagonal());
-        if (!damage.empty() &&
-            SplitContacts(damage, std::vector<int>(contacts.size(), 0),
-                          std::vector<int>(contacts.size(), 1), contacts, setup.gap_window,
-                          options.local_terms, &source, &strips)) {
-          // Each strip takes its contact's rows of C (the stage model's rule).
-          d.compliance = ExpandCompliance(d.compliance, source);
-          std::vector<geometry::PotentialContact> parts;
-          for (std::size_t k = 0; k < source.size(); ++k) {
-            parts.push_back(contacts[static_cast<std::size_t>(source[k])]);
-            parts.back().overlap -= strips[k].depth;
-          }
-          contacts = std::move(parts);
-        } else if (faces.active()) {
-          faces.Expand(&contacts, &d.compliance);  // slice s of contact j at j S + s
+        d.compliance = compliance.Matrix(pair, poses, contacts, turns);
+        if (helical) {
+          // C(j^s, k^t) = C_plane(p_j^s, p_k^t) W_st; without tooth coupling, only a tooth pair's
+          // own slices keep their terms.
+          const Eigen::MatrixXd& w = faces.coupling();
+          for (std::size_t j = 0; j < contacts.size(); ++j)
+            for (std::size_t k = 0; k < contacts.size(); ++k) {
+              const bool same = contacts[j].tooth_a == contacts[k].tooth_a &&
+                                contacts[j].tooth_b == contacts[k].tooth_b &&
+                                contacts[j].side_a == contacts[k].side_a;
+              d.compliance(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) *=
+                  options.tooth_coupling || same ? w(slice[j], slice[k]) : 0.0;
+            }
           strips.assign(contacts.size(), ContactStrip{1.0 / faces.slices(), 0.0, 0});
         } else {
-          strips.assign(contacts.size(), ContactStrip{});
+          if (!options.tooth_coupling)  // (a pitted contact's strips still share their rows)
+            d.compliance = Eigen::MatrixXd(d.compliance.diagonal().asDiagonal());
+          if (!damage.empty() &&
+              SplitContacts(damage, std::vector<int>(contacts.size(), 0),
+                            std::vector<int>(contacts.size(), 1), contacts, setup.gap_window,
+                            options.local_terms, &source, &strips)) {
+            // Each strip takes its contact's rows of C (the stage model's rule).
+            d.compliance = ExpandCompliance(d.compliance, source);
+            std::vector<geometry::PotentialContact> parts;
+            for (std::size_t k = 0; k < source.size(); ++k) {
+              parts.push_back(contacts[static_cast<std::size_t>(source[k])]);
+              parts.back().overlap -= strips[k].depth;
+            }
+            contacts = std::move(parts);
+          } else if (faces.active()) {
+            faces.Expand(&contacts, &d.compliance);  // slice s of contact j at j S + s
+            strips.assign(contacts.size(), ContactStrip{1.0 / faces.slices(), 0.0, 0});
+          } else {
+            strips.assign(contacts.size(), ContactStrip{});
+          }
         }
         const int n = static_cast<int>(contacts.size());
         if (n == 0) return {StageStatus::kNoContact, "no potential contact within the gap window"};
@@ -158,6 +193,8 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
                 d.name + " contact " + std::to_string(j), &d.local.back());
             if (!o.ok()) return o;
             d.local.back().face_width *= strips[static_cast<std::size_t>(j)].width_fraction;
+            // A helical slice's term per unit length of contact line (helical_slices.hpp).
+            if (helical) d.local.back().face_width *= local_width;
           }
         }
         d.multiplier_labels = {"gear1 rotation [rad]"};
@@ -186,9 +223,10 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
   out.poses = built;
   out.contacts = contacts;
   out.force = solution.force;
-  if (faces.active()) out.face_load = faces.Loads(solution.force);
+  if (faces.active())
+    out.face_load = helical ? faces.Loads(solution.force, slice) : faces.Loads(solution.force);
   if (compliance.has_root_stress()) {
-    out.fillet_stress = compliance.FilletStresses(pair, built, contacts, solution.force);
+    out.fillet_stress = compliance.FilletStresses(pair, built, contacts, solution.force, turns);
     if (!out.fillet_stress.empty())  // the pair's two bodies
       out.root_stress = SummariseRootStress(out.fillet_stress, 2);
   }
@@ -213,6 +251,19 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
     p.force += f;
   }
   out.mesh_stiffness = out.approach > 0 ? std::abs(setup.torque) / rb1 / out.approach : 0.0;
+  if (helical && out.approach > 0) {
+    // Each tooth pair's force in each slice (its contacts there, merged as the pairs above).
+    std::map<std::array<int, 4>, double> in_slice;
+    for (std::size_t j = 0; j < contacts.size(); ++j) {
+      const geometry::PotentialContact& c = contacts[j];
+      in_slice[{slice[j], c.tooth_a, c.tooth_b, c.side_a}] +=
+          solution.force(static_cast<Eigen::Index>(j));
+    }
+    const double dz = faces.width() / faces.slices();
+    for (const auto& [key, f] : in_slice)
+      out.peak_slice_pair_stiffness =
+          std::max(out.peak_slice_pair_stiffness, f / (out.approach * dz));
+  }
   for (auto& [key, p] : merged) {
     p.stiffness = out.approach > 0 ? p.force / out.approach : 0.0;
     p.share = out.total_force > 0 ? p.force / out.total_force : 0.0;
@@ -248,7 +299,12 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geome
     throw std::invalid_argument(
         "mesh stiffness: pits with slices of the face width are not built "
         "for a gear pair (the stage model has them)");
+  if (!faces.active() && pair.gear1().spec().helix.helical())
+    throw std::invalid_argument(
+        "mesh stiffness: face_width.slices = " + std::to_string(faces.slices()) +
+        ": a helical pair is resolved in slices of the face width and needs slices >= 2");
   r.slices = faces.slices();
+  r.helical = faces.active() && pair.gear1().spec().helix.helical();
   Accumulator k_h_beta;
   internal::RunOrderedChunks(
       options.positions, options.threads, options.backend,
@@ -272,6 +328,8 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geome
           r.max_stiffness = std::max(r.max_stiffness, s.mesh_stiffness);
           for (const ToothPairLoad& p : s.pairs)
             r.peak_pair_stiffness = std::max(r.peak_pair_stiffness, p.stiffness);
+          r.peak_slice_pair_stiffness =
+              std::max(r.peak_slice_pair_stiffness, s.peak_slice_pair_stiffness);
           root_stress.Add(s.fillet_stress, s.root_stress, s.angle);
           if (faces.active()) {
             k_h_beta.Add(s.face_load.k_h_beta);
@@ -357,7 +415,10 @@ std::array<double, 2> MeanMeshStiffnessPerWidth(const Scene& scene, const geomet
     const geometry::GearPair pair = MakePair(scene, setup.spec);
     MeshStiffnessOptions opt;
     opt.positions = positions;
-    const MeshStiffnessResult r = ComputeHealthyMeshStiffness(scene, setup, pair, fe, opt);
+    // A helical stage's mesh is resolved in the stage's slices (MakeMeshPair).
+    FeComplianceOptions tables = fe;
+    tables.helical_slices = tables.helical_slices || IsHelical(scene);
+    const MeshStiffnessResult r = ComputeHealthyMeshStiffness(scene, setup, pair, tables, opt);
     if (r.failed == positions)
       throw std::runtime_error("mean mesh stiffness of " + meshes[m] + ": every position failed");
     c[m] = r.mean_stiffness / geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
@@ -382,6 +443,19 @@ compliance::iso6336::PairData IsoPairData(const geometry::GearPair& pair) {
   d.dedendum2 = dedendum(pair.gear2());
   d.pressure_angle = pair.gear1().spec().pressure_angle;
   d.contact_ratio = pair.summary().contact_ratio_iso;
+  const geometry::Helix& helix = pair.gear1().spec().helix;
+  if (helix.helical()) {
+    // ISO 6336-1's basic rack and shifts are the normal section's (the specs hold the transverse
+    // m_t = m_n/cos β, tan α_t = tan α_n/cos β and x_t = x_n cos β, geometry::TransverseSpec);
+    // ε_α stays the transverse section's.
+    const double c = std::cos(helix.angle);
+    d.helix_angle = helix.angle;
+    d.pressure_angle = std::atan(std::tan(d.pressure_angle) * c);
+    d.x1 /= c;
+    d.x2 /= c;
+    d.dedendum1 /= c;
+    d.dedendum2 /= c;
+  }
   return d;
 }
 

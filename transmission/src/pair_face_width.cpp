@@ -56,11 +56,21 @@ void PairFaceWidth::Expand(std::vector<geometry::PotentialContact>* contacts,
 }
 
 MeshFaceLoad PairFaceWidth::Loads(const Eigen::VectorXd& force) const {
+  std::vector<int> slice(static_cast<std::size_t>(force.size()));
+  for (std::size_t j = 0; j < slice.size(); ++j) slice[j] = static_cast<int>(j) % slices_;
+  return Loads(force, slice);
+}
+
+MeshFaceLoad PairFaceWidth::Loads(const Eigen::VectorXd& force,
+                                  const std::vector<int>& slice) const {
+  if (slice.size() != static_cast<std::size_t>(force.size()))
+    throw std::invalid_argument("PairFaceWidth::Loads: " + std::to_string(slice.size()) +
+                                " slice indices for " + std::to_string(force.size()) + " forces");
   MeshFaceLoad f;
   f.line_load.assign(static_cast<std::size_t>(slices_), 0.0);
   const double dz = width_ / slices_;
   for (Eigen::Index j = 0; j < force.size(); ++j)
-    f.line_load[static_cast<std::size_t>(j % slices_)] += force(j) / dz;
+    f.line_load[static_cast<std::size_t>(slice[static_cast<std::size_t>(j)])] += force(j) / dz;
   SummariseLineLoad(width_, &f);
   return f;
 }

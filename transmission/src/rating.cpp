@@ -289,11 +289,11 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage, const Sw
                 : geometry::iso::RootFormFactorsB(
                       g.teeth(), s.module, s.pressure_angle, s.profile_shift, s.rack->addendum,
                       s.rack->tip_radius, 2 * g.tip_radius(), m.contact_ratio_iso);
-    const double y_beta = helical
-                              ? geometry::iso::HelicalBending(g.teeth(), beta, hm.base_helix_angle,
-                                                              m.contact_ratio_iso, hm.overlap_ratio)
-                                    .y_beta
-                              : 1.0;
+    const geometry::iso::HelicalBendingFactors hb =
+        helical ? geometry::iso::HelicalBending(g.teeth(), beta, hm.base_helix_angle,
+                                                m.contact_ratio_iso, hm.overlap_ratio)
+                : geometry::iso::HelicalBendingFactors{};
+    const double y_beta = hb.y_beta;
     const std::string who = role == 0 ? "sun" : "planets",
                       mesh_name =
                           m.kind == geometry::MeshKind::kSunPlanet ? "sun mesh" : "ring mesh";
@@ -309,6 +309,11 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage, const Sw
     factor(
         "Y_beta " + who + " " + mesh_name, y_beta,
         fmt::format("ISO 6336-3: 1 - eps_beta beta/120 deg, eps_beta = {:.4f}", hm.overlap_ratio));
+    factor("Y_eps " + who + " " + mesh_name, hb.y_eps,
+           fmt::format("ISO 6336-3:1996 0.25 + 0.75/eps_alpha_n, eps_alpha_n = eps_alpha/cos^2 "
+                       "beta_b = {:.4f}, z_n = {:.3f}: reported, not applied (method B of 2006 "
+                       "loads the virtual gear's outer point of single pair contact)",
+                       hb.virtual_contact_ratio, hb.virtual_teeth));
     return sigma_f0[key] = {ft / (geometry::ContactFaceWidth(g, mate) * geometry::NormalModule(g)) *
                                 y.y_f * y.y_s * y_beta,
                             std::string()};

@@ -564,11 +564,18 @@ void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
     const double m_mm = p.gear1.module / kMm;
     const double a0 =
         m_mm * (internal ? p.gear2.teeth - p.gear1.teeth : p.gear2.teeth + p.gear1.teeth) / 2.0;
+    // A helical pair's module is the transverse one, m_t = m_n/cos β: say so, naming m_n.
+    const std::string m =
+        p.gear1.helix.helical()
+            ? "m_t = gear1.module_mm/cos(beta) = " + SceneNum(m_mm) +
+                  " mm (module_mm = " + SceneNum(m_mm * std::cos(p.gear1.helix.angle)) +
+                  ", helix_angle_deg = " + SceneNum(geometry::Deg(p.gear1.helix.angle)) + "): m_t"
+            : "m";
     pair_table.Check(
         "centre_distance_mm", p.centre_distance / kMm,
         Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
-            .Because(std::string(internal ? "m (z2 - z1)/2 = " : "m (z1 + z2)/2 = ") +
-                     SceneNum(a0) + " mm within 2 modules (profile shifts move it by about x m)"));
+            .Because(m + (internal ? " (z2 - z1)/2 = " : " (z1 + z2)/2 = ") + SceneNum(a0) +
+                     " mm within 2 modules (profile shifts move it by about x m)"));
     pair_table.Done();
   }
   {

@@ -189,7 +189,8 @@ void RequireSpur(const Scene& scene, const std::string& driver) {
 void RequireHelicalSlices(const Scene& scene, const std::string& driver) {
   if (!IsHelical(scene) || scene.face_width.active()) return;
   std::string where = internal::KeyAt(scene, "face_width.slices");
-  if (where.empty()) where = internal::KeyAt(scene, "helix.helix_angle_deg");
+  for (const char* key : {"helix.helix_angle_deg", "sun.helix_angle_deg", "gear1.helix_angle_deg"})
+    if (where.empty()) where = internal::KeyAt(scene, key);
   if (where.empty()) where = scene.source;
   throw std::invalid_argument(
       where + ": face_width.slices = " + std::to_string(scene.face_width.slices) + ": " + driver +

@@ -4,8 +4,10 @@
 
 #include <stdexcept>
 
+#include "epicycle/geometry/helical.hpp"
 #include "epicycle/geometry/plane.hpp"
 
+#include "epicycle/transmission/helical_scene.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/validity.hpp"
 
@@ -35,6 +37,8 @@ void VisitResult(const MeshStiffnessResult& r, RecordVisitor& visit) {
     visit.Number("angle_at_K_Hbeta_max_deg", geometry::Deg(r.k_h_beta_angle));
     visit.Number("largest_load_z_mm", r.largest_z * 1e3);
   }
+  if (r.helical)
+    visit.Number("peak_slice_pair_stiffness_N_per_mm_um", r.peak_slice_pair_per_width());
 }
 
 // The pair's own comparison values, in the record and in its healthy twin.
@@ -42,6 +46,10 @@ void VisitReferences(const StiffnessRecord& r, RecordVisitor& visit) {
   visit.Number("contact_ratio", r.contact_ratio);
   visit.Number("iso6336_c_prime_N_per_mm_um", r.iso6336_c_prime);
   visit.Number("iso6336_c_gamma_alpha_N_per_mm_um", r.iso6336_c_gamma_alpha);
+  if (r.helix_angle > 0) {
+    visit.Number("helix_angle_deg", geometry::Deg(r.helix_angle));
+    visit.Number("overlap_ratio", r.overlap_ratio);
+  }
 }
 
 }  // namespace
@@ -51,6 +59,10 @@ StiffnessRecord RunStiffness(const StiffnessRequest& request, StiffnessSink& sin
   CheckArgument(request.threads_option, request.threads, kThreadsOrZero);
   Scene scene = request.scene;
   scene.model.stresses = scene.model.stresses || request.stresses;
+  // A helical pair is resolved in slices of the face width (helical_slices.hpp).
+  RequireHelicalSlices(scene, "`epicycle stiffness`");
+  FeComplianceOptions tables = request.tables;
+  tables.helical_slices = IsHelical(scene);
   std::optional<geometry::Stage> stage;
   if (scene.kind == SceneKind::kStage) {
     stage.emplace(MakeStage(scene));
@@ -84,7 +96,7 @@ StiffnessRecord RunStiffness(const StiffnessRequest& request, StiffnessSink& sin
   plan.cycles = cycles;
   plan.face_width = geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
   sink.Pair(plan);
-  const FePairCompliance compliance(scene, pair, request.tables, setup.gears);
+  const FePairCompliance compliance(scene, pair, tables, setup.gears);
   plan.compliance = &compliance;
   sink.Start(plan);
 
@@ -98,13 +110,18 @@ StiffnessRecord RunStiffness(const StiffnessRequest& request, StiffnessSink& sin
   record.iso6336_c_prime = compliance::iso6336::SinglePairStiffness(iso);
   record.iso6336_c_gamma_alpha = compliance::iso6336::MeshStiffness(iso);
   record.contact_ratio = pair.summary().contact_ratio_iso;
+  if (pair.gear1().spec().helix.helical()) {
+    record.helix_angle = pair.gear1().spec().helix.angle;
+    record.overlap_ratio = geometry::OverlapRatio(plan.face_width, record.helix_angle,
+                                                  geometry::NormalModule(pair.gear1()));
+  }
   record.join_depth = {compliance.JoiningDepth(0), compliance.JoiningDepth(1)};
   // The scene's warnings and those only the results show (docs/scenes.md, "Ranges and validity").
   record.warnings = scene.warnings;
   for (const std::string& w : MeshStiffnessWarnings(pair, record.result))
     record.warnings.push_back(w);
   if (request.healthy && (first != 0 || cycles != 1))
-    record.healthy = ComputeHealthyMeshStiffness(scene, setup, pair, request.tables, opt);
+    record.healthy = ComputeHealthyMeshStiffness(scene, setup, pair, tables, opt);
   return record;
 }
 

@@ -4,6 +4,8 @@ same numbers bit for bit (the JSON writes each double with the digits that read 
 every setting left at its default on both sides. The program's provenance and the runs' wall
 times are the only keys taken out: they describe the process, not the run's results."""
 
+import math
+
 import epicycle
 from conftest import read_json, run_cli, scene_path
 
@@ -27,6 +29,18 @@ def test_stiffness_record_equals_the_program_json(tmp_path):
     python = epicycle.mesh_stiffness(epicycle.Scene.load(scene)).record
     same_record(program, python)
     assert program["positions"] == 60  # the default, on both sides
+
+
+def test_helical_stiffness_record_equals_the_program_json(tmp_path):
+    # A helical pair in slices (docs/mesh_stiffness.md, "Helical pairs"): the record's helical keys
+    # on both sides; eps_beta = b sin(beta)/(pi m_n) = 20 sin 15 deg/(4 pi) = 0.41192.
+    scene = scene_path("iso_pair_20_40_helical.toml")
+    run_cli("stiffness", scene, "--positions", 6, "--out", tmp_path)
+    program = read_json(tmp_path / "stiffness_gear1-gear2.json")
+    python = epicycle.mesh_stiffness(epicycle.Scene.load(scene), positions=6).record
+    same_record(program, python)
+    assert abs(program["overlap_ratio"] - 20 * math.sin(math.radians(15)) / (4 * math.pi)) < 1e-12
+    assert program["slices"] == 20 and program["peak_slice_pair_stiffness_N_per_mm_um"] > 0
 
 
 def test_modes_record_equals_the_program_json(tmp_path):

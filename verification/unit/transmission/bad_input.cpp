@@ -207,6 +207,17 @@ const std::vector<Case> kCases = {
      false,
      {"sun.module_mm = 12", "transverse module m_n/cos(beta) = 12.10", "at 363.1",
       "carrier.radius_mm = 302.789", "cannot be assembled"}},
+    // A helical pair (scenes/iso_pair_20_40_helical.toml, z 20/40, beta 15 deg): the same rules.
+    {"helical_pair_same_hands.toml",
+     false,
+     {"helical_pair_same_hands.toml:37:", "gear2.hand = \"right\"",
+      "an external mesh needs opposite hands"}},
+    // m_n = 5 mm: m_t = 5/cos 15° = 5.176 mm, m_t (20 + 40)/2 = 155.29 mm ± 2 m_t.
+    {"helical_pair_module_5mm.toml",
+     false,
+     {"pair.centre_distance_mm = 124.233142", "must be in [144.93",
+      "m_t = gear1.module_mm/cos(beta) = 5.176", "module_mm = 5", "helix_angle_deg = 15",
+      "(z1 + z2)/2 = 155.29"}},
 };
 
 std::string Dir() { return std::string(EPICYCLE_TEST_DATA_DIR) + "/bad_inputs/"; }
@@ -217,6 +228,8 @@ std::string ErrorOf(const std::string& path, std::vector<std::string>* warnings)
     const auto scene = epicycle::transmission::ReadScene(path);
     if (scene.kind == epicycle::transmission::SceneKind::kStage) {
       const epicycle::geometry::Stage stage = epicycle::transmission::MakeStage(scene);
+    } else {
+      const epicycle::geometry::GearPair pair = epicycle::transmission::MakePair(scene, scene.pair);
     }
     *warnings = scene.warnings;
     return "";

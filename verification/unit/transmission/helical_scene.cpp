@@ -155,4 +155,10 @@ TEST_CASE("the ISO 6336 rating of a helical stage takes the helical factors",
   CHECK(r.gears[0].sigma_h0 == Approx(z_h * z_e * z_eps / std::sqrt(std::cos(beta)) *
                                       std::sqrt(ft / (d * b) * (u + 1) / u))
                                    .epsilon(1e-12));
+  // Y_ε = 0.25 + 0.75/ε_αn, ε_αn = ε_α/cos²β_b: reported beside σ_F0 (method B of 2006 does not
+  // take it), the sun's in the sun mesh.
+  double y_eps = 0;
+  for (const transmission::RatingFactor& f : r.factors)
+    if (f.symbol == "Y_eps sun sun mesh") y_eps = f.value;
+  CHECK(y_eps == Approx(0.25 + 0.75 * std::pow(std::cos(bb), 2) / ea).epsilon(1e-12));
 }

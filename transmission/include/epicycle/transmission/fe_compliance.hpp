@@ -3,6 +3,7 @@
 // stage or of a gear pair by compliance::AssembleCompliance.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -110,8 +111,12 @@ class FePairCompliance {
   FePairCompliance(const Scene& scene, const geometry::GearPair& pair,
                    const FeComplianceOptions& options,
                    const std::vector<std::string>& gears = {"gear1", "gear2"});
+  /// `section_turns` (empty, or one per contact): each contact's sides searched on sections of
+  /// gear 1 and gear 2 turned by their leads, Δθ_1 and Δθ_2 [rad] (a helical pair's slices,
+  /// helical_slices.hpp), carried back by −Δθ onto the section `poses` describe.
   Eigen::MatrixXd Matrix(const geometry::GearPair& pair, const geometry::PairPoses& poses,
-                         const std::vector<geometry::PotentialContact>& contacts) const;
+                         const std::vector<geometry::PotentialContact>& contacts,
+                         const std::vector<std::array<double, 2>>& section_turns = {}) const;
   /// True when FilletStresses can answer: both tables built with their fillet stresses (the
   /// scene's [model] stresses or FeComplianceOptions::table.fillet_stress).
   bool has_root_stress() const;
@@ -121,7 +126,8 @@ class FePairCompliance {
   /// @throws std::invalid_argument unless has_root_stress(), or as compliance::FilletStresses.
   std::vector<compliance::FilletStress> FilletStresses(
       const geometry::GearPair& pair, const geometry::PairPoses& poses,
-      const std::vector<geometry::PotentialContact>& contacts, const Eigen::VectorXd& force) const;
+      const std::vector<geometry::PotentialContact>& contacts, const Eigen::VectorXd& force,
+      const std::vector<std::array<double, 2>>& section_turns = {}) const;
   double JoiningDepth(int gear) const { return tables_.Table(gear).join_depth(); }
   /// The material and plane assumption the tables were built with (the local terms use them).
   const Material& material() const { return material_; }
@@ -132,6 +138,7 @@ class FePairCompliance {
   // The operator's bodies (gear 1, gear 2 at their poses) and contact sides.
   void Operator(const geometry::GearPair& pair, const geometry::PairPoses& poses,
                 const std::vector<geometry::PotentialContact>& contacts,
+                const std::vector<std::array<double, 2>>& section_turns,
                 std::vector<compliance::OperatorBody>* bodies,
                 std::vector<compliance::OperatorContact>* oc) const;
   GearTables tables_;

@@ -29,13 +29,16 @@
 // moment of the load's shift along the face.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "epicycle/geometry/pair.hpp"
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/transmission/damage.hpp"
 #include "epicycle/transmission/face_width.hpp"
+#include "epicycle/transmission/pair_face_width.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
 
 namespace epicycle::transmission {
@@ -60,6 +63,19 @@ double LocalWidthFactor(const geometry::Gear& a, const geometry::Gear& b);
                                              const DamageModel& damage,
                                              const geometry::StagePoses& poses, double gap_window,
                                              ContactTerms* terms);
+
+/// A helical gear pair's contacts in slices (the pair driver's, pair_face_width.hpp): slice s's
+/// contacts searched with gear 1 and gear 2 turned by Δθ_1(z_s), Δθ_2(z_s) (as a stage's slices
+/// above), in slice order, each with its gap changed by `faces`' lead terms (GapChange).
+struct PairSliceContacts {
+  std::vector<geometry::PotentialContact> contacts;
+  std::vector<int> slice;                           ///< each contact's slice s [-]
+  std::vector<std::array<double, 2>> section_turn;  ///< each contact's Δθ_1, Δθ_2 [rad]
+};
+/// @throws std::invalid_argument for faces without slices.
+PairSliceContacts HelicalPairSlices(const geometry::GearPair& pair, const PairFaceWidth& faces,
+                                    const geometry::PairPoses& poses,
+                                    const geometry::ContactSearchOptions& search);
 
 /// The axial forces and tilting moments of one planet.
 struct PlanetHelicalLoad {

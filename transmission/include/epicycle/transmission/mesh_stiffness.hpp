@@ -105,6 +105,10 @@ struct MeshSample {
   /// With slices of the face width (MeshPairSetup::face_width): the load per unit width across
   /// the face, K_Hβ and where the largest sits; else empty line loads.
   MeshFaceLoad face_load;
+  /// A helical pair's (else 0): the largest stiffness per unit face width of one tooth pair in
+  /// one slice, F_pair,s/(δ_LOA Δz) [N/m²] (Δz = b/S): the section's single-pair stiffness, the
+  /// quantity ISO 6336-1's c′ (with cos β) stands for.
+  double peak_slice_pair_stiffness = 0;
 };
 
 struct MeshStiffnessResult {
@@ -124,9 +128,15 @@ struct MeshStiffnessResult {
   /// over the converged samples, the gear-1 rotation [rad] and z [m] of the largest.
   int slices = 1;
   double k_h_beta_max = 0, k_h_beta_mean = 0, k_h_beta_angle = 0, largest_z = 0;
+  /// A helical pair (resolved in slices, helical_slices.hpp): its largest
+  /// MeshSample::peak_slice_pair_stiffness over the converged samples [N/m²].
+  bool helical = false;
+  double peak_slice_pair_stiffness = 0;
   /// Per unit face width in N/(mm·µm) (= 1e9 N/m²): mean (c_γα-like) and peak single pair (c′).
   double mean_per_width() const { return mean_stiffness / face_width / 1e9; }
   double peak_pair_per_width() const { return peak_pair_stiffness / face_width / 1e9; }
+  /// A helical pair's peak_slice_pair_stiffness in N/(mm·µm).
+  double peak_slice_pair_per_width() const { return peak_slice_pair_stiffness / 1e9; }
 };
 
 /// The mesh cycles [first, first + count) of gear 1's rotation (as MeshStiffnessOptions) in which

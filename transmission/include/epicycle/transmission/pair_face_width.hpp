@@ -34,6 +34,11 @@ class PairFaceWidth {
   /// The load per unit width w_s [N/m] across the face of forces F [N] of expanded contacts, with
   /// its K_Hβ and where the largest sits (SummariseLineLoad).
   MeshFaceLoad Loads(const Eigen::VectorXd& force) const;
+  /// The same for contacts in any order, contact j in slice `slice[j]` (a helical pair's,
+  /// HelicalPairSlices).
+  MeshFaceLoad Loads(const Eigen::VectorXd& force, const std::vector<int>& slice) const;
+  /// W [-], the coupling along the face (S × S; FaceCouplingMatrix).
+  const Eigen::MatrixXd& coupling() const { return coupling_; }
 
  private:
   int slices_ = 1;

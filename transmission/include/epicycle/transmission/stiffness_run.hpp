@@ -70,8 +70,10 @@ struct StiffnessRecord {
   std::string scene;  ///< the scene's name
   std::string plane;  ///< "strain" or "stress" (the scene's [model] plane)
   bool local_terms = true;
-  MeshStiffnessResult result;                             ///< the samples and their statistics
-  double contact_ratio = 0;                               ///< ε_α from the tip circles [-]
+  MeshStiffnessResult result;  ///< the samples and their statistics
+  double contact_ratio = 0;    ///< ε_α from the tip circles [-]
+  /// A helical pair's β [rad] and ε_β = b sin β/(π m_n) [-] (in the record when β > 0).
+  double helix_angle = 0, overlap_ratio = 0;
   double iso6336_c_prime = 0, iso6336_c_gamma_alpha = 0;  ///< ISO 6336-1 method B [N/(mm·µm)]
   std::array<double, 2> join_depth{};                     ///< each gear's joining depth [m]
   std::optional<MeshStiffnessResult> healthy;  ///< the healthy teeth over the same cycles
