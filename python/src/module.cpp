@@ -65,7 +65,10 @@ PYBIND11_MODULE(_epicycle, m) {
   });
   ep::BindScene(m);
   ep::BindStage(m);
-  ep::BindDynamic(m);
+  ep::BindDynamicRun(m);
+  ep::BindModes(m);
+  ep::BindSpeedSweep(m);
+  ep::BindPeriodicBranch(m);
   ep::BindStudies(m);
   ep::BindContact(m);
   ep::BindStream(m);
