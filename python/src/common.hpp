@@ -67,6 +67,11 @@ py::object Result(const py::dict& fields);
 /// IntegratorFailure, TimeLimitReached, GeometryFailure) with `message` and `result`.
 [[noreturn]] void RaiseRunFailure(transmission::RunStatus status, const std::string& message,
                                   const py::object& result);
+/// Raises for the failed parts of a run (a sweep's speeds, a study's cases) with the statuses
+/// `failed`: the subclass of their status when they share one (RaiseRunFailure), else
+/// ComputationError.
+[[noreturn]] void RaiseFailures(const std::vector<transmission::RunStatus>& failed,
+                                const std::string& message, const py::object& result);
 
 /// A JSON document as Python objects (through the json module: the report's own keys and units,
 /// the numbers as the summary JSON files hold them).

@@ -191,14 +191,16 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
     return Array(std::move(d));
   }();
   // The record as the program's summary JSON has it (its provenance is the program's).
-  nlohmann::json j = report::SpeedSweepRecordJson(r, nlohmann::json());
-  j.erase("provenance");
-  f["record"] = JsonToPython(j);
+  f["record"] = JsonToPython(report::RecordJson(r));
   py::object result = Result(f);
-  if (r.failed() > 0 && raise_on_failure)
-    RaiseComputationError(std::to_string(r.failed()) + " of " + std::to_string(r.speeds.size()) +
-                              " speeds failed (result.message lists why)",
-                          result);
+  std::vector<transmission::RunStatus> failed;
+  for (const dynamics::SpeedResult& x : r.speeds)
+    if (!x.ok()) failed.push_back(x.status);
+  if (!failed.empty() && raise_on_failure)
+    RaiseFailures(failed,
+                  std::to_string(failed.size()) + " of " + std::to_string(r.speeds.size()) +
+                      " speeds failed (result.message lists why)",
+                  result);
   return result;
 }
 
@@ -280,7 +282,9 @@ Raises
 ValueError
     Bad input (the argument's name, value and rule).
 ComputationError
-    A speed failed and raise_on_failure (its .result the Result above).)doc")
+    A speed failed and raise_on_failure: the subclass of the failed speeds' status when they share
+    one (ContactFailure, IntegratorFailure, TimeLimitReached, GeometryFailure), its .result the
+    Result above.)doc")
           .c_str());
   m.def(
       "speed_grid",
