@@ -17,6 +17,7 @@
 #include "epicycle/studies/study_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
+#include "failed_parts.hpp"
 
 namespace epicycle::python {
 
@@ -163,14 +164,8 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   f["record"] = JsonToPython(report::RecordJson(*outcome.record));
   py::object result = Result(f);
   // As the program exits 1 (docs/studies.md, "Results"): the cases that failed, by status.
-  std::vector<transmission::RunStatus> failed;
-  for (const studies::CaseRow& r : run.rows)
-    if (!r.ok()) failed.push_back(r.status);
-  if (!failed.empty() && raise_on_failure)
-    RaiseFailures(failed,
-                  std::to_string(failed.size()) + " of " + std::to_string(run.rows.size()) +
-                      " cases failed (result.status and result.message say why)",
-                  result);
+  if (raise_on_failure)
+    RaiseFailedParts(run.rows, "cases", "(result.status and result.message say why)", result);
   return result;
 }
 

@@ -1,35 +1,15 @@
 // The periodic-branch driver of dynamics/.
-#include <algorithm>
-#include <array>
-#include <cmath>
 #include <optional>
-#include <thread>
+#include <string>
+#include <vector>
 
 #include "common.hpp"
 #include "epicycle/dynamics/branch_run.hpp"
-#include "epicycle/dynamics/dynamic_factor.hpp"
-#include "epicycle/dynamics/dynamic_run.hpp"
-#include "epicycle/dynamics/dynamic_summary.hpp"
-#include "epicycle/dynamics/load_sharing_parts.hpp"
-#include "epicycle/dynamics/modes.hpp"
-#include "epicycle/dynamics/modes_run.hpp"
-#include "epicycle/dynamics/run_arguments.hpp"
-#include "epicycle/dynamics/run_span.hpp"
-#include "epicycle/dynamics/simulation.hpp"
-#include "epicycle/dynamics/speed_sweep.hpp"
-#include "epicycle/dynamics/speed_sweep_run.hpp"
-#include "epicycle/dynamics/vibration.hpp"
-#include "epicycle/io/units.hpp"
-#include "epicycle/report/face_width_files.hpp"
-#include "epicycle/report/ratings.hpp"
+#include "epicycle/dynamics/periodic.hpp"
+#include "epicycle/dynamics/stage_periodic.hpp"
 #include "epicycle/report/record_json.hpp"
-#include "epicycle/report/run_files.hpp"
-#include "epicycle/report/speed_sweep_run_files.hpp"
-#include "epicycle/transmission/rating.hpp"
-#include "epicycle/transmission/run_range.hpp"
-#include "epicycle/transmission/stage_problem.hpp"
-#include "scene.hpp"
 #include "integration.hpp"
+#include "scene.hpp"
 
 namespace epicycle::python {
 

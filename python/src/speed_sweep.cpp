@@ -1,35 +1,24 @@
 // The speed-sweep driver of dynamics/.
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <optional>
-#include <thread>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "common.hpp"
-#include "epicycle/dynamics/branch_run.hpp"
-#include "epicycle/dynamics/dynamic_factor.hpp"
-#include "epicycle/dynamics/dynamic_run.hpp"
-#include "epicycle/dynamics/dynamic_summary.hpp"
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/dynamics/modes.hpp"
-#include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/dynamics/run_arguments.hpp"
-#include "epicycle/dynamics/run_span.hpp"
-#include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/dynamics/speed_sweep_run.hpp"
-#include "epicycle/dynamics/vibration.hpp"
-#include "epicycle/io/units.hpp"
-#include "epicycle/report/face_width_files.hpp"
-#include "epicycle/report/ratings.hpp"
+#include "epicycle/geometry/plane.hpp"
 #include "epicycle/report/record_json.hpp"
-#include "epicycle/report/run_files.hpp"
-#include "epicycle/report/speed_sweep_run_files.hpp"
-#include "epicycle/transmission/rating.hpp"
+#include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/run_range.hpp"
-#include "epicycle/transmission/stage_problem.hpp"
-#include "scene.hpp"
+#include "epicycle/transmission/scene.hpp"
+#include "failed_parts.hpp"
 #include "integration.hpp"
+#include "scene.hpp"
 
 namespace epicycle::python {
 
@@ -193,14 +182,8 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
   // The record as the program's summary JSON has it (its provenance is the program's).
   f["record"] = JsonToPython(report::RecordJson(r));
   py::object result = Result(f);
-  std::vector<transmission::RunStatus> failed;
-  for (const dynamics::SpeedResult& x : r.speeds)
-    if (!x.ok()) failed.push_back(x.status);
-  if (!failed.empty() && raise_on_failure)
-    RaiseFailures(failed,
-                  std::to_string(failed.size()) + " of " + std::to_string(r.speeds.size()) +
-                      " speeds failed (result.message lists why)",
-                  result);
+  if (raise_on_failure)
+    RaiseFailedParts(r.speeds, "speeds", "(result.message lists why)", result);
   return result;
 }
 

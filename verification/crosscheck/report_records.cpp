@@ -89,13 +89,19 @@ void DropRunDependent(nlohmann::json* j) {
 // file's keys are the record's fields (the provenance is the program's, not the run's), and every
 // value is the same bit for bit (the JSON numbers are written with 17 digits and read back
 // exactly), the wall times aside.
+// The file's top-level keys against the record's fields (the provenance is the program's).
 template <class Record>
-void CheckSameRecord(nlohmann::json program, const Record& record, nlohmann::json library) {
+void CheckKeys(const nlohmann::json& program, const Record& record) {
   KeyList fields;
   VisitRecord(record, fields);
   std::set<std::string> file_keys = Keys(program);
   file_keys.erase("provenance");
   CHECK(file_keys == fields.keys);
+}
+
+template <class Record>
+void CheckSameRecord(nlohmann::json program, const Record& record, nlohmann::json library) {
+  CheckKeys(program, record);
   DropRunDependent(&program);
   DropRunDependent(&library);
   CHECK(program == library);
@@ -227,11 +233,7 @@ TEST_CASE(
   REQUIRE_FALSE(record.modes.empty());
   REQUIRE_FALSE(record.coincidences.empty());
 
-  KeyList fields;
-  dynamics::VisitRecord(record, fields);
-  std::set<std::string> file_keys = Keys(program);
-  file_keys.erase("provenance");
-  CHECK(file_keys == fields.keys);
+  CheckKeys(program, record);
   program.erase("provenance");
   CHECK(program == report::RecordJson(record));
 }
@@ -260,11 +262,7 @@ TEST_CASE(
   REQUIRE(run.record->summary.cases == 4);
   REQUIRE(run.record->summary.k_gamma_exceedance.size() == 2);
 
-  KeyList fields;
-  studies::VisitRecord(*run.record, fields);
-  std::set<std::string> file_keys = Keys(program);
-  file_keys.erase("provenance");
-  CHECK(file_keys == fields.keys);
+  CheckKeys(program, *run.record);
   // The values, the wall time of the computation aside.
   nlohmann::json library = report::RecordJson(*run.record);
   for (nlohmann::json* j : {&program, &library})
@@ -300,11 +298,7 @@ TEST_CASE(
   REQUIRE(record.speeds.size() == 2);
   REQUIRE_FALSE(record.plan.modes.empty());
 
-  KeyList fields;
-  dynamics::VisitRecord(record, fields);
-  std::set<std::string> file_keys = Keys(program);
-  file_keys.erase("provenance");
-  CHECK(file_keys == fields.keys);
+  CheckKeys(program, record);
   nlohmann::json library = report::RecordJson(record);
   for (nlohmann::json* j : {&program, &library}) {
     for (const char* k :
@@ -342,11 +336,7 @@ TEST_CASE(
   REQUIRE(record.ok());
   REQUIRE(record.branch.points.size() >= 2);
 
-  KeyList fields;
-  dynamics::VisitRecord(record, fields);
-  std::set<std::string> file_keys = Keys(program);
-  file_keys.erase("provenance");
-  CHECK(file_keys == fields.keys);
+  CheckKeys(program, record);
   nlohmann::json library = report::RecordJson(record);
   for (nlohmann::json* j : {&program, &library})
     for (const char* k : {"provenance", "cpu_seconds", "wall_seconds"}) j->erase(k);
