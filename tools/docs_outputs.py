@@ -17,8 +17,9 @@ code beside. The influence tables come from $EPICYCLE_CACHE_DIR (give both build
 Masked before comparing (they differ between two runs of one build): JSON keys named provenance or
 seconds, ending in _seconds/_s/_ms/_over_wall, or holding _seconds_; CSV comment lines (# provenance) and columns named *_s,
 *_ms, *seconds; in text, numbers followed by s, ms, cases/s or positions/s, `wall`/`cpu`
-times, and whether an influence table was built or loaded from the cache; a study's rows are
-compared in sorted order (its threads append them as cases complete).
+times and a speed sweep's CPU column, and whether an influence table was built or loaded from the
+cache; a study's rows and a speed sweep's are compared in sorted order (their threads append them
+as cases or speeds complete).
 """
 import json
 import os
@@ -129,7 +130,25 @@ def mask_text(data):
     text = re.sub(NUMBER + r"(\s*)(s|ms|cases/s|positions/s|steps/s)\b", r"T\1\2", text)
     text = re.sub(r"\((?:" + NUMBER + r")(\s*)(cases/s|positions/s)", r"(T\1\2", text)
     text = re.sub(r"(wall|cpu|CPU|tables)\s+" + NUMBER, r"\1 T", text)
-    return text
+    return mask_sweep_table(text)
+
+
+def mask_sweep_table(text):
+    """The CPU seconds column of a speed sweep's table (sun rpm, K_gamma, K_v, mesh, TE amp,
+    orbit, CPU s, status): the 7th field of a speed's line, the 6th when the speed has no mesh (it
+    failed)."""
+    out, in_table = [], False
+    for line in text.split("\n"):
+        fields = line.split()
+        if "CPU s" in line and fields[:2] == ["sun", "rpm"]:
+            in_table = True
+        elif in_table and not fields:
+            in_table = False
+        elif in_table and len(fields) >= 7 and re.fullmatch(NUMBER, fields[0]):
+            k = 5 if re.fullmatch(NUMBER, fields[3]) else 6
+            line = re.sub(r"^((?:\s*\S+){%d}\s+)%s" % (k, NUMBER), r"\1T", line)
+        out.append(line)
+    return "\n".join(out)
 
 
 TIMED = re.compile(r"(^provenance$|_seconds$|_seconds_|_s$|_ms$|^seconds$|_over_wall$)")
@@ -170,9 +189,11 @@ def masked(path):
             return mask_text(data)
     if path.endswith(".csv"):
         text = mask_csv(data)
-        if os.path.basename(path).startswith("study_"):
-            # A study's rows are appended as cases complete on its threads: their order is not
-            # the run's result (the merge and the summary sort them by case id).
+        name = os.path.basename(path)
+        if name.startswith("study_") or name == "speed_sweep.csv":
+            # A study's rows and a speed sweep's are appended as cases or speeds complete on
+            # their threads: their order is not the run's result (the merge and the summaries
+            # sort them by case id or speed).
             head, *rows = text.split("\n")
             text = "\n".join([head] + sorted(rows))
         return text

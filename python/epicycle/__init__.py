@@ -78,6 +78,11 @@ class GeometryFailure(ComputationError):
     found a planet separated from a member (status "geometry")."""
 
 
+class BadSampledValue(ComputationError):
+    """A study case whose sampled input broke a rule of the scene, so that it was not run (status
+    "bad-sampled-value")."""
+
+
 from ._epicycle import (  # noqa: E402  (the classes above are used by the module)
     ContactProblem,
     QuasiStaticPositions,
@@ -120,6 +125,7 @@ study_part.__doc__ = _epicycle.study_part.__doc__
 study_merge.__doc__ = _epicycle.study_merge.__doc__
 
 __all__ = [
+    "BadSampledValue",
     "ComputationError",
     "ContactFailure",
     "GeometryFailure",

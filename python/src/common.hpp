@@ -67,6 +67,11 @@ py::object Result(const py::dict& fields);
 /// IntegratorFailure, TimeLimitReached, GeometryFailure) with `message` and `result`.
 [[noreturn]] void RaiseRunFailure(transmission::RunStatus status, const std::string& message,
                                   const py::object& result);
+/// Raises for the failed parts of a run (a sweep's speeds, a study's cases) with the statuses
+/// `failed`: the subclass of their status when they share one (RaiseRunFailure), else
+/// ComputationError.
+[[noreturn]] void RaiseFailures(const std::vector<transmission::RunStatus>& failed,
+                                const std::string& message, const py::object& result);
 
 /// A JSON document as Python objects (through the json module: the report's own keys and units,
 /// the numbers as the summary JSON files hold them).
@@ -140,7 +145,10 @@ auto RunReleased(CancelToken& token, F&& work) -> decltype(work()) {
 // The parts of the module, one per file.
 void BindScene(py::module_& m);    // scene.cpp
 void BindStage(py::module_& m);    // stage.cpp: geometry, contacts, mesh stiffness, quasi-static
-void BindDynamic(py::module_& m);  // dynamic.cpp: dynamic run, modes, speed sweep
+void BindDynamicRun(py::module_& m);      // dynamic.cpp: a run in time
+void BindModes(py::module_& m);           // modes.cpp: natural modes
+void BindSpeedSweep(py::module_& m);      // speed_sweep.cpp: speed sweeps and their grids
+void BindPeriodicBranch(py::module_& m);  // periodic_branch.cpp: branches of periodic orbits
 void BindStudies(py::module_& m);  // drivers.cpp: tolerance studies
 void BindContact(py::module_& m);  // contact.cpp: the contact core
 void BindStream(py::module_& m);   // stream.cpp: the quasi-static sweep one position at a time

@@ -17,6 +17,7 @@
 #include "epicycle/studies/study_summary.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
+#include "failed_parts.hpp"
 
 namespace epicycle::python {
 
@@ -50,7 +51,8 @@ py::object SobolObject(const studies::SobolEstimate& e);
 
 py::object Study(const std::string& path, std::optional<std::string> text, int threads,
                  long max_cases, std::optional<std::string> rows_file,
-                 std::optional<std::string> cache_dir, py::object progress) {
+                 std::optional<std::string> cache_dir, py::object progress,
+                 bool raise_on_failure) {
   transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
   if (max_cases >= 0)  // < 0: every case
     transmission::CheckArgument("max_cases", static_cast<double>(max_cases),
@@ -160,7 +162,11 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   f["warnings"] = study.warnings;
   // The program's summary JSON (`epicycle study`), its one serialisation, without provenance.
   f["record"] = JsonToPython(report::RecordJson(*outcome.record));
-  return Result(f);
+  py::object result = Result(f);
+  // As the program exits 1 (docs/studies.md, "Results"): the cases that failed, by status.
+  if (raise_on_failure)
+    RaiseFailedParts(run.rows, "cases", "(result.status and result.message say why)", result);
+  return result;
 }
 
 // One shard's part (`epicycle study FILE --cases I:J | --shard K/N --out DIR`): the same file
@@ -319,12 +325,14 @@ ValueError
       "study",
       [](const std::string& path, std::optional<std::string> text, int threads, long max_cases,
          std::optional<std::string> rows_file, std::optional<std::string> cache_dir,
-         py::object progress) {
-        return Study(path, text, threads, max_cases, rows_file, cache_dir, std::move(progress));
+         py::object progress, bool raise_on_failure) {
+        return Study(path, text, threads, max_cases, rows_file, cache_dir, std::move(progress),
+                     raise_on_failure);
       },
       py::arg("path"), py::kw_only(), py::arg("text") = py::none(), py::arg("threads") = 0,
       py::arg("max_cases") = -1, py::arg("rows_file") = py::none(),
-      py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(), R"doc(
+      py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
+      py::arg("raise_on_failure") = true, R"doc(
 A tolerance study (`epicycle study`; docs/studies.md): every case a quasi-static sweep of the base
 scene with its sampled errors, on threads.
 
@@ -345,6 +353,8 @@ cache_dir : str or None, default None
     Influence-table cache (as quasistatic's).
 progress : callable or None, default None
     progress(rows, total), called as cases complete.
+raise_on_failure : bool, default True
+    Raise when a case failed (else return the Result), as the program exits 1.
 
 Returns
 -------
@@ -364,7 +374,10 @@ Result
 Raises
 ------
 ValueError
-    A bad study file or argument (its name, value and rule).)doc");
+    A bad study file or argument (its name, value and rule).
+ComputationError
+    A case failed and raise_on_failure: the subclass of the failed cases' status when they share
+    one (ContactFailure, GeometryFailure, BadSampledValue), its .result the Result above.)doc");
   m.def("study_part", &StudyPart, py::arg("path"), py::kw_only(), py::arg("cases") = py::none(),
         py::arg("shard") = py::none(), py::arg("out_dir"), py::arg("threads") = 1,
         py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(), R"doc(

@@ -1,4 +1,6 @@
 // The module `epicycle._epicycle` (imported by the package epicycle: python/epicycle/__init__.py).
+#include <algorithm>
+
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
@@ -31,11 +33,21 @@ void RaiseRunFailure(transmission::RunStatus status, const std::string& message,
                      : status == RunStatus::kIntegratorFailure ? "IntegratorFailure"
                      : status == RunStatus::kTimeLimit         ? "TimeLimitReached"
                      : status == RunStatus::kGeometry          ? "GeometryFailure"
+                     : status == RunStatus::kBadSampledValue   ? "BadSampledValue"
                                                                : "ComputationError";
   const py::object type = py::module_::import("epicycle").attr(name);
   const py::object error = type(message, result);
   PyErr_SetObject(type.ptr(), error.ptr());
   throw py::error_already_set();
+}
+
+void RaiseFailures(const std::vector<transmission::RunStatus>& failed, const std::string& message,
+                   const py::object& result) {
+  const bool one = !failed.empty() && std::all_of(failed.begin(), failed.end(), [&](auto s) {
+    return s == failed.front();
+  });
+  if (one) RaiseRunFailure(failed.front(), message, result);
+  RaiseComputationError(message, result);
 }
 
 py::object JsonToPython(const nlohmann::json& j) {
@@ -65,7 +77,10 @@ PYBIND11_MODULE(_epicycle, m) {
   });
   ep::BindScene(m);
   ep::BindStage(m);
-  ep::BindDynamic(m);
+  ep::BindDynamicRun(m);
+  ep::BindModes(m);
+  ep::BindSpeedSweep(m);
+  ep::BindPeriodicBranch(m);
   ep::BindStudies(m);
   ep::BindContact(m);
   ep::BindStream(m);

@@ -35,6 +35,10 @@ void JsonRecord::Numbers(const char* key, const std::vector<double>& value) {
   Current()[key] = std::move(list);
 }
 
+void JsonRecord::Integers(const char* key, const std::vector<long>& value) {
+  Current()[key] = nlohmann::json(value);  // [] when empty
+}
+
 void JsonRecord::BeginList(const char* key) {
   open_.push_back(&(Current()[key] = nlohmann::json::array()));
 }

@@ -1,6 +1,5 @@
-// The natural modes' and the speed sweep's files (docs/modes.md and docs/speed_sweeps.md): the
-// modes and coincidences as JSON, the sweep's CSV written a speed at a time, its summary JSON and
-// its figures against sun speed.
+// The speed sweep's files (docs/speed_sweeps.md): the CSV written a speed at a time and the
+// figures against sun speed (its summary JSON is the record's: speed_sweep_run_files.hpp).
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -9,17 +8,10 @@
 
 #include "epicycle/dynamics/load_sharing_parts.hpp"
 #include "epicycle/report/provenance.hpp"
-#include "epicycle/report/record_json.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/report/svg_plot.hpp"
 
 namespace epicycle::report {
-
-nlohmann::json CoincidencesJson(const std::vector<dynamics::Coincidence>& coincidences) {
-  JsonRecord json;
-  dynamics::VisitCoincidences(coincidences, json);
-  return json.Result()["coincidences"];
-}
 
 namespace {
 
@@ -131,74 +123,6 @@ void WriteSpeedSweepPlots(const std::string& path, const std::string& scene_name
   for (PlotSeries& p : parts) dev.series.push_back(std::move(p));
   dev.x_markers = markers;
   WriteTextFile(path + "_lsr_deviation.svg", RenderSvg(dev));
-}
-
-nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
-                                     const std::vector<dynamics::SpeedResult>& speeds) {
-  using json = nlohmann::json;
-  json list = json::array();
-  for (const dynamics::SpeedResult& r : speeds) {
-    json j = {{"sun_speed_rpm", r.sun_speed_rpm},
-              {"mesh_frequency_Hz", r.mesh_frequency},
-              {"ok", r.ok()},
-              {"status", transmission::RunStatusName(r.status)},
-              {"message", r.message},
-              {"steps", r.stats.steps},
-              {"evaluations", r.stats.rhs_evaluations},
-              {"failed_contact_solves", r.stats.failed_solves},
-              {"cpu_s", r.cpu_seconds},
-              {"wall_s", r.wall_seconds},
-              {"warnings", r.warnings}};
-    if (r.ok()) {
-      j["K_gamma"] = r.k_gamma;
-      j["dynamic_factor"] = r.dynamic_factor;
-      j["dynamic_factor_mesh"] = r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : "";
-      j["peak_mesh_force_N"] = r.peak_mesh_force;
-      j["quasi_static_peak_mesh_force_N"] = r.qs_peak_mesh_force;
-      j["te_amplitude_urad"] = r.te_amplitude * 1e6;
-      j["sun_orbit_radius_um"] = r.orbit_radius * 1e6;
-      j["lsr_min"] = r.lsr_min;
-      j["lsr_max"] = r.lsr_max;
-      j["lsr_deviation"] = r.lsr_deviation;
-      json parts;
-      for (int k = 0; k < dynamics::kLoadSharingPartCount; ++k)
-        parts[dynamics::kLoadSharingPartNames[k]] = r.deviation_parts[static_cast<std::size_t>(k)];
-      j["lsr_deviation_parts"] = parts;
-      j["largest_residual"] = r.largest_residual;
-    }
-    list.push_back(j);
-  }
-  json modes = json::array(), coincidences = json::array();
-  for (const dynamics::ModeDamping& m : plan.modes)
-    modes.push_back({{"frequency_Hz", m.mode.frequency},
-                     {"type", dynamics::ModeTypeName(m.mode.type)},
-                     {"multiplicity", m.mode.multiplicity},
-                     {"cyclic_families_k", m.families},
-                     {"damping_ratio", m.damping_ratio},
-                     {"decay_rate_per_s", m.decay_rate}});
-  coincidences = CoincidencesJson(plan.coincidences);
-  json qs_force = json::object();
-  for (std::size_t q = 0; q < plan.meshes.size(); ++q)
-    qs_force[plan.meshes[q]] = plan.qs_peak_mesh_force[q];
-  json j;
-  j["definitions"] = {
-      {"K_gamma", "max over window samples and planets of n LSR_i"},
-      {"dynamic_factor",
-       "max over meshes of (peak total normal force of the mesh in motion, damping included) / "
-       "(peak quasi-static total normal force of that mesh at the same carrier angles, with the "
-       "same friction at rest at that speed: quasi_static_peak_mesh_force_N of the speed; the "
-       "top-level one is at the scene's speed)"},
-      {"te_amplitude", "half the peak-to-peak dynamic transmission error at the sun"},
-      {"sun_orbit_radius", "largest sun-centre displacement over the window"},
-      {"window",
-       "each speed starts at the quasi-static solution, skips skip_time_s (start transient below "
-       "transient_fraction in every mode) and measures window_mesh_cycles from "
-       "window_start_carrier_deg"}};
-  j["quasi_static_peak_mesh_force_N"] = qs_force;
-  j["modes"] = modes;
-  j["coincidences"] = coincidences;
-  j["speeds"] = list;
-  return j;
 }
 
 }  // namespace epicycle::report

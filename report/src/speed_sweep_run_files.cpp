@@ -91,42 +91,9 @@ std::string SpeedSweepRecordText(const dynamics::SpeedSweepRecord& record) {
   return t;
 }
 
-nlohmann::json SpeedSweepRecordJson(const dynamics::SpeedSweepRecord& r,
+nlohmann::json SpeedSweepRecordJson(const dynamics::SpeedSweepRecord& record,
                                     const nlohmann::json& provenance) {
-  const dynamics::SpeedSweepPlan& plan = r.plan;
-  nlohmann::json j = SpeedSweepResultsJson(plan, r.speeds);
-  j["provenance"] = provenance;
-  j["warnings"] = r.warnings;
-  j["scene"] = r.scene;
-  j["sun_torque_Nm"] = r.sun_torque;
-  j["friction"] = transmission::FrictionLawName(r.friction);
-  j["integrator"] = r.integrator;
-  // rate_tolerance_scale_rad_per_s 0: each speed's highest linearised natural frequency (its
-  // row's run reports it).
-  JsonRecord tolerances;
-  dynamics::VisitTolerances(r.tolerances, tolerances);
-  j.update(tolerances.Result());
-  j["skip_time_s"] = plan.skip_time;
-  j["transient_fraction"] = r.transient_fraction;
-  j["slowest_modal_decay_rate_per_s"] = plan.slowest_decay_rate;
-  j["window_mesh_cycles"] = r.window_cycles;
-  j["window_samples"] = plan.window_angles.size();
-  j["window_start_carrier_deg"] = r.window_start_deg;
-  j["mesh_frequency_Hz_per_sun_rpm"] = plan.mesh_hz_per_rpm;
-  j["mesh_stiffness_sun_planet_N_per_m"] = r.mesh_stiffness[0];
-  j["mesh_stiffness_planet_ring_N_per_m"] = r.mesh_stiffness[1];
-  j["tangent_mesh_stiffness_sun_planet_N_per_m"] = r.modal_mesh_stiffness[0];
-  j["tangent_mesh_stiffness_planet_ring_N_per_m"] = r.modal_mesh_stiffness[1];
-  j["quasi_static_K_gamma"] = plan.qs_k_gamma;
-  j["quasi_static_te_amplitude_urad"] = plan.qs_te_amplitude * 1e6;
-  j["failed_speeds"] = r.failed();
-  j["threads"] = r.threads;
-  j["carry_state"] = dynamics::CarryStateName(r.carry);
-  j["plan_seconds"] = plan.seconds;
-  j["wall_seconds"] = r.wall_seconds;
-  j["cpu_seconds_in_speeds"] = r.cpu_seconds;
-  j["cpu_over_wall"] = r.cpu_seconds / std::max(r.wall_seconds, 1e-9);
-  return j;
+  return SummaryJson(record, provenance);
 }
 
 }  // namespace epicycle::report

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "epicycle/dynamics/branch_run.hpp"
+#include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/modes_run.hpp"
+#include "epicycle/dynamics/speed_sweep_run.hpp"
 #include "epicycle/studies/study_run.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
 #include "epicycle/transmission/record.hpp"
@@ -60,6 +62,9 @@ class KeyTable final : public RecordVisitor {
   }
   void Numbers(const char* key, const std::vector<double>&) override {
     Row(key, "list of numbers");
+  }
+  void Integers(const char* key, const std::vector<long>&) override {
+    Row(key, "list of integers");
   }
   void BeginObject(const char* key) override {
     Row(key, "object");
@@ -186,6 +191,27 @@ int main() {
         "key per sampled-value column (COLUMN), "
         "`sobol.outputs` one object per rows-file result column (OUTPUT).",
         study);
+  dynamics::DynamicRecord dynamic;
+  dynamic.summary.lsr_mean = dynamic.summary.lsr_min = dynamic.summary.lsr_max = {0};
+  dynamic.summary.root_stress.resize(1);
+  dynamic.summary.face_width.resize(1);
+  dynamic.rating.emplace();
+  Table("Dynamic run (`epicycle dynamic`, Python `dynamic(...).record`)",
+        "OUT/dynamic_summary.json; `root_stress` only with stresses, `rating` only when asked, "
+        "`face_width` only with slices of the face width.",
+        dynamic);
+  dynamics::SpeedSweepRecord sweep;
+  sweep.plan.meshes = {"MESH"};
+  sweep.plan.qs_peak_mesh_force = {0};
+  sweep.plan.modes.resize(1);
+  sweep.plan.coincidences.resize(1);
+  sweep.speeds.resize(1);
+  sweep.speeds[0].status = transmission::RunStatus::kCompleted;
+  Table("Speed sweep (`epicycle dynamic --speed-sweep`, Python `speed_sweep(...).record`)",
+        "OUT/speed_sweep_summary.json; MESH is each mesh's name (`sun-planet1`, ...); a speed "
+        "that did not complete has only `speeds[]`'s keys up to `warnings` (its status and "
+        "message, no figures).",
+        sweep);
   dynamics::BranchRecord branch;
   branch.branch.parameter = "PARAMETER";  // not the sun speed: both columns listed
   branch.branch.points.resize(1);

@@ -2,7 +2,8 @@
 // dynamics::VisitRecord) and one serialisation (report::RecordJson): the summary JSON that the
 // program writes has exactly the record's keys, and the program writes the record that the
 // library's run returns for the same request, value for value (docs/quasistatic.md, docs/records.md),
-// for the quasi-static, mesh-stiffness and modes drivers.
+// for the quasi-static, dynamic, speed-sweep, mesh-stiffness, modes, study and periodic-branch
+// drivers.
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -11,8 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "epicycle/dynamics/branch_run.hpp"
 #include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/modes_run.hpp"
+#include "epicycle/dynamics/speed_sweep_run.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/studies/study_run.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
@@ -34,6 +37,7 @@ class KeyList final : public transmission::RecordVisitor {
   void Text(const char* key, const std::string&) override { Add(key); }
   void Texts(const char* key, const std::vector<std::string>&) override { Add(key); }
   void Numbers(const char* key, const std::vector<double>&) override { Add(key); }
+  void Integers(const char* key, const std::vector<long>&) override { Add(key); }
   void BeginObject(const char* key) override {
     Add(key);
     ++depth_;
@@ -85,13 +89,19 @@ void DropRunDependent(nlohmann::json* j) {
 // file's keys are the record's fields (the provenance is the program's, not the run's), and every
 // value is the same bit for bit (the JSON numbers are written with 17 digits and read back
 // exactly), the wall times aside.
+// The file's top-level keys against the record's fields (the provenance is the program's).
 template <class Record>
-void CheckSameRecord(nlohmann::json program, const Record& record, nlohmann::json library) {
+void CheckKeys(const nlohmann::json& program, const Record& record) {
   KeyList fields;
   VisitRecord(record, fields);
   std::set<std::string> file_keys = Keys(program);
   file_keys.erase("provenance");
   CHECK(file_keys == fields.keys);
+}
+
+template <class Record>
+void CheckSameRecord(nlohmann::json program, const Record& record, nlohmann::json library) {
+  CheckKeys(program, record);
   DropRunDependent(&program);
   DropRunDependent(&library);
   CHECK(program == library);
@@ -223,11 +233,7 @@ TEST_CASE(
   REQUIRE_FALSE(record.modes.empty());
   REQUIRE_FALSE(record.coincidences.empty());
 
-  KeyList fields;
-  dynamics::VisitRecord(record, fields);
-  std::set<std::string> file_keys = Keys(program);
-  file_keys.erase("provenance");
-  CHECK(file_keys == fields.keys);
+  CheckKeys(program, record);
   program.erase("provenance");
   CHECK(program == report::RecordJson(record));
 }
@@ -256,15 +262,84 @@ TEST_CASE(
   REQUIRE(run.record->summary.cases == 4);
   REQUIRE(run.record->summary.k_gamma_exceedance.size() == 2);
 
-  KeyList fields;
-  studies::VisitRecord(*run.record, fields);
-  std::set<std::string> file_keys = Keys(program);
-  file_keys.erase("provenance");
-  CHECK(file_keys == fields.keys);
+  CheckKeys(program, *run.record);
   // The values, the wall time of the computation aside.
   nlohmann::json library = report::RecordJson(*run.record);
   for (nlohmann::json* j : {&program, &library})
     for (const char* k : {"provenance", "computed_seconds"}) j->erase(k);
+  CHECK(program == library);
+}
+
+// The speed sweep's record: two speeds of one mesh cycle each (the modes, the coincidences, each
+// speed's figures and the load-sharing parts), the same request through the program and through
+// the library; the times (the plan's, the speeds' wall and CPU) differ between two runs.
+TEST_CASE(
+    "speed-sweep record: the program's summary JSON has exactly the record's fields and the "
+    "library run's values (modes, coincidences, speeds)",
+    "[crosscheck][report][records]") {
+  const test::TempDir temp("speed-sweep-record");
+  const std::string scene_file = std::string(EPICYCLE_SCENES_DIR) + "/paper_stage.toml";
+  REQUIRE(test::ExitStatus({EPICYCLE_EXE, "dynamic", scene_file, "--speed-sweep", "1000:3000:2",
+                            "--window-cycles", "1", "--outputs-per-cycle", "8", "--threads", "2",
+                            "--cache", EPICYCLE_TEST_CACHE_DIR, "--quiet", "--out",
+                            temp.path.string()}) == 0);
+  nlohmann::json program = ReadJson(temp.File("speed_sweep_summary.json"));
+
+  dynamics::SpeedSweepRequest request;
+  request.run.scene = transmission::ReadScene(scene_file);
+  request.run.outputs_per_cycle = 8;
+  request.run.tables.cache_directory = EPICYCLE_TEST_CACHE_DIR;
+  request.sun_speeds_rpm = {1000, 3000};
+  request.window_cycles = 1;
+  request.threads = 2;
+  dynamics::SpeedSweepSink sink;
+  const dynamics::SpeedSweepRecord record = dynamics::RunSpeedSweep(request, sink);
+  REQUIRE(record.failed() == 0);
+  REQUIRE(record.speeds.size() == 2);
+  REQUIRE_FALSE(record.plan.modes.empty());
+
+  CheckKeys(program, record);
+  nlohmann::json library = report::RecordJson(record);
+  for (nlohmann::json* j : {&program, &library}) {
+    for (const char* k :
+         {"provenance", "plan_seconds", "wall_seconds", "cpu_seconds_in_speeds", "cpu_over_wall"})
+      j->erase(k);
+    for (nlohmann::json& speed : (*j)["speeds"])
+      for (const char* k : {"cpu_s", "wall_s"}) speed.erase(k);
+  }
+  CHECK(program == library);
+}
+
+// The periodic branch's record: the sun speed from 4000 to 4100 rpm in steps of at most half the
+// range (docs/periodic.md §3), the same request through the program and through the library; the
+// continuation's CPU and wall times differ between two runs.
+TEST_CASE(
+    "periodic-branch record: the program's summary JSON has exactly the record's fields and the "
+    "library run's values (points, bifurcations)",
+    "[crosscheck][report][records]") {
+  const test::TempDir temp("branch-record");
+  const std::string scene_file = std::string(EPICYCLE_SCENES_DIR) + "/paper_stage.toml";
+  REQUIRE(test::ExitStatus({EPICYCLE_EXE, "dynamic", scene_file, "--speed-sweep", "4000:4100:2",
+                            "--periodic", "--cache", EPICYCLE_TEST_CACHE_DIR, "--quiet", "--out",
+                            temp.path.string()}) == 0);
+  nlohmann::json program = ReadJson(temp.File("periodic_branch_summary.json"));
+
+  dynamics::BranchRequest request;
+  request.run.scene = transmission::ReadScene(scene_file);
+  request.run.tables.cache_directory = EPICYCLE_TEST_CACHE_DIR;
+  request.parameter = dynamics::StagePeriodicSystem::kSunSpeed;
+  request.start = 4000;
+  request.end = 4100;
+  request.steps = 2;
+  dynamics::BranchSink sink;
+  const dynamics::BranchRecord record = dynamics::RunBranch(request, sink);
+  REQUIRE(record.ok());
+  REQUIRE(record.branch.points.size() >= 2);
+
+  CheckKeys(program, record);
+  nlohmann::json library = report::RecordJson(record);
+  for (nlohmann::json* j : {&program, &library})
+    for (const char* k : {"provenance", "cpu_seconds", "wall_seconds"}) j->erase(k);
   CHECK(program == library);
 }
 

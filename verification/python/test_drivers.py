@@ -169,3 +169,22 @@ def test_carried_speed_sweep_equals_the_program(tmp_path):
     with pytest.raises(ValueError, match="carry_state = 'sideways'"):
         epicycle.speed_sweep(epicycle.Scene.load(scene_path("paper_stage.toml")), [1000.0],
                              carry_state="sideways")
+
+
+def test_speed_sweep_with_every_default_equals_the_program(tmp_path):
+    """One speed with every option at its default on both sides: the window one planet
+    revolution relative to the carrier (the paper stage's planet has 24 teeth: 24 mesh cycles) at
+    64 samples per mesh cycle, one worker per core, no carried state, the integrator's and the
+    contact solve's tolerances. Python's record is the program's summary JSON, times and
+    provenance aside."""
+    import os
+
+    out = tmp_path / "cli"
+    run_cli("dynamic", scene_path("paper_stage.toml"), "--speed-sweep", "1500:1500:1", "--quiet",
+            "--out", out)
+    j = read_json(out / "speed_sweep_summary.json")
+    s = epicycle.speed_sweep(epicycle.Scene.load(scene_path("paper_stage.toml")), [1500.0])
+    assert_same_sweep_record(s.record, j)
+    assert j["window_mesh_cycles"] == 24 and j["window_samples"] == 24 * 64
+    assert j["threads"] == s.record["threads"] == os.cpu_count()
+    assert j["carry_state"] == "none" and j["rtol"] == 1e-6

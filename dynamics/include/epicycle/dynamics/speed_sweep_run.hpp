@@ -2,7 +2,8 @@
 // and the speeds, window and threads), a run that builds the rig once, plans the modes and the
 // window, and streams each speed's result to a sink as it completes, and one record of the sweep
 // (docs/speed_sweeps.md). The program (`epicycle dynamic --speed-sweep`) parses its options into
-// a request and formats the record; report/ writes it (report::SpeedSweepRecordJson).
+// a request and formats the record; report/ writes its one serialisation (report::RecordJson),
+// whose keys the fields VisitRecord names.
 #pragma once
 
 #include <array>
@@ -12,6 +13,7 @@
 #include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/run_tolerances.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
+#include "epicycle/transmission/record.hpp"
 
 namespace epicycle::dynamics {
 
@@ -75,5 +77,11 @@ struct SpeedSweepRecord {
 /// @throws std::invalid_argument for a request that breaks a rule; std::runtime_error when the
 ///         plan's quasi-static reference fails; whatever `sink` throws.
 SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink& sink);
+
+/// The record's fields, each once with its name and unit (its serialisation's keys): the
+/// definitions of the figures, the plan (modes with their damping, coincidences, the quasi-static
+/// reference), per speed its status, counts, times and (when it completed) its figures, the
+/// settings and the times.
+void VisitRecord(const SpeedSweepRecord& record, transmission::RecordVisitor& visit);
 
 }  // namespace epicycle::dynamics

@@ -26,6 +26,7 @@ class JsonRecord final : public transmission::RecordVisitor {
   void Text(const char* key, const std::string& value) override;
   void Texts(const char* key, const std::vector<std::string>& value) override;
   void Numbers(const char* key, const std::vector<double>& value) override;
+  void Integers(const char* key, const std::vector<long>& value) override;
   void BeginObject(const char* key) override;
   void EndObject() override;
   void BeginList(const char* key) override;

@@ -176,10 +176,6 @@ class DynamicPlots {
 std::string DynamicRunText(const dynamics::DynamicSummary& summary,
                            const dynamics::SimulationStats& stats, int planets);
 
-/// The coincidences of mesh harmonics with natural modes (dynamics::FindCoincidences), mode
-/// numbers from 1.
-nlohmann::json CoincidencesJson(const std::vector<dynamics::Coincidence>& coincidences);
-
 /// PATH.csv of a speed sweep: one line per speed as it completes (a failed speed: its speed,
 /// status and message, empty figures).
 class SpeedSweepFile {
@@ -237,12 +233,5 @@ std::string MeshStiffnessText(const transmission::StiffnessRecord& record);
 void WriteMeshStiffnessPlot(const std::string& path, const std::string& title,
                             const transmission::MeshStiffnessResult& result, double face_width,
                             std::vector<double> references);
-
-/// The summary of a speed sweep's results for its JSON file: "speeds" (per speed: status,
-/// figures where ok, counts, times, warnings), "modes" (frequency, type, multiplicity, cyclic
-/// families, modal damping), "coincidences", "quasi_static_peak_mesh_force_N" per mesh and the
-/// "definitions" of the figures. The caller adds the run's settings.
-nlohmann::json SpeedSweepResultsJson(const dynamics::SpeedSweepPlan& plan,
-                                     const std::vector<dynamics::SpeedResult>& speeds);
 
 }  // namespace epicycle::report

@@ -19,8 +19,8 @@ std::string SpeedSweepPlanText(const dynamics::SpeedSweepStart& start);
 /// CPU times.
 std::string SpeedSweepRecordText(const dynamics::SpeedSweepRecord& record);
 
-/// The summary JSON: SpeedSweepResultsJson's speeds, modes, coincidences and definitions, the
-/// sweep's settings and times, the warnings and the program's provenance.
+/// The summary JSON (SummaryJson): the record's fields (dynamics::VisitRecord) and the program's
+/// provenance.
 nlohmann::json SpeedSweepRecordJson(const dynamics::SpeedSweepRecord& record,
                                     const nlohmann::json& provenance);
 

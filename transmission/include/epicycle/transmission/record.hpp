@@ -28,6 +28,8 @@ class RecordVisitor {
   virtual void Texts(const char* key, const std::vector<std::string>& value) = 0;
   /// A list of numbers in the key's unit (a pair of depths, a mode's speeds).
   virtual void Numbers(const char* key, const std::vector<double>& value) = 0;
+  /// A list of whole numbers (a mode's cyclic-symmetry families).
+  virtual void Integers(const char* key, const std::vector<long>& value) = 0;
   /// A record inside the record (the healthy teeth beside a damaged run): its fields follow,
   /// until EndObject().
   virtual void BeginObject(const char* key) = 0;
