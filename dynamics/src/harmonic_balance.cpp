@@ -341,7 +341,9 @@ namespace {
 using periodic_detail::ContinuationProblem;
 
 // Harmonic balance's unknowns in scaled coordinates u = (vec C / σ, λ/Λ), C's columns (the
-// components) one after the other, every coefficient of component i over its scale σ_i.
+// components) one after the other, component i's mean over its scale σ_i and its harmonics over
+// √2 σ_i: |ũ|² is then the orbit's mean square over σ² (Parseval), so that an arclength step
+// moves the orbit as far as shooting's moves its state.
 class HbContinuer : public ContinuationProblem {
  public:
   HbContinuer(const PeriodicSystem& system, const ContinuationOptions& c,
@@ -358,7 +360,10 @@ class HbContinuer : public ContinuationProblem {
     const Eigen::VectorXd s =
         c.state_scale.size() == 1 ? Eigen::VectorXd::Constant(n_, c.state_scale(0)) : c.state_scale;
     scale_.resize(static_cast<Eigen::Index>(n_) * mh_);
-    for (int i = 0; i < n_; ++i) scale_.segment(i * mh_, mh_).setConstant(s(i));
+    for (int i = 0; i < n_; ++i) {
+      scale_.segment(i * mh_, mh_).setConstant(std::sqrt(2.0) * s(i));
+      scale_(i * mh_) = s(i);
+    }
     lambda_scale_ = std::abs(c.end - c.start);
   }
 

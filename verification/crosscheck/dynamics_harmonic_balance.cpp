@@ -166,6 +166,9 @@ TEST_CASE(
     const HarmonicBalanceResult r = dynamics::SolveHarmonicBalance(system, o, y0);
     INFO(rpm << " rpm: " << r.message);
     REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
+    test::FigureValue("stage " + std::to_string(static_cast<int>(rpm)) +
+                          " rpm, H 32: Newton iterations from the quasi-static start",
+                      r.iterations, "-");
     const FourierBasis basis(o.harmonics, o.SampleCount());
     const Eigen::MatrixXd hb =
         basis.Evaluate(r.coefficients, Eigen::VectorXd::LinSpaced(129, 0.0, 1.0));
