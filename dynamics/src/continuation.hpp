@@ -50,6 +50,27 @@ class ContinuationProblem {
   long integrations = 0, plain_integrations = 0, steps = 0;
 };
 
+/// The scaled unknowns u = (x/scale, λ/Λ) of a point x at λ.
+inline Eigen::VectorXd ScaledPoint(const Eigen::VectorXd& x, const Eigen::VectorXd& scale,
+                                   double lambda, double lambda_scale) {
+  Eigen::VectorXd u(x.size() + 1);
+  u.head(x.size()) = x.cwiseQuotient(scale);
+  u(x.size()) = lambda / lambda_scale;
+  return u;
+}
+
+/// The parameters p with the continued one, p(column), at λ.
+inline Eigen::VectorXd WithParameter(Eigen::VectorXd p, int column, double lambda) {
+  p(column) = lambda;
+  return p;
+}
+
+/// A result named for the continued parameter (its index into *column), and the parameters at
+/// λ = start into *p (p_in, or the system's defaults when empty).
+/// @throws std::invalid_argument for an unknown parameter or p_in of the wrong size.
+ContinuationResult NamedResult(const PeriodicSystem& system, const ContinuationOptions& options,
+                               const Eigen::VectorXd& p_in, int* column, Eigen::VectorXd* p);
+
 /// The continuation from the converged, linearised first point `here` (result->start filled by
 /// the caller) to options.end; the branch and its status into *result.
 void Continue(ContinuationProblem& problem, const ContinuationOptions& options,

@@ -375,15 +375,11 @@ class HbContinuer : public ContinuationProblem {
     return Eigen::Map<const Eigen::MatrixXd>(x.data(), mh_, n_);
   }
   Eigen::VectorXd Scaled(const Eigen::MatrixXd& c, double lambda) const {
-    Eigen::VectorXd u(size() + 1);
-    u.head(size()) = Eigen::Map<const Eigen::VectorXd>(c.data(), size()).cwiseQuotient(scale_);
-    u(size()) = lambda / lambda_scale_;
-    return u;
+    return periodic_detail::ScaledPoint(Eigen::Map<const Eigen::VectorXd>(c.data(), size()),
+                                        scale_, lambda, lambda_scale_);
   }
   Eigen::VectorXd P(double lambda) const {
-    Eigen::VectorXd p = p_;
-    p(column_) = lambda;
-    return p;
+    return periodic_detail::WithParameter(p_, column_, lambda);
   }
   double Period(double lambda) const override {
     const double t = sys_.Period(P(lambda));
@@ -493,12 +489,9 @@ ContinuationResult ContinueHarmonicBalance(
   const int n = system.size();
   options.Validate(n);
   hb.Validate(n);
-  const int column = system.ParameterIndex(options.parameter);
-  ContinuationResult result;
-  result.parameter = options.parameter;
-  result.unit = system.parameters()[static_cast<std::size_t>(column)].unit;
-  Eigen::VectorXd p = ParametersOr(system, p_in);
-  p(column) = options.start;
+  int column = 0;
+  Eigen::VectorXd p;
+  ContinuationResult result = periodic_detail::NamedResult(system, options, p_in, &column, &p);
   HbContinuer c(system, options, hb, p, column);
 
   // The first point: harmonic balance at λ = start (without Hill's method: the loop's first point

@@ -43,15 +43,10 @@ class Continuer : public ContinuationProblem {
   double Lambda(const Eigen::VectorXd& u) const override { return u(n_) * lambda_scale_; }
   double LambdaScale() const override { return lambda_scale_; }
   Eigen::VectorXd Scaled(const Eigen::VectorXd& y, double lambda) const {
-    Eigen::VectorXd u(n_ + 1);
-    u.head(n_) = y.cwiseQuotient(scale_);
-    u(n_) = lambda / lambda_scale_;
-    return u;
+    return periodic_detail::ScaledPoint(y, scale_, lambda, lambda_scale_);
   }
   Eigen::VectorXd P(double lambda) const {
-    Eigen::VectorXd p = p_;
-    p(column_) = lambda;
-    return p;
+    return periodic_detail::WithParameter(p_, column_, lambda);
   }
   double Period(double lambda) const override {
     return PeriodIntegrator(sys_, o_.shooting, P(lambda), false, -1, lambda_scale_).period();
@@ -396,6 +391,17 @@ void Continue(ContinuationProblem& c, const ContinuationOptions& options, Point 
            " before the end " + Num(options.end));
 }
 
+ContinuationResult NamedResult(const PeriodicSystem& system, const ContinuationOptions& options,
+                               const Eigen::VectorXd& p_in, int* column, Eigen::VectorXd* p) {
+  *column = system.ParameterIndex(options.parameter);
+  ContinuationResult result;
+  result.parameter = options.parameter;
+  result.unit = system.parameters()[static_cast<std::size_t>(*column)].unit;
+  *p = ParametersOr(system, p_in);
+  (*p)(*column) = options.start;
+  return result;
+}
+
 }  // namespace periodic_detail
 
 ContinuationResult ContinuePeriodicOrbit(
@@ -404,12 +410,9 @@ ContinuationResult ContinuePeriodicOrbit(
   const int n = system.size();
   options.Validate(n);
   CheckState(system, y0, "continuation");
-  const int column = system.ParameterIndex(options.parameter);
-  ContinuationResult result;
-  result.parameter = options.parameter;
-  result.unit = system.parameters()[static_cast<std::size_t>(column)].unit;
-  Eigen::VectorXd p = ParametersOr(system, p_in);
-  p(column) = options.start;
+  int column = 0;
+  Eigen::VectorXd p;
+  ContinuationResult result = periodic_detail::NamedResult(system, options, p_in, &column, &p);
   Continuer c(system, options, p, column);
 
   // The first point: shooting at λ = start.
