@@ -151,6 +151,7 @@ void StageBranchOptions::Validate() const {
   if (hb_samples != 0 && hb_samples < 2 * harmonics + 1)
     Fail("hb_samples", hb_samples,
          "must be 0 (4 harmonics) or >= 2 harmonics + 1 = " + std::to_string(2 * harmonics + 1));
+  if (hill_harmonics < 0) Fail("hill_harmonics", hill_harmonics, "must be >= 0 (0: harmonics)");
   if (!(simulation.rate_scale > 0))
     Fail("rate_scale", simulation.rate_scale,
          "must be > 0 (the rates' absolute tolerance of the shooting)");
@@ -181,6 +182,11 @@ StageBranchRecord ContinueStageBranch(
 
   Eigen::VectorXd p = system.DefaultParameters();
   p(column) = o.start;
+  if (hb && system.PeriodMap(p).size() != 0)
+    throw std::invalid_argument(
+        "stage branch: method = hb: the stage's translations (a floating sun, elastic pins) repeat "
+        "turned by the carrier's advance, not periodic in the model's coordinates: harmonic "
+        "balance needs an orbit that is; use shooting");
   const DynamicModel& start_model = system.ModelAt(p);
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);
   y0.head(n) = start_model.QuasiStaticStart(o.simulation.contact, o.simulation.backend);
