@@ -51,7 +51,9 @@ struct DynamicArgs {
   std::optional<double> speed_rpm, time, rate_scale, contact_tol, spectrum_resolution,
       spectrum_skip, time_limit;
   std::optional<long> max_steps;
-  int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0, periodic_points = 0;
+  int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0, periodic_points = 0,
+      hb_harmonics = 0;
+  std::string periodic_method;
   std::string carry_state;  // --carry-state: empty (none), up, down
   bool periodic = false, no_cache = false, quiet = false, fd_jacobian = false, stresses = false,
        spectrum = false, rating = false;
@@ -162,12 +164,20 @@ void RunDynamic(const DynamicArgs& a) {
     throw std::invalid_argument("--spectrum belongs to a run at one speed, not --continue");
   if (a.periodic_points != 0 && !a.periodic && a.continue_spec.empty())
     throw std::invalid_argument("--periodic-points belongs to --periodic and --continue");
+  if ((!a.periodic_method.empty() || a.hb_harmonics != 0) && !a.periodic &&
+      a.continue_spec.empty())
+    throw std::invalid_argument("--periodic-method and --hb-harmonics belong to --periodic and "
+                                "--continue");
   if (a.periodic || !a.continue_spec.empty()) {
     dynamics::BranchRequest branch;
     branch.run = request;
     if (a.periodic) ParseBranch("--speed-sweep", a.speed_sweep, &branch);
     else ParseBranch("--continue", a.continue_spec, &branch);
     if (a.periodic_points != 0) branch.max_points = a.periodic_points;
+    if (!a.periodic_method.empty())
+      branch.method = dynamics::ParsePeriodicMethod(a.periodic_method, "--periodic-method");
+    if (a.hb_harmonics != 0) branch.harmonics = a.hb_harmonics;
+    branch.names.harmonics = "--hb-harmonics";
     return RunBranch({a.periodic ? "--speed-sweep" : "--continue",
                       a.periodic ? a.speed_sweep : a.continue_spec, a.out, a.quiet},
                      branch);
@@ -307,6 +317,12 @@ void RegisterDynamicCommands(CLI::App& app) {
                   "sun_torque_Nm or mesh_damping_ratio at the scene's (or --speed-rpm's) speed");
   AddNumber(cmd, "--periodic-points", a.periodic_points,
             "--periodic, --continue: the most points of the branch (default 400)", kSweepSpeeds);
+  cmd->add_option("--periodic-method", a.periodic_method,
+                  "--periodic, --continue: shooting (the default) or hb: harmonic balance with "
+                  "Hill's stability, for a stage whose orbit repeats with the mesh "
+                  "(docs/periodic.md)");
+  AddNumber(cmd, "--hb-harmonics", a.hb_harmonics,
+            "--periodic-method hb: harmonics of the mesh period kept (default 24)", kHarmonics);
   AddNumber(cmd, "--window-cycles", a.window_cycles,
             "Speed sweep: mesh cycles measured per speed (replaces --range)", kWindowCycles);
   AddNumber(cmd, "--harmonics", a.harmonics,

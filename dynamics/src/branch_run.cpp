@@ -28,6 +28,13 @@ StageBranchOptions Options(const BranchRequest& r, const transmission::Scene& sc
   o.max_step = std::max(1.0 / r.steps, o.min_step);
   o.initial_step = std::min(o.initial_step, o.max_step);
   if (r.max_points) o.max_points = *r.max_points;
+  o.method = r.method;
+  if (r.harmonics) {
+    if (*r.harmonics < 1 || r.method != PeriodicMethod::kHarmonicBalance)
+      throw std::invalid_argument(r.names.harmonics + " = " + std::to_string(*r.harmonics) +
+                                  ": must be >= 1, with the harmonic-balance method (hb)");
+    o.harmonics = *r.harmonics;
+  }
   o.simulation = simulation;
   o.Validate();
   o.period = StagePeriodMeshCycles(geometry::Stage(scene.stage), scene.damage);
@@ -66,6 +73,8 @@ void VisitRecord(const BranchRecord& r, transmission::RecordVisitor& visit) {
   visit.Text("scene", r.scene);
   visit.Text("parameter", b.parameter);
   visit.Text("unit", b.unit);
+  visit.Text("method", PeriodicMethodName(b.method));
+  visit.Integer("harmonics", b.harmonics);
   visit.Numbers("range", {r.range[0], r.range[1]});
   visit.Number("max_step", r.max_step);
   VisitTolerances(r.tolerances, visit);

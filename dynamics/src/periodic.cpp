@@ -153,10 +153,14 @@ std::string BifurcationKindName(BifurcationKind kind) {
 }
 
 FloquetReport FloquetMultipliers(const Eigen::MatrixXd& monodromy, double tol) {
-  FloquetReport r;
-  if (monodromy.size() == 0) return r;
+  if (monodromy.size() == 0) return {};
   const Eigen::VectorXcd mu = Eigen::EigenSolver<Eigen::MatrixXd>(monodromy, false).eigenvalues();
-  r.multipliers.assign(mu.data(), mu.data() + mu.size());
+  return ClassifyMultipliers({mu.data(), mu.data() + mu.size()}, tol);
+}
+
+FloquetReport ClassifyMultipliers(std::vector<std::complex<double>> multipliers, double tol) {
+  FloquetReport r;
+  r.multipliers = std::move(multipliers);
   std::sort(r.multipliers.begin(), r.multipliers.end(),
             [](auto a, auto b) { return std::abs(a) > std::abs(b); });
   bool on_circle = false;

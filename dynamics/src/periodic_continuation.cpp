@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 
 #include "epicycle/dynamics/periodic.hpp"
+#include "continuation.hpp"
 #include "period_integrator.hpp"
 
 namespace epicycle::dynamics {
@@ -23,8 +24,10 @@ using periodic_detail::Wrms;
 
 namespace {
 
-// The continuation's unknowns in scaled coordinates u = (y/state_scale, λ/Λ).
-class Continuer {
+using periodic_detail::ContinuationProblem;
+
+// Shooting's unknowns in scaled coordinates u = (y/state_scale, λ/Λ).
+class Continuer : public ContinuationProblem {
  public:
   Continuer(const PeriodicSystem& system, const ContinuationOptions& options, Eigen::VectorXd p,
             int column)
@@ -34,35 +37,23 @@ class Continuer {
     lambda_scale_ = std::abs(o_.end - o_.start);
   }
 
-  struct Point {
-    bool ok = false;
-    std::string message;
-    Eigen::VectorXd u;         // scaled (y, λ)
-    Eigen::MatrixXd jacobian;  // scaled [M − I, ψ]: n × (n + 1)
-    Eigen::MatrixXd monodromy;
-    double residual = 0;  // weighted RMS of R
-    int iterations = 0;
-  };
-
+  int size() const override { return n_; }
   Eigen::VectorXd Y(const Eigen::VectorXd& u) const { return u.head(n_).cwiseProduct(scale_); }
-  double Lambda(const Eigen::VectorXd& u) const { return u(n_) * lambda_scale_; }
+  Eigen::VectorXd State(const Eigen::VectorXd& u) const override { return Y(u); }
+  double Lambda(const Eigen::VectorXd& u) const override { return u(n_) * lambda_scale_; }
+  double LambdaScale() const override { return lambda_scale_; }
   Eigen::VectorXd Scaled(const Eigen::VectorXd& y, double lambda) const {
-    Eigen::VectorXd u(n_ + 1);
-    u.head(n_) = y.cwiseQuotient(scale_);
-    u(n_) = lambda / lambda_scale_;
-    return u;
+    return periodic_detail::ScaledPoint(y, scale_, lambda, lambda_scale_);
   }
   Eigen::VectorXd P(double lambda) const {
-    Eigen::VectorXd p = p_;
-    p(column_) = lambda;
-    return p;
+    return periodic_detail::WithParameter(p_, column_, lambda);
   }
-  double PeriodAt(double lambda) const {
+  double Period(double lambda) const override {
     return PeriodIntegrator(sys_, o_.shooting, P(lambda), false, -1, lambda_scale_).period();
   }
 
   // R and its scaled Jacobian at u (one integration with the variational equations).
-  bool Evaluate(const Eigen::VectorXd& u, Eigen::VectorXd* r, Point* at) {
+  bool Linearise(const Eigen::VectorXd& u, Eigen::VectorXd* r, Point* at) override {
     Flow f;
     if (!Integrate(u, true, r, at, &f)) return false;
     at->monodromy = f.phi;
@@ -74,10 +65,12 @@ class Continuer {
     return true;
   }
 
-  // R at u alone: one integration of the state without the variational equations.
-  bool Residual(const Eigen::VectorXd& u, Eigen::VectorXd* r, Point* at) {
+  // R̃ = R/scale at u alone: one integration of the state without the variational equations.
+  bool Residual(const Eigen::VectorXd& u, Eigen::VectorXd* r, Point* at) override {
     Flow f;
-    return Integrate(u, false, r, at, &f);
+    if (!Integrate(u, false, r, at, &f)) return false;
+    *r = r->cwiseQuotient(scale_);
+    return true;
   }
 
   // One period from u, with the variational equations and the parameter column or without:
@@ -96,8 +89,8 @@ class Continuer {
       at->message = o_.parameter + " = " + Num(lambda) + ": " + e.what();
       return false;
     }
-    ++(variational ? integrations_ : plain_integrations_);
-    steps_ += f->steps;
+    ++(variational ? integrations : plain_integrations);
+    steps += f->steps;
     if (!f->ok) {
       at->message = f->message;
       return false;
@@ -108,78 +101,19 @@ class Continuer {
     return true;
   }
 
-  // Corrector: a chord Newton on [R̃(u); τ·(u − u0) − ds] = 0 from u0 + ds τ, its matrix the
-  // bordered Jacobian `chord` of the point u0 (docs/periodic.md §2, "Continuation"): each
-  // iteration integrates the state alone, and the monodromy matrix and ∂φ/∂λ are integrated once,
-  // at the converged point.
-  Point Correct(const Eigen::VectorXd& u0, const Eigen::VectorXd& tangent, double ds,
-                const Eigen::MatrixXd& chord) {
-    Point at;
-    Eigen::VectorXd u = u0 + ds * tangent;
-    Eigen::VectorXd r;
-    Eigen::MatrixXd a(n_ + 1, n_ + 1);
-    a.topRows(n_) = chord;
-    a.row(n_) = tangent.transpose();
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
-    if (!lu.isInvertible()) {
-      at.message = "the bordered Jacobian is singular";
-      return at;
-    }
-    double previous = std::numeric_limits<double>::infinity();
-    for (at.iterations = 1; at.iterations <= o_.max_corrector_iterations; ++at.iterations) {
-      if (!Residual(u, &r, &at)) return at;
-      if (at.residual <= o_.shooting.newton_tolerance) return Converged(u, at.iterations);
-      if (at.residual > 2 * previous && at.iterations > 2) {
-        at.message = "the corrector diverged (weighted |R| " + Num(previous) + " -> " +
-                     Num(at.residual) + ")";
-        return at;
-      }
-      previous = at.residual;
-      Eigen::VectorXd g(n_ + 1);
-      g.head(n_) = r.cwiseQuotient(scale_);
-      g(n_) = tangent.dot(u - u0) - ds;
-      const Eigen::VectorXd du = -lu.solve(g);
-      const Eigen::VectorXd dy = du.head(n_).cwiseProduct(scale_);
-      // The update below the integrator's tolerance in y and in λ: converged.
-      const double lambda = Lambda(u);
-      if (Wrms(dy, Y(u), o_.shooting) <= o_.shooting.newton_tolerance &&
-          std::abs(du(n_) * lambda_scale_) <= o_.shooting.newton_tolerance * o_.shooting.rtol *
-                                                  (std::abs(lambda) + lambda_scale_)) {
-        return Converged(u, at.iterations);
-      }
-      u += du;
-    }
-    at.iterations = o_.max_corrector_iterations;
-    at.message = "the corrector did not converge in " +
-                 std::to_string(o_.max_corrector_iterations) + " iterations (weighted |R| " +
-                 Num(at.residual) + ")";
-    return at;
+  double tolerance() const override { return o_.shooting.newton_tolerance; }
+  // The update below the integrator's tolerance in y and in λ.
+  bool UpdateConverged(const Eigen::VectorXd& u, const Eigen::VectorXd& du) const override {
+    const Eigen::VectorXd dy = du.head(n_).cwiseProduct(scale_);
+    return Wrms(dy, Y(u), o_.shooting) <= o_.shooting.newton_tolerance &&
+           std::abs(du(n_) * lambda_scale_) <=
+               o_.shooting.newton_tolerance * o_.shooting.rtol * (std::abs(Lambda(u)) + lambda_scale_);
+  }
+  FloquetReport Stability(const Point& at) const override {
+    return FloquetMultipliers(at.monodromy, o_.shooting.unit_circle_tolerance);
   }
 
-  // The converged point with its monodromy matrix and bordered Jacobian (one integration with
-  // the variational equations and the parameter column).
-  Point Converged(const Eigen::VectorXd& u, int iterations) {
-    Point at;
-    Eigen::VectorXd r;
-    at.ok = Evaluate(u, &r, &at);
-    at.iterations = iterations;
-    return at;
-  }
-
-  // The unit tangent: the null vector of the scaled Jacobian, oriented along `previous`.
-  Eigen::VectorXd Tangent(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& previous) const {
-    Eigen::MatrixXd a(n_ + 1, n_ + 1);
-    a.topRows(n_) = jacobian;
-    a.row(n_) = previous.transpose();
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n_ + 1);
-    rhs(n_) = 1;
-    Eigen::VectorXd t = a.fullPivLu().solve(rhs);
-    t.normalize();
-    if (t.dot(previous) < 0) t = -t;
-    return t;
-  }
-
-  double Amplitude(const Eigen::VectorXd& u) const {
+  double Amplitude(const Eigen::VectorXd& u) const override {
     if (o_.amplitude_samples == 0) return 0;
     const Eigen::MatrixXd orbit =
         SampleOrbit(sys_, o_.shooting, Y(u), P(Lambda(u)), o_.amplitude_samples);
@@ -187,7 +121,6 @@ class Continuer {
     return (c.maxCoeff() - c.minCoeff()) / 2;
   }
 
-  long integrations_ = 0, plain_integrations_ = 0, steps_ = 0;
 
  private:
   const PeriodicSystem& sys_;
@@ -224,54 +157,120 @@ double LargestComplex(const FloquetReport& f) {
   return m;
 }
 
+
+using Point = ContinuationProblem::Point;
+
+// The bordered system's LU: full pivoting for shooting's n + 1 unknowns (robust where M − I is
+// ill-conditioned, at no cost for a few states), partial pivoting for harmonic balance's
+// n(2H + 1) + 1 (several times cheaper at hundreds of unknowns).
+class BorderedLu {
+ public:
+  explicit BorderedLu(const Eigen::MatrixXd& a) : small_(a.rows() <= kFullPivotSize) {
+    if (small_)
+      full_.compute(a);
+    else
+      partial_.compute(a);
+  }
+  bool invertible() const { return small_ ? full_.isInvertible() : true; }
+  Eigen::VectorXd Solve(const Eigen::VectorXd& b) const {
+    return small_ ? Eigen::VectorXd(full_.solve(b)) : Eigen::VectorXd(partial_.solve(b));
+  }
+
+ private:
+  static constexpr Eigen::Index kFullPivotSize = 64;
+  bool small_;
+  Eigen::FullPivLU<Eigen::MatrixXd> full_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> partial_;
+};
+
+// Corrector: a chord Newton on [R̃(u); τ·(u − u0) − ds] = 0 from u0 + ds τ, its matrix the
+// bordered Jacobian `chord` of the point u0 (docs/periodic.md §2, "Continuation"): each
+// iteration evaluates the residual alone, and the Jacobian (shooting: the monodromy matrix and
+// ∂φ/∂λ) once, at the converged point.
+Point Correct(ContinuationProblem& pr, const ContinuationOptions& o, const Eigen::VectorXd& u0,
+              const Eigen::VectorXd& tangent, double ds, const Eigen::MatrixXd& chord) {
+  const int m = pr.size();
+  Point at;
+  Eigen::VectorXd u = u0 + ds * tangent;
+  Eigen::VectorXd r;
+  Eigen::MatrixXd a(m + 1, m + 1);
+  a.topRows(m) = chord;
+  a.row(m) = tangent.transpose();
+  const BorderedLu lu(a);
+  if (!lu.invertible()) {
+    at.message = "the bordered Jacobian is singular";
+    return at;
+  }
+  auto converged = [&](int iterations) {
+    Point done;
+    done.ok = pr.Linearise(u, &r, &done);
+    done.iterations = iterations;
+    return done;
+  };
+  double previous = std::numeric_limits<double>::infinity();
+  for (at.iterations = 1; at.iterations <= o.max_corrector_iterations; ++at.iterations) {
+    if (!pr.Residual(u, &r, &at)) return at;
+    if (at.residual <= pr.tolerance()) return converged(at.iterations);
+    if (at.residual > 2 * previous && at.iterations > 2) {
+      at.message = "the corrector diverged (weighted |R| " + Num(previous) + " -> " +
+                   Num(at.residual) + ")";
+      return at;
+    }
+    previous = at.residual;
+    Eigen::VectorXd g(m + 1);
+    g.head(m) = r;
+    g(m) = tangent.dot(u - u0) - ds;
+    const Eigen::VectorXd du = -lu.Solve(g);
+    if (!du.allFinite()) {
+      at.message = "the bordered Jacobian is singular";
+      return at;
+    }
+    if (pr.UpdateConverged(u, du)) return converged(at.iterations);
+    u += du;
+  }
+  at.iterations = o.max_corrector_iterations;
+  at.message = "the corrector did not converge in " + std::to_string(o.max_corrector_iterations) +
+               " iterations (weighted |R| " + Num(at.residual) + ")";
+  return at;
+}
+
+// The unit tangent: the null vector of the scaled Jacobian, oriented along `previous`.
+Eigen::VectorXd Tangent(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& previous) {
+  const Eigen::Index m = jacobian.rows();
+  Eigen::MatrixXd a(m + 1, m + 1);
+  a.topRows(m) = jacobian;
+  a.row(m) = previous.transpose();
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(m + 1);
+  rhs(m) = 1;
+  Eigen::VectorXd t = BorderedLu(a).Solve(rhs);
+  t.normalize();
+  if (t.dot(previous) < 0) t = -t;
+  return t;
+}
+
 }  // namespace
 
-ContinuationResult ContinuePeriodicOrbit(
-    const PeriodicSystem& system, const ContinuationOptions& options, const Eigen::VectorXd& y0,
-    const Eigen::VectorXd& p_in, const std::function<void(const ContinuationResult&)>& on_point) {
-  const int n = system.size();
-  options.Validate(n);
-  CheckState(system, y0, "continuation");
-  const int column = system.ParameterIndex(options.parameter);
-  ContinuationResult result;
-  result.parameter = options.parameter;
-  result.unit = system.parameters()[static_cast<std::size_t>(column)].unit;
-  Eigen::VectorXd p = ParametersOr(system, p_in);
-  p(column) = options.start;
-  Continuer c(system, options, p, column);
+namespace periodic_detail {
 
-  // The first point: shooting at λ = start.
-  result.start = SolvePeriodicOrbit(system, options.shooting, y0, p);
-  result.integrations += result.start.integrations;
-  result.steps += result.start.steps;
-  if (result.start.status != ShootingStatus::kConverged) {
-    result.status = ContinuationStatus::kStartFailed;
-    result.message = "continuation: the first orbit, at " + options.parameter + " = " +
-                     Num(options.start) + " " + result.unit +
-                     ", was not found: " + result.start.message;
-    return result;
-  }
+void Continue(ContinuationProblem& c, const ContinuationOptions& options, Point here,
+              ContinuationResult* out, const std::function<void(const ContinuationResult&)>& on_point) {
+  ContinuationResult& result = *out;
+  const int n = c.size();
   const double direction = options.end > options.start ? 1.0 : -1.0;
   const double lo = std::min(options.start, options.end), hi = std::max(options.start, options.end);
-  Eigen::VectorXd u = c.Scaled(result.start.initial_state, options.start);
-  Continuer::Point here;
-  Eigen::VectorXd r;
-  if (!c.Evaluate(u, &r, &here)) {
-    result.status = ContinuationStatus::kStartFailed;
-    result.message = "continuation: the first orbit's parameter derivative: " + here.message;
-    return result;
-  }
+  Eigen::VectorXd u = here.u;
   Eigen::VectorXd axis = Eigen::VectorXd::Zero(n + 1);
   axis(n) = direction;
-  Eigen::VectorXd tangent = c.Tangent(here.jacobian, axis);
+  Eigen::VectorXd tangent = Tangent(here.jacobian, axis);
   Eigen::MatrixXd chord = here.jacobian;  // the bordered Jacobian of the point u
 
-  auto add_point = [&](const Continuer::Point& at, const Eigen::VectorXd& t, double s) {
+  auto add_point = [&](const Point& at, const Eigen::VectorXd& t, double s) {
     BranchPoint b;
-    b.state = c.Y(at.u);
+    b.state = c.State(at.u);
+    b.coefficients = c.Coefficients(at.u);
     b.parameter = c.Lambda(at.u);
-    b.period = c.PeriodAt(b.parameter);
-    b.floquet = FloquetMultipliers(at.monodromy, options.shooting.unit_circle_tolerance);
+    b.period = c.Period(b.parameter);
+    b.floquet = c.Stability(at);
     b.tangent_parameter = t(n);
     b.arclength = s;
     b.corrector_iterations = at.iterations;
@@ -286,13 +285,12 @@ ContinuationResult ContinuePeriodicOrbit(
   auto stop = [&](ContinuationStatus status, const std::string& message) {
     result.status = status;
     result.message = message;
-    result.integrations += c.integrations_;
-    result.plain_integrations += c.plain_integrations_;
-    result.steps += c.steps_;
-    return result;
+    result.integrations += c.integrations;
+    result.plain_integrations += c.plain_integrations;
+    result.steps += c.steps;
   };
   while (static_cast<int>(result.points.size()) < options.max_points) {
-    Continuer::Point next = c.Correct(u, tangent, ds, chord);
+    Point next = Correct(c, options, u, tangent, ds, chord);
     // A corrector that lands further from its predictor than the step is long has left the
     // branch for another part of the solution set (the hyperplane τ·(u − u_k) = Δs crosses the
     // branch again far away): the step is retried shorter.
@@ -312,18 +310,18 @@ ContinuationResult ContinuePeriodicOrbit(
       ds = std::max(ds / 2, options.min_step);
       continue;
     }
-    const Eigen::VectorXd new_tangent = c.Tangent(next.jacobian, tangent);
+    const Eigen::VectorXd new_tangent = Tangent(next.jacobian, tangent);
     // A fold: dλ/ds changes sign between the two points. Locate it by the secant method on
     // h(σ) = dλ/ds of the point σ along the previous tangent's corrector.
     if (new_tangent(n) * tangent(n) < 0) {
       double a = 0, ha = tangent(n), b = ds, hb = new_tangent(n);
-      Continuer::Point best = next;
+      Point best = next;
       for (int k = 0; k < options.fold_refinements; ++k) {
         const double sigma = a - ha * (b - a) / (hb - ha);
         if (!(sigma > a && sigma < b)) break;
-        const Continuer::Point mid = c.Correct(u, tangent, sigma, chord);
+        const Point mid = Correct(c, options, u, tangent, sigma, chord);
         if (!mid.ok) break;
-        const double h = c.Tangent(mid.jacobian, tangent)(n);
+        const double h = Tangent(mid.jacobian, tangent)(n);
         best = mid;
         if (std::abs(h) < 1e-8) break;
         if (h * ha > 0) {
@@ -337,10 +335,9 @@ ContinuationResult ContinuePeriodicOrbit(
       Bifurcation fold;
       fold.kind = BifurcationKind::kFold;
       fold.parameter = c.Lambda(best.u);
-      fold.state = c.Y(best.u);
+      fold.state = c.State(best.u);
       fold.after_point = static_cast<int>(result.points.size());
-      fold.multiplier =
-          NearestToOne(FloquetMultipliers(best.monodromy, options.shooting.unit_circle_tolerance));
+      fold.multiplier = NearestToOne(c.Stability(best));
       result.bifurcations.push_back(std::move(fold));
     }
     s += ds;
@@ -388,10 +385,56 @@ ContinuationResult ContinuePeriodicOrbit(
     else if (next.iterations >= options.max_corrector_iterations - 1)
       ds = std::max(ds / 2, options.min_step);
   }
-  return stop(ContinuationStatus::kPointLimit,
-              "continuation: " + std::to_string(options.max_points) + " points reached at " +
-                  options.parameter + " = " + Num(result.points.back().parameter) + " " +
-                  result.unit + " before the end " + Num(options.end));
+  stop(ContinuationStatus::kPointLimit,
+       "continuation: " + std::to_string(options.max_points) + " points reached at " +
+           options.parameter + " = " + Num(result.points.back().parameter) + " " + result.unit +
+           " before the end " + Num(options.end));
+}
+
+ContinuationResult NamedResult(const PeriodicSystem& system, const ContinuationOptions& options,
+                               const Eigen::VectorXd& p_in, int* column, Eigen::VectorXd* p) {
+  *column = system.ParameterIndex(options.parameter);
+  ContinuationResult result;
+  result.parameter = options.parameter;
+  result.unit = system.parameters()[static_cast<std::size_t>(*column)].unit;
+  *p = ParametersOr(system, p_in);
+  (*p)(*column) = options.start;
+  return result;
+}
+
+}  // namespace periodic_detail
+
+ContinuationResult ContinuePeriodicOrbit(
+    const PeriodicSystem& system, const ContinuationOptions& options, const Eigen::VectorXd& y0,
+    const Eigen::VectorXd& p_in, const std::function<void(const ContinuationResult&)>& on_point) {
+  const int n = system.size();
+  options.Validate(n);
+  CheckState(system, y0, "continuation");
+  int column = 0;
+  Eigen::VectorXd p;
+  ContinuationResult result = periodic_detail::NamedResult(system, options, p_in, &column, &p);
+  Continuer c(system, options, p, column);
+
+  // The first point: shooting at λ = start.
+  result.start = SolvePeriodicOrbit(system, options.shooting, y0, p);
+  result.integrations += result.start.integrations;
+  result.steps += result.start.steps;
+  if (result.start.status != ShootingStatus::kConverged) {
+    result.status = ContinuationStatus::kStartFailed;
+    result.message = "continuation: the first orbit, at " + options.parameter + " = " +
+                     Num(options.start) + " " + result.unit +
+                     ", was not found: " + result.start.message;
+    return result;
+  }
+  Point here;
+  Eigen::VectorXd r;
+  if (!c.Linearise(c.Scaled(result.start.initial_state, options.start), &r, &here)) {
+    result.status = ContinuationStatus::kStartFailed;
+    result.message = "continuation: the first orbit's parameter derivative: " + here.message;
+    return result;
+  }
+  periodic_detail::Continue(c, options, std::move(here), &result, on_point);
+  return result;
 }
 
 }  // namespace epicycle::dynamics

@@ -7,7 +7,10 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "epicycle/dynamics/harmonic_balance.hpp"
 #include "epicycle/io/number_format.hpp"
+#include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/load_sharing.hpp"
 
 namespace epicycle::dynamics {
 
@@ -60,7 +63,59 @@ bool PeriodFigures(const DynamicModel& m, const SimulationOptions& sim, const Ei
   return r.completed();
 }
 
+// The same figures off a harmonic-balance orbit: the model evaluated at `samples` instants
+// t_k = k T/samples of the series (k = 1..samples), the contact solve warm-started from the last.
+bool SeriesFigures(const DynamicModel& m, const SimulationOptions& sim,
+                   const Eigen::MatrixXd& coefficients, double period, int samples,
+                   StageBranchPoint* p, std::string* message) {
+  const int n = m.size();
+  const FourierBasis basis(static_cast<int>(coefficients.rows() - 1) / 2, 2 * static_cast<int>(coefficients.rows()));
+  const Eigen::MatrixXd y = basis.Evaluate(
+      coefficients, Eigen::VectorXd::LinSpaced(samples, 1.0 / samples, 1.0));
+  const std::unique_ptr<solvers::ContactSolver> solver = solvers::MakeContactSolver(sim.backend);
+  const int sun = m.Find(MotionDof::kSun, MotionDof::kRotation);
+  const int carrier = m.Find(MotionDof::kCarrier, MotionDof::kRotation);
+  const int sx = m.Find(MotionDof::kSun, MotionDof::kX);
+  Evaluation at, warm;
+  p->k_gamma = 0;
+  p->orbit_radius = 0;
+  double te_lo = INFINITY, te_hi = -INFINITY;
+  for (int k = 0; k < samples; ++k) {
+    const Eigen::VectorXd d = y.row(k).head(n).transpose(), v = y.row(k).tail(n).transpose();
+    const double t = period * (k + 1) / samples;
+    m.Evaluate(t, d, v, *solver, sim.contact, k ? &warm : nullptr, &at, /*energies=*/false);
+    if (!at.ok) {
+      *message = "the series' figures at t = " + Num(t) + " s: " + at.message;
+      return false;
+    }
+    // As Simulate's samples (dynamics/simulation.hpp, DynamicSample): K_γ, TE at the sun, orbit.
+    const std::vector<double> lsr = transmission::LoadSharingRatios(at.sun_mesh_torque,
+                                                                    at.input_torque);
+    for (double r : lsr) p->k_gamma = std::max(p->k_gamma, static_cast<double>(lsr.size()) * r);
+    const double te = sun >= 0 ? d(sun)
+                      : carrier >= 0 ? -m.stage_model().stage().sun_ratio() * d(carrier)
+                                     : 0.0;
+    te_lo = std::min(te_lo, te);
+    te_hi = std::max(te_hi, te);
+    if (sx >= 0) p->orbit_radius = std::max(p->orbit_radius, std::hypot(d(sx), d(sx + 1)));
+    std::swap(at, warm);
+  }
+  p->te_amplitude = (te_hi - te_lo) / 2;
+  return true;
+}
+
 }  // namespace
+
+std::string PeriodicMethodName(PeriodicMethod method) {
+  return method == PeriodicMethod::kHarmonicBalance ? "hb" : "shooting";
+}
+
+PeriodicMethod ParsePeriodicMethod(const std::string& word, const std::string& what) {
+  if (word == "shooting") return PeriodicMethod::kShooting;
+  if (word == "hb") return PeriodicMethod::kHarmonicBalance;
+  throw std::invalid_argument(what + " = '" + word +
+                              "': not a periodic method (shooting, hb: harmonic balance)");
+}
 
 void CheckBranchPeriod(const StagePeriod& period, long max_period_mesh_cycles) {
   if (period.mesh_cycles <= max_period_mesh_cycles) return;
@@ -92,6 +147,11 @@ void StageBranchOptions::Validate() const {
   if (period.mesh_cycles < 1)
     Fail("period mesh cycles", static_cast<double>(period.mesh_cycles), "must be >= 1");
   if (samples_per_period < 4) Fail("samples_per_period", samples_per_period, "must be >= 4");
+  if (harmonics < 1) Fail("harmonics", harmonics, "must be >= 1");
+  if (hb_samples != 0 && hb_samples < 2 * harmonics + 1)
+    Fail("hb_samples", hb_samples,
+         "must be 0 (4 harmonics) or >= 2 harmonics + 1 = " + std::to_string(2 * harmonics + 1));
+  if (hill_harmonics < 0) Fail("hill_harmonics", hill_harmonics, "must be >= 0 (0: harmonics)");
   if (!(simulation.rate_scale > 0))
     Fail("rate_scale", simulation.rate_scale,
          "must be > 0 (the rates' absolute tolerance of the shooting)");
@@ -113,12 +173,20 @@ StageBranchRecord ContinueStageBranch(
   rec.unit = system.parameters()[static_cast<std::size_t>(column)].unit;
   rec.period_mesh_cycles = o.period.mesh_cycles;
   rec.period_reasons = o.period.reasons;
+  rec.method = o.method;
+  const bool hb = o.method == PeriodicMethod::kHarmonicBalance;
+  rec.harmonics = hb ? o.harmonics : 0;
   const int n = base.size();
   for (const char* suffix : {"", " rate"})
     for (const MotionDof& f : base.dofs()) rec.dof_labels.push_back(f.Label() + std::string(suffix));
 
   Eigen::VectorXd p = system.DefaultParameters();
   p(column) = o.start;
+  if (hb && system.PeriodMap(p).size() != 0)
+    throw std::invalid_argument(
+        "stage branch: method = hb: the stage's translations (a floating sun, elastic pins) repeat "
+        "turned by the carrier's advance, not periodic in the model's coordinates: harmonic "
+        "balance needs an orbit that is; use shooting");
   const DynamicModel& start_model = system.ModelAt(p);
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);
   y0.head(n) = start_model.QuasiStaticStart(o.simulation.contact, o.simulation.backend);
@@ -170,8 +238,12 @@ StageBranchRecord ContinueStageBranch(
       q.corrector_iterations = b.corrector_iterations;
       q.state = b.state;
       std::string message;
-      if (!PeriodFigures(system.ModelAt(pb), o.simulation, b.state, b.period,
-                         o.samples_per_period, &q, &message) &&
+      const bool figures =
+          hb ? SeriesFigures(system.ModelAt(pb), o.simulation, b.coefficients, b.period,
+                             o.samples_per_period, &q, &message)
+             : PeriodFigures(system.ModelAt(pb), o.simulation, b.state, b.period,
+                             o.samples_per_period, &q, &message);
+      if (!figures &&
           rec.figures_message.empty())
         rec.figures_message = "at " + o.parameter + " = " + Num(b.parameter) + " " + rec.unit +
                               ": " + message;
@@ -184,11 +256,20 @@ StageBranchRecord ContinueStageBranch(
     rec.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   };
-  const ContinuationResult r =
-      ContinuePeriodicOrbit(system, c, y0, p, [&](const ContinuationResult& so_far) {
-        collect(so_far);
-        if (on_point) on_point(rec);
-      });
+  const auto stream = [&](const ContinuationResult& so_far) {
+    collect(so_far);
+    if (on_point) on_point(rec);
+  };
+  HarmonicBalanceOptions h;
+  if (hb) {
+    h.harmonics = o.harmonics;
+    h.samples = o.hb_samples;
+    h.hill_harmonics = std::min(o.hill_harmonics, o.harmonics);
+    h.rtol = c.shooting.rtol;
+    h.atol = c.shooting.atol;
+  }
+  const ContinuationResult r = hb ? ContinueHarmonicBalance(system, c, h, y0, p, stream)
+                                  : ContinuePeriodicOrbit(system, c, y0, p, stream);
   collect(r);
   rec.status = r.status;
   rec.message = r.message;

@@ -15,10 +15,13 @@ namespace epicycle::python {
 
 // A branch of periodic orbits (dynamics/stage_branch.hpp) as arrays, one entry per point.
 py::object PeriodicBranch(const ScenePtr& s, const std::string& parameter, double start, double end,
-                          int steps, int max_points, const Integration& integration,
+                          int steps, int max_points, const std::string& method,
+                          std::optional<int> harmonics, const Integration& integration,
                           std::optional<std::string> cache_dir, py::object progress,
                           bool raise_on_failure) {
   dynamics::BranchRequest request;
+  request.method = dynamics::ParsePeriodicMethod(method, "method");
+  request.harmonics = harmonics;
   request.run.scene = s->scene();
   integration.Apply(&request.run);
   request.run.tables = TableOptions(cache_dir);
@@ -127,16 +130,18 @@ void BindPeriodicBranch(py::module_& m) {
   m.def(
       "periodic_branch",
       [](const ScenePtr& s, const std::string& parameter, double start, double end, int steps,
-         int max_points, double rtol, std::optional<double> rate_scale,
-         std::optional<double> contact_tol, const std::string& backend,
-         std::optional<std::string> cache_dir, py::object progress, bool raise_on_failure) {
+         int max_points, const std::string& method, std::optional<int> harmonics, double rtol,
+         std::optional<double> rate_scale, std::optional<double> contact_tol,
+         const std::string& backend, std::optional<std::string> cache_dir, py::object progress,
+         bool raise_on_failure) {
         return PeriodicBranch(
-            s, parameter, start, end, steps, max_points,
+            s, parameter, start, end, steps, max_points, method, harmonics,
             MakeIntegration("cvode-bdf", rtol, rate_scale, contact_tol, 5, true, backend),
             cache_dir, std::move(progress), raise_on_failure);
       },
       py::arg("scene"), py::arg("parameter"), py::arg("start"), py::arg("end"), py::kw_only(),
-      py::arg("steps") = 20, py::arg("max_points") = 400, py::arg("rtol") = 1e-6,
+      py::arg("steps") = 20, py::arg("max_points") = 400, py::arg("method") = "shooting",
+      py::arg("harmonics") = py::none(), py::arg("rtol") = 1e-6,
       py::arg("rate_scale") = py::none(), py::arg("contact_tol") = py::none(),
       py::arg("backend") = "newton", py::arg("cache_dir") = py::none(),
       py::arg("progress") = py::none(), py::arg("raise_on_failure") = true,
@@ -159,6 +164,11 @@ steps : int, default 20
     The largest arclength step is 1/steps of the range [-].
 max_points : int, default 400
     The most points of the branch [-].
+method : str, default "shooting"
+    The periodic back end (`--periodic-method`): "shooting", or "hb", harmonic balance with
+    Hill's stability (docs/periodic.md §2) for a stage whose orbit repeats with the mesh.
+harmonics : int or None, default None
+    method "hb": the harmonics of the mesh period kept [-] (None: 24; `--hb-harmonics`).
 rtol : float, default 1e-6
     Relative tolerance of the integrations [-].
 rate_scale : float or None, default None

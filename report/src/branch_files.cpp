@@ -90,10 +90,13 @@ std::string BranchPlanText(const dynamics::BranchPlan& plan, const std::string& 
   const dynamics::StageDynamics& rig = *plan.rig;
   std::string t = fmt::format(
       "{}: periodic orbits continued over {} from {} to {} ({}), sun {}, period {} mesh "
-      "cycle(s), rtol {:.1e}\n",
+      "cycle(s), rtol {:.1e}, {}\n",
       rig.scene.name, o.parameter, Num(o.start), Num(o.end), given,
       transmission::SunSupportName(rig.stage_model.setup().sun), o.period.mesh_cycles,
-      o.simulation.rtol);
+      o.simulation.rtol,
+      o.method == dynamics::PeriodicMethod::kHarmonicBalance
+          ? fmt::format("harmonic balance with {} harmonics", o.harmonics)
+          : std::string("shooting"));
   for (const std::string& m : rig.compliance.tables().messages()) t += "  " + m + "\n";
   t += fmt::format("  {:<6} {:<14} {:<10} {:<11} {:<10} {:<12} {}\n", "point", o.parameter,
                    "stability", "max |mu|", "K_gamma", "TE amp urad", "bifurcations before");
@@ -120,6 +123,12 @@ std::string BranchRecordText(const dynamics::BranchRecord& record) {
   int unstable = 0;
   for (const dynamics::StageBranchPoint& p : r.points)
     unstable += p.stability == dynamics::Stability::kUnstable;
+  if (r.method == dynamics::PeriodicMethod::kHarmonicBalance)
+    return fmt::format(
+        "\n  {} points ({} unstable), {} bifurcations; {} linearisations and {} residuals of "
+        "the harmonic balance ({} evaluations); {:.2f} s CPU, {:.2f} s wall\n",
+        r.points.size(), unstable, r.bifurcations.size(), r.integrations, r.plain_integrations,
+        r.steps, r.cpu_seconds, r.wall_seconds);
   return fmt::format(
       "\n  {} points ({} unstable), {} bifurcations; {} periods integrated with the "
       "variational equations and {} without ({} steps); {:.2f} s CPU, {:.2f} s wall\n",

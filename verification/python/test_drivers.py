@@ -114,14 +114,18 @@ def test_speed_sweep_equals_the_program_csv(tmp_path):
     assert_same_sweep_record(s.record, j)
 
 
-def test_periodic_branch_equals_the_program_csv(tmp_path):
-    """The periodic orbits over the sun speed as arrays: the program's branch, point by point."""
+@pytest.mark.parametrize("method", ["shooting", "hb"])
+def test_periodic_branch_equals_the_program_csv(tmp_path, method):
+    """The periodic orbits over the sun speed as arrays: the program's branch, point by point, by
+    shooting and by harmonic balance (`--periodic-method hb`, `method="hb"`)."""
     out = tmp_path / "cli"
     run_cli("dynamic", scene_path("paper_stage.toml"), "--speed-sweep", "4000:4100:2",
-            "--periodic", "--quiet", "--out", out)
+            "--periodic", "--periodic-method", method, "--quiet", "--out", out)
     rows = read_csv(out / "periodic_branch.csv")
     b = epicycle.periodic_branch(epicycle.Scene.load(scene_path("paper_stage.toml")),
-                                 "sun_speed_rpm", 4000, 4100, steps=2)
+                                 "sun_speed_rpm", 4000, 4100, steps=2, method=method)
+    assert b.record["method"] == method
+    assert b.record["harmonics"] == (24 if method == "hb" else 0)
     assert b.ok and b.status == "completed" and b.unit == "rpm"
     assert len(rows) == len(b.sun_speed_rpm) >= 2
     assert b.sun_speed_rpm[0] == 4000 and b.sun_speed_rpm[-1] >= 4100
@@ -149,6 +153,11 @@ def test_periodic_branch_bad_input_names_the_argument():
     runout = epicycle.Scene.load(scene_path("paper_stage_runout.toml"))
     with pytest.raises(ValueError, match="period = 24 mesh cycles .planet1 run-out"):
         epicycle.periodic_branch(runout, "sun_speed_rpm", 1000, 2000, cache_dir="")
+    with pytest.raises(ValueError, match="method = 'fourier': not a periodic method .shooting, hb"):
+        epicycle.periodic_branch(scene, "sun_speed_rpm", 1000, 2000, method="fourier",
+                                 cache_dir="")
+    with pytest.raises(ValueError, match="harmonics = 8: must be >= 1, with the harmonic-balance"):
+        epicycle.periodic_branch(scene, "sun_speed_rpm", 1000, 2000, harmonics=8, cache_dir="")
 
 
 def test_carried_speed_sweep_equals_the_program(tmp_path):

@@ -25,6 +25,7 @@ struct BranchOptionNames {
   std::string steps = "steps", max_points = "max_points";
   /// Put before the message refusing a period of too many mesh cycles ("": none).
   std::string period;
+  std::string harmonics = "harmonics";
 };
 
 /// What a branch is asked for. `run` gives the scene and its overrides (sun support, friction,
@@ -39,6 +40,8 @@ struct BranchRequest {
   double end = 0;    ///< λ where the branch stops [its unit]; ≠ start
   int steps = 20;    ///< the largest arclength step is 1/steps of the range [-], ≥ 1
   std::optional<int> max_points;  ///< the most points [-], ≥ 2; none: StageBranchOptions'
+  PeriodicMethod method = PeriodicMethod::kShooting;  ///< the periodic back end
+  std::optional<int> harmonics;  ///< harmonic balance's H [-], ≥ 1; none: StageBranchOptions'
   BranchOptionNames names;
 };
 

@@ -109,6 +109,9 @@ struct FloquetReport {
 };
 /// Classifies the eigenvalues of a monodromy matrix.
 FloquetReport FloquetMultipliers(const Eigen::MatrixXd& monodromy, double unit_circle_tolerance);
+/// Classifies multipliers found otherwise (harmonic balance's Hill method).
+FloquetReport ClassifyMultipliers(std::vector<std::complex<double>> multipliers,
+                                  double unit_circle_tolerance);
 
 struct ShootingResult {
   ShootingStatus status = ShootingStatus::kIntegrationFailed;
@@ -185,6 +188,9 @@ struct BranchPoint {
   double parameter = 0;   ///< λ [its unit]
   double period = 0;      ///< T [s]
   Eigen::VectorXd state;  ///< y0 on the orbit [units of y]
+  /// Harmonic balance's orbit: its Fourier coefficients C ((2H + 1) × n, harmonic_balance.hpp)
+  /// [units of y]; empty for shooting.
+  Eigen::MatrixXd coefficients;
   /// Half the peak-to-peak of y_c over the period, c = ContinuationOptions::amplitude_component,
   /// from amplitude_samples + 1 equally spaced instants [units of y_c].
   double amplitude = 0;

@@ -23,12 +23,28 @@
 
 namespace epicycle::dynamics {
 
+/// The periodic back end of a branch (docs/periodic.md §2): shooting with its Floquet multipliers,
+/// or harmonic balance with Hill's method, for a stage whose orbit repeats with the mesh.
+enum class PeriodicMethod { kShooting, kHarmonicBalance };
+/// "shooting", "hb".
+std::string PeriodicMethodName(PeriodicMethod method);
+/// @throws std::invalid_argument naming `what`, the word and the words there are.
+PeriodicMethod ParsePeriodicMethod(const std::string& word, const std::string& what);
+
 struct StageBranchOptions {
   /// The parameter continued: StagePeriodicSystem::kSunSpeed ("sun_speed_rpm"), kSunTorque
   /// ("sun_torque_Nm") or kMeshDampingRatio ("mesh_damping_ratio").
   std::string parameter = StagePeriodicSystem::kSunSpeed;
   double start = 0;  ///< λ_0 [the parameter's unit]
   double end = 0;    ///< λ where the branch stops [its unit]; ≠ start
+  PeriodicMethod method = PeriodicMethod::kShooting;
+  /// Harmonic balance: H, harmonics of the period kept [-], ≥ 1, and N, the AFT's instants per
+  /// period (0: 4H) [-] (HarmonicBalanceOptions). Each point's figures are read off the series at
+  /// samples_per_period instants (no time integration).
+  int harmonics = 24;
+  int hb_samples = 0;
+  /// Hill's matrix's harmonics H_s (HarmonicBalanceOptions::hill_harmonics; 0: H) [-].
+  int hill_harmonics = 8;
   /// The stage's period (StagePeriodMeshCycles of the scene's stage and damage).
   StagePeriod period;
   /// A period of more mesh cycles than this is refused: shooting integrates it, with the
@@ -75,6 +91,8 @@ struct StageBranchBifurcation {
 
 struct StageBranchRecord {
   std::string parameter, unit;  ///< the parameter continued and its unit
+  PeriodicMethod method = PeriodicMethod::kShooting;
+  int harmonics = 0;  ///< H of harmonic balance [-] (0: shooting)
   ContinuationStatus status = ContinuationStatus::kStartFailed;
   std::string message;          ///< where and why it stopped, when not completed
   long period_mesh_cycles = 1;  ///< k [-]
@@ -82,9 +100,13 @@ struct StageBranchRecord {
   std::vector<std::string> dof_labels;  ///< the state's components (d, then ḋ), with units
   std::vector<StageBranchPoint> points;
   std::vector<StageBranchBifurcation> bifurcations;
-  long integrations = 0;  ///< periods integrated with the variational equations [-]
-  long plain_integrations = 0;  ///< periods integrated without them (chord iterations) [-]
-  long steps = 0;         ///< the integrator steps of both [-]
+  /// Shooting: periods integrated with the variational equations; harmonic balance: the
+  /// residual's linearisations (Jacobian and ∂R/∂λ) [-].
+  long integrations = 0;
+  /// Periods integrated without them (chord iterations); harmonic balance: residuals alone [-].
+  long plain_integrations = 0;
+  /// The integrator steps of both; harmonic balance: the stage's evaluations in them [-].
+  long steps = 0;
   double cpu_seconds = 0;   ///< CPU of the run (one thread) [s]
   double wall_seconds = 0;  ///< [s]
   /// Non-empty: a point's period figures could not be integrated (the first such point and why);
