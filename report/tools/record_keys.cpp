@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "epicycle/dynamics/branch_run.hpp"
+#include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/studies/study_run.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
@@ -181,6 +182,17 @@ int main() {
         "key per sampled-value column (COLUMN), "
         "`sobol.outputs` one object per rows-file result column (OUTPUT).",
         study);
+  dynamics::DynamicRecord dynamic;
+  dynamic.summary.lsr_mean = dynamic.summary.lsr_min = dynamic.summary.lsr_max = {0};
+  dynamic.summary.root_stress.resize(1);
+  dynamic.summary.face_width.resize(1);
+  dynamic.summary.helical_mean.planets.resize(1);
+  dynamic.rating.emplace();
+  Table("Dynamic run (`epicycle dynamic`, Python `dynamic(...)[\"record\"]`)",
+        "OUT/dynamic_summary.json; `root_stress` only with stresses, `rating` only when asked, "
+        "`face_width` only with slices of the face width, `helical` only for a helical stage (the "
+        "means over the steps written).",
+        dynamic);
   dynamics::BranchRecord branch;
   branch.branch.parameter = "PARAMETER";  // not the sun speed: both columns listed
   branch.branch.points.resize(1);
