@@ -35,7 +35,7 @@ MeshStiffnessAt MeshStiffnessOf(const geometry::Stage& stage, const PositionResu
   MeshStiffnessAt out;
   const auto n = static_cast<Eigen::Index>(active.size());
   if (n == 0) return out;
-  Eigen::MatrixXd secant(n, n), tangent(n, n);
+  Eigen::MatrixXd block(n, n);
   Eigen::VectorXd g(n), f(n);
   for (Eigen::Index a = 0; a < n; ++a) {
     const int j = active[static_cast<std::size_t>(a)];
@@ -44,21 +44,69 @@ MeshStiffnessAt MeshStiffnessOf(const geometry::Stage& stage, const PositionResu
     g(a) = std::abs(ring ? c.contact.lever_a : c.contact.lever_b) / rb;
     f(a) = r.solution.force(j);
     for (Eigen::Index b = 0; b < n; ++b)
-      secant(a, b) = data.compliance(j, active[static_cast<std::size_t>(b)]);
+      block(a, b) = data.compliance(j, active[static_cast<std::size_t>(b)]);
   }
-  tangent = secant;
-  Eigen::VectorXd approach = secant * f;  // (C_AA F_A)_j, then + u_j(F_j)
-  for (Eigen::Index a = 0; a < n && !data.local.empty(); ++a) {
+  // u_j(F) and u_j'(F) of contact a of A (0 without a local term).
+  auto local = [&](Eigen::Index a, double force, double* slope) {
+    if (data.local.empty()) return 0.0;
     const solvers::LocalTermParameters& p = data.local[static_cast<std::size_t>(active[a])];
-    if (!p.enabled) continue;
-    approach(a) += solvers::LocalApproach(p, f(a));
-    tangent(a, a) += solvers::LocalApproachDerivative(p, f(a));
-  }
+    if (!p.enabled) return 0.0;
+    if (slope) *slope += solvers::LocalApproachDerivative(p, force);
+    return solvers::LocalApproach(p, force);
+  };
   out.force = g.dot(f);
-  for (Eigen::Index a = 0; a < n; ++a)
-    if (g(a) > 0) out.approach = std::max(out.approach, approach(a) / g(a));
-  out.secant = out.approach > 0 ? out.force / out.approach : 0.0;
-  out.tangent = g.dot(tangent.ldlt().solve(g));
+  // The pair's state at F_m (header) by Newton from the stage's forces, on the contacts `on` that
+  // keep a force: a step that would take a force to zero stops short of it, and a contact whose
+  // force the steps drive to zero leaves the set (the pair would open it).
+  std::vector<Eigen::Index> on;
+  for (Eigen::Index a = 0; a < n; ++a) on.push_back(a);
+  double delta = 0;
+  for (Eigen::Index a = 0; a < n; ++a) delta = std::max(delta, (block.row(a).dot(f) + local(a, f(a), nullptr)) / g(a));
+  Eigen::MatrixXd jacobian, tangent;
+  Eigen::VectorXd residual, gs;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const auto m = static_cast<Eigen::Index>(on.size());
+    jacobian.setZero(m + 1, m + 1);
+    residual.resize(m + 1);
+    gs.resize(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      gs(i) = g(on[static_cast<std::size_t>(i)]);
+      for (Eigen::Index k = 0; k < m; ++k)
+        jacobian(i, k) = block(on[static_cast<std::size_t>(i)], on[static_cast<std::size_t>(k)]);
+    }
+    Eigen::VectorXd fs(m);
+    for (Eigen::Index i = 0; i < m; ++i) fs(i) = f(on[static_cast<std::size_t>(i)]);
+    residual.head(m) = jacobian.topLeftCorner(m, m) * fs - gs * delta;
+    for (Eigen::Index i = 0; i < m; ++i)
+      residual(i) += local(on[static_cast<std::size_t>(i)], fs(i), &jacobian(i, i));
+    residual(m) = gs.dot(fs) - out.force;
+    tangent = jacobian.topLeftCorner(m, m);
+    jacobian.block(0, m, m, 1) = -gs;
+    jacobian.block(m, 0, 1, m) = gs.transpose();
+    if (residual.head(m).norm() <= 1e-13 * delta * std::sqrt(static_cast<double>(m)) &&
+        std::abs(residual(m)) <= 1e-13 * out.force)
+      break;
+    const Eigen::VectorXd step = jacobian.partialPivLu().solve(-residual);
+    double t = 1;
+    Eigen::Index first = -1;
+    for (Eigen::Index i = 0; i < m; ++i)
+      if (step(i) < 0 && -fs(i) / step(i) < t) {
+        t = -fs(i) / step(i);
+        first = i;
+      }
+    if (first >= 0 && t < 1e-3) {  // driven to zero: it leaves the set
+      f(on[static_cast<std::size_t>(first)]) = 0;
+      on.erase(on.begin() + first);
+      if (on.empty()) return out;
+      continue;
+    }
+    if (first >= 0) t *= 0.5;
+    for (Eigen::Index i = 0; i < m; ++i) f(on[static_cast<std::size_t>(i)]) += t * step(i);
+    delta += t * step(m);
+  }
+  out.approach = delta;
+  out.secant = delta > 0 ? out.force / delta : 0.0;
+  out.tangent = gs.dot(tangent.ldlt().solve(gs));
   return out;
 }
 

@@ -79,10 +79,10 @@ TEST_CASE(
         REQUIRE(r.converged);
         const auto s = transmission::MeshStiffnessOf(h.stage, r, 0, false);
         const auto g = transmission::MeshStiffnessOf(h.stage, r, 0, true);
-        // Linear contacts without gaps (unmodified involutes): secant = tangent, to the contact
-        // solve's tolerance (1e-10 of the residual; 1e-8 relative covers its effect on Δ).
-        CHECK(s.secant == Approx(s.tangent).epsilon(1e-8));
-        CHECK(g.secant == Approx(g.tangent).epsilon(1e-8));
+        // Linear contacts: the pair's secant F_m/Δ is its tangent gᵀC⁻¹g (header), to the
+        // Newton's tolerance (1e-13 of Δ): 1e-10.
+        CHECK(s.secant == Approx(s.tangent).epsilon(1e-10));
+        CHECK(g.secant == Approx(g.tangent).epsilon(1e-10));
         k_sun.push_back(s.secant);
         k_ring.push_back(g.secant);
       });
@@ -139,10 +139,11 @@ TEST_CASE("a sliced mesh's tangent stiffness is the derivative of its contact fo
           "[crosscheck][transmission][helical]") {
   // With the local terms (nonlinear), at one position of the helical stage: the mesh's loaded
   // contacts A with their compliance block and local terms, approached by g(Δ ± h) from the
-  // state's own overlaps (C_AA F_A + u(F_A), so that h = 0 gives F_A back), solved again.
-  // F_m(h) = gᵀF(h) is smooth while the active set holds; the central difference's truncation is
-  // (h/Δ)² ~ 1e-8 of k (Δ ~ 10 µm, h = 1 nm), the solver's tolerance 1e-13 on the residual gives
-  // 1e-13 F_m/(2h) ~ 1e-7 of k: 1e-6.
+  // pair's state at the stage's mesh force (MeshStiffnessOf's Δ: h = 0 must give F_m back),
+  // solved by the contact solver (complementarity: another code path than the Newton of the
+  // pair's state). F_m(Δ) = gᵀF is smooth while the active set holds; the central difference's
+  // truncation is (h/Δ)² ~ 1e-8 of k (Δ ~ 10 µm, h = 1 nm), the solver's tolerance 1e-13 on the
+  // residual gives 1e-13 F_m/(2h) ~ 1e-7 of k: 1e-6.
   const HelicalStage h(true);
   const auto r = transmission::SolvePosition(h.model, 0.01, h.scene.loads,
                                              transmission::QuasiStaticOptions{});
@@ -163,31 +164,28 @@ TEST_CASE("a sliced mesh's tangent stiffness is the derivative of its contact fo
     solvers::ContactProblemData d;
     d.compliance.resize(n, n);
     d.overlap.resize(n);
-    Eigen::VectorXd g(n), f0(n);
+    Eigen::VectorXd g(n);
     for (Eigen::Index i = 0; i < n; ++i) {
       const auto& c = r.problem.contacts[static_cast<std::size_t>(a[i])];
       g(i) = std::abs(ring ? c.contact.lever_a : c.contact.lever_b) / rbp;
-      f0(i) = r.solution.force(a[i]);
       d.local.push_back(r.problem.data.local[static_cast<std::size_t>(a[i])]);
       for (Eigen::Index k = 0; k < n; ++k) d.compliance(i, k) = r.problem.data.compliance(a[i], a[k]);
     }
-    const Eigen::VectorXd base = [&] {
-      Eigen::VectorXd u = d.compliance * f0;
-      for (Eigen::Index i = 0; i < n; ++i) u(i) += solvers::LocalApproach(d.local[i], f0(i));
-      return u;
-    }();
     d.equality_matrix.resize(0, n);
     d.equality_rhs.resize(0);
     auto solver = solvers::MakeContactSolver(solvers::Backend::kActiveSetNewton);
     solvers::ContactOptions co;
     co.tolerance = 1e-13;
+    int loaded = -1;  // the active set's size, the same at every h
     auto mesh_force = [&](double step) {
       solvers::ContactProblemData p = d;
-      p.overlap = base + step * g;
+      p.overlap = g * (at.approach + step);
       solvers::ContactSolution s;
       const solvers::ContactReport rep = solver->Solve(solvers::ContactProblem(std::move(p)), co, &s);
       REQUIRE(rep.status == solvers::ContactStatus::kConverged);
-      REQUIRE(s.force.minCoeff() > 0);  // the active set holds
+      const int count = static_cast<int>((s.force.array() > 0).count());
+      if (loaded < 0) loaded = count;
+      REQUIRE(count == loaded);  // the active set holds
       return g.dot(s.force);
     };
     const double step = 1e-9;  // [m]

@@ -2,19 +2,17 @@
 // "Mesh stiffness of a sliced mesh"): what the dynamic model's mesh damping and the modes take
 // for a helical stage, whose meshes the gear-pair driver does not resolve in turned slices.
 //
-// At a converged position, a mesh's loaded contacts A (F_j > 0 on its drive flanks) obey
-//   (C_AA F_A)_j + u_j(F_j) = g_j Δ − e_j,
-// C_AA the mesh's own block of the compliance (the pair's: the other meshes' loads left out),
-// u_j the local term, Δ the mesh's approach along its transverse line of action (the planet turned
-// against the sun or the ring, held, by Δ/r_b,planet), g_j = |lever_j|/r_b,planet the contact's
-// share of that approach (1 on the line of action) and e_j ≥ 0 its unloaded gap, 0 for the contact
-// that touches first. So
-//   secant   k_s = F_m/Δ,   F_m = Σ_A g_j F_j (the mesh's moment on the planet over r_b,planet),
-//            Δ = max_A [(C_AA F_A)_j + u_j(F_j)]/g_j,
-//   tangent  k_t = dF_m/dΔ = gᵀ (C_AA + diag u'_j(F_j))⁻¹ g   (active set held),
-// the definitions of the gear-pair driver (mesh_stiffness.hpp: F = T/r_b over the approach, and
-// the tangent of F over δ), read off the stage's state. For a mesh in slices every slice's contact
-// is a row of A: k is the sum over the slices and their coupling.
+// At a converged position, a mesh's loaded contacts A carry F_A: F_m = Σ_A g_j F_j (the mesh's
+// moment on the planet over r_b,planet), g_j = |lever_j|/r_b,planet the contact's share of the
+// mesh's approach Δ along its transverse line of action (1 on the line of action). The stiffness
+// is the gear pair's at that force (mesh_stiffness.hpp: F over the approach, and its tangent):
+// the mesh alone, its own block C_AA of the compliance (the other meshes' loads left out) and its
+// local terms u_j, every contact of A touching at zero load, under F_m:
+//   C_AA F + u(F) = g Δ,  gᵀF = F_m          (solved by Newton from the stage's F_A),
+//   secant   k_s = F_m/Δ,
+//   tangent  k_t = dF_m/dΔ = gᵀ (C_AA + diag u'_j(F_j))⁻¹ g.
+// Without local terms both are gᵀ C_AA⁻¹ g. For a mesh in slices every slice's contact is a row
+// of A: k is the sum over the slices with their coupling.
 #pragma once
 
 #include <array>
@@ -30,7 +28,7 @@ struct MeshStiffnessAt {
   double secant = 0;   ///< k_s = F_m/Δ [N/m] (0: the mesh carries no load)
   double tangent = 0;  ///< k_t = dF_m/dΔ [N/m]
   double force = 0;    ///< F_m [N]
-  double approach = 0; ///< Δ [m]
+  double approach = 0; ///< Δ [m] of the pair's state at F_m (header)
 };
 
 /// The stiffness (header) of planet `planet`'s sun mesh (`ring` false) or ring mesh at the
