@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,11 +27,14 @@ MeshStiffnessAt MeshStiffnessOf(const geometry::Stage& stage, const PositionResu
   const double rb = stage.planet(planet).base_radius();
   const solvers::ContactProblemData& data = r.problem.data;
   std::vector<int> active;
+  // The approach at the stage's poses: the rigid overlap of the mesh's contact that touches first.
+  double touch = -std::numeric_limits<double>::infinity();
   for (std::size_t j = 0; j < r.problem.contacts.size(); ++j) {
     const StageContact& c = r.problem.contacts[j];
-    if (c.planet == planet && c.mesh == kind && c.loaded &&
-        r.solution.force(static_cast<Eigen::Index>(j)) > 0)
-      active.push_back(static_cast<int>(j));
+    if (c.planet != planet || c.mesh != kind || !c.loaded) continue;
+    const double lever = std::abs(ring ? c.contact.lever_a : c.contact.lever_b) / rb;
+    if (lever > 0) touch = std::max(touch, data.overlap(static_cast<Eigen::Index>(j)) / lever);
+    if (r.solution.force(static_cast<Eigen::Index>(j)) > 0) active.push_back(static_cast<int>(j));
   }
   MeshStiffnessAt out;
   const auto n = static_cast<Eigen::Index>(active.size());
@@ -55,13 +59,14 @@ MeshStiffnessAt MeshStiffnessOf(const geometry::Stage& stage, const PositionResu
     return solvers::LocalApproach(p, force);
   };
   out.force = g.dot(f);
-  // The pair's state at F_m (header) by Newton from the stage's forces, on the contacts `on` that
-  // keep a force: a step that would take a force to zero stops short of it, and a contact whose
-  // force the steps drive to zero leaves the set (the pair would open it).
+  // The pair's state at F_m (header) by Newton from the stage's forces and shift 0, on the
+  // contacts `on` that keep a force: a step that would take a force to zero stops short of it,
+  // and a contact whose force the steps drive to zero leaves the set (the pair would open it).
   std::vector<Eigen::Index> on;
   for (Eigen::Index a = 0; a < n; ++a) on.push_back(a);
-  double delta = 0;
-  for (Eigen::Index a = 0; a < n; ++a) delta = std::max(delta, (block.row(a).dot(f) + local(a, f(a), nullptr)) / g(a));
+  Eigen::VectorXd overlap(n);
+  for (Eigen::Index a = 0; a < n; ++a) overlap(a) = data.overlap(active[static_cast<std::size_t>(a)]);
+  double delta = 0;  // the shift s along the line of action
   Eigen::MatrixXd jacobian, tangent;
   Eigen::VectorXd residual, gs;
   for (int iteration = 0; iteration < 100; ++iteration) {
@@ -77,13 +82,14 @@ MeshStiffnessAt MeshStiffnessOf(const geometry::Stage& stage, const PositionResu
     Eigen::VectorXd fs(m);
     for (Eigen::Index i = 0; i < m; ++i) fs(i) = f(on[static_cast<std::size_t>(i)]);
     residual.head(m) = jacobian.topLeftCorner(m, m) * fs - gs * delta;
+    for (Eigen::Index i = 0; i < m; ++i) residual(i) -= overlap(on[static_cast<std::size_t>(i)]);
     for (Eigen::Index i = 0; i < m; ++i)
       residual(i) += local(on[static_cast<std::size_t>(i)], fs(i), &jacobian(i, i));
     residual(m) = gs.dot(fs) - out.force;
     tangent = jacobian.topLeftCorner(m, m);
     jacobian.block(0, m, m, 1) = -gs;
     jacobian.block(m, 0, 1, m) = gs.transpose();
-    if (residual.head(m).norm() <= 1e-13 * delta * std::sqrt(static_cast<double>(m)) &&
+    if (residual.head(m).norm() <= 1e-13 * std::abs(touch) * std::sqrt(static_cast<double>(m)) &&
         std::abs(residual(m)) <= 1e-13 * out.force)
       break;
     const Eigen::VectorXd step = jacobian.partialPivLu().solve(-residual);
@@ -104,8 +110,8 @@ MeshStiffnessAt MeshStiffnessOf(const geometry::Stage& stage, const PositionResu
     for (Eigen::Index i = 0; i < m; ++i) f(on[static_cast<std::size_t>(i)]) += t * step(i);
     delta += t * step(m);
   }
-  out.approach = delta;
-  out.secant = delta > 0 ? out.force / delta : 0.0;
+  out.approach = touch + delta;
+  out.secant = out.approach > 0 ? out.force / out.approach : 0.0;
   out.tangent = gs.dot(tangent.ldlt().solve(gs));
   return out;
 }

@@ -23,16 +23,10 @@ namespace {
 // 20 µm run-out (so that the load sharing moves over the cycle), FE compliance without the local
 // term, friction off, sun fixed, the sun at `rpm`.
 test::DynamicRig HelicalRig(double rpm) {
-  test::RigOptions o;
-  o.local_terms = false;
-  o.edit = [rpm](transmission::DynamicSettings& s) {
-    s.sun_speed = io::RpmToRadPerSecond(rpm);
-    s.friction.law = transmission::FrictionLaw::kOff;
-  };
   return test::MakeRig(
       test::WithRunout(test::Replace(test::SceneText("paper_stage_helical.toml"), "slices = 20",
                                      "slices = 5")),
-      "helical paper stage, run-out", o);
+      "helical paper stage, run-out", test::QuasiStaticLimitOptions(rpm));
 }
 
 // The largest differences between the steps and the quasi-static solutions at their carrier

@@ -135,17 +135,22 @@ inline std::string WithRunout(const std::string& text) {
   return text + "\n[[errors.runout]]\ngear = \"planet1\"\namplitude_um = 20.0\nphase_deg = 0.0\n";
 }
 
-// The quasi-static-limit setting of the run-out case: FE compliance without the local term,
-// friction off, planet 1 with 20 µm run-out, sun fixed, the sun at `rpm`; `extra` appended to the
-// scene's text (e.g. "[model]\nstresses = true\n").
-inline DynamicRig LowSpeedRunoutRig(double rpm, const std::string& extra = "") {
+// The quasi-static-limit setting: FE compliance without the local term, friction off, sun fixed,
+// the sun at `rpm`.
+inline RigOptions QuasiStaticLimitOptions(double rpm) {
   RigOptions o;
   o.local_terms = false;
   o.edit = [rpm](transmission::DynamicSettings& s) {
     s.sun_speed = io::RpmToRadPerSecond(rpm);
     s.friction.law = transmission::FrictionLaw::kOff;
   };
-  return MakeRig(WithRunout(SceneText("paper_stage.toml")) + "\n" + extra, "runout", o);
+  return o;
+}
+// The quasi-static-limit setting of the run-out case: planet 1 with 20 µm run-out; `extra`
+// appended to the scene's text (e.g. "[model]\nstresses = true\n").
+inline DynamicRig LowSpeedRunoutRig(double rpm, const std::string& extra = "") {
+  return MakeRig(WithRunout(SceneText("paper_stage.toml")) + "\n" + extra, "runout",
+                 QuasiStaticLimitOptions(rpm));
 }
 
 // Largest |LSR_dyn − LSR_qs| over the samples, the quasi-static solver at each sample's carrier

@@ -2,17 +2,19 @@
 // "Mesh stiffness of a sliced mesh"): what the dynamic model's mesh damping and the modes take
 // for a helical stage, whose meshes the gear-pair driver does not resolve in turned slices.
 //
-// At a converged position, a mesh's loaded contacts A carry F_A: F_m = Σ_A g_j F_j (the mesh's
-// moment on the planet over r_b,planet), g_j = |lever_j|/r_b,planet the contact's share of the
-// mesh's approach Δ along its transverse line of action (1 on the line of action). The stiffness
-// is the gear pair's at that force (mesh_stiffness.hpp: F over the approach, and its tangent):
-// the mesh alone, its own block C_AA of the compliance (the other meshes' loads left out) and its
-// local terms u_j, every contact of A touching at zero load, under F_m:
-//   C_AA F + u(F) = g Δ,  gᵀF = F_m          (solved by Newton from the stage's F_A),
+// At a converged position, a mesh's loaded contacts A carry F_m = Σ_A g_j F_j (the mesh's moment
+// on the planet over r_b,planet), g_j = |lever_j|/r_b,planet the contact's share of the mesh's
+// approach along its transverse line of action (1 on the line of action). The stiffness is the
+// gear pair's at that force (mesh_stiffness.hpp: F over the approach, and its tangent): the mesh
+// alone, its own block C_AA of the compliance (the other meshes' loads left out) and its local
+// terms u_j, at the stage's relative poses (its contacts' rigid overlaps δ0_A, which hold their
+// unloaded gaps) moved by s along the line of action so as to carry F_m:
+//   C_AA F + u(F) = δ0_A + g s,  gᵀF = F_m       (Newton from the stage's F_A and s = 0),
+//   Δ = max_j δ0_j/g_j + s  (the approach from where the mesh's first contact touches),
 //   secant   k_s = F_m/Δ,
 //   tangent  k_t = dF_m/dΔ = gᵀ (C_AA + diag u'_j(F_j))⁻¹ g.
-// Without local terms both are gᵀ C_AA⁻¹ g. For a mesh in slices every slice's contact is a row
-// of A: k is the sum over the slices with their coupling.
+// For a mesh in slices every slice's contact is a row of A: k is the sum over the slices with
+// their coupling.
 #pragma once
 
 #include <array>
