@@ -119,6 +119,32 @@ py::dict SummaryObject(const dynamics::DynamicSummary& sum) {
   return summary;
 }
 
+// A helical stage's per-step axial loads (the steps file's axial-load columns, docs/model.md §10)
+// into `f`: NaN where a step has no value for a planet.
+void AddHelicalSteps(const std::vector<dynamics::DynamicSample>& samples, int n, py::dict* f) {
+  const auto count = static_cast<py::ssize_t>(samples.size());
+  std::vector<double> sun_axial, ring_axial, carrier_axial, mesh_axial, radial, tangential;
+  for (const dynamics::DynamicSample& x : samples) {
+    sun_axial.push_back(x.helical.sun_axial_force);
+    ring_axial.push_back(x.helical.ring_axial_force);
+    carrier_axial.push_back(x.helical.carrier_axial_force);
+    for (int i = 0; i < n; ++i) {
+      const bool has = static_cast<int>(x.helical.planets.size()) > i;
+      const auto k = static_cast<std::size_t>(i);
+      mesh_axial.push_back(has ? x.helical.planets[k].sun_mesh_axial : kNaN);
+      radial.push_back(has ? x.helical.planets[k].moment_radial : kNaN);
+      tangential.push_back(has ? x.helical.planets[k].moment_tangential : kNaN);
+    }
+  }
+  const auto width = static_cast<py::ssize_t>(n);
+  (*f)["sun_axial_force_N"] = Array(std::move(sun_axial));
+  (*f)["ring_axial_force_N"] = Array(std::move(ring_axial));
+  (*f)["carrier_axial_force_N"] = Array(std::move(carrier_axial));
+  (*f)["sun_mesh_axial_force_N"] = Array2(std::move(mesh_axial), count, width);
+  (*f)["tilting_moment_radial_Nm"] = Array2(std::move(radial), count, width);
+  (*f)["tilting_moment_tangential_Nm"] = Array2(std::move(tangential), count, width);
+}
+
 // Python's sink of a dynamic run: every output step kept (Python returns them as arrays), its
 // vibration values computed while the run's model exists, and what the arrays need of the rig.
 class KeepSteps final : public dynamics::DynamicSink {
@@ -319,30 +345,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
     f["k_hbeta"] = Array2(std::move(k_h_beta), count, width);
     f["largest_load_z_mm"] = Array2(std::move(largest_z), count, width);
   }
-  if (sink.helical) {
-    // Per step (the steps file's axial-load columns, docs/model.md §10): NaN where a step has no
-    // value for a planet.
-    std::vector<double> sun_axial, ring_axial, carrier_axial, mesh_axial, radial, tangential;
-    for (const dynamics::DynamicSample& x : samples) {
-      sun_axial.push_back(x.helical.sun_axial_force);
-      ring_axial.push_back(x.helical.ring_axial_force);
-      carrier_axial.push_back(x.helical.carrier_axial_force);
-      for (int i = 0; i < n; ++i) {
-        const bool has = static_cast<int>(x.helical.planets.size()) > i;
-        const auto k = static_cast<std::size_t>(i);
-        mesh_axial.push_back(has ? x.helical.planets[k].sun_mesh_axial : kNaN);
-        radial.push_back(has ? x.helical.planets[k].moment_radial : kNaN);
-        tangential.push_back(has ? x.helical.planets[k].moment_tangential : kNaN);
-      }
-    }
-    const auto width = static_cast<py::ssize_t>(n);
-    f["sun_axial_force_N"] = Array(std::move(sun_axial));
-    f["ring_axial_force_N"] = Array(std::move(ring_axial));
-    f["carrier_axial_force_N"] = Array(std::move(carrier_axial));
-    f["sun_mesh_axial_force_N"] = Array2(std::move(mesh_axial), count, width);
-    f["tilting_moment_radial_Nm"] = Array2(std::move(radial), count, width);
-    f["tilting_moment_tangential_Nm"] = Array2(std::move(tangential), count, width);
-  }
+  if (sink.helical) AddHelicalSteps(samples, n, &f);
   f["vibration"] = Result(vib);
   f["summary"] = Result(SummaryObject(record.summary));
   f["stats"] = StatsObject(record.stats);
