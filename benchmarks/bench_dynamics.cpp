@@ -89,6 +89,26 @@ BENCHMARK(BM_FaceWidthEvaluation)
     ->Arg(20)
     ->Unit(benchmark::kMicrosecond);
 
+// The helical paper stage against the spur one at the same S (docs/face_width.md, "Helical
+// meshes", Cost): scenes/paper_stage_helical.toml (β = 15°, the paper stage's transverse
+// section) and scenes/paper_stage_pin_tilt.toml, fixed sun, 1500 rpm, S = 5, 10, 20 slices; the
+// second argument 1 for helical, 0 for spur.
+void BM_FaceWidthHelicalEvaluation(benchmark::State& state) {
+  const bool helical = state.range(1) != 0;
+  auto scene = transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) +
+                                       (helical ? "/paper_stage_helical.toml"
+                                                : "/paper_stage_pin_tilt.toml"));
+  scene.face_width.slices = static_cast<int>(state.range(0));
+  scene.dynamics.sun_speed = io::RpmToRadPerSecond(1500);
+  transmission::FeComplianceOptions fe = Case::Cache();
+  fe.helical_slices = true;  // as `epicycle dynamic`
+  const dynamics::StageDynamics c(std::move(scene), fe);
+  TimeEvaluations(state, c);
+}
+BENCHMARK(BM_FaceWidthHelicalEvaluation)
+    ->ArgsProduct({{5, 10, 20}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
 void TimeEvaluations(benchmark::State& state, const dynamics::StageDynamics& c) {
   const Eigen::VectorXd d = c.model.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
   const Eigen::VectorXd v = Eigen::VectorXd::Zero(c.model.size());

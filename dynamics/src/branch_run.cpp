@@ -51,6 +51,7 @@ StageBranchOptions Options(const BranchRequest& r, const transmission::Scene& sc
 
 BranchRecord RunBranch(const BranchRequest& request, BranchSink& sink) {
   transmission::Scene scene = ResolvedScene(request.run);
+  transmission::RequireSpur(scene, "`epicycle dynamic --periodic` (the periodic branch)");
   const StageBranchOptions o = Options(request, scene, ResolvedOptions(request.run));
   StageDynamics rig(std::move(scene), request.run.tables);
   rig.model.SetStartAngle(geometry::Rad(request.run.start_deg));

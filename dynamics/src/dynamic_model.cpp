@@ -832,7 +832,10 @@ StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeCompli
       compliance(scene, stage, fe),
       stage_model(stage, compliance, transmission::SetupFromScene(scene)),
       model(stage_model, scene.dynamics, scene.inertia, scene.loads) {
-  const auto k = MeanMeshStiffness(scene, stage, fe);
+  // A helical mesh in turned slices: the stage's own quasi-static stiffness (docs/model.md §10).
+  if (stage_model.helical())
+    sliced_stiffness = transmission::ComputeStageMeshStiffness(stage_model, scene.loads);
+  const auto k = stage_model.helical() ? sliced_stiffness.secant : MeanMeshStiffness(scene, stage, fe);
   model.SetMeshStiffness(k[0], k[1]);
 }
 
@@ -916,7 +919,9 @@ std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
 
 OperatingPointModes StageModes(const StageDynamics& rig) {
   OperatingPointModes out;
-  out.mesh_stiffness = MeanTangentMeshStiffness(rig.scene, rig.stage, rig.fe);
+  out.mesh_stiffness = rig.stage_model.helical()
+                           ? rig.sliced_stiffness.tangent
+                           : MeanTangentMeshStiffness(rig.scene, rig.stage, rig.fe);
   DynamicModel model = rig.model;
   model.SetMeshStiffness(out.mesh_stiffness[0], out.mesh_stiffness[1]);
   Eigen::MatrixXd m, k;

@@ -11,6 +11,7 @@
 #include "epicycle/dynamics/run_arguments.hpp"
 #include "epicycle/dynamics/spectrum.hpp"
 #include "epicycle/io/units.hpp"
+#include "epicycle/transmission/helical_scene.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 
 namespace epicycle::dynamics {
@@ -96,8 +97,12 @@ std::string DurationSource(const DynamicRequest& r) {
 DynamicRecord RunDynamic(const DynamicRequest& request, DynamicSink& sink) {
   transmission::Scene scene = ResolvedScene(request);
   const SimulationOptions opt = ResolvedOptions(request);
+  // A helical stage in slices, each at its own section's poses (docs/model.md §10).
+  transmission::RequireHelicalSlices(scene, "`epicycle dynamic`");
+  transmission::FeComplianceOptions tables = request.tables;
+  tables.helical_slices = true;
   const auto t0 = std::chrono::steady_clock::now();
-  StageDynamics rig(std::move(scene), request.tables);
+  StageDynamics rig(std::move(scene), tables);
   DynamicModel& model = rig.model;
   model.SetStartAngle(geometry::Rad(request.start_deg));
   DynamicPlan plan;
@@ -197,6 +202,7 @@ void VisitRecord(const DynamicRecord& r, transmission::RecordVisitor& visit) {
   visit.Number("sun_orbit_radius_max_um", s.orbit_radius * 1e6);
   visit.Number("sun_orbit_radius_mean_um", s.orbit_mean_radius * 1e6);
   transmission::VisitFaceWidth(visit, s.face_width);
+  transmission::VisitHelicalLoads(visit, s.helical_mean);  // means over the steps written
   const SimulationStats& st = r.stats;
   visit.Integer("steps", st.steps);
   visit.Integer("evaluations", st.rhs_evaluations);

@@ -30,6 +30,10 @@ void DynamicAccumulator::Add(const DynamicSample& x) {
     for (double lsr : x.load_sharing) factors.push_back(static_cast<double>(lsr_.size()) * lsr);
     faces_.Add(x.face_loads, factors, x.carrier_angle);
   }
+  if (!x.helical.planets.empty()) {
+    transmission::AddHelicalLoads(x.helical, 1.0, &helical_sum_);
+    ++helical_steps_;
+  }
 }
 
 DynamicSummary DynamicAccumulator::Result() const {
@@ -51,6 +55,8 @@ DynamicSummary DynamicAccumulator::Result() const {
                                            : std::max(0.0, pair_force_.max());
   if (root_stress_) s.root_stress = root_stress_->Result();
   s.face_width = faces_.Result();
+  if (helical_steps_ > 0)
+    transmission::AddHelicalLoads(helical_sum_, 1.0 / helical_steps_, &s.helical_mean);
   return s;
 }
 

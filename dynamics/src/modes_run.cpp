@@ -8,6 +8,7 @@
 
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/io/units.hpp"
+#include "epicycle/transmission/helical_scene.hpp"
 
 namespace epicycle::dynamics {
 
@@ -22,7 +23,11 @@ ModesRecord RunModes(const ModesRequest& request, ModesSink& sink) {
     if (scene.kind != transmission::SceneKind::kStage)
       throw std::invalid_argument(scene.name + ": a gear-pair scene; modes need a stage");
     if (request.sun) scene.supports.sun = *request.sun;
-    rig = std::make_shared<const StageDynamics>(std::move(scene), request.tables);
+    // A helical stage in slices: the tangent stiffness of its sliced meshes (docs/model.md §10).
+    transmission::RequireHelicalSlices(scene, "`epicycle modes`");
+    transmission::FeComplianceOptions tables = request.tables;
+    tables.helical_slices = true;
+    rig = std::make_shared<const StageDynamics>(std::move(scene), tables);
   }
   sink.Start({rig.get()});
   // The linearisation's mesh stiffness is the tangent dF/dδ about the operating point (the
@@ -34,6 +39,7 @@ ModesRecord RunModes(const ModesRequest& request, ModesSink& sink) {
   record.scene = rig->scene.name;
   record.mesh_stiffness = operating.mesh_stiffness;
   record.secant_mesh_stiffness = {model.sun_mesh_stiffness(), model.ring_mesh_stiffness()};
+  record.sliced_meshes = rig->stage_model.helical();
   // Mesh frequency per sun rpm: f_m = z_r ω_c/2π with ω_c = ω_s z_s/(z_s + z_r).
   record.mesh_hz_per_sun_rpm = MeshHzPerSunRpm(rig->stage);
   record.modes = operating.modes;
@@ -55,6 +61,9 @@ void VisitRecord(const ModesRecord& r, transmission::RecordVisitor& visit) {
   visit.Text("mesh_stiffness_kind", "tangent dF/ddelta, mean over a mesh cycle");
   visit.Number("secant_mesh_stiffness_sun_planet_N_per_m", r.secant_mesh_stiffness[0]);
   visit.Number("secant_mesh_stiffness_planet_ring_N_per_m", r.secant_mesh_stiffness[1]);
+  if (r.sliced_meshes)  // a helical stage (docs/model.md §10)
+    visit.Text("mesh_stiffness_source",
+               "the stage's quasi-static solutions over a mesh cycle, its meshes in slices");
   visit.Number("mesh_frequency_Hz_per_sun_rpm", r.mesh_hz_per_sun_rpm);
   visit.BeginList("modes");
   for (const Mode& x : r.modes) {

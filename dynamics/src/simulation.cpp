@@ -438,6 +438,9 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
         sample.face_loads = transmission::FaceLoads(model.stage_model().stage(),
                                                     model.stage_model().face_width().slices(),
                                                     e.terms.contacts, e.total_force);
+      if (model.stage_model().helical())
+        sample.helical = transmission::HelicalLoadsOf(model.stage_model().stage(), e.poses,
+                                                      e.terms.contacts, e.total_force);
       if (on_sample) {
         try {
           on_sample(sample);

@@ -58,7 +58,10 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   const DynamicRequest& run = request.run;
   SimulationOptions simulation = ResolvedOptions(run);
   simulation.keep_samples = true;  // each speed keeps its window
-  const StageDynamics rig(ResolvedScene(run), run.tables);
+  const transmission::Scene scene = ResolvedScene(run);
+  // The sweep's modes and windows take the pair driver's mesh stiffness: planar stages only.
+  transmission::RequireSpur(scene, "`epicycle dynamic --speed-sweep` (the speed sweep)");
+  const StageDynamics rig(scene, run.tables);
   const DynamicModel& base = rig.model;
   SpeedSweepOptions o;
   o.sun_speeds_rpm = request.sun_speeds_rpm;

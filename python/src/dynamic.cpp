@@ -73,6 +73,32 @@ py::dict SummaryObject(const dynamics::DynamicSummary& sum) {
   return summary;
 }
 
+// A helical stage's per-step axial loads (the steps file's axial-load columns, docs/model.md §10)
+// into `f`: NaN where a step has no value for a planet.
+void AddHelicalSteps(const std::vector<dynamics::DynamicSample>& samples, int n, py::dict* f) {
+  const auto count = static_cast<py::ssize_t>(samples.size());
+  std::vector<double> sun_axial, ring_axial, carrier_axial, mesh_axial, radial, tangential;
+  for (const dynamics::DynamicSample& x : samples) {
+    sun_axial.push_back(x.helical.sun_axial_force);
+    ring_axial.push_back(x.helical.ring_axial_force);
+    carrier_axial.push_back(x.helical.carrier_axial_force);
+    for (int i = 0; i < n; ++i) {
+      const bool has = static_cast<int>(x.helical.planets.size()) > i;
+      const auto k = static_cast<std::size_t>(i);
+      mesh_axial.push_back(has ? x.helical.planets[k].sun_mesh_axial : kNaN);
+      radial.push_back(has ? x.helical.planets[k].moment_radial : kNaN);
+      tangential.push_back(has ? x.helical.planets[k].moment_tangential : kNaN);
+    }
+  }
+  const auto width = static_cast<py::ssize_t>(n);
+  (*f)["sun_axial_force_N"] = Array(std::move(sun_axial));
+  (*f)["ring_axial_force_N"] = Array(std::move(ring_axial));
+  (*f)["carrier_axial_force_N"] = Array(std::move(carrier_axial));
+  (*f)["sun_mesh_axial_force_N"] = Array2(std::move(mesh_axial), count, width);
+  (*f)["tilting_moment_radial_Nm"] = Array2(std::move(radial), count, width);
+  (*f)["tilting_moment_tangential_Nm"] = Array2(std::move(tangential), count, width);
+}
+
 // Python's sink of a dynamic run: every output step kept (Python returns them as arrays), its
 // vibration values computed while the run's model exists, and what the arrays need of the rig.
 class KeepSteps final : public dynamics::DynamicSink {
@@ -85,6 +111,7 @@ class KeepSteps final : public dynamics::DynamicSink {
     channels = dynamics::VibrationChannels(p.rig->model);
     damping = {p.rig->model.sun_mesh_damping(), p.rig->model.ring_mesh_damping()};
     if (p.rig->scene.face_width.active()) face_meshes = report::StageFaceMeshes(p.rig->stage).names;
+    helical = p.rig->stage_model.helical();
     total_ = p.span->outputs;
   }
   void Step(const dynamics::DynamicSample& x) override {
@@ -101,6 +128,7 @@ class KeepSteps final : public dynamics::DynamicSink {
   std::array<double, 2> damping{};  // the mesh damping [N s/m]
   int planets = 0, bodies = 0;
   std::vector<std::string> face_meshes;  // with slices of the face width: the steps CSV's meshes
+  bool helical = false;                  // a helical stage: the steps CSV's axial-load columns
 
  private:
   const Progress& report_;
@@ -271,6 +299,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
     f["k_hbeta"] = Array2(std::move(k_h_beta), count, width);
     f["largest_load_z_mm"] = Array2(std::move(largest_z), count, width);
   }
+  if (sink.helical) AddHelicalSteps(samples, n, &f);
   f["vibration"] = Result(vib);
   f["summary"] = Result(SummaryObject(record.summary));
   f["stats"] = StatsObject(record.stats);
@@ -375,7 +404,11 @@ Result
     active_contacts, friction_power_W [W], sun_bearing_force_N (T, 2) [N],
     planet_bearing_force_N (T, n, 2) [N]; with slices of the face width face_meshes (M names),
     k_hbeta (T, M) [-] and largest_load_z_mm (T, M) [mm] (the steps file's K_Hbeta_<mesh> and
-    largest_z_mm_<mesh>); pairs (per loaded tooth pair and step: time_s, mesh,
+    largest_z_mm_<mesh>); with a helical stage (its axial and tilting motions held)
+    sun_axial_force_N, ring_axial_force_N, carrier_axial_force_N (T,) [N] along +z,
+    sun_mesh_axial_force_N (T, n) [N] (the sun mesh's on each planet), tilting_moment_radial_Nm
+    and tilting_moment_tangential_Nm (T, n) [N·m] (the steps file's columns of those names,
+    suffixed _<planet>); pairs (per loaded tooth pair and step: time_s, mesh,
     kind, flank, tooth_a, tooth_b, normal_force_N, elastic_force_N, friction_force_N [N],
     overlap_rate_mm_per_s [mm/s]); vibration (per step, the signals of docs/spectra.md: te_rad,
     ring_force_x_N, ring_force_y_N, ring_torque_Nm, sun_force_x_N/sun_force_y_N (held sun) or

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common.hpp"
+#include "epicycle/transmission/helical_scene.hpp"
 
 namespace epicycle::python {
 
@@ -119,9 +120,11 @@ std::shared_ptr<const StageRig> Scene::Rig(const std::optional<std::string>& cac
 
 std::shared_ptr<const dynamics::StageDynamics> Scene::Dynamics(
     const std::optional<std::string>& cache_dir, const char* command) const {
-  const transmission::FeComplianceOptions fe = TableOptions(cache_dir);
+  transmission::FeComplianceOptions fe = TableOptions(cache_dir);
+  fe.helical_slices = true;  // the dynamic model resolves a helical stage in slices
   std::lock_guard<std::mutex> lock(mutex_);  // Assign may replace scene_ from another thread
   RequireStage(*scene_, command);
+  transmission::RequireHelicalSlices(*scene_, command);
   if (!dynamics_ || dynamics_cache_ != fe.cache_directory) {
     dynamics_ = std::make_shared<const dynamics::StageDynamics>(*scene_, fe);
     dynamics_cache_ = fe.cache_directory;

@@ -32,7 +32,8 @@ void DynamicRunOutput::Start(const dynamics::DynamicPlan& p) {
     k_h_beta_.emplace(face_meshes);
   }
   files_ = std::make_unique<DynamicRunFiles>(base_, provenance_, n,
-                                             p.rig->compliance.has_root_stress(), face_meshes);
+                                             p.rig->compliance.has_root_stress(), face_meshes,
+                                             p.rig->stage_model.helical());
   if (*p.spectrum) vibration_.emplace(base_, provenance_, model, **p.spectrum);
   plots_ = std::make_unique<DynamicPlots>(base_, n, *p.span);
 }

@@ -16,8 +16,10 @@ std::string ModesPlanText(const dynamics::ModesPlan& p) {
 std::string ModesRecordText(const dynamics::ModesRecord& r) {
   std::string t;
   t += fmt::sprintf(
-      "  mean mesh stiffness (the mesh-stiffness driver at the scene's load), tangent dF/ddelta "
+      "  mean mesh stiffness (%s at the scene's load), tangent dF/ddelta "
       "(used here): sun-planet %.4g N/m, planet-ring %.4g N/m\n",
+      r.sliced_meshes ? "the stage's quasi-static solutions, its meshes in slices"
+                      : "the mesh-stiffness driver",
       r.mesh_stiffness[0], r.mesh_stiffness[1]);
   t += fmt::sprintf(
       "  secant F/delta (sets the mesh damping of a run): sun-planet %.4g N/m, planet-ring %.4g "

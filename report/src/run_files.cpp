@@ -484,7 +484,7 @@ namespace {
 
 // The first lines (provenance, columns) of a dynamic run's files.
 std::string DynamicStepsHead(const std::string& provenance_line, int planets, int stress_bodies,
-                             const std::vector<std::string>& face_meshes) {
+                             const std::vector<std::string>& face_meshes, bool helical) {
   std::string steps = provenance_line + "time_s,carrier_deg";
   for (int i = 1; i <= planets; ++i) steps += ",LSR_" + std::to_string(i);
   for (int i = 1; i <= planets; ++i) steps += ",L_" + std::to_string(i);
@@ -496,6 +496,13 @@ std::string DynamicStepsHead(const std::string& provenance_line, int planets, in
   for (int i = 1; i <= planets; ++i) steps += ",LSR_force_" + std::to_string(i);
   steps += RootStressHead(transmission::BodyNames(stress_bodies));
   for (const std::string& m : face_meshes) steps += ",K_Hbeta_" + m + ",largest_z_mm_" + m;
+  if (helical) {
+    steps += ",sun_axial_force_N,ring_axial_force_N,carrier_axial_force_N";
+    for (int i = 1; i <= planets; ++i)
+      steps += fmt::format(",sun_mesh_axial_force_N_{0},tilting_moment_radial_Nm_{0},"
+                           "tilting_moment_tangential_Nm_{0}",
+                           i);
+  }
   return steps + "\n";
 }
 
@@ -511,7 +518,7 @@ std::string DynamicBearingsHead(const std::string& provenance_line, int planets)
 // once the steps file has its head, every file has.
 DynamicRunFiles::DynamicRunFiles(const std::string& base, const nlohmann::json& provenance,
                                  int planets, bool root_stress,
-                                 std::vector<std::string> face_meshes)
+                                 std::vector<std::string> face_meshes, bool helical)
     : pairs_(base + "_pairs.csv",
              ProvenanceCsvLine(provenance) +
                  "time_s,mesh,kind,flank,teeth,normal_force_N,elastic_force_N,friction_force_N,"
@@ -520,9 +527,11 @@ DynamicRunFiles::DynamicRunFiles(const std::string& base, const nlohmann::json& 
                 DynamicBearingsHead(ProvenanceCsvLine(provenance), planets)),
       steps_(base + "_steps.csv",
              DynamicStepsHead(ProvenanceCsvLine(provenance), planets,
-                              root_stress ? transmission::PlanetBody(planets) : 0, face_meshes)),
+                              root_stress ? transmission::PlanetBody(planets) : 0, face_meshes,
+                              helical)),
       bodies_(root_stress ? transmission::PlanetBody(planets) : 0),
-      face_meshes_(face_meshes.size()) {}
+      face_meshes_(face_meshes.size()),
+      helical_planets_(helical ? planets : 0) {}
 
 void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
   const dynamics::Evaluation& e = s.evaluation;
@@ -545,6 +554,22 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
       Cell(steps, s.face_loads[m].largest_z * 1e3);
     } else {
       steps += ",,";  // an empty cell: no value, never a NaN
+    }
+  }
+  if (helical_planets_ > 0) {
+    const transmission::HelicalLoads& h = s.helical;
+    Cell(steps, h.sun_axial_force);
+    Cell(steps, h.ring_axial_force);
+    Cell(steps, h.carrier_axial_force);
+    for (int i = 0; i < helical_planets_; ++i) {
+      if (static_cast<std::size_t>(i) < h.planets.size()) {
+        const transmission::PlanetHelicalLoad& p = h.planets[static_cast<std::size_t>(i)];
+        Cell(steps, p.sun_mesh_axial);
+        Cell(steps, p.moment_radial);
+        Cell(steps, p.moment_tangential);
+      } else {
+        steps += ",,,";  // no value, never a NaN
+      }
     }
   }
   std::string pairs;

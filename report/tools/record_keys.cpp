@@ -195,10 +195,12 @@ int main() {
   dynamic.summary.lsr_mean = dynamic.summary.lsr_min = dynamic.summary.lsr_max = {0};
   dynamic.summary.root_stress.resize(1);
   dynamic.summary.face_width.resize(1);
+  dynamic.summary.helical_mean.planets.resize(1);
   dynamic.rating.emplace();
-  Table("Dynamic run (`epicycle dynamic`, Python `dynamic(...).record`)",
+  Table("Dynamic run (`epicycle dynamic`, Python `dynamic(...)[\"record\"]`)",
         "OUT/dynamic_summary.json; `root_stress` only with stresses, `rating` only when asked, "
-        "`face_width` only with slices of the face width.",
+        "`face_width` only with slices of the face width, `helical` only for a helical stage (the "
+        "means over the steps written).",
         dynamic);
   dynamics::SpeedSweepRecord sweep;
   sweep.plan.meshes = {"MESH"};

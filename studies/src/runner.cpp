@@ -22,6 +22,7 @@
 #include "epicycle/io/enum_names.hpp"
 #include "epicycle/io/input_file.hpp"
 #include "epicycle/studies/sampling.hpp"
+#include "epicycle/transmission/helical_scene.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/rating.hpp"
@@ -282,8 +283,11 @@ std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(
     const StudySpec& study, const std::string& cache_directory) {
   // The bodies of the base scene: the tables depend on the nominal bodies only (a thickness
   // error is a surface offset, compliance::NominalBody), so every case shares them.
+  // A helical stage runs in slices at their own sections' poses (docs/model.md §10).
+  transmission::RequireHelicalSlices(study.scene, "`epicycle study`");
   transmission::FeComplianceOptions fe;
   fe.cache_directory = cache_directory;
+  fe.helical_slices = true;
   const geometry::Stage stage = transmission::MakeStage(study.scene);
   return std::make_unique<transmission::FeStageCompliance>(study.scene, stage, fe);
 }
@@ -371,6 +375,7 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
     if (study.VariesBodies()) {
       transmission::FeComplianceOptions fe;
       fe.cache_directory = cache_directory;
+      fe.helical_slices = true;  // the case's stage model resolves a helical stage in slices
       own = std::make_unique<transmission::FeStageCompliance>(built->scene, built->stage, fe);
     }
   } catch (const std::invalid_argument& e) {

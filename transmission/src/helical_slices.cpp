@@ -6,6 +6,7 @@
 #include <string>
 
 #include "epicycle/geometry/helical.hpp"
+#include "epicycle/transmission/record.hpp"
 #include "epicycle/transmission/stage_model.hpp"
 
 namespace epicycle::transmission {
@@ -183,6 +184,49 @@ HelicalLoads HelicalLoadsOf(const geometry::Stage& stage, const geometry::StageP
     out.carrier_axial_force += l.axial_force;
   }
   return out;
+}
+
+void AddHelicalLoads(const HelicalLoads& loads, double w, HelicalLoads* sum) {
+  if (sum->planets.empty()) sum->planets.resize(loads.planets.size());
+  for (std::size_t i = 0; i < loads.planets.size() && i < sum->planets.size(); ++i) {
+    const PlanetHelicalLoad& l = loads.planets[i];
+    PlanetHelicalLoad& t = sum->planets[i];
+    t.planet = l.planet;
+    t.axial_force += w * l.axial_force;
+    t.sun_mesh_axial += w * l.sun_mesh_axial;
+    t.ring_mesh_axial += w * l.ring_mesh_axial;
+    t.axial_moment_radial += w * l.axial_moment_radial;
+    t.axial_moment_tangential += w * l.axial_moment_tangential;
+    t.moment_radial += w * l.moment_radial;
+    t.moment_tangential += w * l.moment_tangential;
+  }
+  sum->sun_axial_force += w * loads.sun_axial_force;
+  sum->ring_axial_force += w * loads.ring_axial_force;
+  sum->carrier_axial_force += w * loads.carrier_axial_force;
+}
+
+void VisitHelicalLoads(RecordVisitor& visit, const HelicalLoads& loads) {
+  if (loads.planets.empty()) return;
+  // +z along the gears' axis (helical_slices.hpp).
+  visit.BeginObject("helical");
+  visit.Text("axial_and_tilting_motion", "held: planar degrees of freedom, pins rigid in tilt");
+  visit.Number("sun_axial_force_N", loads.sun_axial_force);
+  visit.Number("ring_axial_force_N", loads.ring_axial_force);
+  visit.Number("carrier_axial_force_N", loads.carrier_axial_force);
+  visit.BeginList("planets");
+  for (const PlanetHelicalLoad& p : loads.planets) {
+    visit.Item();
+    visit.Integer("planet", p.planet + 1);
+    visit.Number("sun_mesh_axial_force_N", p.sun_mesh_axial);
+    visit.Number("ring_mesh_axial_force_N", p.ring_mesh_axial);
+    visit.Number("axial_force_N", p.axial_force);
+    visit.Number("axial_tilting_moment_radial_Nm", p.axial_moment_radial);
+    visit.Number("axial_tilting_moment_tangential_Nm", p.axial_moment_tangential);
+    visit.Number("tilting_moment_radial_Nm", p.moment_radial);
+    visit.Number("tilting_moment_tangential_Nm", p.moment_tangential);
+  }
+  visit.EndList();
+  visit.EndObject();
 }
 
 }  // namespace epicycle::transmission

@@ -150,27 +150,7 @@ void VisitRecord(const SweepSummary& s, RecordVisitor& visit) {
   visit.Number("sun_displacement_max_um", s.sun_displacement_max * 1e6);
   visit.Stresses(s);
   VisitFaceWidth(visit, s.face_width);
-  if (!s.helical_mean.planets.empty()) {
-    // Means over the converged positions (helical_slices.hpp): +z along the gears' axis.
-    visit.BeginObject("helical");
-    visit.Number("sun_axial_force_N", s.helical_mean.sun_axial_force);
-    visit.Number("ring_axial_force_N", s.helical_mean.ring_axial_force);
-    visit.Number("carrier_axial_force_N", s.helical_mean.carrier_axial_force);
-    visit.BeginList("planets");
-    for (const PlanetHelicalLoad& p : s.helical_mean.planets) {
-      visit.Item();
-      visit.Integer("planet", p.planet + 1);
-      visit.Number("sun_mesh_axial_force_N", p.sun_mesh_axial);
-      visit.Number("ring_mesh_axial_force_N", p.ring_mesh_axial);
-      visit.Number("axial_force_N", p.axial_force);
-      visit.Number("axial_tilting_moment_radial_Nm", p.axial_moment_radial);
-      visit.Number("axial_tilting_moment_tangential_Nm", p.axial_moment_tangential);
-      visit.Number("tilting_moment_radial_Nm", p.moment_radial);
-      visit.Number("tilting_moment_tangential_Nm", p.moment_tangential);
-    }
-    visit.EndList();
-    visit.EndObject();
-  }
+  VisitHelicalLoads(visit, s.helical_mean);  // means over the converged positions
   if (!s.pin_tilts.empty()) {
     // Each planet's tilt on its pin under load (pin.hpp), over the converged positions.
     visit.BeginObject("pins");

@@ -29,27 +29,6 @@ double SweepSummary::LsrMax() const {
 
 namespace {
 
-// sum += w · loads, field by field (sized on the first call); ++count.
-void AddHelical(const HelicalLoads& loads, double w, HelicalLoads* sum, int* count) {
-  if (sum->planets.empty()) sum->planets.resize(loads.planets.size());
-  for (std::size_t i = 0; i < loads.planets.size() && i < sum->planets.size(); ++i) {
-    const PlanetHelicalLoad& l = loads.planets[i];
-    PlanetHelicalLoad& t = sum->planets[i];
-    t.planet = l.planet;
-    t.axial_force += w * l.axial_force;
-    t.sun_mesh_axial += w * l.sun_mesh_axial;
-    t.ring_mesh_axial += w * l.ring_mesh_axial;
-    t.axial_moment_radial += w * l.axial_moment_radial;
-    t.axial_moment_tangential += w * l.axial_moment_tangential;
-    t.moment_radial += w * l.moment_radial;
-    t.moment_tangential += w * l.moment_tangential;
-  }
-  sum->sun_axial_force += w * loads.sun_axial_force;
-  sum->ring_axial_force += w * loads.ring_axial_force;
-  sum->carrier_axial_force += w * loads.carrier_axial_force;
-  ++*count;
-}
-
 int CheckedPlanets(int planets) {
   if (planets < 1)
     throw std::invalid_argument("SummariseSweep: planets = " + std::to_string(planets) +
@@ -156,7 +135,10 @@ void SweepAccumulator::Add(const PositionResult& r) {
   te_.Add(r.transmission_error);
   displacement_.Add(r.sun_displacement.norm());
   k_gamma_.Add(MeshLoadFactor(r));
-  if (!r.helical.planets.empty()) AddHelical(r.helical, 1.0, &helical_sum_, &helical_count_);
+  if (!r.helical.planets.empty()) {
+    AddHelicalLoads(r.helical, 1.0, &helical_sum_);
+    ++helical_count_;
+  }
   if (r.pin_tilts_carrier.size() == n) {
     pin_radial_.resize(n);
     pin_tangential_.resize(n);
@@ -203,10 +185,7 @@ SweepSummary SweepAccumulator::Result() const {
   s.root_stress = root_stress_.Result();
   s.contact_pressure = pressure_.Result();
   s.face_width = faces_.Result();
-  if (helical_count_ > 0) {
-    int count = 0;
-    AddHelical(helical_sum_, 1.0 / helical_count_, &s.helical_mean, &count);
-  }
+  if (helical_count_ > 0) AddHelicalLoads(helical_sum_, 1.0 / helical_count_, &s.helical_mean);
   for (std::size_t i = 0; i < pin_radial_.size(); ++i)
     s.pin_tilts.push_back({pin_radial_[i].mean(), pin_radial_[i].min(), pin_radial_[i].max(),
                            pin_tangential_[i].mean(), pin_tangential_[i].min(),

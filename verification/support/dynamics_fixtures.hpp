@@ -13,6 +13,7 @@
 #include "epicycle/io/units.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/stage_mesh_stiffness.hpp"
 #include "fe_fixtures.hpp"
 
 namespace epicycle::test {
@@ -69,8 +70,9 @@ inline DynamicRig MakeRig(const std::string& text, const std::string& name, cons
     r.compliance = std::make_unique<SpringCompliance>(spring);
     setup.local_terms = false;
   } else {
-    r.compliance =
-        std::make_unique<transmission::FeStageCompliance>(r.scene, *r.stage, SuiteTables());
+    transmission::FeComplianceOptions fe = SuiteTables();
+    fe.helical_slices = true;  // a helical stage in slices (the dynamic driver's, dynamic_run.cpp)
+    r.compliance = std::make_unique<transmission::FeStageCompliance>(r.scene, *r.stage, fe);
     setup.local_terms = o.local_terms;
   }
   r.stage_model = std::make_unique<transmission::StageModel>(*r.stage, *r.compliance, setup);
@@ -80,6 +82,10 @@ inline DynamicRig MakeRig(const std::string& text, const std::string& name, cons
                                                      r.scene.loads);
   if (spring > 0) {
     r.model->SetMeshStiffness(spring_mesh_stiffness, spring_mesh_stiffness);
+  } else if (r.stage_model->helical()) {
+    // As StageDynamics: a helical stage's meshes from its own quasi-static sweep.
+    const auto k = transmission::ComputeStageMeshStiffness(*r.stage_model, r.scene.loads).secant;
+    r.model->SetMeshStiffness(k[0], k[1]);
   } else {
     const auto k = dynamics::MeanMeshStiffness(r.scene, *r.stage, SuiteTables());
     r.model->SetMeshStiffness(k[0], k[1]);
@@ -129,17 +135,22 @@ inline std::string WithRunout(const std::string& text) {
   return text + "\n[[errors.runout]]\ngear = \"planet1\"\namplitude_um = 20.0\nphase_deg = 0.0\n";
 }
 
-// The quasi-static-limit setting of the run-out case: FE compliance without the local term,
-// friction off, planet 1 with 20 µm run-out, sun fixed, the sun at `rpm`; `extra` appended to the
-// scene's text (e.g. "[model]\nstresses = true\n").
-inline DynamicRig LowSpeedRunoutRig(double rpm, const std::string& extra = "") {
+// The quasi-static-limit setting: FE compliance without the local term, friction off, sun fixed,
+// the sun at `rpm`.
+inline RigOptions QuasiStaticLimitOptions(double rpm) {
   RigOptions o;
   o.local_terms = false;
   o.edit = [rpm](transmission::DynamicSettings& s) {
     s.sun_speed = io::RpmToRadPerSecond(rpm);
     s.friction.law = transmission::FrictionLaw::kOff;
   };
-  return MakeRig(WithRunout(SceneText("paper_stage.toml")) + "\n" + extra, "runout", o);
+  return o;
+}
+// The quasi-static-limit setting of the run-out case: planet 1 with 20 µm run-out; `extra`
+// appended to the scene's text (e.g. "[model]\nstresses = true\n").
+inline DynamicRig LowSpeedRunoutRig(double rpm, const std::string& extra = "") {
+  return MakeRig(WithRunout(SceneText("paper_stage.toml")) + "\n" + extra, "runout",
+                 QuasiStaticLimitOptions(rpm));
 }
 
 // Largest |LSR_dyn − LSR_qs| over the samples, the quasi-static solver at each sample's carrier

@@ -50,6 +50,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/run_status.hpp"
 #include "epicycle/transmission/scene.hpp"
+#include "epicycle/transmission/stage_mesh_stiffness.hpp"
 #include "epicycle/transmission/stage_model.hpp"
 
 namespace epicycle::dynamics {
@@ -266,6 +267,11 @@ class DynamicModel {
 /// stage, the FE compliance (tables through `fe`'s cache), the stage model of the scene's
 /// supports, and the dynamic model of its settings with the mean mesh stiffnesses set (for the
 /// damping and the modes). Not copyable or movable (the members refer to each other).
+/// A helical stage (fe.helical_slices true: the caller's driver resolves it in slices, after
+/// transmission::RequireHelicalSlices) takes its mesh stiffnesses from its own quasi-static
+/// solutions over a mesh cycle (transmission::ComputeStageMeshStiffness, docs/model.md §10); a
+/// spur stage from the mesh-stiffness driver (MeanMeshStiffness). With fe.helical_slices false a
+/// helical scene is refused (transmission::RequireSpur).
 struct StageDynamics {
   transmission::Scene scene;
   geometry::Stage stage;
@@ -273,6 +279,9 @@ struct StageDynamics {
   transmission::FeStageCompliance compliance;
   transmission::StageModel stage_model;
   DynamicModel model;
+  /// A helical stage's mesh stiffnesses (secant: the model's; tangent: the modes'); zero for a
+  /// spur stage.
+  transmission::StageMeshStiffness sliced_stiffness;
   /// @throws std::invalid_argument as the members' constructors.
   StageDynamics(transmission::Scene scene, const transmission::FeComplianceOptions& fe);
   StageDynamics(const StageDynamics&) = delete;
@@ -305,7 +314,8 @@ std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
                                                int positions = 24, double step = 0.05);
 
 /// The natural modes of a stage about its operating point (`epicycle modes`, docs/dynamic.md
-/// "Natural modes"): `rig`'s model with the tangent mesh stiffnesses (MeanTangentMeshStiffness:
+/// "Natural modes"): `rig`'s model with the tangent mesh stiffnesses (MeanTangentMeshStiffness, a
+/// helical stage's StageDynamics::sliced_stiffness:
 /// where the speed sweep's resonances sit; the secant, which sets the mesh damping of a run, is
 /// softer), linearised at carrier angle 0 (DynamicModel::Linearise) and solved by SolveModes.
 struct OperatingPointModes {

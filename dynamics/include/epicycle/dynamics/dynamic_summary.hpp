@@ -32,6 +32,9 @@ struct DynamicSummary {
   /// largest and mean, the carrier angle and z of the largest, and the largest L_i·K_Hβ with
   /// L_i = n·LSR_i of the same step (transmission::MeshFaceSummary); else empty.
   std::vector<transmission::MeshFaceSummary> face_width;
+  /// A helical stage: the means over the steps of DynamicSample::helical (the quasi-static
+  /// record's `helical` object); no planets for a spur stage.
+  transmission::HelicalLoads helical_mean;
 };
 
 /// The statistics of a run gathered one output step at a time, in the order of the steps (the
@@ -50,6 +53,8 @@ class DynamicAccumulator {
   transmission::Accumulator te_, orbit_, k_gamma_, pair_force_;
   std::optional<transmission::RootStressTracker> root_stress_;
   transmission::FaceLoadTracker faces_;
+  transmission::HelicalLoads helical_sum_;
+  int helical_steps_ = 0;
 };
 
 /// Summary of the samples: DynamicAccumulator over them.

@@ -54,6 +54,9 @@ struct ModesRecord {
   std::array<double, 2> mesh_stiffness{};
   /// The secant F/δ {sun–planet, planet–ring} [N/m] (sets the mesh damping of a run).
   std::array<double, 2> secant_mesh_stiffness{};
+  /// A helical stage: both stiffnesses from the stage's own quasi-static solutions of its sliced
+  /// meshes (transmission::ComputeStageMeshStiffness), not the gear-pair driver's.
+  bool sliced_meshes = false;
   double mesh_hz_per_sun_rpm = 0;  ///< f_m / n_s [Hz/rpm]
   std::vector<Mode> modes;
   std::array<double, 2> coincidence_range_rpm{};  ///< {LO, HI} [rpm]

@@ -22,6 +22,7 @@
 
 #include "epicycle/dynamics/dynamic_model.hpp"
 #include "epicycle/transmission/face_width.hpp"
+#include "epicycle/transmission/helical_slices.hpp"
 #include "epicycle/transmission/root_stress.hpp"
 #include "epicycle/transmission/run_status.hpp"
 
@@ -115,6 +116,10 @@ struct DynamicSample {
   /// load per unit width across the face under the contact forces with their damping, its K_Hβ
   /// and where the largest sits (transmission::FaceLoads); empty for the plane model.
   std::vector<transmission::MeshFaceLoad> face_loads;
+  /// A helical stage (docs/model.md §10): the axial forces [N] and each planet's tilting moments
+  /// [N·m] of the contact forces with their damping (transmission::HelicalLoadsOf; the axial and
+  /// tilting motions held); no planets for a spur stage.
+  transmission::HelicalLoads helical;
 };
 
 struct SimulationStats {

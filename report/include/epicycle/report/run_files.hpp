@@ -141,8 +141,13 @@ class DynamicRunFiles {
   /// tensile and compressive root stress, sigma_t_<gear>_MPa and sigma_c_<gear>_MPa.
   /// `face_meshes` (slices of the face width; StageFaceMeshes' names): each step's line ends with
   /// each mesh's K_Hbeta_<mesh> and largest_z_mm_<mesh> (the centre of its most loaded slice).
+  /// `helical` (a helical stage, docs/model.md §10): then the axial forces along +z,
+  /// sun_axial_force_N, ring_axial_force_N, carrier_axial_force_N, and per planet i
+  /// sun_mesh_axial_force_N_<i>, tilting_moment_radial_Nm_<i>, tilting_moment_tangential_Nm_<i>
+  /// (DynamicSample::helical).
   DynamicRunFiles(const std::string& base, const nlohmann::json& provenance, int planets,
-                  bool root_stress = false, std::vector<std::string> face_meshes = {});
+                  bool root_stress = false, std::vector<std::string> face_meshes = {},
+                  bool helical = false);
   void Write(const dynamics::DynamicSample& s);
   void Close();
 
@@ -150,6 +155,7 @@ class DynamicRunFiles {
   CsvFile pairs_, bearings_, steps_;  // created, and written per step, in this order
   int bodies_ = 0;                     // root-stress columns: one pair per body, 0 without
   std::size_t face_meshes_ = 0;        // face-load columns: one pair per mesh, 0 without
+  int helical_planets_ = 0;            // axial-load columns: 3 + 3 per planet, 0 without
 };
 
 /// BASE_lsr.svg, BASE_te.svg and BASE_orbit.svg of a run over `span`, gathered one output step

@@ -44,6 +44,7 @@
 namespace epicycle::transmission {
 
 struct ContactTerms;
+class RecordVisitor;
 
 /// True when the stage's gears have a helix (β > 0).
 bool IsHelicalStage(const geometry::Stage& stage);
@@ -103,5 +104,15 @@ struct HelicalLoads {
 /// stage at `poses` (the planets' centres). Empty (no planets) for a spur stage.
 HelicalLoads HelicalLoadsOf(const geometry::Stage& stage, const geometry::StagePoses& poses,
                             const std::vector<StageContact>& contacts, const Eigen::VectorXd& force);
+
+/// sum += w · loads, field by field (`sum` sized to loads' planets when it has none): the means
+/// over a sweep's positions or a run's steps.
+void AddHelicalLoads(const HelicalLoads& loads, double w, HelicalLoads* sum);
+
+/// The record's `helical` object of `loads` (docs/records.md): that the axial and tilting motions
+/// are held (the model's planar DOFs, docs/model.md §10), the axial forces [N] of the sun,
+/// the ring and the carrier, and per planet its meshes' axial forces [N] and tilting moments
+/// [N·m]; nothing for loads without planets (a spur stage).
+void VisitHelicalLoads(RecordVisitor& visit, const HelicalLoads& loads);
 
 }  // namespace epicycle::transmission

@@ -81,6 +81,8 @@ class StageModel {
   const Material& material() const { return compliance_.material(); }
   const std::string& name() const { return setup_.name; }
   int planets() const { return stage_.planets(); }
+  /// A helical stage, resolved in slices at their own sections' poses (helical_slices.hpp).
+  bool helical() const { return helical_; }
 
   /// @throws std::invalid_argument naming sun_torque_Nm if the torque is zero or not finite, or
   ///         if its sign is not the one the stage's loaded flanks were built for
