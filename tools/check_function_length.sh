@@ -12,12 +12,7 @@
 source "$(dirname "${BASH_SOURCE[0]}")/check_common.sh" "$@"
 limit=200
 # Longer bodies allowed, as FILE:FUNCTION.
-allowed=(
-  # split with the hot-path work (the integrator's loop and the right-hand side are being
-  # optimised; their split goes with that change)
-  dynamics/src/simulation.cpp:Simulate
-  dynamics/src/dynamic_model.cpp:Evaluate
-)
+allowed=()
 mapfile -t -d '' files < <(list_files |
   grep -zE '^(io|geometry|compliance|solvers|transmission|dynamics|studies|report)/.*\.cpp$|^python/src/.*\.cpp$|^verification/fe_reference/.*\.cpp$' |
   sort -z)

@@ -594,7 +594,12 @@ void InfluenceTable::Weights(double s, int* first, std::array<double, 4>* w) con
     throw std::invalid_argument(msg.str());
   }
   s = std::clamp(s, 0.0, g.back());
-  int i = static_cast<int>(std::upper_bound(g.begin(), g.end(), s) - g.begin()) - 1;
+  // The interval: the last grid point at or below s (upper_bound's answer less one), walked to
+  // from the interval a uniform grid would give; on the increasing grid the walk ends where the
+  // bisection does, in a step or two (the grid is nearly uniform in arc length).
+  int i = std::clamp(static_cast<int>(s * interval_scale_), 0, n - 1);
+  while (i > 0 && g[i] > s) --i;
+  while (i + 1 < n && g[i + 1] <= s) ++i;
   i = std::clamp(i, 0, n - 2);
   const int lo = std::clamp(i - 1, 0, n - 4);
   *first = lo;
@@ -998,6 +1003,8 @@ void InfluenceTable::BuildDerived() {
       k = {-h1 / (h0 * (h0 + h1)), (h1 - h0) / (h0 * h1), h0 / (h1 * (h0 + h1))};
     }
   }
+  // Weights' first guess of the interval of an arc length s: s (n − 1)/s_max.
+  interval_scale_ = g.back() > 0.0 ? (n_ - 1) / g.back() : 0.0;
   // kDense points per grid interval, the grid nodes among them, taken from the exact profile.
   dense_.clear();
   dense_.reserve(static_cast<std::size_t>(n_ - 1) * kDense + 1);

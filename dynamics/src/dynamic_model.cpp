@@ -332,10 +332,19 @@ void DynamicModel::BearingForces(double t, const Eigen::VectorXd& d, const Eigen
 void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
                             solvers::ContactSolver& solver, const solvers::ContactOptions& contact,
                             const Evaluation* warm, Evaluation* out, bool energies) const {
+  if (!SolveContacts(t, d, solver, contact, warm, out)) return;
+  out->ok = true;
+  ContactForces(t, d, v, out);
+  Accelerations(t, d, v, out);
+  PowersAndEnergies(t, d, v, energies, out);
+}
+
+bool DynamicModel::SolveContacts(double t, const Eigen::VectorXd& d,
+                                 solvers::ContactSolver& solver,
+                                 const solvers::ContactOptions& contact, const Evaluation* warm,
+                                 Evaluation* out) const {
   Evaluation& e = *out;
   EvaluationWorkspace& w = e.work;
-  const int nd = size();
-  const int np = model_.planets();
   e.ok = false;
   e.message.clear();
   Poses(t, d, &w.stage_displacement, &e.poses);
@@ -353,7 +362,7 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     // as a failed contact solve is; the integrator retries with a smaller step.
     e.message = "geometry: " + transmission::StatusName(e.geometry.status) + " (" +
                 e.geometry.message + ")";
-    return;
+    return false;
   }
   const transmission::ContactTerms& terms = e.terms;
   const int n = terms.size();
@@ -385,12 +394,22 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     if (e.report.status != solvers::ContactStatus::kConverged) {
       e.message =
           "contact solve: " + solvers::StatusName(e.report.status) + " (" + e.report.message + ")";
-      return;
+      return false;
     }
     e.force = solution.force.cwiseMax(0.0);
   }
-  e.ok = true;
+  return true;
+}
 
+// The contacts' total forces (F with the mesh damping, clipped at 0) and friction at the bodies'
+// velocities, summed per body into w.body_force and w.body_moment, with the powers they carry.
+void DynamicModel::ContactForces(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                                 Evaluation* out) const {
+  Evaluation& e = *out;
+  EvaluationWorkspace& w = e.work;
+  const int np = model_.planets();
+  const transmission::ContactTerms& terms = e.terms;
+  const int n = terms.size();
   // Velocities of the gear bodies, the overlap rates and the mesh damping.
   BodyVelocities(t, d, v, &w.body);
   const std::vector<BodyMotion>& body = w.body;
@@ -409,8 +428,6 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
   e.contact_power = 0;
   const bool friction = settings_.friction.law != transmission::FrictionLaw::kOff;
   if (friction) e.friction_tangent.assign(static_cast<std::size_t>(n), Vec2::Zero());
-  Eigen::VectorXd& qf = e.generalised_force;
-  qf.setZero(nd);
   std::vector<Vec2>& body_force = w.body_force;
   body_force.assign(2 + np, Vec2::Zero());
   std::vector<double>& body_moment = w.body_moment;
@@ -447,6 +464,20 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     body_moment[s.body_a] += moment_a;
     if (s.body_a == kSunBody) e.sun_mesh_torque[s.planet] += moment_a;
   }
+}
+
+// Q per DOF (the bodies' mesh forces and moments, the bearings, the external loads) and d̈ = Q/m
+// with the elastic pins' reference acceleration.
+void DynamicModel::Accelerations(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                                 Evaluation* out) const {
+  Evaluation& e = *out;
+  const EvaluationWorkspace& w = e.work;
+  const int nd = size();
+  const int np = model_.planets();
+  const std::vector<Vec2>& body_force = w.body_force;
+  const std::vector<double>& body_moment = w.body_moment;
+  Eigen::VectorXd& qf = e.generalised_force;
+  qf.setZero(nd);
   for (int k = 0; k < nd; ++k) {
     const MotionDof& f = dofs_[k];
     const int b = GearBody(f);
@@ -470,8 +501,22 @@ void DynamicModel::Evaluate(double t, const Eigen::VectorXd& d, const Eigen::Vec
     const Vec2 a = -w2 * PinReference(f.planet, t);
     e.acceleration(k) -= f.axis == MotionDof::kX ? a.x() : a.y();
   }
+}
 
-  // Powers and energies (the energy balance of docs/dynamic.md).
+// The input torque, the external and the bearings' dissipated powers, the rigid pins' forces on
+// the planets, and with `energies` the kinetic and stored energies (the energy balance of
+// docs/dynamic.md).
+void DynamicModel::PowersAndEnergies(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                                     bool energies, Evaluation* out) const {
+  Evaluation& e = *out;
+  const EvaluationWorkspace& w = e.work;
+  const int np = model_.planets();
+  const transmission::ContactTerms& terms = e.terms;
+  const int n = terms.size();
+  const std::vector<BodyMotion>& body = w.body;
+  const std::vector<Vec2>& body_force = w.body_force;
+  const std::vector<double>& body_moment = w.body_moment;
+  const double w2 = carrier_speed_ * carrier_speed_;
   const geometry::Stage& st = model_.stage();
   const int ksun = Find(MotionDof::kSun, MotionDof::kRotation);
   const double omega_s = carrier_speed_ * st.sun_ratio() + (ksun >= 0 ? v(ksun) : 0.0);

@@ -236,12 +236,11 @@ void Check(int flag, const char* what) {
                              std::to_string(flag));
 }
 
-}  // namespace
-
-SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& options,
-                          const Eigen::VectorXd& d0, const Eigen::VectorXd& v0,
-                          const std::vector<double>& output_times,
-                          const std::function<void(const DynamicSample&)>& on_sample) {
+// Simulate's input: valid options, an initial state of the model's size, output times > 0 and
+// increasing. @throws std::invalid_argument naming the rule broken.
+void CheckRun(const DynamicModel& model, const SimulationOptions& options,
+              const Eigen::VectorXd& d0, const Eigen::VectorXd& v0,
+              const std::vector<double>& output_times) {
   options.Validate();
   const int n = model.size();
   if (d0.size() != n || v0.size() != n)
@@ -252,6 +251,190 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     if (!(output_times[k] > (k == 0 ? 0.0 : output_times[k - 1])))
       throw std::invalid_argument("simulation: output times must be > 0 and increasing (entry " +
                                   std::to_string(k) + ")");
+}
+
+// The integrator chosen by `options` on s.y and s.atol, its settings, and for CVODE the dense
+// linear solver and the analytic Jacobian; the callbacks' user data is `c`.
+void SetUpIntegrator(const SimulationOptions& options, int size, Context* c, Sundials& s) {
+  const bool cvode = options.integrator == Integrator::kCvodeBdf;
+  if (cvode) {
+    s.cvode = CVodeCreate(CV_BDF, s.ctx);
+    if (!s.cvode) throw std::runtime_error("SUNDIALS: CVodeCreate failed");
+    Check(CVodeInit(s.cvode, Rhs, 0.0, s.y), "CVodeInit");
+    Check(CVodeSVtolerances(s.cvode, options.rtol, s.atol), "CVodeSVtolerances");
+    Check(CVodeSetUserData(s.cvode, c), "CVodeSetUserData");
+    Check(CVodeSetErrHandlerFn(s.cvode, ErrorHandler, c), "CVodeSetErrHandlerFn");
+    Check(CVodeSetMaxNumSteps(s.cvode, options.max_steps), "CVodeSetMaxNumSteps");
+    if (options.max_step > 0) Check(CVodeSetMaxStep(s.cvode, options.max_step), "CVodeSetMaxStep");
+    if (options.initial_step > 0)
+      Check(CVodeSetInitStep(s.cvode, options.initial_step), "CVodeSetInitStep");
+    // A contact set that changes is a C0 kink: allow CVODE more retries at such a step than its
+    // default 10 error-test failures before it gives up.
+    Check(CVodeSetMaxErrTestFails(s.cvode, 20), "CVodeSetMaxErrTestFails");
+    Check(CVodeSetMaxOrd(s.cvode, options.max_order), "CVodeSetMaxOrd");
+    Check(CVodeSetNonlinConvCoef(s.cvode, options.nonlinear_convergence), "CVodeSetNonlinConvCoef");
+    Check(CVodeSetStabLimDet(s.cvode, options.stability_limit_detection ? SUNTRUE : SUNFALSE),
+          "CVodeSetStabLimDet");
+    Check(CVodeSetMaxConvFails(s.cvode, 50), "CVodeSetMaxConvFails");
+    s.a = SUNDenseMatrix(size, size, s.ctx);
+    s.ls = SUNLinSol_Dense(s.y, s.a, s.ctx);
+    if (!s.a || !s.ls) throw std::runtime_error("SUNDIALS: cannot create the dense solver");
+    Check(CVodeSetLinearSolver(s.cvode, s.ls, s.a), "CVodeSetLinearSolver");
+    if (options.analytic_jacobian) Check(CVodeSetJacFn(s.cvode, Jac), "CVodeSetJacFn");
+  } else {
+    s.erk = ERKStepCreate(Rhs, 0.0, s.y, s.ctx);
+    if (!s.erk) throw std::runtime_error("SUNDIALS: ERKStepCreate failed");
+    Check(ERKStepSVtolerances(s.erk, options.rtol, s.atol), "ERKStepSVtolerances");
+    Check(ERKStepSetUserData(s.erk, c), "ERKStepSetUserData");
+    Check(ERKStepSetErrHandlerFn(s.erk, ErrorHandler, c), "ERKStepSetErrHandlerFn");
+    Check(ERKStepSetTableNum(s.erk, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum");
+    Check(ERKStepSetMaxNumSteps(s.erk, options.max_steps), "ERKStepSetMaxNumSteps");
+    if (options.max_step > 0)
+      Check(ERKStepSetMaxStep(s.erk, options.max_step), "ERKStepSetMaxStep");
+    if (options.initial_step > 0)
+      Check(ERKStepSetInitStep(s.erk, options.initial_step), "ERKStepSetInitStep");
+  }
+}
+
+// The integration from the last output (last_t, last_y) to tout, *t where it stopped: the
+// integrator's flag. An explicit run whose evaluation failed restarts from the last output with a
+// smaller first step, at most 8 times in a row.
+int Advance(Sundials& s, bool cvode, Context& c, double tout, double last_t,
+            const Eigen::VectorXd& last_y, int* restarts_in_a_row, double* t) {
+  const int size = static_cast<int>(last_y.size());
+  int flag = 0;
+  if (cvode) {
+    flag = CVode(s.cvode, tout, s.y, t, CV_NORMAL);
+  } else {
+    flag = ERKStepEvolve(s.erk, tout, s.y, t, ARK_NORMAL);
+    // ERKStep cannot retry a failed evaluation: restart from the last output with a smaller
+    // first step.
+    while (flag == ARK_RHSFUNC_FAIL || flag == ARK_UNREC_RHSFUNC_ERR) {
+      if (c.error) break;
+      if (++*restarts_in_a_row > 8) break;
+      ++c.stats->restarts;
+      double h_last = 0;
+      ERKStepGetLastStep(s.erk, &h_last);
+      Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(s.y), size) = last_y;
+      Check(ERKStepReInit(s.erk, Rhs, last_t, s.y), "ERKStepReInit");
+      const double h0 = std::max(std::abs(h_last) * 0.1, 1e-12);
+      Check(ERKStepSetInitStep(s.erk, h0), "ERKStepSetInitStep");
+      flag = ERKStepEvolve(s.erk, tout, s.y, t, ARK_NORMAL);
+    }
+    if (flag >= 0) *restarts_in_a_row = 0;
+  }
+  return flag;
+}
+
+// The output at tout: the state, one evaluation there (with energies) and what is derived from
+// it (load and force sharing, TE, works, root stresses, face loads). False, with the run's message
+// and status in *result, if that evaluation fails.
+bool OutputSample(const DynamicModel& model, Context& c, Sundials& s, bool cvode, double tout,
+                  double contact_energy0, DynamicSample* out, SimulationResult* result) {
+  const int n = c.n;
+  const double* y = N_VGetArrayPointer(s.y);
+  const int sun = model.Find(MotionDof::kSun, MotionDof::kRotation);
+  const int sx = model.Find(MotionDof::kSun, MotionDof::kX);
+  DynamicSample& sample = *out;
+  sample.time = tout;
+  sample.carrier_angle = model.CarrierAngle(tout);
+  Split(c, y, &sample.d, &sample.v);
+  model.Evaluate(tout, sample.d, sample.v, *c.solver, c.contact, &c.warm, &sample.evaluation);
+  sample.evaluation.work = {};  // a stored sample keeps the results, not the buffers
+  if (!sample.evaluation.ok) {
+    result->message = "the output evaluation at t = " + std::to_string(tout) +
+                      " s failed: " + sample.evaluation.message;
+    result->status = sample.evaluation.geometry.ok() ? transmission::RunStatus::kContactFailure
+                                                     : transmission::RunStatus::kGeometry;
+    return false;
+  }
+  const Evaluation& e = sample.evaluation;
+  // LSR_i = T_mesh(P_i–S)/T_input: the input torque is the sun's (or its drive's reaction).
+  sample.load_sharing = transmission::LoadSharingRatios(e.sun_mesh_torque, e.input_torque);
+  sample.force_sharing.assign(sample.load_sharing.size(), 0.0);
+  double sun_mesh_force = 0;
+  for (int j = 0; j < e.terms.size(); ++j) {
+    const transmission::StageContact& contact = e.terms.contacts[j];
+    if (contact.mesh != geometry::MeshKind::kSunPlanet || !(e.total_force(j) > 0)) continue;
+    sample.force_sharing[static_cast<std::size_t>(contact.planet)] += e.total_force(j);
+    sun_mesh_force += e.total_force(j);
+  }
+  for (double& share : sample.force_sharing)
+    share = sun_mesh_force > 0 ? share / sun_mesh_force : 0.0;
+  // TE at the sun; a speed-driven sun keeps its speed, and the lag shows at the carrier.
+  const int carrier = model.Find(MotionDof::kCarrier, MotionDof::kRotation);
+  sample.transmission_error =
+      sun >= 0
+          ? sample.d(sun)
+          : (carrier >= 0 ? -model.stage_model().stage().sun_ratio() * sample.d(carrier) : 0.0);
+  if (sx >= 0) sample.sun_centre = Eigen::Vector2d(sample.d(sx), sample.d(sx + 1));
+  Check(cvode ? CVodeGetDky(s.cvode, tout, 1, s.dky) : ERKStepGetDky(s.erk, tout, 1, s.dky),
+        "GetDky");
+  sample.sun_acceleration = sun >= 0 ? N_VGetArrayPointer(s.dky)[n + sun] : 0.0;
+  const double planets = static_cast<double>(sample.load_sharing.size());
+  for (double lsr : sample.load_sharing)
+    sample.k_gamma = std::max(sample.k_gamma, planets * lsr);
+  if (sun >= 0) {
+    double mesh_torque = 0;
+    for (double torque : e.sun_mesh_torque) mesh_torque += torque;
+    sample.sun_torque_balance =
+        mesh_torque + e.input_torque - model.mass()(sun) * sample.sun_acceleration;
+  }
+  sample.external_work = y[2 * n];
+  sample.dissipated_work = y[2 * n + 1];
+  sample.compliance_work = e.contact_energy - contact_energy0 - y[2 * n + 2];
+  const transmission::StageCompliance& compliance = model.stage_model().compliance();
+  if (compliance.has_root_stress()) {
+    // With friction the friction forces load the teeth too.
+    transmission::TangentialLoads rubbing;
+    const bool rubs = e.friction_tangent.size() == e.terms.contacts.size();
+    if (rubs) rubbing = {e.friction, e.friction_tangent};
+    // With slices of the face width: each slice's stresses at its own line load.
+    sample.fillet_stress = transmission::StateFilletStresses(
+        compliance, model.stage_model().stage(), e.poses, e.terms.contacts, e.total_force,
+        rubs ? &rubbing : nullptr);
+    if (!sample.fillet_stress.empty())
+      sample.root_stress = transmission::SummariseRootStress(
+          sample.fillet_stress, transmission::PlanetBody(model.stage_model().planets()));
+  }
+  if (model.stage_model().face_width().active())
+    sample.face_loads = transmission::FaceLoads(model.stage_model().stage(),
+                                                model.stage_model().face_width().slices(),
+                                                e.terms.contacts, e.total_force);
+  if (model.stage_model().helical())
+    sample.helical = transmission::HelicalLoadsOf(model.stage_model().stage(), e.poses,
+                                                  e.terms.contacts, e.total_force);
+  return true;
+}
+
+// The integrator's counters into *stats.
+void ReadCounters(const Sundials& s, bool cvode, SimulationStats* stats) {
+  long v = 0;
+  if (cvode) {
+    CVodeGetNumSteps(s.cvode, &v);
+    stats->steps = v;
+    CVodeGetNumErrTestFails(s.cvode, &v);
+    stats->error_test_failures = v;
+    CVodeGetNumNonlinSolvConvFails(s.cvode, &v);
+    stats->nonlinear_failures = v;
+    CVodeGetNumLinRhsEvals(s.cvode, &v);
+    stats->fd_rhs_evaluations = v;
+  } else {
+    ERKStepGetNumSteps(s.erk, &v);
+    stats->steps += v;
+    ERKStepGetNumErrTestFails(s.erk, &v);
+    stats->error_test_failures = v;
+  }
+}
+
+}  // namespace
+
+SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& options,
+                          const Eigen::VectorXd& d0, const Eigen::VectorXd& v0,
+                          const std::vector<double>& output_times,
+                          const std::function<void(const DynamicSample&)>& on_sample) {
+  CheckRun(model, options, d0, v0, output_times);
+  const int n = model.size();
   const auto start = Clock::now();
   SimulationResult result;
   Context c;
@@ -292,46 +475,8 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
   atol[2 * n] = atol[2 * n + 1] = atol[2 * n + 2] = options.atol_energy;
 
   const bool cvode = options.integrator == Integrator::kCvodeBdf;
-  if (cvode) {
-    s.cvode = CVodeCreate(CV_BDF, s.ctx);
-    if (!s.cvode) throw std::runtime_error("SUNDIALS: CVodeCreate failed");
-    Check(CVodeInit(s.cvode, Rhs, 0.0, s.y), "CVodeInit");
-    Check(CVodeSVtolerances(s.cvode, options.rtol, s.atol), "CVodeSVtolerances");
-    Check(CVodeSetUserData(s.cvode, &c), "CVodeSetUserData");
-    Check(CVodeSetErrHandlerFn(s.cvode, ErrorHandler, &c), "CVodeSetErrHandlerFn");
-    Check(CVodeSetMaxNumSteps(s.cvode, options.max_steps), "CVodeSetMaxNumSteps");
-    if (options.max_step > 0) Check(CVodeSetMaxStep(s.cvode, options.max_step), "CVodeSetMaxStep");
-    if (options.initial_step > 0)
-      Check(CVodeSetInitStep(s.cvode, options.initial_step), "CVodeSetInitStep");
-    // A contact set that changes is a C0 kink: allow CVODE more retries at such a step than its
-    // default 10 error-test failures before it gives up.
-    Check(CVodeSetMaxErrTestFails(s.cvode, 20), "CVodeSetMaxErrTestFails");
-    Check(CVodeSetMaxOrd(s.cvode, options.max_order), "CVodeSetMaxOrd");
-    Check(CVodeSetNonlinConvCoef(s.cvode, options.nonlinear_convergence), "CVodeSetNonlinConvCoef");
-    Check(CVodeSetStabLimDet(s.cvode, options.stability_limit_detection ? SUNTRUE : SUNFALSE),
-          "CVodeSetStabLimDet");
-    Check(CVodeSetMaxConvFails(s.cvode, 50), "CVodeSetMaxConvFails");
-    s.a = SUNDenseMatrix(size, size, s.ctx);
-    s.ls = SUNLinSol_Dense(s.y, s.a, s.ctx);
-    if (!s.a || !s.ls) throw std::runtime_error("SUNDIALS: cannot create the dense solver");
-    Check(CVodeSetLinearSolver(s.cvode, s.ls, s.a), "CVodeSetLinearSolver");
-    if (options.analytic_jacobian) Check(CVodeSetJacFn(s.cvode, Jac), "CVodeSetJacFn");
-  } else {
-    s.erk = ERKStepCreate(Rhs, 0.0, s.y, s.ctx);
-    if (!s.erk) throw std::runtime_error("SUNDIALS: ERKStepCreate failed");
-    Check(ERKStepSVtolerances(s.erk, options.rtol, s.atol), "ERKStepSVtolerances");
-    Check(ERKStepSetUserData(s.erk, &c), "ERKStepSetUserData");
-    Check(ERKStepSetErrHandlerFn(s.erk, ErrorHandler, &c), "ERKStepSetErrHandlerFn");
-    Check(ERKStepSetTableNum(s.erk, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum");
-    Check(ERKStepSetMaxNumSteps(s.erk, options.max_steps), "ERKStepSetMaxNumSteps");
-    if (options.max_step > 0)
-      Check(ERKStepSetMaxStep(s.erk, options.max_step), "ERKStepSetMaxStep");
-    if (options.initial_step > 0)
-      Check(ERKStepSetInitStep(s.erk, options.initial_step), "ERKStepSetInitStep");
-  }
+  SetUpIntegrator(options, size, &c, s);
 
-  const int sun = model.Find(MotionDof::kSun, MotionDof::kRotation);
-  const int sx = model.Find(MotionDof::kSun, MotionDof::kX);
   Eigen::VectorXd last_y = Eigen::Map<Eigen::VectorXd>(y, size);
   double last_t = 0.0;
   std::exception_ptr sink_error;  // thrown by on_sample: rethrown once the integrator is freed
@@ -340,27 +485,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     for (std::size_t k = 0; k < output_times.size(); ++k) {
       const double tout = output_times[k];
       double t = last_t;
-      int flag = 0;
-      if (cvode) {
-        flag = CVode(s.cvode, tout, s.y, &t, CV_NORMAL);
-      } else {
-        flag = ERKStepEvolve(s.erk, tout, s.y, &t, ARK_NORMAL);
-        // ERKStep cannot retry a failed evaluation: restart from the last output with a smaller
-        // first step.
-        while (flag == ARK_RHSFUNC_FAIL || flag == ARK_UNREC_RHSFUNC_ERR) {
-          if (c.error) break;
-          if (++restarts_in_a_row > 8) break;
-          ++result.stats.restarts;
-          double h_last = 0;
-          ERKStepGetLastStep(s.erk, &h_last);
-          Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(s.y), size) = last_y;
-          Check(ERKStepReInit(s.erk, Rhs, last_t, s.y), "ERKStepReInit");
-          const double h0 = std::max(std::abs(h_last) * 0.1, 1e-12);
-          Check(ERKStepSetInitStep(s.erk, h0), "ERKStepSetInitStep");
-          flag = ERKStepEvolve(s.erk, tout, s.y, &t, ARK_NORMAL);
-        }
-        if (flag >= 0) restarts_in_a_row = 0;
-      }
+      const int flag = Advance(s, cvode, c, tout, last_t, last_y, &restarts_in_a_row, &t);
       if (c.error) std::rethrow_exception(c.error);
       if (flag < 0) {
         result.message =
@@ -371,76 +496,8 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
         result.status = StopStatus(flag, c);
         break;
       }
-      // The output: the state at tout and one evaluation there.
       DynamicSample sample;
-      sample.time = tout;
-      sample.carrier_angle = model.CarrierAngle(tout);
-      Split(c, y, &sample.d, &sample.v);
-      model.Evaluate(tout, sample.d, sample.v, *c.solver, c.contact, &c.warm, &sample.evaluation);
-      sample.evaluation.work = {};  // a stored sample keeps the results, not the buffers
-      if (!sample.evaluation.ok) {
-        result.message = "the output evaluation at t = " + std::to_string(tout) +
-                         " s failed: " + sample.evaluation.message;
-        result.status = sample.evaluation.geometry.ok() ? transmission::RunStatus::kContactFailure
-                                                        : transmission::RunStatus::kGeometry;
-        break;
-      }
-      const Evaluation& e = sample.evaluation;
-      // LSR_i = T_mesh(P_i–S)/T_input: the input torque is the sun's (or its drive's reaction).
-      sample.load_sharing = transmission::LoadSharingRatios(e.sun_mesh_torque, e.input_torque);
-      sample.force_sharing.assign(sample.load_sharing.size(), 0.0);
-      double sun_mesh_force = 0;
-      for (int j = 0; j < e.terms.size(); ++j) {
-        const transmission::StageContact& contact = e.terms.contacts[j];
-        if (contact.mesh != geometry::MeshKind::kSunPlanet || !(e.total_force(j) > 0)) continue;
-        sample.force_sharing[static_cast<std::size_t>(contact.planet)] += e.total_force(j);
-        sun_mesh_force += e.total_force(j);
-      }
-      for (double& share : sample.force_sharing)
-        share = sun_mesh_force > 0 ? share / sun_mesh_force : 0.0;
-      // TE at the sun; a speed-driven sun keeps its speed, and the lag shows at the carrier.
-      const int carrier = model.Find(MotionDof::kCarrier, MotionDof::kRotation);
-      sample.transmission_error =
-          sun >= 0
-              ? sample.d(sun)
-              : (carrier >= 0 ? -model.stage_model().stage().sun_ratio() * sample.d(carrier) : 0.0);
-      if (sx >= 0) sample.sun_centre = Eigen::Vector2d(sample.d(sx), sample.d(sx + 1));
-      Check(cvode ? CVodeGetDky(s.cvode, tout, 1, s.dky) : ERKStepGetDky(s.erk, tout, 1, s.dky),
-            "GetDky");
-      sample.sun_acceleration = sun >= 0 ? N_VGetArrayPointer(s.dky)[n + sun] : 0.0;
-      const double planets = static_cast<double>(sample.load_sharing.size());
-      for (double lsr : sample.load_sharing)
-        sample.k_gamma = std::max(sample.k_gamma, planets * lsr);
-      if (sun >= 0) {
-        double mesh_torque = 0;
-        for (double torque : e.sun_mesh_torque) mesh_torque += torque;
-        sample.sun_torque_balance =
-            mesh_torque + e.input_torque - model.mass()(sun) * sample.sun_acceleration;
-      }
-      sample.external_work = y[2 * n];
-      sample.dissipated_work = y[2 * n + 1];
-      sample.compliance_work = e.contact_energy - contact_energy0 - y[2 * n + 2];
-      const transmission::StageCompliance& compliance = model.stage_model().compliance();
-      if (compliance.has_root_stress()) {
-        // With friction the friction forces load the teeth too.
-        transmission::TangentialLoads rubbing;
-        const bool rubs = e.friction_tangent.size() == e.terms.contacts.size();
-        if (rubs) rubbing = {e.friction, e.friction_tangent};
-        // With slices of the face width: each slice's stresses at its own line load.
-        sample.fillet_stress = transmission::StateFilletStresses(
-            compliance, model.stage_model().stage(), e.poses, e.terms.contacts, e.total_force,
-            rubs ? &rubbing : nullptr);
-        if (!sample.fillet_stress.empty())
-          sample.root_stress = transmission::SummariseRootStress(
-              sample.fillet_stress, transmission::PlanetBody(model.stage_model().planets()));
-      }
-      if (model.stage_model().face_width().active())
-        sample.face_loads = transmission::FaceLoads(model.stage_model().stage(),
-                                                    model.stage_model().face_width().slices(),
-                                                    e.terms.contacts, e.total_force);
-      if (model.stage_model().helical())
-        sample.helical = transmission::HelicalLoadsOf(model.stage_model().stage(), e.poses,
-                                                      e.terms.contacts, e.total_force);
+      if (!OutputSample(model, c, s, cvode, tout, contact_energy0, &sample, &result)) break;
       if (on_sample) {
         try {
           on_sample(sample);
@@ -467,22 +524,7 @@ SimulationResult Simulate(const DynamicModel& model, const SimulationOptions& op
     result.message = "stopped after t = " + std::to_string(last_t) + " s: " + ex.what() +
                      (c.last_failure.empty() ? "" : "; last failed evaluation " + c.last_failure);
   }
-  long v = 0;
-  if (cvode) {
-    CVodeGetNumSteps(s.cvode, &v);
-    result.stats.steps = v;
-    CVodeGetNumErrTestFails(s.cvode, &v);
-    result.stats.error_test_failures = v;
-    CVodeGetNumNonlinSolvConvFails(s.cvode, &v);
-    result.stats.nonlinear_failures = v;
-    CVodeGetNumLinRhsEvals(s.cvode, &v);
-    result.stats.fd_rhs_evaluations = v;
-  } else {
-    ERKStepGetNumSteps(s.erk, &v);
-    result.stats.steps += v;
-    ERKStepGetNumErrTestFails(s.erk, &v);
-    result.stats.error_test_failures = v;
-  }
+  ReadCounters(s, cvode, &result.stats);
   result.stats.wall_seconds = Seconds(start);
   if (sink_error) std::rethrow_exception(sink_error);
   return result;

@@ -3,7 +3,9 @@
 // the total approach (FE join + local term) to the join depth, and the join-depth rules.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -132,6 +134,59 @@ TEST_CASE("Gear influence table: the directed compliance is the projected 2x2 bl
   }
   CHECK_THROWS_WITH(table.PrepareDirected({0, 2, 0.0}, Eigen::Vector2d(1, 0)),
                     Catch::Contains("position.flank = 2"));
+}
+
+TEST_CASE("Gear influence table: a position's interpolation cell is the bisection's, its weights "
+          "reproduce a parabola",
+          "[unit][gear]") {
+  // The reference cell: the last grid point at or below s found by std::upper_bound on the public
+  // grid, i = clamp(that, 0, n − 2), the stencil starting at clamp(i − 1, 0, n − 4). Sampled at
+  // every grid node, one ulp either side of it, the interval midpoints and 997 points spread over
+  // [0, s_max]. The weights: the nodal slopes come from the parabola through three grid points
+  // and the cubic Hermite basis reproduces any polynomial of degree 2 with exact slopes, so
+  // Σ_p w_p f(s_p) = f(s) for a parabola f up to round-off. A weight is a sum of at most four
+  // terms: the Hermite values h00, h01 ≤ 1 and the slope terms d h10 k_t, d h11 k_t with
+  // |h10|, |h11| ≤ 4/27 and |k_t| ≤ 2/h_min (the parabola's coefficients, h_min the smallest
+  // spacing of the stencil's three intervals), so its terms sum to at most
+  // A = 2 + 2·3·(4/27)·2 d/h_min = 2 + (16/9) d/h_min in magnitude. Each term carries at most ~8
+  // roundings (x, the Hermite factors, the slope weights' quotients, the product) and the weight
+  // and the final sum four additions each, so the error is below 16 ε A Σ_p |f(s_p)|.
+  const InfluenceTable& table = SunTable();
+  const std::vector<double>& g = table.grid().arc_length;
+  const int n = static_cast<int>(g.size());
+  const double smax = table.arc_length_max();
+  std::vector<double> s;
+  for (int i = 0; i < n; ++i) {
+    s.push_back(g[i]);
+    if (i > 0) s.push_back(std::nextafter(g[i], 0.0));
+    if (i + 1 < n) s.push_back(std::nextafter(g[i], smax));
+    if (i + 1 < n) s.push_back(0.5 * (g[i] + g[i + 1]));
+  }
+  for (int k = 0; k <= 996; ++k) s.push_back(smax * k / 996.0);
+  auto f = [&](double x) {
+    const double u = x / smax;
+    return 0.3 + 1.7 * u - 2.1 * u * u;
+  };
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  int wrong_cells = 0, wrong_values = 0;
+  for (double x : s) {
+    for (int flank : {1, -1}) {
+      const InfluenceTable::Node node = table.Prepare({3, flank, x});
+      const int i = std::clamp(
+          static_cast<int>(std::upper_bound(g.begin(), g.end(), x) - g.begin()) - 1, 0, n - 2);
+      wrong_cells += node.first != std::clamp(i - 1, 0, n - 4);
+      double sum = 0.0, size = 0.0, h_min = smax;
+      for (int p = 0; p < 4; ++p) {
+        sum += node.weight[p] * f(g[node.first + p]);
+        size += std::abs(f(g[node.first + p]));
+        if (p < 3) h_min = std::min(h_min, g[node.first + p + 1] - g[node.first + p]);
+      }
+      const double a = 2.0 + 16.0 / 9.0 * (g[i + 1] - g[i]) / h_min;
+      wrong_values += !(std::abs(sum - f(x)) <= 16 * kEps * a * size);
+    }
+  }
+  CHECK(wrong_cells == 0);
+  CHECK(wrong_values == 0);
 }
 
 TEST_CASE("Gear influence table: locating points and compliance along normals", "[unit][gear]") {

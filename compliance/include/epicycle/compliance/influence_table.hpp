@@ -288,6 +288,7 @@ class InfluenceTable {
   std::vector<double> fillet_stress_;  // [fl][i][c][k][f][m] [Pa/N]
   std::size_t FilletIndex(int fl, int i, int c, int k, int f) const;
   std::vector<std::array<double, 3>> slope_;  // [m]: nodal slope weights (Weights)
+  double interval_scale_ = 0.0;               // (n − 1)/s_max [1/m]: Weights' first guess
   std::shared_ptr<const geometry::Gear> gear_;
   std::shared_ptr<const ProfilePath> path_;
   // The σ = +1 flank of tooth 0 as a dense polyline (Locate): kDense points per grid interval.

@@ -221,6 +221,19 @@ class DynamicModel {
   int Find(MotionDof::Member member, MotionDof::Axis axis, int planet = 0) const;
 
  private:
+  // Evaluate's steps, in order: the poses, the contact terms and the contact solve (false, with
+  // out->message, for a pose the stage model cannot evaluate or a failed solve); the contacts'
+  // damped and rubbing forces per body; the generalised forces and accelerations; the powers and,
+  // with `energies`, the energies.
+  bool SolveContacts(double t, const Eigen::VectorXd& d, solvers::ContactSolver& solver,
+                     const solvers::ContactOptions& contact, const Evaluation* warm,
+                     Evaluation* out) const;
+  void ContactForces(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                     Evaluation* out) const;
+  void Accelerations(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                     Evaluation* out) const;
+  void PowersAndEnergies(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
+                         bool energies, Evaluation* out) const;
   void BearingForces(double t, const Eigen::VectorXd& d, const Eigen::VectorXd& v,
                      Eigen::VectorXd* q, Evaluation* out) const;
   Eigen::Vector2d PinReference(int planet, double t) const;  // pin position, nominal carrier
