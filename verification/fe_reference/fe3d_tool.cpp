@@ -226,24 +226,32 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
   struct Kernel {
     std::string name;
     Eigen::MatrixXd w;
-    bool dashed;
+    bool dashed, drawn;
   };
+  // Strips, the tooth_body kernel of the plane FE's body share φ (printed only) and the 3D
+  // structure's kernels.
+  const double phi = pair.BodyShare();
   std::vector<Kernel> kernels{
       {"strips", transmission::FaceCouplingMatrix(kSlices, b, transmission::FaceCoupling::kNone, 0),
-       true}};
+       true, true},
+      {"tooth_body", transmission::FaceCouplingMatrix(
+                         kSlices, b, transmission::FaceCoupling::kToothBody, 0, phi),
+       false, false}};
   if (!influence_csv.empty()) {
     for (const std::string& name : influence_cases)
-      kernels.push_back({name, test::StructureKernel(influence_csv, name, influence_layers,
-                                                       influence_refinement), false});
+      kernels.push_back({name == "free" ? std::string("3D kernel") : name,
+                         test::StructureKernel(influence_csv, name, influence_layers,
+                                               influence_refinement),
+                         false, true});
   }
-  std::printf("C = %.5g m/N\n", pair.structural());
+  std::printf("C = %.5g m/N, body share phi = %.4f\n", pair.structural(), phi);
   report::LinePlot plot{title, "z across the face width [mm]", "load per unit width q [N/mm]",
                         {}, false, {}};
   int colour = 0;
   for (const auto& [name, f_beta] :
        {std::pair{"c", 0.0}, std::pair{"a", 20e-6}, std::pair{"b", 80e-6}}) {
     // The 3D stations' means as markers at their centres; the slices as lines.
-    PlotSeries ref{std::string(name) + ": 3D contact stations (dots)", {}, {}, true};
+    PlotSeries ref{std::string(name) + ": 3D contact (dots)", {}, {}, true};
     ref.colour = colour;
     for (const auto& r : test::ReadCsvRows(csv))
       if (r.size() == 27 && r[0] == name && std::stoi(r[4]) == layers &&
@@ -271,7 +279,7 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
         line.x.push_back((s + 0.5) * b / slices * 1e3);
         line.y.push_back(loads.line_load[static_cast<std::size_t>(s)] / 1e3);
       }
-      plot.series.push_back(line);
+      if (k.drawn) plot.series.push_back(line);
       stations.push_back(loads.Stations(n));
     }
     for (int s = 0; s < n; ++s) {
