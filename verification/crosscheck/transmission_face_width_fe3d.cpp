@@ -2,8 +2,10 @@
 // (docs/fe_reference.md, "3D reference across the face width"; its rows in
 // verification/data/fe_reference/iso_pair_20_40_face_load.csv): the plane model's stiffness per
 // unit width against the reference's plane-strain deck and the middle of its 80 mm face, and the
-// load per unit width across the face with uncoupled strips and with the tooth_body coupling
-// (docs/model.md §10), whose body share φ comes from the plane FE tables (ContactBodyShare).
+// load per unit width across the face with uncoupled strips, with the tooth_body coupling
+// (docs/model.md §10), whose body share φ comes from the plane FE tables (ContactBodyShare), and
+// with the 3D structure's own compliance along the face (the same deck's unit loads per layer,
+// verification/data/fe_reference/iso_pair_20_40_face_influence.csv).
 // The slice problem: verification/support/fe3d_slices.hpp.
 #include <catch2/catch.hpp>
 
