@@ -175,3 +175,19 @@ TEST_CASE(
     CHECK(std::abs(model[s] - ref.line_load[s]) <= 11.0);
   }
 }
+
+TEST_CASE(
+    "face width on the ISO 20/40 pair: the scene's coupling table is the 3D structure's kernel",
+    "[crosscheck][transmission][face_width]") {
+  // scenes/iso_pair_20_40_structure.toml's coupling_table, written by `fe_reference fe3d-slices
+  // --write-kernel` with 12 significant digits, against the kernel built here from the committed
+  // influence rows: equal to the printing's 5e-12 of the largest entry.
+  const transmission::Scene scene =
+      transmission::ReadScene(std::string(EPICYCLE_SCENES_DIR) + "/iso_pair_20_40_structure.toml");
+  REQUIRE(scene.face_width.coupling == FaceCoupling::kTable);
+  const Eigen::MatrixXd w = Structure();
+  REQUIRE(scene.face_width.coupling_table.rows() == w.rows());
+  CHECK((scene.face_width.coupling_table - w).cwiseAbs().maxCoeff() <=
+        5e-12 * w.cwiseAbs().maxCoeff());
+  CHECK(scene.face_width.slices == w.rows());
+}

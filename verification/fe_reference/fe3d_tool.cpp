@@ -215,7 +215,7 @@ int Fe3dPlot(const std::string& csv, const std::string& svg, int layers, double 
 int Fe3dSlices(const std::string& scene, const std::string& csv, const std::string& svg,
                int layers, double refinement, const std::string& influence_csv,
                int influence_layers, const std::string& influence_refinement,
-               const std::vector<std::string>& influence_cases,
+               const std::vector<std::string>& influence_cases, const std::string& kernel_csv,
                const std::string& title) {
   using report::PlotSeries;
   transmission::FeComplianceOptions tables;
@@ -245,6 +245,21 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
                          false, true});
   }
   std::printf("C = %.5g m/N, body share phi = %.4f\n", pair.structural(), phi);
+  if (!kernel_csv.empty()) {
+    // The first influence case's W as a scene's coupling table (docs/scenes.md, "Face width").
+    if (kernels.size() < 3)
+      throw std::invalid_argument("--write-kernel " + kernel_csv + ": needs --influence");
+    const Eigen::MatrixXd& w = kernels[2].w;
+    std::string text = "i,j,w\n";
+    for (Eigen::Index i = 0; i < w.rows(); ++i)
+      for (Eigen::Index j = 0; j < w.cols(); ++j) {
+        char line[96];
+        std::snprintf(line, sizeof line, "%td,%td,%.12g\n", i, j, w(i, j));
+        text += line;
+      }
+    report::WriteTextFile(kernel_csv, text);
+    std::printf("wrote %s\n", kernel_csv.c_str());
+  }
   report::LinePlot plot{title, "z across the face width [mm]", "load per unit width q [N/mm]",
                         {}, false, {}};
   int colour = 0;

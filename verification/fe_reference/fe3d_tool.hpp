@@ -37,12 +37,13 @@ int Fe3dPlot(const std::string& csv, const std::string& svg, int layers, double 
 
 /// The slice model of the same contact against the 3D contact stations of `csv` at (`layers`,
 /// `refinement`): uncoupled strips (40 slices) and, with `influence_csv`, the 3D structure's own
-/// kernel (test::StructureKernel of its case "free" at `influence_layers`, one slice per layer);
-/// writes the figure and prints each station's loads. @throws on bad input or a failed solve.
+/// kernels (test::StructureKernel of `influence_cases` at `influence_layers`, one slice per
+/// layer); writes the figure and prints each station's loads; with `kernel_csv`, writes the first
+/// influence case's W there as a scene's coupling table. @throws on bad input or a failed solve.
 int Fe3dSlices(const std::string& scene, const std::string& csv, const std::string& svg,
                int layers, double refinement, const std::string& influence_csv,
                int influence_layers, const std::string& influence_refinement,
-               const std::vector<std::string>& influence_cases,
+               const std::vector<std::string>& influence_cases, const std::string& kernel_csv,
                const std::string& title);
 
 }  // namespace epicycle::fe_reference

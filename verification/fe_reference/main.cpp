@@ -300,6 +300,7 @@ int main(int argc, char** argv) {
   int influence_layers = 8;
   std::vector<std::string> influence_cases{"free"};
   std::string influence_refinement = "1";
+  std::string kernel_csv;
   int slices_layers = 4;
   double slices_refinement = 1.41;
   CLI::App* fe3d_slices = app.add_subcommand(
@@ -312,6 +313,8 @@ int main(int argc, char** argv) {
   fe3d_slices->add_option("--influence", influence_csv,
                           "CSV of `fe3d --influence` runs: the 3D structure's kernel");
   fe3d_slices->add_option("--influence-case", influence_cases, "the influence cases drawn");
+  fe3d_slices->add_option("--write-kernel", kernel_csv,
+                          "write the first influence case's W as a scene's coupling table");
   fe3d_slices->add_option("--influence-refinement", influence_refinement,
                           "the influence runs' in-plane refinement, as written in the CSV");
   fe3d_slices->add_option("--influence-layers", influence_layers,
@@ -323,7 +326,8 @@ int main(int argc, char** argv) {
     if (*fe3d_slices)
       return fe_reference::Fe3dSlices(slices_scene, fe_csv, prefix, slices_layers,
                                       slices_refinement, influence_csv, influence_layers,
-                                      influence_refinement, influence_cases, title);
+                                      influence_refinement, influence_cases, kernel_csv,
+                                      title);
     if (*fe3d) return fe_reference::Fe3dCommand(f3);
     if (*fe3d_plot)
       return fe_reference::Fe3dPlot(fe_csv, prefix, plot_layers, plot_refinement, title);
