@@ -58,6 +58,9 @@ Eigen::MatrixXd FaceCouplingMatrix(int slices, double width, FaceCoupling coupli
   if (!(width > 0) || !std::isfinite(width))
     throw std::invalid_argument("face width: width = " + io::Num(width) + " m: must be > 0");
   const int n = slices;
+  if (coupling == FaceCoupling::kTable)
+    throw std::invalid_argument(
+        "face width: coupling = table: the kernel is the scene's coupling_table, not computed");
   if (coupling == FaceCoupling::kNone || n == 1)
     return Eigen::MatrixXd::Identity(n, n) * static_cast<double>(n);
   if (coupling == FaceCoupling::kToothBody) {

@@ -25,7 +25,9 @@ PairFaceWidth::PairFaceWidth(const FaceWidthSpec& spec, const geometry::GearPair
     lead.end_relief = l.end_relief;
     lead.end_relief_length = l.end_relief_length;
   }
-  coupling_ = FaceCouplingMatrix(slices_, width_, spec.coupling, spec.coupling_length);
+  coupling_ = spec.coupling == FaceCoupling::kTable
+                  ? spec.coupling_table
+                  : FaceCouplingMatrix(slices_, width_, spec.coupling, spec.coupling_length);
 }
 
 double PairFaceWidth::GapChange(const geometry::PotentialContact& p, int s) const {

@@ -2,10 +2,14 @@
 // (docs/scenes.md, "Face width"; the model: docs/model.md §10).
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "epicycle/io/input_file.hpp"
+#include "epicycle/io/number_format.hpp"
 #include "epicycle/io/toml_reader.hpp"
 #include "scene_internal.hpp"
 
@@ -32,6 +36,54 @@ struct MeshBound {
     }
   }
 };
+
+// coupling = "table": W [-] from the CSV that coupling_table names (relative to the scene's
+// directory): a header line, then one row "i,j,w" for every 0 <= i, j < S.
+Eigen::MatrixXd ReadCouplingTable(TableReader& t, const std::string& source, int slices) {
+  const std::string key = "coupling_table";
+  const std::string value = t.String(key);
+  std::filesystem::path path(value);
+  if (path.is_relative()) path = std::filesystem::path(source).parent_path() / path;
+  const std::string quoted = "\"" + value + "\"";
+  std::string text;
+  try {
+    text = io::ReadInputFile(path.string(), "coupling table (CSV)", 1u << 22);
+  } catch (const std::invalid_argument& e) {
+    t.Fail(key, quoted, std::string("must be a readable CSV file: ") + e.what());
+  }
+  Eigen::MatrixXd w = Eigen::MatrixXd::Constant(slices, slices, std::nan(""));
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);  // the header
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.find_first_not_of(" \r") == std::string::npos) continue;
+    std::istringstream row(line);
+    long i = -1, j = -1;
+    double v = std::nan("");
+    char c1 = 0, c2 = 0;
+    if (!(row >> i >> c1 >> j >> c2 >> v) || c1 != ',' || c2 != ',' || i < 0 || j < 0 ||
+        i >= slices || j >= slices || !std::isfinite(v))
+      t.Fail(key, quoted,
+             "line " + std::to_string(number) + " '" + line + "': each row must be i,j,w with " +
+                 "0 <= i, j < face_width.slices = " + std::to_string(slices) + " and w finite");
+    w(i, j) = v;
+  }
+  for (int i = 0; i < slices; ++i)
+    for (int j = 0; j < slices; ++j)
+      if (std::isnan(w(i, j)))
+        t.Fail(key, quoted,
+               "has no entry (" + std::to_string(i) + ", " + std::to_string(j) +
+                   "): the table gives W_ij for every pair of the face_width.slices = " +
+                   std::to_string(slices) + " slices");
+  const double asymmetry = (w - w.transpose()).cwiseAbs().maxCoeff();
+  if (asymmetry > 1e-9 * w.cwiseAbs().maxCoeff())
+    t.Fail(key, quoted,
+           "must be symmetric (a compliance, Maxwell-Betti): |W_ij - W_ji| reaches " +
+               io::Num(asymmetry));
+  if (Eigen::LLT<Eigen::MatrixXd>(w).info() != Eigen::Success)
+    t.Fail(key, quoted, "must be positive definite (a compliance: every load deflects its face)");
+  return w;
+}
 
 }  // namespace
 
@@ -63,7 +115,20 @@ void ReadFaceWidth(TableReader& top, Scene& s,
              "a variation along the face width needs slices >= 2 (one slice has no axial "
              "extent)");
   };
-  const std::string coupling = t->StringOr("coupling", "none", {"none", "pasternak"});
+  const std::string coupling =
+      t->StringOr("coupling", "none", {"none", "pasternak", "table"});
+  if (coupling == "table") {
+    if (!pair)
+      t->Fail("coupling", "\"table\"",
+              "a coupling table is one gear pair's structure along its face (a pair scene); a "
+              "stage's meshes each have their own");
+    needs_slices(*t, "coupling");
+    f.coupling = FaceCoupling::kTable;
+    f.coupling_table = ReadCouplingTable(*t, s.source, f.slices);
+  } else if (t->Has("coupling_table")) {
+    t->Fail("coupling_table", "given with coupling = \"" + coupling + "\"",
+            "a coupling table belongs to coupling = \"table\"");
+  }
   if (coupling == "pasternak") {
     f.coupling = FaceCoupling::kPasternak;
     f.coupling_length =

@@ -45,8 +45,26 @@ struct Fe3dOptions {
   /// The plane reference's contact law; a 60 µm window keeps the one tooth pair of a
   /// single-contact position (the neighbours' rigid gaps are > 100 µm on the ISO pair at 13.5°).
   FeContactOptions contact{1e8, 0.5, 60e-6, 1.0e-3, 1.5e-3};
+  /// The structural influence deck instead of the contact deck (docs/fe_reference.md, "The
+  /// structural compliance along the face"): no contact, both hub cylinders held (u = 0), one
+  /// linear static step per layer l with the force pair ∓F n on the two flanks' nodes nearest the
+  /// contact, spread uniformly over layer l (a line load on the station), and each gear's
+  /// displacement read at `read_depth` below its loaded node along the normal (the plane model's
+  /// joining depth h, docs/model.md §4).
+  bool influence = false;
+  double read_depth[2] = {0, 0};  ///< h of gear 1 and gear 2 [m], > 0 with `influence`
   /// @throws std::invalid_argument naming the field, its value and the rule.
   void Validate() const;
+};
+
+/// Where the influence deck reads a gear's displacement: the 6-node triangle around the point
+/// at depth h, its quadratic shape functions' weights there, and each node's CalculiX ids at
+/// the extruded levels 0..2 N_z (−1 at the odd, mid-layer levels of a mid-side node).
+struct Fe3dReadPoint {
+  int gear = 1;                          ///< 1 or 2
+  std::vector<double> weight;            ///< per triangle node [-], Σ = 1
+  std::vector<bool> corner;              ///< per triangle node
+  std::vector<std::vector<int>> levels;  ///< per triangle node, 2 N_z + 1 ids
 };
 
 /// What the reader of a 3D deck needs besides CalculiX's .dat file.
@@ -57,6 +75,11 @@ struct Fe3dDeckInfo {
   double misalignment = 0;      ///< F_β [m]
   std::vector<double> z_edges;  ///< layer boundaries from the z = 0 face [m], N_z + 1 values
   std::vector<int> pair_layer;  ///< the layer of each entry of deck.pairs
+  /// The influence deck's (Fe3dOptions::influence): the unit normal n (gear 1 → gear 2), the force
+  /// F [N] of each step's pair and the two read points.
+  double normal_x = 0, normal_y = 0;
+  double influence_force = 0;
+  std::vector<Fe3dReadPoint> read_points;
   void Write(const std::string& path) const;
   /// @throws std::runtime_error naming the file and the line that cannot be read.
   static Fe3dDeckInfo Read(const std::string& path);
@@ -96,6 +119,14 @@ struct Fe3dLineLoad {
 /// @throws std::runtime_error as ReadSteps and Interpolate.
 Fe3dLineLoad ReadLineLoad(const std::string& directory, const Fe3dDeckInfo& info);
 
+/// The structural compliance along the face of an influence deck (Fe3dOptions::influence):
+/// G_ij [m/N], the approach at station i (the two gears' displacements at depth h along n,
+/// gear 2's minus gear 1's, each the mean over layer i) per unit force on station j, from
+/// `<directory>/deck.dat` (one step per station). @throws std::runtime_error when a step or a
+/// read node is missing.
+std::vector<std::vector<double>> ReadInfluence(const std::string& directory,
+                                               const Fe3dDeckInfo& info);
+
 /// The approach δ [m] of uncoupled slices of stiffness c′ per unit width [N/m²] under a total
 /// force F [N] across b [m] with the gap g(z) = F_β (z/b − 1/2): ∫₀ᵇ c′ (δ − g(z))₊ dz = F. The
 /// 3D run's first estimate of its steps.
@@ -120,5 +151,17 @@ Fe3dRun RunFe3d(const transmission::Scene& scene, const geometry::GearPair& pair
                 double angle, double stiffness_per_width, const Fe3dOptions& options,
                 const std::string& directory, const std::string& ccx = "ccx", int threads = 1,
                 const std::vector<double>& step_scales = {0.94, 1.06});
+
+/// WriteDeck3d of an influence deck (options.influence), ccx and ReadInfluence in `directory`.
+struct Fe3dInfluenceRun {
+  Fe3dDeckInfo deck;
+  std::vector<std::vector<double>> compliance;  ///< G_ij [m/N], N_z × N_z
+  double cpu_seconds = 0, wall_seconds = 0;     ///< ccx's [s]
+};
+/// @throws std::invalid_argument for bad options; std::runtime_error when ccx fails.
+Fe3dInfluenceRun RunFe3dInfluence(const transmission::Scene& scene,
+                                  const geometry::GearPair& pair, double angle,
+                                  const Fe3dOptions& options, const std::string& directory,
+                                  const std::string& ccx = "ccx", int threads = 1);
 
 }  // namespace epicycle::fe_reference

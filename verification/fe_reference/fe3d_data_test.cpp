@@ -64,6 +64,13 @@ TEST_CASE("3D FE reference: bad options name the field, its value and the rule",
   o.plane_strain = true;
   o.misalignment = 10e-6;
   CHECK(message(o).find("plane_strain with misalignment = 1e-05 m") != std::string::npos);
+  o = {};
+  o.influence = true;
+  o.read_depth[1] = 1e-3;
+  CHECK(message(o) == "fe3d: read_depth of gear 1 = 0 m: must be > 0 with influence");
+  o.read_depth[0] = 1e-3;
+  o.misalignment = 10e-6;
+  CHECK(message(o).find("influence with misalignment = 1e-05 m") != std::string::npos);
   CHECK_THROWS_AS(fe_reference::SliceApproach(0.0, 0.02, 1e10, 0.0), std::invalid_argument);
 }
 
@@ -100,5 +107,38 @@ TEST_CASE("3D FE reference: the committed line loads balance the torque and tile
     if (!run.aligned) continue;
     const int n = static_cast<int>(run.q.size());
     for (const auto& [l, q] : run.q) CHECK(std::abs(q - run.q.at(n - 1 - l)) <= 0.01 * run.mean);
+  }
+}
+
+TEST_CASE(
+    "3D FE reference: the committed structural compliance along the face is complete, positive "
+    "and symmetric about the mid-face",
+    "[unit][fe3d]") {
+  // verification/data/fe_reference/iso_pair_20_40_face_influence.csv, written by `fe_reference
+  // fe3d --influence` (docs/fe_reference.md, "The structural compliance along the face"). The
+  // deck is extruded in equal layers with free ends and its hubs held, so station i under a load
+  // on j mirrors station N−1−i under a load on N−1−j exactly; ccx prints 7 significant digits,
+  // so two printed values of one number differ by at most 1e-6 of it (twice the rounding).
+  std::map<std::string, std::map<std::pair<int, int>, double>> runs;
+  std::map<std::string, int> layers;
+  for (const auto& r : test::ReadCsvRows(std::string(EPICYCLE_TEST_DATA_DIR) +
+                                         "/fe_reference/iso_pair_20_40_face_influence.csv")) {
+    REQUIRE(r.size() == 15);
+    const std::string key = r[0] + "/" + r[3] + "/" + r[4];
+    runs[key][{std::stoi(r[10]), std::stoi(r[11])}] = std::stod(r[14]);
+    layers[key] = std::stoi(r[3]);
+  }
+  REQUIRE(runs.count("plane_strain/1/1"));
+  REQUIRE(runs.count("free/8/1"));
+  for (const auto& [key, g] : runs) {
+    INFO(key);
+    const int n = layers.at(key);
+    REQUIRE(static_cast<int>(g.size()) == n * n);
+    for (const auto& [ij, v] : g) {
+      CHECK(std::isfinite(v));
+      if (ij.first == ij.second) CHECK(v > 0);
+      const double mirror = g.at({n - 1 - ij.first, n - 1 - ij.second});
+      CHECK(std::abs(v - mirror) <= 1e-6 * std::abs(v) + 1e-20);
+    }
   }
 }

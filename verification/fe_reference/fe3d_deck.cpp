@@ -88,6 +88,109 @@ std::array<double, 3> Misalign(double psi, const Vec2& n, double x, double y, do
   return {psi * dz * n.x(), psi * dz * n.y(), -psi * (n.x() * x + n.y() * y)};
 }
 
+// The read point of gear `gear` (triangles of `body`) at p [mm]: the triangle around p, whose
+// corners give p's barycentric coordinates (the triangles near the contact are straight-sided:
+// their mid-side nodes at the edges' midpoints, checked), and its quadratic shape functions
+// there, N_a = λ_a(2λ_a − 1) at the corners and 4 λ_a λ_b at the mid-sides.
+Fe3dReadPoint ReadPointAt(const detail::DeckMesh& dm, const Extrusion& ex, int body, int gear,
+                          const Vec2& p) {
+  for (const detail::Tri& t : dm.tris) {
+    if (t.body != body) continue;
+    const Vec2 a = dm.xy[t.n[0]], b = dm.xy[t.n[1]], c = dm.xy[t.n[2]];
+    const double det = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    const double l1 = ((p - a).x() * (c - a).y() - (p - a).y() * (c - a).x()) / det;
+    const double l2 = ((b - a).x() * (p - a).y() - (b - a).y() * (p - a).x()) / det;
+    const double l[3] = {1 - l1 - l2, l1, l2};
+    if (l[0] < -1e-12 || l[1] < -1e-12 || l[2] < -1e-12) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 mid = 0.5 * (dm.xy[t.n[k]] + dm.xy[t.n[(k + 1) % 3]]);
+      if ((dm.xy[t.n[3 + k]] - mid).norm() > 1e-3 * (dm.xy[t.n[k]] - mid).norm())
+        throw std::runtime_error("fe3d influence deck: the triangle around gear " +
+                                 std::to_string(gear) + "'s read point is curved");
+    }
+    Fe3dReadPoint r;
+    r.gear = gear;
+    for (int k = 0; k < 3; ++k) r.weight.push_back(l[k] * (2 * l[k] - 1));
+    for (int k = 0; k < 3; ++k) r.weight.push_back(4 * l[k] * l[(k + 1) % 3]);
+    for (int k = 0; k < 6; ++k) {
+      const int i = t.n[static_cast<std::size_t>(k)];
+      r.corner.push_back(ex.corner[i] != 0);
+      r.levels.emplace_back();
+      for (int level = 0; level <= 2 * ex.layers; ++level)
+        r.levels.back().push_back(level % 2 == 0 || ex.corner[i] ? ex.Id(level, i) : -1);
+    }
+    return r;
+  }
+  throw std::runtime_error("fe3d influence deck: gear " + std::to_string(gear) +
+                           "'s read point (" + Num(p.x(), 6) + ", " + Num(p.y(), 6) +
+                           ") mm lies in none of its triangles");
+}
+
+// The corner node of the flank faces nearest to `point` [mm].
+int NearestCornerNode(const std::vector<std::pair<int, int>>& faces, const detail::DeckMesh& dm,
+                      const Vec2& point) {
+  int best = -1;
+  for (const auto& [tri, edge] : faces)
+    for (int k : {edge, (edge + 1) % 3}) {
+      const int i = dm.tris[static_cast<std::size_t>(tri)].n[static_cast<std::size_t>(k)];
+      if (best < 0 || (dm.xy[i] - point).norm() < (dm.xy[best] - point).norm()) best = i;
+    }
+  return best;
+}
+
+// The influence deck's model and steps (Fe3dOptions::influence): both hubs held, the read
+// points at depth h below each gear's loaded node, and per layer l a step with the force pair
+// −F n on gear 1's node and +F n on gear 2's, spread over the layer's quadratic edge (1/6, 4/6,
+// 1/6 at its levels 2l, 2l + 1, 2l + 2: a uniform line load over the station).
+void WriteInfluenceSteps(std::ostream& f, const transmission::Scene& scene,
+                         const Fe3dOptions& options, const detail::DeckMesh& dm,
+                         const Extrusion& ex, const detail::GearModel& m1,
+                         const detail::GearModel& m2, const detail::LoadedContacts& lc,
+                         const Vec2& normal, const Vec2& contact_point, Fe3dDeckInfo& info) {
+  if (lc.by_teeth.size() != 1)
+    throw std::invalid_argument("fe3d influence deck: " + std::to_string(lc.by_teeth.size()) +
+                                " tooth pairs in the gap window: the deck loads one");
+  const auto& [teeth, p] = *lc.by_teeth.begin();
+  const std::vector<Vec2>& near = lc.points_of.at(teeth);
+  const int node1 = NearestCornerNode(
+      detail::FlankFaces(p.slave, m1.flank_curves.at({p.tooth1, lc.side1}), near,
+                         options.contact.slave_reach * kMm, dm),
+      dm, contact_point);
+  const int node2 = NearestCornerNode(
+      detail::FlankFaces(p.master, m2.flank_curves.at({p.tooth2, lc.side2}), near,
+                         options.contact.master_reach * kMm, dm),
+      dm, contact_point);
+  info.normal_x = normal.x();
+  info.normal_y = normal.y();
+  info.influence_force = 1.0;  // [N] per station
+  info.read_points = {
+      ReadPointAt(dm, ex, 0, 1, dm.xy[node1] - options.read_depth[0] * kMm * normal),
+      ReadPointAt(dm, ex, 1, 2, dm.xy[node2] + options.read_depth[1] * kMm * normal)};
+  std::vector<int> read;
+  for (const Fe3dReadPoint& r : info.read_points)
+    for (const auto& ids : r.levels)
+      for (int id : ids)
+        if (id > 0) read.push_back(id);
+  std::sort(read.begin(), read.end());
+  read.erase(std::unique(read.begin(), read.end()), read.end());
+  detail::WriteNodeSet(f, "READ", read);
+  detail::WriteMaterialAndPairs(f, scene, options.contact, {});
+  f << "*BOUNDARY\nHUB1, 1, 3\nHUB2, 1, 3\n";
+  if (options.plane_strain) f << "NALL, 3, 3\n";
+  const double force = info.influence_force;
+  for (int l = 0; l < ex.layers; ++l) {
+    f << "*STEP\n*STATIC\n*CLOAD, OP=NEW\n";
+    for (const auto& [node, sign] : {std::pair{node1, -1.0}, std::pair{node2, 1.0}})
+      for (int k = 0; k < 3; ++k) {
+        const double share = k == 1 ? 4.0 / 6.0 : 1.0 / 6.0;
+        const int id = ex.Id(2 * l + k, node);
+        f << id << ", 1, " << Num(sign * share * force * normal.x(), 15) << "\n"
+          << id << ", 2, " << Num(sign * share * force * normal.y(), 15) << "\n";
+      }
+    f << "*NODE PRINT, NSET=READ\nU\n*END STEP\n";
+  }
+}
+
 }  // namespace
 
 FeMeshOptions Fe3dDefaultMesh() {
@@ -120,6 +223,13 @@ void Fe3dOptions::Validate() const {
   if (plane_strain && misalignment != 0)
     throw std::invalid_argument("fe3d: plane_strain with misalignment = " + Num(misalignment, 13) +
                                 " m: the plane-strain deck (u_z = 0) takes no misalignment");
+  if (influence && misalignment != 0)
+    throw std::invalid_argument("fe3d: influence with misalignment = " + Num(misalignment, 13) +
+                                " m: the influence deck holds both hubs (no misalignment)");
+  for (int g = 0; g < 2 && influence; ++g)
+    if (!(read_depth[g] > 0) || !std::isfinite(read_depth[g]))
+      throw std::invalid_argument("fe3d: read_depth of gear " + std::to_string(g + 1) + " = " +
+                                  Num(read_depth[g], 13) + " m: must be > 0 with influence");
   if (!(contact.penalty > 0) || !(contact.gap_window > 0) || !(contact.slave_reach > 0) ||
       !(contact.master_reach > 0))
     throw std::invalid_argument(
@@ -134,6 +244,15 @@ void Fe3dDeckInfo::Write(const std::string& path) const {
   f << "misalignment_m " << misalignment << "\n";
   for (double z : z_edges) f << "z_edge_m " << z << "\n";
   for (int l : pair_layer) f << "pair_layer " << l << "\n";
+  if (!read_points.empty())
+    f << "normal " << normal_x << " " << normal_y << "\ninfluence_force_N " << influence_force
+      << "\n";
+  for (const Fe3dReadPoint& p : read_points)
+    for (std::size_t k = 0; k < p.weight.size(); ++k) {
+      f << "read " << p.gear << " " << p.weight[k] << " " << (p.corner[k] ? 1 : 0);
+      for (int id : p.levels[k]) f << " " << id;
+      f << "\n";
+    }
   if (!f) throw std::runtime_error(path + ": write failed");
 }
 
@@ -158,6 +277,24 @@ Fe3dDeckInfo Fe3dDeckInfo::Read(const std::string& path) {
       int l = 0;
       ok = static_cast<bool>(s >> l);
       info.pair_layer.push_back(l);
+    } else if (key == "normal") {
+      ok = static_cast<bool>(s >> info.normal_x >> info.normal_y);
+    } else if (key == "influence_force_N") {
+      ok = static_cast<bool>(s >> info.influence_force);
+    } else if (key == "read") {
+      int gear = 0, corner = 0;
+      double w = 0;
+      ok = static_cast<bool>(s >> gear >> w >> corner) && (gear == 1 || gear == 2);
+      if (ok) {
+        if (info.read_points.empty() || info.read_points.back().gear != gear)
+          info.read_points.push_back(Fe3dReadPoint{gear, {}, {}, {}});
+        Fe3dReadPoint& p = info.read_points.back();
+        p.weight.push_back(w);
+        p.corner.push_back(corner != 0);
+        p.levels.emplace_back();
+        for (int id = 0; s >> id;) p.levels.back().push_back(id);
+        ok = p.levels.back().size() == info.z_edges.size() * 2 - 1;
+      }
     } else if (!key.empty()) {
       ok = false;
     }
@@ -199,10 +336,10 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
   search.gap_window = options.contact.gap_window;
   search.both_sides = false;
   search.side_a = pair.loaded_side();
-  Vec2 normal = Vec2::Zero();
+  Vec2 normal = Vec2::Zero(), contact_point = Vec2::Zero();
   double best = -1e300;
   for (const geometry::PotentialContact& c : pair.Contacts(poses, search))
-    if (c.overlap > best) best = c.overlap, normal = c.normal;
+    if (c.overlap > best) best = c.overlap, normal = c.normal, contact_point = c.point * kMm;
 
   const double m = g1.module() * kMm;
   const double h_c = mesh.contact_size * kMm / mesh.refinement;
@@ -300,6 +437,14 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
       hub2_ids.push_back(id);
     });
   detail::WriteNodeSet(f, "HUB2", hub2_ids);
+
+  if (options.influence) {
+    WriteInfluenceSteps(f, scene, options, dm, ex, m1, m2, lc, normal, contact_point, info);
+    if (!f) throw std::runtime_error(deck_path + ": write failed");
+    f.close();
+    info.Write(directory + "/deck3d.info");
+    return info;
+  }
 
   // Surfaces: gear 2's flank over every layer (master), gear 1's flank one slave per layer.
   const int ntri = static_cast<int>(dm.tris.size());

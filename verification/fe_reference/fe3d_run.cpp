@@ -3,10 +3,14 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
 #include <stdexcept>
 
 #include "epicycle/io/number_format.hpp"
@@ -22,6 +26,16 @@ double ChildrenCpuSeconds() {
   getrusage(RUSAGE_CHILDREN, &u);
   return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
          1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// ccx on `directory`/deck.inp (its log in ccx.log).
+void RunCcx(const std::string& directory, const std::string& ccx, int threads) {
+  std::filesystem::remove(directory + "/deck.dat");
+  const std::string command = "cd '" + directory + "' && OMP_NUM_THREADS=" +
+                              std::to_string(threads) + " nice -n 10 '" + ccx +
+                              "' -i deck > ccx.log 2>&1";
+  if (std::system(command.c_str()) != 0)
+    throw std::runtime_error("fe3d: ccx failed (see " + directory + "/ccx.log)");
 }
 
 }  // namespace
@@ -76,6 +90,69 @@ Fe3dLineLoad ReadLineLoad(const std::string& directory, const Fe3dDeckInfo& info
   return r;
 }
 
+std::vector<std::vector<double>> ReadInfluence(const std::string& directory,
+                                               const Fe3dDeckInfo& info) {
+  const std::string path = directory + "/deck.dat";
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot be read (did ccx run?)");
+  const std::size_t layers = info.z_edges.size() - 1;
+  if (info.read_points.size() != 2 || !(info.influence_force > 0))
+    throw std::runtime_error(directory + "/deck3d.info: not an influence deck");
+  // Per step (time 1, 2, ...: ccx's static steps have period 1): node id → (u_x, u_y) [mm].
+  std::vector<std::map<int, std::array<double, 2>>> steps;
+  const std::string header = "displacements (vx,vy,vz) for set READ and time";
+  std::string line;
+  int step = -1;
+  while (std::getline(f, line)) {
+    if (line.find(header) != std::string::npos) {
+      const double time = std::stod(line.substr(line.rfind("time") + 4));
+      step = static_cast<int>(std::lround(time)) - 1;
+      if (std::abs(time - std::round(time)) > 1e-9 || step < 0)
+        throw std::runtime_error(path + ": a displacement block at time " + line.substr(
+                                     line.rfind("time") + 4) + ", not at a step's end");
+      if (steps.size() <= static_cast<std::size_t>(step)) steps.resize(step + 1);
+      continue;
+    }
+    std::istringstream s(line);
+    int id = 0;
+    double ux = 0, uy = 0;
+    if (step >= 0 && (s >> id >> ux >> uy)) steps[static_cast<std::size_t>(step)][id] = {ux, uy};
+  }
+  if (steps.size() != layers)
+    throw std::runtime_error(path + ": " + std::to_string(steps.size()) + " of " +
+                             std::to_string(layers) + " steps completed (see ccx's log)");
+  const double nx = info.normal_x, ny = info.normal_y;
+  std::vector<std::vector<double>> g(layers, std::vector<double>(layers, 0.0));
+  for (std::size_t j = 0; j < layers; ++j) {
+    const auto& u = steps[j];
+    auto normal_at = [&](int id) {
+      const auto it = u.find(id);
+      if (it == u.end())
+        throw std::runtime_error(path + ": step " + std::to_string(j + 1) + " lacks node " +
+                                 std::to_string(id));
+      return it->second[0] * nx + it->second[1] * ny;
+    };
+    for (std::size_t i = 0; i < layers; ++i) {
+      // The station's mean along z at each triangle node: Simpson over the corner nodes'
+      // quadratic edge, the mean of the ends at a mid-side node (linear along z in a C3D15).
+      double approach = 0;
+      for (const Fe3dReadPoint& r : info.read_points) {
+        double u_n = 0;
+        for (std::size_t k = 0; k < r.weight.size(); ++k) {
+          const std::vector<int>& ids = r.levels[k];
+          const double lo = normal_at(ids[2 * i]), hi = normal_at(ids[2 * i + 2]);
+          const double mean =
+              r.corner[k] ? (lo + 4 * normal_at(ids[2 * i + 1]) + hi) / 6 : 0.5 * (lo + hi);
+          u_n += r.weight[k] * mean;
+        }
+        approach += r.gear == 2 ? u_n : -u_n;  // separation along n: gear 2's minus gear 1's
+      }
+      g[i][j] = approach * 1e-3 / info.influence_force;  // mm/N → m/N
+    }
+  }
+  return g;
+}
+
 double SliceApproach(double force, double face_width, double stiffness_per_width,
                      double misalignment) {
   if (!(force > 0) || !(face_width > 0) || !(stiffness_per_width > 0) ||
@@ -113,13 +190,8 @@ Fe3dRun RunFe3d(const transmission::Scene& scene, const geometry::GearPair& pair
   for (run.runs = 1;; ++run.runs) {
     std::vector<double> rotations;
     for (double s : step_scales) rotations.push_back(s * theta);
-    std::filesystem::remove(directory + "/deck.dat");
     run.deck = WriteDeck3d(scene, pair, torque, angle, rotations, options, directory);
-    const std::string command = "cd '" + directory +
-                                "' && OMP_NUM_THREADS=" + std::to_string(threads) +
-                                " nice -n 10 '" + ccx + "' -i deck > ccx.log 2>&1";
-    if (std::system(command.c_str()) != 0)
-      throw std::runtime_error("fe3d: ccx failed (see " + directory + "/ccx.log)");
+    RunCcx(directory, ccx, threads);
     run.result = ReadLineLoad(directory, run.deck);
     if (!run.result.extrapolated || run.runs == 2) break;
     theta = run.result.rotation;  // the first run's extrapolation: the steps around it
@@ -127,6 +199,30 @@ Fe3dRun RunFe3d(const transmission::Scene& scene, const geometry::GearPair& pair
   run.cpu_seconds = ChildrenCpuSeconds() - cpu0;
   run.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+Fe3dInfluenceRun RunFe3dInfluence(const transmission::Scene& scene,
+                                  const geometry::GearPair& pair, double angle,
+                                  const Fe3dOptions& options, const std::string& directory,
+                                  const std::string& ccx, int threads) {
+  if (!options.influence)
+    throw std::invalid_argument("fe3d: RunFe3dInfluence needs options.influence");
+  if (threads < 1)
+    throw std::invalid_argument("fe3d: threads = " + std::to_string(threads) + ": must be >= 1");
+  Fe3dInfluenceRun run;
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu0 = ChildrenCpuSeconds();
+  // The deck's torque and rotations are the contact deck's bookkeeping, unused here.
+  run.deck = WriteDeck3d(scene, pair, 1.0, angle, {1e-4}, options, directory);
+  RunCcx(directory, ccx, threads);
+  run.compliance = ReadInfluence(directory, run.deck);
+  run.cpu_seconds = ChildrenCpuSeconds() - cpu0;
+  run.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (const auto& row : run.compliance)
+    for (double g : row)
+      if (!std::isfinite(g)) throw std::runtime_error(directory + ": a compliance is not finite");
   return run;
 }
 

@@ -116,3 +116,42 @@ TEST_CASE("3D FE reference: plane strain, layers, equilibrium, symmetry and the 
     CHECK(a.line_load[l] > a.line_load[l + 1]);
   std::filesystem::remove_all(root);
 }
+
+// The structural compliance along the face (docs/fe_reference.md, "The structural compliance
+// along the face") on the 4-layer deck with u_z = 0 at every node: the four stations' loads add
+// up to the one-layer plane-strain deck's uniform line load, whose answer is the z-independent
+// plane field, so every row of G sums to 4 G_ps (the one layer's approach per unit force over the
+// face). Both are exact in the FE; what remains is ccx's printing of 7 digits: 5e-7 of each
+// displacement, times at most 2 for the read-out's weights (Σ|N_k| of the quadratic triangle at
+// an interior point), for two gears whose displacements add: within 4e-6, taken as 1e-5.
+TEST_CASE("3D FE reference: the influence rows of the plane-strain layers sum to the plane deck's",
+          "[reference][slow][fe_reference]") {
+  const Pair p = IsoPair();
+  const geometry::GearPair pair(p.setup.spec);
+  const double angle = 13.5 * geometry::kPi / 180.0;
+  const std::string root =
+      (std::filesystem::temp_directory_path() / "epicycle_fe3d_influence_test").string();
+  std::filesystem::remove_all(root);
+  fe_reference::Fe3dOptions o;
+  o.influence = true;
+  o.plane_strain = true;
+  o.layers = 1;
+  o.read_depth[0] = 0.972e-3;  // the plane model's joining depths of the ISO pair [m]
+  o.read_depth[1] = 1.024e-3;
+  const double g_ps =
+      fe_reference::RunFe3dInfluence(p.scene, pair, angle, o, root + "/plane", EPICYCLE_CCX)
+          .compliance.at(0)
+          .at(0);
+  o.layers = 4;
+  const auto g =
+      fe_reference::RunFe3dInfluence(p.scene, pair, angle, o, root + "/layers", EPICYCLE_CCX)
+          .compliance;
+  REQUIRE(g.size() == 4);
+  for (std::size_t i = 0; i < 4; ++i) {
+    double row = 0;
+    for (double v : g[i]) row += v;
+    INFO("station " << i << ": sum of G_ij " << row << ", 4 G_ps " << 4 * g_ps << " m/N");
+    CHECK(std::abs(row / (4 * g_ps) - 1) <= 1e-5);
+  }
+  std::filesystem::remove_all(root);
+}

@@ -27,6 +27,50 @@ constexpr const char* kHeader =
     "approach_um,total_force_N,k_hbeta,peak_z_mm,stiffness_N_per_mm_um,"
     "middle_stiffness_N_per_mm_um,station,z_lo_mm,z_hi_mm,z_mm,line_load_N_per_mm";
 
+constexpr const char* kInfluenceHeader =
+    "case,angle_deg,face_width_mm,layers,refinement,plane_strain,nodes,ccx_cpu_s,depth1_um,"
+    "depth2_um,i,j,z_i_mm,z_j_mm,compliance_m_per_N";
+
+// The influence deck's run (Fe3dCommandArgs::influence), read at the plane model's joining
+// depths of the scene's pair, its G_ij appended to a.csv.
+int Fe3dInfluenceCommand(const Fe3dCommandArgs& a, const transmission::Scene& scene,
+                         const geometry::GearPair& pair, Fe3dOptions o) {
+  transmission::FeComplianceOptions tables;
+  tables.cache_directory = transmission::DefaultCacheDirectory();
+  const test::Fe3dSlicePair model(scene, tables);
+  o.influence = true;
+  o.read_depth[0] = model.JoiningDepth(0);
+  o.read_depth[1] = model.JoiningDepth(1);
+  const Fe3dInfluenceRun run =
+      RunFe3dInfluence(scene, pair, a.angle_deg * geometry::kPi / 180.0, o, a.out, a.ccx,
+                       a.threads);
+  const bool fresh = !std::filesystem::exists(a.csv);
+  std::ofstream f(a.csv, std::ios::app);
+  if (!f) throw std::runtime_error(a.csv + ": cannot be written");
+  if (fresh) f << kInfluenceHeader << "\n";
+  const std::vector<double>& z = run.deck.z_edges;
+  const std::size_t n = run.compliance.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      char line[512];
+      std::snprintf(line, sizeof line,
+                    "%s,%.6f,%.6g,%d,%.6g,%d,%d,%.2f,%.6g,%.6g,%zu,%zu,%.6g,%.6g,%.9e\n",
+                    a.name.c_str(), a.angle_deg, (z.back() - z.front()) * 1e3, a.layers,
+                    a.refinement, a.plane_strain ? 1 : 0, run.deck.deck.nodes, run.cpu_seconds,
+                    o.read_depth[0] * 1e6, o.read_depth[1] * 1e6, i, j,
+                    0.5 * (z[i] + z[i + 1]) * 1e3, 0.5 * (z[j] + z[j + 1]) * 1e3,
+                    run.compliance[i][j]);
+      f << line;
+    }
+  if (!f) throw std::runtime_error(a.csv + ": write failed");
+  std::printf("%s: influence, %d layers, refinement %.3g%s: %d nodes, h %.1f/%.1f um, "
+              "G_00 %.6e m/N, ccx %.0f s CPU, %.0f s wall\n",
+              a.name.c_str(), a.layers, a.refinement, a.plane_strain ? ", plane strain" : "",
+              run.deck.deck.nodes, o.read_depth[0] * 1e6, o.read_depth[1] * 1e6,
+              run.compliance[0][0], run.cpu_seconds, run.wall_seconds);
+  return 0;
+}
+
 }  // namespace
 
 int Fe3dCommand(const Fe3dCommandArgs& a) {
@@ -49,6 +93,7 @@ int Fe3dCommand(const Fe3dCommandArgs& a) {
   if (a.sector_teeth >= 0) o.sector_teeth = a.sector_teeth;
   if (a.tooth_zone >= 0) o.mesh.tooth_zone = a.tooth_zone;
   if (a.contact_size_um > 0) o.mesh.contact_size = a.contact_size_um * 1e-6;
+  if (a.influence) return Fe3dInfluenceCommand(a, scene, pair, o);
   if (a.deck_only) {
     const Fe3dDeckInfo d =
         WriteDeck3d(scene, pair, 1.0, a.angle_deg * geometry::kPi / 180.0, {1e-4, 2e-4}, o, a.out);
@@ -168,25 +213,60 @@ int Fe3dPlot(const std::string& csv, const std::string& svg, int layers, double 
 }
 
 int Fe3dSlices(const std::string& scene, const std::string& csv, const std::string& svg,
-               int layers, double refinement, double lambda, const std::string& title) {
+               int layers, double refinement, const std::string& influence_csv,
+               int influence_layers, const std::string& influence_refinement,
+               const std::vector<std::string>& influence_cases, const std::string& kernel_csv,
+               const std::string& title) {
   using report::PlotSeries;
   transmission::FeComplianceOptions tables;
   tables.cache_directory = transmission::DefaultCacheDirectory();
   const test::Fe3dSlicePair pair(transmission::ReadScene(scene), tables);
-  const double b = pair.width(), phi = pair.BodyShare();
+  const double b = pair.width();
   constexpr int kSlices = 40;
-  const Eigen::MatrixXd strips =
-      transmission::FaceCouplingMatrix(kSlices, b, transmission::FaceCoupling::kNone, 0);
-  const Eigen::MatrixXd coupled = transmission::FaceCouplingMatrix(
-      kSlices, b, transmission::FaceCoupling::kToothBody, lambda, phi);
-  std::printf("body share phi = %.4f, tooth coupling length %.2f mm, C = %.5g m/N\n", phi,
-              lambda * 1e3, pair.structural());
+  struct Kernel {
+    std::string name;
+    Eigen::MatrixXd w;
+    bool dashed, drawn;
+  };
+  // Strips, the tooth_body kernel of the plane FE's body share φ (printed only) and the 3D
+  // structure's kernels.
+  const double phi = pair.BodyShare();
+  std::vector<Kernel> kernels{
+      {"strips", transmission::FaceCouplingMatrix(kSlices, b, transmission::FaceCoupling::kNone, 0),
+       true, true},
+      {"tooth_body", transmission::FaceCouplingMatrix(
+                         kSlices, b, transmission::FaceCoupling::kToothBody, 0, phi),
+       false, false}};
+  if (!influence_csv.empty()) {
+    for (const std::string& name : influence_cases)
+      kernels.push_back({name == "free" ? std::string("3D kernel") : name,
+                         test::StructureKernel(influence_csv, name, influence_layers,
+                                               influence_refinement),
+                         false, true});
+  }
+  std::printf("C = %.5g m/N, body share phi = %.4f\n", pair.structural(), phi);
+  if (!kernel_csv.empty()) {
+    // The first influence case's W as a scene's coupling table (docs/scenes.md, "Face width").
+    if (kernels.size() < 3)
+      throw std::invalid_argument("--write-kernel " + kernel_csv + ": needs --influence");
+    const Eigen::MatrixXd& w = kernels[2].w;
+    std::string text = "i,j,w\n";
+    for (Eigen::Index i = 0; i < w.rows(); ++i)
+      for (Eigen::Index j = 0; j < w.cols(); ++j) {
+        char line[96];
+        std::snprintf(line, sizeof line, "%td,%td,%.12g\n", i, j, w(i, j));
+        text += line;
+      }
+    report::WriteTextFile(kernel_csv, text);
+    std::printf("wrote %s\n", kernel_csv.c_str());
+  }
   report::LinePlot plot{title, "z across the face width [mm]", "load per unit width q [N/mm]",
                         {}, false, {}};
   int colour = 0;
-  for (const auto& [name, f_beta] : {std::pair{"c", 0.0}, std::pair{"a", 20e-6}, std::pair{"b", 80e-6}}) {
+  for (const auto& [name, f_beta] :
+       {std::pair{"c", 0.0}, std::pair{"a", 20e-6}, std::pair{"b", 80e-6}}) {
     // The 3D stations' means as markers at their centres; the slices as lines.
-    PlotSeries ref{std::string(name) + ": 3D stations (dots)", {}, {}, true};
+    PlotSeries ref{std::string(name) + ": 3D contact (dots)", {}, {}, true};
     ref.colour = colour;
     for (const auto& r : test::ReadCsvRows(csv))
       if (r.size() == 27 && r[0] == name && std::stoi(r[4]) == layers &&
@@ -197,30 +277,32 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
     if (ref.x.empty())
       throw std::invalid_argument(csv + ": no case " + name + " with " + std::to_string(layers) +
                                   " layers at refinement " + std::to_string(refinement));
-    const test::SliceLoads s = pair.Solve(strips, f_beta), t = pair.Solve(coupled, f_beta);
-    PlotSeries line_s{std::string(name) + ": strips (dashed)", {}, {}, false};
-    line_s.dashed = true;
-    line_s.colour = colour;
-    PlotSeries line_t{std::string(name) + ": tooth_body (solid)", {}, {}, false};
-    line_t.colour = colour;
-    for (int k = 0; k < kSlices; ++k) {
-      const double z = (k + 0.5) * b / kSlices * 1e3;
-      line_s.x.push_back(z);
-      line_s.y.push_back(s.line_load[static_cast<std::size_t>(k)] / 1e3);
-      line_t.x.push_back(z);
-      line_t.y.push_back(t.line_load[static_cast<std::size_t>(k)] / 1e3);
-    }
-    const int n = static_cast<int>(ref.x.size());
-    const std::vector<double> ss = s.Stations(n), ts = t.Stations(n);
-    std::printf("%s (F_beta %.0f um): station, 3D, strips, tooth_body [N/mm]\n", name,
-                f_beta * 1e6);
-    for (int k = 0; k < n; ++k)
-      std::printf("  %5.2f  %7.1f  %7.1f  %7.1f\n", ref.x[static_cast<std::size_t>(k)],
-                  ref.y[static_cast<std::size_t>(k)], ss[static_cast<std::size_t>(k)] / 1e3,
-                  ts[static_cast<std::size_t>(k)] / 1e3);
     plot.series.push_back(ref);
-    plot.series.push_back(line_s);
-    plot.series.push_back(line_t);
+    const int n = static_cast<int>(ref.x.size());
+    std::printf("%s (F_beta %.0f um): station z [mm], 3D", name, f_beta * 1e6);
+    for (const Kernel& k : kernels) std::printf(", %s", k.name.c_str());
+    std::printf(" [N/mm]\n");
+    std::vector<std::vector<double>> stations;
+    for (const Kernel& k : kernels) {
+      const test::SliceLoads loads = pair.Solve(k.w, f_beta);
+      const int slices = static_cast<int>(k.w.rows());
+      PlotSeries line{std::string(name) + ": " + k.name + (k.dashed ? " (dashed)" : " (solid)"),
+                      {}, {}, false};
+      line.dashed = k.dashed;
+      line.colour = colour;
+      for (int s = 0; s < slices; ++s) {
+        line.x.push_back((s + 0.5) * b / slices * 1e3);
+        line.y.push_back(loads.line_load[static_cast<std::size_t>(s)] / 1e3);
+      }
+      if (k.drawn) plot.series.push_back(line);
+      stations.push_back(loads.Stations(n));
+    }
+    for (int s = 0; s < n; ++s) {
+      std::printf("  %5.2f  %7.1f", ref.x[static_cast<std::size_t>(s)],
+                  ref.y[static_cast<std::size_t>(s)]);
+      for (const auto& st : stations) std::printf("  %7.1f", st[static_cast<std::size_t>(s)] / 1e3);
+      std::printf("\n");
+    }
     ++colour;
   }
   plot.x_min = 0;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace epicycle::fe_reference {
 
@@ -22,6 +23,9 @@ struct Fe3dCommandArgs {
   int sector_teeth = -1;             ///< teeth either side of the loaded ones; -1: default
   int tooth_zone = -1;               ///< teeth either side meshed at the tooth size; -1: default
   bool deck_only = false;            ///< write the deck and stop
+  /// The structural influence deck (Fe3dOptions::influence, read at the plane model's joining
+  /// depths): its compliance G_ij appended to args.csv, one row per (i, j).
+  bool influence = false;
 };
 
 /// Runs one case and appends its stations to args.csv. @throws on bad input or a failed run.
@@ -31,11 +35,15 @@ int Fe3dCommand(const Fe3dCommandArgs& args);
 int Fe3dPlot(const std::string& csv, const std::string& svg, int layers, double refinement,
              const std::string& title);
 
-/// The slice model of the same contact against the 3D stations of `csv` at (`layers`,
-/// `refinement`): uncoupled strips and the tooth_body coupling of the scene's body share φ
-/// (ContactBodyShare) with a tooth coupling length `lambda` [m] (0: strips); writes the figure
-/// and prints each station's loads. @throws on bad input or a failed solve.
+/// The slice model of the same contact against the 3D contact stations of `csv` at (`layers`,
+/// `refinement`): uncoupled strips (40 slices) and, with `influence_csv`, the 3D structure's own
+/// kernels (test::StructureKernel of `influence_cases` at `influence_layers`, one slice per
+/// layer); writes the figure and prints each station's loads; with `kernel_csv`, writes the first
+/// influence case's W there as a scene's coupling table. @throws on bad input or a failed solve.
 int Fe3dSlices(const std::string& scene, const std::string& csv, const std::string& svg,
-               int layers, double refinement, double lambda, const std::string& title);
+               int layers, double refinement, const std::string& influence_csv,
+               int influence_layers, const std::string& influence_refinement,
+               const std::vector<std::string>& influence_cases, const std::string& kernel_csv,
+               const std::string& title);
 
 }  // namespace epicycle::fe_reference

@@ -274,6 +274,8 @@ int main(int argc, char** argv) {
   fe3d->add_option("--tooth-size-per-module", f3.tooth_size_per_module,
                    "in-plane element size on the modelled teeth per module (0: default)");
   fe3d->add_flag("--deck-only", f3.deck_only, "write the deck and stop");
+  fe3d->add_flag("--influence", f3.influence,
+                 "the structural compliance along the face: unit loads per layer, no contact");
   fe3d->add_option("--body-size-per-module", f3.body_size_per_module,
                    "largest in-plane element size per module (0: default)");
   fe3d->add_option("--sector-teeth", f3.sector_teeth, "teeth modelled either side of the loaded");
@@ -294,7 +296,11 @@ int main(int argc, char** argv) {
   fe3d_plot->add_option("--refinement", plot_refinement, "the discretisation drawn as lines");
   fe3d_plot->add_option("--title", title, "figure title");
   std::string slices_scene;
-  double slices_lambda_mm = 0;
+  std::string influence_csv;
+  int influence_layers = 8;
+  std::vector<std::string> influence_cases{"free"};
+  std::string influence_refinement = "1";
+  std::string kernel_csv;
   int slices_layers = 4;
   double slices_refinement = 1.41;
   CLI::App* fe3d_slices = app.add_subcommand(
@@ -304,15 +310,24 @@ int main(int argc, char** argv) {
   fe3d_slices->add_option("svg", prefix, "output SVG")->required();
   fe3d_slices->add_option("--layers", slices_layers, "the 3D discretisation compared");
   fe3d_slices->add_option("--refinement", slices_refinement, "the 3D discretisation compared");
-  fe3d_slices->add_option("--coupling-length-mm", slices_lambda_mm,
-                          "the tooth's Pasternak length [mm] (0: strips)");
+  fe3d_slices->add_option("--influence", influence_csv,
+                          "CSV of `fe3d --influence` runs: the 3D structure's kernel");
+  fe3d_slices->add_option("--influence-case", influence_cases, "the influence cases drawn");
+  fe3d_slices->add_option("--write-kernel", kernel_csv,
+                          "write the first influence case's W as a scene's coupling table");
+  fe3d_slices->add_option("--influence-refinement", influence_refinement,
+                          "the influence runs' in-plane refinement, as written in the CSV");
+  fe3d_slices->add_option("--influence-layers", influence_layers,
+                          "the influence run's layers (one slice each)");
   fe3d_slices->add_option("--title", title, "figure title");
   try {
     app.parse(argc, argv);
     if (*plot) return Plot(hybrid_csv, fe_csv, prefix, title);
     if (*fe3d_slices)
       return fe_reference::Fe3dSlices(slices_scene, fe_csv, prefix, slices_layers,
-                                      slices_refinement, slices_lambda_mm * 1e-3, title);
+                                      slices_refinement, influence_csv, influence_layers,
+                                      influence_refinement, influence_cases, kernel_csv,
+                                      title);
     if (*fe3d) return fe_reference::Fe3dCommand(f3);
     if (*fe3d_plot)
       return fe_reference::Fe3dPlot(fe_csv, prefix, plot_layers, plot_refinement, title);

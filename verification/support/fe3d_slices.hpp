@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "csv_rows.hpp"
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
@@ -38,6 +39,32 @@ struct SliceLoads {
     return out;
   }
 };
+
+/// The 3D structural compliance along the face as the slices' kernel (docs/fe_reference.md,
+/// "The structural compliance along the face"): from the influence rows of `csv` (written by
+/// `fe_reference fe3d --influence`), W_ij = G_ij / G_ps with G_ij [m/N] of case `name` at
+/// `layers` layers and in-plane `refinement` and G_ps the one-layer plane-strain deck's compliance of the
+/// same mesh and read-out (case "plane_strain"): the kernel relative to the plane model the
+/// slices' C stands for, so that the deck's own in-plane discretisation error cancels; its
+/// symmetric part.
+/// @throws std::runtime_error when a row is missing.
+inline Eigen::MatrixXd StructureKernel(const std::string& csv, const std::string& name,
+                                       int layers, const std::string& refinement = "1") {
+  Eigen::MatrixXd g = Eigen::MatrixXd::Constant(layers, layers, std::nan(""));
+  double plane = 0;
+  for (const auto& r : ReadCsvRows(csv)) {
+    if (r.size() != 15 || r[4] != refinement) continue;
+    if (r[0] == "plane_strain" && r[3] == "1") plane = std::stod(r[14]);
+    if (r[0] == name && std::stoi(r[3]) == layers)
+      g(std::stoi(r[10]), std::stoi(r[11])) = std::stod(r[14]);
+  }
+  if (!(plane > 0) || g.hasNaN())
+    throw std::runtime_error(csv + ": no plane_strain row or an incomplete " + name + " at " +
+                             std::to_string(layers) + " layers, refinement " + refinement);
+  // Maxwell–Betti: G is symmetric but for the read-out's interpolation (0.3 % of the
+  // largest entry on the ISO pair's deck); the slices take its symmetric part.
+  return 0.5 * (g + g.transpose()) / plane;
+}
 
 class Fe3dSlicePair {
  public:
@@ -69,6 +96,8 @@ class Fe3dSlicePair {
   double torque() const { return setup_.torque; }                   ///< on gear 1 [N·m]
   double base_radius() const { return pair_.gear1().base_radius(); }
   double structural() const { return structural_; }  ///< C [m/N]
+  /// The plane model's joining depth h of gear 1 (0) or gear 2 (1) [m] (docs/model.md §4).
+  double JoiningDepth(int gear) const { return compliance_.JoiningDepth(gear); }
   /// φ of the reference's contact (transmission::ContactBodyShare).
   double BodyShare() const {
     return transmission::ContactBodyShare(compliance_, pair_, poses_, contact_);

@@ -60,6 +60,10 @@ enum class FaceCoupling {
   kNone,       ///< uncoupled strips
   kPasternak,  ///< a Pasternak foundation of coupling length λ with free ends
   kToothBody,  ///< the tooth (strips or Pasternak λ) plus bodies that answer the resultant (φ)
+  /// W given as a table (FaceWidthSpec::coupling_table): a gear pair's 3D structural compliance
+  /// along the face over its plane strain (docs/fe_reference.md, "The structural compliance along
+  /// the face"); its rows need not sum to S.
+  kTable,
 };
 
 /// A lead (helix) deviation and the lead modifications of one gear (the scene's
@@ -86,6 +90,7 @@ struct FaceWidthSpec {
   int slices = 1;  ///< S [-], 1..kMaxFaceSlices
   FaceCoupling coupling = FaceCoupling::kNone;
   double coupling_length = 0;  ///< λ [m], > 0 for kPasternak
+  Eigen::MatrixXd coupling_table;  ///< W [-], S×S, symmetric positive definite, for kTable
   std::vector<PinTilt> pin_tilts;
   std::vector<LeadSpec> leads;
   /// The planets' pins as load-dependent tilts (pin.hpp); empty: rigid pins.
@@ -105,8 +110,8 @@ inline constexpr int kMaxFaceSlices = 200;
 /// W [-], S×S, of `coupling` on a face of width `width` [m] (docs/model.md §10, "Face width"):
 /// `coupling_length` λ [m] of kPasternak and of kToothBody's tooth (0: strips), `body_share` φ
 /// [-] of kToothBody.
-/// @throws std::invalid_argument for S < 1, a width not > 0, kPasternak with λ not > 0, or
-///         kToothBody with φ outside [0, 1) or λ < 0.
+/// @throws std::invalid_argument for S < 1, a width not > 0, kPasternak with λ not > 0,
+///         kToothBody with φ outside [0, 1) or λ < 0, or kTable (a table is given, not computed).
 Eigen::MatrixXd FaceCouplingMatrix(int slices, double width, FaceCoupling coupling,
                                    double coupling_length, double body_share = 0);
 
