@@ -105,7 +105,7 @@ GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gea
     : plane_(ToCompliance(scene.model.plane)) {
   if (!options.helical_slices)
     RequireSpur(scene,
-                "this run (stiffness, dynamic, modes, study: the gear bodies' FE compliance)");
+                "this run (its gear bodies' FE compliance is built for spur slices only)");
   if (names.size() != gears.size())
     throw std::invalid_argument("GearTables: " + std::to_string(names.size()) + " names for " +
                                 std::to_string(gears.size()) + " gears");
