@@ -164,23 +164,31 @@ void RunDynamic(const DynamicArgs& a) {
     throw std::invalid_argument("--spectrum belongs to a run at one speed, not --continue");
   if (a.periodic_points != 0 && !a.periodic && a.continue_spec.empty())
     throw std::invalid_argument("--periodic-points belongs to --periodic and --continue");
-  if ((!a.periodic_method.empty() || a.hb_harmonics != 0) && !a.periodic &&
-      a.continue_spec.empty())
-    throw std::invalid_argument("--periodic-method and --hb-harmonics belong to --periodic and "
-                                "--continue");
+  if ((!a.periodic_method.empty() || a.hb_harmonics != 0) && !a.periodic && a.continue_spec.empty())
+    throw std::invalid_argument(
+        "--periodic-method and --hb-harmonics belong to --periodic and "
+        "--continue");
   if (a.periodic || !a.continue_spec.empty()) {
     dynamics::BranchRequest branch;
     branch.run = request;
-    if (a.periodic) ParseBranch("--speed-sweep", a.speed_sweep, &branch);
-    else ParseBranch("--continue", a.continue_spec, &branch);
+    if (a.periodic)
+      ParseBranch("--speed-sweep", a.speed_sweep, &branch);
+    else
+      ParseBranch("--continue", a.continue_spec, &branch);
     if (a.periodic_points != 0) branch.max_points = a.periodic_points;
     if (!a.periodic_method.empty())
       branch.method = dynamics::ParsePeriodicMethod(a.periodic_method, "--periodic-method");
     if (a.hb_harmonics != 0) branch.harmonics = a.hb_harmonics;
     branch.names.harmonics = "--hb-harmonics";
-    return RunBranch({a.periodic ? "--speed-sweep" : "--continue",
-                      a.periodic ? a.speed_sweep : a.continue_spec, a.out, a.quiet},
-                     branch);
+    // A period too long for shooting to pay: the same speed range by time integration, said so.
+    const std::string too_long = a.periodic ? dynamics::BranchPeriodTooLong(branch) : "";
+    if (too_long.empty())
+      return RunBranch({a.periodic ? "--speed-sweep" : "--continue",
+                        a.periodic ? a.speed_sweep : a.continue_spec, a.out, a.quiet},
+                       branch);
+    std::fprintf(stderr,
+                 "warning: --periodic: %s; the speed sweep runs by time integration instead\n",
+                 too_long.c_str());
   }
   if (!a.speed_sweep.empty()) {
     ParseSpeedSweep(a.speed_sweep);  // bad input before the tables

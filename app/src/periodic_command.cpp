@@ -84,7 +84,10 @@ void ParseBranch(const std::string& option, const std::string& spec,
   request->start = b.from;
   request->end = b.to;
   request->steps = b.steps;
-  request->names = {option + " N", "--periodic-points", "--periodic"};
+  // The period's refusal reaches --continue only (a periodic speed sweep falls back on time
+  // integration instead, dynamic_commands.cpp).
+  request->names = {option + " N", "--periodic-points",
+                    option == "--continue" ? "--continue" : "--periodic"};
 }
 
 namespace {

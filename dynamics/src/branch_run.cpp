@@ -49,6 +49,12 @@ StageBranchOptions Options(const BranchRequest& r, const transmission::Scene& sc
 
 }  // namespace
 
+std::string BranchPeriodTooLong(const BranchRequest& request) {
+  const transmission::Scene& scene = request.run.scene;
+  return BranchPeriodRefusal(StagePeriodMeshCycles(geometry::Stage(scene.stage), scene.damage),
+                             StageBranchOptions{}.max_period_mesh_cycles);
+}
+
 BranchRecord RunBranch(const BranchRequest& request, BranchSink& sink) {
   transmission::Scene scene = ResolvedScene(request.run);
   transmission::RequireSpur(scene, "`epicycle dynamic --periodic` (the periodic branch)");

@@ -31,7 +31,7 @@ Eigen::VectorXd Tolerances(const DynamicModel& m, const SimulationOptions& s) {
   Eigen::VectorXd atol(2 * n);
   for (int k = 0; k < n; ++k) {
     atol(k) = m.dofs()[static_cast<std::size_t>(k)].axis == MotionDof::kRotation ? s.atol_angle
-                                                                                  : s.atol_length;
+                                                                                 : s.atol_length;
     atol(n + k) = atol(k) * s.rate_scale;
   }
   return atol;
@@ -69,9 +69,10 @@ bool SeriesFigures(const DynamicModel& m, const SimulationOptions& sim,
                    const Eigen::MatrixXd& coefficients, double period, int samples,
                    StageBranchPoint* p, std::string* message) {
   const int n = m.size();
-  const FourierBasis basis(static_cast<int>(coefficients.rows() - 1) / 2, 2 * static_cast<int>(coefficients.rows()));
-  const Eigen::MatrixXd y = basis.Evaluate(
-      coefficients, Eigen::VectorXd::LinSpaced(samples, 1.0 / samples, 1.0));
+  const FourierBasis basis(static_cast<int>(coefficients.rows() - 1) / 2,
+                           2 * static_cast<int>(coefficients.rows()));
+  const Eigen::MatrixXd y =
+      basis.Evaluate(coefficients, Eigen::VectorXd::LinSpaced(samples, 1.0 / samples, 1.0));
   const std::unique_ptr<solvers::ContactSolver> solver = solvers::MakeContactSolver(sim.backend);
   const int sun = m.Find(MotionDof::kSun, MotionDof::kRotation);
   const int carrier = m.Find(MotionDof::kCarrier, MotionDof::kRotation);
@@ -89,10 +90,10 @@ bool SeriesFigures(const DynamicModel& m, const SimulationOptions& sim,
       return false;
     }
     // As Simulate's samples (dynamics/simulation.hpp, DynamicSample): K_γ, TE at the sun, orbit.
-    const std::vector<double> lsr = transmission::LoadSharingRatios(at.sun_mesh_torque,
-                                                                    at.input_torque);
+    const std::vector<double> lsr =
+        transmission::LoadSharingRatios(at.sun_mesh_torque, at.input_torque);
     for (double r : lsr) p->k_gamma = std::max(p->k_gamma, static_cast<double>(lsr.size()) * r);
-    const double te = sun >= 0 ? d(sun)
+    const double te = sun >= 0       ? d(sun)
                       : carrier >= 0 ? -m.stage_model().stage().sun_ratio() * d(carrier)
                                      : 0.0;
     te_lo = std::min(te_lo, te);
@@ -117,17 +118,22 @@ PeriodicMethod ParsePeriodicMethod(const std::string& word, const std::string& w
                               "': not a periodic method (shooting, hb: harmonic balance)");
 }
 
-void CheckBranchPeriod(const StagePeriod& period, long max_period_mesh_cycles) {
-  if (period.mesh_cycles <= max_period_mesh_cycles) return;
+std::string BranchPeriodRefusal(const StagePeriod& period, long max_period_mesh_cycles) {
+  if (period.mesh_cycles <= max_period_mesh_cycles) return {};
   std::string why;
   for (const std::string& r : period.reasons) why += (why.empty() ? "" : "; ") + r;
-  throw std::invalid_argument(
-      "stage branch: the stage's period = " + std::to_string(period.mesh_cycles) +
-      " mesh cycles (" + why + "): must be <= max_period_mesh_cycles = " +
-      std::to_string(max_period_mesh_cycles) +
-      " (shooting integrates the period with its variational equations at every Newton "
-      "iteration, where a time integration settles in a number of cycles that does not grow with "
-      "the period: run the time-integration sweep)");
+  return "stage branch: the stage's period = " + std::to_string(period.mesh_cycles) +
+         " mesh cycles (" + why +
+         "): must be <= max_period_mesh_cycles = " + std::to_string(max_period_mesh_cycles) +
+         " (shooting integrates the period with its variational equations at every Newton "
+         "iteration, where a time integration settles in a number of cycles that does not grow "
+         "with "
+         "the period: run the time-integration sweep)";
+}
+
+void CheckBranchPeriod(const StagePeriod& period, long max_period_mesh_cycles) {
+  const std::string refusal = BranchPeriodRefusal(period, max_period_mesh_cycles);
+  if (!refusal.empty()) throw std::invalid_argument(refusal);
 }
 
 void StageBranchOptions::Validate() const {
@@ -178,7 +184,8 @@ StageBranchRecord ContinueStageBranch(
   rec.harmonics = hb ? o.harmonics : 0;
   const int n = base.size();
   for (const char* suffix : {"", " rate"})
-    for (const MotionDof& f : base.dofs()) rec.dof_labels.push_back(f.Label() + std::string(suffix));
+    for (const MotionDof& f : base.dofs())
+      rec.dof_labels.push_back(f.Label() + std::string(suffix));
 
   Eigen::VectorXd p = system.DefaultParameters();
   p(column) = o.start;
@@ -238,15 +245,13 @@ StageBranchRecord ContinueStageBranch(
       q.corrector_iterations = b.corrector_iterations;
       q.state = b.state;
       std::string message;
-      const bool figures =
-          hb ? SeriesFigures(system.ModelAt(pb), o.simulation, b.coefficients, b.period,
-                             o.samples_per_period, &q, &message)
-             : PeriodFigures(system.ModelAt(pb), o.simulation, b.state, b.period,
-                             o.samples_per_period, &q, &message);
-      if (!figures &&
-          rec.figures_message.empty())
-        rec.figures_message = "at " + o.parameter + " = " + Num(b.parameter) + " " + rec.unit +
-                              ": " + message;
+      const bool figures = hb ? SeriesFigures(system.ModelAt(pb), o.simulation, b.coefficients,
+                                              b.period, o.samples_per_period, &q, &message)
+                              : PeriodFigures(system.ModelAt(pb), o.simulation, b.state, b.period,
+                                              o.samples_per_period, &q, &message);
+      if (!figures && rec.figures_message.empty())
+        rec.figures_message =
+            "at " + o.parameter + " = " + Num(b.parameter) + " " + rec.unit + ": " + message;
       rec.points.push_back(std::move(q));
     }
     rec.bifurcations.clear();
@@ -287,8 +292,8 @@ double SeparatingTeAmplitude(const StageBranchRecord& from_below,
   if (from_below.bifurcations.empty() || from_above.bifurcations.empty())
     throw std::invalid_argument(
         "separating TE amplitude: both branches need a fold (from below: " +
-        std::to_string(from_below.bifurcations.size()) + " bifurcations, from above: " +
-        std::to_string(from_above.bifurcations.size()) + ")");
+        std::to_string(from_below.bifurcations.size()) +
+        " bifurcations, from above: " + std::to_string(from_above.bifurcations.size()) + ")");
   const StageBranchBifurcation& upper = from_below.bifurcations.front();
   const StageBranchBifurcation& lower = from_above.bifurcations.front();
   double small_max = 0, large_min = INFINITY;
@@ -298,9 +303,10 @@ double SeparatingTeAmplitude(const StageBranchRecord& from_below,
     if (p.index < lower.after_point && p.parameter <= upper.parameter)
       large_min = std::min(large_min, p.te_amplitude);
   if (!std::isfinite(large_min))
-    throw std::invalid_argument("separating TE amplitude: the branch from above has no point at or "
-                                "below the upper fold's " +
-                                io::Num(upper.parameter) + " " + from_below.unit);
+    throw std::invalid_argument(
+        "separating TE amplitude: the branch from above has no point at or "
+        "below the upper fold's " +
+        io::Num(upper.parameter) + " " + from_below.unit);
   return 0.5 * (small_max + large_min);
 }
 

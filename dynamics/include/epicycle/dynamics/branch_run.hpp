@@ -36,9 +36,9 @@ struct BranchRequest {
   DynamicRequest run;
   /// StagePeriodicSystem::kSunSpeed, kSunTorque or kMeshDampingRatio.
   std::string parameter = StagePeriodicSystem::kSunSpeed;
-  double start = 0;  ///< λ at the first point [the parameter's unit]
-  double end = 0;    ///< λ where the branch stops [its unit]; ≠ start
-  int steps = 20;    ///< the largest arclength step is 1/steps of the range [-], ≥ 1
+  double start = 0;               ///< λ at the first point [the parameter's unit]
+  double end = 0;                 ///< λ where the branch stops [its unit]; ≠ start
+  int steps = 20;                 ///< the largest arclength step is 1/steps of the range [-], ≥ 1
   std::optional<int> max_points;  ///< the most points [-], ≥ 2; none: StageBranchOptions'
   PeriodicMethod method = PeriodicMethod::kShooting;  ///< the periodic back end
   std::optional<int> harmonics;  ///< harmonic balance's H [-], ≥ 1; none: StageBranchOptions'
@@ -65,10 +65,10 @@ class BranchSink {
 /// serialisation (VisitRecord).
 struct BranchRecord {
   std::string scene;
-  RunTolerances tolerances;         ///< the back end as the request names it
-  std::array<double, 2> range{};    ///< {start, end} [the parameter's unit]
-  double max_step = 0;              ///< the largest arclength step (scaled, docs/periodic.md §1) [-]
-  StageBranchRecord branch;         ///< the points, bifurcations, status and counts
+  RunTolerances tolerances;       ///< the back end as the request names it
+  std::array<double, 2> range{};  ///< {start, end} [the parameter's unit]
+  double max_step = 0;            ///< the largest arclength step (scaled, docs/periodic.md §1) [-]
+  StageBranchRecord branch;       ///< the points, bifurcations, status and counts
   std::vector<std::string> warnings;  ///< the scene's
   bool ok() const { return branch.ok(); }
 };
@@ -79,6 +79,12 @@ struct BranchRecord {
 /// @throws std::invalid_argument for a request that breaks a rule (named as `names` say);
 ///         std::runtime_error if the quasi-static start fails; whatever `sink` throws.
 BranchRecord RunBranch(const BranchRequest& request, BranchSink& sink);
+
+/// Why a branch of this request's stage would not pay (BranchPeriodRefusal: a period of more mesh
+/// cycles than StageBranchOptions::max_period_mesh_cycles, docs/periodic.md §4), empty when it
+/// would. A front end asked for periodic orbits over a speed range falls back on the
+/// time-integration sweep of that range with this as its warning.
+std::string BranchPeriodTooLong(const BranchRequest& request);
 
 /// The record's fields, each once with its name and unit (its serialisation's keys); a point's
 /// and a bifurcation's parameter value under the parameter's own key.

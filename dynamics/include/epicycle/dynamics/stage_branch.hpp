@@ -65,28 +65,28 @@ struct StageBranchOptions {
 };
 
 struct StageBranchPoint {
-  int index = 0;                   ///< in arclength order [-]
-  double parameter = 0;            ///< λ [the record's unit]
-  double sun_speed_rpm = 0;        ///< [rpm]
-  double period = 0;               ///< T [s]
-  double k_gamma = 0;              ///< over the period [-]
-  double te_amplitude = 0;         ///< [rad]
-  double orbit_radius = 0;         ///< [m]
-  double spectral_radius = 0;      ///< max |μ| [-]
+  int index = 0;               ///< in arclength order [-]
+  double parameter = 0;        ///< λ [the record's unit]
+  double sun_speed_rpm = 0;    ///< [rpm]
+  double period = 0;           ///< T [s]
+  double k_gamma = 0;          ///< over the period [-]
+  double te_amplitude = 0;     ///< [rad]
+  double orbit_radius = 0;     ///< [m]
+  double spectral_radius = 0;  ///< max |μ| [-]
   Stability stability = Stability::kStable;
-  int real_above_one = 0;          ///< real μ > 1 [-]
-  int real_below_minus_one = 0;    ///< real μ < −1 [-]
-  int complex_outside = 0;         ///< complex μ with |μ| > 1 [-]
-  double arclength = 0;            ///< scaled [-]
-  int corrector_iterations = 0;    ///< [-]
-  Eigen::VectorXd state;           ///< y0 = (d, ḋ) on the orbit at t = 0 [m, rad, m/s, rad/s]
+  int real_above_one = 0;        ///< real μ > 1 [-]
+  int real_below_minus_one = 0;  ///< real μ < −1 [-]
+  int complex_outside = 0;       ///< complex μ with |μ| > 1 [-]
+  double arclength = 0;          ///< scaled [-]
+  int corrector_iterations = 0;  ///< [-]
+  Eigen::VectorXd state;         ///< y0 = (d, ḋ) on the orbit at t = 0 [m, rad, m/s, rad/s]
 };
 
 struct StageBranchBifurcation {
   BifurcationKind kind = BifurcationKind::kFold;
-  double parameter = 0;               ///< λ [the record's unit]
-  int after_point = 0;                ///< the branch point it lies just before [-]
-  std::complex<double> multiplier;    ///< as Bifurcation::multiplier [-]
+  double parameter = 0;             ///< λ [the record's unit]
+  int after_point = 0;              ///< the branch point it lies just before [-]
+  std::complex<double> multiplier;  ///< as Bifurcation::multiplier [-]
 };
 
 struct StageBranchRecord {
@@ -116,8 +116,12 @@ struct StageBranchRecord {
   bool ok() const { return status == ContinuationStatus::kCompleted && figures_message.empty(); }
 };
 
-/// @throws std::invalid_argument naming the period, why it is that long (StagePeriod::reasons)
-///         and the rule, when period.mesh_cycles > max_period_mesh_cycles.
+/// Why shooting does not pay for a stage of this period (docs/periodic.md §4): the period, why it
+/// is that long (StagePeriod::reasons) and the rule, when period.mesh_cycles >
+/// max_period_mesh_cycles; empty otherwise.
+std::string BranchPeriodRefusal(const StagePeriod& period, long max_period_mesh_cycles);
+
+/// @throws std::invalid_argument with BranchPeriodRefusal's message when it is not empty.
 void CheckBranchPeriod(const StagePeriod& period, long max_period_mesh_cycles);
 
 /// The branch from the quasi-static start at λ = start (shooting, then the continuation to end).
