@@ -36,6 +36,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "backend.hpp"
+#include "face_solver.hpp"
 
 namespace epicycle::solvers::internal {
 namespace {
@@ -54,173 +55,20 @@ double ParseOption(const ContactOptions& options, const std::string& key, double
   }
 }
 
-// Factorises and solves the face system above. When the compliance's Kronecker structure leaves
-// groups of slices uncoupled (ScaledProblem::slice_group: uncoupled face-width slices, W = S I),
-// H_AA is block diagonal over the groups: each block is factorised on its own (Σ_b n_b³/3 instead
-// of n_A³/3 multiply-adds; S blocks of the plane problem's size for uncoupled slices) and the
-// Schur complement is the sum of the blocks' G_b H_b⁻¹ G_bᵀ.
-class FaceSolver {
- public:
-  explicit FaceSolver(const ScaledProblem& p) : p_(p), m_(p.num_equalities()) {}
-
-  // Returns false if H_AA is not positive definite.
-  bool Factor(const std::vector<int>& active, const Eigen::VectorXd& x) {
-    if (have_ && !p_.has_local && active == active_) return true;  // reuse
-    active_ = active;
-    const int na = static_cast<int>(active.size());
-    h_ = p_.C(active, active);
-    if (p_.has_local)
-      for (int a = 0; a < na; ++a)
-        if (p_.local[active[a]].enabled)
-          h_(a, a) +=
-              p_.LocalDerivativeAt(active[a], std::max(std::abs(x(active[a])), kDerivativeFloor));
-    have_ = false;
-    if (!FactorH()) return false;
-    if (m_ > 0) {
-      ga_ = p_.G(Eigen::all, active);
-      if (blocks_.empty()) {
-        y_ = h_llt_.matrixL().solve(ga_.transpose());
-        schur_ = y_.transpose() * y_;
-      } else {
-        schur_.setZero(m_, m_);
-        for (std::size_t b = 0; b < blocks_.size(); ++b) {
-          y_ = ga_(Eigen::all, blocks_[b]).transpose();
-          block_llt_[b].matrixL().solveInPlace(y_);
-          schur_.noalias() += y_.transpose() * y_;
-        }
-      }
-      if (p_.has_support) schur_ += p_.S;
-      s_llt_.compute(schur_);
-      // A singular or nearly singular Schur complement would make the Cholesky factor garbage.
-      // Then the eigen-decomposition (m is small) and, for each eigenvalue below 1e-13·max:
-      //  - if its eigenvector v has Gᵀv ≈ 0 (redundant equalities: λ not unique) the component
-      //    is dropped (minimum-norm step; it would change no gap anyway);
-      //  - otherwise (G_A rank deficient because too few contacts of a member are active: the
-      //    member is unsupported) the eigenvalue gets a ridge of 1e-12·max, a large rigid motion
-      //    that closes the member's gaps, so that the next active set carries it.
-      pinv_ = false;
-      if (s_llt_.info() == Eigen::Success) {
-        const auto d = s_llt_.matrixLLT().diagonal();
-        const double ratio = d.minCoeff() / d.maxCoeff();
-        pinv_ = !(ratio * ratio > 1e-14);
-      } else {
-        pinv_ = true;
-      }
-      if (pinv_) {
-        s_eig_.compute(schur_);
-        const Eigen::VectorXd& ev = s_eig_.eigenvalues();
-        const double top = std::max(ev.cwiseAbs().maxCoeff(), 1e-300);
-        const double g_norm = std::max(p_.G.cwiseAbs().maxCoeff(), 1e-300);
-        inv_ev_.resize(m_);
-        for (int k = 0; k < m_; ++k) {
-          if (ev(k) > 1e-13 * top) {
-            inv_ev_(k) = 1.0 / ev(k);
-          } else {
-            const double moves =
-                (p_.G.transpose() * s_eig_.eigenvectors().col(k)).cwiseAbs().maxCoeff();
-            inv_ev_(k) = moves <= 1e-10 * g_norm ? 0.0 : 1.0 / (std::max(ev(k), 0.0) + 1e-12 * top);
-          }
-        }
-      }
-    }
-    have_ = true;
-    return true;
+// u'_A at max(|x_A|, floor) (0 for a contact without a local term), the diagonal of the face
+// system's H_AA; empty without local terms.
+void ActiveDerivatives(const ScaledProblem& p, const std::vector<int>& active,
+                       const Eigen::VectorXd& x, Eigen::VectorXd* du) {
+  if (!p.has_local) {
+    du->resize(0);
+    return;
   }
-
-  void Solve(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd* dxa,
-             Eigen::VectorXd* dl) const {
-    SolveOnce(r1, r2, dxa, dl);
-    if (m_ == 0 || active_.empty()) return;
-    // One step of iterative refinement on the full face system.
-    const Eigen::VectorXd e1 = r1 - (h_ * *dxa - ga_.transpose() * *dl);
-    Eigen::VectorXd e2 = r2 - ga_ * *dxa;
-    if (p_.has_support) e2 -= p_.S * *dl;
-    Eigen::VectorXd cx, cl;
-    SolveOnce(e1, e2, &cx, &cl);
-    *dxa += cx;
-    *dl += cl;
-  }
-
-  bool ridged() const { return pinv_; }
-  void Invalidate() { have_ = false; }
-
- private:
-  void SolveOnce(const Eigen::VectorXd& r1, const Eigen::VectorXd& r2, Eigen::VectorXd* dxa,
-                 Eigen::VectorXd* dl) const {
-    if (m_ == 0) {
-      *dxa = HSolve(r1);
-      dl->resize(0);
-      return;
-    }
-    if (active_.empty()) {
-      *dxa = Eigen::VectorXd();
-      if (p_.has_support) {
-        *dl = Eigen::LDLT<Eigen::MatrixXd>(p_.S).solve(r2);
-        if (!dl->allFinite()) dl->setZero(m_);
-      } else {
-        dl->setZero(m_);
-      }
-      return;
-    }
-    const Eigen::VectorXd h_r1 = HSolve(r1);
-    const Eigen::VectorXd rs = r2 - ga_ * h_r1;
-    if (pinv_)
-      *dl = s_eig_.eigenvectors() * inv_ev_.cwiseProduct(s_eig_.eigenvectors().transpose() * rs);
-    else
-      *dl = s_llt_.solve(rs);
-    *dxa = HSolve(r1 + ga_.transpose() * *dl);
-  }
-
-  // Factorises h_: dense, or block by block over the slice groups of the active contacts.
-  bool FactorH() {
-    blocks_.clear();
-    if (p_.slice_groups > 1) {
-      const int na = static_cast<int>(active_.size());
-      std::vector<std::vector<int>> by_group(static_cast<std::size_t>(p_.slice_groups));
-      for (int a = 0; a < na; ++a)
-        by_group[static_cast<std::size_t>(p_.slice_group[active_[a] % p_.slices])].push_back(a);
-      for (auto& g : by_group)
-        if (!g.empty()) blocks_.push_back(std::move(g));
-    }
-    if (blocks_.size() <= 1) {  // one group: the dense factorisation
-      blocks_.clear();
-      h_llt_.compute(h_);
-      return h_llt_.info() == Eigen::Success;
-    }
-    block_llt_.resize(blocks_.size());
-    for (std::size_t b = 0; b < blocks_.size(); ++b) {
-      hb_ = h_(blocks_[b], blocks_[b]);
-      block_llt_[b].compute(hb_);
-      if (block_llt_[b].info() != Eigen::Success) return false;
-    }
-    return true;
-  }
-
-  // H_AA⁻¹ r.
-  Eigen::VectorXd HSolve(const Eigen::VectorXd& r) const {
-    if (blocks_.empty()) return h_llt_.solve(r);
-    Eigen::VectorXd out(r.size());
-    Eigen::VectorXd rb;
-    for (std::size_t b = 0; b < blocks_.size(); ++b) {
-      rb = r(blocks_[b]);
-      block_llt_[b].solveInPlace(rb);
-      out(blocks_[b]) = rb;
-    }
-    return out;
-  }
-
-  const ScaledProblem& p_;
-  int m_;
-  std::vector<int> active_;
-  bool have_ = false, pinv_ = false;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> s_eig_;
-  Eigen::VectorXd inv_ev_;
-  Eigen::MatrixXd h_, ga_, y_, schur_;
-  Eigen::LLT<Eigen::MatrixXd> h_llt_, s_llt_;
-  std::vector<std::vector<int>> blocks_;  // positions in active_ of each slice group; empty: dense
-  std::vector<Eigen::LLT<Eigen::MatrixXd>> block_llt_;
-  Eigen::MatrixXd hb_;
-};
+  du->setZero(static_cast<Eigen::Index>(active.size()));
+  for (std::size_t a = 0; a < active.size(); ++a)
+    if (p.local[active[a]].enabled)
+      (*du)(static_cast<Eigen::Index>(a)) =
+          p.LocalDerivativeAt(active[a], std::max(std::abs(x(active[a])), kDerivativeFloor));
+}
 
 class ActiveSetNewton final : public BackendImpl {
  public:
@@ -275,6 +123,8 @@ class ActiveSetNewton final : public BackendImpl {
       const Eigen::MatrixXd s_inv_gp = spp_llt.solve(gp);
       q.C = p.C + gp.transpose() * s_inv_gp;
       q.slice_groups = 1;  // the folded supports couple every contact: no block structure
+      q.kron_source.resize(0, 0);  // nor a Kronecker one
+      q.kron_kernel.resize(0, 0);
       const Eigen::VectorXd wp = p.W(supported);
       q.delta0 = p.delta0 + s_inv_gp.transpose() * wp;
       q.G = p.G(hard, Eigen::all);
@@ -362,6 +212,7 @@ class ActiveSetNewton final : public BackendImpl {
     double psi = Merit(x, g, e, &res);
     std::deque<double> history{psi};
     FaceSolver face(p);
+    Eigen::VectorXd du;
     std::vector<int> active, inactive;
     int rescues = 0;
     // The best point seen: returned at a round-off floor or when a limit stops the iteration.
@@ -420,7 +271,8 @@ class ActiveSetNewton final : public BackendImpl {
       }
       if (m > 0)
         for (int j : inactive) r2 -= p.G.col(j) * dx(j);
-      if (!face.Factor(active, x)) {
+      ActiveDerivatives(p, active, x, &du);
+      if (!face.Factor(active, du)) {
         out.failed = true;
         out.message = "Cholesky of C_AA + diag(u') failed";
         break;
@@ -525,6 +377,7 @@ class ActiveSetNewton final : public BackendImpl {
     std::vector<bool> free(n, false);
     for (int j = 0; j < n; ++j) free[j] = x(j) > 0.0;
     FaceSolver face(p);
+    Eigen::VectorXd du;
     const int budget = std::max(options_->max_iterations, 10 * n);
     Eigen::VectorXd grad, g, dxa, lnew, e;
     std::vector<int> fset;
@@ -543,7 +396,8 @@ class ActiveSetNewton final : public BackendImpl {
       const int nf = static_cast<int>(fset.size());
       bool face_done = true;
       if (nf > 0) {
-        if (!face.Factor(fset, x)) {
+        ActiveDerivatives(p, fset, x, &du);
+        if (!face.Factor(fset, du)) {
           out.failed = true;
           out.message = "Cholesky of C_FF + diag(u') failed";
           break;

@@ -38,6 +38,10 @@ struct ScaledProblem {
   int slices = 1;
   int slice_groups = 1;
   std::vector<int> slice_group;
+  /// With one Kronecker term whose kernel couples every slice (slice_groups = 1, S > 1): its
+  /// factors, C ≈ kron_source ⊗ kron_kernel (the source scaled as C, n×n; the kernel S×S, [-]);
+  /// both empty otherwise. The dense C stays the definition (it matches to 1e-10·max|C|).
+  Eigen::MatrixXd kron_source, kron_kernel;
 
   int num_contacts() const { return static_cast<int>(C.rows()); }
   int num_equalities() const { return static_cast<int>(G.rows()); }

@@ -270,6 +270,14 @@ void MakeScaledProblem(const ContactProblem& problem, ScaledProblem* out) {
     }
   }
 
+  if (terms.size() == 1 && sp.slices > 1 && sp.slice_groups == 1) {
+    sp.kron_source = terms[0].source * (f_scale / l_scale);
+    sp.kron_kernel = terms[0].kernel;
+  } else {
+    sp.kron_source.resize(0, 0);
+    sp.kron_kernel.resize(0, 0);
+  }
+
   sp.has_local = problem.has_local();
   sp.local.assign(n, {});
   if (sp.has_local) {
