@@ -9,8 +9,10 @@
 // same position at S = 1, 2, 5, 10, 20, 40 (uncoupled slices and a Pasternak coupling of
 // λ = 5 mm), solved (validation included) by the active-set Newton on the dense matrix (the
 // problem without its Kronecker terms), by the Newton with them (the structured path), by Ipopt
-// and by NLopt's SLSQP and AUGLAG, each judged by the driver's one residual; the table after the
-// run gives the crossover and the Ipopt/Newton ratio.
+// and by NLopt's SLSQP and AUGLAG, each judged by the driver's one residual, all from a cold
+// start; the two Newton paths and Ipopt also warm, from the answer at the previous position of a
+// sweep (0.29 mesh cycles). The table after the run gives the crossover and the Ipopt/Newton
+// ratio, cold and warm.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -69,6 +71,9 @@ struct SliceCase {
   int slices = 1;
   solvers::ContactProblemData data;  // with its Kronecker terms
   solvers::ContactSolution reference;
+  // The answer at the previous position of a sweep (0.29 mesh cycles, the driver's Newton), the
+  // warm start of the "-warm" paths; empty if that position's problem has another size.
+  solvers::ContactSolution previous;
 };
 
 constexpr double kSolveTolerance = 1e-9;
@@ -89,6 +94,11 @@ SliceCase BuildSliceCase(int slices, transmission::FaceCoupling coupling) {
   c.name = std::string(coupling == transmission::FaceCoupling::kNone ? "none" : "pasternak") +
            "/S" + std::to_string(slices);
   c.data = r.problem.data;
+  const transmission::PositionResult before =
+      transmission::SolvePosition(model, 0.29 * stage.mesh_cycle(), scene.loads, {});
+  if (before.problem.data.compliance.rows() == c.data.compliance.rows() &&
+      before.problem.data.equality_matrix.rows() == c.data.equality_matrix.rows())
+    c.previous = before.solution;
   // The reference: the Newton at 1e-12 on the dense matrix (the structure plays no part).
   solvers::ContactProblemData dense = c.data;
   dense.compliance_terms.clear();
@@ -99,8 +109,11 @@ SliceCase BuildSliceCase(int slices, transmission::FaceCoupling coupling) {
   return c;
 }
 
-// path: "newton-dense", "newton-structured", or a back end's name (dense matrix).
+// path: "newton-dense", "newton-structured", or a back end's name (dense matrix); a "-warm"
+// suffix starts every solve from the previous position's answer (a sweep's warm start).
 void BM_SliceBackend(benchmark::State& state, const SliceCase* c, std::string path) {
+  const bool warm = path.size() > 5 && path.compare(path.size() - 5, 5, "-warm") == 0;
+  if (warm) path.resize(path.size() - 5);
   const bool structured = path == "newton-structured";
   const solvers::Backend backend = structured || path == "newton-dense"
                                        ? solvers::Backend::kActiveSetNewton
@@ -110,12 +123,13 @@ void BM_SliceBackend(benchmark::State& state, const SliceCase* c, std::string pa
   solvers::ContactOptions o;
   o.tolerance = kSolveTolerance;
   o.time_limit = 120;
+  o.warm_start = warm;
   auto solver = solvers::MakeContactSolver(backend);
   solvers::ContactSolution solution;
   solvers::ContactReport report;
   for (auto _ : state) {
     const solvers::ContactProblem problem(data);  // validation is part of the cost
-    solution = {};
+    solution = warm ? c->previous : solvers::ContactSolution{};
     report = solver->Solve(problem, o, &solution);
     benchmark::DoNotOptimize(solution.force.data());
   }
@@ -141,6 +155,11 @@ int main(int argc, char** argv) {
   for (solvers::Backend b : solvers::AvailableBackends())
     if (b != solvers::Backend::kActiveSetNewton && b != solvers::Backend::kNloptLbfgs)
       paths.push_back(solvers::BackendName(b));
+  // Warm starts: the two Newton paths and Ipopt (its warm_start_init_point is its own option;
+  // the start point alone is what every back end is given).
+  for (const char* p : {"newton-dense-warm", "newton-structured-warm"}) paths.push_back(p);
+  if (solvers::MakeContactSolver(solvers::Backend::kIpopt)->available())
+    paths.push_back("ipopt-warm");
   // The cases are built (a position solved at each size) only when a back-end benchmark is
   // asked for: BM_FaceWidthPosition alone runs without them.
   bool want_backends = true;
@@ -156,7 +175,8 @@ int main(int argc, char** argv) {
         if (coupling == transmission::FaceCoupling::kPasternak && s == 1) continue;
         cases.push_back(std::make_unique<SliceCase>(BuildSliceCase(s, coupling)));
         for (const std::string& path : paths)
-          benchmark::RegisterBenchmark(("backends/" + cases.back()->name + "/" + path).c_str(),
+          if (path.find("-warm") == std::string::npos || cases.back()->previous.force.size() > 0)
+            benchmark::RegisterBenchmark(("backends/" + cases.back()->name + "/" + path).c_str(),
                                        BM_SliceBackend, cases.back().get(), path)
               ->Unit(benchmark::kMicrosecond);
       }
@@ -166,7 +186,7 @@ int main(int argc, char** argv) {
     std::printf("\nCPU time per solve [us] (validation included) and its ratios\n");
     std::printf("%-16s", "case");
     for (const std::string& p : paths) std::printf(" %18s", p.c_str());
-    std::printf(" %14s %14s\n", "dense/struct", "ipopt/newton");
+    std::printf(" %14s %14s %14s\n", "dense/struct", "ipopt/newton", "warm ratio");
     for (const auto& c : cases) {
       std::printf("%-16s", c->name.c_str());
       for (const std::string& p : paths)
@@ -174,8 +194,12 @@ int main(int argc, char** argv) {
       const double structured = reporter.seconds("backends/" + c->name + "/newton-structured");
       const double dense = reporter.seconds("backends/" + c->name + "/newton-dense");
       const double newton = std::min(structured, dense);
-      std::printf(" %14.2f %14.1f\n", dense / structured,
-                  reporter.seconds("backends/" + c->name + "/ipopt") / newton);
+      const double newton_warm =
+          std::min(reporter.seconds("backends/" + c->name + "/newton-structured-warm"),
+                   reporter.seconds("backends/" + c->name + "/newton-dense-warm"));
+      std::printf(" %14.2f %14.1f %14.1f\n", dense / structured,
+                  reporter.seconds("backends/" + c->name + "/ipopt") / newton,
+                  reporter.seconds("backends/" + c->name + "/ipopt-warm") / newton_warm);
       for (const std::string& p : paths)
         if (!reporter.converged("backends/" + c->name + "/" + p))
           std::printf("  note: %s on %s did not reach the %g residual\n", p.c_str(),
