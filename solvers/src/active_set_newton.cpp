@@ -22,7 +22,8 @@
 // contacts entering the active set from zero force (the direct path, direct_newton.hpp, uses a
 // secant there).
 // Without local terms H_AA does not depend on x and the factorisation is reused while the active
-// set does not change.
+// set does not change. The face system is face_solver.hpp's: block by block over uncoupled slice
+// groups, or in the kernel's eigenbasis for a Kronecker compliance C_n ⊗ W at the cold start.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
