@@ -12,7 +12,6 @@ bool FaceSolver::Factor(const std::vector<int>& active, const Eigen::VectorXd& d
   active_ = active;
   h_ = p_.C(active, active);
   if (du.size() > 0) h_.diagonal() += du;
-
   have_ = false;
   ++factorisations_;
   kron_ = FactorKronecker(du);
@@ -184,6 +183,9 @@ bool FaceSolver::FactorKronecker(const Eigen::VectorXd& du) {
     kq_ = eig.eigenvectors();
     klambda_ = eig.eigenvalues();
   }
+  // λ_s C_n,JJ + D_J is well conditioned when D_J > 0 (local terms) or the kernel is definite;
+  // a near-singular block (λ_s ≈ 0 on a contact without a local term) is left to the dense path.
+  if (!(d.minCoeff() > 0.0) && !(klambda_.minCoeff() > 1e-10 * klambda_.maxCoeff())) return false;
   const Eigen::MatrixXd cj = p_.kron_source(contacts, contacts);
   kron_llt_.resize(static_cast<std::size_t>(slices));
   Eigen::MatrixXd b;
