@@ -15,6 +15,7 @@
 #include "epicycle/studies/study.hpp"
 #include "epicycle/studies/study_run.hpp"
 #include "epicycle/studies/study_summary.hpp"
+#include "integration.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 #include "failed_parts.hpp"

@@ -30,6 +30,7 @@ std::string Unit(const std::string& key) {
       {"_Hz_per_sun_rpm", "Hz/rpm"},
       {"_rad_per_s", "rad/s"},
       {"_Nm", "N·m"},
+      {"_N", "N"},
       {"_urad", "µrad"},
       {"_um", "µm"},
       {"_mm", "mm"},
@@ -121,8 +122,8 @@ class KeyTable final : public RecordVisitor {
 };
 
 // The axial loads of a helical stage with one planet (its keys listed once).
-transmission::HelicalLoads OnePlanetLoads() {
-  transmission::HelicalLoads loads;
+epicycle::transmission::HelicalLoads OnePlanetLoads() {
+  epicycle::transmission::HelicalLoads loads;
   loads.planets.resize(1);
   return loads;
 }
