@@ -222,7 +222,8 @@ void HelicalLoadRange::Finish() {
 
 namespace {
 
-// The `helical` object: the fields of `loads` under `name(field)`, `value(loads, field)`.
+// The `helical` object of `planets`' stage: for every field f of the members and then of each
+// planet, value(name(f), f, planet) writes it (planet −1 for the members' fields).
 template <typename Name, typename Value>
 void VisitHelicalObject(RecordVisitor& visit, const std::vector<PlanetHelicalLoad>& planets,
                         Name&& name, Value&& value) {
