@@ -74,7 +74,8 @@ class ConsoleSweepSink final : public dynamics::SpeedSweepSink {
     Print(report::SpeedSweepPlanText(start));
     std::fflush(stdout);  // the plan is on screen (or in a log) before the runs start
     std::filesystem::create_directories(a_.out);
-    csv_.emplace(path() + ".csv", provenance_);
+    const dynamics::StageDynamics& rig = *start.rig;
+    csv_.emplace(path() + ".csv", provenance_, rig.stage_model.helical() ? rig.stage.planets() : 0);
     count_ = static_cast<int>(start.options->sun_speeds_rpm.size());
     t0_ = std::chrono::steady_clock::now();
   }

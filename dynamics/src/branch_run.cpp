@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "epicycle/geometry/plane.hpp"
+#include "epicycle/transmission/helical_scene.hpp"
 
 namespace epicycle::dynamics {
 
@@ -57,9 +58,13 @@ std::string BranchPeriodTooLong(const BranchRequest& request) {
 
 BranchRecord RunBranch(const BranchRequest& request, BranchSink& sink) {
   transmission::Scene scene = ResolvedScene(request.run);
-  transmission::RequireSpur(scene, "`epicycle dynamic --periodic` (the periodic branch)");
+  // A helical stage in slices (docs/model.md §10): the planar state, the axial and tilting
+  // motions held, so the orbit is the spur stage's problem with its sliced meshes.
+  transmission::RequireHelicalSlices(scene, "`epicycle dynamic --periodic` (the periodic branch)");
   const StageBranchOptions o = Options(request, scene, ResolvedOptions(request.run));
-  StageDynamics rig(std::move(scene), request.run.tables);
+  transmission::FeComplianceOptions tables = request.run.tables;
+  tables.helical_slices = true;
+  StageDynamics rig(std::move(scene), tables);
   rig.model.SetStartAngle(geometry::Rad(request.run.start_deg));
   sink.Start({&rig, &o});
   BranchRecord record;
@@ -112,6 +117,7 @@ void VisitRecord(const BranchRecord& r, transmission::RecordVisitor& visit) {
     visit.Number("K_gamma", p.k_gamma);
     visit.Number("te_amplitude_urad", p.te_amplitude * 1e6);
     visit.Number("sun_orbit_radius_um", p.orbit_radius * 1e6);
+    transmission::VisitHelicalLoads(visit, p.helical);  // over the period (a helical stage)
   }
   visit.EndList();
   visit.Integer("integrations", b.integrations);

@@ -962,11 +962,14 @@ std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
   return k;
 }
 
+std::array<double, 2> TangentMeshStiffness(const StageDynamics& rig) {
+  return rig.stage_model.helical() ? rig.sliced_stiffness.tangent
+                                   : MeanTangentMeshStiffness(rig.scene, rig.stage, rig.fe);
+}
+
 OperatingPointModes StageModes(const StageDynamics& rig) {
   OperatingPointModes out;
-  out.mesh_stiffness = rig.stage_model.helical()
-                           ? rig.sliced_stiffness.tangent
-                           : MeanTangentMeshStiffness(rig.scene, rig.stage, rig.fe);
+  out.mesh_stiffness = TangentMeshStiffness(rig);
   DynamicModel model = rig.model;
   model.SetMeshStiffness(out.mesh_stiffness[0], out.mesh_stiffness[1]);
   Eigen::MatrixXd m, k;

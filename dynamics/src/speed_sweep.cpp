@@ -365,7 +365,9 @@ SpeedResult SummariseSpeed(const SpeedSweepPlan& plan, const std::vector<Dynamic
     for (int j = 0; j < e.terms.size(); ++j)
       mesh[MeshIndex(e.terms.contacts[j])] += e.total_force(j);
     for (std::size_t q = 0; q < mesh.size(); ++q) peak[q] = std::max(peak[q], mesh[q]);
+    r.helical.Add(s.helical);
   }
+  r.helical.Finish();
   r.te_amplitude = 0.5 * (te_max - te_min);
   for (std::size_t q = 0; q < peak.size(); ++q) {
     if (!(rest[q] > 0)) continue;

@@ -9,6 +9,7 @@
 #include "epicycle/dynamics/modes.hpp"
 #include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/io/number_format.hpp"
+#include "epicycle/transmission/helical_scene.hpp"
 #include "epicycle/transmission/run_range.hpp"
 
 namespace epicycle::dynamics {
@@ -45,6 +46,7 @@ void VisitSpeed(const SpeedResult& r, const SpeedSweepPlan& plan,
     visit.Number(kLoadSharingPartNames[k], r.deviation_parts[static_cast<std::size_t>(k)]);
   visit.EndObject();
   visit.Number("largest_residual", r.largest_residual);
+  transmission::VisitHelicalLoads(visit, r.helical);  // over the window (a helical stage)
 }
 
 }  // namespace
@@ -59,9 +61,12 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   SimulationOptions simulation = ResolvedOptions(run);
   simulation.keep_samples = true;  // each speed keeps its window
   const transmission::Scene scene = ResolvedScene(run);
-  // The sweep's modes and windows take the pair driver's mesh stiffness: planar stages only.
-  transmission::RequireSpur(scene, "`epicycle dynamic --speed-sweep` (the speed sweep)");
-  const StageDynamics rig(scene, run.tables);
+  // A helical stage in slices, each at its own section's poses, its mesh stiffnesses the stage's
+  // own sliced ones (docs/model.md §10).
+  transmission::RequireHelicalSlices(scene, "`epicycle dynamic --speed-sweep`");
+  transmission::FeComplianceOptions tables = run.tables;
+  tables.helical_slices = true;
+  const StageDynamics rig(scene, tables);
   const DynamicModel& base = rig.model;
   SpeedSweepOptions o;
   o.sun_speeds_rpm = request.sun_speeds_rpm;
@@ -81,7 +86,7 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   o.simulation = simulation;
   // The modes from the tangent mesh stiffness (speed_sweep.hpp: the resonances sit at its
   // coincidences, not at the secant's).
-  o.modal_mesh_stiffness = MeanTangentMeshStiffness(rig.scene, rig.stage, rig.fe);
+  o.modal_mesh_stiffness = TangentMeshStiffness(rig);
 
   SpeedSweepRecord record;
   record.scene = rig.scene.name;

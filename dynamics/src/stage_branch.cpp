@@ -50,15 +50,18 @@ bool PeriodFigures(const DynamicModel& m, const SimulationOptions& sim, const Ei
   bool first = true;
   p->k_gamma = 0;
   p->orbit_radius = 0;
+  p->helical = {};
   const SimulationResult r =
       Simulate(m, s, y.head(n), y.tail(n), times, [&](const DynamicSample& d) {
         p->k_gamma = std::max(p->k_gamma, d.k_gamma);
         p->orbit_radius = std::max(p->orbit_radius, d.sun_centre.norm());
+        p->helical.Add(d.helical);
         te_lo = first ? d.transmission_error : std::min(te_lo, d.transmission_error);
         te_hi = first ? d.transmission_error : std::max(te_hi, d.transmission_error);
         first = false;
       });
   p->te_amplitude = (te_hi - te_lo) / 2;
+  p->helical.Finish();
   if (!r.completed()) *message = "the period's figures: " + r.message;
   return r.completed();
 }
@@ -80,6 +83,7 @@ bool SeriesFigures(const DynamicModel& m, const SimulationOptions& sim,
   Evaluation at, warm;
   p->k_gamma = 0;
   p->orbit_radius = 0;
+  p->helical = {};
   double te_lo = INFINITY, te_hi = -INFINITY;
   for (int k = 0; k < samples; ++k) {
     const Eigen::VectorXd d = y.row(k).head(n).transpose(), v = y.row(k).tail(n).transpose();
@@ -99,9 +103,13 @@ bool SeriesFigures(const DynamicModel& m, const SimulationOptions& sim,
     te_lo = std::min(te_lo, te);
     te_hi = std::max(te_hi, te);
     if (sx >= 0) p->orbit_radius = std::max(p->orbit_radius, std::hypot(d(sx), d(sx + 1)));
+    if (m.stage_model().helical())
+      p->helical.Add(transmission::HelicalLoadsOf(m.stage_model().stage(), at.poses,
+                                                  at.terms.contacts, at.total_force));
     std::swap(at, warm);
   }
   p->te_amplitude = (te_hi - te_lo) / 2;
+  p->helical.Finish();
   return true;
 }
 

@@ -15,6 +15,7 @@
 #include "epicycle/studies/study.hpp"
 #include "epicycle/studies/study_run.hpp"
 #include "epicycle/studies/study_summary.hpp"
+#include "integration.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 #include "failed_parts.hpp"
@@ -88,7 +89,8 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   const auto count = static_cast<py::ssize_t>(run.rows.size());
   const auto width = static_cast<py::ssize_t>(columns.size());
   std::vector<long> id;
-  std::vector<double> values, kg, kgm, lmin, lmax, te, orbit;
+  std::vector<double> values, kg, kgm, lmin, lmax, te, orbit, helical;
+  const std::vector<std::string> helical_columns = study.HelicalColumns();
   std::vector<int> positions, converged;
   std::vector<char> ok;
   py::list message, lines, status;
@@ -106,6 +108,8 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
     lmax.push_back(r.lsr_max);
     te.push_back(r.te_peak_to_peak);
     orbit.push_back(r.sun_orbit);
+    for (std::size_t c = 0; c < helical_columns.size(); ++c)
+      helical.push_back(r.ok() && c < r.helical.size() ? r.helical[c] : kNaN);
     lines.append(r.Format());
   }
   const studies::StudySummary& sum = outcome.record->summary;
@@ -153,6 +157,11 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
   f["lsr_max"] = Array(std::move(lmax));
   f["te_peak_to_peak_urad"] = Array(std::move(te));
   f["sun_orbit_um"] = Array(std::move(orbit));
+  if (!helical_columns.empty()) {  // a helical stage's axial loads (StudySpec::HelicalColumns)
+    f["helical_columns"] = helical_columns;
+    f["helical"] = Array2(std::move(helical), count,
+                          static_cast<py::ssize_t>(helical_columns.size()));
+  }
   f["header"] = studies::RowHeader(study);
   f["rows_csv"] = lines;
   f["resumed"] = run.resumed;
@@ -361,7 +370,10 @@ Returns
 Result
     Per case (sorted by case_id): case_id, values (cases, columns) [the columns' units: _um µm,
     _deg deg, _Nm N·m], ok, message, positions, converged, k_gamma [-], k_gamma_mean [-], lsr_min,
-    lsr_max [-], te_peak_to_peak_urad [µrad], sun_orbit_um [µm]; columns, header and rows_csv
+    lsr_max [-], te_peak_to_peak_urad [µrad], sun_orbit_um [µm]; a helical stage's
+    helical_columns (the rows file's axial-load columns, their units in their names: F_a_<mesh>_N
+    [N], M_tilt_*_Nm [N·m], with pins tilt_*_urad [µrad]) and helical (cases, helical_columns),
+    the case's means over its positions (NaN where failed); columns, header and rows_csv
     (each row as the rows file has it); summary (cases, failed, k_gamma, k_gamma_mean,
     te_peak_to_peak_urad, sun_orbit_um: count, mean, percentiles with confidence intervals;
     spearman_k_gamma per column; k_gamma_exceedance, per k_gamma_limit of the study its

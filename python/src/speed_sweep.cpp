@@ -1,4 +1,5 @@
 // The speed-sweep driver of dynamics/.
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <stdexcept>
@@ -39,6 +40,45 @@ class SweepProgress final : public dynamics::SpeedSweepSink {
   const Progress& report_;
   long done_ = 0, total_ = 0;
 };
+
+// Per speed the window's axial loads (SpeedResult::helical): <name>_mean_<unit> and
+// <name>_max_abs_<unit>, (S,) for the members and (S, n) for the planets' fields (a single
+// planet's too: (S,)).
+py::object HelicalWindows(const std::vector<dynamics::SpeedResult>& speeds) {
+  std::size_t n = 0;
+  for (const dynamics::SpeedResult& x : speeds) n = std::max(n, x.helical.mean.planets.size());
+  py::dict h;
+  const auto rows = static_cast<py::ssize_t>(speeds.size());
+  auto put = [&](const std::string& name, const char* unit, const auto& value) {
+    std::vector<double> mean, max_abs;
+    for (const dynamics::SpeedResult& x : speeds) value(x, &mean, &max_abs);
+    const auto cols = static_cast<py::ssize_t>(mean.size()) / std::max<py::ssize_t>(rows, 1);
+    if (cols == 1) {
+      h[(name + "_mean_" + unit).c_str()] = Array(std::move(mean));
+      h[(name + "_max_abs_" + unit).c_str()] = Array(std::move(max_abs));
+    } else {
+      h[(name + "_mean_" + unit).c_str()] = Array2(std::move(mean), rows, cols);
+      h[(name + "_max_abs_" + unit).c_str()] = Array2(std::move(max_abs), rows, cols);
+    }
+  };
+  for (const auto& f : transmission::kHelicalMemberFields)
+    put(f.name, f.unit, [&](const dynamics::SpeedResult& x, std::vector<double>* mean,
+                                 std::vector<double>* max_abs) {
+      const bool ok = x.ok() && x.helical.count > 0;
+      mean->push_back(ok ? x.helical.mean.*f.value : kNaN);
+      max_abs->push_back(ok ? x.helical.max_abs.*f.value : kNaN);
+    });
+  for (const auto& f : transmission::kPlanetHelicalFields)
+    put(f.name, f.unit, [&](const dynamics::SpeedResult& x, std::vector<double>* mean,
+                                 std::vector<double>* max_abs) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const bool ok = x.ok() && i < x.helical.mean.planets.size();
+        mean->push_back(ok ? x.helical.mean.planets[i].*f.value : kNaN);
+        max_abs->push_back(ok ? x.helical.max_abs.planets[i].*f.value : kNaN);
+      }
+    });
+  return Result(h);
+}
 
 py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_rpm,
                       const std::string& range, double window_cycles, int outputs_per_cycle,
@@ -179,6 +219,10 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
     for (double a : plan.window_angles) d.push_back(geometry::Deg(a));
     return Array(std::move(d));
   }();
+  // A helical stage: each speed's axial loads over its window (NaN where failed).
+  if (std::any_of(r.speeds.begin(), r.speeds.end(),
+                  [](const dynamics::SpeedResult& x) { return x.helical.count > 0; }))
+    f["helical"] = HelicalWindows(r.speeds);
   // The record as the program's summary JSON has it (its provenance is the program's).
   f["record"] = JsonToPython(report::RecordJson(r));
   py::object result = Result(f);
@@ -257,7 +301,12 @@ Result
     decay_rate_per_s [1/s], families), coincidences (sun_speed_rpm [rpm], frequency_Hz [Hz], mode,
     harmonic, phasing_excited), meshes, mesh_hz_per_sun_rpm [Hz/rpm], skip_time_s [s], the
     quasi-static reference qs_k_gamma [-], qs_te_amplitude_urad [µrad], qs_peak_mesh_force_N [N]
-    per mesh, window_carrier_deg [deg]; record: the sweep's record, the keys and values of
+    per mesh, window_carrier_deg [deg]; a helical stage's helical: per speed its window's axial
+    loads, <name>_mean_<unit> and <name>_max_abs_<unit> (the largest magnitude) for
+    sun_axial_force_N, ring_axial_force_N, carrier_axial_force_N (S,) [N] and per planet
+    sun_mesh_axial_force_N, ring_mesh_axial_force_N, axial_force_N (S, n) [N],
+    axial_tilting_moment_radial_Nm, axial_tilting_moment_tangential_Nm, tilting_moment_radial_Nm,
+    tilting_moment_tangential_Nm (S, n) [N·m]; record: the sweep's record, the keys and values of
     `speed_sweep_summary.json` but its provenance.
 
 Raises

@@ -146,6 +146,8 @@ std::string StudySummaryText(const studies::StudySpec& study, const studies::Stu
   for (const studies::MeshFaceStatistics& m : s.face_width)
     t += SampleSummaryText("K_gamma K_Hbeta " + m.mesh, m.k_gamma_k_h_beta, "") +
          SampleSummaryText("K_Hbeta " + m.mesh, m.k_h_beta, "");
+  for (const studies::ColumnStatistics& c : s.helical)  // a helical stage's axial loads
+    t += SampleSummaryText(c.column, c.values, "");
   for (const studies::Exceedance& e : s.k_gamma_exceedance) t += ExceedanceText(e);
   t += "  Spearman rank correlation of K_gamma with\n";
   for (std::size_t j = 0; j < s.columns.size(); ++j)

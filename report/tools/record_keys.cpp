@@ -30,6 +30,7 @@ std::string Unit(const std::string& key) {
       {"_Hz_per_sun_rpm", "Hz/rpm"},
       {"_rad_per_s", "rad/s"},
       {"_Nm", "N·m"},
+      {"_N", "N"},
       {"_urad", "µrad"},
       {"_um", "µm"},
       {"_mm", "mm"},
@@ -120,6 +121,13 @@ class KeyTable final : public RecordVisitor {
   }
 };
 
+// The axial loads of a helical stage with one planet (its keys listed once).
+epicycle::transmission::HelicalLoads OnePlanetLoads() {
+  epicycle::transmission::HelicalLoads loads;
+  loads.planets.resize(1);
+  return loads;
+}
+
 void Table(const char* title, const char* file, const auto& record) {
   std::printf("### %s\n\n%s\n\n| key | kind | unit |\n|---|---|---|\n", title, file);
   KeyTable table;
@@ -175,6 +183,7 @@ int main() {
   study.summary.face_width.resize(1);
   study.summary.columns = {"COLUMN"};
   study.summary.spearman = {0};
+  study.summary.helical.push_back({"HELICAL_COLUMN", {}});
   studies::SobolSummary sobol;
   sobol.variables = {"VARIABLE"};
   sobol.outputs.push_back({"OUTPUT", {}});
@@ -187,7 +196,8 @@ int main() {
   Table("Tolerance study (`epicycle study`, Python `study(...)[\"record\"]`)",
         "OUT/study_summary.json; `K_gamma_exceedance` only with the study's k_gamma_limit, "
         "`root_stress` only with stresses (`S_F`, `S_H` only when rated), `face_width` only with "
-        "slices of the face width, `sobol` only with the Sobol design. `spearman_K_gamma` has one "
+        "slices of the face width, `helical` only for a helical stage (HELICAL_COLUMN: each of "
+        "its rows' axial-load columns, docs/studies.md), `sobol` only with the Sobol design. `spearman_K_gamma` has one "
         "key per sampled-value column (COLUMN), "
         "`sobol.outputs` one object per rows-file result column (OUTPUT).",
         study);
@@ -209,20 +219,23 @@ int main() {
   sweep.plan.coincidences.resize(1);
   sweep.speeds.resize(1);
   sweep.speeds[0].status = transmission::RunStatus::kCompleted;
+  sweep.speeds[0].helical.Add(OnePlanetLoads());
   Table("Speed sweep (`epicycle dynamic --speed-sweep`, Python `speed_sweep(...).record`)",
         "OUT/speed_sweep_summary.json; MESH is each mesh's name (`sun-planet1`, ...); a speed "
         "that did not complete has only `speeds[]`'s keys up to `warnings` (its status and "
-        "message, no figures).",
+        "message, no figures); `speeds[].helical` only for a helical stage (over the window).",
         sweep);
   dynamics::BranchRecord branch;
   branch.branch.parameter = "PARAMETER";  // not the sun speed: both columns listed
   branch.branch.points.resize(1);
+  branch.branch.points[0].helical.Add(OnePlanetLoads());
   branch.branch.bifurcations.resize(1);
   Table("Branch of periodic orbits (`epicycle dynamic --speed-sweep ... --periodic`, `--continue`; "
         "Python `periodic_branch(...).record`)",
         "OUT/periodic_branch_summary.json; PARAMETER is the continued parameter's name "
         "(`sun_speed_rpm`, `sun_torque_Nm` or `mesh_damping_ratio`, docs/periodic.md §3), "
-        "`points[].sun_speed_rpm` beside it only when it is another.",
+        "`points[].sun_speed_rpm` beside it only when it is another, `points[].helical` only "
+        "for a helical stage (over the period).",
         branch);
   return 0;
 }

@@ -106,6 +106,7 @@ std::string CaseRow::Format() const {
   for (double v : root_stress) field(ok() ? Exact(v) : std::string());
   for (double v : safety) field(ok() ? Exact(v) : std::string());
   for (double v : face_load) field(ok() ? Exact(v) : std::string());
+  for (double v : helical) field(ok() ? Exact(v) : std::string());
   field(Clean(message));
   field(RowCheck(s));
   s.push_back('\n');
@@ -124,6 +125,7 @@ std::string RowHeader(const StudySpec& study) {
   if (study.Rated())
     for (const std::string& g : study.StressGears()) h += ",S_F_" + g + ",S_H_" + g;
   for (const std::string& m : study.FaceMeshes()) h += ",K_Hbeta_" + m + ",K_gamma_K_Hbeta_" + m;
+  for (const std::string& c : study.HelicalColumns()) h += "," + c;
   h += ",message,check";
   return h;
 }
@@ -162,12 +164,13 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   const std::size_t ns = 3 * study.StressGears().size();                      // root-stress fields
   const std::size_t nr = study.Rated() ? 2 * study.StressGears().size() : 0;  // safety factors
   const std::size_t nf = 2 * study.FaceMeshes().size();                       // face-load factors
+  const std::size_t nh = study.HelicalColumns().size();                       // axial loads
   auto bad = [&](const std::string& why) {
     throw std::invalid_argument(where + ": not a row of this study (" + why + "): '" + line + "'");
   };
-  if (f.size() != 1 + nv + kResultFields + ns + nr + nf + 1)
+  if (f.size() != 1 + nv + kResultFields + ns + nr + nf + nh + 1)
     bad(std::to_string(f.size()) + " fields, " +
-        std::to_string(1 + nv + kResultFields + ns + nr + nf + 1) + " expected");
+        std::to_string(1 + nv + kResultFields + ns + nr + nf + nh + 1) + " expected");
   // Changed after it was written: the check covers every byte before its own field.
   const std::string_view body(line.data(), line.size() - f.back().size() - 1);
   if (f.back() != RowCheck(body))
@@ -212,6 +215,9 @@ CaseRow ParseRow(const std::string& line, const StudySpec& study, const std::str
   r.face_load.resize(nf);
   for (double& v : r.face_load)
     if (!ParseReal(f[k++], &v)) bad("face-load factor");
+  r.helical.resize(nh);
+  for (double& v : r.helical)
+    if (!ParseReal(f[k++], &v)) bad("axial load");
   r.message = f[k];
   return r;
 }
@@ -296,6 +302,26 @@ std::unique_ptr<transmission::FeStageCompliance> NominalCompliance(
 
 namespace {
 
+// A helical case's StudySpec::HelicalColumns from its sweep's means into `values` (sized to the
+// columns; left NaN where the sweep has none).
+void HelicalValues(const transmission::SweepSummary& s, int planets, std::vector<double>* values) {
+  if (values->empty() || s.helical_mean.planets.size() != static_cast<std::size_t>(planets))
+    return;
+  std::size_t k = 0;
+  std::vector<double>& v = *values;
+  for (const transmission::PlanetHelicalLoad& p : s.helical_mean.planets) v[k++] = p.sun_mesh_axial;
+  for (const transmission::PlanetHelicalLoad& p : s.helical_mean.planets) v[k++] = p.ring_mesh_axial;
+  for (const transmission::PlanetHelicalLoad& p : s.helical_mean.planets) {
+    v[k++] = p.moment_radial;
+    v[k++] = p.moment_tangential;
+  }
+  if (k == v.size() || s.pin_tilts.size() != static_cast<std::size_t>(planets)) return;
+  for (const transmission::SweepSummary::PinTiltSummary& t : s.pin_tilts) {
+    v[k++] = t.radial_mean * 1e6;
+    v[k++] = t.tangential_mean * 1e6;
+  }
+}
+
 // A case's scene, stage, supports and carrier angles (its values applied to the base scene).
 struct CaseRig {
   transmission::Scene scene;
@@ -364,6 +390,7 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
   row.safety.assign(study.Rated() ? 2 * gears.size() : 0, kNaN);
   const std::size_t meshes = study.FaceMeshes().size();
   row.face_load.assign(2 * meshes, kNaN);
+  row.helical.assign(study.HelicalColumns().size(), kNaN);
   // The case's scene, stage and (for a crack's depth) own tables. The base scene passed every
   // rule when the study was read, so a rule broken here is a sampled value's.
   std::optional<CaseRig> built;
@@ -438,6 +465,7 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
       row.face_load[2 * m] = s.face_width[m].k_h_beta_max;
       row.face_load[2 * m + 1] = s.face_width[m].k_gamma_k_h_beta_max;
     }
+    HelicalValues(s, stage.planets(), &row.helical);
     // The model's safety factors of every gear, from this case's own stresses (rating.hpp).
     if (study.Rated() && s.converged > 0) {
       const transmission::StageRating rating = transmission::RateStage(scene, stage, s);

@@ -212,6 +212,7 @@ SobolSummary SummariseSobol(const StudySpec& study, const std::vector<CaseRow>& 
       for (const char* q : {"S_F_", "S_H_"}) names.push_back(q + g);
   for (const std::string& m : study.FaceMeshes())
     for (const char* q : {"K_Hbeta_", "K_gamma_K_Hbeta_"}) names.push_back(q + m);
+  for (const std::string& c : study.HelicalColumns()) names.push_back(c);
   const auto cases = static_cast<std::size_t>(study.Cases());
   std::vector<std::vector<double>> y(names.size(), std::vector<double>(cases, kNaN));
   for (const CaseRow& r : rows) {
@@ -224,6 +225,7 @@ SobolSummary SummariseSobol(const StudySpec& study, const std::vector<CaseRow>& 
     for (double v : r.root_stress) y[o++][k] = v;
     for (double v : r.safety) y[o++][k] = v;
     for (double v : r.face_load) y[o++][k] = v;
+    for (double v : r.helical) y[o++][k] = v;
   }
   for (std::size_t o = 0; o < names.size(); ++o)
     s.outputs.push_back({names[o], EstimateSobol(y[o], d, options)});

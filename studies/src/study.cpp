@@ -385,6 +385,20 @@ std::vector<std::string> StudySpec::FaceMeshes() const {
   return m;
 }
 
+std::vector<std::string> StudySpec::HelicalColumns() const {
+  std::vector<std::string> c;
+  if (!transmission::IsHelical(scene)) return c;
+  for (const std::string& m : FaceMeshes()) c.push_back("F_a_" + m + "_N");
+  for (int i = 1; i <= scene.stage.planets; ++i)
+    for (const char* a : {"radial", "tangential"})
+      c.push_back(std::string("M_tilt_") + a + "_planet" + std::to_string(i) + "_Nm");
+  if (!scene.face_width.pins.empty())
+    for (int i = 1; i <= scene.stage.planets; ++i)
+      for (const char* a : {"radial", "tangential"})
+        c.push_back(std::string("tilt_") + a + "_planet" + std::to_string(i) + "_urad");
+  return c;
+}
+
 bool StudySpec::VariesBodies() const {
   for (const Variable& v : variables)
     if (v.quantity == Quantity::kCrackDepth) return true;

@@ -178,6 +178,12 @@ void VisitRecord(const StudyRecord& r, RecordVisitor& visit) {
     VisitSample("K_Hbeta_max", m.k_h_beta, visit);
     VisitSample("K_gamma_K_Hbeta_max", m.k_gamma_k_h_beta, visit);
   });
+  if (!s.helical.empty()) {
+    // A helical stage's axial loads, each column's values over the cases (runner.hpp).
+    visit.BeginObject("helical");
+    for (const ColumnStatistics& c : s.helical) VisitSample(c.column.c_str(), c.values, visit);
+    visit.EndObject();
+  }
   visit.BeginObject("spearman_K_gamma");  // ρ_s per sampled-value column (null: constant)
   for (std::size_t k = 0; k < s.columns.size(); ++k)
     visit.Number(s.columns[k].c_str(), s.spearman[k]);

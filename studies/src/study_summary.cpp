@@ -74,6 +74,13 @@ StudySummary SummariseStudy(const StudySpec& study, const std::vector<CaseRow>& 
     s.face_width.push_back({meshes[m], Summarise(k_h_beta, kStudyPercentiles, level),
                             Summarise(product, kStudyPercentiles, level)});
   }
+  const std::vector<std::string> helical = study.HelicalColumns();
+  for (std::size_t c = 0; c < helical.size(); ++c) {
+    std::vector<double> v;
+    for (const CaseRow& r : rows)
+      if (r.ok() && r.helical.size() == helical.size()) v.push_back(r.helical[c]);
+    s.helical.push_back({helical[c], Summarise(v, kStudyPercentiles, level)});
+  }
   if (study.design == Design::kSobol) {
     SobolOptions so;
     so.seed = study.seed;

@@ -1,9 +1,11 @@
 // Helical meshes in slices (helical_slices.hpp; docs/model.md §10).
 #include "epicycle/transmission/helical_slices.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "epicycle/geometry/helical.hpp"
 #include "epicycle/transmission/record.hpp"
@@ -189,44 +191,86 @@ HelicalLoads HelicalLoadsOf(const geometry::Stage& stage, const geometry::StageP
 void AddHelicalLoads(const HelicalLoads& loads, double w, HelicalLoads* sum) {
   if (sum->planets.empty()) sum->planets.resize(loads.planets.size());
   for (std::size_t i = 0; i < loads.planets.size() && i < sum->planets.size(); ++i) {
-    const PlanetHelicalLoad& l = loads.planets[i];
-    PlanetHelicalLoad& t = sum->planets[i];
-    t.planet = l.planet;
-    t.axial_force += w * l.axial_force;
-    t.sun_mesh_axial += w * l.sun_mesh_axial;
-    t.ring_mesh_axial += w * l.ring_mesh_axial;
-    t.axial_moment_radial += w * l.axial_moment_radial;
-    t.axial_moment_tangential += w * l.axial_moment_tangential;
-    t.moment_radial += w * l.moment_radial;
-    t.moment_tangential += w * l.moment_tangential;
+    sum->planets[i].planet = loads.planets[i].planet;
+    for (const auto& f : kPlanetHelicalFields)
+      sum->planets[i].*f.value += w * loads.planets[i].*f.value;
   }
-  sum->sun_axial_force += w * loads.sun_axial_force;
-  sum->ring_axial_force += w * loads.ring_axial_force;
-  sum->carrier_axial_force += w * loads.carrier_axial_force;
+  for (const auto& f : kHelicalMemberFields) sum->*f.value += w * loads.*f.value;
 }
 
-void VisitHelicalLoads(RecordVisitor& visit, const HelicalLoads& loads) {
+void HelicalLoadRange::Add(const HelicalLoads& loads) {
   if (loads.planets.empty()) return;
+  AddHelicalLoads(loads, 1.0, &mean);
+  if (max_abs.planets.empty()) max_abs.planets.resize(loads.planets.size());
+  for (std::size_t i = 0; i < loads.planets.size() && i < max_abs.planets.size(); ++i) {
+    max_abs.planets[i].planet = loads.planets[i].planet;
+    for (const auto& f : kPlanetHelicalFields)
+      max_abs.planets[i].*f.value =
+          std::max(max_abs.planets[i].*f.value, std::abs(loads.planets[i].*f.value));
+  }
+  for (const auto& f : kHelicalMemberFields)
+    max_abs.*f.value = std::max(max_abs.*f.value, std::abs(loads.*f.value));
+  ++count;
+}
+
+void HelicalLoadRange::Finish() {
+  if (count == 0) return;
+  HelicalLoads sum = std::move(mean);
+  mean = {};
+  AddHelicalLoads(sum, 1.0 / count, &mean);
+}
+
+namespace {
+
+// The `helical` object of `planets`' stage: for every field f of the members and then of each
+// planet, value(name(f), f, planet) writes it (planet −1 for the members' fields).
+template <typename Name, typename Value>
+void VisitHelicalObject(RecordVisitor& visit, const std::vector<PlanetHelicalLoad>& planets,
+                        Name&& name, Value&& value) {
   // +z along the gears' axis (helical_slices.hpp).
   visit.BeginObject("helical");
   visit.Text("axial_and_tilting_motion", "held: planar degrees of freedom, pins rigid in tilt");
-  visit.Number("sun_axial_force_N", loads.sun_axial_force);
-  visit.Number("ring_axial_force_N", loads.ring_axial_force);
-  visit.Number("carrier_axial_force_N", loads.carrier_axial_force);
+  for (const auto& f : kHelicalMemberFields) value(name(f), f, -1);
   visit.BeginList("planets");
-  for (const PlanetHelicalLoad& p : loads.planets) {
+  for (std::size_t i = 0; i < planets.size(); ++i) {
     visit.Item();
-    visit.Integer("planet", p.planet + 1);
-    visit.Number("sun_mesh_axial_force_N", p.sun_mesh_axial);
-    visit.Number("ring_mesh_axial_force_N", p.ring_mesh_axial);
-    visit.Number("axial_force_N", p.axial_force);
-    visit.Number("axial_tilting_moment_radial_Nm", p.axial_moment_radial);
-    visit.Number("axial_tilting_moment_tangential_Nm", p.axial_moment_tangential);
-    visit.Number("tilting_moment_radial_Nm", p.moment_radial);
-    visit.Number("tilting_moment_tangential_Nm", p.moment_tangential);
+    visit.Integer("planet", planets[i].planet + 1);
+    for (const auto& f : kPlanetHelicalFields) value(name(f), f, static_cast<int>(i));
   }
   visit.EndList();
   visit.EndObject();
+}
+
+}  // namespace
+
+void VisitHelicalLoads(RecordVisitor& visit, const HelicalLoads& loads) {
+  if (loads.planets.empty()) return;
+  VisitHelicalObject(
+      visit, loads.planets,
+      [](const auto& f) { return std::string(f.name) + "_" + f.unit; },
+      [&](const std::string& key, const auto& f, int i) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(f)>, HelicalField<HelicalLoads>>)
+          visit.Number(key.c_str(), loads.*f.value);
+        else
+          visit.Number(key.c_str(), loads.planets[static_cast<std::size_t>(i)].*f.value);
+      });
+}
+
+void VisitHelicalLoads(RecordVisitor& visit, const HelicalLoadRange& range) {
+  if (range.count == 0) return;
+  VisitHelicalObject(
+      visit, range.mean.planets, [](const auto& f) { return std::string(f.name); },
+      [&](const std::string& key, const auto& f, int i) {
+        const std::string unit = std::string("_") + f.unit;
+        if constexpr (std::is_same_v<std::decay_t<decltype(f)>, HelicalField<HelicalLoads>>) {
+          visit.Number((key + "_mean" + unit).c_str(), range.mean.*f.value);
+          visit.Number((key + "_max_abs" + unit).c_str(), range.max_abs.*f.value);
+        } else {
+          const auto k = static_cast<std::size_t>(i);
+          visit.Number((key + "_mean" + unit).c_str(), range.mean.planets[k].*f.value);
+          visit.Number((key + "_max_abs" + unit).c_str(), range.max_abs.planets[k].*f.value);
+        }
+      });
 }
 
 }  // namespace epicycle::transmission

@@ -87,17 +87,13 @@ double SettledTolerance(double rho, int cycles, double start_distance, double st
   return std::pow(rho, cycles) * start_distance + (steps_per_period + newton_tolerance) / (1 - rho);
 }
 
-}  // namespace
-
-TEST_CASE(
-    "paper stage, perfect, springs: the shooting orbit is the state a long time integration "
-    "settles into",
-    "[crosscheck][dynamics][periodic]") {
-  const auto rig = SpringRig(1000, transmission::SunSupport::kFixed);
+// The shooting orbit of `rig`'s stage against the state a long time integration settles into
+// (figures named by `name`), and against the orbit shot from another start.
+void CheckOrbitAgainstSettled(const test::DynamicRig& rig, const std::string& name) {
   const dynamics::DynamicModel& m = *rig.model;
   std::string dofs;
   for (int k = 0; k < m.size(); ++k) dofs += m.dofs()[k].Label() + "; ";
-  test::Figure("stage DOFs: " + dofs);
+  test::Figure(name + " DOFs: " + dofs);
   const dynamics::StagePeriodicSystem system(m, solvers::Backend::kActiveSetNewton, {});
   const int n = m.size();
   const dynamics::ShootingOptions so = Shooting(m);
@@ -105,14 +101,14 @@ TEST_CASE(
   y0.head(n) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
   const auto clock = std::chrono::steady_clock::now();
   const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
-  test::FigureValue("stage shooting wall time",
+  test::FigureValue(name + " shooting wall time",
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count(),
                     "s");
   INFO(r.message);
   REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
-  test::FigureValue("stage shooting iterations", r.iterations, "-");
-  test::FigureValue("stage shooting steps", static_cast<double>(r.steps), "-");
-  test::FigureValue("stage spectral radius", r.floquet.spectral_radius, "-");
+  test::FigureValue(name + " shooting iterations", r.iterations, "-");
+  test::FigureValue(name + " shooting steps", static_cast<double>(r.steps), "-");
+  test::FigureValue(name + " spectral radius", r.floquet.spectral_radius, "-");
   const int cycles = 60;
   const Eigen::VectorXd settled = Settle(m, y0, r.period, cycles);
   const double rho = r.floquet.spectral_radius;
@@ -120,8 +116,8 @@ TEST_CASE(
   const double tol =
       SettledTolerance(rho, cycles, Weighted(so, y0, r.initial_state), steps, so.newton_tolerance);
   const double settled_error = Weighted(so, settled, r.initial_state);
-  test::FigureValue("stage settled - orbit (weighted)", settled_error, "-");
-  test::FigureValue("stage settled tolerance (weighted)", tol, "-");
+  test::FigureValue(name + " settled - orbit (weighted)", settled_error, "-");
+  test::FigureValue(name + " settled tolerance (weighted)", tol, "-");
   CHECK(settled_error <= tol);
   CHECK(r.floquet.stability == dynamics::Stability::kStable);
 
@@ -133,8 +129,36 @@ TEST_CASE(
   const dynamics::ShootingResult r2 = dynamics::SolvePeriodicOrbit(system, so, other);
   REQUIRE(r2.status == dynamics::ShootingStatus::kConverged);
   const double other_error = Weighted(so, r2.initial_state, r.initial_state);
-  test::FigureValue("stage second start - orbit (weighted)", other_error, "-");
+  test::FigureValue(name + " second start - orbit (weighted)", other_error, "-");
   CHECK(other_error <= 2 * (so.newton_tolerance + steps) / (1 - rho));
+}
+
+}  // namespace
+
+TEST_CASE(
+    "paper stage, perfect, springs: the shooting orbit is the state a long time integration "
+    "settles into",
+    "[crosscheck][dynamics][periodic]") {
+  CheckOrbitAgainstSettled(SpringRig(1000, transmission::SunSupport::kFixed), "stage");
+}
+
+// The helical paper stage (β = 15°) in 5 slices (docs/model.md §10; the orbit's cost grows with
+// the slices, dynamics_helical.cpp), the same springs per slice contact: its state is the planar
+// one (the axial and tilting motions held), so the shooting is the spur stage's on the sliced
+// meshes, with the same tolerance.
+TEST_CASE(
+    "helical paper stage, perfect, springs, 5 slices: the shooting orbit is the state a long time "
+    "integration settles into",
+    "[crosscheck][dynamics][periodic][helical][slow]") {
+  test::RigOptions o;
+  o.spring = 1e-9;
+  o.spring_mesh_stiffness = 1.5e9;
+  o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1000); };
+  const auto rig = test::MakeRig(
+      test::Replace(test::SceneText("paper_stage_helical.toml"), "slices = 20", "slices = 5"),
+      "helical springs", o);
+  REQUIRE(rig.stage_model->helical());
+  CheckOrbitAgainstSettled(rig, "helical stage");
 }
 
 TEST_CASE(

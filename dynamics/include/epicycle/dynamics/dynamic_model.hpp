@@ -326,6 +326,11 @@ std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
                                                const transmission::FeComplianceOptions& fe,
                                                int positions = 24, double step = 0.05);
 
+/// The tangent mesh stiffnesses dF/dδ {sun–planet, planet–ring} [N/m] of `rig`'s stage about its
+/// operating point: a helical stage's StageDynamics::sliced_stiffness.tangent, a spur stage's
+/// MeanTangentMeshStiffness. @throws as MeanTangentMeshStiffness.
+std::array<double, 2> TangentMeshStiffness(const StageDynamics& rig);
+
 /// The natural modes of a stage about its operating point (`epicycle modes`, docs/dynamic.md
 /// "Natural modes"): `rig`'s model with the tangent mesh stiffnesses (MeanTangentMeshStiffness, a
 /// helical stage's StageDynamics::sliced_stiffness:

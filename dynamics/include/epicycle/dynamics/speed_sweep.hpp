@@ -199,6 +199,9 @@ struct SpeedResult {
   double lsr_deviation = 0;
   std::array<double, kLoadSharingPartCount> deviation_parts{};
   double largest_residual = 0;  ///< the largest |residual| of the parts over planets and window [-]
+  /// A helical stage: the axial forces [N] and tilting moments [N·m] over the window's samples
+  /// (DynamicSample::helical), their means and largest magnitudes; empty for a spur stage.
+  transmission::HelicalLoadRange helical;
   /// Results outside the model's validity over the window (DynamicWarnings); empty: none.
   std::vector<std::string> warnings;
   SimulationStats stats;    ///< of the whole run (skip and window)

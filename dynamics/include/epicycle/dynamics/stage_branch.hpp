@@ -72,6 +72,9 @@ struct StageBranchPoint {
   double k_gamma = 0;          ///< over the period [-]
   double te_amplitude = 0;     ///< [rad]
   double orbit_radius = 0;     ///< [m]
+  /// A helical stage: the axial forces [N] and tilting moments [N·m] over the period's samples,
+  /// their means and largest magnitudes (as a speed sweep's window); empty for a spur stage.
+  transmission::HelicalLoadRange helical;
   double spectral_radius = 0;  ///< max |μ| [-]
   Stability stability = Stability::kStable;
   int real_above_one = 0;        ///< real μ > 1 [-]

@@ -183,16 +183,22 @@ std::string DynamicRunText(const dynamics::DynamicSummary& summary,
                            const dynamics::SimulationStats& stats, int planets);
 
 /// PATH.csv of a speed sweep: one line per speed as it completes (a failed speed: its speed,
-/// status and message, empty figures).
+/// status and message, empty figures). A helical stage's `helical_planets` > 0 planets add, before
+/// the counts, the window's axial loads (SpeedResult::helical) as <name>_mean_<unit> and
+/// <name>_max_abs_<unit>: sun_axial_force, ring_axial_force, carrier_axial_force [N], and per
+/// planet i sun_mesh_axial_force, ring_mesh_axial_force [N], tilting_moment_radial,
+/// tilting_moment_tangential [N·m] with the suffix _<i>.
 class SpeedSweepFile {
  public:
   /// @throws std::runtime_error naming the file if it cannot be written.
-  SpeedSweepFile(const std::string& path, const nlohmann::json& provenance);
+  SpeedSweepFile(const std::string& path, const nlohmann::json& provenance,
+                 int helical_planets = 0);
   void Write(const dynamics::SpeedResult& r, const dynamics::SpeedSweepPlan& plan);
   void Close();
 
  private:
   CsvFile csv_;
+  int helical_planets_ = 0;
 };
 
 /// PATH_k_gamma.svg, _dynamic_factor.svg, _te_amplitude.svg and _orbit.svg against sun speed,

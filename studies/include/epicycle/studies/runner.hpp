@@ -46,6 +46,9 @@ struct CaseRow {
   /// the largest K_Hβ over the case's sweep and the largest L_i·K_Hβ of its planet at one position
   /// (transmission::MeshFaceSummary: k_h_beta_max, k_gamma_k_h_beta_max) [-].
   std::vector<double> face_load;
+  /// A helical stage (StudySpec::HelicalColumns, else empty): the values of those columns [N],
+  /// [N·m], [µrad].
+  std::vector<double> helical;
   /// The CSV line, '\n'-terminated; numbers in their shortest exact (round-trip) form, so that
   /// the same result gives the same bytes; a failed case has empty result fields; the last field
   /// is the row's check (FNV-1a 64 of the text before it, 16 hex digits).
@@ -55,7 +58,8 @@ struct CaseRow {
 /// The column line of the rows file (without '\n'); with stresses the results end with
 /// sigma_t_<gear>_MPa, sigma_c_<gear>_MPa, sigma_range_<gear>_MPa per gear before the message;
 /// then S_F_<gear>, S_H_<gear> per gear when rated (StudySpec::Rated); then K_Hbeta_<mesh>,
-/// K_gamma_K_Hbeta_<mesh> per mesh with slices of the face width; the check is last.
+/// K_gamma_K_Hbeta_<mesh> per mesh with slices of the face width; then a helical stage's
+/// StudySpec::HelicalColumns; the check is last.
 std::string RowHeader(const StudySpec& study);
 
 /// Case k of the study on the shared (read-only) compliance of the nominal bodies, or, when the

@@ -128,6 +128,13 @@ struct StudySpec {
   /// transmission::FaceLoads' order ("sun-planet1", …, "planet1-ring", …), whose K_Hβ and K_γ·K_Hβ
   /// every case reports; else empty.
   std::vector<std::string> FaceMeshes() const;
+  /// A helical stage (docs/model.md §10): the columns of the axial loads every case reports, the
+  /// means over its sweep (transmission::SweepSummary::helical_mean, pin_tilts): per mesh in
+  /// FaceMeshes' order F_a_<mesh>_N, the axial force on the planet [N]; per planet i
+  /// M_tilt_radial_planet<i>_Nm and M_tilt_tangential_planet<i>_Nm, its tilting moment [N·m]; with
+  /// pins (the scene's [[face_width.pin]]) per planet tilt_radial_planet<i>_urad and
+  /// tilt_tangential_planet<i>_urad, its tilt on its pin [µrad]; else empty.
+  std::vector<std::string> HelicalColumns() const;
   /// True when a variable changes the bodies' compliance (a crack's depth): each case then
   /// builds its own tables (from the cache) instead of sharing the nominal ones.
   bool VariesBodies() const;

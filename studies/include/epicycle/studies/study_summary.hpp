@@ -34,6 +34,12 @@ struct MeshFaceStatistics {
   SampleSummary k_gamma_k_h_beta;  ///< each case's largest L_i·K_Hβ at one position
 };
 
+/// One result column's values over the ok rows.
+struct ColumnStatistics {
+  std::string column;  ///< its name in the rows file (with its unit)
+  SampleSummary values;
+};
+
 struct StudySummary {
   long cases = 0;   ///< rows [-]
   long failed = 0;  ///< rows not completed (left out of the statistics) [-]
@@ -54,6 +60,9 @@ struct StudySummary {
   std::vector<GearStressStatistics> root_stress;
   /// Per mesh of StudySpec::FaceMeshes (none without slices of the face width).
   std::vector<MeshFaceStatistics> face_width;
+  /// Per column of StudySpec::HelicalColumns (none for a spur stage), in that order: its values
+  /// over the ok rows [the column's unit].
+  std::vector<ColumnStatistics> helical;
   /// With the Sobol design: the indices of every output over all rows, their bootstrap seeded by
   /// the study's seed (reproducible intervals) at the summary's level.
   std::optional<SobolSummary> sobol;

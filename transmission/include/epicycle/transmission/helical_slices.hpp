@@ -100,6 +100,30 @@ struct HelicalLoads {
   double carrier_axial_force = 0;  ///< Σ of the planets', to the carrier's bearings [N]
 };
 
+/// A field of the axial loads: its record name without the unit, its unit, where it is.
+template <typename T>
+struct HelicalField {
+  const char* name;
+  const char* unit;
+  double T::* value;
+};
+/// The stage's members' fields, in the record's order.
+inline constexpr std::array<HelicalField<HelicalLoads>, 3> kHelicalMemberFields{{
+    {"sun_axial_force", "N", &HelicalLoads::sun_axial_force},
+    {"ring_axial_force", "N", &HelicalLoads::ring_axial_force},
+    {"carrier_axial_force", "N", &HelicalLoads::carrier_axial_force},
+}};
+/// A planet's fields, in the record's order.
+inline constexpr std::array<HelicalField<PlanetHelicalLoad>, 7> kPlanetHelicalFields{{
+    {"sun_mesh_axial_force", "N", &PlanetHelicalLoad::sun_mesh_axial},
+    {"ring_mesh_axial_force", "N", &PlanetHelicalLoad::ring_mesh_axial},
+    {"axial_force", "N", &PlanetHelicalLoad::axial_force},
+    {"axial_tilting_moment_radial", "Nm", &PlanetHelicalLoad::axial_moment_radial},
+    {"axial_tilting_moment_tangential", "Nm", &PlanetHelicalLoad::axial_moment_tangential},
+    {"tilting_moment_radial", "Nm", &PlanetHelicalLoad::moment_radial},
+    {"tilting_moment_tangential", "Nm", &PlanetHelicalLoad::moment_tangential},
+}};
+
 /// The axial loads of the forces `force` [N] of the sliced contacts `contacts` of a helical
 /// stage at `poses` (the planets' centres). Empty (no planets) for a spur stage.
 HelicalLoads HelicalLoadsOf(const geometry::Stage& stage, const geometry::StagePoses& poses,
@@ -109,10 +133,25 @@ HelicalLoads HelicalLoadsOf(const geometry::Stage& stage, const geometry::StageP
 /// over a sweep's positions or a run's steps.
 void AddHelicalLoads(const HelicalLoads& loads, double w, HelicalLoads* sum);
 
+/// The axial loads over a set of states (a speed sweep's window): field by field their mean and
+/// their largest magnitude.
+struct HelicalLoadRange {
+  HelicalLoads mean;     ///< means [N], [N·m]
+  HelicalLoads max_abs;  ///< largest |value| [N], [N·m]
+  int count = 0;         ///< states added [-]
+  /// Adds one state's loads (none for a spur stage: the range stays empty).
+  void Add(const HelicalLoads& loads);
+  /// The means of the states added (mean holds their sum until then).
+  void Finish();
+};
+
 /// The record's `helical` object of `loads` (docs/records.md): that the axial and tilting motions
 /// are held (the model's planar DOFs, docs/model.md §10), the axial forces [N] of the sun,
 /// the ring and the carrier, and per planet its meshes' axial forces [N] and tilting moments
 /// [N·m]; nothing for loads without planets (a spur stage).
 void VisitHelicalLoads(RecordVisitor& visit, const HelicalLoads& loads);
+/// The same object of a range: every field as <name>_mean_<unit> and <name>_max_abs_<unit>;
+/// nothing for an empty range (a spur stage).
+void VisitHelicalLoads(RecordVisitor& visit, const HelicalLoadRange& range);
 
 }  // namespace epicycle::transmission
