@@ -46,4 +46,13 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
                const std::vector<std::string>& influence_cases, const std::string& kernel_csv,
                const std::string& title);
 
+/// The helical pair's slices (test::HelicalSlicesAt at `angle_deg`, a position of a
+/// `positions`-position sweep) against the 3D stations of case `name` of `csv`: prints each
+/// station's loads (the runs at every discretisation, the slices' station means) and draws the
+/// load per unit length of contact line across the face (the runs at `layers` stations as
+/// markers, the slices as a line). @throws on bad input or a failed solve.
+int Fe3dHelical(const std::string& scene, const std::string& csv, const std::string& svg,
+                const std::string& name, double angle_deg, int positions, int layers,
+                const std::string& title);
+
 }  // namespace epicycle::fe_reference
