@@ -7,11 +7,13 @@
 // slices"), the line load per slice and the approach δ = |θ| r_b1 at the scene's torque.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "csv_rows.hpp"
 #include "epicycle/geometry/pair.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
@@ -45,7 +47,9 @@ inline HelicalSliceSample HelicalSlicesAt(const transmission::Scene& scene,
                                           double angle_deg, int positions) {
   const transmission::MeshPairSetup setup = transmission::MakeMeshPair(scene, nullptr, "");
   const geometry::GearPair pair(setup.spec);
-  const transmission::FePairCompliance compliance(scene, pair, tables);
+  transmission::FeComplianceOptions fe = tables;
+  fe.helical_slices = transmission::IsHelical(scene);  // the driver's, stiffness_run.cpp
+  const transmission::FePairCompliance compliance(scene, pair, fe);
   transmission::MeshStiffnessOptions o;
   o.positions = positions;
   o.threads = 1;
@@ -65,6 +69,58 @@ inline HelicalSliceSample HelicalSlicesAt(const transmission::Scene& scene,
   out.approach = s.approach;
   out.force = s.total_force;
   return out;
+}
+
+/// The committed 3D run of case `name` with `layers` layers at in-plane `refinement` of `csv`
+/// (`fe_reference fe3d` rows: columns 0 case, 4 layers, 5 refinement, 20 mean k′, 26 line load):
+/// its station loads [N/mm] and mean stiffness per unit width [N/(mm·µm)].
+struct HelicalRun {
+  std::vector<double> line_load;
+  double mean_stiffness = 0;
+};
+inline HelicalRun CommittedRun(const std::string& csv, const std::string& name, int layers,
+                               const std::string& refinement) {
+  HelicalRun run;
+  for (const auto& r : ReadCsvRows(csv)) {
+    if (r.size() != 27 || r[0] != name || std::stoi(r[4]) != layers || r[5] != refinement) continue;
+    run.line_load.push_back(std::stod(r[26]));
+    run.mean_stiffness = std::stod(r[20]);
+  }
+  if (run.line_load.size() != static_cast<std::size_t>(layers))
+    throw std::runtime_error(csv + ": " + std::to_string(run.line_load.size()) + " stations of " +
+                             name + " at " + std::to_string(layers) + " layers, refinement " +
+                             refinement);
+  return run;
+}
+
+/// The largest |a_i − b_i|.
+inline double LargestChange(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+  return d;
+}
+
+/// The tolerance of a comparison with the helical reference's 4 stations [N/mm]
+/// (docs/fe_reference.md, "The helical deck"): T = 2 (Δ_axial + Δ_plane) + Δ_slices, Δ_axial the
+/// largest change of a 5 mm mean from 2 to 4 layers of the reference (case "helical", whole
+/// gears, in-plane refinement 1: each 2-layer station against the mean of its two 4-layer ones),
+/// Δ_plane the largest change of a station from in-plane refinement 1 to 1.41 at 4 layers
+/// (measured on the sector deck, case "helical_sector": the same mesh rule at the contact), each
+/// doubled (the remaining error of a level bounded by its change from the coarser one), and
+/// `slices` the slices' own discretisation (their change from S to 2S).
+struct HelicalTolerance {
+  double axial = 0, plane = 0, slices = 0;
+  double total() const { return 2 * (axial + plane) + slices; }
+};
+inline HelicalTolerance ReferenceTolerance(const std::string& csv, double slices) {
+  const std::vector<double> coarse = CommittedRun(csv, "helical_sector", 4, "1").line_load;
+  const std::vector<double> fine = CommittedRun(csv, "helical_sector", 4, "1.41").line_load;
+  const std::vector<double> layers4 = CommittedRun(csv, "helical", 4, "1").line_load;
+  const std::vector<double> layers2 = CommittedRun(csv, "helical", 2, "1").line_load;
+  std::vector<double> pooled(layers2.size());
+  for (std::size_t i = 0; i < pooled.size(); ++i)
+    pooled[i] = 0.5 * (layers4[2 * i] + layers4[2 * i + 1]);
+  return {LargestChange(layers2, pooled), LargestChange(coarse, fine), slices};
 }
 
 }  // namespace epicycle::test
