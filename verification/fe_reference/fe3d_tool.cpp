@@ -334,7 +334,7 @@ int Fe3dHelical(const std::string& scene, const std::string& csv, const std::str
       continue;
     const std::string key = r[0] + ", " + r[4] + " layers, refinement " + r[5];
     PlotSeries& s = runs[key];
-    s.name = "3D " + r[0] + ", " + r[4] + " x " + r[5];
+    s.name = r[0] + " " + r[4] + "x" + r[5];
     s.markers = std::stoi(r[4]) == layers;
     s.points = !s.markers;
     s.x.push_back(std::stod(r[25]));
