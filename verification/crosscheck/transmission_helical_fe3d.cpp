@@ -20,7 +20,7 @@
 //
 // Not met, measured (hence [!shouldfail]): T = 2 (0.74 + 4.44) + 0.0001 = 10.4 N/mm; the 3D
 // stations 247.0, 270.2, 277.8, 273.9 N/mm, the slices 266.3, 267.3, 267.6, 267.4: the first
-// station (the end where the line meets gear 1's flank highest) differs by 19.3 N/mm, the others
+// station (from z = 0) differs by 19.3 N/mm, the others
 // by 2.9, 10.2 and 6.5. The slices miss the 3D line's unloading of that end: each slice is the
 // plane model at its own point of the path, which varies by < 1 % over the 2.5 mm the line
 // spans; what the 3D tooth adds (its twisted end, the load's spread along the inclined line) is
