@@ -95,34 +95,28 @@ SweptContacts FindSweptContacts(const geometry::GearPair& pair, const geometry::
     geometry::PairPoses section = poses;
     section.gear1.rotation += sweep.Turn(0, z);
     section.gear2.rotation += sweep.Turn(1, z);
-    geometry::ContactSearchOptions search;
-    search.gap_window = contact.gap_window;
-    search.both_sides = false;
-    search.side_a = pair.loaded_side();
-    for (const geometry::PotentialContact& c : pair.Contacts(section, search)) {
-      const std::pair<int, int> teeth{c.tooth_a, c.tooth_b};
-      auto [it, fresh] = lc.by_teeth.try_emplace(teeth);
-      FeToothPair& p = it->second;
-      if (fresh) {
-        p.tooth1 = c.tooth_a;
-        p.tooth2 = c.tooth_b;
-        p.slave = "G1T" + std::to_string(c.tooth_a);
-        p.master = "G2T" + std::to_string(c.tooth_b);
-        p.rigid_gap = -c.overlap;
-      }
-      p.rigid_gap = std::min(p.rigid_gap, -c.overlap);
-      const Vec2 q(c.point.x() * kMm, c.point.y() * kMm);
-      out.points1_of[teeth].push_back(sweep.At(0, q, z, true));
-      out.points2_of[teeth].push_back(sweep.At(1, q, z, true));
-      for (const Vec2& r : {out.points1_of[teeth].back(), out.points2_of[teeth].back()}) {
-        lc.contact_points.push_back(r);
-        lc.points_of[teeth].push_back(r);
-      }
-      lc.teeth1.insert(c.tooth_a);
-      lc.teeth2.insert(c.tooth_b);
-      lc.side1 = c.side_a;
-      lc.side2 = c.side_b;
+    detail::LoadedContacts found;
+    try {
+      found = detail::FindLoadedContacts(pair, section, contact);
+    } catch (const std::invalid_argument&) {
+      continue;  // no tooth pair within the window in this section
     }
+    for (const auto& [teeth, p] : found.by_teeth) {
+      auto [it, fresh] = lc.by_teeth.try_emplace(teeth, p);
+      if (!fresh) it->second.rigid_gap = std::min(it->second.rigid_gap, p.rigid_gap);
+      for (const Vec2& q : found.points_of.at(teeth)) {
+        out.points1_of[teeth].push_back(sweep.At(0, q, z, true));
+        out.points2_of[teeth].push_back(sweep.At(1, q, z, true));
+        for (const Vec2& r : {out.points1_of[teeth].back(), out.points2_of[teeth].back()}) {
+          lc.contact_points.push_back(r);
+          lc.points_of[teeth].push_back(r);
+        }
+      }
+    }
+    lc.teeth1.insert(found.teeth1.begin(), found.teeth1.end());
+    lc.teeth2.insert(found.teeth2.begin(), found.teeth2.end());
+    lc.side1 = found.side1;
+    lc.side2 = found.side2;
   }
   if (lc.by_teeth.empty())
     throw std::invalid_argument("fe3d deck: no tooth pair within the gap window in any section");
