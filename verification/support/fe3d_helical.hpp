@@ -1,6 +1,7 @@
 // The helical pair's slices at the 3D helical deck's position (docs/fe_reference.md, "The helical
-// deck"), shared by its crosscheck (crosscheck/transmission_helical_fe3d.cpp), its [slow] ccx
-// test (fe_reference/fe3d_helical_test.cpp) and its figure (`fe_reference fe3d-helical`): the
+// deck"), shared by its crosscheck (crosscheck/transmission_helical_fe3d.cpp) and its figure
+// (`fe_reference fe3d-helical`), with the committed runs' reader the [slow] ccx test
+// (fe_reference/fe3d_helical_test.cpp) uses too: the
 // mesh-stiffness driver's sample of the pair scene at gear-1 angle `angle_deg` (its slices of the
 // face, each the transverse section turned by its lead, the local term per unit length of
 // contact line, the scene's coupling along the face: docs/model.md §10, "Helical meshes in
