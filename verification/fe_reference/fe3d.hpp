@@ -17,6 +17,14 @@
 // Gear 1's loaded flank is one slave surface per layer, each its own frictionless
 // surface-to-surface contact pair with gear 2's flank (linear penalty), so CalculiX reports the
 // normal force F_l of every axial station; the line load of station l is q_l = F_l/Δz_l.
+//
+// A helical pair (docs/fe_reference.md, "The helical deck"): every level of the extrusion at z is
+// the mid-face section turned by each gear's SectionTurn(z − b/2) (geometry/helical.hpp), so each
+// gear's flank is the involute helicoid through the plane mesh's profile; the contact lines cross
+// the layers. The tooth pairs are those within the gap window in any section, the fine zone and
+// the contact surfaces follow the contact across the face; a layer's force F_l is normal to the
+// helicoid and F_l cos β_b its transverse part, so q_l = F_l cos β_b/Δz_l, which is also the
+// load per unit length of contact line (F_l over the line's length Δz_l/cos β_b).
 #pragma once
 
 #include <string>
@@ -73,6 +81,9 @@ struct Fe3dDeckInfo {
   /// face_width both b (the forces are the whole face's).
   FeDeckInfo deck;
   double misalignment = 0;      ///< F_β [m]
+  /// cos β_b [-] (1 for spur gears): a layer's contact force, normal to the helicoid, times it
+  /// is its transverse part, the force the slices and the hub's moment see.
+  double transverse_factor = 1;
   std::vector<double> z_edges;  ///< layer boundaries from the z = 0 face [m], N_z + 1 values
   std::vector<int> pair_layer;  ///< the layer of each entry of deck.pairs
   /// The influence deck's (Fe3dOptions::influence): the unit normal n (gear 1 → gear 2), the force

@@ -41,7 +41,10 @@ void RunCcx(const std::string& directory, const std::string& ccx, int threads) {
 }  // namespace
 
 Fe3dLineLoad ReadLineLoad(const std::string& directory, const Fe3dDeckInfo& info) {
-  const FeSample s = Interpolate(info.deck, ReadSteps(directory, info.deck));
+  std::vector<FeStepResult> steps = ReadSteps(directory, info.deck);
+  for (FeStepResult& step : steps)
+    for (double& force : step.pair_force) force *= info.transverse_factor;  // fe3d.hpp
+  const FeSample s = Interpolate(info.deck, steps);
   const std::size_t layers = info.z_edges.size() - 1;
   Fe3dLineLoad r;
   r.angle = info.deck.angle;

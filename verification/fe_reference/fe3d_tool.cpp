@@ -3,6 +3,7 @@
 // load per unit width across the face; the slice model against it (docs/face_width.md).
 #include "fe3d_tool.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 
 #include "csv_rows.hpp"
 #include "epicycle/transmission/face_width.hpp"
+#include "fe3d_helical.hpp"
 #include "fe3d_slices.hpp"
 #include "epicycle/report/files.hpp"
 #include "epicycle/report/svg_plot.hpp"
@@ -106,7 +108,7 @@ int Fe3dCommand(const Fe3dCommandArgs& a) {
   const double b_pair = geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
   const double torque = setup.torque * (o.face_width > 0 ? o.face_width / b_pair : 1.0);
   const Fe3dRun run = RunFe3d(scene, pair, torque, a.angle_deg * geometry::kPi / 180.0,
-                              a.plane_k * 1e9, o, a.out, a.ccx, a.threads);
+                              a.plane_k * 1e9, o, a.out, a.ccx, a.threads, a.step_scales);
   const Fe3dLineLoad& r = run.result;
   const bool fresh = !std::filesystem::exists(a.csv);
   std::ofstream f(a.csv, std::ios::app);
@@ -307,6 +309,62 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
   }
   plot.x_min = 0;
   plot.x_max = b * 1e3;
+  report::WriteTextFile(svg, report::RenderSvg(plot));
+  std::printf("wrote %s\n", svg.c_str());
+  return 0;
+}
+
+int Fe3dHelical(const std::string& scene, const std::string& csv, const std::string& svg,
+                const std::vector<std::string>& names, double angle_deg, int positions, int layers,
+                const std::string& title) {
+  using report::PlotSeries;
+  transmission::FeComplianceOptions tables;
+  tables.cache_directory = transmission::DefaultCacheDirectory();
+  const test::HelicalSliceSample model =
+      test::HelicalSlicesAt(transmission::ReadScene(scene), tables, angle_deg, positions);
+  const double b_mm = model.width * 1e3;
+  report::LinePlot plot{title, "z across the face width [mm]",
+                        "load per unit length of contact line [N/mm]", {}, false, {}};
+  // The 3D runs of the case, one series per (layers, refinement): the stations' means at their
+  // centres, as markers (lines for the runs at `layers` stations).
+  std::map<std::string, PlotSeries> runs;
+  for (const auto& r : test::ReadCsvRows(csv)) {
+    if (r.size() != 27 || std::find(names.begin(), names.end(), r[0]) == names.end() ||
+        std::abs(std::stod(r[1]) - angle_deg) > 1e-9 || std::abs(std::stod(r[2]) - b_mm) > 1e-9)
+      continue;
+    const std::string key = r[0] + ", " + r[4] + " layers, refinement " + r[5];
+    PlotSeries& s = runs[key];
+    s.name = r[0] + " " + r[4] + "x" + r[5];
+    s.markers = std::stoi(r[4]) == layers;
+    s.points = !s.markers;
+    s.x.push_back(std::stod(r[25]));
+    s.y.push_back(std::stod(r[26]));
+  }
+  if (runs.empty())
+    throw std::invalid_argument(csv + ": none of the cases at " + std::to_string(angle_deg) +
+                                " deg on b = " + std::to_string(b_mm) + " mm");
+  int colour = 0;
+  for (auto& [key, s] : runs) {
+    s.colour = colour++;
+    plot.series.push_back(s);
+    std::printf("3D %s:", key.c_str());
+    for (double q : s.y) std::printf(" %.1f", q);
+    std::printf(" N/mm\n");
+  }
+  const int slices = static_cast<int>(model.line_load.size());
+  PlotSeries line{std::to_string(slices) + " slices", {}, {}, false};
+  line.colour = colour;
+  for (int s = 0; s < slices; ++s) {
+    line.x.push_back((s + 0.5) * b_mm / slices);
+    line.y.push_back(model.line_load[static_cast<std::size_t>(s)] / 1e3);
+  }
+  plot.series.push_back(line);
+  std::printf("slices, %d-station means:", layers);
+  for (double q : model.Stations(layers)) std::printf(" %.1f", q / 1e3);
+  std::printf(" N/mm; mean k' %.4f N/(mm um)\n",
+              model.force / model.width / model.approach / 1e9);
+  plot.x_min = 0;
+  plot.x_max = b_mm;
   report::WriteTextFile(svg, report::RenderSvg(plot));
   std::printf("wrote %s\n", svg.c_str());
   return 0;

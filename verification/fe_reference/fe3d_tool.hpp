@@ -15,6 +15,8 @@ struct Fe3dCommandArgs {
   double refinement = 1;       ///< divides every in-plane size [-]
   bool plane_strain = false;   ///< one layer, u_z = 0
   double plane_k = 13.12;      ///< c′ of the plane model for the steps' estimate [N/(mm·µm)]
+  /// The steps' rotations as multiples of the estimate [-] (RunFe3d's step_scales).
+  std::vector<double> step_scales{0.94, 1.06};
   int threads = 1;             ///< ccx's OMP_NUM_THREADS
   double tooth_size_per_module = 0;  ///< in-plane size on the sector's teeth per module; 0: default
   double body_size_per_module = 0;   ///< largest in-plane size per module; 0: default
@@ -45,5 +47,14 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
                int influence_layers, const std::string& influence_refinement,
                const std::vector<std::string>& influence_cases, const std::string& kernel_csv,
                const std::string& title);
+
+/// The helical pair's slices (test::HelicalSlicesAt at `angle_deg`, a position of a
+/// `positions`-position sweep) against the 3D stations of the cases `names` of `csv`: prints each
+/// station's loads (the runs at every discretisation, the slices' station means) and draws the
+/// load per unit length of contact line across the face (the runs at `layers` stations as
+/// markers, the slices as a line). @throws on bad input or a failed solve.
+int Fe3dHelical(const std::string& scene, const std::string& csv, const std::string& svg,
+                const std::vector<std::string>& names, double angle_deg, int positions, int layers,
+                const std::string& title);
 
 }  // namespace epicycle::fe_reference

@@ -268,6 +268,8 @@ int main(int argc, char** argv) {
   fe3d->add_option("--layers", f3.layers, "wedge layers (axial stations) over b");
   fe3d->add_option("--refinement", f3.refinement, "divides every in-plane mesh size");
   fe3d->add_flag("--plane-strain", f3.plane_strain, "one layer with u_z = 0: plane strain");
+  fe3d->add_option("--step-scales", f3.step_scales,
+                   "the static steps as multiples of the estimated rotation (two or more, rising)");
   fe3d->add_option("--plane-k", f3.plane_k,
                    "plane model's stiffness per width for the steps' estimate [N/(mm um)]");
   fe3d->add_option("--threads", f3.threads, "ccx threads");
@@ -320,9 +322,27 @@ int main(int argc, char** argv) {
   fe3d_slices->add_option("--influence-layers", influence_layers,
                           "the influence run's layers (one slice each)");
   fe3d_slices->add_option("--title", title, "figure title");
+  std::string helical_scene;
+  std::vector<std::string> helical_cases{"helical"};
+  double helical_angle = 13.0;
+  int helical_positions = 18, helical_layers = 4;
+  CLI::App* fe3d_helical = app.add_subcommand(
+      "fe3d-helical", "figure: the helical pair's slices against its 3D stations");
+  fe3d_helical->add_option("scene", helical_scene, "the helical pair scene")->required();
+  fe3d_helical->add_option("csv", fe_csv, "CSV of fe3d runs of the helical deck")->required();
+  fe3d_helical->add_option("svg", prefix, "output SVG")->required();
+  fe3d_helical->add_option("--case", helical_cases, "the runs' case names in the CSV");
+  fe3d_helical->add_option("--angle-deg", helical_angle, "gear-1 angle of the runs [deg]");
+  fe3d_helical->add_option("--positions", helical_positions,
+                           "positions of the slices' sweep (the angle one of them)");
+  fe3d_helical->add_option("--layers", helical_layers, "the 3D stations compared");
+  fe3d_helical->add_option("--title", title, "figure title");
   try {
     app.parse(argc, argv);
     if (*plot) return Plot(hybrid_csv, fe_csv, prefix, title);
+    if (*fe3d_helical)
+      return fe_reference::Fe3dHelical(helical_scene, fe_csv, prefix, helical_cases, helical_angle,
+                                       helical_positions, helical_layers, title);
     if (*fe3d_slices)
       return fe_reference::Fe3dSlices(slices_scene, fe_csv, prefix, slices_layers,
                                       slices_refinement, influence_csv, influence_layers,
