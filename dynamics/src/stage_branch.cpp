@@ -8,6 +8,7 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "epicycle/dynamics/harmonic_balance.hpp"
 #include "epicycle/io/number_format.hpp"
@@ -203,6 +204,16 @@ StageBranchRecord ContinueStageBranch(
       rec.dof_labels.push_back(f.Label() + std::string(suffix));
 
   Eigen::VectorXd p = system.DefaultParameters();
+  // Both ends must be values the model takes (a damping ratio in [0, 1], a torque of the loaded
+  // flanks' sign, a pin error with which the planets assemble): bad input, before any point.
+  for (const auto& [field, value] : {std::pair{"start", o.start}, std::pair{"end", o.end}}) {
+    p(column) = value;
+    try {
+      system.ModelAt(p);
+    } catch (const std::invalid_argument& e) {
+      Fail(field, value, "a value of " + o.parameter + " the model refuses: " + e.what());
+    }
+  }
   p(column) = o.start;
   if (hb && system.PeriodMap(p).size() != 0)
     throw std::invalid_argument(
