@@ -168,6 +168,7 @@ void RunDynamic(const DynamicArgs& a) {
     throw std::invalid_argument(
         "--periodic-method and --hb-harmonics belong to --periodic and "
         "--continue");
+  std::string fallback;  // why a periodic sweep runs by time integration ("": it does not)
   if (a.periodic || !a.continue_spec.empty()) {
     dynamics::BranchRequest branch;
     branch.run = request;
@@ -186,9 +187,10 @@ void RunDynamic(const DynamicArgs& a) {
       return RunBranch({a.periodic ? "--speed-sweep" : "--continue",
                         a.periodic ? a.speed_sweep : a.continue_spec, a.out, a.quiet},
                        branch);
-    std::fprintf(stderr,
-                 "warning: --periodic: %s; the speed sweep runs by time integration instead\n",
-                 too_long.c_str());
+    fallback = too_long +
+               "; the speed sweep runs by time integration instead (--periodic-method, "
+               "--hb-harmonics and --periodic-points are unused)";
+    std::fprintf(stderr, "warning: --periodic: %s\n", fallback.c_str());
   }
   if (!a.speed_sweep.empty()) {
     ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
@@ -198,6 +200,7 @@ void RunDynamic(const DynamicArgs& a) {
     sweep.harmonics = a.harmonics;
     sweep.threads = a.threads;
     sweep.carry = carry;
+    sweep.periodic_fallback = fallback;
     return RunSpeedSweep({a.speed_sweep, a.out, a.backend, a.quiet}, std::move(sweep));
   }
   ConsoleSink sink(a, Provenance(a.backend, &request.scene));
@@ -321,8 +324,9 @@ void RegisterDynamicCommands(CLI::App& app) {
                 "with their Floquet stability, steps of at most 1/N of the range "
                 "(docs/periodic.md)");
   cmd->add_option("--continue", a.continue_spec,
-                  "NAME:FROM:TO:N: the periodic orbits continued over the stage's sun_speed_rpm, "
-                  "sun_torque_Nm or mesh_damping_ratio at the scene's (or --speed-rpm's) speed");
+                  "NAME:FROM:TO:N: the periodic orbits continued over a number of the scene at the "
+                  "scene's (or --speed-rpm's) speed: sun_speed_rpm, sun_torque_Nm, "
+                  "mesh_damping_ratio, errors.pin.planetK.radial_um or tangential_um");
   AddNumber(cmd, "--periodic-points", a.periodic_points,
             "--periodic, --continue: the most points of the branch (default 400)", kSweepSpeeds);
   cmd->add_option("--periodic-method", a.periodic_method,

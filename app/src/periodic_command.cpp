@@ -29,8 +29,8 @@ struct BranchRange {
 // NAME:FROM:TO:N of --continue.
 void ParseContinue(const std::string& spec, BranchRange* b) {
   const std::string rule =
-      "must be NAME:FROM:TO:N, a parameter of the stage, its range and at least N steps (e.g. "
-      "sun_torque_Nm:-600:-100:20)";
+      "must be NAME:FROM:TO:N, a number of the scene by its key path, its range and at least N "
+      "steps (e.g. sun_torque_Nm:-600:-100:20, errors.pin.planet1.tangential_um:0:4:10)";
   std::vector<std::string> parts;
   std::size_t at = 0;
   for (std::size_t c; (c = spec.find(':', at)) != std::string::npos; at = c + 1)
@@ -49,15 +49,6 @@ void ParseContinue(const std::string& spec, BranchRange* b) {
   } catch (const std::logic_error&) {
     throw std::invalid_argument("--continue = " + spec + ": " + rule);
   }
-  std::string list;
-  bool known = false;
-  for (const std::string& n : dynamics::StagePeriodicSystem::ParameterNames()) {
-    known = known || n == b->parameter;
-    list += (list.empty() ? "" : ", ") + n;
-  }
-  if (!known)
-    throw std::invalid_argument("--continue = " + spec + ": NAME = " + b->parameter +
-                                ": not a parameter of the stage's periodic orbits (" + list + ")");
 }
 
 }  // namespace
@@ -86,7 +77,7 @@ void ParseBranch(const std::string& option, const std::string& spec,
   request->steps = b.steps;
   // The period's refusal reaches --continue only (a periodic speed sweep falls back on time
   // integration instead, dynamic_commands.cpp).
-  request->names = {option + " N", "--periodic-points",
+  request->names = {option + " NAME", option + " N", "--periodic-points",
                     option == "--continue" ? "--continue" : "--periodic"};
 }
 

@@ -3,10 +3,13 @@
 #include "epicycle/dynamics/branch_run.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "epicycle/geometry/plane.hpp"
 #include "epicycle/transmission/helical_scene.hpp"
+#include "epicycle/transmission/scene_keys.hpp"
 
 namespace epicycle::dynamics {
 
@@ -23,7 +26,8 @@ StageBranchOptions Options(const BranchRequest& r, const transmission::Scene& sc
     throw std::invalid_argument(r.names.max_points + " = " + std::to_string(*r.max_points) +
                                 ": must be >= 2");
   StageBranchOptions o;
-  o.parameter = r.parameter;
+  o.parameter = ResolveBranchParameter(scene, r.parameter, r.names.parameter,
+                                       o.max_period_mesh_cycles, &o.period);
   o.start = r.start;
   o.end = r.end;
   o.max_step = std::max(1.0 / r.steps, o.min_step);
@@ -38,7 +42,6 @@ StageBranchOptions Options(const BranchRequest& r, const transmission::Scene& sc
   }
   o.simulation = simulation;
   o.Validate();
-  o.period = StagePeriodMeshCycles(geometry::Stage(scene.stage), scene.damage);
   try {
     CheckBranchPeriod(o.period, o.max_period_mesh_cycles);
   } catch (const std::invalid_argument& e) {
@@ -49,6 +52,60 @@ StageBranchOptions Options(const BranchRequest& r, const transmission::Scene& sc
 }
 
 }  // namespace
+
+std::string ResolveBranchParameter(const transmission::Scene& scene, const std::string& name,
+                                   const std::string& what, long max_period_mesh_cycles,
+                                   StagePeriod* period) {
+  *period = StagePeriodMeshCycles(scene.stage, scene.damage);
+  const std::vector<std::string> names = StagePeriodicSystem::ParameterNames();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return name;
+  // The three model parameters by their scene key paths.
+  const std::vector<std::string> paths = {"dynamics.sun_speed_rpm", "load.sun_torque_Nm",
+                                          "dynamics.mesh_damping_ratio"};
+  for (std::size_t k = 0; k < paths.size(); ++k)
+    if (name == paths[k]) return names[k];
+  std::string list;
+  for (const std::string& n : names) list += n + ", ";
+  list +=
+      "errors.pin.planetK.radial_um, errors.pin.planetK.tangential_um (K = 1.." +
+      std::to_string(scene.stage.planets) + ")";
+  const std::string head = what + " = '" + name + "': ";
+  if (const std::optional<StageErrorKey> error = ParseStageErrorKey(name, scene.stage.planets)) {
+    if (error->kind != StageErrorKey::Kind::kRunout) return name;
+    // A run-out's amplitude: the period is the stage's with that run-out present at any value.
+    geometry::StageSpec spec = scene.stage;
+    error->Set(&spec, std::max(error->Value(spec), 1.0));
+    const StagePeriod with = StagePeriodMeshCycles(spec, scene.damage);
+    if (with.mesh_cycles > max_period_mesh_cycles) {
+      std::string why;
+      for (const std::string& r : with.reasons) why += (why.empty() ? "" : "; ") + r;
+      throw std::invalid_argument(
+          head + "a run-out turns with its gear: the stage's period with it = " +
+          std::to_string(with.mesh_cycles) + " mesh cycles (" + why +
+          "): must be <= max_period_mesh_cycles = " + std::to_string(max_period_mesh_cycles) +
+          " for a branch (shooting integrates the whole period at every Newton iteration, "
+          "docs/periodic.md §4); a branch continues " + list);
+    }
+    *period = with;
+    return name;
+  }
+  switch (transmission::FindSceneKey(scene, name)) {
+    case transmission::SceneKeyKind::kNumber:
+      throw std::invalid_argument(
+          head + "a number of the scene that a branch cannot continue: the gears, their "
+                 "compliance tables, the supports and the model's settings are built from it "
+                 "once per run; a branch continues " + list);
+    case transmission::SceneKeyKind::kOther:
+      throw std::invalid_argument(head + "not a number in the scene " + scene.source +
+                                  " (a branch continues a number: " + list + ")");
+    case transmission::SceneKeyKind::kAbsent:
+      break;
+  }
+  throw std::invalid_argument(head + "not a key of the scene " + scene.source +
+                              " that a branch can continue (" + list +
+                              "; a key path as the scene file writes it, an array's entry by "
+                              "its gear)");
+}
 
 std::string BranchPeriodTooLong(const BranchRequest& request) {
   const transmission::Scene& scene = request.run.scene;
@@ -123,6 +180,7 @@ void VisitRecord(const BranchRecord& r, transmission::RecordVisitor& visit) {
   visit.Integer("integrations", b.integrations);
   visit.Integer("plain_integrations", b.plain_integrations);
   visit.Integer("steps", b.steps);
+  visit.Integer("stage_rebuilds", b.rebuilds);
   visit.Number("cpu_seconds", b.cpu_seconds);
   visit.Number("wall_seconds", b.wall_seconds);
   visit.Texts("warnings", r.warnings);

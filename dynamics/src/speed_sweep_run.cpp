@@ -101,6 +101,7 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   record.modal_mesh_stiffness = o.modal_mesh_stiffness;
   record.threads = o.threads;
   record.carry = o.carry;
+  record.periodic_fallback = request.periodic_fallback;
   record.plan = PlanSpeedSweep(base, o);
   sink.Start({&rig, &o, &record.plan});
 
@@ -180,6 +181,7 @@ void VisitRecord(const SpeedSweepRecord& r, transmission::RecordVisitor& visit) 
   visit.Integer("failed_speeds", r.failed());
   visit.Integer("threads", r.threads);
   visit.Text("carry_state", CarryStateName(r.carry));
+  visit.Text("periodic_fallback", r.periodic_fallback);
   visit.Number("plan_seconds", plan.seconds);
   visit.Number("wall_seconds", r.wall_seconds);
   visit.Number("cpu_seconds_in_speeds", r.cpu_seconds);

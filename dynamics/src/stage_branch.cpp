@@ -4,8 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "epicycle/dynamics/harmonic_balance.hpp"
 #include "epicycle/io/number_format.hpp"
@@ -146,11 +149,14 @@ void CheckBranchPeriod(const StagePeriod& period, long max_period_mesh_cycles) {
 
 void StageBranchOptions::Validate() const {
   const std::vector<std::string> names = StagePeriodicSystem::ParameterNames();
-  if (std::find(names.begin(), names.end(), parameter) == names.end()) {
+  if (std::find(names.begin(), names.end(), parameter) == names.end() &&
+      !ParseStageErrorKey(parameter, std::numeric_limits<int>::max())) {
     std::string list;
     for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
     throw std::invalid_argument("stage branch: parameter = '" + parameter +
-                                "': not a parameter of the stage (its parameters: " + list + ")");
+                                "': not a parameter of the stage (its parameters: " + list +
+                                ", errors.pin.planetK.radial_um, errors.pin.planetK.tangential_um, "
+                                "errors.runout.GEAR.amplitude_um)");
   }
   if (!std::isfinite(start)) Fail("start", start, "must be finite");
   if (!std::isfinite(end)) Fail("end", end, "must be finite");
@@ -179,8 +185,18 @@ StageBranchRecord ContinueStageBranch(
   const double cpu0 = CpuSeconds();
   const auto wall0 = std::chrono::steady_clock::now();
   CheckBranchPeriod(o.period, o.max_period_mesh_cycles);
+  // An error amplitude: the system's fourth parameter, the stage rebuilt per value.
+  const std::vector<std::string> names = StagePeriodicSystem::ParameterNames();
+  std::optional<StageErrorKey> error;
+  if (std::find(names.begin(), names.end(), o.parameter) == names.end()) {
+    error = ParseStageErrorKey(o.parameter, base.stage_model().planets());
+    if (!error)
+      throw std::invalid_argument("stage branch: parameter = '" + o.parameter +
+                                  "': names no gear of this stage (planet1..planet" +
+                                  std::to_string(base.stage_model().planets()) + ")");
+  }
   const StagePeriodicSystem system(base, o.simulation.backend, o.simulation.contact,
-                                   o.period.mesh_cycles);
+                                   o.period.mesh_cycles, error);
   const int column = system.ParameterIndex(o.parameter);
   StageBranchRecord rec;
   rec.parameter = o.parameter;
@@ -196,6 +212,16 @@ StageBranchRecord ContinueStageBranch(
       rec.dof_labels.push_back(f.Label() + std::string(suffix));
 
   Eigen::VectorXd p = system.DefaultParameters();
+  // Both ends must be values the model takes (a damping ratio in [0, 1], a torque of the loaded
+  // flanks' sign, a pin error with which the planets assemble): bad input, before any point.
+  for (const auto& [field, value] : {std::pair{"start", o.start}, std::pair{"end", o.end}}) {
+    p(column) = value;
+    try {
+      system.ModelAt(p);
+    } catch (const std::invalid_argument& e) {
+      Fail(field, value, "a value of " + o.parameter + " the model refuses: " + e.what());
+    }
+  }
   p(column) = o.start;
   if (hb && system.PeriodMap(p).size() != 0)
     throw std::invalid_argument(
@@ -289,6 +315,7 @@ StageBranchRecord ContinueStageBranch(
   rec.integrations = r.integrations;
   rec.plain_integrations = r.plain_integrations;
   rec.steps = r.steps;
+  rec.rebuilds = system.rebuilds();
   rec.cpu_seconds = CpuSeconds() - cpu0;
   rec.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

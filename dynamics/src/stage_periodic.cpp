@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "epicycle/io/units.hpp"
 
@@ -14,12 +15,17 @@ namespace {
 
 // The most models kept at other parameter values: λ and λ ± h of the parameter derivative.
 constexpr std::size_t kCachedModels = 4;
+constexpr double kUm = 1e-6;  // the error keys' unit [m]
 
 }  // namespace
 
 StagePeriod StagePeriodMeshCycles(const geometry::Stage& stage,
                                   const transmission::Damage& damage) {
-  const geometry::StageSpec& spec = stage.spec();
+  return StagePeriodMeshCycles(stage.spec(), damage);
+}
+
+StagePeriod StagePeriodMeshCycles(const geometry::StageSpec& spec,
+                                  const transmission::Damage& damage) {
   StagePeriod out;
   auto need = [&](const std::string& what, long teeth) {
     out.mesh_cycles = std::lcm(out.mesh_cycles, teeth);
@@ -42,11 +48,78 @@ StagePeriod StagePeriodMeshCycles(const geometry::Stage& stage,
   return out;
 }
 
+std::optional<StageErrorKey> ParseStageErrorKey(const std::string& name, int planets) {
+  // The gear's index from its scene name: "sun" −1, "ring" −2, "planetK" K − 1; none otherwise.
+  auto gear = [&](const std::string& g) -> std::optional<int> {
+    if (g == "sun") return -1;
+    if (g == "ring") return -2;
+    if (g.rfind("planet", 0) != 0 || g.size() == 6) return std::nullopt;
+    int k = 0;
+    for (std::size_t c = 6; c < g.size(); ++c) {
+      if (g[c] < '0' || g[c] > '9' || k > planets) return std::nullopt;
+      k = 10 * k + (g[c] - '0');
+    }
+    if (k < 1 || k > planets || g[6] == '0') return std::nullopt;
+    return k - 1;
+  };
+  std::vector<std::string> part;
+  std::size_t at = 0;
+  for (std::size_t c; (c = name.find('.', at)) != std::string::npos; at = c + 1)
+    part.push_back(name.substr(at, c - at));
+  part.push_back(name.substr(at));
+  if (part.size() != 4 || part[0] != "errors") return std::nullopt;
+  const std::optional<int> g = gear(part[2]);
+  if (!g) return std::nullopt;
+  StageErrorKey k{name, StageErrorKey::Kind::kPinTangential, *g};
+  if (part[1] == "pin" && *g >= 0 && part[3] == "tangential_um") return k;
+  if (part[1] == "pin" && *g >= 0 && part[3] == "radial_um") {
+    k.kind = StageErrorKey::Kind::kPinRadial;
+    return k;
+  }
+  if (part[1] == "runout" && part[3] == "amplitude_um") {
+    k.kind = StageErrorKey::Kind::kRunout;
+    return k;
+  }
+  return std::nullopt;
+}
+
+namespace {
+
+// The run-out of gear g (−1 sun, −2 ring, else the planet) in `spec`, the planets' list sized.
+geometry::Runout* RunoutOf(geometry::StageSpec* spec, int g) {
+  if (g == -1) return &spec->sun_runout;
+  if (g == -2) return &spec->ring_runout;
+  if (spec->planet_runouts.empty()) spec->planet_runouts.assign(spec->planets, {});
+  return &spec->planet_runouts[static_cast<std::size_t>(g)];
+}
+
+}  // namespace
+
+double StageErrorKey::Value(const geometry::StageSpec& spec) const {
+  geometry::StageSpec s = spec;  // RunoutOf and the pins' list may size an empty list
+  if (kind == Kind::kRunout) return RunoutOf(&s, gear)->amplitude / kUm;
+  if (s.pin_errors.empty()) return 0;
+  const geometry::PinError& e = s.pin_errors[static_cast<std::size_t>(gear)];
+  return (kind == Kind::kPinRadial ? e.radial : e.tangential) / kUm;
+}
+
+void StageErrorKey::Set(geometry::StageSpec* spec, double value_um) const {
+  if (kind == Kind::kRunout) {
+    RunoutOf(spec, gear)->amplitude = value_um * kUm;
+    return;
+  }
+  if (spec->pin_errors.empty()) spec->pin_errors.assign(spec->planets, {});
+  geometry::PinError& e = spec->pin_errors[static_cast<std::size_t>(gear)];
+  (kind == Kind::kPinRadial ? e.radial : e.tangential) = value_um * kUm;
+}
+
 StagePeriodicSystem::StagePeriodicSystem(const DynamicModel& model, solvers::Backend backend,
-                                         solvers::ContactOptions contact, long mesh_cycles)
+                                         solvers::ContactOptions contact, long mesh_cycles,
+                                         std::optional<StageErrorKey> error)
     : base_(model),
       contact_(std::move(contact)),
       mesh_cycles_(mesh_cycles),
+      error_(std::move(error)),
       solver_(solvers::MakeContactSolver(backend)) {
   if (mesh_cycles < 1)
     throw std::invalid_argument("stage period: mesh_cycles = " + std::to_string(mesh_cycles) +
@@ -55,9 +128,13 @@ StagePeriodicSystem::StagePeriodicSystem(const DynamicModel& model, solvers::Bac
 }
 
 std::vector<PeriodicParameter> StagePeriodicSystem::parameters() const {
-  return {{kSunSpeed, "rpm", io::RadPerSecondToRpm(base_.settings().sun_speed)},
-          {kSunTorque, "N·m", base_.loads().sun_torque},
-          {kMeshDampingRatio, "-", base_.settings().mesh_damping_ratio}};
+  std::vector<PeriodicParameter> out{
+      {kSunSpeed, "rpm", io::RadPerSecondToRpm(base_.settings().sun_speed)},
+      {kSunTorque, "N·m", base_.loads().sun_torque},
+      {kMeshDampingRatio, "-", base_.settings().mesh_damping_ratio}};
+  if (error_)
+    out.push_back({error_->key, "µm", error_->Value(base_.stage_model().stage().spec())});
+  return out;
 }
 
 const DynamicModel& StagePeriodicSystem::ModelAt(const Eigen::VectorXd& p) const {
@@ -72,11 +149,25 @@ const DynamicModel& StagePeriodicSystem::ModelAt(const Eigen::VectorXd& p) const
   s.mesh_damping_ratio = p(2);
   transmission::StageLoads loads = base_.loads();
   loads.sun_torque = p(1);
-  auto m = std::make_unique<DynamicModel>(base_.stage_model(), s, base_.inertias(), loads);
-  m->SetMeshStiffness(base_.sun_mesh_stiffness(), base_.ring_mesh_stiffness());
-  m->SetStartAngle(base_.CarrierAngle(0));
+  Cached c{p, nullptr, nullptr, nullptr};
+  if (error_ && p(3) != defaults_(3)) {
+    // The error's value moves the pins or the gears' centres, read by geometry::Stage from its
+    // spec: the stage rebuilt with it (its gears generated anew) under the same compliance and
+    // setup, which depend on the gears' shapes only.
+    const transmission::StageModel& sm = base_.stage_model();
+    geometry::StageSpec spec = sm.stage().spec();
+    error_->Set(&spec, p(3));
+    c.stage = std::make_unique<geometry::Stage>(std::move(spec));
+    c.stage_model =
+        std::make_unique<transmission::StageModel>(*c.stage, sm.compliance(), sm.setup());
+    ++rebuilds_;
+  }
+  c.model = std::make_unique<DynamicModel>(c.stage_model ? *c.stage_model : base_.stage_model(),
+                                           s, base_.inertias(), loads);
+  c.model->SetMeshStiffness(base_.sun_mesh_stiffness(), base_.ring_mesh_stiffness());
+  c.model->SetStartAngle(base_.CarrierAngle(0));
   if (models_.size() == kCachedModels) models_.pop_back();
-  models_.insert(models_.begin(), Cached{p, std::move(m)});
+  models_.insert(models_.begin(), std::move(c));
   return *models_[0].model;
 }
 

@@ -157,7 +157,10 @@ scene : Scene
     A stage scene whose period is at most 4 mesh cycles (no run-out or damage that repeats only
     over longer).
 parameter : str
-    "sun_speed_rpm" [rpm], "sun_torque_Nm" [N·m] or "mesh_damping_ratio" [-].
+    A number of the scene by its key path (docs/periodic.md §3, "Continued scene numbers"):
+    "sun_speed_rpm" [rpm], "sun_torque_Nm" [N·m], "mesh_damping_ratio" [-], or a pin error
+    "errors.pin.planetK.radial_um" / "errors.pin.planetK.tangential_um" [µm]; any other name
+    raises ValueError saying why it cannot be continued.
 start, end : float
     The range, in the parameter's unit; end != start.
 steps : int, default 20

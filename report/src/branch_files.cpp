@@ -129,12 +129,14 @@ std::string BranchRecordText(const dynamics::BranchRecord& record) {
         "the harmonic balance ({} evaluations); {:.2f} s CPU, {:.2f} s wall\n",
         r.points.size(), unstable, r.bifurcations.size(), r.integrations, r.plain_integrations,
         r.steps, r.cpu_seconds, r.wall_seconds);
+  const std::string rebuilt =
+      r.rebuilds > 0 ? fmt::format("; {} stages rebuilt with the error's values", r.rebuilds)
+                     : std::string();
   return fmt::format(
       "\n  {} points ({} unstable), {} bifurcations; {} periods integrated with the "
-      "variational equations and {} without ({} steps); {:.2f} s CPU, {:.2f} s wall\n",
+      "variational equations and {} without ({} steps){}; {:.2f} s CPU, {:.2f} s wall\n",
       r.points.size(), unstable, r.bifurcations.size(), r.integrations, r.plain_integrations,
-      r.steps, r.cpu_seconds,
-      r.wall_seconds);
+      r.steps, rebuilt, r.cpu_seconds, r.wall_seconds);
 }
 
 void WriteBranchPlots(const std::string& path, const std::string& scene_name,

@@ -144,8 +144,17 @@ def test_periodic_branch_bad_input_names_the_argument():
     import pytest
 
     scene = epicycle.Scene.load(scene_path("paper_stage.toml"))
-    with pytest.raises(ValueError, match="parameter = 'speed': not a parameter of the stage"):
+    with pytest.raises(ValueError, match="parameter = 'speed': not a key of the scene"):
         epicycle.periodic_branch(scene, "speed", 1000, 2000, cache_dir="")
+    with pytest.raises(ValueError, match="parameter = 'scene.name': not a number in the scene"):
+        epicycle.periodic_branch(scene, "scene.name", 1, 2, cache_dir="")
+    with pytest.raises(ValueError,
+                       match="parameter = 'sun.teeth': a number of the scene that a branch "
+                             "cannot continue"):
+        epicycle.periodic_branch(scene, "sun.teeth", 16, 17, cache_dir="")
+    with pytest.raises(ValueError, match="'errors.runout.planet1.amplitude_um': a run-out turns "
+                                         "with its gear: the stage's period with it = 24"):
+        epicycle.periodic_branch(scene, "errors.runout.planet1.amplitude_um", 0, 20, cache_dir="")
     with pytest.raises(ValueError, match="end = 1000: equals start = 1000: the range must have"):
         epicycle.periodic_branch(scene, "sun_speed_rpm", 1000, 1000, cache_dir="")
     with pytest.raises(ValueError, match="steps = 0: must be >= 1"):

@@ -22,7 +22,7 @@ namespace epicycle::dynamics {
 
 /// The names under which a front end's user gives the branch's own fields, for the messages.
 struct BranchOptionNames {
-  std::string steps = "steps", max_points = "max_points";
+  std::string parameter = "parameter", steps = "steps", max_points = "max_points";
   /// Put before the message refusing a period of too many mesh cycles ("": none).
   std::string period;
   std::string harmonics = "harmonics";
@@ -34,7 +34,10 @@ struct BranchOptionNames {
 /// spectrum, stresses and rating belong to a run in time and are not used.
 struct BranchRequest {
   DynamicRequest run;
-  /// StagePeriodicSystem::kSunSpeed, kSunTorque or kMeshDampingRatio.
+  /// The scene number continued, by its name: StagePeriodicSystem::kSunSpeed, kSunTorque,
+  /// kMeshDampingRatio (or their key paths dynamics.sun_speed_rpm, load.sun_torque_Nm,
+  /// dynamics.mesh_damping_ratio), or an error amplitude's key path (ParseStageErrorKey);
+  /// ResolveBranchParameter says which names a scene can be continued over, and why not.
   std::string parameter = StagePeriodicSystem::kSunSpeed;
   double start = 0;               ///< λ at the first point [the parameter's unit]
   double end = 0;                 ///< λ where the branch stops [its unit]; ≠ start
@@ -79,6 +82,17 @@ struct BranchRecord {
 /// @throws std::invalid_argument for a request that breaks a rule (named as `names` say);
 ///         std::runtime_error if the quasi-static start fails; whatever `sink` throws.
 BranchRecord RunBranch(const BranchRequest& request, BranchSink& sink);
+
+/// The parameter a branch of `scene` continues when asked for `name` (the record's name: an alias
+/// resolved to its short name), and the stage's period over the branch (a continued run-out's
+/// included) (docs/periodic.md §3, "Continued scene numbers").
+/// @throws std::invalid_argument "<what> = '<name>': <rule>" for a name that is not a key of the
+///         scene, a key that is not a number, a number that a branch cannot continue (the gears,
+///         the compliance tables and the settings are built once from it), a run-out whose period
+///         exceeds max_period_mesh_cycles.
+std::string ResolveBranchParameter(const transmission::Scene& scene, const std::string& name,
+                                   const std::string& what, long max_period_mesh_cycles,
+                                   StagePeriod* period);
 
 /// Why a branch of this request's stage would not pay (BranchPeriodRefusal: a period of more mesh
 /// cycles than StageBranchOptions::max_period_mesh_cycles, docs/periodic.md §4), empty when it

@@ -30,6 +30,9 @@ struct SpeedSweepRequest {
   /// kUp / kDown: a run-up or run-down, each speed from the previous one's end state, on one
   /// thread (speed_sweep.hpp, "Carried state").
   CarryState carry = CarryState::kNone;
+  /// Non-empty: the sweep runs in place of a periodic branch over the same range, and why (the
+  /// front end's words around BranchPeriodTooLong); kept in the record, not among its warnings.
+  std::string periodic_fallback;
 };
 
 /// The samples per mesh cycle of a speed sweep's window by default.
@@ -69,6 +72,8 @@ struct SpeedSweepRecord {
   double wall_seconds = 0;            ///< of the speeds' runs [s]
   double cpu_seconds = 0;             ///< CPU in the speeds [s]
   std::vector<std::string> warnings;  ///< the scene's and each speed's ("at N rpm: ...")
+  /// Why the sweep ran instead of the periodic branch asked for ("": it was not asked for).
+  std::string periodic_fallback;
   int failed() const;                 ///< speeds that did not complete
 };
 

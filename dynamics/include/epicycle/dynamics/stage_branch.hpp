@@ -33,7 +33,8 @@ PeriodicMethod ParsePeriodicMethod(const std::string& word, const std::string& w
 
 struct StageBranchOptions {
   /// The parameter continued: StagePeriodicSystem::kSunSpeed ("sun_speed_rpm"), kSunTorque
-  /// ("sun_torque_Nm") or kMeshDampingRatio ("mesh_damping_ratio").
+  /// ("sun_torque_Nm"), kMeshDampingRatio ("mesh_damping_ratio") or an error amplitude's key
+  /// (ParseStageErrorKey: "errors.pin.planet1.tangential_um", ...).
   std::string parameter = StagePeriodicSystem::kSunSpeed;
   double start = 0;  ///< λ_0 [the parameter's unit]
   double end = 0;    ///< λ where the branch stops [its unit]; ≠ start
@@ -110,6 +111,9 @@ struct StageBranchRecord {
   long plain_integrations = 0;
   /// The integrator steps of both; harmonic balance: the stage's evaluations in them [-].
   long steps = 0;
+  /// Continued over an error amplitude: the stages rebuilt with a value of it (one per parameter
+  /// value the continuation evaluated the stage at, StagePeriodicSystem::rebuilds) [-].
+  long rebuilds = 0;
   double cpu_seconds = 0;   ///< CPU of the run (one thread) [s]
   double wall_seconds = 0;  ///< [s]
   /// Non-empty: a point's period figures could not be integrated (the first such point and why);
@@ -129,8 +133,9 @@ void CheckBranchPeriod(const StagePeriod& period, long max_period_mesh_cycles);
 
 /// The branch from the quasi-static start at λ = start (shooting, then the continuation to end).
 /// `on_point` gets the record after each new point (its last point; bifurcations up to it).
-/// @throws std::invalid_argument for bad options (naming the field), an unknown parameter, a
-///         period over max_period_mesh_cycles, a parameter value the model refuses;
+/// @throws std::invalid_argument for bad options (naming the field), an unknown parameter (an
+///         error key of a gear the stage does not have), a period over max_period_mesh_cycles,
+///         a parameter value the model refuses;
 ///         std::runtime_error if the quasi-static start fails; what `on_point` throws.
 StageBranchRecord ContinueStageBranch(
     const DynamicModel& base, const StageBranchOptions& options,

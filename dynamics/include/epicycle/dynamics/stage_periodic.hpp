@@ -15,13 +15,17 @@
 //   sun_speed_rpm       [rpm]   the sun's speed (DynamicSettings::sun_speed; T depends on it)
 //   sun_torque_Nm       [N·m]   the input torque T_s (StageLoads::sun_torque)
 //   mesh_damping_ratio  [-]     ζ of the mesh damping (DynamicSettings::mesh_damping_ratio)
-// A parameter value other than the base model's builds a DynamicModel with it over the same stage
-// model, the base's mean mesh stiffnesses (so c_m = 2ζ√(k_m m_eq) with the base's k_m) and start
-// angle; the last few are kept, since the continuation's parameter derivative evaluates f at
-// λ ± h in turn.
+// and, when the system is made for one (StageErrorKey), a fourth: an error's amplitude named by its
+// scene key path, errors.pin.planetK.radial_um / tangential_um or errors.runout.GEAR.amplitude_um
+// [µm]. A parameter value other than the base model's builds a DynamicModel with it over the same
+// stage model (an error's value: over a stage model of a geometry::Stage rebuilt with it, the same
+// compliance and setup), the base's mean mesh stiffnesses (so c_m = 2ζ√(k_m m_eq) with the base's
+// k_m) and start angle; the last few are kept, since the continuation's parameter derivative
+// evaluates f at λ ± h in turn.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +52,27 @@ struct StagePeriod {
 /// whole carrier turns (z_r | k). k is the lcm of what the stage has. Pin and thickness errors
 /// are fixed in the carrier frame (k = 1).
 StagePeriod StagePeriodMeshCycles(const geometry::Stage& stage, const transmission::Damage& damage);
+/// The same from the stage's spec (the tooth counts and errors are all it reads).
+StagePeriod StagePeriodMeshCycles(const geometry::StageSpec& spec,
+                                  const transmission::Damage& damage);
+
+/// An error amplitude of the scene that a branch continues by rebuilding the stage's geometry per
+/// value (docs/periodic.md §3, "Continued scene numbers"): its key path and what it sets.
+struct StageErrorKey {
+  enum class Kind { kPinRadial, kPinTangential, kRunout };
+  std::string key;  ///< "errors.pin.planet1.tangential_um", "errors.runout.sun.amplitude_um"
+  Kind kind = Kind::kPinTangential;
+  int gear = 0;  ///< 0-based planet index; −1 the sun, −2 the ring (run-outs)
+  /// The key's value in `spec` [µm] (0 when the scene has no such error).
+  double Value(const geometry::StageSpec& spec) const;
+  /// `spec` with the value [µm] written in (the error lists sized to the planets if empty).
+  void Set(geometry::StageSpec* spec, double value_um) const;
+};
+
+/// The error key `name` names: errors.pin.planetK.radial_um, errors.pin.planetK.tangential_um or
+/// errors.runout.GEAR.amplitude_um (GEAR sun, ring, planetK), K = 1..planets; none for any other
+/// name (a planet out of range included).
+std::optional<StageErrorKey> ParseStageErrorKey(const std::string& name, int planets);
 
 class StagePeriodicSystem : public PeriodicSystem {
  public:
@@ -59,10 +84,12 @@ class StagePeriodicSystem : public PeriodicSystem {
     return {kSunSpeed, kSunTorque, kMeshDampingRatio};
   }
 
-  /// `model` must outlive this object. `mesh_cycles` k ≥ 1 (StagePeriodMeshCycles).
+  /// `model` must outlive this object. `mesh_cycles` k ≥ 1 (StagePeriodMeshCycles). `error`: the
+  /// fourth parameter, an error amplitude (none: the three above only).
   /// @throws std::invalid_argument for mesh_cycles < 1.
   StagePeriodicSystem(const DynamicModel& model, solvers::Backend backend,
-                      solvers::ContactOptions contact, long mesh_cycles = 1);
+                      solvers::ContactOptions contact, long mesh_cycles = 1,
+                      std::optional<StageErrorKey> error = std::nullopt);
   int size() const override { return 2 * base_.size(); }
   std::vector<PeriodicParameter> parameters() const override;
   double Period(const Eigen::VectorXd& p) const override;
@@ -74,6 +101,9 @@ class StagePeriodicSystem : public PeriodicSystem {
                 Eigen::MatrixXd* jac) const override;
   long evaluations() const { return evaluations_; }  ///< Evaluate calls so far [-]
   long mesh_cycles() const { return mesh_cycles_; }  ///< k [-]
+  /// Geometries rebuilt for an error's value so far (each a geometry::Stage, its stage model and
+  /// dynamic model) [-].
+  long rebuilds() const { return rebuilds_; }
   /// The dynamic model at parameters p (the base model's when p is empty or its defaults).
   /// @throws std::invalid_argument as DynamicModel's constructor for a value it refuses.
   const DynamicModel& ModelAt(const Eigen::VectorXd& p) const;
@@ -88,11 +118,15 @@ class StagePeriodicSystem : public PeriodicSystem {
   Eigen::VectorXd defaults_;
   solvers::ContactOptions contact_;
   long mesh_cycles_ = 1;
+  std::optional<StageErrorKey> error_;
   // The integrator calls Rhs and Jacobian in turn on one thread: the contact solver, the warm
   // start and the models at other parameter values are state of the calls, not of the system.
   std::unique_ptr<solvers::ContactSolver> solver_;
   struct Cached {
     Eigen::VectorXd p;
+    // An error's value: the stage rebuilt with it and its stage model, which `model` refers to.
+    std::unique_ptr<geometry::Stage> stage;
+    std::unique_ptr<transmission::StageModel> stage_model;
     std::unique_ptr<DynamicModel> model;
   };
   mutable std::vector<Cached> models_;  // most recently used first
@@ -103,6 +137,7 @@ class StagePeriodicSystem : public PeriodicSystem {
   mutable double warm_t_ = 0;
   mutable Eigen::VectorXd warm_y_, warm_p_;
   mutable long evaluations_ = 0;
+  mutable long rebuilds_ = 0;
 };
 
 }  // namespace epicycle::dynamics
