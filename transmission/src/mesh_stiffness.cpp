@@ -19,6 +19,42 @@
 
 namespace epicycle::transmission {
 
+namespace {
+
+// A spur stage's mesh in the stage's slices (docs/face_width.md, "One mesh of a sliced stage"):
+// its coupling and the leads of its two gears (`gears`: the stage's names of gear 1 and gear 2),
+// renamed "gear1" and "gear2". The pair is held on fixed axes: what tilts the planet in the stage
+// (its pin's tilt, the pins' bending, the carrier's wind-up) has no place in it and is refused.
+void SpurStageMeshSlices(const FaceWidthSpec& stage, const std::string& mesh, int planet,
+                         const std::vector<std::string>& gears, FaceWidthSpec* out) {
+  const std::string rule =
+      ": the mesh-stiffness driver holds the mesh's two gears on fixed axes and takes the "
+      "stage's slices and the two gears' leads only; `epicycle quasistatic` computes the "
+      "stage's load across the face with it";
+  for (const PinTilt& t : stage.pin_tilts)
+    if (t.planet == planet)
+      throw std::invalid_argument("--mesh = '" + mesh + "': " + t.where + " tilts planet " +
+                                  std::to_string(planet + 1) + "'s pin" + rule);
+  if (!stage.pins.empty())
+    throw std::invalid_argument("--mesh = '" + mesh + "': " + stage.pins[0].where +
+                                " makes the planets tilt on their pins under load" + rule);
+  if (stage.carrier_torsional_stiffness > 0)
+    throw std::invalid_argument("--mesh = '" + mesh + "': " + stage.carrier_where + " = " +
+                                std::to_string(stage.carrier_torsional_stiffness) +
+                                " N m/rad winds the carrier up under torque" + rule);
+  out->slices = stage.slices;
+  out->coupling = stage.coupling;
+  out->coupling_length = stage.coupling_length;
+  for (const LeadSpec& l : stage.leads)
+    for (std::size_t g = 0; g < gears.size(); ++g)
+      if (l.gear == gears[g]) {
+        out->leads.push_back(l);
+        out->leads.back().gear = g == 0 ? "gear1" : "gear2";
+      }
+}
+
+}  // namespace
+
 MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
                            const std::string& mesh) {
   MeshPairSetup s;
@@ -67,6 +103,8 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
       s.face_width.slices = scene.face_width.slices;
       s.face_width.coupling = scene.face_width.coupling;
       s.face_width.coupling_length = scene.face_width.coupling_length;
+    } else if (scene.face_width.active()) {
+      SpurStageMeshSlices(scene.face_width, mesh, i, s.gears, &s.face_width);
     }
     return s;
   }
@@ -158,10 +196,13 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
         } else {
           if (!options.tooth_coupling)  // (a pitted contact's strips still share their rows)
             d.compliance = Eigen::MatrixXd(d.compliance.diagonal().asDiagonal());
-          if (!damage.empty() &&
-              SplitContacts(damage, std::vector<int>(contacts.size(), 0),
-                            std::vector<int>(contacts.size(), 1), contacts, setup.gap_window,
-                            options.local_terms, &source, &strips)) {
+          if (faces.active()) {
+            faces.Expand(&contacts, &d.compliance);  // slice s of contact j at j S + s
+            strips.assign(contacts.size(), ContactStrip{1.0 / faces.slices(), 0.0, 0});
+          } else if (!damage.empty() &&
+                     SplitContacts(damage, std::vector<int>(contacts.size(), 0),
+                                   std::vector<int>(contacts.size(), 1), contacts,
+                                   setup.gap_window, options.local_terms, &source, &strips)) {
             // Each strip takes its contact's rows of C (the stage model's rule).
             d.compliance = ExpandCompliance(d.compliance, source);
             std::vector<geometry::PotentialContact> parts;
@@ -170,13 +211,19 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
               parts.back().overlap -= strips[k].depth;
             }
             contacts = std::move(parts);
-          } else if (faces.active()) {
-            faces.Expand(&contacts, &d.compliance);  // slice s of contact j at j S + s
-            strips.assign(contacts.size(), ContactStrip{1.0 / faces.slices(), 0.0, 0});
           } else {
             strips.assign(contacts.size(), ContactStrip{});
           }
         }
+        // A slice's gap grows by the depth of the pits covering its centre (the stage model's
+        // rule, FaceWidthModel::Expand): each slice is one strip of its contact.
+        if (faces.active() && !damage.empty())
+          for (std::size_t j = 0; j < contacts.size(); ++j) {
+            const int s = helical ? slice[j] : static_cast<int>(j) % faces.slices();
+            const double pit = damage.DepthAt(0, 1, contacts[j], (s + 0.5) / faces.slices());
+            contacts[j].overlap -= pit;
+            strips[j].depth = pit;
+          }
         const int n = static_cast<int>(contacts.size());
         if (n == 0) return {StageStatus::kNoContact, "no potential contact within the gap window"};
         d.overlap.resize(n);
@@ -295,10 +342,6 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geome
   RootStressTracker root_stress(setup.gears);
   const DamageModel damage(setup.damage, setup.gears);
   const PairFaceWidth faces(setup.face_width, pair);
-  if (faces.active() && !damage.empty())
-    throw std::invalid_argument(
-        "mesh stiffness: pits with slices of the face width are not built "
-        "for a gear pair (the stage model has them)");
   if (!faces.active() && pair.gear1().spec().helix.helical())
     throw std::invalid_argument(
         "mesh stiffness: face_width.slices = " + std::to_string(faces.slices()) +

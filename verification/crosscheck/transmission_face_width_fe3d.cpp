@@ -9,6 +9,7 @@
 // The slice problem: verification/support/fe3d_slices.hpp.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <tuple>
@@ -162,17 +163,84 @@ TEST_CASE(
   CHECK(std::abs(k_mean / k_ref - 1) <= 0.012 + 2 * 0.0021 + 0.0025);
 }
 
+// Case (b), F_β = 80 µm, one end lifted: the reference's convergence (docs/fe_reference.md,
+// "Convergence of the lifted face"; the rows of iso_pair_20_40_face_load.csv):
+//  - in the plane, at 4 layers: 200 µm at the contact ("b", refinement 1), 141.8 µm ("b",
+//    refinement 1.41), 100 µm ("b100") and 70 µm ("b70"): the first step moves the first station
+//    by 37 N/mm, the rest stay within `spread` (not monotone: the spread bounds the error of the
+//    finer levels);
+//  - along the face, at 100 µm: 4 → 8 layers ("b100"), each 5 mm station the mean of two layers;
+//    the error of the 8 layers is at most that change (convergence of order ≥ 1 halving the
+//    layer: error ≤ change/(2^p − 1) ≤ change).
+// The reference is the 8 layers at 100 µm, uncertain by 2 × the larger of the two (the factor of
+// the aligned and full-contact tolerances). The slices' own 2.5 mm resolution of the lift-off adds
+// the change of the 5 mm stations from 8 to 80 slices of a kernel that can be refined (tooth_body,
+// φ from the plane FE).
+namespace {
+struct LiftedFace {
+  std::vector<double> reference;  // 8 layers, 100 µm: the 5 mm station means [N/mm]
+  double axial = 0, in_plane = 0, slices = 0, tolerance = 0;  // [N/mm]
+};
+std::vector<double> FiveMillimetreMeans(const std::vector<double>& q) {
+  const std::size_t per = q.size() / 4;
+  std::vector<double> out(4, 0.0);
+  for (std::size_t l = 0; l < q.size(); ++l) out[l / per] += q[l] / static_cast<double>(per);
+  return out;
+}
+LiftedFace LiftedFaceReference() {
+  LiftedFace f;
+  f.reference = FiveMillimetreMeans(Fixture("b100", 8, "1").line_load);
+  const std::vector<double> q4 = Fixture("b100", 4, "1").line_load;
+  const std::vector<std::vector<double>> plane = {
+      Fixture("b", 4, "1.41").line_load, q4, Fixture("b70", 4, "1").line_load};
+  for (std::size_t s = 0; s < 4; ++s) {
+    f.axial = std::max(f.axial, std::abs(f.reference[s] - q4[s]));
+    double lo = plane[0][s], hi = lo;
+    for (const auto& q : plane) {
+      lo = std::min(lo, q[s]);
+      hi = std::max(hi, q[s]);
+    }
+    f.in_plane = std::max(f.in_plane, hi - lo);
+  }
+  const double phi = Reference().BodyShare();
+  const std::vector<double> coarse = Stations(
+      transmission::FaceCouplingMatrix(8, kWidth, FaceCoupling::kToothBody, 0, phi), 80e-6);
+  const std::vector<double> fine = Stations(
+      transmission::FaceCouplingMatrix(80, kWidth, FaceCoupling::kToothBody, 0, phi), 80e-6);
+  for (std::size_t s = 0; s < 4; ++s) f.slices = std::max(f.slices, std::abs(coarse[s] - fine[s]));
+  f.tolerance = 2 * std::max(f.axial, f.in_plane) + f.slices;
+  return f;
+}
+}  // namespace
+
 TEST_CASE(
-    "face width on the ISO 20/40 pair: slices with the 3D structure's own kernel within 11 N/mm "
-    "of the 3D contact reference's lifted face (not met, docs/face_width.md 'Coupling against "
-    "the 3D reference')",
+    "face width on the ISO 20/40 pair: the 3D contact reference's lifted face at 8 layers and "
+    "100 um carries the load and lifts within the first 10 mm",
+    "[crosscheck][transmission][face_width]") {
+  const LiftedFace f = LiftedFaceReference();
+  INFO("axial change " << f.axial << ", in-plane spread " << f.in_plane << ", slices " << f.slices
+                       << ", tolerance " << f.tolerance << " N/mm");
+  // (fe3d_data_test.cpp checks that every run balances the torque.) The uncoupled slices of the
+  // face's middle stiffness c' = 12.50 N/(mm um) would carry load over 14.6 mm
+  // (docs/fe_reference.md): the structure's steeper coupling ends it within the first 10 mm, at
+  // every level, so stations 2 and 3 carry nothing.
+  CHECK(f.reference[2] == 0);
+  CHECK(f.reference[3] == 0);
+}
+
+TEST_CASE(
+    "face width on the ISO 20/40 pair: slices with the 3D structure's own kernel within the "
+    "lifted face's derived tolerance of the 3D contact reference (not met, docs/face_width.md "
+    "'Coupling against the 3D reference')",
     "[crosscheck][transmission][face_width][!shouldfail]") {
-  const Run ref = Fixture("b", 4, "1.41");
+  const LiftedFace f = LiftedFaceReference();
   const std::vector<double> model = Stations(Structure(), 80e-6);
-  for (int s = 0; s < 4; ++s) {
-    INFO("case b station " << s << ": 3D contact " << ref.line_load[s]
-                           << ", slices with the 3D structure's kernel " << model[s] << " N/mm");
-    CHECK(std::abs(model[s] - ref.line_load[s]) <= 11.0);
+  for (std::size_t s = 0; s < 4; ++s) {
+    INFO("case b station " << s << ": 3D contact (8 layers, 100 um) " << f.reference[s]
+                           << ", slices with the 3D structure's kernel " << model[s]
+                           << " N/mm; tolerance " << f.tolerance << " = 2 x max(axial "
+                           << f.axial << ", in-plane " << f.in_plane << ") + slices " << f.slices);
+    CHECK(std::abs(model[s] - f.reference[s]) <= f.tolerance);
   }
 }
 
