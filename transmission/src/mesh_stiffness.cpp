@@ -19,42 +19,6 @@
 
 namespace epicycle::transmission {
 
-namespace {
-
-// A spur stage's mesh in the stage's slices (docs/face_width.md, "One mesh of a sliced stage"):
-// its coupling and the leads of its two gears (`gears`: the stage's names of gear 1 and gear 2),
-// renamed "gear1" and "gear2". The pair is held on fixed axes: what tilts the planet in the stage
-// (its pin's tilt, the pins' bending, the carrier's wind-up) has no place in it and is refused.
-void SpurStageMeshSlices(const FaceWidthSpec& stage, const std::string& mesh, int planet,
-                         const std::vector<std::string>& gears, FaceWidthSpec* out) {
-  const std::string rule =
-      ": the mesh-stiffness driver holds the mesh's two gears on fixed axes and takes the "
-      "stage's slices and the two gears' leads only; `epicycle quasistatic` computes the "
-      "stage's load across the face with it";
-  for (const PinTilt& t : stage.pin_tilts)
-    if (t.planet == planet)
-      throw std::invalid_argument("--mesh = '" + mesh + "': " + t.where + " tilts planet " +
-                                  std::to_string(planet + 1) + "'s pin" + rule);
-  if (!stage.pins.empty())
-    throw std::invalid_argument("--mesh = '" + mesh + "': " + stage.pins[0].where +
-                                " makes the planets tilt on their pins under load" + rule);
-  if (stage.carrier_torsional_stiffness > 0)
-    throw std::invalid_argument("--mesh = '" + mesh + "': " + stage.carrier_where + " = " +
-                                std::to_string(stage.carrier_torsional_stiffness) +
-                                " N m/rad winds the carrier up under torque" + rule);
-  out->slices = stage.slices;
-  out->coupling = stage.coupling;
-  out->coupling_length = stage.coupling_length;
-  for (const LeadSpec& l : stage.leads)
-    for (std::size_t g = 0; g < gears.size(); ++g)
-      if (l.gear == gears[g]) {
-        out->leads.push_back(l);
-        out->leads.back().gear = g == 0 ? "gear1" : "gear2";
-      }
-}
-
-}  // namespace
-
 MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
                            const std::string& mesh) {
   MeshPairSetup s;
@@ -103,8 +67,6 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
       s.face_width.slices = scene.face_width.slices;
       s.face_width.coupling = scene.face_width.coupling;
       s.face_width.coupling_length = scene.face_width.coupling_length;
-    } else if (scene.face_width.active()) {
-      SpurStageMeshSlices(scene.face_width, mesh, i, s.gears, &s.face_width);
     }
     return s;
   }
