@@ -91,6 +91,8 @@ nlohmann::json RatingJson(const transmission::StageRating& rating) {
                         {"N_F", JsonValue(m.iso.n_f)},
                         {"f_ma_um", um(m.iso_inputs.assembly)},
                         {"f_sh_um", um(m.iso_inputs.deflection)},
+                        {"B1", JsonValue(m.iso_inputs.b1)},
+                        {"B2", JsonValue(m.iso_inputs.b2)},
                         {"F_betax_um", um(m.iso.f_beta_x)},
                         {"y_beta_um", um(m.iso.y_beta)},
                         {"F_betay_um", um(m.iso.f_beta_y)},

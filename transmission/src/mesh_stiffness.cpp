@@ -158,10 +158,13 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
         } else {
           if (!options.tooth_coupling)  // (a pitted contact's strips still share their rows)
             d.compliance = Eigen::MatrixXd(d.compliance.diagonal().asDiagonal());
-          if (!damage.empty() &&
-              SplitContacts(damage, std::vector<int>(contacts.size(), 0),
-                            std::vector<int>(contacts.size(), 1), contacts, setup.gap_window,
-                            options.local_terms, &source, &strips)) {
+          if (faces.active()) {
+            faces.Expand(&contacts, &d.compliance);  // slice s of contact j at j S + s
+            strips.assign(contacts.size(), ContactStrip{1.0 / faces.slices(), 0.0, 0});
+          } else if (!damage.empty() &&
+                     SplitContacts(damage, std::vector<int>(contacts.size(), 0),
+                                   std::vector<int>(contacts.size(), 1), contacts,
+                                   setup.gap_window, options.local_terms, &source, &strips)) {
             // Each strip takes its contact's rows of C (the stage model's rule).
             d.compliance = ExpandCompliance(d.compliance, source);
             std::vector<geometry::PotentialContact> parts;
@@ -170,13 +173,19 @@ MeshSample SolveSample(const MeshPairSetup& setup, const DamageModel& damage,
               parts.back().overlap -= strips[k].depth;
             }
             contacts = std::move(parts);
-          } else if (faces.active()) {
-            faces.Expand(&contacts, &d.compliance);  // slice s of contact j at j S + s
-            strips.assign(contacts.size(), ContactStrip{1.0 / faces.slices(), 0.0, 0});
           } else {
             strips.assign(contacts.size(), ContactStrip{});
           }
         }
+        // A slice's gap grows by the depth of the pits covering its centre (the stage model's
+        // rule, FaceWidthModel::Expand): each slice is one strip of its contact.
+        if (faces.active() && !damage.empty())
+          for (std::size_t j = 0; j < contacts.size(); ++j) {
+            const int s = helical ? slice[j] : static_cast<int>(j) % faces.slices();
+            const double pit = damage.DepthAt(0, 1, contacts[j], (s + 0.5) / faces.slices());
+            contacts[j].overlap -= pit;
+            strips[j].depth = pit;
+          }
         const int n = static_cast<int>(contacts.size());
         if (n == 0) return {StageStatus::kNoContact, "no potential contact within the gap window"};
         d.overlap.resize(n);
@@ -295,10 +304,6 @@ MeshStiffnessResult ComputeMeshStiffness(const MeshPairSetup& setup, const geome
   RootStressTracker root_stress(setup.gears);
   const DamageModel damage(setup.damage, setup.gears);
   const PairFaceWidth faces(setup.face_width, pair);
-  if (faces.active() && !damage.empty())
-    throw std::invalid_argument(
-        "mesh stiffness: pits with slices of the face width are not built "
-        "for a gear pair (the stage model has them)");
   if (!faces.active() && pair.gear1().spec().helix.helical())
     throw std::invalid_argument(
         "mesh stiffness: face_width.slices = " + std::to_string(faces.slices()) +

@@ -99,15 +99,21 @@ FaceLoadFactorC IsoFaceLoadFactorC(const FaceLoadFactorInputs& in) {
                                               {"c_gamma_alpha [N/m^2]", in.mesh_stiffness, true},
                                               {"b [m]", in.face_width, true},
                                               {"F_m [N]", in.mean_force, true},
-                                              {"h [m]", in.tooth_depth, true}})
+                                              {"h [m]", in.tooth_depth, true},
+                                              {"B1", in.b1, true},
+                                              {"B2", in.b2, true}})
     if (!std::isfinite(value) || value < 0 || (positive && value == 0))
       throw std::invalid_argument(fmt::format("ISO 6336-1 method C: {} = {}: must be finite and {}",
                                               name, value, positive ? "> 0" : ">= 0"));
+  for (const auto& [name, value] : {std::pair{"B1", in.b1}, {"B2", in.b2}})
+    if (value > 1)
+      throw std::invalid_argument(
+          fmt::format("ISO 6336-1 method C: {} = {}: must be in (0, 1]", name, value));
   constexpr double kUm = 1e-6;
   FaceLoadFactorC c;
   const double line_load = in.mean_force / in.face_width;  // F_m/b [N/m]
   c.f_beta_x_min = 0.005 * kUm * (line_load * 1e-3);       // 0.005 µm per N/mm
-  c.f_beta_x = std::max(1.33 * in.deflection + in.assembly, c.f_beta_x_min);
+  c.f_beta_x = std::max(1.33 * in.b1 * in.deflection + in.b2 * in.assembly, c.f_beta_x_min);
   c.y_beta = std::min(0.15 * c.f_beta_x, 6 * kUm);
   c.f_beta_y = c.f_beta_x - c.y_beta;
   c.c_gamma_beta = 0.85 * in.mesh_stiffness;
@@ -118,6 +124,12 @@ FaceLoadFactorC IsoFaceLoadFactorC(const FaceLoadFactorInputs& in) {
   c.n_f = bh * bh / (1 + bh + bh * bh);
   c.k_f_beta = std::pow(c.k_h_beta, c.n_f);
   return c;
+}
+
+std::array<double, 2> MethodCModification(bool crowned, bool end_relieved) {
+  if (crowned) return {0.5, 0.5};
+  if (end_relieved) return {0.7, 0.7};
+  return {1.0, 1.0};
 }
 
 double TableMeshLoadFactor(int planets) {
@@ -176,6 +188,22 @@ void RateFaceWidth(const Scene& scene, const geometry::Stage& stage, const Sweep
     r.iso_inputs.mean_force = ft * km;
     // b/h: the smaller of the two gears' (ISO 6336-1), so the deeper tooth.
     r.iso_inputs.tooth_depth = std::max(depth(planet), depth(mate));
+    // B1, B2 from the leads of the mesh's two gears (the scene's [[face_width.lead]]).
+    const std::string names[2] = {BodyName(PlanetBody(f.planet)),
+                                  BodyName(f.ring_mesh ? kRingBody : kSunBody)};
+    bool crowned = false, end_relieved = false;
+    for (const LeadSpec& l : scene.face_width.leads)
+      if (l.gear == names[0] || l.gear == names[1]) {
+        crowned = crowned || l.crowning > 0;
+        end_relieved = end_relieved || l.end_relief > 0;
+      }
+    const std::array<double, 2> b = MethodCModification(crowned, end_relieved);
+    r.iso_inputs.b1 = b[0];
+    r.iso_inputs.b2 = b[1];
+    if (b[0] != 1)
+      factor("B1 = B2 " + f.mesh, b[0],
+             crowned ? "ISO 6336-1 method C: crowning of the mesh's gears"
+                     : "ISO 6336-1 method C: end relief of the mesh's gears");
     r.iso = IsoFaceLoadFactorC(r.iso_inputs);
     r.k_gamma_k_h_beta_model = f.k_gamma_k_h_beta_max;
     r.k_gamma_k_h_beta_iso = k_table * r.iso.k_h_beta;

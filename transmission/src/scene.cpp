@@ -921,11 +921,6 @@ Scene ParseScene(const std::string& text, const std::string& source) {
     ReadDamage(top, s, {{"gear1", &s.pair.gear1}, {"gear2", &s.pair.gear2}});
     // Slices and the leads of gear1 and gear2 (a pin's tilt and the carrier belong to stages).
     ReadFaceWidth(top, s, {{"gear1", &s.pair.gear1}, {"gear2", &s.pair.gear2}});
-    if (s.face_width.active() && !s.damage.pits.empty())
-      top.Fail("face_width",
-               "slices = " + std::to_string(s.face_width.slices) + " with [[damage.pit]]",
-               "pits with slices of the face width are built for stage scenes; give the pair's "
-               "pits or its slices");
     top.Done();
     const bool internal = s.pair.gear2.kind == GearKind::kInternal;
     ContactRatioWarning(s.pair.gear1, s.pair.gear2, internal, s.pair.centre_distance,

@@ -52,6 +52,52 @@ void VisitReferences(const StiffnessRecord& r, RecordVisitor& visit) {
   }
 }
 
+// A spur stage's mesh in the stage's slices (docs/face_width.md, "One mesh of a sliced stage"):
+// its coupling and the leads of its two gears (`gears`: the stage's names of gear 1 and gear 2),
+// renamed "gear1" and "gear2". The pair is held on fixed axes: what tilts the planet in the stage
+// (its pin's tilt, the pins' bending, the carrier's wind-up) has no place in it and is refused.
+void SpurStageMeshSlices(const FaceWidthSpec& stage, const std::string& mesh, int planet,
+                         const std::vector<std::string>& gears, FaceWidthSpec* out) {
+  const std::string rule =
+      ": the mesh-stiffness driver holds the mesh's two gears on fixed axes and takes the "
+      "stage's slices and the two gears' leads only; `epicycle quasistatic` computes the "
+      "stage's load across the face with it";
+  for (const PinTilt& t : stage.pin_tilts)
+    if (t.planet == planet)
+      throw std::invalid_argument("--mesh = '" + mesh + "': " + t.where + " tilts planet " +
+                                  std::to_string(planet + 1) + "'s pin" + rule);
+  if (!stage.pins.empty())
+    throw std::invalid_argument("--mesh = '" + mesh + "': " + stage.pins[0].where +
+                                " makes the planets tilt on their pins under load" + rule);
+  if (stage.carrier_torsional_stiffness > 0)
+    throw std::invalid_argument("--mesh = '" + mesh + "': " + stage.carrier_where + " = " +
+                                std::to_string(stage.carrier_torsional_stiffness) +
+                                " N m/rad winds the carrier up under torque" + rule);
+  out->slices = stage.slices;
+  out->coupling = stage.coupling;
+  out->coupling_length = stage.coupling_length;
+  for (const LeadSpec& l : stage.leads)
+    for (std::size_t g = 0; g < gears.size(); ++g)
+      if (l.gear == gears[g]) {
+        out->leads.push_back(l);
+        out->leads.back().gear = g == 0 ? "gear1" : "gear2";
+      }
+}
+
+// MakeMeshPair with a spur stage's slices: the mesh-stiffness driver's pair (the quasi-static
+// rating's c_γα keeps MakeMeshPair's plane pair).
+MeshPairSetup MakeSlicedMeshPair(const Scene& scene, const geometry::Stage* stage,
+                                 const std::string& mesh) {
+  MeshPairSetup s = MakeMeshPair(scene, stage, mesh);
+  if (scene.kind != SceneKind::kStage || !scene.face_width.active() ||
+      s.spec.gear1.helix.helical())
+    return s;
+  for (const geometry::MeshSummary& m : stage->meshes())
+    if (m.name == s.mesh)
+      SpurStageMeshSlices(scene.face_width, s.mesh, m.planet, s.gears, &s.face_width);
+  return s;
+}
+
 }  // namespace
 
 StiffnessRecord RunStiffness(const StiffnessRequest& request, StiffnessSink& sink) {
@@ -73,7 +119,7 @@ StiffnessRecord RunStiffness(const StiffnessRequest& request, StiffnessSink& sin
                                   " is required for a stage scene; its meshes are " + names);
     }
   }
-  const MeshPairSetup setup = MakeMeshPair(scene, stage ? &*stage : nullptr, request.mesh);
+  const MeshPairSetup setup = MakeSlicedMeshPair(scene, stage ? &*stage : nullptr, request.mesh);
   const geometry::GearPair pair = MakePair(scene, setup.spec);
   const auto [first, cycles] =
       request.cycle >= 0 ? std::array<int, 2>{request.cycle, 1} : DamagedToothCycles(setup, pair);

@@ -215,6 +215,24 @@ TEST_CASE("ISO 6336-1 method C: K_Hbeta and K_Fbeta from the misalignment and c_
     CHECK(c.f_beta_x == c.f_beta_x_min);
     CHECK(c.k_h_beta == Approx(1 + 1.2 * 0.85 * 0.85 * 17.56 / 480.0).epsilon(tol));
   }
+  SECTION("B1 and B2 of the helix modification weigh f_sh and f_ma") {
+    // ISO 6336-1 method C's table: no modification 1 and 1, crowning 0.5 and 0.5, end relief
+    // 0.7 and 0.7 (crowning taken where a gear has both).
+    CHECK(MethodCModification(false, false) == std::array<double, 2>{1.0, 1.0});
+    CHECK(MethodCModification(true, false) == std::array<double, 2>{0.5, 0.5});
+    CHECK(MethodCModification(false, true) == std::array<double, 2>{0.7, 0.7});
+    CHECK(MethodCModification(true, true) == std::array<double, 2>{0.5, 0.5});
+    in.deflection = 3e-6;
+    in.assembly = 8e-6;
+    in.b1 = 0.5;
+    in.b2 = 0.7;
+    CHECK(IsoFaceLoadFactorC(in).f_beta_x == Approx((1.33 * 0.5 * 3 + 0.7 * 8) * 1e-6).epsilon(tol));
+    in.b1 = 1.5;
+    CHECK_THROWS_WITH(IsoFaceLoadFactorC(in), Catch::Contains("B1 = 1.5: must be in (0, 1]"));
+    in.b1 = 1;
+    in.b2 = 0;
+    CHECK_THROWS_WITH(IsoFaceLoadFactorC(in), Catch::Contains("B2 = 0: must be finite and > 0"));
+  }
   SECTION("b/h below 3 counts as 3") {
     in.tooth_depth = 10e-3;  // b/h = 2.5
     CHECK(IsoFaceLoadFactorC(in).n_f == Approx(9.0 / 13.0).epsilon(tol));
@@ -264,4 +282,22 @@ TEST_CASE("A rating across the face width: the model's K_Hbeta beside method C's
   // A planet's fillet: Y_M = 0.7, Y_ST = 2.
   CHECK(m.s_f_stress == Approx(430e6 * 2 * 0.7 / 250e6).epsilon(1e-15));
   CHECK(m.s_h_pressure == Approx(1500.0 / 1200.0).epsilon(1e-15));
+  CHECK(m.iso_inputs.b1 == 1);  // no lead modification
+  CHECK(m.iso_inputs.b2 == 1);
+  // A crowned planet: method C's B1 = B2 = 0.5 halve the misalignment it takes, and the
+  // factors list says so.
+  Scene crowned = scene;
+  LeadSpec lead;
+  lead.gear = "planet1";
+  lead.crowning = 5e-6;
+  crowned.face_width.leads = {lead};
+  const StageRating c_rating = RateStage(crowned, stage, s, 1.0, "quasi-static", nullptr, &c);
+  const MeshFaceRating& mc = c_rating.face_width.front();
+  CHECK(mc.iso_inputs.b1 == 0.5);
+  CHECK(mc.iso_inputs.b2 == 0.5);
+  const double xc = 0.85 * 0.5 * 9.34e-6 * 0.85 * 17.56e9 * 25e-3 / (2 * ft);
+  CHECK(mc.iso.k_h_beta == Approx(1 + xc).epsilon(1e-12));
+  bool listed = false;
+  for (const RatingFactor& f : c_rating.factors) listed = listed || f.symbol == "B1 = B2 sun-planet1";
+  CHECK(listed);
 }

@@ -74,7 +74,7 @@ struct GearRating {
 /// ISO 6336-1:2019 clause 7, K_Hβ by method C, with the inputs the model was given (docs/model.md
 /// §10, "Ratings across the face"). All lengths in m, forces in N, stiffnesses per unit face
 /// width in N/m² (1 N/(mm·µm) = 1e9 N/m²):
-///   F_βx = 1.33 B1 f_sh + B2 f_ma,  B1 = B2 = 1 (no helix modification),
+///   F_βx = 1.33 B1 f_sh + B2 f_ma,  B1, B2 of the helix modification (MethodCModification),
 ///   F_βx ≥ F_βx,min = 0.005 µm per N/mm of F_m/b (= 5e-12 m²/N × F_m/b),
 ///   y_β = 0.15 F_βx ≤ 6 µm (case-hardened or nitrided steel),
 ///   F_βy = F_βx − y_β,  c_γβ = 0.85 c_γα,  x = F_βy c_γβ b/(2 F_m),
@@ -87,7 +87,13 @@ struct FaceLoadFactorInputs {
   double face_width = 0;      ///< b [m] > 0
   double mean_force = 0;      ///< F_m = F_t K_A K_γ K_v [N] > 0
   double tooth_depth = 0;     ///< h [m] > 0
+  double b1 = 1, b2 = 1;      ///< B1, B2 [-] in (0, 1] (MethodCModification)
 };
+/// ISO 6336-1 method C's B1 and B2 for the helix modification of a mesh's two gears (docs/
+/// face_width.md, "Ratings across the face"): crowning 0.5 and 0.5, end relief alone 0.7 and 0.7,
+/// none 1 and 1. The model's lead slopes are deviations (f_Hβ), not a helix correction, so the
+/// standard's helix-correction rows are not taken.
+std::array<double, 2> MethodCModification(bool crowned, bool end_relieved);
 struct FaceLoadFactorC {
   double f_beta_x = 0;      ///< F_βx [m], after its minimum
   double f_beta_x_min = 0;  ///< 0.005 µm per N/mm of F_m/b [m]
