@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "epicycle/io/number_format.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
@@ -39,8 +40,6 @@ int GearBody(const MotionDof& f) {
 
 Vec2 Perp(const Vec2& a) { return {-a.y(), a.x()}; }  // ẑ × a
 
-std::string Num(double v) { return std::to_string(v); }
-
 }  // namespace
 
 std::string MotionDof::Label() const {
@@ -69,7 +68,7 @@ DynamicModel::DynamicModel(const transmission::StageModel& model,
   const transmission::StageSetup& setup = model_.setup();
   auto need = [&](const std::string& key, double value, const std::string& why) {
     if (!(value > 0) || !std::isfinite(value))
-      throw std::invalid_argument(model_.name() + ": " + key + " = " + Num(value) + ": " + why +
+      throw std::invalid_argument(model_.name() + ": " + key + " = " + io::Num(value) + ": " + why +
                                   " needs it > 0 in the dynamic model");
   };
   // The sun turns the way its input torque drives it; ω_c = ω_s z_s/(z_s + z_r).
@@ -749,7 +748,7 @@ StartOutcome DynamicModel::SolveQuasiStaticStart(const solvers::ContactOptions& 
       if (!any) {
         out.status = transmission::RunStatus::kGeometry;
         out.message = "the quasi-static start at carrier " +
-                      Num(geometry::Deg(CarrierAngle(0.0))) + " deg: planet" +
+                      io::Num(geometry::Deg(CarrierAngle(0.0))) + " deg: planet" +
                       std::to_string(i + 1) + " is separated from the " +
                       (kind == geometry::MeshKind::kSunPlanet ? "sun" : "ring") +
                       " (no flank within the gap window): the scene's errors or backlash "
@@ -760,7 +759,7 @@ StartOutcome DynamicModel::SolveQuasiStaticStart(const solvers::ContactOptions& 
   }
   if (!r.converged) {
     out.status = transmission::RunStatus::kContactFailure;
-    out.message = "the quasi-static start at carrier " + Num(geometry::Deg(CarrierAngle(0.0))) +
+    out.message = "the quasi-static start at carrier " + io::Num(geometry::Deg(CarrierAngle(0.0))) +
                   " deg failed: " + r.message;
     return out;
   }
@@ -814,7 +813,7 @@ void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::Ma
     if (chosen[mi] < 0)
       throw std::runtime_error("linearisation: no involute contact on the loaded flanks of mesh " +
                                std::to_string(mi) + " at carrier " +
-                               Num(geometry::Deg(carrier_angle)) + " deg");
+                               io::Num(geometry::Deg(carrier_angle)) + " deg");
     Eigen::VectorXd g = Eigen::VectorXd::Zero(nd);
     for (int q = 0; q < nd; ++q)
       if (stage_dof_[q] >= 0) g(q) = gs(stage_dof_[q], chosen[mi]);
