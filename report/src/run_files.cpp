@@ -25,8 +25,8 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Appends ",<v>" (Num: an empty cell where v is not finite).
-void Cell(std::string& line, double v) {
+// Appends ",<v>" (Cell: an empty cell where v is not finite).
+void CommaCell(std::string& line, double v) {
   line += ',';
   AppendCell(line, v);
 }
@@ -37,11 +37,11 @@ std::string PairCells(const transmission::StageContact& c) {
          CsvText(geometry::KindName(c.contact.kind)) + "," + CsvText(c.FlankName());
 }
 
-// "a,b,c" of the values formatted by Num (empty cells where not finite), each led by a comma.
+// "a,b,c" of the values formatted by Cell (empty cells where not finite), each led by a comma.
 template <typename Range>
 std::string Cells(const Range& values) {
   std::string s;
-  for (double v : values) Cell(s, v);
+  for (double v : values) CommaCell(s, v);
   return s;
 }
 
@@ -68,7 +68,7 @@ void RootStressCells(std::string& line, const std::vector<transmission::GearRoot
     throw std::invalid_argument(fmt::format(
         "root stress cells: extremes of {} bodies for {} columns' bodies", g.size(), bodies));
   auto cells = [&](double sigma, const transmission::FilletSpot& at) {
-    Cell(line, sigma / 1e6);
+    CommaCell(line, sigma / 1e6);
     if (!where) return;
     if (std::isfinite(sigma) && sigma != 0.0)
       line +=
@@ -362,8 +362,8 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
   const bool ok = r.converged;
   std::string line = fmt::format("{:.6f},{}", deg, ok ? 1 : 0);
   const std::vector<double> l = transmission::LoadSharingFactors(r);
-  for (double v : r.load_sharing) Cell(line, ok ? v : NAN);
-  for (double v : l) Cell(line, ok ? v : NAN);
+  for (double v : r.load_sharing) CommaCell(line, ok ? v : NAN);
+  for (double v : l) CommaCell(line, ok ? v : NAN);
   line += fmt::format(
       ",{},{},{},{},{},{},{},{},{},{},{},{},{}", Cell(ok ? transmission::MeshLoadFactor(r) : NAN),
       Cell(ok ? r.transmission_error * 1e6 : NAN), Cell(ok ? r.sun_displacement.x() * 1e6 : NAN),
@@ -394,8 +394,8 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
     if (bodies_ > 0) {  // stresses: Hertz's pressure and half-width of the contact
       const auto& local = r.problem.data.local;
       const bool known = j < local.size();
-      Cell(pairs, known ? solvers::HertzPressure(local[j], f) / 1e6 : NAN);
-      Cell(pairs, known ? solvers::HertzHalfWidth(local[j], f) * 1e6 : NAN);
+      CommaCell(pairs, known ? solvers::HertzPressure(local[j], f) / 1e6 : NAN);
+      CommaCell(pairs, known ? solvers::HertzHalfWidth(local[j], f) * 1e6 : NAN);
     }
     pairs += '\n';
   }
@@ -538,7 +538,7 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
   const auto n = static_cast<double>(s.load_sharing.size());
   std::string steps = fmt::format("{:.9g},{:.6f}", s.time, geometry::Deg(s.carrier_angle));
   steps += Cells(s.load_sharing);
-  for (double v : s.load_sharing) Cell(steps, n * v);
+  for (double v : s.load_sharing) CommaCell(steps, n * v);
   int active = 0;
   for (int j = 0; j < e.total_force.size(); ++j) active += e.total_force(j) > 0;
   steps += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}", Cell(s.k_gamma),
@@ -550,23 +550,23 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
   if (bodies_ > 0) RootStressCells(steps, s.root_stress, bodies_);
   for (std::size_t m = 0; m < face_meshes_; ++m) {
     if (m < s.face_loads.size()) {
-      Cell(steps, s.face_loads[m].k_h_beta);
-      Cell(steps, s.face_loads[m].largest_z * 1e3);
+      CommaCell(steps, s.face_loads[m].k_h_beta);
+      CommaCell(steps, s.face_loads[m].largest_z * 1e3);
     } else {
       steps += ",,";  // an empty cell: no value, never a NaN
     }
   }
   if (helical_planets_ > 0) {
     const transmission::HelicalLoads& h = s.helical;
-    Cell(steps, h.sun_axial_force);
-    Cell(steps, h.ring_axial_force);
-    Cell(steps, h.carrier_axial_force);
+    CommaCell(steps, h.sun_axial_force);
+    CommaCell(steps, h.ring_axial_force);
+    CommaCell(steps, h.carrier_axial_force);
     for (int i = 0; i < helical_planets_; ++i) {
       if (static_cast<std::size_t>(i) < h.planets.size()) {
         const transmission::PlanetHelicalLoad& p = h.planets[static_cast<std::size_t>(i)];
-        Cell(steps, p.sun_mesh_axial);
-        Cell(steps, p.moment_radial);
-        Cell(steps, p.moment_tangential);
+        CommaCell(steps, p.sun_mesh_axial);
+        CommaCell(steps, p.moment_radial);
+        CommaCell(steps, p.moment_tangential);
       } else {
         steps += ",,,";  // no value, never a NaN
       }
@@ -583,8 +583,8 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
   std::string bearings = fmt::format("{:.9g},{},{}", s.time, Cell(e.sun_bearing_force.x()),
                                      Cell(e.sun_bearing_force.y()));
   for (const auto& f : e.planet_bearing_force) {
-    Cell(bearings, f.x());
-    Cell(bearings, f.y());
+    CommaCell(bearings, f.x());
+    CommaCell(bearings, f.y());
   }
   // Each file gets the step's lines in one write; the steps line last: a step is complete when
   // its line is in BASE_steps.csv.
@@ -668,8 +668,8 @@ void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
   if (faces_) {
     // A failed position (no line loads) has empty cells.
     const bool has = s.converged && !s.face_load.line_load.empty();
-    Cell(tail, has ? s.face_load.k_h_beta : kNaN);
-    Cell(tail, has ? s.face_load.largest_z * 1e3 : kNaN);
+    CommaCell(tail, has ? s.face_load.k_h_beta : kNaN);
+    CommaCell(tail, has ? s.face_load.largest_z * 1e3 : kNaN);
   }
   tail += '\n';
   std::string lines = s.pairs.empty() ? head + ",,,,,," + tail : "";

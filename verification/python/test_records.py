@@ -130,7 +130,7 @@ def test_comparison_record_equals_the_program_json(tmp_path):
     # only values two runs may differ in.
     collection = os.path.join(SOURCE_DIR, "verification", "data", "contact")
     inputs = [os.path.join(collection, n) for n in ("cf_one_contact_open.json",
-                                                    "cf_two_symmetric.json")]
+                                                    "cf_one_contact_load.json")]
     run_cli("contact", "compare", *inputs, "--json", tmp_path / "compare.json")
     program = read_json(tmp_path / "compare.json")
     python = epicycle.compare_backends(inputs).record
