@@ -294,7 +294,40 @@ py::object CompareBackends(const std::vector<std::string>& inputs, double tolera
   return Result(f);
 }
 
-// The solvers: one back end, the comparison of every back end, the files of problems.
+// The comparison of back ends over problem files.
+void BindComparison(py::module_& m) {
+  m.def("compare_backends", &CompareBackends, py::arg("inputs"), py::kw_only(),
+        py::arg("tolerance") = solvers::ContactOptions().tolerance,
+        py::arg("repeats") = solvers::kDefaultComparisonRepeats, py::arg("backends") = py::none(),
+        R"doc(
+Every back end on every problem file against each problem's reference, the active-set Newton at
+1e-12 (`epicycle contact compare`, docs/solvers.md). A run that does not converge is a result:
+it is listed in failures (the program exits 1).
+
+Parameters
+----------
+inputs : list of str
+    Problem files or folders of them (JSON, verification/data/contact's format).
+tolerance : float, default 1e-10
+    Every back end's tolerance on the nondimensional residual [-], in (0, 1].
+repeats : int, default 5
+    Solves per (back end, problem), the median time reported [-], in [1, 1000].
+backends : list of str or None, default None
+    The back ends, in the runs' order (None: every available one, contact_backends()).
+
+Returns
+-------
+Result
+    failures (each failed run: back end, problem, file, status); record: the comparison's
+    record, the keys and values of `epicycle contact compare --json` (docs/records.md).
+
+Raises
+------
+ValueError
+    Bad input (the argument's name, value and rule; a file that is not a problem file).)doc");
+}
+
+// The solvers: one back end, the residuals and differences of an answer, the files of problems.
 void BindContactSolvers(py::module_& m) {
   m.def("solve_contact", &Solve, py::arg("problem"), py::arg("backend") = "newton", py::kw_only(),
         py::arg("tolerance") = 1e-10, py::arg("max_iterations") = 200,
@@ -409,35 +442,6 @@ Raises
 ------
 ValueError
     Arrays of the wrong length.)doc");
-  m.def("compare_backends", &CompareBackends, py::arg("inputs"), py::kw_only(),
-        py::arg("tolerance") = solvers::ContactOptions().tolerance,
-        py::arg("repeats") = solvers::kDefaultComparisonRepeats, py::arg("backends") = py::none(),
-        R"doc(
-Every back end on every problem file against each problem's reference, the active-set Newton at
-1e-12 (`epicycle contact compare`, docs/solvers.md). A run that does not converge is a result:
-it is listed in failures (the program exits 1).
-
-Parameters
-----------
-inputs : list of str
-    Problem files or folders of them (JSON, verification/data/contact's format).
-tolerance : float, default 1e-10
-    Every back end's tolerance on the nondimensional residual [-], in (0, 1].
-repeats : int, default 5
-    Solves per (back end, problem), the median time reported [-], in [1, 1000].
-backends : list of str or None, default None
-    The back ends, in the runs' order (None: every available one, contact_backends()).
-
-Returns
--------
-Result
-    failures (each failed run: back end, problem, file, status); record: the comparison's
-    record, the keys and values of `epicycle contact compare --json` (docs/records.md).
-
-Raises
-------
-ValueError
-    Bad input (the argument's name, value and rule; a file that is not a problem file).)doc");
   m.def(
       "contact_backends",
       [](bool available_only) {
@@ -506,6 +510,7 @@ ValueError
 void BindContact(py::module_& m) {
   BindContactProblem(m);
   BindContactSolvers(m);
+  BindComparison(m);
 }
 
 }  // namespace epicycle::python
