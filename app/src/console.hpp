@@ -21,7 +21,6 @@ using report::CsvText;
 using report::FileHash;
 using report::FileProvenance;
 using report::LinePlot;
-using report::Num;
 using report::PlotSeries;
 using report::Provenance;
 using report::ProvenanceCsvLine;

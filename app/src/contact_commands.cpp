@@ -7,15 +7,18 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "console.hpp"
 #include "epicycle/report/contact_plots.hpp"
 #include "epicycle/report/contact_text.hpp"
+#include "epicycle/report/record_json.hpp"
 #include "epicycle/solvers/backend_comparison.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/solvers/performance_profile.hpp"
+#include "epicycle/transmission/record.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "options.hpp"
 
@@ -73,56 +76,70 @@ class CompareConsole final : public solvers::ComparisonSink {
   std::optional<CsvFile>* csv_;
 };
 
-void CompareCommand(const std::vector<std::string>& inputs, const std::string& csv,
-                    const std::string& svg_prefix, double tol, int repeats,
-                    const std::string& markdown) {
+struct CompareArgs {
+  std::vector<std::string> inputs;
+  std::string csv, svg_prefix, markdown, json;
+  double tol = ContactOptions().tolerance;
+  int repeats = solvers::kDefaultComparisonRepeats;
+};
+
+// The provenance of a comparison's files: the back ends, the number of problem files and the
+// hash of their hashes.
+nlohmann::json CompareProvenance(const solvers::ComparisonRequest& request) {
+  const std::vector<std::string> files = solvers::ListProblemFiles(request.inputs);
+  std::string hashes, backends_used;
+  for (const std::string& f : files) hashes += FileHash(f) + "\n";
+  for (Backend b : request.backends)
+    backends_used += (backends_used.empty() ? "" : " ") + solvers::BackendName(b);
+  return FileProvenance(backends_used, fmt::format("{} problem files", files.size()),
+                        transmission::ContentHash(hashes));
+}
+
+void WriteCompareSvg(const std::string& prefix, const solvers::ComparisonRecord& record) {
+  std::vector<solvers::ProfileRun> runs;
+  std::vector<report::ErrorTimePoint> points;
+  for (const ComparisonRun& r : record.runs) {
+    runs.push_back({r.problem, r.backend, r.median_seconds, r.solved});
+    points.push_back({r.backend, r.median_seconds, r.error(), r.solved});
+  }
+  WriteTextFile(prefix + "_profile.svg",
+                report::PerformanceProfileSvg(solvers::DolanMoreProfile(runs, record.backends),
+                                              record.problem_names.size()));
+  WriteTextFile(prefix + "_error_vs_time.svg", report::ErrorVersusTimeSvg(record.backends, points));
+  fmt::print("SVG written to {0}_profile.svg and {0}_error_vs_time.svg\n", prefix);
+}
+
+void CompareCommand(const CompareArgs& a) {
   solvers::ComparisonRequest request;
-  request.inputs = inputs;
-  request.backends = solvers::AvailableBackends();
-  request.options.tolerance = tol;
-  request.repeats = repeats;
+  request.inputs = a.inputs;
+  request.options.tolerance = a.tol;
+  request.repeats = a.repeats;
+  nlohmann::json provenance;
+  if (!a.csv.empty() || !a.json.empty()) provenance = CompareProvenance(request);
   std::optional<CsvFile> out;
-  if (!csv.empty()) {
-    const std::vector<std::string> files = solvers::ListProblemFiles(inputs);
-    const fs::path parent = fs::path(csv).parent_path();
+  if (!a.csv.empty()) {
+    const fs::path parent = fs::path(a.csv).parent_path();
     if (!parent.empty()) fs::create_directories(parent);
-    out.emplace(csv);
-    std::string hashes, backends_used;
-    for (const std::string& f : files) hashes += FileHash(f) + "\n";
-    for (Backend b : request.backends)
-      backends_used += (backends_used.empty() ? "" : " ") + solvers::BackendName(b);
-    out->Write(ProvenanceCsvLine(FileProvenance(backends_used,
-                                                fmt::format("{} problem files", files.size()),
-                                                transmission::ContentHash(hashes))));
+    out.emplace(a.csv);
+    out->Write(ProvenanceCsvLine(provenance));
     out->WriteLine(report::ComparisonCsvHeader());
   }
   CompareConsole console(&out);
   const solvers::ComparisonRecord record = solvers::RunComparison(request, console);
   const report::ComparisonTables tables = report::ComparisonSummaryText(
-      record.runs, record.backends, record.files.size(), tol, repeats);
+      record.runs, record.backends, record.files.size(), a.tol, a.repeats);
   Print(tables.console);
   if (out) out->Close();
-  if (!csv.empty()) fmt::print("\nCSV written to {}\n", csv);
-  if (!markdown.empty()) WriteTextFile(markdown, tables.markdown);
-  if (!svg_prefix.empty()) {
-    std::vector<solvers::ProfileRun> runs;
-    std::vector<report::ErrorTimePoint> points;
-    for (const ComparisonRun& r : record.runs) {
-      runs.push_back({r.problem, r.backend, r.median_seconds, r.solved});
-      points.push_back({r.backend, r.median_seconds, r.error(), r.solved});
-    }
-    WriteTextFile(svg_prefix + "_profile.svg",
-                  report::PerformanceProfileSvg(solvers::DolanMoreProfile(runs, record.backends),
-                                                record.problem_names.size()));
-    WriteTextFile(svg_prefix + "_error_vs_time.svg",
-                  report::ErrorVersusTimeSvg(record.backends, points));
-    fmt::print("SVG written to {0}_profile.svg and {0}_error_vs_time.svg\n", svg_prefix);
-  }
+  if (!a.csv.empty()) fmt::print("\nCSV written to {}\n", a.csv);
+  if (!a.markdown.empty()) WriteTextFile(a.markdown, tables.markdown);
+  if (!a.json.empty())
+    WriteTextFile(a.json, report::SummaryJson(record, provenance).dump(2) + "\n");
+  if (!a.svg_prefix.empty()) WriteCompareSvg(a.svg_prefix, record);
   if (!record.failures.empty())
     throw ComputationFailed(fmt::format(
         "{} of {} runs (the reference and every back end on every problem) did not converge: "
         "listed above as FAILED; every run's row is in the table{}",
-        record.failures.size(), record.RunsInAll(), csv.empty() ? "" : " and the CSV"));
+        record.failures.size(), record.RunsInAll(), a.csv.empty() ? "" : " and the CSV"));
 }
 
 void StabilityCommand(const std::string& dir, double tol) {
@@ -150,23 +167,20 @@ void RegisterContactCommands(CLI::App& app) {
   solve->callback([] { SolveCommand(s_file, s_backend, s_tol, s_polish, s_kv); });
 
   auto* compare = contact->add_subcommand("compare", "every available back end on every problem");
-  static std::vector<std::string> c_inputs;
-  static std::string c_csv, c_svg;
-  static double c_tol = 1e-10;
-  static int c_repeat = 5;
-  static std::string c_markdown;
-  compare->add_option("inputs", c_inputs, "problem files or directories")->required();
-  compare->add_option("--csv", c_csv, "write one row per (back end, problem)");
-  compare->add_option("--svg-prefix", c_svg,
+  static CompareArgs c;
+  compare->add_option("inputs", c.inputs, "problem files or directories")->required();
+  compare->add_option("--csv", c.csv, "write one row per (back end, problem)");
+  compare->add_option("--svg-prefix", c.svg_prefix,
                       "write PREFIX_profile.svg and PREFIX_error_vs_time.svg");
-  AddNumber(compare, "--tol", c_tol, "tolerance on the nondimensional residual", kContactTolerance);
-  AddNumber(compare, "--repeat", c_repeat,
-            "solves per (back end, problem); the median time is reported",
-            {1, 1000, false, true, "", ""});
-  compare->add_option("--markdown", c_markdown,
+  AddNumber(compare, "--tol", c.tol, "tolerance on the nondimensional residual", kContactTolerance);
+  AddNumber(compare, "--repeat", c.repeats,
+            "solves per (back end, problem); the median time is reported", kComparisonRepeats);
+  compare->add_option("--markdown", c.markdown,
                       "write the summary table as markdown (tools/update_solver_docs.sh puts it "
                       "into docs/solvers.md)");
-  compare->callback([] { CompareCommand(c_inputs, c_csv, c_svg, c_tol, c_repeat, c_markdown); });
+  compare->add_option("--json", c.json,
+                      "write the comparison's record as JSON (keys: docs/records.md)");
+  compare->callback([] { CompareCommand(c); });
 
   auto* stability =
       contact->add_subcommand("stability", "the stiff/extreme (back end x case) table");

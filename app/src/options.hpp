@@ -49,6 +49,7 @@ using dynamics::kSpectrumSkipCycles;
 using dynamics::kSweepSpeeds;
 using dynamics::kWindowCycles;
 using transmission::kCarrierAngleDeg;
+using transmission::kComparisonRepeats;
 using transmission::kContactTolerance;
 using transmission::kStiffnessCycle;
 using transmission::kStiffnessPositions;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "console.hpp"
+#include "epicycle/io/number_format.hpp"
 #include "epicycle/report/branch_files.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "speed_sweep_command.hpp"
@@ -66,8 +67,8 @@ void ParseBranch(const std::string& option, const std::string& spec,
     b.steps = static_cast<int>(grid.size());
   }
   if (!std::isfinite(b.from) || !std::isfinite(b.to) || b.from == b.to)
-    throw std::invalid_argument(option + " = " + spec + ": FROM = " + Num(b.from) + ", TO = " +
-                                Num(b.to) + ": a continuation's range must have non-zero width");
+    throw std::invalid_argument(option + " = " + spec + ": FROM = " + io::Num(b.from, 9) + ", TO = " +
+                                io::Num(b.to, 9) + ": a continuation's range must have non-zero width");
   if (b.steps < 1)
     throw std::invalid_argument(option + " = " + spec + ": N = " + std::to_string(b.steps) +
                                 ": must be >= 1 (the largest step is 1/N of the range)");

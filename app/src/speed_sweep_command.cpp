@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "console.hpp"
+#include "epicycle/io/number_format.hpp"
 #include "epicycle/dynamics/speed_sweep.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/report/speed_sweep_run_files.hpp"
@@ -123,7 +124,7 @@ void RunSpeedSweep(const SpeedSweepArgs& a, dynamics::SpeedSweepRequest request)
   if (record.failed() > 0) {
     std::string list;
     for (const dynamics::SpeedResult& r : record.speeds)
-      if (!r.ok()) list += fmt::format("; {} rpm: {}", Num(r.sun_speed_rpm), r.message);
+      if (!r.ok()) list += fmt::format("; {} rpm: {}", io::Num(r.sun_speed_rpm, 9), r.message);
     throw ComputationFailed(
         fmt::format("{} of {} speeds failed{}", record.failed(), record.speeds.size(), list));
   }

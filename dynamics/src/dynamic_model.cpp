@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "epicycle/io/number_format.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
 #include "epicycle/solvers/local_term.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
@@ -39,8 +40,6 @@ int GearBody(const MotionDof& f) {
 
 Vec2 Perp(const Vec2& a) { return {-a.y(), a.x()}; }  // ẑ × a
 
-std::string Num(double v) { return std::to_string(v); }
-
 }  // namespace
 
 std::string MotionDof::Label() const {
@@ -69,7 +68,7 @@ DynamicModel::DynamicModel(const transmission::StageModel& model,
   const transmission::StageSetup& setup = model_.setup();
   auto need = [&](const std::string& key, double value, const std::string& why) {
     if (!(value > 0) || !std::isfinite(value))
-      throw std::invalid_argument(model_.name() + ": " + key + " = " + Num(value) + ": " + why +
+      throw std::invalid_argument(model_.name() + ": " + key + " = " + io::Num(value) + ": " + why +
                                   " needs it > 0 in the dynamic model");
   };
   // The sun turns the way its input torque drives it; ω_c = ω_s z_s/(z_s + z_r).
@@ -749,7 +748,7 @@ StartOutcome DynamicModel::SolveQuasiStaticStart(const solvers::ContactOptions& 
       if (!any) {
         out.status = transmission::RunStatus::kGeometry;
         out.message = "the quasi-static start at carrier " +
-                      Num(geometry::Deg(CarrierAngle(0.0))) + " deg: planet" +
+                      io::Num(geometry::Deg(CarrierAngle(0.0))) + " deg: planet" +
                       std::to_string(i + 1) + " is separated from the " +
                       (kind == geometry::MeshKind::kSunPlanet ? "sun" : "ring") +
                       " (no flank within the gap window): the scene's errors or backlash "
@@ -760,7 +759,7 @@ StartOutcome DynamicModel::SolveQuasiStaticStart(const solvers::ContactOptions& 
   }
   if (!r.converged) {
     out.status = transmission::RunStatus::kContactFailure;
-    out.message = "the quasi-static start at carrier " + Num(geometry::Deg(CarrierAngle(0.0))) +
+    out.message = "the quasi-static start at carrier " + io::Num(geometry::Deg(CarrierAngle(0.0))) +
                   " deg failed: " + r.message;
     return out;
   }
@@ -814,7 +813,7 @@ void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::Ma
     if (chosen[mi] < 0)
       throw std::runtime_error("linearisation: no involute contact on the loaded flanks of mesh " +
                                std::to_string(mi) + " at carrier " +
-                               Num(geometry::Deg(carrier_angle)) + " deg");
+                               io::Num(geometry::Deg(carrier_angle)) + " deg");
     Eigen::VectorXd g = Eigen::VectorXd::Zero(nd);
     for (int q = 0; q < nd; ++q)
       if (stage_dof_[q] >= 0) g(q) = gs(stage_dof_[q], chosen[mi]);
@@ -880,56 +879,49 @@ StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeCompli
   // A helical mesh in turned slices: the stage's own quasi-static stiffness (docs/model.md §10).
   if (stage_model.helical())
     sliced_stiffness = transmission::ComputeStageMeshStiffness(stage_model, scene.loads);
-  const auto k = stage_model.helical() ? sliced_stiffness.secant : MeanMeshStiffness(scene, stage, fe);
+  if (!stage_model.helical()) modal_pairs.emplace(scene, stage, fe);
+  const auto k = stage_model.helical() ? sliced_stiffness.secant : MeanMeshStiffness(*modal_pairs);
   model.SetMeshStiffness(k[0], k[1]);
 }
 
-namespace {
-
-// Planet 1's sun and ring meshes, the pairs whose mean stiffness the modal model uses: f(m, name,
-// setup, pair, compliance) for m = 0 (sun–planet), 1 (planet–ring). Healthy: the scene's damage
-// is left out (a damaged tooth meshes once in many cycles; the modes and the mesh damping are
-// the stage's about its healthy mean, docs/model.md §9).
-template <typename F>
-void ForEachModalMesh(const transmission::Scene& scene, const geometry::Stage& stage,
-                      const transmission::FeComplianceOptions& fe, F&& f) {
-  const char* meshes[2] = {"sun-planet1", "planet1-ring"};
-  for (int m = 0; m < 2; ++m) {
-    transmission::MeshPairSetup setup = transmission::MakeMeshPair(scene, &stage, meshes[m]);
-    setup.damage = {};
-    const geometry::GearPair pair = transmission::MakePair(scene, setup.spec);
-    const transmission::FePairCompliance compliance(scene, pair, fe, {"gear1", "gear2"});
-    f(m, meshes[m], setup, pair, compliance);
-  }
+std::array<double, 2> StageDynamics::TangentMeshStiffness() const {
+  return modal_pairs ? MeanTangentMeshStiffness(*modal_pairs) : sliced_stiffness.tangent;
 }
 
-}  // namespace
+ModalMeshPairs::Mesh::Mesh(const transmission::Scene& scene, const geometry::Stage& stage,
+                           const transmission::FeComplianceOptions& fe, const char* mesh_name)
+    : name(mesh_name),
+      setup([&] {
+        transmission::MeshPairSetup healthy = transmission::MakeMeshPair(scene, &stage, mesh_name);
+        healthy.damage = {};
+        return healthy;
+      }()),
+      pair(transmission::MakePair(scene, setup.spec)),
+      compliance(scene, pair, fe, {"gear1", "gear2"}) {}
 
-std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
-                                        const geometry::Stage& stage,
-                                        const transmission::FeComplianceOptions& fe,
-                                        int positions) {
+ModalMeshPairs::ModalMeshPairs(const transmission::Scene& scene, const geometry::Stage& stage,
+                               const transmission::FeComplianceOptions& fe)
+    : meshes_{std::make_unique<const Mesh>(scene, stage, fe, "sun-planet1"),
+              std::make_unique<const Mesh>(scene, stage, fe, "planet1-ring")} {}
+
+std::array<double, 2> MeanMeshStiffness(const ModalMeshPairs& pairs, int positions) {
   std::array<double, 2> k{};
-  ForEachModalMesh(
-      scene, stage, fe,
-      [&](int m, const char* name, const transmission::MeshPairSetup& setup,
-          const geometry::GearPair& pair, const transmission::FePairCompliance& compliance) {
-        transmission::MeshStiffnessOptions opt;
-        opt.positions = positions;
-        const transmission::MeshStiffnessResult r =
-            transmission::ComputeMeshStiffness(setup, pair, compliance, opt);
-        if (r.failed == positions)
-          throw std::runtime_error(std::string("mean mesh stiffness of ") + name +
-                                   ": every position failed");
-        k[static_cast<std::size_t>(m)] = r.mean_stiffness;
-      });
+  for (std::size_t m = 0; m < 2; ++m) {
+    const ModalMeshPairs::Mesh& mesh = *pairs.meshes()[m];
+    transmission::MeshStiffnessOptions opt;
+    opt.positions = positions;
+    const transmission::MeshStiffnessResult r =
+        transmission::ComputeMeshStiffness(mesh.setup, mesh.pair, mesh.compliance, opt);
+    if (r.failed == positions)
+      throw std::runtime_error(std::string("mean mesh stiffness of ") + mesh.name +
+                               ": every position failed");
+    k[m] = r.mean_stiffness;
+  }
   return k;
 }
 
-std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
-                                               const geometry::Stage& stage,
-                                               const transmission::FeComplianceOptions& fe,
-                                               int positions, double step) {
+std::array<double, 2> MeanTangentMeshStiffness(const ModalMeshPairs& pairs, int positions,
+                                               double step) {
   if (!(step > 0 && step < 0.5))
     throw std::invalid_argument("tangent mesh stiffness: step = " + std::to_string(step) +
                                 ": must lie in (0, 0.5)");
@@ -937,39 +929,31 @@ std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
     throw std::invalid_argument("tangent mesh stiffness: positions = " + std::to_string(positions) +
                                 ": must be >= 2");
   std::array<double, 2> k{};
-  ForEachModalMesh(
-      scene, stage, fe,
-      [&](int m, const char* name, const transmission::MeshPairSetup& setup,
-          const geometry::GearPair& pair, const transmission::FePairCompliance& compliance) {
-        transmission::MeshStiffnessOptions opt;
-        opt.positions = positions;
-        transmission::MeshPairSetup up = setup, down = setup;
-        up.torque *= 1 + step;
-        down.torque *= 1 - step;
-        const auto ru = transmission::ComputeMeshStiffness(up, pair, compliance, opt);
-        const auto rd = transmission::ComputeMeshStiffness(down, pair, compliance, opt);
-        for (std::size_t i = 0; i < ru.samples.size(); ++i) {
-          const transmission::MeshSample &a = ru.samples[i], &b = rd.samples[i];
-          if (!a.converged || !b.converged || !(a.approach > b.approach))
-            throw std::runtime_error(std::string("tangent mesh stiffness of ") + name +
-                                     ": sample " + std::to_string(i) +
-                                     " failed: " + (a.converged ? b.message : a.message));
-          k[static_cast<std::size_t>(m)] += (a.total_force - b.total_force) /
-                                            (a.approach - b.approach) /
-                                            static_cast<double>(ru.samples.size());
-        }
-      });
+  for (std::size_t m = 0; m < 2; ++m) {
+    const ModalMeshPairs::Mesh& mesh = *pairs.meshes()[m];
+    transmission::MeshStiffnessOptions opt;
+    opt.positions = positions;
+    transmission::MeshPairSetup up = mesh.setup, down = mesh.setup;
+    up.torque *= 1 + step;
+    down.torque *= 1 - step;
+    const auto ru = transmission::ComputeMeshStiffness(up, mesh.pair, mesh.compliance, opt);
+    const auto rd = transmission::ComputeMeshStiffness(down, mesh.pair, mesh.compliance, opt);
+    for (std::size_t i = 0; i < ru.samples.size(); ++i) {
+      const transmission::MeshSample &a = ru.samples[i], &b = rd.samples[i];
+      if (!a.converged || !b.converged || !(a.approach > b.approach))
+        throw std::runtime_error(std::string("tangent mesh stiffness of ") + mesh.name +
+                                 ": sample " + std::to_string(i) +
+                                 " failed: " + (a.converged ? b.message : a.message));
+      k[m] += (a.total_force - b.total_force) / (a.approach - b.approach) /
+              static_cast<double>(ru.samples.size());
+    }
+  }
   return k;
-}
-
-std::array<double, 2> TangentMeshStiffness(const StageDynamics& rig) {
-  return rig.stage_model.helical() ? rig.sliced_stiffness.tangent
-                                   : MeanTangentMeshStiffness(rig.scene, rig.stage, rig.fe);
 }
 
 OperatingPointModes StageModes(const StageDynamics& rig) {
   OperatingPointModes out;
-  out.mesh_stiffness = TangentMeshStiffness(rig);
+  out.mesh_stiffness = rig.TangentMeshStiffness();
   DynamicModel model = rig.model;
   model.SetMeshStiffness(out.mesh_stiffness[0], out.mesh_stiffness[1]);
   Eigen::MatrixXd m, k;

@@ -77,7 +77,7 @@ std::string RunCostWarning(const RunSpan& span, double sun_rpm, const std::strin
 }
 
 double MeshHzPerSunRpm(const geometry::Stage& stage) {
-  return stage.ring().teeth() / stage.sun_ratio() / 60.0;
+  return io::RpmToRevolutionsPerSecond(stage.ring().teeth() / stage.sun_ratio());
 }
 
 std::vector<double> HarmonicSunSpeeds(double frequency, double hz_per_rpm, int harmonics) {

@@ -86,7 +86,7 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   o.simulation = simulation;
   // The modes from the tangent mesh stiffness (speed_sweep.hpp: the resonances sit at its
   // coincidences, not at the secant's).
-  o.modal_mesh_stiffness = TangentMeshStiffness(rig);
+  o.modal_mesh_stiffness = rig.TangentMeshStiffness();
 
   SpeedSweepRecord record;
   record.scene = rig.scene.name;

@@ -5,8 +5,11 @@
 #include <pybind11/eigen.h>
 
 #include "common.hpp"
+#include "epicycle/report/record_json.hpp"
+#include "epicycle/solvers/backend_comparison.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_problem.hpp"
+#include "epicycle/transmission/record.hpp"
 #include "epicycle/transmission/run_arguments.hpp"
 
 namespace epicycle::python {
@@ -58,7 +61,7 @@ py::dict LocalTermDict(const solvers::LocalTermParameters& p) {
   d["enabled"] = p.enabled;
   d["face_width_m"] = p.face_width;
   d["reduced_radius_m"] = p.reduced_radius;
-  d["plane"] = p.plane == solvers::PlaneAssumption::kPlaneStrain ? "strain" : "stress";
+  d["plane"] = io::NameOf(solvers::kPlaneAssumptionNames, p.plane);
   d["youngs_modulus_Pa"] = py::make_tuple(p.body[0].youngs_modulus, p.body[1].youngs_modulus);
   d["poisson_ratio"] = py::make_tuple(p.body[0].poisson_ratio, p.body[1].poisson_ratio);
   d["depth_m"] = py::make_tuple(p.body[0].depth, p.body[1].depth);
@@ -252,7 +255,79 @@ float
     The force [N] (inf: no local term).)doc");
 }
 
-// The solvers: one back end, the comparison of every back end, the files of problems.
+// A comparison's sink in Python: nothing streamed (the record holds every run); a Ctrl-C stops
+// the comparison at its next run.
+class CancellableComparison final : public solvers::ComparisonSink {
+ public:
+  explicit CancellableComparison(const CancelToken* token) : token_(token) {}
+  void Failure(const std::string&) override {}
+  void Run(const solvers::ComparisonRun&) override {
+    if (token_->cancelled) throw Cancelled();
+  }
+
+ private:
+  const CancelToken* token_;
+};
+
+py::object CompareBackends(const std::vector<std::string>& inputs, double tolerance, int repeats,
+                           std::optional<std::vector<std::string>> backends) {
+  // The rules of the program's --tol and --repeat (run_arguments.hpp).
+  transmission::CheckArgument("tolerance", tolerance, transmission::kContactTolerance);
+  transmission::CheckArgument("repeats", repeats, transmission::kComparisonRepeats);
+  solvers::ComparisonRequest request;
+  request.inputs = inputs;
+  request.options.tolerance = tolerance;
+  request.repeats = repeats;
+  if (backends) {
+    request.backends.clear();
+    for (const std::string& name : *backends) request.backends.push_back(BackendOf(name));
+  }
+  CancelToken token;
+  const solvers::ComparisonRecord record = RunReleased(token, [&] {
+    CancellableComparison sink(&token);
+    return solvers::RunComparison(request, sink);
+  });
+  py::dict f;
+  f["failures"] = record.failures;
+  // The program's JSON (`epicycle contact compare --json`), its one serialisation.
+  f["record"] = JsonToPython(report::RecordJson(record));
+  return Result(f);
+}
+
+// The comparison of back ends over problem files.
+void BindComparison(py::module_& m) {
+  m.def("compare_backends", &CompareBackends, py::arg("inputs"), py::kw_only(),
+        py::arg("tolerance") = solvers::ContactOptions().tolerance,
+        py::arg("repeats") = solvers::kDefaultComparisonRepeats, py::arg("backends") = py::none(),
+        R"doc(
+Every back end on every problem file against each problem's reference, the active-set Newton at
+1e-12 (`epicycle contact compare`, docs/solvers.md). A run that does not converge is a result:
+it is listed in failures (the program exits 1).
+
+Parameters
+----------
+inputs : list of str
+    Problem files or folders of them (JSON, verification/data/contact's format).
+tolerance : float, default 1e-10
+    Every back end's tolerance on the nondimensional residual [-], in (0, 1].
+repeats : int, default 5
+    Solves per (back end, problem), the median time reported [-], in [1, 1000].
+backends : list of str or None, default None
+    The back ends, in the runs' order (None: every available one, contact_backends()).
+
+Returns
+-------
+Result
+    failures (each failed run: back end, problem, file, status); record: the comparison's
+    record, the keys and values of `epicycle contact compare --json` (docs/records.md).
+
+Raises
+------
+ValueError
+    Bad input (the argument's name, value and rule; a file that is not a problem file).)doc");
+}
+
+// The solvers: one back end, the residuals and differences of an answer, the files of problems.
 void BindContactSolvers(py::module_& m) {
   m.def("solve_contact", &Solve, py::arg("problem"), py::arg("backend") = "newton", py::kw_only(),
         py::arg("tolerance") = 1e-10, py::arg("max_iterations") = 200,
@@ -435,6 +510,7 @@ ValueError
 void BindContact(py::module_& m) {
   BindContactProblem(m);
   BindContactSolvers(m);
+  BindComparison(m);
 }
 
 }  // namespace epicycle::python

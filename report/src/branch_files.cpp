@@ -69,16 +69,16 @@ void BranchFile::Update(const dynamics::StageBranchRecord& r) {
       if (b.after_point == p.index) {
         if (!kinds.empty()) kinds += ';', where += ';';
         kinds += dynamics::BifurcationKindName(b.kind);
-        where += Num(b.parameter);
+        where += Cell(b.parameter);
       }
     std::string speed;
-    if (speed_column_) speed = ',', speed += Num(p.sun_speed_rpm);
+    if (speed_column_) speed = ',', speed += Cell(p.sun_speed_rpm);
     csv_.WriteLine(fmt::format("{},{}{},{},{},{},{},{},{},{},{},{},{},{},{},{}", p.index,
-                               Num(p.parameter), speed, Num(p.period),
-                               dynamics::StabilityName(p.stability), Num(p.spectral_radius),
+                               Cell(p.parameter), speed, Cell(p.period),
+                               dynamics::StabilityName(p.stability), Cell(p.spectral_radius),
                                p.real_above_one, p.real_below_minus_one, p.complex_outside,
-                               Num(p.k_gamma), Num(p.te_amplitude * 1e6),
-                               Num(p.orbit_radius * 1e6), Num(p.arclength),
+                               Cell(p.k_gamma), Cell(p.te_amplitude * 1e6),
+                               Cell(p.orbit_radius * 1e6), Cell(p.arclength),
                                p.corrector_iterations, CsvText(kinds), CsvText(where)));
   }
 }
@@ -91,7 +91,7 @@ std::string BranchPlanText(const dynamics::BranchPlan& plan, const std::string& 
   std::string t = fmt::format(
       "{}: periodic orbits continued over {} from {} to {} ({}), sun {}, period {} mesh "
       "cycle(s), rtol {:.1e}, {}\n",
-      rig.scene.name, o.parameter, Num(o.start), Num(o.end), given,
+      rig.scene.name, o.parameter, Cell(o.start), Cell(o.end), given,
       transmission::SunSupportName(rig.stage_model.setup().sun), o.period.mesh_cycles,
       o.simulation.rtol,
       o.method == dynamics::PeriodicMethod::kHarmonicBalance
@@ -110,9 +110,9 @@ std::string BranchPointsText(const dynamics::StageBranchRecord& r, std::size_t f
     std::string before;
     for (const dynamics::StageBranchBifurcation& b : r.bifurcations)
       if (b.after_point == p.index)
-        before += fmt::format("{} at {} ", dynamics::BifurcationKindName(b.kind), Num(b.parameter));
+        before += fmt::format("{} at {} ", dynamics::BifurcationKindName(b.kind), Cell(b.parameter));
     t += fmt::format("  {:<6} {:<14} {:<10} {:<11.6f} {:<10.5f} {:<12.4f} {}\n", p.index,
-                     Num(p.parameter), dynamics::StabilityName(p.stability), p.spectral_radius,
+                     Cell(p.parameter), dynamics::StabilityName(p.stability), p.spectral_radius,
                      p.k_gamma, p.te_amplitude * 1e6, before);
   }
   return t;

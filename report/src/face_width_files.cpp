@@ -123,11 +123,11 @@ void FaceLoadFiles::Write(const transmission::PositionResult& r) {
       continue;
     }
     const transmission::MeshFaceLoad& f = r.face_loads[m];
-    line += fmt::format(",{},{},{}", Num(f.k_h_beta), Num(f.largest_z * 1e3), Num(f.mean * 1e-3));
+    line += fmt::format(",{},{},{}", Cell(f.k_h_beta), Cell(f.largest_z * 1e3), Cell(f.mean * 1e-3));
     for (int s = 0; s < slices_; ++s) {
       const double w = f.line_load[static_cast<std::size_t>(s)] * 1e-3;  // [N/mm]
       line += ',';
-      line += Num(w);
+      line += Cell(w);
       double& cell = map_[m][static_cast<std::size_t>(s * columns_ + column)];
       cell = std::isnan(cell) ? w : std::max(cell, w);
     }
@@ -143,11 +143,11 @@ void FaceLoadFiles::Write(const transmission::PositionResult& r) {
         line += ",,,,,";
       } else {
         const auto at = static_cast<std::size_t>(rs), h = static_cast<std::size_t>(hp);
-        line += fmt::format(",{},{},{},{},{}", Num(f.root_stress[at] * 1e-6),
+        line += fmt::format(",{},{},{},{},{}", Cell(f.root_stress[at] * 1e-6),
                             transmission::BodyName(f.root_stress_body[at]),
-                            Num(transmission::SliceCentre(rs, slices_, f.width) * 1e3),
-                            Num(f.hertz_pressure[h] * 1e-6),
-                            Num(transmission::SliceCentre(hp, slices_, f.width) * 1e3));
+                            Cell(transmission::SliceCentre(rs, slices_, f.width) * 1e3),
+                            Cell(f.hertz_pressure[h] * 1e-6),
+                            Cell(transmission::SliceCentre(hp, slices_, f.width) * 1e3));
       }
     }
     lines += line + "\n";

@@ -32,13 +32,13 @@ std::string Num(double v, const char* format, const char* missing) {
   return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : std::string(missing);
 }
 
-std::string Num(double v) {
+std::string Cell(double v) {
   std::string s;
-  AppendNum(s, v);
+  AppendCell(s, v);
   return s;
 }
 
-void AppendNum(std::string& out, double v) {
+void AppendCell(std::string& out, double v) {
   if (!std::isfinite(v)) return;
   // std::to_chars' general form with a precision is printf's %g (C locale), as is fmt's "{:.9g}":
   // the same characters, at less than half of fmt's instructions (a cell of every CSV line).

@@ -25,10 +25,10 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Appends ",<v>" (Num: an empty cell where v is not finite).
-void Cell(std::string& line, double v) {
+// Appends ",<v>" (Cell: an empty cell where v is not finite).
+void CommaCell(std::string& line, double v) {
   line += ',';
-  AppendNum(line, v);
+  AppendCell(line, v);
 }
 
 // "mesh,kind,flank" of a contact: the text cells of a pairs file's line.
@@ -37,11 +37,11 @@ std::string PairCells(const transmission::StageContact& c) {
          CsvText(geometry::KindName(c.contact.kind)) + "," + CsvText(c.FlankName());
 }
 
-// "a,b,c" of the values formatted by Num (empty cells where not finite), each led by a comma.
+// "a,b,c" of the values formatted by Cell (empty cells where not finite), each led by a comma.
 template <typename Range>
 std::string Cells(const Range& values) {
   std::string s;
-  for (double v : values) Cell(s, v);
+  for (double v : values) CommaCell(s, v);
   return s;
 }
 
@@ -68,11 +68,11 @@ void RootStressCells(std::string& line, const std::vector<transmission::GearRoot
     throw std::invalid_argument(fmt::format(
         "root stress cells: extremes of {} bodies for {} columns' bodies", g.size(), bodies));
   auto cells = [&](double sigma, const transmission::FilletSpot& at) {
-    Cell(line, sigma / 1e6);
+    CommaCell(line, sigma / 1e6);
     if (!where) return;
     if (std::isfinite(sigma) && sigma != 0.0)
       line +=
-          fmt::format(",{},{},{}", at.tooth, at.side == 0 ? "+" : "-", Num(at.arc_length * 1e3));
+          fmt::format(",{},{},{}", at.tooth, at.side == 0 ? "+" : "-", Cell(at.arc_length * 1e3));
     else
       line += ",,,";
   };
@@ -362,20 +362,20 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
   const bool ok = r.converged;
   std::string line = fmt::format("{:.6f},{}", deg, ok ? 1 : 0);
   const std::vector<double> l = transmission::LoadSharingFactors(r);
-  for (double v : r.load_sharing) Cell(line, ok ? v : NAN);
-  for (double v : l) Cell(line, ok ? v : NAN);
+  for (double v : r.load_sharing) CommaCell(line, ok ? v : NAN);
+  for (double v : l) CommaCell(line, ok ? v : NAN);
   line += fmt::format(
-      ",{},{},{},{},{},{},{},{},{},{},{},{},{}", Num(ok ? transmission::MeshLoadFactor(r) : NAN),
-      Num(ok ? r.transmission_error * 1e6 : NAN), Num(ok ? r.sun_displacement.x() * 1e6 : NAN),
-      Num(ok ? r.sun_displacement.y() * 1e6 : NAN), r.geometric_iterations, r.contact_iterations,
-      r.warm_started ? 1 : 0, Num(r.report.residual.total),
+      ",{},{},{},{},{},{},{},{},{},{},{},{},{}", Cell(ok ? transmission::MeshLoadFactor(r) : NAN),
+      Cell(ok ? r.transmission_error * 1e6 : NAN), Cell(ok ? r.sun_displacement.x() * 1e6 : NAN),
+      Cell(ok ? r.sun_displacement.y() * 1e6 : NAN), r.geometric_iterations, r.contact_iterations,
+      r.warm_started ? 1 : 0, Cell(r.report.residual.total),
       CsvText(solvers::StatusName(r.report.status)), r.report.active_contacts,
       r.problem.contacts.size(), Num(r.report.total_seconds * 1e3, "{:.4g}"), CsvText(r.message));
   const bool friction = friction_ && ok && r.friction;
   if (friction_)
-    line += fmt::format(",{},{},{},{},{}", Num(friction ? r.friction_power : NAN),
-                        Num(friction ? r.input_power : NAN), Num(friction ? r.output_power : NAN),
-                        Num(friction ? r.Efficiency() : NAN), Num(r.force_change));
+    line += fmt::format(",{},{},{},{},{}", Cell(friction ? r.friction_power : NAN),
+                        Cell(friction ? r.input_power : NAN), Cell(friction ? r.output_power : NAN),
+                        Cell(friction ? r.Efficiency() : NAN), Cell(r.force_change));
   // A failed position has no stresses (empty cells), a converged one its extremes per gear.
   static const std::vector<transmission::GearRootStress> kNone;
   if (bodies_ > 0) RootStressCells(line, ok ? r.root_stress : kNone, bodies_);
@@ -386,16 +386,16 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
     if (!(f > 0)) continue;
     const transmission::StageContact& c = r.problem.contacts[j];
     pairs += fmt::format("{:.6f},{},{}/{},{}", deg, PairCells(c), c.contact.tooth_a,
-                         c.contact.tooth_b, Num(f));
+                         c.contact.tooth_b, Cell(f));
     if (friction_)
-      pairs += friction ? fmt::format(",{},{}", Num(r.friction_force(static_cast<Eigen::Index>(j))),
-                                      Num(r.sliding_velocity(static_cast<Eigen::Index>(j))))
+      pairs += friction ? fmt::format(",{},{}", Cell(r.friction_force(static_cast<Eigen::Index>(j))),
+                                      Cell(r.sliding_velocity(static_cast<Eigen::Index>(j))))
                         : std::string(",,");
     if (bodies_ > 0) {  // stresses: Hertz's pressure and half-width of the contact
       const auto& local = r.problem.data.local;
       const bool known = j < local.size();
-      Cell(pairs, known ? solvers::HertzPressure(local[j], f) / 1e6 : NAN);
-      Cell(pairs, known ? solvers::HertzHalfWidth(local[j], f) * 1e6 : NAN);
+      CommaCell(pairs, known ? solvers::HertzPressure(local[j], f) / 1e6 : NAN);
+      CommaCell(pairs, known ? solvers::HertzHalfWidth(local[j], f) * 1e6 : NAN);
     }
     pairs += '\n';
   }
@@ -538,35 +538,35 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
   const auto n = static_cast<double>(s.load_sharing.size());
   std::string steps = fmt::format("{:.9g},{:.6f}", s.time, geometry::Deg(s.carrier_angle));
   steps += Cells(s.load_sharing);
-  for (double v : s.load_sharing) Cell(steps, n * v);
+  for (double v : s.load_sharing) CommaCell(steps, n * v);
   int active = 0;
   for (int j = 0; j < e.total_force.size(); ++j) active += e.total_force(j) > 0;
-  steps += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}", Num(s.k_gamma),
-                       Num(s.transmission_error * 1e6), Num(s.sun_centre.x() * 1e6),
-                       Num(s.sun_centre.y() * 1e6), Num(s.sun_torque_balance), Num(s.external_work),
-                       Num(s.dissipated_work), Num(e.kinetic_energy), Num(e.elastic_energy),
-                       Num(s.compliance_work), e.terms.size(), active, Num(e.friction_power));
+  steps += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}", Cell(s.k_gamma),
+                       Cell(s.transmission_error * 1e6), Cell(s.sun_centre.x() * 1e6),
+                       Cell(s.sun_centre.y() * 1e6), Cell(s.sun_torque_balance), Cell(s.external_work),
+                       Cell(s.dissipated_work), Cell(e.kinetic_energy), Cell(e.elastic_energy),
+                       Cell(s.compliance_work), e.terms.size(), active, Cell(e.friction_power));
   steps += Cells(s.force_sharing);
   if (bodies_ > 0) RootStressCells(steps, s.root_stress, bodies_);
   for (std::size_t m = 0; m < face_meshes_; ++m) {
     if (m < s.face_loads.size()) {
-      Cell(steps, s.face_loads[m].k_h_beta);
-      Cell(steps, s.face_loads[m].largest_z * 1e3);
+      CommaCell(steps, s.face_loads[m].k_h_beta);
+      CommaCell(steps, s.face_loads[m].largest_z * 1e3);
     } else {
       steps += ",,";  // an empty cell: no value, never a NaN
     }
   }
   if (helical_planets_ > 0) {
     const transmission::HelicalLoads& h = s.helical;
-    Cell(steps, h.sun_axial_force);
-    Cell(steps, h.ring_axial_force);
-    Cell(steps, h.carrier_axial_force);
+    CommaCell(steps, h.sun_axial_force);
+    CommaCell(steps, h.ring_axial_force);
+    CommaCell(steps, h.carrier_axial_force);
     for (int i = 0; i < helical_planets_; ++i) {
       if (static_cast<std::size_t>(i) < h.planets.size()) {
         const transmission::PlanetHelicalLoad& p = h.planets[static_cast<std::size_t>(i)];
-        Cell(steps, p.sun_mesh_axial);
-        Cell(steps, p.moment_radial);
-        Cell(steps, p.moment_tangential);
+        CommaCell(steps, p.sun_mesh_axial);
+        CommaCell(steps, p.moment_radial);
+        CommaCell(steps, p.moment_tangential);
       } else {
         steps += ",,,";  // no value, never a NaN
       }
@@ -577,14 +577,14 @@ void DynamicRunFiles::Write(const dynamics::DynamicSample& s) {
     if (!(e.total_force(j) > 0)) continue;
     const transmission::StageContact& c = e.terms.contacts[j];
     pairs += fmt::format("{:.9g},{},{}/{},{},{},{},{}\n", s.time, PairCells(c), c.contact.tooth_a,
-                         c.contact.tooth_b, Num(e.total_force(j)), Num(e.force(j)),
-                         Num(e.friction(j)), Num(e.overlap_rate(j) * 1e3));
+                         c.contact.tooth_b, Cell(e.total_force(j)), Cell(e.force(j)),
+                         Cell(e.friction(j)), Cell(e.overlap_rate(j) * 1e3));
   }
-  std::string bearings = fmt::format("{:.9g},{},{}", s.time, Num(e.sun_bearing_force.x()),
-                                     Num(e.sun_bearing_force.y()));
+  std::string bearings = fmt::format("{:.9g},{},{}", s.time, Cell(e.sun_bearing_force.x()),
+                                     Cell(e.sun_bearing_force.y()));
   for (const auto& f : e.planet_bearing_force) {
-    Cell(bearings, f.x());
-    Cell(bearings, f.y());
+    CommaCell(bearings, f.x());
+    CommaCell(bearings, f.y());
   }
   // Each file gets the step's lines in one write; the steps line last: a step is complete when
   // its line is in BASE_steps.csv.
@@ -660,23 +660,23 @@ MeshStiffnessFile::MeshStiffnessFile(const std::string& path, const nlohmann::js
 void MeshStiffnessFile::Write(const transmission::MeshSample& s) {
   const std::string head =
       fmt::format("{:.6f},{},{},{},{},{},{},{}", geometry::Deg(s.angle), s.converged ? 1 : 0,
-                  Num(s.mesh_stiffness), Num(s.mesh_stiffness / face_width_ / 1e9),
-                  Num(s.rotation * 1e6), Num(s.approach * 1e6), Num(s.total_force), s.pairs.size());
+                  Cell(s.mesh_stiffness), Cell(s.mesh_stiffness / face_width_ / 1e9),
+                  Cell(s.rotation * 1e6), Cell(s.approach * 1e6), Cell(s.total_force), s.pairs.size());
   std::string tail = CsvText(s.message);
   // A failed position has no stresses (empty cells), a converged one its extremes per gear.
   if (bodies_ > 0) RootStressCells(tail, s.root_stress, bodies_, true);
   if (faces_) {
     // A failed position (no line loads) has empty cells.
     const bool has = s.converged && !s.face_load.line_load.empty();
-    Cell(tail, has ? s.face_load.k_h_beta : kNaN);
-    Cell(tail, has ? s.face_load.largest_z * 1e3 : kNaN);
+    CommaCell(tail, has ? s.face_load.k_h_beta : kNaN);
+    CommaCell(tail, has ? s.face_load.largest_z * 1e3 : kNaN);
   }
   tail += '\n';
   std::string lines = s.pairs.empty() ? head + ",,,,,," + tail : "";
   for (const auto& p : s.pairs)
     lines += fmt::format("{},{}/{},{},{},{},{},{}", head, p.tooth1, p.tooth2,
-                         CsvText(geometry::KindName(p.kind)), Num(p.force), Num(p.stiffness),
-                         Num(p.share), tail);
+                         CsvText(geometry::KindName(p.kind)), Cell(p.force), Cell(p.stiffness),
+                         Cell(p.share), tail);
   csv_.Write(lines);
 }
 

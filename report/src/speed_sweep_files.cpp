@@ -66,7 +66,7 @@ SpeedSweepFile::SpeedSweepFile(const std::string& path, const nlohmann::json& pr
 
 void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::SpeedSweepPlan& plan) {
   // A failed speed keeps its speed, status and message; its figures are empty (not zeros).
-  auto v = [&](double x) { return r.ok() ? Num(x) : std::string(); };
+  auto v = [&](double x) { return r.ok() ? Cell(x) : std::string(); };
   std::string parts;
   for (double x : r.deviation_parts) parts += v(x) + ",";
   std::string helical;
@@ -79,12 +79,12 @@ void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::Speed
                          helical += has ? Num(max_abs) : std::string();
                        });
   csv_.WriteLine(fmt::format(
-      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Num(r.sun_speed_rpm),
-      Num(r.mesh_frequency), r.ok() ? "ok" : transmission::RunStatusName(r.status), v(r.k_gamma), v(r.dynamic_factor),
+      "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Cell(r.sun_speed_rpm),
+      Cell(r.mesh_frequency), r.ok() ? "ok" : transmission::RunStatusName(r.status), v(r.k_gamma), v(r.dynamic_factor),
       CsvText(r.ok() && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : ""), v(r.peak_mesh_force),
       v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min), v(r.lsr_max),
       v(r.lsr_deviation) + "," + parts + v(r.largest_residual) + helical, r.stats.steps,
-      r.stats.rhs_evaluations, r.stats.failed_solves, Num(r.cpu_seconds), Num(r.wall_seconds),
+      r.stats.rhs_evaluations, r.stats.failed_solves, Cell(r.cpu_seconds), Cell(r.wall_seconds),
       CsvText(r.message)));
 }
 

@@ -13,6 +13,7 @@
 #include "epicycle/dynamics/dynamic_run.hpp"
 #include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/dynamics/speed_sweep_run.hpp"
+#include "epicycle/solvers/backend_comparison.hpp"
 #include "epicycle/studies/study_run.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
 #include "epicycle/transmission/record.hpp"
@@ -237,5 +238,13 @@ int main() {
         "`points[].sun_speed_rpm` beside it only when it is another, `points[].helical` only "
         "for a helical stage (over the period).",
         branch);
+  solvers::ComparisonRecord comparison;
+  comparison.summaries.resize(1);
+  comparison.runs.resize(1);
+  Table("Comparison of contact back ends (`epicycle contact compare --json FILE`, Python "
+        "`compare_backends(...).record`)",
+        "FILE; errors and residuals nondimensional (docs/solvers.md), an error null where not "
+        "computed (a back end that threw).",
+        comparison);
   return 0;
 }

@@ -100,6 +100,8 @@ std::vector<BackendSummary> SummarizeByBackend(const std::vector<ComparisonRun>&
 
 ComparisonRecord RunComparison(const ComparisonRequest& request, ComparisonSink& sink) {
   ComparisonRecord record;
+  record.tolerance = request.options.tolerance;
+  record.repeats = request.repeats;
   record.files = ListProblemFiles(request.inputs);
   for (Backend b : request.backends) record.backends.push_back(BackendName(b));
   auto fail = [&](const std::string& what) {
@@ -128,6 +130,7 @@ ComparisonRecord RunComparison(const ComparisonRequest& request, ComparisonSink&
       record.runs.push_back(run);
     }
   }
+  record.summaries = SummarizeByBackend(record.runs, record.backends);
   return record;
 }
 

@@ -31,7 +31,6 @@ using internal::kMm;
 using internal::kUm;
 using internal::ReadDamage;
 using internal::ReadFaceWidth;
-using internal::SceneNum;
 
 // Physical ranges of the scene's values (docs/scenes.md, "Ranges and validity"). Sizes are
 // relative to the module, errors to the module (errors) and to the backlash (warnings).
@@ -149,7 +148,7 @@ void ReadDynamics(TableReader& top, DynamicSettings& d, std::vector<std::string>
     const double roughness_um = t->RealOr("roughness_um", 0.8, Rule::Positive());
     // Benedict & Kelley's roughness factor 50/(50 − S) takes S in µin: S < 50 µin = 1.27 µm.
     if (d.friction.law == FrictionLaw::kBenedictKelley && !(roughness_um < 1.27))
-      t->Fail("roughness_um", SceneNum(roughness_um),
+      t->Fail("roughness_um", io::Num(roughness_um, io::kInputDigits),
               "must be < 1.27 (50 microinch) for friction = \"benedict-kelley\" (its roughness "
               "factor 50/(50 - S))");
     d.friction.lubricant.composite_roughness = roughness_um * kUm;
@@ -227,7 +226,7 @@ void InertiaWarnings(const TableReader& t, const GearSpec& g, const Inertia& i,
     if (value > 0 && (value < 1e-2 * disc || value > 1e2 * disc))
       warnings->push_back(
           t.Warning(key, "outside [1/100, 100] times the solid steel disc of the pitch circle (" +
-                             SceneNum(disc) + " " + unit + "): another unit, or a typing error?"));
+                             io::Num(disc, io::kInputDigits) + " " + unit + "): another unit, or a typing error?"));
   };
   check("mass_kg", i.mass, disc_mass, "kg");
   check("inertia_kgm2", i.inertia, disc_inertia, "kg m2");
@@ -256,10 +255,10 @@ void InertiaRule(TableReader& t, const GearSpec& g, const Inertia& i) {
       "at the base circle): lighter, it moves on its mesh faster than its teeth's own bending "
       "vibration, which the model (teeth as massless springs) does not have";
   if (i.mass > 0 && i.mass < m_min)
-    t.Fail("mass_kg", SceneNum(i.mass), "must be 0 (not given) or >= " + SceneNum(m_min) + why);
+    t.Fail("mass_kg", io::Num(i.mass, io::kInputDigits), "must be 0 (not given) or >= " + io::Num(m_min, io::kInputDigits) + why);
   if (i.inertia > 0 && i.inertia < m_min * r_b * r_b)
-    t.Fail("inertia_kgm2", SceneNum(i.inertia),
-           "must be 0 (not given) or >= " + SceneNum(m_min * r_b * r_b) + why);
+    t.Fail("inertia_kgm2", io::Num(i.inertia, io::kInputDigits),
+           "must be 0 (not given) or >= " + io::Num(m_min * r_b * r_b, io::kInputDigits) + why);
 }
 
 // The helix angle at the reference cylinder (docs/scenes.md, "Helical gears"): its magnitude,
@@ -425,9 +424,9 @@ int GearIndex(TableReader& t, const std::string& key, int planets) {
 // pressure angle are told in the section the scene gives them (the normal section).
 void SameAsMate(TableReader& t, const GearSpec& g, const GearSpec& mate, const std::string& name) {
   if (std::abs(g.helix.angle - mate.helix.angle) > 1e-12) {
-    t.Fail("helix_angle_deg", SceneNum(geometry::Deg(g.helix.angle)),
+    t.Fail("helix_angle_deg", io::Num(geometry::Deg(g.helix.angle), io::kInputDigits),
            "must equal " + name +
-               ".helix_angle_deg = " + SceneNum(geometry::Deg(mate.helix.angle)) +
+               ".helix_angle_deg = " + io::Num(geometry::Deg(mate.helix.angle), io::kInputDigits) +
                " (gears that mesh share the helix angle at the reference cylinder)");
   }
   const double c = std::cos(g.helix.angle);  // 1 for spur gears
@@ -435,14 +434,14 @@ void SameAsMate(TableReader& t, const GearSpec& g, const GearSpec& mate, const s
     return g.helix.helical() ? std::atan(std::tan(alpha_t) * c) : alpha_t;
   };
   if (std::abs(g.module - mate.module) > 1e-12 * mate.module) {
-    t.Fail("module_mm", SceneNum(g.module * c / kMm),
-           "must equal " + name + ".module_mm = " + SceneNum(mate.module * c / kMm) +
+    t.Fail("module_mm", io::Num(g.module * c / kMm, io::kInputDigits),
+           "must equal " + name + ".module_mm = " + io::Num(mate.module * c / kMm, io::kInputDigits) +
                " (gears that mesh share the module)");
   }
   if (std::abs(g.pressure_angle - mate.pressure_angle) > 1e-12) {
-    t.Fail("pressure_angle_deg", SceneNum(normal_angle(g.pressure_angle) * 180.0 / geometry::kPi),
+    t.Fail("pressure_angle_deg", io::Num(normal_angle(g.pressure_angle) * 180.0 / geometry::kPi, io::kInputDigits),
            "must equal " + name + ".pressure_angle_deg = " +
-               SceneNum(normal_angle(mate.pressure_angle) * 180.0 / geometry::kPi) +
+               io::Num(normal_angle(mate.pressure_angle) * 180.0 / geometry::kPi, io::kInputDigits) +
                " (gears that mesh share the pressure angle)");
   }
 }
@@ -567,14 +566,14 @@ void ReadPair(TableReader& top, Scene& s, std::vector<TableReader>& fits,
     // A helical pair's module is the transverse one, m_t = m_n/cos β: say so, naming m_n.
     const std::string m =
         p.gear1.helix.helical()
-            ? "m_t = gear1.module_mm/cos(beta) = " + SceneNum(m_mm) +
-                  " mm (module_mm = " + SceneNum(m_mm * std::cos(p.gear1.helix.angle)) +
-                  ", helix_angle_deg = " + SceneNum(geometry::Deg(p.gear1.helix.angle)) + "): m_t"
+            ? "m_t = gear1.module_mm/cos(beta) = " + io::Num(m_mm, io::kInputDigits) +
+                  " mm (module_mm = " + io::Num(m_mm * std::cos(p.gear1.helix.angle), io::kInputDigits) +
+                  ", helix_angle_deg = " + io::Num(geometry::Deg(p.gear1.helix.angle), io::kInputDigits) + "): m_t"
             : "m";
     pair_table.Check(
         "centre_distance_mm", p.centre_distance / kMm,
         Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
-            .Because(m + (internal ? " (z2 - z1)/2 = " : " (z1 + z2)/2 = ") + SceneNum(a0) +
+            .Because(m + (internal ? " (z2 - z1)/2 = " : " (z1 + z2)/2 = ") + io::Num(a0, io::kInputDigits) +
                      " mm within 2 modules (profile shifts move it by about x m)"));
     pair_table.Done();
   }
@@ -631,7 +630,7 @@ void ContactRatioWarning(const GearSpec& g1, const GearSpec& g2, bool internal, 
   const double eps =
       geometry::iso::ContactRatio(rb1, g1.tip_radius, rb2, g2.tip_radius, a, alpha_w, pb, internal);
   if (std::isfinite(eps) && eps < 1.0) {
-    warnings->push_back(where + ": transverse contact ratio epsilon_alpha = " + SceneNum(eps) +
+    warnings->push_back(where + ": transverse contact ratio epsilon_alpha = " + io::Num(eps, io::kInputDigits) +
                         " < 1 (tip radii, shifts and centre distance): there are instants "
                         "without a loaded tooth pair; the results are outside the model's "
                         "validity for a working mesh");
@@ -652,7 +651,7 @@ void StageWarnings(const std::vector<ErrorKey>& keys, Scene& s) {
                        : j_sp <= j_pr ? "sun-planet"
                                       : "planet-ring";
     if (k.value > j) {
-      s.warnings.push_back(k.where + "larger than the normal backlash j_n = " + SceneNum(j / kUm) +
+      s.warnings.push_back(k.where + "larger than the normal backlash j_n = " + io::Num(j / kUm, io::kInputDigits) +
                            " um of the " + mesh +
                            " meshes: the gear can close the backlash and load the coast flanks "
                            "(a planet jams and its load-sharing ratio can turn negative); the "
@@ -740,12 +739,12 @@ void CarrierFitsModule(const TableReader& sun_table, const geometry::StageSpec& 
   const double mn_mm = st.sun.module * std::cos(st.sun.helix.angle) / kMm;
   if (std::abs(a - a0) <= kCarrierModules * mn_mm) return;
   sun_table.Fail(
-      "module_mm", SceneNum(mn_mm),
-      "with helix_angle_deg = " + SceneNum(geometry::Deg(st.sun.helix.angle)) +
-          " the transverse module m_n/cos(beta) = " + SceneNum(st.sun.module / kMm) +
+      "module_mm", io::Num(mn_mm, io::kInputDigits),
+      "with helix_angle_deg = " + io::Num(geometry::Deg(st.sun.helix.angle), io::kInputDigits) +
+          " the transverse module m_n/cos(beta) = " + io::Num(st.sun.module / kMm, io::kInputDigits) +
           " mm puts the sun-planet centre distance of unshifted gears, m_t (z_sun + z_planet)/2, "
           "at " +
-          SceneNum(a0) + " mm, more than 2 normal modules from carrier.radius_mm = " + SceneNum(a) +
+          io::Num(a0, io::kInputDigits) + " mm, more than 2 normal modules from carrier.radius_mm = " + io::Num(a, io::kInputDigits) +
           ": the stage cannot be assembled at that carrier radius (profile shifts move it by "
           "about x m_n)");
 }
@@ -805,7 +804,7 @@ void ReadStageMembers(TableReader& top, Scene& s, Fitted&& fitted) {
       st.carrier_radius =
           t.Real("radius_mm",
                  Rule::Closed(a0 - kCarrierModules * m_mm, a0 + kCarrierModules * m_mm)
-                     .Because("m (z_sun + z_planet)/2 = " + SceneNum(a0) +
+                     .Because("m (z_sun + z_planet)/2 = " + io::Num(a0, io::kInputDigits) +
                               " mm within 2 modules (profile shifts move it by about x m)")) *
           kMm;
     }

@@ -54,8 +54,8 @@ void CheckCrackMeshes(TableReader& t, const std::string& key, const Scene& s,
       break;  // no longer inside its tooth
     }
     if (meshes(larger, nullptr)) {
-      rule = "the same shape meshes at a depth of " + SceneNum(larger.depth() / kMm) +
-             " mm (its segments " + SceneNum(scale) + " times as long)";
+      rule = "the same shape meshes at a depth of " + io::Num(larger.depth() / kMm, io::kInputDigits) +
+             " mm (its segments " + io::Num(scale, io::kInputDigits) + " times as long)";
       break;
     }
   }
@@ -69,12 +69,12 @@ void CheckCrackMeshes(TableReader& t, const std::string& key, const Scene& s,
       }
     rule = k.path.size() > 1
                ? "no longer path of this shape meshes either: its sharpest turn, " +
-                     SceneNum(geometry::Deg(turn)) + " deg between segments " +
+                     io::Num(geometry::Deg(turn), io::kInputDigits) + " deg between segments " +
                      std::to_string(at - 1) + " and " + std::to_string(at) +
                      ", folds the crack's faces onto each other: open it"
                : "no longer crack at this angle that stays in the tooth meshes either";
   }
-  t.Fail(key, SceneNum(k.depth() / kMm) + " mm",
+  t.Fail(key, io::Num(k.depth() / kMm, io::kInputDigits) + " mm",
          "must be a crack the FE mesher (gmsh) can mesh in its tooth: " + rule +
              " (the mesher: " + why + ")");
 #else
@@ -152,7 +152,7 @@ Crack ReadCrack(TableReader& t, const Scene& s,
   try {
     k.Validate(gear);
   } catch (const std::invalid_argument& e) {
-    t.Fail(depth_key, SceneNum(k.depth() / kMm) + " mm",
+    t.Fail(depth_key, io::Num(k.depth() / kMm, io::kInputDigits) + " mm",
            std::string("the crack must stay inside its tooth") +
                (c.start == CrackStart::kLargestTension ? " (checked from ISO's 30-degree point)"
                                                        : "") +
@@ -206,9 +206,9 @@ void ReadDamage(TableReader& top, Scene& s,
     const double rb = gear.base_radius();
     auto radius_at = [&](double u) { return rb * std::hypot(1.0, u) / kMm; };
     const std::string extent =
-        "the involute of the flank runs over roll " + SceneNum(geometry::Deg(inv.u_min)) + ".." +
-        SceneNum(geometry::Deg(inv.u_max)) + " deg (radius " + SceneNum(radius_at(inv.u_min)) + ".." +
-        SceneNum(radius_at(inv.u_max)) + " mm); a pit lowers the involute only";
+        "the involute of the flank runs over roll " + io::Num(geometry::Deg(inv.u_min), io::kInputDigits) + ".." +
+        io::Num(geometry::Deg(inv.u_max), io::kInputDigits) + " deg (radius " + io::Num(radius_at(inv.u_min), io::kInputDigits) + ".." +
+        io::Num(radius_at(inv.u_max), io::kInputDigits) + " mm); a pit lowers the involute only";
     const std::string from = by_roll ? "roll_from_deg" : "radius_from_mm",
                       to = by_roll ? "roll_to_deg" : "radius_to_mm";
     if (by_roll) {
@@ -222,7 +222,7 @@ void ReadDamage(TableReader& top, Scene& s,
       p.roll_to = geometry::InvoluteFlank::RollAtRadius(rb, t.Real(to, rule) * kMm);
     }
     if (!(p.roll_to > p.roll_from))
-      t.Fail(to, SceneNum(by_roll ? geometry::Deg(p.roll_to) : radius_at(p.roll_to)),
+      t.Fail(to, io::Num(by_roll ? geometry::Deg(p.roll_to) : radius_at(p.roll_to), io::kInputDigits),
              "must be greater than " + from + " (the region runs from the root side to the tip)");
     p.width_fraction =
         t.Real("width_fraction",
@@ -234,7 +234,7 @@ void ReadDamage(TableReader& top, Scene& s,
     p.depth = depth_um * kUm;
     if (p.depth > kPitDepthModules[0] * spec->module)
       s.warnings.push_back(t.Warning(
-          "depth_um", "deeper than " + SceneNum(kPitDepthModules[0] * spec->module / kUm) +
+          "depth_um", "deeper than " + io::Num(kPitDepthModules[0] * spec->module / kUm, io::kInputDigits) +
                           " um (5 % of the module): the tooth keeps the compliance of the intact "
                           "tooth, which a pit this deep softens"));
     // Pits on one flank of one tooth must not overlap: the strips of the face width they would
@@ -242,7 +242,7 @@ void ReadDamage(TableReader& top, Scene& s,
     for (const Pit& q : s.damage.pits) {
       if (q.gear == p.gear && q.tooth == p.tooth && q.flank == p.flank && p.roll_from < q.roll_to &&
           q.roll_from < p.roll_to)
-        t.Fail(from, SceneNum(by_roll ? geometry::Deg(p.roll_from) : radius_at(p.roll_from)),
+        t.Fail(from, io::Num(by_roll ? geometry::Deg(p.roll_from) : radius_at(p.roll_from), io::kInputDigits),
                "the region overlaps the pit of " + q.where +
                    " on the same flank of the same tooth; give one pit per region (join them, "
                    "or split the roll range)");

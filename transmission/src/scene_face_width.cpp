@@ -173,8 +173,8 @@ void ReadFaceWidth(TableReader& top, Scene& s,
     const double tangential_um = r.RealOr("tangential_um", 0, Rule::Any());
     p.radial = radial_um * kUm / over;
     p.tangential = tangential_um * kUm / over;
-    p.where += " (radial_um = " + SceneNum(radial_um) + ", tangential_um = " +
-               SceneNum(tangential_um) + " over " + SceneNum(over / kMm) + " mm)";
+    p.where += " (radial_um = " + io::Num(radial_um, io::kInputDigits) + ", tangential_um = " +
+               io::Num(tangential_um, io::kInputDigits) + " over " + io::Num(over / kMm, io::kInputDigits) + " mm)";
     for (const PinTilt& q : f.pin_tilts)
       if (q.planet == p.planet)
         r.Fail("planet", std::to_string(p.planet + 1),
@@ -230,9 +230,9 @@ void CheckMeshBound(const internal::MeshBound& bound, const std::string& mesh, c
   if (bound.change > 0.5 * s.gap_window)
     throw std::invalid_argument(
         bound.key + ": the gap changes by up to " +
-        internal::SceneNum(bound.change / internal::kUm) + " um across the " + mesh +
+        io::Num(bound.change / internal::kUm, io::kInputDigits) + " um across the " + mesh +
         " mesh, more than half the contact search's gap window (contact.gap_window_um = " +
-        internal::SceneNum(s.gap_window / internal::kUm) +
+        io::Num(s.gap_window / internal::kUm, io::kInputDigits) +
         "): the search runs in the mid-plane and would miss a slice's contact; widen the "
         "window or reduce the misalignment");
 }

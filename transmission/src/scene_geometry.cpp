@@ -177,7 +177,7 @@ void RequireSpur(const Scene& scene, const std::string& driver) {
         "ring.helix_angle_deg", "gear1.helix_angle_deg", "gear2.helix_angle_deg"})
     if (where.empty()) where = internal::KeyAt(scene, path);
   if (where.empty())
-    where = scene.source + ": helix_angle_deg = " + internal::SceneNum(geometry::Deg(beta));
+    where = scene.source + ": helix_angle_deg = " + io::Num(geometry::Deg(beta), io::kInputDigits);
   throw std::invalid_argument(
       where + ": " + driver +
       " computes the planar (spur) model and does not take a helical scene (helix_angle_deg > "

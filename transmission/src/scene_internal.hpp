@@ -15,9 +15,6 @@ namespace epicycle::transmission::internal {
 using io::Rule;
 using io::TableReader;
 
-/// A value in a scene message: 10 significant digits (a scene's values are read back exactly).
-inline std::string SceneNum(double v) { return io::Num(v, 10); }
-
 inline constexpr double kMm = 1e-3, kUm = 1e-6;
 
 /// "file:line: path = value" of a key the scene's text holds (a toml++ path:

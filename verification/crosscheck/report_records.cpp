@@ -17,6 +17,7 @@
 #include "epicycle/dynamics/modes_run.hpp"
 #include "epicycle/dynamics/speed_sweep_run.hpp"
 #include "epicycle/report/record_json.hpp"
+#include "epicycle/solvers/backend_comparison.hpp"
 #include "epicycle/studies/study_run.hpp"
 #include "epicycle/transmission/quasistatic_run.hpp"
 #include "epicycle/transmission/stiffness_run.hpp"
@@ -341,6 +342,46 @@ TEST_CASE(
   for (nlohmann::json* j : {&program, &library})
     for (const char* k : {"provenance", "cpu_seconds", "wall_seconds"}) j->erase(k);
   CHECK(program == library);
+}
+
+TEST_CASE(
+    "comparison record: `contact compare --json` has exactly the record's fields and the library "
+    "comparison's values (a failed run included)",
+    "[crosscheck][report][records]") {
+  // Two problems of the collection, one with a reference that cannot converge at 1e-12
+  // (stiff_cond1e10_s1: cond(C) = 1e10) and every back end at --tol 1e-30, so that the failures'
+  // list and the not-solved runs are in the record too.
+  const test::TempDir temp("comparison-record");
+  const std::string data = std::string(EPICYCLE_TEST_DATA_DIR) + "/contact/";
+  const std::vector<std::string> inputs = {data + "cf_two_symmetric.json",
+                                           data + "stiff_cond1e10_s1.json"};
+  REQUIRE(test::ExitStatus({EPICYCLE_EXE, "contact", "compare", inputs[0], inputs[1], "--tol",
+                            "1e-30", "--repeat", "1", "--json",
+                            temp.File("compare.json")}) == 1);
+  nlohmann::json program = ReadJson(temp.File("compare.json"));
+
+  solvers::ComparisonRequest request;
+  request.inputs = inputs;
+  request.options.tolerance = 1e-30;
+  request.repeats = 1;
+  class NoComparisonSink final : public solvers::ComparisonSink {
+    void Failure(const std::string&) override {}
+    void Run(const solvers::ComparisonRun&) override {}
+  } sink;
+  const solvers::ComparisonRecord record = solvers::RunComparison(request, sink);
+  REQUIRE(!record.failures.empty());
+
+  CheckKeys(program, record);
+  nlohmann::json library = report::RecordJson(record);
+  // The wall times are the only values two runs may differ in.
+  for (nlohmann::json* j : {&program, &library}) {
+    j->erase("provenance");
+    for (const char* list : {"backends", "runs"})
+      for (nlohmann::json& item : (*j)[list]) item.erase("median_seconds");
+  }
+  CHECK(program == library);
+  CHECK(program["runs"].size() == record.files.size() * record.backends.size());
+  CHECK(program["failures"].size() == record.failures.size());
 }
 
 }  // namespace epicycle

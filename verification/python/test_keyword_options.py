@@ -72,6 +72,8 @@ def samples():
         # study_part without a case range and study_merge of a part that does not exist refuse
         # at once (ValueError).
         "parts": [f"{SOURCE_DIR}/no-such-study-part.csv"],
+        # compare_backends on a folder without problem files refuses at once (ValueError).
+        "inputs": [f"{SOURCE_DIR}/no-such-problem-folder"],
         "out_dir": "/nonexistent/study-out",
         "__stage__": stage,
     }

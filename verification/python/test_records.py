@@ -5,9 +5,10 @@ every setting left at its default on both sides. The program's provenance and th
 times are the only keys taken out: they describe the process, not the run's results."""
 
 import math
+import os
 
 import epicycle
-from conftest import read_json, run_cli, scene_path
+from conftest import SOURCE_DIR, read_json, run_cli, scene_path
 
 # Keys that differ between two runs of the same request: the program's provenance and wall times.
 RUN_DEPENDENT = {"provenance", "sweep_seconds", "table_seconds"}
@@ -121,3 +122,25 @@ def test_periodic_branch_record_equals_the_program_json(tmp_path):
     assert program["range"] == [4000, 4100] and program["max_step"] == 0.5
     assert program["rate_tolerance_scale_rad_per_s"] == 1e4 and program["rtol"] == 1e-6
     assert program["status"] == "completed" and len(program["points"]) >= 2
+
+
+def test_comparison_record_equals_the_program_json(tmp_path):
+    # Every available back end on two problems of the collection, every setting at its default on
+    # both sides (tolerance 1e-10, 5 solves per run); the runs' median times are wall times, the
+    # only values two runs may differ in.
+    collection = os.path.join(SOURCE_DIR, "verification", "data", "contact")
+    inputs = [os.path.join(collection, n) for n in ("cf_one_contact_open.json",
+                                                    "cf_one_contact_load.json")]
+    # nlopt-lbfgs takes no equalities: its run on cf_one_contact_load (one) is a failed run, which
+    # the program's exit status (1) and both records' failures list.
+    p = run_cli("contact", "compare", *inputs, "--json", tmp_path / "compare.json", check=False)
+    program = read_json(tmp_path / "compare.json")
+    python = epicycle.compare_backends(inputs).record
+    for record in (program, python):
+        for item in record["backends"] + record["runs"]:
+            del item["median_seconds"]
+    same_record(program, python)
+    assert program["repeats"] == 5 and program["tolerance"] == 1e-10  # the defaults, both sides
+    assert p.returncode == (1 if python["failures"] else 0)
+    assert python["failures"] == epicycle.compare_backends(inputs, repeats=1).failures
+    assert len(program["runs"]) == 2 * len(epicycle.contact_backends())

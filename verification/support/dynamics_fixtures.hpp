@@ -87,7 +87,8 @@ inline DynamicRig MakeRig(const std::string& text, const std::string& name, cons
     const auto k = transmission::ComputeStageMeshStiffness(*r.stage_model, r.scene.loads).secant;
     r.model->SetMeshStiffness(k[0], k[1]);
   } else {
-    const auto k = dynamics::MeanMeshStiffness(r.scene, *r.stage, SuiteTables());
+    const auto k =
+        dynamics::MeanMeshStiffness(dynamics::ModalMeshPairs(r.scene, *r.stage, SuiteTables()));
     r.model->SetMeshStiffness(k[0], k[1]);
   }
   return r;

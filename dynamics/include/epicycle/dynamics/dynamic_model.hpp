@@ -39,6 +39,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,7 @@
 #include "epicycle/solvers/contact_solver.hpp"
 #include "epicycle/transmission/contact_kinematics.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/run_status.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/stage_mesh_stiffness.hpp"
@@ -276,6 +278,33 @@ class DynamicModel {
       friction_;  // settings_.friction with its constant factors evaluated once
 };
 
+/// Planet 1's sun–planet and planet–ring meshes as gear pairs with their FE compliances, built once
+/// with the stage's model (StageDynamics::modal_pairs), the pairs whose mesh stiffness the modal
+/// model and the mesh damping use: of the healthy teeth (the scene's damage is left out: a damaged
+/// tooth meshes once in many cycles; the modes and the mesh damping are the stage's about its
+/// healthy mean, docs/model.md §9). Not copyable or movable (the compliances refer to the pairs).
+class ModalMeshPairs {
+ public:
+  struct Mesh {
+    Mesh(const transmission::Scene& scene, const geometry::Stage& stage,
+         const transmission::FeComplianceOptions& fe, const char* name);
+    Mesh(const Mesh&) = delete;
+    Mesh& operator=(const Mesh&) = delete;
+    const char* name;  ///< "sun-planet1" or "planet1-ring"
+    transmission::MeshPairSetup setup;
+    geometry::GearPair pair;
+    transmission::FePairCompliance compliance;
+  };
+  /// @throws std::invalid_argument as transmission::MakeMeshPair and the FE compliance.
+  ModalMeshPairs(const transmission::Scene& scene, const geometry::Stage& stage,
+                 const transmission::FeComplianceOptions& fe);
+  /// {sun–planet, planet–ring}.
+  const std::array<std::unique_ptr<const Mesh>, 2>& meshes() const { return meshes_; }
+
+ private:
+  std::array<std::unique_ptr<const Mesh>, 2> meshes_;
+};
+
 /// A stage scene's dynamic model with everything it refers to, built in order: the scene, its
 /// stage, the FE compliance (tables through `fe`'s cache), the stage model of the scene's
 /// supports, and the dynamic model of its settings with the mean mesh stiffnesses set (for the
@@ -295,24 +324,27 @@ struct StageDynamics {
   /// A helical stage's mesh stiffnesses (secant: the model's; tangent: the modes'); zero for a
   /// spur stage.
   transmission::StageMeshStiffness sliced_stiffness;
+  /// A spur stage's modal meshes (the secant mesh stiffness of the model, the tangent of the modes
+  /// and the speed sweep); none for a helical stage.
+  std::optional<ModalMeshPairs> modal_pairs;
+  /// The tangent mesh stiffnesses {sun–planet, planet–ring} [N/m] of the modes and the speed
+  /// sweep's coincidences: a helical stage's sliced_stiffness.tangent, a spur stage's
+  /// MeanTangentMeshStiffness of modal_pairs.
+  std::array<double, 2> TangentMeshStiffness() const;
   /// @throws std::invalid_argument as the members' constructors.
   StageDynamics(transmission::Scene scene, const transmission::FeComplianceOptions& fe);
   StageDynamics(const StageDynamics&) = delete;
   StageDynamics& operator=(const StageDynamics&) = delete;
 };
 
-/// The mean mesh stiffness [N/m] of the stage's sun–planet and planet–ring meshes (planet 1) at
-/// the scene's load, from the mesh-stiffness driver (transmission::ComputeMeshStiffness) over
-/// `positions` samples of a mesh cycle: {sun mesh, ring mesh}; of the healthy teeth (the scene's
-/// damage is left out: the modes and the mesh damping are the stage's about its healthy mean).
+/// The mean mesh stiffness [N/m] of the modal meshes `pairs` at the scene's load, from the
+/// mesh-stiffness driver (transmission::ComputeMeshStiffness) over `positions` samples of a mesh
+/// cycle: {sun mesh, ring mesh}.
 /// @throws std::runtime_error if every sample of a mesh fails.
-std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
-                                        const geometry::Stage& stage,
-                                        const transmission::FeComplianceOptions& fe,
-                                        int positions = 24);
-/// The mean tangent mesh stiffness dF/dδ [N/m] of the sun–planet and planet–ring meshes (planet
-/// 1) at the scene's load, {sun mesh, ring mesh}: at each of `positions` samples of a mesh cycle,
-/// the mesh-stiffness driver (transmission::ComputeMeshStiffness) at the load × (1 ± step),
+std::array<double, 2> MeanMeshStiffness(const ModalMeshPairs& pairs, int positions = 24);
+/// The mean tangent mesh stiffness dF/dδ [N/m] of the modal meshes `pairs` at the scene's load,
+/// {sun mesh, ring mesh}: at each of `positions` samples of a mesh cycle, the mesh-stiffness
+/// driver (transmission::ComputeMeshStiffness) at the load × (1 ± step),
 ///   k_t = (F₊ − F₋)/(δ₊ − δ₋)   (F the mesh's total force, δ its deflection along the line of
 ///                                action), averaged over the samples.
 /// Why: MeanMeshStiffness is the secant F/δ; the local contact term's deflection grows less than
@@ -321,15 +353,8 @@ std::array<double, 2> MeanMeshStiffness(const transmission::Scene& scene,
 /// sweep sit at the tangent stiffness' coincidences (docs/speed_sweeps.md).
 /// @throws std::invalid_argument for step outside (0, 0.5) or positions < 2;
 ///         std::runtime_error if a sample fails at either load.
-std::array<double, 2> MeanTangentMeshStiffness(const transmission::Scene& scene,
-                                               const geometry::Stage& stage,
-                                               const transmission::FeComplianceOptions& fe,
-                                               int positions = 24, double step = 0.05);
-
-/// The tangent mesh stiffnesses dF/dδ {sun–planet, planet–ring} [N/m] of `rig`'s stage about its
-/// operating point: a helical stage's StageDynamics::sliced_stiffness.tangent, a spur stage's
-/// MeanTangentMeshStiffness. @throws as MeanTangentMeshStiffness.
-std::array<double, 2> TangentMeshStiffness(const StageDynamics& rig);
+std::array<double, 2> MeanTangentMeshStiffness(const ModalMeshPairs& pairs, int positions = 24,
+                                               double step = 0.05);
 
 /// The natural modes of a stage about its operating point (`epicycle modes`, docs/dynamic.md
 /// "Natural modes"): `rig`'s model with the tangent mesh stiffnesses (MeanTangentMeshStiffness, a

@@ -6,6 +6,9 @@
 
 namespace epicycle::io {
 
+/// Significant digits of a value an input file gave (a scene's), quoted in a message.
+inline constexpr int kInputDigits = 10;
+
 /// `v` with `significant_digits` significant digits (at least 1), printf's "%.Ng": the text an
 /// ostream of that precision writes ("1500", "0.001", "1e+20", "inf", "nan").
 std::string Num(double v, int significant_digits = 6);

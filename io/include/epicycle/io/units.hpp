@@ -16,4 +16,7 @@ constexpr double RadPerSecondToRpm(double rad_per_second) {
   return rad_per_second * 30.0 / std::numbers::pi;
 }
 
+/// Revolutions per second [1/s] of a speed n [rpm]: n / 60.
+constexpr double RpmToRevolutionsPerSecond(double rpm) { return rpm / 60.0; }
+
 }  // namespace epicycle::io

@@ -10,13 +10,17 @@
 
 namespace epicycle::report {
 
-/// A number for a report or a file cell: `v` formatted with `format` (fmt syntax) if finite,
-/// otherwise `missing` (an empty CSV cell by default). Never prints nan or inf.
+// Numbers have one formatting function per purpose: a message's value io::Num (io/number_format.hpp),
+// a figure of a report's text Num, a CSV cell Cell.
+
+/// A figure of a report's text: `v` formatted with `format` (fmt syntax) if finite, otherwise
+/// `missing` (empty by default). Never prints nan or inf.
 std::string Num(double v, const char* format, const char* missing = "");
-/// Num with 9 significant digits ("{:.9g}", printf's %.9g: the same text), empty if not finite.
-std::string Num(double v);
-/// Appends Num(v) to `out` (a CSV line's cell without a string of its own).
-void AppendNum(std::string& out, double v);
+/// A CSV cell: `v` with 9 significant digits ("{:.9g}", printf's %.9g: the same text), empty if
+/// not finite.
+std::string Cell(double v);
+/// Appends Cell(v) to `out` (a CSV line's cell without a string of its own).
+void AppendCell(std::string& out, double v);
 
 /// A text cell of a CSV line (RFC 4180): the text as it is, unless it holds a ',', a '"' or a
 /// '#' (pandas' comment='#' would cut the line there): then in double quotes, each '"' doubled.

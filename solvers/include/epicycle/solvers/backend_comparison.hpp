@@ -76,13 +76,16 @@ struct BackendSummary {
 std::vector<BackendSummary> SummarizeByBackend(const std::vector<ComparisonRun>& runs,
                                                const std::vector<std::string>& backends);
 
-/// A comparison of back ends over problem files (`epicycle contact compare`): every problem's
-/// reference, then every back end of `backends` on it.
+/// Solves per (back end, problem) of a comparison unless a request says otherwise [-].
+inline constexpr int kDefaultComparisonRepeats = 5;
+
+/// A comparison of back ends over problem files (`epicycle contact compare`, Python's
+/// compare_backends): every problem's reference, then every back end of `backends` on it.
 struct ComparisonRequest {
-  std::vector<std::string> inputs;  ///< problem files or folders of them (ListProblemFiles)
-  std::vector<Backend> backends;    ///< in the order of the runs
-  ContactOptions options;           ///< of every back end's run (its tolerance is the verdict's)
-  int repeats = 1;                  ///< solves per (back end, problem); the median time [-]
+  std::vector<std::string> inputs;                  ///< problem files or folders of them
+  std::vector<Backend> backends = AvailableBackends();  ///< in the order of the runs
+  ContactOptions options;  ///< of every back end's run (its tolerance is the verdict's)
+  int repeats = kDefaultComparisonRepeats;  ///< solves per (back end, problem); the median time [-]
 };
 
 /// Receives each run as it is computed (a table written row by row keeps what came before a
@@ -95,13 +98,16 @@ class ComparisonSink {
   virtual void Run(const ComparisonRun& run) = 0;
 };
 
-/// What a comparison found.
+/// What a comparison found (its fields named once by transmission::VisitRecord).
 struct ComparisonRecord {
+  double tolerance = 0.0;                  ///< of every back end's run, nondimensional [-]
+  int repeats = 0;                         ///< solves per (back end, problem) [-]
   std::vector<std::string> files;          ///< the problem files, in the runs' order
   std::vector<std::string> problem_names;  ///< each file's problem name
   std::vector<std::string> backends;       ///< BackendName of each requested back end
   std::vector<ComparisonRun> runs;         ///< per problem, per back end
   std::vector<std::string> failures;       ///< each failed run, as the sink was told
+  std::vector<BackendSummary> summaries;   ///< SummarizeByBackend of the runs, per back end
   /// Every run counted in the failures: the reference and each back end on every problem.
   std::size_t RunsInAll() const { return files.size() * (backends.size() + 1); }
 };

@@ -7,6 +7,10 @@
 #include <string>
 #include <vector>
 
+namespace epicycle::solvers {
+struct ComparisonRecord;
+}
+
 namespace epicycle::transmission {
 
 struct SweepSummary;
@@ -56,5 +60,11 @@ void VisitPlanets(RecordVisitor& visit, const std::vector<double>& mean,
 /// The statistics of a sweep over carrier positions (SweepSummary), the quasi-static run's and
 /// the study cases': LSR per planet, K_γ, TE, the sun's displacement, stresses, friction.
 void VisitRecord(const SweepSummary& summary, RecordVisitor& visit);
+
+/// A comparison of contact back ends (solvers::RunComparison, `epicycle contact compare --json`,
+/// Python's compare_backends): its settings, each back end's summary ("backends") and every
+/// (back end, problem) run ("runs"), errors nondimensional. The contact core names no record
+/// visitor (it knows nothing above it), so the comparison's record is visited here.
+void VisitRecord(const solvers::ComparisonRecord& record, RecordVisitor& visit);
 
 }  // namespace epicycle::transmission

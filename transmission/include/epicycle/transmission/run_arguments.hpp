@@ -46,6 +46,9 @@ inline constexpr ArgumentRange kContactTolerance{0,     1,  true,
 /// The iterations and the time one contact solve may take (Python's solve_contact).
 inline constexpr ArgumentRange kContactIterations{1, 1e6, false, true, "", ""};
 inline constexpr ArgumentRange kContactTimeLimitS{0, 86400, true, false, "[s]", "up to a day"};
+/// Solves per (back end, problem) of a comparison of back ends (`contact compare --repeat`,
+/// Python's compare_backends(repeats=)).
+inline constexpr ArgumentRange kComparisonRepeats{1, 1000, false, true, "", ""};
 /// New cases a tolerance study (of quasi-static sweeps, studies/) computes before it summarises.
 inline constexpr ArgumentRange kStudyCases{0, 1e9, false, true, "", ""};
 
