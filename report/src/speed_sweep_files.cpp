@@ -74,9 +74,9 @@ void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::Speed
   ForEachHelicalColumn(helical_planets_, &r.helical,
                        [&](const char*, const char*, double mean, double max_abs, int) {
                          helical += ",";
-                         helical += has ? Num(mean) : std::string();
+                         helical += has ? Cell(mean) : std::string();
                          helical += ",";
-                         helical += has ? Num(max_abs) : std::string();
+                         helical += has ? Cell(max_abs) : std::string();
                        });
   csv_.WriteLine(fmt::format(
       "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Cell(r.sun_speed_rpm),
