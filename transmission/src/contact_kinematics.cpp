@@ -1,6 +1,8 @@
 // Contact kinematics for friction (equations in contact_kinematics.hpp).
 #include "epicycle/transmission/contact_kinematics.hpp"
 
+#include "epicycle/transmission/helical_slices.hpp"
+
 namespace epicycle::transmission {
 
 using Vec2 = Eigen::Vector2d;
@@ -132,15 +134,25 @@ FrictionContact ContactFrictionState(const StageModel& model, const StageContact
                           ? 1.0 / (1.0 / c.curvature_radius_a + 1.0 / c.curvature_radius_b)
                           : local->reduced_radius;
   fc.contact_modulus = contact_modulus;
+  // A helical slice (docs/model.md §10, "Helical meshes in slices") solves for the transverse
+  // force F_t; its flank carries F_n = F_t/cos β_b along a contact line Δz/cos β_b long with the
+  // normal section's radius R/cos β_b, and the law takes those. The sliding has no axial part
+  // (both gears turn about parallel axes), so μ F_n lies in the transverse plane along t.
+  if (model.BodyGear(s.body_a).spec().helix.helical()) {
+    const double cos_beta_b = LocalWidthFactor(model.BodyGear(s.body_a), model.BodyGear(s.body_b));
+    fc.face_width /= cos_beta_b;
+    fc.reduced_radius /= cos_beta_b;
+    fc.normal_per_contact_force = 1.0 / cos_beta_b;
+  }
   return fc;
 }
 
 double FrictionForce(const FrictionModel& law, FrictionContact fc, double force, double ua,
                      double ub) {
-  fc.normal_force = force;
+  fc.normal_force = force * fc.normal_per_contact_force;
   fc.velocity_a = ua;
   fc.velocity_b = ub;
-  return law.SignedCoefficient(fc) * force;
+  return law.SignedCoefficient(fc) * fc.normal_force;
 }
 
 void AddPairLoad(const StageContact& s, const geometry::StagePoses& poses, const Vec2& f,

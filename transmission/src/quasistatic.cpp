@@ -148,10 +148,13 @@ class RestFriction {
   std::vector<BodyMotion> motion_;
 };
 
-// The forces of `from` carried to the same tooth pairs of `to` (planet, mesh, flank side and
-// teeth; the kind may differ): where a contact moves between a flank and a tip round as the
-// members move by the iterations' increments, its friction load goes with it (CarryForces, which
-// tells the kinds apart, would drop it and the fixed point would cycle between the two states).
+// The forces of `from` carried to the same tooth pairs of `to` (StageContact::SameToothPair:
+// planet, mesh, flank side, teeth, pitted strip and slice; the kind may differ): where a contact
+// moves between a flank and a tip round as the members move by the iterations' increments, its
+// friction load goes with it (CarryForces, which tells the kinds apart, would drop it and the
+// fixed point would cycle between the two states). Each slice and strip keeps its own force: the
+// slices of a tooth pair carry different loads (a tilt, a lead, a helix), and the friction of
+// another slice's force would leave every iteration's force change at the spread between them.
 void CarryPairForces(const std::vector<StageContact>& from, const Eigen::VectorXd& force,
                      const std::vector<StageContact>& to, Eigen::VectorXd* out) {
   out->setZero(static_cast<Eigen::Index>(to.size()));
@@ -159,8 +162,7 @@ void CarryPairForces(const std::vector<StageContact>& from, const Eigen::VectorX
     const StageContact& t = to[j];
     for (std::size_t i = 0; i < from.size(); ++i) {
       const StageContact& f = from[i];
-      if (f.planet == t.planet && f.mesh == t.mesh && f.loaded == t.loaded &&
-          f.contact.tooth_a == t.contact.tooth_a && f.contact.tooth_b == t.contact.tooth_b) {
+      if (f.SameToothPair(t)) {
         (*out)(static_cast<Eigen::Index>(j)) = force(static_cast<Eigen::Index>(i));
         if (f.contact.kind == t.contact.kind) break;  // else a later one of the same kind wins
       }

@@ -180,20 +180,26 @@ void RequireSpur(const Scene& scene, const std::string& driver) {
     where = scene.source + ": helix_angle_deg = " + io::Num(geometry::Deg(beta), io::kInputDigits);
   throw std::invalid_argument(
       where + ": " + driver +
-      " computes the planar (spur) model and does not take a helical scene (helix_angle_deg > "
-      "0): its contact lines cross the face width, which the model does not resolve yet; "
-      "`epicycle geometry` reports a helical stage (transverse quantities, contact ratios, "
-      "axial forces and tilting moments)");
+      " computes the planar (spur) model only and does not take a helical scene (helix_angle_deg "
+      "> 0), whose contact lines cross the face width; a helical stage runs in `epicycle "
+      "quasistatic`, `dynamic` (a run, a speed sweep, the periodic branch), `modes`, `study` and "
+      "`stiffness` with face_width.slices >= 2 "
+      "(each slice at its own section's phase, docs/face_width.md \"Helical meshes\"), and "
+      "`epicycle geometry` reports it (transverse quantities, contact ratios, axial forces and "
+      "tilting moments)");
 }
 
 void RequireHelicalSlices(const Scene& scene, const std::string& driver) {
   if (!IsHelical(scene) || scene.face_width.active()) return;
+  // The key's own line names it with its value; else the helix's line, and then the rule's key.
   std::string where = internal::KeyAt(scene, "face_width.slices");
+  const bool at_slices = !where.empty();
   for (const char* key : {"helix.helix_angle_deg", "sun.helix_angle_deg", "gear1.helix_angle_deg"})
     if (where.empty()) where = internal::KeyAt(scene, key);
   if (where.empty()) where = scene.source;
+  if (!at_slices) where += ": face_width.slices = " + std::to_string(scene.face_width.slices);
   throw std::invalid_argument(
-      where + ": face_width.slices = " + std::to_string(scene.face_width.slices) + ": " + driver +
+      where + ": " + driver +
       " resolves a helical stage in slices of the face width and needs slices >= 2 (its contact "
       "lines cross the face width; add [face_width] slices = 20, docs/face_width.md)");
 }

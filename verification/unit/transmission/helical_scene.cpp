@@ -11,6 +11,7 @@
 #include "epicycle/geometry/helical.hpp"
 #include "epicycle/geometry/iso.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
+#include "epicycle/transmission/helical_scene.hpp"
 #include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "stage_fixtures.hpp"
@@ -103,7 +104,18 @@ TEST_CASE("the planar model's drivers refuse a helical scene, naming its key",
       test::ThrownMessage([&] { transmission::RequireSpur(s, "`epicycle quasistatic`"); });
   CHECK_THAT(m, Contains("grc_helical_stage.toml:") && Contains("helix.helix_angle_deg = 7.5") &&
                     Contains("`epicycle quasistatic` computes the planar (spur) model") &&
-                    Contains("`epicycle geometry`"));
+                    Contains("face_width.slices >= 2") && Contains("`epicycle geometry`"));
+  CHECK_THAT(m, !Contains("does not resolve yet"));  // the sliced drivers resolve it
+  // A helical scene whose slices are too few: the slices' key, its value and the rule, once.
+  const std::string one =
+      Replace(SceneText("paper_stage_helical.toml"), "slices = 20", "slices = 1");
+  const transmission::Scene flat = transmission::ParseScene(one, "paper_stage_helical.toml");
+  const std::string sm = test::ThrownMessage(
+      [&] { transmission::RequireHelicalSlices(flat, "`epicycle quasistatic`"); });
+  CHECK_THAT(sm, Contains("paper_stage_helical.toml:") &&
+                     Contains("face_width.slices = 1: `epicycle quasistatic` resolves") &&
+                     Contains("needs slices >= 2"));
+  CHECK(sm.find("face_width.slices = 1") == sm.rfind("face_width.slices = 1"));
   // Through the FE compliance every driver builds: refused before any table is built.
   const geometry::Stage stage = transmission::MakeStage(s);
   CHECK_THROWS_WITH(transmission::FeStageCompliance(s, stage, {}),

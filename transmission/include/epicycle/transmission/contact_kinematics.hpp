@@ -73,13 +73,16 @@ double ContactModulus(const Material& material);
 
 /// The friction state of a contact but its load and velocities (FrictionContact's face width b,
 /// reduced radius R and contact modulus E*): b the narrower face, R that of its local term if
-/// `local` is given, else 1/(1/ρ_A + 1/ρ_B) of the search.
+/// `local` is given, else 1/(1/ρ_A + 1/ρ_B) of the search. On a helical slice those of its
+/// flank's normal section (docs/model.md §10): b/cos β_b, R/cos β_b, and the normal force
+/// F_n = F_t/cos β_b per unit of the slice's transverse force (normal_per_contact_force).
 FrictionContact ContactFrictionState(const StageModel& model, const StageContact& contact,
                                      const solvers::LocalTermParameters* local,
                                      double contact_modulus);
 
 /// The friction force μ_s(F, u_A, u_B)·F [N] of a contact with state `fc` (on B along t; on A
-/// the opposite), 0 for F ≤ 0.
+/// the opposite), 0 for F ≤ 0, with F = fc.normal_per_contact_force × `force` (the flank's
+/// normal force of a helical slice's transverse force).
 double FrictionForce(const FrictionModel& law, FrictionContact fc, double force, double ua,
                      double ub);
 

@@ -74,6 +74,10 @@ struct FrictionContact {
   double reduced_radius = 0;  ///< R [m] > 0: ρ_Aρ_B/(ρ_A + ρ_B) (external), ρ_Aρ_B/(ρ_B − ρ_A)
   double face_width = 0;       ///< b [m] > 0
   double contact_modulus = 0;  ///< E* [Pa] > 0: 1/E* = (1−ν_A²)/E_A + (1−ν_B²)/E_B
+  /// F/F_c [-] ≥ 1: the flank's normal force per unit of the force the contact problem solves
+  /// for, which FrictionForce turns into F (1/cos β_b on a helical slice, whose unknown is the
+  /// transverse force, docs/model.md §10; 1 otherwise). The laws themselves do not read it.
+  double normal_per_contact_force = 1;
 };
 
 /// Throws std::invalid_argument naming the field ("contact.normal_force", ...), value and rule

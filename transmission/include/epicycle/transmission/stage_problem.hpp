@@ -82,13 +82,17 @@ struct StageContact {
   /// "drive" or "coast" (the flank column of the output files), a pitted strip's with
   /// " pitted <part>" appended, a slice's with " slice <s+1>/<S>".
   std::string FlankName() const;
-  /// The same potential contact as `other` (what Label() names: mesh, planet, kind, flank side,
-  /// teeth), compared without building the labels.
-  bool SameAs(const StageContact& other) const {
+  /// The same tooth pair's flanks as `other`, whatever the contact's kind (involute or tip
+  /// round): planet, mesh, flank side, teeth, pitted strip and slice of the face width.
+  bool SameToothPair(const StageContact& other) const {
     return planet == other.planet && mesh == other.mesh && loaded == other.loaded &&
-           contact.kind == other.contact.kind && contact.tooth_a == other.contact.tooth_a &&
-           contact.tooth_b == other.contact.tooth_b && part == other.part &&
-           slice == other.slice;
+           contact.tooth_a == other.contact.tooth_a && contact.tooth_b == other.contact.tooth_b &&
+           part == other.part && slice == other.slice;
+  }
+  /// The same potential contact as `other` (what Label() names: mesh, planet, kind, flank side,
+  /// teeth, strip, slice), compared without building the labels.
+  bool SameAs(const StageContact& other) const {
+    return SameToothPair(other) && contact.kind == other.contact.kind;
   }
 };
 
