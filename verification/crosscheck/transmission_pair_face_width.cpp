@@ -20,20 +20,26 @@ namespace {
 constexpr int kSlices = 8;
 constexpr double kLeadSlope = 10e-6;  // f_Hβ of gear 1 over its face [m]
 
-transmission::StiffnessRecord Run(const std::string& extra) {
+// The stiffness driver on the scene `text` (named `name`) over `positions` positions of mesh cycle
+// `cycle` (< 0: the cycles a damaged tooth meshes in), with the structural compliance alone: the
+// slices are then linear springs, the closed form's assumption (the local term's Hertzian
+// flattening makes a slice's stiffness grow with its load).
+transmission::StiffnessRecord RunLinear(const std::string& text, const std::string& name,
+                                        int positions, int cycle) {
   transmission::StiffnessRequest request;
-  request.scene = transmission::ParseScene(test::SceneText("paper_sun_planet.toml") + extra,
-                                           "paper_sun_planet.toml" + extra);
-  request.positions = 24;
-  request.cycle = 0;
+  request.scene = transmission::ParseScene(text, name);
+  request.positions = positions;
+  request.cycle = cycle;
   request.threads = 1;
-  // The structural compliance alone: the slices are then linear springs, the closed form's
-  // assumption (the local term's Hertzian flattening makes a slice's stiffness grow with its
-  // load).
   request.local_terms = false;
   request.tables = test::CachedTables();
   transmission::StiffnessSink none;
   return transmission::RunStiffness(request, none);
+}
+
+transmission::StiffnessRecord Run(const std::string& extra) {
+  return RunLinear(test::SceneText("paper_sun_planet.toml") + extra,
+                   "paper_sun_planet.toml" + extra, 24, 0);
 }
 
 }  // namespace
@@ -126,15 +132,7 @@ std::string SpallScene(double width_fraction, int slices) {
 }
 
 transmission::StiffnessRecord RunSpall(double width_fraction, int slices) {
-  transmission::StiffnessRequest request;
-  request.scene = transmission::ParseScene(SpallScene(width_fraction, slices),
-                                           "iso_pair_20_40_spall.toml");
-  request.positions = 12;
-  request.threads = 1;
-  request.local_terms = false;
-  request.tables = test::CachedTables();
-  transmission::StiffnessSink none;
-  return transmission::RunStiffness(request, none);
+  return RunLinear(SpallScene(width_fraction, slices), "iso_pair_20_40_spall.toml", 12, -1);
 }
 
 }  // namespace
