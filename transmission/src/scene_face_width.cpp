@@ -230,11 +230,25 @@ void CheckMeshBound(const internal::MeshBound& bound, const std::string& mesh, c
   if (bound.change > 0.5 * s.gap_window)
     throw std::invalid_argument(
         bound.key + ": the gap changes by up to " +
-        io::Num(bound.change / internal::kUm, io::kInputDigits) + " um across the " + mesh +
+        io::Num(bound.change / internal::kUm, io::kInputDigits) +
+        " um between the mid-plane and an end of the " + mesh +
         " mesh, more than half the contact search's gap window (contact.gap_window_um = " +
         io::Num(s.gap_window / internal::kUm, io::kInputDigits) +
         "): the search runs in the mid-plane and would miss a slice's contact; widen the "
         "window or reduce the misalignment");
+}
+
+// A lead entry named for the gap-window message: the entry with the values that change the gap
+// (l.where names its `gear` key: "file:line: face_width.lead[k].gear").
+std::string LeadValues(const LeadSpec& l) {
+  const std::string suffix = ".gear";
+  std::string entry = l.where;
+  if (entry.size() > suffix.size() && entry.ends_with(suffix))
+    entry.resize(entry.size() - suffix.size());
+  return entry + " (gear = \"" + l.gear + "\", slope_um = " +
+         io::Num(l.slope / internal::kUm, io::kInputDigits) +
+         ", crowning_um = " + io::Num(l.crowning / internal::kUm, io::kInputDigits) +
+         ", end_relief_um = " + io::Num(l.end_relief / internal::kUm, io::kInputDigits) + ")";
 }
 
 }  // namespace
@@ -249,7 +263,7 @@ void CheckFaceGapWindow(const Scene& s) {
   if (s.kind == SceneKind::kPair) {
     internal::MeshBound bound;
     for (const LeadSpec& l : f.leads)
-      bound.Add(0.5 * std::abs(l.slope) + l.crowning + l.end_relief, l.where);
+      bound.Add(0.5 * std::abs(l.slope) + l.crowning + l.end_relief, LeadValues(l));
     CheckMeshBound(bound, "gear1-gear2", s);
     return;
   }
@@ -274,10 +288,15 @@ void CheckFaceGapWindow(const Scene& s) {
       auto add = [&](double change, const std::string& key) { bound.Add(change, key); };
       for (const PinTilt& p : f.pin_tilts)
         if (p.planet == i) add(0.5 * b * std::hypot(p.radial, p.tangential), p.where);
-      if (wind_up > 0) add(0.5 * b * wind_up, f.carrier_where);
+      if (wind_up > 0)
+        add(0.5 * b * wind_up,
+            f.carrier_where + " = " +
+                io::Num(f.carrier_torsional_stiffness, io::kInputDigits) + " (every pin tilted by " +
+                io::Num(wind_up * 1e6, io::kInputDigits) + " urad under the carrier torque " +
+                io::Num(carrier_torque, io::kInputDigits) + " N m)");
       for (const std::string& g : {planet, mate}) {
         if (const LeadSpec* l = lead_of(g))
-          add(0.5 * std::abs(l->slope) + l->crowning + l->end_relief, l->where);
+          add(0.5 * std::abs(l->slope) + l->crowning + l->end_relief, LeadValues(*l));
       }
       CheckMeshBound(bound, mate == "sun" ? "sun-" + planet : planet + "-ring", s);
     }

@@ -156,9 +156,13 @@ const std::vector<Case> kCases = {
       "its sharpest turn, 130 deg between segments 0 and 1"}},
 #endif
     // The face width's slices (docs/scenes.md, "Face width"): 1 to 200; a crowning removes
-    // material; a variation along the face needs two slices; the gap's change across a mesh at
-    // most half the contact search's window: 200 um over 25 mm tilts the pin by 8 mrad, 100 um
-    // from the mid-plane to an end.
+    // material; a variation along the face needs two slices; the gap's change between the
+    // mid-plane and an end of a mesh at most half the contact search's window (100 um here): 200
+    // um over 25 mm tilts the pin by 8 mrad, 100 um from the mid-plane to an end (|n·t| <= |t|);
+    // a lead slope of 150 um turns the +z face against the -z face by 150 um, 75 um from the
+    // mid-plane; a carrier of 2e6 N m/rad between plates 25 mm apart under the carrier torque
+    // |T_s| (1 + z_r/z_s) = 600 (1 + 65/16) = 3037.5 N m twists by 1.519e-3 rad and tilts each
+    // pin at r_c = 86.715 mm by 1.519e-3 * 86.715/25 = 5267.9 urad, 65.8 um over half the face.
     {"face_slices_0.toml", false, {"face_width.slices = 0", "must be in [1, 200]"}},
     {"face_slices_1e6.toml", false, {"face_width.slices = 1000000", "must be in [1, 200]"}},
     {"face_crowning_negative.toml",
@@ -170,7 +174,18 @@ const std::vector<Case> kCases = {
     {"face_pin_tilt_200um.toml",
      false,
      {"face_width.pin_tilt[0].planet (radial_um = 0, tangential_um = 200 over 25 mm)",
-      "the gap changes by up to 100 um across the sun-planet2 mesh",
+      "the gap changes by up to 100 um between the mid-plane and an end of the sun-planet2 mesh",
+      "more than half the contact search's gap window (contact.gap_window_um = 100)"}},
+    {"face_lead_slope_150um.toml",
+     false,
+     {"face_width.lead[0] (gear = \"sun\", slope_um = 150, crowning_um = 0, end_relief_um = 0)",
+      "the gap changes by up to 75 um between the mid-plane and an end of the sun-planet1 mesh",
+      "more than half the contact search's gap window (contact.gap_window_um = 100)"}},
+    {"face_wind_up_soft.toml",
+     false,
+     {"face_width.carrier_torsional_stiffness_Nm_per_rad = 2000000",
+      "every pin tilted by 5267.9", "under the carrier torque 3037.5 N m",
+      "the gap changes by up to 65.8", "between the mid-plane and an end of the sun-planet1 mesh",
       "more than half the contact search's gap window (contact.gap_window_um = 100)"}},
     // A gear pair's slices take the leads of gear1 and gear2; a pin and a carrier are a stage's.
     {"face_pair_pin_tilt.toml",
