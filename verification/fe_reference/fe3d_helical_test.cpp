@@ -10,8 +10,9 @@
 //    F_l cos β_b, on the base circle's tangent, balance the hub's moment: Σ F_l cos β_b r_b1 = |T|
 //    within 1e-3, as the spur decks' test (without cos β_b the balance would miss by
 //    1 − cos β_b = 3.0 %). Their axial parts F_l sin β_b = F_l cos β_b tan β_b are all the held
-//    nodes take axially: gear 1's axial reaction is −F_t tan β_b (F_t = Σ F_l cos β_b) within the
-//    same 1e-3, gear 2's its opposite.
+//    nodes take axially: gear 1's axial reaction is F_t tan β_b (F_t = Σ F_l cos β_b) in size,
+//    gear 2's its opposite, each within ccx's residual criterion (0.5 % of the average force: the
+//    contact statistics and the reactions are two read-outs of one solution; measured 8e-4).
 //  - The run reproduces its committed row: every station within ccx's residual criterion (0.5 %
 //    of the average force, twice for a difference of two runs: 1 % of the mean line load).
 // The slices against the committed reference: crosscheck/transmission_helical_fe3d.cpp.
@@ -61,8 +62,8 @@ TEST_CASE("3D FE reference: the helical deck's run, its equilibrium and its comm
   const double axial = r.total_force * tan_bb;
   INFO("axial reactions " << r.axial_reaction[0] << ", " << r.axial_reaction[1] << " N; F_t tan beta_b "
                           << axial << " N");
-  CHECK(std::abs(std::abs(r.axial_reaction[0]) - axial) <= 1e-3 * axial);
-  CHECK(std::abs(r.axial_reaction[0] + r.axial_reaction[1]) <= 1e-3 * axial);
+  CHECK(std::abs(std::abs(r.axial_reaction[0]) - axial) <= kResidual * axial);
+  CHECK(std::abs(r.axial_reaction[0] + r.axial_reaction[1]) <= kResidual * axial);
   const double mean = r.total_force / r.face_width / 1e3;  // N/mm
   REQUIRE(r.line_load.size() == committed.line_load.size());
   for (std::size_t l = 0; l < r.line_load.size(); ++l)
