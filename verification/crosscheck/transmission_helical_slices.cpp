@@ -22,6 +22,19 @@ using transmission::ContactTerms;
 using transmission::PositionResult;
 using transmission::StageContact;
 
+namespace {
+
+// The helical paper stage (scenes/paper_stage_helical.toml) and its stage model.
+struct HelicalPaperStage {
+  transmission::Scene scene = transmission::ParseScene(
+      test::SceneText("paper_stage_helical.toml"), "paper_stage_helical.toml");
+  geometry::Stage stage{scene.stage};
+  transmission::StageModel model{stage, test::HelicalCompliance(scene, stage),
+                                 transmission::SetupFromScene(scene)};
+};
+
+}  // namespace
+
 TEST_CASE("helical slices at beta = 0 are the spur face-width model's slices",
           "[crosscheck][transmission][helical]") {
   // The spur paper stage with a tilted pin (paper_stage_pin_tilt.toml): at β = 0 every section
@@ -61,11 +74,10 @@ TEST_CASE("helical slices at beta = 0 are the spur face-width model's slices",
 TEST_CASE("helical paper stage: the sun's and the ring's axial forces balance the sun torque, "
           "each planet's tilting moment is the hand calculation's",
           "[crosscheck][transmission][helical]") {
-  const transmission::Scene scene = transmission::ParseScene(
-      test::SceneText("paper_stage_helical.toml"), "paper_stage_helical.toml");
-  const geometry::Stage stage(scene.stage);
-  const transmission::StageModel model(stage, test::HelicalCompliance(scene, stage),
-                                       transmission::SetupFromScene(scene));
+  const HelicalPaperStage paper;
+  const transmission::Scene& scene = paper.scene;
+  const geometry::Stage& stage = paper.stage;
+  const transmission::StageModel& model = paper.model;
   const PositionResult r =
       transmission::SolvePosition(model, 0.0, scene.loads, transmission::QuasiStaticOptions{});
   REQUIRE(r.converged);
@@ -195,11 +207,10 @@ TEST_CASE("helical paper stage: the sun's axial force departs from |T_s| tan bet
   // whose lever about the sun's axis is shorter. The claim pinned here: the whole gap is the
   // tip-round contacts' term, at every position of the cycle sampled, and it is not small (it is
   // what the speed sweep's closed-form comparison reports).
-  const transmission::Scene scene = transmission::ParseScene(
-      test::SceneText("paper_stage_helical.toml"), "paper_stage_helical.toml");
-  const geometry::Stage stage(scene.stage);
-  const transmission::StageModel model(stage, test::HelicalCompliance(scene, stage),
-                                       transmission::SetupFromScene(scene));
+  const HelicalPaperStage paper;
+  const transmission::Scene& scene = paper.scene;
+  const geometry::Stage& stage = paper.stage;
+  const transmission::StageModel& model = paper.model;
   const double r_b = stage.sun().base_radius();
   const double torque = std::abs(scene.loads.sun_torque);
   const double tan_bb = std::tan(stage.sun().spec().helix.angle) *
