@@ -19,7 +19,12 @@
 // error of a level bounded by its change from the coarser one), Δ_slices the largest change of a
 // station's mean from 20 to 40 slices.
 //
-// Measured: MEASURED_NUMBERS
+// Measured (met, a weak check: T is 9.7 % of the mean line load): Δ_axial 3.6, Δ_plane 9.3 N/mm
+// (the line load concentrates toward the middle as the plane mesh refines), Δ_slices 1e-4;
+// T = 2 (3.6 + 9.3) + 0.0001 = 25.9 N/mm. The 8-layer stations 264.4, 276.4, 270.7, 257.3 N/mm,
+// the slices 266.3, 267.3, 267.6, 267.4: 1.9, 9.1, 3.1, 10.1 apart; the refinement-1.41 run
+// (263.7, 277.2, 277.4, 250.7) 2.6, 9.9, 9.8, 16.7 apart. The slices (uncoupled strips) stay
+// flat within 0.5 %; the 3D line unloads the face's ends, most at z = b.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
