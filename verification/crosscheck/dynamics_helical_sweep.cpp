@@ -150,7 +150,8 @@ TEST_CASE(
   CHECK(std::abs(r.helical.mean.sun_axial_force - qs_total) <= 1e-3 * 3 * fa);
   // And the closed form n F_a = |T_s| tan β_b / r_b,sun, which holds for contacts on the involute
   // (lever r_b,sun); reported: the quasi-static driver's sun force departs from it by the
-  // contacts off the involute (tip rounding) and is no exact reference.
+  // contacts off the involute (tip rounding; the identity and its check:
+  // crosscheck/transmission_helical_slices.cpp, docs/face_width.md) and is no exact reference.
   test::FigureValue("helical stage at 60 rpm: quasi-static sun axial force / (|T_s| tan b_b / r_b) - 1",
                     std::abs(qs_total) / (3 * fa) - 1, "-");
   test::VerifyRow("helical speed sweep at 60 rpm: mean sun-mesh axial force per planet",

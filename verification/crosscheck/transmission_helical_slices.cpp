@@ -22,6 +22,19 @@ using transmission::ContactTerms;
 using transmission::PositionResult;
 using transmission::StageContact;
 
+namespace {
+
+// The helical paper stage (scenes/paper_stage_helical.toml) and its stage model.
+struct HelicalPaperStage {
+  transmission::Scene scene = transmission::ParseScene(
+      test::SceneText("paper_stage_helical.toml"), "paper_stage_helical.toml");
+  geometry::Stage stage{scene.stage};
+  transmission::StageModel model{stage, test::HelicalCompliance(scene, stage),
+                                 transmission::SetupFromScene(scene)};
+};
+
+}  // namespace
+
 TEST_CASE("helical slices at beta = 0 are the spur face-width model's slices",
           "[crosscheck][transmission][helical]") {
   // The spur paper stage with a tilted pin (paper_stage_pin_tilt.toml): at β = 0 every section
@@ -61,11 +74,10 @@ TEST_CASE("helical slices at beta = 0 are the spur face-width model's slices",
 TEST_CASE("helical paper stage: the sun's and the ring's axial forces balance the sun torque, "
           "each planet's tilting moment is the hand calculation's",
           "[crosscheck][transmission][helical]") {
-  const transmission::Scene scene = transmission::ParseScene(
-      test::SceneText("paper_stage_helical.toml"), "paper_stage_helical.toml");
-  const geometry::Stage stage(scene.stage);
-  const transmission::StageModel model(stage, test::HelicalCompliance(scene, stage),
-                                       transmission::SetupFromScene(scene));
+  const HelicalPaperStage paper;
+  const transmission::Scene& scene = paper.scene;
+  const geometry::Stage& stage = paper.stage;
+  const transmission::StageModel& model = paper.model;
   const PositionResult r =
       transmission::SolvePosition(model, 0.0, scene.loads, transmission::QuasiStaticOptions{});
   REQUIRE(r.converged);
@@ -181,4 +193,66 @@ TEST_CASE("a helical stage without slices is refused naming face_width.slices",
   const transmission::Scene sliced = transmission::ParseScene(
       test::SceneText("paper_stage_helical.toml"), "paper_stage_helical.toml");
   CHECK_NOTHROW(transmission::RequireHelicalSlices(sliced, "`epicycle quasistatic`"));
+}
+
+TEST_CASE("helical paper stage: the sun's axial force departs from |T_s| tan beta_b / r_b by its "
+          "contacts' levers off the base circle",
+          "[crosscheck][transmission][helical]") {
+  // docs/face_width.md, "Helical meshes": the model sums the sun contacts' axial parts,
+  // F_a = tan β_b Σ f_j, and the sun's moment balance is Σ f_j ℓ_j = |T_s| (ℓ_j the lever of
+  // contact j's normal about the sun's axis). So, exactly,
+  //     F_a / (|T_s| tan β_b / r_b) − 1 = Σ_j f_j (r_b − ℓ_j) / |T_s| + ε_M,
+  // ε_M the moment balance's relative residual. An involute contact's normal is tangent to the
+  // base circle (ℓ = r_b); a tip-round contact (kTipRound*) pushes along the mating flank's normal,
+  // whose lever about the sun's axis is shorter. The claim pinned here: the whole gap is the
+  // tip-round contacts' term, at every position of the cycle sampled, and it is not small (it is
+  // what the speed sweep's closed-form comparison reports).
+  const HelicalPaperStage paper;
+  const transmission::Scene& scene = paper.scene;
+  const geometry::Stage& stage = paper.stage;
+  const transmission::StageModel& model = paper.model;
+  const double r_b = stage.sun().base_radius();
+  const double torque = std::abs(scene.loads.sun_torque);
+  const double tan_bb = std::tan(stage.sun().spec().helix.angle) *
+                        std::cos(stage.sun().spec().pressure_angle);
+  const double closed = torque * tan_bb / r_b;
+  constexpr int kPositions = 12;
+  for (int k = 0; k < kPositions; ++k) {
+    const double phi = stage.mesh_cycle() * k / kPositions;
+    const PositionResult r =
+        transmission::SolvePosition(model, phi, scene.loads, transmission::QuasiStaticOptions{});
+    REQUIRE(r.converged);
+    const geometry::Vec2 c = r.poses.sun.rotation_centre;
+    double moment = 0, force = 0, tips = 0, tip_force = 0, worst_lever = 0;
+    for (std::size_t j = 0; j < r.problem.contacts.size(); ++j) {
+      const StageContact& sc = r.problem.contacts[j];
+      if (sc.body_a != transmission::kSunBody && sc.body_b != transmission::kSunBody) continue;
+      const double f = r.solution.force(static_cast<Eigen::Index>(j));
+      const geometry::PotentialContact& p = sc.contact;
+      const geometry::Vec2 d = p.point - c;
+      const double lever = std::abs(d.x() * p.normal.y() - d.y() * p.normal.x());
+      moment += f * lever;
+      force += f;
+      if (p.kind == geometry::ContactKind::kInvolute) {
+        worst_lever = std::max(worst_lever, std::abs(lever - r_b) / r_b);
+      } else {
+        tips += f * (r_b - lever) / torque;
+        tip_force += f;
+      }
+    }
+    const double gap = std::abs(r.helical.sun_axial_force) / closed - 1;
+    const double residual = std::abs(moment / torque - 1);
+    INFO("carrier angle " << phi << " rad: gap " << gap << ", tip-round term " << tips
+                          << " (their share of the sun's contact force " << tip_force / force
+                          << "), moment residual " << residual << ", worst involute lever "
+                          << worst_lever);
+    // An involute contact's lever is r_b to the rounding of the search's point and normal
+    // (a few ε = 2.2e-16 of r_b): 1e-14 = 45 ε.
+    CHECK(worst_lever <= 1e-14);
+    // The identity above, to ε_M, the involute levers' rounding (worst_lever × Σ f r_b / |T_s|
+    // = worst_lever (1 + gap)) and the sums' rounding (< 1e-13: a few hundred terms of ε each).
+    CHECK(std::abs(gap - tips) <= residual + worst_lever * (1 + gap) + 1e-13);
+    // And that term is what the gap is made of: positive, far above those roundings.
+    CHECK(tips > 1e-5);
+  }
 }

@@ -41,6 +41,8 @@ namespace epicycle::fe_reference {
 /// plane reference (docs/fe_reference.md).
 FeMeshOptions Fe3dDefaultMesh();
 
+enum class AxialSupport { kHubs, kBodyMidPlane, kBody };
+
 struct Fe3dOptions {
   double face_width = 0;    ///< b [m]; 0: the pair's contact face width
   int layers = 10;          ///< N_z wedge layers of thickness b/N_z, one axial station each [-]
@@ -49,6 +51,14 @@ struct Fe3dOptions {
   /// u_z = 0 at every node: the plane-strain model on the same plane mesh (with one layer the
   /// plane deck; with more, the same field, a check of the layers' contact pairs).
   bool plane_strain = false;
+  /// What holds the gears axially (docs/fe_reference.md, "The helical deck"): the hub cylinders
+  /// alone (kHubs), or besides them u_z = 0 at every node inside each gear's root circle at the
+  /// mid-face level z = b/2 (kBodyMidPlane: the bodies below the teeth cannot bend out of their
+  /// plane, they may still shear and contract) or at every level (kBody: no axial motion below
+  /// the roots, as the plane model's sections); the teeth are free. With a body held, the deck
+  /// prints each gear's axial reaction (node sets AXIAL1, AXIAL2: the hub's and the body's held
+  /// nodes).
+  AxialSupport axial_support = AxialSupport::kHubs;
   FeMeshOptions mesh = Fe3dDefaultMesh();
   /// The plane reference's contact law; a 60 µm window keeps the one tooth pair of a
   /// single-contact position (the neighbours' rigid gaps are > 100 µm on the ISO pair at 13.5°).
@@ -123,6 +133,9 @@ struct Fe3dLineLoad {
   double moment_balance = 0;  ///< |Σ F r_b1 − |T|| / |T| at the last step [-]
   bool extrapolated = false;  ///< T outside the steps' moments
   int nodes = 0, elements = 0;
+  /// With a body held (Fe3dOptions::axial_support): the axial reaction R_z of gear 1's and gear 2's held
+  /// nodes (sets AXIAL1, AXIAL2) at T, between the steps as the line load [N]; 0 otherwise.
+  double axial_reaction[2] = {0, 0};
 };
 
 /// Reads `<directory>/deck.dat` (every layer's contact force and the hub moment per step) and

@@ -71,6 +71,11 @@ TEST_CASE("3D FE reference: bad options name the field, its value and the rule",
   o.read_depth[0] = 1e-3;
   o.misalignment = 10e-6;
   CHECK(message(o).find("influence with misalignment = 1e-05 m") != std::string::npos);
+  o = {};
+  o.axial_support = fe_reference::AxialSupport::kBodyMidPlane;
+  o.misalignment = 10e-6;
+  CHECK(message(o).find("axial_support of the bodies with misalignment = 1e-05 m") !=
+        std::string::npos);
   CHECK_THROWS_AS(fe_reference::SliceApproach(0.0, 0.02, 1e10, 0.0), std::invalid_argument);
 }
 

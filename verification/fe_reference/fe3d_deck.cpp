@@ -299,6 +299,12 @@ void Fe3dOptions::Validate() const {
   if (plane_strain && misalignment != 0)
     throw std::invalid_argument("fe3d: plane_strain with misalignment = " + Num(misalignment, 13) +
                                 " m: the plane-strain deck (u_z = 0) takes no misalignment");
+  if (axial_support != AxialSupport::kHubs && (misalignment != 0 || influence))
+    throw std::invalid_argument(
+        "fe3d: axial_support of the bodies with " +
+        (influence ? std::string("influence") : "misalignment = " + Num(misalignment, 13) + " m") +
+        ": the bodies' mid-planes are held only in the aligned contact deck (gear 2's hub turns "
+        "out of plane with a misalignment)");
   if (influence && misalignment != 0)
     throw std::invalid_argument("fe3d: influence with misalignment = " + Num(misalignment, 13) +
                                 " m: the influence deck holds both hubs (no misalignment)");
@@ -537,6 +543,31 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
       hub2_ids.push_back(id);
     });
   detail::WriteNodeSet(f, "HUB2", hub2_ids);
+  const bool body_held = options.axial_support != AxialSupport::kHubs;
+  if (body_held) {
+    // Each gear's nodes inside its root circle, at the mid-face level or at every level (the
+    // teeth and the fillets free); with the hub's, the set whose reaction is printed.
+    const geometry::Gear* gear[2] = {&g1, &g2};
+    std::vector<int> held[2] = {deck.hub_nodes, hub2_ids};
+    std::vector<int> mid[2];
+    for (int i = 0; i < ex.n2; ++i) {
+      const int g = body_of[static_cast<std::size_t>(i)];
+      const double r = (dm.xy[i] - sweep.centre[g]).norm();
+      const double r_f = gear[g]->root_radius() * kMm;
+      if (gear[g]->internal() ? r > r_f * (1 + 1e-9) : r < r_f * (1 - 1e-9))
+        ex.Each(i, [&](int level, int id) {
+          if (level == ex.layers || options.axial_support == AxialSupport::kBody)
+            mid[g].push_back(id);
+        });
+    }
+    for (int g = 0; g < 2; ++g) {
+      detail::WriteNodeSet(f, "BODY" + std::to_string(g + 1), mid[g]);
+      held[g].insert(held[g].end(), mid[g].begin(), mid[g].end());
+      std::sort(held[g].begin(), held[g].end());
+      held[g].erase(std::unique(held[g].begin(), held[g].end()), held[g].end());
+      detail::WriteNodeSet(f, "AXIAL" + std::to_string(g + 1), held[g]);
+    }
+  }
 
   if (options.influence) {
     WriteInfluenceSteps(f, scene, options, dm, ex, m1, m2, lc, normal, contact_point, info);
@@ -572,6 +603,7 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
   // Hubs: gear 1 axially held; gear 2 held (plane strain: u_z = 0 everywhere) or turned by ψ.
   f << "*BOUNDARY\n" << (options.plane_strain ? "NALL" : "HUB1") << ", 3, 3\n";
   if (options.misalignment == 0) f << "HUB2, 1, 3\n";
+  if (body_held) f << "BODY1, 3, 3\nBODY2, 3, 3\n";
   const double psi = options.misalignment * kMm / b_mm;
   for (double theta : rotations) {
     detail::WriteStepAndHubRotation(f, theta, deck);
@@ -581,7 +613,11 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
         for (int d = 0; d < 3; ++d)
           f << h.id << ", " << d + 1 << ", " << d + 1 << ", " << Num(u[d], 13) << "\n";
       }
-    detail::WriteStepOutputAndEnd(f, deck, "");
+    detail::WriteStepOutputAndEnd(
+        f, deck,
+        body_held
+            ? "*NODE PRINT, NSET=AXIAL1, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=AXIAL2, TOTALS=ONLY\nRF\n"
+            : "");
   }
   if (!f) throw std::runtime_error(deck_path + ": write failed");
   f.close();

@@ -158,3 +158,77 @@ TEST_CASE("3D FE reference: the helical deck's flank nodes on the closed-form in
   CHECK(worst_change <= 1e-9);
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("3D FE reference: the bodies held axially are the nodes inside the root circles",
+          "[unit][fe3d]") {
+  // Fe3dOptions::axial_support (docs/fe_reference.md, "The helical deck"): kBodyMidPlane holds
+  // u_z at the mid-face level z = b/2 of every node inside each gear's root circle r_f (ISO
+  // 53 rack: r_f = m_t z/2 − 1.25 m_n), kBody at every level; the teeth are free.
+  const transmission::Scene scene = HelicalScene();
+  const transmission::MeshPairSetup setup = transmission::MakeMeshPair(scene, nullptr, "");
+  const geometry::GearPair pair(setup.spec);
+  const double angle = 13.0 * geometry::kPi / 180.0;
+  const geometry::PairPoses poses = pair.Poses(angle);
+  const double beta = 15.0 * geometry::kPi / 180.0, m_n = 4.0, b = 10.0;  // mm
+  const double r_f[2] = {20 * m_n / std::cos(beta) / 2 - 1.25 * m_n,
+                         40 * m_n / std::cos(beta) / 2 - 1.25 * m_n};
+  const geometry::Vec2 centre[2] = {poses.gear1.geometric_centre * 1e3,
+                                    poses.gear2.geometric_centre * 1e3};
+  for (const auto support : {fe_reference::AxialSupport::kBodyMidPlane,
+                             fe_reference::AxialSupport::kBody}) {
+    const std::string dir =
+        (std::filesystem::temp_directory_path() / "epicycle_fe3d_helical_held").string();
+    std::filesystem::remove_all(dir);
+    fe_reference::Fe3dOptions o;
+    o.layers = 2;
+    o.sector_teeth = 20;
+    o.axial_support = support;
+    fe_reference::WriteDeck3d(scene, pair, setup.torque, angle, {1e-4, 2e-4}, o, dir);
+    const DeckNodes deck = ReadNodes(dir + "/deck.inp");
+    // The sets BODY1, BODY2 (ten ids a line) and the boundary lines that hold them.
+    std::map<std::string, std::vector<int>> sets;
+    std::ifstream f(dir + "/deck.inp");
+    std::string line, set;
+    bool held[2] = {false, false};
+    while (std::getline(f, line)) {
+      if (line == "BODY1, 3, 3") held[0] = true;
+      if (line == "BODY2, 3, 3") held[1] = true;
+      if (line.rfind("*", 0) == 0) {
+        set = line.rfind("*NSET, NSET=BODY", 0) == 0 ? line.substr(12) : "";
+        continue;
+      }
+      if (set.empty()) continue;
+      for (char& c : line)
+        if (c == ',') c = ' ';
+      std::istringstream s(line);
+      for (int id = 0; s >> id;) sets[set].push_back(id);
+    }
+    CHECK(held[0]);
+    CHECK(held[1]);
+    for (int g = 0; g < 2; ++g) {
+      const std::vector<int>& ids = sets["BODY" + std::to_string(g + 1)];
+      CHECK(ids.size() > 100);
+      double r_max = 0, z_min = 1e9, z_max = -1e9;
+      for (int id : ids) {
+        const auto& p = deck.xyz.at(id);
+        CHECK(deck.gear1.count(id) == (g == 0 ? 1u : 0u));
+        r_max = std::max(r_max, std::hypot(p[0] - centre[g].x(), p[1] - centre[g].y()));
+        z_min = std::min(z_min, p[2]);
+        z_max = std::max(z_max, p[2]);
+      }
+      INFO("gear " << g + 1 << ": " << ids.size() << " held nodes, r up to " << r_max
+                   << " mm (r_f " << r_f[g] << " mm), z in [" << z_min << ", " << z_max << "]");
+      CHECK(r_max < r_f[g]);
+      // The nodes reach the root circle within the body's element size near it (m/2 = 2 mm).
+      CHECK(r_max > r_f[g] - 2.0);
+      if (support == fe_reference::AxialSupport::kBodyMidPlane) {
+        CHECK(z_min == Approx(b / 2).margin(1e-9));
+        CHECK(z_max == Approx(b / 2).margin(1e-9));
+      } else {
+        CHECK(z_min == Approx(0).margin(1e-9));
+        CHECK(z_max == Approx(b).margin(1e-9));
+      }
+    }
+    std::filesystem::remove_all(dir);
+  }
+}

@@ -38,6 +38,33 @@ void RunCcx(const std::string& directory, const std::string& ccx, int threads) {
     throw std::runtime_error("fe3d: ccx failed (see " + directory + "/ccx.log)");
 }
 
+// The axial reaction R_z [N] of the node set `set` at the end of every step (ccx's "total force
+// (fx,fy,fz) for set <set> and time t" blocks of *NODE PRINT, TOTALS=ONLY); empty when the deck
+// prints none.
+std::vector<double> ReadAxialTotals(const std::string& path, const std::string& set) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot be read (did ccx run?)");
+  const std::string header = "total force (fx,fy,fz) for set " + set + " and time";
+  std::map<long, double> by_step;  // step (the integral total time) → R_z
+  for (std::string line; std::getline(f, line);) {
+    const std::size_t at = line.find(header);
+    if (at == std::string::npos) continue;
+    const double time = std::stod(line.substr(at + header.size()));
+    std::string values;
+    while (std::getline(f, values) && values.find_first_not_of(' ') == std::string::npos) {
+    }
+    std::istringstream v(values);
+    double fx = 0, fy = 0, fz = 0;
+    if (!(v >> fx >> fy >> fz) || !std::isfinite(fz))
+      throw std::runtime_error(path + ": cannot read the total force of set " + set + " at time " +
+                               line.substr(at + header.size()));
+    if (std::abs(time - std::round(time)) < 1e-9) by_step[std::lround(time)] = fz;
+  }
+  std::vector<double> out;
+  for (const auto& [step, fz] : by_step) out.push_back(fz);
+  return out;
+}
+
 }  // namespace
 
 Fe3dLineLoad ReadLineLoad(const std::string& directory, const Fe3dDeckInfo& info) {
@@ -87,6 +114,16 @@ Fe3dLineLoad ReadLineLoad(const std::string& directory, const Fe3dDeckInfo& info
   r.extrapolated = s.extrapolated;
   r.nodes = info.deck.nodes;
   r.elements = info.deck.elements;
+  for (int g = 0; g < 2; ++g) {
+    const std::vector<double> fz =
+        ReadAxialTotals(directory + "/deck.dat", "AXIAL" + std::to_string(g + 1));
+    if (fz.empty()) continue;
+    if (fz.size() != steps.size())
+      throw std::runtime_error(directory + "/deck.dat: " + std::to_string(fz.size()) +
+                               " axial totals of set AXIAL" + std::to_string(g + 1) + " for " +
+                               std::to_string(steps.size()) + " steps");
+    r.axial_reaction[g] = (1 - s.weight) * fz[s.step] + s.weight * fz[s.step + 1];
+  }
   for (double q : r.line_load)
     if (!std::isfinite(q))
       throw std::runtime_error(directory + ": a station's line load is not finite");

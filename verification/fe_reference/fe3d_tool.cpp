@@ -88,6 +88,9 @@ int Fe3dCommand(const Fe3dCommandArgs& a) {
   o.layers = a.layers;
   o.misalignment = a.misalignment_um * 1e-6;
   o.plane_strain = a.plane_strain;
+  o.axial_support = a.axial_support == "body"        ? AxialSupport::kBody
+                    : a.axial_support == "mid-plane" ? AxialSupport::kBodyMidPlane
+                                                     : AxialSupport::kHubs;
   o.mesh.refinement = a.refinement;
   if (a.tooth_size_per_module > 0) o.mesh.tooth_size_per_module = a.tooth_size_per_module;
   if (a.body_size_per_module > 0) o.mesh.body_size_per_module = a.body_size_per_module;
@@ -135,6 +138,9 @@ int Fe3dCommand(const Fe3dCommandArgs& a) {
       a.name.c_str(), r.misalignment * 1e6, a.layers, a.refinement, r.nodes, r.k_hbeta,
       r.stiffness_per_width / 1e9, r.middle_stiffness_per_width / 1e9, r.moment_balance,
       run.cpu_seconds, run.runs, run.runs > 1 ? "s" : "");
+  if (o.axial_support != AxialSupport::kHubs)
+    std::printf("%s: axial reactions of the held nodes at T: gear 1 %.2f N, gear 2 %.2f N\n",
+                a.name.c_str(), r.axial_reaction[0], r.axial_reaction[1]);
   return 0;
 }
 

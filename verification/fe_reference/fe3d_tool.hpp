@@ -14,6 +14,7 @@ struct Fe3dCommandArgs {
   int layers = 10;             ///< [-]
   double refinement = 1;       ///< divides every in-plane size [-]
   bool plane_strain = false;   ///< one layer, u_z = 0
+  std::string axial_support = "hubs";  ///< Fe3dOptions::axial_support: hubs, mid-plane, body
   double plane_k = 13.12;      ///< c′ of the plane model for the steps' estimate [N/(mm·µm)]
   /// The steps' rotations as multiples of the estimate [-] (RunFe3d's step_scales).
   std::vector<double> step_scales{0.94, 1.06};

@@ -268,6 +268,10 @@ int main(int argc, char** argv) {
   fe3d->add_option("--layers", f3.layers, "wedge layers (axial stations) over b");
   fe3d->add_option("--refinement", f3.refinement, "divides every in-plane mesh size");
   fe3d->add_flag("--plane-strain", f3.plane_strain, "one layer with u_z = 0: plane strain");
+  fe3d->add_option("--axial-support", f3.axial_support,
+                   "what holds the gears axially: hubs, mid-plane (and u_z = 0 at mid-face inside "
+                   "the root circles) or body (u_z = 0 inside the root circles)")
+      ->check(CLI::IsMember({"hubs", "mid-plane", "body"}));
   fe3d->add_option("--step-scales", f3.step_scales,
                    "the static steps as multiples of the estimated rotation (two or more, rising)");
   fe3d->add_option("--plane-k", f3.plane_k,
@@ -358,7 +362,9 @@ int main(int argc, char** argv) {
     if (*fillets) return Fillets(dir);
     return Read(dir);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 prints the message; its own codes (105 for a value not in a set, ...) become 2 for
+    // bad usage, help stays 0 (the program's rule).
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const std::invalid_argument& e) {  // bad input: exit 2
     std::fprintf(stderr, "fe_reference: %s\n", e.what());
     return 2;

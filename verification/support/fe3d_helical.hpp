@@ -22,6 +22,17 @@
 
 namespace epicycle::test {
 
+/// The means of `stations` equal groups of consecutive values of `q` (its size a multiple).
+inline std::vector<double> Pooled(const std::vector<double>& q, std::size_t stations) {
+  if (stations == 0 || q.size() % stations != 0)
+    throw std::invalid_argument("pooled stations: " + std::to_string(q.size()) + " values in " +
+                                std::to_string(stations) + " stations");
+  const std::size_t per = q.size() / stations;
+  std::vector<double> out(stations, 0.0);
+  for (std::size_t i = 0; i < q.size(); ++i) out[i / per] += q[i] / static_cast<double>(per);
+  return out;
+}
+
 struct HelicalSliceSample {
   std::vector<double> line_load;  ///< w_s [N/m] per slice, z from the face z = −b/2
   double width = 0;               ///< b [m]
@@ -29,14 +40,7 @@ struct HelicalSliceSample {
   double force = 0;               ///< Σ F_t [N]
   /// The means over `stations` equal stations [N/m] (the slices a multiple of them).
   std::vector<double> Stations(int stations) const {
-    const std::size_t per = line_load.size() / static_cast<std::size_t>(stations);
-    if (per * static_cast<std::size_t>(stations) != line_load.size())
-      throw std::invalid_argument("helical slices: " + std::to_string(line_load.size()) +
-                                  " slices in " + std::to_string(stations) + " stations");
-    std::vector<double> out(static_cast<std::size_t>(stations), 0.0);
-    for (std::size_t s = 0; s < line_load.size(); ++s)
-      out[s / per] += line_load[s] / static_cast<double>(per);
-    return out;
+    return Pooled(line_load, static_cast<std::size_t>(stations));
   }
 };
 
@@ -101,27 +105,34 @@ inline double LargestChange(const std::vector<double>& a, const std::vector<doub
   return d;
 }
 
-/// The tolerance of a comparison with the helical reference's 4 stations [N/mm]
-/// (docs/fe_reference.md, "The helical deck"): T = 2 (Δ_axial + Δ_plane) + Δ_slices, Δ_axial the
-/// largest change of a 5 mm mean from 2 to 4 layers of the reference (case "helical", whole
-/// gears, in-plane refinement 1: each 2-layer station against the mean of its two 4-layer ones),
-/// Δ_plane the largest change of a station from in-plane refinement 1 to 1.41 at 4 layers
-/// (measured on the sector deck, case "helical_sector": the same mesh rule at the contact), each
-/// doubled (the remaining error of a level bounded by its change from the coarser one), and
-/// `slices` the slices' own discretisation (their change from S to 2S).
+/// The helical reference's `stations` station loads [N/mm] and the tolerance of a comparison
+/// with them (docs/fe_reference.md, "The helical deck"): the reference is case `name` (whole
+/// gears) at its finest axial level `layers`, in-plane refinement 1, pooled to the stations;
+/// T = 2 (Δ_axial + Δ_plane) + Δ_slices, Δ_axial the largest change of a station from
+/// layers/2 to `layers`, Δ_plane the largest change of a station from in-plane refinement 1 to
+/// 1.41 at `plane_layers`, each doubled (the remaining error of a level bounded by its change
+/// from the coarser one), and `slices` the slices' own discretisation (their change from S to 2S).
 struct HelicalTolerance {
   double axial = 0, plane = 0, slices = 0;
   double total() const { return 2 * (axial + plane) + slices; }
 };
-inline HelicalTolerance ReferenceTolerance(const std::string& csv, double slices) {
-  const std::vector<double> coarse = CommittedRun(csv, "helical_sector", 4, "1").line_load;
-  const std::vector<double> fine = CommittedRun(csv, "helical_sector", 4, "1.41").line_load;
-  const std::vector<double> layers4 = CommittedRun(csv, "helical", 4, "1").line_load;
-  const std::vector<double> layers2 = CommittedRun(csv, "helical", 2, "1").line_load;
-  std::vector<double> pooled(layers2.size());
-  for (std::size_t i = 0; i < pooled.size(); ++i)
-    pooled[i] = 0.5 * (layers4[2 * i] + layers4[2 * i + 1]);
-  return {LargestChange(layers2, pooled), LargestChange(coarse, fine), slices};
+struct HelicalReference {
+  std::vector<double> line_load;  ///< the finest run's station loads [N/mm]
+  HelicalTolerance tolerance;
+};
+inline HelicalReference ReferenceWithTolerance(const std::string& csv, const std::string& name,
+                                               int layers, int plane_layers, std::size_t stations,
+                                               double slices) {
+  HelicalReference out;
+  out.line_load = Pooled(CommittedRun(csv, name, layers, "1").line_load, stations);
+  const std::vector<double> coarse = Pooled(CommittedRun(csv, name, layers / 2, "1").line_load,
+                                            stations);
+  const std::vector<double> plane1 =
+      Pooled(CommittedRun(csv, name, plane_layers, "1").line_load, stations);
+  const std::vector<double> plane141 =
+      Pooled(CommittedRun(csv, name, plane_layers, "1.41").line_load, stations);
+  out.tolerance = {LargestChange(coarse, out.line_load), LargestChange(plane1, plane141), slices};
+  return out;
 }
 
 }  // namespace epicycle::test
