@@ -20,7 +20,6 @@
 #include "helical_fixtures.hpp"
 
 using namespace epicycle;
-using transmission::MeshFaceLoad;
 using transmission::PositionResult;
 
 namespace {
@@ -61,23 +60,6 @@ struct Sweep {
   }
 };
 
-const MeshFaceLoad& Mesh(const PositionResult& r, int planet, bool ring) {
-  for (const MeshFaceLoad& m : r.face_loads)
-    if (m.planet == planet && m.ring_mesh == ring) return m;
-  FAIL("no face load for the mesh");
-  return r.face_loads.front();
-}
-
-// Σ_s w_s z_s Δz: the mesh's force times its load centroid's z [N·m].
-double FirstMoment(const MeshFaceLoad& f) {
-  const int slices = static_cast<int>(f.line_load.size());
-  double m = 0;
-  for (int s = 0; s < slices; ++s)
-    m += f.line_load[static_cast<std::size_t>(s)] * f.width / slices *
-         transmission::SliceCentre(s, slices, f.width);
-  return m;
-}
-
 }  // namespace
 
 TEST_CASE("helical paper stage with a pin error: tilting moments from the axial forces, K_gamma "
@@ -112,13 +94,7 @@ TEST_CASE("helical paper stage with a pin error: tilting moments from the axial 
       // sun's |T_s| tan β_b / r_b,sun. A tip-round contact's lever lies in [0, r_b]: the forces on
       // such contacts move the sum by at most their share of the sun meshes' load (2 F_tip/ΣF,
       // half of all forces being the ring meshes'), and the equilibrium residual 1e-9.
-      double all = 0, off_line = 0;
-      for (std::size_t j = 0; j < r.problem.contacts.size(); ++j) {
-        const double f = r.solution.force(static_cast<Eigen::Index>(j));
-        all += f;
-        if (r.problem.contacts[j].contact.kind != geometry::ContactKind::kInvolute) off_line += f;
-      }
-      const double share = 1e-9 + 2 * off_line / all;
+      const double share = test::TipRoundShare(r);
       double sun_meshes = 0;
       for (const transmission::PlanetHelicalLoad& p : h.planets) sun_meshes += p.sun_mesh_axial;
       CHECK(std::abs(sun_meshes) == Approx(torque * tan_bb / r_b_sun).epsilon(share));
@@ -200,11 +176,12 @@ TEST_CASE("helical paper stage with a pin error: tilting moments from the axial 
       // The pin's tilt is the moment's (pin.hpp: straddle, no slope from the planet's force).
       CHECK(r.pin_tilts_carrier[static_cast<std::size_t>(i)].x() * outward > 0);
       for (const bool ring : {false, true}) {
-        const double shift = FirstMoment(Mesh(r, i, ring)) - FirstMoment(Mesh(o, i, ring));
+        const double shift = test::FaceFirstMoment(test::MeshLoad(r, i, ring)) -
+                             test::FaceFirstMoment(test::MeshLoad(o, i, ring));
         INFO("position " << k << ", planet " << i + 1 << (ring ? " ring" : " sun")
                          << " mesh: first moment with feedback - without " << shift
-                         << " N m; K_Hbeta " << Mesh(o, i, ring).k_h_beta << " -> "
-                         << Mesh(r, i, ring).k_h_beta);
+                         << " N m; K_Hbeta " << test::MeshLoad(o, i, ring).k_h_beta << " -> "
+                         << test::MeshLoad(r, i, ring).k_h_beta);
         CHECK(shift * outward * (ring ? 1 : -1) > 0);
       }
     }
