@@ -30,7 +30,6 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
                                 ": a gear-pair scene; a quasi-static run needs a stage");
   if (request.sun) scene.supports.sun = *request.sun;
   if (!request.pin_feedback) scene.face_width.pins.clear();
-  RequireHelicalSlices(scene, "`epicycle quasistatic`");
   scene.model.stresses = scene.model.stresses || request.stresses || request.rating;
   if (request.rating) CheckRatingInputs(scene, request.rating_option);
   if (request.rig && request.rig->compliance.has_root_stress() != scene.model.stresses)
@@ -39,6 +38,9 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
                                 " root stresses; the run asks for the opposite");
   std::optional<geometry::Stage> own_stage;  // checked before the tables are built
   if (!request.rig) own_stage.emplace(MakeStage(scene));
+  // The stage's own rules (hands, assembly) first, as a prebuilt rig has met them (Python's),
+  // then this driver's: every front end reports the same first error of a scene.
+  RequireHelicalSlices(scene, "`epicycle quasistatic`");
   // The stage until the rig exists (then the rig's: own_stage moves into it).
   const geometry::Stage& early = request.rig ? request.rig->stage : *own_stage;
   const int n = early.planets();

@@ -1,7 +1,8 @@
 # One command-line check (CTest, cmake -P): runs EXE with ARGS (a ;-list), then requires
 #   - the exit status EXPECT_RC (0 computed, 1 a computation failed, 2 bad input),
 #   - every string of CONTAIN (a ;-list) in stdout + stderr,
-#   - every string of FILE_CONTAIN (a ;-list) in the files of OUT_DIR (JSON, CSV),
+#   - every string of FILE_CONTAIN (a ;-list) in the files of OUT_DIR (JSON, CSV), and none of
+#     FILE_ABSENT (a ;-list: e.g. a key followed by the JSON's null, a non-finite value),
 #   - no nan/inf anywhere in the output nor in the files of OUT_DIR (if given): failures are
 #     reported, never printed as non-finite numbers.
 # STDOUT (optional) sends the standard output to that file instead (/dev/full: a result that
@@ -71,6 +72,12 @@ foreach(piece IN LISTS FILE_CONTAIN)
   string(FIND "${file_texts}" "${piece}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "the files of ${OUT_DIR} lack \"${piece}\"")
+  endif()
+endforeach()
+foreach(piece IN LISTS FILE_ABSENT)
+  string(FIND "${file_texts}" "${piece}" at)
+  if(NOT at EQUAL -1)
+    message(FATAL_ERROR "the files of ${OUT_DIR} hold \"${piece}\"")
   endif()
 endforeach()
 foreach(piece IN LISTS ECHOED)

@@ -90,14 +90,8 @@ TEST_CASE("helical paper stage: the sun's and the ring's axial forces balance th
   // a tip-round contact's lever ℓ lies in [0, r_b], so the forces it carries move Σ F by at most
   // their sum F_tip. Relative to the sun meshes' Σ F (half of all contacts' forces, the other
   // half the ring meshes'): 2 F_tip/ΣF_all, plus the equilibrium residual (1e-9).
-  double all = 0, off_line = 0;
-  for (std::size_t j = 0; j < r.problem.contacts.size(); ++j) {
-    const double f = r.solution.force(static_cast<Eigen::Index>(j));
-    all += f;
-    if (r.problem.contacts[j].contact.kind != geometry::ContactKind::kInvolute) off_line += f;
-  }
-  const double share = 1e-9 + 2 * off_line / all;
-  INFO("share of the load on tip-round contacts " << off_line / all);
+  const double share = test::TipRoundShare(r);
+  INFO("share of the load on tip-round contacts " << (share - 1e-9) / 2);
   const double tan_bb = std::tan(stage.sun().spec().helix.angle) *
                         std::cos(stage.sun().spec().pressure_angle);
   const double torque = std::abs(scene.loads.sun_torque);

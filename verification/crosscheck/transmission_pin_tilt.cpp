@@ -44,22 +44,11 @@ struct Helical {
 };
 
 const MeshFaceLoad& Mesh(const PositionResult& r, int planet, bool ring) {
-  for (const MeshFaceLoad& m : r.face_loads)
-    if (m.planet == planet && m.ring_mesh == ring) return m;
-  FAIL("no face load for the mesh");
-  return r.face_loads.front();
+  return test::MeshLoad(r, planet, ring);
 }
 
-// F_m |z̄_m| of a mesh: its force times its load centroid's distance from the mid-plane, from its
-// line loads [N·m].
-double LoadShiftMoment(const MeshFaceLoad& f) {
-  const int slices = static_cast<int>(f.line_load.size());
-  double first = 0;
-  for (int s = 0; s < slices; ++s)
-    first += f.line_load[static_cast<std::size_t>(s)] * f.width / slices *
-             transmission::SliceCentre(s, slices, f.width);
-  return std::abs(first);
-}
+// F_m |z̄_m| of a mesh: its force times its load centroid's distance from the mid-plane [N·m].
+double LoadShiftMoment(const MeshFaceLoad& f) { return std::abs(test::FaceFirstMoment(f)); }
 
 // The scene without its [[face_width.pin]] table (the last table of the file).
 std::string WithoutPins(const std::string& text) {

@@ -2,9 +2,12 @@
 meshes"; docs/model.md §10): the quasi-static, dynamic and modes records of the helical paper
 stage have exactly the keys and values of the program's JSON (the `helical` object of axial
 forces and tilting moments among them), and the dynamic run's per-step axial loads are the steps
-file's columns cell by cell."""
+file's columns cell by cell; a scene of hands that cannot mesh is refused with the program's
+first message."""
 
 import os
+
+import pytest
 
 import epicycle
 from conftest import SOURCE_DIR, num, read_csv, read_json, run_cli, scene_path
@@ -148,3 +151,18 @@ def test_helical_study_rows_carry_the_quasistatic_axial_loads(tmp_path):
             assert abs(got - value) <= 1e-8 * scale, c
             assert float(row[c]) == got, c  # the rows file's shortest exact form
     assert set(r.record["helical"]) == set(columns)
+
+
+def test_a_scene_of_hands_that_cannot_mesh_is_refused_with_the_program_message():
+    # hands_external_same.toml: the planets' hand that of the sun, and no [face_width] slices. Both
+    # doors check the stage's rules before the driver's need of slices: the same first message.
+    path = os.path.join(SOURCE_DIR, "verification", "data", "bad_inputs", "hands_external_same.toml")
+    p = run_cli("quasistatic", path, "--positions", "1", check=False)
+    assert p.returncode == 2
+    with pytest.raises(ValueError) as e:
+        epicycle.quasistatic(epicycle.Scene.load(path), positions=1)
+    message = str(e.value)
+    assert 'planet.hand = "right"' in message
+    assert "an external mesh needs opposite hands" in message
+    assert "slices" not in message
+    assert message in p.stderr
