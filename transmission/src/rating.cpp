@@ -261,6 +261,15 @@ void RateFaceWidth(const RatingInputs& inputs, const geometry::Stage& stage, con
       factor("B1 = B2 " + f.mesh, b[0], why);
     }
     r.iso = IsoFaceLoadFactorC(r.iso_inputs);
+    // Listed where the lead slope sets F_βx (a slope the misalignment hardly shows).
+    if (r.iso.at_minimum && r.iso.f_beta_x_min == 0.5 * r.iso_inputs.lead_slope)
+      factor("F_betax,min " + f.mesh + " [um]", r.iso.f_beta_x_min * 1e6,
+             fmt::format("ISO 6336-1 method C eq. 56: 0.5 f_Hbeta (f_Hbeta = {:.4g} um of the "
+                         "mesh's gears) exceeds 1.33 B1 f_sh + B2 f_ma = {:.4g} um",
+                         r.iso_inputs.lead_slope * 1e6,
+                         (1.33 * r.iso_inputs.b1 * r.iso_inputs.deflection +
+                          r.iso_inputs.b2 * r.iso_inputs.assembly) *
+                             1e6));
     r.k_gamma_k_h_beta_model = f.k_gamma_k_h_beta_max;
     r.k_gamma_k_h_beta_iso = k_table * r.iso.k_h_beta;
     r.root_stress = r.s_f_stress = r.hertz_pressure = r.s_h_pressure = kNaN;
