@@ -17,7 +17,7 @@ struct StageRig {
   RatingInputs rating;  ///< what its ratings take (RateStage), resolved from `scene`
   geometry::Stage stage;
   FeStageCompliance compliance;
-  /// @throws std::invalid_argument as MakeStage and FeStageCompliance.
+  /// @throws std::invalid_argument as RatingInputsOf, MakeStage and FeStageCompliance.
   /// Its stage model resolves a helical stage in slices (helical_slices.hpp): the tables take it.
   StageRig(Scene s, const FeComplianceOptions& fe)
       : scene(std::move(s)),
