@@ -114,11 +114,11 @@ DynamicFactor DynamicLoadFactor(const DynamicModel& model, const SimulationOptio
   return out;
 }
 
-MotionRating RateInMotion(const transmission::Scene& scene, const DynamicModel& model,
+MotionRating RateInMotion(const transmission::RatingInputs& inputs, const DynamicModel& model,
                           const SimulationOptions& options, const std::vector<double>& output_times,
                           const MotionLoads& loads,
                           const std::vector<transmission::RootStressSummary>& root_stress) {
-  transmission::CheckRatingInputs(scene, "a rating in motion");
+  transmission::CheckRatingInputs(inputs, "a rating in motion");
   MotionRating out;
   out.factor = DynamicLoadFactor(model, options, output_times, loads);
   const double kv = std::max(1.0, out.factor.value);
@@ -129,18 +129,18 @@ MotionRating RateInMotion(const transmission::Scene& scene, const DynamicModel& 
       root_stress, loads.contact_pressure(),
       fmt::format("the dynamic run at {:.6g} rpm",
                   io::RadPerSecondToRpm(std::abs(model.sun_speed())))};
-  out.rating = transmission::RateStage(scene, model.stage_model().stage(), out.factor.quasi_static,
+  out.rating = transmission::RateStage(inputs, model.stage_model().stage(), out.factor.quasi_static,
                                        kv, source, &motion);
   return out;
 }
 
-MotionRating RateRun(const transmission::Scene& scene, const DynamicModel& model,
+MotionRating RateRun(const transmission::RatingInputs& inputs, const DynamicModel& model,
                      const SimulationOptions& options, const RunSpan& span,
                      const MotionLoads& loads,
                      const std::vector<transmission::RootStressSummary>& root_stress) {
   std::vector<double> times = span.OutputTimes();
   times.resize(static_cast<std::size_t>(std::min<long>(loads.outputs(), std::ssize(times))));
-  return RateInMotion(scene, model, options, times, loads, root_stress);
+  return RateInMotion(inputs, model, options, times, loads, root_stress);
 }
 
 }  // namespace epicycle::dynamics

@@ -871,6 +871,7 @@ void DynamicModel::Linearise(double carrier_angle, Eigen::MatrixXd* m, Eigen::Ma
 
 StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeComplianceOptions& f)
     : scene(std::move(s)),
+      rating(transmission::RatingInputsOf(scene)),
       stage(transmission::MakeStage(scene)),
       fe(f),
       compliance(scene, stage, fe),

@@ -28,7 +28,8 @@ transmission::Scene ResolvedScene(const DynamicRequest& request) {
   if (!request.friction.empty())
     scene.dynamics.friction.law = transmission::FrictionLawFromName(request.friction);
   scene.model.stresses = scene.model.stresses || request.stresses || request.rating;
-  if (request.rating) transmission::CheckRatingInputs(scene, request.names.rating);
+  if (request.rating)
+    transmission::CheckRatingInputs(transmission::RatingInputsOf(scene), request.names.rating);
   return scene;
 }
 
@@ -170,7 +171,7 @@ DynamicRecord RunDynamic(const DynamicRequest& request, DynamicSink& sink) {
   for (const std::string& w : tally.Messages()) record.warnings.push_back(w);
   // ISO 6336 with the run's K_v (docs/stresses.md)
   if (loads && record.summary.samples > 0)
-    record.rating = RateRun(rig.scene, model, opt, span, *loads, record.summary.root_stress).rating;
+    record.rating = RateRun(rig.rating, model, opt, span, *loads, record.summary.root_stress).rating;
   return record;
 }
 

@@ -298,7 +298,8 @@ SweepRequest MakeSweepRequest(const ScenePtr& s, const std::string& range, int p
   transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
   // Stresses (or a rating, which needs them): the scene with [model] stresses = true.
   q.scene = stresses || rating ? WithStresses(s) : s;
-  if (rating) transmission::CheckRatingInputs(q.scene->scene(), "rating=True");
+  if (rating)
+    transmission::CheckRatingInputs(transmission::RatingInputsOf(q.scene->scene()), "rating=True");
   q.options.backend = BackendOf(backend);
   q.options.threads = threads;
   q.options.warm_start = warm_start;

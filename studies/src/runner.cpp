@@ -325,12 +325,14 @@ void HelicalValues(const transmission::SweepSummary& s, int planets, std::vector
 // A case's scene, stage, supports and carrier angles (its values applied to the base scene).
 struct CaseRig {
   transmission::Scene scene;
+  transmission::RatingInputs rating;  // what the case's rating takes (its own torque and leads)
   geometry::Stage stage;
   transmission::StageSetup setup;
   std::vector<double> angles;
   transmission::QuasiStaticOptions options;
   CaseRig(const StudySpec& study, const std::vector<double>& values)
       : scene(CaseScene(study, values)),
+        rating(transmission::RatingInputsOf(scene)),
         stage(transmission::MakeStage(scene)),
         setup(transmission::SetupFromScene(scene)),
         angles(internal::CaseAngles(study, stage)) {
@@ -468,7 +470,7 @@ CaseRow ComputeCase(const StudySpec& study, const transmission::StageCompliance&
     HelicalValues(s, stage.planets(), &row.helical);
     // The model's safety factors of every gear, from this case's own stresses (rating.hpp).
     if (study.Rated() && s.converged > 0) {
-      const transmission::StageRating rating = transmission::RateStage(scene, stage, s);
+      const transmission::StageRating rating = transmission::RateStage(rig.rating, stage, s);
       for (std::size_t g = 0; g < gears.size(); ++g)
         for (const transmission::GearRating& r : rating.gears)
           if (r.gear == gears[g]) {

@@ -31,7 +31,7 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
   if (request.sun) scene.supports.sun = *request.sun;
   if (!request.pin_feedback) scene.face_width.pins.clear();
   scene.model.stresses = scene.model.stresses || request.stresses || request.rating;
-  if (request.rating) CheckRatingInputs(scene, request.rating_option);
+  if (request.rating) CheckRatingInputs(RatingInputsOf(scene), request.rating_option);
   if (request.rig && request.rig->compliance.has_root_stress() != scene.model.stresses)
     throw std::invalid_argument(scene.name + ": the prebuilt rig's tables " +
                                 (scene.model.stresses ? "have no" : "have") +
@@ -121,11 +121,12 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
   record.converged_positions = record.summary.converged;
   if (request.rating && record.converged_positions > 0) {
     if (record.summary.face_width.empty()) {
-      record.rating = RateStage(scene, stage, record.summary);
+      record.rating = RateStage(rig->rating, stage, record.summary);
     } else {
       // Method C's c_γ: the model's own mean mesh stiffness per unit width.
       const std::array<double, 2> c = MeanMeshStiffnessPerWidth(scene, stage, request.tables);
-      record.rating = RateStage(scene, stage, record.summary, 1.0, "quasi-static run", nullptr, &c);
+      record.rating =
+          RateStage(rig->rating, stage, record.summary, 1.0, "quasi-static run", nullptr, &c);
     }
   }
   return record;

@@ -93,9 +93,12 @@ MeshContact RateMeshContact(const geometry::Stage& stage, const geometry::MeshSu
 
 }  // namespace
 
+// ISO 6336-1:2006 clause 7.5 (method C), equation numbers of that edition; docs/model.md §10
+// "Ratings across the face" gives the source of each and what is unconfirmed.
 FaceLoadFactorC IsoFaceLoadFactorC(const FaceLoadFactorInputs& in) {
   for (const auto& [name, value, positive] : {std::tuple{"f_ma [m]", in.assembly, false},
                                               {"f_sh [m]", in.deflection, false},
+                                              {"f_Hbeta [m]", in.lead_slope, false},
                                               {"c_gamma_alpha [N/m^2]", in.mesh_stiffness, true},
                                               {"b [m]", in.face_width, true},
                                               {"F_m [N]", in.mean_force, true},
@@ -112,22 +115,38 @@ FaceLoadFactorC IsoFaceLoadFactorC(const FaceLoadFactorInputs& in) {
   constexpr double kUm = 1e-6;
   FaceLoadFactorC c;
   const double line_load = in.mean_force / in.face_width;  // F_m/b [N/m]
-  c.f_beta_x_min = 0.005 * kUm * (line_load * 1e-3);       // 0.005 µm per N/mm
-  c.f_beta_x = std::max(1.33 * in.b1 * in.deflection + in.b2 * in.assembly, c.f_beta_x_min);
-  c.y_beta = std::min(0.15 * c.f_beta_x, 6 * kUm);
-  c.f_beta_y = c.f_beta_x - c.y_beta;
+  // F_βx,min (eqs. 55, 56): the larger of 0.005 µm per N/mm of F_m/b and 0.5 f_Hβ.
+  c.f_beta_x_min = std::max(0.005 * kUm * (line_load * 1e-3), 0.5 * in.lead_slope);
+  const double f_beta_x = 1.33 * in.b1 * in.deflection + in.b2 * in.assembly;  // eq. 52
+  c.at_minimum = c.f_beta_x_min > f_beta_x;
+  c.f_beta_x = std::max(f_beta_x, c.f_beta_x_min);
+  c.y_beta = std::min(0.15 * c.f_beta_x, 6 * kUm);  // eq. 48: surface-hardened steel
+  c.f_beta_y = c.f_beta_x - c.y_beta;                 // eq. 43
   c.c_gamma_beta = 0.85 * in.mesh_stiffness;
   const double x = c.f_beta_y * c.c_gamma_beta * in.face_width / (2 * in.mean_force);
   c.lifted = x > 1;
-  c.k_h_beta = c.lifted ? 2 * std::sqrt(x) : 1 + x;
+  c.k_h_beta = c.lifted ? 2 * std::sqrt(x) : 1 + x;  // eqs. 39 and 41
   const double bh = std::max(3.0, in.face_width / in.tooth_depth);
-  c.n_f = bh * bh / (1 + bh + bh * bh);
+  c.n_f = bh * bh / (1 + bh + bh * bh);  // eqs. 69, 70
   c.k_f_beta = std::pow(c.k_h_beta, c.n_f);
   return c;
 }
 
-std::array<double, 2> MethodCModification(bool crowned, bool end_relieved) {
-  if (crowned) return {0.5, 0.5};
+std::array<double, 2> MethodCModification(double crowning, bool end_relieved, double assembly,
+                                          double deflection) {
+  for (const auto& [name, value] : {std::pair{"C_beta [m]", crowning},
+                                    {"f_ma [m]", assembly},
+                                    {"f_sh [m]", deflection}})
+    if (!(std::isfinite(value) && value >= 0))
+      throw std::invalid_argument(fmt::format(
+          "ISO 6336-1 method C's helix modification: {} = {}: must be finite and >= 0", name,
+          value));
+  // Table 8's rows (docs/model.md §10, "Ratings across the face").
+  if (crowning > 0) {
+    // The two crowning rows presuppose a crowning sized to what it compensates.
+    if (crowning >= 0.5 * (assembly + deflection)) return {0.5, 0.5};
+    return {1.0, 0.5};
+  }
   if (end_relieved) return {0.7, 0.7};
   return {1.0, 1.0};
 }
@@ -139,22 +158,49 @@ double TableMeshLoadFactor(int planets) {
   return planets <= 3 ? 1.0 : planets == 4 ? 1.2 : planets == 5 ? 1.3 : 1.4;
 }
 
-void CheckRatingInputs(const Scene& scene, const std::string& asked_by) {
+RatingInputs RatingInputsOf(const Scene& scene) {
+  RatingInputs in;
+  in.source = scene.source;
+  in.bending_limit = scene.material.bending_limit;
+  in.contact_limit = scene.material.contact_limit;
+  in.youngs_modulus = scene.material.youngs_modulus;
+  in.poisson_ratio = scene.material.poisson_ratio;
+  in.application_factor = scene.rating.application_factor;
+  in.sun_torque = scene.loads.sun_torque;
+  in.leads = scene.face_width.leads;
+  auto refuse = [&](const char* key, double value, const char* rule) {
+    throw std::invalid_argument(
+        fmt::format("{}: {} = {}: must be {} (the ratings' input)", scene.source, key, value, rule));
+  };
+  if (!(std::isfinite(in.youngs_modulus) && in.youngs_modulus > 0))
+    refuse("[material] youngs_modulus_GPa", in.youngs_modulus / 1e9, "finite and > 0");
+  if (!(in.poisson_ratio >= 0 && in.poisson_ratio < 0.5))
+    refuse("[material] poisson_ratio", in.poisson_ratio, "in [0, 0.5)");
+  if (!(in.application_factor >= 1 && in.application_factor <= 4))
+    refuse("[rating] application_factor", in.application_factor, "in [1, 4]");
+  if (!std::isfinite(in.sun_torque)) refuse("[load] sun_torque_Nm", in.sun_torque, "finite");
+  for (const auto& [key, value] : {std::pair{"[material] bending_limit_MPa", in.bending_limit},
+                                   {"[material] contact_limit_MPa", in.contact_limit}})
+    if (!(std::isfinite(value) && value >= 0)) refuse(key, value / 1e6, "finite and > 0");
+  return in;
+}
+
+void CheckRatingInputs(const RatingInputs& inputs, const std::string& asked_by) {
   for (const auto& [key, symbol, value] :
-       {std::tuple{"bending_limit_MPa", "sigma_Flim", scene.material.bending_limit},
-        {"contact_limit_MPa", "sigma_Hlim", scene.material.contact_limit}})
+       {std::tuple{"bending_limit_MPa", "sigma_Flim", inputs.bending_limit},
+        {"contact_limit_MPa", "sigma_Hlim", inputs.contact_limit}})
     if (!(value > 0))
       throw std::invalid_argument(
           fmt::format("{} needs the scene's [material] {} (ISO 6336-5's {}): {} does not give it",
-                      asked_by, key, symbol, scene.source));
+                      asked_by, key, symbol, inputs.source));
 }
 
 namespace {
 
-// ISO 6336-1:2019 clause 7, method C, per planet mesh, fed the model's misalignment and c_γ
+// ISO 6336-1 clause 7.5, method C, per planet mesh, fed the model's misalignment and c_γ
 // (mesh_stiffness per unit face width [N/m²], sun and ring mesh), beside the model's K_Hβ and its
 // own stresses per slice.
-void RateFaceWidth(const Scene& scene, const geometry::Stage& stage, const SweepSummary& summary,
+void RateFaceWidth(const RatingInputs& inputs, const geometry::Stage& stage, const SweepSummary& summary,
                    const std::array<double, 2>& mesh_stiffness, double ft, double k_table,
                    const std::vector<double>& k_model, double ka_kv, StageRating* out) {
   auto factor = [&](std::string symbol, double value, std::string source) {
@@ -188,23 +234,42 @@ void RateFaceWidth(const Scene& scene, const geometry::Stage& stage, const Sweep
     r.iso_inputs.mean_force = ft * km;
     // b/h: the smaller of the two gears' (ISO 6336-1), so the deeper tooth.
     r.iso_inputs.tooth_depth = std::max(depth(planet), depth(mate));
-    // B1, B2 from the leads of the mesh's two gears (the scene's [[face_width.lead]]).
+    // B1, B2 and f_Hβ from the leads of the mesh's two gears (the scene's [[face_width.lead]]).
     const std::string names[2] = {BodyName(PlanetBody(f.planet)),
                                   BodyName(f.ring_mesh ? kRingBody : kSunBody)};
-    bool crowned = false, end_relieved = false;
-    for (const LeadSpec& l : scene.face_width.leads)
+    double crowning = 0;
+    bool end_relieved = false;
+    for (const LeadSpec& l : inputs.leads)
       if (l.gear == names[0] || l.gear == names[1]) {
-        crowned = crowned || l.crowning > 0;
+        crowning += l.crowning;
         end_relieved = end_relieved || l.end_relief > 0;
+        r.iso_inputs.lead_slope = std::max(r.iso_inputs.lead_slope, std::abs(l.slope));
       }
-    const std::array<double, 2> b = MethodCModification(crowned, end_relieved);
+    const std::array<double, 2> b = MethodCModification(
+        crowning, end_relieved, r.iso_inputs.assembly, r.iso_inputs.deflection);
     r.iso_inputs.b1 = b[0];
     r.iso_inputs.b2 = b[1];
-    if (b[0] != 1)
-      factor("B1 = B2 " + f.mesh, b[0],
-             crowned ? "ISO 6336-1 method C: crowning of the mesh's gears"
-                     : "ISO 6336-1 method C: end relief of the mesh's gears");
+    const std::string why =
+        crowning > 0 ? fmt::format("ISO 6336-1 method C, table 8: crowning C_beta = {:.4g} um of "
+                                   "the mesh's gears {} 0.5 (f_ma + f_sh)",
+                                   crowning * 1e6, b[0] == b[1] ? ">=" : "<")
+                     : "ISO 6336-1 method C, table 8: end relief of the mesh's gears";
+    if (b[0] != b[1]) {
+      factor("B1 " + f.mesh, b[0], why);
+      factor("B2 " + f.mesh, b[1], why);
+    } else if (b[0] != 1) {
+      factor("B1 = B2 " + f.mesh, b[0], why);
+    }
     r.iso = IsoFaceLoadFactorC(r.iso_inputs);
+    // Listed where the lead slope sets F_βx (a slope the misalignment hardly shows).
+    if (r.iso.at_minimum && r.iso.f_beta_x_min == 0.5 * r.iso_inputs.lead_slope)
+      factor("F_betax,min " + f.mesh + " [um]", r.iso.f_beta_x_min * 1e6,
+             fmt::format("ISO 6336-1 method C eq. 56: 0.5 f_Hbeta (f_Hbeta = {:.4g} um of the "
+                         "mesh's gears) exceeds 1.33 B1 f_sh + B2 f_ma = {:.4g} um",
+                         r.iso_inputs.lead_slope * 1e6,
+                         (1.33 * r.iso_inputs.b1 * r.iso_inputs.deflection +
+                          r.iso_inputs.b2 * r.iso_inputs.assembly) *
+                             1e6));
     r.k_gamma_k_h_beta_model = f.k_gamma_k_h_beta_max;
     r.k_gamma_k_h_beta_iso = k_table * r.iso.k_h_beta;
     r.root_stress = r.s_f_stress = r.hertz_pressure = r.s_h_pressure = kNaN;
@@ -212,12 +277,12 @@ void RateFaceWidth(const Scene& scene, const geometry::Stage& stage, const Sweep
       const bool is_planet = f.root_stress_gear.rfind("planet", 0) == 0;
       r.root_stress_gear = f.root_stress_gear;
       r.root_stress = f.root_stress_max;
-      r.s_f_stress = scene.material.bending_limit * kStressCorrection *
+      r.s_f_stress = inputs.bending_limit * kStressCorrection *
                      (is_planet ? kReversedBending : 1.0) / (r.root_stress * ka_kv);
     }
     if (f.stresses && f.hertz_pressure_max > 0) {
       r.hertz_pressure = f.hertz_pressure_max;
-      r.s_h_pressure = scene.material.contact_limit / (r.hertz_pressure * std::sqrt(ka_kv));
+      r.s_h_pressure = inputs.contact_limit / (r.hertz_pressure * std::sqrt(ka_kv));
     }
     out->face_width.push_back(r);
   }
@@ -225,10 +290,11 @@ void RateFaceWidth(const Scene& scene, const geometry::Stage& stage, const Sweep
 
 }  // namespace
 
-StageRating RateStage(const Scene& scene, const geometry::Stage& stage, const SweepSummary& summary,
+StageRating RateStage(const RatingInputs& inputs, const geometry::Stage& stage,
+                      const SweepSummary& summary,
                       double dynamic_factor, const std::string& dynamic_source,
                       const MotionStresses* motion, const std::array<double, 2>* mesh_stiffness) {
-  CheckRatingInputs(scene, "a rating");
+  CheckRatingInputs(inputs, "a rating");
   if (!(dynamic_factor >= 1 && std::isfinite(dynamic_factor)))
     throw std::invalid_argument(
         fmt::format("RateStage: K_v = {}: must be finite and >= 1", dynamic_factor));
@@ -237,12 +303,12 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage, const Sw
 
   const int n = stage.planets();
   StageRating out;
-  out.application_factor = scene.rating.application_factor;
+  out.application_factor = inputs.application_factor;
   out.dynamic_factor = dynamic_factor;
   out.dynamic_source = dynamic_source;
   const geometry::Gear& sun = stage.sun();
   const bool helical = sun.spec().helix.helical();
-  const double torque = std::abs(scene.loads.sun_torque);
+  const double torque = std::abs(inputs.sun_torque);
   out.tangential_force = torque / (n * sun.reference_radius());
   const double ft = out.tangential_force;
   auto factor = [&](std::string symbol, double value, std::string source) {
@@ -272,8 +338,8 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage, const Sw
                        i + 1, i + 1));
   }
   const double z_e =
-      geometry::iso::ElasticityFactor(scene.material.youngs_modulus, scene.material.poisson_ratio,
-                                      scene.material.youngs_modulus, scene.material.poisson_ratio);
+      geometry::iso::ElasticityFactor(inputs.youngs_modulus, inputs.poisson_ratio,
+                                      inputs.youngs_modulus, inputs.poisson_ratio);
   factor("Z_E [sqrt(MPa)]", z_e / 1e3, "ISO 6336-2, the scene's E and nu on both gears");
   factor("Y_ST", kStressCorrection, "ISO 6336-3: the reference test gear's stress correction");
   factor("Y_M planet", kReversedBending,
@@ -378,8 +444,8 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage, const Sw
         r.contact_mesh = MeshName(body, k);
       }
     }
-    const double flim = scene.material.bending_limit * kStressCorrection * r.reversed_bending;
-    const double hlim = scene.material.contact_limit;
+    const double flim = inputs.bending_limit * kStressCorrection * r.reversed_bending;
+    const double hlim = inputs.contact_limit;
     r.sigma_f_table = r.sigma_f0 * ka_kv * k_table;
     r.sigma_f_model = r.sigma_f0 * ka_kv * k_model_gear;
     r.s_f_table = flim / r.sigma_f_table;
@@ -409,7 +475,7 @@ StageRating RateStage(const Scene& scene, const geometry::Stage& stage, const Sw
     return r;
   };
   if (faces && mesh_stiffness != nullptr)
-    RateFaceWidth(scene, stage, summary, *mesh_stiffness, ft, k_table, k_model, ka_kv, &out);
+    RateFaceWidth(inputs, stage, summary, *mesh_stiffness, ft, k_table, k_model, ka_kv, &out);
   const double k_all = *std::max_element(k_model.begin(), k_model.end());
   out.gears.push_back(rate(kSunBody, {0}, k_all));
   for (int i = 0; i < n; ++i) out.gears.push_back(rate(PlanetBody(i), {0, 1}, k_model[i]));

@@ -82,7 +82,7 @@ TEST_CASE("The rating's nominal contact stress is Hertz's at the pitch point",
   transmission::SweepSummary summary;
   summary.converged = 1;
   summary.lsr_max.assign(3, 1.0 / 3);
-  const auto rating = transmission::RateStage(scene, stage, summary);
+  const auto rating = transmission::RateStage(transmission::RatingInputsOf(scene), stage, summary);
   const double ft = std::abs(scene.loads.sun_torque) / (3 * stage.sun().reference_radius());
   CHECK(rating.tangential_force == Approx(ft).epsilon(1e-15));
   for (int k = 0; k < 2; ++k) {

@@ -96,15 +96,16 @@ struct MotionRating {
   DynamicFactor factor;
   transmission::StageRating rating;
 };
-/// @throws as DynamicLoadFactor and transmission::RateStage (a scene without the limits).
-MotionRating RateInMotion(const transmission::Scene& scene, const DynamicModel& model,
+/// `inputs`: the rig's rating inputs (StageDynamics::rating).
+/// @throws as DynamicLoadFactor and transmission::RateStage (inputs without the limits).
+MotionRating RateInMotion(const transmission::RatingInputs& inputs, const DynamicModel& model,
                           const SimulationOptions& options, const std::vector<double>& output_times,
                           const MotionLoads& loads,
                           const std::vector<transmission::RootStressSummary>& root_stress);
 /// RateInMotion of a run over `span` whose output steps, in order from the first, were added to
 /// `loads` (a run that stopped early: the output times of the steps it made). The one rating of
 /// a run that `epicycle dynamic --rating` and Python's dynamic(rating=True) give.
-MotionRating RateRun(const transmission::Scene& scene, const DynamicModel& model,
+MotionRating RateRun(const transmission::RatingInputs& inputs, const DynamicModel& model,
                      const SimulationOptions& options, const RunSpan& span,
                      const MotionLoads& loads,
                      const std::vector<transmission::RootStressSummary>& root_stress);

@@ -50,6 +50,7 @@
 #include "epicycle/transmission/contact_kinematics.hpp"
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
+#include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_status.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/stage_mesh_stiffness.hpp"
@@ -316,6 +317,7 @@ class ModalMeshPairs {
 /// helical scene is refused (transmission::RequireSpur).
 struct StageDynamics {
   transmission::Scene scene;
+  transmission::RatingInputs rating;  ///< what its ratings take (RateRun), resolved from `scene`
   geometry::Stage stage;
   transmission::FeComplianceOptions fe;
   transmission::FeStageCompliance compliance;

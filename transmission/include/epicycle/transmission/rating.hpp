@@ -71,11 +71,11 @@ struct GearRating {
   std::string note;
 };
 
-/// ISO 6336-1:2019 clause 7, K_Hβ by method C, with the inputs the model was given (docs/model.md
-/// §10, "Ratings across the face"). All lengths in m, forces in N, stiffnesses per unit face
-/// width in N/m² (1 N/(mm·µm) = 1e9 N/m²):
+/// ISO 6336-1 clause 7, K_Hβ by method C, with the inputs the model was given (docs/model.md §10,
+/// "Ratings across the face", which lists each formula's source and what is unconfirmed). All
+/// lengths in m, forces in N, stiffnesses per unit face width in N/m² (1 N/(mm·µm) = 1e9 N/m²):
 ///   F_βx = 1.33 B1 f_sh + B2 f_ma,  B1, B2 of the helix modification (MethodCModification),
-///   F_βx ≥ F_βx,min = 0.005 µm per N/mm of F_m/b (= 5e-12 m²/N × F_m/b),
+///   F_βx ≥ F_βx,min = max(0.005 µm per N/mm of F_m/b, 0.5 f_Hβ),
 ///   y_β = 0.15 F_βx ≤ 6 µm (case-hardened or nitrided steel),
 ///   F_βy = F_βx − y_β,  c_γβ = 0.85 c_γα,  x = F_βy c_γβ b/(2 F_m),
 ///   K_Hβ = 1 + x (x ≤ 1: the whole face carries),  2 √x = √(2 F_βy c_γβ b/F_m) (x > 1),
@@ -83,20 +83,28 @@ struct GearRating {
 struct FaceLoadFactorInputs {
   double assembly = 0;    ///< f_ma [m] ≥ 0
   double deflection = 0;  ///< f_sh [m] ≥ 0
+  double lead_slope = 0;  ///< f_Hβ [m] ≥ 0, the larger lead slope deviation of the two gears
   double mesh_stiffness = 0;  ///< c_γα [N/m²] > 0, per unit face width
   double face_width = 0;      ///< b [m] > 0
   double mean_force = 0;      ///< F_m = F_t K_A K_γ K_v [N] > 0
   double tooth_depth = 0;     ///< h [m] > 0
   double b1 = 1, b2 = 1;      ///< B1, B2 [-] in (0, 1] (MethodCModification)
 };
-/// ISO 6336-1 method C's B1 and B2 for the helix modification of a mesh's two gears (docs/
-/// face_width.md, "Ratings across the face"): crowning 0.5 and 0.5, end relief alone 0.7 and 0.7,
-/// none 1 and 1. The model's lead slopes are deviations (f_Hβ), not a helix correction, so the
-/// standard's helix-correction rows are not taken.
-std::array<double, 2> MethodCModification(bool crowned, bool end_relieved);
+/// ISO 6336-1 method C's B1 and B2 (its table of helix modifications) for a mesh whose two gears
+/// carry the crowning C_β = `crowning` [m] (the sum of both gears') and end relief or not, with
+/// the mesh's f_ma = `assembly` and f_sh = `deflection` [m]:
+///   crowned, C_β ≥ 0.5 (f_ma + f_sh): the row "C_β = 0.5 (f_ma + f_sh)", B1 = 0.5, B2 = 0.5;
+///   crowned, smaller C_β:            the row "C_β = 0.5 f_ma",          B1 = 1,   B2 = 0.5;
+///   end relief (not crowned):         B1 = 0.7, B2 = 0.7;  neither: B1 = 1, B2 = 1.
+/// The model's lead slopes are deviations (f_Hβ), not a helix correction, so the standard's
+/// helix-correction rows (B1 = 0.1) are not taken (docs/model.md §10, "Ratings across the face").
+/// @throws std::invalid_argument for a negative or non-finite length.
+std::array<double, 2> MethodCModification(double crowning, bool end_relieved, double assembly,
+                                          double deflection);
 struct FaceLoadFactorC {
   double f_beta_x = 0;      ///< F_βx [m], after its minimum
-  double f_beta_x_min = 0;  ///< 0.005 µm per N/mm of F_m/b [m]
+  double f_beta_x_min = 0;  ///< F_βx,min = max(0.005 µm per N/mm of F_m/b, 0.5 f_Hβ) [m]
+  bool at_minimum = false;  ///< F_βx,min exceeds 1.33 B1 f_sh + B2 f_ma (F_βx is the minimum)
   double y_beta = 0;        ///< running-in allowance y_β [m]
   double f_beta_y = 0;      ///< F_βy [m]
   double c_gamma_beta = 0;  ///< c_γβ [N/m²]
@@ -139,6 +147,25 @@ struct StageRating {
   std::vector<MeshFaceRating> face_width;
 };
 
+/// What a rating takes from its scene, resolved once when the stage's rig is built (StageRig,
+/// dynamics::StageDynamics, a study's case) and held there: every rating reads these, never the
+/// scene (docs/model.md §9, "Ratings").
+struct RatingInputs {
+  std::string source;               ///< the scene's file, for messages
+  double bending_limit = 0;         ///< σ_Flim [Pa] ([material] bending_limit_MPa); 0: not given
+  double contact_limit = 0;         ///< σ_Hlim [Pa] ([material] contact_limit_MPa); 0: not given
+  double youngs_modulus = 0;        ///< E [Pa] of every gear ([material] youngs_modulus_GPa)
+  double poisson_ratio = 0;         ///< ν [-] of every gear ([material] poisson_ratio)
+  double application_factor = 1;   ///< K_A [-] ([rating] application_factor)
+  double sun_torque = 0;            ///< T_s [N·m] ([load] sun_torque_Nm)
+  std::vector<LeadSpec> leads;      ///< the gears' lead slopes and modifications ([[face_width.lead]])
+};
+
+/// The rating inputs of a stage scene.
+/// @throws std::invalid_argument naming the scene key whose value breaks its rule (a scene made in
+///         code: E > 0, ν in [0, 0.5), K_A in [1, 4], T_s finite and not 0, limits finite ≥ 0).
+RatingInputs RatingInputsOf(const Scene& scene);
+
 /// A run in motion's own stresses for the model's columns of a rating: its largest root stresses
 /// and Hertz pressures, which already carry the dynamic loads (those columns then take K_v = 1;
 /// the ISO columns take the run's K_v against the quasi-static reference).
@@ -148,21 +175,21 @@ struct MotionStresses {
   std::string source;  ///< "the dynamic run at 1000 rpm", for the factor list
 };
 
-/// Refuses a rating (asked for by `asked_by`, e.g. "--rating") of a scene without both endurance
-/// limits. @throws std::invalid_argument naming the missing [material] key.
-void CheckRatingInputs(const Scene& scene, const std::string& asked_by);
+/// Refuses a rating (asked for by `asked_by`, e.g. "--rating") whose inputs lack either endurance
+/// limit. @throws std::invalid_argument naming the missing [material] key.
+void CheckRatingInputs(const RatingInputs& inputs, const std::string& asked_by);
 
-/// The ratings of `stage` (the scene's material, limits and K_A) with the run's `summary` (K_γ from
+/// The ratings of `stage` (`inputs`: its material, limits, K_A and torque) with the run's `summary` (K_γ from
 /// its LSR; root stresses and contact pressures when it has them) and the dynamic factor K_v
 /// (`dynamic_source` says where it came from). With `motion` (a dynamic run: `summary` is then
 /// its quasi-static reference at the same carrier angles) the model's own columns are the run's
 /// stresses in motion without K_v. With `mesh_stiffness` (c_γα [N/m²] per unit face width of the
 /// sun and ring meshes, MeanMeshStiffnessPerWidth) and a summary with face_width, the meshes'
 /// face-width ratings (StageRating::face_width).
-/// @throws std::invalid_argument naming the scene key if the scene gives no bending_limit_MPa or
+/// @throws std::invalid_argument naming the scene key if the inputs have no bending_limit_MPa or
 ///         contact_limit_MPa in [material], or for K_v not finite and ≥ 1;
 ///         std::runtime_error if the summary has no converged position (no K_γ from the run).
-StageRating RateStage(const Scene& scene, const geometry::Stage& stage,
+StageRating RateStage(const RatingInputs& inputs, const geometry::Stage& stage,
                       const SweepSummary& summary, double dynamic_factor = 1.0,
                       const std::string& dynamic_source = "quasi-static run",
                       const MotionStresses* motion = nullptr,
