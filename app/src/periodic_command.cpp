@@ -94,7 +94,9 @@ class ConsoleBranchSink final : public dynamics::BranchSink {
     Print(report::BranchPlanText(plan, a_.option + " " + a_.spec));
     std::fflush(stdout);
     std::filesystem::create_directories(a_.out);
-    csv_.emplace(path() + ".csv", provenance_, plan.options->parameter);
+    const dynamics::StageDynamics& rig = *plan.rig;
+    csv_.emplace(path() + ".csv", provenance_, plan.options->parameter,
+                 rig.stage_model.helical() ? rig.stage.planets() : 0);
   }
 
   void Point(const dynamics::StageBranchRecord& so_far) override {

@@ -1,4 +1,5 @@
 // The periodic-branch driver of dynamics/.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "epicycle/dynamics/periodic.hpp"
 #include "epicycle/dynamics/stage_periodic.hpp"
 #include "epicycle/report/record_json.hpp"
+#include "helical_ranges.hpp"
 #include "integration.hpp"
 #include "scene.hpp"
 
@@ -108,6 +110,12 @@ py::object PeriodicBranch(const ScenePtr& s, const std::string& parameter, doubl
   f["te_amplitude_urad"] = Array(std::move(te));
   f["sun_orbit_radius_um"] = Array(std::move(orbit));
   f["arclength"] = Array(std::move(arc));
+  // A helical stage: each point's axial loads over its period, the record's points[].helical.
+  std::vector<const transmission::HelicalLoadRange*> helical;
+  for (const dynamics::StageBranchPoint& p : r.points)
+    helical.push_back(p.helical.count > 0 ? &p.helical : nullptr);
+  if (std::any_of(helical.begin(), helical.end(), [](const auto* h) { return h != nullptr; }))
+    f["helical"] = HelicalRanges(helical);
   f["state"] = Array2(std::move(states), n, width);
   f["state_labels"] = r.dof_labels;
   f["bifurcations"] = Result(bif);
@@ -196,10 +204,16 @@ Result
     spectral_radius [-], real_multipliers_above_1, real_multipliers_below_minus_1,
     complex_multipliers_outside [-], k_gamma [-], te_amplitude_urad [µrad],
     sun_orbit_radius_um [µm], arclength [-], state (points × 2n: the deviations [m, rad] and
-    their rates [m/s, rad/s] at t = 0) with state_labels; bifurcations (kind, the parameter's
-    values, before_point); integrations, plain_integrations, steps [-], cpu_s, wall_s [s], warnings; record: the
-    branch's record, the keys and values of the program's periodic_branch_summary.json
-    (docs/records.md).
+    their rates [m/s, rad/s] at t = 0) with state_labels; a helical stage's helical: per point
+    the axial loads over its period as Result arrays under the keys of the record's
+    points[].helical, <name>_mean_<unit> and <name>_max_abs_<unit>, (points,) for
+    sun_axial_force_*_N, ring_axial_force_*_N, carrier_axial_force_*_N and (points, n) for the
+    planets' sun_mesh_axial_force_*_N, ring_mesh_axial_force_*_N, axial_force_*_N,
+    axial_tilting_moment_radial_*_Nm, axial_tilting_moment_tangential_*_Nm,
+    tilting_moment_radial_*_Nm, tilting_moment_tangential_*_Nm (column i: planet i + 1);
+    bifurcations (kind, the parameter's values, before_point); integrations,
+    plain_integrations, steps [-], cpu_s, wall_s [s], warnings; record: the branch's record, the
+    keys and values of the program's periodic_branch_summary.json (docs/records.md).
 
 Raises
 ------

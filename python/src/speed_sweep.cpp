@@ -18,10 +18,49 @@
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "failed_parts.hpp"
+#include "helical_ranges.hpp"
 #include "integration.hpp"
 #include "scene.hpp"
 
 namespace epicycle::python {
+
+// helical_ranges.hpp (here beside its first user, the speed sweep).
+py::object HelicalRanges(const std::vector<const transmission::HelicalLoadRange*>& rows) {
+  std::size_t n = 0;
+  for (const transmission::HelicalLoadRange* x : rows)
+    if (x) n = std::max(n, x->mean.planets.size());
+  py::dict h;
+  const auto count = static_cast<py::ssize_t>(rows.size());
+  auto put = [&](const std::string& name, const char* unit, const auto& value) {
+    std::vector<double> mean, max_abs;
+    for (const transmission::HelicalLoadRange* x : rows) value(x, &mean, &max_abs);
+    const auto cols = static_cast<py::ssize_t>(mean.size()) / std::max<py::ssize_t>(count, 1);
+    if (cols == 1) {
+      h[(name + "_mean_" + unit).c_str()] = Array(std::move(mean));
+      h[(name + "_max_abs_" + unit).c_str()] = Array(std::move(max_abs));
+    } else {
+      h[(name + "_mean_" + unit).c_str()] = Array2(std::move(mean), count, cols);
+      h[(name + "_max_abs_" + unit).c_str()] = Array2(std::move(max_abs), count, cols);
+    }
+  };
+  for (const auto& f : transmission::kHelicalMemberFields)
+    put(f.name, f.unit, [&](const transmission::HelicalLoadRange* x, std::vector<double>* mean,
+                            std::vector<double>* max_abs) {
+      const bool ok = x && x->count > 0;
+      mean->push_back(ok ? x->mean.*f.value : kNaN);
+      max_abs->push_back(ok ? x->max_abs.*f.value : kNaN);
+    });
+  for (const auto& f : transmission::kPlanetHelicalFields)
+    put(f.name, f.unit, [&](const transmission::HelicalLoadRange* x, std::vector<double>* mean,
+                            std::vector<double>* max_abs) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const bool ok = x && i < x->mean.planets.size();
+        mean->push_back(ok ? x->mean.planets[i].*f.value : kNaN);
+        max_abs->push_back(ok ? x->max_abs.planets[i].*f.value : kNaN);
+      }
+    });
+  return Result(h);
+}
 
 namespace {
 
@@ -40,45 +79,6 @@ class SweepProgress final : public dynamics::SpeedSweepSink {
   const Progress& report_;
   long done_ = 0, total_ = 0;
 };
-
-// Per speed the window's axial loads (SpeedResult::helical): <name>_mean_<unit> and
-// <name>_max_abs_<unit>, (S,) for the members and (S, n) for the planets' fields (a single
-// planet's too: (S,)).
-py::object HelicalWindows(const std::vector<dynamics::SpeedResult>& speeds) {
-  std::size_t n = 0;
-  for (const dynamics::SpeedResult& x : speeds) n = std::max(n, x.helical.mean.planets.size());
-  py::dict h;
-  const auto rows = static_cast<py::ssize_t>(speeds.size());
-  auto put = [&](const std::string& name, const char* unit, const auto& value) {
-    std::vector<double> mean, max_abs;
-    for (const dynamics::SpeedResult& x : speeds) value(x, &mean, &max_abs);
-    const auto cols = static_cast<py::ssize_t>(mean.size()) / std::max<py::ssize_t>(rows, 1);
-    if (cols == 1) {
-      h[(name + "_mean_" + unit).c_str()] = Array(std::move(mean));
-      h[(name + "_max_abs_" + unit).c_str()] = Array(std::move(max_abs));
-    } else {
-      h[(name + "_mean_" + unit).c_str()] = Array2(std::move(mean), rows, cols);
-      h[(name + "_max_abs_" + unit).c_str()] = Array2(std::move(max_abs), rows, cols);
-    }
-  };
-  for (const auto& f : transmission::kHelicalMemberFields)
-    put(f.name, f.unit, [&](const dynamics::SpeedResult& x, std::vector<double>* mean,
-                                 std::vector<double>* max_abs) {
-      const bool ok = x.ok() && x.helical.count > 0;
-      mean->push_back(ok ? x.helical.mean.*f.value : kNaN);
-      max_abs->push_back(ok ? x.helical.max_abs.*f.value : kNaN);
-    });
-  for (const auto& f : transmission::kPlanetHelicalFields)
-    put(f.name, f.unit, [&](const dynamics::SpeedResult& x, std::vector<double>* mean,
-                                 std::vector<double>* max_abs) {
-      for (std::size_t i = 0; i < n; ++i) {
-        const bool ok = x.ok() && i < x.helical.mean.planets.size();
-        mean->push_back(ok ? x.helical.mean.planets[i].*f.value : kNaN);
-        max_abs->push_back(ok ? x.helical.max_abs.planets[i].*f.value : kNaN);
-      }
-    });
-  return Result(h);
-}
 
 py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_rpm,
                       const std::string& range, double window_cycles, int outputs_per_cycle,
@@ -222,7 +222,11 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
   // A helical stage: each speed's axial loads over its window (NaN where failed).
   if (std::any_of(r.speeds.begin(), r.speeds.end(),
                   [](const dynamics::SpeedResult& x) { return x.helical.count > 0; }))
-    f["helical"] = HelicalWindows(r.speeds);
+    f["helical"] = HelicalRanges([&] {
+      std::vector<const transmission::HelicalLoadRange*> rows;
+      for (const dynamics::SpeedResult& x : r.speeds) rows.push_back(x.ok() ? &x.helical : nullptr);
+      return rows;
+    }());
   // The record as the program's summary JSON has it (its provenance is the program's).
   f["record"] = JsonToPython(report::RecordJson(r));
   py::object result = Result(f);

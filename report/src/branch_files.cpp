@@ -5,14 +5,17 @@
 #include <fmt/format.h>
 
 #include "epicycle/report/provenance.hpp"
+#include "helical_columns.hpp"
 
 namespace epicycle::report {
 
 namespace {
 const std::string kSunSpeed = dynamics::StagePeriodicSystem::kSunSpeed;
 
-// The provenance line and the columns: the parameter's, the sun speed's when it is another.
-std::string BranchHead(const nlohmann::json& provenance, const std::string& parameter) {
+// The provenance line and the columns: the parameter's, the sun speed's when it is another, a
+// helical stage's axial loads over the period after the figures.
+std::string BranchHead(const nlohmann::json& provenance, const std::string& parameter,
+                       int helical_planets) {
   std::string head = ProvenanceCsvLine(provenance);
   head += "index,";
   head += parameter;
@@ -20,8 +23,9 @@ std::string BranchHead(const nlohmann::json& provenance, const std::string& para
   head +=
       ",period_s,stability,spectral_radius,real_multipliers_above_1,"
       "real_multipliers_below_minus_1,complex_multipliers_outside,K_gamma,te_amplitude_urad,"
-      "sun_orbit_radius_um,arclength,corrector_iterations,bifurcations_before,"
-      "bifurcation_parameters\n";
+      "sun_orbit_radius_um";
+  if (helical_planets > 0) head += HelicalRangeColumns(helical_planets);
+  head += ",arclength,corrector_iterations,bifurcations_before,bifurcation_parameters\n";
   return head;
 }
 }  // namespace
@@ -58,8 +62,10 @@ std::vector<PlotSeries> StabilitySegments(const std::string& name, const std::ve
 }
 
 BranchFile::BranchFile(const std::string& path, const nlohmann::json& provenance,
-                       const std::string& parameter)
-    : csv_(path, BranchHead(provenance, parameter)), speed_column_(parameter != kSunSpeed) {}
+                       const std::string& parameter, int helical_planets)
+    : csv_(path, BranchHead(provenance, parameter, helical_planets)),
+      speed_column_(parameter != kSunSpeed),
+      helical_planets_(helical_planets) {}
 
 void BranchFile::Update(const dynamics::StageBranchRecord& r) {
   for (; written_ < r.points.size(); ++written_) {
@@ -73,13 +79,15 @@ void BranchFile::Update(const dynamics::StageBranchRecord& r) {
       }
     std::string speed;
     if (speed_column_) speed = ',', speed += Cell(p.sun_speed_rpm);
-    csv_.WriteLine(fmt::format("{},{}{},{},{},{},{},{},{},{},{},{},{},{},{},{}", p.index,
-                               Cell(p.parameter), speed, Cell(p.period),
-                               dynamics::StabilityName(p.stability), Cell(p.spectral_radius),
-                               p.real_above_one, p.real_below_minus_one, p.complex_outside,
-                               Cell(p.k_gamma), Cell(p.te_amplitude * 1e6),
-                               Cell(p.orbit_radius * 1e6), Cell(p.arclength),
-                               p.corrector_iterations, CsvText(kinds), CsvText(where)));
+    csv_.WriteLine(fmt::format(
+        "{},{}{},{},{},{},{},{},{},{},{},{}{},{},{},{},{}", p.index, Cell(p.parameter), speed,
+        Cell(p.period), dynamics::StabilityName(p.stability), Cell(p.spectral_radius),
+        p.real_above_one, p.real_below_minus_one, p.complex_outside, Cell(p.k_gamma),
+        Cell(p.te_amplitude * 1e6), Cell(p.orbit_radius * 1e6),
+        helical_planets_ > 0 ? HelicalRangeCells(helical_planets_, p.helical, p.helical.count > 0)
+                             : std::string(),
+        Cell(p.arclength),
+        p.corrector_iterations, CsvText(kinds), CsvText(where)));
   }
 }
 

@@ -11,6 +11,7 @@
 #include "epicycle/report/provenance.hpp"
 #include "epicycle/report/run_files.hpp"
 #include "epicycle/report/svg_plot.hpp"
+#include "helical_columns.hpp"
 
 namespace epicycle::report {
 
@@ -23,45 +24,17 @@ std::string DeviationPartColumns() {
   return out;
 }
 
-// The planet fields of a helical stage's sweep columns (run_files.hpp, SpeedSweepFile).
-constexpr std::array<std::size_t, 4> kSweepPlanetFields = {0, 1, 5, 6};
-
-// The helical columns (SpeedSweepFile): `cell(name, unit, mean, max_abs, planet)` for every
-// member field (planet 0) and the planets' fields named in kSweepPlanetFields (planet i ≥ 1), in
-// the file's order.
-template <typename Cell>
-void ForEachHelicalColumn(int planets, const transmission::HelicalLoadRange* range, Cell&& cell) {
-  for (const auto& f : transmission::kHelicalMemberFields)
-    cell(f.name, f.unit, range ? range->mean.*f.value : 0.0,
-         range ? range->max_abs.*f.value : 0.0, 0);
-  for (int i = 0; i < planets; ++i)
-    for (std::size_t k : kSweepPlanetFields) {
-      const auto& f = transmission::kPlanetHelicalFields[k];
-      const auto p = static_cast<std::size_t>(i);
-      const bool has = range && p < range->mean.planets.size();
-      cell(f.name, f.unit, has ? range->mean.planets[p].*f.value : 0.0,
-           has ? range->max_abs.planets[p].*f.value : 0.0, i + 1);
-    }
-}
-
 }  // namespace
 
 SpeedSweepFile::SpeedSweepFile(const std::string& path, const nlohmann::json& provenance,
                                int helical_planets)
     : csv_(path), helical_planets_(helical_planets) {
-  std::string helical;
-  ForEachHelicalColumn(helical_planets, nullptr,
-                       [&](const char* name, const char* unit, double, double, int planet) {
-                         const std::string tail = planet > 0 ? fmt::format("_{}", planet) : "";
-                         helical += fmt::format("{0}_mean_{1}{2},{0}_max_abs_{1}{2},", name, unit,
-                                                tail);
-                       });
   csv_.Write(ProvenanceCsvLine(provenance) +
              "index,sun_speed_rpm,mesh_frequency_Hz,status,K_gamma,dynamic_factor,"
              "dynamic_factor_mesh,peak_mesh_force_N,te_amplitude_urad,sun_orbit_radius_um,lsr_min,"
              "lsr_max,lsr_deviation," +
-             DeviationPartColumns() + "largest_residual," + helical +
-             "steps,evaluations,failed_contact_solves,cpu_s,wall_s,message\n");
+             DeviationPartColumns() + "largest_residual" + HelicalRangeColumns(helical_planets) +
+             ",steps,evaluations,failed_contact_solves,cpu_s,wall_s,message\n");
 }
 
 void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::SpeedSweepPlan& plan) {
@@ -69,21 +42,13 @@ void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::Speed
   auto v = [&](double x) { return r.ok() ? Cell(x) : std::string(); };
   std::string parts;
   for (double x : r.deviation_parts) parts += v(x) + ",";
-  std::string helical;
-  const bool has = r.ok() && r.helical.count > 0;
-  ForEachHelicalColumn(helical_planets_, &r.helical,
-                       [&](const char*, const char*, double mean, double max_abs, int) {
-                         helical += ",";
-                         helical += has ? Cell(mean) : std::string();
-                         helical += ",";
-                         helical += has ? Cell(max_abs) : std::string();
-                       });
   csv_.WriteLine(fmt::format(
       "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Cell(r.sun_speed_rpm),
       Cell(r.mesh_frequency), r.ok() ? "ok" : transmission::RunStatusName(r.status), v(r.k_gamma), v(r.dynamic_factor),
       CsvText(r.ok() && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : ""), v(r.peak_mesh_force),
       v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min), v(r.lsr_max),
-      v(r.lsr_deviation) + "," + parts + v(r.largest_residual) + helical, r.stats.steps,
+      v(r.lsr_deviation) + "," + parts + v(r.largest_residual) +
+          HelicalRangeCells(helical_planets_, r.helical, r.ok() && r.helical.count > 0), r.stats.steps,
       r.stats.rhs_evaluations, r.stats.failed_solves, Cell(r.cpu_seconds), Cell(r.wall_seconds),
       CsvText(r.message)));
 }

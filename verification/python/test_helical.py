@@ -111,6 +111,96 @@ def test_speed_sweep_helical_loads_equal_the_program_files(tmp_path):
     assert 0 < abs(h.sun_axial_force_mean_N[0]) <= h.sun_axial_force_max_abs_N[0]
 
 
+# The helical branch of the CLI test "periodic branch of the helical paper stage reports axial
+# forces per point" (verification/CMakeLists.txt): 3000 to 3001 rpm, steps of at most half the
+# range, every other setting at its default (docs/periodic.md §3, "Helical stages").
+BRANCH_ARGS = ("dynamic", HELICAL5, "--speed-sweep", "3000:3001:2", "--periodic", "--quiet")
+# A branch CSV's axial-load columns (the speed sweep's: docs/speed_sweeps.md, "Helical stages"):
+# the members' and, per planet, its meshes' axial forces and its tilting moments.
+MEMBER_KEYS = ("sun_axial_force_N", "ring_axial_force_N", "carrier_axial_force_N")
+PLANET_COLUMN_KEYS = ("sun_mesh_axial_force_N", "ring_mesh_axial_force_N",
+                      "tilting_moment_radial_Nm", "tilting_moment_tangential_Nm")
+
+
+def stat_key(name, stat):
+    """sun_axial_force_N, mean -> sun_axial_force_mean_N (the record's and the CSV's name)."""
+    base, unit = name.rsplit("_", 1)
+    return f"{base}_{stat}_{unit}"
+
+
+def helical_branch_files(tmp_path):
+    """The folder of the program's helical branch: the CLI test's (CTest runs it first, its
+    fixture, and names its folder in EPICYCLE_HELICAL_BRANCH_DIR), else a run of its own."""
+    out = os.environ.get("EPICYCLE_HELICAL_BRANCH_DIR")
+    if out:
+        return out
+    run_cli(*BRANCH_ARGS, "--out", tmp_path / "cli")
+    return tmp_path / "cli"
+
+
+def test_periodic_branch_helical_loads_equal_the_program_files(tmp_path):
+    """A helical stage's branch of periodic orbits (docs/periodic.md §3, "Helical stages"): each
+    point's axial forces and tilting moments over its period are, in the program's CSV, the
+    summary JSON's values (the CSV's 9 digits), and, as Python's arrays, the JSON's values bit for
+    bit under the same keys."""
+    out = helical_branch_files(tmp_path)
+    rows = read_csv(os.path.join(out, "periodic_branch.csv"))
+    j = read_json(os.path.join(out, "periodic_branch_summary.json"))
+    points = j["points"]
+    assert j["status"] == "completed" and len(rows) == len(points) >= 2
+    # The CSV: the speed sweep's columns after sun_orbit_radius_um, each the JSON's value.
+    header = list(rows[0])
+    columns = [stat_key(k, s) for k in MEMBER_KEYS for s in ("mean", "max_abs")]
+    columns += [f"{stat_key(k, s)}_{i}" for i in (1, 2, 3) for k in PLANET_COLUMN_KEYS
+                for s in ("mean", "max_abs")]
+    at = header.index("sun_orbit_radius_um") + 1
+    assert header[at:at + len(columns)] == columns
+    assert header[at + len(columns)] == "arclength"
+    for k, row in enumerate(rows):
+        h = points[k]["helical"]
+        for key in MEMBER_KEYS:
+            for stat in ("mean", "max_abs"):
+                assert row[stat_key(key, stat)] == num(h[stat_key(key, stat)]), (k, key)
+        for i in range(3):
+            for key in PLANET_COLUMN_KEYS:
+                for stat in ("mean", "max_abs"):
+                    name = stat_key(key, stat)
+                    assert row[f"{name}_{i + 1}"] == num(h["planets"][i][name]), (k, i, name)
+        # Action and reaction: the sun carries the sun meshes' axial forces on the planets
+        # reversed, the ring the ring meshes', the carrier the planets' sums. Each cell is
+        # rounded to 9 digits (relative error <= 5e-9), the means' own round-off is ~64 eps:
+        # the sums agree to 5e-9 of the sum of the magnitudes, 1e-8 with a factor 2 for both.
+        cell = lambda name: float(row[name])  # noqa: E731
+        sun = [cell(f"sun_mesh_axial_force_mean_N_{i}") for i in (1, 2, 3)]
+        ring = [cell(f"ring_mesh_axial_force_mean_N_{i}") for i in (1, 2, 3)]
+        for member, parts in (("sun_axial_force_mean_N", [-x for x in sun]),
+                              ("ring_axial_force_mean_N", [-x for x in ring]),
+                              ("carrier_axial_force_mean_N", sun + ring)):
+            scale = abs(cell(member)) + sum(abs(x) for x in parts)
+            assert abs(cell(member) - sum(parts)) <= 1e-8 * scale, (k, member)
+        assert abs(cell("sun_axial_force_mean_N")) > 1000  # n F_a of the stage's torque: loaded
+    # Python: the same request; the arrays are the JSON's values under the JSON's keys.
+    b = epicycle.periodic_branch(epicycle.Scene.load(HELICAL5), "sun_speed_rpm", 3000, 3001,
+                                 steps=2)
+    assert b.ok and len(b.sun_speed_rpm) == len(points)
+    h = b.helical
+    json_keys = {key for key in points[0]["helical"] if key not in ("planets",
+                                                                     "axial_and_tilting_motion")}
+    json_keys |= {key for key in points[0]["helical"]["planets"][0] if key != "planet"}
+    assert set(vars(h)) == json_keys and len(json_keys) == 2 * (3 + 7)
+    for k, p in enumerate(points):
+        for key, value in p["helical"].items():
+            if key not in ("planets", "axial_and_tilting_motion"):
+                assert getattr(h, key).shape == (len(points),)
+                assert getattr(h, key)[k] == value, (k, key)
+        for i, planet in enumerate(p["helical"]["planets"]):
+            assert planet["planet"] == i + 1
+            for key, value in planet.items():
+                if key != "planet":
+                    assert getattr(h, key).shape == (len(points), 3)
+                    assert getattr(h, key)[k, i] == value, (k, i, key)
+
+
 def test_helical_study_rows_carry_the_quasistatic_axial_loads(tmp_path):
     """A helical study of 3 cases (the sun torque on a grid, docs/studies.md): each row's axial
     forces and tilting moments are the quasi-static driver's means at the case's torque over the

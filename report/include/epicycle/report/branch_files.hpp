@@ -24,13 +24,18 @@ std::vector<PlotSeries> StabilitySegments(const std::string& name, const std::ve
                                           const std::vector<bool>& stable, int colour = 0);
 
 /// PATH.csv of a stage branch: one line per point as the continuation computes it, with the
-/// bifurcations located just before it.
+/// bifurcations located just before it. A helical stage's `helical_planets` > 0 planets add,
+/// after sun_orbit_radius_um, each point's axial loads over its period
+/// (StageBranchPoint::helical) in the speed sweep's columns (SpeedSweepFile): <name>_mean_<unit>
+/// and <name>_max_abs_<unit> of sun_axial_force, ring_axial_force, carrier_axial_force [N], and
+/// per planet i sun_mesh_axial_force, ring_mesh_axial_force [N], tilting_moment_radial,
+/// tilting_moment_tangential [N·m] with the suffix _<i>; a spur stage's file has none of them.
 class BranchFile {
  public:
   /// `parameter`: the continued parameter's key with its unit ("sun_speed_rpm"), the first
   /// figure's column; the sun speed's column follows when it is another. @throws std::runtime_error naming the file if it cannot be written.
   BranchFile(const std::string& path, const nlohmann::json& provenance,
-             const std::string& parameter);
+             const std::string& parameter, int helical_planets = 0);
   /// Writes the record's points not yet written (as the continuation streams it).
   void Update(const dynamics::StageBranchRecord& record);
   void Close();
@@ -38,6 +43,7 @@ class BranchFile {
  private:
   CsvFile csv_;
   bool speed_column_ = true;  // sun_speed_rpm beside another parameter
+  int helical_planets_ = 0;   // axial-load columns: 3 + 4 per planet (mean and max_abs), 0 without
   std::size_t written_ = 0;
 };
 
