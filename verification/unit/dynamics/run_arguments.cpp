@@ -33,7 +33,8 @@ TEST_CASE("a speed sweep's FROM:TO:N: the grid and its refusals", "[unit][dynami
   // value on the way (11500 k, its 23rd, 500 + 500 k) is a whole number below 2^53, so exact.
   const std::vector<double> grid = dynamics::ParseSpeedSweep("--speed-sweep", "500:12000:24");
   REQUIRE(grid.size() == 24);
-  for (std::size_t k = 0; k < grid.size(); ++k) CHECK(grid[k] == 500.0 + 500.0 * k);
+  for (std::size_t k = 0; k < grid.size(); ++k)
+    CHECK(grid[k] == 500.0 + 500.0 * static_cast<double>(k));
   const std::string rule =
       "must be FROM:TO:N, sun speeds in rpm with N speeds, ends included (e.g. 500:12000:24)";
   for (const char* bad : {"1000:5000", "1000:5000:3:4", "1000:5000:3x", "a:5000:3", ""})
