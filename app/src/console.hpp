@@ -2,7 +2,10 @@
 // the failure that exits 1; and the report library's writers under the app's namespace.
 #pragma once
 
+#include <unistd.h>
+
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -11,7 +14,6 @@
 #include "epicycle/report/files.hpp"
 #include "epicycle/report/provenance.hpp"
 #include "epicycle/report/svg_plot.hpp"
-#include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/scene.hpp"
 
 namespace epicycle::app {
@@ -35,13 +37,6 @@ class ComputationFailed : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The influence-table options of `--cache DIR` (empty: the default folder) and `--no-cache`.
-inline transmission::FeComplianceOptions TableOptions(const std::string& cache, bool no_cache) {
-  transmission::FeComplianceOptions o;
-  if (!no_cache) o.cache_directory = cache.empty() ? transmission::DefaultCacheDirectory() : cache;
-  return o;
-}
-
 /// The scene of a command that needs a stage, its sun support overridden by `--sun` if given.
 /// @throws std::invalid_argument for a gear-pair scene (and the reader's bad-input errors).
 inline transmission::Scene StageScene(const std::string& file, const std::string& sun,
@@ -54,23 +49,30 @@ inline transmission::Scene StageScene(const std::string& file, const std::string
   return scene;
 }
 
-/// The sun supports `--sun` may set (an elastic one needs the scene's stiffness).
-inline std::vector<std::string> SunOverrideNames() {
-  return {transmission::SunSupportName(transmission::SunSupport::kFixed),
-          transmission::SunSupportName(transmission::SunSupport::kFloating)};
-}
+/// The progress bar "[#####     ] done/total what, failed failed, s s" on one rewritten stderr
+/// line, shown when stderr is a terminal and the user did not ask for --quiet.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool quiet) : tty_(!quiet && isatty(fileno(stderr))) {}
+  bool tty() const { return tty_; }
+  void Restart() { t0_ = std::chrono::steady_clock::now(); }
+  void Show(int done, int total, int failed, const char* what) const {
+    if (!tty_) return;
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    const int width = 30, filled = total > 0 ? width * done / total : width;
+    std::fprintf(stderr, "\r  [%s%s] %d/%d %s, %d failed, %.1f s",
+                 std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(), done,
+                 total, what, failed, seconds);
+    if (done == total) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
 
-/// "[#####     ] done/total what, failed failed, s s" on one rewritten stderr line.
-inline void Progress(int done, int total, int failed, double seconds, const char* what) {
-  const int width = 30, filled = total > 0 ? width * done / total : width;
-  std::fprintf(stderr, "\r  [%s%s] %d/%d %s, %d failed, %.1f s", std::string(filled, '#').c_str(),
-               std::string(width - filled, ' ').c_str(), done, total, what, failed, seconds);
-  if (done == total) std::fprintf(stderr, "\n");
-  std::fflush(stderr);
-}
+ private:
+  bool tty_;
+  std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
+};
 
-/// Scene warnings (Scene::warnings plus those computed from results), printed to stdout under a
-/// "WARNING" heading; nothing if the list is empty.
 /// The errno of the first write to the standard output that failed (0: none): main names it when
 /// the final flush finds the stream's error flag (a report larger than the stream's buffer is
 /// written, and fails, inside the call that prints it).
@@ -86,6 +88,8 @@ inline void Print(const std::string& text) {
     StdoutErrno() = errno != 0 ? errno : EIO;
 }
 
+/// Scene warnings (Scene::warnings plus those computed from results), printed to stdout under a
+/// "WARNING" heading; nothing if the list is empty.
 inline void PrintWarnings(const std::vector<std::string>& warnings) {
   if (warnings.empty()) return;
   std::printf(

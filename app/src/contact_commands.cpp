@@ -17,8 +17,6 @@
 #include "epicycle/solvers/backend_comparison.hpp"
 #include "epicycle/solvers/contact_io.hpp"
 #include "epicycle/solvers/contact_solver.hpp"
-#include "epicycle/solvers/performance_profile.hpp"
-#include "epicycle/transmission/record.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "options.hpp"
 
@@ -83,39 +81,13 @@ struct CompareArgs {
   int repeats = solvers::kDefaultComparisonRepeats;
 };
 
-// The provenance of a comparison's files: the back ends, the number of problem files and the
-// hash of their hashes.
-nlohmann::json CompareProvenance(const solvers::ComparisonRequest& request) {
-  const std::vector<std::string> files = solvers::ListProblemFiles(request.inputs);
-  std::string hashes, backends_used;
-  for (const std::string& f : files) hashes += FileHash(f) + "\n";
-  for (Backend b : request.backends)
-    backends_used += (backends_used.empty() ? "" : " ") + solvers::BackendName(b);
-  return FileProvenance(backends_used, fmt::format("{} problem files", files.size()),
-                        transmission::ContentHash(hashes));
-}
-
-void WriteCompareSvg(const std::string& prefix, const solvers::ComparisonRecord& record) {
-  std::vector<solvers::ProfileRun> runs;
-  std::vector<report::ErrorTimePoint> points;
-  for (const ComparisonRun& r : record.runs) {
-    runs.push_back({r.problem, r.backend, r.median_seconds, r.solved});
-    points.push_back({r.backend, r.median_seconds, r.error(), r.solved});
-  }
-  WriteTextFile(prefix + "_profile.svg",
-                report::PerformanceProfileSvg(solvers::DolanMoreProfile(runs, record.backends),
-                                              record.problem_names.size()));
-  WriteTextFile(prefix + "_error_vs_time.svg", report::ErrorVersusTimeSvg(record.backends, points));
-  fmt::print("SVG written to {0}_profile.svg and {0}_error_vs_time.svg\n", prefix);
-}
-
 void CompareCommand(const CompareArgs& a) {
   solvers::ComparisonRequest request;
   request.inputs = a.inputs;
   request.options.tolerance = a.tol;
   request.repeats = a.repeats;
   nlohmann::json provenance;
-  if (!a.csv.empty() || !a.json.empty()) provenance = CompareProvenance(request);
+  if (!a.csv.empty() || !a.json.empty()) provenance = report::ComparisonProvenance(request);
   std::optional<CsvFile> out;
   if (!a.csv.empty()) {
     const fs::path parent = fs::path(a.csv).parent_path();
@@ -134,7 +106,10 @@ void CompareCommand(const CompareArgs& a) {
   if (!a.markdown.empty()) WriteTextFile(a.markdown, tables.markdown);
   if (!a.json.empty())
     WriteTextFile(a.json, report::SummaryJson(record, provenance).dump(2) + "\n");
-  if (!a.svg_prefix.empty()) WriteCompareSvg(a.svg_prefix, record);
+  if (!a.svg_prefix.empty()) {
+    report::WriteComparisonPlots(a.svg_prefix, record);
+    fmt::print("SVG written to {0}_profile.svg and {0}_error_vs_time.svg\n", a.svg_prefix);
+  }
   if (!record.failures.empty())
     throw ComputationFailed(fmt::format(
         "{} of {} runs (the reference and every back end on every problem) did not converge: "
@@ -149,6 +124,7 @@ void StabilityCommand(const std::string& dir, double tol) {
 }  // namespace
 
 void RegisterContactCommands(CLI::App& app) {
+  using A = transmission::ContactArguments;
   CLI::App* contact = app.add_subcommand("contact", "the contact problem and its back ends");
   contact->require_subcommand(1);
 
@@ -161,7 +137,7 @@ void RegisterContactCommands(CLI::App& app) {
   solve->add_option("file", s_file, "problem file (JSON)")->required();
   solve->add_option("--backend", s_backend,
                     "newton, ipopt, nlopt-slsqp, nlopt-lbfgs, nlopt-auglag");
-  AddNumber(solve, "--tol", s_tol, "tolerance on the nondimensional residual", kContactTolerance);
+  Add(solve, A::kTolerance, s_tol);
   solve->add_flag("--polish", s_polish, "labelled active-set polish step after the raw solve");
   solve->add_option("--option", s_kv, "back-end option KEY=VALUE (e.g. newton.ls_beta=0.5)");
   solve->callback([] { SolveCommand(s_file, s_backend, s_tol, s_polish, s_kv); });
@@ -172,9 +148,8 @@ void RegisterContactCommands(CLI::App& app) {
   compare->add_option("--csv", c.csv, "write one row per (back end, problem)");
   compare->add_option("--svg-prefix", c.svg_prefix,
                       "write PREFIX_profile.svg and PREFIX_error_vs_time.svg");
-  AddNumber(compare, "--tol", c.tol, "tolerance on the nondimensional residual", kContactTolerance);
-  AddNumber(compare, "--repeat", c.repeats,
-            "solves per (back end, problem); the median time is reported", kComparisonRepeats);
+  Add(compare, A::kTolerance, c.tol);
+  Add(compare, A::kRepeats, c.repeats);
   compare->add_option("--markdown", c.markdown,
                       "write the summary table as markdown (tools/update_solver_docs.sh puts it "
                       "into docs/solvers.md)");
@@ -188,8 +163,7 @@ void RegisterContactCommands(CLI::App& app) {
   static double st_tol = 1e-10;
   stability->add_option("dir", st_dir, "collection directory (verification/data/contact)")
       ->required();
-  AddNumber(stability, "--tol", st_tol, "tolerance on the nondimensional residual",
-            kContactTolerance);
+  Add(stability, A::kTolerance, st_tol);
   stability->callback([] { StabilityCommand(st_dir, st_tol); });
 }
 

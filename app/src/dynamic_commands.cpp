@@ -3,9 +3,6 @@
 // (CSV per output step, per tooth pair and per bearing; a JSON summary at the end; SVG plots of
 // LSR(t), TE(t) and the sun's orbit). A run that fails midway keeps every step already written
 // and says where and why (non-zero exit).
-#include <unistd.h>
-
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -42,103 +39,59 @@ namespace {
 
 using json = nlohmann::json;
 
+// What the command line gives besides the request's fields.
 struct DynamicArgs {
-  std::string scene, backend = "newton", integrator = "cvode-bdf", out = "dynamic-out", range, sun,
-                     friction, cache, speed_sweep, continue_spec;  // range "": planet
-  double rtol = 1e-6, start_deg = 0, window_cycles = 0;
-  // Not given: the scene's speed, the range's duration, the library's defaults (the spectrum's:
-  // one carrier revolution, 4 mesh cycles skipped).
-  std::optional<double> speed_rpm, time, rate_scale, contact_tol, spectrum_resolution,
-      spectrum_skip, time_limit;
-  std::optional<long> max_steps;
-  int outputs_per_cycle = 0, max_order = 5, threads = 0, harmonics = 0, periodic_points = 0,
-      hb_harmonics = 0;
+  std::string scene, out = "dynamic-out", range, sun, speed_sweep, continue_spec;  // range "": planet
+  TableArgs tables;
+  double window_cycles = 0;
+  int threads = 0, harmonics = 0, periodic_points = 0, hb_harmonics = 0;
   std::string periodic_method;
   std::string carry_state;  // --carry-state: empty (none), up, down
-  bool periodic = false, no_cache = false, quiet = false, fd_jacobian = false, stresses = false,
-       spectrum = false, rating = false;
+  bool periodic = false, quiet = false, fd_jacobian = false;
 };
 
 // The program's sink: the run's files (report/), its header on the console and the progress bar.
 class ConsoleSink final : public report::DynamicRunOutput {
  public:
-  ConsoleSink(const DynamicArgs& a, json provenance)
-      : DynamicRunOutput(a.out, std::move(provenance)),
-        a_(a),
-        tty_(!a.quiet && isatty(fileno(stderr))) {}
+  ConsoleSink(const DynamicArgs& a, const dynamics::DynamicRequest& r, json provenance)
+      : DynamicRunOutput(a.out, std::move(provenance)), r_(r), bar_(a.quiet) {}
 
   void Start(const dynamics::DynamicPlan& p) override {
     if (!p.cost_warning.empty()) std::fprintf(stderr, "warning: %s\n", p.cost_warning.c_str());
-    Print(report::DynamicPlanText(p, a_.integrator, a_.backend));
+    Print(report::DynamicPlanText(p, r_.integrator, r_.backend));
     DynamicRunOutput::Start(p);
     planets_ = p.rig->stage.planets();
     outputs_ = p.span->outputs;
-    t0_ = std::chrono::steady_clock::now();
+    bar_.Restart();
   }
 
   void Step(const dynamics::DynamicSample& s) override {
     DynamicRunOutput::Step(s);
-    if (tty_)
-      Progress(static_cast<int>(steps()), outputs_, 0,
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(),
-               "steps");
+    bar_.Show(static_cast<int>(steps()), outputs_, 0, "steps");
   }
 
-  bool tty() const { return tty_; }
+  bool tty() const { return bar_.tty(); }
   int planets() const { return planets_; }
 
  private:
-  const DynamicArgs& a_;
-  bool tty_;
+  const dynamics::DynamicRequest& r_;
+  ProgressBar bar_;
   int planets_ = 0, outputs_ = 0;
-  std::chrono::steady_clock::time_point t0_;
 };
 
-dynamics::DynamicRequest Request(const DynamicArgs& a) {
-  dynamics::DynamicRequest r;
+// The request's fields the command line does not bind directly.
+void Complete(const DynamicArgs& a, dynamics::DynamicRequest& r) {
   r.scene = StageScene(a.scene, a.sun, "dynamic");
-  r.sun_speed_rpm = a.speed_rpm;
-  r.friction = a.friction;
   if (!a.range.empty()) r.range = transmission::RunRangeFromName(a.range);
-  r.time_s = a.time;
-  r.start_deg = a.start_deg;
-  r.outputs_per_cycle = a.outputs_per_cycle;
-  r.backend = a.backend;
-  r.integrator = a.integrator;
-  r.rtol = a.rtol;
-  r.rate_scale = a.rate_scale;
-  r.contact_tolerance = a.contact_tol;
-  r.max_order = a.max_order;
   r.analytic_jacobian = !a.fd_jacobian;
-  r.max_steps = a.max_steps;
-  r.time_limit_s = a.time_limit;
-  r.stresses = a.stresses;
-  r.rating = a.rating;
-  r.spectrum = a.spectrum;
-  r.spectrum_resolution_hz = a.spectrum_resolution;
-  r.spectrum_skip_cycles = a.spectrum_skip;
-  r.tables = TableOptions(a.cache, a.no_cache);
-  r.names = {"--time",
-             "--speed-rpm",
-             "--range",
-             "--rating",
-             "--spectrum-resolution",
-             "--spectrum-skip-cycles",
-             "--outputs-per-cycle",
-             "--start-deg",
-             "--rtol",
-             "--rate-scale",
-             "--contact-tol",
-             "--max-order",
-             "--max-steps",
-             "--time-limit"};
-  return r;
+  r.tables = a.tables.Options();
+  r.names = dynamics::DynamicOptionNames::Program();
 }
 
-void RunDynamic(const DynamicArgs& a) {
-  if (!a.speed_sweep.empty() && a.spectrum)
+void RunDynamic(const DynamicArgs& a, dynamics::DynamicRequest& r) {
+  if (!a.speed_sweep.empty() && r.spectrum)
     throw std::invalid_argument("--spectrum belongs to a run at one speed, not --speed-sweep");
-  if (!a.speed_sweep.empty() && (a.speed_rpm || a.time))
+  if (!a.speed_sweep.empty() && (r.sun_speed_rpm || r.time_s))
     throw std::invalid_argument("--speed-sweep = " + a.speed_sweep +
                                 ": runs its own speeds and windows; give it without --speed-rpm "
                                 "and --time");
@@ -151,7 +104,8 @@ void RunDynamic(const DynamicArgs& a) {
   const dynamics::CarryState carry =
       a.carry_state.empty() ? dynamics::CarryState::kNone
                             : dynamics::ParseCarryState("--carry-state", a.carry_state);
-  const dynamics::DynamicRequest request = Request(a);
+  Complete(a, r);
+  const dynamics::DynamicRequest& request = r;
   // The periodic orbits: over the sun speed (--speed-sweep with --periodic) or another parameter
   // (--continue); their range and the scene's period are checked before the tables.
   if (a.periodic && a.speed_sweep.empty())
@@ -160,7 +114,7 @@ void RunDynamic(const DynamicArgs& a) {
   if (!a.continue_spec.empty() && !a.speed_sweep.empty())
     throw std::invalid_argument("--continue = " + a.continue_spec +
                                 ": one continuation at a time; give it without --speed-sweep");
-  if (!a.continue_spec.empty() && a.spectrum)
+  if (!a.continue_spec.empty() && r.spectrum)
     throw std::invalid_argument("--spectrum belongs to a run at one speed, not --continue");
   if (a.periodic_points != 0 && !a.periodic && a.continue_spec.empty())
     throw std::invalid_argument("--periodic-points belongs to --periodic and --continue");
@@ -193,7 +147,7 @@ void RunDynamic(const DynamicArgs& a) {
     std::fprintf(stderr, "warning: --periodic: %s\n", fallback.c_str());
   }
   if (!a.speed_sweep.empty()) {
-    ParseSpeedSweep(a.speed_sweep);  // bad input before the tables
+    dynamics::ParseSpeedSweep("--speed-sweep", a.speed_sweep);  // bad input before the tables
     dynamics::SpeedSweepRequest sweep;
     sweep.run = request;
     sweep.window_cycles = a.window_cycles;
@@ -201,9 +155,9 @@ void RunDynamic(const DynamicArgs& a) {
     sweep.threads = a.threads;
     sweep.carry = carry;
     sweep.periodic_fallback = fallback;
-    return RunSpeedSweep({a.speed_sweep, a.out, a.backend, a.quiet}, std::move(sweep));
+    return RunSpeedSweep({a.speed_sweep, a.out, r.backend, a.quiet}, std::move(sweep));
   }
-  ConsoleSink sink(a, Provenance(a.backend, &request.scene));
+  ConsoleSink sink(a, r, Provenance(r.backend, &request.scene));
   const dynamics::DynamicRecord record = dynamics::RunDynamic(request, sink);
   if (sink.started()) {
     Print(sink.spectrum_text());
@@ -217,7 +171,7 @@ void RunDynamic(const DynamicArgs& a) {
         "\nwrote %s_steps.csv, _pairs.csv, _bearings.csv, _summary.json, _lsr.svg, _te.svg, "
         "_orbit.svg%s%s\n",
         sink.base().c_str(), record.summary.face_width.empty() ? "" : ", _k_hbeta.svg",
-        a.spectrum ? ", _vibration.csv, _spectrum.csv, _spectrum_lines.csv, _spectrum_*.svg" : "");
+        r.spectrum ? ", _vibration.csv, _spectrum.csv, _spectrum_lines.csv, _spectrum_*.svg" : "");
   else
     std::printf("\nwrote %s_summary.json\n", sink.base().c_str());
   if (!record.completed())  // the start's failure, or where the run stopped
@@ -228,9 +182,9 @@ void RunDynamic(const DynamicArgs& a) {
 }
 
 struct ModesArgs {
-  std::string scene, sun, cache, json;
+  std::string scene, sun, json;
   std::vector<double> speed_range_rpm;  // empty: the scene's speed / 2 .. x 2
-  bool no_cache = false;
+  TableArgs tables;
 };
 
 // The program's modes sink: the rig's header on the console before the modes are solved.
@@ -244,8 +198,8 @@ void RunModes(const ModesArgs& a) {
   request.scene = StageScene(a.scene, a.sun, "modes");
   if (!a.speed_range_rpm.empty())
     request.speed_range_rpm = {a.speed_range_rpm[0], a.speed_range_rpm[1]};
-  request.speed_range_option = "--speed-range-rpm";
-  request.tables = TableOptions(a.cache, a.no_cache);
+  request.speed_range_option = dynamics::ModesArguments::kSpeedRange.option;
+  request.tables = a.tables.Options();
   ModesConsole console;
   const dynamics::ModesRecord r = dynamics::RunModes(request, console);
   Print(report::ModesRecordText(r));
@@ -263,115 +217,54 @@ void RegisterDynamicCommands(CLI::App& app) {
   static ModesArgs m;
   auto* modes = app.add_subcommand(
       "modes", "Natural modes of the stage linearised about its operating point (docs/dynamic.md)");
-  modes->add_option("scene", m.scene, "Scene file (TOML) of a stage")
-      ->required()
-      ->check(CLI::ExistingFile);
-  modes->add_option("--sun", m.sun, "Override the scene's sun support")
-      ->check(CLI::IsMember(SunOverrideNames()));
+  AddScene(modes, m.scene);
+  AddSun(modes, m.sun);
   modes->add_option("--json", m.json, "Also write the modes as JSON");
-  AddNumber(modes, "--speed-range-rpm", m.speed_range_rpm,
-            "Sun speeds LO HI [rpm] for the mesh-harmonic coincidences (default: the scene's "
-            "speed / 2 .. x 2)",
-            kSunSpeedRpm)
-      ->expected(2);
-  modes->add_option("--cache", m.cache, "Influence-table cache folder");
-  modes->add_flag("--no-cache", m.no_cache, "Build the influence tables in memory only");
+  Add(modes, dynamics::ModesArguments::kSpeedRange, m.speed_range_rpm)->expected(2);
+  AddTables(modes, m.tables);
   modes->callback([] { RunModes(m); });
 
+  using A = DynamicArguments;
   static DynamicArgs a;
+  static dynamics::DynamicRequest r;
   auto* cmd = app.add_subcommand(
       "dynamic", "Dynamic load sharing of a stage in time at a sun speed (docs/dynamic.md)");
-  cmd->add_option("scene", a.scene, "Scene file (TOML) of a stage")
-      ->required()
-      ->check(CLI::ExistingFile);
-  AddNumber(cmd, "--speed-rpm", a.speed_rpm,
-            "Sun speed [rpm] (default: the scene's [dynamics] sun_speed_rpm, else 1500)",
-            kSunSpeedRpm);
-  cmd->add_option("--range", a.range,
-                  "Simulate one mesh cycle, one planet or sun revolution relative to the "
-                  "carrier, or one carrier revolution")
-      ->check(CLI::IsMember(io::Names(transmission::kRunRangeNames)));
-  AddNumber(cmd, "--time", a.time, "Simulate this long instead [s]", kRunTimeS);
-  AddNumber(cmd, "--start-deg", a.start_deg, "Carrier angle at t = 0 [deg]", kCarrierAngleDeg);
-  cmd->add_option("--sun", a.sun, "Override the scene's sun support")
-      ->check(CLI::IsMember(SunOverrideNames()));
-  cmd->add_option("--friction", a.friction, "Override the scene's friction law")
-      ->check(CLI::IsMember(io::Names(transmission::kFrictionLawNames)));
-  cmd->add_option("--backend", a.backend, "Contact back end (newton, ipopt, nlopt-lbfgs, ...)");
-  cmd->add_option("--integrator", a.integrator, "cvode-bdf (default) or arkode-erk")
-      ->check(CLI::IsMember({"cvode-bdf", "arkode-erk"}));
-  AddNumber(cmd, "--rtol", a.rtol, "Relative tolerance of the integrator", kRelativeTolerance);
-  AddNumber(cmd, "--rate-scale", a.rate_scale,
-            "Absolute tolerance of the rates = that of the positions times this [1/s] "
-            "(default 1e4; 0: the stage's highest linearised natural frequency; "
-            "docs/dynamic_cost.md, Error against run time)",
-            kRateScale);
-  AddNumber(cmd, "--contact-tol", a.contact_tol,
-            "Tolerance of every contact solve on its nondimensional residual (default 1e-10)",
-            kRunContactTolerance);
-  AddNumber(cmd, "--outputs-per-cycle", a.outputs_per_cycle,
-            "Output steps per mesh cycle (default: 10 per period of the highest natural "
-            "frequency, 20 to 500; 64 in a speed sweep's window; docs/dynamic.md, Outputs)",
-            kOutputsPerCycle);
-  cmd->add_option("--speed-sweep", a.speed_sweep,
-                  "FROM:TO:N: run N sun speeds [rpm] from FROM to TO (ends included) in parallel; "
-                  "per speed K_gamma, dynamic factor, TE amplitude, sun orbit, against speed with "
-                  "the mesh-harmonic coincidences of the natural frequencies (--range or "
-                  "--window-cycles: the measured window; --start-deg: where it begins)");
-  cmd->add_flag("--periodic", a.periodic,
-                "Speed sweep: the periodic orbits instead of time integrations: shooting and "
-                "pseudo-arclength continuation from FROM to TO through the folds, both branches "
-                "with their Floquet stability, steps of at most 1/N of the range "
-                "(docs/periodic.md)");
-  cmd->add_option("--continue", a.continue_spec,
-                  "NAME:FROM:TO:N: the periodic orbits continued over a number of the scene at the "
-                  "scene's (or --speed-rpm's) speed: sun_speed_rpm, sun_torque_Nm, "
-                  "mesh_damping_ratio, errors.pin.planetK.radial_um or tangential_um");
-  AddNumber(cmd, "--periodic-points", a.periodic_points,
-            "--periodic, --continue: the most points of the branch (default 400)", kSweepSpeeds);
-  cmd->add_option("--periodic-method", a.periodic_method,
-                  "--periodic, --continue: shooting (the default) or hb: harmonic balance with "
-                  "Hill's stability, for a stage whose orbit repeats with the mesh "
-                  "(docs/periodic.md)");
-  AddNumber(cmd, "--hb-harmonics", a.hb_harmonics,
-            "--periodic-method hb: harmonics of the mesh period kept (default 24)", kHarmonics);
-  AddNumber(cmd, "--window-cycles", a.window_cycles,
-            "Speed sweep: mesh cycles measured per speed (replaces --range)", kWindowCycles);
-  AddNumber(cmd, "--harmonics", a.harmonics,
-            "Speed sweep: mark coincidences of mesh harmonics 1..N (default: every one in range)",
-            kHarmonics);
-  AddNumber(cmd, "--threads", a.threads, "Speed sweep: worker threads (default: every core)",
-            kThreads);
-  cmd->add_option("--carry-state", a.carry_state,
-                  "Speed sweep: up or down: a run-up or run-down, one speed after the other in "
-                  "that order, each from the previous speed's end state (the jumps of "
-                  "docs/periodic.md); none: each speed from rest (the default)");
-  AddNumber(cmd, "--max-order", a.max_order, "Largest BDF order of CVODE (1..5)", kMaxOrder);
-  AddNumber(cmd, "--max-steps", a.max_steps,
-            "Integrator steps per output interval before the run stops (default 2000000)",
-            dynamics::kMaxSteps);
-  AddNumber(cmd, "--time-limit", a.time_limit,
-            "Wall-time budget of the run [s]: when spent it stops with what it has (exit 1)",
-            dynamics::kRunTimeLimitS);
-  cmd->add_flag("--spectrum", a.spectrum,
-                "Also the vibration signals per step and their spectra (docs/spectra.md)");
-  AddNumber(cmd, "--spectrum-resolution", a.spectrum_resolution,
-            "Spectrum: segment length 1/this [Hz] (default 0: one carrier revolution)",
-            kSpectrumResolution);
-  AddNumber(cmd, "--spectrum-skip-cycles", a.spectrum_skip,
-            "Spectrum: mesh cycles left out at the start (default 4)", kSpectrumSkipCycles);
-  cmd->add_flag("--rating", a.rating,
-                "ISO 6336 ratings with the run's K_v and the stresses in motion (needs the scene's "
-                "[material] bending_limit_MPa and contact_limit_MPa; implies --stresses)");
-  cmd->add_flag("--stresses", a.stresses,
-                "Also each gear's root stress per output step (the scene's [model] stresses)");
-  cmd->add_flag("--fd-jacobian", a.fd_jacobian,
-                "CVODE's finite-difference Jacobian instead of the contact sensitivity");
+  AddScene(cmd, a.scene);
+  Add(cmd, A::kSpeedRpm, r.sun_speed_rpm);
+  Add(cmd, A::kRange, a.range, io::Names(transmission::kRunRangeNames));
+  Add(cmd, A::kTime, r.time_s);
+  Add(cmd, A::kStartDeg, r.start_deg);
+  AddSun(cmd, a.sun);
+  Add(cmd, A::kFriction, r.friction, io::Names(transmission::kFrictionLawNames));
+  Add(cmd, A::kBackend, r.backend);
+  Add(cmd, A::kIntegrator, r.integrator, {"cvode-bdf", "arkode-erk"});
+  Add(cmd, A::kRtol, r.rtol);
+  Add(cmd, A::kRateScale, r.rate_scale);
+  Add(cmd, A::kContactTol, r.contact_tolerance);
+  Add(cmd, A::kOutputsPerCycle, r.outputs_per_cycle);
+  Add(cmd, A::kSpeedSweep, a.speed_sweep);
+  Add(cmd, A::kPeriodic, a.periodic);
+  Add(cmd, A::kContinue, a.continue_spec);
+  Add(cmd, A::kPeriodicPoints, a.periodic_points);
+  Add(cmd, A::kPeriodicMethod, a.periodic_method);
+  Add(cmd, A::kHbHarmonics, a.hb_harmonics);
+  Add(cmd, A::kWindowCycles, a.window_cycles);
+  Add(cmd, A::kHarmonics, a.harmonics);
+  Add(cmd, A::kThreads, a.threads);
+  Add(cmd, A::kCarryState, a.carry_state);
+  Add(cmd, A::kMaxOrder, r.max_order);
+  Add(cmd, A::kMaxSteps, r.max_steps);
+  Add(cmd, A::kTimeLimit, r.time_limit_s);
+  Add(cmd, A::kSpectrum, r.spectrum);
+  Add(cmd, A::kSpectrumResolution, r.spectrum_resolution_hz);
+  Add(cmd, A::kSpectrumSkip, r.spectrum_skip_cycles);
+  Add(cmd, A::kRating, r.rating);
+  Add(cmd, A::kStresses, r.stresses);
+  Add(cmd, A::kFdJacobian, a.fd_jacobian);
   cmd->add_option("--out", a.out, "Output folder (CSV, JSON, SVG)");
-  cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");
-  cmd->add_flag("--no-cache", a.no_cache, "Build the influence tables in memory only");
+  AddTables(cmd, a.tables);
   cmd->add_flag("--quiet", a.quiet, "No progress bar");
-  cmd->callback([] { RunDynamic(a); });
+  cmd->callback([] { RunDynamic(a, r); });
 }
 
 }  // namespace epicycle::app

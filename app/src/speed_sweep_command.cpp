@@ -1,9 +1,6 @@
 #include "speed_sweep_command.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -25,43 +22,6 @@ namespace epicycle::app {
 
 using json = nlohmann::json;
 
-std::vector<double> ParseSpeedSweep(const std::string& spec) {
-  const std::string rule =
-      "must be FROM:TO:N, sun speeds in rpm with N speeds, ends included (e.g. 500:12000:24)";
-  const auto a = spec.find(':'), b = a == std::string::npos ? a : spec.find(':', a + 1);
-  if (b == std::string::npos || spec.find(':', b + 1) != std::string::npos)
-    throw std::invalid_argument("--speed-sweep = " + spec + ": " + rule);
-  double from = 0, to = 0;
-  long n = 0;
-  const std::string f = spec.substr(0, a), t = spec.substr(a + 1, b - a - 1),
-                    c = spec.substr(b + 1);
-  try {
-    std::size_t used = 0;
-    from = std::stod(f, &used);
-    if (used != f.size()) throw std::invalid_argument(f);
-    to = std::stod(t, &used);
-    if (used != t.size()) throw std::invalid_argument(t);
-    n = std::stol(c, &used);
-    if (used != c.size()) throw std::invalid_argument(c);
-  } catch (const std::logic_error&) {
-    throw std::invalid_argument("--speed-sweep = " + spec + ": " + rule);
-  }
-  if (!kSunSpeedRpm.Holds(from))
-    throw std::invalid_argument("--speed-sweep = " + spec + ": FROM = " + f + ": " +
-                                kSunSpeedRpm.Describe());
-  if (!kSunSpeedRpm.Holds(to))
-    throw std::invalid_argument("--speed-sweep = " + spec + ": TO = " + t + ": " +
-                                kSunSpeedRpm.Describe());
-  if (!kSweepSpeeds.Holds(static_cast<double>(n)) && n > 0)
-    throw std::invalid_argument("--speed-sweep = " + spec + ": N = " + std::to_string(n) + ": " +
-                                kSweepSpeeds.Describe());
-  try {
-    return dynamics::SpeedGrid(from, to, static_cast<int>(n));
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("--speed-sweep = " + spec + ": " + e.what());
-  }
-}
-
 namespace {
 
 // The program's sink: the CSV row of each speed as it completes, the plan on the console and the
@@ -69,7 +29,7 @@ namespace {
 class ConsoleSweepSink final : public dynamics::SpeedSweepSink {
  public:
   ConsoleSweepSink(const SpeedSweepArgs& a, json provenance)
-      : a_(a), provenance_(std::move(provenance)), tty_(!a.quiet && isatty(fileno(stderr))) {}
+      : a_(a), provenance_(std::move(provenance)), bar_(a.quiet) {}
 
   void Start(const dynamics::SpeedSweepStart& start) override {
     Print(report::SpeedSweepPlanText(start));
@@ -78,17 +38,14 @@ class ConsoleSweepSink final : public dynamics::SpeedSweepSink {
     const dynamics::StageDynamics& rig = *start.rig;
     csv_.emplace(path() + ".csv", provenance_, rig.stage_model.helical() ? rig.stage.planets() : 0);
     count_ = static_cast<int>(start.options->sun_speeds_rpm.size());
-    t0_ = std::chrono::steady_clock::now();
+    bar_.Restart();
   }
 
   void Speed(const dynamics::SpeedResult& r, const dynamics::SpeedSweepPlan& plan) override {
     csv_->Write(r, plan);
     ++done_;
     failed_ += !r.ok();
-    if (tty_)
-      Progress(done_, count_, failed_,
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(),
-               "speeds");
+    bar_.Show(done_, count_, failed_, "speeds");
   }
 
   void Close() { csv_->Close(); }
@@ -98,16 +55,15 @@ class ConsoleSweepSink final : public dynamics::SpeedSweepSink {
  private:
   const SpeedSweepArgs& a_;
   json provenance_;
-  bool tty_;
+  ProgressBar bar_;
   std::optional<report::SpeedSweepFile> csv_;
   int count_ = 0, done_ = 0, failed_ = 0;
-  std::chrono::steady_clock::time_point t0_;
 };
 
 }  // namespace
 
 void RunSpeedSweep(const SpeedSweepArgs& a, dynamics::SpeedSweepRequest request) {
-  request.sun_speeds_rpm = ParseSpeedSweep(a.spec);
+  request.sun_speeds_rpm = dynamics::ParseSpeedSweep("--speed-sweep", a.spec);
   ConsoleSweepSink sink(a, Provenance(a.backend, &request.run.scene));
   const dynamics::SpeedSweepRecord record = dynamics::RunSpeedSweep(request, sink);
   sink.Close();

@@ -17,10 +17,6 @@ struct SpeedSweepArgs {
   bool quiet = false;
 };
 
-/// Parses "FROM:TO:N" (sun speeds [rpm], N speeds, ends included).
-/// @throws std::invalid_argument naming --speed-sweep, the value and the rule.
-std::vector<double> ParseSpeedSweep(const std::string& spec);
-
 /// Runs the sweep of `request` at the speeds of args.spec; writes OUT/speed_sweep.csv (rows as
 /// computed), _summary.json and the SVG plots.
 /// @throws ComputationFailed naming the failed speeds (after writing everything).

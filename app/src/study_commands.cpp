@@ -2,9 +2,7 @@
 // library as they are computed (resumed on a re-run); this command prints progress and writes the
 // summary (JSON), K_γ's histogram and empirical CDF (SVG). Under mpirun (built with
 // EPICYCLE_WITH_MPI) rank 0 writes every file.
-#include <unistd.h>
-
-#include <chrono>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +14,7 @@
 
 #include "commands.hpp"
 #include "console.hpp"
+#include "epicycle/io/spec_fields.hpp"
 #include "epicycle/report/sobol_files.hpp"
 #include "epicycle/report/study_files.hpp"
 #include "epicycle/studies/runner.hpp"
@@ -32,47 +31,23 @@ namespace {
 using json = nlohmann::json;
 
 struct StudyArgs {
-  std::string study, out = "study-out", cache, cases, shard;
+  std::string study, out = "study-out", cases, shard;
   int threads = 0;  // 0: every core
   long max_cases = -1;
-  bool no_cache = false, quiet = false, stresses = false;
+  TableArgs tables;
+  bool quiet = false, stresses = false;
 };
 
-// "I:J" (--cases) → the range; the numbers as CLI11 would read them.
-studies::CaseRange ParseCases(const std::string& text, long cases) {
-  const std::size_t colon = text.find(':');
-  studies::CaseRange r{-1, -1};
+// "I:J" (--cases) or "K/N" (--shard): two whole numbers as CLI11 would read them.
+std::array<long, 2> TwoWholeNumbers(const std::string& text, char separator,
+                                    const std::string& message) {
+  const std::vector<std::string> f = io::Fields(text, separator);
   try {
-    std::size_t used = 0;
-    if (colon == std::string::npos) throw std::invalid_argument("no colon");
-    r.first = std::stol(text.substr(0, colon), &used);
-    if (used != colon) throw std::invalid_argument("trailing text");
-    r.last = std::stol(text.substr(colon + 1), &used);
-    if (used != text.size() - colon - 1) throw std::invalid_argument("trailing text");
-  } catch (const std::exception&) {
-    throw std::invalid_argument("--cases = " + text +
-                                ": must be I:J, two whole numbers (the case ids I <= k < J)");
+    if (f.size() != 2) throw std::invalid_argument(text);
+    return {io::Whole(f[0]), io::Whole(f[1])};
+  } catch (const std::logic_error&) {
+    throw std::invalid_argument(message);
   }
-  studies::CheckCaseRange(r, cases, "--cases");
-  return r;
-}
-
-// "K/N" (--shard) → shard K of N's range.
-studies::CaseRange ParseShard(const std::string& text, long cases) {
-  const std::size_t slash = text.find('/');
-  long k = -1, n = -1;
-  try {
-    std::size_t used = 0;
-    if (slash == std::string::npos) throw std::invalid_argument("no slash");
-    k = std::stol(text.substr(0, slash), &used);
-    if (used != slash) throw std::invalid_argument("trailing text");
-    n = std::stol(text.substr(slash + 1), &used);
-    if (used != text.size() - slash - 1) throw std::invalid_argument("trailing text");
-  } catch (const std::exception&) {
-    throw std::invalid_argument("--shard = " + text +
-                                ": must be K/N, two whole numbers (shard K of N, K from 0)");
-  }
-  return studies::ShardRange(cases, k, n, "--shard");
 }
 
 std::string DesignText(const studies::StudySpec& study) {
@@ -85,23 +60,31 @@ std::string DesignText(const studies::StudySpec& study) {
 // The program's study sink: a failed case on stderr (or counted in the progress bar).
 class StudyConsole final : public studies::StudySink {
  public:
-  explicit StudyConsole(bool tty) : tty_(tty), t0_(std::chrono::steady_clock::now()) {}
+  explicit StudyConsole(bool quiet) : bar_(quiet) {}
   void Row(const studies::CaseRow& r, long rows, long total) override {
     if (!r.ok()) {
       ++failed_;
-      if (!tty_) std::fprintf(stderr, "  case %ld FAILED: %s\n", r.id, r.message.c_str());
+      if (!bar_.tty()) std::fprintf(stderr, "  case %ld FAILED: %s\n", r.id, r.message.c_str());
     }
-    if (tty_)
-      Progress(static_cast<int>(rows), static_cast<int>(total), static_cast<int>(failed_),
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(),
-               "cases");
+    bar_.Show(static_cast<int>(rows), static_cast<int>(total), static_cast<int>(failed_), "cases");
   }
 
  private:
-  bool tty_;
+  ProgressBar bar_;
   long failed_ = 0;
-  std::chrono::steady_clock::time_point t0_;
 };
+
+// The summary on the console after its files (BASE_rows.csv, ...) are written.
+void PrintSummary(const studies::StudySpec& study, const studies::StudySummary& s,
+                  const std::string& base) {
+  Print(report::StudySummaryText(study, s));
+  PrintWarnings(study.warnings);
+  std::printf("\nwrote %s_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
+              base.c_str(), s.sobol ? ", _sobol.svg" : "");
+  if (s.failed > 0)
+    throw ComputationFailed(
+        fmt::format("{} of {} cases failed (their rows say why)", s.failed, s.cases));
+}
 
 void RunStudyCommand(const StudyArgs& a) {
   const studies::MpiSession mpi;
@@ -119,14 +102,24 @@ void RunStudyCommand(const StudyArgs& a) {
   if (!a.cases.empty() && !a.shard.empty())
     throw std::invalid_argument("--cases = " + a.cases + " and --shard = " + a.shard +
                                 ": give one of them (both select the cases of a part)");
-  if (!a.cases.empty()) request.part = ParseCases(a.cases, study.Cases());
-  if (!a.shard.empty()) request.part = ParseShard(a.shard, study.Cases());
+  if (!a.cases.empty()) {
+    const auto [first, last] = TwoWholeNumbers(
+        a.cases, ':', "--cases = " + a.cases +
+                          ": must be I:J, two whole numbers (the case ids I <= k < J)");
+    request.part = studies::CaseRange{first, last};
+    studies::CheckCaseRange(*request.part, study.Cases(), "--cases");
+  }
+  if (!a.shard.empty()) {
+    const auto [k, n] = TwoWholeNumbers(
+        a.shard, '/', "--shard = " + a.shard +
+                          ": must be K/N, two whole numbers (shard K of N, K from 0)");
+    request.part = studies::ShardRange(study.Cases(), k, n, "--shard");
+  }
   request.rows_file =
       request.part ? a.out + "/" + studies::PartFileName(*request.part) : base + "_rows.csv";
   const json provenance = Provenance(study.backend_name, &study.scene);
   request.comment = report::StudyComment(provenance, a.study);
-  if (!a.no_cache)
-    request.cache_directory = a.cache.empty() ? transmission::DefaultCacheDirectory() : a.cache;
+  request.cache_directory = a.tables.Options().cache_directory;
   const int threads = a.threads > 0
                           ? a.threads
                           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -136,7 +129,7 @@ void RunStudyCommand(const StudyArgs& a) {
                 static_cast<unsigned long long>(study.seed),
                 mpi.active() ? fmt::format("{} MPI ranks x {} threads", mpi.size(), threads).c_str()
                              : fmt::format("{} threads", threads).c_str());
-  StudyConsole console(root && !a.quiet && isatty(fileno(stderr)));
+  StudyConsole console(!root || a.quiet);
   const studies::StudyRun run = studies::RunStudy(request, console);
   if (!root) return;
   const studies::RunReport& report = run.report;
@@ -163,15 +156,8 @@ void RunStudyCommand(const StudyArgs& a) {
     return;
   }
 
-  const studies::StudySummary& s = run.record->summary;
-  Print(report::StudySummaryText(study, s));
-  PrintWarnings(study.warnings);
   report::WriteStudySummaryFiles(base, study.name, *run.record, provenance);
-  std::printf("\nwrote %s_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
-              base.c_str(), s.sobol ? ", _sobol.svg" : "");
-  if (s.failed > 0)
-    throw ComputationFailed(
-        fmt::format("{} of {} cases failed (their rows say why)", s.failed, s.cases));
+  PrintSummary(study, run.record->summary, base);
 }
 
 struct MergeArgs {
@@ -183,19 +169,13 @@ void MergeStudyCommand(const MergeArgs& a) {
   const report::MergedStudy m = report::MergeStudy(a.parts, a.out, a.study);
   std::printf("%s: %zu parts of %s merged, %ld cases\n", m.study.name.c_str(), m.parts.size(),
               m.study_path.c_str(), m.study.Cases());
-  const studies::StudySummary& s = m.record.summary;
-  Print(report::StudySummaryText(m.study, s));
-  PrintWarnings(m.study.warnings);
-  std::printf("\nwrote %s/study_rows.csv, _summary.json, _kgamma_hist.svg, _kgamma_cdf.svg%s\n",
-              a.out.c_str(), s.sobol ? ", _sobol.svg" : "");
-  if (s.failed > 0)
-    throw ComputationFailed(
-        fmt::format("{} of {} cases failed (their rows say why)", s.failed, s.cases));
+  PrintSummary(m.study, m.record.summary, a.out + "/study");
 }
 
 }  // namespace
 
 void RegisterStudyCommands(CLI::App& app) {
+  using A = transmission::StudyArguments;
   static StudyArgs a;
   auto* cmd = app.add_subcommand(
       "study",
@@ -203,20 +183,13 @@ void RegisterStudyCommands(CLI::App& app) {
   static MergeArgs m;
   cmd->add_option("study", a.study, "Study file (TOML, docs/studies.md)")->check(CLI::ExistingFile);
   cmd->add_option("--out", a.out, "Output folder (rows CSV, summary JSON, SVG); a re-run resumes");
-  AddNumber(cmd, "--threads", a.threads, "Worker threads (default: every core)", kThreads);
-  AddNumber(cmd, "--max-cases", a.max_cases,
-            "Compute at most this many new cases, then summarise (a partial run)",
-            transmission::kStudyCases);
-  cmd->add_option("--cache", a.cache, "Influence-table cache folder (default: ~/.cache/epicycle)");
-  cmd->add_flag("--no-cache", a.no_cache, "Build the influence tables in memory only");
+  Add(cmd, A::kThreads, a.threads);
+  Add(cmd, A::kMaxCases, a.max_cases);
+  AddTables(cmd, a.tables);
   cmd->add_flag("--quiet", a.quiet, "No progress bar");
-  cmd->add_flag("--stresses", a.stresses,
-                "Also each gear's root stress per case (the study's or scene's stresses)");
-  cmd->add_option("--cases", a.cases,
-                  "Only the cases I <= k < J (I:J), into the part study_cases_I_J.csv (merge the "
-                  "parts with `study merge`)");
-  cmd->add_option("--shard", a.shard,
-                  "Only shard K of N (K/N, K from 0): the cases floor(K C/N) .. floor((K+1) C/N)");
+  Add(cmd, A::kStresses, a.stresses);
+  Add(cmd, A::kCases, a.cases);
+  Add(cmd, A::kShard, a.shard);
   auto* merge = cmd->add_subcommand(
       "merge",
       "Join the parts of a study (--cases/--shard runs) into the files a single run writes");

@@ -92,7 +92,7 @@ py::object Solve(const Problem& problem, const std::string& backend, double tole
                  std::optional<Eigen::VectorXd> force_N, std::optional<Eigen::VectorXd> multiplier,
                  const std::map<std::string, std::string>& options) {
   // The rules of the program's --tol and of the solve's other limits (run_arguments.hpp).
-  transmission::CheckArgument("tolerance", tolerance, transmission::kContactTolerance);
+  transmission::CheckArgument(transmission::ContactArguments::kTolerance, tolerance);
   transmission::CheckArgument("max_iterations", max_iterations, transmission::kContactIterations);
   transmission::CheckArgument("time_limit_s", time_limit_s, transmission::kContactTimeLimitS);
   solvers::ContactOptions o;
@@ -272,8 +272,8 @@ class CancellableComparison final : public solvers::ComparisonSink {
 py::object CompareBackends(const std::vector<std::string>& inputs, double tolerance, int repeats,
                            std::optional<std::vector<std::string>> backends) {
   // The rules of the program's --tol and --repeat (run_arguments.hpp).
-  transmission::CheckArgument("tolerance", tolerance, transmission::kContactTolerance);
-  transmission::CheckArgument("repeats", repeats, transmission::kComparisonRepeats);
+  transmission::CheckArgument(transmission::ContactArguments::kTolerance, tolerance);
+  transmission::CheckArgument(transmission::ContactArguments::kRepeats, repeats);
   solvers::ComparisonRequest request;
   request.inputs = inputs;
   request.options.tolerance = tolerance;

@@ -56,8 +56,8 @@ py::object Study(const std::string& path, std::optional<std::string> text, int t
                  bool raise_on_failure) {
   transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
   if (max_cases >= 0)  // < 0: every case
-    transmission::CheckArgument("max_cases", static_cast<double>(max_cases),
-                                transmission::kStudyCases);
+    transmission::CheckArgument(transmission::StudyArguments::kMaxCases,
+                                static_cast<double>(max_cases));
   const studies::StudySpec study =
       text ? studies::ParseStudy(*text, path, std::filesystem::path(path).parent_path().string())
            : studies::ReadStudy(path);

@@ -151,7 +151,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   if (time_s != 0) request.time_s = time_s;  // 0: the range
   // None: the library's default; a number given is checked as given (0 is not the default).
   if (outputs_per_cycle)
-    dynamics::CheckArgument("outputs_per_cycle", *outputs_per_cycle, dynamics::kOutputsPerCycle);
+    dynamics::CheckArgument(dynamics::DynamicArguments::kOutputsPerCycle, *outputs_per_cycle);
   request.outputs_per_cycle = outputs_per_cycle.value_or(0);
   request.start_deg = start_deg;
   integration.Apply(&request);

@@ -27,11 +27,10 @@ struct Integration {
   bool analytic_jacobian = true;
   std::string backend = "newton";
   dynamics::SimulationOptions Options() const {
-    dynamics::CheckArgument("rtol", rtol, dynamics::kRelativeTolerance);
-    if (rate_scale) dynamics::CheckArgument("rate_scale", *rate_scale, dynamics::kRateScale);
-    if (contact_tol)
-      dynamics::CheckArgument("contact_tol", *contact_tol, dynamics::kRunContactTolerance);
-    dynamics::CheckArgument("max_order", max_order, dynamics::kMaxOrder);
+    dynamics::CheckArgument(dynamics::DynamicArguments::kRtol, rtol);
+    if (rate_scale) dynamics::CheckArgument(dynamics::DynamicArguments::kRateScale, *rate_scale);
+    if (contact_tol) dynamics::CheckArgument(dynamics::DynamicArguments::kContactTol, *contact_tol);
+    dynamics::CheckArgument(dynamics::DynamicArguments::kMaxOrder, max_order);
     dynamics::SimulationOptions o;
     o.integrator = dynamics::IntegratorFromName(integrator);
     o.backend = BackendOf(backend);

@@ -12,7 +12,7 @@
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/report/record_json.hpp"
 #include "epicycle/transmission/dynamic_settings.hpp"
-#include "epicycle/transmission/run_arguments.hpp"
+#include "epicycle/dynamics/run_arguments.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "integration.hpp"
 #include "scene.hpp"
@@ -35,7 +35,7 @@ py::object Modes(const ScenePtr& s, std::optional<std::vector<double>> speed_ran
     if (speed_range_rpm->size() != 2)
       throw std::invalid_argument("speed_range_rpm: must be two sun speeds LO, HI [rpm]");
     for (const double v : *speed_range_rpm)
-      transmission::CheckArgument("speed_range_rpm", v, transmission::kSunSpeedRpm);
+      dynamics::CheckArgument(dynamics::ModesArguments::kSpeedRange, v);
     request.speed_range_rpm = {(*speed_range_rpm)[0], (*speed_range_rpm)[1]};
   }
   CancelToken token;

@@ -93,11 +93,11 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
     dynamics::CheckArgument("sun_speeds_rpm[" + std::to_string(k) + "]", sun_speeds_rpm[k],
                             transmission::kSunSpeedRpm);
   if (window_cycles != 0)  // 0: the range's
-    dynamics::CheckArgument("window_cycles", window_cycles, dynamics::kWindowCycles);
-  dynamics::CheckArgument("outputs_per_cycle", outputs_per_cycle, dynamics::kOutputsPerCycle);
-  dynamics::CheckArgument("start_deg", start_deg, transmission::kCarrierAngleDeg);
+    dynamics::CheckArgument(dynamics::DynamicArguments::kWindowCycles, window_cycles);
+  dynamics::CheckArgument(dynamics::DynamicArguments::kOutputsPerCycle, outputs_per_cycle);
+  dynamics::CheckArgument(dynamics::DynamicArguments::kStartDeg, start_deg);
   if (harmonics != 0)  // 0: every harmonic in the range
-    dynamics::CheckArgument("harmonics", harmonics, dynamics::kHarmonics);
+    dynamics::CheckArgument(dynamics::DynamicArguments::kHarmonics, harmonics);
   dynamics::CheckArgument("threads", threads, transmission::kThreadsOrZero);
   dynamics::SpeedSweepRequest request;
   dynamics::DynamicRequest& run = request.run;

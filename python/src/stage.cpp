@@ -82,7 +82,7 @@ py::object Geometry(const ScenePtr& s, int per_segment) {
 }
 
 py::object Contacts(const ScenePtr& s, double carrier_deg, std::optional<double> gap_window_um) {
-  transmission::CheckArgument("carrier_deg", carrier_deg, transmission::kCarrierAngleDeg);
+  transmission::CheckArgument(transmission::GeometryArguments::kContactsCarrierDeg, carrier_deg);
   // The window given: the scene's key contact.gap_window_um set, with the scene reader's rule.
   const ScenePtr run_scene = gap_window_um ? s->Edited([w = *gap_window_um](toml::table& t) {
     if (!t["contact"].is_table()) t.insert_or_assign("contact", toml::table{});
@@ -292,10 +292,10 @@ SweepRequest MakeSweepRequest(const ScenePtr& s, const std::string& range, int p
                               bool rating) {
   SweepRequest q;
   if (positions != 0)  // 0: the default, 60 per mesh cycle
-    transmission::CheckArgument("positions", positions, transmission::kSweepPositions);
-  transmission::CheckArgument("start_deg", start_deg, transmission::kCarrierAngleDeg);
+    transmission::CheckArgument(transmission::QuasiStaticArguments::kPositions, positions);
+  transmission::CheckArgument(transmission::QuasiStaticArguments::kStartDeg, start_deg);
   if (angles_deg) q.angles = transmission::CheckedCarrierAngles("angles_deg", *angles_deg);
-  transmission::CheckArgument("threads", threads, transmission::kThreadsOrZero);
+  transmission::CheckArgument(transmission::QuasiStaticArguments::kThreads, threads);
   // Stresses (or a rating, which needs them): the scene with [model] stresses = true.
   q.scene = stresses || rating ? WithStresses(s) : s;
   if (rating)

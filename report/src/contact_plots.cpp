@@ -5,6 +5,11 @@
 
 #include <fmt/format.h>
 
+#include "epicycle/report/files.hpp"
+#include "epicycle/report/provenance.hpp"
+#include "epicycle/solvers/contact_io.hpp"
+#include "epicycle/transmission/scene.hpp"
+
 namespace epicycle::report {
 
 namespace {
@@ -110,6 +115,31 @@ std::string ErrorVersusTimeSvg(const std::vector<std::string>& backends,
   }
   s += "</svg>\n";
   return s;
+}
+
+void WriteComparisonPlots(const std::string& prefix, const solvers::ComparisonRecord& record) {
+  std::vector<solvers::ProfileRun> runs;
+  std::vector<ErrorTimePoint> points;
+  for (const solvers::ComparisonRun& r : record.runs) {
+    runs.push_back({r.problem, r.backend, r.median_seconds, r.solved});
+    points.push_back({r.backend, r.median_seconds, r.error(), r.solved});
+  }
+  WriteTextFile(prefix + "_profile.svg",
+                PerformanceProfileSvg(solvers::DolanMoreProfile(runs, record.backends),
+                                      record.problem_names.size()));
+  WriteTextFile(prefix + "_error_vs_time.svg", ErrorVersusTimeSvg(record.backends, points));
+}
+
+nlohmann::json ComparisonProvenance(const solvers::ComparisonRequest& request) {
+  const std::vector<std::string> files = solvers::ListProblemFiles(request.inputs);
+  std::string hashes, backends_used;
+  for (const std::string& f : files) hashes += FileHash(f) + "\n";
+  for (solvers::Backend b : request.backends) {
+    if (!backends_used.empty()) backends_used += ' ';
+    backends_used += solvers::BackendName(b);
+  }
+  return FileProvenance(backends_used, fmt::format("{} problem files", files.size()),
+                        transmission::ContentHash(hashes));
 }
 
 }  // namespace epicycle::report

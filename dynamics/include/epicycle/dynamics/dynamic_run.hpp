@@ -13,6 +13,7 @@
 #include "epicycle/dynamics/dynamic_factor.hpp"
 #include "epicycle/dynamics/dynamic_model.hpp"
 #include "epicycle/dynamics/dynamic_summary.hpp"
+#include "epicycle/dynamics/run_arguments.hpp"
 #include "epicycle/dynamics/run_span.hpp"
 #include "epicycle/dynamics/run_tolerances.hpp"
 #include "epicycle/dynamics/simulation.hpp"
@@ -25,13 +26,25 @@
 namespace epicycle::dynamics {
 
 /// The names under which a front end's user gives the request's fields, for the messages that
-/// name them (the program: "--time", "--speed-rpm"; Python: "time_s", "sun_speed_rpm").
+/// name them (the program: "--time", "--speed-rpm"; Python: "time_s", "sun_speed_rpm"), both from
+/// DynamicArguments (run_arguments.hpp).
 struct DynamicOptionNames {
-  std::string time = "time_s", speed = "sun_speed_rpm", range = "range", rating = "rating",
-              spectrum_resolution = "spectrum_resolution", spectrum_skip = "spectrum_skip_cycles",
-              outputs_per_cycle = "outputs_per_cycle", start = "start_deg", rtol = "rtol",
-              rate_scale = "rate_scale", contact_tolerance = "contact_tol", max_order = "max_order",
-              max_steps = "max_steps", time_limit = "time_limit_s";
+  using A = DynamicArguments;
+  std::string time = A::kTime.keyword, speed = A::kSpeedRpm.keyword, range = A::kRange.keyword,
+              rating = A::kRating.keyword, spectrum_resolution = A::kSpectrumResolution.keyword,
+              spectrum_skip = A::kSpectrumSkip.keyword,
+              outputs_per_cycle = A::kOutputsPerCycle.keyword, start = A::kStartDeg.keyword,
+              rtol = A::kRtol.keyword, rate_scale = A::kRateScale.keyword,
+              contact_tolerance = A::kContactTol.keyword, max_order = A::kMaxOrder.keyword,
+              max_steps = A::kMaxSteps.keyword, time_limit = A::kTimeLimit.keyword;
+  /// The program's names (its options).
+  static DynamicOptionNames Program() {
+    return {A::kTime.option,       A::kSpeedRpm.option,           A::kRange.option,
+            A::kRating.option,     A::kSpectrumResolution.option, A::kSpectrumSkip.option,
+            A::kOutputsPerCycle.option, A::kStartDeg.option,      A::kRtol.option,
+            A::kRateScale.option,  A::kContactTol.option,         A::kMaxOrder.option,
+            A::kMaxSteps.option,   A::kTimeLimit.option};
+  }
 };
 
 /// What a dynamic run is asked for; an unset optional is the scene's or the library's default.

@@ -24,6 +24,18 @@ struct ArgumentRange {
   std::string Describe() const;
 };
 
+/// One argument of a run's request as both front ends offer it: the program's option (`--time`),
+/// Python's keyword (`time_s`), the help both show (its unit and default), and the rule of a number
+/// (null: a name, a path or a flag). Declared once beside the request it sets
+/// (transmission/run_arguments.hpp, dynamics/run_arguments.hpp); the program binds it to CLI11, the
+/// bindings check their keyword with it, and a run's messages name it as the front end does.
+struct ArgumentInfo {
+  const char* option;   ///< the program's "--time"
+  const char* keyword;  ///< Python's "time_s"
+  const char* help;     ///< the program's help text (the bindings' docstring of the keyword)
+  const ArgumentRange* range = nullptr;  ///< a number's values; null: text or a flag
+};
+
 /// `value`, given for the argument `name`, if `range` holds it.
 /// @throws std::invalid_argument "NAME = VALUE: RULE" otherwise (VALUE as the shortest decimal
 /// that reads back to it: nan, inf, 1e+300, 2.5).
@@ -33,6 +45,11 @@ double CheckArgument(const std::string& name, double value, const ArgumentRange&
 /// @throws std::invalid_argument "NAME = TEXT: RULE" if it is not a number or not inside.
 double CheckArgumentText(const std::string& name, const std::string& text,
                          const ArgumentRange& range);
+
+/// `value` of Python's keyword `info.keyword` if its range holds it (CheckArgument).
+inline double CheckArgument(const ArgumentInfo& info, double value) {
+  return CheckArgument(info.keyword, value, *info.range);
+}
 
 /// Points per profile segment of a drawn outline or sampled profile (Gear::Outline,
 /// HalfProfile::Sample): 1 gives each segment's ends; 1000 puts the points of a segment a

@@ -1,10 +1,14 @@
 // The figures of `epicycle contact compare` (docs/solvers.md): the Dolan–Moré performance profile
-// of the back ends and their error against the reference versus run time.
+// of the back ends and their error against the reference versus run time; the provenance of its
+// files.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "epicycle/solvers/backend_comparison.hpp"
 #include "epicycle/solvers/performance_profile.hpp"
 
 namespace epicycle::report {
@@ -25,5 +29,12 @@ struct ErrorTimePoint {
 /// of `backends`), as an SVG document.
 std::string ErrorVersusTimeSvg(const std::vector<std::string>& backends,
                                const std::vector<ErrorTimePoint>& points);
+
+/// PREFIX_profile.svg and PREFIX_error_vs_time.svg of a comparison's runs.
+void WriteComparisonPlots(const std::string& prefix, const solvers::ComparisonRecord& record);
+
+/// The provenance of a comparison's files: the back ends, the number of problem files and the
+/// hash of their hashes.
+nlohmann::json ComparisonProvenance(const solvers::ComparisonRequest& request);
 
 }  // namespace epicycle::report

@@ -15,6 +15,7 @@
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/record.hpp"
+#include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/scene.hpp"
 #include "epicycle/transmission/stage_rig.hpp"
@@ -47,7 +48,8 @@ struct QuasiStaticRequest {
   /// Python's per scene); null: the run builds its own.
   std::shared_ptr<const StageRig> rig;
   /// The names of the options that set angles_deg and rating, for their messages.
-  std::string angles_option = "angles_deg", rating_option = "rating";
+  std::string angles_option = QuasiStaticArguments::kAnglesDeg.keyword,
+              rating_option = QuasiStaticArguments::kRating.keyword;
 };
 
 /// What the run has built before its first position (for a front end's header and files).

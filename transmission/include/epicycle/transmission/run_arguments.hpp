@@ -13,6 +13,7 @@
 
 namespace epicycle::transmission {
 
+using geometry::ArgumentInfo;
 using geometry::ArgumentRange;
 using geometry::CheckArgument;
 
@@ -51,6 +52,114 @@ inline constexpr ArgumentRange kContactTimeLimitS{0, 86400, true, false, "[s]", 
 inline constexpr ArgumentRange kComparisonRepeats{1, 1000, false, true, "", ""};
 /// New cases a tolerance study (of quasi-static sweeps, studies/) computes before it summarises.
 inline constexpr ArgumentRange kStudyCases{0, 1e9, false, true, "", ""};
+
+/// The magnification of the relief in a drawing of one tooth pair [-].
+inline constexpr ArgumentRange kReliefScale{0, 1e4, true, false, "", ""};
+
+/// The arguments of the geometry report's drawing and of the contact listing.
+struct GeometryArguments {
+  static constexpr ArgumentInfo kCarrierDeg{
+      "--carrier-deg", "carrier_deg",
+      "Carrier angle of the drawing [deg] (gear pairs: gear 1's turn)", &kCarrierAngleDeg};
+  static constexpr ArgumentInfo kReliefScale{
+      "--relief-scale", "relief_scale",
+      "Magnification of the relief in the zoom drawing [-] (default 200)",
+      &transmission::kReliefScale};
+  static constexpr ArgumentInfo kContactsCarrierDeg{
+      "--carrier-deg", "carrier_deg", "Carrier angle [deg] (gear pairs: gear 1's turn)",
+      &kCarrierAngleDeg};
+};
+
+/// The arguments of a quasi-static run (QuasiStaticRequest) as the program and Python offer them
+/// (geometry::ArgumentInfo); flags whose keyword is the field they clear (--cold: warm_start).
+struct QuasiStaticArguments {
+  static constexpr ArgumentInfo kPositions{
+      "--positions", "positions",
+      "Positions of the sweep (default 60 per mesh cycle: docs/quasistatic.md, Positions)",
+      &kSweepPositions};
+  static constexpr ArgumentInfo kRange{
+      "--range", "range",
+      "Sweep one mesh cycle, one planet or sun revolution relative to the carrier (the period of "
+      "a planet's run-out, of a sun tooth's damage), or one carrier revolution"};
+  static constexpr ArgumentInfo kStartDeg{"--start-deg", "start_deg",
+                                          "Carrier angle of the first position [deg]",
+                                          &kCarrierAngleDeg};
+  static constexpr ArgumentInfo kAnglesDeg{"--angles-deg", "angles_deg",
+                                           "A given list of carrier angles [deg]", &kCarrierAngleDeg};
+  static constexpr ArgumentInfo kThreads{
+      "--threads", "threads",
+      "Worker threads: the positions in contiguous chunks, one per thread (0: one per core)",
+      &kThreadsOrZero};
+  static constexpr ArgumentInfo kCold{
+      "--cold", "warm_start",
+      "Start every position from its kinematic poses and zero forces (no warm start from the "
+      "neighbour)"};
+  static constexpr ArgumentInfo kFriction{
+      "--friction", "friction",
+      "Friction at rest: off (default), scene (the scene's [dynamics] friction), or a law; "
+      "lubricant and sliding from the scene's [lubricant] and sun_speed_rpm"};
+  static constexpr ArgumentInfo kBackend{"--backend", "backend",
+                                         "Contact back end (newton, ipopt, nlopt-slsqp, ...)"};
+  static constexpr ArgumentInfo kNoLocal{"--no-local", "local_terms",
+                                         "Structural compliance only (no local contact term)"};
+  static constexpr ArgumentInfo kStresses{
+      "--stresses", "stresses",
+      "Also root stresses and contact pressures per position (the scene's [model] stresses)"};
+  static constexpr ArgumentInfo kRating{
+      "--rating", "rating",
+      "ISO 6336 ratings with the run's K_gamma and stresses (needs the scene's [material] "
+      "bending_limit_MPa and contact_limit_MPa; implies --stresses)"};
+  static constexpr ArgumentInfo kRigidPins{
+      "--rigid-pins", "pin_feedback",
+      "Leave out the scene's [[face_width.pin]]: every planet held at its given tilt (the run "
+      "without the tilt's feedback)"};
+};
+
+/// The arguments of a mesh-stiffness run (StiffnessRequest).
+struct StiffnessArguments {
+  static constexpr ArgumentInfo kMesh{"--mesh", "mesh",
+                                      "Mesh of a stage: sun-planet1, planet1-ring, ..."};
+  static constexpr ArgumentInfo kPositions{"--positions", "positions", "Positions per mesh cycle",
+                                           &kStiffnessPositions};
+  static constexpr ArgumentInfo kCycle{"--cycle", "cycle", "Sweep this one mesh cycle",
+                                       &kStiffnessCycle};
+  static constexpr ArgumentInfo kThreads = QuasiStaticArguments::kThreads;
+  static constexpr ArgumentInfo kBackend = QuasiStaticArguments::kBackend;
+  static constexpr ArgumentInfo kNoLocal = QuasiStaticArguments::kNoLocal;
+  static constexpr ArgumentInfo kStresses{
+      "--stresses", "stresses",
+      "Also each gear's root stress per position (the scene's [model] stresses)"};
+};
+
+/// The arguments of a tolerance study (studies::StudyRequest).
+struct StudyArguments {
+  static constexpr ArgumentInfo kThreads{"--threads", "threads",
+                                         "Worker threads (default: every core)",
+                                         &transmission::kThreads};
+  static constexpr ArgumentInfo kMaxCases{
+      "--max-cases", "max_cases",
+      "Compute at most this many new cases, then summarise (a partial run)", &kStudyCases};
+  static constexpr ArgumentInfo kStresses{
+      "--stresses", "stresses",
+      "Also each gear's root stress per case (the study's or scene's stresses)"};
+  static constexpr ArgumentInfo kCases{
+      "--cases", "cases",
+      "Only the cases I <= k < J (I:J), into the part study_cases_I_J.csv (merge the parts with "
+      "`study merge`)"};
+  static constexpr ArgumentInfo kShard{
+      "--shard", "shard",
+      "Only shard K of N (K/N, K from 0): the cases floor(K C/N) .. floor((K+1) C/N)"};
+};
+
+/// The arguments of the contact core's runs on problem files (solve, compare, stability).
+struct ContactArguments {
+  static constexpr ArgumentInfo kTolerance{"--tol", "tolerance",
+                                           "tolerance on the nondimensional residual",
+                                           &kContactTolerance};
+  static constexpr ArgumentInfo kRepeats{
+      "--repeat", "repeats", "solves per (back end, problem); the median time is reported",
+      &kComparisonRepeats};
+};
 
 /// Carrier angles given as a list [deg]: their count by kSweepPositions ("NAME: 0 angles: must be
 /// a whole number in [1, 1000000]"), each by kCarrierAngleDeg ("NAME = nan: ..."); the angles in

@@ -14,6 +14,7 @@
 #include "epicycle/transmission/fe_compliance.hpp"
 #include "epicycle/transmission/mesh_stiffness.hpp"
 #include "epicycle/transmission/record.hpp"
+#include "epicycle/transmission/run_arguments.hpp"
 #include "epicycle/transmission/scene.hpp"
 
 namespace epicycle::transmission {
@@ -37,7 +38,9 @@ struct StiffnessRequest {
   /// pair's); false: not computed.
   bool healthy = true;
   FeComplianceOptions tables;  ///< the influence tables' cache
-  std::string mesh_option = "mesh", positions_option = "positions", threads_option = "threads";
+  std::string mesh_option = StiffnessArguments::kMesh.keyword,
+              positions_option = StiffnessArguments::kPositions.keyword,
+              threads_option = StiffnessArguments::kThreads.keyword;
 };
 
 /// What the run has built before its first sample (for a front end's header and files).
