@@ -413,7 +413,13 @@ void Integrators(const Setup& setup) {
   const std::vector<std::string> names = {"cvode-bdf analytic J", "cvode-bdf FD J", "arkode-erk",
                                           "cvode-bdf analytic J (CVODE's 0.1)"};
   std::vector<Run> runs = {ref, ref9, ref_erk};
+  // The fourth series only where the studied BDF runs' settings differ from CVODE's own.
+  const dynamics::SimulationOptions studied = Options(Integrator::kCvodeBdf, 1e-6);
+  const bool cvode_settings = nonlinear_option == 0 && max_order_option == 0 &&
+                              studied.nonlinear_convergence == kCvodeNonlinearConvergence &&
+                              studied.max_order == 5;
   for (std::size_t m = 0; m < names.size(); ++m) {
+    if (m == 3 && cvode_settings) continue;
     for (double rtol : rtols) {
       auto o = m == 3 ? ReferenceOptions(Integrator::kCvodeBdf, rtol)
                       : Options(m == 2 ? Integrator::kArkodeErk : Integrator::kCvodeBdf, rtol);
