@@ -2,7 +2,7 @@
 docs/face_width.md, "Slices"): each driver of the program, run once on a scene and once on the
 same text with a zero helix angle, or a single face-width slice, written in, writes the same files,
 byte for byte once the timing and provenance fields are masked as tools/docs_outputs.py masks
-them for the docs' outputs. Both scenes carry the same file name in two folders, so that the only
+them for the docs' outputs. Both scenes are written to the same path in turn, so that the only
 difference the program sees is the key. Small runs: a few positions, a hundredth of a second of
 motion, two speeds, two study cases."""
 
@@ -75,15 +75,19 @@ def test_a_neutral_key_writes_the_same_files(tmp_path, name, scene, edit, args):
     text = open(scene_path(scene)).read()
     assert "helix_angle_deg" not in text, f"{scene} is not a spur scene"
     outs = []
+    folder = tmp_path / "scene"  # one path for both runs: the files name their scene
+    folder.mkdir()
     for label, body in (("plain", text), ("neutral", edit(text))):
-        folder = tmp_path / label
-        folder.mkdir()
         path = folder / scene
         path.write_text(body)
         if args[0] == "study":
             path = study_beside(folder, scene)
-        out = folder / "out"
-        run_cli(args[0], path, *args[1:], "--out", out)
+        out = tmp_path / label
+        if args[0] == "modes":  # modes writes its JSON where --json says
+            out.mkdir()
+            run_cli(args[0], path, *args[1:], "--json", out / "modes.json")
+        else:
+            run_cli(args[0], path, *args[1:], "--out", out)
         outs.append(out)
     plain, neutral = outs
     files = sorted(os.listdir(plain))
