@@ -385,9 +385,8 @@ void Integrators(const Setup& setup) {
   Print(ref);
   if (!ref.completed) throw std::runtime_error("the reference run failed: " + ref.message);
   WriteTrace(setup.out / OutputName("dynamic_wp_reference_trace", ".csv"), ref.trace);
-  Run ref9 =
-      Simulate(c.model, ReferenceOptions(Integrator::kCvodeBdf, 1e-9), c.d0, c.times,
-               "check cvode-bdf");
+  Run ref9 = Simulate(c.model, ReferenceOptions(Integrator::kCvodeBdf, 1e-9), c.d0, c.times,
+                      "check cvode-bdf");
   Judge(&ref9, ref.trace);
   Print(ref9);
   Run ref_erk = Simulate(c.model, ReferenceOptions(Integrator::kArkodeErk, kReferenceRtol), c.d0,

@@ -61,9 +61,8 @@ class ProgressBar {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
     const int width = 30, filled = total > 0 ? width * done / total : width;
-    std::fprintf(stderr, "\r  [%s%s] %d/%d %s, %d failed, %.1f s",
-                 std::string(filled, '#').c_str(), std::string(width - filled, ' ').c_str(), done,
-                 total, what, failed, seconds);
+    std::fprintf(stderr, "\r  [%s%s] %d/%d %s, %d failed, %.1f s", std::string(filled, '#').c_str(),
+                 std::string(width - filled, ' ').c_str(), done, total, what, failed, seconds);
     if (done == total) std::fprintf(stderr, "\n");
     std::fflush(stderr);
   }

@@ -41,7 +41,8 @@ using json = nlohmann::json;
 
 // What the command line gives besides the request's fields.
 struct DynamicArgs {
-  std::string scene, out = "dynamic-out", range, sun, speed_sweep, continue_spec;  // range "": planet
+  std::string scene, out = "dynamic-out", range, sun, speed_sweep,
+                     continue_spec;  // range "": planet
   TableArgs tables;
   double window_cycles = 0;
   int threads = 0, harmonics = 0, periodic_points = 0, hb_harmonics = 0;

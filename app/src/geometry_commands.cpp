@@ -56,9 +56,10 @@ void RegisterGeometryCommands(CLI::App& app) {
       if (stage) std::printf("\nwrote %s\n", json_path.c_str());
     }
     if (pair && !svg_path.empty()) {
-      WriteTextFile(svg_path, report::DrawPairMeshZoom(*pair, geometry::Rad(carrier_deg),
-                                                       zoom_mesh.empty() ? "gear1-gear2" : zoom_mesh,
-                                                       scene.gap_window, relief_scale));
+      WriteTextFile(svg_path,
+                    report::DrawPairMeshZoom(*pair, geometry::Rad(carrier_deg),
+                                             zoom_mesh.empty() ? "gear1-gear2" : zoom_mesh,
+                                             scene.gap_window, relief_scale));
       std::printf("wrote %s (tooth pair of gear1-gear2)\n", svg_path.c_str());
     }
     if (pair) return;

@@ -104,15 +104,15 @@ void RunStudyCommand(const StudyArgs& a) {
                                 ": give one of them (both select the cases of a part)");
   if (!a.cases.empty()) {
     const auto [first, last] = TwoWholeNumbers(
-        a.cases, ':', "--cases = " + a.cases +
-                          ": must be I:J, two whole numbers (the case ids I <= k < J)");
+        a.cases, ':',
+        "--cases = " + a.cases + ": must be I:J, two whole numbers (the case ids I <= k < J)");
     request.part = studies::CaseRange{first, last};
     studies::CheckCaseRange(*request.part, study.Cases(), "--cases");
   }
   if (!a.shard.empty()) {
     const auto [k, n] = TwoWholeNumbers(
-        a.shard, '/', "--shard = " + a.shard +
-                          ": must be K/N, two whole numbers (shard K of N, K from 0)");
+        a.shard, '/',
+        "--shard = " + a.shard + ": must be K/N, two whole numbers (shard K of N, K from 0)");
     request.part = studies::ShardRange(study.Cases(), k, n, "--shard");
   }
   request.rows_file =

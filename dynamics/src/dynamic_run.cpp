@@ -171,7 +171,8 @@ DynamicRecord RunDynamic(const DynamicRequest& request, DynamicSink& sink) {
   for (const std::string& w : tally.Messages()) record.warnings.push_back(w);
   // ISO 6336 with the run's K_v (docs/stresses.md)
   if (loads && record.summary.samples > 0)
-    record.rating = RateRun(rig.rating, model, opt, span, *loads, record.summary.root_stress).rating;
+    record.rating =
+        RateRun(rig.rating, model, opt, span, *loads, record.summary.root_stress).rating;
   return record;
 }
 

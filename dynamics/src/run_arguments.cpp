@@ -71,8 +71,8 @@ void ParseBranchRange(const std::string& option, const std::string& spec, bool s
     }
   }
   if (!std::isfinite(from) || !std::isfinite(to) || from == to)
-    throw std::invalid_argument(given + "FROM = " + io::Num(from, 9) + ", TO = " +
-                                io::Num(to, 9) + ": a continuation's range must have non-zero width");
+    throw std::invalid_argument(given + "FROM = " + io::Num(from, 9) + ", TO = " + io::Num(to, 9) +
+                                ": a continuation's range must have non-zero width");
   if (steps < 1)
     throw std::invalid_argument(given + "N = " + std::to_string(steps) +
                                 ": must be >= 1 (the largest step is 1/N of the range)");

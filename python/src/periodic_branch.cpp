@@ -149,10 +149,10 @@ void BindPeriodicBranch(py::module_& m) {
       },
       py::arg("scene"), py::arg("parameter"), py::arg("start"), py::arg("end"), py::kw_only(),
       py::arg("steps") = 20, py::arg("max_points") = 400, py::arg("method") = "shooting",
-      py::arg("harmonics") = py::none(), py::arg("rtol") = 1e-6,
-      py::arg("rate_scale") = py::none(), py::arg("contact_tol") = py::none(),
-      py::arg("backend") = "newton", py::arg("cache_dir") = py::none(),
-      py::arg("progress") = py::none(), py::arg("raise_on_failure") = true,
+      py::arg("harmonics") = py::none(), py::arg("rtol") = 1e-6, py::arg("rate_scale") = py::none(),
+      py::arg("contact_tol") = py::none(), py::arg("backend") = "newton",
+      py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
+      py::arg("raise_on_failure") = true,
       R"doc(
 The stage's periodic orbits continued over a parameter (`epicycle dynamic --speed-sweep ...
 --periodic` and `--continue`; docs/periodic.md §3): shooting from the quasi-static start at

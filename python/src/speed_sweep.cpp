@@ -44,21 +44,23 @@ py::object HelicalRanges(const std::vector<const transmission::HelicalLoadRange*
     }
   };
   for (const auto& f : transmission::kHelicalMemberFields)
-    put(f.name, f.unit, [&](const transmission::HelicalLoadRange* x, std::vector<double>* mean,
-                            std::vector<double>* max_abs) {
-      const bool ok = x && x->count > 0;
-      mean->push_back(ok ? x->mean.*f.value : kNaN);
-      max_abs->push_back(ok ? x->max_abs.*f.value : kNaN);
-    });
+    put(f.name, f.unit,
+        [&](const transmission::HelicalLoadRange* x, std::vector<double>* mean,
+            std::vector<double>* max_abs) {
+          const bool ok = x && x->count > 0;
+          mean->push_back(ok ? x->mean.*f.value : kNaN);
+          max_abs->push_back(ok ? x->max_abs.*f.value : kNaN);
+        });
   for (const auto& f : transmission::kPlanetHelicalFields)
-    put(f.name, f.unit, [&](const transmission::HelicalLoadRange* x, std::vector<double>* mean,
-                            std::vector<double>* max_abs) {
-      for (std::size_t i = 0; i < n; ++i) {
-        const bool ok = x && i < x->mean.planets.size();
-        mean->push_back(ok ? x->mean.planets[i].*f.value : kNaN);
-        max_abs->push_back(ok ? x->max_abs.planets[i].*f.value : kNaN);
-      }
-    });
+    put(f.name, f.unit,
+        [&](const transmission::HelicalLoadRange* x, std::vector<double>* mean,
+            std::vector<double>* max_abs) {
+          for (std::size_t i = 0; i < n; ++i) {
+            const bool ok = x && i < x->mean.planets.size();
+            mean->push_back(ok ? x->mean.planets[i].*f.value : kNaN);
+            max_abs->push_back(ok ? x->max_abs.planets[i].*f.value : kNaN);
+          }
+        });
   return Result(h);
 }
 

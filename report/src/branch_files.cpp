@@ -86,8 +86,7 @@ void BranchFile::Update(const dynamics::StageBranchRecord& r) {
         Cell(p.te_amplitude * 1e6), Cell(p.orbit_radius * 1e6),
         helical_planets_ > 0 ? HelicalRangeCells(helical_planets_, p.helical, p.helical.count > 0)
                              : std::string(),
-        Cell(p.arclength),
-        p.corrector_iterations, CsvText(kinds), CsvText(where)));
+        Cell(p.arclength), p.corrector_iterations, CsvText(kinds), CsvText(where)));
   }
 }
 

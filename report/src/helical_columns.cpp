@@ -21,8 +21,8 @@ constexpr std::array<std::size_t, 4> kColumnPlanetFields = {0, 1, 5, 6};
 template <typename Cell>
 void ForEachHelicalColumn(int planets, const transmission::HelicalLoadRange* range, Cell&& cell) {
   for (const auto& f : transmission::kHelicalMemberFields)
-    cell(f.name, f.unit, range ? range->mean.*f.value : 0.0,
-         range ? range->max_abs.*f.value : 0.0, 0);
+    cell(f.name, f.unit, range ? range->mean.*f.value : 0.0, range ? range->max_abs.*f.value : 0.0,
+         0);
   for (int i = 0; i < planets; ++i)
     for (std::size_t k : kColumnPlanetFields) {
       const auto& f = transmission::kPlanetHelicalFields[k];
@@ -37,24 +37,23 @@ void ForEachHelicalColumn(int planets, const transmission::HelicalLoadRange* ran
 
 std::string HelicalRangeColumns(int planets) {
   std::string head;
-  ForEachHelicalColumn(planets, nullptr,
-                       [&](const char* name, const char* unit, double, double, int planet) {
-                         const std::string tail = planet > 0 ? fmt::format("_{}", planet) : "";
-                         head += fmt::format(",{0}_mean_{1}{2},{0}_max_abs_{1}{2}", name, unit,
-                                             tail);
-                       });
+  ForEachHelicalColumn(
+      planets, nullptr, [&](const char* name, const char* unit, double, double, int planet) {
+        const std::string tail = planet > 0 ? fmt::format("_{}", planet) : "";
+        head += fmt::format(",{0}_mean_{1}{2},{0}_max_abs_{1}{2}", name, unit, tail);
+      });
   return head;
 }
 
 std::string HelicalRangeCells(int planets, const transmission::HelicalLoadRange& range, bool has) {
   std::string cells;
-  ForEachHelicalColumn(planets, &range, [&](const char*, const char*, double mean, double max_abs,
-                                            int) {
-    cells += ",";
-    if (has) AppendCell(cells, mean);
-    cells += ",";
-    if (has) AppendCell(cells, max_abs);
-  });
+  ForEachHelicalColumn(planets, &range,
+                       [&](const char*, const char*, double mean, double max_abs, int) {
+                         cells += ",";
+                         if (has) AppendCell(cells, mean);
+                         cells += ",";
+                         if (has) AppendCell(cells, max_abs);
+                       });
   return cells;
 }
 

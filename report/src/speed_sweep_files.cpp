@@ -44,13 +44,14 @@ void SpeedSweepFile::Write(const dynamics::SpeedResult& r, const dynamics::Speed
   for (double x : r.deviation_parts) parts += v(x) + ",";
   csv_.WriteLine(fmt::format(
       "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.index, Cell(r.sun_speed_rpm),
-      Cell(r.mesh_frequency), r.ok() ? "ok" : transmission::RunStatusName(r.status), v(r.k_gamma), v(r.dynamic_factor),
-      CsvText(r.ok() && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : ""), v(r.peak_mesh_force),
-      v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min), v(r.lsr_max),
+      Cell(r.mesh_frequency), r.ok() ? "ok" : transmission::RunStatusName(r.status), v(r.k_gamma),
+      v(r.dynamic_factor), CsvText(r.ok() && r.factor_mesh >= 0 ? plan.meshes[r.factor_mesh] : ""),
+      v(r.peak_mesh_force), v(r.te_amplitude * 1e6), v(r.orbit_radius * 1e6), v(r.lsr_min),
+      v(r.lsr_max),
       v(r.lsr_deviation) + "," + parts + v(r.largest_residual) +
-          HelicalRangeCells(helical_planets_, r.helical, r.ok() && r.helical.count > 0), r.stats.steps,
-      r.stats.rhs_evaluations, r.stats.failed_solves, Cell(r.cpu_seconds), Cell(r.wall_seconds),
-      CsvText(r.message)));
+          HelicalRangeCells(helical_planets_, r.helical, r.ok() && r.helical.count > 0),
+      r.stats.steps, r.stats.rhs_evaluations, r.stats.failed_solves, Cell(r.cpu_seconds),
+      Cell(r.wall_seconds), CsvText(r.message)));
 }
 
 void SpeedSweepFile::Close() { csv_.Close(); }

@@ -121,7 +121,7 @@ FaceLoadFactorC IsoFaceLoadFactorC(const FaceLoadFactorInputs& in) {
   c.at_minimum = c.f_beta_x_min > f_beta_x;
   c.f_beta_x = std::max(f_beta_x, c.f_beta_x_min);
   c.y_beta = std::min(0.15 * c.f_beta_x, 6 * kUm);  // eq. 48: surface-hardened steel
-  c.f_beta_y = c.f_beta_x - c.y_beta;                 // eq. 43
+  c.f_beta_y = c.f_beta_x - c.y_beta;               // eq. 43
   c.c_gamma_beta = 0.85 * in.mesh_stiffness;
   const double x = c.f_beta_y * c.c_gamma_beta * in.face_width / (2 * in.mean_force);
   c.lifted = x > 1;
@@ -134,13 +134,12 @@ FaceLoadFactorC IsoFaceLoadFactorC(const FaceLoadFactorInputs& in) {
 
 std::array<double, 2> MethodCModification(double crowning, bool end_relieved, double assembly,
                                           double deflection) {
-  for (const auto& [name, value] : {std::pair{"C_beta [m]", crowning},
-                                    {"f_ma [m]", assembly},
-                                    {"f_sh [m]", deflection}})
+  for (const auto& [name, value] :
+       {std::pair{"C_beta [m]", crowning}, {"f_ma [m]", assembly}, {"f_sh [m]", deflection}})
     if (!(std::isfinite(value) && value >= 0))
-      throw std::invalid_argument(fmt::format(
-          "ISO 6336-1 method C's helix modification: {} = {}: must be finite and >= 0", name,
-          value));
+      throw std::invalid_argument(
+          fmt::format("ISO 6336-1 method C's helix modification: {} = {}: must be finite and >= 0",
+                      name, value));
   // Table 8's rows (docs/model.md §10, "Ratings across the face").
   if (crowning > 0) {
     // The two crowning rows presuppose a crowning sized to what it compensates.
@@ -169,8 +168,8 @@ RatingInputs RatingInputsOf(const Scene& scene) {
   in.sun_torque = scene.loads.sun_torque;
   in.leads = scene.face_width.leads;
   auto refuse = [&](const char* key, double value, const char* rule) {
-    throw std::invalid_argument(
-        fmt::format("{}: {} = {}: must be {} (the ratings' input)", scene.source, key, value, rule));
+    throw std::invalid_argument(fmt::format("{}: {} = {}: must be {} (the ratings' input)",
+                                            scene.source, key, value, rule));
   };
   if (!(std::isfinite(in.youngs_modulus) && in.youngs_modulus > 0))
     refuse("[material] youngs_modulus_GPa", in.youngs_modulus / 1e9, "finite and > 0");
@@ -200,9 +199,10 @@ namespace {
 // ISO 6336-1 clause 7.5, method C, per planet mesh, fed the model's misalignment and c_γ
 // (mesh_stiffness per unit face width [N/m²], sun and ring mesh), beside the model's K_Hβ and its
 // own stresses per slice.
-void RateFaceWidth(const RatingInputs& inputs, const geometry::Stage& stage, const SweepSummary& summary,
-                   const std::array<double, 2>& mesh_stiffness, double ft, double k_table,
-                   const std::vector<double>& k_model, double ka_kv, StageRating* out) {
+void RateFaceWidth(const RatingInputs& inputs, const geometry::Stage& stage,
+                   const SweepSummary& summary, const std::array<double, 2>& mesh_stiffness,
+                   double ft, double k_table, const std::vector<double>& k_model, double ka_kv,
+                   StageRating* out) {
   auto factor = [&](std::string symbol, double value, std::string source) {
     out->factors.push_back({std::move(symbol), value, std::move(source)});
   };
@@ -245,14 +245,15 @@ void RateFaceWidth(const RatingInputs& inputs, const geometry::Stage& stage, con
         end_relieved = end_relieved || l.end_relief > 0;
         r.iso_inputs.lead_slope = std::max(r.iso_inputs.lead_slope, std::abs(l.slope));
       }
-    const std::array<double, 2> b = MethodCModification(
-        crowning, end_relieved, r.iso_inputs.assembly, r.iso_inputs.deflection);
+    const std::array<double, 2> b =
+        MethodCModification(crowning, end_relieved, r.iso_inputs.assembly, r.iso_inputs.deflection);
     r.iso_inputs.b1 = b[0];
     r.iso_inputs.b2 = b[1];
     const std::string why =
-        crowning > 0 ? fmt::format("ISO 6336-1 method C, table 8: crowning C_beta = {:.4g} um of "
-                                   "the mesh's gears {} 0.5 (f_ma + f_sh)",
-                                   crowning * 1e6, b[0] == b[1] ? ">=" : "<")
+        crowning > 0 ? fmt::format(
+                           "ISO 6336-1 method C, table 8: crowning C_beta = {:.4g} um of "
+                           "the mesh's gears {} 0.5 (f_ma + f_sh)",
+                           crowning * 1e6, b[0] == b[1] ? ">=" : "<")
                      : "ISO 6336-1 method C, table 8: end relief of the mesh's gears";
     if (b[0] != b[1]) {
       factor("B1 " + f.mesh, b[0], why);
@@ -291,9 +292,9 @@ void RateFaceWidth(const RatingInputs& inputs, const geometry::Stage& stage, con
 }  // namespace
 
 StageRating RateStage(const RatingInputs& inputs, const geometry::Stage& stage,
-                      const SweepSummary& summary,
-                      double dynamic_factor, const std::string& dynamic_source,
-                      const MotionStresses* motion, const std::array<double, 2>* mesh_stiffness) {
+                      const SweepSummary& summary, double dynamic_factor,
+                      const std::string& dynamic_source, const MotionStresses* motion,
+                      const std::array<double, 2>* mesh_stiffness) {
   CheckRatingInputs(inputs, "a rating");
   if (!(dynamic_factor >= 1 && std::isfinite(dynamic_factor)))
     throw std::invalid_argument(
@@ -337,9 +338,8 @@ StageRating RateStage(const RatingInputs& inputs, const geometry::Stage& stage,
            fmt::format("the run: max over {} positions of L_{} = n LSR_{}", summary.converged,
                        i + 1, i + 1));
   }
-  const double z_e =
-      geometry::iso::ElasticityFactor(inputs.youngs_modulus, inputs.poisson_ratio,
-                                      inputs.youngs_modulus, inputs.poisson_ratio);
+  const double z_e = geometry::iso::ElasticityFactor(inputs.youngs_modulus, inputs.poisson_ratio,
+                                                     inputs.youngs_modulus, inputs.poisson_ratio);
   factor("Z_E [sqrt(MPa)]", z_e / 1e3, "ISO 6336-2, the scene's E and nu on both gears");
   factor("Y_ST", kStressCorrection, "ISO 6336-3: the reference test gear's stress correction");
   factor("Y_M planet", kReversedBending,

@@ -245,8 +245,8 @@ std::string LeadValues(const LeadSpec& l) {
   std::string entry = l.where;
   if (entry.size() > suffix.size() && entry.ends_with(suffix))
     entry.resize(entry.size() - suffix.size());
-  return entry + " (gear = \"" + l.gear + "\", slope_um = " +
-         io::Num(l.slope / internal::kUm, io::kInputDigits) +
+  return entry + " (gear = \"" + l.gear +
+         "\", slope_um = " + io::Num(l.slope / internal::kUm, io::kInputDigits) +
          ", crowning_um = " + io::Num(l.crowning / internal::kUm, io::kInputDigits) +
          ", end_relief_um = " + io::Num(l.end_relief / internal::kUm, io::kInputDigits) + ")";
 }
@@ -290,10 +290,10 @@ void CheckFaceGapWindow(const Scene& s) {
         if (p.planet == i) add(0.5 * b * std::hypot(p.radial, p.tangential), p.where);
       if (wind_up > 0)
         add(0.5 * b * wind_up,
-            f.carrier_where + " = " +
-                io::Num(f.carrier_torsional_stiffness, io::kInputDigits) + " (every pin tilted by " +
-                io::Num(wind_up * 1e6, io::kInputDigits) + " urad under the carrier torque " +
-                io::Num(carrier_torque, io::kInputDigits) + " N m)");
+            f.carrier_where + " = " + io::Num(f.carrier_torsional_stiffness, io::kInputDigits) +
+                " (every pin tilted by " + io::Num(wind_up * 1e6, io::kInputDigits) +
+                " urad under the carrier torque " + io::Num(carrier_torque, io::kInputDigits) +
+                " N m)");
       for (const std::string& g : {planet, mate}) {
         if (const LeadSpec* l = lead_of(g))
           add(0.5 * std::abs(l->slope) + l->crowning + l->end_relief, LeadValues(*l));

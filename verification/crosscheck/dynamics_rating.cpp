@@ -141,8 +141,8 @@ TEST_CASE(
         sun_root,
         transmission::SummariseRootStress(s.fillet_stress, bodies)[transmission::kSunBody].tension);
   const auto summary = dynamics::Summarise(r.samples);
-  const dynamics::MotionRating m =
-      dynamics::RateInMotion(transmission::RatingInputsOf(scene), *rig.model, so, times, loads, summary.root_stress);
+  const dynamics::MotionRating m = dynamics::RateInMotion(
+      transmission::RatingInputsOf(scene), *rig.model, so, times, loads, summary.root_stress);
   double k_gamma = 0;  // at rest with the run's friction (the scene's law at its speed), its angles
   transmission::QuasiStaticOptions rest;
   rest.friction = rig.model->settings().friction;
@@ -236,9 +236,11 @@ TEST_CASE(
   CHECK(loads.outputs() == 5);
   CHECK(loads.steps() == 5);
   const auto root = dynamics::Summarise(made).root_stress;
-  const dynamics::MotionRating run = dynamics::RateRun(transmission::RatingInputsOf(scene), *rig.model, so, span, loads, root);
-  const dynamics::MotionRating reference = dynamics::RateInMotion(
-      transmission::RatingInputsOf(scene), *rig.model, so, std::vector<double>(all.begin(), all.begin() + 5), loads, root);
+  const dynamics::MotionRating run =
+      dynamics::RateRun(transmission::RatingInputsOf(scene), *rig.model, so, span, loads, root);
+  const dynamics::MotionRating reference =
+      dynamics::RateInMotion(transmission::RatingInputsOf(scene), *rig.model, so,
+                             std::vector<double>(all.begin(), all.begin() + 5), loads, root);
   CHECK(run.factor.value == reference.factor.value);
   REQUIRE(run.rating.gears.size() == reference.rating.gears.size());
   // The same double, or both NaN (a figure the rating leaves undefined for a gear).

@@ -154,15 +154,15 @@ TEST_CASE(
   // the sliding and rolling speeds. The rates are ∝ speed as the rigid speeds are, so a law of the
   // speeds' ratio (Xu & Kahraman: μ ∝ SR^1.036) keeps a gap that does not fall with the speed
   // (docs/quasistatic.md, "Friction at rest": 5e-5 with the sun fixed, 4e-3 floating, in LSR at
-  // 30 rpm on this case): the quasi-static model leaves the rates out by definition. The law whose μ does not depend on the
-  // speeds is the constant one away from the pitch point: μ_s = μ tanh(v_s/v_ε) with v_ε = 1e-5
-  // m/s, and positions where a loaded contact slides slower than 10 v_ε at rest left out
-  // (tanh 10 = 1 − 4e-9). There friction adds no velocity term and the friction-off derivation
-  // carries over: halving the speed must at least halve the gap (tested ≥ 2/1.25, that test's
-  // allowance for the mix of the two terms and the output sampling), down to the floor of the
-  // tolerances: what the integrator's error test lets through in LSR at each run's samples
-  // (ToleranceFloor, from rtol 1e-8 and the default absolute tolerances), the contact solves'
-  // 1e-10 below it.
+  // 30 rpm on this case): the quasi-static model leaves the rates out by definition. The law whose
+  // μ does not depend on the speeds is the constant one away from the pitch point: μ_s = μ
+  // tanh(v_s/v_ε) with v_ε = 1e-5 m/s, and positions where a loaded contact slides slower than 10
+  // v_ε at rest left out (tanh 10 = 1 − 4e-9). There friction adds no velocity term and the
+  // friction-off derivation carries over: halving the speed must at least halve the gap (tested ≥
+  // 2/1.25, that test's allowance for the mix of the two terms and the output sampling), down to
+  // the floor of the tolerances: what the integrator's error test lets through in LSR at each run's
+  // samples (ToleranceFloor, from rtol 1e-8 and the default absolute tolerances), the contact
+  // solves' 1e-10 below it.
   const SunSupport sun = GENERATE(SunSupport::kFixed, SunSupport::kFloating);
   const transmission::FrictionLaw law = transmission::FrictionLaw::kConstant;
   const char* sun_name = sun == SunSupport::kFixed ? "fixed" : "floating";
@@ -187,25 +187,30 @@ TEST_CASE(
     gap[k] = RestFrictionGap(rig, law, so, r.samples);
     tolerance_floor[k] = ToleranceFloor(rig, so, r.stats.rate_scale, r.samples);
     Figure("friction at rest, " + name + ", " + std::to_string(speeds[k]) +
-           " rpm: largest |LSR - LSR_qs| " + Sci(gap[k].rest) + " at the run's positions without "
-           "its rates, " + Sci(gap[k].motion) + " as integrated, over " +
-           std::to_string(gap[k].compared) + " samples (" + std::to_string(gap[k].skipped) +
-           " left out); mean friction power " + Sci(gap[k].power_qs, 6) + " W at rest, " +
-           Sci(gap[k].power_rest, 6) + " W without the rates, " + Sci(gap[k].power_motion, 6) +
-           " W as integrated; " + std::to_string(r.stats.steps) + " steps; the tolerances "
-           "allow " + Sci(tolerance_floor[k]) + " in LSR");
+           " rpm: largest |LSR - LSR_qs| " + Sci(gap[k].rest) +
+           " at the run's positions without "
+           "its rates, " +
+           Sci(gap[k].motion) + " as integrated, over " + std::to_string(gap[k].compared) +
+           " samples (" + std::to_string(gap[k].skipped) + " left out); mean friction power " +
+           Sci(gap[k].power_qs, 6) + " W at rest, " + Sci(gap[k].power_rest, 6) +
+           " W without the rates, " + Sci(gap[k].power_motion, 6) + " W as integrated; " +
+           std::to_string(r.stats.steps) +
+           " steps; the tolerances "
+           "allow " +
+           Sci(tolerance_floor[k]) + " in LSR");
   }
   REQUIRE(gap[1].compared >= 10);
   // The floor: each run's LSR may be off by what its tolerances let through (ToleranceFloor), the
   // 60 rpm run's share halved with its gap.
   const double floor = tolerance_floor[1] + tolerance_floor[0] / 2 * 1.25;
   const bool pass = gap[1].motion <= gap[0].motion / 2 * 1.25 + floor;
-  VerifyRow("dynamic LSR with friction -> quasi-static friction at rest, " + name +
-                " (60, 30 rpm; 6 mesh cycles; run-out)",
-            "dynamic model with the same friction law",
-            "largest gap " + Sci(gap[0].motion) + " at 60 rpm, " + Sci(gap[1].motion) + " at 30 rpm",
-            "ratio " + Sci(gap[0].motion / gap[1].motion, 2),
-            "ratio >= 2/1.25 (gap <= the tolerances' floor " + Sci(floor) + ")", pass);
+  VerifyRow(
+      "dynamic LSR with friction -> quasi-static friction at rest, " + name +
+          " (60, 30 rpm; 6 mesh cycles; run-out)",
+      "dynamic model with the same friction law",
+      "largest gap " + Sci(gap[0].motion) + " at 60 rpm, " + Sci(gap[1].motion) + " at 30 rpm",
+      "ratio " + Sci(gap[0].motion / gap[1].motion, 2),
+      "ratio >= 2/1.25 (gap <= the tolerances' floor " + Sci(floor) + ")", pass);
   CHECK(pass);
   // Must-show 3: the friction power P_f = Σ μ_s F v_s. In motion v_s carries the deviation rates,
   // ∝ speed as the rigid sliding is: a relative part that does not fall with the speed (1.2e-3

@@ -62,9 +62,10 @@ struct Sweep {
 
 }  // namespace
 
-TEST_CASE("helical paper stage with a pin error: tilting moments from the axial forces, K_gamma "
-          "against the spur stage's, K_Hbeta with and without the tilt's feedback",
-          "[crosscheck][transmission][helical][pin]") {
+TEST_CASE(
+    "helical paper stage with a pin error: tilting moments from the axial forces, K_gamma "
+    "against the spur stage's, K_Hbeta with and without the tilt's feedback",
+    "[crosscheck][transmission][helical][pin]") {
   const std::string text = test::SceneText("paper_stage_helical_pin_error.toml");
   const Sweep on(text, "paper_stage_helical_pin_error.toml", true);
   const Sweep off(WithoutPins(text), "paper_stage_helical_pin_error.toml", true);
@@ -79,8 +80,8 @@ TEST_CASE("helical paper stage with a pin error: tilting moments from the axial 
   const double arm_sun = a * z_p / (z_s + z_p), arm_ring = a * z_p / (z_r - z_p);
   CHECK(arm_sun + arm_ring == Approx(102.789e-3).epsilon(1e-5));
   // Base helix: tan β_b = tan β cos α_t (ISO 21771), the sun's base radius r_b = r cos α_t.
-  const double tan_bb = std::tan(on.stage.sun().spec().helix.angle) *
-                        std::cos(on.stage.sun().spec().pressure_angle);
+  const double tan_bb =
+      std::tan(on.stage.sun().spec().helix.angle) * std::cos(on.stage.sun().spec().pressure_angle);
   const double r_b_sun = on.stage.sun().base_radius();
   const double torque = std::abs(on.scene.loads.sun_torque);
   const double p_bt = 2 * std::numbers::pi * r_b_sun / z_s;
@@ -116,11 +117,10 @@ TEST_CASE("helical paper stage with a pin error: tilting moments from the axial 
           const double f_a = m % 2 == 0 ? p.sun_mesh_axial : p.ring_mesh_axial;
           bound += std::abs(f_a) * s.contact_ratio_iso * p_bt * std::sin(s.pressure_angle);
         }
-        INFO((run == &on ? "pins" : "rigid") << ", position " << k << ", planet " << i + 1
-                                            << ": axial forces " << p.sun_mesh_axial << " / "
-                                            << p.ring_mesh_axial << " N, M_t "
-                                            << p.axial_moment_tangential << " N m, hand " << hand
-                                            << " N m, bound " << bound << " N m");
+        INFO((run == &on ? "pins" : "rigid")
+             << ", position " << k << ", planet " << i + 1 << ": axial forces " << p.sun_mesh_axial
+             << " / " << p.ring_mesh_axial << " N, M_t " << p.axial_moment_tangential
+             << " N m, hand " << hand << " N m, bound " << bound << " N m");
         CHECK(std::abs(p.axial_moment_tangential - hand) <= bound);
         // No moment about the radial axis: the axial forces act on the line of centres (the
         // contact points off it by at most their path's tangential extent g_α cos α_wt).
@@ -149,7 +149,9 @@ TEST_CASE("helical paper stage with a pin error: tilting moments from the axial 
   // same mean, a far smaller fluctuation (the spur mesh alternates one and two tooth pairs,
   // ε_α = 1.30 / 1.52). The pin error's share follows the stiffness position by position, so
   // planet 1's LSR swings less over the cycle, and K_γ, its largest L_i, is smaller.
-  const auto swing = [](const transmission::SweepSummary& s) { return s.lsr_max[0] - s.lsr_min[0]; };
+  const auto swing = [](const transmission::SweepSummary& s) {
+    return s.lsr_max[0] - s.lsr_min[0];
+  };
   INFO("K_gamma helical " << off.summary.k_gamma << " (mean " << off.summary.k_gamma_mean
                           << ", planet 1 LSR swing " << swing(off.summary) << "), with pins "
                           << on.summary.k_gamma << "; spur " << spur.summary.k_gamma << " (mean "
@@ -199,11 +201,10 @@ TEST_CASE("helical paper stage with a pin error: tilting moments from the axial 
   };
   const transmission::MeshFaceSummary sun_off = k_h_beta(off.summary, false),
                                       sun_on = k_h_beta(on.summary, false);
-  INFO("planet 1 sun mesh K_Hbeta max " << sun_off.k_h_beta_max << " at z " << sun_off.largest_z
-                                        << " -> " << sun_on.k_h_beta_max << " at z "
-                                        << sun_on.largest_z << "; ring mesh "
-                                        << k_h_beta(off.summary, true).k_h_beta_max << " -> "
-                                        << k_h_beta(on.summary, true).k_h_beta_max);
+  INFO("planet 1 sun mesh K_Hbeta max "
+       << sun_off.k_h_beta_max << " at z " << sun_off.largest_z << " -> " << sun_on.k_h_beta_max
+       << " at z " << sun_on.largest_z << "; ring mesh " << k_h_beta(off.summary, true).k_h_beta_max
+       << " -> " << k_h_beta(on.summary, true).k_h_beta_max);
   REQUIRE(mean.planets[0].axial_moment_tangential > 0);
   const double b = 25e-3, slice = b / on.scene.face_width.slices;
   REQUIRE(sun_off.largest_z == Approx(-0.5 * b + 0.5 * slice).margin(1e-12));

@@ -26,8 +26,8 @@ namespace {
 
 // The helical paper stage (scenes/paper_stage_helical.toml) and its stage model.
 struct HelicalPaperStage {
-  transmission::Scene scene = transmission::ParseScene(
-      test::SceneText("paper_stage_helical.toml"), "paper_stage_helical.toml");
+  transmission::Scene scene = transmission::ParseScene(test::SceneText("paper_stage_helical.toml"),
+                                                       "paper_stage_helical.toml");
   geometry::Stage stage{scene.stage};
   transmission::StageModel model{stage, test::HelicalCompliance(scene, stage),
                                  transmission::SetupFromScene(scene)};
@@ -189,9 +189,10 @@ TEST_CASE("a helical stage without slices is refused naming face_width.slices",
   CHECK_NOTHROW(transmission::RequireHelicalSlices(sliced, "`epicycle quasistatic`"));
 }
 
-TEST_CASE("helical paper stage: the sun's axial force departs from |T_s| tan beta_b / r_b by its "
-          "contacts' levers off the base circle",
-          "[crosscheck][transmission][helical]") {
+TEST_CASE(
+    "helical paper stage: the sun's axial force departs from |T_s| tan beta_b / r_b by its "
+    "contacts' levers off the base circle",
+    "[crosscheck][transmission][helical]") {
   // docs/face_width.md, "Helical meshes": the model sums the sun contacts' axial parts,
   // F_a = tan β_b Σ f_j, and the sun's moment balance is Σ f_j ℓ_j = |T_s| (ℓ_j the lever of
   // contact j's normal about the sun's axis). So, exactly,
@@ -207,8 +208,8 @@ TEST_CASE("helical paper stage: the sun's axial force departs from |T_s| tan bet
   const transmission::StageModel& model = paper.model;
   const double r_b = stage.sun().base_radius();
   const double torque = std::abs(scene.loads.sun_torque);
-  const double tan_bb = std::tan(stage.sun().spec().helix.angle) *
-                        std::cos(stage.sun().spec().pressure_angle);
+  const double tan_bb =
+      std::tan(stage.sun().spec().helix.angle) * std::cos(stage.sun().spec().pressure_angle);
   const double closed = torque * tan_bb / r_b;
   constexpr int kPositions = 12;
   for (int k = 0; k < kPositions; ++k) {

@@ -133,8 +133,8 @@ struct Fe3dLineLoad {
   double moment_balance = 0;  ///< |Σ F r_b1 − |T|| / |T| at the last step [-]
   bool extrapolated = false;  ///< T outside the steps' moments
   int nodes = 0, elements = 0;
-  /// With a body held (Fe3dOptions::axial_support): the axial reaction R_z of gear 1's and gear 2's held
-  /// nodes (sets AXIAL1, AXIAL2) at T, between the steps as the line load [N]; 0 otherwise.
+  /// With a body held (Fe3dOptions::axial_support): the axial reaction R_z of gear 1's and gear 2's
+  /// held nodes (sets AXIAL1, AXIAL2) at T, between the steps as the line load [N]; 0 otherwise.
   double axial_reaction[2] = {0, 0};
 };
 

@@ -267,6 +267,46 @@ void WriteInfluenceSteps(std::ostream& f, const transmission::Scene& scene,
   }
 }
 
+// The deck's load: a finite non-zero torque, and at least one rotation step, all of one sign.
+void CheckLoadSteps(double torque, const std::vector<double>& rotations) {
+  if (rotations.empty())
+    throw std::invalid_argument("fe3d deck: rotations: at least one step is needed");
+  for (double r : rotations)
+    if (!(r * rotations.front() > 0) || !std::isfinite(r))
+      throw std::invalid_argument("fe3d deck: rotation = " + Num(r, 13) +
+                                  ": every step's rotation must be non-zero and of one sign");
+  if (!(torque != 0) || !std::isfinite(torque))
+    throw std::invalid_argument("fe3d deck: torque = " + Num(torque, 13) +
+                                " N m: must be finite and non-zero");
+}
+
+// Each gear's nodes inside its root circle, at the mid-face level (`kBodyMidPlane`) or at every
+// level (`kBody`), the teeth and the fillets free: the sets BODY1, BODY2 held axially; with the
+// hub's, AXIAL1, AXIAL2, the sets whose reactions are printed.
+void WriteBodySets(std::ostream& f, const Sweep& sweep, const detail::DeckMesh& dm,
+                   const Extrusion& ex, const std::vector<int>& body_of, AxialSupport support,
+                   const std::vector<int>& hub1, const std::vector<int>& hub2) {
+  std::vector<int> held[2] = {hub1, hub2};
+  std::vector<int> mid[2];
+  for (int i = 0; i < ex.n2; ++i) {
+    const int g = body_of[static_cast<std::size_t>(i)];
+    const geometry::Gear& gear = *sweep.gear[g];
+    const double r = (dm.xy[i] - sweep.centre[g]).norm();
+    const double r_f = gear.root_radius() * kMm;
+    if (gear.internal() ? r > r_f * (1 + 1e-9) : r < r_f * (1 - 1e-9))
+      ex.Each(i, [&](int level, int id) {
+        if (level == ex.layers || support == AxialSupport::kBody) mid[g].push_back(id);
+      });
+  }
+  for (int g = 0; g < 2; ++g) {
+    detail::WriteNodeSet(f, "BODY" + std::to_string(g + 1), mid[g]);
+    held[g].insert(held[g].end(), mid[g].begin(), mid[g].end());
+    std::sort(held[g].begin(), held[g].end());
+    held[g].erase(std::unique(held[g].begin(), held[g].end()), held[g].end());
+    detail::WriteNodeSet(f, "AXIAL" + std::to_string(g + 1), held[g]);
+  }
+}
+
 }  // namespace
 
 FeMeshOptions Fe3dDefaultMesh() {
@@ -399,15 +439,7 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
                          double torque, double angle, const std::vector<double>& rotations,
                          const Fe3dOptions& options, const std::string& directory) {
   options.Validate();
-  if (rotations.empty())
-    throw std::invalid_argument("fe3d deck: rotations: at least one step is needed");
-  for (double r : rotations)
-    if (!(r * rotations.front() > 0) || !std::isfinite(r))
-      throw std::invalid_argument("fe3d deck: rotation = " + Num(r, 13) +
-                                  ": every step's rotation must be non-zero and of one sign");
-  if (!(torque != 0) || !std::isfinite(torque))
-    throw std::invalid_argument("fe3d deck: torque = " + Num(torque, 13) +
-                                " N m: must be finite and non-zero");
+  CheckLoadSteps(torque, rotations);
   const geometry::Gear& g1 = pair.gear1();
   const geometry::Gear& g2 = pair.gear2();
   const geometry::PairPoses poses = pair.Poses(angle);
@@ -544,30 +576,8 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
     });
   detail::WriteNodeSet(f, "HUB2", hub2_ids);
   const bool body_held = options.axial_support != AxialSupport::kHubs;
-  if (body_held) {
-    // Each gear's nodes inside its root circle, at the mid-face level or at every level (the
-    // teeth and the fillets free); with the hub's, the set whose reaction is printed.
-    const geometry::Gear* gear[2] = {&g1, &g2};
-    std::vector<int> held[2] = {deck.hub_nodes, hub2_ids};
-    std::vector<int> mid[2];
-    for (int i = 0; i < ex.n2; ++i) {
-      const int g = body_of[static_cast<std::size_t>(i)];
-      const double r = (dm.xy[i] - sweep.centre[g]).norm();
-      const double r_f = gear[g]->root_radius() * kMm;
-      if (gear[g]->internal() ? r > r_f * (1 + 1e-9) : r < r_f * (1 - 1e-9))
-        ex.Each(i, [&](int level, int id) {
-          if (level == ex.layers || options.axial_support == AxialSupport::kBody)
-            mid[g].push_back(id);
-        });
-    }
-    for (int g = 0; g < 2; ++g) {
-      detail::WriteNodeSet(f, "BODY" + std::to_string(g + 1), mid[g]);
-      held[g].insert(held[g].end(), mid[g].begin(), mid[g].end());
-      std::sort(held[g].begin(), held[g].end());
-      held[g].erase(std::unique(held[g].begin(), held[g].end()), held[g].end());
-      detail::WriteNodeSet(f, "AXIAL" + std::to_string(g + 1), held[g]);
-    }
-  }
+  if (body_held)
+    WriteBodySets(f, sweep, dm, ex, body_of, options.axial_support, deck.hub_nodes, hub2_ids);
 
   if (options.influence) {
     WriteInfluenceSteps(f, scene, options, dm, ex, m1, m2, lc, normal, contact_point, info);
@@ -613,11 +623,10 @@ Fe3dDeckInfo WriteDeck3d(const transmission::Scene& scene, const geometry::GearP
         for (int d = 0; d < 3; ++d)
           f << h.id << ", " << d + 1 << ", " << d + 1 << ", " << Num(u[d], 13) << "\n";
       }
-    detail::WriteStepOutputAndEnd(
-        f, deck,
-        body_held
-            ? "*NODE PRINT, NSET=AXIAL1, TOTALS=ONLY\nRF\n*NODE PRINT, NSET=AXIAL2, TOTALS=ONLY\nRF\n"
-            : "");
+    detail::WriteStepOutputAndEnd(f, deck,
+                                  body_held ? "*NODE PRINT, NSET=AXIAL1, TOTALS=ONLY\nRF\n*NODE "
+                                              "PRINT, NSET=AXIAL2, TOTALS=ONLY\nRF\n"
+                                            : "");
   }
   if (!f) throw std::runtime_error(deck_path + ": write failed");
   f.close();

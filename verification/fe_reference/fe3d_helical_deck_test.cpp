@@ -174,8 +174,8 @@ TEST_CASE("3D FE reference: the bodies held axially are the nodes inside the roo
                          40 * m_n / std::cos(beta) / 2 - 1.25 * m_n};
   const geometry::Vec2 centre[2] = {poses.gear1.geometric_centre * 1e3,
                                     poses.gear2.geometric_centre * 1e3};
-  for (const auto support : {fe_reference::AxialSupport::kBodyMidPlane,
-                             fe_reference::AxialSupport::kBody}) {
+  for (const auto support :
+       {fe_reference::AxialSupport::kBodyMidPlane, fe_reference::AxialSupport::kBody}) {
     const std::string dir =
         (std::filesystem::temp_directory_path() / "epicycle_fe3d_helical_held").string();
     std::filesystem::remove_all(dir);
@@ -216,8 +216,8 @@ TEST_CASE("3D FE reference: the bodies held axially are the nodes inside the roo
         z_min = std::min(z_min, p[2]);
         z_max = std::max(z_max, p[2]);
       }
-      INFO("gear " << g + 1 << ": " << ids.size() << " held nodes, r up to " << r_max
-                   << " mm (r_f " << r_f[g] << " mm), z in [" << z_min << ", " << z_max << "]");
+      INFO("gear " << g + 1 << ": " << ids.size() << " held nodes, r up to " << r_max << " mm (r_f "
+                   << r_f[g] << " mm), z in [" << z_min << ", " << z_max << "]");
       CHECK(r_max < r_f[g]);
       // The nodes reach the root circle within the body's element size near it (m/2 = 2 mm).
       CHECK(r_max > r_f[g] - 2.0);

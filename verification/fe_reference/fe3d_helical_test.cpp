@@ -60,8 +60,8 @@ TEST_CASE("3D FE reference: the helical deck's run, its equilibrium and its comm
   const double beta = 15.0 * geometry::kPi / 180.0, alpha_n = 20.0 * geometry::kPi / 180.0;
   const double tan_bb = std::tan(beta) * std::cos(std::atan(std::tan(alpha_n) / std::cos(beta)));
   const double axial = r.total_force * tan_bb;
-  INFO("axial reactions " << r.axial_reaction[0] << ", " << r.axial_reaction[1] << " N; F_t tan beta_b "
-                          << axial << " N");
+  INFO("axial reactions " << r.axial_reaction[0] << ", " << r.axial_reaction[1]
+                          << " N; F_t tan beta_b " << axial << " N");
   CHECK(std::abs(std::abs(r.axial_reaction[0]) - axial) <= kResidual * axial);
   CHECK(std::abs(r.axial_reaction[0] + r.axial_reaction[1]) <= kResidual * axial);
   const double mean = r.total_force / r.face_width / 1e3;  // N/mm

@@ -125,8 +125,8 @@ inline HelicalReference ReferenceWithTolerance(const std::string& csv, const std
                                                double slices) {
   HelicalReference out;
   out.line_load = Pooled(CommittedRun(csv, name, layers, "1").line_load, stations);
-  const std::vector<double> coarse = Pooled(CommittedRun(csv, name, layers / 2, "1").line_load,
-                                            stations);
+  const std::vector<double> coarse =
+      Pooled(CommittedRun(csv, name, layers / 2, "1").line_load, stations);
   const std::vector<double> plane1 =
       Pooled(CommittedRun(csv, name, plane_layers, "1").line_load, stations);
   const std::vector<double> plane141 =

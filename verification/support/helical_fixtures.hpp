@@ -27,8 +27,8 @@ inline const transmission::FeStageCompliance& HelicalCompliance(const transmissi
 }
 
 /// The face load of planet `planet`'s (0-based) sun mesh or ring mesh in a sliced state.
-inline const transmission::MeshFaceLoad& MeshLoad(const transmission::PositionResult& r,
-                                                  int planet, bool ring) {
+inline const transmission::MeshFaceLoad& MeshLoad(const transmission::PositionResult& r, int planet,
+                                                  bool ring) {
   for (const transmission::MeshFaceLoad& m : r.face_loads)
     if (m.planet == planet && m.ring_mesh == ring) return m;
   FAIL("no face load for the mesh");

@@ -44,13 +44,15 @@ TEST_CASE("a speed sweep's FROM:TO:N: the grid and its refusals", "[unit][dynami
         "--speed-sweep = 0.5:5000:3: FROM = 0.5: must be finite and in [1, 100000] [rpm] (slower "
         "runs are quasi-static: epicycle quasistatic; faster ones are past any gear's pitch-line "
         "speed)");
-  CHECK(Message([] { dynamics::ParseSpeedSweep("--speed-sweep", "1000:inf:3"); })
-            .starts_with("--speed-sweep = 1000:inf:3: TO = inf: must be finite and in [1, 100000]"));
+  CHECK(Message([] {
+          dynamics::ParseSpeedSweep("--speed-sweep", "1000:inf:3");
+        }).starts_with("--speed-sweep = 1000:inf:3: TO = inf: must be finite and in [1, 100000]"));
   CHECK(Message([] { dynamics::ParseSpeedSweep("--speed-sweep", "1000:5000:200000"); }) ==
         "--speed-sweep = 1000:5000:200000: N = 200000: must be a whole number in [1, 100000]");
   // A descending range is SpeedGrid's refusal, put after the option and its value.
-  CHECK(Message([] { dynamics::ParseSpeedSweep("--speed-sweep", "5000:1000:3"); })
-            .starts_with("--speed-sweep = 5000:1000:3: last sun speed [rpm] = 1000"));
+  CHECK(Message([] {
+          dynamics::ParseSpeedSweep("--speed-sweep", "5000:1000:3");
+        }).starts_with("--speed-sweep = 5000:1000:3: last sun speed [rpm] = 1000"));
 }
 
 TEST_CASE("a branch's range: over the sun speed or a scene's number", "[unit][dynamics]") {

@@ -183,9 +183,9 @@ const std::vector<Case> kCases = {
       "more than half the contact search's gap window (contact.gap_window_um = 100)"}},
     {"face_wind_up_soft.toml",
      false,
-     {"face_width.carrier_torsional_stiffness_Nm_per_rad = 2000000",
-      "every pin tilted by 5267.9", "under the carrier torque 3037.5 N m",
-      "the gap changes by up to 65.8", "between the mid-plane and an end of the sun-planet1 mesh",
+     {"face_width.carrier_torsional_stiffness_Nm_per_rad = 2000000", "every pin tilted by 5267.9",
+      "under the carrier torque 3037.5 N m", "the gap changes by up to 65.8",
+      "between the mid-plane and an end of the sun-planet1 mesh",
       "more than half the contact search's gap window (contact.gap_window_um = 100)"}},
     // A gear pair's slices take the leads of gear1 and gear2; a pin and a carrier are a stage's.
     {"face_pair_pin_tilt.toml",

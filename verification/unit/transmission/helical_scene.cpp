@@ -142,7 +142,8 @@ TEST_CASE("the ISO 6336 rating of a helical stage takes the helical factors",
   transmission::SweepSummary summary;
   summary.converged = 1;
   summary.lsr_max = {1.0 / 3, 1.0 / 3, 1.0 / 3};
-  const transmission::StageRating r = transmission::RateStage(transmission::RatingInputsOf(s), stage, summary);
+  const transmission::StageRating r =
+      transmission::RateStage(transmission::RatingInputsOf(s), stage, summary);
   const double pi = std::numbers::pi, beta = 7.5 * pi / 180, mn = 10e-3, an = 20 * pi / 180;
   const double mt = mn / std::cos(beta), at = std::atan(std::tan(an) / std::cos(beta));
   const double bb = std::atan(std::tan(beta) * std::cos(at)), b = 227.5e-3;

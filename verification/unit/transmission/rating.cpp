@@ -128,7 +128,8 @@ TEST_CASE("A dynamic rating: the ISO columns take K_v, the stresses in motion do
   motion.contact_pressure.push_back(p);
   const double kv = 1.25;
   const StageRating still = RateStage(RatingInputsOf(scene), stage, at_rest);
-  const StageRating dynamic = RateStage(RatingInputsOf(scene), stage, at_rest, kv, "the run", &motion);
+  const StageRating dynamic =
+      RateStage(RatingInputsOf(scene), stage, at_rest, kv, "the run", &motion);
   const GearRating &g = still.gears.front(), &h = dynamic.gears.front();
   // ISO 6336: σ_F ∝ K_v, σ_H ∝ √K_v, with K_γ of the reference.
   CHECK(h.sigma_f_model == Approx(g.sigma_f_model * kv).epsilon(1e-15));
@@ -265,12 +266,12 @@ TEST_CASE("ISO 6336-1 method C: K_Hbeta and K_Fbeta from the misalignment and c_
     // 0.5 (f_ma + f_sh) = 5.5 µm:
     const double fma = 8e-6, fsh = 3e-6;
     using B = std::array<double, 2>;
-    CHECK(MethodCModification(0, false, fma, fsh) == B{1.0, 1.0});      // none
-    CHECK(MethodCModification(6e-6, false, fma, fsh) == B{0.5, 0.5});   // C_β = 6 ≥ 5.5
+    CHECK(MethodCModification(0, false, fma, fsh) == B{1.0, 1.0});       // none
+    CHECK(MethodCModification(6e-6, false, fma, fsh) == B{0.5, 0.5});    // C_β = 6 ≥ 5.5
     CHECK(MethodCModification(5.5e-6, false, fma, fsh) == B{0.5, 0.5});  // the row's own C_β
-    CHECK(MethodCModification(4e-6, false, fma, fsh) == B{1.0, 0.5});   // C_β = 4 < 5.5
-    CHECK(MethodCModification(0, true, fma, fsh) == B{0.7, 0.7});       // end relief
-    CHECK(MethodCModification(6e-6, true, fma, fsh) == B{0.5, 0.5});    // crowning taken
+    CHECK(MethodCModification(4e-6, false, fma, fsh) == B{1.0, 0.5});    // C_β = 4 < 5.5
+    CHECK(MethodCModification(0, true, fma, fsh) == B{0.7, 0.7});        // end relief
+    CHECK(MethodCModification(6e-6, true, fma, fsh) == B{0.5, 0.5});     // crowning taken
     CHECK_THROWS_WITH(MethodCModification(-1e-6, false, fma, fsh),
                       Catch::Contains("C_beta [m] = -1e-06: must be finite and >= 0"));
     in.deflection = fsh;
@@ -322,7 +323,8 @@ TEST_CASE("A rating across the face width: the model's K_Hbeta beside method C's
   const std::array<double, 2> c{17.56e9, 23.61e9};
   // Without the meshes' stiffness no face-width rating; with it, one per mesh.
   CHECK(RateStage(RatingInputsOf(scene), stage, s).face_width.empty());
-  const StageRating rating = RateStage(RatingInputsOf(scene), stage, s, 1.0, "quasi-static", nullptr, &c);
+  const StageRating rating =
+      RateStage(RatingInputsOf(scene), stage, s, 1.0, "quasi-static", nullptr, &c);
   REQUIRE(rating.face_width.size() == 1);
   const MeshFaceRating& m = rating.face_width.front();
   CHECK(m.k_gamma_model == Approx(1.2).epsilon(1e-15));  // 3 × 0.4
@@ -348,7 +350,8 @@ TEST_CASE("A rating across the face width: the model's K_Hbeta beside method C's
   lead.gear = "planet1";
   lead.crowning = 5e-6;
   crowned.face_width.leads = {lead};
-  const StageRating c_rating = RateStage(RatingInputsOf(crowned), stage, s, 1.0, "quasi-static", nullptr, &c);
+  const StageRating c_rating =
+      RateStage(RatingInputsOf(crowned), stage, s, 1.0, "quasi-static", nullptr, &c);
   const MeshFaceRating& mc = c_rating.face_width.front();
   CHECK(mc.iso_inputs.b1 == 0.5);
   CHECK(mc.iso_inputs.b2 == 0.5);

@@ -39,11 +39,20 @@ struct DynamicOptionNames {
               max_steps = A::kMaxSteps.keyword, time_limit = A::kTimeLimit.keyword;
   /// The program's names (its options).
   static DynamicOptionNames Program() {
-    return {A::kTime.option,       A::kSpeedRpm.option,           A::kRange.option,
-            A::kRating.option,     A::kSpectrumResolution.option, A::kSpectrumSkip.option,
-            A::kOutputsPerCycle.option, A::kStartDeg.option,      A::kRtol.option,
-            A::kRateScale.option,  A::kContactTol.option,         A::kMaxOrder.option,
-            A::kMaxSteps.option,   A::kTimeLimit.option};
+    return {A::kTime.option,
+            A::kSpeedRpm.option,
+            A::kRange.option,
+            A::kRating.option,
+            A::kSpectrumResolution.option,
+            A::kSpectrumSkip.option,
+            A::kOutputsPerCycle.option,
+            A::kStartDeg.option,
+            A::kRtol.option,
+            A::kRateScale.option,
+            A::kContactTol.option,
+            A::kMaxOrder.option,
+            A::kMaxSteps.option,
+            A::kTimeLimit.option};
   }
 };
 

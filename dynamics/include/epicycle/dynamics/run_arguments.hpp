@@ -64,9 +64,8 @@ struct DynamicArguments {
       "carrier revolution"};
   static constexpr ArgumentInfo kTime{"--time", "time_s", "Simulate this long instead [s]",
                                       &kRunTimeS};
-  static constexpr ArgumentInfo kStartDeg{"--start-deg", "start_deg",
-                                          "Carrier angle at t = 0 [deg]",
-                                          &transmission::kCarrierAngleDeg};
+  static constexpr ArgumentInfo kStartDeg{
+      "--start-deg", "start_deg", "Carrier angle at t = 0 [deg]", &transmission::kCarrierAngleDeg};
   static constexpr ArgumentInfo kFriction{"--friction", "friction",
                                           "Override the scene's friction law"};
   static constexpr ArgumentInfo kBackend{"--backend", "backend",
@@ -115,7 +114,8 @@ struct DynamicArguments {
       "stability, for a stage whose orbit repeats with the mesh (docs/periodic.md)"};
   static constexpr ArgumentInfo kHbHarmonics{
       "--hb-harmonics", "harmonics",
-      "--periodic-method hb: harmonics of the mesh period kept (default 24)", &dynamics::kHarmonics};
+      "--periodic-method hb: harmonics of the mesh period kept (default 24)",
+      &dynamics::kHarmonics};
   static constexpr ArgumentInfo kWindowCycles{
       "--window-cycles", "window_cycles",
       "Speed sweep: mesh cycles measured per speed (replaces --range)", &dynamics::kWindowCycles};
@@ -131,9 +131,8 @@ struct DynamicArguments {
       "Speed sweep: up or down: a run-up or run-down, one speed after the other in that order, "
       "each from the previous speed's end state (the jumps of docs/periodic.md); none: each speed "
       "from rest (the default)"};
-  static constexpr ArgumentInfo kMaxOrder{"--max-order", "max_order",
-                                          "Largest BDF order of CVODE (1..5)",
-                                          &dynamics::kMaxOrder};
+  static constexpr ArgumentInfo kMaxOrder{
+      "--max-order", "max_order", "Largest BDF order of CVODE (1..5)", &dynamics::kMaxOrder};
   static constexpr ArgumentInfo kMaxSteps{
       "--max-steps", "max_steps",
       "Integrator steps per output interval before the run stops (default 2000000)",

@@ -151,14 +151,14 @@ struct StageRating {
 /// dynamics::StageDynamics, a study's case) and held there: every rating reads these, never the
 /// scene (docs/model.md §9, "Ratings").
 struct RatingInputs {
-  std::string source;               ///< the scene's file, for messages
-  double bending_limit = 0;         ///< σ_Flim [Pa] ([material] bending_limit_MPa); 0: not given
-  double contact_limit = 0;         ///< σ_Hlim [Pa] ([material] contact_limit_MPa); 0: not given
-  double youngs_modulus = 0;        ///< E [Pa] of every gear ([material] youngs_modulus_GPa)
-  double poisson_ratio = 0;         ///< ν [-] of every gear ([material] poisson_ratio)
-  double application_factor = 1;   ///< K_A [-] ([rating] application_factor)
-  double sun_torque = 0;            ///< T_s [N·m] ([load] sun_torque_Nm)
-  std::vector<LeadSpec> leads;      ///< the gears' lead slopes and modifications ([[face_width.lead]])
+  std::string source;             ///< the scene's file, for messages
+  double bending_limit = 0;       ///< σ_Flim [Pa] ([material] bending_limit_MPa); 0: not given
+  double contact_limit = 0;       ///< σ_Hlim [Pa] ([material] contact_limit_MPa); 0: not given
+  double youngs_modulus = 0;      ///< E [Pa] of every gear ([material] youngs_modulus_GPa)
+  double poisson_ratio = 0;       ///< ν [-] of every gear ([material] poisson_ratio)
+  double application_factor = 1;  ///< K_A [-] ([rating] application_factor)
+  double sun_torque = 0;          ///< T_s [N·m] ([load] sun_torque_Nm)
+  std::vector<LeadSpec> leads;  ///< the gears' lead slopes and modifications ([[face_width.lead]])
 };
 
 /// The rating inputs of a stage scene.
@@ -179,8 +179,9 @@ struct MotionStresses {
 /// limit. @throws std::invalid_argument naming the missing [material] key.
 void CheckRatingInputs(const RatingInputs& inputs, const std::string& asked_by);
 
-/// The ratings of `stage` (`inputs`: its material, limits, K_A and torque) with the run's `summary` (K_γ from
-/// its LSR; root stresses and contact pressures when it has them) and the dynamic factor K_v
+/// The ratings of `stage` (`inputs`: its material, limits, K_A and torque) with the run's `summary`
+/// (K_γ from its LSR; root stresses and contact pressures when it has them) and the dynamic factor
+/// K_v
 /// (`dynamic_source` says where it came from). With `motion` (a dynamic run: `summary` is then
 /// its quasi-static reference at the same carrier angles) the model's own columns are the run's
 /// stresses in motion without K_v. With `mesh_stiffness` (c_γα [N/m²] per unit face width of the

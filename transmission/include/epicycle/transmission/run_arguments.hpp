@@ -81,11 +81,10 @@ struct QuasiStaticArguments {
       "--range", "range",
       "Sweep one mesh cycle, one planet or sun revolution relative to the carrier (the period of "
       "a planet's run-out, of a sun tooth's damage), or one carrier revolution"};
-  static constexpr ArgumentInfo kStartDeg{"--start-deg", "start_deg",
-                                          "Carrier angle of the first position [deg]",
-                                          &kCarrierAngleDeg};
-  static constexpr ArgumentInfo kAnglesDeg{"--angles-deg", "angles_deg",
-                                           "A given list of carrier angles [deg]", &kCarrierAngleDeg};
+  static constexpr ArgumentInfo kStartDeg{
+      "--start-deg", "start_deg", "Carrier angle of the first position [deg]", &kCarrierAngleDeg};
+  static constexpr ArgumentInfo kAnglesDeg{
+      "--angles-deg", "angles_deg", "A given list of carrier angles [deg]", &kCarrierAngleDeg};
   static constexpr ArgumentInfo kThreads{
       "--threads", "threads",
       "Worker threads: the positions in contiguous chunks, one per thread (0: one per core)",
@@ -133,9 +132,8 @@ struct StiffnessArguments {
 
 /// The arguments of a tolerance study (studies::StudyRequest).
 struct StudyArguments {
-  static constexpr ArgumentInfo kThreads{"--threads", "threads",
-                                         "Worker threads (default: every core)",
-                                         &transmission::kThreads};
+  static constexpr ArgumentInfo kThreads{
+      "--threads", "threads", "Worker threads (default: every core)", &transmission::kThreads};
   static constexpr ArgumentInfo kMaxCases{
       "--max-cases", "max_cases",
       "Compute at most this many new cases, then summarise (a partial run)", &kStudyCases};
@@ -153,9 +151,8 @@ struct StudyArguments {
 
 /// The arguments of the contact core's runs on problem files (solve, compare, stability).
 struct ContactArguments {
-  static constexpr ArgumentInfo kTolerance{"--tol", "tolerance",
-                                           "tolerance on the nondimensional residual",
-                                           &kContactTolerance};
+  static constexpr ArgumentInfo kTolerance{
+      "--tol", "tolerance", "tolerance on the nondimensional residual", &kContactTolerance};
   static constexpr ArgumentInfo kRepeats{
       "--repeat", "repeats", "solves per (back end, problem); the median time is reported",
       &kComparisonRepeats};
