@@ -14,7 +14,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/check_common.sh" "$@"
 layers="io|geometry|solvers|compliance|transmission|dynamics|studies|report"
 failures=0
 
-# Tags. A case's declaration runs from its TEST_CASE( (or SCENARIO(, ...) to the first "{".
+# Tags and names. A case's declaration runs from its TEST_CASE( (or SCENARIO(, ...) to the first
+# "{"; its name holds no ';' (catch_discover_tests passes it to CTest, which splits it there).
 mapfile -t -d '' sources < <(list_files | grep -z '^verification/.*\.cpp$' | sort -z)
 untagged=$(awk '
   function flush() {
@@ -23,6 +24,12 @@ untagged=$(awk '
       if (decl !~ /\[\./ && decl !~ /\[(unit|crosscheck|reference)\]/) {
         gsub(/[[:space:]]+/, " ", decl)
         print FILENAME ":" start ": no [unit], [crosscheck] or [reference] tag: " decl
+      }
+      name = decl
+      sub(/"[[:space:]]*,[[:space:]]*"\[.*/, "", name)
+      if (name ~ /;/) {
+        gsub(/[[:space:]]+/, " ", name)
+        print FILENAME ":" start ": a \";\" in the name, where CTest splits the case and runs none of it: " name
       }
     }
     decl = ""

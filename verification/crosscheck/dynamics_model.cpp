@@ -114,7 +114,7 @@ double StepBound(const test::DynamicRig& rig, const dynamics::SimulationOptions&
 }  // namespace
 
 TEST_CASE(
-    "energy: with constant compliance, input work = kinetic + elastic energy; with damping "
+    "energy: with constant compliance, input work = kinetic + elastic energy, with damping "
     "and friction, the loss equals their integrated power",
     "[crosscheck][dynamics]") {
   // Independent linear springs (c = 1e-9 m/N, no local term, no coupling) make the contact
@@ -459,7 +459,7 @@ double ColumnError(const Eigen::MatrixXd& j, const Eigen::MatrixXd& reference) {
 }  // namespace
 
 TEST_CASE(
-    "Jacobian with friction: the velocity Jacobian equals differences of the right-hand side; "
+    "Jacobian with friction: the velocity Jacobian equals differences of the right-hand side, "
     "friction adds no error to the position Jacobian beyond its frozen contact geometry",
     "[crosscheck][dynamics][friction]") {
   // The paper's stage with run-out at 30 rpm, floating sun, FE compliance and local terms, Xu &

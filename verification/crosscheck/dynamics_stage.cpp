@@ -358,7 +358,7 @@ class FailingCompliance : public transmission::StageCompliance {
 
 }  // namespace
 TEST_CASE(
-    "dynamic model, bad input: each named with its key, value and rule; a run that fails "
+    "dynamic model, bad input: each named with its key, value and rule, a run that fails "
     "midway keeps its outputs and says where and why",
     "[unit][dynamics][input]") {
   const std::string paper = test::SceneText("paper_stage.toml");

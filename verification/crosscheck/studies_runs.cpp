@@ -68,7 +68,7 @@ studies::RunReport Run(const studies::StudySpec& s, const std::string& file, int
 
 }  // namespace
 
-TEST_CASE("study: identical rows with 1 and 4 threads; a restart computes only what is missing",
+TEST_CASE("study: identical rows with 1 and 4 threads, a restart computes only what is missing",
           "[crosscheck][studies]") {
   test::TempDir dir("study-threads");
   const studies::StudySpec s = studies::ParseStudy(Study(20), "threads.toml", "");  // 40 cases

@@ -115,7 +115,7 @@ std::pair<double, double> PressureAngles(const geometry::Stage& stage) {
 
 }  // namespace
 
-TEST_CASE("quasi-static FE, no errors: mesh-cycle averages are 1/n; floating sun equalises",
+TEST_CASE("quasi-static FE, no errors: mesh-cycle averages are 1/n, floating sun equalises",
           "[crosscheck][transmission][fe]") {
   for (const std::string file : {"paper_stage.toml", "paper_stage_4planets.toml"}) {
     for (SunSupport sun : {SunSupport::kFixed, SunSupport::kFloating}) {

@@ -177,7 +177,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "elastic sun bearing, springs: the bearing carries the net mesh force; stiff and soft limits",
+    "elastic sun bearing, springs: the bearing carries the net mesh force, stiff and soft limits",
     "[crosscheck][transmission]") {
   // The sun on a bearing of stiffness k_s: its deflection s satisfies k_s s = net contact force
   // on the sun (Σ −n_j F_j over the sun's contacts), computed here from the solved forces and the

@@ -97,7 +97,7 @@ double ClampedTipDeflection(const Beam& beam, int nx, int ny) {
 
 }  // namespace
 
-TEST_CASE("Cantilever tip deflection within 1% of Timoshenko's solution; convergence order",
+TEST_CASE("Cantilever tip deflection within 1% of Timoshenko's solution, convergence order",
           "[reference]") {
   const auto plane = GENERATE(PlaneAssumption::kPlaneStress, PlaneAssumption::kPlaneStrain);
   const double slenderness = GENERATE(10.0, 4.0);

@@ -56,7 +56,7 @@ Result Solve(const ElasticMaterial& m, double p, double a, double b, int nr, int
 
 }  // namespace
 
-TEST_CASE("Thick cylinder: radial displacement within 0.5% of Lame; convergence order",
+TEST_CASE("Thick cylinder: radial displacement within 0.5% of Lame, convergence order",
           "[reference]") {
   const auto plane = GENERATE(PlaneAssumption::kPlaneStrain, PlaneAssumption::kPlaneStress);
   const ElasticMaterial m{206e9, 0.3, 0.025, plane};

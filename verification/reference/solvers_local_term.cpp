@@ -132,7 +132,7 @@ TEST_CASE("local term derivative and integral against differences and quadrature
   }
 }
 
-TEST_CASE("corrected local term stays monotone; validity limit is L = h", "[unit][solvers]") {
+TEST_CASE("corrected local term stays monotone, validity limit is L = h", "[unit][solvers]") {
   for (double nu : {0.0, 0.3, 0.45, 0.499}) {
     LocalTermParameters p = Steel(PlaneAssumption::kPlaneStrain, 1e-3, 2e-3);
     p.body[0].poisson_ratio = p.body[1].poisson_ratio = nu;

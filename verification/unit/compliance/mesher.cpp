@@ -42,7 +42,7 @@ double QuadraticArcSectorArea(double r, double h) {
 
 }  // namespace
 
-TEST_CASE("Mapped mesher: quarter ring nodes lie on the arcs; Coons gives polar coordinates",
+TEST_CASE("Mapped mesher: quarter ring nodes lie on the arcs, Coons gives polar coordinates",
           "[unit]") {
   const double a = 0.05, b = 0.1;
   const Mesh m = MappedMesher().BuildMesh(testing::QuarterRingRegion(a, b, 3, 7));
@@ -70,7 +70,7 @@ TEST_CASE("Mapped mesher: quarter ring nodes lie on the arcs; Coons gives polar 
         Approx(7 * (QuadraticArcSectorArea(b, h) - QuadraticArcSectorArea(a, h))).epsilon(1e-13));
 }
 
-TEST_CASE("Mapped mesher: mid-side nodes lie on curved sides; geometric grading", "[unit]") {
+TEST_CASE("Mapped mesher: mid-side nodes lie on curved sides, geometric grading", "[unit]") {
   const double amp = 0.01;
   Patch p;
   auto wave = [amp](double t) -> Eigen::Vector2d {

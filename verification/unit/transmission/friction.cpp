@@ -39,7 +39,7 @@ const FrictionLaw kOnLaws[] = {FrictionLaw::kConstant, FrictionLaw::kXuKahraman,
 
 }  // namespace
 
-TEST_CASE("friction law names round-trip; an unknown name lists the allowed ones",
+TEST_CASE("friction law names round-trip, an unknown name lists the allowed ones",
           "[unit][transmission][friction]") {
   for (FrictionLaw law : {FrictionLaw::kOff, FrictionLaw::kConstant, FrictionLaw::kXuKahraman,
                           FrictionLaw::kBenedictKelley})
@@ -103,7 +103,7 @@ TEST_CASE("Hertz pressure equals 2F/(π a b) with the half-width a = √(4FR/(π
   CHECK(MaxHertzPressure(unloaded) == 0.0);
 }
 
-TEST_CASE("off returns 0; every law is 0 at the pitch point and changes sign across it",
+TEST_CASE("off returns 0, every law is 0 at the pitch point and changes sign across it",
           "[unit][transmission][friction]") {
   CHECK(SignedFrictionCoefficient(Law(FrictionLaw::kOff), PaperContact(3, 1)) == 0.0);
   for (FrictionLaw law : kOnLaws) {

@@ -17,7 +17,7 @@
 using namespace epicycle;
 using transmission::RunRange;
 
-TEST_CASE("the accumulator: count, sum, min, mean, max; NaN for empty input",
+TEST_CASE("the accumulator: count, sum, min, mean, max, NaN for empty input",
           "[unit][transmission]") {
   transmission::Accumulator a;
   CHECK(a.empty());
