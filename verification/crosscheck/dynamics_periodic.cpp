@@ -10,6 +10,7 @@
 #include <cmath>
 #include <complex>
 #include <string>
+#include <vector>
 
 #include "epicycle/dynamics/periodic.hpp"
 #include "epicycle/dynamics/periodic_systems.hpp"
@@ -173,4 +174,95 @@ TEST_CASE(
         a_branch, "-");
     CHECK(a_time == Approx(a_branch).margin(tol));
   }
+}
+
+namespace {
+
+// The system on a clock started at t = φT (φ = `fraction`): f_φ(t, y; p) = f(t + φT, y; p). A
+// non-autonomous orbit is pinned to its forcing's phase, so "another point of the orbit" is the
+// orbit's state at another phase of the forcing: shooting f_φ solves for the state at t = φT of
+// the same orbit, and its monodromy Φ(φT + T, φT) = Φ(φT) M Φ(φT)⁻¹ is similar to M.
+class PhaseShifted final : public PeriodicSystem {
+ public:
+  PhaseShifted(const PeriodicSystem& base, double fraction) : base_(base), fraction_(fraction) {}
+  int size() const override { return base_.size(); }
+  std::vector<PeriodicParameter> parameters() const override { return base_.parameters(); }
+  double Period(const Eigen::VectorXd& p) const override { return base_.Period(p); }
+  bool Rhs(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& p,
+           Eigen::VectorXd* f) const override {
+    return base_.Rhs(t + fraction_ * base_.Period(p), y, p, f);
+  }
+  bool has_jacobian() const override { return base_.has_jacobian(); }
+  bool Jacobian(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& p,
+                Eigen::MatrixXd* jac) const override {
+    return base_.Jacobian(t + fraction_ * base_.Period(p), y, p, jac);
+  }
+  Eigen::MatrixXd PeriodMap(const Eigen::VectorXd& p) const override { return base_.PeriodMap(p); }
+
+ private:
+  const PeriodicSystem& base_;
+  double fraction_;
+};
+
+}  // namespace
+
+TEST_CASE(
+    "backlash oscillator: shooting started at another phase of the forcing (T/3) finds the same "
+    "orbit's state there, with the same multipliers",
+    "[crosscheck][dynamics][periodic]") {
+  const BacklashOscillator s;
+  const ShootingOptions o = Sweep().shooting;
+  const double omega = 0.6;  // between the folds: the large, separating orbit from x = 0
+  const Eigen::Vector2d p(omega, s.alternating_force);
+  // The orbit at phase 0: shooting from where a time integration from x = 0 settles.
+  const Eigen::VectorXd settled = IntegratePeriods(s, o, Eigen::Vector2d(0.0, 0), p, 100);
+  const ShootingResult a = SolvePeriodicOrbit(s, o, settled, p);
+  REQUIRE(a.status == ShootingStatus::kConverged);
+  REQUIRE(Amplitude(s, o, a.initial_state, p) > 0.5);  // the separating orbit (0.61)
+  // Its state at t = T/3 by time integration from the orbit's state at 0.
+  const Eigen::MatrixXd samples = SampleOrbit(s, o, a.initial_state, p, 3);
+  const Eigen::VectorXd at_third = samples.row(1).transpose();
+  // Shooting on the clock started at T/3, from its own start: where 3 periods of the shifted
+  // system from x = 0 lead (a transient not yet settled). (From the orbit's state at t = 0, a
+  // point of the orbit at the wrong phase for this section, Newton's line search stalls: the
+  // impacting orbit's basin for Newton is narrower than that.)
+  const PhaseShifted shifted(s, 1.0 / 3);
+  const Eigen::VectorXd guess = IntegratePeriods(shifted, o, Eigen::Vector2d(0.0, 0), p, 3);
+  const ShootingResult b = SolvePeriodicOrbit(shifted, o, guess, p);
+  INFO(b.message);
+  REQUIRE(b.status == ShootingStatus::kConverged);
+  epicycle::test::FigureValue("phase T/3: guess - answer",
+                              (guess - at_third).cwiseAbs().maxCoeff(), "-");
+  epicycle::test::FigureValue("phase T/3: Newton iterations", b.iterations, "-");
+  // Tolerance. Each shooting is within e = (newton_tolerance/(1 − ρ) + steps) w of its exact
+  // orbit (w = rtol|y| + atol; the bound of the tests above); the exact state at T/3 is the exact
+  // state at 0 carried by Φ(T/3), whose norm is at most exp(μ₂[J] T/3), μ₂[J] ≤ 1/2 the
+  // logarithmic norm of J = [0 1; −g' −2ζ] (g' ∈ {0, 1}: the largest eigenvalue of (J + Jᵀ)/2 =
+  // [0 (1 − g')/2; (1 − g')/2 −2ζ]); the integration to T/3 adds one local tolerance a step.
+  const double rho = std::max(a.floquet.spectral_radius, b.floquet.spectral_radius);
+  const double steps =
+      std::max(static_cast<double>(a.steps) / static_cast<double>(a.integrations),
+               static_cast<double>(b.steps) / static_cast<double>(b.integrations));
+  const double w = Weight(o, a.initial_state);
+  const double e = (o.newton_tolerance / (1 - rho) + steps) * w;
+  const double carry = std::exp(0.5 * a.period / 3);
+  const double tol = e + carry * e + steps * w;
+  const double error = (b.initial_state - at_third).cwiseAbs().maxCoeff();
+  epicycle::test::FigureValue("phase T/3: shifted shooting - orbit at T/3", error, "-");
+  epicycle::test::FigureValue("phase T/3: tolerance", tol, "-");
+  CHECK(error <= tol);
+  // The multipliers: M_φ is similar to M, so tr and det agree; det M = e^{−2ζT} (Liouville:
+  // tr J = −2ζ whatever g). Each entry of either carries at most steps·rtol(|M| + 1) (`entry`):
+  // a trace two of them, a determinant Σ|cofactor_ij||δM_ij| ≤ 4 max|M| entry.
+  const double entry = steps * o.rtol * (a.monodromy.cwiseAbs().maxCoeff() + 1);
+  CHECK(std::abs(b.monodromy.trace() - a.monodromy.trace()) <= 4 * entry);
+  const double det_tol = 4 * entry * a.monodromy.cwiseAbs().maxCoeff();
+  CHECK(std::abs(b.monodromy.determinant() -
+                 std::exp(-2 * s.damping_ratio * a.period)) <= det_tol);
+  CHECK(std::abs(a.monodromy.determinant() -
+                 std::exp(-2 * s.damping_ratio * a.period)) <= det_tol);
+  CHECK(b.floquet.stability == a.floquet.stability);
+  epicycle::test::FigureValue("phase T/3: |tr M_phi - tr M|",
+                              std::abs(b.monodromy.trace() - a.monodromy.trace()), "-");
+  epicycle::test::FigureValue("phase T/3: trace tolerance", 4 * entry, "-");
 }

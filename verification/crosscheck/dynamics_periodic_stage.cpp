@@ -98,20 +98,53 @@ const char* const kKey = "errors.pin.planet2.tangential_um";
 
 // SpringRig's stage (its damping's mesh stiffness given, so that every rig has the same c_m
 // whatever its errors) at 1000 rpm, the sun held, with `extra` appended to the scene's text.
-test::DynamicRig Rig(const std::string& extra) {
+test::DynamicRig RigOfText(const std::string& scene_text) {
   test::RigOptions o;
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
   o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1000); };
-  return test::MakeRig(test::SceneText("paper_stage.toml") + "\n" + extra, "pin", o);
+  return test::MakeRig(scene_text, "pin", o);
+}
+
+test::DynamicRig Rig(const std::string& extra) {
+  return RigOfText(test::SceneText("paper_stage.toml") + "\n" + extra);
+}
+
+// A number to 17 digits (read back exactly).
+std::string Exact(double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
 }
 
 // The scene's own [[errors.pin]] entry for planet 2 with the tangential error written in [µm], to
 // 17 digits (the value the branch's point carries, read back exactly).
 std::string PinEntry(double tangential_um) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.17g", tangential_um);
-  return "[[errors.pin]]\ngear = \"planet2\"\ntangential_um = " + std::string(text) + "\n";
+  return "[[errors.pin]]\ngear = \"planet2\"\ntangential_um = " + Exact(tangential_um) + "\n";
+}
+
+// Shooting on `rig`'s own stage from its quasi-static start against the branch point `q` (the
+// same orbit): the weighted distance, and the tolerance. Both stop with R ≤ newton_tolerance
+// (weighted) and an integration error of at most one local tolerance a step; each is within
+// (newton_tolerance + steps)/(1 − ρ) of the exact orbit, the two within twice that (the same bound
+// as two shootings from different starts, CheckOrbitAgainstSettled).
+struct IndependentShooting {
+  double error = 0, tolerance = 0;
+  dynamics::Stability stability = dynamics::Stability::kStable;
+};
+IndependentShooting ShootAgainstPoint(const test::DynamicRig& rig,
+                                      const dynamics::StageBranchPoint& q, double steps) {
+  const dynamics::DynamicModel& m = *rig.model;
+  const dynamics::StagePeriodicSystem system(m, solvers::Backend::kActiveSetNewton, {});
+  const dynamics::ShootingOptions so = Shooting(m);
+  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * m.size());
+  y0.head(m.size()) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
+  INFO(r.message);
+  REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
+  const double rho = std::max(q.spectral_radius, r.floquet.spectral_radius);
+  return {Weighted(so, r.initial_state, q.state), 2 * (so.newton_tolerance + steps) / (1 - rho),
+          r.floquet.stability};
 }
 
 // The shooting orbit of `rig`'s stage against the state a long time integration settles into
@@ -362,7 +395,6 @@ TEST_CASE(
   for (const dynamics::StageBranchPoint& q : rec.points)
     CHECK(q.sun_speed_rpm == Approx(1000).epsilon(1e-14));
 
-  const dynamics::ShootingOptions so = Shooting(*base.model);
   // Steps per period: the branch's mean over every period it integrated.
   const double steps = static_cast<double>(rec.steps) /
                        static_cast<double>(rec.integrations + rec.plain_integrations);
@@ -371,29 +403,76 @@ TEST_CASE(
     const dynamics::StageBranchPoint& q = rec.points[i];
     const auto rig = Rig(PinEntry(q.parameter));
     REQUIRE(rig.scene.stage.pin_errors.at(1).tangential == q.parameter * 1e-6);
-    const dynamics::DynamicModel& m = *rig.model;
-    const dynamics::StagePeriodicSystem system(m, solvers::Backend::kActiveSetNewton, {});
-    Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * m.size());
-    y0.head(m.size()) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
-    const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
-    INFO(r.message);
-    REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
-    // Both stop with R ≤ newton_tolerance (weighted) and an integration error of at most one
-    // local tolerance a step; each is within (newton_tolerance + steps)/(1 − ρ) of the exact
-    // orbit, the two within twice that (the same bound as two shootings from different starts,
-    // crosscheck/dynamics_periodic_stage.cpp).
-    const double rho = std::max(q.spectral_radius, r.floquet.spectral_radius);
-    const double tol = 2 * (so.newton_tolerance + steps) / (1 - rho);
-    const double error = Weighted(so, r.initial_state, q.state);
+    const IndependentShooting shot = ShootAgainstPoint(rig, q, steps);
     test::FigureValue("pin-error branch at " + std::to_string(q.parameter) +
                           " um: independent shooting - point (weighted)",
-                      error, "-");
-    CHECK(error <= tol);
-    CHECK(r.floquet.stability == q.stability);
+                      shot.error, "-");
+    CHECK(shot.error <= shot.tolerance);
+    CHECK(shot.stability == q.stability);
     if (i == 1) k_gamma_first = q.k_gamma;
   }
   // A pin error moves load between the planets: the largest share K_γ grows with its size.
   CHECK(rec.points.back().k_gamma > k_gamma_first);
+}
+
+TEST_CASE(
+    "paper stage, springs: short branches over the sun torque and over the mesh damping ratio at "
+    "1000 rpm; a point of each is the orbit an independent shooting finds with that value in the "
+    "scene",
+    "[crosscheck][dynamics][periodic]") {
+  struct Case {
+    const char* parameter;   // the scene's key, also the line that writes it
+    const char* scene_line;  // the scene's line with the base value
+    double start, end;
+  };
+  // From the scene's own values: the torque 10 % up (its sign the scene's), the damping doubled.
+  const Case cases[] = {{"sun_torque_Nm", "sun_torque_Nm = -600.0", -600, -660},
+                        {"mesh_damping_ratio", "mesh_damping_ratio = 0.05", 0.05, 0.1}};
+  const std::string base_text = test::SceneText("paper_stage.toml");
+  const auto base = RigOfText(base_text);
+  for (const Case& c : cases) {
+    dynamics::StageBranchOptions o;
+    o.parameter = c.parameter;
+    o.start = c.start;
+    o.end = c.end;
+    o.initial_step = 0.35;  // three or four points over the range
+    o.max_step = 0.35;
+    o.simulation = Integration();
+    const dynamics::StageBranchRecord rec = dynamics::ContinueStageBranch(*base.model, o);
+    INFO(c.parameter << ": " << rec.message << rec.figures_message);
+    REQUIRE(rec.ok());
+    test::FigureValue(std::string(c.parameter) + " branch points",
+                      static_cast<double>(rec.points.size()), "-");
+    test::FigureValue(std::string(c.parameter) + " branch CPU", rec.cpu_seconds, "s");
+    REQUIRE(rec.points.size() >= 3);
+    CHECK(rec.points.front().parameter == c.start);
+    CHECK(std::abs(rec.points.back().parameter - c.start) >= std::abs(c.end - c.start));
+    // The speed stays the scene's (rpm → rad/s → rpm: round-off only).
+    for (const dynamics::StageBranchPoint& q : rec.points)
+      CHECK(q.sun_speed_rpm == Approx(1000).epsilon(1e-14));
+    // The point inside the range nearest its middle, against shooting on a scene with its value
+    // written in place of the scene's (its own rig: the stage, the model, the quasi-static start).
+    const dynamics::StageBranchPoint& q = rec.points[rec.points.size() / 2];
+    REQUIRE(base_text.find(c.scene_line) != std::string::npos);
+    const auto rig = RigOfText(
+        test::Replace(base_text, c.scene_line, std::string(c.parameter) + " = " + Exact(q.parameter)));
+    const double steps = static_cast<double>(rec.steps) /
+                         static_cast<double>(rec.integrations + rec.plain_integrations);
+    const IndependentShooting shot = ShootAgainstPoint(rig, q, steps);
+    test::FigureValue(std::string(c.parameter) + " branch at " + Exact(q.parameter) +
+                          ": independent shooting - point (weighted)",
+                      shot.error, "-");
+    test::FigureValue(std::string(c.parameter) + " branch: tolerance (weighted)", shot.tolerance,
+                      "-");
+    CHECK(shot.error <= shot.tolerance);
+    CHECK(shot.stability == q.stability);
+    // And the start's value is not the point's: the branch moved the orbit by more than the
+    // tolerance (else the check above would not tell a continued parameter from a fixed one).
+    const IndependentShooting at_start = ShootAgainstPoint(base, q, steps);
+    test::FigureValue(std::string(c.parameter) + " branch: base scene's orbit - point (weighted)",
+                      at_start.error, "-");
+    CHECK(at_start.error > shot.tolerance);
+  }
 }
 
 TEST_CASE("stage branch: the names of the scene's numbers a branch continues, and why not",
