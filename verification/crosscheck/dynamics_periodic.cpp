@@ -266,3 +266,103 @@ TEST_CASE(
                               std::abs(b.monodromy.trace() - a.monodromy.trace()), "-");
   epicycle::test::FigureValue("phase T/3: trace tolerance", 4 * entry, "-");
 }
+
+// The same system read as 2T-periodic (T the forcing's period): its periodic orbits include the
+// period-2 responses, and its monodromy is the 2T map's.
+class DoublePeriod final : public PeriodicSystem {
+ public:
+  explicit DoublePeriod(const PeriodicSystem& base) : base_(base) {}
+  int size() const override { return base_.size(); }
+  std::vector<PeriodicParameter> parameters() const override { return base_.parameters(); }
+  double Period(const Eigen::VectorXd& p) const override { return 2 * base_.Period(p); }
+  bool Rhs(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& p,
+           Eigen::VectorXd* f) const override {
+    return base_.Rhs(t, y, p, f);
+  }
+  bool has_jacobian() const override { return base_.has_jacobian(); }
+  bool Jacobian(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& p,
+                Eigen::MatrixXd* jac) const override {
+    return base_.Jacobian(t, y, p, jac);
+  }
+
+ private:
+  const PeriodicSystem& base_;
+};
+
+TEST_CASE(
+    "backlash oscillator, F_a = 0.2: the continuation over the forcing frequency flags a "
+    "multiplier through -1, and past it a time integration settles on a period-2 response",
+    "[crosscheck][dynamics][periodic]") {
+  const BacklashOscillator s;
+  ContinuationOptions c = Sweep();
+  c.start = 3.0;  // well above the resonances: a small orbit, teeth in contact
+  c.end = 1.5;    // past the period doubling, before the response's further doublings (Ω ≈ 1.4)
+  const double fa = 0.2;
+  const ContinuationResult r =
+      ContinuePeriodicOrbit(s, c, Eigen::Vector2d(1.1, 0), Eigen::Vector2d(c.start, fa));
+  INFO(r.message);
+  REQUIRE(r.status == ContinuationStatus::kCompleted);
+  REQUIRE(r.bifurcations.size() == 1);
+  const Bifurcation& pd = r.bifurcations.front();
+  CHECK(pd.kind == BifurcationKind::kPeriodDoubling);
+  CHECK(pd.multiplier.real() < -1);
+  CHECK(pd.multiplier.imag() == 0);
+  epicycle::test::FigureValue("backlash F_a = 0.2: period doubling at Omega", pd.parameter, "-");
+  epicycle::test::FigureValue("backlash F_a = 0.2: multiplier after it", pd.multiplier.real(), "-");
+  // Stable before it, one real multiplier below −1 after it (nothing else crosses).
+  for (std::size_t k = 0; k < r.points.size(); ++k) {
+    const bool after = static_cast<int>(k) >= pd.after_point;
+    INFO("point " << k << " at Omega = " << r.points[k].parameter);
+    CHECK((r.points[k].floquet.stability == Stability::kUnstable) == after);
+    CHECK(r.points[k].floquet.real_below_minus_one == (after ? 1 : 0));
+  }
+
+  // Past it (Ω = 1.55), the period-1 orbit corrected from the branch is unstable; a time
+  // integration from rest at x = 1.1 settles on a response that repeats every two periods.
+  const double omega = 1.55;
+  REQUIRE(omega < pd.parameter);
+  const Eigen::Vector2d p(omega, fa);
+  const ShootingOptions& o = c.shooting;
+  const BranchPoint* near = &r.points.front();
+  for (const BranchPoint& b : r.points)
+    if (std::abs(b.parameter - omega) < std::abs(near->parameter - omega)) near = &b;
+  const ShootingResult one = SolvePeriodicOrbit(s, o, near->state, p);
+  REQUIRE(one.status == ShootingStatus::kConverged);
+  CHECK(one.floquet.real_below_minus_one == 1);
+  const int settle = 300;
+  const Eigen::VectorXd y0 = IntegratePeriods(s, o, Eigen::Vector2d(1.1, 0), p, settle);
+  const Eigen::VectorXd y1 = IntegratePeriods(s, o, y0, p, 1);
+  const Eigen::VectorXd y2 = IntegratePeriods(s, o, y1, p, 1);
+  // The period-2 orbit by shooting over 2T, from where 20 periods from the same start lead (a
+  // transient not yet settled): stable, and the settled state is it. Tolerance as for the settled states above: what is left of the transient,
+  // ρ₂^{settle/2} times the start's distance (≤ 2), plus the integration's error (steps a 2T
+  // period, contracted by ρ₂ each) and the shooting's own, over (1 − ρ₂).
+  const DoublePeriod twice(s);
+  const Eigen::VectorXd guess = IntegratePeriods(s, o, Eigen::Vector2d(1.1, 0), p, 20);
+  const ShootingResult two = SolvePeriodicOrbit(twice, o, guess, p);
+  INFO(two.message);
+  REQUIRE(two.status == ShootingStatus::kConverged);
+  CHECK(two.floquet.stability == Stability::kStable);
+  const double rho = two.floquet.spectral_radius;
+  const double steps = static_cast<double>(two.steps) / static_cast<double>(two.integrations);
+  const double w = Weight(o, two.initial_state);
+  const double tol = std::pow(rho, settle / 2) * 2 + (steps + o.newton_tolerance) / (1 - rho) * w;
+  const double repeat = (y2 - y0).cwiseAbs().maxCoeff();
+  const double split = (y1 - y0).cwiseAbs().maxCoeff();
+  const double to_two = (y0 - two.initial_state).cwiseAbs().maxCoeff();
+  epicycle::test::FigureValue("backlash period 2 at 1.55: |y(t+2T) - y(t)|", repeat, "-");
+  epicycle::test::FigureValue("backlash period 2 at 1.55: |y(t+T) - y(t)|", split, "-");
+  epicycle::test::FigureValue("backlash period 2 at 1.55: guess - 2T shooting",
+                              (guess - two.initial_state).cwiseAbs().maxCoeff(), "-");
+  epicycle::test::FigureValue("backlash period 2 at 1.55: settled - 2T shooting", to_two, "-");
+  epicycle::test::FigureValue("backlash period 2 at 1.55: tolerance", tol, "-");
+  epicycle::test::FigureValue("backlash period 2 at 1.55: spectral radius of the 2T map", rho,
+                              "-");
+  CHECK(to_two <= tol);
+  CHECK(repeat <= 2 * tol);
+  // Not period 1: a period apart the states differ by far more than the tolerance, and neither
+  // is the unstable period-1 orbit's.
+  CHECK(split > 100 * tol);
+  CHECK((y0 - one.initial_state).cwiseAbs().maxCoeff() > 100 * tol);
+  CHECK((y1 - one.initial_state).cwiseAbs().maxCoeff() > 100 * tol);
+}
