@@ -21,8 +21,11 @@
 
 #include "epicycle/dynamics/periodic.hpp"
 #include "figures.hpp"
+#include "periodic_fixtures.hpp"
 
 using namespace epicycle::dynamics;
+using epicycle::test::ShootingWeight;
+using epicycle::test::TightShooting;
 
 namespace {
 
@@ -37,9 +40,7 @@ class RectangularMeshPair final : public PeriodicSystem {
   double damping_ratio = 0.02;       ///< ζ [-]
   int size() const override { return 2; }
   std::vector<PeriodicParameter> parameters() const override { return {{"Omega", "-", 2.0}}; }
-  double Period(const Eigen::VectorXd& p) const override {
-    return 2 * std::numbers::pi / p(0);
-  }
+  double Period(const Eigen::VectorXd& p) const override { return 2 * std::numbers::pi / p(0); }
   // k(t) over k̄: the mesh period's first (ε_α − 1) is double contact.
   double Stiffness(double t, double period) const {
     const double phase = std::fmod(t, period) / period;
@@ -61,7 +62,8 @@ class RectangularMeshPair final : public PeriodicSystem {
 };
 
 // exp(A t) for A = [0 1; −k −c], from its eigenvalues λ₁,₂ = (−c ± √(c² − 4k))/2 (distinct for
-// c² ≠ 4k): Sylvester's formula e^{At} = [(λ₁e^{λ₂t} − λ₂e^{λ₁t}) I + (e^{λ₁t} − e^{λ₂t}) A]/(λ₁ − λ₂).
+// c² ≠ 4k), by Sylvester's formula
+// e^{At} = [(λ₁e^{λ₂t} − λ₂e^{λ₁t}) I + (e^{λ₁t} − e^{λ₂t}) A]/(λ₁ − λ₂).
 Eigen::Matrix2d TransferMatrix(double k, double c, double t) {
   const Complex root = std::sqrt(Complex(c * c - 4 * k, 0));
   const Complex l1 = (-c + root) / 2.0, l2 = (-c - root) / 2.0;
@@ -114,7 +116,8 @@ struct Multipliers {
 Multipliers ClosedFormMultipliers(const Eigen::Matrix2d& m) {
   const Eigen::EigenSolver<Eigen::Matrix2d> eig(m);
   Eigen::Index order[2] = {0, 1};
-  if (std::abs(eig.eigenvalues()(1)) > std::abs(eig.eigenvalues()(0))) std::swap(order[0], order[1]);
+  if (std::abs(eig.eigenvalues()(1)) > std::abs(eig.eigenvalues()(0)))
+    std::swap(order[0], order[1]);
   const Eigen::Matrix2cd v = eig.eigenvectors();
   const Eigen::Matrix2cd w = v.inverse();  // rows: left eigenvectors with lᵀr = 1
   Multipliers out;
@@ -127,22 +130,11 @@ Multipliers ClosedFormMultipliers(const Eigen::Matrix2d& m) {
   return out;
 }
 
-ShootingOptions Tight() {
-  ShootingOptions o;
-  o.rtol = 1e-10;
-  o.atol = Eigen::VectorXd::Constant(1, 1e-12);
-  return o;
-}
-
-double Weight(const ShootingOptions& o, const Eigen::VectorXd& y) {
-  return o.rtol * y.cwiseAbs().maxCoeff() + o.atol.maxCoeff();
-}
-
 // Shooting at Ω from rest; its multipliers against the closed form's, its orbit against the
 // closed form's. Returns the shooting.
 ShootingResult CheckAgainstClosedForm(const RectangularMeshPair& s, double omega,
                                       const std::string& name) {
-  const ShootingOptions o = Tight();
+  const ShootingOptions o = TightShooting();
   const Eigen::VectorXd p = Eigen::VectorXd::Constant(1, omega);
   const ShootingResult r = SolvePeriodicOrbit(s, o, Eigen::Vector2d::Zero(), p);
   INFO(name << ": " << r.message);
@@ -156,16 +148,15 @@ ShootingResult CheckAgainstClosedForm(const RectangularMeshPair& s, double omega
   // tolerance, also the steps that cross the stiffness's jumps, which the error test shrinks);
   // a simple eigenvalue moves by at most κ ‖δM‖₂ ≤ κ · 2 max|δM_ij| (2 × 2).
   const double steps = static_cast<double>(r.steps) / static_cast<double>(r.integrations);
-  const double entry = steps * Tight().rtol * (exact.monodromy.cwiseAbs().maxCoeff() + 1);
+  const double entry = steps * TightShooting().rtol * (exact.monodromy.cwiseAbs().maxCoeff() + 1);
   for (int i = 0; i < 2; ++i) {
     const double tol = mu.kappa[i] * 2 * entry;
     double nearest = std::abs(r.floquet.multipliers[0] - mu.mu[i]);
     nearest = std::min(nearest, std::abs(r.floquet.multipliers[1] - mu.mu[i]));
     INFO(name << ": closed-form multiplier " << mu.mu[i]);
     CHECK(nearest <= tol);
-    epicycle::test::FigureValue(name + ": |mu - closed form| (multiplier " + std::to_string(i + 1) +
-                                    ")",
-                                nearest, "-");
+    epicycle::test::FigureValue(
+        name + ": |mu - closed form| (multiplier " + std::to_string(i + 1) + ")", nearest, "-");
     epicycle::test::FigureValue(name + ": tolerance", tol, "-");
   }
   epicycle::test::FigureValue(name + ": closed-form |mu_1|", std::abs(mu.mu[0]), "-");
@@ -173,7 +164,8 @@ ShootingResult CheckAgainstClosedForm(const RectangularMeshPair& s, double omega
   // The orbit: Newton stops with R to newton_tolerance integrator tolerances, an orbit error of
   // ‖(M − I)⁻¹‖ times that, plus the period's global error (one local tolerance a step).
   const Eigen::Matrix2d inv = (exact.monodromy - Eigen::Matrix2d::Identity()).inverse();
-  const double orbit_tol = (inv.norm() * o.newton_tolerance + steps) * Weight(o, exact.orbit);
+  const double orbit_tol =
+      (inv.norm() * o.newton_tolerance + steps) * ShootingWeight(o, exact.orbit);
   const double orbit_error = (r.initial_state - exact.orbit).cwiseAbs().maxCoeff();
   CHECK(orbit_error <= orbit_tol);
   epicycle::test::FigureValue(name + ": orbit error", orbit_error, "-");
@@ -242,12 +234,11 @@ TEST_CASE(
   const RectangularMeshPair s;
   const std::vector<double> bounds = RegionBoundaries(s);
   REQUIRE(bounds.size() == 2);
-  const ShootingOptions o = Tight();
+  const ShootingOptions o = TightShooting();
   // 0.5 % of Ω on either side of the upper boundary.
   for (const int side : {-1, +1}) {
     const double omega = bounds[1] * (1 + side * 0.005);
-    const std::string name =
-        std::string("Meissner ") + (side < 0 ? "just inside" : "just outside");
+    const std::string name = std::string("Meissner ") + (side < 0 ? "just inside" : "just outside");
     const ShootingResult r = CheckAgainstClosedForm(s, omega, name);
     const ClosedForm exact = Meissner(s, omega);
     const Multipliers mu = ClosedFormMultipliers(exact.monodromy);
@@ -286,11 +277,10 @@ TEST_CASE(
     // relative error (|log(1 + x)| ≤ 2|x| for |x| ≤ 1/2).
     const double steps = static_cast<double>(r.steps) / static_cast<double>(r.integrations);
     const Eigen::Matrix2d inv = (exact.monodromy - Eigen::Matrix2d::Identity()).inverse();
-    const double w = Weight(o, r.initial_state + d0);
+    const double w = ShootingWeight(o, r.initial_state + d0);
     const double orbit_error = (inv.norm() * o.newton_tolerance + steps) * w;
     const double v_norm = mu.vectors.operatorNorm(), vinv_norm = vinv.operatorNorm();
-    const double carried =
-        std::pow(std::max(1.0, std::abs(mu.mu[0])), 2 * n) * v_norm * vinv_norm;
+    const double carried = std::pow(std::max(1.0, std::abs(mu.mu[0])), 2 * n) * v_norm * vinv_norm;
     const double relative =
         vinv_norm * (2 * n * steps * w * carried + 2 * orbit_error) / std::min(dn, d2n);
     REQUIRE(relative <= 0.5);
@@ -305,9 +295,8 @@ TEST_CASE(
     epicycle::test::FigureValue(name + ": growth rate, integration", rate, "1/time");
     epicycle::test::FigureValue(name + ": growth rate, log|mu|/T (closed form)", expected,
                                 "1/time");
-    epicycle::test::FigureValue(
-        name + ": growth rate, log|mu|/T (shooting)",
-        std::log(r.floquet.spectral_radius) / r.period, "1/time");
+    epicycle::test::FigureValue(name + ": growth rate, log|mu|/T (shooting)",
+                                std::log(r.floquet.spectral_radius) / r.period, "1/time");
     epicycle::test::FigureValue(name + ": growth rate tolerance", tol, "1/time");
     CHECK(rate == Approx(expected).margin(tol));
     CHECK((side < 0 ? rate > 0 : rate < 0));

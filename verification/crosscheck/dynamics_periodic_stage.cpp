@@ -417,7 +417,7 @@ TEST_CASE(
 
 TEST_CASE(
     "paper stage, springs: short branches over the sun torque and over the mesh damping ratio at "
-    "1000 rpm; a point of each is the orbit an independent shooting finds with that value in the "
+    "1000 rpm: a point of each is the orbit an independent shooting finds with that value in the "
     "scene",
     "[crosscheck][dynamics][periodic]") {
   struct Case {
@@ -454,8 +454,8 @@ TEST_CASE(
     // written in place of the scene's (its own rig: the stage, the model, the quasi-static start).
     const dynamics::StageBranchPoint& q = rec.points[rec.points.size() / 2];
     REQUIRE(base_text.find(c.scene_line) != std::string::npos);
-    const auto rig = RigOfText(
-        test::Replace(base_text, c.scene_line, std::string(c.parameter) + " = " + Exact(q.parameter)));
+    const auto rig = RigOfText(test::Replace(
+        base_text, c.scene_line, std::string(c.parameter) + " = " + Exact(q.parameter)));
     const double steps = static_cast<double>(rec.steps) /
                          static_cast<double>(rec.integrations + rec.plain_integrations);
     const IndependentShooting shot = ShootAgainstPoint(rig, q, steps);
