@@ -15,6 +15,7 @@
 #include "epicycle/dynamics/periodic.hpp"
 #include "epicycle/dynamics/periodic_systems.hpp"
 #include "figures.hpp"
+#include "periodic_fixtures.hpp"
 
 using namespace epicycle::dynamics;
 
@@ -176,35 +177,6 @@ TEST_CASE(
   }
 }
 
-namespace {
-
-// The system on a clock started at t = φT (φ = `fraction`): f_φ(t, y; p) = f(t + φT, y; p). A
-// non-autonomous orbit is pinned to its forcing's phase, so "another point of the orbit" is the
-// orbit's state at another phase of the forcing: shooting f_φ solves for the state at t = φT of
-// the same orbit, and its monodromy Φ(φT + T, φT) = Φ(φT) M Φ(φT)⁻¹ is similar to M.
-class PhaseShifted final : public PeriodicSystem {
- public:
-  PhaseShifted(const PeriodicSystem& base, double fraction) : base_(base), fraction_(fraction) {}
-  int size() const override { return base_.size(); }
-  std::vector<PeriodicParameter> parameters() const override { return base_.parameters(); }
-  double Period(const Eigen::VectorXd& p) const override { return base_.Period(p); }
-  bool Rhs(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& p,
-           Eigen::VectorXd* f) const override {
-    return base_.Rhs(t + fraction_ * base_.Period(p), y, p, f);
-  }
-  bool has_jacobian() const override { return base_.has_jacobian(); }
-  bool Jacobian(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& p,
-                Eigen::MatrixXd* jac) const override {
-    return base_.Jacobian(t + fraction_ * base_.Period(p), y, p, jac);
-  }
-  Eigen::MatrixXd PeriodMap(const Eigen::VectorXd& p) const override { return base_.PeriodMap(p); }
-
- private:
-  const PeriodicSystem& base_;
-  double fraction_;
-};
-
-}  // namespace
 
 TEST_CASE(
     "backlash oscillator: shooting started at another phase of the forcing (T/3) finds the same "
@@ -226,7 +198,7 @@ TEST_CASE(
   // system from x = 0 lead (a transient not yet settled). (From the orbit's state at t = 0, a
   // point of the orbit at the wrong phase for this section, Newton's line search stalls: the
   // impacting orbit's basin for Newton is narrower than that.)
-  const PhaseShifted shifted(s, 1.0 / 3);
+  const epicycle::test::PhaseShifted shifted(s, 1.0 / 3);
   const Eigen::VectorXd guess = IntegratePeriods(shifted, o, Eigen::Vector2d(0.0, 0), p, 3);
   const ShootingResult b = SolvePeriodicOrbit(shifted, o, guess, p);
   INFO(b.message);

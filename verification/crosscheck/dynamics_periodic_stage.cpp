@@ -21,6 +21,7 @@
 #include "epicycle/io/units.hpp"
 #include "epicycle/transmission/scene_keys.hpp"
 #include "figures.hpp"
+#include "periodic_fixtures.hpp"
 
 using namespace epicycle;
 
@@ -70,13 +71,30 @@ double Weighted(const dynamics::ShootingOptions& so, const Eigen::VectorXd& a,
   return worst;
 }
 
-// The state Simulate reaches after `cycles` periods from y0 (the raw state: a stage with
-// translations has it turned by the carrier's advance).
+// The quasi-static start of m's state y = (d, ḋ): d from the quasi-static solve, ḋ = 0.
+Eigen::VectorXd QuasiStaticState(const dynamics::DynamicModel& m) {
+  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * m.size());
+  y0.head(m.size()) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  return y0;
+}
+
+// Shooting on m's stage from its quasi-static start (the suite's tolerances), converged.
+dynamics::ShootingResult ShootFromQuasiStatic(const dynamics::DynamicModel& m,
+                                              const dynamics::PeriodicSystem& system) {
+  const dynamics::ShootingResult r =
+      dynamics::SolvePeriodicOrbit(system, Shooting(m), QuasiStaticState(m));
+  INFO(r.message);
+  REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
+  return r;
+}
+
+// The state Simulate reaches after `cycles` periods and `fraction` of one more from y0 (the raw
+// state: a stage with translations has it turned by the carrier's advance).
 Eigen::VectorXd Settle(const dynamics::DynamicModel& m, const Eigen::VectorXd& y0, double period,
-                       int cycles) {
+                       int cycles, double fraction = 0) {
   const int n = m.size();
-  const dynamics::SimulationResult run =
-      dynamics::Simulate(m, Integration(), y0.head(n), y0.tail(n), {cycles * period});
+  const dynamics::SimulationResult run = dynamics::Simulate(
+      m, Integration(), y0.head(n), y0.tail(n), {(cycles + fraction) * period});
   REQUIRE(run.completed());
   Eigen::VectorXd settled(2 * n);
   settled << run.samples.back().d, run.samples.back().v;
@@ -137,11 +155,7 @@ IndependentShooting ShootAgainstPoint(const test::DynamicRig& rig,
   const dynamics::DynamicModel& m = *rig.model;
   const dynamics::StagePeriodicSystem system(m, solvers::Backend::kActiveSetNewton, {});
   const dynamics::ShootingOptions so = Shooting(m);
-  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * m.size());
-  y0.head(m.size()) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
-  const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
-  INFO(r.message);
-  REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
+  const dynamics::ShootingResult r = ShootFromQuasiStatic(m, system);
   const double rho = std::max(q.spectral_radius, r.floquet.spectral_radius);
   return {Weighted(so, r.initial_state, q.state), 2 * (so.newton_tolerance + steps) / (1 - rho),
           r.floquet.stability};
@@ -157,8 +171,7 @@ void CheckOrbitAgainstSettled(const test::DynamicRig& rig, const std::string& na
   const dynamics::StagePeriodicSystem system(m, solvers::Backend::kActiveSetNewton, {});
   const int n = m.size();
   const dynamics::ShootingOptions so = Shooting(m);
-  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);
-  y0.head(n) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  const Eigen::VectorXd y0 = QuasiStaticState(m);
   const auto clock = std::chrono::steady_clock::now();
   const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
   test::FigureValue(name + " shooting wall time",
@@ -202,6 +215,48 @@ TEST_CASE(
   CheckOrbitAgainstSettled(SpringRig(1000, transmission::SunSupport::kFixed), "stage");
 }
 
+// Another point of the orbit (docs/periodic.md §3, "Another point of the orbit"): the stage's
+// orbit is pinned to the mesh's phase, so the other point is the section at t = T/3. Shooting the
+// stage on a clock started there, from the phase-0 orbit's state (a point of the orbit, at the
+// wrong phase for this section), must find the state a long time integration from the
+// quasi-static start reaches at (60 + 1/3) T.
+TEST_CASE(
+    "paper stage, perfect, springs: shooting started at another phase of the mesh period (T/3) "
+    "finds the state a long time integration reaches there",
+    "[crosscheck][dynamics][periodic]") {
+  const auto rig = SpringRig(1000, transmission::SunSupport::kFixed);
+  const dynamics::StagePeriodicSystem system(*rig.model, solvers::Backend::kActiveSetNewton, {});
+  const dynamics::ShootingResult r = ShootFromQuasiStatic(*rig.model, system);
+  const dynamics::DynamicModel& m = *rig.model;
+  const dynamics::ShootingOptions so = Shooting(m);
+  const Eigen::VectorXd y0 = QuasiStaticState(m);
+  const test::PhaseShifted shifted(system, 1.0 / 3);
+  const dynamics::ShootingResult b = dynamics::SolvePeriodicOrbit(shifted, so, r.initial_state);
+  INFO(b.message);
+  REQUIRE(b.status == dynamics::ShootingStatus::kConverged);
+  const int cycles = 60;
+  const Eigen::VectorXd settled = Settle(m, y0, r.period, cycles, 1.0 / 3);
+  // Tolerance: SettledTolerance (the transient's remainder from the start's distance to the
+  // phase-0 orbit, the integration's and the shooting's errors over (1 − ρ)), ρ the larger of the
+  // two sections' spectral radii (their monodromies are similar: the same multipliers).
+  const double rho = std::max(r.floquet.spectral_radius, b.floquet.spectral_radius);
+  const double steps = std::max(static_cast<double>(r.steps) / static_cast<double>(r.integrations),
+                                static_cast<double>(b.steps) / static_cast<double>(b.integrations));
+  const double tol =
+      SettledTolerance(rho, cycles, Weighted(so, y0, r.initial_state), steps, so.newton_tolerance);
+  const double error = Weighted(so, settled, b.initial_state);
+  const double guess = Weighted(so, r.initial_state, b.initial_state);
+  test::FigureValue("stage phase T/3: Newton iterations", b.iterations, "-");
+  test::FigureValue("stage phase T/3: guess - answer (weighted)", guess, "-");
+  test::FigureValue("stage phase T/3: settled - shifted orbit (weighted)", error, "-");
+  test::FigureValue("stage phase T/3: tolerance (weighted)", tol, "-");
+  test::FigureValue("stage phase T/3: spectral radius phase 0", r.floquet.spectral_radius, "-");
+  test::FigureValue("stage phase T/3: spectral radius shifted", b.floquet.spectral_radius, "-");
+  CHECK(error <= tol);
+  CHECK(guess > tol);  // the guess was not already the answer
+  CHECK(b.floquet.stability == r.floquet.stability);
+}
+
 // The helical paper stage (β = 15°) in 5 slices (docs/model.md §10; the orbit's cost grows with
 // the slices, dynamics_helical.cpp), the same springs per slice contact: its state is the planar
 // one (the axial and tilting motions held), so the shooting is the spur stage's on the sliced
@@ -240,8 +295,7 @@ TEST_CASE(
   const double advance = std::copysign(rig.stage->mesh_cycle(), m.carrier_speed());
   CHECK(std::atan2(map(ky, kx), map(kx, kx)) == Approx(-advance).margin(1e-14));
 
-  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);
-  y0.head(n) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  const Eigen::VectorXd y0 = QuasiStaticState(m);
   const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
   INFO(r.message);
   REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
@@ -303,8 +357,7 @@ TEST_CASE(
     const dynamics::DynamicModel& m = system.ModelAt(p);
     // T = 2π/(z_r |ω_c|) at this speed: the speed entered the period.
     CHECK(q.period == Approx(rig.stage->mesh_cycle() / std::abs(m.carrier_speed())).epsilon(1e-14));
-    Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * base.size());
-    y0.head(base.size()) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+    const Eigen::VectorXd y0 = QuasiStaticState(m);
     const int cycles = 60;
     const Eigen::VectorXd settled = Settle(m, y0, q.period, cycles);
     // The corrector's orbit: R to newton_tolerance (weighted) like the shooting's; steps per
