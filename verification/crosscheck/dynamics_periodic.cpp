@@ -10,10 +10,12 @@
 #include <cmath>
 #include <complex>
 #include <string>
+#include <vector>
 
 #include "epicycle/dynamics/periodic.hpp"
 #include "epicycle/dynamics/periodic_systems.hpp"
 #include "figures.hpp"
+#include "periodic_fixtures.hpp"
 
 using namespace epicycle::dynamics;
 
@@ -173,4 +175,166 @@ TEST_CASE(
         a_branch, "-");
     CHECK(a_time == Approx(a_branch).margin(tol));
   }
+}
+
+
+TEST_CASE(
+    "backlash oscillator: shooting started at another phase of the forcing (T/3) finds the same "
+    "orbit's state there, with the same multipliers",
+    "[crosscheck][dynamics][periodic]") {
+  const BacklashOscillator s;
+  const ShootingOptions o = Sweep().shooting;
+  const double omega = 0.6;  // between the folds: the large, separating orbit from x = 0
+  const Eigen::Vector2d p(omega, s.alternating_force);
+  // The orbit at phase 0: shooting from where a time integration from x = 0 settles.
+  const Eigen::VectorXd settled = IntegratePeriods(s, o, Eigen::Vector2d(0.0, 0), p, 100);
+  const ShootingResult a = SolvePeriodicOrbit(s, o, settled, p);
+  REQUIRE(a.status == ShootingStatus::kConverged);
+  REQUIRE(Amplitude(s, o, a.initial_state, p) > 0.5);  // the separating orbit (0.61)
+  // Its state at t = T/3 by time integration from the orbit's state at 0.
+  const Eigen::MatrixXd samples = SampleOrbit(s, o, a.initial_state, p, 3);
+  const Eigen::VectorXd at_third = samples.row(1).transpose();
+  // Shooting on the clock started at T/3, from its own start: where 3 periods of the shifted
+  // system from x = 0 lead (a transient not yet settled). (From the orbit's state at t = 0, a
+  // point of the orbit at the wrong phase for this section, Newton's line search stalls: the
+  // impacting orbit's basin for Newton is narrower than that.)
+  const epicycle::test::PhaseShifted shifted(s, 1.0 / 3);
+  const Eigen::VectorXd guess = IntegratePeriods(shifted, o, Eigen::Vector2d(0.0, 0), p, 3);
+  const ShootingResult b = SolvePeriodicOrbit(shifted, o, guess, p);
+  INFO(b.message);
+  REQUIRE(b.status == ShootingStatus::kConverged);
+  epicycle::test::FigureValue("phase T/3: guess - answer",
+                              (guess - at_third).cwiseAbs().maxCoeff(), "-");
+  epicycle::test::FigureValue("phase T/3: Newton iterations", b.iterations, "-");
+  // Tolerance. Each shooting is within e = (newton_tolerance/(1 − ρ) + steps) w of its exact
+  // orbit (w = rtol|y| + atol; the bound of the tests above); the exact state at T/3 is the exact
+  // state at 0 carried by Φ(T/3), whose norm is at most exp(μ₂[J] T/3), μ₂[J] ≤ 1/2 the
+  // logarithmic norm of J = [0 1; −g' −2ζ] (g' ∈ {0, 1}: the largest eigenvalue of (J + Jᵀ)/2 =
+  // [0 (1 − g')/2; (1 − g')/2 −2ζ]); the integration to T/3 adds one local tolerance a step.
+  const double rho = std::max(a.floquet.spectral_radius, b.floquet.spectral_radius);
+  const double steps =
+      std::max(static_cast<double>(a.steps) / static_cast<double>(a.integrations),
+               static_cast<double>(b.steps) / static_cast<double>(b.integrations));
+  const double w = Weight(o, a.initial_state);
+  const double e = (o.newton_tolerance / (1 - rho) + steps) * w;
+  const double carry = std::exp(0.5 * a.period / 3);
+  const double tol = e + carry * e + steps * w;
+  const double error = (b.initial_state - at_third).cwiseAbs().maxCoeff();
+  epicycle::test::FigureValue("phase T/3: shifted shooting - orbit at T/3", error, "-");
+  epicycle::test::FigureValue("phase T/3: tolerance", tol, "-");
+  CHECK(error <= tol);
+  // The multipliers: M_φ is similar to M, so tr and det agree; det M = e^{−2ζT} (Liouville:
+  // tr J = −2ζ whatever g). Each entry of either carries at most steps·rtol(|M| + 1) (`entry`):
+  // a trace two of them, a determinant Σ|cofactor_ij||δM_ij| ≤ 4 max|M| entry.
+  const double entry = steps * o.rtol * (a.monodromy.cwiseAbs().maxCoeff() + 1);
+  CHECK(std::abs(b.monodromy.trace() - a.monodromy.trace()) <= 4 * entry);
+  const double det_tol = 4 * entry * a.monodromy.cwiseAbs().maxCoeff();
+  CHECK(std::abs(b.monodromy.determinant() -
+                 std::exp(-2 * s.damping_ratio * a.period)) <= det_tol);
+  CHECK(std::abs(a.monodromy.determinant() -
+                 std::exp(-2 * s.damping_ratio * a.period)) <= det_tol);
+  CHECK(b.floquet.stability == a.floquet.stability);
+  epicycle::test::FigureValue("phase T/3: |tr M_phi - tr M|",
+                              std::abs(b.monodromy.trace() - a.monodromy.trace()), "-");
+  epicycle::test::FigureValue("phase T/3: trace tolerance", 4 * entry, "-");
+}
+
+// The same system read as 2T-periodic (T the forcing's period): its periodic orbits include the
+// period-2 responses, and its monodromy is the 2T map's.
+class DoublePeriod final : public PeriodicSystem {
+ public:
+  explicit DoublePeriod(const PeriodicSystem& base) : base_(base) {}
+  int size() const override { return base_.size(); }
+  std::vector<PeriodicParameter> parameters() const override { return base_.parameters(); }
+  double Period(const Eigen::VectorXd& p) const override { return 2 * base_.Period(p); }
+  bool Rhs(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& p,
+           Eigen::VectorXd* f) const override {
+    return base_.Rhs(t, y, p, f);
+  }
+  bool has_jacobian() const override { return base_.has_jacobian(); }
+  bool Jacobian(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& p,
+                Eigen::MatrixXd* jac) const override {
+    return base_.Jacobian(t, y, p, jac);
+  }
+
+ private:
+  const PeriodicSystem& base_;
+};
+
+TEST_CASE(
+    "backlash oscillator, F_a = 0.2: the continuation over the forcing frequency flags a "
+    "multiplier through -1, and past it a time integration settles on a period-2 response",
+    "[crosscheck][dynamics][periodic]") {
+  const BacklashOscillator s;
+  ContinuationOptions c = Sweep();
+  c.start = 3.0;  // well above the resonances: a small orbit, teeth in contact
+  c.end = 1.5;    // past the period doubling, before the response's further doublings (Ω ≈ 1.4)
+  const double fa = 0.2;
+  const ContinuationResult r =
+      ContinuePeriodicOrbit(s, c, Eigen::Vector2d(1.1, 0), Eigen::Vector2d(c.start, fa));
+  INFO(r.message);
+  REQUIRE(r.status == ContinuationStatus::kCompleted);
+  REQUIRE(r.bifurcations.size() == 1);
+  const Bifurcation& pd = r.bifurcations.front();
+  CHECK(pd.kind == BifurcationKind::kPeriodDoubling);
+  CHECK(pd.multiplier.real() < -1);
+  CHECK(pd.multiplier.imag() == 0);
+  epicycle::test::FigureValue("backlash F_a = 0.2: period doubling at Omega", pd.parameter, "-");
+  epicycle::test::FigureValue("backlash F_a = 0.2: multiplier after it", pd.multiplier.real(), "-");
+  // Stable before it, one real multiplier below −1 after it (nothing else crosses).
+  for (std::size_t k = 0; k < r.points.size(); ++k) {
+    const bool after = static_cast<int>(k) >= pd.after_point;
+    INFO("point " << k << " at Omega = " << r.points[k].parameter);
+    CHECK((r.points[k].floquet.stability == Stability::kUnstable) == after);
+    CHECK(r.points[k].floquet.real_below_minus_one == (after ? 1 : 0));
+  }
+
+  // Past it (Ω = 1.55), the period-1 orbit corrected from the branch is unstable; a time
+  // integration from rest at x = 1.1 settles on a response that repeats every two periods.
+  const double omega = 1.55;
+  REQUIRE(omega < pd.parameter);
+  const Eigen::Vector2d p(omega, fa);
+  const ShootingOptions& o = c.shooting;
+  const BranchPoint* near = &r.points.front();
+  for (const BranchPoint& b : r.points)
+    if (std::abs(b.parameter - omega) < std::abs(near->parameter - omega)) near = &b;
+  const ShootingResult one = SolvePeriodicOrbit(s, o, near->state, p);
+  REQUIRE(one.status == ShootingStatus::kConverged);
+  CHECK(one.floquet.real_below_minus_one == 1);
+  const int settle = 300;
+  const Eigen::VectorXd y0 = IntegratePeriods(s, o, Eigen::Vector2d(1.1, 0), p, settle);
+  const Eigen::VectorXd y1 = IntegratePeriods(s, o, y0, p, 1);
+  const Eigen::VectorXd y2 = IntegratePeriods(s, o, y1, p, 1);
+  // The period-2 orbit by shooting over 2T, from where 20 periods from the same start lead (a
+  // transient not yet settled): stable, and the settled state is it. Tolerance as for the settled states above: what is left of the transient,
+  // ρ₂^{settle/2} times the start's distance (≤ 2), plus the integration's error (steps a 2T
+  // period, contracted by ρ₂ each) and the shooting's own, over (1 − ρ₂).
+  const DoublePeriod twice(s);
+  const Eigen::VectorXd guess = IntegratePeriods(s, o, Eigen::Vector2d(1.1, 0), p, 20);
+  const ShootingResult two = SolvePeriodicOrbit(twice, o, guess, p);
+  INFO(two.message);
+  REQUIRE(two.status == ShootingStatus::kConverged);
+  CHECK(two.floquet.stability == Stability::kStable);
+  const double rho = two.floquet.spectral_radius;
+  const double steps = static_cast<double>(two.steps) / static_cast<double>(two.integrations);
+  const double w = Weight(o, two.initial_state);
+  const double tol = std::pow(rho, settle / 2) * 2 + (steps + o.newton_tolerance) / (1 - rho) * w;
+  const double repeat = (y2 - y0).cwiseAbs().maxCoeff();
+  const double split = (y1 - y0).cwiseAbs().maxCoeff();
+  const double to_two = (y0 - two.initial_state).cwiseAbs().maxCoeff();
+  epicycle::test::FigureValue("backlash period 2 at 1.55: |y(t+2T) - y(t)|", repeat, "-");
+  epicycle::test::FigureValue("backlash period 2 at 1.55: |y(t+T) - y(t)|", split, "-");
+  epicycle::test::FigureValue("backlash period 2 at 1.55: guess - 2T shooting",
+                              (guess - two.initial_state).cwiseAbs().maxCoeff(), "-");
+  epicycle::test::FigureValue("backlash period 2 at 1.55: settled - 2T shooting", to_two, "-");
+  epicycle::test::FigureValue("backlash period 2 at 1.55: tolerance", tol, "-");
+  epicycle::test::FigureValue("backlash period 2 at 1.55: spectral radius of the 2T map", rho,
+                              "-");
+  CHECK(to_two <= tol);
+  CHECK(repeat <= 2 * tol);
+  // Not period 1: a period apart the states differ by far more than the tolerance, and neither
+  // is the unstable period-1 orbit's.
+  CHECK(split > 100 * tol);
+  CHECK((y0 - one.initial_state).cwiseAbs().maxCoeff() > 100 * tol);
+  CHECK((y1 - one.initial_state).cwiseAbs().maxCoeff() > 100 * tol);
 }

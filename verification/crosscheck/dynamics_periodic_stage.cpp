@@ -21,6 +21,7 @@
 #include "epicycle/io/units.hpp"
 #include "epicycle/transmission/scene_keys.hpp"
 #include "figures.hpp"
+#include "periodic_fixtures.hpp"
 
 using namespace epicycle;
 
@@ -70,13 +71,30 @@ double Weighted(const dynamics::ShootingOptions& so, const Eigen::VectorXd& a,
   return worst;
 }
 
-// The state Simulate reaches after `cycles` periods from y0 (the raw state: a stage with
-// translations has it turned by the carrier's advance).
+// The quasi-static start of m's state y = (d, ḋ): d from the quasi-static solve, ḋ = 0.
+Eigen::VectorXd QuasiStaticState(const dynamics::DynamicModel& m) {
+  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * m.size());
+  y0.head(m.size()) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  return y0;
+}
+
+// Shooting on m's stage from its quasi-static start (the suite's tolerances), converged.
+dynamics::ShootingResult ShootFromQuasiStatic(const dynamics::DynamicModel& m,
+                                              const dynamics::PeriodicSystem& system) {
+  const dynamics::ShootingResult r =
+      dynamics::SolvePeriodicOrbit(system, Shooting(m), QuasiStaticState(m));
+  INFO(r.message);
+  REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
+  return r;
+}
+
+// The state Simulate reaches after `cycles` periods and `fraction` of one more from y0 (the raw
+// state: a stage with translations has it turned by the carrier's advance).
 Eigen::VectorXd Settle(const dynamics::DynamicModel& m, const Eigen::VectorXd& y0, double period,
-                       int cycles) {
+                       int cycles, double fraction = 0) {
   const int n = m.size();
-  const dynamics::SimulationResult run =
-      dynamics::Simulate(m, Integration(), y0.head(n), y0.tail(n), {cycles * period});
+  const dynamics::SimulationResult run = dynamics::Simulate(
+      m, Integration(), y0.head(n), y0.tail(n), {(cycles + fraction) * period});
   REQUIRE(run.completed());
   Eigen::VectorXd settled(2 * n);
   settled << run.samples.back().d, run.samples.back().v;
@@ -98,20 +116,49 @@ const char* const kKey = "errors.pin.planet2.tangential_um";
 
 // SpringRig's stage (its damping's mesh stiffness given, so that every rig has the same c_m
 // whatever its errors) at 1000 rpm, the sun held, with `extra` appended to the scene's text.
-test::DynamicRig Rig(const std::string& extra) {
+test::DynamicRig RigOfText(const std::string& scene_text) {
   test::RigOptions o;
   o.spring = 1e-9;
   o.spring_mesh_stiffness = 1.5e9;
   o.edit = [](transmission::DynamicSettings& s) { s.sun_speed = io::RpmToRadPerSecond(1000); };
-  return test::MakeRig(test::SceneText("paper_stage.toml") + "\n" + extra, "pin", o);
+  return test::MakeRig(scene_text, "pin", o);
+}
+
+test::DynamicRig Rig(const std::string& extra) {
+  return RigOfText(test::SceneText("paper_stage.toml") + "\n" + extra);
+}
+
+// A number to 17 digits (read back exactly).
+std::string Exact(double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
 }
 
 // The scene's own [[errors.pin]] entry for planet 2 with the tangential error written in [µm], to
 // 17 digits (the value the branch's point carries, read back exactly).
 std::string PinEntry(double tangential_um) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.17g", tangential_um);
-  return "[[errors.pin]]\ngear = \"planet2\"\ntangential_um = " + std::string(text) + "\n";
+  return "[[errors.pin]]\ngear = \"planet2\"\ntangential_um = " + Exact(tangential_um) + "\n";
+}
+
+// Shooting on `rig`'s own stage from its quasi-static start against the branch point `q` (the
+// same orbit): the weighted distance, and the tolerance. Both stop with R ≤ newton_tolerance
+// (weighted) and an integration error of at most one local tolerance a step; each is within
+// (newton_tolerance + steps)/(1 − ρ) of the exact orbit, the two within twice that (the same bound
+// as two shootings from different starts, CheckOrbitAgainstSettled).
+struct IndependentShooting {
+  double error = 0, tolerance = 0;
+  dynamics::Stability stability = dynamics::Stability::kStable;
+};
+IndependentShooting ShootAgainstPoint(const test::DynamicRig& rig,
+                                      const dynamics::StageBranchPoint& q, double steps) {
+  const dynamics::DynamicModel& m = *rig.model;
+  const dynamics::StagePeriodicSystem system(m, solvers::Backend::kActiveSetNewton, {});
+  const dynamics::ShootingOptions so = Shooting(m);
+  const dynamics::ShootingResult r = ShootFromQuasiStatic(m, system);
+  const double rho = std::max(q.spectral_radius, r.floquet.spectral_radius);
+  return {Weighted(so, r.initial_state, q.state), 2 * (so.newton_tolerance + steps) / (1 - rho),
+          r.floquet.stability};
 }
 
 // The shooting orbit of `rig`'s stage against the state a long time integration settles into
@@ -124,8 +171,7 @@ void CheckOrbitAgainstSettled(const test::DynamicRig& rig, const std::string& na
   const dynamics::StagePeriodicSystem system(m, solvers::Backend::kActiveSetNewton, {});
   const int n = m.size();
   const dynamics::ShootingOptions so = Shooting(m);
-  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);
-  y0.head(n) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  const Eigen::VectorXd y0 = QuasiStaticState(m);
   const auto clock = std::chrono::steady_clock::now();
   const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
   test::FigureValue(name + " shooting wall time",
@@ -169,6 +215,48 @@ TEST_CASE(
   CheckOrbitAgainstSettled(SpringRig(1000, transmission::SunSupport::kFixed), "stage");
 }
 
+// Another point of the orbit (docs/periodic.md §3, "Another point of the orbit"): the stage's
+// orbit is pinned to the mesh's phase, so the other point is the section at t = T/3. Shooting the
+// stage on a clock started there, from the phase-0 orbit's state (a point of the orbit, at the
+// wrong phase for this section), must find the state a long time integration from the
+// quasi-static start reaches at (60 + 1/3) T.
+TEST_CASE(
+    "paper stage, perfect, springs: shooting started at another phase of the mesh period (T/3) "
+    "finds the state a long time integration reaches there",
+    "[crosscheck][dynamics][periodic]") {
+  const auto rig = SpringRig(1000, transmission::SunSupport::kFixed);
+  const dynamics::StagePeriodicSystem system(*rig.model, solvers::Backend::kActiveSetNewton, {});
+  const dynamics::ShootingResult r = ShootFromQuasiStatic(*rig.model, system);
+  const dynamics::DynamicModel& m = *rig.model;
+  const dynamics::ShootingOptions so = Shooting(m);
+  const Eigen::VectorXd y0 = QuasiStaticState(m);
+  const test::PhaseShifted shifted(system, 1.0 / 3);
+  const dynamics::ShootingResult b = dynamics::SolvePeriodicOrbit(shifted, so, r.initial_state);
+  INFO(b.message);
+  REQUIRE(b.status == dynamics::ShootingStatus::kConverged);
+  const int cycles = 60;
+  const Eigen::VectorXd settled = Settle(m, y0, r.period, cycles, 1.0 / 3);
+  // Tolerance: SettledTolerance (the transient's remainder from the start's distance to the
+  // phase-0 orbit, the integration's and the shooting's errors over (1 − ρ)), ρ the larger of the
+  // two sections' spectral radii (their monodromies are similar: the same multipliers).
+  const double rho = std::max(r.floquet.spectral_radius, b.floquet.spectral_radius);
+  const double steps = std::max(static_cast<double>(r.steps) / static_cast<double>(r.integrations),
+                                static_cast<double>(b.steps) / static_cast<double>(b.integrations));
+  const double tol =
+      SettledTolerance(rho, cycles, Weighted(so, y0, r.initial_state), steps, so.newton_tolerance);
+  const double error = Weighted(so, settled, b.initial_state);
+  const double guess = Weighted(so, r.initial_state, b.initial_state);
+  test::FigureValue("stage phase T/3: Newton iterations", b.iterations, "-");
+  test::FigureValue("stage phase T/3: guess - answer (weighted)", guess, "-");
+  test::FigureValue("stage phase T/3: settled - shifted orbit (weighted)", error, "-");
+  test::FigureValue("stage phase T/3: tolerance (weighted)", tol, "-");
+  test::FigureValue("stage phase T/3: spectral radius phase 0", r.floquet.spectral_radius, "-");
+  test::FigureValue("stage phase T/3: spectral radius shifted", b.floquet.spectral_radius, "-");
+  CHECK(error <= tol);
+  CHECK(guess > tol);  // the guess was not already the answer
+  CHECK(b.floquet.stability == r.floquet.stability);
+}
+
 // The helical paper stage (β = 15°) in 5 slices (docs/model.md §10; the orbit's cost grows with
 // the slices, dynamics_helical.cpp), the same springs per slice contact: its state is the planar
 // one (the axial and tilting motions held), so the shooting is the spur stage's on the sliced
@@ -207,8 +295,7 @@ TEST_CASE(
   const double advance = std::copysign(rig.stage->mesh_cycle(), m.carrier_speed());
   CHECK(std::atan2(map(ky, kx), map(kx, kx)) == Approx(-advance).margin(1e-14));
 
-  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * n);
-  y0.head(n) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+  const Eigen::VectorXd y0 = QuasiStaticState(m);
   const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
   INFO(r.message);
   REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
@@ -270,8 +357,7 @@ TEST_CASE(
     const dynamics::DynamicModel& m = system.ModelAt(p);
     // T = 2π/(z_r |ω_c|) at this speed: the speed entered the period.
     CHECK(q.period == Approx(rig.stage->mesh_cycle() / std::abs(m.carrier_speed())).epsilon(1e-14));
-    Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * base.size());
-    y0.head(base.size()) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
+    const Eigen::VectorXd y0 = QuasiStaticState(m);
     const int cycles = 60;
     const Eigen::VectorXd settled = Settle(m, y0, q.period, cycles);
     // The corrector's orbit: R to newton_tolerance (weighted) like the shooting's; steps per
@@ -362,7 +448,6 @@ TEST_CASE(
   for (const dynamics::StageBranchPoint& q : rec.points)
     CHECK(q.sun_speed_rpm == Approx(1000).epsilon(1e-14));
 
-  const dynamics::ShootingOptions so = Shooting(*base.model);
   // Steps per period: the branch's mean over every period it integrated.
   const double steps = static_cast<double>(rec.steps) /
                        static_cast<double>(rec.integrations + rec.plain_integrations);
@@ -371,29 +456,76 @@ TEST_CASE(
     const dynamics::StageBranchPoint& q = rec.points[i];
     const auto rig = Rig(PinEntry(q.parameter));
     REQUIRE(rig.scene.stage.pin_errors.at(1).tangential == q.parameter * 1e-6);
-    const dynamics::DynamicModel& m = *rig.model;
-    const dynamics::StagePeriodicSystem system(m, solvers::Backend::kActiveSetNewton, {});
-    Eigen::VectorXd y0 = Eigen::VectorXd::Zero(2 * m.size());
-    y0.head(m.size()) = m.QuasiStaticStart({}, solvers::Backend::kActiveSetNewton);
-    const dynamics::ShootingResult r = dynamics::SolvePeriodicOrbit(system, so, y0);
-    INFO(r.message);
-    REQUIRE(r.status == dynamics::ShootingStatus::kConverged);
-    // Both stop with R ≤ newton_tolerance (weighted) and an integration error of at most one
-    // local tolerance a step; each is within (newton_tolerance + steps)/(1 − ρ) of the exact
-    // orbit, the two within twice that (the same bound as two shootings from different starts,
-    // crosscheck/dynamics_periodic_stage.cpp).
-    const double rho = std::max(q.spectral_radius, r.floquet.spectral_radius);
-    const double tol = 2 * (so.newton_tolerance + steps) / (1 - rho);
-    const double error = Weighted(so, r.initial_state, q.state);
+    const IndependentShooting shot = ShootAgainstPoint(rig, q, steps);
     test::FigureValue("pin-error branch at " + std::to_string(q.parameter) +
                           " um: independent shooting - point (weighted)",
-                      error, "-");
-    CHECK(error <= tol);
-    CHECK(r.floquet.stability == q.stability);
+                      shot.error, "-");
+    CHECK(shot.error <= shot.tolerance);
+    CHECK(shot.stability == q.stability);
     if (i == 1) k_gamma_first = q.k_gamma;
   }
   // A pin error moves load between the planets: the largest share K_γ grows with its size.
   CHECK(rec.points.back().k_gamma > k_gamma_first);
+}
+
+TEST_CASE(
+    "paper stage, springs: short branches over the sun torque and over the mesh damping ratio at "
+    "1000 rpm: a point of each is the orbit an independent shooting finds with that value in the "
+    "scene",
+    "[crosscheck][dynamics][periodic]") {
+  struct Case {
+    const char* parameter;   // the scene's key, also the line that writes it
+    const char* scene_line;  // the scene's line with the base value
+    double start, end;
+  };
+  // From the scene's own values: the torque 10 % up (its sign the scene's), the damping doubled.
+  const Case cases[] = {{"sun_torque_Nm", "sun_torque_Nm = -600.0", -600, -660},
+                        {"mesh_damping_ratio", "mesh_damping_ratio = 0.05", 0.05, 0.1}};
+  const std::string base_text = test::SceneText("paper_stage.toml");
+  const auto base = RigOfText(base_text);
+  for (const Case& c : cases) {
+    dynamics::StageBranchOptions o;
+    o.parameter = c.parameter;
+    o.start = c.start;
+    o.end = c.end;
+    o.initial_step = 0.35;  // three or four points over the range
+    o.max_step = 0.35;
+    o.simulation = Integration();
+    const dynamics::StageBranchRecord rec = dynamics::ContinueStageBranch(*base.model, o);
+    INFO(c.parameter << ": " << rec.message << rec.figures_message);
+    REQUIRE(rec.ok());
+    test::FigureValue(std::string(c.parameter) + " branch points",
+                      static_cast<double>(rec.points.size()), "-");
+    test::FigureValue(std::string(c.parameter) + " branch CPU", rec.cpu_seconds, "s");
+    REQUIRE(rec.points.size() >= 3);
+    CHECK(rec.points.front().parameter == c.start);
+    CHECK(std::abs(rec.points.back().parameter - c.start) >= std::abs(c.end - c.start));
+    // The speed stays the scene's (rpm → rad/s → rpm: round-off only).
+    for (const dynamics::StageBranchPoint& q : rec.points)
+      CHECK(q.sun_speed_rpm == Approx(1000).epsilon(1e-14));
+    // The point inside the range nearest its middle, against shooting on a scene with its value
+    // written in place of the scene's (its own rig: the stage, the model, the quasi-static start).
+    const dynamics::StageBranchPoint& q = rec.points[rec.points.size() / 2];
+    REQUIRE(base_text.find(c.scene_line) != std::string::npos);
+    const auto rig = RigOfText(test::Replace(
+        base_text, c.scene_line, std::string(c.parameter) + " = " + Exact(q.parameter)));
+    const double steps = static_cast<double>(rec.steps) /
+                         static_cast<double>(rec.integrations + rec.plain_integrations);
+    const IndependentShooting shot = ShootAgainstPoint(rig, q, steps);
+    test::FigureValue(std::string(c.parameter) + " branch at " + Exact(q.parameter) +
+                          ": independent shooting - point (weighted)",
+                      shot.error, "-");
+    test::FigureValue(std::string(c.parameter) + " branch: tolerance (weighted)", shot.tolerance,
+                      "-");
+    CHECK(shot.error <= shot.tolerance);
+    CHECK(shot.stability == q.stability);
+    // And the start's value is not the point's: the branch moved the orbit by more than the
+    // tolerance (else the check above would not tell a continued parameter from a fixed one).
+    const IndependentShooting at_start = ShootAgainstPoint(base, q, steps);
+    test::FigureValue(std::string(c.parameter) + " branch: base scene's orbit - point (weighted)",
+                      at_start.error, "-");
+    CHECK(at_start.error > shot.tolerance);
+  }
 }
 
 TEST_CASE("stage branch: the names of the scene's numbers a branch continues, and why not",

@@ -12,29 +12,20 @@
 #include "epicycle/dynamics/periodic.hpp"
 #include "epicycle/dynamics/periodic_systems.hpp"
 #include "figures.hpp"
+#include "periodic_fixtures.hpp"
 #include "thrown_message.hpp"
 
 using namespace epicycle::dynamics;
+using epicycle::test::ShootingWeight;
 using epicycle::test::ThrownMessage;
+using epicycle::test::TightShooting;
 
 namespace {
-
-ShootingOptions Tight() {
-  ShootingOptions o;
-  o.rtol = 1e-10;
-  o.atol = Eigen::VectorXd::Constant(1, 1e-12);
-  return o;
-}
-
-// The integrator's tolerance of a state, rtol |y|_∞ + atol.
-double Weight(const ShootingOptions& o, const Eigen::VectorXd& y) {
-  return o.rtol * y.cwiseAbs().maxCoeff() + o.atol.maxCoeff();
-}
 
 // The first-tongue boundary of the undamped Mathieu equation at ε, upper (+1) or lower (−1), by
 // bisection on the multipliers' verdict (unstable inside, marginal outside) to `width`.
 double TongueBoundary(const MathieuOscillator& m, double epsilon, int side, double width) {
-  const ShootingOptions o = Tight();
+  const ShootingOptions o = TightShooting();
   double inside = 0.25, outside = 0.25 + side * 2 * epsilon;
   while (std::abs(outside - inside) > width) {
     const double mid = (inside + outside) / 2;
@@ -67,7 +58,7 @@ TEST_CASE(
     "the multipliers exp(λ_k T)",
     "[unit][dynamics][periodic]") {
   const DrivenLinearOscillator s;
-  const ShootingOptions o = Tight();
+  const ShootingOptions o = TightShooting();
   const ShootingResult r = SolvePeriodicOrbit(s, o, Eigen::Vector2d::Zero());
   REQUIRE(r.status == ShootingStatus::kConverged);
   const double wn = s.natural_frequency, z = s.damping_ratio, w = s.omega;
@@ -80,7 +71,7 @@ TEST_CASE(
   // most one local tolerance per step (steps per period: the run's steps over its integrations).
   const double steps = static_cast<double>(r.steps) / static_cast<double>(r.integrations);
   const Eigen::MatrixXd inv = (r.monodromy - Eigen::MatrixXd::Identity(2, 2)).inverse();
-  const double tol = (inv.norm() * o.newton_tolerance + steps) * Weight(o, exact);
+  const double tol = (inv.norm() * o.newton_tolerance + steps) * ShootingWeight(o, exact);
   CHECK((r.initial_state - exact).cwiseAbs().maxCoeff() <= tol);
   epicycle::test::FigureValue("linear orbit error", (r.initial_state - exact).cwiseAbs().maxCoeff(),
                               "-");
@@ -121,7 +112,7 @@ TEST_CASE(
     "it outside, the tongue's boundary at δ = 1/4 ± ε/2 to the expansion's next terms",
     "[unit][dynamics][periodic]") {
   const MathieuOscillator m;
-  const ShootingOptions o = Tight();
+  const ShootingOptions o = TightShooting();
   const double eps = 0.1;
   // Inside (δ = 1/4): a real multiplier below −1 (the response at half the forcing frequency).
   const ShootingResult in =
@@ -163,7 +154,7 @@ TEST_CASE(
     "long integration grows at log|μ|/T per unit time",
     "[unit][dynamics][periodic]") {
   const MathieuOscillator m;
-  const ShootingOptions o = Tight();
+  const ShootingOptions o = TightShooting();
   const double c = 0.02, eps = 0.1;
   // Outside (δ = 0.4): a complex pair, each |μ| = √det M = e^{−πc} (Liouville: det M =
   // exp(∫ tr J) = e^{−2πc}).
@@ -252,7 +243,7 @@ TEST_CASE(
   // Newton: the model cannot be evaluated at the shooting's parameters.
   FailsAbove s;
   s.limit = 2.0;  // the default ω = 3 lies above
-  const ShootingResult r = SolvePeriodicOrbit(s, Tight(), Eigen::Vector2d::Zero());
+  const ShootingResult r = SolvePeriodicOrbit(s, TightShooting(), Eigen::Vector2d::Zero());
   CHECK(r.status == ShootingStatus::kIntegrationFailed);
   CHECK_THAT(r.message, Catch::Contains("shooting from the initial guess: the integration stopped "
                                         "at t = 0 s"));
@@ -271,7 +262,7 @@ TEST_CASE(
   c.parameter = "omega";
   c.start = 3;
   c.end = 4;
-  c.shooting = Tight();
+  c.shooting = TightShooting();
   const ContinuationResult cr = ContinuePeriodicOrbit(s, c, Eigen::Vector2d::Zero());
   CHECK(cr.status == ContinuationStatus::kStepTooSmall);
   REQUIRE(cr.points.size() >= 2);
