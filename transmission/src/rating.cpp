@@ -180,7 +180,8 @@ RatingInputs RatingInputsOf(const Scene& scene) {
   if (!std::isfinite(in.sun_torque)) refuse("[load] sun_torque_Nm", in.sun_torque, "finite");
   for (const auto& [key, value] : {std::pair{"[material] bending_limit_MPa", in.bending_limit},
                                    {"[material] contact_limit_MPa", in.contact_limit}})
-    if (!(std::isfinite(value) && value >= 0)) refuse(key, value / 1e6, "finite and > 0");
+    if (!(std::isfinite(value) && value >= 0))
+      refuse(key, value / 1e6, "finite and >= 0 (0: not given)");
   return in;
 }
 

@@ -191,6 +191,9 @@ void RequireSpur(const Scene& scene, const std::string& driver) {
 
 void RequireHelicalSlices(const Scene& scene, const std::string& driver) {
   if (!IsHelical(scene) || scene.face_width.active()) return;
+  // The stage's own rules (hands, assembly) before a driver's: every driver and front end
+  // reports the same first error of a scene (a prebuilt rig, Python's, has met them).
+  if (scene.kind == SceneKind::kStage) (void)MakeStage(scene);
   // The key's own line names it with its value; else the helix's line, and then the rule's key.
   std::string where = internal::KeyAt(scene, "face_width.slices");
   const bool at_slices = !where.empty();
