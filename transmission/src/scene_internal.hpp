@@ -2,6 +2,7 @@
 // messages, its unit factors and the readers of the scene's sections that live in their own files.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,6 +28,25 @@ std::string KeyAt(const Scene& scene, const std::string& path);
 const geometry::GearSpec& NamedGear(
     TableReader& t, const std::vector<std::pair<std::string, const geometry::GearSpec*>>& gears,
     std::string* name);
+
+/// A gear's table (scene_gear.cpp; docs/scenes.md, "Helical gears" and after): teeth, module,
+/// pressure angle, shift, radii, flank modifications, pitch deviations and helix, the inertia into
+/// *inertia; a `fit_target` gear may omit profile_shift (a [[fit]] sets it); `helix` the stage's
+/// [helix] table's (then the gear's table may not name one). @throws std::invalid_argument naming
+/// the key, value and rule.
+geometry::GearSpec ReadGear(TableReader& t, const std::string& name, geometry::GearKind kind,
+                            bool fit_target, Inertia* inertia,
+                            std::vector<std::string>* warnings = nullptr,
+                            const std::optional<geometry::Helix>& helix = std::nullopt);
+
+/// A member's mass_kg and inertia_kgm2 (both >= 0, 0 when absent).
+Inertia ReadInertia(TableReader& t);
+
+/// The helix angle's rule: [0, 45) deg at the reference cylinder.
+extern const Rule kHelixRule;
+
+/// "left" or "right" (a name the reader has checked) as the hand.
+geometry::Hand HandFromName(const std::string& name);
 
 /// The scene's [[damage.pit]] and [[damage.crack]] tables (docs/scenes.md, "Damage"): `gears`
 /// names the gears a damage may be on with the spec of each (a stage's planets share one spec),
