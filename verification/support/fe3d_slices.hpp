@@ -5,9 +5,10 @@
 // across b (C ⊗ W, docs/model.md §10), the rigid gap g(z) = F_β (z/b − 1/2) of the reference's
 // gear-2 tilt (z from the face that F_β > 0 loads), gear 1's moment balance.
 //
-// The pair scene refuses [face_width], so the problem is built here through the library. One
-// contact solve at the kinematic pose: gear 1's rotation (≈ 0.5 mrad) moves the contact ≈ 20 µm
-// along a 12 mm path of contact, which changes C by a few 1e-4, below what the comparisons see.
+// The reference's contact is one tooth pair at one pose under its own gap, not a scene's sweep,
+// so the problem is built here through the library. One contact solve at the kinematic pose: gear
+// 1's rotation (≈ 0.5 mrad) moves the contact ≈ 20 µm along a 12 mm path of contact, which changes
+// C by a few 1e-4, below what the comparisons see.
 #pragma once
 
 #include <cmath>
