@@ -150,10 +150,15 @@ FaceWidthModel::FaceWidthModel(const FaceWidthSpec& spec, const geometry::Stage&
   const double b_pr = geometry::ContactFaceWidth(stage.planet(0), stage.ring());
   sun_planet_width_ = b_sp;
   planet_ring_width_ = b_pr;
-  coupling_sun_planet_ =
-      FaceCouplingMatrix(spec_.slices, b_sp, spec_.coupling, spec_.coupling_length);
-  coupling_planet_ring_ =
-      FaceCouplingMatrix(spec_.slices, b_pr, spec_.coupling, spec_.coupling_length);
+  if (spec_.coupling == FaceCoupling::kTable) {  // each mesh kind's structure (the scene's)
+    coupling_sun_planet_ = spec_.coupling_table;
+    coupling_planet_ring_ = spec_.coupling_table_planet_ring;
+  } else {
+    coupling_sun_planet_ =
+        FaceCouplingMatrix(spec_.slices, b_sp, spec_.coupling, spec_.coupling_length);
+    coupling_planet_ring_ =
+        FaceCouplingMatrix(spec_.slices, b_pr, spec_.coupling, spec_.coupling_length);
+  }
 }
 
 Eigen::Vector2d FaceWidthModel::AxisSlope(const geometry::StagePoses& poses, int body) const {
