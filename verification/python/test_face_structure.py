@@ -7,21 +7,13 @@ kernel."""
 import pytest
 
 import epicycle
-from conftest import SOURCE_DIR, read_json, run_cli, scene_path
+from conftest import SOURCE_DIR, quasistatic_records, scene_path, without_times
 
 SCENE = "paper_stage_pin_tilt_structure.toml"
-TIMES = {"setup_seconds", "wall_seconds", "evaluation_seconds", "sweep_seconds", "table_seconds"}
-
-
-def without_times(record):
-    return {k: v for k, v in record.items() if k not in TIMES}
 
 
 def test_quasistatic_record_of_the_structure_stage_equals_the_program_json(tmp_path):
-    run_cli("quasistatic", scene_path(SCENE), "--positions", "2", "--quiet", "--out", tmp_path)
-    program = read_json(tmp_path / "quasistatic_summary.json")
-    python = epicycle.quasistatic(epicycle.Scene.load(scene_path(SCENE)), positions=2).record
-    del program["provenance"]
+    python, program = quasistatic_records(scene_path(SCENE), tmp_path)
     assert without_times(python) == without_times(program)
     # The tilted planet's meshes carry more than the straight ones', which the kernels' edge
     # effect alone lifts above 1 (docs/face_width.md: 1.02-1.03).
