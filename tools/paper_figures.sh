@@ -74,6 +74,14 @@ face face_wind_up paper_stage_wind_up
 python3 tools/face_width_table.py "radial tilt=$out/face_pin_tilt_radial_summary.json" \
   "tangential tilt=$out/face_pin_tilt_tangential_summary.json" \
   "wind-up=$out/face_wind_up_summary.json" > "$out/face_ratings.md"
+# The same three cases in 10 slices coupled by the structure's 3D kernels, and in 10 uncoupled
+# slices for the like-for-like comparison (docs/face_width.md, "Coupled by the structure").
+face face_pin_tilt_radial_structure paper_stage_pin_tilt_structure
+face face_pin_tilt_tangential_structure paper_stage_pin_tilt_tangential_structure
+face face_wind_up_structure paper_stage_wind_up_structure
+python3 tools/face_width_table.py "radial tilt=$out/face_pin_tilt_radial_structure_summary.json" \
+  "tangential tilt=$out/face_pin_tilt_tangential_structure_summary.json" \
+  "wind-up=$out/face_wind_up_structure_summary.json" > "$out/face_ratings_structure.md"
 # The floating sun's largest |LSR - 1/3| and its parts over speed (docs/dynamic.md, "Why a
 # floating sun's shares differ").
 bash tools/floating_sun_map.sh "${1:-build}"

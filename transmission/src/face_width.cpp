@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "epicycle/io/number_format.hpp"
 #include "epicycle/transmission/stage_model.hpp"
@@ -150,10 +151,22 @@ FaceWidthModel::FaceWidthModel(const FaceWidthSpec& spec, const geometry::Stage&
   const double b_pr = geometry::ContactFaceWidth(stage.planet(0), stage.ring());
   sun_planet_width_ = b_sp;
   planet_ring_width_ = b_pr;
-  coupling_sun_planet_ =
-      FaceCouplingMatrix(spec_.slices, b_sp, spec_.coupling, spec_.coupling_length);
-  coupling_planet_ring_ =
-      FaceCouplingMatrix(spec_.slices, b_pr, spec_.coupling, spec_.coupling_length);
+  if (spec_.coupling == FaceCoupling::kTable) {  // each mesh kind's structure (the scene's)
+    for (const Eigen::MatrixXd* w : {&spec_.coupling_table, &spec_.coupling_table_planet_ring})
+      if (w->rows() != spec_.slices || w->cols() != spec_.slices)
+        throw std::invalid_argument(
+            "face width: coupling = table: a stage needs a " + std::to_string(spec_.slices) +
+            " x " + std::to_string(spec_.slices) +
+            " kernel for each mesh kind (coupling_table_sun_planet, coupling_table_planet_ring), "
+            "one is " + std::to_string(w->rows()) + " x " + std::to_string(w->cols()));
+    coupling_sun_planet_ = spec_.coupling_table;
+    coupling_planet_ring_ = spec_.coupling_table_planet_ring;
+  } else {
+    coupling_sun_planet_ =
+        FaceCouplingMatrix(spec_.slices, b_sp, spec_.coupling, spec_.coupling_length);
+    coupling_planet_ring_ =
+        FaceCouplingMatrix(spec_.slices, b_pr, spec_.coupling, spec_.coupling_length);
+  }
 }
 
 Eigen::Vector2d FaceWidthModel::AxisSlope(const geometry::StagePoses& poses, int body) const {

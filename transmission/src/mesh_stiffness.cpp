@@ -67,6 +67,9 @@ MeshPairSetup MakeMeshPair(const Scene& scene, const geometry::Stage* stage,
       s.face_width.slices = scene.face_width.slices;
       s.face_width.coupling = scene.face_width.coupling;
       s.face_width.coupling_length = scene.face_width.coupling_length;
+      s.face_width.coupling_table = m.kind == geometry::MeshKind::kPlanetRing
+                                        ? scene.face_width.coupling_table_planet_ring
+                                        : scene.face_width.coupling_table;
     }
     return s;
   }

@@ -37,10 +37,10 @@ struct MeshBound {
   }
 };
 
-// coupling = "table": W [-] from the CSV that coupling_table names (relative to the scene's
-// directory): a header line, then one row "i,j,w" for every 0 <= i, j < S.
-Eigen::MatrixXd ReadCouplingTable(TableReader& t, const std::string& source, int slices) {
-  const std::string key = "coupling_table";
+// coupling = "table": W [-] from the CSV that `key` names (relative to the scene's directory):
+// a header line, then one row "i,j,w" for every 0 <= i, j < S.
+Eigen::MatrixXd ReadCouplingTable(TableReader& t, const std::string& key,
+                                  const std::string& source, int slices) {
   const std::string value = t.String(key);
   std::filesystem::path path(value);
   if (path.is_relative()) path = std::filesystem::path(source).parent_path() / path;
@@ -117,17 +117,39 @@ void ReadFaceWidth(TableReader& top, Scene& s,
   };
   const std::string coupling =
       t->StringOr("coupling", "none", {"none", "pasternak", "table"});
+  // A pair's table is its one mesh's; a stage's meshes of the two kinds (external sun-planet,
+  // internal planet-ring) each have their own structure, so a stage names one table per kind.
+  const std::vector<std::string> table_keys =
+      pair ? std::vector<std::string>{"coupling_table"}
+           : std::vector<std::string>{"coupling_table_sun_planet", "coupling_table_planet_ring"};
+  const std::vector<std::string> other_keys =
+      pair ? std::vector<std::string>{"coupling_table_sun_planet", "coupling_table_planet_ring"}
+           : std::vector<std::string>{"coupling_table"};
+  for (const std::string& key : other_keys)
+    if (t->Has(key))
+      t->Fail(key, "given in a " + std::string(pair ? "pair" : "stage") + " scene",
+              pair ? "a pair's one mesh takes its kernel from coupling_table"
+                   : "a stage's sun-planet and planet-ring meshes take their kernels from "
+                     "coupling_table_sun_planet and coupling_table_planet_ring");
   if (coupling == "table") {
-    if (!pair)
-      t->Fail("coupling", "\"table\"",
-              "a coupling table is one gear pair's structure along its face (a pair scene); a "
-              "stage's meshes each have their own");
     needs_slices(*t, "coupling");
+    for (const std::string& key : table_keys)
+      if (!t->Has(key))
+        t->Fail("coupling", "\"table\"",
+                "needs " + key +
+                    (pair ? std::string(", the pair's kernel")
+                          : std::string(": a stage takes one kernel per mesh kind, "
+                                        "coupling_table_sun_planet and "
+                                        "coupling_table_planet_ring")));
     f.coupling = FaceCoupling::kTable;
-    f.coupling_table = ReadCouplingTable(*t, s.source, f.slices);
-  } else if (t->Has("coupling_table")) {
-    t->Fail("coupling_table", "given with coupling = \"" + coupling + "\"",
-            "a coupling table belongs to coupling = \"table\"");
+    f.coupling_table = ReadCouplingTable(*t, table_keys[0], s.source, f.slices);
+    if (!pair)
+      f.coupling_table_planet_ring = ReadCouplingTable(*t, table_keys[1], s.source, f.slices);
+  } else {
+    for (const std::string& key : table_keys)
+      if (t->Has(key))
+        t->Fail(key, "given with coupling = \"" + coupling + "\"",
+                "a coupling table belongs to coupling = \"table\"");
   }
   if (coupling == "pasternak") {
     f.coupling = FaceCoupling::kPasternak;

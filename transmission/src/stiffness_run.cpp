@@ -57,7 +57,8 @@ void VisitReferences(const StiffnessRecord& r, RecordVisitor& visit) {
 // renamed "gear1" and "gear2". The pair is held on fixed axes: what tilts the planet in the stage
 // (its pin's tilt, the pins' bending, the carrier's wind-up) has no place in it and is refused.
 void SpurStageMeshSlices(const FaceWidthSpec& stage, const std::string& mesh, int planet,
-                         const std::vector<std::string>& gears, FaceWidthSpec* out) {
+                         geometry::MeshKind kind, const std::vector<std::string>& gears,
+                         FaceWidthSpec* out) {
   const std::string rule =
       ": the mesh-stiffness driver holds the mesh's two gears on fixed axes and takes the "
       "stage's slices and the two gears' leads only; `epicycle quasistatic` computes the "
@@ -76,6 +77,10 @@ void SpurStageMeshSlices(const FaceWidthSpec& stage, const std::string& mesh, in
   out->slices = stage.slices;
   out->coupling = stage.coupling;
   out->coupling_length = stage.coupling_length;
+  // The mesh kind's structural kernel (coupling = "table").
+  out->coupling_table =
+      kind == geometry::MeshKind::kPlanetRing ? stage.coupling_table_planet_ring
+                                              : stage.coupling_table;
   for (const LeadSpec& l : stage.leads)
     for (std::size_t g = 0; g < gears.size(); ++g)
       if (l.gear == gears[g]) {
@@ -94,7 +99,8 @@ MeshPairSetup MakeSlicedMeshPair(const Scene& scene, const geometry::Stage* stag
     return s;
   for (const geometry::MeshSummary& m : stage->meshes())
     if (m.name == s.mesh)
-      SpurStageMeshSlices(scene.face_width, s.mesh, m.planet, s.gears, &s.face_width);
+      SpurStageMeshSlices(scene.face_width, s.mesh, m.planet, m.kind, s.gears,
+                          &s.face_width);
   return s;
 }
 

@@ -275,3 +275,39 @@ TEST_CASE("face width with stresses: under a radial pin tilt the largest root st
     CHECK(m.misalignment_deflection == 0);
   }
 }
+
+// The stage coupled along the face by its structure (docs/face_width.md, "A planet pin tilted,
+// the carrier wound up"): every sun-planet mesh with the 3D kernel of the paper's sun-planet pair,
+// every planet-ring mesh with the ring's (scenes/paper_*_structure_kernel.csv, 10 slices of
+// 2.5 mm). On the ISO pair the 3D contact and the structure's kernel put the load of a full-contact
+// misalignment on a steeper line than uncoupled strips (docs/face_width.md, "Coupling against the
+// 3D reference": K_Hβ − 1 0.646 and 0.657 against the strips' 0.385): the kernel's long reach
+// makes the face answer its linear part stiffer than its mean. The same holds on the paper stage's
+// tilted planet: at every position of a mesh cycle both of planet 1's meshes take K_Hβ − 1 larger
+// than the same 10 slices uncoupled, and at the same end (the planet's kinematics, test above).
+// An inequality between two solutions of one contact solver, each to 2e-8 relative: the test
+// asks for the larger K_Hβ − 1 by more than 1e-6 (the solver's tolerance, with margin).
+TEST_CASE("face width on the paper stage: the structure's kernels steepen a tilted pin's load "
+          "across the face beyond uncoupled slices",
+          "[crosscheck][transmission][face_width]") {
+  const std::string scenes = EPICYCLE_SCENES_DIR;
+  const std::string tilt = "[[face_width.pin_tilt]]\nplanet = 1\nradial_um = 20.0\n";
+  const Rig strips(Table(tilt));
+  const Rig coupled(Table("coupling = \"table\"\ncoupling_table_sun_planet = \"" + scenes +
+                          "/paper_sun_planet_structure_kernel.csv\"\ncoupling_table_planet_ring = \"" +
+                          scenes + "/paper_planet_ring_structure_kernel.csv\"\n" + tilt));
+  // One mesh cycle of the planets (the ring fixed: 360/65 deg of the carrier) in 4 positions.
+  for (int k = 0; k < 4; ++k) {
+    const double carrier = k * 2 * geometry::kPi / 65 / 4;
+    const PositionResult a = strips.Solve(carrier);
+    const PositionResult b = coupled.Solve(carrier);
+    for (const bool ring : {false, true}) {
+      const MeshFaceLoad& s = Mesh(a, 0, ring);
+      const MeshFaceLoad& c = Mesh(b, 0, ring);
+      INFO("position " << k << (ring ? " ring" : " sun") << " mesh: K_Hbeta strips "
+                       << s.k_h_beta << ", structure " << c.k_h_beta);
+      CHECK(c.k_h_beta - s.k_h_beta > 1e-6);
+      CHECK(c.largest_slice == s.largest_slice);
+    }
+  }
+}

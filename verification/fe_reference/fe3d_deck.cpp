@@ -223,10 +223,15 @@ void WriteInfluenceSteps(std::ostream& f, const transmission::Scene& scene,
                          const Extrusion& ex, const detail::GearModel& m1,
                          const detail::GearModel& m2, const detail::LoadedContacts& lc,
                          const Vec2& normal, const Vec2& contact_point, Fe3dDeckInfo& info) {
-  if (lc.by_teeth.size() != 1)
-    throw std::invalid_argument("fe3d influence deck: " + std::to_string(lc.by_teeth.size()) +
-                                " tooth pairs in the gap window: the deck loads one");
-  const auto& [teeth, p] = *lc.by_teeth.begin();
+  // The deck loads the tooth pair of the smallest rigid gap (the one the contact normal is
+  // taken from); the others in the window are modelled, unloaded. An internal mesh keeps a
+  // neighbouring pair within the window at every position (its flanks nearly conform).
+  if (lc.by_teeth.empty())
+    throw std::invalid_argument("fe3d influence deck: no tooth pair in the gap window");
+  auto loaded = lc.by_teeth.begin();
+  for (auto it = lc.by_teeth.begin(); it != lc.by_teeth.end(); ++it)
+    if (it->second.rigid_gap < loaded->second.rigid_gap) loaded = it;
+  const auto& [teeth, p] = *loaded;
   const std::vector<Vec2>& near = lc.points_of.at(teeth);
   const int node1 = NearestCornerNode(
       detail::FlankFaces(p.slave, m1.flank_curves.at({p.tooth1, lc.side1}), near,

@@ -39,7 +39,8 @@ int Fe3dInfluenceCommand(const Fe3dCommandArgs& a, const transmission::Scene& sc
                          const geometry::GearPair& pair, Fe3dOptions o) {
   transmission::FeComplianceOptions tables;
   tables.cache_directory = transmission::DefaultCacheDirectory();
-  const test::Fe3dSlicePair model(scene, tables);
+  // The plane model's FE tables of the scene's pair (any pair: external or internal).
+  const transmission::FePairCompliance model(scene, pair, tables);
   o.influence = true;
   o.read_depth[0] = model.JoiningDepth(0);
   o.read_depth[1] = model.JoiningDepth(1);
@@ -65,15 +66,60 @@ int Fe3dInfluenceCommand(const Fe3dCommandArgs& a, const transmission::Scene& sc
       f << line;
     }
   if (!f) throw std::runtime_error(a.csv + ": write failed");
+  // The plane model's structural C at the loaded contact (whole gears and the layer term,
+  // docs/model.md §4), for the one-layer plane-strain deck's G_ps to be compared with.
+  const geometry::PairPoses poses = pair.Poses(a.angle_deg * geometry::kPi / 180.0);
+  geometry::ContactSearchOptions search;
+  search.gap_window = o.contact.gap_window;
+  search.both_sides = false;  // the loaded flanks, as the deck's (WriteDeck3d)
+  search.side_a = pair.loaded_side();
+  std::vector<geometry::PotentialContact> nearest;
+  for (const geometry::PotentialContact& c : pair.Contacts(poses, search))
+    if (nearest.empty() || c.overlap > nearest[0].overlap) nearest = {c};
+  const double plane_c = nearest.empty() ? 0.0 : model.Matrix(pair, poses, nearest)(0, 0);
   std::printf("%s: influence, %d layers, refinement %.3g%s: %d nodes, h %.1f/%.1f um, "
-              "G_00 %.6e m/N, ccx %.0f s CPU, %.0f s wall\n",
+              "G_00 %.6e m/N (plane model's C at the contact %.6e m/N), ccx %.0f s CPU, "
+              "%.0f s wall\n",
               a.name.c_str(), a.layers, a.refinement, a.plane_strain ? ", plane strain" : "",
               run.deck.deck.nodes, o.read_depth[0] * 1e6, o.read_depth[1] * 1e6,
-              run.compliance[0][0], run.cpu_seconds, run.wall_seconds);
+              run.compliance[0][0], plane_c, run.cpu_seconds, run.wall_seconds);
   return 0;
 }
 
+// W as a scene's coupling table (docs/scenes.md, "Face width"): a header, then "i,j,w" rows.
+void WriteKernel(const Eigen::MatrixXd& w, const std::string& path) {
+  std::string text = "i,j,w\n";
+  for (Eigen::Index i = 0; i < w.rows(); ++i)
+    for (Eigen::Index j = 0; j < w.cols(); ++j) {
+      char line[96];
+      std::snprintf(line, sizeof line, "%td,%td,%.12g\n", i, j, w(i, j));
+      text += line;
+    }
+  report::WriteTextFile(path, text);
+  std::printf("wrote %s\n", path.c_str());
+}
+
 }  // namespace
+
+int Fe3dKernel(const std::string& influence_csv, const std::string& name, int layers,
+               const std::string& refinement, const std::string& kernel_csv) {
+  if (layers < 2)
+    throw std::invalid_argument("--layers = " + std::to_string(layers) +
+                                ": a kernel along the face needs at least 2 layers");
+  const Eigen::MatrixXd w = test::StructureKernel(influence_csv, name, layers, refinement);
+  // The rows as the docs' tables give them: W_ij and Σ_j W_ij / S (1 for plane strain).
+  std::printf("%s, %d layers, refinement %s: W_ij (symmetric part), row sum / S\n", name.c_str(),
+              layers, refinement.c_str());
+  for (Eigen::Index i = 0; i < w.rows(); ++i) {
+    std::printf("  %2td:", i);
+    for (Eigen::Index j = 0; j < w.cols(); ++j) std::printf(" %.3f", w(i, j));
+    std::printf("  | %.4f\n", w.row(i).sum() / layers);
+  }
+  if (Eigen::LLT<Eigen::MatrixXd>(w).info() != Eigen::Success)
+    throw std::runtime_error(influence_csv + ": case " + name + "'s W is not positive definite");
+  WriteKernel(w, kernel_csv);
+  return 0;
+}
 
 int Fe3dCommand(const Fe3dCommandArgs& a) {
   const transmission::Scene scene = transmission::ReadScene(a.scene);
@@ -257,16 +303,7 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
     // The first influence case's W as a scene's coupling table (docs/scenes.md, "Face width").
     if (kernels.size() < 3)
       throw std::invalid_argument("--write-kernel " + kernel_csv + ": needs --influence");
-    const Eigen::MatrixXd& w = kernels[2].w;
-    std::string text = "i,j,w\n";
-    for (Eigen::Index i = 0; i < w.rows(); ++i)
-      for (Eigen::Index j = 0; j < w.cols(); ++j) {
-        char line[96];
-        std::snprintf(line, sizeof line, "%td,%td,%.12g\n", i, j, w(i, j));
-        text += line;
-      }
-    report::WriteTextFile(kernel_csv, text);
-    std::printf("wrote %s\n", kernel_csv.c_str());
+    WriteKernel(kernels[2].w, kernel_csv);
   }
   report::LinePlot plot{title, "z across the face width [mm]", "load per unit width q [N/mm]",
                         {}, false, {}};

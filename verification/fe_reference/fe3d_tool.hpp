@@ -49,6 +49,13 @@ int Fe3dSlices(const std::string& scene, const std::string& csv, const std::stri
                const std::vector<std::string>& influence_cases, const std::string& kernel_csv,
                const std::string& title);
 
+/// The 3D structure's kernel W (test::StructureKernel of case `name` at `layers` layers and
+/// in-plane `refinement` of `influence_csv`, over its plane-strain row) written to `kernel_csv`
+/// as a scene's coupling table (docs/scenes.md, "Face width"); prints W and its row sums.
+/// @throws on an incomplete CSV or a W that is not positive definite.
+int Fe3dKernel(const std::string& influence_csv, const std::string& name, int layers,
+               const std::string& refinement, const std::string& kernel_csv);
+
 /// The helical pair's slices (test::HelicalSlicesAt at `angle_deg`, a position of a
 /// `positions`-position sweep) against the 3D stations of the cases `names` of `csv`: prints each
 /// station's loads (the runs at every discretisation, the slices' station means) and draws the

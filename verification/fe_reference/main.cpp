@@ -326,6 +326,18 @@ int main(int argc, char** argv) {
   fe3d_slices->add_option("--influence-layers", influence_layers,
                           "the influence run's layers (one slice each)");
   fe3d_slices->add_option("--title", title, "figure title");
+  std::string kernel_influence, kernel_case = "free", kernel_refinement = "1", kernel_out;
+  int kernel_layers = 10;
+  CLI::App* fe3d_kernel = app.add_subcommand(
+      "fe3d-kernel", "the 3D structure's kernel W of `fe3d --influence` rows as a coupling table");
+  fe3d_kernel->add_option("influence", kernel_influence, "CSV of `fe3d --influence` runs")
+      ->required();
+  fe3d_kernel->add_option("kernel", kernel_out, "the coupling table (CSV i,j,w) to write")
+      ->required();
+  fe3d_kernel->add_option("--case", kernel_case, "the influence case (its plane_strain row too)");
+  fe3d_kernel->add_option("--layers", kernel_layers, "the influence run's layers (one slice each)");
+  fe3d_kernel->add_option("--refinement", kernel_refinement,
+                          "the influence run's in-plane refinement, as written in the CSV");
   std::string helical_scene;
   std::vector<std::string> helical_cases{"helical"};
   double helical_angle = 13.0;
@@ -347,6 +359,9 @@ int main(int argc, char** argv) {
     if (*fe3d_helical)
       return fe_reference::Fe3dHelical(helical_scene, fe_csv, prefix, helical_cases, helical_angle,
                                        helical_positions, helical_layers, title);
+    if (*fe3d_kernel)
+      return fe_reference::Fe3dKernel(kernel_influence, kernel_case, kernel_layers,
+                                      kernel_refinement, kernel_out);
     if (*fe3d_slices)
       return fe_reference::Fe3dSlices(slices_scene, fe_csv, prefix, slices_layers,
                                       slices_refinement, influence_csv, influence_layers,

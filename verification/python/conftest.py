@@ -93,3 +93,23 @@ def epicycle_module():
     import epicycle
 
     return epicycle
+
+
+# What two runs of the same request may differ in: wall times.
+TIMES = {"setup_seconds", "wall_seconds", "evaluation_seconds", "sweep_seconds", "table_seconds"}
+
+
+def without_times(record):
+    return {k: v for k, v in record.items() if k not in TIMES}
+
+
+def quasistatic_records(scene, tmp_path, positions=2):
+    """Python's quasi-static record of scene file `scene` and the program's summary JSON (its
+    provenance dropped), the same request: `positions` positions, quiet."""
+    import epicycle
+
+    run_cli("quasistatic", scene, "--positions", str(positions), "--quiet", "--out", tmp_path)
+    program = read_json(tmp_path / "quasistatic_summary.json")
+    del program["provenance"]
+    python = epicycle.quasistatic(epicycle.Scene.load(scene), positions=positions).record
+    return python, program

@@ -10,22 +10,14 @@ import os
 import pytest
 
 import epicycle
-from conftest import SOURCE_DIR, num, read_csv, read_json, run_cli, scene_path
+from conftest import (SOURCE_DIR, num, quasistatic_records, read_csv, read_json, run_cli,
+                      scene_path, without_times)
 
 SCENE = "paper_stage_helical.toml"
-# What two runs of the same request may differ in: wall times.
-TIMES = {"setup_seconds", "wall_seconds", "evaluation_seconds", "sweep_seconds", "table_seconds"}
-
-
-def without_times(record):
-    return {k: v for k, v in record.items() if k not in TIMES}
 
 
 def test_quasistatic_helical_record_equals_the_program_json(tmp_path):
-    run_cli("quasistatic", scene_path(SCENE), "--positions", "2", "--quiet", "--out", tmp_path)
-    program = read_json(tmp_path / "quasistatic_summary.json")
-    python = epicycle.quasistatic(epicycle.Scene.load(scene_path(SCENE)), positions=2).record
-    del program["provenance"]
+    python, program = quasistatic_records(scene_path(SCENE), tmp_path)
     assert sorted(python) == sorted(program)
     assert without_times(python) == without_times(program)
     h = python["helical"]

@@ -60,9 +60,10 @@ enum class FaceCoupling {
   kNone,       ///< uncoupled strips
   kPasternak,  ///< a Pasternak foundation of coupling length λ with free ends
   kToothBody,  ///< the tooth (strips or Pasternak λ) plus bodies that answer the resultant (φ)
-  /// W given as a table (FaceWidthSpec::coupling_table): a gear pair's 3D structural compliance
-  /// along the face over its plane strain (docs/fe_reference.md, "The structural compliance along
-  /// the face"); its rows need not sum to S.
+  /// W given as a table (FaceWidthSpec::coupling_table, and coupling_table_planet_ring for a
+  /// stage's ring meshes): a gear pair's 3D structural compliance along the face over its plane
+  /// strain (docs/fe_reference.md, "The structural compliance along the face"); its rows need not
+  /// sum to S.
   kTable,
 };
 
@@ -90,7 +91,10 @@ struct FaceWidthSpec {
   int slices = 1;  ///< S [-], 1..kMaxFaceSlices
   FaceCoupling coupling = FaceCoupling::kNone;
   double coupling_length = 0;  ///< λ [m], > 0 for kPasternak
-  Eigen::MatrixXd coupling_table;  ///< W [-], S×S, symmetric positive definite, for kTable
+  /// W [-], S×S, symmetric positive definite, for kTable: a pair's mesh, a stage's sun-planet
+  /// meshes.
+  Eigen::MatrixXd coupling_table;
+  Eigen::MatrixXd coupling_table_planet_ring;  ///< W [-] of a stage's planet-ring meshes, kTable
   std::vector<PinTilt> pin_tilts;
   std::vector<LeadSpec> leads;
   /// The planets' pins as load-dependent tilts (pin.hpp); empty: rigid pins.
