@@ -13,6 +13,7 @@
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/root_stress.hpp"
 #include "figures.hpp"
+#include "tolerance_floor.hpp"
 #include "epicycle/io/units.hpp"
 
 using namespace epicycle;
@@ -34,18 +35,17 @@ transmission::Scene WithLimits(transmission::Scene scene) {
   return scene;
 }
 
-// A run of `rig` at `times` (rtol 1e-8) with its peaks and K_v.
+// A run of `rig` at `times` with options `so`, its peaks and K_v.
 struct RunFactor {
   dynamics::MotionLoads loads;
   dynamics::DynamicFactor kv;
+  dynamics::SimulationResult run;
 };
-RunFactor RunWithFactor(const test::DynamicRig& rig, const std::vector<double>& times) {
-  dynamics::SimulationOptions so;
-  so.rtol = 1e-8;
-  const auto r = test::Run(rig, times, so);
-  REQUIRE(r.completed());
-  RunFactor out{dynamics::MotionLoads(*rig.stage), {}};
-  for (const dynamics::DynamicSample& s : r.samples) out.loads.Add(s);
+RunFactor RunWithFactor(const test::DynamicRig& rig, const std::vector<double>& times,
+                        const dynamics::SimulationOptions& so) {
+  RunFactor out{dynamics::MotionLoads(*rig.stage), {}, test::Run(rig, times, so)};
+  REQUIRE(out.run.completed());
+  for (const dynamics::DynamicSample& s : out.run.samples) out.loads.Add(s);
   out.kv = dynamics::DynamicLoadFactor(*rig.model, so, times, out.loads);
   REQUIRE(out.kv.mesh >= 0);
   return out;
@@ -79,19 +79,37 @@ ColdPeaks ColdMeshPeaks(const test::DynamicRig& rig, const std::vector<double>& 
 }  // namespace
 
 TEST_CASE("dynamic factor: the quasi-static reference at the run's angles, K_v -> 1 with the speed",
-          "[crosscheck][dynamics][rating]") {
+          "[crosscheck][slow][dynamics][rating]") {
   // The setting of "root stress: the dynamic root stress tends to the quasi-static one" (FE
   // compliance without the local term, friction off, planet 1 with 20 µm run-out, sun fixed,
-  // 24 mesh cycles with 2 outputs each, rtol 1e-8). The mesh forces are what the root stress is
-  // linear in, so the same argument holds: what separates the peaks in motion from those at rest
-  // are the velocity and inertial terms, and halving the speed must at least halve K_v − 1
-  // (ratio ≥ 2/1.25), down to the tolerances' floor (1e-6).
-  double excess[2];
+  // 24 mesh cycles with 2 outputs each). The mesh forces are what the root stress is linear in, so
+  // the same argument holds: what separates the peaks in motion from those at rest are the
+  // velocity and inertial terms, and halving the speed must at least halve K_v − 1 (ratio ≥
+  // 2/1.25), down to the floor of the tolerances (ToleranceFloor of the mesh forces over their
+  // peaks at rest, at each run's samples).
+  //
+  // The tolerances: every one 100 times below the defaults at rtol 1e-8 (rtol 1e-10, 1e-12 m,
+  // 1e-11 rad). The run-out unloads planet 1 over cycles ~17–20.5, where planets 2 and 3 take
+  // their peaks: planet 1 then turns freely inside its backlash, a direction no force restores, so
+  // the integrator's errors add up along it instead of decaying, and a light touch of its flanks
+  // that the exact motion does not make (4–8 N) rings the mesh modes. The error test bounds the
+  // local errors only (ToleranceFloor: 1.2e-5 of a peak at rtol 1e-8), not that drift: at rtol
+  // 1e-8 and 1e-9 a single sample of those cycles is off by up to 7.4e-4 of its mesh's peak, with
+  // the Newton coefficient 0.1 as with 0.3, while K_v − 1 is 3.32e-4 at 120 rpm and 1.45e-5 at
+  // 60 rpm (docs/dynamic_cost.md, "The dynamic factor at low speed"). At these tolerances the
+  // largest such sample error measured is 1.5e-5, 14 times below what the comparison allows.
+  // A K_v against the wrong reference does not fall with the speed: the reference without the
+  // run-out gives K_v − 1 = 1.114 at both speeds, the reference a quarter output step early
+  // 5.4e-2 at both.
+  double excess[2], floor[2];
   const double speeds[2] = {120.0, 60.0};
   for (int k = 0; k < 2; ++k) {
     const auto rig = test::LowSpeedRunoutRig(speeds[k]);
     const std::vector<double> times = test::Times(*rig.model, *rig.stage, 24, 2);
-    const auto [loads, kv] = RunWithFactor(rig, times);
+    dynamics::SimulationOptions so;
+    so.rtol = 1e-8;
+    so = test::Tightened(so, 100);
+    const auto [loads, kv, run] = RunWithFactor(rig, times, so);
     const ColdPeaks cold = ColdMeshPeaks(rig, times, transmission::QuasiStaticOptions{});
     REQUIRE(cold.settled == static_cast<int>(times.size()));
     const std::vector<double>& rest = cold.peak;
@@ -104,15 +122,30 @@ TEST_CASE("dynamic factor: the quasi-static reference at the run's angles, K_v -
     CHECK(kv.value == Approx(largest).epsilon(1e-8));
     CHECK(kv.quasi_static.converged == static_cast<int>(times.size()));
     excess[k] = std::abs(kv.value - 1);
+    // K_v − 1 moves by what a mesh force over its peak at rest moves.
+    floor[k] = test::ToleranceFloor(
+        rig, so, run.stats.rate_scale, run.samples,
+        [&](const dynamics::Evaluation& e, std::vector<double>& out) {
+          out.assign(rest.size(), 0.0);
+          for (int j = 0; j < e.terms.size(); ++j)
+            out[static_cast<std::size_t>(geometry::MeshIndex(e.terms.contacts[j].planet,
+                                                             e.terms.contacts[j].mesh))] +=
+                e.total_force(j);
+          for (std::size_t m = 0; m < out.size(); ++m) out[m] /= rest[m];
+        });
     test::Figure("K_v at " + std::to_string(speeds[k]) + " rpm (run-out, 24 mesh cycles): " +
-                 test::Sci(kv.value, 8) + " on " + kv.mesh_name);
+                 test::Sci(kv.value, 8) + " on " + kv.mesh_name + "; the tolerances allow " +
+                 test::Sci(floor[k]) + "; " + std::to_string(run.stats.steps) + " steps");
   }
-  const bool pass = excess[1] <= excess[0] / 2 * 1.25 + 1e-6;
+  // Each run's K_v may be off by its floor, the 120 rpm run's share halved with its excess.
+  const double allowed = floor[1] + floor[0] / 2 * 1.25;
+  const bool pass = excess[1] <= excess[0] / 2 * 1.25 + allowed;
   test::VerifyRow(
       "dynamic factor K_v -> 1 linearly in speed (120, 60 rpm; run-out)",
       "quasi-static solver at the same carrier angles",
       "|K_v - 1| " + test::Sci(excess[0]) + " at 120 rpm, " + test::Sci(excess[1]) + " at 60 rpm",
-      "ratio " + test::Sci(excess[0] / excess[1], 2), "ratio >= 2/1.25 (1e-6 floor)", pass);
+      "ratio " + test::Sci(excess[0] / excess[1], 2),
+      "ratio >= 2/1.25 (the tolerances' floor " + test::Sci(allowed) + ")", pass);
   CHECK(pass);
 }
 
@@ -179,7 +212,7 @@ TEST_CASE(
   // position solved cold by the quasi-static solver with that friction at that speed; the warm
   // reference meets it to the contact solve's tolerance (1e-10 relative), checked at 1e-8. Friction
   // moves the mesh peaks by a share of order μ (levers of the friction forces), the dynamics at
-  // 60 rpm by ~1e-4 (the friction-off case above), so the frictionless reference would leave
+  // 60 rpm by ~1e-5 (the friction-off case above), so the frictionless reference would leave
   // friction's share in K_v: it must be farther from 1 than the friction reference's K_v.
   test::RigOptions o;
   o.local_terms = false;
@@ -192,7 +225,9 @@ TEST_CASE(
   const auto rig =
       test::MakeRig(test::WithRunout(test::SceneText("paper_stage.toml")), "runout", o);
   const std::vector<double> times = test::Times(*rig.model, *rig.stage, 6, 2);
-  const auto [loads, kv] = RunWithFactor(rig, times);
+  dynamics::SimulationOptions so;
+  so.rtol = 1e-8;
+  const auto [loads, kv, run] = RunWithFactor(rig, times, so);
   transmission::QuasiStaticOptions with;
   with.friction = rig.model->settings().friction;
   with.sun_speed = rig.model->settings().sun_speed;

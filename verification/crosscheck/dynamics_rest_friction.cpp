@@ -12,6 +12,7 @@
 #include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "figures.hpp"
+#include "tolerance_floor.hpp"
 #include "epicycle/io/units.hpp"
 
 using namespace epicycle;
@@ -87,58 +88,6 @@ FrictionGap RestFrictionGap(const test::DynamicRig& rig, transmission::FrictionL
   return g;
 }
 
-// The largest change of an LSR that CVODE's error test lets through at the run's samples (the
-// floor of the speed comparison below). CVODE accepts a step when its local error e has a weighted
-// root mean square ‖e‖ = √(Σ_j (e_j/w_j)²/N) ≤ 1 over the N = 2n + 3 components of its state,
-// w_j = rtol |y_j| + atol_j: atol_length for a translation, atol_angle for a rotation, those times
-// the rate scale for their rates (the three works do not enter the forces). LSR_i = T_i/(−T_s) is
-// a smooth function of the deviations (the contact forces through the compliance) and their rates
-// (the damping and friction's surface speeds), linear at the scale of the tolerances (1e-10 m on
-// deflections of micrometres: ~1e-5 of the forces), so such an error moves it by g_i·e with
-// g_i = ∂LSR_i/∂y, and by Cauchy–Schwarz
-//   |g_i·e| ≤ √N ‖g_i ∘ w‖₂ = √N √(Σ_j (g_ij w_j)²).
-// g_ij w_j is taken as the difference of the model's own LSR_i after a step of w_j in y_j, at
-// each sample (the contact solve's tolerance, 1e-10 of the nondimensional residual, moves LSR by
-// ~1e-10, below the steps' effect of ~1e-6). The bound depends on the tolerances only, not on how
-// the integrator spends them (its Newton coefficient, order or step sequence change the draw of
-// e within it).
-double ToleranceFloor(const test::DynamicRig& rig, const dynamics::SimulationOptions& so,
-                      double rate_scale, const std::vector<dynamics::DynamicSample>& samples) {
-  const dynamics::DynamicModel& model = *rig.model;
-  const int n = model.size();
-  const double root_n = std::sqrt(2.0 * n + 3);
-  auto solver = solvers::MakeContactSolver(so.backend);
-  dynamics::Evaluation e;
-  double floor = 0;
-  std::vector<double> lsr;  // the model's LSR at the sample's own state
-  for (const dynamics::DynamicSample& s : samples) {
-    model.Evaluate(s.time, s.d, s.v, *solver, so.contact, &s.evaluation, &e, /*energies=*/false);
-    REQUIRE(e.ok);
-    lsr.clear();
-    for (double t : e.sun_mesh_torque) lsr.push_back(t / -rig.scene.loads.sun_torque);
-    std::vector<double> sum(lsr.size(), 0.0);
-    for (int j = 0; j < 2 * n; ++j) {
-      const int k = j % n;
-      const double atol =
-          (model.dofs()[k].axis == dynamics::MotionDof::kRotation ? so.atol_angle
-                                                                  : so.atol_length) *
-          (j < n ? 1.0 : rate_scale);
-      Eigen::VectorXd d = s.d, v = s.v;
-      double& y = j < n ? d(k) : v(k);
-      const double w = so.rtol * std::abs(y) + atol;
-      y += w;
-      model.Evaluate(s.time, d, v, *solver, so.contact, &s.evaluation, &e, /*energies=*/false);
-      REQUIRE(e.ok);
-      for (std::size_t i = 0; i < sum.size(); ++i) {
-        const double dl = e.sun_mesh_torque[i] / -rig.scene.loads.sun_torque - lsr[i];
-        sum[i] += dl * dl;
-      }
-    }
-    for (double s2 : sum) floor = std::max(floor, root_n * std::sqrt(s2));
-  }
-  return floor;
-}
-
 }  // namespace
 
 TEST_CASE(
@@ -185,7 +134,12 @@ TEST_CASE(
     const auto r = Run(rig, Times(*rig.model, *rig.stage, 6, 2), so);
     REQUIRE(r.completed());
     gap[k] = RestFrictionGap(rig, law, so, r.samples);
-    tolerance_floor[k] = ToleranceFloor(rig, so, r.stats.rate_scale, r.samples);
+    tolerance_floor[k] =
+        test::ToleranceFloor(rig, so, r.stats.rate_scale, r.samples,
+                             [&](const dynamics::Evaluation& e, std::vector<double>& out) {
+                               for (double t : e.sun_mesh_torque)  // LSR_i = T_i/(−T_s) [-]
+                                 out.push_back(t / -rig.scene.loads.sun_torque);
+                             });
     Figure("friction at rest, " + name + ", " + std::to_string(speeds[k]) +
            " rpm: largest |LSR - LSR_qs| " + Sci(gap[k].rest) +
            " at the run's positions without "
