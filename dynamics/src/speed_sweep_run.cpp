@@ -76,8 +76,7 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   o.window_cycles =
       request.window_cycles > 0
           ? request.window_cycles
-          : transmission::MeshCycles(rig.stage,
-                                     run.range.value_or(transmission::RunRange::kPlanetRevolution));
+          : transmission::MeshCycles(rig.stage, run.range.value_or(kDefaultRunRange));
   o.outputs_per_cycle = run.outputs_per_cycle > 0 ? run.outputs_per_cycle : kSweepOutputsPerCycle;
   o.carry = request.carry;
   if (o.carry != CarryState::kNone) o.threads = 1;  // one speed after the other
