@@ -151,13 +151,13 @@ void BindPeriodicBranch(py::module_& m) {
                               cache_dir, std::move(progress), raise_on_failure);
       },
       py::arg("scene"), py::arg("parameter"), py::arg("start"), py::arg("end"), py::kw_only(),
-      py::arg("steps") = br.steps, py::arg("max_points") = dynamics::StageBranchOptions().max_points,
+      py::arg("steps") = br.steps,
+      py::arg("max_points") = dynamics::StageBranchOptions().max_points,
       py::arg("method") = dynamics::PeriodicMethodName(br.method),
       py::arg("harmonics") = py::none(), py::arg("rtol") = br.run.rtol,
       py::arg("rate_scale") = py::none(), py::arg("contact_tol") = py::none(),
-      py::arg("backend") = br.run.backend,
-      py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
-      py::arg("raise_on_failure") = true,
+      py::arg("backend") = br.run.backend, py::arg("cache_dir") = py::none(),
+      py::arg("progress") = py::none(), py::arg("raise_on_failure") = true,
       R"doc(
 The stage's periodic orbits continued over a parameter (`epicycle dynamic --speed-sweep ...
 --periodic` and `--continue`; docs/periodic.md §3): shooting from the quasi-static start at

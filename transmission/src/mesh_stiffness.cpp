@@ -434,9 +434,10 @@ StageMeshPairs::Mesh::Mesh(const Scene& scene, const geometry::Stage& stage,
 
 StageMeshPairs::StageMeshPairs(const Scene& scene, const geometry::Stage& stage,
                                const FeStageCompliance& compliance)
-    : meshes_{std::make_unique<const Mesh>(scene, stage, compliance, geometry::MeshKind::kSunPlanet),
-              std::make_unique<const Mesh>(scene, stage, compliance,
-                                           geometry::MeshKind::kPlanetRing)} {}
+    : meshes_{
+          std::make_unique<const Mesh>(scene, stage, compliance, geometry::MeshKind::kSunPlanet),
+          std::make_unique<const Mesh>(scene, stage, compliance,
+                                       geometry::MeshKind::kPlanetRing)} {}
 
 std::array<double, 2> MeanMeshStiffness(const StageMeshPairs& pairs, int positions) {
   std::array<double, 2> k{};

@@ -34,9 +34,10 @@ struct Built {
 
 }  // namespace
 
-TEST_CASE("A stage's mesh pair on the stage's tables shares them and equals the pair built from "
-          "the healthy scene",
-          "[crosscheck][transmission][mesh_stiffness]") {
+TEST_CASE(
+    "A stage's mesh pair on the stage's tables shares them and equals the pair built from "
+    "the healthy scene",
+    "[crosscheck][transmission][mesh_stiffness]") {
   // A cracked sun (tooth 0, damaged rows beside its table) and a run-out planet 1.
   const Built b("paper_stage_runout_crack.toml");
   REQUIRE(b.compliance.tables().Damaged(transmission::kSunBody) != nullptr);
@@ -84,8 +85,8 @@ TEST_CASE("A stage's mesh pair on the stage's tables shares them and equals the 
 
     transmission::MeshStiffnessOptions opt;
     opt.positions = kPositions;
-    const transmission::MeshStiffnessResult r = transmission::ComputeHealthyMeshStiffness(
-        b.scene, setup, pair, test::CachedTables(), opt);
+    const transmission::MeshStiffnessResult r =
+        transmission::ComputeHealthyMeshStiffness(b.scene, setup, pair, test::CachedTables(), opt);
     REQUIRE(r.failed == 0);
     reference[m] = r.mean_stiffness / geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
   }

@@ -318,10 +318,10 @@ struct StageDynamics {
 /// driver (transmission::ComputeMeshStiffness) at the load × (1 ± step),
 ///   k_t = (F₊ − F₋)/(δ₊ − δ₋)   (F the mesh's total force, δ its deflection along the line of
 ///                                action), averaged over the samples.
-/// Why: transmission::MeanMeshStiffness is the secant F/δ; the local contact term's deflection grows less than
-/// linearly with the load (docs/model.md §4), so small vibrations about the operating point see
-/// the tangent, which is higher (about 6 % on the paper's stage). The resonances of the speed
-/// sweep sit at the tangent stiffness' coincidences (docs/speed_sweeps.md).
+/// Why: transmission::MeanMeshStiffness is the secant F/δ; the local contact term's deflection
+/// grows less than linearly with the load (docs/model.md §4), so small vibrations about the
+/// operating point see the tangent, which is higher (about 6 % on the paper's stage). The
+/// resonances of the speed sweep sit at the tangent stiffness' coincidences (docs/speed_sweeps.md).
 /// @throws std::invalid_argument for step outside (0, 0.5) or positions < 2;
 ///         std::runtime_error if a sample fails at either load.
 std::array<double, 2> MeanTangentMeshStiffness(const transmission::StageMeshPairs& pairs,
