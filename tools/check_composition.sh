@@ -10,7 +10,9 @@
 # What counts as building, in a .cpp/.hpp file of app/, python/ or report/:
 #   a compliance: constructing transmission::FeStageCompliance or FePairCompliance (a variable
 #                 `FeStageCompliance c(...)` / `{...}`, a temporary `FeStageCompliance(...)`, or
-#                 std::make_unique / make_shared of it);
+#                 std::make_unique / make_shared of it), or transmission::StageMeshPairs (planet
+#                 1's meshes as pairs on a built stage's tables: the rating's c_γ and the modal
+#                 mesh stiffness, which the runs build);
 #   a model:      constructing transmission::StageModel or dynamics::DynamicModel in the same ways.
 # Not counted: the libraries' builders themselves (transmission::StageRig, dynamics::StageDynamics:
 # a front end may keep one per scene, as Python does, and hand it to a request), a copy of a rig's
@@ -21,7 +23,7 @@
 source "$(dirname "${BASH_SOURCE[0]}")/check_common.sh" "${1:-}"
 failures=0
 checked=0
-types='FeStageCompliance|FePairCompliance|StageModel|DynamicModel'
+types='FeStageCompliance|FePairCompliance|StageMeshPairs|StageModel|DynamicModel'
 # A variable or a temporary of one of the types, or make_unique/make_shared of it.
 construct="(^|[^[:alnum:]_:<>*&])((transmission|dynamics)::)?($types)[[:space:]]*([[:alpha:]_][[:alnum:]_]*[[:space:]]*)?[({]"
 make="make_(unique|shared)<[[:space:]]*(const[[:space:]]+)?((transmission|dynamics)::)?($types)[[:space:]]*>"

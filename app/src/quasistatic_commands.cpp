@@ -23,7 +23,9 @@ using json = nlohmann::json;
 
 // What the command line gives besides the request's fields.
 struct QuasiStaticArgs {
-  std::string scene, out = "quasistatic-out", range = "cycle", sun, dump;
+  std::string scene, out = "quasistatic-out", sun, dump;
+  std::string range =
+      io::NameOf(transmission::kRunRangeNames, transmission::QuasiStaticRequest().range);
   TableArgs tables;
   bool rigid_pins = false, no_local = false, quiet = false, cold = false;
 };

@@ -880,8 +880,9 @@ StageDynamics::StageDynamics(transmission::Scene s, const transmission::FeCompli
   // A helical mesh in turned slices: the stage's own quasi-static stiffness (docs/model.md §10).
   if (stage_model.helical())
     sliced_stiffness = transmission::ComputeStageMeshStiffness(stage_model, scene.loads);
-  if (!stage_model.helical()) modal_pairs.emplace(scene, stage, fe);
-  const auto k = stage_model.helical() ? sliced_stiffness.secant : MeanMeshStiffness(*modal_pairs);
+  if (!stage_model.helical()) modal_pairs.emplace(scene, stage, compliance);
+  const auto k = stage_model.helical() ? sliced_stiffness.secant
+                                       : transmission::MeanMeshStiffness(*modal_pairs);
   model.SetMeshStiffness(k[0], k[1]);
 }
 
@@ -889,40 +890,8 @@ std::array<double, 2> StageDynamics::TangentMeshStiffness() const {
   return modal_pairs ? MeanTangentMeshStiffness(*modal_pairs) : sliced_stiffness.tangent;
 }
 
-ModalMeshPairs::Mesh::Mesh(const transmission::Scene& scene, const geometry::Stage& stage,
-                           const transmission::FeComplianceOptions& fe, const char* mesh_name)
-    : name(mesh_name),
-      setup([&] {
-        transmission::MeshPairSetup healthy = transmission::MakeMeshPair(scene, &stage, mesh_name);
-        healthy.damage = {};
-        return healthy;
-      }()),
-      pair(transmission::MakePair(scene, setup.spec)),
-      compliance(scene, pair, fe, {"gear1", "gear2"}) {}
-
-ModalMeshPairs::ModalMeshPairs(const transmission::Scene& scene, const geometry::Stage& stage,
-                               const transmission::FeComplianceOptions& fe)
-    : meshes_{std::make_unique<const Mesh>(scene, stage, fe, "sun-planet1"),
-              std::make_unique<const Mesh>(scene, stage, fe, "planet1-ring")} {}
-
-std::array<double, 2> MeanMeshStiffness(const ModalMeshPairs& pairs, int positions) {
-  std::array<double, 2> k{};
-  for (std::size_t m = 0; m < 2; ++m) {
-    const ModalMeshPairs::Mesh& mesh = *pairs.meshes()[m];
-    transmission::MeshStiffnessOptions opt;
-    opt.positions = positions;
-    const transmission::MeshStiffnessResult r =
-        transmission::ComputeMeshStiffness(mesh.setup, mesh.pair, mesh.compliance, opt);
-    if (r.failed == positions)
-      throw std::runtime_error(std::string("mean mesh stiffness of ") + mesh.name +
-                               ": every position failed");
-    k[m] = r.mean_stiffness;
-  }
-  return k;
-}
-
-std::array<double, 2> MeanTangentMeshStiffness(const ModalMeshPairs& pairs, int positions,
-                                               double step) {
+std::array<double, 2> MeanTangentMeshStiffness(const transmission::StageMeshPairs& pairs,
+                                               int positions, double step) {
   if (!(step > 0 && step < 0.5))
     throw std::invalid_argument("tangent mesh stiffness: step = " + std::to_string(step) +
                                 ": must lie in (0, 0.5)");
@@ -931,7 +900,7 @@ std::array<double, 2> MeanTangentMeshStiffness(const ModalMeshPairs& pairs, int 
                                 ": must be >= 2");
   std::array<double, 2> k{};
   for (std::size_t m = 0; m < 2; ++m) {
-    const ModalMeshPairs::Mesh& mesh = *pairs.meshes()[m];
+    const transmission::StageMeshPairs::Mesh& mesh = *pairs.meshes()[m];
     transmission::MeshStiffnessOptions opt;
     opt.positions = positions;
     transmission::MeshPairSetup up = mesh.setup, down = mesh.setup;

@@ -87,10 +87,10 @@ DynamicRecord Settings(const DynamicModel& model, const SimulationOptions& o, co
 
 // What set the run's length and speed, as the user gave them (for the messages).
 std::string DurationSource(const DynamicRequest& r) {
-  return r.time_s ? fmt::format("{} = {} s", r.names.time, *r.time_s)
-                  : r.names.range + " " +
-                        io::NameOf(transmission::kRunRangeNames,
-                                   r.range.value_or(transmission::RunRange::kPlanetRevolution));
+  return r.time_s
+             ? fmt::format("{} = {} s", r.names.time, *r.time_s)
+             : r.names.range + " " +
+                   io::NameOf(transmission::kRunRangeNames, r.range.value_or(kDefaultRunRange));
 }
 
 }  // namespace
@@ -119,8 +119,7 @@ DynamicRecord RunDynamic(const DynamicRequest& request, DynamicSink& sink) {
                                ? request.outputs_per_cycle
                                : DefaultOutputsPerCycle(model, plan.highest_mode_hz);
   const RunSpan span =
-      MakeRunSpan(rig.stage, model.carrier_speed(),
-                  request.range.value_or(transmission::RunRange::kPlanetRevolution),
+      MakeRunSpan(rig.stage, model.carrier_speed(), request.range.value_or(kDefaultRunRange),
                   request.time_s.value_or(0.0), plan.outputs_per_cycle);
   plan.span = &span;
   plan.cost_warning = RunCostWarning(  // a run of hours: said before it starts

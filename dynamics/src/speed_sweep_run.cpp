@@ -73,11 +73,9 @@ SpeedSweepRecord RunSpeedSweep(const SpeedSweepRequest& request, SpeedSweepSink&
   o.threads = request.threads > 0
                   ? request.threads
                   : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  o.window_cycles =
-      request.window_cycles > 0
-          ? request.window_cycles
-          : transmission::MeshCycles(rig.stage,
-                                     run.range.value_or(transmission::RunRange::kPlanetRevolution));
+  o.window_cycles = request.window_cycles > 0
+                        ? request.window_cycles
+                        : transmission::MeshCycles(rig.stage, run.range.value_or(kDefaultRunRange));
   o.outputs_per_cycle = run.outputs_per_cycle > 0 ? run.outputs_per_cycle : kSweepOutputsPerCycle;
   o.carry = request.carry;
   if (o.carry != CarryState::kNone) o.threads = 1;  // one speed after the other

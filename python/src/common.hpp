@@ -20,11 +20,17 @@
 #include <pybind11/stl.h>
 
 #include "epicycle/solvers/contact_solver.hpp"
+#include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/run_status.hpp"
 
 namespace epicycle::python {
 
 namespace py = pybind11;
+
+/// A range's name as a keyword's default ("cycle", "planet": transmission::kRunRangeNames).
+inline std::string RangeName(transmission::RunRange range) {
+  return io::NameOf(transmission::kRunRangeNames, range);
+}
 
 /// A 1-D numpy array that takes over `values` (no copy: the vector lives on in the array's base).
 template <typename T>

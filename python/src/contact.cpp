@@ -329,10 +329,12 @@ ValueError
 
 // The solvers: one back end, the residuals and differences of an answer, the files of problems.
 void BindContactSolvers(py::module_& m) {
+  const solvers::ContactOptions options;  // the library's defaults, the keywords' too
   m.def("solve_contact", &Solve, py::arg("problem"), py::arg("backend") = "newton", py::kw_only(),
-        py::arg("tolerance") = 1e-10, py::arg("max_iterations") = 200,
-        py::arg("time_limit_s") = 60.0, py::arg("polish") = false, py::arg("force_N") = py::none(),
-        py::arg("multiplier") = py::none(),
+        py::arg("tolerance") = options.tolerance,
+        py::arg("max_iterations") = options.max_iterations,
+        py::arg("time_limit_s") = options.time_limit, py::arg("polish") = options.polish,
+        py::arg("force_N") = py::none(), py::arg("multiplier") = py::none(),
         py::arg("options") = std::map<std::string, std::string>{}, R"doc(
 Solves a contact problem with a back end; the driver judges every back end by one residual
 (docs/solvers.md). A status other than converged is a result, not an exception.

@@ -338,8 +338,9 @@ ValueError
         return Study(path, text, threads, max_cases, rows_file, cache_dir, std::move(progress),
                      raise_on_failure);
       },
-      py::arg("path"), py::kw_only(), py::arg("text") = py::none(), py::arg("threads") = 0,
-      py::arg("max_cases") = -1, py::arg("rows_file") = py::none(),
+      py::arg("path"), py::kw_only(), py::arg("text") = py::none(),
+      py::arg("threads") = studies::StudyRequest().threads,
+      py::arg("max_cases") = studies::StudyRequest().max_cases, py::arg("rows_file") = py::none(),
       py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
       py::arg("raise_on_failure") = true, R"doc(
 A tolerance study (`epicycle study`; docs/studies.md): every case a quasi-static sweep of the base

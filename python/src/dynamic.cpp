@@ -337,6 +337,7 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
 
 // A run in time and the natural modes.
 void BindDynamicRun(py::module_& m) {
+  const dynamics::DynamicRequest& d = DynamicDefaults();  // the keywords' defaults
   m.def(
       "dynamic",
       [](const ScenePtr& s, std::optional<double> sun_speed_rpm, const std::string& range,
@@ -353,13 +354,14 @@ void BindDynamicRun(py::module_& m) {
                        max_steps, time_limit_s);
       },
       py::arg("scene"), py::arg("sun_speed_rpm") = py::none(), py::kw_only(),
-      py::arg("range") = "planet", py::arg("time_s") = 0.0,
-      py::arg("outputs_per_cycle") = py::none(), py::arg("start_deg") = 0.0,
-      py::arg("integrator") = "cvode-bdf", py::arg("rtol") = 1e-6,
+      py::arg("range") = RangeName(dynamics::kDefaultRunRange), py::arg("time_s") = 0.0,
+      py::arg("outputs_per_cycle") = py::none(), py::arg("start_deg") = d.start_deg,
+      py::arg("integrator") = d.integrator, py::arg("rtol") = d.rtol,
       py::arg("rate_scale") = py::none(), py::arg("contact_tol") = py::none(),
-      py::arg("max_order") = 5, py::arg("analytic_jacobian") = true, py::arg("backend") = "newton",
-      py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
-      py::arg("raise_on_failure") = true, py::arg("stresses") = false, py::arg("rating") = false,
+      py::arg("max_order") = d.max_order, py::arg("analytic_jacobian") = d.analytic_jacobian,
+      py::arg("backend") = d.backend, py::arg("cache_dir") = py::none(),
+      py::arg("progress") = py::none(), py::arg("raise_on_failure") = true,
+      py::arg("stresses") = d.stresses, py::arg("rating") = d.rating,
       py::arg("max_steps") = py::none(), py::arg("time_limit_s") = py::none(),
       (std::string(R"doc(
 The dynamic model of a stage integrated in time (`epicycle dynamic`; docs/dynamic.md), from the

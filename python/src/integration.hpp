@@ -17,15 +17,24 @@ namespace epicycle::python {
 using ScenePtr = std::shared_ptr<Scene>;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// A dynamic run's request as the library defaults it: the one statement of the defaults the
+// program's options start from, and of the keyword defaults of dynamic, speed_sweep and
+// periodic_branch.
+inline const dynamics::DynamicRequest& DynamicDefaults() {
+  static const dynamics::DynamicRequest defaults;
+  return defaults;
+}
+
 // The integrator and contact settings of a run (SimulationOptions), each number by its option's
-// rule (dynamics/run_arguments.hpp), then by Validate.
+// rule (dynamics/run_arguments.hpp), then by Validate; by default the request's.
 struct Integration {
-  std::string integrator = "cvode-bdf";
-  double rtol = 1e-6;
-  std::optional<double> rate_scale, contact_tol;
-  int max_order = 5;
-  bool analytic_jacobian = true;
-  std::string backend = "newton";
+  std::string integrator = DynamicDefaults().integrator;
+  double rtol = DynamicDefaults().rtol;
+  std::optional<double> rate_scale = DynamicDefaults().rate_scale,
+                        contact_tol = DynamicDefaults().contact_tolerance;
+  int max_order = DynamicDefaults().max_order;
+  bool analytic_jacobian = DynamicDefaults().analytic_jacobian;
+  std::string backend = DynamicDefaults().backend;
   dynamics::SimulationOptions Options() const {
     dynamics::CheckArgument(dynamics::DynamicArguments::kRtol, rtol);
     if (rate_scale) dynamics::CheckArgument(dynamics::DynamicArguments::kRateScale, *rate_scale);

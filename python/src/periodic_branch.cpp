@@ -135,6 +135,7 @@ py::object PeriodicBranch(const ScenePtr& s, const std::string& parameter, doubl
 }
 
 void BindPeriodicBranch(py::module_& m) {
+  const dynamics::BranchRequest br;  // the library's defaults, the keywords' too
   m.def(
       "periodic_branch",
       [](const ScenePtr& s, const std::string& parameter, double start, double end, int steps,
@@ -142,17 +143,21 @@ void BindPeriodicBranch(py::module_& m) {
          std::optional<double> rate_scale, std::optional<double> contact_tol,
          const std::string& backend, std::optional<std::string> cache_dir, py::object progress,
          bool raise_on_failure) {
-        return PeriodicBranch(
-            s, parameter, start, end, steps, max_points, method, harmonics,
-            MakeIntegration("cvode-bdf", rtol, rate_scale, contact_tol, 5, true, backend),
-            cache_dir, std::move(progress), raise_on_failure);
+        // The integrator, its order and Jacobian are the request's defaults (not keywords here).
+        const dynamics::DynamicRequest& d = DynamicDefaults();
+        return PeriodicBranch(s, parameter, start, end, steps, max_points, method, harmonics,
+                              MakeIntegration(d.integrator, rtol, rate_scale, contact_tol,
+                                              d.max_order, d.analytic_jacobian, backend),
+                              cache_dir, std::move(progress), raise_on_failure);
       },
       py::arg("scene"), py::arg("parameter"), py::arg("start"), py::arg("end"), py::kw_only(),
-      py::arg("steps") = 20, py::arg("max_points") = 400, py::arg("method") = "shooting",
-      py::arg("harmonics") = py::none(), py::arg("rtol") = 1e-6, py::arg("rate_scale") = py::none(),
-      py::arg("contact_tol") = py::none(), py::arg("backend") = "newton",
-      py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
-      py::arg("raise_on_failure") = true,
+      py::arg("steps") = br.steps,
+      py::arg("max_points") = dynamics::StageBranchOptions().max_points,
+      py::arg("method") = dynamics::PeriodicMethodName(br.method),
+      py::arg("harmonics") = py::none(), py::arg("rtol") = br.run.rtol,
+      py::arg("rate_scale") = py::none(), py::arg("contact_tol") = py::none(),
+      py::arg("backend") = br.run.backend, py::arg("cache_dir") = py::none(),
+      py::arg("progress") = py::none(), py::arg("raise_on_failure") = true,
       R"doc(
 The stage's periodic orbits continued over a parameter (`epicycle dynamic --speed-sweep ...
 --periodic` and `--continue`; docs/periodic.md §3): shooting from the quasi-static start at

@@ -241,6 +241,7 @@ py::object SpeedSweep(const ScenePtr& s, const std::vector<double>& sun_speeds_r
 
 // Speed sweeps and their speed grids.
 void BindSpeedSweep(py::module_& m) {
+  const dynamics::SpeedSweepRequest sw;  // the library's defaults, the keywords' too
   m.def(
       "speed_sweep",
       [](const ScenePtr& s, const std::vector<double>& sun_speeds_rpm, const std::string& range,
@@ -256,14 +257,18 @@ void BindSpeedSweep(py::module_& m) {
                           cache_dir, std::move(progress), raise_on_failure,
                           dynamics::ParseCarryState("carry_state", carry_state));
       },
-      py::arg("scene"), py::arg("sun_speeds_rpm"), py::kw_only(), py::arg("range") = "planet",
-      py::arg("window_cycles") = 0.0, py::arg("outputs_per_cycle") = 64, py::arg("start_deg") = 0.0,
-      py::arg("harmonics") = 0, py::arg("threads") = 0, py::arg("integrator") = "cvode-bdf",
-      py::arg("rtol") = 1e-6, py::arg("rate_scale") = py::none(),
-      py::arg("contact_tol") = py::none(), py::arg("max_order") = 5,
-      py::arg("analytic_jacobian") = true, py::arg("backend") = "newton",
+      py::arg("scene"), py::arg("sun_speeds_rpm"), py::kw_only(),
+      py::arg("range") = RangeName(dynamics::kDefaultRunRange),
+      py::arg("window_cycles") = sw.window_cycles,
+      py::arg("outputs_per_cycle") = dynamics::kSweepOutputsPerCycle,
+      py::arg("start_deg") = sw.run.start_deg, py::arg("harmonics") = sw.harmonics,
+      py::arg("threads") = sw.threads, py::arg("integrator") = sw.run.integrator,
+      py::arg("rtol") = sw.run.rtol, py::arg("rate_scale") = py::none(),
+      py::arg("contact_tol") = py::none(), py::arg("max_order") = sw.run.max_order,
+      py::arg("analytic_jacobian") = sw.run.analytic_jacobian, py::arg("backend") = sw.run.backend,
       py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
-      py::arg("raise_on_failure") = true, py::arg("carry_state") = "none",
+      py::arg("raise_on_failure") = true,
+      py::arg("carry_state") = std::string(dynamics::CarryStateName(sw.carry)),
       (std::string(R"doc(
 A speed sweep of the dynamic model (`epicycle dynamic --speed-sweep`; docs/speed_sweeps.md): each
 sun speed run from the quasi-static solution, its start transient skipped, then a window measured.

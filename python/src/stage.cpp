@@ -557,11 +557,13 @@ Raises
 ------
 ValueError
     A gear-pair scene, or a bad argument (its name, value and rule).)doc");
-  m.def("mesh_stiffness", &MeshStiffness, py::arg("scene"), py::arg("mesh") = "", py::kw_only(),
-        py::arg("positions") = transmission::kDefaultStiffnessPositions, py::arg("cycle") = -1,
-        py::arg("backend") = "newton", py::arg("local_terms") = true,
-        py::arg("tooth_coupling") = true, py::arg("stresses") = false, py::arg("threads") = 0,
-        py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(), R"doc(
+  const transmission::StiffnessRequest st;  // the library's defaults, the keywords' too
+  m.def("mesh_stiffness", &MeshStiffness, py::arg("scene"), py::arg("mesh") = st.mesh,
+        py::kw_only(), py::arg("positions") = st.positions, py::arg("cycle") = st.cycle,
+        py::arg("backend") = st.backend, py::arg("local_terms") = st.local_terms,
+        py::arg("tooth_coupling") = st.tooth_coupling, py::arg("stresses") = st.stresses,
+        py::arg("threads") = st.threads, py::arg("cache_dir") = py::none(),
+        py::arg("progress") = py::none(), R"doc(
 Mesh stiffness of a gear pair over one mesh cycle (`epicycle stiffness`): a pair scene, or one mesh
 of a stage ("sun-planet1", "planet2-ring") at the scene's load share.
 
@@ -609,12 +611,15 @@ ValueError
     A bad argument (its name, value and rule) or mesh name.
 ComputationError
     A sample failed (its .result the Result above).)doc");
-  m.def("quasistatic", &QuasiStatic, py::arg("scene"), py::kw_only(), py::arg("range") = "cycle",
-        py::arg("positions") = 0, py::arg("start_deg") = 0.0, py::arg("angles_deg") = py::none(),
-        py::arg("threads") = 0, py::arg("warm_start") = true, py::arg("backend") = "newton",
-        py::arg("local_terms") = true, py::arg("cache_dir") = py::none(),
-        py::arg("progress") = py::none(), py::arg("raise_on_failure") = true,
-        py::arg("friction") = "off", py::arg("stresses") = false, py::arg("rating") = false,
+  const transmission::QuasiStaticRequest& qs = QuasiStaticDefaults();
+  m.def("quasistatic", &QuasiStatic, py::arg("scene"), py::kw_only(),
+        py::arg("range") = RangeName(qs.range), py::arg("positions") = qs.positions,
+        py::arg("start_deg") = qs.start_deg, py::arg("angles_deg") = py::none(),
+        py::arg("threads") = qs.threads, py::arg("warm_start") = qs.warm_start,
+        py::arg("backend") = qs.backend, py::arg("local_terms") = qs.local_terms,
+        py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
+        py::arg("raise_on_failure") = true, py::arg("friction") = qs.friction,
+        py::arg("stresses") = qs.stresses, py::arg("rating") = qs.rating,
         R"doc(
 Quasi-static load sharing of a stage over carrier positions (`epicycle quasistatic`;
 docs/quasistatic.md). The sun support is the scene's (key supports.sun: "fixed", "floating").

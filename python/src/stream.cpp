@@ -169,6 +169,7 @@ class PositionStream {
 }  // namespace
 
 void BindStream(py::module_& m) {
+  const transmission::QuasiStaticRequest& qs = QuasiStaticDefaults();  // the keywords' defaults
   py::class_<PositionStream>(m, "QuasiStaticPositions", R"doc(
 An iterator over the positions of a quasi-static sweep, one record per position in the order of
 the positions (epicycle.quasistatic_positions makes it).
@@ -225,10 +226,12 @@ Parameters
                              warm_start, backend, local_terms, friction, false, false),
             cache_dir);
       },
-      py::arg("scene"), py::kw_only(), py::arg("range") = "cycle", py::arg("positions") = 0,
-      py::arg("start_deg") = 0.0, py::arg("angles_deg") = py::none(), py::arg("threads") = 0,
-      py::arg("warm_start") = true, py::arg("backend") = "newton", py::arg("local_terms") = true,
-      py::arg("cache_dir") = py::none(), py::arg("friction") = "off", R"doc(
+      py::arg("scene"), py::kw_only(), py::arg("range") = RangeName(qs.range),
+      py::arg("positions") = qs.positions, py::arg("start_deg") = qs.start_deg,
+      py::arg("angles_deg") = py::none(), py::arg("threads") = qs.threads,
+      py::arg("warm_start") = qs.warm_start, py::arg("backend") = qs.backend,
+      py::arg("local_terms") = qs.local_terms, py::arg("cache_dir") = py::none(),
+      py::arg("friction") = qs.friction, R"doc(
 The quasi-static sweep of epicycle.quasistatic one position at a time, in flat memory
 (docs/python.md, "Streaming a sweep"): each record is taken as the sweep computes it.
 

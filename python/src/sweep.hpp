@@ -10,10 +10,19 @@
 
 #include "epicycle/geometry/stage.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
+#include "epicycle/transmission/quasistatic_run.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "scene.hpp"
 
 namespace epicycle::python {
+
+/// A quasi-static run's request as the library defaults it: the one statement of the defaults the
+/// program's options start from, and of the keyword defaults of quasistatic and
+/// quasistatic_positions.
+inline const transmission::QuasiStaticRequest& QuasiStaticDefaults() {
+  static const transmission::QuasiStaticRequest defaults;
+  return defaults;
+}
 
 struct SweepRequest {
   std::shared_ptr<Scene> scene;  ///< the scene run (with [model] stresses on for stresses)

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <map>
 #include <stdexcept>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -188,6 +189,19 @@ GearTables::GearTables(const Scene& scene, const std::vector<const geometry::Gea
   }
 }
 
+GearTables GearTables::Healthy(const std::vector<int>& gears) const {
+  GearTables out;
+  out.plane_ = plane_;
+  for (const int g : gears) {
+    if (g < 0 || g >= size())
+      throw std::invalid_argument("GearTables::Healthy: gear " + std::to_string(g) +
+                                  ": must lie in [0, " + std::to_string(size()) + ")");
+    out.tables_.push_back(tables_[static_cast<std::size_t>(g)]);
+    out.damaged_.emplace_back();
+  }
+  return out;
+}
+
 namespace {
 
 std::vector<const geometry::Gear*> StageGears(const geometry::Stage& stage) {
@@ -320,6 +334,11 @@ FePairCompliance::FePairCompliance(const Scene& scene, const geometry::GearPair&
     : tables_(scene, {&pair.gear1(), &pair.gear2()}, gears, options),
       material_(scene.material),
       plane_(scene.model.plane) {}
+
+FePairCompliance::FePairCompliance(const FeStageCompliance& stage, int body1, int body2)
+    : tables_(stage.tables().Healthy({body1, body2})),
+      material_(stage.material()),
+      plane_(stage.plane()) {}
 
 void FePairCompliance::Operator(const geometry::GearPair& pair, const geometry::PairPoses& poses,
                                 const std::vector<geometry::PotentialContact>& contacts,

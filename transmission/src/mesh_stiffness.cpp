@@ -414,22 +414,53 @@ MeshStiffnessResult ComputeHealthyMeshStiffness(const Scene& scene, const MeshPa
                               options);
 }
 
-std::array<double, 2> MeanMeshStiffnessPerWidth(const Scene& scene, const geometry::Stage& stage,
-                                                const FeComplianceOptions& fe, int positions) {
-  std::array<double, 2> c{};
-  const std::array<std::string, 2> meshes{"sun-planet1", "planet1-ring"};
+namespace {
+
+// A stage mesh's two bodies in the stage compliance: gear 1's and gear 2's (MakeMeshPair's order).
+std::array<int, 2> MeshBodies(geometry::MeshKind kind) {
+  return kind == geometry::MeshKind::kSunPlanet ? std::array<int, 2>{kSunBody, PlanetBody(0)}
+                                                : std::array<int, 2>{PlanetBody(0), kRingBody};
+}
+
+}  // namespace
+
+StageMeshPairs::Mesh::Mesh(const Scene& scene, const geometry::Stage& stage,
+                           const FeStageCompliance& stage_compliance, geometry::MeshKind kind)
+    : name(geometry::MeshName(0, kind)),
+      setup([&] {
+        MeshPairSetup healthy = MakeMeshPair(scene, &stage, name);
+        healthy.damage = {};
+        return healthy;
+      }()),
+      pair(MakePair(scene, setup.spec)),
+      compliance(stage_compliance, MeshBodies(kind)[0], MeshBodies(kind)[1]) {}
+
+StageMeshPairs::StageMeshPairs(const Scene& scene, const geometry::Stage& stage,
+                               const FeStageCompliance& compliance)
+    : meshes_{
+          std::make_unique<const Mesh>(scene, stage, compliance, geometry::MeshKind::kSunPlanet),
+          std::make_unique<const Mesh>(scene, stage, compliance,
+                                       geometry::MeshKind::kPlanetRing)} {}
+
+std::array<double, 2> MeanMeshStiffness(const StageMeshPairs& pairs, int positions) {
+  std::array<double, 2> k{};
   for (std::size_t m = 0; m < 2; ++m) {
-    const MeshPairSetup setup = MakeMeshPair(scene, &stage, meshes[m]);
-    const geometry::GearPair pair = MakePair(scene, setup.spec);
+    const StageMeshPairs::Mesh& mesh = *pairs.meshes()[m];
     MeshStiffnessOptions opt;
     opt.positions = positions;
-    // A helical stage's mesh is resolved in the stage's slices (MakeMeshPair).
-    FeComplianceOptions tables = fe;
-    tables.helical_slices = tables.helical_slices || IsHelical(scene);
-    const MeshStiffnessResult r = ComputeHealthyMeshStiffness(scene, setup, pair, tables, opt);
+    const MeshStiffnessResult r = ComputeMeshStiffness(mesh.setup, mesh.pair, mesh.compliance, opt);
     if (r.failed == positions)
-      throw std::runtime_error("mean mesh stiffness of " + meshes[m] + ": every position failed");
-    c[m] = r.mean_stiffness / geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
+      throw std::runtime_error("mean mesh stiffness of " + mesh.name + ": every position failed");
+    k[m] = r.mean_stiffness;
+  }
+  return k;
+}
+
+std::array<double, 2> MeanMeshStiffnessPerWidth(const StageMeshPairs& pairs, int positions) {
+  std::array<double, 2> c = MeanMeshStiffness(pairs, positions);
+  for (std::size_t m = 0; m < 2; ++m) {
+    const geometry::GearPair& pair = pairs.meshes()[m]->pair;
+    c[m] /= geometry::ContactFaceWidth(pair.gear1(), pair.gear2());
   }
   return c;
 }

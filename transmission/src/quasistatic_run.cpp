@@ -123,8 +123,10 @@ QuasiStaticRecord RunQuasiStatic(const QuasiStaticRequest& request, QuasiStaticS
     if (record.summary.face_width.empty()) {
       record.rating = RateStage(rig->rating, stage, record.summary);
     } else {
-      // Method C's c_γ: the model's own mean mesh stiffness per unit width.
-      const std::array<double, 2> c = MeanMeshStiffnessPerWidth(scene, stage, request.tables);
+      // Method C's c_γ: the model's own mean mesh stiffness per unit width, of planet 1's meshes
+      // on the rig's tables (the run's load).
+      const std::array<double, 2> c =
+          MeanMeshStiffnessPerWidth(StageMeshPairs(scene, stage, compliance));
       record.rating =
           RateStage(rig->rating, stage, record.summary, 1.0, "quasi-static run", nullptr, &c);
     }

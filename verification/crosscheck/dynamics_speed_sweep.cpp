@@ -119,7 +119,8 @@ TEST_CASE(
   so.threads = 2;
   so.window_cycles = 3;
   so.outputs_per_cycle = 64;
-  const dynamics::ModalMeshPairs modal_pairs(rig.scene, *rig.stage, test::SuiteTables());
+  const transmission::StageMeshPairs modal_pairs(
+      rig.scene, *rig.stage, dynamic_cast<const transmission::FeStageCompliance&>(*rig.compliance));
   so.modal_mesh_stiffness = dynamics::MeanTangentMeshStiffness(modal_pairs, 48, 0.05);
   // The library's tangent stiffness against the one above (same driver, own arrangement).
   CHECK(std::abs(so.modal_mesh_stiffness[0] / ktan[0] - 1) < 1e-12);

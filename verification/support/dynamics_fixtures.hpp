@@ -87,8 +87,9 @@ inline DynamicRig MakeRig(const std::string& text, const std::string& name, cons
     const auto k = transmission::ComputeStageMeshStiffness(*r.stage_model, r.scene.loads).secant;
     r.model->SetMeshStiffness(k[0], k[1]);
   } else {
-    const auto k =
-        dynamics::MeanMeshStiffness(dynamics::ModalMeshPairs(r.scene, *r.stage, SuiteTables()));
+    // As StageDynamics: planet 1's meshes on the stage's own tables.
+    const auto k = transmission::MeanMeshStiffness(transmission::StageMeshPairs(
+        r.scene, *r.stage, dynamic_cast<const transmission::FeStageCompliance&>(*r.compliance)));
     r.model->SetMeshStiffness(k[0], k[1]);
   }
   return r;

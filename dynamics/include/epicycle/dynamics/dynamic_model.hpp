@@ -279,33 +279,6 @@ class DynamicModel {
       friction_;  // settings_.friction with its constant factors evaluated once
 };
 
-/// Planet 1's sun–planet and planet–ring meshes as gear pairs with their FE compliances, built once
-/// with the stage's model (StageDynamics::modal_pairs), the pairs whose mesh stiffness the modal
-/// model and the mesh damping use: of the healthy teeth (the scene's damage is left out: a damaged
-/// tooth meshes once in many cycles; the modes and the mesh damping are the stage's about its
-/// healthy mean, docs/model.md §9). Not copyable or movable (the compliances refer to the pairs).
-class ModalMeshPairs {
- public:
-  struct Mesh {
-    Mesh(const transmission::Scene& scene, const geometry::Stage& stage,
-         const transmission::FeComplianceOptions& fe, const char* name);
-    Mesh(const Mesh&) = delete;
-    Mesh& operator=(const Mesh&) = delete;
-    const char* name;  ///< "sun-planet1" or "planet1-ring"
-    transmission::MeshPairSetup setup;
-    geometry::GearPair pair;
-    transmission::FePairCompliance compliance;
-  };
-  /// @throws std::invalid_argument as transmission::MakeMeshPair and the FE compliance.
-  ModalMeshPairs(const transmission::Scene& scene, const geometry::Stage& stage,
-                 const transmission::FeComplianceOptions& fe);
-  /// {sun–planet, planet–ring}.
-  const std::array<std::unique_ptr<const Mesh>, 2>& meshes() const { return meshes_; }
-
- private:
-  std::array<std::unique_ptr<const Mesh>, 2> meshes_;
-};
-
 /// A stage scene's dynamic model with everything it refers to, built in order: the scene, its
 /// stage, the FE compliance (tables through `fe`'s cache), the stage model of the scene's
 /// supports, and the dynamic model of its settings with the mean mesh stiffnesses set (for the
@@ -313,7 +286,8 @@ class ModalMeshPairs {
 /// A helical stage (fe.helical_slices true: the caller's driver resolves it in slices, after
 /// transmission::RequireHelicalSlices) takes its mesh stiffnesses from its own quasi-static
 /// solutions over a mesh cycle (transmission::ComputeStageMeshStiffness, docs/model.md §10); a
-/// spur stage from the mesh-stiffness driver (MeanMeshStiffness). With fe.helical_slices false a
+/// spur stage from the mesh-stiffness driver on planet 1's meshes with the stage's own tables
+/// (transmission::StageMeshPairs, MeanMeshStiffness). With fe.helical_slices false a
 /// helical scene is refused (transmission::RequireSpur).
 struct StageDynamics {
   transmission::Scene scene;
@@ -326,9 +300,9 @@ struct StageDynamics {
   /// A helical stage's mesh stiffnesses (secant: the model's; tangent: the modes'); zero for a
   /// spur stage.
   transmission::StageMeshStiffness sliced_stiffness;
-  /// A spur stage's modal meshes (the secant mesh stiffness of the model, the tangent of the modes
-  /// and the speed sweep); none for a helical stage.
-  std::optional<ModalMeshPairs> modal_pairs;
+  /// A spur stage's modal meshes on the stage's own tables (the secant mesh stiffness of the
+  /// model, the tangent of the modes and the speed sweep); none for a helical stage.
+  std::optional<transmission::StageMeshPairs> modal_pairs;
   /// The tangent mesh stiffnesses {sun–planet, planet–ring} [N/m] of the modes and the speed
   /// sweep's coincidences: a helical stage's sliced_stiffness.tangent, a spur stage's
   /// MeanTangentMeshStiffness of modal_pairs.
@@ -339,24 +313,19 @@ struct StageDynamics {
   StageDynamics& operator=(const StageDynamics&) = delete;
 };
 
-/// The mean mesh stiffness [N/m] of the modal meshes `pairs` at the scene's load, from the
-/// mesh-stiffness driver (transmission::ComputeMeshStiffness) over `positions` samples of a mesh
-/// cycle: {sun mesh, ring mesh}.
-/// @throws std::runtime_error if every sample of a mesh fails.
-std::array<double, 2> MeanMeshStiffness(const ModalMeshPairs& pairs, int positions = 24);
-/// The mean tangent mesh stiffness dF/dδ [N/m] of the modal meshes `pairs` at the scene's load,
+/// The mean tangent mesh stiffness dF/dδ [N/m] of the modal meshes `pairs` at their load,
 /// {sun mesh, ring mesh}: at each of `positions` samples of a mesh cycle, the mesh-stiffness
 /// driver (transmission::ComputeMeshStiffness) at the load × (1 ± step),
 ///   k_t = (F₊ − F₋)/(δ₊ − δ₋)   (F the mesh's total force, δ its deflection along the line of
 ///                                action), averaged over the samples.
-/// Why: MeanMeshStiffness is the secant F/δ; the local contact term's deflection grows less than
-/// linearly with the load (docs/model.md §4), so small vibrations about the operating point see
-/// the tangent, which is higher (about 6 % on the paper's stage). The resonances of the speed
-/// sweep sit at the tangent stiffness' coincidences (docs/speed_sweeps.md).
+/// Why: transmission::MeanMeshStiffness is the secant F/δ; the local contact term's deflection
+/// grows less than linearly with the load (docs/model.md §4), so small vibrations about the
+/// operating point see the tangent, which is higher (about 6 % on the paper's stage). The
+/// resonances of the speed sweep sit at the tangent stiffness' coincidences (docs/speed_sweeps.md).
 /// @throws std::invalid_argument for step outside (0, 0.5) or positions < 2;
 ///         std::runtime_error if a sample fails at either load.
-std::array<double, 2> MeanTangentMeshStiffness(const ModalMeshPairs& pairs, int positions = 24,
-                                               double step = 0.05);
+std::array<double, 2> MeanTangentMeshStiffness(const transmission::StageMeshPairs& pairs,
+                                               int positions = 24, double step = 0.05);
 
 /// The natural modes of a stage about its operating point (`epicycle modes`, docs/dynamic.md
 /// "Natural modes"): `rig`'s model with the tangent mesh stiffnesses (MeanTangentMeshStiffness, a

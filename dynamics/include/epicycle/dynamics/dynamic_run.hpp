@@ -56,6 +56,11 @@ struct DynamicOptionNames {
   }
 };
 
+/// The span a dynamic run (and a speed sweep's window) covers when the request gives neither a
+/// range nor a time: one planet revolution relative to the carrier.
+inline constexpr transmission::RunRange kDefaultRunRange =
+    transmission::RunRange::kPlanetRevolution;
+
 /// What a dynamic run is asked for; an unset optional is the scene's or the library's default.
 struct DynamicRequest {
   transmission::Scene scene;                    ///< read and validated (ReadScene)

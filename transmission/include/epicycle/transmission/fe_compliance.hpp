@@ -54,8 +54,14 @@ class GearTables {
   /// What the cache did, one line per distinct table.
   const std::vector<std::string>& messages() const { return messages_; }
   compliance::PlaneAssumption plane() const { return plane_; }
+  /// Gears `gears` (indices here, in their order) of these tables, shared (not copied, not built
+  /// or read from the cache again) and healthy: a crack's damaged rows are left out, so that the
+  /// selection is the bodies' undamaged compliance. No messages (nothing was built).
+  /// @throws std::invalid_argument naming an index outside [0, size()).
+  GearTables Healthy(const std::vector<int>& gears) const;
 
  private:
+  GearTables() = default;
   std::vector<std::shared_ptr<const compliance::InfluenceTable>> tables_;
   std::vector<std::shared_ptr<const compliance::DamagedInfluence>> damaged_;
   std::vector<std::string> messages_;
@@ -111,6 +117,12 @@ class FePairCompliance {
   FePairCompliance(const Scene& scene, const geometry::GearPair& pair,
                    const FeComplianceOptions& options,
                    const std::vector<std::string>& gears = {"gear1", "gear2"});
+  /// Bodies `body1` and `body2` of a built stage compliance (kSunBody, kRingBody, PlanetBody(i))
+  /// as gear 1 and gear 2 of a pair (a mesh of the stage studied as a pair, MakeMeshPair): their
+  /// tables shared with `stage` (GearTables::Healthy: not rebuilt, without a crack's rows), its
+  /// material and plane. The pair's gears must be those bodies' gears (the same specs).
+  /// @throws std::invalid_argument naming a body outside the stage's.
+  FePairCompliance(const FeStageCompliance& stage, int body1, int body2);
   /// `section_turns` (empty, or one per contact): each contact's sides searched on sections of
   /// gear 1 and gear 2 turned by their leads, Δθ_1 and Δθ_2 [rad] (a helical pair's slices,
   /// helical_slices.hpp), carried back by −Δθ onto the section `poses` describe.

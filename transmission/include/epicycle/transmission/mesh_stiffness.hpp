@@ -5,6 +5,7 @@
 
 #include <array>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -173,12 +174,48 @@ MeshStiffnessResult ComputeHealthyMeshStiffness(const Scene& scene, const MeshPa
 
 compliance::iso6336::PairData IsoPairData(const geometry::GearPair& pair);
 
-/// c_γα [N/m²]: the mean mesh stiffness per unit face width of planet 1's sun and ring meshes of
-/// `stage` at the scene's load (MakeMeshPair; ComputeHealthyMeshStiffness over `positions`
-/// samples of a mesh cycle, the secant F/δ divided by the pair's face width), {sun mesh, ring
-/// mesh}: the model's c_γ that ISO 6336-1 method C takes (rating.hpp).
+/// Planet 1's sun–planet and planet–ring meshes of a built stage as gear pairs for the
+/// mesh-stiffness driver (ComputeMeshStiffness), of the healthy teeth: the scene's damage is left
+/// out (a damaged tooth meshes once in many cycles; the modes, the mesh damping and method C's c_γ
+/// take the stage's healthy mean, docs/model.md §9). Each mesh holds its setup (MakeMeshPair of
+/// `scene`, the scene the stage was built from with the run's load, without its damage), the pair
+/// of the stage's own gear specs at the carrier radius, and the FE compliance of the stage's two
+/// bodies sharing `compliance`'s tables (FePairCompliance(compliance, body1, body2): no table is
+/// built or read from the cache again). Refers to none of its arguments after construction. Not
+/// copyable or movable.
+class StageMeshPairs {
+ public:
+  struct Mesh {
+    /// `kind`: planet 1's sun mesh or ring mesh.
+    Mesh(const Scene& scene, const geometry::Stage& stage, const FeStageCompliance& compliance,
+         geometry::MeshKind kind);
+    Mesh(const Mesh&) = delete;
+    Mesh& operator=(const Mesh&) = delete;
+    std::string name;  ///< "sun-planet1" or "planet1-ring"
+    MeshPairSetup setup;
+    geometry::GearPair pair;
+    FePairCompliance compliance;
+  };
+  /// @throws std::invalid_argument as MakeMeshPair.
+  StageMeshPairs(const Scene& scene, const geometry::Stage& stage,
+                 const FeStageCompliance& compliance);
+  /// {sun–planet, planet–ring}.
+  const std::array<std::unique_ptr<const Mesh>, 2>& meshes() const { return meshes_; }
+
+ private:
+  std::array<std::unique_ptr<const Mesh>, 2> meshes_;
+};
+
+/// The mean mesh stiffness [N/m] of the meshes `pairs` at their load, from the mesh-stiffness
+/// driver (ComputeMeshStiffness) over `positions` samples of a mesh cycle (the secant F/δ of each
+/// sample, averaged over the converged ones): {sun mesh, ring mesh}.
 /// @throws std::runtime_error if every sample of a mesh fails.
-std::array<double, 2> MeanMeshStiffnessPerWidth(const Scene& scene, const geometry::Stage& stage,
-                                                const FeComplianceOptions& fe, int positions = 24);
+std::array<double, 2> MeanMeshStiffness(const StageMeshPairs& pairs, int positions = 24);
+
+/// c_γα [N/m²]: MeanMeshStiffness of `pairs` divided by each pair's face width
+/// (geometry::ContactFaceWidth), {sun mesh, ring mesh}: the model's c_γ that ISO 6336-1 method C
+/// takes (rating.hpp).
+/// @throws std::runtime_error if every sample of a mesh fails.
+std::array<double, 2> MeanMeshStiffnessPerWidth(const StageMeshPairs& pairs, int positions = 24);
 
 }  // namespace epicycle::transmission
