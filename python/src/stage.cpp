@@ -360,7 +360,7 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
                        const std::string& backend, bool local_terms,
                        std::optional<std::string> cache_dir, py::object progress,
                        bool raise_on_failure, const std::string& friction, bool stresses,
-                       bool rating) {
+                       bool rating, bool pin_feedback) {
   const std::optional<std::vector<double>> angles_copy = angles_deg;
   const SweepRequest q =
       MakeSweepRequest(s, range, positions, start_deg, std::move(angles_deg), threads, warm_start,
@@ -381,6 +381,7 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   request.friction = friction;
   request.stresses = stresses;
   request.rating = rating;
+  request.pin_feedback = pin_feedback;
   request.rating_option = "rating=True";
   CancelToken token;
   const Progress report(std::move(progress), &token);
@@ -620,6 +621,7 @@ ComputationError
         py::arg("cache_dir") = py::none(), py::arg("progress") = py::none(),
         py::arg("raise_on_failure") = true, py::arg("friction") = qs.friction,
         py::arg("stresses") = qs.stresses, py::arg("rating") = qs.rating,
+        py::arg("pin_feedback") = qs.pin_feedback,
         R"doc(
 Quasi-static load sharing of a stage over carrier positions (`epicycle quasistatic`;
 docs/quasistatic.md). The sun support is the scene's (key supports.sun: "fixed", "floating").
@@ -661,6 +663,9 @@ stresses : bool, default False
 rating : bool, default False
     ISO 6336 ratings (implies stresses; needs the scene's material.bending_limit_MPa and
     material.contact_limit_MPa).
+pin_feedback : bool, default True
+    False: leave out the scene's [[face_width.pin]], every planet held at its given tilt (the run
+    without the tilt's feedback; `--rigid-pins`).
 
 Returns
 -------

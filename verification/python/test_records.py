@@ -90,6 +90,19 @@ def test_pins_record_equals_the_program_json(tmp_path):
         assert abs(p["tilt_radial_mean_urad"] - 55.6) < 5.6
 
 
+def test_rigid_pins_record_equals_the_program_json(tmp_path):
+    # The same scene without the tilt's feedback: the program's --rigid-pins is Python's
+    # pin_feedback=False. With the pins left out every planet is held at its given tilt (none here),
+    # so the record has no pins section, where the run with feedback has one.
+    scene = scene_path("paper_stage_helical_pin.toml")
+    run_cli("quasistatic", scene, "--positions", "2", "--rigid-pins", "--quiet", "--out", tmp_path)
+    program = read_json(tmp_path / "quasistatic_summary.json")
+    python = epicycle.quasistatic(epicycle.Scene.load(scene), positions=2, pin_feedback=False).record
+    same_record(program, python)
+    with_feedback = epicycle.quasistatic(epicycle.Scene.load(scene), positions=2).record
+    assert "pins" in with_feedback and "pins" not in python
+
+
 def test_study_record_equals_the_program_json(tmp_path):
     # Four cases of 24 positions (verification/data/studies/kgamma_limit_small.toml): every
     # default of both sides, the exceedances and the Spearman columns in the record.
