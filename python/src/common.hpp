@@ -40,12 +40,18 @@ py::array_t<T> Array(std::vector<T>&& values) {
   return py::array_t<T>(static_cast<py::ssize_t>(owned->size()), owned->data(), base);
 }
 
+/// A numpy array of `shape` over `values` (row-major, taken over as Array).
+template <typename T>
+py::array_t<T> ArrayOfShape(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+  auto* owned = new std::vector<T>(std::move(values));
+  py::capsule base(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(std::move(shape), owned->data(), base);
+}
+
 /// A 2-D numpy array rows × cols over `values` (row-major, taken over as Array).
 template <typename T>
 py::array_t<T> Array2(std::vector<T>&& values, py::ssize_t rows, py::ssize_t cols) {
-  auto* owned = new std::vector<T>(std::move(values));
-  py::capsule base(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>({rows, cols}, owned->data(), base);
+  return ArrayOfShape(std::move(values), {rows, cols});
 }
 
 /// Python strings of repeated C++ strings (mesh names, kinds, statuses), each made once.

@@ -28,8 +28,9 @@
 #include "epicycle/transmission/rating.hpp"
 #include "epicycle/transmission/run_range.hpp"
 #include "epicycle/transmission/stage_problem.hpp"
-#include "scene.hpp"
+#include "face_loads.hpp"
 #include "integration.hpp"
+#include "scene.hpp"
 
 namespace epicycle::python {
 
@@ -286,18 +287,9 @@ py::object Dynamic(const ScenePtr& scene, std::optional<double> sun_speed_rpm,
   if (!sink.face_meshes.empty()) {
     // Per step and mesh (the steps file's K_Hbeta_<mesh>, largest_z_mm_<mesh>): NaN where the
     // step carries no face loads.
-    const std::size_t meshes = sink.face_meshes.size();
-    std::vector<double> k_h_beta, largest_z;
-    for (const dynamics::DynamicSample& x : samples)
-      for (std::size_t m = 0; m < meshes; ++m) {
-        const bool has = x.face_loads.size() == meshes;
-        k_h_beta.push_back(has ? x.face_loads[m].k_h_beta : kNaN);
-        largest_z.push_back(has ? x.face_loads[m].largest_z * 1e3 : kNaN);
-      }
-    const auto width = static_cast<py::ssize_t>(meshes);
-    f["face_meshes"] = sink.face_meshes;
-    f["k_hbeta"] = Array2(std::move(k_h_beta), count, width);
-    f["largest_load_z_mm"] = Array2(std::move(largest_z), count, width);
+    std::vector<const std::vector<transmission::MeshFaceLoad>*> rows;
+    for (const dynamics::DynamicSample& x : samples) rows.push_back(&x.face_loads);
+    AddFaceLoads(sink.face_meshes, 0, false, rows, &f);
   }
   if (sink.helical) AddHelicalSteps(samples, n, &f);
   f["vibration"] = Result(vib);

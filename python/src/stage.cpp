@@ -6,6 +6,7 @@
 
 #include "common.hpp"
 #include "epicycle/geometry/pair.hpp"
+#include "epicycle/report/face_width_files.hpp"
 #include "epicycle/report/geometry_json.hpp"
 #include "epicycle/report/ratings.hpp"
 #include "epicycle/report/record_json.hpp"
@@ -18,6 +19,7 @@
 #include "epicycle/transmission/stiffness_run.hpp"
 #include "epicycle/transmission/sweep_summary.hpp"
 #include "epicycle/transmission/validity.hpp"
+#include "face_loads.hpp"
 #include "scene.hpp"
 #include "sweep.hpp"
 
@@ -388,12 +390,22 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   class Keep final : public transmission::QuasiStaticSink {
    public:
     explicit Keep(const Progress& report) : report_(report) {}
-    void Start(const transmission::QuasiStaticPlan& p) override { total_ = p.positions; }
+    void Start(const transmission::QuasiStaticPlan& p) override {
+      total_ = p.positions;
+      if (p.scene->face_width.active()) {  // the face-load CSV's meshes, slices and stresses
+        face_meshes = report::StageFaceMeshes(*p.stage).names;
+        slices = p.scene->face_width.slices;
+        stresses = p.compliance->has_root_stress();
+      }
+    }
     void Position(const transmission::PositionResult& r, int k) override {
       results.push_back(r);
       report_(k + 1, total_);
     }
     std::vector<transmission::PositionResult> results;
+    std::vector<std::string> face_meshes;  // with slices of the face width
+    int slices = 0;
+    bool stresses = false;
 
    private:
     const Progress& report_;
@@ -403,6 +415,9 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     std::shared_ptr<const StageRig> rig;
     std::vector<transmission::PositionResult> results;
     transmission::QuasiStaticRecord record;
+    std::vector<std::string> face_meshes;
+    int slices = 0;
+    bool stresses = false;
   };
   Out out = RunReleased(token, [&] {
     Out o;
@@ -411,6 +426,9 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     Keep keep(report);
     o.record = transmission::RunQuasiStatic(request, keep);
     o.results = std::move(keep.results);
+    o.face_meshes = std::move(keep.face_meshes);
+    o.slices = keep.slices;
+    o.stresses = keep.stresses;
     return o;
   });
 
@@ -499,6 +517,13 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     f["force_change"] = Array(std::move(change));
   }
   f["pairs"] = Result(pairs);
+  if (!out.face_meshes.empty()) {
+    // Per position and mesh, the face-load CSV's columns: NaN where the position did not converge.
+    std::vector<const std::vector<transmission::MeshFaceLoad>*> rows;
+    for (const transmission::PositionResult& r : out.results)
+      rows.push_back(r.converged ? &r.face_loads : nullptr);
+    AddFaceLoads(out.face_meshes, out.slices, out.stresses, rows, &f);
+  }
   f["summary"] = SummaryObject(out.record.summary);
   if (out.record.rating) f["rating"] = JsonToPython(report::RatingJson(*out.record.rating));
   f["warnings"] = out.record.warnings;
@@ -685,6 +710,13 @@ Result
     friction_N [N] and sliding_m_per_s [m/s], and in the summary efficiency_mean, efficiency_min
     [-], friction_power_mean_W [W], friction_iterations_mean [-]; lsr is then the whole sun-mesh
     torque's share, friction included.
+    With S >= 2 slices of the face width (M meshes, the face-load CSV's columns; NaN where not
+    converged): face_meshes (M names: sun-planet1.., then planet1-ring..), k_hbeta (P, M) [-],
+    largest_load_z_mm (P, M) [mm] (the most loaded slice's centre), line_load_N_per_mm (P, M, S)
+    [N/mm] (w_s, slice s at z = -b/2 + (s + 1/2) b/S); with stresses also root_stress_MPa
+    (P, M, S) [MPa] (the slice's largest fillet tension of the mesh's two gears) and
+    hertz_pressure_MPa (P, M, S) [MPa] (the slice's largest Hertz pressure; 0 where it carries
+    nothing).
     With stresses: the summary's root_stress (per gear tension_MPa, compression_MPa [MPa] with
     carrier_deg, tooth, fillet and arc_from_space_centre_mm [mm], largest_range_MPa) and
     contact_pressure (per gear and flank hertz_pressure_MPa [MPa], half_width_um [µm], roll_deg

@@ -29,6 +29,10 @@ std::string Head(const nlohmann::json& provenance, int slices, const std::vector
   if (stresses)
     head += ",root_stress_max_MPa,root_stress_gear,root_stress_z_mm,hertz_pressure_max_MPa,"
             "hertz_pressure_z_mm";
+  if (stresses) {
+    for (int s = 1; s <= slices; ++s) head += ",sigmaF" + std::to_string(s) + "_MPa";
+    for (int s = 1; s <= slices; ++s) head += ",pH" + std::to_string(s) + "_MPa";
+  }
   return head + "\n";
 }
 
@@ -118,7 +122,7 @@ void FaceLoadFiles::Write(const transmission::PositionResult& r) {
     if (!ok) {
       line += ",,,";
       for (int s = 0; s < slices_; ++s) line += ",";
-      if (stresses_) line += ",,,,,";
+      if (stresses_) line += std::string(static_cast<std::size_t>(5 + 2 * slices_), ',');
       lines += line + "\n";
       continue;
     }
@@ -149,6 +153,13 @@ void FaceLoadFiles::Write(const transmission::PositionResult& r) {
                             Cell(f.hertz_pressure[h] * 1e-6),
                             Cell(transmission::SliceCentre(hp, slices_, f.width) * 1e3));
       }
+      // Per slice: the root stress, then the Hertz pressure [MPa] (empty without fillets).
+      for (const std::vector<double>* v : {&f.root_stress, &f.hertz_pressure})
+        for (int s = 0; s < slices_; ++s) {
+          line += ',';
+          if (s < static_cast<int>(v->size()))
+            AppendCell(line, (*v)[static_cast<std::size_t>(s)] * 1e-6);
+        }
     }
     lines += line + "\n";
   }

@@ -51,7 +51,8 @@ class KHBetaPlot {
 /// map per mesh: line load over carrier angle × z) and BASE_k_hbeta.svg (K_Hβ per mesh over the
 /// carrier angle) at the end. With `stresses`, each line ends with the position's largest root
 /// stress over the slices [MPa], its gear and slice centre z [mm], and the largest Hertz pressure
-/// [MPa] and its z [mm] (MeshFaceLoad::root_stress, hertz_pressure).
+/// [MPa] and its z [mm], then each slice's root stress sigmaF<s>_MPa and Hertz pressure
+/// pH<s>_MPa (MeshFaceLoad::root_stress, hertz_pressure).
 class FaceLoadFiles {
  public:
   /// `meshes` the stage's mesh names in face_loads order, `widths` each mesh's face width [m].
