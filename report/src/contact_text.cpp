@@ -29,9 +29,9 @@ std::string ContactSolveText(const solvers::ContactProblem& problem,
   t += fmt::format("time         {:.3e} s in the back end, {:.3e} s in total\n", r.solve_seconds,
                    r.total_seconds);
   t += fmt::format("residual     complementarity {}, equilibrium {}, total {} (tolerance {:.1e})\n",
-                   Num(r.residual.complementarity, "{:.3e}", "not finite"),
-                   Num(r.residual.equilibrium, "{:.3e}", "not finite"),
-                   Num(r.residual.total, "{:.3e}", "not finite"), options.tolerance);
+                   Figure(r.residual.complementarity, "{:.3e}", "not finite"),
+                   Figure(r.residual.equilibrium, "{:.3e}", "not finite"),
+                   Figure(r.residual.total, "{:.3e}", "not finite"), options.tolerance);
   t += fmt::format("active       {} of {} contacts{}\n", r.active_contacts, problem.num_contacts(),
                    r.polished ? " (POLISHED)" : "");
   // A failed solve still shows its last iterate (what the back end stopped at), marked as such;
@@ -40,13 +40,13 @@ std::string ContactSolveText(const solvers::ContactProblem& problem,
   const auto& labels = problem.data().contact_labels;
   t += fmt::format("forces [N]{}:\n", what);
   for (int j = 0; j < sol.force.size() && j < problem.num_contacts(); ++j)
-    t += fmt::format("  {:4d} {:>16}  {}\n", j, Num(sol.force(j), "{:.9e}", "not finite"),
+    t += fmt::format("  {:4d} {:>16}  {}\n", j, Figure(sol.force(j), "{:.9e}", "not finite"),
                      labels.empty() ? "" : labels[j]);
   if (problem.num_equalities() > 0) {
     const auto& ml = problem.data().multiplier_labels;
     t += fmt::format("multipliers (rigid displacements){}:\n", what);
     for (int i = 0; i < sol.multiplier.size() && i < problem.num_equalities(); ++i)
-      t += fmt::format("  {:4d} {:>16}  {}\n", i, Num(sol.multiplier(i), "{:.9e}", "not finite"),
+      t += fmt::format("  {:4d} {:>16}  {}\n", i, Figure(sol.multiplier(i), "{:.9e}", "not finite"),
                        ml.empty() ? "" : ml[i]);
   }
   if (file.expected && converged) {
@@ -93,9 +93,9 @@ std::string ComparisonCsvHeader() {
 
 std::string ComparisonCsvRow(const solvers::ComparisonRun& row) {
   return fmt::format("{},{},{},{},{},{},{},{},{},{},{}", CsvText(row.backend), CsvText(row.problem),
-                     CsvText(row.category), CsvText(row.status), Num(row.residual, "{:.6e}"),
-                     Num(row.force_error, "{:.6e}"), Num(row.multiplier_error, "{:.6e}"),
-                     Num(row.displacement_error, "{:.6e}"), Num(row.median_seconds, "{:.6e}"),
+                     CsvText(row.category), CsvText(row.status), Figure(row.residual, "{:.6e}"),
+                     Figure(row.force_error, "{:.6e}"), Figure(row.multiplier_error, "{:.6e}"),
+                     Figure(row.displacement_error, "{:.6e}"), Figure(row.median_seconds, "{:.6e}"),
                      row.iterations, CsvText(row.message));
 }
 

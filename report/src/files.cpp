@@ -28,7 +28,7 @@ void WriteAll(std::FILE* f, const std::string& path, std::string_view text) {
 
 }  // namespace
 
-std::string Num(double v, const char* format, const char* missing) {
+std::string Figure(double v, const char* format, const char* missing) {
   return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : std::string(missing);
 }
 

@@ -93,8 +93,8 @@ std::string QuasiStaticRecordText(const transmission::QuasiStaticRecord& r,
       "\n  planet   LSR mean     LSR min      LSR max      (ideal 1/n = {:.6f})\n", 1.0 / planets);
   for (int i = 0; i < planets; ++i) {
     const char* f = "{:<12.6f}";
-    t += fmt::format("  {:<8d} {} {} {}\n", i + 1, Num(s.lsr_mean[i], f, "-           "),
-                     Num(s.lsr_min[i], f, "-           "), Num(s.lsr_max[i], f, "-"));
+    t += fmt::format("  {:<8d} {} {} {}\n", i + 1, Figure(s.lsr_mean[i], f, "-           "),
+                     Figure(s.lsr_min[i], f, "-           "), Figure(s.lsr_max[i], f, "-"));
   }
   if (r.converged_positions > 0) {
     t += fmt::format("  K_gamma (max L_i)            {:.6f}\n", s.k_gamma);

@@ -38,7 +38,7 @@ std::string ContactPressureText(const std::vector<transmission::FlankPressure>& 
     out += fmt::format("    {:<8} {:<6} {:<14} {:9.1f}  {:9.2f}  {:>9}  {:5}  {} ({:.4g})\n",
                        transmission::BodyName(f.body), f.drive ? "drive" : "coast",
                        f.tip ? "tip round" : "line of action", f.pressure / 1e6,
-                       f.half_width * 1e6, Num(geometry::Deg(f.roll), "{:.3f}", "own tip"),
+                       f.half_width * 1e6, Figure(geometry::Deg(f.roll), "{:.3f}", "own tip"),
                        f.tooth, f.mesh, f.x * x_scale);
   return out;
 }
@@ -137,7 +137,7 @@ std::string RatingText(const transmission::StageRating& rating) {
   for (const auto& g : rating.gears) {
     out +=
         fmt::format("    {:<9} {:>5}  {:>5}  {}  {}  {}    {}  {}  {}\n", g.gear,
-                    Num(g.k_gamma_table, "{:.2f}", "-"), Num(g.k_gamma_model, "{:.3f}", "-"),
+                    Figure(g.k_gamma_table, "{:.2f}", "-"), Figure(g.k_gamma_model, "{:.3f}", "-"),
                     pair(g.sigma_f_table, g.s_f_table), pair(g.sigma_f_model, g.s_f_model),
                     pair(g.root_stress, g.s_f_stress), pair(g.sigma_h_table, g.s_h_table),
                     pair(g.sigma_h_model, g.s_h_model), pair(g.contact_pressure, g.s_h_pressure));
@@ -160,7 +160,7 @@ std::string RatingText(const transmission::StageRating& rating) {
   }
   out += "  factors:\n";
   for (const auto& f : rating.factors)
-    out += fmt::format("    {:<34} {:>10}  {}\n", f.symbol, Num(f.value, "{:.5g}", "-"), f.source);
+    out += fmt::format("    {:<34} {:>10}  {}\n", f.symbol, Figure(f.value, "{:.5g}", "-"), f.source);
   return out;
 }
 

@@ -370,7 +370,7 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
       Cell(ok ? r.sun_displacement.y() * 1e6 : NAN), r.geometric_iterations, r.contact_iterations,
       r.warm_started ? 1 : 0, Cell(r.report.residual.total),
       CsvText(solvers::StatusName(r.report.status)), r.report.active_contacts,
-      r.problem.contacts.size(), Num(r.report.total_seconds * 1e3, "{:.4g}"), CsvText(r.message));
+      r.problem.contacts.size(), Figure(r.report.total_seconds * 1e3, "{:.4g}"), CsvText(r.message));
   const bool friction = friction_ && ok && r.friction;
   if (friction_)
     line += fmt::format(",{},{},{},{},{}", Cell(friction ? r.friction_power : NAN),
@@ -627,12 +627,12 @@ std::string DynamicRunText(const dynamics::DynamicSummary& sum,
                      sum.lsr_min[i], sum.lsr_max[i]);
   // No output step: "-" (the summary's statistics are NaN, never printed).
   const char* f3 = "{:.3f}";
-  t += fmt::format("  K_gamma (max L_i)            {}\n", Num(sum.k_gamma, "{:.6f}", "-"));
+  t += fmt::format("  K_gamma (max L_i)            {}\n", Figure(sum.k_gamma, "{:.6f}", "-"));
   t += fmt::format("  dynamic transmission error   {} .. {} urad (peak to peak {} urad)\n",
-                   Num(sum.te_min * 1e6, f3, "-"), Num(sum.te_max * 1e6, f3, "-"),
-                   Num(sum.te_peak_to_peak() * 1e6, f3, "-"));
+                   Figure(sum.te_min * 1e6, f3, "-"), Figure(sum.te_max * 1e6, f3, "-"),
+                   Figure(sum.te_peak_to_peak() * 1e6, f3, "-"));
   t += fmt::format("  sun orbit radius             {} um largest, {} um mean\n",
-                   Num(sum.orbit_radius * 1e6, f3, "-"), Num(sum.orbit_mean_radius * 1e6, f3, "-"));
+                   Figure(sum.orbit_radius * 1e6, f3, "-"), Figure(sum.orbit_mean_radius * 1e6, f3, "-"));
   t += fmt::format(
       "  integration                  {} steps, {} evaluations ({} for FD Jacobians), {} "
       "Jacobians, {} failed contact solves, {} error-test failures, {} nonlinear failures, {:.3f} "
@@ -722,9 +722,9 @@ std::string MeshStiffnessText(const transmission::StiffnessRecord& record) {
   if (result.slices > 1)
     out += fmt::format(
         "  K_Hbeta ({} slices)      max {} at {} deg (largest load at z = {} mm), mean {}\n",
-        result.slices, Num(result.k_h_beta_max, "{:.6f}", "-"),
-        Num(geometry::Deg(result.k_h_beta_angle), "{:.4f}", "-"),
-        Num(result.largest_z * 1e3, "{:.3f}", "-"), Num(result.k_h_beta_mean, "{:.6f}", "-"));
+        result.slices, Figure(result.k_h_beta_max, "{:.6f}", "-"),
+        Figure(geometry::Deg(result.k_h_beta_angle), "{:.4f}", "-"),
+        Figure(result.largest_z * 1e3, "{:.3f}", "-"), Figure(result.k_h_beta_mean, "{:.6f}", "-"));
   out += fmt::format("  positions failed         {} of {}\n", result.failed, positions);
   return out + RootStressText(result.root_stress, "angle deg", geometry::Deg(1.0));
 }

@@ -24,12 +24,12 @@ std::string SobolText(const studies::SobolSummary& s) {
     for (std::size_t i = 0; i < e.first.size(); ++i) {
       const auto &a = e.first[i], &t = e.total[i];
       out += fmt::format("    {:<22} {:<34} {:>6} [{}, {}]  {:>6} [{}, {}]\n", "", s.variables[i],
-                         Num(a.value, f, "-"), Num(a.lower, f, "-"), Num(a.upper, f, "-"),
-                         Num(t.value, f, "-"), Num(t.lower, f, "-"), Num(t.upper, f, "-"));
+                         Figure(a.value, f, "-"), Figure(a.lower, f, "-"), Figure(a.upper, f, "-"),
+                         Figure(t.value, f, "-"), Figure(t.lower, f, "-"), Figure(t.upper, f, "-"));
     }
     out += fmt::format("    {:<22} {:<34} {:>6} [{}, {}]\n", "", "sum of S_i",
-                       Num(e.sum_first.value, f, "-"), Num(e.sum_first.lower, f, "-"),
-                       Num(e.sum_first.upper, f, "-"));
+                       Figure(e.sum_first.value, f, "-"), Figure(e.sum_first.lower, f, "-"),
+                       Figure(e.sum_first.upper, f, "-"));
   }
   return out;
 }

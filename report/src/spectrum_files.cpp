@@ -65,7 +65,7 @@ VibrationFiles::VibrationFiles(std::string base, const nlohmann::json& provenanc
 void VibrationFiles::Write(const dynamics::DynamicSample& s) {
   dynamics::VibrationValues(model_, s, &values_);
   std::string line = fmt::format("{:.9g},{:.6f}", s.time, geometry::Deg(s.carrier_angle));
-  for (double v : values_) line.append(",").append(Num(v, "{:.10g}"));
+  for (double v : values_) line.append(",").append(Figure(v, "{:.10g}"));
   csv_.WriteLine(line);
   spectrum_.Add(s.time, values_);
 }
@@ -88,7 +88,7 @@ std::string VibrationFiles::Close(const std::string& title) {
     const double f = sp.Frequency(j);
     std::string line = fmt::format("{:.9g},{:.9g},{:.9g}", f, f / fc, f / fr);
     for (const auto& a : amp)
-      line.append(",").append(Num(a[static_cast<std::size_t>(j)], "{:.6g}"));
+      line.append(",").append(Figure(a[static_cast<std::size_t>(j)], "{:.6g}"));
     csv.WriteLine(line);
   }
   csv.Close();

@@ -18,7 +18,7 @@ namespace epicycle::report {
 std::string ExceedanceText(const studies::Exceedance& e) {
   const char* f = "{:.4f}";
   return fmt::format("  P(K_gamma > {}) = {} [{}, {}] ({} of {} cases; {:g} % Clopper-Pearson)\n",
-                     e.threshold, Num(e.p, f, "-"), Num(e.lower, f, "-"), Num(e.upper, f, "-"),
+                     e.threshold, Figure(e.p, f, "-"), Figure(e.lower, f, "-"), Figure(e.upper, f, "-"),
                      e.above, e.count, 100.0 * e.level);
 }
 
@@ -26,12 +26,12 @@ std::string SampleSummaryText(const std::string& name, const studies::SampleSumm
                               const std::string& unit) {
   const char* f = "{:.6g}";
   std::string out =
-      fmt::format("  {:<22} mean {} [{}, {}], std {}, max {}{}\n", name, Num(s.mean, f, "-"),
-                  Num(s.mean_lower, f, "-"), Num(s.mean_upper, f, "-"),
-                  Num(s.standard_deviation, f, "-"), Num(s.max, f, "-"), unit);
+      fmt::format("  {:<22} mean {} [{}, {}], std {}, max {}{}\n", name, Figure(s.mean, f, "-"),
+                  Figure(s.mean_lower, f, "-"), Figure(s.mean_upper, f, "-"),
+                  Figure(s.standard_deviation, f, "-"), Figure(s.max, f, "-"), unit);
   for (const auto& q : s.percentiles)
-    out += fmt::format("  {:<22} P{:<5} {} [{}, {}]\n", "", 100.0 * q.p, Num(q.value, f, "-"),
-                       Num(q.lower, f, "-"), Num(q.upper, f, "-"));
+    out += fmt::format("  {:<22} P{:<5} {} [{}, {}]\n", "", 100.0 * q.p, Figure(q.value, f, "-"),
+                       Figure(q.lower, f, "-"), Figure(q.upper, f, "-"));
   return out;
 }
 
@@ -42,9 +42,9 @@ std::string StudyRootStressText(const std::vector<studies::GearStressStatistics>
     const char* f = "{:.1f}";
     for (const auto& q : s.percentiles)
       if (q.p == 0.95)
-        return fmt::format("{:>7} {:>7} [{}, {}]", Num(s.mean, f, "-"), Num(q.value, f, "-"),
-                           Num(q.lower, f, "-"), Num(q.upper, f, "-"));
-    return fmt::format("{:>7}", Num(s.mean, f, "-"));
+        return fmt::format("{:>7} {:>7} [{}, {}]", Figure(s.mean, f, "-"), Figure(q.value, f, "-"),
+                           Figure(q.lower, f, "-"), Figure(q.upper, f, "-"));
+    return fmt::format("{:>7}", Figure(s.mean, f, "-"));
   };
   std::string out = fmt::format(
       "  root stress [MPa], each case's largest: mean, P95 [CI]\n    {:<8}  {:<30} {:<30} {}\n",
@@ -59,9 +59,9 @@ std::string StudyRootStressText(const std::vector<studies::GearStressStatistics>
     const char* f = "{:.2f}";
     for (const auto& q : s.percentiles)
       if (q.p == 0.05)
-        return fmt::format("{:>6} {:>6} [{}, {}] {:>6}", Num(s.mean, f, "-"), Num(q.value, f, "-"),
-                           Num(q.lower, f, "-"), Num(q.upper, f, "-"), Num(s.min, f, "-"));
-    return fmt::format("{:>6}", Num(s.mean, f, "-"));
+        return fmt::format("{:>6} {:>6} [{}, {}] {:>6}", Figure(s.mean, f, "-"), Figure(q.value, f, "-"),
+                           Figure(q.lower, f, "-"), Figure(q.upper, f, "-"), Figure(s.min, f, "-"));
+    return fmt::format("{:>6}", Figure(s.mean, f, "-"));
   };
   out += fmt::format(
       "  safety factors from each case's own stresses: mean, P5 [CI], smallest\n    {:<8}  {:<34} "
@@ -152,7 +152,7 @@ std::string StudySummaryText(const studies::StudySpec& study, const studies::Stu
   t += "  Spearman rank correlation of K_gamma with\n";
   for (std::size_t j = 0; j < s.columns.size(); ++j)
     t +=
-        fmt::format("    {:<36} {}\n", s.columns[j], Num(s.spearman[j], "{:+.3f}", "- (constant)"));
+        fmt::format("    {:<36} {}\n", s.columns[j], Figure(s.spearman[j], "{:+.3f}", "- (constant)"));
   if (s.sobol) t += SobolText(*s.sobol);
   return t;
 }

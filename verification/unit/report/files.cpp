@@ -74,12 +74,12 @@ TEST_CASE("a failed open or write throws naming the file and the reason", "[unit
 TEST_CASE("Cell and Num format finite numbers and leave the rest missing", "[unit][report]") {
   CHECK(report::Cell(0.1) == "0.1");
   CHECK(report::Cell(1.0 / 3.0) == "0.333333333");
-  CHECK(report::Num(-2.5e-7, "{:.3e}") == "-2.500e-07");
-  CHECK(report::Num(12.3456, "{:.2f}", "-") == "12.35");
+  CHECK(report::Figure(-2.5e-7, "{:.3e}") == "-2.500e-07");
+  CHECK(report::Figure(12.3456, "{:.2f}", "-") == "12.35");
   CHECK(report::Cell(std::numeric_limits<double>::quiet_NaN()).empty());
-  CHECK(report::Num(std::numeric_limits<double>::infinity(), "{:.3e}", "not finite") ==
+  CHECK(report::Figure(std::numeric_limits<double>::infinity(), "{:.3e}", "not finite") ==
         "not finite");
-  CHECK(report::Num(-std::numeric_limits<double>::infinity(), "{:.2f}", "-") == "-");
+  CHECK(report::Figure(-std::numeric_limits<double>::infinity(), "{:.2f}", "-") == "-");
 }
 
 TEST_CASE("CsvText quotes a text cell as RFC 4180 says, on one line", "[unit][report]") {

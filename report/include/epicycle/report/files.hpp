@@ -11,11 +11,11 @@
 namespace epicycle::report {
 
 // Numbers have one formatting function per purpose: a message's value io::Num (io/number_format.hpp),
-// a figure of a report's text Num, a CSV cell Cell.
+// a figure of a report's text Figure, a CSV cell Cell.
 
 /// A figure of a report's text: `v` formatted with `format` (fmt syntax) if finite, otherwise
 /// `missing` (empty by default). Never prints nan or inf.
-std::string Num(double v, const char* format, const char* missing = "");
+std::string Figure(double v, const char* format, const char* missing = "");
 /// A CSV cell: `v` with 9 significant digits ("{:.9g}", printf's %.9g: the same text), empty if
 /// not finite.
 std::string Cell(double v);
