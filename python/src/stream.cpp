@@ -217,10 +217,10 @@ Parameters
     The exception's type, value and traceback (or None).)doc");
   m.def(
       "quasistatic_positions",
-      [](const std::shared_ptr<Scene>& s, const std::string& range, int positions,
-         double start_deg, std::optional<std::vector<double>> angles_deg, int threads,
-         bool warm_start, const std::string& backend, bool local_terms,
-         std::optional<std::string> cache_dir, const std::string& friction) {
+      [](const std::shared_ptr<Scene>& s, const std::string& range, int positions, double start_deg,
+         std::optional<std::vector<double>> angles_deg, int threads, bool warm_start,
+         const std::string& backend, bool local_terms, std::optional<std::string> cache_dir,
+         const std::string& friction) {
         return std::make_unique<PositionStream>(
             MakeSweepRequest(s, range, positions, start_deg, std::move(angles_deg), threads,
                              warm_start, backend, local_terms, friction, false, false),

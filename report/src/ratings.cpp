@@ -37,9 +37,9 @@ std::string ContactPressureText(const std::vector<transmission::FlankPressure>& 
   for (const auto& f : flanks)
     out += fmt::format("    {:<8} {:<6} {:<14} {:9.1f}  {:9.2f}  {:>9}  {:5}  {} ({:.4g})\n",
                        transmission::BodyName(f.body), f.drive ? "drive" : "coast",
-                       f.tip ? "tip round" : "line of action", f.pressure / 1e6,
-                       f.half_width * 1e6, Figure(geometry::Deg(f.roll), "{:.3f}", "own tip"),
-                       f.tooth, f.mesh, f.x * x_scale);
+                       f.tip ? "tip round" : "line of action", f.pressure / 1e6, f.half_width * 1e6,
+                       Figure(geometry::Deg(f.roll), "{:.3f}", "own tip"), f.tooth, f.mesh,
+                       f.x * x_scale);
   return out;
 }
 
@@ -160,7 +160,8 @@ std::string RatingText(const transmission::StageRating& rating) {
   }
   out += "  factors:\n";
   for (const auto& f : rating.factors)
-    out += fmt::format("    {:<34} {:>10}  {}\n", f.symbol, Figure(f.value, "{:.5g}", "-"), f.source);
+    out +=
+        fmt::format("    {:<34} {:>10}  {}\n", f.symbol, Figure(f.value, "{:.5g}", "-"), f.source);
   return out;
 }
 

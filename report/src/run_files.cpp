@@ -370,7 +370,8 @@ void QuasiStaticFiles::Write(const transmission::PositionResult& r) {
       Cell(ok ? r.sun_displacement.y() * 1e6 : NAN), r.geometric_iterations, r.contact_iterations,
       r.warm_started ? 1 : 0, Cell(r.report.residual.total),
       CsvText(solvers::StatusName(r.report.status)), r.report.active_contacts,
-      r.problem.contacts.size(), Figure(r.report.total_seconds * 1e3, "{:.4g}"), CsvText(r.message));
+      r.problem.contacts.size(), Figure(r.report.total_seconds * 1e3, "{:.4g}"),
+      CsvText(r.message));
   const bool friction = friction_ && ok && r.friction;
   if (friction_)
     line += fmt::format(",{},{},{},{},{}", Cell(friction ? r.friction_power : NAN),
@@ -632,7 +633,8 @@ std::string DynamicRunText(const dynamics::DynamicSummary& sum,
                    Figure(sum.te_min * 1e6, f3, "-"), Figure(sum.te_max * 1e6, f3, "-"),
                    Figure(sum.te_peak_to_peak() * 1e6, f3, "-"));
   t += fmt::format("  sun orbit radius             {} um largest, {} um mean\n",
-                   Figure(sum.orbit_radius * 1e6, f3, "-"), Figure(sum.orbit_mean_radius * 1e6, f3, "-"));
+                   Figure(sum.orbit_radius * 1e6, f3, "-"),
+                   Figure(sum.orbit_mean_radius * 1e6, f3, "-"));
   t += fmt::format(
       "  integration                  {} steps, {} evaluations ({} for FD Jacobians), {} "
       "Jacobians, {} failed contact solves, {} error-test failures, {} nonlinear failures, {:.3f} "

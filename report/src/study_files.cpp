@@ -18,8 +18,8 @@ namespace epicycle::report {
 std::string ExceedanceText(const studies::Exceedance& e) {
   const char* f = "{:.4f}";
   return fmt::format("  P(K_gamma > {}) = {} [{}, {}] ({} of {} cases; {:g} % Clopper-Pearson)\n",
-                     e.threshold, Figure(e.p, f, "-"), Figure(e.lower, f, "-"), Figure(e.upper, f, "-"),
-                     e.above, e.count, 100.0 * e.level);
+                     e.threshold, Figure(e.p, f, "-"), Figure(e.lower, f, "-"),
+                     Figure(e.upper, f, "-"), e.above, e.count, 100.0 * e.level);
 }
 
 std::string SampleSummaryText(const std::string& name, const studies::SampleSummary& s,
@@ -59,8 +59,9 @@ std::string StudyRootStressText(const std::vector<studies::GearStressStatistics>
     const char* f = "{:.2f}";
     for (const auto& q : s.percentiles)
       if (q.p == 0.05)
-        return fmt::format("{:>6} {:>6} [{}, {}] {:>6}", Figure(s.mean, f, "-"), Figure(q.value, f, "-"),
-                           Figure(q.lower, f, "-"), Figure(q.upper, f, "-"), Figure(s.min, f, "-"));
+        return fmt::format("{:>6} {:>6} [{}, {}] {:>6}", Figure(s.mean, f, "-"),
+                           Figure(q.value, f, "-"), Figure(q.lower, f, "-"),
+                           Figure(q.upper, f, "-"), Figure(s.min, f, "-"));
     return fmt::format("{:>6}", Figure(s.mean, f, "-"));
   };
   out += fmt::format(
@@ -151,8 +152,8 @@ std::string StudySummaryText(const studies::StudySpec& study, const studies::Stu
   for (const studies::Exceedance& e : s.k_gamma_exceedance) t += ExceedanceText(e);
   t += "  Spearman rank correlation of K_gamma with\n";
   for (std::size_t j = 0; j < s.columns.size(); ++j)
-    t +=
-        fmt::format("    {:<36} {}\n", s.columns[j], Figure(s.spearman[j], "{:+.3f}", "- (constant)"));
+    t += fmt::format("    {:<36} {}\n", s.columns[j],
+                     Figure(s.spearman[j], "{:+.3f}", "- (constant)"));
   if (s.sobol) t += SobolText(*s.sobol);
   return t;
 }

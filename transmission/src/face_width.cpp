@@ -158,7 +158,8 @@ FaceWidthModel::FaceWidthModel(const FaceWidthSpec& spec, const geometry::Stage&
             "face width: coupling = table: a stage needs a " + std::to_string(spec_.slices) +
             " x " + std::to_string(spec_.slices) +
             " kernel for each mesh kind (coupling_table_sun_planet, coupling_table_planet_ring), "
-            "one is " + std::to_string(w->rows()) + " x " + std::to_string(w->cols()));
+            "one is " +
+            std::to_string(w->rows()) + " x " + std::to_string(w->cols()));
     coupling_sun_planet_ = spec_.coupling_table;
     coupling_planet_ring_ = spec_.coupling_table_planet_ring;
   } else {

@@ -39,8 +39,8 @@ struct MeshBound {
 
 // coupling = "table": W [-] from the CSV that `key` names (relative to the scene's directory):
 // a header line, then one row "i,j,w" for every 0 <= i, j < S.
-Eigen::MatrixXd ReadCouplingTable(TableReader& t, const std::string& key,
-                                  const std::string& source, int slices) {
+Eigen::MatrixXd ReadCouplingTable(TableReader& t, const std::string& key, const std::string& source,
+                                  int slices) {
   const std::string value = t.String(key);
   std::filesystem::path path(value);
   if (path.is_relative()) path = std::filesystem::path(source).parent_path() / path;

@@ -78,9 +78,8 @@ void SpurStageMeshSlices(const FaceWidthSpec& stage, const std::string& mesh, in
   out->coupling = stage.coupling;
   out->coupling_length = stage.coupling_length;
   // The mesh kind's structural kernel (coupling = "table").
-  out->coupling_table =
-      kind == geometry::MeshKind::kPlanetRing ? stage.coupling_table_planet_ring
-                                              : stage.coupling_table;
+  out->coupling_table = kind == geometry::MeshKind::kPlanetRing ? stage.coupling_table_planet_ring
+                                                                : stage.coupling_table;
   for (const LeadSpec& l : stage.leads)
     for (std::size_t g = 0; g < gears.size(); ++g)
       if (l.gear == gears[g]) {
@@ -99,8 +98,7 @@ MeshPairSetup MakeSlicedMeshPair(const Scene& scene, const geometry::Stage* stag
     return s;
   for (const geometry::MeshSummary& m : stage->meshes())
     if (m.name == s.mesh)
-      SpurStageMeshSlices(scene.face_width, s.mesh, m.planet, m.kind, s.gears,
-                          &s.face_width);
+      SpurStageMeshSlices(scene.face_width, s.mesh, m.planet, m.kind, s.gears, &s.face_width);
   return s;
 }
 

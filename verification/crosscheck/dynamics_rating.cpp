@@ -8,13 +8,13 @@
 
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/dynamic_factor.hpp"
-#include "epicycle/dynamics/simulation.hpp"
 #include "epicycle/dynamics/dynamic_summary.hpp"
+#include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/io/units.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "epicycle/transmission/root_stress.hpp"
 #include "figures.hpp"
 #include "tolerance_floor.hpp"
-#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 
@@ -128,9 +128,8 @@ TEST_CASE("dynamic factor: the quasi-static reference at the run's angles, K_v -
         [&](const dynamics::Evaluation& e, std::vector<double>& out) {
           out.assign(rest.size(), 0.0);
           for (int j = 0; j < e.terms.size(); ++j)
-            out[static_cast<std::size_t>(geometry::MeshIndex(e.terms.contacts[j].planet,
-                                                             e.terms.contacts[j].mesh))] +=
-                e.total_force(j);
+            out[static_cast<std::size_t>(geometry::MeshIndex(
+                e.terms.contacts[j].planet, e.terms.contacts[j].mesh))] += e.total_force(j);
           for (std::size_t m = 0; m < out.size(); ++m) out[m] /= rest[m];
         });
     test::Figure("K_v at " + std::to_string(speeds[k]) + " rpm (run-out, 24 mesh cycles): " +

@@ -10,10 +10,10 @@
 
 #include "dynamics_fixtures.hpp"
 #include "epicycle/dynamics/simulation.hpp"
+#include "epicycle/io/units.hpp"
 #include "epicycle/transmission/quasistatic.hpp"
 #include "figures.hpp"
 #include "tolerance_floor.hpp"
-#include "epicycle/io/units.hpp"
 
 using namespace epicycle;
 using test::Figure;

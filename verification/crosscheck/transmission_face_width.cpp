@@ -287,15 +287,17 @@ TEST_CASE("face width with stresses: under a radial pin tilt the largest root st
 // than the same 10 slices uncoupled, and at the same end (the planet's kinematics, test above).
 // An inequality between two solutions of one contact solver, each to 2e-8 relative: the test
 // asks for the larger K_Hβ − 1 by more than 1e-6 (the solver's tolerance, with margin).
-TEST_CASE("face width on the paper stage: the structure's kernels steepen a tilted pin's load "
-          "across the face beyond uncoupled slices",
-          "[crosscheck][transmission][face_width]") {
+TEST_CASE(
+    "face width on the paper stage: the structure's kernels steepen a tilted pin's load "
+    "across the face beyond uncoupled slices",
+    "[crosscheck][transmission][face_width]") {
   const std::string scenes = EPICYCLE_SCENES_DIR;
   const std::string tilt = "[[face_width.pin_tilt]]\nplanet = 1\nradial_um = 20.0\n";
   const Rig strips(Table(tilt));
-  const Rig coupled(Table("coupling = \"table\"\ncoupling_table_sun_planet = \"" + scenes +
-                          "/paper_sun_planet_structure_kernel.csv\"\ncoupling_table_planet_ring = \"" +
-                          scenes + "/paper_planet_ring_structure_kernel.csv\"\n" + tilt));
+  const Rig coupled(
+      Table("coupling = \"table\"\ncoupling_table_sun_planet = \"" + scenes +
+            "/paper_sun_planet_structure_kernel.csv\"\ncoupling_table_planet_ring = \"" + scenes +
+            "/paper_planet_ring_structure_kernel.csv\"\n" + tilt));
   // One mesh cycle of the planets (the ring fixed: 360/65 deg of the carrier) in 4 positions.
   for (int k = 0; k < 4; ++k) {
     const double carrier = k * 2 * geometry::kPi / 65 / 4;
@@ -304,8 +306,8 @@ TEST_CASE("face width on the paper stage: the structure's kernels steepen a tilt
     for (const bool ring : {false, true}) {
       const MeshFaceLoad& s = Mesh(a, 0, ring);
       const MeshFaceLoad& c = Mesh(b, 0, ring);
-      INFO("position " << k << (ring ? " ring" : " sun") << " mesh: K_Hbeta strips "
-                       << s.k_h_beta << ", structure " << c.k_h_beta);
+      INFO("position " << k << (ring ? " ring" : " sun") << " mesh: K_Hbeta strips " << s.k_h_beta
+                       << ", structure " << c.k_h_beta);
       CHECK(c.k_h_beta - s.k_h_beta > 1e-6);
       CHECK(c.largest_slice == s.largest_slice);
     }

@@ -149,8 +149,8 @@ TEST_CASE(
   // so two printed values of one number differ by at most 1e-6 of it (twice the rounding).
   // The same for the paper stage's two mesh kinds (10 layers: the stage's slices), the
   // planet-ring pair's deck an internal gear held at its rim.
-  const std::string file = GENERATE(as<std::string>{}, "iso_pair_20_40", "paper_sun_planet",
-                                    "paper_planet_ring");
+  const std::string file =
+      GENERATE(as<std::string>{}, "iso_pair_20_40", "paper_sun_planet", "paper_planet_ring");
   INFO(file);
   const InfluenceRuns in = ReadInfluenceRuns(file);
   const auto& runs = in.runs;
@@ -179,9 +179,8 @@ TEST_CASE(
 // displacement, times at most 2 for the read-out's weights (Σ|N_k| of the quadratic triangle at
 // an interior point), for two gears whose displacements add: within 4e-6, taken as 1e-5 (the
 // [slow] test's bound on the ISO pair's 4 layers, fe3d_test.cpp).
-TEST_CASE(
-    "3D FE reference: the paper stage's plane-strain layers' influence rows sum to S G_ps",
-    "[unit][fe3d]") {
+TEST_CASE("3D FE reference: the paper stage's plane-strain layers' influence rows sum to S G_ps",
+          "[unit][fe3d]") {
   const std::string file = GENERATE(as<std::string>{}, "paper_sun_planet", "paper_planet_ring");
   INFO(file);
   const InfluenceRuns in = ReadInfluenceRuns(file);

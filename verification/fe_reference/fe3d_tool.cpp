@@ -77,12 +77,13 @@ int Fe3dInfluenceCommand(const Fe3dCommandArgs& a, const transmission::Scene& sc
   for (const geometry::PotentialContact& c : pair.Contacts(poses, search))
     if (nearest.empty() || c.overlap > nearest[0].overlap) nearest = {c};
   const double plane_c = nearest.empty() ? 0.0 : model.Matrix(pair, poses, nearest)(0, 0);
-  std::printf("%s: influence, %d layers, refinement %.3g%s: %d nodes, h %.1f/%.1f um, "
-              "G_00 %.6e m/N (plane model's C at the contact %.6e m/N), ccx %.0f s CPU, "
-              "%.0f s wall\n",
-              a.name.c_str(), a.layers, a.refinement, a.plane_strain ? ", plane strain" : "",
-              run.deck.deck.nodes, o.read_depth[0] * 1e6, o.read_depth[1] * 1e6,
-              run.compliance[0][0], plane_c, run.cpu_seconds, run.wall_seconds);
+  std::printf(
+      "%s: influence, %d layers, refinement %.3g%s: %d nodes, h %.1f/%.1f um, "
+      "G_00 %.6e m/N (plane model's C at the contact %.6e m/N), ccx %.0f s CPU, "
+      "%.0f s wall\n",
+      a.name.c_str(), a.layers, a.refinement, a.plane_strain ? ", plane strain" : "",
+      run.deck.deck.nodes, o.read_depth[0] * 1e6, o.read_depth[1] * 1e6, run.compliance[0][0],
+      plane_c, run.cpu_seconds, run.wall_seconds);
   return 0;
 }
 

@@ -18,7 +18,8 @@ namespace epicycle::test {
 
 /// The outputs whose floor is wanted, from an evaluation of the model (appended to `out`, which
 /// arrives empty); each output in the unit its test compares.
-using EvaluationOutputs = std::function<void(const dynamics::Evaluation&, std::vector<double>& out)>;
+using EvaluationOutputs =
+    std::function<void(const dynamics::Evaluation&, std::vector<double>& out)>;
 
 // The largest change of an output that CVODE's error test lets through at the run's samples.
 // CVODE accepts a step when its local error e has a weighted root mean square
@@ -66,7 +67,8 @@ inline double ToleranceFloor(const DynamicRig& rig, const dynamics::SimulationOp
       moved.clear();
       outputs(e, moved);
       REQUIRE(moved.size() == at.size());
-      for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += (moved[i] - at[i]) * (moved[i] - at[i]);
+      for (std::size_t i = 0; i < sum.size(); ++i)
+        sum[i] += (moved[i] - at[i]) * (moved[i] - at[i]);
     }
     for (double s2 : sum) floor = std::max(floor, root_n * std::sqrt(s2));
   }

@@ -10,8 +10,8 @@
 
 namespace epicycle::report {
 
-// Numbers have one formatting function per purpose: a message's value io::Num (io/number_format.hpp),
-// a figure of a report's text Figure, a CSV cell Cell.
+// Numbers have one formatting function per purpose: a message's value io::Num
+// (io/number_format.hpp), a figure of a report's text Figure, a CSV cell Cell.
 
 /// A figure of a report's text: `v` formatted with `format` (fmt syntax) if finite, otherwise
 /// `missing` (empty by default). Never prints nan or inf.
