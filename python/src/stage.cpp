@@ -390,22 +390,12 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
   class Keep final : public transmission::QuasiStaticSink {
    public:
     explicit Keep(const Progress& report) : report_(report) {}
-    void Start(const transmission::QuasiStaticPlan& p) override {
-      total_ = p.positions;
-      if (p.scene->face_width.active()) {  // the face-load CSV's meshes, slices and stresses
-        face_meshes = report::StageFaceMeshes(*p.stage).names;
-        slices = p.scene->face_width.slices;
-        stresses = p.compliance->has_root_stress();
-      }
-    }
+    void Start(const transmission::QuasiStaticPlan& p) override { total_ = p.positions; }
     void Position(const transmission::PositionResult& r, int k) override {
       results.push_back(r);
       report_(k + 1, total_);
     }
     std::vector<transmission::PositionResult> results;
-    std::vector<std::string> face_meshes;  // with slices of the face width
-    int slices = 0;
-    bool stresses = false;
 
    private:
     const Progress& report_;
@@ -415,9 +405,6 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     std::shared_ptr<const StageRig> rig;
     std::vector<transmission::PositionResult> results;
     transmission::QuasiStaticRecord record;
-    std::vector<std::string> face_meshes;
-    int slices = 0;
-    bool stresses = false;
   };
   Out out = RunReleased(token, [&] {
     Out o;
@@ -426,9 +413,6 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     Keep keep(report);
     o.record = transmission::RunQuasiStatic(request, keep);
     o.results = std::move(keep.results);
-    o.face_meshes = std::move(keep.face_meshes);
-    o.slices = keep.slices;
-    o.stresses = keep.stresses;
     return o;
   });
 
@@ -517,12 +501,14 @@ py::object QuasiStatic(const ScenePtr& s, const std::string& range, int position
     f["force_change"] = Array(std::move(change));
   }
   f["pairs"] = Result(pairs);
-  if (!out.face_meshes.empty()) {
-    // Per position and mesh, the face-load CSV's columns: NaN where the position did not converge.
+  if (out.rig->scene.face_width.active()) {
+    // Per position and mesh, the face-load CSV's columns (the run's rig: its meshes, slices and
+    // stresses): NaN where the position did not converge.
     std::vector<const std::vector<transmission::MeshFaceLoad>*> rows;
     for (const transmission::PositionResult& r : out.results)
       rows.push_back(r.converged ? &r.face_loads : nullptr);
-    AddFaceLoads(out.face_meshes, out.slices, out.stresses, rows, &f);
+    AddFaceLoads(report::StageFaceMeshes(out.rig->stage).names, out.rig->scene.face_width.slices,
+                 out.rig->compliance.has_root_stress(), rows, &f);
   }
   f["summary"] = SummaryObject(out.record.summary);
   if (out.record.rating) f["rating"] = JsonToPython(report::RatingJson(*out.record.rating));
