@@ -22,7 +22,12 @@ class RecordingReporter : public benchmark::ConsoleReporter {
       // repetitions, the smallest (the least disturbed) is kept.
       const double s = run.cpu_accumulated_time / static_cast<double>(run.iterations);
       const auto [it, fresh] = seconds_.emplace(run.benchmark_name(), s);
-      if (!fresh) it->second = std::min(it->second, s);
+      if (!fresh && !(s < it->second)) continue;
+      it->second = s;
+      // The counters of the run kept (the least disturbed).
+      std::map<std::string, double>& kept = counters_[run.benchmark_name()];
+      kept.clear();
+      for (const auto& [name, counter] : run.counters) kept[name] = counter.value;
       const auto c = run.counters.find("converged");
       if (c != run.counters.end()) converged_[run.benchmark_name()] = c->second.value > 0.5;
     }
@@ -32,6 +37,14 @@ class RecordingReporter : public benchmark::ConsoleReporter {
     const auto it = seconds_.find(name);
     return it == seconds_.end() ? NAN : it->second;
   }
+  /// A counter of the kept run (the least CPU time), NaN if the benchmark did not run or has no
+  /// such counter.
+  double counter(const std::string& name, const std::string& counter) const {
+    const auto it = counters_.find(name);
+    if (it == counters_.end()) return NAN;
+    const auto c = it->second.find(counter);
+    return c == it->second.end() ? NAN : c->second;
+  }
   bool converged(const std::string& name) const {
     const auto it = converged_.find(name);
     return it != converged_.end() && it->second;
@@ -40,6 +53,7 @@ class RecordingReporter : public benchmark::ConsoleReporter {
  private:
   std::map<std::string, double> seconds_;
   std::map<std::string, bool> converged_;
+  std::map<std::string, std::map<std::string, double>> counters_;
 };
 
 }  // namespace epicycle::bench

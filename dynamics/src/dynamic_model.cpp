@@ -368,9 +368,13 @@ bool DynamicModel::SolveContacts(double t, const Eigen::VectorXd& d,
   e.force.setZero(n);
   if (n > 0) {
     // The problem's buffers are the work space's: copied into (same sizes, no allocation), moved
-    // into the problem, released after the solve. The terms keep C as the compliance gave it.
+    // into the problem, released after the solve. C is lent, not copied (O(N²) with face-width
+    // slices): swapped into the problem's data and back after the solve, as the problem stores
+    // it (its symmetric part, which the FE compliance and the face-width expansion already
+    // are, bit for bit). A problem that refuses its data keeps it: the evaluation has failed,
+    // and the next one builds its terms anew.
     solvers::ContactProblemData& data = w.problem;
-    data.compliance = terms.compliance;
+    data.compliance.swap(e.terms.compliance);
     data.compliance_terms = terms.compliance_terms;
     data.overlap = terms.overlap;
     data.local = terms.local;
@@ -390,6 +394,7 @@ bool DynamicModel::SolveContacts(double t, const Eigen::VectorXd& d,
     solution.multiplier.resize(0);
     solver.SolveInto(problem, opt, &solution, &e.report);
     data = std::move(problem).Release();
+    e.terms.compliance.swap(data.compliance);
     if (e.report.status != solvers::ContactStatus::kConverged) {
       e.message =
           "contact solve: " + solvers::StatusName(e.report.status) + " (" + e.report.message + ")";

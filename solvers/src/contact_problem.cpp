@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <sstream>
@@ -108,6 +110,76 @@ int Definiteness(const Eigen::MatrixXd& a) {
   return min_eig >= -ContactProblem::kSymmetryTolerance * scale ? 1 : 0;
 }
 
+// Whether Σ source ⊗ kernel is proved positive definite by its factors: positive semidefinite
+// factors make every term PSD, and one term of two definite factors makes the sum definite.
+bool FactorsProveDefinite(const std::vector<KroneckerTerm>& terms) {
+  bool definite_term = false;
+  for (const KroneckerTerm& t : terms) {
+    const int a = Definiteness(t.source), b = Definiteness(t.kernel);
+    if (a == 0 || b == 0) return false;  // not proved: the dense test decides
+    definite_term = definite_term || (a == 2 && b == 2);
+  }
+  return definite_term;
+}
+
+// Whether `c` (N×N) is exactly Σ source ⊗ kernel, bit for bit, of one or two terms whose factors
+// have the rules' sizes and are finite and exactly symmetric, with no sum that can overflow. Such
+// a C meets every rule on C as it stands: finite, exactly symmetric (so its own symmetric part)
+// and the terms' sum, and only the factors' definiteness is left to prove. It is what the
+// face-width model writes (its blocks source_jk · kernel, one term non-zero per block), so the
+// O(N²) rules' three passes over C, one of them by transposed entries, become one pass in storage
+// order. Anything else returns false, without a message, and the rules then run one by one and
+// name what is wrong.
+bool IsExactKronecker(const std::vector<KroneckerTerm>& terms, const Eigen::MatrixXd& c) {
+  if (terms.empty() || terms.size() > 2) return false;
+  const Eigen::Index n = terms[0].source.rows(), slices = terms[0].kernel.rows();
+  if (n * slices != c.rows()) return false;
+  // Every |sum| ≤ Σ_terms max|source| max|kernel| (1 + 2ε): below half the largest double, no
+  // sum overflows, and finite factors give finite sums.
+  double bound = 0.0;
+  for (const KroneckerTerm& t : terms) {
+    if (t.source.rows() != n || t.source.cols() != n || t.kernel.rows() != slices ||
+        t.kernel.cols() != slices)
+      return false;
+    if (!t.source.allFinite() || !t.kernel.allFinite()) return false;
+    if (!(t.source.array() == t.source.transpose().array()).all() ||
+        !(t.kernel.array() == t.kernel.transpose().array()).all())
+      return false;
+    bound += t.source.cwiseAbs().maxCoeff() * t.kernel.cwiseAbs().maxCoeff();
+  }
+  if (!(bound < 0.5 * std::numeric_limits<double>::max())) return false;
+  // Column k S + t of C holds, for every source row j, the run s = 0 … S − 1 of
+  // Σ_terms source_jk kernel_st, summed in the terms' order. Compared by their bits, OR-ed
+  // together so that the loops vectorise (a −0 against a +0 then counts as a difference and
+  // sends C to the rules, which accept it).
+  const KroneckerTerm& first = terms[0];
+  const KroneckerTerm* second = terms.size() == 2 ? &terms[1] : nullptr;
+  auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  std::uint64_t mismatches = 0;
+  for (Eigen::Index k = 0; k < n; ++k)
+    for (Eigen::Index t = 0; t < slices; ++t) {
+      const double* col = c.data() + (k * slices + t) * c.rows();
+      const double* k0 = first.kernel.data() + t * slices;
+      if (second == nullptr) {
+        for (Eigen::Index j = 0; j < n; ++j) {
+          const double a0 = first.source(j, k);
+          const double* run = col + j * slices;
+          for (Eigen::Index s = 0; s < slices; ++s) mismatches |= bits(run[s]) ^ bits(a0 * k0[s]);
+        }
+      } else {
+        const double* k1 = second->kernel.data() + t * slices;
+        for (Eigen::Index j = 0; j < n; ++j) {
+          const double a0 = first.source(j, k), a1 = second->source(j, k);
+          const double* run = col + j * slices;
+          for (Eigen::Index s = 0; s < slices; ++s)
+            mismatches |= bits(run[s]) ^ bits(a0 * k0[s] + a1 * k1[s]);
+        }
+      }
+      if (mismatches != 0) return false;
+    }
+  return true;
+}
+
 // The rules of compliance_terms (contact_problem.hpp); returns whether they prove C positive
 // definite. `c` is the symmetric compliance already validated as N×N and finite.
 bool CheckComplianceTerms(const std::vector<KroneckerTerm>& terms, const Eigen::MatrixXd& c) {
@@ -173,15 +245,7 @@ bool CheckComplianceTerms(const std::vector<KroneckerTerm>& terms, const Eigen::
                 Num(ContactProblem::kSymmetryTolerance) + " * max|C| = " + Num(tol));
         }
     }
-  // Positive semidefinite factors make every term PSD; one term of two definite factors makes
-  // the sum definite.
-  bool definite_term = false;
-  for (const KroneckerTerm& t : terms) {
-    const int a = Definiteness(t.source), b = Definiteness(t.kernel);
-    if (a == 0 || b == 0) return false;  // not proved: the dense test decides
-    definite_term = definite_term || (a == 2 && b == 2);
-  }
-  return definite_term;
+  return FactorsProveDefinite(terms);
 }
 
 }  // namespace
@@ -211,7 +275,10 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
                                 std::to_string(d.multiplier_labels.size()) +
                                 " entries: must be empty or m = " + std::to_string(m));
 
-  CheckFinite(d.compliance, "compliance");
+  // A compliance given exactly as Σ source ⊗ kernel meets the rules on C as it stands
+  // (IsExactKronecker): they are not run again.
+  const bool exact_terms = IsExactKronecker(d.compliance_terms, d.compliance);
+  if (!exact_terms) CheckFinite(d.compliance, "compliance");
   CheckFinite(d.overlap, "overlap");
   CheckFinite(d.equality_matrix, "equality_matrix");
   CheckFinite(d.equality_rhs, "equality_rhs");
@@ -220,11 +287,15 @@ ContactProblem::ContactProblem(ContactProblemData data) : data_(std::move(data))
     if (!IsValidLocalTerm(d.local[j]))
       ValidateLocalTerm(d.local[j], "local[" + std::to_string(j) + "]");
 
-  CheckSymmetric(d.compliance, "compliance");
-  for (Eigen::Index j = 0; j < n; ++j)  // the symmetric part, in place
-    for (Eigen::Index i = 0; i < j; ++i)
-      d.compliance(i, j) = d.compliance(j, i) = 0.5 * (d.compliance(i, j) + d.compliance(j, i));
-  definite_by_structure_ = CheckComplianceTerms(d.compliance_terms, d.compliance);
+  if (exact_terms) {
+    definite_by_structure_ = FactorsProveDefinite(d.compliance_terms);
+  } else {
+    CheckSymmetric(d.compliance, "compliance");
+    for (Eigen::Index j = 0; j < n; ++j)  // the symmetric part, in place
+      for (Eigen::Index i = 0; i < j; ++i)
+        d.compliance(i, j) = d.compliance(j, i) = 0.5 * (d.compliance(i, j) + d.compliance(j, i));
+    definite_by_structure_ = CheckComplianceTerms(d.compliance_terms, d.compliance);
+  }
   if (!definite_by_structure_ && !CholeskySucceeds(d.compliance)) {
     // Contacts that share their rows of C (the strips of a pitted contact) make C singular; with
     // a local term on every contact, strictly increasing (u' > 0), the program stays strictly

@@ -153,12 +153,20 @@ int CarryForces(const std::vector<StageContact>& from, const Eigen::VectorXd& fo
   const int n = static_cast<int>(to.size());
   *out = Eigen::VectorXd::Zero(n);
   int matched = 0;
-  // Both lists are short (tens of contacts) and in search order; a plain scan beats an index.
+  // Both lists are in search order, so contact j's match is mostly the one after contact j − 1's:
+  // each scan starts there and wraps around (O(N) for lists that differ by a few contacts, where
+  // a scan from the start is O(N²): 240 contacts for 20 face-width slices). A search yields each
+  // potential contact once (what SameAs compares names it), so the match found is the only one.
+  const std::size_t m = from.size();
+  std::size_t next = 0;
   for (int j = 0; j < n; ++j) {
-    for (std::size_t i = 0; i < from.size(); ++i) {
-      if (from[i].SameAs(to[static_cast<std::size_t>(j)])) {
+    const StageContact& c = to[static_cast<std::size_t>(j)];
+    for (std::size_t step = 0; step < m; ++step) {
+      const std::size_t i = next + step < m ? next + step : next + step - m;
+      if (from[i].SameAs(c)) {
         (*out)(j) = force(static_cast<Eigen::Index>(i));
         ++matched;
+        next = i + 1 < m ? i + 1 : 0;
         break;
       }
     }

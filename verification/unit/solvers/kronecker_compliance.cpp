@@ -230,6 +230,57 @@ TEST_CASE("Kronecker compliance: validation proves definiteness from the factors
   }
 }
 
+TEST_CASE(
+    "Kronecker compliance: a C that is exactly the terms' sum is taken as it stands, one "
+    "off by round-off or with an overflowed sum goes through the rules",
+    "[unit][solvers]") {
+  const int n = 3, slices = 4;
+  const Eigen::MatrixXd cn = SourceCompliance(n), w = DenseKernel(slices);
+  {
+    // Exactly C_n ⊗ W: C stored bit for bit, definite by its factors.
+    const ContactProblemData d = SlicedProblem(n, slices, {{cn, w}});
+    const ContactProblem p(d);
+    CHECK(p.compliance() == d.compliance);
+    CHECK(p.definite_by_structure());
+    // C_n split into two terms as the face-width model splits its meshes (each block from one
+    // term, the other's source entry 0; the first source is then indefinite, and C is tested
+    // densely): C stored bit for bit.
+    Eigen::MatrixXd first = cn, second = Eigen::MatrixXd::Zero(n, n);
+    second(2, 2) = first(2, 2);
+    first(2, 2) = 0.0;
+    const ContactProblemData split = SlicedProblem(n, slices, {{first, w}, {second, 2.0 * w}});
+    CHECK(ContactProblem(split).compliance() == split.compliance);
+  }
+  {
+    // One entry one ulp off its transposed entry: symmetric within the rule, stored as the
+    // symmetric part, and within the rule of the terms' sum.
+    ContactProblemData d = SlicedProblem(n, slices, {{cn, w}});
+    const double lower = d.compliance(5, 1), upper = d.compliance(1, 5);
+    d.compliance(5, 1) = std::nextafter(lower, 1.0);
+    const ContactProblem p(d);
+    CHECK(p.compliance()(5, 1) == 0.5 * (d.compliance(5, 1) + upper));
+    CHECK(p.compliance()(1, 5) == p.compliance()(5, 1));
+    CHECK(p.definite_by_structure());
+  }
+  {
+    // A source one ulp off symmetric, C its exact Kronecker product: the source is within the
+    // rule, and C is stored as its (exactly symmetric) symmetric part.
+    Eigen::MatrixXd skew = cn;
+    skew(0, 1) = std::nextafter(cn(0, 1), 1.0);
+    const ContactProblem p(SlicedProblem(n, slices, {{skew, w}}));
+    CHECK((p.compliance() - p.compliance().transpose()).cwiseAbs().maxCoeff() == 0.0);
+    CHECK(p.definite_by_structure());
+  }
+  {
+    // Finite factors whose products overflow: C's entries are the products (inf), refused by
+    // the rule on C's entries.
+    const ContactProblemData d = SlicedProblem(n, slices, {{1e300 * cn, 1e30 * w}});
+    REQUIRE(std::isinf(d.compliance(0, 0)));
+    CHECK_THAT(test::ThrownMessage([&] { ContactProblem{d}; }),
+               Catch::Contains("compliance(0,0) = inf: every entry must be finite"));
+  }
+}
+
 TEST_CASE("Kronecker compliance: the slice groups that the Newton factorises on their own",
           "[unit][solvers]") {
   const int n = 3, slices = 5;

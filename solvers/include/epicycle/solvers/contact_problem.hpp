@@ -66,7 +66,10 @@ struct ContactProblemData {
 ///    (O(N²)). When every factor is positive semidefinite and one term has both factors positive
 ///    definite (Cholesky of the n×n and S×S factors), Σ source ⊗ kernel is positive definite
 ///    (the eigenvalues of A ⊗ B are the products of theirs) and the O(N³) test of C is skipped;
-///    otherwise C is tested as above;
+///    otherwise C is tested as above. A C that is exactly (bit for bit) Σ source ⊗ kernel of one
+///    or two terms whose factors are exactly symmetric, with finite sums, as the face-width model
+///    writes it, meets the rules on C as it stands: it is checked in one pass in storage order
+///    instead of the rules' three (finiteness, symmetry, the terms' sum);
 ///  - S symmetric (same rule) and positive semidefinite (eigenvalues ≥ −kSymmetryTolerance·max|S|);
 ///  - local-term parameters: face width, R_eq, E, h > 0, 0 ≤ ν < 0.5 (see ValidateLocalTerm).
 /// The stored C and S are the symmetric parts of the input.
