@@ -371,8 +371,8 @@ bool DynamicModel::SolveContacts(double t, const Eigen::VectorXd& d,
     // into the problem, released after the solve. C is lent, not copied (O(N²) with face-width
     // slices): swapped into the problem's data and back after the solve, as the problem stores
     // it (its symmetric part, which the FE compliance and the face-width expansion already
-    // are, bit for bit). A problem that refuses its data keeps it: the evaluation has failed,
-    // and the next one builds its terms anew.
+    // are, bit for bit). A problem that refuses its data (it throws) takes the lent C with it;
+    // the run then stops with that error, and an evaluation builds its terms anew in any case.
     solvers::ContactProblemData& data = w.problem;
     data.compliance.swap(e.terms.compliance);
     data.compliance_terms = terms.compliance_terms;
